@@ -1,0 +1,75 @@
+# Finds every third-party library, all from Debian 12 packages (scripts/setup installs them).
+# A missing one stops configuration with the Debian package to install.
+
+function(corsa_require found what package)
+  if(NOT ${found})
+    message(FATAL_ERROR "Corsa needs ${what}: install the Debian package '${package}' "
+                        "(or run scripts/setup as root, which installs everything).")
+  endif()
+endfunction()
+
+find_package(Threads REQUIRED)
+
+find_package(tinyxml2 CONFIG QUIET)
+corsa_require(tinyxml2_FOUND "tinyxml2" libtinyxml2-dev)
+
+find_package(Eigen3 3.3 CONFIG QUIET)
+corsa_require(Eigen3_FOUND "Eigen 3" libeigen3-dev)
+
+find_package(embree 3 CONFIG QUIET)
+corsa_require(embree_FOUND "Embree 3" libembree-dev)
+
+find_package(assimp CONFIG QUIET)
+corsa_require(assimp_FOUND "assimp" libassimp-dev)
+
+find_package(PROJ CONFIG QUIET)
+corsa_require(PROJ_FOUND "PROJ" libproj-dev)
+
+find_package(TBB CONFIG QUIET)
+corsa_require(TBB_FOUND "oneTBB" libtbb-dev)
+
+# shapelib ships only a pkg-config file on Debian.
+find_path(SHAPELIB_INCLUDE_DIR shapefil.h)
+find_library(SHAPELIB_LIBRARY NAMES shp)
+if(SHAPELIB_INCLUDE_DIR AND SHAPELIB_LIBRARY)
+  set(SHAPELIB_FOUND TRUE)
+  add_library(corsa::shapelib UNKNOWN IMPORTED)
+  set_target_properties(corsa::shapelib PROPERTIES
+    IMPORTED_LOCATION "${SHAPELIB_LIBRARY}" INTERFACE_INCLUDE_DIRECTORIES "${SHAPELIB_INCLUDE_DIR}")
+endif()
+corsa_require(SHAPELIB_FOUND "shapelib" libshp-dev)
+
+# OpenCV: only the four modules we use (the full libopencv-dev pulls ~100 more packages and its
+# CMake config insists on all of them), so the libraries are found directly.
+find_path(OPENCV_INCLUDE_DIR opencv2/core.hpp PATH_SUFFIXES opencv4)
+corsa_require(OPENCV_INCLUDE_DIR "OpenCV headers" libopencv-core-dev)
+add_library(corsa::opencv INTERFACE IMPORTED)
+set_target_properties(corsa::opencv PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${OPENCV_INCLUDE_DIR}")
+foreach(module core imgproc imgcodecs videoio)
+  find_library(OPENCV_${module}_LIBRARY NAMES opencv_${module})
+  corsa_require(OPENCV_${module}_LIBRARY "OpenCV ${module}" libopencv-${module}-dev)
+  target_link_libraries(corsa::opencv INTERFACE "${OPENCV_${module}_LIBRARY}")
+endforeach()
+
+# SUNDIALS: CVODE with the serial vector and the dense linear solver.
+find_path(SUNDIALS_INCLUDE_DIR cvode/cvode.h)
+find_library(SUNDIALS_CVODE_LIBRARY NAMES sundials_cvode)
+find_library(SUNDIALS_NVEC_LIBRARY NAMES sundials_nvecserial)
+if(SUNDIALS_INCLUDE_DIR AND SUNDIALS_CVODE_LIBRARY AND SUNDIALS_NVEC_LIBRARY)
+  set(SUNDIALS_FOUND TRUE)
+  add_library(corsa::sundials INTERFACE IMPORTED)
+  set_target_properties(corsa::sundials PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${SUNDIALS_INCLUDE_DIR}"
+    INTERFACE_LINK_LIBRARIES "${SUNDIALS_CVODE_LIBRARY};${SUNDIALS_NVEC_LIBRARY}")
+endif()
+corsa_require(SUNDIALS_FOUND "SUNDIALS (CVODE)" libsundials-dev)
+
+if(CORSA_BUILD_TESTS)
+  find_package(Catch2 2 CONFIG QUIET)
+  corsa_require(Catch2_FOUND "Catch2 v2" catch2)
+endif()
+
+if(CORSA_BUILD_BENCH)
+  find_package(benchmark CONFIG QUIET)
+  corsa_require(benchmark_FOUND "Google Benchmark" libbenchmark-dev)
+endif()

@@ -1,0 +1,20 @@
+# Warnings and sanitizers shared by every Corsa target. Call corsa_target_defaults(target).
+add_library(corsa_build_flags INTERFACE)
+target_compile_options(corsa_build_flags INTERFACE -Wall -Wextra -Wpedantic)
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+  # GCC 12 reports -Wrestrict inside libstdc++'s std::string operator+ at -O3, a known false
+  # positive (GCC bug 105651, fixed in 13).
+  target_compile_options(corsa_build_flags INTERFACE -Wno-restrict)
+endif()
+if(CORSA_WERROR)
+  target_compile_options(corsa_build_flags INTERFACE -Werror)
+endif()
+if(CORSA_SANITIZE)
+  target_compile_options(corsa_build_flags INTERFACE
+    -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+  target_link_options(corsa_build_flags INTERFACE -fsanitize=address,undefined)
+endif()
+
+function(corsa_target_defaults target)
+  target_link_libraries(${target} PRIVATE corsa_build_flags)
+endfunction()

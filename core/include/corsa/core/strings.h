@@ -1,0 +1,29 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace corsa {
+
+/// Strict number parsing: the whole text (surrounding blanks allowed) must be a number.
+/// Returns nullopt for empty text, trailing garbage, overflow, or (for doubles) NaN/inf text.
+std::optional<double> parse_double(std::string_view text);
+std::optional<int64_t> parse_int(std::string_view text);
+
+/// Shortest decimal text that reads back to exactly the same double (std::to_chars).
+std::string format_double(double value);
+/// Fixed notation with `decimals` digits after the point, without locale effects.
+std::string format_fixed(double value, int decimals);
+
+std::string_view trim(std::string_view text);
+std::vector<std::string_view> split(std::string_view text, char separator);
+bool iequals(std::string_view a, std::string_view b);
+std::string to_lower(std::string_view text);
+
+/// Escapes a string for inclusion in a JSON document (quotes included).
+std::string json_quote(std::string_view text);
+
+}  // namespace corsa

@@ -1,0 +1,57 @@
+#include "corsa/core/atomic_file.h"
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "corsa/core/diagnostic.h"
+#include "temp_dir.h"
+
+namespace fs = std::filesystem;
+
+TEST_CASE("an atomic file appears only when committed", "[core][atomic_file]") {
+  corsa::test::TempDir dir;
+  const fs::path target = dir.path() / "out.csv";
+  {
+    corsa::AtomicFile file(target);
+    file.stream() << "a,b\n1,2\n";
+    CHECK_FALSE(fs::exists(target));
+    CHECK(fs::exists(file.temporary()));
+    file.commit();
+  }
+  CHECK(corsa::read_file(target) == "a,b\n1,2\n");
+  CHECK(dir.entries() == 1);
+}
+
+TEST_CASE("an uncommitted atomic file leaves no trace and keeps the old file",
+          "[core][atomic_file]") {
+  corsa::test::TempDir dir;
+  const fs::path target = dir.path() / "out.csv";
+  corsa::write_file_atomic(target, "old");
+  try {
+    corsa::AtomicFile file(target);
+    file.stream() << "half-written";
+    throw std::runtime_error("interrupted");
+  } catch (const std::runtime_error&) {
+  }
+  CHECK(corsa::read_file(target) == "old");
+  CHECK(dir.entries() == 1);
+}
+
+TEST_CASE("an atomic file in a missing folder fails with the path named", "[core][atomic_file]") {
+  corsa::test::TempDir dir;
+  const fs::path target = dir.path() / "no" / "such" / "dir" / "out.csv";
+  try {
+    corsa::AtomicFile file(target);
+    FAIL("expected an error");
+  } catch (const corsa::InputError& error) {
+    CHECK(error.diagnostic().file == target.string());
+    CHECK_THAT(error.what(), Catch::Contains("cannot create output file"));
+  }
+}
+
+TEST_CASE("reading a missing file names it", "[core][atomic_file]") {
+  CHECK_THROWS_WITH(corsa::read_file("/no/such/file.xodr"),
+                    Catch::StartsWith("/no/such/file.xodr: error: cannot open file"));
+}

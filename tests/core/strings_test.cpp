@@ -1,0 +1,37 @@
+#include "corsa/core/strings.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+TEST_CASE("numbers parse strictly", "[core][strings]") {
+  CHECK(corsa::parse_double("1.5") == 1.5);
+  CHECK(corsa::parse_double("  -2e3 ") == -2000.0);
+  CHECK(corsa::parse_double("+4") == 4.0);
+  CHECK_FALSE(corsa::parse_double(""));
+  CHECK_FALSE(corsa::parse_double("1.5m"));
+  CHECK_FALSE(corsa::parse_double("nan"));
+  CHECK_FALSE(corsa::parse_double("inf"));
+  CHECK_FALSE(corsa::parse_double("1e999"));
+  CHECK(corsa::parse_int("-12") == -12);
+  CHECK_FALSE(corsa::parse_int("1.0"));
+  CHECK_FALSE(corsa::parse_int("99999999999999999999"));
+}
+
+TEST_CASE("doubles format to the shortest text that reads back exactly", "[core][strings]") {
+  for (const double x : {0.1, 1.0 / 3.0, -1e-300, 123456789.123, 2.5}) {
+    CHECK(corsa::parse_double(corsa::format_double(x)) == x);
+  }
+  CHECK(corsa::format_double(0.1) == "0.1");
+  CHECK(corsa::format_fixed(3.14159, 2) == "3.14");
+}
+
+TEST_CASE("text helpers split, trim, compare and quote", "[core][strings]") {
+  const auto parts = corsa::split("a,,b", ',');
+  REQUIRE(parts.size() == 3);
+  CHECK(parts[1].empty());
+  CHECK(corsa::trim("  x \n") == "x");
+  CHECK(corsa::iequals("L_LinKID", "l_linkid"));
+  CHECK_FALSE(corsa::iequals("a", "ab"));
+  CHECK(corsa::to_lower("PostID") == "postid");
+  CHECK(corsa::json_quote("a\"b\\\n\x01") == "\"a\\\"b\\\\\\n\\u0001\"");
+}
