@@ -1,0 +1,108 @@
+#pragma once
+
+// What the engine hands to a capture sink (the sensors) at a capture time: every entity's pose,
+// box and motion, and the environment. The engine owns this interface so that it builds and is
+// tested without Embree; the command line connects a sensors-side sink to it.
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace corsa::engine {
+
+/// Position and orientation in map coordinates: metres; heading, pitch, roll in radians
+/// (heading counter-clockwise from +x, OpenSCENARIO/OpenDRIVE conventions).
+struct Pose {
+  double x = 0.0;
+  double y = 0.0;
+  double z = 0.0;
+  double h = 0.0;
+  double p = 0.0;
+  double r = 0.0;
+};
+
+/// Entity categories from OpenSCENARIO's vehicleCategory, pedestrianCategory and
+/// miscObjectCategory, collapsed to what sensors and labels distinguish.
+enum class EntityCategory : uint8_t {
+  kCar,
+  kVan,
+  kTruck,
+  kTrailer,
+  kSemitrailer,
+  kBus,
+  kMotorbike,
+  kBicycle,
+  kTrain,
+  kTram,
+  kPedestrian,
+  kWheelchair,
+  kAnimal,
+  kObstacle,  ///< any MiscObject
+};
+
+/// OpenSCENARIO BoundingBox: centre relative to the entity's reference point (for vehicles the
+/// rear axle centre on the ground), in the entity frame (x forward, y left, z up); dimensions.
+struct Box {
+  double center_x = 0.0;
+  double center_y = 0.0;
+  double center_z = 0.0;
+  double length = 0.0;
+  double width = 0.0;
+  double height = 0.0;
+};
+
+struct EntitySnapshot {
+  uint32_t instance_id = 0;  ///< stable for the whole run, 1-based in document order
+  std::string name;
+  EntityCategory category = EntityCategory::kCar;
+  std::string model3d;  ///< OpenSCENARIO model3d attribute, may be empty
+  Pose pose;
+  Box box;
+  double speed = 0.0;  ///< m/s along the heading
+  /// World-frame velocity (m/s) and yaw rate (rad/s), e.g. for motion blur.
+  double vx = 0.0, vy = 0.0, vz = 0.0, yaw_rate = 0.0;
+  bool visible = true;  ///< VisibilityAction (sensors flag)
+};
+
+enum class PrecipitationType : uint8_t { kDry, kRain, kSnow };
+
+/// The environment at the capture time (OpenSCENARIO Environment, possibly overridden on the
+/// command line).
+struct EnvironmentState {
+  int year = 2024, month = 6, day = 21;  ///< local date, for the solar position
+  double time_of_day = 12.0 * 3600.0;    ///< seconds since local midnight
+  double utc_offset_hours = 0.0;         ///< local time minus UTC
+  /// Sun from OpenSCENARIO Weather/Sun when given (radians: azimuth from north clockwise as the
+  /// standard defines it, elevation above the horizon); otherwise computed from date, time and the
+  /// map's georeference.
+  std::optional<double> sun_azimuth;
+  std::optional<double> sun_elevation;
+  double sun_intensity = 100000.0;  ///< lux
+  double fog_visual_range = std::numeric_limits<double>::infinity();  ///< metres
+  PrecipitationType precipitation = PrecipitationType::kDry;
+  double precipitation_intensity = 0.0;  ///< mm/h
+  double cloud_cover = 0.0;              ///< 0 (clear) .. 1 (overcast)
+  double wind_speed = 0.0;               ///< m/s
+  double wind_direction = 0.0;           ///< radians
+  double road_friction_scale = 1.0;
+  bool wet_road = false;
+};
+
+struct WorldSnapshot {
+  int64_t tick = 0;   ///< integer step count since the start
+  double time = 0.0;  ///< seconds, tick * dt
+  std::vector<EntitySnapshot> entities;
+  EnvironmentState environment;
+};
+
+/// Receives the world at capture times. `sensors` names the sensors due at this time.
+class CaptureSink {
+ public:
+  virtual ~CaptureSink() = default;
+  virtual void capture(const WorldSnapshot& world, std::span<const std::string> sensors) = 0;
+};
+
+}  // namespace corsa::engine

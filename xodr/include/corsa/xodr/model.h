@@ -1,0 +1,289 @@
+#pragma once
+
+// The OpenDRIVE data model: plain structs, one per element kind, as read from a file or built by a
+// converter (NGII). Units are SI (metres, radians, m/s); s and t follow OpenDRIVE 1.8: s along the
+// road reference line, t to its left, headings counter-clockwise from +x.
+//
+// MapData is mutable while being built; a loaded map is wrapped by Map (map.h), which is read-only
+// and adds the evaluation, lane graph and spatial index. The parser, the NGII converter and the
+// writer all speak MapData.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace corsa::xodr {
+
+/// Cubic a + b ds + c ds^2 + d ds^3 starting at `s` (ds = s_query - s). `s` is absolute road s for
+/// elevation/superelevation/laneOffset, and sOffset from the lane section start for widths/borders.
+struct Poly3 {
+  double s = 0.0;
+  double a = 0.0;
+  double b = 0.0;
+  double c = 0.0;
+  double d = 0.0;
+
+  double value(double s_query) const {
+    const double ds = s_query - s;
+    return a + ds * (b + ds * (c + ds * d));
+  }
+  double slope(double s_query) const {
+    const double ds = s_query - s;
+    return b + ds * (2.0 * c + ds * 3.0 * d);
+  }
+};
+
+// --- plan view (OpenDRIVE 1.8 §7) -----------------------------------------------------------
+
+struct LineGeometry {};
+struct ArcGeometry {
+  double curvature = 0.0;  ///< 1/m, positive turns left
+};
+/// Clothoid: curvature changes linearly from start to end over the length.
+struct SpiralGeometry {
+  double curv_start = 0.0;
+  double curv_end = 0.0;
+};
+/// Deprecated cubic v(u) in the local u/v frame (§7.6.1).
+struct Poly3Geometry {
+  double a = 0.0, b = 0.0, c = 0.0, d = 0.0;
+};
+enum class ParamRange { kArcLength, kNormalized };
+/// Parametric cubic u(p), v(p); p in [0, length] (arcLength) or [0, 1] (normalized) (§7.6.2).
+struct ParamPoly3Geometry {
+  double au = 0.0, bu = 0.0, cu = 0.0, du = 0.0;
+  double av = 0.0, bv = 0.0, cv = 0.0, dv = 0.0;
+  ParamRange range = ParamRange::kNormalized;
+};
+
+using GeometryShape =
+    std::variant<LineGeometry, ArcGeometry, SpiralGeometry, Poly3Geometry, ParamPoly3Geometry>;
+
+/// One <geometry> record: starts at road `s` at (x, y) heading `hdg`, runs `length` metres.
+struct Geometry {
+  double s = 0.0;
+  double x = 0.0;
+  double y = 0.0;
+  double hdg = 0.0;
+  double length = 0.0;
+  GeometryShape shape;
+  int line = 0;  ///< source line, 0 when built in memory
+};
+
+// --- lateral profile ------------------------------------------------------------------------
+
+/// lateralProfile <shape>: height offset as a cubic in t, at road position s (§8.4.3).
+struct ShapeRecord {
+  double s = 0.0;
+  double t = 0.0;
+  double a = 0.0, b = 0.0, c = 0.0, d = 0.0;
+};
+
+// --- lanes (§9) -----------------------------------------------------------------------------
+
+enum class LaneType : uint8_t {
+  kNone,
+  kDriving,
+  kStop,
+  kShoulder,
+  kBiking,
+  kSidewalk,
+  kWalking,
+  kBorder,
+  kCurb,
+  kRestricted,
+  kParking,
+  kBidirectional,
+  kMedian,
+  kSpecial1,
+  kSpecial2,
+  kSpecial3,
+  kRoadWorks,
+  kTram,
+  kRail,
+  kEntry,
+  kExit,
+  kOffRamp,
+  kOnRamp,
+  kConnectingRamp,
+  kSlipLane,
+  kBus,
+  kTaxi,
+  kHov,
+  kShared,
+  kOther,  ///< a type name this model does not know; the original text is in Lane::type_name
+};
+
+/// roadMark record (§9.8), sOffset from the lane section start.
+struct RoadMark {
+  double s_offset = 0.0;
+  std::string type = "none";  ///< none, solid, broken, solid solid, solid broken, broken solid, ...
+  std::string weight = "standard";
+  std::string color = "standard";
+  std::string lane_change = "both";
+  double width = 0.12;  ///< m
+  double height = 0.0;  ///< m
+};
+
+struct LaneSpeed {
+  double s_offset = 0.0;
+  double max_speed = 0.0;  ///< m/s
+};
+
+struct Lane {
+  int id = 0;  ///< > 0 left of the reference line, 0 the centre lane, < 0 right
+  LaneType type = LaneType::kNone;
+  std::string type_name;  ///< the type as written in the file
+  bool level = false;
+  std::vector<int> predecessors;  ///< lane ids in the preceding section / road
+  std::vector<int> successors;
+  std::vector<Poly3> widths;   ///< width polynomials, s relative to the section start
+  std::vector<Poly3> borders;  ///< outer border polynomials (alternative to widths)
+  std::vector<RoadMark> road_marks;
+  std::vector<LaneSpeed> speeds;
+  int line = 0;
+};
+
+/// A lane section starting at road `s`. Lanes are ordered left to right: highest id first, the
+/// centre lane (id 0) in the middle, lowest id last.
+struct LaneSection {
+  double s = 0.0;
+  bool single_side = false;
+  std::vector<Lane> lanes;
+  int line = 0;
+};
+
+// --- road, links, types ---------------------------------------------------------------------
+
+enum class ContactPoint : uint8_t { kNone, kStart, kEnd };
+enum class LinkElement : uint8_t { kNone, kRoad, kJunction };
+
+struct RoadLink {
+  LinkElement element_type = LinkElement::kNone;
+  std::string element_id;
+  ContactPoint contact_point = ContactPoint::kNone;
+};
+
+/// <type> record: road type from `s`, with an optional speed limit.
+struct RoadType {
+  double s = 0.0;
+  std::string type;  ///< motorway, rural, town, ...
+  std::string country;
+  std::optional<double> max_speed;  ///< m/s, converted from the record's unit
+};
+
+enum class TrafficRule : uint8_t { kRightHand, kLeftHand };
+
+struct Signal {
+  std::string id;
+  std::string name;
+  double s = 0.0;
+  double t = 0.0;
+  double z_offset = 0.0;
+  double h_offset = 0.0;
+  std::string orientation = "none";  ///< "+", "-" or "none"
+  bool dynamic = false;
+  std::string country;
+  std::string type;
+  std::string subtype;
+  std::optional<double> value;
+  std::string unit;
+  double height = 0.0;
+  double width = 0.0;
+  std::string text;
+  int line = 0;
+};
+
+struct Object {
+  std::string id;
+  std::string name;
+  std::string type;
+  double s = 0.0;
+  double t = 0.0;
+  double z_offset = 0.0;
+  double hdg = 0.0;
+  double pitch = 0.0;
+  double roll = 0.0;
+  double length = 0.0;
+  double width = 0.0;
+  double height = 0.0;
+  double radius = 0.0;
+  std::string orientation = "none";
+  int line = 0;
+};
+
+struct Road {
+  std::string id;
+  std::string name;
+  double length = 0.0;
+  std::string junction = "-1";  ///< id of the junction this road belongs to, "-1" for none
+  TrafficRule rule = TrafficRule::kRightHand;
+  RoadLink predecessor;
+  RoadLink successor;
+  std::vector<RoadType> types;
+  std::vector<Geometry> plan_view;
+  std::vector<Poly3> elevation;       ///< s absolute
+  std::vector<Poly3> superelevation;  ///< radians, s absolute
+  std::vector<ShapeRecord> shapes;
+  std::vector<Poly3> lane_offsets;  ///< s absolute
+  std::vector<LaneSection> lane_sections;
+  std::vector<Signal> signals;
+  std::vector<Object> objects;
+  int line = 0;
+
+  bool in_junction() const { return junction != "-1" && !junction.empty(); }
+};
+
+// --- junctions (§10) ------------------------------------------------------------------------
+
+enum class JunctionType : uint8_t { kDefault, kDirect, kVirtual, kCrossing };
+
+struct LaneLink {
+  int from = 0;  ///< lane id on the incoming road
+  int to = 0;    ///< lane id on the connecting (or, for direct junctions, linked) road
+};
+
+struct Connection {
+  std::string id;
+  std::string incoming_road;
+  std::string connecting_road;  ///< empty for direct junctions
+  std::string linked_road;      ///< direct junctions (§10.5)
+  ContactPoint contact_point = ContactPoint::kNone;
+  std::vector<LaneLink> lane_links;
+  int line = 0;
+};
+
+struct Junction {
+  std::string id;
+  std::string name;
+  JunctionType type = JunctionType::kDefault;
+  std::vector<Connection> connections;
+  int line = 0;
+};
+
+// --- header ---------------------------------------------------------------------------------
+
+struct Header {
+  int rev_major = 1;
+  int rev_minor = 8;
+  std::string name;
+  std::string version;
+  std::string date;
+  std::string vendor;
+  double north = 0.0, south = 0.0, east = 0.0, west = 0.0;
+  std::string geo_reference;  ///< PROJ string or WKT as written in <geoReference>
+  /// <offset>: the file's coordinates are shifted by this to reach the geoReference frame.
+  double offset_x = 0.0, offset_y = 0.0, offset_z = 0.0, offset_hdg = 0.0;
+};
+
+/// A whole OpenDRIVE document. Roads and junctions in document order.
+struct MapData {
+  Header header;
+  std::vector<Road> roads;
+  std::vector<Junction> junctions;
+  std::string source_file;  ///< file it was read from, for messages; empty when built in memory
+};
+
+}  // namespace corsa::xodr
