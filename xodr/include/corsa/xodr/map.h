@@ -1,0 +1,157 @@
+#pragma once
+
+// A loaded OpenDRIVE map: read-only after Map::build, safe to share between threads. Holds the
+// MapData plus what queries need: road lookup by id, the lane graph and a spatial index for
+// world -> lane queries. All s are road s (metres from the road start), t is lateral (metres, to
+// the left of the reference line), headings counter-clockwise from +x (OpenDRIVE 1.8 §2.3).
+//
+// Road arguments are indices into data().roads (find_road() maps an id to one). s outside
+// [0, length] is clamped to the road.
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/xodr/geometry.h"
+#include "corsa/xodr/lane_ref.h"
+#include "corsa/xodr/model.h"
+
+namespace corsa::xodr {
+
+class LaneGraph;
+
+/// Position and orientation in map coordinates: metres; heading, pitch, roll in radians.
+/// Pitch follows ISO 8855 / OpenSCENARIO: positive is nose down, so an uphill road has negative
+/// pitch. Roll is the superelevation: positive lowers the right side (-t).
+struct WorldPose {
+  double x = 0.0;
+  double y = 0.0;
+  double z = 0.0;
+  double h = 0.0;
+  double p = 0.0;
+  double r = 0.0;
+};
+
+/// Lateral extent of one lane at some s: t of its inner border (the side of the centre lane) and
+/// of its outer border, in metres from the reference line (laneOffset included).
+struct LaneSpan {
+  int id = 0;
+  double t_inner = 0.0;
+  double t_outer = 0.0;
+
+  double width() const { return t_outer > t_inner ? t_outer - t_inner : t_inner - t_outer; }
+  double t_center() const { return 0.5 * (t_inner + t_outer); }
+  double t_min() const { return t_inner < t_outer ? t_inner : t_outer; }
+  double t_max() const { return t_inner < t_outer ? t_outer : t_inner; }
+};
+
+/// Where a world point is on the map (the answer of Map::locate).
+struct LanePosition {
+  uint32_t road = 0;
+  uint32_t section = 0;
+  int lane = 0;  ///< 0 when the point is off every lane (then `distance` > 0)
+  double s = 0.0;
+  double t = 0.0;
+  /// Horizontal distance (m) from the point to the nearest lane: 0 when it lies on one.
+  double distance = 0.0;
+  double heading = 0.0;  ///< reference-line heading at s (rad)
+
+  LaneRef lane_ref() const { return LaneRef{road, section, lane}; }
+};
+
+struct LocateOptions {
+  /// Points farther than this (m) from every lane give no answer.
+  double max_distance = 5.0;
+  /// Only lanes vehicles drive on (driving, entry/exit, ramps, bidirectional, ...).
+  bool drivable_only = false;
+};
+
+struct BuildOptions {
+  /// Largest gap (m) / heading jump (rad) between consecutive planView records tolerated
+  /// silently; larger ones are warned about (once per road).
+  double max_joint_gap = 0.01;
+  double max_joint_heading = 0.01;
+};
+
+/// True for lane types vehicles drive on (driving, entry, exit, on/off/connecting ramps, slip
+/// lanes, bidirectional, bus, taxi, HOV).
+bool is_drivable(LaneType type);
+
+class Map {
+ public:
+  /// Checks and indexes `data`: sorts nothing, but verifies that records are in s order, that
+  /// every road/junction reference exists, that geometry lengths add up (warning otherwise) and
+  /// that consecutive planView records join (gap/heading warnings); builds the lane graph and the
+  /// spatial index. Throws corsa::InputError (located at the offending element) on bad data.
+  static Map build(MapData data, corsa::Diagnostics& diagnostics, const BuildOptions& options = {});
+  /// parse_xodr + build.
+  static Map load(const std::filesystem::path& path, corsa::Diagnostics& diagnostics,
+                  const BuildOptions& options = {});
+
+  Map(Map&&) noexcept;
+  Map& operator=(Map&&) noexcept;
+  ~Map();
+
+  const MapData& data() const;
+  size_t road_count() const;
+  const Road& road(size_t road) const;
+  std::optional<size_t> find_road(std::string_view id) const;
+  size_t junction_count() const;
+  const Junction& junction(size_t junction) const;
+  std::optional<size_t> find_junction(std::string_view id) const;
+
+  // --- reference line and road profile --------------------------------------------------------
+
+  /// Reference line point at s (planView, §7).
+  RefPoint reference(size_t road, double s) const;
+  /// Elevation z(s) (m) and its slope dz/ds (§8.4.1).
+  double elevation(size_t road, double s) const;
+  double elevation_slope(size_t road, double s) const;
+  /// Superelevation roll (rad) at s (§8.4.2).
+  double superelevation(size_t road, double s) const;
+  /// laneOffset (m): t of the centre lane at s (§9.3).
+  double lane_offset(size_t road, double s) const;
+  /// Height (m) of the lateralProfile shape at (s, t), 0 without <shape> records (§8.4.3).
+  double shape_height(size_t road, double s, double t) const;
+  /// (road, s, t, h) -> world pose: t along the reference line's normal, tilted by the
+  /// superelevation roll, and h along the road surface normal; z includes elevation, the roll
+  /// term and lateral shape. Heading is the reference line's, pitch from the elevation slope.
+  WorldPose world_pose(size_t road, double s, double t, double h = 0.0) const;
+
+  // --- lanes ----------------------------------------------------------------------------------
+
+  /// Index of the lane section containing s (the last one starting at or before s).
+  size_t section_index(size_t road, double s) const;
+  /// Road s where section `section` ends (the next section's s, or the road length).
+  double section_end(size_t road, size_t section) const;
+  /// Spans of every lane of the section at s, ordered left to right (ids descending; the centre
+  /// lane is left out). `out` is cleared first; reuse it to avoid allocations.
+  void lane_spans(size_t road, double s, std::vector<LaneSpan>& out) const;
+  /// Span of one lane at s, or nothing when the section at s has no such lane.
+  std::optional<LaneSpan> lane_span(size_t road, double s, int lane_id) const;
+  /// The lane containing lateral position t at s (borders belong to the inner lane), or nothing
+  /// when t is outside every lane.
+  std::optional<int> lane_at(size_t road, double s, double t) const;
+  /// The Lane record of a lane reference, or nullptr if it does not exist.
+  const Lane* lane(const LaneRef& ref) const;
+
+  // --- world -> lane --------------------------------------------------------------------------
+
+  /// Nearest lane to world point (x, y), ignoring z. A point inside several lanes (overlapping
+  /// junction roads) gets the one whose centre is nearest; ties go to the lower road index.
+  std::optional<LanePosition> locate(double x, double y, const LocateOptions& options = {}) const;
+
+  /// Lane connectivity (successors, predecessors, neighbours) across sections, roads, junctions.
+  const LaneGraph& lane_graph() const;
+
+ private:
+  struct Impl;
+  explicit Map(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace corsa::xodr

@@ -1,0 +1,27 @@
+#pragma once
+
+// MapData -> OpenDRIVE 1.8 text. Numbers are written as the shortest decimal text that reads back
+// to exactly the same double, so write -> parse gives back identical MapData (lines aside).
+// Output is deterministic: same MapData, same bytes.
+
+#include <filesystem>
+#include <string>
+
+#include "corsa/xodr/model.h"
+
+namespace corsa::xodr {
+
+struct WriteOptions {
+  /// <header revMinor>: the writer emits 1.8 structure; older minors only change the number.
+  int rev_minor = 8;
+};
+
+/// The whole document as text.
+std::string write_xodr_text(const MapData& map, const WriteOptions& options = {});
+
+/// Writes the document to `path` atomically (a temporary file renamed into place), so a failure
+/// never leaves a half-written map. Throws corsa::InputError on I/O failure.
+void write_xodr(const MapData& map, const std::filesystem::path& path,
+                const WriteOptions& options = {});
+
+}  // namespace corsa::xodr
