@@ -1,0 +1,99 @@
+#pragma once
+
+// A loaded OpenSCENARIO scenario: read-only after load_scenario returns. Parameters are resolved,
+// catalog references expanded, references checked, and the road network's LogicFile resolved to
+// an absolute path (the map itself is loaded by the engine through corsa_xodr).
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/xosc/catalogs.h"
+#include "corsa/xosc/common.h"
+#include "corsa/xosc/distributions.h"
+#include "corsa/xosc/entities.h"
+#include "corsa/xosc/parameters.h"
+#include "corsa/xosc/storyboard.h"
+
+namespace corsa::xosc {
+
+struct TrafficSignalState {
+  std::string traffic_signal_id;
+  std::string state;
+  Source source;
+};
+struct Phase {
+  std::string name;
+  double duration = 0.0;  ///< s
+  std::vector<TrafficSignalState> states;
+  std::optional<std::string> group_state;  ///< TrafficSignalGroupState (1.2)
+  Source source;
+};
+struct TrafficSignalController {
+  std::string name;
+  std::optional<double> delay;           ///< s, relative to `reference`
+  std::optional<std::string> reference;  ///< another controller's name
+  std::vector<Phase> phases;
+  Source source;
+};
+
+struct RoadNetwork {
+  std::optional<File> logic_file;
+  /// LogicFile resolved against the scenario file's folder (absolute, normalised); empty when
+  /// there is no LogicFile.
+  std::filesystem::path logic_file_path;
+  std::optional<File> scene_graph_file;
+  std::filesystem::path scene_graph_file_path;
+  std::vector<TrafficSignalController> traffic_signal_controllers;
+  std::vector<Position> used_area;
+  Source source;
+};
+
+struct Scenario {
+  FileHeader header;
+  std::filesystem::path path;                    ///< the .xosc as given to load_scenario
+  std::vector<ParameterDeclaration> parameters;  ///< global, with overrides applied
+  std::vector<VariableDeclaration> variables;
+  std::vector<MonitorDeclaration> monitors;
+  CatalogLocations catalog_locations;
+  RoadNetwork road_network;
+  Entities entities;
+  Storyboard storyboard;
+  /// Every catalog file read while expanding references, in the order first read.
+  std::vector<std::filesystem::path> catalog_files;
+  Source source;
+
+  const ParameterDeclaration* find_parameter(const std::string& name) const;
+  const VariableDeclaration* find_variable(const std::string& name) const;
+};
+
+struct LoadOptions {
+  /// Values for global parameters from outside (`--param name=value`), in order. Each must name
+  /// a declared global parameter and be valid for its type; it replaces the declared value.
+  std::vector<std::pair<std::string, std::string>> parameters;
+  /// Check that the LogicFile exists (an error when not). Off for fuzzing.
+  bool check_files = true;
+};
+
+/// Loads a scenario file. Throws InputError (file:line: message) for the first error; warnings
+/// (deprecated spellings, unsupported optional features) go to `diagnostics`.
+Scenario load_scenario(const std::filesystem::path& path, const LoadOptions& options,
+                       Diagnostics& diagnostics);
+
+/// Same, from text in memory; `path` names the file for messages and relative paths.
+Scenario parse_scenario(std::string_view xml, const std::filesystem::path& path,
+                        const LoadOptions& options, Diagnostics& diagnostics);
+
+/// What an .xosc file holds, by its content (scenario, catalog, or parameter distribution).
+enum class DocumentKind { kScenario, kCatalog, kDistribution };
+using Document = std::variant<Scenario, Catalog, ParameterValueDistribution>;
+
+/// Loads any OpenSCENARIO document, deciding its kind from the element after FileHeader.
+Document load_document(const std::filesystem::path& path, const LoadOptions& options,
+                       Diagnostics& diagnostics);
+
+}  // namespace corsa::xosc
