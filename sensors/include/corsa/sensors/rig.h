@@ -1,0 +1,116 @@
+#pragma once
+
+// Sensor rig files (schemas/sensor-rig.xsd): sensors attached to scenario entities with a
+// mounting pose, a capture rate and their options. Loading validates against the schema and
+// reports `file:line: error: message`; binding to a scenario checks the entity names.
+
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace corsa::sensors {
+
+enum class SensorKind {
+  kRgbCamera,
+  kDepthCamera,
+  kSemanticCamera,
+  kInstanceCamera,
+  kBirdsEyeCamera,
+  kLidar,
+};
+
+/// The rig element name of a kind ("RgbCamera", "Lidar", ...).
+std::string_view sensor_kind_name(SensorKind kind);
+
+/// Mounting pose of the sensor body frame (x forward, y left, z up) relative to the entity's
+/// reference point: metres and degrees, rotation R = Rz(yaw) Ry(pitch) Rx(roll).
+struct Mount {
+  double x = 0.0, y = 0.0, z = 0.0;
+  double roll_deg = 0.0, pitch_deg = 0.0, yaw_deg = 0.0;
+};
+
+/// Pinhole intrinsics from the image size and the horizontal field of view, with OpenCV's
+/// distortion model (radial k1, k2; tangential p1, p2).
+struct CameraIntrinsics {
+  int width = 1280;
+  int height = 720;
+  double fov_deg = 90.0;  ///< horizontal
+  double k1 = 0.0, k2 = 0.0, p1 = 0.0, p2 = 0.0;
+};
+
+struct RgbOptions {
+  double shutter_speed_s = 0.004;  ///< exposure time: brightness and motion blur
+  double iso = 100.0;              ///< sensitivity: brightness and noise
+  double gamma = 2.2;
+  double exposure_compensation_ev = 0.0;
+  bool noise = true;
+};
+
+struct DepthOptions {
+  double max_range_m = 1000.0;  ///< beyond this a pixel is empty (0)
+};
+
+enum class BirdsEyeStyle { kSemantic, kRgb };
+
+struct BirdsEyeOptions {
+  int width = 640;
+  int height = 640;
+  double extent_m = 80.0;     ///< ground width covered by the image
+  double altitude_m = 100.0;  ///< view height above the entity
+  bool follow_heading = true;
+  BirdsEyeStyle style = BirdsEyeStyle::kSemantic;
+};
+
+struct LidarOptions {
+  int channels = 32;
+  double range_m = 100.0;
+  double points_per_second = 600000.0;
+  double rotation_frequency_hz = 10.0;
+  double upper_fov_deg = 10.0;
+  double lower_fov_deg = -30.0;
+  double horizontal_fov_deg = 360.0;
+  double noise_stddev_m = 0.0;
+  double dropoff_general_rate = 0.0;
+  double dropoff_intensity_limit = 0.0;
+  double dropoff_zero_intensity = 0.0;
+  double atmosphere_attenuation_rate = 0.004;  ///< 1/m
+
+  /// Firings per channel in one revolution: points_per_second / (channels * rotation_frequency),
+  /// rounded, at least 1.
+  int azimuth_steps() const;
+};
+
+struct SensorSpec {
+  std::string name;
+  SensorKind kind = SensorKind::kRgbCamera;
+  std::string entity;
+  double rate_hz = 10.0;
+  Mount mount;
+  CameraIntrinsics camera;  ///< cameras other than bird's-eye
+  RgbOptions rgb;
+  DepthOptions depth;
+  BirdsEyeOptions birds_eye;
+  LidarOptions lidar;
+  int line = 0;  ///< line of the sensor element in the rig file, for messages
+};
+
+struct SensorRig {
+  std::string name;
+  std::string file;  ///< as named by the user, for messages
+  std::vector<SensorSpec> sensors;
+
+  const SensorSpec* find(std::string_view sensor_name) const;
+};
+
+/// Reads and validates a rig file. Throws corsa::InputError (file:line) on any problem.
+SensorRig load_rig(const std::filesystem::path& path);
+/// The same from text; `file` names it in messages.
+SensorRig parse_rig(std::string_view xml, const std::string& file);
+
+/// Checks the rig against the scenario's entity names: an unknown entity throws InputError
+/// located at the sensor's line in the rig file.
+void bind_rig(const SensorRig& rig, std::span<const std::string> entity_names);
+
+}  // namespace corsa::sensors

@@ -1,0 +1,202 @@
+#include "corsa/sensors/rig.h"
+
+#include <cmath>
+#include <set>
+
+#include "corsa/core/atomic_file.h"
+#include "corsa/core/diagnostic.h"
+#include "corsa/core/strings.h"
+#include "rig_schema_text.h"
+#include "xsd_validator.h"
+
+namespace corsa::sensors {
+namespace {
+
+using detail::ValidatedElement;
+
+// Values were validated against the schema (types, ranges, defaults) before these are called.
+double number(const ValidatedElement& e, const std::string& name) {
+  return *parse_double(*e.find(name));
+}
+int integer(const ValidatedElement& e, const std::string& name) {
+  return static_cast<int>(*parse_int(*e.find(name)));
+}
+bool boolean(const ValidatedElement& e, const std::string& name) {
+  const std::string& v = *e.find(name);
+  return v == "true" || v == "1";
+}
+
+Mount read_mount(const ValidatedElement& sensor) {
+  Mount m;
+  for (const auto& child : sensor.children) {
+    if (child.name == "Mount") {
+      m.x = number(child, "x");
+      m.y = number(child, "y");
+      m.z = number(child, "z");
+      m.roll_deg = number(child, "roll");
+      m.pitch_deg = number(child, "pitch");
+      m.yaw_deg = number(child, "yaw");
+    }
+  }
+  return m;
+}
+
+CameraIntrinsics read_intrinsics(const ValidatedElement& e) {
+  CameraIntrinsics c;
+  c.width = integer(e, "width");
+  c.height = integer(e, "height");
+  c.fov_deg = number(e, "fov");
+  c.k1 = number(e, "k1");
+  c.k2 = number(e, "k2");
+  c.p1 = number(e, "p1");
+  c.p2 = number(e, "p2");
+  return c;
+}
+
+LidarOptions read_lidar(const ValidatedElement& e, const std::string& file) {
+  LidarOptions l;
+  l.channels = integer(e, "channels");
+  l.range_m = number(e, "range");
+  l.points_per_second = number(e, "pointsPerSecond");
+  l.rotation_frequency_hz = number(e, "rotationFrequency");
+  l.upper_fov_deg = number(e, "upperFov");
+  l.lower_fov_deg = number(e, "lowerFov");
+  l.horizontal_fov_deg = number(e, "horizontalFov");
+  l.noise_stddev_m = number(e, "noiseStddev");
+  l.dropoff_general_rate = number(e, "dropoffGeneralRate");
+  l.dropoff_intensity_limit = number(e, "dropoffIntensityLimit");
+  l.dropoff_zero_intensity = number(e, "dropoffZeroIntensity");
+  l.atmosphere_attenuation_rate = number(e, "atmosphereAttenuationRate");
+  if (l.lower_fov_deg > l.upper_fov_deg) {
+    throw InputError(make_error(file, e.line,
+                                "<Lidar> lowerFov (" + format_double(l.lower_fov_deg) +
+                                    ") is above upperFov (" + format_double(l.upper_fov_deg) + ")",
+                                e.path));
+  }
+  if (l.channels > 1 && l.lower_fov_deg == l.upper_fov_deg) {
+    throw InputError(make_error(
+        file, e.line, "<Lidar> with several channels needs lowerFov below upperFov", e.path));
+  }
+  // One revolution must hold at least one firing per channel.
+  if (l.points_per_second / (l.channels * l.rotation_frequency_hz) < 0.5) {
+    throw InputError(make_error(
+        file, e.line, "<Lidar> pointsPerSecond is too low for one firing per channel and turn",
+        e.path));
+  }
+  return l;
+}
+
+SensorSpec read_sensor(const ValidatedElement& e, const std::string& file) {
+  SensorSpec s;
+  s.name = *e.find("name");
+  s.entity = *e.find("entity");
+  s.rate_hz = number(e, "rate");
+  s.mount = read_mount(e);
+  s.line = e.line;
+  if (e.name == "RgbCamera") {
+    s.kind = SensorKind::kRgbCamera;
+    s.camera = read_intrinsics(e);
+    s.rgb.shutter_speed_s = number(e, "shutterSpeed");
+    s.rgb.iso = number(e, "iso");
+    s.rgb.gamma = number(e, "gamma");
+    s.rgb.exposure_compensation_ev = number(e, "exposureCompensation");
+    s.rgb.noise = boolean(e, "noise");
+  } else if (e.name == "DepthCamera") {
+    s.kind = SensorKind::kDepthCamera;
+    s.camera = read_intrinsics(e);
+    s.depth.max_range_m = number(e, "maxRange");
+  } else if (e.name == "SemanticCamera" || e.name == "InstanceCamera") {
+    s.kind = e.name == "SemanticCamera" ? SensorKind::kSemanticCamera : SensorKind::kInstanceCamera;
+    s.camera = read_intrinsics(e);
+  } else if (e.name == "BirdsEyeCamera") {
+    s.kind = SensorKind::kBirdsEyeCamera;
+    s.birds_eye.width = integer(e, "width");
+    s.birds_eye.height = integer(e, "height");
+    s.birds_eye.extent_m = number(e, "extent");
+    s.birds_eye.altitude_m = number(e, "altitude");
+    s.birds_eye.follow_heading = boolean(e, "followHeading");
+    s.birds_eye.style = *e.find("style") == "rgb" ? BirdsEyeStyle::kRgb : BirdsEyeStyle::kSemantic;
+  } else {
+    s.kind = SensorKind::kLidar;
+    s.lidar = read_lidar(e, file);
+  }
+  return s;
+}
+
+}  // namespace
+
+std::string_view sensor_kind_name(SensorKind kind) {
+  switch (kind) {
+    case SensorKind::kRgbCamera:
+      return "RgbCamera";
+    case SensorKind::kDepthCamera:
+      return "DepthCamera";
+    case SensorKind::kSemanticCamera:
+      return "SemanticCamera";
+    case SensorKind::kInstanceCamera:
+      return "InstanceCamera";
+    case SensorKind::kBirdsEyeCamera:
+      return "BirdsEyeCamera";
+    case SensorKind::kLidar:
+      return "Lidar";
+  }
+  return "Sensor";
+}
+
+int LidarOptions::azimuth_steps() const {
+  const double steps = std::round(points_per_second / (channels * rotation_frequency_hz));
+  return steps < 1.0 ? 1 : static_cast<int>(steps);
+}
+
+const SensorSpec* SensorRig::find(std::string_view sensor_name) const {
+  for (const auto& s : sensors) {
+    if (s.name == sensor_name) {
+      return &s;
+    }
+  }
+  return nullptr;
+}
+
+SensorRig parse_rig(std::string_view xml, const std::string& file) {
+  const detail::XsdSchema schema(detail::rig_schema_text());
+  const ValidatedElement root = schema.validate(xml, file);
+  SensorRig rig;
+  rig.name = *root.find("name");
+  rig.file = file;
+  std::set<std::string> names;
+  for (const auto& e : root.children) {
+    SensorSpec s = read_sensor(e, file);
+    if (!names.insert(s.name).second) {
+      throw InputError(make_error(file, e.line,
+                                  "a sensor named '" + s.name + "' is already in the rig", e.path));
+    }
+    rig.sensors.push_back(std::move(s));
+  }
+  return rig;
+}
+
+SensorRig load_rig(const std::filesystem::path& path) {
+  return parse_rig(read_file(path), path.string());
+}
+
+void bind_rig(const SensorRig& rig, std::span<const std::string> entity_names) {
+  for (const auto& s : rig.sensors) {
+    bool found = false;
+    for (const auto& name : entity_names) {
+      found = found || name == s.entity;
+    }
+    if (!found) {
+      std::string known;
+      for (const auto& name : entity_names) {
+        known += (known.empty() ? "" : ", ") + name;
+      }
+      throw InputError(make_error(rig.file, s.line,
+                                  "sensor '" + s.name + "' is attached to entity '" + s.entity +
+                                      "', which the scenario does not have (entities: " +
+                                      (known.empty() ? std::string("none") : known) + ")",
+                                  "SensorRig/" + std::string(sensor_kind_name(s.kind))));
+    }
+  }
+}
+
+}  // namespace corsa::sensors
