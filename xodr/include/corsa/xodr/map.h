@@ -53,7 +53,7 @@ struct LaneSpan {
 struct LanePosition {
   uint32_t road = 0;
   uint32_t section = 0;
-  int lane = 0;  ///< 0 when the point is off every lane (then `distance` > 0)
+  int lane = 0;  ///< the lane containing the point, or the nearest one (then `distance` > 0)
   double s = 0.0;
   double t = 0.0;
   /// Horizontal distance (m) from the point to the nearest lane: 0 when it lies on one.
@@ -141,8 +141,11 @@ class Map {
 
   // --- world -> lane --------------------------------------------------------------------------
 
-  /// Nearest lane to world point (x, y), ignoring z. A point inside several lanes (overlapping
-  /// junction roads) gets the one whose centre is nearest; ties go to the lower road index.
+  /// Nearest lane to world point (x, y), ignoring z: s from the projection onto the reference
+  /// line, t the lateral offset (divided by cos(superelevation), so that world_pose(road, s, t)
+  /// returns to the point). A point inside several lanes (overlapping junction roads) gets the
+  /// one whose centre is nearest; ties go to the lower road index. Nothing when no lane is within
+  /// options.max_distance.
   std::optional<LanePosition> locate(double x, double y, const LocateOptions& options = {}) const;
 
   /// Lane connectivity (successors, predecessors, neighbours) across sections, roads, junctions.

@@ -1,0 +1,64 @@
+// Dispatch from a planView record to its kind, and the transform from the kind's local frame
+// (start at the origin, heading 0) into map coordinates (OpenDRIVE 1.8 §7.2).
+
+#include "corsa/xodr/geometry.h"
+
+#include <cmath>
+#include <type_traits>
+
+namespace corsa::xodr {
+
+RefPoint evaluate_geometry(const Geometry& geometry, double ds) {
+  const RefPoint local = std::visit(
+      [&](const auto& shape) -> RefPoint {
+        using T = std::decay_t<decltype(shape)>;
+        if constexpr (std::is_same_v<T, LineGeometry>) {
+          return evaluate_line(ds);
+        } else if constexpr (std::is_same_v<T, ArcGeometry>) {
+          return evaluate_arc(shape, ds);
+        } else if constexpr (std::is_same_v<T, SpiralGeometry>) {
+          return evaluate_spiral(shape, geometry.length, ds);
+        } else if constexpr (std::is_same_v<T, Poly3Geometry>) {
+          return evaluate_poly3(shape, ds);
+        } else {
+          return evaluate_param_poly3(shape, geometry.length, ds);
+        }
+      },
+      geometry.shape);
+  const double cos_h = std::cos(geometry.hdg);
+  const double sin_h = std::sin(geometry.hdg);
+  return RefPoint{geometry.x + cos_h * local.x - sin_h * local.y,
+                  geometry.y + sin_h * local.x + cos_h * local.y, geometry.hdg + local.hdg,
+                  local.curvature};
+}
+
+const char* geometry_kind_name(const GeometryShape& shape) {
+  switch (shape.index()) {
+    case 0:
+      return "line";
+    case 1:
+      return "arc";
+    case 2:
+      return "spiral";
+    case 3:
+      return "poly3";
+    default:
+      return "paramPoly3";
+  }
+}
+
+RefPoint evaluate_line(double ds) { return RefPoint{ds, 0.0, 0.0, 0.0}; }
+
+RefPoint evaluate_arc(const ArcGeometry& arc, double ds) {
+  const double k = arc.curvature;
+  if (k == 0.0) {
+    return evaluate_line(ds);
+  }
+  // §7.5: circle of radius 1/k; y = (1 - cos(k ds)) / k written as 2 sin²(k ds / 2) / k to keep
+  // precision for small k ds.
+  const double half = 0.5 * k * ds;
+  const double sin_half = std::sin(half);
+  return RefPoint{std::sin(k * ds) / k, 2.0 * sin_half * sin_half / k, k * ds, k};
+}
+
+}  // namespace corsa::xodr

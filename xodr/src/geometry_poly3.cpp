@@ -1,0 +1,78 @@
+// Polynomial reference lines (OpenDRIVE 1.8 §7.6).
+// poly3 (deprecated, §7.6.1): v(u) = a + b u + c u² + d u³ in the local u/v frame; the record's
+//   s runs along the curve, so u for a given ds solves arc length L(u) = ds (Newton, with L by
+//   Gauss-Legendre quadrature).
+// paramPoly3 (§7.6.2): u(p), v(p) cubics; p = ds for pRange="arcLength" (p runs over
+//   [0, length]) and p = ds / length for pRange="normalized" (p over [0, 1]), exactly as the
+//   standard defines the parameter; no re-parametrisation by true arc length.
+
+#include <array>
+#include <cmath>
+
+#include "corsa/xodr/geometry.h"
+
+namespace corsa::xodr {
+namespace {
+
+constexpr std::array<double, 5> kNodes = {0.1488743389816312, 0.4333953941292472,
+                                          0.6794095682990244, 0.8650633666889845,
+                                          0.9739065285171717};
+constexpr std::array<double, 5> kWeights = {0.2955242247147529, 0.2692667193099963,
+                                            0.2190863625159820, 0.1494513491505806,
+                                            0.0666713443086881};
+
+double poly3_slope(const Poly3Geometry& p, double u) {
+  return p.b + u * (2.0 * p.c + 3.0 * p.d * u);
+}
+
+/// Arc length of v(u) from 0 to u: ∫ sqrt(1 + v'²), in pieces of at most 20 m of u.
+double poly3_arc_length(const Poly3Geometry& p, double u) {
+  const int pieces = 1 + static_cast<int>(std::abs(u) / 20.0);
+  const double step = u / pieces;
+  double total = 0.0;
+  for (int piece = 0; piece < pieces; ++piece) {
+    const double mid = (piece + 0.5) * step;
+    for (size_t i = 0; i < kNodes.size(); ++i) {
+      for (const double sign : {-1.0, 1.0}) {
+        const double slope = poly3_slope(p, mid + sign * kNodes[i] * 0.5 * step);
+        total += kWeights[i] * std::sqrt(1.0 + slope * slope);
+      }
+    }
+  }
+  return total * 0.5 * step;
+}
+
+}  // namespace
+
+RefPoint evaluate_poly3(const Poly3Geometry& poly, double ds) {
+  double u = ds;
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    const double slope = poly3_slope(poly, u);
+    const double step = (poly3_arc_length(poly, u) - ds) / std::sqrt(1.0 + slope * slope);
+    u -= step;
+    if (std::abs(step) < 1e-12 * (1.0 + std::abs(u))) {
+      break;
+    }
+  }
+  const double v = poly.a + u * (poly.b + u * (poly.c + u * poly.d));
+  const double slope = poly3_slope(poly, u);
+  const double second = 2.0 * poly.c + 6.0 * poly.d * u;
+  const double norm = 1.0 + slope * slope;
+  return RefPoint{u, v, std::atan(slope), second / (norm * std::sqrt(norm))};
+}
+
+RefPoint evaluate_param_poly3(const ParamPoly3Geometry& poly, double length, double ds) {
+  const double p = poly.range == ParamRange::kNormalized ? (length > 0.0 ? ds / length : 0.0) : ds;
+  const double u = poly.au + p * (poly.bu + p * (poly.cu + p * poly.du));
+  const double v = poly.av + p * (poly.bv + p * (poly.cv + p * poly.dv));
+  const double du = poly.bu + p * (2.0 * poly.cu + 3.0 * poly.du * p);
+  const double dv = poly.bv + p * (2.0 * poly.cv + 3.0 * poly.dv * p);
+  const double ddu = 2.0 * poly.cu + 6.0 * poly.du * p;
+  const double ddv = 2.0 * poly.cv + 6.0 * poly.dv * p;
+  const double speed2 = du * du + dv * dv;
+  const double curvature =
+      speed2 > 0.0 ? (du * ddv - dv * ddu) / (speed2 * std::sqrt(speed2)) : 0.0;
+  return RefPoint{u, v, std::atan2(dv, du), curvature};
+}
+
+}  // namespace corsa::xodr

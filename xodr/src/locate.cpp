@@ -1,0 +1,175 @@
+// World -> lane queries over the spatial index: candidate chunks from the grid, then a Newton
+// projection onto the reference line and the lane spans at the foot point.
+
+#include <algorithm>
+#include <cmath>
+
+#include "road_eval.h"
+#include "spatial_index.h"
+
+namespace corsa::xodr::detail {
+namespace {
+
+/// A candidate answer with what ranks it: distance first, then the offset from the lane centre
+/// (overlapping junction lanes), then road index and s for determinism.
+struct Candidate {
+  LanePosition position;
+  double center_offset = 0.0;
+
+  bool better_than(const Candidate& other) const {
+    if (position.distance != other.position.distance) {
+      return position.distance < other.position.distance;
+    }
+    if (center_offset != other.center_offset) {
+      return center_offset < other.center_offset;
+    }
+    if (position.road != other.position.road) {
+      return position.road < other.position.road;
+    }
+    return position.s < other.position.s;
+  }
+};
+
+/// Foot point of (x, y) on the reference line within [chunk.s0, chunk.s1]: Newton on
+/// f(s) = (P - r(s)) · T(s), f'(s) = -(1 - κ t), clamped to the chunk.
+struct Foot {
+  double s = 0.0;
+  RefPoint ref;
+  double along = 0.0;    ///< (P - r) · T, non-zero only when clamped at a chunk end
+  double lateral = 0.0;  ///< (P - r) · N, horizontal
+};
+
+Foot project(const Map& map, const Chunk& chunk, double x, double y) {
+  const double a = (x - chunk.ox) * chunk.ux + (y - chunk.oy) * chunk.uy;
+  const double chord = chunk.a1 - chunk.a0;
+  double s = chunk.s0;
+  if (chord > 0.0) {
+    s += std::clamp(a / chord, 0.0, 1.0) * (chunk.s1 - chunk.s0);
+  }
+  Foot foot;
+  for (int iteration = 0; iteration < 12; ++iteration) {
+    foot.ref = map.reference(chunk.road, s);
+    const double c = std::cos(foot.ref.hdg);
+    const double sn = std::sin(foot.ref.hdg);
+    const double dx = x - foot.ref.x;
+    const double dy = y - foot.ref.y;
+    foot.along = dx * c + dy * sn;
+    foot.lateral = dy * c - dx * sn;
+    foot.s = s;
+    const double denominator = std::max(0.1, 1.0 - foot.ref.curvature * foot.lateral);
+    const double next = std::clamp(s + foot.along / denominator, chunk.s0, chunk.s1);
+    if (std::abs(next - s) < 1e-10) {
+      break;
+    }
+    s = next;
+  }
+  return foot;
+}
+
+void evaluate_chunk(const Map& map, const Chunk& chunk, double x, double y,
+                    const LocateOptions& options, Candidate& best, bool& have) {
+  const Foot foot = project(map, chunk, x, y);
+  const Road& road = map.road(chunk.road);
+  const LaneSection& section = road.lane_sections[chunk.section];
+  const double roll = road.superelevation.empty() ? 0.0 : map.superelevation(chunk.road, foot.s);
+  const double cos_r = roll == 0.0 ? 1.0 : std::cos(roll);
+  const double t = foot.lateral / cos_r;
+  LaneSpan spans[kMaxLanesPerSection];
+  const size_t n = compute_spans(section, foot.s, map.lane_offset(chunk.road, foot.s), spans);
+  const size_t center = center_index(section);
+  const bool has_center = center < section.lanes.size() && section.lanes[center].id == 0;
+  int lane = 0;
+  double gap = 0.0;
+  double center_offset = 0.0;
+  bool found = false;
+  for (size_t i = 0; i < n; ++i) {
+    const LaneSpan& span = spans[i];
+    const size_t lane_index = i < center ? i : i + (has_center ? 1 : 0);
+    if (span.width() <= 0.0 ||
+        (options.drivable_only && !is_drivable(section.lanes[lane_index].type))) {
+      continue;
+    }
+    const double g = t < span.t_min()   ? span.t_min() - t
+                     : t > span.t_max() ? t - span.t_max()
+                                        : 0.0;
+    const double offset = std::abs(t - span.t_center());
+    // Nearest lane; on a shared border the inner lane (smaller |id|) wins.
+    if (!found || g < gap ||
+        (g == gap && (g > 0.0 ? offset < center_offset : std::abs(span.id) < std::abs(lane)))) {
+      lane = span.id;
+      gap = g;
+      center_offset = offset;
+      found = true;
+    }
+  }
+  if (!found) {
+    return;
+  }
+  Candidate candidate;
+  candidate.position.road = chunk.road;
+  candidate.position.section = chunk.section;
+  candidate.position.lane = lane;
+  candidate.position.s = foot.s;
+  candidate.position.t = t;
+  candidate.position.heading = foot.ref.hdg;
+  const double along = std::abs(foot.along) < 1e-6 ? 0.0 : foot.along;
+  candidate.position.distance = along == 0.0 && gap == 0.0 ? 0.0 : std::hypot(along, gap * cos_r);
+  candidate.center_offset = center_offset;
+  if (candidate.position.distance > options.max_distance) {
+    return;
+  }
+  if (!have || candidate.better_than(best)) {
+    best = candidate;
+    have = true;
+  }
+}
+
+}  // namespace
+
+std::optional<LanePosition> SpatialIndex::locate(const Map& map, double x, double y,
+                                                 const LocateOptions& options) const {
+  if (chunks_.empty()) {
+    return std::nullopt;
+  }
+  Candidate best;
+  bool have = false;
+  // Pass 1: the point's own cell, chunks whose rectangle contains it.
+  const double gx = std::floor((x - min_x_) / cell_);
+  const double gy = std::floor((y - min_y_) / cell_);
+  if (gx >= 0.0 && gy >= 0.0 && gx < nx_ && gy < ny_) {
+    const size_t cell =
+        static_cast<size_t>(gy) * static_cast<size_t>(nx_) + static_cast<size_t>(gx);
+    for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+      const Chunk& chunk = chunks_[cell_items_[k]];
+      if (chunk.near(x, y, 0.0)) {
+        evaluate_chunk(map, chunk, x, y, options, best, have);
+      }
+    }
+  }
+  if (have && best.position.distance == 0.0) {
+    return best.position;
+  }
+  // Pass 2: everything within max_distance (off-road points), each chunk once.
+  const double r = options.max_distance;
+  int i0, j0, i1, j1;
+  cell_range(x - r, y - r, x + r, y + r, i0, j0, i1, j1);
+  std::vector<uint32_t> seen;
+  for (int j = j0; j <= j1; ++j) {
+    for (int i = i0; i <= i1; ++i) {
+      const size_t cell = static_cast<size_t>(j) * static_cast<size_t>(nx_) + i;
+      for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
+        if (chunks_[cell_items_[k]].near(x, y, r)) {
+          seen.push_back(cell_items_[k]);
+        }
+      }
+    }
+  }
+  std::sort(seen.begin(), seen.end());
+  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+  for (const uint32_t index : seen) {
+    evaluate_chunk(map, chunks_[index], x, y, options, best, have);
+  }
+  return have ? std::optional<LanePosition>(best.position) : std::nullopt;
+}
+
+}  // namespace corsa::xodr::detail

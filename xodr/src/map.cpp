@@ -1,0 +1,241 @@
+// Map: construction, lookups and the road-level evaluation (reference line, profiles, poses).
+
+#include "corsa/xodr/map.h"
+
+#include <cassert>
+#include <cmath>
+
+#include "corsa/xodr/parser.h"
+#include "map_impl.h"
+#include "road_eval.h"
+
+namespace corsa::xodr {
+
+bool is_drivable(LaneType type) {
+  switch (type) {
+    case LaneType::kDriving:
+    case LaneType::kEntry:
+    case LaneType::kExit:
+    case LaneType::kOffRamp:
+    case LaneType::kOnRamp:
+    case LaneType::kConnectingRamp:
+    case LaneType::kSlipLane:
+    case LaneType::kBidirectional:
+    case LaneType::kBus:
+    case LaneType::kTaxi:
+    case LaneType::kHov:
+      return true;
+    default:
+      return false;
+  }
+}
+
+Map::Map(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Map::Map(Map&&) noexcept = default;
+Map& Map::operator=(Map&&) noexcept = default;
+Map::~Map() = default;
+
+Map Map::build(MapData data, corsa::Diagnostics& diagnostics, const BuildOptions& options) {
+  auto impl = std::make_unique<Impl>();
+  impl->data = std::move(data);
+  detail::sort_map_records(impl->data, diagnostics);
+  detail::validate_map(impl->data, impl->ids, diagnostics, options);
+  Map map(std::move(impl));
+  map.impl_->graph = detail::build_lane_graph(map, diagnostics);
+  map.impl_->index.build(map);
+  return map;
+}
+
+Map Map::load(const std::filesystem::path& path, corsa::Diagnostics& diagnostics,
+              const BuildOptions& options) {
+  return build(parse_xodr(path, diagnostics), diagnostics, options);
+}
+
+const MapData& Map::data() const { return impl_->data; }
+size_t Map::road_count() const { return impl_->data.roads.size(); }
+const Road& Map::road(size_t road) const { return impl_->data.roads[road]; }
+size_t Map::junction_count() const { return impl_->data.junctions.size(); }
+const Junction& Map::junction(size_t junction) const { return impl_->data.junctions[junction]; }
+const LaneGraph& Map::lane_graph() const { return impl_->graph; }
+
+std::optional<size_t> Map::find_road(std::string_view id) const {
+  const auto it = impl_->ids.road_by_id.find(std::string(id));
+  return it == impl_->ids.road_by_id.end() ? std::nullopt : std::optional<size_t>(it->second);
+}
+
+std::optional<size_t> Map::find_junction(std::string_view id) const {
+  const auto it = impl_->ids.junction_by_id.find(std::string(id));
+  return it == impl_->ids.junction_by_id.end() ? std::nullopt : std::optional<size_t>(it->second);
+}
+
+namespace {
+
+double clamp_s(const Road& road, double s) {
+  return s < 0.0 ? 0.0 : s > road.length ? road.length : s;
+}
+
+}  // namespace
+
+RefPoint Map::reference(size_t road_index, double s) const {
+  const Road& r = road(road_index);
+  s = clamp_s(r, s);
+  const size_t g = detail::record_index(r.plan_view, s, [](const Geometry& x) { return x.s; });
+  const Geometry& geometry = r.plan_view[g];
+  return evaluate_geometry(geometry, s - geometry.s);
+}
+
+double Map::elevation(size_t road_index, double s) const {
+  const Road& r = road(road_index);
+  return detail::poly_value(r.elevation, clamp_s(r, s));
+}
+
+double Map::elevation_slope(size_t road_index, double s) const {
+  const Road& r = road(road_index);
+  return detail::poly_slope(r.elevation, clamp_s(r, s));
+}
+
+double Map::superelevation(size_t road_index, double s) const {
+  const Road& r = road(road_index);
+  return detail::poly_value(r.superelevation, clamp_s(r, s));
+}
+
+double Map::lane_offset(size_t road_index, double s) const {
+  const Road& r = road(road_index);
+  return detail::poly_value(r.lane_offsets, clamp_s(r, s));
+}
+
+double Map::shape_height(size_t road_index, double s, double t) const {
+  const Road& r = road(road_index);
+  if (r.shapes.empty()) {
+    return 0.0;
+  }
+  s = clamp_s(r, s);
+  // §8.4.3: shapes are grouped by s; within the group valid at s, the record with the largest
+  // t <= query t applies (dt = t - record t). Between two s groups the heights are interpolated
+  // linearly in s, as the standard prescribes.
+  const auto group_height = [&](double group_s) {
+    const ShapeRecord* best = nullptr;  // largest t <= query t, else the smallest t
+    for (const ShapeRecord& shape : r.shapes) {
+      if (shape.s != group_s) {
+        continue;
+      }
+      const bool better = best == nullptr ||
+                          (shape.t <= t ? (best->t > t || shape.t > best->t) : shape.t < best->t);
+      if (better) {
+        best = &shape;
+      }
+    }
+    const double dt = t - best->t;
+    return best->a + dt * (best->b + dt * (best->c + dt * best->d));
+  };
+  double before = r.shapes.front().s;
+  double after = before;
+  bool have_after = false;
+  for (const ShapeRecord& shape : r.shapes) {
+    if (shape.s <= s) {
+      before = std::max(before, shape.s);
+    } else if (!have_after || shape.s < after) {
+      after = shape.s;
+      have_after = true;
+    }
+  }
+  const double h0 = group_height(before);
+  if (!have_after || after <= before) {
+    return h0;
+  }
+  const double h1 = group_height(after);
+  const double w = (s - before) / (after - before);
+  return h0 + w * (h1 - h0);
+}
+
+WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const {
+  const RefPoint ref = reference(road_index, s);
+  const double roll = superelevation(road_index, s);
+  const double cos_r = std::cos(roll);
+  const double sin_r = std::sin(roll);
+  // §2.3 / §8.4.2: the t axis is the reference line's left normal rotated about s by the
+  // superelevation roll, so t moves cos(roll) horizontally and sin(roll) up; h runs along the
+  // rotated surface normal.
+  const double horizontal = t * cos_r - h * sin_r;
+  WorldPose pose;
+  pose.x = ref.x - std::sin(ref.hdg) * horizontal;
+  pose.y = ref.y + std::cos(ref.hdg) * horizontal;
+  pose.z = elevation(road_index, s) + t * sin_r + h * cos_r + shape_height(road_index, s, t);
+  pose.h = ref.hdg;
+  pose.p = -std::atan(elevation_slope(road_index, s));
+  pose.r = roll;
+  return pose;
+}
+
+size_t Map::section_index(size_t road_index, double s) const {
+  const Road& r = road(road_index);
+  return detail::record_index(r.lane_sections, clamp_s(r, s),
+                              [](const LaneSection& x) { return x.s; });
+}
+
+double Map::section_end(size_t road_index, size_t section) const {
+  const Road& r = road(road_index);
+  return section + 1 < r.lane_sections.size() ? r.lane_sections[section + 1].s : r.length;
+}
+
+void Map::lane_spans(size_t road_index, double s, std::vector<LaneSpan>& out) const {
+  const Road& r = road(road_index);
+  s = clamp_s(r, s);
+  const LaneSection& section = r.lane_sections[section_index(road_index, s)];
+  out.resize(section.lanes.size());
+  const size_t n = detail::compute_spans(section, s, lane_offset(road_index, s), out.data());
+  out.resize(n);
+}
+
+std::optional<LaneSpan> Map::lane_span(size_t road_index, double s, int lane_id) const {
+  const Road& r = road(road_index);
+  s = clamp_s(r, s);
+  const LaneSection& section = r.lane_sections[section_index(road_index, s)];
+  LaneSpan spans[detail::kMaxLanesPerSection];
+  const size_t n = detail::compute_spans(section, s, lane_offset(road_index, s), spans);
+  for (size_t i = 0; i < n; ++i) {
+    if (spans[i].id == lane_id) {
+      return spans[i];
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<int> Map::lane_at(size_t road_index, double s, double t) const {
+  const Road& r = road(road_index);
+  s = clamp_s(r, s);
+  const LaneSection& section = r.lane_sections[section_index(road_index, s)];
+  LaneSpan spans[detail::kMaxLanesPerSection];
+  const size_t n = detail::compute_spans(section, s, lane_offset(road_index, s), spans);
+  std::optional<int> best;
+  for (size_t i = 0; i < n; ++i) {
+    // A border belongs to the inner lane (smaller |id|).
+    if (spans[i].width() > 0.0 && t >= spans[i].t_min() && t <= spans[i].t_max() &&
+        (!best || std::abs(spans[i].id) < std::abs(*best))) {
+      best = spans[i].id;
+    }
+  }
+  return best;
+}
+
+const Lane* Map::lane(const LaneRef& ref) const {
+  if (ref.road >= road_count()) {
+    return nullptr;
+  }
+  const Road& r = road(ref.road);
+  if (ref.section >= r.lane_sections.size()) {
+    return nullptr;
+  }
+  for (const Lane& lane : r.lane_sections[ref.section].lanes) {
+    if (lane.id == ref.lane) {
+      return &lane;
+    }
+  }
+  return nullptr;
+}
+
+std::optional<LanePosition> Map::locate(double x, double y, const LocateOptions& options) const {
+  return impl_->index.locate(*this, x, y, options);
+}
+
+}  // namespace corsa::xodr

@@ -1,0 +1,39 @@
+#pragma once
+
+// Map's private state (shared by the map_*.cpp files).
+
+#include <string>
+#include <unordered_map>
+
+#include "corsa/xodr/lane_graph.h"
+#include "corsa/xodr/map.h"
+#include "spatial_index.h"
+
+namespace corsa::xodr {
+
+namespace detail {
+
+/// Road and junction ids -> indices.
+struct IdIndex {
+  std::unordered_map<std::string, size_t> road_by_id;
+  std::unordered_map<std::string, size_t> junction_by_id;
+};
+
+/// Puts records that a file listed out of s order in order (stable), warning once per kind.
+void sort_map_records(MapData& data, corsa::Diagnostics& diagnostics);
+/// Checks references, record order, lengths and joints (warnings/errors); fills the id maps.
+void validate_map(const MapData& data, IdIndex& ids, corsa::Diagnostics& diagnostics,
+                  const BuildOptions& options);
+/// Builds the lane graph of a validated map.
+LaneGraph build_lane_graph(const Map& map, corsa::Diagnostics& diagnostics);
+
+}  // namespace detail
+
+struct Map::Impl {
+  MapData data;
+  detail::IdIndex ids;
+  LaneGraph graph;
+  detail::SpatialIndex index;
+};
+
+}  // namespace corsa::xodr

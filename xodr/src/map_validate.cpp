@@ -1,0 +1,184 @@
+// Map::build's checks: ids, references, record order, lengths and planView joints. Errors are
+// located at the element of the offending record (its source line when it came from a file).
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "corsa/core/strings.h"
+#include "map_impl.h"
+#include "road_eval.h"
+
+namespace corsa::xodr::detail {
+namespace {
+
+class Checker {
+ public:
+  Checker(const MapData& data, corsa::Diagnostics& diagnostics)
+      : file_(data.source_file), diagnostics_(diagnostics) {}
+
+  [[noreturn]] void fail(int line, const std::string& message) const {
+    throw corsa::InputError(corsa::make_error(file_, line, message));
+  }
+  void warn(const std::string& key, int line, const std::string& message) const {
+    diagnostics_.add_once(key, corsa::make_warning(file_, line, message));
+  }
+
+ private:
+  std::string file_;
+  corsa::Diagnostics& diagnostics_;
+};
+
+/// Real files sometimes list records out of s order (e.g. ASAM's Ex_Slip_Lane elevation);
+/// the standard requires ascending s, so they are put in order (stable) with a warning.
+template <typename T, typename StartOf>
+void sort_records(const Checker& check, const Road& road, std::vector<T>& records, StartOf start_of,
+                  const char* what) {
+  const auto before = [&](const T& a, const T& b) { return start_of(a) < start_of(b); };
+  if (!std::is_sorted(records.begin(), records.end(), before)) {
+    check.warn(std::string("order:") + what, road.line,
+               std::string(what) + " records of road '" + road.id +
+                   "' are not in ascending s order; sorted (further roads not reported)");
+    std::stable_sort(records.begin(), records.end(), before);
+  }
+}
+
+double wrap_angle(double angle) { return std::remainder(angle, 2.0 * std::numbers::pi); }
+
+void check_plan_view(const Checker& check, const Road& road, const BuildOptions& options) {
+  double total = 0.0;
+  for (size_t i = 0; i < road.plan_view.size(); ++i) {
+    const Geometry& g = road.plan_view[i];
+    total += g.length;
+    if (i + 1 == road.plan_view.size()) {
+      break;
+    }
+    const Geometry& next = road.plan_view[i + 1];
+    const RefPoint end = evaluate_geometry(g, g.length);
+    const double gap = std::hypot(end.x - next.x, end.y - next.y);
+    const double turn = std::abs(wrap_angle(end.hdg - next.hdg));
+    if (gap > options.max_joint_gap || turn > options.max_joint_heading) {
+      check.warn("joint:" + road.id, next.line,
+                 "road '" + road.id + "': planView records do not join at s=" +
+                     corsa::format_fixed(next.s, 3) + " (gap " + corsa::format_fixed(gap, 4) +
+                     " m, heading jump " + corsa::format_fixed(turn, 4) + " rad)");
+    }
+    if (std::abs(g.s + g.length - next.s) > 1e-3) {
+      check.warn("geometry s:" + road.id, next.line,
+                 "road '" + road.id + "': geometry at s=" + corsa::format_fixed(next.s, 3) +
+                     " does not start where the previous one ends (s=" +
+                     corsa::format_fixed(g.s + g.length, 3) + ")");
+    }
+  }
+  if (std::abs(total - road.length) > 0.01) {
+    check.warn("length", road.line,
+               "road '" + road.id + "': length " + corsa::format_double(road.length) +
+                   " differs from the sum of its geometry lengths " + corsa::format_double(total) +
+                   " (further roads not reported)");
+  }
+}
+
+void sort_road_records(const Checker& check, Road& road) {
+  const auto by_s = [](const Poly3& p) { return p.s; };
+  sort_records(
+      check, road, road.plan_view, [](const Geometry& g) { return g.s; }, "planView");
+  sort_records(
+      check, road, road.lane_sections, [](const LaneSection& x) { return x.s; }, "laneSection");
+  sort_records(check, road, road.elevation, by_s, "elevation");
+  sort_records(check, road, road.superelevation, by_s, "superelevation");
+  sort_records(check, road, road.lane_offsets, by_s, "laneOffset");
+  sort_records(
+      check, road, road.types, [](const RoadType& t) { return t.s; }, "type");
+  for (LaneSection& section : road.lane_sections) {
+    for (Lane& lane : section.lanes) {
+      sort_records(check, road, lane.widths, by_s, "lane width");
+      sort_records(check, road, lane.borders, by_s, "lane border");
+      sort_records(
+          check, road, lane.road_marks, [](const RoadMark& m) { return m.s_offset; }, "roadMark");
+      sort_records(
+          check, road, lane.speeds, [](const LaneSpeed& m) { return m.s_offset; }, "lane speed");
+    }
+  }
+}
+
+void check_lane_sections(const Checker& check, const Road& road) {
+  for (const LaneSection& section : road.lane_sections) {
+    if (section.lanes.size() > kMaxLanesPerSection) {
+      check.fail(section.line,
+                 "more than " + std::to_string(kMaxLanesPerSection) + " lanes in one lane section");
+    }
+  }
+  if (road.lane_sections.front().s > 1e-6) {
+    check.warn("first section", road.lane_sections.front().line,
+               "road '" + road.id + "': its first laneSection starts at s=" +
+                   corsa::format_double(road.lane_sections.front().s) + ", not 0");
+  }
+}
+
+void check_road_link(const Checker& check, const IdIndex& impl, const Road& road,
+                     const RoadLink& link, const char* which) {
+  if (link.element_type == LinkElement::kRoad && !impl.road_by_id.contains(link.element_id)) {
+    check.fail(road.line, "road '" + road.id + "': " + which + " road '" + link.element_id +
+                              "' does not exist");
+  }
+  if (link.element_type == LinkElement::kJunction &&
+      !impl.junction_by_id.contains(link.element_id)) {
+    check.fail(road.line, "road '" + road.id + "': " + which + " junction '" + link.element_id +
+                              "' does not exist");
+  }
+}
+
+void check_junction(const Checker& check, const IdIndex& impl, const Junction& junction) {
+  for (const Connection& c : junction.connections) {
+    for (const std::string* id : {&c.incoming_road, &c.connecting_road, &c.linked_road}) {
+      if (!id->empty() && !impl.road_by_id.contains(*id)) {
+        check.fail(c.line, "junction '" + junction.id + "': connection refers to road '" + *id +
+                               "', which does not exist");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void sort_map_records(MapData& data, corsa::Diagnostics& diagnostics) {
+  const Checker check(data, diagnostics);
+  for (Road& road : data.roads) {
+    sort_road_records(check, road);
+  }
+}
+
+void validate_map(const MapData& data, IdIndex& impl, corsa::Diagnostics& diagnostics,
+                  const BuildOptions& options) {
+  const Checker check(data, diagnostics);
+  for (size_t i = 0; i < data.roads.size(); ++i) {
+    if (!impl.road_by_id.emplace(data.roads[i].id, i).second) {
+      check.fail(data.roads[i].line, "road id '" + data.roads[i].id + "' is used twice");
+    }
+  }
+  for (size_t i = 0; i < data.junctions.size(); ++i) {
+    if (!impl.junction_by_id.emplace(data.junctions[i].id, i).second) {
+      check.fail(data.junctions[i].line,
+                 "junction id '" + data.junctions[i].id + "' is used twice");
+    }
+  }
+  for (const Road& road : data.roads) {
+    if (road.plan_view.empty() || road.lane_sections.empty()) {
+      check.fail(road.line, "road '" + road.id + "' needs planView geometry and a laneSection");
+    }
+    if (road.in_junction() && !impl.junction_by_id.contains(road.junction)) {
+      check.fail(road.line, "road '" + road.id + "' belongs to junction '" + road.junction +
+                                "', which does not exist");
+    }
+    check_road_link(check, impl, road, road.predecessor, "predecessor");
+    check_road_link(check, impl, road, road.successor, "successor");
+    check_plan_view(check, road, options);
+    check_lane_sections(check, road);
+  }
+  for (const Junction& junction : data.junctions) {
+    check_junction(check, impl, junction);
+  }
+}
+
+}  // namespace corsa::xodr::detail

@@ -1,0 +1,74 @@
+// <objects>/<object> and <signals>/<signal>: kept with their road positions (OpenDRIVE 1.8
+// §13, §14). Their sub-structure (outlines, repeats, validity, ...) is read past.
+
+#include "parse_elements.h"
+
+namespace corsa::xodr::detail {
+
+Object parse_object(const XmlReader& reader, const XMLElement* e) {
+  Object object;
+  object.line = e->line();
+  object.id = reader.text(e, "id");
+  object.name = reader.text_or(e, "name", "");
+  object.type = reader.text_or(e, "type", "none");
+  object.s = reader.number(e, "s");
+  object.t = reader.number(e, "t");
+  object.z_offset = reader.number_or(e, "zOffset", 0.0);
+  object.hdg = reader.number_or(e, "hdg", 0.0);
+  object.pitch = reader.number_or(e, "pitch", 0.0);
+  object.roll = reader.number_or(e, "roll", 0.0);
+  object.length = reader.number_or(e, "length", 0.0);
+  object.width = reader.number_or(e, "width", 0.0);
+  object.height = reader.number_or(e, "height", 0.0);
+  object.radius = reader.number_or(e, "radius", 0.0);
+  object.orientation = reader.text_or(e, "orientation", "none");
+  return object;
+}
+
+void parse_objects(const XmlReader& reader, const XMLElement* e, Road& road) {
+  for (const XMLElement* child : children(e)) {
+    if (named(child, "object")) {
+      road.objects.push_back(parse_object(reader, child));
+    } else if (!is_ignored_element(child->name())) {
+      reader.unknown_child(e, child);
+    }
+  }
+}
+
+Signal parse_signal(const XmlReader& reader, const XMLElement* e) {
+  Signal signal;
+  signal.line = e->line();
+  signal.id = reader.text(e, "id");
+  signal.name = reader.text_or(e, "name", "");
+  signal.s = reader.number(e, "s");
+  signal.t = reader.number(e, "t");
+  signal.z_offset = reader.number_or(e, "zOffset", 0.0);
+  signal.h_offset = reader.number_or(e, "hOffset", 0.0);
+  signal.orientation = reader.text_or(e, "orientation", "none");
+  const std::string dynamic = reader.text_or(e, "dynamic", "no");
+  signal.dynamic = dynamic == "yes" || dynamic == "true";
+  signal.country = reader.text_or(e, "country", "");
+  signal.type = reader.text_or(e, "type", "");
+  signal.subtype = reader.text_or(e, "subtype", "");
+  const std::string_view* value = e->attribute("value");
+  if (value != nullptr && !value->empty()) {
+    signal.value = reader.number(e, "value");
+  }
+  signal.unit = reader.text_or(e, "unit", "");
+  signal.height = reader.number_or(e, "height", 0.0);
+  signal.width = reader.number_or(e, "width", 0.0);
+  signal.text = reader.text_or(e, "text", "");
+  return signal;
+}
+
+void parse_signals(const XmlReader& reader, const XMLElement* e, Road& road) {
+  for (const XMLElement* child : children(e)) {
+    if (named(child, "signal")) {
+      road.signals.push_back(parse_signal(reader, child));
+    } else if (!is_ignored_element(child->name())) {
+      reader.unknown_child(e, child);
+    }
+  }
+}
+
+}  // namespace corsa::xodr::detail

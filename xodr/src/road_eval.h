@@ -1,0 +1,59 @@
+#pragma once
+
+// Record lookups and lane-border arithmetic shared by Map, the spatial index and the lane graph.
+// Private to corsa_xodr. Records are in s order (Map::build checks it), so every lookup is a
+// binary search.
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include "corsa/xodr/map.h"
+#include "corsa/xodr/model.h"
+
+namespace corsa::xodr::detail {
+
+/// The most lanes one section may have (Map::build rejects more), so spans fit on the stack.
+inline constexpr size_t kMaxLanesPerSection = 128;
+
+/// Index of the last record whose start (given by `start_of`) is <= s; 0 when s precedes all.
+template <typename T, typename StartOf>
+size_t record_index(const std::vector<T>& records, double s, StartOf start_of) {
+  const auto it = std::upper_bound(records.begin(), records.end(), s,
+                                   [&](double value, const T& r) { return value < start_of(r); });
+  return it == records.begin() ? 0 : static_cast<size_t>(it - records.begin()) - 1;
+}
+
+/// Value of a piecewise cubic with absolute (road) s starts; 0 without records.
+inline double poly_value(const std::vector<Poly3>& records, double s) {
+  if (records.empty()) {
+    return 0.0;
+  }
+  return records[record_index(records, s, [](const Poly3& p) { return p.s; })].value(s);
+}
+inline double poly_slope(const std::vector<Poly3>& records, double s) {
+  if (records.empty()) {
+    return 0.0;
+  }
+  return records[record_index(records, s, [](const Poly3& p) { return p.s; })].slope(s);
+}
+
+/// Width or border polynomial at ds from the section start (records hold sOffset in `s`).
+inline double offset_poly_value(const std::vector<Poly3>& records, double ds) {
+  if (records.empty()) {
+    return 0.0;
+  }
+  return records[record_index(records, ds, [](const Poly3& p) { return p.s; })].value(ds);
+}
+
+/// Spans of every non-centre lane of `section` at road s (left to right), given the laneOffset
+/// there. OpenDRIVE 1.8 §9.5: a lane's inner border is the outer border of its inner neighbour;
+/// the outer border is inner + width (left) or inner - width (right), or the <border> cubic
+/// when the lane has no <width> (widths win when both are present, §9.5.2). A negative width
+/// (rounding at a lane's start or end) counts as 0. Returns the number of spans written.
+size_t compute_spans(const LaneSection& section, double s, double offset, LaneSpan* out);
+
+/// Index of the centre lane in section.lanes (lanes are sorted by descending id).
+size_t center_index(const LaneSection& section);
+
+}  // namespace corsa::xodr::detail

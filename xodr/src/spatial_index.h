@@ -1,0 +1,58 @@
+#pragma once
+
+// World -> lane lookup structure: every lane section is cut into chunks short enough to be
+// nearly straight (<= 5 m, <= 0.1 rad of heading); each chunk gets an oriented rectangle around
+// its chord covering all its lanes, and a uniform grid lists the chunks whose rectangle touches
+// each cell. A query tests the rectangles of its cell, then projects onto the reference line of
+// the few chunks that contain the point (Newton on s). Private to corsa_xodr.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "corsa/xodr/map.h"
+
+namespace corsa::xodr::detail {
+
+struct Chunk {
+  uint32_t road = 0;
+  uint32_t section = 0;
+  double s0 = 0.0;
+  double s1 = 0.0;
+  // Oriented rectangle: origin, unit direction (ux, uy) along the chord, normal (-uy, ux);
+  // along-range [a0, a1] and lateral range [b0, b1] in that frame, margins included.
+  double ox = 0.0, oy = 0.0, ux = 1.0, uy = 0.0;
+  double a0 = 0.0, a1 = 0.0, b0 = 0.0, b1 = 0.0;
+
+  /// Whether (x, y) is within `r` metres of the rectangle (a square-ish test, enough to prune).
+  bool near(double x, double y, double r) const {
+    const double dx = x - ox;
+    const double dy = y - oy;
+    const double a = dx * ux + dy * uy;
+    const double b = dy * ux - dx * uy;
+    return a >= a0 - r && a <= a1 + r && b >= b0 - r && b <= b1 + r;
+  }
+};
+
+class SpatialIndex {
+ public:
+  void build(const Map& map);
+  std::optional<LanePosition> locate(const Map& map, double x, double y,
+                                     const LocateOptions& options) const;
+  size_t chunk_count() const { return chunks_.size(); }
+
+ private:
+  void add_section_chunks(const Map& map, uint32_t road, uint32_t section);
+  void build_grid();
+  /// Cells overlapped by [x0, x1] x [y0, y1], clamped to the grid.
+  void cell_range(double x0, double y0, double x1, double y1, int& i0, int& j0, int& i1,
+                  int& j1) const;
+
+  std::vector<Chunk> chunks_;
+  double min_x_ = 0.0, min_y_ = 0.0, cell_ = 8.0;
+  int nx_ = 0, ny_ = 0;
+  std::vector<uint32_t> cell_start_;  ///< CSR: nx*ny + 1 offsets into cell_items_
+  std::vector<uint32_t> cell_items_;
+};
+
+}  // namespace corsa::xodr::detail
