@@ -12,6 +12,7 @@
 #include "commands.h"
 #include "corsa/core/diagnostic.h"
 #include "corsa/core/version.h"
+#include "plugin_api.h"
 
 namespace corsa::cli {
 namespace {
@@ -33,7 +34,7 @@ void print_main_help(std::ostream& out) {
     out << "  " << std::left << std::setw(10) << command.name << ' ' << command.summary << '\n';
   }
   out << "\n  corsa <command> --help   options of one command\n"
-         "  corsa --version          version\n\n"
+         "  corsa --version          version (--version --plugin: also check the plugin)\n\n"
          "exit codes: 0 ok, 1 scenario or test failed, 2 bad input or usage, 3 internal error\n";
 }
 
@@ -52,6 +53,10 @@ int dispatch(const std::vector<std::string>& argv) {
   }
   if (first == "--version" || first == "version") {
     std::cout << "corsa " << version() << '\n';
+    if (argv.size() > 1 && argv[1] == "--plugin") {
+      // Loads libcorsa_plugin.so and reports its version: checks that the heavy half is there.
+      return run_plugin_command("plugin selftest", {});
+    }
     return kExitOk;
   }
   for (const auto& command : kCommands) {

@@ -1,4 +1,6 @@
 #include <catch2/catch.hpp>
+#include <cstdio>
+#include <string>
 
 #include "run_corsa.h"
 
@@ -43,5 +45,30 @@ TEST_CASE("bad usage exits 2 with a message", "[cli][e2e]") {
     const auto result = run_corsa({"run", "a.xosc", "--nope"});
     CHECK(result.exit_code == 2);
     CHECK_THAT(result.err, Catch::Contains("corsa run: error: unknown option '--nope'"));
+  }
+}
+
+TEST_CASE("the plugin with the heavy libraries loads on demand", "[cli][e2e][plugin]") {
+  const auto result = run_corsa({"--version", "--plugin"});
+  CHECK(result.exit_code == 0);
+  CHECK_THAT(result.out, Catch::Contains("corsa plugin "));
+}
+
+TEST_CASE("the corsa executable itself links none of the slow-to-load libraries", "[cli][plugin]") {
+  // OpenCV and PROJ cost 100-300 ms to load; a scenario run must not pay for them (see
+  // engine/cli/plugin_api.h). ldd lists the shared libraries the executable needs.
+  const std::string command = std::string("ldd ") + CORSA_BINARY;
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::string listing;
+  char buffer[512];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) {
+    listing += buffer;
+  }
+  REQUIRE(::pclose(pipe) == 0);
+  CHECK_THAT(listing, Catch::Contains("libc.so"));
+  for (const char* heavy : {"opencv", "libproj", "embree", "assimp", "gdal", "avcodec"}) {
+    INFO(heavy);
+    CHECK_THAT(listing, !Catch::Contains(heavy));
   }
 }
