@@ -24,8 +24,8 @@ struct FileReport {
   bool valid = false;
 };
 
-std::string plural(size_t n, const char* word) {
-  return std::to_string(n) + " " + word + (n == 1 ? "" : "s");
+std::string count(size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
 void describe(const xosc::Document& document, FileReport& report) {
@@ -33,10 +33,11 @@ void describe(const xosc::Document& document, FileReport& report) {
     report.kind = "scenario";
     report.summary = "OpenSCENARIO " + std::to_string(scenario->header.rev_major) + "." +
                      std::to_string(scenario->header.rev_minor) + " scenario, " +
-                     plural(scenario->entities.objects.size(), "entity") +
-                     ", " + plural(scenario->storyboard.stories.size(), "story");
+                     count(scenario->entities.objects.size(), "entity", "entities") + ", " +
+                     count(scenario->storyboard.stories.size(), "story", "stories");
     if (!scenario->catalog_files.empty()) {
-      report.summary += ", " + plural(scenario->catalog_files.size(), "catalog file");
+      report.summary +=
+          ", " + count(scenario->catalog_files.size(), "catalog file", "catalog files");
     }
   } else if (const auto* catalog = std::get_if<xosc::Catalog>(&document)) {
     report.kind = "catalog";
@@ -44,12 +45,12 @@ void describe(const xosc::Document& document, FileReport& report) {
                            catalog->pedestrians.size() + catalog->misc_objects.size() +
                            catalog->environments.size() + catalog->maneuvers.size() +
                            catalog->trajectories.size() + catalog->routes.size();
-    report.summary = "catalog '" + catalog->name + "', " + plural(entries, "entry");
+    report.summary = "catalog '" + catalog->name + "', " + count(entries, "entry", "entries");
   } else {
     const auto& distribution = std::get<xosc::ParameterValueDistribution>(document);
     report.kind = "distribution";
     report.summary = "parameter distribution over " + distribution.scenario_file.filepath + ", " +
-                     plural(xosc::variant_count(distribution), "variant");
+                     count(xosc::variant_count(distribution), "variant", "variants");
   }
 }
 
@@ -84,14 +85,14 @@ void print_json(const std::vector<FileReport>& reports, bool all_valid) {
   out << "{\"valid\":" << (all_valid ? "true" : "false") << ",\"files\":[";
   for (size_t i = 0; i < reports.size(); ++i) {
     const auto& r = reports[i];
-    out << (i ? "," : "") << "{\"file\":" << json_quote(r.file) << ",\"kind\":" << json_quote(r.kind)
-        << ",\"valid\":" << (r.valid ? "true" : "false") << ",\"diagnostics\":[";
+    out << (i ? "," : "") << "{\"file\":" << json_quote(r.file)
+        << ",\"kind\":" << json_quote(r.kind) << ",\"valid\":" << (r.valid ? "true" : "false")
+        << ",\"diagnostics\":[";
     for (size_t k = 0; k < r.diagnostics.size(); ++k) {
       const auto& d = r.diagnostics[k];
       out << (k ? "," : "") << "{\"severity\":" << severity_json(d.severity)
           << ",\"file\":" << json_quote(d.file) << ",\"line\":" << d.line
-          << ",\"message\":" << json_quote(d.message) << ",\"path\":" << json_quote(d.path)
-          << "}";
+          << ",\"message\":" << json_quote(d.message) << ",\"path\":" << json_quote(d.path) << "}";
     }
     out << "]}";
   }

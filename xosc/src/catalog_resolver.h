@@ -1,0 +1,92 @@
+#pragma once
+
+// Internal: finds catalog entries for CatalogReferences, reading the catalog files of the
+// scenario's CatalogLocations once, and expands them (template in this header).
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "parse_context.h"
+
+namespace corsa::xosc {
+
+class CatalogResolver {
+ public:
+  explicit CatalogResolver(const CatalogLocations& locations) : locations_(locations) {}
+
+  struct Hit {
+    const Element* entry = nullptr;
+    const XmlFile* file = nullptr;
+  };
+  /// The entry `entry_name` of catalog `catalog_name`; fails at `reference` naming both when the
+  /// catalog or the entry does not exist.
+  Hit find(ParseContext& ctx, const Element* reference, const std::string& catalog_name,
+           const std::string& entry_name);
+
+  const std::vector<std::filesystem::path>& files_read() const { return files_read_; }
+
+  /// Catalog entries being expanded (to stop self-reference).
+  std::vector<std::string> expanding;
+
+ private:
+  void scan(ParseContext& ctx);
+
+  const CatalogLocations& locations_;
+  bool scanned_ = false;
+  std::vector<std::unique_ptr<XmlFile>> files_;
+  std::map<std::string, const Element*> catalogs_;  // catalog name -> Catalog element
+  std::map<const Element*, const XmlFile*> owners_;
+  std::vector<std::filesystem::path> files_read_;
+};
+
+/// Reads the catalogName / entryName / ParameterAssignments of a CatalogReference.
+CatalogOrigin parse_catalog_origin(ParseContext& ctx, const Element* reference);
+
+template <class T, class Parse>
+T expand_catalog_reference(ParseContext& ctx, const Element* reference,
+                           std::initializer_list<std::string_view> kinds, Parse parse) {
+  CatalogOrigin origin = parse_catalog_origin(ctx, reference);
+  if (ctx.catalogs == nullptr) {
+    ctx.warn_once(reference, "catalog-outside-scenario",
+                  "catalog references inside a catalog are checked only when a scenario uses "
+                  "the entry");
+    T value{};
+    if constexpr (requires { value.catalog; }) {
+      value.catalog = std::move(origin);
+    }
+    return value;
+  }
+  const std::string key = origin.catalog_name + "/" + origin.entry_name;
+  for (const auto& open : ctx.catalogs->expanding) {
+    if (open == key) {
+      ctx.fail(reference, "catalog entry '" + origin.entry_name + "' of catalog '" +
+                              origin.catalog_name + "' references itself");
+    }
+  }
+  const CatalogResolver::Hit hit =
+      ctx.catalogs->find(ctx, reference, origin.catalog_name, origin.entry_name);
+  bool kind_ok = false;
+  std::string expected;
+  for (const auto kind : kinds) {
+    kind_ok = kind_ok || kind == hit.entry->Name();
+    expected += (expected.empty() ? "" : " or ") + std::string(kind);
+  }
+  if (!kind_ok) {
+    ctx.fail(reference, "catalog entry '" + origin.entry_name + "' of catalog '" +
+                            origin.catalog_name + "' is a " + hit.entry->Name() + ", expected " +
+                            expected);
+  }
+  ctx.catalogs->expanding.push_back(key);
+  const auto previous = ctx.swap_file({hit.file->name, hit.file->directory});
+  const bool record = ctx.record_entities;
+  T value = parse(hit.entry, origin);
+  ctx.record_entities = record;
+  ctx.swap_file(previous);
+  ctx.catalogs->expanding.pop_back();
+  return value;
+}
+
+}  // namespace corsa::xosc

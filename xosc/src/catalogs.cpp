@@ -1,0 +1,129 @@
+// Catalog lookup for CatalogReferences (§9.4) and catalog documents read on their own.
+
+#include <algorithm>
+
+#include "corsa/core/atomic_file.h"
+#include "parsers.h"
+
+namespace corsa::xosc {
+
+CatalogOrigin parse_catalog_origin(ParseContext& ctx, const Element* reference) {
+  Children kids(ctx, reference, "CatalogReference");
+  CatalogOrigin origin;
+  origin.catalog_name = ctx.req_str(reference, "catalogName");
+  origin.entry_name = ctx.req_str(reference, "entryName");
+  origin.assignments = parse_parameter_assignments(ctx, kids.opt("ParameterAssignments"));
+  origin.reference = ctx.source(reference);
+  return origin;
+}
+
+void CatalogResolver::scan(ParseContext& ctx) {
+  scanned_ = true;
+  const std::optional<CatalogDirectory>* directories[] = {
+      &locations_.vehicle,     &locations_.controller,  &locations_.pedestrian,
+      &locations_.misc_object, &locations_.environment, &locations_.maneuver,
+      &locations_.trajectory,  &locations_.route};
+  std::vector<std::filesystem::path> seen;
+  for (const auto* directory : directories) {
+    if (!directory->has_value()) continue;
+    const std::filesystem::path& path = (*directory)->resolved;
+    if (std::find(seen.begin(), seen.end(), path) != seen.end()) continue;
+    seen.push_back(path);
+    std::error_code error;
+    if (!std::filesystem::is_directory(path, error)) {
+      const Source& where = (*directory)->source;
+      ctx.diagnostics().add_once(
+          "catalog-dir:" + path.string(),
+          make_warning(where.file_name(), where.line,
+                       "catalog directory '" + (*directory)->path + "' does not exist"));
+      continue;
+    }
+    // Sorted, so that which file wins a duplicated catalog name does not depend on the
+    // file system's listing order.
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(path, error)) {
+      if (entry.is_regular_file() && entry.path().extension() == ".xosc") {
+        files.push_back(entry.path());
+      }
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& file : files) {
+      auto xml = std::make_unique<XmlFile>(load_xml(file));
+      const Element* root = xml->document->RootElement();
+      const Element* catalog = root->FirstChildElement("Catalog");
+      if (catalog == nullptr) continue;  // not a catalog (a scenario kept next to them)
+      const char* name = catalog->Attribute("name");
+      if (name == nullptr) {
+        throw InputError(
+            make_error(*xml->name, catalog->GetLineNum(), "<Catalog> needs the attribute name"));
+      }
+      if (!catalogs_.emplace(name, catalog).second) {
+        ctx.diagnostics().add_once(
+            std::string("catalog-dup:") + name,
+            make_warning(*xml->name, catalog->GetLineNum(),
+                         std::string("catalog '") + name +
+                             "' is defined in more than one file; using the first"));
+        continue;
+      }
+      owners_[catalog] = xml.get();
+      files_.push_back(std::move(xml));
+    }
+  }
+}
+
+CatalogResolver::Hit CatalogResolver::find(ParseContext& ctx, const Element* reference,
+                                           const std::string& catalog_name,
+                                           const std::string& entry_name) {
+  if (!scanned_) {
+    scan(ctx);
+  }
+  const auto found = catalogs_.find(catalog_name);
+  if (found == catalogs_.end()) {
+    ctx.fail(reference, "catalog '" + catalog_name + "' (for entry '" + entry_name +
+                            "') is not in any catalog directory of <CatalogLocations>");
+  }
+  const XmlFile* file = owners_.at(found->second);
+  for (const Element* entry = found->second->FirstChildElement(); entry != nullptr;
+       entry = entry->NextSiblingElement()) {
+    const char* name = entry->Attribute("name");
+    if (name != nullptr && entry_name == name) {
+      const std::filesystem::path path = *file->name;
+      if (std::find(files_read_.begin(), files_read_.end(), path) == files_read_.end()) {
+        files_read_.push_back(path);
+      }
+      return Hit{entry, file};
+    }
+  }
+  ctx.fail(reference, "catalog '" + catalog_name + "' (" + *file->name + ") has no entry '" +
+                          entry_name + "'");
+}
+
+Catalog parse_catalog(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "Catalog");
+  Catalog catalog;
+  catalog.name = ctx.req_str(e, "name");
+  const EntryScope scope{nullptr, true, "catalog entry"};
+  std::set<std::string> names;
+  for (const Element* entry = e->FirstChildElement(); entry != nullptr;
+       entry = entry->NextSiblingElement()) {
+    const std::string_view kind = entry->Name();
+    const char* name = entry->Attribute("name");
+    if (name != nullptr && !names.insert(name).second) {
+      ctx.fail(entry, "catalog entry name '" + std::string(name) + "' is used twice");
+    }
+    if (kind == "Vehicle") catalog.vehicles.push_back(parse_vehicle(ctx, entry, scope));
+    if (kind == "Controller") catalog.controllers.push_back(parse_controller(ctx, entry, scope));
+    if (kind == "Pedestrian") catalog.pedestrians.push_back(parse_pedestrian(ctx, entry, scope));
+    if (kind == "MiscObject") catalog.misc_objects.push_back(parse_misc_object(ctx, entry, scope));
+    if (kind == "Environment") {
+      catalog.environments.push_back(parse_environment(ctx, entry, scope));
+    }
+    if (kind == "Maneuver") catalog.maneuvers.push_back(parse_maneuver(ctx, entry, scope));
+    if (kind == "Trajectory") catalog.trajectories.push_back(parse_trajectory(ctx, entry, scope));
+    if (kind == "Route") catalog.routes.push_back(parse_route(ctx, entry, scope));
+  }
+  catalog.source = ctx.source(e);
+  return catalog;
+}
+
+}  // namespace corsa::xosc

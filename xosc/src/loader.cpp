@@ -1,0 +1,287 @@
+// Loading OpenSCENARIO documents: the scenario's top level (declarations, catalog locations,
+// road network, entities, storyboard), the checks that need the whole document, and the
+// dispatch on the document kind.
+
+#include "corsa/core/atomic_file.h"
+#include "parsers.h"
+#include "references.h"
+
+namespace corsa::xosc {
+namespace {
+
+const Element* checked_root(ParseContext& ctx, const XmlFile& xml) {
+  const Element* root = xml.document->RootElement();
+  if (std::string_view(root->Name()) != "OpenSCENARIO") {
+    ctx.fail(root, "not an OpenSCENARIO document: the root element is <" +
+                       std::string(root->Name()) + ">");
+  }
+  return root;
+}
+
+std::filesystem::path resolve_path(const std::filesystem::path& base, const std::string& path) {
+  return (base / std::filesystem::path(path)).lexically_normal();
+}
+
+CatalogLocations parse_catalog_locations(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "CatalogLocations");
+  CatalogLocations locations;
+  locations.source = ctx.source(e);
+  const std::pair<const char*, std::optional<CatalogDirectory>*> slots[] = {
+      {"VehicleCatalog", &locations.vehicle},         {"ControllerCatalog", &locations.controller},
+      {"PedestrianCatalog", &locations.pedestrian},   {"MiscObjectCatalog", &locations.misc_object},
+      {"EnvironmentCatalog", &locations.environment}, {"ManeuverCatalog", &locations.maneuver},
+      {"TrajectoryCatalog", &locations.trajectory},   {"RouteCatalog", &locations.route}};
+  for (const auto& [name, slot] : slots) {
+    if (const Element* location = kids.opt(name)) {
+      Children location_kids(ctx, location, "CatalogLocation");
+      const Element* directory = location_kids.one("Directory");
+      Children(ctx, directory, "Directory");
+      CatalogDirectory value;
+      value.path = ctx.req_str(directory, "path");
+      value.resolved = resolve_path(ctx.file().directory, value.path);
+      value.source = ctx.source(directory);
+      *slot = std::move(value);
+    }
+  }
+  return locations;
+}
+
+TrafficSignalController parse_signal_controller(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "TrafficSignalController");
+  TrafficSignalController controller;
+  controller.name = ctx.req_str(e, "name");
+  controller.delay = ctx.opt_double(e, "delay");
+  controller.reference = ctx.opt_str(e, "reference");
+  for (const Element* p : kids.all("Phase")) {
+    Children phase_kids(ctx, p, "Phase");
+    Phase phase;
+    phase.name = ctx.req_str(p, "name");
+    phase.duration = ctx.req_double(p, "duration");
+    for (const Element* s : phase_kids.all("TrafficSignalState")) {
+      Children(ctx, s, "TrafficSignalState");
+      phase.states.push_back(
+          {ctx.req_str(s, "trafficSignalId"), ctx.req_str(s, "state"), ctx.source(s)});
+    }
+    if (const Element* group = phase_kids.opt("TrafficSignalGroupState")) {
+      Children(ctx, group, "TrafficSignalGroupState");
+      phase.group_state = ctx.req_str(group, "state");
+    }
+    phase.source = ctx.source(p);
+    controller.phases.push_back(std::move(phase));
+  }
+  controller.source = ctx.source(e);
+  return controller;
+}
+
+RoadNetwork parse_road_network(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "RoadNetwork");
+  RoadNetwork network;
+  network.source = ctx.source(e);
+  if (const Element* logic = kids.opt("LogicFile")) {
+    network.logic_file = parse_file(ctx, logic);
+    network.logic_file_path = resolve_path(ctx.file().directory, network.logic_file->filepath);
+    std::error_code error;
+    if (ctx.options().check_files &&
+        !std::filesystem::is_regular_file(network.logic_file_path, error)) {
+      ctx.fail(logic, "map file '" + network.logic_file->filepath + "' not found (looked for " +
+                          network.logic_file_path.string() + ")");
+    }
+  }
+  if (const Element* scene = kids.opt("SceneGraphFile")) {
+    network.scene_graph_file = parse_file(ctx, scene);
+    network.scene_graph_file_path =
+        resolve_path(ctx.file().directory, network.scene_graph_file->filepath);
+    std::error_code error;
+    if (ctx.options().check_files &&
+        !std::filesystem::exists(network.scene_graph_file_path, error)) {
+      ctx.warn_once(scene, "scene-graph",
+                    "scene graph file '" + network.scene_graph_file->filepath +
+                        "' not found (Corsa does not use it)");
+    }
+  }
+  if (const Element* signals = kids.opt("TrafficSignals")) {
+    Children signal_kids(ctx, signals, "TrafficSignals");
+    for (const Element* controller : signal_kids.all("TrafficSignalController")) {
+      network.traffic_signal_controllers.push_back(parse_signal_controller(ctx, controller));
+    }
+  }
+  if (const Element* area = kids.opt("UsedArea")) {
+    Children area_kids(ctx, area, "UsedArea");
+    for (const Element* position : area_kids.at_least("Position", 2)) {
+      network.used_area.push_back(parse_position(ctx, position));
+    }
+  }
+  return network;
+}
+
+void parse_variables_and_monitors(ParseContext& ctx, Children& kids, Scenario& scenario) {
+  if (const Element* variables = kids.opt("VariableDeclarations")) {
+    Children variable_kids(ctx, variables, "VariableDeclarations");
+    for (const Element* v : variable_kids.all("VariableDeclaration")) {
+      Children(ctx, v, "VariableDeclaration");
+      VariableDeclaration variable;
+      variable.name = ctx.req_str(v, "name");
+      variable.type = ctx.req_enum<ParameterType>(v, "variableType");
+      const std::string text = ctx.req_str(v, "value");
+      const auto value = parse_value(variable.type, text);
+      if (!value) {
+        ctx.fail(v, "variable '" + variable.name + "': '" + text + "' is not a valid " +
+                        std::string(to_string(variable.type)));
+      }
+      if (!ctx.variables.insert(variable.name).second) {
+        ctx.fail(v, "variable '" + variable.name + "' is declared twice");
+      }
+      variable.value = *value;
+      variable.source = ctx.source(v);
+      scenario.variables.push_back(std::move(variable));
+    }
+  }
+  if (const Element* monitors = kids.opt("MonitorDeclarations")) {
+    Children monitor_kids(ctx, monitors, "MonitorDeclarations");
+    for (const Element* m : monitor_kids.all("MonitorDeclaration")) {
+      Children(ctx, m, "MonitorDeclaration");
+      MonitorDeclaration monitor{ctx.req_str(m, "name"), ctx.req_bool(m, "value"), ctx.source(m)};
+      if (!ctx.monitors.insert(monitor.name).second) {
+        ctx.fail(m, "monitor '" + monitor.name + "' is declared twice");
+      }
+      scenario.monitors.push_back(std::move(monitor));
+    }
+  }
+}
+
+std::vector<ParameterAssignment> option_overrides(const LoadOptions& options) {
+  std::vector<ParameterAssignment> overrides;
+  const auto origin = std::make_shared<const std::string>("--param");
+  for (const auto& [name, value] : options.parameters) {
+    overrides.push_back({name, value, Source{origin, 0}});
+  }
+  return overrides;
+}
+
+Scenario parse_scenario_root(ParseContext& ctx, const Element* root, Children& kids,
+                             const std::filesystem::path& path) {
+  Scenario scenario;
+  scenario.path = path;
+  scenario.source = ctx.source(root);
+  scenario.header = parse_file_header(ctx, kids.one("FileHeader"));
+  scenario.parameters = ctx.push_scope(kids.opt("ParameterDeclarations"),
+                                       option_overrides(ctx.options()), true, "the scenario");
+  ScopeGuard guard(ctx);
+  for (const auto& parameter : scenario.parameters) {
+    ctx.global_parameters.insert(parameter.name);
+  }
+  parse_variables_and_monitors(ctx, kids, scenario);
+  scenario.catalog_locations = parse_catalog_locations(ctx, kids.one("CatalogLocations"));
+  scenario.road_network = parse_road_network(ctx, kids.one("RoadNetwork"));
+  CatalogResolver catalogs(scenario.catalog_locations);
+  ctx.catalogs = &catalogs;
+  scenario.entities = parse_entities(ctx, kids.one("Entities"));
+  scenario.storyboard = parse_storyboard(ctx, kids.one("Storyboard"));
+  ctx.catalogs = nullptr;
+  scenario.catalog_files = catalogs.files_read();
+  check_entity_references(ctx, scenario.entities);
+  resolve_storyboard_references(scenario.storyboard);
+  return scenario;
+}
+
+// The element after FileHeader decides what an OpenSCENARIO document is.
+DocumentKind kind_of(const Element* root) {
+  if (root->FirstChildElement("Catalog") != nullptr) return DocumentKind::kCatalog;
+  if (root->FirstChildElement("ParameterValueDistribution") != nullptr) {
+    return DocumentKind::kDistribution;
+  }
+  return DocumentKind::kScenario;
+}
+
+Catalog read_catalog(ParseContext& ctx, const Element* root, Children& kids) {
+  ctx.record_entities = false;
+  const FileHeader header = parse_file_header(ctx, kids.one("FileHeader"));
+  Catalog catalog = parse_catalog(ctx, kids.one("Catalog"));
+  catalog.header = header;
+  (void)root;
+  return catalog;
+}
+
+ParameterValueDistribution read_distribution(ParseContext& ctx, Children& kids) {
+  ctx.record_entities = false;
+  const FileHeader header = parse_file_header(ctx, kids.one("FileHeader"));
+  ParameterValueDistribution distribution =
+      parse_parameter_value_distribution(ctx, kids.one("ParameterValueDistribution"));
+  distribution.header = header;
+  return distribution;
+}
+
+template <class Body>
+auto with_document(const XmlFile& xml, const LoadOptions& options, Diagnostics& diagnostics,
+                   Body body) {
+  ParseContext ctx(diagnostics, options);
+  ctx.swap_file({xml.name, xml.directory});
+  const Element* root = checked_root(ctx, xml);
+  Children kids(ctx, root, "OpenScenario");
+  return body(ctx, root, kids);
+}
+
+void expect_kind(const XmlFile& xml, DocumentKind expected, const char* what) {
+  const Element* root = xml.document->RootElement();
+  if (std::string_view(root->Name()) == "OpenSCENARIO" && kind_of(root) != expected) {
+    throw InputError(make_error(*xml.name, root->GetLineNum(),
+                                std::string("this OpenSCENARIO document is not a ") + what));
+  }
+}
+
+}  // namespace
+
+Scenario parse_scenario(std::string_view text, const std::filesystem::path& path,
+                        const LoadOptions& options, Diagnostics& diagnostics) {
+  const XmlFile xml = parse_xml(text, path);
+  expect_kind(xml, DocumentKind::kScenario, "scenario");
+  return with_document(xml, options, diagnostics,
+                       [&](ParseContext& ctx, const Element* root, Children& kids) {
+                         return parse_scenario_root(ctx, root, kids, path);
+                       });
+}
+
+Scenario load_scenario(const std::filesystem::path& path, const LoadOptions& options,
+                       Diagnostics& diagnostics) {
+  return parse_scenario(read_file(path), path, options, diagnostics);
+}
+
+Catalog load_catalog(const std::filesystem::path& path, Diagnostics& diagnostics) {
+  const XmlFile xml = load_xml(path);
+  expect_kind(xml, DocumentKind::kCatalog, "catalog");
+  const LoadOptions options;
+  return with_document(xml, options, diagnostics,
+                       [&](ParseContext& ctx, const Element* root, Children& kids) {
+                         return read_catalog(ctx, root, kids);
+                       });
+}
+
+ParameterValueDistribution load_distribution(const std::filesystem::path& path,
+                                             Diagnostics& diagnostics) {
+  const XmlFile xml = load_xml(path);
+  expect_kind(xml, DocumentKind::kDistribution, "parameter value distribution");
+  const LoadOptions options;
+  return with_document(xml, options, diagnostics,
+                       [&](ParseContext& ctx, const Element*, Children& kids) {
+                         return read_distribution(ctx, kids);
+                       });
+}
+
+Document load_document(const std::filesystem::path& path, const LoadOptions& options,
+                       Diagnostics& diagnostics) {
+  const XmlFile xml = load_xml(path);
+  return with_document(xml, options, diagnostics,
+                       [&](ParseContext& ctx, const Element* root, Children& kids) -> Document {
+                         switch (kind_of(root)) {
+                           case DocumentKind::kCatalog:
+                             return read_catalog(ctx, root, kids);
+                           case DocumentKind::kDistribution:
+                             return read_distribution(ctx, kids);
+                           case DocumentKind::kScenario:
+                             break;
+                         }
+                         return parse_scenario_root(ctx, root, kids, path);
+                       });
+}
+
+}  // namespace corsa::xosc

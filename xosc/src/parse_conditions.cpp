@@ -1,0 +1,276 @@
+// Conditions and triggers (§8.3-8.5): 16 ByEntity and 8 ByValue conditions.
+
+#include "parsers.h"
+
+namespace corsa::xosc {
+namespace {
+
+std::string entity_attribute(ParseContext& ctx, const Element* e, const char* name) {
+  std::string value = ctx.req_str(e, name);
+  ctx.use_entity(e, value, name);
+  return value;
+}
+
+// Attributes shared by the distance-like conditions (TimeHeadway, TimeToCollision, Distance).
+template <class T>
+void read_distance_options(ParseContext& ctx, const Element* e, T& condition) {
+  condition.value = ctx.req_double(e, "value");
+  condition.freespace = ctx.req_bool(e, "freespace");
+  condition.rule = ctx.req_enum<Rule>(e, "rule");
+  condition.along_route = ctx.opt_bool(e, "alongRoute");
+  note_deprecated_attribute(ctx, e, "alongRoute", "coordinateSystem and relativeDistanceType");
+  condition.coordinate_system = ctx.opt_enum<CoordinateSystem>(e, "coordinateSystem");
+  condition.relative_distance_type = ctx.opt_enum<RelativeDistanceType>(e, "relativeDistanceType");
+  condition.routing_algorithm = ctx.opt_enum<RoutingAlgorithm>(e, "routingAlgorithm");
+  condition.source = ctx.source(e);
+}
+
+EntityCondition parse_simple_entity_condition(ParseContext& ctx, const Element* c,
+                                              std::string_view name) {
+  if (name == "EndOfRoadCondition") {
+    Children(ctx, c, "EndOfRoadCondition");
+    return EndOfRoadCondition{ctx.req_double(c, "duration"), ctx.source(c)};
+  }
+  if (name == "OffroadCondition") {
+    Children(ctx, c, "OffroadCondition");
+    return OffroadCondition{ctx.req_double(c, "duration"), ctx.source(c)};
+  }
+  if (name == "StandStillCondition") {
+    Children(ctx, c, "StandStillCondition");
+    return StandStillCondition{ctx.req_double(c, "duration"), ctx.source(c)};
+  }
+  if (name == "TraveledDistanceCondition") {
+    Children(ctx, c, "TraveledDistanceCondition");
+    return TraveledDistanceCondition{ctx.req_double(c, "value"), ctx.source(c)};
+  }
+  if (name == "AccelerationCondition") {
+    Children(ctx, c, "AccelerationCondition");
+    return AccelerationCondition{ctx.req_double(c, "value"), ctx.req_enum<Rule>(c, "rule"),
+                                 ctx.opt_enum<DirectionalDimension>(c, "direction"), ctx.source(c)};
+  }
+  if (name == "SpeedCondition") {
+    Children(ctx, c, "SpeedCondition");
+    return SpeedCondition{ctx.req_double(c, "value"), ctx.req_enum<Rule>(c, "rule"),
+                          ctx.opt_enum<DirectionalDimension>(c, "direction"), ctx.source(c)};
+  }
+  if (name == "RelativeSpeedCondition") {
+    Children(ctx, c, "RelativeSpeedCondition");
+    return RelativeSpeedCondition{entity_attribute(ctx, c, "entityRef"), ctx.req_double(c, "value"),
+                                  ctx.req_enum<Rule>(c, "rule"),
+                                  ctx.opt_enum<DirectionalDimension>(c, "direction"),
+                                  ctx.source(c)};
+  }
+  if (name == "AngleCondition") {
+    Children(ctx, c, "AngleCondition");
+    return AngleCondition{ctx.req_enum<AngleType>(c, "angleType"), ctx.req_double(c, "angle"),
+                          ctx.req_double(c, "angleTolerance"),
+                          ctx.opt_enum<CoordinateSystem>(c, "coordinateSystem"), ctx.source(c)};
+  }
+  Children(ctx, c, "RelativeAngleCondition");
+  return RelativeAngleCondition{entity_attribute(ctx, c, "entityRef"),
+                                ctx.req_enum<AngleType>(c, "angleType"),
+                                ctx.req_double(c, "angle"),
+                                ctx.req_double(c, "angleTolerance"),
+                                ctx.opt_enum<CoordinateSystem>(c, "coordinateSystem"),
+                                ctx.source(c)};
+}
+
+EntityCondition parse_entity_condition(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "EntityCondition");
+  const Element* c = kids.choice();
+  const std::string_view name = c->Name();
+  if (name == "CollisionCondition") {
+    Children collision_kids(ctx, c, "CollisionCondition");
+    CollisionCondition condition;
+    const Element* target = collision_kids.choice();
+    if (std::string_view(target->Name()) == "EntityRef") {
+      Children(ctx, target, "EntityRef");
+      condition.entity_ref = entity_attribute(ctx, target, "entityRef");
+    } else {
+      Children(ctx, target, "ByObjectType");
+      condition.by_type = ctx.req_enum<ObjectType>(target, "type");
+    }
+    condition.source = ctx.source(c);
+    return condition;
+  }
+  if (name == "TimeHeadwayCondition") {
+    Children(ctx, c, "TimeHeadwayCondition");
+    TimeHeadwayCondition condition;
+    condition.entity_ref = entity_attribute(ctx, c, "entityRef");
+    read_distance_options(ctx, c, condition);
+    return condition;
+  }
+  if (name == "TimeToCollisionCondition") {
+    Children ttc_kids(ctx, c, "TimeToCollisionCondition");
+    TimeToCollisionCondition condition;
+    read_distance_options(ctx, c, condition);
+    const Element* target = ttc_kids.one("TimeToCollisionConditionTarget");
+    Children target_kids(ctx, target, "TimeToCollisionConditionTarget");
+    const Element* t = target_kids.choice();
+    if (std::string_view(t->Name()) == "EntityRef") {
+      Children(ctx, t, "EntityRef");
+      condition.target_entity_ref = entity_attribute(ctx, t, "entityRef");
+    } else {
+      condition.target_position = parse_position(ctx, t);
+    }
+    return condition;
+  }
+  if (name == "ReachPositionCondition") {
+    Children reach_kids(ctx, c, "ReachPositionCondition");
+    ctx.deprecated(c, "<ReachPositionCondition>", "<DistanceCondition>");
+    return ReachPositionCondition{parse_position(ctx, reach_kids.one("Position")),
+                                  ctx.req_double(c, "tolerance"), ctx.source(c)};
+  }
+  if (name == "DistanceCondition") {
+    Children distance_kids(ctx, c, "DistanceCondition");
+    DistanceCondition condition;
+    read_distance_options(ctx, c, condition);
+    condition.position = parse_position(ctx, distance_kids.one("Position"));
+    return condition;
+  }
+  if (name == "RelativeDistanceCondition") {
+    Children(ctx, c, "RelativeDistanceCondition");
+    return RelativeDistanceCondition{entity_attribute(ctx, c, "entityRef"),
+                                     ctx.req_double(c, "value"),
+                                     ctx.req_bool(c, "freespace"),
+                                     ctx.req_enum<RelativeDistanceType>(c, "relativeDistanceType"),
+                                     ctx.req_enum<Rule>(c, "rule"),
+                                     ctx.opt_enum<CoordinateSystem>(c, "coordinateSystem"),
+                                     ctx.opt_enum<RoutingAlgorithm>(c, "routingAlgorithm"),
+                                     ctx.source(c)};
+  }
+  if (name == "RelativeClearanceCondition") {
+    Children clearance_kids(ctx, c, "RelativeClearanceCondition");
+    RelativeClearanceCondition condition;
+    condition.opposite_lanes = ctx.req_bool(c, "oppositeLanes");
+    condition.free_space = ctx.req_bool(c, "freeSpace");
+    condition.distance_forward = ctx.opt_double(c, "distanceForward");
+    condition.distance_backward = ctx.opt_double(c, "distanceBackward");
+    for (const Element* range : clearance_kids.all("RelativeLaneRange")) {
+      Children(ctx, range, "RelativeLaneRange");
+      RelativeLaneRange lanes;
+      if (const auto from = ctx.opt_int(range, "from")) lanes.from = static_cast<int>(*from);
+      if (const auto to = ctx.opt_int(range, "to")) lanes.to = static_cast<int>(*to);
+      condition.lane_ranges.push_back(lanes);
+    }
+    for (const Element* ref : clearance_kids.all("EntityRef")) {
+      Children(ctx, ref, "EntityRef");
+      condition.entity_refs.push_back(entity_attribute(ctx, ref, "entityRef"));
+    }
+    condition.source = ctx.source(c);
+    return condition;
+  }
+  return parse_simple_entity_condition(ctx, c, name);
+}
+
+ByEntityCondition parse_by_entity(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "ByEntityCondition");
+  ByEntityCondition condition;
+  const Element* triggering = kids.one("TriggeringEntities");
+  Children triggering_kids(ctx, triggering, "TriggeringEntities");
+  condition.triggering_entities.rule =
+      ctx.req_enum<TriggeringEntitiesRule>(triggering, "triggeringEntitiesRule");
+  for (const Element* ref : triggering_kids.at_least("EntityRef", 1)) {
+    Children(ctx, ref, "EntityRef");
+    condition.triggering_entities.entity_refs.push_back(entity_attribute(ctx, ref, "entityRef"));
+  }
+  condition.triggering_entities.source = ctx.source(triggering);
+  condition.condition = parse_entity_condition(ctx, kids.one("EntityCondition"));
+  condition.source = ctx.source(e);
+  return condition;
+}
+
+ByValueCondition parse_by_value(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "ByValueCondition");
+  const Element* c = kids.choice();
+  const std::string_view name = c->Name();
+  if (name == "ParameterCondition") {
+    Children(ctx, c, "ParameterCondition");
+    ParameterCondition condition{ctx.parameter_name(c, "parameterRef"),
+                                 ctx.req_enum<Rule>(c, "rule"), ctx.req_str(c, "value"),
+                                 ctx.source(c)};
+    ctx.check_parameter_ref(c, condition.parameter_ref);
+    return condition;
+  }
+  if (name == "TimeOfDayCondition") {
+    Children(ctx, c, "TimeOfDayCondition");
+    TimeOfDayCondition condition{ctx.req_str(c, "dateTime"), ctx.req_enum<Rule>(c, "rule"),
+                                 ctx.source(c)};
+    if (!parse_value(ParameterType::kDateTime, condition.date_time)) {
+      ctx.fail(c, "attribute dateTime: '" + condition.date_time + "' is not a valid dateTime");
+    }
+    return condition;
+  }
+  if (name == "SimulationTimeCondition") {
+    Children(ctx, c, "SimulationTimeCondition");
+    return SimulationTimeCondition{ctx.req_double(c, "value"), ctx.req_enum<Rule>(c, "rule"),
+                                   ctx.source(c)};
+  }
+  if (name == "StoryboardElementStateCondition") {
+    Children(ctx, c, "StoryboardElementStateCondition");
+    StoryboardElementStateCondition condition;
+    condition.type = ctx.req_enum<StoryboardElementType>(c, "storyboardElementType");
+    condition.storyboard_element_ref = ctx.req_str(c, "storyboardElementRef");
+    condition.state = ctx.req_enum<StoryboardElementState>(c, "state");
+    condition.source = ctx.source(c);
+    return condition;
+  }
+  if (name == "UserDefinedValueCondition") {
+    Children(ctx, c, "UserDefinedValueCondition");
+    return UserDefinedValueCondition{ctx.req_str(c, "name"), ctx.req_enum<Rule>(c, "rule"),
+                                     ctx.req_str(c, "value"), ctx.source(c)};
+  }
+  if (name == "TrafficSignalCondition") {
+    Children(ctx, c, "TrafficSignalCondition");
+    return TrafficSignalCondition{ctx.req_str(c, "name"), ctx.req_str(c, "state"), ctx.source(c)};
+  }
+  if (name == "TrafficSignalControllerCondition") {
+    Children(ctx, c, "TrafficSignalControllerCondition");
+    return TrafficSignalControllerCondition{ctx.req_str(c, "trafficSignalControllerRef"),
+                                            ctx.req_str(c, "phase"), ctx.source(c)};
+  }
+  Children(ctx, c, "VariableCondition");
+  VariableCondition condition{ctx.parameter_name(c, "variableRef"), ctx.req_enum<Rule>(c, "rule"),
+                              ctx.req_str(c, "value"), ctx.source(c)};
+  ctx.check_variable_ref(c, condition.variable_ref);
+  return condition;
+}
+
+Condition parse_condition(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "Condition");
+  Condition condition;
+  condition.name = ctx.req_str(e, "name");
+  condition.delay = ctx.req_double(e, "delay");
+  if (condition.delay < 0.0) {
+    ctx.fail(e, "condition delay must not be negative");
+  }
+  condition.edge = ctx.req_enum<ConditionEdge>(e, "conditionEdge");
+  const Element* kind = kids.choice();
+  if (std::string_view(kind->Name()) == "ByEntityCondition") {
+    condition.kind = parse_by_entity(ctx, kind);
+  } else {
+    condition.kind = parse_by_value(ctx, kind);
+  }
+  condition.source = ctx.source(e);
+  return condition;
+}
+
+}  // namespace
+
+Trigger parse_trigger(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "Trigger");
+  Trigger trigger;
+  trigger.source = ctx.source(e);
+  for (const Element* group : kids.all("ConditionGroup")) {
+    Children group_kids(ctx, group, "ConditionGroup");
+    ConditionGroup value;
+    value.source = ctx.source(group);
+    for (const Element* condition : group_kids.at_least("Condition", 1)) {
+      value.conditions.push_back(parse_condition(ctx, condition));
+    }
+    trigger.groups.push_back(std::move(value));
+  }
+  return trigger;
+}
+
+}  // namespace corsa::xosc

@@ -1,0 +1,209 @@
+#pragma once
+
+// Internal: the state of one load. Reads attributes with `$parameter` and `${expression}`
+// resolution, keeps the parameter scopes, checks children against the schema table, and records
+// the references that are checked once the whole document is read.
+
+#include <tinyxml2.h>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/xosc/common.h"
+#include "corsa/xosc/parameters.h"
+#include "corsa/xosc/scenario.h"
+#include "enum_tables.h"
+
+namespace corsa::xosc {
+
+using Element = tinyxml2::XMLElement;
+
+class CatalogResolver;
+
+/// A parsed XML file and the name its elements report.
+struct XmlFile {
+  std::unique_ptr<tinyxml2::XMLDocument> document;
+  std::shared_ptr<const std::string> name;
+  std::filesystem::path directory;  ///< folder relative paths in the file are resolved against
+};
+
+/// Parses XML text; throws InputError "malformed XML: ..." at the offending line.
+XmlFile parse_xml(std::string_view text, const std::filesystem::path& path);
+/// Reads and parses a file (InputError when it cannot be read).
+XmlFile load_xml(const std::filesystem::path& path);
+
+/// A use of an entity name, checked after the Entities are known.
+struct EntityUse {
+  std::string name;
+  Source source;
+  std::string what;  ///< e.g. "entityRef"
+};
+
+class ParseContext {
+ public:
+  ParseContext(Diagnostics& diagnostics, const LoadOptions& options);
+
+  Diagnostics& diagnostics() { return diagnostics_; }
+  const LoadOptions& options() const { return options_; }
+
+  // --- location -------------------------------------------------------------------------------
+  Source source(const Element* element) const;
+  [[noreturn]] void fail(const Element* element, std::string message) const;
+  void warn_once(const Element* element, const std::string& key, std::string message);
+  /// A deprecated 1.0/1.1 spelling: one warning per spelling.
+  void deprecated(const Element* element, std::string_view what, std::string_view instead);
+
+  /// The file and folder elements are read from (switched while expanding catalogs).
+  struct FileState {
+    std::shared_ptr<const std::string> name;
+    std::filesystem::path directory;
+  };
+  const FileState& file() const { return file_; }
+  FileState swap_file(FileState file);
+
+  // --- attributes (resolved) ------------------------------------------------------------------
+  std::optional<std::string> attr(const Element* element, const char* name);
+  std::string req_str(const Element* element, const char* name);
+  std::optional<std::string> opt_str(const Element* element, const char* name);
+  double req_double(const Element* element, const char* name);
+  std::optional<double> opt_double(const Element* element, const char* name);
+  int64_t req_int(const Element* element, const char* name,
+                  ParameterType type = ParameterType::kInt);
+  std::optional<int64_t> opt_int(const Element* element, const char* name,
+                                 ParameterType type = ParameterType::kInt);
+  bool req_bool(const Element* element, const char* name);
+  std::optional<bool> opt_bool(const Element* element, const char* name);
+
+  template <class E>
+  std::optional<E> opt_enum(const Element* element, const char* name) {
+    const auto text = attr(element, name);
+    if (!text) {
+      return std::nullopt;
+    }
+    const EnumEntry<E>* entry = find_enum<E>(*text);
+    if (entry == nullptr) {
+      fail(element, "attribute " + std::string(name) + ": '" + *text + "' is not a valid " +
+                        std::string(enum_type_name<E>()));
+    }
+    if (entry->deprecated) {
+      deprecated(element, std::string(enum_type_name<E>()) + " value '" + *text + "'",
+                 entry->replacement.empty() ? std::string_view{} : entry->replacement);
+    }
+    return entry->value;
+  }
+  template <class E>
+  E req_enum(const Element* element, const char* name) {
+    const auto value = opt_enum<E>(element, name);
+    if (!value) {
+      missing(element, name);
+    }
+    return *value;
+  }
+  [[noreturn]] void missing(const Element* element, const char* name) const;
+  /// An attribute that names a parameter or variable (parameterRef, variableRef): taken as
+  /// written, not resolved; a leading `$` (some writers add it) is dropped.
+  std::string parameter_name(const Element* element, const char* name) const;
+
+  /// Resolves `$name` and `${expr}` in `text` against the visible parameters; other text is
+  /// returned as is.
+  std::string resolve(const Element* element, const std::string& text);
+
+  // --- parameters -----------------------------------------------------------------------------
+  /// Opens a scope with the declarations of `declarations` (a ParameterDeclarations element, or
+  /// null for an empty scope), applying `overrides` (already resolved values), resolves them and
+  /// returns them. `isolated` hides all outer scopes (catalog entries).
+  std::vector<ParameterDeclaration> push_scope(const Element* declarations,
+                                               const std::vector<ParameterAssignment>& overrides,
+                                               bool isolated, std::string_view owner);
+  void pop_scope();
+  bool parameter_visible(const std::string& name);
+
+  // --- references -----------------------------------------------------------------------------
+  void use_entity(const Element* element, const std::string& name, std::string what);
+  std::vector<EntityUse>& entity_uses() { return entity_uses_; }
+  /// Entity, parameter, variable and monitor references are checked only while this is set
+  /// (in a scenario, not in a catalog or distribution read on its own).
+  bool record_entities = true;
+  /// Fails unless `name` is a visible or global parameter (ParameterSetAction, ...).
+  void check_parameter_ref(const Element* element, const std::string& name);
+  void check_variable_ref(const Element* element, const std::string& name);
+  void check_monitor_ref(const Element* element, const std::string& name);
+
+  std::set<std::string> global_parameters;  ///< names of the scenario's global parameters
+  std::set<std::string> variables;          ///< declared VariableDeclarations names
+  std::set<std::string> monitors;           ///< declared MonitorDeclarations names
+  CatalogResolver* catalogs = nullptr;
+
+ private:
+  struct Entry {
+    ParameterDeclaration declaration;
+    const Element* element = nullptr;
+    bool literal = false;  ///< value given from outside: parse only, do not resolve `$`
+    Source value_source;   ///< where the effective value was written
+    enum class State { kPending, kResolving, kDone } state = State::kPending;
+    std::vector<const Element*> constraint_elements;  ///< ValueConstraint elements, in order
+  };
+  struct Scope {
+    std::vector<Entry> entries;
+    size_t barrier = 0;  ///< first scope index visible from this one
+  };
+
+  const Value* lookup(std::string_view name, size_t upto, const Element* from);
+  void resolve_entry(size_t scope, size_t index);
+  void check_constraints(Entry& entry);
+  std::string resolve_in(const Element* element, const std::string& text, size_t upto);
+
+  Diagnostics& diagnostics_;
+  const LoadOptions& options_;
+  FileState file_;
+  std::vector<Scope> scopes_;
+  std::vector<std::string> resolving_;  ///< chain of parameters being resolved (cycle message)
+  std::vector<EntityUse> entity_uses_;
+};
+
+/// Opens a parameter scope for the lifetime of the guard.
+class ScopeGuard {
+ public:
+  explicit ScopeGuard(ParseContext& context) : context_(context) {}
+  ScopeGuard(const ScopeGuard&) = delete;
+  ScopeGuard& operator=(const ScopeGuard&) = delete;
+  ~ScopeGuard() { context_.pop_scope(); }
+
+ private:
+  ParseContext& context_;
+};
+
+/// The children of one element, checked against the schema rule of its XSD type: unknown
+/// children are errors, unknown attributes warnings. Accessors take children by name.
+class Children {
+ public:
+  Children(ParseContext& context, const Element* element, std::string_view type);
+
+  const Element* element() const { return element_; }
+  /// Exactly one child called `name`.
+  const Element* one(const char* name);
+  /// At most one.
+  const Element* opt(const char* name);
+  /// Any number, in document order.
+  std::vector<const Element*> all(const char* name);
+  /// At least `minimum`.
+  std::vector<const Element*> at_least(const char* name, size_t minimum);
+  /// The single child of a choice element (exactly one child, of a name the type allows).
+  const Element* choice();
+
+ private:
+  ParseContext& context_;
+  const Element* element_;
+  std::string_view type_;
+};
+
+/// Text content of an element ("" when none).
+std::string element_text(const Element* element);
+
+}  // namespace corsa::xosc

@@ -1,0 +1,285 @@
+// Entities (§6.2): vehicles, pedestrians, misc objects, controllers, selections.
+
+#include <set>
+
+#include "parsers.h"
+
+namespace corsa::xosc {
+namespace {
+
+Performance parse_performance(ParseContext& ctx, const Element* e) {
+  Children(ctx, e, "Performance");
+  Performance performance;
+  performance.max_speed = ctx.req_double(e, "maxSpeed");
+  performance.max_acceleration = ctx.req_double(e, "maxAcceleration");
+  performance.max_deceleration = ctx.req_double(e, "maxDeceleration");
+  performance.max_acceleration_rate = ctx.opt_double(e, "maxAccelerationRate");
+  performance.max_deceleration_rate = ctx.opt_double(e, "maxDecelerationRate");
+  performance.source = ctx.source(e);
+  return performance;
+}
+
+Axle parse_axle(ParseContext& ctx, const Element* e) {
+  Children(ctx, e, "Axle");
+  return Axle{ctx.req_double(e, "maxSteering"), ctx.req_double(e, "wheelDiameter"),
+              ctx.req_double(e, "trackWidth"),  ctx.req_double(e, "positionX"),
+              ctx.req_double(e, "positionZ"),   ctx.source(e)};
+}
+
+Axles parse_axles(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "Axles");
+  Axles axles;
+  if (const Element* front = kids.opt("FrontAxle")) {
+    axles.front_axle = parse_axle(ctx, front);
+  }
+  axles.rear_axle = parse_axle(ctx, kids.one("RearAxle"));
+  for (const Element* extra : kids.all("AdditionalAxle")) {
+    axles.additional_axles.push_back(parse_axle(ctx, extra));
+  }
+  axles.source = ctx.source(e);
+  return axles;
+}
+
+TrailerCoupling parse_coupling(ParseContext& ctx, const Element* e) {
+  Children(ctx, e, "TrailerCoupling");
+  return TrailerCoupling{ctx.req_double(e, "dx"), ctx.opt_double(e, "dz"), ctx.source(e)};
+}
+
+Properties optional_properties(ParseContext& ctx, Children& kids, const Element* e) {
+  if (const Element* properties = kids.opt("Properties")) {
+    return parse_properties(ctx, properties);
+  }
+  Properties none;
+  none.source = ctx.source(e);
+  return none;
+}
+
+void check_dimensions(ParseContext& ctx, const Element* e, const BoundingBox& box) {
+  if (box.width < 0.0 || box.length < 0.0 || box.height < 0.0) {
+    ctx.fail(e, "BoundingBox dimensions must not be negative");
+  }
+}
+
+EntitySelection parse_selection(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "EntitySelection");
+  EntitySelection selection;
+  selection.name = ctx.req_str(e, "name");
+  const Element* members = kids.one("Members");
+  Children member_kids(ctx, members, "SelectedEntities");
+  for (const Element* ref : member_kids.all("EntityRef")) {
+    Children(ctx, ref, "EntityRef");
+    selection.entity_refs.push_back(ctx.req_str(ref, "entityRef"));
+    ctx.use_entity(ref, selection.entity_refs.back(), "entityRef");
+  }
+  for (const Element* by_type : member_kids.all("ByType")) {
+    Children(ctx, by_type, "ByType");
+    selection.by_type.push_back(
+        {ctx.req_enum<ObjectType>(by_type, "objectType"), ctx.source(by_type)});
+  }
+  selection.source = ctx.source(e);
+  return selection;
+}
+
+}  // namespace
+
+BoundingBox parse_bounding_box(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "BoundingBox");
+  const Element* center = kids.one("Center");
+  const Element* dimensions = kids.one("Dimensions");
+  Children(ctx, center, "Center");
+  Children(ctx, dimensions, "Dimensions");
+  BoundingBox box{ctx.req_double(center, "x"),
+                  ctx.req_double(center, "y"),
+                  ctx.req_double(center, "z"),
+                  ctx.req_double(dimensions, "width"),
+                  ctx.req_double(dimensions, "length"),
+                  ctx.req_double(dimensions, "height"),
+                  ctx.source(e)};
+  check_dimensions(ctx, dimensions, box);
+  return box;
+}
+
+Vehicle parse_vehicle(ParseContext& ctx, const Element* e, const EntryScope& scope) {
+  Children kids(ctx, e, "Vehicle");
+  Vehicle vehicle;
+  vehicle.parameters = open_scope(ctx, kids, scope);
+  ScopeGuard guard(ctx);
+  vehicle.name = ctx.req_str(e, "name");
+  vehicle.category = ctx.req_enum<VehicleCategory>(e, "vehicleCategory");
+  vehicle.role = ctx.opt_enum<Role>(e, "role");
+  vehicle.mass = ctx.opt_double(e, "mass");
+  vehicle.model3d = ctx.opt_str(e, "model3d");
+  vehicle.bounding_box = parse_bounding_box(ctx, kids.one("BoundingBox"));
+  vehicle.performance = parse_performance(ctx, kids.one("Performance"));
+  vehicle.axles = parse_axles(ctx, kids.one("Axles"));
+  vehicle.properties = optional_properties(ctx, kids, e);
+  if (const Element* hitch = kids.opt("TrailerHitch")) {
+    vehicle.trailer_hitch = parse_coupling(ctx, hitch);
+  }
+  if (const Element* coupler = kids.opt("TrailerCoupler")) {
+    vehicle.trailer_coupler = parse_coupling(ctx, coupler);
+  }
+  if (const Element* trailer = kids.opt("Trailer")) {
+    Children trailer_kids(ctx, trailer, "Trailer");
+    const Element* which = trailer_kids.choice();
+    Trailer value;
+    value.source = ctx.source(trailer);
+    if (std::string_view(which->Name()) == "Trailer") {
+      value.trailer = std::make_shared<const ScenarioObject>(parse_scenario_object(ctx, which));
+    } else {
+      Children(ctx, which, "EntityRef");
+      value.trailer_ref = ctx.req_str(which, "entityRef");
+      ctx.use_entity(which, *value.trailer_ref, "entityRef");
+    }
+    vehicle.trailer = std::move(value);
+  }
+  vehicle.source = ctx.source(e);
+  return vehicle;
+}
+
+Pedestrian parse_pedestrian(ParseContext& ctx, const Element* e, const EntryScope& scope) {
+  Children kids(ctx, e, "Pedestrian");
+  Pedestrian pedestrian;
+  pedestrian.parameters = open_scope(ctx, kids, scope);
+  ScopeGuard guard(ctx);
+  pedestrian.name = ctx.req_str(e, "name");
+  pedestrian.category = ctx.req_enum<PedestrianCategory>(e, "pedestrianCategory");
+  pedestrian.mass = ctx.req_double(e, "mass");
+  pedestrian.model3d = ctx.opt_str(e, "model3d");
+  if (const auto model = ctx.opt_str(e, "model")) {
+    ctx.deprecated(e, "attribute Pedestrian.model", "model3d");
+    pedestrian.model3d = pedestrian.model3d.value_or(*model);
+  }
+  pedestrian.role = ctx.opt_enum<Role>(e, "role");
+  pedestrian.bounding_box = parse_bounding_box(ctx, kids.one("BoundingBox"));
+  pedestrian.properties = optional_properties(ctx, kids, e);
+  pedestrian.source = ctx.source(e);
+  return pedestrian;
+}
+
+MiscObject parse_misc_object(ParseContext& ctx, const Element* e, const EntryScope& scope) {
+  Children kids(ctx, e, "MiscObject");
+  MiscObject object;
+  object.parameters = open_scope(ctx, kids, scope);
+  ScopeGuard guard(ctx);
+  object.name = ctx.req_str(e, "name");
+  object.category = ctx.req_enum<MiscObjectCategory>(e, "miscObjectCategory");
+  object.mass = ctx.req_double(e, "mass");
+  object.model3d = ctx.opt_str(e, "model3d");
+  object.bounding_box = parse_bounding_box(ctx, kids.one("BoundingBox"));
+  object.properties = optional_properties(ctx, kids, e);
+  object.source = ctx.source(e);
+  return object;
+}
+
+Controller parse_controller(ParseContext& ctx, const Element* e, const EntryScope& scope) {
+  Children kids(ctx, e, "Controller");
+  Controller controller;
+  controller.parameters = open_scope(ctx, kids, scope);
+  ScopeGuard guard(ctx);
+  controller.name = ctx.req_str(e, "name");
+  controller.controller_type = ctx.opt_enum<ControllerType>(e, "controllerType");
+  controller.properties = optional_properties(ctx, kids, e);
+  controller.source = ctx.source(e);
+  return controller;
+}
+
+Controller parse_controller_choice(ParseContext& ctx, const Element* e) {
+  if (std::string_view(e->Name()) == "Controller") {
+    return parse_controller(ctx, e);
+  }
+  return expand_catalog_reference<
+      Controller>(ctx, e, {"Controller"}, [&](const Element* entry, CatalogOrigin& origin) {
+    Controller controller = parse_controller(ctx, entry, {&origin.assignments, true, "controller"});
+    controller.catalog = origin;
+    return controller;
+  });
+}
+
+ObjectController parse_object_controller(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "ObjectController");
+  ObjectController controller;
+  controller.name = ctx.opt_str(e, "name");
+  controller.controller = parse_controller_choice(ctx, kids.choice());
+  controller.source = ctx.source(e);
+  return controller;
+}
+
+EntityObject parse_entity_object(ParseContext& ctx, const Element* e) {
+  const std::string_view name = e->Name();
+  if (name == "Vehicle") return parse_vehicle(ctx, e);
+  if (name == "Pedestrian") return parse_pedestrian(ctx, e);
+  if (name == "MiscObject") return parse_misc_object(ctx, e);
+  if (name == "ExternalObjectReference") {
+    Children(ctx, e, "ExternalObjectReference");
+    return ExternalObjectReference{ctx.req_str(e, "name"), ctx.source(e)};
+  }
+  return expand_catalog_reference<EntityObject>(
+      ctx, e, {"Vehicle", "Pedestrian", "MiscObject"},
+      [&](const Element* entry, CatalogOrigin& origin) -> EntityObject {
+        const std::string_view kind = entry->Name();
+        if (kind == "Vehicle") {
+          Vehicle vehicle = parse_vehicle(ctx, entry, {&origin.assignments, true, "vehicle"});
+          vehicle.catalog = origin;
+          return vehicle;
+        }
+        if (kind == "Pedestrian") {
+          Pedestrian pedestrian =
+              parse_pedestrian(ctx, entry, {&origin.assignments, true, "pedestrian"});
+          pedestrian.catalog = origin;
+          return pedestrian;
+        }
+        MiscObject object = parse_misc_object(ctx, entry, {&origin.assignments, true, "object"});
+        object.catalog = origin;
+        return object;
+      });
+}
+
+ScenarioObject parse_scenario_object(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "ScenarioObject");
+  ScenarioObject object;
+  object.name = ctx.req_str(e, "name");
+  const Element* definition = nullptr;
+  for (const Element* child = e->FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    if (std::string_view(child->Name()) == "ObjectController") continue;
+    if (definition != nullptr) {
+      ctx.fail(child, "<ScenarioObject> takes one object definition, found <" +
+                          std::string(definition->Name()) + "> and <" + child->Name() + ">");
+    }
+    definition = child;
+  }
+  if (definition == nullptr) {
+    ctx.fail(e, "<ScenarioObject> '" + object.name +
+                    "' needs a Vehicle, Pedestrian, MiscObject, ExternalObjectReference or "
+                    "CatalogReference");
+  }
+  object.object = parse_entity_object(ctx, definition);
+  for (const Element* controller : kids.all("ObjectController")) {
+    object.controllers.push_back(parse_object_controller(ctx, controller));
+  }
+  object.source = ctx.source(e);
+  return object;
+}
+
+Entities parse_entities(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "Entities");
+  Entities entities;
+  entities.source = ctx.source(e);
+  std::set<std::string> names;
+  for (const Element* object : kids.all("ScenarioObject")) {
+    entities.objects.push_back(parse_scenario_object(ctx, object));
+    if (!names.insert(entities.objects.back().name).second) {
+      ctx.fail(object, "entity name '" + entities.objects.back().name + "' is used twice");
+    }
+  }
+  for (const Element* selection : kids.all("EntitySelection")) {
+    entities.selections.push_back(parse_selection(ctx, selection));
+    if (!names.insert(entities.selections.back().name).second) {
+      ctx.fail(selection, "entity name '" + entities.selections.back().name + "' is used twice");
+    }
+  }
+  return entities;
+}
+
+}  // namespace corsa::xosc

@@ -1,0 +1,129 @@
+// Global actions (§7.5) and user-defined actions. Traffic actions are in parse_traffic.cpp.
+
+#include "parsers.h"
+
+namespace corsa::xosc {
+
+GlobalAction parse_traffic_action(ParseContext& ctx, const Element* e);
+
+namespace {
+
+ModifyRule parse_modify_rule(ParseContext& ctx, const Element* rule, double& value) {
+  Children kids(ctx, rule, "ModifyRule");
+  const Element* r = kids.choice();
+  Children(ctx, r, "ValueRule");
+  value = ctx.req_double(r, "value");
+  return std::string_view(r->Name()) == "AddValue" ? ModifyRule::kAddValue
+                                                   : ModifyRule::kMultiplyByValue;
+}
+
+GlobalAction parse_entity_action(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "EntityAction");
+  const std::string entity = ctx.req_str(e, "entityRef");
+  ctx.use_entity(e, entity, "entityRef");
+  const Element* a = kids.choice();
+  if (std::string_view(a->Name()) == "AddEntityAction") {
+    Children add_kids(ctx, a, "AddEntityAction");
+    return AddEntityAction{entity, parse_position(ctx, add_kids.one("Position")), ctx.source(a)};
+  }
+  Children(ctx, a, "DeleteEntityAction");
+  return DeleteEntityAction{entity, ctx.source(a)};
+}
+
+GlobalAction parse_parameter_action(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "ParameterAction");
+  ctx.deprecated(e, "<ParameterAction>", "<VariableAction>");
+  const std::string parameter = ctx.parameter_name(e, "parameterRef");
+  ctx.check_parameter_ref(e, parameter);
+  const Element* a = kids.choice();
+  if (std::string_view(a->Name()) == "SetAction") {
+    Children(ctx, a, "ParameterSetAction");
+    return ParameterSetAction{parameter, ctx.req_str(a, "value"), ctx.source(a)};
+  }
+  Children modify_kids(ctx, a, "ParameterModifyAction");
+  ParameterModifyAction action;
+  action.parameter_ref = parameter;
+  action.rule = parse_modify_rule(ctx, modify_kids.one("Rule"), action.value);
+  action.source = ctx.source(a);
+  return action;
+}
+
+GlobalAction parse_variable_action(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "VariableAction");
+  const std::string variable = ctx.parameter_name(e, "variableRef");
+  ctx.check_variable_ref(e, variable);
+  const Element* a = kids.choice();
+  if (std::string_view(a->Name()) == "SetAction") {
+    Children(ctx, a, "VariableSetAction");
+    return VariableSetAction{variable, ctx.req_str(a, "value"), ctx.source(a)};
+  }
+  Children modify_kids(ctx, a, "VariableModifyAction");
+  VariableModifyAction action;
+  action.variable_ref = variable;
+  action.rule = parse_modify_rule(ctx, modify_kids.one("Rule"), action.value);
+  action.source = ctx.source(a);
+  return action;
+}
+
+GlobalAction parse_infrastructure_action(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "InfrastructureAction");
+  const Element* signal = kids.one("TrafficSignalAction");
+  Children signal_kids(ctx, signal, "TrafficSignalAction");
+  const Element* a = signal_kids.choice();
+  if (std::string_view(a->Name()) == "TrafficSignalControllerAction") {
+    Children(ctx, a, "TrafficSignalControllerAction");
+    return TrafficSignalControllerAction{ctx.req_str(a, "trafficSignalControllerRef"),
+                                         ctx.req_str(a, "phase"), ctx.source(a)};
+  }
+  Children(ctx, a, "TrafficSignalStateAction");
+  return TrafficSignalStateAction{ctx.req_str(a, "name"), ctx.req_str(a, "state"), ctx.source(a)};
+}
+
+GlobalAction parse_environment_action(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "EnvironmentAction");
+  const Element* which = kids.choice();
+  EnvironmentAction action;
+  action.source = ctx.source(e);
+  if (std::string_view(which->Name()) == "Environment") {
+    action.environment = parse_environment(ctx, which);
+    return action;
+  }
+  action.environment = expand_catalog_reference<Environment>(
+      ctx, which, {"Environment"}, [&](const Element* entry, CatalogOrigin& origin) {
+        Environment environment =
+            parse_environment(ctx, entry, {&origin.assignments, true, "environment"});
+        environment.catalog = origin;
+        return environment;
+      });
+  return action;
+}
+
+}  // namespace
+
+GlobalAction parse_global_action(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "GlobalAction");
+  const Element* a = kids.choice();
+  const std::string_view name = a->Name();
+  if (name == "EnvironmentAction") return parse_environment_action(ctx, a);
+  if (name == "EntityAction") return parse_entity_action(ctx, a);
+  if (name == "InfrastructureAction") return parse_infrastructure_action(ctx, a);
+  if (name == "SetMonitorAction") {
+    Children(ctx, a, "SetMonitorAction");
+    SetMonitorAction action{ctx.parameter_name(a, "monitorRef"), ctx.req_bool(a, "value"),
+                            ctx.source(a)};
+    ctx.check_monitor_ref(a, action.monitor_ref);
+    return action;
+  }
+  if (name == "ParameterAction") return parse_parameter_action(ctx, a);
+  if (name == "TrafficAction") return parse_traffic_action(ctx, a);
+  return parse_variable_action(ctx, a);
+}
+
+UserDefinedAction parse_user_defined_action(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "UserDefinedAction");
+  const Element* command = kids.one("CustomCommandAction");
+  Children(ctx, command, "CustomCommandAction");
+  return UserDefinedAction{ctx.req_str(command, "type"), element_text(command), ctx.source(e)};
+}
+
+}  // namespace corsa::xosc

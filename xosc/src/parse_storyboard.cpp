@@ -1,0 +1,207 @@
+// The storyboard (§8.2-8.4): Init, Story, Act, ManeuverGroup, Maneuver, Event, Action.
+
+#include <set>
+
+#include "parsers.h"
+
+namespace corsa::xosc {
+namespace {
+
+// Storyboard element names must be unique among siblings of one parent (§8.1 naming): the
+// `::`-qualified references rely on it.
+void check_unique(ParseContext& ctx, std::set<std::string>& names, const Element* e,
+                  const std::string& name, const char* kind) {
+  if (!names.insert(name).second) {
+    ctx.fail(e, std::string(kind) + " name '" + name + "' is used twice in <" +
+                    e->Parent()->ToElement()->Name() + ">");
+  }
+}
+
+std::string join(const std::string& parent, const std::string& name) {
+  return parent.empty() ? name : parent + "::" + name;
+}
+
+Action parse_action(ParseContext& ctx, const Element* e, const std::string& parent) {
+  Children kids(ctx, e, "Action");
+  Action action;
+  action.name = ctx.req_str(e, "name");
+  action.path = join(parent, action.name);
+  const Element* a = kids.choice();
+  const std::string_view kind = a->Name();
+  if (kind == "PrivateAction") {
+    action.action = parse_private_action(ctx, a);
+  } else if (kind == "GlobalAction") {
+    action.action = parse_global_action(ctx, a);
+  } else {
+    action.action = parse_user_defined_action(ctx, a);
+  }
+  action.source = ctx.source(e);
+  return action;
+}
+
+Event parse_event(ParseContext& ctx, const Element* e, const std::string& parent) {
+  Children kids(ctx, e, "Event");
+  Event event;
+  event.name = ctx.req_str(e, "name");
+  event.path = join(parent, event.name);
+  event.priority = ctx.req_enum<Priority>(e, "priority");
+  if (const auto count = ctx.opt_int(e, "maximumExecutionCount", ParameterType::kUnsignedInt)) {
+    event.maximum_execution_count = static_cast<uint32_t>(*count);
+  }
+  std::set<std::string> names;
+  for (const Element* action : kids.at_least("Action", 1)) {
+    event.actions.push_back(parse_action(ctx, action, event.path));
+    check_unique(ctx, names, action, event.actions.back().name, "action");
+  }
+  if (const Element* start = kids.opt("StartTrigger")) {
+    event.start_trigger = parse_trigger(ctx, start);
+  }
+  event.source = ctx.source(e);
+  return event;
+}
+
+// A maneuver's events get their paths once the maneuver's place is known.
+void set_paths(Maneuver& maneuver, const std::string& parent) {
+  maneuver.path = join(parent, maneuver.name);
+  for (auto& event : maneuver.events) {
+    event.path = join(maneuver.path, event.name);
+    for (auto& action : event.actions) {
+      action.path = join(event.path, action.name);
+    }
+  }
+}
+
+ManeuverGroup parse_maneuver_group(ParseContext& ctx, const Element* e, const std::string& parent) {
+  Children kids(ctx, e, "ManeuverGroup");
+  ManeuverGroup group;
+  group.name = ctx.req_str(e, "name");
+  group.path = join(parent, group.name);
+  group.maximum_execution_count =
+      static_cast<uint32_t>(ctx.req_int(e, "maximumExecutionCount", ParameterType::kUnsignedInt));
+  const Element* actors = kids.one("Actors");
+  Children actor_kids(ctx, actors, "Actors");
+  group.actors.select_triggering_entities = ctx.req_bool(actors, "selectTriggeringEntities");
+  for (const Element* ref : actor_kids.all("EntityRef")) {
+    Children(ctx, ref, "EntityRef");
+    group.actors.entity_refs.push_back(ctx.req_str(ref, "entityRef"));
+    ctx.use_entity(ref, group.actors.entity_refs.back(), "entityRef");
+  }
+  group.actors.source = ctx.source(actors);
+  std::set<std::string> names;
+  // Inline maneuvers and catalog references, in document order.
+  for (const Element* child = e->FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    const std::string_view kind = child->Name();
+    if (kind == "Maneuver") {
+      group.maneuvers.push_back(parse_maneuver(ctx, child));
+    } else if (kind == "CatalogReference") {
+      group.maneuvers.push_back(expand_catalog_reference<Maneuver>(
+          ctx, child, {"Maneuver"}, [&](const Element* entry, CatalogOrigin& origin) {
+            Maneuver maneuver = parse_maneuver(ctx, entry, {&origin.assignments, true, "maneuver"});
+            maneuver.catalog = origin;
+            return maneuver;
+          }));
+    } else {
+      continue;
+    }
+    set_paths(group.maneuvers.back(), group.path);
+    check_unique(ctx, names, child, group.maneuvers.back().name, "maneuver");
+  }
+  group.source = ctx.source(e);
+  return group;
+}
+
+Act parse_act(ParseContext& ctx, const Element* e, const std::string& parent) {
+  Children kids(ctx, e, "Act");
+  Act act;
+  act.name = ctx.req_str(e, "name");
+  act.path = join(parent, act.name);
+  std::set<std::string> names;
+  for (const Element* group : kids.at_least("ManeuverGroup", 1)) {
+    act.maneuver_groups.push_back(parse_maneuver_group(ctx, group, act.path));
+    check_unique(ctx, names, group, act.maneuver_groups.back().name, "maneuver group");
+  }
+  if (const Element* start = kids.opt("StartTrigger"))
+    act.start_trigger = parse_trigger(ctx, start);
+  if (const Element* stop = kids.opt("StopTrigger")) act.stop_trigger = parse_trigger(ctx, stop);
+  act.source = ctx.source(e);
+  return act;
+}
+
+Story parse_story(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "Story");
+  Story story;
+  story.parameters = open_scope(ctx, kids, {});
+  ScopeGuard guard(ctx);
+  story.name = ctx.req_str(e, "name");
+  story.path = story.name;
+  std::set<std::string> names;
+  for (const Element* act : kids.at_least("Act", 1)) {
+    story.acts.push_back(parse_act(ctx, act, story.path));
+    check_unique(ctx, names, act, story.acts.back().name, "act");
+  }
+  story.source = ctx.source(e);
+  return story;
+}
+
+Init parse_init(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "Init");
+  Init init;
+  init.source = ctx.source(e);
+  const Element* actions = kids.one("Actions");
+  Children action_kids(ctx, actions, "InitActions");
+  for (const Element* global : action_kids.all("GlobalAction")) {
+    init.global_actions.push_back(parse_global_action(ctx, global));
+  }
+  for (const Element* user : action_kids.all("UserDefinedAction")) {
+    init.user_defined_actions.push_back(parse_user_defined_action(ctx, user));
+  }
+  for (const Element* p : action_kids.all("Private")) {
+    Children private_kids(ctx, p, "Private");
+    InitPrivate entry;
+    entry.entity_ref = ctx.req_str(p, "entityRef");
+    ctx.use_entity(p, entry.entity_ref, "entityRef");
+    for (const Element* action : private_kids.at_least("PrivateAction", 1)) {
+      entry.actions.push_back(parse_private_action(ctx, action));
+    }
+    entry.source = ctx.source(p);
+    init.privates.push_back(std::move(entry));
+  }
+  return init;
+}
+
+}  // namespace
+
+Maneuver parse_maneuver(ParseContext& ctx, const Element* e, const EntryScope& scope) {
+  Children kids(ctx, e, "Maneuver");
+  Maneuver maneuver;
+  maneuver.parameters = open_scope(ctx, kids, scope);
+  ScopeGuard guard(ctx);
+  maneuver.name = ctx.req_str(e, "name");
+  std::set<std::string> names;
+  for (const Element* event : kids.at_least("Event", 1)) {
+    maneuver.events.push_back(parse_event(ctx, event, maneuver.name));
+    check_unique(ctx, names, event, maneuver.events.back().name, "event");
+  }
+  maneuver.source = ctx.source(e);
+  set_paths(maneuver, "");
+  return maneuver;
+}
+
+Storyboard parse_storyboard(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "Storyboard");
+  Storyboard storyboard;
+  storyboard.init = parse_init(ctx, kids.one("Init"));
+  std::set<std::string> names;
+  for (const Element* story : kids.all("Story")) {
+    storyboard.stories.push_back(parse_story(ctx, story));
+    check_unique(ctx, names, story, storyboard.stories.back().name, "story");
+  }
+  if (const Element* stop = kids.opt("StopTrigger")) {
+    storyboard.stop_trigger = parse_trigger(ctx, stop);
+  }
+  storyboard.source = ctx.source(e);
+  return storyboard;
+}
+
+}  // namespace corsa::xosc
