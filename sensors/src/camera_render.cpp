@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "carrier.h"
 #include "scene_data.h"
 #include "shading.h"
 
@@ -33,6 +34,7 @@ struct Pass {
   Rigid cam_early, cam_late;  // inverse poses at -shutter/2 and +shutter/2 (blur)
   bool blur;
   Vec3 origin_local;
+  detail::CarrierExit carrier;
   CameraImages* out;
   std::vector<float>* linear;
   std::vector<float>* motion;
@@ -81,7 +83,7 @@ void trace_tile(const Pass& p, int col0, int row0) {
     rh.ray.dir_x[k] = static_cast<float>(dir.x);
     rh.ray.dir_y[k] = static_cast<float>(dir.y);
     rh.ray.dir_z[k] = static_cast<float>(dir.z);
-    rh.ray.tnear[k] = 0.0f;
+    rh.ray.tnear[k] = p.carrier.exit(dir);
     rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
     rh.ray.mask[k] = 0xFFFFFFFFu;
     rh.ray.flags[k] = 0;
@@ -95,6 +97,15 @@ void trace_tile(const Pass& p, int col0, int row0) {
 
   alignas(64) RTCRay16 shadow;
   alignas(64) int shadow_valid[16];
+  for (int k = 0; k < 16; ++k) {
+    shadow.tnear[k] = 0.0f;
+    shadow.tfar[k] = 0.0f;
+    shadow.mask[k] = 0xFFFFFFFFu;
+    shadow.flags[k] = 0;
+    shadow.org_x[k] = shadow.org_y[k] = shadow.org_z[k] = 0.0f;
+    shadow.dir_x[k] = shadow.dir_y[k] = 0.0f;
+    shadow.dir_z[k] = 1.0f;
+  }
   Vec3 normal[16];
   Vec3 position[16];
   detail::SceneData::Label label[16];
@@ -149,7 +160,9 @@ void trace_tile(const Pass& p, int col0, int row0) {
   if (!rgb) {
     return;
   }
-  rtcOccluded16(shadow_valid, d.top, &context, &shadow);
+  RTCIntersectContext shadow_context;
+  rtcInitIntersectContext(&shadow_context);
+  rtcOccluded16(shadow_valid, d.top, &shadow_context, &shadow);
   for (int k = 0; k < 16; ++k) {
     if (!valid[k]) {
       continue;
@@ -225,6 +238,7 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   p.settings = &settings;
   p.world_from_cam = world_from_optical(motion.world_from_body);
   p.origin_local = scene.data().to_local(p.world_from_cam.translation);
+  p.carrier = detail::CarrierExit(settings.carrier, p.world_from_cam.translation);
   p.out = &out;
   if (rgb) {
     linear.assign(3 * n, 0.0f);

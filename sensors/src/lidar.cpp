@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "carrier.h"
 #include "fast_normal.h"
 #include "scene_data.h"
 
@@ -24,6 +25,7 @@ struct ScanContext {
   double weather;           // 1/m
   uint64_t frame_seed;
   int channels;
+  detail::CarrierExit carrier;
 };
 
 /// Decides whether a hit becomes a point and where; appends it.
@@ -102,7 +104,7 @@ void scan_block(const ScanContext& c, int first, int last, uint64_t block,
       rh.ray.dir_x[k] = static_cast<float>(d.x);
       rh.ray.dir_y[k] = static_cast<float>(d.y);
       rh.ray.dir_z[k] = static_cast<float>(d.z);
-      rh.ray.tnear[k] = 0.0f;
+      rh.ray.tnear[k] = c.carrier.exit(d);
       rh.ray.tfar[k] = far;
       rh.ray.mask[k] = 0xFFFFFFFFu;
       rh.ray.flags[k] = 0;
@@ -178,7 +180,8 @@ double LidarSimulator::azimuth(int step) const {
 }
 
 PointCloud LidarSimulator::scan(const Scene& scene, const Rigid& world_from_sensor,
-                                double weather_extinction, uint64_t frame_seed) const {
+                                double weather_extinction, uint64_t frame_seed,
+                                const std::optional<Box3>& carrier) const {
   ScanContext c;
   c.scene = &scene.data();
   c.options = &options_;
@@ -188,6 +191,7 @@ PointCloud LidarSimulator::scan(const Scene& scene, const Rigid& world_from_sens
   c.weather = weather_extinction;
   c.frame_seed = frame_seed;
   c.channels = options_.channels;
+  c.carrier = detail::CarrierExit(carrier, world_from_sensor.translation);
 
   const int blocks = (steps_ + kColumnsPerBlock - 1) / kColumnsPerBlock;
   std::vector<std::vector<LidarPoint>> parts(blocks);

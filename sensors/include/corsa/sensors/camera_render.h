@@ -6,10 +6,12 @@
 // sensor noise, gamma and lens distortion. Same bytes for the same seed on any thread count.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "corsa/sensors/camera_model.h"
 #include "corsa/sensors/environment.h"
+#include "corsa/sensors/labels.h"
 #include "corsa/sensors/rig.h"
 #include "corsa/sensors/scene.h"
 
@@ -48,6 +50,9 @@ struct RenderSettings {
   RgbOptions rgb;
   double max_depth_m = 1000.0;
   uint64_t frame_seed = 0;  ///< seeds the sensor noise and rain streaks
+  /// Bounding box (map frame) of the entity carrying the camera: primary rays start where they
+  /// leave it, so a camera behind the windscreen does not see its own vehicle.
+  std::optional<Box3> carrier;
 };
 
 class CameraRenderer {

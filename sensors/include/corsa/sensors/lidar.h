@@ -16,8 +16,10 @@
 // result is the same bytes whatever the thread count.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "corsa/sensors/box.h"
 #include "corsa/sensors/geometry.h"
 #include "corsa/sensors/rig.h"
 #include "corsa/sensors/scene.h"
@@ -51,8 +53,10 @@ class LidarSimulator {
 
   /// One revolution from the sensor pose (sensor body frame to map). `weather_extinction` is
   /// fog + rain extinction in 1/m (Lighting::extinction()); `frame_seed` seeds the noise.
+  /// `carrier` is the bounding box (map frame) of the entity carrying the sensor: beams start
+  /// where they leave it, so a sensor inside its own vehicle does not see the vehicle.
   PointCloud scan(const Scene& scene, const Rigid& world_from_sensor, double weather_extinction,
-                  uint64_t frame_seed) const;
+                  uint64_t frame_seed, const std::optional<Box3>& carrier = std::nullopt) const;
 
   const LidarOptions& options() const { return options_; }
   int azimuth_steps() const { return steps_; }

@@ -1,0 +1,61 @@
+#pragma once
+
+// Ground-truth labels of one sensor frame: 2D boxes (amodal and visible) with occlusion and
+// truncation for cameras, 3D boxes in the sensor and map frames, class, instance and track id,
+// and the LiDAR point count per object.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "corsa/sensors/box.h"
+#include "corsa/sensors/camera_model.h"
+#include "corsa/sensors/geometry.h"
+#include "corsa/sensors/lidar.h"
+#include "corsa/sensors/scene.h"
+#include "corsa/sensors/semantic.h"
+
+namespace corsa::sensors {
+
+struct ObjectLabel {
+  uint32_t instance_id = 0;
+  uint32_t track_id = 0;  ///< stable over the run: the engine's entity instance id
+  std::string name;       ///< entity name
+  SemanticClass semantic = SemanticClass::kNone;
+  Box3 box_world;         ///< map frame
+  Box3 box_sensor;        ///< camera optical frame (cameras) or sensor body frame (LiDAR)
+  double distance = 0.0;  ///< metres from the sensor to the box centre
+  // Cameras only:
+  Box2 box_2d;              ///< the projected 3D box clipped to the image
+  Box2 box_2d_visible;      ///< tight box around the object's visible pixels
+  double truncation = 0.0;  ///< share of the projected box outside the image, 0..1
+  double occlusion = 0.0;   ///< share of the object's silhouette hidden by others, 0..1
+  uint64_t visible_pixels = 0;
+  // LiDAR only:
+  uint64_t lidar_points = 0;
+};
+
+/// KITTI's discrete occlusion state from the occluded share: 0 fully visible (< 10%), 1 partly
+/// (< 50%), 2 largely (< 90%), 3 unknown / almost fully occluded.
+int kitti_occlusion_level(double occlusion);
+/// KITTI rotation_y: yaw about the camera's y axis (down), 0 when the box faces the camera's x.
+double kitti_rotation_y(const Box3& box_in_optical_frame);
+
+/// Labels of a camera frame: every visible entity with at least one visible pixel, except the
+/// entity with instance id `carrier` (the sensor's own vehicle; 0 for none).
+/// `instance` is the camera's instance buffer (CameraImages::instance).
+std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraModel& camera,
+                                       const Rigid& world_from_body,
+                                       std::span<const uint32_t> instance, uint32_t carrier = 0);
+
+/// Labels of a LiDAR frame: every visible entity whose centre is within `range_m`, except the
+/// carrier.
+std::vector<ObjectLabel> lidar_labels(const Scene& scene, const Rigid& world_from_sensor,
+                                      const PointCloud& cloud, double range_m,
+                                      uint32_t carrier = 0);
+
+/// The 3D box of an entity in the map frame.
+Box3 entity_box(const engine::EntitySnapshot& entity);
+
+}  // namespace corsa::sensors

@@ -1,0 +1,100 @@
+#include "corsa/sensors/birds_eye.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "scene_data.h"
+#include "shading.h"
+
+namespace corsa::sensors {
+
+BirdsEyeImage render_birds_eye(const Scene& scene, const BirdsEyeOptions& o,
+                               const Rigid& world_from_body, const Lighting* lighting) {
+  const detail::SceneData& d = scene.data();
+  BirdsEyeImage img;
+  img.width = o.width;
+  img.height = o.height;
+  const size_t n = static_cast<size_t>(o.width) * o.height;
+  img.rgb.assign(3 * n, 0);
+  img.semantic.assign(n, 0);
+  img.instance.assign(n, 0);
+  const bool shaded = o.style == BirdsEyeStyle::kRgb && lighting != nullptr;
+  detail::ShadingContext shading;
+  if (shaded) {
+    shading = detail::make_shading_context(d, *lighting);
+  }
+  const double heading = o.follow_heading ? std::atan2(world_from_body.rotation.m[1][0],
+                                                       world_from_body.rotation.m[0][0])
+                                          : M_PI / 2.0;  // north up
+  const Vec3 up{std::cos(heading), std::sin(heading), 0.0};
+  const Vec3 right{std::sin(heading), -std::cos(heading), 0.0};
+  const double mpp = o.extent_m / o.width;
+  const Vec3 centre = d.to_local(world_from_body.translation);
+  const double top = centre.z + o.altitude_m;
+  const double cx = (o.width - 1) / 2.0;
+  const double cy = (o.height - 1) / 2.0;
+  tbb::parallel_for(tbb::blocked_range<int>(0, o.height), [&](const tbb::blocked_range<int>& r) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    for (int row = r.begin(); row != r.end(); ++row) {
+      for (int col0 = 0; col0 < o.width; col0 += 16) {
+        alignas(64) RTCRayHit16 rh;
+        alignas(64) int valid[16];
+        for (int k = 0; k < 16; ++k) {
+          const int col = col0 + k;
+          valid[k] = col < o.width ? -1 : 0;
+          const Vec3 p = centre + right * ((col - cx) * mpp) + up * ((cy - row) * mpp);
+          rh.ray.org_x[k] = static_cast<float>(p.x);
+          rh.ray.org_y[k] = static_cast<float>(p.y);
+          rh.ray.org_z[k] = static_cast<float>(top);
+          rh.ray.dir_x[k] = 0.0f;
+          rh.ray.dir_y[k] = 0.0f;
+          rh.ray.dir_z[k] = -1.0f;
+          rh.ray.tnear[k] = 0.0f;
+          rh.ray.tfar[k] = static_cast<float>(2.0 * o.altitude_m + 100.0);
+          rh.ray.mask[k] = 0xFFFFFFFFu;
+          rh.ray.flags[k] = 0;
+          rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+          rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect16(valid, d.top, &context, &rh);
+        for (int k = 0; k < 16 && col0 + k < o.width; ++k) {
+          if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
+            continue;
+          }
+          const size_t px = static_cast<size_t>(row) * o.width + col0 + k;
+          const auto label = d.label(rh.hit.instID[0][k], rh.hit.geomID[k], rh.hit.primID[k]);
+          img.semantic[px] = static_cast<uint8_t>(label.semantic);
+          img.instance[px] = label.instance_id;
+          Rgb8 c = semantic_color(label.semantic);
+          if (shaded) {
+            Vec3 nrm = d.world_normal(rh.hit.instID[0][k],
+                                      {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
+            if (nrm.z < 0.0) {
+              nrm = -nrm;
+            }
+            const Vec3 pos{rh.ray.org_x[k], rh.ray.org_y[k], top - rh.ray.tfar[k]};
+            const Color albedo = label.entity >= 0 ? shading.entity_albedo[label.entity]
+                                                   : shading.static_albedo[rh.hit.geomID[k]];
+            const Color v = detail::shade_surface(shading, pos, nrm, {0.0, 0.0, -1.0},
+                                                  label.semantic, albedo, true);
+            auto enc = [](double x) {
+              return static_cast<uint8_t>(
+                  std::lround(255.0 * std::pow(std::clamp(x, 0.0, 1.0), 1.0 / 2.2)));
+            };
+            c = {enc(v.r), enc(v.g), enc(v.b)};
+          }
+          img.rgb[3 * px] = c.r;
+          img.rgb[3 * px + 1] = c.g;
+          img.rgb[3 * px + 2] = c.b;
+        }
+      }
+    }
+  });
+  return img;
+}
+
+}  // namespace corsa::sensors

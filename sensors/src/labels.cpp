@@ -1,0 +1,253 @@
+#include "corsa/sensors/labels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "corsa/sensors/camera_render.h"
+#include "scene_data.h"
+
+namespace corsa::sensors {
+namespace {
+
+constexpr double kNear = 0.05;       // m, near clipping plane for projecting boxes
+constexpr int kSilhouetteGrid = 64;  // at most 64 x 64 samples per object for occlusion
+
+struct PixelStats {
+  uint64_t count = 0;
+  int x_min = 1 << 30, y_min = 1 << 30, x_max = -1, y_max = -1;
+};
+
+std::map<uint32_t, PixelStats> pixel_stats(std::span<const uint32_t> instance, int width) {
+  std::map<uint32_t, PixelStats> stats;
+  for (size_t i = 0; i < instance.size(); ++i) {
+    if (instance[i] == 0 || instance[i] >= kStaticInstanceBase) {
+      continue;
+    }
+    PixelStats& s = stats[instance[i]];
+    const int x = static_cast<int>(i % width);
+    const int y = static_cast<int>(i / width);
+    ++s.count;
+    s.x_min = std::min(s.x_min, x);
+    s.x_max = std::max(s.x_max, x);
+    s.y_min = std::min(s.y_min, y);
+    s.y_max = std::max(s.y_max, y);
+  }
+  return stats;
+}
+
+Box3 transform_box(const Rigid& t, const Box3& b) {
+  Box3 out = b;
+  out.center = t.apply(b.center);
+  out.rotation = t.rotation * b.rotation;
+  return out;
+}
+
+/// Projection of a box (optical frame) clipped to the near plane; false if wholly behind.
+bool project_box(const CameraModel& camera, const Box3& box, Box2& out) {
+  const auto c = box.corners();
+  std::vector<Vec3> points;
+  for (const Vec3& p : c) {
+    if (p.z >= kNear) {
+      points.push_back(p);
+    }
+  }
+  // Edges join corners whose indices differ in one bit.
+  for (int i = 0; i < 8; ++i) {
+    for (int bit = 1; bit < 8; bit <<= 1) {
+      const int j = i | bit;
+      if (j == i) {
+        continue;
+      }
+      const Vec3 a = c[i];
+      const Vec3 b = c[j];
+      if ((a.z < kNear) != (b.z < kNear)) {
+        const double t = (kNear - a.z) / (b.z - a.z);
+        points.push_back(a + (b - a) * t);
+      }
+    }
+  }
+  if (points.empty()) {
+    return false;
+  }
+  out = {1e300, 1e300, -1e300, -1e300};
+  for (const Vec3& p : points) {
+    const auto px = camera.project(p);
+    if (!px) {
+      continue;
+    }
+    out.x_min = std::min(out.x_min, px->u);
+    out.x_max = std::max(out.x_max, px->u);
+    out.y_min = std::min(out.y_min, px->v);
+    out.y_max = std::max(out.y_max, px->v);
+  }
+  return out.x_min <= out.x_max;
+}
+
+/// Share of the object's silhouette (its prototype shape alone) covered by its own pixels.
+double occlusion_of(const detail::SceneData& d, const detail::EntityInstance& inst,
+                    const CameraModel& camera, const Rigid& world_from_cam, const Box2& box,
+                    std::span<const uint32_t> instance, int width) {
+  const engine::EntitySnapshot& e = d.entities[inst.snapshot_index];
+  const Box3 b = entity_box(e);
+  const Mat3 to_unit = b.rotation.transposed();
+  const double inv[3] = {1.0 / b.length, 1.0 / b.width, 1.0 / b.height};
+  auto unit = [&](Vec3 v) {
+    const Vec3 r = to_unit * v;
+    return Vec3{r.x * inv[0], r.y * inv[1], r.z * inv[2]};
+  };
+  const Vec3 origin = unit(world_from_cam.translation - b.center);
+  const int x0 = static_cast<int>(std::ceil(box.x_min));
+  const int x1 = static_cast<int>(std::floor(box.x_max));
+  const int y0 = static_cast<int>(std::ceil(box.y_min));
+  const int y1 = static_cast<int>(std::floor(box.y_max));
+  const int stride = std::max(1, std::max(x1 - x0, y1 - y0) / kSilhouetteGrid + 1);
+  RTCScene shape = d.prototypes[static_cast<size_t>(e.category)];
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  uint64_t silhouette = 0, seen = 0;
+  for (int y = y0; y <= y1; y += stride) {
+    for (int x = x0; x <= x1; x += stride) {
+      const Vec3 dir = unit(world_from_cam.apply_direction(
+          camera.ray({static_cast<double>(x), static_cast<double>(y)})));
+      RTCRay ray{};
+      ray.org_x = static_cast<float>(origin.x);
+      ray.org_y = static_cast<float>(origin.y);
+      ray.org_z = static_cast<float>(origin.z);
+      ray.dir_x = static_cast<float>(dir.x);
+      ray.dir_y = static_cast<float>(dir.y);
+      ray.dir_z = static_cast<float>(dir.z);
+      ray.tfar = std::numeric_limits<float>::infinity();
+      ray.mask = 0xFFFFFFFFu;
+      rtcOccluded1(shape, &context, &ray);
+      if (ray.tfar >= 0.0f) {
+        continue;  // the shape alone does not cover this pixel
+      }
+      ++silhouette;
+      seen += instance[static_cast<size_t>(y) * width + x] == inst.instance_id;
+    }
+  }
+  return silhouette == 0 ? 0.0 : 1.0 - static_cast<double>(seen) / silhouette;
+}
+
+}  // namespace
+
+double Box3::yaw() const { return std::atan2(rotation.m[1][0], rotation.m[0][0]); }
+
+std::array<Vec3, 8> Box3::corners() const {
+  std::array<Vec3, 8> c;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 local{(i & 1 ? 0.5 : -0.5) * length, (i & 2 ? 0.5 : -0.5) * width,
+                     (i & 4 ? 0.5 : -0.5) * height};
+    c[i] = center + rotation * local;
+  }
+  return c;
+}
+
+int kitti_occlusion_level(double occlusion) {
+  if (occlusion < 0.1) {
+    return 0;
+  }
+  if (occlusion < 0.5) {
+    return 1;
+  }
+  return occlusion < 0.9 ? 2 : 3;
+}
+
+double kitti_rotation_y(const Box3& box) {
+  const Vec3 forward = box.rotation.column(0);
+  return std::atan2(-forward.z, forward.x);
+}
+
+Box3 entity_box(const engine::EntitySnapshot& e) {
+  const Rigid pose = rigid_from_pose(e.pose.x, e.pose.y, e.pose.z, e.pose.h, e.pose.p, e.pose.r);
+  Box3 b;
+  b.center = pose.apply({e.box.center_x, e.box.center_y, e.box.center_z});
+  b.rotation = pose.rotation;
+  b.length = e.box.length;
+  b.width = e.box.width;
+  b.height = e.box.height;
+  return b;
+}
+
+std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraModel& camera,
+                                       const Rigid& world_from_body,
+                                       std::span<const uint32_t> instance, uint32_t carrier) {
+  const detail::SceneData& d = scene.data();
+  const int w = camera.width();
+  const int h = camera.height();
+  const Rigid world_from_cam = world_from_optical(world_from_body);
+  const Rigid cam_from_world = world_from_cam.inverse();
+  const auto stats = pixel_stats(instance, w);
+  std::vector<ObjectLabel> labels;
+  for (const auto& inst : d.instances) {
+    const auto it = stats.find(inst.instance_id);
+    if (it == stats.end() || inst.instance_id == carrier) {
+      continue;
+    }
+    const engine::EntitySnapshot& e = d.entities[inst.snapshot_index];
+    ObjectLabel l;
+    l.instance_id = inst.instance_id;
+    l.track_id = e.instance_id;
+    l.name = e.name;
+    l.semantic = inst.semantic;
+    l.box_world = entity_box(e);
+    l.box_sensor = transform_box(cam_from_world, l.box_world);
+    l.distance = norm(l.box_sensor.center);
+    l.visible_pixels = it->second.count;
+    l.box_2d_visible = {
+        static_cast<double>(it->second.x_min), static_cast<double>(it->second.y_min),
+        static_cast<double>(it->second.x_max), static_cast<double>(it->second.y_max)};
+    Box2 full;
+    if (!project_box(camera, l.box_sensor, full)) {
+      continue;
+    }
+    Box2 clipped{std::max(full.x_min, -0.5), std::max(full.y_min, -0.5),
+                 std::min(full.x_max, w - 0.5), std::min(full.y_max, h - 0.5)};
+    if (clipped.x_min > clipped.x_max || clipped.y_min > clipped.y_max) {
+      continue;
+    }
+    l.box_2d = clipped;
+    l.truncation =
+        full.area() > 0.0 ? std::clamp(1.0 - clipped.area() / full.area(), 0.0, 1.0) : 0.0;
+    l.occlusion = occlusion_of(d, inst, camera, world_from_cam, clipped, instance, w);
+    labels.push_back(std::move(l));
+  }
+  return labels;
+}
+
+std::vector<ObjectLabel> lidar_labels(const Scene& scene, const Rigid& world_from_sensor,
+                                      const PointCloud& cloud, double range_m, uint32_t carrier) {
+  const detail::SceneData& d = scene.data();
+  const Rigid sensor_from_world = world_from_sensor.inverse();
+  std::map<uint32_t, uint64_t> counts;
+  for (const auto& p : cloud.points) {
+    if (p.instance_id != 0) {
+      ++counts[p.instance_id];
+    }
+  }
+  std::vector<ObjectLabel> labels;
+  for (const auto& inst : d.instances) {
+    if (inst.instance_id == carrier) {
+      continue;
+    }
+    const engine::EntitySnapshot& e = d.entities[inst.snapshot_index];
+    ObjectLabel l;
+    l.instance_id = inst.instance_id;
+    l.track_id = e.instance_id;
+    l.name = e.name;
+    l.semantic = inst.semantic;
+    l.box_world = entity_box(e);
+    l.box_sensor = transform_box(sensor_from_world, l.box_world);
+    l.distance = norm(l.box_sensor.center);
+    if (l.distance > range_m) {
+      continue;
+    }
+    const auto it = counts.find(inst.instance_id);
+    l.lidar_points = it == counts.end() ? 0 : it->second;
+    labels.push_back(std::move(l));
+  }
+  return labels;
+}
+
+}  // namespace corsa::sensors

@@ -1,0 +1,191 @@
+#include "corsa/sensors/sensor_system.h"
+
+#include <numbers>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/core/random.h"
+#include "corsa/sensors/writers.h"
+
+namespace corsa::sensors {
+namespace {
+
+bool is_camera(SensorKind k) {
+  return k == SensorKind::kRgbCamera || k == SensorKind::kDepthCamera ||
+         k == SensorKind::kSemanticCamera || k == SensorKind::kInstanceCamera;
+}
+
+bool same_optics(const SensorSpec& a, const SensorSpec& b) {
+  const auto& i = a.camera;
+  const auto& j = b.camera;
+  const auto& m = a.mount;
+  const auto& n = b.mount;
+  return a.entity == b.entity && i.width == j.width && i.height == j.height &&
+         i.fov_deg == j.fov_deg && i.k1 == j.k1 && i.k2 == j.k2 && i.p1 == j.p1 && i.p2 == j.p2 &&
+         m.x == n.x && m.y == n.y && m.z == n.z && m.roll_deg == n.roll_deg &&
+         m.pitch_deg == n.pitch_deg && m.yaw_deg == n.yaw_deg;
+}
+
+/// Camera sensors rendered by one pass (at most one RGB camera: it has its own exposure).
+struct CameraGroup {
+  std::vector<const SensorSpec*> members;
+  const SensorSpec* rgb = nullptr;
+  CameraOutputs outputs;
+};
+
+}  // namespace
+
+struct SensorSystem::Cache {
+  std::map<std::string, std::unique_ptr<CameraRenderer>> cameras;
+  std::map<std::string, std::unique_ptr<LidarSimulator>> lidars;
+};
+
+SensorSystem::SensorSystem(SensorRig rig, Scene& scene, SensorSystemOptions options)
+    : rig_(std::move(rig)), scene_(scene), options_(options), cache_(std::make_unique<Cache>()) {
+  for (const auto& s : rig_.sensors) {
+    if (is_camera(s.kind)) {
+      cache_->cameras[s.name] = std::make_unique<CameraRenderer>(s.camera);
+    } else if (s.kind == SensorKind::kLidar) {
+      cache_->lidars[s.name] = std::make_unique<LidarSimulator>(s.lidar);
+    }
+  }
+}
+
+SensorSystem::~SensorSystem() = default;
+
+const CameraModel* SensorSystem::camera_model(const std::string& sensor) const {
+  const auto it = cache_->cameras.find(sensor);
+  return it == cache_->cameras.end() ? nullptr : &it->second->model();
+}
+
+std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& world,
+                                               std::span<const std::string> sensors) {
+  scene_.set_entities(world.entities);
+  const Lighting lighting = compute_lighting(world.environment, options_.location);
+  std::vector<const SensorSpec*> due;
+  for (const auto& s : rig_.sensors) {
+    bool wanted = sensors.empty();
+    for (const auto& name : sensors) {
+      wanted = wanted || name == s.name;
+    }
+    if (wanted) {
+      due.push_back(&s);
+    }
+  }
+  // Pose, carrier and frame number of each due sensor.
+  std::map<std::string, SensorFrame> frames;
+  std::map<std::string, const engine::EntitySnapshot*> carriers;
+  for (const SensorSpec* s : due) {
+    const engine::EntitySnapshot* carrier = nullptr;
+    for (const auto& e : world.entities) {
+      carrier = e.name == s->entity ? &e : carrier;
+    }
+    if (carrier == nullptr) {
+      throw InputError(make_error(rig_.file, s->line,
+                                  "sensor '" + s->name + "' is attached to entity '" + s->entity +
+                                      "', which is not in the world at tick " +
+                                      std::to_string(world.tick)));
+    }
+    carriers[s->name] = carrier;
+    SensorFrame f;
+    f.sensor = s->name;
+    f.kind = s->kind;
+    f.frame = frames_[s->name]++;
+    f.tick = world.tick;
+    f.time = world.time;
+    const auto& p = carrier->pose;
+    f.world_from_sensor =
+        rigid_from_pose(p.x, p.y, p.z, p.h, p.p, p.r) * entity_from_sensor(s->mount);
+    frames[s->name] = std::move(f);
+  }
+  auto frame_seed = [&](const SensorSpec& s) {
+    return derive_seed(options_.seed, s.name + "#" + std::to_string(frames[s.name].frame));
+  };
+
+  // Cameras: group by optics, one pass per group.
+  std::vector<CameraGroup> groups;
+  for (const SensorSpec* s : due) {
+    if (!is_camera(s->kind)) {
+      continue;
+    }
+    CameraGroup* group = nullptr;
+    for (auto& g : groups) {
+      if (same_optics(*g.members.front(), *s) && !(s->kind == SensorKind::kRgbCamera && g.rgb)) {
+        group = &g;
+      }
+    }
+    if (group == nullptr) {
+      groups.emplace_back();
+      group = &groups.back();
+    }
+    group->members.push_back(s);
+    group->rgb = s->kind == SensorKind::kRgbCamera ? s : group->rgb;
+    group->outputs.rgb = group->outputs.rgb || s->kind == SensorKind::kRgbCamera;
+    group->outputs.depth = group->outputs.depth || s->kind == SensorKind::kDepthCamera;
+    group->outputs.semantic = group->outputs.semantic || s->kind == SensorKind::kSemanticCamera;
+    group->outputs.instance = true;
+  }
+  for (const auto& g : groups) {
+    const SensorSpec& lead = *g.members.front();
+    const engine::EntitySnapshot& carrier = *carriers[lead.name];
+    RenderSettings settings;
+    settings.outputs = g.outputs;
+    settings.lighting = &lighting;
+    settings.carrier = entity_box(carrier);
+    double max_depth = 0.0;
+    for (const SensorSpec* m : g.members) {
+      max_depth =
+          std::max(max_depth, m->kind == SensorKind::kDepthCamera ? m->depth.max_range_m : 1e9);
+    }
+    settings.max_depth_m = max_depth;
+    if (g.rgb != nullptr) {
+      settings.rgb = g.rgb->rgb;
+    }
+    settings.frame_seed = frame_seed(g.rgb != nullptr ? *g.rgb : lead);
+    CameraMotion motion;
+    motion.world_from_body = frames[lead.name].world_from_sensor;
+    motion.velocity = {carrier.vx, carrier.vy, carrier.vz};
+    motion.yaw_rate = carrier.yaw_rate;
+    motion.pivot = {carrier.pose.x, carrier.pose.y, carrier.pose.z};
+    const CameraRenderer& renderer = *cache_->cameras.at(lead.name);
+    CameraImages images = renderer.render(scene_, motion, settings);
+    const auto labels = camera_labels(scene_, renderer.model(), motion.world_from_body,
+                                      images.instance, carrier.instance_id);
+    for (const SensorSpec* m : g.members) {
+      SensorFrame& f = frames[m->name];
+      f.labels = labels;
+      f.camera.width = images.width;
+      f.camera.height = images.height;
+      if (m->kind == SensorKind::kRgbCamera) {
+        f.camera.rgb = images.rgb;
+      } else if (m->kind == SensorKind::kDepthCamera) {
+        f.camera.depth = images.depth;
+        for (float& z : f.camera.depth) {
+          z = z <= m->depth.max_range_m ? z : 0.0f;
+        }
+      } else if (m->kind == SensorKind::kSemanticCamera) {
+        f.camera.semantic = images.semantic;
+      } else {
+        f.camera.instance = images.instance;
+      }
+    }
+  }
+  for (const SensorSpec* s : due) {
+    SensorFrame& f = frames[s->name];
+    const engine::EntitySnapshot& carrier = *carriers[s->name];
+    if (s->kind == SensorKind::kLidar) {
+      f.cloud = cache_->lidars.at(s->name)->scan(scene_, f.world_from_sensor, lighting.extinction(),
+                                                 frame_seed(*s), entity_box(carrier));
+      f.labels =
+          lidar_labels(scene_, f.world_from_sensor, f.cloud, s->lidar.range_m, carrier.instance_id);
+    } else if (s->kind == SensorKind::kBirdsEyeCamera) {
+      f.birds_eye = render_birds_eye(scene_, s->birds_eye, f.world_from_sensor, &lighting);
+    }
+  }
+  std::vector<SensorFrame> out;
+  for (const SensorSpec* s : due) {
+    out.push_back(std::move(frames[s->name]));
+  }
+  return out;
+}
+
+}  // namespace corsa::sensors
