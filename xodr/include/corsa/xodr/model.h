@@ -127,6 +127,15 @@ struct RoadMark {
   double height = 0.0;  ///< m
 };
 
+/// <height> record (OpenDRIVE 1.6 §9.5.7 lane height): the lane surface raised by `inner` at
+/// its inner border and `outer` at its outer border (m, along z, on top of elevation,
+/// superelevation and shape), from s_offset (relative to the section start).
+struct LaneHeight {
+  double s_offset = 0.0;
+  double inner = 0.0;
+  double outer = 0.0;
+};
+
 struct LaneSpeed {
   double s_offset = 0.0;
   double max_speed = 0.0;  ///< m/s
@@ -143,6 +152,7 @@ struct Lane {
   std::vector<Poly3> borders;  ///< outer border polynomials (alternative to widths)
   std::vector<RoadMark> road_marks;
   std::vector<LaneSpeed> speeds;
+  std::vector<LaneHeight> heights;  ///< lane height records in s order; empty: level with the road
   int line = 0;
 };
 
