@@ -157,7 +157,7 @@ class Parser {
         }
       }
     }
-    if (pos_ < text_.size() && is_ident_char(text_[pos_])) {
+    if (pos_ < text_.size() && (is_ident_char(text_[pos_]) || text_[pos_] == '.')) {
       fail("bad number '" + std::string(text_.substr(start, pos_ - start + 1)) + "'", start + 1);
     }
     current_.kind = Tok::kNumber;

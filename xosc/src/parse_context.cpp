@@ -265,6 +265,12 @@ const Value* ParseContext::lookup(std::string_view name, size_t upto, const Elem
     auto& entries = scopes_[k].entries;
     for (size_t i = 0; i < entries.size(); ++i) {
       if (entries[i].declaration.name == name) {
+        // A declaration that uses its own name means the outer parameter of that name
+        // (e.g. a story's V = ${$V + 10}); skip to the outer scopes.
+        if (entries[i].state == Entry::State::kResolving && !resolving_.empty() &&
+            resolving_.back() == name) {
+          break;
+        }
         resolve_entry(k, i);
         return &scopes_[k].entries[i].declaration.value;
       }

@@ -1,0 +1,87 @@
+// `corsa validate` end to end: exit codes, human and JSON output.
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <string>
+
+#include "run_corsa.h"
+#include "scenario_text.h"
+#include "temp_dir.h"
+
+namespace fs = std::filesystem;
+using corsa::test::run_corsa;
+
+namespace {
+
+const std::string kConformance =
+    (fs::path(CORSA_SHARED_DIR) / "conformance" / "asam-osc-1.3").string();
+
+}  // namespace
+
+TEST_CASE("corsa validate accepts the ASAM examples, catalogs, parameter sets and maps",
+          "[xosc][cli][e2e]") {
+  const auto result = run_corsa({"validate", kConformance + "/CutIn.xosc",
+                                 kConformance + "/Catalogs/Vehicles/VehicleCatalog.xosc",
+                                 kConformance + "/SlowPrecedingVehicleStochasticParameterSet.xosc",
+                                 kConformance + "/Databases/AB_RQ31_Straight.xodr"});
+  INFO(result.err);
+  CHECK(result.exit_code == 0);
+  CHECK_THAT(result.out, Catch::Contains("CutIn.xosc: ok (OpenSCENARIO 1.3 scenario, 3 entities, "
+                                         "1 story)"));
+  CHECK_THAT(result.out, Catch::Contains("VehicleCatalog.xosc: ok (catalog 'VehicleCatalog', "
+                                         "3 entries)"));
+  CHECK_THAT(result.out, Catch::Contains("100 variants"));
+  CHECK_THAT(result.out, Catch::Contains("AB_RQ31_Straight.xodr: ok (OpenDRIVE map)"));
+}
+
+TEST_CASE("corsa validate prints file:line: error: message and exits 2 for a bad file",
+          "[xosc][cli][e2e]") {
+  corsa::test::TempDir dir;
+  corsa::test::ScenarioText text;
+  text.road = "<LogicFile filepath=\"nowhere.xodr\"/>";
+  const std::string xml = text.str();
+  corsa::test::write_text(dir.path() / "bad.xosc", xml);
+  const auto result = run_corsa({"validate", (dir.path() / "bad.xosc").string()});
+  CHECK(result.exit_code == 2);
+  CHECK_THAT(result.err, Catch::StartsWith((dir.path() / "bad.xosc").string() + ":" +
+                                           std::to_string(corsa::test::line_of(xml, "<LogicFile")) +
+                                           ": error: map file 'nowhere.xodr' not found"));
+  CHECK(result.out.empty());
+}
+
+TEST_CASE("corsa validate --json reports every file for tools", "[xosc][cli][e2e]") {
+  corsa::test::TempDir dir;
+  corsa::test::write_text(dir.path() / "broken.xosc", "<OpenSCENARIO>\n<FileHeader>\n");
+  const auto result = run_corsa({"validate", "--json", kConformance + "/TrailerConnect.xosc",
+                                 (dir.path() / "broken.xosc").string()});
+  CHECK(result.exit_code == 2);
+  CHECK_THAT(result.out, Catch::StartsWith("{\"valid\":false,\"files\":[{\"file\":"));
+  CHECK_THAT(result.out, Catch::Contains("\"kind\":\"scenario\",\"valid\":true"));
+  CHECK_THAT(result.out, Catch::Contains("\"severity\":\"warning\""));
+  CHECK_THAT(result.out, Catch::Contains("\"kind\":\"openscenario\",\"valid\":false"));
+  CHECK_THAT(result.out, Catch::Contains("\"message\":\"malformed XML"));
+}
+
+TEST_CASE("corsa validate applies --param and rejects malformed ones", "[xosc][cli][e2e]") {
+  const std::string scenario = kConformance + "/TrailerConnect.xosc";
+  CHECK(run_corsa({"validate", scenario, "--param", "Speed=6"}).exit_code == 0);
+  const auto wrong = run_corsa({"validate", scenario, "--param", "Speed=fast"});
+  CHECK(wrong.exit_code == 2);
+  CHECK_THAT(wrong.err, Catch::Contains("--param: error: parameter 'Speed': 'fast' is not a valid "
+                                        "double"));
+  const auto malformed = run_corsa({"validate", scenario, "--param", "Speed"});
+  CHECK(malformed.exit_code == 2);
+  CHECK_THAT(malformed.err, Catch::Contains("--param expects NAME=VALUE"));
+}
+
+TEST_CASE("corsa validate reports an unreadable file and a non-OpenSCENARIO document",
+          "[xosc][cli][e2e]") {
+  corsa::test::TempDir dir;
+  corsa::test::write_text(dir.path() / "other.xosc", "<?xml version=\"1.0\"?>\n<Scenario/>\n");
+  const auto result = run_corsa(
+      {"validate", (dir.path() / "missing.xosc").string(), (dir.path() / "other.xosc").string()});
+  CHECK(result.exit_code == 2);
+  CHECK_THAT(result.err, Catch::Contains("missing.xosc"));
+  CHECK_THAT(result.err, Catch::Contains("other.xosc:2: error: not an OpenSCENARIO document: the "
+                                         "root element is <Scenario>"));
+}
