@@ -66,6 +66,7 @@ class LaneGraphBuilder {
 
  private:
   void add_nodes();
+  void add_lengths(uint32_t road, uint32_t section, double s0, double s1, uint32_t first);
   void link_sections(uint32_t road);
   void link_road(uint32_t road, const RoadLink& link, bool at_start);
   void link_connection(const Junction& junction, const Connection& connection);
@@ -85,6 +86,16 @@ class LaneGraphBuilder {
     }
     joins_.emplace_back(LaneEnd{a, a_start}, LaneEnd{b, b_start});
   }
+  /// World point of a lane's centre at the road's start or end (its first or last section).
+  std::optional<WorldPose> lane_end_point(uint32_t road, bool at_start, int lane) const {
+    const uint32_t section = at_start ? 0 : last_section(road);
+    const double s = at_start ? map_.road(road).lane_sections[0].s : map_.road(road).length;
+    const auto span = map_.lane_span_in_section(road, section, s, lane);
+    if (!span) {
+      return std::nullopt;
+    }
+    return map_.world_pose(road, s, span->t_center());
+  }
   uint32_t last_section(uint32_t road) const {
     return static_cast<uint32_t>(map_.road(road).lane_sections.size() - 1);
   }
@@ -96,7 +107,6 @@ class LaneGraphBuilder {
 };
 
 void LaneGraphBuilder::add_nodes() {
-  LaneSpan spans[detail::kMaxLanesPerSection];
   for (uint32_t road = 0; road < map_.road_count(); ++road) {
     const Road& r = map_.road(road);
     graph_.road_first_section_.push_back(static_cast<uint32_t>(graph_.section_first_node_.size()));
@@ -122,24 +132,7 @@ void LaneGraphBuilder::add_nodes() {
                                                                : TravelDirection::kBackward;
         graph_.nodes_.push_back(info);
       }
-      // Centre-line lengths: polyline through lane centres every <= 2 m.
-      const int steps = std::max(1, static_cast<int>(std::ceil((s1 - s0) / 2.0)));
-      double prev_x[detail::kMaxLanesPerSection], prev_y[detail::kMaxLanesPerSection];
-      for (int i = 0; i <= steps; ++i) {
-        const double s = s0 + (s1 - s0) * i / steps;
-        const RefPoint ref = map_.reference(road, s);
-        const size_t n = detail::compute_spans(section, s, map_.lane_offset(road, s), spans);
-        for (size_t j = 0; j < n; ++j) {
-          const double t = spans[j].t_center();
-          const double x = ref.x - std::sin(ref.hdg) * t;
-          const double y = ref.y + std::cos(ref.hdg) * t;
-          if (i > 0) {
-            graph_.nodes_[first + j].length += std::hypot(x - prev_x[j], y - prev_y[j]);
-          }
-          prev_x[j] = x;
-          prev_y[j] = y;
-        }
-      }
+      add_lengths(road, k, s0, s1, first);
     }
   }
   graph_.section_first_node_.push_back(static_cast<uint32_t>(graph_.nodes_.size()));
@@ -152,6 +145,44 @@ void LaneGraphBuilder::add_nodes() {
     const int right = ref.lane == 1 ? -1 : ref.lane - 1;
     graph_.left_[node] = node_of(ref.road, ref.section, left);
     graph_.right_[node] = node_of(ref.road, ref.section, right);
+  }
+}
+
+// Length of each lane's centre line t_c(s): ∫ sqrt((1 - κ t_c)² + t_c'²) ds (the speed of
+// r(s) + t_c(s) N(s) for an arc-length reference line), by Simpson's rule on samples <= 2 m
+// apart, with t_c' from central differences of the samples.
+void LaneGraphBuilder::add_lengths(uint32_t road, uint32_t section, double s0, double s1,
+                                   uint32_t first) {
+  const LaneSection& lanes = map_.road(road).lane_sections[section];
+  const int steps = 2 * std::max(1, static_cast<int>(std::ceil((s1 - s0) / 4.0)));
+  const double h = (s1 - s0) / steps;
+  const size_t count = lanes.lanes.size();
+  std::vector<double> t((steps + 1) * count);
+  std::vector<double> curvature(steps + 1);
+  LaneSpan spans[detail::kMaxLanesPerSection];
+  size_t n = 0;
+  for (int i = 0; i <= steps; ++i) {
+    const double s = s0 + h * i;
+    curvature[i] = map_.reference(road, s).curvature;
+    n = detail::compute_spans(lanes, s, detail::section_lane_offset(map_, road, section, s), spans);
+    for (size_t j = 0; j < n; ++j) {
+      t[i * count + j] = spans[j].t_center();
+    }
+  }
+  if (h <= 0.0) {
+    return;
+  }
+  for (size_t j = 0; j < n; ++j) {
+    double total = 0.0;
+    for (int i = 0; i <= steps; ++i) {
+      const int lo = std::max(0, i - 1);
+      const int hi = std::min(steps, i + 1);
+      const double slope = (t[hi * count + j] - t[lo * count + j]) / (h * (hi - lo));
+      const double along = 1.0 - curvature[i] * t[i * count + j];
+      const double weight = (i == 0 || i == steps) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+      total += weight * std::sqrt(along * along + slope * slope);
+    }
+    graph_.nodes_[first + j].length = total * h / 3.0;
   }
 }
 
@@ -181,12 +212,36 @@ void LaneGraphBuilder::link_road(uint32_t road, const RoadLink& link, bool at_st
   }
   const Road& r = map_.road(road);
   const uint32_t section = at_start ? 0 : last_section(road);
-  const bool other_start = link.contact_point != ContactPoint::kEnd;
-  const uint32_t other_section = other_start ? 0 : last_section(static_cast<uint32_t>(*other));
+  const uint32_t other_road = static_cast<uint32_t>(*other);
+  bool other_start = link.contact_point != ContactPoint::kEnd;
+  // Repair a contact point that contradicts the geometry (as in the junction case below).
+  for (const Lane& lane : r.lane_sections[section].lanes) {
+    const auto& targets = at_start ? lane.predecessors : lane.successors;
+    if (targets.empty()) {
+      continue;
+    }
+    const auto here = lane_end_point(road, at_start, lane.id);
+    const auto named = lane_end_point(other_road, other_start, targets.front());
+    const auto flipped = lane_end_point(other_road, !other_start, targets.front());
+    if (here && named && flipped && std::hypot(here->x - named->x, here->y - named->y) > 2.0 &&
+        std::hypot(here->x - flipped->x, here->y - flipped->y) < 0.5) {
+      diagnostics_.add_once(
+          "contact:" + r.id,
+          corsa::make_warning(
+              map_.data().source_file, r.line,
+              "road '" + r.id + "': its " + (at_start ? "predecessor" : "successor") + " road '" +
+                  link.element_id + "' meets it at its " + (other_start ? "end" : "start") +
+                  ", not at the contactPoint " + (other_start ? "start" : "end") + "; using the " +
+                  (other_start ? "end" : "start")));
+      other_start = !other_start;
+    }
+    break;
+  }
+  const uint32_t other_section = other_start ? 0 : last_section(other_road);
   for (const Lane& lane : r.lane_sections[section].lanes) {
     for (const int target : at_start ? lane.predecessors : lane.successors) {
-      join(node_of(road, section, lane.id), at_start,
-           node_of(static_cast<uint32_t>(*other), other_section, target), other_start, lane.line);
+      join(node_of(road, section, lane.id), at_start, node_of(other_road, other_section, target),
+           other_start, lane.line);
     }
   }
 }
@@ -218,9 +273,33 @@ void LaneGraphBuilder::link_connection(const Junction& junction, const Connectio
   }
   const uint32_t in_road = static_cast<uint32_t>(*incoming);
   const uint32_t out_road = static_cast<uint32_t>(*target);
-  const uint32_t in_section = in_start ? 0 : last_section(in_road);
   const bool target_start = connection.contact_point != ContactPoint::kEnd;
   const uint32_t target_section = target_start ? 0 : last_section(out_road);
+  if (!connection.lane_links.empty()) {
+    // Repair: some files link the wrong end of the incoming road to the junction (ASAM's
+    // Ex_LHT-Complex-X-Junction: road 3 names the junction as predecessor, but its end is where
+    // the connecting roads begin). When the named end is far from the connecting lane and the
+    // other end meets it, the other end is used, with a warning.
+    const LaneLink& link = connection.lane_links.front();
+    const auto meet = [&](bool start) {
+      const auto a = lane_end_point(in_road, start, link.from);
+      const auto b = lane_end_point(out_road, target_start, link.to);
+      return a && b ? std::hypot(a->x - b->x, a->y - b->y) : -1.0;
+    };
+    const double named = meet(in_start);
+    const double other = meet(!in_start);
+    if (named > 2.0 && other >= 0.0 && other < 0.5) {
+      diagnostics_.add_once(
+          "junction end:" + junction.id + ":" + in.id,
+          corsa::make_warning(map_.data().source_file, connection.line,
+                              "junction '" + junction.id + "': incoming road '" + in.id +
+                                  "' meets the junction at its " + (in_start ? "end" : "start") +
+                                  ", not at the " + (in_start ? "start" : "end") +
+                                  " its link names; using the " + (in_start ? "end" : "start")));
+      in_start = !in_start;
+    }
+  }
+  const uint32_t in_section = in_start ? 0 : last_section(in_road);
   for (const LaneLink& link : connection.lane_links) {
     join(node_of(in_road, in_section, link.from), in_start,
          node_of(out_road, target_section, link.to), target_start, connection.line);

@@ -30,8 +30,10 @@ struct Candidate {
   }
 };
 
-/// Foot point of (x, y) on the reference line within [chunk.s0, chunk.s1]: Newton on
-/// f(s) = (P - r(s)) · T(s), f'(s) = -(1 - κ t), clamped to the chunk.
+/// Foot point of (x, y) on the reference line within [chunk.s0, chunk.s1]: the root of
+/// f(s) = (P - r(s)) · T(s). The first step is Newton's with f'(s) = -(1 - κ t), exact for
+/// arc-length parametrised lines and arcs; later steps are secant steps, which also converge
+/// where s is not arc length (paramPoly3 with pRange="normalized"). Clamped to the chunk.
 struct Foot {
   double s = 0.0;
   RefPoint ref;
@@ -40,14 +42,9 @@ struct Foot {
 };
 
 Foot project(const Map& map, const Chunk& chunk, double x, double y) {
-  const double a = (x - chunk.ox) * chunk.ux + (y - chunk.oy) * chunk.uy;
-  const double chord = chunk.a1 - chunk.a0;
-  double s = chunk.s0;
-  if (chord > 0.0) {
-    s += std::clamp(a / chord, 0.0, 1.0) * (chunk.s1 - chunk.s0);
-  }
-  Foot foot;
-  for (int iteration = 0; iteration < 12; ++iteration) {
+  const auto foot_at = [&](double s) {
+    Foot foot;
+    foot.s = s;
     foot.ref = map.reference(chunk.road, s);
     const double c = std::cos(foot.ref.hdg);
     const double sn = std::sin(foot.ref.hdg);
@@ -55,13 +52,32 @@ Foot project(const Map& map, const Chunk& chunk, double x, double y) {
     const double dy = y - foot.ref.y;
     foot.along = dx * c + dy * sn;
     foot.lateral = dy * c - dx * sn;
-    foot.s = s;
-    const double denominator = std::max(0.1, 1.0 - foot.ref.curvature * foot.lateral);
-    const double next = std::clamp(s + foot.along / denominator, chunk.s0, chunk.s1);
-    if (std::abs(next - s) < 1e-10) {
+    return foot;
+  };
+  const double a = (x - chunk.ox) * chunk.ux + (y - chunk.oy) * chunk.uy;
+  const double chord = chunk.a1 - chunk.a0;
+  double s = chunk.s0;
+  if (chord > 0.0) {
+    s += std::clamp((a - chunk.a0) / chord, 0.0, 1.0) * (chunk.s1 - chunk.s0);
+  }
+  Foot foot = foot_at(s);
+  Foot previous;
+  bool have_previous = false;
+  for (int iteration = 0; iteration < 16; ++iteration) {
+    double next;
+    const double df = have_previous ? foot.along - previous.along : 0.0;
+    if (have_previous && df != 0.0) {
+      next = foot.s - foot.along * (foot.s - previous.s) / df;
+    } else {
+      next = foot.s + foot.along / std::max(0.1, 1.0 - foot.ref.curvature * foot.lateral);
+    }
+    next = std::clamp(next, chunk.s0, chunk.s1);
+    if (std::abs(next - foot.s) < 1e-10) {
       break;
     }
-    s = next;
+    previous = foot;
+    have_previous = true;
+    foot = foot_at(next);
   }
   return foot;
 }
@@ -75,7 +91,8 @@ void evaluate_chunk(const Map& map, const Chunk& chunk, double x, double y,
   const double cos_r = roll == 0.0 ? 1.0 : std::cos(roll);
   const double t = foot.lateral / cos_r;
   LaneSpan spans[kMaxLanesPerSection];
-  const size_t n = compute_spans(section, foot.s, map.lane_offset(chunk.road, foot.s), spans);
+  const size_t n = compute_spans(
+      section, foot.s, section_lane_offset(map, chunk.road, chunk.section, foot.s), spans);
   const size_t center = center_index(section);
   const bool has_center = center < section.lanes.size() && section.lanes[center].id == 0;
   int lane = 0;

@@ -2,8 +2,10 @@
 
 #include "corsa/xodr/map.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <iterator>
 
 #include "corsa/xodr/parser.h"
 #include "map_impl.h"
@@ -29,6 +31,22 @@ bool is_drivable(LaneType type) {
       return false;
   }
 }
+
+namespace detail {
+
+double section_lane_offset(const Map& map, size_t road, size_t section, double s) {
+  const Road& r = map.road(road);
+  const auto& records = r.lane_offsets;
+  if (records.empty() || s < map.section_end(road, section) || s <= r.lane_sections[section].s) {
+    return map.lane_offset(road, s);
+  }
+  // Last record starting strictly before s.
+  const auto it = std::lower_bound(records.begin(), records.end(), s,
+                                   [](const Poly3& p, double value) { return p.s < value; });
+  return it == records.begin() ? 0.0 : std::prev(it)->value(s);
+}
+
+}  // namespace detail
 
 Map::Map(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Map::Map(Map&&) noexcept = default;
@@ -179,20 +197,32 @@ double Map::section_end(size_t road_index, size_t section) const {
 }
 
 void Map::lane_spans(size_t road_index, double s, std::vector<LaneSpan>& out) const {
+  lane_spans_in_section(road_index, section_index(road_index, s), s, out);
+}
+
+void Map::lane_spans_in_section(size_t road_index, size_t section, double s,
+                                std::vector<LaneSpan>& out) const {
   const Road& r = road(road_index);
   s = clamp_s(r, s);
-  const LaneSection& section = r.lane_sections[section_index(road_index, s)];
-  out.resize(section.lanes.size());
-  const size_t n = detail::compute_spans(section, s, lane_offset(road_index, s), out.data());
+  const LaneSection& lanes = r.lane_sections[section];
+  out.resize(lanes.lanes.size());
+  const size_t n = detail::compute_spans(
+      lanes, s, detail::section_lane_offset(*this, road_index, section, s), out.data());
   out.resize(n);
 }
 
 std::optional<LaneSpan> Map::lane_span(size_t road_index, double s, int lane_id) const {
+  return lane_span_in_section(road_index, section_index(road_index, s), s, lane_id);
+}
+
+std::optional<LaneSpan> Map::lane_span_in_section(size_t road_index, size_t section, double s,
+                                                  int lane_id) const {
   const Road& r = road(road_index);
   s = clamp_s(r, s);
-  const LaneSection& section = r.lane_sections[section_index(road_index, s)];
   LaneSpan spans[detail::kMaxLanesPerSection];
-  const size_t n = detail::compute_spans(section, s, lane_offset(road_index, s), spans);
+  const size_t n =
+      detail::compute_spans(r.lane_sections[section], s,
+                            detail::section_lane_offset(*this, road_index, section, s), spans);
   for (size_t i = 0; i < n; ++i) {
     if (spans[i].id == lane_id) {
       return spans[i];

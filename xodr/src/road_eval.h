@@ -24,19 +24,26 @@ size_t record_index(const std::vector<T>& records, double s, StartOf start_of) {
   return it == records.begin() ? 0 : static_cast<size_t>(it - records.begin()) - 1;
 }
 
-/// Value of a piecewise cubic with absolute (road) s starts; 0 without records.
+/// Value of a piecewise cubic with absolute (road) s starts (elevation, superelevation,
+/// laneOffset); 0 without records and before the first one, the standard's default.
 inline double poly_value(const std::vector<Poly3>& records, double s) {
-  if (records.empty()) {
+  if (records.empty() || s < records.front().s) {
     return 0.0;
   }
   return records[record_index(records, s, [](const Poly3& p) { return p.s; })].value(s);
 }
 inline double poly_slope(const std::vector<Poly3>& records, double s) {
-  if (records.empty()) {
+  if (records.empty() || s < records.front().s) {
     return 0.0;
   }
   return records[record_index(records, s, [](const Poly3& p) { return p.s; })].slope(s);
 }
+
+/// laneOffset for the lanes of section `section` at s. Inside the section this is laneOffset(s);
+/// at the section's end it is the limit from the left: files (CARLA) often start a new laneOffset
+/// record exactly where the next section starts, and that record belongs to the next section's
+/// lanes.
+double section_lane_offset(const Map& map, size_t road, size_t section, double s);
 
 /// Width or border polynomial at ds from the section start (records hold sOffset in `s`).
 inline double offset_poly_value(const std::vector<Poly3>& records, double ds) {

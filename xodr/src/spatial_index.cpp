@@ -20,9 +20,11 @@ struct Extent {
   double t_max = 0.0;
 };
 
-Extent section_extent(const Map& map, uint32_t road, const LaneSection& section, double s) {
+Extent section_extent(const Map& map, uint32_t road, uint32_t section_index,
+                      const LaneSection& section, double s) {
   LaneSpan spans[kMaxLanesPerSection];
-  const size_t n = compute_spans(section, s, map.lane_offset(road, s), spans);
+  const size_t n =
+      compute_spans(section, s, section_lane_offset(map, road, section_index, s), spans);
   Extent extent{std::numeric_limits<double>::max(), std::numeric_limits<double>::lowest()};
   for (size_t i = 0; i < n; ++i) {
     extent.t_min = std::min(extent.t_min, spans[i].t_min());
@@ -64,7 +66,7 @@ void SpatialIndex::add_section_chunks(const Map& map, uint32_t road, uint32_t se
     for (int i = 0; i < kSamples; ++i) {
       const double si = s + length * i / (kSamples - 1);
       refs[i] = map.reference(road, si);
-      extents[i] = section_extent(map, road, section, si);
+      extents[i] = section_extent(map, road, section_index, section, si);
       max_curvature = std::max(max_curvature, std::abs(refs[i].curvature));
       max_t = std::max({max_t, std::abs(extents[i].t_min), std::abs(extents[i].t_max)});
     }

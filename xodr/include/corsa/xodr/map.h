@@ -17,12 +17,11 @@
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/xodr/geometry.h"
+#include "corsa/xodr/lane_graph.h"
 #include "corsa/xodr/lane_ref.h"
 #include "corsa/xodr/model.h"
 
 namespace corsa::xodr {
-
-class LaneGraph;
 
 /// Position and orientation in map coordinates: metres; heading, pitch, roll in radians.
 /// Pitch follows ISO 8855 / OpenSCENARIO: positive is nose down, so an uphill road has negative
@@ -133,6 +132,12 @@ class Map {
   void lane_spans(size_t road, double s, std::vector<LaneSpan>& out) const;
   /// Span of one lane at s, or nothing when the section at s has no such lane.
   std::optional<LaneSpan> lane_span(size_t road, double s, int lane_id) const;
+  /// The same, evaluated in a given lane section (s may be its end, where section_index would
+  /// already return the next section): what a lane's own end looks like.
+  void lane_spans_in_section(size_t road, size_t section, double s,
+                             std::vector<LaneSpan>& out) const;
+  std::optional<LaneSpan> lane_span_in_section(size_t road, size_t section, double s,
+                                               int lane_id) const;
   /// The lane containing lateral position t at s (borders belong to the inner lane), or nothing
   /// when t is outside every lane.
   std::optional<int> lane_at(size_t road, double s, double t) const;

@@ -1,0 +1,105 @@
+// Lane borders, widths, laneOffset, elevation and superelevation (OpenDRIVE 1.8 §8, §9).
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "corsa/xodr/map.h"
+#include "xodr_test_util.h"
+
+using namespace corsa::xodr;
+
+TEST_CASE("lane widths follow their cubic polynomials", "[xodr][lanes]") {
+  const Map map = test::load_map(test::shared_map("Ex_Lane-Width.xodr"));
+  // Second section (s = 50): one lane opens with w(ds) = 0.026775 ds² - 0.0008925 ds³ until
+  // ds = 20, then keeps 3.57 m.
+  const LaneSection& section = map.road(0).lane_sections.at(1);
+  REQUIRE(section.s == 50.0);
+  const Lane* opening = nullptr;
+  for (const Lane& lane : section.lanes) {
+    opening = lane.widths.size() == 2 ? &lane : opening;
+  }
+  REQUIRE(opening != nullptr);
+  for (const double ds : {0.0, 5.0, 10.0, 19.0, 20.0, 35.0}) {
+    const double expected =
+        ds < 20.0 ? 2.6774999999999993e-02 * ds * ds - 8.9249999999999985e-04 * ds * ds * ds : 3.57;
+    const auto span = map.lane_span(0, 50.0 + ds, opening->id);
+    REQUIRE(span);
+    CHECK(span->width() == Approx(expected).margin(1e-12));
+  }
+  // The lanes tile the road: each inner border is the outer border of the next lane inward.
+  std::vector<LaneSpan> spans;
+  map.lane_spans(0, 62.0, spans);
+  REQUIRE(spans.size() == section.lanes.size() - 1);
+  for (size_t i = 0; i + 1 < spans.size(); ++i) {
+    if (spans[i].id > 0 && spans[i + 1].id > 0) {
+      CHECK(spans[i].t_inner == spans[i + 1].t_outer);
+    }
+    if (spans[i].id < 0 && spans[i + 1].id < 0) {
+      CHECK(spans[i + 1].t_inner == spans[i].t_outer);
+    }
+  }
+}
+
+TEST_CASE("laneOffset shifts every lane and applies only from its first record",
+          "[xodr][lanes][laneOffset]") {
+  const Map map = test::load_map(test::shared_map("Ex_Simple-LaneOffset.xodr"));
+  CHECK(map.lane_offset(0, 10.0) == 0.0);  // before the first record at s = 25
+  const double ds = 30.0;
+  const double expected = 3.8999999999999998e-03 * ds * ds - 5.1999999999999997e-05 * ds * ds * ds;
+  CHECK(map.lane_offset(0, 25.0 + ds) == Approx(expected).margin(1e-12));
+  CHECK(map.lane_offset(0, 90.0) == Approx(3.25));
+  const auto lane1 = map.lane_span(0, 90.0, 1);
+  const auto right1 = map.lane_span(0, 90.0, -1);
+  REQUIRE(lane1);
+  REQUIRE(right1);
+  CHECK(lane1->t_inner == Approx(3.25));
+  CHECK(right1->t_inner == Approx(3.25));
+}
+
+TEST_CASE("lane_at finds the lane whose span holds t", "[xodr][lanes]") {
+  const Map map = test::load_map(test::shared_map("straight_500m.xodr"));
+  std::vector<LaneSpan> spans;
+  map.lane_spans(0, 100.0, spans);
+  REQUIRE_FALSE(spans.empty());
+  for (const LaneSpan& span : spans) {
+    if (span.width() > 0.0) {
+      CHECK(map.lane_at(0, 100.0, span.t_center()) == span.id);
+    }
+  }
+  const double outside = spans.front().t_max() + 1.0;
+  CHECK_FALSE(map.lane_at(0, 100.0, outside).has_value());
+}
+
+TEST_CASE("world poses include elevation, pitch and superelevation roll",
+          "[xodr][lanes][elevation]") {
+  const Map map =
+      test::load_map(test::shared_map("Ex_Line-Spiral-Arc_elevation_and_superelevation.xodr"));
+  const Road& road = map.road(0);
+  REQUIRE_FALSE(road.elevation.empty());
+  REQUIRE_FALSE(road.superelevation.empty());
+  const double s = 40.0;
+  const double z = road.elevation.front().value(s);  // one record (b = 1: a 45° grade)
+  const double roll = map.superelevation(0, s);
+  CHECK(roll != 0.0);
+  const WorldPose centre = map.world_pose(0, s, 0.0);
+  CHECK(centre.z == Approx(z).margin(1e-12));
+  CHECK(centre.p == Approx(-std::atan(map.elevation_slope(0, s))).margin(1e-12));
+  CHECK(centre.r == roll);
+  const WorldPose left = map.world_pose(0, s, 2.0);
+  // t runs along the rolled normal: 2 cos(roll) sideways, 2 sin(roll) up.
+  CHECK(left.z - centre.z == Approx(2.0 * std::sin(roll)).margin(1e-12));
+  CHECK(std::hypot(left.x - centre.x, left.y - centre.y) ==
+        Approx(2.0 * std::cos(roll)).margin(1e-12));
+  const RefPoint ref = map.reference(0, s);
+  CHECK(centre.x == ref.x);
+  CHECK(centre.h == ref.hdg);
+}
+
+TEST_CASE("reference positions are clamped to the road", "[xodr][lanes]") {
+  const Map map = test::load_map(test::shared_map("straight_500m.xodr"));
+  const RefPoint start = map.reference(0, -5.0);
+  const RefPoint zero = map.reference(0, 0.0);
+  CHECK(start.x == zero.x);
+  CHECK(map.section_index(0, 1e9) == map.road(0).lane_sections.size() - 1);
+  CHECK(map.section_end(0, map.road(0).lane_sections.size() - 1) == map.road(0).length);
+}

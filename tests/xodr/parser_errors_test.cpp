@@ -1,0 +1,161 @@
+// Bad input gives located errors (file:line), never a crash; oddities warn once.
+
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "corsa/core/atomic_file.h"
+#include "corsa/xodr/map.h"
+#include "corsa/xodr/parser.h"
+#include "xodr_test_util.h"
+
+using namespace corsa::xodr;
+
+namespace {
+
+const char* kRoad = R"(<?xml version="1.0"?>
+<OpenDRIVE>
+  <header revMajor="1" revMinor="6" name="t"/>
+  <road id="1" length="100" junction="-1">
+    <link>
+      <successor elementType="road" elementId="2" contactPoint="start"/>
+    </link>
+    <planView>
+      <geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry>
+    </planView>
+    <lanes>
+      <laneSection s="0">
+        <center><lane id="0" type="none"/></center>
+        <right><lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right>
+      </laneSection>
+    </lanes>
+  </road>
+  <road id="2" length="50" junction="-1">
+    <planView>
+      <geometry s="0" x="100" y="0" hdg="0" length="50"><line/></geometry>
+    </planView>
+    <lanes>
+      <laneSection s="0">
+        <center><lane id="0"/></center><right><lane id="-1" type="driving"/></right>
+      </laneSection>
+    </lanes>
+  </road>
+</OpenDRIVE>
+)";
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto pos = text.find(from);
+  REQUIRE(pos != std::string::npos);
+  return text.replace(pos, from.size(), to);
+}
+
+/// The formatted error of loading `text`, or "" when it loads.
+std::string load_error(const std::string& text) {
+  corsa::Diagnostics diagnostics;
+  try {
+    Map::build(parse_xodr_text(text, "bad.xodr", diagnostics), diagnostics);
+  } catch (const corsa::InputError& error) {
+    return error.diagnostic().format();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("the small test document loads", "[xodr][errors]") { CHECK(load_error(kRoad).empty()); }
+
+TEST_CASE("a truncated file is reported with its line", "[xodr][errors]") {
+  const std::string text(kRoad);
+  const std::string error = load_error(text.substr(0, text.find("<lanes>", 300)));
+  CHECK(error.rfind("bad.xodr:", 0) == 0);
+  CHECK(error.find("truncated") != std::string::npos);
+  CHECK(error.find("error:") != std::string::npos);
+}
+
+TEST_CASE("every prefix of a file either loads or fails cleanly", "[xodr][errors]") {
+  const std::string text(kRoad);
+  size_t failures = 0;
+  for (size_t n = 0; n < text.size(); n += 3) {
+    const std::string error = load_error(text.substr(0, n));
+    failures += error.empty() ? 0 : 1;
+    if (!error.empty()) {
+      CHECK(error.rfind("bad.xodr", 0) == 0);
+    }
+  }
+  CHECK(failures > text.size() / 4);
+}
+
+TEST_CASE("a negative geometry length is an error at its line", "[xodr][errors]") {
+  const std::string error =
+      load_error(replace(kRoad, R"(hdg="0" length="100")", R"(hdg="0" length="-100")"));
+  CHECK(error.rfind("bad.xodr:9: error:", 0) == 0);
+  CHECK(error.find("must not be negative") != std::string::npos);
+}
+
+TEST_CASE("a link to a missing road is an error at the road", "[xodr][errors]") {
+  const std::string error = load_error(replace(kRoad, R"(elementId="2")", R"(elementId="7")"));
+  CHECK(error.rfind("bad.xodr:4: error:", 0) == 0);
+  CHECK(error.find("road '7' does not exist") != std::string::npos);
+}
+
+TEST_CASE("NaN or text where a number belongs is an error", "[xodr][errors]") {
+  SECTION("NaN") {
+    const std::string error = load_error(replace(kRoad, R"(x="100")", R"(x="nan")"));
+    CHECK(error.rfind("bad.xodr:20: error:", 0) == 0);
+    CHECK(error.find("'x'") != std::string::npos);
+  }
+  SECTION("text") {
+    const std::string error = load_error(replace(kRoad, R"(a="3.5")", R"(a="wide")"));
+    CHECK(error.rfind("bad.xodr:14: error:", 0) == 0);
+    CHECK(error.find("'wide'") != std::string::npos);
+  }
+  SECTION("missing attribute") {
+    const std::string error = load_error(replace(kRoad, R"( hdg="0" length="50")", ""));
+    CHECK(error.rfind("bad.xodr:20: error:", 0) == 0);
+    CHECK(error.find("needs attribute 'hdg'") != std::string::npos);
+  }
+}
+
+TEST_CASE("malformed XML is reported with its line", "[xodr][errors]") {
+  CHECK(load_error(replace(kRoad, "</planView>", "</plan>")).rfind("bad.xodr:10: error:", 0) == 0);
+  CHECK(load_error(replace(kRoad, R"(length="50")", R"(length=50)")).rfind("bad.xodr:18:", 0) == 0);
+  CHECK(load_error("").find("no root element") != std::string::npos);
+  CHECK(load_error("<?xml version=\"1.0\"?><OpenSCENARIO/>").find("not an OpenDRIVE") !=
+        std::string::npos);
+  CHECK(load_error(replace(kRoad, "type=\"none\"/>", "type=\"none\"/><x>&bogus;</x>"))
+            .find("unknown entity") != std::string::npos);
+}
+
+TEST_CASE("unknown elements warn once per kind", "[xodr][errors]") {
+  const std::string text =
+      replace(replace(kRoad, "<planView>", "<planView><foo/><foo/>"), "<lanes>", "<lanes><bar/>");
+  corsa::Diagnostics diagnostics;
+  const MapData data = parse_xodr_text(text, "odd.xodr", diagnostics);
+  CHECK(data.roads.size() == 2);
+  for (const auto& d : diagnostics.all()) {
+    UNSCOPED_INFO(d.format());
+  }
+  REQUIRE(diagnostics.size() == 2);
+  const auto all = diagnostics.all();
+  CHECK(all[0].format().rfind("odd.xodr:8: warning: unknown element <foo>", 0) == 0);
+  CHECK(all[1].message.find("<bar>") != std::string::npos);
+}
+
+TEST_CASE("entities, CDATA and comments are read", "[xodr][errors]") {
+  const std::string text = replace(
+      replace(
+          kRoad, R"(name="t"/>)",
+          R"(name="a &amp; b &#x41;"><!-- c --><geoReference><![CDATA[+proj=utm]]></geoReference></header>)"),
+      "<road id=\"2\"", "<!-- comment with <road> inside -->\n  <road id=\"2\"");
+  corsa::Diagnostics diagnostics;
+  const MapData data = parse_xodr_text(text, "x.xodr", diagnostics);
+  CHECK(data.header.name == "a & b A");
+  CHECK(data.header.geo_reference == "+proj=utm");
+  CHECK(data.header.rev_minor == 6);
+  CHECK(data.roads.at(1).line == 19);  // one line more: the comment
+}
+
+TEST_CASE("a missing file is an error naming it", "[xodr][errors]") {
+  corsa::Diagnostics diagnostics;
+  CHECK_THROWS_WITH(parse_xodr("/nonexistent/map.xodr", diagnostics),
+                    Catch::Contains("/nonexistent/map.xodr"));
+}
