@@ -67,6 +67,18 @@ TEST_CASE("map contents match the README's inventory", "[xodr][maps]") {
   const Map lht = test::load_map(test::shared_map("Ex_LHT-Complex-X-Junction.xodr"));
   CHECK(lht.road(0).rule == TrafficRule::kLeftHand);
 
+  // Lane <height> records (raised sidewalks) are kept.
+  const Map fabriksgatan = test::load_map(test::shared_map("fabriksgatan.xodr"));
+  size_t heights = 0;
+  for (const Road& road : fabriksgatan.data().roads) {
+    for (const LaneSection& section : road.lane_sections) {
+      for (const Lane& lane : section.lanes) {
+        heights += lane.heights.size();
+      }
+    }
+  }
+  CHECK(heights == 32);
+
   const Map gap = test::load_map(test::shared_map("lane_gap_example_issue_119.xodr"));
   CHECK(gap.data().header.offset_x != 0.0);
   CHECK(gap.data().header.geo_reference.find("+proj=utm") != std::string::npos);

@@ -62,6 +62,7 @@ void check_same_road(const Road& a, const Road& b) {
       CHECK(x.lanes[i].predecessors == y.lanes[i].predecessors);
       CHECK(same_poly(x.lanes[i].widths, y.lanes[i].widths));
       CHECK(x.lanes[i].road_marks.size() == y.lanes[i].road_marks.size());
+      CHECK(x.lanes[i].heights.size() == y.lanes[i].heights.size());
     }
   }
   CHECK(a.signals.size() == b.signals.size());

@@ -98,6 +98,8 @@ void sort_road_records(const Checker& check, Road& road) {
           check, road, lane.road_marks, [](const RoadMark& m) { return m.s_offset; }, "roadMark");
       sort_records(
           check, road, lane.speeds, [](const LaneSpeed& m) { return m.s_offset; }, "lane speed");
+      sort_records(
+          check, road, lane.heights, [](const LaneHeight& m) { return m.s_offset; }, "lane height");
     }
   }
 }

@@ -84,6 +84,11 @@ Lane parse_lane(const XmlReader& reader, const XMLElement* e, bool center) {
       lane.road_marks.push_back(parse_road_mark(reader, child));
     } else if (name == "speed") {
       lane.speeds.push_back(parse_lane_speed(reader, child));
+    } else if (name == "height") {
+      // §9.5.7 lane height (e.g. raised sidewalks).
+      lane.heights.push_back(LaneHeight{reader.non_negative(child, "sOffset"),
+                                        reader.number_or(child, "inner", 0.0),
+                                        reader.number_or(child, "outer", 0.0)});
     } else if (!is_ignored_element(name)) {
       reader.unknown_child(e, child);
     }

@@ -1,6 +1,6 @@
 // MapData -> OpenDRIVE 1.8 text, element order as in the 1.8 XSD (road: link, type, planView,
 // elevationProfile, lateralProfile, lanes, objects, signals; lane: link, width|border, roadMark,
-// speed).
+// speed, height).
 
 #include "corsa/xodr/writer.h"
 
@@ -112,6 +112,10 @@ void write_lane(XmlWriter& w, const Lane& lane) {
   for (const LaneSpeed& speed : lane.speeds) {
     w.open("speed").attr("sOffset", speed.s_offset).attr("max", speed.max_speed);
     w.attr("unit", "m/s").end_empty();
+  }
+  for (const LaneHeight& height : lane.heights) {
+    w.open("height").attr("sOffset", height.s_offset).attr("inner", height.inner);
+    w.attr("outer", height.outer).end_empty();
   }
   w.close();
 }
