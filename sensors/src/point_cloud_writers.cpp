@@ -18,9 +18,9 @@ void put(std::string& out, T value) {
   out.append(bytes, sizeof(T));
 }
 
-/// x y z intensity ring semantic instance, 19 bytes per point, packed.
+/// x y z intensity ring semantic instance, 23 bytes per point, packed.
 void append_points(std::string& out, const PointCloud& cloud) {
-  out.reserve(out.size() + cloud.points.size() * 19);
+  out.reserve(out.size() + cloud.points.size() * 23);
   for (const auto& p : cloud.points) {
     put(out, p.x);
     put(out, p.y);

@@ -11,7 +11,7 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-std::string num(double v) { return format_double(v); }
+std::string num(double v) { return format_double(v == 0.0 ? 0.0 : v); }  // no "-0"
 
 std::string vec_json(Vec3 v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
 

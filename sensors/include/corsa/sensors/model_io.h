@@ -1,0 +1,51 @@
+#pragma once
+
+// 3D models in and out through assimp: FBX, OBJ, glTF/GLB, 3DS (and whatever else assimp reads),
+// placed into map coordinates through a georeference, a scale and an offset.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "corsa/sensors/geometry.h"
+#include "corsa/sensors/semantic.h"
+#include "corsa/sensors/static_mesh.h"
+
+namespace corsa::sensors {
+
+enum class UpAxis { kAuto, kZ, kY };
+
+/// Where a model goes. Two georeferencing modes:
+/// - with `anchor`: the model is in local metres (x east, y north, up) around the anchor point,
+///   given in `model_crs` (e.g. longitude/latitude in EPSG:4326); the anchor is transformed to
+///   the map CRS and the model rotated by the grid convergence there, so north stays north;
+/// - without: every vertex is in `model_crs` and is transformed on its own.
+/// Empty CRSs mean the model is already in map coordinates. Order: up-axis fix, scale, heading
+/// (radians, counter-clockwise about up), georeference, then `offset` (map metres).
+struct ModelPlacement {
+  std::string model_crs;
+  std::string map_crs;
+  std::optional<Vec3> anchor;
+  double scale = 1.0;
+  double heading = 0.0;
+  Vec3 offset;
+  UpAxis up_axis = UpAxis::kAuto;  ///< auto: y-up for glTF/GLB (the glTF convention), else z-up
+  SemanticClass semantic = SemanticClass::kBuilding;
+};
+
+/// Loads every mesh of the model as its own StaticMesh (one instance per node mesh), named
+/// "<file>:<node>". A missing or broken file, or one without triangles, throws
+/// corsa::InputError naming the file.
+std::vector<StaticMesh> load_model(const std::filesystem::path& path,
+                                   const ModelPlacement& placement);
+
+/// Writes meshes as a model file; files appear under their names only when complete. `format` is
+/// an assimp exporter id: "fbxa" (ASCII FBX 7.5), "fbx" (binary FBX, which assimp 5.2 itself
+/// cannot read back), "gltf2", "glb2", "obj", "3ds". With `y_up`, z-up vertices are written y-up
+/// (as glTF requires). Each mesh becomes one node with its name and colour. The FBX exporter
+/// stamps the creation time into the file; the other formats are byte-identical for equal input.
+void write_model(const std::vector<StaticMesh>& meshes, const std::filesystem::path& path,
+                 const std::string& format, bool y_up = false);
+
+}  // namespace corsa::sensors

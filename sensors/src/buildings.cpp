@@ -1,0 +1,152 @@
+#include "corsa/sensors/buildings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "corsa/core/random.h"
+
+namespace corsa::sensors {
+namespace {
+
+using Point = std::array<double, 2>;
+
+double signed_area(const std::vector<Point>& ring) {
+  double a = 0.0;
+  for (size_t i = 0; i < ring.size(); ++i) {
+    const Point& p = ring[i];
+    const Point& q = ring[(i + 1) % ring.size()];
+    a += p[0] * q[1] - q[0] * p[1];
+  }
+  return 0.5 * a;
+}
+
+double cross(const Point& o, const Point& a, const Point& b) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+bool inside_triangle(const Point& p, const Point& a, const Point& b, const Point& c) {
+  return cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0;
+}
+
+/// Ear clipping of a counter-clockwise simple polygon; returns index triples.
+std::vector<std::array<uint32_t, 3>> triangulate(const std::vector<Point>& ring) {
+  std::vector<uint32_t> remaining(ring.size());
+  for (uint32_t i = 0; i < ring.size(); ++i) {
+    remaining[i] = i;
+  }
+  std::vector<std::array<uint32_t, 3>> triangles;
+  size_t guard = 0;
+  while (remaining.size() > 3 && guard++ < 10 * ring.size() * ring.size()) {
+    const size_t n = remaining.size();
+    bool clipped = false;
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t a = remaining[(i + n - 1) % n], b = remaining[i], c = remaining[(i + 1) % n];
+      if (cross(ring[a], ring[b], ring[c]) <= 0.0) {
+        continue;  // reflex corner
+      }
+      bool ear = true;
+      for (uint32_t k : remaining) {
+        if (k != a && k != b && k != c && inside_triangle(ring[k], ring[a], ring[b], ring[c])) {
+          ear = false;
+          break;
+        }
+      }
+      if (ear) {
+        triangles.push_back({a, b, c});
+        remaining.erase(remaining.begin() + static_cast<std::ptrdiff_t>(i));
+        clipped = true;
+        break;
+      }
+    }
+    if (!clipped) {
+      throw std::invalid_argument("footprint is not a simple polygon");
+    }
+  }
+  triangles.push_back({remaining[0], remaining[1], remaining[2]});
+  return triangles;
+}
+
+}  // namespace
+
+StaticMesh extrude_footprint(const Footprint& f) {
+  std::vector<Point> ring;
+  for (const Point& p : f.ring) {
+    if (ring.empty() || std::hypot(p[0] - ring.back()[0], p[1] - ring.back()[1]) > 1e-9) {
+      ring.push_back(p);
+    }
+  }
+  if (ring.size() > 1 &&
+      std::hypot(ring.front()[0] - ring.back()[0], ring.front()[1] - ring.back()[1]) <= 1e-9) {
+    ring.pop_back();
+  }
+  if (ring.size() < 3 || !(f.height > 0.0)) {
+    throw std::invalid_argument("footprint '" + f.name + "' needs 3 points and a height");
+  }
+  if (signed_area(ring) < 0.0) {
+    std::reverse(ring.begin(), ring.end());
+  }
+  StaticMesh mesh;
+  mesh.name = f.name;
+  mesh.classes = {SemanticClass::kBuilding};
+  mesh.color = f.color;
+  const auto n = static_cast<uint32_t>(ring.size());
+  const double top = f.base_z + f.height;
+  // Walls: each edge its own quad (4 vertices) so that corners stay sharp.
+  for (uint32_t i = 0; i < n; ++i) {
+    const Point& a = ring[i];
+    const Point& b = ring[(i + 1) % n];
+    const auto base = static_cast<uint32_t>(mesh.vertices.size());
+    mesh.vertices.push_back({a[0], a[1], f.base_z});
+    mesh.vertices.push_back({b[0], b[1], f.base_z});
+    mesh.vertices.push_back({b[0], b[1], top});
+    mesh.vertices.push_back({a[0], a[1], top});
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    mesh.triangles.push_back({base, base + 2, base + 3});
+  }
+  const auto roof = static_cast<uint32_t>(mesh.vertices.size());
+  for (const Point& p : ring) {
+    mesh.vertices.push_back({p[0], p[1], top});
+  }
+  for (const auto& t : triangulate(ring)) {
+    mesh.triangles.push_back({roof + t[0], roof + t[1], roof + t[2]});
+  }
+  return mesh;
+}
+
+std::vector<Footprint> street_district(double length, double street_half_width, uint64_t seed) {
+  RandomStream rng(seed);
+  std::vector<Footprint> out;
+  static constexpr Rgb8 kFacades[] = {
+      {196, 184, 160}, {170, 170, 175}, {150, 120, 100}, {210, 205, 195}, {120, 130, 140}};
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? 1.0 : -1.0;
+    double x = rng.uniform(2.0, 8.0);
+    int index = 0;
+    while (x < length) {
+      const double frontage = rng.uniform(12.0, 28.0);
+      const double depth = rng.uniform(12.0, 22.0);
+      const double setback = street_half_width + rng.uniform(2.0, 5.0);
+      const double x1 = std::min(x + frontage, length);
+      Footprint f;
+      f.name = std::string(side == 0 ? "north_" : "south_") + std::to_string(index++);
+      f.height = rng.uniform(9.0, 45.0);
+      f.color = kFacades[rng.uniform_int(0, 4)];
+      const double y0 = sign * setback;
+      const double y1 = sign * (setback + depth);
+      if (rng.uniform01() < 0.3 && x1 - x > 14.0) {
+        // L shape: the back half narrower.
+        const double xm = x + 0.5 * (x1 - x);
+        const double ym = sign * (setback + 0.5 * depth);
+        f.ring = {{x, y0}, {x1, y0}, {x1, ym}, {xm, ym}, {xm, y1}, {x, y1}};
+      } else {
+        f.ring = {{x, y0}, {x1, y0}, {x1, y1}, {x, y1}};
+      }
+      out.push_back(std::move(f));
+      x = x1 + rng.uniform(3.0, 9.0);
+    }
+  }
+  return out;
+}
+
+}  // namespace corsa::sensors
