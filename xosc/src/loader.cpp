@@ -269,7 +269,12 @@ ParameterValueDistribution load_distribution(const std::filesystem::path& path,
 
 Document load_document(const std::filesystem::path& path, const LoadOptions& options,
                        Diagnostics& diagnostics) {
-  const XmlFile xml = load_xml(path);
+  return parse_document(read_file(path), path, options, diagnostics);
+}
+
+Document parse_document(std::string_view text, const std::filesystem::path& path,
+                        const LoadOptions& options, Diagnostics& diagnostics) {
+  const XmlFile xml = parse_xml(text, path);
   return with_document(xml, options, diagnostics,
                        [&](ParseContext& ctx, const Element* root, Children& kids) -> Document {
                          switch (kind_of(root)) {

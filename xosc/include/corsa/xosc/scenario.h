@@ -96,4 +96,8 @@ using Document = std::variant<Scenario, Catalog, ParameterValueDistribution>;
 Document load_document(const std::filesystem::path& path, const LoadOptions& options,
                        Diagnostics& diagnostics);
 
+/// Same, from text in memory; `path` names the file for messages and relative paths.
+Document parse_document(std::string_view xml, const std::filesystem::path& path,
+                        const LoadOptions& options, Diagnostics& diagnostics);
+
 }  // namespace corsa::xosc
