@@ -1,18 +1,11 @@
-// `corsa map render`: placeholder until the renderer lands (it belongs to the road-mesh/render
-// work, which replaces this file).
+// `corsa map render`: the picture needs OpenCV, which the corsa executable does not load (see
+// plugin_api.h); the command runs in libcorsa_plugin.so (plugin/cmd_map_render.cpp).
 
-#include "args.h"
 #include "map_actions.h"
-#include "pending.h"
+#include "plugin_api.h"
 
 namespace corsa::cli {
 
-int map_render(std::span<const std::string> args) {
-  ArgParser parser("map render MAP.xodr -o map.png",
-                   "Draws the map from above (not available yet).");
-  parser.positional("MAP.xodr", "the map");
-  parser.option("-o", "FILE", "output picture");
-  return pending_command(parser, args, "map render");
-}
+int map_render(std::span<const std::string> args) { return run_plugin_command("map render", args); }
 
 }  // namespace corsa::cli

@@ -11,6 +11,7 @@ namespace {
 
 const auto kCommands = std::to_array<PluginCommandEntry>({
     {"plugin selftest", plugin_selftest},
+    {"map render", plugin_map_render},
 });
 
 const PluginApi kApi{kPluginAbiVersion, kCommands};
