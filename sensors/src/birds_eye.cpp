@@ -77,8 +77,7 @@ BirdsEyeImage render_birds_eye(const Scene& scene, const BirdsEyeOptions& o,
               nrm = -nrm;
             }
             const Vec3 pos{rh.ray.org_x[k], rh.ray.org_y[k], top - rh.ray.tfar[k]};
-            const Color albedo = label.entity >= 0 ? shading.entity_albedo[label.entity]
-                                                   : shading.static_albedo[rh.hit.geomID[k]];
+            const Color albedo = detail::surface_albedo(shading, label, rh.hit.geomID[k]);
             const Color v = detail::shade_surface(shading, pos, nrm, {0.0, 0.0, -1.0},
                                                   label.semantic, albedo, true);
             auto enc = [](double x) {

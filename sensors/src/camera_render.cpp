@@ -173,8 +173,7 @@ void trace_tile(const Pass& p, int col0, int row0) {
       c = detail::apply_fog(*l, l->sky(dir), std::numeric_limits<double>::infinity());
     } else {
       const bool sunlit = shadow_valid[k] != 0 && shadow.tfar[k] >= 0.0f;
-      const Color albedo = label[k].entity >= 0 ? p.shading->entity_albedo[label[k].entity]
-                                                : p.shading->static_albedo[rh.hit.geomID[k]];
+      const Color albedo = detail::surface_albedo(*p.shading, label[k], rh.hit.geomID[k]);
       c = detail::shade_surface(*p.shading, position[k], normal[k], dir, label[k].semantic, albedo,
                                 sunlit);
       c = detail::apply_fog(*l, c, rh.ray.tfar[k]);

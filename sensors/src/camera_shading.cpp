@@ -24,6 +24,29 @@ Color vehicle_paint(uint32_t instance_id) {
   return linear_from_srgb8(kPaints[h % (sizeof(kPaints) / sizeof(kPaints[0]))]);
 }
 
+/// Surface colours of the classes (sRGB), for meshes without a colour of their own.
+Rgb8 class_color(SemanticClass c) {
+  switch (c) {
+    case SemanticClass::kRoad:
+    case SemanticClass::kParking:
+      return {90, 90, 92};
+    case SemanticClass::kBikeLane:
+      return {120, 80, 75};
+    case SemanticClass::kLaneMarking:
+      return {235, 235, 225};
+    case SemanticClass::kSidewalk:
+      return {170, 165, 155};
+    case SemanticClass::kBuilding:
+      return {185, 170, 150};
+    case SemanticClass::kRoadside:
+      return {110, 125, 80};
+    case SemanticClass::kRailTrack:
+      return {105, 95, 85};
+    default:
+      return {140, 140, 140};
+  }
+}
+
 Color entity_albedo(SemanticClass c, uint32_t instance_id) {
   switch (c) {
     case SemanticClass::kPedestrian:
@@ -57,7 +80,11 @@ ShadingContext make_shading_context(const SceneData& scene, const Lighting& ligh
   c.scene = &scene;
   c.lighting = &lighting;
   for (const auto& g : scene.static_geometries) {
-    c.static_albedo.push_back(linear_from_srgb8(g.color));
+    c.static_albedo.push_back(linear_from_srgb8(g.color.value_or(Rgb8{})));
+    c.static_has_color.push_back(g.color.has_value() ? 1 : 0);
+  }
+  for (int k = 0; k < kSemanticClassCount; ++k) {
+    c.class_albedo[k] = linear_from_srgb8(class_color(static_cast<SemanticClass>(k)));
   }
   const double dip = -3.0 * std::numbers::pi / 180.0;  // low beams aim slightly down
   for (const auto& inst : scene.instances) {

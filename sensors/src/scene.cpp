@@ -77,23 +77,6 @@ void validate_mesh(const StaticMesh& mesh) {
   }
 }
 
-Rgb8 default_color(SemanticClass c) {
-  switch (c) {
-    case SemanticClass::kRoad:
-      return {90, 90, 92};
-    case SemanticClass::kLaneMarking:
-      return {235, 235, 225};
-    case SemanticClass::kSidewalk:
-      return {170, 165, 155};
-    case SemanticClass::kBuilding:
-      return {185, 170, 150};
-    case SemanticClass::kRoadside:
-      return {110, 125, 80};
-    default:
-      return {140, 140, 140};
-  }
-}
-
 }  // namespace
 
 Scene::Scene(const SceneOptions& options) : data_(std::make_unique<detail::SceneData>()) {
@@ -166,7 +149,7 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
   detail::StaticGeometry info;
   info.classes = std::move(mesh.classes);
   info.instance_id = mesh.instance_id;
-  info.color = mesh.color.value_or(default_color(info.classes.front()));
+  info.color = mesh.color;
   info.triangles = mesh.triangles.size();
   d.static_geometries.push_back(std::move(info));
   for (const Vec3& v : mesh.vertices) {

@@ -5,6 +5,7 @@
 #include <embree3/rtcore.h>
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "corsa/sensors/scene.h"
@@ -15,7 +16,7 @@ namespace corsa::sensors::detail {
 struct StaticGeometry {
   std::vector<SemanticClass> classes;  ///< per triangle, or one entry for all
   uint32_t instance_id = 0;
-  Rgb8 color;
+  std::optional<Rgb8> color;  ///< from the model; otherwise the class decides
   size_t triangles = 0;
 };
 

@@ -26,8 +26,22 @@ struct ShadingContext {
   const Lighting* lighting = nullptr;
   std::vector<Headlight> headlights;
   std::vector<Color> entity_albedo;  ///< by instance pool index
-  std::vector<Color> static_albedo;  ///< by static geometry id
+  std::vector<Color> static_albedo;  ///< by static geometry id (when the mesh has a colour)
+  std::vector<char> static_has_color;
+  std::array<Color, kSemanticClassCount> class_albedo;
 };
+
+/// Diffuse albedo (linear) of a hit: the entity's paint, the mesh's colour, or its class's.
+inline Color surface_albedo(const ShadingContext& c, const SceneData::Label& label,
+                            unsigned geom_id) {
+  if (label.entity >= 0) {
+    return c.entity_albedo[label.entity];
+  }
+  if (c.static_has_color[geom_id]) {
+    return c.static_albedo[geom_id];
+  }
+  return c.class_albedo[static_cast<size_t>(label.semantic)];
+}
 
 ShadingContext make_shading_context(const SceneData& scene, const Lighting& lighting);
 
