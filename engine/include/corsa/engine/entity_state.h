@@ -1,0 +1,52 @@
+#pragma once
+
+// What the engine knows of one entity: its fixed description (EntityInfo, from the scenario's
+// Entities) and its state at the current step (EntityState). Map coordinates in metres and
+// radians, OpenDRIVE/OpenSCENARIO conventions (heading counter-clockwise from +x).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "corsa/engine/world_snapshot.h"
+
+namespace corsa::engine {
+
+/// The kind of OpenSCENARIO object an entity is (ObjectType, §6.2).
+enum class ObjectKind : uint8_t { kVehicle, kPedestrian, kMiscObject, kExternal };
+
+struct EntityInfo {
+  std::string name;
+  ObjectKind kind = ObjectKind::kVehicle;
+  EntityCategory category = EntityCategory::kCar;
+  std::string model3d;
+  Box box;  ///< bounding box relative to the reference point (vehicles: rear axle centre)
+  /// Performance of vehicles (m/s, m/s^2); zero when not a vehicle.
+  double max_speed = 0.0;
+  double max_acceleration = 0.0;
+  double max_deceleration = 0.0;
+};
+
+/// Road coordinates of an entity's reference point (OpenDRIVE 1.8 §2.3 reference line frame).
+struct RoadCoordinates {
+  uint32_t road = 0;     ///< index into the map's roads (xodr::Map::road)
+  uint32_t section = 0;  ///< lane section index within the road
+  int lane = 0;          ///< the lane containing the point (its id, > 0 left)
+  double s = 0.0;        ///< m along the reference line
+  double t = 0.0;        ///< m to the left of the reference line
+};
+
+struct EntityState {
+  Pose pose;
+  double speed = 0.0;          ///< m/s along the heading; negative when reversing
+  double acceleration = 0.0;   ///< m/s^2, longitudinal, over the last step
+  double lateral_speed = 0.0;  ///< m/s, across the heading (positive to the left)
+  double yaw_rate = 0.0;       ///< rad/s over the last step
+  double odometer = 0.0;       ///< m driven since the start (always increasing)
+  bool placed = false;         ///< false until a position has been given (TeleportAction)
+  bool visible = true;
+  /// Nothing when the entity is off every lane (or the scenario has no road network).
+  std::optional<RoadCoordinates> road;
+};
+
+}  // namespace corsa::engine

@@ -1,0 +1,57 @@
+#pragma once
+
+// The files a run writes (DESIGN.md, "File formats Corsa writes"), each atomically (a temporary
+// file renamed into place when complete) and deterministically (same run, same bytes; numbers
+// in the shortest text that reads back to the same double):
+//   - trajectory CSV: `time,entity,x,y,z,h,p,r,speed,road,lane,s,t`, one row per entity per
+//     recorded step, entities in document order; road, lane, s, t empty off the road;
+//   - event log CSV: `time,type,element,transition,state`, every storyboard transition;
+//   - run summary JSON: scenario, parameters, seed, step, end reason, sim time, steps, wall
+//     time, real-time factor, final entity states, collisions. Only wall time and real-time
+//     factor differ between identical runs.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "corsa/core/atomic_file.h"
+#include "corsa/engine/simulation.h"
+
+namespace corsa::engine {
+
+/// Records the trajectory CSV while the simulation runs: register it with
+/// Simulation::add_observer before the first step, call finish() after the run.
+class TrajectoryRecorder final : public SimulationObserver {
+ public:
+  /// `every`: record every N-th tick (tick 0 and the last tick are always recorded).
+  explicit TrajectoryRecorder(std::filesystem::path file, int64_t every = 1);
+  void on_step(const Simulation& simulation) override;
+  /// Records the final tick if it was skipped and commits the file (throws InputError when it
+  /// cannot be written).
+  void finish(const Simulation& simulation);
+
+  /// The CSV rows of the current tick (for tests and other writers).
+  static void append_rows(const Simulation& simulation, std::string& out);
+
+ private:
+  void flush();
+
+  AtomicFile file_;
+  int64_t every_;
+  int64_t last_recorded_ = -1;
+  std::string buffer_;
+};
+
+/// Header line of the trajectory CSV (with newline).
+inline constexpr const char* kTrajectoryHeader = "time,entity,x,y,z,h,p,r,speed,road,lane,s,t\n";
+
+/// The event log as CSV text / written to a file.
+std::string event_log_csv(const Simulation& simulation);
+void write_event_log(const Simulation& simulation, const std::filesystem::path& file);
+
+/// The run summary as JSON text / written to a file.
+std::string summary_json(const Simulation& simulation, double wall_seconds);
+void write_summary(const Simulation& simulation, const std::filesystem::path& file,
+                   double wall_seconds);
+
+}  // namespace corsa::engine

@@ -1,0 +1,56 @@
+#pragma once
+
+// One whole run as `corsa run` performs it: load the scenario (parameters overridden) and its
+// road network, simulate to the end, write the requested outputs. The command line only parses
+// arguments and prints.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/engine/simulation.h"
+
+namespace corsa::xosc {
+struct Scenario;
+}
+
+namespace corsa::engine {
+
+struct RunOptions {
+  std::filesystem::path scenario;
+  /// Global parameter values from outside (`--param name=value`), in order.
+  std::vector<std::pair<std::string, std::string>> parameters;
+  SimulationOptions simulation;
+  std::optional<std::filesystem::path> record;  ///< trajectory CSV
+  int64_t record_every = 1;
+  std::optional<std::filesystem::path> summary;  ///< run summary JSON
+  std::optional<std::filesystem::path> log;      ///< storyboard event log CSV
+};
+
+struct RunReport {
+  EndReason end_reason = EndReason::kRunning;
+  double sim_time = 0.0;  ///< s
+  int64_t steps = 0;
+  double wall_seconds = 0.0;  ///< loading, simulating and writing
+  size_t collisions = 0;
+  size_t entities = 0;
+};
+
+/// The scenario's road network (its LogicFile), or null when it has none. Throws InputError,
+/// located at the LogicFile element, when the map cannot be read.
+std::shared_ptr<const xodr::Map> load_road_network(const xosc::Scenario& scenario,
+                                                   Diagnostics& diagnostics);
+
+/// Loads, runs and writes as `options` say. `on_step` (optional) sees the simulation after
+/// every step, e.g. for a progress bar. Throws InputError for bad input; outputs are written
+/// only when the run completed.
+RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
+                       const std::function<void(const Simulation&)>& on_step = {});
+
+}  // namespace corsa::engine

@@ -1,0 +1,138 @@
+#pragma once
+
+// engine::Simulation: one run of one scenario. The scenario (xosc::Scenario) and the map
+// (xodr::Map) are read-only models; everything that changes during the run (entities,
+// storyboard states, parameters, variables, environment) lives inside the Simulation, so two
+// simulations in one process never see each other (MuJoCo's mjModel / mjData split).
+//
+// Time advances in integer ticks of the fixed step dt. Each step (DESIGN.md, "Data flow of one
+// run"): triggers are evaluated on the state at the current tick and the storyboard transitions;
+// running actions step; controllers move the entities to the next tick; collisions and timers
+// are updated; observers (recorder, capture timeline) see the new state.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/engine/entity_state.h"
+#include "corsa/engine/storyboard_state.h"
+#include "corsa/engine/world_snapshot.h"
+
+namespace corsa::xosc {
+struct Scenario;
+struct UserDefinedAction;
+struct Value;
+}  // namespace corsa::xosc
+
+namespace corsa::xodr {
+class Map;
+}
+
+namespace corsa::engine {
+
+struct SimulationOptions {
+  double dt = 0.01;          ///< fixed step, s (> 0)
+  double duration = 3600.0;  ///< cap on simulated time, s: the run ends there at the latest
+  uint64_t seed = 0;         ///< run seed for every random draw (per-entity streams)
+};
+
+/// Why a run ended.
+enum class EndReason : uint8_t {
+  kRunning,          ///< not ended yet
+  kStopTrigger,      ///< the Storyboard's stop trigger fired
+  kDuration,         ///< the duration cap was reached
+  kStoriesComplete,  ///< every story completed and the storyboard has no stop trigger
+};
+std::string_view to_string(EndReason reason);  ///< "stop trigger", "duration", ...
+
+/// Two entities whose bounding boxes started to overlap at `tick` (one record per contact).
+struct CollisionRecord {
+  int64_t tick = 0;
+  double time = 0.0;
+  uint32_t first = 0;  ///< entity indices, first < second
+  uint32_t second = 0;
+};
+
+class Simulation;
+
+/// Sees the simulation after the initial actions (tick 0) and after every step.
+class SimulationObserver {
+ public:
+  virtual ~SimulationObserver() = default;
+  virtual void on_step(const Simulation& simulation) = 0;
+};
+
+/// A CustomCommandAction (UserDefinedAction) reaching the engine. Handlers are registered per
+/// `type`; they may throw corsa::InputError (located with action.source) for bad content.
+using CustomCommandHandler =
+    std::function<void(const xosc::UserDefinedAction& action, const Simulation& simulation)>;
+
+class Simulation {
+ public:
+  /// Builds the run state and performs the Init actions at tick 0. `scenario` must outlive the
+  /// simulation; `map` may be null when the scenario has no road network. Throws InputError
+  /// (located in the scenario) for what makes the run impossible: an entity on a missing road
+  /// or lane, off the map, references that cannot be resolved, bad options.
+  Simulation(const xosc::Scenario& scenario, std::shared_ptr<const xodr::Map> map,
+             const SimulationOptions& options, Diagnostics& diagnostics);
+  Simulation(Simulation&&) noexcept;
+  Simulation& operator=(Simulation&&) noexcept;
+  ~Simulation();
+
+  /// Evaluates the triggers at the current tick and, unless the run ends there, advances one
+  /// step. Returns false once the run has ended (then nothing changes any more).
+  bool step();
+  /// Steps until the run ends.
+  void run();
+
+  bool ended() const;
+  EndReason end_reason() const;
+  int64_t tick() const;
+  double time() const;  ///< seconds: tick on the step grid
+  double dt() const;
+  double time_of(int64_t tick) const;
+  const SimulationOptions& options() const;
+
+  size_t entity_count() const;
+  const EntityInfo& entity(size_t index) const;
+  const EntityState& state(size_t index) const;
+  std::optional<size_t> find_entity(std::string_view name) const;
+  /// The OpenDRIVE id of a road index (for output), "" without a map.
+  const std::string& road_id(uint32_t road) const;
+
+  /// Every storyboard transition so far, in order.
+  std::span<const TransitionRecord> transitions() const;
+  /// State of the storyboard element with this `::` path; nothing for an unknown path.
+  std::optional<ElementState> element_state(std::string_view path) const;
+  std::span<const CollisionRecord> collisions() const;
+  /// Pairs of entities overlapping at the current tick.
+  bool colliding(size_t a, size_t b) const;
+
+  /// Current value of a global parameter / variable (after ParameterSet/VariableSet actions).
+  std::optional<xosc::Value> parameter(std::string_view name) const;
+  std::optional<xosc::Value> variable(std::string_view name) const;
+  const EnvironmentState& environment() const;
+
+  /// The world as the sensors see it now.
+  void fill_snapshot(WorldSnapshot& out) const;
+
+  /// Observers are called after tick 0 is set up... and after every later step; register them
+  /// before the first step() (the tick-0 call happens at the first step() or run()).
+  void add_observer(SimulationObserver& observer);
+  void set_custom_command_handler(std::string type, CustomCommandHandler handler);
+
+  const xosc::Scenario& scenario() const;
+  const xodr::Map* map() const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace corsa::engine

@@ -1,0 +1,8 @@
+#include "actions/action.h"
+#include "core/sim_state.h"
+
+namespace corsa::engine::detail {
+
+Entity& ActionContext::entity() const { return state.world.entities[*actor]; }
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,122 @@
+// LaneChangeAction (OpenSCENARIO 1.3 §7.4.2.1): the actor moves to an absolute lane or to a lane
+// relative to an entity (RelativeTargetLane: lanes to the left, positive, of that entity's
+// direction of travel), ending targetLaneOffset metres left of the target lane's centre, along a
+// TransitionDynamics shape over time, distance or rate (m/s of lateral speed).
+//
+// The default controller switches to following the target lane at once, with the lateral
+// offset that keeps the entity where it is; the action then brings the offset to the target.
+
+#include <cmath>
+
+#include "actions/action_makers.h"
+#include "actions/transition_shape.h"
+#include "core/sim_state.h"
+#include "corsa/core/strings.h"
+#include "motion/lane_follow.h"
+#include "positions/position_common.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+class LaneChangeInstance final : public ActionInstance {
+ public:
+  explicit LaneChangeInstance(const xosc::LaneChangeAction& action) : action_(action) {}
+
+  uint8_t domains() const override { return kDomainLateral; }
+
+  void start(ActionContext& context) override {
+    Entity& entity = context.entity();
+    const xodr::Map* map = context.state.map;
+    if (map == nullptr || !entity.lane.on_road) {
+      fail(action_.source, "LaneChangeAction: entity '" + entity.info.name + "' is not on a lane");
+    }
+    LaneFollow& lane = entity.lane;
+    const int target = target_lane(context);
+    const double s = section_s(*map, lane);
+    const auto target_center = lane_center_t(*map, lane.road, s, target);
+    const auto node = map->lane_graph().find(xodr::LaneRef{lane.road, lane.section, target});
+    if (!target_center || !node) {
+      fail(action_.source, "LaneChangeAction: road '" + map->road(lane.road).id + "' has no lane " +
+                               std::to_string(target) + " at s = " + format_double(lane.s) +
+                               " for entity '" + entity.info.name + "'");
+    }
+    const double t_now = *lane_center_t(*map, lane.road, s, lane.lane) + lane.dir * lane.lateral;
+    lane.lane = target;
+    lane.node = *node;
+    lane.lateral = (t_now - *target_center) * lane.dir;
+    start_lateral_ = lane.lateral;
+    target_lateral_ = action_.target_lane_offset.value_or(0.0);
+    entity.lateral_command = start_lateral_;
+    start_tick_ = context.state.tick;
+    start_odometer_ = entity.state.odometer;
+    const xosc::TransitionDynamics& dynamics = action_.dynamics;
+    total_ = dynamics.value;
+    by_distance_ = dynamics.dimension == xosc::DynamicsDimension::kDistance;
+    if (dynamics.dimension == xosc::DynamicsDimension::kRate) {
+      // The rate (m/s) is the largest lateral speed on the way.
+      total_ = dynamics.value > 0.0 ? std::abs(target_lateral_ - start_lateral_) *
+                                          shape_peak_slope(dynamics.shape) / dynamics.value
+                                    : 0.0;
+    }
+    if (dynamics.shape == xosc::DynamicsShape::kStep || total_ <= 0.0) {
+      entity.lateral_command = target_lateral_;
+      if (context.init) {
+        lane.lateral = target_lateral_;
+      }
+      done_ = true;
+    }
+  }
+
+  void step(ActionContext& context) override {
+    if (done_) {
+      return;
+    }
+    Entity& entity = context.entity();
+    // Progress at the end of this step: time, or distance with this step's travel predicted.
+    const double elapsed = by_distance_
+                               ? entity.state.odometer - start_odometer_ +
+                                     std::abs(entity.state.speed) * context.state.time.dt()
+                               : context.state.time.time(context.state.tick + 1 - start_tick_);
+    const double p = elapsed >= total_ ? 1.0 : elapsed / total_;
+    entity.lateral_command = start_lateral_ + shape_value(action_.dynamics.shape, p) *
+                                                  (target_lateral_ - start_lateral_);
+    done_ = p >= 1.0;
+  }
+
+  bool finished() const override { return done_; }
+
+ private:
+  int target_lane(const ActionContext& context) const {
+    if (const auto* absolute = std::get_if<xosc::AbsoluteTargetLane>(&action_.target)) {
+      return parse_lane_id(absolute->value, absolute->source);
+    }
+    const auto& relative = std::get<xosc::RelativeTargetLane>(action_.target);
+    const Entity& reference = need_entity(context.state, relative.entity_ref, relative.source);
+    const Entity& actor = context.entity();
+    if (!reference.lane.on_road || reference.lane.road != actor.lane.road) {
+      fail(relative.source, "RelativeTargetLane: entity '" + relative.entity_ref +
+                                "' is not on the same road as '" + actor.info.name + "'");
+    }
+    const int reference_lane =
+        reference.state.road ? reference.state.road->lane : reference.lane.lane;
+    // Positive values are to the left of the reference entity's direction of travel.
+    return step_lane_id(reference_lane, relative.value * reference.lane.dir);
+  }
+
+  const xosc::LaneChangeAction& action_;
+  double start_lateral_ = 0.0;
+  double target_lateral_ = 0.0;
+  int64_t start_tick_ = 0;
+  double start_odometer_ = 0.0;
+  double total_ = 0.0;
+  bool by_distance_ = false;
+  bool done_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<ActionInstance> make_lane_change_action(const xosc::LaneChangeAction& action) {
+  return std::make_unique<LaneChangeInstance>(action);
+}
+
+}  // namespace corsa::engine::detail

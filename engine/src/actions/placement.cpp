@@ -1,0 +1,41 @@
+#include "actions/placement.h"
+
+#include "core/sim_state.h"
+#include "corsa/core/strings.h"
+#include "motion/controller.h"
+#include "motion/lane_follow.h"
+
+namespace corsa::engine::detail {
+
+void place_entity(SimState& state, Entity& entity, const ResolvedPosition& position,
+                  const xosc::Source& source, bool require_on_map) {
+  entity.state.pose = {position.pose.x, position.pose.y, position.pose.z,
+                       position.pose.h, position.pose.p, position.pose.r};
+  entity.state.placed = true;
+  entity.lane = LaneFollow{};
+  entity.end_of_road = false;
+  entity.end_of_road_time = 0.0;
+  if (state.map != nullptr && position.road && position.road->lane &&
+      attach_to_lane(*state.map, entity.lane, position.road->road, position.road->s,
+                     position.road->t, *position.road->lane, position.pose.h)) {
+    std::vector<xodr::LaneSpan> scratch;
+    update_pose_from_lane(entity, *state.map, scratch);
+    entity.lateral_command = entity.lane.lateral;
+    return;
+  }
+  entity.lateral_command = 0.0;
+  if (state.map == nullptr) {
+    entity.state.road.reset();
+    return;
+  }
+  if (require_on_map &&
+      !locate_point(*state.map, position.pose.x, position.pose.y, kOffMapDistance)) {
+    throw InputError(source.error("entity '" + entity.info.name + "' is placed off the map: (" +
+                                  format_double(position.pose.x) + ", " +
+                                  format_double(position.pose.y) + ") is more than " +
+                                  format_double(kOffMapDistance) + " m from every lane"));
+  }
+  update_road_from_pose(entity, state.map);
+}
+
+}  // namespace corsa::engine::detail

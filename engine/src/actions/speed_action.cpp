@@ -1,0 +1,107 @@
+// SpeedAction (OpenSCENARIO 1.3 §7.4.1.1): the actor's longitudinal speed goes to an absolute
+// target or one relative to another entity (delta or factor), with a TransitionDynamics shape
+// over time, distance or rate. A continuous relative target keeps tracking and never ends.
+
+#include <cmath>
+
+#include "actions/action_makers.h"
+#include "actions/transition_shape.h"
+#include "core/sim_state.h"
+#include "positions/position_common.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+class SpeedInstance final : public ActionInstance {
+ public:
+  explicit SpeedInstance(const xosc::SpeedAction& action) : action_(action) {}
+
+  uint8_t domains() const override { return kDomainLongitudinal; }
+
+  void start(ActionContext& context) override {
+    Entity& entity = context.entity();
+    if (const auto* relative = std::get_if<xosc::RelativeTargetSpeed>(&action_.target)) {
+      need_entity(context.state, relative->entity_ref, relative->source);
+      reference_index_ = *context.state.world.find(relative->entity_ref);
+      continuous_ = relative->continuous;
+    }
+    start_speed_ = entity.state.speed;
+    start_tick_ = context.state.tick;
+    const double target = target_speed(context);
+    const xosc::TransitionDynamics& dynamics = action_.dynamics;
+    double duration = 0.0;  // s
+    if (dynamics.shape != xosc::DynamicsShape::kStep) {
+      switch (dynamics.dimension) {
+        case xosc::DynamicsDimension::kTime:
+          duration = dynamics.value;
+          break;
+        case xosc::DynamicsDimension::kRate:
+          // The rate (m/s^2) is the largest acceleration on the way.
+          duration = dynamics.value > 0.0 ? std::abs(target - start_speed_) *
+                                                shape_peak_slope(dynamics.shape) / dynamics.value
+                                          : 0.0;
+          break;
+        case xosc::DynamicsDimension::kDistance:
+          // Every shape averages half way, so the distance covered is duration * mean speed.
+          duration =
+              start_speed_ + target > 0.0 ? 2.0 * dynamics.value / (start_speed_ + target) : 0.0;
+          break;
+      }
+    }
+    duration_ = duration;
+    if (duration_ <= 0.0) {
+      command(context, target);
+      reached_ = true;
+    }
+  }
+
+  void step(ActionContext& context) override {
+    const double target = target_speed(context);
+    if (reached_) {
+      command(context, target);  // continuous: keep tracking the reference
+      return;
+    }
+    const double elapsed = context.state.time.time(context.state.tick + 1 - start_tick_);
+    const double p = elapsed >= duration_ ? 1.0 : elapsed / duration_;
+    command(context,
+            start_speed_ + shape_value(action_.dynamics.shape, p) * (target - start_speed_));
+    reached_ = p >= 1.0;
+  }
+
+  bool finished() const override { return reached_ && !continuous_; }
+
+ private:
+  double target_speed(const ActionContext& context) const {
+    if (const auto* absolute = std::get_if<xosc::AbsoluteTargetSpeed>(&action_.target)) {
+      return absolute->value;
+    }
+    const auto& relative = std::get<xosc::RelativeTargetSpeed>(action_.target);
+    const double reference = context.state.world.entities[reference_index_].state.speed;
+    return relative.value_type == xosc::SpeedTargetValueType::kDelta ? reference + relative.value
+                                                                     : reference * relative.value;
+  }
+
+  void command(ActionContext& context, double speed) const {
+    Entity& entity = context.entity();
+    entity.speed_command = speed;
+    if (context.init) {
+      entity.state.speed = speed;  // Init happens before time starts: no transition to drive
+    }
+  }
+
+  const xosc::SpeedAction& action_;
+  uint32_t reference_index_ = 0;
+  bool continuous_ = false;
+  double start_speed_ = 0.0;
+  int64_t start_tick_ = 0;
+  double duration_ = 0.0;
+  bool reached_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<ActionInstance> make_speed_action(const xosc::SpeedAction& action) {
+  return std::make_unique<SpeedInstance>(action);
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,31 @@
+// TeleportAction (OpenSCENARIO 1.3 §7.4.3): the actor jumps to a position, instantaneously.
+
+#include "actions/action_makers.h"
+#include "actions/placement.h"
+#include "core/sim_state.h"
+#include "positions/position_resolver.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+class TeleportInstance final : public InstantAction {
+ public:
+  explicit TeleportInstance(const xosc::TeleportAction& action) : action_(action) {}
+  // A teleport sets position and heading: it takes over neither speed nor lateral motion, but
+  // an entity placed on a new lane keeps no lateral offset command of its old one.
+  void start(ActionContext& context) override {
+    const ResolvedPosition at = resolve_position(action_.position, context.state, context.actor);
+    place_entity(context.state, context.entity(), at, action_.position.source, context.init);
+  }
+
+ private:
+  const xosc::TeleportAction& action_;
+};
+
+}  // namespace
+
+std::unique_ptr<ActionInstance> make_teleport_action(const xosc::TeleportAction& action) {
+  return std::make_unique<TeleportInstance>(action);
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,60 @@
+// CollisionCondition (OpenSCENARIO 1.3 §8.3.1): the triggering entity's bounding box overlaps
+// that of a named entity, or of any entity of a type (ByType).
+
+#include "conditions/condition_makers.h"
+#include "core/sim_state.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+ObjectKind object_kind(xosc::ObjectType type) {
+  switch (type) {
+    case xosc::ObjectType::kVehicle:
+      return ObjectKind::kVehicle;
+    case xosc::ObjectType::kPedestrian:
+      return ObjectKind::kPedestrian;
+    case xosc::ObjectType::kMiscellaneous:
+      return ObjectKind::kMiscObject;
+    case xosc::ObjectType::kExternal:
+      return ObjectKind::kExternal;
+  }
+  return ObjectKind::kVehicle;
+}
+
+class CollisionCheck final : public EntityCondition {
+ public:
+  CollisionCheck(std::optional<uint32_t> other, std::optional<ObjectKind> kind)
+      : other_(other), kind_(kind) {}
+  bool holds(const SimState& state, uint32_t entity) override {
+    if (other_) {
+      return *other_ != entity && state.contacts.get(entity, *other_);
+    }
+    for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
+      if (i != entity && (!kind_ || state.world.entities[i].info.kind == *kind_) &&
+          state.contacts.get(entity, i)) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+ private:
+  std::optional<uint32_t> other_;
+  std::optional<ObjectKind> kind_;
+};
+
+}  // namespace
+
+std::unique_ptr<EntityCondition> make_collision(const xosc::CollisionCondition& c,
+                                                const SimState& state) {
+  std::optional<uint32_t> other;
+  std::optional<ObjectKind> kind;
+  if (c.entity_ref) {
+    other = need_entity_index(state, *c.entity_ref, c.source);
+  } else if (c.by_type) {
+    kind = object_kind(*c.by_type);
+  }
+  return std::make_unique<CollisionCheck>(other, kind);
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,26 @@
+// SimulationTimeCondition (OpenSCENARIO 1.3 §8.3.2): the simulation time (s since the start,
+// on the tick grid) compared with a value.
+
+#include "conditions/condition_makers.h"
+#include "core/sim_state.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+class SimulationTimeCheck final : public ValueCondition {
+ public:
+  explicit SimulationTimeCheck(const xosc::SimulationTimeCondition& c) : c_(c) {}
+  bool holds(const SimState& state) override { return compare(state.now(), c_.rule, c_.value); }
+
+ private:
+  const xosc::SimulationTimeCondition& c_;
+};
+
+}  // namespace
+
+std::unique_ptr<ValueCondition> make_simulation_time(const xosc::SimulationTimeCondition& c,
+                                                     const SimState&) {
+  return std::make_unique<SimulationTimeCheck>(c);
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,74 @@
+#pragma once
+
+// One entity's run state inside the engine: the public EntityInfo / EntityState plus what the
+// default controller and the conditions need between steps.
+
+#include <array>
+#include <cstdint>
+
+#include "corsa/engine/entity_state.h"
+#include "corsa/xodr/lane_graph.h"
+
+namespace corsa::xosc {
+struct ScenarioObject;
+}
+
+namespace corsa::engine::detail {
+
+class ActionInstance;
+class LaneChooser;
+
+/// How the default controller holds an entity on the road: the lane it follows (nominal lane;
+/// during a lane change already the target lane), where along it, and the lateral offset.
+struct LaneFollow {
+  bool on_road = false;  ///< false: the entity moves freely along its heading
+  uint32_t road = 0;
+  uint32_t section = 0;
+  int lane = 0;
+  xodr::LaneNode node = xodr::kNoLane;
+  double s = 0.0;
+  int dir = 1;  ///< +1 drives toward +s, -1 toward -s
+  /// Offset (m) of the reference point from the nominal lane's centre, positive to the left of
+  /// the direction of travel (so that it keeps its meaning across roads of opposite s).
+  double lateral = 0.0;
+  /// Heading (rad) relative to the lane's direction of travel, from lateral motion.
+  double heading_offset = 0.0;
+};
+
+/// Action domains that override each other on one entity (OpenSCENARIO 1.3 §7.4: a new
+/// longitudinal or lateral action replaces the running one of the same domain).
+enum ActionDomain : uint8_t {
+  kDomainNone = 0,
+  kDomainLongitudinal = 1,
+  kDomainLateral = 2,
+};
+inline constexpr int kDomainSlots = 2;
+
+struct Entity {
+  EntityInfo info;
+  EntityState state;
+  LaneFollow lane;
+  const xosc::ScenarioObject* object = nullptr;
+
+  /// What the running actions ask for at the end of the current step: speed (m/s) and lateral
+  /// offset (m, see LaneFollow::lateral). Controllers turn them into motion.
+  double speed_command = 0.0;
+  double lateral_command = 0.0;
+
+  /// m/s^2 across the heading over the last step (AccelerationCondition, lateral).
+  double lateral_acceleration = 0.0;
+
+  /// Timers (s) for the duration-based conditions (StandStill, Offroad, EndOfRoad).
+  bool standing_still = false;
+  double standstill_time = 0.0;
+  double offroad_time = 0.0;
+  bool end_of_road = false;
+  double end_of_road_time = 0.0;
+
+  /// The running action that owns each domain (index 0 longitudinal, 1 lateral), or null.
+  std::array<ActionInstance*, kDomainSlots> owners{};
+  /// Chooses among lane successors at lane ends (a route, issue #6); null: the straightest.
+  const LaneChooser* chooser = nullptr;
+};
+
+}  // namespace corsa::engine::detail

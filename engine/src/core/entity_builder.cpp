@@ -1,0 +1,106 @@
+#include "core/entity_builder.h"
+
+#include <type_traits>
+
+#include "core/sim_state.h"
+#include "corsa/xosc/scenario.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+EntityCategory vehicle_category(xosc::VehicleCategory category) {
+  switch (category) {
+    case xosc::VehicleCategory::kBicycle:
+      return EntityCategory::kBicycle;
+    case xosc::VehicleCategory::kBus:
+      return EntityCategory::kBus;
+    case xosc::VehicleCategory::kCar:
+      return EntityCategory::kCar;
+    case xosc::VehicleCategory::kMotorbike:
+      return EntityCategory::kMotorbike;
+    case xosc::VehicleCategory::kSemitrailer:
+      return EntityCategory::kSemitrailer;
+    case xosc::VehicleCategory::kTrailer:
+      return EntityCategory::kTrailer;
+    case xosc::VehicleCategory::kTrain:
+      return EntityCategory::kTrain;
+    case xosc::VehicleCategory::kTram:
+      return EntityCategory::kTram;
+    case xosc::VehicleCategory::kTruck:
+      return EntityCategory::kTruck;
+    case xosc::VehicleCategory::kVan:
+      return EntityCategory::kVan;
+  }
+  return EntityCategory::kCar;
+}
+
+EntityCategory pedestrian_category(xosc::PedestrianCategory category) {
+  switch (category) {
+    case xosc::PedestrianCategory::kAnimal:
+      return EntityCategory::kAnimal;
+    case xosc::PedestrianCategory::kWheelchair:
+      return EntityCategory::kWheelchair;
+    case xosc::PedestrianCategory::kPedestrian:
+      return EntityCategory::kPedestrian;
+  }
+  return EntityCategory::kPedestrian;
+}
+
+Box box_of(const xosc::BoundingBox& box) {
+  return Box{box.center_x, box.center_y, box.center_z, box.length, box.width, box.height};
+}
+
+EntityInfo describe(const xosc::ScenarioObject& object, Diagnostics& diagnostics) {
+  EntityInfo info;
+  info.name = object.name;
+  std::visit(
+      [&](const auto& o) {
+        using T = std::decay_t<decltype(o)>;
+        if constexpr (std::is_same_v<T, xosc::Vehicle>) {
+          info.kind = ObjectKind::kVehicle;
+          info.category = vehicle_category(o.category);
+          info.model3d = o.model3d.value_or("");
+          info.box = box_of(o.bounding_box);
+          info.max_speed = o.performance.max_speed;
+          info.max_acceleration = o.performance.max_acceleration;
+          info.max_deceleration = o.performance.max_deceleration;
+        } else if constexpr (std::is_same_v<T, xosc::Pedestrian>) {
+          info.kind = ObjectKind::kPedestrian;
+          info.category = pedestrian_category(o.category);
+          info.model3d = o.model3d.value_or("");
+          info.box = box_of(o.bounding_box);
+        } else if constexpr (std::is_same_v<T, xosc::MiscObject>) {
+          info.kind = ObjectKind::kMiscObject;
+          info.category = EntityCategory::kObstacle;
+          info.model3d = o.model3d.value_or("");
+          info.box = box_of(o.bounding_box);
+        } else {
+          info.kind = ObjectKind::kExternal;
+          info.category = EntityCategory::kObstacle;
+          diagnostics.add_once("external-object",
+                               o.source.warning("ExternalObjectReference '" + o.name +
+                                                "' is unknown to this engine: it has no size"));
+        }
+      },
+      object.object);
+  return info;
+}
+
+}  // namespace
+
+void build_entities(SimState& state) {
+  const auto& objects = state.scenario.entities.objects;
+  state.world.entities.reserve(objects.size());
+  for (const xosc::ScenarioObject& object : objects) {
+    Entity entity;
+    entity.info = describe(object, state.diagnostics);
+    entity.object = &object;
+    const auto index = static_cast<uint32_t>(state.world.entities.size());
+    if (!state.world.by_name.emplace(object.name, index).second) {
+      throw InputError(object.source.error("a second entity is called '" + object.name + "'"));
+    }
+    state.world.entities.push_back(std::move(entity));
+  }
+}
+
+}  // namespace corsa::engine::detail

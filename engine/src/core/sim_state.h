@@ -1,0 +1,93 @@
+#pragma once
+
+// Everything that changes during one run, in one place that actions and conditions are handed
+// (no globals: two Simulations own two SimStates). The read-only models (xosc::Scenario,
+// xodr::Map) are referenced, never modified.
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "core/element_table.h"
+#include "core/entity.h"
+#include "core/time_base.h"
+#include "core/value_store.h"
+#include "corsa/core/diagnostic.h"
+#include "corsa/engine/simulation.h"
+#include "corsa/engine/world_snapshot.h"
+
+namespace corsa::xosc {
+struct Scenario;
+}
+namespace corsa::xodr {
+class Map;
+}
+
+namespace corsa::engine::detail {
+
+/// The entities, in document order (their index is their identity for the whole run).
+struct World {
+  std::vector<Entity> entities;
+  std::unordered_map<std::string, uint32_t> by_name;
+
+  std::optional<uint32_t> find(std::string_view name) const {
+    const auto it = by_name.find(std::string(name));
+    return it == by_name.end() ? std::nullopt : std::optional<uint32_t>(it->second);
+  }
+};
+
+/// Pairs of entities whose boxes overlap now, as a bit matrix (n x n, symmetric).
+struct ContactMatrix {
+  size_t n = 0;
+  std::vector<uint8_t> bits;
+  void reset(size_t count) {
+    n = count;
+    bits.assign(count * count, 0);
+  }
+  bool get(size_t a, size_t b) const { return bits[a * n + b] != 0; }
+  void set(size_t a, size_t b) { bits[a * n + b] = bits[b * n + a] = 1; }
+};
+
+struct SimState {
+  SimState(const xosc::Scenario& scenario_in, std::shared_ptr<const xodr::Map> map_in,
+           const SimulationOptions& options_in, Diagnostics& diagnostics_in)
+      : scenario(scenario_in),
+        map_owner(std::move(map_in)),
+        map(map_owner.get()),
+        options(options_in),
+        diagnostics(diagnostics_in),
+        time(options_in.dt) {}
+
+  const xosc::Scenario& scenario;
+  std::shared_ptr<const xodr::Map> map_owner;
+  const xodr::Map* map;  ///< null: no road network
+  SimulationOptions options;
+  Diagnostics& diagnostics;
+  TimeBase time;
+  int64_t tick = 0;
+
+  World world;
+  ValueStore parameters;
+  ValueStore variables;
+  EnvironmentState environment;
+  /// Tick at which the time of day was last set; with animation it advances with the run.
+  int64_t environment_tick = 0;
+  bool time_of_day_animated = false;
+
+  ElementTable elements;
+  ContactMatrix contacts;
+  std::vector<CollisionRecord> collisions;
+  std::map<std::string, CustomCommandHandler, std::less<>> custom_handlers;
+  /// The Simulation that owns this state, for custom command handlers (refreshed every step,
+  /// since a Simulation may be moved).
+  const Simulation* simulation = nullptr;
+
+  double now() const { return time.time(tick); }
+};
+
+}  // namespace corsa::engine::detail

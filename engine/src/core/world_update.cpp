@@ -1,0 +1,71 @@
+#include "core/world_update.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/sim_state.h"
+#include "geometry/oriented_box.h"
+
+namespace corsa::engine::detail {
+
+void update_contacts(SimState& state) {
+  const auto& entities = state.world.entities;
+  const size_t n = entities.size();
+  ContactMatrix previous = std::move(state.contacts);
+  state.contacts.reset(n);
+  if (previous.n != n) {
+    previous.reset(n);
+  }
+  // Sweep and prune along x: boxes sorted by their lowest x; only those whose x ranges overlap
+  // are tested exactly.
+  struct Item {
+    double low, high;
+    uint32_t index;
+    OrientedBox box;
+  };
+  std::vector<Item> items;
+  items.reserve(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!entities[i].state.placed || entities[i].info.box.length <= 0.0) {
+      continue;
+    }
+    const OrientedBox box = box_of(entities[i]);
+    const Interval x = project(box, 1.0, 0.0);
+    items.push_back({x.low, x.high, i, box});
+  }
+  std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
+    return a.low < b.low || (a.low == b.low && a.index < b.index);
+  });
+  std::vector<std::pair<uint32_t, uint32_t>> started;
+  for (size_t a = 0; a < items.size(); ++a) {
+    for (size_t b = a + 1; b < items.size() && items[b].low <= items[a].high; ++b) {
+      if (!overlap(items[a].box, items[b].box)) {
+        continue;
+      }
+      const uint32_t first = std::min(items[a].index, items[b].index);
+      const uint32_t second = std::max(items[a].index, items[b].index);
+      state.contacts.set(first, second);
+      if (!previous.get(first, second)) {
+        started.emplace_back(first, second);
+      }
+    }
+  }
+  // Records in entity order, independent of the sweep order.
+  std::sort(started.begin(), started.end());
+  for (const auto& [first, second] : started) {
+    state.collisions.push_back({state.tick, state.now(), first, second});
+  }
+}
+
+void update_timers(SimState& state, bool advance) {
+  const double dt = advance ? state.time.dt() : 0.0;
+  for (Entity& entity : state.world.entities) {
+    // Standing still: no speed at all (actions that stop an entity command exactly 0).
+    entity.standing_still = std::abs(entity.state.speed) < 1e-9;
+    entity.standstill_time = entity.standing_still ? entity.standstill_time + dt : 0.0;
+    entity.offroad_time = !entity.state.road ? entity.offroad_time + dt : 0.0;
+    entity.end_of_road_time = entity.end_of_road ? entity.end_of_road_time + dt : 0.0;
+  }
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,95 @@
+#include "geometry/oriented_box.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace corsa::engine::detail {
+
+OrientedBox box_of(const Entity& entity) {
+  const Pose& pose = entity.state.pose;
+  const Box& box = entity.info.box;
+  OrientedBox out;
+  out.cos_h = std::cos(pose.h);
+  out.sin_h = std::sin(pose.h);
+  out.cx = pose.x + out.cos_h * box.center_x - out.sin_h * box.center_y;
+  out.cy = pose.y + out.sin_h * box.center_x + out.cos_h * box.center_y;
+  out.half_length = 0.5 * box.length;
+  out.half_width = 0.5 * box.width;
+  out.z_min = pose.z + box.center_z - 0.5 * box.height;
+  out.z_max = pose.z + box.center_z + 0.5 * box.height;
+  return out;
+}
+
+Interval project(const OrientedBox& box, double ux, double uy) {
+  const double center = box.cx * ux + box.cy * uy;
+  const double reach = std::abs(box.half_length * (box.cos_h * ux + box.sin_h * uy)) +
+                       std::abs(box.half_width * (-box.sin_h * ux + box.cos_h * uy));
+  return {center - reach, center + reach};
+}
+
+namespace {
+
+bool separated_on(const OrientedBox& a, const OrientedBox& b, double ux, double uy) {
+  const Interval ia = project(a, ux, uy);
+  const Interval ib = project(b, ux, uy);
+  return ia.high < ib.low || ib.high < ia.low;
+}
+
+std::array<std::array<double, 2>, 4> corners(const OrientedBox& box) {
+  const double lx = box.cos_h * box.half_length, ly = box.sin_h * box.half_length;
+  const double wx = -box.sin_h * box.half_width, wy = box.cos_h * box.half_width;
+  return {{{box.cx + lx + wx, box.cy + ly + wy},
+           {box.cx - lx + wx, box.cy - ly + wy},
+           {box.cx - lx - wx, box.cy - ly - wy},
+           {box.cx + lx - wx, box.cy + ly - wy}}};
+}
+
+double point_segment(double px, double py, const std::array<double, 2>& a,
+                     const std::array<double, 2>& b) {
+  const double dx = b[0] - a[0], dy = b[1] - a[1];
+  const double len2 = dx * dx + dy * dy;
+  double t = len2 > 0.0 ? ((px - a[0]) * dx + (py - a[1]) * dy) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return std::hypot(px - (a[0] + t * dx), py - (a[1] + t * dy));
+}
+
+}  // namespace
+
+bool overlap(const OrientedBox& a, const OrientedBox& b) {
+  if (a.z_max < b.z_min || b.z_max < a.z_min) {
+    return false;
+  }
+  return !separated_on(a, b, a.cos_h, a.sin_h) && !separated_on(a, b, -a.sin_h, a.cos_h) &&
+         !separated_on(a, b, b.cos_h, b.sin_h) && !separated_on(a, b, -b.sin_h, b.cos_h);
+}
+
+double box_point_distance(const OrientedBox& box, double x, double y) {
+  const double dx = x - box.cx, dy = y - box.cy;
+  const double along = std::abs(dx * box.cos_h + dy * box.sin_h) - box.half_length;
+  const double across = std::abs(-dx * box.sin_h + dy * box.cos_h) - box.half_width;
+  return std::hypot(std::max(along, 0.0), std::max(across, 0.0));
+}
+
+double box_distance(const OrientedBox& a, const OrientedBox& b) {
+  OrientedBox flat_a = a, flat_b = b;
+  flat_a.z_min = flat_b.z_min = 0.0;
+  flat_a.z_max = flat_b.z_max = 0.0;
+  if (overlap(flat_a, flat_b)) {
+    return 0.0;
+  }
+  // Two disjoint convex polygons: the closest points include a corner of one of them.
+  const auto ca = corners(a);
+  const auto cb = corners(b);
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      best = std::min(best, point_segment(ca[i][0], ca[i][1], cb[j], cb[(j + 1) % 4]));
+      best = std::min(best, point_segment(cb[i][0], cb[i][1], ca[j], ca[(j + 1) % 4]));
+    }
+  }
+  return best;
+}
+
+}  // namespace corsa::engine::detail

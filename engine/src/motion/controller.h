@@ -1,0 +1,43 @@
+#pragma once
+
+// Controllers move entities (OpenSCENARIO 1.3 §7.5 "Controllers"): every step each entity's
+// controller turns what the running actions ask for (Entity::speed_command and
+// lateral_command) into motion over dt. The default controller is ideal: it follows the
+// commands exactly along the lanes. Others (car following, vehicle dynamics; issue #6)
+// implement the same interface.
+
+#include <vector>
+
+#include "core/entity.h"
+#include "corsa/xodr/map.h"
+
+namespace corsa::engine::detail {
+
+struct MotionContext {
+  const xodr::Map* map = nullptr;  ///< null: no road network, entities move freely
+  double dt = 0.01;                ///< s
+  std::vector<xodr::LaneSpan>* scratch = nullptr;
+};
+
+class Controller {
+ public:
+  virtual ~Controller() = default;
+  virtual void step(Entity& entity, const MotionContext& context) const = 0;
+};
+
+/// The default controller: along the followed lane at the commanded speed (trapezoidal
+/// integration of speed over the step), lateral offset as commanded, heading following the road
+/// plus the angle of the lateral motion; off the road straight along the heading. An entity that
+/// reaches a lane end without successor stops there (EndOfRoadCondition).
+class DefaultController final : public Controller {
+ public:
+  void step(Entity& entity, const MotionContext& context) const override;
+};
+
+/// Recomputes an entity's pose and road coordinates from its LaneFollow (after a teleport or a
+/// move), or its road coordinates from its pose when it is off the lanes.
+void update_pose_from_lane(Entity& entity, const xodr::Map& map,
+                           std::vector<xodr::LaneSpan>& scratch);
+void update_road_from_pose(Entity& entity, const xodr::Map* map);
+
+}  // namespace corsa::engine::detail

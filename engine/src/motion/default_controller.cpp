@@ -1,0 +1,80 @@
+#include <cmath>
+#include <numbers>
+
+#include "motion/controller.h"
+#include "motion/lane_follow.h"
+
+namespace corsa::engine::detail {
+
+void update_pose_from_lane(Entity& entity, const xodr::Map& map,
+                           std::vector<xodr::LaneSpan>& scratch) {
+  const LanePose lp = lane_pose(map, entity.lane, scratch);
+  entity.state.pose = {lp.pose.x, lp.pose.y, lp.pose.z, lp.pose.h, lp.pose.p, lp.pose.r};
+  if (lp.lane_at) {
+    entity.state.road =
+        RoadCoordinates{entity.lane.road, entity.lane.section, *lp.lane_at, entity.lane.s, lp.t};
+  } else {
+    entity.state.road.reset();
+  }
+}
+
+void update_road_from_pose(Entity& entity, const xodr::Map* map) {
+  entity.state.road.reset();
+  if (map == nullptr) {
+    return;
+  }
+  xodr::LocateOptions options;
+  options.max_distance = 0.5;
+  const auto located = map->locate(entity.state.pose.x, entity.state.pose.y, options);
+  if (located && located->distance == 0.0) {
+    entity.state.road =
+        RoadCoordinates{located->road, located->section, located->lane, located->s, located->t};
+  }
+}
+
+void DefaultController::step(Entity& entity, const MotionContext& context) const {
+  EntityState& state = entity.state;
+  const double dt = context.dt;
+  const double v0 = state.speed;
+  double v1 = entity.speed_command;
+  const double distance = 0.5 * (v0 + v1) * dt;
+  const double h0 = state.pose.h;
+  double path = std::abs(distance);
+  double lateral_change = 0.0;
+  if (entity.lane.on_road && context.map != nullptr) {
+    LaneFollow& lane = entity.lane;
+    const AdvanceResult moved = advance_along_lanes(*context.map, lane, distance, entity.chooser);
+    lateral_change = entity.lateral_command - lane.lateral;
+    if (std::abs(moved.travelled) > 1e-9) {
+      // The heading turns away from the lane by the angle of the path the lateral motion draws.
+      lane.heading_offset = std::atan(lateral_change / moved.travelled);
+    } else if (lateral_change == 0.0) {
+      lane.heading_offset = 0.0;
+    }
+    lane.lateral = entity.lateral_command;
+    if (moved.hit_end) {
+      entity.end_of_road = true;
+      v1 = 0.0;
+      entity.speed_command = 0.0;
+    } else {
+      entity.end_of_road = false;
+    }
+    path = std::hypot(moved.travelled, lateral_change);
+    update_pose_from_lane(entity, *context.map, *context.scratch);
+  } else {
+    state.pose.x += std::cos(state.pose.h) * distance;
+    state.pose.y += std::sin(state.pose.h) * distance;
+    if (distance != 0.0) {
+      update_road_from_pose(entity, context.map);
+    }
+  }
+  state.acceleration = (v1 - v0) / dt;
+  state.speed = v1;
+  const double lateral_speed = lateral_change / dt;
+  entity.lateral_acceleration = (lateral_speed - state.lateral_speed) / dt;
+  state.lateral_speed = lateral_speed;
+  state.yaw_rate = std::remainder(state.pose.h - h0, 2.0 * std::numbers::pi) / dt;
+  state.odometer += path;
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,73 @@
+#pragma once
+
+// Lane following for the default controller: an entity held on a lane (LaneFollow) moves along
+// it in its direction of travel, through lane sections, road links and junction connections
+// (OpenDRIVE 1.8 §9.4 lane linkage, §10 junctions), following the lane graph of the map.
+
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "core/entity.h"
+#include "corsa/xodr/lane_graph.h"
+#include "corsa/xodr/map.h"
+
+namespace corsa::engine::detail {
+
+/// Picks where to continue at a lane end among the joined lane ends. The default picks the
+/// straightest; a route (issue #6) picks the one on the route.
+class LaneChooser {
+ public:
+  virtual ~LaneChooser() = default;
+  /// Index into `candidates` (never empty).
+  virtual size_t choose(const xodr::Map& map, const LaneFollow& lane,
+                        std::span<const xodr::LaneEnd> candidates) const = 0;
+};
+
+/// The deterministic default: prefer drivable lanes entered in their own travel direction, then
+/// the one whose far end keeps the heading closest to the current one; ties to the first.
+size_t choose_straightest(const xodr::Map& map, const LaneFollow& lane,
+                          std::span<const xodr::LaneEnd> candidates);
+
+/// Wraps an angle into (-pi, pi].
+double wrap_angle(double angle);
+
+/// `lane` moved `delta` lanes toward higher ids (negative: lower ids), skipping the centre lane 0.
+int step_lane_id(int lane, int delta);
+
+/// Heading of travel (rad) for a road at s in direction dir (+1: +s).
+double travel_heading(const xodr::Map& map, uint32_t road, double s, int dir);
+
+/// t (m) of the centre of `lane` at road s, or nothing when the section has no such lane.
+std::optional<double> lane_center_t(const xodr::Map& map, uint32_t road, double s, int lane);
+
+/// Holds `follow` on `lane` of `road` at (s, t): direction from `heading` (facing +s or -s),
+/// lateral offset from the lane centre. Returns false when the lane does not exist at s.
+bool attach_to_lane(const xodr::Map& map, LaneFollow& follow, uint32_t road, double s, double t,
+                    int lane, double heading);
+
+struct AdvanceResult {
+  double travelled = 0.0;  ///< metres actually moved along the lanes (signed like distance)
+  bool hit_end = false;    ///< stopped at a lane end without successor
+  bool changed_road = false;
+};
+
+/// Moves `follow` by `distance` metres along its lanes (negative: backwards).
+AdvanceResult advance_along_lanes(const xodr::Map& map, LaneFollow& follow, double distance,
+                                  const LaneChooser* chooser);
+
+/// follow.s, moved just inside the followed lane section when it sits on the section's end (where
+/// the map would answer for the next section). Use it for lane-width queries.
+double section_s(const xodr::Map& map, const LaneFollow& follow);
+
+/// The world pose and road coordinates of a followed lane position. `spans` is scratch space.
+struct LanePose {
+  xodr::WorldPose pose;  ///< heading is the direction of travel plus heading_offset
+  double t = 0.0;
+  std::optional<int> lane_at;  ///< lane containing the point, nothing when outside every lane
+};
+LanePose lane_pose(const xodr::Map& map, const LaneFollow& follow,
+                   std::vector<xodr::LaneSpan>& spans);
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,111 @@
+#include "positions/position_common.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "core/sim_state.h"
+#include "corsa/core/strings.h"
+#include "corsa/xodr/lane_graph.h"
+#include "motion/lane_follow.h"
+
+namespace corsa::engine::detail {
+
+[[noreturn]] void fail(const xosc::Source& source, const std::string& message) {
+  throw InputError(source.error(message));
+}
+
+const xodr::Map& need_map(const SimState& state, const xosc::Source& source, const char* kind) {
+  if (state.map == nullptr) {
+    fail(source, std::string(kind) + " needs a road network, but the scenario has no LogicFile");
+  }
+  return *state.map;
+}
+
+const Entity& need_entity(const SimState& state, const std::string& name,
+                          const xosc::Source& source) {
+  const auto index = state.world.find(name);
+  if (!index) {
+    fail(source, "unknown entity '" + name + "'");
+  }
+  const Entity& entity = state.world.entities[*index];
+  if (!entity.state.placed) {
+    fail(source, "entity '" + name + "' is referenced before it has a position");
+  }
+  return entity;
+}
+
+uint32_t need_road(const xodr::Map& map, const std::string& id, const xosc::Source& source) {
+  const auto road = map.find_road(id);
+  if (!road) {
+    fail(source, "road '" + id + "' does not exist in the road network");
+  }
+  return static_cast<uint32_t>(*road);
+}
+
+void check_s(const xodr::Map& map, uint32_t road, double s, const xosc::Source& source) {
+  const double length = map.road(road).length;
+  if (!(s >= -1e-9 && s <= length + 1e-9)) {
+    fail(source, "s = " + format_double(s) + " is outside road '" + map.road(road).id +
+                     "' (length " + format_double(length) + " m)");
+  }
+}
+
+int parse_lane_id(const std::string& text, const xosc::Source& source) {
+  const auto id = parse_int(text);
+  if (!id || *id == 0 || *id > 1000 || *id < -1000) {
+    fail(source, "laneId '" + text + "' is not a lane id (a non-zero integer)");
+  }
+  return static_cast<int>(*id);
+}
+
+double need_lane_center(const xodr::Map& map, uint32_t road, double s, int lane,
+                        const xosc::Source& source) {
+  const auto center = lane_center_t(map, road, s, lane);
+  if (!center) {
+    fail(source, "road '" + map.road(road).id + "' has no lane " + std::to_string(lane) +
+                     " at s = " + format_double(s));
+  }
+  return *center;
+}
+
+bool lane_runs_backward(const xodr::Map& map, uint32_t road, double s, int lane) {
+  const auto section = static_cast<uint32_t>(map.section_index(road, s));
+  const auto node = map.lane_graph().find(xodr::LaneRef{road, section, lane});
+  return node && map.lane_graph().info(*node).direction == xodr::TravelDirection::kBackward;
+}
+
+void orient_on_road(xodr::WorldPose& pose, const std::optional<xosc::Orientation>& orientation,
+                    bool backward) {
+  if (!orientation) {
+    if (backward) {
+      pose.h = wrap_angle(pose.h + std::numbers::pi);
+      pose.p = -pose.p;
+      pose.r = -pose.r;
+    }
+    return;
+  }
+  if (orientation->type == xosc::ReferenceContext::kRelative) {
+    pose.h = wrap_angle(pose.h + orientation->h.value_or(0.0));
+    pose.p += orientation->p.value_or(0.0);
+    pose.r += orientation->r.value_or(0.0);
+  } else {
+    pose.h = orientation->h.value_or(0.0);
+    pose.p = orientation->p.value_or(0.0);
+    pose.r = orientation->r.value_or(0.0);
+  }
+}
+
+ResolvedPosition on_road(const xodr::Map& map, uint32_t road, double s, double t,
+                         std::optional<int> lane,
+                         const std::optional<xosc::Orientation>& orientation) {
+  ResolvedPosition out;
+  out.pose = map.world_pose(road, s, t);
+  if (!lane) {
+    lane = map.lane_at(road, s, t);
+  }
+  orient_on_road(out.pose, orientation, lane && lane_runs_backward(map, road, s, *lane));
+  out.road = RoadPoint{road, s, t, lane};
+  return out;
+}
+
+}  // namespace corsa::engine::detail

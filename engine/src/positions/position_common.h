@@ -1,0 +1,39 @@
+#pragma once
+
+// Helpers shared by the position kinds (position_resolver.cpp, route_path.cpp,
+// trajectory_path.cpp): lookups that fail with a located error, and the orientation rules.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/entity.h"
+#include "corsa/xodr/map.h"
+#include "corsa/xosc/positions.h"
+#include "positions/position_resolver.h"
+
+namespace corsa::engine::detail {
+
+struct SimState;
+
+[[noreturn]] void fail(const xosc::Source& source, const std::string& message);
+const xodr::Map& need_map(const SimState& state, const xosc::Source& source, const char* kind);
+/// The named entity; it must exist and have a position already.
+const Entity& need_entity(const SimState& state, const std::string& name,
+                          const xosc::Source& source);
+uint32_t need_road(const xodr::Map& map, const std::string& id, const xosc::Source& source);
+void check_s(const xodr::Map& map, uint32_t road, double s, const xosc::Source& source);
+int parse_lane_id(const std::string& text, const xosc::Source& source);
+double need_lane_center(const xodr::Map& map, uint32_t road, double s, int lane,
+                        const xosc::Source& source);
+bool lane_runs_backward(const xodr::Map& map, uint32_t road, double s, int lane);
+/// Orientation of a road-based position: given (type relative: to the road's +s frame;
+/// otherwise absolute), or by default aligned with the lane's direction of travel.
+void orient_on_road(xodr::WorldPose& pose, const std::optional<xosc::Orientation>& orientation,
+                    bool backward);
+/// A position on a road at (s, t), oriented by orient_on_road.
+ResolvedPosition on_road(const xodr::Map& map, uint32_t road, double s, double t,
+                         std::optional<int> lane,
+                         const std::optional<xosc::Orientation>& orientation);
+
+}  // namespace corsa::engine::detail

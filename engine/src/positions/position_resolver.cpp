@@ -1,0 +1,244 @@
+#include "positions/position_resolver.h"
+
+#include <cmath>
+#include <numbers>
+#include <type_traits>
+
+#include "core/sim_state.h"
+#include "corsa/core/strings.h"
+#include "corsa/xodr/lane_graph.h"
+#include "motion/lane_follow.h"
+#include "positions/geo_reference.h"
+#include "positions/position_common.h"
+#include "positions/route_path.h"
+#include "positions/trajectory_path.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+// Orientation of a position relative to an entity: by default the entity's own.
+void orient_on_entity(xodr::WorldPose& pose, const Pose& reference,
+                      const std::optional<xosc::Orientation>& orientation) {
+  if (!orientation || orientation->type == xosc::ReferenceContext::kRelative) {
+    const double dh = orientation ? orientation->h.value_or(0.0) : 0.0;
+    const double dp = orientation ? orientation->p.value_or(0.0) : 0.0;
+    const double dr = orientation ? orientation->r.value_or(0.0) : 0.0;
+    pose.h = wrap_angle(reference.h + dh);
+    pose.p = reference.p + dp;
+    pose.r = reference.r + dr;
+  } else {
+    pose.h = orientation->h.value_or(0.0);
+    pose.p = orientation->p.value_or(0.0);
+    pose.r = orientation->r.value_or(0.0);
+  }
+}
+
+ResolvedPosition world(const xosc::WorldPosition& p, const SimState& state) {
+  ResolvedPosition out;
+  out.pose = {p.x, p.y, p.z.value_or(0.0), p.h.value_or(0.0), p.p.value_or(0.0), p.r.value_or(0.0)};
+  if (state.map != nullptr) {
+    out.road = locate_point(*state.map, p.x, p.y, 0.0);
+    if (out.road && !p.z) {
+      out.pose.z = state.map->world_pose(out.road->road, out.road->s, out.road->t).z;
+    }
+  }
+  return out;
+}
+
+ResolvedPosition finish_free(ResolvedPosition out, const SimState& state) {
+  if (state.map != nullptr) {
+    out.road = locate_point(*state.map, out.pose.x, out.pose.y, 0.0);
+  }
+  return out;
+}
+
+ResolvedPosition relative_world(const xosc::RelativeWorldPosition& p, const SimState& state) {
+  const Entity& ref = need_entity(state, p.entity_ref, p.source);
+  ResolvedPosition out;
+  out.pose.x = ref.state.pose.x + p.dx;
+  out.pose.y = ref.state.pose.y + p.dy;
+  out.pose.z = ref.state.pose.z + p.dz.value_or(0.0);
+  orient_on_entity(out.pose, ref.state.pose, p.orientation);
+  return finish_free(out, state);
+}
+
+ResolvedPosition relative_object(const xosc::RelativeObjectPosition& p, const SimState& state) {
+  const Entity& ref = need_entity(state, p.entity_ref, p.source);
+  const double c = std::cos(ref.state.pose.h);
+  const double s = std::sin(ref.state.pose.h);
+  ResolvedPosition out;
+  out.pose.x = ref.state.pose.x + c * p.dx - s * p.dy;
+  out.pose.y = ref.state.pose.y + s * p.dx + c * p.dy;
+  out.pose.z = ref.state.pose.z + p.dz.value_or(0.0);
+  orient_on_entity(out.pose, ref.state.pose, p.orientation);
+  return finish_free(out, state);
+}
+
+ResolvedPosition road(const xosc::RoadPosition& p, const SimState& state) {
+  const xodr::Map& map = need_map(state, p.source, "RoadPosition");
+  const uint32_t road_index = need_road(map, p.road_id, p.source);
+  check_s(map, road_index, p.s, p.source);
+  return on_road(map, road_index, p.s, p.t, std::nullopt, p.orientation);
+}
+
+ResolvedPosition lane(const xosc::LanePosition& p, const SimState& state) {
+  const xodr::Map& map = need_map(state, p.source, "LanePosition");
+  const uint32_t road_index = need_road(map, p.road_id, p.source);
+  check_s(map, road_index, p.s, p.source);
+  const int lane_id = parse_lane_id(p.lane_id, p.source);
+  const double t =
+      need_lane_center(map, road_index, p.s, lane_id, p.source) + p.offset.value_or(0.0);
+  return on_road(map, road_index, p.s, t, lane_id, p.orientation);
+}
+
+// Where the reference entity is on the road (it must be on one).
+const RoadCoordinates& need_road_coordinates(const Entity& ref, const std::string& name,
+                                             const xosc::Source& source) {
+  if (!ref.state.road) {
+    fail(source, "entity '" + name +
+                     "' is not on a road, so a road-relative position cannot "
+                     "refer to it");
+  }
+  return *ref.state.road;
+}
+
+// Walks `ds` metres in road +s direction from (road, lane, s) along the lane graph, so that a
+// relative position may reach past the end of the reference entity's road.
+LaneFollow walk(const xodr::Map& map, const RoadCoordinates& from, double ds,
+                const xosc::Source& source) {
+  LaneFollow follow;
+  if (!attach_to_lane(map, follow, from.road, from.s, from.t, from.lane,
+                      map.reference(from.road, from.s).hdg)) {
+    fail(source, "the reference entity's lane cannot be followed");
+  }
+  const AdvanceResult moved = advance_along_lanes(map, follow, ds, nullptr);
+  if (moved.hit_end) {
+    fail(source, "the position lies beyond the end of the road network (" + format_double(ds) +
+                     " m along the lane of the reference entity)");
+  }
+  return follow;
+}
+
+ResolvedPosition relative_road(const xosc::RelativeRoadPosition& p, const SimState& state) {
+  const xodr::Map& map = need_map(state, p.source, "RelativeRoadPosition");
+  const Entity& ref = need_entity(state, p.entity_ref, p.source);
+  const RoadCoordinates& rc = need_road_coordinates(ref, p.entity_ref, p.source);
+  const LaneFollow at = walk(map, rc, p.ds, p.source);
+  // Keep the reference entity's offset from its lane centre (turned with the road when the walk
+  // crossed onto a road of opposite s direction), then add dt.
+  const double t =
+      lane_center_t(map, at.road, at.s, at.lane).value_or(0.0) + at.dir * at.lateral + p.dt;
+  return on_road(map, at.road, at.s, t, std::nullopt, p.orientation);
+}
+
+ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimState& state) {
+  const xodr::Map& map = need_map(state, p.source, "RelativeLanePosition");
+  const Entity& ref = need_entity(state, p.entity_ref, p.source);
+  const RoadCoordinates& rc = need_road_coordinates(ref, p.entity_ref, p.source);
+  double ds = p.ds.value_or(0.0);
+  if (p.ds_lane) {
+    // dsLane runs along the lane's centre line; on a curve that is longer or shorter than the
+    // reference line by the factor (1 - t kappa).
+    const auto center = lane_center_t(map, rc.road, rc.s, rc.lane).value_or(rc.t);
+    const double kappa = map.reference(rc.road, rc.s).curvature;
+    const double factor = 1.0 - center * kappa;
+    ds = factor > 1e-6 ? *p.ds_lane / factor : *p.ds_lane;
+  }
+  const LaneFollow at = walk(map, rc, ds, p.source);
+  const int lane_id = step_lane_id(at.lane, at.dir * p.d_lane);
+  const double t = need_lane_center(map, at.road, at.s, lane_id, p.source) + p.offset.value_or(0.0);
+  return on_road(map, at.road, at.s, t, lane_id, p.orientation);
+}
+
+ResolvedPosition geo(const xosc::GeoPosition& p, const SimState& state) {
+  const xodr::Map& map = need_map(state, p.source, "GeoPosition");
+  if (!p.latitude_deg || !p.longitude_deg) {
+    fail(p.source, "GeoPosition needs a latitude and a longitude");
+  }
+  const auto xy = geo_to_map(map.data().header, *p.latitude_deg, *p.longitude_deg);
+  if (!xy) {
+    fail(p.source, "the map's geoReference '" + std::string(trim(map.data().header.geo_reference)) +
+                       "' is not a simple transverse Mercator or UTM projection on WGS84/GRS80, "
+                       "which GeoPosition needs");
+  }
+  ResolvedPosition out;
+  out.pose.x = xy->x;
+  out.pose.y = xy->y;
+  out.road = locate_point(map, xy->x, xy->y, 0.0);
+  if (out.road) {
+    const xodr::WorldPose surface = map.world_pose(out.road->road, out.road->s, out.road->t);
+    out.pose.z = surface.z;
+    out.pose.h = surface.h;
+    orient_on_road(
+        out.pose, p.orientation,
+        out.road->lane && lane_runs_backward(map, out.road->road, out.road->s, *out.road->lane));
+  } else if (p.orientation) {
+    out.pose.h = p.orientation->h.value_or(0.0);
+  }
+  if (p.altitude) {
+    out.pose.z = *p.altitude;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<RoadPoint> locate_point(const xodr::Map& map, double x, double y,
+                                      double max_distance) {
+  xodr::LocateOptions options;
+  options.max_distance = max_distance;
+  const auto located = map.locate(x, y, options);
+  if (!located || located->distance > max_distance) {
+    return std::nullopt;
+  }
+  return RoadPoint{located->road, located->s, located->t,
+                   located->distance == 0.0 ? std::optional<int>(located->lane) : std::nullopt};
+}
+
+const std::string* referenced_entity(const xosc::Position& position) {
+  return std::visit(
+      [](const auto& p) -> const std::string* {
+        using T = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<T, xosc::RelativeWorldPosition> ||
+                      std::is_same_v<T, xosc::RelativeObjectPosition> ||
+                      std::is_same_v<T, xosc::RelativeRoadPosition> ||
+                      std::is_same_v<T, xosc::RelativeLanePosition>) {
+          return &p.entity_ref;
+        } else {
+          return nullptr;
+        }
+      },
+      position.kind);
+}
+
+ResolvedPosition resolve_position(const xosc::Position& position, const SimState& state,
+                                  std::optional<uint32_t> self) {
+  return std::visit(
+      [&](const auto& p) -> ResolvedPosition {
+        using T = std::decay_t<decltype(p)>;
+        if constexpr (std::is_same_v<T, xosc::WorldPosition>) {
+          return world(p, state);
+        } else if constexpr (std::is_same_v<T, xosc::RelativeWorldPosition>) {
+          return relative_world(p, state);
+        } else if constexpr (std::is_same_v<T, xosc::RelativeObjectPosition>) {
+          return relative_object(p, state);
+        } else if constexpr (std::is_same_v<T, xosc::RoadPosition>) {
+          return road(p, state);
+        } else if constexpr (std::is_same_v<T, xosc::RelativeRoadPosition>) {
+          return relative_road(p, state);
+        } else if constexpr (std::is_same_v<T, xosc::LanePosition>) {
+          return lane(p, state);
+        } else if constexpr (std::is_same_v<T, xosc::RelativeLanePosition>) {
+          return relative_lane(p, state);
+        } else if constexpr (std::is_same_v<T, xosc::RoutePosition>) {
+          return resolve_route_position(p, state, self);
+        } else if constexpr (std::is_same_v<T, xosc::GeoPosition>) {
+          return geo(p, state);
+        } else {
+          return resolve_trajectory_position(p, state, self);
+        }
+      },
+      position.kind);
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,39 @@
+#pragma once
+
+// A Route (OpenSCENARIO 1.3 §6.6) laid onto the map: consecutive waypoints joined by the
+// shortest lane route (xodr::find_route), giving a path along which RoutePosition's pathS is
+// measured. Issue #6 builds AssignRouteAction on the same path.
+
+#include <optional>
+#include <vector>
+
+#include "corsa/xodr/route.h"
+#include "corsa/xosc/trajectories.h"
+#include "positions/position_resolver.h"
+
+namespace corsa::engine::detail {
+
+struct SimState;
+
+struct RoutePath {
+  std::vector<xodr::RouteStep> steps;
+  double length = 0.0;  ///< m, sum of the steps' |s_to - s_from|
+};
+
+/// Lays `route` onto the map. Throws InputError (located at the route) when a waypoint is not
+/// on a lane or two waypoints are not connected.
+RoutePath build_route_path(const xosc::Route& route, const SimState& state,
+                           std::optional<uint32_t> self);
+
+/// Where pathS lies on the path: road, s and the lane of the step.
+struct RouteLocation {
+  xodr::LaneRef lane;
+  double s = 0.0;
+  int dir = 1;  ///< +1 when the path runs toward +s there
+};
+RouteLocation locate_on_route(const RoutePath& path, double path_s);
+
+ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, const SimState& state,
+                                        std::optional<uint32_t> self);
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,56 @@
+#pragma once
+
+// A Trajectory's shape (OpenSCENARIO 1.3 §6.7: Polyline, Clothoid, ClothoidSpline, Nurbs) as a
+// path parametrised by arc length, for TrajectoryPosition (and FollowTrajectoryAction, issue #6).
+// Polylines and clothoids are evaluated exactly; NURBS curves are sampled densely into a
+// polyline first.
+
+#include <optional>
+#include <vector>
+
+#include "corsa/xosc/trajectories.h"
+#include "positions/position_resolver.h"
+
+namespace corsa::engine::detail {
+
+struct SimState;
+
+struct PathPoint {
+  double x = 0.0;
+  double y = 0.0;
+  double z = 0.0;
+  double h = 0.0;  ///< heading of the path, rad
+};
+
+class TrajectoryPath {
+ public:
+  struct Segment {
+    bool clothoid = false;
+    double s0 = 0.0;                                    ///< path s where the segment starts
+    double length = 0.0;                                ///< m
+    double x = 0.0, y = 0.0, z = 0.0, h = 0.0;          ///< start point and heading
+    double z_end = 0.0;                                 ///< lines: z at the end (linear in between)
+    double curvature_start = 0.0, curvature_end = 0.0;  ///< clothoids, 1/m
+  };
+
+  void add(Segment segment);
+  double length() const { return length_; }
+  bool empty() const { return segments_.empty(); }
+  /// The point at arc length s (clamped to [0, length]).
+  PathPoint at(double s) const;
+
+ private:
+  std::vector<Segment> segments_;
+  double length_ = 0.0;
+};
+
+/// Builds the path of `trajectory`; vertex and control point positions are resolved now.
+/// Throws InputError (located) for degenerate shapes (fewer than two points, a NURBS with a
+/// knot vector of the wrong size).
+TrajectoryPath build_trajectory_path(const xosc::Trajectory& trajectory, const SimState& state,
+                                     std::optional<uint32_t> self);
+
+ResolvedPosition resolve_trajectory_position(const xosc::TrajectoryPosition& position,
+                                             const SimState& state, std::optional<uint32_t> self);
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,64 @@
+#include "corsa/engine/run.h"
+
+#include <chrono>
+
+#include "corsa/engine/outputs.h"
+#include "corsa/xodr/map.h"
+#include "corsa/xosc/scenario.h"
+
+namespace corsa::engine {
+
+std::shared_ptr<const xodr::Map> load_road_network(const xosc::Scenario& scenario,
+                                                   Diagnostics& diagnostics) {
+  const xosc::RoadNetwork& network = scenario.road_network;
+  if (!network.logic_file || network.logic_file_path.empty()) {
+    return nullptr;
+  }
+  if (!std::filesystem::exists(network.logic_file_path)) {
+    throw InputError(network.logic_file->source.error(
+        "road network '" + network.logic_file->filepath + "' not found (looked for " +
+        network.logic_file_path.string() + ")"));
+  }
+  return std::make_shared<const xodr::Map>(xodr::Map::load(network.logic_file_path, diagnostics));
+}
+
+RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
+                       const std::function<void(const Simulation&)>& on_step) {
+  const auto start = std::chrono::steady_clock::now();
+  xosc::LoadOptions load;
+  load.parameters = options.parameters;
+  const xosc::Scenario scenario = xosc::load_scenario(options.scenario, load, diagnostics);
+  Simulation simulation(scenario, load_road_network(scenario, diagnostics), options.simulation,
+                        diagnostics);
+  std::optional<TrajectoryRecorder> recorder;
+  if (options.record) {
+    recorder.emplace(*options.record, options.record_every);
+    simulation.add_observer(*recorder);
+  }
+  while (simulation.step()) {
+    if (on_step) {
+      on_step(simulation);
+    }
+  }
+  if (recorder) {
+    recorder->finish(simulation);
+  }
+  if (options.log) {
+    write_event_log(simulation, *options.log);
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.summary) {
+    write_summary(simulation, *options.summary, wall);
+  }
+  RunReport report;
+  report.end_reason = simulation.end_reason();
+  report.sim_time = simulation.time();
+  report.steps = simulation.tick();
+  report.wall_seconds = wall;
+  report.collisions = simulation.collisions().size();
+  report.entities = simulation.entity_count();
+  return report;
+}
+
+}  // namespace corsa::engine

@@ -1,0 +1,232 @@
+#include "corsa/engine/simulation.h"
+
+#include <cmath>
+
+#include "core/entity_builder.h"
+#include "core/environment_clock.h"
+#include "core/world_update.h"
+#include "corsa/xodr/map.h"
+#include "corsa/xosc/scenario.h"
+#include "simulation_impl.h"
+
+namespace corsa::engine {
+namespace {
+
+void check_options(const SimulationOptions& options) {
+  if (!(options.dt > 0.0) || !std::isfinite(options.dt) || options.dt > 10.0) {
+    throw InputError(Diagnostic{Severity::kError, "", 0, -1, "",
+                                "the step dt must be a positive number of seconds up to 10"});
+  }
+  if (!(options.duration >= 0.0) || !std::isfinite(options.duration)) {
+    throw InputError(Diagnostic{Severity::kError, "", 0, -1, "",
+                                "the duration must be a finite, non-negative number of seconds"});
+  }
+}
+
+}  // namespace
+
+Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xodr::Map> map,
+                       const SimulationOptions& options, Diagnostics& diagnostics)
+    : state(scenario, std::move(map), options, diagnostics) {
+  check_options(options);
+  detail::build_entities(state);
+  for (const xosc::ParameterDeclaration& p : scenario.parameters) {
+    state.parameters.declare(p.name, p.value);
+  }
+  for (const xosc::VariableDeclaration& v : scenario.variables) {
+    state.variables.declare(v.name, v.value);
+  }
+  storyboard = std::make_unique<detail::Storyboard>(state);
+  init.run(state);
+  for (detail::Entity& entity : state.world.entities) {
+    if (!entity.state.placed) {
+      diagnostics.add(entity.object->source.warning(
+          "entity '" + entity.info.name +
+          "' has no position in Init (no TeleportAction); it waits at the origin"));
+    }
+  }
+  detail::update_contacts(state);
+  detail::update_timers(state, false);
+}
+
+void Simulation::Impl::announce(const Simulation& owner) {
+  announced = true;
+  init.run_user_defined(state);
+  for (SimulationObserver* observer : observers) {
+    observer->on_step(owner);
+  }
+}
+
+void Simulation::Impl::advance() {
+  init.step_actions(state);
+  storyboard->step_actions(state);
+  const detail::MotionContext motion{state.map, state.time.dt(), &scratch};
+  for (detail::Entity& entity : state.world.entities) {
+    if (entity.state.placed) {
+      default_controller.step(entity, motion);
+    }
+  }
+  ++state.tick;
+  detail::update_contacts(state);
+  detail::update_timers(state, true);
+  init.settle(state);
+  storyboard->settle(state);
+}
+
+Simulation::Simulation(const xosc::Scenario& scenario, std::shared_ptr<const xodr::Map> map,
+                       const SimulationOptions& options, Diagnostics& diagnostics)
+    : impl_(std::make_unique<Impl>(scenario, std::move(map), options, diagnostics)) {
+  impl_->state.simulation = this;
+}
+
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+Simulation::~Simulation() = default;
+
+bool Simulation::step() {
+  Impl& impl = *impl_;
+  detail::SimState& state = impl.state;
+  state.simulation = this;
+  if (!impl.announced) {
+    impl.announce(*this);
+  }
+  if (impl.end != EndReason::kRunning) {
+    return false;
+  }
+  impl.storyboard->update(state);
+  if (impl.storyboard->stopped()) {
+    impl.end = EndReason::kStopTrigger;
+    return false;
+  }
+  if (impl.storyboard->finished(state)) {
+    impl.end = EndReason::kStoriesComplete;
+    return false;
+  }
+  // The cap in whole ticks (half a step of slack against rounding).
+  if (static_cast<double>(state.tick) * state.time.dt() >=
+      state.options.duration - 0.5 * state.time.dt()) {
+    impl.end = EndReason::kDuration;
+    return false;
+  }
+  impl.advance();
+  for (SimulationObserver* observer : impl.observers) {
+    observer->on_step(*this);
+  }
+  return true;
+}
+
+void Simulation::run() {
+  while (step()) {
+  }
+}
+
+bool Simulation::ended() const { return impl_->end != EndReason::kRunning; }
+EndReason Simulation::end_reason() const { return impl_->end; }
+int64_t Simulation::tick() const { return impl_->state.tick; }
+double Simulation::time() const { return impl_->state.now(); }
+double Simulation::dt() const { return impl_->state.time.dt(); }
+double Simulation::time_of(int64_t tick) const { return impl_->state.time.time(tick); }
+const SimulationOptions& Simulation::options() const { return impl_->state.options; }
+
+size_t Simulation::entity_count() const { return impl_->state.world.entities.size(); }
+const EntityInfo& Simulation::entity(size_t index) const {
+  return impl_->state.world.entities[index].info;
+}
+const EntityState& Simulation::state(size_t index) const {
+  return impl_->state.world.entities[index].state;
+}
+std::optional<size_t> Simulation::find_entity(std::string_view name) const {
+  const auto index = impl_->state.world.find(name);
+  return index ? std::optional<size_t>(*index) : std::nullopt;
+}
+
+const std::string& Simulation::road_id(uint32_t road) const {
+  static const std::string kNone;
+  const xodr::Map* map = impl_->state.map;
+  return map != nullptr && road < map->road_count() ? map->road(road).id : kNone;
+}
+
+std::span<const TransitionRecord> Simulation::transitions() const {
+  return impl_->state.elements.log();
+}
+
+std::optional<ElementState> Simulation::element_state(std::string_view path) const {
+  const auto index = impl_->state.elements.find(path);
+  return index ? std::optional<ElementState>(impl_->state.elements[*index].state) : std::nullopt;
+}
+
+std::span<const CollisionRecord> Simulation::collisions() const { return impl_->state.collisions; }
+
+bool Simulation::colliding(size_t a, size_t b) const {
+  const auto& contacts = impl_->state.contacts;
+  return a != b && a < contacts.n && b < contacts.n && contacts.get(a, b);
+}
+
+std::optional<xosc::Value> Simulation::parameter(std::string_view name) const {
+  const xosc::Value* value = impl_->state.parameters.find(name);
+  return value ? std::optional<xosc::Value>(*value) : std::nullopt;
+}
+
+std::optional<xosc::Value> Simulation::variable(std::string_view name) const {
+  const xosc::Value* value = impl_->state.variables.find(name);
+  return value ? std::optional<xosc::Value>(*value) : std::nullopt;
+}
+
+const EnvironmentState& Simulation::environment() const { return impl_->state.environment; }
+
+void Simulation::fill_snapshot(WorldSnapshot& out) const {
+  const detail::SimState& state = impl_->state;
+  out.tick = state.tick;
+  out.time = state.now();
+  out.environment = state.environment;
+  const detail::DateTime now = detail::current_date_time(state);
+  out.environment.year = now.year;
+  out.environment.month = now.month;
+  out.environment.day = now.day;
+  out.environment.time_of_day = now.seconds_of_day;
+  out.entities.resize(state.world.entities.size());
+  for (size_t i = 0; i < state.world.entities.size(); ++i) {
+    const detail::Entity& entity = state.world.entities[i];
+    EntitySnapshot& snap = out.entities[i];
+    snap.instance_id = static_cast<uint32_t>(i + 1);
+    snap.name = entity.info.name;
+    snap.category = entity.info.category;
+    snap.model3d = entity.info.model3d;
+    snap.pose = entity.state.pose;
+    snap.box = entity.info.box;
+    snap.speed = entity.state.speed;
+    const double c = std::cos(entity.state.pose.h), s = std::sin(entity.state.pose.h);
+    snap.vx = entity.state.speed * c - entity.state.lateral_speed * s;
+    snap.vy = entity.state.speed * s + entity.state.lateral_speed * c;
+    snap.vz = 0.0;
+    snap.yaw_rate = entity.state.yaw_rate;
+    snap.visible = entity.state.visible && entity.state.placed;
+  }
+}
+
+void Simulation::add_observer(SimulationObserver& observer) {
+  impl_->observers.push_back(&observer);
+}
+
+void Simulation::set_custom_command_handler(std::string type, CustomCommandHandler handler) {
+  impl_->state.custom_handlers[std::move(type)] = std::move(handler);
+}
+
+const xosc::Scenario& Simulation::scenario() const { return impl_->state.scenario; }
+const xodr::Map* Simulation::map() const { return impl_->state.map; }
+
+std::string_view to_string(EndReason reason) {
+  switch (reason) {
+    case EndReason::kRunning:
+      return "running";
+    case EndReason::kStopTrigger:
+      return "stop trigger";
+    case EndReason::kDuration:
+      return "duration";
+    case EndReason::kStoriesComplete:
+      return "stories complete";
+  }
+  return "running";
+}
+
+}  // namespace corsa::engine

@@ -1,0 +1,58 @@
+#include "storyboard/action_runner.h"
+
+#include "core/sim_state.h"
+
+namespace corsa::engine::detail {
+
+void start_instance(SimState& state, RunningInstance& running, bool init) {
+  ActionContext context{state, running.actor, init};
+  const uint8_t domains = running.action->domains();
+  if (running.actor && domains != kDomainNone) {
+    Entity& entity = state.world.entities[*running.actor];
+    for (int slot = 0; slot < kDomainSlots; ++slot) {
+      if ((domains & (1u << slot)) == 0) {
+        continue;
+      }
+      ActionInstance* previous = entity.owners[slot];
+      if (previous != nullptr && previous != running.action.get()) {
+        // Overridden: the previous action stops and loses every domain it held on this entity.
+        if (!previous->done()) {
+          previous->mark_stopped();
+        }
+        for (auto& owner : entity.owners) {
+          if (owner == previous) {
+            owner = nullptr;
+          }
+        }
+      }
+      entity.owners[slot] = running.action.get();
+    }
+  }
+  running.action->start(context);
+}
+
+void step_instance(SimState& state, RunningInstance& running) {
+  if (running.action->done()) {
+    return;
+  }
+  ActionContext context{state, running.actor, false};
+  running.action->step(context);
+}
+
+void release_instance(SimState& state, RunningInstance& running) {
+  if (!running.actor) {
+    return;
+  }
+  for (auto& owner : state.world.entities[*running.actor].owners) {
+    if (owner == running.action.get()) {
+      owner = nullptr;
+    }
+  }
+}
+
+void stop_instance(SimState& state, RunningInstance& running) {
+  running.action->mark_stopped();
+  release_instance(state, running);
+}
+
+}  // namespace corsa::engine::detail

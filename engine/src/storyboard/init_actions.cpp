@@ -1,0 +1,109 @@
+#include "storyboard/init_actions.h"
+
+#include "actions/action_factory.h"
+#include "core/sim_state.h"
+#include "corsa/xosc/scenario.h"
+#include "positions/position_resolver.h"
+#include "storyboard/entity_refs.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+struct Placement {
+  uint32_t entity = 0;
+  const xosc::PrivateAction* action = nullptr;
+  const xosc::TeleportAction* teleport = nullptr;
+};
+
+}  // namespace
+
+void InitActions::place_entities(SimState& state) {
+  std::vector<Placement> pending;
+  for (const xosc::InitPrivate& init : state.scenario.storyboard.init.privates) {
+    for (const uint32_t entity : expand_entity_refs({init.entity_ref}, state, init.source)) {
+      for (const xosc::PrivateAction& action : init.actions) {
+        if (const auto* teleport = std::get_if<xosc::TeleportAction>(&action)) {
+          pending.push_back({entity, &action, teleport});
+        }
+      }
+    }
+  }
+  // Relative placements wait for their reference; each pass places what it can.
+  while (!pending.empty()) {
+    std::vector<Placement> waiting;
+    for (const Placement& placement : pending) {
+      const std::string* reference = referenced_entity(placement.teleport->position);
+      const auto index = reference ? state.world.find(*reference) : std::nullopt;
+      if (index && *index != placement.entity && !state.world.entities[*index].state.placed) {
+        waiting.push_back(placement);
+        continue;
+      }
+      RunningInstance instance{make_private_action(*placement.action), placement.entity};
+      start_instance(state, instance, true);
+    }
+    if (waiting.size() == pending.size()) {
+      const Placement& first = waiting.front();
+      const std::string& reference = *referenced_entity(first.teleport->position);
+      throw InputError(first.teleport->position.source.error(
+          "entity '" + state.world.entities[first.entity].info.name + "' is placed relative to '" +
+          reference +
+          "', which has no initial position (or the placements refer to each "
+          "other)"));
+    }
+    pending = std::move(waiting);
+  }
+}
+
+void InitActions::launch(SimState& state, RunningInstance instance) {
+  start_instance(state, instance, true);
+  if (!instance.action->done()) {
+    running_.push_back(std::move(instance));
+  } else {
+    release_instance(state, instance);
+  }
+}
+
+void InitActions::run(SimState& state) {
+  const xosc::Init& init = state.scenario.storyboard.init;
+  for (const xosc::GlobalAction& action : init.global_actions) {
+    launch(state, {make_global_action(action), std::nullopt});
+  }
+  place_entities(state);
+  for (const xosc::InitPrivate& private_init : init.privates) {
+    for (const uint32_t entity :
+         expand_entity_refs({private_init.entity_ref}, state, private_init.source)) {
+      for (const xosc::PrivateAction& action : private_init.actions) {
+        if (!std::holds_alternative<xosc::TeleportAction>(action)) {
+          launch(state, {make_private_action(action), entity});
+        }
+      }
+    }
+  }
+}
+
+void InitActions::run_user_defined(SimState& state) {
+  for (const xosc::UserDefinedAction& action :
+       state.scenario.storyboard.init.user_defined_actions) {
+    launch(state, {make_user_defined_action(action), std::nullopt});
+  }
+}
+
+void InitActions::step_actions(SimState& state) {
+  for (RunningInstance& instance : running_) {
+    step_instance(state, instance);
+  }
+}
+
+void InitActions::settle(SimState& state) {
+  std::vector<RunningInstance> still;
+  for (RunningInstance& instance : running_) {
+    if (instance.action->done()) {
+      release_instance(state, instance);
+    } else {
+      still.push_back(std::move(instance));
+    }
+  }
+  running_ = std::move(still);
+}
+
+}  // namespace corsa::engine::detail

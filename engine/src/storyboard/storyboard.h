@@ -1,0 +1,90 @@
+#pragma once
+
+// The storyboard at run time (OpenSCENARIO 1.3 §8.4, "Storyboard element execution"): a tree
+// that mirrors the document (Story > Act > ManeuverGroup > Maneuver > Event > Action), each node
+// in standbyState, runningState or completeState, moved by start, end, stop and skip
+// transitions:
+//   - Stories start with the storyboard; an Act starts when its start trigger fires (at once
+//     without one) and is stopped by its stop trigger; ManeuverGroups and Maneuvers start with
+//     their parent; Events wait in standby for their start trigger (none: at once).
+//   - Event priorities (§8.4.2.2): override stops the running events of the same maneuver,
+//     parallel starts regardless, skip does not start while another event of the maneuver runs
+//     (a skipTransition that counts as an execution).
+//   - maximumExecutionCount (§8.4.2.1): an Event or ManeuverGroup that ends with executions left
+//     goes back to standby and may run again (a ManeuverGroup restarts at the next step).
+//   - Elements end when all their children are complete; a stop ends the whole subtree.
+//   - The Storyboard's stop trigger stops everything and ends the run.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "corsa/xosc/storyboard.h"
+#include "storyboard/action_runner.h"
+#include "storyboard/trigger.h"
+
+namespace corsa::engine::detail {
+
+struct SimState;
+
+class Storyboard {
+ public:
+  /// Registers every element in state.elements (document order, the Storyboard itself first)
+  /// and compiles the triggers. Throws InputError for unresolvable references.
+  explicit Storyboard(SimState& state);
+  ~Storyboard();
+  Storyboard(const Storyboard&) = delete;
+  Storyboard& operator=(const Storyboard&) = delete;
+
+  /// Evaluates the triggers at the current tick and makes the transitions they cause.
+  void update(SimState& state);
+  /// Steps every running action (before the controllers move the entities).
+  void step_actions(SimState& state);
+  /// Completes the actions that reached their goal during the last step, and what ends with
+  /// them (called after the tick advanced).
+  void settle(SimState& state);
+
+  /// The stop trigger fired.
+  bool stopped() const { return stopped_; }
+  /// Every story is complete and the storyboard has no stop trigger to wait for.
+  bool finished(const SimState& state) const;
+  bool has_stop_trigger() const { return stop_trigger_.has_value(); }
+
+  struct StoryNode;
+  struct ActNode;
+  struct GroupNode;
+  struct ManeuverNode;
+  struct EventNode;
+  struct ActionNode;
+
+ private:
+  void start(SimState& state);
+  void update_act(SimState& state, ActNode& act);
+  void update_group(SimState& state, GroupNode& group);
+  void update_event(SimState& state, ManeuverNode& maneuver, EventNode& event);
+  void start_act(SimState& state, ActNode& act);
+  void start_group(SimState& state, GroupNode& group);
+  void start_event(SimState& state, EventNode& event, const std::vector<uint32_t>& triggering);
+  void stop_event(SimState& state, EventNode& event);
+  /// `propagate`: let the story end when this was its last act (not while stopping all).
+  void stop_act(SimState& state, ActNode& act, bool propagate);
+  void stop_all(SimState& state);
+  /// Completes `action` when all its instances are done, then checks its ancestors.
+  void settle_action(SimState& state, ActionNode& action);
+  void check_event(SimState& state, EventNode& event);
+  void check_maneuver(SimState& state, ManeuverNode& maneuver);
+  void check_group(SimState& state, GroupNode& group);
+  void check_act(SimState& state, ActNode& act);
+  void check_story(SimState& state, StoryNode& story);
+  void move(SimState& state, uint32_t element, TransitionKind transition, ElementState to);
+
+  uint32_t root_ = 0;
+  std::vector<std::unique_ptr<StoryNode>> stories_;
+  std::optional<Trigger> stop_trigger_;
+  std::vector<ActionNode*> running_;  ///< running action elements, in start order
+  bool started_ = false;
+  bool stopped_ = false;
+};
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,58 @@
+#pragma once
+
+// The nodes of the run-time storyboard tree (storyboard.h). Built once; the vectors never grow
+// afterwards, so parent pointers stay valid.
+
+#include <optional>
+#include <vector>
+
+#include "storyboard/storyboard.h"
+
+namespace corsa::engine::detail {
+
+struct Storyboard::ActionNode {
+  uint32_t element = 0;
+  const xosc::Action* def = nullptr;
+  EventNode* event = nullptr;
+  std::vector<RunningInstance> instances;  ///< while running: one per actor
+  bool running = false;
+};
+
+struct Storyboard::EventNode {
+  uint32_t element = 0;
+  const xosc::Event* def = nullptr;
+  ManeuverNode* maneuver = nullptr;
+  std::optional<Trigger> start_trigger;
+  std::vector<ActionNode> actions;
+};
+
+struct Storyboard::ManeuverNode {
+  uint32_t element = 0;
+  GroupNode* group = nullptr;
+  std::vector<EventNode> events;
+};
+
+struct Storyboard::GroupNode {
+  uint32_t element = 0;
+  const xosc::ManeuverGroup* def = nullptr;
+  ActNode* act = nullptr;
+  std::vector<uint32_t> actors;  ///< Actors/EntityRef, selections expanded
+  std::vector<ManeuverNode> maneuvers;
+};
+
+struct Storyboard::ActNode {
+  uint32_t element = 0;
+  const xosc::Act* def = nullptr;
+  StoryNode* story = nullptr;
+  std::optional<Trigger> start_trigger;
+  std::optional<Trigger> stop_trigger;
+  std::vector<uint32_t> triggering;  ///< entities that fired the start trigger
+  std::vector<GroupNode> groups;
+};
+
+struct Storyboard::StoryNode {
+  uint32_t element = 0;
+  std::vector<ActNode> acts;
+};
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,114 @@
+#include "storyboard/trigger.h"
+
+#include <algorithm>
+
+#include "core/sim_state.h"
+#include "storyboard/entity_refs.h"
+
+namespace corsa::engine::detail {
+
+CompiledCondition::CompiledCondition(const xosc::Condition& condition, const SimState& state)
+    : condition_(condition), delay_ticks_(state.time.ticks(condition.delay)) {
+  if (condition.delay < 0.0) {
+    throw InputError(
+        condition.source.error("condition '" + condition.name + "' has a negative delay"));
+  }
+  if (const auto* by_entity = std::get_if<xosc::ByEntityCondition>(&condition.kind)) {
+    candidates_ = expand_entity_refs(by_entity->triggering_entities.entity_refs, state,
+                                     by_entity->triggering_entities.source);
+    all_ = by_entity->triggering_entities.rule == xosc::TriggeringEntitiesRule::kAll;
+    entity_ = make_entity_condition(by_entity->condition, state);
+  } else {
+    value_ = make_value_condition(std::get<xosc::ByValueCondition>(condition.kind), state);
+  }
+}
+
+bool CompiledCondition::raw(const SimState& state, std::vector<uint32_t>& holders) {
+  if (value_) {
+    return value_->holds(state);
+  }
+  for (const uint32_t entity : candidates_) {
+    if (entity_->holds(state, entity)) {
+      holders.push_back(entity);
+    } else if (all_) {
+      holders.clear();
+      return false;
+    }
+  }
+  return all_ ? !candidates_.empty() : !holders.empty();
+}
+
+bool CompiledCondition::evaluate(const SimState& state, std::vector<uint32_t>& triggering) {
+  std::vector<uint32_t> holders;
+  const bool now = raw(state, holders);
+  bool edged = false;
+  switch (condition_.edge) {
+    case xosc::ConditionEdge::kNone:
+      edged = now;
+      break;
+    case xosc::ConditionEdge::kRising:
+      edged = evaluated_ && now && !last_;
+      break;
+    case xosc::ConditionEdge::kFalling:
+      edged = evaluated_ && !now && last_;
+      break;
+    case xosc::ConditionEdge::kRisingOrFalling:
+      edged = evaluated_ && now != last_;
+      break;
+  }
+  evaluated_ = true;
+  last_ = now;
+  if (delay_ticks_ == 0) {
+    if (edged) {
+      triggering.insert(triggering.end(), holders.begin(), holders.end());
+    }
+    return edged;
+  }
+  if (edged) {
+    pending_.push_back({state.tick, std::move(holders)});
+  }
+  // The value of tick - delay: values older than that are dropped (they were due while the
+  // trigger was not being checked).
+  const int64_t due = state.tick - delay_ticks_;
+  while (!pending_.empty() && pending_.front().tick < due) {
+    pending_.pop_front();
+  }
+  if (!pending_.empty() && pending_.front().tick == due) {
+    triggering.insert(triggering.end(), pending_.front().entities.begin(),
+                      pending_.front().entities.end());
+    pending_.pop_front();
+    return true;
+  }
+  return false;
+}
+
+Trigger::Trigger(const xosc::Trigger& trigger, const SimState& state) {
+  for (const xosc::ConditionGroup& group : trigger.groups) {
+    std::vector<CompiledCondition> conditions;
+    conditions.reserve(group.conditions.size());
+    for (const xosc::Condition& condition : group.conditions) {
+      conditions.emplace_back(condition, state);
+    }
+    groups_.push_back(std::move(conditions));
+  }
+}
+
+bool Trigger::evaluate(const SimState& state, std::vector<uint32_t>& triggering) {
+  bool fires = false;
+  for (auto& group : groups_) {
+    std::vector<uint32_t> group_entities;
+    bool all = !group.empty();
+    for (auto& condition : group) {
+      all = condition.evaluate(state, group_entities) && all;
+    }
+    if (all) {
+      fires = true;
+      triggering.insert(triggering.end(), group_entities.begin(), group_entities.end());
+    }
+  }
+  std::sort(triggering.begin(), triggering.end());
+  triggering.erase(std::unique(triggering.begin(), triggering.end()), triggering.end());
+  return fires;
+}
+
+}  // namespace corsa::engine::detail
