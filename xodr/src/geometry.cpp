@@ -6,10 +6,14 @@
 #include <cmath>
 #include <type_traits>
 
+#include "geometry_local.h"
+
 namespace corsa::xodr {
 
-RefPoint evaluate_geometry(const Geometry& geometry, double ds) {
-  const RefPoint local = std::visit(
+namespace detail {
+
+RefPoint evaluate_local(const Geometry& geometry, double ds) {
+  return std::visit(
       [&](const auto& shape) -> RefPoint {
         using T = std::decay_t<decltype(shape)>;
         if constexpr (std::is_same_v<T, LineGeometry>) {
@@ -25,11 +29,34 @@ RefPoint evaluate_geometry(const Geometry& geometry, double ds) {
         }
       },
       geometry.shape);
-  const double cos_h = std::cos(geometry.hdg);
-  const double sin_h = std::sin(geometry.hdg);
-  return RefPoint{geometry.x + cos_h * local.x - sin_h * local.y,
-                  geometry.y + sin_h * local.x + cos_h * local.y, geometry.hdg + local.hdg,
-                  local.curvature};
+}
+
+LocalFrame evaluate_local_frame(const Geometry& geometry, double ds) {
+  if (std::holds_alternative<LineGeometry>(geometry.shape)) {
+    return LocalFrame{evaluate_line(ds), 1.0, 0.0};
+  }
+  if (const auto* arc = std::get_if<ArcGeometry>(&geometry.shape)) {
+    const double k = arc->curvature;
+    if (k == 0.0) {
+      return LocalFrame{evaluate_line(ds), 1.0, 0.0};
+    }
+    const double half = 0.5 * k * ds;
+    const double sin_half = std::sin(half);
+    const double cos_half = std::cos(half);
+    const double sin_full = 2.0 * sin_half * cos_half;
+    const double cos_full = 1.0 - 2.0 * sin_half * sin_half;
+    return LocalFrame{RefPoint{sin_full / k, 2.0 * sin_half * sin_half / k, k * ds, k}, cos_full,
+                      sin_full};
+  }
+  const RefPoint local = evaluate_local(geometry, ds);
+  return LocalFrame{local, std::cos(local.hdg), std::sin(local.hdg)};
+}
+
+}  // namespace detail
+
+RefPoint evaluate_geometry(const Geometry& geometry, double ds) {
+  const RefPoint local = detail::evaluate_local(geometry, ds);
+  return detail::to_world(geometry, std::cos(geometry.hdg), std::sin(geometry.hdg), local);
 }
 
 const char* geometry_kind_name(const GeometryShape& shape) {

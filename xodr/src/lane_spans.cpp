@@ -53,4 +53,34 @@ size_t compute_spans(const LaneSection& section, double s, double offset, LaneSp
   return count;
 }
 
+bool find_lane_at(const LaneSection& section, double s, double offset, double t, LaneSpan& out) {
+  const double ds = s - section.s;
+  const size_t n = section.lanes.size();
+  const size_t center = center_index(section);
+  const bool has_center = center < n && section.lanes[center].id == 0;
+  double inner = offset;
+  if (t >= offset) {
+    for (size_t i = center; i-- > 0;) {
+      const Lane& lane = section.lanes[i];
+      const double outer = outer_border(lane, ds, inner, 1.0);
+      if (outer > inner && t <= outer) {
+        out = LaneSpan{lane.id, inner, outer};
+        return true;
+      }
+      inner = std::max(inner, outer);
+    }
+    return false;
+  }
+  for (size_t i = center + (has_center ? 1 : 0); i < n; ++i) {
+    const Lane& lane = section.lanes[i];
+    const double outer = outer_border(lane, ds, inner, -1.0);
+    if (outer < inner && t >= outer) {
+      out = LaneSpan{lane.id, inner, outer};
+      return true;
+    }
+    inner = std::min(inner, outer);
+  }
+  return false;
+}
+
 }  // namespace corsa::xodr::detail

@@ -43,27 +43,29 @@ struct Foot {
 
 Foot project(const Map& map, const Chunk& chunk, double x, double y) {
   const auto foot_at = [&](double s) {
+    const RefFrame frame = MapAccess::reference_frame(map, chunk.road, s);
     Foot foot;
     foot.s = s;
-    foot.ref = map.reference(chunk.road, s);
-    const double c = std::cos(foot.ref.hdg);
-    const double sn = std::sin(foot.ref.hdg);
+    foot.ref = frame.point;
     const double dx = x - foot.ref.x;
     const double dy = y - foot.ref.y;
-    foot.along = dx * c + dy * sn;
-    foot.lateral = dy * c - dx * sn;
+    foot.along = dx * frame.tx + dy * frame.ty;
+    foot.lateral = dy * frame.tx - dx * frame.ty;
     return foot;
   };
-  const double a = (x - chunk.ox) * chunk.ux + (y - chunk.oy) * chunk.uy;
-  const double chord = chunk.a1 - chunk.a0;
-  double s = chunk.s0;
-  if (chord > 0.0) {
-    s += std::clamp((a - chunk.a0) / chord, 0.0, 1.0) * (chunk.s1 - chunk.s0);
-  }
+  // First guess: one Newton step from the chunk start, from the cached tangent and curvature
+  // there (exact on lines, so a line needs a single evaluation to confirm it).
+  const double along0 = (x - chunk.x0) * chunk.tx0 + (y - chunk.y0) * chunk.ty0;
+  const double lateral0 = (y - chunk.y0) * chunk.tx0 - (x - chunk.x0) * chunk.ty0;
+  const double s =
+      std::clamp(chunk.s0 + along0 / std::max(0.1, 1.0 - chunk.k0 * lateral0), chunk.s0, chunk.s1);
   Foot foot = foot_at(s);
   Foot previous;
   bool have_previous = false;
   for (int iteration = 0; iteration < 16; ++iteration) {
+    if (std::abs(foot.along) < 1e-9) {
+      break;
+    }
     double next;
     const double df = have_previous ? foot.along - previous.along : 0.0;
     if (have_previous && df != 0.0) {
@@ -82,46 +84,10 @@ Foot project(const Map& map, const Chunk& chunk, double x, double y) {
   return foot;
 }
 
-void evaluate_chunk(const Map& map, const Chunk& chunk, double x, double y,
-                    const LocateOptions& options, Candidate& best, bool& have) {
-  const Foot foot = project(map, chunk, x, y);
-  const Road& road = map.road(chunk.road);
-  const LaneSection& section = road.lane_sections[chunk.section];
-  const double roll = road.superelevation.empty() ? 0.0 : map.superelevation(chunk.road, foot.s);
-  const double cos_r = roll == 0.0 ? 1.0 : std::cos(roll);
-  const double t = foot.lateral / cos_r;
-  LaneSpan spans[kMaxLanesPerSection];
-  const size_t n = compute_spans(
-      section, foot.s, section_lane_offset(map, chunk.road, chunk.section, foot.s), spans);
-  const size_t center = center_index(section);
-  const bool has_center = center < section.lanes.size() && section.lanes[center].id == 0;
-  int lane = 0;
-  double gap = 0.0;
-  double center_offset = 0.0;
-  bool found = false;
-  for (size_t i = 0; i < n; ++i) {
-    const LaneSpan& span = spans[i];
-    const size_t lane_index = i < center ? i : i + (has_center ? 1 : 0);
-    if (span.width() <= 0.0 ||
-        (options.drivable_only && !is_drivable(section.lanes[lane_index].type))) {
-      continue;
-    }
-    const double g = t < span.t_min()   ? span.t_min() - t
-                     : t > span.t_max() ? t - span.t_max()
-                                        : 0.0;
-    const double offset = std::abs(t - span.t_center());
-    // Nearest lane; on a shared border the inner lane (smaller |id|) wins.
-    if (!found || g < gap ||
-        (g == gap && (g > 0.0 ? offset < center_offset : std::abs(span.id) < std::abs(lane)))) {
-      lane = span.id;
-      gap = g;
-      center_offset = offset;
-      found = true;
-    }
-  }
-  if (!found) {
-    return;
-  }
+/// Ranks one candidate answer against the best so far.
+void record(const Chunk& chunk, const Foot& foot, double t, int lane, double gap,
+            double center_offset, double cos_r, const LocateOptions& options, Candidate& best,
+            bool& have) {
   Candidate candidate;
   candidate.position.road = chunk.road;
   candidate.position.section = chunk.section;
@@ -141,6 +107,56 @@ void evaluate_chunk(const Map& map, const Chunk& chunk, double x, double y,
   }
 }
 
+void evaluate_chunk(const Map& map, const Chunk& chunk, double x, double y,
+                    const LocateOptions& options, Candidate& best, bool& have) {
+  const Foot foot = project(map, chunk, x, y);
+  const Road& road = map.road(chunk.road);
+  const LaneSection& section = road.lane_sections[chunk.section];
+  const double roll = road.superelevation.empty() ? 0.0 : map.superelevation(chunk.road, foot.s);
+  const double cos_r = roll == 0.0 ? 1.0 : std::cos(roll);
+  const double t = foot.lateral / cos_r;
+  const double offset = section_lane_offset(map, chunk.road, chunk.section, foot.s);
+  LaneSpan hit;
+  if (!options.drivable_only && find_lane_at(section, foot.s, offset, t, hit)) {
+    // Fast path: the point is on a lane (the common case).
+    record(chunk, foot, t, hit.id, 0.0, std::abs(t - hit.t_center()), 1.0, options, best, have);
+    return;
+  }
+  LaneSpan spans[kMaxLanesPerSection];
+  const size_t n = compute_spans(section, foot.s, offset, spans);
+  const size_t center = center_index(section);
+  const bool has_center = center < section.lanes.size() && section.lanes[center].id == 0;
+  int lane = 0;
+  double gap = 0.0;
+  double center_offset = 0.0;
+  bool found = false;
+  for (size_t i = 0; i < n; ++i) {
+    const LaneSpan& span = spans[i];
+    const size_t lane_index = i < center ? i : i + (has_center ? 1 : 0);
+    if (span.width() <= 0.0 ||
+        (options.drivable_only && !is_drivable(section.lanes[lane_index].type))) {
+      continue;
+    }
+    const double g = t < span.t_min()   ? span.t_min() - t
+                     : t > span.t_max() ? t - span.t_max()
+                                        : 0.0;
+    const double from_center = std::abs(t - span.t_center());
+    // Nearest lane; on a shared border the inner lane (smaller |id|) wins.
+    if (!found || g < gap ||
+        (g == gap &&
+         (g > 0.0 ? from_center < center_offset : std::abs(span.id) < std::abs(lane)))) {
+      lane = span.id;
+      gap = g;
+      center_offset = from_center;
+      found = true;
+    }
+  }
+  if (!found) {
+    return;
+  }
+  record(chunk, foot, t, lane, gap, center_offset, cos_r, options, best, have);
+}
+
 }  // namespace
 
 std::optional<LanePosition> SpatialIndex::locate(const Map& map, double x, double y,
@@ -158,7 +174,7 @@ std::optional<LanePosition> SpatialIndex::locate(const Map& map, double x, doubl
         static_cast<size_t>(gy) * static_cast<size_t>(nx_) + static_cast<size_t>(gx);
     for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
       const Chunk& chunk = chunks_[cell_items_[k]];
-      if (chunk.near(x, y, 0.0)) {
+      if (chunk.near(x, y, 0.0) && chunk.spans(x, y)) {
         evaluate_chunk(map, chunk, x, y, options, best, have);
       }
     }

@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "corsa/xodr/parser.h"
+#include "geometry_local.h"
 #include "map_impl.h"
 #include "road_eval.h"
 
@@ -46,6 +47,18 @@ double section_lane_offset(const Map& map, size_t road, size_t section, double s
   return it == records.begin() ? 0.0 : std::prev(it)->value(s);
 }
 
+RefFrame MapAccess::reference_frame(const Map& map, size_t road_index, double s) {
+  const Road& r = map.road(road_index);
+  s = s < 0.0 ? 0.0 : s > r.length ? r.length : s;
+  const size_t g = record_index(r.plan_view, s, [](const Geometry& x) { return x.s; });
+  const Geometry& geometry = r.plan_view[g];
+  const auto& [cos_h, sin_h] = map.impl_->trig[map.impl_->trig_start[road_index] + g];
+  const LocalFrame local = evaluate_local_frame(geometry, s - geometry.s);
+  return RefFrame{to_world(geometry, cos_h, sin_h, local.point),
+                  cos_h * local.cos_h - sin_h * local.sin_h,
+                  sin_h * local.cos_h + cos_h * local.sin_h};
+}
+
 }  // namespace detail
 
 Map::Map(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -58,6 +71,12 @@ Map Map::build(MapData data, corsa::Diagnostics& diagnostics, const BuildOptions
   impl->data = std::move(data);
   detail::sort_map_records(impl->data, diagnostics);
   detail::validate_map(impl->data, impl->ids, diagnostics, options);
+  for (const Road& road : impl->data.roads) {
+    impl->trig_start.push_back(impl->trig.size());
+    for (const Geometry& geometry : road.plan_view) {
+      impl->trig.emplace_back(std::cos(geometry.hdg), std::sin(geometry.hdg));
+    }
+  }
   Map map(std::move(impl));
   map.impl_->graph = detail::build_lane_graph(map, diagnostics);
   map.impl_->index.build(map);
@@ -99,7 +118,8 @@ RefPoint Map::reference(size_t road_index, double s) const {
   s = clamp_s(r, s);
   const size_t g = detail::record_index(r.plan_view, s, [](const Geometry& x) { return x.s; });
   const Geometry& geometry = r.plan_view[g];
-  return evaluate_geometry(geometry, s - geometry.s);
+  const auto& [cos_h, sin_h] = impl_->trig[impl_->trig_start[road_index] + g];
+  return detail::to_world(geometry, cos_h, sin_h, detail::evaluate_local(geometry, s - geometry.s));
 }
 
 double Map::elevation(size_t road_index, double s) const {

@@ -4,6 +4,8 @@
 
 #include <string>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "corsa/xodr/lane_graph.h"
 #include "corsa/xodr/map.h"
@@ -32,6 +34,9 @@ LaneGraph build_lane_graph(const Map& map, corsa::Diagnostics& diagnostics);
 struct Map::Impl {
   MapData data;
   detail::IdIndex ids;
+  /// cos/sin of every planView record's heading: trig[trig_start[road] + record].
+  std::vector<std::pair<double, double>> trig;
+  std::vector<size_t> trig_start;
   LaneGraph graph;
   detail::SpatialIndex index;
 };

@@ -39,6 +39,18 @@ inline double poly_slope(const std::vector<Poly3>& records, double s) {
   return records[record_index(records, s, [](const Poly3& p) { return p.s; })].slope(s);
 }
 
+/// Reference line point with its unit tangent (tx, ty), from the cached record headings.
+struct RefFrame {
+  RefPoint point;
+  double tx = 1.0;
+  double ty = 0.0;
+};
+
+/// Map internals for corsa_xodr's hot paths.
+struct MapAccess {
+  static RefFrame reference_frame(const Map& map, size_t road, double s);
+};
+
 /// laneOffset for the lanes of section `section` at s. Inside the section this is laneOffset(s);
 /// at the section's end it is the limit from the left: files (CARLA) often start a new laneOffset
 /// record exactly where the next section starts, and that record belongs to the next section's
@@ -59,6 +71,11 @@ inline double offset_poly_value(const std::vector<Poly3>& records, double ds) {
 /// when the lane has no <width> (widths win when both are present, §9.5.2). A negative width
 /// (rounding at a lane's start or end) counts as 0. Returns the number of spans written.
 size_t compute_spans(const LaneSection& section, double s, double offset, LaneSpan* out);
+
+/// The lane of `section` containing t at s (walking outward from the centre lane on t's side,
+/// so only the lanes up to it are evaluated; a shared border belongs to the inner lane). False
+/// when t is outside every lane of that side.
+bool find_lane_at(const LaneSection& section, double s, double offset, double t, LaneSpan& out);
 
 /// Index of the centre lane in section.lanes (lanes are sorted by descending id).
 size_t center_index(const LaneSection& section);

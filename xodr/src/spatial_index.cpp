@@ -70,6 +70,15 @@ void SpatialIndex::add_section_chunks(const Map& map, uint32_t road, uint32_t se
       max_curvature = std::max(max_curvature, std::abs(refs[i].curvature));
       max_t = std::max({max_t, std::abs(extents[i].t_min), std::abs(extents[i].t_max)});
     }
+    chunk.x0 = refs[0].x;
+    chunk.y0 = refs[0].y;
+    chunk.tx0 = std::cos(refs[0].hdg);
+    chunk.ty0 = std::sin(refs[0].hdg);
+    chunk.k0 = refs[0].curvature;
+    chunk.x1 = refs[kSamples - 1].x;
+    chunk.y1 = refs[kSamples - 1].y;
+    chunk.tx1 = std::cos(refs[kSamples - 1].hdg);
+    chunk.ty1 = std::sin(refs[kSamples - 1].hdg);
     chunk.ox = refs[0].x;
     chunk.oy = refs[0].y;
     const double dx = refs[kSamples - 1].x - refs[0].x;
@@ -162,7 +171,7 @@ void SpatialIndex::build_grid() {
   if (chunks_.empty()) {
     min_x_ = min_y_ = max_x = max_y = 0.0;
   }
-  cell_ = 8.0;
+  cell_ = 4.0;
   while ((max_x - min_x_) / cell_ * ((max_y - min_y_) / cell_) > static_cast<double>(kMaxCells)) {
     cell_ *= 2.0;
   }

@@ -24,6 +24,19 @@ struct Chunk {
   double ox = 0.0, oy = 0.0, ux = 1.0, uy = 0.0;
   double a0 = 0.0, a1 = 0.0, b0 = 0.0, b1 = 0.0;
 
+  // Reference line at both ends: position, unit tangent; curvature at s0. The normals at the
+  // two ends bound the points whose foot point lies in [s0, s1].
+  double x0 = 0.0, y0 = 0.0, tx0 = 1.0, ty0 = 0.0, k0 = 0.0;
+  double x1 = 0.0, y1 = 0.0, tx1 = 1.0, ty1 = 0.0;
+
+  /// Whether (x, y) lies between the normals at s0 and s1 (with a hair of tolerance), i.e. its
+  /// foot point on the reference line is in this chunk.
+  bool spans(double x, double y) const {
+    constexpr double kTolerance = 1e-9;
+    return (x - x0) * tx0 + (y - y0) * ty0 >= -kTolerance &&
+           (x - x1) * tx1 + (y - y1) * ty1 <= kTolerance;
+  }
+
   /// Whether (x, y) is within `r` metres of the rectangle (a square-ish test, enough to prune).
   bool near(double x, double y, double r) const {
     const double dx = x - ox;

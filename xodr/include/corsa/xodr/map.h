@@ -23,6 +23,10 @@
 
 namespace corsa::xodr {
 
+namespace detail {
+struct MapAccess;  // corsa_xodr's own fast paths (spatial index, lane graph)
+}  // namespace detail
+
 /// Position and orientation in map coordinates: metres; heading, pitch, roll in radians.
 /// Pitch follows ISO 8855 / OpenSCENARIO: positive is nose down, so an uphill road has negative
 /// pitch. Roll is the superelevation: positive lowers the right side (-t).
@@ -157,6 +161,7 @@ class Map {
   const LaneGraph& lane_graph() const;
 
  private:
+  friend struct detail::MapAccess;
   struct Impl;
   explicit Map(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
