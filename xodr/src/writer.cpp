@@ -207,20 +207,24 @@ void write_road(XmlWriter& w, const Road& road) {
     write_geometry(w, g);
   }
   w.close();
-  w.open("elevationProfile").children();
-  for (const Poly3& p : road.elevation) {
-    write_poly(w, "elevation", "s", p);
+  if (!road.elevation.empty()) {
+    w.open("elevationProfile").children();
+    for (const Poly3& p : road.elevation) {
+      write_poly(w, "elevation", "s", p);
+    }
+    w.close();
   }
-  w.close();
-  w.open("lateralProfile").children();
-  for (const Poly3& p : road.superelevation) {
-    write_poly(w, "superelevation", "s", p);
+  if (!road.superelevation.empty() || !road.shapes.empty()) {
+    w.open("lateralProfile").children();
+    for (const Poly3& p : road.superelevation) {
+      write_poly(w, "superelevation", "s", p);
+    }
+    for (const ShapeRecord& p : road.shapes) {
+      w.open("shape").attr("s", p.s).attr("t", p.t).attr("a", p.a).attr("b", p.b);
+      w.attr("c", p.c).attr("d", p.d).end_empty();
+    }
+    w.close();
   }
-  for (const ShapeRecord& p : road.shapes) {
-    w.open("shape").attr("s", p.s).attr("t", p.t).attr("a", p.a).attr("b", p.b);
-    w.attr("c", p.c).attr("d", p.d).end_empty();
-  }
-  w.close();
   w.open("lanes").children();
   for (const Poly3& p : road.lane_offsets) {
     write_poly(w, "laneOffset", "s", p);
