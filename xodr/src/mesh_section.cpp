@@ -13,6 +13,9 @@ namespace {
 constexpr double kMinStep = 1e-3;
 /// Deepest bisection of one interval between knots (2^-40 of it is far below kMinStep).
 constexpr int kMaxDepth = 40;
+/// The largest deviation may fall between the probes (at 1/4, 1/2, 3/4 of an interval): on
+/// clothoids and cubics it exceeds the largest probe by a few per cent at most.
+constexpr double kProbeMargin = 0.9;
 /// A record start whose left and right limits put some border further apart than this (m) is a
 /// jump: the mesh gets an edge there instead of bisecting towards it.
 constexpr double kJump = 1e-5;
@@ -120,7 +123,7 @@ struct Refiner {
     const double error =
         std::max({rows.deviation(a, b, q1), rows.deviation(a, b, m), rows.deviation(a, b, q3)});
     const bool can_split = sb - sa >= 4.0 * kMinStep && depth < kMaxDepth;
-    if ((error > tolerance || too_long) && can_split) {
+    if ((error > kProbeMargin * tolerance || too_long) && can_split) {
       refine(a, q1, m, depth + 1);
       refine(m, q3, b, depth + 1);
       return;
