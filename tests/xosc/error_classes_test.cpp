@@ -343,3 +343,38 @@ TEST_CASE("a catalog entry that references itself is an error, not a hang", "[xo
   CHECK(error.file == (dir.path() / "Catalogs/Routes/r.xosc").lexically_normal().string());
   CHECK(error.line == 7);
 }
+
+TEST_CASE("catalog entries that fan out exponentially stop with an error, not a hang",
+          "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  // Route rK has two waypoints on route r(K+1): expanding r0 would need 2^24 expansions.
+  std::string catalog =
+      "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n<FileHeader revMajor=\"1\" "
+      "revMinor=\"3\" date=\"2024-01-01T00:00:00\" description=\"c\" "
+      "author=\"a\"/>\n<Catalog name=\"Routes\">\n";
+  const std::string leaf = "<Position><WorldPosition x=\"0\" y=\"0\"/></Position>";
+  for (int k = 0; k <= 24; ++k) {
+    const std::string position =
+        k == 24 ? leaf
+                : "<Position><RoutePosition><RouteRef><CatalogReference catalogName=\"Routes\" "
+                  "entryName=\"r" +
+                      std::to_string(k + 1) +
+                      "\"/></RouteRef><InRoutePosition><FromRoadCoordinates pathS=\"0\" "
+                      "t=\"0\"/></InRoutePosition></RoutePosition></Position>";
+    catalog += "<Route name=\"r" + std::to_string(k) + "\" closed=\"false\">";
+    for (int w = 0; w < 2; ++w) {
+      catalog += "<Waypoint routeStrategy=\"shortest\">" + position + "</Waypoint>";
+    }
+    catalog += "</Route>\n";
+  }
+  catalog += "</Catalog>\n</OpenSCENARIO>\n";
+  corsa::test::write_text(dir.path() / "Catalogs/Routes/r.xosc", catalog);
+  ScenarioText text;
+  text.catalogs = "<RouteCatalog><Directory path=\"Catalogs/Routes\"/></RouteCatalog>\n";
+  text.init =
+      "<Private entityRef=\"Ego\"><PrivateAction><RoutingAction><AssignRouteAction>\n"
+      "<CatalogReference catalogName=\"Routes\" entryName=\"r0\"/>\n"
+      "</AssignRouteAction></RoutingAction></PrivateAction></Private>\n";
+  const auto error = load_error(dir, text.str());
+  CHECK_THAT(error.message, Catch::StartsWith("more than 10000 catalog references expanded"));
+}

@@ -30,6 +30,10 @@ class CatalogResolver {
 
   /// Catalog entries being expanded (to stop self-reference).
   std::vector<std::string> expanding;
+  /// Expansions so far: entries referencing other entries several times could otherwise grow
+  /// exponentially; past kMaxExpansions the load fails instead of hanging.
+  size_t expansions = 0;
+  static constexpr size_t kMaxExpansions = 10000;
 
  private:
   void scan(ParseContext& ctx);
@@ -78,6 +82,11 @@ T expand_catalog_reference(ParseContext& ctx, const Element* reference,
     ctx.fail(reference, "catalog entry '" + origin.entry_name + "' of catalog '" +
                             origin.catalog_name + "' is a " + hit.entry->Name() + ", expected " +
                             expected);
+  }
+  if (++ctx.catalogs->expansions > CatalogResolver::kMaxExpansions) {
+    ctx.fail(reference, "more than " + std::to_string(CatalogResolver::kMaxExpansions) +
+                            " catalog references expanded; do catalog entries reference each "
+                            "other in a loop?");
   }
   ctx.catalogs->expanding.push_back(key);
   const auto previous = ctx.swap_file({hit.file->name, hit.file->directory});

@@ -220,19 +220,19 @@ enum class VehicleLightType : uint8_t {
 enum class Wetness : uint8_t { kDry, kMoist, kWetWithPuddles, kLowFlooded, kHighFlooded };
 
 // The OpenSCENARIO spelling of each value (e.g. Rule::kGreaterOrEqual -> "greaterOrEqual").
-#define CORSA_XOSC_ENUMS(X)                                                                       \
-  X(AngleType)                                                                                    \
-  X(AutomaticGearType)                                                                            \
-  X(CloudState) X(ColorType) X(ConditionEdge) X(ControllerType) X(CoordinateSystem)               \
-      X(DirectionalDimension) X(DynamicsDimension) X(DynamicsShape) X(FollowingMode)              \
-          X(FractionalCloudCover) X(LateralDisplacement) X(LightMode) X(LongitudinalDisplacement) \
-              X(MiscObjectCategory) X(ObjectType) X(ParameterType) X(PedestrianCategory)          \
-                  X(PedestrianGestureType) X(PedestrianMotionType) X(PrecipitationType)           \
-                      X(Priority) X(ReferenceContext) X(RelativeDistanceType) X(Role)             \
-                          X(RouteStrategy) X(RoutingAlgorithm) X(Rule) X(SpeedTargetValueType)    \
-                              X(StoryboardElementState) X(StoryboardElementType)                  \
-                                  X(TriggeringEntitiesRule) X(VehicleCategory)                    \
-                                      X(VehicleComponentType) X(VehicleLightType) X(Wetness)
+// clang-format off
+#define CORSA_XOSC_ENUMS(X) \
+  X(AngleType) X(AutomaticGearType) X(CloudState) X(ColorType) \
+  X(ConditionEdge) X(ControllerType) X(CoordinateSystem) X(DirectionalDimension) \
+  X(DynamicsDimension) X(DynamicsShape) X(FollowingMode) X(FractionalCloudCover) \
+  X(LateralDisplacement) X(LightMode) X(LongitudinalDisplacement) X(MiscObjectCategory) \
+  X(ObjectType) X(ParameterType) X(PedestrianCategory) X(PedestrianGestureType) \
+  X(PedestrianMotionType) X(PrecipitationType) X(Priority) X(ReferenceContext) \
+  X(RelativeDistanceType) X(Role) X(RouteStrategy) X(RoutingAlgorithm) \
+  X(Rule) X(SpeedTargetValueType) X(StoryboardElementState) X(StoryboardElementType) \
+  X(TriggeringEntitiesRule) X(VehicleCategory) X(VehicleComponentType) X(VehicleLightType) \
+  X(Wetness)
+// clang-format on
 
 #define CORSA_XOSC_DECLARE_TO_STRING(E) std::string_view to_string(E value);
 CORSA_XOSC_ENUMS(CORSA_XOSC_DECLARE_TO_STRING)
