@@ -1,0 +1,96 @@
+#pragma once
+
+// NGII HD road layers -> OpenDRIVE MapData: correction of the lane attributes, grouping of the
+// lane links into roads, fitting of reference lines and lane widths, junctions, road marks and
+// signals. The result is written with corsa::xodr::write_xodr and loads with xodr::Map::build.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/ngii/layers.h"
+#include "corsa/xodr/model.h"
+
+namespace corsa::ngii {
+
+struct ConvertOptions {
+  /// Largest distance (m) between the reference polyline and the fitted plan view.
+  double tolerance = 0.05;
+  /// Largest error (m) of the fitted laneOffset and lane width polynomials at the stations.
+  double width_tolerance = 0.02;
+  /// Largest error (m) of the fitted elevation profile.
+  double elevation_tolerance = 0.05;
+  /// Width (m) of a lane with no neighbour to measure against (the paper's 3.25 m lanes).
+  double fallback_lane_width = 3.25;
+  /// Spacing (m) of the stations where lane offsets are measured.
+  double station_spacing = 1.0;
+  /// Called as the conversion advances: fraction done in [0, 1]. Optional.
+  std::function<void(double)> progress;
+};
+
+/// One repair of the source data: which link, which field, the value before and after, and why.
+struct Correction {
+  std::string link_id;
+  std::string field;  ///< DBF field name (LaneNo, L_LinkID, R_LinkID) or "geometry"
+  std::string old_value;
+  std::string new_value;
+  std::string reason;
+  int64_t record = -1;  ///< A2_LINK record number
+};
+
+/// Where one A2 link ended up: a lane of a road over an s range. A link may appear in several
+/// places (a junction path shared by several connecting roads, or a road cut in two).
+struct LinkPlacement {
+  std::string link_id;
+  std::string road_id;
+  int lane_id = 0;
+  double s_start = 0.0;  ///< road s where the link starts (m)
+  double s_end = 0.0;
+};
+
+struct ConversionSummary {
+  size_t links_read = 0;
+  size_t links_dropped = 0;  ///< zero-length links merged into their nodes
+  size_t roads = 0;          ///< all roads, connecting roads included
+  size_t connecting_roads = 0;
+  size_t lanes = 0;
+  size_t junctions = 0;         ///< default junctions (intersections)
+  size_t direct_junctions = 0;  ///< splits and merges of ordinary lanes (OpenDRIVE 1.8 §10.5)
+  size_t corrections = 0;
+  size_t geometries = 0;  ///< planView records
+  size_t road_marks = 0;
+  size_t signals = 0;
+  int kinks = 0;  ///< heading jumps where a link turns too sharply for a smooth fit
+  /// Largest distance (m) between a lane centre line and its source link polyline at the
+  /// measuring stations (survey noise included), the same against the noise-filtered lines
+  /// the lanes were fitted to, and between a reference polyline and its fitted plan view.
+  double max_lane_error = 0.0;
+  double max_smoothed_error = 0.0;
+  double max_reference_error = 0.0;
+};
+
+struct Conversion {
+  xodr::MapData map;
+  std::vector<Correction> corrections;
+  std::vector<LinkPlacement> placements;
+  ConversionSummary summary;
+};
+
+/// Converts read layers. Data faults are repaired and reported (corrections, and one warning
+/// per repair naming the A2 record); faults that cannot be repaired throw corsa::InputError.
+Conversion convert(const Layers& layers, const ConvertOptions& options,
+                   corsa::Diagnostics& diagnostics);
+
+/// The corrections as CSV: header `link_id,field,old_value,new_value,reason,record`, quoted
+/// where needed (RFC 4180).
+std::string corrections_csv(const std::vector<Correction>& corrections);
+
+/// Writes corrections_csv atomically. Throws InputError on I/O failure.
+void write_corrections_csv(const std::vector<Correction>& corrections,
+                           const std::filesystem::path& path);
+
+}  // namespace corsa::ngii

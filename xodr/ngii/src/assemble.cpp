@@ -1,0 +1,344 @@
+#include "assemble.h"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <set>
+
+namespace corsa::ngii::detail {
+namespace {
+
+int lane_id(int index) { return -index - 1; }
+
+/// Lane pairs (index in `from`, index in `to`) where a lane of `from` ends where one of `to`
+/// starts.
+std::vector<std::pair<int, int>> lane_pairs(const RoadPlan& from, const RoadPlan& to) {
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t i = 0; i < from.lanes.size(); ++i) {
+    for (size_t j = 0; j < to.lanes.size(); ++j) {
+      if (from.lanes[i].end_node == to.lanes[j].start_node) {
+        pairs.emplace_back(static_cast<int>(i), static_cast<int>(j));
+      }
+    }
+  }
+  return pairs;
+}
+
+class Assembler {
+ public:
+  Assembler(const NetworkPlan& plan, const Network& network, const Origin& origin,
+            const ConvertOptions& options, Diagnostics& diagnostics)
+      : plan_(plan),
+        network_(network),
+        origin_(origin),
+        options_(options),
+        diagnostics_(diagnostics),
+        index_(plan) {}
+
+  Assembly run() {
+    number();
+    build_roads();
+    neighbours();
+    link_ordinary_roads();
+    link_connecting_roads();
+    default_junctions();
+    direct_junctions();
+    return std::move(out_);
+  }
+
+ private:
+  bool connecting(int road) const { return plan_.roads[static_cast<size_t>(road)].junction >= 0; }
+
+  void number() {
+    road_slot_.assign(plan_.roads.size(), -1);
+    for (size_t r = 0; r < plan_.roads.size(); ++r) {
+      if (!plan_.roads[r].removed) {
+        road_slot_[r] = static_cast<int>(out_.roads.size());
+        out_.roads.emplace_back();
+        out_.roads.back().id = std::to_string(out_.roads.size());
+      }
+    }
+    next_id_ = static_cast<int>(out_.roads.size()) + 1;
+    junction_id_.assign(plan_.junctions.size(), "");
+    for (size_t j = 0; j < plan_.junctions.size(); ++j) {
+      if (!plan_.junctions[j].roads.empty()) {
+        junction_id_[j] = std::to_string(next_id_++);
+      }
+    }
+  }
+
+  xodr::Road& road_of(int plan_road) {
+    return out_.roads[static_cast<size_t>(road_slot_[static_cast<size_t>(plan_road)])];
+  }
+
+  void build_roads() {
+    const size_t total = plan_.roads.size();
+    for (size_t r = 0; r < total; ++r) {
+      if (plan_.roads[r].removed) {
+        continue;
+      }
+      const RoadPlan& plan = plan_.roads[r];
+      BuiltRoad built = build_road(plan, network_, origin_, options_);
+      xodr::Road& road = road_of(static_cast<int>(r));
+      const std::string id = road.id;
+      road = std::move(built.road);
+      road.id = id;
+      road.name = network_.source(plan.lanes[0].links.front()).id;
+      road.junction = plan.junction >= 0 ? junction_id_[static_cast<size_t>(plan.junction)] : "-1";
+      ConversionSummary& sum = out_.summary;
+      sum.lanes += plan.lanes.size();
+      sum.geometries += road.plan_view.size();
+      sum.kinks += built.kinks;
+      sum.max_lane_error = std::max(sum.max_lane_error, built.source_error);
+      sum.max_smoothed_error = std::max(sum.max_smoothed_error, built.lane_error);
+      sum.max_reference_error = std::max(sum.max_reference_error, built.reference_error);
+      sum.connecting_roads += plan.junction >= 0;
+      for (size_t k = 0; k < built.spans.size(); ++k) {
+        for (const BuiltRoad::Span& span : built.spans[k]) {
+          out_.placements.push_back(LinkPlacement{network_.source(span.link).id, id,
+                                                  lane_id(static_cast<int>(k)), span.s_start,
+                                                  span.s_end});
+        }
+      }
+      if (options_.progress) {
+        options_.progress(0.1 + 0.85 * static_cast<double>(r + 1) / static_cast<double>(total));
+      }
+    }
+    out_.summary.roads = out_.roads.size();
+  }
+
+  /// Roads whose lanes continue from (`before`) or into this road's lanes.
+  std::set<int> neighbours_of(int road, bool before) const {
+    std::set<int> out;
+    for (const PlanLane& lane : plan_.roads[static_cast<size_t>(road)].lanes) {
+      const auto& refs = before ? index_.ending[static_cast<size_t>(lane.start_node)]
+                                : index_.starting[static_cast<size_t>(lane.end_node)];
+      for (const auto& ref : refs) {
+        out.insert(ref.road);
+      }
+    }
+    return out;
+  }
+
+  void neighbours() {
+    successors_.resize(plan_.roads.size());
+    predecessors_.resize(plan_.roads.size());
+    for (size_t r = 0; r < plan_.roads.size(); ++r) {
+      if (!plan_.roads[r].removed) {
+        successors_[r] = neighbours_of(static_cast<int>(r), false);
+        predecessors_[r] = neighbours_of(static_cast<int>(r), true);
+      }
+    }
+  }
+
+  /// The one junction a set of connecting roads belongs to, or -1 (warns when several).
+  int junction_of(const std::set<int>& roads, int road) {
+    int junction = -1;
+    for (const int other : roads) {
+      const int j = plan_.roads[static_cast<size_t>(other)].junction;
+      if (j >= 0 && junction >= 0 && j != junction) {
+        diagnostics_.add_once(
+            "ngii-two-junctions:" + std::to_string(road),
+            make_warning(network_.layers().link_file, 0,
+                         "road " + road_of(road).id + " (" + road_of(road).name +
+                             ") touches two junctions at one end; linked to one"));
+      }
+      if (j >= 0 && junction < 0) {
+        junction = j;
+      }
+    }
+    return junction;
+  }
+
+  void link_ordinary_roads() {
+    direct_slots_.resize(plan_.roads.size() * 2);
+    std::iota(direct_slots_.begin(), direct_slots_.end(), 0);
+    for (size_t r = 0; r < plan_.roads.size(); ++r) {
+      if (plan_.roads[r].removed || connecting(static_cast<int>(r))) {
+        continue;
+      }
+      const int road = static_cast<int>(r);
+      for (const bool at_end : {true, false}) {
+        const std::set<int>& next = at_end ? successors_[r] : predecessors_[r];
+        if (next.empty()) {
+          continue;
+        }
+        xodr::RoadLink& link = at_end ? road_of(road).successor : road_of(road).predecessor;
+        if (const int j = junction_of(next, road); j >= 0) {
+          link = {xodr::LinkElement::kJunction, junction_id_[static_cast<size_t>(j)],
+                  xodr::ContactPoint::kNone};
+          continue;
+        }
+        const int other = *next.begin();
+        const std::set<int>& back = at_end ? predecessors_[static_cast<size_t>(other)]
+                                           : successors_[static_cast<size_t>(other)];
+        if (next.size() == 1 && back.size() == 1 && *back.begin() == road) {
+          link = {xodr::LinkElement::kRoad, road_of(other).id,
+                  at_end ? xodr::ContactPoint::kStart : xodr::ContactPoint::kEnd};
+          link_lanes(road, other, at_end);
+          continue;
+        }
+        // A split or a merge of ordinary lanes: a direct junction (slots 2r = start, 2r+1 = end).
+        for (const int o : next) {
+          unite(2 * r + (at_end ? 1 : 0), 2 * static_cast<size_t>(o) + (at_end ? 0 : 1));
+        }
+      }
+    }
+  }
+
+  void link_lanes(int road, int other, bool at_end) {
+    xodr::LaneSection& section = road_of(road).lane_sections.front();
+    const auto pairs = at_end ? lane_pairs(plan_.roads[static_cast<size_t>(road)],
+                                           plan_.roads[static_cast<size_t>(other)])
+                              : lane_pairs(plan_.roads[static_cast<size_t>(other)],
+                                           plan_.roads[static_cast<size_t>(road)]);
+    for (const auto& [from, to] : pairs) {
+      const int mine = at_end ? from : to;
+      const int theirs = at_end ? to : from;
+      xodr::Lane& lane = section.lanes[static_cast<size_t>(mine) + 1];  // [0] is the centre lane
+      (at_end ? lane.successors : lane.predecessors).push_back(lane_id(theirs));
+    }
+  }
+
+  void link_connecting_roads() {
+    for (size_t r = 0; r < plan_.roads.size(); ++r) {
+      if (plan_.roads[r].removed || !connecting(static_cast<int>(r))) {
+        continue;
+      }
+      const int road = static_cast<int>(r);
+      for (const bool at_end : {true, false}) {
+        const std::set<int>& next = at_end ? successors_[r] : predecessors_[r];
+        int chosen = -1;
+        for (const int other : next) {
+          if (!connecting(other)) {
+            chosen = chosen < 0 ? other : chosen;
+          } else {
+            diagnostics_.add_once(
+                "ngii-chained:" + std::to_string(road),
+                make_warning(network_.layers().link_file, 0,
+                             "connecting road " + road_of(road).id + " (" + road_of(road).name +
+                                 ") continues into another connecting road; that link is left "
+                                 "out"));
+          }
+        }
+        if (chosen < 0) {
+          continue;
+        }
+        (at_end ? road_of(road).successor : road_of(road).predecessor) =
+            xodr::RoadLink{xodr::LinkElement::kRoad, road_of(chosen).id,
+                           at_end ? xodr::ContactPoint::kStart : xodr::ContactPoint::kEnd};
+        link_lanes(road, chosen, at_end);
+      }
+    }
+  }
+
+  void default_junctions() {
+    for (size_t j = 0; j < plan_.junctions.size(); ++j) {
+      if (plan_.junctions[j].roads.empty()) {
+        continue;
+      }
+      xodr::Junction junction;
+      junction.id = junction_id_[j];
+      junction.name = "intersection " + junction.id;
+      std::vector<int> members = plan_.junctions[j].roads;
+      std::sort(members.begin(), members.end());
+      for (const int c : members) {
+        for (const int incoming : predecessors_[static_cast<size_t>(c)]) {
+          if (connecting(incoming)) {
+            continue;
+          }
+          xodr::Connection connection;
+          connection.id = std::to_string(junction.connections.size());
+          connection.incoming_road = road_of(incoming).id;
+          connection.connecting_road = road_of(c).id;
+          connection.contact_point = xodr::ContactPoint::kStart;
+          for (const auto& [from, to] : lane_pairs(plan_.roads[static_cast<size_t>(incoming)],
+                                                   plan_.roads[static_cast<size_t>(c)])) {
+            connection.lane_links.push_back({lane_id(from), lane_id(to)});
+          }
+          junction.connections.push_back(std::move(connection));
+        }
+      }
+      out_.junctions.push_back(std::move(junction));
+      ++out_.summary.junctions;
+    }
+  }
+
+  void direct_junctions() {
+    // Components of joined road-end slots with more than one member.
+    std::map<size_t, std::vector<size_t>> components;
+    for (size_t slot = 0; slot < direct_slots_.size(); ++slot) {
+      components[find(slot)].push_back(slot);
+    }
+    for (auto& [root, slots] : components) {
+      if (slots.size() < 2) {
+        continue;
+      }
+      xodr::Junction junction;
+      junction.id = std::to_string(next_id_++);
+      junction.name = "split/merge " + junction.id;
+      junction.type = xodr::JunctionType::kDirect;
+      std::sort(slots.begin(), slots.end());
+      for (const size_t slot : slots) {
+        const int road = static_cast<int>(slot / 2);
+        const bool at_end = slot % 2 == 1;
+        (at_end ? road_of(road).successor : road_of(road).predecessor) =
+            xodr::RoadLink{xodr::LinkElement::kJunction, junction.id, xodr::ContactPoint::kNone};
+        if (!at_end) {
+          continue;
+        }
+        for (const int linked : successors_[static_cast<size_t>(road)]) {
+          xodr::Connection connection;
+          connection.id = std::to_string(junction.connections.size());
+          connection.incoming_road = road_of(road).id;
+          connection.linked_road = road_of(linked).id;
+          connection.contact_point = xodr::ContactPoint::kStart;
+          for (const auto& [from, to] : lane_pairs(plan_.roads[static_cast<size_t>(road)],
+                                                   plan_.roads[static_cast<size_t>(linked)])) {
+            connection.lane_links.push_back({lane_id(from), lane_id(to)});
+          }
+          junction.connections.push_back(std::move(connection));
+        }
+      }
+      out_.junctions.push_back(std::move(junction));
+      ++out_.summary.direct_junctions;
+    }
+  }
+
+  size_t find(size_t x) {
+    while (direct_slots_[x] != x) {
+      x = direct_slots_[x] = direct_slots_[direct_slots_[x]];
+    }
+    return x;
+  }
+  void unite(size_t a, size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) {
+      direct_slots_[std::max(a, b)] = std::min(a, b);
+    }
+  }
+
+  const NetworkPlan& plan_;
+  const Network& network_;
+  const Origin& origin_;
+  const ConvertOptions& options_;
+  Diagnostics& diagnostics_;
+  LaneIndex index_;
+  Assembly out_;
+  std::vector<int> road_slot_;
+  std::vector<std::string> junction_id_;
+  int next_id_ = 1;
+  std::vector<std::set<int>> successors_;
+  std::vector<std::set<int>> predecessors_;
+  std::vector<size_t> direct_slots_;
+};
+
+}  // namespace
+
+Assembly assemble(const NetworkPlan& plan, const Network& network, const Origin& origin,
+                  const ConvertOptions& options, Diagnostics& diagnostics) {
+  return Assembler(plan, network, origin, options, diagnostics).run();
+}
+
+}  // namespace corsa::ngii::detail

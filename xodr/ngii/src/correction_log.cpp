@@ -1,0 +1,20 @@
+#include "correction_log.h"
+
+namespace corsa::ngii::detail {
+
+void CorrectionLog::add(int link, std::string field, std::string old_value, std::string new_value,
+                        std::string reason) {
+  const Link& source = layers_.links[static_cast<size_t>(link)];
+  Correction correction{
+      source.id,         std::move(field), std::move(old_value), std::move(new_value),
+      std::move(reason), source.record};
+  Diagnostic warning = make_warning(layers_.link_file, 0,
+                                    "link " + correction.link_id + ": " + correction.field + " '" +
+                                        correction.old_value + "' -> '" + correction.new_value +
+                                        "': " + correction.reason);
+  warning.record = source.record;
+  diagnostics_.add(std::move(warning));
+  corrections_.push_back(std::move(correction));
+}
+
+}  // namespace corsa::ngii::detail

@@ -1,0 +1,34 @@
+#pragma once
+
+// Collects the repairs made to the source data: each becomes a Correction row (for
+// --report) and a warning naming the A2_LINK record it touched (DESIGN.md: any repair of bad
+// data warns with the record).
+
+#include <string>
+#include <vector>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/ngii/convert.h"
+
+namespace corsa::ngii::detail {
+
+class CorrectionLog {
+ public:
+  CorrectionLog(const Layers& layers, Diagnostics& diagnostics)
+      : layers_(layers), diagnostics_(diagnostics) {}
+
+  /// Records that `field` of link `link` (index into layers.links) changed from `old_value` to
+  /// `new_value` because of `reason`.
+  void add(int link, std::string field, std::string old_value, std::string new_value,
+           std::string reason);
+
+  const std::vector<Correction>& corrections() const { return corrections_; }
+  std::vector<Correction> take() { return std::move(corrections_); }
+
+ private:
+  const Layers& layers_;
+  Diagnostics& diagnostics_;
+  std::vector<Correction> corrections_;
+};
+
+}  // namespace corsa::ngii::detail

@@ -1,0 +1,509 @@
+#include "network_plan.h"
+
+#include <algorithm>
+#include <numeric>
+#include <set>
+#include <string>
+
+#include "polyline.h"
+
+namespace corsa::ngii::detail {
+namespace {
+
+/// Junction paths beyond this many stop the enumeration (a safeguard against pathological
+/// branching; real intersections have a few dozen).
+constexpr size_t kMaxPaths = 100000;
+/// An ordinary road at a mixed end no longer than this (m) joins the junction whole; a longer
+/// one has its first (or last) kCutLength metres cut off into the junction.
+constexpr double kWholeLength = 25.0;
+constexpr double kCutLength = 10.0;
+
+class UnionFind {
+ public:
+  explicit UnionFind(size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  size_t find(size_t x) {
+    while (parent_[x] != x) {
+      x = parent_[x] = parent_[parent_[x]];
+    }
+    return x;
+  }
+  void unite(size_t a, size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) {
+      parent_[std::max(a, b)] = std::min(a, b);  // smallest index as root: deterministic
+    }
+  }
+
+ private:
+  std::vector<size_t> parent_;
+};
+
+PlanLane lane_of_link(const Network& network, int link) {
+  const LinkState& state = network.links[static_cast<size_t>(link)];
+  return PlanLane{state.points, {link}, {0.0}, state.from, state.to, {}, {}};
+}
+
+/// Appends `tail` to `head` (dropping a repeated joint vertex).
+void append_points(std::vector<Point3>& head, const std::vector<Point3>& tail) {
+  size_t first = 0;
+  if (!head.empty() && !tail.empty() && norm(xy(head.back()) - xy(tail.front())) < 0.01) {
+    first = 1;
+  }
+  head.insert(head.end(), tail.begin() + static_cast<std::ptrdiff_t>(first), tail.end());
+}
+
+/// Every path through intersection links from an entry (reached from an ordinary link, or from
+/// nothing) to an exit (leading to an ordinary link, or to nothing).
+class PathFinder {
+ public:
+  PathFinder(const Network& network, Diagnostics& diagnostics)
+      : network_(network), diagnostics_(diagnostics) {}
+
+  std::vector<std::vector<int>> run() {
+    const int n = static_cast<int>(network_.size());
+    covered_.assign(static_cast<size_t>(n), false);
+    for (int link = 0; link < n; ++link) {
+      if (junction_link(link) && is_entry(link)) {
+        walk({link});
+      }
+    }
+    // Links only reachable from other intersection links in a cycle: start there.
+    for (int link = 0; link < n; ++link) {
+      if (junction_link(link) && !covered_[static_cast<size_t>(link)]) {
+        walk({link});
+      }
+    }
+    return std::move(paths_);
+  }
+
+ private:
+  bool junction_link(int link) const {
+    return network_.is_junction(link) && !network_.links[static_cast<size_t>(link)].removed;
+  }
+
+  bool is_entry(int link) const {
+    const auto& before =
+        network_.ending[static_cast<size_t>(network_.links[static_cast<size_t>(link)].from)];
+    if (before.empty()) {
+      return true;
+    }
+    return std::any_of(before.begin(), before.end(), [&](int b) { return !junction_link(b); });
+  }
+
+  void walk(std::vector<int> path) {
+    if (paths_.size() >= kMaxPaths) {
+      if (!truncated_) {
+        truncated_ = true;
+        diagnostics_.add(make_warning(network_.layers().link_file, 0,
+                                      "too many paths through intersection links; the rest "
+                                      "are left out"));
+      }
+      return;
+    }
+    const int current = path.back();
+    const auto& after =
+        network_.starting[static_cast<size_t>(network_.links[static_cast<size_t>(current)].to)];
+    bool exits = after.empty();
+    std::vector<int> next;
+    for (const int a : after) {
+      if (!junction_link(a)) {
+        exits = true;
+      } else if (std::find(path.begin(), path.end(), a) == path.end()) {
+        next.push_back(a);
+      }
+    }
+    if (exits || next.empty()) {
+      for (const int link : path) {
+        covered_[static_cast<size_t>(link)] = true;
+      }
+      paths_.push_back(path);
+    }
+    for (const int a : next) {
+      std::vector<int> longer = path;
+      longer.push_back(a);
+      walk(std::move(longer));
+    }
+  }
+
+  const Network& network_;
+  Diagnostics& diagnostics_;
+  std::vector<std::vector<int>> paths_;
+  std::vector<bool> covered_;
+  bool truncated_ = false;
+};
+
+RoadPlan path_plan(const Network& network, const std::vector<int>& path) {
+  PlanLane lane;
+  for (const int link : path) {
+    const LinkState& state = network.links[static_cast<size_t>(link)];
+    lane.links.push_back(link);
+    lane.link_starts.push_back(Polyline(lane.points).length());
+    append_points(lane.points, state.points);
+  }
+  // link_starts[0] measured on an empty polyline is 0; later ones at the joints.
+  lane.start_node = network.links[static_cast<size_t>(path.front())].from;
+  lane.end_node = network.links[static_cast<size_t>(path.back())].to;
+  RoadPlan plan;
+  plan.lanes.push_back(std::move(lane));
+  return plan;
+}
+
+struct Box {
+  double x0, y0, x1, y1;
+  bool overlaps(const Box& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
+};
+
+Box box_of(const std::vector<Point3>& points) {
+  Box box{points[0].x, points[0].y, points[0].x, points[0].y};
+  for (const Point3& p : points) {
+    box = Box{std::min(box.x0, p.x), std::min(box.y0, p.y), std::max(box.x1, p.x),
+              std::max(box.y1, p.y)};
+  }
+  return box;
+}
+
+bool segments_cross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const double d1 = cross(b - a, c - a);
+  const double d2 = cross(b - a, d - a);
+  const double d3 = cross(d - c, a - c);
+  const double d4 = cross(d - c, b - c);
+  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
+}
+
+bool polylines_cross(const std::vector<Point3>& a, const std::vector<Point3>& b) {
+  for (size_t i = 0; i + 1 < a.size(); ++i) {
+    for (size_t j = 0; j + 1 < b.size(); ++j) {
+      if (segments_cross(xy(a[i]), xy(a[i + 1]), xy(b[j]), xy(b[j + 1]))) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+class Planner {
+ public:
+  Planner(const Network& network, Diagnostics& diagnostics)
+      : network_(network), diagnostics_(diagnostics) {}
+
+  NetworkPlan run(const LateralStructure& lateral) {
+    plan_.node_keys = static_cast<int>(network_.layers().nodes.size());
+    for (const LaneRun& run : lateral.runs) {
+      if (network_.is_junction(run.links.front())) {
+        continue;
+      }
+      RoadPlan road;
+      for (const int link : run.links) {
+        road.lanes.push_back(lane_of_link(network_, link));
+      }
+      plan_.roads.push_back(std::move(road));
+    }
+    const size_t first_connecting = plan_.roads.size();
+    for (const auto& path : PathFinder(network_, diagnostics_).run()) {
+      plan_.roads.push_back(path_plan(network_, path));
+    }
+    cluster(first_connecting);
+    // Each pass absorbs one mixed end; every absorption removes one, so this terminates.
+    for (size_t guard = 0; guard < 100000 && resolve_mixed_ends(); ++guard) {
+    }
+    add_context();
+    return std::move(plan_);
+  }
+
+  /// Fills every lane's lead_in / lead_out from its best-aligned neighbour at each end.
+  void add_context() {
+    const LaneIndex index(plan_);
+    for (RoadPlan& road : plan_.roads) {
+      for (PlanLane& lane : road.lanes) {
+        lane.lead_in = neighbour_piece(index.ending[static_cast<size_t>(lane.start_node)], lane,
+                                       /*before=*/true);
+        lane.lead_out = neighbour_piece(index.starting[static_cast<size_t>(lane.end_node)], lane,
+                                        /*before=*/false);
+      }
+    }
+  }
+
+  std::vector<Point3> neighbour_piece(const std::vector<LaneIndex::Ref>& refs, const PlanLane& lane,
+                                      bool before) const {
+    constexpr double kContext = 6.0;  // m
+    const Polyline own(lane.points);
+    const Vec2 own_direction = before ? own.direction(0.0) : own.direction(own.length());
+    const PlanLane* best = nullptr;
+    double best_alignment = 0.5;  // cos of the largest accepted turn (60 degrees)
+    for (const auto& ref : refs) {
+      const PlanLane& other =
+          plan_.roads[static_cast<size_t>(ref.road)].lanes[static_cast<size_t>(ref.lane)];
+      if (&other == &lane) {
+        continue;
+      }
+      const Polyline line(other.points);
+      const Vec2 direction = before ? line.direction(line.length()) : line.direction(0.0);
+      const double alignment = dot(direction, own_direction);
+      if (alignment > best_alignment) {
+        best_alignment = alignment;
+        best = &other;
+      }
+    }
+    if (best == nullptr) {
+      return {};
+    }
+    const Polyline line(best->points);
+    return before ? line.slice(std::max(0.0, line.length() - kContext), line.length())
+                  : line.slice(0.0, std::min(kContext, line.length()));
+  }
+
+ private:
+  /// Groups the connecting roads into junctions.
+  void cluster(size_t first) {
+    const size_t count = plan_.roads.size() - first;
+    UnionFind groups(count);
+    const LaneIndex index(plan_);
+    // Paths sharing a link, an approach road end or an exit road start, or a bare node.
+    std::vector<int> by_link(network_.size(), -1);
+    std::vector<int> by_key(static_cast<size_t>(plan_.node_keys) * 2, -1);
+    const auto join_key = [&](size_t key, size_t member) {
+      int& slot = by_key[key];
+      if (slot < 0) {
+        slot = static_cast<int>(member);
+      } else {
+        groups.unite(static_cast<size_t>(slot), member);
+      }
+    };
+    for (size_t i = 0; i < count; ++i) {
+      const PlanLane& lane = plan_.roads[first + i].lanes[0];
+      for (const int link : lane.links) {
+        int& slot = by_link[static_cast<size_t>(link)];
+        if (slot < 0) {
+          slot = static_cast<int>(i);
+        } else {
+          groups.unite(static_cast<size_t>(slot), i);
+        }
+      }
+      join_key(static_cast<size_t>(lane.start_node) * 2, i);
+      join_key(static_cast<size_t>(lane.end_node) * 2 + 1, i);
+      // Approach and exit roads: every end of the same road joins the same junction.
+      for (const auto& ref : index.ending[static_cast<size_t>(lane.start_node)]) {
+        if (static_cast<size_t>(ref.road) < first) {
+          join_key(
+              static_cast<size_t>(plan_.roads[static_cast<size_t>(ref.road)].lanes[0].end_node) *
+                      2 +
+                  1,
+              i);
+        }
+      }
+      for (const auto& ref : index.starting[static_cast<size_t>(lane.end_node)]) {
+        if (static_cast<size_t>(ref.road) < first) {
+          join_key(
+              static_cast<size_t>(plan_.roads[static_cast<size_t>(ref.road)].lanes[0].start_node) *
+                  2,
+              i);
+        }
+      }
+    }
+    // Crossing paths belong to the same intersection.
+    std::vector<Box> boxes;
+    for (size_t i = 0; i < count; ++i) {
+      boxes.push_back(box_of(plan_.roads[first + i].lanes[0].points));
+    }
+    for (size_t i = 0; i < count; ++i) {
+      for (size_t j = i + 1; j < count; ++j) {
+        if (groups.find(i) != groups.find(j) && boxes[i].overlaps(boxes[j]) &&
+            polylines_cross(plan_.roads[first + i].lanes[0].points,
+                            plan_.roads[first + j].lanes[0].points)) {
+          groups.unite(i, j);
+        }
+      }
+    }
+    std::vector<int> junction_of(count, -1);
+    for (size_t i = 0; i < count; ++i) {
+      const size_t root = groups.find(i);
+      if (junction_of[root] < 0) {
+        junction_of[root] = static_cast<int>(plan_.junctions.size());
+        plan_.junctions.emplace_back();
+      }
+      const int j = junction_of[root];
+      plan_.roads[first + i].junction = j;
+      plan_.junctions[static_cast<size_t>(j)].roads.push_back(static_cast<int>(first + i));
+    }
+  }
+
+  /// One pass over approach ends / exit starts that lead both into a junction and straight on
+  /// to an ordinary road; returns whether anything changed.
+  bool resolve_mixed_ends() {
+    bool changed = false;
+    const LaneIndex index(plan_);
+    for (size_t r = 0; r < plan_.roads.size(); ++r) {
+      if (plan_.roads[r].junction >= 0 || plan_.roads[r].removed) {
+        continue;
+      }
+      for (const bool at_end : {true, false}) {
+        std::set<int> junctions;
+        std::set<int> ordinary;
+        for (const PlanLane& lane : plan_.roads[r].lanes) {
+          const int key = at_end ? lane.end_node : lane.start_node;
+          for (const auto& ref : at_end ? index.starting[static_cast<size_t>(key)]
+                                        : index.ending[static_cast<size_t>(key)]) {
+            const int j = plan_.roads[static_cast<size_t>(ref.road)].junction;
+            (j >= 0 ? junctions : ordinary).insert(j >= 0 ? j : ref.road);
+          }
+        }
+        const int junction = junctions.empty() ? -1 : *junctions.begin();
+        if (junctions.size() > 1) {
+          // One road end leads into two junctions: they are one intersection.
+          for (const int other : junctions) {
+            if (other != junction) {
+              merge_junctions(junction, other);
+            }
+          }
+          return true;
+        }
+        if (junctions.empty() || ordinary.empty()) {
+          continue;
+        }
+        for (const int other : ordinary) {
+          absorb(other, junction, /*head=*/at_end);
+          changed = true;
+        }
+        if (changed) {
+          return true;  // indices changed: rebuild the lane index
+        }
+      }
+    }
+    return changed;
+  }
+
+  /// Moves ordinary road `road` (or its first/last kCutLength metres) into `junction`.
+  void absorb(int road, int junction, bool head) {
+    RoadPlan& plan = plan_.roads[static_cast<size_t>(road)];
+    const double length = Polyline(plan.lanes[0].points).length();
+    if (length <= kWholeLength) {
+      plan.junction = junction;
+      plan_.junctions[static_cast<size_t>(junction)].roads.push_back(road);
+      return;
+    }
+    RoadPlan piece = cut(plan, head ? kCutLength : length - kCutLength, head);
+    piece.junction = junction;
+    // Connecting roads that met the road at the cut end now continue through the piece (and
+    // their junction becomes this one).
+    for (size_t k = 0; k < piece.lanes.size(); ++k) {
+      const PlanLane& cut_lane = piece.lanes[k];
+      for (size_t o = 0; o < plan_.roads.size(); ++o) {
+        RoadPlan& other = plan_.roads[o];
+        if (other.junction < 0 || other.removed) {
+          continue;
+        }
+        for (PlanLane& lane : other.lanes) {
+          const bool meets =
+              head ? lane.end_node == cut_lane.start_node : lane.start_node == cut_lane.end_node;
+          if (meets && other.junction != junction) {
+            merge_junctions(junction, other.junction);
+          }
+          if (head && lane.end_node == cut_lane.start_node) {
+            lane.link_starts.push_back(Polyline(lane.points).length());
+            lane.links.push_back(cut_lane.links.front());
+            append_points(lane.points, cut_lane.points);
+            lane.end_node = cut_lane.end_node;
+          } else if (!head && lane.start_node == cut_lane.end_node) {
+            std::vector<Point3> points = cut_lane.points;
+            const double shift = Polyline(points).length();
+            append_points(points, lane.points);
+            lane.points = std::move(points);
+            for (double& start : lane.link_starts) {
+              start += shift;
+            }
+            lane.link_starts.insert(lane.link_starts.begin(), 0.0);
+            lane.links.insert(lane.links.begin(), cut_lane.links.back());
+            lane.start_node = cut_lane.start_node;
+          }
+        }
+      }
+    }
+    plan_.junctions[static_cast<size_t>(junction)].roads.push_back(
+        static_cast<int>(plan_.roads.size()));
+    plan_.roads.push_back(std::move(piece));
+  }
+
+  /// Moves every connecting road of junction `from` into junction `into`.
+  void merge_junctions(int into, int from) {
+    auto& source = plan_.junctions[static_cast<size_t>(from)].roads;
+    for (const int road : source) {
+      plan_.roads[static_cast<size_t>(road)].junction = into;
+      plan_.junctions[static_cast<size_t>(into)].roads.push_back(road);
+    }
+    source.clear();
+  }
+
+  /// Cuts `plan` across its lanes at arc length `u` of the leftmost lane; returns the head
+  /// (`head`) or tail piece and keeps the rest in `plan`. The cut gets fresh topology keys.
+  RoadPlan cut(RoadPlan& plan, double u, bool head) {
+    const Polyline first(plan.lanes[0].points);
+    const Vec2 c = xy(first.at(u));
+    const Vec2 d = first.direction(u);
+    RoadPlan piece;
+    for (PlanLane& lane : plan.lanes) {
+      const Polyline line(lane.points);
+      // Where the cut line (normal through c) crosses this lane: its nearest crossing.
+      double cut_u = std::clamp(u, 0.0, line.length());
+      double best = 1e300;
+      const auto& p = line.points();
+      for (size_t i = 0; i + 1 < p.size(); ++i) {
+        const double g0 = dot(xy(p[i]) - c, d);
+        const double g1 = dot(xy(p[i + 1]) - c, d);
+        if ((g0 <= 0.0) != (g1 <= 0.0)) {
+          const double f = g0 / (g0 - g1);
+          const Vec2 q = xy(p[i]) + f * (xy(p[i + 1]) - xy(p[i]));
+          if (norm(q - c) < best) {
+            best = norm(q - c);
+            cut_u = line.u()[i] + f * (line.u()[i + 1] - line.u()[i]);
+          }
+        }
+      }
+      cut_u = std::clamp(cut_u, 0.01, std::max(0.01, line.length() - 0.01));
+      const int key = plan_.node_keys++;
+      PlanLane front{
+          line.slice(0.0, cut_u), lane.links, lane.link_starts, lane.start_node, key, {}, {}};
+      PlanLane back{line.slice(cut_u, line.length()), lane.links, {}, key, lane.end_node, {}, {}};
+      for (const double start : lane.link_starts) {
+        back.link_starts.push_back(std::max(0.0, start - cut_u));
+      }
+      if (head) {
+        piece.lanes.push_back(std::move(front));
+        lane = std::move(back);
+      } else {
+        piece.lanes.push_back(std::move(back));
+        lane = std::move(front);
+      }
+    }
+    return piece;
+  }
+
+  const Network& network_;
+  Diagnostics& diagnostics_;
+  NetworkPlan plan_;
+};
+
+}  // namespace
+
+LaneIndex::LaneIndex(const NetworkPlan& plan)
+    : starting(static_cast<size_t>(plan.node_keys)), ending(static_cast<size_t>(plan.node_keys)) {
+  for (size_t r = 0; r < plan.roads.size(); ++r) {
+    if (plan.roads[r].removed) {
+      continue;
+    }
+    for (size_t k = 0; k < plan.roads[r].lanes.size(); ++k) {
+      const PlanLane& lane = plan.roads[r].lanes[k];
+      starting[static_cast<size_t>(lane.start_node)].push_back(
+          {static_cast<int>(r), static_cast<int>(k)});
+      ending[static_cast<size_t>(lane.end_node)].push_back(
+          {static_cast<int>(r), static_cast<int>(k)});
+    }
+  }
+}
+
+NetworkPlan plan_network(const Network& network, const LateralStructure& lateral,
+                         Diagnostics& diagnostics) {
+  return Planner(network, diagnostics).run(lateral);
+}
+
+}  // namespace corsa::ngii::detail

@@ -1,0 +1,43 @@
+#include "reference_line.h"
+
+#include <algorithm>
+#include <variant>
+
+#include "clothoid.h"
+
+namespace corsa::ngii::detail {
+
+std::vector<RefSample> sample_reference(const std::vector<xodr::Geometry>& plan_view,
+                                        const std::vector<double>& s_sorted) {
+  std::vector<RefSample> out;
+  out.reserve(s_sorted.size());
+  std::vector<double> local;
+  std::vector<ClothoidPoint> points;
+  size_t next = 0;
+  for (size_t g = 0; g < plan_view.size(); ++g) {
+    const xodr::Geometry& geometry = plan_view[g];
+    const bool last = g + 1 == plan_view.size();
+    local.clear();
+    while (next < s_sorted.size() && (last || s_sorted[next] < geometry.s + geometry.length)) {
+      local.push_back(std::max(0.0, s_sorted[next] - geometry.s));
+      ++next;
+    }
+    if (local.empty()) {
+      continue;
+    }
+    Clothoid curve{geometry.x, geometry.y, geometry.hdg, 0.0, 0.0};
+    if (const auto* arc = std::get_if<xodr::ArcGeometry>(&geometry.shape)) {
+      curve.k0 = arc->curvature;
+    } else if (const auto* spiral = std::get_if<xodr::SpiralGeometry>(&geometry.shape)) {
+      curve.k0 = spiral->curv_start;
+      curve.k1 = (spiral->curv_end - spiral->curv_start) / geometry.length;
+    }
+    evaluate_clothoid(curve, local, points, false);
+    for (const ClothoidPoint& p : points) {
+      out.push_back({p.x, p.y, p.theta});
+    }
+  }
+  return out;
+}
+
+}  // namespace corsa::ngii::detail

@@ -1,0 +1,22 @@
+#pragma once
+
+// Evaluation of a fitted plan view at many s values, with the converter's own clothoid
+// integration (the same one the fit used, so measurements agree with the fit exactly).
+
+#include <vector>
+
+#include "corsa/xodr/model.h"
+
+namespace corsa::ngii::detail {
+
+struct RefSample {
+  double x = 0.0;
+  double y = 0.0;
+  double hdg = 0.0;
+};
+
+/// Reference line points at every s of `s_sorted` (non-decreasing, within [0, length]).
+std::vector<RefSample> sample_reference(const std::vector<xodr::Geometry>& plan_view,
+                                        const std::vector<double>& s_sorted);
+
+}  // namespace corsa::ngii::detail

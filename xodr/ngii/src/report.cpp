@@ -1,0 +1,40 @@
+// The corrections report (`corsa convert ngii --report FILE`).
+
+#include <string>
+
+#include "corsa/core/atomic_file.h"
+#include "corsa/ngii/convert.h"
+
+namespace corsa::ngii {
+namespace {
+
+/// RFC 4180 field: quoted when it holds a comma, quote or line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) {
+    return text;
+  }
+  std::string quoted = "\"";
+  for (const char c : text) {
+    quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  }
+  return quoted + "\"";
+}
+
+}  // namespace
+
+std::string corrections_csv(const std::vector<Correction>& corrections) {
+  std::string out = "link_id,field,old_value,new_value,reason,record\n";
+  for (const Correction& c : corrections) {
+    out += csv_field(c.link_id) + ',' + csv_field(c.field) + ',' + csv_field(c.old_value) + ',' +
+           csv_field(c.new_value) + ',' + csv_field(c.reason) + ',' + std::to_string(c.record) +
+           '\n';
+  }
+  return out;
+}
+
+void write_corrections_csv(const std::vector<Correction>& corrections,
+                           const std::filesystem::path& path) {
+  write_file_atomic(path, corrections_csv(corrections));
+}
+
+}  // namespace corsa::ngii

@@ -1,0 +1,42 @@
+#pragma once
+
+// One RoadPlan -> one OpenDRIVE road: the reference line is the leftmost lane's centre shifted
+// left by half its measured width and fitted with lines, arcs and clothoids; the lane offsets
+// are measured at stations along it and turned into laneOffset and width polynomials; elevation
+// comes from the leftmost lane's Z, speeds from MaxSpeed.
+
+#include <vector>
+
+#include "corsa/ngii/convert.h"
+#include "network.h"
+#include "road_plan.h"
+
+namespace corsa::ngii::detail {
+
+/// Shift of the map frame: map x = easting - x, map y = northing - y.
+struct Origin {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+struct BuiltRoad {
+  xodr::Road road;  ///< id, name, junction and links are left for the caller
+  /// Per plan lane: (link, s_start, s_end) of every source link along it.
+  struct Span {
+    int link = -1;
+    double s_start = 0.0;
+    double s_end = 0.0;
+  };
+  std::vector<std::vector<Span>> spans;
+  double lane_error = 0.0;       ///< largest lane centre error at the stations (m), against
+                                 ///< the smoothed lane lines it was fitted to
+  double source_error = 0.0;     ///< the same against the source polylines as surveyed
+  double reference_error = 0.0;  ///< plan view fit error (m)
+  int kinks = 0;
+  bool measured_width = false;  ///< false when the fallback width was used
+};
+
+BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin& origin,
+                     const ConvertOptions& options);
+
+}  // namespace corsa::ngii::detail

@@ -1,0 +1,33 @@
+#pragma once
+
+// What one OpenDRIVE road will be made of, before fitting: its lanes' centre polylines (left to
+// right), the A2 links along each, and the topology keys of each lane's ends.
+
+#include <string>
+#include <vector>
+
+#include "corsa/ngii/layers.h"
+
+namespace corsa::ngii::detail {
+
+struct PlanLane {
+  std::vector<Point3> points;       ///< centre line, in the driving direction
+  std::vector<int> links;           ///< source links along it, in order
+  std::vector<double> link_starts;  ///< arc length along `points` where each link starts
+  /// Topology keys of the lane's ends: an A1 node index, or a synthetic key (>= node count)
+  /// where a road was cut in two.
+  int start_node = -1;
+  int end_node = -1;
+  /// A few metres of the lane before it and after it (the best-aligned lane ending where this
+  /// one starts, and starting where it ends), for measuring offsets near the ends; may be empty.
+  std::vector<Point3> lead_in;
+  std::vector<Point3> lead_out;
+};
+
+struct RoadPlan {
+  std::vector<PlanLane> lanes;  ///< left to right
+  int junction = -1;            ///< junction plan index for a connecting road, else -1
+  bool removed = false;         ///< merged into another plan
+};
+
+}  // namespace corsa::ngii::detail

@@ -1,0 +1,232 @@
+#include "shapefile.h"
+
+#include <shapefil.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+
+#include "corsa/core/strings.h"
+
+namespace corsa::ngii::detail {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& file, int64_t record, std::string message) {
+  Diagnostic diagnostic = make_error(file, 0, std::move(message));
+  diagnostic.record = record;
+  throw InputError(std::move(diagnostic));
+}
+
+// shapelib opens "<base>.shp" / ".shx" / ".dbf" itself, trying only lower and upper case
+// extensions; this hook also finds e.g. "A2_LINK.Shx" by a case-insensitive directory scan.
+// It returns a FILE* like shapelib's default hook, so the default read/seek/close hooks apply.
+SAFile open_case_insensitive(const char* name, const char* access) {
+  if (std::FILE* file = std::fopen(name, access)) {
+    return reinterpret_cast<SAFile>(file);
+  }
+  if (errno != ENOENT) {
+    return nullptr;
+  }
+  const fs::path wanted(name);
+  std::error_code error;
+  const fs::path dir = wanted.has_parent_path() ? wanted.parent_path() : fs::path(".");
+  for (const auto& entry : fs::directory_iterator(dir, error)) {
+    if (iequals(entry.path().filename().string(), wanted.filename().string())) {
+      return reinterpret_cast<SAFile>(std::fopen(entry.path().c_str(), access));
+    }
+  }
+  return nullptr;
+}
+
+void silent_error(const char* /*message*/) {}
+
+SAHooks make_hooks() {
+  SAHooks hooks;
+  SASetupDefaultHooks(&hooks);
+  hooks.FOpen = open_case_insensitive;
+  hooks.Error = silent_error;
+  return hooks;
+}
+
+/// The file next to `path` with extension `ext`, matched case-insensitively; the lower-case
+/// name when there is none (so that messages name what was expected).
+fs::path companion(const fs::path& path, const std::string& ext, bool* found) {
+  fs::path wanted = path;
+  wanted.replace_extension(ext);
+  *found = false;
+  std::error_code error;
+  const fs::path dir = wanted.has_parent_path() ? wanted.parent_path() : fs::path(".");
+  for (const auto& entry : fs::directory_iterator(dir, error)) {
+    if (iequals(entry.path().filename().string(), wanted.filename().string())) {
+      *found = true;
+      return entry.path();
+    }
+  }
+  return wanted;
+}
+
+bool family_accepts(ShapeFamily family, int type) {
+  if (family == ShapeFamily::kPoint) {
+    return type == SHPT_POINT || type == SHPT_POINTZ || type == SHPT_POINTM;
+  }
+  return type == SHPT_ARC || type == SHPT_ARCZ || type == SHPT_ARCM;
+}
+
+const char* family_name(ShapeFamily family) {
+  return family == ShapeFamily::kPoint ? "Point/PointZ (1/11)" : "PolyLine/PolyLineZ (3/13)";
+}
+
+}  // namespace
+
+// --- ShapeReader -------------------------------------------------------------------------------
+
+ShapeReader::ShapeReader(const fs::path& shp, ShapeFamily family) : file_(shp.string()) {
+  bool found = false;
+  const fs::path shx = companion(shp, ".shx", &found);
+  if (!found) {
+    fail(shx.string(), -1, "missing Shapefile index (.shx); it must sit next to " + file_);
+  }
+  SAHooks hooks = make_hooks();
+  SHPHandle handle = SHPOpenLL(shp.c_str(), "rb", &hooks);
+  if (handle == nullptr) {
+    fail(file_, -1, "cannot open as a Shapefile (unreadable, or the .shp/.shx header is corrupt)");
+  }
+  handle_ = handle;
+  int type = 0;
+  SHPGetInfo(handle, &count_, &type, nullptr, nullptr);
+  if (!family_accepts(family, type)) {
+    SHPClose(handle);
+    handle_ = nullptr;
+    fail(file_, -1,
+         "wrong shape type " + std::to_string(type) + " (expected " + family_name(family) + ")");
+  }
+  has_z_ = type == SHPT_POINTZ || type == SHPT_ARCZ;
+}
+
+ShapeReader::~ShapeReader() {
+  if (handle_ != nullptr) {
+    SHPClose(static_cast<SHPHandle>(handle_));
+  }
+}
+
+bool ShapeReader::read(int index, std::vector<Point3>& points, int& parts) const {
+  auto handle = static_cast<SHPHandle>(handle_);
+  std::unique_ptr<SHPObject, void (*)(SHPObject*)> object(SHPReadObject(handle, index),
+                                                          SHPDestroyObject);
+  if (!object) {
+    fail(file_, index, "truncated or corrupt shape record");
+  }
+  if (object->nSHPType == SHPT_NULL || object->nVertices <= 0) {
+    points.clear();
+    parts = 0;
+    return false;
+  }
+  points.resize(static_cast<size_t>(object->nVertices));
+  for (int i = 0; i < object->nVertices; ++i) {
+    const double z = (has_z_ && object->padfZ != nullptr) ? object->padfZ[i] : 0.0;
+    points[static_cast<size_t>(i)] = Point3{object->padfX[i], object->padfY[i], z};
+  }
+  parts = object->nParts;
+  return true;
+}
+
+// --- DbfReader ---------------------------------------------------------------------------------
+
+DbfReader::DbfReader(const fs::path& dbf) : file_(dbf.string()) {
+  SAHooks hooks = make_hooks();
+  DBFHandle handle = DBFOpenLL(dbf.c_str(), "rb", &hooks);
+  if (handle == nullptr) {
+    fail(file_, -1, "cannot open as a dBASE table (missing, unreadable or corrupt header)");
+  }
+  handle_ = handle;
+  count_ = DBFGetRecordCount(handle);
+  const int fields = DBFGetFieldCount(handle);
+  for (int i = 0; i < fields; ++i) {
+    names_.push_back(field_name(i));
+  }
+}
+
+DbfReader::~DbfReader() {
+  if (handle_ != nullptr) {
+    DBFClose(static_cast<DBFHandle>(handle_));
+  }
+}
+
+std::string DbfReader::field_name(int field) const {
+  char name[XBASE_FLDNAME_LEN_READ + 1] = {};
+  int width = 0;
+  int decimals = 0;
+  DBFGetFieldInfo(static_cast<DBFHandle>(handle_), field, name, &width, &decimals);
+  return std::string(trim(name));
+}
+
+int DbfReader::find(std::string_view name) const {
+  for (size_t i = 0; i < names_.size(); ++i) {
+    if (iequals(names_[i], name)) {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+int DbfReader::require(std::string_view name) const {
+  const int index = find(name);
+  if (index < 0) {
+    std::string found;
+    for (const auto& field : names_) {
+      found += (found.empty() ? "" : ", ") + field;
+    }
+    fail(file_, -1,
+         "required field '" + std::string(name) + "' is missing (fields: " + found + ")");
+  }
+  return index;
+}
+
+std::string DbfReader::text(int record, int field) const {
+  if (field < 0) {
+    return {};
+  }
+  auto handle = static_cast<DBFHandle>(handle_);
+  const char* value = DBFReadStringAttribute(handle, record, field);
+  if (value != nullptr && DBFIsAttributeNULL(handle, record, field)) {
+    return {};
+  }
+  if (value == nullptr) {
+    fail(file_, record, "cannot read the record (truncated .dbf?)");
+  }
+  return std::string(trim(value));
+}
+
+std::optional<int64_t> DbfReader::integer(int record, int field) const {
+  const std::string value = text(record, field);
+  if (value.empty()) {
+    return std::nullopt;
+  }
+  if (auto number = parse_int(value)) {
+    return number;
+  }
+  // Numeric DBF fields may carry a decimal part ("40.000") for an integer quantity.
+  if (auto number = parse_double(value);
+      number && *number == static_cast<double>(static_cast<int64_t>(*number))) {
+    return static_cast<int64_t>(*number);
+  }
+  fail(file_, record,
+       "field '" + names_[static_cast<size_t>(field)] + "' is not an integer: '" + value + "'");
+}
+
+std::optional<double> DbfReader::real(int record, int field) const {
+  const std::string value = text(record, field);
+  if (value.empty()) {
+    return std::nullopt;
+  }
+  if (auto number = parse_double(value)) {
+    return number;
+  }
+  fail(file_, record,
+       "field '" + names_[static_cast<size_t>(field)] + "' is not a number: '" + value + "'");
+}
+
+}  // namespace corsa::ngii::detail
