@@ -27,6 +27,8 @@ const cv::Scalar kJunctionTint(150, 110, 80);
 constexpr double kJunctionTintWeight = 0.3;
 /// Mesh tolerance in final pixels: well under a pixel, so curves look smooth.
 constexpr double kTolerancePixels = 0.3;
+/// Smallest side (pixels) of a picture drawn at a given scale: room for the overlays.
+constexpr int kMinScaledSide = 192;
 /// Sub-pixel bits of the rasteriser's coordinates.
 constexpr int kShift = 4;
 
@@ -75,13 +77,15 @@ MapPicture choose_frame(const Bounds& b, const RenderOptions& options, const std
                          " x " + corsa::format_fixed(height, 0) + " pixels; the most is " +
                          std::to_string(kMaxPictureSide) + " a side (use a larger --scale)"));
     }
-    frame.width = static_cast<int>(width);
-    frame.height = static_cast<int>(height);
+    frame.width = std::max(kMinScaledSide, static_cast<int>(width));
+    frame.height = std::max(kMinScaledSide, static_cast<int>(height));
   } else {
     const int size = options.size;
     margin = std::max(16, size / 40);
     frame.scale = std::max(w, h) / (size - 2 * margin);
-    const int shorter = static_cast<int>(std::lround(std::min(w, h) / frame.scale)) + 2 * margin;
+    // A long thin map still gets room for the scale bar and the north arrow.
+    const int shorter = std::max(
+        size / 4, static_cast<int>(std::lround(std::min(w, h) / frame.scale)) + 2 * margin);
     frame.width = w >= h ? size : std::min(size, shorter);
     frame.height = w >= h ? std::min(size, shorter) : size;
   }
@@ -94,8 +98,8 @@ cv::Scalar bgr_of(Rgb c) { return cv::Scalar(c.b, c.g, c.r); }
 
 cv::Scalar lane_color(const TriangleInfo& info) {
   const cv::Scalar base = bgr_of(lane_type_color(info.lane_type));
-  if (!info.in_junction) {
-    return base;
+  if (!info.in_junction || !is_drivable(info.lane_type)) {
+    return base;  // only the junction's carriageway is tinted; sidewalks stay sidewalks
   }
   return base * (1.0 - kJunctionTintWeight) + kJunctionTint * kJunctionTintWeight;
 }
