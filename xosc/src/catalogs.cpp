@@ -100,6 +100,7 @@ CatalogResolver::Hit CatalogResolver::find(ParseContext& ctx, const Element* ref
 
 Catalog parse_catalog(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "Catalog");
+  kids.consume_all();
   Catalog catalog;
   catalog.name = ctx.req_str(e, "name");
   const EntryScope scope{nullptr, true, "catalog entry"};

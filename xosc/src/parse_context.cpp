@@ -1,6 +1,8 @@
 #include "parse_context.h"
 
+#include <algorithm>
 #include <cmath>
+#include <exception>
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
@@ -476,7 +478,27 @@ Children::Children(ParseContext& context, const Element* element, std::string_vi
   }
 }
 
+Children::~Children() {
+  if (consumed_all_ || std::uncaught_exceptions() > 0) return;
+  for (const Element* child = element_->FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    const std::string_view name = child->Name();
+    if (std::find(consumed_.begin(), consumed_.end(), name) == consumed_.end()) {
+      context_.warn_once(child, "unread:" + std::string(type_) + "." + std::string(name),
+                         "<" + std::string(name) + "> in <" + element_->Name() +
+                             "> is not supported yet; ignored");
+    }
+  }
+}
+
+void Children::consumed(std::string_view name) {
+  if (std::find(consumed_.begin(), consumed_.end(), name) == consumed_.end()) {
+    consumed_.push_back(name);
+  }
+}
+
 const Element* Children::opt(const char* name) {
+  consumed(name);
   const Element* first = element_->FirstChildElement(name);
   if (first != nullptr && first->NextSiblingElement(name) != nullptr) {
     context_.fail(first->NextSiblingElement(name),
@@ -494,6 +516,7 @@ const Element* Children::one(const char* name) {
 }
 
 std::vector<const Element*> Children::all(const char* name) {
+  consumed(name);
   std::vector<const Element*> result;
   for (const Element* child = element_->FirstChildElement(name); child != nullptr;
        child = child->NextSiblingElement(name)) {
@@ -512,6 +535,7 @@ std::vector<const Element*> Children::at_least(const char* name, size_t minimum)
 }
 
 const Element* Children::choice() {
+  consumed_all_ = true;
   const Element* child = element_->FirstChildElement();
   if (child == nullptr) {
     const TypeRule* rule = find_type_rule(type_);

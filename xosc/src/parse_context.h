@@ -184,6 +184,13 @@ class ScopeGuard {
 class Children {
  public:
   Children(ParseContext& context, const Element* element, std::string_view type);
+  Children(const Children&) = delete;
+  Children& operator=(const Children&) = delete;
+  /// Warns about children the parse function never asked for (a gap in Corsa, not in the file),
+  /// so that nothing in a document is dropped silently.
+  ~Children();
+  /// For parse functions that walk the children themselves.
+  void consume_all() { consumed_all_ = true; }
 
   const Element* element() const { return element_; }
   /// Exactly one child called `name`.
@@ -198,9 +205,13 @@ class Children {
   const Element* choice();
 
  private:
+  void consumed(std::string_view name);
+
   ParseContext& context_;
   const Element* element_;
   std::string_view type_;
+  std::vector<std::string_view> consumed_;
+  bool consumed_all_ = false;
 };
 
 /// Text content of an element ("" when none).

@@ -154,6 +154,7 @@ ParameterValueDistribution parse_parameter_value_distribution(ParseContext& ctx,
   }
   if (deterministic != nullptr) {
     Children det_kids(ctx, deterministic, "Deterministic");
+    det_kids.consume_all();
     Deterministic value;
     for (const Element* child = deterministic->FirstChildElement(); child != nullptr;
          child = child->NextSiblingElement()) {

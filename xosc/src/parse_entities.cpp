@@ -239,6 +239,7 @@ ScenarioObject parse_scenario_object(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "ScenarioObject");
   ScenarioObject object;
   object.name = ctx.req_str(e, "name");
+  kids.consume_all();
   const Element* definition = nullptr;
   for (const Element* child = e->FirstChildElement(); child != nullptr;
        child = child->NextSiblingElement()) {

@@ -88,6 +88,7 @@ ManeuverGroup parse_maneuver_group(ParseContext& ctx, const Element* e, const st
   }
   group.actors.source = ctx.source(actors);
   std::set<std::string> names;
+  kids.consume_all();
   // Inline maneuvers and catalog references, in document order.
   for (const Element* child = e->FirstChildElement(); child != nullptr;
        child = child->NextSiblingElement()) {

@@ -17,6 +17,7 @@ double weight_of(ParseContext& ctx, const Element* e) {
 ScenarioObjectTemplate parse_template(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "ScenarioObjectTemplate");
   ScenarioObjectTemplate object;
+  kids.consume_all();
   const Element* definition = nullptr;
   for (const Element* child = e->FirstChildElement(); child != nullptr;
        child = child->NextSiblingElement()) {
