@@ -49,8 +49,13 @@ Vec3 CameraModel::ray(Pixel pixel) const {
     for (int i = 0; i < 20; ++i) {
       double fx = 0.0, fy = 0.0;
       distort(x, y, fx, fy);
-      x += xd - fx;
-      y += yd - fy;
+      const double ex = xd - fx;
+      const double ey = yd - fy;
+      x += ex;
+      y += ey;
+      if (ex * ex + ey * ey < 1e-26) {
+        break;  // converged to double precision
+      }
     }
   }
   return normalized({x, y, 1.0});

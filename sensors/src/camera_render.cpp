@@ -31,6 +31,7 @@ struct Pass {
   const RenderSettings* settings;
   const detail::ShadingContext* shading;
   Rigid world_from_cam;       // optical frame to map
+  float rotation[3][3];       // its rotation in single precision, for the rays
   Rigid cam_early, cam_late;  // inverse poses at -shutter/2 and +shutter/2 (blur)
   bool blur;
   Vec3 origin_local;
@@ -49,16 +50,19 @@ Vec3 point_velocity(const detail::SceneData& d, int pool, Vec3 p_world) {
   return Vec3{e.vx, e.vy, e.vz} + Vec3{-e.yaw_rate * r.y, e.yaw_rate * r.x, 0.0};
 }
 
+/// Image motion of a surface point over the exposure. The pinhole projection is used without
+/// the lens distortion: over a blur of a few pixels the difference is far below a pixel.
 void store_motion(const Pass& p, size_t px, Vec3 p_world, int pool) {
   const double half = 0.5 * p.settings->rgb.shutter_speed_s;
   const Vec3 v = point_velocity(*p.scene, pool, p_world);
-  const auto a = p.model->project(p.cam_early.apply(p_world - v * half));
-  const auto b = p.model->project(p.cam_late.apply(p_world + v * half));
-  float* m = &(*p.motion)[2 * px];
-  if (a && b) {
-    m[0] = static_cast<float>(b->u - a->u);
-    m[1] = static_cast<float>(b->v - a->v);
+  const Vec3 a = p.cam_early.apply(p_world - v * half);
+  const Vec3 b = p.cam_late.apply(p_world + v * half);
+  if (a.z <= 1e-3 || b.z <= 1e-3) {
+    return;
   }
+  float* m = &(*p.motion)[2 * px];
+  m[0] = static_cast<float>(p.model->fx() * (b.x / b.z - a.x / a.z));
+  m[1] = static_cast<float>(p.model->fy() * (b.y / b.z - a.y / a.z));
 }
 
 void trace_tile(const Pass& p, int col0, int row0) {
@@ -76,7 +80,10 @@ void trace_tile(const Pass& p, int col0, int row0) {
     valid[k] = col < w && row < h ? -1 : 0;
     pixel[k] = valid[k] ? static_cast<size_t>(row) * w + col : 0;
     const float* r = p.rays + 3 * pixel[k];
-    const Vec3 dir = p.world_from_cam.apply_direction({r[0], r[1], r[2]});
+    const auto& m = p.rotation;
+    const Vec3 dir{m[0][0] * r[0] + m[0][1] * r[1] + m[0][2] * r[2],
+                   m[1][0] * r[0] + m[1][1] * r[1] + m[1][2] * r[2],
+                   m[2][0] * r[0] + m[2][1] * r[1] + m[2][2] * r[2]};
     rh.ray.org_x[k] = static_cast<float>(p.origin_local.x);
     rh.ray.org_y[k] = static_cast<float>(p.origin_local.y);
     rh.ray.org_z[k] = static_cast<float>(p.origin_local.z);
@@ -237,6 +244,11 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   p.settings = &settings;
   p.world_from_cam = world_from_optical(motion.world_from_body);
   p.origin_local = scene.data().to_local(p.world_from_cam.translation);
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) {
+      p.rotation[r][k] = static_cast<float>(p.world_from_cam.rotation.m[r][k]);
+    }
+  }
   p.carrier = detail::CarrierExit(settings.carrier, p.world_from_cam.translation);
   p.out = &out;
   if (rgb) {

@@ -168,12 +168,14 @@ void motion_blur(std::vector<float>& linear, const std::vector<float>& motion, i
         if (length < 0.5) {
           continue;
         }
-        const int samples = std::min(32, static_cast<int>(std::ceil(length)) + 1);
+        // One sample per pixel of motion, at most 16 (longer streaks are sampled more sparsely).
+        const int samples = std::min(16, static_cast<int>(std::ceil(length)) + 1);
         double sum[3] = {0.0, 0.0, 0.0};
         for (int s = 0; s < samples; ++s) {
           const double f = static_cast<double>(s) / (samples - 1) - 0.5;
-          const int c = std::clamp(static_cast<int>(std::lround(col + f * mx)), 0, width - 1);
-          const int q = std::clamp(static_cast<int>(std::lround(row + f * my)), 0, height - 1);
+          // Nearest pixel: clamp first, then round the non-negative coordinate by truncation.
+          const int c = static_cast<int>(std::clamp(col + f * mx, 0.0, width - 1.0) + 0.5);
+          const int q = static_cast<int>(std::clamp(row + f * my, 0.0, height - 1.0) + 0.5);
           const float* v = &sharp[3 * (static_cast<size_t>(q) * width + c)];
           sum[0] += v[0];
           sum[1] += v[1];
@@ -218,7 +220,7 @@ std::vector<uint8_t> develop(const std::vector<float>& linear, int width, int he
           v += z * std::sqrt(std::max(0.0, v) * shot + read * read);
         }
         const double c = std::clamp(v, 0.0, 1.0);
-        out[i] = table[static_cast<size_t>(std::lround(c * 4096.0))];
+        out[i] = table[static_cast<size_t>(c * 4096.0 + 0.5)];
       }
     }
   });

@@ -86,7 +86,7 @@ bool project_box(const CameraModel& camera, const Box3& box, Box2& out) {
 
 /// Share of the object's silhouette (its prototype shape alone) covered by its own pixels.
 double occlusion_of(const detail::SceneData& d, const detail::EntityInstance& inst,
-                    const CameraModel& camera, const Rigid& world_from_cam, const Box2& box,
+                    const CameraRenderer& camera, const Rigid& world_from_cam, const Box2& box,
                     std::span<const uint32_t> instance, int width) {
   const engine::EntitySnapshot& e = d.entities[inst.snapshot_index];
   const Box3 b = entity_box(e);
@@ -108,8 +108,7 @@ double occlusion_of(const detail::SceneData& d, const detail::EntityInstance& in
   uint64_t silhouette = 0, seen = 0;
   for (int y = y0; y <= y1; y += stride) {
     for (int x = x0; x <= x1; x += stride) {
-      const Vec3 dir = unit(world_from_cam.apply_direction(
-          camera.ray({static_cast<double>(x), static_cast<double>(y)})));
+      const Vec3 dir = unit(world_from_cam.apply_direction(camera.pixel_ray(x, y)));
       RTCRay ray{};
       ray.org_x = static_cast<float>(origin.x);
       ray.org_y = static_cast<float>(origin.y);
@@ -170,10 +169,11 @@ Box3 entity_box(const engine::EntitySnapshot& e) {
   return b;
 }
 
-std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraModel& camera,
+std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer& renderer,
                                        const Rigid& world_from_body,
                                        std::span<const uint32_t> instance, uint32_t carrier) {
   const detail::SceneData& d = scene.data();
+  const CameraModel& camera = renderer.model();
   const int w = camera.width();
   const int h = camera.height();
   const Rigid world_from_cam = world_from_optical(world_from_body);
@@ -210,7 +210,7 @@ std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraModel& ca
     l.box_2d = clipped;
     l.truncation =
         full.area() > 0.0 ? std::clamp(1.0 - clipped.area() / full.area(), 0.0, 1.0) : 0.0;
-    l.occlusion = occlusion_of(d, inst, camera, world_from_cam, clipped, instance, w);
+    l.occlusion = occlusion_of(d, inst, renderer, world_from_cam, clipped, instance, w);
     labels.push_back(std::move(l));
   }
   return labels;

@@ -3,7 +3,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "carrier.h"
@@ -20,59 +23,55 @@ struct ScanContext {
   const detail::SceneData* scene;
   const LidarOptions* options;
   const float* directions;  // body frame
-  Mat3 rotation;            // body to map
+  float rotation[3][3];     // body to map
   Vec3 origin;              // sensor position, tracer-local
   double weather;           // 1/m
   uint64_t frame_seed;
   int channels;
   detail::CarrierExit carrier;
+  std::array<double, kSemanticClassCount> reflectivity;
 };
 
-/// Decides whether a hit becomes a point and where; appends it.
+/// Decides whether a hit becomes a point and where; writes it at `out` and says whether it did.
 class ReturnModel {
  public:
   ReturnModel(const ScanContext& c, uint64_t seed) : c_(c), rng_(seed) {}
 
-  void add(const RTCRayHit16& rh, int lane, const float* dir_body, int ring, int step,
-           std::vector<LidarPoint>& out) {
-    if (rh.hit.geomID[lane] == RTC_INVALID_GEOMETRY_ID) {
-      return;
-    }
+  bool make(const RTCRayHit16& rh, int lane, const float* dir_body, LidarPoint& out) {
     const double r = rh.ray.tfar[lane];
     const LidarOptions& o = *c_.options;
-    const auto label =
-        c_.scene->label(rh.hit.instID[0][lane], rh.hit.geomID[lane], rh.hit.primID[lane]);
-    const Vec3 n = c_.scene->world_normal(
-        rh.hit.instID[0][lane], {rh.hit.Ng_x[lane], rh.hit.Ng_y[lane], rh.hit.Ng_z[lane]});
+    const unsigned inst = rh.hit.instID[0][lane];
+    const auto label = c_.scene->label(inst, rh.hit.geomID[lane], rh.hit.primID[lane]);
+    Vec3 n{rh.hit.Ng_x[lane], rh.hit.Ng_y[lane], rh.hit.Ng_z[lane]};
+    if (inst != 0) {
+      n = c_.scene->instances[inst - 1].normal_matrix * n;  // object to world normal
+    }
     const Vec3 d{rh.ray.dir_x[lane], rh.ray.dir_y[lane], rh.ray.dir_z[lane]};
-    const double cos_inc = std::fabs(dot(n, d));
-    double intensity =
-        lidar_reflectivity(label.semantic) * cos_inc * std::exp(-o.atmosphere_attenuation_rate * r);
+    const double cos_inc = std::fabs(dot(n, d)) / std::sqrt(dot(n, n));
+    double intensity = c_.reflectivity[static_cast<size_t>(label.semantic)] * cos_inc *
+                       std::exp(-o.atmosphere_attenuation_rate * r);
     if (c_.weather > 0.0) {
       const double transmission = std::exp(-2.0 * c_.weather * r);
       if (rng_.uniform01() >= transmission) {
-        return;
+        return false;
       }
       intensity *= transmission;
     }
     if (o.dropoff_general_rate > 0.0 && rng_.uniform01() < o.dropoff_general_rate) {
-      return;
+      return false;
     }
     if (intensity < o.dropoff_intensity_limit && o.dropoff_zero_intensity > 0.0 &&
         rng_.uniform01() < o.dropoff_zero_intensity) {
-      return;
+      return false;
     }
     const double range = o.noise_stddev_m > 0.0 ? r + o.noise_stddev_m * normal_.next(rng_) : r;
-    LidarPoint p;
-    p.x = static_cast<float>(dir_body[0] * range);
-    p.y = static_cast<float>(dir_body[1] * range);
-    p.z = static_cast<float>(dir_body[2] * range);
-    p.intensity = static_cast<float>(intensity);
-    p.ring = static_cast<uint16_t>(ring);
-    p.azimuth_index = static_cast<uint16_t>(step);
-    p.semantic = label.semantic;
-    p.instance_id = label.instance_id;
-    out.push_back(p);
+    out.x = static_cast<float>(dir_body[0] * range);
+    out.y = static_cast<float>(dir_body[1] * range);
+    out.z = static_cast<float>(dir_body[2] * range);
+    out.intensity = static_cast<float>(intensity);
+    out.semantic = label.semantic;
+    out.instance_id = label.instance_id;
+    return true;
   }
 
  private:
@@ -81,9 +80,9 @@ class ReturnModel {
   detail::NormalPairs normal_;
 };
 
-/// Fires the beams of azimuth columns [first, last) in packets of 16.
-void scan_block(const ScanContext& c, int first, int last, uint64_t block,
-                std::vector<LidarPoint>& out) {
+/// Fires the beams of azimuth columns [first, last) in packets of 16, writing the points from
+/// `out` on; returns how many it wrote.
+size_t scan_block(const ScanContext& c, int first, int last, uint64_t block, LidarPoint* out) {
   ReturnModel model(c, detail::block_seed(c.frame_seed, block));
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -92,19 +91,28 @@ void scan_block(const ScanContext& c, int first, int last, uint64_t block,
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[16];
   const float far = static_cast<float>(c.options->range_m);
+  const auto& m = c.rotation;
+  const float ox = static_cast<float>(c.origin.x);
+  const float oy = static_cast<float>(c.origin.y);
+  const float oz = static_cast<float>(c.origin.z);
+  size_t written = 0;
+  int ring = 0;
+  int step = first;
   for (size_t i = begin; i < end; i += 16) {
     const int n = static_cast<int>(std::min<size_t>(16, end - i));
     for (int k = 0; k < 16; ++k) {
       valid[k] = k < n ? -1 : 0;
       const float* db = c.directions + 3 * (i + (k < n ? k : 0));
-      const Vec3 d = c.rotation * Vec3{db[0], db[1], db[2]};
-      rh.ray.org_x[k] = static_cast<float>(c.origin.x);
-      rh.ray.org_y[k] = static_cast<float>(c.origin.y);
-      rh.ray.org_z[k] = static_cast<float>(c.origin.z);
-      rh.ray.dir_x[k] = static_cast<float>(d.x);
-      rh.ray.dir_y[k] = static_cast<float>(d.y);
-      rh.ray.dir_z[k] = static_cast<float>(d.z);
-      rh.ray.tnear[k] = c.carrier.exit(d);
+      const float dx = m[0][0] * db[0] + m[0][1] * db[1] + m[0][2] * db[2];
+      const float dy = m[1][0] * db[0] + m[1][1] * db[1] + m[1][2] * db[2];
+      const float dz = m[2][0] * db[0] + m[2][1] * db[1] + m[2][2] * db[2];
+      rh.ray.org_x[k] = ox;
+      rh.ray.org_y[k] = oy;
+      rh.ray.org_z[k] = oz;
+      rh.ray.dir_x[k] = dx;
+      rh.ray.dir_y[k] = dy;
+      rh.ray.dir_z[k] = dz;
+      rh.ray.tnear[k] = c.carrier.active() ? c.carrier.exit({dx, dy, dz}) : 0.0f;
       rh.ray.tfar[k] = far;
       rh.ray.mask[k] = 0xFFFFFFFFu;
       rh.ray.flags[k] = 0;
@@ -113,11 +121,21 @@ void scan_block(const ScanContext& c, int first, int last, uint64_t block,
     }
     rtcIntersect16(valid, c.scene->top, &context, &rh);
     for (int k = 0; k < n; ++k) {
-      const size_t ray = i + k;
-      model.add(rh, k, c.directions + 3 * ray, static_cast<int>(ray % c.channels),
-                static_cast<int>(ray / c.channels), out);
+      if (rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) {
+        LidarPoint& p = out[written];
+        if (model.make(rh, k, c.directions + 3 * (i + k), p)) {
+          p.ring = static_cast<uint16_t>(ring);
+          p.azimuth_index = static_cast<uint16_t>(step);
+          ++written;
+        }
+      }
+      if (++ring == c.channels) {
+        ring = 0;
+        ++step;
+      }
     }
   }
+  return written;
 }
 
 }  // namespace
@@ -186,34 +204,45 @@ PointCloud LidarSimulator::scan(const Scene& scene, const Rigid& world_from_sens
   c.scene = &scene.data();
   c.options = &options_;
   c.directions = directions_.data();
-  c.rotation = world_from_sensor.rotation;
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) {
+      c.rotation[r][k] = static_cast<float>(world_from_sensor.rotation.m[r][k]);
+    }
+  }
   c.origin = scene.data().to_local(world_from_sensor.translation);
   c.weather = weather_extinction;
   c.frame_seed = frame_seed;
   c.channels = options_.channels;
   c.carrier = detail::CarrierExit(carrier, world_from_sensor.translation);
+  for (int k = 0; k < kSemanticClassCount; ++k) {
+    c.reflectivity[k] = lidar_reflectivity(static_cast<SemanticClass>(k));
+  }
 
+  // Every block writes into its own slice of one buffer (at most one point per beam); the
+  // slices are then closed up in block order, so the cloud is the same for any thread count.
   const int blocks = (steps_ + kColumnsPerBlock - 1) / kColumnsPerBlock;
-  std::vector<std::vector<LidarPoint>> parts(blocks);
-  tbb::parallel_for(tbb::blocked_range<int>(0, blocks), [&](const tbb::blocked_range<int>& r) {
-    for (int b = r.begin(); b != r.end(); ++b) {
-      parts[b].reserve(static_cast<size_t>(kColumnsPerBlock) * c.channels);
-      scan_block(c, b * kColumnsPerBlock, std::min(steps_, (b + 1) * kColumnsPerBlock),
-                 static_cast<uint64_t>(b), parts[b]);
-    }
-  });
+  const size_t per_block = static_cast<size_t>(kColumnsPerBlock) * c.channels;
   PointCloud cloud;
   cloud.channels = options_.channels;
   cloud.azimuth_steps = steps_;
   cloud.rays = static_cast<uint64_t>(steps_) * options_.channels;
+  cloud.points.resize(cloud.rays);
+  std::vector<size_t> counts(blocks);
+  tbb::parallel_for(tbb::blocked_range<int>(0, blocks), [&](const tbb::blocked_range<int>& r) {
+    for (int b = r.begin(); b != r.end(); ++b) {
+      counts[b] = scan_block(c, b * kColumnsPerBlock, std::min(steps_, (b + 1) * kColumnsPerBlock),
+                             static_cast<uint64_t>(b), cloud.points.data() + b * per_block);
+    }
+  });
   size_t total = 0;
-  for (const auto& p : parts) {
-    total += p.size();
+  for (int b = 0; b < blocks; ++b) {
+    const LidarPoint* from = cloud.points.data() + b * per_block;
+    if (from != cloud.points.data() + total) {
+      std::memmove(cloud.points.data() + total, from, counts[b] * sizeof(LidarPoint));
+    }
+    total += counts[b];
   }
-  cloud.points.reserve(total);
-  for (const auto& p : parts) {
-    cloud.points.insert(cloud.points.end(), p.begin(), p.end());
-  }
+  cloud.points.resize(total);
   return cloud;
 }
 

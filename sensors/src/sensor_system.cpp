@@ -35,7 +35,8 @@ struct CameraGroup {
 }  // namespace
 
 struct SensorSystem::Cache {
-  std::map<std::string, std::unique_ptr<CameraRenderer>> cameras;
+  std::vector<std::unique_ptr<CameraRenderer>> renderers;  // one per distinct intrinsics
+  std::map<std::string, const CameraRenderer*> cameras;
   std::map<std::string, std::unique_ptr<LidarSimulator>> lidars;
 };
 
@@ -43,7 +44,20 @@ SensorSystem::SensorSystem(SensorRig rig, Scene& scene, SensorSystemOptions opti
     : rig_(std::move(rig)), scene_(scene), options_(options), cache_(std::make_unique<Cache>()) {
   for (const auto& s : rig_.sensors) {
     if (is_camera(s.kind)) {
-      cache_->cameras[s.name] = std::make_unique<CameraRenderer>(s.camera);
+      const CameraRenderer* shared = nullptr;
+      for (const auto& r : cache_->renderers) {
+        const auto& k = r->model().intrinsics();
+        if (k.width == s.camera.width && k.height == s.camera.height &&
+            k.fov_deg == s.camera.fov_deg && k.k1 == s.camera.k1 && k.k2 == s.camera.k2 &&
+            k.p1 == s.camera.p1 && k.p2 == s.camera.p2) {
+          shared = r.get();
+        }
+      }
+      if (shared == nullptr) {
+        cache_->renderers.push_back(std::make_unique<CameraRenderer>(s.camera));
+        shared = cache_->renderers.back().get();
+      }
+      cache_->cameras[s.name] = shared;
     } else if (s.kind == SensorKind::kLidar) {
       cache_->lidars[s.name] = std::make_unique<LidarSimulator>(s.lidar);
     }
@@ -148,8 +162,8 @@ std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& worl
     motion.pivot = {carrier.pose.x, carrier.pose.y, carrier.pose.z};
     const CameraRenderer& renderer = *cache_->cameras.at(lead.name);
     CameraImages images = renderer.render(scene_, motion, settings);
-    const auto labels = camera_labels(scene_, renderer.model(), motion.world_from_body,
-                                      images.instance, carrier.instance_id);
+    const auto labels = camera_labels(scene_, renderer, motion.world_from_body, images.instance,
+                                      carrier.instance_id);
     for (const SensorSpec* m : g.members) {
       SensorFrame& f = frames[m->name];
       f.labels = labels;

@@ -61,7 +61,7 @@ TEST_CASE("a box at a known distance gives the right depth and 2D box", "[sensor
   // The face spans 2 m x 1.5 m at 18 m: (320 * 2 / 18) x (320 * 1.5 / 18) pixels.
   CHECK(static_cast<double>(box_pixels) == Approx(35.56 * 26.67).epsilon(0.06));
 
-  const auto labels = camera_labels(scene, camera.model(), kEye, img.instance);
+  const auto labels = camera_labels(scene, camera, kEye, img.instance);
   REQUIRE(labels.size() == 1);
   const ObjectLabel& l = labels[0];
   CHECK(l.track_id == 7);
@@ -94,7 +94,7 @@ TEST_CASE("an object hidden half behind another is labelled half occluded",
   const Scene scene = road_with({target, occluder});
   const CameraRenderer camera(vga());
   const CameraImages img = render(scene, camera, {});
-  const auto labels = camera_labels(scene, camera.model(), kEye, img.instance);
+  const auto labels = camera_labels(scene, camera, kEye, img.instance);
   REQUIRE(labels.size() == 2);
   CHECK(labels[0].name == "target");
   CHECK(labels[0].occlusion == Approx(0.5).margin(0.04));
@@ -109,7 +109,7 @@ TEST_CASE("an object at the image edge is labelled truncated by the share outsid
   const Scene scene = road_with({box_entity(3, "edge", 18.0, -18.0, 2.0, 2.0, 1.5)});
   const CameraRenderer camera(vga());
   const CameraImages img = render(scene, camera, {});
-  const auto labels = camera_labels(scene, camera.model(), kEye, img.instance);
+  const auto labels = camera_labels(scene, camera, kEye, img.instance);
   REQUIRE(labels.size() == 1);
   // Pinhole projection of the eight corners, clipped to the image.
   double u0 = 1e9, u1 = -1e9, v0 = 1e9, v1 = -1e9;

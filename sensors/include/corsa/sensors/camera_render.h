@@ -9,9 +9,9 @@
 #include <optional>
 #include <vector>
 
+#include "corsa/sensors/box.h"
 #include "corsa/sensors/camera_model.h"
 #include "corsa/sensors/environment.h"
-#include "corsa/sensors/labels.h"
 #include "corsa/sensors/rig.h"
 #include "corsa/sensors/scene.h"
 

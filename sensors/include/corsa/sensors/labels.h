@@ -11,6 +11,7 @@
 
 #include "corsa/sensors/box.h"
 #include "corsa/sensors/camera_model.h"
+#include "corsa/sensors/camera_render.h"
 #include "corsa/sensors/geometry.h"
 #include "corsa/sensors/lidar.h"
 #include "corsa/sensors/scene.h"
@@ -45,7 +46,7 @@ double kitti_rotation_y(const Box3& box_in_optical_frame);
 /// Labels of a camera frame: every visible entity with at least one visible pixel, except the
 /// entity with instance id `carrier` (the sensor's own vehicle; 0 for none).
 /// `instance` is the camera's instance buffer (CameraImages::instance).
-std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraModel& camera,
+std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer& camera,
                                        const Rigid& world_from_body,
                                        std::span<const uint32_t> instance, uint32_t carrier = 0);
 
