@@ -1,0 +1,96 @@
+// Conditions: one fixture per family (tests/engine/fixtures/condition_*.xosc). Each condition
+// starts a marker event; the tests check when it started.
+
+#include "engine_fixture.h"
+
+namespace corsa::test {
+namespace {
+
+using Catch::Detail::Approx;
+using engine::TransitionKind;
+
+std::optional<double> started(const FixtureRun& run, const std::string& event) {
+  return run.first("Marks::M::" + event, TransitionKind::kStart);
+}
+
+TEST_CASE("SimulationTimeCondition compares the time on the tick grid with each rule",
+          "[engine][condition][time]") {
+  FixtureRun run(engine_fixture("condition_simulation_time.xosc"));
+  run.run();
+  CHECK(started(run, "BeforeHalf") == Approx(0.0));
+  CHECK(started(run, "AfterOne") == Approx(1.01));
+  CHECK(started(run, "AtTwo") == Approx(2.0));
+  CHECK(started(run, "EqualThree") == Approx(3.0));
+}
+
+TEST_CASE("Speed, relative speed, acceleration, traveled distance and stand-still conditions",
+          "[engine][condition][motion]") {
+  FixtureRun run(engine_fixture("condition_motion.xosc"));
+  run.run();
+  // Acc speeds up at 2 m/s^2 from 0 (Init), brakes sinusoidally from 12.01 s to 14.01 s.
+  CHECK(started(run, "Faster10") == Approx(5.01));     // speed > 10 m/s
+  CHECK(started(run, "LateralStill") == Approx(0.0));  // lateral speed 0
+  CHECK(started(run, "PassesConst") == Approx(6.01));  // faster than Const's 12 m/s
+  CHECK(started(run, "Accelerating") == Approx(0.01));
+  const auto braking = started(run, "Braking");
+  REQUIRE(braking);
+  CHECK(*braking > 12.01);
+  CHECK(*braking < 12.5);
+  CHECK(run.at(*braking, "Acc").acceleration < -3.0);
+  CHECK(started(run, "Hundred") == Approx(10.0));  // 100 m driven: t^2 = 100
+  CHECK(run.at(14.01, "Acc").speed == 0.0);
+  CHECK(started(run, "Stopped") == Approx(15.01));  // still for one second
+}
+
+TEST_CASE("Distance conditions between reference points, free space and boxes",
+          "[engine][condition][distance]") {
+  FixtureRun run(engine_fixture("condition_distances.xosc"));
+  run.run();
+  // Runner (20 m/s, rear axle at s = 0) follows Slow (10 m/s, 120 m ahead); both boxes reach
+  // 3.65 m ahead of and 0.85 m behind their reference points.
+  CHECK(started(run, "Reached") == Approx(4.95));     // within 1 m of s = 100
+  CHECK(started(run, "Near") == Approx(7.51));        // reference point within 50 m of x = 200
+  CHECK(started(run, "NearFree") == Approx(7.32));    // front of the box within 50 m
+  CHECK(started(run, "Headway") == Approx(8.01));     // (120 - 10 t) / 20 < 2 s
+  CHECK(started(run, "Imminent") == Approx(8.56));    // (115.5 - 10 t) / 10 < 3 s
+  CHECK(started(run, "Close") == Approx(9.56));       // bumper to bumper < 20 m
+  CHECK(started(run, "CloseRoad") == Approx(9.56));   // the same in road coordinates
+  CHECK(started(run, "Crash") == Approx(11.55));      // boxes touch
+  CHECK(started(run, "CrashType") == Approx(11.55));  // Slow hit by a vehicle
+  REQUIRE(!run.sim().collisions().empty());
+  CHECK(run.sim().collisions().front().time == Approx(11.55));
+  CHECK(run.sim().colliding(run.entity("Runner"), run.entity("Slow")));
+}
+
+TEST_CASE("End-of-road, off-road and relative clearance conditions", "[engine][condition][road]") {
+  FixtureRun run(engine_fixture("condition_road.xosc"));
+  run.run();
+  // Ender reaches the road's end (s = 1000) at 5 s and stops there: 0.5 s later it holds.
+  CHECK(started(run, "AtEnd") == Approx(5.5));
+  CHECK(run.now("Ender").speed == 0.0);
+  CHECK(run.now("Ender").road->s == Approx(1000.0));
+  // Drifter steps 6 m right of lane -3 at 1.01 s, off every lane from the next tick.
+  CHECK(run.at(1.0, "Drifter").road.has_value());
+  CHECK(!run.at(1.02, "Drifter").road.has_value());
+  CHECK(started(run, "OffRoad") == Approx(1.52));
+  // Passer, in the lane left of Ego, is within 20 m of it from 2 s to 6 s.
+  const auto clear = started(run, "Clear");
+  REQUIRE(clear);
+  CHECK(*clear == Approx(6.0).margin(0.011));
+}
+
+TEST_CASE("Triggering entities: any, all, and the entities that fired as actors",
+          "[engine][condition][triggering]") {
+  FixtureRun run(engine_fixture("condition_triggering_entities.xosc"));
+  run.run();
+  CHECK(started(run, "AnyHundred") == Approx(3.34));  // C at 30 m/s first
+  CHECK(started(run, "AllHundred") == Approx(10.0));  // A at 10 m/s last
+  // B passed 150 m first (at 7.5 s): only B is slowed down.
+  CHECK(run.first("Chosen::M::SlowFast", TransitionKind::kStart) == Approx(7.5));
+  CHECK(run.now("B").speed == 5.0);
+  CHECK(run.now("A").speed == 10.0);
+  CHECK(run.now("C").speed == 30.0);
+}
+
+}  // namespace
+}  // namespace corsa::test

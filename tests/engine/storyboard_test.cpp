@@ -1,0 +1,118 @@
+// The storyboard state machine (OpenSCENARIO 1.3 §8.4): priorities, execution counts, act
+// triggers, edges and delays, how runs end.
+
+#include "engine_fixture.h"
+
+namespace corsa::test {
+namespace {
+
+using Catch::Detail::Approx;
+using engine::ElementState;
+using engine::TransitionKind;
+
+TEST_CASE("Event priorities override, skip and parallel", "[engine][storyboard][priority]") {
+  FixtureRun run(engine_fixture("storyboard_priorities.xosc"));
+  run.run();
+  SECTION("override stops the running event of the same maneuver") {
+    CHECK(run.first("OverrideGroup::M::Long", TransitionKind::kStop) == Approx(2.01));
+    CHECK(run.first("OverrideGroup::M::Long::Ramp", TransitionKind::kStop) == Approx(2.01));
+    CHECK(run.count("OverrideGroup::M::Long", TransitionKind::kEnd) == 0);
+    CHECK(run.now("Overridden").speed == 5.0);
+  }
+  SECTION("skip does not start while another event runs, and counts as an execution") {
+    CHECK(run.first("SkipGroup::M::Skipped", TransitionKind::kSkip) == Approx(1.01));
+    CHECK(run.count("SkipGroup::M::Skipped", TransitionKind::kStart) == 0);
+    CHECK(run.state_of("SkipGroup::M::Skipped") == ElementState::kComplete);
+    CHECK(run.count("SkipGroup::M::SkippedTwice", TransitionKind::kSkip) == 2);
+    CHECK(run.first("SkipGroup::M::Later", TransitionKind::kStart) == Approx(5.01));
+    CHECK(run.now("Skipper").speed == 10.0);
+  }
+  SECTION("parallel runs alongside the running event") {
+    CHECK(run.first("ParallelGroup::M::Swerve", TransitionKind::kStart) == Approx(1.01));
+    CHECK(run.first("ParallelGroup::M::Accelerate", TransitionKind::kEnd) == Approx(4.51));
+    CHECK(run.count("ParallelGroup::M::Accelerate", TransitionKind::kStop) == 0);
+    CHECK(run.now("Parallel").road->lane == -2);
+    CHECK(run.now("Parallel").speed == 20.0);
+  }
+  // The story is complete at 5.01 s, but a storyboard with a stop trigger runs until it fires.
+  CHECK(run.first("S", TransitionKind::kEnd) == Approx(5.01));
+  CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
+  CHECK(run.sim().time() == Approx(6.01));
+}
+
+TEST_CASE("maximumExecutionCount re-runs events and maneuver groups",
+          "[engine][storyboard][count]") {
+  FixtureRun run(engine_fixture("storyboard_execution_count.xosc"));
+  run.run();
+  CHECK(run.sim().variable("Executions")->text() == "3");
+  CHECK(run.count("Events::M::Thrice", TransitionKind::kStart) == 3);
+  CHECK(run.count("Events::M::Thrice", TransitionKind::kEnd) == 3);
+  CHECK(run.state_of("Events::M::Thrice") == ElementState::kComplete);
+  CHECK(run.sim().variable("Rounds")->text() == "2");
+  CHECK(run.count("S::A::Twice", TransitionKind::kStart) == 2);
+  CHECK(run.first("Twice::M::Round", TransitionKind::kStart) == Approx(2.01));
+  CHECK(run.sim().element_state("S::A::Twice") == ElementState::kComplete);
+}
+
+TEST_CASE("Act start and stop triggers", "[engine][storyboard][act]") {
+  FixtureRun run(engine_fixture("storyboard_act_triggers.xosc"));
+  run.run();
+  CHECK(run.first("S::Later", TransitionKind::kStart) == Approx(1.01));
+  CHECK(run.first("S::Later", TransitionKind::kStop) == Approx(3.01));
+  CHECK(run.first("Later::G::M::Ramp::Accelerate", TransitionKind::kStop) == Approx(3.01));
+  CHECK(run.now("Car").speed == Approx(4.0));  // the ramp stopped a fifth of the way
+  CHECK(run.count("S::Never", TransitionKind::kStart) == 0);
+  CHECK(run.first("S::Never", TransitionKind::kStop) == Approx(4.01));
+  CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
+  CHECK(run.sim().time() == Approx(4.01));
+}
+
+TEST_CASE("Condition edges and delays", "[engine][storyboard][trigger]") {
+  FixtureRun run(engine_fixture("storyboard_edges.xosc"));
+  run.run();
+  // Speed > 10 m/s from 2.01 s (accelerating at 5 m/s^2) until 8.01 s (braking from 6.01 s).
+  const auto start = [&](const std::string& event) {
+    return run.first("Marks::M::" + event, TransitionKind::kStart);
+  };
+  CHECK(start("Rising") == Approx(2.01));
+  CHECK(start("Falling") == Approx(8.01));
+  CHECK(run.count("Marks::M::Both", TransitionKind::kStart) == 2);
+  CHECK(start("Delayed") == Approx(3.51));
+  CHECK(start("RisingDelayed") == Approx(2.51));
+  // True from the first check: no rising edge is ever seen.
+  CHECK(run.count("Marks::M::NeverRises", TransitionKind::kStart) == 0);
+  CHECK(run.first("Marks::M::NeverRises", TransitionKind::kStop) == Approx(11.01));
+}
+
+TEST_CASE("A run ends with its stories, its stop trigger or the duration cap",
+          "[engine][storyboard][end]") {
+  SECTION("every story complete without a stop trigger") {
+    FixtureRun run(engine_fixture("storyboard_stories_complete.xosc"));
+    run.run();
+    CHECK(run.sim().end_reason() == engine::EndReason::kStoriesComplete);
+    CHECK(run.sim().time() == Approx(3.01));
+    CHECK(run.sim().element_state("") == ElementState::kComplete);
+    CHECK(run.sim().transitions().back().transition == TransitionKind::kEnd);
+  }
+  SECTION("the duration cap") {
+    engine::SimulationOptions options;
+    options.duration = 2.0;
+    FixtureRun run(engine_fixture("storyboard_stories_complete.xosc"), options);
+    run.run();
+    CHECK(run.sim().end_reason() == engine::EndReason::kDuration);
+    CHECK(run.sim().tick() == 200);
+    CHECK(!run.sim().step());
+    CHECK(run.sim().tick() == 200);
+  }
+  SECTION("another step size keeps the times on its grid") {
+    engine::SimulationOptions options;
+    options.dt = 0.05;
+    FixtureRun run(engine_fixture("storyboard_stories_complete.xosc"), options);
+    run.run();
+    CHECK(run.sim().time() == Approx(3.05));
+    CHECK(run.first("G::M::Go", TransitionKind::kStart) == Approx(1.05));
+  }
+}
+
+}  // namespace
+}  // namespace corsa::test
