@@ -32,15 +32,15 @@ class LaneChangeInstance final : public ActionInstance {
     }
     LaneFollow& lane = entity.lane;
     const int target = target_lane(context);
-    const double s = section_s(*map, lane);
-    const auto target_center = lane_center_t(*map, lane.road, s, target);
+    const auto target_center = followed_lane_center_t(*map, lane, target);
     const auto node = map->lane_graph().find(xodr::LaneRef{lane.road, lane.section, target});
     if (!target_center || !node) {
       fail(action_.source, "LaneChangeAction: road '" + map->road(lane.road).id + "' has no lane " +
                                std::to_string(target) + " at s = " + format_double(lane.s) +
                                " for entity '" + entity.info.name + "'");
     }
-    const double t_now = *lane_center_t(*map, lane.road, s, lane.lane) + lane.dir * lane.lateral;
+    const double t_now =
+        followed_lane_center_t(*map, lane, lane.lane).value_or(0.0) + lane.dir * lane.lateral;
     lane.lane = target;
     lane.node = *node;
     lane.lateral = (t_now - *target_center) * lane.dir;
@@ -48,7 +48,7 @@ class LaneChangeInstance final : public ActionInstance {
     target_lateral_ = action_.target_lane_offset.value_or(0.0);
     entity.lateral_command = start_lateral_;
     start_tick_ = context.state.tick;
-    start_odometer_ = entity.state.odometer;
+    start_distance_ = entity.longitudinal_distance;
     const xosc::TransitionDynamics& dynamics = action_.dynamics;
     total_ = dynamics.value;
     by_distance_ = dynamics.dimension == xosc::DynamicsDimension::kDistance;
@@ -74,7 +74,7 @@ class LaneChangeInstance final : public ActionInstance {
     Entity& entity = context.entity();
     // Progress at the end of this step: time, or distance with this step's travel predicted.
     const double elapsed = by_distance_
-                               ? entity.state.odometer - start_odometer_ +
+                               ? entity.longitudinal_distance - start_distance_ +
                                      std::abs(entity.state.speed) * context.state.time.dt()
                                : context.state.time.time(context.state.tick + 1 - start_tick_);
     const double p = elapsed >= total_ ? 1.0 : elapsed / total_;
@@ -107,7 +107,7 @@ class LaneChangeInstance final : public ActionInstance {
   double start_lateral_ = 0.0;
   double target_lateral_ = 0.0;
   int64_t start_tick_ = 0;
-  double start_odometer_ = 0.0;
+  double start_distance_ = 0.0;
   double total_ = 0.0;
   bool by_distance_ = false;
   bool done_ = false;

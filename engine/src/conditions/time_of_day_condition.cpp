@@ -13,7 +13,8 @@ class TimeOfDayCheck final : public ValueCondition {
  public:
   TimeOfDayCheck(xosc::Rule rule, double reference) : rule_(rule), reference_(reference) {}
   bool holds(const SimState& state) override {
-    return compare(epoch_seconds(current_date_time(state)), rule_, reference_);
+    // Compared as a difference: instants are ~1e9 s, where a relative tolerance is seconds.
+    return compare(epoch_seconds(current_date_time(state)) - reference_, rule_, 0.0);
   }
 
  private:

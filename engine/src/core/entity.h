@@ -55,6 +55,9 @@ struct Entity {
   double speed_command = 0.0;
   double lateral_command = 0.0;
 
+  /// Metres driven along the lanes (the odometer without the lateral motion): the distance a
+  /// lane change over a distance is measured in.
+  double longitudinal_distance = 0.0;
   /// m/s^2 across the heading over the last step (AccelerationCondition, lateral).
   double lateral_acceleration = 0.0;
 
@@ -62,7 +65,9 @@ struct Entity {
   bool standing_still = false;
   double standstill_time = 0.0;
   double offroad_time = 0.0;
-  bool end_of_road = false;
+  bool was_offroad = false;
+  bool end_of_road = false;  ///< stuck at a lane end without successor
+  bool was_at_end = false;
   double end_of_road_time = 0.0;
 
   /// The running action that owns each domain (index 0 longitudinal, 1 lateral), or null.

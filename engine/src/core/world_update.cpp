@@ -60,11 +60,18 @@ void update_contacts(SimState& state) {
 void update_timers(SimState& state, bool advance) {
   const double dt = advance ? state.time.dt() : 0.0;
   for (Entity& entity : state.world.entities) {
+    // Each timer counts the time since its condition began: 0 at the first tick it holds.
     // Standing still: no speed at all (actions that stop an entity command exactly 0).
+    const bool was_still = entity.standing_still;
     entity.standing_still = std::abs(entity.state.speed) < 1e-9;
-    entity.standstill_time = entity.standing_still ? entity.standstill_time + dt : 0.0;
-    entity.offroad_time = !entity.state.road ? entity.offroad_time + dt : 0.0;
-    entity.end_of_road_time = entity.end_of_road ? entity.end_of_road_time + dt : 0.0;
+    entity.standstill_time =
+        entity.standing_still ? (was_still ? entity.standstill_time + dt : 0.0) : 0.0;
+    const bool offroad = !entity.state.road;
+    entity.offroad_time = offroad ? (entity.was_offroad ? entity.offroad_time + dt : 0.0) : 0.0;
+    entity.was_offroad = offroad;
+    entity.end_of_road_time =
+        entity.end_of_road ? (entity.was_at_end ? entity.end_of_road_time + dt : 0.0) : 0.0;
+    entity.was_at_end = entity.end_of_road;
   }
 }
 

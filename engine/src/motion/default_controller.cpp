@@ -46,24 +46,25 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     const AdvanceResult moved = advance_along_lanes(*context.map, lane, distance, entity.chooser);
     lateral_change = entity.lateral_command - lane.lateral;
     if (std::abs(moved.travelled) > 1e-9) {
-      // The heading turns away from the lane by the angle of the path the lateral motion draws.
+      // The heading turns away from the lane by the angle of the path the lateral motion draws;
+      // standing entities keep theirs (a car parked at an angle stays so).
       lane.heading_offset = std::atan(lateral_change / moved.travelled);
-    } else if (lateral_change == 0.0) {
-      lane.heading_offset = 0.0;
     }
     lane.lateral = entity.lateral_command;
+    // At a lane end without successor the entity stops; it stays "at the end of the road"
+    // until it moves away from it.
+    entity.end_of_road = moved.hit_end || (entity.end_of_road && moved.travelled == 0.0);
     if (moved.hit_end) {
-      entity.end_of_road = true;
       v1 = 0.0;
       entity.speed_command = 0.0;
-    } else {
-      entity.end_of_road = false;
     }
     path = std::hypot(moved.travelled, lateral_change);
+    entity.longitudinal_distance += std::abs(moved.travelled);
     update_pose_from_lane(entity, *context.map, *context.scratch);
   } else {
     state.pose.x += std::cos(state.pose.h) * distance;
     state.pose.y += std::sin(state.pose.h) * distance;
+    entity.longitudinal_distance += std::abs(distance);
     if (distance != 0.0) {
       update_road_from_pose(entity, context.map);
     }

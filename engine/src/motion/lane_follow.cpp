@@ -38,6 +38,12 @@ std::optional<double> lane_center_t(const xodr::Map& map, uint32_t road, double 
   return span ? std::optional<double>(span->t_center()) : std::nullopt;
 }
 
+std::optional<double> followed_lane_center_t(const xodr::Map& map, const LaneFollow& follow,
+                                             int lane) {
+  const auto span = map.lane_span_in_section(follow.road, follow.section, follow.s, lane);
+  return span ? std::optional<double>(span->t_center()) : std::nullopt;
+}
+
 bool attach_to_lane(const xodr::Map& map, LaneFollow& follow, uint32_t road, double s, double t,
                     int lane, double heading) {
   const auto center = lane_center_t(map, road, s, lane);
@@ -157,20 +163,10 @@ AdvanceResult advance_along_lanes(const xodr::Map& map, LaneFollow& follow, doub
   return result;
 }
 
-double section_s(const xodr::Map& map, const LaneFollow& follow) {
-  const auto& info = map.lane_graph().info(follow.node);
-  // At the very end s of a section the map already answers with the next section, whose lanes
-  // may have other ids: query just inside the followed section instead.
-  if (follow.s >= info.s_end && info.s_end > info.s_start) {
-    return std::nextafter(info.s_end, info.s_start);
-  }
-  return follow.s;
-}
-
 LanePose lane_pose(const xodr::Map& map, const LaneFollow& follow,
                    std::vector<xodr::LaneSpan>& spans) {
   LanePose out;
-  map.lane_spans(follow.road, section_s(map, follow), spans);
+  map.lane_spans_in_section(follow.road, follow.section, follow.s, spans);
   double center = 0.0;
   for (const auto& span : spans) {
     if (span.id == follow.lane) {

@@ -42,6 +42,11 @@ double travel_heading(const xodr::Map& map, uint32_t road, double s, int dir);
 /// t (m) of the centre of `lane` at road s, or nothing when the section has no such lane.
 std::optional<double> lane_center_t(const xodr::Map& map, uint32_t road, double s, int lane);
 
+/// t (m) of the centre of `lane` in the lane section `follow` is in, at follow.s (also at the
+/// section's very end, where the map's s lookup would already answer for the next section).
+std::optional<double> followed_lane_center_t(const xodr::Map& map, const LaneFollow& follow,
+                                             int lane);
+
 /// Holds `follow` on `lane` of `road` at (s, t): direction from `heading` (facing +s or -s),
 /// lateral offset from the lane centre. Returns false when the lane does not exist at s.
 bool attach_to_lane(const xodr::Map& map, LaneFollow& follow, uint32_t road, double s, double t,
@@ -56,10 +61,6 @@ struct AdvanceResult {
 /// Moves `follow` by `distance` metres along its lanes (negative: backwards).
 AdvanceResult advance_along_lanes(const xodr::Map& map, LaneFollow& follow, double distance,
                                   const LaneChooser* chooser);
-
-/// follow.s, moved just inside the followed lane section when it sits on the section's end (where
-/// the map would answer for the next section). Use it for lane-width queries.
-double section_s(const xodr::Map& map, const LaneFollow& follow);
 
 /// The world pose and road coordinates of a followed lane position. `spans` is scratch space.
 struct LanePose {

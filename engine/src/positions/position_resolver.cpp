@@ -127,7 +127,7 @@ ResolvedPosition relative_road(const xosc::RelativeRoadPosition& p, const SimSta
   // Keep the reference entity's offset from its lane centre (turned with the road when the walk
   // crossed onto a road of opposite s direction), then add dt.
   const double t =
-      lane_center_t(map, at.road, at.s, at.lane).value_or(0.0) + at.dir * at.lateral + p.dt;
+      followed_lane_center_t(map, at, at.lane).value_or(0.0) + at.dir * at.lateral + p.dt;
   return on_road(map, at.road, at.s, t, std::nullopt, p.orientation);
 }
 
