@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 
 #include "road_eval.h"
 
@@ -51,6 +52,46 @@ size_t compute_spans(const LaneSection& section, double s, double offset, LaneSp
     ++count;
   }
   return count;
+}
+
+bool nearest_lane(const LaneSection& section, double s, double offset, double t, bool drivable_only,
+                  NearestLane& out) {
+  const double ds = s - section.s;
+  const size_t n = section.lanes.size();
+  const size_t center = center_index(section);
+  const bool has_center = center < n && section.lanes[center].id == 0;
+  bool found = false;
+  const auto consider = [&](const Lane& lane, double inner, double outer) {
+    const LaneSpan span{lane.id, inner, outer};
+    if (span.width() <= 0.0 || (drivable_only && !is_drivable(lane.type))) {
+      return;
+    }
+    const double gap = t < span.t_min()   ? span.t_min() - t
+                       : t > span.t_max() ? t - span.t_max()
+                                          : 0.0;
+    const double from_center = std::abs(t - span.t_center());
+    // Nearest lane; on a shared border the inner lane (smaller |id|) wins; outside every lane,
+    // the one whose centre is nearer.
+    if (!found || gap < out.gap ||
+        (gap == out.gap &&
+         (gap > 0.0 ? from_center < out.center_offset : std::abs(lane.id) < std::abs(out.lane)))) {
+      out = NearestLane{lane.id, gap, from_center};
+      found = true;
+    }
+  };
+  double inner = offset;
+  for (size_t i = center; i-- > 0;) {
+    const double outer = outer_border(section.lanes[i], ds, inner, 1.0);
+    consider(section.lanes[i], inner, outer);
+    inner = outer;
+  }
+  inner = offset;
+  for (size_t i = center + (has_center ? 1 : 0); i < n; ++i) {
+    const double outer = outer_border(section.lanes[i], ds, inner, -1.0);
+    consider(section.lanes[i], inner, outer);
+    inner = outer;
+  }
+  return found;
 }
 
 bool find_lane_at(const LaneSection& section, double s, double offset, double t, LaneSpan& out) {

@@ -41,7 +41,53 @@ struct Foot {
   double lateral = 0.0;  ///< (P - r) · N, horizontal
 };
 
+/// Closed-form foot point on a line or arc chunk (false when it falls outside the chunk, or
+/// the chunk has another shape): no reference-line evaluation at all.
+bool project_exact(const Chunk& chunk, double x, double y, Foot& foot) {
+  const double along0 = (x - chunk.x0) * chunk.tx0 + (y - chunk.y0) * chunk.ty0;
+  const double lateral0 = (y - chunk.y0) * chunk.tx0 - (x - chunk.x0) * chunk.ty0;
+  if (chunk.shape == Chunk::Shape::kLine) {
+    foot.s = chunk.s0 + along0;
+    if (foot.s < chunk.s0 || foot.s > chunk.s1) {
+      return false;
+    }
+    foot.ref =
+        RefPoint{chunk.x0 + along0 * chunk.tx0, chunk.y0 + along0 * chunk.ty0, chunk.hdg0, 0.0};
+    foot.along = 0.0;
+    foot.lateral = lateral0;
+    return true;
+  }
+  if (chunk.shape != Chunk::Shape::kArc) {
+    return false;
+  }
+  // Circle of radius 1/k about C = r0 + N0 / k; the foot is where the radius through P meets
+  // it: s from the angle swept, t = 1/k - sign(k) |P - C| (§7.5).
+  const double k = chunk.k0;
+  const double cx = chunk.x0 - chunk.ty0 / k;
+  const double cy = chunk.y0 + chunk.tx0 / k;
+  const double dx = x - cx;
+  const double dy = y - cy;
+  const double distance = std::sqrt(dx * dx + dy * dy);
+  // Angle from the start radius (r0 - C) to (P - C), counter-clockwise.
+  const double rx = chunk.x0 - cx;
+  const double ry = chunk.y0 - cy;
+  const double swept = std::atan2(rx * dy - ry * dx, rx * dx + ry * dy);
+  foot.s = chunk.s0 + swept / k;
+  if (foot.s < chunk.s0 || foot.s > chunk.s1 || distance == 0.0) {
+    return false;
+  }
+  const double scale = std::abs(1.0 / k) / distance;
+  foot.ref = RefPoint{cx + dx * scale, cy + dy * scale, chunk.hdg0 + k * (foot.s - chunk.s0), k};
+  foot.along = 0.0;
+  foot.lateral = 1.0 / k - (k > 0.0 ? distance : -distance);
+  return true;
+}
+
 Foot project(const Map& map, const Chunk& chunk, double x, double y) {
+  Foot exact;
+  if (project_exact(chunk, x, y, exact)) {
+    return exact;
+  }
   const auto foot_at = [&](double s) {
     const RefFrame frame = MapAccess::reference_frame(map, chunk.road, s);
     Foot foot;
@@ -107,8 +153,10 @@ void record(const Chunk& chunk, const Foot& foot, double t, int lane, double gap
   }
 }
 
+/// Projects (x, y) onto the chunk's road and ranks the lane there. With `inside_only`, only a
+/// lane that contains the point counts (the first pass: on-road points, which are most).
 void evaluate_chunk(const Map& map, const Chunk& chunk, double x, double y,
-                    const LocateOptions& options, Candidate& best, bool& have) {
+                    const LocateOptions& options, bool inside_only, Candidate& best, bool& have) {
   const Foot foot = project(map, chunk, x, y);
   const Road& road = map.road(chunk.road);
   const LaneSection& section = road.lane_sections[chunk.section];
@@ -122,39 +170,14 @@ void evaluate_chunk(const Map& map, const Chunk& chunk, double x, double y,
     record(chunk, foot, t, hit.id, 0.0, std::abs(t - hit.t_center()), 1.0, options, best, have);
     return;
   }
-  LaneSpan spans[kMaxLanesPerSection];
-  const size_t n = compute_spans(section, foot.s, offset, spans);
-  const size_t center = center_index(section);
-  const bool has_center = center < section.lanes.size() && section.lanes[center].id == 0;
-  int lane = 0;
-  double gap = 0.0;
-  double center_offset = 0.0;
-  bool found = false;
-  for (size_t i = 0; i < n; ++i) {
-    const LaneSpan& span = spans[i];
-    const size_t lane_index = i < center ? i : i + (has_center ? 1 : 0);
-    if (span.width() <= 0.0 ||
-        (options.drivable_only && !is_drivable(section.lanes[lane_index].type))) {
-      continue;
-    }
-    const double g = t < span.t_min()   ? span.t_min() - t
-                     : t > span.t_max() ? t - span.t_max()
-                                        : 0.0;
-    const double from_center = std::abs(t - span.t_center());
-    // Nearest lane; on a shared border the inner lane (smaller |id|) wins.
-    if (!found || g < gap ||
-        (g == gap &&
-         (g > 0.0 ? from_center < center_offset : std::abs(span.id) < std::abs(lane)))) {
-      lane = span.id;
-      gap = g;
-      center_offset = from_center;
-      found = true;
-    }
-  }
-  if (!found) {
+  if (inside_only && !options.drivable_only) {
     return;
   }
-  record(chunk, foot, t, lane, gap, center_offset, cos_r, options, best, have);
+  NearestLane nearest;
+  if (nearest_lane(section, foot.s, offset, t, options.drivable_only, nearest)) {
+    record(chunk, foot, t, nearest.lane, nearest.gap, nearest.center_offset, cos_r, options, best,
+           have);
+  }
 }
 
 }  // namespace
@@ -175,7 +198,7 @@ std::optional<LanePosition> SpatialIndex::locate(const Map& map, double x, doubl
     for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
       const Chunk& chunk = chunks_[cell_items_[k]];
       if (chunk.near(x, y, 0.0) && chunk.spans(x, y)) {
-        evaluate_chunk(map, chunk, x, y, options, best, have);
+        evaluate_chunk(map, chunk, x, y, options, true, best, have);
       }
     }
   }
@@ -199,8 +222,19 @@ std::optional<LanePosition> SpatialIndex::locate(const Map& map, double x, doubl
   }
   std::sort(seen.begin(), seen.end());
   seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+  // Nearest rectangles first: a chunk's lanes lie inside its rectangle, so the distance to the
+  // rectangle bounds the answer from below and the search stops once it exceeds the best.
+  std::vector<std::pair<double, uint32_t>> order;
+  order.reserve(seen.size());
   for (const uint32_t index : seen) {
-    evaluate_chunk(map, chunks_[index], x, y, options, best, have);
+    order.emplace_back(chunks_[index].distance_to(x, y), index);
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [bound, index] : order) {
+    if (have && bound > best.position.distance) {
+      break;
+    }
+    evaluate_chunk(map, chunks_[index], x, y, options, false, best, have);
   }
   return have ? std::optional<LanePosition>(best.position) : std::nullopt;
 }

@@ -77,6 +77,16 @@ size_t compute_spans(const LaneSection& section, double s, double offset, LaneSp
 /// when t is outside every lane of that side.
 bool find_lane_at(const LaneSection& section, double s, double offset, double t, LaneSpan& out);
 
+/// The lane of `section` nearest to lateral position t at s (gap 0 when t is inside it), among
+/// lanes of positive width (and drivable ones only, if asked). False when there is none.
+struct NearestLane {
+  int lane = 0;
+  double gap = 0.0;            ///< lateral distance from t to the lane (m), 0 inside
+  double center_offset = 0.0;  ///< |t - lane centre| (m)
+};
+bool nearest_lane(const LaneSection& section, double s, double offset, double t, bool drivable_only,
+                  NearestLane& out);
+
 /// Index of the centre lane in section.lanes (lanes are sorted by descending id).
 size_t center_index(const LaneSection& section);
 

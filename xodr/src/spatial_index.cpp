@@ -36,6 +36,43 @@ Extent section_extent(const Map& map, uint32_t road, uint32_t section_index,
   return extent;
 }
 
+/// Length of the chunk starting at s: at most 5 m and 0.1 rad of heading, no sliver before the
+/// section's end, and cut at a planView record boundary so that most chunks lie in one record.
+double chunk_length(const Map& map, uint32_t road, double s, double s_stop) {
+  const double k0 = std::abs(map.reference(road, s).curvature);
+  double length = std::min(kMaxChunkLength, s_stop - s);
+  if (k0 * length > kMaxChunkTurn) {
+    length = std::max(kMinChunkLength, kMaxChunkTurn / k0);
+  }
+  if (s_stop - (s + length) < kMinChunkLength) {
+    length = s_stop - s;  // no sliver at the end
+  }
+  const auto& records = map.road(road).plan_view;
+  const size_t g = record_index(records, s, [](const Geometry& x) { return x.s; });
+  if (g + 1 < records.size()) {
+    const double boundary = records[g + 1].s;
+    if (boundary > s + kMinChunkLength && boundary < s + length - 1e-9) {
+      length = boundary - s;
+    }
+  }
+  return length;
+}
+
+Chunk::Shape chunk_shape(const Road& road, double s0, double s1) {
+  const auto& records = road.plan_view;
+  const size_t g = record_index(records, s0, [](const Geometry& x) { return x.s; });
+  if (g + 1 < records.size() && s1 > records[g + 1].s + 1e-12) {
+    return Chunk::Shape::kGeneral;  // spans two records
+  }
+  if (std::holds_alternative<LineGeometry>(records[g].shape)) {
+    return Chunk::Shape::kLine;
+  }
+  if (const auto* arc = std::get_if<ArcGeometry>(&records[g].shape)) {
+    return arc->curvature == 0.0 ? Chunk::Shape::kLine : Chunk::Shape::kArc;
+  }
+  return Chunk::Shape::kGeneral;
+}
+
 }  // namespace
 
 void SpatialIndex::add_section_chunks(const Map& map, uint32_t road, uint32_t section_index) {
@@ -45,16 +82,10 @@ void SpatialIndex::add_section_chunks(const Map& map, uint32_t road, uint32_t se
   const double s_stop = std::min(map.section_end(road, section_index), r.length);
   double s = s_begin;
   while (s < s_stop - 1e-9) {
-    const double k0 = std::abs(map.reference(road, s).curvature);
-    double length = std::min(kMaxChunkLength, s_stop - s);
-    if (k0 * length > kMaxChunkTurn) {
-      length = std::max(kMinChunkLength, kMaxChunkTurn / k0);
-    }
-    if (s_stop - (s + length) < kMinChunkLength) {
-      length = s_stop - s;  // no sliver at the end
-    }
+    const double length = chunk_length(map, road, s, s_stop);
     const double s_end = s + length;
     Chunk chunk;
+    chunk.shape = chunk_shape(map.road(road), s, s_end);
     chunk.road = road;
     chunk.section = section_index;
     chunk.s0 = s;
@@ -75,6 +106,7 @@ void SpatialIndex::add_section_chunks(const Map& map, uint32_t road, uint32_t se
     chunk.tx0 = std::cos(refs[0].hdg);
     chunk.ty0 = std::sin(refs[0].hdg);
     chunk.k0 = refs[0].curvature;
+    chunk.hdg0 = refs[0].hdg;
     chunk.x1 = refs[kSamples - 1].x;
     chunk.y1 = refs[kSamples - 1].y;
     chunk.tx1 = std::cos(refs[kSamples - 1].hdg);

@@ -6,6 +6,7 @@
 // each cell. A query tests the rectangles of its cell, then projects onto the reference line of
 // the few chunks that contain the point (Newton on s). Private to corsa_xodr.
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -26,7 +27,10 @@ struct Chunk {
 
   // Reference line at both ends: position, unit tangent; curvature at s0. The normals at the
   // two ends bound the points whose foot point lies in [s0, s1].
-  double x0 = 0.0, y0 = 0.0, tx0 = 1.0, ty0 = 0.0, k0 = 0.0;
+  double x0 = 0.0, y0 = 0.0, tx0 = 1.0, ty0 = 0.0, k0 = 0.0, hdg0 = 0.0;
+  /// The reference line over the chunk, when it lies within one planView record whose shape
+  /// allows a closed-form foot point: a line or an arc.
+  enum class Shape : uint8_t { kGeneral, kLine, kArc } shape = Shape::kGeneral;
   double x1 = 0.0, y1 = 0.0, tx1 = 1.0, ty1 = 0.0;
 
   /// Whether (x, y) lies between the normals at s0 and s1 (with a hair of tolerance), i.e. its
@@ -35,6 +39,17 @@ struct Chunk {
     constexpr double kTolerance = 1e-9;
     return (x - x0) * tx0 + (y - y0) * ty0 >= -kTolerance &&
            (x - x1) * tx1 + (y - y1) * ty1 <= kTolerance;
+  }
+
+  /// Distance (m) from (x, y) to the rectangle, 0 inside.
+  double distance_to(double x, double y) const {
+    const double dx = x - ox;
+    const double dy = y - oy;
+    const double a = dx * ux + dy * uy;
+    const double b = dy * ux - dx * uy;
+    const double da = a < a0 ? a0 - a : a > a1 ? a - a1 : 0.0;
+    const double db = b < b0 ? b0 - b : b > b1 ? b - b1 : 0.0;
+    return std::sqrt(da * da + db * db);
   }
 
   /// Whether (x, y) is within `r` metres of the rectangle (a square-ish test, enough to prune).
