@@ -254,3 +254,32 @@ TEST_CASE("values compare like ParameterCondition does", "[xosc][params]") {
   CHECK_FALSE(parse_value(ParameterType::kInt, "2147483648"));
   CHECK_FALSE(parse_value(ParameterType::kUnsignedInt, "-1"));
 }
+
+TEST_CASE("traffic signal controllers are kept and references to unknown ones warn",
+          "[xosc][params]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.road =
+      "<LogicFile filepath=\"map.xodr\"/>\n<TrafficSignals>\n"
+      "<TrafficSignalController name=\"north\" delay=\"2\">"
+      "<Phase name=\"go\" duration=\"30\"><TrafficSignalState trafficSignalId=\"7\" "
+      "state=\"off;off;on\"/></Phase><Phase name=\"stop\" duration=\"40\"/>"
+      "</TrafficSignalController>\n</TrafficSignals>";
+  text.init =
+      "<GlobalAction><InfrastructureAction><TrafficSignalAction>"
+      "<TrafficSignalControllerAction trafficSignalControllerRef=\"north\" phase=\"go\"/>"
+      "</TrafficSignalAction></InfrastructureAction></GlobalAction>\n"
+      "<GlobalAction><InfrastructureAction><TrafficSignalAction>"
+      "<TrafficSignalControllerAction trafficSignalControllerRef=\"north\" phase=\"amber\"/>"
+      "</TrafficSignalAction></InfrastructureAction></GlobalAction>\n";
+  corsa::Diagnostics diagnostics;
+  const Scenario scenario = load_text(dir, text.str(), diagnostics);
+  REQUIRE(scenario.road_network.traffic_signal_controllers.size() == 1);
+  const auto& controller = scenario.road_network.traffic_signal_controllers[0];
+  CHECK(controller.delay == 2.0);
+  REQUIRE(controller.phases.size() == 2);
+  CHECK(controller.phases[0].states.at(0).traffic_signal_id == "7");
+  const auto all = diagnostics.all();
+  REQUIRE(all.size() == 1);
+  CHECK(all[0].message == "traffic signal controller 'north' has no phase 'amber'");
+}

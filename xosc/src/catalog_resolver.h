@@ -40,7 +40,7 @@ class CatalogResolver {
 
   const CatalogLocations& locations_;
   bool scanned_ = false;
-  std::vector<std::unique_ptr<XmlFile>> files_;
+  std::vector<std::shared_ptr<const XmlFile>> files_;
   std::map<std::string, const Element*> catalogs_;  // catalog name -> Catalog element
   std::map<const Element*, const XmlFile*> owners_;
   std::vector<std::filesystem::path> files_read_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "catalog_cache_impl.h"
 #include "corsa/core/atomic_file.h"
 #include "parsers.h"
 
@@ -38,17 +39,12 @@ void CatalogResolver::scan(ParseContext& ctx) {
                        "catalog directory '" + (*directory)->path + "' does not exist"));
       continue;
     }
-    // Sorted, so that which file wins a duplicated catalog name does not depend on the
-    // file system's listing order.
-    std::vector<std::filesystem::path> files;
-    for (const auto& entry : std::filesystem::directory_iterator(path, error)) {
-      if (entry.is_regular_file() && entry.path().extension() == ".xosc") {
-        files.push_back(entry.path());
-      }
-    }
-    std::sort(files.begin(), files.end());
-    for (const auto& file : files) {
-      auto xml = std::make_unique<XmlFile>(load_xml(file));
+    // Parsed once per sweep when the load shares a CatalogCache, else read here.
+    const std::shared_ptr<const CatalogFiles> files =
+        ctx.options().catalog_cache
+            ? ctx.options().catalog_cache->impl().directory(path)
+            : std::make_shared<const CatalogFiles>(read_catalog_directory(path));
+    for (const auto& xml : *files) {
       const Element* root = xml->document->RootElement();
       const Element* catalog = root->FirstChildElement("Catalog");
       if (catalog == nullptr) continue;  // not a catalog (a scenario kept next to them)
@@ -66,7 +62,7 @@ void CatalogResolver::scan(ParseContext& ctx) {
         continue;
       }
       owners_[catalog] = xml.get();
-      files_.push_back(std::move(xml));
+      files_.push_back(xml);
     }
   }
 }

@@ -173,6 +173,10 @@ Scenario parse_scenario_root(ParseContext& ctx, const Element* root, Children& k
   parse_variables_and_monitors(ctx, kids, scenario);
   scenario.catalog_locations = parse_catalog_locations(ctx, kids.one("CatalogLocations"));
   scenario.road_network = parse_road_network(ctx, kids.one("RoadNetwork"));
+  for (const auto& controller : scenario.road_network.traffic_signal_controllers) {
+    auto& phases = ctx.signal_controllers[controller.name];
+    for (const auto& phase : controller.phases) phases.push_back(phase.name);
+  }
   CatalogResolver catalogs(scenario.catalog_locations);
   ctx.catalogs = &catalogs;
   scenario.entities = parse_entities(ctx, kids.one("Entities"));

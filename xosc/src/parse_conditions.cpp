@@ -226,8 +226,10 @@ ByValueCondition parse_by_value(ParseContext& ctx, const Element* e) {
   }
   if (name == "TrafficSignalControllerCondition") {
     Children(ctx, c, "TrafficSignalControllerCondition");
-    return TrafficSignalControllerCondition{ctx.req_str(c, "trafficSignalControllerRef"),
-                                            ctx.req_str(c, "phase"), ctx.source(c)};
+    TrafficSignalControllerCondition condition{ctx.req_str(c, "trafficSignalControllerRef"),
+                                               ctx.req_str(c, "phase"), ctx.source(c)};
+    ctx.check_signal_controller(c, condition.traffic_signal_controller_ref, condition.phase);
+    return condition;
   }
   Children(ctx, c, "VariableCondition");
   VariableCondition condition{ctx.parameter_name(c, "variableRef"), ctx.req_enum<Rule>(c, "rule"),

@@ -429,6 +429,22 @@ void ParseContext::check_parameter_ref(const Element* element, const std::string
   }
 }
 
+void ParseContext::check_signal_controller(const Element* element, const std::string& controller,
+                                           const std::string& phase) {
+  if (!record_entities) return;
+  const auto found = signal_controllers.find(controller);
+  if (found == signal_controllers.end()) {
+    warn_once(element, "signal-controller:" + controller,
+              "traffic signal controller '" + controller +
+                  "' is not declared in RoadNetwork/TrafficSignals");
+    return;
+  }
+  if (std::find(found->second.begin(), found->second.end(), phase) == found->second.end()) {
+    warn_once(element, "signal-phase:" + controller + "/" + phase,
+              "traffic signal controller '" + controller + "' has no phase '" + phase + "'");
+  }
+}
+
 void ParseContext::check_variable_ref(const Element* element, const std::string& name) {
   if (record_entities && !variables.contains(name)) {
     fail(element, "undefined variable '" + name + "'");

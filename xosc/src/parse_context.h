@@ -7,6 +7,7 @@
 #include <tinyxml2.h>
 
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -135,6 +136,12 @@ class ParseContext {
   void check_variable_ref(const Element* element, const std::string& name);
   void check_monitor_ref(const Element* element, const std::string& name);
 
+  /// RoadNetwork/TrafficSignals: controller name -> its phase names.
+  std::map<std::string, std::vector<std::string>> signal_controllers;
+  /// Warns when a TrafficSignalController action or condition names an undeclared controller
+  /// or phase (a warning: a simulator may know controllers from elsewhere).
+  void check_signal_controller(const Element* element, const std::string& controller,
+                               const std::string& phase);
   std::set<std::string> global_parameters;  ///< names of the scenario's global parameters
   std::set<std::string> variables;          ///< declared VariableDeclarations names
   std::set<std::string> monitors;           ///< declared MonitorDeclarations names

@@ -72,8 +72,10 @@ GlobalAction parse_infrastructure_action(ParseContext& ctx, const Element* e) {
   const Element* a = signal_kids.choice();
   if (std::string_view(a->Name()) == "TrafficSignalControllerAction") {
     Children(ctx, a, "TrafficSignalControllerAction");
-    return TrafficSignalControllerAction{ctx.req_str(a, "trafficSignalControllerRef"),
+    TrafficSignalControllerAction action{ctx.req_str(a, "trafficSignalControllerRef"),
                                          ctx.req_str(a, "phase"), ctx.source(a)};
+    ctx.check_signal_controller(a, action.traffic_signal_controller_ref, action.phase);
+    return action;
   }
   Children(ctx, a, "TrafficSignalStateAction");
   return TrafficSignalStateAction{ctx.req_str(a, "name"), ctx.req_str(a, "state"), ctx.source(a)};

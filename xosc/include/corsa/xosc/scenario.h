@@ -5,6 +5,7 @@
 // an absolute path (the map itself is loaded by the engine through corsa_xodr).
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "corsa/core/diagnostic.h"
+#include "corsa/xosc/catalog_cache.h"
 #include "corsa/xosc/catalogs.h"
 #include "corsa/xosc/common.h"
 #include "corsa/xosc/distributions.h"
@@ -77,6 +79,8 @@ struct LoadOptions {
   std::vector<std::pair<std::string, std::string>> parameters;
   /// Check that the LogicFile exists (an error when not). Off for fuzzing.
   bool check_files = true;
+  /// Catalog files parsed once and shared between loads (sweeps); null: each load reads them.
+  std::shared_ptr<CatalogCache> catalog_cache;
 };
 
 /// Loads a scenario file. Throws InputError (file:line: message) for the first error; warnings
