@@ -208,18 +208,24 @@ class Assembler {
       const int road = static_cast<int>(r);
       for (const bool at_end : {true, false}) {
         const std::set<int>& next = at_end ? successors_[r] : predecessors_[r];
+        // An ordinary road at this end. Another connecting road may also touch it (a path that
+        // goes on through the junction is a separate, longer connecting road): not linked.
         int chosen = -1;
+        bool only_connecting = false;
         for (const int other : next) {
           if (!connecting(other)) {
             chosen = chosen < 0 ? other : chosen;
           } else {
-            diagnostics_.add_once(
-                "ngii-chained:" + std::to_string(road),
-                make_warning(network_.layers().link_file, 0,
-                             "connecting road " + road_of(road).id + " (" + road_of(road).name +
-                                 ") continues into another connecting road; that link is left "
-                                 "out"));
+            only_connecting = true;
           }
+        }
+        if (chosen < 0 && only_connecting) {
+          diagnostics_.add_once(
+              "ngii-chained:" + std::to_string(road),
+              make_warning(network_.layers().link_file, 0,
+                           "connecting road " + road_of(road).id + " (" + road_of(road).name +
+                               ") continues only into another connecting road; that link is "
+                               "left out"));
         }
         if (chosen < 0) {
           continue;

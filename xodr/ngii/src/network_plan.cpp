@@ -1,6 +1,7 @@
 #include "network_plan.h"
 
 #include <algorithm>
+#include <functional>
 #include <numeric>
 #include <set>
 #include <string>
@@ -63,15 +64,18 @@ class PathFinder {
   std::vector<std::vector<int>> run() {
     const int n = static_cast<int>(network_.size());
     covered_.assign(static_cast<size_t>(n), false);
-    for (int link = 0; link < n; ++link) {
-      if (junction_link(link) && is_entry(link)) {
-        walk({link});
+    // Paths to exits first; then, for links no such path covers (a roundabout ring), paths
+    // that close a loop; then paths from links only reachable from inside a cycle.
+    for (const Mode mode : {Mode::kExits, Mode::kLoops}) {
+      for (int link = 0; link < n; ++link) {
+        if (junction_link(link) && is_entry(link)) {
+          walk({link}, mode);
+        }
       }
     }
-    // Links only reachable from other intersection links in a cycle: start there.
     for (int link = 0; link < n; ++link) {
       if (junction_link(link) && !covered_[static_cast<size_t>(link)]) {
-        walk({link});
+        walk({link}, Mode::kAll);
       }
     }
     return std::move(paths_);
@@ -91,7 +95,9 @@ class PathFinder {
     return std::any_of(before.begin(), before.end(), [&](int b) { return !junction_link(b); });
   }
 
-  void walk(std::vector<int> path) {
+  enum class Mode { kExits, kLoops, kAll };
+
+  void walk(std::vector<int> path, Mode mode) {
     if (paths_.size() >= kMaxPaths) {
       if (!truncated_) {
         truncated_ = true;
@@ -113,7 +119,14 @@ class PathFinder {
         next.push_back(a);
       }
     }
-    if (exits || next.empty()) {
+    // A path that only closes a loop (every successor already on it: once round a roundabout)
+    // leads nowhere new; it is kept only when it covers links no other path does.
+    const bool closes_loop = !exits && next.empty();
+    const bool uncovered = std::any_of(
+        path.begin(), path.end(), [&](int link) { return !covered_[static_cast<size_t>(link)]; });
+    const bool keep =
+        (exits && mode != Mode::kLoops) || (closes_loop && uncovered && mode != Mode::kExits);
+    if (keep) {
       for (const int link : path) {
         covered_[static_cast<size_t>(link)] = true;
       }
@@ -122,7 +135,7 @@ class PathFinder {
     for (const int a : next) {
       std::vector<int> longer = path;
       longer.push_back(a);
-      walk(std::move(longer));
+      walk(std::move(longer), mode);
     }
   }
 
@@ -206,6 +219,10 @@ class Planner {
     cluster(first_connecting);
     // Each pass absorbs one mixed end; every absorption removes one, so this terminates.
     for (size_t guard = 0; guard < 100000 && resolve_mixed_ends(); ++guard) {
+    }
+    join_touching_junctions();
+    for (size_t j = 0; j < plan_.junctions.size(); ++j) {
+      chain_connecting_roads(static_cast<int>(j));
     }
     add_context();
     return std::move(plan_);
@@ -334,7 +351,13 @@ class Planner {
     bool changed = false;
     const LaneIndex index(plan_);
     for (size_t r = 0; r < plan_.roads.size(); ++r) {
-      if (plan_.roads[r].junction >= 0 || plan_.roads[r].removed) {
+      if (plan_.roads[r].removed) {
+        continue;
+      }
+      if (plan_.roads[r].junction >= 0) {
+        if (resolve_split_exit(index, static_cast<int>(r))) {
+          return true;
+        }
         continue;
       }
       for (const bool at_end : {true, false}) {
@@ -373,55 +396,175 @@ class Planner {
     return changed;
   }
 
+  /// A connecting road lane that leads into (or comes from) several ordinary roads cannot name
+  /// them all as its successor (or predecessor): their first (last) metres join the junction,
+  /// where each gets its own chain. Returns whether anything changed.
+  bool resolve_split_exit(const LaneIndex& index, int road) {
+    const RoadPlan& plan = plan_.roads[static_cast<size_t>(road)];
+    for (const bool at_end : {true, false}) {
+      for (const PlanLane& lane : plan.lanes) {
+        const int key = at_end ? lane.end_node : lane.start_node;
+        std::set<int> ordinary;
+        for (const auto& ref : at_end ? index.starting[static_cast<size_t>(key)]
+                                      : index.ending[static_cast<size_t>(key)]) {
+          if (plan_.roads[static_cast<size_t>(ref.road)].junction < 0) {
+            ordinary.insert(ref.road);
+          }
+        }
+        if (ordinary.size() > 1) {
+          const int junction = plan.junction;
+          for (const int other : ordinary) {
+            absorb(other, junction, /*head=*/at_end);
+          }
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
   /// Moves ordinary road `road` (or its first/last kCutLength metres) into `junction`.
   void absorb(int road, int junction, bool head) {
     RoadPlan& plan = plan_.roads[static_cast<size_t>(road)];
     const double length = Polyline(plan.lanes[0].points).length();
     if (length <= kWholeLength) {
       plan.junction = junction;
+      plan.absorbed = true;
       plan_.junctions[static_cast<size_t>(junction)].roads.push_back(road);
       return;
     }
     RoadPlan piece = cut(plan, head ? kCutLength : length - kCutLength, head);
     piece.junction = junction;
-    // Connecting roads that met the road at the cut end now continue through the piece (and
-    // their junction becomes this one).
-    for (size_t k = 0; k < piece.lanes.size(); ++k) {
-      const PlanLane& cut_lane = piece.lanes[k];
-      for (size_t o = 0; o < plan_.roads.size(); ++o) {
-        RoadPlan& other = plan_.roads[o];
-        if (other.junction < 0 || other.removed) {
-          continue;
-        }
-        for (PlanLane& lane : other.lanes) {
-          const bool meets =
-              head ? lane.end_node == cut_lane.start_node : lane.start_node == cut_lane.end_node;
-          if (meets && other.junction != junction) {
-            merge_junctions(junction, other.junction);
-          }
-          if (head && lane.end_node == cut_lane.start_node) {
-            lane.link_starts.push_back(Polyline(lane.points).length());
-            lane.links.push_back(cut_lane.links.front());
-            append_points(lane.points, cut_lane.points);
-            lane.end_node = cut_lane.end_node;
-          } else if (!head && lane.start_node == cut_lane.end_node) {
-            std::vector<Point3> points = cut_lane.points;
-            const double shift = Polyline(points).length();
-            append_points(points, lane.points);
-            lane.points = std::move(points);
-            for (double& start : lane.link_starts) {
-              start += shift;
-            }
-            lane.link_starts.insert(lane.link_starts.begin(), 0.0);
-            lane.links.insert(lane.links.begin(), cut_lane.links.back());
-            lane.start_node = cut_lane.start_node;
-          }
-        }
-      }
-    }
+    piece.absorbed = true;
     plan_.junctions[static_cast<size_t>(junction)].roads.push_back(
         static_cast<int>(plan_.roads.size()));
     plan_.roads.push_back(std::move(piece));
+  }
+
+  /// Junctions whose connecting roads lead into each other are one junction.
+  void join_touching_junctions() {
+    for (bool changed = true; changed;) {
+      changed = false;
+      const LaneIndex index(plan_);
+      for (const RoadPlan& road : plan_.roads) {
+        if (road.removed || road.junction < 0) {
+          continue;
+        }
+        for (const PlanLane& lane : road.lanes) {
+          for (const auto& ref : index.starting[static_cast<size_t>(lane.end_node)]) {
+            const int other = plan_.roads[static_cast<size_t>(ref.road)].junction;
+            if (other >= 0 && other != road.junction) {
+              merge_junctions(road.junction, other);
+              changed = true;
+            }
+          }
+        }
+        if (changed) {
+          break;
+        }
+      }
+    }
+  }
+
+  /// Rebuilds the connecting roads of junction `j` so that none leads into another: every lane
+  /// becomes a single-lane piece, and every chain of pieces from an approach (or nothing) to an
+  /// exit (or nothing) becomes one connecting road (OpenDRIVE 1.8 §10.4: connecting roads join
+  /// incoming and outgoing roads). A piece on several chains is repeated in each.
+  void chain_connecting_roads(int j) {
+    std::vector<int> pieces;
+    for (const int r : plan_.junctions[static_cast<size_t>(j)].roads) {
+      RoadPlan& road = plan_.roads[static_cast<size_t>(r)];
+      if (road.removed) {
+        continue;
+      }
+      road.removed = true;
+      for (PlanLane& lane : road.lanes) {
+        RoadPlan single;
+        single.junction = j;
+        single.absorbed = road.absorbed;
+        single.lanes.push_back(std::move(lane));
+        pieces.push_back(static_cast<int>(plan_.roads.size()));
+        plan_.roads.push_back(std::move(single));
+      }
+    }
+    const LaneIndex index(plan_);
+    const auto lane_of = [&](int piece) -> const PlanLane& {
+      return plan_.roads[static_cast<size_t>(piece)].lanes[0];
+    };
+    const auto in_junction = [&](int road) {
+      return plan_.roads[static_cast<size_t>(road)].junction == j;
+    };
+    // Intersection paths are already complete from approach to exit: chains only run through
+    // absorbed pieces of ordinary roads (path -> piece, piece -> path, piece -> piece).
+    const auto chains_into = [&](int from, int to) {
+      return in_junction(from) && in_junction(to) &&
+             (plan_.roads[static_cast<size_t>(from)].absorbed ||
+              plan_.roads[static_cast<size_t>(to)].absorbed);
+    };
+    std::vector<std::vector<int>> chains;
+    std::set<int> covered;
+    std::function<void(std::vector<int>&)> walk = [&](std::vector<int>& chain) {
+      if (chains.size() >= kMaxPaths) {
+        return;
+      }
+      bool exits = false;
+      std::vector<int> next;
+      for (const auto& ref : index.starting[static_cast<size_t>(lane_of(chain.back()).end_node)]) {
+        if (!in_junction(ref.road)) {
+          exits = true;
+        } else if (chains_into(chain.back(), ref.road) &&
+                   std::find(chain.begin(), chain.end(), ref.road) == chain.end()) {
+          next.push_back(ref.road);
+        }
+      }
+      if (exits || next.empty()) {
+        chains.push_back(chain);
+        covered.insert(chain.begin(), chain.end());
+      }
+      for (const int n : next) {
+        chain.push_back(n);
+        walk(chain);
+        chain.pop_back();
+      }
+    };
+    for (const bool entries_only : {true, false}) {
+      for (const int piece : pieces) {
+        const auto& before = index.ending[static_cast<size_t>(lane_of(piece).start_node)];
+        // A chain starts at a piece entered from outside the junction, or from nothing it
+        // chains from (other intersection paths ending here are separate connecting roads).
+        const bool entry = std::any_of(before.begin(), before.end(),
+                                       [&](auto r) { return !in_junction(r.road); }) ||
+                           std::none_of(before.begin(), before.end(),
+                                        [&](auto r) { return chains_into(r.road, piece); });
+        if ((entries_only && entry) || (!entries_only && !covered.contains(piece))) {
+          std::vector<int> chain{piece};
+          walk(chain);
+        }
+      }
+    }
+    JunctionPlan& junction = plan_.junctions[static_cast<size_t>(j)];
+    junction.roads.clear();
+    for (const int piece : pieces) {
+      plan_.roads[static_cast<size_t>(piece)].removed = true;
+    }
+    for (const auto& chain : chains) {
+      RoadPlan road;
+      road.junction = j;
+      PlanLane lane = lane_of(chain.front());
+      for (size_t k = 1; k < chain.size(); ++k) {
+        const PlanLane& next = lane_of(chain[k]);
+        const double shift = Polyline(lane.points).length();
+        for (size_t i = 0; i < next.links.size(); ++i) {
+          lane.links.push_back(next.links[i]);
+          lane.link_starts.push_back(shift + next.link_starts[i]);
+        }
+        append_points(lane.points, next.points);
+        lane.end_node = next.end_node;
+      }
+      road.lanes.push_back(std::move(lane));
+      junction.roads.push_back(static_cast<int>(plan_.roads.size()));
+      plan_.roads.push_back(std::move(road));
+    }
   }
 
   /// Moves every connecting road of junction `from` into junction `into`.

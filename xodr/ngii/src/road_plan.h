@@ -28,6 +28,7 @@ struct RoadPlan {
   std::vector<PlanLane> lanes;  ///< left to right
   int junction = -1;            ///< junction plan index for a connecting road, else -1
   bool removed = false;         ///< merged into another plan
+  bool absorbed = false;        ///< an ordinary road (or its cut-off end) moved into a junction
 };
 
 }  // namespace corsa::ngii::detail
