@@ -171,7 +171,11 @@ std::vector<Knot> find_knots(const SectionView& view, RowStore& rows) {
 }  // namespace
 
 SectionView::SectionView(const Map& map, uint32_t road, uint32_t section)
-    : map_(map), road_(map.road(road)), section_(road_.lane_sections[section]), road_index_(road) {
+    : map_(map),
+      road_(map.road(road)),
+      section_(road_.lane_sections[section]),
+      road_index_(road),
+      section_index_(section) {
   s0_ = std::min(section_.s, road_.length);
   s1_ = std::min(map.section_end(road, section), road_.length);
   for (const Lane& lane : section_.lanes) {
@@ -200,11 +204,13 @@ RoadFrame SectionView::frame(double s) const {
 
 void SectionView::border_ts(double s, double* out) const {
   LaneSpan spans[kMaxLanesPerSection];
-  const size_t n = compute_spans(section_, s, map_.lane_offset(road_index_, s), spans);
+  // At the section's end the laneOffset of this section applies, not a record that starts
+  // exactly there with the next section (CARLA does this; lanes would jump by metres).
+  const double offset = section_lane_offset(map_, road_index_, section_index_, s);
+  const size_t n = compute_spans(section_, s, offset, spans);
   // Left lanes (id > 0) have their outer border on the left, right lanes on the right; the
   // spans are contiguous, so span i's right border is span i + 1's left border.
-  out[0] = n == 0 ? map_.lane_offset(road_index_, s)
-                  : (spans[0].id > 0 ? spans[0].t_outer : spans[0].t_inner);
+  out[0] = n == 0 ? offset : (spans[0].id > 0 ? spans[0].t_outer : spans[0].t_inner);
   for (size_t i = 0; i < n; ++i) {
     out[i + 1] = spans[i].id > 0 ? spans[i].t_inner : spans[i].t_outer;
   }

@@ -63,6 +63,7 @@ class SectionView {
   const Road& road_;
   const LaneSection& section_;
   uint32_t road_index_ = 0;
+  uint32_t section_index_ = 0;
   double s0_ = 0.0;
   double s1_ = 0.0;
   size_t lane_count_ = 0;
