@@ -1,0 +1,28 @@
+#pragma once
+
+// `corsa sweep merge OUT SHARD_DIRS...`: joins the output folders of a sweep's shards into one
+// folder equal to what the unsharded sweep writes (except wall times).
+
+#include <cstddef>
+#include <filesystem>
+#include <vector>
+
+namespace corsa::sweep {
+
+struct MergeReport {
+  size_t variants = 0;
+  size_t failed = 0;
+  size_t shards = 0;
+};
+
+/// Checks that every folder holds a finished shard (summary.csv) of the same sweep (sweep.json)
+/// and that together they hold every variant exactly once (a variant found twice must have the
+/// same row), then writes `out`: sweep.json, variants/ (hard links to the shards' files where the
+/// file system allows, copies otherwise) and summary.csv. The folder is built under a temporary
+/// name next to `out` and renamed into place, so `out` never holds half a merge. `out` must not
+/// exist or be empty unless `force`, which replaces it. Throws InputError naming the folder and
+/// the problem.
+MergeReport merge_sweeps(const std::filesystem::path& out,
+                         const std::vector<std::filesystem::path>& shards, bool force = false);
+
+}  // namespace corsa::sweep

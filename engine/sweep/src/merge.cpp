@@ -1,0 +1,143 @@
+#include "corsa/sweep/merge.h"
+
+#include <unistd.h>
+
+#include <map>
+#include <string>
+
+#include "corsa/core/atomic_file.h"
+#include "corsa/core/diagnostic.h"
+#include "corsa/sweep/csv.h"
+#include "corsa/sweep/summary_table.h"
+#include "sweep_folder.h"
+
+namespace corsa::sweep {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const fs::path& where, const std::string& message) {
+  throw InputError(make_error(where.string(), 0, message));
+}
+
+struct Shard {
+  fs::path folder;
+  std::string description;
+  detail::Table table;
+};
+
+Shard read_shard(const fs::path& folder) {
+  std::error_code error;
+  if (!fs::is_directory(folder, error)) fail(folder, "not a folder");
+  if (!fs::exists(folder / detail::kDescriptionFile, error)) {
+    fail(folder, "not a sweep output folder (it has no sweep.json)");
+  }
+  Shard shard{folder, read_file(folder / detail::kDescriptionFile), {}};
+  auto table = detail::read_table(folder / detail::kSummaryFile);
+  if (!table) {
+    fail(folder,
+         "the shard has not finished (no readable summary.csv): run it again with "
+         "--resume");
+  }
+  shard.table = std::move(*table);
+  return shard;
+}
+
+// Hard links where the file system allows (merging is then instant and takes no space), copies
+// otherwise (another file system, or links not supported).
+void link_or_copy(const fs::path& from, const fs::path& to) {
+  std::error_code error;
+  fs::copy(from, to, fs::copy_options::recursive | fs::copy_options::create_hard_links, error);
+  if (error) {
+    fs::remove_all(to, error);
+    fs::copy(from, to, fs::copy_options::recursive);
+  }
+}
+
+// The variant count a sweep.json states.
+size_t variant_count(const Shard& shard) {
+  const auto text = detail::json_member(shard.description, "variants");
+  const auto row = text ? detail::row_index({*text}) : std::nullopt;
+  if (!row) fail(shard.folder / detail::kDescriptionFile, "no variant count in sweep.json");
+  return *row;
+}
+
+}  // namespace
+
+MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard_folders,
+                         bool force) {
+  if (shard_folders.empty()) fail(out, "no shard folders to merge");
+  std::error_code error;
+  if (fs::exists(out, error) && !force &&
+      !(fs::is_directory(out, error) && fs::is_empty(out, error))) {
+    fail(out, "the merge output exists and is not empty (pass --force to replace it)");
+  }
+  std::vector<Shard> shards;
+  for (const auto& folder : shard_folders) shards.push_back(read_shard(folder));
+  const Shard& first = shards.front();
+  const auto plan = detail::json_member(first.description, "plan");
+  const size_t total = variant_count(first);
+  // index -> (shard, row)
+  std::map<size_t, std::pair<const Shard*, const std::vector<std::string>*>> rows;
+  if (first.table.header.size() < kFixedColumnCount) {
+    fail(first.folder, "summary.csv does not have the columns of a sweep summary");
+  }
+  for (const Shard& shard : shards) {
+    if (detail::json_member(shard.description, "plan") != plan) {
+      fail(shard.folder, "holds another sweep than " + first.folder.string() +
+                             " (their sweep.json files differ)");
+    }
+    if (shard.table.header != first.table.header) {
+      fail(shard.folder, "its summary.csv columns differ from " + first.folder.string());
+    }
+    for (const auto& row : shard.table.rows) {
+      const auto index = detail::row_index(row);
+      if (!index || *index >= total) fail(shard.folder, "summary.csv has a bad variant index");
+      const auto [it, added] = rows.emplace(*index, std::make_pair(&shard, &row));
+      if (!added && without_wall_time(*it->second.second) != without_wall_time(row)) {
+        fail(shard.folder, "variant " + std::to_string(*index) + " differs from the one in " +
+                               it->second.first->folder.string());
+      }
+    }
+  }
+  if (rows.size() != total) {
+    std::string missing;
+    size_t count = 0;
+    for (size_t i = 0; i < total; ++i) {
+      if (rows.count(i) == 0 && ++count <= 10)
+        missing += (count > 1 ? ", " : "") + std::to_string(i);
+    }
+    fail(out, std::to_string(total - rows.size()) + " of " + std::to_string(total) +
+                  " variants are in none of the shards (e.g. " + missing +
+                  "): is a shard folder missing?");
+  }
+
+  // Built next to `out` and renamed into place when complete.
+  const fs::path staging =
+      out.parent_path() / ("." + out.filename().string() + ".merge." + std::to_string(::getpid()));
+  fs::remove_all(staging, error);
+  MergeReport report{rows.size(), 0, shards.size()};
+  try {
+    fs::create_directories(staging / detail::kVariantsFolder);
+    write_file_atomic(staging / detail::kDescriptionFile, first.description);
+    std::string table = csv_line(first.table.header);
+    const size_t status = status_column(first.table.header.size() - kFixedColumnCount);
+    for (const auto& [index, entry] : rows) {
+      const fs::path variant = fs::path(detail::kVariantsFolder) / std::to_string(index);
+      if (fs::exists(entry.first->folder / variant, error)) {
+        link_or_copy(entry.first->folder / variant, staging / variant);
+      }
+      table += csv_line(*entry.second);
+      report.failed += (*entry.second)[status] != "ok" ? 1 : 0;
+    }
+    write_file_atomic(staging / detail::kSummaryFile, table);
+    fs::remove_all(out, error);
+    fs::rename(staging, out);
+  } catch (...) {
+    fs::remove_all(staging, error);
+    throw;
+  }
+  return report;
+}
+
+}  // namespace corsa::sweep

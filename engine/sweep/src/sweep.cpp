@@ -1,0 +1,216 @@
+#include "corsa/sweep/sweep.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <mutex>
+#include <vector>
+
+#include "corsa/core/atomic_file.h"
+#include "corsa/core/random.h"
+#include "corsa/core/strings.h"
+#include "corsa/core/version.h"
+#include "corsa/sweep/csv.h"
+#include "corsa/sweep/parallel.h"
+#include "corsa/sweep/summary_table.h"
+#include "corsa/xosc/scenario.h"
+#include "sweep_folder.h"
+
+namespace corsa::sweep {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string hex(uint64_t value) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
+  return text;
+}
+
+std::string json_list(const std::vector<std::string>& items) {
+  std::string out = "[";
+  for (size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + json_quote(items[i]);
+  return out + "]";
+}
+
+[[noreturn]] void folder_error(const fs::path& folder, const std::string& message) {
+  throw InputError(make_error(folder.string(), 0, message));
+}
+
+// Checks what `options.output` holds before anything is written, and clears an earlier sweep
+// when forced. Returns whether the folder already holds this sweep (resume).
+void prepare_output(const SweepOptions& options, const std::string& description,
+                    const std::string& shard_text) {
+  const fs::path& out = options.output;
+  std::error_code error;
+  if (fs::exists(out, error) && !fs::is_directory(out, error)) {
+    folder_error(out, "the sweep output (-o) exists and is not a folder");
+  }
+  const fs::path described = out / detail::kDescriptionFile;
+  if (!fs::exists(described, error)) {
+    return;
+  }
+  if (options.force) {
+    for (const char* name : {detail::kDescriptionFile, detail::kShardFile, detail::kSummaryFile,
+                             detail::kVariantsFolder}) {
+      fs::remove_all(out / name, error);
+    }
+    return;
+  }
+  if (!options.resume) {
+    folder_error(out,
+                 "this folder holds a sweep already: pass --resume to finish it, --force to "
+                 "replace it, or choose another output folder (-o)");
+  }
+  const std::string existing = read_file(described);
+  if (detail::json_member(existing, "plan") != detail::json_member(description, "plan")) {
+    folder_error(out,
+                 "--resume: this folder holds a different sweep (other scenario, "
+                 "parameters, variants or options); its sweep.json does not match");
+  }
+  const fs::path shard_file = out / detail::kShardFile;
+  const std::string existing_shard = fs::exists(shard_file, error) ? read_file(shard_file) : "";
+  if (existing_shard != shard_text) {
+    folder_error(out, "--resume: this folder holds another shard of the sweep");
+  }
+}
+
+std::string shard_json(const Shard& shard, size_t variants) {
+  if (shard.whole()) return {};
+  return "{\n  \"shard\": " + json_quote(shard.text()) +
+         ",\n  \"index\": " + std::to_string(shard.index) +
+         ",\n  \"count\": " + std::to_string(shard.count) +
+         ",\n  \"variants\": " + std::to_string(shard.share(variants)) + "\n}\n";
+}
+
+// A variant's row from an earlier run, if it finished and has the expected columns.
+std::optional<std::vector<std::string>> finished_row(const fs::path& folder, size_t index,
+                                                     const std::vector<std::string>& header) {
+  const auto table = detail::read_table(folder / detail::kResultFile);
+  if (!table || table->header != header || table->rows.size() != 1 ||
+      detail::row_index(table->rows.front()) != index) {
+    return std::nullopt;
+  }
+  return table->rows.front();
+}
+
+struct Context {
+  const VariantPlan& plan;
+  const SweepOptions& options;
+  const std::vector<std::string>& header;
+  SharedInputs& inputs;
+  Diagnostics& diagnostics;
+};
+
+std::vector<std::string> run_one(const Context& c, size_t index, bool& resumed) {
+  const fs::path folder = c.options.output / detail::kVariantsFolder / std::to_string(index);
+  if (c.options.resume) {
+    if (auto row = finished_row(folder, index, c.header)) {
+      resumed = true;
+      return *row;
+    }
+  }
+  fs::create_directories(folder);
+  VariantSpec spec;
+  spec.parameters = c.plan.variant(index);
+  spec.simulation = c.options.simulation;
+  spec.ego = c.options.ego;
+  VariantOutputs outputs;
+  if (c.options.trajectories) outputs.trajectory = folder / detail::kTrajectoryFile;
+  outputs.summary = folder / detail::kRunSummaryFile;
+  outputs.record_every = c.options.record_every;
+  const VariantResult result = run_variant(c.inputs, spec, outputs, c.diagnostics);
+  if (!result.ok()) {
+    // No output of an earlier, interrupted attempt may pass for this run's.
+    std::error_code ignored;
+    fs::remove(folder / detail::kTrajectoryFile, ignored);
+    fs::remove(folder / detail::kRunSummaryFile, ignored);
+  }
+  std::vector<std::string> row =
+      summary_row(index, c.plan.parameter_names(), spec.parameters, result);
+  write_file_atomic(folder / detail::kResultFile, csv_line(c.header) + csv_line(row));
+  return row;
+}
+
+}  // namespace
+
+std::string sweep_description(const VariantPlan& plan, const SweepOptions& options) {
+  const std::string source_hash = hex(stable_hash(read_file(plan.source())));
+  const std::string scenario_hash =
+      plan.source() == plan.scenario() ? source_hash : hex(stable_hash(read_file(plan.scenario())));
+  std::vector<std::string> grid;
+  for (const auto& axis : plan.grid()) grid.push_back(axis.spec);
+  // Everything that decides the variants' results, without the paths (shards may see the same
+  // files under other mount points): resume and merge compare this.
+  std::string members = "  \"corsa\": " + json_quote(version()) + ",\n";
+  members += "  \"source_hash\": " + json_quote(source_hash) + ",\n";
+  members += "  \"scenario_hash\": " + json_quote(scenario_hash) + ",\n";
+  members += "  \"grid\": " + json_list(grid) + ",\n";
+  members += "  \"parameters\": " + json_list(plan.parameter_names()) + ",\n";
+  members += "  \"variants\": " + std::to_string(plan.size()) + ",\n";
+  members += "  \"default_seed\": " + std::to_string(plan.default_seed()) + ",\n";
+  members += "  \"seed\": " + std::to_string(options.simulation.seed) + ",\n";
+  members += "  \"dt\": " + format_double(options.simulation.dt) + ",\n";
+  members += "  \"duration\": " + format_double(options.simulation.duration) + ",\n";
+  members += "  \"record_every\": " + std::to_string(options.record_every) + ",\n";
+  members +=
+      std::string("  \"trajectories\": ") + (options.trajectories ? "true" : "false") + ",\n";
+  members += "  \"ego\": " + json_quote(options.ego) + ",\n";
+  return "{\n  \"source\": " + json_quote(plan.source().string()) +
+         ",\n  \"scenario\": " + json_quote(plan.scenario().string()) + ",\n" + members +
+         "  \"plan\": " + json_quote(hex(stable_hash(members))) + "\n}\n";
+}
+
+SweepReport run_sweep(const VariantPlan& plan, const SweepOptions& options,
+                      Diagnostics& diagnostics, const SweepProgress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  SharedInputs inputs(plan.scenario(), diagnostics);
+  plan.check(inputs.load({}, diagnostics));
+  const std::string description = sweep_description(plan, options);
+  const std::string shard_text = shard_json(options.shard, plan.size());
+  prepare_output(options, description, shard_text);
+  fs::create_directories(options.output / detail::kVariantsFolder);
+  write_file_atomic(options.output / detail::kDescriptionFile, description);
+  if (!shard_text.empty()) write_file_atomic(options.output / detail::kShardFile, shard_text);
+
+  const std::vector<std::string> header = summary_header(plan.parameter_names());
+  const size_t share = options.shard.share(plan.size());
+  std::vector<std::vector<std::string>> rows(share);
+  std::vector<char> resumed(share, 0);
+  const Context context{plan, options, header, inputs, diagnostics};
+  std::mutex progress_mutex;
+  size_t done = 0;
+  parallel_for(share, options.jobs, [&](size_t k) {
+    const size_t index = options.shard.index + k * options.shard.count;
+    bool was_resumed = false;
+    rows[k] = run_one(context, index, was_resumed);
+    resumed[k] = was_resumed ? 1 : 0;
+    if (progress) {
+      std::lock_guard lock(progress_mutex);
+      progress(++done, share);
+    }
+  });
+
+  std::string table = csv_line(header);
+  SweepReport report;
+  report.variants = share;
+  const size_t status = status_column(plan.parameter_names().size());
+  for (size_t k = 0; k < share; ++k) {
+    table += csv_line(rows[k]);
+    report.resumed += resumed[k] != 0 ? 1 : 0;
+    if (rows[k][status] != "ok") {
+      ++report.failed;
+      if (report.first_failures.size() < SweepReport::kFailuresListed) {
+        report.first_failures.emplace_back(options.shard.index + k * options.shard.count,
+                                           rows[k][rows[k].size() - 2]);
+      }
+    }
+  }
+  report.ran = share - report.resumed;
+  write_file_atomic(options.output / detail::kSummaryFile, table);
+  report.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace corsa::sweep

@@ -1,0 +1,48 @@
+#include "sweep_folder.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "corsa/core/strings.h"
+#include "corsa/sweep/csv.h"
+
+namespace corsa::sweep::detail {
+
+std::optional<std::string> json_member(std::string_view json, std::string_view key) {
+  const std::string needle = "\"" + std::string(key) + "\": ";
+  for (const std::string_view line : split(json, '\n')) {
+    const std::string_view text = trim(line);
+    if (text.substr(0, needle.size()) == needle) {
+      std::string_view value = text.substr(needle.size());
+      if (!value.empty() && value.back() == ',') value.remove_suffix(1);
+      return std::string(value);
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<Table> read_table(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in.rdbuf();
+  std::vector<std::vector<std::string>> rows;
+  if (!in || !parse_csv(text.str(), rows) || rows.empty()) return std::nullopt;
+  Table table;
+  table.header = std::move(rows.front());
+  rows.erase(rows.begin());
+  for (const auto& row : rows) {
+    if (row.size() != table.header.size()) return std::nullopt;
+  }
+  table.rows = std::move(rows);
+  return table;
+}
+
+std::optional<size_t> row_index(const std::vector<std::string>& row) {
+  if (row.empty()) return std::nullopt;
+  const auto value = parse_int(row.front());
+  if (!value || *value < 0) return std::nullopt;
+  return static_cast<size_t>(*value);
+}
+
+}  // namespace corsa::sweep::detail
