@@ -1,0 +1,143 @@
+#include "corsa/suite/suite_run.h"
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "corsa/core/atomic_file.h"
+#include "corsa/suite/expectations.h"
+#include "corsa/sweep/parallel.h"
+#include "corsa/sweep/shared_inputs.h"
+
+namespace corsa::suite {
+namespace {
+
+namespace fs = std::filesystem;
+
+// One SharedInputs per scenario file, so tests of one scenario share its map and catalogs; a
+// file that cannot be read is that test's error.
+class InputsByScenario {
+ public:
+  InputsByScenario(const Suite& suite, Diagnostics& diagnostics) {
+    for (const TestCase& test : suite.tests) {
+      if (inputs_.count(test.scenario) != 0 || errors_.count(test.scenario) != 0) continue;
+      try {
+        inputs_.emplace(test.scenario,
+                        std::make_unique<sweep::SharedInputs>(test.scenario, diagnostics));
+      } catch (const InputError& error) {
+        errors_.emplace(test.scenario, error.diagnostic().format());
+      }
+    }
+  }
+  sweep::SharedInputs* find(const fs::path& scenario, std::string& error) {
+    const auto found = inputs_.find(scenario);
+    if (found != inputs_.end()) return found->second.get();
+    error = errors_.at(scenario);
+    return nullptr;
+  }
+
+ private:
+  std::map<fs::path, std::unique_ptr<sweep::SharedInputs>> inputs_;
+  std::map<fs::path, std::string> errors_;
+};
+
+void judge_golden(const TestCase& test, const SuiteOptions& options, TestOutcome& outcome) {
+  if (!test.golden) return;
+  if (options.update_goldens) {
+    fs::create_directories(test.golden->file.parent_path());
+    write_file_atomic(test.golden->file, outcome.run.trajectory_text);
+    outcome.golden_written = true;
+    return;
+  }
+  std::error_code error;
+  if (!fs::is_regular_file(test.golden->file, error)) {
+    outcome.failures.push_back("golden file " + test.golden->file.string() +
+                               " does not exist (write it with --update-goldens)");
+    return;
+  }
+  outcome.golden = compare_trajectories(read_file(test.golden->file), outcome.run.trajectory_text,
+                                        test.golden->tolerances);
+  for (const auto& failure : outcome.golden->failures) {
+    outcome.failures.push_back("golden " + test.golden->file.filename().string() + ": " + failure);
+  }
+}
+
+TestOutcome run_test(const TestCase& test, const SuiteOptions& options, InputsByScenario& inputs,
+                     Diagnostics& diagnostics) {
+  TestOutcome outcome;
+  outcome.name = test.name;
+  sweep::SharedInputs* shared = inputs.find(test.scenario, outcome.error);
+  if (shared == nullptr) {
+    outcome.verdict = Verdict::kError;
+    return outcome;
+  }
+  sweep::VariantSpec spec{test.parameters, test.simulation, test.ego};
+  sweep::VariantOutputs outputs;
+  if (options.output) {
+    const fs::path folder = *options.output / test.name;
+    fs::create_directories(folder);
+    outputs.trajectory = folder / "trajectory.csv";
+    outputs.summary = folder / "summary.json";
+  }
+  outputs.keep_trajectory_text = test.golden.has_value();
+  outputs.record_every = test.golden ? test.golden->every : 1;
+  outcome.run = sweep::run_variant(*shared, spec, outputs, diagnostics);
+  if (!outcome.run.ok()) {
+    outcome.verdict = Verdict::kError;
+    outcome.error = outcome.run.error;
+    return outcome;
+  }
+  outcome.failures = check_expectations(test.expect, outcome.run);
+  judge_golden(test, options, outcome);
+  outcome.verdict = outcome.failures.empty() ? Verdict::kPassed : Verdict::kFailed;
+  return outcome;
+}
+
+}  // namespace
+
+std::string_view to_string(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::kPassed:
+      return "PASS";
+    case Verdict::kFailed:
+      return "FAIL";
+    case Verdict::kError:
+      return "ERROR";
+  }
+  return "ERROR";
+}
+
+SuiteReport run_suite(const Suite& suite, const SuiteOptions& options, Diagnostics& diagnostics,
+                      const TestFinished& finished) {
+  const auto start = std::chrono::steady_clock::now();
+  InputsByScenario inputs(suite, diagnostics);
+  std::vector<TestCase> tests = suite.tests;
+  if (options.update_goldens && suite.manifest.empty()) {
+    // A folder suite compares with goldens/<stem>.csv when it exists; updating writes them all.
+    for (TestCase& test : tests) {
+      if (!test.golden)
+        test.golden = GoldenSpec{suite.folder / "goldens" / (test.name + ".csv"), 10, {}};
+    }
+  }
+  SuiteReport report;
+  report.outcomes.resize(tests.size());
+  std::mutex finished_mutex;
+  sweep::parallel_for(tests.size(), options.jobs, [&](size_t i) {
+    report.outcomes[i] = run_test(tests[i], options, inputs, diagnostics);
+    if (finished) {
+      std::lock_guard lock(finished_mutex);
+      finished(report.outcomes[i]);
+    }
+  });
+  for (const TestOutcome& outcome : report.outcomes) {
+    report.passed += outcome.verdict == Verdict::kPassed ? 1 : 0;
+    report.failed += outcome.verdict == Verdict::kFailed ? 1 : 0;
+    report.errors += outcome.verdict == Verdict::kError ? 1 : 0;
+  }
+  report.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+}  // namespace corsa::suite
