@@ -70,7 +70,7 @@ std::vector<FitPoint> prepare(std::span<const Point2> input, double max_spacing)
   for (size_t index = 0; index < input.size(); ++index) {
     const Point2& p = input[index];
     if (!points.empty()) {
-      const FitPoint& last = points.back();
+      const FitPoint last = points.back();  // a copy: the loop below grows `points`
       const double d = std::hypot(p.x - last.x, p.y - last.y);
       const bool final_vertex = index + 1 == input.size();
       if (d < 1e-4 || (d < kMinSpacing && !final_vertex)) {
