@@ -158,8 +158,7 @@ std::optional<ElementState> Simulation::element_state(std::string_view path) con
 std::span<const CollisionRecord> Simulation::collisions() const { return impl_->state.collisions; }
 
 bool Simulation::colliding(size_t a, size_t b) const {
-  const auto& contacts = impl_->state.contacts;
-  return a != b && a < contacts.n && b < contacts.n && contacts.get(a, b);
+  return a != b && impl_->state.contacts.get(static_cast<uint32_t>(a), static_cast<uint32_t>(b));
 }
 
 std::optional<xosc::Value> Simulation::parameter(std::string_view name) const {

@@ -29,9 +29,9 @@ class CollisionCheck final : public EntityCondition {
     if (other_) {
       return *other_ != entity && state.contacts.get(entity, *other_);
     }
-    for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
-      if (i != entity && (!kind_ || state.world.entities[i].info.kind == *kind_) &&
-          state.contacts.get(entity, i)) {
+    for (const auto& [first, second] : state.contacts.pairs) {
+      const uint32_t other = first == entity ? second : second == entity ? first : entity;
+      if (other != entity && (!kind_ || state.world.entities[other].info.kind == *kind_)) {
         return true;
       }
     }

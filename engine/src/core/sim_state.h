@@ -4,6 +4,7 @@
 // (no globals: two Simulations own two SimStates). The read-only models (xosc::Scenario,
 // xodr::Map) are referenced, never modified.
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -41,16 +42,14 @@ struct World {
   }
 };
 
-/// Pairs of entities whose boxes overlap now, as a bit matrix (n x n, symmetric).
-struct ContactMatrix {
-  size_t n = 0;
-  std::vector<uint8_t> bits;
-  void reset(size_t count) {
-    n = count;
-    bits.assign(count * count, 0);
+/// Pairs of entities whose boxes overlap now: (first, second) with first < second, sorted.
+struct ContactSet {
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+
+  bool get(uint32_t a, uint32_t b) const {
+    const auto key = a < b ? std::make_pair(a, b) : std::make_pair(b, a);
+    return std::binary_search(pairs.begin(), pairs.end(), key);
   }
-  bool get(size_t a, size_t b) const { return bits[a * n + b] != 0; }
-  void set(size_t a, size_t b) { bits[a * n + b] = bits[b * n + a] = 1; }
 };
 
 struct SimState {
@@ -80,7 +79,7 @@ struct SimState {
   bool time_of_day_animated = false;
 
   ElementTable elements;
-  ContactMatrix contacts;
+  ContactSet contacts;
   std::vector<CollisionRecord> collisions;
   std::map<std::string, CustomCommandHandler, std::less<>> custom_handlers;
   /// The Simulation that owns this state, for custom command handlers (refreshed every step,

@@ -10,12 +10,8 @@ namespace corsa::engine::detail {
 
 void update_contacts(SimState& state) {
   const auto& entities = state.world.entities;
-  const size_t n = entities.size();
-  ContactMatrix previous = std::move(state.contacts);
-  state.contacts.reset(n);
-  if (previous.n != n) {
-    previous.reset(n);
-  }
+  std::vector<std::pair<uint32_t, uint32_t>> previous;
+  previous.swap(state.contacts.pairs);
   // Sweep and prune along x: boxes sorted by their lowest x; only those whose x ranges overlap
   // are tested exactly.
   struct Item {
@@ -24,8 +20,8 @@ void update_contacts(SimState& state) {
     OrientedBox box;
   };
   std::vector<Item> items;
-  items.reserve(n);
-  for (uint32_t i = 0; i < n; ++i) {
+  items.reserve(entities.size());
+  for (uint32_t i = 0; i < entities.size(); ++i) {
     if (!entities[i].state.placed || entities[i].info.box.length <= 0.0) {
       continue;
     }
@@ -36,24 +32,21 @@ void update_contacts(SimState& state) {
   std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
     return a.low < b.low || (a.low == b.low && a.index < b.index);
   });
-  std::vector<std::pair<uint32_t, uint32_t>> started;
+  auto& now = state.contacts.pairs;
   for (size_t a = 0; a < items.size(); ++a) {
     for (size_t b = a + 1; b < items.size() && items[b].low <= items[a].high; ++b) {
-      if (!overlap(items[a].box, items[b].box)) {
-        continue;
-      }
-      const uint32_t first = std::min(items[a].index, items[b].index);
-      const uint32_t second = std::max(items[a].index, items[b].index);
-      state.contacts.set(first, second);
-      if (!previous.get(first, second)) {
-        started.emplace_back(first, second);
+      if (overlap(items[a].box, items[b].box)) {
+        now.emplace_back(std::min(items[a].index, items[b].index),
+                         std::max(items[a].index, items[b].index));
       }
     }
   }
-  // Records in entity order, independent of the sweep order.
-  std::sort(started.begin(), started.end());
-  for (const auto& [first, second] : started) {
-    state.collisions.push_back({state.tick, state.now(), first, second});
+  // Entity order, independent of the sweep order; new contacts are recorded in that order.
+  std::sort(now.begin(), now.end());
+  for (const auto& pair : now) {
+    if (!std::binary_search(previous.begin(), previous.end(), pair)) {
+      state.collisions.push_back({state.tick, state.now(), pair.first, pair.second});
+    }
   }
 }
 

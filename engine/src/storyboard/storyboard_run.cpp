@@ -24,6 +24,10 @@ void Storyboard::start(SimState& state) {
     move(state, story->element, TransitionKind::kStart, ElementState::kRunning);
     check_story(state, *story);
   }
+  if (stories_.empty() && !stop_trigger_) {
+    // Nothing to wait for: every (zero) story is complete.
+    move(state, root_, TransitionKind::kEnd, ElementState::kComplete);
+  }
 }
 
 void Storyboard::update(SimState& state) {

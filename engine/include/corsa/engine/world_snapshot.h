@@ -80,7 +80,7 @@ struct EnvironmentState {
   /// map's georeference.
   std::optional<double> sun_azimuth;
   std::optional<double> sun_elevation;
-  double sun_intensity = 100000.0;  ///< lux
+  double sun_intensity = 100000.0;                                    ///< lux
   double fog_visual_range = std::numeric_limits<double>::infinity();  ///< metres
   PrecipitationType precipitation = PrecipitationType::kDry;
   double precipitation_intensity = 0.0;  ///< mm/h
