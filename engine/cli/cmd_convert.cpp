@@ -1,13 +1,14 @@
+// `corsa convert ngii DIR -o OUT.xodr`: the NGII import needs PROJ and shapelib, which the corsa
+// executable does not load (see plugin_api.h); the command runs in libcorsa_plugin.so
+// (plugin/cmd_convert_ngii.cpp).
+
 #include "commands.h"
-#include "pending.h"
+#include "plugin_api.h"
 
 namespace corsa::cli {
 
 int command_convert(std::span<const std::string> args) {
-  ArgParser parser("convert ngii DIR -o OUT.xodr [options]",
-                   "Converts NGII HD road layers (Shapefile + DBF) to OpenDRIVE.");
-  parser.positional("ngii DIR", "source format and folder", 2, 2);
-  return pending_command(parser, args, "convert");
+  return run_plugin_command("convert", args);
 }
 
 }  // namespace corsa::cli

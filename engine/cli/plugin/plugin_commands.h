@@ -10,6 +10,8 @@ namespace corsa::cli {
 int plugin_selftest(std::span<const std::string> args);
 /// `corsa map render` (cmd_map_render.cpp).
 int plugin_map_render(std::span<const std::string> args);
+/// `corsa convert ngii` (cmd_convert_ngii.cpp).
+int plugin_convert(std::span<const std::string> args);
 
 /// Runs `body`, printing an InputError / UsageError as the executable would (exit 2) and any other
 /// exception as an internal error (exit 3), so that no exception crosses the plugin boundary.

@@ -12,6 +12,7 @@ namespace {
 const auto kCommands = std::to_array<PluginCommandEntry>({
     {"plugin selftest", plugin_selftest},
     {"map render", plugin_map_render},
+    {"convert", plugin_convert},
 });
 
 const PluginApi kApi{kPluginAbiVersion, kCommands};

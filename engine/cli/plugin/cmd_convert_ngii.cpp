@@ -1,0 +1,134 @@
+// `corsa convert ngii DIR -o OUT.xodr [--tolerance M] [--report FILE] [--quiet]`: NGII HD road
+// layers to OpenDRIVE (in the plugin: the import needs PROJ and shapelib). Thin: arguments,
+// progress, printing; the work is corsa::ngii (xodr/ngii/).
+
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include "args.h"
+#include "commands.h"
+#include "corsa/core/progress.h"
+#include "corsa/core/strings.h"
+#include "corsa/ngii/convert.h"
+#include "corsa/xodr/map.h"
+#include "corsa/xodr/writer.h"
+#include "plugin_commands.h"
+
+namespace corsa::cli {
+namespace {
+
+/// Warnings printed before "... and N more" (every repair warns; --report lists them all).
+constexpr size_t kWarningsShown = 20;
+
+ArgParser make_parser() {
+  ArgParser parser("convert ngii DIR -o OUT.xodr [options]",
+                   "Converts NGII HD road layers (A1_NODE, A2_LINK and, when present, "
+                   "B2_SURFACELINEMARK and C1_TRAFFICLIGHT; Shapefile + DBF) to OpenDRIVE 1.8: "
+                   "lane numbers and neighbours repaired, lanes grouped into roads, reference "
+                   "lines fitted with lines, arcs and clothoids, junctions, road marks, signals.");
+  parser.positional("ngii DIR",
+                    "the source format (ngii) and the folder of the layers, or the "
+                    "path of its A2_LINK.shp",
+                    2, 2);
+  parser.option("-o", "OUT.xodr", "the OpenDRIVE file to write (required)");
+  parser.option("--tolerance", "M",
+                "largest distance of the fitted reference line from the "
+                "lane data, metres (default 0.05)");
+  parser.option("--report", "FILE",
+                "write every repair of the source data as CSV "
+                "(link_id,field,old_value,new_value,reason,record)");
+  parser.flag("--quiet", "no progress bar, warnings or summary");
+  parser.epilog("example:\n  corsa convert ngii data/kcity -o kcity.xodr --report kcity-fixes.csv");
+  return parser;
+}
+
+void print_warnings(const Diagnostics& diagnostics) {
+  size_t shown = 0;
+  size_t hidden = 0;
+  for (const Diagnostic& d : diagnostics.all()) {
+    if (d.severity == Severity::kError) {
+      continue;
+    }
+    if (shown < kWarningsShown) {
+      std::cerr << d << '\n';
+      ++shown;
+    } else {
+      ++hidden;
+    }
+  }
+  if (hidden > 0) {
+    std::cerr << "... and " << hidden << " more warnings (--report lists every repair)\n";
+  }
+}
+
+void print_summary(const ngii::ConversionSummary& s, const std::string& output) {
+  std::cout << "converted " << s.links_read << " links -> " << s.roads << " roads ("
+            << s.connecting_roads << " connecting), " << s.lanes << " lanes, " << s.junctions
+            << " junctions + " << s.direct_junctions << " splits/merges, " << s.road_marks
+            << " road marks, " << s.signals << " signals; " << s.corrections
+            << " corrections; largest fit error " << format_fixed(s.max_lane_error, 3)
+            << " m (lane centres), " << format_fixed(s.max_reference_error, 3)
+            << " m (reference lines), " << s.geometries << " planView records, " << s.kinks
+            << " kinks -> " << output << '\n';
+}
+
+int convert_body(std::span<const std::string> args) {
+  const ArgParser parser = make_parser();
+  const ParsedArgs parsed = parser.parse(args);
+  if (parsed.help()) {
+    parser.print_help(std::cout);
+    return kExitOk;
+  }
+  if (parsed.positionals().at(0) != "ngii") {
+    throw UsageError("unknown source format '" + parsed.positionals().at(0) +
+                     "' (supported: ngii)");
+  }
+  const std::optional<std::string> output = parsed.value("-o");
+  if (!output || output->empty()) {
+    throw UsageError("missing -o OUT.xodr (the OpenDRIVE file to write)");
+  }
+  ngii::ConvertOptions options;
+  if (const auto tolerance = parsed.number("--tolerance")) {
+    if (!(*tolerance >= 0.001 && *tolerance <= 1.0)) {
+      throw UsageError("--tolerance must be between 0.001 and 1 metre");
+    }
+    options.tolerance = *tolerance;
+  }
+  const bool quiet = parsed.flag("--quiet");
+  const std::optional<std::string> report = parsed.value("--report");
+
+  Diagnostics diagnostics;
+  ngii::Conversion conversion;
+  {
+    ProgressBar progress("converting", 1.0, !quiet);
+    options.progress = [&progress](double done) { progress.update(0.1 + 0.8 * done); };
+    const ngii::Layers layers = ngii::read_layers(parsed.positionals().at(1), diagnostics);
+    progress.update(0.1);
+    conversion = ngii::convert(layers, options, diagnostics);
+    // The map must load in Corsa: checked here rather than found by the next user.
+    xodr::Map::build(conversion.map, diagnostics);
+    progress.update(0.95);
+    xodr::write_xodr(conversion.map, *output);
+    if (report) {
+      ngii::write_corrections_csv(conversion.corrections, *report);
+    }
+    progress.finish();
+  }
+  if (!quiet) {
+    print_warnings(diagnostics);
+    print_summary(conversion.summary, *output);
+    if (report) {
+      std::cout << "corrections: " << *report << '\n';
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+int plugin_convert(std::span<const std::string> args) {
+  return guarded("convert", convert_body, args);
+}
+
+}  // namespace corsa::cli
