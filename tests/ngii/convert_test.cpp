@@ -68,6 +68,11 @@ TEST_CASE("both areas convert to maps that load without errors", "[ngii][convert
     const auto reloaded = corsa::xodr::Map::build(reparsed, diagnostics);
     CHECK_FALSE(diagnostics.has_errors());
     CHECK(reloaded.road_count() == map.roads.size());
+    // Not even a warning: reference lines are G1 (no heading jumps), lanes and links consistent.
+    for (const auto& d : diagnostics.all()) {
+      INFO(d.format());
+      CHECK(d.severity == corsa::Severity::kNote);
+    }
   }
 }
 

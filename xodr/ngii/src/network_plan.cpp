@@ -473,15 +473,18 @@ class Planner {
   void chain_connecting_roads(int j) {
     std::vector<int> pieces;
     for (const int r : plan_.junctions[static_cast<size_t>(j)].roads) {
-      RoadPlan& road = plan_.roads[static_cast<size_t>(r)];
-      if (road.removed) {
+      if (plan_.roads[static_cast<size_t>(r)].removed) {
         continue;
       }
-      road.removed = true;
-      for (PlanLane& lane : road.lanes) {
+      // Moved out first: the pushes below may reallocate plan_.roads, so no reference into it
+      // is kept across them.
+      std::vector<PlanLane> lanes = std::move(plan_.roads[static_cast<size_t>(r)].lanes);
+      const bool absorbed = plan_.roads[static_cast<size_t>(r)].absorbed;
+      plan_.roads[static_cast<size_t>(r)].removed = true;
+      for (PlanLane& lane : lanes) {
         RoadPlan single;
         single.junction = j;
-        single.absorbed = road.absorbed;
+        single.absorbed = absorbed;
         single.lanes.push_back(std::move(lane));
         pieces.push_back(static_cast<int>(plan_.roads.size()));
         plan_.roads.push_back(std::move(single));

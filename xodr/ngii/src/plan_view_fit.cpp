@@ -362,7 +362,7 @@ constexpr double kHeadingSlack = 0.003;
 class ChainFitter {
  public:
   ChainFitter(const std::vector<FitPoint>& points, const CurveFitOptions& options)
-      : points_(points), fitter_(points, options) {}
+      : points_(points), options_(options), fitter_(points, options) {}
 
   CurveFit run() {
     CurveFit result;
@@ -374,12 +374,42 @@ class ChainFitter {
       Trial trial = longest(i0, pose, free_heading);
       if (!trial.ok) {
         // The next vertex cannot be reached within the tolerance from this pose: the input turns
-        // too sharply. Restart there with a free heading (a kink in the chain).
-        const FitPoint& next = points_[i0 + 1];
-        pose.theta = std::atan2(next.y - pose.y, next.x - pose.x);
-        pose.kappa = 0.0;
+        // too sharply (two links digitised meeting at an angle). Turn along a short arc first,
+        // which keeps the chain G1; only if that cannot be done within the tolerance, or does
+        // not help, restart with a free heading (a kink in the chain).
+        // Targets: the direction to the next point, then the start heading a free fit from
+        // here would take (what the data ahead asks for).
+        // A corner too sharp for an arc within max_curvature is turned on a tighter one (a
+        // sharp corner, counted with the kinks) rather than with a heading jump.
+        for (int attempt = 0; attempt < 6 && !trial.ok; ++attempt) {
+          const bool sharp = attempt >= 2;
+          const double dx = points_[i0 + 1].x - pose.x;
+          const double dy = points_[i0 + 1].y - pose.y;
+          double target = std::atan2(dy, dx);
+          if (attempt >= 1) {
+            const Trial free = longest(i0, pose, true);
+            if (free.ok) {
+              target = free.curve.theta0;
+            }
+          }
+          if (turn_on_arc(result, pose, target, std::hypot(dx, dy), sharp)) {
+            trial = longest(i0, pose, false);
+            result.kinks += sharp && trial.ok;
+          }
+        }
+      }
+      if (!trial.ok) {
+        // Last resort, still G1: aim at the next point on sharp arcs (each leaves a smaller
+        // angle to it), then a record from there, or a line to that point.
         ++result.kinks;
-        trial = longest(i0, pose, true);
+        for (int k = 0; k < 4; ++k) {
+          const double dx = points_[i0 + 1].x - pose.x;
+          const double dy = points_[i0 + 1].y - pose.y;
+          if (!turn_on_arc(result, pose, std::atan2(dy, dx), std::hypot(dx, dy), true)) {
+            break;
+          }
+        }
+        trial = longest(i0, pose, false);
         if (!trial.ok) {
           trial = fitter_.fit(i0, i0 + 1, pose, false, Kind::kLine, Clothoid{});
           trial_end_ = i0 + 1;
@@ -404,6 +434,36 @@ class ChainFitter {
       }
     }
     return std::atan2(points_.back().y - points_[0].y, points_.back().x - points_[0].x);
+  }
+
+  /// Appends an arc from `pose` that turns it to heading `target` and whose end lies within
+  /// half the tolerance of the line through the start in the new direction (an arc of length
+  /// L turning by d ends R (1 - cos d) = L (1 - cos d) / |d| off it), and no longer than half of
+  /// `room` (m, the distance to the next point). Moves `pose` to the arc's end. False (nothing
+  /// appended) when that arc would be tighter than max_curvature (unless `sharp`) or shorter
+  /// than a millimetre.
+  bool turn_on_arc(CurveFit& result, Pose& pose, double target, double room, bool sharp) const {
+    const double turn = std::remainder(target - pose.theta, 2.0 * M_PI);
+    if (std::abs(turn) < 1e-6) {
+      return false;
+    }
+    // At most half the way to the next point, so that the next record still starts before it.
+    const double radius =
+        std::min(0.5 * options_.tolerance / (1.0 - std::cos(turn)), 0.5 * room / std::abs(turn));
+    const double deviation = radius * (1.0 - std::cos(turn));
+    if (!(sharp || radius * options_.max_curvature >= 1.0) || !(radius * std::abs(turn) > 1e-3)) {
+      return false;
+    }
+    Trial arc;
+    arc.ok = true;
+    arc.kind = Kind::kArc;
+    arc.length = radius * std::abs(turn);
+    arc.curve = Clothoid{pose.x, pose.y, pose.theta, std::copysign(1.0 / radius, turn), 0.0};
+    append(result, arc);
+    result.max_error = std::max(result.max_error, deviation);
+    const ClothoidPoint end = detail::clothoid_at(arc.curve, arc.length);
+    pose = Pose{end.x, end.y, end.theta, arc.curve.k0};
+    return true;
   }
 
   /// The longest record from (i0, pose): galloping then binary search on the end vertex with the
@@ -507,6 +567,7 @@ class ChainFitter {
   }
 
   const std::vector<FitPoint>& points_;
+  const CurveFitOptions& options_;
   SegmentFitter fitter_;
   size_t trial_end_ = 0;
 };

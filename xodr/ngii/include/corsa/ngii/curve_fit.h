@@ -29,12 +29,13 @@ struct CurveFitOptions {
 
 struct CurveFit {
   /// Consecutive records from s = 0: each starts where the previous ends, with the same heading
-  /// (G1) except at `kinks`.
+  /// (G1) except at those `kinks` that could not be turned on an arc.
   std::vector<xodr::Geometry> geometries;
   double length = 0.0;     ///< total length (m)
   double max_error = 0.0;  ///< largest distance (m) of an input vertex from the fitted line
-  /// Joints where the input turns too sharply for a G1 line within the tolerance, so the heading
-  /// jumps (counted, and the error there is in max_error).
+  /// Corners where the input turns too sharply for the records within the tolerance: turned on
+  /// a short arc tighter than max_curvature (the chain stays G1), or, where even that fails,
+  /// with a heading jump. Counted; the error there is in max_error.
   int kinks = 0;
 };
 
