@@ -35,3 +35,12 @@ TEST_CASE("text helpers split, trim, compare and quote", "[core][strings]") {
   CHECK(corsa::to_lower("PostID") == "postid");
   CHECK(corsa::json_quote("a\"b\\\n\x01") == "\"a\\\"b\\\\\\n\\u0001\"");
 }
+
+TEST_CASE("CSV fields are quoted only when a reader would misread them", "[core][strings]") {
+  CHECK(corsa::csv_field("Ego") == "Ego");
+  CHECK(corsa::csv_field("") == "");
+  CHECK(corsa::csv_field("a,b") == "\"a,b\"");
+  CHECK(corsa::csv_field("say \"hi\"") == "\"say \"\"hi\"\"\"");
+  CHECK(corsa::csv_field("two\nlines") == "\"two\nlines\"");
+  CHECK(corsa::csv_field(" padded") == "\" padded\"");
+}

@@ -5,22 +5,6 @@
 #include "corsa/engine/outputs.h"
 
 namespace corsa::engine {
-namespace {
-
-// RFC 4180 quoting for names that contain separators or quotes.
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) {
-    return text;
-  }
-  std::string quoted = "\"";
-  for (const char c : text) {
-    quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  }
-  return quoted + "\"";
-}
-
-}  // namespace
-
 std::string event_log_csv(const Simulation& simulation) {
   std::string out = "time,type,element,transition,state\n";
   for (const TransitionRecord& record : simulation.transitions()) {

@@ -1,22 +1,10 @@
 #include "corsa/sweep/csv.h"
 
+#include "corsa/core/strings.h"
+
 namespace corsa::sweep {
 
-std::string csv_field(std::string_view text) {
-  const bool quote = text.find_first_of(",\"\r\n") != std::string_view::npos ||
-                     (!text.empty() && (text.front() == ' ' || text.back() == ' '));
-  if (!quote) {
-    return std::string(text);
-  }
-  std::string out = "\"";
-  for (const char c : text) {
-    out += c;
-    if (c == '"') {
-      out += '"';
-    }
-  }
-  return out + '"';
-}
+std::string csv_field(std::string_view text) { return corsa::csv_field(text); }
 
 std::string csv_line(const std::vector<std::string>& fields) {
   std::string line;

@@ -3,25 +3,10 @@
 #include <string>
 
 #include "corsa/core/atomic_file.h"
+#include "corsa/core/strings.h"
 #include "corsa/ngii/convert.h"
 
 namespace corsa::ngii {
-namespace {
-
-/// RFC 4180 field: quoted when it holds a comma, quote or line break.
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) {
-    return text;
-  }
-  std::string quoted = "\"";
-  for (const char c : text) {
-    quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  }
-  return quoted + "\"";
-}
-
-}  // namespace
-
 std::string corrections_csv(const std::vector<Correction>& corrections) {
   std::string out = "link_id,field,old_value,new_value,reason,record\n";
   for (const Correction& c : corrections) {
