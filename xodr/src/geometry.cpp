@@ -48,6 +48,9 @@ LocalFrame evaluate_local_frame(const Geometry& geometry, double ds) {
     return LocalFrame{RefPoint{sin_full / k, 2.0 * sin_half * sin_half / k, k * ds, k}, cos_full,
                       sin_full};
   }
+  if (const auto* spiral = std::get_if<SpiralGeometry>(&geometry.shape)) {
+    return evaluate_spiral_frame(*spiral, geometry.length, ds);
+  }
   const RefPoint local = evaluate_local(geometry, ds);
   return LocalFrame{local, std::cos(local.hdg), std::sin(local.hdg)};
 }

@@ -20,6 +20,10 @@ struct LocalFrame {
 };
 LocalFrame evaluate_local_frame(const Geometry& geometry, double ds);
 
+/// A spiral record's local frame, with the heading's cosine and sine from the same series as the
+/// position (geometry_spiral.cpp) rather than from trigonometry of the heading.
+LocalFrame evaluate_spiral_frame(const SpiralGeometry& spiral, double length, double ds);
+
 inline RefPoint to_world(const Geometry& geometry, double cos_h, double sin_h,
                          const RefPoint& local) {
   return RefPoint{geometry.x + cos_h * local.x - sin_h * local.y,

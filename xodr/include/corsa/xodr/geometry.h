@@ -25,8 +25,9 @@ RefPoint evaluate_geometry(const Geometry& geometry, double ds);
 /// result is then rotated/translated by evaluate_geometry.
 RefPoint evaluate_line(double ds);
 RefPoint evaluate_arc(const ArcGeometry& arc, double ds);
-/// Clothoid whose curvature runs linearly from curv_start to curv_end over `length`, via Fresnel
-/// integrals (any start and end curvature, either sign).
+/// Clothoid whose curvature runs linearly from curv_start to curv_end over `length` (any start
+/// and end curvature, either sign), exact to rounding: a piecewise Taylor series, or Fresnel
+/// integrals for records that turn many times.
 RefPoint evaluate_spiral(const SpiralGeometry& spiral, double length, double ds);
 /// Deprecated cubic v(u) (§7.6.1): ds is arc length, so u is found by inverting the arc length.
 RefPoint evaluate_poly3(const Poly3Geometry& poly, double ds);
