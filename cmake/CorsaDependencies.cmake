@@ -51,18 +51,22 @@ foreach(module core imgproc imgcodecs videoio)
   target_link_libraries(corsa::opencv INTERFACE "${OPENCV_${module}_LIBRARY}")
 endforeach()
 
-# SUNDIALS: CVODE with the serial vector and the dense linear solver.
+# SUNDIALS: CVODE with the serial vector and the dense linear solver; ARKODE (explicit
+# Runge-Kutta) for the vehicle dynamics of the engine's `dynamics` controller.
 find_path(SUNDIALS_INCLUDE_DIR cvode/cvode.h)
 find_library(SUNDIALS_CVODE_LIBRARY NAMES sundials_cvode)
+find_library(SUNDIALS_ARKODE_LIBRARY NAMES sundials_arkode)
 find_library(SUNDIALS_NVEC_LIBRARY NAMES sundials_nvecserial)
-if(SUNDIALS_INCLUDE_DIR AND SUNDIALS_CVODE_LIBRARY AND SUNDIALS_NVEC_LIBRARY)
+if(SUNDIALS_INCLUDE_DIR AND SUNDIALS_CVODE_LIBRARY AND SUNDIALS_ARKODE_LIBRARY
+   AND SUNDIALS_NVEC_LIBRARY)
   set(SUNDIALS_FOUND TRUE)
   add_library(corsa::sundials INTERFACE IMPORTED)
   set_target_properties(corsa::sundials PROPERTIES
     INTERFACE_INCLUDE_DIRECTORIES "${SUNDIALS_INCLUDE_DIR}"
-    INTERFACE_LINK_LIBRARIES "${SUNDIALS_CVODE_LIBRARY};${SUNDIALS_NVEC_LIBRARY}")
+    INTERFACE_LINK_LIBRARIES
+      "${SUNDIALS_CVODE_LIBRARY};${SUNDIALS_ARKODE_LIBRARY};${SUNDIALS_NVEC_LIBRARY}")
 endif()
-corsa_require(SUNDIALS_FOUND "SUNDIALS (CVODE)" libsundials-dev)
+corsa_require(SUNDIALS_FOUND "SUNDIALS (CVODE, ARKODE)" libsundials-dev)
 
 if(CORSA_BUILD_TESTS)
   find_package(Catch2 2 CONFIG QUIET)

@@ -42,6 +42,12 @@ engine::RunOptions run_options(const ParsedArgs& parsed) {
     }
     options.simulation.seed = static_cast<uint64_t>(*seed);
   }
+  if (auto controller = parsed.value("--controller")) {
+    if (*controller != "default" && *controller != "acc" && *controller != "dynamics") {
+      throw UsageError("--controller expects default, acc or dynamics");
+    }
+    options.simulation.controller = *controller;
+  }
   if (const auto every = parsed.integer("--record-every")) {
     if (*every < 1) {
       throw UsageError("--record-every expects a positive integer");
@@ -72,6 +78,8 @@ int command_run(std::span<const std::string> args) {
   parser.option("--duration", "SECONDS",
                 "stop at this simulated time at the latest (default 3600)");
   parser.option("--seed", "N", "run seed for random draws (default 0)");
+  parser.option("--controller", "NAME",
+                "controller of every vehicle the scenario gives none: default, acc, dynamics");
   parser.option("--record", "FILE.csv", "write the trajectories (time,entity,x,y,z,h,p,r,...)");
   parser.option("--record-every", "N", "record every N-th step (default 1)");
   parser.option("--summary", "FILE.json", "write the run summary");

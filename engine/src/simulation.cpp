@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "controllers/controllers.h"
 #include "core/entity_builder.h"
 #include "core/environment_clock.h"
 #include "core/world_update.h"
@@ -30,6 +31,8 @@ Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xod
     : state(scenario, std::move(map), options, diagnostics) {
   check_options(options);
   detail::build_entities(state);
+  detail::assign_initial_controllers(state);
+  detail::init_traffic(state);
   for (const xosc::ParameterDeclaration& p : scenario.parameters) {
     state.parameters.declare(p.name, p.value);
   }
@@ -61,12 +64,9 @@ void Simulation::Impl::advance() {
   init.step_actions(state);
   storyboard->step_actions(state);
   const detail::MotionContext motion{state.map, state.time.dt(), &scratch};
-  for (detail::Entity& entity : state.world.entities) {
-    if (entity.state.placed) {
-      default_controller.step(entity, motion);
-    }
-  }
+  detail::move_entities(state, motion);
   ++state.tick;
+  detail::update_traffic(state);
   detail::update_contacts(state);
   detail::update_timers(state, true);
   init.settle(state);
@@ -200,6 +200,10 @@ void Simulation::fill_snapshot(WorldSnapshot& out) const {
     snap.vz = 0.0;
     snap.yaw_rate = entity.state.yaw_rate;
     snap.visible = entity.state.visible && entity.state.placed;
+  }
+  out.signals.clear();
+  for (const auto& [id, signal_state] : state.traffic.signals) {
+    out.signals.push_back({id, signal_state});
   }
 }
 

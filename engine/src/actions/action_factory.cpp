@@ -80,6 +80,14 @@ std::unique_ptr<ActionInstance> make_private_action(const xosc::PrivateAction& a
           return make_lane_change_action(a);
         } else if constexpr (std::is_same_v<T, xosc::LaneOffsetAction>) {
           return make_lane_offset_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::VisibilityAction>) {
+          return make_visibility_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::ActivateControllerAction>) {
+          return make_activate_controller_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::AssignControllerAction>) {
+          return make_assign_controller_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::OverrideControllerValueAction>) {
+          return make_override_controller_action(a);
         } else {
           return make_unsupported_action(kind_name<T>(), a.source);
         }
@@ -101,6 +109,22 @@ std::unique_ptr<ActionInstance> make_global_action(const xosc::GlobalAction& act
           return make_variable_set_action(a);
         } else if constexpr (std::is_same_v<T, xosc::VariableModifyAction>) {
           return make_variable_modify_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::AddEntityAction>) {
+          return make_add_entity_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::DeleteEntityAction>) {
+          return make_delete_entity_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::TrafficSignalStateAction>) {
+          return make_traffic_signal_state_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::TrafficSignalControllerAction>) {
+          return make_traffic_signal_controller_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::TrafficSwarmAction>) {
+          return make_traffic_swarm_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::TrafficSourceAction>) {
+          return make_traffic_source_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::TrafficSinkAction>) {
+          return make_traffic_sink_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::TrafficStopAction>) {
+          return make_traffic_stop_action(a);
         } else {
           return make_unsupported_action(kind_name<T>(), a.source);
         }

@@ -24,6 +24,24 @@ std::unique_ptr<ActionInstance> make_variable_modify_action(
     const xosc::VariableModifyAction& action);
 std::unique_ptr<ActionInstance> make_environment_action(const xosc::EnvironmentAction& action);
 std::unique_ptr<ActionInstance> make_custom_command_action(const xosc::UserDefinedAction& action);
+// Entities, visibility, controllers, traffic signals and traffic (issue #6 part B).
+std::unique_ptr<ActionInstance> make_add_entity_action(const xosc::AddEntityAction& action);
+std::unique_ptr<ActionInstance> make_delete_entity_action(const xosc::DeleteEntityAction& action);
+std::unique_ptr<ActionInstance> make_visibility_action(const xosc::VisibilityAction& action);
+std::unique_ptr<ActionInstance> make_activate_controller_action(
+    const xosc::ActivateControllerAction& action);
+std::unique_ptr<ActionInstance> make_assign_controller_action(
+    const xosc::AssignControllerAction& action);
+std::unique_ptr<ActionInstance> make_override_controller_action(
+    const xosc::OverrideControllerValueAction& action);
+std::unique_ptr<ActionInstance> make_traffic_signal_state_action(
+    const xosc::TrafficSignalStateAction& action);
+std::unique_ptr<ActionInstance> make_traffic_signal_controller_action(
+    const xosc::TrafficSignalControllerAction& action);
+std::unique_ptr<ActionInstance> make_traffic_swarm_action(const xosc::TrafficSwarmAction& action);
+std::unique_ptr<ActionInstance> make_traffic_source_action(const xosc::TrafficSourceAction& action);
+std::unique_ptr<ActionInstance> make_traffic_sink_action(const xosc::TrafficSinkAction& action);
+std::unique_ptr<ActionInstance> make_traffic_stop_action(const xosc::TrafficStopAction& action);
 /// An action kind this engine does not perform yet: warns once (located) and completes.
 std::unique_ptr<ActionInstance> make_unsupported_action(std::string_view kind,
                                                         const xosc::Source& source);

@@ -3,6 +3,7 @@
 
 #include "conditions/condition_makers.h"
 #include "core/sim_state.h"
+#include "traffic/traffic_conditions.h"
 
 namespace corsa::engine::detail {
 
@@ -94,9 +95,9 @@ std::unique_ptr<ValueCondition> make_value_condition(const xosc::ByValueConditio
         } else if constexpr (std::is_same_v<T, xosc::UserDefinedValueCondition>) {
           return make_unsupported_value("UserDefinedValueCondition", c.source, state);
         } else if constexpr (std::is_same_v<T, xosc::TrafficSignalCondition>) {
-          return make_unsupported_value("TrafficSignalCondition", c.source, state);
+          return make_traffic_signal_condition(c, state);
         } else {
-          return make_unsupported_value("TrafficSignalControllerCondition", c.source, state);
+          return make_traffic_signal_controller_condition(c, state);
         }
       },
       condition);

@@ -14,6 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "controllers/control_state.h"
 #include "core/element_table.h"
 #include "core/entity.h"
 #include "core/time_base.h"
@@ -21,6 +22,7 @@
 #include "corsa/core/diagnostic.h"
 #include "corsa/engine/simulation.h"
 #include "corsa/engine/world_snapshot.h"
+#include "traffic/traffic_state.h"
 
 namespace corsa::xosc {
 struct Scenario;
@@ -82,6 +84,10 @@ struct SimState {
   ContactSet contacts;
   std::vector<CollisionRecord> collisions;
   std::map<std::string, CustomCommandHandler, std::less<>> custom_handlers;
+  /// Each entity's controller (controllers/controllers.h), indexed like world.entities.
+  std::vector<ControlState> controls;
+  /// Traffic signals and generated traffic (traffic/traffic_state.h).
+  TrafficState traffic;
   /// The Simulation that owns this state, for custom command handlers (refreshed every step,
   /// since a Simulation may be moved).
   const Simulation* simulation = nullptr;

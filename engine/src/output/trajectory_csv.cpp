@@ -27,6 +27,9 @@ void TrajectoryRecorder::append_rows(const Simulation& simulation, std::string& 
   const double time = simulation.time();
   for (size_t i = 0; i < simulation.entity_count(); ++i) {
     const EntityState& state = simulation.state(i);
+    if (!state.placed) {
+      continue;  // not added yet or deleted (AddEntityAction, DeleteEntityAction, traffic)
+    }
     put(out, time);
     out += simulation.entity(i).name;
     out.push_back(',');

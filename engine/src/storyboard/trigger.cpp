@@ -28,7 +28,8 @@ bool CompiledCondition::raw(const SimState& state, std::vector<uint32_t>& holder
     return value_->holds(state);
   }
   for (const uint32_t entity : candidates_) {
-    if (entity_->holds(state, entity)) {
+    // An absent entity (not added yet, deleted) fulfils no condition.
+    if (state.world.entities[entity].state.placed && entity_->holds(state, entity)) {
       holders.push_back(entity);
     } else if (all_) {
       holders.clear();

@@ -39,6 +39,9 @@ struct SimulationOptions {
   double dt = 0.01;          ///< fixed step, s (> 0)
   double duration = 3600.0;  ///< cap on simulated time, s: the run ends there at the latest
   uint64_t seed = 0;         ///< run seed for every random draw (per-entity streams)
+  /// Controller for every vehicle that names none in the scenario (`corsa run --controller`):
+  /// "default", "acc" or "dynamics"; empty: the scenario's choice.
+  std::string controller;
 };
 
 /// Why a run ended.

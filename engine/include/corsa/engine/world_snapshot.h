@@ -91,11 +91,19 @@ struct EnvironmentState {
   bool wet_road = false;
 };
 
+/// A traffic signal's state (OpenSCENARIO TrafficSignalState: the OpenDRIVE signal id and its
+/// state string, e.g. "off;off;on").
+struct SignalSnapshot {
+  std::string id;
+  std::string state;
+};
+
 struct WorldSnapshot {
   int64_t tick = 0;   ///< integer step count since the start
   double time = 0.0;  ///< seconds, tick * dt
   std::vector<EntitySnapshot> entities;
   EnvironmentState environment;
+  std::vector<SignalSnapshot> signals;  ///< by id
 };
 
 /// Receives the world at capture times. `sensors` names the sensors due at this time.

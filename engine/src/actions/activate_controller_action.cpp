@@ -1,0 +1,45 @@
+// ActivateControllerAction (OpenSCENARIO 1.3 §7.5.1): switches the domains of the actor's
+// controller on or off; unset domains stay as they are. With every motion domain off the
+// default controller moves the entity. An objectControllerRef must name the actor's assigned
+// controller (a warning otherwise, and the action still applies to it).
+
+#include "actions/action_makers.h"
+#include "controllers/controllers.h"
+#include "core/sim_state.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+class ActivateControllerInstance final : public InstantAction {
+ public:
+  explicit ActivateControllerInstance(const xosc::ActivateControllerAction& action)
+      : action_(action) {}
+
+  void start(ActionContext& context) override {
+    ControlState& control = control_of(context.state, *context.actor);
+    if (action_.object_controller_ref && !control.assigned.empty() &&
+        *action_.object_controller_ref != control.assigned) {
+      context.state.diagnostics.add_once(
+          "activate-controller-ref:" + *action_.object_controller_ref,
+          action_.source.warning("'" + context.entity().info.name + "' has controller '" +
+                                 control.assigned + "', not '" + *action_.object_controller_ref +
+                                 "'"));
+    }
+    if (action_.longitudinal) control.longitudinal = *action_.longitudinal;
+    if (action_.lateral) control.lateral = *action_.lateral;
+    if (action_.animation) control.animation = *action_.animation;
+    if (action_.lighting) control.lighting = *action_.lighting;
+  }
+
+ private:
+  const xosc::ActivateControllerAction& action_;
+};
+
+}  // namespace
+
+std::unique_ptr<ActionInstance> make_activate_controller_action(
+    const xosc::ActivateControllerAction& action) {
+  return std::make_unique<ActivateControllerInstance>(action);
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,80 @@
+// AddEntityAction and DeleteEntityAction (OpenSCENARIO 1.3 §7.5.4 EntityAction). The entities
+// are those of the scenario's Entities; a deleted entity is absent: no controller moves it, it
+// has no trajectory rows, no contacts, and conditions about it do not hold. Adding places it
+// (as a TeleportAction would) and makes it present again, standing, under its controller.
+
+#include "actions/action_makers.h"
+#include "actions/placement.h"
+#include "controllers/controllers.h"
+#include "core/sim_state.h"
+#include "positions/position_resolver.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+uint32_t entity_index(const SimState& state, const std::string& name, const xosc::Source& source) {
+  const auto index = state.world.find(name);
+  if (!index) {
+    throw InputError(source.error("unknown entity '" + name + "'"));
+  }
+  return *index;
+}
+
+class AddEntityInstance final : public InstantAction {
+ public:
+  explicit AddEntityInstance(const xosc::AddEntityAction& action) : action_(action) {}
+  void start(ActionContext& context) override {
+    SimState& state = context.state;
+    const uint32_t index = entity_index(state, action_.entity_ref, action_.source);
+    const ResolvedPosition at = resolve_position(action_.position, state, index);
+    Entity& entity = state.world.entities[index];
+    if (!entity.state.placed) {
+      entity.state.speed = 0.0;
+      entity.speed_command = 0.0;
+      entity.lateral_command = 0.0;
+    }
+    place_entity(state, entity, at, action_.position.source, false);
+    control_of(state, index).dynamics.reset();
+  }
+
+ private:
+  const xosc::AddEntityAction& action_;
+};
+
+class DeleteEntityInstance final : public InstantAction {
+ public:
+  explicit DeleteEntityInstance(const xosc::DeleteEntityAction& action) : action_(action) {}
+  void start(ActionContext& context) override {
+    SimState& state = context.state;
+    const uint32_t index = entity_index(state, action_.entity_ref, action_.source);
+    remove_entity(state, index);
+  }
+
+ private:
+  const xosc::DeleteEntityAction& action_;
+};
+
+}  // namespace
+
+void remove_entity(SimState& state, uint32_t index) {
+  Entity& entity = state.world.entities[index];
+  entity.state.placed = false;
+  entity.state.speed = 0.0;
+  entity.state.acceleration = 0.0;
+  entity.state.lateral_speed = 0.0;
+  entity.state.yaw_rate = 0.0;
+  entity.state.road.reset();
+  entity.speed_command = 0.0;
+  entity.lateral_command = 0.0;
+  control_of(state, index).dynamics.reset();
+}
+
+std::unique_ptr<ActionInstance> make_add_entity_action(const xosc::AddEntityAction& action) {
+  return std::make_unique<AddEntityInstance>(action);
+}
+
+std::unique_ptr<ActionInstance> make_delete_entity_action(const xosc::DeleteEntityAction& action) {
+  return std::make_unique<DeleteEntityInstance>(action);
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,38 @@
+// VisibilityAction (OpenSCENARIO 1.3 §7.4.5): whether the image generator (graphics), the
+// sensors and the other traffic participants see the actor. The sensors flag goes to the world
+// snapshot (EntitySnapshot::visible); traffic invisibility hides the actor from car following.
+// SensorReferenceSet (sensor by sensor) is not distinguished: the flag is for all sensors.
+
+#include "actions/action_makers.h"
+#include "controllers/controllers.h"
+#include "core/sim_state.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+class VisibilityInstance final : public InstantAction {
+ public:
+  explicit VisibilityInstance(const xosc::VisibilityAction& action) : action_(action) {}
+  void start(ActionContext& context) override {
+    context.entity().state.visible = action_.sensors;
+    ControlState& control = control_of(context.state, *context.actor);
+    control.traffic_visible = action_.traffic;
+    control.graphics_visible = action_.graphics;
+    if (!action_.sensor_refs.empty()) {
+      context.state.diagnostics.add_once(
+          "visibility-sensor-refs",
+          action_.source.warning("SensorReferenceSet: the sensors flag applies to every sensor"));
+    }
+  }
+
+ private:
+  const xosc::VisibilityAction& action_;
+};
+
+}  // namespace
+
+std::unique_ptr<ActionInstance> make_visibility_action(const xosc::VisibilityAction& action) {
+  return std::make_unique<VisibilityInstance>(action);
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,76 @@
+#pragma once
+
+// Which controller moves an entity and what it keeps between steps (OpenSCENARIO 1.3 §7.5
+// "Controllers": ObjectController, ActivateControllerAction, AssignControllerAction,
+// OverrideControllerValueAction). Kept on the Entity; the dynamics integrator lives behind a
+// pointer so that entities stay movable.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace corsa::engine::detail {
+
+/// The controllers this engine has. kDefault is the ideal lane follower (motion/controller.h).
+enum class ControllerKind : uint8_t { kDefault, kAcc, kDynamics };
+
+/// Parses a controller name as `corsa:controller` and `corsa run --controller` spell it
+/// ("default", "acc", "dynamics"); nothing for an unknown name.
+bool parse_controller_kind(const std::string& name, ControllerKind& out);
+
+/// One OverrideControllerValueAction value (§7.5.3): while `active`, `value` replaces what the
+/// driver model would do. Throttle, brake and clutch 0..1; steering wheel in rad; brake as a
+/// force in N when `force`.
+struct OverrideSlot {
+  bool active = false;
+  double value = 0.0;
+  bool force = false;
+  double max_rate = 0.0;  ///< per second; 0: unlimited
+};
+
+struct ControllerOverrides {
+  OverrideSlot throttle;
+  OverrideSlot brake;
+  OverrideSlot clutch;
+  OverrideSlot parking_brake;
+  OverrideSlot steering_wheel;
+  bool gear_active = false;
+  int gear = 1;  ///< manual gear number; automatic: -1 R, 0 N or P, 1 D
+
+  bool any() const {
+    return throttle.active || brake.active || parking_brake.active || steering_wheel.active ||
+           clutch.active || gear_active;
+  }
+};
+
+struct DynamicsVehicle;
+
+struct ControlState {
+  ControllerKind kind = ControllerKind::kDefault;
+  /// Name of the assigned ObjectController (for ActivateControllerAction's reference).
+  std::string assigned;
+  /// Domains the assigned controller is active in (ActivateControllerAction); when none is, the
+  /// default controller moves the entity.
+  bool longitudinal = true;
+  bool lateral = true;
+  bool animation = false;
+  bool lighting = false;
+  ControllerOverrides overrides;
+  /// VisibilityAction (§7.4.5): whether other traffic (car following, collisions) and the
+  /// image generator see the entity; the sensors flag is EntityState::visible.
+  bool traffic_visible = true;
+  bool graphics_visible = true;
+  /// A pedestrian crossing the road (controllers.cpp), and whether it has passed a lane
+  /// vehicles drive on.
+  bool crossing = false;
+  bool crossed_roadway = false;
+  /// The dynamics controller's vehicle model (created on its first step).
+  std::shared_ptr<DynamicsVehicle> dynamics;
+
+  /// The controller that moves the entity this step.
+  ControllerKind effective() const {
+    return (longitudinal || lateral) ? kind : ControllerKind::kDefault;
+  }
+};
+
+}  // namespace corsa::engine::detail

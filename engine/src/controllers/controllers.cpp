@@ -1,0 +1,160 @@
+// Controller choice per entity and the per-step dispatch (OpenSCENARIO 1.3 §7.5).
+
+#include "controllers/controllers.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "core/sim_state.h"
+#include "corsa/xodr/map.h"
+#include "corsa/xosc/scenario.h"
+
+namespace corsa::engine::detail {
+
+bool parse_controller_kind(const std::string& name, ControllerKind& out) {
+  if (name == "default") {
+    out = ControllerKind::kDefault;
+  } else if (name == "acc") {
+    out = ControllerKind::kAcc;
+  } else if (name == "dynamics") {
+    out = ControllerKind::kDynamics;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+bool controller_kind_of(const xosc::Controller& controller, Diagnostics& diagnostics,
+                        ControllerKind& out) {
+  for (const xosc::Property& property : controller.properties.properties) {
+    if (property.name != "corsa:controller") {
+      continue;
+    }
+    if (parse_controller_kind(property.value, out)) {
+      return true;
+    }
+    diagnostics.add_once("unknown-corsa-controller:" + property.value,
+                         property.source.warning("unknown corsa:controller '" + property.value +
+                                                 "' (default, acc or dynamics): the default "
+                                                 "controller moves the entity"));
+    out = ControllerKind::kDefault;
+    return true;
+  }
+  return false;
+}
+
+void assign_initial_controllers(SimState& state) {
+  std::optional<ControllerKind> for_vehicles;
+  if (!state.options.controller.empty()) {
+    ControllerKind kind;
+    if (!parse_controller_kind(state.options.controller, kind)) {
+      throw InputError(Diagnostic{
+          Severity::kError, "", 0, -1, "",
+          "unknown controller '" + state.options.controller + "' (default, acc or dynamics)"});
+    }
+    for_vehicles = kind;
+  }
+  state.controls.assign(state.world.entities.size(), ControlState{});
+  for (size_t i = 0; i < state.world.entities.size(); ++i) {
+    const Entity& entity = state.world.entities[i];
+    ControlState& control = state.controls[i];
+    bool chosen = false;
+    if (entity.object != nullptr) {
+      for (const xosc::ObjectController& oc : entity.object->controllers) {
+        control.assigned = oc.name.value_or(oc.controller.name);
+        if (controller_kind_of(oc.controller, state.diagnostics, control.kind)) {
+          chosen = true;
+          break;
+        }
+      }
+      if (!chosen && !entity.object->controllers.empty()) {
+        // A controller this engine does not know (e.g. an external driver model): the default
+        // controller stands in for it, which is what the scenario's actions describe.
+        const xosc::ObjectController& oc = entity.object->controllers.front();
+        state.diagnostics.add_once(
+            "foreign-controller",
+            oc.source.warning("controller '" + oc.controller.name +
+                              "' is not one of this engine's (default, acc, dynamics via the "
+                              "corsa:controller property): the default controller moves '" +
+                              entity.info.name + "'"));
+      }
+    }
+    if (!chosen && for_vehicles && entity.info.kind == ObjectKind::kVehicle) {
+      control.kind = *for_vehicles;
+    }
+  }
+}
+
+ControlState& control_of(SimState& state, uint32_t index) {
+  if (state.controls.size() < state.world.entities.size()) {
+    state.controls.resize(state.world.entities.size());
+  }
+  return state.controls[index];
+}
+
+namespace {
+
+std::optional<xodr::LaneType> lane_type_at(const xodr::Map& map, const RoadCoordinates& road) {
+  const auto node = map.lane_graph().find(xodr::LaneRef{road.road, road.section, road.lane});
+  return node ? std::optional<xodr::LaneType>(map.lane_graph().info(*node).type) : std::nullopt;
+}
+
+// Pedestrians (issue #6): on a sidewalk (or any lane) facing along it they walk along it like
+// any entity of the default controller. One facing across its lane (more than 45 degrees off
+// the lane's direction, e.g. placed with a relative orientation of pi/2) crosses the road: it
+// walks straight along its heading over the lanes and stops on the first sidewalk (or off the
+// road) once it has crossed a lane vehicles drive on.
+void step_pedestrian(SimState& state, uint32_t index, const DefaultController& ideal,
+                     const MotionContext& motion) {
+  Entity& entity = state.world.entities[index];
+  ControlState& control = control_of(state, index);
+  if (entity.lane.on_road && std::abs(entity.lane.heading_offset) > 0.25 * std::numbers::pi) {
+    entity.lane.on_road = false;  // free motion along the heading
+    control.crossing = true;
+    control.crossed_roadway = false;
+  }
+  ideal.step(entity, motion);
+  if (!control.crossing || state.map == nullptr) {
+    return;
+  }
+  const auto type = entity.state.road ? lane_type_at(*state.map, *entity.state.road) : std::nullopt;
+  if (type && xodr::is_drivable(*type)) {
+    control.crossed_roadway = true;
+  } else if (control.crossed_roadway &&
+             (!type || *type == xodr::LaneType::kSidewalk || *type == xodr::LaneType::kBorder)) {
+    // Across: wait on the far side.
+    control.crossing = false;
+    entity.speed_command = 0.0;
+  }
+}
+
+}  // namespace
+
+void move_entities(SimState& state, const MotionContext& motion) {
+  const DefaultController ideal;
+  const auto count = static_cast<uint32_t>(state.world.entities.size());
+  for (uint32_t i = 0; i < count; ++i) {
+    Entity& entity = state.world.entities[i];
+    if (!entity.state.placed) {
+      continue;
+    }
+    if (entity.info.kind == ObjectKind::kPedestrian &&
+        control_of(state, i).effective() == ControllerKind::kDefault) {
+      step_pedestrian(state, i, ideal, motion);
+      continue;
+    }
+    switch (control_of(state, i).effective()) {
+      case ControllerKind::kDefault:
+        ideal.step(entity, motion);
+        break;
+      case ControllerKind::kAcc:
+        step_acc(state, i, motion);
+        break;
+      case ControllerKind::kDynamics:
+        step_dynamics(state, i, motion);
+        break;
+    }
+  }
+}
+
+}  // namespace corsa::engine::detail

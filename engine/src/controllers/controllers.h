@@ -1,0 +1,49 @@
+#pragma once
+
+// The controllers of issue #6 and how entities get them (OpenSCENARIO 1.3 §7.5): the default
+// controller (ideal lane following, motion/controller.h), `acc` (car following on top of it)
+// and `dynamics` (a single-track vehicle model driven by pure pursuit and a speed PI loop).
+//
+// An entity's controller comes from its ObjectController: a Controller whose Properties have
+// `corsa:controller` = default | acc | dynamics; otherwise from `corsa run --controller NAME`
+// (SimulationOptions::controller) for vehicles; otherwise the default controller.
+
+#include <cstdint>
+#include <string>
+
+#include "controllers/control_state.h"
+#include "motion/controller.h"
+
+namespace corsa::xosc {
+struct Controller;
+struct ObjectController;
+}  // namespace corsa::xosc
+
+namespace corsa::engine::detail {
+
+struct SimState;
+
+/// The corsa controller a scenario Controller asks for (its `corsa:controller` property), or
+/// nothing. An unknown value warns once (located) and means the default controller.
+bool controller_kind_of(const xosc::Controller& controller, Diagnostics& diagnostics,
+                        ControllerKind& out);
+
+/// Gives every entity its controller from the scenario and the options (state.controls sized
+/// to the entities). Throws InputError for an unknown --controller name.
+void assign_initial_controllers(SimState& state);
+
+/// The control state of entity `index`, created (default controller) for entities added during
+/// the run (traffic).
+ControlState& control_of(SimState& state, uint32_t index);
+
+/// Moves every present entity over one step with its controller.
+void move_entities(SimState& state, const MotionContext& motion);
+
+/// The car-following controller: the commanded speed, limited so as to keep a time gap to the
+/// vehicle ahead in the same lane; then the default controller's motion.
+void step_acc(SimState& state, uint32_t index, const MotionContext& motion);
+
+/// The dynamics controller (controllers/dynamics_controller.cpp).
+void step_dynamics(SimState& state, uint32_t index, const MotionContext& motion);
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,268 @@
+// The `dynamics` controller: the vehicle is the single-track model of dynamics_model.h and a
+// driver model steers and drives it toward what the actions ask for: pure pursuit (Coulter,
+// "Implementation of the Pure Pursuit Path Tracking Algorithm", CMU-RI-TR-92-01) toward a point
+// on the commanded path (the followed lane at the commanded lateral offset) a speed-dependent
+// distance ahead, and a PI loop with feed-forward on the commanded speed. Acceleration,
+// deceleration and speed stay within the vehicle's Performance; steering within its front
+// axle's maxSteering. OverrideControllerValueActions replace the driver's throttle, brake and
+// steering while active.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <type_traits>
+
+#include "controllers/controllers.h"
+#include "controllers/dynamics_model.h"
+#include "core/sim_state.h"
+#include "corsa/xosc/scenario.h"
+#include "motion/lane_follow.h"
+
+namespace corsa::engine::detail {
+
+struct DynamicsVehicle {
+  explicit DynamicsVehicle(const VehicleParams& params) : model(params) {}
+  DynamicsIntegrator model;
+  double integral = 0.0;      ///< m, integral of the speed error
+  double last_command = 0.0;  ///< m/s, the speed command of the previous step
+  Pose pose;                  ///< where the model left the entity (to detect teleports)
+  // Override values as applied (rate-limited), throttle/brake 0..1, steering wheel rad.
+  double throttle = 0.0, brake = 0.0, steering_wheel = 0.0;
+};
+
+namespace {
+
+constexpr double kSpeedGain = 1.5;       // 1/s
+constexpr double kIntegralGain = 0.4;    // 1/s^2
+constexpr double kSteeringRatio = 15.0;  // steering wheel angle / front wheel angle
+constexpr double kDefaultLimit = 6.0;    // m/s^2 when the Performance gives none
+constexpr double kLookaheadTime = 0.8;   // s
+constexpr double kMinLookahead = 4.0;    // m
+
+VehicleParams params_of(const SimState& state, const Entity& entity) {
+  VehicleParams p;
+  const Box& box = entity.info.box;
+  p.wheelbase = box.length > 0.0 ? 0.6 * box.length : 2.8;
+  if (entity.object != nullptr) {
+    if (const auto* vehicle = std::get_if<xosc::Vehicle>(&entity.object->object)) {
+      if (vehicle->axles.front_axle) {
+        const double base =
+            vehicle->axles.front_axle->position_x - vehicle->axles.rear_axle.position_x;
+        if (base > 0.5) {
+          p.wheelbase = base;
+        }
+        if (vehicle->axles.front_axle->max_steering > 0.0) {
+          p.max_steering = vehicle->axles.front_axle->max_steering;
+        }
+      }
+      if (vehicle->mass && *vehicle->mass > 0.0) {
+        p.mass = *vehicle->mass;
+      } else if (box.length > 0.0) {
+        // About 330 kg per metre of car; a truck's box gives a heavier vehicle.
+        p.mass = std::max(800.0, 330.0 * box.length * std::max(1.0, box.width / 1.8));
+      }
+    }
+  }
+  p.cg_to_rear = 0.5 * p.wheelbase;
+  // A box of uniform density: Iz = m (l^2 + w^2) / 12.
+  const double l = box.length > 0.0 ? box.length : p.wheelbase / 0.6;
+  const double w = box.width > 0.0 ? box.width : 1.8;
+  p.yaw_inertia = p.mass * (l * l + w * w) / 12.0;
+  p.friction = std::max(0.05, state.environment.road_friction_scale);
+  return p;
+}
+
+double limit_rate(double current, double target, double max_rate, double dt) {
+  if (max_rate <= 0.0) {
+    return target;
+  }
+  return current + std::clamp(target - current, -max_rate * dt, max_rate * dt);
+}
+
+// Longitudinal demand (m/s^2): the PI loop on the commanded speed, or the overrides.
+double longitudinal_demand(Entity& entity, DynamicsVehicle& vehicle, const ControlState& control,
+                           double dt, bool& reverse) {
+  const double max_acc =
+      entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultLimit;
+  const double max_dec =
+      entity.info.max_deceleration > 0.0 ? entity.info.max_deceleration : kDefaultLimit;
+  const ControllerOverrides& o = control.overrides;
+  const double mass = vehicle.model.params().mass;
+  reverse = false;
+  if (o.throttle.active || o.brake.active || o.parking_brake.active) {
+    vehicle.throttle = limit_rate(vehicle.throttle, o.throttle.active ? o.throttle.value : 0.0,
+                                  o.throttle.max_rate, dt);
+    const auto brake_share = [&](const OverrideSlot& slot) {
+      return !slot.active ? 0.0 : slot.force ? slot.value / (mass * max_dec) : slot.value;
+    };
+    vehicle.brake = limit_rate(
+        vehicle.brake, std::clamp(brake_share(o.brake) + brake_share(o.parking_brake), 0.0, 1.0),
+        o.brake.max_rate, dt);
+    const bool declutched = o.clutch.active && o.clutch.value > 0.5;
+    const bool neutral = o.gear_active && o.gear == 0;
+    reverse = o.gear_active && o.gear < 0;
+    const double drive = declutched || neutral ? 0.0 : vehicle.throttle * max_acc;
+    // The speed loop takes over afresh when the overrides end (no feed-forward jump).
+    vehicle.integral = 0.0;
+    vehicle.last_command = std::max(0.0, entity.speed_command);
+    return (reverse ? -drive : drive) - vehicle.brake * max_dec;
+  }
+  double command = std::max(0.0, entity.speed_command);
+  if (entity.info.max_speed > 0.0) {
+    command = std::min(command, entity.info.max_speed);
+  }
+  const double error = command - entity.state.speed;
+  const double feed_forward = std::clamp((command - vehicle.last_command) / dt, -max_dec, max_acc);
+  vehicle.last_command = command;
+  const double raw = feed_forward + kSpeedGain * error + kIntegralGain * vehicle.integral;
+  const double demand = std::clamp(raw, -max_dec, max_acc);
+  if (demand == raw) {
+    vehicle.integral += error * dt;  // no wind-up while saturated
+  }
+  // At the top speed nothing pushes beyond it.
+  if (entity.info.max_speed > 0.0 && entity.state.speed >= entity.info.max_speed) {
+    return std::min(demand, 0.0);
+  }
+  return demand;
+}
+
+// Front wheel angle (rad) toward the commanded path, by pure pursuit from the rear axle.
+double steering_demand(const SimState& state, Entity& entity, const VehicleState& now,
+                       double vehicle_wheelbase, std::vector<xodr::LaneSpan>& scratch) {
+  if (!entity.lane.on_road || state.map == nullptr) {
+    return 0.0;  // off the lanes: hold the heading
+  }
+  LaneFollow probe = entity.lane;
+  probe.lateral = entity.lateral_command;
+  probe.heading_offset = 0.0;
+  const double lookahead = std::max(kMinLookahead, kLookaheadTime * std::abs(now.vx));
+  advance_along_lanes(*state.map, probe, lookahead, entity.chooser);
+  const LanePose target = lane_pose(*state.map, probe, scratch);
+  const double dx = target.pose.x - now.x, dy = target.pose.y - now.y;
+  const double distance = std::hypot(dx, dy);
+  if (distance < 1e-6) {
+    return 0.0;
+  }
+  const double alpha = wrap_angle(std::atan2(dy, dx) - now.yaw);
+  // Curvature of the arc through the target: 2 sin(alpha) / distance; wheel angle atan(L k).
+  const double wheelbase = vehicle_wheelbase;
+  return std::atan(wheelbase * 2.0 * std::sin(alpha) / distance);
+}
+
+// Puts the followed lane position under the vehicle: s advanced by the motion along the lane
+// (two Newton steps on the foot point), lateral offset and heading relative to the lane.
+void sync_lane(const SimState& state, Entity& entity, std::vector<xodr::LaneSpan>& scratch) {
+  const xodr::Map& map = *state.map;
+  LaneFollow centre = entity.lane;
+  centre.lateral = 0.0;
+  centre.heading_offset = 0.0;
+  double moved = 0.0;
+  bool hit_end = false;
+  LanePose foot = lane_pose(map, centre, scratch);
+  for (int iteration = 0; iteration < 3; ++iteration) {
+    const double c = std::cos(foot.pose.h), s = std::sin(foot.pose.h);
+    const double along =
+        (entity.state.pose.x - foot.pose.x) * c + (entity.state.pose.y - foot.pose.y) * s;
+    if (std::abs(along) < 1e-4) {
+      break;
+    }
+    const AdvanceResult result = advance_along_lanes(map, centre, along, entity.chooser);
+    moved += result.travelled;
+    hit_end = hit_end || result.hit_end;
+    foot = lane_pose(map, centre, scratch);
+    if (result.hit_end) {
+      break;
+    }
+  }
+  const double c = std::cos(foot.pose.h), s = std::sin(foot.pose.h);
+  const double dx = entity.state.pose.x - foot.pose.x, dy = entity.state.pose.y - foot.pose.y;
+  centre.lateral = c * dy - s * dx;
+  centre.heading_offset = wrap_angle(entity.state.pose.h - foot.pose.h);
+  entity.lane = centre;
+  entity.longitudinal_distance += std::abs(moved);
+  entity.end_of_road = hit_end || (entity.end_of_road && moved == 0.0);
+  const LanePose at = lane_pose(map, entity.lane, scratch);
+  entity.state.pose.z = at.pose.z;
+  entity.state.pose.p = at.pose.p;
+  entity.state.pose.r = at.pose.r;
+  if (at.lane_at) {
+    entity.state.road =
+        RoadCoordinates{entity.lane.road, entity.lane.section, *at.lane_at, entity.lane.s, at.t};
+  } else {
+    entity.state.road.reset();
+  }
+}
+
+bool same_pose(const Pose& a, const Pose& b) { return a.x == b.x && a.y == b.y && a.h == b.h; }
+
+}  // namespace
+
+void step_dynamics(SimState& state, uint32_t index, const MotionContext& motion) {
+  Entity& entity = state.world.entities[index];
+  ControlState& control = control_of(state, index);
+  const double dt = motion.dt;
+  if (!control.dynamics) {
+    control.dynamics = std::make_shared<DynamicsVehicle>(params_of(state, entity));
+    control.dynamics->pose = Pose{std::nan(""), 0.0, 0.0, 0.0, 0.0, 0.0};
+  }
+  DynamicsVehicle& vehicle = *control.dynamics;
+  EntityState& es = entity.state;
+  if (!same_pose(vehicle.pose, es.pose) || vehicle.model.state().vx != es.speed) {
+    // New, teleported, or its speed set from outside (a step SpeedAction in Init): start the
+    // model there, moving straight.
+    VehicleState start;
+    start.x = es.pose.x;
+    start.y = es.pose.y;
+    start.yaw = es.pose.h;
+    start.vx = es.speed;
+    vehicle.model.reset(start);
+    vehicle.last_command = es.speed;
+    vehicle.integral = 0.0;
+  }
+  const VehicleState before = vehicle.model.state();
+  VehicleInputs inputs;
+  inputs.accel = longitudinal_demand(entity, vehicle, control, dt, inputs.reverse);
+  if (control.overrides.steering_wheel.active) {
+    vehicle.steering_wheel =
+        limit_rate(vehicle.steering_wheel, control.overrides.steering_wheel.value,
+                   control.overrides.steering_wheel.max_rate, dt);
+    inputs.steer = vehicle.steering_wheel / kSteeringRatio;
+  } else {
+    inputs.steer =
+        steering_demand(state, entity, before, vehicle.model.params().wheelbase, *motion.scratch);
+    vehicle.steering_wheel = inputs.steer * kSteeringRatio;
+  }
+  const VehicleState after = vehicle.model.step(inputs, dt);
+
+  const double h0 = es.pose.h;
+  const double path = std::hypot(after.x - before.x, after.y - before.y);
+  es.pose.x = after.x;
+  es.pose.y = after.y;
+  es.pose.h = wrap_angle(after.yaw);
+  if (entity.lane.on_road && state.map != nullptr) {
+    sync_lane(state, entity, *motion.scratch);
+  } else {
+    entity.longitudinal_distance += path;
+    update_road_from_pose(entity, state.map);
+  }
+  double speed = after.vx;
+  if (entity.end_of_road && speed > 0.0) {
+    // A lane end without successor stops the vehicle as it does under the default controller.
+    speed = 0.0;
+    VehicleState stopped = after;
+    stopped.vx = 0.0;
+    stopped.vy = 0.0;
+    stopped.yaw_rate = 0.0;
+    vehicle.model.reset(stopped);
+  }
+  es.acceleration = (speed - before.vx) / dt;
+  es.speed = speed;
+  // The reference point (rear axle) moves sideways at vy - lr r.
+  es.lateral_speed = after.vy - vehicle.model.params().cg_to_rear * after.yaw_rate;
+  entity.lateral_acceleration = vehicle.model.lateral_acceleration();
+  es.yaw_rate = std::remainder(es.pose.h - h0, 2.0 * std::numbers::pi) / dt;
+  es.odometer += path;
+  vehicle.pose = es.pose;
+}
+
+}  // namespace corsa::engine::detail

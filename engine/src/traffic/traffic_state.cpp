@@ -1,0 +1,118 @@
+// Traffic signal controllers (OpenSCENARIO 1.3 §6.5.2 TrafficSignalController: phases cycle in
+// document order, each for its duration; a controller with a `reference` starts `delay` seconds
+// after the referenced one) and the per-step update of the traffic generators.
+
+#include "traffic/traffic_state.h"
+
+#include "core/sim_state.h"
+#include "corsa/xosc/scenario.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+void apply_phase(TrafficState& traffic, const SignalControllerRun& run) {
+  const xosc::Phase& phase = run.definition->phases[run.phase];
+  for (const xosc::TrafficSignalState& signal : phase.states) {
+    traffic.signals[signal.traffic_signal_id] = signal.state;
+  }
+}
+
+// Start time (s) of a controller: its delay, plus its reference's start (chains followed, a
+// cycle of references broken at the first repeat).
+double start_time(const TrafficState& traffic, size_t index) {
+  double start = 0.0;
+  std::vector<bool> seen(traffic.controllers.size(), false);
+  std::optional<size_t> at = index;
+  while (at && !seen[*at]) {
+    seen[*at] = true;
+    const xosc::TrafficSignalController& definition = *traffic.controllers[*at].definition;
+    start += definition.delay.value_or(0.0);
+    at = definition.reference ? traffic.find_controller(*definition.reference) : std::nullopt;
+  }
+  return start;
+}
+
+}  // namespace
+
+std::optional<size_t> TrafficState::find_controller(std::string_view name) const {
+  for (size_t i = 0; i < controllers.size(); ++i) {
+    if (controllers[i].definition->name == name) {
+      return i;
+    }
+  }
+  return std::nullopt;
+}
+
+void init_traffic(SimState& state) {
+  TrafficState& traffic = state.traffic;
+  for (const xosc::TrafficSignalController& controller :
+       state.scenario.road_network.traffic_signal_controllers) {
+    SignalControllerRun run;
+    run.definition = &controller;
+    traffic.controllers.push_back(run);
+  }
+  for (size_t i = 0; i < traffic.controllers.size(); ++i) {
+    traffic.controllers[i].phase_start = start_time(traffic, i);
+  }
+  // Phases at time 0.
+  for (SignalControllerRun& run : traffic.controllers) {
+    if (!run.definition->phases.empty() && run.phase_start <= 0.0) {
+      run.started = true;
+      apply_phase(traffic, run);
+    }
+  }
+}
+
+bool set_signal_phase(SimState& state, size_t controller, std::string_view phase) {
+  SignalControllerRun& run = state.traffic.controllers[controller];
+  const auto& phases = run.definition->phases;
+  for (size_t i = 0; i < phases.size(); ++i) {
+    if (phases[i].name == phase) {
+      run.phase = i;
+      run.phase_start = state.now();
+      run.started = true;
+      apply_phase(state.traffic, run);
+      return true;
+    }
+  }
+  return false;
+}
+
+void update_traffic(SimState& state) {
+  TrafficState& traffic = state.traffic;
+  // Half a step of slack: phase ends fall on the tick grid despite rounding.
+  const double now = state.now() + 0.5 * state.time.dt();
+  for (SignalControllerRun& run : traffic.controllers) {
+    const auto& phases = run.definition->phases;
+    if (phases.empty()) {
+      continue;
+    }
+    if (!run.started) {
+      if (now < run.phase_start) {
+        continue;
+      }
+      run.started = true;
+      apply_phase(traffic, run);
+    }
+    // Phases of zero duration are passed through; a whole cycle of them stops the cycling.
+    for (size_t guard = 0; guard < phases.size(); ++guard) {
+      const double duration = phases[run.phase].duration;
+      if (!(duration > 0.0) && guard > 0) {
+        break;
+      }
+      if (now < run.phase_start + duration) {
+        break;
+      }
+      run.phase_start += duration;
+      run.phase = (run.phase + 1) % phases.size();
+      apply_phase(traffic, run);
+    }
+  }
+  // Generators may add entities: index, not iterators, and only those present now.
+  const size_t count = traffic.generators.size();
+  for (size_t i = 0; i < count; ++i) {
+    traffic.generators[i]->step(state);
+  }
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,68 @@
+#pragma once
+
+// The traffic side of a run (issue #6): traffic signal controllers cycling through their
+// phases and the signals' states (OpenSCENARIO 1.3 §6.5 RoadNetwork/TrafficSignals, §7.5.2
+// TrafficSignalAction), and the traffic generators (TrafficSwarm, TrafficSource, TrafficSink)
+// with the scenario objects of the entities they spawned.
+
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "corsa/xosc/entities.h"
+
+namespace corsa::xosc {
+struct TrafficSignalController;
+}
+
+namespace corsa::engine::detail {
+
+struct SimState;
+
+/// One TrafficSignalController during the run: the current phase and when it began.
+struct SignalControllerRun {
+  const xosc::TrafficSignalController* definition = nullptr;
+  size_t phase = 0;
+  double phase_start = 0.0;  ///< s, simulation time
+  bool started = false;      ///< false while waiting for its delay
+};
+
+/// Something that adds or removes traffic every step (swarm, source, sink).
+class TrafficGenerator {
+ public:
+  virtual ~TrafficGenerator() = default;
+  virtual void step(SimState& state) = 0;
+  /// The TrafficAction's trafficName (TrafficStopAction stops generators by it).
+  virtual const std::optional<std::string>& name() const = 0;
+};
+
+struct TrafficState {
+  std::vector<SignalControllerRun> controllers;
+  /// Current state of each traffic signal (OpenDRIVE signal id -> state string, e.g.
+  /// "off;off;on"), from controller phases and TrafficSignalStateActions.
+  std::map<std::string, std::string, std::less<>> signals;
+  std::vector<std::unique_ptr<TrafficGenerator>> generators;
+  /// Objects of the entities the generators spawned (Entity::object points here; a deque
+  /// keeps the addresses).
+  std::deque<xosc::ScenarioObject> spawned_objects;
+  uint64_t spawned_count = 0;
+
+  std::optional<size_t> find_controller(std::string_view name) const;
+};
+
+/// Sets up the signal controllers (phase 0 at their delay) before the run.
+void init_traffic(SimState& state);
+/// After the tick advanced: controllers change phase when theirs has lasted its duration, the
+/// generators add and remove traffic.
+void update_traffic(SimState& state);
+/// Makes entity `index` absent (DeleteEntityAction, a TrafficSink, a swarm vehicle leaving):
+/// no motion, no rows, no contacts.
+void remove_entity(SimState& state, uint32_t index);
+/// Switches a controller to `phase` now (TrafficSignalControllerAction). False: no such phase.
+bool set_signal_phase(SimState& state, size_t controller, std::string_view phase);
+
+}  // namespace corsa::engine::detail
