@@ -86,7 +86,9 @@ class Router {
 
 void Router::expand(uint32_t index, double f) {
   const State state = states_[index];
-  const double length = graph_.info(state.node).length;
+  const double length =
+      graph_.info(state.node).length *
+      (options_.lane_cost_scale.empty() ? 1.0 : options_.lane_cost_scale[state.node]);
   if (state.node == target_) {
     const double ft = fraction(state.node, state.forward, target_s_);
     if (ft >= f && state.cost + (ft - f) * length < best_) {
@@ -116,7 +118,9 @@ void Router::expand(uint32_t index, double f) {
   const double exit_cost = state.cost + (1.0 - f) * length;
   for (const LaneEnd& end : graph_.ends(state.node, !state.forward)) {
     if (allowed(end.node, end.at_start)) {
-      relax(state_of(end.node, end.at_start), exit_cost, index, false);
+      const double entry =
+          options_.lane_entry_cost.empty() ? 0.0 : options_.lane_entry_cost[end.node];
+      relax(state_of(end.node, end.at_start), exit_cost + entry, index, false);
     }
   }
 }

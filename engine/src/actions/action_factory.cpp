@@ -88,6 +88,20 @@ std::unique_ptr<ActionInstance> make_private_action(const xosc::PrivateAction& a
           return make_assign_controller_action(a);
         } else if constexpr (std::is_same_v<T, xosc::OverrideControllerValueAction>) {
           return make_override_controller_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::AssignRouteAction>) {
+          return make_assign_route_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::AcquirePositionAction>) {
+          return make_acquire_position_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::SynchronizeAction>) {
+          return make_synchronize_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::FollowTrajectoryAction>) {
+          return make_follow_trajectory_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::LongitudinalDistanceAction>) {
+          return make_longitudinal_distance_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::LateralDistanceAction>) {
+          return make_lateral_distance_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::SpeedProfileAction>) {
+          return make_speed_profile_action(a);
         } else {
           return make_unsupported_action(kind_name<T>(), a.source);
         }

@@ -42,6 +42,17 @@ std::unique_ptr<ActionInstance> make_traffic_swarm_action(const xosc::TrafficSwa
 std::unique_ptr<ActionInstance> make_traffic_source_action(const xosc::TrafficSourceAction& action);
 std::unique_ptr<ActionInstance> make_traffic_sink_action(const xosc::TrafficSinkAction& action);
 std::unique_ptr<ActionInstance> make_traffic_stop_action(const xosc::TrafficStopAction& action);
+std::unique_ptr<ActionInstance> make_assign_route_action(const xosc::AssignRouteAction& action);
+std::unique_ptr<ActionInstance> make_acquire_position_action(
+    const xosc::AcquirePositionAction& action);
+std::unique_ptr<ActionInstance> make_synchronize_action(const xosc::SynchronizeAction& action);
+std::unique_ptr<ActionInstance> make_follow_trajectory_action(
+    const xosc::FollowTrajectoryAction& action);
+std::unique_ptr<ActionInstance> make_longitudinal_distance_action(
+    const xosc::LongitudinalDistanceAction& action);
+std::unique_ptr<ActionInstance> make_lateral_distance_action(
+    const xosc::LateralDistanceAction& action);
+std::unique_ptr<ActionInstance> make_speed_profile_action(const xosc::SpeedProfileAction& action);
 /// An action kind this engine does not perform yet: warns once (located) and completes.
 std::unique_ptr<ActionInstance> make_unsupported_action(std::string_view kind,
                                                         const xosc::Source& source);

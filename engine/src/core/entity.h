@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <optional>
 
 #include "corsa/engine/entity_state.h"
 #include "corsa/xodr/lane_graph.h"
@@ -74,6 +76,11 @@ struct Entity {
   std::array<ActionInstance*, kDomainSlots> owners{};
   /// Chooses among lane successors at lane ends (a route, issue #6); null: the straightest.
   const LaneChooser* chooser = nullptr;
+  /// Owns the route chooser (AssignRouteAction, AcquirePositionAction) `chooser` points at.
+  std::shared_ptr<const LaneChooser> route;
+  /// A pose an action sets for the end of the step (FollowTrajectoryAction): the controller
+  /// puts the entity there instead of moving it along its lane (motion/pose_command.h).
+  std::optional<Pose> pose_command;
 };
 
 }  // namespace corsa::engine::detail

@@ -3,6 +3,7 @@
 
 #include "motion/controller.h"
 #include "motion/lane_follow.h"
+#include "motion/pose_command.h"
 
 namespace corsa::engine::detail {
 
@@ -33,6 +34,10 @@ void update_road_from_pose(Entity& entity, const xodr::Map* map) {
 }
 
 void DefaultController::step(Entity& entity, const MotionContext& context) const {
+  if (entity.pose_command) {
+    move_to_pose_command(entity, context);
+    return;
+  }
   EntityState& state = entity.state;
   const double dt = context.dt;
   const double v0 = state.speed;

@@ -11,6 +11,80 @@
 
 namespace corsa::engine::detail {
 
+namespace {
+
+// Speed (m/s) assumed on a road without a speed record, for the fastest route: an urban limit.
+constexpr double kDefaultSpeed = 50.0 / 3.6;
+// Cost (in metres of the shortest-route measure) of entering a junction, for the route through
+// the fewest intersections: larger than any detour on a map.
+constexpr double kJunctionEntryCost = 1.0e6;
+
+// Speed limit (m/s) of a lane node: the lane's own speed record, else the road type's.
+double node_speed(const xodr::Map& map, const xodr::LaneGraph::NodeInfo& info) {
+  const xodr::Road& road = map.road(info.lane.road);
+  const xodr::LaneSection& section = road.lane_sections[info.lane.section];
+  for (const xodr::Lane& lane : section.lanes) {
+    if (lane.id == info.lane.lane && !lane.speeds.empty() && lane.speeds.front().max_speed > 0.0) {
+      return lane.speeds.front().max_speed;
+    }
+  }
+  double speed = kDefaultSpeed;
+  for (const xodr::RoadType& type : road.types) {
+    if (type.s <= info.s_start + 1e-9 && type.max_speed && *type.max_speed > 0.0) {
+      speed = *type.max_speed;
+    }
+  }
+  return speed;
+}
+
+// SplitMix64 (Steele et al. 2014): a small, portable, seedable generator, so that a random
+// route is the same on every platform for the same seed.
+uint64_t split_mix(uint64_t& state) {
+  uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+}  // namespace
+
+xodr::RouteOptions route_options(const xodr::Map& map, xosc::RouteStrategy strategy,
+                                 uint64_t seed) {
+  xodr::RouteOptions options;
+  const xodr::LaneGraph& graph = map.lane_graph();
+  switch (strategy) {
+    case xosc::RouteStrategy::kShortest:
+      break;
+    case xosc::RouteStrategy::kFastest:
+      // Cost in seconds at each lane's speed limit (times a speed scale so that the lane change
+      // cost keeps its meaning in metres at the default speed).
+      options.lane_cost_scale.resize(graph.size());
+      for (xodr::LaneNode node = 0; node < graph.size(); ++node) {
+        options.lane_cost_scale[node] = kDefaultSpeed / node_speed(map, graph.info(node));
+      }
+      break;
+    case xosc::RouteStrategy::kLeastIntersections:
+      options.lane_entry_cost.resize(graph.size());
+      for (xodr::LaneNode node = 0; node < graph.size(); ++node) {
+        options.lane_entry_cost[node] =
+            map.road(graph.info(node).lane.road).in_junction() ? kJunctionEntryCost : 0.0;
+      }
+      break;
+    case xosc::RouteStrategy::kRandom: {
+      // Every lane's length weighted by a factor drawn uniformly from [1, 4): the shortest
+      // route under random weights, reproducible with the seed.
+      uint64_t state = seed;
+      options.lane_cost_scale.resize(graph.size());
+      for (xodr::LaneNode node = 0; node < graph.size(); ++node) {
+        const double u = static_cast<double>(split_mix(state) >> 11) * 0x1.0p-53;
+        options.lane_cost_scale[node] = 1.0 + 3.0 * u;
+      }
+      break;
+    }
+  }
+  return options;
+}
+
 RoutePath build_route_path(const xosc::Route& route, const SimState& state,
                            std::optional<uint32_t> self) {
   const xodr::Map& map = need_map(state, route.source, "Route");
@@ -24,7 +98,11 @@ RoutePath build_route_path(const xosc::Route& route, const SimState& state,
   }
   RoutePath path;
   for (size_t i = 1; i < points.size(); ++i) {
-    const auto leg = xodr::find_route(map, points[i - 1], points[i]);
+    // §6.6: a waypoint's routeStrategy is how to reach it from the previous one. Random draws
+    // depend on the run seed and the leg, so two legs do not share their weights.
+    const xodr::RouteOptions options =
+        route_options(map, route.waypoints[i].route_strategy, state.options.seed * 1000003u + i);
+    const auto leg = xodr::find_route(map, points[i - 1], points[i], options);
     if (!leg) {
       fail(route.waypoints[i].source, "route '" + route.name + "': waypoint " +
                                           std::to_string(i + 1) + " cannot be reached from " +

@@ -4,6 +4,7 @@
 // shortest lane route (xodr::find_route), giving a path along which RoutePosition's pathS is
 // measured. Issue #6 builds AssignRouteAction on the same path.
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -20,8 +21,15 @@ struct RoutePath {
   double length = 0.0;  ///< m, sum of the steps' |s_to - s_from|
 };
 
-/// Lays `route` onto the map. Throws InputError (located at the route) when a waypoint is not
-/// on a lane or two waypoints are not connected.
+/// Options of xodr::find_route for a routeStrategy (§6.6): shortest by lane length; fastest by
+/// time at the speed limits (lane speed records, else the road type's, else 50 km/h);
+/// leastIntersections with a penalty on entering a junction; random with lane weights drawn
+/// from `seed`.
+xodr::RouteOptions route_options(const xodr::Map& map, xosc::RouteStrategy strategy, uint64_t seed);
+
+/// Lays `route` onto the map, each leg by its destination waypoint's routeStrategy. Throws
+/// InputError (located at the route) when a waypoint is not on a lane or two waypoints are not
+/// connected.
 RoutePath build_route_path(const xosc::Route& route, const SimState& state,
                            std::optional<uint32_t> self);
 

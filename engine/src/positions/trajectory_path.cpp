@@ -41,6 +41,45 @@ PathPoint TrajectoryPath::at(double s) const {
   return {p.x, p.y, seg.z, p.hdg};
 }
 
+void TrajectoryPath::add_time(double s, double time) {
+  if (!timeline_.empty() && (s < timeline_.back().first || time <= timeline_.back().second)) {
+    return;
+  }
+  timeline_.emplace_back(s, time);
+}
+
+namespace {
+
+// Linear interpolation in a table of increasing (key, value) pairs read as `from` -> `to`.
+template <typename From, typename To>
+double interpolate(const std::vector<std::pair<double, double>>& table, double key, From from,
+                   To to) {
+  if (key <= from(table.front())) {
+    return to(table.front());
+  }
+  for (size_t i = 1; i < table.size(); ++i) {
+    if (key <= from(table[i])) {
+      const double k0 = from(table[i - 1]), k1 = from(table[i]);
+      const double w = k1 > k0 ? (key - k0) / (k1 - k0) : 1.0;
+      return to(table[i - 1]) + w * (to(table[i]) - to(table[i - 1]));
+    }
+  }
+  return to(table.back());
+}
+
+}  // namespace
+
+double TrajectoryPath::s_at_time(double time) const {
+  return interpolate(
+      timeline_, time, [](const auto& e) { return e.second; },
+      [](const auto& e) { return e.first; });
+}
+
+double TrajectoryPath::time_at_s(double s) const {
+  return interpolate(
+      timeline_, s, [](const auto& e) { return e.first; }, [](const auto& e) { return e.second; });
+}
+
 namespace {
 
 struct Point3 {
@@ -79,6 +118,15 @@ void build_polyline(TrajectoryPath& path, const xosc::Polyline& shape, const Sim
     points.push_back(point_of(vertex.position, state, self));
   }
   add_polyline(path, points);
+  double s = 0.0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (i > 0) {
+      s += std::hypot(points[i].x - points[i - 1].x, points[i].y - points[i - 1].y);
+    }
+    if (shape.vertices[i].time) {
+      path.add_time(s, *shape.vertices[i].time);
+    }
+  }
 }
 
 void build_clothoid(TrajectoryPath& path, const xosc::Clothoid& shape, const SimState& state,
@@ -94,6 +142,10 @@ void build_clothoid(TrajectoryPath& path, const xosc::Clothoid& shape, const Sim
   seg.curvature_start = shape.curvature;
   seg.curvature_end = shape.curvature + shape.curvature_prime.value_or(0.0) * shape.length;
   path.add(seg);
+  if (shape.start_time && shape.stop_time) {
+    path.add_time(0.0, *shape.start_time);
+    path.add_time(shape.length, *shape.stop_time);
+  }
 }
 
 void build_clothoid_spline(TrajectoryPath& path, const xosc::ClothoidSpline& shape,
@@ -117,8 +169,14 @@ void build_clothoid_spline(TrajectoryPath& path, const xosc::ClothoidSpline& sha
     seg.h = cursor.h + segment.h_offset.value_or(0.0);
     seg.curvature_start = segment.curvature_start;
     seg.curvature_end = segment.curvature_end;
+    if (segment.time_start) {
+      path.add_time(path.length(), *segment.time_start);
+    }
     path.add(seg);
     cursor = path.at(path.length());
+  }
+  if (shape.time_end) {
+    path.add_time(path.length(), *shape.time_end);
   }
 }
 
@@ -183,6 +241,29 @@ void build_nurbs(TrajectoryPath& path, const xosc::Nurbs& shape, const SimState&
     polyline.push_back(nurbs_point(points, weights, shape.knots, degree, std::min(u, u1)));
   }
   add_polyline(path, polyline);
+  // A control point's time belongs to the curve where that point has most influence: its
+  // Greville abscissa (the mean of its `degree` inner knots), mapped to arc length through the
+  // samples (uniform in u).
+  std::vector<double> sample_s(polyline.size(), 0.0);
+  for (size_t i = 1; i < polyline.size(); ++i) {
+    sample_s[i] = sample_s[i - 1] +
+                  std::hypot(polyline[i].x - polyline[i - 1].x, polyline[i].y - polyline[i - 1].y);
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (!shape.control_points[i].time) {
+      continue;
+    }
+    double greville = 0.0;
+    for (int k = 1; k <= degree; ++k) {
+      greville += shape.knots[i + k];
+    }
+    greville /= degree;
+    const double x = u1 > u0 ? std::clamp((greville - u0) / (u1 - u0), 0.0, 1.0) * samples : 0.0;
+    const size_t lo = std::min(static_cast<size_t>(x), samples - 1);
+    const double s =
+        sample_s[lo] + (x - static_cast<double>(lo)) * (sample_s[lo + 1] - sample_s[lo]);
+    path.add_time(s, *shape.control_points[i].time);
+  }
 }
 
 }  // namespace

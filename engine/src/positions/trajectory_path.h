@@ -39,8 +39,22 @@ class TrajectoryPath {
   /// The point at arc length s (clamped to [0, length]).
   PathPoint at(double s) const;
 
+  /// Trajectory times (s) of points along the path (vertex, clothoid and control point times),
+  /// for FollowTrajectoryAction's Timing; kept only while both s and time increase.
+  void add_time(double s, double time);
+  /// True with at least two timed points.
+  bool timed() const { return timeline_.size() >= 2; }
+  /// Arc length at trajectory time `time`, linear between timed points, clamped to the ends.
+  double s_at_time(double time) const;
+  /// Trajectory time at arc length s, linear between timed points, clamped to the ends.
+  double time_at_s(double s) const;
+  double first_time() const { return timeline_.front().second; }
+  double last_time() const { return timeline_.back().second; }
+  double last_timed_s() const { return timeline_.back().first; }
+
  private:
   std::vector<Segment> segments_;
+  std::vector<std::pair<double, double>> timeline_;  ///< (s, time), both increasing
   double length_ = 0.0;
 };
 

@@ -17,6 +17,12 @@ struct RouteOptions {
   /// changes wins.
   double lane_change_cost = 5.0;
   bool allow_lane_changes = true;
+  /// Per lane node (LaneGraph index): factor on the metres driven on that lane (empty: 1), e.g.
+  /// 1 / speed limit for the fastest route. Factors must be positive.
+  std::vector<double> lane_cost_scale;
+  /// Per lane node: extra cost (>= 0) of entering that lane over a lane end (empty: none), e.g.
+  /// a penalty on junction lanes for the route through the fewest intersections.
+  std::vector<double> lane_entry_cost;
 };
 
 /// A place on a lane: road index, lane id, road s.

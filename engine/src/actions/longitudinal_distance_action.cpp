@@ -1,0 +1,101 @@
+// LongitudinalDistanceAction (OpenSCENARIO 1.3 §7.4.1.2): the actor keeps a distance (m) or a
+// time gap (s, times its own speed) to a reference entity along the reference's direction of
+// travel, trailing or leading it (displacement; `any` keeps the side it is on when the action
+// starts). The gap is measured between reference points or, with freespace, bounding boxes.
+//
+// The ideal controller asks for the reference's speed plus a correction that closes the gap
+// error e: kOmega * e near the goal, at most sqrt(2 b |e|) far from it (b = kBrakeShare of the
+// weaker of the acceleration limits), so that the approach can always be stopped in time
+// within the limits; the speed tracks that with gain 4 kOmega (together a critically damped
+// approach near the goal). Acceleration and speed stay within the DynamicConstraints (else the
+// Performance). Without `continuous` the action ends once the gap is within kGapTolerance and
+// the speeds match within kSpeedTolerance.
+
+#include <cmath>
+
+#include "actions/action_makers.h"
+#include "actions/dynamic_limits.h"
+#include "core/sim_state.h"
+#include "geometry/relative_distance.h"
+#include "positions/position_common.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+constexpr double kOmega = 1.0;  // rad/s
+constexpr double kBrakeShare = 0.8;
+constexpr double kGapTolerance = 0.1;     // m
+constexpr double kSpeedTolerance = 0.05;  // m/s
+
+class LongitudinalDistanceInstance final : public ActionInstance {
+ public:
+  explicit LongitudinalDistanceInstance(const xosc::LongitudinalDistanceAction& action)
+      : action_(action) {}
+
+  uint8_t domains() const override { return kDomainLongitudinal; }
+
+  void start(ActionContext& context) override {
+    need_entity(context.state, action_.entity_ref, action_.source);
+    reference_ = *context.state.world.find(action_.entity_ref);
+    if (!action_.distance && !action_.time_gap) {
+      fail(action_.source, "LongitudinalDistanceAction needs a distance or a timeGap");
+    }
+    limits_ = speed_limits(context.entity(), action_.constraints);
+    const auto displacement =
+        action_.displacement.value_or(xosc::LongitudinalDisplacement::kTrailingReferencedEntity);
+    if (displacement == xosc::LongitudinalDisplacement::kAny) {
+      side_ = signed_offset(context) <= 0.0 ? 1 : -1;
+    } else {
+      side_ = displacement == xosc::LongitudinalDisplacement::kTrailingReferencedEntity ? 1 : -1;
+    }
+  }
+
+  void step(ActionContext& context) override {
+    Entity& entity = context.entity();
+    const Entity& reference = context.state.world.entities[reference_];
+    const double v = entity.state.speed;
+    const double v_ref = reference.state.speed;
+    const double wanted = action_.distance ? *action_.distance : *action_.time_gap * v;
+    // The gap on the wanted side (negative when the actor is on the other side).
+    const double gap = -side_ * signed_offset(context);
+    const double error = gap - wanted;
+    const double brake = kBrakeShare * std::min(limits_.acceleration, limits_.deceleration);
+    const double correction = std::copysign(
+        std::min(kOmega * std::abs(error), std::sqrt(2.0 * brake * std::abs(error))), error);
+    const double accel = 4.0 * kOmega * (v_ref + side_ * correction - v);
+    const double dt = context.state.time.dt();
+    const double speed = std::max(0.0, limits_.step_toward(v, v + accel * dt, dt));
+    entity.speed_command = speed;
+    settled_ = !action_.continuous && std::abs(error) < kGapTolerance &&
+               std::abs(speed - v_ref) < kSpeedTolerance;
+  }
+
+  bool finished() const override { return settled_; }
+
+ private:
+  // Where the actor is relative to the reference along the reference's travel direction: > 0
+  // ahead of it. Freespace: between the boxes (0 while they overlap lengthwise).
+  double signed_offset(const ActionContext& context) const {
+    const Entity& reference = context.state.world.entities[reference_];
+    DistanceSpec spec;
+    spec.system = action_.coordinate_system.value_or(xosc::CoordinateSystem::kEntity);
+    spec.type = xosc::RelativeDistanceType::kLongitudinal;
+    spec.freespace = action_.freespace;
+    return entity_distance(context.state, reference, context.entity(), spec);
+  }
+
+  const xosc::LongitudinalDistanceAction& action_;
+  uint32_t reference_ = 0;
+  SpeedLimits limits_;
+  int side_ = 1;  ///< +1 trailing the reference, -1 leading it
+  bool settled_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<ActionInstance> make_longitudinal_distance_action(
+    const xosc::LongitudinalDistanceAction& action) {
+  return std::make_unique<LongitudinalDistanceInstance>(action);
+}
+
+}  // namespace corsa::engine::detail

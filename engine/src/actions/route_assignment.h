@@ -1,0 +1,21 @@
+#pragma once
+
+// Giving an entity a route to follow (AssignRouteAction, AcquirePositionAction).
+
+#include <memory>
+#include <vector>
+
+#include "core/entity.h"
+#include "corsa/xodr/route.h"
+#include "motion/route_chooser.h"
+
+namespace corsa::engine::detail {
+
+/// From now on `entity` takes the route's lanes at lane ends (replacing any earlier route).
+inline void assign_route(Entity& entity, std::vector<xodr::RouteStep> steps) {
+  auto chooser = std::make_shared<const RouteChooser>(std::move(steps));
+  entity.chooser = chooser.get();
+  entity.route = std::move(chooser);
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,48 @@
+#include "motion/pose_command.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "motion/lane_follow.h"
+#include "positions/position_resolver.h"
+
+namespace corsa::engine::detail {
+
+void move_to_pose_command(Entity& entity, const MotionContext& context) {
+  EntityState& state = entity.state;
+  const Pose target = *entity.pose_command;
+  entity.pose_command.reset();
+  const double dt = context.dt;
+  const double moved = std::hypot(target.x - state.pose.x, target.y - state.pose.y);
+  const double h0 = state.pose.h;
+  const double v0 = state.speed;
+  const double v1 = entity.speed_command;
+  state.pose = target;
+  state.acceleration = (v1 - v0) / dt;
+  state.speed = v1;
+  entity.lateral_acceleration = -state.lateral_speed / dt;
+  state.lateral_speed = 0.0;
+  state.yaw_rate = std::remainder(target.h - h0, 2.0 * std::numbers::pi) / dt;
+  state.odometer += moved;
+  entity.longitudinal_distance += moved;
+  entity.end_of_road = false;
+  if (context.map == nullptr) {
+    return;
+  }
+  // Keep the followed lane in step with the pose (half a metre of slack off the lane edges),
+  // so that the lane, s and t are recorded and lane following can take over at the end.
+  const auto at = locate_point(*context.map, target.x, target.y, 0.5);
+  if (at && at->lane &&
+      attach_to_lane(*context.map, entity.lane, at->road, at->s, at->t, *at->lane, target.h)) {
+    entity.lateral_command = entity.lane.lateral;
+    state.road = RoadCoordinates{at->road,
+                                 static_cast<uint32_t>(context.map->section_index(at->road, at->s)),
+                                 *at->lane, at->s, at->t};
+  } else {
+    entity.lane.on_road = false;
+    entity.lateral_command = 0.0;
+    update_road_from_pose(entity, context.map);
+  }
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,17 @@
+#pragma once
+
+// Motion by a commanded pose (FollowTrajectoryAction, OpenSCENARIO 1.3 §7.4.4.3): an action that
+// drives the entity along its own path sets Entity::pose_command for the end of the step; the
+// controller puts the entity there, derives speed, yaw rate and odometer from the move, and
+// keeps the lane it is on up to date so that lane following resumes where the path ends.
+
+#include "core/entity.h"
+#include "motion/controller.h"
+
+namespace corsa::engine::detail {
+
+/// Moves `entity` to its pose command (consumed: lane following resumes when no action sets
+/// one). The speed is the commanded speed_command (m/s), signed as the action gives it.
+void move_to_pose_command(Entity& entity, const MotionContext& context);
+
+}  // namespace corsa::engine::detail
