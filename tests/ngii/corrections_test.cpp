@@ -3,6 +3,7 @@
 // naming each repaired link with its A2 record.
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <map>
 #include <string>
 #include <utility>
@@ -103,5 +104,73 @@ TEST_CASE("every correction names its link, its A2 record and a reason", "[ngii]
       located += d.severity == corsa::Severity::kWarning && d.record >= 0;
     }
     CHECK(located >= area.conversion.corrections.size() / 2);
+  }
+}
+
+// RoadNo is empty, so roads come from L/R adjacency: two ordinary links that name each other
+// as neighbours and run side by side from end to end (lengths within 10 %, no shared end node)
+// are lanes of one road, next to each other.
+TEST_CASE("reciprocal side-by-side neighbours are adjacent lanes of one road",
+          "[ngii][corrections][grouping]") {
+  for (const char* name : {"kcity", "seoul_sangam_testbed"}) {
+    INFO(name);
+    const auto& area = converted(name);
+    std::map<std::string, const corsa::ngii::Link*> links;
+    for (const auto& link : area.layers.links) {
+      links[link.id] = &link;
+    }
+    std::map<std::string, const corsa::ngii::LinkPlacement*> placed;  // ordinary: one placement
+    for (const auto& p : area.conversion.placements) {
+      placed.emplace(p.link_id, &p);
+    }
+    const auto length = [](const corsa::ngii::Link& link) {
+      double total = 0.0;
+      for (size_t i = 1; i < link.points.size(); ++i) {
+        total += std::hypot(link.points[i].x - link.points[i - 1].x,
+                            link.points[i].y - link.points[i - 1].y);
+      }
+      return total;
+    };
+    size_t pairs = 0;
+    for (const auto& left : area.layers.links) {
+      const auto it = links.find(left.right_id);
+      if (left.link_type != "6" || it == links.end()) {
+        continue;
+      }
+      const auto& right = *it->second;
+      if (right.link_type != "6" || right.left_id != left.id || !placed.contains(left.id) ||
+          !placed.contains(right.id)) {
+        continue;
+      }
+      const double a = length(left);
+      const double b = length(right);
+      // Side by side from end to end: starts and ends a lane width apart. Links that meet or
+      // part at one end are a split or merge (one lane tapering out of the other): separate
+      // roads joined by a direct junction, not lanes of one road.
+      const auto apart = [](const corsa::ngii::Point3& p, const corsa::ngii::Point3& q) {
+        const double d = std::hypot(p.x - q.x, p.y - q.y);
+        return d > 2.0 && d < 6.0;
+      };
+      if (std::abs(a - b) > 0.1 * std::max(a, b) || std::max(a, b) < 10.0 ||
+          !apart(left.points.front(), right.points.front()) ||
+          !apart(left.points.back(), right.points.back())) {
+        continue;
+      }
+      INFO(left.id << " | " << right.id);
+      const auto& pl = *placed.at(left.id);
+      const auto& pr = *placed.at(right.id);
+      // Short roads inside an intersection are cut into single-lane connecting roads (one per
+      // path, OpenDRIVE 1.8 §10.4).
+      const auto in_junction = [&](const corsa::ngii::LinkPlacement& p) {
+        return area.map.road(*area.map.find_road(p.road_id)).in_junction();
+      };
+      if (in_junction(pl) || in_junction(pr)) {
+        continue;
+      }
+      CHECK(pl.road_id == pr.road_id);
+      CHECK(pr.lane_id == pl.lane_id - 1);  // right-hand lanes: -1, -2, ... left to right
+      ++pairs;
+    }
+    CHECK(pairs > 50);
   }
 }
