@@ -197,13 +197,14 @@ class Swarm final : public GeneratorBase {
 
   void step(SimState& state) override {
     prune(state);
-    const Entity& centre = state.world.entities[central_];
-    if (!centre.state.placed || state.map == nullptr) {
+    // A copy: spawning appends entities, which may move the world's storage.
+    const EntityState centre = state.world.entities[central_].state;
+    if (!centre.placed || state.map == nullptr) {
       return;
     }
-    const double c = std::cos(centre.state.pose.h), s = std::sin(centre.state.pose.h);
-    const double cx = centre.state.pose.x + action_.offset * c;
-    const double cy = centre.state.pose.y + action_.offset * s;
+    const double c = std::cos(centre.pose.h), s = std::sin(centre.pose.h);
+    const double cx = centre.pose.x + action_.offset * c;
+    const double cy = centre.pose.y + action_.offset * s;
     const double a = std::max(action_.semi_major_axis, 1.0);
     const double b = std::max(action_.semi_minor_axis, 1.0);
     // Leave: outside the ellipse.
@@ -229,7 +230,7 @@ class Swarm final : public GeneratorBase {
       if (!at || !clear_of_others(state, at->pose.x, at->pose.y)) {
         continue;
       }
-      const double dx = at->pose.x - centre.state.pose.x, dy = at->pose.y - centre.state.pose.y;
+      const double dx = at->pose.x - centre.pose.x, dy = at->pose.y - centre.pose.y;
       if (std::hypot(dx, dy) < action_.inner_radius) {
         continue;
       }
@@ -238,7 +239,7 @@ class Swarm final : public GeneratorBase {
   }
 
  private:
-  double draw_speed(const Entity& centre) {
+  double draw_speed(const EntityState& centre) {
     if (action_.initial_speed_range) {
       return random_.uniform(action_.initial_speed_range->lower_limit,
                              action_.initial_speed_range->upper_limit);
@@ -246,7 +247,7 @@ class Swarm final : public GeneratorBase {
     if (action_.velocity) {
       return *action_.velocity;
     }
-    return centre.state.speed > 0.0 ? centre.state.speed : kDefaultSpeed;
+    return centre.speed > 0.0 ? centre.speed : kDefaultSpeed;
   }
 
   const xosc::TrafficSwarmAction& action_;
