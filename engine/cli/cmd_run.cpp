@@ -10,6 +10,7 @@
 #include "corsa/core/progress.h"
 #include "corsa/core/strings.h"
 #include "corsa/engine/run.h"
+#include "plugin_api.h"
 
 namespace corsa::cli {
 namespace {
@@ -69,6 +70,12 @@ engine::RunOptions run_options(const ParsedArgs& parsed) {
 }  // namespace
 
 int command_run(std::span<const std::string> args) {
+  // Sensors need Embree and OpenCV, which live in the plugin: a run with a rig is the plugin's.
+  for (const std::string& arg : args) {
+    if (arg == "--rig" || arg.starts_with("--rig=")) {
+      return run_plugin_command("run", args);
+    }
+  }
   ArgParser parser(
       "run SCENARIO.xosc [options]",
       "Runs one OpenSCENARIO scenario headless with a fixed step and writes its outputs.");
@@ -88,6 +95,8 @@ int command_run(std::span<const std::string> args) {
   parser.epilog(
       "The run ends at the storyboard's stop trigger, when every story is complete (without a\n"
       "stop trigger), or at --duration. Exit 0 when it ran, 2 on bad input.\n"
+      "With --rig RIG.xml -o DIR the run also captures a dataset (docs/datasets.md; see\n"
+      "'corsa run --rig x --help').\n"
       "example: corsa run scenarios/cut_in.xosc --record out.csv --summary out.json");
   const ParsedArgs parsed = parser.parse(args);
   if (parsed.help()) {

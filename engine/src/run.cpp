@@ -35,6 +35,9 @@ RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
     recorder.emplace(*options.record, options.record_every);
     simulation.add_observer(*recorder);
   }
+  if (options.prepare) {
+    options.prepare(simulation);
+  }
   while (simulation.step()) {
     if (on_step) {
       on_step(simulation);

@@ -12,6 +12,8 @@ int plugin_selftest(std::span<const std::string> args);
 int plugin_map_render(std::span<const std::string> args);
 /// `corsa convert ngii` (cmd_convert_ngii.cpp).
 int plugin_convert(std::span<const std::string> args);
+/// `corsa run ... --rig` (run_rig.cpp): the run with sensors and a dataset.
+int plugin_run(std::span<const std::string> args);
 
 /// Runs `body`, printing an InputError / UsageError as the executable would (exit 2) and any other
 /// exception as an internal error (exit 3), so that no exception crosses the plugin boundary.

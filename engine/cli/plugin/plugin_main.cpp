@@ -13,6 +13,7 @@ const auto kCommands = std::to_array<PluginCommandEntry>({
     {"plugin selftest", plugin_selftest},
     {"map render", plugin_map_render},
     {"convert", plugin_convert},
+    {"run", plugin_run},
 });
 
 const PluginApi kApi{kPluginAbiVersion, kCommands};

@@ -31,6 +31,9 @@ struct RunOptions {
   int64_t record_every = 1;
   std::optional<std::filesystem::path> summary;  ///< run summary JSON
   std::optional<std::filesystem::path> log;      ///< storyboard event log CSV
+  /// Called once with the simulation before its first step, e.g. to add observers and custom
+  /// command handlers (the capture timeline of `corsa run --rig`). Optional.
+  std::function<void(Simulation&)> prepare;
 };
 
 struct RunReport {

@@ -1,0 +1,152 @@
+// Options of the plugin's `corsa run ... --rig` (see run_rig.h).
+
+#include <cmath>
+#include <stdexcept>
+
+#include "corsa/core/strings.h"
+#include "run_rig.h"
+
+namespace corsa::cli {
+namespace {
+
+// The engine's options, as cmd_run.cpp reads them (the run itself is engine::run_scenario).
+void read_engine_options(const ParsedArgs& parsed, engine::RunOptions& options) {
+  options.scenario = parsed.positionals().front();
+  for (const auto& assignment : parsed.values("--param")) {
+    const size_t eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw UsageError("--param expects NAME=VALUE, got '" + assignment + "'");
+    }
+    options.parameters.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
+  }
+  if (const auto dt = parsed.number("--dt")) {
+    if (!(*dt > 0.0) || *dt > 10.0) {
+      throw UsageError("--dt expects a step in seconds, 0 < dt <= 10");
+    }
+    options.simulation.dt = *dt;
+  }
+  if (const auto duration = parsed.number("--duration")) {
+    if (!(*duration >= 0.0) || !std::isfinite(*duration)) {
+      throw UsageError("--duration expects a number of seconds >= 0");
+    }
+    options.simulation.duration = *duration;
+  }
+  if (const auto seed = parsed.integer("--seed")) {
+    if (*seed < 0) {
+      throw UsageError("--seed expects a non-negative integer");
+    }
+    options.simulation.seed = static_cast<uint64_t>(*seed);
+  }
+  if (const auto every = parsed.integer("--record-every")) {
+    if (*every < 1) {
+      throw UsageError("--record-every expects a positive integer");
+    }
+    options.record_every = *every;
+  }
+  if (auto record = parsed.value("--record")) {
+    options.record = *record;
+  }
+  if (auto summary = parsed.value("--summary")) {
+    options.summary = *summary;
+  }
+  if (auto log = parsed.value("--log")) {
+    options.log = *log;
+  }
+}
+
+void read_npc(const std::string& text, RigRunOptions& options) {
+  for (const std::string_view raw : split(text, ',')) {
+    const std::string_view item = trim(raw);
+    const size_t eq = item.find('=');
+    const std::string key(trim(item.substr(0, eq)));
+    const auto count = eq == std::string_view::npos ? std::nullopt : parse_int(item.substr(eq + 1));
+    if (!count || *count < 0 || *count > 10000) {
+      throw UsageError("--npc expects vehicles=N,pedestrians=M (0..10000), got '" +
+                       std::string(item) + "'");
+    }
+    if (key == "vehicles") {
+      options.npc_vehicles = static_cast<int>(*count);
+    } else if (key == "pedestrians") {
+      options.npc_pedestrians = static_cast<int>(*count);
+    } else {
+      throw UsageError("--npc: unknown key '" + key + "' (keys: vehicles, pedestrians)");
+    }
+  }
+}
+
+}  // namespace
+
+void declare_rig_run_options(ArgParser& parser) {
+  parser.positional("SCENARIO.xosc", "the scenario to run");
+  parser.repeated("--param", "NAME=VALUE", "override a global scenario parameter");
+  parser.option("--dt", "SECONDS", "fixed step (default 0.01)");
+  parser.option("--duration", "SECONDS",
+                "stop at this simulated time at the latest (default 3600)");
+  parser.option("--seed", "N", "run seed for random draws (default 0)");
+  parser.option("--record", "FILE.csv", "write the trajectories (time,entity,x,y,z,h,p,r,...)");
+  parser.option("--record-every", "N", "record every N-th step (default 1)");
+  parser.option("--summary", "FILE.json", "write the run summary");
+  parser.option("--log", "FILE.csv", "write every storyboard transition with its time");
+  parser.flag("--quiet", "no progress bar and no summary line");
+  parser.option("--rig", "RIG.xml", "sensor rig (schemas/sensor-rig.xsd): capture a dataset");
+  parser.option("-o", "DIR", "dataset folder (required with --rig; absent or empty)");
+  parser.option("--format", "corsa|kitti",
+                "dataset layout: corsa (default) or kitti (adds kitti/ image_2, velodyne, "
+                "label_2, calib)");
+  parser.flag("--force", "replace a previous dataset in DIR");
+  parser.option("--time-of-day", "HH:MM[:SS]", "override the scenario's time of day");
+  parser.option("--weather", "KEY=VALUE,...",
+                "override the weather: fog=M, rain=MM_PER_H, snow=MM_PER_H, clouds=0..1, "
+                "wind=M_PER_S, wind_dir=DEG, wet=0|1, friction=SCALE");
+  parser.option("--npc", "vehicles=N,pedestrians=M",
+                "add seeded random NPCs: vehicles on driving lanes, pedestrians on sidewalks");
+  parser.repeated("--model", "FILE[@X,Y[,HEADING_DEG]]",
+                  "add a building model (map metres, z up) at an offset; the scenario's "
+                  "SceneGraphFile is loaded too");
+  parser.flag("--preview", "also write DIR/preview/contact_sheet.png and camera_birds_eye.mp4");
+}
+
+RigRunOptions read_rig_run_options(const ParsedArgs& parsed) {
+  RigRunOptions options;
+  read_engine_options(parsed, options.run);
+  const auto rig = parsed.value("--rig");
+  if (!rig || rig->empty()) {
+    throw UsageError("missing --rig RIG.xml");
+  }
+  options.rig = *rig;
+  const auto output = parsed.value("-o");
+  if (!output || output->empty()) {
+    throw UsageError("missing -o DIR (the dataset folder to write)");
+  }
+  options.output = *output;
+  if (const auto format = parsed.value("--format")) {
+    if (*format == "kitti") {
+      options.format = sensors::DatasetFormat::kKitti;
+    } else if (*format != "corsa") {
+      throw UsageError("--format expects corsa or kitti, got '" + *format + "'");
+    }
+  }
+  options.force = parsed.flag("--force");
+  options.quiet = parsed.flag("--quiet");
+  options.preview = parsed.flag("--preview");
+  try {
+    if (const auto time = parsed.value("--time-of-day")) {
+      options.environment.time_of_day = engine::parse_time_of_day(*time);
+      options.time_of_day_text = *time;
+    }
+    if (const auto weather = parsed.value("--weather")) {
+      engine::parse_weather(*weather, options.environment);
+      options.weather_text = *weather;
+    }
+  } catch (const std::invalid_argument& error) {
+    throw UsageError(error.what());
+  }
+  if (const auto npc = parsed.value("--npc")) {
+    read_npc(*npc, options);
+    options.npc_text = *npc;
+  }
+  options.models = parsed.values("--model");
+  return options;
+}
+
+}  // namespace corsa::cli

@@ -1,0 +1,91 @@
+#pragma once
+
+// The dataset folder of `corsa run --rig RIG -o DIR` (DESIGN.md, "File formats"; docs/datasets.md):
+//
+//   DIR/run.json             scenario, parameters, seed, step, rig, versions, status, windows
+//   DIR/frames.csv           index: capture,tick,time,sensor,frame,file (one row per file)
+//   DIR/poses/NNNNNN.json    per capture: every entity's pose and box, every captured sensor's
+//                            world_from_sensor, the environment
+//   DIR/<sensor>/...         the sensor's files (write_sensor_frame) and calibration.json
+//   DIR/kitti/...            with DatasetFormat::kKitti: image_2, velodyne, label_2, calib
+//
+// Written capture by capture: the sensor files and the pose file first (each atomically), then
+// frames.csv is rewritten atomically, so the index only ever names complete captures. run.json
+// says "running" while the run goes on, then "complete" or "interrupted" with where it stopped;
+// a dataset whose run.json still says "running" was killed, and its index is still consistent.
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "corsa/engine/world_snapshot.h"
+#include "corsa/sensors/sensor_system.h"
+
+namespace corsa::sensors {
+
+enum class DatasetFormat { kCorsa, kKitti };
+
+/// What run.json records about the run (everything needed to reproduce it).
+struct DatasetRunInfo {
+  std::string scenario;                                         ///< as the user named it
+  std::vector<std::pair<std::string, std::string>> parameters;  ///< resolved global parameters
+  uint64_t seed = 0;
+  double dt = 0.01;
+  double duration = 0.0;
+  std::string rig;          ///< as the user named it
+  std::string time_of_day;  ///< --time-of-day as given, empty when not overridden
+  std::string weather;      ///< --weather as given
+  std::string npc;          ///< --npc as given
+};
+
+/// How the run ended, for run.json.
+struct DatasetEnd {
+  std::string status;      ///< "complete" or "interrupted"
+  std::string end_reason;  ///< the engine's end reason, or what interrupted it
+  int64_t tick = 0;        ///< last simulated tick
+  double time = 0.0;       ///< s
+  /// Capture windows as JSON objects, e.g. from the capture timeline.
+  std::vector<std::string> windows_json;
+};
+
+class DatasetWriter final : public engine::CaptureSink {
+ public:
+  /// Creates the folder (it must be absent or empty, or `replace` and hold a previous dataset,
+  /// i.e. a run.json), the calibration files and a "running" run.json. Throws InputError when
+  /// the folder cannot be used.
+  DatasetWriter(SensorSystem& system, std::filesystem::path directory, DatasetRunInfo info,
+                DatasetFormat format, bool replace);
+
+  void capture(const engine::WorldSnapshot& world, std::span<const std::string> sensors) override;
+
+  /// Rewrites run.json with how the run ended.
+  void finish(const DatasetEnd& end);
+
+  int64_t captures() const { return captures_; }
+  int64_t files() const { return static_cast<int64_t>(rows_); }
+  const std::filesystem::path& directory() const { return directory_; }
+
+ private:
+  void write_run_json(const DatasetEnd* end) const;
+  void write_kitti(const SensorFrame& frame, const SensorSpec& spec);
+
+  SensorSystem& system_;
+  std::filesystem::path directory_;
+  DatasetRunInfo info_;
+  DatasetFormat format_;
+  std::string index_;  ///< frames.csv as written so far
+  size_t rows_ = 0;
+  int64_t captures_ = 0;
+  int64_t last_tick_ = -1;
+  double last_time_ = 0.0;
+  int64_t kitti_frames_ = 0;
+};
+
+/// The file name stem of a frame number: six digits, zero-padded ("000042").
+std::string frame_stem(int64_t frame);
+
+}  // namespace corsa::sensors

@@ -1,0 +1,34 @@
+#pragma once
+
+// A quick look at a dataset (`corsa run --rig ... --preview`, scripts/demo):
+//   DIR/preview/contact_sheet.png   up to 12 camera frames evenly spread over the run, 4 across,
+//                                   each stamped with its time
+//   DIR/preview/camera_birds_eye.mp4  the camera beside the bird's-eye view, at the camera rate
+// The first RGB camera and the first bird's-eye camera of the rig are used (the video shows the
+// camera alone without a bird's-eye camera). The video is encoded with OpenCV's videoio: H.264
+// ("avc1") when the FFmpeg build offers it, else MPEG-4 part 2 ("mp4v"), else Motion JPEG in
+// camera_birds_eye.avi, and the summary says which. The contact sheet is deterministic; the video
+// depends on the encoder and is not part of the byte-identical dataset.
+
+#include <filesystem>
+#include <string>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/sensors/rig.h"
+
+namespace corsa::sensors {
+
+struct PreviewReport {
+  std::filesystem::path contact_sheet;  ///< empty when the rig has no RGB camera frames
+  std::filesystem::path video;          ///< empty when no encoder could be opened
+  std::string codec;                    ///< "avc1", "mp4v", "MJPG" or empty
+  int frames = 0;                       ///< video frames
+  std::string summary;                  ///< one line for people
+};
+
+/// Reads the dataset's frames.csv and images and writes the preview files. Throws InputError
+/// when the dataset cannot be read.
+PreviewReport write_preview(const std::filesystem::path& dataset, const SensorRig& rig,
+                            Diagnostics& diagnostics);
+
+}  // namespace corsa::sensors

@@ -1,0 +1,272 @@
+// The dataset folder (see corsa/sensors/dataset_writer.h and docs/datasets.md).
+
+#include "corsa/sensors/dataset_writer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <system_error>
+
+#include "corsa/core/atomic_file.h"
+#include "corsa/core/diagnostic.h"
+#include "corsa/core/strings.h"
+#include "corsa/core/version.h"
+#include "corsa/sensors/writers.h"
+
+namespace corsa::sensors {
+namespace {
+
+namespace fs = std::filesystem;
+
+void make_dir(const fs::path& dir) {
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error) {
+    throw InputError(make_error(dir.string(), 0, "cannot create the folder: " + error.message()));
+  }
+}
+
+// A folder may be (re)used when it is absent, empty, or (with replace) a previous dataset.
+void prepare_directory(const fs::path& dir, bool replace) {
+  std::error_code error;
+  if (fs::exists(dir, error)) {
+    if (!fs::is_directory(dir, error)) {
+      throw InputError(make_error(dir.string(), 0, "exists and is not a folder"));
+    }
+    if (!fs::is_empty(dir, error)) {
+      if (!replace) {
+        throw InputError(make_error(dir.string(), 0,
+                                    "the dataset folder is not empty (use --force to replace a "
+                                    "previous dataset)"));
+      }
+      if (!fs::exists(dir / "run.json", error)) {
+        throw InputError(make_error(dir.string(), 0,
+                                    "--force replaces only a previous dataset (a folder with a "
+                                    "run.json); this folder has none"));
+      }
+      fs::remove_all(dir, error);
+      if (error) {
+        throw InputError(make_error(dir.string(), 0, "cannot remove: " + error.message()));
+      }
+    }
+  }
+  make_dir(dir);
+}
+
+std::string num(double value) { return format_double(value); }
+
+std::string rigid_json(const Rigid& t) { return matrix_json(t); }
+
+std::string environment_json(const engine::EnvironmentState& e) {
+  std::string out = "{\"date\": \"" + std::to_string(e.year) + "-" + std::to_string(e.month) + "-" +
+                    std::to_string(e.day) + "\", \"time_of_day\": " + num(e.time_of_day) +
+                    ", \"fog_visual_range\": " +
+                    (std::isfinite(e.fog_visual_range) ? num(e.fog_visual_range) : "null") +
+                    ", \"precipitation\": \"" +
+                    (e.precipitation == engine::PrecipitationType::kRain   ? "rain"
+                     : e.precipitation == engine::PrecipitationType::kSnow ? "snow"
+                                                                           : "dry") +
+                    "\", \"precipitation_intensity\": " + num(e.precipitation_intensity) +
+                    ", \"cloud_cover\": " + num(e.cloud_cover) +
+                    ", \"wind_speed\": " + num(e.wind_speed) +
+                    ", \"wind_direction\": " + num(e.wind_direction) +
+                    ", \"road_friction_scale\": " + num(e.road_friction_scale) +
+                    ", \"wet_road\": " + (e.wet_road ? "true" : "false");
+  if (e.sun_azimuth && e.sun_elevation) {
+    out += ", \"sun_azimuth\": " + num(*e.sun_azimuth) +
+           ", \"sun_elevation\": " + num(*e.sun_elevation);
+  }
+  return out + "}";
+}
+
+std::string entity_json(const engine::EntitySnapshot& e) {
+  return "{\"instance_id\": " + std::to_string(e.instance_id) +
+         ", \"name\": " + json_quote(e.name) +
+         ", \"category\": " + std::to_string(static_cast<int>(e.category)) + ", \"pose\": [" +
+         num(e.pose.x) + ", " + num(e.pose.y) + ", " + num(e.pose.z) + ", " + num(e.pose.h) + ", " +
+         num(e.pose.p) + ", " + num(e.pose.r) + "], \"box\": [" + num(e.box.center_x) + ", " +
+         num(e.box.center_y) + ", " + num(e.box.center_z) + ", " + num(e.box.length) + ", " +
+         num(e.box.width) + ", " + num(e.box.height) + "], \"speed\": " + num(e.speed) +
+         ", \"velocity\": [" + num(e.vx) + ", " + num(e.vy) + ", " + num(e.vz) +
+         "], \"yaw_rate\": " + num(e.yaw_rate) +
+         ", \"visible\": " + (e.visible ? "true" : "false") + "}";
+}
+
+// KITTI's calib file: P0..P3 (3x4), R0_rect (3x3), Tr_velo_to_cam and Tr_imu_to_velo (3x4).
+std::string kitti_calib(const CameraModel& camera, const Rigid& optical_from_lidar) {
+  auto row34 = [](const double m[3][4]) {
+    std::string out;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 4; ++c) {
+        out += (r + c == 0 ? "" : " ") + format_double(m[r][c]);
+      }
+    }
+    return out;
+  };
+  const double p[3][4] = {{camera.fx(), 0.0, camera.cx(), 0.0},
+                          {0.0, camera.fy(), camera.cy(), 0.0},
+                          {0.0, 0.0, 1.0, 0.0}};
+  double tr[3][4];
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      tr[r][c] = optical_from_lidar.rotation.m[r][c];
+    }
+  }
+  tr[0][3] = optical_from_lidar.translation.x;
+  tr[1][3] = optical_from_lidar.translation.y;
+  tr[2][3] = optical_from_lidar.translation.z;
+  const double identity[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
+  const std::string pp = row34(p);
+  return "P0: " + pp + "\nP1: " + pp + "\nP2: " + pp + "\nP3: " + pp +
+         "\nR0_rect: 1 0 0 0 1 0 0 0 1\nTr_velo_to_cam: " + row34(tr) +
+         "\nTr_imu_to_velo: " + row34(identity) + "\n";
+}
+
+}  // namespace
+
+std::string frame_stem(int64_t frame) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%06lld", static_cast<long long>(frame));
+  return text;
+}
+
+DatasetWriter::DatasetWriter(SensorSystem& system, fs::path directory, DatasetRunInfo info,
+                             DatasetFormat format, bool replace)
+    : system_(system), directory_(std::move(directory)), info_(std::move(info)), format_(format) {
+  prepare_directory(directory_, replace);
+  make_dir(directory_ / "poses");
+  write_calibration(system_, directory_);
+  index_ = "capture,tick,time,sensor,frame,file\n";
+  write_file_atomic(directory_ / "frames.csv", index_);
+  write_run_json(nullptr);
+}
+
+void DatasetWriter::capture(const engine::WorldSnapshot& world,
+                            std::span<const std::string> sensors) {
+  const std::vector<SensorFrame> frames = system_.capture(world, sensors);
+  std::string rows;
+  std::string sensor_poses;
+  for (const SensorFrame& f : frames) {
+    const SensorSpec& spec = *system_.rig().find(f.sensor);
+    for (const fs::path& file : write_sensor_frame(f, spec, directory_)) {
+      rows += std::to_string(captures_) + "," + std::to_string(world.tick) + "," + num(world.time) +
+              "," + f.sensor + "," + std::to_string(f.frame) + "," + file.generic_string() + "\n";
+      ++rows_;
+    }
+    sensor_poses += std::string(sensor_poses.empty() ? "" : ",\n") +
+                    "    {\"sensor\": " + json_quote(f.sensor) +
+                    ", \"frame\": " + std::to_string(f.frame) +
+                    ", \"world_from_sensor\": " + rigid_json(f.world_from_sensor) + "}";
+    if (format_ == DatasetFormat::kKitti) {
+      write_kitti(f, spec);
+    }
+  }
+  std::string pose = "{\n  \"capture\": " + std::to_string(captures_) +
+                     ",\n  \"tick\": " + std::to_string(world.tick) +
+                     ",\n  \"time\": " + num(world.time) + ",\n  \"sensors\": [\n" + sensor_poses +
+                     "\n  ],\n  \"entities\": [\n";
+  for (size_t i = 0; i < world.entities.size(); ++i) {
+    pose +=
+        "    " + entity_json(world.entities[i]) + (i + 1 < world.entities.size() ? ",\n" : "\n");
+  }
+  pose += "  ],\n  \"environment\": " + environment_json(world.environment) + "\n}\n";
+  const std::string pose_file = "poses/" + frame_stem(captures_) + ".json";
+  write_file_atomic(directory_ / pose_file, pose);
+  rows += std::to_string(captures_) + "," + std::to_string(world.tick) + "," + num(world.time) +
+          ",poses,," + pose_file + "\n";
+  ++rows_;
+  // The index last: it names the capture only once every file of it is in place.
+  index_ += rows;
+  write_file_atomic(directory_ / "frames.csv", index_);
+  ++captures_;
+  last_tick_ = world.tick;
+  last_time_ = world.time;
+}
+
+void DatasetWriter::write_kitti(const SensorFrame& f, const SensorSpec& spec) {
+  // The KITTI layout has one camera (image_2) and one LiDAR (velodyne) per frame: the rig's
+  // first RGB camera defines the frames; the first LiDAR is written when captured at the same
+  // tick.
+  const SensorSpec* camera = nullptr;
+  const SensorSpec* lidar = nullptr;
+  for (const SensorSpec& s : system_.rig().sensors) {
+    if (camera == nullptr && s.kind == SensorKind::kRgbCamera) {
+      camera = &s;
+    }
+    if (lidar == nullptr && s.kind == SensorKind::kLidar) {
+      lidar = &s;
+    }
+  }
+  const fs::path kitti = directory_ / "kitti";
+  if (camera != nullptr && spec.name == camera->name) {
+    const std::string stem = frame_stem(kitti_frames_);
+    make_dir(kitti / "image_2");
+    make_dir(kitti / "label_2");
+    make_dir(kitti / "calib");
+    write_png_rgb8(kitti / "image_2" / (stem + ".png"), f.camera.width, f.camera.height,
+                   f.camera.rgb);
+    write_file_atomic(kitti / "label_2" / (stem + ".txt"), kitti_labels(f.labels));
+    Rigid optical_from_lidar;
+    if (lidar != nullptr) {
+      // Both mounts are on entities; KITTI's Tr_velo_to_cam needs them in one frame: the
+      // camera's world pose at this capture and the LiDAR's mount on its own entity are
+      // combined through the LiDAR mount relative to the camera mount (same entity in practice).
+      const Rigid world_from_optical = f.world_from_sensor * optical_in_body();
+      const Rigid world_from_lidar = f.world_from_sensor *
+                                     entity_from_sensor(spec.mount).inverse() *
+                                     entity_from_sensor(lidar->mount);
+      optical_from_lidar = world_from_optical.inverse() * world_from_lidar;
+    }
+    write_file_atomic(kitti / "calib" / (stem + ".txt"),
+                      kitti_calib(*system_.camera_model(camera->name), optical_from_lidar));
+    ++kitti_frames_;
+  } else if (lidar != nullptr && spec.name == lidar->name && kitti_frames_ > 0) {
+    // The LiDAR of the same tick comes after the camera in rig order only when listed after it;
+    // either way it belongs to the latest camera frame.
+    make_dir(kitti / "velodyne");
+    write_kitti_bin(kitti / "velodyne" / (frame_stem(kitti_frames_ - 1) + ".bin"), f.cloud);
+  }
+}
+
+void DatasetWriter::finish(const DatasetEnd& end) { write_run_json(&end); }
+
+void DatasetWriter::write_run_json(const DatasetEnd* end) const {
+  std::string out =
+      "{\n  \"corsa_version\": " + json_quote(version()) +
+      ",\n  \"dataset_format_version\": 1,\n  \"scenario\": " + json_quote(info_.scenario) +
+      ",\n  \"parameters\": {";
+  for (size_t i = 0; i < info_.parameters.size(); ++i) {
+    out += std::string(i == 0 ? "" : ", ") + json_quote(info_.parameters[i].first) + ": " +
+           json_quote(info_.parameters[i].second);
+  }
+  out += "},\n  \"seed\": " + std::to_string(info_.seed) + ",\n  \"dt\": " + num(info_.dt) +
+         ",\n  \"duration\": " + num(info_.duration) + ",\n  \"rig\": " + json_quote(info_.rig) +
+         ",\n  \"format\": \"" + (format_ == DatasetFormat::kKitti ? "kitti" : "corsa") +
+         "\",\n  \"overrides\": {\"time_of_day\": " + json_quote(info_.time_of_day) +
+         ", \"weather\": " + json_quote(info_.weather) + ", \"npc\": " + json_quote(info_.npc) +
+         "},\n  \"sensors\": [";
+  const auto& sensors = system_.rig().sensors;
+  for (size_t i = 0; i < sensors.size(); ++i) {
+    out += std::string(i == 0 ? "" : ", ") + "{\"name\": " + json_quote(sensors[i].name) +
+           ", \"kind\": " + json_quote(sensor_kind_name(sensors[i].kind)) +
+           ", \"entity\": " + json_quote(sensors[i].entity) +
+           ", \"rate\": " + num(sensors[i].rate_hz) + "}";
+  }
+  out += "],\n  \"status\": " + json_quote(end != nullptr ? end->status : "running") +
+         ",\n  \"captures\": " + std::to_string(captures_) +
+         ",\n  \"files\": " + std::to_string(rows_) +
+         ",\n  \"last_capture_tick\": " + std::to_string(last_tick_) +
+         ",\n  \"last_capture_time\": " + num(last_time_);
+  if (end != nullptr) {
+    out += ",\n  \"end_reason\": " + json_quote(end->end_reason) +
+           ",\n  \"end_tick\": " + std::to_string(end->tick) +
+           ",\n  \"end_time\": " + num(end->time) + ",\n  \"windows\": [";
+    for (size_t i = 0; i < end->windows_json.size(); ++i) {
+      out += std::string(i == 0 ? "\n    " : ",\n    ") + end->windows_json[i];
+    }
+    out += end->windows_json.empty() ? "]" : "\n  ]";
+  }
+  out += "\n}\n";
+  write_file_atomic(directory_ / "run.json", out);
+}
+
+}  // namespace corsa::sensors

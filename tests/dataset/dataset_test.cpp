@@ -1,0 +1,155 @@
+// `corsa run --rig` end to end: the dataset is complete and consistent, a second run gives the
+// same bytes, windows follow the triggers, KITTI export, located errors.
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "corsa/core/atomic_file.h"
+#include "dataset_check.h"
+#include "run_corsa.h"
+#include "temp_dir.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using corsa::test::run_corsa;
+
+const std::string kDemo = "scenarios/demo/cut_in_city.xosc";
+const std::string kSmallRig = "tests/dataset/fixtures/small_rig.xml";
+
+corsa::test::ProcessResult run_small(const fs::path& out, std::vector<std::string> extra) {
+  std::vector<std::string> args{"run", kDemo, "--rig", kSmallRig, "-o", out.string(), "--quiet"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return run_corsa(args);
+}
+
+}  // namespace
+
+TEST_CASE("A dataset is complete, consistent, and byte-identical when run again",
+          "[dataset][determinism]") {
+  corsa::test::TempDir dir;
+  const std::vector<std::string> options{
+      "--duration",    "1",    "--npc", "vehicles=3,pedestrians=4", "--weather", "fog=300,rain=2",
+      "--time-of-day", "19:45"};
+  const auto first = run_small(dir.path() / "a", options);
+  INFO(first.err);
+  REQUIRE(first.exit_code == 0);
+  const auto second = run_small(dir.path() / "b", options);
+  REQUIRE(second.exit_code == 0);
+
+  CHECK(corsa::test::check_dataset(dir.path() / "a", 192, 108).empty());
+  const auto rows = corsa::test::read_index(dir.path() / "a");
+  std::map<std::string, std::set<int64_t>> ticks;
+  for (const auto& row : rows) {
+    ticks[row.sensor].insert(row.tick);
+  }
+  // 1 s at dt 0.01: ticks 0..100; 10 Hz every 10 ticks, 5 Hz every 20, 3 Hz at ceil(100 k / 3).
+  CHECK(ticks["cam"] == std::set<int64_t>{0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100});
+  CHECK(ticks["semantic"] == std::set<int64_t>{0, 20, 40, 60, 80, 100});
+  CHECK(ticks["top"] == std::set<int64_t>{0, 34, 67, 100});
+  CHECK(ticks["roof_lidar"] == ticks["cam"]);
+  CHECK(fs::exists(dir.path() / "a/cam/calibration.json"));
+  CHECK(fs::exists(dir.path() / "a/roof_lidar/calibration.json"));
+
+  const std::string run_json = corsa::read_file(dir.path() / "a/run.json");
+  CHECK(corsa::test::json_string(run_json, "status") == "complete");
+  CHECK(corsa::test::json_string(run_json, "scenario") == kDemo);
+  CHECK(corsa::test::json_number(run_json, "captures") == 13);  // 11 ticks + 34 and 67
+  CHECK_THAT(run_json, Catch::Contains("\"CutInGap\": \"5\""));
+  CHECK_THAT(run_json, Catch::Contains("\"weather\": \"fog=300,rain=2\""));
+
+  const std::string pose = corsa::read_file(dir.path() / "a/poses/000005.json");
+  CHECK_THAT(pose, Catch::Contains("\"name\": \"npc_pedestrian_3\""));
+  CHECK_THAT(pose, Catch::Contains("\"fog_visual_range\": 300"));
+  CHECK_THAT(pose, Catch::Contains("\"precipitation\": \"rain\""));
+
+  const auto files = corsa::test::files_under(dir.path() / "a");
+  REQUIRE(files == corsa::test::files_under(dir.path() / "b"));
+  for (const std::string& file : files) {
+    INFO(file);
+    CHECK(corsa::read_file(dir.path() / "a" / file) == corsa::read_file(dir.path() / "b" / file));
+  }
+}
+
+TEST_CASE("Capture windows in the dataset follow the scenario's corsa:capture actions",
+          "[dataset][windows]") {
+  corsa::test::TempDir dir;
+  const auto result = run_corsa({"run", "tests/capture/fixtures/capture_windows.xosc", "--rig",
+                                 "tests/dataset/fixtures/windows_rig.xml", "-o",
+                                 (dir.path() / "w").string(), "--quiet"});
+  INFO(result.err);
+  REQUIRE(result.exit_code == 0);
+  std::set<int64_t> camera;
+  for (const auto& row : corsa::test::read_index(dir.path() / "w")) {
+    if (row.sensor == "camera") {
+      camera.insert(row.tick);
+    }
+  }
+  // Opened at 1 s (after tick 100) at 5 Hz, closed at 2 s, reopened at 2.5 s at 3 Hz.
+  REQUIRE(!camera.empty());
+  CHECK(*camera.begin() == 101);
+  CHECK(camera.count(121) == 1);
+  CHECK(camera.count(181) == 1);
+  CHECK(camera.count(221) == 0);
+  CHECK(camera.count(251) == 1);
+  CHECK(camera.count(285) == 1);  // 251 + ceil(100 / 3)
+  const std::string run_json = corsa::read_file(dir.path() / "w/run.json");
+  CHECK_THAT(run_json, Catch::Contains("{\"sensor\": \"camera\", \"open_tick\": 101"));
+  CHECK(corsa::test::check_dataset(dir.path() / "w", 64, 36).empty());
+}
+
+TEST_CASE("--format kitti adds image_2, velodyne, label_2 and calib frames", "[dataset][kitti]") {
+  corsa::test::TempDir dir;
+  const auto result = run_small(dir.path() / "k", {"--duration", "0.3", "--format", "kitti"});
+  INFO(result.err);
+  REQUIRE(result.exit_code == 0);
+  const fs::path kitti = dir.path() / "k/kitti";
+  for (const char* stem : {"000000", "000001", "000002", "000003"}) {
+    INFO(stem);
+    CHECK(fs::exists(kitti / "image_2" / (std::string(stem) + ".png")));
+    CHECK(fs::exists(kitti / "velodyne" / (std::string(stem) + ".bin")));
+    CHECK(fs::exists(kitti / "label_2" / (std::string(stem) + ".txt")));
+    CHECK(fs::exists(kitti / "calib" / (std::string(stem) + ".txt")));
+  }
+  CHECK(!fs::exists(kitti / "image_2/000004.png"));
+  const std::string calib = corsa::read_file(kitti / "calib/000000.txt");
+  CHECK_THAT(calib, Catch::StartsWith("P0: ") && Catch::Contains("\nTr_velo_to_cam: "));
+  // The LiDAR is 0.6 m behind and 0.45 m above the camera: in the optical frame (x right, y
+  // down, z forward) its origin is at (0, -0.45, -0.6), its x axis along the optical z.
+  const size_t at = calib.find("Tr_velo_to_cam: ");
+  std::istringstream tr(calib.substr(at + 16));
+  const double expected[12] = {0, -1, 0, 0, 0, 0, -1, -0.45, 1, 0, 0, -0.6};
+  for (const double e : expected) {
+    double value = 0.0;
+    tr >> value;
+    CHECK(value == Approx(e).margin(1e-9));
+  }
+}
+
+TEST_CASE("Bad data-collection input is reported with exit code 2", "[dataset][errors]") {
+  corsa::test::TempDir dir;
+  const auto no_output = run_corsa({"run", kDemo, "--rig", kSmallRig});
+  CHECK(no_output.exit_code == 2);
+  CHECK_THAT(no_output.err, Catch::Contains("missing -o DIR"));
+
+  const auto weather = run_small(dir.path() / "x", {"--weather", "hail=2"});
+  CHECK(weather.exit_code == 2);
+  CHECK_THAT(weather.err, Catch::Contains("unknown key 'hail'"));
+
+  const auto unknown_sensor = run_corsa({"run", "tests/capture/fixtures/capture_windows.xosc",
+                                         "--rig", kSmallRig, "-o", (dir.path() / "y").string()});
+  CHECK(unknown_sensor.exit_code == 2);
+  CHECK_THAT(unknown_sensor.err,
+             Catch::Contains("capture_windows.xosc:") &&
+                 Catch::Contains("corsa:capture: the rig has no sensor 'lidar'"));
+
+  fs::create_directories(dir.path() / "full");
+  corsa::write_file_atomic(dir.path() / "full/keep.txt", "mine");
+  const auto not_empty = run_small(dir.path() / "full", {"--duration", "0.1", "--force"});
+  CHECK(not_empty.exit_code == 2);
+  CHECK_THAT(not_empty.err, Catch::Contains("has none"));
+  CHECK(fs::exists(dir.path() / "full/keep.txt"));
+}

@@ -1,0 +1,70 @@
+// An interrupted `corsa run --rig` (SIGINT, as Ctrl-C sends) stops after the capture in progress
+// and leaves a consistent dataset whose run.json says where it stopped.
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "corsa/core/atomic_file.h"
+#include "dataset_check.h"
+#include "temp_dir.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+size_t captures_indexed(const fs::path& dataset) {
+  try {
+    const auto rows = corsa::test::read_index(dataset);
+    return rows.empty() ? 0 : static_cast<size_t>(rows.back().capture + 1);
+  } catch (const std::exception&) {
+    return 0;  // not written yet
+  }
+}
+
+}  // namespace
+
+TEST_CASE("SIGINT leaves only complete captures and an index that says where it stopped",
+          "[dataset][interrupt]") {
+  corsa::test::TempDir dir;
+  const fs::path out = dir.path() / "interrupted";
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    if (chdir(CORSA_SOURCE_DIR) != 0) {
+      _exit(99);
+    }
+    execl(CORSA_BINARY, CORSA_BINARY, "run", "scenarios/demo/cut_in_city.xosc", "--rig",
+          "tests/dataset/fixtures/small_rig.xml", "-o", out.c_str(), "--quiet",
+          static_cast<char*>(nullptr));
+    _exit(98);
+  }
+  // Wait for a few captures (at most 120 s on a busy machine), then interrupt.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (captures_indexed(out) < 3 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  REQUIRE(kill(child, SIGINT) == 0);
+  int status = 0;
+  REQUIRE(waitpid(child, &status, 0) == child);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 128 + SIGINT);
+
+  const std::string run_json = corsa::read_file(out / "run.json");
+  CHECK(corsa::test::json_string(run_json, "status") == "interrupted");
+  CHECK(corsa::test::json_string(run_json, "end_reason") == "interrupted by SIGINT");
+  const size_t captures = captures_indexed(out);
+  CHECK(captures >= 3);
+  CHECK(captures < 201);  // the whole run has 201 captures at 10 Hz
+  CHECK(corsa::test::json_number(run_json, "captures") == static_cast<double>(captures));
+  CHECK(corsa::test::check_dataset(out, 192, 108).empty());
+  // Nothing half-written: no temporary files are left behind.
+  for (const std::string& file : corsa::test::files_under(out)) {
+    CHECK(file.find(".tmp") == std::string::npos);
+  }
+}
