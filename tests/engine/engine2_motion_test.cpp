@@ -238,6 +238,44 @@ TEST_CASE("SpeedProfileAction goes through its entries, linearly or smoothly, wi
   }
 }
 
+TEST_CASE("scenarios/route_waypoint.xosc: Ego turns left at the junction to its destination",
+          "[engine][route][scenarios]") {
+  FixtureRun run(std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/route_waypoint.xosc");
+  run.run();
+  CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
+  // Through the left-turn connecting road 102 onto road 4, stopped within 1 m of s = 80.
+  bool turned = false;
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    const auto& road = states[run.entity("Ego")].road;
+    turned = turned || (road && run.sim().road_id(road->road) == "102");
+  }
+  CHECK(turned);
+  CHECK(final_road(run, "Ego") == "4");
+  CHECK(run.now("Ego").road->s == Approx(80.0).margin(1.0));
+  CHECK(run.sim().collisions().empty());
+}
+
+TEST_CASE("scenarios/intersection_sync.xosc: both vehicles enter the junction in the same step",
+          "[engine][synchronize][scenarios]") {
+  FixtureRun run(std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/intersection_sync.xosc");
+  run.run();
+  std::map<std::string, double> entered;
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    for (const std::string name : {"Ego", "Npc"}) {
+      const auto& road = states[run.entity(name)].road;
+      if (road && run.sim().road_id(road->road).size() == 3 && !entered.count(name)) {
+        entered[name] = run.sim().time_of(tick);  // connecting roads have ids 101..112
+      }
+    }
+  }
+  REQUIRE(entered.size() == 2);
+  CHECK(std::abs(entered["Ego"] - entered["Npc"]) <= run.sim().dt() + 1e-9);
+  // They meet in the junction: the stop trigger is their collision.
+  CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
+  CHECK(run.sim().collisions().size() == 1);
+  CHECK(run.now("Npc").speed == Approx(8.0));
+}
+
 TEST_CASE("ASAM examples with routes and synchronization run to completion with plausible motion",
           "[engine][asam]") {
   for (const char* name : {"SynchronizedArrivalToIntersection.xosc", "CloseVehicleCrossing.xosc"}) {
