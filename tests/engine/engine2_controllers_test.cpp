@@ -133,3 +133,23 @@ TEST_CASE("--controller dynamics drives the vehicles of a bundled scenario to it
                                 options, diagnostics),
       corsa::InputError);
 }
+
+TEST_CASE("ASAM EndOfTrafficJam: Ego's external controller is stood in for and activated",
+          "[engine][controllers][asam]") {
+  FixtureRun run(std::filesystem::path(CORSA_SHARED_DIR) /
+                 "conformance/asam-osc-1.3/EndOfTrafficJam.xosc");
+  run.run();
+  CHECK(run.sim().end_reason() == corsa::engine::EndReason::kStopTrigger);
+  bool warned = false;
+  for (const auto& d : run.diagnostics().all()) {
+    warned = warned || d.message.find("ExternalController") != std::string::npos;
+  }
+  CHECK(warned);
+  for (size_t i = 0; i < run.sim().entity_count(); ++i) {
+    const auto& s = run.sim().state(i);
+    REQUIRE(s.road);
+    CHECK(s.speed >= 0.0);
+    CHECK(s.speed < 60.0);
+  }
+  CHECK(run.sim().collisions().empty());
+}

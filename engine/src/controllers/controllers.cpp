@@ -67,16 +67,23 @@ void assign_initial_controllers(SimState& state) {
           break;
         }
       }
-      if (!chosen && !entity.object->controllers.empty()) {
-        // A controller this engine does not know (e.g. an external driver model): the default
-        // controller stands in for it, which is what the scenario's actions describe.
+      if (!chosen && !entity.object->controllers.empty() && !for_vehicles) {
+        // A controller this engine does not know (an external driver model, e.g. the ASAM
+        // EndOfTrafficJam's ego): the acc controller stands in for a driver that does not run
+        // into the vehicle ahead. As the standard has it (§7.5), it moves the entity only once
+        // an ActivateControllerAction activates it; until then the default controller does.
         const xosc::ObjectController& oc = entity.object->controllers.front();
         state.diagnostics.add_once(
             "foreign-controller",
             oc.source.warning("controller '" + oc.controller.name +
                               "' is not one of this engine's (default, acc, dynamics via the "
-                              "corsa:controller property): the default controller moves '" +
-                              entity.info.name + "'"));
+                              "corsa:controller property): the acc controller stands in for it "
+                              "on '" +
+                              entity.info.name + "' once activated"));
+        control.kind = ControllerKind::kAcc;
+        control.longitudinal = false;
+        control.lateral = false;
+        chosen = true;
       }
     }
     if (!chosen && for_vehicles && entity.info.kind == ObjectKind::kVehicle) {
