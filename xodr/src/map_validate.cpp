@@ -104,6 +104,19 @@ void sort_road_records(const Checker& check, Road& road) {
   }
 }
 
+/// Longest road Corsa accepts (m). The standard sets no upper bound, but every map structure is
+/// linear in road length (spatial index chunks of <= 5 m, mesh strips, lane spans): 1e7 m and more
+/// is a typo or a fuzzed file, and would otherwise run for minutes or exhaust memory.
+constexpr double kMaxRoadLength = 1e6;
+
+void check_road_length(const Checker& check, const Road& road) {
+  if (!(road.length <= kMaxRoadLength)) {
+    check.fail(road.line, "road '" + road.id + "': length " + corsa::format_double(road.length) +
+                              " m is beyond the " + corsa::format_double(kMaxRoadLength) +
+                              " m a road may have");
+  }
+}
+
 void check_lane_sections(const Checker& check, const Road& road) {
   for (const LaneSection& section : road.lane_sections) {
     if (section.lanes.size() > kMaxLanesPerSection) {
@@ -175,6 +188,7 @@ void validate_map(const MapData& data, IdIndex& impl, corsa::Diagnostics& diagno
     }
     check_road_link(check, impl, road, road.predecessor, "predecessor");
     check_road_link(check, impl, road, road.successor, "successor");
+    check_road_length(check, road);
     check_plan_view(check, road, options);
     check_lane_sections(check, road);
   }

@@ -14,6 +14,19 @@ constexpr double kMaxChunkTurn = 0.1;     // rad of heading per chunk
 constexpr double kMinChunkLength = 0.05;  // m
 constexpr int kSamples = 5;               // per chunk, ends included
 constexpr size_t kMaxCells = size_t{1} << 23;
+// Grid entries (chunk, cell) allowed per chunk on average: absurd lane widths (a fuzzed 1e20 m)
+// make every chunk cover the whole grid, which the cell size then grows to avoid.
+constexpr double kMaxEntriesPerChunk = 64.0;
+// Coordinates (m) beyond any real map; bounds are clamped to it (NaN to its low end) so that the
+// grid arithmetic stays finite whatever a map's numbers overflow to.
+constexpr double kCoordinateLimit = 1e15;
+
+double clamp_coordinate(double v) {
+  if (!(v >= -kCoordinateLimit)) {
+    return -kCoordinateLimit;
+  }
+  return std::min(v, kCoordinateLimit);
+}
 
 struct Extent {
   double t_min = 0.0;
@@ -166,10 +179,10 @@ void chunk_bounds(const Chunk& c, double& x0, double& y0, double& x1, double& y1
     for (const double b : {c.b0, c.b1}) {
       const double x = c.ox + a * c.ux - b * c.uy;
       const double y = c.oy + a * c.uy + b * c.ux;
-      x0 = std::min(x0, x);
-      x1 = std::max(x1, x);
-      y0 = std::min(y0, y);
-      y1 = std::max(y1, y);
+      x0 = std::min(x0, clamp_coordinate(x));
+      x1 = std::max(x1, clamp_coordinate(x));
+      y0 = std::min(y0, clamp_coordinate(y));
+      y1 = std::max(y1, clamp_coordinate(y));
     }
   }
 }
@@ -180,12 +193,27 @@ void SpatialIndex::cell_range(double x0, double y0, double x1, double y1, int& i
                               int& j1) const {
   const auto cell = [&](double v, double origin, int n) {
     const double c = std::floor((v - origin) / cell_);
-    return static_cast<int>(std::clamp(c, 0.0, static_cast<double>(n - 1)));
+    if (!(c >= 0.0)) {
+      return 0;  // also NaN (a query at a non-finite point)
+    }
+    return static_cast<int>(std::min(c, static_cast<double>(n - 1)));
   };
   i0 = cell(x0, min_x_, nx_);
   i1 = cell(x1, min_x_, nx_);
   j0 = cell(y0, min_y_, ny_);
   j1 = cell(y1, min_y_, ny_);
+}
+
+double SpatialIndex::grid_entries() const {
+  double entries = 0.0;
+  for (const Chunk& chunk : chunks_) {
+    double x0, y0, x1, y1;
+    chunk_bounds(chunk, x0, y0, x1, y1);
+    int i0, j0, i1, j1;
+    cell_range(x0, y0, x1, y1, i0, j0, i1, j1);
+    entries += static_cast<double>(i1 - i0 + 1) * static_cast<double>(j1 - j0 + 1);
+  }
+  return entries;
 }
 
 void SpatialIndex::build_grid() {
@@ -204,11 +232,25 @@ void SpatialIndex::build_grid() {
     min_x_ = min_y_ = max_x = max_y = 0.0;
   }
   cell_ = 4.0;
-  while ((max_x - min_x_) / cell_ * ((max_y - min_y_) / cell_) > static_cast<double>(kMaxCells)) {
+  // Count whole cells (+1 each way): a long thin extent (two roads 1e12 m apart on one line)
+  // must not give a row of billions of cells just because the product of the fractions is small.
+  const auto grid_cells = [&] {
+    return (std::floor((max_x - min_x_) / cell_) + 1.0) *
+           (std::floor((max_y - min_y_) / cell_) + 1.0);
+  };
+  while (grid_cells() > static_cast<double>(kMaxCells)) {
     cell_ *= 2.0;
   }
-  nx_ = static_cast<int>((max_x - min_x_) / cell_) + 1;
-  ny_ = static_cast<int>((max_y - min_y_) / cell_) + 1;
+  const double max_entries = kMaxEntriesPerChunk * static_cast<double>(chunks_.size()) +
+                             static_cast<double>(kMaxCells / 8);
+  while (true) {
+    nx_ = static_cast<int>((max_x - min_x_) / cell_) + 1;
+    ny_ = static_cast<int>((max_y - min_y_) / cell_) + 1;
+    if ((nx_ == 1 && ny_ == 1) || grid_entries() <= max_entries) {
+      break;
+    }
+    cell_ *= 2.0;
+  }
   const size_t cells = static_cast<size_t>(nx_) * static_cast<size_t>(ny_);
   cell_start_.assign(cells + 1, 0);
   // Two passes (count, fill): a compact CSR layout keeps a query's candidates contiguous.

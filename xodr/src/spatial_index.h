@@ -72,6 +72,8 @@ class SpatialIndex {
  private:
   void add_section_chunks(const Map& map, uint32_t road, uint32_t section);
   void build_grid();
+  /// (chunk, cell) pairs the grid would hold with the current cell size and origin.
+  double grid_entries() const;
   /// Cells overlapped by [x0, x1] x [y0, y1], clamped to the grid.
   void cell_range(double x0, double y0, double x1, double y1, int& i0, int& j0, int& i1,
                   int& j1) const;

@@ -106,6 +106,7 @@ class XmlParser {
   /// Decodes entities in place; returns the decoded view.
   std::string_view decode(char* start, char* stop);
   void start_tag();
+  void check_unique_attributes(const char* tag, const XmlElement& element);
   void end_tag();
   void add_text(std::string_view text);
   void text_run(const char* stop);
@@ -213,6 +214,38 @@ void XmlParser::text_run(const char* stop) {
   p_ = const_cast<char*>(stop);
 }
 
+// XML 1.0 §3.1 (well-formedness constraint "Unique Att Spec"): an attribute name appears at most
+// once in a tag; otherwise which value a reader sees would depend on the reader.
+void XmlParser::check_unique_attributes(const char* tag, const XmlElement& element) {
+  const auto begin = doc_.attributes_.begin() + element.attr_begin_;
+  const auto end = doc_.attributes_.begin() + element.attr_end_;
+  const auto duplicate = [&](std::string_view name) {
+    fail(tag, "attribute '" + std::string(name) + "' appears twice in <" +
+                  std::string(element.name_) + ">");
+  };
+  if (end - begin <= 32) {
+    // The usual case (a handful of attributes): pairwise, no allocation.
+    for (auto a = begin; a != end; ++a) {
+      for (auto b = a + 1; b != end; ++b) {
+        if (a->name == b->name) {
+          duplicate(a->name);
+        }
+      }
+    }
+    return;
+  }
+  std::vector<std::string_view> names;
+  names.reserve(static_cast<size_t>(end - begin));
+  for (auto a = begin; a != end; ++a) {
+    names.push_back(a->name);
+  }
+  std::sort(names.begin(), names.end());
+  const auto same = std::adjacent_find(names.begin(), names.end());
+  if (same != names.end()) {
+    duplicate(*same);
+  }
+}
+
 void XmlParser::start_tag() {
   const char* tag = p_;
   ++p_;  // '<'
@@ -252,6 +285,7 @@ void XmlParser::start_tag() {
     p_ = close + 1;
   }
   element.attr_end_ = static_cast<uint32_t>(doc_.attributes_.size());
+  check_unique_attributes(tag, element);
   if (!stack_.empty()) {
     XmlElement& parent = doc_.elements_[stack_.back()];
     element.parent_ = stack_.back();
