@@ -72,6 +72,12 @@ void write_file_atomic(const std::filesystem::path& target, std::string_view con
 }
 
 std::string read_file(const std::filesystem::path& path) {
+  // An ifstream opens a directory without complaint and then reads nothing, which a parser would
+  // report as an empty document.
+  std::error_code status_error;
+  if (std::filesystem::is_directory(path, status_error)) {
+    throw InputError(make_error(path.string(), 0, "is a folder, not a file"));
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw InputError(make_error(path.string(), 0,

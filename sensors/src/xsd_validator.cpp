@@ -2,6 +2,7 @@
 
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <regex>
 #include <stdexcept>
 
@@ -451,14 +452,32 @@ ValidatedElement InstanceValidator::element(const XMLElement& e, const std::stri
   return out;
 }
 
+std::string xml_error_words(tinyxml2::XMLError error) {
+  switch (error) {
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT:
+      return "empty document";
+    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
+      return "mismatched closing tag";
+    case tinyxml2::XML_ERROR_PARSING_ELEMENT:
+      return "bad element (unclosed or mis-nested tag, truncated file?)";
+    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
+      return "bad attribute";
+    case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED:
+      return "elements nested too deeply";
+    default:
+      return std::string("cannot parse (") + tinyxml2::XMLDocument::ErrorIDToName(error) + ")";
+  }
+}
+
 }  // namespace
 
 ValidatedElement XsdSchema::validate(std::string_view xml, const std::string& file) const {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    const char* detail = doc.ErrorStr();
-    throw InputError(make_error(file, doc.ErrorLineNum(),
-                                std::string("not well-formed XML: ") + (detail ? detail : "")));
+    // tinyxml2's ErrorStr() reads "Error=XML_ERROR_... ErrorID=13 (0xd) Line number=0": say what
+    // is wrong in words instead, and line 1 for an empty document (tinyxml2 gives line 0).
+    throw InputError(make_error(file, std::max(1, doc.ErrorLineNum()),
+                                "not well-formed XML: " + xml_error_words(doc.ErrorID())));
   }
   const XMLElement* root = doc.RootElement();
   if (root == nullptr || defs_->root_name != root->Name()) {

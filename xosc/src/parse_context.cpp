@@ -73,7 +73,8 @@ XmlFile parse_xml(std::string_view text, const std::filesystem::path& path) {
   file.document = std::make_unique<tinyxml2::XMLDocument>();
   const tinyxml2::XMLError error = file.document->Parse(text.data(), text.size());
   if (error != tinyxml2::XML_SUCCESS) {
-    throw InputError(make_error(*file.name, file.document->ErrorLineNum(),
+    // tinyxml2 gives line 0 for an empty (or all-whitespace, NUL-led) document: say line 1.
+    throw InputError(make_error(*file.name, std::max(1, file.document->ErrorLineNum()),
                                 "malformed XML: " + xml_error_text(error)));
   }
   if (file.document->RootElement() == nullptr) {
