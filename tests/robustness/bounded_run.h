@@ -1,0 +1,98 @@
+#pragma once
+
+// Runs the `corsa` binary under a time limit and checks the project's promise for bad input:
+// exit code 2 with a located `file:line: error:` message, never a crash, a hang or an output file
+// left behind.
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <filesystem>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "run_corsa.h"
+
+namespace corsa::test {
+
+/// What one time-limited `corsa` process did.
+struct BoundedResult {
+  int exit_code = -1;  ///< -1 when killed by a signal (a crash)
+  bool timed_out = false;
+  double seconds = 0.0;
+  std::string err;
+};
+
+/// Seconds a single case may take before it counts as a hang. Generous: the machine running the
+/// tests is shared, and every case here finishes in well under a second when it works.
+inline constexpr int kCaseTimeLimit = 20;
+
+/// Runs `corsa args...` from the source tree with stdin from /dev/null, stdout discarded, under
+/// `timeout` (exit 124 = the limit was hit; the process is killed 2 s later if it ignores TERM).
+inline BoundedResult run_bounded(const std::vector<std::string>& args,
+                                 int limit_seconds = kCaseTimeLimit) {
+  TempDir dir;
+  std::string command =
+      "timeout -k 2 " + std::to_string(limit_seconds) + " " + shell_quote(CORSA_BINARY);
+  for (const auto& arg : args) {
+    command += ' ' + shell_quote(arg);
+  }
+  command += " </dev/null >/dev/null 2>" + shell_quote((dir.path() / "stderr").string());
+  command = "cd " + shell_quote(CORSA_SOURCE_DIR) + " && " + command;
+  const auto start = std::chrono::steady_clock::now();
+  const int status = std::system(command.c_str());
+  BoundedResult result;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  // timeout(1) exits 124 on TERM, 137 when it had to KILL.
+  result.timed_out = result.exit_code == 124 || result.exit_code == 137;
+  result.err = slurp(dir.path() / "stderr");
+  return result;
+}
+
+/// True when stderr holds a located error: `file:LINE: error: ` with LINE >= 1, or
+/// `file: record N: error: ` for record-based inputs (DBF/Shapefile).
+inline bool has_located_error(const std::string& err) {
+  static const std::regex kLocated(R"((^|\n)[^\n]+:[1-9][0-9]*: error: [^\n]+)");
+  static const std::regex kRecord(R"((^|\n)[^\n]+: record [0-9]+: error: [^\n]+)");
+  return std::regex_search(err, kLocated) || std::regex_search(err, kRecord);
+}
+
+/// True when stderr names `file` in an error about the file as a whole (`file: error: ...`), the
+/// form used when there is no line to point at (missing file, a folder, an unwritable output).
+inline bool has_file_error(const std::string& err, const std::string& file) {
+  return err.find(file + ": error: ") != std::string::npos;
+}
+
+/// Names of the entries directly inside `dir`.
+inline std::set<std::string> entry_names(const std::filesystem::path& dir) {
+  std::set<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    names.insert(entry.path().filename().string());
+  }
+  return names;
+}
+
+/// One case of the corpus: what ran and what it did, for the failure message.
+inline std::string describe(const std::string& name, const BoundedResult& result) {
+  return name + ": exit " + std::to_string(result.exit_code) +
+         (result.timed_out ? " (timed out)" : "") + " after " + std::to_string(result.seconds) +
+         " s, stderr: " + result.err.substr(0, 600);
+}
+
+/// Checks that a case either succeeded (when `may_succeed`) or was rejected the way bad input must
+/// be: exit 2 and a located message. Never a signal, exit 3 (internal error) or a timeout.
+inline void check_rejected_or_ok(const std::string& name, const BoundedResult& result,
+                                 bool may_succeed) {
+  INFO(describe(name, result));
+  CHECK_FALSE(result.timed_out);
+  if (may_succeed && result.exit_code == 0) {
+    SUCCEED();
+    return;
+  }
+  CHECK(result.exit_code == 2);
+  CHECK(has_located_error(result.err));
+}
+
+}  // namespace corsa::test

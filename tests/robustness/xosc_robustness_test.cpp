@@ -1,0 +1,172 @@
+// Broken OpenSCENARIO scenarios through `corsa validate` and `corsa run`: exit 0 or 1 (the
+// scenario still runs), or exit 2 with a located error and no trajectory or summary file left
+// behind; never a crash, an internal error or a hang.
+
+#include <string>
+#include <vector>
+
+#include "bounded_run.h"
+#include "mutations.h"
+
+namespace corsa::test {
+namespace {
+
+/// scenarios/cut_in.xosc with its map and catalog folder named by absolute path, so that a copy
+/// anywhere still finds them.
+std::string cut_in_text() {
+  const std::string scenarios = std::string(CORSA_SOURCE_DIR) + "/scenarios/";
+  std::string text = slurp(scenarios + "cut_in.xosc");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, from.size(), to);
+  };
+  replace("filepath=\"maps/", "filepath=\"" + scenarios + "maps/");
+  replace("path=\"catalogs\"", "path=\"" + scenarios + "catalogs\"");
+  return text;
+}
+
+/// `text` with the first occurrence of `from` replaced by `to` (which must exist).
+std::string edited(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
+/// What a broken scenario is allowed to do.
+enum class Expect {
+  kMayRun,         ///< still a valid scenario, or rejected: either is fine
+  kRejected,       ///< validate and run both reject it
+  kRejectedByRun,  ///< validate (which does not load the map) may pass it; run rejects it
+};
+
+struct Outcome {
+  BoundedResult validate;
+  BoundedResult run;
+};
+
+/// Runs `corsa validate` and `corsa run` (3 s simulated, trajectories and summary into the
+/// folder) on `text` as scenario.xosc. When `run` rejects it, only scenario.xosc may remain.
+Outcome check_scenario(const std::string& name, const std::string& text, Expect expect) {
+  TempDir dir;
+  const auto scenario = dir.path() / "scenario.xosc";
+  std::ofstream(scenario, std::ios::binary) << text;
+  Outcome outcome;
+  outcome.validate = run_bounded({"validate", scenario.string()});
+  check_rejected_or_ok(name + " (validate)", outcome.validate, expect != Expect::kRejected);
+  outcome.run = run_bounded({"run", scenario.string(), "--quiet", "--duration", "3", "--record",
+                             (dir.path() / "out.csv").string(), "--summary",
+                             (dir.path() / "summary.json").string()});
+  INFO(describe(name + " (run)", outcome.run));
+  CHECK_FALSE(outcome.run.timed_out);
+  if (outcome.run.exit_code == 2) {
+    CHECK(has_located_error(outcome.run.err));
+    CHECK(entry_names(dir.path()) == std::set<std::string>{"scenario.xosc"});
+  } else {
+    // 0: ran to its end; 1: ran and failed. Either way it produced both outputs.
+    CHECK(expect == Expect::kMayRun);
+    CHECK((outcome.run.exit_code == 0 || outcome.run.exit_code == 1));
+    CHECK(entry_names(dir.path()) ==
+          std::set<std::string>{"scenario.xosc", "out.csv", "summary.json"});
+  }
+  return outcome;
+}
+
+TEST_CASE("Truncated scenarios are rejected with a located error and no outputs",
+          "[robustness][xosc]") {
+  for (const Mutant& mutant :
+       truncations(cut_in_text(), {0.0, 0.001, 0.05, 0.2, 0.45, 0.7, 0.9, 0.995})) {
+    check_scenario("cut_in.xosc " + mutant.name, mutant.text, Expect::kRejected);
+  }
+}
+
+TEST_CASE("Scenarios with random bytes overwritten never crash, hang or half-write",
+          "[robustness][xosc]") {
+  for (const Mutant& mutant : byte_flips(cut_in_text(), 7, 16)) {
+    check_scenario("cut_in.xosc " + mutant.name, mutant.text, Expect::kMayRun);
+  }
+}
+
+TEST_CASE("NaN, infinite, text and huge numbers in scenario attributes are handled",
+          "[robustness][xosc]") {
+  struct Target {
+    const char* element;
+    const char* attribute;
+  };
+  const Target targets[] = {{"ParameterDeclaration", "value"},
+                            {"LanePosition", "s"},
+                            {"RelativeLanePosition", "ds"},
+                            {"SpeedActionDynamics", "value"},
+                            {"RelativeDistanceCondition", "value"}};
+  const std::string original = cut_in_text();
+  for (const Target& target : targets) {
+    for (const std::string& value : bad_numbers()) {
+      const std::string text = with_attribute(original, target.element, target.attribute, value);
+      REQUIRE_FALSE(text.empty());
+      check_scenario(
+          std::string("<") + target.element + " " + target.attribute + "=\"" + value + "\">", text,
+          Expect::kMayRun);
+    }
+  }
+}
+
+TEST_CASE("Scenario elements without a required attribute are rejected at their line",
+          "[robustness][xosc]") {
+  struct Target {
+    const char* element;
+    const char* attribute;
+  };
+  const Target targets[] = {{"ParameterDeclaration", "name"},  {"ScenarioObject", "name"},
+                            {"CatalogReference", "entryName"}, {"LanePosition", "roadId"},
+                            {"AbsoluteTargetSpeed", "value"},  {"Event", "priority"},
+                            {"LogicFile", "filepath"}};
+  const std::string original = cut_in_text();
+  for (const Target& target : targets) {
+    const std::string text = without_attribute(original, target.element, target.attribute);
+    REQUIRE_FALSE(text.empty());
+    check_scenario(std::string("<") + target.element + "> without " + target.attribute, text,
+                   Expect::kRejected);
+  }
+}
+
+TEST_CASE("Unknown references, cyclic parameters and wrong types are rejected at their line",
+          "[robustness][xosc]") {
+  struct Case {
+    const char* name;
+    const char* from;
+    const char* to;
+    int line;  ///< where the error must point
+    Expect expect = Expect::kRejected;
+  };
+  const Case cases[] = {
+      {"self-referencing parameter", "value=\"27.78\"", "value=\"$EgoSpeed\"", 9},
+      {"division by zero", "value=\"27.78\"", "value=\"${$CutInGap / 0}\"", 9},
+      {"int parameter given text", "parameterType=\"double\" value=\"10\"",
+       "parameterType=\"int\" value=\"ten\"", 11},
+      {"NaN parameter", "value=\"27.78\"", "value=\"nan\"", 9},
+      {"unknown entity", "<EntityRef entityRef=\"Cutter\"/>", "<EntityRef entityRef=\"Nobody\"/>",
+       76},
+      {"unknown catalog entry", "entryName=\"sedan\"", "entryName=\"no_such_car\"", 23},
+      {"unknown catalog", "catalogName=\"VehicleCatalog\"", "catalogName=\"NoSuchCatalog\"", 23},
+      {"missing map", "motorway_2km.xodr", "no_such_map.xodr", 19},
+      {"unknown storyboard element", "storyboardElementRef=\"CutInAction\"",
+       "storyboardElementRef=\"NoSuchAction\"", 126},
+      {"negative transition rate", "value=\"2\" dynamicsDimension=\"rate\"",
+       "value=\"-2\" dynamicsDimension=\"rate\"", 114},
+      {"unknown road", "roadId=\"1\"", "roadId=\"99\"", 36, Expect::kRejectedByRun},
+      {"unknown lane", "laneId=\"-2\"", "laneId=\"-9\"", 36, Expect::kRejectedByRun},
+      {"negative s", "s=\"100\"", "s=\"-5\"", 36, Expect::kRejectedByRun},
+      {"position beyond the road network", "ds=\"-40\"", "ds=\"1e300\"", 55,
+       Expect::kRejectedByRun},
+  };
+  const std::string original = cut_in_text();
+  for (const Case& c : cases) {
+    const Outcome outcome = check_scenario(c.name, edited(original, c.from, c.to), c.expect);
+    INFO(c.name << ": " << outcome.run.err);
+    CHECK(outcome.run.err.find("scenario.xosc:" + std::to_string(c.line) + ": error: ") !=
+          std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace corsa::test
