@@ -158,7 +158,13 @@ void move_entities(SimState& state, const MotionContext& motion) {
         step_acc(state, i, motion);
         break;
       case ControllerKind::kDynamics:
-        step_dynamics(state, i, motion);
+        if (entity.pose_command) {
+          // FollowTrajectoryAction in position mode places the entity on the path (ideal).
+          control_of(state, i).dynamics.reset();
+          ideal.step(entity, motion);
+        } else {
+          step_dynamics(state, i, motion);
+        }
         break;
     }
   }
