@@ -28,6 +28,10 @@ struct DynamicsVehicle {
   Pose pose;                  ///< where the model left the entity (to detect teleports)
   // Override values as applied (rate-limited), throttle/brake 0..1, steering wheel rad.
   double throttle = 0.0, brake = 0.0, steering_wheel = 0.0;
+  // The lane centre under the vehicle at the end of the last step (sync_lane).
+  LaneFollow foot_lane;
+  LanePose foot;
+  bool foot_valid = false;
 };
 
 namespace {
@@ -150,18 +154,26 @@ double steering_demand(const SimState& state, Entity& entity, const VehicleState
 }
 
 // Puts the followed lane position under the vehicle: s advanced by the motion along the lane
-// (two Newton steps on the foot point), lateral offset and heading relative to the lane.
-void sync_lane(const SimState& state, Entity& entity, std::vector<xodr::LaneSpan>& scratch) {
+// (a Newton step on the foot point), lateral offset and heading relative to the lane. The foot
+// of the previous step is reused when the followed lane position has not changed since (it has
+// when an action moved it to another lane).
+void sync_lane(const SimState& state, Entity& entity, DynamicsVehicle& vehicle,
+               std::vector<xodr::LaneSpan>& scratch) {
   const xodr::Map& map = *state.map;
   LaneFollow centre = entity.lane;
   centre.lateral = 0.0;
   centre.heading_offset = 0.0;
   double moved = 0.0;
   bool hit_end = false;
-  LanePose foot = lane_pose(map, centre, scratch);
+  const LaneFollow& last = vehicle.foot_lane;
+  LanePose foot = vehicle.foot_valid && last.node == centre.node && last.road == centre.road &&
+                          last.section == centre.section && last.lane == centre.lane &&
+                          last.dir == centre.dir && last.s == centre.s
+                      ? vehicle.foot
+                      : lane_pose(map, centre, scratch);
   {
-    // One Newton step on the foot point: exact on lines; on a curve of radius R the residual is
-    // of order (step length)^2 / R, far below a millimetre per step.
+    // One Newton step on the foot point: exact on lines; on curves the small residual does not
+    // accumulate, since every step measures from the vehicle's true position.
     const double c = std::cos(foot.pose.h), s = std::sin(foot.pose.h);
     const double along =
         (entity.state.pose.x - foot.pose.x) * c + (entity.state.pose.y - foot.pose.y) * s;
@@ -172,6 +184,9 @@ void sync_lane(const SimState& state, Entity& entity, std::vector<xodr::LaneSpan
       foot = lane_pose(map, centre, scratch);
     }
   }
+  vehicle.foot_lane = centre;
+  vehicle.foot = foot;
+  vehicle.foot_valid = true;
   const double c = std::cos(foot.pose.h), s = std::sin(foot.pose.h);
   const double dx = entity.state.pose.x - foot.pose.x, dy = entity.state.pose.y - foot.pose.y;
   centre.lateral = c * dy - s * dx;
@@ -238,7 +253,7 @@ void step_dynamics(SimState& state, uint32_t index, const MotionContext& motion)
   es.pose.y = after.y;
   es.pose.h = wrap_angle(after.yaw);
   if (entity.lane.on_road && state.map != nullptr) {
-    sync_lane(state, entity, *motion.scratch);
+    sync_lane(state, entity, vehicle, *motion.scratch);
   } else {
     entity.longitudinal_distance += path;
     update_road_from_pose(entity, state.map);
