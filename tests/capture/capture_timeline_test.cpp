@@ -134,22 +134,29 @@ TEST_CASE("Capture windows open and close where the storyboard's actions start",
   CHECK(open == 101);  // SimulationTime >= 1 holds at tick 100; the window opens after it
   REQUIRE(close > open);
   REQUIRE(all > close);
+  // Frames stay on each rate's grid from tick 0: 5 Hz every 20 ticks, 3 Hz at ceil(100 k / 3).
+  const auto three_hz = [](int64_t k) { return (k * 100 + 2) / 3; };
   std::vector<int64_t> camera;
-  for (int64_t t = open; t <= close; t += 20) {  // 5 Hz: every 20 ticks
-    camera.push_back(t);
+  for (int64_t t = 0; t <= close; t += 20) {
+    if (t >= open) {
+      camera.push_back(t);
+    }
   }
-  for (int64_t k = 0; all + (k * 100 + 2) / 3 <= sim.tick(); ++k) {  // 3 Hz from `all`
-    camera.push_back(all + (k * 100 + 2) / 3);
+  std::vector<int64_t> slow;
+  for (int64_t k = 0; three_hz(k) <= sim.tick(); ++k) {
+    if (three_hz(k) >= all) {
+      slow.push_back(three_hz(k));
+    }
   }
+  camera.insert(camera.end(), slow.begin(), slow.end());
+  CHECK(camera.front() == 120);
   CHECK(sink.ticks["camera"] == camera);
 
   std::vector<int64_t> lidar;
   for (int64_t t = 0; t < all; t += 10) {  // the Init window at the rig rate, then 3 Hz
     lidar.push_back(t);
   }
-  for (int64_t k = 0; all + (k * 100 + 2) / 3 <= sim.tick(); ++k) {
-    lidar.push_back(all + (k * 100 + 2) / 3);
-  }
+  lidar.insert(lidar.end(), slow.begin(), slow.end());
   CHECK(sink.ticks["lidar"] == lidar);
   CHECK(sink.entities == 1);
 

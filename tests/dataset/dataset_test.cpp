@@ -88,14 +88,16 @@ TEST_CASE("Capture windows in the dataset follow the scenario's corsa:capture ac
       camera.insert(row.tick);
     }
   }
-  // Opened at 1 s (after tick 100) at 5 Hz, closed at 2 s, reopened at 2.5 s at 3 Hz.
+  // Opened at 1 s (after tick 100) at 5 Hz, on the 5 Hz grid from tick 0 (every 20 ticks);
+  // closed at 2 s; reopened after 2.5 s at 3 Hz, on the 3 Hz grid (ceil(100 k / 3)).
   REQUIRE(!camera.empty());
-  CHECK(*camera.begin() == 101);
-  CHECK(camera.count(121) == 1);
-  CHECK(camera.count(181) == 1);
-  CHECK(camera.count(221) == 0);
-  CHECK(camera.count(251) == 1);
-  CHECK(camera.count(285) == 1);  // 251 + ceil(100 / 3)
+  CHECK(*camera.begin() == 120);
+  CHECK(camera.count(140) == 1);
+  CHECK(camera.count(200) == 1);
+  CHECK(camera.count(220) == 0);
+  CHECK(camera.count(234) == 0);
+  CHECK(camera.count(267) == 1);
+  CHECK(camera.count(300) == 1);
   const std::string run_json = corsa::read_file(dir.path() / "w/run.json");
   CHECK_THAT(run_json, Catch::Contains("{\"sensor\": \"camera\", \"open_tick\": 101"));
   CHECK(corsa::test::check_dataset(dir.path() / "w", 64, 36).empty());

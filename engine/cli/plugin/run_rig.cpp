@@ -132,8 +132,6 @@ void RigSession::adjust(engine::WorldSnapshot& world) {
     engine::apply_override(options.environment, start_time_of_day, world.environment);
   }
   move_npcs(npcs, world);
-  last_tick = world.tick;
-  last_time = world.time;
 }
 
 void RigSession::finish(const std::string& status, const std::string& reason) const {
@@ -179,6 +177,8 @@ int run_rig_body(std::span<const std::string> args) {
   engine::RunReport report;
   try {
     report = engine::run_scenario(options.run, diagnostics, [&](const engine::Simulation& sim) {
+      session.last_tick = sim.tick();  // where the run is, for run.json
+      session.last_time = sim.time();
       if (stop_signal() != 0) {
         throw Interrupted{static_cast<int>(stop_signal())};
       }

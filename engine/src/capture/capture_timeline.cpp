@@ -176,6 +176,15 @@ Fraction capture_period(double rate_hz, double dt) {
   return {static_cast<int64_t>(num), static_cast<int64_t>(den)};
 }
 
+int64_t first_frame_at_or_after(int64_t tick, Fraction period) {
+  if (tick <= 0) {
+    return 0;
+  }
+  // ceil(k num / den) >= tick  <=>  k num / den > tick - 1  <=>  k > (tick - 1) den / num.
+  const Wide before = static_cast<Wide>(tick - 1) * period.den / period.num;
+  return static_cast<int64_t>(before) + 1;
+}
+
 int64_t capture_tick(int64_t start, Fraction period, int64_t k) {
   const Wide product = static_cast<Wide>(k) * period.num;
   const Wide ceil = (product + period.den - 1) / period.den;  // k, num >= 0
@@ -236,10 +245,12 @@ void CaptureTimeline::open(Schedule& schedule, int64_t tick, std::optional<doubl
     close(schedule, tick - 1);
   }
   schedule.open = true;
-  schedule.start = tick;
+  // Frames stay on the rate's grid anchored at tick 0, so sensors of one rate capture at the same
+  // ticks whenever their windows open: the first frame is the first grid tick at or after `tick`.
+  schedule.start = 0;
   schedule.period = period;
-  schedule.next_frame = 0;
-  schedule.next_tick = tick;
+  schedule.next_frame = first_frame_at_or_after(tick, period);
+  schedule.next_tick = capture_tick(0, period, schedule.next_frame);
   schedule.window = windows_.size();
   windows_.push_back({schedule.sensor.name, tick, -1, hz});
 }

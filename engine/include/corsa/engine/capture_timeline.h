@@ -6,6 +6,9 @@
 // written as exact fractions, frame k of a window opened at tick s is due at
 //   tick(k) = s + ceil(k / (f dt))
 // computed in integers. A rate of 3 Hz with dt = 0.01 s gives ticks 0, 34, 67, 100, 134, ...
+// The grid is anchored at tick 0 (s = 0) whenever a window opens: a window opened at tick t
+// captures from the first grid tick at or after t, so sensors of the same rate always capture
+// at the same ticks (synchronised frames), across windows and rate changes.
 //
 // Windows are opened and closed by the scenario with CustomCommandAction type="corsa:capture"
 // (syntax in docs/datasets.md):
@@ -70,6 +73,8 @@ Fraction exact_fraction(double value);
 /// start + ceil(k * period.num / period.den).
 Fraction capture_period(double rate_hz, double dt);
 int64_t capture_tick(int64_t start, Fraction period, int64_t k);
+/// The first frame k whose tick capture_tick(0, period, k) is at or after `tick` (>= 0).
+int64_t first_frame_at_or_after(int64_t tick, Fraction period);
 
 /// One sensor's open window: from its opening tick at one rate.
 struct CaptureWindow {
