@@ -11,7 +11,7 @@
 // at -j2 drops while CPU time per variant stays put, so the CPU figure is also turned into the
 // rate two idle cores would give (2000 / CPU ms per variant).
 //
-//   corsa_bench_sweep [--runs N] [--repeat-small N]
+//   corsa_bench_sweep [--runs N] [--repeat-small N] [--case slow|cut-in]   (default: both cases)
 
 #include <unistd.h>
 
@@ -105,11 +105,18 @@ corsa::sweep::VariantPlan distribution(const fs::path& file) {
 int main(int argc, char** argv) {
   int runs = 3;
   int repeat_small = 50;
+  std::string only;  // one case, for quicker before/after comparisons
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string option = argv[i];
-    const auto value = corsa::parse_int(argv[i + 1]);
-    if (!value || *value < 1) {
-      std::fprintf(stderr, "usage: corsa_bench_sweep [--runs N] [--repeat-small N]\n");
+    const std::string text = argv[i + 1];
+    if (option == "--case" && (text == "slow" || text == "cut-in")) {
+      only = text;
+      continue;
+    }
+    const auto value = corsa::parse_int(text);
+    if (option == "--case" || !value || *value < 1) {
+      std::fprintf(stderr,
+                   "usage: corsa_bench_sweep [--runs N] [--repeat-small N] [--case slow|cut-in]\n");
       return 2;
     }
     (option == "--runs" ? runs : repeat_small) = static_cast<int>(*value);
@@ -117,15 +124,19 @@ int main(int argc, char** argv) {
   const fs::path scratch =
       fs::temp_directory_path() / ("corsa-bench-sweep-" + std::to_string(::getpid()));
   try {
-    const auto slow = distribution(fs::path(CORSA_SHARED_DIR) / "conformance" / "asam-osc-1.3" /
-                                   "SlowPrecedingVehicleDeterministicParameterSet.xosc");
-    std::printf("SlowPrecedingVehicle deterministic set: %zu variants, swept %d times per run\n",
-                slow.size(), repeat_small);
-    report("SlowPrecedingVehicle (ASAM)", slow, runs, repeat_small, scratch);
-    const auto cut_in = distribution(fs::path(CORSA_SOURCE_DIR) / "scenarios" / "suites" /
-                                     "sweeps" / "cut_in_grid.xosc");
-    std::printf("cut-in grid: %zu variants\n", cut_in.size());
-    report("cut-in grid (1,000 variants)", cut_in, runs, 1, scratch);
+    if (only != "cut-in") {
+      const auto slow = distribution(fs::path(CORSA_SHARED_DIR) / "conformance" / "asam-osc-1.3" /
+                                     "SlowPrecedingVehicleDeterministicParameterSet.xosc");
+      std::printf("SlowPrecedingVehicle deterministic set: %zu variants, swept %d times per run\n",
+                  slow.size(), repeat_small);
+      report("SlowPrecedingVehicle (ASAM)", slow, runs, repeat_small, scratch);
+    }
+    if (only != "slow") {
+      const auto cut_in = distribution(fs::path(CORSA_SOURCE_DIR) / "scenarios" / "suites" /
+                                       "sweeps" / "cut_in_grid.xosc");
+      std::printf("cut-in grid: %zu variants\n", cut_in.size());
+      report("cut-in grid (1,000 variants)", cut_in, runs, 1, scratch);
+    }
   } catch (const corsa::InputError& error) {
     std::fprintf(stderr, "%s\n", error.diagnostic().format().c_str());
     fs::remove_all(scratch);
