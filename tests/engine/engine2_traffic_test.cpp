@@ -149,6 +149,8 @@ TEST_CASE("A traffic swarm keeps its vehicles in the ring around the central ent
       if (swarming) {
         // Inside the ellipse (semi-major 120 m along the road): leavers are removed at once.
         CHECK(std::abs(s.pose.x - ego.pose.x) <= 120.0);
+        // DirectionOfTravelDistribution same="1" opposite="0": all drive Ego's way.
+        CHECK(std::cos(s.pose.h - ego.pose.h) > 0.9);
       }
     }
     CHECK(present <= 8);

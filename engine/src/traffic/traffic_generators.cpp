@@ -231,7 +231,7 @@ class Swarm final : public GeneratorBase {
         continue;
       }
       const double dx = at->pose.x - centre.pose.x, dy = at->pose.y - centre.pose.y;
-      if (std::hypot(dx, dy) < action_.inner_radius) {
+      if (std::hypot(dx, dy) < action_.inner_radius || !direction_wanted(at->pose.h, centre)) {
         continue;
       }
       spawn(state, *at, draw_speed(centre), draw_category(action_.traffic_definition, random_));
@@ -239,6 +239,22 @@ class Swarm final : public GeneratorBase {
   }
 
  private:
+  // DirectionOfTravelDistribution: the spot's direction of travel (same as the central
+  // entity's heading, or opposite) is kept with the probability its weight gives.
+  bool direction_wanted(double heading, const EntityState& centre) {
+    if (!action_.direction_same || !action_.direction_opposite) {
+      return true;
+    }
+    const double same = std::max(0.0, *action_.direction_same);
+    const double opposite = std::max(0.0, *action_.direction_opposite);
+    if (!(same + opposite > 0.0)) {
+      return true;
+    }
+    const bool is_same = std::cos(heading - centre.pose.h) >= 0.0;
+    const double p = (is_same ? same : opposite) / std::max(same, opposite);
+    return random_.uniform01() < p;
+  }
+
   double draw_speed(const EntityState& centre) {
     if (action_.initial_speed_range) {
       return random_.uniform(action_.initial_speed_range->lower_limit,
