@@ -276,13 +276,14 @@ TEST_CASE("scenarios/intersection_sync.xosc: both vehicles enter the junction in
   CHECK(run.now("Npc").speed == Approx(8.0));
 }
 
-TEST_CASE("ASAM examples with routes and synchronization run to completion with plausible motion",
+TEST_CASE("ASAM examples with routes, trajectories and synchronization reach their stop trigger",
           "[engine][asam]") {
-  for (const char* name : {"SynchronizedArrivalToIntersection.xosc", "CloseVehicleCrossing.xosc"}) {
+  for (const char* name : {"SynchronizedArrivalToIntersection.xosc", "CloseVehicleCrossing.xosc",
+                           "TrailerConnect.xosc"}) {
     FixtureRun run(asam(name), with_duration(120.0));
     run.run();
     INFO(name);
-    CHECK(run.sim().end_reason() != engine::EndReason::kRunning);
+    CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
     for (const auto& [tick, states] : run.trace().ticks()) {
       for (const auto& state : states) {
         CHECK(std::isfinite(state.pose.x));
@@ -290,6 +291,22 @@ TEST_CASE("ASAM examples with routes and synchronization run to completion with 
       }
     }
   }
+}
+
+TEST_CASE("ASAM TrailerConnect: the car reverses along the quarter circle facing forward",
+          "[engine][asam][trajectory]") {
+  FixtureRun run(asam("TrailerConnect.xosc"), with_duration(120.0));
+  run.run();
+  const auto start = run.first("ReverseTrajectoryAction", TransitionKind::kStart);
+  const auto end = run.first("ReverseTrajectoryAction", TransitionKind::kEnd);
+  REQUIRE(start);
+  REQUIRE(end);
+  // A quarter circle of radius 12 m (18.85 m) at 4 m/s backwards: 4.71 s; the car turns by
+  // pi / 2 while it backs up, its heading against its path.
+  CHECK(*end - *start == Approx(4.71).margin(0.02));
+  CHECK(run.at(*start + 1.0, "Car").speed == Approx(-4.0));
+  const double turned = run.at(*end, "Car").pose.h - run.at(*start, "Car").pose.h;
+  CHECK(std::abs(std::remainder(turned, 2.0 * 3.141592653589793)) == Approx(1.5708).margin(0.01));
 }
 
 }  // namespace

@@ -11,10 +11,12 @@
 // time of that point). Following mode `position`: the actor is exactly on the path. `follow`: it
 // steers toward a point kLookahead seconds (at least kMinLookahead m) ahead on the path and
 // drives its own heading, as a driver would: it cuts corners a little and lags the path.
-// The action ends at the path's end; the actor's lane following takes over from there.
+// A negative speed drives the path in reverse gear (the vehicle faces against the path). The
+// action ends at the path's end; the actor's lane following takes over from there.
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "actions/action_makers.h"
 #include "core/sim_state.h"
@@ -70,15 +72,22 @@ class FollowTrajectoryInstance final : public ActionInstance {
       ended_ = trajectory_time >= path_.last_time() && s_next >= path_.last_timed_s() - 1e-9;
       entity.speed_command = (s_next - s_) / dt;
     } else {
-      s_next = s_ + 0.5 * (entity.state.speed + entity.speed_command) * dt;
+      // Reversing (a negative speed) also runs along the path: the path gives the direction
+      // of travel, the vehicle then faces against it.
+      s_next = s_ + std::abs(0.5 * (entity.state.speed + entity.speed_command) * dt);
     }
+    const double facing = entity.speed_command < 0.0 ? std::numbers::pi : 0.0;
     s_next = std::min(s_next, path_.length());
     ended_ = ended_ || s_next >= path_.length() - 1e-9;
     if (action_.following_mode == xosc::FollowingMode::kFollow) {
-      entity.pose_command = pursue(entity.state.pose, s_next - s_, s_, dt);
+      Pose along = entity.state.pose;
+      along.h = wrap_angle(along.h + facing);  // steer the direction of travel
+      Pose pose = pursue(along, s_next - s_, s_, dt);
+      pose.h = wrap_angle(pose.h + facing);
+      entity.pose_command = pose;
     } else {
       const PathPoint p = path_.at(s_next);
-      entity.pose_command = Pose{p.x, p.y, p.z, p.h, 0.0, 0.0};
+      entity.pose_command = Pose{p.x, p.y, p.z, wrap_angle(p.h + facing), 0.0, 0.0};
     }
     s_ = s_next;
   }
