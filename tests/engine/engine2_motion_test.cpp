@@ -110,6 +110,20 @@ TEST_CASE("SynchronizeAction brings the follower to its point when the master re
   }
 }
 
+TEST_CASE("SynchronizeAction with a relative final speed held for a steady-state time",
+          "[engine][synchronize]") {
+  FixtureRun run(engine_fixture("action_synchronize.xosc"));
+  run.run();
+  const auto master = passing_time(run, "Master", "1", 5.0, -1);
+  const auto follower = passing_time(run, "Follower2", "2", 5.0, -1);
+  REQUIRE(master);
+  REQUIRE(follower);
+  CHECK(std::abs(*master - *follower) <= run.sim().dt());
+  // Half the master's speed (factor 0.5 of 10 m/s), held for the last 2 s.
+  CHECK(run.at(*follower, "Follower2").speed == Approx(5.0).margin(0.05));
+  CHECK(run.at(*follower - 1.5, "Follower2").speed == Approx(5.0).margin(0.05));
+}
+
 TEST_CASE("ASAM SynchronizedArrivalToIntersection: the two arrive within 0.05 s",
           "[engine][asam][synchronize]") {
   FixtureRun run(asam("SynchronizedArrivalToIntersection.xosc"), with_duration(60.0));
@@ -196,6 +210,21 @@ TEST_CASE("LongitudinalDistanceAction closes to 20 m behind within its decelerat
     CHECK(states[run.entity("Chaser")].acceleration >= -4.0 - 1e-9);
     CHECK(states[run.entity("Chaser")].acceleration <= 2.0 + 1e-9);
     CHECK(states[run.entity("Lead")].pose.x > states[run.entity("Chaser")].pose.x + 4.5);
+  }
+}
+
+TEST_CASE("A continuous LongitudinalDistanceAction keeps a 1.5 s free-space time gap ahead",
+          "[engine][distance]") {
+  FixtureRun run(engine_fixture("action_distance_profile.xosc"));
+  run.run();
+  // Gap (lane 1, driving +s) leads Lead by 1.5 s x its speed between the boxes (4.5 m long):
+  // settled at Lead's 10 m/s, 15 m + 4.5 m between reference points. Continuous: never ends.
+  CHECK(run.now("Gap").speed == Approx(10.0).margin(0.05));
+  CHECK(run.now("Gap").pose.x - run.now("Lead").pose.x == Approx(19.5).margin(0.3));
+  CHECK_FALSE(run.first("S4::Act4::G::M::E::A", TransitionKind::kEnd));
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    CHECK(states[run.entity("Gap")].speed >= 0.0);
+    CHECK(states[run.entity("Gap")].pose.x > states[run.entity("Lead")].pose.x + 4.5);
   }
 }
 

@@ -1,5 +1,5 @@
 // LongitudinalDistanceAction (OpenSCENARIO 1.3 §7.4.1.2): the actor keeps a distance (m) or a
-// time gap (s, times its own speed) to a reference entity along the reference's direction of
+// time gap (s, times the follower's speed) to a reference entity along the reference's direction of
 // travel, trailing or leading it (displacement; `any` keeps the side it is on when the action
 // starts). The gap is measured between reference points or, with freespace, bounding boxes.
 //
@@ -55,7 +55,10 @@ class LongitudinalDistanceInstance final : public ActionInstance {
     const Entity& reference = context.state.world.entities[reference_];
     const double v = entity.state.speed;
     const double v_ref = reference.state.speed;
-    const double wanted = action_.distance ? *action_.distance : *action_.time_gap * v;
+    // A time gap is the follower's: the actor's speed when it trails, the reference's when it
+    // leads.
+    const double wanted =
+        action_.distance ? *action_.distance : *action_.time_gap * (side_ > 0 ? v : v_ref);
     // The gap on the wanted side (negative when the actor is on the other side).
     const double gap = -side_ * signed_offset(context);
     const double error = gap - wanted;
