@@ -170,6 +170,12 @@ TEST_CASE("FollowTrajectoryAction drives polylines, clothoids and NURBS by their
   // NURBS: a straight line along y = -12.25, the middle control point (x = 50) at 4 s, offset 1 s.
   CHECK(run.at(*start + 5.0, "Nurbs").pose.x == Approx(50.0).margin(0.05));
   CHECK(run.at(*start + 5.0, "Nurbs").pose.y == Approx(-12.25).margin(1e-6));
+  // Absolute timing with offset 3 s: trajectory time t - 3, so x = 500 until 3 s, then 10 m/s
+  // (50 m in 5 s): x = 525 at 5.5 s, the end at 8 s.
+  CHECK(run.at(2.5, "Absolute").pose.x == Approx(500.0));
+  CHECK(run.at(5.5, "Absolute").pose.x == Approx(525.0).margin(1e-6));
+  CHECK(run.at(5.5, "Absolute").speed == Approx(10.0).margin(1e-6));
+  CHECK(run.first("S6::Act6::G::M::E::A", TransitionKind::kEnd) == Approx(8.0).margin(0.011));
   // initialDistanceOffset 20: the path begins at x = 300, the entity at x = 320.
   CHECK(run.at(*start + 0.01, "Offset").pose.x == Approx(320.1).margin(0.02));
 }
