@@ -89,6 +89,11 @@ TEST_CASE("A rate that does not divide the step is scheduled without drift", "[c
   const Fraction seven = corsa::engine::capture_period(7.0, 0.02);
   CHECK(corsa::engine::capture_tick(5, seven, 7) == 55);
   CHECK(corsa::engine::capture_tick(5, seven, 1) == 5 + 8);
+  // A window opened mid-grid starts at the next grid tick: 3 Hz opened at tick 35 -> 67.
+  CHECK(corsa::engine::first_frame_at_or_after(0, period) == 0);
+  CHECK(corsa::engine::first_frame_at_or_after(34, period) == 1);
+  CHECK(corsa::engine::first_frame_at_or_after(35, period) == 2);
+  CHECK(corsa::engine::capture_tick(0, period, 2) == 67);
 }
 
 TEST_CASE("Without corsa:capture actions every sensor is captured at its rate for the whole run",
