@@ -21,6 +21,22 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Variants one process runs: each keeps a summary row in memory and a folder on disk. More than
+// this is a mistyped distribution (three 10-million-value ranges multiply to 1e21), not a sweep
+// that could finish; it used to end in "out of memory" after sweep.json had been written.
+constexpr size_t kMaxVariantsPerProcess = 10'000'000;
+
+void check_variant_count(const VariantPlan& plan, size_t share) {
+  if (share <= kMaxVariantsPerProcess) return;
+  Diagnostic where = plan.distribution() ? plan.distribution()->source.error("")
+                                         : make_error(plan.source().string(), 0, "");
+  where.message = "the sweep has " + std::to_string(share) +
+                  " variants for this process, more than the " +
+                  std::to_string(kMaxVariantsPerProcess) +
+                  " one process runs (use fewer values, or --shard K/N over more processes)";
+  throw InputError(where);
+}
+
 std::string hex(uint64_t value) {
   char text[17];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
@@ -166,6 +182,7 @@ SweepReport run_sweep(const VariantPlan& plan, const SweepOptions& options,
   const auto start = std::chrono::steady_clock::now();
   SharedInputs inputs(plan.scenario(), diagnostics);
   plan.check(inputs.load({}, diagnostics));
+  check_variant_count(plan, options.shard.share(plan.size()));
   const std::string description = sweep_description(plan, options);
   const std::string shard_text = shard_json(options.shard, plan.size());
   prepare_output(options, description, shard_text);
