@@ -334,6 +334,16 @@ class Sink final : public GeneratorBase {
   double budget_ = 0.0;
 };
 
+void warn_distribution(const std::optional<xosc::TrafficDistribution>& distribution,
+                       SimState& state) {
+  if (distribution) {
+    state.diagnostics.add_once(
+        "traffic-distribution",
+        distribution->source.warning("TrafficDistribution is not used: the generated vehicles "
+                                     "are cars (or as a TrafficDefinition's categories say)"));
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<TrafficGenerator> make_swarm(const xosc::TrafficSwarmAction& action,
@@ -342,11 +352,13 @@ std::unique_ptr<TrafficGenerator> make_swarm(const xosc::TrafficSwarmAction& act
   if (!central) {
     throw InputError(action.source.error("unknown central entity '" + action.central_object + "'"));
   }
+  warn_distribution(action.traffic_distribution, state);
   return std::make_unique<Swarm>(action, state, *central);
 }
 
 std::unique_ptr<TrafficGenerator> make_source(const xosc::TrafficSourceAction& action,
                                               SimState& state) {
+  warn_distribution(action.traffic_distribution, state);
   return std::make_unique<Source>(action, state,
                                   resolve_position(action.position, state, std::nullopt));
 }
