@@ -115,6 +115,14 @@ void check_road_length(const Checker& check, const Road& road) {
                               " m is beyond the " + corsa::format_double(kMaxRoadLength) +
                               " m a road may have");
   }
+  // A planView record is evaluated at its end (joint checks below) whatever the road's length.
+  for (const Geometry& g : road.plan_view) {
+    if (!(g.length <= kMaxRoadLength)) {
+      check.fail(g.line, "road '" + road.id + "': geometry length " +
+                             corsa::format_double(g.length) + " m is beyond the " +
+                             corsa::format_double(kMaxRoadLength) + " m a road may have");
+    }
+  }
 }
 
 void check_lane_sections(const Checker& check, const Road& road) {
