@@ -85,13 +85,15 @@ struct Case {
 };
 
 // Road-like spirals, long ones, sharp ones, sign changes, nearly-arcs and loops that turn many
-// times (the latter take the closed-form branch).
+// times (the latter take the closed-form branch), and tight clothoids turning hundreds of radians
+// (closed form with large Fresnel arguments; they once made a map load take seconds).
 const Case kCases[] = {
     {0.0, 0.02, 50.0},    {0.02, 0.0, 50.0},     {0.0, -0.004, 250.0},  {-0.01, 0.03, 80.0},
     {0.02, -0.02, 60.0},  {0.0, 1.0 / 30, 90.0}, {0.0, 0.001, 2000.0},  {0.0005, 0.0006, 1500.0},
     {0.1, 0.1000001, 30}, {0.3, 0.5, 100.0},     {-0.8, 0.8, 12.0},     {0.0, 2.0, 3.0},
     {1.5, -0.5, 8.0},     {0.0, 0.2, 400.0},     {-0.05, -0.25, 200.0}, {5.0, 6.0, 20.0},
     {1e-7, 2e-7, 5000.0}, {0.0, 1e-9, 10000.0},  {0.12, 0.1, 1000.0},   {0.0, 0.05, 700.0},
+    {10.0, 0.0, 53.0},    {-8.0, 2.0, 40.0},
 };
 
 }  // namespace

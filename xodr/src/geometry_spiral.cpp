@@ -16,6 +16,7 @@
 // difference loses digits, so such spirals are integrated by Gauss-Legendre quadrature instead, in
 // pieces short enough (≤ 0.5 rad of heading each) that the quadrature is exact to rounding.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -26,7 +27,12 @@
 namespace corsa::xodr {
 namespace {
 
-constexpr double kMaxFresnelArgument = 8.0;
+constexpr double kEpsilon = 2.220446049250313e-16;
+// Largest rounding error (m) accepted from the Fresnel closed form before quadrature is used.
+constexpr double kClosedFormTolerance = 1e-10;
+// Quadrature pieces are capped: a record turning more than this is not a road (and the piece
+// count must fit an int). The result stays finite, if coarse.
+constexpr double kMaxQuadraturePieces = 1e6;
 
 // Work budget of one series piece (see series_pieces): a piece then has |a|h + |b|h² ≤ 2, its
 // terms stay below 2^m/m! (no digit lost to cancellation) and at most ~25 of them are needed.
@@ -53,7 +59,7 @@ constexpr std::array<double, 5> kWeights = {0.2955242247147529, 0.26926671930999
 
 RefPoint spiral_by_quadrature(double k0, double c, double ds) {
   const double turn = std::abs(k0 * ds) + 0.5 * std::abs(c) * ds * ds;
-  const int pieces = 1 + static_cast<int>(turn / 0.5);
+  const int pieces = 1 + static_cast<int>(std::min(turn / 0.5, kMaxQuadraturePieces));
   const double step = ds / pieces;
   double x = 0.0;
   double y = 0.0;
@@ -78,7 +84,14 @@ RefPoint spiral_by_fresnel(double k0, double c, double ds) {
   const double u0 = k0 / c;
   const double w0 = u0 * scale;
   const double w1 = (u0 + ds) * scale;
-  if (std::abs(w0) > kMaxFresnelArgument || std::abs(w1) > kMaxFresnelArgument) {
+  // Rounding error of the closed form, in metres: the Fresnel values carry about eps·(1 + w)
+  // (the phase πw²/2 of their asymptotic form), magnified by 1/scale, and the common phase
+  // k0²/(2c) = πw0²/2 carries eps·w0², turning a chord of up to ds. Quadrature instead costs in
+  // proportion to the heading change, so the closed form is kept wherever it is accurate: a
+  // tight spiral turning hundreds of radians then costs the same as a gentle one.
+  const double w_max = std::max(std::abs(w0), std::abs(w1));
+  const double rounding = kEpsilon * ((1.0 + w_max) / scale + w_max * w_max * ds);
+  if (rounding > kClosedFormTolerance) {
     return spiral_by_quadrature(k0, c, ds);
   }
   const Fresnel f0 = fresnel(w0);

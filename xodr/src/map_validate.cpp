@@ -109,6 +109,27 @@ void sort_road_records(const Checker& check, Road& road) {
 /// is a typo or a fuzzed file, and would otherwise run for minutes or exhaust memory.
 constexpr double kMaxRoadLength = 1e6;
 
+/// Largest heading change of one arc or spiral record (rad). The standard sets no bound, but
+/// evaluating a clothoid costs time in proportion to how much it turns (and everything sampled
+/// along it is linear in that): curvatures like 1e20 1/m are fuzzed or corrupt files.
+constexpr double kMaxRecordTurn = 2000.0;
+
+/// ∫|curvature| ds over the record: exact for arcs and for spirals that keep their sign, an upper
+/// bound otherwise. NaN for non-finite curvatures, so the check rejects them too.
+double record_turn(const Geometry& g) {
+  if (const auto* arc = std::get_if<ArcGeometry>(&g.shape)) {
+    return std::abs(arc->curvature) * g.length;
+  }
+  if (const auto* spiral = std::get_if<SpiralGeometry>(&g.shape)) {
+    return 0.5 * (std::abs(spiral->curv_start) + std::abs(spiral->curv_end)) * g.length;
+  }
+  return 0.0;
+}
+
+const char* geometry_kind_name(const Geometry& g) {
+  return std::holds_alternative<ArcGeometry>(g.shape) ? "arc" : "spiral";
+}
+
 void check_road_length(const Checker& check, const Road& road) {
   if (!(road.length <= kMaxRoadLength)) {
     check.fail(road.line, "road '" + road.id + "': length " + corsa::format_double(road.length) +
@@ -121,6 +142,13 @@ void check_road_length(const Checker& check, const Road& road) {
       check.fail(g.line, "road '" + road.id + "': geometry length " +
                              corsa::format_double(g.length) + " m is beyond the " +
                              corsa::format_double(kMaxRoadLength) + " m a road may have");
+    }
+    const double turn = record_turn(g);
+    if (!(turn <= kMaxRecordTurn)) {
+      check.fail(g.line, "road '" + road.id + "': the " + std::string(geometry_kind_name(g)) +
+                             " record turns " + corsa::format_double(turn) + " rad, beyond the " +
+                             corsa::format_double(kMaxRecordTurn) +
+                             " rad (about 300 full turns) a road may turn in one record");
     }
   }
 }
