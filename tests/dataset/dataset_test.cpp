@@ -141,6 +141,11 @@ TEST_CASE("Bad data-collection input is reported with exit code 2", "[dataset][e
   CHECK(weather.exit_code == 2);
   CHECK_THAT(weather.err, Catch::Contains("unknown key 'hail'"));
 
+  // The engine options are the same as without a rig (engine/cli/run_options.h), checked alike.
+  const auto controller = run_small(dir.path() / "c", {"--controller", "autopilot"});
+  CHECK(controller.exit_code == 2);
+  CHECK_THAT(controller.err, Catch::Contains("--controller expects default, acc or dynamics"));
+
   const auto unknown_sensor = run_corsa({"run", "tests/capture/fixtures/capture_windows.xosc",
                                          "--rig", kSmallRig, "-o", (dir.path() / "y").string()});
   CHECK(unknown_sensor.exit_code == 2);

@@ -1,0 +1,77 @@
+// Options of `corsa run` shared with the plugin's `run --rig` (run_options.h).
+
+#include "run_options.h"
+
+#include <cmath>
+
+namespace corsa::cli {
+
+void declare_run_options(ArgParser& parser) {
+  parser.positional("SCENARIO.xosc", "the scenario to run");
+  parser.repeated("--param", "NAME=VALUE", "override a global scenario parameter");
+  parser.option("--dt", "SECONDS", "fixed step (default 0.01)");
+  parser.option("--duration", "SECONDS",
+                "stop at this simulated time at the latest (default 3600)");
+  parser.option("--seed", "N", "run seed for random draws (default 0)");
+  parser.option("--controller", "NAME",
+                "controller of every vehicle the scenario gives none: default, acc, dynamics");
+  parser.option("--record", "FILE.csv", "write the trajectories (time,entity,x,y,z,h,p,r,...)");
+  parser.option("--record-every", "N", "record every N-th step (default 1)");
+  parser.option("--summary", "FILE.json", "write the run summary");
+  parser.option("--log", "FILE.csv", "write every storyboard transition with its time");
+  parser.flag("--quiet", "no progress bar and no summary line");
+}
+
+engine::RunOptions read_run_options(const ParsedArgs& parsed) {
+  engine::RunOptions options;
+  options.scenario = parsed.positionals().front();
+  for (const auto& assignment : parsed.values("--param")) {
+    const size_t eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw UsageError("--param expects NAME=VALUE, got '" + assignment + "'");
+    }
+    options.parameters.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
+  }
+  if (const auto dt = parsed.number("--dt")) {
+    if (!(*dt > 0.0) || *dt > 10.0) {
+      throw UsageError("--dt expects a step in seconds, 0 < dt <= 10");
+    }
+    options.simulation.dt = *dt;
+  }
+  if (const auto duration = parsed.number("--duration")) {
+    if (!(*duration >= 0.0) || !std::isfinite(*duration)) {
+      throw UsageError("--duration expects a number of seconds >= 0");
+    }
+    options.simulation.duration = *duration;
+  }
+  if (const auto seed = parsed.integer("--seed")) {
+    if (*seed < 0) {
+      throw UsageError("--seed expects a non-negative integer");
+    }
+    options.simulation.seed = static_cast<uint64_t>(*seed);
+  }
+  if (auto controller = parsed.value("--controller")) {
+    if (*controller != "default" && *controller != "acc" && *controller != "dynamics") {
+      throw UsageError("--controller expects default, acc or dynamics");
+    }
+    options.simulation.controller = *controller;
+  }
+  if (const auto every = parsed.integer("--record-every")) {
+    if (*every < 1) {
+      throw UsageError("--record-every expects a positive integer");
+    }
+    options.record_every = *every;
+  }
+  if (auto record = parsed.value("--record")) {
+    options.record = *record;
+  }
+  if (auto summary = parsed.value("--summary")) {
+    options.summary = *summary;
+  }
+  if (auto log = parsed.value("--log")) {
+    options.log = *log;
+  }
+  return options;
+}
+
+}  // namespace corsa::cli
