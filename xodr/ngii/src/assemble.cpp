@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <map>
-#include <numeric>
 #include <set>
+
+#include "union_find.h"
 
 namespace corsa::ngii::detail {
 namespace {
@@ -151,8 +152,7 @@ class Assembler {
   }
 
   void link_ordinary_roads() {
-    direct_slots_.resize(plan_.roads.size() * 2);
-    std::iota(direct_slots_.begin(), direct_slots_.end(), 0);
+    direct_slots_ = UnionFind(plan_.roads.size() * 2);
     for (size_t r = 0; r < plan_.roads.size(); ++r) {
       if (plan_.roads[r].removed || connecting(static_cast<int>(r))) {
         continue;
@@ -180,7 +180,8 @@ class Assembler {
         }
         // A split or a merge of ordinary lanes: a direct junction (slots 2r = start, 2r+1 = end).
         for (const int o : next) {
-          unite(2 * r + (at_end ? 1 : 0), 2 * static_cast<size_t>(o) + (at_end ? 0 : 1));
+          direct_slots_.unite(2 * r + (at_end ? 1 : 0),
+                              2 * static_cast<size_t>(o) + (at_end ? 0 : 1));
         }
       }
     }
@@ -274,7 +275,7 @@ class Assembler {
     // Components of joined road-end slots with more than one member.
     std::map<size_t, std::vector<size_t>> components;
     for (size_t slot = 0; slot < direct_slots_.size(); ++slot) {
-      components[find(slot)].push_back(slot);
+      components[direct_slots_.find(slot)].push_back(slot);
     }
     for (auto& [root, slots] : components) {
       if (slots.size() < 2) {
@@ -311,20 +312,6 @@ class Assembler {
     }
   }
 
-  size_t find(size_t x) {
-    while (direct_slots_[x] != x) {
-      x = direct_slots_[x] = direct_slots_[direct_slots_[x]];
-    }
-    return x;
-  }
-  void unite(size_t a, size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) {
-      direct_slots_[std::max(a, b)] = std::min(a, b);
-    }
-  }
-
   const NetworkPlan& plan_;
   const Network& network_;
   const Origin& origin_;
@@ -337,7 +324,7 @@ class Assembler {
   int next_id_ = 1;
   std::vector<std::set<int>> successors_;
   std::vector<std::set<int>> predecessors_;
-  std::vector<size_t> direct_slots_;
+  UnionFind direct_slots_;  ///< road ends (2 r + at_end) joined at shared nodes
 };
 
 }  // namespace

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <functional>
-#include <numeric>
 #include <set>
 #include <string>
 
 #include "polyline.h"
+#include "union_find.h"
 
 namespace corsa::ngii::detail {
 namespace {
@@ -18,27 +18,6 @@ constexpr size_t kMaxPaths = 100000;
 /// one has its first (or last) kCutLength metres cut off into the junction.
 constexpr double kWholeLength = 25.0;
 constexpr double kCutLength = 10.0;
-
-class UnionFind {
- public:
-  explicit UnionFind(size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  size_t find(size_t x) {
-    while (parent_[x] != x) {
-      x = parent_[x] = parent_[parent_[x]];
-    }
-    return x;
-  }
-  void unite(size_t a, size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) {
-      parent_[std::max(a, b)] = std::min(a, b);  // smallest index as root: deterministic
-    }
-  }
-
- private:
-  std::vector<size_t> parent_;
-};
 
 PlanLane lane_of_link(const Network& network, int link) {
   const LinkState& state = network.links[static_cast<size_t>(link)];
