@@ -18,9 +18,13 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
+
 extern char** environ;
 
 namespace {
+
+using corsa::bench::median;
 
 struct Timing {
   double wall = 0.0;  ///< s
@@ -53,11 +57,6 @@ Timing run_once(const std::string& scenario) {
     std::exit(1);
   }
   return timing;
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
 }
 
 }  // namespace

@@ -16,24 +16,16 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
 #include "corsa/ngii/convert.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/writer.h"
 
 namespace {
 
+using corsa::bench::median;
+
 using Clock = std::chrono::steady_clock;
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
-
-double cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
-}
 
 /// Median CPU time (ms) of `runs` calls; the median wall time goes to `wall` when given. The
 /// conversion is single-threaded, so CPU time is what it costs; wall time on the shared machine
@@ -44,9 +36,9 @@ double median_ms(int runs, F&& body, double* wall = nullptr) {
   std::vector<double> walls;
   for (int i = 0; i < runs; ++i) {
     const auto start = Clock::now();
-    const double cpu_start = cpu_ms();
+    const double cpu_start = corsa::bench::process_cpu_ms();
     body();
-    cpu.push_back(cpu_ms() - cpu_start);
+    cpu.push_back(corsa::bench::process_cpu_ms() - cpu_start);
     walls.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
   }
   if (wall != nullptr) {

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
 #include "corsa/core/diagnostic.h"
 #include "corsa/core/strings.h"
 #include "corsa/sweep/sweep.h"
@@ -31,18 +32,11 @@
 
 namespace {
 
+using corsa::bench::median;
+
 namespace fs = std::filesystem;
 
-double cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + t.tv_nsec * 1e-9;
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
+double cpu_seconds() { return 1e-3 * corsa::bench::process_cpu_ms(); }
 
 struct Figures {
   double variants_per_second = 0.0;

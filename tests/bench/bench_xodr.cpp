@@ -15,12 +15,15 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/random.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/parser.h"
 
 namespace {
+
+using corsa::bench::median;
 
 using corsa::xodr::Map;
 
@@ -32,14 +35,7 @@ double now_ms() {
                std::chrono::steady_clock::now().time_since_epoch())
         .count();
   }
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
+  return corsa::bench::process_cpu_ms();
 }
 
 template <typename F>

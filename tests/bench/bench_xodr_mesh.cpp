@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/map_render.h"
 #include "corsa/xodr/mesh_io.h"
@@ -20,12 +21,9 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using corsa::bench::median;
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
+using Clock = std::chrono::steady_clock;
 
 template <typename F>
 double median_ms(int runs, F&& body) {
