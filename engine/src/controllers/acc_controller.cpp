@@ -1,14 +1,21 @@
 // The `acc` controller: adaptive cruise control on top of the default controller. The set speed
-// is what the actions command; when a vehicle drives ahead in the same lane the speed is held
-// below that so as to keep a time gap (constant time-gap policy, e.g. Rajamani, Vehicle Dynamics
-// and Control, §5.3), within the vehicle's Performance limits.
+// is what the actions command; when a vehicle drives ahead on the lane path the follower will
+// take, the speed is held below that so as to keep a time gap (constant time-gap policy, e.g.
+// Rajamani, Vehicle Dynamics and Control, §5.3), within the vehicle's Performance limits.
+//
+// "Ahead" is along the lanes the default controller will drive next (OpenDRIVE 1.8 §9.4 lane
+// linkage, §10 junction connections), chosen at each lane end as the controller will choose
+// (the entity's route, else the straightest successor), up to the sensor range: a vehicle just
+// across a road link or inside the junction's connecting lane is a leader too.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include "controllers/controllers.h"
 #include "core/sim_state.h"
+#include "motion/lane_follow.h"
 
 namespace corsa::engine::detail {
 namespace {
@@ -19,20 +26,94 @@ constexpr double kRange = 200.0;       // m, sensor range
 constexpr double kGapGain = 0.25;      // 1/s^2
 constexpr double kSpeedGain = 0.8;     // 1/s
 constexpr double kDefaultLimit = 6.0;  // m/s^2 when the Performance gives none
+constexpr size_t kMaxPieces = 16;      // lane pieces looked along (zero-length lanes included)
 
 struct Leader {
   double gap = std::numeric_limits<double>::infinity();  ///< m, bumper to bumper
   double speed = 0.0;
 };
 
-// The nearest present, traffic-visible entity ahead in the same lane of the same road.
+// One lane (of one lane section) on the path ahead: road coordinates of where the path enters
+// it, the direction it is driven in, and the path distance (m, along s) at the entry.
+struct PathPiece {
+  uint32_t road = 0;
+  uint32_t section = 0;
+  int lane = 0;
+  double s_entry = 0.0;
+  int dir = 1;
+  double distance = 0.0;
+};
+
+struct LanePath {
+  std::array<PathPiece, kMaxPieces> pieces{};
+  size_t count = 0;
+};
+
+// The lanes the entity will follow from where it is, up to kRange metres ahead.
+LanePath path_ahead(const xodr::Map& map, const Entity& me) {
+  LanePath path;
+  LaneFollow follow = me.lane;
+  const auto& graph = map.lane_graph();
+  double distance = 0.0;
+  while (path.count < kMaxPieces) {
+    path.pieces[path.count++] =
+        PathPiece{follow.road, follow.section, follow.lane, follow.s, follow.dir, distance};
+    const auto& info = graph.info(follow.node);
+    const double boundary = follow.dir > 0 ? info.s_end : info.s_start;
+    distance += std::abs(boundary - follow.s);
+    if (distance >= kRange) {
+      break;
+    }
+    const auto ends = graph.ends(follow.node, follow.dir < 0);
+    if (ends.empty()) {
+      break;
+    }
+    follow.s = boundary;
+    const size_t pick = me.chooser != nullptr ? me.chooser->choose(map, follow, ends)
+                                              : choose_straightest(map, follow, ends);
+    const xodr::LaneEnd next = ends[pick];
+    const auto& next_info = graph.info(next.node);
+    follow.node = next.node;
+    follow.road = next_info.lane.road;
+    follow.section = next_info.lane.section;
+    follow.lane = next_info.lane.lane;
+    follow.dir = next.at_start ? 1 : -1;
+    follow.s = next.at_start ? next_info.s_start : next_info.s_end;
+  }
+  return path;
+}
+
+// Path distance (m) of road coordinates `theirs` ahead of the follower, or nothing when they
+// are not on the path. `containing` also matches the lane the follower is in now (during a
+// lane change the followed lane is already the target lane; the old one still counts).
+std::optional<double> distance_on_path(const LanePath& path, const RoadCoordinates& theirs,
+                                       int containing) {
+  for (size_t i = 0; i < path.count; ++i) {
+    const PathPiece& piece = path.pieces[i];
+    if (theirs.road != piece.road || theirs.section != piece.section) {
+      continue;
+    }
+    if (theirs.lane != piece.lane && !(i == 0 && theirs.lane == containing)) {
+      continue;
+    }
+    const double ahead = piece.distance + (theirs.s - piece.s_entry) * piece.dir;
+    // On the first piece only what is in front; later pieces hold only what is ahead.
+    if (ahead > 0.0 || (i > 0 && ahead >= 0.0)) {
+      return ahead;
+    }
+  }
+  return std::nullopt;
+}
+
+// The nearest present, traffic-visible entity ahead on the lane path.
 Leader find_leader(const SimState& state, uint32_t self) {
   const Entity& me = state.world.entities[self];
   Leader leader;
-  if (!me.state.road || !me.lane.on_road) {
+  if (!me.state.road || !me.lane.on_road || state.map == nullptr) {
     return leader;
   }
-  const RoadCoordinates& mine = *me.state.road;
+  const LanePath path = path_ahead(*state.map, me);
+  const int containing = me.state.road->lane;
   const double my_front = me.info.box.center_x + 0.5 * me.info.box.length;
   for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
     const Entity& other = state.world.entities[i];
@@ -40,14 +121,13 @@ Leader find_leader(const SimState& state, uint32_t self) {
         (i < state.controls.size() && !state.controls[i].traffic_visible)) {
       continue;
     }
-    const RoadCoordinates& theirs = *other.state.road;
-    if (theirs.road != mine.road || theirs.lane != mine.lane) {
+    const auto ahead = distance_on_path(path, *other.state.road, containing);
+    if (!ahead || *ahead >= kRange) {
       continue;
     }
-    const double ahead = (theirs.s - mine.s) * me.lane.dir;
     const double their_rear = other.info.box.center_x - 0.5 * other.info.box.length;
-    const double gap = ahead - my_front + their_rear;
-    if (ahead > 0.0 && ahead < kRange && gap < leader.gap) {
+    const double gap = *ahead - my_front + their_rear;
+    if (gap < leader.gap) {
       leader.gap = gap;
       leader.speed = other.state.speed * std::cos(other.state.pose.h - me.state.pose.h);
     }
