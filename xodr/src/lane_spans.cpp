@@ -16,12 +16,18 @@ size_t center_index(const LaneSection& section) {
 
 namespace {
 
+// offset_poly_value without the binary search for the usual lane of one record (the same
+// record the search would pick: the first one also serves ds before its start).
+double poly_at(const std::vector<Poly3>& records, double ds) {
+  return records.size() == 1 ? records.front().value(ds) : offset_poly_value(records, ds);
+}
+
 double outer_border(const Lane& lane, double ds, double inner, double side) {
   if (!lane.widths.empty()) {
-    return inner + side * std::max(0.0, offset_poly_value(lane.widths, ds));
+    return inner + side * std::max(0.0, poly_at(lane.widths, ds));
   }
   if (!lane.borders.empty()) {
-    return offset_poly_value(lane.borders, ds);
+    return poly_at(lane.borders, ds);
   }
   return inner;  // a lane with neither has no width
 }

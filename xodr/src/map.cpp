@@ -79,7 +79,6 @@ Map Map::build(MapData data, corsa::Diagnostics& diagnostics, const BuildOptions
   }
   Map map(std::move(impl));
   map.impl_->graph = detail::build_lane_graph(map, diagnostics);
-  map.impl_->index.build(map);
   return map;
 }
 
@@ -285,6 +284,7 @@ const Lane* Map::lane(const LaneRef& ref) const {
 }
 
 std::optional<LanePosition> Map::locate(double x, double y, const LocateOptions& options) const {
+  std::call_once(impl_->index_built, [this] { impl_->index.build(*this); });
   return impl_->index.locate(*this, x, y, options);
 }
 

@@ -2,6 +2,7 @@
 
 // Map's private state (shared by the map_*.cpp files).
 
+#include <mutex>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -38,7 +39,12 @@ struct Map::Impl {
   std::vector<std::pair<double, double>> trig;
   std::vector<size_t> trig_start;
   LaneGraph graph;
-  detail::SpatialIndex index;
+  /// Built by the first world -> lane query (Map::locate), not by Map::build: most runs never
+  /// ask one (lane positions and lane following need none), and building it was 60% of loading
+  /// a long motorway, paid once per sweep on the serial path. call_once makes the first query
+  /// safe from concurrent threads (a sweep shares one Map between its variants).
+  mutable std::once_flag index_built;
+  mutable detail::SpatialIndex index;
 };
 
 }  // namespace corsa::xodr

@@ -1,19 +1,23 @@
 #include <charconv>
 
-#include "corsa/core/strings.h"
 #include "corsa/engine/outputs.h"
+#include "output/decimal_text.h"
 
 namespace corsa::engine {
 namespace {
 
-// Shortest round-trip text, as format_double, appended without temporaries: this is the hot
-// path of a recorded run.
-void put(std::string& out, double value) {
-  value += 0.0;  // -0 prints as 0
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, result.ptr);
-  out.push_back(',');
+// Decimals of the trajectory CSV's numbers (docs/engine.md, "Output files"): 1 um for lengths and
+// 1 um/s for speeds, 1 nrad for angles (1 nrad of heading moves a point 5 m away by 5 nm).
+// esmini writes 3 decimals; these keep every digit a test or a golden comparison could need at a
+// fraction of the cost of the shortest round-trip text.
+constexpr int kLengthDecimals = 6;
+constexpr int kAngleDecimals = 9;
+
+void put(std::string& out, double value, int decimals) {
+  char buffer[detail::kDecimalTextMax + 1];
+  char* end = detail::write_decimal(buffer, value, decimals);
+  *end++ = ',';
+  out.append(buffer, end);
 }
 
 }  // namespace
@@ -24,31 +28,36 @@ TrajectoryRecorder::TrajectoryRecorder(std::filesystem::path file, int64_t every
 }
 
 void TrajectoryRecorder::append_rows(const Simulation& simulation, std::string& out) {
-  const double time = simulation.time();
+  // The time is the same on every row of the step: its shortest round-trip text (exact, so that
+  // rows can be matched to steps) is made once.
+  char time[32];
+  char* time_end = std::to_chars(time, time + sizeof time - 1, simulation.time() + 0.0).ptr;
+  *time_end++ = ',';
   for (size_t i = 0; i < simulation.entity_count(); ++i) {
     const EntityState& state = simulation.state(i);
     if (!state.placed) {
       continue;  // not added yet or deleted (AddEntityAction, DeleteEntityAction, traffic)
     }
-    put(out, time);
+    out.append(time, time_end);
     out += simulation.entity(i).name;
     out.push_back(',');
-    put(out, state.pose.x);
-    put(out, state.pose.y);
-    put(out, state.pose.z);
-    put(out, state.pose.h);
-    put(out, state.pose.p);
-    put(out, state.pose.r);
-    put(out, state.speed);
+    put(out, state.pose.x, kLengthDecimals);
+    put(out, state.pose.y, kLengthDecimals);
+    put(out, state.pose.z, kLengthDecimals);
+    put(out, state.pose.h, kAngleDecimals);
+    put(out, state.pose.p, kAngleDecimals);
+    put(out, state.pose.r, kAngleDecimals);
+    put(out, state.speed, kLengthDecimals);
     if (state.road) {
       out += simulation.road_id(state.road->road);
-      out.push_back(',');
-      out += std::to_string(state.road->lane);
-      out.push_back(',');
-      put(out, state.road->s);
-      char buffer[32];
-      const auto result = std::to_chars(buffer, buffer + sizeof buffer, state.road->t + 0.0);
-      out.append(buffer, result.ptr);
+      char lane[16];
+      lane[0] = ',';
+      char* lane_end = std::to_chars(lane + 1, lane + sizeof lane - 1, state.road->lane).ptr;
+      *lane_end++ = ',';
+      out.append(lane, lane_end);
+      put(out, state.road->s, kLengthDecimals);
+      char buffer[detail::kDecimalTextMax];
+      out.append(buffer, detail::write_decimal(buffer, state.road->t, kLengthDecimals));
     } else {
       out += ",,,";
     }

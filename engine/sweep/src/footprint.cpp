@@ -26,14 +26,15 @@ std::array<Vec2, 4> axes_of(const Footprint& a, const Footprint& b) {
   return {a.axis, Vec2{-a.axis.y, a.axis.x}, b.axis, Vec2{-b.axis.y, b.axis.x}};
 }
 
-double point_segment(Vec2 p, Vec2 s0, Vec2 s1) {
+// Squared distance from p to the segment s0-s1 (m^2).
+double point_segment_squared(Vec2 p, Vec2 s0, Vec2 s1) {
   const Vec2 d{s1.x - s0.x, s1.y - s0.y};
   const Vec2 w{p.x - s0.x, p.y - s0.y};
   const double len2 = dot(d, d);
   const double u = len2 > 0.0 ? std::clamp(dot(w, d) / len2, 0.0, 1.0) : 0.0;
   const double dx = w.x - u * d.x;
   const double dy = w.y - u * d.y;
-  return std::sqrt(dx * dx + dy * dy);
+  return dx * dx + dy * dy;
 }
 
 }  // namespace
@@ -74,14 +75,26 @@ double free_distance(const Footprint& a, const Footprint& b) {
   // Separated convex polygons: the closest pair has a vertex of one on an edge of the other.
   const auto ca = a.corners();
   const auto cb = b.corners();
+  // sqrt is correctly rounded and monotonic, so the square root of the least squared distance is
+  // exactly the least of the 32 distances, for one square root instead of 32.
   double best = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < 4; ++i) {
     for (size_t j = 0; j < 4; ++j) {
-      best = std::min(best, point_segment(ca[i], cb[j], cb[(j + 1) % 4]));
-      best = std::min(best, point_segment(cb[i], ca[j], ca[(j + 1) % 4]));
+      best = std::min(best, point_segment_squared(ca[i], cb[j], cb[(j + 1) % 4]));
+      best = std::min(best, point_segment_squared(cb[i], ca[j], ca[(j + 1) % 4]));
     }
   }
-  return best;
+  return std::sqrt(best);
+}
+
+double free_distance_bound(const Footprint& a, const Footprint& b) {
+  // Rounding of corners and projections is a few ulps of the coordinates (1e-12 m at 10 km);
+  // the margin is a micrometre more, scaled for maps far from their origin.
+  const double margin = 1e-6 + 1e-12 * (std::fabs(a.center.x) + std::fabs(a.center.y) +
+                                        std::fabs(b.center.x) + std::fabs(b.center.y));
+  const double centres = std::hypot(b.center.x - a.center.x, b.center.y - a.center.y);
+  return centres - std::hypot(a.half_length, a.half_width) -
+         std::hypot(b.half_length, b.half_width) - margin;
 }
 
 std::optional<double> time_to_contact(const Footprint& a, const Footprint& b) {

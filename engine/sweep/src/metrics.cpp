@@ -1,6 +1,7 @@
 #include "corsa/sweep/metrics.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "corsa/core/strings.h"
 #include "footprint.h"
@@ -19,6 +20,18 @@ void raise(Extreme& extreme, double value, double time) {
   if (!extreme.value || value > *extreme.value) {
     extreme = Extreme{value, time, {}};
   }
+}
+
+// Whether two footprints at least `gap` apart (m, a lower bound of their free distance) cannot
+// touch within `horizon` seconds: the gap closes no faster than their relative speed.
+bool cannot_contact_before(const detail::Footprint& a, const detail::Footprint& b, double gap,
+                           double horizon) {
+  if (gap <= 0.0) {
+    return false;
+  }
+  // Relative speed (m/s).
+  const double speed = std::hypot(b.velocity.x - a.velocity.x, b.velocity.y - a.velocity.y);
+  return speed == 0.0 || gap / speed >= horizon;
 }
 
 }  // namespace
@@ -63,9 +76,17 @@ void MetricsObserver::on_step(const engine::Simulation& simulation) {
     }
     const detail::Footprint theirs = detail::footprint_of(simulation.entity(i), state);
     const std::string& name = simulation.entity(i).name;
-    lower(metrics_.min_distance, detail::free_distance(mine, theirs), time, name);
-    if (const auto ttc = detail::time_to_contact(mine, theirs)) {
-      lower(metrics_.min_ttc, *ttc, time, name);
+    // Broad phase: a pair whose lower bound cannot beat the extremes so far is not measured
+    // exactly (lower() keeps only strictly smaller values, so the results are the same).
+    const double bound = detail::free_distance_bound(mine, theirs);
+    if (!metrics_.min_distance.value || bound < *metrics_.min_distance.value) {
+      lower(metrics_.min_distance, detail::free_distance(mine, theirs), time, name);
+    }
+    if (!metrics_.min_ttc.value ||
+        !cannot_contact_before(mine, theirs, bound, *metrics_.min_ttc.value)) {
+      if (const auto ttc = detail::time_to_contact(mine, theirs)) {
+        lower(metrics_.min_ttc, *ttc, time, name);
+      }
     }
   }
 }

@@ -2,9 +2,10 @@
 
 // The files a run writes (DESIGN.md, "File formats Corsa writes"), each atomically (a temporary
 // file renamed into place when complete) and deterministically (same run, same bytes; numbers
-// in the shortest text that reads back to the same double):
+// in the shortest text that reads back to the same double, except as noted):
 //   - trajectory CSV: `time,entity,x,y,z,h,p,r,speed,road,lane,s,t`, one row per entity per
-//     recorded step, entities in document order; road, lane, s, t empty off the road;
+//     recorded step, entities in document order; road, lane, s, t empty off the road; lengths
+//     and speeds rounded to 6 decimals, angles to 9 (docs/engine.md, "Output files");
 //   - event log CSV: `time,type,element,transition,state`, every storyboard transition;
 //   - run summary JSON: scenario, parameters, seed, step, end reason, sim time, steps, wall
 //     time, real-time factor, final entity states, collisions. Only wall time and real-time
