@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "core/sim_state.h"
 #include "corsa/xodr/map.h"
@@ -135,11 +136,31 @@ void step_pedestrian(SimState& state, uint32_t index, const DefaultController& i
   }
 }
 
+// Whether the dynamics controller moves entity `index` this step (a FollowTrajectoryAction in
+// position mode places the entity on its path instead: ideal motion).
+bool dynamics_moves(SimState& state, uint32_t index) {
+  const Entity& entity = state.world.entities[index];
+  return entity.state.placed && !entity.pose_command &&
+         control_of(state, index).effective() == ControllerKind::kDynamics;
+}
+
 }  // namespace
 
 void move_entities(SimState& state, const MotionContext& motion) {
   const DefaultController ideal;
   const auto count = static_cast<uint32_t>(state.world.entities.size());
+  // The vehicle models of the dynamics controller step ahead of the in-order loop, all
+  // integrated as one system: a model's step reads only its own entity, which no other
+  // entity's step changes, so this gives what stepping each in turn gives.
+  std::vector<uint32_t> dynamic;
+  for (uint32_t i = 0; i < count; ++i) {
+    if (dynamics_moves(state, i)) {
+      dynamic.push_back(i);
+    }
+  }
+  if (!dynamic.empty()) {
+    begin_dynamics(state, dynamic, motion);
+  }
   for (uint32_t i = 0; i < count; ++i) {
     Entity& entity = state.world.entities[i];
     if (!entity.state.placed) {
@@ -163,7 +184,7 @@ void move_entities(SimState& state, const MotionContext& motion) {
           control_of(state, i).dynamics.reset();
           ideal.step(entity, motion);
         } else {
-          step_dynamics(state, i, motion);
+          finish_dynamics(state, i, motion);
         }
         break;
     }

@@ -9,6 +9,7 @@
 // (SimulationOptions::controller) for vehicles; otherwise the default controller.
 
 #include <cstdint>
+#include <span>
 #include <string>
 
 #include "controllers/control_state.h"
@@ -43,7 +44,14 @@ void move_entities(SimState& state, const MotionContext& motion);
 /// vehicle ahead in the same lane; then the default controller's motion.
 void step_acc(SimState& state, uint32_t index, const MotionContext& motion);
 
-/// The dynamics controller (controllers/dynamics_controller.cpp).
-void step_dynamics(SimState& state, uint32_t index, const MotionContext& motion);
+/// The dynamics controller (controllers/dynamics_controller.cpp), in two halves.
+/// begin_dynamics: for each entity of `indices`, the driver model's inputs from the entity's own
+/// state and commands; then all their vehicle models integrated over the step as one system.
+/// It changes nothing other entities see, so it runs ahead of the in-order loop of
+/// move_entities, where finish_dynamics moves each entity to its model's new state and updates
+/// its lane position.
+void begin_dynamics(SimState& state, std::span<const uint32_t> indices,
+                    const MotionContext& motion);
+void finish_dynamics(SimState& state, uint32_t index, const MotionContext& motion);
 
 }  // namespace corsa::engine::detail

@@ -13,6 +13,7 @@
 #include <type_traits>
 
 #include "controllers/controllers.h"
+#include "controllers/dynamics_fleet.h"
 #include "controllers/dynamics_model.h"
 #include "core/sim_state.h"
 #include "corsa/xosc/scenario.h"
@@ -26,12 +27,16 @@ struct DynamicsVehicle {
   double integral = 0.0;      ///< m, integral of the speed error
   double last_command = 0.0;  ///< m/s, the speed command of the previous step
   Pose pose;                  ///< where the model left the entity (to detect teleports)
+  VehicleState before;        ///< the model state at the start of the step under way
   // Override values as applied (rate-limited), throttle/brake 0..1, steering wheel rad.
   double throttle = 0.0, brake = 0.0, steering_wheel = 0.0;
   // The lane centre under the vehicle at the end of the last step (sync_lane).
   LaneFollow foot_lane;
   LanePose foot;
   bool foot_valid = false;
+  /// The system the models of all dynamics vehicles of the simulation are integrated in: held
+  /// by each of them, so that it lives as long as any does (one per simulation, no global).
+  std::shared_ptr<DynamicsFleet> fleet;
 };
 
 namespace {
@@ -153,12 +158,34 @@ double steering_demand(const SimState& state, Entity& entity, const VehicleState
   return std::atan(wheelbase * 2.0 * std::sin(alpha) / distance);
 }
 
+// The entity's own point beside the lane centre `foot` (same road, section and s; `spans` those
+// of that section at s): t, the lane containing it, and its z as Map::world_pose gives it at
+// h = 0 (pitch and roll do not depend on t). Cheaper than a second lane_pose: no lane spans and
+// no reference line evaluation.
+LanePose beside_foot(const xodr::Map& map, const LaneFollow& follow, const LanePose& foot,
+                     const std::vector<xodr::LaneSpan>& spans) {
+  LanePose out;
+  out.t = foot.t + follow.dir * follow.lateral;
+  // The lane containing t: borders belong to the inner lane, as Map::lane_at decides.
+  for (const auto& span : spans) {
+    if (span.width() > 0.0 && out.t >= span.t_min() && out.t <= span.t_max() &&
+        (!out.lane_at || std::abs(span.id) < std::abs(*out.lane_at))) {
+      out.lane_at = span.id;
+    }
+  }
+  out.pose = foot.pose;
+  const double roll = follow.dir < 0 ? -foot.pose.r : foot.pose.r;  // the road's own
+  out.pose.z = map.elevation(follow.road, follow.s) + out.t * std::sin(roll) +
+               0.0 * std::cos(roll) + map.shape_height(follow.road, follow.s, out.t);
+  return out;
+}
+
 // Puts the followed lane position under the vehicle: s advanced by the motion along the lane
 // (a Newton step on the foot point), lateral offset and heading relative to the lane. The foot
 // of the previous step is reused when the followed lane position has not changed since (it has
 // when an action moved it to another lane).
 void sync_lane(const SimState& state, Entity& entity, DynamicsVehicle& vehicle,
-               std::vector<xodr::LaneSpan>& scratch) {
+               std::vector<xodr::LaneSpan>& spans) {
   const xodr::Map& map = *state.map;
   LaneFollow centre = entity.lane;
   centre.lateral = 0.0;
@@ -166,11 +193,11 @@ void sync_lane(const SimState& state, Entity& entity, DynamicsVehicle& vehicle,
   double moved = 0.0;
   bool hit_end = false;
   const LaneFollow& last = vehicle.foot_lane;
-  LanePose foot = vehicle.foot_valid && last.node == centre.node && last.road == centre.road &&
-                          last.section == centre.section && last.lane == centre.lane &&
-                          last.dir == centre.dir && last.s == centre.s
-                      ? vehicle.foot
-                      : lane_pose(map, centre, scratch);
+  const bool reuse = vehicle.foot_valid && last.node == centre.node && last.road == centre.road &&
+                     last.section == centre.section && last.lane == centre.lane &&
+                     last.dir == centre.dir && last.s == centre.s;
+  LanePose foot = reuse ? vehicle.foot : lane_pose(map, centre, spans);
+  bool spans_current = !reuse;
   {
     // One Newton step on the foot point: exact on lines; on curves the small residual does not
     // accumulate, since every step measures from the vehicle's true position.
@@ -181,8 +208,12 @@ void sync_lane(const SimState& state, Entity& entity, DynamicsVehicle& vehicle,
       const AdvanceResult result = advance_along_lanes(map, centre, along, entity.chooser);
       moved = result.travelled;
       hit_end = result.hit_end;
-      foot = lane_pose(map, centre, scratch);
+      foot = lane_pose(map, centre, spans);
+      spans_current = true;
     }
+  }
+  if (!spans_current) {
+    map.lane_spans_in_section(centre.road, centre.section, centre.s, spans);
   }
   vehicle.foot_lane = centre;
   vehicle.foot = foot;
@@ -194,7 +225,7 @@ void sync_lane(const SimState& state, Entity& entity, DynamicsVehicle& vehicle,
   entity.lane = centre;
   entity.longitudinal_distance += std::abs(moved);
   entity.end_of_road = hit_end || (entity.end_of_road && moved == 0.0);
-  const LanePose at = lane_pose(map, entity.lane, scratch);
+  const LanePose at = beside_foot(map, entity.lane, foot, spans);
   entity.state.pose.z = at.pose.z;
   entity.state.pose.p = at.pose.p;
   entity.state.pose.r = at.pose.r;
@@ -208,9 +239,9 @@ void sync_lane(const SimState& state, Entity& entity, DynamicsVehicle& vehicle,
 
 bool same_pose(const Pose& a, const Pose& b) { return a.x == b.x && a.y == b.y && a.h == b.h; }
 
-}  // namespace
-
-void step_dynamics(SimState& state, uint32_t index, const MotionContext& motion) {
+// The driver model's inputs for entity `index`, and its model's step begun on `fleet`.
+void begin_vehicle(SimState& state, uint32_t index, const MotionContext& motion,
+                   DynamicsFleet& fleet) {
   Entity& entity = state.world.entities[index];
   ControlState& control = control_of(state, index);
   const double dt = motion.dt;
@@ -232,7 +263,7 @@ void step_dynamics(SimState& state, uint32_t index, const MotionContext& motion)
     vehicle.last_command = es.speed;
     vehicle.integral = 0.0;
   }
-  const VehicleState before = vehicle.model.state();
+  vehicle.before = vehicle.model.state();
   VehicleInputs inputs;
   inputs.accel = longitudinal_demand(entity, vehicle, control, dt, inputs.reverse);
   if (control.overrides.steering_wheel.active) {
@@ -241,12 +272,41 @@ void step_dynamics(SimState& state, uint32_t index, const MotionContext& motion)
                    control.overrides.steering_wheel.max_rate, dt);
     inputs.steer = vehicle.steering_wheel / kSteeringRatio;
   } else {
-    inputs.steer =
-        steering_demand(state, entity, before, vehicle.model.params().wheelbase, *motion.scratch);
+    inputs.steer = steering_demand(state, entity, vehicle.before, vehicle.model.params().wheelbase,
+                                   *motion.scratch);
     vehicle.steering_wheel = inputs.steer * kSteeringRatio;
   }
-  const VehicleState after = vehicle.model.step(inputs, dt);
+  vehicle.model.begin_step(inputs, dt, fleet);
+}
 
+}  // namespace
+
+void begin_dynamics(SimState& state, std::span<const uint32_t> indices,
+                    const MotionContext& motion) {
+  std::shared_ptr<DynamicsFleet> fleet;
+  for (const ControlState& control : state.controls) {
+    if (control.dynamics && control.dynamics->fleet) {
+      fleet = control.dynamics->fleet;
+      break;
+    }
+  }
+  if (!fleet) {
+    fleet = std::make_shared<DynamicsFleet>();
+  }
+  for (const uint32_t index : indices) {
+    begin_vehicle(state, index, motion, *fleet);
+    control_of(state, index).dynamics->fleet = fleet;
+  }
+  fleet->integrate(motion.dt);
+}
+
+void finish_dynamics(SimState& state, uint32_t index, const MotionContext& motion) {
+  Entity& entity = state.world.entities[index];
+  DynamicsVehicle& vehicle = *control_of(state, index).dynamics;
+  const double dt = motion.dt;
+  EntityState& es = entity.state;
+  const VehicleState& before = vehicle.before;
+  const VehicleState after = vehicle.model.state();
   const double h0 = es.pose.h;
   const double path = std::hypot(after.x - before.x, after.y - before.y);
   es.pose.x = after.x;

@@ -1,17 +1,14 @@
 #pragma once
 
 // The vehicle model of the `dynamics` controller: a single-track (bicycle) model with nonlinear
-// tyre forces, integrated by SUNDIALS ARKODE (ERKStep: explicit 4th-order Runge-Kutta at a fixed
-// step of at most 10 ms: the inputs change at every engine step, which an adaptive multistep
-// method pays for with step-size cuts; the fixed step keeps the cost per engine step constant).
-// Below kKinematicSpeed the tyre slip angles are ill defined (they divide by the forward speed, and
-// the fastest mode, about -17 g / vx per second, would leave RK4's stability region) and the model
-// is the kinematic bicycle instead.
+// tyre forces. Above kKinematicSpeed it is an ODE that DynamicsFleet (dynamics_fleet.h)
+// integrates with SUNDIALS ARKODE, every vehicle of a step in one system. Below kKinematicSpeed
+// the tyre slip angles are ill defined (they divide by the forward speed, and the fastest mode,
+// about -17 g / vx per second, would leave the explicit method's stability region) and the model
+// is the kinematic bicycle instead, stepped in closed form here.
 //
 // Frames: x forward, y left, yaw counter-clockwise (ISO 8855 / OpenSCENARIO). The pose is the
 // vehicle's reference point, the rear axle centre (OpenSCENARIO BoundingBox convention).
-
-#include <memory>
 
 namespace corsa::engine::detail {
 
@@ -47,32 +44,33 @@ struct VehicleInputs {
 /// Speed (m/s) below which the kinematic bicycle is used.
 inline constexpr double kKinematicSpeed = 2.0;
 
+class DynamicsFleet;
+
+/// One vehicle's model. A step has two halves: begin_step (the kinematic bicycle steps at once;
+/// a dynamic vehicle is queued on a DynamicsFleet), then DynamicsFleet::integrate.
 class DynamicsIntegrator {
  public:
-  explicit DynamicsIntegrator(const VehicleParams& params);
-  ~DynamicsIntegrator();
-  DynamicsIntegrator(const DynamicsIntegrator&) = delete;
-  DynamicsIntegrator& operator=(const DynamicsIntegrator&) = delete;
+  explicit DynamicsIntegrator(const VehicleParams& params) : params_(params) {}
 
   /// Starts from `state` (a new vehicle, or one moved from outside: teleport, mode change).
   void reset(const VehicleState& state);
-  /// Advances by dt (s) under `inputs`. Returns the new state.
-  const VehicleState& step(const VehicleInputs& inputs, double dt);
+  /// Begins a step of dt (s) under `inputs` (steering clamped to max_steering). Below
+  /// kKinematicSpeed the step is done on return; otherwise the vehicle is added to `fleet`, and
+  /// its state is the new one after the fleet's next integrate().
+  void begin_step(const VehicleInputs& inputs, double dt, DynamicsFleet& fleet);
   const VehicleState& state() const { return state_; }
   const VehicleParams& params() const { return params_; }
   /// Lateral acceleration (m/s^2) at the centre of gravity over the last step.
   double lateral_acceleration() const { return lateral_acceleration_; }
 
  private:
-  struct Solver;
+  friend class DynamicsFleet;
   void step_kinematic(const VehicleInputs& inputs, double dt);
-  void step_dynamic(const VehicleInputs& inputs, double dt);
 
   VehicleParams params_;
   VehicleState state_;
+  VehicleInputs inputs_;  ///< of the step under way
   double lateral_acceleration_ = 0.0;
-  bool dynamic_ = false;  ///< the ODE solver holds the current state
-  std::unique_ptr<Solver> solver_;
 };
 
 }  // namespace corsa::engine::detail
