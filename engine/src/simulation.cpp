@@ -8,6 +8,7 @@
 #include "core/world_update.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
+#include "motion/route_lanes.h"
 #include "simulation_impl.h"
 
 namespace corsa::engine {
@@ -64,6 +65,7 @@ void Simulation::Impl::advance() {
   init.step_actions(state);
   storyboard->step_actions(state);
   const detail::MotionContext motion{state.map, state.time.dt(), &scratch};
+  detail::follow_route_lanes(state, motion);
   detail::move_entities(state, motion);
   ++state.tick;
   detail::update_traffic(state);

@@ -36,7 +36,10 @@ class AcquirePositionInstance final : public InstantAction {
            "AcquirePositionAction: the target cannot be reached from the lane of '" +
                entity.info.name + "'");
     }
-    assign_route(entity, std::move(route->steps));
+    const size_t last = route->steps.empty() ? 0 : route->steps.size() - 1;
+    assign_route(
+        entity,
+        RoutePlan{std::move(route->steps), {last}, "AcquirePositionAction", action_.source});
   }
 
  private:

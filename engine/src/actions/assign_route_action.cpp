@@ -1,6 +1,7 @@
 // AssignRouteAction (OpenSCENARIO 1.3 §7.4.4.1, routes §6.6): the actor follows the route's
 // lanes from now on: at every lane end with several successors it takes the one on the route
-// (motion/route_chooser.h). The route (inline or from a catalog, expanded by the loader) is laid
+// (motion/route_chooser.h), and it changes lanes where the route needs another lane
+// (motion/route_lanes.h). The route (inline or from a catalog, expanded by the loader) is laid
 // onto the map when the action starts, each leg by its waypoint's routeStrategy.
 
 #include "actions/action_makers.h"
@@ -17,7 +18,8 @@ class AssignRouteInstance final : public InstantAction {
 
   void start(ActionContext& context) override {
     RoutePath path = build_route_path(action_.route, context.state, context.actor);
-    assign_route(context.entity(), std::move(path.steps));
+    assign_route(context.entity(), RoutePlan{std::move(path.steps), std::move(path.waypoint_steps),
+                                             action_.route.name, action_.route.source});
   }
 
  private:

@@ -11,11 +11,13 @@
 
 namespace corsa::engine::detail {
 
-/// From now on `entity` takes the route's lanes at lane ends (replacing any earlier route).
-inline void assign_route(Entity& entity, std::vector<xodr::RouteStep> steps) {
-  auto chooser = std::make_shared<const RouteChooser>(std::move(steps));
+/// From now on `entity` takes the route's lanes at lane ends and changes lanes where the route
+/// needs it (motion/route_lanes.h), replacing any earlier route.
+inline void assign_route(Entity& entity, RoutePlan plan) {
+  auto chooser = std::make_shared<const RouteChooser>(std::move(plan));
   entity.chooser = chooser.get();
   entity.route = std::move(chooser);
+  entity.route_progress = RouteProgress{};
 }
 
 }  // namespace corsa::engine::detail

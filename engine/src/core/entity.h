@@ -4,6 +4,7 @@
 // default controller and the conditions need between steps.
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -35,6 +36,20 @@ struct LaneFollow {
   double lateral = 0.0;
   /// Heading (rad) relative to the lane's direction of travel, from lateral motion.
   double heading_offset = 0.0;
+};
+
+/// Where an entity is along its route and the lane change its route needs, under way
+/// (motion/route_lanes.h). Reset when a route is assigned.
+struct RouteProgress {
+  size_t step = 0;      ///< first route step of the lane section the entity drives in
+  bool joined = false;  ///< it has been on the route
+  bool lost = false;    ///< it left the route (warned once)
+  bool changing = false;
+  double from = 0.0;            ///< m, LaneFollow::lateral where the lane change began
+  double to = 0.0;              ///< m, LaneFollow::lateral it ends at
+  double start_distance = 0.0;  ///< m, longitudinal_distance when it began
+  double length = 0.0;          ///< m driven over which it is made
+  double last_command = 0.0;    ///< m, the lateral command it gave last
 };
 
 /// Action domains that override each other on one entity (OpenSCENARIO 1.3 §7.4: a new
@@ -78,6 +93,7 @@ struct Entity {
   const LaneChooser* chooser = nullptr;
   /// Owns the route chooser (AssignRouteAction, AcquirePositionAction) `chooser` points at.
   std::shared_ptr<const LaneChooser> route;
+  RouteProgress route_progress;
   /// A pose an action sets for the end of the step (FollowTrajectoryAction): the controller
   /// puts the entity there instead of moving it along its lane (motion/pose_command.h).
   std::optional<Pose> pose_command;

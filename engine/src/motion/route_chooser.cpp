@@ -14,7 +14,7 @@ size_t RouteChooser::choose(const xodr::Map& map, const LaneFollow& lane,
   for (size_t i = 0; i < candidates.size(); ++i) {
     const xodr::LaneRef& ref = graph.info(candidates[i].node).lane;
     const int dir = candidates[i].at_start ? 1 : -1;
-    for (const xodr::RouteStep& step : steps_) {
+    for (const xodr::RouteStep& step : plan_.steps) {
       const int step_dir = step.s_to >= step.s_from ? 1 : -1;
       if (step.lane.road != ref.road || step_dir != dir) {
         continue;

@@ -112,6 +112,9 @@ RoutePath build_route_path(const xosc::Route& route, const SimState& state,
       path.steps.push_back(step);
       path.length += std::abs(step.s_to - step.s_from);
     }
+    if (!path.steps.empty()) {
+      path.waypoint_steps.push_back(path.steps.size() - 1);
+    }
   }
   return path;
 }

@@ -18,6 +18,8 @@ struct SimState;
 
 struct RoutePath {
   std::vector<xodr::RouteStep> steps;
+  /// Per waypoint after the first: index of the step that ends at it.
+  std::vector<size_t> waypoint_steps;
   double length = 0.0;  ///< m, sum of the steps' |s_to - s_from|
 };
 
