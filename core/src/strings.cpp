@@ -104,6 +104,18 @@ std::string to_lower(std::string_view text) {
   return out;
 }
 
+std::string clip(std::string_view text, size_t max_bytes) {
+  if (text.size() <= max_bytes) {
+    return std::string(text);
+  }
+  size_t cut = max_bytes;
+  // Back off UTF-8 continuation bytes (10xxxxxx) so that the cut falls between characters.
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) {
+    --cut;
+  }
+  return std::string(text.substr(0, cut)) + "...";
+}
+
 std::string csv_field(std::string_view text) {
   const bool quote = text.find_first_of(",\"\r\n") != std::string_view::npos ||
                      (!text.empty() && (text.front() == ' ' || text.back() == ' '));

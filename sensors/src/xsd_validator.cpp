@@ -463,7 +463,8 @@ std::string xml_error_words(tinyxml2::XMLError error) {
     case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
       return "bad attribute";
     case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED:
-      return "elements nested too deeply";
+      return "elements nested too deeply (tinyxml2 reads at most " +
+             std::to_string(TINYXML2_MAX_ELEMENT_DEPTH) + " levels)";
     default:
       return std::string("cannot parse (") + tinyxml2::XMLDocument::ErrorIDToName(error) + ")";
   }

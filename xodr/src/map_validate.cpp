@@ -19,10 +19,11 @@ class Checker {
       : file_(data.source_file), diagnostics_(diagnostics) {}
 
   [[noreturn]] void fail(int line, const std::string& message) const {
-    throw corsa::InputError(corsa::make_error(file_, line, message));
+    // Clipped: ids quoted in a message come from the file and may be megabytes long.
+    throw corsa::InputError(corsa::make_error(file_, line, corsa::clip(message, 1024)));
   }
   void warn(const std::string& key, int line, const std::string& message) const {
-    diagnostics_.add_once(key, corsa::make_warning(file_, line, message));
+    diagnostics_.add_once(key, corsa::make_warning(file_, line, corsa::clip(message, 1024)));
   }
 
  private:

@@ -1,5 +1,6 @@
 // <junction> with its connections and laneLinks (OpenDRIVE 1.8 §10).
 
+#include "corsa/core/strings.h"
 #include "parse_elements.h"
 
 namespace corsa::xodr::detail {
@@ -17,7 +18,7 @@ Connection parse_connection(const XmlReader& reader, const XMLElement* e) {
   } else if (contact == "end") {
     connection.contact_point = ContactPoint::kEnd;
   } else if (!contact.empty()) {
-    reader.fail(e, "contactPoint must be 'start' or 'end', not '" + contact + "'");
+    reader.fail(e, "contactPoint must be 'start' or 'end', not '" + corsa::clip(contact) + "'");
   }
   for (const XMLElement* child : children(e)) {
     if (named(child, "laneLink")) {
@@ -45,7 +46,7 @@ Junction parse_junction(const XmlReader& reader, const XMLElement* e) {
   } else if (type == "crossing") {
     junction.type = JunctionType::kCrossing;
   } else {
-    reader.fail(e, "unknown junction type '" + type + "'");
+    reader.fail(e, "unknown junction type '" + corsa::clip(type) + "'");
   }
   for (const XMLElement* child : children(e)) {
     if (named(child, "connection")) {

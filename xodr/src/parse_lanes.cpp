@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "corsa/core/strings.h"
 #include "corsa/xodr/parser.h"
 #include "parse_elements.h"
 
@@ -55,8 +56,8 @@ bool parse_bool(const XmlReader& reader, const XMLElement* e, const char* name) 
   if (value == "false" || value == "0") {
     return false;
   }
-  reader.fail(e,
-              std::string("attribute '") + name + "' must be true or false, not '" + value + "'");
+  reader.fail(e, std::string("attribute '") + name + "' must be true or false, not '" +
+                     corsa::clip(value) + "'");
 }
 
 }  // namespace
@@ -69,7 +70,7 @@ Lane parse_lane(const XmlReader& reader, const XMLElement* e, bool center) {
   lane.type = lane_type_from_name(lane.type_name);
   if (lane.type == LaneType::kOther) {
     reader.warn_once("lane type " + lane.type_name, e,
-                     "unknown lane type '" + lane.type_name + "' (kept as 'other')");
+                     "unknown lane type '" + corsa::clip(lane.type_name) + "' (kept as 'other')");
   }
   lane.level = parse_bool(reader, e, "level");
   for (const XMLElement* child : children(e)) {

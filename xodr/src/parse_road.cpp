@@ -21,7 +21,7 @@ ContactPoint parse_contact_point(const XmlReader& reader, const XMLElement* e) {
   if (corsa::iequals(*value, "end")) {
     return ContactPoint::kEnd;
   }
-  reader.fail(e, "contactPoint must be 'start' or 'end', not '" + std::string(*value) + "'");
+  reader.fail(e, "contactPoint must be 'start' or 'end', not '" + corsa::clip(*value) + "'");
 }
 
 RoadLink parse_link_target(const XmlReader& reader, const XMLElement* e) {
@@ -32,7 +32,7 @@ RoadLink parse_link_target(const XmlReader& reader, const XMLElement* e) {
   } else if (type == "junction") {
     link.element_type = LinkElement::kJunction;
   } else {
-    reader.fail(e, "elementType must be 'road' or 'junction', not '" + type + "'");
+    reader.fail(e, "elementType must be 'road' or 'junction', not '" + corsa::clip(type) + "'");
   }
   link.element_id = reader.text(e, "elementId");
   link.contact_point = parse_contact_point(reader, e);
@@ -67,7 +67,7 @@ double speed_in_mps(const XmlReader& reader, const XMLElement* e, double value,
   if (unit == "mph") {
     return value * 0.44704;
   }
-  reader.fail(e, "unknown speed unit '" + unit + "' (m/s, km/h or mph)");
+  reader.fail(e, "unknown speed unit '" + corsa::clip(unit) + "' (m/s, km/h or mph)");
 }
 
 RoadType parse_road_type(const XmlReader& reader, const XMLElement* e) {
@@ -131,7 +131,8 @@ Geometry parse_geometry(const XmlReader& reader, const XMLElement* e) {
     } else if (range == "normalized") {
       p.range = ParamRange::kNormalized;
     } else {
-      reader.fail(shape, "pRange must be 'arcLength' or 'normalized', not '" + range + "'");
+      reader.fail(shape,
+                  "pRange must be 'arcLength' or 'normalized', not '" + corsa::clip(range) + "'");
     }
     geometry.shape = p;
   } else {
@@ -192,7 +193,7 @@ Road parse_road(const XmlReader& reader, const XMLElement* e) {
   if (rule == "LHT" || rule == "lht") {
     road.rule = TrafficRule::kLeftHand;
   } else if (rule != "RHT" && rule != "rht") {
-    reader.fail(e, "rule must be 'RHT' or 'LHT', not '" + rule + "'");
+    reader.fail(e, "rule must be 'RHT' or 'LHT', not '" + corsa::clip(rule) + "'");
   }
   for (const XMLElement* child : children(e)) {
     const std::string_view name = child->name();

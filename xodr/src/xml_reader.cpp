@@ -7,9 +7,9 @@
 namespace corsa::xodr::detail {
 
 std::string element_path(const XMLElement* e) {
-  std::vector<std::string_view> names;
+  std::vector<std::string> names;
   for (const XMLElement* node = e; node != nullptr; node = node->parent()) {
-    names.push_back(node->name());
+    names.push_back(corsa::clip(node->name()));
   }
   std::string path;
   for (auto it = names.rbegin(); it != names.rend(); ++it) {
@@ -23,24 +23,30 @@ std::string element_path(const XMLElement* e) {
 
 namespace {
 
-std::string tag(const XMLElement* e) { return "<" + std::string(e->name()) + ">"; }
+// Longest message passed on, a net under the quoting sites that clip what they quote (ids and
+// values copied from the file can be megabytes long in a broken file).
+constexpr size_t kMaxMessage = 1024;
+
+std::string tag(const XMLElement* e) { return "<" + corsa::clip(e->name()) + ">"; }
 
 }  // namespace
 
 void XmlReader::fail(const XMLElement* e, const std::string& message) const {
-  throw corsa::InputError(
-      corsa::make_error(file_, e ? e->line() : 0, message, e ? element_path(e) : std::string()));
+  throw corsa::InputError(corsa::make_error(file_, e ? e->line() : 0,
+                                            corsa::clip(message, kMaxMessage),
+                                            e ? element_path(e) : std::string()));
 }
 
 void XmlReader::warn_once(const std::string& key, const XMLElement* e,
                           const std::string& message) const {
-  diagnostics_.add_once(key, corsa::make_warning(file_, e ? e->line() : 0, message,
-                                                 e ? element_path(e) : std::string()));
+  diagnostics_.add_once(
+      key, corsa::make_warning(file_, e ? e->line() : 0, corsa::clip(message, kMaxMessage),
+                               e ? element_path(e) : std::string()));
 }
 
 void XmlReader::unknown_child(const XMLElement* parent, const XMLElement* child) const {
   const std::string key =
-      "unknown:" + std::string(parent->name()) + "/" + std::string(child->name());
+      "unknown:" + corsa::clip(parent->name()) + "/" + corsa::clip(child->name());
   warn_once(key, child,
             "unknown element " + tag(child) + " in " + tag(parent) +
                 " ignored (further ones not reported)");
@@ -54,7 +60,7 @@ double XmlReader::number(const XMLElement* e, const char* name) const {
   const auto parsed = corsa::parse_double(*value);
   if (!parsed) {
     fail(e, std::string("attribute '") + name + "' of " + tag(e) +
-                " must be a finite number, not '" + std::string(*value) + "'");
+                " must be a finite number, not '" + corsa::clip(*value) + "'");
   }
   return *parsed;
 }
@@ -74,7 +80,7 @@ double XmlReader::non_negative(const XMLElement* e, const char* name) const {
   const double value = number(e, name);
   if (value < 0.0) {
     fail(e, std::string("attribute '") + name + "' of " + tag(e) + " must not be negative, got " +
-                std::string(*e->attribute(name)));
+                corsa::clip(*e->attribute(name)));
   }
   return value;
 }
@@ -91,7 +97,7 @@ int XmlReader::integer(const XMLElement* e, const char* name) const {
   const auto parsed = corsa::parse_int(*value);
   if (!parsed || *parsed < -1000000 || *parsed > 1000000) {
     fail(e, std::string("attribute '") + name + "' of " + tag(e) + " must be an integer, not '" +
-                std::string(*value) + "'");
+                corsa::clip(*value) + "'");
   }
   return static_cast<int>(*parsed);
 }

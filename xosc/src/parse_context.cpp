@@ -33,7 +33,8 @@ std::string xml_error_text(tinyxml2::XMLError error) {
     case tinyxml2::XML_ERROR_PARSING_UNKNOWN:
       return "bad markup";
     case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED:
-      return "elements nested too deeply";
+      return "elements nested too deeply (tinyxml2 reads at most " +
+             std::to_string(TINYXML2_MAX_ELEMENT_DEPTH) + " levels)";
     default:
       return "cannot parse";
   }
@@ -161,12 +162,59 @@ std::optional<std::string> ParseContext::opt_str(const Element* element, const c
   return attr(element, name);
 }
 
+namespace {
+
+/// Largest magnitude that makes physical sense for a numeric attribute, with its unit; nullptr
+/// for attributes without one. OpenSCENARIO sets no bounds; these are far beyond any road
+/// vehicle or map (docs/engine.md, "Bounds on values") and keep values such as 1e308 from
+/// reaching the engine, where they overflow to inf and NaN.
+struct Magnitude {
+  double limit;
+  const char* unit;
+};
+const Magnitude* magnitude_limit(std::string_view element, std::string_view attribute) {
+  static constexpr Magnitude kSpeed{1e4, "m/s"};
+  static constexpr Magnitude kLength{1e8, "m"};
+  static constexpr Magnitude kTime{1e9, "s"};
+  if (attribute == "maxSpeed" || attribute == "speed" || attribute == "velocity" ||
+      (attribute == "value" &&
+       (element == "AbsoluteTargetSpeed" || element == "RelativeTargetSpeed" ||
+        element == "SpeedCondition" || element == "RelativeSpeedCondition"))) {
+    return &kSpeed;
+  }
+  if (attribute == "x" || attribute == "y" || attribute == "z" || attribute == "s" ||
+      attribute == "t" || attribute == "ds" || attribute == "dx" || attribute == "dy" ||
+      attribute == "dz" || attribute == "distance" || attribute == "offset" ||
+      attribute == "pathS" || attribute == "tolerance" ||
+      (attribute == "value" &&
+       (element == "DistanceCondition" || element == "RelativeDistanceCondition" ||
+        element == "TraveledDistanceCondition"))) {
+    return &kLength;
+  }
+  if (attribute == "time" || attribute == "duration" || attribute == "delay" ||
+      attribute == "timeGap" || attribute == "startTime" || attribute == "stopTime" ||
+      (attribute == "value" &&
+       (element == "SimulationTimeCondition" || element == "StandStillCondition" ||
+        element == "TimeHeadwayCondition" || element == "TimeToCollisionCondition"))) {
+    return &kTime;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
 std::optional<double> ParseContext::opt_double(const Element* element, const char* name) {
   const auto text = attr(element, name);
   if (!text) return std::nullopt;
   const auto value = parse_double(*text);
   if (!value) {
-    fail(element, "attribute " + std::string(name) + ": '" + *text + "' is not a number");
+    fail(element, "attribute " + std::string(name) + ": '" + clip(*text) + "' is not a number");
+  }
+  if (const Magnitude* magnitude = magnitude_limit(element->Name(), name);
+      magnitude != nullptr && std::fabs(*value) > magnitude->limit) {
+    fail(element, "attribute " + std::string(name) + ": " + clip(*text) +
+                      " is beyond physical sense (|value| <= " + format_double(magnitude->limit) +
+                      " " + magnitude->unit + ")");
   }
   return value;
 }
@@ -183,8 +231,8 @@ std::optional<int64_t> ParseContext::opt_int(const Element* element, const char*
   if (!text) return std::nullopt;
   const auto value = parse_value(type, *text);
   if (!value) {
-    fail(element,
-         "attribute " + std::string(name) + ": '" + *text + "' is not a valid " + type_name(type));
+    fail(element, "attribute " + std::string(name) + ": '" + clip(*text) + "' is not a valid " +
+                      type_name(type));
   }
   return std::get<int64_t>(value->data);
 }

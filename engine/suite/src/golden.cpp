@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include "corsa/core/atomic_file.h"
+#include "corsa/core/diagnostic.h"
 #include "corsa/core/strings.h"
 #include "corsa/sweep/csv.h"
 
@@ -56,7 +58,73 @@ std::string where(const std::vector<std::string>& row) {
   return "at t=" + row[kTime] + " s (" + row[kEntity] + ")";
 }
 
+constexpr std::array<std::string_view, kWidth> kHeader = {
+    "time", "entity", "x", "y", "z", "h", "p", "r", "speed", "road", "lane", "s", "t"};
+
+/// The problem with one golden row (fields of line `line`), or "" when it is fine.
+std::string golden_row_problem(const std::vector<std::string>& fields) {
+  if (fields.size() != kWidth) {
+    return std::to_string(fields.size()) + " fields where a trajectory row has " +
+           std::to_string(kWidth);
+  }
+  for (size_t c = 0; c < kWidth; ++c) {
+    const std::string& field = fields[c];
+    const bool may_be_empty = c == kRoad || c == kLane || c == 11 || c == 12;
+    if (c == kEntity) {
+      if (field.empty()) return "no entity name";
+      continue;
+    }
+    if (field.empty()) {
+      if (may_be_empty) continue;
+      return "column '" + std::string(kHeader[c]) + "' is empty";
+    }
+    if (c == kRoad || c == kLane) continue;  // road ids are text
+    if (!parse_double(field)) {
+      return "column '" + std::string(kHeader[c]) + "' is not a finite number: '" + clip(field) +
+             "'";
+    }
+  }
+  return {};
+}
+
 }  // namespace
+
+void check_golden_file(const std::filesystem::path& file) {
+  const std::string text = read_file(file);
+  const auto fail = [&](int line, const std::string& message) {
+    throw InputError(make_error(file.string(), line, "golden trajectory: " + message));
+  };
+  int line = 0;
+  bool header_seen = false;
+  size_t begin = 0;
+  while (begin < text.size()) {
+    size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    std::string_view content(text.data() + begin, end - begin);
+    begin = end + 1;
+    ++line;
+    if (!content.empty() && content.back() == '\r') content.remove_suffix(1);
+    if (content.empty()) continue;
+    Rows rows;
+    if (!sweep::parse_csv(content, rows) || rows.size() != 1) {
+      fail(line, "a quoted field is not closed");
+    }
+    if (!header_seen) {
+      if (rows[0].size() != kWidth ||
+          !std::equal(kHeader.begin(), kHeader.end(), rows[0].begin())) {
+        fail(line, "the first line is not the trajectory header (time,entity,x,...,s,t)");
+      }
+      header_seen = true;
+      continue;
+    }
+    if (const std::string problem = golden_row_problem(rows[0]); !problem.empty()) {
+      fail(line, problem);
+    }
+  }
+  if (!header_seen) {
+    fail(1, "empty file (write it with --update-goldens)");
+  }
+}
 
 std::optional<size_t> Tolerances::column(std::string_view name) {
   for (size_t i = 0; i < kGoldenColumns.size(); ++i) {

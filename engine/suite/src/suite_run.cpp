@@ -7,6 +7,7 @@
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/suite/expectations.h"
+#include "corsa/suite/golden.h"
 #include "corsa/sweep/parallel.h"
 #include "corsa/sweep/shared_inputs.h"
 
@@ -118,6 +119,16 @@ SuiteReport run_suite(const Suite& suite, const SuiteOptions& options, Diagnosti
     for (TestCase& test : tests) {
       if (!test.golden)
         test.golden = GoldenSpec{suite.folder / "goldens" / (test.name + ".csv"), 10, {}};
+    }
+  }
+  if (!options.update_goldens) {
+    // A golden that exists but cannot be read is bad input of the suite: found before any test
+    // runs (a missing one is the test's failure, with a hint to write it).
+    for (const TestCase& test : tests) {
+      std::error_code error;
+      if (test.golden && fs::is_regular_file(test.golden->file, error)) {
+        check_golden_file(test.golden->file);
+      }
     }
   }
   SuiteReport report;

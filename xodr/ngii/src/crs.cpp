@@ -47,6 +47,48 @@ std::string identify(PJ_CONTEXT* context, const PJ* crs) {
   return result;
 }
 
+/// PROJ's own words for why it failed: the WKT parser's errors, else the messages it logged,
+/// else its error code's text ("Unknown error (code 4096)" alone tells a user nothing).
+std::string proj_reason(PJ_CONTEXT* context, const std::string& text, const std::string& logged) {
+  std::string reason;
+  PROJ_STRING_LIST warnings = nullptr;
+  PROJ_STRING_LIST errors = nullptr;
+  const char* const options[] = {"STRICT=NO", nullptr};
+  Object wkt(proj_create_from_wkt(context, text.c_str(), options, &warnings, &errors));
+  for (PROJ_STRING_LIST e = errors; e != nullptr && *e != nullptr; ++e) {
+    reason += (reason.empty() ? "" : "; ") + std::string(*e);
+  }
+  proj_string_list_destroy(warnings);
+  proj_string_list_destroy(errors);
+  if (reason.empty()) {
+    reason = logged;
+  }
+  if (reason.empty()) {
+    reason = proj_context_errno_string(context, proj_context_errno(context));
+  }
+  // Only printable ASCII: PROJ may quote a piece of a binary file back.
+  for (char& c : reason) {
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7F) {
+      c = '?';
+    }
+  }
+  return clip(reason, 200);
+}
+
+/// Collects what PROJ logs at error level (the context's own sink, no global state).
+void collect_log(void* sink, int /*level*/, const char* message) {
+  auto* text = static_cast<std::string*>(sink);
+  std::string_view line = message != nullptr ? message : "";
+  // "proj_create: missing ]": the function name is of no use to a user.
+  if (const auto colon = line.find(": ");
+      colon != std::string_view::npos && line.substr(0, colon).starts_with("proj_")) {
+    line.remove_prefix(colon + 2);
+  }
+  if (!line.empty() && text->size() < 1000) {
+    *text += (text->empty() ? "" : "; ") + std::string(line);
+  }
+}
+
 }  // namespace
 
 Crs read_crs(const std::filesystem::path& prj) {
@@ -56,14 +98,17 @@ Crs read_crs(const std::filesystem::path& prj) {
     fail(prj, "empty .prj: the layers' coordinate reference system is unknown");
   }
   Context context(proj_context_create());
-  proj_log_level(context.get(), PJ_LOG_NONE);
+  std::string logged;
+  proj_log_func(context.get(), &logged, collect_log);
+  proj_log_level(context.get(), PJ_LOG_ERROR);
   proj_context_set_enable_network(context.get(), 0);
   Object object(proj_create(context.get(), crs.wkt.c_str()));
   if (!object) {
-    fail(prj, "PROJ cannot read this coordinate reference system: " +
-                  std::string(
-                      proj_context_errno_string(context.get(), proj_context_errno(context.get()))));
+    proj_log_level(context.get(), PJ_LOG_NONE);
+    fail(prj, "its coordinate reference system (WKT) could not be understood; PROJ says: " +
+                  proj_reason(context.get(), crs.wkt, logged));
   }
+  proj_log_level(context.get(), PJ_LOG_NONE);
   if (proj_get_type(object.get()) != PJ_TYPE_PROJECTED_CRS) {
     fail(prj, "not a projected CRS: the converter needs planar coordinates in metres");
   }

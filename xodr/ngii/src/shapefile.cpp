@@ -3,6 +3,7 @@
 #include <shapefil.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -103,6 +104,7 @@ ShapeReader::ShapeReader(const fs::path& shp, ShapeFamily family) : file_(shp.st
     fail(file_, -1,
          "wrong shape type " + std::to_string(type) + " (expected " + family_name(family) + ")");
   }
+  type_ = type;
   has_z_ = type == SHPT_POINTZ || type == SHPT_ARCZ;
 }
 
@@ -119,6 +121,15 @@ bool ShapeReader::read(int index, std::vector<Point3>& points, int& parts) const
   if (!object) {
     fail(file_, index, "truncated or corrupt shape record");
   }
+  // ESRI Shapefile Technical Description (1998), "Main File Record Contents": all non-Null shapes
+  // of a file have the file's type. Anything else is a record read from garbage (a .shp
+  // overwritten or not matching its .shx), which must not pass as a record without geometry.
+  if (object->nSHPType != SHPT_NULL && object->nSHPType != type_) {
+    fail(file_, index,
+         "corrupt shape record: shape type " + std::to_string(object->nSHPType) +
+             " in a layer of type " + std::to_string(type_) +
+             " (the .shp is damaged or does not match its .shx)");
+  }
   if (object->nSHPType == SHPT_NULL || object->nVertices <= 0) {
     points.clear();
     parts = 0;
@@ -127,6 +138,11 @@ bool ShapeReader::read(int index, std::vector<Point3>& points, int& parts) const
   points.resize(static_cast<size_t>(object->nVertices));
   for (int i = 0; i < object->nVertices; ++i) {
     const double z = (has_z_ && object->padfZ != nullptr) ? object->padfZ[i] : 0.0;
+    if (!std::isfinite(object->padfX[i]) || !std::isfinite(object->padfY[i]) || !std::isfinite(z)) {
+      fail(file_, index,
+           "corrupt shape record: vertex " + std::to_string(i) +
+               " has a coordinate that is not a finite number");
+    }
     points[static_cast<size_t>(i)] = Point3{object->padfX[i], object->padfY[i], z};
   }
   parts = object->nParts;

@@ -32,7 +32,9 @@ class ShapeReader {
   bool has_z() const { return has_z_; }
   /// Reads record `index` into `points` (all parts concatenated; `parts` receives their number).
   /// Returns false for a record without geometry (a null shape). Throws InputError naming the
-  /// file and record for a truncated or corrupt record.
+  /// file and record for a truncated or corrupt record: one whose shape type is neither Null nor
+  /// the layer's (the Shapefile specification requires one type for all non-Null shapes), or
+  /// with a coordinate that is not a finite number.
   bool read(int index, std::vector<Point3>& points, int& parts) const;
   const std::string& file() const { return file_; }
 
@@ -40,6 +42,7 @@ class ShapeReader {
   void* handle_ = nullptr;  // SHPHandle, kept opaque so shapelib stays out of this header
   std::string file_;
   int count_ = 0;
+  int type_ = 0;  // the layer's shape type from the header (SHPT_*)
   bool has_z_ = false;
 };
 

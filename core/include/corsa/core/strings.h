@@ -30,4 +30,9 @@ std::string json_quote(std::string_view text);
 /// quote, a line break or leading/trailing blanks; quotes inside doubled.
 std::string csv_field(std::string_view text);
 
+/// `text` for quoting in a message: itself when at most `max_bytes` long, else its first bytes
+/// (never ending inside a UTF-8 sequence) followed by "...". Keeps a 5 MB name or value in a
+/// malformed input from flooding the terminal.
+std::string clip(std::string_view text, size_t max_bytes = 64);
+
 }  // namespace corsa

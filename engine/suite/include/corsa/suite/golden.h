@@ -4,6 +4,7 @@
 // row by row with a stored one, numbers within per-column tolerances.
 
 #include <array>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -48,5 +49,11 @@ struct GoldenComparison {
 /// compared on rows where the road differs.
 GoldenComparison compare_trajectories(std::string_view golden, std::string_view actual,
                                       const Tolerances& tolerances);
+
+/// Checks a stored golden trajectory before any test runs, so that a golden that cannot be read
+/// is bad input of the suite (exit 2) rather than a failing test: the header must be the
+/// trajectory header, every row must have its 13 fields, time and x..speed must be finite
+/// numbers, s and t numbers or empty (off the road). Throws InputError at `file:line`.
+void check_golden_file(const std::filesystem::path& file);
 
 }  // namespace corsa::suite
