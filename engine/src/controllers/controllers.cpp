@@ -138,10 +138,10 @@ void step_pedestrian(SimState& state, uint32_t index, const DefaultController& i
 
 // Whether the dynamics controller moves entity `index` this step (a FollowTrajectoryAction in
 // position mode places the entity on its path instead: ideal motion).
-bool dynamics_moves(SimState& state, uint32_t index) {
+bool dynamics_moves(const SimState& state, uint32_t index) {
   const Entity& entity = state.world.entities[index];
   return entity.state.placed && !entity.pose_command &&
-         control_of(state, index).effective() == ControllerKind::kDynamics;
+         state.controls[index].effective() == ControllerKind::kDynamics;
 }
 
 }  // namespace
@@ -149,6 +149,10 @@ bool dynamics_moves(SimState& state, uint32_t index) {
 void move_entities(SimState& state, const MotionContext& motion) {
   const DefaultController ideal;
   const auto count = static_cast<uint32_t>(state.world.entities.size());
+  if (count == 0) {
+    return;
+  }
+  control_of(state, count - 1);  // a control state for every entity, also those added by traffic
   // The vehicle models of the dynamics controller step ahead of the in-order loop, all
   // integrated as one system: a model's step reads only its own entity, which no other
   // entity's step changes, so this gives what stepping each in turn gives.
@@ -166,12 +170,12 @@ void move_entities(SimState& state, const MotionContext& motion) {
     if (!entity.state.placed) {
       continue;
     }
-    if (entity.info.kind == ObjectKind::kPedestrian &&
-        control_of(state, i).effective() == ControllerKind::kDefault) {
+    const ControllerKind kind = state.controls[i].effective();
+    if (entity.info.kind == ObjectKind::kPedestrian && kind == ControllerKind::kDefault) {
       step_pedestrian(state, i, ideal, motion);
       continue;
     }
-    switch (control_of(state, i).effective()) {
+    switch (kind) {
       case ControllerKind::kDefault:
         ideal.step(entity, motion);
         break;
@@ -181,7 +185,7 @@ void move_entities(SimState& state, const MotionContext& motion) {
       case ControllerKind::kDynamics:
         if (entity.pose_command) {
           // FollowTrajectoryAction in position mode places the entity on the path (ideal).
-          control_of(state, i).dynamics.reset();
+          state.controls[i].dynamics.reset();
           ideal.step(entity, motion);
         } else {
           finish_dynamics(state, i, motion);

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <numbers>
 #include <type_traits>
+#include <utility>
 
 #include "controllers/controllers.h"
 #include "controllers/dynamics_fleet.h"
@@ -135,6 +136,25 @@ double longitudinal_demand(Entity& entity, DynamicsVehicle& vehicle, const Contr
   return demand;
 }
 
+// The world point (x, y) of a followed lane position, as lane_pose places it (Map::world_pose
+// at h = 0), without the z, pitch, roll and containing lane that pure pursuit does not need.
+std::pair<double, double> lane_point(const xodr::Map& map, const LaneFollow& follow,
+                                     std::vector<xodr::LaneSpan>& spans) {
+  map.lane_spans_in_section(follow.road, follow.section, follow.s, spans);
+  double center = 0.0;
+  for (const auto& span : spans) {
+    if (span.id == follow.lane) {
+      center = span.t_center();
+      break;
+    }
+  }
+  const double t = center + follow.dir * follow.lateral;
+  const xodr::RefPoint ref = map.reference(follow.road, follow.s);
+  // OpenDRIVE 1.8 §8.4.2: t runs along the normal tilted by the superelevation roll.
+  const double horizontal = t * std::cos(map.superelevation(follow.road, follow.s));
+  return {ref.x - std::sin(ref.hdg) * horizontal, ref.y + std::cos(ref.hdg) * horizontal};
+}
+
 // Front wheel angle (rad) toward the commanded path, by pure pursuit from the rear axle.
 double steering_demand(const SimState& state, Entity& entity, const VehicleState& now,
                        double vehicle_wheelbase, std::vector<xodr::LaneSpan>& scratch) {
@@ -146,8 +166,8 @@ double steering_demand(const SimState& state, Entity& entity, const VehicleState
   probe.heading_offset = 0.0;
   const double lookahead = std::max(kMinLookahead, kLookaheadTime * std::abs(now.vx));
   advance_along_lanes(*state.map, probe, lookahead, entity.chooser);
-  const LanePose target = lane_pose(*state.map, probe, scratch);
-  const double dx = target.pose.x - now.x, dy = target.pose.y - now.y;
+  const auto [target_x, target_y] = lane_point(*state.map, probe, scratch);
+  const double dx = target_x - now.x, dy = target_y - now.y;
   const double distance = std::hypot(dx, dy);
   if (distance < 1e-6) {
     return 0.0;
@@ -295,14 +315,14 @@ void begin_dynamics(SimState& state, std::span<const uint32_t> indices,
   }
   for (const uint32_t index : indices) {
     begin_vehicle(state, index, motion, *fleet);
-    control_of(state, index).dynamics->fleet = fleet;
+    state.controls[index].dynamics->fleet = fleet;
   }
   fleet->integrate(motion.dt);
 }
 
 void finish_dynamics(SimState& state, uint32_t index, const MotionContext& motion) {
   Entity& entity = state.world.entities[index];
-  DynamicsVehicle& vehicle = *control_of(state, index).dynamics;
+  DynamicsVehicle& vehicle = *state.controls[index].dynamics;
   const double dt = motion.dt;
   EntityState& es = entity.state;
   const VehicleState& before = vehicle.before;

@@ -64,8 +64,9 @@ struct RhsData {
 void vehicle_rhs(const Slot& p, const double* y, double* dy) {
   const double yaw = y[2], vx = y[3], vy = y[4], r = y[5], steer = y[6], accel = y[7];
   const double u = std::max(vx, 0.5 * kKinematicSpeed);
-  const double slip_front = std::atan2(vy + p.lf * r, u) - steer;
-  const double slip_rear = std::atan2(vy - p.lr * r, u);
+  // Slip angles: atan2(v_lateral, u) with u > 0, i.e. atan(v_lateral / u).
+  const double slip_front = std::atan((vy + p.lf * r) / u) - steer;
+  const double slip_rear = std::atan((vy - p.lr * r) / u);
   const double fy_front = -p.limit_front * std::tanh(p.slope_front * slip_front);
   const double fy_rear = -p.limit_rear * std::tanh(p.slope_rear * slip_rear);
   const double c = std::cos(yaw), s = std::sin(yaw);
@@ -105,6 +106,10 @@ void vector_scale(sunrealtype c, N_Vector x, N_Vector z) {
   const sunindextype n = NV_LENGTH_S(x);
   const double* xd = NV_DATA_S(x);
   double* zd = NV_DATA_S(z);
+  if (c == 1.0) {
+    std::copy(xd, xd + n, zd);  // ARKODE's copies (N_VScale(1, x, z))
+    return;
+  }
   for (sunindextype j = 0; j < n; ++j) {
     zd[j] = c * xd[j];
   }
@@ -120,24 +125,42 @@ void vector_linear_sum(sunrealtype a, N_Vector x, sunrealtype b, N_Vector y, N_V
   }
 }
 
+// z = sum of c[i] x[i], summed from i = 0 up for every element. ARKODE's stage and solution
+// sums pass z = x[0]; z being a later term takes the slower element-by-element loop.
 int vector_linear_combination(int count, sunrealtype* c, N_Vector* x, N_Vector z) {
-  constexpr int kMaxTerms = 8;  // RK4's longest sum has 5 (y and 4 stage derivatives)
+  constexpr int kMaxTerms = 16;  // RK4's longest sum has 5 (y and 4 stage derivatives)
   if (count < 1 || count > kMaxTerms) {
     return -1;
   }
   const sunindextype n = NV_LENGTH_S(z);
+  double* zd = NV_DATA_S(z);
   const double* xd[kMaxTerms];
+  bool later_alias = false;
   for (int i = 0; i < count; ++i) {
     xd[i] = NV_DATA_S(x[i]);
+    later_alias = later_alias || (i > 0 && xd[i] == zd);
   }
-  double* zd = NV_DATA_S(z);
-  // Element by element, so that z may be any of the x (ARKODE passes z = x[0]).
-  for (sunindextype j = 0; j < n; ++j) {
-    double sum = c[0] * xd[0][j];
-    for (int i = 1; i < count; ++i) {
-      sum += c[i] * xd[i][j];
+  if (later_alias) {
+    for (sunindextype j = 0; j < n; ++j) {
+      double sum = c[0] * xd[0][j];
+      for (int i = 1; i < count; ++i) {
+        sum += c[i] * xd[i][j];
+      }
+      zd[j] = sum;
     }
-    zd[j] = sum;
+    return 0;
+  }
+  if (xd[0] != zd || c[0] != 1.0) {
+    for (sunindextype j = 0; j < n; ++j) {
+      zd[j] = c[0] * xd[0][j];
+    }
+  }
+  for (int i = 1; i < count; ++i) {
+    const double ci = c[i];
+    const double* xi = xd[i];
+    for (sunindextype j = 0; j < n; ++j) {
+      zd[j] += ci * xi[j];
+    }
   }
   return 0;
 }
