@@ -4,7 +4,32 @@
 
 #include <cmath>
 
+#include "corsa/core/strings.h"
+
 namespace corsa::cli {
+namespace {
+
+void read_npc(const std::string& text, engine::SimulationOptions& options) {
+  for (const std::string_view raw : split(text, ',')) {
+    const std::string_view item = trim(raw);
+    const size_t eq = item.find('=');
+    const std::string key(trim(item.substr(0, eq)));
+    const auto count = eq == std::string_view::npos ? std::nullopt : parse_int(item.substr(eq + 1));
+    if (!count || *count < 0 || *count > 10000) {
+      throw UsageError("--npc expects vehicles=N,pedestrians=M (0..10000), got '" +
+                       std::string(item) + "'");
+    }
+    if (key == "vehicles") {
+      options.npc.vehicles = static_cast<uint32_t>(*count);
+    } else if (key == "pedestrians") {
+      options.npc.pedestrians = static_cast<uint32_t>(*count);
+    } else {
+      throw UsageError("--npc: unknown key '" + key + "' (keys: vehicles, pedestrians)");
+    }
+  }
+}
+
+}  // namespace
 
 void declare_run_options(ArgParser& parser) {
   parser.positional("SCENARIO.xosc", "the scenario to run");
@@ -19,6 +44,9 @@ void declare_run_options(ArgParser& parser) {
   parser.option("--record-every", "N", "record every N-th step (default 1)");
   parser.option("--summary", "FILE.json", "write the run summary");
   parser.option("--log", "FILE.csv", "write every storyboard transition with its time");
+  parser.option("--npc", "vehicles=N,pedestrians=M",
+                "add seeded random NPCs: vehicles on driving lanes (car following), pedestrians "
+                "walking on sidewalks");
   parser.flag("--quiet", "no progress bar and no summary line");
 }
 
@@ -55,6 +83,9 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
       throw UsageError("--controller expects default, acc or dynamics");
     }
     options.simulation.controller = *controller;
+  }
+  if (const auto npc = parsed.value("--npc")) {
+    read_npc(*npc, options.simulation);
   }
   if (const auto every = parsed.integer("--record-every")) {
     if (*every < 1) {

@@ -10,6 +10,7 @@
 #include "corsa/xosc/scenario.h"
 #include "motion/route_lanes.h"
 #include "simulation_impl.h"
+#include "traffic/traffic_generators.h"
 
 namespace corsa::engine {
 namespace {
@@ -49,6 +50,7 @@ Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xod
           "' has no position in Init (no TeleportAction); it waits at the origin"));
     }
   }
+  detail::place_npcs(state);
   detail::update_contacts(state);
   detail::update_timers(state, false);
 }
@@ -158,6 +160,12 @@ std::optional<ElementState> Simulation::element_state(std::string_view path) con
 }
 
 std::span<const CollisionRecord> Simulation::collisions() const { return impl_->state.collisions; }
+
+std::span<const Lifetime> Simulation::lifetimes(size_t index) const {
+  const auto& all = impl_->state.traffic.lifetimes;
+  const auto it = all.find(static_cast<uint32_t>(index));
+  return it == all.end() ? std::span<const Lifetime>() : std::span<const Lifetime>(it->second);
+}
 
 bool Simulation::colliding(size_t a, size_t b) const {
   return a != b && impl_->state.contacts.get(static_cast<uint32_t>(a), static_cast<uint32_t>(b));

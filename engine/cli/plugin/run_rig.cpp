@@ -21,7 +21,6 @@
 #include "corsa/sensors/sensor_system.h"
 #include "corsa/xosc/scenario.h"
 #include "plugin_commands.h"
-#include "run_rig_npc.h"
 
 namespace corsa::cli {
 namespace {
@@ -74,7 +73,6 @@ struct RigSession {
   std::unique_ptr<sensors::SensorSystem> system;
   std::unique_ptr<sensors::DatasetWriter> writer;
   std::unique_ptr<engine::CaptureTimeline> timeline;
-  NpcSet npcs;
   double start_time_of_day = 0.0;  ///< the scenario's clock at tick 0, s
   int64_t last_tick = 0;
   double last_time = 0.0;
@@ -118,9 +116,6 @@ void RigSession::prepare(engine::Simulation& simulation) {
   engine::WorldSnapshot initial;
   simulation.fill_snapshot(initial);
   start_time_of_day = initial.environment.time_of_day;
-  if (options.npc_vehicles > 0 || options.npc_pedestrians > 0) {
-    npcs = place_npcs(simulation, options.npc_vehicles, options.npc_pedestrians, diagnostics);
-  }
   // Last, once nothing else can fail: the dataset folder appears only for a run that starts.
   writer = std::make_unique<sensors::DatasetWriter>(*system, options.output, std::move(info),
                                                     options.format, options.force);
@@ -131,7 +126,6 @@ void RigSession::adjust(engine::WorldSnapshot& world) {
   if (!options.environment.empty()) {
     engine::apply_override(options.environment, start_time_of_day, world.environment);
   }
-  move_npcs(npcs, world);
 }
 
 void RigSession::finish(const std::string& status, const std::string& reason) const {

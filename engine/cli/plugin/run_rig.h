@@ -33,9 +33,7 @@ struct RigRunOptions {
   engine::EnvironmentOverride environment;
   std::string time_of_day_text;
   std::string weather_text;
-  std::string npc_text;
-  int npc_vehicles = 0;
-  int npc_pedestrians = 0;
+  std::string npc_text;  ///< --npc as given (the engine reads it into run.simulation.npc)
   std::vector<std::string> models;  ///< --model FILE[@X,Y[,HEADING_DEG]]
 };
 

@@ -8,30 +8,6 @@
 #include "run_rig.h"
 
 namespace corsa::cli {
-namespace {
-
-void read_npc(const std::string& text, RigRunOptions& options) {
-  for (const std::string_view raw : split(text, ',')) {
-    const std::string_view item = trim(raw);
-    const size_t eq = item.find('=');
-    const std::string key(trim(item.substr(0, eq)));
-    const auto count = eq == std::string_view::npos ? std::nullopt : parse_int(item.substr(eq + 1));
-    if (!count || *count < 0 || *count > 10000) {
-      throw UsageError("--npc expects vehicles=N,pedestrians=M (0..10000), got '" +
-                       std::string(item) + "'");
-    }
-    if (key == "vehicles") {
-      options.npc_vehicles = static_cast<int>(*count);
-    } else if (key == "pedestrians") {
-      options.npc_pedestrians = static_cast<int>(*count);
-    } else {
-      throw UsageError("--npc: unknown key '" + key + "' (keys: vehicles, pedestrians)");
-    }
-  }
-}
-
-}  // namespace
-
 void declare_rig_run_options(ArgParser& parser) {
   declare_run_options(parser);
   parser.option("--rig", "RIG.xml", "sensor rig (schemas/sensor-rig.xsd): capture a dataset");
@@ -44,8 +20,6 @@ void declare_rig_run_options(ArgParser& parser) {
   parser.option("--weather", "KEY=VALUE,...",
                 "override the weather: fog=M, rain=MM_PER_H, snow=MM_PER_H, clouds=0..1, "
                 "wind=M_PER_S, wind_dir=DEG, wet=0|1, friction=SCALE");
-  parser.option("--npc", "vehicles=N,pedestrians=M",
-                "add seeded random NPCs: vehicles on driving lanes, pedestrians on sidewalks");
   parser.repeated("--model", "FILE[@X,Y[,HEADING_DEG]]",
                   "add a building model (map metres, z up) at an offset; the scenario's "
                   "SceneGraphFile is loaded too");
@@ -87,8 +61,9 @@ RigRunOptions read_rig_run_options(const ParsedArgs& parsed) {
   } catch (const std::invalid_argument& error) {
     throw UsageError(error.what());
   }
+  // --npc is the engine's (run_options.cpp): the NPCs are simulation entities; the text is kept
+  // for run.json.
   if (const auto npc = parsed.value("--npc")) {
-    read_npc(*npc, options);
     options.npc_text = *npc;
   }
   options.models = parsed.values("--model");

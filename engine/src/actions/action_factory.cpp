@@ -133,6 +133,8 @@ std::unique_ptr<ActionInstance> make_global_action(const xosc::GlobalAction& act
           return make_traffic_signal_controller_action(a);
         } else if constexpr (std::is_same_v<T, xosc::TrafficSwarmAction>) {
           return make_traffic_swarm_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::TrafficAreaAction>) {
+          return make_traffic_area_action(a);
         } else if constexpr (std::is_same_v<T, xosc::TrafficSourceAction>) {
           return make_traffic_source_action(a);
         } else if constexpr (std::is_same_v<T, xosc::TrafficSinkAction>) {

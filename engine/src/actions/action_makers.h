@@ -39,6 +39,7 @@ std::unique_ptr<ActionInstance> make_traffic_signal_state_action(
 std::unique_ptr<ActionInstance> make_traffic_signal_controller_action(
     const xosc::TrafficSignalControllerAction& action);
 std::unique_ptr<ActionInstance> make_traffic_swarm_action(const xosc::TrafficSwarmAction& action);
+std::unique_ptr<ActionInstance> make_traffic_area_action(const xosc::TrafficAreaAction& action);
 std::unique_ptr<ActionInstance> make_traffic_source_action(const xosc::TrafficSourceAction& action);
 std::unique_ptr<ActionInstance> make_traffic_sink_action(const xosc::TrafficSinkAction& action);
 std::unique_ptr<ActionInstance> make_traffic_stop_action(const xosc::TrafficStopAction& action);

@@ -50,7 +50,9 @@ Box box_of(const xosc::BoundingBox& box) {
   return Box{box.center_x, box.center_y, box.center_z, box.length, box.width, box.height};
 }
 
-EntityInfo describe(const xosc::ScenarioObject& object, Diagnostics& diagnostics) {
+}  // namespace
+
+EntityInfo describe_object(const xosc::ScenarioObject& object, Diagnostics& diagnostics) {
   EntityInfo info;
   info.name = object.name;
   std::visit(
@@ -86,14 +88,12 @@ EntityInfo describe(const xosc::ScenarioObject& object, Diagnostics& diagnostics
   return info;
 }
 
-}  // namespace
-
 void build_entities(SimState& state) {
   const auto& objects = state.scenario.entities.objects;
   state.world.entities.reserve(objects.size());
   for (const xosc::ScenarioObject& object : objects) {
     Entity entity;
-    entity.info = describe(object, state.diagnostics);
+    entity.info = describe_object(object, state.diagnostics);
     entity.object = &object;
     const auto index = static_cast<uint32_t>(state.world.entities.size());
     if (!state.world.by_name.emplace(object.name, index).second) {

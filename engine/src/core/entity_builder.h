@@ -3,9 +3,20 @@
 // Entities from the scenario's Entities (OpenSCENARIO 1.3 §6.2): one per ScenarioObject, in
 // document order; their category, bounding box and performance.
 
+#include "corsa/core/diagnostic.h"
+#include "corsa/engine/entity_state.h"
+
+namespace corsa::xosc {
+struct ScenarioObject;
+}
+
 namespace corsa::engine::detail {
 
 struct SimState;
+
+/// Kind, category, box and performance of a scenario object (also of the objects traffic
+/// generators spawn).
+EntityInfo describe_object(const xosc::ScenarioObject& object, Diagnostics& diagnostics);
 
 /// Fills state.world. ExternalObjectReferences (objects only the simulator would know) get an
 /// empty box and a warning.

@@ -43,6 +43,20 @@ std::string summary_json(const Simulation& simulation, double wall_seconds) {
       out += ", \"road\": " + json_quote(simulation.road_id(s.road->road)) +
              ", \"lane\": " + std::to_string(s.road->lane);
     }
+    // Generated entities (traffic actions, NPCs): whether present at the end, and when each
+    // presence began and ended (the pose above is where it was last).
+    if (const auto lives = simulation.lifetimes(i); !lives.empty()) {
+      out += std::string(", \"generated\": true, \"present\": ") + (s.placed ? "true" : "false") +
+             ", \"lifetimes\": [";
+      for (size_t k = 0; k < lives.size(); ++k) {
+        out += std::string(k ? ", " : "") + "{\"spawned\": " + number(lives[k].spawned);
+        if (lives[k].removed) {
+          out += ", \"removed\": " + number(*lives[k].removed);
+        }
+        out += "}";
+      }
+      out += "]";
+    }
     out += "}";
   }
   out += simulation.entity_count() ? "\n  ],\n" : "],\n";

@@ -10,8 +10,8 @@
 #include "corsa/core/random.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
-#include "motion/lane_follow.h"
 #include "positions/position_resolver.h"
+#include "traffic/spawner.h"
 
 namespace corsa::engine::detail {
 namespace {
@@ -20,168 +20,10 @@ constexpr double kDefaultSpeed = 13.9;    // m/s (50 km/h) when the action gives
 constexpr double kSpawnClearance = 12.0;  // m from any other entity's reference point
 constexpr int kTriesPerStep = 8;
 
-xosc::VehicleCategory draw_category(const std::optional<xosc::TrafficDefinition>& definition,
-                                    RandomStream& random) {
-  if (!definition || definition->vehicle_categories.empty()) {
-    return xosc::VehicleCategory::kCar;
-  }
-  std::vector<double> weights;
-  double sum = 0.0;
-  for (const auto& entry : definition->vehicle_categories) {
-    weights.push_back(std::max(0.0, entry.weight));
-    sum += weights.back();
-  }
-  if (!(sum > 0.0)) {
-    return definition->vehicle_categories.front().category;
-  }
-  return definition->vehicle_categories[random.weighted_index(weights)].category;
+const xosc::TrafficDistribution* distribution_of(
+    const std::optional<xosc::TrafficDistribution>& distribution) {
+  return distribution ? &*distribution : nullptr;
 }
-
-// Box and performance by category: a car, a truck or bus, a motorbike or bicycle.
-xosc::Vehicle vehicle_model(xosc::VehicleCategory category) {
-  xosc::Vehicle v;
-  v.category = category;
-  double length = 4.5, width = 1.8, height = 1.5, wheelbase = 2.8;
-  switch (category) {
-    case xosc::VehicleCategory::kTruck:
-    case xosc::VehicleCategory::kBus:
-    case xosc::VehicleCategory::kSemitrailer:
-    case xosc::VehicleCategory::kTrailer:
-    case xosc::VehicleCategory::kTrain:
-    case xosc::VehicleCategory::kTram:
-      length = 12.0, width = 2.5, height = 3.5, wheelbase = 6.5;
-      break;
-    case xosc::VehicleCategory::kMotorbike:
-    case xosc::VehicleCategory::kBicycle:
-      length = 2.0, width = 0.8, height = 1.5, wheelbase = 1.4;
-      break;
-    default:
-      break;
-  }
-  v.name = "traffic_vehicle";
-  v.bounding_box.center_x = 0.5 * wheelbase;
-  v.bounding_box.center_z = 0.5 * height;
-  v.bounding_box.length = length;
-  v.bounding_box.width = width;
-  v.bounding_box.height = height;
-  v.performance.max_speed = 50.0;
-  v.performance.max_acceleration = 3.0;
-  v.performance.max_deceleration = 8.0;
-  xosc::Axle front;
-  front.max_steering = 0.5;
-  front.position_x = wheelbase;
-  v.axles.front_axle = front;
-  return v;
-}
-
-bool clear_of_others(const SimState& state, double x, double y) {
-  for (const Entity& other : state.world.entities) {
-    if (other.state.placed &&
-        std::hypot(other.state.pose.x - x, other.state.pose.y - y) < kSpawnClearance) {
-      return false;
-    }
-  }
-  return true;
-}
-
-// A driving lane's centre near (x, y), facing its direction of travel (right-hand traffic:
-// lanes right of the reference line drive toward +s); `same_as` (rad) when given picks the
-// direction closer to it instead for bidirectional choice of the swarm.
-std::optional<ResolvedPosition> lane_spot(const xodr::Map& map, double x, double y) {
-  xodr::LocateOptions options;
-  options.max_distance = 4.0;
-  options.drivable_only = true;
-  const auto located = map.locate(x, y, options);
-  if (!located || located->lane == 0) {
-    return std::nullopt;
-  }
-  const auto t = lane_center_t(map, located->road, located->s, located->lane);
-  if (!t) {
-    return std::nullopt;
-  }
-  const int dir = located->lane < 0 ? 1 : -1;
-  ResolvedPosition at;
-  const xodr::WorldPose pose = map.world_pose(located->road, located->s, *t);
-  at.pose = pose;
-  at.pose.h = travel_heading(map, located->road, located->s, dir);
-  at.road = RoadPoint{located->road, located->s, *t, located->lane};
-  return at;
-}
-
-class GeneratorBase : public TrafficGenerator {
- public:
-  GeneratorBase(std::optional<std::string> name, std::string stem, uint64_t seed)
-      : name_(std::move(name)), stem_(std::move(stem)), random_(seed) {}
-  const std::optional<std::string>& name() const override { return name_; }
-
- protected:
-  // A new vehicle (or a despawned one of ours reused) at `at`, driving at `speed`.
-  uint32_t spawn(SimState& state, const ResolvedPosition& at, double speed,
-                 xosc::VehicleCategory category) {
-    uint32_t index = 0;
-    if (!free_.empty()) {
-      index = free_.back();
-      free_.pop_back();
-    } else {
-      xosc::ScenarioObject object;
-      object.name = (name_ ? *name_ : stem_) + "_" + std::to_string(++state.traffic.spawned_count);
-      object.object = vehicle_model(category);
-      state.traffic.spawned_objects.push_back(std::move(object));
-      const xosc::ScenarioObject& stored = state.traffic.spawned_objects.back();
-      const xosc::Vehicle& vehicle = std::get<xosc::Vehicle>(stored.object);
-      Entity entity;
-      entity.object = &stored;
-      entity.info.name = stored.name;
-      entity.info.kind = ObjectKind::kVehicle;
-      entity.info.category = category == xosc::VehicleCategory::kTruck ? EntityCategory::kTruck
-                             : category == xosc::VehicleCategory::kBus ? EntityCategory::kBus
-                                                                       : EntityCategory::kCar;
-      const xosc::BoundingBox& b = vehicle.bounding_box;
-      entity.info.box = Box{b.center_x, b.center_y, b.center_z, b.length, b.width, b.height};
-      entity.info.max_speed = vehicle.performance.max_speed;
-      entity.info.max_acceleration = vehicle.performance.max_acceleration;
-      entity.info.max_deceleration = vehicle.performance.max_deceleration;
-      index = static_cast<uint32_t>(state.world.entities.size());
-      state.world.by_name.emplace(stored.name, index);
-      state.world.entities.push_back(std::move(entity));
-      ControlState& control = control_of(state, index);
-      ControllerKind kind = ControllerKind::kAcc;
-      if (!state.options.controller.empty()) {
-        parse_controller_kind(state.options.controller, kind);
-      }
-      control.kind = kind;
-    }
-    Entity& entity = state.world.entities[index];
-    place_entity(state, entity, at, xosc::Source{}, false);
-    entity.state.speed = speed;
-    entity.speed_command = speed;
-    control_of(state, index).dynamics.reset();
-    mine_.push_back(index);
-    return index;
-  }
-
-  // Vehicles removed by others (a sink, a DeleteEntityAction) are free again.
-  void prune(const SimState& state) {
-    for (const uint32_t index : std::vector<uint32_t>(mine_)) {
-      if (!state.world.entities[index].state.placed) {
-        mine_.erase(std::remove(mine_.begin(), mine_.end(), index), mine_.end());
-        free_.push_back(index);
-      }
-    }
-  }
-
-  void despawn(SimState& state, uint32_t index) {
-    remove_entity(state, index);
-    mine_.erase(std::remove(mine_.begin(), mine_.end(), index), mine_.end());
-    free_.push_back(index);
-  }
-
-  std::optional<std::string> name_;
-  std::string stem_;
-  RandomStream random_;
-  std::vector<uint32_t> mine_;  ///< present vehicles of this generator
-  std::vector<uint32_t> free_;  ///< despawned, reusable
-};
 
 // TrafficSwarmAction: numberOfVehicles kept between the inner circle and the outer ellipse
 // (semi-major axis along the central entity's heading, centre `offset` metres ahead of it);
@@ -193,6 +35,7 @@ class Swarm final : public GeneratorBase {
                       derive_seed(state.options.seed, "swarm:" + action.central_object +
                                                           std::to_string(action.source.line))),
         action_(action),
+        mix_(action.traffic_definition, distribution_of(action.traffic_distribution)),
         central_(central) {}
 
   void step(SimState& state) override {
@@ -226,15 +69,16 @@ class Swarm final : public GeneratorBase {
       const double inner = std::min(action_.inner_radius, outer);
       const double r = random_.uniform(inner, outer);
       const double x = cx + r * (ca * c - sa * s), y = cy + r * (ca * s + sa * c);
-      const auto at = lane_spot(*state.map, x, y);
-      if (!at || !clear_of_others(state, at->pose.x, at->pose.y)) {
+      const size_t kind = mix_.draw(random_);
+      const auto at = lane_spot(*state.map, x, y, mix_.walks(kind));
+      if (!at || !clear_of_others(state, at->pose.x, at->pose.y, kSpawnClearance)) {
         continue;
       }
       const double dx = at->pose.x - centre.pose.x, dy = at->pose.y - centre.pose.y;
       if (std::hypot(dx, dy) < action_.inner_radius || !direction_wanted(at->pose.h, centre)) {
         continue;
       }
-      spawn(state, *at, draw_speed(centre), draw_category(action_.traffic_definition, random_));
+      spawn(state, mix_, kind, *at, draw_speed(centre));
     }
   }
 
@@ -267,6 +111,7 @@ class Swarm final : public GeneratorBase {
   }
 
   const xosc::TrafficSwarmAction& action_;
+  TrafficMix mix_;
   uint32_t central_;
 };
 
@@ -278,6 +123,7 @@ class Source final : public GeneratorBase {
             action.traffic_name, "source",
             derive_seed(state.options.seed, "source:" + std::to_string(action.source.line))),
         action_(action),
+        mix_(action.traffic_definition, distribution_of(action.traffic_distribution)),
         at_(at) {}
 
   void step(SimState& state) override {
@@ -289,13 +135,13 @@ class Source final : public GeneratorBase {
     for (int tries = 0; tries < kTriesPerStep && due_ >= 1.0; ++tries) {
       const double angle = random_.uniform(0.0, 2.0 * std::numbers::pi);
       const double r = action_.radius * std::sqrt(random_.uniform01());
-      const auto spot =
-          lane_spot(*state.map, at_.pose.x + r * std::cos(angle), at_.pose.y + r * std::sin(angle));
-      if (!spot || !clear_of_others(state, spot->pose.x, spot->pose.y)) {
+      const size_t kind = mix_.draw(random_);
+      const auto spot = lane_spot(*state.map, at_.pose.x + r * std::cos(angle),
+                                  at_.pose.y + r * std::sin(angle), mix_.walks(kind));
+      if (!spot || !clear_of_others(state, spot->pose.x, spot->pose.y, kSpawnClearance)) {
         continue;
       }
-      spawn(state, *spot, action_.speed.value_or(kDefaultSpeed),
-            draw_category(action_.traffic_definition, random_));
+      spawn(state, mix_, kind, *spot, action_.speed.value_or(kDefaultSpeed));
       due_ -= 1.0;
     }
     due_ = std::min(due_, 2.0);  // no burst after a long blocked spell
@@ -303,6 +149,7 @@ class Source final : public GeneratorBase {
 
  private:
   const xosc::TrafficSourceAction& action_;
+  TrafficMix mix_;
   ResolvedPosition at_;
   double due_ = 1.0;  ///< the first vehicle comes at once
 };
@@ -334,16 +181,6 @@ class Sink final : public GeneratorBase {
   double budget_ = 0.0;
 };
 
-void warn_distribution(const std::optional<xosc::TrafficDistribution>& distribution,
-                       SimState& state) {
-  if (distribution) {
-    state.diagnostics.add_once(
-        "traffic-distribution",
-        distribution->source.warning("TrafficDistribution is not used: the generated vehicles "
-                                     "are cars (or as a TrafficDefinition's categories say)"));
-  }
-}
-
 }  // namespace
 
 std::unique_ptr<TrafficGenerator> make_swarm(const xosc::TrafficSwarmAction& action,
@@ -352,13 +189,11 @@ std::unique_ptr<TrafficGenerator> make_swarm(const xosc::TrafficSwarmAction& act
   if (!central) {
     throw InputError(action.source.error("unknown central entity '" + action.central_object + "'"));
   }
-  warn_distribution(action.traffic_distribution, state);
   return std::make_unique<Swarm>(action, state, *central);
 }
 
 std::unique_ptr<TrafficGenerator> make_source(const xosc::TrafficSourceAction& action,
                                               SimState& state) {
-  warn_distribution(action.traffic_distribution, state);
   return std::make_unique<Source>(action, state,
                                   resolve_position(action.position, state, std::nullopt));
 }

@@ -18,5 +18,10 @@ std::unique_ptr<TrafficGenerator> make_swarm(const xosc::TrafficSwarmAction& act
 std::unique_ptr<TrafficGenerator> make_source(const xosc::TrafficSourceAction& action,
                                               SimState& state);
 std::unique_ptr<TrafficGenerator> make_sink(const xosc::TrafficSinkAction& action, SimState& state);
+/// TrafficAreaAction (traffic/traffic_area.cpp).
+std::unique_ptr<TrafficGenerator> make_area(const xosc::TrafficAreaAction& action, SimState& state);
+/// `--npc` (SimulationOptions::npc, traffic/npc_traffic.cpp): places the NPCs once all Init
+/// placements are done, at tick 0.
+void place_npcs(SimState& state);
 
 }  // namespace corsa::engine::detail

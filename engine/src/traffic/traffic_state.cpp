@@ -113,6 +113,20 @@ void update_traffic(SimState& state) {
   for (size_t i = 0; i < count; ++i) {
     traffic.generators[i]->step(state);
   }
+  // Generated entities removed this step (by a generator, a sink, a DeleteEntityAction).
+  for (auto& [index, lives] : traffic.lifetimes) {
+    if (!lives.empty() && !lives.back().removed && !state.world.entities[index].state.placed) {
+      lives.back().removed = state.now();
+    }
+  }
+}
+
+void note_spawned(SimState& state, uint32_t index) {
+  auto& lives = state.traffic.lifetimes[index];
+  if (!lives.empty() && !lives.back().removed) {
+    lives.back().removed = state.now();
+  }
+  lives.push_back(Lifetime{state.now(), std::nullopt});
 }
 
 }  // namespace corsa::engine::detail

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "corsa/engine/simulation.h"
 #include "corsa/xosc/entities.h"
 
 namespace corsa::xosc {
@@ -50,6 +51,9 @@ struct TrafficState {
   /// keeps the addresses).
   std::deque<xosc::ScenarioObject> spawned_objects;
   uint64_t spawned_count = 0;
+  /// When each generated entity appeared and left (by entity index; a generator may respawn
+  /// one of its entities that left), for the summary.
+  std::map<uint32_t, std::vector<Lifetime>> lifetimes;
 
   std::optional<size_t> find_controller(std::string_view name) const;
 };
@@ -57,11 +61,13 @@ struct TrafficState {
 /// Sets up the signal controllers (phase 0 at their delay) before the run.
 void init_traffic(SimState& state);
 /// After the tick advanced: controllers change phase when theirs has lasted its duration, the
-/// generators add and remove traffic.
+/// generators add and remove traffic; generated entities that left are recorded.
 void update_traffic(SimState& state);
 /// Makes entity `index` absent (DeleteEntityAction, a TrafficSink, a swarm vehicle leaving):
 /// no motion, no rows, no contacts.
 void remove_entity(SimState& state, uint32_t index);
+/// Records that generated entity `index` appears now (closing a life it had not left yet).
+void note_spawned(SimState& state, uint32_t index);
 /// Switches a controller to `phase` now (TrafficSignalControllerAction). False: no such phase.
 bool set_signal_phase(SimState& state, size_t controller, std::string_view phase);
 

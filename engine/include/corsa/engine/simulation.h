@@ -42,6 +42,19 @@ struct SimulationOptions {
   /// Controller for every vehicle that names none in the scenario (`corsa run --controller`):
   /// "default", "acc" or "dynamics"; empty: the scenario's choice.
   std::string controller;
+  /// Seeded random NPCs added at tick 0 (`corsa run --npc vehicles=N,pedestrians=M`): vehicles
+  /// on driving lanes under the car-following controller, pedestrians walking on sidewalks.
+  struct Npc {
+    uint32_t vehicles = 0;
+    uint32_t pedestrians = 0;
+  } npc;
+};
+
+/// One presence of a generated entity (traffic actions, NPCs): when it appeared and, once it
+/// has, when it left (s).
+struct Lifetime {
+  double spawned = 0.0;
+  std::optional<double> removed;
 };
 
 /// Why a run ended.
@@ -113,6 +126,9 @@ class Simulation {
   /// State of the storyboard element with this `::` path; nothing for an unknown path.
   std::optional<ElementState> element_state(std::string_view path) const;
   std::span<const CollisionRecord> collisions() const;
+  /// When a generated entity (traffic, NPCs) appeared and left, in order; empty for the
+  /// scenario's own entities.
+  std::span<const Lifetime> lifetimes(size_t index) const;
   /// Pairs of entities overlapping at the current tick.
   bool colliding(size_t a, size_t b) const;
 

@@ -1,0 +1,146 @@
+// `corsa run --npc vehicles=N,pedestrians=M` (issue #9): seeded random NPCs as engine entities,
+// placed once at tick 0 after the Init actions. Vehicles stand on the centre of a random driving
+// lane, facing its direction of travel (OpenDRIVE 1.8 §8.3 traffic rule), and drive at a speed
+// drawn per lane (8-14 m/s) under the car-following controller (or `--controller`);
+// pedestrians walk along a random sidewalk, either way, at 1.0-1.6 m/s. Places are drawn by
+// lane length over the whole map, at least 10 m (vehicles) or 2 m (pedestrians) from every
+// entity. They are entities like any other: trajectory rows, collisions, conditions, sensors.
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/sim_state.h"
+#include "corsa/xodr/map.h"
+#include "motion/lane_follow.h"
+#include "traffic/spawner.h"
+#include "traffic/traffic_generators.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+constexpr double kVehicleClearance = 10.0;  // m
+constexpr double kWalkerClearance = 2.0;    // m
+constexpr int kTriesPerNpc = 50;
+
+struct Candidate {
+  uint32_t road = 0;
+  int lane = 0;
+  double s_begin = 0.0;
+  double s_end = 0.0;
+};
+
+std::vector<Candidate> lanes_of(const xodr::Map& map, bool walks) {
+  std::vector<Candidate> out;
+  for (size_t r = 0; r < map.road_count(); ++r) {
+    const xodr::Road& road = map.road(r);
+    for (size_t k = 0; k < road.lane_sections.size(); ++k) {
+      const double begin = road.lane_sections[k].s;
+      const double end = map.section_end(r, k);
+      for (const xodr::Lane& lane : road.lane_sections[k].lanes) {
+        const bool usable =
+            walks ? lane.type == xodr::LaneType::kSidewalk : lane.type == xodr::LaneType::kDriving;
+        if (lane.id != 0 && usable && end - begin > 10.0) {
+          out.push_back({static_cast<uint32_t>(r), lane.id, begin, end});
+        }
+      }
+    }
+  }
+  return out;
+}
+
+xosc::ScenarioObject prototype(bool walks) {
+  xosc::ScenarioObject object;
+  if (walks) {
+    object.object = pedestrian_model();
+  } else {
+    object.object = vehicle_model(xosc::VehicleCategory::kCar);
+  }
+  return object;
+}
+
+class Npcs final : public GeneratorBase {
+ public:
+  explicit Npcs(uint64_t seed)
+      : GeneratorBase(std::string("corsa:npc"), "npc", seed),
+        vehicles_(prototype(false)),
+        walkers_(prototype(true)) {}
+
+  // NPCs are placed once; afterwards they drive and walk on their own.
+  void step(SimState&) override {}
+
+  // Places up to `count` NPCs of one kind; returns how many fitted.
+  uint32_t place(SimState& state, bool walks, uint32_t count) {
+    const xodr::Map& map = *state.map;
+    const std::vector<Candidate> lanes = lanes_of(map, walks);
+    if (lanes.empty()) {
+      return 0;
+    }
+    std::vector<double> weights;
+    for (const Candidate& c : lanes) {
+      weights.push_back(c.s_end - c.s_begin);
+    }
+    uint32_t placed = 0;
+    for (uint32_t attempt = 0; placed < count && attempt < kTriesPerNpc * count; ++attempt) {
+      const Candidate& c = lanes[random_.weighted_index(weights)];
+      const double s = random_.uniform(c.s_begin + 2.0, c.s_end - 2.0);
+      const bool right_hand = map.road(c.road).rule == xodr::TrafficRule::kRightHand;
+      int dir = (c.lane < 0) == right_hand ? 1 : -1;
+      if (walks && random_.uniform01() < 0.5) {
+        dir = -dir;
+      }
+      const double speed =
+          walks ? random_.uniform(1.0, 1.6)
+                : 8.0 + 6.0 * RandomStream::derive(
+                                  c.road * 131 + static_cast<uint64_t>(c.lane + 64), "npc-lane")
+                                  .uniform01();
+      const auto t = lane_center_t(map, c.road, s, c.lane);
+      if (!t) {
+        continue;
+      }
+      ResolvedPosition at;
+      at.pose = map.world_pose(c.road, s, *t);
+      at.pose.h = travel_heading(map, c.road, s, dir);
+      at.road = RoadPoint{c.road, s, *t, c.lane};
+      if (!clear_of_others(state, at.pose.x, at.pose.y,
+                           walks ? kWalkerClearance : kVehicleClearance)) {
+        continue;
+      }
+      const std::string name =
+          std::string(walks ? "npc_pedestrian_" : "npc_vehicle_") + std::to_string(placed);
+      spawn(state, walks ? walkers_ : vehicles_, 0, at, speed, name);
+      ++placed;
+    }
+    return placed;
+  }
+
+ private:
+  TrafficMix vehicles_;
+  TrafficMix walkers_;
+};
+
+}  // namespace
+
+void place_npcs(SimState& state) {
+  const auto& npc = state.options.npc;
+  if (npc.vehicles == 0 && npc.pedestrians == 0) {
+    return;
+  }
+  if (state.map == nullptr) {
+    state.diagnostics.add(make_warning("", 0, "--npc: the scenario has no road network; no NPCs"));
+    return;
+  }
+  auto npcs = std::make_unique<Npcs>(derive_seed(state.options.seed, "npc"));
+  const uint32_t vehicles = npcs->place(state, false, npc.vehicles);
+  const uint32_t walkers = npcs->place(state, true, npc.pedestrians);
+  if (vehicles < npc.vehicles || walkers < npc.pedestrians) {
+    state.diagnostics.add(make_warning(
+        "", 0,
+        "--npc: placed " + std::to_string(vehicles) + " of " + std::to_string(npc.vehicles) +
+            " vehicles and " + std::to_string(walkers) + " of " + std::to_string(npc.pedestrians) +
+            " pedestrians (not enough free driving lanes / sidewalks on the map)"));
+  }
+  state.traffic.generators.push_back(std::move(npcs));
+}
+
+}  // namespace corsa::engine::detail
