@@ -4,7 +4,12 @@
 // dynamics` (SimulationOptions::controller). Each repetition runs 30 s of simulated time
 // (3,000 steps of 0.01 s) on a fresh Simulation; the default controller is timed alongside.
 //
-//   corsa_bench_dynamics [REPETITIONS]   (Release build; prints the median of the repetitions)
+//   corsa_bench_dynamics [REPETITIONS] [CONTROLLER...]
+//
+// Release build; prints the median of the repetitions (default 5) for each controller (default:
+// dynamics, acc, default), and the load average, since wall time on a shared machine includes
+// waiting for a core. Instruction counts of one controller's run, which do not depend on the
+// load: valgrind --tool=callgrind corsa_bench_dynamics 1 dynamics
 
 #include <algorithm>
 #include <chrono>
@@ -124,18 +129,26 @@ Timing median_run(const corsa::xosc::Scenario& scenario,
 
 int main(int argc, char** argv) {
   const int repetitions = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
+  std::vector<std::string> controllers(argv + std::min(argc, 2), argv + argc);
+  if (controllers.empty()) {
+    controllers = {"dynamics", "acc", "default"};
+  }
   corsa::Diagnostics diagnostics;
   const auto scenario = corsa::xosc::parse_scenario(
       scenario_xml(), std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/dynamics.xosc", {},
       diagnostics);
   const auto map = corsa::engine::load_road_network(scenario, diagnostics);
-  for (const char* controller : {"dynamics", "acc", "default"}) {
+  for (const std::string& controller : controllers) {
     const Timing t = median_run(scenario, map, controller, repetitions, diagnostics);
     std::printf(
         "%-8s %d vehicles, %.0f s simulated: median %.3f s wall (%.0fx real time), %.3f s CPU "
         "(%.0fx)\n",
-        controller, kVehicles, kSimSeconds, t.wall, kSimSeconds / t.wall, t.cpu,
+        controller.c_str(), kVehicles, kSimSeconds, t.wall, kSimSeconds / t.wall, t.cpu,
         kSimSeconds / t.cpu);
+  }
+  double load[3] = {0.0, 0.0, 0.0};
+  if (getloadavg(load, 3) == 3) {
+    std::printf("load average %.2f %.2f %.2f\n", load[0], load[1], load[2]);
   }
   return 0;
 }
