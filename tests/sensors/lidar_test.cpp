@@ -187,3 +187,42 @@ TEST_CASE("LiDAR points on an entity carry its class and instance id", "[sensors
   }
   CHECK(on_car > 10);
 }
+
+TEST_CASE("LiDAR range noise is Gaussian: 68% of errors within one deviation, 95% within two",
+          "[sensors][lidar]") {
+  Scene scene = plane_scene();
+  LidarOptions o = downward_lidar();
+  o.noise_stddev_m = 0.05;
+  const LidarSimulator lidar(o);
+  const PointCloud cloud = lidar.scan(scene, kMount, 0.0, 5);
+  REQUIRE(cloud.points.size() == cloud.rays);
+  double within1 = 0.0, within2 = 0.0;
+  for (const auto& p : cloud.points) {
+    const double range = std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
+    const double error = range - kHeight / std::sin(-lidar.elevation(p.ring));
+    within1 += std::fabs(error) < 0.05 ? 1.0 : 0.0;
+    within2 += std::fabs(error) < 0.10 ? 1.0 : 0.0;
+  }
+  const double n = static_cast<double>(cloud.points.size());
+  auto sigma = [n](double p) { return std::sqrt(p * (1.0 - p) / n); };
+  CHECK(std::fabs(within1 / n - 0.682689) < 5.0 * sigma(0.682689));
+  CHECK(std::fabs(within2 / n - 0.954500) < 5.0 * sigma(0.954500));
+}
+
+TEST_CASE("general dropoff removes its share of the returns", "[sensors][lidar]") {
+  Scene scene = plane_scene();
+  LidarOptions o = downward_lidar();
+  o.dropoff_general_rate = 0.25;
+  const LidarSimulator lidar(o);
+  const PointCloud cloud = lidar.scan(scene, kMount, 0.0, 11);
+  const double rays = static_cast<double>(cloud.rays);  // every beam reaches the plane
+  const double kept = static_cast<double>(cloud.points.size());
+  CHECK(std::fabs(kept - 0.75 * rays) < 5.0 * std::sqrt(0.25 * 0.75 * rays));
+  // Dropped beams leave gaps but the survivors stay in firing order.
+  for (size_t i = 1; i < cloud.points.size(); ++i) {
+    const auto& a = cloud.points[i - 1];
+    const auto& b = cloud.points[i];
+    REQUIRE((a.azimuth_index < b.azimuth_index ||
+             (a.azimuth_index == b.azimuth_index && a.ring < b.ring)));
+  }
+}

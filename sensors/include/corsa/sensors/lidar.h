@@ -12,8 +12,8 @@
 //   shorten its reach), then is dropped with probability dropoffGeneralRate, and, when its
 //   intensity is below dropoffIntensityLimit, with probability dropoffZeroIntensity;
 //   the reported range gets Gaussian noise of noiseStddev.
-// Random draws come from streams seeded by (frame seed, block of 32 azimuth columns), so the
-// result is the same bytes whatever the thread count.
+// Random draws come from a counter-based stream per beam, keyed by (frame seed, beam index), so
+// the result is the same bytes whatever the thread count or work split.
 
 #include <cstdint>
 #include <optional>
@@ -70,6 +70,7 @@ class LidarSimulator {
   LidarOptions options_;
   int steps_ = 1;
   std::vector<float> directions_;
+  std::vector<float> packet_directions_;  ///< the same, per packet of 16 beams: x, y, z planes
 };
 
 }  // namespace corsa::sensors
