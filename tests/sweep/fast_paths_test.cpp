@@ -3,6 +3,8 @@
 // broad phase. Each shortcut is checked against the plain computation it replaces, on random
 // boxes from a fixed seed.
 
+#include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <charconv>
 #include <cmath>
@@ -61,6 +63,39 @@ double reference_box_distance(const OrientedBox& a, const OrientedBox& b) {
   return best;
 }
 
+// The free distance the metrics computed before: the least over all 32 corner-edge pairs.
+double reference_free_distance(const Footprint& a, const Footprint& b) {
+  const auto point_segment = [](corsa::sweep::detail::Vec2 p, corsa::sweep::detail::Vec2 s0,
+                                corsa::sweep::detail::Vec2 s1) {
+    const double dx = s1.x - s0.x, dy = s1.y - s0.y;
+    const double len2 = dx * dx + dy * dy;
+    const double u =
+        len2 > 0.0 ? std::clamp(((p.x - s0.x) * dx + (p.y - s0.y) * dy) / len2, 0.0, 1.0) : 0.0;
+    const double ex = p.x - s0.x - u * dx, ey = p.y - s0.y - u * dy;
+    return std::sqrt(ex * ex + ey * ey);
+  };
+  const auto ca = a.corners();
+  const auto cb = b.corners();
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < 4; ++i) {
+    for (size_t j = 0; j < 4; ++j) {
+      best = std::min(best, point_segment(ca[i], cb[j], cb[(j + 1) % 4]));
+      best = std::min(best, point_segment(cb[i], ca[j], ca[(j + 1) % 4]));
+    }
+  }
+  return best;
+}
+
+std::string exact(double value) {
+  char buffer[corsa::engine::detail::kDecimalTextMax];
+  return std::string(buffer, corsa::engine::detail::write_exact(buffer, value));
+}
+
+std::string shortest(double value) {
+  char buffer[64];
+  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
+}
+
 OrientedBox oriented_box(double x, double y, double h, double length, double width) {
   OrientedBox box;
   box.cx = x;
@@ -112,6 +147,23 @@ TEST_CASE("numbers beyond exact scaling fall back to the shortest round-trip tex
   CHECK(decimal(8.9e9 + 0.25, 6) == "8900000000.25");
 }
 
+TEST_CASE("trajectory times are exact: the shortest text of every step's time", "[sweep][output]") {
+  CHECK(exact(0.0) == "0");
+  CHECK(exact(0.49) == "0.49");
+  CHECK(exact(0.1 + 0.2) == "0.30000000000000004");  // off the 9-decimal grid: to_chars
+  CHECK(exact(1e-12) == "1e-12");
+  CHECK(exact(1e12 / 3.0) == shortest(1e12 / 3.0));
+  for (int k = 1; k < 200000; ++k) {
+    // Times as a fixed step gives them (tick / steps per second), and as a product that may be
+    // off the decimal grid (tick * dt): each reads back exactly, and matches to_chars.
+    for (const double t : {k / 100.0, k * 0.01, k / 60.0, k * 0.001}) {
+      const std::string text = exact(t);
+      REQUIRE(read(text) == t);
+      if (t >= 0.001) REQUIRE(text == shortest(t));
+    }
+  }
+}
+
 TEST_CASE("fixed-decimal text reads back within half a unit of its last place", "[sweep][output]") {
   std::mt19937_64 random(20261122);
   std::uniform_real_distribution<double> value(-5000.0, 5000.0);
@@ -149,6 +201,16 @@ TEST_CASE("the box distance equals the least distance over every corner-edge pai
     }
   }
   CHECK(separated > 15000);
+  // Far from the origin (UTM-sized coordinates) and nearly touching.
+  for (int i = 0; i < 2000; ++i) {
+    const double x = 3.0e5 + position(random), y = 4.1e6 + position(random);
+    const OrientedBox a = oriented_box(x, y, heading(random), 4.5, 1.8);
+    const double h = heading(random);
+    const OrientedBox b =
+        oriented_box(x + 4.6 * std::cos(h), y + 4.6 * std::sin(h), heading(random), 4.5, 1.8);
+    const double d = corsa::engine::detail::box_distance(a, b);
+    if (d > 0.0) REQUIRE(d == reference_box_distance(a, b));
+  }
   // Overlapping boxes are 0 apart.
   CHECK(corsa::engine::detail::box_distance(oriented_box(0, 0, 0, 4, 2),
                                             oriented_box(1, 1, 0.3, 4, 2)) == 0.0);
@@ -166,7 +228,9 @@ TEST_CASE("the metrics' broad phase never exceeds the exact free distance or con
     const Footprint b = footprint(position(random), position(random), heading(random),
                                   velocity(random), velocity(random));
     const double bound = corsa::sweep::detail::free_distance_bound(a, b);
-    REQUIRE(bound < corsa::sweep::detail::free_distance(a, b));
+    const double distance = corsa::sweep::detail::free_distance(a, b);
+    REQUIRE(bound < distance);
+    if (distance > 0.0) REQUIRE(distance == reference_free_distance(a, b));  // bit for bit
     if (const auto ttc = corsa::sweep::detail::time_to_contact(a, b); ttc && bound > 0.0) {
       const double speed = std::hypot(b.velocity.x - a.velocity.x, b.velocity.y - a.velocity.y);
       REQUIRE(bound / speed < *ttc);

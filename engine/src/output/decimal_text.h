@@ -4,7 +4,7 @@
 // places, printed from the rounded integer, with trailing zeros (and a bare point) left out:
 // 50 -> "50", -5.625 -> "-5.625", 32.19999999999999 -> "32.2" at 6 decimals. Several times
 // cheaper than the shortest round-trip text (std::to_chars(double)), which was a quarter of a
-// sweep's instructions, and deterministic: IEEE multiplication and llround give the same digits
+// sweep's instructions, and deterministic: IEEE multiplication and rounding give the same digits
 // on every platform.
 
 #include <charconv>
@@ -41,6 +41,16 @@ inline char* write_digits(char* out, uint64_t value) {
   return out;
 }
 
+/// `scaled` rounded to the nearest integer, halves away from zero (std::llround, inline: the
+/// libm call was a tenth of the text's cost). |scaled| < kExactLimit, so the truncation is exact
+/// and so is the remainder (scaled and its truncation share their binade, or the truncation is
+/// 0).
+inline int64_t round_half_away(double scaled) {
+  const auto whole = static_cast<int64_t>(scaled);
+  const double rest = scaled - static_cast<double>(whole);
+  return rest >= 0.5 ? whole + 1 : rest <= -0.5 ? whole - 1 : whole;
+}
+
 }  // namespace decimal_text
 
 /// Writes `value` rounded to `decimals` places (0..kMaxDecimals; halves away from zero) at
@@ -53,7 +63,7 @@ inline char* write_decimal(char* out, double value, int decimals) {
   if (!(std::fabs(scaled) < kExactLimit)) {
     return std::to_chars(out, out + kDecimalTextMax, value + 0.0).ptr;  // + 0.0: no "-0"
   }
-  const long long rounded = std::llround(scaled);
+  const int64_t rounded = round_half_away(scaled);
   if (rounded == 0) {
     *out++ = '0';
     return out;
@@ -79,6 +89,25 @@ inline char* write_decimal(char* out, double value, int decimals) {
     fraction /= 10;
   }
   return out + places;
+}
+
+/// Writes `value` as write_decimal(value, kMaxDecimals) when that text reads back to exactly
+/// `value` (times on the step grid: "0.49", "3.01"), else as the shortest round-trip text
+/// (std::to_chars), for a fraction of its cost. Below 2^23 the digits are the shortest
+/// round-trip ones too: an ulp there is under 1e-9, so at most one decimal of 9 places reads back
+/// as `value` (to_chars would only write small values such as 1e-04 in exponent form). The check:
+/// the decimal's integer divided by 1e9 in IEEE arithmetic is the correctly rounded value of the
+/// decimal, which is what parsing its text gives.
+inline char* write_exact(char* out, double value) {
+  using namespace decimal_text;
+  const double scaled = value * kScale[kMaxDecimals];
+  if (std::fabs(scaled) < kExactLimit) {
+    const int64_t rounded = round_half_away(scaled);
+    if (static_cast<double>(rounded) / kScale[kMaxDecimals] == value) {
+      return write_decimal(out, value, kMaxDecimals);
+    }
+  }
+  return std::to_chars(out, out + kDecimalTextMax, value + 0.0).ptr;
 }
 
 }  // namespace corsa::engine::detail

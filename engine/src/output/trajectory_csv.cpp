@@ -28,10 +28,10 @@ TrajectoryRecorder::TrajectoryRecorder(std::filesystem::path file, int64_t every
 }
 
 void TrajectoryRecorder::append_rows(const Simulation& simulation, std::string& out) {
-  // The time is the same on every row of the step: its shortest round-trip text (exact, so that
+  // The time is the same on every row of the step: its exact text (shortest round-trip, so that
   // rows can be matched to steps) is made once.
-  char time[32];
-  char* time_end = std::to_chars(time, time + sizeof time - 1, simulation.time() + 0.0).ptr;
+  char time[detail::kDecimalTextMax + 1];
+  char* time_end = detail::write_exact(time, simulation.time());
   *time_end++ = ',';
   for (size_t i = 0; i < simulation.entity_count(); ++i) {
     const EntityState& state = simulation.state(i);

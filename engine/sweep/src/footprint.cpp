@@ -37,6 +37,22 @@ double point_segment_squared(Vec2 p, Vec2 s0, Vec2 s1) {
   return dx * dx + dy * dy;
 }
 
+// Squared distance (m^2) from p to the rectangle, 0 inside.
+double point_box_squared(Vec2 p, const Footprint& f) {
+  const Vec2 w{p.x - f.center.x, p.y - f.center.y};
+  const double along = std::max(std::fabs(dot(w, f.axis)) - f.half_length, 0.0);
+  const double across = std::max(std::fabs(f.axis.x * w.y - f.axis.y * w.x) - f.half_width, 0.0);
+  return along * along + across * across;
+}
+
+// Rounding of corners and projections is a few ulps of the coordinates (1e-12 m at 10 km); the
+// margin is a micrometre more, scaled for maps far from their origin.
+double rounding_margin(const Footprint& a, const Footprint& b) {
+  return 1e-6 + 1e-12 * (std::fabs(a.center.x) + std::fabs(a.center.y) + std::fabs(b.center.x) +
+                         std::fabs(b.center.y) + a.half_length + a.half_width + b.half_length +
+                         b.half_width);
+}
+
 }  // namespace
 
 std::array<Vec2, 4> Footprint::corners() const {
@@ -72,26 +88,36 @@ double free_distance(const Footprint& a, const Footprint& b) {
   if (!separated) {
     return 0.0;
   }
-  // Separated convex polygons: the closest pair has a vertex of one on an edge of the other.
+  // Separated convex polygons: the closest pair has a vertex of one on an edge of the other. A
+  // corner's distance to the other rectangle (closed form) is the least over its four edges, so
+  // only the corners within a rounding margin of the nearest one are measured edge by edge.
+  // sqrt is correctly rounded and monotonic, so the square root of the least squared distance is
+  // exactly the least of the distances: the result is the same as over all 32 pairs.
   const auto ca = a.corners();
   const auto cb = b.corners();
-  // sqrt is correctly rounded and monotonic, so the square root of the least squared distance is
-  // exactly the least of the 32 distances, for one square root instead of 32.
-  double best = std::numeric_limits<double>::infinity();
+  std::array<double, 8> corner_squared;
   for (size_t i = 0; i < 4; ++i) {
+    corner_squared[i] = point_box_squared(ca[i], b);
+    corner_squared[4 + i] = point_box_squared(cb[i], a);
+  }
+  const double reach = std::sqrt(*std::min_element(corner_squared.begin(), corner_squared.end())) +
+                       rounding_margin(a, b);
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < 8; ++i) {
+    if (!(corner_squared[i] <= reach * reach)) {
+      continue;
+    }
+    const Vec2 corner = i < 4 ? ca[i] : cb[i - 4];
+    const auto& edges = i < 4 ? cb : ca;
     for (size_t j = 0; j < 4; ++j) {
-      best = std::min(best, point_segment_squared(ca[i], cb[j], cb[(j + 1) % 4]));
-      best = std::min(best, point_segment_squared(cb[i], ca[j], ca[(j + 1) % 4]));
+      best = std::min(best, point_segment_squared(corner, edges[j], edges[(j + 1) % 4]));
     }
   }
   return std::sqrt(best);
 }
 
 double free_distance_bound(const Footprint& a, const Footprint& b) {
-  // Rounding of corners and projections is a few ulps of the coordinates (1e-12 m at 10 km);
-  // the margin is a micrometre more, scaled for maps far from their origin.
-  const double margin = 1e-6 + 1e-12 * (std::fabs(a.center.x) + std::fabs(a.center.y) +
-                                        std::fabs(b.center.x) + std::fabs(b.center.y));
+  const double margin = rounding_margin(a, b);
   const double centres = std::hypot(b.center.x - a.center.x, b.center.y - a.center.y);
   return centres - std::hypot(a.half_length, a.half_width) -
          std::hypot(b.half_length, b.half_width) - margin;
