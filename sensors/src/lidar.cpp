@@ -1,7 +1,7 @@
 #include "corsa/sensors/lidar.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,8 +20,8 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr uint64_t kPacketsPerBlock = 128;
 constexpr uint64_t kBlockBeams = kPacketsPerBlock * detail::kPacketSize;
 
-/// Uninitialised room for points: every point is constructed before it is read, so the
-/// revolution-sized buffer is not zero-filled first.
+/// Uninitialised room for points: every point is written before it is read, so it is not
+/// zero-filled first.
 class PointScratch {
  public:
   explicit PointScratch(size_t n) : n_(n), data_(std::allocator<LidarPoint>().allocate(n)) {}
@@ -138,33 +138,45 @@ PointCloud LidarSimulator::scan(const Scene& scene, const Rigid& world_from_sens
     c.reflectivity[k] = lidar_reflectivity(static_cast<SemanticClass>(k));
   }
 
-  // Every block writes into its own slice of one scratch buffer (at most one point per beam);
-  // the slices are then joined in block order, so the cloud is the same for any thread count.
+  // Blocks are traced in parallel, each into one of a few small (cache-sized) slots, and
+  // appended to the cloud in block order: the cloud is the same for any thread count, and the
+  // points cross memory once instead of through a revolution-sized buffer. A block can only
+  // enter when the block `tokens` before it has been appended, so it may reuse that one's slot.
   const uint64_t packets = (c.rays + detail::kPacketSize - 1) / detail::kPacketSize;
   const uint64_t blocks = (packets + kPacketsPerBlock - 1) / kPacketsPerBlock;
-  PointScratch scratch(packets * detail::kPacketSize);
-  std::vector<size_t> counts(blocks);
-  tbb::parallel_for(
-      tbb::blocked_range<uint64_t>(0, blocks), [&](const tbb::blocked_range<uint64_t>& r) {
-        for (uint64_t b = r.begin(); b != r.end(); ++b) {
-          counts[b] = detail::scan_packets(c, b * kPacketsPerBlock,
-                                           std::min(packets, (b + 1) * kPacketsPerBlock),
-                                           scratch.data() + b * kBlockBeams);
-        }
-      });
+  const uint64_t tokens = std::min<uint64_t>(
+      blocks, 2 * static_cast<uint64_t>(std::max(1, tbb::this_task_arena::max_concurrency())));
+  PointScratch slots(tokens * kBlockBeams);
   PointCloud cloud;
   cloud.channels = options_.channels;
   cloud.azimuth_steps = steps_;
   cloud.rays = c.rays;
-  size_t total = 0;
-  for (size_t n : counts) {
-    total += n;
-  }
-  cloud.points.reserve(total);
-  for (uint64_t b = 0; b < blocks; ++b) {
-    const LidarPoint* from = scratch.data() + b * kBlockBeams;
-    cloud.points.insert(cloud.points.end(), from, from + counts[b]);
-  }
+  cloud.points.reserve(c.rays);  // at most one point per beam: no reallocation
+  struct Traced {
+    uint64_t block = 0;
+    size_t count = 0;
+  };
+  uint64_t next = 0;
+  tbb::parallel_pipeline(
+      tokens, tbb::make_filter<void, uint64_t>(tbb::filter_mode::serial_in_order,
+                                               [&](tbb::flow_control& control) -> uint64_t {
+                                                 if (next == blocks) {
+                                                   control.stop();
+                                                   return 0;
+                                                 }
+                                                 return next++;
+                                               }) &
+                  tbb::make_filter<uint64_t, Traced>(
+                      tbb::filter_mode::parallel,
+                      [&](uint64_t b) {
+                        LidarPoint* slot = slots.data() + (b % tokens) * kBlockBeams;
+                        const uint64_t last = std::min(packets, (b + 1) * kPacketsPerBlock);
+                        return Traced{b, detail::scan_packets(c, b * kPacketsPerBlock, last, slot)};
+                      }) &
+                  tbb::make_filter<Traced, void>(tbb::filter_mode::serial_in_order, [&](Traced t) {
+                    const LidarPoint* from = slots.data() + (t.block % tokens) * kBlockBeams;
+                    cloud.points.insert(cloud.points.end(), from, from + t.count);
+                  }));
   return cloud;
 }
 

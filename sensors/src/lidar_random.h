@@ -101,18 +101,17 @@ class Ziggurat {
 
 /// e^x for x <= 0 (0 below -700) from IEEE basic operations only: x = k ln 2 + r with
 /// |r| <= ln 2 / 2 and a degree-8 Taylor polynomial for e^r, relative error below 3e-10 (the
-/// intensities it feeds are stored as float). About four times cheaper than the C library's exp
+/// intensities it feeds are stored as float). About a third of the C library's instructions,
 /// and the same bits on every platform.
 inline double exp_nonpositive(double x) {
-  if (!(x >= -700.0)) {
-    return 0.0;
-  }
   constexpr double kLog2e = 1.4426950408889634;
   constexpr double kLn2Hi = 0.693147180369123816490;  // low bits zero: k * kLn2Hi is exact
   constexpr double kLn2Lo = 1.90821492927058770002e-10;
   constexpr double kShift = 0x1.8p52;  // adding it rounds to an integer (round to nearest)
-  const double k = (x * kLog2e + kShift) - kShift;
-  const double r = (x - k * kLn2Hi) - k * kLn2Lo;
+  const double clamped = x >= -700.0 ? x : -700.0;
+  const double shifted = clamped * kLog2e + kShift;  // low mantissa bits: k, two's complement
+  const double k = shifted - kShift;
+  const double r = (clamped - k * kLn2Hi) - k * kLn2Lo;
   double p = 1.0 / 40320.0;
   p = p * r + 1.0 / 5040.0;
   p = p * r + 1.0 / 720.0;
@@ -122,9 +121,10 @@ inline double exp_nonpositive(double x) {
   p = p * r + 0.5;
   p = p * r + 1.0;
   p = p * r + 1.0;
-  // 2^k with k in [-1010, 0]: a normal double built from its exponent bits.
-  const auto biased = static_cast<uint64_t>(static_cast<int64_t>(k) + 1023);
-  return p * std::bit_cast<double>(biased << 52);
+  // 2^k for k in [-1010, 0]: exponent bits k + 1023 (the shift's own bits fall off the top).
+  const double scale = std::bit_cast<double>((std::bit_cast<uint64_t>(shifted) + 1023) << 52);
+  const double value = p * scale;
+  return x >= -700.0 ? value : 0.0;
 }
 
 }  // namespace corsa::sensors::detail
