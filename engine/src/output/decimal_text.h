@@ -30,15 +30,29 @@ inline constexpr uint64_t kIntScale[kMaxDecimals + 1] = {
 // ones (|value| >= 9e9 m at 6 decimals: no real map) fall back to the shortest text.
 inline constexpr double kExactLimit = 9.0e15;
 
-inline char* write_digits(char* out, uint64_t value) {
-  char reversed[20];
-  int n = 0;
-  do {
-    reversed[n++] = static_cast<char>('0' + value % 10);
-    value /= 10;
-  } while (value != 0);
-  while (n > 0) *out++ = reversed[--n];
-  return out;
+// "00" to "99": two digits per division instead of one.
+inline constexpr char kDigitPairs[] =
+    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+    "8081828384858687888990919293949596979899";
+
+/// Writes the decimal digits of `value` so that they end just before `end`; returns their start.
+inline char* digits_before(char* end, uint64_t value) {
+  while (value >= 100) {
+    const uint64_t pair = value % 100;
+    value /= 100;
+    end -= 2;
+    end[0] = kDigitPairs[2 * pair];
+    end[1] = kDigitPairs[2 * pair + 1];
+  }
+  if (value >= 10) {
+    end -= 2;
+    end[0] = kDigitPairs[2 * value];
+    end[1] = kDigitPairs[2 * value + 1];
+  } else {
+    *--end = static_cast<char>('0' + value);
+  }
+  return end;
 }
 
 /// `scaled` rounded to the nearest integer, halves away from zero (std::llround, inline: the
@@ -73,22 +87,25 @@ inline char* write_decimal(char* out, double value, int decimals) {
   }
   const uint64_t magnitude = static_cast<uint64_t>(rounded < 0 ? -rounded : rounded);
   const uint64_t unit = kIntScale[decimals];
-  out = write_digits(out, magnitude / unit);
   uint64_t fraction = magnitude % unit;
-  if (fraction == 0) {
-    return out;
+  // Built backwards from the last digit: fraction (zero-padded, trailing zeros dropped: they
+  // say nothing), point, integer part.
+  char text[kDecimalTextMax];
+  char* const end = text + kDecimalTextMax;
+  char* first = end;
+  if (fraction != 0) {
+    int places = decimals;
+    while (fraction % 10 == 0) {
+      fraction /= 10;
+      --places;
+    }
+    first = digits_before(first, fraction);
+    while (end - first < places) *--first = '0';
+    *--first = '.';
   }
-  int places = decimals;
-  while (fraction % 10 == 0) {  // trailing zeros say nothing
-    fraction /= 10;
-    --places;
-  }
-  *out++ = '.';
-  for (int i = places - 1; i >= 0; --i) {
-    out[i] = static_cast<char>('0' + fraction % 10);
-    fraction /= 10;
-  }
-  return out + places;
+  first = digits_before(first, magnitude / unit);
+  for (char* c = first; c != end; ++c) *out++ = *c;
+  return out;
 }
 
 /// Writes `value` as write_decimal(value, kMaxDecimals) when that text reads back to exactly
