@@ -1,5 +1,8 @@
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
+#include <variant>
 
 #include "motion/controller.h"
 #include "motion/lane_follow.h"
@@ -33,6 +36,43 @@ void update_road_from_pose(Entity& entity, const xodr::Map* map) {
   }
 }
 
+namespace {
+
+// Curvature (1/m) of the reference line at s: read from lines, arcs and spirals directly (the
+// common records; cheaper than evaluating the reference point), evaluated for the cubics.
+double curvature_at(const xodr::Map& map, uint32_t road, double s) {
+  const auto& plan = map.road(road).plan_view;
+  auto it = std::upper_bound(plan.begin(), plan.end(), s,
+                             [](double value, const xodr::Geometry& g) { return value < g.s; });
+  if (it == plan.begin()) {
+    return plan.empty() ? 0.0 : map.reference(road, s).curvature;
+  }
+  const xodr::Geometry& g = *std::prev(it);
+  if (std::holds_alternative<xodr::LineGeometry>(g.shape)) {
+    return 0.0;
+  }
+  if (const auto* arc = std::get_if<xodr::ArcGeometry>(&g.shape)) {
+    return arc->curvature;
+  }
+  if (const auto* spiral = std::get_if<xodr::SpiralGeometry>(&g.shape)) {
+    const double f = g.length > 0.0 ? std::clamp((s - g.s) / g.length, 0.0, 1.0) : 0.0;
+    return spiral->curv_start + f * (spiral->curv_end - spiral->curv_start);
+  }
+  return map.reference(road, s).curvature;
+}
+
+// Path length per metre of reference s (1 - k t) where the entity is, kept within [0.2, 5] so
+// that a point near or beyond the centre of curvature of a tight curve cannot stall or fling it.
+double path_scale(const xodr::Map& map, const Entity& entity) {
+  if (!entity.state.road || entity.state.road->road != entity.lane.road) {
+    return 1.0;
+  }
+  const double k = curvature_at(map, entity.lane.road, entity.lane.s);
+  return k == 0.0 ? 1.0 : std::clamp(1.0 - k * entity.state.road->t, 0.2, 5.0);
+}
+
+}  // namespace
+
 void DefaultController::step(Entity& entity, const MotionContext& context) const {
   if (entity.pose_command) {
     move_to_pose_command(entity, context);
@@ -48,12 +88,19 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
   double lateral_change = 0.0;
   if (entity.lane.on_road && context.map != nullptr) {
     LaneFollow& lane = entity.lane;
-    const AdvanceResult moved = advance_along_lanes(*context.map, lane, distance, entity.chooser);
+    // The speed is along the entity's own path, s along the reference line: at t metres from a
+    // reference line of curvature k the path is (1 - k t) times as long as s (OpenDRIVE 1.8
+    // §9.3, lanes run parallel to the reference line), so a car in the outer lane of a turn does
+    // not drive faster than its speed.
+    const double scale = path_scale(*context.map, entity);
+    const AdvanceResult moved =
+        advance_along_lanes(*context.map, lane, distance / scale, entity.chooser);
+    const double travelled = moved.travelled * scale;
     lateral_change = entity.lateral_command - lane.lateral;
-    if (std::abs(moved.travelled) > 1e-9) {
+    if (std::abs(travelled) > 1e-9) {
       // The heading turns away from the lane by the angle of the path the lateral motion draws;
       // standing entities keep theirs (a car parked at an angle stays so).
-      lane.heading_offset = std::atan(lateral_change / moved.travelled);
+      lane.heading_offset = std::atan(lateral_change / travelled);
     }
     lane.lateral = entity.lateral_command;
     // At a lane end without successor the entity stops; it stays "at the end of the road"
@@ -63,8 +110,8 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
       v1 = 0.0;
       entity.speed_command = 0.0;
     }
-    path = std::hypot(moved.travelled, lateral_change);
-    entity.longitudinal_distance += std::abs(moved.travelled);
+    path = std::hypot(travelled, lateral_change);
+    entity.longitudinal_distance += std::abs(travelled);
     update_pose_from_lane(entity, *context.map, *context.scratch);
   } else {
     state.pose.x += std::cos(state.pose.h) * distance;
