@@ -20,13 +20,14 @@
 namespace corsa::engine::detail {
 namespace {
 
-constexpr double kTimeGap = 1.5;       // s
-constexpr double kStandstill = 3.0;    // m, bumper to bumper at rest
-constexpr double kRange = 200.0;       // m, sensor range
-constexpr double kGapGain = 0.25;      // 1/s^2
-constexpr double kSpeedGain = 0.8;     // 1/s
-constexpr double kDefaultLimit = 6.0;  // m/s^2 when the Performance gives none
-constexpr size_t kMaxPieces = 16;      // lane pieces looked along (zero-length lanes included)
+constexpr double kTimeGap = 1.5;         // s
+constexpr double kStandstill = 3.0;      // m, bumper to bumper at rest
+constexpr double kRange = 200.0;         // m, sensor range
+constexpr double kReach = 1.5 * kRange;  // m, straight-line bound of what may be within range
+constexpr double kGapGain = 0.25;        // 1/s^2
+constexpr double kSpeedGain = 0.8;       // 1/s
+constexpr double kDefaultLimit = 6.0;    // m/s^2 when the Performance gives none
+constexpr size_t kMaxPieces = 16;        // lane pieces looked along (zero-length lanes included)
 
 struct Leader {
   double gap = std::numeric_limits<double>::infinity();  ///< m, bumper to bumper
@@ -90,10 +91,9 @@ std::optional<double> distance_on_path(const LanePath& path, const RoadCoordinat
                                        int containing) {
   for (size_t i = 0; i < path.count; ++i) {
     const PathPiece& piece = path.pieces[i];
-    if (theirs.road != piece.road || theirs.section != piece.section) {
-      continue;
-    }
-    if (theirs.lane != piece.lane && !(i == 0 && theirs.lane == containing)) {
+    // Lane first: within one road most others are in another lane.
+    if ((theirs.lane != piece.lane && !(i == 0 && theirs.lane == containing)) ||
+        theirs.road != piece.road || theirs.section != piece.section) {
       continue;
     }
     const double ahead = piece.distance + (theirs.s - piece.s_entry) * piece.dir;
@@ -115,9 +115,16 @@ Leader find_leader(const SimState& state, uint32_t self) {
   const LanePath path = path_ahead(*state.map, me);
   const int containing = me.state.road->lane;
   const double my_front = me.info.box.center_x + 0.5 * me.info.box.length;
+  const double x = me.state.pose.x, y = me.state.pose.y;
   for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
     const Entity& other = state.world.entities[i];
-    if (i == self || !other.state.placed || !other.state.road ||
+    if (i == self || !other.state.placed || !other.state.road) {
+      continue;
+    }
+    // Cheap rejection first: what is farther in a straight line than kReach cannot be within
+    // kRange along the path (s runs along the reference line; outer lanes of bends are longer).
+    const double dx = other.state.pose.x - x, dy = other.state.pose.y - y;
+    if (dx * dx + dy * dy > kReach * kReach ||
         (i < state.controls.size() && !state.controls[i].traffic_visible)) {
       continue;
     }
