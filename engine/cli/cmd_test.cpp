@@ -72,7 +72,12 @@ int run_test_command(std::span<const std::string> args) {
     options.jobs = static_cast<size_t>(*jobs);
   }
   options.update_goldens = parsed.flag("--update-goldens");
-  if (const auto output = parsed.value("-o")) options.output = *output;
+  if (const auto output = parsed.value("-o")) {
+    check_output_folder(*output);
+    options.output = *output;
+  }
+  // Checked before the suite runs rather than after it; missing folders are made when written.
+  if (const auto junit = parsed.value("--junit")) check_output_file(*junit);
   const bool quiet = parsed.flag("--quiet");
   const bool verbose = parsed.flag("--verbose");
   const suite::Suite suite = suite::load_suite(parsed.positionals().front());

@@ -6,6 +6,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/mesh_io.h"
@@ -44,6 +45,7 @@ int map_mesh(std::span<const std::string> args) {
   if (parsed.flag("--ascii") && extension != ".ply") {
     throw UsageError("--ascii applies to .ply output only");
   }
+  check_output_file(*output);
   xodr::MeshOptions options;
   if (const auto tolerance = parsed.number("--tolerance")) {
     if (!(*tolerance >= 1e-4 && *tolerance <= 100.0)) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
 
 namespace corsa::cli {
@@ -61,8 +62,9 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
     options.parameters.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
   }
   if (const auto dt = parsed.number("--dt")) {
-    if (!(*dt > 0.0) || *dt > 10.0) {
-      throw UsageError("--dt expects a step in seconds, 0 < dt <= 10");
+    // At least 0.1 ms: a step of 1e-300 s is endless steps, a hang rather than a run.
+    if (!(*dt >= 1e-4) || *dt > 10.0) {
+      throw UsageError("--dt expects a step in seconds, 0.0001 <= dt <= 10");
     }
     options.simulation.dt = *dt;
   }
@@ -93,13 +95,18 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
     }
     options.record_every = *every;
   }
+  // Outputs are checked before the run (not after an hour of simulation); missing folders on
+  // their way are created when they are written (AtomicFile).
   if (auto record = parsed.value("--record")) {
+    check_output_file(*record);
     options.record = *record;
   }
   if (auto summary = parsed.value("--summary")) {
+    check_output_file(*summary);
     options.summary = *summary;
   }
   if (auto log = parsed.value("--log")) {
+    check_output_file(*log);
     options.log = *log;
   }
   return options;

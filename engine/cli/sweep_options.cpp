@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "corsa/core/atomic_file.h"
+
 namespace corsa::cli {
 namespace {
 
@@ -31,8 +33,9 @@ sweep::Shard shard_option(const ParsedArgs& parsed) {
 
 void simulation_options(const ParsedArgs& parsed, engine::SimulationOptions& simulation) {
   if (const auto dt = parsed.number("--dt")) {
-    if (!(*dt > 0.0) || *dt > 10.0)
-      throw UsageError("--dt expects a step in seconds, 0 < dt <= 10");
+    // At least 0.1 ms: a step of 1e-300 s is endless steps, a hang rather than a run.
+    if (!(*dt >= 1e-4) || *dt > 10.0)
+      throw UsageError("--dt expects a step in seconds, 0.0001 <= dt <= 10");
     simulation.dt = *dt;
   }
   if (const auto duration = parsed.number("--duration")) {
@@ -67,6 +70,7 @@ sweep::SweepOptions sweep_options(const ParsedArgs& parsed) {
   options.shard = shard_option(parsed);
   options.output = parsed.value_or(
       "-o", options.shard.whole() ? "sweep" : "sweep-shard-" + std::to_string(options.shard.index));
+  check_output_folder(options.output);  // missing parents are made; a file on the way is not
   if (const auto jobs = parsed.integer("-j")) {
     if (*jobs < 1) throw UsageError("-j expects a positive number of threads");
     options.jobs = static_cast<size_t>(*jobs);

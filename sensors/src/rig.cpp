@@ -14,6 +14,9 @@ namespace {
 
 using detail::ValidatedElement;
 
+// Beams of one LiDAR revolution at most: 16 x a 128-channel, 2048-column sensor.
+constexpr double kMaxBeamsPerRevolution = 4'194'304;
+
 // Values were validated against the schema (types, ranges, defaults) before these are called.
 double number(const ValidatedElement& e, const std::string& name) {
   return *parse_double(*e.find(name));
@@ -82,6 +85,18 @@ LidarOptions read_lidar(const ValidatedElement& e, const std::string& file) {
     throw InputError(make_error(
         file, e.line, "<Lidar> pointsPerSecond is too low for one firing per channel and turn",
         e.path));
+  }
+  // The simulator keeps every beam direction of a revolution (and scans them per frame): 2e7
+  // points per second at 0.001 Hz asked for 2e10 beams ("out of memory", exit 3), and the
+  // azimuth step count overflowed an int. Real sensors have well under a million per turn.
+  const double beams = l.points_per_second / l.rotation_frequency_hz;
+  if (beams > kMaxBeamsPerRevolution) {
+    throw InputError(make_error(file, e.line,
+                                "<Lidar> pointsPerSecond / rotationFrequency gives " +
+                                    format_double(std::round(beams)) +
+                                    " beams per revolution, more than the " +
+                                    format_double(kMaxBeamsPerRevolution) + " simulated",
+                                e.path));
   }
   return l;
 }

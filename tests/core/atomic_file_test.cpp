@@ -39,16 +39,37 @@ TEST_CASE("an uncommitted atomic file leaves no trace and keeps the old file",
   CHECK(dir.entries() == 1);
 }
 
-TEST_CASE("an atomic file in a missing folder fails with the path named", "[core][atomic_file]") {
+TEST_CASE("an atomic file creates missing folders and removes them when not committed",
+          "[core][atomic_file]") {
   corsa::test::TempDir dir;
   const fs::path target = dir.path() / "no" / "such" / "dir" / "out.csv";
-  try {
+  {
     corsa::AtomicFile file(target);
-    FAIL("expected an error");
-  } catch (const corsa::InputError& error) {
-    CHECK(error.diagnostic().file == target.string());
-    CHECK_THAT(error.what(), Catch::Contains("cannot create output file"));
+    file.stream() << "abandoned";
+    CHECK(fs::is_directory(target.parent_path()));
   }
+  CHECK(dir.entries() == 0);
+  corsa::write_file_atomic(target, "kept");
+  CHECK(corsa::read_file(target) == "kept");
+}
+
+TEST_CASE("an atomic file onto a folder or through a file fails with the path named",
+          "[core][atomic_file]") {
+  corsa::test::TempDir dir;
+  corsa::write_file_atomic(dir.path() / "plain.txt", "a file");
+  for (const fs::path& target : {dir.path(), dir.path() / "plain.txt" / "deeper" / "out.csv"}) {
+    try {
+      corsa::AtomicFile file(target);
+      FAIL("expected an error");
+    } catch (const corsa::InputError& error) {
+      CHECK(error.diagnostic().file == target.string());
+      CHECK_THAT(error.what(), Catch::Contains("folder"));
+    }
+    CHECK_THROWS_AS(corsa::check_output_file(target), corsa::InputError);
+  }
+  CHECK_THROWS_AS(corsa::check_output_folder(dir.path() / "plain.txt"), corsa::InputError);
+  CHECK_NOTHROW(corsa::check_output_folder(dir.path() / "new" / "folder"));
+  CHECK(dir.entries() == 1);
 }
 
 TEST_CASE("reading a missing file names it", "[core][atomic_file]") {

@@ -74,6 +74,21 @@ inline std::set<std::string> entry_names(const std::filesystem::path& dir) {
   return names;
 }
 
+/// scenarios/cut_in.xosc with its map and catalog folder named by absolute path, so that a copy
+/// anywhere still finds them.
+inline std::string cut_in_text() {
+  const std::string scenarios = std::string(CORSA_SOURCE_DIR) + "/scenarios/";
+  std::string text = slurp(scenarios + "cut_in.xosc");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, from.size(), to);
+  };
+  replace("filepath=\"maps/", "filepath=\"" + scenarios + "maps/");
+  replace("path=\"catalogs\"", "path=\"" + scenarios + "catalogs\"");
+  return text;
+}
+
 /// One case of the corpus: what ran and what it did, for the failure message.
 inline std::string describe(const std::string& name, const BoundedResult& result) {
   return name + ": exit " + std::to_string(result.exit_code) +

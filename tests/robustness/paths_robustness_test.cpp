@@ -1,7 +1,7 @@
 // Paths that are not what a command expects: folders instead of files, missing files, a path
-// through a regular file, outputs into a missing folder or onto a folder, and files that are
-// empty, all NUL bytes or binary garbage. Each is rejected with exit 2 and a message naming the
-// path, and no output is left behind.
+// through a regular file, outputs onto a folder or through a file, and files that are empty, all
+// NUL bytes or binary garbage. Each is rejected with exit 2 and a message naming the path, and no
+// output is left behind. Outputs into missing folders create them (every command the same way).
 
 #include <random>
 #include <string>
@@ -99,30 +99,86 @@ TEST_CASE("Empty, NUL-filled and binary garbage inputs are rejected at line 1 or
   }
 }
 
-TEST_CASE("Outputs into a missing folder or onto a folder fail with exit 2 and write nothing",
+TEST_CASE("Outputs onto a folder or through a regular file fail with exit 2 and write nothing",
           "[robustness][paths]") {
   TempDir dir;
-  const std::string missing = (dir.path() / "missing" / "deeper").string();
   const std::string folder = (dir.path() / "folder.csv").string();
   std::filesystem::create_directory(folder);
+  const std::string mesh_folder = (dir.path() / "folder.obj").string();
+  std::filesystem::create_directory(mesh_folder);
+  const std::string plain = (dir.path() / "plain.txt").string();
+  std::ofstream(plain) << "a file, not a folder\n";
+  const std::string through = plain + "/deeper";
+  const std::string suite = std::string(CORSA_SOURCE_DIR) + "/scenarios/suites/regression";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {through + "/mesh.obj", {"map", "mesh", kMap, "-o", through + "/mesh.obj"}},
+      {mesh_folder, {"map", "mesh", kMap, "-o", mesh_folder}},
+      {through + "/out.csv",
+       {"run", kScenario, "--quiet", "--duration", "1", "--record", through + "/out.csv"}},
+      {folder, {"run", kScenario, "--quiet", "--duration", "1", "--record", folder}},
+      {through + "/s.json",
+       {"run", kScenario, "--quiet", "--duration", "1", "--summary", through + "/s.json"}},
+      {folder, {"run", kScenario, "--quiet", "--duration", "1", "--log", folder}},
+      {through + "/r.xml", {"test", suite, "--quiet", "--junit", through + "/r.xml"}},
+      {folder, {"test", suite, "--quiet", "--junit", folder}},
+      {through, {"test", suite, "--quiet", "-o", through}},
+      {through, {"sweep", "scenarios/suites/sweeps/cut_in_grid.xosc", "--quiet", "-o", through}},
+  };
+  for (const auto& [target, args] : cases) {
+    const BoundedResult result = run_bounded(args, 10);
+    INFO(describe(joined(args), result));
+    CHECK_FALSE(result.timed_out);
+    CHECK(result.exit_code == 2);
+    // Refused before any work: a message naming the target, and nothing written anywhere.
+    CHECK(result.err.find(": error: ") != std::string::npos);
+    CHECK(result.err.find(target) != std::string::npos);
+    CHECK(entry_names(dir.path()) ==
+          std::set<std::string>{"folder.csv", "folder.obj", "plain.txt"});
+    CHECK(std::filesystem::is_empty(folder));
+    CHECK(std::filesystem::is_empty(mesh_folder));
+    CHECK(slurp(plain) == "a file, not a folder\n");
+  }
+}
+
+TEST_CASE("Every output into missing folders creates them, as sweep -o always did",
+          "[robustness][paths]") {
+  TempDir dir;
+  const auto in = [&](const std::string& path) { return (dir.path() / path).string(); };
   const std::vector<std::vector<std::string>> cases = {
-      {"map", "mesh", kMap, "-o", missing + "/mesh.obj"},
-      {"map", "mesh", kMap, "-o", missing + "/mesh.ply"},
-      {"run", kScenario, "--quiet", "--duration", "1", "--record", missing + "/out.csv"},
-      {"run", kScenario, "--quiet", "--duration", "1", "--record", folder},
-      {"run", kScenario, "--quiet", "--duration", "1", "--summary", missing + "/s.json"},
-      {"run", kScenario, "--quiet", "--duration", "1", "--log", folder},
+      {"map", "mesh", kMap, "-o", in("a/b/mesh.obj")},
+      {"run", kScenario, "--quiet", "--duration", "1", "--record", in("c/d/out.csv"), "--summary",
+       in("e/s.json"), "--log", in("f/g/h/log.csv")},
   };
   for (const auto& args : cases) {
     const BoundedResult result = run_bounded(args);
     INFO(describe(joined(args), result));
-    CHECK_FALSE(result.timed_out);
-    CHECK(result.exit_code == 2);
-    CHECK(result.err.find(": error: ") != std::string::npos);
-    // Nothing written next to the bad target, and the folder target is still an empty folder.
-    CHECK(entry_names(dir.path()) == std::set<std::string>{"folder.csv"});
-    CHECK(std::filesystem::is_empty(folder));
+    CHECK(result.exit_code == 0);
   }
+  for (const char* file :
+       {"a/b/mesh.obj", "a/b/mesh.mtl", "c/d/out.csv", "e/s.json", "f/g/h/log.csv"}) {
+    INFO(file);
+    CHECK(std::filesystem::is_regular_file(dir.path() / file));
+  }
+  // A JUnit report of a one-test folder suite.
+  TempDir suite;
+  std::ofstream(suite.path() / "cut_in.xosc") << cut_in_text();
+  const BoundedResult result =
+      run_bounded({"test", suite.path().string(), "--quiet", "--junit", in("i/j/report.xml")});
+  INFO(describe("test --junit", result));
+  CHECK(result.exit_code == 0);
+  CHECK(std::filesystem::is_regular_file(dir.path() / "i/j/report.xml"));
+}
+
+TEST_CASE("A run refused for bad input leaves no output folder behind", "[robustness][paths]") {
+  TempDir dir;
+  std::ofstream(dir.path() / "broken.xosc") << cut_in_text().substr(0, 2000);
+  const BoundedResult result = run_bounded({"run", (dir.path() / "broken.xosc").string(), "--quiet",
+                                            "--record", (dir.path() / "new/out.csv").string(),
+                                            "--summary", (dir.path() / "other/s.json").string()});
+  INFO(describe("broken scenario with outputs in new folders", result));
+  CHECK(result.exit_code == 2);
+  CHECK(has_located_error(result.err));
+  CHECK(entry_names(dir.path()) == std::set<std::string>{"broken.xosc"});
 }
 
 }  // namespace

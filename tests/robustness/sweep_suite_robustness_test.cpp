@@ -74,6 +74,22 @@ TEST_CASE("Bad ranges, missing scenarios and absurd variant counts are rejected 
                        replaced_all(grid, "stepWidth=\"2\"", "stepWidth=\"0.000002\""));
 }
 
+TEST_CASE("Command-line grids too large are refused before their values are made",
+          "[robustness][sweep]") {
+  TempDir dir;
+  // Each axis alone is allowed (9 million values); together they held 1.1 GB for 20 s.
+  const BoundedResult result =
+      run_bounded({"sweep", "scenarios/suites/regression/cut_in.xosc", "--param", "a=0:9e6:1",
+                   "--param", "b=0:9e6:1", "--param", "c=0:9e6:1", "--param", "d=0:9e6:1", "-o",
+                   (dir.path() / "out").string(), "--quiet"});
+  INFO(describe("four axes of 9 million values", result));
+  CHECK(result.exit_code == 2);
+  CHECK(result.seconds < 10.0);
+  CHECK(result.err.find("--param b=0:9e6:1: error: the grid's axes hold more than 10 million "
+                        "values in all") != std::string::npos);
+  CHECK(dir.entries() == 0);
+}
+
 TEST_CASE("Broken suite manifests are rejected with a located error and no JUnit report",
           "[robustness][suite]") {
   const std::string manifest =
@@ -82,6 +98,8 @@ TEST_CASE("Broken suite manifests are rejected with a located error and no JUnit
   mutants.push_back({"NUL bytes", std::string(32, '\0')});
   mutants.push_back({"version text", replaced_all(manifest, "version=\"1\"", "version=\"one\"")});
   mutants.push_back({"dt NaN", replaced_all(manifest, "dt=\"0.01\"", "dt=\"nan\"")});
+  // Endless steps: ran until killed before steps were bounded below by 0.1 ms.
+  mutants.push_back({"dt 1e-300", replaced_all(manifest, "dt=\"0.01\"", "dt=\"1e-300\"")});
   for (const Mutant& mutant : mutants) {
     TempDir dir;
     std::ofstream(dir.path() / "suite.xml", std::ios::binary) << mutant.text;
@@ -93,6 +111,47 @@ TEST_CASE("Broken suite manifests are rejected with a located error and no JUnit
     CHECK(has_located_error(result.err));
     CHECK(result.err.find("suite.xml:") != std::string::npos);
     CHECK(entry_names(dir.path()) == std::set<std::string>{"suite.xml"});
+  }
+}
+
+}  // namespace
+}  // namespace corsa::test
+
+namespace corsa::test {
+namespace {
+
+TEST_CASE("A golden trajectory that cannot be read is bad input of the suite, at its line",
+          "[robustness][suite]") {
+  const std::string header = "time,entity,x,y,z,h,p,r,speed,road,lane,s,t\n";
+  const std::string row = "0,Ego,50,-5.625,0,0,0,0,25,1,-2,50,-5.625\n";
+  struct Case {
+    const char* what;
+    std::string text;
+    int line;
+  };
+  const Case cases[] = {
+      {"empty", "", 1},
+      {"NUL bytes", std::string(40, '\0'), 1},
+      {"another header", "time,who,x\n" + row, 1},
+      {"a short row", header + "0,Ego,50\n", 2},
+      {"text for x", header + row + "0.1,Ego,abc,-5.625,0,0,0,0,25,1,-2,50,-5.625\n", 3},
+      {"NaN speed", header + row + row + "0.2,Ego,50,-5.625,0,0,0,0,nan,1,-2,50,-5.625\n", 4},
+      {"an unclosed quote", header + row + "0.1,\"Ego,50,-5.625,0,0,0,0,25,1,-2,50,-5.625\n", 3},
+      {"no time", header + ",Ego,50,-5.625,0,0,0,0,25,1,-2,50,-5.625\n", 2},
+  };
+  for (const Case& c : cases) {
+    TempDir dir;
+    std::ofstream(dir.path() / "cut_in.xosc") << cut_in_text();
+    std::filesystem::create_directory(dir.path() / "goldens");
+    std::ofstream(dir.path() / "goldens" / "cut_in.csv", std::ios::binary) << c.text;
+    const BoundedResult result = run_bounded(
+        {"test", dir.path().string(), "--quiet", "--junit", (dir.path() / "junit.xml").string()});
+    INFO(describe(std::string("golden ") + c.what, result));
+    CHECK_FALSE(result.timed_out);
+    CHECK(result.exit_code == 2);
+    CHECK(result.err.find("cut_in.csv:" + std::to_string(c.line) + ": error: golden trajectory") !=
+          std::string::npos);
+    CHECK(entry_names(dir.path()) == std::set<std::string>{"cut_in.xosc", "goldens"});
   }
 }
 

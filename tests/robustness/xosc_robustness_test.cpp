@@ -11,21 +11,6 @@
 namespace corsa::test {
 namespace {
 
-/// scenarios/cut_in.xosc with its map and catalog folder named by absolute path, so that a copy
-/// anywhere still finds them.
-std::string cut_in_text() {
-  const std::string scenarios = std::string(CORSA_SOURCE_DIR) + "/scenarios/";
-  std::string text = slurp(scenarios + "cut_in.xosc");
-  const auto replace = [&](const std::string& from, const std::string& to) {
-    const size_t at = text.find(from);
-    REQUIRE(at != std::string::npos);
-    text.replace(at, from.size(), to);
-  };
-  replace("filepath=\"maps/", "filepath=\"" + scenarios + "maps/");
-  replace("path=\"catalogs\"", "path=\"" + scenarios + "catalogs\"");
-  return text;
-}
-
 /// `text` with the first occurrence of `from` replaced by `to` (which must exist).
 std::string edited(std::string text, const std::string& from, const std::string& to) {
   const size_t at = text.find(from);
@@ -156,8 +141,14 @@ TEST_CASE("Unknown references, cyclic parameters and wrong types are rejected at
       {"unknown road", "roadId=\"1\"", "roadId=\"99\"", 36, Expect::kRejectedByRun},
       {"unknown lane", "laneId=\"-2\"", "laneId=\"-9\"", 36, Expect::kRejectedByRun},
       {"negative s", "s=\"100\"", "s=\"-5\"", 36, Expect::kRejectedByRun},
-      {"position beyond the road network", "ds=\"-40\"", "ds=\"1e300\"", 55,
-       Expect::kRejectedByRun},
+      {"position beyond the road network", "ds=\"-40\"", "ds=\"-2e7\"", 55, Expect::kRejectedByRun},
+      // Magnitudes beyond physical sense (docs/engine.md): at the element that uses the value.
+      {"speed of 1e308 m/s", "value=\"27.78\"", "value=\"1e308\"", 45},
+      {"speed of -1e5 m/s", "value=\"27.78\"", "value=\"-1e5\"", 45},
+      {"s of 1e20 m", "s=\"100\"", "s=\"1e20\"", 36},
+      {"ds of 1e300 m", "ds=\"-40\"", "ds=\"1e300\"", 55},
+      {"simulation time of 1e300 s", "<SimulationTimeCondition value=\"60\"",
+       "<SimulationTimeCondition value=\"1e300\"", 188},
   };
   const std::string original = cut_in_text();
   for (const Case& c : cases) {
@@ -165,6 +156,27 @@ TEST_CASE("Unknown references, cyclic parameters and wrong types are rejected at
     INFO(c.name << ": " << outcome.run.err);
     CHECK(outcome.run.err.find("scenario.xosc:" + std::to_string(c.line) + ": error: ") !=
           std::string::npos);
+  }
+}
+
+TEST_CASE("A step too small for a run ever to end is refused", "[robustness][xosc]") {
+  TempDir dir;
+  for (const char* dt : {"1e-300", "1e-5", "0"}) {
+    for (const char* command : {"run", "sweep"}) {
+      std::vector<std::string> args = {command, "scenarios/cut_in.xosc", "--quiet", "--dt", dt};
+      if (std::string(command) == "sweep") {
+        args.insert(args.end(), {"--param", "EgoSpeed=20,30", "-o", (dir.path() / "out").string()});
+      } else {
+        args.insert(args.end(), {"--record", (dir.path() / "out.csv").string()});
+      }
+      const BoundedResult result = run_bounded(args);
+      INFO(describe(std::string(command) + " --dt " + dt, result));
+      CHECK_FALSE(result.timed_out);
+      CHECK(result.exit_code == 2);
+      CHECK(result.err.find("--dt expects a step in seconds, 0.0001 <= dt <= 10") !=
+            std::string::npos);
+      CHECK(dir.entries() == 0);
+    }
   }
 }
 

@@ -1,5 +1,6 @@
 #include "corsa/sweep/grid.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "corsa/core/diagnostic.h"
@@ -9,14 +10,21 @@ namespace corsa::sweep {
 namespace {
 
 // Same cap as the loader's DistributionRange: a typo in a step must not allocate gigabytes.
-constexpr double kMaxValues = 1e7;
+constexpr size_t kMaxValues = 10'000'000;
+
+std::string too_many(size_t max_values) {
+  return max_values >= kMaxValues ? "the range has more than 10 million values"
+                                  : "the grid's axes hold more than 10 million values in all (" +
+                                        std::to_string(max_values) + " are left for this one)";
+}
 
 [[noreturn]] void fail(std::string_view text, const std::string& message) {
   throw InputError(make_error("--param " + std::string(text), 0, message));
 }
 
 // LOW:HIGH:STEP when the spec has exactly three numeric parts; false otherwise.
-bool parse_range(std::string_view text, std::string_view spec, std::vector<std::string>& values) {
+bool parse_range(std::string_view text, std::string_view spec, std::vector<std::string>& values,
+                 size_t max_values) {
   const auto parts = split(spec, ':');
   if (parts.size() != 3) {
     return false;
@@ -35,8 +43,8 @@ bool parse_range(std::string_view text, std::string_view spec, std::vector<std::
                    std::string(trim(parts[0])) + ")");
   }
   const double steps = std::floor((*high - *low) / *step + 1e-9);
-  if (steps + 1.0 > kMaxValues) {
-    fail(text, "the range has more than 10 million values");
+  if (steps + 1.0 > static_cast<double>(std::min(max_values, kMaxValues))) {
+    fail(text, too_many(max_values));
   }
   const auto count = static_cast<size_t>(steps) + 1;
   values.reserve(count);
@@ -49,7 +57,7 @@ bool parse_range(std::string_view text, std::string_view spec, std::vector<std::
 
 }  // namespace
 
-GridAxis parse_grid_axis(std::string_view text) {
+GridAxis parse_grid_axis(std::string_view text, size_t max_values) {
   const size_t eq = text.find('=');
   if (eq == std::string_view::npos) {
     fail(text, "expected NAME=VALUES (VALUES: LOW:HIGH:STEP, a list A,B,C or one value)");
@@ -67,7 +75,7 @@ GridAxis parse_grid_axis(std::string_view text) {
   if (trim(spec).empty()) {
     fail(text, "no value given for parameter '" + axis.name + "'");
   }
-  if (parse_range(text, spec, axis.values)) {
+  if (parse_range(text, spec, axis.values, max_values)) {
     return axis;
   }
   for (const std::string_view value : split(spec, ',')) {
@@ -75,6 +83,9 @@ GridAxis parse_grid_axis(std::string_view text) {
       fail(text, "empty value in the list for parameter '" + axis.name + "'");
     }
     axis.values.emplace_back(trim(value));
+  }
+  if (axis.values.size() > max_values) {
+    fail(text, too_many(max_values));
   }
   return axis;
 }

@@ -1,0 +1,50 @@
+// Broken sensor rigs through `corsa run --rig`: unknown sensor types, sizes that are zero,
+// negative, text or absurd (a 100000 x 100000 image, a LiDAR of 2e10 beams per revolution) are
+// located errors before the dataset folder is made, never an out-of-memory or a hang.
+
+#include <string>
+#include <vector>
+
+#include "bounded_run.h"
+
+namespace corsa::test {
+namespace {
+
+TEST_CASE("Rigs with unknown sensors and absurd sizes are rejected at their line",
+          "[robustness][rig]") {
+  const std::string scenario = std::string(CORSA_SOURCE_DIR) + "/scenarios/cut_in.xosc";
+  struct Case {
+    const char* what;
+    const char* sensor;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"unknown sensor type", "<Radar name=\"a\" entity=\"Ego\"/>", "<Radar> is not allowed"},
+      {"image 100000 x 100000",
+       "<RgbCamera name=\"a\" entity=\"Ego\" width=\"100000\" height=\"100000\"/>",
+       "above the maximum 8192"},
+      {"zero height", "<DepthCamera name=\"a\" entity=\"Ego\" height=\"0\"/>", "height"},
+      {"LiDAR of 2e10 beams per revolution",
+       "<Lidar name=\"a\" entity=\"Ego\" channels=\"256\" pointsPerSecond=\"20000000\" "
+       "rotationFrequency=\"0.001\"/>",
+       "beams per revolution"},
+  };
+  for (const Case& c : cases) {
+    TempDir dir;
+    std::ofstream(dir.path() / "rig.xml") << "<?xml version=\"1.0\"?>\n<SensorRig version=\"1\" "
+                                             "name=\"broken\">\n  "
+                                          << c.sensor << "\n</SensorRig>\n";
+    const BoundedResult result =
+        run_bounded({"run", scenario, "--duration", "0.1", "--quiet", "--rig",
+                     (dir.path() / "rig.xml").string(), "-o", (dir.path() / "dataset").string()});
+    INFO(describe(c.what, result));
+    CHECK_FALSE(result.timed_out);
+    CHECK(result.exit_code == 2);
+    CHECK(result.err.find("rig.xml:3: error: ") != std::string::npos);
+    CHECK(result.err.find(c.message) != std::string::npos);
+    CHECK(entry_names(dir.path()) == std::set<std::string>{"rig.xml"});
+  }
+}
+
+}  // namespace
+}  // namespace corsa::test
