@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "engine_fixture.h"
+#include "run_corsa.h"
+#include "temp_dir.h"
 
 namespace {
 
@@ -258,4 +260,29 @@ TEST_CASE("NPCs are engine entities: seeded places, vehicles driving, pedestrian
   const auto a = places(*start(11));
   CHECK(a == places(*start(11)));
   CHECK(a != places(*start(12)));
+}
+
+TEST_CASE("corsa run --npc adds the NPCs, and the summary says when generated entities lived",
+          "[engine][npc][cli]") {
+  corsa::test::TempDir dir;
+  const auto summary = dir.path() / "summary.json";
+  const auto result = corsa::test::run_corsa(
+      {"run", "tests/engine/fixtures/controller_acc.xosc", "--npc", "vehicles=2,pedestrians=1",
+       "--seed", "5", "--duration", "2", "--summary", summary.string(), "--quiet"});
+  INFO(result.err);
+  REQUIRE(result.exit_code == 0);
+  const std::string json = corsa::test::slurp(summary);
+  CHECK_THAT(json, Catch::Contains("\"name\": \"npc_vehicle_1\""));
+  CHECK_THAT(json, Catch::Contains("\"name\": \"npc_pedestrian_0\""));
+  CHECK_THAT(json, Catch::Contains("\"generated\": true, \"present\": true, \"lifetimes\": "
+                                   "[{\"spawned\": 0}]"));
+  // The scenario's own entities keep the fields they had.
+  const size_t lead = json.find("\"name\": \"Lead\"");
+  REQUIRE(lead != std::string::npos);
+  CHECK(json.substr(lead, json.find('}', lead) - lead).find("generated") == std::string::npos);
+
+  const auto bad = corsa::test::run_corsa(
+      {"run", "tests/engine/fixtures/controller_acc.xosc", "--npc", "cars=3", "--quiet"});
+  CHECK(bad.exit_code == 2);
+  CHECK_THAT(bad.err, Catch::Contains("--npc"));
 }
