@@ -123,6 +123,14 @@ TEST_CASE("Outputs onto a folder or through a regular file fail with exit 2 and 
       {folder, {"test", suite, "--quiet", "--junit", folder}},
       {through, {"test", suite, "--quiet", "-o", through}},
       {through, {"sweep", "scenarios/suites/sweeps/cut_in_grid.xosc", "--quiet", "-o", through}},
+      {through + "/map.png", {"map", "render", kMap, "-o", through + "/map.png"}},
+      {through + "/k.xodr",
+       {"convert", "ngii", std::string(CORSA_SHARED_DIR) + "/data/ngii/kcity", "-o",
+        through + "/k.xodr"}},
+      {through + "/fixes.csv",
+       {"convert", "ngii", std::string(CORSA_SHARED_DIR) + "/data/ngii/kcity", "-o",
+        (dir.path() / "folder.csv" / "k.xodr").string(), "--report", through + "/fixes.csv"}},
+      {through, {"run", kScenario, "--quiet", "--rig", "scenarios/rigs/demo.xml", "-o", through}},
   };
   for (const auto& [target, args] : cases) {
     const BoundedResult result = run_bounded(args, 10);

@@ -8,6 +8,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "corsa/core/atomic_file.h"
 #include "corsa/core/progress.h"
 #include "corsa/core/strings.h"
 #include "corsa/ngii/convert.h"
@@ -88,6 +89,7 @@ int convert_body(std::span<const std::string> args) {
   if (!output || output->empty()) {
     throw UsageError("missing -o OUT.xodr (the OpenDRIVE file to write)");
   }
+  check_output_file(*output);  // before the conversion; missing folders are made when written
   ngii::ConvertOptions options;
   if (const auto tolerance = parsed.number("--tolerance")) {
     if (!(*tolerance >= 0.001 && *tolerance <= 1.0)) {
@@ -97,6 +99,7 @@ int convert_body(std::span<const std::string> args) {
   }
   const bool quiet = parsed.flag("--quiet");
   const std::optional<std::string> report = parsed.value("--report");
+  if (report) check_output_file(*report);
 
   Diagnostics diagnostics;
   ngii::Conversion conversion;

@@ -6,6 +6,7 @@
 
 #include "args.h"
 #include "commands.h"
+#include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/map_render.h"
@@ -40,6 +41,7 @@ int map_render_body(std::span<const std::string> args) {
   if (corsa::to_lower(std::filesystem::path(*output).extension().string()) != ".png") {
     throw UsageError("-o " + *output + ": the picture is written as PNG; name it .png");
   }
+  check_output_file(*output);  // before rendering; missing folders are made when written
   xodr::RenderOptions options;
   const auto size = parsed.integer("--size");
   const auto scale = parsed.number("--scale");

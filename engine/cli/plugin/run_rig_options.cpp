@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
 #include "run_options.h"
 #include "run_rig.h"
@@ -38,6 +39,7 @@ RigRunOptions read_rig_run_options(const ParsedArgs& parsed) {
   if (!output || output->empty()) {
     throw UsageError("missing -o DIR (the dataset folder to write)");
   }
+  check_output_folder(*output);  // missing folders are made; a file on the way is refused
   options.output = *output;
   if (const auto format = parsed.value("--format")) {
     if (*format == "kitti") {
