@@ -202,15 +202,18 @@ CameraRenderer::CameraRenderer(const CameraIntrinsics& intrinsics) : model_(intr
   const int w = intrinsics.width;
   const int h = intrinsics.height;
   rays_.resize(static_cast<size_t>(w) * h * 3);
-  for (int row = 0; row < h; ++row) {
-    for (int col = 0; col < w; ++col) {
-      const Vec3 r = model_.ray({static_cast<double>(col), static_cast<double>(row)});
-      float* out = &rays_[3 * (static_cast<size_t>(row) * w + col)];
-      out[0] = static_cast<float>(r.x);
-      out[1] = static_cast<float>(r.y);
-      out[2] = static_cast<float>(r.z);
+  // Undistorting every pixel is iterative (~0.3 s for 1280x720): rows in parallel.
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+    for (int row = rows.begin(); row != rows.end(); ++row) {
+      for (int col = 0; col < w; ++col) {
+        const Vec3 r = model_.ray({static_cast<double>(col), static_cast<double>(row)});
+        float* out = &rays_[3 * (static_cast<size_t>(row) * w + col)];
+        out[0] = static_cast<float>(r.x);
+        out[1] = static_cast<float>(r.y);
+        out[2] = static_cast<float>(r.z);
+      }
     }
-  }
+  });
 }
 
 Vec3 CameraRenderer::pixel_ray(int col, int row) const {

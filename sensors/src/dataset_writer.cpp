@@ -2,6 +2,8 @@
 
 #include "corsa/sensors/dataset_writer.h"
 
+#include <tbb/task_group.h>
+
 #include <cmath>
 #include <cstdio>
 #include <system_error>
@@ -129,6 +131,15 @@ std::string frame_stem(int64_t frame) {
   return text;
 }
 
+struct DatasetWriter::Pending {
+  std::vector<SensorFrame> frames;
+  std::vector<std::vector<fs::path>> files;  ///< per frame, filled by its task
+  int64_t tick = 0;
+  double time = 0.0;
+  std::string pose_rows;  ///< the pose file's index row(s), after the sensor files
+  tbb::task_group tasks;
+};
+
 DatasetWriter::DatasetWriter(SensorSystem& system, fs::path directory, DatasetRunInfo info,
                              DatasetFormat format, bool replace)
     : system_(system), directory_(std::move(directory)), info_(std::move(info)), format_(format) {
@@ -140,25 +151,31 @@ DatasetWriter::DatasetWriter(SensorSystem& system, fs::path directory, DatasetRu
   write_run_json(nullptr);
 }
 
+DatasetWriter::~DatasetWriter() {
+  if (pending_) {
+    try {
+      pending_->tasks.wait();
+    } catch (...) {  // NOLINT(bugprone-empty-catch): a destructor must not throw; finish() reports
+    }
+  }
+}
+
 void DatasetWriter::capture(const engine::WorldSnapshot& world,
                             std::span<const std::string> sensors) {
-  const std::vector<SensorFrame> frames = system_.capture(world, sensors);
-  std::string rows;
+  // Rendering this capture overlaps with the previous capture's file tasks (both cores busy).
+  std::vector<SensorFrame> frames = system_.capture(world, sensors);
+  complete_pending();
+  auto batch = std::make_unique<Pending>();
+  batch->frames = std::move(frames);
+  batch->files.resize(batch->frames.size());
+  batch->tick = world.tick;
+  batch->time = world.time;
   std::string sensor_poses;
-  for (const SensorFrame& f : frames) {
-    const SensorSpec& spec = *system_.rig().find(f.sensor);
-    for (const fs::path& file : write_sensor_frame(f, spec, directory_)) {
-      rows += std::to_string(captures_) + "," + std::to_string(world.tick) + "," + num(world.time) +
-              "," + f.sensor + "," + std::to_string(f.frame) + "," + file.generic_string() + "\n";
-      ++rows_;
-    }
+  for (const SensorFrame& f : batch->frames) {
     sensor_poses += std::string(sensor_poses.empty() ? "" : ",\n") +
                     "    {\"sensor\": " + json_quote(f.sensor) +
                     ", \"frame\": " + std::to_string(f.frame) +
                     ", \"world_from_sensor\": " + rigid_json(f.world_from_sensor) + "}";
-    if (format_ == DatasetFormat::kKitti) {
-      write_kitti(f, spec);
-    }
   }
   std::string pose = "{\n  \"capture\": " + std::to_string(captures_) +
                      ",\n  \"tick\": " + std::to_string(world.tick) +
@@ -171,15 +188,51 @@ void DatasetWriter::capture(const engine::WorldSnapshot& world,
   pose += "  ],\n  \"environment\": " + environment_json(world.environment) + "\n}\n";
   const std::string pose_file = "poses/" + frame_stem(captures_) + ".json";
   write_file_atomic(directory_ / pose_file, pose);
-  rows += std::to_string(captures_) + "," + std::to_string(world.tick) + "," + num(world.time) +
-          ",poses,," + pose_file + "\n";
+  batch->pose_rows = std::to_string(captures_) + "," + std::to_string(world.tick) + "," +
+                     num(world.time) + ",poses,," + pose_file + "\n";
+  // One task per sensor: each writes only its own folder, so the encoders run side by side and
+  // with the next capture's rendering. The KITTI export numbers its frames in capture order: one
+  // task writes all of it.
+  Pending& b = *batch;
+  for (size_t i = 0; i < b.frames.size(); ++i) {
+    b.tasks.run([this, &b, i] {
+      const SensorFrame& f = b.frames[i];
+      b.files[i] = write_sensor_frame(f, *system_.rig().find(f.sensor), directory_);
+    });
+  }
+  if (format_ == DatasetFormat::kKitti) {
+    b.tasks.run([this, &b] {
+      for (const SensorFrame& f : b.frames) {
+        write_kitti(f, *system_.rig().find(f.sensor));
+      }
+    });
+  }
+  pending_ = std::move(batch);
+}
+
+void DatasetWriter::complete_pending() {
+  if (!pending_) {
+    return;
+  }
+  const std::unique_ptr<Pending> done = std::move(pending_);
+  done->tasks.wait();  // rethrows a task's exception (the capture is then not indexed)
+  std::string rows;
+  for (size_t i = 0; i < done->frames.size(); ++i) {
+    const SensorFrame& f = done->frames[i];
+    for (const fs::path& file : done->files[i]) {
+      rows += std::to_string(captures_) + "," + std::to_string(done->tick) + "," + num(done->time) +
+              "," + f.sensor + "," + std::to_string(f.frame) + "," + file.generic_string() + "\n";
+      ++rows_;
+    }
+  }
+  rows += done->pose_rows;
   ++rows_;
   // The index last: it names the capture only once every file of it is in place.
   index_ += rows;
   write_file_atomic(directory_ / "frames.csv", index_);
   ++captures_;
-  last_tick_ = world.tick;
-  last_time_ = world.time;
+  last_tick_ = done->tick;
+  last_time_ = done->time;
 }
 
 void DatasetWriter::write_kitti(const SensorFrame& f, const SensorSpec& spec) {
@@ -227,7 +280,10 @@ void DatasetWriter::write_kitti(const SensorFrame& f, const SensorSpec& spec) {
   }
 }
 
-void DatasetWriter::finish(const DatasetEnd& end) { write_run_json(&end); }
+void DatasetWriter::finish(const DatasetEnd& end) {
+  complete_pending();
+  write_run_json(&end);
+}
 
 void DatasetWriter::write_run_json(const DatasetEnd* end) const {
   std::string out =

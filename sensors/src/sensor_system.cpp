@@ -1,5 +1,7 @@
 #include "corsa/sensors/sensor_system.h"
 
+#include <tbb/task_group.h>
+
 #include <numbers>
 
 #include "corsa/core/diagnostic.h"
@@ -31,6 +33,47 @@ struct CameraGroup {
   const SensorSpec* rgb = nullptr;
   CameraOutputs outputs;
 };
+
+/// Renders one camera group and gives each member its own image and the group's labels.
+void render_camera_group(const Scene& scene, const CameraRenderer& renderer,
+                         const std::vector<const SensorSpec*>& members,
+                         const engine::EntitySnapshot& carrier, const RenderSettings& settings,
+                         const std::vector<SensorFrame*>& outputs) {
+  CameraMotion motion;
+  motion.world_from_body = outputs.front()->world_from_sensor;
+  motion.velocity = {carrier.vx, carrier.vy, carrier.vz};
+  motion.yaw_rate = carrier.yaw_rate;
+  motion.pivot = {carrier.pose.x, carrier.pose.y, carrier.pose.z};
+  CameraImages images = renderer.render(scene, motion, settings);
+  const auto labels =
+      camera_labels(scene, renderer, motion.world_from_body, images.instance, carrier.instance_id);
+  for (size_t i = 0; i < members.size(); ++i) {
+    const SensorSpec& m = *members[i];
+    SensorFrame& f = *outputs[i];
+    f.labels = labels;
+    f.camera.width = images.width;
+    f.camera.height = images.height;
+    // The last member of a kind takes the image, earlier ones (e.g. two depth cameras sharing the
+    // optics) copy it: no copy of a 1280x720 image in the usual rig.
+    bool last = true;
+    for (size_t j = i + 1; j < members.size(); ++j) {
+      last = last && members[j]->kind != m.kind;
+    }
+    auto take = [last](auto& image) { return last ? std::move(image) : image; };
+    if (m.kind == SensorKind::kRgbCamera) {
+      f.camera.rgb = take(images.rgb);
+    } else if (m.kind == SensorKind::kDepthCamera) {
+      f.camera.depth = take(images.depth);
+      for (float& z : f.camera.depth) {
+        z = z <= m.depth.max_range_m ? z : 0.0f;
+      }
+    } else if (m.kind == SensorKind::kSemanticCamera) {
+      f.camera.semantic = take(images.semantic);
+    } else {
+      f.camera.instance = take(images.instance);
+    }
+  }
+}
 
 }  // namespace
 
@@ -112,7 +155,7 @@ std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& worl
     frames[s->name] = std::move(f);
   }
   auto frame_seed = [&](const SensorSpec& s) {
-    return derive_seed(options_.seed, s.name + "#" + std::to_string(frames[s.name].frame));
+    return derive_seed(options_.seed, s.name + "#" + std::to_string(frames.at(s.name).frame));
   };
 
   // Cameras: group by optics, one pass per group.
@@ -138,13 +181,18 @@ std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& worl
     group->outputs.semantic = group->outputs.semantic || s->kind == SensorKind::kSemanticCamera;
     group->outputs.instance = true;
   }
-  for (const auto& g : groups) {
+  // Every camera group, LiDAR and bird's-eye view is one task: each writes only its own frames
+  // and reads the scene, which does not change until the next capture. Each is deterministic on
+  // its own (fixed blocks, seeds by sensor and frame), so running them side by side keeps the
+  // bytes; it fills the cores where one sensor's work runs out of parallelism (labels, the
+  // bird's-eye view's rows, the end of a parallel loop).
+  tbb::task_group tasks;
+  for (const CameraGroup& g : groups) {
     const SensorSpec& lead = *g.members.front();
-    const engine::EntitySnapshot& carrier = *carriers[lead.name];
     RenderSettings settings;
     settings.outputs = g.outputs;
     settings.lighting = &lighting;
-    settings.carrier = entity_box(carrier);
+    settings.carrier = entity_box(*carriers.at(lead.name));
     double max_depth = 0.0;
     for (const SensorSpec* m : g.members) {
       max_depth =
@@ -155,46 +203,34 @@ std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& worl
       settings.rgb = g.rgb->rgb;
     }
     settings.frame_seed = frame_seed(g.rgb != nullptr ? *g.rgb : lead);
-    CameraMotion motion;
-    motion.world_from_body = frames[lead.name].world_from_sensor;
-    motion.velocity = {carrier.vx, carrier.vy, carrier.vz};
-    motion.yaw_rate = carrier.yaw_rate;
-    motion.pivot = {carrier.pose.x, carrier.pose.y, carrier.pose.z};
-    const CameraRenderer& renderer = *cache_->cameras.at(lead.name);
-    CameraImages images = renderer.render(scene_, motion, settings);
-    const auto labels = camera_labels(scene_, renderer, motion.world_from_body, images.instance,
-                                      carrier.instance_id);
+    std::vector<SensorFrame*> outputs;
     for (const SensorSpec* m : g.members) {
-      SensorFrame& f = frames[m->name];
-      f.labels = labels;
-      f.camera.width = images.width;
-      f.camera.height = images.height;
-      if (m->kind == SensorKind::kRgbCamera) {
-        f.camera.rgb = images.rgb;
-      } else if (m->kind == SensorKind::kDepthCamera) {
-        f.camera.depth = images.depth;
-        for (float& z : f.camera.depth) {
-          z = z <= m->depth.max_range_m ? z : 0.0f;
-        }
-      } else if (m->kind == SensorKind::kSemanticCamera) {
-        f.camera.semantic = images.semantic;
-      } else {
-        f.camera.instance = images.instance;
-      }
+      outputs.push_back(&frames.at(m->name));
     }
+    const CameraRenderer& renderer = *cache_->cameras.at(lead.name);
+    const engine::EntitySnapshot& carrier = *carriers.at(lead.name);
+    tasks.run([this, &g, &renderer, &carrier, settings, outputs] {
+      render_camera_group(scene_, renderer, g.members, carrier, settings, outputs);
+    });
   }
   for (const SensorSpec* s : due) {
-    SensorFrame& f = frames[s->name];
-    const engine::EntitySnapshot& carrier = *carriers[s->name];
+    SensorFrame& f = frames.at(s->name);
+    const engine::EntitySnapshot& carrier = *carriers.at(s->name);
     if (s->kind == SensorKind::kLidar) {
-      f.cloud = cache_->lidars.at(s->name)->scan(scene_, f.world_from_sensor, lighting.extinction(),
-                                                 frame_seed(*s), entity_box(carrier));
-      f.labels =
-          lidar_labels(scene_, f.world_from_sensor, f.cloud, s->lidar.range_m, carrier.instance_id);
+      const uint64_t seed = frame_seed(*s);
+      tasks.run([this, s, &f, &carrier, &lighting, seed] {
+        f.cloud = cache_->lidars.at(s->name)->scan(
+            scene_, f.world_from_sensor, lighting.extinction(), seed, entity_box(carrier));
+        f.labels = lidar_labels(scene_, f.world_from_sensor, f.cloud, s->lidar.range_m,
+                                carrier.instance_id);
+      });
     } else if (s->kind == SensorKind::kBirdsEyeCamera) {
-      f.birds_eye = render_birds_eye(scene_, s->birds_eye, f.world_from_sensor, &lighting);
+      tasks.run([this, s, &f, &lighting] {
+        f.birds_eye = render_birds_eye(scene_, s->birds_eye, f.world_from_sensor, &lighting);
+      });
     }
   }
+  tasks.wait();
   std::vector<SensorFrame> out;
   for (const SensorSpec* s : due) {
     out.push_back(std::move(frames[s->name]));

@@ -10,12 +10,15 @@
 //   DIR/kitti/...            with DatasetFormat::kKitti: image_2, velodyne, label_2, calib
 //
 // Written capture by capture: the sensor files and the pose file first (each atomically), then
-// frames.csv is rewritten atomically, so the index only ever names complete captures. run.json
+// frames.csv is rewritten atomically, so the index only ever names complete captures. The files
+// of a capture are encoded on TBB tasks (one per sensor) while the next capture renders; that
+// capture's index rows are added when the next capture (or finish()) has waited for them. run.json
 // says "running" while the run goes on, then "complete" or "interrupted" with where it stopped;
 // a dataset whose run.json still says "running" was killed, and its index is still consistent.
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -54,6 +57,11 @@ struct DatasetEnd {
 
 class DatasetWriter final : public engine::CaptureSink {
  public:
+  DatasetWriter(const DatasetWriter&) = delete;
+  DatasetWriter& operator=(const DatasetWriter&) = delete;
+  /// Waits for the files still being written (errors are dropped: call finish() to see them).
+  ~DatasetWriter() override;
+
   /// Creates the folder (it must be absent or empty, or `replace` and hold a previous dataset,
   /// i.e. a run.json), the calibration files and a "running" run.json. Throws InputError when
   /// the folder cannot be used.
@@ -62,16 +70,22 @@ class DatasetWriter final : public engine::CaptureSink {
 
   void capture(const engine::WorldSnapshot& world, std::span<const std::string> sensors) override;
 
-  /// Rewrites run.json with how the run ended.
+  /// Waits for the last capture's files, indexes them and rewrites run.json with how the run
+  /// ended. Throws what writing those files threw (InputError for an I/O failure).
   void finish(const DatasetEnd& end);
 
+  /// Captures and files in the index (a capture still being written is not counted).
   int64_t captures() const { return captures_; }
   int64_t files() const { return static_cast<int64_t>(rows_); }
   const std::filesystem::path& directory() const { return directory_; }
 
  private:
+  struct Pending;  ///< a capture whose files are being written
+
   void write_run_json(const DatasetEnd* end) const;
   void write_kitti(const SensorFrame& frame, const SensorSpec& spec);
+  /// Waits for the pending capture's files, then adds its rows to frames.csv.
+  void complete_pending();
 
   SensorSystem& system_;
   std::filesystem::path directory_;
@@ -83,6 +97,7 @@ class DatasetWriter final : public engine::CaptureSink {
   int64_t last_tick_ = -1;
   double last_time_ = 0.0;
   int64_t kitti_frames_ = 0;
+  std::unique_ptr<Pending> pending_;
 };
 
 /// The file name stem of a frame number: six digits, zero-padded ("000042").
