@@ -30,6 +30,27 @@ inline constexpr uint64_t kIntScale[kMaxDecimals + 1] = {
 // ones (|value| >= 9e9 m at 6 decimals: no real map) fall back to the shortest text.
 inline constexpr double kExactLimit = 9.0e15;
 
+// 10^0 .. 10^18: the integer part's digit count.
+inline constexpr uint64_t kPowers[19] = {1ULL,
+                                         10ULL,
+                                         100ULL,
+                                         1'000ULL,
+                                         10'000ULL,
+                                         100'000ULL,
+                                         1'000'000ULL,
+                                         10'000'000ULL,
+                                         100'000'000ULL,
+                                         1'000'000'000ULL,
+                                         10'000'000'000ULL,
+                                         100'000'000'000ULL,
+                                         1'000'000'000'000ULL,
+                                         10'000'000'000'000ULL,
+                                         100'000'000'000'000ULL,
+                                         1'000'000'000'000'000ULL,
+                                         10'000'000'000'000'000ULL,
+                                         100'000'000'000'000'000ULL,
+                                         1'000'000'000'000'000'000ULL};
+
 // "00" to "99": two digits per division instead of one.
 inline constexpr char kDigitPairs[] =
     "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
@@ -67,13 +88,16 @@ inline int64_t round_half_away(double scaled) {
 
 }  // namespace decimal_text
 
-/// Writes `value` rounded to `decimals` places (0..kMaxDecimals; halves away from zero) at
+/// Writes `value` rounded to `Decimals` places (0..kMaxDecimals; halves away from zero) at
 /// `out`, which has room for kDecimalTextMax characters, and returns the end. A value that
 /// rounds to zero is "0" (never "-0"). NaN, infinities and magnitudes too large to scale exactly
-/// are written as their shortest round-trip text instead.
-inline char* write_decimal(char* out, double value, int decimals) {
+/// are written as their shortest round-trip text instead. A template so that the divisions by
+/// the power of ten are multiplications.
+template <int Decimals>
+char* write_fixed(char* out, double value) {
+  static_assert(Decimals >= 0 && Decimals <= kMaxDecimals);
   using namespace decimal_text;
-  const double scaled = value * kScale[decimals];
+  const double scaled = value * kScale[Decimals];
   if (!(std::fabs(scaled) < kExactLimit)) {
     return std::to_chars(out, out + kDecimalTextMax, value + 0.0).ptr;  // + 0.0: no "-0"
   }
@@ -86,26 +110,52 @@ inline char* write_decimal(char* out, double value, int decimals) {
     *out++ = '-';
   }
   const uint64_t magnitude = static_cast<uint64_t>(rounded < 0 ? -rounded : rounded);
-  const uint64_t unit = kIntScale[decimals];
-  uint64_t fraction = magnitude % unit;
-  // Built backwards from the last digit: fraction (zero-padded, trailing zeros dropped: they
-  // say nothing), point, integer part.
-  char text[kDecimalTextMax];
-  char* const end = text + kDecimalTextMax;
-  char* first = end;
-  if (fraction != 0) {
-    int places = decimals;
-    while (fraction % 10 == 0) {
-      fraction /= 10;
-      --places;
-    }
-    first = digits_before(first, fraction);
-    while (end - first < places) *--first = '0';
-    *--first = '.';
+  constexpr uint64_t kUnit = kIntScale[Decimals];
+  const uint64_t whole = magnitude / kUnit;
+  uint64_t fraction = magnitude % kUnit;
+  // Digits are written backwards from where they end: the integer part's length first.
+  int whole_digits = 1;
+  while (whole_digits < 19 && whole >= kPowers[whole_digits]) ++whole_digits;
+  out += whole_digits;
+  digits_before(out, whole);
+  if (fraction == 0) {
+    return out;
   }
-  first = digits_before(first, magnitude / unit);
-  for (char* c = first; c != end; ++c) *out++ = *c;
-  return out;
+  int places = Decimals;
+  while (fraction % 10 == 0) {  // trailing zeros say nothing
+    fraction /= 10;
+    --places;
+  }
+  *out++ = '.';
+  char* const end = out + places;
+  for (char* first = digits_before(end, fraction); first != out;) *--first = '0';
+  return end;
+}
+
+/// write_fixed with the number of decimals chosen at run time.
+inline char* write_decimal(char* out, double value, int decimals) {
+  switch (decimals) {
+    case 0:
+      return write_fixed<0>(out, value);
+    case 1:
+      return write_fixed<1>(out, value);
+    case 2:
+      return write_fixed<2>(out, value);
+    case 3:
+      return write_fixed<3>(out, value);
+    case 4:
+      return write_fixed<4>(out, value);
+    case 5:
+      return write_fixed<5>(out, value);
+    case 6:
+      return write_fixed<6>(out, value);
+    case 7:
+      return write_fixed<7>(out, value);
+    case 8:
+      return write_fixed<8>(out, value);
+    default:
+      return write_fixed<9>(out, value);
+  }
 }
 
 /// Writes `value` as write_decimal(value, kMaxDecimals) when that text reads back to exactly
@@ -121,7 +171,7 @@ inline char* write_exact(char* out, double value) {
   if (std::fabs(scaled) < kExactLimit) {
     const int64_t rounded = round_half_away(scaled);
     if (static_cast<double>(rounded) / kScale[kMaxDecimals] == value) {
-      return write_decimal(out, value, kMaxDecimals);
+      return write_fixed<kMaxDecimals>(out, value);
     }
   }
   return std::to_chars(out, out + kDecimalTextMax, value + 0.0).ptr;

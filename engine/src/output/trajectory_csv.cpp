@@ -15,8 +15,9 @@ namespace {
 constexpr int kLengthDecimals = 6;
 constexpr int kAngleDecimals = 9;
 
-char* put(char* out, double value, int decimals) {
-  out = detail::write_decimal(out, value, decimals);
+template <int Decimals>
+char* put(char* out, double value) {
+  out = detail::write_fixed<Decimals>(out, value);
   *out++ = ',';
   return out;
 }
@@ -57,20 +58,20 @@ void TrajectoryRecorder::append_rows(const Simulation& simulation, std::string& 
     p = put(p, time);
     p = put(p, name);
     *p++ = ',';
-    p = put(p, state.pose.x, kLengthDecimals);
-    p = put(p, state.pose.y, kLengthDecimals);
-    p = put(p, state.pose.z, kLengthDecimals);
-    p = put(p, state.pose.h, kAngleDecimals);
-    p = put(p, state.pose.p, kAngleDecimals);
-    p = put(p, state.pose.r, kAngleDecimals);
-    p = put(p, state.speed, kLengthDecimals);
+    p = put<kLengthDecimals>(p, state.pose.x);
+    p = put<kLengthDecimals>(p, state.pose.y);
+    p = put<kLengthDecimals>(p, state.pose.z);
+    p = put<kAngleDecimals>(p, state.pose.h);
+    p = put<kAngleDecimals>(p, state.pose.p);
+    p = put<kAngleDecimals>(p, state.pose.r);
+    p = put<kLengthDecimals>(p, state.speed);
     if (road) {
       p = put(p, *road);
       *p++ = ',';
       p = std::to_chars(p, p + 12, state.road->lane).ptr;
       *p++ = ',';
-      p = put(p, state.road->s, kLengthDecimals);
-      p = detail::write_decimal(p, state.road->t, kLengthDecimals);
+      p = put<kLengthDecimals>(p, state.road->s);
+      p = detail::write_fixed<kLengthDecimals>(p, state.road->t);
     } else {
       p = put(p, ",,,");
     }
