@@ -16,6 +16,43 @@ using detail::ValidatedElement;
 
 // Beams of one LiDAR revolution at most: 16 x a 128-channel, 2048-column sensor.
 constexpr double kMaxBeamsPerRevolution = 4'194'304;
+// What a whole rig may ask for: every camera keeps per-pixel rays and images (an 8192 x 8192
+// camera alone takes about 1 GB), every LiDAR its beams, so a rig of many maximal sensors ran
+// out of memory. Two maximal cameras and four maximal LiDARs fit.
+constexpr double kMaxRigPixels = 2.0 * 8192 * 8192;
+constexpr double kMaxRigBeams = 4.0 * kMaxBeamsPerRevolution;
+
+/// Sums what the rig's sensors will allocate; throws at the sensor that goes past the budget.
+class RigBudget {
+ public:
+  explicit RigBudget(const std::string& file) : file_(file) {}
+  void add(const SensorSpec& s, const ValidatedElement& e) {
+    if (s.kind == SensorKind::kLidar) {
+      beams_ += s.lidar.points_per_second / s.lidar.rotation_frequency_hz;
+      check(beams_, kMaxRigBeams, "LiDAR beams per revolution", e);
+    } else {
+      const bool birds_eye = s.kind == SensorKind::kBirdsEyeCamera;
+      const int width = birds_eye ? s.birds_eye.width : s.camera.width;
+      const int height = birds_eye ? s.birds_eye.height : s.camera.height;
+      pixels_ += static_cast<double>(width) * height;
+      check(pixels_, kMaxRigPixels, "camera pixels", e);
+    }
+  }
+
+ private:
+  void check(double total, double limit, const char* what, const ValidatedElement& e) const {
+    if (total > limit) {
+      throw InputError(make_error(file_, e.line,
+                                  "with this sensor the rig has " + format_double(total) + " " +
+                                      what + ", more than the " + format_double(limit) +
+                                      " one run can hold in memory",
+                                  e.path));
+    }
+  }
+  const std::string& file_;
+  double pixels_ = 0.0;
+  double beams_ = 0.0;
+};
 
 // Values were validated against the schema (types, ranges, defaults) before these are called.
 double number(const ValidatedElement& e, const std::string& name) {
@@ -179,8 +216,10 @@ SensorRig parse_rig(std::string_view xml, const std::string& file) {
   rig.name = *root.find("name");
   rig.file = file;
   std::set<std::string> names;
+  RigBudget budget(file);
   for (const auto& e : root.children) {
     SensorSpec s = read_sensor(e, file);
+    budget.add(s, e);
     if (!names.insert(s.name).second) {
       throw InputError(make_error(file, e.line,
                                   "a sensor named '" + s.name + "' is already in the rig", e.path));

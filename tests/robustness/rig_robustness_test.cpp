@@ -46,5 +46,32 @@ TEST_CASE("Rigs with unknown sensors and absurd sizes are rejected at their line
   }
 }
 
+TEST_CASE("A rig of more maximal sensors than one run can hold is rejected at the sensor",
+          "[robustness][rig]") {
+  const std::string scenario = std::string(CORSA_SOURCE_DIR) + "/scenarios/cut_in.xosc";
+  TempDir dir;
+  std::ofstream rig(dir.path() / "rig.xml");
+  rig << "<?xml version=\"1.0\"?>\n<SensorRig version=\"1\" name=\"huge\">\n";
+  // Each 8192 x 8192 camera is allowed alone (about 1 GB of rays and images); the third is
+  // past the rig's budget, on line 5.
+  for (const char* name : {"c1", "c2", "c3"}) {
+    rig << "  <SemanticCamera name=\"" << name << "\" entity=\"Ego\" width=\"8192\" "
+        << "height=\"8192\" fov=\""
+        << (name[1] == '1'   ? "60"
+            : name[1] == '2' ? "70"
+                             : "80")
+        << "\"/>\n";
+  }
+  rig << "</SensorRig>\n";
+  rig.close();
+  const BoundedResult result =
+      run_bounded({"run", scenario, "--duration", "0.1", "--quiet", "--rig",
+                   (dir.path() / "rig.xml").string(), "-o", (dir.path() / "dataset").string()});
+  INFO(describe("three 8192 x 8192 cameras", result));
+  CHECK(result.exit_code == 2);
+  CHECK(result.err.find("rig.xml:5: error: with this sensor the rig has") != std::string::npos);
+  CHECK(entry_names(dir.path()) == std::set<std::string>{"rig.xml"});
+}
+
 }  // namespace
 }  // namespace corsa::test
