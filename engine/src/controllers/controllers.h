@@ -41,7 +41,8 @@ ControlState& control_of(SimState& state, uint32_t index);
 void move_entities(SimState& state, const MotionContext& motion);
 
 /// The car-following controller: the commanded speed, limited so as to keep a time gap to the
-/// vehicle ahead in the same lane; then the default controller's motion.
+/// vehicle ahead on the lane path it will drive (through links and junctions, within 200 m);
+/// then the default controller's motion.
 void step_acc(SimState& state, uint32_t index, const MotionContext& motion);
 
 /// The dynamics controller (controllers/dynamics_controller.cpp), in two halves.
