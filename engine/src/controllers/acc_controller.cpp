@@ -70,16 +70,7 @@ LanePath path_ahead(const xodr::Map& map, const Entity& me) {
       break;
     }
     follow.s = boundary;
-    const size_t pick = me.chooser != nullptr ? me.chooser->choose(map, follow, ends)
-                                              : choose_straightest(map, follow, ends);
-    const xodr::LaneEnd next = ends[pick];
-    const auto& next_info = graph.info(next.node);
-    follow.node = next.node;
-    follow.road = next_info.lane.road;
-    follow.section = next_info.lane.section;
-    follow.lane = next_info.lane.lane;
-    follow.dir = next.at_start ? 1 : -1;
-    follow.s = next.at_start ? next_info.s_start : next_info.s_end;
+    enter_next_lane(map, follow, ends, me.chooser);
   }
   return path;
 }

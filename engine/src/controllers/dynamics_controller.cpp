@@ -140,15 +140,7 @@ double longitudinal_demand(Entity& entity, DynamicsVehicle& vehicle, const Contr
 // at h = 0), without the z, pitch, roll and containing lane that pure pursuit does not need.
 std::pair<double, double> lane_point(const xodr::Map& map, const LaneFollow& follow,
                                      std::vector<xodr::LaneSpan>& spans) {
-  map.lane_spans_in_section(follow.road, follow.section, follow.s, spans);
-  double center = 0.0;
-  for (const auto& span : spans) {
-    if (span.id == follow.lane) {
-      center = span.t_center();
-      break;
-    }
-  }
-  const double t = center + follow.dir * follow.lateral;
+  const double t = followed_t(map, follow, spans);
   const xodr::RefPoint ref = map.reference(follow.road, follow.s);
   // OpenDRIVE 1.8 §8.4.2: t runs along the normal tilted by the superelevation roll.
   const double horizontal = t * std::cos(map.superelevation(follow.road, follow.s));

@@ -145,27 +145,32 @@ AdvanceResult advance_along_lanes(const xodr::Map& map, LaneFollow& follow, doub
       result.hit_end = true;
       return result;
     }
-    const size_t pick = chooser != nullptr ? chooser->choose(map, follow, ends)
-                                           : choose_straightest(map, follow, ends);
-    const xodr::LaneEnd next = ends[pick];
-    const auto& next_info = graph.info(next.node);
-    if (next_info.lane.road != follow.road) {
+    const uint32_t road_before = follow.road;
+    enter_next_lane(map, follow, ends, chooser);
+    if (follow.road != road_before) {
       result.changed_road = true;
     }
-    follow.node = next.node;
-    follow.road = next_info.lane.road;
-    follow.section = next_info.lane.section;
-    follow.lane = next_info.lane.lane;
-    follow.dir = next.at_start ? 1 : -1;
-    follow.s = next.at_start ? next_info.s_start : next_info.s_end;
   }
   result.hit_end = true;
   return result;
 }
 
-LanePose lane_pose(const xodr::Map& map, const LaneFollow& follow,
-                   std::vector<xodr::LaneSpan>& spans) {
-  LanePose out;
+void enter_next_lane(const xodr::Map& map, LaneFollow& follow, std::span<const xodr::LaneEnd> ends,
+                     const LaneChooser* chooser) {
+  const size_t pick = chooser != nullptr ? chooser->choose(map, follow, ends)
+                                         : choose_straightest(map, follow, ends);
+  const xodr::LaneEnd next = ends[pick];
+  const auto& next_info = map.lane_graph().info(next.node);
+  follow.node = next.node;
+  follow.road = next_info.lane.road;
+  follow.section = next_info.lane.section;
+  follow.lane = next_info.lane.lane;
+  follow.dir = next.at_start ? 1 : -1;
+  follow.s = next.at_start ? next_info.s_start : next_info.s_end;
+}
+
+double followed_t(const xodr::Map& map, const LaneFollow& follow,
+                  std::vector<xodr::LaneSpan>& spans) {
   map.lane_spans_in_section(follow.road, follow.section, follow.s, spans);
   double center = 0.0;
   for (const auto& span : spans) {
@@ -174,7 +179,13 @@ LanePose lane_pose(const xodr::Map& map, const LaneFollow& follow,
       break;
     }
   }
-  out.t = center + follow.dir * follow.lateral;
+  return center + follow.dir * follow.lateral;
+}
+
+LanePose lane_pose(const xodr::Map& map, const LaneFollow& follow,
+                   std::vector<xodr::LaneSpan>& spans) {
+  LanePose out;
+  out.t = followed_t(map, follow, spans);
   // The lane containing t: borders belong to the inner lane, as Map::lane_at decides.
   for (const auto& span : spans) {
     if (span.width() > 0.0 && out.t >= span.t_min() && out.t <= span.t_max() &&

@@ -58,6 +58,11 @@ struct AdvanceResult {
   bool changed_road = false;
 };
 
+/// At a lane end: picks among the joined `ends` (never empty) with `chooser` (or the
+/// straightest) and puts `follow` at the start of the chosen lane in its direction of travel.
+void enter_next_lane(const xodr::Map& map, LaneFollow& follow, std::span<const xodr::LaneEnd> ends,
+                     const LaneChooser* chooser);
+
 /// Moves `follow` by `distance` metres along its lanes (negative: backwards).
 AdvanceResult advance_along_lanes(const xodr::Map& map, LaneFollow& follow, double distance,
                                   const LaneChooser* chooser);
@@ -70,5 +75,10 @@ struct LanePose {
 };
 LanePose lane_pose(const xodr::Map& map, const LaneFollow& follow,
                    std::vector<xodr::LaneSpan>& spans);
+
+/// t (m) of a followed lane position: the followed lane's centre in its section at follow.s
+/// plus the lateral offset in the direction of travel. `spans` is scratch space.
+double followed_t(const xodr::Map& map, const LaneFollow& follow,
+                  std::vector<xodr::LaneSpan>& spans);
 
 }  // namespace corsa::engine::detail
