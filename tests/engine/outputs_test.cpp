@@ -40,7 +40,7 @@ engine::RunOptions options_for(const std::string& fixture, const TempDir& dir) {
   return options;
 }
 
-TEST_CASE("The trajectory CSV has one row per entity per step, full precision",
+TEST_CASE("The trajectory CSV has one row per entity per step, the exact time and fixed decimals",
           "[engine][output]") {
   TempDir dir;
   Diagnostics diagnostics;

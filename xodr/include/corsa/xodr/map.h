@@ -88,8 +88,10 @@ class Map {
  public:
   /// Checks and indexes `data`: sorts nothing, but verifies that records are in s order, that
   /// every road/junction reference exists, that geometry lengths add up (warning otherwise) and
-  /// that consecutive planView records join (gap/heading warnings); builds the lane graph and the
-  /// spatial index. Throws corsa::InputError (located at the offending element) on bad data.
+  /// that consecutive planView records join (gap/heading warnings); builds the lane graph. The
+  /// spatial index is built by the first locate (thread-safe), so maps that are never queried by
+  /// world point do not pay for it. Throws corsa::InputError (located at the offending element)
+  /// on bad data.
   static Map build(MapData data, corsa::Diagnostics& diagnostics, const BuildOptions& options = {});
   /// parse_xodr + build.
   static Map load(const std::filesystem::path& path, corsa::Diagnostics& diagnostics,
