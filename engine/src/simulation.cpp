@@ -3,13 +3,13 @@
 #include <cmath>
 
 #include "controllers/controllers.h"
-#include "core/entity_builder.h"
-#include "core/environment_clock.h"
-#include "core/world_update.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/route_lanes.h"
 #include "simulation_impl.h"
+#include "state/entity_builder.h"
+#include "state/environment_clock.h"
+#include "state/world_update.h"
 #include "traffic/traffic_generators.h"
 
 namespace corsa::engine {

@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "core/sim_state.h"
 #include "motion/controller.h"
+#include "state/sim_state.h"
 #include "storyboard/init_actions.h"
 #include "storyboard/storyboard.h"
 

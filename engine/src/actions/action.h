@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "core/entity.h"
+#include "state/entity.h"
 
 namespace corsa::engine::detail {
 

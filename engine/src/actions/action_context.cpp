@@ -1,5 +1,5 @@
 #include "actions/action.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 

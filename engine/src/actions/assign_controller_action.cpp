@@ -5,7 +5,7 @@
 
 #include "actions/action_makers.h"
 #include "controllers/controllers.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

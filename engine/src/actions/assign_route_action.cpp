@@ -6,8 +6,8 @@
 
 #include "actions/action_makers.h"
 #include "actions/route_assignment.h"
-#include "core/sim_state.h"
 #include "positions/route_path.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -4,7 +4,7 @@
 // handles is reported once and otherwise ignored.
 
 #include "actions/action_makers.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

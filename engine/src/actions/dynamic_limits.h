@@ -8,8 +8,8 @@
 #include <limits>
 #include <optional>
 
-#include "core/entity.h"
 #include "corsa/xosc/private_actions.h"
+#include "state/entity.h"
 
 namespace corsa::engine::detail {
 

@@ -2,9 +2,9 @@
 // engine only keeps the state (EnvironmentState of the world snapshot); the sensors render it.
 
 #include "actions/action_makers.h"
-#include "core/date_time.h"
-#include "core/sim_state.h"
 #include "positions/position_common.h"
+#include "state/date_time.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

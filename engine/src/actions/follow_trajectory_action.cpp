@@ -19,9 +19,9 @@
 #include <numbers>
 
 #include "actions/action_makers.h"
-#include "core/sim_state.h"
 #include "motion/lane_follow.h"
 #include "positions/trajectory_path.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -15,9 +15,9 @@
 
 #include "actions/action_makers.h"
 #include "actions/dynamic_limits.h"
-#include "core/sim_state.h"
 #include "geometry/relative_distance.h"
 #include "positions/position_common.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

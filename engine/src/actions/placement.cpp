@@ -1,9 +1,9 @@
 #include "actions/placement.h"
 
-#include "core/sim_state.h"
 #include "corsa/core/strings.h"
 #include "motion/controller.h"
 #include "motion/lane_follow.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 

@@ -3,9 +3,9 @@
 // Putting an entity at a resolved position (TeleportAction, OpenSCENARIO 1.3 §7.4.3): on a lane
 // when the position is on one (the default controller then follows that lane), otherwise free.
 
-#include "core/entity.h"
 #include "corsa/xosc/common.h"
 #include "positions/position_resolver.h"
+#include "state/entity.h"
 
 namespace corsa::engine::detail {
 

@@ -5,9 +5,9 @@
 #include <memory>
 #include <vector>
 
-#include "core/entity.h"
 #include "corsa/xodr/route.h"
 #include "motion/route_chooser.h"
+#include "state/entity.h"
 
 namespace corsa::engine::detail {
 

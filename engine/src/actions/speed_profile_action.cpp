@@ -11,8 +11,8 @@
 #include "actions/action_makers.h"
 #include "actions/dynamic_limits.h"
 #include "actions/transition_shape.h"
-#include "core/sim_state.h"
 #include "positions/position_common.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -23,10 +23,10 @@
 
 #include "actions/action_makers.h"
 #include "actions/dynamic_limits.h"
-#include "core/sim_state.h"
 #include "corsa/core/strings.h"
 #include "corsa/xodr/route.h"
 #include "positions/position_common.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -2,7 +2,7 @@
 // (traffic/traffic_generators.h) that works every step until a TrafficStopAction names it.
 
 #include "actions/action_makers.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 #include "traffic/traffic_generators.h"
 
 namespace corsa::engine::detail {

@@ -3,8 +3,8 @@
 // it); a controller jumps to a phase now, which then lasts its full duration.
 
 #include "actions/action_makers.h"
-#include "core/sim_state.h"
 #include "corsa/xosc/scenario.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

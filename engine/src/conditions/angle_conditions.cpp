@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "conditions/condition_makers.h"
-#include "core/sim_state.h"
 #include "motion/lane_follow.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -2,7 +2,7 @@
 // that of a named entity, or of any entity of a type (ByType).
 
 #include "conditions/condition_makers.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

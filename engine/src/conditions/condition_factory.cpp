@@ -2,7 +2,7 @@
 #include <type_traits>
 
 #include "conditions/condition_makers.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 #include "traffic/traffic_conditions.h"
 
 namespace corsa::engine::detail {

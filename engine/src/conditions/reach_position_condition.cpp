@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "conditions/condition_makers.h"
-#include "core/sim_state.h"
 #include "positions/position_resolver.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

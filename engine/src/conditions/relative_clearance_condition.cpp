@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "conditions/condition_makers.h"
-#include "core/sim_state.h"
 #include "geometry/relative_distance.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -2,7 +2,7 @@
 // on the tick grid) compared with a value.
 
 #include "conditions/condition_makers.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

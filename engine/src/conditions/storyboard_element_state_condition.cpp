@@ -4,7 +4,7 @@
 // first evaluation after it happened, whatever the order of evaluation within a step.
 
 #include "conditions/condition_makers.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -2,9 +2,9 @@
 // TimeOfDay, advancing with the run when animated) compared with a dateTime, as instants.
 
 #include "conditions/condition_makers.h"
-#include "core/date_time.h"
-#include "core/environment_clock.h"
-#include "core/sim_state.h"
+#include "state/date_time.h"
+#include "state/environment_clock.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -4,7 +4,7 @@
 // timers are kept per entity and advanced every step.
 
 #include "conditions/condition_makers.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

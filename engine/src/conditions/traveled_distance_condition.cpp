@@ -2,7 +2,7 @@
 // `value` metres since the start (its odometer).
 
 #include "conditions/condition_makers.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

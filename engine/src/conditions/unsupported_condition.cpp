@@ -2,7 +2,7 @@
 // issue #6): a located warning once per kind, and the condition never holds.
 
 #include "conditions/condition_makers.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -3,7 +3,7 @@
 // and booleans, equalTo / notEqualTo only for strings and dates).
 
 #include "conditions/condition_makers.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -14,8 +14,8 @@
 #include <limits>
 
 #include "controllers/controllers.h"
-#include "core/sim_state.h"
 #include "motion/lane_follow.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

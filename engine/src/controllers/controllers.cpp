@@ -6,9 +6,9 @@
 #include <numbers>
 #include <vector>
 
-#include "core/sim_state.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 

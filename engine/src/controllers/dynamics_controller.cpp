@@ -16,9 +16,9 @@
 #include "controllers/controllers.h"
 #include "controllers/dynamics_fleet.h"
 #include "controllers/dynamics_model.h"
-#include "core/sim_state.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/lane_follow.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 

@@ -4,7 +4,7 @@
 // at the entity's pose, heading only), with a vertical extent: for collisions and free-space
 // distances.
 
-#include "core/entity.h"
+#include "state/entity.h"
 
 namespace corsa::engine::detail {
 

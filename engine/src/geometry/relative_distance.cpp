@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "core/sim_state.h"
 #include "geometry/oriented_box.h"
 #include "motion/lane_follow.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -9,9 +9,9 @@
 
 #include <optional>
 
-#include "core/entity.h"
 #include "corsa/xosc/enums.h"
 #include "positions/position_resolver.h"
+#include "state/entity.h"
 
 namespace corsa::engine::detail {
 

@@ -8,8 +8,8 @@
 
 #include <vector>
 
-#include "core/entity.h"
 #include "corsa/xodr/map.h"
+#include "state/entity.h"
 
 namespace corsa::engine::detail {
 

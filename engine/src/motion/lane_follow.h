@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
-#include "core/entity.h"
 #include "corsa/xodr/lane_graph.h"
 #include "corsa/xodr/map.h"
+#include "state/entity.h"
 
 namespace corsa::engine::detail {
 

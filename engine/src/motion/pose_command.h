@@ -5,8 +5,8 @@
 // controller puts the entity there, derives speed, yaw rate and odometer from the move, and
 // keeps the lane it is on up to date so that lane following resumes where the path ends.
 
-#include "core/entity.h"
 #include "motion/controller.h"
+#include "state/entity.h"
 
 namespace corsa::engine::detail {
 

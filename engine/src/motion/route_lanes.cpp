@@ -6,10 +6,10 @@
 #include <string>
 
 #include "actions/transition_shape.h"
-#include "core/sim_state.h"
 #include "corsa/core/strings.h"
 #include "motion/lane_follow.h"
 #include "motion/route_chooser.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/sim_state.h"
 #include "corsa/core/strings.h"
 #include "corsa/xodr/lane_graph.h"
 #include "motion/lane_follow.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 

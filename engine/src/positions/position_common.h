@@ -7,10 +7,10 @@
 #include <optional>
 #include <string>
 
-#include "core/entity.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/positions.h"
 #include "positions/position_resolver.h"
+#include "state/entity.h"
 
 namespace corsa::engine::detail {
 

@@ -4,7 +4,6 @@
 #include <numbers>
 #include <type_traits>
 
-#include "core/sim_state.h"
 #include "corsa/core/strings.h"
 #include "corsa/xodr/lane_graph.h"
 #include "motion/lane_follow.h"
@@ -12,6 +11,7 @@
 #include "positions/position_common.h"
 #include "positions/route_path.h"
 #include "positions/trajectory_path.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -4,10 +4,10 @@
 #include <numbers>
 #include <type_traits>
 
-#include "core/sim_state.h"
 #include "corsa/core/strings.h"
 #include "motion/lane_follow.h"
 #include "positions/position_common.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 

@@ -1,6 +1,6 @@
 #include "storyboard/action_runner.h"
 
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 

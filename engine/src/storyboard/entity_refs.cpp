@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "core/sim_state.h"
 #include "corsa/xosc/scenario.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -1,9 +1,9 @@
 #include "storyboard/init_actions.h"
 
 #include "actions/action_factory.h"
-#include "core/sim_state.h"
 #include "corsa/xosc/scenario.h"
 #include "positions/position_resolver.h"
+#include "state/sim_state.h"
 #include "storyboard/entity_refs.h"
 
 namespace corsa::engine::detail {

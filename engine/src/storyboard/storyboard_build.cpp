@@ -1,8 +1,8 @@
 // Building the run-time storyboard tree from the document.
 
-#include "core/sim_state.h"
 #include "corsa/xosc/scenario.h"
 #include "positions/position_resolver.h"
+#include "state/sim_state.h"
 #include "storyboard/entity_refs.h"
 #include "storyboard/storyboard_nodes.h"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "actions/action_factory.h"
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 #include "storyboard/storyboard_nodes.h"
 
 namespace corsa::engine::detail {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "core/sim_state.h"
+#include "state/sim_state.h"
 #include "storyboard/entity_refs.h"
 
 namespace corsa::engine::detail {

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "core/sim_state.h"
 #include "corsa/xodr/map.h"
 #include "motion/lane_follow.h"
+#include "state/sim_state.h"
 #include "traffic/spawner.h"
 #include "traffic/traffic_generators.h"
 

@@ -5,10 +5,10 @@
 
 #include "actions/placement.h"
 #include "controllers/controllers.h"
-#include "core/entity_builder.h"
-#include "core/sim_state.h"
 #include "corsa/xodr/map.h"
 #include "motion/lane_follow.h"
+#include "state/entity_builder.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

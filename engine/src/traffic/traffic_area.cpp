@@ -14,11 +14,11 @@
 #include <cmath>
 #include <limits>
 
-#include "core/sim_state.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/lane_follow.h"
 #include "positions/position_resolver.h"
+#include "state/sim_state.h"
 #include "traffic/spawner.h"
 #include "traffic/traffic_generators.h"
 

@@ -6,11 +6,11 @@
 
 #include "actions/placement.h"
 #include "controllers/controllers.h"
-#include "core/sim_state.h"
 #include "corsa/core/random.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "positions/position_resolver.h"
+#include "state/sim_state.h"
 #include "traffic/spawner.h"
 
 namespace corsa::engine::detail {

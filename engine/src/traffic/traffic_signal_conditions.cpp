@@ -3,8 +3,8 @@
 // controller is in the named phase.
 
 #include "conditions/condition.h"
-#include "core/sim_state.h"
 #include "corsa/xosc/scenario.h"
+#include "state/sim_state.h"
 #include "traffic/traffic_conditions.h"
 
 namespace corsa::engine::detail {

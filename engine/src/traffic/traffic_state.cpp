@@ -4,8 +4,8 @@
 
 #include "traffic/traffic_state.h"
 
-#include "core/sim_state.h"
 #include "corsa/xosc/scenario.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -12,8 +12,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/time_base.h"
 #include "corsa/engine/storyboard_state.h"
+#include "state/time_base.h"
 
 namespace corsa::engine::detail {
 

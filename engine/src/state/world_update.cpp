@@ -1,10 +1,10 @@
-#include "core/world_update.h"
+#include "state/world_update.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "core/sim_state.h"
 #include "geometry/oriented_box.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 

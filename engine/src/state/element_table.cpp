@@ -1,4 +1,4 @@
-#include "core/element_table.h"
+#include "state/element_table.h"
 
 namespace corsa::engine::detail {
 

@@ -4,8 +4,8 @@
 // advanced by the simulated time since then when its animation flag is set (OpenSCENARIO 1.3
 // TimeOfDay.animation).
 
-#include "core/date_time.h"
-#include "core/sim_state.h"
+#include "state/date_time.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 

@@ -1,9 +1,9 @@
-#include "core/entity_builder.h"
+#include "state/entity_builder.h"
 
 #include <type_traits>
 
-#include "core/sim_state.h"
 #include "corsa/xosc/scenario.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -15,13 +15,13 @@
 #include <vector>
 
 #include "controllers/control_state.h"
-#include "core/element_table.h"
-#include "core/entity.h"
-#include "core/time_base.h"
-#include "core/value_store.h"
 #include "corsa/core/diagnostic.h"
 #include "corsa/engine/simulation.h"
 #include "corsa/engine/world_snapshot.h"
+#include "state/element_table.h"
+#include "state/entity.h"
+#include "state/time_base.h"
+#include "state/value_store.h"
 #include "traffic/traffic_state.h"
 
 namespace corsa::xosc {

@@ -1,4 +1,4 @@
-#include "core/date_time.h"
+#include "state/date_time.h"
 
 #include <cmath>
 
