@@ -11,6 +11,7 @@
 #include "state/environment_clock.h"
 #include "state/world_update.h"
 #include "traffic/traffic_generators.h"
+#include "traffic/traffic_update.h"
 
 namespace corsa::engine {
 namespace {

@@ -8,6 +8,7 @@
 #include "controllers/controllers.h"
 #include "positions/position_resolver.h"
 #include "state/sim_state.h"
+#include "traffic/traffic_update.h"
 
 namespace corsa::engine::detail {
 namespace {
@@ -55,19 +56,6 @@ class DeleteEntityInstance final : public InstantAction {
 };
 
 }  // namespace
-
-void remove_entity(SimState& state, uint32_t index) {
-  Entity& entity = state.world.entities[index];
-  entity.state.placed = false;
-  entity.state.speed = 0.0;
-  entity.state.acceleration = 0.0;
-  entity.state.lateral_speed = 0.0;
-  entity.state.yaw_rate = 0.0;
-  entity.state.road.reset();
-  entity.speed_command = 0.0;
-  entity.lateral_command = 0.0;
-  control_of(state, index).dynamics.reset();
-}
 
 std::unique_ptr<ActionInstance> make_add_entity_action(const xosc::AddEntityAction& action) {
   return std::make_unique<AddEntityInstance>(action);

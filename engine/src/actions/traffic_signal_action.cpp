@@ -5,6 +5,7 @@
 #include "actions/action_makers.h"
 #include "corsa/xosc/scenario.h"
 #include "state/sim_state.h"
+#include "traffic/traffic_update.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -12,19 +12,6 @@
 
 namespace corsa::engine::detail {
 
-bool parse_controller_kind(const std::string& name, ControllerKind& out) {
-  if (name == "default") {
-    out = ControllerKind::kDefault;
-  } else if (name == "acc") {
-    out = ControllerKind::kAcc;
-  } else if (name == "dynamics") {
-    out = ControllerKind::kDynamics;
-  } else {
-    return false;
-  }
-  return true;
-}
-
 bool controller_kind_of(const xosc::Controller& controller, Diagnostics& diagnostics,
                         ControllerKind& out) {
   for (const xosc::Property& property : controller.properties.properties) {

@@ -12,8 +12,8 @@
 #include <span>
 #include <string>
 
-#include "controllers/control_state.h"
 #include "motion/controller.h"
+#include "state/control_state.h"
 
 namespace corsa::xosc {
 struct Controller;

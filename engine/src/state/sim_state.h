@@ -14,15 +14,15 @@
 #include <unordered_map>
 #include <vector>
 
-#include "controllers/control_state.h"
 #include "corsa/core/diagnostic.h"
 #include "corsa/engine/simulation.h"
 #include "corsa/engine/world_snapshot.h"
+#include "state/control_state.h"
 #include "state/element_table.h"
 #include "state/entity.h"
 #include "state/time_base.h"
+#include "state/traffic_state.h"
 #include "state/value_store.h"
-#include "traffic/traffic_state.h"
 
 namespace corsa::xosc {
 struct Scenario;
@@ -86,7 +86,7 @@ struct SimState {
   std::map<std::string, CustomCommandHandler, std::less<>> custom_handlers;
   /// Each entity's controller (controllers/controllers.h), indexed like world.entities.
   std::vector<ControlState> controls;
-  /// Traffic signals and generated traffic (traffic/traffic_state.h).
+  /// Traffic signals and generated traffic (state/traffic_state.h).
   TrafficState traffic;
   /// The Simulation that owns this state, for custom command handlers (refreshed every step,
   /// since a Simulation may be moved).

@@ -9,6 +9,7 @@
 #include "motion/lane_follow.h"
 #include "state/entity_builder.h"
 #include "state/sim_state.h"
+#include "traffic/traffic_update.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -14,7 +14,7 @@
 #include "corsa/core/random.h"
 #include "corsa/xosc/global_actions.h"
 #include "positions/position_resolver.h"
-#include "traffic/traffic_state.h"
+#include "state/traffic_state.h"
 
 namespace corsa::engine::detail {
 

@@ -12,6 +12,7 @@
 #include "positions/position_resolver.h"
 #include "state/sim_state.h"
 #include "traffic/spawner.h"
+#include "traffic/traffic_update.h"
 
 namespace corsa::engine::detail {
 namespace {

@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "corsa/xosc/global_actions.h"
-#include "traffic/traffic_state.h"
+#include "state/traffic_state.h"
 
 namespace corsa::engine::detail {
 

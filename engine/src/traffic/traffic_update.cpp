@@ -1,9 +1,11 @@
 // Traffic signal controllers (OpenSCENARIO 1.3 §6.5.2 TrafficSignalController: phases cycle in
 // document order, each for its duration; a controller with a `reference` starts `delay` seconds
-// after the referenced one) and the per-step update of the traffic generators.
+// after the referenced one), the per-step update of the traffic generators, and entities removed
+// or spawned.
 
-#include "traffic/traffic_state.h"
+#include "traffic/traffic_update.h"
 
+#include "controllers/controllers.h"
 #include "corsa/xosc/scenario.h"
 #include "state/sim_state.h"
 
@@ -33,15 +35,6 @@ double start_time(const TrafficState& traffic, size_t index) {
 }
 
 }  // namespace
-
-std::optional<size_t> TrafficState::find_controller(std::string_view name) const {
-  for (size_t i = 0; i < controllers.size(); ++i) {
-    if (controllers[i].definition->name == name) {
-      return i;
-    }
-  }
-  return std::nullopt;
-}
 
 void init_traffic(SimState& state) {
   TrafficState& traffic = state.traffic;
@@ -119,6 +112,19 @@ void update_traffic(SimState& state) {
       lives.back().removed = state.now();
     }
   }
+}
+
+void remove_entity(SimState& state, uint32_t index) {
+  Entity& entity = state.world.entities[index];
+  entity.state.placed = false;
+  entity.state.speed = 0.0;
+  entity.state.acceleration = 0.0;
+  entity.state.lateral_speed = 0.0;
+  entity.state.yaw_rate = 0.0;
+  entity.state.road.reset();
+  entity.speed_command = 0.0;
+  entity.lateral_command = 0.0;
+  control_of(state, index).dynamics.reset();
 }
 
 void note_spawned(SimState& state, uint32_t index) {

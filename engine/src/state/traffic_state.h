@@ -1,9 +1,10 @@
 #pragma once
 
-// The traffic side of a run (issue #6): traffic signal controllers cycling through their
-// phases and the signals' states (OpenSCENARIO 1.3 §6.5 RoadNetwork/TrafficSignals, §7.5.2
+// The traffic side of the run state: traffic signal controllers cycling through their phases
+// and the signals' states (OpenSCENARIO 1.3 §6.5 RoadNetwork/TrafficSignals, §7.5.2
 // TrafficSignalAction), and the traffic generators (TrafficSwarm, TrafficSource, TrafficSink)
-// with the scenario objects of the entities they spawned.
+// with the scenario objects of the entities they spawned. The state only: traffic/ updates it
+// (traffic/traffic_update.h) and implements the generators behind TrafficGenerator.
 
 #include <cstdint>
 #include <deque>
@@ -11,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "corsa/engine/simulation.h"
@@ -55,20 +57,8 @@ struct TrafficState {
   /// one of its entities that left), for the summary.
   std::map<uint32_t, std::vector<Lifetime>> lifetimes;
 
+  /// Index of the signal controller named `name`, or nothing.
   std::optional<size_t> find_controller(std::string_view name) const;
 };
-
-/// Sets up the signal controllers (phase 0 at their delay) before the run.
-void init_traffic(SimState& state);
-/// After the tick advanced: controllers change phase when theirs has lasted its duration, the
-/// generators add and remove traffic; generated entities that left are recorded.
-void update_traffic(SimState& state);
-/// Makes entity `index` absent (DeleteEntityAction, a TrafficSink, a swarm vehicle leaving):
-/// no motion, no rows, no contacts.
-void remove_entity(SimState& state, uint32_t index);
-/// Records that generated entity `index` appears now (closing a life it had not left yet).
-void note_spawned(SimState& state, uint32_t index);
-/// Switches a controller to `phase` now (TrafficSignalControllerAction). False: no such phase.
-bool set_signal_phase(SimState& state, size_t controller, std::string_view phase);
 
 }  // namespace corsa::engine::detail
