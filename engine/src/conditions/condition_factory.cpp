@@ -3,7 +3,6 @@
 
 #include "conditions/condition_makers.h"
 #include "state/sim_state.h"
-#include "traffic/traffic_conditions.h"
 
 namespace corsa::engine::detail {
 

@@ -2,10 +2,9 @@
 // signal is in the named state (the state string compared exactly, e.g. "off;off;on"); a
 // controller is in the named phase.
 
-#include "conditions/condition.h"
+#include "conditions/condition_makers.h"
 #include "corsa/xosc/scenario.h"
 #include "state/sim_state.h"
-#include "traffic/traffic_conditions.h"
 
 namespace corsa::engine::detail {
 namespace {
