@@ -4,8 +4,8 @@
 // (as a TeleportAction would) and makes it present again, standing, under its controller.
 
 #include "actions/action_makers.h"
-#include "actions/placement.h"
 #include "controllers/controllers.h"
+#include "motion/placement.h"
 #include "positions/position_resolver.h"
 #include "state/sim_state.h"
 #include "traffic/traffic_update.h"

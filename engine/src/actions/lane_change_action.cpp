@@ -9,9 +9,9 @@
 #include <cmath>
 
 #include "actions/action_makers.h"
-#include "actions/transition_shape.h"
 #include "corsa/core/strings.h"
 #include "motion/lane_follow.h"
+#include "motion/transition_shape.h"
 #include "positions/position_common.h"
 #include "state/sim_state.h"
 

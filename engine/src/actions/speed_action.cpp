@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "actions/action_makers.h"
-#include "actions/transition_shape.h"
+#include "motion/transition_shape.h"
 #include "positions/position_common.h"
 #include "state/sim_state.h"
 

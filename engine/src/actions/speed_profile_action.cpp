@@ -10,7 +10,7 @@
 
 #include "actions/action_makers.h"
 #include "actions/dynamic_limits.h"
-#include "actions/transition_shape.h"
+#include "motion/transition_shape.h"
 #include "positions/position_common.h"
 #include "state/sim_state.h"
 

@@ -1,7 +1,7 @@
 // TeleportAction (OpenSCENARIO 1.3 §7.4.3): the actor jumps to a position, instantaneously.
 
 #include "actions/action_makers.h"
-#include "actions/placement.h"
+#include "motion/placement.h"
 #include "positions/position_resolver.h"
 #include "state/sim_state.h"
 

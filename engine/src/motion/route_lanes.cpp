@@ -5,10 +5,10 @@
 #include <optional>
 #include <string>
 
-#include "actions/transition_shape.h"
 #include "corsa/core/strings.h"
 #include "motion/lane_follow.h"
 #include "motion/route_chooser.h"
+#include "motion/transition_shape.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {

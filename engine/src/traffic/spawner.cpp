@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "actions/placement.h"
 #include "controllers/controllers.h"
 #include "corsa/xodr/map.h"
 #include "motion/lane_follow.h"
+#include "motion/placement.h"
 #include "state/entity_builder.h"
 #include "state/sim_state.h"
 #include "traffic/traffic_update.h"

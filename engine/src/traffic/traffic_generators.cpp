@@ -4,11 +4,11 @@
 #include <cmath>
 #include <numbers>
 
-#include "actions/placement.h"
 #include "controllers/controllers.h"
 #include "corsa/core/random.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
+#include "motion/placement.h"
 #include "positions/position_resolver.h"
 #include "state/sim_state.h"
 #include "traffic/spawner.h"

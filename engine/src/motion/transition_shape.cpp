@@ -1,4 +1,4 @@
-#include "actions/transition_shape.h"
+#include "motion/transition_shape.h"
 
 #include <cmath>
 #include <numbers>

@@ -1,4 +1,4 @@
-#include "actions/placement.h"
+#include "motion/placement.h"
 
 #include "corsa/core/strings.h"
 #include "motion/controller.h"
