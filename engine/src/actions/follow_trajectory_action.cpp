@@ -19,7 +19,7 @@
 #include <numbers>
 
 #include "actions/action_makers.h"
-#include "motion/lane_follow.h"
+#include "geometry/angle.h"
 #include "positions/trajectory_path.h"
 #include "state/sim_state.h"
 

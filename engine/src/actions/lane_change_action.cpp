@@ -10,7 +10,7 @@
 
 #include "actions/action_makers.h"
 #include "corsa/core/strings.h"
-#include "motion/lane_follow.h"
+#include "lanes/lane_follow.h"
 #include "motion/transition_shape.h"
 #include "positions/position_common.h"
 #include "state/sim_state.h"

@@ -5,7 +5,8 @@
 #include <cmath>
 
 #include "conditions/condition_makers.h"
-#include "motion/lane_follow.h"
+#include "corsa/xodr/map.h"
+#include "geometry/angle.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {

@@ -14,7 +14,7 @@
 #include <limits>
 
 #include "controllers/controllers.h"
-#include "motion/lane_follow.h"
+#include "lanes/lane_follow.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {

@@ -17,7 +17,8 @@
 #include "controllers/dynamics_fleet.h"
 #include "controllers/dynamics_model.h"
 #include "corsa/xosc/scenario.h"
-#include "motion/lane_follow.h"
+#include "geometry/angle.h"
+#include "lanes/lane_follow.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "geometry/oriented_box.h"
-#include "motion/lane_follow.h"
+#include "lanes/lane_follow.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {

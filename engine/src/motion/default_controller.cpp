@@ -4,8 +4,8 @@
 #include <numbers>
 #include <variant>
 
+#include "lanes/lane_follow.h"
 #include "motion/controller.h"
-#include "motion/lane_follow.h"
 #include "motion/pose_command.h"
 
 namespace corsa::engine::detail {

@@ -1,8 +1,8 @@
 #include "motion/placement.h"
 
 #include "corsa/core/strings.h"
+#include "lanes/lane_follow.h"
 #include "motion/controller.h"
-#include "motion/lane_follow.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {

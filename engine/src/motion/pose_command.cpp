@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "motion/lane_follow.h"
+#include "lanes/lane_follow.h"
 #include "positions/position_resolver.h"
 
 namespace corsa::engine::detail {

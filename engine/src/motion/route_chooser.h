@@ -8,7 +8,7 @@
 
 #include "corsa/xodr/route.h"
 #include "corsa/xosc/common.h"
-#include "motion/lane_follow.h"
+#include "lanes/lane_follow.h"
 
 namespace corsa::engine::detail {
 

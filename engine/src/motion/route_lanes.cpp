@@ -6,7 +6,7 @@
 #include <string>
 
 #include "corsa/core/strings.h"
-#include "motion/lane_follow.h"
+#include "lanes/lane_follow.h"
 #include "motion/route_chooser.h"
 #include "motion/transition_shape.h"
 #include "state/sim_state.h"

@@ -5,7 +5,8 @@
 
 #include "corsa/core/strings.h"
 #include "corsa/xodr/lane_graph.h"
-#include "motion/lane_follow.h"
+#include "geometry/angle.h"
+#include "lanes/lane_follow.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {

@@ -6,7 +6,8 @@
 
 #include "corsa/core/strings.h"
 #include "corsa/xodr/lane_graph.h"
-#include "motion/lane_follow.h"
+#include "geometry/angle.h"
+#include "lanes/lane_follow.h"
 #include "positions/geo_reference.h"
 #include "positions/position_common.h"
 #include "positions/route_path.h"

@@ -5,7 +5,7 @@
 #include <type_traits>
 
 #include "corsa/xodr/geometry.h"
-#include "motion/lane_follow.h"
+#include "geometry/angle.h"
 #include "positions/position_common.h"
 #include "state/sim_state.h"
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "corsa/xodr/map.h"
-#include "motion/lane_follow.h"
+#include "lanes/lane_follow.h"
 #include "state/sim_state.h"
 #include "traffic/spawner.h"
 #include "traffic/traffic_generators.h"

@@ -5,7 +5,7 @@
 
 #include "controllers/controllers.h"
 #include "corsa/xodr/map.h"
-#include "motion/lane_follow.h"
+#include "lanes/lane_follow.h"
 #include "motion/placement.h"
 #include "state/entity_builder.h"
 #include "state/sim_state.h"

@@ -16,7 +16,7 @@
 
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
-#include "motion/lane_follow.h"
+#include "lanes/lane_follow.h"
 #include "positions/position_resolver.h"
 #include "state/sim_state.h"
 #include "traffic/spawner.h"

@@ -30,9 +30,6 @@ class LaneChooser {
 size_t choose_straightest(const xodr::Map& map, const LaneFollow& lane,
                           std::span<const xodr::LaneEnd> candidates);
 
-/// Wraps an angle into (-pi, pi].
-double wrap_angle(double angle);
-
 /// `lane` moved `delta` lanes toward higher ids (negative: lower ids), skipping the centre lane 0.
 int step_lane_id(int lane, int delta);
 

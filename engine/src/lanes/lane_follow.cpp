@@ -1,20 +1,11 @@
-#include "motion/lane_follow.h"
+#include "lanes/lane_follow.h"
 
 #include <cmath>
 #include <numbers>
 
-namespace corsa::engine::detail {
+#include "geometry/angle.h"
 
-double wrap_angle(double angle) {
-  constexpr double kTwoPi = 2.0 * std::numbers::pi;
-  angle = std::fmod(angle, kTwoPi);
-  if (angle <= -std::numbers::pi) {
-    angle += kTwoPi;
-  } else if (angle > std::numbers::pi) {
-    angle -= kTwoPi;
-  }
-  return angle;
-}
+namespace corsa::engine::detail {
 
 int step_lane_id(int lane, int delta) {
   while (delta > 0) {

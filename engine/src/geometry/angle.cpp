@@ -1,0 +1,19 @@
+#include "geometry/angle.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace corsa::engine::detail {
+
+double wrap_angle(double angle) {
+  constexpr double kTwoPi = 2.0 * std::numbers::pi;
+  angle = std::fmod(angle, kTwoPi);
+  if (angle <= -std::numbers::pi) {
+    angle += kTwoPi;
+  } else if (angle > std::numbers::pi) {
+    angle -= kTwoPi;
+  }
+  return angle;
+}
+
+}  // namespace corsa::engine::detail
