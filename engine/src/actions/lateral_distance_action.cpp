@@ -12,8 +12,8 @@
 #include <cmath>
 
 #include "actions/action_makers.h"
-#include "geometry/relative_distance.h"
 #include "positions/position_common.h"
+#include "positions/relative_distance.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {

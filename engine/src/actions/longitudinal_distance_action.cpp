@@ -15,8 +15,8 @@
 
 #include "actions/action_makers.h"
 #include "actions/dynamic_limits.h"
-#include "geometry/relative_distance.h"
 #include "positions/position_common.h"
+#include "positions/relative_distance.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {

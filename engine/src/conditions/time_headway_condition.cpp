@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "conditions/condition_makers.h"
-#include "geometry/relative_distance.h"
+#include "positions/relative_distance.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {

@@ -7,9 +7,7 @@
 
 namespace corsa::engine::detail {
 
-OrientedBox box_of(const Entity& entity) {
-  const Pose& pose = entity.state.pose;
-  const Box& box = entity.info.box;
+OrientedBox box_of(const Box& box, const Pose& pose) {
   OrientedBox out;
   out.cos_h = std::cos(pose.h);
   out.sin_h = std::sin(pose.h);

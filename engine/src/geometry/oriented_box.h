@@ -4,7 +4,7 @@
 // at the entity's pose, heading only), with a vertical extent: for collisions and free-space
 // distances.
 
-#include "state/entity.h"
+#include "corsa/engine/world_snapshot.h"
 
 namespace corsa::engine::detail {
 
@@ -15,7 +15,8 @@ struct OrientedBox {
   double z_min = 0.0, z_max = 0.0;
 };
 
-OrientedBox box_of(const Entity& entity);
+/// `box` (in the entity frame) placed at `pose`: heading and position only.
+OrientedBox box_of(const Box& box, const Pose& pose);
 
 /// Separating-axis test on the four box axes, plus the vertical extents.
 bool overlap(const OrientedBox& a, const OrientedBox& b);

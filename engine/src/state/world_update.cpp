@@ -25,7 +25,7 @@ void update_contacts(SimState& state) {
     if (!entities[i].state.placed || entities[i].info.box.length <= 0.0) {
       continue;
     }
-    const OrientedBox box = box_of(entities[i]);
+    const OrientedBox box = box_of(entities[i].info.box, entities[i].state.pose);
     const Interval x = project(box, 1.0, 0.0);
     items.push_back({x.low, x.high, i, box});
   }

@@ -1,4 +1,4 @@
-#include "geometry/relative_distance.h"
+#include "positions/relative_distance.h"
 
 #include <cmath>
 
@@ -47,7 +47,7 @@ double axis_distance(const Entity& from, const Target& to, const DistanceSpec& s
   if (!spec.freespace) {
     return combine(spec, along, across);
   }
-  const OrientedBox a = box_of(from);
+  const OrientedBox a = box_of(from.info.box, from.state.pose);
   if (spec.type == xosc::RelativeDistanceType::kEuclidianDistance) {
     return to.box ? box_distance(a, *to.box) : box_point_distance(a, to.x, to.y);
   }
@@ -106,7 +106,7 @@ double entity_distance(const SimState& state, const Entity& from, const Entity& 
   target.x = to.state.pose.x;
   target.y = to.state.pose.y;
   target.road = to.state.road;
-  target.box = box_of(to);
+  target.box = box_of(to.info.box, to.state.pose);
   return distance_to(state, from, target, spec);
 }
 
