@@ -6,7 +6,7 @@
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/route_lanes.h"
-#include "simulation_impl.h"
+#include "simulation/simulation_impl.h"
 #include "state/entity_builder.h"
 #include "state/environment_clock.h"
 #include "state/world_update.h"
