@@ -5,10 +5,10 @@
 #
 # LAYERS lists the subfolders of ROOT from the bottom layer up; peers share a layer, joined by
 # "|" (e.g. "conditions|actions"): neither may include the other. A file in layer L may include
-#   "<folder>/..." only for a folder of a layer below L, or its own folder.
+# "<folder>/..." only for a folder of a layer below L, or its own folder.
 # Includes whose first path part is not a declared layer (e.g. "corsa/engine/...", system
-# headers) are not checked. Also an error: a subfolder of ROOT that LAYERS does not place, and a
-# source file directly in ROOT (every source belongs to a layer).
+# headers) are not checked. Also errors: an include through "../", a subfolder of ROOT that
+# LAYERS does not place, and a source file directly in ROOT (every source belongs to a layer).
 # Every violation is printed as `file:line: error: ...`; any violation fails the script.
 
 cmake_minimum_required(VERSION 3.25)
@@ -78,6 +78,10 @@ foreach(folder IN LISTS folders)
     set(line_number 0)
     foreach(line IN LISTS lines)
       math(EXPR line_number "${line_number} + 1")
+      if(line MATCHES "^[ \t]*#[ \t]*include[ \t]*\"\\.\\./")
+        report("${source}" ${line_number} "include through '../' (name the layer folder instead)")
+        continue()
+      endif()
       if(NOT line MATCHES "^[ \t]*#[ \t]*include[ \t]*\"([A-Za-z0-9_.-]+)/[^\"]*\"")
         continue()
       endif()
