@@ -2,8 +2,8 @@
 
 // The small interface every action implements (OpenSCENARIO 1.3 §7 actions, §8.4.1 their
 // execution). An Action element of the storyboard runs one ActionInstance per actor (private
-// actions) or one instance (global and user-defined actions). New actions (issue #6) are new
-// files implementing this interface plus one line in action_factory.cpp.
+// actions) or one instance (global and user-defined actions). New actions are new files
+// implementing this interface plus one line in action_factory.cpp.
 
 #include <cstdint>
 #include <optional>

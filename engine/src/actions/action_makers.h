@@ -24,7 +24,7 @@ std::unique_ptr<ActionInstance> make_variable_modify_action(
     const xosc::VariableModifyAction& action);
 std::unique_ptr<ActionInstance> make_environment_action(const xosc::EnvironmentAction& action);
 std::unique_ptr<ActionInstance> make_custom_command_action(const xosc::UserDefinedAction& action);
-// Entities, visibility, controllers, traffic signals and traffic (issue #6 part B).
+// Entities, visibility, controllers, traffic signals and traffic.
 std::unique_ptr<ActionInstance> make_add_entity_action(const xosc::AddEntityAction& action);
 std::unique_ptr<ActionInstance> make_delete_entity_action(const xosc::DeleteEntityAction& action);
 std::unique_ptr<ActionInstance> make_visibility_action(const xosc::VisibilityAction& action);

@@ -1,5 +1,5 @@
-// Condition kinds the engine does not evaluate yet (traffic signals, user-defined values:
-// issue #6): a located warning once per kind, and the condition never holds.
+// Condition kinds the engine does not evaluate (UserDefinedValueCondition, whose value only the
+// user's simulator would know): a located warning once per kind, and the condition never holds.
 
 #include "conditions/condition_makers.h"
 #include "state/sim_state.h"

@@ -94,7 +94,7 @@ std::optional<xodr::LaneType> lane_type_at(const xodr::Map& map, const RoadCoord
   return node ? std::optional<xodr::LaneType>(map.lane_graph().info(*node).type) : std::nullopt;
 }
 
-// Pedestrians (issue #6): on a sidewalk (or any lane) facing along it they walk along it like
+// Pedestrians: on a sidewalk (or any lane) facing along it they walk along it like
 // any entity of the default controller. One facing across its lane (more than 45 degrees off
 // the lane's direction, e.g. placed with a relative orientation of pi/2) crosses the road: it
 // walks straight along its heading over the lanes and stops on the first sidewalk (or off the

@@ -1,6 +1,6 @@
 #pragma once
 
-// The controllers of issue #6 and how entities get them (OpenSCENARIO 1.3 §7.5): the default
+// The controllers and how entities get them (OpenSCENARIO 1.3 §7.5): the default
 // controller (ideal lane following, motion/controller.h), `acc` (car following on top of it)
 // and `dynamics` (a single-track vehicle model driven by pure pursuit and a speed PI loop).
 //

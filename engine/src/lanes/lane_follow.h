@@ -16,7 +16,7 @@
 namespace corsa::engine::detail {
 
 /// Picks where to continue at a lane end among the joined lane ends. The default picks the
-/// straightest; a route (issue #6) picks the one on the route.
+/// straightest; a route (motion/route_chooser.h) picks the one on the route.
 class LaneChooser {
  public:
   virtual ~LaneChooser() = default;

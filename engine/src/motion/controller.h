@@ -3,8 +3,8 @@
 // Controllers move entities (OpenSCENARIO 1.3 §7.5 "Controllers"): every step each entity's
 // controller turns what the running actions ask for (Entity::speed_command and
 // lateral_command) into motion over dt. The default controller is ideal: it follows the
-// commands exactly along the lanes. Others (car following, vehicle dynamics; issue #6)
-// implement the same interface.
+// commands exactly along the lanes. Car following and vehicle dynamics (controllers/) are built
+// on it; controllers/controllers.h picks each entity's controller every step.
 
 #include <vector>
 

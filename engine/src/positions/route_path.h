@@ -2,7 +2,7 @@
 
 // A Route (OpenSCENARIO 1.3 §6.6) laid onto the map: consecutive waypoints joined by the
 // shortest lane route (xodr::find_route), giving a path along which RoutePosition's pathS is
-// measured. Issue #6 builds AssignRouteAction on the same path.
+// measured. AssignRouteAction drives along the same path (motion/route_chooser.h).
 
 #include <cstdint>
 #include <optional>

@@ -1,7 +1,7 @@
 #pragma once
 
 // A Trajectory's shape (OpenSCENARIO 1.3 §6.7: Polyline, Clothoid, ClothoidSpline, Nurbs) as a
-// path parametrised by arc length, for TrajectoryPosition (and FollowTrajectoryAction, issue #6).
+// path parametrised by arc length, for TrajectoryPosition (and FollowTrajectoryAction).
 // Polylines and clothoids are evaluated exactly; NURBS curves are sampled densely into a
 // polyline first.
 

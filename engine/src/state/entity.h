@@ -89,7 +89,7 @@ struct Entity {
 
   /// The running action that owns each domain (index 0 longitudinal, 1 lateral), or null.
   std::array<ActionInstance*, kDomainSlots> owners{};
-  /// Chooses among lane successors at lane ends (a route, issue #6); null: the straightest.
+  /// Chooses among lane successors at lane ends (a route); null: the straightest.
   const LaneChooser* chooser = nullptr;
   /// Owns the route chooser (AssignRouteAction, AcquirePositionAction) `chooser` points at.
   std::shared_ptr<const LaneChooser> route;

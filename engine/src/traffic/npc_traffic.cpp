@@ -1,4 +1,4 @@
-// `corsa run --npc vehicles=N,pedestrians=M` (issue #9): seeded random NPCs as engine entities,
+// `corsa run --npc vehicles=N,pedestrians=M`: seeded random NPCs as engine entities,
 // placed once at tick 0 after the Init actions. Vehicles stand on the centre of a random driving
 // lane, facing its direction of travel (OpenDRIVE 1.8 §8.3 traffic rule), and drive at a speed
 // drawn per lane (8-14 m/s) under the car-following controller (or `--controller`);
