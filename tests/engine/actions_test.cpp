@@ -1,8 +1,13 @@
-// Actions: one focused fixture each (tests/engine/fixtures/action_*.xosc).
+// Actions: one focused fixture each (tests/engine/fixtures/action_*.xosc), and the entity
+// actions (AddEntityAction, DeleteEntityAction, VisibilityAction) on one fixture.
 
+#include <fstream>
 #include <numbers>
+#include <sstream>
 
+#include "corsa/engine/outputs.h"
 #include "engine_fixture.h"
+#include "temp_dir.h"
 
 namespace corsa::test {
 namespace {
@@ -11,6 +16,29 @@ using Catch::Detail::Approx;
 using engine::TransitionKind;
 
 double wrap(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
+
+std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Rows of the trajectory CSV for an entity, as (time) values.
+std::vector<double> row_times(const std::string& csv, const std::string& entity) {
+  std::vector<double> times;
+  std::istringstream lines(csv);
+  std::string line;
+  std::getline(lines, line);  // header
+  while (std::getline(lines, line)) {
+    const size_t a = line.find(',');
+    const size_t b = line.find(',', a + 1);
+    if (line.substr(a + 1, b - a - 1) == entity) {
+      times.push_back(std::stod(line.substr(0, a)));
+    }
+  }
+  return times;
+}
 
 TEST_CASE("SpeedAction follows each shape over time, rate and distance",
           "[engine][action][speed]") {
@@ -228,6 +256,60 @@ TEST_CASE("CustomCommandAction reaches the handler of its type", "[engine][actio
     warned = warned || d.message.find("'test:nobody' has no handler") != std::string::npos;
   }
   CHECK(warned);
+}
+
+TEST_CASE(
+    "An added entity appears at its position, a deleted one disappears from rows and conditions",
+    "[engine][entities]") {
+  corsa::test::TempDir dir;
+  FixtureRun run(engine_fixture("entity_add_delete_visibility.xosc"));
+  corsa::engine::TrajectoryRecorder recorder(dir.path() / "out.csv", 1);
+  run.sim().add_observer(recorder);
+  run.run();
+  recorder.finish(run.sim());
+
+  CHECK_FALSE(run.at(1.0, "Late").placed);
+  const auto& added = run.at(2.5, "Late");
+  REQUIRE(added.placed);
+  REQUIRE(added.road);
+  CHECK(added.road->lane == -3);
+  CHECK(added.road->s == Approx(100.0).margin(0.5));
+  CHECK(run.at(5.0, "Late").speed == Approx(8.0));  // its own action moved it once added
+
+  CHECK(run.at(3.9, "Gone").placed);
+  CHECK_FALSE(run.at(4.1, "Gone").placed);
+  // The speed condition on Gone (faster than 5 m/s, after 4.5 s) never holds once it is gone.
+  CHECK_FALSE(run.first("GoneFast", TransitionKind::kStart));
+
+  const std::string csv = read_text(dir.path() / "out.csv");
+  const auto late = row_times(csv, "Late");
+  REQUIRE_FALSE(late.empty());
+  CHECK(late.front() >= 2.0);
+  const auto gone = row_times(csv, "Gone");
+  REQUIRE_FALSE(gone.empty());
+  CHECK(gone.back() < 4.1);
+  CHECK(row_times(csv, "Ego").size() > late.size());
+}
+
+TEST_CASE("VisibilityAction hides the entity from the sensors in the world snapshot",
+          "[engine][entities]") {
+  FixtureRun run(engine_fixture("entity_add_delete_visibility.xosc"));
+  corsa::engine::WorldSnapshot world;
+  const size_t late = run.entity("Late");
+  while (run.sim().time() < 2.5) {
+    run.sim().step();
+  }
+  run.sim().fill_snapshot(world);
+  CHECK(world.entities[late].visible);
+  while (run.sim().time() < 3.5) {
+    run.sim().step();
+  }
+  run.sim().fill_snapshot(world);
+  CHECK_FALSE(world.entities[late].visible);
+  CHECK_FALSE(run.now("Late").visible);
+  run.run();
+  run.sim().fill_snapshot(world);
+  CHECK_FALSE(world.entities[run.entity("Gone")].visible);  // deleted
 }
 
 }  // namespace

@@ -10,10 +10,6 @@ namespace {
 using Catch::Detail::Approx;
 using engine::TransitionKind;
 
-std::filesystem::path asam(const std::string& name) {
-  return std::filesystem::path(CORSA_SHARED_DIR) / "conformance/asam-osc-1.3" / name;
-}
-
 TEST_CASE("ASAM CutIn: A2 overtakes Ego and cuts into its lane", "[engine][asam]") {
   FixtureRun run(asam("CutIn.xosc"));
   run.run();
@@ -128,6 +124,58 @@ TEST_CASE("ASAM SlowPrecedingVehicle: Ego closes on A1 until the time to collisi
   CHECK(run.now("Ego").road->lane == -3);
   CHECK(run.now("A1").road->s - run.now("Ego").road->s == Approx(7.15).margin(0.05));
   CHECK(run.sim().collisions().empty());
+}
+
+TEST_CASE("ASAM examples with routes, trajectories and synchronization reach their stop trigger",
+          "[engine][asam]") {
+  for (const char* name : {"SynchronizedArrivalToIntersection.xosc", "CloseVehicleCrossing.xosc",
+                           "TrailerConnect.xosc"}) {
+    FixtureRun run(asam(name), with_duration(120.0));
+    run.run();
+    INFO(name);
+    CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
+    for (const auto& [tick, states] : run.trace().ticks()) {
+      for (const auto& state : states) {
+        CHECK(std::isfinite(state.pose.x));
+        CHECK(std::abs(state.speed) < 70.0);
+      }
+    }
+  }
+}
+
+TEST_CASE(
+    "ASAM FastOvertakeWithReInitialization: Ego runs into A1 because the scenario drives it so",
+    "[engine][asam][collision]") {
+  FixtureRun run(asam("FastOvertakeWithReInitialization.xosc"));
+  run.run();
+  CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
+  // One contact, Ego with A1, when Ego's front bumper reaches A1's rear bumper: Ego (car1, 5 m
+  // box from 1.1 m behind its reference point) holds its Init speed of 130 km/h in lane -4 of
+  // road 9; A1 (car2) starts 119.9 m ahead in the same lane at 90 km/h and slows to 60 km/h.
+  // Nothing in the scenario changes Ego's speed or lane: the bumpers meet at 9.08 s.
+  REQUIRE(run.sim().collisions().size() == 1);
+  const auto& contact = run.sim().collisions().front();
+  CHECK(contact.time == Approx(9.09).margin(0.02));
+  CHECK(contact.first == run.entity("Ego"));
+  CHECK(contact.second == run.entity("A1"));
+  const auto& ego = run.at(contact.time, "Ego");
+  const auto& a1 = run.at(contact.time, "A1");
+  CHECK(ego.speed == Approx(130.0 / 3.6));
+  REQUIRE(ego.road);
+  REQUIRE(a1.road);
+  CHECK(ego.road->road == a1.road->road);
+  CHECK(ego.road->lane == -4);
+  CHECK(a1.road->lane == -4);
+  CHECK(std::abs(ego.pose.x - a1.pose.x) < 0.01);  // one lane, the same line
+  CHECK(ego.pose.h == Approx(a1.pose.h));
+  // Bumper to bumper along the road: Ego's front (3.9 m ahead) meets A1's rear (0.95 m behind).
+  const double gap = (a1.pose.y - 0.95) - (ego.pose.y + 3.9);
+  CHECK(gap < 0.0);
+  CHECK(gap > -36.2 * run.sim().dt() - 1e-9);  // touching since this step only
+  // The re-initialisation teleports A2 into the lane to A1's left (-3), 200 m behind it, where
+  // it passes both without touching them.
+  CHECK(run.now("A2").road->lane == -3);
+  CHECK(run.now("Ego").speed == Approx(130.0 / 3.6));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,27 @@ namespace corsa::test {
 
 inline std::filesystem::path engine_fixture(const std::string& name) {
   return std::filesystem::path(CORSA_SOURCE_DIR) / "tests/engine/fixtures" / name;
+}
+
+/// An ASAM OpenSCENARIO 1.3 example of the shared conformance set.
+inline std::filesystem::path asam(const std::string& name) {
+  return std::filesystem::path(CORSA_SHARED_DIR) / "conformance/asam-osc-1.3" / name;
+}
+
+/// Default options with a longer duration cap (s).
+inline engine::SimulationOptions with_duration(double duration) {
+  engine::SimulationOptions options;
+  options.duration = duration;
+  return options;
+}
+
+/// Every diagnostic as `file:line: severity: message`, one a line.
+inline std::string all_text(const Diagnostics& diagnostics) {
+  std::ostringstream out;
+  for (const Diagnostic& d : diagnostics.all()) {
+    out << d << "\n";
+  }
+  return out.str();
 }
 
 /// The state of every entity at every tick of a run.

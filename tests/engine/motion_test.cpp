@@ -1,4 +1,13 @@
-// The default controller along lanes, sections, road links and junctions; bad placements.
+// Motion: the default controller along lanes, sections, road links and junctions, bad
+// placements and two simulations side by side; SynchronizeAction (also within Performance
+// limits), FollowTrajectoryAction, LongitudinalDistanceAction, LateralDistanceAction and
+// SpeedProfileAction on the focused scenarios of fixtures/, the bundled scenarios and the ASAM
+// examples that use them.
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
 
 #include "engine_fixture.h"
 
@@ -6,6 +15,29 @@ namespace corsa::test {
 namespace {
 
 using Catch::Detail::Approx;
+using engine::TransitionKind;
+
+/// The time (s, interpolated between ticks) at which `name` first passes road s `s` on the road
+/// with id `road`, driving in direction `dir` (+1: toward +s); nothing when it never does.
+std::optional<double> passing_time(FixtureRun& run, const std::string& name,
+                                   const std::string& road, double s, int dir) {
+  const size_t index = run.entity(name);
+  std::optional<std::pair<double, double>> previous;  // (time, s) on that road
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    const auto& at = states[index].road;
+    if (!at || run.sim().road_id(at->road) != road) {
+      previous.reset();
+      continue;
+    }
+    const double time = run.sim().time_of(tick);
+    if (previous && dir * (previous->second - s) < 0.0 && dir * (at->s - s) >= 0.0) {
+      const double w = (s - previous->second) / (at->s - previous->second);
+      return previous->first + w * (time - previous->first);
+    }
+    previous = std::make_pair(time, at->s);
+  }
+  return std::nullopt;
+}
 
 TEST_CASE("The default controller follows lanes through sections, road links and junctions",
           "[engine][motion]") {
@@ -80,6 +112,255 @@ TEST_CASE("Two simulations of one scenario in one process do not interact",
       CHECK(states[i].pose.x == second.trace().at(tick, i).pose.x);
       CHECK(states[i].pose.y == second.trace().at(tick, i).pose.y);
     }
+  }
+}
+
+TEST_CASE("SynchronizeAction brings the follower to its point when the master reaches its own",
+          "[engine][synchronize]") {
+  FixtureRun run(engine_fixture("action_synchronize.xosc"));
+  run.run();
+  // Master drives -s on road 1 lane 1; Follower -s on road 4 lane 1: both toward the junction.
+  const auto master = passing_time(run, "Master", "1", 5.0, -1);
+  const auto follower = passing_time(run, "Follower", "4", 5.0, -1);
+  REQUIRE(master);
+  REQUIRE(follower);
+  // 85 m at 10 m/s.
+  CHECK(*master == Approx(8.5).margin(0.02));
+  CHECK(std::abs(*master - *follower) <= run.sim().dt());
+  // The final speed (6 m/s) is held over the last 10 m and after the action.
+  CHECK(run.at(*follower - 1.0, "Follower").speed == Approx(6.0).margin(0.05));
+  CHECK(run.now("Follower").speed == Approx(6.0));
+  CHECK(run.first("S0::Act0::G::M::E::A", TransitionKind::kEnd));
+  // Plausible motion: never backwards, never faster than it needs.
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    CHECK(states[run.entity("Follower")].speed >= 0.0);
+    CHECK(states[run.entity("Follower")].speed < 15.0);
+  }
+}
+
+TEST_CASE("SynchronizeAction with a relative final speed held for a steady-state time",
+          "[engine][synchronize]") {
+  FixtureRun run(engine_fixture("action_synchronize.xosc"));
+  run.run();
+  const auto master = passing_time(run, "Master", "1", 5.0, -1);
+  const auto follower = passing_time(run, "Follower2", "2", 5.0, -1);
+  REQUIRE(master);
+  REQUIRE(follower);
+  CHECK(std::abs(*master - *follower) <= run.sim().dt());
+  // Half the master's speed (factor 0.5 of 10 m/s), held for the last 2 s.
+  CHECK(run.at(*follower, "Follower2").speed == Approx(5.0).margin(0.05));
+  CHECK(run.at(*follower - 1.5, "Follower2").speed == Approx(5.0).margin(0.05));
+}
+
+TEST_CASE("SynchronizeAction stays within Performance limits and warns when they bind",
+          "[engine][synchronize][limits]") {
+  FixtureRun run(engine_fixture("sync_limits_performance.xosc"));
+  run.run();
+  const size_t slow = run.entity("Slow");
+  const size_t early = run.entity("Early");
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    CHECK(states[slow].speed <= 8.0 + 1e-9);
+    CHECK(states[slow].acceleration <= 2.0 + 1e-9);
+    CHECK(states[early].acceleration >= -1.0 - 1e-9);
+  }
+  // Slow needs 90 m in 8.5 s from standstill: within 2 m/s^2 and 8 m/s it covers 52 m.
+  const auto& at_master_arrival = run.at(8.5, "Slow");
+  CHECK(at_master_arrival.speed == Approx(8.0));
+  CHECK(at_master_arrival.road->s > 5.0 + 20.0);
+  const auto warnings = all_text(run.diagnostics());
+  CHECK(run.diagnostics().count(Severity::kWarning) == 2);
+  CHECK_THAT(warnings, Catch::Contains("'Slow' cannot reach its target when 'Master'"));
+  CHECK_THAT(warnings, Catch::Contains("it arrives late"));
+  CHECK_THAT(warnings, Catch::Contains("'Early' cannot reach its target when 'Master'"));
+  CHECK_THAT(warnings, Catch::Contains("it arrives early"));
+  CHECK_THAT(warnings, Catch::Contains("sync_limits_performance.xosc:"));
+  // Early ends at its final speed, reached within its deceleration limit.
+  CHECK(run.now("Early").speed == Approx(4.0));
+}
+
+TEST_CASE("ASAM SynchronizedArrivalToIntersection: the two arrive within 0.05 s",
+          "[engine][asam][synchronize]") {
+  FixtureRun run(asam("SynchronizedArrivalToIntersection.xosc"), with_duration(60.0));
+  run.run();
+  const auto start = run.first("SyncActionNPC", TransitionKind::kStart);
+  REQUIRE(start);
+  // Ego's target: road 0 lane 1 (driven toward -s) s = 6; the NPC's: road 3 lane -1 s = 114.
+  const auto ego = passing_time(run, "Ego", "0", 6.0, -1);
+  const auto npc = passing_time(run, "NPC", "3", 114.0, 1);
+  REQUIRE(ego);
+  REQUIRE(npc);
+  CHECK(std::abs(*ego - *npc) < 0.05);
+  CHECK(run.first("SyncActionNPC", TransitionKind::kEnd));
+  // Final speed: the master's (10 m/s) minus 3.
+  CHECK(run.at(*npc, "NPC").speed == Approx(7.0).margin(0.05));
+}
+
+TEST_CASE("scenarios/intersection_sync.xosc: both vehicles enter the junction in the same step",
+          "[engine][synchronize][scenarios]") {
+  FixtureRun run(std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/intersection_sync.xosc");
+  run.run();
+  std::map<std::string, double> entered;
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    for (const std::string name : {"Ego", "Npc"}) {
+      const auto& road = states[run.entity(name)].road;
+      if (road && run.sim().road_id(road->road).size() == 3 && !entered.count(name)) {
+        entered[name] = run.sim().time_of(tick);  // connecting roads have ids 101..112
+      }
+    }
+  }
+  REQUIRE(entered.size() == 2);
+  CHECK(std::abs(entered["Ego"] - entered["Npc"]) <= run.sim().dt() + 1e-9);
+  // They meet in the junction: the stop trigger is their collision.
+  CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
+  CHECK(run.sim().collisions().size() == 1);
+  CHECK(run.now("Npc").speed == Approx(8.0));
+}
+
+TEST_CASE("FollowTrajectoryAction drives polylines, clothoids and NURBS by their timing",
+          "[engine][trajectory]") {
+  FixtureRun run(engine_fixture("action_follow_trajectory.xosc"));
+  run.run();
+  CHECK(run.diagnostics().count(Severity::kWarning) == 0);
+  const auto start = run.first("S0::Act0::G::M::E::A", TransitionKind::kStart);
+  REQUIRE(start);
+  // Timed polyline, relative timing with scale 2: the vertex at trajectory time 5 s (x = 60) is
+  // reached 10 s after the start; half way there, x = 35 at 5 m/s.
+  CHECK(run.at(*start + 10.0, "Timed").pose.x == Approx(60.0).margin(1e-6));
+  CHECK(run.at(*start + 10.0, "Timed").pose.y == Approx(-1.75).margin(1e-6));
+  CHECK(run.at(*start + 5.0, "Timed").pose.x == Approx(35.0).margin(1e-6));
+  CHECK(run.at(*start + 5.0, "Timed").speed == Approx(5.0).margin(1e-6));
+  // The last leg climbs 3.5 m over 50 m: on it the entity crosses into lane 1.
+  CHECK(run.first("S0::Act0::G::M::E::A", TransitionKind::kEnd) ==
+        Approx(*start + 20.0).margin(0.011));
+  CHECK(run.now("Timed").road->lane == 1);
+  // Clothoid: curvature from 0 rising by 0.0004 1/m^2 over 50 m: heading 0.5 rad at its end.
+  const auto clothoid_end = run.first("S2::Act2::G::M::E::A", TransitionKind::kEnd);
+  REQUIRE(clothoid_end);
+  CHECK(run.at(*clothoid_end, "Clothoid").pose.h == Approx(0.5).margin(1e-3));
+  CHECK(run.at(*clothoid_end, "Clothoid").speed == Approx(10.0));
+  // Clothoid spline: 0 -> 0.02 -> 0 1/m over 2 x 25 m: heading 0.5 rad.
+  const auto spline_end = run.first("S3::Act3::G::M::E::A", TransitionKind::kEnd);
+  REQUIRE(spline_end);
+  CHECK(run.at(*spline_end, "Spline").pose.h == Approx(0.5).margin(1e-3));
+  // NURBS: a straight line along y = -12.25, the middle control point (x = 50) at 4 s, offset 1 s.
+  CHECK(run.at(*start + 5.0, "Nurbs").pose.x == Approx(50.0).margin(0.05));
+  CHECK(run.at(*start + 5.0, "Nurbs").pose.y == Approx(-12.25).margin(1e-6));
+  // Absolute timing with offset 3 s: trajectory time t - 3, so x = 500 until 3 s, then 10 m/s
+  // (50 m in 5 s): x = 525 at 5.5 s, the end at 8 s.
+  CHECK(run.at(2.5, "Absolute").pose.x == Approx(500.0));
+  CHECK(run.at(5.5, "Absolute").pose.x == Approx(525.0).margin(1e-6));
+  CHECK(run.at(5.5, "Absolute").speed == Approx(10.0).margin(1e-6));
+  CHECK(run.first("S6::Act6::G::M::E::A", TransitionKind::kEnd) == Approx(8.0).margin(0.011));
+  // initialDistanceOffset 20: the path begins at x = 300, the entity at x = 320.
+  CHECK(run.at(*start + 0.01, "Offset").pose.x == Approx(320.1).margin(0.02));
+}
+
+TEST_CASE("FollowTrajectoryAction in follow mode drives toward the path like a driver",
+          "[engine][trajectory]") {
+  FixtureRun run(engine_fixture("action_follow_trajectory.xosc"));
+  run.run();
+  const auto start = run.first("S1::Act1::G::M::E::A", TransitionKind::kStart);
+  const auto end = run.first("S1::Act1::G::M::E::A", TransitionKind::kEnd);
+  REQUIRE(start);
+  REQUIRE(end);
+  // 100 m of path at 10 m/s (untimed: the entity keeps its speed).
+  CHECK(*end - *start == Approx(10.1).margin(0.2));
+  double worst = 0.0;
+  for (double t = *start; t <= *end; t += 0.1) {
+    const auto& pose = run.at(t, "Follow").pose;
+    // The path: y = -8.75 up to x = 60, then rising 3.5 m over 50 m.
+    const double path_y = pose.x <= 60.0 ? -8.75 : -8.75 + 3.5 * (pose.x - 60.0) / 50.0;
+    worst = std::max(worst, std::abs(pose.y - path_y));
+  }
+  CHECK(worst < 0.5);   // it follows
+  CHECK(worst > 1e-3);  // but not exactly: it cuts the corner at x = 60
+  CHECK(run.at(*end, "Follow").pose.x == Approx(110.0).margin(0.5));
+}
+
+TEST_CASE("ASAM TrailerConnect: the car reverses along the quarter circle facing forward",
+          "[engine][asam][trajectory]") {
+  FixtureRun run(asam("TrailerConnect.xosc"), with_duration(120.0));
+  run.run();
+  const auto start = run.first("ReverseTrajectoryAction", TransitionKind::kStart);
+  const auto end = run.first("ReverseTrajectoryAction", TransitionKind::kEnd);
+  REQUIRE(start);
+  REQUIRE(end);
+  // A quarter circle of radius 12 m (18.85 m) at 4 m/s backwards: 4.71 s; the car turns by
+  // pi / 2 while it backs up, its heading against its path.
+  CHECK(*end - *start == Approx(4.71).margin(0.02));
+  CHECK(run.at(*start + 1.0, "Car").speed == Approx(-4.0));
+  const double turned = run.at(*end, "Car").pose.h - run.at(*start, "Car").pose.h;
+  CHECK(std::abs(std::remainder(turned, 2.0 * 3.141592653589793)) == Approx(1.5708).margin(0.01));
+}
+
+TEST_CASE("LongitudinalDistanceAction closes to 20 m behind within its deceleration limit",
+          "[engine][distance]") {
+  FixtureRun run(engine_fixture("action_distance_profile.xosc"));
+  run.run();
+  const auto end = run.first("S0::Act0::G::M::E::A", TransitionKind::kEnd);
+  REQUIRE(end);
+  const auto& lead = run.at(*end, "Lead");
+  const auto& chaser = run.at(*end, "Chaser");
+  CHECK(lead.pose.x - chaser.pose.x == Approx(20.0).margin(0.15));
+  CHECK(chaser.speed == Approx(10.0).margin(0.06));
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    CHECK(states[run.entity("Chaser")].acceleration >= -4.0 - 1e-9);
+    CHECK(states[run.entity("Chaser")].acceleration <= 2.0 + 1e-9);
+    CHECK(states[run.entity("Lead")].pose.x > states[run.entity("Chaser")].pose.x + 4.5);
+  }
+}
+
+TEST_CASE("A continuous LongitudinalDistanceAction keeps a 1.5 s free-space time gap ahead",
+          "[engine][distance]") {
+  FixtureRun run(engine_fixture("action_distance_profile.xosc"));
+  run.run();
+  // Gap (lane 1, driving +s) leads Lead by 1.5 s x its speed between the boxes (4.5 m long):
+  // settled at Lead's 10 m/s, 15 m + 4.5 m between reference points. Continuous: never ends.
+  CHECK(run.now("Gap").speed == Approx(10.0).margin(0.05));
+  CHECK(run.now("Gap").pose.x - run.now("Lead").pose.x == Approx(19.5).margin(0.3));
+  CHECK_FALSE(run.first("S4::Act4::G::M::E::A", TransitionKind::kEnd));
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    CHECK(states[run.entity("Gap")].speed >= 0.0);
+    CHECK(states[run.entity("Gap")].pose.x > states[run.entity("Lead")].pose.x + 4.5);
+  }
+}
+
+TEST_CASE("LateralDistanceAction moves 2.5 m right of the reference at its lateral speed limit",
+          "[engine][distance]") {
+  FixtureRun run(engine_fixture("action_distance_profile.xosc"));
+  run.run();
+  const auto start = run.first("S1::Act1::G::M::E::A", TransitionKind::kStart);
+  const auto end = run.first("S1::Act1::G::M::E::A", TransitionKind::kEnd);
+  REQUIRE(start);
+  REQUIRE(end);
+  CHECK(run.at(*end, "Lead").pose.y - run.at(*end, "Side").pose.y == Approx(2.5).margin(0.03));
+  // 1 m at no more than 0.5 m/s: at least 2 s.
+  CHECK(*end - *start > 2.0);
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    CHECK(std::abs(states[run.entity("Side")].lateral_speed) <= 0.5 + 1e-9);
+  }
+}
+
+TEST_CASE("SpeedProfileAction goes through its entries, linearly or smoothly, within limits",
+          "[engine][speed_profile]") {
+  FixtureRun run(engine_fixture("action_distance_profile.xosc"));
+  run.run();
+  const auto start = run.first("S2::Act2::G::M::E::A", TransitionKind::kStart);
+  const auto end = run.first("S2::Act2::G::M::E::A", TransitionKind::kEnd);
+  REQUIRE(start);
+  REQUIRE(end);
+  // 0 -> 10 m/s in 5 s (linear: 5 m/s at 2.5 s), then 10 -> 20 at maxAcceleration 2: 5 s more.
+  CHECK(run.at(*start + 2.5, "Profile").speed == Approx(5.0).margin(1e-6));
+  CHECK(run.at(*start + 5.0, "Profile").speed == Approx(10.0).margin(1e-6));
+  CHECK(run.at(*start + 7.5, "Profile").speed == Approx(15.0).margin(0.03));
+  CHECK(*end - *start == Approx(10.0).margin(0.02));
+  CHECK(run.now("Profile").speed == Approx(20.0));
+  // follow: a smooth (cubic) first entry: slower at first, the same half way.
+  CHECK(run.at(*start + 1.25, "Smooth").speed == Approx(1.5625).margin(1e-6));
+  CHECK(run.at(*start + 2.5, "Smooth").speed == Approx(5.0).margin(1e-6));
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    CHECK(states[run.entity("Profile")].acceleration <= 2.0 + 1e-9);
+    CHECK(states[run.entity("Smooth")].acceleration <= 4.0 + 1e-9);
   }
 }
 

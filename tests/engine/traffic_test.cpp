@@ -1,5 +1,7 @@
-// Issue #6 (traffic, continued) and issue #9's NPCs: car following along the lane path,
-// TrafficDistribution, TrafficAreaAction, NPCs as engine entities, spawn and removal times.
+// Traffic: signal controllers cycling through their phases with their conditions and actions
+// (OpenSCENARIO 1.3 §6.5.2, §7.5.2), traffic swarms, sources, sinks and stops, TrafficAreaAction
+// and TrafficDistribution (§7.5.6), pedestrians on sidewalks and crossing the road, and the NPCs
+// of `--npc` as engine entities.
 
 #include <algorithm>
 #include <cmath>
@@ -12,65 +14,11 @@
 #include "run_corsa.h"
 #include "temp_dir.h"
 
+namespace corsa::test {
 namespace {
 
-using corsa::test::engine_fixture;
-using corsa::test::FixtureRun;
-
-std::filesystem::path asam(const std::string& name) {
-  return std::filesystem::path(CORSA_SHARED_DIR) / "conformance/asam-osc-1.3" / name;
-}
-
-bool collided(const corsa::engine::Simulation& sim, size_t a) {
-  for (const auto& c : sim.collisions()) {
-    if (c.first == a || c.second == a) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
-TEST_CASE("The acc controller follows a standing vehicle just across a road link",
-          "[engine][acc]") {
-  FixtureRun run(engine_fixture("traffic_follow_across_link.xosc"));
-  run.run();
-  CHECK(run.sim().collisions().empty());
-  const auto& follower = run.now("Follower");
-  const auto& lead = run.now("Lead");
-  REQUIRE(follower.road);
-  // The follower drove through the link onto road 2 (lane 1, toward -s) and waits behind.
-  CHECK(run.sim().road_id(follower.road->road) == "2");
-  CHECK(follower.road->lane == 1);
-  CHECK(follower.speed < 0.5);
-  // Bumper to bumper: lead rear (x 550 + 1.4 - 2.25) minus follower front (x + 1.4 + 2.25).
-  const double gap = (lead.pose.x + 1.4 - 2.25) - (follower.pose.x + 1.4 + 2.25);
-  CHECK(gap > 2.5);
-  CHECK(gap < 6.0);
-}
-
-TEST_CASE("ASAM TrafficJam: Ego drives into the jam as asked, and stops before it under acc",
-          "[engine][acc][asam]") {
-  // The scenario gives Ego 36.1 m/s and no controller: an ideal driver meets the standing A5
-  // (same lane, 151 m ahead) after about 4 s. That collision is what the scenario asks for.
-  FixtureRun ideal(asam("TrafficJam.xosc"));
-  ideal.run();
-  REQUIRE_FALSE(ideal.sim().collisions().empty());
-  const auto& first = ideal.sim().collisions().front();
-  CHECK(first.time == Approx(4.05).margin(0.05));
-  CHECK(ideal.sim().entity(first.first).name == "Ego");
-  CHECK(ideal.sim().entity(first.second).name == "A5");
-
-  // With a car-following driver Ego stops behind A5: no collision at all.
-  corsa::engine::SimulationOptions options;
-  options.controller = "acc";
-  FixtureRun acc(asam("TrafficJam.xosc"), options);
-  acc.run();
-  CHECK_FALSE(collided(acc.sim(), acc.entity("Ego")));
-  CHECK(acc.now("Ego").speed < 5.0);  // from 36.1 m/s, still creeping up at the 10 s stop
-  CHECK(acc.now("Ego").pose.y < acc.now("A5").pose.y - 4.5);
-}
-
-namespace {
+using Catch::Detail::Approx;
+using engine::TransitionKind;
 
 // The generated entities (those with lifetimes) of a finished run.
 std::vector<size_t> generated(const corsa::engine::Simulation& sim) {
@@ -81,7 +29,108 @@ std::vector<size_t> generated(const corsa::engine::Simulation& sim) {
   return out;
 }
 
-}  // namespace
+TEST_CASE("Traffic signal controllers cycle through their phases; signal conditions and actions",
+          "[engine][signals]") {
+  FixtureRun run(engine_fixture("traffic_signal_phases.xosc"));
+  corsa::engine::WorldSnapshot world;
+  run.sim().fill_snapshot(world);
+  const auto signal = [&](const std::string& id) -> std::string {
+    for (const auto& s : world.signals) {
+      if (s.id == id) return s.state;
+    }
+    return "";
+  };
+  CHECK(signal("1") == "off;off;on");
+  CHECK(signal("2").empty());  // Side starts 1 s after Main
+  run.run();
+  // Main: go 0-5, caution 5-7, stop 7-10, go 10-15; forced to stop at 12 (run ends at 14).
+  const auto main_stop = run.first("MainStop", TransitionKind::kStart);
+  REQUIRE(main_stop);
+  CHECK(*main_stop == Approx(7.0).margin(0.011));
+  CHECK(run.count("SignalRed", TransitionKind::kStart) == 1);
+  const auto red = run.first("SignalRed", TransitionKind::kStart);
+  REQUIRE(red);
+  CHECK(*red == Approx(7.0).margin(0.011));
+  // Side: stop 1-5, go 5-11.
+  const auto side_go = run.first("SideGoes", TransitionKind::kStart);
+  REQUIRE(side_go);
+  CHECK(*side_go == Approx(5.0).margin(0.011));
+  // SideGoes set it to 2 at 5 s, SignalRed to 1 at 7 s.
+  CHECK(run.sim().parameter("Dummy")->text() == "1");
+  run.sim().fill_snapshot(world);
+  CHECK(signal("3") == "flashing");
+  // Forced to "stop" at 12 s, which lasts its 3 s: stop at the end (14 s), not "go".
+  CHECK(signal("1") == "on;off;off");
+  CHECK(run.now("Ego").speed == Approx(0.0));
+}
+
+TEST_CASE("A traffic swarm keeps its vehicles in the ring around the central entity, by the seed",
+          "[engine][traffic]") {
+  corsa::engine::SimulationOptions options;
+  options.seed = 7;
+  FixtureRun run(engine_fixture("traffic_swarm.xosc"), options);
+  const size_t own = 1;
+  size_t most = 0;
+  while (run.sim().step()) {
+    const auto& ego = run.now("Ego");
+    size_t present = 0;
+    const bool swarming = run.sim().time() < 20.0;  // TrafficStopAction at 20 s
+    for (size_t i = own; i < run.sim().entity_count(); ++i) {
+      const auto& s = run.sim().state(i);
+      if (!s.placed) continue;
+      ++present;
+      REQUIRE(s.road);
+      if (swarming) {
+        // Inside the ellipse (semi-major 120 m along the road): leavers are removed at once.
+        CHECK(std::abs(s.pose.x - ego.pose.x) <= 120.0);
+        // DirectionOfTravelDistribution same="1" opposite="0": all drive Ego's way.
+        CHECK(std::cos(s.pose.h - ego.pose.h) > 0.9);
+      }
+    }
+    CHECK(present <= 8);
+    most = std::max(most, present);
+  }
+  CHECK(most == 8);
+  CHECK(run.sim().entity_count() >= 1 + 8);
+
+  FixtureRun again(engine_fixture("traffic_swarm.xosc"), options);
+  again.run();
+  REQUIRE(again.sim().entity_count() == run.sim().entity_count());
+  for (size_t i = 0; i < run.sim().entity_count(); ++i) {
+    CHECK(again.sim().state(i).pose.x == run.sim().state(i).pose.x);
+  }
+  options.seed = 8;
+  FixtureRun other(engine_fixture("traffic_swarm.xosc"), options);
+  other.run();
+  bool differs = other.sim().entity_count() != run.sim().entity_count();
+  for (size_t i = 1; !differs && i < run.sim().entity_count(); ++i) {
+    differs = other.sim().state(i).pose.x != run.sim().state(i).pose.x;
+  }
+  CHECK(differs);
+}
+
+TEST_CASE("A traffic source emits at its rate, a sink absorbs, a stop ends the source",
+          "[engine][traffic]") {
+  FixtureRun run(engine_fixture("traffic_source_sink.xosc"));
+  run.run();
+  // 0.5 vehicles/s from 0.1 s to 20 s: about 10 vehicles (the first at once).
+  const size_t spawned = run.sim().entity_count() - 1;
+  CHECK(spawned >= 9);
+  CHECK(spawned <= 11);
+  size_t present = 0;
+  for (size_t i = 1; i < run.sim().entity_count(); ++i) {
+    const auto& s = run.sim().state(i);
+    if (s.placed) {
+      ++present;
+      // Nobody passed the sink at s = 400 (10 m radius).
+      REQUIRE(s.road);
+      CHECK(s.road->s < 411.0);
+    }
+  }
+  // At 15 m/s the 350 m to the sink take 23 s: the vehicles of the first 17 s are gone by 40 s.
+  CHECK(present < spawned);
+  CHECK(present <= 3);
+}
 
 TEST_CASE("TrafficAreaAction on a road range keeps its number inside, replacing those that leave",
           "[engine][traffic][area]") {
@@ -201,6 +250,28 @@ TEST_CASE("Generated traffic is the same for the same seed and differs for anoth
   CHECK(a != positions(4));
 }
 
+TEST_CASE("Pedestrians walk along the sidewalk and cross the road", "[engine][pedestrians]") {
+  FixtureRun run(engine_fixture("traffic_pedestrians.xosc"));
+  run.run();
+  const auto& walker = run.now("Walker");
+  REQUIRE(walker.road);
+  CHECK(walker.road->lane == -4);  // still on the sidewalk
+  CHECK(walker.road->s == Approx(50.0 + 1.4 * 25.0).margin(0.05));
+  // The crosser walks across the six 3.5 m lanes (t from about -11 to +10.5), then stops at the
+  // far edge of the road.
+  const auto& before = run.at(0.5, "Crosser");
+  REQUIRE(before.road);
+  CHECK(before.road->lane == -4);
+  const auto& middle = run.at(9.0, "Crosser");
+  REQUIRE(middle.road);
+  CHECK(std::abs(middle.road->lane) <= 3);
+  CHECK(middle.pose.x == Approx(before.pose.x).margin(1e-6));  // straight across
+  const auto& end = run.now("Crosser");
+  CHECK(end.speed == 0.0);
+  CHECK(end.pose.y > 10.5);
+  CHECK(end.pose.y < 10.5 + 0.1);
+}
+
 TEST_CASE("NPCs are engine entities: seeded places, vehicles driving, pedestrians walking",
           "[engine][npc]") {
   const auto start = [](uint64_t seed) {
@@ -286,3 +357,6 @@ TEST_CASE("corsa run --npc adds the NPCs, and the summary says when generated en
   CHECK(bad.exit_code == 2);
   CHECK_THAT(bad.err, Catch::Contains("--npc"));
 }
+
+}  // namespace
+}  // namespace corsa::test

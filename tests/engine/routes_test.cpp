@@ -1,11 +1,11 @@
-// Issue #6, routing and synchronization: routes whose lanes need lane changes (a waypoint on
-// another lane, a turn only from the inner lane) under every controller, a route that cannot be
-// followed, SynchronizeAction held to the actors' Performance limits, and the plausibility of
-// the collision in the ASAM FastOvertakeWithReInitialization example.
+// Routes (OpenSCENARIO 1.3 §6.6): AssignRouteAction, AcquirePositionAction and the route
+// strategies through junctions; routes whose lanes need lane changes (a waypoint on another
+// lane, a turn only from the inner lane) under every controller, and a route that cannot be
+// followed.
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <string>
 
 #include "engine_fixture.h"
 
@@ -14,17 +14,10 @@ namespace {
 
 using Catch::Detail::Approx;
 
-std::filesystem::path asam(const std::string& name) {
-  return std::filesystem::path(CORSA_SHARED_DIR) / "conformance/asam-osc-1.3" / name;
-}
-
-/// Every diagnostic as `file:line: severity: message`, one a line.
-std::string all_text(const Diagnostics& diagnostics) {
-  std::ostringstream out;
-  for (const Diagnostic& d : diagnostics.all()) {
-    out << d << "\n";
-  }
-  return out.str();
+/// The OpenDRIVE id of the road an entity is on at the end of the run ("" off the roads).
+std::string final_road(FixtureRun& run, const std::string& name) {
+  const auto& road = run.now(name).road;
+  return road ? run.sim().road_id(road->road) : std::string();
 }
 
 std::string road_of(FixtureRun& run, const engine::EntityState& state) {
@@ -68,6 +61,57 @@ double check_smooth(FixtureRun& run, const std::string& name, double max_lateral
     previous = &now;
   }
   return largest;
+}
+
+TEST_CASE("Routes take their entities through the junction the way the route goes",
+          "[engine][route]") {
+  FixtureRun run(engine_fixture("action_assign_route.xosc"));
+  run.run();
+  CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
+  CHECK(run.diagnostics().count(Severity::kWarning) == 0);
+  // Without a route the straightest way: road 1 west over the junction onto road 3.
+  CHECK(final_road(run, "Straight") == "3");
+  // The route's waypoint on road 2 turns the entity right (north).
+  CHECK(final_road(run, "Right") == "2");
+  CHECK(run.now("Right").road->lane == -1);
+  CHECK(run.now("Right").pose.y > 20.0);
+  // AcquirePositionAction (at 0.5 s) to road 4: a left turn (south).
+  CHECK(final_road(run, "Acquire") == "4");
+  CHECK(run.now("Acquire").pose.y < -20.0);
+  // Each strategy reaches its destination road.
+  CHECK(final_road(run, "Fastest") == "4");
+  CHECK(final_road(run, "Fewest") == "2");
+  CHECK(final_road(run, "Random") == "1");
+  // Speeds are untouched by routing.
+  CHECK(run.now("Right").speed == Approx(10.0));
+}
+
+TEST_CASE("A random route is the same for the same seed", "[engine][route]") {
+  engine::SimulationOptions options;
+  options.seed = 7;
+  FixtureRun a(engine_fixture("action_assign_route.xosc"), options);
+  FixtureRun b(engine_fixture("action_assign_route.xosc"), options);
+  a.run();
+  b.run();
+  CHECK(a.now("Random").pose.x == b.now("Random").pose.x);
+  CHECK(a.now("Random").pose.y == b.now("Random").pose.y);
+}
+
+TEST_CASE("scenarios/route_waypoint.xosc: Ego turns left at the junction to its destination",
+          "[engine][route][scenarios]") {
+  FixtureRun run(std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/route_waypoint.xosc");
+  run.run();
+  CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
+  // Through the left-turn connecting road 102 onto road 4, stopped within 1 m of s = 80.
+  bool turned = false;
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    const auto& road = states[run.entity("Ego")].road;
+    turned = turned || (road && run.sim().road_id(road->road) == "102");
+  }
+  CHECK(turned);
+  CHECK(final_road(run, "Ego") == "4");
+  CHECK(run.now("Ego").road->s == Approx(80.0).margin(1.0));
+  CHECK(run.sim().collisions().empty());
 }
 
 TEST_CASE("A route through a waypoint on another lane and a turn from the inner lane changes lanes",
@@ -123,67 +167,6 @@ TEST_CASE("A route whose turn lane cannot be reached warns once at the route and
   CHECK_THAT(warnings, Catch::Contains("route_lane_blocked.xosc:23: warning:"));
   CHECK_THAT(warnings, Catch::Contains("'Stray' cannot follow its route 'LeftTurn'"));
   CHECK_THAT(warnings, Catch::Contains("to road '102' (lane -1 does)"));
-}
-
-TEST_CASE("SynchronizeAction stays within Performance limits and warns when they bind",
-          "[engine][synchronize][limits]") {
-  FixtureRun run(engine_fixture("sync_limits_performance.xosc"));
-  run.run();
-  const size_t slow = run.entity("Slow");
-  const size_t early = run.entity("Early");
-  for (const auto& [tick, states] : run.trace().ticks()) {
-    CHECK(states[slow].speed <= 8.0 + 1e-9);
-    CHECK(states[slow].acceleration <= 2.0 + 1e-9);
-    CHECK(states[early].acceleration >= -1.0 - 1e-9);
-  }
-  // Slow needs 90 m in 8.5 s from standstill: within 2 m/s^2 and 8 m/s it covers 52 m.
-  const auto& at_master_arrival = run.at(8.5, "Slow");
-  CHECK(at_master_arrival.speed == Approx(8.0));
-  CHECK(at_master_arrival.road->s > 5.0 + 20.0);
-  const auto warnings = all_text(run.diagnostics());
-  CHECK(run.diagnostics().count(Severity::kWarning) == 2);
-  CHECK_THAT(warnings, Catch::Contains("'Slow' cannot reach its target when 'Master'"));
-  CHECK_THAT(warnings, Catch::Contains("it arrives late"));
-  CHECK_THAT(warnings, Catch::Contains("'Early' cannot reach its target when 'Master'"));
-  CHECK_THAT(warnings, Catch::Contains("it arrives early"));
-  CHECK_THAT(warnings, Catch::Contains("sync_limits_performance.xosc:"));
-  // Early ends at its final speed, reached within its deceleration limit.
-  CHECK(run.now("Early").speed == Approx(4.0));
-}
-
-TEST_CASE(
-    "ASAM FastOvertakeWithReInitialization: Ego runs into A1 because the scenario drives it so",
-    "[engine][asam][collision]") {
-  FixtureRun run(asam("FastOvertakeWithReInitialization.xosc"));
-  run.run();
-  CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
-  // One contact, Ego with A1, when Ego's front bumper reaches A1's rear bumper: Ego (car1, 5 m
-  // box from 1.1 m behind its reference point) holds its Init speed of 130 km/h in lane -4 of
-  // road 9; A1 (car2) starts 119.9 m ahead in the same lane at 90 km/h and slows to 60 km/h.
-  // Nothing in the scenario changes Ego's speed or lane: the bumpers meet at 9.08 s.
-  REQUIRE(run.sim().collisions().size() == 1);
-  const auto& contact = run.sim().collisions().front();
-  CHECK(contact.time == Approx(9.09).margin(0.02));
-  CHECK(contact.first == run.entity("Ego"));
-  CHECK(contact.second == run.entity("A1"));
-  const auto& ego = run.at(contact.time, "Ego");
-  const auto& a1 = run.at(contact.time, "A1");
-  CHECK(ego.speed == Approx(130.0 / 3.6));
-  REQUIRE(ego.road);
-  REQUIRE(a1.road);
-  CHECK(ego.road->road == a1.road->road);
-  CHECK(ego.road->lane == -4);
-  CHECK(a1.road->lane == -4);
-  CHECK(std::abs(ego.pose.x - a1.pose.x) < 0.01);  // one lane, the same line
-  CHECK(ego.pose.h == Approx(a1.pose.h));
-  // Bumper to bumper along the road: Ego's front (3.9 m ahead) meets A1's rear (0.95 m behind).
-  const double gap = (a1.pose.y - 0.95) - (ego.pose.y + 3.9);
-  CHECK(gap < 0.0);
-  CHECK(gap > -36.2 * run.sim().dt() - 1e-9);  // touching since this step only
-  // The re-initialisation teleports A2 into the lane to A1's left (-3), 200 m behind it, where
-  // it passes both without touching them.
-  CHECK(run.now("A2").road->lane == -3);
-  CHECK(run.now("Ego").speed == Approx(130.0 / 3.6));
 }
 
 }  // namespace

@@ -1,0 +1,135 @@
+// Controllers (OpenSCENARIO 1.3 §7.5): the acc car follower (behind a slower vehicle, across a
+// road link, in the ASAM TrafficJam), OverrideControllerValueAction, ActivateControllerAction and
+// AssignControllerAction, `--controller`, and an external controller stood in for. The dynamics
+// vehicle itself: dynamics_test.cpp.
+
+#include <cmath>
+#include <filesystem>
+
+#include "engine_fixture.h"
+
+namespace corsa::test {
+namespace {
+
+using Catch::Detail::Approx;
+
+bool collided(const corsa::engine::Simulation& sim, size_t a) {
+  for (const auto& c : sim.collisions()) {
+    if (c.first == a || c.second == a) return true;
+  }
+  return false;
+}
+
+TEST_CASE("The acc controller keeps a time gap behind a slower vehicle", "[engine][controllers]") {
+  FixtureRun run(engine_fixture("controller_acc.xosc"));
+  run.run();
+  CHECK(run.sim().collisions().empty());
+  const auto& lead = run.now("Lead");
+  const auto& follower = run.now("Follower");
+  CHECK(follower.speed == Approx(12.0).margin(0.3));
+  const double gap = lead.pose.x - follower.pose.x - 4.5;  // same box, bumper to bumper
+  CHECK(gap == Approx(3.0 + 1.5 * 12.0).margin(2.0));
+}
+
+TEST_CASE("The acc controller follows a standing vehicle just across a road link",
+          "[engine][acc]") {
+  FixtureRun run(engine_fixture("traffic_follow_across_link.xosc"));
+  run.run();
+  CHECK(run.sim().collisions().empty());
+  const auto& follower = run.now("Follower");
+  const auto& lead = run.now("Lead");
+  REQUIRE(follower.road);
+  // The follower drove through the link onto road 2 (lane 1, toward -s) and waits behind.
+  CHECK(run.sim().road_id(follower.road->road) == "2");
+  CHECK(follower.road->lane == 1);
+  CHECK(follower.speed < 0.5);
+  // Bumper to bumper: lead rear (x 550 + 1.4 - 2.25) minus follower front (x + 1.4 + 2.25).
+  const double gap = (lead.pose.x + 1.4 - 2.25) - (follower.pose.x + 1.4 + 2.25);
+  CHECK(gap > 2.5);
+  CHECK(gap < 6.0);
+}
+
+TEST_CASE("ASAM TrafficJam: Ego drives into the jam as asked, and stops before it under acc",
+          "[engine][acc][asam]") {
+  // The scenario gives Ego 36.1 m/s and no controller: an ideal driver meets the standing A5
+  // (same lane, 151 m ahead) after about 4 s. That collision is what the scenario asks for.
+  FixtureRun ideal(asam("TrafficJam.xosc"));
+  ideal.run();
+  REQUIRE_FALSE(ideal.sim().collisions().empty());
+  const auto& first = ideal.sim().collisions().front();
+  CHECK(first.time == Approx(4.05).margin(0.05));
+  CHECK(ideal.sim().entity(first.first).name == "Ego");
+  CHECK(ideal.sim().entity(first.second).name == "A5");
+
+  // With a car-following driver Ego stops behind A5: no collision at all.
+  corsa::engine::SimulationOptions options;
+  options.controller = "acc";
+  FixtureRun acc(asam("TrafficJam.xosc"), options);
+  acc.run();
+  CHECK_FALSE(collided(acc.sim(), acc.entity("Ego")));
+  CHECK(acc.now("Ego").speed < 5.0);  // from 36.1 m/s, still creeping up at the 10 s stop
+  CHECK(acc.now("Ego").pose.y < acc.now("A5").pose.y - 4.5);
+}
+
+TEST_CASE("Overridden brake, deactivation and assignment change who moves the vehicle",
+          "[engine][controllers]") {
+  FixtureRun run(engine_fixture("controller_override_activate.xosc"));
+  run.run();
+  // Braking at 50 % of maxDeceleration (10 m/s^2) from 2 s to 4 s: about 20 - 2 * 5 = 10 m/s
+  // (less the actuator lag); then the driver model brings it back toward 20 m/s.
+  const double at4 = run.at(4.0, "Dyn").speed;
+  CHECK(at4 < 12.0);
+  CHECK(at4 > 9.0);
+  CHECK(run.at(3.0, "Dyn").acceleration == Approx(-5.0).margin(0.3));
+  CHECK(run.at(5.5, "Dyn").speed > at4);
+  // Deactivated at 6 s: the default controller takes the commanded speed exactly.
+  CHECK(run.at(6.5, "Dyn").speed == Approx(20.0).margin(1e-9));
+  // Ideal got the acc controller: with nothing ahead it drives the commanded speed.
+  CHECK(run.now("Ideal").speed == Approx(20.0).margin(1e-9));
+}
+
+TEST_CASE("--controller dynamics drives the vehicles of a bundled scenario to its end",
+          "[engine][controllers][dynamics]") {
+  corsa::engine::SimulationOptions options;
+  options.controller = "dynamics";
+  options.duration = 120.0;
+  corsa::Diagnostics diagnostics;
+  const auto path = std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/cut_in.xosc";
+  const auto scenario = corsa::xosc::load_scenario(path, {}, diagnostics);
+  corsa::engine::Simulation sim(scenario, corsa::engine::load_road_network(scenario, diagnostics),
+                                options, diagnostics);
+  sim.run();
+  CHECK(sim.end_reason() == corsa::engine::EndReason::kStopTrigger);
+  for (size_t i = 0; i < sim.entity_count(); ++i) {
+    REQUIRE(sim.state(i).road);  // still on the motorway
+    CHECK(std::isfinite(sim.state(i).pose.x));
+  }
+  options.controller = "warp";
+  CHECK_THROWS_AS(
+      corsa::engine::Simulation(scenario, corsa::engine::load_road_network(scenario, diagnostics),
+                                options, diagnostics),
+      corsa::InputError);
+}
+
+TEST_CASE("ASAM EndOfTrafficJam: Ego's external controller is stood in for and activated",
+          "[engine][controllers][asam]") {
+  FixtureRun run(std::filesystem::path(CORSA_SHARED_DIR) /
+                 "conformance/asam-osc-1.3/EndOfTrafficJam.xosc");
+  run.run();
+  CHECK(run.sim().end_reason() == corsa::engine::EndReason::kStopTrigger);
+  bool warned = false;
+  for (const auto& d : run.diagnostics().all()) {
+    warned = warned || d.message.find("ExternalController") != std::string::npos;
+  }
+  CHECK(warned);
+  for (size_t i = 0; i < run.sim().entity_count(); ++i) {
+    const auto& s = run.sim().state(i);
+    REQUIRE(s.road);
+    CHECK(s.speed >= 0.0);
+    CHECK(s.speed < 60.0);
+  }
+  CHECK(run.sim().collisions().empty());
+}
+
+}  // namespace
+}  // namespace corsa::test
