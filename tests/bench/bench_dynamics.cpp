@@ -1,4 +1,4 @@
-// The dynamics controller (issue #6: a 50-vehicle scenario under it above 100x real time).
+// The dynamics controller on a 50-vehicle scenario (target: above 100x real time).
 // 50 cars on the bundled 2 km motorway, 25 each way in three lanes 50 m apart, each with a
 // speed change after a few seconds and every fifth a lane change; all under `--controller
 // dynamics` (SimulationOptions::controller). Each repetition runs 30 s of simulated time
@@ -17,7 +17,6 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -26,75 +25,34 @@
 #include "corsa/engine/simulation.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
+#include "motorway_fleet.h"
 
 namespace {
 
 constexpr int kVehicles = 50;
 constexpr double kSimSeconds = 30.0;
 
-std::string speed_action(double value, const char* shape, double time) {
-  std::ostringstream out;
-  out << "<PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics dynamicsShape=\""
-      << shape << "\" value=\"" << time
-      << "\" dynamicsDimension=\"time\"/><SpeedActionTarget><AbsoluteTargetSpeed value=\"" << value
-      << "\"/></SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction>";
-  return out.str();
-}
-
-std::string scenario_xml() {
-  std::ostringstream entities, init, groups;
+// The 50 cars: 25 each way in three lanes 50 m apart, each changing speed after 2-9 s, every
+// fifth changing lanes (toward the middle lane) after 12-17 s.
+std::vector<corsa::test::FleetVehicle> fleet() {
+  std::vector<corsa::test::FleetVehicle> vehicles;
   for (int i = 0; i < kVehicles; ++i) {
-    const int lane = (i % 2 == 0 ? -1 : 1) * (1 + (i / 2) % 3);
+    corsa::test::FleetVehicle v;
+    v.name = "D" + std::to_string(i);
+    v.lane = (i % 2 == 0 ? -1 : 1) * (1 + (i / 2) % 3);
     const int slot = i / 6;
-    const double s = lane < 0 ? 100.0 + 50.0 * slot : 1900.0 - 50.0 * slot;
-    entities << "<ScenarioObject name=\"D" << i << "\"><Vehicle name=\"car\" "
-             << "vehicleCategory=\"car\"><Performance maxSpeed=\"50\" maxAcceleration=\"4\" "
-             << "maxDeceleration=\"8\"/><BoundingBox><Center x=\"1.4\" y=\"0\" z=\"0.75\"/>"
-             << "<Dimensions width=\"1.8\" length=\"4.5\" height=\"1.5\"/></BoundingBox><Axles>"
-             << "<FrontAxle maxSteering=\"0.5\" wheelDiameter=\"0.6\" trackWidth=\"1.6\" "
-             << "positionX=\"2.8\" positionZ=\"0.3\"/><RearAxle maxSteering=\"0\" "
-             << "wheelDiameter=\"0.6\" trackWidth=\"1.6\" positionX=\"0\" positionZ=\"0.3\"/>"
-             << "</Axles></Vehicle></ScenarioObject>";
-    init << "<Private entityRef=\"D" << i << "\"><PrivateAction><TeleportAction><Position>"
-         << "<LanePosition roadId=\"1\" laneId=\"" << lane << "\" s=\"" << s << "\"/>"
-         << "</Position></TeleportAction></PrivateAction>" << speed_action(24 + i % 5, "step", 0)
-         << "</Private>";
-    groups << "<ManeuverGroup maximumExecutionCount=\"1\" name=\"G" << i << "\"><Actors "
-           << "selectTriggeringEntities=\"false\"><EntityRef entityRef=\"D" << i << "\"/>"
-           << "</Actors><Maneuver name=\"M\"><Event name=\"Vary\" priority=\"parallel\">"
-           << "<Action name=\"Speed\">" << speed_action(20 + i % 7, "cubic", 4) << "</Action>"
-           << "<StartTrigger><ConditionGroup><Condition name=\"t\" delay=\"0\" "
-           << "conditionEdge=\"rising\"><ByValueCondition><SimulationTimeCondition value=\""
-           << 2 + i % 8 << "\" rule=\"greaterThan\"/></ByValueCondition></Condition>"
-           << "</ConditionGroup></StartTrigger></Event>";
+    v.s = v.lane < 0 ? 100.0 + 50.0 * slot : 1900.0 - 50.0 * slot;
+    v.speed = 24 + i % 5;
+    v.speed_change = corsa::test::FleetVehicle::SpeedChange{20.0 + i % 7, 4.0, 2.0 + i % 8};
     if (i % 5 == 0) {
       // Toward the middle lane: the outer lanes move left, the others right.
-      const int delta = std::abs(lane) == 1 ? -1 : 1;
-      groups << "<Event name=\"Change\" priority=\"parallel\"><Action name=\"Lane\">"
-             << "<PrivateAction><LateralAction><LaneChangeAction><LaneChangeActionDynamics "
-             << "dynamicsShape=\"sinusoidal\" value=\"4\" dynamicsDimension=\"time\"/>"
-             << "<LaneChangeTarget><RelativeTargetLane entityRef=\"D" << i << "\" value=\""
-             << (std::abs(lane) == 2 ? 0 : delta) << "\"/></LaneChangeTarget>"
-             << "</LaneChangeAction></LateralAction></PrivateAction></Action><StartTrigger>"
-             << "<ConditionGroup><Condition name=\"t\" delay=\"0\" conditionEdge=\"rising\">"
-             << "<ByValueCondition><SimulationTimeCondition value=\"" << 12 + i % 6
-             << "\" rule=\"greaterThan\"/></ByValueCondition></Condition></ConditionGroup>"
-             << "</StartTrigger></Event>";
+      const int delta = std::abs(v.lane) == 1 ? -1 : 1;
+      v.lane_change =
+          corsa::test::FleetVehicle::LaneChange{std::abs(v.lane) == 2 ? 0 : delta, 12.0 + i % 6};
     }
-    groups << "</Maneuver></ManeuverGroup>";
+    vehicles.push_back(v);
   }
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\"?><OpenSCENARIO><FileHeader revMajor=\"1\" revMinor=\"3\" "
-         "date=\"2026-01-01T00:00:00\" description=\"50 vehicles, dynamics\" author=\"Corsa\"/>"
-         "<ParameterDeclarations/><CatalogLocations/><RoadNetwork><LogicFile "
-         "filepath=\"maps/motorway_2km.xodr\"/></RoadNetwork><Entities>"
-      << entities.str() << "</Entities><Storyboard><Init><Actions>" << init.str()
-      << "</Actions></Init><Story name=\"Traffic\"><Act name=\"Drive\">" << groups.str()
-      << "</Act></Story><StopTrigger><ConditionGroup><Condition name=\"end\" delay=\"0\" "
-         "conditionEdge=\"none\"><ByValueCondition><SimulationTimeCondition value=\"3600\" "
-         "rule=\"greaterThan\"/></ByValueCondition></Condition></ConditionGroup></StopTrigger>"
-         "</Storyboard></OpenSCENARIO>";
-  return out.str();
+  return vehicles;
 }
 
 struct Timing {
@@ -135,8 +93,8 @@ int main(int argc, char** argv) {
   }
   corsa::Diagnostics diagnostics;
   const auto scenario = corsa::xosc::parse_scenario(
-      scenario_xml(), std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/dynamics.xosc", {},
-      diagnostics);
+      corsa::test::motorway_fleet_scenario(fleet(), "50 vehicles, dynamics"),
+      corsa::test::motorway_fleet_path(), {}, diagnostics);
   const auto map = corsa::engine::load_road_network(scenario, diagnostics);
   for (const std::string& controller : controllers) {
     const Timing t = median_run(scenario, map, controller, repetitions, diagnostics);

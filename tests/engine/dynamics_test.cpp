@@ -12,13 +12,13 @@
 #include <functional>
 #include <memory>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "controllers/dynamics_fleet.h"
 #include "controllers/dynamics_model.h"
 #include "engine_fixture.h"
+#include "motorway_fleet.h"
 
 namespace corsa::test {
 namespace {
@@ -103,52 +103,28 @@ constexpr double kLaneWidth = 3.5;  // straight.xodr
 
 // Vehicles on the bundled 2 km motorway, all under --controller dynamics: `count` of them, the
 // first changing lanes after 2 s, the others at other speeds in other lanes.
-std::string motorway_scenario(int count) {
-  std::ostringstream entities, init;
+std::vector<FleetVehicle> motorway_vehicles(int count) {
+  std::vector<FleetVehicle> vehicles;
   for (int i = 0; i < count; ++i) {
-    entities << "<ScenarioObject name=\"V" << i << "\"><Vehicle name=\"car\" "
-             << "vehicleCategory=\"car\"><Performance maxSpeed=\"50\" maxAcceleration=\"4\" "
-             << "maxDeceleration=\"8\"/><BoundingBox><Center x=\"1.4\" y=\"0\" z=\"0.75\"/>"
-             << "<Dimensions width=\"1.8\" length=\"4.5\" height=\"1.5\"/></BoundingBox><Axles>"
-             << "<FrontAxle maxSteering=\"0.5\" wheelDiameter=\"0.6\" trackWidth=\"1.6\" "
-             << "positionX=\"2.8\" positionZ=\"0.3\"/><RearAxle maxSteering=\"0\" "
-             << "wheelDiameter=\"0.6\" trackWidth=\"1.6\" positionX=\"0\" positionZ=\"0.3\"/>"
-             << "</Axles></Vehicle></ScenarioObject>";
-    init << "<Private entityRef=\"V" << i << "\"><PrivateAction><TeleportAction><Position>"
-         << "<LanePosition roadId=\"1\" laneId=\"" << -1 - i % 3 << "\" s=\"" << 100 + 40 * i
-         << "\"/></Position></TeleportAction></PrivateAction><PrivateAction><LongitudinalAction>"
-         << "<SpeedAction><SpeedActionDynamics dynamicsShape=\"step\" value=\"0\" "
-         << "dynamicsDimension=\"time\"/><SpeedActionTarget><AbsoluteTargetSpeed value=\""
-         << 20 + 3 * i << "\"/></SpeedActionTarget></SpeedAction></LongitudinalAction>"
-         << "</PrivateAction></Private>";
+    FleetVehicle v;
+    v.name = "V" + std::to_string(i);
+    v.lane = -1 - i % 3;
+    v.s = 100 + 40 * i;
+    v.speed = 20 + 3 * i;
+    if (i == 0) {
+      v.lane_change = FleetVehicle::LaneChange{-1, 2.0};
+    }
+    vehicles.push_back(v);
   }
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\"?><OpenSCENARIO><FileHeader revMajor=\"1\" revMinor=\"3\" "
-         "date=\"2026-01-01T00:00:00\" description=\"dynamics fleet\" author=\"Corsa\"/>"
-         "<ParameterDeclarations/><CatalogLocations/><RoadNetwork><LogicFile "
-         "filepath=\"maps/motorway_2km.xodr\"/></RoadNetwork><Entities>"
-      << entities.str() << "</Entities><Storyboard><Init><Actions>" << init.str()
-      << "</Actions></Init><Story name=\"S\"><Act name=\"A\"><ManeuverGroup "
-         "maximumExecutionCount=\"1\" name=\"G\"><Actors selectTriggeringEntities=\"false\">"
-         "<EntityRef entityRef=\"V0\"/></Actors><Maneuver name=\"M\"><Event name=\"Change\" "
-         "priority=\"parallel\"><Action name=\"Lane\"><PrivateAction><LateralAction>"
-         "<LaneChangeAction><LaneChangeActionDynamics dynamicsShape=\"sinusoidal\" value=\"4\" "
-         "dynamicsDimension=\"time\"/><LaneChangeTarget><RelativeTargetLane entityRef=\"V0\" "
-         "value=\"-1\"/></LaneChangeTarget></LaneChangeAction></LateralAction></PrivateAction>"
-         "</Action><StartTrigger><ConditionGroup><Condition name=\"t\" delay=\"0\" "
-         "conditionEdge=\"rising\"><ByValueCondition><SimulationTimeCondition value=\"2\" "
-         "rule=\"greaterThan\"/></ByValueCondition></Condition></ConditionGroup>"
-         "</StartTrigger></Event></Maneuver></ManeuverGroup></Act></Story><StopTrigger/>"
-         "</Storyboard></OpenSCENARIO>";
-  return out.str();
+  return vehicles;
 }
 
 // The states of V0 at every step of 10 s with `count` dynamics vehicles.
 std::vector<corsa::engine::EntityState> first_vehicle_trace(int count) {
   corsa::Diagnostics diagnostics;
   const auto scenario = corsa::xosc::parse_scenario(
-      motorway_scenario(count),
-      std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/dynamics_fleet.xosc", {}, diagnostics);
+      motorway_fleet_scenario(motorway_vehicles(count), "dynamics fleet"), motorway_fleet_path(),
+      {}, diagnostics);
   corsa::engine::SimulationOptions options;
   options.duration = 10.0;
   options.controller = "dynamics";
