@@ -47,8 +47,9 @@ std::vector<corsa::test::FleetVehicle> fleet() {
     if (i % 5 == 0) {
       // Toward the middle lane: the outer lanes move left, the others right.
       const int delta = std::abs(v.lane) == 1 ? -1 : 1;
-      v.lane_change =
-          corsa::test::FleetVehicle::LaneChange{std::abs(v.lane) == 2 ? 0 : delta, 12.0 + i % 6};
+      v.lane_change.emplace();
+      v.lane_change->lanes = std::abs(v.lane) == 2 ? 0 : delta;
+      v.lane_change->after = 12.0 + i % 6;
     }
     vehicles.push_back(v);
   }

@@ -1,4 +1,4 @@
-// Engine stepping throughput (issue #5: above 2 million entity-steps per second on a
+// Engine stepping throughput (target: above 2 million entity-steps per second on a
 // 100-vehicle scenario). 100 cars on the bundled 2 km motorway, 50 each way in three lanes,
 // every one with an event that changes its speed after a few seconds and every tenth a lane
 // change; each iteration runs 10 s of simulated time (1,000 steps of 0.01 s) on a fresh
@@ -10,104 +10,47 @@
 
 #include <filesystem>
 #include <memory>
-#include <sstream>
 #include <string>
+#include <vector>
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/engine/run.h"
 #include "corsa/engine/simulation.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
+#include "motorway_fleet.h"
 
 namespace {
 
 constexpr int kVehicles = 100;
 constexpr int kSteps = 1000;
 
-std::string vehicle_xml(int i) {
-  std::ostringstream out;
-  out << "<ScenarioObject name=\"V" << i << "\"><Vehicle name=\"car\" vehicleCategory=\"car\">"
-      << "<Performance maxSpeed=\"60\" maxAcceleration=\"6\" maxDeceleration=\"9\"/>"
-      << "<BoundingBox><Center x=\"1.4\" y=\"0\" z=\"0.75\"/>"
-      << "<Dimensions width=\"1.8\" length=\"4.5\" height=\"1.5\"/></BoundingBox>"
-      << "<Axles><FrontAxle maxSteering=\"0.5\" wheelDiameter=\"0.6\" trackWidth=\"1.6\" "
-         "positionX=\"2.8\" positionZ=\"0.3\"/><RearAxle maxSteering=\"0\" wheelDiameter=\"0.6\" "
-         "trackWidth=\"1.6\" positionX=\"0\" "
-         "positionZ=\"0.3\"/></Axles></Vehicle></ScenarioObject>";
-  return out.str();
-}
-
-// Vehicle i: lane 1..3 (toward -s) for even i, -1..-3 (toward +s) for odd i, 40 m apart.
-std::string init_xml(int i) {
-  const int lane = (i % 2 == 0 ? 1 : -1) * (1 + (i / 2) % 3);
-  const int slot = i / 6;
-  const double s = lane > 0 ? 1900.0 - 40.0 * slot : 100.0 + 40.0 * slot;
-  std::ostringstream out;
-  out << "<Private entityRef=\"V" << i << "\"><PrivateAction><TeleportAction><Position>"
-      << "<LanePosition roadId=\"1\" laneId=\"" << lane << "\" s=\"" << s << "\"/>"
-      << "</Position></TeleportAction></PrivateAction><PrivateAction><LongitudinalAction>"
-      << "<SpeedAction><SpeedActionDynamics dynamicsShape=\"step\" value=\"0\" "
-         "dynamicsDimension=\"time\"/><SpeedActionTarget><AbsoluteTargetSpeed value=\""
-      << 25 + (i % 7) << "\"/></SpeedActionTarget></SpeedAction></LongitudinalAction>"
-      << "</PrivateAction></Private>";
-  return out.str();
-}
-
-std::string group_xml(int i) {
-  std::ostringstream out;
-  out << "<ManeuverGroup maximumExecutionCount=\"1\" name=\"G" << i << "\"><Actors "
-      << "selectTriggeringEntities=\"false\"><EntityRef entityRef=\"V" << i << "\"/></Actors>"
-      << "<Maneuver name=\"M\"><Event name=\"Vary\" priority=\"parallel\"><Action name=\"Speed\">"
-      << "<PrivateAction><LongitudinalAction><SpeedAction><SpeedActionDynamics "
-         "dynamicsShape=\"cubic\" value=\"3\" dynamicsDimension=\"time\"/><SpeedActionTarget>"
-         "<AbsoluteTargetSpeed value=\""
-      << 22 + (i % 5) << "\"/></SpeedActionTarget></SpeedAction></LongitudinalAction>"
-      << "</PrivateAction></Action><StartTrigger><ConditionGroup><Condition name=\"t\" "
-         "delay=\"0\" conditionEdge=\"rising\"><ByValueCondition><SimulationTimeCondition value=\""
-      << 1 + i % 6 << "\" rule=\"greaterThan\"/></ByValueCondition></Condition>"
-      << "</ConditionGroup></StartTrigger></Event>";
-  if (i % 10 == 0) {
-    // Outer lanes move one lane in (to the left of their direction of travel).
-    out << "<Event name=\"Change\" priority=\"parallel\"><Action name=\"Lane\"><PrivateAction>"
-        << "<LateralAction><LaneChangeAction><LaneChangeActionDynamics dynamicsShape="
-           "\"sinusoidal\" value=\"3\" dynamicsDimension=\"time\"/><LaneChangeTarget>"
-           "<RelativeTargetLane entityRef=\"V"
-        << i << "\" value=\"" << ((i / 2) % 3 == 2 ? 1 : 0) << "\"/></LaneChangeTarget>"
-        << "</LaneChangeAction></LateralAction></PrivateAction></Action><StartTrigger>"
-        << "<ConditionGroup><Condition name=\"near\" delay=\"0\" conditionEdge=\"none\">"
-        << "<ByEntityCondition><TriggeringEntities triggeringEntitiesRule=\"any\"><EntityRef "
-           "entityRef=\"V"
-        << i
-        << "\"/></TriggeringEntities><EntityCondition><TraveledDistanceCondition "
-           "value=\"60\"/></EntityCondition></ByEntityCondition></Condition>"
-        << "</ConditionGroup></StartTrigger></Event>";
-  }
-  out << "</Maneuver></ManeuverGroup>";
-  return out.str();
-}
-
-std::string scenario_xml() {
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\"?><OpenSCENARIO><FileHeader revMajor=\"1\" revMinor=\"3\" "
-         "date=\"2026-01-01T00:00:00\" description=\"100 vehicles\" author=\"Corsa\"/>"
-         "<ParameterDeclarations/><CatalogLocations/><RoadNetwork><LogicFile "
-         "filepath=\"maps/motorway_2km.xodr\"/></RoadNetwork><Entities>";
+// Vehicle i: lane 1..3 (toward -s) for even i, -1..-3 (toward +s) for odd i, 40 m apart; a speed
+// change after 1-6 s; every tenth on an outer lane moves one lane in (to the left of its
+// direction of travel) once it has driven 60 m.
+std::vector<corsa::test::FleetVehicle> fleet() {
+  std::vector<corsa::test::FleetVehicle> vehicles;
   for (int i = 0; i < kVehicles; ++i) {
-    out << vehicle_xml(i);
+    corsa::test::FleetVehicle v;
+    v.name = "V" + std::to_string(i);
+    v.lane = (i % 2 == 0 ? 1 : -1) * (1 + (i / 2) % 3);
+    const int slot = i / 6;
+    v.s = v.lane > 0 ? 1900.0 - 40.0 * slot : 100.0 + 40.0 * slot;
+    v.speed = 25 + (i % 7);
+    v.max_speed = 60.0;
+    v.max_acceleration = 6.0;
+    v.max_deceleration = 9.0;
+    v.speed_change = corsa::test::FleetVehicle::SpeedChange{22.0 + (i % 5), 3.0, 1.0 + i % 6};
+    if (i % 10 == 0) {
+      corsa::test::FleetVehicle::LaneChange change;
+      change.lanes = (i / 2) % 3 == 2 ? 1 : 0;
+      change.duration = 3.0;
+      change.after_traveled = 60.0;
+      v.lane_change = change;
+    }
+    vehicles.push_back(v);
   }
-  out << "</Entities><Storyboard><Init><Actions>";
-  for (int i = 0; i < kVehicles; ++i) {
-    out << init_xml(i);
-  }
-  out << "</Actions></Init><Story name=\"Traffic\"><Act name=\"Drive\">";
-  for (int i = 0; i < kVehicles; ++i) {
-    out << group_xml(i);
-  }
-  out << "</Act></Story><StopTrigger><ConditionGroup><Condition name=\"end\" delay=\"0\" "
-         "conditionEdge=\"none\"><ByValueCondition><SimulationTimeCondition value=\"3600\" "
-         "rule=\"greaterThan\"/></ByValueCondition></Condition></ConditionGroup></StopTrigger>"
-         "</Storyboard></OpenSCENARIO>";
-  return out.str();
+  return vehicles;
 }
 
 struct Fixture {
@@ -117,8 +60,8 @@ struct Fixture {
 
   Fixture()
       : scenario(corsa::xosc::parse_scenario(
-            scenario_xml(), std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/traffic.xosc", {},
-            diagnostics)),
+            corsa::test::motorway_fleet_scenario(fleet(), "100 vehicles"),
+            corsa::test::motorway_fleet_path(), {}, diagnostics)),
         map(corsa::engine::load_road_network(scenario, diagnostics)) {}
 };
 

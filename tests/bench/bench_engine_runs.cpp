@@ -1,4 +1,4 @@
-// Whole `corsa run` processes on the ASAM OpenSCENARIO 1.3 examples (issue #5: each under
+// Whole `corsa run` processes on the ASAM OpenSCENARIO 1.3 examples (target: each under
 // 30 ms on this machine; a widely used peer needs 250-500 ms, mostly loading the map): every
 // example is run `runs` times (default 11) with --quiet and no outputs. Printed per example: the
 // median and the fastest wall time of the process, and the median CPU time (user + system) it

@@ -112,7 +112,9 @@ std::vector<FleetVehicle> motorway_vehicles(int count) {
     v.s = 100 + 40 * i;
     v.speed = 20 + 3 * i;
     if (i == 0) {
-      v.lane_change = FleetVehicle::LaneChange{-1, 2.0};
+      v.lane_change.emplace();
+      v.lane_change->lanes = -1;
+      v.lane_change->after = 2.0;
     }
     vehicles.push_back(v);
   }

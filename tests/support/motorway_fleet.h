@@ -13,13 +13,17 @@
 
 namespace corsa::test {
 
-/// One vehicle: a 4.5 m x 1.8 m car (Performance maxSpeed 50 m/s, maxAcceleration 4 m/s^2,
-/// maxDeceleration 8 m/s^2; axles for the dynamics model) placed on road 1.
+/// One vehicle: a 4.5 m x 1.8 m car (with axles for the dynamics model) placed on road 1.
 struct FleetVehicle {
   std::string name;
   int lane = -1;       ///< OpenDRIVE lane id (negative: right of the reference line, toward +s)
   double s = 0.0;      ///< m along road 1
   double speed = 0.0;  ///< m/s, set at once in Init
+
+  /// Performance: maxSpeed (m/s), maxAcceleration and maxDeceleration (m/s^2).
+  double max_speed = 50.0;
+  double max_acceleration = 4.0;
+  double max_deceleration = 8.0;
 
   /// A SpeedAction to `speed` (m/s), cubic over `duration` s, once the simulation time is past
   /// `after` s.
@@ -31,10 +35,13 @@ struct FleetVehicle {
   std::optional<SpeedChange> speed_change;
 
   /// A LaneChangeAction by `lanes` relative to the vehicle's own lane (OpenSCENARIO sign: + to
-  /// the left), sinusoidal over 4 s, once the simulation time is past `after` s.
+  /// the left), sinusoidal over `duration` s, once the simulation time is past `after` s, or,
+  /// with `after_traveled`, once the vehicle has driven that many metres.
   struct LaneChange {
     int lanes = 0;
     double after = 0.0;
+    double duration = 4.0;
+    std::optional<double> after_traveled;
   };
   std::optional<LaneChange> lane_change;
 };
@@ -59,15 +66,30 @@ inline std::string fleet_time_trigger(double after) {
   return out.str();
 }
 
-inline std::string fleet_vehicle_object(const std::string& name) {
-  return "<ScenarioObject name=\"" + name +
-         "\"><Vehicle name=\"car\" vehicleCategory=\"car\"><Performance maxSpeed=\"50\" "
-         "maxAcceleration=\"4\" maxDeceleration=\"8\"/><BoundingBox><Center x=\"1.4\" y=\"0\" "
-         "z=\"0.75\"/><Dimensions width=\"1.8\" length=\"4.5\" height=\"1.5\"/></BoundingBox>"
-         "<Axles><FrontAxle maxSteering=\"0.5\" wheelDiameter=\"0.6\" trackWidth=\"1.6\" "
-         "positionX=\"2.8\" positionZ=\"0.3\"/><RearAxle maxSteering=\"0\" wheelDiameter=\"0.6\" "
-         "trackWidth=\"1.6\" positionX=\"0\" positionZ=\"0.3\"/></Axles></Vehicle>"
-         "</ScenarioObject>";
+// The vehicle's lane change starts once it has driven `traveled` m.
+inline std::string fleet_distance_trigger(const std::string& name, double traveled) {
+  std::ostringstream out;
+  out << "<StartTrigger><ConditionGroup><Condition name=\"near\" delay=\"0\" "
+      << "conditionEdge=\"none\"><ByEntityCondition><TriggeringEntities "
+      << "triggeringEntitiesRule=\"any\"><EntityRef entityRef=\"" << name
+      << "\"/></TriggeringEntities><EntityCondition><TraveledDistanceCondition value=\"" << traveled
+      << "\"/></EntityCondition></ByEntityCondition></Condition>"
+      << "</ConditionGroup></StartTrigger>";
+  return out.str();
+}
+
+inline std::string fleet_vehicle_object(const FleetVehicle& v) {
+  std::ostringstream out;
+  out << "<ScenarioObject name=\"" << v.name << "\"><Vehicle name=\"car\" "
+      << "vehicleCategory=\"car\"><Performance maxSpeed=\"" << v.max_speed
+      << "\" maxAcceleration=\"" << v.max_acceleration << "\" maxDeceleration=\""
+      << v.max_deceleration << "\"/><BoundingBox><Center x=\"1.4\" y=\"0\" z=\"0.75\"/>"
+      << "<Dimensions width=\"1.8\" length=\"4.5\" height=\"1.5\"/></BoundingBox><Axles>"
+      << "<FrontAxle maxSteering=\"0.5\" wheelDiameter=\"0.6\" trackWidth=\"1.6\" "
+      << "positionX=\"2.8\" positionZ=\"0.3\"/><RearAxle maxSteering=\"0\" "
+      << "wheelDiameter=\"0.6\" trackWidth=\"1.6\" positionX=\"0\" positionZ=\"0.3\"/>"
+      << "</Axles></Vehicle></ScenarioObject>";
+  return out.str();
 }
 
 // The maneuver group of vehicle `index` (its speed and lane changes), or "" without any.
@@ -87,11 +109,15 @@ inline std::string fleet_group(const FleetVehicle& v, size_t index) {
   if (v.lane_change) {
     out << "<Event name=\"Change\" priority=\"parallel\"><Action name=\"Lane\">"
         << "<PrivateAction><LateralAction><LaneChangeAction><LaneChangeActionDynamics "
-        << "dynamicsShape=\"sinusoidal\" value=\"4\" dynamicsDimension=\"time\"/>"
+        << "dynamicsShape=\"sinusoidal\" value=\"" << v.lane_change->duration
+        << "\" dynamicsDimension=\"time\"/>"
         << "<LaneChangeTarget><RelativeTargetLane entityRef=\"" << v.name << "\" value=\""
         << v.lane_change->lanes << "\"/></LaneChangeTarget>"
         << "</LaneChangeAction></LateralAction></PrivateAction></Action>"
-        << fleet_time_trigger(v.lane_change->after) << "</Event>";
+        << (v.lane_change->after_traveled
+                ? fleet_distance_trigger(v.name, *v.lane_change->after_traveled)
+                : fleet_time_trigger(v.lane_change->after))
+        << "</Event>";
   }
   out << "</Maneuver></ManeuverGroup>";
   return out.str();
@@ -107,7 +133,7 @@ inline std::string motorway_fleet_scenario(const std::vector<FleetVehicle>& vehi
   std::ostringstream entities, init, groups;
   for (size_t i = 0; i < vehicles.size(); ++i) {
     const FleetVehicle& v = vehicles[i];
-    entities << detail::fleet_vehicle_object(v.name);
+    entities << detail::fleet_vehicle_object(v);
     init << "<Private entityRef=\"" << v.name << "\"><PrivateAction><TeleportAction><Position>"
          << "<LanePosition roadId=\"1\" laneId=\"" << v.lane << "\" s=\"" << v.s << "\"/>"
          << "</Position></TeleportAction></PrivateAction>"
