@@ -9,6 +9,13 @@
 namespace corsa::engine::detail {
 namespace {
 
+using StoryNode = Storyboard::StoryNode;
+using ActNode = Storyboard::ActNode;
+using GroupNode = Storyboard::GroupNode;
+using ManeuverNode = Storyboard::ManeuverNode;
+using EventNode = Storyboard::EventNode;
+using ActionNode = Storyboard::ActionNode;
+
 // Absolute road and lane positions of teleports are checked before the run: an entity sent to
 // a missing road or lane is a located error now rather than in the middle of the run.
 void check_teleport(const xosc::Action& action, const SimState& state) {
@@ -25,75 +32,90 @@ void check_teleport(const xosc::Action& action, const SimState& state) {
   }
 }
 
+// The nodes of one event and its actions. Elements are added depth first, in document order
+// (their indexes are their identity in the element table).
+void build_event(EventNode& node, const xosc::Event& event, ManeuverNode& maneuver,
+                 SimState& state) {
+  node.def = &event;
+  node.maneuver = &maneuver;
+  node.element = state.elements.add(ElementType::kEvent, event.path);
+  node.actions.resize(event.actions.size());
+  for (size_t i = 0; i < event.actions.size(); ++i) {
+    ActionNode& action_node = node.actions[i];
+    action_node.def = &event.actions[i];
+    action_node.event = &node;
+    action_node.element = state.elements.add(ElementType::kAction, event.actions[i].path);
+    check_teleport(event.actions[i], state);
+  }
+}
+
+void build_group(GroupNode& node, const xosc::ManeuverGroup& group, ActNode& act, SimState& state) {
+  node.def = &group;
+  node.act = &act;
+  node.element = state.elements.add(ElementType::kManeuverGroup, group.path);
+  node.actors = expand_entity_refs(group.actors.entity_refs, state, group.actors.source);
+  node.maneuvers.resize(group.maneuvers.size());
+  for (size_t m = 0; m < group.maneuvers.size(); ++m) {
+    const xosc::Maneuver& maneuver = group.maneuvers[m];
+    ManeuverNode& maneuver_node = node.maneuvers[m];
+    maneuver_node.group = &node;
+    maneuver_node.element = state.elements.add(ElementType::kManeuver, maneuver.path);
+    maneuver_node.events.resize(maneuver.events.size());
+    for (size_t e = 0; e < maneuver.events.size(); ++e) {
+      build_event(maneuver_node.events[e], maneuver.events[e], maneuver_node, state);
+    }
+  }
+}
+
+std::unique_ptr<StoryNode> build_story(const xosc::Story& story, SimState& state) {
+  auto node = std::make_unique<StoryNode>();
+  node->element = state.elements.add(ElementType::kStory, story.path);
+  node->acts.resize(story.acts.size());
+  for (size_t a = 0; a < story.acts.size(); ++a) {
+    const xosc::Act& act = story.acts[a];
+    ActNode& act_node = node->acts[a];
+    act_node.def = &act;
+    act_node.story = node.get();
+    act_node.element = state.elements.add(ElementType::kAct, act.path);
+    act_node.groups.resize(act.maneuver_groups.size());
+    for (size_t g = 0; g < act.maneuver_groups.size(); ++g) {
+      build_group(act_node.groups[g], act.maneuver_groups[g], act_node, state);
+    }
+  }
+  return node;
+}
+
+// The start and stop triggers of an act and its events.
+void compile_triggers(ActNode& act, const SimState& state) {
+  if (act.def->start_trigger) {
+    act.start_trigger.emplace(*act.def->start_trigger, state);
+  }
+  if (act.def->stop_trigger) {
+    act.stop_trigger.emplace(*act.def->stop_trigger, state);
+  }
+  for (GroupNode& group : act.groups) {
+    for (ManeuverNode& maneuver : group.maneuvers) {
+      for (EventNode& event : maneuver.events) {
+        if (event.def->start_trigger) {
+          event.start_trigger.emplace(*event.def->start_trigger, state);
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Storyboard::Storyboard(SimState& state) {
   const xosc::Storyboard& board = state.scenario.storyboard;
   root_ = state.elements.add(ElementType::kStoryboard, "");
   for (const xosc::Story& story : board.stories) {
-    auto story_node = std::make_unique<StoryNode>();
-    story_node->element = state.elements.add(ElementType::kStory, story.path);
-    story_node->acts.resize(story.acts.size());
-    for (size_t a = 0; a < story.acts.size(); ++a) {
-      const xosc::Act& act = story.acts[a];
-      ActNode& act_node = story_node->acts[a];
-      act_node.def = &act;
-      act_node.story = story_node.get();
-      act_node.element = state.elements.add(ElementType::kAct, act.path);
-      act_node.groups.resize(act.maneuver_groups.size());
-      for (size_t g = 0; g < act.maneuver_groups.size(); ++g) {
-        const xosc::ManeuverGroup& group = act.maneuver_groups[g];
-        GroupNode& group_node = act_node.groups[g];
-        group_node.def = &group;
-        group_node.act = &act_node;
-        group_node.element = state.elements.add(ElementType::kManeuverGroup, group.path);
-        group_node.actors =
-            expand_entity_refs(group.actors.entity_refs, state, group.actors.source);
-        group_node.maneuvers.resize(group.maneuvers.size());
-        for (size_t m = 0; m < group.maneuvers.size(); ++m) {
-          const xosc::Maneuver& maneuver = group.maneuvers[m];
-          ManeuverNode& maneuver_node = group_node.maneuvers[m];
-          maneuver_node.group = &group_node;
-          maneuver_node.element = state.elements.add(ElementType::kManeuver, maneuver.path);
-          maneuver_node.events.resize(maneuver.events.size());
-          for (size_t e = 0; e < maneuver.events.size(); ++e) {
-            const xosc::Event& event = maneuver.events[e];
-            EventNode& event_node = maneuver_node.events[e];
-            event_node.def = &event;
-            event_node.maneuver = &maneuver_node;
-            event_node.element = state.elements.add(ElementType::kEvent, event.path);
-            event_node.actions.resize(event.actions.size());
-            for (size_t i = 0; i < event.actions.size(); ++i) {
-              ActionNode& action_node = event_node.actions[i];
-              action_node.def = &event.actions[i];
-              action_node.event = &event_node;
-              action_node.element = state.elements.add(ElementType::kAction, event.actions[i].path);
-              check_teleport(event.actions[i], state);
-            }
-          }
-        }
-      }
-    }
-    stories_.push_back(std::move(story_node));
+    stories_.push_back(build_story(story, state));
   }
   // Triggers last: StoryboardElementStateConditions refer to elements anywhere in the tree.
   for (auto& story : stories_) {
     for (ActNode& act : story->acts) {
-      if (act.def->start_trigger) {
-        act.start_trigger.emplace(*act.def->start_trigger, state);
-      }
-      if (act.def->stop_trigger) {
-        act.stop_trigger.emplace(*act.def->stop_trigger, state);
-      }
-      for (GroupNode& group : act.groups) {
-        for (ManeuverNode& maneuver : group.maneuvers) {
-          for (EventNode& event : maneuver.events) {
-            if (event.def->start_trigger) {
-              event.start_trigger.emplace(*event.def->start_trigger, state);
-            }
-          }
-        }
-      }
+      compile_triggers(act, state);
     }
   }
   if (board.stop_trigger) {
