@@ -2,24 +2,11 @@
 // that of a named entity, or of any entity of a type (ByType).
 
 #include "conditions/condition_makers.h"
+#include "state/entity_builder.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {
-
-ObjectKind object_kind(xosc::ObjectType type) {
-  switch (type) {
-    case xosc::ObjectType::kVehicle:
-      return ObjectKind::kVehicle;
-    case xosc::ObjectType::kPedestrian:
-      return ObjectKind::kPedestrian;
-    case xosc::ObjectType::kMiscellaneous:
-      return ObjectKind::kMiscObject;
-    case xosc::ObjectType::kExternal:
-      return ObjectKind::kExternal;
-  }
-  return ObjectKind::kVehicle;
-}
 
 class CollisionCheck final : public EntityCondition {
  public:

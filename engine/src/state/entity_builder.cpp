@@ -88,6 +88,20 @@ EntityInfo describe_object(const xosc::ScenarioObject& object, Diagnostics& diag
   return info;
 }
 
+ObjectKind object_kind(xosc::ObjectType type) {
+  switch (type) {
+    case xosc::ObjectType::kVehicle:
+      return ObjectKind::kVehicle;
+    case xosc::ObjectType::kPedestrian:
+      return ObjectKind::kPedestrian;
+    case xosc::ObjectType::kMiscellaneous:
+      return ObjectKind::kMiscObject;
+    case xosc::ObjectType::kExternal:
+      return ObjectKind::kExternal;
+  }
+  return ObjectKind::kVehicle;
+}
+
 void build_entities(SimState& state) {
   const auto& objects = state.scenario.entities.objects;
   state.world.entities.reserve(objects.size());

@@ -5,6 +5,7 @@
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/engine/entity_state.h"
+#include "corsa/xosc/enums.h"
 
 namespace corsa::xosc {
 struct ScenarioObject;
@@ -17,6 +18,10 @@ struct SimState;
 /// Kind, category, box and performance of a scenario object (also of the objects traffic
 /// generators spawn).
 EntityInfo describe_object(const xosc::ScenarioObject& object, Diagnostics& diagnostics);
+
+/// The entity kind an OpenSCENARIO ObjectType names (ByType in CollisionCondition and entity
+/// selections).
+ObjectKind object_kind(xosc::ObjectType type);
 
 /// Fills state.world. ExternalObjectReferences (objects only the simulator would know) get an
 /// empty box and a warning.

@@ -3,24 +3,11 @@
 #include <algorithm>
 
 #include "corsa/xosc/scenario.h"
+#include "state/entity_builder.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {
-
-ObjectKind kind_of(xosc::ObjectType type) {
-  switch (type) {
-    case xosc::ObjectType::kPedestrian:
-      return ObjectKind::kPedestrian;
-    case xosc::ObjectType::kMiscellaneous:
-      return ObjectKind::kMiscObject;
-    case xosc::ObjectType::kExternal:
-      return ObjectKind::kExternal;
-    case xosc::ObjectType::kVehicle:
-      return ObjectKind::kVehicle;
-  }
-  return ObjectKind::kVehicle;
-}
 
 void expand(const std::string& name, const SimState& state, const xosc::Source& source,
             std::vector<uint32_t>& out, int depth) {
@@ -40,7 +27,7 @@ void expand(const std::string& name, const SimState& state, const xosc::Source& 
   }
   for (const xosc::ByType& by_type : selection->by_type) {
     for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
-      if (state.world.entities[i].info.kind == kind_of(by_type.object_type)) {
+      if (state.world.entities[i].info.kind == object_kind(by_type.object_type)) {
         out.push_back(i);
       }
     }
