@@ -1,4 +1,4 @@
-// Road mesh figures (issue #3): per map, the time to build the full mesh (lanes and road marks)
+// Road mesh figures: per map, the time to build the full mesh (lanes and road marks)
 // at 0.1 m chord tolerance, its size, and the time to write it as binary PLY to memory; then the
 // top-down picture of Town03 and Town04 at 2048 px. Medians of several runs (the machine is
 // shared and noisy). Target: Town04's full mesh under 120 ms.
@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "bench_util.h"
+#include "corsa/render/map_render.h"
 #include "corsa/xodr/map.h"
-#include "corsa/xodr/map_render.h"
 #include "corsa/xodr/mesh_io.h"
 #include "corsa/xodr/road_mesh.h"
 
@@ -60,11 +60,11 @@ void bench_map(const std::filesystem::path& path, int runs) {
 void bench_render(const std::filesystem::path& path, int runs) {
   corsa::Diagnostics diagnostics;
   const corsa::xodr::Map map = corsa::xodr::Map::load(path, diagnostics);
-  corsa::xodr::RenderOptions options;
+  corsa::render::RenderOptions options;
   options.size = 2048;
   std::string png;
   const double draw = median_ms(runs, [&] {
-    png = corsa::xodr::encode_png(corsa::xodr::render_map(map, options, diagnostics));
+    png = corsa::render::encode_png(corsa::render::render_map(map, options, diagnostics));
   });
   std::printf("render %-30s 2048 px: %8.1f ms (PNG %.2f MB)\n", path.filename().c_str(), draw,
               static_cast<double>(png.size()) / 1e6);

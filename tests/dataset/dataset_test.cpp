@@ -141,7 +141,7 @@ TEST_CASE("Bad data-collection input is reported with exit code 2", "[dataset][e
   CHECK(weather.exit_code == 2);
   CHECK_THAT(weather.err, Catch::Contains("unknown key 'hail'"));
 
-  // The engine options are the same as without a rig (engine/cli/run_options.h), checked alike.
+  // The engine options are the same as without a rig (apps/corsa/run_options.h), checked alike.
   const auto controller = run_small(dir.path() / "c", {"--controller", "autopilot"});
   CHECK(controller.exit_code == 2);
   CHECK_THAT(controller.err, Catch::Contains("--controller expects default, acc or dynamics"));

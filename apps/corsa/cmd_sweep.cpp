@@ -1,6 +1,6 @@
 // `corsa sweep DIST.xosc | SCENARIO.xosc --param ...`: the variants of a ParameterValueDistribution
 // or a quick grid, on every core or as one shard of a cluster job; `corsa sweep merge` joins the
-// shards. The work is in corsa_sweep (engine/sweep); this file parses, wires and prints.
+// shards. The work is in corsa_sweep (sweep/); this file parses, wires and prints.
 
 #include <cmath>
 #include <cstdlib>

@@ -2,7 +2,7 @@
 // triangle edges leave no seams), road marks drawn at least a pixel wide, then averaged down
 // (anti-aliasing) and the overlays drawn at full resolution.
 
-#include "corsa/xodr/map_render.h"
+#include "corsa/render/map_render.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +18,8 @@
 #include "corsa/xodr/road_mesh.h"
 #include "overlay.h"
 
-namespace corsa::xodr {
+namespace corsa::render {
+using namespace corsa::xodr;
 namespace {
 
 const cv::Scalar kBackground(226, 234, 232);  // BGR: a pale grey-green ground
@@ -233,4 +234,4 @@ MapPicture render_map(const Map& map, const RenderOptions& options,
   return picture;
 }
 
-}  // namespace corsa::xodr
+}  // namespace corsa::render

@@ -1,6 +1,6 @@
 // `corsa convert ngii DIR -o OUT.xodr [--tolerance M] [--report FILE] [--quiet]`: NGII HD road
 // layers to OpenDRIVE (in the plugin: the import needs PROJ and shapelib). Thin: arguments,
-// progress, printing; the work is corsa::ngii (xodr/ngii/).
+// progress, printing; the work is corsa::ngii (ngii/).
 
 #include <filesystem>
 #include <iostream>

@@ -56,7 +56,7 @@ TEST_CASE("the plugin with the heavy libraries loads on demand", "[cli][e2e][plu
 
 TEST_CASE("the corsa executable itself links none of the slow-to-load libraries", "[cli][plugin]") {
   // OpenCV and PROJ cost 100-300 ms to load; a scenario run must not pay for them (see
-  // engine/cli/plugin_api.h). ldd lists the shared libraries the executable needs.
+  // apps/corsa/plugin_api.h). ldd lists the shared libraries the executable needs.
   const std::string command = std::string("ldd ") + CORSA_BINARY;
   std::FILE* pipe = ::popen(command.c_str(), "r");
   REQUIRE(pipe != nullptr);

@@ -1,5 +1,5 @@
 // `corsa test SUITE`: a regression suite (manifest or folder) with expectations, golden
-// trajectories and a JUnit report. The work is in corsa_suite (engine/suite); this file parses,
+// trajectories and a JUnit report. The work is in corsa_suite (suite/); this file parses,
 // wires and prints.
 
 #include <filesystem>

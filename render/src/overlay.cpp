@@ -4,7 +4,8 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
-namespace corsa::xodr::detail {
+namespace corsa::render::detail {
+using namespace corsa::xodr;
 namespace {
 
 const cv::Scalar kInk(40, 40, 40);
@@ -98,4 +99,4 @@ void draw_north_arrow(cv::Mat& bgr, int margin) {
   halo_text(bgr, "N", cv::Point(cx - size.width / 2, tip - 4), font_scale);
 }
 
-}  // namespace corsa::xodr::detail
+}  // namespace corsa::render::detail

@@ -3,9 +3,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "corsa/core/atomic_file.h"
-#include "corsa/xodr/map_render.h"
+#include "corsa/render/map_render.h"
 
-namespace corsa::xodr {
+namespace corsa::render {
 
 std::string encode_png(const MapPicture& picture) {
   const cv::Mat rgb(picture.height, picture.width, CV_8UC3,
@@ -21,4 +21,4 @@ void write_png(const MapPicture& picture, const std::filesystem::path& path) {
   write_file_atomic(path, encode_png(picture), true);
 }
 
-}  // namespace corsa::xodr
+}  // namespace corsa::render

@@ -6,11 +6,12 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "corsa/core/diagnostic.h"
-#include "corsa/xodr/map_render.h"
+#include "corsa/render/map_render.h"
 #include "corsa/xodr/palette.h"
 #include "mesh_test_util.h"
 
 using namespace corsa::xodr;
+using namespace corsa::render;
 using namespace corsa::xodr::mesh_test;
 
 namespace {

@@ -3,9 +3,9 @@
 // Top-down picture of an OpenDRIVE map for people: lanes filled by type, junction areas tinted,
 // road marks painted, optional road ids, a scale bar and a north arrow, anti-aliased.
 //
-// Library corsa_xodr_render. It uses OpenCV inside (rasterising, PNG), which is why it is linked
-// into the plugin and not into the `corsa` executable (engine/cli/plugin_api.h); this header
-// exposes no OpenCV type.
+// Module render (library corsa_render), above xodr. It uses OpenCV inside (rasterising, PNG),
+// which is why it is a module of its own, linked into the plugin and not into the `corsa`
+// executable (apps/corsa/plugin_api.h); this header exposes no OpenCV type.
 
 #include <cstdint>
 #include <filesystem>
@@ -15,8 +15,10 @@
 #include "corsa/core/diagnostic.h"
 
 namespace corsa::xodr {
-
 class Map;
+}
+
+namespace corsa::render {
 
 struct RenderOptions {
   /// Pixels along the picture's longer side, margins included (used when `scale` is 0).
@@ -49,7 +51,7 @@ struct MapPicture {
 /// Draws `map`. Throws InputError (naming the map file) when the picture would exceed
 /// kMaxPictureSide on a side, and std::invalid_argument for options out of range (size below
 /// kMinPictureSide, negative scale). Road-mesh warnings go to `diagnostics`. Deterministic.
-MapPicture render_map(const Map& map, const RenderOptions& options,
+MapPicture render_map(const xodr::Map& map, const RenderOptions& options,
                       corsa::Diagnostics& diagnostics);
 
 /// PNG bytes of the picture.
@@ -57,4 +59,4 @@ std::string encode_png(const MapPicture& picture);
 /// Writes the PNG atomically (corsa::AtomicFile); throws InputError on an I/O error.
 void write_png(const MapPicture& picture, const std::filesystem::path& path);
 
-}  // namespace corsa::xodr
+}  // namespace corsa::render

@@ -8,8 +8,8 @@
 #include "commands.h"
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
+#include "corsa/render/map_render.h"
 #include "corsa/xodr/map.h"
-#include "corsa/xodr/map_render.h"
 #include "plugin_commands.h"
 
 namespace corsa::cli {
@@ -24,8 +24,8 @@ int map_render_body(std::span<const std::string> args) {
   parser.option("-o", "FILE", "output picture, .png (required)");
   parser.option("--size", "PX",
                 "pixels along the longer side (default 2048, " +
-                    std::to_string(xodr::kMinPictureSide) + ".." +
-                    std::to_string(xodr::kMaxPictureSide) + ")");
+                    std::to_string(render::kMinPictureSide) + ".." +
+                    std::to_string(render::kMaxPictureSide) + ")");
   parser.option("--scale", "M_PER_PX", "metres per pixel instead of --size");
   parser.flag("--road-ids", "write each road's id at its middle (not inside junctions)");
   parser.epilog("example:\n  corsa map render town.xodr -o town.png --size 4096 --road-ids");
@@ -42,16 +42,16 @@ int map_render_body(std::span<const std::string> args) {
     throw UsageError("-o " + *output + ": the picture is written as PNG; name it .png");
   }
   check_output_file(*output);  // before rendering; missing folders are made when written
-  xodr::RenderOptions options;
+  render::RenderOptions options;
   const auto size = parsed.integer("--size");
   const auto scale = parsed.number("--scale");
   if (size && scale) {
     throw UsageError("give --size or --scale, not both");
   }
   if (size) {
-    if (*size < xodr::kMinPictureSide || *size > xodr::kMaxPictureSide) {
-      throw UsageError("--size must be between " + std::to_string(xodr::kMinPictureSide) + " and " +
-                       std::to_string(xodr::kMaxPictureSide) + " pixels");
+    if (*size < render::kMinPictureSide || *size > render::kMaxPictureSide) {
+      throw UsageError("--size must be between " + std::to_string(render::kMinPictureSide) +
+                       " and " + std::to_string(render::kMaxPictureSide) + " pixels");
     }
     options.size = static_cast<int>(*size);
   }
@@ -65,8 +65,8 @@ int map_render_body(std::span<const std::string> args) {
 
   corsa::Diagnostics diagnostics([](const corsa::Diagnostic& d) { std::cerr << d << '\n'; });
   const xodr::Map map = xodr::Map::load(parsed.positionals().at(0), diagnostics);
-  const xodr::MapPicture picture = xodr::render_map(map, options, diagnostics);
-  xodr::write_png(picture, *output);
+  const render::MapPicture picture = render::render_map(map, options, diagnostics);
+  render::write_png(picture, *output);
   std::cout << "wrote " << *output << ": " << picture.width << " x " << picture.height
             << " pixels, " << corsa::format_fixed(picture.scale, 3) << " m per pixel\n";
   return kExitOk;
