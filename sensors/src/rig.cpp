@@ -6,13 +6,11 @@
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/diagnostic.h"
 #include "corsa/core/strings.h"
+#include "corsa/core/xsd_validator.h"
 #include "rig_schema_text.h"
-#include "xsd_validator.h"
 
 namespace corsa::sensors {
 namespace {
-
-using detail::ValidatedElement;
 
 // Beams of one LiDAR revolution at most: 16 x a 128-channel, 2048-column sensor.
 constexpr double kMaxBeamsPerRevolution = 4'194'304;
@@ -210,7 +208,7 @@ const SensorSpec* SensorRig::find(std::string_view sensor_name) const {
 }
 
 SensorRig parse_rig(std::string_view xml, const std::string& file) {
-  const detail::XsdSchema schema(detail::rig_schema_text());
+  const XsdSchema schema(detail::rig_schema_text());
   const ValidatedElement root = schema.validate(xml, file);
   SensorRig rig;
   rig.name = *root.find("name");

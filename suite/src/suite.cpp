@@ -9,15 +9,13 @@
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/diagnostic.h"
 #include "corsa/core/strings.h"
+#include "corsa/core/xsd_validator.h"
 #include "suite_schema_text.h"
-#include "xsd_validator.h"
 
 namespace corsa::suite {
 namespace {
 
 namespace fs = std::filesystem;
-using sensors::detail::ValidatedElement;
-using sensors::detail::XsdSchema;
 
 constexpr std::array<std::string_view, 7> kMetricNames = {
     "min_ttc",   "min_distance", "max_deceleration", "max_acceleration",

@@ -6,39 +6,12 @@
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
+#include "corsa/core/xml_errors.h"
 #include "corsa/xosc/expression.h"
 #include "schema_table.h"
 
 namespace corsa::xosc {
 namespace {
-
-std::string xml_error_text(tinyxml2::XMLError error) {
-  switch (error) {
-    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
-      return "mismatched closing tag";
-    case tinyxml2::XML_ERROR_PARSING_ELEMENT:
-      return "bad element (unclosed or mis-nested tag)";
-    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
-      return "bad attribute";
-    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT:
-      return "empty document";
-    case tinyxml2::XML_ERROR_PARSING_TEXT:
-      return "bad text";
-    case tinyxml2::XML_ERROR_PARSING_CDATA:
-      return "bad CDATA section";
-    case tinyxml2::XML_ERROR_PARSING_COMMENT:
-      return "bad comment";
-    case tinyxml2::XML_ERROR_PARSING_DECLARATION:
-      return "bad XML declaration";
-    case tinyxml2::XML_ERROR_PARSING_UNKNOWN:
-      return "bad markup";
-    case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED:
-      return "elements nested too deeply (tinyxml2 reads at most " +
-             std::to_string(TINYXML2_MAX_ELEMENT_DEPTH) + " levels)";
-    default:
-      return "cannot parse";
-  }
-}
 
 bool is_identifier(std::string_view text) {
   if (text.empty()) return false;
@@ -76,7 +49,7 @@ XmlFile parse_xml(std::string_view text, const std::filesystem::path& path) {
   if (error != tinyxml2::XML_SUCCESS) {
     // tinyxml2 gives line 0 for an empty (or all-whitespace, NUL-led) document: say line 1.
     throw InputError(make_error(*file.name, std::max(1, file.document->ErrorLineNum()),
-                                "malformed XML: " + xml_error_text(error)));
+                                "malformed XML: " + xml_error_words(error)));
   }
   if (file.document->RootElement() == nullptr) {
     throw InputError(make_error(*file.name, 1, "malformed XML: no root element"));

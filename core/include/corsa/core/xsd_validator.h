@@ -7,6 +7,9 @@
 // xs:double, xs:int or xs:boolean by min/max (in|ex)clusive, enumeration and pattern facets.
 // Anything else in a schema is our bug and throws std::logic_error when the schema is read.
 // Errors in the instance document throw corsa::InputError located at the offending line.
+//
+// Used for Corsa's own formats: sensor rigs (sensors) and suite manifests (suite). tinyxml2 reads
+// the documents inside; no tinyxml2 type shows here.
 
 #include <map>
 #include <memory>
@@ -15,7 +18,7 @@
 #include <string_view>
 #include <vector>
 
-namespace corsa::sensors::detail {
+namespace corsa {
 
 /// An element of a document that passed validation; attributes include the schema's defaults.
 struct ValidatedElement {
@@ -49,4 +52,4 @@ class XsdSchema {
   std::unique_ptr<Definitions> defs_;
 };
 
-}  // namespace corsa::sensors::detail
+}  // namespace corsa

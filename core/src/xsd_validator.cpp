@@ -1,4 +1,4 @@
-#include "xsd_validator.h"
+#include "corsa/core/xsd_validator.h"
 
 #include <tinyxml2.h>
 
@@ -8,8 +8,9 @@
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/core/strings.h"
+#include "corsa/core/xml_errors.h"
 
-namespace corsa::sensors::detail {
+namespace corsa {
 namespace {
 
 using tinyxml2::XMLElement;
@@ -243,11 +244,11 @@ XsdSchema::~XsdSchema() = default;
 XsdSchema::XsdSchema(XsdSchema&&) noexcept = default;
 XsdSchema& XsdSchema::operator=(XsdSchema&&) noexcept = default;
 
-}  // namespace corsa::sensors::detail
+}  // namespace corsa
 
 // --- instance validation --------------------------------------------------------------------
 
-namespace corsa::sensors::detail {
+namespace corsa {
 namespace {
 
 class InstanceValidator {
@@ -452,24 +453,6 @@ ValidatedElement InstanceValidator::element(const XMLElement& e, const std::stri
   return out;
 }
 
-std::string xml_error_words(tinyxml2::XMLError error) {
-  switch (error) {
-    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT:
-      return "empty document";
-    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
-      return "mismatched closing tag";
-    case tinyxml2::XML_ERROR_PARSING_ELEMENT:
-      return "bad element (unclosed or mis-nested tag, truncated file?)";
-    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
-      return "bad attribute";
-    case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED:
-      return "elements nested too deeply (tinyxml2 reads at most " +
-             std::to_string(TINYXML2_MAX_ELEMENT_DEPTH) + " levels)";
-    default:
-      return std::string("cannot parse (") + tinyxml2::XMLDocument::ErrorIDToName(error) + ")";
-  }
-}
-
 }  // namespace
 
 ValidatedElement XsdSchema::validate(std::string_view xml, const std::string& file) const {
@@ -489,4 +472,4 @@ ValidatedElement XsdSchema::validate(std::string_view xml, const std::string& fi
   return validator.element(*root, defs_->root_type, defs_->root_name);
 }
 
-}  // namespace corsa::sensors::detail
+}  // namespace corsa

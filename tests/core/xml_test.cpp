@@ -1,0 +1,90 @@
+#include <tinyxml2.h>
+
+#include <catch2/catch.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/core/xml_errors.h"
+#include "corsa/core/xsd_validator.h"
+
+namespace {
+
+// A schema of the subset Corsa's own formats use: a root with a required bounded attribute, a
+// defaulted one, and a sequence of one to two children.
+constexpr const char* kSchema = R"(<?xml version="1.0"?>
+<xs:schema xmlns:xs="http://www.w3.org/2001/XMLSchema">
+  <xs:element name="Root" type="RootType"/>
+  <xs:simpleType name="Rate">
+    <xs:restriction base="xs:double">
+      <xs:minExclusive value="0"/>
+      <xs:maxInclusive value="100"/>
+    </xs:restriction>
+  </xs:simpleType>
+  <xs:complexType name="RootType">
+    <xs:sequence>
+      <xs:element name="Item" type="ItemType" minOccurs="1" maxOccurs="2"/>
+    </xs:sequence>
+    <xs:attribute name="rate" type="Rate" use="required"/>
+    <xs:attribute name="mode" type="xs:string" default="plain"/>
+  </xs:complexType>
+  <xs:complexType name="ItemType">
+    <xs:attribute name="name" type="xs:string" use="required"/>
+  </xs:complexType>
+</xs:schema>)";
+
+corsa::Diagnostic error_of(const corsa::XsdSchema& schema, const std::string& xml) {
+  try {
+    schema.validate(xml, "doc.xml");
+  } catch (const corsa::InputError& error) {
+    return error.diagnostic();
+  }
+  FAIL("expected an InputError for: " << xml);
+  return {};
+}
+
+}  // namespace
+
+TEST_CASE("tinyxml2 parse errors are told in words", "[core][xml]") {
+  CHECK(corsa::xml_error_words(tinyxml2::XML_ERROR_MISMATCHED_ELEMENT) == "mismatched closing tag");
+  CHECK(corsa::xml_error_words(tinyxml2::XML_ERROR_EMPTY_DOCUMENT) == "empty document");
+  CHECK_THAT(corsa::xml_error_words(tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED),
+             Catch::Contains("nested too deeply"));
+  // An error without words of its own still names tinyxml2's id rather than saying nothing.
+  CHECK_THAT(corsa::xml_error_words(tinyxml2::XML_ERROR_FILE_NOT_FOUND),
+             Catch::Contains("XML_ERROR_FILE_NOT_FOUND"));
+}
+
+TEST_CASE("a document that follows the schema comes back with its defaults", "[core][xml][xsd]") {
+  const corsa::XsdSchema schema(kSchema);
+  const corsa::ValidatedElement root =
+      schema.validate("<Root rate=\"10\">\n  <Item name=\"a\"/>\n</Root>", "doc.xml");
+  CHECK(root.name == "Root");
+  REQUIRE(root.find("mode") != nullptr);
+  CHECK(*root.find("mode") == "plain");
+  REQUIRE(root.children.size() == 1);
+  CHECK(root.children[0].line == 2);
+  CHECK(*root.children[0].find("name") == "a");
+}
+
+TEST_CASE("documents that break the schema are located errors", "[core][xml][xsd]") {
+  const corsa::XsdSchema schema(kSchema);
+  const corsa::Diagnostic missing = error_of(schema, "<Root>\n<Item name=\"a\"/>\n</Root>");
+  CHECK(missing.file == "doc.xml");
+  CHECK(missing.line == 1);
+  CHECK_THAT(missing.message, Catch::Contains("<Root> needs the attribute 'rate'"));
+  const corsa::Diagnostic bound = error_of(schema, "<Root rate=\"0\"><Item name=\"a\"/></Root>");
+  CHECK_THAT(bound.message,
+             Catch::Contains("attribute 'rate' of <Root> is 0; it must be greater than 0"));
+  const corsa::Diagnostic extra = error_of(
+      schema,
+      "<Root rate=\"1\">\n<Item name=\"a\"/>\n<Item name=\"b\"/>\n<Item name=\"c\"/>\n</Root>");
+  CHECK(extra.line == 4);
+  const corsa::Diagnostic broken =
+      error_of(schema, "<Root rate=\"1\">\n<Item name=\"a\">\n</Root>");
+  CHECK_THAT(broken.message, Catch::StartsWith("not well-formed XML: "));
+}
+
+TEST_CASE("a schema outside the supported subset is a bug, not bad input", "[core][xml][xsd]") {
+  CHECK_THROWS_AS(corsa::XsdSchema("<xs:schema"), std::logic_error);
+}
