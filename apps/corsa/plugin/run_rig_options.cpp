@@ -1,10 +1,8 @@
 // Options of the plugin's `corsa run ... --rig` (see run_rig.h).
 
-#include <cmath>
 #include <stdexcept>
 
 #include "corsa/core/atomic_file.h"
-#include "corsa/core/strings.h"
 #include "run_options.h"
 #include "run_rig.h"
 
@@ -29,36 +27,37 @@ void declare_rig_run_options(ArgParser& parser) {
 
 RigRunOptions read_rig_run_options(const ParsedArgs& parsed) {
   RigRunOptions options;
-  options.run = read_run_options(parsed);
+  collect::DatasetRunOptions& dataset = options.dataset;
+  dataset.run = read_run_options(parsed);
   const auto rig = parsed.value("--rig");
   if (!rig || rig->empty()) {
     throw UsageError("missing --rig RIG.xml");
   }
-  options.rig = *rig;
+  dataset.rig = *rig;
   const auto output = parsed.value("-o");
   if (!output || output->empty()) {
     throw UsageError("missing -o DIR (the dataset folder to write)");
   }
   check_output_folder(*output);  // missing folders are made; a file on the way is refused
-  options.output = *output;
+  dataset.output = *output;
   if (const auto format = parsed.value("--format")) {
     if (*format == "kitti") {
-      options.format = sensors::DatasetFormat::kKitti;
+      dataset.format = sensors::DatasetFormat::kKitti;
     } else if (*format != "corsa") {
       throw UsageError("--format expects corsa or kitti, got '" + *format + "'");
     }
   }
-  options.force = parsed.flag("--force");
+  dataset.replace = parsed.flag("--force");
+  dataset.preview = parsed.flag("--preview");
   options.quiet = parsed.flag("--quiet");
-  options.preview = parsed.flag("--preview");
   try {
     if (const auto time = parsed.value("--time-of-day")) {
-      options.environment.time_of_day = engine::parse_time_of_day(*time);
-      options.time_of_day_text = *time;
+      dataset.environment.time_of_day = engine::parse_time_of_day(*time);
+      dataset.time_of_day_text = *time;
     }
     if (const auto weather = parsed.value("--weather")) {
-      engine::parse_weather(*weather, options.environment);
-      options.weather_text = *weather;
+      engine::parse_weather(*weather, dataset.environment);
+      dataset.weather_text = *weather;
     }
   } catch (const std::invalid_argument& error) {
     throw UsageError(error.what());
@@ -66,9 +65,15 @@ RigRunOptions read_rig_run_options(const ParsedArgs& parsed) {
   // --npc is the engine's (run_options.cpp): the NPCs are simulation entities; the text is kept
   // for run.json.
   if (const auto npc = parsed.value("--npc")) {
-    options.npc_text = *npc;
+    dataset.npc_text = *npc;
   }
-  options.models = parsed.values("--model");
+  for (const std::string& model : parsed.values("--model")) {
+    try {
+      dataset.models.push_back(collect::parse_model_spec(model));
+    } catch (const std::invalid_argument& error) {
+      throw UsageError(std::string("--model ") + error.what());
+    }
+  }
   return options;
 }
 

@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 using corsa::test::run_corsa;
 
 const std::string kDemo = "scenarios/demo/cut_in_city.xosc";
-const std::string kSmallRig = "tests/dataset/fixtures/small_rig.xml";
+const std::string kSmallRig = "tests/collect/fixtures/small_rig.xml";
 
 corsa::test::ProcessResult run_small(const fs::path& out, std::vector<std::string> extra) {
   std::vector<std::string> args{"run", kDemo, "--rig", kSmallRig, "-o", out.string(), "--quiet"};
@@ -78,7 +78,7 @@ TEST_CASE("Capture windows in the dataset follow the scenario's corsa:capture ac
           "[dataset][windows]") {
   corsa::test::TempDir dir;
   const auto result = run_corsa({"run", "tests/capture/fixtures/capture_windows.xosc", "--rig",
-                                 "tests/dataset/fixtures/windows_rig.xml", "-o",
+                                 "tests/collect/fixtures/windows_rig.xml", "-o",
                                  (dir.path() / "w").string(), "--quiet"});
   INFO(result.err);
   REQUIRE(result.exit_code == 0);

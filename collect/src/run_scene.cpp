@@ -1,20 +1,45 @@
-// The static scene and location of a `corsa run --rig` (see run_rig.h).
+// The static scene and location of a data-collection run (run_scene.h).
+
+#include "corsa/collect/run_scene.h"
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include "corsa/core/strings.h"
 #include "corsa/engine/simulation.h"
 #include "corsa/sensors/georeference.h"
-#include "corsa/sensors/model_io.h"
 #include "corsa/sensors/scene.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/road_mesh.h"
 #include "corsa/xosc/scenario.h"
-#include "run_rig.h"
 
-namespace corsa::cli {
-namespace {
+namespace corsa::collect {
+
+ModelSpec parse_model_spec(std::string_view text) {
+  ModelSpec spec;
+  const size_t at = text.rfind('@');
+  spec.file = std::string(text.substr(0, at));
+  if (at == std::string_view::npos) {
+    return spec;
+  }
+  const std::string expected = std::string(text) + ": expected FILE@X,Y[,HEADING_DEG]";
+  std::vector<double> values;
+  for (const std::string_view part : split(text.substr(at + 1), ',')) {
+    const auto value = parse_double(trim(part));
+    if (!value || !std::isfinite(*value)) {
+      throw std::invalid_argument(expected);
+    }
+    values.push_back(*value);
+  }
+  if (values.size() < 2 || values.size() > 3) {
+    throw std::invalid_argument(expected);
+  }
+  spec.placement.offset = {values[0], values[1], 0.0};
+  spec.placement.heading = values.size() == 3 ? values[2] * std::numbers::pi / 180.0 : 0.0;
+  return spec;
+}
 
 sensors::Vec3 map_centre(const xodr::Map* map) {
   if (map == nullptr) {
@@ -27,35 +52,8 @@ sensors::Vec3 map_centre(const xodr::Map* map) {
   return {};
 }
 
-// FILE[@X,Y[,HEADING_DEG]]
-std::vector<sensors::StaticMesh> load_model_option(const std::string& text) {
-  const size_t at = text.rfind('@');
-  sensors::ModelPlacement placement;
-  std::string file = text;
-  if (at != std::string::npos) {
-    file = text.substr(0, at);
-    const std::vector<std::string_view> parts = split(text.substr(at + 1), ',');
-    std::vector<double> values;
-    for (const std::string_view part : parts) {
-      const auto value = parse_double(trim(part));
-      if (!value || !std::isfinite(*value)) {
-        throw UsageError("--model " + text + ": expected FILE@X,Y[,HEADING_DEG]");
-      }
-      values.push_back(*value);
-    }
-    if (values.size() < 2 || values.size() > 3) {
-      throw UsageError("--model " + text + ": expected FILE@X,Y[,HEADING_DEG]");
-    }
-    placement.offset = {values[0], values[1], 0.0};
-    placement.heading = values.size() == 3 ? values[2] * std::numbers::pi / 180.0 : 0.0;
-  }
-  return sensors::load_model(file, placement);
-}
-
-}  // namespace
-
 std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simulation,
-                                                const std::vector<std::string>& models,
+                                                const std::vector<ModelSpec>& models,
                                                 Diagnostics& diagnostics) {
   const xodr::Map* map = simulation.map();
   auto scene = std::make_unique<sensors::Scene>(sensors::SceneOptions{map_centre(map)});
@@ -74,8 +72,8 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
       scene->add_static_mesh(std::move(mesh));
     }
   }
-  for (const std::string& model : models) {
-    for (sensors::StaticMesh& mesh : load_model_option(model)) {
+  for (const ModelSpec& model : models) {
+    for (sensors::StaticMesh& mesh : sensors::load_model(model.file, model.placement)) {
       scene->add_static_mesh(std::move(mesh));
     }
   }
@@ -103,4 +101,4 @@ sensors::GeoLocation run_location(const engine::Simulation& simulation, Diagnost
   return {};
 }
 
-}  // namespace corsa::cli
+}  // namespace corsa::collect

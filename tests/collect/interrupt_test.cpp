@@ -40,7 +40,7 @@ TEST_CASE("SIGINT leaves only complete captures and an index that says where it 
       _exit(99);
     }
     execl(CORSA_BINARY, CORSA_BINARY, "run", "scenarios/demo/cut_in_city.xosc", "--rig",
-          "tests/dataset/fixtures/small_rig.xml", "-o", out.c_str(), "--quiet",
+          "tests/collect/fixtures/small_rig.xml", "-o", out.c_str(), "--quiet",
           static_cast<char*>(nullptr));
     _exit(98);
   }

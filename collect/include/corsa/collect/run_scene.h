@@ -1,0 +1,53 @@
+#pragma once
+
+// The static world of a data-collection run: the map's road mesh, the scenario's SceneGraphFile
+// and extra building models, in one sensors::Scene, and where the map lies on Earth (for the sun).
+
+#include <filesystem>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/sensors/environment.h"
+#include "corsa/sensors/geometry.h"
+#include "corsa/sensors/model_io.h"
+
+namespace corsa::engine {
+class Simulation;
+}
+namespace corsa::xodr {
+class Map;
+}
+namespace corsa::sensors {
+class Scene;
+}
+
+namespace corsa::collect {
+
+/// A building model added to the scene (map metres, z up), e.g. from `--model FILE@X,Y,HEADING`.
+struct ModelSpec {
+  std::filesystem::path file;
+  sensors::ModelPlacement placement;  ///< offset (m, map frame) and heading (rad, from +x)
+};
+
+/// Reads "FILE[@X,Y[,HEADING_DEG]]": X, Y in map metres, the heading in degrees counter-clockwise
+/// from +x. Throws std::invalid_argument ("expected FILE@X,Y[,HEADING_DEG]") for anything else.
+ModelSpec parse_model_spec(std::string_view text);
+
+/// The middle of the map's header bounds (m, map frame), or the origin when the header gives no
+/// bounds (or `map` is null). The scene is centred there so that float coordinates stay small.
+sensors::Vec3 map_centre(const xodr::Map* map);
+
+/// The committed scene of a run: the road mesh of the simulation's map (when it has one), the
+/// scenario's SceneGraphFile (map coordinates; InputError located at the RoadNetwork when the
+/// file is missing) and `models`.
+std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simulation,
+                                                const std::vector<ModelSpec>& models,
+                                                Diagnostics& diagnostics);
+
+/// Where the map's centre lies on Earth, from its geoReference; Seoul with a warning when the map
+/// has none or it cannot be used.
+sensors::GeoLocation run_location(const engine::Simulation& simulation, Diagnostics& diagnostics);
+
+}  // namespace corsa::collect

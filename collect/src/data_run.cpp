@@ -1,0 +1,100 @@
+// One data-collection run attached to a simulation (data_run.h).
+
+#include "corsa/collect/data_run.h"
+
+#include <utility>
+
+#include "corsa/core/strings.h"
+#include "corsa/engine/simulation.h"
+#include "corsa/sensors/dataset_writer.h"
+#include "corsa/sensors/scene.h"
+#include "corsa/sensors/sensor_system.h"
+#include "corsa/xosc/scenario.h"
+
+namespace corsa::collect {
+
+DataRun::DataRun(const DatasetRunOptions& options, Diagnostics& diagnostics, sensors::SensorRig rig)
+    : options_(options), diagnostics_(diagnostics), rig_(std::move(rig)) {}
+
+DataRun::~DataRun() = default;
+
+void DataRun::prepare(engine::Simulation& simulation) {
+  std::vector<std::string> names;
+  for (size_t i = 0; i < simulation.entity_count(); ++i) {
+    names.push_back(simulation.entity(i).name);
+  }
+  sensors::bind_rig(rig_, names);
+  std::vector<engine::CaptureSensor> capture_sensors;
+  for (const sensors::SensorSpec& s : rig_.sensors) {
+    capture_sensors.push_back({s.name, s.rate_hz});
+  }
+  timeline_ = std::make_unique<engine::CaptureTimeline>(capture_sensors, simulation.scenario(),
+                                                        simulation.dt(), diagnostics_);
+  scene_ = build_run_scene(simulation, options_.models, diagnostics_);
+  sensors::SensorSystemOptions system_options;
+  system_options.seed = simulation.options().seed;
+  system_options.location = run_location(simulation, diagnostics_);
+  system_ = std::make_unique<sensors::SensorSystem>(rig_, *scene_, system_options);
+  sensors::DatasetRunInfo info;
+  info.scenario = options_.run.scenario.generic_string();
+  for (const auto& p : simulation.scenario().parameters) {
+    if (const auto value = simulation.parameter(p.name)) {
+      info.parameters.emplace_back(p.name, value->text());
+    }
+  }
+  info.seed = simulation.options().seed;
+  info.dt = simulation.dt();
+  info.duration = simulation.options().duration;
+  info.rig = options_.rig.generic_string();
+  info.time_of_day = options_.time_of_day_text;
+  info.weather = options_.weather_text;
+  info.npc = options_.npc_text;
+  engine::WorldSnapshot initial;
+  simulation.fill_snapshot(initial);
+  start_time_of_day_ = initial.environment.time_of_day;
+  // Last, once nothing else can fail: the dataset folder appears only for a run that starts.
+  writer_ = std::make_unique<sensors::DatasetWriter>(*system_, options_.output, std::move(info),
+                                                     options_.format, options_.replace);
+  timeline_->attach(simulation, *writer_, [this](engine::WorldSnapshot& world) { adjust(world); });
+}
+
+void DataRun::observe(const engine::Simulation& simulation) {
+  last_tick_ = simulation.tick();
+  last_time_ = simulation.time();
+}
+
+void DataRun::adjust(engine::WorldSnapshot& world) const {
+  if (!options_.environment.empty()) {
+    engine::apply_override(options_.environment, start_time_of_day_, world.environment);
+  }
+}
+
+void DataRun::finish(const std::string& status, const std::string& reason) const {
+  if (!writer_) {
+    return;
+  }
+  sensors::DatasetEnd end;
+  end.status = status;
+  end.end_reason = reason;
+  end.tick = last_tick_;
+  end.time = last_time_;
+  end.windows_json = capture_windows_json(timeline_->windows());
+  writer_->finish(end);
+}
+
+int64_t DataRun::captures() const { return writer_ ? writer_->captures() : 0; }
+
+int64_t DataRun::files() const { return writer_ ? writer_->files() : 0; }
+
+std::vector<std::string> capture_windows_json(std::span<const engine::CaptureWindow> windows) {
+  std::vector<std::string> json;
+  for (const engine::CaptureWindow& w : windows) {
+    json.push_back("{\"sensor\": " + json_quote(w.sensor) +
+                   ", \"open_tick\": " + std::to_string(w.open_tick) + ", \"close_tick\": " +
+                   (w.close_tick < 0 ? std::string("null") : std::to_string(w.close_tick)) +
+                   ", \"rate\": " + format_double(w.rate_hz) + "}");
+  }
+  return json;
+}
+
+}  // namespace corsa::collect

@@ -1,0 +1,66 @@
+// A whole data-collection run (dataset_run.h).
+//
+// engine::run_scenario with a `prepare` hook that sets up the DataRun once the simulation exists.
+// A stop request is checked between steps and ends the run by throwing out of the step callback,
+// so the capture in progress always completes and the dataset says where it stopped.
+
+#include "corsa/collect/dataset_run.h"
+
+#include "corsa/collect/data_run.h"
+#include "corsa/sensors/rig.h"
+#include "corsa/sensors/sensor_system.h"
+
+namespace corsa::collect {
+namespace {
+
+struct Stopped {
+  std::string reason;
+};
+
+}  // namespace
+
+DatasetRunReport run_dataset(const DatasetRunOptions& options, Diagnostics& diagnostics,
+                             const DatasetRunHooks& hooks) {
+  DataRun data(options, diagnostics, sensors::load_rig(options.rig));
+  engine::RunOptions run = options.run;
+  run.prepare = [&options, &data](engine::Simulation& simulation) {
+    if (options.run.prepare) {
+      options.run.prepare(simulation);
+    }
+    data.prepare(simulation);
+  };
+  DatasetRunReport report;
+  try {
+    report.run = engine::run_scenario(run, diagnostics, [&](const engine::Simulation& simulation) {
+      data.observe(simulation);  // where the run is, for run.json
+      if (hooks.stop) {
+        if (std::optional<std::string> reason = hooks.stop()) {
+          throw Stopped{std::move(*reason)};
+        }
+      }
+      if (hooks.on_step) {
+        hooks.on_step(simulation);
+      }
+    });
+  } catch (const Stopped& stopped) {
+    report.interrupted = true;
+    report.interruption = stopped.reason;
+  }
+  if (hooks.on_simulated) {
+    hooks.on_simulated();
+  }
+  if (report.interrupted) {
+    data.finish("interrupted", report.interruption);
+  } else {
+    data.finish("complete", std::string(engine::to_string(report.run.end_reason)));
+  }
+  report.dataset_started = data.started();
+  report.captures = data.captures();
+  report.files = data.files();
+  if (!report.interrupted && options.preview) {
+    report.preview = sensors::write_preview(options.output, data.system().rig(), diagnostics);
+  }
+  return report;
+}
+
+}  // namespace corsa::collect

@@ -1,0 +1,117 @@
+// The collect library on its own: --model texts, the capture windows of run.json, and whole
+// data-collection runs through collect::run_dataset (complete, and stopped by the caller).
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "corsa/collect/data_run.h"
+#include "corsa/collect/dataset_run.h"
+#include "corsa/core/atomic_file.h"
+#include "dataset_check.h"
+#include "temp_dir.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+corsa::collect::DatasetRunOptions small_run(const fs::path& output, double duration) {
+  corsa::collect::DatasetRunOptions options;
+  options.run.scenario = "scenarios/demo/cut_in_city.xosc";
+  options.run.simulation.duration = duration;
+  options.rig = "tests/collect/fixtures/small_rig.xml";
+  options.output = output;
+  return options;
+}
+
+}  // namespace
+
+TEST_CASE("model texts give the file, the offset in metres and the heading in radians",
+          "[collect][models]") {
+  const corsa::collect::ModelSpec plain = corsa::collect::parse_model_spec("city/block.glb");
+  CHECK(plain.file == "city/block.glb");
+  CHECK(plain.placement.offset.x == 0.0);
+  CHECK(plain.placement.heading == 0.0);
+
+  const corsa::collect::ModelSpec placed = corsa::collect::parse_model_spec("a@b.obj@12.5, -3,90");
+  CHECK(placed.file == "a@b.obj");  // the last '@' starts the placement
+  CHECK(placed.placement.offset.x == 12.5);
+  CHECK(placed.placement.offset.y == -3.0);
+  CHECK(placed.placement.heading == Approx(std::numbers::pi / 2));
+
+  for (const char* bad : {"m.obj@1", "m.obj@1,2,3,4", "m.obj@x,2", "m.obj@1,nan", "m.obj@"}) {
+    INFO(bad);
+    CHECK_THROWS_WITH(corsa::collect::parse_model_spec(bad),
+                      Catch::Contains("expected FILE@X,Y[,HEADING_DEG]"));
+  }
+}
+
+TEST_CASE("capture windows are recorded with their ticks, null while open", "[collect][windows]") {
+  const std::vector<corsa::engine::CaptureWindow> windows{{"cam", 0, 120, 10.0},
+                                                          {"lidar", 40, -1, 2.5}};
+  const std::vector<std::string> json = corsa::collect::capture_windows_json(windows);
+  REQUIRE(json.size() == 2);
+  CHECK(json[0] == R"({"sensor": "cam", "open_tick": 0, "close_tick": 120, "rate": 10})");
+  CHECK(json[1] == R"({"sensor": "lidar", "open_tick": 40, "close_tick": null, "rate": 2.5})");
+}
+
+TEST_CASE("a library call collects a complete dataset", "[collect][run]") {
+  corsa::test::TempDir dir;
+  const auto options = small_run(dir.path() / "data", 0.2);
+  corsa::Diagnostics diagnostics;
+  int64_t steps = 0;
+  corsa::collect::DatasetRunHooks hooks;
+  hooks.on_step = [&steps](const corsa::engine::Simulation&) { ++steps; };
+  const corsa::collect::DatasetRunReport report =
+      corsa::collect::run_dataset(options, diagnostics, hooks);
+  CHECK_FALSE(report.interrupted);
+  CHECK(report.dataset_started);
+  CHECK(steps == 20);
+  CHECK(report.run.steps == 20);
+  // 0.2 s at dt 0.01: ticks 0..20; the 10 Hz sensors at 0, 10, 20, the 5 Hz ones at 0 and 20.
+  CHECK(report.captures == 3);
+  CHECK(report.files == static_cast<int64_t>(corsa::test::read_index(options.output).size()));
+  CHECK(corsa::test::check_dataset(options.output, 192, 108).empty());
+  const std::string run_json = corsa::read_file(options.output / "run.json");
+  CHECK(corsa::test::json_string(run_json, "status") == "complete");
+  CHECK_FALSE(report.preview.has_value());
+}
+
+TEST_CASE("a run the caller stops leaves a consistent dataset that says why",
+          "[collect][run][interrupt]") {
+  corsa::test::TempDir dir;
+  const auto options = small_run(dir.path() / "data", 5.0);
+  corsa::Diagnostics diagnostics;
+  int64_t last_tick = 0;
+  bool simulated = false;
+  corsa::collect::DatasetRunHooks hooks;
+  hooks.on_step = [&last_tick](const corsa::engine::Simulation& s) { last_tick = s.tick(); };
+  hooks.stop = [&last_tick]() -> std::optional<std::string> {
+    return last_tick >= 15 ? std::optional<std::string>("stopped by the test") : std::nullopt;
+  };
+  hooks.on_simulated = [&simulated] { simulated = true; };
+  const corsa::collect::DatasetRunReport report =
+      corsa::collect::run_dataset(options, diagnostics, hooks);
+  CHECK(report.interrupted);
+  CHECK(report.interruption == "stopped by the test");
+  CHECK(simulated);
+  CHECK(report.captures == 2);  // ticks 0 and 10
+  CHECK(corsa::test::check_dataset(options.output, 192, 108).empty());
+  const std::string run_json = corsa::read_file(options.output / "run.json");
+  CHECK(corsa::test::json_string(run_json, "status") == "interrupted");
+  CHECK(corsa::test::json_string(run_json, "end_reason") == "stopped by the test");
+}
+
+TEST_CASE("a rig that cannot be read stops the run before any dataset folder appears",
+          "[collect][run][errors]") {
+  corsa::test::TempDir dir;
+  auto options = small_run(dir.path() / "data", 0.1);
+  options.rig = dir.path() / "missing_rig.xml";
+  corsa::Diagnostics diagnostics;
+  CHECK_THROWS_AS(corsa::collect::run_dataset(options, diagnostics), corsa::InputError);
+  CHECK_FALSE(fs::exists(options.output));
+}
