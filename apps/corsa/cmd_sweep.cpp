@@ -158,14 +158,9 @@ int run_sweep_command(std::span<const std::string> args) {
 }  // namespace
 
 int command_sweep(std::span<const std::string> args) {
-  try {
-    if (!args.empty() && args.front() == "merge") return run_merge(args.subspan(1));
-    return run_sweep_command(args);
-  } catch (const std::filesystem::filesystem_error& error) {
-    // The output folder cannot be written (permissions, disk full): the user's to fix, not a bug.
-    std::cerr << "corsa sweep: error: " << error.what() << '\n';
-    return kExitBadInput;
-  }
+  // An output folder that cannot be written is the user's to fix: guarded() says so (exit 2).
+  if (!args.empty() && args.front() == "merge") return run_merge(args.subspan(1));
+  return run_sweep_command(args);
 }
 
 }  // namespace corsa::cli

@@ -14,6 +14,7 @@
 #include "corsa/suite/junit.h"
 #include "corsa/suite/suite.h"
 #include "corsa/suite/suite_run.h"
+#include "output_paths.h"
 #include "sweep_options.h"
 
 namespace corsa::cli {
@@ -72,12 +73,8 @@ int run_test_command(std::span<const std::string> args) {
     options.jobs = static_cast<size_t>(*jobs);
   }
   options.update_goldens = parsed.flag("--update-goldens");
-  if (const auto output = parsed.value("-o")) {
-    check_output_folder(*output);
-    options.output = *output;
-  }
-  // Checked before the suite runs rather than after it; missing folders are made when written.
-  if (const auto junit = parsed.value("--junit")) check_output_file(*junit);
+  if (const auto output = output_folder(parsed, "-o")) options.output = *output;
+  const std::optional<std::filesystem::path> junit = output_file(parsed, "--junit");
   const bool quiet = parsed.flag("--quiet");
   const bool verbose = parsed.flag("--verbose");
   const suite::Suite suite = suite::load_suite(parsed.positionals().front());
@@ -90,7 +87,7 @@ int run_test_command(std::span<const std::string> args) {
   progress.finish();
   // Printed in the suite's order once all have run, so the log reads the same at any -j.
   for (const auto& outcome : report.outcomes) print_outcome(outcome, quiet, verbose);
-  if (const auto junit = parsed.value("--junit")) {
+  if (junit) {
     write_file_atomic(*junit, suite::junit_xml(suite, report));
   }
   std::cout << suite.name << ": " << report.outcomes.size() << " test"

@@ -4,18 +4,12 @@
 #include <string>
 #include <string_view>
 
+#include "exit_codes.h"
+
 namespace corsa::cli {
 
-/// Process exit codes of `corsa`.
-enum ExitCode : int {
-  kExitOk = 0,        ///< success
-  kExitFailed = 1,    ///< a scenario or test ran and failed its expectations
-  kExitBadInput = 2,  ///< bad input file or bad usage: nothing was run
-  kExitInternal = 3,  ///< a bug in Corsa (an unexpected exception); please report
-};
-
 /// One `corsa` subcommand. `run` receives the arguments after the subcommand name; it reports bad
-/// input by throwing (InputError, UsageError) and returns an ExitCode otherwise.
+/// input by throwing (InputError, UsageError; see guarded()) and returns an ExitCode otherwise.
 struct Command {
   std::string_view name;
   std::string_view summary;

@@ -1,16 +1,13 @@
 // `corsa`: the command line. Thin by design: it parses arguments, wires the libraries together and
 // prints; every behaviour lives in the libraries.
 
-#include <exception>
 #include <iomanip>
 #include <iostream>
-#include <new>
 #include <string>
 #include <vector>
 
 #include "args.h"
 #include "commands.h"
-#include "corsa/core/diagnostic.h"
 #include "corsa/core/version.h"
 #include "plugin_api.h"
 
@@ -62,13 +59,7 @@ int dispatch(const std::vector<std::string>& argv) {
   for (const auto& command : kCommands) {
     if (command.name == first) {
       const std::vector<std::string> rest(argv.begin() + 1, argv.end());
-      try {
-        return command.run(rest);
-      } catch (const UsageError& error) {
-        std::cerr << "corsa " << first << ": error: " << error.what() << "\n(see 'corsa " << first
-                  << " --help')\n";
-        return kExitBadInput;
-      }
+      return guarded(first, command.run, rest);
     }
   }
   std::cerr << "corsa: error: unknown command '" << first << "' (see 'corsa --help')\n";
@@ -85,16 +76,5 @@ int main(int argc, char** argv) {
   using namespace corsa::cli;
   std::ios::sync_with_stdio(false);
   const std::vector<std::string> args(argv + 1, argv + argc);
-  try {
-    return dispatch(args);
-  } catch (const corsa::InputError& error) {
-    std::cerr << error.diagnostic().format() << '\n';
-    return kExitBadInput;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "corsa: error: out of memory\n";
-    return kExitInternal;
-  } catch (const std::exception& error) {
-    std::cerr << "corsa: internal error: " << error.what() << "\n(this is a bug in Corsa)\n";
-    return kExitInternal;
-  }
+  return guarded("", [&args] { return dispatch(args); });
 }

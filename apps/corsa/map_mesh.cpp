@@ -6,12 +6,12 @@
 
 #include "args.h"
 #include "commands.h"
-#include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/mesh_io.h"
 #include "corsa/xodr/road_mesh.h"
 #include "map_actions.h"
+#include "output_paths.h"
 
 namespace corsa::cli {
 
@@ -33,19 +33,18 @@ int map_mesh(std::span<const std::string> args) {
     parser.print_help(std::cout);
     return kExitOk;
   }
-  const std::optional<std::string> output = parsed.value("-o");
-  if (!output || output->empty()) {
-    throw UsageError("missing -o FILE (the .obj or .ply to write)");
-  }
-  const std::string extension =
-      corsa::to_lower(std::filesystem::path(*output).extension().string());
-  if (extension != ".obj" && extension != ".ply") {
-    throw UsageError("-o " + *output + ": the mesh format comes from the extension, .obj or .ply");
-  }
-  if (parsed.flag("--ascii") && extension != ".ply") {
-    throw UsageError("--ascii applies to .ply output only");
-  }
-  check_output_file(*output);
+  const std::filesystem::path output = required_output_file(
+      parsed, "-o", "FILE (the .obj or .ply to write)", [&parsed](const std::filesystem::path& p) {
+        const std::string extension = corsa::to_lower(p.extension().string());
+        if (extension != ".obj" && extension != ".ply") {
+          throw UsageError("-o " + p.string() +
+                           ": the mesh format comes from the extension, .obj or .ply");
+        }
+        if (parsed.flag("--ascii") && extension != ".ply") {
+          throw UsageError("--ascii applies to .ply output only");
+        }
+      });
+  const std::string extension = corsa::to_lower(output.extension().string());
   xodr::MeshOptions options;
   if (const auto tolerance = parsed.number("--tolerance")) {
     if (!(*tolerance >= 1e-4 && *tolerance <= 100.0)) {
@@ -59,16 +58,16 @@ int map_mesh(std::span<const std::string> args) {
   corsa::Diagnostics diagnostics([](const corsa::Diagnostic& d) { std::cerr << d << '\n'; });
   const xodr::Map map = xodr::Map::load(parsed.positionals().at(0), diagnostics);
   const xodr::RoadMesh mesh = xodr::build_road_mesh(map, options, diagnostics);
-  xodr::write_mesh(mesh, *output,
+  xodr::write_mesh(mesh, output,
                    parsed.flag("--ascii") ? xodr::PlyEncoding::kAscii : xodr::PlyEncoding::kBinary);
 
   size_t marks = 0;
   for (const xodr::TriangleInfo& info : mesh.info) {
     marks += info.kind == xodr::SurfaceKind::kRoadMark ? 1 : 0;
   }
-  std::cout << "wrote " << *output;
+  std::cout << "wrote " << output.string();
   if (extension == ".obj") {
-    std::cout << " and " << std::filesystem::path(*output).replace_extension(".mtl").string();
+    std::cout << " and " << std::filesystem::path(output).replace_extension(".mtl").string();
   }
   std::cout << ": " << mesh.triangles.size() << " triangles (" << marks << " road marks), "
             << mesh.vertices.size() << " vertices, tolerance "

@@ -21,7 +21,7 @@ namespace corsa::cli {
 inline constexpr uint32_t kPluginAbiVersion = 1;
 
 /// A subcommand implemented in the plugin. Returns an ExitCode; catches its own exceptions
-/// (InputError -> message + kExitBadInput) so that nothing is thrown across the boundary.
+/// (guarded(), exit_codes.h) so that nothing is thrown across the boundary.
 using PluginCommand = int (*)(std::span<const std::string> args);
 
 struct PluginCommandEntry {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
+#include "output_paths.h"
 
 namespace corsa::cli {
 namespace {
@@ -95,20 +95,9 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
     }
     options.record_every = *every;
   }
-  // Outputs are checked before the run (not after an hour of simulation); missing folders on
-  // their way are created when they are written (AtomicFile).
-  if (auto record = parsed.value("--record")) {
-    check_output_file(*record);
-    options.record = *record;
-  }
-  if (auto summary = parsed.value("--summary")) {
-    check_output_file(*summary);
-    options.summary = *summary;
-  }
-  if (auto log = parsed.value("--log")) {
-    check_output_file(*log);
-    options.log = *log;
-  }
+  options.record = output_file(parsed, "--record");
+  options.summary = output_file(parsed, "--summary");
+  options.log = output_file(parsed, "--log");
   return options;
 }
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "corsa/core/atomic_file.h"
+#include "output_paths.h"
 
 namespace corsa::cli {
 namespace {
@@ -68,9 +68,9 @@ std::vector<std::string> split_jobs_option(std::span<const std::string> args) {
 sweep::SweepOptions sweep_options(const ParsedArgs& parsed) {
   sweep::SweepOptions options;
   options.shard = shard_option(parsed);
-  options.output = parsed.value_or(
-      "-o", options.shard.whole() ? "sweep" : "sweep-shard-" + std::to_string(options.shard.index));
-  check_output_folder(options.output);  // missing parents are made; a file on the way is not
+  options.output = output_folder(
+      parsed, "-o",
+      options.shard.whole() ? "sweep" : "sweep-shard-" + std::to_string(options.shard.index));
   if (const auto jobs = parsed.integer("-j")) {
     if (*jobs < 1) throw UsageError("-j expects a positive number of threads");
     options.jobs = static_cast<size_t>(*jobs);

@@ -8,12 +8,12 @@
 
 #include "args.h"
 #include "commands.h"
-#include "corsa/core/atomic_file.h"
 #include "corsa/core/progress.h"
 #include "corsa/core/strings.h"
 #include "corsa/ngii/convert.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/writer.h"
+#include "output_paths.h"
 #include "plugin_commands.h"
 
 namespace corsa::cli {
@@ -85,11 +85,8 @@ int convert_body(std::span<const std::string> args) {
     throw UsageError("unknown source format '" + parsed.positionals().at(0) +
                      "' (supported: ngii)");
   }
-  const std::optional<std::string> output = parsed.value("-o");
-  if (!output || output->empty()) {
-    throw UsageError("missing -o OUT.xodr (the OpenDRIVE file to write)");
-  }
-  check_output_file(*output);  // before the conversion; missing folders are made when written
+  const std::filesystem::path output =
+      required_output_file(parsed, "-o", "OUT.xodr (the OpenDRIVE file to write)");
   ngii::ConvertOptions options;
   if (const auto tolerance = parsed.number("--tolerance")) {
     if (!(*tolerance >= 0.001 && *tolerance <= 1.0)) {
@@ -98,8 +95,7 @@ int convert_body(std::span<const std::string> args) {
     options.tolerance = *tolerance;
   }
   const bool quiet = parsed.flag("--quiet");
-  const std::optional<std::string> report = parsed.value("--report");
-  if (report) check_output_file(*report);
+  const std::optional<std::filesystem::path> report = output_file(parsed, "--report");
 
   Diagnostics diagnostics;
   ngii::Conversion conversion;
@@ -112,7 +108,7 @@ int convert_body(std::span<const std::string> args) {
     // The map must load in Corsa: checked here rather than found by the next user.
     xodr::Map::build(conversion.map, diagnostics);
     progress.update(0.95);
-    xodr::write_xodr(conversion.map, *output);
+    xodr::write_xodr(conversion.map, output);
     if (report) {
       ngii::write_corrections_csv(conversion.corrections, *report);
     }
@@ -120,9 +116,9 @@ int convert_body(std::span<const std::string> args) {
   }
   if (!quiet) {
     print_warnings(diagnostics);
-    print_summary(conversion.summary, *output);
+    print_summary(conversion.summary, output.string());
     if (report) {
-      std::cout << "corrections: " << *report << '\n';
+      std::cout << "corrections: " << report->string() << '\n';
     }
   }
   return kExitOk;

@@ -6,10 +6,10 @@
 
 #include "args.h"
 #include "commands.h"
-#include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
 #include "corsa/render/map_render.h"
 #include "corsa/xodr/map.h"
+#include "output_paths.h"
 #include "plugin_commands.h"
 
 namespace corsa::cli {
@@ -34,14 +34,12 @@ int map_render_body(std::span<const std::string> args) {
     parser.print_help(std::cout);
     return kExitOk;
   }
-  const std::optional<std::string> output = parsed.value("-o");
-  if (!output || output->empty()) {
-    throw UsageError("missing -o FILE.png (the picture to write)");
-  }
-  if (corsa::to_lower(std::filesystem::path(*output).extension().string()) != ".png") {
-    throw UsageError("-o " + *output + ": the picture is written as PNG; name it .png");
-  }
-  check_output_file(*output);  // before rendering; missing folders are made when written
+  const std::filesystem::path output = required_output_file(
+      parsed, "-o", "FILE.png (the picture to write)", [](const std::filesystem::path& p) {
+        if (corsa::to_lower(p.extension().string()) != ".png") {
+          throw UsageError("-o " + p.string() + ": the picture is written as PNG; name it .png");
+        }
+      });
   render::RenderOptions options;
   const auto size = parsed.integer("--size");
   const auto scale = parsed.number("--scale");
@@ -66,8 +64,8 @@ int map_render_body(std::span<const std::string> args) {
   corsa::Diagnostics diagnostics([](const corsa::Diagnostic& d) { std::cerr << d << '\n'; });
   const xodr::Map map = xodr::Map::load(parsed.positionals().at(0), diagnostics);
   const render::MapPicture picture = render::render_map(map, options, diagnostics);
-  render::write_png(picture, *output);
-  std::cout << "wrote " << *output << ": " << picture.width << " x " << picture.height
+  render::write_png(picture, output);
+  std::cout << "wrote " << output.string() << ": " << picture.width << " x " << picture.height
             << " pixels, " << corsa::format_fixed(picture.scale, 3) << " m per pixel\n";
   return kExitOk;
 }

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "corsa/core/atomic_file.h"
+#include "output_paths.h"
 #include "run_options.h"
 #include "run_rig.h"
 
@@ -34,12 +34,7 @@ RigRunOptions read_rig_run_options(const ParsedArgs& parsed) {
     throw UsageError("missing --rig RIG.xml");
   }
   dataset.rig = *rig;
-  const auto output = parsed.value("-o");
-  if (!output || output->empty()) {
-    throw UsageError("missing -o DIR (the dataset folder to write)");
-  }
-  check_output_folder(*output);  // missing folders are made; a file on the way is refused
-  dataset.output = *output;
+  dataset.output = required_output_folder(parsed, "-o", "DIR (the dataset folder to write)");
   if (const auto format = parsed.value("--format")) {
     if (*format == "kitti") {
       dataset.format = sensors::DatasetFormat::kKitti;
