@@ -71,6 +71,9 @@ corsa_require(SUNDIALS_FOUND "SUNDIALS (CVODE, ARKODE)" libsundials-dev)
 if(CORSA_BUILD_TESTS)
   find_package(Catch2 2 CONFIG QUIET)
   corsa_require(Catch2_FOUND "Catch2 v2" catch2)
+  # The module layering check (tests/layering) is a Python script.
+  find_package(Python3 COMPONENTS Interpreter QUIET)
+  corsa_require(Python3_Interpreter_FOUND "Python 3" python3)
 endif()
 
 if(CORSA_BUILD_BENCH)
