@@ -82,6 +82,8 @@ std::unique_ptr<ActionInstance> make_private_action(const xosc::PrivateAction& a
           return make_lane_offset_action(a);
         } else if constexpr (std::is_same_v<T, xosc::VisibilityAction>) {
           return make_visibility_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::LightStateAction>) {
+          return make_light_state_action(a);
         } else if constexpr (std::is_same_v<T, xosc::ActivateControllerAction>) {
           return make_activate_controller_action(a);
         } else if constexpr (std::is_same_v<T, xosc::AssignControllerAction>) {

@@ -28,6 +28,7 @@ std::unique_ptr<ActionInstance> make_custom_command_action(const xosc::UserDefin
 std::unique_ptr<ActionInstance> make_add_entity_action(const xosc::AddEntityAction& action);
 std::unique_ptr<ActionInstance> make_delete_entity_action(const xosc::DeleteEntityAction& action);
 std::unique_ptr<ActionInstance> make_visibility_action(const xosc::VisibilityAction& action);
+std::unique_ptr<ActionInstance> make_light_state_action(const xosc::LightStateAction& action);
 std::unique_ptr<ActionInstance> make_activate_controller_action(
     const xosc::ActivateControllerAction& action);
 std::unique_ptr<ActionInstance> make_assign_controller_action(

@@ -1,5 +1,6 @@
 #include "corsa/engine/simulation.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "controllers/controllers.h"
@@ -184,6 +185,49 @@ std::optional<xosc::Value> Simulation::variable(std::string_view name) const {
 
 const EnvironmentState& Simulation::environment() const { return impl_->state.environment; }
 
+namespace {
+
+/// Whether a light set by LightStateAction is lit at `time`.
+bool lit(const detail::LightSetting& light, double time) {
+  using Mode = detail::LightSetting::Mode;
+  if (light.mode != Mode::kFlashing) {
+    return light.mode == Mode::kOn;
+  }
+  const double cycle = light.on_s + light.off_s;
+  const double into = std::fmod(std::max(0.0, time - light.since), cycle);
+  return into < light.on_s;
+}
+
+/// The lights an entity shows at `time`: the ones LightStateAction set, and otherwise brake
+/// lights while it decelerates by more than 0.5 m/s^2 or stands after having moved (held on the
+/// brake), and a flashing indicator (1.5 Hz, the middle of UN ECE R48's 90 +- 30 per minute)
+/// while it moves sideways across its lane faster than 0.2 m/s.
+void entity_lights(const detail::Entity& entity, double time, EntitySnapshot& out) {
+  out.lights_on = 0;
+  out.lights_set = 0;
+  const EntityState& state = entity.state;
+  const bool braking =
+      state.acceleration < -0.5 || (std::abs(state.speed) < 0.05 && state.odometer > 0.0);
+  if (braking) {
+    out.lights_on |= light_bit(VehicleLight::kBrake);
+  }
+  const bool flash_phase = std::fmod(time, 2.0 / 3.0) < 1.0 / 3.0;
+  if (std::abs(state.lateral_speed) > 0.2 && flash_phase) {
+    out.lights_on |= light_bit(state.lateral_speed > 0.0 ? VehicleLight::kIndicatorLeft
+                                                         : VehicleLight::kIndicatorRight);
+  }
+  for (size_t i = 0; i < detail::kVehicleLightCount; ++i) {
+    if (!entity.lights[i]) {
+      continue;
+    }
+    const uint32_t bit = 1u << i;
+    out.lights_set |= bit;
+    out.lights_on = lit(*entity.lights[i], time) ? (out.lights_on | bit) : (out.lights_on & ~bit);
+  }
+}
+
+}  // namespace
+
 void Simulation::fill_snapshot(WorldSnapshot& out) const {
   const detail::SimState& state = impl_->state;
   out.tick = state.tick;
@@ -210,6 +254,11 @@ void Simulation::fill_snapshot(WorldSnapshot& out) const {
     snap.vy = entity.state.speed * s + entity.state.lateral_speed * c;
     snap.vz = 0.0;
     snap.yaw_rate = entity.state.yaw_rate;
+    snap.acceleration = entity.state.acceleration;
+    snap.odometer = entity.state.odometer;
+    if (entity.info.kind == ObjectKind::kVehicle) {
+      entity_lights(entity, out.time, snap);
+    }
     snap.visible = entity.state.visible && entity.state.placed;
   }
   out.signals.clear();

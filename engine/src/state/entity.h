@@ -61,6 +61,16 @@ enum ActionDomain : uint8_t {
 };
 inline constexpr int kDomainSlots = 2;
 
+/// A vehicle light a LightStateAction set (OpenSCENARIO 1.2 §7.4.3.5 LightStateAction).
+struct LightSetting {
+  enum class Mode : uint8_t { kOff, kOn, kFlashing };
+  Mode mode = Mode::kOn;
+  double on_s = 0.5;   ///< flashing: s lit per cycle
+  double off_s = 0.5;  ///< flashing: s dark per cycle
+  double since = 0.0;  ///< simulation time it was set (flashing starts lit)
+};
+inline constexpr size_t kVehicleLightCount = 13;
+
 struct Entity {
   EntityInfo info;
   EntityState state;
@@ -97,6 +107,8 @@ struct Entity {
   /// A pose an action sets for the end of the step (FollowTrajectoryAction): the controller
   /// puts the entity there instead of moving it along its lane (motion/pose_command.h).
   std::optional<Pose> pose_command;
+  /// Lights set by LightStateAction, by VehicleLight; unset ones follow the motion.
+  std::array<std::optional<LightSetting>, kVehicleLightCount> lights{};
 };
 
 }  // namespace corsa::engine::detail

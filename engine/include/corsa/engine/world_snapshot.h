@@ -54,6 +54,27 @@ struct Box {
   double height = 0.0;
 };
 
+/// Vehicle lights as bits of EntitySnapshot::lights_on / lights_set (OpenSCENARIO 1.2
+/// VehicleLightType, in its order).
+enum class VehicleLight : uint8_t {
+  kDaytimeRunning,
+  kLowBeam,
+  kHighBeam,
+  kFogLights,
+  kFogLightsFront,
+  kFogLightsRear,
+  kBrake,
+  kWarning,
+  kIndicatorLeft,
+  kIndicatorRight,
+  kReversing,
+  kLicensePlate,
+  kSpecialPurpose,
+};
+inline constexpr uint32_t light_bit(VehicleLight light) {
+  return 1u << static_cast<unsigned>(light);
+}
+
 struct EntitySnapshot {
   uint32_t instance_id = 0;  ///< stable for the whole run, 1-based in document order
   std::string name;
@@ -64,6 +85,15 @@ struct EntitySnapshot {
   double speed = 0.0;  ///< m/s along the heading
   /// World-frame velocity (m/s) and yaw rate (rad/s), e.g. for motion blur.
   double vx = 0.0, vy = 0.0, vz = 0.0, yaw_rate = 0.0;
+  double acceleration = 0.0;  ///< m/s^2 along the heading over the last step
+  double odometer = 0.0;      ///< m travelled since the start (turns wheels, drives walk cycles)
+  /// Lights lit at this tick (bits of VehicleLight; flashing ones in their on phase): brake
+  /// lights while decelerating or held at a stop, indicators while the entity moves sideways
+  /// across its lane, and whatever LightStateAction set.
+  uint32_t lights_on = 0;
+  /// Lights a LightStateAction set (on, off or flashing): the sensors leave these alone, and
+  /// choose the others themselves (headlights when it is dark).
+  uint32_t lights_set = 0;
   bool visible = true;  ///< VisibilityAction (sensors flag)
 };
 
