@@ -46,7 +46,8 @@ BirdsEyeImage render_birds_eye(const Scene& scene, const BirdsEyeOptions& o,
   const bool shaded = o.style == BirdsEyeStyle::kRgb && lighting != nullptr;
   detail::ShadingContext shading;
   if (shaded) {
-    shading = detail::make_shading_context(d, *lighting);
+    // Footprints in metres: one pixel covers mpp at "distance" 1.
+    shading = detail::make_shading_context(d, *lighting, o.extent_m / o.width);
   }
   const double heading = o.follow_heading ? std::atan2(world_from_body.rotation.m[1][0],
                                                        world_from_body.rotation.m[0][0])
@@ -100,10 +101,19 @@ BirdsEyeImage render_birds_eye(const Scene& scene, const BirdsEyeOptions& o,
             if (nrm.z < 0.0) {
               nrm = -nrm;
             }
-            const Vec3 pos{rh.ray.org_x[k], rh.ray.org_y[k], top - rh.ray.tfar[k]};
-            const Color albedo = detail::surface_albedo(shading, label, rh.hit.geomID[k]);
-            const Color v = detail::shade_surface(shading, pos, nrm, {0.0, 0.0, -1.0},
-                                                  label.semantic, albedo, true);
+            detail::SurfaceHit hit;
+            hit.inst_id = rh.hit.instID[0][k];
+            hit.geom_id = rh.hit.geomID[k];
+            hit.prim_id = rh.hit.primID[k];
+            hit.u = rh.hit.u[k];
+            hit.v = rh.hit.v[k];
+            hit.position = {rh.ray.org_x[k], rh.ray.org_y[k], top - rh.ray.tfar[k]};
+            hit.normal = nrm;
+            hit.view_dir = {0.0, 0.0, -1.0};
+            hit.distance = 1.0;
+            hit.semantic = label.semantic;
+            hit.entity = label.entity;
+            const Color v = detail::shade_hit(shading, hit, true);
             c = {encode(v.r), encode(v.g), encode(v.b)};
           }
           img.rgb[3 * px] = c.r;

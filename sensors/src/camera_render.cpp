@@ -128,7 +128,7 @@ void trace_tile(const Pass& p, int col0, int row0) {
     const double z = hit ? t * r[2] : 0.0;
     const bool in_range = hit && z <= p.settings->max_depth_m;
     label[k] = hit ? d.label(rh.hit.instID[0][k], rh.hit.geomID[k], rh.hit.primID[k])
-                   : detail::SceneData::Label{SemanticClass::kNone, 0, -1};
+                   : detail::SceneData::Label{SemanticClass::kSky, 0, -1};
     p.out->instance[px] = label[k].instance_id;
     if (!p.out->semantic.empty()) {
       p.out->semantic[px] = static_cast<uint8_t>(label[k].semantic);
@@ -180,9 +180,19 @@ void trace_tile(const Pass& p, int col0, int row0) {
       c = detail::apply_fog(*l, l->sky(dir), std::numeric_limits<double>::infinity());
     } else {
       const bool sunlit = shadow_valid[k] != 0 && shadow.tfar[k] >= 0.0f;
-      const Color albedo = detail::surface_albedo(*p.shading, label[k], rh.hit.geomID[k]);
-      c = detail::shade_surface(*p.shading, position[k], normal[k], dir, label[k].semantic, albedo,
-                                sunlit);
+      detail::SurfaceHit hit;
+      hit.inst_id = rh.hit.instID[0][k];
+      hit.geom_id = rh.hit.geomID[k];
+      hit.prim_id = rh.hit.primID[k];
+      hit.u = rh.hit.u[k];
+      hit.v = rh.hit.v[k];
+      hit.position = position[k];
+      hit.normal = normal[k];
+      hit.view_dir = dir;
+      hit.distance = rh.ray.tfar[k];
+      hit.semantic = label[k].semantic;
+      hit.entity = label[k].entity;
+      c = detail::shade_hit(*p.shading, hit, sunlit);
       c = detail::apply_fog(*l, c, rh.ray.tfar[k]);
     }
     float* out = &(*p.linear)[3 * pixel[k]];
@@ -256,7 +266,7 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   p.out = &out;
   if (rgb) {
     linear.assign(3 * n, 0.0f);
-    shading = detail::make_shading_context(scene.data(), *settings.lighting);
+    shading = detail::make_shading_context(scene.data(), *settings.lighting, 1.0 / model_.fx());
     p.shading = &shading;
     p.linear = &linear;
     bool moving = norm(motion.velocity) > 0.0 || motion.yaw_rate != 0.0;

@@ -1,64 +1,18 @@
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+// Shading of camera hits: the material's look at the hit (textures prefiltered to the pixel
+// footprint), diffuse sky and sun light with shadows, vehicle headlights at night, a sky
+// reflection with Schlick's Fresnel term on glossy surfaces (paint and its clear coat, glass,
+// metal, wet road), and emission of lamps switched by the entity's light state, the signal's
+// state or darkness.
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "corsa/core/random.h"
-#include "fast_normal.h"
 #include "shading.h"
+#include "surface.h"
 
 namespace corsa::sensors::detail {
 namespace {
-
-Color linear_from_srgb8(Rgb8 c) {
-  return {std::pow(c.r / 255.0, 2.2), std::pow(c.g / 255.0, 2.2), std::pow(c.b / 255.0, 2.2)};
-}
-
-/// Paint colours of vehicles, picked by instance id so that a vehicle keeps its colour.
-Color vehicle_paint(uint32_t instance_id) {
-  static constexpr Rgb8 kPaints[] = {{220, 220, 222}, {25, 25, 28},  {150, 152, 158}, {160, 20, 25},
-                                     {25, 55, 130},   {90, 95, 100}, {200, 190, 170}, {30, 90, 60}};
-  const uint64_t h = block_seed(0x5eed, instance_id);
-  return linear_from_srgb8(kPaints[h % (sizeof(kPaints) / sizeof(kPaints[0]))]);
-}
-
-/// Surface colours of the classes (sRGB), for meshes without a colour of their own.
-Rgb8 class_color(SemanticClass c) {
-  switch (c) {
-    case SemanticClass::kRoad:
-    case SemanticClass::kParking:
-      return {90, 90, 92};
-    case SemanticClass::kBikeLane:
-      return {120, 80, 75};
-    case SemanticClass::kLaneMarking:
-      return {235, 235, 225};
-    case SemanticClass::kSidewalk:
-      return {170, 165, 155};
-    case SemanticClass::kBuilding:
-      return {185, 170, 150};
-    case SemanticClass::kRoadside:
-      return {110, 125, 80};
-    case SemanticClass::kRailTrack:
-      return {105, 95, 85};
-    default:
-      return {140, 140, 140};
-  }
-}
-
-Color entity_albedo(SemanticClass c, uint32_t instance_id) {
-  switch (c) {
-    case SemanticClass::kPedestrian:
-      return linear_from_srgb8({120, 95, 80});
-    case SemanticClass::kAnimal:
-      return linear_from_srgb8({140, 110, 70});
-    case SemanticClass::kObstacle:
-      return linear_from_srgb8({200, 120, 40});
-    default:
-      return vehicle_paint(instance_id);
-  }
-}
 
 bool is_road_like(SemanticClass c) {
   return c == SemanticClass::kRoad || c == SemanticClass::kLaneMarking ||
@@ -68,80 +22,230 @@ bool is_road_like(SemanticClass c) {
 
 bool has_headlights(SemanticClass c) {
   return c == SemanticClass::kCar || c == SemanticClass::kTruck || c == SemanticClass::kBus ||
-         c == SemanticClass::kMotorcycle;
+         c == SemanticClass::kMotorcycle || c == SemanticClass::kTrain;
 }
+
+constexpr uint32_t bit(LightRole r) { return 1u << static_cast<unsigned>(r); }
 
 Vec3 reflect(Vec3 d, Vec3 n) { return d - n * (2.0 * dot(d, n)); }
 
+double luma(Color c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+double smoothstep(double e0, double e1, double x) {
+  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+/// The lamps of an entity lit this frame: what the scenario set, and otherwise headlights and
+/// tail lamps when it is dark, brake lamps and indicators as the engine reports them,
+/// reversing lamps when it backs up.
+uint32_t entity_lamp_bits(const EntityInstance& inst, const engine::EntitySnapshot& e,
+                          const Lighting& l) {
+  using engine::VehicleLight;
+  auto on = [&](VehicleLight v) { return (inst.lights_on & engine::light_bit(v)) != 0; };
+  auto set = [&](VehicleLight v) { return (inst.lights_set & engine::light_bit(v)) != 0; };
+  uint32_t bits = bit(LightRole::kAlways);
+  const bool beams_set = set(VehicleLight::kLowBeam) || set(VehicleLight::kHighBeam);
+  const bool beams =
+      beams_set ? on(VehicleLight::kLowBeam) || on(VehicleLight::kHighBeam) : l.headlights;
+  if (beams) {
+    bits |= bit(LightRole::kHeadlight) | bit(LightRole::kTail);
+  }
+  if (on(VehicleLight::kDaytimeRunning)) {
+    bits |= bit(LightRole::kHeadlight);
+  }
+  if (on(VehicleLight::kBrake)) {
+    bits |= bit(LightRole::kBrake);
+  }
+  if (on(VehicleLight::kIndicatorLeft) || on(VehicleLight::kWarning)) {
+    bits |= bit(LightRole::kIndicatorLeft);
+  }
+  if (on(VehicleLight::kIndicatorRight) || on(VehicleLight::kWarning)) {
+    bits |= bit(LightRole::kIndicatorRight);
+  }
+  if (on(VehicleLight::kReversing) || (!set(VehicleLight::kReversing) && e.speed < -0.1)) {
+    bits |= bit(LightRole::kReversing);
+  }
+  return bits;
+}
+
+/// Texture coordinates at a hit and the texture units per metre there.
+void hit_uv(const ShadingContext& c, const SurfaceHit& h, TexturePoint& tp) {
+  const SceneData& d = *c.scene;
+  const std::array<float, 2>* uv[3] = {nullptr, nullptr, nullptr};
+  if (h.entity < 0) {
+    const StaticGeometry& g = d.static_geometries[h.geom_id];
+    if (g.uvs.empty()) {
+      return;
+    }
+    const auto& t = g.uv_triangles[h.prim_id];
+    for (int k = 0; k < 3; ++k) {
+      uv[k] = &g.uvs[t[k]];
+    }
+    tp.uv_per_m = g.uv_per_m[h.prim_id];
+  } else {
+    const ArticulatedMesh& mesh = d.instances[h.entity].shape->mesh;
+    if (mesh.uvs.empty()) {
+      return;
+    }
+    const auto& t = mesh.triangles[h.prim_id];
+    for (int k = 0; k < 3; ++k) {
+      uv[k] = &mesh.uvs[t[k]];
+    }
+    const Vec3 e1 = mesh.vertices[t[1]] - mesh.vertices[t[0]];
+    const Vec3 e2 = mesh.vertices[t[2]] - mesh.vertices[t[0]];
+    const double area = norm(cross(e1, e2));
+    const double uv_area = std::fabs(((*uv[1])[0] - (*uv[0])[0]) * ((*uv[2])[1] - (*uv[0])[1]) -
+                                     ((*uv[2])[0] - (*uv[0])[0]) * ((*uv[1])[1] - (*uv[0])[1]));
+    tp.uv_per_m = area > 0.0 ? std::sqrt(uv_area / area) : 1.0;
+  }
+  const double w0 = 1.0 - h.u - h.v;
+  tp.u = w0 * (*uv[0])[0] + h.u * (*uv[1])[0] + h.v * (*uv[2])[0];
+  tp.v = w0 * (*uv[0])[1] + h.u * (*uv[1])[1] + h.v * (*uv[2])[1];
+}
+
+bool needs_uv(const Material& m) {
+  return m.image != nullptr || m.pattern == Pattern::kSignFace || m.pattern == Pattern::kPlate;
+}
+
+/// Whether a material's emission is switched on at this hit.
+bool lamp_lit(const ShadingContext& c, const SurfaceHit& h, const Material& m) {
+  if (m.light == LightRole::kNone) {
+    return false;
+  }
+  const uint32_t b = bit(m.light);
+  if (h.entity >= 0) {
+    return (c.entity_lamps[h.entity] & b) != 0;
+  }
+  if (m.light == LightRole::kSignalRed || m.light == LightRole::kSignalYellow ||
+      m.light == LightRole::kSignalGreen) {
+    const int s = c.scene->static_geometries[h.geom_id].signal;
+    if (s < 0) {
+      return false;
+    }
+    const int k = m.light == LightRole::kSignalRed ? 0 : m.light == LightRole::kSignalYellow ? 1 : 2;
+    return (c.scene->signal_bulbs[s] >> k) & 1u;
+  }
+  return (c.static_lamps & b) != 0;
+}
+
 }  // namespace
 
-ShadingContext make_shading_context(const SceneData& scene, const Lighting& lighting) {
+ShadingContext make_shading_context(const SceneData& scene, const Lighting& lighting,
+                                    double pixel_angle) {
   ShadingContext c;
   c.scene = &scene;
   c.lighting = &lighting;
-  for (const auto& g : scene.static_geometries) {
-    c.static_albedo.push_back(linear_from_srgb8(g.color.value_or(Rgb8{})));
-    c.static_has_color.push_back(g.color.has_value() ? 1 : 0);
-  }
-  for (int k = 0; k < kSemanticClassCount; ++k) {
-    c.class_albedo[k] = linear_from_srgb8(class_color(static_cast<SemanticClass>(k)));
-  }
+  c.pixel_angle = pixel_angle;
+  c.darkness = 1.0 - smoothstep(0.01, 0.08, luma(lighting.ambient));
+  c.static_lamps = bit(LightRole::kAlways) | (c.darkness > 0.3 ? bit(LightRole::kStreetLamp) : 0u);
   const double dip = -3.0 * std::numbers::pi / 180.0;  // low beams aim slightly down
   for (const auto& inst : scene.instances) {
-    c.entity_albedo.push_back(entity_albedo(inst.semantic, inst.instance_id));
-    if (!lighting.headlights || !has_headlights(inst.semantic)) {
+    const engine::EntitySnapshot& e = scene.entities[inst.snapshot_index];
+    const uint32_t lamps = entity_lamp_bits(inst, e, lighting);
+    c.entity_lamps.push_back(lamps);
+    if (!(lamps & bit(LightRole::kHeadlight)) || !has_headlights(inst.semantic)) {
       continue;
     }
-    const engine::EntitySnapshot& e = scene.entities[inst.snapshot_index];
-    const Rigid pose = rigid_from_pose(e.pose.x, e.pose.y, e.pose.z, e.pose.h, e.pose.p, e.pose.r);
+    const Rigid& pose = inst.world_from_entity;
     const Vec3 dir = pose.apply_direction({std::cos(dip), 0.0, std::sin(dip)});
     const double front = e.box.center_x + 0.5 * e.box.length + 0.05;
     const double z = e.box.center_z - 0.5 * e.box.height + 0.65;
-    const int lamps = inst.semantic == SemanticClass::kMotorcycle ? 1 : 2;
-    for (int i = 0; i < lamps; ++i) {
-      const double y = lamps == 1 ? 0.0 : (i == 0 ? 0.35 : -0.35) * e.box.width;
+    const int count = inst.semantic == SemanticClass::kMotorcycle ? 1 : 2;
+    for (int i = 0; i < count; ++i) {
+      const double y = count == 1 ? 0.0 : (i == 0 ? 0.35 : -0.35) * e.box.width;
       c.headlights.push_back({scene.to_local(pose.apply({front, y, z})), dir, 30.0});
     }
   }
   return c;
 }
 
-Color shade_surface(const ShadingContext& c, Vec3 position, Vec3 normal, Vec3 view_dir,
-                    SemanticClass semantic, Color albedo, bool sunlit) {
+Color shade_hit(const ShadingContext& c, const SurfaceHit& h, bool sunlit) {
+  const SceneData& d = *c.scene;
   const Lighting& l = *c.lighting;
-  const bool wet = l.wet_road && is_road_like(semantic);
+  const Material& m = d.materials[d.material_of(h.inst_id, h.geom_id, h.prim_id)];
+  TexturePoint tp;
+  if (h.entity < 0) {
+    tp.position = h.position;
+    tp.normal = h.normal;
+    tp.base_z = d.static_geometries[h.geom_id].base_z;
+  } else {
+    const Rigid& w = d.instances[h.entity].world_from_entity;
+    const Mat3 back = w.rotation.transposed();
+    tp.position = back * (d.to_map(h.position) - w.translation);
+    tp.normal = back * h.normal;
+  }
+  if (needs_uv(m)) {
+    hit_uv(c, h, tp);
+  }
+  const double cos_view = std::clamp(-dot(h.view_dir, h.normal), 0.0, 1.0);
+  tp.footprint = h.distance * c.pixel_angle / std::sqrt(std::max(cos_view, 0.05));
+  tp.darkness = c.darkness;
+  const SurfaceSample s = sample_surface(m, tp);
+
+  const Vec3 n = h.normal;
+  const bool wet = l.wet_road && is_road_like(h.semantic);
+  Color albedo = s.albedo * (1.0 - s.metallic);
   if (wet) {
     albedo = albedo * 0.55;  // water darkens porous surfaces
   }
-  Color light = l.ambient * (0.6 + 0.4 * std::max(0.0, normal.z));
+  Color light = l.ambient * (0.6 + 0.4 * std::max(0.0, n.z));
   if (sunlit) {
-    light = light + l.sun * std::max(0.0, dot(normal, l.sun_direction));
+    light = light + l.sun * std::max(0.0, dot(n, l.sun_direction));
   }
-  for (const Headlight& h : c.headlights) {
-    const Vec3 to_light = h.position - position;
+  for (const Headlight& hl : c.headlights) {
+    const Vec3 to_light = hl.position - h.position;
     const double d2 = dot(to_light, to_light);
     if (d2 > 6400.0 || d2 < 1e-4) {
       continue;  // beyond 80 m the beam is negligible
     }
     const Vec3 dir = to_light * (1.0 / std::sqrt(d2));
-    const double cos_beam = -dot(dir, h.direction);
-    const double cos_surface = dot(dir, normal);
+    const double cos_beam = -dot(dir, hl.direction);
+    const double cos_surface = dot(dir, n);
     if (cos_beam < 0.85 || cos_surface <= 0.0) {
       continue;
     }
     const double cone = std::clamp((cos_beam - 0.85) / 0.12, 0.0, 1.0);
-    light = light + Color{1.0, 0.95, 0.85} * (h.intensity * cone * cos_surface / d2);
+    light = light + Color{1.0, 0.95, 0.85} * (hl.intensity * cone * cos_surface / d2);
   }
   Color color = albedo * light;
+
+  // Specular: the sky mirrored by glossy surfaces (no reflection rays: the sky only), weighted
+  // by Schlick's Fresnel term, and the sun's glint.
+  const Vec3 r = reflect(h.view_dir, n);
+  const double schlick = std::pow(1.0 - cos_view, 5.0);
+  const double gloss = std::pow(1.0 - std::clamp(s.roughness, 0.0, 1.0), 2.0);
+  if (gloss > 0.02) {
+    const double f0d = std::pow((m.ior - 1.0) / (m.ior + 1.0), 2.0);
+    const Color f0 = mix(Color{f0d, f0d, f0d}, s.albedo, s.metallic);
+    const Color fresnel = f0 + (Color{1.0, 1.0, 1.0} + f0 * -1.0) * schlick;
+    const Color env = mix(l.ambient, l.sky(r), gloss);
+    color = color + fresnel * env * gloss;
+    if (sunlit) {
+      const double shininess = 2.0 / std::max(1e-3, std::pow(s.roughness, 4.0));
+      const double glint = std::pow(std::max(0.0, dot(r, l.sun_direction)), std::min(shininess, 2000.0));
+      color = color + fresnel * l.sun * (glint * gloss * 3.0);
+    }
+  }
+  if (s.clearcoat > 0.0) {
+    const double fc = 0.04 + 0.96 * schlick;
+    color = color + l.sky(r) * (s.clearcoat * fc);
+    if (sunlit) {
+      color = color + l.sun * (s.clearcoat * fc * 4.0 *
+                               std::pow(std::max(0.0, dot(r, l.sun_direction)), 600.0));
+    }
+  }
   if (wet) {
     // A wet film reflects the sky (Schlick's Fresnel for water) and glints in the sun.
-    const Vec3 r = reflect(view_dir, normal);
-    const double cos_view = std::clamp(-dot(view_dir, normal), 0.0, 1.0);
-    const double fresnel = 0.02 + 0.98 * std::pow(1.0 - cos_view, 5.0);
+    const double fresnel = 0.02 + 0.98 * schlick;
     color = color + l.sky(r) * (0.8 * fresnel);
     if (sunlit) {
       color = color + l.sun * (2.0 * std::pow(std::max(0.0, dot(r, l.sun_direction)), 300.0));
     }
+  }
+  color = color + s.emission;
+  if (lamp_lit(c, h, m)) {
+    color = color + m.emission;
   }
   return color;
 }
@@ -153,109 +257,6 @@ Color apply_fog(const Lighting& l, Color radiance, double distance) {
   }
   const double t = std::isinf(distance) ? 0.0 : std::exp(-sigma * distance);
   return radiance * t + l.fog_color * (1.0 - t);
-}
-
-void motion_blur(std::vector<float>& linear, const std::vector<float>& motion, int width,
-                 int height) {
-  const std::vector<float> sharp = linear;
-  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
-    for (int row = r.begin(); row != r.end(); ++row) {
-      for (int col = 0; col < width; ++col) {
-        const size_t px = static_cast<size_t>(row) * width + col;
-        const double mx = motion[2 * px];
-        const double my = motion[2 * px + 1];
-        const double length = std::sqrt(mx * mx + my * my);
-        if (length < 0.5) {
-          continue;
-        }
-        // One sample per pixel of motion, at most 16 (longer streaks are sampled more sparsely).
-        const int samples = std::min(16, static_cast<int>(std::ceil(length)) + 1);
-        double sum[3] = {0.0, 0.0, 0.0};
-        for (int s = 0; s < samples; ++s) {
-          const double f = static_cast<double>(s) / (samples - 1) - 0.5;
-          // Nearest pixel: clamp first, then round the non-negative coordinate by truncation.
-          const int c = static_cast<int>(std::clamp(col + f * mx, 0.0, width - 1.0) + 0.5);
-          const int q = static_cast<int>(std::clamp(row + f * my, 0.0, height - 1.0) + 0.5);
-          const float* v = &sharp[3 * (static_cast<size_t>(q) * width + c)];
-          sum[0] += v[0];
-          sum[1] += v[1];
-          sum[2] += v[2];
-        }
-        for (int k = 0; k < 3; ++k) {
-          linear[3 * px + k] = static_cast<float>(sum[k] / samples);
-        }
-      }
-    }
-  });
-}
-
-std::vector<uint8_t> develop(const std::vector<float>& linear, int width, int height,
-                             const RgbOptions& o, uint64_t frame_seed) {
-  // Exposure relative to ISO 100 at 1/250 s, where a sunlit 18% grey is mid-grey.
-  const double exposure =
-      (o.iso / 100.0) * (o.shutter_speed_s / 0.004) * std::pow(2.0, o.exposure_compensation_ev);
-  const double gain = o.iso / 100.0;
-  const double shot = 0.0004 * gain;  // photon noise variance per unit signal
-  const double read = 0.002 * gain;   // read noise standard deviation
-  const double inv_gamma = 1.0 / o.gamma;
-  // Encoding through a 4096-entry table keeps pow() out of the per-pixel loop.
-  std::vector<uint8_t> table(4097);
-  for (int i = 0; i <= 4096; ++i) {
-    table[i] = static_cast<uint8_t>(std::lround(255.0 * std::pow(i / 4096.0, inv_gamma)));
-  }
-  std::vector<uint8_t> out(linear.size());
-  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
-    for (int row = r.begin(); row != r.end(); ++row) {
-      RandomStream rng(block_seed(frame_seed ^ 0x6e6f697365ULL, static_cast<uint64_t>(row)));
-      for (size_t i = static_cast<size_t>(row) * width * 3;
-           i < static_cast<size_t>(row + 1) * width * 3; ++i) {
-        double v = linear[i] * exposure;
-        if (o.noise) {
-          // Irwin-Hall: the sum of four 16-bit uniforms, rescaled, is close to a unit normal
-          // and costs one 64-bit draw (image noise need not be exactly Gaussian).
-          const uint64_t bits = rng.next_u64();
-          const double s = static_cast<double>(bits & 0xFFFF) + ((bits >> 16) & 0xFFFF) +
-                           ((bits >> 32) & 0xFFFF) + (bits >> 48);
-          const double z = (s / 65536.0 - 2.0) * std::sqrt(3.0);
-          v += z * std::sqrt(std::max(0.0, v) * shot + read * read);
-        }
-        const double c = std::clamp(v, 0.0, 1.0);
-        out[i] = table[static_cast<size_t>(c * 4096.0 + 0.5)];
-      }
-    }
-  });
-  return out;
-}
-
-void draw_rain(std::vector<uint8_t>& rgb, int width, int height, const Lighting& l,
-               uint64_t frame_seed) {
-  if (l.rain_intensity <= 0.0) {
-    return;
-  }
-  RandomStream rng(block_seed(frame_seed ^ 0x7261696eULL, 0));
-  const double scale = height / 720.0;
-  const auto count = static_cast<int>(std::min(20.0, l.rain_intensity) * width * height / 40000.0);
-  const double slant = std::atan(l.wind_speed / 8.0) * std::sin(l.wind_direction);
-  for (int i = 0; i < count; ++i) {
-    const double x0 = rng.uniform(0.0, width);
-    const double y0 = rng.uniform(-20.0 * scale, height);
-    const double length = rng.uniform(15.0, 45.0) * scale;
-    const double angle = slant + rng.uniform(-0.05, 0.05);
-    const double dx = std::sin(angle);
-    const double dy = std::cos(angle);
-    const double alpha = rng.uniform(0.08, 0.2);
-    for (int s = 0; s < static_cast<int>(length); ++s) {
-      const int x = static_cast<int>(x0 + dx * s);
-      const int y = static_cast<int>(y0 + dy * s);
-      if (x < 0 || y < 0 || x >= width || y >= height) {
-        continue;
-      }
-      uint8_t* p = &rgb[3 * (static_cast<size_t>(y) * width + x)];
-      for (int k = 0; k < 3; ++k) {
-        p[k] = static_cast<uint8_t>(p[k] + std::lround((235 - p[k]) * alpha * (p[k] < 235)));
-      }
-    }
-  }
 }
 
 }  // namespace corsa::sensors::detail

@@ -84,31 +84,26 @@ bool project_box(const CameraModel& camera, const Box3& box, Box2& out) {
   return out.x_min <= out.x_max;
 }
 
-/// Share of the object's silhouette (its prototype shape alone) covered by its own pixels.
-double occlusion_of(const detail::SceneData& d, const detail::EntityInstance& inst,
+/// Share of the object's silhouette (its own shape alone) covered by its own pixels.
+double occlusion_of(const detail::EntityInstance& inst,
                     const CameraRenderer& camera, const Rigid& world_from_cam, const Box2& box,
                     std::span<const uint32_t> instance, int width) {
-  const engine::EntitySnapshot& e = d.entities[inst.snapshot_index];
-  const Box3 b = entity_box(e);
-  const Mat3 to_unit = b.rotation.transposed();
-  const double inv[3] = {1.0 / b.length, 1.0 / b.width, 1.0 / b.height};
-  auto unit = [&](Vec3 v) {
-    const Vec3 r = to_unit * v;
-    return Vec3{r.x * inv[0], r.y * inv[1], r.z * inv[2]};
-  };
-  const Vec3 origin = unit(world_from_cam.translation - b.center);
+  // Rays in the entity's own frame, traced against its shape alone.
+  const Rigid to_entity = inst.world_from_entity.inverse();
+  auto local = [&](Vec3 v) { return to_entity.rotation * v; };
+  const Vec3 origin = to_entity.apply(world_from_cam.translation);
   const int x0 = static_cast<int>(std::ceil(box.x_min));
   const int x1 = static_cast<int>(std::floor(box.x_max));
   const int y0 = static_cast<int>(std::ceil(box.y_min));
   const int y1 = static_cast<int>(std::floor(box.y_max));
   const int stride = std::max(1, std::max(x1 - x0, y1 - y0) / kSilhouetteGrid + 1);
-  RTCScene shape = d.prototypes[static_cast<size_t>(e.category)];
+  RTCScene shape = inst.shape->scene;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   uint64_t silhouette = 0, seen = 0;
   for (int y = y0; y <= y1; y += stride) {
     for (int x = x0; x <= x1; x += stride) {
-      const Vec3 dir = unit(world_from_cam.apply_direction(camera.pixel_ray(x, y)));
+      const Vec3 dir = local(world_from_cam.apply_direction(camera.pixel_ray(x, y)));
       RTCRay ray{};
       ray.org_x = static_cast<float>(origin.x);
       ray.org_y = static_cast<float>(origin.y);
@@ -210,7 +205,7 @@ std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer&
     l.box_2d = clipped;
     l.truncation =
         full.area() > 0.0 ? std::clamp(1.0 - clipped.area() / full.area(), 0.0, 1.0) : 0.0;
-    l.occlusion = occlusion_of(d, inst, renderer, world_from_cam, clipped, instance, w);
+    l.occlusion = occlusion_of(inst, renderer, world_from_cam, clipped, instance, w);
     labels.push_back(std::move(l));
   }
   return labels;

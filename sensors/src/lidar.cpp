@@ -46,12 +46,22 @@ double lidar_reflectivity(SemanticClass c) {
     case SemanticClass::kLaneMarking:
       return 0.65;  // retro-reflective paint
     case SemanticClass::kSidewalk:
+    case SemanticClass::kWall:
       return 0.3;
-    case SemanticClass::kRoadside:
+    case SemanticClass::kTerrain:
+    case SemanticClass::kGround:
       return 0.25;
+    case SemanticClass::kVegetation:
+      return 0.5;  // leaves reflect strongly in the near infrared
+    case SemanticClass::kTrafficSign:
+      return 0.9;  // retro-reflective sheeting
+    case SemanticClass::kPole:
+    case SemanticClass::kGuardRail:
+      return 0.45;
     case SemanticClass::kBuilding:
       return 0.4;
-    case SemanticClass::kPedestrian:
+    case SemanticClass::kPerson:
+    case SemanticClass::kRider:
     case SemanticClass::kAnimal:
       return 0.35;
     case SemanticClass::kCar:

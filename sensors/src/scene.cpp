@@ -1,21 +1,22 @@
 #include "corsa/sensors/scene.h"
 
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
+#include "material_defaults.h"
+#include "noise_tile.h"
 #include "scene_data.h"
 
 namespace corsa::sensors {
 namespace detail {
 
 SceneData::~SceneData() {
+  shapes.clear();  // releases the entity scenes before the device
   for (RTCGeometry g : instance_pool) {
     rtcReleaseGeometry(g);
-  }
-  for (RTCScene s : prototypes) {
-    if (s != nullptr) {
-      rtcReleaseScene(s);
-    }
   }
   if (top != nullptr) {
     rtcReleaseScene(top);
@@ -25,6 +26,12 @@ SceneData::~SceneData() {
   }
   if (device != nullptr) {
     rtcReleaseDevice(device);
+  }
+}
+
+EntityShape::~EntityShape() {
+  if (scene != nullptr) {
+    rtcReleaseScene(scene);
   }
 }
 
@@ -64,9 +71,22 @@ RTCGeometry make_triangles(RTCDevice device, const StaticMesh& mesh, Vec3 origin
 }
 
 void validate_mesh(const StaticMesh& mesh) {
-  if (mesh.classes.size() != 1 && mesh.classes.size() != mesh.triangles.size()) {
+  const size_t n = mesh.triangles.size();
+  if (mesh.classes.size() != 1 && mesh.classes.size() != n) {
     throw std::invalid_argument("static mesh '" + mesh.name +
                                 "': classes must have one entry or one per triangle");
+  }
+  if (mesh.material_indices.size() > 1 && mesh.material_indices.size() != n) {
+    throw std::invalid_argument("static mesh '" + mesh.name +
+                                "': material indices must have one entry or one per triangle");
+  }
+  for (const uint16_t m : mesh.material_indices) {
+    if (m >= mesh.materials.size()) {
+      throw std::invalid_argument("static mesh '" + mesh.name + "': material index out of range");
+    }
+  }
+  if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.vertices.size()) {
+    throw std::invalid_argument("static mesh '" + mesh.name + "': one uv per vertex expected");
   }
   for (const auto& t : mesh.triangles) {
     for (uint32_t i : t) {
@@ -77,7 +97,82 @@ void validate_mesh(const StaticMesh& mesh) {
   }
 }
 
+/// A stable text key of every field of a material (floats in hexadecimal, exact).
+std::string material_key(const Material& m) {
+  std::string key = m.name;
+  char buf[64];
+  auto add = [&](double v) {
+    std::snprintf(buf, sizeof buf, "|%a", v);
+    key += buf;
+  };
+  auto add_color = [&](Color c) {
+    add(c.r);
+    add(c.g);
+    add(c.b);
+  };
+  add_color(m.base_color);
+  add(static_cast<double>(m.pattern));
+  add(static_cast<double>(m.seed));
+  add(m.pattern_scale);
+  for (double p : m.params) {
+    add(p);
+  }
+  add_color(m.secondary);
+  add(static_cast<double>(m.sign.shape));
+  add_color(m.sign.fill);
+  add_color(m.sign.border);
+  add(m.sign.border_width);
+  add(static_cast<double>(m.sign.symbol));
+  add_color(m.sign.symbol_color);
+  add(static_cast<double>(m.sign.number));
+  std::snprintf(buf, sizeof buf, "|%p", static_cast<const void*>(m.image.get()));
+  key += buf;
+  add(m.metallic);
+  add(m.roughness);
+  add(m.clearcoat);
+  add(m.transmission);
+  add(m.ior);
+  add_color(m.emission);
+  add(static_cast<double>(m.light));
+  return key;
+}
+
+/// The look of a building mesh that brings only a colour: a procedural facade tinted by it,
+/// with floor height, bay width and windows drawn from its instance id (no two alike).
+Material tinted_facade(Rgb8 color, uint32_t id) {
+  Material m = detail::default_material(SemanticClass::kBuilding);
+  m.base_color = linear_rgb(color.r, color.g, color.b);
+  m.seed = id;
+  auto r = [&](uint32_t salt) { return detail::cell_random(id, salt, 0xFACADEu); };
+  m.pattern_scale = 3.0 + 0.6 * r(1);
+  m.params = {2.6 + 1.6 * r(2), 0.35 + 0.3 * r(3), 0.38 + 0.25 * r(4), 3.8 + 1.2 * r(5)};
+  const double trim = r(6);
+  m.secondary = trim < 0.4   ? linear_rgb(60, 58, 56)
+                : trim < 0.7 ? linear_rgb(215, 212, 205)
+                             : linear_rgb(110, 80, 60);
+  return m;
+}
+
 }  // namespace
+
+bool is_countable_class(SemanticClass c) {
+  switch (c) {
+    case SemanticClass::kUnlabeled:
+    case SemanticClass::kRoad:
+    case SemanticClass::kSidewalk:
+    case SemanticClass::kTerrain:
+    case SemanticClass::kSky:
+    case SemanticClass::kLaneMarking:
+    case SemanticClass::kGround:
+    case SemanticClass::kRailTrack:
+    case SemanticClass::kParking:
+    case SemanticClass::kBikeLane:
+    case SemanticClass::kWater:
+      return false;
+    default:
+      return true;
+  }
+}
 
 Scene::Scene(const SceneOptions& options) : data_(std::make_unique<detail::SceneData>()) {
   data_->options = options;
@@ -90,9 +185,9 @@ Scene::Scene(const SceneOptions& options) : data_(std::make_unique<detail::Scene
   data_->top = rtcNewScene(data_->device);
   // The top level holds only instances and is rebuilt every frame: favour build speed.
   rtcSetSceneBuildQuality(data_->top, RTC_BUILD_QUALITY_LOW);
-  for (size_t c = 0; c < detail::kCategoryCount; ++c) {
-    set_prototype(static_cast<engine::EntityCategory>(c),
-                  detail::default_prototype(static_cast<engine::EntityCategory>(c)));
+  for (int c = 0; c < kSemanticClassCount; ++c) {
+    data_->class_materials[c] =
+        add_material(detail::default_material(static_cast<SemanticClass>(c)));
   }
   // The static scene is instanced once at the identity as top-level geometry 0.
   RTCGeometry inst = rtcNewGeometry(data_->device, RTC_GEOMETRY_TYPE_INSTANCE);
@@ -109,6 +204,27 @@ Scene::~Scene() = default;
 Scene::Scene(Scene&&) noexcept = default;
 Scene& Scene::operator=(Scene&&) noexcept = default;
 
+MaterialId Scene::add_material(const Material& material) {
+  detail::SceneData& d = *data_;
+  std::string key = material_key(material);
+  const auto it = d.material_keys.find(key);
+  if (it != d.material_keys.end()) {
+    return it->second;
+  }
+  if (d.materials.size() >= 65535) {
+    throw std::runtime_error("more than 65535 distinct materials in one scene");
+  }
+  const auto id = static_cast<MaterialId>(d.materials.size());
+  d.materials.push_back(material);
+  d.material_keys.emplace(std::move(key), id);
+  return id;
+}
+
+const Material& Scene::material(MaterialId id) const { return data_->materials.at(id); }
+size_t Scene::material_count() const { return data_->materials.size(); }
+
+void Scene::set_entity_shape_source(EntityShapeSource* source) { data_->shape_source = source; }
+
 void Scene::add_road_mesh(const xodr::RoadMesh& road) {
   StaticMesh mesh;
   mesh.name = "road mesh";
@@ -118,10 +234,23 @@ void Scene::add_road_mesh(const xodr::RoadMesh& road) {
   }
   mesh.triangles = road.triangles;
   mesh.classes.reserve(road.info.size());
+  // Palette: the class looks, plus yellow paint for yellow marks.
+  for (int c = 0; c < kSemanticClassCount; ++c) {
+    mesh.materials.push_back(detail::default_material(static_cast<SemanticClass>(c)));
+  }
+  Material yellow = detail::default_material(SemanticClass::kLaneMarking);
+  yellow.name = "yellow road paint";
+  yellow.base_color = linear_rgb(226, 178, 40);
+  mesh.materials.push_back(yellow);
+  const auto yellow_index = static_cast<uint16_t>(mesh.materials.size() - 1);
   for (const auto& info : road.info) {
-    mesh.classes.push_back(info.kind == xodr::SurfaceKind::kRoadMark
-                               ? SemanticClass::kLaneMarking
-                               : semantic_class_of_lane(info.lane_type));
+    const SemanticClass c = info.kind == xodr::SurfaceKind::kRoadMark
+                                ? SemanticClass::kLaneMarking
+                                : semantic_class_of_lane(info.lane_type);
+    mesh.classes.push_back(c);
+    mesh.material_indices.push_back(info.color == xodr::MarkColor::kYellow
+                                        ? yellow_index
+                                        : static_cast<uint16_t>(c));
   }
   if (mesh.triangles.empty()) {
     return;
@@ -132,9 +261,11 @@ void Scene::add_road_mesh(const xodr::RoadMesh& road) {
 uint32_t Scene::add_static_mesh(StaticMesh mesh) {
   validate_mesh(mesh);
   detail::SceneData& d = *data_;
-  if (mesh.instance_id == 0 && mesh.classes.size() == 1 &&
-      (mesh.classes[0] == SemanticClass::kBuilding ||
-       mesh.classes[0] == SemanticClass::kStaticObject)) {
+  bool countable = false;
+  for (const SemanticClass c : mesh.classes) {
+    countable = countable || is_countable_class(c);
+  }
+  if (mesh.instance_id == 0 && countable) {
     mesh.instance_id = kStaticInstanceBase + static_cast<uint32_t>(d.static_geometries.size());
   }
   if (mesh.triangles.empty()) {
@@ -147,38 +278,76 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
     throw std::logic_error("static geometry ids out of step");
   }
   detail::StaticGeometry info;
-  info.classes = std::move(mesh.classes);
   info.instance_id = mesh.instance_id;
-  info.color = mesh.color;
   info.triangles = mesh.triangles.size();
-  d.static_geometries.push_back(std::move(info));
+  if (!mesh.materials.empty()) {
+    std::vector<MaterialId> palette;
+    for (const Material& m : mesh.materials) {
+      palette.push_back(add_material(m));
+    }
+    if (mesh.material_indices.empty()) {
+      info.materials = {palette[0]};
+    } else {
+      for (const uint16_t i : mesh.material_indices) {
+        info.materials.push_back(palette[i]);
+      }
+    }
+  } else if (mesh.color) {
+    const bool building = mesh.classes.size() == 1 && mesh.classes[0] == SemanticClass::kBuilding;
+    info.materials = {add_material(
+        building ? tinted_facade(*mesh.color, mesh.instance_id)
+                 : materials::plain("colour " + std::to_string(mesh.color->r) + "," +
+                                        std::to_string(mesh.color->g) + "," +
+                                        std::to_string(mesh.color->b),
+                                    linear_rgb(mesh.color->r, mesh.color->g, mesh.color->b)))};
+  } else {
+    for (const SemanticClass c : mesh.classes) {
+      info.materials.push_back(d.class_materials[static_cast<size_t>(c)]);
+    }
+  }
+  info.classes = std::move(mesh.classes);
+  if (!mesh.signal_id.empty()) {
+    size_t index = 0;
+    while (index < d.signal_ids.size() && d.signal_ids[index] != mesh.signal_id) {
+      ++index;
+    }
+    if (index == d.signal_ids.size()) {
+      d.signal_ids.push_back(mesh.signal_id);
+      d.signal_states.emplace_back();
+      d.signal_bulbs.push_back(0);
+    }
+    info.signal = static_cast<int>(index);
+  }
+  if (!mesh.object.kind.empty() && mesh.instance_id != 0) {
+    d.objects[mesh.instance_id] = mesh.object;
+  }
+  double base_z = 1e300;
   for (const Vec3& v : mesh.vertices) {
+    base_z = std::min(base_z, v.z);
     d.bounds.min = {std::min(d.bounds.min.x, v.x), std::min(d.bounds.min.y, v.y),
                     std::min(d.bounds.min.z, v.z)};
     d.bounds.max = {std::max(d.bounds.max.x, v.x), std::max(d.bounds.max.y, v.y),
                     std::max(d.bounds.max.z, v.z)};
   }
-  d.triangle_count += mesh.triangles.size();
+  info.base_z = base_z - d.options.origin.z;
+  if (!mesh.uvs.empty()) {
+    info.uvs = std::move(mesh.uvs);
+    info.uv_triangles = mesh.triangles;
+    for (const auto& t : mesh.triangles) {
+      const Vec3 e1 = mesh.vertices[t[1]] - mesh.vertices[t[0]];
+      const Vec3 e2 = mesh.vertices[t[2]] - mesh.vertices[t[0]];
+      const double area = norm(cross(e1, e2));
+      const auto& a = info.uvs[t[0]];
+      const auto& b = info.uvs[t[1]];
+      const auto& c = info.uvs[t[2]];
+      const double uv_area = std::fabs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+      info.uv_per_m.push_back(area > 0.0 ? static_cast<float>(std::sqrt(uv_area / area)) : 1.0f);
+    }
+  }
+  d.static_geometries.push_back(std::move(info));
+  d.triangle_count += d.static_geometries.back().triangles;
   d.committed = false;
   return d.static_geometries.back().instance_id;
-}
-
-void Scene::set_prototype(engine::EntityCategory category, const StaticMesh& unit_mesh) {
-  detail::SceneData& d = *data_;
-  StaticMesh mesh = unit_mesh;
-  mesh.classes = {SemanticClass::kObstacle};
-  validate_mesh(mesh);
-  RTCScene scene = rtcNewScene(d.device);
-  RTCGeometry geom = make_triangles(d.device, mesh, Vec3{});
-  rtcAttachGeometry(scene, geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(scene);
-  auto& slot = d.prototypes[static_cast<size_t>(category)];
-  if (slot != nullptr) {
-    rtcReleaseScene(slot);
-  }
-  slot = scene;
-  check_device(d.device, "prototype");
 }
 
 void Scene::commit() {

@@ -5,27 +5,72 @@
 #include <embree3/rtcore.h>
 
 #include <array>
+#include <functional>
+#include <map>
+#include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "corsa/sensors/scene.h"
+#include "mesh_builder.h"
 
 namespace corsa::sensors::detail {
 
 /// Labels and material of one geometry of the static scene.
 struct StaticGeometry {
   std::vector<SemanticClass> classes;  ///< per triangle, or one entry for all
+  std::vector<MaterialId> materials;   ///< per triangle, or one entry for all
   uint32_t instance_id = 0;
-  std::optional<Rgb8> color;  ///< from the model; otherwise the class decides
+  int signal = -1;       ///< index into SceneData::signal_ids (traffic-light heads), or -1
+  double base_z = 0.0;   ///< lowest vertex, tracer frame (facades count floors from it)
   size_t triangles = 0;
+  /// Texture coordinates (only for meshes that have them): per vertex, the triangles, and the
+  /// texture-coordinate units per metre of each triangle (for the texture's mip level).
+  std::vector<std::array<float, 2>> uvs;
+  std::vector<std::array<uint32_t, 3>> uv_triangles;
+  std::vector<float> uv_per_m;
+
+  SemanticClass class_of(unsigned prim) const {
+    return classes.size() == 1 ? classes[0] : classes[prim];
+  }
+  MaterialId material_of(unsigned prim) const {
+    return materials.size() == 1 ? materials[0] : materials[prim];
+  }
+};
+
+/// The shape of one entity in its own frame, with its Embree scene. Articulated shapes (wheels,
+/// limbs) move their vertices every frame; the rest pose is kept.
+struct EntityShape {
+  engine::EntityCategory category = engine::EntityCategory::kCar;
+  engine::Box box;
+  std::string model3d;
+  RTCScene scene = nullptr;
+  RTCGeometry geometry = nullptr;
+  ArticulatedMesh mesh;               ///< rest pose; `material` holds global ids after setup
+  std::vector<MaterialId> materials;  ///< per triangle, global ids
+  /// Poses the bones of the mesh for a snapshot (null: rigid). Returns one transform per bone
+  /// (bone 0 first), entity frame.
+  std::function<void(const engine::EntitySnapshot&, std::vector<Rigid>&)> pose;
+  std::vector<Rigid> last_pose;  ///< bones of the last frame (to skip unchanged updates)
+  bool seen = false;             ///< placed in the current frame
+
+  EntityShape() = default;
+  EntityShape(const EntityShape&) = delete;
+  EntityShape& operator=(const EntityShape&) = delete;
+  ~EntityShape();
 };
 
 /// One placed entity of the current frame.
 struct EntityInstance {
-  SemanticClass semantic = SemanticClass::kObstacle;
+  SemanticClass semantic = SemanticClass::kDynamic;
   uint32_t instance_id = 0;
   size_t snapshot_index = 0;  ///< index into SceneData::entities
-  Mat3 normal_matrix;         ///< object-space normal to world normal (inverse transpose)
+  EntityShape* shape = nullptr;
+  Mat3 normal_matrix;  ///< object-space normal to world normal (the pose's rotation)
+  Rigid world_from_entity;
+  uint32_t lights_on = 0;   ///< VehicleLight bits from the snapshot
+  uint32_t lights_set = 0;  ///< bits the scenario set explicitly
 };
 
 constexpr size_t kCategoryCount = static_cast<size_t>(engine::EntityCategory::kObstacle) + 1;
@@ -35,11 +80,20 @@ struct SceneData {
   RTCDevice device = nullptr;
   RTCScene static_scene = nullptr;
   RTCScene top = nullptr;
-  std::array<RTCScene, kCategoryCount> prototypes{};
   std::vector<StaticGeometry> static_geometries;  ///< by geomID in static_scene
   std::vector<RTCGeometry> instance_pool;         ///< top-level instances, geomID = index + 1
   std::vector<EntityInstance> instances;          ///< this frame's, by pool index
   std::vector<engine::EntitySnapshot> entities;   ///< this frame's snapshot entities
+  std::map<uint32_t, std::unique_ptr<EntityShape>> shapes;  ///< by entity instance id
+  EntityShapeSource* shape_source = nullptr;
+  std::vector<Material> materials;  ///< by MaterialId
+  std::map<std::string, MaterialId> material_keys;
+  std::array<MaterialId, kSemanticClassCount> class_materials{};
+  std::vector<std::string> signal_ids;             ///< signals that switch traffic-light heads
+  std::vector<std::string> signal_states;          ///< this frame's state strings, by index
+  std::vector<uint8_t> signal_bulbs;               ///< lit bulbs, bit 0 red, 1 yellow, 2 green
+  std::map<uint32_t, ObjectInfo> objects;          ///< labelled static objects by instance id
+  std::map<uint32_t, std::string> object_signals;  ///< their signal ids
   Bounds bounds;
   size_t triangle_count = 0;
   bool committed = false;
@@ -56,11 +110,16 @@ struct SceneData {
   Label label(unsigned inst_id, unsigned geom_id, unsigned prim_id) const {
     if (inst_id == 0) {
       const StaticGeometry& g = static_geometries[geom_id];
-      const SemanticClass c = g.classes.size() == 1 ? g.classes[0] : g.classes[prim_id];
-      return {c, g.instance_id, -1};
+      return {g.class_of(prim_id), g.instance_id, -1};
     }
     const EntityInstance& e = instances[inst_id - 1];
-    return {e.semantic, e.instance_id, static_cast<int>(inst_id - 1)};
+    return {e.shape->mesh.classes[prim_id], e.instance_id, static_cast<int>(inst_id - 1)};
+  }
+  MaterialId material_of(unsigned inst_id, unsigned geom_id, unsigned prim_id) const {
+    if (inst_id == 0) {
+      return static_geometries[geom_id].material_of(prim_id);
+    }
+    return instances[inst_id - 1].shape->materials[prim_id];
   }
   /// World-space normal from Embree's object-space geometric normal.
   Vec3 world_normal(unsigned inst_id, Vec3 ng) const {
@@ -74,7 +133,8 @@ struct SceneData {
   Vec3 to_map(Vec3 p) const { return p + options.origin; }
 };
 
-/// Default prototype shapes in unit-box coordinates (prototypes.cpp).
-StaticMesh default_prototype(engine::EntityCategory category);
+/// The generated shape of an entity (entity_assets.cpp): its mesh in the entity frame and, for
+/// articulated ones, how its bones move.
+void build_entity_shape(const engine::EntitySnapshot& entity, uint64_t seed, EntityShape& shape);
 
 }  // namespace corsa::sensors::detail

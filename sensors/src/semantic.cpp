@@ -1,5 +1,7 @@
 #include "corsa/sensors/semantic.h"
 
+#include <nlohmann/json.hpp>
+
 namespace corsa::sensors {
 namespace {
 
@@ -8,34 +10,47 @@ struct ClassInfo {
   Rgb8 color;
 };
 
-// Colours follow the Cityscapes palette where a class exists there.
+// CARLA 0.9.14 CityObjectLabel order and colours (Cityscapes palette), then Corsa's own.
 constexpr std::array<ClassInfo, kSemanticClassCount> kClasses = {{
-    {"none", {0, 0, 0}},
+    {"unlabeled", {0, 0, 0}},
     {"road", {128, 64, 128}},
-    {"lane_marking", {157, 234, 50}},
     {"sidewalk", {244, 35, 232}},
-    {"bike_lane", {119, 11, 200}},
-    {"parking", {250, 170, 160}},
-    {"roadside", {152, 251, 152}},
-    {"rail_track", {230, 150, 140}},
     {"building", {70, 70, 70}},
-    {"static_object", {190, 153, 153}},
+    {"wall", {102, 102, 156}},
+    {"fence", {190, 153, 153}},
+    {"pole", {153, 153, 153}},
+    {"traffic_light", {250, 170, 30}},
+    {"traffic_sign", {220, 220, 0}},
+    {"vegetation", {107, 142, 35}},
+    {"terrain", {152, 251, 152}},
+    {"sky", {70, 130, 180}},
+    {"person", {220, 20, 60}},
+    {"rider", {255, 0, 0}},
     {"car", {0, 0, 142}},
     {"truck", {0, 0, 70}},
     {"bus", {0, 60, 100}},
+    {"train", {0, 80, 100}},
     {"motorcycle", {0, 0, 230}},
     {"bicycle", {119, 11, 32}},
-    {"train", {0, 80, 100}},
-    {"pedestrian", {220, 20, 60}},
+    {"static", {110, 190, 160}},
+    {"dynamic", {170, 120, 50}},
+    {"other", {55, 90, 80}},
+    {"water", {45, 60, 150}},
+    {"lane_marking", {157, 234, 50}},
+    {"ground", {81, 0, 81}},
+    {"bridge", {150, 100, 100}},
+    {"rail_track", {230, 150, 140}},
+    {"guard_rail", {180, 165, 180}},
+    {"parking", {250, 170, 160}},
+    {"bike_lane", {128, 64, 255}},
     {"animal", {255, 128, 0}},
-    {"obstacle", {220, 220, 0}},
 }};
 
 }  // namespace
 
 std::string_view semantic_name(SemanticClass c) {
   const auto i = static_cast<size_t>(c);
-  return i < kClasses.size() ? kClasses[i].name : std::string_view("none");
+  return i < kClasses.size() ? kClasses[i].name : std::string_view("unlabeled");
 }
 
 Rgb8 semantic_color(SemanticClass c) {
@@ -48,20 +63,19 @@ SemanticClass semantic_class_of_lane(xodr::LaneType type) {
   switch (type) {
     case LaneType::kSidewalk:
     case LaneType::kWalking:
+    case LaneType::kCurb:
       return SemanticClass::kSidewalk;
     case LaneType::kBiking:
       return SemanticClass::kBikeLane;
     case LaneType::kParking:
       return SemanticClass::kParking;
-    case LaneType::kShoulder:
     case LaneType::kBorder:
-    case LaneType::kCurb:
     case LaneType::kMedian:
-      return SemanticClass::kRoadside;
+      return SemanticClass::kTerrain;
     case LaneType::kRail:
       return SemanticClass::kRailTrack;
     default:
-      return SemanticClass::kRoad;  // driving, ramps, bus, tram, restricted, none, ...
+      return SemanticClass::kRoad;  // driving, shoulder, ramps, bus, tram, restricted, none, ...
   }
 }
 
@@ -86,17 +100,36 @@ SemanticClass semantic_class_of_entity(engine::EntityCategory category) {
       return SemanticClass::kTrain;
     case EntityCategory::kPedestrian:
     case EntityCategory::kWheelchair:
-      return SemanticClass::kPedestrian;
+      return SemanticClass::kPerson;
     case EntityCategory::kAnimal:
       return SemanticClass::kAnimal;
     case EntityCategory::kObstacle:
-      return SemanticClass::kObstacle;
+      return SemanticClass::kDynamic;
   }
-  return SemanticClass::kObstacle;
+  return SemanticClass::kDynamic;
 }
 
 bool is_dynamic_class(SemanticClass c) {
-  return static_cast<int>(c) >= static_cast<int>(SemanticClass::kCar);
+  const auto i = static_cast<int>(c);
+  return (i >= static_cast<int>(SemanticClass::kPerson) &&
+          i <= static_cast<int>(SemanticClass::kBicycle)) ||
+         c == SemanticClass::kDynamic || c == SemanticClass::kAnimal;
+}
+
+std::string class_table_json() {
+  nlohmann::ordered_json classes = nlohmann::ordered_json::array();
+  for (size_t i = 0; i < kClasses.size(); ++i) {
+    const Rgb8 c = kClasses[i].color;
+    classes.push_back({{"id", i},
+                       {"name", std::string(kClasses[i].name)},
+                       {"color", {c.r, c.g, c.b}}});
+  }
+  nlohmann::ordered_json table;
+  table["format"] = "corsa semantic classes 1";
+  table["ids_follow"] = "CARLA 0.9.14 CityObjectLabel (0-28), Corsa (29-31)";
+  table["sky_id"] = static_cast<int>(SemanticClass::kSky);
+  table["classes"] = std::move(classes);
+  return table.dump(2) + "\n";
 }
 
 }  // namespace corsa::sensors

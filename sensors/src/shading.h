@@ -25,29 +25,34 @@ struct ShadingContext {
   const SceneData* scene = nullptr;
   const Lighting* lighting = nullptr;
   std::vector<Headlight> headlights;
-  std::vector<Color> entity_albedo;  ///< by instance pool index
-  std::vector<Color> static_albedo;  ///< by static geometry id (when the mesh has a colour)
-  std::vector<char> static_has_color;
-  std::array<Color, kSemanticClassCount> class_albedo;
+  std::vector<uint32_t> entity_lamps;  ///< by instance pool index: lit LightRole bits
+  uint32_t static_lamps = 0;           ///< lit LightRole bits of static lamps (street lamps)
+  double darkness = 0.0;               ///< 0 day .. 1 night (lit windows)
+  double pixel_angle = 1e-3;           ///< radians per pixel, for texture footprints
 };
 
-/// Diffuse albedo (linear) of a hit: the entity's paint, the mesh's colour, or its class's.
-inline Color surface_albedo(const ShadingContext& c, const SceneData::Label& label,
-                            unsigned geom_id) {
-  if (label.entity >= 0) {
-    return c.entity_albedo[label.entity];
-  }
-  if (c.static_has_color[geom_id]) {
-    return c.static_albedo[geom_id];
-  }
-  return c.class_albedo[static_cast<size_t>(label.semantic)];
-}
+/// What a camera ray hit, as shading needs it.
+struct SurfaceHit {
+  unsigned inst_id = 0;
+  unsigned geom_id = 0;
+  unsigned prim_id = 0;
+  double u = 0.0;  ///< Embree's barycentric coordinates
+  double v = 0.0;
+  Vec3 position;   ///< tracer-local
+  Vec3 normal;     ///< world, unit, facing the viewer
+  Vec3 view_dir;   ///< unit, from the eye
+  double distance = 0.0;
+  SemanticClass semantic = SemanticClass::kUnlabeled;
+  int entity = -1;  ///< instance pool index, -1 static
+};
 
-ShadingContext make_shading_context(const SceneData& scene, const Lighting& lighting);
+/// `pixel_angle`: the angle one pixel covers (radians), or for orthographic views the metres
+/// per pixel divided by the distance passed in hits.
+ShadingContext make_shading_context(const SceneData& scene, const Lighting& lighting,
+                                    double pixel_angle);
 
-/// Linear radiance of a surface point (tracer-local position), before fog.
-Color shade_surface(const ShadingContext& c, Vec3 position, Vec3 normal, Vec3 view_dir,
-                    SemanticClass semantic, Color albedo, bool sunlit);
+/// Linear radiance of a surface point, before fog.
+Color shade_hit(const ShadingContext& c, const SurfaceHit& hit, bool sunlit);
 
 /// Fog and rain extinction over `distance` metres (infinite for the sky).
 Color apply_fog(const Lighting& l, Color radiance, double distance);

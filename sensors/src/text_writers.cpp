@@ -65,7 +65,7 @@ std::string kitti_type(SemanticClass c) {
     case SemanticClass::kTruck:
     case SemanticClass::kBus:
       return "Truck";
-    case SemanticClass::kPedestrian:
+    case SemanticClass::kPerson:
       return "Pedestrian";
     case SemanticClass::kBicycle:
     case SemanticClass::kMotorcycle:

@@ -55,7 +55,7 @@ TEST_CASE("a box at a known distance gives the right depth and 2D box", "[sensor
     if (img.instance[i] == 7) {
       ++box_pixels;
       REQUIRE(img.depth[i] == Approx(18.0).margin(1e-3));
-      REQUIRE(img.semantic[i] == static_cast<uint8_t>(SemanticClass::kObstacle));
+      REQUIRE(img.semantic[i] == static_cast<uint8_t>(SemanticClass::kDynamic));
     }
   }
   // The face spans 2 m x 1.5 m at 18 m: (320 * 2 / 18) x (320 * 1.5 / 18) pixels.
@@ -65,7 +65,7 @@ TEST_CASE("a box at a known distance gives the right depth and 2D box", "[sensor
   REQUIRE(labels.size() == 1);
   const ObjectLabel& l = labels[0];
   CHECK(l.track_id == 7);
-  CHECK(l.semantic == SemanticClass::kObstacle);
+  CHECK(l.semantic == SemanticClass::kDynamic);
   // Corners of the front face: u = 319.5 -+ 320 * 1 / 18, v = 239.5 + 320 * (1 - z) / 18.
   CHECK(l.box_2d.x_min == Approx(319.5 - 320.0 / 18.0).margin(1e-6));
   CHECK(l.box_2d.x_max == Approx(319.5 + 320.0 / 18.0).margin(1e-6));

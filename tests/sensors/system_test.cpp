@@ -93,7 +93,7 @@ TEST_CASE("a rig captures every sensor with labels into per-sensor folders", "[s
   // The camera sees the lead car and the walker, never its own vehicle.
   const std::string labels = corsa::read_file(dir.path() / "rgb" / "000000_labels.json");
   CHECK_THAT(labels, Catch::Contains("\"name\": \"Lead\""));
-  CHECK_THAT(labels, Catch::Contains("\"name\": \"Walker\", \"class\": \"pedestrian\""));
+  CHECK_THAT(labels, Catch::Contains("\"name\": \"Walker\", \"class\": \"person\""));
   CHECK_THAT(labels, !Catch::Contains("\"name\": \"Ego\""));
   // Point counts agree between the PLY header, the KITTI bin and the point labels.
   const std::string ply = corsa::read_file(dir.path() / "lidar" / "000000.ply");

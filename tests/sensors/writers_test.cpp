@@ -61,10 +61,15 @@ TEST_CASE("RGB and class images keep their channel order and values", "[sensors]
   const cv::Mat img = cv::imread((dir.path() / "c.png").string(), cv::IMREAD_COLOR);
   CHECK(img.at<cv::Vec3b>(0, 0) == cv::Vec3b(0, 0, 255));  // BGR in OpenCV
   CHECK(img.at<cv::Vec3b>(1, 1) == cv::Vec3b(30, 20, 10));
-  const std::vector<uint8_t> classes = {1, 2, 8, 10};
+  // CARLA's ids and Cityscapes' colours: road 1, sidewalk 2, traffic sign 8, car 14.
+  const std::vector<uint8_t> classes = {1, 2, 8, 14};
+  CHECK(static_cast<uint8_t>(SemanticClass::kCar) == 14);
   const auto colors = colorize_semantic(classes);
   CHECK(colors[0] == 128);  // road (128, 64, 128)
-  CHECK(colors[9] == 0);    // car (0, 0, 142)
+  CHECK(colors[1] == 64);
+  CHECK(colors[6] == 220);  // traffic sign (220, 220, 0)
+  CHECK(colors[8] == 0);
+  CHECK(colors[9] == 0);  // car (0, 0, 142)
   CHECK(colors[11] == 142);
   CHECK_THROWS_AS(write_png_gray8(dir.path() / "x.png", 3, 2, classes), std::invalid_argument);
   CHECK_FALSE(fs::exists(dir.path() / "x.png"));
@@ -99,7 +104,7 @@ TEST_CASE("point clouds are written as PLY, PCD, KITTI bin and point labels",
   const std::string labels = corsa::read_file(dir.path() / "p.label");
   uint32_t l[2];
   std::memcpy(l, labels.data(), 8);
-  CHECK(l[0] == (10u | (7u << 16)));
+  CHECK(l[0] == (static_cast<uint32_t>(SemanticClass::kCar) | (7u << 16)));
   CHECK(l[1] == 1u);
 }
 

@@ -5,17 +5,10 @@
 // (1 = a white surface facing the noon sun on a clear day).
 
 #include "corsa/engine/world_snapshot.h"
+#include "corsa/sensors/color.h"
 #include "corsa/sensors/geometry.h"
 
 namespace corsa::sensors {
-
-struct Color {
-  double r = 0.0, g = 0.0, b = 0.0;
-};
-inline Color operator+(Color a, Color b) { return {a.r + b.r, a.g + b.g, a.b + b.b}; }
-inline Color operator*(Color a, double s) { return {a.r * s, a.g * s, a.b * s}; }
-inline Color operator*(Color a, Color b) { return {a.r * b.r, a.g * b.g, a.b * b.b}; }
-inline Color mix(Color a, Color b, double t) { return a * (1.0 - t) + b * t; }
 
 /// Where the map is on Earth (for the solar position).
 struct GeoLocation {

@@ -23,7 +23,7 @@ struct ObjectLabel {
   uint32_t instance_id = 0;
   uint32_t track_id = 0;  ///< stable over the run: the engine's entity instance id
   std::string name;       ///< entity name
-  SemanticClass semantic = SemanticClass::kNone;
+  SemanticClass semantic = SemanticClass::kUnlabeled;
   Box3 box_world;         ///< map frame
   Box3 box_sensor;        ///< camera optical frame (cameras) or sensor body frame (LiDAR)
   double distance = 0.0;  ///< metres from the sensor to the box centre

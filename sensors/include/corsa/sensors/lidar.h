@@ -33,7 +33,7 @@ struct LidarPoint {
   float intensity = 0.0f;  ///< 0..1
   uint16_t ring = 0;       ///< channel, 0 = lowest beam
   uint16_t azimuth_index = 0;
-  SemanticClass semantic = SemanticClass::kNone;
+  SemanticClass semantic = SemanticClass::kUnlabeled;
   uint32_t instance_id = 0;
 };
 

@@ -1,8 +1,10 @@
 #pragma once
 
-// The ray-casting scene: static geometry (road mesh, building models) committed once, and the
-// scenario's entities as instances of per-category prototype shapes moved every frame without
-// rebuilding the static geometry. Every primitive carries a semantic class and an instance id.
+// The ray-casting scene: static geometry (road mesh, terrain, roadside objects, building models)
+// committed once, and the scenario's entities, each with its own generated (or loaded) shape in
+// its own frame, placed by an instance transform every frame and articulated where it moves
+// (wheels turn and steer, people walk) without rebuilding the static geometry. Every primitive
+// carries a semantic class, an instance id and a material.
 
 #include <memory>
 #include <optional>
@@ -11,6 +13,7 @@
 
 #include "corsa/engine/world_snapshot.h"
 #include "corsa/sensors/geometry.h"
+#include "corsa/sensors/material.h"
 #include "corsa/sensors/semantic.h"
 #include "corsa/sensors/static_mesh.h"
 #include "corsa/xodr/road_mesh.h"
@@ -25,6 +28,20 @@ struct SceneOptions {
   /// Map point subtracted from every coordinate before the single-precision ray tracer sees it
   /// (UTM-sized coordinates would otherwise lose centimetres). Pick a point inside the map.
   Vec3 origin;
+  /// Run seed: vehicle paint and model variants, people's builds and clothes are drawn from it
+  /// and each entity's name, so the same seed gives the same look.
+  uint64_t seed = 0;
+};
+
+/// Builds the shape of an entity the scene has not seen before (for users' model3d files);
+/// returns false to let the scene generate one by category. Called on the thread that calls
+/// Scene::set_entities.
+class EntityShapeSource {
+ public:
+  virtual ~EntityShapeSource() = default;
+  /// Fills `mesh` in the entity's frame (x forward, y left, z up, metres; the snapshot's
+  /// reference point at the origin) when it provides one.
+  virtual bool shape_of(const engine::EntitySnapshot& entity, StaticMesh& mesh) = 0;
 };
 
 /// What one ray hit.
@@ -32,7 +49,7 @@ struct RayHit {
   double distance = 0.0;  ///< metres along the (unit) ray direction
   Vec3 point;             ///< map coordinates
   Vec3 normal;            ///< unit geometric normal in map coordinates, facing the ray origin
-  SemanticClass semantic = SemanticClass::kNone;
+  SemanticClass semantic = SemanticClass::kUnlabeled;
   uint32_t instance_id = 0;
   int entity_index = -1;  ///< index into the entities of the last set_entities, -1 for static
 };
@@ -58,17 +75,26 @@ class Scene {
   /// Adds a static mesh; returns the instance id it carries (assigned when mesh.instance_id == 0
   /// for buildings and static objects). Throws std::invalid_argument on inconsistent data.
   uint32_t add_static_mesh(StaticMesh mesh);
-  /// Replaces the prototype shape for an entity category. The mesh is in unit-box coordinates
-  /// ([-0.5, 0.5] on each axis, x forward, y left, z up) and is scaled to each entity's bounding
-  /// box. The class of the mesh is ignored (the entity's category decides).
-  void set_prototype(engine::EntityCategory category, const StaticMesh& unit_mesh);
+  /// Adds a material to the table (an equal one already there is reused) and returns its id.
+  MaterialId add_material(const Material& material);
+  const Material& material(MaterialId id) const;
+  size_t material_count() const;
+  /// Where shapes of entities come from before the built-in generators (not owned; may be null).
+  void set_entity_shape_source(EntityShapeSource* source);
   /// Builds the static acceleration structure; call once after adding static geometry (adding
   /// more later needs another commit).
   void commit();
 
   /// Places the entities for the next frame (invisible ones are left out): only their instance
-  /// transforms and the small top-level structure are rebuilt.
+  /// transforms, the articulated parts (wheels, limbs) and the small top-level structure are
+  /// rebuilt. An entity seen for the first time gets its shape (generated from its category,
+  /// bounding box, name and the run seed, or from the shape source).
   void set_entities(std::span<const engine::EntitySnapshot> entities);
+  /// The traffic-signal states of the next frame (OpenSCENARIO TrafficSignalState strings by
+  /// OpenDRIVE signal id): they switch the bulbs of the traffic-light meshes.
+  void set_signals(std::span<const engine::SignalSnapshot> signals);
+  /// The state string of a signal in the current frame ("" when the scenario gave none).
+  std::string signal_state(const std::string& signal_id) const;
   std::span<const engine::EntitySnapshot> entities() const;
 
   /// Closest hit along a ray (direction need not be unit), up to max_distance metres.

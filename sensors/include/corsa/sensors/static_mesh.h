@@ -7,12 +7,27 @@
 #include <vector>
 
 #include "corsa/sensors/geometry.h"
+#include "corsa/sensors/material.h"
 #include "corsa/sensors/semantic.h"
 
 namespace corsa::sensors {
 
+/// What a static object is, for the per-frame labels (traffic lights with their state, signs
+/// with their type). OpenDRIVE signals carry their id, country, type, subtype and value.
+struct ObjectInfo {
+  std::string kind;  ///< "traffic_light", "traffic_sign", "street_light", "tree", ...
+  std::string signal_id;  ///< OpenDRIVE signal id (traffic lights and signs); empty otherwise
+  std::string country;
+  std::string type;
+  std::string subtype;
+  std::optional<double> value;
+  std::string text;
+};
+
 /// A triangle mesh placed in map coordinates (metres), with its labels: one semantic class per
-/// triangle (or a single class for the whole mesh) and one instance id for the whole mesh.
+/// triangle (or a single class for the whole mesh) and one instance id for the whole mesh, and
+/// its look: a palette of materials with one index per triangle (or one for all), optional
+/// texture coordinates.
 struct StaticMesh {
   std::string name;  ///< for messages and label files (e.g. the model file and node)
   std::vector<Vec3> vertices;
@@ -21,13 +36,29 @@ struct StaticMesh {
   std::vector<SemanticClass> classes;
   /// Instance id in instance-segmentation images and point labels; 0 means "no instance" (stuff).
   /// Scene::add_static_mesh assigns ids from kStaticInstanceBase when this is 0 and the class is a
-  /// countable one (buildings, static objects).
+  /// countable one (see is_countable_class).
   uint32_t instance_id = 0;
-  std::optional<Rgb8> color;  ///< base colour for RGB rendering; class default when absent
+  /// Base colour for RGB rendering when the mesh has no materials; the class's look otherwise.
+  std::optional<Rgb8> color;
+  /// Material palette; empty: the `color`, or the look of each triangle's class.
+  std::vector<Material> materials;
+  /// One index into `materials` per triangle, or one for all (empty: all use materials[0]).
+  std::vector<uint16_t> material_indices;
+  /// Texture coordinates per vertex (empty when the mesh has none).
+  std::vector<std::array<float, 2>> uvs;
+  /// Traffic-light heads: the OpenDRIVE signal id whose state (WorldSnapshot::signals) switches
+  /// the bulbs (materials with LightRole kSignalRed/Yellow/Green).
+  std::string signal_id;
+  /// What the object is, for the labels; empty kind: not labelled.
+  ObjectInfo object;
 };
 
 /// Instance ids of static meshes start here so that they never collide with the engine's 1-based
 /// entity instance ids (which stay below this in any realistic scenario).
 inline constexpr uint32_t kStaticInstanceBase = 32768;
+
+/// Classes of things one can count (buildings, poles, signs, trees, props): their meshes get an
+/// instance id of their own. Stuff (road, sidewalk, terrain, marks, sky) does not.
+bool is_countable_class(SemanticClass c);
 
 }  // namespace corsa::sensors

@@ -1,0 +1,170 @@
+#include "noise_tile.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace corsa::sensors::detail {
+namespace {
+
+/// Tileable value noise: random values on a `cells` x `cells` lattice that wraps around the
+/// tile, interpolated with the quintic fade (C2 continuous).
+float value_noise(double x, double y, int cells, uint32_t seed) {
+  const double fx = std::floor(x);
+  const double fy = std::floor(y);
+  const double tx = x - fx;
+  const double ty = y - fy;
+  auto fade = [](double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); };
+  const double sx = fade(tx);
+  const double sy = fade(ty);
+  auto at = [&](int64_t i, int64_t j) {
+    return cell_random(((i % cells) + cells) % cells, ((j % cells) + cells) % cells, seed);
+  };
+  const auto i = static_cast<int64_t>(fx);
+  const auto j = static_cast<int64_t>(fy);
+  const double a = at(i, j) + (at(i + 1, j) - at(i, j)) * sx;
+  const double b = at(i, j + 1) + (at(i + 1, j + 1) - at(i, j + 1)) * sx;
+  return static_cast<float>(a + (b - a) * sy);
+}
+
+}  // namespace
+
+NoiseTile::NoiseTile() {
+  Level base;
+  base.size = kSize;
+  base.texels.resize(static_cast<size_t>(kSize) * kSize * 4);
+  // Octaves of 4 to 128 lattice cells across the tile (the finest has 2 texels per cell), with
+  // amplitudes falling by 0.55 per octave: a broad-band field whose mean is 0.5.
+  constexpr int kOctaves = 6;
+  double total = 0.0;
+  for (int o = 0; o < kOctaves; ++o) {
+    total += std::pow(0.55, o);
+  }
+  for (int c = 0; c < 4; ++c) {
+    for (int y = 0; y < kSize; ++y) {
+      for (int x = 0; x < kSize; ++x) {
+        double sum = 0.0;
+        for (int o = 0; o < kOctaves; ++o) {
+          const int cells = 4 << o;
+          const double k = static_cast<double>(cells) / kSize;
+          sum += std::pow(0.55, o) * value_noise((x + 0.5) * k, (y + 0.5) * k, cells,
+                                                 0x51ED5EEDu + 977u * c + 131u * o);
+        }
+        base.texels[4 * (static_cast<size_t>(y) * kSize + x) + c] =
+            static_cast<float>(sum / total);
+      }
+    }
+  }
+  // Stretch each channel to about 0..1 around 0.5 (sums of octaves bunch up in the middle).
+  for (int c = 0; c < 4; ++c) {
+    double mean = 0.0;
+    double var = 0.0;
+    const size_t n = static_cast<size_t>(kSize) * kSize;
+    for (size_t i = 0; i < n; ++i) {
+      mean += base.texels[4 * i + c];
+    }
+    mean /= static_cast<double>(n);
+    for (size_t i = 0; i < n; ++i) {
+      const double d = base.texels[4 * i + c] - mean;
+      var += d * d;
+    }
+    const double sd = std::sqrt(var / static_cast<double>(n));
+    for (size_t i = 0; i < n; ++i) {
+      float& v = base.texels[4 * i + c];
+      v = static_cast<float>(std::clamp(0.5 + 0.17 * (v - mean) / sd, 0.0, 1.0));
+    }
+  }
+  levels_.push_back(std::move(base));
+  while (levels_.back().size > 1) {
+    const Level& up = levels_.back();
+    Level down;
+    down.size = up.size / 2;
+    down.texels.resize(static_cast<size_t>(down.size) * down.size * 4);
+    for (int y = 0; y < down.size; ++y) {
+      for (int x = 0; x < down.size; ++x) {
+        for (int c = 0; c < 4; ++c) {
+          auto at = [&](int xi, int yi) {
+            return up.texels[4 * (static_cast<size_t>(yi) * up.size + xi) + c];
+          };
+          down.texels[4 * (static_cast<size_t>(y) * down.size + x) + c] =
+              0.25f * (at(2 * x, 2 * y) + at(2 * x + 1, 2 * y) + at(2 * x, 2 * y + 1) +
+                       at(2 * x + 1, 2 * y + 1));
+        }
+      }
+    }
+    levels_.push_back(std::move(down));
+  }
+}
+
+const NoiseTile& NoiseTile::instance() {
+  static const NoiseTile tile;
+  return tile;
+}
+
+std::array<float, 4> NoiseTile::bilinear(const Level& level, double x, double y) const {
+  const int n = level.size;
+  const double px = x * n / kSize - 0.5;
+  const double py = y * n / kSize - 0.5;
+  const double fx = std::floor(px);
+  const double fy = std::floor(py);
+  const auto ax = static_cast<float>(px - fx);
+  const auto ay = static_cast<float>(py - fy);
+  // Wrap with a mask (sizes are powers of two); large coordinates are first brought near 0 in
+  // double precision so that the integer conversion never overflows.
+  const double period = static_cast<double>(n);
+  const auto ix = static_cast<int64_t>(fx - period * std::floor(fx / period));
+  const auto iy = static_cast<int64_t>(fy - period * std::floor(fy / period));
+  const int x0 = static_cast<int>(ix) & (n - 1);
+  const int x1 = (x0 + 1) & (n - 1);
+  const int y0 = static_cast<int>(iy) & (n - 1);
+  const int y1 = (y0 + 1) & (n - 1);
+  const float* a = &level.texels[4 * (static_cast<size_t>(y0) * n + x0)];
+  const float* b = &level.texels[4 * (static_cast<size_t>(y0) * n + x1)];
+  const float* c = &level.texels[4 * (static_cast<size_t>(y1) * n + x0)];
+  const float* d = &level.texels[4 * (static_cast<size_t>(y1) * n + x1)];
+  std::array<float, 4> out{};
+  for (int k = 0; k < 4; ++k) {
+    const float top = a[k] + (b[k] - a[k]) * ax;
+    const float bottom = c[k] + (d[k] - c[k]) * ax;
+    out[k] = top + (bottom - top) * ay;
+  }
+  return out;
+}
+
+std::array<float, 4> NoiseTile::sample(double x, double y, double texels) const {
+  if (!std::isfinite(x) || !std::isfinite(y)) {
+    return {0.5f, 0.5f, 0.5f, 0.5f};
+  }
+  const double lod = texels > 1.0 ? std::log2(texels) : 0.0;
+  const double top = static_cast<double>(levels_.size() - 1);
+  if (lod >= top) {
+    return {levels_.back().texels[0], levels_.back().texels[1], levels_.back().texels[2],
+            levels_.back().texels[3]};
+  }
+  const auto l0 = static_cast<size_t>(lod);
+  const auto t = static_cast<float>(lod - static_cast<double>(l0));
+  std::array<float, 4> a = bilinear(levels_[l0], x, y);
+  if (t > 0.0f) {
+    const std::array<float, 4> b = bilinear(levels_[l0 + 1], x, y);
+    for (int k = 0; k < 4; ++k) {
+      a[k] += (b[k] - a[k]) * t;
+    }
+  }
+  return a;
+}
+
+double filtered_pulse(double x, double period, double duty, double w) {
+  // Integral of the pulse train from 0 to x, in units of the period: floor(x) d + min(frac, d).
+  const double d = std::clamp(duty, 0.0, 1.0);
+  auto integral = [d](double t) {
+    const double f = std::floor(t);
+    return f * d + std::min(t - f, d);
+  };
+  const double a = x / period;
+  const double width = w / period;
+  if (width < 1e-6) {
+    return a - std::floor(a) < d ? 1.0 : 0.0;
+  }
+  return (integral(a + 0.5 * width) - integral(a - 0.5 * width)) / width;
+}
+
+}  // namespace corsa::sensors::detail

@@ -1,0 +1,65 @@
+#pragma once
+
+// Prefiltered noise for the procedural textures: a tileable 256 x 256 texel field of four
+// independent fractal (fBm) channels with a box-filtered mip chain. Reading it trilinearly at the
+// pixel's footprint is the "mip-mapped" prefilter: a pixel covering many texels gets their
+// average, never an aliased sample. Built once from fixed seeds (the same bytes everywhere).
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace corsa::sensors::detail {
+
+/// 32-bit integer hash (a murmur3-style finaliser) of a 2D cell and a seed: the random value of
+/// cell-based patterns (bricks, windows, plants), identical on every platform.
+inline uint32_t cell_hash(int64_t x, int64_t y, uint32_t seed) {
+  uint64_t h = static_cast<uint64_t>(x) * 0x9E3779B97F4A7C15ULL ^
+               (static_cast<uint64_t>(y) + 0x632BE59BD9B4E019ULL) * 0xC2B2AE3D27D4EB4FULL ^
+               (static_cast<uint64_t>(seed) << 17);
+  h ^= h >> 33;
+  h *= 0xFF51AFD7ED558CCDULL;
+  h ^= h >> 33;
+  h *= 0xC4CEB9FE1A85EC53ULL;
+  h ^= h >> 33;
+  return static_cast<uint32_t>(h);
+}
+
+/// The hash as a number in [0, 1).
+inline double cell_random(int64_t x, int64_t y, uint32_t seed) {
+  return cell_hash(x, y, seed) * (1.0 / 4294967296.0);
+}
+
+class NoiseTile {
+ public:
+  static constexpr int kSize = 256;
+  /// The shared tile (built at first use; immutable afterwards).
+  static const NoiseTile& instance();
+
+  /// The four channels (each about 0..1, mean 0.5) at texel coordinates (x, y) of the full-size
+  /// level (the tile repeats every kSize texels), averaged over `texels` texels (the footprint
+  /// of the pixel; <= 1 reads the full-size level).
+  std::array<float, 4> sample(double x, double y, double texels) const;
+
+ private:
+  NoiseTile();
+  struct Level {
+    int size = 0;
+    std::vector<float> texels;  ///< 4 floats per texel, row-major
+  };
+  std::array<float, 4> bilinear(const Level& level, double x, double y) const;
+  std::vector<Level> levels_;
+};
+
+/// Average of one noise channel of `tile_m`-metre tiles around a surface point (u, v metres)
+/// over a pixel footprint of `footprint_m` metres: the workhorse of the patterns.
+inline float noise(int channel, double u, double v, double tile_m, double footprint_m) {
+  const double scale = NoiseTile::kSize / tile_m;
+  return NoiseTile::instance().sample(u * scale, v * scale, footprint_m * scale)[channel];
+}
+
+/// Share of [x - w/2, x + w/2] covered by the pulses [k p, k p + d) (k integer): the box
+/// filtered value of a periodic line pattern (joints, window rows), exact for any footprint w.
+double filtered_pulse(double x, double period, double duty, double w);
+
+}  // namespace corsa::sensors::detail
