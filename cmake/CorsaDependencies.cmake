@@ -28,6 +28,9 @@ corsa_require(PROJ_FOUND "PROJ" libproj-dev)
 find_package(TBB CONFIG QUIET)
 corsa_require(TBB_FOUND "oneTBB" libtbb-dev)
 
+find_package(nlohmann_json 3 CONFIG QUIET)
+corsa_require(nlohmann_json_FOUND "nlohmann-json" nlohmann-json3-dev)
+
 # shapelib ships only a pkg-config file on Debian.
 find_path(SHAPELIB_INCLUDE_DIR shapefil.h)
 find_library(SHAPELIB_LIBRARY NAMES shp)
@@ -79,4 +82,11 @@ endif()
 if(CORSA_BUILD_BENCH)
   find_package(benchmark CONFIG QUIET)
   corsa_require(benchmark_FOUND "Google Benchmark" libbenchmark-dev)
+  # The pedestrian benchmark measures OpenCV's HOG people detector on rendered frames.
+  find_library(OPENCV_objdetect_LIBRARY NAMES opencv_objdetect)
+  find_path(OPENCV_OBJDETECT_INCLUDE opencv2/objdetect.hpp PATH_SUFFIXES opencv4)
+  corsa_require(OPENCV_objdetect_LIBRARY "OpenCV objdetect" libopencv-objdetect-dev)
+  corsa_require(OPENCV_OBJDETECT_INCLUDE "OpenCV objdetect headers" libopencv-objdetect-dev)
+  add_library(corsa::opencv_objdetect INTERFACE IMPORTED)
+  target_link_libraries(corsa::opencv_objdetect INTERFACE "${OPENCV_objdetect_LIBRARY}")
 endif()
