@@ -12,6 +12,7 @@
 #include "corsa/core/diagnostic.h"
 #include "corsa/core/strings.h"
 #include "corsa/core/version.h"
+#include "corsa/sensors/semantic.h"
 #include "corsa/sensors/writers.h"
 
 namespace corsa::sensors {
@@ -146,6 +147,7 @@ DatasetWriter::DatasetWriter(SensorSystem& system, fs::path directory, DatasetRu
   prepare_directory(directory_, replace);
   make_dir(directory_ / "poses");
   write_calibration(system_, directory_);
+  write_file_atomic(directory_ / "classes.json", class_table_json());
   index_ = "capture,tick,time,sensor,frame,file\n";
   write_file_atomic(directory_ / "frames.csv", index_);
   write_run_json(nullptr);

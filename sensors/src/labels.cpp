@@ -211,6 +211,56 @@ std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer&
   return labels;
 }
 
+std::vector<StaticObjectLabel> static_object_labels(const Scene& scene,
+                                                    std::span<const uint32_t> instance, int width,
+                                                    std::span<const uint8_t> semantic) {
+  const detail::SceneData& d = scene.data();
+  std::map<uint32_t, PixelStats> stats;
+  std::map<uint32_t, std::map<uint8_t, uint64_t>> classes;
+  for (size_t i = 0; i < instance.size(); ++i) {
+    if (instance[i] < kStaticInstanceBase || d.objects.find(instance[i]) == d.objects.end()) {
+      continue;
+    }
+    PixelStats& s = stats[instance[i]];
+    const int x = static_cast<int>(i % width);
+    const int y = static_cast<int>(i / width);
+    ++s.count;
+    s.x_min = std::min(s.x_min, x);
+    s.x_max = std::max(s.x_max, x);
+    s.y_min = std::min(s.y_min, y);
+    s.y_max = std::max(s.y_max, y);
+    if (!semantic.empty()) {
+      ++classes[instance[i]][semantic[i]];
+    }
+  }
+  std::vector<StaticObjectLabel> out;
+  for (const auto& [id, s] : stats) {
+    const auto& record = d.objects.at(id);
+    StaticObjectLabel l;
+    l.instance_id = id;
+    l.info = record.info;
+    if (record.signal >= 0) {
+      l.state = d.signal_states[record.signal];
+    }
+    l.box_world.center = (record.bounds.min + record.bounds.max) * 0.5;
+    l.box_world.length = record.bounds.max.x - record.bounds.min.x;
+    l.box_world.width = record.bounds.max.y - record.bounds.min.y;
+    l.box_world.height = record.bounds.max.z - record.bounds.min.z;
+    l.box_2d_visible = {static_cast<double>(s.x_min), static_cast<double>(s.y_min),
+                        static_cast<double>(s.x_max), static_cast<double>(s.y_max)};
+    l.visible_pixels = s.count;
+    uint64_t most = 0;
+    for (const auto& [c, n] : classes[id]) {
+      if (n > most) {
+        most = n;
+        l.semantic = static_cast<SemanticClass>(c);
+      }
+    }
+    out.push_back(std::move(l));
+  }
+  return out;
+}
+
 std::vector<ObjectLabel> lidar_labels(const Scene& scene, const Rigid& world_from_sensor,
                                       const PointCloud& cloud, double range_m, uint32_t carrier) {
   const detail::SceneData& d = scene.data();

@@ -318,11 +318,13 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
     }
     info.signal = static_cast<int>(index);
   }
-  if (!mesh.object.kind.empty() && mesh.instance_id != 0) {
-    d.objects[mesh.instance_id] = mesh.object;
-  }
+  Bounds bounds;
   double base_z = 1e300;
   for (const Vec3& v : mesh.vertices) {
+    bounds.min = {std::min(bounds.min.x, v.x), std::min(bounds.min.y, v.y),
+                  std::min(bounds.min.z, v.z)};
+    bounds.max = {std::max(bounds.max.x, v.x), std::max(bounds.max.y, v.y),
+                  std::max(bounds.max.z, v.z)};
     base_z = std::min(base_z, v.z);
     d.bounds.min = {std::min(d.bounds.min.x, v.x), std::min(d.bounds.min.y, v.y),
                     std::min(d.bounds.min.z, v.z)};
@@ -330,6 +332,9 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
                     std::max(d.bounds.max.z, v.z)};
   }
   info.base_z = base_z - d.options.origin.z;
+  if (!mesh.object.kind.empty() && mesh.instance_id != 0) {
+    d.objects[mesh.instance_id] = {mesh.object, bounds, info.signal};
+  }
   if (!mesh.uvs.empty()) {
     info.uvs = std::move(mesh.uvs);
     info.uv_triangles = mesh.triangles;

@@ -92,8 +92,14 @@ struct SceneData {
   std::vector<std::string> signal_ids;             ///< signals that switch traffic-light heads
   std::vector<std::string> signal_states;          ///< this frame's state strings, by index
   std::vector<uint8_t> signal_bulbs;               ///< lit bulbs, bit 0 red, 1 yellow, 2 green
-  std::map<uint32_t, ObjectInfo> objects;          ///< labelled static objects by instance id
-  std::map<uint32_t, std::string> object_signals;  ///< their signal ids
+  /// Labelled static objects by instance id: what they are, their bounds (map frame) and the
+  /// signal index of traffic lights (-1 otherwise).
+  struct ObjectRecord {
+    ObjectInfo info;
+    Bounds bounds;
+    int signal = -1;
+  };
+  std::map<uint32_t, ObjectRecord> objects;
   Bounds bounds;
   size_t triangle_count = 0;
   bool committed = false;

@@ -68,7 +68,8 @@ std::vector<fs::path> write_sensor_frame(const SensorFrame& f, const SensorSpec&
       break;
   }
   if (s.kind != SensorKind::kBirdsEyeCamera) {
-    write_file_atomic(out("_labels.json"), labels_json(f.labels, s.kind != SensorKind::kLidar));
+    write_file_atomic(out("_labels.json"),
+                      labels_json(f.labels, s.kind != SensorKind::kLidar, f.static_labels));
   }
   return written;
 }

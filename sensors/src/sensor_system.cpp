@@ -47,10 +47,13 @@ void render_camera_group(const Scene& scene, const CameraRenderer& renderer,
   CameraImages images = renderer.render(scene, motion, settings);
   const auto labels =
       camera_labels(scene, renderer, motion.world_from_body, images.instance, carrier.instance_id);
+  const auto static_labels =
+      static_object_labels(scene, images.instance, images.width, images.semantic);
   for (size_t i = 0; i < members.size(); ++i) {
     const SensorSpec& m = *members[i];
     SensorFrame& f = *outputs[i];
     f.labels = labels;
+    f.static_labels = static_labels;
     f.camera.width = images.width;
     f.camera.height = images.height;
     // The last member of a kind takes the image, earlier ones (e.g. two depth cameras sharing the
@@ -117,6 +120,7 @@ const CameraModel* SensorSystem::camera_model(const std::string& sensor) const {
 std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& world,
                                                std::span<const std::string> sensors) {
   scene_.set_entities(world.entities);
+  scene_.set_signals(world.signals);
   const Lighting lighting = compute_lighting(world.environment, options_.location);
   std::vector<const SensorSpec*> due;
   for (const auto& s : rig_.sensors) {

@@ -138,7 +138,36 @@ std::string calibration_json(const SensorSpec& s, const CameraModel* camera) {
   return out + "\n}\n";
 }
 
-std::string labels_json(std::span<const ObjectLabel> labels, bool camera) {
+namespace {
+
+std::string static_labels_json(std::span<const StaticObjectLabel> labels) {
+  std::string out;
+  for (size_t i = 0; i < labels.size(); ++i) {
+    const StaticObjectLabel& l = labels[i];
+    const ObjectInfo& o = l.info;
+    out += std::string(i ? ",\n  " : "\n  ") + "{\"instance_id\": " + std::to_string(l.instance_id) +
+           ", \"class\": " + json_quote(semantic_name(l.semantic)) +
+           ", \"kind\": " + json_quote(o.kind);
+    if (!o.signal_id.empty()) {
+      out += ", \"signal_id\": " + json_quote(o.signal_id) + ", \"country\": " + json_quote(o.country) +
+             ", \"type\": " + json_quote(o.type) + ", \"subtype\": " + json_quote(o.subtype) +
+             ", \"value\": " + (o.value ? num(*o.value) : std::string("null")) +
+             ", \"text\": " + json_quote(o.text);
+    }
+    if (o.kind == "traffic_light") {
+      out += ", \"state\": " + json_quote(l.state);
+    }
+    out += ",\n   \"box_world\": " + box3_json(l.box_world) +
+           ", \"box_2d_visible\": " + box2_json(l.box_2d_visible) +
+           ", \"visible_pixels\": " + std::to_string(l.visible_pixels) + "}";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string labels_json(std::span<const ObjectLabel> labels, bool camera,
+                        std::span<const StaticObjectLabel> static_labels) {
   std::string out = "{\"objects\": [";
   for (size_t i = 0; i < labels.size(); ++i) {
     const ObjectLabel& l = labels[i];
@@ -159,7 +188,12 @@ std::string labels_json(std::span<const ObjectLabel> labels, bool camera) {
     }
     out += "}";
   }
-  return out + (labels.empty() ? "]}\n" : "\n]}\n");
+  out += labels.empty() ? "]" : "\n]";
+  if (camera) {
+    out += ",\n\"static_objects\": [" + static_labels_json(static_labels) +
+           (static_labels.empty() ? "]" : "\n]");
+  }
+  return out + "}\n";
 }
 
 std::string kitti_labels(std::span<const ObjectLabel> labels) {

@@ -273,16 +273,27 @@ void add_details(MeshBuilder& b, const Body& body, RandomStream& rng) {
   const double hw = body.hw;
   const double yc = body.yc;
   auto lamp = [&](const Material& mat, double y0, double y1, double z, double size_z, int facing) {
-    // Three pieces, each on the surface under it (noses are round in plan).
-    for (int k = 0; k < 3; ++k) {
-      const double ya = y0 + (y1 - y0) * k / 3.0;
-      const double yb = y0 + (y1 - y0) * (k + 1) / 3.0;
-      double x = facing > 0 ? -1e9 : 1e9;
-      for (double y : {ya, yb, 0.5 * (ya + yb)}) {
-        const double sx = body.surface_x(y, z, facing);
-        x = facing > 0 ? std::max(x, sx) : std::min(x, sx);
+    // Pieces about 15 cm square, each on the surface under it (noses and tails are round).
+    const int ny = std::max(1, static_cast<int>(std::ceil(std::fabs(y1 - y0) / 0.15)));
+    const int nz = std::max(1, static_cast<int>(std::ceil(size_z / 0.15)));
+    for (int k = 0; k < ny; ++k) {
+      const double ya = y0 + (y1 - y0) * k / ny;
+      const double yb = y0 + (y1 - y0) * (k + 1) / ny;
+      for (int m = 0; m < nz; ++m) {
+        const double za = z - 0.5 * size_z + size_z * m / nz;
+        const double zb = za + size_z / nz;
+        double x = facing > 0 ? -1e9 : 1e9;
+        for (double y : {ya, yb, 0.5 * (ya + yb)}) {
+          for (double zz : {za, zb, 0.5 * (za + zb)}) {
+            const double sx = body.surface_x(y, zz, facing);
+            x = facing > 0 ? std::max(x, sx) : std::min(x, sx);
+          }
+        }
+        // Proud of the surface by 4 mm, never out of the bounding box.
+        const double face = std::clamp(x + facing * 0.004, body.x0, body.x0 + body.length);
+        add_lamp(b, mat, face, 0.5 * (ya + yb), 0.5 * (za + zb), std::fabs(yb - ya), zb - za,
+                 facing);
       }
-      add_lamp(b, mat, x + facing * 0.004, 0.5 * (ya + yb), z, std::fabs(yb - ya), size_z, facing);
     }
   };
   const double z_head = body.zb + body.height * body.p.headlamp;

@@ -7,6 +7,8 @@
 
 #include <catch2/catch.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
+#include <map>
 #include <sstream>
 
 #include "corsa/core/atomic_file.h"
@@ -126,4 +128,26 @@ TEST_CASE("a dataset written on one or two threads has the same bytes",
     REQUIRE(two.count(name) == 1);
     CHECK(two.at(name) == bytes);
   }
+}
+
+TEST_CASE("every dataset carries the class table with CARLA's ids and Cityscapes' colours",
+          "[sensors][dataset]") {
+  corsa::test::TempDir dir;
+  run(dir.path() / "set", 1);
+  const auto table = nlohmann::json::parse(corsa::read_file(dir.path() / "set" / "classes.json"));
+  const auto& classes = table.at("classes");
+  REQUIRE(classes.size() == static_cast<size_t>(kSemanticClassCount));
+  std::map<std::string, int> ids;
+  for (size_t i = 0; i < classes.size(); ++i) {
+    CHECK(classes[i].at("id").get<size_t>() == i);
+    ids[classes[i].at("name").get<std::string>()] = static_cast<int>(i);
+  }
+  CHECK(ids.at("road") == 1);
+  CHECK(ids.at("sky") == 11);
+  CHECK(ids.at("person") == 12);
+  CHECK(ids.at("rider") == 13);
+  CHECK(ids.at("car") == 14);
+  CHECK(ids.at("lane_marking") == 24);
+  CHECK(classes[14].at("color") == nlohmann::json::array({0, 0, 142}));
+  CHECK(classes[7].at("color") == nlohmann::json::array({250, 170, 30}));  // traffic light
 }

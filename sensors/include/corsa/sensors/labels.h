@@ -16,6 +16,7 @@
 #include "corsa/sensors/lidar.h"
 #include "corsa/sensors/scene.h"
 #include "corsa/sensors/semantic.h"
+#include "corsa/sensors/static_mesh.h"
 
 namespace corsa::sensors {
 
@@ -36,6 +37,24 @@ struct ObjectLabel {
   // LiDAR only:
   uint64_t lidar_points = 0;
 };
+
+/// A labelled static object seen by a camera: traffic lights with their state, signs with their
+/// type (OpenDRIVE signals), street lights, trees and the like.
+struct StaticObjectLabel {
+  uint32_t instance_id = 0;
+  SemanticClass semantic = SemanticClass::kStatic;  ///< class of most of its pixels
+  ObjectInfo info;
+  std::string state;  ///< traffic lights: the signal's state string this frame ("" unknown)
+  Box3 box_world;     ///< axis-aligned bounds in the map frame
+  Box2 box_2d_visible;
+  uint64_t visible_pixels = 0;
+};
+
+/// The static objects with object info that have visible pixels in an instance image (camera
+/// order: by instance id).
+std::vector<StaticObjectLabel> static_object_labels(const Scene& scene,
+                                                    std::span<const uint32_t> instance, int width,
+                                                    std::span<const uint8_t> semantic = {});
 
 /// KITTI's discrete occlusion state from the occluded share: 0 fully visible (< 10%), 1 partly
 /// (< 50%), 2 largely (< 90%), 3 unknown / almost fully occluded.

@@ -40,6 +40,7 @@ struct SensorFrame {
   BirdsEyeImage birds_eye;
   PointCloud cloud;
   std::vector<ObjectLabel> labels;
+  std::vector<StaticObjectLabel> static_labels;  ///< cameras: traffic lights, signs, ...
 };
 
 class SensorSystem {

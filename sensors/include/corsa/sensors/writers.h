@@ -68,7 +68,8 @@ std::string matrix_json(const Rigid& t);
 /// frame; cameras also T_sensor_optical). `camera` may be null for LiDAR.
 std::string calibration_json(const SensorSpec& sensor, const CameraModel* camera);
 /// Labels of one frame as JSON (see docs/sensors.md for the fields).
-std::string labels_json(std::span<const ObjectLabel> labels, bool camera);
+std::string labels_json(std::span<const ObjectLabel> labels, bool camera,
+                        std::span<const StaticObjectLabel> static_labels = {});
 /// KITTI object label lines (camera labels: boxes in the optical frame).
 std::string kitti_labels(std::span<const ObjectLabel> labels);
 

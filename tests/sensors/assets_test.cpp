@@ -1,0 +1,259 @@
+// Generated entity shapes, materials, procedural textures and lamps.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "corsa/sensors/camera_render.h"
+#include "fixtures.h"
+#include "noise_tile.h"
+#include "scene_data.h"
+#include "surface.h"
+#include "vehicle_generators.h"
+
+using namespace corsa::sensors;
+using corsa::engine::EntityCategory;
+using corsa::test::box_entity;
+
+namespace {
+
+corsa::engine::EntitySnapshot car_at(double x, double y, double heading) {
+  auto e = box_entity(1, "car", x, y, 4.6, 1.9, 1.5, EntityCategory::kCar);
+  e.box.center_x = 1.4;
+  e.pose.h = heading;
+  return e;
+}
+
+size_t count_material(const detail::ArticulatedMesh& m, auto pred) {
+  size_t n = 0;
+  for (const uint16_t i : m.material) {
+    n += pred(m.materials[i]) ? 1 : 0;
+  }
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("a box filtered pulse train averages to its duty over whole periods",
+          "[sensors][textures]") {
+  using detail::filtered_pulse;
+  CHECK(filtered_pulse(0.3, 1.0, 0.25, 0.0) == 0.0);  // point sample in the gap
+  CHECK(filtered_pulse(0.1, 1.0, 0.25, 0.0) == 1.0);  // in the pulse
+  CHECK(filtered_pulse(0.37, 1.0, 0.25, 3.0) == Approx(0.25));
+  CHECK(filtered_pulse(123.4, 0.5, 0.1, 10.0) == Approx(0.1));
+  // Half a pulse covered: [0.15, 0.35] overlaps [0, 0.25) by 0.1 of 0.2.
+  CHECK(filtered_pulse(0.25, 1.0, 0.25, 0.2) == Approx(0.5));
+}
+
+TEST_CASE("procedural textures fade to their average where pixels are larger than their detail",
+          "[sensors][textures]") {
+  const detail::NoiseTile& tile = detail::NoiseTile::instance();
+  // A footprint of the whole tile reads the mean.
+  for (float v : tile.sample(17.3, -4.2, 1e6)) {
+    CHECK(v == Approx(0.5).margin(0.02));
+  }
+  Material asphalt;
+  asphalt.pattern = Pattern::kAsphalt;
+  asphalt.base_color = {0.1, 0.1, 0.1};
+  asphalt.params[0] = 0.6;
+  auto spread = [&](double footprint) {
+    double sum = 0.0, sum2 = 0.0;
+    const int n = 400;
+    for (int i = 0; i < n; ++i) {
+      detail::TexturePoint p;
+      p.position = {0.37 * i, 0.11 * i, 0.0};
+      p.normal = {0.0, 0.0, 1.0};
+      p.footprint = footprint;
+      const double v = detail::sample_surface(asphalt, p).albedo.g;
+      sum += v;
+      sum2 += v * v;
+    }
+    return std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+  };
+  // Sharp up close, smooth far away: the variation between pixels falls by a factor of 3+.
+  CHECK(spread(0.002) > 3.0 * spread(20.0));
+}
+
+TEST_CASE("sign faces are drawn from their shape, border and symbol", "[sensors][textures]") {
+  SignFace stop;
+  stop.shape = SignShape::kOctagon;
+  stop.fill = {0.6, 0.0, 0.0};
+  stop.border = {0.9, 0.9, 0.9};
+  stop.border_width = 0.1;
+  stop.symbol = SignSymbol::kBar;
+  stop.symbol_color = {0.9, 0.9, 0.9};
+  const Color centre = detail::sign_face_color(stop, 0.5, 0.5, 1e-3);    // on the bar
+  const Color fill = detail::sign_face_color(stop, 0.5, 0.75, 1e-3);     // red field
+  const Color edge = detail::sign_face_color(stop, 0.5, 0.985, 1e-3);    // border band
+  CHECK(centre.r == Approx(0.9));
+  CHECK(fill.r == Approx(0.6));
+  CHECK(fill.g == Approx(0.0));
+  CHECK(edge.g == Approx(0.9));
+}
+
+TEST_CASE("car paints follow the real-world colour shares", "[sensors][assets]") {
+  corsa::RandomStream rng(11);
+  std::map<std::string, int> counts;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const std::string name = detail::draw_car_paint(rng).name;
+    counts[name.find("white") != std::string::npos   ? "white"
+           : name.find("black") != std::string::npos ? "black"
+           : name.find("grey") != std::string::npos  ? "grey"
+                                                     : "other"]++;
+  }
+  CHECK(counts["white"] / static_cast<double>(n) == Approx(0.34).margin(0.015));
+  CHECK(counts["black"] / static_cast<double>(n) == Approx(0.21).margin(0.015));
+  CHECK(counts["grey"] / static_cast<double>(n) == Approx(0.19).margin(0.015));
+}
+
+TEST_CASE("a generated car has a body, glazing, lamps for every role, plates and turning wheels",
+          "[sensors][assets]") {
+  detail::EntityShape shape;
+  const auto car = car_at(0.0, 0.0, 0.0);
+  detail::build_entity_shape(car, 1, shape);
+  const auto& m = shape.mesh;
+  CHECK(m.triangles.size() > 2000);
+  CHECK(count_material(m, [](const Material& x) { return x.transmission > 0.5; }) > 50);
+  for (LightRole role : {LightRole::kHeadlight, LightRole::kTail, LightRole::kBrake,
+                         LightRole::kIndicatorLeft, LightRole::kIndicatorRight}) {
+    CHECK(count_material(m, [role](const Material& x) { return x.light == role; }) > 0);
+  }
+  CHECK(count_material(m, [](const Material& x) { return x.pattern == Pattern::kPlate; }) >= 4);
+  // Everything within the box (x from -0.9 to 3.7 m, |y| <= 0.95, z from 0 to 1.5).
+  for (const Vec3& v : m.vertices) {
+    REQUIRE(v.x >= -0.9 - 1e-6);
+    REQUIRE(v.x <= 3.7 + 1e-6);
+    REQUIRE(std::fabs(v.y) <= 0.95 + 1e-6);
+    REQUIRE(v.z >= -1e-6);
+    REQUIRE(v.z <= 1.5 + 1e-6);
+  }
+  // Wheels: four bones; rolling turns them about their axles, steering only the front ones.
+  REQUIRE(shape.pose);
+  auto moving = car;
+  moving.speed = 10.0;
+  moving.odometer = 0.5;
+  moving.yaw_rate = 0.2;
+  std::vector<Rigid> bones;
+  shape.pose(moving, bones);
+  REQUIRE(bones.size() == 5);
+  int steered = 0;
+  for (size_t b = 1; b < 5; ++b) {
+    const Mat3& r = bones[b].rotation;
+    CHECK(std::fabs(r.m[2][0]) > 1e-3);              // forward axis tilted: turned about the axle
+    steered += std::fabs(r.m[0][1]) > 1e-3 ? 1 : 0;  // axle turned about the vertical
+  }
+  CHECK(steered == 2);
+}
+
+TEST_CASE("looks come from the seed and the name: same seed same look, names differ",
+          "[sensors][assets]") {
+  auto paint_of = [](uint64_t seed, const std::string& name) {
+    detail::EntityShape shape;
+    auto e = car_at(0.0, 0.0, 0.0);
+    e.name = name;
+    detail::build_entity_shape(e, seed, shape);
+    for (const Material& m : shape.mesh.materials) {
+      if (m.clearcoat > 0.5) {
+        return m.name;
+      }
+    }
+    return std::string();
+  };
+  CHECK(paint_of(5, "a") == paint_of(5, "a"));
+  std::set<std::string> paints;
+  for (int i = 0; i < 12; ++i) {
+    paints.insert(paint_of(5, "car" + std::to_string(i)));
+  }
+  CHECK(paints.size() >= 3);
+}
+
+TEST_CASE("a walking person swings its legs with the distance walked and stands still at rest",
+          "[sensors][assets]") {
+  auto walker = box_entity(1, "walker", 0.0, 0.0, 0.6, 0.6, 1.75, EntityCategory::kPedestrian);
+  detail::EntityShape shape;
+  detail::build_entity_shape(walker, 3, shape);
+  REQUIRE(shape.pose);
+  std::vector<Rigid> a, b, still;
+  walker.speed = 1.4;
+  walker.odometer = 0.0;
+  shape.pose(walker, a);
+  walker.odometer = 0.36;  // about a quarter of a gait cycle
+  shape.pose(walker, b);
+  walker.speed = 0.0;
+  shape.pose(walker, still);
+  const auto thigh = static_cast<size_t>(detail::kBoneThighL);
+  CHECK(std::fabs(a[thigh].rotation.m[0][2] - b[thigh].rotation.m[0][2]) > 0.1);
+  // Standing: both thighs nearly vertical.
+  CHECK(std::fabs(still[detail::kBoneThighL].rotation.m[0][2]) < 0.05);
+  CHECK(std::fabs(still[detail::kBoneThighR].rotation.m[0][2]) < 0.05);
+}
+
+TEST_CASE("riders are labelled rider on their bicycle, people person, every pixel an instance",
+          "[sensors][assets][labels]") {
+  Scene scene;
+  scene.add_road_mesh(corsa::test::flat_road());
+  scene.commit();
+  auto bike = box_entity(1, "bike", 8.0, 1.0, 1.8, 0.6, 1.8, EntityCategory::kBicycle);
+  auto walker = box_entity(2, "walker", 8.0, -1.0, 0.6, 0.6, 1.75, EntityCategory::kPedestrian);
+  bike.pose.h = 1.57;
+  scene.set_entities(std::vector<corsa::engine::EntitySnapshot>{bike, walker});
+  CameraIntrinsics k;
+  k.width = 320;
+  k.height = 240;
+  k.fov_deg = 60.0;
+  const CameraRenderer camera(k);
+  RenderSettings settings;
+  settings.outputs.semantic = true;
+  CameraMotion motion;
+  motion.world_from_body = rigid_from_pose(0.0, 0.0, 1.2, 0.0, 0.0, 0.0);
+  const CameraImages img = camera.render(scene, motion, settings);
+  std::map<std::pair<uint32_t, int>, int> seen;
+  for (size_t i = 0; i < img.semantic.size(); ++i) {
+    if (img.instance[i] != 0) {
+      seen[{img.instance[i], img.semantic[i]}]++;
+    }
+  }
+  CHECK(seen[{1, static_cast<int>(SemanticClass::kRider)}] > 100);
+  CHECK(seen[{1, static_cast<int>(SemanticClass::kBicycle)}] > 20);
+  CHECK(seen[{2, static_cast<int>(SemanticClass::kPerson)}] > 100);
+  CHECK(seen.count({2, static_cast<int>(SemanticClass::kRider)}) == 0);
+  // Nothing hit: sky.
+  CHECK(img.semantic[0] == static_cast<uint8_t>(SemanticClass::kSky));
+}
+
+TEST_CASE("brake lamps light up when the snapshot says the vehicle brakes", "[sensors][assets]") {
+  auto render_rear = [](bool braking) {
+    Scene scene;
+    scene.add_road_mesh(corsa::test::flat_road());
+    scene.commit();
+    auto car = car_at(10.0, 0.0, 0.0);  // seen from behind by a camera at the origin
+    car.lights_on = braking ? corsa::engine::light_bit(corsa::engine::VehicleLight::kBrake) : 0u;
+    scene.set_entities(std::vector<corsa::engine::EntitySnapshot>{car});
+    CameraIntrinsics k;
+    k.width = 320;
+    k.height = 240;
+    k.fov_deg = 40.0;
+    const CameraRenderer camera(k);
+    corsa::engine::EnvironmentState env;
+    env.sun_azimuth = 2.0;
+    env.sun_elevation = 0.8;
+    const Lighting day = compute_lighting(env, {});
+    RenderSettings settings;
+    settings.outputs.rgb = true;
+    settings.lighting = &day;
+    settings.rgb.noise = false;
+    CameraMotion motion;
+    motion.world_from_body = rigid_from_pose(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
+    const CameraImages img = camera.render(scene, motion, settings);
+    size_t bright_red = 0;
+    for (size_t i = 0; i < img.rgb.size(); i += 3) {
+      bright_red += img.rgb[i] > 240 && img.rgb[i + 1] < 120 ? 1 : 0;
+    }
+    return bright_red;
+  };
+  const size_t off = render_rear(false);
+  const size_t on = render_rear(true);
+  CHECK(on > off + 20);
+}
