@@ -11,6 +11,7 @@
 #include "corsa/engine/simulation.h"
 #include "corsa/sensors/georeference.h"
 #include "corsa/sensors/scene.h"
+#include "corsa/sensors/world.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/road_mesh.h"
 #include "corsa/xosc/scenario.h"
@@ -56,7 +57,8 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
                                                 const std::vector<ModelSpec>& models,
                                                 Diagnostics& diagnostics) {
   const xodr::Map* map = simulation.map();
-  auto scene = std::make_unique<sensors::Scene>(sensors::SceneOptions{map_centre(map)});
+  auto scene = std::make_unique<sensors::Scene>(
+      sensors::SceneOptions{map_centre(map), simulation.options().seed});
   if (map != nullptr) {
     scene->add_road_mesh(xodr::build_road_mesh(*map, xodr::MeshOptions{}, diagnostics));
   }
@@ -78,6 +80,13 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
     }
   }
   scene->commit();
+  if (map != nullptr) {
+    // Ground, vegetation, street lights, signals and objects; plants keep clear of the models.
+    sensors::WorldOptions world;
+    world.seed = simulation.options().seed;
+    sensors::build_world(*map, *scene, world, diagnostics);
+    scene->commit();
+  }
   return scene;
 }
 

@@ -68,6 +68,8 @@ class MeshBuilder {
 
   size_t triangle_count() const { return mesh_.triangles.size(); }
   const ArticulatedMesh& mesh() const { return mesh_; }
+  /// The mesh so far, for shaping what was added (e.g. displacing vertices).
+  ArticulatedMesh& edit() { return mesh_; }
   ArticulatedMesh take() { return std::move(mesh_); }
 
  private:

@@ -1,5 +1,6 @@
 // <objects>/<object> and <signals>/<signal>: kept with their road positions (OpenDRIVE 1.8
-// §13, §14). Their sub-structure (outlines, repeats, validity, ...) is read past.
+// §13, §14), objects with their outlines and repeats. Other sub-structure (validity,
+// materials, markings, ...) is read past.
 
 #include "parse_elements.h"
 
@@ -22,6 +23,60 @@ Object parse_object(const XmlReader& reader, const XMLElement* e) {
   object.height = reader.number_or(e, "height", 0.0);
   object.radius = reader.number_or(e, "radius", 0.0);
   object.orientation = reader.text_or(e, "orientation", "none");
+  auto outline = [&](const XMLElement* o) {
+    Outline out;
+    const std::string closed = reader.text_or(o, "closed", "true");
+    out.closed = closed != "false";
+    for (const XMLElement* c : children(o)) {
+      OutlineCorner corner;
+      if (named(c, "cornerLocal")) {
+        corner.u = reader.number(c, "u");
+        corner.v = reader.number(c, "v");
+        corner.z = reader.number_or(c, "z", 0.0);
+      } else if (named(c, "cornerRoad")) {
+        corner.road = true;
+        corner.u = reader.number(c, "s");
+        corner.v = reader.number(c, "t");
+        corner.z = reader.number_or(c, "dz", 0.0);
+      } else {
+        continue;
+      }
+      corner.height = reader.number_or(c, "height", 0.0);
+      out.corners.push_back(corner);
+    }
+    object.outlines.push_back(std::move(out));
+  };
+  for (const XMLElement* child : children(e)) {
+    if (named(child, "outline")) {  // OpenDRIVE 1.4
+      outline(child);
+    } else if (named(child, "outlines")) {
+      for (const XMLElement* o : children(child)) {
+        if (named(o, "outline")) {
+          outline(o);
+        }
+      }
+    } else if (named(child, "repeat")) {
+      ObjectRepeat r;
+      r.s = reader.number(child, "s");
+      r.length = reader.number(child, "length");
+      r.distance = reader.number_or(child, "distance", 0.0);
+      r.t_start = reader.number_or(child, "tStart", object.t);
+      r.t_end = reader.number_or(child, "tEnd", r.t_start);
+      r.height_start = reader.number_or(child, "heightStart", object.height);
+      r.height_end = reader.number_or(child, "heightEnd", r.height_start);
+      r.z_offset_start = reader.number_or(child, "zOffsetStart", object.z_offset);
+      r.z_offset_end = reader.number_or(child, "zOffsetEnd", r.z_offset_start);
+      if (child->attribute("widthStart") != nullptr) {
+        r.width_start = reader.number(child, "widthStart");
+        r.width_end = reader.number_or(child, "widthEnd", *r.width_start);
+      }
+      if (child->attribute("lengthStart") != nullptr) {
+        r.length_start = reader.number(child, "lengthStart");
+        r.length_end = reader.number_or(child, "lengthEnd", *r.length_start);
+      }
+      object.repeats.push_back(r);
+    }
+  }
   return object;
 }
 

@@ -206,6 +206,33 @@ struct Signal {
   int line = 0;
 };
 
+/// A corner of an object outline (OpenDRIVE 1.8 §13.3): in the object's local u/v frame
+/// (cornerLocal) or in road coordinates (cornerRoad); z relative to the object / road, and the
+/// height of the object at the corner.
+struct OutlineCorner {
+  bool road = false;  ///< cornerRoad (s, t) instead of cornerLocal (u, v)
+  double u = 0.0;     ///< u, or road s
+  double v = 0.0;     ///< v, or road t
+  double z = 0.0;     ///< z (local) or dz (road)
+  double height = 0.0;
+};
+
+struct Outline {
+  std::vector<OutlineCorner> corners;
+  bool closed = true;
+};
+
+/// <repeat> (§13.4): the object repeated (distance > 0) or stretched (distance 0) along s.
+struct ObjectRepeat {
+  double s = 0.0;
+  double length = 0.0;
+  double distance = 0.0;
+  double t_start = 0.0, t_end = 0.0;
+  double height_start = 0.0, height_end = 0.0;
+  double z_offset_start = 0.0, z_offset_end = 0.0;
+  std::optional<double> width_start, width_end, length_start, length_end;
+};
+
 struct Object {
   std::string id;
   std::string name;
@@ -221,6 +248,8 @@ struct Object {
   double height = 0.0;
   double radius = 0.0;
   std::string orientation = "none";
+  std::vector<Outline> outlines;
+  std::vector<ObjectRepeat> repeats;
   int line = 0;
 };
 

@@ -1,0 +1,46 @@
+#pragma once
+
+// The world beyond the road surface, built from an OpenDRIVE map and a seed: ground to the
+// horizon (terrain under and around the roads), roadside vegetation and street lights placed
+// deterministically along the roads, OpenDRIVE signals drawn as traffic lights and signs (their
+// bulbs follow the scenario's signal states), and OpenDRIVE objects (crosswalks, stop lines,
+// poles, trees, barriers, buildings, parking spaces; outlines and repeats).
+
+#include <cstddef>
+#include <cstdint>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/sensors/scene.h"
+#include "corsa/xodr/map.h"
+
+namespace corsa::sensors {
+
+struct WorldOptions {
+  uint64_t seed = 0;          ///< run seed: where plants stand, which species, sizes
+  bool ground = true;         ///< terrain around the roads, out to the horizon
+  bool vegetation = true;     ///< trees and bushes beside the roads
+  bool street_lights = true;  ///< street lights along roads with sidewalks
+  bool signals = true;        ///< OpenDRIVE <signal>s
+  bool objects = true;        ///< OpenDRIVE <object>s
+  double tree_spacing = 14.0;  ///< m between plants along a road side (on average)
+};
+
+/// What build_world added.
+struct WorldReport {
+  size_t ground_triangles = 0;
+  size_t trees = 0;
+  size_t bushes = 0;
+  size_t street_lights = 0;
+  size_t traffic_lights = 0;
+  size_t signs = 0;
+  size_t objects = 0;
+};
+
+/// Adds the world to a scene holding the map's road mesh (and any models). The scene must be
+/// committed (plants keep clear of buildings found by ray queries); commit it again afterwards.
+/// Signals of a type it does not know become a generic sign with one located warning per type;
+/// objects of an unknown type a warning and nothing drawn. Deterministic for a seed.
+WorldReport build_world(const xodr::Map& map, Scene& scene, const WorldOptions& options,
+                        Diagnostics& diagnostics);
+
+}  // namespace corsa::sensors

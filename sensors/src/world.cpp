@@ -1,0 +1,80 @@
+#include "corsa/sensors/world.h"
+
+#include <cmath>
+
+#include "world_build.h"
+
+namespace corsa::sensors {
+namespace detail {
+namespace {
+
+int64_t cell_key(double x, double y) {
+  const auto i = static_cast<int64_t>(std::floor(x / 4.0));
+  const auto j = static_cast<int64_t>(std::floor(y / 4.0));
+  return i * 1000003 + j;
+}
+
+}  // namespace
+
+uint32_t WorldBuild::place(const ArticulatedMesh& mesh, const Rigid& pose, const std::string& name,
+                           const ObjectInfo& info, const std::string& signal_id) {
+  StaticMesh m = to_static_mesh(mesh, pose, name);
+  m.object = info;
+  m.signal_id = signal_id;
+  return scene.add_static_mesh(std::move(m));
+}
+
+bool WorldBuild::clear_of_props(double x, double y, double radius) const {
+  for (int di = -2; di <= 2; ++di) {
+    for (int dj = -2; dj <= 2; ++dj) {
+      const auto it = placed.find(cell_key(x + 4.0 * di, y + 4.0 * dj));
+      if (it == placed.end()) {
+        continue;
+      }
+      for (const auto& p : it->second) {
+        if (std::hypot(p[0] - x, p[1] - y) < radius + p[2]) {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+void WorldBuild::remember(double x, double y, double radius) {
+  placed[cell_key(x, y)].push_back({x, y, radius});
+}
+
+bool WorldBuild::near_drivable(double x, double y, double margin) const {
+  xodr::LocateOptions o;
+  o.max_distance = margin;
+  o.drivable_only = true;
+  return map.locate(x, y, o).has_value();
+}
+
+bool WorldBuild::under_building(double x, double y, double z) const {
+  const auto hit = scene.intersect({x, y, z + 150.0}, {0.0, 0.0, -1.0}, 155.0);
+  return hit && (hit->semantic == SemanticClass::kBuilding || hit->semantic == SemanticClass::kWall);
+}
+
+}  // namespace detail
+
+WorldReport build_world(const xodr::Map& map, Scene& scene, const WorldOptions& options,
+                        Diagnostics& diagnostics) {
+  detail::WorldBuild w{map, scene, options, diagnostics, {}, {}};
+  if (options.ground) {
+    detail::build_ground(w, xodr::build_road_mesh(map, xodr::MeshOptions{.road_marks = false}));
+  }
+  if (options.signals) {
+    detail::build_signals(w);
+  }
+  if (options.objects) {
+    detail::build_objects(w);
+  }
+  if (options.vegetation || options.street_lights) {
+    detail::build_roadside(w);
+  }
+  return w.report;
+}
+
+}  // namespace corsa::sensors

@@ -1,0 +1,46 @@
+#pragma once
+
+// Shared state of the world builder (private; see corsa/sensors/world.h).
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "corsa/core/random.h"
+#include "corsa/sensors/world.h"
+#include "corsa/xodr/road_mesh.h"
+#include "mesh_builder.h"
+
+namespace corsa::sensors::detail {
+
+struct WorldBuild {
+  const xodr::Map& map;
+  Scene& scene;
+  const WorldOptions& options;
+  Diagnostics& diagnostics;
+  WorldReport report;
+  /// Props placed so far, by 4 m grid cell: their positions and clearance radii.
+  std::unordered_map<int64_t, std::vector<std::array<double, 3>>> placed;
+
+  /// Adds a prop mesh placed in the map frame; returns its instance id.
+  uint32_t place(const ArticulatedMesh& mesh, const Rigid& pose, const std::string& name,
+                 const ObjectInfo& info = {}, const std::string& signal_id = {});
+  /// True when no prop stands within `radius` (plus theirs) of (x, y).
+  bool clear_of_props(double x, double y, double radius) const;
+  void remember(double x, double y, double radius);
+  /// True when a drivable lane is within `margin` metres.
+  bool near_drivable(double x, double y, double margin) const;
+  /// True when a building or wall stands over (x, y) (a ray down from high above hits one).
+  bool under_building(double x, double y, double z) const;
+};
+
+/// Ground: a terrain height field under and around the road surface, and a skirt to the horizon.
+void build_ground(WorldBuild& w, const xodr::RoadMesh& road);
+/// Trees, bushes and street lights along the roads.
+void build_roadside(WorldBuild& w);
+/// OpenDRIVE signals as traffic lights and signs.
+void build_signals(WorldBuild& w);
+/// OpenDRIVE objects.
+void build_objects(WorldBuild& w);
+
+}  // namespace corsa::sensors::detail

@@ -1,0 +1,258 @@
+// OpenDRIVE objects (OpenDRIVE 1.8 §13): crosswalks (zebra stripes within the outline or box),
+// parking spaces (their outline painted), stop lines, poles, street lamps, trees and vegetation,
+// barriers, guard rails and railings, buildings (outline extruded, or the box), obstacles;
+// repeats place a copy every `distance` metres or stretch rails along the road. CARLA's maps
+// name some objects instead of typing them: "StopLine" and "Speed_NN" (a speed-limit sign) are
+// drawn; other untyped objects (its duplicated lane lines and stencils) are left out with one
+// warning per name.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "corsa/core/strings.h"
+#include "world_build.h"
+#include "world_props.h"
+
+namespace corsa::sensors::detail {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+Material paint_white() {
+  Material m = materials::plain("road paint", linear_rgb(232, 232, 222), 0.6);
+  m.pattern = Pattern::kPaint;
+  m.secondary = linear_rgb(92, 92, 94);
+  m.params[0] = 0.5;
+  return m;
+}
+
+ObjectInfo kind_info(std::string kind) {
+  ObjectInfo info;
+  info.kind = std::move(kind);
+  return info;
+}
+
+/// An object's frame: road position, zOffset, heading relative to the road (§13.2).
+Rigid object_frame(const xodr::Map& map, size_t road, double s, double t, double z_offset,
+                   double hdg) {
+  const xodr::WorldPose p = map.world_pose(road, std::clamp(s, 0.0, map.road(road).length), t);
+  return rigid_from_pose(p.x, p.y, p.z + z_offset, p.h + hdg, 0.0, 0.0);
+}
+
+/// Flat paint rectangles (x0..x1, y0..y1 in the frame, 1 cm up), class lane marking.
+void paint_rect(MeshBuilder& b, double x0, double x1, double y0, double y1) {
+  b.polygon({{x0, y0, 0.012}, {x1, y0, 0.012}, {x1, y1, 0.012}, {x0, y1, 0.012}}, {});
+}
+
+/// The outline's corners in the object frame (cornerRoad ones converted through the road).
+std::vector<Vec3> outline_points(const xodr::Map& map, size_t road, const xodr::Outline& o,
+                                 const Rigid& frame) {
+  std::vector<Vec3> out;
+  const Rigid back = frame.inverse();
+  for (const auto& c : o.corners) {
+    if (c.road) {
+      const xodr::WorldPose p = map.world_pose(road, c.u, c.v);
+      out.push_back(back.apply({p.x, p.y, p.z + c.z}));
+    } else {
+      out.push_back({c.u, c.v, c.z});
+    }
+  }
+  return out;
+}
+
+/// Extent of the object in its frame: the outline's bounds, or its length x width box.
+void extent(const xodr::Object& o, const std::vector<Vec3>& outline, double& x0, double& x1,
+            double& y0, double& y1) {
+  if (outline.size() >= 3) {
+    x0 = y0 = 1e300;
+    x1 = y1 = -1e300;
+    for (const Vec3& p : outline) {
+      x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+    }
+    return;
+  }
+  const double l = o.length > 0.0 ? o.length : 2.0 * std::max(o.radius, 0.5);
+  const double wd = o.width > 0.0 ? o.width : 2.0 * std::max(o.radius, 0.5);
+  x0 = -0.5 * l, x1 = 0.5 * l, y0 = -0.5 * wd, y1 = 0.5 * wd;
+}
+
+}  // namespace
+
+void build_objects(WorldBuild& w) {
+  const xodr::Map& map = w.map;
+  const std::string& file = map.data().source_file;
+  for (size_t r = 0; r < map.road_count(); ++r) {
+    const xodr::Road& road = map.road(r);
+    for (const xodr::Object& o : road.objects) {
+      const std::string type = to_lower(o.type);
+      const std::string name = o.name;
+      // Where the object stands: once, or along its repeats.
+      std::vector<Rigid> frames;
+      std::vector<double> lengths;  // stretched repeats: the length along the road
+      if (o.repeats.empty()) {
+        frames.push_back(object_frame(map, r, o.s, o.t, o.z_offset, o.hdg));
+        lengths.push_back(0.0);
+      }
+      for (const auto& rep : o.repeats) {
+        if (rep.distance > 0.0) {
+          const int n = std::min(2000, static_cast<int>(rep.length / rep.distance) + 1);
+          for (int i = 0; i < n; ++i) {
+            const double f = rep.length > 0.0 ? i * rep.distance / rep.length : 0.0;
+            frames.push_back(object_frame(map, r, rep.s + i * rep.distance,
+                                          rep.t_start + f * (rep.t_end - rep.t_start),
+                                          rep.z_offset_start, o.hdg));
+            lengths.push_back(0.0);
+          }
+        } else {
+          // Continuous: pieces of at most 10 m following the road.
+          for (double s = rep.s; s < rep.s + rep.length - 0.05; s += 10.0) {
+            const double l = std::min(10.0, rep.s + rep.length - s);
+            const double f = rep.length > 0.0 ? (s - rep.s) / rep.length : 0.0;
+            frames.push_back(object_frame(map, r, s, rep.t_start + f * (rep.t_end - rep.t_start),
+                                          rep.z_offset_start, 0.0));
+            lengths.push_back(l);
+          }
+        }
+      }
+      for (size_t k = 0; k < frames.size(); ++k) {
+        const Rigid& frame = frames[k];
+        MeshBuilder b;
+        ObjectInfo info;
+        info.kind = type;
+        std::vector<Vec3> outline;
+        if (!o.outlines.empty()) {
+          outline = outline_points(map, r, o.outlines.front(), frame);
+        }
+        double x0, x1, y0, y1;
+        extent(o, outline, x0, x1, y0, y1);
+        const double height = o.height > 0.0 ? o.height : 0.0;
+        if (type == "crosswalk") {
+          // Zebra stripes 0.5 m wide, 0.5 m apart, across the walking direction (the long side).
+          b.semantic(SemanticClass::kLaneMarking).material(paint_white());
+          const bool along_x = (x1 - x0) >= (y1 - y0);
+          const double a0 = along_x ? x0 : y0, a1 = along_x ? x1 : y1;
+          for (double a = a0 + 0.25; a + 0.5 <= a1 - 0.1; a += 1.0) {
+            if (along_x) {
+              paint_rect(b, a, a + 0.5, y0 + 0.1, y1 - 0.1);
+            } else {
+              paint_rect(b, x0 + 0.1, x1 - 0.1, a, a + 0.5);
+            }
+          }
+        } else if (type == "parkingspace") {
+          b.semantic(SemanticClass::kLaneMarking).material(paint_white());
+          std::vector<Vec3> ring = outline.size() >= 3
+                                       ? outline
+                                       : std::vector<Vec3>{{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0},
+                                                           {x0, y1, 0}};
+          for (size_t i = 0; i < ring.size(); ++i) {
+            const Vec3 a = ring[i];
+            const Vec3 c = ring[(i + 1) % ring.size()];
+            const Vec3 d = normalized(c - a);
+            const Vec3 n{-d.y * 0.06, d.x * 0.06, 0.0};
+            b.polygon({a - n + Vec3{0, 0, 0.012}, c - n + Vec3{0, 0, 0.012},
+                       c + n + Vec3{0, 0, 0.012}, a + n + Vec3{0, 0, 0.012}},
+                      {});
+          }
+        } else if (name == "StopLine" || type == "stopline") {
+          b.semantic(SemanticClass::kLaneMarking).material(paint_white());
+          const double half = std::max(0.2, 0.5 * (y1 - y0));
+          const double across = std::max(x1 - x0, 1.0);
+          // CARLA gives the line's length across the lanes and no width: 0.4 m wide.
+          paint_rect(b, -0.5 * across, 0.5 * across, -std::min(half, 0.2), std::min(half, 0.2));
+          info.kind = "stop_line";
+        } else if (type == "pole" || type == "streetlamp" || type == "guide-post" ||
+                   type == "rail-pole") {
+          if (type == "streetlamp") {
+            const ArticulatedMesh m = make_street_light(height > 2.0 ? height : 7.5, 1.5);
+            w.place(m, frame, "object " + o.id, kind_info("street_light"));
+            ++w.report.objects;
+            continue;
+          }
+          b.semantic(SemanticClass::kPole).material(
+              materials::metal("galvanised steel", linear_rgb(150, 152, 150), 0.45));
+          const double r0 = std::max(0.04, std::min(0.15, o.radius > 0.0 ? o.radius : 0.06));
+          b.tube({0, 0, 0}, {0, 0, height > 0.2 ? height : 3.0}, r0, r0 * 0.8, 8, true);
+        } else if (type == "tree" || type == "vegetation") {
+          RandomStream rng(derive_seed(w.options.seed, "object " + o.id + "#" + std::to_string(k)));
+          const ArticulatedMesh m = type == "tree"
+                                        ? make_tree(rng, height > 1.0 ? height : 8.0)
+                                        : make_bush(rng, std::max(0.8, x1 - x0));
+          w.place(m, frame, "object " + o.id, kind_info(type));
+          ++w.report.objects;
+          continue;
+        } else if (type == "barrier" || type == "guardrail" || type == "railing" ||
+                   type == "soundbarrier" || type == "fence") {
+          const double l = lengths[k] > 0.0 ? lengths[k] : std::max(x1 - x0, 0.3);
+          if (type == "soundbarrier") {
+            b.semantic(SemanticClass::kWall)
+                .material(materials::plain("noise barrier", linear_rgb(120, 130, 125), 0.8));
+            b.box({0, -0.1, 0}, {l, 0.1, height > 0.5 ? height : 3.0});
+          } else {
+            const ArticulatedMesh m = make_rail(l, type == "fence");
+            const Rigid start = frame * rigid_from_pose(lengths[k] > 0.0 ? 0.0 : x0, 0, 0, 0, 0, 0);
+            w.place(m, start, "object " + o.id, kind_info(type == "fence" ? "fence" : "guard_rail"));
+            ++w.report.objects;
+            continue;
+          }
+        } else if (type == "building" || type == "obstacle" || type == "trafficisland" ||
+                   type == "gantry") {
+          const bool building = type == "building";
+          b.semantic(building ? SemanticClass::kBuilding : SemanticClass::kStatic);
+          Material m = building ? materials::plain("facade", linear_rgb(180, 170, 150), 0.85)
+                                : materials::plain("obstacle concrete", linear_rgb(150, 148, 140), 0.9);
+          if (building) {
+            m.pattern = Pattern::kFacade;
+            m.pattern_scale = 3.2;
+            m.params = {3.0, 0.5, 0.45, 4.0};
+            m.seed = static_cast<uint32_t>(stable_hash(o.id));
+          }
+          b.material(m);
+          const double h = height > 0.0 ? height : (building ? 10.0 : 1.0);
+          if (outline.size() >= 3) {
+            std::vector<std::vector<Vec3>> rings(2);
+            for (const Vec3& p : outline) {
+              rings[0].push_back(p);
+              rings[1].push_back(p + Vec3{0, 0, h});
+            }
+            b.loft(rings, true);
+          } else {
+            b.box({x0, y0, 0}, {x1, y1, h});
+          }
+        } else if (name.rfind("Speed_", 0) == 0 || name.rfind("speed_", 0) == 0) {
+          const auto speed = parse_int(name.substr(6));
+          SignFace f;
+          f.shape = SignShape::kCircle;
+          f.fill = linear_rgb(236, 236, 232);
+          f.border = linear_rgb(196, 22, 28);
+          f.border_width = 0.17;
+          f.symbol = SignSymbol::kNumber;
+          f.number = speed ? static_cast<int>(*speed) : 0;
+          ObjectInfo sign = kind_info("traffic_sign");
+          sign.type = "274";
+          if (speed) {
+            sign.value = static_cast<double>(*speed);
+          }
+          // Beside the road: turned to face the traffic of its lane.
+          const Rigid turned = frame * rigid_from_pose(0, 0, 0, o.orientation == "-" ? 0.0 : kPi, 0, 0);
+          w.place(make_sign(f, 0.6, 0.6, 2.0, "sign DE 274 " + std::to_string(f.number)), turned,
+                  "object " + o.id, sign);
+          ++w.report.signs;
+          continue;
+        } else {
+          w.diagnostics.add_once("object-type:" + o.type + ":" + (o.type == "-1" ? name : ""),
+                                 make_warning(file, o.line,
+                                              "object type '" + o.type + "' (name '" + name +
+                                                  "') is not drawn"));
+          continue;
+        }
+        if (b.triangle_count() > 0) {
+          w.place(b.take(), frame, "object " + o.id, info);
+          ++w.report.objects;
+        }
+      }
+    }
+  }
+}
+
+}  // namespace corsa::sensors::detail

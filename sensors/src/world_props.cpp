@@ -1,0 +1,246 @@
+#include "world_props.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "noise_tile.h"
+
+namespace corsa::sensors::detail {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+Material bark() {
+  Material m = materials::plain("bark", linear_rgb(82, 64, 48), 0.95);
+  m.pattern = Pattern::kBark;
+  return m;
+}
+
+Material foliage(RandomStream& rng) {
+  // A few greens: named by index so that the scene shares them between trees.
+  static constexpr Rgb8 kLight[4] = {{76, 104, 44}, {90, 112, 50}, {66, 96, 48}, {100, 110, 56}};
+  static constexpr Rgb8 kDark[4] = {{34, 54, 24}, {42, 60, 26}, {30, 48, 28}, {48, 56, 30}};
+  const auto i = static_cast<size_t>(rng.uniform_int(0, 3));
+  Material m = materials::plain("foliage " + std::to_string(i),
+                                linear_rgb(kLight[i].r, kLight[i].g, kLight[i].b), 0.8);
+  m.pattern = Pattern::kFoliage;
+  m.secondary = linear_rgb(kDark[i].r, kDark[i].g, kDark[i].b);
+  return m;
+}
+
+Material steel() { return materials::metal("galvanised steel", linear_rgb(150, 152, 150), 0.45); }
+Material dark_paint() { return materials::plain("signal housing", linear_rgb(28, 30, 30), 0.6); }
+
+/// A lumpy blob: an ellipsoid whose radius varies with direction (leaf clusters).
+void blob(MeshBuilder& b, Vec3 c, Vec3 r, uint32_t seed) {
+  const int slices = 14;
+  const int stacks = 9;
+  const size_t first = b.mesh().vertices.size();
+  b.ellipsoid(c, r, Mat3{}, slices, stacks);
+  // Push each vertex in or out by a smooth random amount.
+  ArticulatedMesh& mesh = b.edit();
+  for (size_t i = first; i < mesh.vertices.size(); ++i) {
+    const Vec3 d = mesh.vertices[i] - c;
+    const double bump = noise(static_cast<int>(seed % 4), d.x * 3.0 + d.z * 2.0, d.y * 3.0 - d.z,
+                              4.0, 0.0);
+    mesh.vertices[i] = c + d * (0.8 + 0.45 * bump);
+  }
+}
+
+}  // namespace
+
+ArticulatedMesh make_tree(RandomStream& rng, double height, bool allow_conifer) {
+  MeshBuilder b;
+  b.semantic(SemanticClass::kVegetation);
+  const bool conifer = allow_conifer && rng.uniform01() < 0.25;
+  const double trunk_r = std::clamp(0.018 * height, 0.08, 0.25);
+  b.material(bark());
+  if (conifer) {
+    b.tube({0, 0, 0}, {0, 0, 0.35 * height}, trunk_r, 0.7 * trunk_r, 8, false);
+    b.material(foliage(rng));
+    const int tiers = 4;
+    for (int i = 0; i < tiers; ++i) {
+      const double z0 = height * (0.2 + 0.18 * i);
+      const double r = 0.22 * height * (1.0 - 0.2 * i);
+      b.tube({0, 0, z0}, {0, 0, z0 + 0.35 * height}, r, 0.02, 12, true);
+    }
+    return b.take();
+  }
+  const double crown_base = height * rng.uniform(0.3, 0.45);
+  b.tube({0, 0, 0}, {0, 0, crown_base + 0.15 * height}, trunk_r, 0.6 * trunk_r, 8, false);
+  // Two or three branches into the crown.
+  for (int k = 0; k < 3; ++k) {
+    const double a = 2.0 * kPi * (k + rng.uniform01() * 0.5) / 3.0;
+    b.tube({0, 0, crown_base - 0.05 * height},
+           {0.18 * height * std::cos(a), 0.18 * height * std::sin(a), crown_base + 0.2 * height},
+           0.5 * trunk_r, 0.25 * trunk_r, 6, false);
+  }
+  b.material(foliage(rng));
+  const double crown_h = height - crown_base;
+  const double crown_r = crown_h * rng.uniform(0.38, 0.55);
+  const int lumps = static_cast<int>(rng.uniform_int(3, 5));
+  for (int k = 0; k < lumps; ++k) {
+    const double a = 2.0 * kPi * k / lumps + rng.uniform01();
+    const double off = k == 0 ? 0.0 : 0.45 * crown_r;
+    const Vec3 c{off * std::cos(a), off * std::sin(a),
+                 crown_base + crown_h * (k == 0 ? 0.55 : rng.uniform(0.35, 0.6))};
+    const double r = crown_r * (k == 0 ? 1.0 : rng.uniform(0.55, 0.75));
+    blob(b, c, {r, r, 0.5 * crown_h * (k == 0 ? 1.0 : 0.7)}, static_cast<uint32_t>(rng.next_u64()));
+  }
+  return b.take();
+}
+
+ArticulatedMesh make_bush(RandomStream& rng, double size) {
+  MeshBuilder b;
+  b.semantic(SemanticClass::kVegetation).material(foliage(rng));
+  const int lumps = static_cast<int>(rng.uniform_int(2, 3));
+  for (int k = 0; k < lumps; ++k) {
+    const double a = rng.uniform(0.0, 2.0 * kPi);
+    const double off = k == 0 ? 0.0 : 0.3 * size;
+    const double r = 0.5 * size * rng.uniform(0.7, 1.0);
+    blob(b, {off * std::cos(a), off * std::sin(a), 0.55 * r}, {r, r, 0.7 * r},
+         static_cast<uint32_t>(rng.next_u64()));
+  }
+  return b.take();
+}
+
+ArticulatedMesh make_street_light(double height, double reach) {
+  MeshBuilder b;
+  b.semantic(SemanticClass::kPole).material(steel());
+  b.tube({0, 0, 0}, {0, 0, height}, 0.09, 0.06, 10, true);
+  b.tube({0, 0, height - 0.15}, {reach, 0, height + 0.1}, 0.045, 0.04, 8, true);
+  b.material(dark_paint());
+  b.box({reach - 0.3, -0.16, height}, {reach + 0.35, 0.16, height + 0.14});
+  // The lamp's diffuser faces down; it glows when it is dark.
+  b.material(materials::lamp("street lamp", linear_rgb(230, 225, 210), Color{8.0, 7.0, 5.0},
+                             LightRole::kStreetLamp));
+  b.box({reach - 0.25, -0.12, height - 0.02}, {reach + 0.3, 0.12, height});
+  return b.take();
+}
+
+ArticulatedMesh make_traffic_light(SignalLayout layout, double bottom, double head_height) {
+  MeshBuilder b;
+  const bool horizontal = layout != SignalLayout::kVertical3;
+  const int bulbs = layout == SignalLayout::kHorizontal4 ? 4 : 3;
+  const double cell = horizontal ? head_height : head_height / 3.0;  // bulb pitch
+  const double w = horizontal ? cell * bulbs : cell * 1.1;
+  const double h = horizontal ? cell * 1.1 : head_height;
+  // Post: beside the head for vertical lights, a mast arm for horizontal ones.
+  b.semantic(SemanticClass::kPole).material(steel());
+  if (horizontal) {
+    b.tube({-0.2, -0.5 * w - 2.0, 0}, {-0.2, -0.5 * w - 2.0, bottom + 0.5 * h + 0.3}, 0.12, 0.1, 10,
+           true);
+    b.tube({-0.2, -0.5 * w - 2.0, bottom + 0.5 * h + 0.25}, {-0.2, 0.5 * w, bottom + 0.5 * h + 0.25},
+           0.06, 0.05, 8, true);
+  } else {
+    b.tube({-0.2, 0, 0}, {-0.2, 0, bottom + h}, 0.07, 0.06, 10, true);
+  }
+  b.semantic(SemanticClass::kTrafficLight).material(dark_paint());
+  b.box({-0.15, -0.5 * w, bottom}, {0.12, 0.5 * w, bottom + h});
+  const LightRole roles4[4] = {LightRole::kSignalRed, LightRole::kSignalYellow,
+                               LightRole::kSignalGreen, LightRole::kSignalGreen};
+  const Color lens[3] = {linear_rgb(70, 8, 8), linear_rgb(80, 55, 5), linear_rgb(5, 60, 30)};
+  const Color glow[3] = {Color{9.0, 0.4, 0.2}, Color{9.0, 5.0, 0.3}, Color{0.6, 7.0, 3.0}};
+  for (int i = 0; i < bulbs; ++i) {
+    const int k = std::min(i, 2);
+    const LightRole role = roles4[i];
+    const char* names[3] = {"signal red", "signal yellow", "signal green"};
+    b.material(materials::lamp(names[k], lens[k], glow[k], role));
+    Vec3 c;
+    if (horizontal) {
+      c = {0.125, 0.5 * w - cell * (i + 0.5), bottom + 0.5 * h};
+    } else {
+      c = {0.125, 0.0, bottom + h - cell * (i + 0.5)};
+    }
+    b.tube(c, c + Vec3{0.02, 0, 0}, 0.36 * cell, 0.36 * cell, 14, true);
+    // Visor over each bulb.
+    b.material(dark_paint());
+    b.box(c + Vec3{0.0, -0.4 * cell, 0.36 * cell}, c + Vec3{0.18, 0.4 * cell, 0.42 * cell});
+  }
+  return b.take();
+}
+
+ArticulatedMesh make_sign(const SignFace& face, double width, double height, double bottom,
+                          const std::string& name) {
+  MeshBuilder b;
+  b.semantic(SemanticClass::kPole).material(steel());
+  b.tube({-0.05, 0, 0}, {-0.05, 0, bottom + 0.8 * height}, 0.035, 0.035, 8, true);
+  b.semantic(SemanticClass::kTrafficSign);
+  Material m;
+  m.name = name;
+  m.pattern = Pattern::kSignFace;
+  m.sign = face;
+  m.roughness = 0.5;
+  m.base_color = face.fill;
+  // The face polygon follows the shape (circles as 24-gons), uv over its square.
+  std::vector<Vec3> points;
+  std::vector<std::array<float, 2>> uvs;
+  auto add = [&](double u, double v) {
+    points.push_back({0.0, (0.5 - u) * width, bottom + v * height});
+    uvs.push_back({static_cast<float>(u), static_cast<float>(v)});
+  };
+  switch (face.shape) {
+    case SignShape::kCircle:
+      for (int i = 0; i < 24; ++i) {
+        const double a = 2.0 * kPi * i / 24.0;
+        add(0.5 + 0.5 * std::cos(a), 0.5 + 0.5 * std::sin(a));
+      }
+      break;
+    case SignShape::kTriangleUp:
+      add(0.0, 0.11), add(1.0, 0.11), add(0.5, 0.975);
+      break;
+    case SignShape::kTriangleDown:
+      add(0.5, 0.025), add(1.0, 0.89), add(0.0, 0.89);
+      break;
+    case SignShape::kOctagon:
+      for (int i = 0; i < 8; ++i) {
+        const double a = 2.0 * kPi * (i + 0.5) / 8.0;
+        const double r = 0.5 / std::cos(kPi / 8.0);
+        add(0.5 + r * std::cos(a), 0.5 + r * std::sin(a));
+      }
+      break;
+    case SignShape::kDiamond:
+      add(0.5, 0.0), add(1.0, 0.5), add(0.5, 1.0), add(0.0, 0.5);
+      break;
+    default:
+      add(0.0, 0.0), add(1.0, 0.0), add(1.0, 1.0), add(0.0, 1.0);
+      break;
+  }
+  b.material(m);
+  b.polygon(points, uvs);
+  // The back: grey metal a little behind.
+  std::vector<Vec3> back;
+  for (auto it = points.rbegin(); it != points.rend(); ++it) {
+    back.push_back(*it - Vec3{0.015, 0.0, 0.0});
+  }
+  b.material(steel());
+  b.polygon(back, {});
+  return b.take();
+}
+
+ArticulatedMesh make_rail(double length, bool fence) {
+  MeshBuilder b;
+  b.semantic(fence ? SemanticClass::kFence : SemanticClass::kGuardRail).material(steel());
+  const int posts = std::max(2, static_cast<int>(std::ceil(length / 2.0)) + 1);
+  for (int i = 0; i < posts; ++i) {
+    const double x = length * i / (posts - 1);
+    if (fence) {
+      b.tube({x, 0, 0}, {x, 0, 1.8}, 0.03, 0.03, 6, true);
+    } else {
+      b.box({x - 0.05, -0.08, 0.0}, {x + 0.05, 0.0, 0.75});
+    }
+  }
+  if (fence) {
+    Material mesh_panel = materials::plain("fence panel", linear_rgb(90, 100, 92), 0.6);
+    mesh_panel.pattern = Pattern::kMetalGrid;
+    mesh_panel.secondary = linear_rgb(40, 45, 40);
+    b.material(mesh_panel);
+    b.box({0, -0.01, 0.05}, {length, 0.01, 1.75});
+  } else {
+    b.box({0, 0.0, 0.48}, {length, 0.12, 0.78});  // the W beam, towards the road (+y)
+  }
+  return b.take();
+}
+
+}  // namespace corsa::sensors::detail

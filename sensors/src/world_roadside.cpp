@@ -1,0 +1,145 @@
+// Roadside vegetation and street lights, placed along every road outside junctions from the
+// run seed and the road's id (the same seed gives the same plants): street trees and street
+// lights at the kerb side of sidewalks, trees and bushes on the ground beside roads without
+// them, never on a drivable lane, in a building or crowding another prop.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "world_build.h"
+#include "world_props.h"
+
+namespace corsa::sensors::detail {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// The outermost lane span on one side (+1 left, -1 right) at s, and whether it is a sidewalk
+/// (then `kerb` is its border towards the road).
+struct Edge {
+  double t_outer = 0.0;
+  double kerb = 0.0;
+  bool sidewalk = false;
+  bool valid = false;
+};
+
+Edge edge_at(const xodr::Map& map, size_t road, double s, int side,
+             std::vector<xodr::LaneSpan>& spans) {
+  map.lane_spans(road, s, spans);
+  Edge e;
+  const size_t section = map.section_index(road, s);
+  const auto& lanes = map.road(road).lane_sections[section].lanes;
+  const xodr::LaneSpan* outer = nullptr;
+  for (const auto& span : spans) {
+    if ((side > 0 && span.id > 0) || (side < 0 && span.id < 0)) {
+      if (outer == nullptr || std::abs(span.id) > std::abs(outer->id)) {
+        outer = &span;
+      }
+    }
+  }
+  if (outer == nullptr) {
+    return e;
+  }
+  e.valid = true;
+  e.t_outer = outer->t_outer;
+  for (const auto& lane : lanes) {
+    if (lane.id == outer->id) {
+      e.sidewalk = lane.type == xodr::LaneType::kSidewalk || lane.type == xodr::LaneType::kWalking;
+    }
+  }
+  e.kerb = outer->t_inner;
+  return e;
+}
+
+bool next_to_junction(const xodr::Map& map, size_t road, double s, double margin) {
+  const xodr::Road& r = map.road(road);
+  return (s < margin && r.predecessor.element_type == xodr::LinkElement::kJunction) ||
+         (s > r.length - margin && r.successor.element_type == xodr::LinkElement::kJunction);
+}
+
+}  // namespace
+
+void build_roadside(WorldBuild& w) {
+  const xodr::Map& map = w.map;
+  std::vector<xodr::LaneSpan> spans;
+  for (size_t r = 0; r < map.road_count(); ++r) {
+    const xodr::Road& road = map.road(r);
+    if (road.in_junction() || road.length < 5.0) {
+      continue;
+    }
+    RandomStream rng(derive_seed(w.options.seed, "roadside " + road.id));
+    for (int side : {1, -1}) {
+      // Street lights every 30 m on sidewalk sides, staggered between the two sides.
+      double next_light = side > 0 ? 6.0 : 21.0;
+      double s = rng.uniform(0.0, w.options.tree_spacing);
+      while (s < road.length) {
+        const double step = w.options.tree_spacing * rng.uniform(0.7, 1.3);
+        const double pick = rng.uniform01();
+        const double offset = rng.uniform(1.5, 6.0);
+        const double tree_height = rng.uniform(5.0, 11.0);
+        const double bush_size = rng.uniform(0.8, 1.8);
+        RandomStream look(rng.next_u64());
+        if (next_to_junction(map, r, s, 10.0)) {
+          s += step;
+          continue;
+        }
+        const Edge e = edge_at(map, r, s, side, spans);
+        if (!e.valid) {
+          s += step;
+          continue;
+        }
+        const bool on_sidewalk = e.sidewalk && std::fabs(e.t_outer - e.kerb) > 2.0;
+        if (w.options.street_lights && e.sidewalk) {
+          while (next_light <= s) {
+            const double sl = next_light;
+            next_light += 30.0;
+            const Edge el = edge_at(map, r, sl, side, spans);
+            if (!el.valid || !el.sidewalk || next_to_junction(map, r, sl, 10.0)) {
+              continue;
+            }
+            const double t = el.kerb + side * 0.45;
+            const xodr::WorldPose p = map.world_pose(r, sl, t);
+            if (w.under_building(p.x, p.y, p.z) || !w.clear_of_props(p.x, p.y, 1.0)) {
+              continue;
+            }
+            // The arm reaches over the road: towards -side across the reference line.
+            const double facing = p.h + (side > 0 ? -0.5 * kPi : 0.5 * kPi);
+            ObjectInfo info;
+            info.kind = "street_light";
+            w.place(make_street_light(7.5, 1.6), rigid_from_pose(p.x, p.y, p.z, facing, 0, 0),
+                    "street light " + road.id, info);
+            w.remember(p.x, p.y, 1.0);
+            ++w.report.street_lights;
+          }
+        }
+        if (w.options.vegetation) {
+          const bool tree = on_sidewalk || pick < 0.6;
+          const double t = on_sidewalk ? e.kerb + side * 0.8 : e.t_outer + side * offset;
+          const xodr::WorldPose p = map.world_pose(r, s, t);
+          const double radius = tree ? 3.0 : 1.2;
+          const double margin = on_sidewalk ? 0.5 : (tree ? 2.5 : 1.2);
+          if (!w.near_drivable(p.x, p.y, margin) && !w.under_building(p.x, p.y, p.z) &&
+              w.clear_of_props(p.x, p.y, radius)) {
+            const double z = on_sidewalk ? p.z : p.z - 0.25;  // roots in the ground
+            const Rigid pose = rigid_from_pose(p.x, p.y, z, look.uniform(0.0, 2.0 * kPi), 0, 0);
+            ObjectInfo info;
+            info.kind = tree ? "tree" : "bush";
+            if (tree) {
+              // Street trees are broadleaved; conifers grow only away from sidewalks.
+              w.place(make_tree(look, tree_height, !on_sidewalk), pose, "tree " + road.id, info);
+              ++w.report.trees;
+            } else {
+              w.place(make_bush(look, bush_size), pose, "bush " + road.id, info);
+              ++w.report.bushes;
+            }
+            w.remember(p.x, p.y, radius);
+          }
+        }
+        s += step;
+      }
+    }
+  }
+}
+
+}  // namespace corsa::sensors::detail
