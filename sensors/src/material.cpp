@@ -81,7 +81,7 @@ Material default_material(SemanticClass c) {
       m.secondary = linear_rgb(110, 106, 100);
       return m;
     case SemanticClass::kTerrain:
-      m = plain("terrain", linear_rgb(88, 112, 52), 0.95);
+      m = plain("terrain", linear_rgb(92, 106, 60), 0.95);
       m.pattern = Pattern::kTerrain;
       m.secondary = linear_rgb(120, 100, 72);
       return m;

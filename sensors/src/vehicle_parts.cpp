@@ -91,11 +91,11 @@ Material headlamp_material() {
                          LightRole::kHeadlight);
 }
 Material tail_lamp_material() {
-  return materials::lamp("tail lamp", linear_rgb(120, 10, 12), Color{1.6, 0.05, 0.03},
+  return materials::lamp("tail lamp", linear_rgb(120, 10, 12), Color{1.2, 0.02, 0.01},
                          LightRole::kTail);
 }
 Material brake_lamp_material() {
-  return materials::lamp("brake lamp", linear_rgb(140, 12, 14), Color{5.0, 0.15, 0.08},
+  return materials::lamp("brake lamp", linear_rgb(140, 12, 14), Color{4.0, 0.05, 0.03},
                          LightRole::kBrake);
 }
 Material indicator_material(bool left) {

@@ -141,7 +141,8 @@ ArticulatedMesh make_traffic_light(SignalLayout layout, double bottom, double he
   const LightRole roles4[4] = {LightRole::kSignalRed, LightRole::kSignalYellow,
                                LightRole::kSignalGreen, LightRole::kSignalGreen};
   const Color lens[3] = {linear_rgb(70, 8, 8), linear_rgb(80, 55, 5), linear_rgb(5, 60, 30)};
-  const Color glow[3] = {Color{9.0, 0.4, 0.2}, Color{9.0, 5.0, 0.3}, Color{0.6, 7.0, 3.0}};
+  // Saturated glows: no channel should clip towards white before the red one does.
+  const Color glow[3] = {Color{6.0, 0.08, 0.03}, Color{6.0, 2.6, 0.05}, Color{0.08, 5.0, 2.2}};
   for (int i = 0; i < bulbs; ++i) {
     const int k = std::min(i, 2);
     const LightRole role = roles4[i];
