@@ -59,6 +59,9 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
   const xodr::Map* map = simulation.map();
   auto scene = std::make_unique<sensors::Scene>(
       sensors::SceneOptions{map_centre(map), simulation.options().seed});
+  // Entities with a model3d file get that model (relative paths from the scenario's folder).
+  scene->set_entity_shape_source(std::make_shared<sensors::ModelShapeSource>(
+      simulation.scenario().path.parent_path(), diagnostics));
   if (map != nullptr) {
     scene->add_road_mesh(xodr::build_road_mesh(*map, xodr::MeshOptions{}, diagnostics));
   }

@@ -7,11 +7,13 @@
 #include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
 #include <cmath>
+#include <map>
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/diagnostic.h"
 #include "corsa/core/strings.h"
 #include "corsa/sensors/georeference.h"
+#include "corsa/sensors/texture_image.h"
 
 namespace corsa::sensors {
 namespace {
@@ -70,6 +72,112 @@ bool y_up_for(const std::filesystem::path& path, UpAxis axis) {
   return ext == ".gltf" || ext == ".glb";
 }
 
+/// The model's materials: base colour, metallic/roughness, opacity and emission (glTF PBR
+/// keys where present, the classic diffuse ones otherwise) and the base-colour texture (a file
+/// beside the model or one embedded in it). A texture that cannot be read is a warning and the
+/// material keeps its colour.
+struct MaterialReader {
+  const aiScene* scene;
+  std::filesystem::path model;
+  Diagnostics* diagnostics;
+  std::map<std::string, std::shared_ptr<const TextureImage>> textures;
+
+  std::shared_ptr<const TextureImage> texture(const std::string& ref) {
+    const auto it = textures.find(ref);
+    if (it != textures.end()) {
+      return it->second;
+    }
+    std::shared_ptr<const TextureImage> image;
+    try {
+      if (!ref.empty() && ref[0] == '*') {
+        const auto index = parse_int(ref.substr(1));
+        if (!index || *index < 0 || *index >= static_cast<int64_t>(scene->mNumTextures)) {
+          throw InputError(make_error(model.string(), 0, "no embedded texture " + ref));
+        }
+        const aiTexture* t = scene->mTextures[*index];
+        if (t->mHeight == 0) {  // compressed (PNG, JPEG) bytes
+          image = TextureImage::decode(
+              std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(t->pcData), t->mWidth),
+              model.string() + ":" + ref);
+        } else {
+          std::vector<uint8_t> rgba;
+          for (unsigned i = 0; i < t->mWidth * t->mHeight; ++i) {
+            rgba.insert(rgba.end(), {t->pcData[i].r, t->pcData[i].g, t->pcData[i].b, t->pcData[i].a});
+          }
+          image = TextureImage::from_srgb8(static_cast<int>(t->mWidth), static_cast<int>(t->mHeight),
+                                           4, rgba, model.string() + ":" + ref);
+        }
+      } else {
+        image = TextureImage::load(model.parent_path() / ref);
+      }
+    } catch (const InputError& error) {
+      if (diagnostics != nullptr) {
+        diagnostics->add_once("model-texture:" + model.string() + ":" + ref,
+                              make_warning(model.string(), 0,
+                                           "texture '" + ref + "' cannot be read (" +
+                                               error.diagnostic().message +
+                                               "); the material's colour is used instead"));
+      }
+    }
+    textures[ref] = image;
+    return image;
+  }
+
+  /// The material of a mesh; `textured` tells whether it has a texture (or PBR factors) worth
+  /// a material of its own rather than a plain colour.
+  Material read(unsigned index, bool& textured) {
+    const aiMaterial* m = scene->mMaterials[index];
+    Material out;
+    aiString name;
+    out.name = model.filename().string() + ":" +
+               (m->Get(AI_MATKEY_NAME, name) == AI_SUCCESS ? std::string(name.C_Str())
+                                                             : std::to_string(index));
+    aiColor4D c;
+    if (m->Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS ||
+        m->Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS) {
+      // Model colours are sRGB-encoded (glTF's base colour factor is linear; assimp 5.2 reports
+      // it as read, so glTF colours are taken as linear).
+      const bool gltf = to_lower(model.extension().string()).rfind(".gl", 0) == 0;
+      out.base_color = gltf ? Color{c.r, c.g, c.b}
+                            : Color{std::pow(std::clamp(c.r, 0.0f, 1.0f), 2.2f),
+                                    std::pow(std::clamp(c.g, 0.0f, 1.0f), 2.2f),
+                                    std::pow(std::clamp(c.b, 0.0f, 1.0f), 2.2f)};
+    }
+    float f = 0.0f;
+    textured = false;
+    if (m->Get(AI_MATKEY_METALLIC_FACTOR, f) == AI_SUCCESS) {
+      out.metallic = std::clamp(static_cast<double>(f), 0.0, 1.0);
+      textured = true;
+    }
+    if (m->Get(AI_MATKEY_ROUGHNESS_FACTOR, f) == AI_SUCCESS) {
+      out.roughness = std::clamp(static_cast<double>(f), 0.0, 1.0);
+      textured = true;
+    }
+    if (m->Get(AI_MATKEY_OPACITY, f) == AI_SUCCESS && f < 0.99f) {
+      out.transmission = std::clamp(1.0 - f, 0.0, 1.0);
+      textured = true;
+    }
+    if (m->Get(AI_MATKEY_COLOR_EMISSIVE, c) == AI_SUCCESS && (c.r + c.g + c.b) > 0.0f) {
+      out.emission = {c.r, c.g, c.b};
+      out.light = LightRole::kAlways;
+      textured = true;
+    }
+    aiString path;
+    if (m->GetTexture(aiTextureType_BASE_COLOR, 0, &path) == AI_SUCCESS ||
+        m->GetTexture(aiTextureType_DIFFUSE, 0, &path) == AI_SUCCESS) {
+      out.image = texture(path.C_Str());
+      if (out.image) {
+        out.base_color = {1.0, 1.0, 1.0};
+        if (m->Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS) {
+          out.base_color = {c.r, c.g, c.b};
+        }
+        textured = true;
+      }
+    }
+    return out;
+  }
+};
+
 struct Walker {
   const aiScene* scene;
   const Placer* placer;
@@ -77,6 +185,7 @@ struct Walker {
   const ModelPlacement* placement;
   std::string file;
   std::vector<StaticMesh> out;
+  MaterialReader* materials = nullptr;
 
   void node(const aiNode* n, const aiMatrix4x4& parent) {
     const aiMatrix4x4 m = parent * n->mTransformation;
@@ -102,6 +211,18 @@ struct Walker {
       const aiFace& face = mesh->mFaces[f];
       if (face.mNumIndices == 3) {
         s.triangles.push_back({face.mIndices[0], face.mIndices[1], face.mIndices[2]});
+      }
+    }
+    if (scene->mNumMaterials > mesh->mMaterialIndex && materials != nullptr) {
+      bool textured = false;
+      Material m = materials->read(mesh->mMaterialIndex, textured);
+      if (textured) {
+        s.materials = {m};
+        if (mesh->HasTextureCoords(0)) {
+          for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+            s.uvs.push_back({mesh->mTextureCoords[0][v].x, mesh->mTextureCoords[0][v].y});
+          }
+        }
       }
     }
     if (scene->mNumMaterials > mesh->mMaterialIndex) {
@@ -139,8 +260,9 @@ std::vector<StaticMesh> load_model(const std::filesystem::path& path,
     fail(path, std::string("cannot read the model: ") + importer.GetErrorString());
   }
   const Placer placer(path, placement);
-  Walker walker{
-      scene, &placer, y_up_for(path, placement.up_axis), &placement, path.filename().string(), {}};
+  MaterialReader materials{scene, path, placement.diagnostics, {}};
+  Walker walker{scene,      &placer, y_up_for(path, placement.up_axis), &placement,
+                path.filename().string(), {},      &materials};
   walker.node(scene->mRootNode, aiMatrix4x4());
   if (walker.out.empty()) {
     fail(path, "the model has no triangles");

@@ -223,7 +223,9 @@ MaterialId Scene::add_material(const Material& material) {
 const Material& Scene::material(MaterialId id) const { return data_->materials.at(id); }
 size_t Scene::material_count() const { return data_->materials.size(); }
 
-void Scene::set_entity_shape_source(EntityShapeSource* source) { data_->shape_source = source; }
+void Scene::set_entity_shape_source(std::shared_ptr<EntityShapeSource> source) {
+  data_->shape_source = std::move(source);
+}
 
 void Scene::add_road_mesh(const xodr::RoadMesh& road) {
   StaticMesh mesh;

@@ -85,7 +85,7 @@ struct SceneData {
   std::vector<EntityInstance> instances;          ///< this frame's, by pool index
   std::vector<engine::EntitySnapshot> entities;   ///< this frame's snapshot entities
   std::map<uint32_t, std::unique_ptr<EntityShape>> shapes;  ///< by entity instance id
-  EntityShapeSource* shape_source = nullptr;
+  std::shared_ptr<EntityShapeSource> shape_source;
   std::vector<Material> materials;  ///< by MaterialId
   std::map<std::string, MaterialId> material_keys;
   std::array<MaterialId, kSemanticClassCount> class_materials{};

@@ -7,6 +7,8 @@
 #include "corsa/sensors/georeference.h"
 #include "corsa/sensors/model_io.h"
 #include "corsa/sensors/scene.h"
+#include "corsa/sensors/texture_image.h"
+#include "corsa/sensors/writers.h"
 #include "temp_dir.h"
 
 using namespace corsa::sensors;
@@ -161,4 +163,83 @@ TEST_CASE("a broken or missing model file is reported with its name", "[sensors]
   bad_crs.map_crs = "EPSG:5179";
   CHECK_THROWS_WITH(load_model(kModels / "street_district.obj", bad_crs),
                     Catch::Contains("cannot transform coordinates from 'EPSG:999999'"));
+}
+
+namespace {
+
+/// A 2 x 1 x 0.5 box as an OBJ with texture coordinates and a material whose texture is `png`.
+void write_textured_box(const fs::path& dir, const std::string& png) {
+  std::ofstream mtl(dir / "box.mtl");
+  mtl << "newmtl skin\nKd 0.8 0.8 0.8\nmap_Kd " << png << "\n";
+  std::ofstream obj(dir / "box.obj");
+  obj << "mtllib box.mtl\n";
+  for (int i = 0; i < 8; ++i) {
+    obj << "v " << (i & 1 ? 1.0 : -1.0) << " " << (i & 2 ? 0.5 : -0.5) << " " << (i & 4 ? 0.5 : 0.0)
+        << "\n";
+  }
+  obj << "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl skin\n";
+  const int faces[6][4] = {{1, 3, 4, 2}, {5, 6, 8, 7}, {1, 2, 6, 5},
+                           {3, 7, 8, 4}, {1, 5, 7, 3}, {2, 4, 8, 6}};
+  for (const auto& f : faces) {
+    obj << "f " << f[0] << "/1 " << f[1] << "/2 " << f[2] << "/3 " << f[3] << "/4\n";
+  }
+}
+
+}  // namespace
+
+TEST_CASE("an entity's model3d is loaded with its texture and stretched onto its box",
+          "[sensors][model][model3d]") {
+  corsa::test::TempDir dir;
+  const std::vector<uint8_t> red(4 * 4 * 3, 0);
+  std::vector<uint8_t> pixels = red;
+  for (size_t i = 0; i < pixels.size(); i += 3) {
+    pixels[i] = 200;
+  }
+  write_png_rgb8(dir.path() / "red.png", 4, 4, pixels);
+  write_textured_box(dir.path(), "red.png");
+  std::vector<corsa::Diagnostic> warnings;
+  corsa::Diagnostics diagnostics([&](const corsa::Diagnostic& d) { warnings.push_back(d); });
+  ModelShapeSource source(dir.path(), diagnostics);
+  corsa::engine::EntitySnapshot car;
+  car.name = "car";
+  car.model3d = "box.obj";
+  car.box = {1.4, 0.0, 0.75, 4.6, 1.9, 1.5};
+  StaticMesh mesh;
+  REQUIRE(source.shape_of(car, mesh));
+  CHECK(warnings.empty());
+  Bounds b = bounds_of({mesh});
+  CHECK(b.min.x == Approx(1.4 - 2.3));
+  CHECK(b.max.x == Approx(1.4 + 2.3));
+  CHECK(b.max.y == Approx(0.95));
+  CHECK(b.min.z == Approx(0.0).margin(1e-9));
+  CHECK(b.max.z == Approx(1.5));
+  REQUIRE(mesh.materials.size() == 1);
+  REQUIRE(mesh.materials[0].image != nullptr);
+  CHECK(mesh.materials[0].image->sample(0.5, 0.5, 1.0).r > 0.5);
+  CHECK(mesh.uvs.size() == mesh.vertices.size());
+  CHECK(mesh.classes == std::vector<SemanticClass>{SemanticClass::kCar});
+}
+
+TEST_CASE("a missing texture or an unreadable model is a located warning and a stand-in",
+          "[sensors][model][model3d]") {
+  corsa::test::TempDir dir;
+  write_textured_box(dir.path(), "missing.png");
+  std::ofstream(dir.path() / "broken.glb") << "not a model";
+  std::vector<corsa::Diagnostic> warnings;
+  corsa::Diagnostics diagnostics([&](const corsa::Diagnostic& d) { warnings.push_back(d); });
+  ModelShapeSource source(dir.path(), diagnostics);
+  corsa::engine::EntitySnapshot e;
+  e.name = "a";
+  e.model3d = "box.obj";
+  e.box = {0.0, 0.0, 0.75, 4.0, 2.0, 1.5};
+  StaticMesh mesh;
+  REQUIRE(source.shape_of(e, mesh));  // the colour stands in for the texture
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0].message, Catch::Contains("missing.png"));
+  e.model3d = "broken.glb";
+  CHECK_FALSE(source.shape_of(e, mesh));  // the generated shape will stand in
+  CHECK_FALSE(source.shape_of(e, mesh));
+  REQUIRE(warnings.size() == 2);  // once per file
+  CHECK_THAT(warnings[1].file, Catch::Contains("broken.glb"));
+  CHECK_THAT(warnings[1].message, Catch::Contains("stands in"));
 }

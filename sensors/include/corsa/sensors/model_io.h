@@ -4,11 +4,14 @@
 // placed into map coordinates through a georeference, a scale and an offset.
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "corsa/core/diagnostic.h"
 #include "corsa/sensors/geometry.h"
+#include "corsa/sensors/scene.h"
 #include "corsa/sensors/semantic.h"
 #include "corsa/sensors/static_mesh.h"
 
@@ -32,6 +35,27 @@ struct ModelPlacement {
   Vec3 offset;
   UpAxis up_axis = UpAxis::kAuto;  ///< auto: y-up for glTF/GLB (the glTF convention), else z-up
   SemanticClass semantic = SemanticClass::kBuilding;
+  /// Receives located warnings (a texture that cannot be read); may be null.
+  Diagnostics* diagnostics = nullptr;
+};
+
+/// Shapes of entities from their OpenSCENARIO model3d files (any format assimp reads, with
+/// their materials and textures), scaled to each entity's bounding box (the model's bounds
+/// stretched onto the box; models face +x with z up, glTF/GLB turned z-up). A file that cannot
+/// be read is one located warning and the entity gets its generated shape. Relative paths are
+/// resolved against `base` (the scenario's folder); `catalog` maps an entity category name
+/// ("car", "pedestrian", ...) to a model file for entities without model3d.
+class ModelShapeSource : public EntityShapeSource {
+ public:
+  ModelShapeSource(std::filesystem::path base, Diagnostics& diagnostics,
+                   std::map<std::string, std::filesystem::path> catalog = {});
+  bool shape_of(const engine::EntitySnapshot& entity, StaticMesh& mesh) override;
+
+ private:
+  std::filesystem::path base_;
+  Diagnostics& diagnostics_;
+  std::map<std::string, std::filesystem::path> catalog_;
+  std::map<std::string, std::optional<std::vector<StaticMesh>>> loaded_;
 };
 
 /// Loads every mesh of the model as its own StaticMesh (one instance per node mesh), named

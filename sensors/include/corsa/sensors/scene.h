@@ -79,8 +79,8 @@ class Scene {
   MaterialId add_material(const Material& material);
   const Material& material(MaterialId id) const;
   size_t material_count() const;
-  /// Where shapes of entities come from before the built-in generators (not owned; may be null).
-  void set_entity_shape_source(EntityShapeSource* source);
+  /// Where shapes of entities come from before the built-in generators (may be null).
+  void set_entity_shape_source(std::shared_ptr<EntityShapeSource> source);
   /// Builds the static acceleration structure; call once after adding static geometry (adding
   /// more later needs another commit).
   void commit();
