@@ -123,7 +123,9 @@ bool lamp_lit(const ShadingContext& c, const SurfaceHit& h, const Material& m) {
     if (s < 0) {
       return false;
     }
-    const int k = m.light == LightRole::kSignalRed ? 0 : m.light == LightRole::kSignalYellow ? 1 : 2;
+    const int k = m.light == LightRole::kSignalRed      ? 0
+                  : m.light == LightRole::kSignalYellow ? 1
+                                                        : 2;
     return (c.scene->signal_bulbs[s] >> k) & 1u;
   }
   return (c.static_lamps & b) != 0;
@@ -213,17 +215,27 @@ Color shade_hit(const ShadingContext& c, const SurfaceHit& h, bool sunlit) {
   // Specular: the sky mirrored by glossy surfaces (no reflection rays: the sky only), weighted
   // by Schlick's Fresnel term, and the sun's glint.
   const Vec3 r = reflect(h.view_dir, n);
-  const double schlick = std::pow(1.0 - cos_view, 5.0);
-  const double gloss = std::pow(1.0 - std::clamp(s.roughness, 0.0, 1.0), 2.0);
+  // Glints only where the mirror direction is near the sun (pow() elsewhere adds nothing).
+  const double to_sun = sunlit ? dot(r, l.sun_direction) : 0.0;
+  auto lobe = [to_sun](double shininess) {
+    return to_sun > 0.9 ? std::pow(to_sun, shininess) : 0.0;
+  };
+  const double grazing = 1.0 - cos_view;
+  const double g2 = grazing * grazing;
+  const double schlick = g2 * g2 * grazing;  // (1 - cos)^5
+  const double smooth = 1.0 - std::clamp(s.roughness, 0.0, 1.0);
+  const double gloss = smooth * smooth;
   if (gloss > 0.02) {
-    const double f0d = std::pow((m.ior - 1.0) / (m.ior + 1.0), 2.0);
+    const double q = (m.ior - 1.0) / (m.ior + 1.0);
+    const double f0d = q * q;
     const Color f0 = mix(Color{f0d, f0d, f0d}, s.albedo, s.metallic);
     const Color fresnel = f0 + (Color{1.0, 1.0, 1.0} + f0 * -1.0) * schlick;
     const Color env = mix(l.ambient, l.sky(r), gloss);
     color = color + fresnel * env * gloss;
     if (sunlit) {
-      const double shininess = 2.0 / std::max(1e-3, std::pow(s.roughness, 4.0));
-      const double glint = std::pow(std::max(0.0, dot(r, l.sun_direction)), std::min(shininess, 2000.0));
+      const double r2 = s.roughness * s.roughness;
+      const double shininess = 2.0 / std::max(1e-3, r2 * r2);
+      const double glint = lobe(std::min(shininess, 2000.0));
       color = color + fresnel * l.sun * (glint * gloss * 3.0);
     }
   }
@@ -231,8 +243,7 @@ Color shade_hit(const ShadingContext& c, const SurfaceHit& h, bool sunlit) {
     const double fc = 0.04 + 0.96 * schlick;
     color = color + l.sky(r) * (s.clearcoat * fc);
     if (sunlit) {
-      color = color + l.sun * (s.clearcoat * fc * 4.0 *
-                               std::pow(std::max(0.0, dot(r, l.sun_direction)), 600.0));
+      color = color + l.sun * (s.clearcoat * fc * 4.0 * lobe(600.0));
     }
   }
   if (wet) {
@@ -240,7 +251,7 @@ Color shade_hit(const ShadingContext& c, const SurfaceHit& h, bool sunlit) {
     const double fresnel = 0.02 + 0.98 * schlick;
     color = color + l.sky(r) * (0.8 * fresnel);
     if (sunlit) {
-      color = color + l.sun * (2.0 * std::pow(std::max(0.0, dot(r, l.sun_direction)), 300.0));
+      color = color + l.sun * (2.0 * lobe(300.0));
     }
   }
   color = color + s.emission;

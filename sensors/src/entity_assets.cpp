@@ -60,15 +60,19 @@ void wheelchair(const engine::EntitySnapshot& e, RandomStream& rng, EntityShape&
   const double r = 0.3;
   for (int side : {-1, 1}) {
     WheelSpec w{{box.center_x - 0.15, box.center_y + side * (0.5 * box.width - 0.04), zb + r},
-                r, 0.04, false, static_cast<uint8_t>(side < 0 ? 1 : 2), false};
+                r,
+                0.04,
+                false,
+                static_cast<uint8_t>(side < 0 ? 1 : 2),
+                false};
     add_wheel(b, w, side, 6);
     wheels.push_back(w);
   }
   b.material(materials::metal("wheelchair frame", linear_rgb(60, 62, 66), 0.4));
-  b.box({box.center_x - 0.3, box.center_y - 0.25, zb + 0.45}, {box.center_x + 0.15,
-                                                                 box.center_y + 0.25, zb + 0.5});
-  b.box({box.center_x - 0.32, box.center_y - 0.25, zb + 0.5}, {box.center_x - 0.28,
-                                                                 box.center_y + 0.25, zb + 0.95});
+  b.box({box.center_x - 0.3, box.center_y - 0.25, zb + 0.45},
+        {box.center_x + 0.15, box.center_y + 0.25, zb + 0.5});
+  b.box({box.center_x - 0.32, box.center_y - 0.25, zb + 0.5},
+        {box.center_x - 0.28, box.center_y + 0.25, zb + 0.95});
   PersonPlacement where;
   where.ground = {box.center_x - 0.12, box.center_y, zb + 0.55};
   where.by_hip = true;
@@ -94,9 +98,8 @@ void animal(const engine::EntitySnapshot& e, RandomStream& rng, EntityShape& sha
   const double zb = box.center_z - 0.5 * box.height;
   const double l = box.length;
   const double h = box.height;
-  Material fur = materials::plain("fur", rng.uniform01() < 0.5 ? linear_rgb(120, 90, 60)
-                                                               : linear_rgb(70, 60, 50),
-                                  0.9);
+  Material fur = materials::plain(
+      "fur", rng.uniform01() < 0.5 ? linear_rgb(120, 90, 60) : linear_rgb(70, 60, 50), 0.9);
   fur.name += " " + std::to_string(rng.next_u64() % 1000);
   MeshBuilder b;
   b.semantic(SemanticClass::kAnimal).material(fur);

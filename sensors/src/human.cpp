@@ -213,19 +213,20 @@ void add_person(MeshBuilder& b, const PersonLook& p, const PersonPlacement& wher
   };
   // Pelvis and lower torso (trousers), then chest and shoulders (top).
   bone(kBonePelvis)->material(p.bottom);
-  std::vector<std::vector<Vec3>> lower = {section(0.47 * s, 0.07 * s * g, 0.058 * s * g, 0.0),
-                                          section(0.52 * s, 0.093 * s * g, 0.066 * s * g, -0.005 * s),
-                                          section(0.58 * s, 0.09 * s * g, 0.062 * s * g, -0.004 * s),
-                                          section(0.62 * s, 0.083 * s * g, 0.06 * s * g, 0.0)};
+  std::vector<std::vector<Vec3>> lower = {
+      section(0.47 * s, 0.07 * s * g, 0.058 * s * g, 0.0),
+      section(0.52 * s, 0.093 * s * g, 0.066 * s * g, -0.005 * s),
+      section(0.58 * s, 0.09 * s * g, 0.062 * s * g, -0.004 * s),
+      section(0.62 * s, 0.083 * s * g, 0.06 * s * g, 0.0)};
   b.loft(lower, true);
   bone(kBoneTorso)->material(p.top);
-  std::vector<std::vector<Vec3>> upper = {section(0.60 * s, 0.088 * s * g, 0.062 * s * g, 0.0),
-                                          section(0.67 * s, 0.086 * s * g, 0.062 * s * g, 0.002 * s),
-                                          section(0.74 * s, 0.097 * s * g, 0.07 * s * g, 0.006 * s),
-                                          section(0.785 * s, 0.104 * s * p.shoulders * std::sqrt(g),
-                                                  0.066 * s * g, 0.004 * s),
-                                          section(0.815 * s, 0.096 * s * p.shoulders, 0.05 * s, 0.0),
-                                          section(0.84 * s, 0.045 * s, 0.04 * s, 0.0)};
+  std::vector<std::vector<Vec3>> upper = {
+      section(0.60 * s, 0.088 * s * g, 0.062 * s * g, 0.0),
+      section(0.67 * s, 0.086 * s * g, 0.062 * s * g, 0.002 * s),
+      section(0.74 * s, 0.097 * s * g, 0.07 * s * g, 0.006 * s),
+      section(0.785 * s, 0.104 * s * p.shoulders * std::sqrt(g), 0.066 * s * g, 0.004 * s),
+      section(0.815 * s, 0.096 * s * p.shoulders, 0.05 * s, 0.0),
+      section(0.84 * s, 0.045 * s, 0.04 * s, 0.0)};
   b.loft(upper, true);
   // Neck and head (head on its own bone).
   bone(kBoneHead)->material(p.skin);
@@ -233,11 +234,11 @@ void add_person(MeshBuilder& b, const PersonLook& p, const PersonPlacement& wher
   const Vec3 head{0.008 * s, 0.0, 0.933 * s};
   b.ellipsoid(head, {0.056 * s, 0.046 * s, 0.066 * s}, Mat3{}, 14, 10);
   b.material(p.hair);
-  b.ellipsoid(head + Vec3{-0.008 * s, 0.0, 0.012 * s}, {0.058 * s, 0.049 * s, 0.06 * s}, Mat3{},
-              14, 10);
+  b.ellipsoid(head + Vec3{-0.008 * s, 0.0, 0.012 * s}, {0.058 * s, 0.049 * s, 0.06 * s}, Mat3{}, 14,
+              10);
   if (p.long_hair) {
-    b.ellipsoid(head + Vec3{-0.03 * s, 0.0, -0.06 * s}, {0.035 * s, 0.05 * s, 0.08 * s}, Mat3{},
-                10, 8);
+    b.ellipsoid(head + Vec3{-0.03 * s, 0.0, -0.06 * s}, {0.035 * s, 0.05 * s, 0.08 * s}, Mat3{}, 10,
+                8);
   }
   // Arms.
   for (int side : {1, -1}) {
@@ -263,8 +264,8 @@ void add_person(MeshBuilder& b, const PersonLook& p, const PersonPlacement& wher
     bone(left ? kBoneShinL : kBoneShinR)->material(p.skirt ? p.skin : p.bottom);
     limb(b, knee, ankle, 0.034 * s * std::sqrt(g), 0.022 * s);
     bone(left ? kBoneFootL : kBoneFootR)->material(p.shoes);
-    b.ellipsoid(ankle + Vec3{0.045 * s, 0.0, -0.018 * s}, {0.078 * s, 0.031 * s, 0.028 * s},
-                Mat3{}, 10, 6);
+    b.ellipsoid(ankle + Vec3{0.045 * s, 0.0, -0.018 * s}, {0.078 * s, 0.031 * s, 0.028 * s}, Mat3{},
+                10, 6);
   }
   if (p.skirt) {
     bone(kBonePelvis)->material(p.bottom);
@@ -278,8 +279,8 @@ void pose_person(const PersonLook& p, const PersonPlacement& where, Posture post
                  double amplitude, std::vector<Rigid>& bones) {
   const double s = p.stature;
   const Joints j = joints_of(p);
-  const bool rider = posture == Posture::kCycle || posture == Posture::kRideMotorbike ||
-                     posture == Posture::kSit;
+  const bool rider =
+      posture == Posture::kCycle || posture == Posture::kRideMotorbike || posture == Posture::kSit;
   const Vec3 base = where.by_hip ? where.ground - Vec3{0.0, 0.0, j.hip_l.z} : where.ground;
   const uint8_t b0 = where.first_bone;
   auto set = [&](Bone bn, const Frame& f, Vec3 rest) {
@@ -306,10 +307,9 @@ void pose_person(const PersonLook& p, const PersonPlacement& where, Posture post
   const Frame pelvis{posture == Posture::kWalk ? rot_z(4.0 * kDeg * a * std::sin(w)) : Mat3{},
                      base + j.pelvis + Vec3{0.0, sway, 0.0}};
   set(kBonePelvis, pelvis, j.pelvis);
-  const Frame torso =
-      child(pelvis, j.lumbar - j.pelvis,
-            rot_y(lean) * (posture == Posture::kWalk ? rot_z(-7.0 * kDeg * a * std::sin(w))
-                                                     : Mat3{}));
+  const Frame torso = child(
+      pelvis, j.lumbar - j.pelvis,
+      rot_y(lean) * (posture == Posture::kWalk ? rot_z(-7.0 * kDeg * a * std::sin(w)) : Mat3{}));
   set(kBoneTorso, torso, j.lumbar);
   // The head stays level with the horizon (riders look ahead).
   const Frame head = child(torso, j.neck - j.lumbar, rot_y(-0.8 * lean));
@@ -338,8 +338,9 @@ void pose_person(const PersonLook& p, const PersonPlacement& where, Posture post
       Vec3 target;
       if (posture == Posture::kCycle) {
         const double crank = phase + (left ? 0.0 : kPi);
-        target = where.pedal_axis + Vec3{where.crank * std::cos(crank), side * 0.11 * s / 1.75,
-                                         where.crank * std::sin(crank)} +
+        target = where.pedal_axis +
+                 Vec3{where.crank * std::cos(crank), side * 0.11 * s / 1.75,
+                      where.crank * std::sin(crank)} +
                  Vec3{0.0, 0.0, 0.05 * s / 1.75};
       } else {
         target = where.feet + Vec3{0.0, side * 0.16 * s / 1.75, 0.05 * s / 1.75};

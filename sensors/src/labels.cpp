@@ -85,8 +85,8 @@ bool project_box(const CameraModel& camera, const Box3& box, Box2& out) {
 }
 
 /// Share of the object's silhouette (its own shape alone) covered by its own pixels.
-double occlusion_of(const detail::EntityInstance& inst,
-                    const CameraRenderer& camera, const Rigid& world_from_cam, const Box2& box,
+double occlusion_of(const detail::EntityInstance& inst, const CameraRenderer& camera,
+                    const Rigid& world_from_cam, const Box2& box,
                     std::span<const uint32_t> instance, int width) {
   // Rays in the entity's own frame, traced against its shape alone.
   const Rigid to_entity = inst.world_from_entity.inverse();

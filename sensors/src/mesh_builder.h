@@ -22,9 +22,9 @@ struct ArticulatedMesh {
   std::vector<Vec3> vertices;
   std::vector<uint8_t> bone;  ///< per vertex
   std::vector<std::array<uint32_t, 3>> triangles;
-  std::vector<uint16_t> material;       ///< per triangle, into `materials`
-  std::vector<SemanticClass> classes;   ///< per triangle
-  std::vector<Material> materials;      ///< palette
+  std::vector<uint16_t> material;         ///< per triangle, into `materials`
+  std::vector<SemanticClass> classes;     ///< per triangle
+  std::vector<Material> materials;        ///< palette
   std::vector<std::array<float, 2>> uvs;  ///< per vertex
 };
 

@@ -102,21 +102,23 @@ struct MaterialReader {
         } else {
           std::vector<uint8_t> rgba;
           for (unsigned i = 0; i < t->mWidth * t->mHeight; ++i) {
-            rgba.insert(rgba.end(), {t->pcData[i].r, t->pcData[i].g, t->pcData[i].b, t->pcData[i].a});
+            rgba.insert(rgba.end(),
+                        {t->pcData[i].r, t->pcData[i].g, t->pcData[i].b, t->pcData[i].a});
           }
-          image = TextureImage::from_srgb8(static_cast<int>(t->mWidth), static_cast<int>(t->mHeight),
-                                           4, rgba, model.string() + ":" + ref);
+          image =
+              TextureImage::from_srgb8(static_cast<int>(t->mWidth), static_cast<int>(t->mHeight), 4,
+                                       rgba, model.string() + ":" + ref);
         }
       } else {
         image = TextureImage::load(model.parent_path() / ref);
       }
     } catch (const InputError& error) {
       if (diagnostics != nullptr) {
-        diagnostics->add_once("model-texture:" + model.string() + ":" + ref,
-                              make_warning(model.string(), 0,
-                                           "texture '" + ref + "' cannot be read (" +
-                                               error.diagnostic().message +
-                                               "); the material's colour is used instead"));
+        diagnostics->add_once(
+            "model-texture:" + model.string() + ":" + ref,
+            make_warning(model.string(), 0,
+                         "texture '" + ref + "' cannot be read (" + error.diagnostic().message +
+                             "); the material's colour is used instead"));
       }
     }
     textures[ref] = image;
@@ -131,7 +133,7 @@ struct MaterialReader {
     aiString name;
     out.name = model.filename().string() + ":" +
                (m->Get(AI_MATKEY_NAME, name) == AI_SUCCESS ? std::string(name.C_Str())
-                                                             : std::to_string(index));
+                                                           : std::to_string(index));
     aiColor4D c;
     if (m->Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS ||
         m->Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS) {
@@ -261,8 +263,9 @@ std::vector<StaticMesh> load_model(const std::filesystem::path& path,
   }
   const Placer placer(path, placement);
   MaterialReader materials{scene, path, placement.diagnostics, {}};
-  Walker walker{scene,      &placer, y_up_for(path, placement.up_axis), &placement,
-                path.filename().string(), {},      &materials};
+  Walker walker{
+      scene, &placer,   y_up_for(path, placement.up_axis), &placement, path.filename().string(),
+      {},    &materials};
   walker.node(scene->mRootNode, aiMatrix4x4());
   if (walker.out.empty()) {
     fail(path, "the model has no triangles");

@@ -12,20 +12,34 @@ namespace {
 const char* category_name(engine::EntityCategory c) {
   using engine::EntityCategory;
   switch (c) {
-    case EntityCategory::kCar: return "car";
-    case EntityCategory::kVan: return "van";
-    case EntityCategory::kTruck: return "truck";
-    case EntityCategory::kTrailer: return "trailer";
-    case EntityCategory::kSemitrailer: return "semitrailer";
-    case EntityCategory::kBus: return "bus";
-    case EntityCategory::kMotorbike: return "motorbike";
-    case EntityCategory::kBicycle: return "bicycle";
-    case EntityCategory::kTrain: return "train";
-    case EntityCategory::kTram: return "tram";
-    case EntityCategory::kPedestrian: return "pedestrian";
-    case EntityCategory::kWheelchair: return "wheelchair";
-    case EntityCategory::kAnimal: return "animal";
-    case EntityCategory::kObstacle: return "obstacle";
+    case EntityCategory::kCar:
+      return "car";
+    case EntityCategory::kVan:
+      return "van";
+    case EntityCategory::kTruck:
+      return "truck";
+    case EntityCategory::kTrailer:
+      return "trailer";
+    case EntityCategory::kSemitrailer:
+      return "semitrailer";
+    case EntityCategory::kBus:
+      return "bus";
+    case EntityCategory::kMotorbike:
+      return "motorbike";
+    case EntityCategory::kBicycle:
+      return "bicycle";
+    case EntityCategory::kTrain:
+      return "train";
+    case EntityCategory::kTram:
+      return "tram";
+    case EntityCategory::kPedestrian:
+      return "pedestrian";
+    case EntityCategory::kWheelchair:
+      return "wheelchair";
+    case EntityCategory::kAnimal:
+      return "animal";
+    case EntityCategory::kObstacle:
+      return "obstacle";
   }
   return "obstacle";
 }
@@ -60,7 +74,7 @@ StaticMesh merge(const std::vector<StaticMesh>& parts, SemanticClass semantic) {
       const auto& tri = p.triangles[t];
       out.triangles.push_back({tri[0] + base, tri[1] + base, tri[2] + base});
       const uint16_t local = p.material_indices.size() == p.triangles.size() ? p.material_indices[t]
-                             : p.material_indices.size() == 1               ? p.material_indices[0]
+                             : p.material_indices.size() == 1                ? p.material_indices[0]
                                                                              : 0;
       out.material_indices.push_back(static_cast<uint16_t>(palette + local));
     }
@@ -95,11 +109,11 @@ bool ModelShapeSource::shape_of(const engine::EntitySnapshot& e, StaticMesh& mes
       placement.diagnostics = &diagnostics_;
       slot = load_model(file, placement);
     } catch (const InputError& error) {
-      diagnostics_.add_once("model3d:" + file.string(),
-                            make_warning(file.string(), 0,
-                                         "cannot use the model of entity '" + e.name + "' (" +
-                                             error.diagnostic().message +
-                                             "); a generated shape stands in"));
+      diagnostics_.add_once(
+          "model3d:" + file.string(),
+          make_warning(file.string(), 0,
+                       "cannot use the model of entity '" + e.name + "' (" +
+                           error.diagnostic().message + "); a generated shape stands in"));
       slot = std::vector<StaticMesh>{};
     }
   }
@@ -116,7 +130,8 @@ bool ModelShapeSource::shape_of(const engine::EntitySnapshot& e, StaticMesh& mes
   const Vec3 size = hi - lo;
   const Vec3 centre = (lo + hi) * 0.5;
   auto scale = [](double want, double have) { return have > 1e-9 ? want / have : 1.0; };
-  const Vec3 k{scale(e.box.length, size.x), scale(e.box.width, size.y), scale(e.box.height, size.z)};
+  const Vec3 k{scale(e.box.length, size.x), scale(e.box.width, size.y),
+               scale(e.box.height, size.z)};
   for (Vec3& v : mesh.vertices) {
     v = {e.box.center_x + (v.x - centre.x) * k.x, e.box.center_y + (v.y - centre.y) * k.y,
          e.box.center_z + (v.z - centre.z) * k.z};

@@ -49,8 +49,7 @@ NoiseTile::NoiseTile() {
           sum += std::pow(0.55, o) * value_noise((x + 0.5) * k, (y + 0.5) * k, cells,
                                                  0x51ED5EEDu + 977u * c + 131u * o);
         }
-        base.texels[4 * (static_cast<size_t>(y) * kSize + x) + c] =
-            static_cast<float>(sum / total);
+        base.texels[4 * (static_cast<size_t>(y) * kSize + x) + c] = static_cast<float>(sum / total);
       }
     }
   }

@@ -62,9 +62,9 @@ SurfaceSample asphalt(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
   const Plane q = plane_of(p, m.seed);
   const double fp = p.footprint;
-  const double grain = noise(0, q.a, q.b, 1.5, fp);   // aggregate, ~6 mm texels
-  const double mid = noise(1, q.a, q.b, 14.0, fp);    // patches of a few metres
-  const double wear = noise(2, q.a, q.b, 90.0, fp);   // older, lighter stretches
+  const double grain = noise(0, q.a, q.b, 1.5, fp);  // aggregate, ~6 mm texels
+  const double mid = noise(1, q.a, q.b, 14.0, fp);   // patches of a few metres
+  const double wear = noise(2, q.a, q.b, 90.0, fp);  // older, lighter stretches
   const double field = noise(3, q.a, q.b, 9.0, fp);
   double tone = 1.0 + 0.7 * (grain - 0.5) + 0.45 * (mid - 0.5);
   tone *= 1.0 + 0.35 * m.params[0] * smoothstep(0.45, 0.75, wear);
@@ -158,8 +158,8 @@ SurfaceSample facade(const Material& m, const TexturePoint& p) {
   const double share_y = std::clamp(m.params[2], 0.2, 0.8);
   const double ground = std::max(0.0, m.params[3]);
   const double z = p.position.z - p.base_z;
-  const double wall_tone = 1.0 + 0.16 * (noise(0, q.a, z, 6.0, fp) - 0.5) +
-                           0.12 * (noise(2, q.a, z, 40.0, fp) - 0.5);
+  const double wall_tone =
+      1.0 + 0.16 * (noise(0, q.a, z, 6.0, fp) - 0.5) + 0.12 * (noise(2, q.a, z, 40.0, fp) - 0.5);
   Color wall = m.base_color * wall_tone;
   // Rain streaks under windows and at the top: darker vertical stains.
   wall = wall * (1.0 - 0.12 * smoothstep(0.55, 0.8, noise(3, q.a * 6.0, z * 0.25, 30.0, fp)));
@@ -246,8 +246,8 @@ SurfaceSample dirt(const Material& m, const TexturePoint& p) {
 SurfaceSample terrain(const Material& m, const TexturePoint& p) {
   const Plane q = plane_of(p, m.seed);
   const double fp = p.footprint;
-  const double bare = smoothstep(0.6, 0.72, noise(3, q.a, q.b, 160.0, fp) * 0.7 +
-                                                 noise(1, q.a, q.b, 12.0, fp) * 0.3);
+  const double bare = smoothstep(
+      0.6, 0.72, noise(3, q.a, q.b, 160.0, fp) * 0.7 + noise(1, q.a, q.b, 12.0, fp) * 0.3);
   Material g = m;
   g.secondary = Color{0.16, 0.14, 0.05};  // dry grass
   SurfaceSample s = grass(g, p);
@@ -284,8 +284,7 @@ SurfaceSample metal_grid(const Material& m, const TexturePoint& p) {
 
 SurfaceSample image_texture(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
-  const double texels =
-      p.footprint * p.uv_per_m * std::max(m.image->width(), m.image->height());
+  const double texels = p.footprint * p.uv_per_m * std::max(m.image->width(), m.image->height());
   s.albedo = m.base_color * m.image->sample(p.u, p.v, texels);
   return s;
 }

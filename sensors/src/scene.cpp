@@ -250,9 +250,8 @@ void Scene::add_road_mesh(const xodr::RoadMesh& road) {
                                 ? SemanticClass::kLaneMarking
                                 : semantic_class_of_lane(info.lane_type);
     mesh.classes.push_back(c);
-    mesh.material_indices.push_back(info.color == xodr::MarkColor::kYellow
-                                        ? yellow_index
-                                        : static_cast<uint16_t>(c));
+    mesh.material_indices.push_back(
+        info.color == xodr::MarkColor::kYellow ? yellow_index : static_cast<uint16_t>(c));
   }
   if (mesh.triangles.empty()) {
     return;
@@ -347,7 +346,8 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
       const auto& a = info.uvs[t[0]];
       const auto& b = info.uvs[t[1]];
       const auto& c = info.uvs[t[2]];
-      const double uv_area = std::fabs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+      const double uv_area =
+          std::fabs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
       info.uv_per_m.push_back(area > 0.0 ? static_cast<float>(std::sqrt(uv_area / area)) : 1.0f);
     }
   }

@@ -22,8 +22,8 @@ struct StaticGeometry {
   std::vector<SemanticClass> classes;  ///< per triangle, or one entry for all
   std::vector<MaterialId> materials;   ///< per triangle, or one entry for all
   uint32_t instance_id = 0;
-  int signal = -1;       ///< index into SceneData::signal_ids (traffic-light heads), or -1
-  double base_z = 0.0;   ///< lowest vertex, tracer frame (facades count floors from it)
+  int signal = -1;      ///< index into SceneData::signal_ids (traffic-light heads), or -1
+  double base_z = 0.0;  ///< lowest vertex, tracer frame (facades count floors from it)
   size_t triangles = 0;
   /// Texture coordinates (only for meshes that have them): per vertex, the triangles, and the
   /// texture-coordinate units per metre of each triangle (for the texture's mip level).
@@ -89,9 +89,9 @@ struct SceneData {
   std::vector<Material> materials;  ///< by MaterialId
   std::map<std::string, MaterialId> material_keys;
   std::array<MaterialId, kSemanticClassCount> class_materials{};
-  std::vector<std::string> signal_ids;             ///< signals that switch traffic-light heads
-  std::vector<std::string> signal_states;          ///< this frame's state strings, by index
-  std::vector<uint8_t> signal_bulbs;               ///< lit bulbs, bit 0 red, 1 yellow, 2 green
+  std::vector<std::string> signal_ids;     ///< signals that switch traffic-light heads
+  std::vector<std::string> signal_states;  ///< this frame's state strings, by index
+  std::vector<uint8_t> signal_bulbs;       ///< lit bulbs, bit 0 red, 1 yellow, 2 green
   /// Labelled static objects by instance id: what they are, their bounds (map frame) and the
   /// signal index of traffic lights (-1 otherwise).
   struct ObjectRecord {

@@ -30,11 +30,10 @@ detail::ArticulatedMesh from_static(const StaticMesh& mesh, SemanticClass fallba
                 : std::vector<std::array<float, 2>>(mesh.vertices.size(), {0.0f, 0.0f});
   out.materials = mesh.materials;
   if (out.materials.empty()) {
-    out.materials.push_back(mesh.color ? materials::plain("model colour",
-                                                          linear_rgb(mesh.color->r, mesh.color->g,
-                                                                     mesh.color->b),
-                                                          0.5)
-                                       : detail::default_material(fallback));
+    out.materials.push_back(
+        mesh.color ? materials::plain("model colour",
+                                      linear_rgb(mesh.color->r, mesh.color->g, mesh.color->b), 0.5)
+                   : detail::default_material(fallback));
   }
   for (size_t i = 0; i < n; ++i) {
     const uint16_t m = mesh.material_indices.size() == n   ? mesh.material_indices[i]
@@ -48,7 +47,8 @@ detail::ArticulatedMesh from_static(const StaticMesh& mesh, SemanticClass fallba
 
 /// Writes the posed vertices of a shape into its Embree vertex buffer.
 void write_vertices(detail::EntityShape& shape, const std::vector<Rigid>* bones) {
-  auto* v = static_cast<float*>(rtcGetGeometryBufferData(shape.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
+  auto* v =
+      static_cast<float*>(rtcGetGeometryBufferData(shape.geometry, RTC_BUFFER_TYPE_VERTEX, 0));
   const auto& mesh = shape.mesh;
   for (size_t i = 0; i < mesh.vertices.size(); ++i) {
     Vec3 p = mesh.vertices[i];

@@ -120,9 +120,8 @@ std::string class_table_json() {
   nlohmann::ordered_json classes = nlohmann::ordered_json::array();
   for (size_t i = 0; i < kClasses.size(); ++i) {
     const Rgb8 c = kClasses[i].color;
-    classes.push_back({{"id", i},
-                       {"name", std::string(kClasses[i].name)},
-                       {"color", {c.r, c.g, c.b}}});
+    classes.push_back(
+        {{"id", i}, {"name", std::string(kClasses[i].name)}, {"color", {c.r, c.g, c.b}}});
   }
   nlohmann::ordered_json table;
   table["format"] = "corsa semantic classes 1";

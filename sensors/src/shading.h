@@ -38,9 +38,9 @@ struct SurfaceHit {
   unsigned prim_id = 0;
   double u = 0.0;  ///< Embree's barycentric coordinates
   double v = 0.0;
-  Vec3 position;   ///< tracer-local
-  Vec3 normal;     ///< world, unit, facing the viewer
-  Vec3 view_dir;   ///< unit, from the eye
+  Vec3 position;  ///< tracer-local
+  Vec3 normal;    ///< world, unit, facing the viewer
+  Vec3 view_dir;  ///< unit, from the eye
   double distance = 0.0;
   SemanticClass semantic = SemanticClass::kUnlabeled;
   int entity = -1;  ///< instance pool index, -1 static

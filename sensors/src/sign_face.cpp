@@ -78,13 +78,8 @@ constexpr std::array<uint8_t, 10> kDigits = {0x3F, 0x06, 0x5B, 0x4F, 0x66,
 /// One seven-segment glyph in a box of half sizes (w, h) centred at the origin.
 double glyph(P2 p, uint8_t mask, double w, double h, double stroke) {
   const P2 tl{-w, h}, tr{w, h}, ml{-w, 0.0}, mr{w, 0.0}, bl{-w, -h}, br{w, -h};
-  const std::array<std::array<P2, 2>, 7> seg = {{{tl, tr},
-                                                 {tr, mr},
-                                                 {mr, br},
-                                                 {bl, br},
-                                                 {ml, bl},
-                                                 {tl, ml},
-                                                 {ml, mr}}};
+  const std::array<std::array<P2, 2>, 7> seg = {
+      {{tl, tr}, {tr, mr}, {mr, br}, {bl, br}, {ml, bl}, {tl, ml}, {ml, mr}}};
   double d = 1e9;
   for (int s = 0; s < 7; ++s) {
     if (mask & (1u << s)) {

@@ -10,15 +10,15 @@ namespace corsa::sensors::detail {
 
 /// Where a material is read.
 struct TexturePoint {
-  Vec3 position;      ///< metres; a frame fixed to the surface (tracer frame for static
-                      ///< geometry, the entity frame for entities)
-  Vec3 normal;        ///< unit, same frame, facing the viewer
-  double u = 0.0;     ///< the mesh's texture coordinates (0 when it has none)
+  Vec3 position;   ///< metres; a frame fixed to the surface (tracer frame for static
+                   ///< geometry, the entity frame for entities)
+  Vec3 normal;     ///< unit, same frame, facing the viewer
+  double u = 0.0;  ///< the mesh's texture coordinates (0 when it has none)
   double v = 0.0;
-  double footprint = 0.0;   ///< metres covered by the pixel on the surface
-  double uv_per_m = 1.0;    ///< texture-coordinate units per metre on this triangle
-  double base_z = 0.0;      ///< height of the mesh's lowest point (facades count floors from it)
-  double darkness = 0.0;    ///< 0 day .. 1 night: how many windows are lit
+  double footprint = 0.0;  ///< metres covered by the pixel on the surface
+  double uv_per_m = 1.0;   ///< texture-coordinate units per metre on this triangle
+  double base_z = 0.0;     ///< height of the mesh's lowest point (facades count floors from it)
+  double darkness = 0.0;   ///< 0 day .. 1 night: how many windows are lit
 };
 
 /// A material's look at a point.

@@ -145,12 +145,14 @@ std::string static_labels_json(std::span<const StaticObjectLabel> labels) {
   for (size_t i = 0; i < labels.size(); ++i) {
     const StaticObjectLabel& l = labels[i];
     const ObjectInfo& o = l.info;
-    out += std::string(i ? ",\n  " : "\n  ") + "{\"instance_id\": " + std::to_string(l.instance_id) +
+    out += std::string(i ? ",\n  " : "\n  ") +
+           "{\"instance_id\": " + std::to_string(l.instance_id) +
            ", \"class\": " + json_quote(semantic_name(l.semantic)) +
            ", \"kind\": " + json_quote(o.kind);
     if (!o.signal_id.empty()) {
-      out += ", \"signal_id\": " + json_quote(o.signal_id) + ", \"country\": " + json_quote(o.country) +
-             ", \"type\": " + json_quote(o.type) + ", \"subtype\": " + json_quote(o.subtype) +
+      out += ", \"signal_id\": " + json_quote(o.signal_id) +
+             ", \"country\": " + json_quote(o.country) + ", \"type\": " + json_quote(o.type) +
+             ", \"subtype\": " + json_quote(o.subtype) +
              ", \"value\": " + (o.value ? num(*o.value) : std::string("null")) +
              ", \"text\": " + json_quote(o.text);
     }

@@ -68,8 +68,8 @@ std::shared_ptr<const TextureImage> TextureImage::from_srgb8(int width, int heig
         }
       }
     }
-    const float scale = static_cast<float>(down.width * down.height) /
-                        static_cast<float>(up.width * up.height);
+    const float scale =
+        static_cast<float>(down.width * down.height) / static_cast<float>(up.width * up.height);
     for (float& v : down.rgb) {
       v *= scale;
     }
@@ -82,7 +82,8 @@ std::shared_ptr<const TextureImage> TextureImage::decode(std::span<const uint8_t
                                                          const std::string& name) {
   cv::Mat image;
   try {
-    const cv::Mat raw(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<uint8_t*>(bytes.data()));
+    const cv::Mat raw(1, static_cast<int>(bytes.size()), CV_8UC1,
+                      const_cast<uint8_t*>(bytes.data()));
     image = cv::imdecode(raw, cv::IMREAD_COLOR);
   } catch (const cv::Exception&) {
     image = cv::Mat();

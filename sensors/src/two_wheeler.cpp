@@ -27,8 +27,8 @@ void add_bicycle_wheel(MeshBuilder& b, const WheelSpec& w) {
     std::vector<Vec3> ring;
     for (int i = 0; i < segments; ++i) {
       const double a = 2.0 * kPi * i / segments;
-      ring.push_back(
-          {c.x + profile[k][0] * std::cos(a), c.y + profile[k][1], c.z + profile[k][0] * std::sin(a)});
+      ring.push_back({c.x + profile[k][0] * std::cos(a), c.y + profile[k][1],
+                      c.z + profile[k][0] * std::sin(a)});
     }
     rings.push_back(ring);
   }
@@ -60,8 +60,8 @@ GeneratedVehicle generate_two_wheeler(engine::EntityCategory category, const eng
   const double x1 = box.center_x + 0.5 * box.length;
   const double yc = box.center_y;
   const double zb = box.center_z - 0.5 * box.height;
-  const double radius = motor ? std::clamp(0.15 * box.length, 0.28, 0.34)
-                              : std::clamp(0.19 * box.length, 0.28, 0.35);
+  const double radius =
+      motor ? std::clamp(0.15 * box.length, 0.28, 0.34) : std::clamp(0.19 * box.length, 0.28, 0.35);
   const double xr = x0 + radius + 0.03;
   const double xf = x1 - radius - (motor ? 0.08 : 0.03);
   const double wheelbase = xf - xr;
@@ -124,8 +124,7 @@ GeneratedVehicle generate_two_wheeler(engine::EntityCategory category, const eng
     b.material(trim_material());
     b.ellipsoid(seat + Vec3{0.0, 0.0, 0.07}, {0.13, 0.07, 0.035}, Mat3{}, 8, 5);
     b.tube(seat, seat + Vec3{0.0, 0.0, 0.06}, 0.012, 0.012, 5);
-    b.tube(head_top + Vec3{0.05, -0.29, 0.06}, head_top + Vec3{0.05, 0.29, 0.06}, 0.013, 0.013,
-           6);
+    b.tube(head_top + Vec3{0.05, -0.29, 0.06}, head_top + Vec3{0.05, 0.29, 0.06}, 0.013, 0.013, 6);
     b.tube(head_top, head_top + Vec3{0.05, 0.0, 0.06}, 0.014, 0.014, 5);
     add_lamp(b, tail_lamp_material(), xr - 0.05, yc, zb + 0.75, 0.06, 0.03, -1);
     // Cranks and pedals on their own bone, turning with the distance ridden.
@@ -144,11 +143,12 @@ GeneratedVehicle generate_two_wheeler(engine::EntityCategory category, const eng
     rider.pedal_axis = bb;
     rider.crank = 0.17;
   }
-  PersonLook look = draw_person_look(rng.uniform(1.62, 1.88) * std::clamp(box.height / 1.7, 0.85, 1.15),
-                                     rng);
+  PersonLook look =
+      draw_person_look(rng.uniform(1.62, 1.88) * std::clamp(box.height / 1.7, 0.85, 1.15), rng);
   if (motor) {
-    Material helmet = rng.uniform01() < 0.5 ? materials::plain("helmet black", {0.01, 0.01, 0.012}, 0.2)
-                                            : materials::plain("helmet white", linear_rgb(220, 220, 220), 0.2);
+    Material helmet = rng.uniform01() < 0.5
+                          ? materials::plain("helmet black", {0.01, 0.01, 0.012}, 0.2)
+                          : materials::plain("helmet white", linear_rgb(220, 220, 220), 0.2);
     helmet.clearcoat = 1.0;
     look.hair = helmet;
     look.long_hair = false;

@@ -36,17 +36,17 @@ double interpolate(const Curve& c, double x) {
 
 /// Side profile of a body style, rear (xi = 0) to front (xi = 1); heights as shares of the box.
 struct Profile {
-  Curve top;               ///< roof and bonnet line
-  double belt = 0.6;       ///< window sill
-  double clearance = 0.15; ///< m
-  double headlamp = 0.56;  ///< lamp centres
+  Curve top;                ///< roof and bonnet line
+  double belt = 0.6;        ///< window sill
+  double clearance = 0.15;  ///< m
+  double headlamp = 0.56;   ///< lamp centres
   double taillamp = 0.57;
-  double bed_end = 0.0;    ///< pickups: the bed runs from the rear to here
-  double nose = 0.16;      ///< plan-view rounding of the front (share of the half width)
+  double bed_end = 0.0;  ///< pickups: the bed runs from the rear to here
+  double nose = 0.16;    ///< plan-view rounding of the front (share of the half width)
   double tail = 0.09;
-  double tumble = 0.16;        ///< roof narrower than the belt by this share
-  double front_overhang = 0.2; ///< share of the length
-  bool cargo = false;          ///< vans without rear side windows
+  double tumble = 0.16;         ///< roof narrower than the belt by this share
+  double front_overhang = 0.2;  ///< share of the length
+  bool cargo = false;           ///< vans without rear side windows
 };
 
 Profile profile_of(CarStyle style, RandomStream& rng) {
@@ -60,16 +60,14 @@ Profile profile_of(CarStyle style, RandomStream& rng) {
       p.belt = 0.60 + j;
       break;
     case CarStyle::kHatchback:
-      p.top = {{0.0, 0.50},  {0.012, 0.62}, {0.05, 0.88}, {0.11, 0.98},
-               {0.18, 1.0},  {0.52, 1.0},   {0.60, 0.95}, {0.72, 0.66},
-               {0.92, 0.59}, {0.98, 0.52},  {1.0, 0.42}};
+      p.top = {{0.0, 0.50},  {0.012, 0.62}, {0.05, 0.88}, {0.11, 0.98}, {0.18, 1.0}, {0.52, 1.0},
+               {0.60, 0.95}, {0.72, 0.66},  {0.92, 0.59}, {0.98, 0.52}, {1.0, 0.42}};
       p.belt = 0.58 + j;
       p.front_overhang = 0.17;
       break;
     case CarStyle::kSuv:
-      p.top = {{0.0, 0.50},  {0.01, 0.62},  {0.03, 0.92}, {0.08, 1.0},
-               {0.58, 1.0},  {0.64, 0.96},  {0.74, 0.70}, {0.93, 0.66},
-               {0.985, 0.58}, {1.0, 0.47}};
+      p.top = {{0.0, 0.50},  {0.01, 0.62}, {0.03, 0.92}, {0.08, 1.0},   {0.58, 1.0},
+               {0.64, 0.96}, {0.74, 0.70}, {0.93, 0.66}, {0.985, 0.58}, {1.0, 0.47}};
       p.belt = 0.62 + j;
       p.clearance = 0.2;
       p.headlamp = 0.6;
@@ -79,8 +77,8 @@ Profile profile_of(CarStyle style, RandomStream& rng) {
       p.tumble = 0.12;
       break;
     case CarStyle::kVan:
-      p.top = {{0.0, 0.25}, {0.005, 0.95}, {0.02, 1.0}, {0.76, 1.0},
-               {0.83, 0.93}, {0.90, 0.58}, {0.975, 0.53}, {1.0, 0.40}};
+      p.top = {{0.0, 0.25},  {0.005, 0.95}, {0.02, 1.0},   {0.76, 1.0},
+               {0.83, 0.93}, {0.90, 0.58},  {0.975, 0.53}, {1.0, 0.40}};
       p.belt = 0.52 + j;
       p.clearance = 0.17;
       p.headlamp = 0.47;
@@ -92,9 +90,8 @@ Profile profile_of(CarStyle style, RandomStream& rng) {
       p.cargo = rng.uniform01() < 0.5;
       break;
     case CarStyle::kPickup:
-      p.top = {{0.0, 0.50},  {0.01, 0.58},  {0.36, 0.58}, {0.375, 0.96},
-               {0.40, 1.0},  {0.58, 1.0},   {0.64, 0.95}, {0.74, 0.68},
-               {0.93, 0.64}, {0.985, 0.57}, {1.0, 0.47}};
+      p.top = {{0.0, 0.50},  {0.01, 0.58}, {0.36, 0.58}, {0.375, 0.96}, {0.40, 1.0}, {0.58, 1.0},
+               {0.64, 0.95}, {0.74, 0.68}, {0.93, 0.64}, {0.985, 0.57}, {1.0, 0.47}};
       p.belt = 0.58;
       p.clearance = 0.22;
       p.headlamp = 0.6;
@@ -159,16 +156,16 @@ struct Body {
     const double ztop = std::max(zt, z7 + 0.001);
     const bool bed = p.bed_end > 0.0 && xi(x) < p.bed_end - 0.005 && xi(x) > 0.012;
     const double floor_z = zbc + 0.45;
-    std::array<std::array<double, 2>, 9> right = {{{-0.80 * w, zbc},
-                                                    {-0.96 * w, zsb + 0.04},
-                                                    {-w, z3},
-                                                    {-w, zbelt},
-                                                    {-(w - 0.15 * (w - wt)), z5},
-                                                    {-wt, z6},
-                                                    {-0.88 * wt, z7},
-                                                    {bed ? -0.80 * wt : -0.5 * wt,
-                                                     bed ? floor_z : ztop},
-                                                    {0.0, bed ? floor_z : ztop}}};
+    std::array<std::array<double, 2>, 9> right = {
+        {{-0.80 * w, zbc},
+         {-0.96 * w, zsb + 0.04},
+         {-w, z3},
+         {-w, zbelt},
+         {-(w - 0.15 * (w - wt)), z5},
+         {-wt, z6},
+         {-0.88 * wt, z7},
+         {bed ? -0.80 * wt : -0.5 * wt, bed ? floor_z : ztop},
+         {0.0, bed ? floor_z : ztop}}};
     if (bed) {
       right[6] = {-0.86 * wt, z7};
     }
@@ -224,7 +221,8 @@ void add_body(MeshBuilder& b, const Body& body, CarStyle style, const Material& 
   double gs = 1.0, ge = 0.0;
   for (int i = 0; i <= 200; ++i) {
     const double s = i / 200.0;
-    if (interpolate(body.p.top, s) > body.p.belt + 0.12 && !(body.p.bed_end > 0.0 && s < body.p.bed_end)) {
+    if (interpolate(body.p.top, s) > body.p.belt + 0.12 &&
+        !(body.p.bed_end > 0.0 && s < body.p.bed_end)) {
       gs = std::min(gs, s);
       ge = std::max(ge, s);
     }
@@ -305,8 +303,7 @@ void add_details(MeshBuilder& b, const Body& body, RandomStream& rng) {
     lamp(brake_lamp_material(), yc + s * 0.62 * hw, yc + s * 0.95 * hw, z_tail + 0.035, 0.07, -1);
     lamp(tail_lamp_material(), yc + s * 0.62 * hw, yc + s * 0.95 * hw, z_tail - 0.035, 0.07, -1);
     lamp(indicator_material(side > 0), yc + s * 0.5 * hw, yc + s * 0.62 * hw, z_tail, 0.07, -1);
-    lamp(reversing_lamp_material(), yc + s * 0.42 * hw, yc + s * 0.5 * hw, z_tail - 0.02, 0.05,
-         -1);
+    lamp(reversing_lamp_material(), yc + s * 0.42 * hw, yc + s * 0.5 * hw, z_tail - 0.02, 0.05, -1);
   }
   // Grille between the headlamps, lower intake and rear valance.
   Material grille = materials::plain("grille", linear_rgb(30, 30, 32), 0.5);
@@ -353,8 +350,7 @@ void add_details(MeshBuilder& b, const Body& body, RandomStream& rng) {
 
 }  // namespace
 
-CarStyle car_style_for(engine::EntityCategory category, const engine::Box& box,
-                       RandomStream& rng) {
+CarStyle car_style_for(engine::EntityCategory category, const engine::Box& box, RandomStream& rng) {
   if (category == engine::EntityCategory::kVan) {
     return CarStyle::kVan;
   }

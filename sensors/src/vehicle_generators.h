@@ -27,8 +27,7 @@ struct GeneratedVehicle {
 
 /// The body style of a car-category entity from its box (vans tall and long, SUVs tall, small
 /// hatchbacks short) and the seed.
-CarStyle car_style_for(engine::EntityCategory category, const engine::Box& box,
-                       RandomStream& rng);
+CarStyle car_style_for(engine::EntityCategory category, const engine::Box& box, RandomStream& rng);
 GeneratedVehicle generate_car(CarStyle style, const engine::Box& box, RandomStream& rng);
 /// Trucks: rigid (cab and cargo box) up to 11 m, tractor and semitrailer beyond; trailers and
 /// semitrailers alone (no cab).
@@ -43,9 +42,9 @@ GeneratedVehicle generate_two_wheeler(engine::EntityCategory category, const eng
 
 /// A person's look, drawn from the seed: build and clothing.
 struct PersonLook {
-  double stature = 1.75;  ///< m
-  double build = 1.0;     ///< girth factor, 0.85 slim .. 1.25 heavy
-  double shoulders = 1.0; ///< shoulder width factor
+  double stature = 1.75;   ///< m
+  double build = 1.0;      ///< girth factor, 0.85 slim .. 1.25 heavy
+  double shoulders = 1.0;  ///< shoulder width factor
   Material skin, hair, top, bottom, shoes;
   bool long_sleeves = true;
   bool skirt = false;
@@ -79,7 +78,7 @@ enum Bone : uint8_t {
 /// Where the person stands: the point between the feet on the ground (or the hip and grips for
 /// riders), the facing (+x) and the first bone number to use.
 struct PersonPlacement {
-  Vec3 ground;              ///< entity frame: walkers' feet; riders: the hip joint
+  Vec3 ground;                ///< entity frame: walkers' feet; riders: the hip joint
   Vec3 hands{0.0, 0.0, 0.0};  ///< riders: handlebar grips' centre (entity frame)
   double hand_spread = 0.5;   ///< riders: distance between the grips
   Vec3 pedal_axis;            ///< cyclists: the crank axle (entity frame)

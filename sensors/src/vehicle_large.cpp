@@ -24,10 +24,10 @@ std::vector<Vec3> rounded_section(double x, double yc, double w, double z0, doub
   };
   r_top = std::min({r_top, 0.45 * w, 0.45 * (z1 - z0)});
   r_bottom = std::min({r_bottom, 0.45 * w, 0.45 * (z1 - z0)});
-  corner(-w + r_bottom, z0 + r_bottom, r_bottom, 3.14159265358979);      // bottom right
+  corner(-w + r_bottom, z0 + r_bottom, r_bottom, 3.14159265358979);       // bottom right
   corner(w - r_bottom, z0 + r_bottom, r_bottom, 1.5 * 3.14159265358979);  // bottom left
   corner(w - r_top, z1 - r_top, r_top, 0.0);                              // top left
-  corner(-w + r_top, z1 - r_top, r_top, 0.5 * 3.14159265358979);         // top right
+  corner(-w + r_top, z1 - r_top, r_top, 0.5 * 3.14159265358979);          // top right
   return ring;
 }
 
@@ -124,8 +124,8 @@ void add_cab(MeshBuilder& b, const Material& paint, double x0, double x1, double
     b.material(trim_material());
     const double y0 = yc + side * w;
     const double y1 = yc + side * (w + 0.3);
-    b.box({x1 - 0.35, std::min(y0, y1), screen_low + 0.2}, {x1 - 0.25, std::max(y0, y1),
-                                                              screen_low + 0.65});
+    b.box({x1 - 0.35, std::min(y0, y1), screen_low + 0.2},
+          {x1 - 0.25, std::max(y0, y1), screen_low + 0.65});
   }
 }
 
@@ -158,8 +158,9 @@ GeneratedVehicle generate_truck(engine::EntityCategory category, const engine::B
   const double zt = zb + box.height;
   const double radius = std::clamp(0.15 * box.height, 0.4, 0.55);
   const Material cab_paint = draw_fleet_paint(rng);
-  Material panel = rng.uniform01() < 0.7 ? materials::plain("cargo white", linear_rgb(225, 226, 224), 0.5)
-                                         : draw_fleet_paint(rng);
+  Material panel = rng.uniform01() < 0.7
+                       ? materials::plain("cargo white", linear_rgb(225, 226, 224), 0.5)
+                       : draw_fleet_paint(rng);
   panel.name = "cargo " + panel.name;
   out.bones = 1;
   const bool trailer_only = category == engine::EntityCategory::kTrailer ||
@@ -205,8 +206,8 @@ GeneratedVehicle generate_bus(engine::EntityCategory category, const engine::Box
                               RandomStream& rng) {
   GeneratedVehicle out;
   MeshBuilder b;
-  const bool rail = category == engine::EntityCategory::kTrain ||
-                    category == engine::EntityCategory::kTram;
+  const bool rail =
+      category == engine::EntityCategory::kTrain || category == engine::EntityCategory::kTram;
   b.semantic(rail ? SemanticClass::kTrain : SemanticClass::kBus);
   const double x0 = box.center_x - 0.5 * box.length;
   const double x1 = box.center_x + 0.5 * box.length;
@@ -223,8 +224,9 @@ GeneratedVehicle generate_bus(engine::EntityCategory category, const engine::Box
   pane(b, vehicle_glass(), 1, x1 - 0.02, yc - w + 0.12, yc + w - 0.12, floor + 0.6, zt - 0.35);
   pane(b, vehicle_glass(), -1, x0, yc - w + 0.3, yc + w - 0.3, floor + 1.3, zt - 0.35);
   // Destination display over the windscreen.
-  pane(b, materials::lamp("destination display", linear_rgb(30, 28, 20), Color{1.2, 0.7, 0.1},
-                          LightRole::kAlways),
+  pane(b,
+       materials::lamp("destination display", linear_rgb(30, 28, 20), Color{1.2, 0.7, 0.1},
+                       LightRole::kAlways),
        1, x1 - 0.02, yc - w + 0.35, yc + w - 0.35, zt - 0.3, zt - 0.1);
   // Side windows with pillars every ~1.35 m, doors on the right (y < 0) side.
   const double win_low = floor + (rail ? 0.7 : 0.85);

@@ -51,8 +51,8 @@ Material draw_car_paint(RandomStream& rng) {
       return paint("paint green", linear_rgb(28, 68, 44), true);
     default: {
       const double pick = rng.uniform01();
-      return pick < 0.4   ? paint("paint beige", linear_rgb(192, 176, 146), true)
-             : pick < 0.7 ? paint("paint brown", linear_rgb(88, 58, 38), true)
+      return pick < 0.4    ? paint("paint beige", linear_rgb(192, 176, 146), true)
+             : pick < 0.7  ? paint("paint brown", linear_rgb(88, 58, 38), true)
              : pick < 0.85 ? paint("paint yellow", linear_rgb(222, 182, 30), false)
                            : paint("paint orange", linear_rgb(212, 98, 24), false);
     }

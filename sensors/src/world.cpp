@@ -54,7 +54,8 @@ bool WorldBuild::near_drivable(double x, double y, double margin) const {
 
 bool WorldBuild::under_building(double x, double y, double z) const {
   const auto hit = scene.intersect({x, y, z + 150.0}, {0.0, 0.0, -1.0}, 155.0);
-  return hit && (hit->semantic == SemanticClass::kBuilding || hit->semantic == SemanticClass::kWall);
+  return hit &&
+         (hit->semantic == SemanticClass::kBuilding || hit->semantic == SemanticClass::kWall);
 }
 
 }  // namespace detail

@@ -38,9 +38,9 @@ void build_ground(WorldBuild& w, const xodr::RoadMesh& road) {
     const auto& a = road.vertices[t[0]];
     const auto& b = road.vertices[t[1]];
     const auto& c = road.vertices[t[2]];
-    const double longest = std::max({std::hypot(b.x - a.x, b.y - a.y),
-                                     std::hypot(c.x - b.x, c.y - b.y),
-                                     std::hypot(a.x - c.x, a.y - c.y)});
+    const double longest =
+        std::max({std::hypot(b.x - a.x, b.y - a.y), std::hypot(c.x - b.x, c.y - b.y),
+                  std::hypot(a.x - c.x, a.y - c.y)});
     const int n = std::max(1, static_cast<int>(std::ceil(longest / 1.5)));
     for (int i = 0; i <= n; ++i) {
       for (int j = 0; i + j <= n; ++j) {
@@ -106,7 +106,8 @@ void build_ground(WorldBuild& w, const xodr::RoadMesh& road) {
   ground.vertices.reserve(h.size() + 64);
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
-      ground.vertices.push_back({x0 + i * kCell, y0 + j * kCell, h[static_cast<size_t>(j) * nx + i]});
+      ground.vertices.push_back(
+          {x0 + i * kCell, y0 + j * kCell, h[static_cast<size_t>(j) * nx + i]});
     }
   }
   for (int j = 0; j + 1 < ny; ++j) {

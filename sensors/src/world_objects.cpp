@@ -68,7 +68,8 @@ void extent(const xodr::Object& o, const std::vector<Vec3>& outline, double& x0,
     x0 = y0 = 1e300;
     x1 = y1 = -1e300;
     for (const Vec3& p : outline) {
-      x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+      x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y),
+      y1 = std::max(y1, p.y);
     }
     return;
   }
@@ -141,10 +142,10 @@ void build_objects(WorldBuild& w) {
           }
         } else if (type == "parkingspace") {
           b.semantic(SemanticClass::kLaneMarking).material(paint_white());
-          std::vector<Vec3> ring = outline.size() >= 3
-                                       ? outline
-                                       : std::vector<Vec3>{{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0},
-                                                           {x0, y1, 0}};
+          std::vector<Vec3> ring =
+              outline.size() >= 3
+                  ? outline
+                  : std::vector<Vec3>{{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}};
           for (size_t i = 0; i < ring.size(); ++i) {
             const Vec3 a = ring[i];
             const Vec3 c = ring[(i + 1) % ring.size()];
@@ -169,15 +170,14 @@ void build_objects(WorldBuild& w) {
             ++w.report.objects;
             continue;
           }
-          b.semantic(SemanticClass::kPole).material(
-              materials::metal("galvanised steel", linear_rgb(150, 152, 150), 0.45));
+          b.semantic(SemanticClass::kPole)
+              .material(materials::metal("galvanised steel", linear_rgb(150, 152, 150), 0.45));
           const double r0 = std::max(0.04, std::min(0.15, o.radius > 0.0 ? o.radius : 0.06));
           b.tube({0, 0, 0}, {0, 0, height > 0.2 ? height : 3.0}, r0, r0 * 0.8, 8, true);
         } else if (type == "tree" || type == "vegetation") {
           RandomStream rng(derive_seed(w.options.seed, "object " + o.id + "#" + std::to_string(k)));
-          const ArticulatedMesh m = type == "tree"
-                                        ? make_tree(rng, height > 1.0 ? height : 8.0)
-                                        : make_bush(rng, std::max(0.8, x1 - x0));
+          const ArticulatedMesh m = type == "tree" ? make_tree(rng, height > 1.0 ? height : 8.0)
+                                                   : make_bush(rng, std::max(0.8, x1 - x0));
           w.place(m, frame, "object " + o.id, kind_info(type));
           ++w.report.objects;
           continue;
@@ -191,7 +191,8 @@ void build_objects(WorldBuild& w) {
           } else {
             const ArticulatedMesh m = make_rail(l, type == "fence");
             const Rigid start = frame * rigid_from_pose(lengths[k] > 0.0 ? 0.0 : x0, 0, 0, 0, 0, 0);
-            w.place(m, start, "object " + o.id, kind_info(type == "fence" ? "fence" : "guard_rail"));
+            w.place(m, start, "object " + o.id,
+                    kind_info(type == "fence" ? "fence" : "guard_rail"));
             ++w.report.objects;
             continue;
           }
@@ -199,8 +200,9 @@ void build_objects(WorldBuild& w) {
                    type == "gantry") {
           const bool building = type == "building";
           b.semantic(building ? SemanticClass::kBuilding : SemanticClass::kStatic);
-          Material m = building ? materials::plain("facade", linear_rgb(180, 170, 150), 0.85)
-                                : materials::plain("obstacle concrete", linear_rgb(150, 148, 140), 0.9);
+          Material m = building
+                           ? materials::plain("facade", linear_rgb(180, 170, 150), 0.85)
+                           : materials::plain("obstacle concrete", linear_rgb(150, 148, 140), 0.9);
           if (building) {
             m.pattern = Pattern::kFacade;
             m.pattern_scale = 3.2;
@@ -234,16 +236,17 @@ void build_objects(WorldBuild& w) {
             sign.value = static_cast<double>(*speed);
           }
           // Beside the road: turned to face the traffic of its lane.
-          const Rigid turned = frame * rigid_from_pose(0, 0, 0, o.orientation == "-" ? 0.0 : kPi, 0, 0);
+          const Rigid turned =
+              frame * rigid_from_pose(0, 0, 0, o.orientation == "-" ? 0.0 : kPi, 0, 0);
           w.place(make_sign(f, 0.6, 0.6, 2.0, "sign DE 274 " + std::to_string(f.number)), turned,
                   "object " + o.id, sign);
           ++w.report.signs;
           continue;
         } else {
-          w.diagnostics.add_once("object-type:" + o.type + ":" + (o.type == "-1" ? name : ""),
-                                 make_warning(file, o.line,
-                                              "object type '" + o.type + "' (name '" + name +
-                                                  "') is not drawn"));
+          w.diagnostics.add_once(
+              "object-type:" + o.type + ":" + (o.type == "-1" ? name : ""),
+              make_warning(file, o.line,
+                           "object type '" + o.type + "' (name '" + name + "') is not drawn"));
           continue;
         }
         if (b.triangle_count() > 0) {

@@ -42,8 +42,8 @@ void blob(MeshBuilder& b, Vec3 c, Vec3 r, uint32_t seed) {
   ArticulatedMesh& mesh = b.edit();
   for (size_t i = first; i < mesh.vertices.size(); ++i) {
     const Vec3 d = mesh.vertices[i] - c;
-    const double bump = noise(static_cast<int>(seed % 4), d.x * 3.0 + d.z * 2.0, d.y * 3.0 - d.z,
-                              4.0, 0.0);
+    const double bump =
+        noise(static_cast<int>(seed % 4), d.x * 3.0 + d.z * 2.0, d.y * 3.0 - d.z, 4.0, 0.0);
     mesh.vertices[i] = c + d * (0.8 + 0.45 * bump);
   }
 }
@@ -131,8 +131,8 @@ ArticulatedMesh make_traffic_light(SignalLayout layout, double bottom, double he
   if (horizontal) {
     b.tube({-0.2, -0.5 * w - 2.0, 0}, {-0.2, -0.5 * w - 2.0, bottom + 0.5 * h + 0.3}, 0.12, 0.1, 10,
            true);
-    b.tube({-0.2, -0.5 * w - 2.0, bottom + 0.5 * h + 0.25}, {-0.2, 0.5 * w, bottom + 0.5 * h + 0.25},
-           0.06, 0.05, 8, true);
+    b.tube({-0.2, -0.5 * w - 2.0, bottom + 0.5 * h + 0.25},
+           {-0.2, 0.5 * w, bottom + 0.5 * h + 0.25}, 0.06, 0.05, 8, true);
   } else {
     b.tube({-0.2, 0, 0}, {-0.2, 0, bottom + h}, 0.07, 0.06, 10, true);
   }

@@ -58,10 +58,10 @@ std::optional<SignSpec> german_sign(int type, const xodr::Signal& s) {
   } else if (type == 206) {
     spec.face = face(SignShape::kOctagon, kRed, kWhite, 0.06, SignSymbol::kStopText, kWhite);
   } else if (type == 274 || type == 275) {
-    spec.face = type == 274 ? face(SignShape::kCircle, kWhite, kRed, 0.17, SignSymbol::kNumber,
-                                   kBlack, speed)
-                            : face(SignShape::kCircle, kBlue, kWhite, 0.05, SignSymbol::kNumber,
-                                   kWhite, speed);
+    spec.face =
+        type == 274
+            ? face(SignShape::kCircle, kWhite, kRed, 0.17, SignSymbol::kNumber, kBlack, speed)
+            : face(SignShape::kCircle, kBlue, kWhite, 0.05, SignSymbol::kNumber, kWhite, speed);
   } else if (type == 267) {
     spec.face = face(SignShape::kCircle, kRed, kWhite, 0.05, SignSymbol::kBar, kWhite);
   } else if (type == 250 || type == 276 || type == 277 || type == 251 || type == 253 ||
@@ -87,9 +87,9 @@ std::optional<SignSpec> german_sign(int type, const xodr::Signal& s) {
     spec.face = face(SignShape::kTriangleUp, kWhite, kRed, 0.2, SignSymbol::kArrowUp, kBlack);
     spec.width = spec.height = 0.9;
   } else if (type >= 101 && type <= 157) {
-    spec.face = face(SignShape::kTriangleUp, kWhite, kRed, 0.2,
-                     type == 133 || type == 134 ? SignSymbol::kPerson : SignSymbol::kExclamation,
-                     kBlack);
+    spec.face =
+        face(SignShape::kTriangleUp, kWhite, kRed, 0.2,
+             type == 133 || type == 134 ? SignSymbol::kPerson : SignSymbol::kExclamation, kBlack);
     spec.width = spec.height = 0.9;
   } else if (type == 350) {
     spec.face = face(SignShape::kSquare, kBlue, kWhite, 0.04, SignSymbol::kPerson, kWhite);
@@ -111,9 +111,9 @@ std::optional<SignSpec> korean_sign(int type, const xodr::Signal& s) {
   const int speed = s.value ? static_cast<int>(std::lround(*s.value)) : 0;
   SignSpec spec;
   if (type >= 100 && type < 200) {
-    spec.face = face(SignShape::kTriangleUp, kYellow, kRed, 0.17,
-                     type == 132 || type == 133 ? SignSymbol::kPerson : SignSymbol::kExclamation,
-                     kBlack);
+    spec.face =
+        face(SignShape::kTriangleUp, kYellow, kRed, 0.17,
+             type == 132 || type == 133 ? SignSymbol::kPerson : SignSymbol::kExclamation, kBlack);
     spec.width = spec.height = 0.9;
   } else if (type == 224) {
     spec.face = face(SignShape::kCircle, kWhite, kRed, 0.17, SignSymbol::kNumber, kBlack, speed);
@@ -191,8 +191,8 @@ void build_signals(WorldBuild& w) {
         continue;
       }
       const int type = type_number(s.type);
-      std::optional<SignSpec> spec = is_korean(s.country) ? korean_sign(type, s)
-                                                          : german_sign(type, s);
+      std::optional<SignSpec> spec =
+          is_korean(s.country) ? korean_sign(type, s) : german_sign(type, s);
       if (!spec) {
         w.diagnostics.add_once(
             "signal-type:" + s.country + ":" + s.type,

@@ -96,15 +96,15 @@ int main(int argc, char** argv) {
     options.seed = seed * 1000 + static_cast<uint64_t>(f);
     Scene scene(options);
     scene.add_road_mesh(street());
-    for (auto& m : load_model(std::string(CORSA_SOURCE_DIR) + "/scenarios/models/street_district.glb",
-                              {})) {
+    for (auto& m :
+         load_model(std::string(CORSA_SOURCE_DIR) + "/scenarios/models/street_district.glb", {})) {
       scene.add_static_mesh(std::move(m));
     }
     scene.commit();
     // The camera stands on the road looking along it, or across it towards a sidewalk.
     const double yaw = rng.uniform01() < 0.5 ? 0.0 : (rng.uniform01() < 0.5 ? 0.5 : -0.5);
-    const Rigid eye = rigid_from_pose(40.0 + 40.0 * rng.uniform01(), rng.uniform(-4.0, 4.0), 1.5,
-                                      yaw, 0.0, 0.0);
+    const Rigid eye =
+        rigid_from_pose(40.0 + 40.0 * rng.uniform01(), rng.uniform(-4.0, 4.0), 1.5, yaw, 0.0, 0.0);
     std::vector<EntitySnapshot> entities;
     uint32_t id = 1;
     const int people = static_cast<int>(rng.uniform_int(3, 5));
@@ -129,8 +129,12 @@ int main(int argc, char** argv) {
       e.instance_id = id++;
       e.name = "car" + std::to_string(f) + "_" + std::to_string(c);
       e.category = EntityCategory::kCar;
-      e.pose = {eye.translation.x + 20.0 + 9.0 * c, c % 2 ? 6.0 : -2.0, 0.0, c % 2 ? 0.0 : M_PI,
-                0.0, 0.0};
+      e.pose = {eye.translation.x + 20.0 + 9.0 * c,
+                c % 2 ? 6.0 : -2.0,
+                0.0,
+                c % 2 ? 0.0 : M_PI,
+                0.0,
+                0.0};
       e.box = {1.4, 0.0, 0.75, 4.6, 1.9, 1.5};
       entities.push_back(e);
     }
@@ -192,9 +196,10 @@ int main(int argc, char** argv) {
       cv::imwrite(out_dir + name, bgr);
     }
   }
-  std::printf("HOG people detector on %d frames: %d of %d pedestrians (>= 100 px, unoccluded) "
-              "found, recall %.1f %%; %.2f false positives per frame\n",
-              frames, found, counted, counted ? 100.0 * found / counted : 0.0,
-              static_cast<double>(false_positives) / frames);
+  std::printf(
+      "HOG people detector on %d frames: %d of %d pedestrians (>= 100 px, unoccluded) "
+      "found, recall %.1f %%; %.2f false positives per frame\n",
+      frames, found, counted, counted ? 100.0 * found / counted : 0.0,
+      static_cast<double>(false_positives) / frames);
   return 0;
 }

@@ -83,9 +83,9 @@ TEST_CASE("sign faces are drawn from their shape, border and symbol", "[sensors]
   stop.border_width = 0.1;
   stop.symbol = SignSymbol::kBar;
   stop.symbol_color = {0.9, 0.9, 0.9};
-  const Color centre = detail::sign_face_color(stop, 0.5, 0.5, 1e-3);    // on the bar
-  const Color fill = detail::sign_face_color(stop, 0.5, 0.75, 1e-3);     // red field
-  const Color edge = detail::sign_face_color(stop, 0.5, 0.985, 1e-3);    // border band
+  const Color centre = detail::sign_face_color(stop, 0.5, 0.5, 1e-3);  // on the bar
+  const Color fill = detail::sign_face_color(stop, 0.5, 0.75, 1e-3);   // red field
+  const Color edge = detail::sign_face_color(stop, 0.5, 0.985, 1e-3);  // border band
   CHECK(centre.r == Approx(0.9));
   CHECK(fill.r == Approx(0.6));
   CHECK(fill.g == Approx(0.0));

@@ -8,7 +8,6 @@
 #include <catch2/catch.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <map>
 #include <sstream>
 
 #include "corsa/core/atomic_file.h"

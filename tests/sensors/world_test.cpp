@@ -1,5 +1,7 @@
 // The world beyond the road: ground to the horizon, roadside props, signals and objects.
 
+#include "corsa/sensors/world.h"
+
 #include <tbb/global_control.h>
 
 #include <catch2/catch.hpp>
@@ -8,7 +10,6 @@
 
 #include "corsa/sensors/camera_render.h"
 #include "corsa/sensors/labels.h"
-#include "corsa/sensors/world.h"
 #include "corsa/xodr/road_mesh.h"
 
 using namespace corsa::sensors;
@@ -30,10 +31,10 @@ struct Built {
 
 std::unique_ptr<Built> build(const corsa::xodr::Map& map, uint64_t seed = 3) {
   const auto& h = map.data().header;
-  auto out = std::make_unique<Built>(Built{
-      Scene(SceneOptions{{0.5 * (h.east + h.west), 0.5 * (h.north + h.south), 0.0}, seed}),
-      {},
-      {}});
+  auto out = std::make_unique<Built>(
+      Built{Scene(SceneOptions{{0.5 * (h.east + h.west), 0.5 * (h.north + h.south), 0.0}, seed}),
+            {},
+            {}});
   out->scene.add_road_mesh(corsa::xodr::build_road_mesh(map));
   out->scene.commit();
   corsa::Diagnostics diagnostics([&](const corsa::Diagnostic& d) { out->warnings.push_back(d); });

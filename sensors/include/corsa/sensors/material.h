@@ -26,36 +26,36 @@ using MaterialId = uint16_t;
 /// patterns) so that they do not alias. `Material::params` means, per pattern:
 enum class Pattern : uint8_t {
   kNone,
-  kAsphalt,   ///< aggregate grain, wear and repair patches, cracks; params[0] wear 0..1
-  kConcrete,  ///< cement slabs with joints every pattern_scale metres (sidewalks, kerbs)
-  kPaving,    ///< paving bricks pattern_scale long, half as wide, running bond
-  kFacade,    ///< walls: floors pattern_scale high; params {bay width m, window width share,
-              ///< window height share, ground floor height m}; secondary = frames and trim
-  kRoof,      ///< flat roofs: gravel and tar patches
-  kFoliage,   ///< leaf clusters in two greens (secondary the darker one)
-  kGrass,     ///< lawn with dry patches
-  kDirt,      ///< bare soil and gravel
-  kTerrain,   ///< grass and dirt mixed at the scale of tens of metres
-  kBark,      ///< vertical bark furrows
-  kRubber,    ///< tyre rubber, lettering-free sidewall
-  kSignFace,  ///< a traffic-sign face drawn from the mesh's uv and Material::sign
-  kPlate,     ///< licence plate: characters in secondary on the base colour, from uv
+  kAsphalt,    ///< aggregate grain, wear and repair patches, cracks; params[0] wear 0..1
+  kConcrete,   ///< cement slabs with joints every pattern_scale metres (sidewalks, kerbs)
+  kPaving,     ///< paving bricks pattern_scale long, half as wide, running bond
+  kFacade,     ///< walls: floors pattern_scale high; params {bay width m, window width share,
+               ///< window height share, ground floor height m}; secondary = frames and trim
+  kRoof,       ///< flat roofs: gravel and tar patches
+  kFoliage,    ///< leaf clusters in two greens (secondary the darker one)
+  kGrass,      ///< lawn with dry patches
+  kDirt,       ///< bare soil and gravel
+  kTerrain,    ///< grass and dirt mixed at the scale of tens of metres
+  kBark,       ///< vertical bark furrows
+  kRubber,     ///< tyre rubber, lettering-free sidewall
+  kSignFace,   ///< a traffic-sign face drawn from the mesh's uv and Material::sign
+  kPlate,      ///< licence plate: characters in secondary on the base colour, from uv
   kMetalGrid,  ///< louvres and grilles: dark slots across a metal part
   kPaint,      ///< road paint worn down to the asphalt (secondary) in patches
 };
 
 /// What switches a material's emission on.
 enum class LightRole : uint8_t {
-  kNone,             ///< no emission
-  kAlways,           ///< always emitting (displays)
-  kHeadlight,        ///< vehicle low beam (at night, or when the light state says so)
-  kTail,             ///< rear position lamps (with the headlights)
-  kBrake,            ///< brake lamps
-  kIndicatorLeft,    ///< flashing direction indicators (and the warning lights)
+  kNone,           ///< no emission
+  kAlways,         ///< always emitting (displays)
+  kHeadlight,      ///< vehicle low beam (at night, or when the light state says so)
+  kTail,           ///< rear position lamps (with the headlights)
+  kBrake,          ///< brake lamps
+  kIndicatorLeft,  ///< flashing direction indicators (and the warning lights)
   kIndicatorRight,
   kReversing,
-  kStreetLamp,       ///< on when it is dark
-  kSignalRed,        ///< traffic-light bulbs, by the signal's state
+  kStreetLamp,  ///< on when it is dark
+  kSignalRed,   ///< traffic-light bulbs, by the signal's state
   kSignalYellow,
   kSignalGreen,
 };
@@ -74,15 +74,15 @@ enum class SignShape : uint8_t {
 /// The symbol drawn on a sign face.
 enum class SignSymbol : uint8_t {
   kNone,
-  kNumber,       ///< SignFace::number (speed limits), in a seven-segment style
-  kBar,          ///< a horizontal bar (no entry)
-  kStopText,     ///< "STOP"
-  kArrowUp,      ///< mandatory direction
+  kNumber,    ///< SignFace::number (speed limits), in a seven-segment style
+  kBar,       ///< a horizontal bar (no entry)
+  kStopText,  ///< "STOP"
+  kArrowUp,   ///< mandatory direction
   kArrowLeft,
   kArrowRight,
-  kExclamation,  ///< general danger
-  kPerson,       ///< pedestrian crossing
-  kDiagonal,     ///< end of restriction
+  kExclamation,   ///< general danger
+  kPerson,        ///< pedestrian crossing
+  kDiagonal,      ///< end of restriction
   kInnerDiamond,  ///< the yellow square of a priority road sign
   kCross,         ///< no stopping, crossroads
 };

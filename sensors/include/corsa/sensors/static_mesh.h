@@ -15,7 +15,7 @@ namespace corsa::sensors {
 /// What a static object is, for the per-frame labels (traffic lights with their state, signs
 /// with their type). OpenDRIVE signals carry their id, country, type, subtype and value.
 struct ObjectInfo {
-  std::string kind;  ///< "traffic_light", "traffic_sign", "street_light", "tree", ...
+  std::string kind;       ///< "traffic_light", "traffic_sign", "street_light", "tree", ...
   std::string signal_id;  ///< OpenDRIVE signal id (traffic lights and signs); empty otherwise
   std::string country;
   std::string type;

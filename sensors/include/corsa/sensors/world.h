@@ -16,12 +16,12 @@
 namespace corsa::sensors {
 
 struct WorldOptions {
-  uint64_t seed = 0;          ///< run seed: where plants stand, which species, sizes
-  bool ground = true;         ///< terrain around the roads, out to the horizon
-  bool vegetation = true;     ///< trees and bushes beside the roads
-  bool street_lights = true;  ///< street lights along roads with sidewalks
-  bool signals = true;        ///< OpenDRIVE <signal>s
-  bool objects = true;        ///< OpenDRIVE <object>s
+  uint64_t seed = 0;           ///< run seed: where plants stand, which species, sizes
+  bool ground = true;          ///< terrain around the roads, out to the horizon
+  bool vegetation = true;      ///< trees and bushes beside the roads
+  bool street_lights = true;   ///< street lights along roads with sidewalks
+  bool signals = true;         ///< OpenDRIVE <signal>s
+  bool objects = true;         ///< OpenDRIVE <object>s
   double tree_spacing = 14.0;  ///< m between plants along a road side (on average)
 };
 
