@@ -147,13 +147,14 @@ struct MaterialReader {
     }
     float f = 0.0f;
     textured = false;
+    // Plain dielectrics keep the colour-only path (untextured buildings get a facade); metals,
+    // glass, lamps and textured materials get a material of their own.
     if (m->Get(AI_MATKEY_METALLIC_FACTOR, f) == AI_SUCCESS) {
       out.metallic = std::clamp(static_cast<double>(f), 0.0, 1.0);
-      textured = true;
+      textured = textured || out.metallic > 0.05;
     }
     if (m->Get(AI_MATKEY_ROUGHNESS_FACTOR, f) == AI_SUCCESS) {
       out.roughness = std::clamp(static_cast<double>(f), 0.0, 1.0);
-      textured = true;
     }
     if (m->Get(AI_MATKEY_OPACITY, f) == AI_SUCCESS && f < 0.99f) {
       out.transmission = std::clamp(1.0 - f, 0.0, 1.0);
