@@ -34,8 +34,8 @@ Material dark_paint() { return materials::plain("signal housing", linear_rgb(28,
 
 /// A lumpy blob: an ellipsoid whose radius varies with direction (leaf clusters).
 void blob(MeshBuilder& b, Vec3 c, Vec3 r, uint32_t seed) {
-  const int slices = 14;
-  const int stacks = 9;
+  const int slices = 18;
+  const int stacks = 11;
   const size_t first = b.mesh().vertices.size();
   b.ellipsoid(c, r, Mat3{}, slices, stacks);
   // Push each vertex in or out by a smooth random amount.
@@ -78,7 +78,7 @@ ArticulatedMesh make_tree(RandomStream& rng, double height, bool allow_conifer) 
   }
   b.material(foliage(rng));
   const double crown_h = height - crown_base;
-  const double crown_r = crown_h * rng.uniform(0.38, 0.55);
+  const double crown_r = std::min(3.2, crown_h * rng.uniform(0.3, 0.42));
   const int lumps = static_cast<int>(rng.uniform_int(3, 5));
   for (int k = 0; k < lumps; ++k) {
     const double a = 2.0 * kPi * k / lumps + rng.uniform01();
