@@ -174,7 +174,7 @@ SurfaceSample facade(const Material& m, const TexturePoint& p) {
     glass = pane_x * pane_y;
     frame = filtered_pulse(z - (ground - 0.55), 1e6, 0.5 / 1e6, fp);
     const double cell = std::floor(q.a / bay);
-    lit = cell_random(static_cast<int64_t>(cell), -1, m.seed) < 0.7 ? 1.0 : 0.0;
+    lit = cell_random(static_cast<int64_t>(cell), -1, m.seed) < 0.45 ? 1.0 : 0.0;
   } else {
     const double zz = z - ground;
     const double x0 = 0.5 * (1.0 - share_x) * bay;
@@ -188,9 +188,9 @@ SurfaceSample facade(const Material& m, const TexturePoint& p) {
     frame = std::max(0.0, outer_x * outer_y - glass);
     const auto cx = static_cast<int64_t>(std::floor(q.a / bay));
     const auto cy = static_cast<int64_t>(std::floor(zz / floor_h));
-    lit = cell_random(cx, cy, m.seed ^ 0x11u) < 0.3 ? 1.0 : 0.0;
+    lit = cell_random(cx, cy, m.seed ^ 0x11u) < 0.25 ? 1.0 : 0.0;
     // Far away the lit windows are an average glow.
-    lit = lerp(0.3, lit, detail_weight(fp, bay));
+    lit = lerp(0.25, lit, detail_weight(fp, bay));
   }
   // Glass: dark interior behind a reflective pane, some with blinds (lighter).
   const auto cell_x = static_cast<int64_t>(std::floor(q.a / bay));
@@ -200,7 +200,10 @@ SurfaceSample facade(const Material& m, const TexturePoint& p) {
                          blind < 0.25 ? 0.6 * detail_weight(fp, bay) : 0.0);
   s.albedo = mix(mix(wall, m.secondary, frame), pane, glass);
   s.roughness = lerp(m.roughness, 0.05, glass);
-  s.emission = Color{1.0, 0.75, 0.45} * (0.35 * glass * lit * p.darkness);
+  // Lit rooms: warm or cool light of a varying strength per window.
+  const double tint = cell_random(cell_x, cell_y, m.seed ^ 0x99u);
+  const Color room = tint < 0.6 ? Color{1.0, 0.72, 0.42} : Color{0.75, 0.85, 1.0};
+  s.emission = room * ((0.04 + 0.1 * tint) * glass * lit * p.darkness);
   return s;
 }
 

@@ -78,6 +78,36 @@ void extent(const xodr::Object& o, const std::vector<Vec3>& outline, double& x0,
   x0 = -0.5 * l, x1 = 0.5 * l, y0 = -0.5 * wd, y1 = 0.5 * wd;
 }
 
+/// Where an object stands: once, or along its repeats (a copy every `distance` metres, or
+/// pieces of at most 10 m following the road for stretched ones, with their lengths).
+void object_frames(const xodr::Map& map, size_t r, const xodr::Object& o,
+                   std::vector<Rigid>& frames, std::vector<double>& lengths) {
+  if (o.repeats.empty()) {
+    frames.push_back(object_frame(map, r, o.s, o.t, o.z_offset, o.hdg));
+    lengths.push_back(0.0);
+  }
+  for (const auto& rep : o.repeats) {
+    if (rep.distance > 0.0) {
+      const int n = std::min(2000, static_cast<int>(rep.length / rep.distance) + 1);
+      for (int i = 0; i < n; ++i) {
+        const double f = rep.length > 0.0 ? i * rep.distance / rep.length : 0.0;
+        frames.push_back(object_frame(map, r, rep.s + i * rep.distance,
+                                      rep.t_start + f * (rep.t_end - rep.t_start),
+                                      rep.z_offset_start, o.hdg));
+        lengths.push_back(0.0);
+      }
+    } else {
+      for (double s = rep.s; s < rep.s + rep.length - 0.05; s += 10.0) {
+        const double l = std::min(10.0, rep.s + rep.length - s);
+        const double f = rep.length > 0.0 ? (s - rep.s) / rep.length : 0.0;
+        frames.push_back(object_frame(map, r, s, rep.t_start + f * (rep.t_end - rep.t_start),
+                                      rep.z_offset_start, 0.0));
+        lengths.push_back(l);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void build_objects(WorldBuild& w) {
@@ -88,34 +118,9 @@ void build_objects(WorldBuild& w) {
     for (const xodr::Object& o : road.objects) {
       const std::string type = to_lower(o.type);
       const std::string name = o.name;
-      // Where the object stands: once, or along its repeats.
       std::vector<Rigid> frames;
       std::vector<double> lengths;  // stretched repeats: the length along the road
-      if (o.repeats.empty()) {
-        frames.push_back(object_frame(map, r, o.s, o.t, o.z_offset, o.hdg));
-        lengths.push_back(0.0);
-      }
-      for (const auto& rep : o.repeats) {
-        if (rep.distance > 0.0) {
-          const int n = std::min(2000, static_cast<int>(rep.length / rep.distance) + 1);
-          for (int i = 0; i < n; ++i) {
-            const double f = rep.length > 0.0 ? i * rep.distance / rep.length : 0.0;
-            frames.push_back(object_frame(map, r, rep.s + i * rep.distance,
-                                          rep.t_start + f * (rep.t_end - rep.t_start),
-                                          rep.z_offset_start, o.hdg));
-            lengths.push_back(0.0);
-          }
-        } else {
-          // Continuous: pieces of at most 10 m following the road.
-          for (double s = rep.s; s < rep.s + rep.length - 0.05; s += 10.0) {
-            const double l = std::min(10.0, rep.s + rep.length - s);
-            const double f = rep.length > 0.0 ? (s - rep.s) / rep.length : 0.0;
-            frames.push_back(object_frame(map, r, s, rep.t_start + f * (rep.t_end - rep.t_start),
-                                          rep.z_offset_start, 0.0));
-            lengths.push_back(l);
-          }
-        }
-      }
+      object_frames(map, r, o, frames, lengths);
       for (size_t k = 0; k < frames.size(); ++k) {
         const Rigid& frame = frames[k];
         MeshBuilder b;
