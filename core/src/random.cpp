@@ -1,5 +1,6 @@
 #include "corsa/core/random.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -158,6 +159,33 @@ size_t RandomStream::weighted_index(std::span<const double> weights) {
     }
   }
   return 0;
+}
+
+WeightedTable::WeightedTable(std::span<const double> weights) {
+  cumulative_.reserve(weights.size());
+  double total = 0.0;
+  for (size_t i = 0; i < weights.size(); ++i) {
+    const double w = weights[i];
+    if (!(w >= 0.0) || !std::isfinite(w)) {
+      throw std::invalid_argument("weighted_index: weights must be finite and >= 0");
+    }
+    total += w;
+    cumulative_.push_back(total);
+    if (w > 0.0) {
+      last_positive_ = i;
+    }
+  }
+  if (!(total > 0.0)) {
+    throw std::invalid_argument("weighted_index: weights sum to zero");
+  }
+}
+
+size_t WeightedTable::draw(RandomStream& random) const {
+  const double target = random.uniform01() * cumulative_.back();
+  // The first running sum above target, as weighted_index's scan finds it (the sums never
+  // decrease, so the scan's first hit is the upper bound).
+  const auto it = std::upper_bound(cumulative_.begin(), cumulative_.end(), target);
+  return it == cumulative_.end() ? last_positive_ : static_cast<size_t>(it - cumulative_.begin());
 }
 
 }  // namespace corsa

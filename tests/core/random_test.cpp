@@ -6,6 +6,7 @@
 #include <vector>
 
 using corsa::RandomStream;
+using corsa::WeightedTable;
 
 namespace {
 
@@ -140,4 +141,24 @@ TEST_CASE("weighted indices follow the weights and skip zero weights", "[core][r
   CHECK_THROWS(stream.weighted_index(zero));
   const std::vector<double> negative{1.0, -1.0};
   CHECK_THROWS(stream.weighted_index(negative));
+}
+
+TEST_CASE("a weighted table draws the indices weighted_index draws from the same stream",
+          "[core][random]") {
+  RandomStream weights_stream(8);
+  std::vector<double> weights;
+  for (int i = 0; i < 3000; ++i) {
+    // Zero weights among them, and a zero weight at the end (the fallback's case).
+    weights.push_back(i % 7 == 3 ? 0.0 : weights_stream.uniform(0.0, 250.0));
+  }
+  weights.push_back(0.0);
+  const WeightedTable table(weights);
+  RandomStream a(9), b(9);
+  for (int i = 0; i < 20000; ++i) {
+    REQUIRE(table.draw(a) == b.weighted_index(weights));
+  }
+  const std::vector<double> zero{0.0, 0.0};
+  CHECK_THROWS(WeightedTable(zero));
+  const std::vector<double> negative{1.0, -1.0};
+  CHECK_THROWS(WeightedTable(negative));
 }

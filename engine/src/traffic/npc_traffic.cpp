@@ -22,6 +22,7 @@ namespace {
 constexpr double kVehicleClearance = 10.0;  // m
 constexpr double kWalkerClearance = 2.0;    // m
 constexpr int kTriesPerNpc = 50;
+constexpr double kGridCell = 16.0;  // m, cells of the grid the clearances are looked up in
 
 struct Candidate {
   uint32_t road = 0;
@@ -80,9 +81,12 @@ class Npcs final : public GeneratorBase {
     for (const Candidate& c : lanes) {
       weights.push_back(c.s_end - c.s_begin);
     }
+    const WeightedTable by_length(weights);
+    const double clearance = walks ? kWalkerClearance : kVehicleClearance;
+    PointGrid others = placed_entities_grid(state, kGridCell);
     uint32_t placed = 0;
     for (uint32_t attempt = 0; placed < count && attempt < kTriesPerNpc * count; ++attempt) {
-      const Candidate& c = lanes[random_.weighted_index(weights)];
+      const Candidate& c = lanes[by_length.draw(random_)];
       const double s = random_.uniform(c.s_begin + 2.0, c.s_end - 2.0);
       const bool right_hand = map.road(c.road).rule == xodr::TrafficRule::kRightHand;
       int dir = (c.lane < 0) == right_hand ? 1 : -1;
@@ -102,13 +106,14 @@ class Npcs final : public GeneratorBase {
       at.pose = map.world_pose(c.road, s, *t);
       at.pose.h = travel_heading(map, c.road, s, dir);
       at.road = RoadPoint{c.road, s, *t, c.lane};
-      if (!clear_of_others(state, at.pose.x, at.pose.y,
-                           walks ? kWalkerClearance : kVehicleClearance)) {
+      if (!clear_of_others(state, at.pose.x, at.pose.y, clearance, &others)) {
         continue;
       }
       const std::string name =
           std::string(walks ? "npc_pedestrian_" : "npc_vehicle_") + std::to_string(placed);
-      spawn(state, walks ? walkers_ : vehicles_, 0, at, speed, name);
+      const uint32_t index = spawn(state, walks ? walkers_ : vehicles_, 0, at, speed, name);
+      const Pose& pose = state.world.entities[index].state.pose;
+      others.add(pose.x, pose.y, index);
       ++placed;
     }
     return placed;

@@ -179,14 +179,44 @@ std::optional<ResolvedPosition> lane_spot(const xodr::Map& map, double x, double
   return at;
 }
 
-bool clear_of_others(const SimState& state, double x, double y, double clearance) {
-  for (const Entity& other : state.world.entities) {
-    if (other.state.placed &&
-        std::hypot(other.state.pose.x - x, other.state.pose.y - y) < clearance) {
+namespace {
+
+bool too_close(const Entity& other, double x, double y, double clearance) {
+  return other.state.placed &&
+         std::hypot(other.state.pose.x - x, other.state.pose.y - y) < clearance;
+}
+
+}  // namespace
+
+bool clear_of_others(const SimState& state, double x, double y, double clearance,
+                     const PointGrid* grid) {
+  if (grid == nullptr) {
+    for (const Entity& other : state.world.entities) {
+      if (too_close(other, x, y, clearance)) {
+        return false;
+      }
+    }
+    return true;
+  }
+  std::vector<uint32_t> near;
+  grid->query(x, y, clearance, near);
+  for (const uint32_t index : near) {
+    if (too_close(state.world.entities[index], x, y, clearance)) {
       return false;
     }
   }
   return true;
+}
+
+PointGrid placed_entities_grid(const SimState& state, double cell) {
+  PointGrid grid(cell);
+  for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
+    const Entity& entity = state.world.entities[i];
+    if (entity.state.placed) {
+      grid.add(entity.state.pose.x, entity.state.pose.y, i);
+    }
+  }
+  return grid;
 }
 
 uint32_t GeneratorBase::spawn(SimState& state, const TrafficMix& mix, size_t kind,

@@ -14,6 +14,7 @@
 #include "corsa/core/random.h"
 #include "corsa/xosc/global_actions.h"
 #include "positions/position_resolver.h"
+#include "state/point_grid.h"
 #include "state/traffic_state.h"
 
 namespace corsa::engine::detail {
@@ -50,8 +51,14 @@ xosc::Pedestrian pedestrian_model();
 std::optional<ResolvedPosition> lane_spot(const xodr::Map& map, double x, double y, bool walks,
                                           bool flip = false, double reach = 4.0);
 
-/// No placed entity's reference point closer than `clearance` metres to (x, y).
-bool clear_of_others(const SimState& state, double x, double y, double clearance);
+/// No placed entity's reference point closer than `clearance` metres to (x, y). With `grid`
+/// (every placed entity's reference point, by index) only the entities near (x, y) are looked
+/// at; the answer is the same.
+bool clear_of_others(const SimState& state, double x, double y, double clearance,
+                     const PointGrid* grid = nullptr);
+
+/// A PointGrid of every placed entity's reference point (cells of `cell` metres).
+PointGrid placed_entities_grid(const SimState& state, double cell);
 
 /// The base of the traffic generators: spawning (a new entity, or one of ours that left
 /// reused for an object of the same prototype), and keeping track of which are present.

@@ -31,6 +31,7 @@ constexpr double kVehicleClearance = 12.0;  // m from any other entity's referen
 constexpr double kWalkerClearance = 2.0;    // m
 constexpr int kTriesPerStep = 8;
 constexpr int kTriesPerEntity = 40;  // for the one-off fill
+constexpr double kGridCell = 16.0;   // m, cells of the grid the fill looks clearances up in
 
 struct Piece {
   uint32_t road = 0;
@@ -129,8 +130,9 @@ class Area final : public GeneratorBase {
     if (!action_.continuous) {
       // Once: the area is filled now, the entities then go where they go.
       const int tries = kTriesPerEntity * static_cast<int>(action_.number_of_entities);
+      PointGrid others = placed_entities_grid(state, kGridCell);
       for (int i = 0; i < tries && mine_.size() < action_.number_of_entities; ++i) {
-        try_spawn(state);
+        try_spawn(state, &others);
       }
       done_ = true;
       return;
@@ -160,16 +162,22 @@ class Area final : public GeneratorBase {
     });
   }
 
-  void try_spawn(SimState& state) {
+  // One attempt; `others` (a grid of the placed entities, kept up to date here) makes the
+  // clearance test cheap when many are placed at once.
+  void try_spawn(SimState& state, PointGrid* others = nullptr) {
     const size_t kind = mix_.draw(random_);
     const bool walks = mix_.walks(kind);
     const auto at =
         polygon_.empty() ? spot_on_range(*state.map, walks) : spot_in_polygon(*state.map, walks);
     if (!at || !clear_of_others(state, at->pose.x, at->pose.y,
-                                walks ? kWalkerClearance : kVehicleClearance)) {
+                                walks ? kWalkerClearance : kVehicleClearance, others)) {
       return;
     }
-    spawn(state, mix_, kind, *at, walks ? kWalkingSpeed : kDefaultSpeed);
+    const uint32_t index = spawn(state, mix_, kind, *at, walks ? kWalkingSpeed : kDefaultSpeed);
+    if (others != nullptr) {
+      const Pose& pose = state.world.entities[index].state.pose;
+      others->add(pose.x, pose.y, index);
+    }
   }
 
   std::optional<ResolvedPosition> spot_in_polygon(const xodr::Map& map, bool walks) {

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <vector>
 
 namespace corsa {
 
@@ -44,6 +45,19 @@ class RandomStream {
 
  private:
   uint64_t state_[4];
+};
+
+/// Weights prepared for many draws: draw() gives the index weighted_index(weights) gives for
+/// the same stream state (the same running sums, compared the same way), in O(log n) instead of
+/// O(n). Weights must be finite and >= 0 with a positive sum (std::invalid_argument otherwise).
+class WeightedTable {
+ public:
+  explicit WeightedTable(std::span<const double> weights);
+  size_t draw(RandomStream& random) const;
+
+ private:
+  std::vector<double> cumulative_;  ///< running sums, in order
+  size_t last_positive_ = 0;        ///< the last index with a positive weight
 };
 
 }  // namespace corsa
