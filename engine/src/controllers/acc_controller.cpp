@@ -7,6 +7,9 @@
 // linkage, §10 junction connections), chosen at each lane end as the controller will choose
 // (the entity's route, else the straightest successor), up to the sensor range: a vehicle just
 // across a road link or inside the junction's connecting lane is a leader too.
+//
+// The others are seen as they were when the step began (controllers/follow_view.h): every
+// follower of a step reads the same world, whatever the order it is moved in.
 
 #include <algorithm>
 #include <array>
@@ -14,6 +17,7 @@
 #include <limits>
 
 #include "controllers/controllers.h"
+#include "controllers/follow_view.h"
 #include "lanes/lane_follow.h"
 #include "state/sim_state.h"
 
@@ -40,37 +44,54 @@ struct PathPiece {
   uint32_t road = 0;
   uint32_t section = 0;
   int lane = 0;
+  xodr::LaneNode node = xodr::kNoLane;
   double s_entry = 0.0;
   int dir = 1;
   double distance = 0.0;
 };
 
 struct LanePath {
-  std::array<PathPiece, kMaxPieces> pieces{};
+  std::array<PathPiece, kMaxPieces> pieces;  // the first `count` are set
   size_t count = 0;
 };
 
-// The lanes the entity will follow from where it is, up to kRange metres ahead.
-LanePath path_ahead(const xodr::Map& map, const Entity& me) {
+// The lanes the entity will follow from where it is, up to kRange metres ahead; the lanes after
+// its own come from `ahead` (extended, or started afresh when the entity's lane, direction or
+// chooser changed).
+LanePath path_ahead(const xodr::Map& map, const Entity& me, LanesAhead& ahead) {
+  if (ahead.node != me.lane.node || ahead.dir != me.lane.dir || ahead.chooser != me.chooser) {
+    ahead.node = me.lane.node;
+    ahead.dir = me.lane.dir;
+    ahead.chooser = me.chooser;
+    ahead.route = me.route;
+    ahead.next.clear();
+    ahead.dead_end = false;
+  }
   LanePath path;
   LaneFollow follow = me.lane;
   const auto& graph = map.lane_graph();
   double distance = 0.0;
-  while (path.count < kMaxPieces) {
-    path.pieces[path.count++] =
-        PathPiece{follow.road, follow.section, follow.lane, follow.s, follow.dir, distance};
+  for (size_t k = 0; path.count < kMaxPieces; ++k) {
+    path.pieces[path.count++] = PathPiece{follow.road, follow.section, follow.lane, follow.node,
+                                          follow.s,    follow.dir,     distance};
     const auto& info = graph.info(follow.node);
     const double boundary = follow.dir > 0 ? info.s_end : info.s_start;
     distance += std::abs(boundary - follow.s);
     if (distance >= kRange) {
       break;
     }
+    if (k < ahead.next.size()) {
+      follow = ahead.next[k];
+      continue;
+    }
     const auto ends = graph.ends(follow.node, follow.dir < 0);
-    if (ends.empty()) {
+    if (ahead.dead_end || ends.empty()) {
+      ahead.dead_end = true;
       break;
     }
     follow.s = boundary;
     enter_next_lane(map, follow, ends, me.chooser);
+    ahead.next.push_back(follow);
   }
   return path;
 }
@@ -96,38 +117,63 @@ std::optional<double> distance_on_path(const LanePath& path, const RoadCoordinat
   return std::nullopt;
 }
 
-// The nearest present, traffic-visible entity ahead on the lane path.
-Leader find_leader(const SimState& state, uint32_t self) {
+// Every entity that distance_on_path can place within kRange ahead (and a few more, some
+// twice): those in the lanes of the path, from where the path enters each lane to where kRange
+// ends, plus those in lanes the index does not hold.
+void candidates_on_path(const xodr::Map& map, const LanePath& path, int containing,
+                        const FollowView& view, std::vector<uint32_t>& out) {
+  constexpr double kSlack = 1e-3;  // m: a superset, whatever the rounding of `ahead`
+  out.assign(view.unindexed().begin(), view.unindexed().end());
+  for (size_t i = 0; i < path.count; ++i) {
+    const PathPiece& piece = path.pieces[i];
+    const double reach = kRange - piece.distance + kSlack;
+    const double low = piece.dir > 0 ? piece.s_entry - kSlack : piece.s_entry - reach;
+    const double high = piece.dir > 0 ? piece.s_entry + reach : piece.s_entry + kSlack;
+    view.lanes().query(piece.node, low, high, out);
+    if (i == 0 && containing != piece.lane) {
+      const auto node = map.lane_graph().find(xodr::LaneRef{piece.road, piece.section, containing});
+      if (node) {
+        view.lanes().query(*node, low, high, out);
+      }
+    }
+  }
+}
+
+// The nearest usable entity ahead on the lane path, as the view shows it; of equal gaps the
+// lowest entity index (what a scan of every entity in index order keeps).
+Leader find_leader(const SimState& state, uint32_t self, const FollowView& view, LanesAhead& ahead,
+                   std::vector<uint32_t>& candidates) {
   const Entity& me = state.world.entities[self];
   Leader leader;
   if (!me.state.road || !me.lane.on_road || state.map == nullptr) {
     return leader;
   }
-  const LanePath path = path_ahead(*state.map, me);
+  const LanePath path = path_ahead(*state.map, me, ahead);
   const int containing = me.state.road->lane;
+  candidates_on_path(*state.map, path, containing, view, candidates);
   const double my_front = me.info.box.center_x + 0.5 * me.info.box.length;
   const double x = me.state.pose.x, y = me.state.pose.y;
-  for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
-    const Entity& other = state.world.entities[i];
-    if (i == self || !other.state.placed || !other.state.road) {
+  uint32_t chosen = UINT32_MAX;
+  for (const uint32_t i : candidates) {
+    const FollowTarget& other = view.targets()[i];
+    if (i == self || !other.usable) {
       continue;
     }
-    // Cheap rejection first: what is farther in a straight line than kReach cannot be within
-    // kRange along the path (s runs along the reference line; outer lanes of bends are longer).
-    const double dx = other.state.pose.x - x, dy = other.state.pose.y - y;
-    if (dx * dx + dy * dy > kReach * kReach ||
-        (i < state.controls.size() && !state.controls[i].traffic_visible)) {
+    // What is farther in a straight line than kReach cannot be within kRange along the path
+    // (s runs along the reference line; outer lanes of bends are longer).
+    const double dx = other.x - x, dy = other.y - y;
+    if (dx * dx + dy * dy > kReach * kReach) {
       continue;
     }
-    const auto ahead = distance_on_path(path, *other.state.road, containing);
+    const auto ahead = distance_on_path(path, other.road, containing);
     if (!ahead || *ahead >= kRange) {
       continue;
     }
-    const double their_rear = other.info.box.center_x - 0.5 * other.info.box.length;
-    const double gap = *ahead - my_front + their_rear;
-    if (gap < leader.gap) {
+    const double gap = *ahead - my_front + other.rear;
+    if (gap < leader.gap || (gap == leader.gap && i < chosen)) {
+      chosen = i;
       leader.gap = gap;
-      leader.speed = other.state.speed * std::cos(other.state.pose.h - me.state.pose.h);
+      leader.speed = other.speed * std::cos(other.h - me.state.pose.h);
     }
   }
   return leader;
@@ -135,10 +181,11 @@ Leader find_leader(const SimState& state, uint32_t self) {
 
 }  // namespace
 
-void step_acc(SimState& state, uint32_t index, const MotionContext& motion) {
+void step_acc(SimState& state, uint32_t index, const MotionContext& motion, const FollowView& view,
+              LanesAhead& ahead, std::vector<uint32_t>& candidates) {
   Entity& entity = state.world.entities[index];
   const double set_speed = entity.speed_command;
-  const Leader leader = find_leader(state, index);
+  const Leader leader = find_leader(state, index, view, ahead, candidates);
   double command = set_speed;
   if (std::isfinite(leader.gap)) {
     const double v = entity.state.speed;

@@ -2,10 +2,18 @@
 
 #include "controllers/controllers.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
+#include <thread>
 #include <vector>
 
+#include "controllers/follow_view.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "state/sim_state.h"
@@ -89,6 +97,11 @@ ControlState& control_of(SimState& state, uint32_t index) {
 
 namespace {
 
+// Entities from which a step is shared out among threads, and the least each thread takes at a
+// time: below that the hand-over costs more than the moves.
+constexpr uint32_t kParallelEntities = 128;
+constexpr uint32_t kParallelGrain = 32;
+
 std::optional<xodr::LaneType> lane_type_at(const xodr::Map& map, const RoadCoordinates& road) {
   const auto node = map.lane_graph().find(xodr::LaneRef{road.road, road.section, road.lane});
   return node ? std::optional<xodr::LaneType>(map.lane_graph().info(*node).type) : std::nullopt;
@@ -131,55 +144,115 @@ bool dynamics_moves(const SimState& state, uint32_t index) {
          state.controls[index].effective() == ControllerKind::kDynamics;
 }
 
+// One entity's move with its controller. It reads and writes only that entity (and its
+// control state), the map and, for car following, the picture `view` taken before the moves.
+void move_one(SimState& state, uint32_t i, const MotionContext& motion, const FollowView& view,
+              LanesAhead& ahead, std::vector<uint32_t>& candidates) {
+  const DefaultController ideal;
+  Entity& entity = state.world.entities[i];
+  if (!entity.state.placed) {
+    return;
+  }
+  const ControllerKind kind = state.controls[i].effective();
+  if (entity.info.kind == ObjectKind::kPedestrian && kind == ControllerKind::kDefault) {
+    step_pedestrian(state, i, ideal, motion);
+    return;
+  }
+  switch (kind) {
+    case ControllerKind::kDefault:
+      ideal.step(entity, motion);
+      break;
+    case ControllerKind::kAcc:
+      step_acc(state, i, motion, view, ahead, candidates);
+      break;
+    case ControllerKind::kDynamics:
+      if (entity.pose_command) {
+        // FollowTrajectoryAction in position mode places the entity on the path (ideal).
+        state.controls[i].dynamics.reset();
+        ideal.step(entity, motion);
+      } else {
+        finish_dynamics(state, i, motion);
+      }
+      break;
+  }
+}
+
 }  // namespace
 
-void move_entities(SimState& state, const MotionContext& motion) {
-  const DefaultController ideal;
+struct EntityMover::Impl {
+  // More threads than cores would only wait for each other (and oneTBB warns about them).
+  explicit Impl(unsigned threads_in)
+      : threads(std::clamp(threads_in, 1u, std::max(1u, std::thread::hardware_concurrency()))) {}
+
+  unsigned threads;
+  std::unique_ptr<tbb::task_arena> arena;  ///< made on the first parallel step
+  FollowView view;
+  std::vector<LanesAhead> ahead;  ///< per entity (car following)
+  /// Per worker: lane span scratch and car following's candidates.
+  struct Scratch {
+    std::vector<xodr::LaneSpan> spans;
+    std::vector<uint32_t> candidates;
+  };
+  std::vector<Scratch> scratch;
+};
+
+EntityMover::EntityMover(unsigned threads) : impl_(std::make_unique<Impl>(threads)) {}
+EntityMover::~EntityMover() = default;
+EntityMover::EntityMover(EntityMover&&) noexcept = default;
+EntityMover& EntityMover::operator=(EntityMover&&) noexcept = default;
+
+void EntityMover::move(SimState& state, const MotionContext& motion) {
+  Impl& impl = *impl_;
   const auto count = static_cast<uint32_t>(state.world.entities.size());
   if (count == 0) {
     return;
   }
   control_of(state, count - 1);  // a control state for every entity, also those added by traffic
-  // The vehicle models of the dynamics controller step ahead of the in-order loop, all
-  // integrated as one system: a model's step reads only its own entity, which no other
-  // entity's step changes, so this gives what stepping each in turn gives.
+  // The vehicle models of the dynamics controller step first, all integrated as one system: a
+  // model's step reads only its own entity.
   std::vector<uint32_t> dynamic;
+  bool following = false;
   for (uint32_t i = 0; i < count; ++i) {
     if (dynamics_moves(state, i)) {
       dynamic.push_back(i);
     }
+    following = following || (state.world.entities[i].state.placed &&
+                              state.controls[i].effective() == ControllerKind::kAcc);
   }
   if (!dynamic.empty()) {
     begin_dynamics(state, dynamic, motion);
   }
-  for (uint32_t i = 0; i < count; ++i) {
-    Entity& entity = state.world.entities[i];
-    if (!entity.state.placed) {
-      continue;
-    }
-    const ControllerKind kind = state.controls[i].effective();
-    if (entity.info.kind == ObjectKind::kPedestrian && kind == ControllerKind::kDefault) {
-      step_pedestrian(state, i, ideal, motion);
-      continue;
-    }
-    switch (kind) {
-      case ControllerKind::kDefault:
-        ideal.step(entity, motion);
-        break;
-      case ControllerKind::kAcc:
-        step_acc(state, i, motion);
-        break;
-      case ControllerKind::kDynamics:
-        if (entity.pose_command) {
-          // FollowTrajectoryAction in position mode places the entity on the path (ideal).
-          state.controls[i].dynamics.reset();
-          ideal.step(entity, motion);
-        } else {
-          finish_dynamics(state, i, motion);
-        }
-        break;
-    }
+  if (following) {
+    impl.view.build(state);
   }
+  impl.ahead.resize(count);
+  const unsigned workers = count >= kParallelEntities ? impl.threads : 1;
+  impl.scratch.resize(std::max<size_t>(impl.scratch.size(), workers));
+  if (workers == 1) {
+    MotionContext context = motion;
+    context.scratch = &impl.scratch[0].spans;
+    for (uint32_t i = 0; i < count; ++i) {
+      move_one(state, i, context, impl.view, impl.ahead[i], impl.scratch[0].candidates);
+    }
+    return;
+  }
+  if (!impl.arena) {
+    impl.arena = std::make_unique<tbb::task_arena>(static_cast<int>(impl.threads));
+  }
+  // Each entity's move depends only on itself and the picture taken above, so how the entities
+  // are shared out among threads does not change any result.
+  impl.arena->execute([&] {
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, kParallelGrain),
+                      [&](const tbb::blocked_range<uint32_t>& range) {
+                        const int worker = tbb::this_task_arena::current_thread_index();
+                        Impl::Scratch& mine = impl.scratch[static_cast<size_t>(worker)];
+                        MotionContext context = motion;
+                        context.scratch = &mine.spans;
+                        for (uint32_t i = range.begin(); i != range.end(); ++i) {
+                          move_one(state, i, context, impl.view, impl.ahead[i], mine.candidates);
+                        }
+                      });
+  });
 }
 
 }  // namespace corsa::engine::detail

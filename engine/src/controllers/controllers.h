@@ -9,8 +9,10 @@
 // (SimulationOptions::controller) for vehicles; otherwise the default controller.
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "motion/controller.h"
 #include "state/control_state.h"
@@ -37,20 +39,40 @@ void assign_initial_controllers(SimState& state);
 /// the run (traffic).
 ControlState& control_of(SimState& state, uint32_t index);
 
-/// Moves every present entity over one step with its controller.
-void move_entities(SimState& state, const MotionContext& motion);
+/// Moves every present entity over one step with its controller, on up to `threads` threads.
+/// Each entity's move reads and writes only that entity, the map and a picture of the others
+/// taken before the moves (controllers/follow_view.h, for car following), so the result is the
+/// same whatever the number of threads. Keeps its buffers and threads between steps.
+class EntityMover {
+ public:
+  explicit EntityMover(unsigned threads = 1);
+  ~EntityMover();
+  EntityMover(EntityMover&&) noexcept;
+  EntityMover& operator=(EntityMover&&) noexcept;
+
+  void move(SimState& state, const MotionContext& motion);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+class FollowView;
+struct LanesAhead;
 
 /// The car-following controller: the commanded speed, limited so as to keep a time gap to the
-/// vehicle ahead on the lane path it will drive (through links and junctions, within 200 m);
-/// then the default controller's motion.
-void step_acc(SimState& state, uint32_t index, const MotionContext& motion);
+/// vehicle ahead on the lane path it will drive (through links and junctions, within 200 m), as
+/// `view` shows the others; then the default controller's motion. `ahead` is the entity's own,
+/// kept between steps; `candidates` is scratch.
+void step_acc(SimState& state, uint32_t index, const MotionContext& motion, const FollowView& view,
+              LanesAhead& ahead, std::vector<uint32_t>& candidates);
 
 /// The dynamics controller (controllers/dynamics_controller.cpp), in two halves.
 /// begin_dynamics: for each entity of `indices`, the driver model's inputs from the entity's own
 /// state and commands; then all their vehicle models integrated over the step as one system.
-/// It changes nothing other entities see, so it runs ahead of the in-order loop of
-/// move_entities, where finish_dynamics moves each entity to its model's new state and updates
-/// its lane position.
+/// It changes nothing other entities see, so it runs ahead of the moves of EntityMover::move,
+/// where finish_dynamics moves each entity to its model's new state and updates its lane
+/// position.
 void begin_dynamics(SimState& state, std::span<const uint32_t> indices,
                     const MotionContext& motion);
 void finish_dynamics(SimState& state, uint32_t index, const MotionContext& motion);

@@ -32,7 +32,7 @@ void check_options(const SimulationOptions& options) {
 
 Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xodr::Map> map,
                        const SimulationOptions& options, Diagnostics& diagnostics)
-    : state(scenario, std::move(map), options, diagnostics) {
+    : state(scenario, std::move(map), options, diagnostics), mover(options.threads) {
   check_options(options);
   detail::build_entities(state);
   detail::assign_initial_controllers(state);
@@ -70,7 +70,7 @@ void Simulation::Impl::advance() {
   storyboard->step_actions(state);
   const detail::MotionContext motion{state.map, state.time.dt(), &scratch};
   detail::follow_route_lanes(state, motion);
-  detail::move_entities(state, motion);
+  mover.move(state, motion);
   ++state.tick;
   detail::update_traffic(state);
   detail::update_contacts(state);

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "controllers/controllers.h"
 #include "motion/controller.h"
 #include "state/sim_state.h"
 #include "storyboard/init_actions.h"
@@ -19,6 +20,7 @@ struct Simulation::Impl {
   detail::InitActions init;
   std::unique_ptr<detail::Storyboard> storyboard;
   detail::DefaultController default_controller;
+  detail::EntityMover mover;
   std::vector<xodr::LaneSpan> scratch;
   std::vector<SimulationObserver*> observers;
   bool announced = false;  ///< observers have seen tick 0

@@ -48,6 +48,9 @@ struct SimulationOptions {
     uint32_t vehicles = 0;
     uint32_t pedestrians = 0;
   } npc;
+  /// Threads the entities of a step are moved on (`corsa run --threads`), at least 1. Outputs
+  /// are byte-identical for any number; only runs with many entities use more than one.
+  unsigned threads = 1;
 };
 
 /// One presence of a generated entity (traffic actions, NPCs): when it appeared and, once it

@@ -1,0 +1,47 @@
+#include "controllers/follow_view.h"
+
+#include "corsa/xodr/map.h"
+#include "state/sim_state.h"
+
+namespace corsa::engine::detail {
+
+void FollowView::build(const SimState& state) {
+  const auto& entities = state.world.entities;
+  targets_.resize(entities.size());
+  unindexed_.clear();
+  const xodr::LaneGraph* graph = state.map != nullptr ? &state.map->lane_graph() : nullptr;
+  lanes_.reset(graph != nullptr ? graph->size() : 0);
+  for (uint32_t i = 0; i < entities.size(); ++i) {
+    const Entity& entity = entities[i];
+    FollowTarget& target = targets_[i];
+    const bool visible = i >= state.controls.size() || state.controls[i].traffic_visible;
+    target.usable = entity.state.placed && entity.state.road.has_value() && visible;
+    if (!target.usable) {
+      continue;
+    }
+    target.x = entity.state.pose.x;
+    target.y = entity.state.pose.y;
+    target.h = entity.state.pose.h;
+    target.speed = entity.state.speed;
+    target.rear = entity.info.box.center_x - 0.5 * entity.info.box.length;
+    target.road = *entity.state.road;
+    // Mostly the entity is in the lane it follows, whose node it knows.
+    const LaneFollow& follow = entity.lane;
+    const bool followed = follow.on_road && follow.node != xodr::kNoLane &&
+                          follow.road == target.road.road &&
+                          follow.section == target.road.section && follow.lane == target.road.lane;
+    const auto node =
+        followed ? std::optional<xodr::LaneNode>(follow.node)
+        : graph != nullptr
+            ? graph->find(xodr::LaneRef{target.road.road, target.road.section, target.road.lane})
+            : std::nullopt;
+    if (node) {
+      lanes_.add(*node, target.road.s, i);
+    } else {
+      unindexed_.push_back(i);
+    }
+  }
+  lanes_.finish();
+}
+
+}  // namespace corsa::engine::detail

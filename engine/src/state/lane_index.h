@@ -1,0 +1,42 @@
+#pragma once
+
+// Entities by the lane they are in, each lane's entities in s order: the neighbour structure
+// behind car following (who is ahead on the lanes I will drive) and lane-bound neighbour
+// queries. Rebuilt from the entities' road coordinates when asked (O(n log n) in entities);
+// lanes are lane-graph nodes (xodr/lane_graph.h), so a query for a lane is an array access and a
+// binary search.
+
+#include <cstdint>
+#include <vector>
+
+#include "corsa/xodr/lane_graph.h"
+
+namespace corsa::engine::detail {
+
+class LaneIndex {
+ public:
+  /// Empties the index for a map of `nodes` lane-graph nodes (only the lanes used last time are
+  /// touched, so a sparse index on a large map costs what it holds).
+  void reset(size_t nodes);
+  /// Entity `entity` is in lane `node` at road s `s` (m). Call finish() after the last add.
+  void add(xodr::LaneNode node, double s, uint32_t entity);
+  /// Sorts every lane's entities by (s, entity).
+  void finish();
+
+  /// Appends to `out` the entities in lane `node` with s in [s_low, s_high] (m), in s order.
+  void query(xodr::LaneNode node, double s_low, double s_high, std::vector<uint32_t>& out) const;
+
+  /// Entities in the index.
+  size_t size() const { return size_; }
+
+ private:
+  struct Entry {
+    double s = 0.0;
+    uint32_t entity = 0;
+  };
+  std::vector<std::vector<Entry>> lanes_;  ///< by lane-graph node
+  std::vector<xodr::LaneNode> used_;       ///< nodes with entries
+  size_t size_ = 0;
+};
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,228 @@
+// Large traffic: car followers read the others as they were when the step began (so the order
+// of the entities and the number of threads do not change a run), the neighbour structures
+// behind car following and spawning answer as a scan of every entity would, and the work a
+// standing entity costs does not change what it records.
+
+#include <algorithm>
+#include <bit>
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "corsa/core/random.h"
+#include "corsa/engine/outputs.h"
+#include "corsa/engine/run.h"
+#include "corsa/engine/simulation.h"
+#include "corsa/xodr/map.h"
+#include "corsa/xosc/scenario.h"
+#include "engine_fixture.h"
+#include "motorway_fleet.h"
+#include "state/lane_index.h"
+#include "state/point_grid.h"
+
+namespace {
+
+using corsa::Diagnostics;
+using corsa::engine::Simulation;
+using corsa::engine::SimulationOptions;
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
+}
+
+// Twelve cars in one lane and its neighbour, close enough to follow each other, at different
+// speeds, some slowing down; every third changes lanes.
+std::vector<corsa::test::FleetVehicle> queue() {
+  std::vector<corsa::test::FleetVehicle> vehicles;
+  for (int i = 0; i < 12; ++i) {
+    corsa::test::FleetVehicle v;
+    v.name = "Q" + std::to_string(i);
+    v.lane = i % 2 == 0 ? -1 : -2;
+    v.s = 100.0 + 18.0 * i;
+    v.speed = 30.0 - 1.5 * i;
+    if (i % 4 == 1) {
+      v.speed_change = corsa::test::FleetVehicle::SpeedChange{8.0, 2.0, 1.0 + 0.5 * i};
+    }
+    if (i % 3 == 0) {
+      corsa::test::FleetVehicle::LaneChange change;
+      change.lanes = i % 2 == 0 ? -1 : 1;
+      change.after = 2.0 + 0.1 * i;
+      v.lane_change = change;
+    }
+    vehicles.push_back(v);
+  }
+  return vehicles;
+}
+
+// Every entity's state by name at every tick.
+struct Trace {
+  std::vector<std::string> names;
+  std::vector<std::vector<corsa::engine::EntityState>> ticks;
+};
+
+Trace run_fleet(const std::vector<corsa::test::FleetVehicle>& vehicles) {
+  Diagnostics diagnostics;
+  const auto scenario =
+      corsa::xosc::parse_scenario(corsa::test::motorway_fleet_scenario(vehicles, "queue"),
+                                  corsa::test::motorway_fleet_path(), {}, diagnostics);
+  SimulationOptions options;
+  options.controller = "acc";
+  options.duration = 12.0;
+  Simulation sim(scenario, corsa::engine::load_road_network(scenario, diagnostics), options,
+                 diagnostics);
+  Trace trace;
+  for (size_t i = 0; i < sim.entity_count(); ++i) {
+    trace.names.push_back(sim.entity(i).name);
+  }
+  do {
+    std::vector<corsa::engine::EntityState> states;
+    for (size_t i = 0; i < sim.entity_count(); ++i) {
+      states.push_back(sim.state(i));
+    }
+    trace.ticks.push_back(std::move(states));
+  } while (sim.step());
+  return trace;
+}
+
+bool same_state(const corsa::engine::EntityState& a, const corsa::engine::EntityState& b) {
+  return same_bits(a.pose.x, b.pose.x) && same_bits(a.pose.y, b.pose.y) &&
+         same_bits(a.pose.h, b.pose.h) && same_bits(a.speed, b.speed) &&
+         same_bits(a.acceleration, b.acceleration) && same_bits(a.odometer, b.odometer);
+}
+
+// The trajectory CSV of a run of `scenario` with `options`, every step.
+std::string trajectory_rows(const corsa::xosc::Scenario& scenario,
+                            const std::shared_ptr<const corsa::xodr::Map>& map,
+                            const SimulationOptions& options) {
+  Diagnostics diagnostics;
+  Simulation sim(scenario, map, options, diagnostics);
+  std::string rows;
+  do {
+    corsa::engine::TrajectoryRecorder::append_rows(sim, rows);
+  } while (sim.step());
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("Car followers drive the same whatever the order the scenario lists them in",
+          "[engine][acc][traffic]") {
+  const auto forward = queue();
+  auto backward = forward;
+  std::reverse(backward.begin(), backward.end());
+  const Trace a = run_fleet(forward);
+  const Trace b = run_fleet(backward);
+  REQUIRE(a.ticks.size() == b.ticks.size());
+  REQUIRE(a.names.size() == b.names.size());
+  const size_t n = a.names.size();
+  size_t compared = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const size_t j = n - 1 - i;
+    REQUIRE(a.names[i] == b.names[j]);
+    for (size_t t = 0; t < a.ticks.size(); ++t) {
+      if (!same_state(a.ticks[t][i], b.ticks[t][j])) {
+        FAIL_CHECK(a.names[i] << " differs at tick " << t);
+        break;
+      }
+      ++compared;
+    }
+  }
+  CHECK(compared == n * a.ticks.size());
+  // The queue is close enough that car following acts: the slowing cars hold the ones behind.
+  const auto& last = a.ticks.back();
+  CHECK(last[3].speed < 29.0);
+}
+
+TEST_CASE("Many vehicles give byte-identical trajectories on 1, 2 and 3 threads",
+          "[engine][traffic][threads]") {
+  Diagnostics diagnostics;
+  const auto scenario = corsa::xosc::parse_scenario(
+      "<?xml version=\"1.0\"?><OpenSCENARIO><FileHeader revMajor=\"1\" revMinor=\"3\" "
+      "date=\"2026-01-01T00:00:00\" description=\"npc\" author=\"Corsa\"/>"
+      "<ParameterDeclarations/><CatalogLocations/><RoadNetwork><LogicFile filepath=\"" +
+          (std::filesystem::path(CORSA_SHARED_DIR) / "data/xodr/Town04.xodr").string() +
+          "\"/></RoadNetwork><Entities/><Storyboard><Init><Actions/></Init><StopTrigger/>"
+          "</Storyboard></OpenSCENARIO>",
+      corsa::test::engine_fixture("town04_npc.xosc"), {}, diagnostics);
+  const auto map = corsa::engine::load_road_network(scenario, diagnostics);
+  SimulationOptions options;
+  options.duration = 4.0;
+  options.seed = 7;
+  options.npc.vehicles = 400;
+  options.npc.pedestrians = 40;
+  options.threads = 1;
+  const std::string one = trajectory_rows(scenario, map, options);
+  options.threads = 2;
+  const std::string two = trajectory_rows(scenario, map, options);
+  options.threads = 3;
+  const std::string three = trajectory_rows(scenario, map, options);
+  CHECK(one.size() > 401 * 440 * 50);  // every step, every entity
+  CHECK(one == two);
+  CHECK(one == three);
+}
+
+TEST_CASE("The lane index finds every entity of a lane within an s range, in s order",
+          "[engine][traffic]") {
+  corsa::RandomStream random(11);
+  corsa::engine::detail::LaneIndex index;
+  struct Item {
+    uint32_t node;
+    double s;
+  };
+  for (int round = 0; round < 3; ++round) {
+    std::vector<Item> items;
+    index.reset(20);
+    for (uint32_t i = 0; i < 500; ++i) {
+      items.push_back(
+          {static_cast<uint32_t>(random.uniform_int(0, 19)), random.uniform(0.0, 300.0)});
+      index.add(items.back().node, items.back().s, i);
+    }
+    index.finish();
+    CHECK(index.size() == 500);
+    for (int q = 0; q < 200; ++q) {
+      const auto node = static_cast<uint32_t>(random.uniform_int(0, 19));
+      const double low = random.uniform(-10.0, 300.0);
+      const double high = low + random.uniform(0.0, 120.0);
+      std::vector<uint32_t> found;
+      index.query(node, low, high, found);
+      std::vector<uint32_t> expected;
+      for (uint32_t i = 0; i < items.size(); ++i) {
+        if (items[i].node == node && items[i].s >= low && items[i].s <= high) {
+          expected.push_back(i);
+        }
+      }
+      for (size_t k = 1; k < found.size(); ++k) {
+        CHECK(items[found[k - 1]].s <= items[found[k]].s);
+      }
+      std::sort(found.begin(), found.end());
+      CHECK(found == expected);
+    }
+  }
+}
+
+TEST_CASE("The point grid returns every point within the radius of a query", "[engine][traffic]") {
+  corsa::RandomStream random(5);
+  corsa::engine::detail::PointGrid grid(16.0);
+  std::vector<std::pair<double, double>> points;
+  for (uint32_t i = 0; i < 2000; ++i) {
+    points.emplace_back(random.uniform(-500.0, 500.0), random.uniform(-300.0, 300.0));
+    grid.add(points.back().first, points.back().second, i);
+  }
+  grid.add(std::nan(""), 0.0, 2000);  // a point nowhere: every query returns it
+  for (int q = 0; q < 300; ++q) {
+    const double x = random.uniform(-550.0, 550.0), y = random.uniform(-350.0, 350.0);
+    const double r = random.uniform(0.5, 40.0);
+    std::vector<uint32_t> found;
+    grid.query(x, y, r, found);
+    std::sort(found.begin(), found.end());
+    CHECK(std::binary_search(found.begin(), found.end(), 2000u));
+    for (uint32_t i = 0; i < points.size(); ++i) {
+      if (std::hypot(points[i].first - x, points[i].second - y) <= r) {
+        CHECK(std::binary_search(found.begin(), found.end(), i));
+      }
+    }
+  }
+}
