@@ -1,5 +1,7 @@
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <iterator>
 #include <numbers>
 #include <variant>
@@ -10,8 +12,41 @@
 
 namespace corsa::engine::detail {
 
+namespace {
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
+}
+
+bool same_pose(const Pose& a, const Pose& b) {
+  return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z) && same_bits(a.h, b.h) &&
+         same_bits(a.p, b.p) && same_bits(a.r, b.r);
+}
+
+bool same_road(const std::optional<RoadCoordinates>& a, const std::optional<RoadCoordinates>& b) {
+  return a.has_value() == b.has_value() &&
+         (!a || (a->road == b->road && a->section == b->section && a->lane == b->lane &&
+                 same_bits(a->s, b->s) && same_bits(a->t, b->t)));
+}
+
+// The inputs of lane_pose (the lane graph node follows from road, section and lane).
+bool same_lane_position(const LaneFollow& a, const LaneFollow& b) {
+  return a.on_road == b.on_road && a.road == b.road && a.section == b.section && a.lane == b.lane &&
+         a.dir == b.dir && same_bits(a.s, b.s) && same_bits(a.lateral, b.lateral) &&
+         same_bits(a.heading_offset, b.heading_offset);
+}
+
+}  // namespace
+
 void update_pose_from_lane(Entity& entity, const xodr::Map& map,
                            std::vector<xodr::LaneSpan>& scratch) {
+  LanePoseMemo& memo = entity.lane_pose_memo;
+  // The same lane position gives the same pose (lane_pose is a function of it and the map);
+  // the memo counts only while nothing else has moved the entity since.
+  if (memo.valid && same_lane_position(memo.from, entity.lane) &&
+      same_pose(memo.pose, entity.state.pose) && same_road(memo.road, entity.state.road)) {
+    return;
+  }
   const LanePose lp = lane_pose(map, entity.lane, scratch);
   entity.state.pose = {lp.pose.x, lp.pose.y, lp.pose.z, lp.pose.h, lp.pose.p, lp.pose.r};
   if (lp.lane_at) {
@@ -20,6 +55,10 @@ void update_pose_from_lane(Entity& entity, const xodr::Map& map,
   } else {
     entity.state.road.reset();
   }
+  memo.valid = true;
+  memo.from = entity.lane;
+  memo.pose = entity.state.pose;
+  memo.road = entity.state.road;
 }
 
 void update_road_from_pose(Entity& entity, const xodr::Map* map) {

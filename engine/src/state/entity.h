@@ -38,6 +38,16 @@ struct LaneFollow {
   double heading_offset = 0.0;
 };
 
+/// The lane position an entity's pose and road coordinates were last computed from, and what
+/// they were (motion/controller.h, update_pose_from_lane): while neither has changed since (a
+/// standing entity), the same pose follows without asking the map again.
+struct LanePoseMemo {
+  bool valid = false;
+  LaneFollow from;
+  Pose pose;
+  std::optional<RoadCoordinates> road;
+};
+
 /// Where an entity is along its route and the lane change its route needs, under way
 /// (motion/route_lanes.h). Reset when a route is assigned.
 struct RouteProgress {
@@ -109,6 +119,7 @@ struct Entity {
   std::optional<Pose> pose_command;
   /// Lights set by LightStateAction, by VehicleLight; unset ones follow the motion.
   std::array<std::optional<LightSetting>, kVehicleLightCount> lights{};
+  LanePoseMemo lane_pose_memo;
 };
 
 }  // namespace corsa::engine::detail

@@ -44,9 +44,18 @@ struct World {
   }
 };
 
+/// What the contacts of an entity were last computed from (state/world_update.h).
+struct ContactInput {
+  bool placed = false;
+  Pose pose;
+  Box box;
+};
+
 /// Pairs of entities whose boxes overlap now: (first, second) with first < second, sorted.
 struct ContactSet {
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  /// Every entity's box at the last update: when none has changed, neither have the pairs.
+  std::vector<ContactInput> inputs;
 
   bool get(uint32_t a, uint32_t b) const {
     const auto key = a < b ? std::make_pair(a, b) : std::make_pair(b, a);

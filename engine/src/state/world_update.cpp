@@ -1,43 +1,128 @@
 #include "state/world_update.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "geometry/oriented_box.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 
+namespace {
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
+}
+
+bool same_input(const ContactInput& a, const Entity& e) {
+  const Pose& p = e.state.pose;
+  const Box& b = e.info.box;
+  return a.placed == e.state.placed && same_bits(a.pose.x, p.x) && same_bits(a.pose.y, p.y) &&
+         same_bits(a.pose.z, p.z) && same_bits(a.pose.h, p.h) &&
+         same_bits(a.box.center_x, b.center_x) && same_bits(a.box.center_y, b.center_y) &&
+         same_bits(a.box.center_z, b.center_z) && same_bits(a.box.length, b.length) &&
+         same_bits(a.box.width, b.width) && same_bits(a.box.height, b.height);
+}
+
+// Whether every entity's box is where it was at the last update (nothing moved, appeared,
+// left or changed size); records the boxes of now otherwise.
+bool contact_inputs_unchanged(SimState& state) {
+  auto& inputs = state.contacts.inputs;
+  const auto& entities = state.world.entities;
+  bool same = inputs.size() == entities.size();
+  for (size_t i = 0; same && i < entities.size(); ++i) {
+    same = same_input(inputs[i], entities[i]);
+  }
+  if (same) {
+    return true;
+  }
+  inputs.resize(entities.size());
+  for (size_t i = 0; i < entities.size(); ++i) {
+    inputs[i] = {entities[i].state.placed, entities[i].state.pose, entities[i].info.box};
+  }
+  return false;
+}
+
+struct Item {
+  double low, high;    ///< extent along x
+  double ylow, yhigh;  ///< extent along y
+  uint32_t index;
+  OrientedBox box;
+};
+
+// Margin (m) by which the y extents are widened before pairs are rejected on them: a pair whose
+// boxes the exact test finds overlapping is never rejected for rounding in the extents.
+double margin(double v) { return 1e-6 + 1e-12 * std::abs(v); }
+
+bool y_apart(const Item& a, const Item& b) {
+  return b.ylow > a.yhigh + margin(a.yhigh) || a.ylow > b.yhigh + margin(b.yhigh);
+}
+
+bool sweep_order(const Item& a, const Item& b) {
+  return a.low < b.low || (a.low == b.low && a.index < b.index);
+}
+
+}  // namespace
+
 void update_contacts(SimState& state) {
+  // Nothing moved, appeared or left: the contacts are those of the last update, and none is new.
+  if (contact_inputs_unchanged(state)) {
+    return;
+  }
   const auto& entities = state.world.entities;
   std::vector<std::pair<uint32_t, uint32_t>> previous;
   previous.swap(state.contacts.pairs);
-  // Sweep and prune along x: boxes sorted by their lowest x; only those whose x ranges overlap
-  // are tested exactly.
-  struct Item {
-    double low, high;
-    uint32_t index;
-    OrientedBox box;
-  };
+  // Boxes whose extents along x overlap (sweep and prune) are tested exactly. Pairs apart along
+  // y (with a rounding margin) cannot overlap and are skipped.
   std::vector<Item> items;
   items.reserve(entities.size());
+  bool finite = true;
+  double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
   for (uint32_t i = 0; i < entities.size(); ++i) {
     if (!entities[i].state.placed || entities[i].info.box.length <= 0.0) {
       continue;
     }
     const OrientedBox box = box_of(entities[i].info.box, entities[i].state.pose);
     const Interval x = project(box, 1.0, 0.0);
-    items.push_back({x.low, x.high, i, box});
+    const Interval y = project(box, 0.0, 1.0);
+    finite = finite && std::isfinite(x.low) && std::isfinite(x.high) && std::isfinite(y.low) &&
+             std::isfinite(y.high);
+    x0 = items.empty() ? x.low : std::min(x0, x.low);
+    x1 = items.empty() ? x.high : std::max(x1, x.high);
+    y0 = items.empty() ? y.low : std::min(y0, y.low);
+    y1 = items.empty() ? y.high : std::max(y1, y.high);
+    items.push_back({x.low, x.high, y.low, y.high, i, box});
   }
-  std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
-    return a.low < b.low || (a.low == b.low && a.index < b.index);
-  });
   auto& now = state.contacts.pairs;
-  for (size_t a = 0; a < items.size(); ++a) {
-    for (size_t b = a + 1; b < items.size() && items[b].low <= items[a].high; ++b) {
-      if (overlap(items[a].box, items[b].box)) {
-        now.emplace_back(std::min(items[a].index, items[b].index),
-                         std::max(items[a].index, items[b].index));
+  if (finite && y1 - y0 > x1 - x0) {
+    // Spread more along y (a road running north): sweep along y instead, and test a pair when
+    // the x sweep would have (the later of the two in x order starts before the earlier ends).
+    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
+      return a.ylow < b.ylow || (a.ylow == b.ylow && a.index < b.index);
+    });
+    for (size_t a = 0; a < items.size(); ++a) {
+      const double reach = items[a].yhigh + margin(items[a].yhigh);
+      for (size_t b = a + 1; b < items.size() && items[b].ylow <= reach; ++b) {
+        const bool a_first = sweep_order(items[a], items[b]);
+        const Item& first = a_first ? items[a] : items[b];
+        const Item& second = a_first ? items[b] : items[a];
+        if (second.low <= first.high && !y_apart(items[a], items[b]) &&
+            overlap(items[a].box, items[b].box)) {
+          now.emplace_back(std::min(items[a].index, items[b].index),
+                           std::max(items[a].index, items[b].index));
+        }
+      }
+    }
+  } else {
+    std::sort(items.begin(), items.end(), sweep_order);
+    for (size_t a = 0; a < items.size(); ++a) {
+      for (size_t b = a + 1; b < items.size() && items[b].low <= items[a].high; ++b) {
+        if (!y_apart(items[a], items[b]) && overlap(items[a].box, items[b].box)) {
+          now.emplace_back(std::min(items[a].index, items[b].index),
+                           std::max(items[a].index, items[b].index));
+        }
       }
     }
   }
