@@ -131,7 +131,8 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     // reference line of curvature k the path is (1 - k t) times as long as s (OpenDRIVE 1.8
     // §9.3, lanes run parallel to the reference line), so a car in the outer lane of a turn does
     // not drive faster than its speed.
-    const double scale = path_scale(*context.map, entity);
+    // Standing still needs no scale (and on a cubic reference line it costs an evaluation).
+    const double scale = distance == 0.0 ? 1.0 : path_scale(*context.map, entity);
     const AdvanceResult moved =
         advance_along_lanes(*context.map, lane, distance / scale, entity.chooser);
     const double travelled = moved.travelled * scale;
@@ -165,7 +166,9 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
   const double lateral_speed = lateral_change / dt;
   entity.lateral_acceleration = (lateral_speed - state.lateral_speed) / dt;
   state.lateral_speed = lateral_speed;
-  state.yaw_rate = std::remainder(state.pose.h - h0, 2.0 * std::numbers::pi) / dt;
+  // An unchanged heading turned by exactly 0 (remainder(0, 2 pi) is 0; a libm call otherwise).
+  const double turn = state.pose.h - h0;
+  state.yaw_rate = (turn == 0.0 ? turn : std::remainder(turn, 2.0 * std::numbers::pi)) / dt;
   state.odometer += path;
 }
 
