@@ -184,57 +184,72 @@ void evaluate_chunk(const Map& map, const Chunk& chunk, double x, double y,
 
 std::optional<LanePosition> SpatialIndex::locate(const Map& map, double x, double y,
                                                  const LocateOptions& options) const {
-  if (chunks_.empty()) {
+  if (sections_.empty()) {
     return std::nullopt;
   }
   Candidate best;
   bool have = false;
-  // Pass 1: the point's own cell, chunks whose rectangle contains it.
-  const double gx = std::floor((x - min_x_) / cell_);
-  const double gy = std::floor((y - min_y_) / cell_);
-  if (gx >= 0.0 && gy >= 0.0 && gx < nx_ && gy < ny_) {
-    const size_t cell =
-        static_cast<size_t>(gy) * static_cast<size_t>(nx_) + static_cast<size_t>(gx);
-    for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-      const Chunk& chunk = chunks_[cell_items_[k]];
-      if (chunk.near(x, y, 0.0) && chunk.spans(x, y)) {
-        evaluate_chunk(map, chunk, x, y, options, true, best, have);
+  std::vector<uint32_t> near;
+  // Pass 1: chunks whose rectangle contains the point, in map order (road, section, s).
+  sections_near(x, y, 0.0, near);
+  for (const uint32_t index : near) {
+    if (sections_[index]->bounded && !sections_[index]->bounds.contains(x, y)) {
+      continue;
+    }
+    const Section& section = built(map, index);
+    for (const Block& block : section.blocks) {
+      if (!(x >= block.x0 && x <= block.x1 && y >= block.y0 && y <= block.y1)) {
+        continue;
+      }
+      for (uint32_t k = block.first; k < block.end; ++k) {
+        const Chunk& chunk = section.chunks[k];
+        if (chunk.near(x, y, 0.0) && chunk.spans(x, y)) {
+          evaluate_chunk(map, chunk, x, y, options, true, best, have);
+        }
       }
     }
   }
   if (have && best.position.distance == 0.0) {
     return best.position;
   }
-  // Pass 2: everything within max_distance (off-road points), each chunk once.
+  // Pass 2: every chunk within max_distance (off-road points) whose box meets the square about
+  // the point (those beyond cannot be within max_distance).
   const double r = options.max_distance;
-  int i0, j0, i1, j1;
-  cell_range(x - r, y - r, x + r, y + r, i0, j0, i1, j1);
-  std::vector<uint32_t> seen;
-  for (int j = j0; j <= j1; ++j) {
-    for (int i = i0; i <= i1; ++i) {
-      const size_t cell = static_cast<size_t>(j) * static_cast<size_t>(nx_) + i;
-      for (uint32_t k = cell_start_[cell]; k < cell_start_[cell + 1]; ++k) {
-        if (chunks_[cell_items_[k]].near(x, y, r)) {
-          seen.push_back(cell_items_[k]);
+  sections_near(x, y, r, near);
+  // Nearest rectangles first: a chunk's lanes lie inside its rectangle, so the distance to the
+  // rectangle bounds the answer from below and the search stops once it exceeds the best. Ties
+  // in map order.
+  struct Near {
+    double bound;
+    uint64_t order;  ///< section << 32 | chunk
+    const Chunk* chunk;
+  };
+  std::vector<Near> order;
+  for (const uint32_t index : near) {
+    if (sections_[index]->bounded && !sections_[index]->bounds.meets(x, y, r)) {
+      continue;
+    }
+    const Section& section = built(map, index);
+    for (const Block& block : section.blocks) {
+      if (!(x + r >= block.x0 && x - r <= block.x1 && y + r >= block.y0 && y - r <= block.y1)) {
+        continue;
+      }
+      for (uint32_t k = block.first; k < block.end; ++k) {
+        const Chunk& chunk = section.chunks[k];
+        if (section.boxes[k].meets(x, y, r) && chunk.near(x, y, r)) {
+          order.push_back({chunk.distance_to(x, y), (uint64_t{index} << 32) | k, &chunk});
         }
       }
     }
   }
-  std::sort(seen.begin(), seen.end());
-  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
-  // Nearest rectangles first: a chunk's lanes lie inside its rectangle, so the distance to the
-  // rectangle bounds the answer from below and the search stops once it exceeds the best.
-  std::vector<std::pair<double, uint32_t>> order;
-  order.reserve(seen.size());
-  for (const uint32_t index : seen) {
-    order.emplace_back(chunks_[index].distance_to(x, y), index);
-  }
-  std::sort(order.begin(), order.end());
-  for (const auto& [bound, index] : order) {
-    if (have && bound > best.position.distance) {
+  std::sort(order.begin(), order.end(), [](const Near& a, const Near& b) {
+    return a.bound < b.bound || (a.bound == b.bound && a.order < b.order);
+  });
+  for (const Near& candidate : order) {
+    if (have && candidate.bound > best.position.distance) {
       break;
     }
-    evaluate_chunk(map, chunks_[index], x, y, options, false, best, have);
+    evaluate_chunk(map, *candidate.chunk, x, y, options, false, best, have);
   }
   return have ? std::optional<LanePosition>(best.position) : std::nullopt;
 }

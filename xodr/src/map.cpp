@@ -284,7 +284,7 @@ const Lane* Map::lane(const LaneRef& ref) const {
 }
 
 std::optional<LanePosition> Map::locate(double x, double y, const LocateOptions& options) const {
-  std::call_once(impl_->index_built, [this] { impl_->index.build(*this); });
+  std::call_once(impl_->index_built, [this] { impl_->index.prepare(*this); });
   return impl_->index.locate(*this, x, y, options);
 }
 

@@ -39,10 +39,12 @@ struct Map::Impl {
   std::vector<std::pair<double, double>> trig;
   std::vector<size_t> trig_start;
   LaneGraph graph;
-  /// Built by the first world -> lane query (Map::locate), not by Map::build: most runs never
-  /// ask one (lane positions and lane following need none), and building it was 60% of loading
-  /// a long motorway, paid once per sweep on the serial path. call_once makes the first query
-  /// safe from concurrent threads (a sweep shares one Map between its variants).
+  /// Prepared by the first world -> lane query (Map::locate), not by Map::build: most runs never
+  /// ask one (lane positions and lane following need none). Preparing is cheap (a bound per
+  /// lane section); each section's chunks are built when a query first reaches it, so a run
+  /// that locates a few points does not pay for the whole map. call_once makes the first query
+  /// safe from concurrent threads (a sweep shares one Map between its variants); sections are
+  /// built under their own once flags.
   mutable std::once_flag index_built;
   mutable detail::SpatialIndex index;
 };

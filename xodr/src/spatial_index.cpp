@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
+#include "region_bounds.h"
 #include "road_eval.h"
 
 namespace corsa::xodr::detail {
@@ -13,10 +15,6 @@ constexpr double kMaxChunkLength = 5.0;   // m
 constexpr double kMaxChunkTurn = 0.1;     // rad of heading per chunk
 constexpr double kMinChunkLength = 0.05;  // m
 constexpr int kSamples = 5;               // per chunk, ends included
-constexpr size_t kMaxCells = size_t{1} << 23;
-// Grid entries (chunk, cell) allowed per chunk on average: absurd lane widths (a fuzzed 1e20 m)
-// make every chunk cover the whole grid, which the cell size then grows to avoid.
-constexpr double kMaxEntriesPerChunk = 64.0;
 // Coordinates (m) beyond any real map; bounds are clamped to it (NaN to its low end) so that the
 // grid arithmetic stays finite whatever a map's numbers overflow to.
 constexpr double kCoordinateLimit = 1e15;
@@ -86,9 +84,9 @@ Chunk::Shape chunk_shape(const Road& road, double s0, double s1) {
   return Chunk::Shape::kGeneral;
 }
 
-}  // namespace
-
-void SpatialIndex::add_section_chunks(const Map& map, uint32_t road, uint32_t section_index) {
+// The chunks of one lane section, in s order.
+void add_section_chunks(const Map& map, uint32_t road, uint32_t section_index,
+                        std::vector<Chunk>& chunks_) {
   const Road& r = map.road(road);
   const LaneSection& section = r.lane_sections[section_index];
   const double s_begin = std::min(section.s, r.length);
@@ -159,18 +157,6 @@ void SpatialIndex::add_section_chunks(const Map& map, uint32_t road, uint32_t se
   }
 }
 
-void SpatialIndex::build(const Map& map) {
-  chunks_.clear();
-  for (uint32_t road = 0; road < map.road_count(); ++road) {
-    for (uint32_t section = 0; section < map.road(road).lane_sections.size(); ++section) {
-      add_section_chunks(map, road, section);
-    }
-  }
-  build_grid();
-}
-
-namespace {
-
 /// World bounding box of a chunk's rectangle.
 void chunk_bounds(const Chunk& c, double& x0, double& y0, double& x1, double& y1) {
   x0 = y0 = std::numeric_limits<double>::max();
@@ -189,71 +175,65 @@ void chunk_bounds(const Chunk& c, double& x0, double& y0, double& x1, double& y1
 
 }  // namespace
 
-void SpatialIndex::cell_range(double x0, double y0, double x1, double y1, int& i0, int& j0, int& i1,
-                              int& j1) const {
-  const auto cell = [&](double v, double origin, int n) {
-    const double c = std::floor((v - origin) / cell_);
-    if (!(c >= 0.0)) {
-      return 0;  // also NaN (a query at a non-finite point)
+namespace {
+
+constexpr uint32_t kBlockChunks = 8;
+constexpr size_t kMaxCoarseCells = size_t{1} << 20;
+// A section whose bound covers more coarse cells than this is looked at by every query instead.
+constexpr double kMaxCellsPerSection = 4096.0;
+
+}  // namespace
+
+SpatialIndex::SpatialIndex() = default;
+SpatialIndex::~SpatialIndex() = default;
+
+size_t SpatialIndex::section_count() const { return sections_.size(); }
+size_t SpatialIndex::built_sections() const { return built_count_.load(); }
+
+void SpatialIndex::prepare(const Map& map) {
+  for (uint32_t road = 0; road < map.road_count(); ++road) {
+    for (uint32_t section = 0; section < map.road(road).lane_sections.size(); ++section) {
+      auto entry = std::make_unique<Section>();
+      entry->road = road;
+      entry->section = section;
+      entry->bounded = section_bounds(map, road, section, entry->bounds);
+      sections_.push_back(std::move(entry));
     }
-    return static_cast<int>(std::min(c, static_cast<double>(n - 1)));
-  };
-  i0 = cell(x0, min_x_, nx_);
-  i1 = cell(x1, min_x_, nx_);
-  j0 = cell(y0, min_y_, ny_);
-  j1 = cell(y1, min_y_, ny_);
-}
-
-double SpatialIndex::grid_entries() const {
-  double entries = 0.0;
-  for (const Chunk& chunk : chunks_) {
-    double x0, y0, x1, y1;
-    chunk_bounds(chunk, x0, y0, x1, y1);
-    int i0, j0, i1, j1;
-    cell_range(x0, y0, x1, y1, i0, j0, i1, j1);
-    entries += static_cast<double>(i1 - i0 + 1) * static_cast<double>(j1 - j0 + 1);
   }
-  return entries;
-}
-
-void SpatialIndex::build_grid() {
+  // The coarse grid over the bounded sections: cells of 64 m, larger when the map is huge.
   double max_x = 0.0, max_y = 0.0;
-  min_x_ = min_y_ = std::numeric_limits<double>::max();
-  max_x = max_y = std::numeric_limits<double>::lowest();
-  for (const Chunk& c : chunks_) {
-    double x0, y0, x1, y1;
-    chunk_bounds(c, x0, y0, x1, y1);
-    min_x_ = std::min(min_x_, x0);
-    min_y_ = std::min(min_y_, y0);
-    max_x = std::max(max_x, x1);
-    max_y = std::max(max_y, y1);
-  }
-  if (chunks_.empty()) {
-    min_x_ = min_y_ = max_x = max_y = 0.0;
-  }
-  cell_ = 4.0;
-  // Count whole cells (+1 each way): a long thin extent (two roads 1e12 m apart on one line)
-  // must not give a row of billions of cells just because the product of the fractions is small.
-  const auto grid_cells = [&] {
-    return (std::floor((max_x - min_x_) / cell_) + 1.0) *
-           (std::floor((max_y - min_y_) / cell_) + 1.0);
-  };
-  while (grid_cells() > static_cast<double>(kMaxCells)) {
-    cell_ *= 2.0;
-  }
-  const double max_entries = kMaxEntriesPerChunk * static_cast<double>(chunks_.size()) +
-                             static_cast<double>(kMaxCells / 8);
-  while (true) {
-    nx_ = static_cast<int>((max_x - min_x_) / cell_) + 1;
-    ny_ = static_cast<int>((max_y - min_y_) / cell_) + 1;
-    if ((nx_ == 1 && ny_ == 1) || grid_entries() <= max_entries) {
-      break;
+  bool any = false;
+  for (const auto& section : sections_) {
+    if (!section->bounded) {
+      continue;
     }
+    const Bounds& b = section->bounds;
+    min_x_ = any ? std::min(min_x_, b.x0) : b.x0;
+    min_y_ = any ? std::min(min_y_, b.y0) : b.y0;
+    max_x = any ? std::max(max_x, b.x1) : b.x1;
+    max_y = any ? std::max(max_y, b.y1) : b.y1;
+    any = true;
+  }
+  min_x_ = clamp_coordinate(min_x_), min_y_ = clamp_coordinate(min_y_);
+  max_x = clamp_coordinate(max_x), max_y = clamp_coordinate(max_y);
+  cell_ = 64.0;
+  while ((std::floor((max_x - min_x_) / cell_) + 1.0) *
+             (std::floor((max_y - min_y_) / cell_) + 1.0) >
+         static_cast<double>(kMaxCoarseCells)) {
     cell_ *= 2.0;
   }
+  nx_ = static_cast<int>((max_x - min_x_) / cell_) + 1;
+  ny_ = static_cast<int>((max_y - min_y_) / cell_) + 1;
   const size_t cells = static_cast<size_t>(nx_) * static_cast<size_t>(ny_);
   cell_start_.assign(cells + 1, 0);
-  // Two passes (count, fill): a compact CSR layout keeps a query's candidates contiguous.
+  const auto range = [&](const Bounds& b, int& i0, int& j0, int& i1, int& j1) {
+    const auto cell = [&](double v, double origin, int n) {
+      const double c = std::floor((v - origin) / cell_);
+      return !(c >= 0.0) ? 0 : static_cast<int>(std::min(c, static_cast<double>(n - 1)));
+    };
+    i0 = cell(b.x0, min_x_, nx_), i1 = cell(b.x1, min_x_, nx_);
+    j0 = cell(b.y0, min_y_, ny_), j1 = cell(b.y1, min_y_, ny_);
+  };
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<uint32_t> fill;
     if (pass == 1) {
@@ -263,11 +243,19 @@ void SpatialIndex::build_grid() {
       cell_items_.assign(cell_start_[cells], 0);
       fill.assign(cell_start_.begin(), cell_start_.end() - 1);
     }
-    for (uint32_t index = 0; index < chunks_.size(); ++index) {
-      double x0, y0, x1, y1;
-      chunk_bounds(chunks_[index], x0, y0, x1, y1);
-      int i0, j0, i1, j1;
-      cell_range(x0, y0, x1, y1, i0, j0, i1, j1);
+    for (uint32_t index = 0; index < sections_.size(); ++index) {
+      const Section& section = *sections_[index];
+      int i0 = 0, j0 = 0, i1 = 0, j1 = 0;
+      if (section.bounded) {
+        range(section.bounds, i0, j0, i1, j1);
+      }
+      if (!section.bounded || static_cast<double>(i1 - i0 + 1) * static_cast<double>(j1 - j0 + 1) >
+                                  kMaxCellsPerSection) {
+        if (pass == 0) {
+          everywhere_.push_back(index);
+        }
+        continue;
+      }
       for (int j = j0; j <= j1; ++j) {
         for (int i = i0; i <= i1; ++i) {
           const size_t cell = static_cast<size_t>(j) * static_cast<size_t>(nx_) + i;
@@ -280,6 +268,77 @@ void SpatialIndex::build_grid() {
       }
     }
   }
+}
+
+SpatialIndex::Section& SpatialIndex::built(const Map& map, uint32_t index) const {
+  Section& section = *sections_[index];
+  std::call_once(section.once, [&] {
+    add_section_chunks(map, section.road, section.section, section.chunks);
+    for (const Chunk& chunk : section.chunks) {
+      Bounds box;
+      chunk_bounds(chunk, box.x0, box.y0, box.x1, box.y1);
+      section.boxes.push_back(box);
+    }
+    for (uint32_t first = 0; first < section.chunks.size(); first += kBlockChunks) {
+      Block block;
+      block.first = first;
+      block.end =
+          std::min<uint32_t>(first + kBlockChunks, static_cast<uint32_t>(section.chunks.size()));
+      for (uint32_t k = block.first; k < block.end; ++k) {
+        const Bounds& box = section.boxes[k];
+        block.x0 = k == block.first ? box.x0 : std::min(block.x0, box.x0);
+        block.y0 = k == block.first ? box.y0 : std::min(block.y0, box.y0);
+        block.x1 = k == block.first ? box.x1 : std::max(block.x1, box.x1);
+        block.y1 = k == block.first ? box.y1 : std::max(block.y1, box.y1);
+      }
+      section.blocks.push_back(block);
+    }
+    built_count_.fetch_add(1);
+  });
+  return section;
+}
+
+size_t SpatialIndex::chunks_outside_bounds() const {
+  size_t outside = 0;
+  for (const auto& section : sections_) {
+    if (!section->bounded) {
+      continue;
+    }
+    const Bounds& b = section->bounds;
+    for (const Bounds& box : section->boxes) {
+      outside += box.x0 < b.x0 || box.y0 < b.y0 || box.x1 > b.x1 || box.y1 > b.y1 ? 1 : 0;
+    }
+  }
+  return outside;
+}
+
+void SpatialIndex::build_all(const Map& map) const {
+  for (uint32_t index = 0; index < sections_.size(); ++index) {
+    built(map, index);
+  }
+}
+
+void SpatialIndex::sections_near(double x, double y, double r, std::vector<uint32_t>& out) const {
+  out.assign(everywhere_.begin(), everywhere_.end());
+  if (nx_ > 0 && ny_ > 0 && std::isfinite(x) && std::isfinite(y)) {
+    const auto cell = [&](double v, double origin, int n) {
+      const double c = std::floor((v - origin) / cell_);
+      return !(c >= 0.0) ? -1 : c >= n ? n : static_cast<int>(c);  // NaN: below the grid
+    };
+    const int i0 = std::max(0, cell(x - r, min_x_, nx_)),
+              i1 = std::min(nx_ - 1, cell(x + r, min_x_, nx_));
+    const int j0 = std::max(0, cell(y - r, min_y_, ny_)),
+              j1 = std::min(ny_ - 1, cell(y + r, min_y_, ny_));
+    for (int j = j0; j <= j1; ++j) {
+      for (int i = i0; i <= i1; ++i) {
+        const size_t c = static_cast<size_t>(j) * static_cast<size_t>(nx_) + i;
+        out.insert(out.end(), cell_items_.begin() + cell_start_[c],
+                   cell_items_.begin() + cell_start_[c + 1]);
+      }
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
 }  // namespace corsa::xodr::detail

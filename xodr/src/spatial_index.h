@@ -2,16 +2,20 @@
 
 // World -> lane lookup structure: every lane section is cut into chunks short enough to be
 // nearly straight (<= 5 m, <= 0.1 rad of heading); each chunk gets an oriented rectangle around
-// its chord covering all its lanes, and a uniform grid lists the chunks whose rectangle touches
-// each cell. A query tests the rectangles of its cell, then projects onto the reference line of
-// the few chunks that contain the point (Newton on s). Private to corsa_xodr.
+// its chord covering all its lanes. A query tests the rectangles near the point, then projects
+// onto the reference line of the few chunks that contain it (Newton on s). Private to
+// corsa_xodr.
 
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <vector>
 
 #include "corsa/xodr/map.h"
+#include "region_bounds.h"
 
 namespace corsa::xodr::detail {
 
@@ -62,27 +66,59 @@ struct Chunk {
   }
 };
 
+/// The index, built region by region: Map's first query prepares a cheap bound per lane section
+/// (region_bounds.h) and a coarse grid of those bounds; a section's chunks (and the boxes of
+/// their runs of eight) are built the first time a query can reach the section, so that a run
+/// that locates a few points pays for the roads around them, not for the whole map. Answers are
+/// those of an index built all at once: the same chunks, evaluated in the same order (road,
+/// section, s). Queries may come from several threads (a sweep shares the map).
 class SpatialIndex {
  public:
-  void build(const Map& map);
+  SpatialIndex();
+  ~SpatialIndex();
+  SpatialIndex(const SpatialIndex&) = delete;
+  SpatialIndex& operator=(const SpatialIndex&) = delete;
+
+  /// The coarse level: every section's bound and the grid over them (no chunks yet).
+  void prepare(const Map& map);
   std::optional<LanePosition> locate(const Map& map, double x, double y,
                                      const LocateOptions& options) const;
-  size_t chunk_count() const { return chunks_.size(); }
+  /// Builds the chunks of every section now (what a query that reached all would do).
+  void build_all(const Map& map) const;
+  size_t section_count() const;
+  /// Sections whose chunks have been built so far.
+  size_t built_sections() const;
+  /// Built chunks whose rectangle's box is not inside their section's bound (a check for the
+  /// tests: must be 0, or a query could miss a section it needs).
+  size_t chunks_outside_bounds() const;
 
  private:
-  void add_section_chunks(const Map& map, uint32_t road, uint32_t section);
-  void build_grid();
-  /// (chunk, cell) pairs the grid would hold with the current cell size and origin.
-  double grid_entries() const;
-  /// Cells overlapped by [x0, x1] x [y0, y1], clamped to the grid.
-  void cell_range(double x0, double y0, double x1, double y1, int& i0, int& j0, int& i1,
-                  int& j1) const;
+  struct Block {
+    uint32_t first = 0, end = 0;                    ///< chunks [first, end) of the section
+    double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;  ///< box of their rectangles
+  };
+  struct Section {
+    uint32_t road = 0;
+    uint32_t section = 0;
+    bool bounded = false;
+    Bounds bounds;  ///< where its chunks can be (region_bounds.h)
+    std::once_flag once;
+    std::vector<Chunk> chunks;  ///< in s order, built on first need
+    std::vector<Bounds> boxes;  ///< each chunk's rectangle's box
+    std::vector<Block> blocks;  ///< runs of eight chunks
+  };
+  Section& built(const Map& map, uint32_t index) const;
+  /// Sections the coarse grid lists near [x - r, x + r] x [y - r, y + r], ascending, with the
+  /// sections without a bound.
+  void sections_near(double x, double y, double r, std::vector<uint32_t>& out) const;
 
-  std::vector<Chunk> chunks_;
-  double min_x_ = 0.0, min_y_ = 0.0, cell_ = 8.0;
+  std::vector<std::unique_ptr<Section>> sections_;
+  std::vector<uint32_t> everywhere_;  ///< sections without a bound (or a huge one)
+  double min_x_ = 0.0, min_y_ = 0.0, cell_ = 64.0;
   int nx_ = 0, ny_ = 0;
   std::vector<uint32_t> cell_start_;  ///< CSR: nx*ny + 1 offsets into cell_items_
   std::vector<uint32_t> cell_items_;
+  mutable std::atomic<size_t> built_count_{0};
 };
 
 }  // namespace corsa::xodr::detail
