@@ -22,6 +22,7 @@ int command_map(std::span<const std::string> args);
 int command_convert(std::span<const std::string> args);
 int command_sweep(std::span<const std::string> args);
 int command_test(std::span<const std::string> args);
+int command_record(std::span<const std::string> args);
 
 /// The subcommands in the order `corsa --help` lists them.
 std::span<const Command> commands();

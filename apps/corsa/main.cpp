@@ -21,6 +21,7 @@ const Command kCommands[] = {
     {"convert", "convert map data to OpenDRIVE (NGII HD road layers)", command_convert},
     {"sweep", "run parameter variants in parallel or sharded over a cluster", command_sweep},
     {"test", "run a regression suite with goldens and a JUnit report", command_test},
+    {"record", "binary trajectories: export to CSV, info", command_record},
 };
 
 void print_main_help(std::ostream& out) {

@@ -2,7 +2,9 @@
 
 #include "run_options.h"
 
+#include <algorithm>
 #include <cmath>
+#include <thread>
 
 #include "corsa/core/strings.h"
 #include "output_paths.h"
@@ -41,13 +43,18 @@ void declare_run_options(ArgParser& parser) {
   parser.option("--seed", "N", "run seed for random draws (default 0)");
   parser.option("--controller", "NAME",
                 "controller of every vehicle the scenario gives none: default, acc, dynamics");
-  parser.option("--record", "FILE.csv", "write the trajectories (time,entity,x,y,z,h,p,r,...)");
+  parser.option("--record", "FILE.csv|FILE.corsatraj",
+                "write the trajectories: CSV (time,entity,x,y,z,h,p,r,...), or binary for "
+                ".corsatraj (corsa record export turns it into the same CSV)");
   parser.option("--record-every", "N", "record every N-th step (default 1)");
   parser.option("--summary", "FILE.json", "write the run summary");
   parser.option("--log", "FILE.csv", "write every storyboard transition with its time");
   parser.option("--npc", "vehicles=N,pedestrians=M",
                 "add seeded random NPCs: vehicles on driving lanes (car following), pedestrians "
                 "walking on sidewalks");
+  parser.option("--threads", "N",
+                "threads the entities of a step are moved on (default: every core); results "
+                "are the same for any number");
   parser.flag("--quiet", "no progress bar and no summary line");
 }
 
@@ -85,6 +92,14 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
       throw UsageError("--controller expects default, acc or dynamics");
     }
     options.simulation.controller = *controller;
+  }
+  if (const auto threads = parsed.integer("--threads")) {
+    if (*threads < 1 || *threads > 1024) {
+      throw UsageError("--threads expects a number of threads, 1 to 1024");
+    }
+    options.simulation.threads = static_cast<unsigned>(*threads);
+  } else {
+    options.simulation.threads = std::max(1u, std::thread::hardware_concurrency());
   }
   if (const auto npc = parsed.value("--npc")) {
     read_npc(*npc, options.simulation);

@@ -88,28 +88,41 @@ inline int64_t round_half_away(double scaled) {
 
 }  // namespace decimal_text
 
-/// Writes `value` rounded to `Decimals` places (0..kMaxDecimals; halves away from zero) at
-/// `out`, which has room for kDecimalTextMax characters, and returns the end. A value that
-/// rounds to zero is "0" (never "-0"). NaN, infinities and magnitudes too large to scale exactly
-/// are written as their shortest round-trip text instead. A template so that the divisions by
-/// the power of ten are multiplications.
+/// A number as the trajectory files hold it: its integer of `Decimals` decimals (rounded, halves
+/// away from zero), or, when it cannot be scaled exactly (NaN, infinities, magnitudes of 9e15
+/// units and more), the value itself. Written as text by write_scaled / write_fixed; the binary
+/// trajectory (output/trajectory_binary.cpp) stores the same integers, so that its CSV export
+/// gives the same bytes.
+struct Scaled {
+  bool exact = true;
+  int64_t units = 0;  ///< value x 10^Decimals, rounded (when exact)
+  double raw = 0.0;   ///< the value (when not exact)
+};
+
 template <int Decimals>
-char* write_fixed(char* out, double value) {
+Scaled scale_decimal(double value) {
   static_assert(Decimals >= 0 && Decimals <= kMaxDecimals);
   using namespace decimal_text;
   const double scaled = value * kScale[Decimals];
   if (!(std::fabs(scaled) < kExactLimit)) {
-    return std::to_chars(out, out + kDecimalTextMax, value + 0.0).ptr;  // + 0.0: no "-0"
+    return Scaled{false, 0, value};
   }
-  const int64_t rounded = round_half_away(scaled);
-  if (rounded == 0) {
+  return Scaled{true, round_half_away(scaled), 0.0};
+}
+
+/// Writes a number of `Decimals` decimals given by its integer `units` (|units| < 9e15): "0" for
+/// 0 (never "-0"), trailing zeros and a bare point left out.
+template <int Decimals>
+char* write_units(char* out, int64_t units) {
+  using namespace decimal_text;
+  if (units == 0) {
     *out++ = '0';
     return out;
   }
-  if (rounded < 0) {
+  if (units < 0) {
     *out++ = '-';
   }
-  const uint64_t magnitude = static_cast<uint64_t>(rounded < 0 ? -rounded : rounded);
+  const uint64_t magnitude = static_cast<uint64_t>(units < 0 ? -units : units);
   constexpr uint64_t kUnit = kIntScale[Decimals];
   const uint64_t whole = magnitude / kUnit;
   uint64_t fraction = magnitude % kUnit;
@@ -130,6 +143,25 @@ char* write_fixed(char* out, double value) {
   char* const end = out + places;
   for (char* first = digits_before(end, fraction); first != out;) *--first = '0';
   return end;
+}
+
+/// Writes a Scaled number: its decimals, or the shortest round-trip text of the raw value.
+template <int Decimals>
+char* write_scaled(char* out, const Scaled& number) {
+  if (!number.exact) {
+    return std::to_chars(out, out + kDecimalTextMax, number.raw + 0.0).ptr;  // + 0.0: no "-0"
+  }
+  return write_units<Decimals>(out, number.units);
+}
+
+/// Writes `value` rounded to `Decimals` places (0..kMaxDecimals; halves away from zero) at
+/// `out`, which has room for kDecimalTextMax characters, and returns the end. A value that
+/// rounds to zero is "0" (never "-0"). NaN, infinities and magnitudes too large to scale exactly
+/// are written as their shortest round-trip text instead. A template so that the divisions by
+/// the power of ten are multiplications.
+template <int Decimals>
+char* write_fixed(char* out, double value) {
+  return write_scaled<Decimals>(out, scale_decimal<Decimals>(value));
 }
 
 /// write_fixed with the number of decimals chosen at run time.

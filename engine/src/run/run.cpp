@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "corsa/engine/outputs.h"
+#include "corsa/engine/trajectory_file.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 
@@ -30,8 +31,13 @@ RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
   const xosc::Scenario scenario = xosc::load_scenario(options.scenario, load, diagnostics);
   Simulation simulation(scenario, load_road_network(scenario, diagnostics), options.simulation,
                         diagnostics);
+  // The trajectory: binary for a .corsatraj path, CSV otherwise.
   std::optional<TrajectoryRecorder> recorder;
-  if (options.record) {
+  std::optional<BinaryTrajectoryRecorder> binary;
+  if (options.record && is_binary_trajectory(*options.record)) {
+    binary.emplace(*options.record, options.record_every);
+    simulation.add_observer(*binary);
+  } else if (options.record) {
     recorder.emplace(*options.record, options.record_every);
     simulation.add_observer(*recorder);
   }
@@ -45,6 +51,9 @@ RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
   }
   if (recorder) {
     recorder->finish(simulation);
+  }
+  if (binary) {
+    binary->finish(simulation);
   }
   if (options.log) {
     write_event_log(simulation, *options.log);

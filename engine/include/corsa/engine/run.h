@@ -27,7 +27,9 @@ struct RunOptions {
   /// Global parameter values from outside (`--param name=value`), in order.
   std::vector<std::pair<std::string, std::string>> parameters;
   SimulationOptions simulation;
-  std::optional<std::filesystem::path> record;  ///< trajectory CSV
+  /// The trajectory: binary when the extension is .corsatraj (corsa/engine/trajectory_file.h),
+  /// CSV otherwise.
+  std::optional<std::filesystem::path> record;
   int64_t record_every = 1;
   std::optional<std::filesystem::path> summary;  ///< run summary JSON
   std::optional<std::filesystem::path> log;      ///< storyboard event log CSV

@@ -1,0 +1,50 @@
+#pragma once
+
+// The numbers of one trajectory row (docs/engine.md, "Output files") as both trajectory files
+// hold them: each rounded to its decimals (Scaled), so that the CSV written during a run and the
+// CSV exported from a binary trajectory (output/trajectory_binary.h) are the same bytes.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "corsa/engine/entity_state.h"
+#include "output/decimal_text.h"
+
+namespace corsa::engine::detail {
+
+// Decimals of the trajectory's numbers: 1 um for lengths and 1 um/s for speeds, 1 nrad for
+// angles (1 nrad of heading moves a point 5 m away by 5 nm). esmini writes 3 decimals; these
+// keep every digit a test or a golden comparison could need at a fraction of the cost of the
+// shortest round-trip text.
+inline constexpr int kLengthDecimals = 6;
+inline constexpr int kAngleDecimals = 9;
+
+/// The numeric fields of a row, in file order.
+enum RowField : int { kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed, kFieldS,
+                      kFieldT, kRowFields };
+
+/// Decimals of each numeric field.
+inline constexpr int kFieldDecimals[kRowFields] = {
+    kLengthDecimals, kLengthDecimals, kLengthDecimals, kAngleDecimals, kAngleDecimals,
+    kAngleDecimals,  kLengthDecimals, kLengthDecimals, kLengthDecimals};
+
+struct RowValues {
+  Scaled fields[kRowFields];  ///< s and t only when on_road
+  bool on_road = false;
+  int lane = 0;
+};
+
+/// The row values of an entity's state.
+RowValues row_values(const EntityState& state);
+
+/// Appends the CSV row `time_text` (with its comma), `name`, the numbers, and `road` (the road
+/// id; unused off the road).
+void append_row(std::string& out, std::string_view time_text, std::string_view name,
+                const RowValues& values, std::string_view road);
+
+/// A field's value read back from its row text: units / 10^decimals (the IEEE quotient is the
+/// correctly rounded value of the decimal, what parsing the CSV gives), or the raw value.
+double field_value(const Scaled& number, int decimals);
+
+}  // namespace corsa::engine::detail

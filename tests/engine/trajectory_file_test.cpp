@@ -1,0 +1,308 @@
+// The binary trajectory (corsa/engine/trajectory_file.h, docs/trajectory-format.md): its CSV
+// export is the CSV the run writes, byte for byte; its rows read back the CSV's numbers; what
+// does not move costs nothing; a file written by hand from the documented format reads; a
+// damaged file is an error, never a crash.
+
+#include "corsa/engine/trajectory_file.h"
+
+#include <bit>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "corsa/core/random.h"
+#include "corsa/core/strings.h"
+#include "corsa/engine/outputs.h"
+#include "engine_fixture.h"
+#include "run_corsa.h"
+#include "temp_dir.h"
+
+namespace corsa::test {
+namespace {
+
+std::string read_all(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+void write_all(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+// Runs `scenario` twice, recording CSV and binary; returns both file contents and the binary's
+// CSV export.
+struct Recorded {
+  std::string csv;
+  std::string binary;
+  std::string exported;
+};
+
+Recorded record_both(const std::filesystem::path& scenario, int64_t every,
+                     const engine::SimulationOptions& simulation = {}) {
+  TempDir dir;
+  for (const char* name : {"run.csv", "run.corsatraj"}) {
+    engine::RunOptions options;
+    options.scenario = scenario;
+    options.simulation = simulation;
+    options.record = dir.path() / name;
+    options.record_every = every;
+    Diagnostics diagnostics;
+    engine::run_scenario(options, diagnostics);
+  }
+  Recorded out;
+  out.csv = read_all(dir.path() / "run.csv");
+  out.binary = read_all(dir.path() / "run.corsatraj");
+  out.exported = engine::trajectory_csv_of(dir.path() / "run.corsatraj");
+  return out;
+}
+
+// A varint / zigzag / little-endian writer, from the format's description (not the engine's).
+struct Bytes {
+  std::string data;
+  Bytes& u8(uint8_t v) {
+    data.push_back(static_cast<char>(v));
+    return *this;
+  }
+  Bytes& var(uint64_t v) {
+    while (v >= 0x80) {
+      u8(static_cast<uint8_t>(v | 0x80));
+      v >>= 7;
+    }
+    return u8(static_cast<uint8_t>(v));
+  }
+  Bytes& zig(int64_t v) { return var((static_cast<uint64_t>(v) << 1) ^ (v < 0 ? ~0ull : 0ull)); }
+  Bytes& f64(double v) {
+    const auto bits = std::bit_cast<uint64_t>(v);
+    for (int i = 0; i < 8; ++i) {
+      u8(static_cast<uint8_t>(bits >> (8 * i)));
+    }
+    return *this;
+  }
+  Bytes& text(const std::string& s) {
+    var(s.size());
+    data += s;
+    return *this;
+  }
+};
+
+uint32_t crc32(const std::string& data) {
+  uint32_t crc = ~0u;
+  for (const char c : data) {
+    crc ^= static_cast<uint8_t>(c);
+    for (int k = 0; k < 8; ++k) {
+      crc = (crc & 1) != 0 ? 0xEDB88320u ^ (crc >> 1) : crc >> 1;
+    }
+  }
+  return ~crc;
+}
+
+std::string finish(Bytes bytes, int64_t last_tick) {
+  bytes.u8('Z').zig(last_tick);
+  const uint32_t crc = crc32(bytes.data);
+  for (int i = 0; i < 4; ++i) {
+    bytes.u8(static_cast<uint8_t>(crc >> (8 * i)));
+  }
+  return bytes.data;
+}
+
+}  // namespace
+
+TEST_CASE("The CSV export of a binary trajectory is the run's CSV, byte for byte",
+          "[engine][output][trajectory]") {
+  for (const char* example : {"CutIn.xosc", "FastOvertakeWithReInitialization.xosc",
+                              "TrafficJam.xosc", "SynchronizedArrivalToIntersection.xosc"}) {
+    INFO(example);
+    const Recorded run = record_both(asam(example), 1);
+    CHECK(run.csv.size() > 10000);
+    CHECK(run.exported == run.csv);
+    CHECK(run.binary.size() * 5 < run.csv.size());
+  }
+  // Entities added, deleted and spawned by traffic; every 7th step; another controller.
+  for (const char* fixture : {"entity_add_delete_visibility.xosc", "traffic_source_sink.xosc",
+                              "traffic_swarm.xosc", "condition_road.xosc"}) {
+    INFO(fixture);
+    const Recorded every = record_both(engine_fixture(fixture), 7);
+    CHECK(every.exported == every.csv);
+    engine::SimulationOptions dynamics;
+    dynamics.controller = "dynamics";
+    const Recorded other = record_both(engine_fixture(fixture), 1, dynamics);
+    CHECK(other.exported == other.csv);
+  }
+}
+
+TEST_CASE("A binary trajectory's rows are the numbers the CSV rows read back as",
+          "[engine][output][trajectory]") {
+  TempDir dir;
+  engine::RunOptions options;
+  options.scenario = engine_fixture("condition_road.xosc");
+  options.record = dir.path() / "run.corsatraj";
+  Diagnostics diagnostics;
+  engine::run_scenario(options, diagnostics);
+  engine::TrajectoryReader reader(dir.path() / "run.corsatraj");
+  std::istringstream csv(engine::trajectory_csv_of(dir.path() / "run.corsatraj"));
+  std::string line;
+  std::getline(csv, line);  // header
+  engine::TrajectoryFrame frame;
+  size_t rows = 0;
+  while (reader.next(frame)) {
+    for (const engine::TrajectoryRow& row : frame.rows) {
+      REQUIRE(std::getline(csv, line));
+      const auto f = split(line, ',');
+      REQUIRE(f.size() == 13);
+      CHECK(parse_double(f[0]) == frame.time);
+      CHECK(f[1] == reader.entity_name(row.entity));
+      CHECK(parse_double(f[2]) == row.x);
+      CHECK(parse_double(f[3]) == row.y);
+      CHECK(parse_double(f[5]) == row.h);
+      CHECK(parse_double(f[8]) == row.speed);
+      CHECK(f[9].empty() == !row.on_road);
+      if (row.on_road) {
+        CHECK(f[9] == reader.road_id(row.road));
+        CHECK(f[10] == std::to_string(row.lane));
+        CHECK(parse_double(f[11]) == row.s);
+        CHECK(parse_double(f[12]) == row.t);
+      }
+      ++rows;
+    }
+  }
+  CHECK_FALSE(std::getline(csv, line));
+  CHECK(rows > 1000);
+  CHECK(reader.frame_count() == static_cast<size_t>(reader.last_tick() + 1));
+}
+
+TEST_CASE("Entities standing still or driving straight at a steady speed cost nothing",
+          "[engine][output][trajectory]") {
+  // The ASAM TrafficJam: vehicles standing for the whole run, and an ego at a steady speed on a
+  // straight road.
+  const Recorded jam = record_both(asam("TrafficJam.xosc"), 1);
+  CHECK(jam.exported == jam.csv);
+  // Eight entities over 1,001 ticks: a few bytes per entity for the run.
+  CHECK(jam.binary.size() < 1000);
+}
+
+TEST_CASE("A binary trajectory written from the documented format reads as documented",
+          "[engine][output][trajectory]") {
+  TempDir dir;
+  Bytes b;
+  b.data = "CORSATRJ";
+  b.u8(1).f64(0.01).var(100).var(5).zig(0);
+  b.u8('E').var(0).text("Car").u8('E').var(1).text("Ghost");
+  b.u8('R').var(3).text("main");
+  // Tick 0: Car appears on road 3 lane -1 at x = 1 m, y = -2.5 m, s = 10 m, t = -1.75 m,
+  // speed 20 m/s (units of 1e-6; angles 1e-9).
+  b.u8('F').zig(0);
+  const uint32_t fields = (1u << 0) | (1u << 1) | (1u << 6) | (1u << 7) | (1u << 8);
+  b.var(1).var(fields | (1u << 9) | (1u << 10) | (1u << 11));
+  b.var(3 + 1).zig(-1);  // road, lane
+  b.zig(1'000'000).zig(-2'500'000).zig(20'000'000).zig(10'000'000).zig(-1'750'000);
+  b.var(0);
+  // Tick 5: nothing recorded (Car as predicted: standing). Tick 10: Car moves 0.2 m along x and
+  // s; Ghost appears off the road with a raw x (NaN) and y = 3 m.
+  b.u8('F').zig(10);
+  b.var(1).var((1u << 0) | (1u << 7)).zig(200'000).zig(200'000);
+  b.var(1).var((1u << 1) | (1u << 11) | (1u << 12)).var(1u << 0);
+  b.f64(std::nan("")).zig(3'000'000);
+  b.var(0);
+  // Tick 15 is the last (on the interval): Car keeps moving as predicted.
+  write_all(dir.path() / "hand.corsatraj", finish(b, 15));
+
+  engine::TrajectoryReader reader(dir.path() / "hand.corsatraj");
+  CHECK(reader.frame_count() == 4);
+  CHECK(reader.entity_count() == 2);
+  CHECK(reader.road_id(3) == "main");
+  engine::TrajectoryFrame frame;
+  REQUIRE(reader.next(frame));
+  CHECK(frame.tick == 0);
+  REQUIRE(frame.rows.size() == 1);
+  CHECK(frame.rows[0].x == 1.0);
+  CHECK(frame.rows[0].lane == -1);
+  REQUIRE(reader.next(frame));
+  CHECK(frame.tick == 5);
+  CHECK(frame.time == 0.05);
+  CHECK(frame.rows[0].x == 1.0);  // the first change is none
+  REQUIRE(reader.next(frame));
+  CHECK(frame.tick == 10);
+  REQUIRE(frame.rows.size() == 2);
+  CHECK(frame.rows[0].x == 1.2);
+  CHECK(frame.rows[0].s == 10.2);
+  CHECK(std::isnan(frame.rows[1].x));
+  CHECK(frame.rows[1].y == 3.0);
+  CHECK_FALSE(frame.rows[1].on_road);
+  REQUIRE(reader.next(frame));
+  CHECK(frame.tick == 15);
+  CHECK(frame.rows[0].x == 1.4);  // repeats the last change
+  CHECK(frame.rows[0].s == 10.4);
+  CHECK(frame.rows[1].y == 3.0);
+  CHECK_FALSE(reader.next(frame));
+  const std::string csv = engine::trajectory_csv_of(dir.path() / "hand.corsatraj");
+  CHECK_THAT(csv, Catch::Contains("0.15,Car,1.4,-2.5,0,0,0,0,20,main,-1,10.4,-1.75\n"));
+  CHECK_THAT(csv, Catch::Contains("0.1,Ghost,nan,3,0,0,0,0,0,,,,\n"));
+}
+
+TEST_CASE("A damaged binary trajectory is an error naming the file, never a crash",
+          "[engine][output][trajectory][errors]") {
+  TempDir dir;
+  engine::RunOptions options;
+  options.scenario = engine_fixture("traffic_source_sink.xosc");
+  options.record = dir.path() / "good.corsatraj";
+  Diagnostics diagnostics;
+  engine::run_scenario(options, diagnostics);
+  const std::string good = read_all(dir.path() / "good.corsatraj");
+  REQUIRE(good.size() > 100);
+  const auto path = dir.path() / "bad.corsatraj";
+  const auto fails = [&](const std::string& bytes) {
+    write_all(path, bytes);
+    try {
+      engine::trajectory_csv_of(path);
+    } catch (const InputError& error) {
+      return error.diagnostic().file == path.string();
+    }
+    return false;
+  };
+  CHECK(fails(""));
+  CHECK(fails("CORSATRJ"));
+  CHECK(fails("time,entity,x\n"));
+  // Every truncation.
+  for (size_t n = 0; n < good.size(); n += std::max<size_t>(1, good.size() / 400)) {
+    INFO("truncated to " << n);
+    CHECK(fails(good.substr(0, n)));
+  }
+  // Bytes changed anywhere: the checksum or the structure says so.
+  RandomStream random(3);
+  for (int i = 0; i < 300; ++i) {
+    std::string bad = good;
+    const auto at = static_cast<size_t>(random.uniform_int(0, static_cast<int64_t>(bad.size()) - 1));
+    bad[at] = static_cast<char>(bad[at] ^ (1 + random.uniform_int(0, 254)));
+    INFO("byte " << at);
+    CHECK(fails(bad));
+  }
+  // And the command line says it with exit code 2, writing nothing.
+  write_all(path, good.substr(0, good.size() / 2));
+  const ProcessResult result =
+      run_corsa({"record", "export", path.string(), "-o", (dir.path() / "out.csv").string()});
+  CHECK(result.exit_code == 2);
+  CHECK_THAT(result.err, Catch::Contains("bad.corsatraj"));
+  CHECK_FALSE(std::filesystem::exists(dir.path() / "out.csv"));
+}
+
+TEST_CASE("corsa record export writes the CSV corsa run --record writes", "[engine][cli]") {
+  TempDir dir;
+  const auto scenario = asam("CutIn.xosc").string();
+  const auto csv = (dir.path() / "run.csv").string();
+  const auto bin = (dir.path() / "run.corsatraj").string();
+  const auto out = (dir.path() / "export" / "run.csv").string();
+  REQUIRE(run_corsa({"run", scenario, "--quiet", "--record", csv}).exit_code == 0);
+  REQUIRE(run_corsa({"run", scenario, "--quiet", "--record", bin}).exit_code == 0);
+  const ProcessResult exported = run_corsa({"record", "export", bin, "-o", out});
+  CHECK(exported.exit_code == 0);
+  CHECK(read_all(out) == read_all(csv));
+  const ProcessResult info = run_corsa({"record", "info", bin});
+  CHECK(info.exit_code == 0);
+  CHECK_THAT(info.out, Catch::Contains("entities:      3"));
+}
+
+}  // namespace corsa::test
