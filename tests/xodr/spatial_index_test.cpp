@@ -2,13 +2,14 @@
 // only, the section bounds hold every chunk, and the answers are those of an index whose
 // sections were all built before the first query.
 
+#include "spatial_index.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <optional>
 
 #include "corsa/core/random.h"
 #include "corsa/xodr/map.h"
-#include "spatial_index.h"
 #include "xodr_test_util.h"
 
 using namespace corsa::xodr;
@@ -19,9 +20,9 @@ bool same(const std::optional<LanePosition>& a, const std::optional<LanePosition
   if (a.has_value() != b.has_value()) {
     return false;
   }
-  return !a || (a->road == b->road && a->section == b->section && a->lane == b->lane &&
-                a->s == b->s && a->t == b->t && a->distance == b->distance &&
-                a->heading == b->heading);
+  return !a ||
+         (a->road == b->road && a->section == b->section && a->lane == b->lane && a->s == b->s &&
+          a->t == b->t && a->distance == b->distance && a->heading == b->heading);
 }
 
 }  // namespace
@@ -53,8 +54,8 @@ TEST_CASE("section bounds hold every chunk of every shared map", "[xodr][locate]
 }
 
 TEST_CASE("the lazily built index answers as one built all at once", "[xodr][locate]") {
-  for (const char* name : {"Town04.xodr", "SampleDatabase.xodr", "fabriksgatan.xodr",
-                           "e6mini.xodr", "Ex_Line-Spiral-Arc.xodr"}) {
+  for (const char* name : {"Town04.xodr", "SampleDatabase.xodr", "fabriksgatan.xodr", "e6mini.xodr",
+                           "Ex_Line-Spiral-Arc.xodr"}) {
     INFO(name);
     const Map map = test::load_map(test::shared_map(name));
     detail::SpatialIndex lazy, eager;

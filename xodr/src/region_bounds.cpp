@@ -34,8 +34,8 @@ double poly_bound(const Poly3& p, double lo, double hi) {
 double records_bound(const std::vector<Poly3>& records, double lo, double hi, bool zero_before) {
   double bound = 0.0;
   for (size_t i = 0; i < records.size(); ++i) {
-    const double from = (i == 0 && !zero_before) ? -std::numeric_limits<double>::infinity()
-                                                 : records[i].s;
+    const double from =
+        (i == 0 && !zero_before) ? -std::numeric_limits<double>::infinity() : records[i].s;
     const double to =
         i + 1 < records.size() ? records[i + 1].s : std::numeric_limits<double>::infinity();
     if (to < lo || from > hi) {
@@ -80,8 +80,7 @@ double lateral_bound(const Road& road, size_t section_index, double s0, double s
 }
 
 /// Range of a quadratic q(p) = a + b p + c p^2 over [lo, hi].
-void quadratic_range(double a, double b, double c, double lo, double hi, double& min,
-                     double& max) {
+void quadratic_range(double a, double b, double c, double lo, double hi, double& min, double& max) {
   const auto at = [&](double p) { return a + p * (b + p * c); };
   min = std::min(at(lo), at(hi));
   max = std::max(at(lo), at(hi));
@@ -110,10 +109,10 @@ bool param_poly3_bounds(const ParamPoly3Geometry& g, double lo, double hi, doubl
     double du0, du1, dv0, dv1;
     quadratic_range(g.bu, 2.0 * g.cu, 3.0 * g.du, a, b, du0, du1);
     quadratic_range(g.bv, 2.0 * g.cv, 3.0 * g.dv, a, b, dv0, dv1);
-    const double ddu = std::max(std::abs(2.0 * g.cu + 6.0 * g.du * a),
-                                std::abs(2.0 * g.cu + 6.0 * g.du * b));
-    const double ddv = std::max(std::abs(2.0 * g.cv + 6.0 * g.dv * a),
-                                std::abs(2.0 * g.cv + 6.0 * g.dv * b));
+    const double ddu =
+        std::max(std::abs(2.0 * g.cu + 6.0 * g.du * a), std::abs(2.0 * g.cu + 6.0 * g.du * b));
+    const double ddv =
+        std::max(std::abs(2.0 * g.cv + 6.0 * g.dv * a), std::abs(2.0 * g.cv + 6.0 * g.dv * b));
     const double du = std::max(std::abs(du0), std::abs(du1));
     const double dv = std::max(std::abs(dv0), std::abs(dv1));
     const double su = smallest_magnitude(du0, du1), sv = smallest_magnitude(dv0, dv1);
@@ -154,8 +153,7 @@ bool record_reach(const Geometry& g, double lo, double hi, RecordReach& out) {
           return true;
         } else if constexpr (std::is_same_v<T, SpiralGeometry>) {
           disc(reach);
-          const double rate =
-              g.length > 0.0 ? (shape.curv_end - shape.curv_start) / g.length : 0.0;
+          const double rate = g.length > 0.0 ? (shape.curv_end - shape.curv_start) / g.length : 0.0;
           out.curvature = std::abs(shape.curv_start) + std::abs(rate) * reach;
           return true;
         } else if constexpr (std::is_same_v<T, ParamPoly3Geometry>) {
@@ -179,8 +177,7 @@ bool record_reach(const Geometry& g, double lo, double hi, RecordReach& out) {
 }
 
 bool finite(const Bounds& b) {
-  return std::isfinite(b.x0) && std::isfinite(b.y0) && std::isfinite(b.x1) &&
-         std::isfinite(b.y1);
+  return std::isfinite(b.x0) && std::isfinite(b.y0) && std::isfinite(b.x1) && std::isfinite(b.y1);
 }
 
 }  // namespace
@@ -217,11 +214,10 @@ bool section_bounds(const Map& map, size_t road_index, size_t section, Bounds& o
   // A chunk's rectangle: its samples lie within t of reference points at most kChunkReach x
   // stretch apart, so each corner is within that plus 2 t of a sample's reference point, and
   // the index adds a margin for bowing between samples.
-  const double margin =
-      0.1 + (t + kSampleStep) * (1.5 * curvature * kSampleStep * stretch + 0.01);
+  const double margin = 0.1 + (t + kSampleStep) * (1.5 * curvature * kSampleStep * stretch + 0.01);
   const double widen = kChunkReach * stretch + 3.0 * t + margin + 0.5;
-  const double slack = 1e-6 + 1e-9 * std::max({std::abs(box.x0), std::abs(box.y0),
-                                               std::abs(box.x1), std::abs(box.y1)});
+  const double slack = 1e-6 + 1e-9 * std::max({std::abs(box.x0), std::abs(box.y0), std::abs(box.x1),
+                                               std::abs(box.y1)});
   out = Bounds{box.x0 - widen - slack, box.y0 - widen - slack, box.x1 + widen + slack,
                box.y1 + widen + slack};
   return std::isfinite(widen) && finite(out);
