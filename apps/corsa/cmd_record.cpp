@@ -43,8 +43,8 @@ int record_info(std::span<const std::string> args) {
   const engine::TrajectoryReader reader(file);
   std::cout << "file:          " << file.string() << " (" << std::filesystem::file_size(file)
             << " bytes)\n"
-            << "step:          " << format_fixed(reader.dt(), 6) << " s, every "
-            << reader.every() << " recorded\n"
+            << "step:          " << format_fixed(reader.dt(), 6) << " s, every " << reader.every()
+            << " recorded\n"
             << "ticks:         " << reader.first_tick() << " to " << reader.last_tick() << ", "
             << reader.frame_count() << " recorded\n"
             << "entities:      " << reader.entity_count() << "\n"

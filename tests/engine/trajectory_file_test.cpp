@@ -275,7 +275,8 @@ TEST_CASE("A damaged binary trajectory is an error naming the file, never a cras
   RandomStream random(3);
   for (int i = 0; i < 300; ++i) {
     std::string bad = good;
-    const auto at = static_cast<size_t>(random.uniform_int(0, static_cast<int64_t>(bad.size()) - 1));
+    const auto at =
+        static_cast<size_t>(random.uniform_int(0, static_cast<int64_t>(bad.size()) - 1));
     bad[at] = static_cast<char>(bad[at] ^ (1 + random.uniform_int(0, 254)));
     INFO("byte " << at);
     CHECK(fails(bad));

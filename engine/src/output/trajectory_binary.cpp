@@ -48,8 +48,7 @@ namespace {
 // The N of a step dt = 1 / N (the engine then counts time as tick / N), or 0.
 int64_t steps_per_second(double dt) {
   const double n = std::round(1.0 / dt);
-  return n >= 1.0 && n < 1e9 && std::abs(1.0 / n - dt) <= 1e-15 * dt ? static_cast<int64_t>(n)
-                                                                       : 0;
+  return n >= 1.0 && n < 1e9 && std::abs(1.0 / n - dt) <= 1e-15 * dt ? static_cast<int64_t>(n) : 0;
 }
 
 double tick_time(int64_t tick, int64_t per_second, double dt) {
@@ -160,8 +159,7 @@ void BinaryTrajectoryRecorder::State::record(const Simulation& simulation) {
   const int64_t tick = simulation.tick();
   last_recorded = tick;
   while (entities.size() < simulation.entity_count()) {
-    put_string(buffer, codec::kTagEntity, entities.size(),
-               simulation.entity(entities.size()).name);
+    put_string(buffer, codec::kTagEntity, entities.size(), simulation.entity(entities.size()).name);
     entities.emplace_back();
   }
   roads.clear();
@@ -171,8 +169,8 @@ void BinaryTrajectoryRecorder::State::record(const Simulation& simulation) {
     encode(simulation, i, previous);
   }
   const double time = simulation.time();
-  const bool odd_time = std::bit_cast<uint64_t>(time) !=
-                        std::bit_cast<uint64_t>(tick_time(tick, per_second, dt));
+  const bool odd_time =
+      std::bit_cast<uint64_t>(time) != std::bit_cast<uint64_t>(tick_time(tick, per_second, dt));
   if (frame.empty() && !odd_time) {
     return;  // every present entity as predicted: the tick costs nothing
   }

@@ -55,9 +55,9 @@ struct TrajectoryReader::Impl {
   std::vector<bool> touched;
 
   [[noreturn]] void fail(size_t at, const std::string& what) const {
-    throw InputError(Diagnostic{Severity::kError, file, 0, -1, "",
-                                "not a readable Corsa binary trajectory: " + what + " (byte " +
-                                    std::to_string(at) + ")"});
+    throw InputError(Diagnostic{
+        Severity::kError, file, 0, -1, "",
+        "not a readable Corsa binary trajectory: " + what + " (byte " + std::to_string(at) + ")"});
   }
 
   uint8_t byte(size_t& at) const {
@@ -478,9 +478,7 @@ const std::string& TrajectoryReader::entity_name(uint32_t entity) const {
   return impl_->names.at(entity);
 }
 size_t TrajectoryReader::road_count() const { return impl_->roads.size(); }
-const std::string& TrajectoryReader::road_id(uint32_t road) const {
-  return impl_->roads.at(road);
-}
+const std::string& TrajectoryReader::road_id(uint32_t road) const { return impl_->roads.at(road); }
 
 std::string trajectory_csv_of(const std::filesystem::path& binary) {
   TrajectoryReader reader(binary);
@@ -499,6 +497,5 @@ void export_trajectory_csv(const std::filesystem::path& binary, const std::files
 bool is_binary_trajectory(const std::filesystem::path& file) {
   return file.extension() == ".corsatraj";
 }
-
 
 }  // namespace corsa::engine

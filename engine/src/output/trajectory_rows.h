@@ -21,8 +21,18 @@ inline constexpr int kLengthDecimals = 6;
 inline constexpr int kAngleDecimals = 9;
 
 /// The numeric fields of a row, in file order.
-enum RowField : int { kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed, kFieldS,
-                      kFieldT, kRowFields };
+enum RowField : int {
+  kFieldX,
+  kFieldY,
+  kFieldZ,
+  kFieldH,
+  kFieldP,
+  kFieldR,
+  kFieldSpeed,
+  kFieldS,
+  kFieldT,
+  kRowFields
+};
 
 /// Decimals of each numeric field.
 inline constexpr int kFieldDecimals[kRowFields] = {

@@ -44,7 +44,7 @@ class BinaryTrajectoryRecorder final : public SimulationObserver {
 /// One entity at one recorded tick: the numbers of its trajectory CSV row, read back from their
 /// decimals (lengths and speeds to 1e-6, angles to 1e-9; the same doubles as parsing the CSV).
 struct TrajectoryRow {
-  uint32_t entity = 0;  ///< index, in document order (TrajectoryReader::entity_name)
+  uint32_t entity = 0;               ///< index, in document order (TrajectoryReader::entity_name)
   double x = 0.0, y = 0.0, z = 0.0;  ///< m, world frame
   double h = 0.0, p = 0.0, r = 0.0;  ///< rad
   double speed = 0.0;                ///< m/s
@@ -76,8 +76,8 @@ class TrajectoryReader {
   /// Back to the first recorded tick.
   void rewind();
 
-  double dt() const;          ///< s, the run's step
-  int64_t every() const;      ///< a tick in `every` was recorded (and the last)
+  double dt() const;      ///< s, the run's step
+  int64_t every() const;  ///< a tick in `every` was recorded (and the last)
   int64_t first_tick() const;
   int64_t last_tick() const;
   size_t frame_count() const;  ///< recorded ticks
