@@ -19,6 +19,7 @@
 #include "controllers/controllers.h"
 #include "controllers/follow_view.h"
 #include "lanes/lane_follow.h"
+#include "state/lane_index.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -117,75 +118,132 @@ std::optional<double> distance_on_path(const LanePath& path, const RoadCoordinat
   return std::nullopt;
 }
 
-// Every entity that distance_on_path can place within kRange ahead (and a few more, some
-// twice): those in the lanes of the path, from where the path enters each lane to where kRange
-// ends, plus those in lanes the index does not hold.
-void candidates_on_path(const xodr::Map& map, const LanePath& path, int containing,
-                        const FollowView& view, std::vector<uint32_t>& out) {
-  constexpr double kSlack = 1e-3;  // m: a superset, whatever the rounding of `ahead`
-  out.assign(view.unindexed().begin(), view.unindexed().end());
-  for (size_t i = 0; i < path.count; ++i) {
-    const PathPiece& piece = path.pieces[i];
-    const double reach = kRange - piece.distance + kSlack;
-    const double low = piece.dir > 0 ? piece.s_entry - kSlack : piece.s_entry - reach;
-    const double high = piece.dir > 0 ? piece.s_entry + reach : piece.s_entry + kSlack;
-    view.lanes().query(piece.node, low, high, out);
-    if (i == 0 && containing != piece.lane) {
-      const auto node = map.lane_graph().find(xodr::LaneRef{piece.road, piece.section, containing});
-      if (node) {
-        view.lanes().query(*node, low, high, out);
+// The search for the leader: the nearest usable entity ahead on the lane path, as the view
+// shows it; of equal gaps the lowest entity index (what a scan of every entity in index order
+// keeps).
+class LeaderSearch {
+ public:
+  LeaderSearch(const Entity& me, uint32_t self, const LanePath& path, const FollowView& view)
+      : me_(me),
+        self_(self),
+        path_(path),
+        view_(view),
+        containing_(me.state.road->lane),
+        my_front_(me.info.box.center_x + 0.5 * me.info.box.length) {}
+
+  // Every entity that can be the leader is considered: those in lanes the index does not hold,
+  // then, piece by piece along the path, those in its lane from where the path enters it, in the
+  // order the path meets them, until no entity further on can be nearer than the leader so far:
+  // an entity first met on piece i, `local` metres along the path, is `local` metres ahead, so
+  // its gap is at least local - front + least rear (IEEE addition is monotonic, so also as
+  // computed). Entities met on an earlier piece have been considered there.
+  Leader find(const xodr::Map& map) {
+    for (const uint32_t i : view_.unindexed()) {
+      consider(i);
+    }
+    for (size_t k = 0; k < path_.count; ++k) {
+      const PathPiece& piece = path_.pieces[k];
+      if (beyond(piece.distance)) {
+        break;
+      }
+      walk(piece, piece.node);
+      if (k == 0 && containing_ != piece.lane) {
+        const auto node =
+            map.lane_graph().find(xodr::LaneRef{piece.road, piece.section, containing_});
+        if (node) {
+          walk(piece, *node);
+        }
       }
     }
+    return leader_;
   }
-}
 
-// The nearest usable entity ahead on the lane path, as the view shows it; of equal gaps the
-// lowest entity index (what a scan of every entity in index order keeps).
-Leader find_leader(const SimState& state, uint32_t self, const FollowView& view, LanesAhead& ahead,
-                   std::vector<uint32_t>& candidates) {
-  const Entity& me = state.world.entities[self];
-  Leader leader;
-  if (!me.state.road || !me.lane.on_road || state.map == nullptr) {
-    return leader;
+ private:
+  // Whether an entity `local` metres along the path cannot be nearer than the leader so far.
+  bool beyond(double local) const {
+    return local >= kRange + kSlack || (local - my_front_) + view_.least_rear() > leader_.gap;
   }
-  const LanePath path = path_ahead(*state.map, me, ahead);
-  const int containing = me.state.road->lane;
-  candidates_on_path(*state.map, path, containing, view, candidates);
-  const double my_front = me.info.box.center_x + 0.5 * me.info.box.length;
-  const double x = me.state.pose.x, y = me.state.pose.y;
-  uint32_t chosen = UINT32_MAX;
-  for (const uint32_t i : candidates) {
-    const FollowTarget& other = view.targets()[i];
-    if (i == self || !other.usable) {
-      continue;
+
+  // The entities of lane `node` from the piece's entry on, in the direction of travel.
+  void walk(const PathPiece& piece, xodr::LaneNode node) {
+    const auto lane = view_.lanes().lane(node);
+    const auto by_s = [](const LaneIndex::Entry& e, double s) { return e.s < s; };
+    if (piece.dir > 0) {
+      auto it = std::lower_bound(lane.begin(), lane.end(), piece.s_entry - kSlack, by_s);
+      for (; it != lane.end(); ++it) {
+        if (beyond(piece.distance + (it->s - piece.s_entry))) {
+          break;
+        }
+        consider(it->entity);
+      }
+      return;
+    }
+    auto it = std::lower_bound(lane.begin(), lane.end(), piece.s_entry + kSlack, by_s);
+    // Entries before `it` have s < entry + slack: walk them backwards (toward -s).
+    while (it != lane.begin()) {
+      --it;
+      if (it->s > piece.s_entry + kSlack) {
+        continue;
+      }
+      if (beyond(piece.distance + (it->s - piece.s_entry) * -1)) {
+        break;
+      }
+      consider(it->entity);
+    }
+  }
+
+  void consider(uint32_t i) {
+    const FollowTarget& other = view_.targets()[i];
+    if (i == self_ || !other.usable) {
+      return;
     }
     // What is farther in a straight line than kReach cannot be within kRange along the path
     // (s runs along the reference line; outer lanes of bends are longer).
-    const double dx = other.x - x, dy = other.y - y;
+    const double dx = other.x - me_.state.pose.x, dy = other.y - me_.state.pose.y;
     if (dx * dx + dy * dy > kReach * kReach) {
-      continue;
+      return;
     }
-    const auto ahead = distance_on_path(path, other.road, containing);
+    const auto ahead = distance_on_path(path_, other.road, containing_);
     if (!ahead || *ahead >= kRange) {
-      continue;
+      return;
     }
-    const double gap = *ahead - my_front + other.rear;
-    if (gap < leader.gap || (gap == leader.gap && i < chosen)) {
-      chosen = i;
-      leader.gap = gap;
-      leader.speed = other.speed * std::cos(other.h - me.state.pose.h);
+    const double gap = *ahead - my_front_ + other.rear;
+    if (gap < leader_.gap || (gap == leader_.gap && i < chosen_)) {
+      chosen_ = i;
+      leader_.gap = gap;
+      leader_.speed = other.speed * std::cos(other.h - me_.state.pose.h);
     }
   }
-  return leader;
+
+  static constexpr double kSlack = 1e-3;  // m, against the rounding of the path distances
+
+  const Entity& me_;
+  uint32_t self_;
+  const LanePath& path_;
+  const FollowView& view_;
+  int containing_;
+  double my_front_;
+  Leader leader_;
+  uint32_t chosen_ = UINT32_MAX;
+};
+
+Leader find_leader(const SimState& state, uint32_t self, const FollowView& view,
+                   LanesAhead& ahead) {
+  const Entity& me = state.world.entities[self];
+  if (!me.state.road || !me.lane.on_road || state.map == nullptr) {
+    return Leader{};
+  }
+  const LanePath path = path_ahead(*state.map, me, ahead);
+  return LeaderSearch(me, self, path, view).find(*state.map);
 }
 
 }  // namespace
 
 void step_acc(SimState& state, uint32_t index, const MotionContext& motion, const FollowView& view,
-              LanesAhead& ahead, std::vector<uint32_t>& candidates) {
+              LanesAhead& ahead) {
   Entity& entity = state.world.entities[index];
   const double set_speed = entity.speed_command;
-  const Leader leader = find_leader(state, index, view, ahead, candidates);
+  const Leader leader = find_leader(state, index, view, ahead);
   double command = set_speed;
   if (std::isfinite(leader.gap)) {
     const double v = entity.state.speed;

@@ -101,6 +101,7 @@ namespace {
 // time: below that the hand-over costs more than the moves.
 constexpr uint32_t kParallelEntities = 128;
 constexpr uint32_t kParallelGrain = 32;
+constexpr uint32_t kArrangeSteps = 50;
 
 std::optional<xodr::LaneType> lane_type_at(const xodr::Map& map, const RoadCoordinates& road) {
   const auto node = map.lane_graph().find(xodr::LaneRef{road.road, road.section, road.lane});
@@ -147,7 +148,7 @@ bool dynamics_moves(const SimState& state, uint32_t index) {
 // One entity's move with its controller. It reads and writes only that entity (and its
 // control state), the map and, for car following, the picture `view` taken before the moves.
 void move_one(SimState& state, uint32_t i, const MotionContext& motion, const FollowView& view,
-              LanesAhead& ahead, std::vector<uint32_t>& candidates) {
+              LanesAhead& ahead) {
   const DefaultController ideal;
   Entity& entity = state.world.entities[i];
   if (!entity.state.placed) {
@@ -163,7 +164,7 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
       ideal.step(entity, motion);
       break;
     case ControllerKind::kAcc:
-      step_acc(state, i, motion, view, ahead, candidates);
+      step_acc(state, i, motion, view, ahead);
       break;
     case ControllerKind::kDynamics:
       if (entity.pose_command) {
@@ -188,12 +189,31 @@ struct EntityMover::Impl {
   std::unique_ptr<tbb::task_arena> arena;  ///< made on the first parallel step
   FollowView view;
   std::vector<LanesAhead> ahead;  ///< per entity (car following)
-  /// Per worker: lane span scratch and car following's candidates.
-  struct Scratch {
-    std::vector<xodr::LaneSpan> spans;
-    std::vector<uint32_t> candidates;
-  };
-  std::vector<Scratch> scratch;
+  /// Per worker: lane span scratch.
+  std::vector<std::vector<xodr::LaneSpan>> scratch;
+  /// The order entities are moved in: by lane, so that one after the other they read the same
+  /// parts of the map (the result does not depend on it; with many vehicles spread over a city
+  /// map, memory traffic is most of a move's time). Sorted again every kArrangeSteps steps.
+  std::vector<uint32_t> order;
+  uint32_t steps_since_arranged = 0;
+
+  void arrange(const SimState& state) {
+    const auto count = static_cast<uint32_t>(state.world.entities.size());
+    if (order.size() == count && ++steps_since_arranged < kArrangeSteps) {
+      return;
+    }
+    steps_since_arranged = 0;
+    order.resize(count);
+    std::vector<std::pair<uint64_t, uint32_t>> keys(count);
+    for (uint32_t i = 0; i < count; ++i) {
+      const LaneFollow& lane = state.world.entities[i].lane;
+      keys[i] = {lane.on_road ? uint64_t{lane.node} : UINT64_MAX, i};
+    }
+    std::sort(keys.begin(), keys.end());
+    for (uint32_t k = 0; k < count; ++k) {
+      order[k] = keys[k].second;
+    }
+  }
 };
 
 EntityMover::EntityMover(unsigned threads) : impl_(std::make_unique<Impl>(threads)) {}
@@ -226,13 +246,15 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     impl.view.build(state);
   }
   impl.ahead.resize(count);
+  impl.arrange(state);
+  const std::vector<uint32_t>& order = impl.order;
   const unsigned workers = count >= kParallelEntities ? impl.threads : 1;
   impl.scratch.resize(std::max<size_t>(impl.scratch.size(), workers));
   if (workers == 1) {
     MotionContext context = motion;
-    context.scratch = &impl.scratch[0].spans;
-    for (uint32_t i = 0; i < count; ++i) {
-      move_one(state, i, context, impl.view, impl.ahead[i], impl.scratch[0].candidates);
+    context.scratch = &impl.scratch[0];
+    for (const uint32_t i : order) {
+      move_one(state, i, context, impl.view, impl.ahead[i]);
     }
     return;
   }
@@ -245,11 +267,11 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, kParallelGrain),
                       [&](const tbb::blocked_range<uint32_t>& range) {
                         const int worker = tbb::this_task_arena::current_thread_index();
-                        Impl::Scratch& mine = impl.scratch[static_cast<size_t>(worker)];
                         MotionContext context = motion;
-                        context.scratch = &mine.spans;
-                        for (uint32_t i = range.begin(); i != range.end(); ++i) {
-                          move_one(state, i, context, impl.view, impl.ahead[i], mine.candidates);
+                        context.scratch = &impl.scratch[static_cast<size_t>(worker)];
+                        for (uint32_t k = range.begin(); k != range.end(); ++k) {
+                          const uint32_t i = order[k];
+                          move_one(state, i, context, impl.view, impl.ahead[i]);
                         }
                       });
   });

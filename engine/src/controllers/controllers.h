@@ -63,9 +63,9 @@ struct LanesAhead;
 /// The car-following controller: the commanded speed, limited so as to keep a time gap to the
 /// vehicle ahead on the lane path it will drive (through links and junctions, within 200 m), as
 /// `view` shows the others; then the default controller's motion. `ahead` is the entity's own,
-/// kept between steps; `candidates` is scratch.
+/// kept between steps.
 void step_acc(SimState& state, uint32_t index, const MotionContext& motion, const FollowView& view,
-              LanesAhead& ahead, std::vector<uint32_t>& candidates);
+              LanesAhead& ahead);
 
 /// The dynamics controller (controllers/dynamics_controller.cpp), in two halves.
 /// begin_dynamics: for each entity of `indices`, the driver model's inputs from the entity's own

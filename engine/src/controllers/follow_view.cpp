@@ -1,5 +1,9 @@
 #include "controllers/follow_view.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "corsa/xodr/map.h"
 #include "state/sim_state.h"
 
@@ -11,6 +15,7 @@ void FollowView::build(const SimState& state) {
   unindexed_.clear();
   const xodr::LaneGraph* graph = state.map != nullptr ? &state.map->lane_graph() : nullptr;
   lanes_.reset(graph != nullptr ? graph->size() : 0);
+  least_rear_ = std::numeric_limits<double>::infinity();
   for (uint32_t i = 0; i < entities.size(); ++i) {
     const Entity& entity = entities[i];
     FollowTarget& target = targets_[i];
@@ -24,6 +29,11 @@ void FollowView::build(const SimState& state) {
     target.h = entity.state.pose.h;
     target.speed = entity.state.speed;
     target.rear = entity.info.box.center_x - 0.5 * entity.info.box.length;
+    // NaN stays out of the minimum (no bound then: see below).
+    least_rear_ = std::min(least_rear_, target.rear);
+    if (std::isnan(target.rear)) {
+      least_rear_ = -std::numeric_limits<double>::infinity();
+    }
     target.road = *entity.state.road;
     // Mostly the entity is in the lane it follows, whose node it knows.
     const LaneFollow& follow = entity.lane;

@@ -38,11 +38,15 @@ class FollowView {
   const LaneIndex& lanes() const { return lanes_; }
   /// Usable entities whose lane is not a lane-graph node (looked at by every query).
   const std::vector<uint32_t>& unindexed() const { return unindexed_; }
+  /// The least FollowTarget::rear of the usable entities (m; +inf without any): a gap to an
+  /// entity `ahead` metres along the path is at least ahead - own front + this.
+  double least_rear() const { return least_rear_; }
 
  private:
   std::vector<FollowTarget> targets_;
   LaneIndex lanes_;
   std::vector<uint32_t> unindexed_;
+  double least_rear_ = 0.0;
 };
 
 /// The lanes a follower will drive after the one it is in, as enter_next_lane chooses them at

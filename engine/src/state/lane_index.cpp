@@ -50,4 +50,8 @@ void LaneIndex::query(xodr::LaneNode node, double s_low, double s_high,
   }
 }
 
+std::span<const LaneIndex::Entry> LaneIndex::lane(xodr::LaneNode node) const {
+  return node < lanes_.size() ? std::span<const Entry>(lanes_[node]) : std::span<const Entry>();
+}
+
 }  // namespace corsa::engine::detail

@@ -7,6 +7,7 @@
 // binary search.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "corsa/xodr/lane_graph.h"
@@ -23,17 +24,20 @@ class LaneIndex {
   /// Sorts every lane's entities by (s, entity).
   void finish();
 
+  struct Entry {
+    double s = 0.0;  ///< m, road s
+    uint32_t entity = 0;
+  };
+
   /// Appends to `out` the entities in lane `node` with s in [s_low, s_high] (m), in s order.
   void query(xodr::LaneNode node, double s_low, double s_high, std::vector<uint32_t>& out) const;
+  /// The entities in lane `node`, by (s, entity); empty for a lane without any.
+  std::span<const Entry> lane(xodr::LaneNode node) const;
 
   /// Entities in the index.
   size_t size() const { return size_; }
 
  private:
-  struct Entry {
-    double s = 0.0;
-    uint32_t entity = 0;
-  };
   std::vector<std::vector<Entry>> lanes_;  ///< by lane-graph node
   std::vector<xodr::LaneNode> used_;       ///< nodes with entries
   size_t size_ = 0;

@@ -56,6 +56,10 @@ struct TrafficState {
   /// When each generated entity appeared and left (by entity index; a generator may respawn
   /// one of its entities that left), for the summary.
   std::map<uint32_t, std::vector<Lifetime>> lifetimes;
+  /// Entities removed so far (remove_entity), and the count the lifetimes were last updated at:
+  /// without a removal in between, no lifetime can have ended.
+  uint64_t removals = 0;
+  uint64_t removals_seen = 0;
 
   /// Index of the signal controller named `name`, or nothing.
   std::optional<size_t> find_controller(std::string_view name) const;

@@ -45,11 +45,13 @@ bool contact_inputs_unchanged(SimState& state) {
   return false;
 }
 
+// A box in the sweep; the boxes themselves stay apart (`boxes`, by `box`), so that sorting
+// moves 40 bytes an item instead of 112.
 struct Item {
   double low, high;    ///< extent along x
   double ylow, yhigh;  ///< extent along y
-  uint32_t index;
-  OrientedBox box;
+  uint32_t index;      ///< entity
+  uint32_t box;        ///< into boxes
 };
 
 // Margin (m) by which the y extents are widened before pairs are rejected on them: a pair whose
@@ -77,7 +79,9 @@ void update_contacts(SimState& state) {
   // Boxes whose extents along x overlap (sweep and prune) are tested exactly. Pairs apart along
   // y (with a rounding margin) cannot overlap and are skipped.
   std::vector<Item> items;
+  std::vector<OrientedBox> boxes;
   items.reserve(entities.size());
+  boxes.reserve(entities.size());
   bool finite = true;
   double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
   for (uint32_t i = 0; i < entities.size(); ++i) {
@@ -93,7 +97,8 @@ void update_contacts(SimState& state) {
     x1 = items.empty() ? x.high : std::max(x1, x.high);
     y0 = items.empty() ? y.low : std::min(y0, y.low);
     y1 = items.empty() ? y.high : std::max(y1, y.high);
-    items.push_back({x.low, x.high, y.low, y.high, i, box});
+    items.push_back({x.low, x.high, y.low, y.high, i, static_cast<uint32_t>(boxes.size())});
+    boxes.push_back(box);
   }
   auto& now = state.contacts.pairs;
   if (finite && y1 - y0 > x1 - x0) {
@@ -109,7 +114,7 @@ void update_contacts(SimState& state) {
         const Item& first = a_first ? items[a] : items[b];
         const Item& second = a_first ? items[b] : items[a];
         if (second.low <= first.high && !y_apart(items[a], items[b]) &&
-            overlap(items[a].box, items[b].box)) {
+            overlap(boxes[items[a].box], boxes[items[b].box])) {
           now.emplace_back(std::min(items[a].index, items[b].index),
                            std::max(items[a].index, items[b].index));
         }
@@ -119,7 +124,7 @@ void update_contacts(SimState& state) {
     std::sort(items.begin(), items.end(), sweep_order);
     for (size_t a = 0; a < items.size(); ++a) {
       for (size_t b = a + 1; b < items.size() && items[b].low <= items[a].high; ++b) {
-        if (!y_apart(items[a], items[b]) && overlap(items[a].box, items[b].box)) {
+        if (!y_apart(items[a], items[b]) && overlap(boxes[items[a].box], boxes[items[b].box])) {
           now.emplace_back(std::min(items[a].index, items[b].index),
                            std::max(items[a].index, items[b].index));
         }

@@ -107,6 +107,10 @@ void update_traffic(SimState& state) {
     traffic.generators[i]->step(state);
   }
   // Generated entities removed this step (by a generator, a sink, a DeleteEntityAction).
+  if (traffic.removals == traffic.removals_seen) {
+    return;
+  }
+  traffic.removals_seen = traffic.removals;
   for (auto& [index, lives] : traffic.lifetimes) {
     if (!lives.empty() && !lives.back().removed && !state.world.entities[index].state.placed) {
       lives.back().removed = state.now();
@@ -115,6 +119,7 @@ void update_traffic(SimState& state) {
 }
 
 void remove_entity(SimState& state, uint32_t index) {
+  ++state.traffic.removals;
   Entity& entity = state.world.entities[index];
   entity.state.placed = false;
   entity.state.speed = 0.0;

@@ -1,0 +1,203 @@
+// City-scale traffic and long runs (targets: 1,000 car-following vehicles on Town04 at 20x real
+// time or more on 2 cores; 800 vehicles in at most 10x the time of 100; recording a trajectory
+// at most 10% of a long run's time).
+//
+//   corsa_bench_traffic [--runs N] [--part scale|long|all]
+//
+// scale: `--npc vehicles=N` on ../shared/data/xodr/Town04.xodr (an empty scenario of its own), N
+//   from 100 to 1,000, 10 s simulated (1,000 steps of 0.01 s) on a fresh Simulation per run;
+//   the NPCs' placement is timed apart from the steps. 1,000 and 800 vehicles also on 2 threads.
+//   Printed: median wall and CPU time of the steps, the real-time factor (simulated / wall),
+//   microseconds per vehicle-step, and the 800 / 100 ratio (100 vehicles is the baseline).
+// long: the 1,200 s scenarios of tests/bench/scenarios (long_standstill: seven vehicles that
+//   stop within 40 s and stand; long_motorway: 24 car followers on the Town04 motorway loop),
+//   each without a trajectory (the baseline), with the CSV and with the binary trajectory
+//   (.corsatraj); median CPU time of the whole run (load, simulate, write) and the recording's
+//   share.
+// Release build; medians of `runs` (default 5) repetitions, alternating the variants within
+// each repetition so that a change in the machine's load hits them alike. The load average is
+// printed: on the shared machine wall time includes waiting for a core.
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench_util.h"
+#include "corsa/core/diagnostic.h"
+#include "corsa/engine/run.h"
+#include "corsa/engine/simulation.h"
+#include "corsa/xodr/map.h"
+#include "corsa/xosc/scenario.h"
+
+namespace {
+
+using corsa::bench::median;
+using corsa::bench::process_cpu_ms;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kScaleSeconds = 10.0;
+
+double load_average() {
+  double load[1] = {0.0};
+  return getloadavg(load, 1) == 1 ? load[0] : -1.0;
+}
+
+std::string shared(const std::string& relative) {
+  return (std::filesystem::path(CORSA_SHARED_DIR) / relative).lexically_normal().string();
+}
+
+// An empty scenario on Town04: the NPCs are the only entities.
+const char* kTown04 =
+    "<?xml version=\"1.0\"?><OpenSCENARIO><FileHeader revMajor=\"1\" revMinor=\"3\" "
+    "date=\"2026-01-01T00:00:00\" description=\"NPC traffic on Town04\" author=\"Corsa\"/>"
+    "<ParameterDeclarations/><CatalogLocations/><RoadNetwork><LogicFile filepath=\"%s\"/>"
+    "</RoadNetwork><Entities/><Storyboard><Init><Actions/></Init><StopTrigger/></Storyboard>"
+    "</OpenSCENARIO>";
+
+struct StepTiming {
+  double place_ms = 0.0;  ///< building the Simulation (NPC placement), wall
+  double wall_ms = 0.0;   ///< the steps
+  double cpu_ms = 0.0;
+};
+
+StepTiming step_npcs(const corsa::xosc::Scenario& scenario,
+                     const std::shared_ptr<const corsa::xodr::Map>& map, uint32_t vehicles,
+                     unsigned threads) {
+  corsa::Diagnostics diagnostics;
+  corsa::engine::SimulationOptions options;
+  options.duration = kScaleSeconds;
+  options.npc.vehicles = vehicles;
+  options.threads = threads;
+  StepTiming timing;
+  const auto built = Clock::now();
+  corsa::engine::Simulation sim(scenario, map, options, diagnostics);
+  sim.step();  // tick 0's observers and the first step belong to the run, the placement not
+  timing.place_ms = std::chrono::duration<double, std::milli>(Clock::now() - built).count();
+  const auto start = Clock::now();
+  const double cpu = process_cpu_ms();
+  while (sim.step()) {
+  }
+  timing.wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  timing.cpu_ms = process_cpu_ms() - cpu;
+  if (sim.entity_count() != vehicles) {
+    std::fprintf(stderr, "only %zu of %u NPCs placed\n", sim.entity_count(), vehicles);
+    std::exit(1);
+  }
+  return timing;
+}
+
+void scale(int runs) {
+  corsa::Diagnostics diagnostics;
+  char text[1024];
+  std::snprintf(text, sizeof text, kTown04, shared("data/xodr/Town04.xodr").c_str());
+  const auto scenario =
+      corsa::xosc::parse_scenario(text, std::filesystem::current_path() / "town04.xosc", {},
+                                  diagnostics);
+  const auto map = corsa::engine::load_road_network(scenario, diagnostics);
+  struct Case {
+    uint32_t vehicles;
+    unsigned threads;
+    std::vector<double> place, wall, cpu;
+  };
+  std::vector<Case> cases = {{100, 1, {}, {}, {}}, {200, 1, {}, {}, {}}, {400, 1, {}, {}, {}},
+                             {800, 1, {}, {}, {}}, {800, 2, {}, {}, {}}, {1000, 1, {}, {}, {}},
+                             {1000, 2, {}, {}, {}}};
+  for (int r = 0; r < runs; ++r) {
+    for (Case& c : cases) {
+      const StepTiming t = step_npcs(scenario, map, c.vehicles, c.threads);
+      c.place.push_back(t.place_ms);
+      c.wall.push_back(t.wall_ms);
+      c.cpu.push_back(t.cpu_ms);
+    }
+  }
+  std::printf("Town04, --npc vehicles=N (car following), %.0f s simulated, median of %d runs, "
+              "load average %.1f\n",
+              kScaleSeconds, runs, load_average());
+  std::printf("%9s %8s %11s %13s %12s %17s %14s\n", "vehicles", "threads", "place (ms)",
+              "steps wall ms", "steps CPU ms", "real-time factor", "us/vehicle-step");
+  double wall_100 = 0.0, wall_800 = 0.0, cpu_100 = 0.0, cpu_800 = 0.0;
+  for (const Case& c : cases) {
+    const double wall = median(c.wall), cpu = median(c.cpu);
+    std::printf("%9u %8u %11.1f %13.1f %12.1f %16.1fx %14.3f\n", c.vehicles, c.threads,
+                median(c.place), wall, cpu, kScaleSeconds * 1e3 / wall,
+                wall * 1e3 / (kScaleSeconds * 100.0 * c.vehicles));
+    if (c.threads == 1 && c.vehicles == 100) {
+      wall_100 = wall, cpu_100 = cpu;
+    }
+    if (c.threads == 1 && c.vehicles == 800) {
+      wall_800 = wall, cpu_800 = cpu;
+    }
+  }
+  std::printf("800 / 100 vehicles: %.1fx the wall time, %.1fx the CPU time (target <= 10x)\n\n",
+              wall_800 / wall_100, cpu_800 / cpu_100);
+}
+
+// CPU ms of a whole run (load, simulate, write) of `scenario` recording to `record` (none when
+// empty).
+double run_cpu_ms(const std::filesystem::path& scenario, const std::filesystem::path& record) {
+  corsa::Diagnostics diagnostics;
+  corsa::engine::RunOptions options;
+  options.scenario = scenario;
+  options.simulation.threads = 1;
+  if (!record.empty()) {
+    options.record = record;
+  }
+  const double cpu = process_cpu_ms();
+  corsa::engine::run_scenario(options, diagnostics);
+  return process_cpu_ms() - cpu;
+}
+
+void long_runs(int runs) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("corsa-bench-traffic-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  std::printf("1,200 s scenarios (tests/bench/scenarios), CPU ms of the whole run, median of %d "
+              "runs, load average %.1f\n",
+              runs, load_average());
+  std::printf("%-16s %10s %10s %12s %10s %12s %12s %12s\n", "scenario", "no record", "CSV",
+              "CSV share", "binary", "binary share", "CSV bytes", "binary bytes");
+  for (const char* name : {"long_standstill", "long_motorway"}) {
+    const auto scenario =
+        std::filesystem::path(CORSA_SOURCE_DIR) / "tests/bench/scenarios" / (std::string(name) + ".xosc");
+    std::vector<double> none, csv, binary;
+    for (int r = 0; r < runs; ++r) {
+      none.push_back(run_cpu_ms(scenario, {}));
+      csv.push_back(run_cpu_ms(scenario, dir / "run.csv"));
+      binary.push_back(run_cpu_ms(scenario, dir / "run.corsatraj"));
+    }
+    const double base = median(none), c = median(csv), b = median(binary);
+    std::printf("%-16s %10.1f %10.1f %11.1f%% %10.1f %11.1f%% %12ju %12ju\n", name, base, c,
+                100.0 * (c - base) / c, b, 100.0 * (b - base) / b,
+                static_cast<uintmax_t>(std::filesystem::file_size(dir / "run.csv")),
+                static_cast<uintmax_t>(std::filesystem::file_size(dir / "run.corsatraj")));
+  }
+  std::printf("(share: the recording's part of the run with it, (with - without) / with)\n\n");
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int runs = 5;
+  std::string part = "all";
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (std::strcmp(argv[i], "--runs") == 0) {
+      runs = std::max(1, std::atoi(argv[i + 1]));
+    } else if (std::strcmp(argv[i], "--part") == 0) {
+      part = argv[i + 1];
+    }
+  }
+  if (part == "scale" || part == "all") {
+    scale(runs);
+  }
+  if (part == "long" || part == "all") {
+    long_runs(runs);
+  }
+  return 0;
+}
