@@ -96,9 +96,8 @@ void scale(int runs) {
   corsa::Diagnostics diagnostics;
   char text[1024];
   std::snprintf(text, sizeof text, kTown04, shared("data/xodr/Town04.xodr").c_str());
-  const auto scenario =
-      corsa::xosc::parse_scenario(text, std::filesystem::current_path() / "town04.xosc", {},
-                                  diagnostics);
+  const auto scenario = corsa::xosc::parse_scenario(
+      text, std::filesystem::current_path() / "town04.xosc", {}, diagnostics);
   const auto map = corsa::engine::load_road_network(scenario, diagnostics);
   struct Case {
     uint32_t vehicles;
@@ -116,9 +115,10 @@ void scale(int runs) {
       c.cpu.push_back(t.cpu_ms);
     }
   }
-  std::printf("Town04, --npc vehicles=N (car following), %.0f s simulated, median of %d runs, "
-              "load average %.1f\n",
-              kScaleSeconds, runs, load_average());
+  std::printf(
+      "Town04, --npc vehicles=N (car following), %.0f s simulated, median of %d runs, "
+      "load average %.1f\n",
+      kScaleSeconds, runs, load_average());
   std::printf("%9s %8s %11s %13s %12s %17s %14s\n", "vehicles", "threads", "place (ms)",
               "steps wall ms", "steps CPU ms", "real-time factor", "us/vehicle-step");
   double wall_100 = 0.0, wall_800 = 0.0, cpu_100 = 0.0, cpu_800 = 0.0;
@@ -157,14 +157,15 @@ void long_runs(int runs) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("corsa-bench-traffic-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
-  std::printf("1,200 s scenarios (tests/bench/scenarios), CPU ms of the whole run, median of %d "
-              "runs, load average %.1f\n",
-              runs, load_average());
+  std::printf(
+      "1,200 s scenarios (tests/bench/scenarios), CPU ms of the whole run, median of %d "
+      "runs, load average %.1f\n",
+      runs, load_average());
   std::printf("%-16s %10s %10s %12s %10s %12s %12s %12s\n", "scenario", "no record", "CSV",
               "CSV share", "binary", "binary share", "CSV bytes", "binary bytes");
   for (const char* name : {"long_standstill", "long_motorway"}) {
-    const auto scenario =
-        std::filesystem::path(CORSA_SOURCE_DIR) / "tests/bench/scenarios" / (std::string(name) + ".xosc");
+    const auto scenario = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/bench/scenarios" /
+                          (std::string(name) + ".xosc");
     std::vector<double> none, csv, binary;
     for (int r = 0; r < runs; ++r) {
       none.push_back(run_cpu_ms(scenario, {}));

@@ -2,10 +2,6 @@
 
 #include "controllers/controllers.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -14,6 +10,7 @@
 #include <vector>
 
 #include "controllers/follow_view.h"
+#include "controllers/worker_pool.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "state/sim_state.h"
@@ -97,10 +94,9 @@ ControlState& control_of(SimState& state, uint32_t index) {
 
 namespace {
 
-// Entities from which a step is shared out among threads, and the least each thread takes at a
-// time: below that the hand-over costs more than the moves.
+// Entities from which a step is shared out among threads: below that the hand-over costs more
+// than the moves.
 constexpr uint32_t kParallelEntities = 128;
-constexpr uint32_t kParallelGrain = 32;
 constexpr uint32_t kArrangeSteps = 50;
 
 std::optional<xodr::LaneType> lane_type_at(const xodr::Map& map, const RoadCoordinates& road) {
@@ -181,12 +177,12 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
 }  // namespace
 
 struct EntityMover::Impl {
-  // More threads than cores would only wait for each other (and oneTBB warns about them).
+  // More threads than cores would only wait for each other.
   explicit Impl(unsigned threads_in)
       : threads(std::clamp(threads_in, 1u, std::max(1u, std::thread::hardware_concurrency()))) {}
 
   unsigned threads;
-  std::unique_ptr<tbb::task_arena> arena;  ///< made on the first parallel step
+  std::unique_ptr<WorkerPool> pool;  ///< made on the first parallel step
   FollowView view;
   std::vector<LanesAhead> ahead;  ///< per entity (car following)
   /// Per worker: lane span scratch.
@@ -258,22 +254,18 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     }
     return;
   }
-  if (!impl.arena) {
-    impl.arena = std::make_unique<tbb::task_arena>(static_cast<int>(impl.threads));
+  if (!impl.pool) {
+    impl.pool = std::make_unique<WorkerPool>(impl.threads);
   }
   // Each entity's move depends only on itself and the picture taken above, so how the entities
   // are shared out among threads does not change any result.
-  impl.arena->execute([&] {
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, kParallelGrain),
-                      [&](const tbb::blocked_range<uint32_t>& range) {
-                        const int worker = tbb::this_task_arena::current_thread_index();
-                        MotionContext context = motion;
-                        context.scratch = &impl.scratch[static_cast<size_t>(worker)];
-                        for (uint32_t k = range.begin(); k != range.end(); ++k) {
-                          const uint32_t i = order[k];
-                          move_one(state, i, context, impl.view, impl.ahead[i]);
-                        }
-                      });
+  impl.pool->run(order.size(), [&](size_t begin, size_t end, unsigned worker) {
+    MotionContext context = motion;
+    context.scratch = &impl.scratch[worker];
+    for (size_t k = begin; k < end; ++k) {
+      const uint32_t i = order[k];
+      move_one(state, i, context, impl.view, impl.ahead[i]);
+    }
   });
 }
 
