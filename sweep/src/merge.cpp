@@ -47,10 +47,21 @@ Shard read_shard(const fs::path& folder) {
 // otherwise (another file system, or links not supported).
 void link_or_copy(const fs::path& from, const fs::path& to) {
   std::error_code error;
-  fs::copy(from, to, fs::copy_options::recursive | fs::copy_options::create_hard_links, error);
+  fs::create_hard_link(from, to, error);
   if (error) {
-    fs::remove_all(to, error);
-    fs::copy(from, to, fs::copy_options::recursive);
+    fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+  }
+}
+
+// The files of a finished variant, taken into the merge: exactly those a sweep writes, so not the
+// hidden temporary (".trajectory.csv.tmp.<pid>.<n>") of a run killed half-way through a file.
+void merge_variant(const fs::path& shard_variant, const fs::path& merged_variant) {
+  std::error_code error;
+  if (!fs::is_directory(shard_variant, error)) return;
+  fs::create_directory(merged_variant);
+  for (const char* name : {detail::kTrajectoryFile, detail::kRunSummaryFile, detail::kResultFile}) {
+    const fs::path file = shard_variant / name;
+    if (fs::is_regular_file(file, error)) link_or_copy(file, merged_variant / name);
   }
 }
 
@@ -124,9 +135,7 @@ MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard
     const size_t status = status_column(first.table.header.size() - kFixedColumnCount);
     for (const auto& [index, entry] : rows) {
       const fs::path variant = fs::path(detail::kVariantsFolder) / std::to_string(index);
-      if (fs::exists(entry.first->folder / variant, error)) {
-        link_or_copy(entry.first->folder / variant, staging / variant);
-      }
+      merge_variant(entry.first->folder / variant, staging / variant);
       table += csv_line(*entry.second);
       report.failed += (*entry.second)[status] != "ok" ? 1 : 0;
     }

@@ -127,6 +127,27 @@ TEST_CASE("merging refuses incomplete or foreign shards", "[sweep][cli][shard]")
   CHECK(none.exit_code == 2);
 }
 
+TEST_CASE("merging leaves out the temporaries of a run killed while writing",
+          "[sweep][cli][shard]") {
+  TempDir dir;
+  const std::string dist = fixture("grid.xosc").string();
+  for (int k = 0; k < 2; ++k) {
+    REQUIRE(run_corsa({"sweep", dist, "--shard", std::to_string(k) + "/2", "--record-every", "50",
+                       "-o", (dir.path() / std::to_string(k)).string(), "--quiet"})
+                .exit_code == 0);
+  }
+  // What a task killed half-way through a trajectory leaves, beside the file of its rerun.
+  const fs::path variant = dir.path() / "1" / "variants" / "3";
+  corsa::write_file_atomic(variant / ".trajectory.csv.tmp.4242.0", "time,entity\n0,Ego");
+  const auto merged = run_corsa({"sweep", "merge", (dir.path() / "m").string(),
+                                 (dir.path() / "0").string(), (dir.path() / "1").string()});
+  REQUIRE(merged.exit_code == 0);
+  CHECK(files_under(dir.path() / "m" / "variants" / "3") ==
+        std::vector<std::string>{"result.csv", "summary.json", "trajectory.csv"});
+  CHECK(read_file(dir.path() / "m" / "variants" / "3" / "trajectory.csv") ==
+        read_file(variant / "trajectory.csv"));
+}
+
 TEST_CASE("--shard auto takes the shard from a Slurm job array", "[sweep][cli][shard]") {
   TempDir dir;
   const ScopedEnvironment slurm({{"SLURM_ARRAY_TASK_ID", "1"}, {"SLURM_ARRAY_TASK_COUNT", "2"}});
