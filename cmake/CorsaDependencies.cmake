@@ -77,6 +77,13 @@ if(CORSA_BUILD_TESTS)
   # The module layering check (tests/layering) is a Python script.
   find_package(Python3 COMPONENTS Interpreter QUIET)
   corsa_require(Python3_Interpreter_FOUND "Python 3" python3)
+  # tests/cluster starts a single-node Slurm (slurmctld, slurmd) authenticated by munge.
+  find_program(CORSA_SLURMCTLD slurmctld PATHS /usr/sbin)
+  find_program(CORSA_SLURMD slurmd PATHS /usr/sbin)
+  find_program(CORSA_MUNGED munged PATHS /usr/sbin)
+  corsa_require(CORSA_SLURMCTLD "slurmctld" slurm-wlm)
+  corsa_require(CORSA_SLURMD "slurmd" slurm-wlm)
+  corsa_require(CORSA_MUNGED "munged" munge)
 endif()
 
 if(CORSA_BUILD_BENCH)
