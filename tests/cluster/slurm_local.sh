@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # A throwaway single-node Slurm for tests, sourced by bash test scripts: munged, slurmctld and
 # slurmd from the Debian packages (slurm-wlm, munge), listening on 127.0.0.1 only, with every
 # file (key, sockets, state, spool, logs, slurm.conf) in one temporary folder.

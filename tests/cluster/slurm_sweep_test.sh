@@ -52,6 +52,7 @@ mkdir "$dir/run"
 cd "$dir/run"
 export CORSA="$corsa"
 # 4 shards of 40 variants, each variant some 50 ms: long enough to cancel one task mid-run.
+# shellcheck disable=SC2054 # the commas are inside the --param values
 sweep_args=(--param Ego_Speed=20:39.5:0.5 --param Gap=30,50,70,90 --dt 0.0002 --record-every 2000)
 dist="$source_dir/tests/sweep/fixtures/follow.xosc"
 script="$source_dir/scripts/slurm/sweep.sbatch"
