@@ -26,6 +26,25 @@ Shard checked(size_t index, size_t count, const std::string& where) {
   return Shard{index, count};
 }
 
+// The position of task `task` in an array of `tasks` ids from `min`: with a step
+// (--array=0-6:2, SLURM_ARRAY_TASK_STEP) the ids are min, min + step, ...; a list of ids
+// (--array=0,3,5) has no such position and is refused.
+size_t slurm_array_position(const EnvironmentLookup& environment, size_t task, size_t min,
+                            size_t tasks) {
+  const std::string where = "--shard auto (Slurm)";
+  const auto step_text = environment("SLURM_ARRAY_TASK_STEP");
+  const auto step = step_text ? non_negative(step_text) : std::optional<size_t>(1);
+  const auto max_text = environment("SLURM_ARRAY_TASK_MAX");
+  const auto max = max_text ? non_negative(max_text) : std::nullopt;
+  if (!step || *step == 0) fail(where, "SLURM_ARRAY_TASK_STEP must be a positive whole number");
+  if ((task - min) % *step != 0 || (max && (*max < min || (*max - min) / *step + 1 != tasks))) {
+    fail(where, "the array's task ids are a list, not a range A-B or A-B:STEP, so task " +
+                    std::to_string(task) + " has no shard index; submit --array=0-" +
+                    std::to_string(tasks > 0 ? tasks - 1 : 0) + " or use --shard K/N");
+  }
+  return (task - min) / *step;
+}
+
 }  // namespace
 
 std::string Shard::text() const { return std::to_string(index) + "/" + std::to_string(count); }
@@ -56,7 +75,8 @@ Shard shard_from_environment(const EnvironmentLookup& environment, std::optional
            "SLURM_ARRAY_TASK_ID, SLURM_ARRAY_TASK_COUNT and SLURM_ARRAY_TASK_MIN must be "
            "whole numbers with ID >= MIN (is this a job array with --array=A-B?)");
     }
-    return checked(*task - *min, count.value_or(*tasks), where + " (Slurm)");
+    return checked(slurm_array_position(environment, *task, *min, *tasks), count.value_or(*tasks),
+                   where + " (Slurm)");
   }
   if (const auto index_text = environment("JOB_COMPLETION_INDEX")) {
     const auto index = non_negative(index_text);

@@ -75,6 +75,30 @@ TEST_CASE("--shard auto reads a Slurm job array, from 0 or from 1", "[sweep][sha
         }).find("SLURM_ARRAY_TASK_ID") != std::string::npos);
 }
 
+TEST_CASE("--shard auto numbers the tasks of a Slurm array with a step, and refuses a list",
+          "[sweep][shard]") {
+  // --array=0-6:2: ids 0, 2, 4, 6 are shards 0 to 3 of 4.
+  const Shard stepped = shard_from_environment(table({{"SLURM_ARRAY_TASK_ID", "4"},
+                                                      {"SLURM_ARRAY_TASK_COUNT", "4"},
+                                                      {"SLURM_ARRAY_TASK_MIN", "0"},
+                                                      {"SLURM_ARRAY_TASK_MAX", "6"},
+                                                      {"SLURM_ARRAY_TASK_STEP", "2"}}),
+                                               std::nullopt);
+  CHECK(stepped.index == 2);
+  CHECK(stepped.count == 4);
+  // --array=0,3,5: Slurm says step 1, but the ids are not 0 to 2.
+  CHECK(error_of([] {
+          shard_from_environment(table({{"SLURM_ARRAY_TASK_ID", "3"},
+                                        {"SLURM_ARRAY_TASK_COUNT", "3"},
+                                        {"SLURM_ARRAY_TASK_MIN", "0"},
+                                        {"SLURM_ARRAY_TASK_MAX", "5"},
+                                        {"SLURM_ARRAY_TASK_STEP", "1"}}),
+                                 std::nullopt);
+        })
+            .find("the array's task ids are a list, not a range A-B or A-B:STEP, so task 3 has no "
+                  "shard index; submit --array=0-2") != std::string::npos);
+}
+
 TEST_CASE("--shard auto reads a Kubernetes Indexed Job with its count", "[sweep][shard]") {
   const Shard given = shard_from_environment(table({{"JOB_COMPLETION_INDEX", "2"}}), 5);
   CHECK(given.index == 2);
