@@ -47,7 +47,8 @@ BirdsEyeImage render_birds_eye(const Scene& scene, const BirdsEyeOptions& o,
   detail::ShadingContext shading;
   if (shaded) {
     // Footprints in metres: one pixel covers mpp at "distance" 1.
-    shading = detail::make_shading_context(d, *lighting, o.extent_m / o.width);
+    shading =
+        detail::make_shading_context(d, *lighting, o.extent_m / o.width, RenderQuality::kFast);
   }
   const double heading = o.follow_heading ? std::atan2(world_from_body.rotation.m[1][0],
                                                        world_from_body.rotation.m[0][0])
@@ -113,7 +114,10 @@ BirdsEyeImage render_birds_eye(const Scene& scene, const BirdsEyeOptions& o,
             hit.distance = 1.0;
             hit.semantic = label.semantic;
             hit.entity = label.entity;
-            const Color v = detail::shade_hit(shading, hit, true);
+            // A map view: lit by the sun and the open sky, no shadows or tone curve.
+            const detail::SurfacePoint s = detail::surface_at(shading, hit);
+            const Color v = detail::combine(detail::shade_terms(shading, s, nullptr, nullptr),
+                                            detail::Visibility{});
             c = {encode(v.r), encode(v.g), encode(v.b)};
           }
           img.rgb[3 * px] = c.r;

@@ -1,13 +1,15 @@
 // Shading of camera hits: the material's look at the hit (textures prefiltered to the pixel
-// footprint), diffuse sky and sun light with shadows, vehicle headlights at night, a sky
-// reflection with Schlick's Fresnel term on glossy surfaces (paint and its clear coat, glass,
-// metal, wet road), and emission of lamps switched by the entity's light state, the signal's
-// state or darkness.
+// footprint, wet road with puddles, snow cover), lit by the sun, the sky and the lamps through a
+// diffuse (Lambert) and a microfacet (GGX) lobe, a clear coat over car paint, glass that
+// reflects by Fresnel's law and lets the view through, and the emission of lamps switched by
+// the entity's light state, the signal's state or darkness.
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
+#include "brdf.h"
+#include "noise_tile.h"
 #include "shading.h"
 #include "surface.h"
 
@@ -20,16 +22,7 @@ bool is_road_like(SemanticClass c) {
          c == SemanticClass::kSidewalk;
 }
 
-bool has_headlights(SemanticClass c) {
-  return c == SemanticClass::kCar || c == SemanticClass::kTruck || c == SemanticClass::kBus ||
-         c == SemanticClass::kMotorcycle || c == SemanticClass::kTrain;
-}
-
 constexpr uint32_t bit(LightRole r) { return 1u << static_cast<unsigned>(r); }
-
-Vec3 reflect(Vec3 d, Vec3 n) { return d - n * (2.0 * dot(d, n)); }
-
-double luma(Color c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
 double smoothstep(double e0, double e1, double x) {
   const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
@@ -131,41 +124,97 @@ bool lamp_lit(const ShadingContext& c, const SurfaceHit& h, const Material& m) {
   return (c.static_lamps & b) != 0;
 }
 
+/// Wet road: water darkens the porous surface and smooths it; in puddles (the low spots of a
+/// 12 m noise field, more of them the harder it rains) it is a mirror over a dark bottom.
+void wet(const Lighting& l, const TexturePoint& tp, SurfacePoint& s, double& roughness) {
+  const double rain = std::max(l.rain_intensity, 1.0);
+  const double level = 0.32 + 0.05 * std::min(std::log2(rain), 4.0);
+  const double field =
+      noise(2, tp.position.x * 0.7 + 31.0, tp.position.y * 0.7 - 17.0, 12.0, tp.footprint);
+  const double puddle = 1.0 - smoothstep(level - 0.02, level + 0.02, field);
+  s.diffuse = s.diffuse * (0.55 - 0.35 * puddle);
+  roughness = std::min(roughness, 0.3) * (1.0 - puddle) + 0.02 * puddle;
+  s.f0 = mix(s.f0, Color{0.02, 0.02, 0.02}, 0.5 + 0.5 * puddle);
+  s.mirror = s.mirror || puddle > 0.5;
+}
+
+/// Snow lying on upward surfaces: thick on ground, roofs and cars, patchy slush on roads.
+void snow(const Lighting& l, const TexturePoint& tp, SemanticClass cls, SurfacePoint& s,
+          double& roughness) {
+  const double up = smoothstep(0.45, 0.8, s.normal.z);
+  if (up <= 0.0) {
+    return;
+  }
+  const double amount = std::min(1.0, l.snow_intensity / 1.5 + 0.3);
+  const double patch = noise(1, tp.position.x * 1.3, tp.position.y * 1.3, 6.0, tp.footprint);
+  double cover = cls == SemanticClass::kRoad || cls == SemanticClass::kLaneMarking
+                     ? smoothstep(0.55, 0.75, patch + 0.2 * amount) * 0.8
+                     : smoothstep(0.2, 0.45, patch + 0.3 * amount);
+  cover *= up * amount;
+  s.diffuse = mix(s.diffuse, Color{0.82, 0.84, 0.88}, cover);
+  s.f0 = mix(s.f0, Color{0.02, 0.02, 0.02}, cover);
+  s.clearcoat *= 1.0 - cover;
+  roughness = roughness + (0.65 - roughness) * cover;
+}
+
 }  // namespace
 
+QualitySettings quality_settings(RenderQuality q) {
+  QualitySettings s;
+  switch (q) {
+    case RenderQuality::kFast:
+      return s;
+    case RenderQuality::kDefault:
+      s.soft_sun = true;
+      s.sky_rays = 2;
+      s.light_rays = 1;
+      s.reflections = true;
+      s.transmission = true;
+      s.edge_samples = 4;
+      s.denoise = true;
+      s.bloom = true;
+      return s;
+    case RenderQuality::kHigh:
+      s.sun_rays = 4;
+      s.soft_sun = true;
+      s.sky_rays = 8;
+      s.bounce_shadow = true;
+      s.light_rays = 4;
+      s.reflections = true;
+      s.transmission = true;
+      s.edge_samples = 12;
+      s.denoise = true;
+      s.bloom = true;
+      return s;
+  }
+  return s;
+}
+
 ShadingContext make_shading_context(const SceneData& scene, const Lighting& lighting,
-                                    double pixel_angle) {
+                                    double pixel_angle, RenderQuality quality) {
   ShadingContext c;
   c.scene = &scene;
   c.lighting = &lighting;
   c.pixel_angle = pixel_angle;
-  c.darkness = 1.0 - smoothstep(0.01, 0.08, luma(lighting.ambient));
-  c.static_lamps = bit(LightRole::kAlways) | (c.darkness > 0.3 ? bit(LightRole::kStreetLamp) : 0u);
-  const double dip = -3.0 * std::numbers::pi / 180.0;  // low beams aim slightly down
+  c.quality = quality_settings(quality);
+  c.darkness = lighting.darkness;
+  c.static_lamps =
+      bit(LightRole::kAlways) | (lighting.darkness > 0.3 ? bit(LightRole::kStreetLamp) : 0u);
   for (const auto& inst : scene.instances) {
-    const engine::EntitySnapshot& e = scene.entities[inst.snapshot_index];
-    const uint32_t lamps = entity_lamp_bits(inst, e, lighting);
-    c.entity_lamps.push_back(lamps);
-    if (!(lamps & bit(LightRole::kHeadlight)) || !has_headlights(inst.semantic)) {
-      continue;
-    }
-    const Rigid& pose = inst.world_from_entity;
-    const Vec3 dir = pose.apply_direction({std::cos(dip), 0.0, std::sin(dip)});
-    const double front = e.box.center_x + 0.5 * e.box.length + 0.05;
-    const double z = e.box.center_z - 0.5 * e.box.height + 0.65;
-    const int count = inst.semantic == SemanticClass::kMotorcycle ? 1 : 2;
-    for (int i = 0; i < count; ++i) {
-      const double y = count == 1 ? 0.0 : (i == 0 ? 0.35 : -0.35) * e.box.width;
-      c.headlights.push_back({scene.to_local(pose.apply({front, y, z})), dir, 30.0});
-    }
+    c.entity_lamps.push_back(entity_lamp_bits(inst, scene.entities[inst.snapshot_index], lighting));
   }
+  c.ground_z = scene.bounds.empty() ? 0.0 : scene.bounds.min.z - scene.options.origin.z;
+  // Lamps fainter than a thousandth of the daylight at 2 m are not worth their cost.
+  const double daylight = luminance(lighting.ambient) + luminance(lighting.sun);
+  c.lights = LightList(scene, c.entity_lamps, c.static_lamps, 1e-3 * daylight);
   return c;
 }
 
-Color shade_hit(const ShadingContext& c, const SurfaceHit& h, bool sunlit) {
+SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double footprint_scale) {
   const SceneData& d = *c.scene;
   const Lighting& l = *c.lighting;
-  const Material& m = d.materials[d.material_of(h.inst_id, h.geom_id, h.prim_id)];
+  const MaterialId id = d.material_of(h.inst_id, h.geom_id, h.prim_id);
+  const Material& m = d.materials[id];
   TexturePoint tp;
   if (h.entity < 0) {
     tp.position = h.position;
@@ -181,92 +230,141 @@ Color shade_hit(const ShadingContext& c, const SurfaceHit& h, bool sunlit) {
     hit_uv(c, h, tp);
   }
   const double cos_view = std::clamp(-dot(h.view_dir, h.normal), 0.0, 1.0);
-  tp.footprint = h.distance * c.pixel_angle / std::sqrt(std::max(cos_view, 0.05));
+  tp.footprint = footprint_scale * h.distance * c.pixel_angle / std::sqrt(std::max(cos_view, 0.05));
   tp.darkness = c.darkness;
-  const SurfaceSample s = sample_surface(m, tp);
+  const SurfaceSample t = sample_surface(m, tp);
 
-  const Vec3 n = h.normal;
-  const bool wet = l.wet_road && is_road_like(h.semantic);
-  Color albedo = s.albedo * (1.0 - s.metallic);
-  if (wet) {
-    albedo = albedo * 0.55;  // water darkens porous surfaces
+  SurfacePoint s;
+  s.position = h.position;
+  s.normal = h.normal;
+  s.view_dir = h.view_dir;
+  s.distance = h.distance;
+  const double metallic = std::clamp(t.metallic, 0.0, 1.0);
+  s.diffuse = t.albedo * (1.0 - metallic) * (1.0 - t.transmission);
+  const double q = (m.ior - 1.0) / (m.ior + 1.0);
+  s.f0 = mix(Color{q * q, q * q, q * q}, t.albedo, metallic);
+  s.clearcoat = t.clearcoat;
+  s.transmission = t.transmission;
+  double roughness = std::clamp(t.roughness, 0.0, 1.0);
+  if (l.wet_road && is_road_like(h.semantic)) {
+    // Tracer-local positions: the puddles stay put on the road.
+    TexturePoint at = tp;
+    at.position = h.position;
+    wet(l, at, s, roughness);
   }
-  Color light = l.ambient * (0.6 + 0.4 * std::max(0.0, n.z));
-  if (sunlit) {
-    light = light + l.sun * std::max(0.0, dot(n, l.sun_direction));
+  if (l.snow_intensity > 0.0) {
+    snow(l, tp, h.semantic, s, roughness);
   }
-  for (const Headlight& hl : c.headlights) {
-    const Vec3 to_light = hl.position - h.position;
-    const double d2 = dot(to_light, to_light);
-    if (d2 > 6400.0 || d2 < 1e-4) {
-      continue;  // beyond 80 m the beam is negligible
-    }
-    const Vec3 dir = to_light * (1.0 / std::sqrt(d2));
-    const double cos_beam = -dot(dir, hl.direction);
-    const double cos_surface = dot(dir, n);
-    if (cos_beam < 0.85 || cos_surface <= 0.0) {
-      continue;
-    }
-    const double cone = std::clamp((cos_beam - 0.85) / 0.12, 0.0, 1.0);
-    light = light + Color{1.0, 0.95, 0.85} * (hl.intensity * cone * cos_surface / d2);
-  }
-  Color color = albedo * light;
-
-  // Specular: the sky mirrored by glossy surfaces (no reflection rays: the sky only), weighted
-  // by Schlick's Fresnel term, and the sun's glint.
-  const Vec3 r = reflect(h.view_dir, n);
-  // Glints only where the mirror direction is near the sun (pow() elsewhere adds nothing).
-  const double to_sun = sunlit ? dot(r, l.sun_direction) : 0.0;
-  auto lobe = [to_sun](double shininess) {
-    return to_sun > 0.9 ? std::pow(to_sun, shininess) : 0.0;
-  };
-  const double grazing = 1.0 - cos_view;
-  const double g2 = grazing * grazing;
-  const double schlick = g2 * g2 * grazing;  // (1 - cos)^5
-  const double smooth = 1.0 - std::clamp(s.roughness, 0.0, 1.0);
-  const double gloss = smooth * smooth;
-  if (gloss > 0.02) {
-    const double q = (m.ior - 1.0) / (m.ior + 1.0);
-    const double f0d = q * q;
-    const Color f0 = mix(Color{f0d, f0d, f0d}, s.albedo, s.metallic);
-    const Color fresnel = f0 + (Color{1.0, 1.0, 1.0} + f0 * -1.0) * schlick;
-    const Color env = mix(l.ambient, l.sky(r), gloss);
-    color = color + fresnel * env * gloss;
-    if (sunlit) {
-      const double r2 = s.roughness * s.roughness;
-      const double shininess = 2.0 / std::max(1e-3, r2 * r2);
-      const double glint = lobe(std::min(shininess, 2000.0));
-      color = color + fresnel * l.sun * (glint * gloss * 3.0);
-    }
-  }
-  if (s.clearcoat > 0.0) {
-    const double fc = 0.04 + 0.96 * schlick;
-    color = color + l.sky(r) * (s.clearcoat * fc);
-    if (sunlit) {
-      color = color + l.sun * (s.clearcoat * fc * 4.0 * lobe(600.0));
-    }
-  }
-  if (wet) {
-    // A wet film reflects the sky (Schlick's Fresnel for water) and glints in the sun.
-    const double fresnel = 0.02 + 0.98 * schlick;
-    color = color + l.sky(r) * (0.8 * fresnel);
-    if (sunlit) {
-      color = color + l.sun * (2.0 * lobe(300.0));
-    }
-  }
-  color = color + s.emission;
+  s.roughness = roughness;
+  s.emission = t.emission;
   if (lamp_lit(c, h, m)) {
-    color = color + m.emission;
+    s.emission = s.emission + m.emission;
   }
-  return color;
+  s.mirror = s.mirror || roughness < 0.2 || s.clearcoat > 0.0 || s.transmission > 0.0;
+  s.mirror = s.mirror && c.quality.reflections;
+  const auto sid = static_cast<uint32_t>(h.inst_id * 0x9E3779B1u ^ (h.geom_id + 1) * 0x85EBCA77u ^
+                                         (id + 1u) * 0xC2B2AE3Du);
+  s.surface_id = sid == 0 ? 1u : sid;  // 0 is the sky
+  return s;
 }
 
-Color apply_fog(const Lighting& l, Color radiance, double distance) {
-  const double sigma = l.extinction();
-  if (sigma <= 0.0) {
-    return radiance;
+ShadeTerms shade_terms(const ShadingContext& c, const SurfacePoint& s, const Color* mirrored,
+                       const Color* behind) {
+  const Lighting& l = *c.lighting;
+  ShadeTerms t;
+  const Vec3 n = s.normal;
+  const Vec3 v = -s.view_dir;
+  const double n_dot_v = std::max(dot(n, v), 1e-4);
+  const Vec3 r = reflect(s.view_dir, n);
+  // The clear coat (a smooth lacquer, IOR 1.5) reflects first; the base layer gets the rest.
+  const double coat = s.clearcoat * (0.04 + 0.96 * schlick_weight(n_dot_v));
+  const double under = 1.0 - coat;
+  const Color spec_albedo = environment_brdf(s.f0, s.roughness, n_dot_v);
+  // Glass: what is not reflected passes, to show what lies behind (darkened by the cabin).
+  const Color glass_f = fresnel_schlick(s.f0, n_dot_v);
+
+  // Sun: Lambert + GGX, the coat's own sharp lobe.
+  const double n_dot_l = dot(n, l.sun_direction);
+  if (n_dot_l > 0.0 && l.sun_elevation > -0.02) {
+    Color sun = s.diffuse * (n_dot_l * under) +
+                ggx_specular(n, v, l.sun_direction, s.roughness, s.f0) * under;
+    if (s.clearcoat > 0.0) {
+      sun = sun + ggx_specular(n, v, l.sun_direction, 0.08, Color{0.04, 0.04, 0.04}) * s.clearcoat;
+    }
+    t.sun = l.sun * sun;
   }
-  const double t = std::isinf(distance) ? 0.0 : std::exp(-sigma * distance);
+
+  // Sky light, and the sky mirrored by rough surfaces (occluded like the sky light).
+  t.sky = s.diffuse * l.sky_light(n) * under;
+  const Color env = mirrored != nullptr ? *mirrored : l.sky(r);
+  if (s.mirror && mirrored != nullptr) {
+    t.base = t.base + env * spec_albedo * under;
+  } else {
+    // Rougher lobes see a blurred sky: between the mirrored sky and the sky light.
+    const double blur = smoothstep(0.0, 0.7, s.roughness);
+    const Color sky_env = mix(l.sky(r), l.sky_light(r), blur);
+    t.sky = t.sky + sky_env * spec_albedo * under;
+  }
+  if (s.clearcoat > 0.0) {
+    t.base = t.base + env * coat;
+  }
+  if (s.transmission > 0.0) {
+    const Color pass = Color{1.0, 1.0, 1.0} + glass_f * -1.0;
+    if (behind != nullptr) {
+      t.base = t.base + *behind * pass * (s.transmission * 0.35);
+    }
+  }
+
+  // Local lights, unshadowed (their visibility multiplies the sum).
+  for (const uint32_t k : c.lights.near(s.position)) {
+    const LightSample ls = illuminate(c.lights.lights()[k], s.position);
+    const double cos_l = dot(n, ls.direction);
+    if (cos_l <= 0.0 || luminance(ls.irradiance) <= 0.0) {
+      continue;
+    }
+    const Color lobe = s.diffuse * (cos_l * under) +
+                       ggx_specular(n, v, ls.direction, std::max(s.roughness, 0.05), s.f0) * under;
+    t.lights = t.lights + ls.irradiance * lobe;
+  }
+  t.base = t.base + s.emission;
+  return t;
+}
+
+Color shade_secondary(const ShadingContext& c, const SurfacePoint& s, bool sun_visible) {
+  const Lighting& l = *c.lighting;
+  const Vec3 n = s.normal;
+  // What a secondary ray sees: occluders are assumed to see most of the sky.
+  Color light = l.sky_light(n) * 0.8;
+  const double n_dot_l = dot(n, l.sun_direction);
+  if (sun_visible && n_dot_l > 0.0) {
+    light = light + l.sun * n_dot_l;
+  }
+  for (const uint32_t k : c.lights.near(s.position)) {
+    const LightSample ls = illuminate(c.lights.lights()[k], s.position);
+    const double cos_l = dot(n, ls.direction);
+    if (cos_l > 0.0) {
+      light = light + ls.irradiance * cos_l;
+    }
+  }
+  const double n_dot_v = std::max(-dot(n, s.view_dir), 1e-4);
+  const Color spec = environment_brdf(s.f0, s.roughness, n_dot_v);
+  const Color mirrored = l.sky(reflect(s.view_dir, n));
+  return s.diffuse * light + spec * mirrored * 0.8 + s.emission;
+}
+
+Color sky_seen(const ShadingContext& c, Vec3 origin, Vec3 direction) {
+  const Lighting& l = *c.lighting;
+  // The sky model already holds the haze of the whole atmosphere: only fog and precipitation
+  // stand in front of it.
+  const double t = l.transmittance(origin.z - c.ground_z, direction.z,
+                                   std::numeric_limits<double>::infinity(), false);
+  return l.sky(direction) * t + l.fog_color * (1.0 - t);
+}
+
+Color through_air(const ShadingContext& c, Color radiance, Vec3 origin, Vec3 direction,
+                  double distance) {
+  const Lighting& l = *c.lighting;
+  const double t = l.transmittance(origin.z - c.ground_z, direction.z, distance, true);
   return radiance * t + l.fog_color * (1.0 - t);
 }
 

@@ -1,5 +1,6 @@
-// Image post-processing of the RGB camera: motion blur along per-pixel motion, development
-// (exposure, sensor noise, gamma) and rain streaks.
+// Image post-processing of the RGB camera: motion blur along per-pixel motion, metering (auto
+// exposure), glare, and development: exposure, vignetting, sensor noise, the filmic tone curve
+// and the display encoding.
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -47,12 +48,173 @@ void motion_blur(std::vector<float>& linear, const std::vector<float>& motion, i
   });
 }
 
+namespace {
+
+double smoothstep(double e0, double e1, double x) {
+  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+/// The auto-exposed camera gathers 64 times the light of the manual reference (ISO 100, 4 ms
+/// and the aperture of the sunny-16 rule): a fixed f/2 lens, as automotive cameras have.
+constexpr double kAutoAperture = 64.0;
+constexpr double kMinShutter = 1.0 / 20000.0;
+constexpr double kMaxShutter = 1.0 / 60.0;  // longer would smear the scene at driving speed
+constexpr double kMaxIso = 6400.0;
+
+/// ACES filmic tone curve, Narkowicz's fit of the RRT + ODT ("ACES Filmic Tone Mapping Curve",
+/// 2016): a toe, a linear middle and a soft shoulder into white.
+double aces(double x) {
+  x = std::max(x, 0.0);
+  return std::clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+
+/// Log-average luminance of the frame (Reinhard et al., "Photographic Tone Reproduction for
+/// Digital Images", SIGGRAPH 2002) over a 4-pixel grid, centre-weighted, leaving out the
+/// brightest and darkest 2% (lamps, the sun, black holes) by a histogram of log2 luminance.
+double metered_luminance(const std::vector<float>& linear, int width, int height) {
+  constexpr int kBins = 512;
+  constexpr double kLo = -28.0, kHi = 8.0;  // log2 range
+  std::vector<double> weight(kBins, 0.0);
+  double total = 0.0;
+  for (int row = 2; row < height; row += 4) {
+    for (int col = 2; col < width; col += 4) {
+      const float* v = &linear[3 * (static_cast<size_t>(row) * width + col)];
+      const double y = 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+      const double u = (2.0 * col - width) / width;
+      const double q = (2.0 * row - height) / height;
+      const double w = 1.0 + std::max(0.0, 1.0 - 0.5 * (u * u + q * q));
+      const double l = std::clamp(std::log2(std::max(y, 1e-12)), kLo, kHi - 1e-9);
+      weight[static_cast<size_t>((l - kLo) / (kHi - kLo) * kBins)] += w;
+      total += w;
+    }
+  }
+  if (total <= 0.0) {
+    return 0.18;
+  }
+  double below = 0.0, sum = 0.0, used = 0.0;
+  for (int b = 0; b < kBins; ++b) {
+    const double lo = std::max(below, 0.02 * total);
+    const double hi = std::min(below + weight[b], 0.98 * total);
+    if (hi > lo) {
+      sum += (hi - lo) * (kLo + (b + 0.5) * (kHi - kLo) / kBins);
+      used += hi - lo;
+    }
+    below += weight[b];
+  }
+  return used > 0.0 ? std::exp2(sum / used) : 0.18;
+}
+
+}  // namespace
+
+Exposure choose_exposure(const std::vector<float>& linear, int width, int height,
+                         const RgbOptions& o) {
+  Exposure e;
+  const double ev = std::pow(2.0, o.exposure_compensation_ev);
+  if (!o.auto_exposure) {
+    // Manual: ISO 100 at 1/250 s puts a sunlit 18% grey at 0.18 before the tone curve.
+    e.shutter_s = o.shutter_speed_s;
+    e.iso = o.iso;
+    e.scale = (o.iso / 100.0) * (o.shutter_speed_s / 0.004) * ev;
+    return e;
+  }
+  const double average = metered_luminance(linear, width, height);
+  // Reinhard's key: 0.18 for day scenes, lower for night ones, which should look dark.
+  const double night = 1.0 - smoothstep(-13.0, -7.0, std::log2(std::max(average, 1e-12)));
+  const double key = 0.18 - 0.08 * night;
+  const double wanted = key / std::max(average, 1e-12) * ev;
+  // Exposure time first, then gain, within the camera's limits.
+  const double per_second = kAutoAperture / 0.004;  // scale per second at ISO 100
+  e.shutter_s = std::clamp(wanted / per_second, kMinShutter, kMaxShutter);
+  e.iso = std::clamp(100.0 * wanted / (per_second * e.shutter_s), 100.0, kMaxIso);
+  e.scale = per_second * e.shutter_s * (e.iso / 100.0);
+  return e;
+}
+
+void bloom(std::vector<float>& linear, int width, int height, double threshold) {
+  // The light above the threshold, averaged over 4x4 blocks, blurred (Gaussian, sigma 3
+  // blocks) and added back with a weight of 6%: the glare of lamps and the sun in a lens.
+  const int bw = (width + 3) / 4;
+  const int bh = (height + 3) / 4;
+  std::vector<float> bright(3 * static_cast<size_t>(bw) * bh, 0.0f);
+  bool any = false;
+  for (int row = 0; row < height; ++row) {
+    for (int col = 0; col < width; ++col) {
+      const float* v = &linear[3 * (static_cast<size_t>(row) * width + col)];
+      const double y = 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+      if (y <= threshold) {
+        continue;
+      }
+      any = true;
+      const double keep = (y - threshold) / y / 16.0;
+      float* b = &bright[3 * (static_cast<size_t>(row / 4) * bw + col / 4)];
+      for (int k = 0; k < 3; ++k) {
+        b[k] += static_cast<float>(v[k] * keep);
+      }
+    }
+  }
+  if (!any) {
+    return;
+  }
+  constexpr int kRadius = 9;
+  float kernel[2 * kRadius + 1];
+  float ksum = 0.0f;
+  for (int i = -kRadius; i <= kRadius; ++i) {
+    kernel[i + kRadius] = static_cast<float>(std::exp(-i * i / (2.0 * 3.0 * 3.0)));
+    ksum += kernel[i + kRadius];
+  }
+  for (float& k : kernel) {
+    k /= ksum;
+  }
+  std::vector<float> tmp(bright.size(), 0.0f);
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::vector<float>& src = pass == 0 ? bright : tmp;
+    std::vector<float>& dst = pass == 0 ? tmp : bright;
+    std::vector<float> next(src.size(), 0.0f);
+    for (int r = 0; r < bh; ++r) {
+      for (int c = 0; c < bw; ++c) {
+        float acc[3] = {0, 0, 0};
+        for (int i = -kRadius; i <= kRadius; ++i) {
+          const int cc = pass == 0 ? std::clamp(c + i, 0, bw - 1) : c;
+          const int rr = pass == 0 ? r : std::clamp(r + i, 0, bh - 1);
+          const float* s = &src[3 * (static_cast<size_t>(rr) * bw + cc)];
+          for (int k = 0; k < 3; ++k) {
+            acc[k] += kernel[i + kRadius] * s[k];
+          }
+        }
+        for (int k = 0; k < 3; ++k) {
+          next[3 * (static_cast<size_t>(r) * bw + c) + k] = acc[k];
+        }
+      }
+    }
+    dst = std::move(next);
+  }
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
+    for (int row = r.begin(); row != r.end(); ++row) {
+      const double fy = std::clamp((row + 0.5) / 4.0 - 0.5, 0.0, bh - 1.0);
+      const int y0 = static_cast<int>(fy);
+      const int y1 = std::min(y0 + 1, bh - 1);
+      const double ty = fy - y0;
+      for (int col = 0; col < width; ++col) {
+        const double fx = std::clamp((col + 0.5) / 4.0 - 0.5, 0.0, bw - 1.0);
+        const int x0 = static_cast<int>(fx);
+        const int x1 = std::min(x0 + 1, bw - 1);
+        const double tx = fx - x0;
+        float* v = &linear[3 * (static_cast<size_t>(row) * width + col)];
+        for (int k = 0; k < 3; ++k) {
+          auto at = [&](int x, int y) { return bright[3 * (static_cast<size_t>(y) * bw + x) + k]; };
+          const double top = at(x0, y0) * (1.0 - tx) + at(x1, y0) * tx;
+          const double bottom = at(x0, y1) * (1.0 - tx) + at(x1, y1) * tx;
+          v[k] += static_cast<float>(0.06 * 16.0 * (top * (1.0 - ty) + bottom * ty));
+        }
+      }
+    }
+  });
+}
+
 std::vector<uint8_t> develop(const std::vector<float>& linear, int width, int height,
-                             const RgbOptions& o, uint64_t frame_seed) {
-  // Exposure relative to ISO 100 at 1/250 s, where a sunlit 18% grey is mid-grey.
-  const double exposure =
-      (o.iso / 100.0) * (o.shutter_speed_s / 0.004) * std::pow(2.0, o.exposure_compensation_ev);
-  const double gain = o.iso / 100.0;
+                             const RgbOptions& o, const Exposure& exposure, uint64_t frame_seed) {
+  const double gain = exposure.iso / 100.0;
   const double shot = 0.0004 * gain;  // photon noise variance per unit signal
   const double read = 0.002 * gain;   // read noise standard deviation
   const double inv_gamma = 1.0 / o.gamma;
@@ -61,59 +223,37 @@ std::vector<uint8_t> develop(const std::vector<float>& linear, int width, int he
   for (int i = 0; i <= 4096; ++i) {
     table[i] = static_cast<uint8_t>(std::lround(255.0 * std::pow(i / 4096.0, inv_gamma)));
   }
+  // Vignetting: 1 - v at the corners, easing in from the centre as (1 - rho^2)^2 does.
+  const double cx = 0.5 * (width - 1), cy = 0.5 * (height - 1);
+  const double corner2 = cx * cx + cy * cy;
   std::vector<uint8_t> out(linear.size());
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
     for (int row = r.begin(); row != r.end(); ++row) {
       RandomStream rng(block_seed(frame_seed ^ 0x6e6f697365ULL, static_cast<uint64_t>(row)));
-      for (size_t i = static_cast<size_t>(row) * width * 3;
-           i < static_cast<size_t>(row + 1) * width * 3; ++i) {
-        double v = linear[i] * exposure;
-        if (o.noise) {
-          // Irwin-Hall: the sum of four 16-bit uniforms, rescaled, is close to a unit normal
-          // and costs one 64-bit draw (image noise need not be exactly Gaussian).
-          const uint64_t bits = rng.next_u64();
-          const double s = static_cast<double>(bits & 0xFFFF) + ((bits >> 16) & 0xFFFF) +
-                           ((bits >> 32) & 0xFFFF) + (bits >> 48);
-          const double z = (s / 65536.0 - 2.0) * std::sqrt(3.0);
-          v += z * std::sqrt(std::max(0.0, v) * shot + read * read);
+      const double dy = row - cy;
+      for (int col = 0; col < width; ++col) {
+        const double dx = col - cx;
+        const double rho2 = corner2 > 0.0 ? (dx * dx + dy * dy) / corner2 : 0.0;
+        const double fall = (1.0 - rho2) * (1.0 - rho2);
+        const double scale = exposure.scale * (1.0 - o.vignetting + o.vignetting * fall);
+        const size_t i0 = 3 * (static_cast<size_t>(row) * width + col);
+        for (size_t i = i0; i < i0 + 3; ++i) {
+          double v = linear[i] * scale;
+          if (o.noise) {
+            // Irwin-Hall: the sum of four 16-bit uniforms, rescaled, is close to a unit normal
+            // and costs one 64-bit draw (image noise need not be exactly Gaussian).
+            const uint64_t bits = rng.next_u64();
+            const double s = static_cast<double>(bits & 0xFFFF) + ((bits >> 16) & 0xFFFF) +
+                             ((bits >> 32) & 0xFFFF) + (bits >> 48);
+            const double z = (s / 65536.0 - 2.0) * std::sqrt(3.0);
+            v += z * std::sqrt(std::max(0.0, v) * shot + read * read);
+          }
+          out[i] = table[static_cast<size_t>(aces(v) * 4096.0 + 0.5)];
         }
-        const double c = std::clamp(v, 0.0, 1.0);
-        out[i] = table[static_cast<size_t>(c * 4096.0 + 0.5)];
       }
     }
   });
   return out;
-}
-
-void draw_rain(std::vector<uint8_t>& rgb, int width, int height, const Lighting& l,
-               uint64_t frame_seed) {
-  if (l.rain_intensity <= 0.0) {
-    return;
-  }
-  RandomStream rng(block_seed(frame_seed ^ 0x7261696eULL, 0));
-  const double scale = height / 720.0;
-  const auto count = static_cast<int>(std::min(20.0, l.rain_intensity) * width * height / 40000.0);
-  const double slant = std::atan(l.wind_speed / 8.0) * std::sin(l.wind_direction);
-  for (int i = 0; i < count; ++i) {
-    const double x0 = rng.uniform(0.0, width);
-    const double y0 = rng.uniform(-20.0 * scale, height);
-    const double length = rng.uniform(15.0, 45.0) * scale;
-    const double angle = slant + rng.uniform(-0.05, 0.05);
-    const double dx = std::sin(angle);
-    const double dy = std::cos(angle);
-    const double alpha = rng.uniform(0.08, 0.2);
-    for (int s = 0; s < static_cast<int>(length); ++s) {
-      const int x = static_cast<int>(x0 + dx * s);
-      const int y = static_cast<int>(y0 + dy * s);
-      if (x < 0 || y < 0 || x >= width || y >= height) {
-        continue;
-      }
-      uint8_t* p = &rgb[3 * (static_cast<size_t>(y) * width + x)];
-      for (int k = 0; k < 3; ++k) {
-        p[k] = static_cast<uint8_t>(p[k] + std::lround((235 - p[k]) * alpha * (p[k] < 235)));
-      }
-    }
-  }
 }
 
 }  // namespace corsa::sensors::detail

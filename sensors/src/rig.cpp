@@ -136,7 +136,15 @@ LidarOptions read_lidar(const ValidatedElement& e, const std::string& file) {
   return l;
 }
 
-SensorSpec read_sensor(const ValidatedElement& e, const std::string& file) {
+/// A schema-validated quality word.
+RenderQuality quality_of(const std::string& word) {
+  return word == "fast"   ? RenderQuality::kFast
+         : word == "high" ? RenderQuality::kHigh
+                          : RenderQuality::kDefault;
+}
+
+SensorSpec read_sensor(const ValidatedElement& e, const std::string& file,
+                       RenderQuality rig_quality) {
   SensorSpec s;
   s.name = *e.find("name");
   s.entity = *e.find("entity");
@@ -146,11 +154,19 @@ SensorSpec read_sensor(const ValidatedElement& e, const std::string& file) {
   if (e.name == "RgbCamera") {
     s.kind = SensorKind::kRgbCamera;
     s.camera = read_intrinsics(e);
-    s.rgb.shutter_speed_s = number(e, "shutterSpeed");
-    s.rgb.iso = number(e, "iso");
+    // Either exposure attribute makes the exposure manual (the other keeps its usual value).
+    s.rgb.auto_exposure = e.find("shutterSpeed") == nullptr && e.find("iso") == nullptr;
+    if (e.find("shutterSpeed") != nullptr) {
+      s.rgb.shutter_speed_s = number(e, "shutterSpeed");
+    }
+    if (e.find("iso") != nullptr) {
+      s.rgb.iso = number(e, "iso");
+    }
     s.rgb.gamma = number(e, "gamma");
     s.rgb.exposure_compensation_ev = number(e, "exposureCompensation");
+    s.rgb.vignetting = number(e, "vignetting");
     s.rgb.noise = boolean(e, "noise");
+    s.rgb.quality = e.find("quality") != nullptr ? quality_of(*e.find("quality")) : rig_quality;
   } else if (e.name == "DepthCamera") {
     s.kind = SensorKind::kDepthCamera;
     s.camera = read_intrinsics(e);
@@ -174,6 +190,18 @@ SensorSpec read_sensor(const ValidatedElement& e, const std::string& file) {
 }
 
 }  // namespace
+
+std::string_view render_quality_name(RenderQuality quality) {
+  switch (quality) {
+    case RenderQuality::kFast:
+      return "fast";
+    case RenderQuality::kDefault:
+      return "default";
+    case RenderQuality::kHigh:
+      return "high";
+  }
+  return "default";
+}
 
 std::string_view sensor_kind_name(SensorKind kind) {
   switch (kind) {
@@ -213,10 +241,11 @@ SensorRig parse_rig(std::string_view xml, const std::string& file) {
   SensorRig rig;
   rig.name = *root.find("name");
   rig.file = file;
+  rig.quality = quality_of(*root.find("quality"));
   std::set<std::string> names;
   RigBudget budget(file);
   for (const auto& e : root.children) {
-    SensorSpec s = read_sensor(e, file);
+    SensorSpec s = read_sensor(e, file, rig.quality);
     budget.add(s, e);
     if (!names.insert(s.name).second) {
       throw InputError(make_error(file, e.line,

@@ -153,6 +153,39 @@ Material tinted_facade(Rgb8 color, uint32_t id) {
   return m;
 }
 
+/// The street lamps and signal bulbs of a static mesh as light sources (tracer frame).
+void add_static_lamps(detail::SceneData& d, const StaticMesh& mesh,
+                      const detail::StaticGeometry& info) {
+  bool any = false;
+  for (const MaterialId m : info.materials) {
+    any = any || d.materials[m].light != LightRole::kNone;
+  }
+  if (!any) {
+    return;
+  }
+  const size_t n = mesh.triangles.size();
+  std::vector<LightRole> roles(n);
+  std::vector<Color> emissions(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Material& m = d.materials[info.material_of(static_cast<unsigned>(i))];
+    roles[i] = m.light;
+    emissions[i] = m.emission;
+  }
+  std::vector<Vec3> local(mesh.vertices.size());
+  for (size_t i = 0; i < local.size(); ++i) {
+    local[i] = d.to_local(mesh.vertices[i]);
+  }
+  for (detail::LampPatch p : detail::find_lamps(local, mesh.triangles, roles, emissions, {})) {
+    p.signal = p.role == LightRole::kSignalRed || p.role == LightRole::kSignalYellow ||
+                       p.role == LightRole::kSignalGreen
+                   ? info.signal
+                   : -1;
+    if (p.signal >= 0 || p.role == LightRole::kStreetLamp) {
+      d.static_lamps.push_back(p);
+    }
+  }
+}
+
 }  // namespace
 
 bool is_countable_class(SemanticClass c) {
@@ -351,6 +384,7 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
       info.uv_per_m.push_back(area > 0.0 ? static_cast<float>(std::sqrt(uv_area / area)) : 1.0f);
     }
   }
+  add_static_lamps(d, mesh, info);
   d.static_geometries.push_back(std::move(info));
   d.triangle_count += d.static_geometries.back().triangles;
   d.committed = false;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "corsa/sensors/scene.h"
+#include "light_list.h"
 #include "mesh_builder.h"
 
 namespace corsa::sensors::detail {
@@ -53,6 +54,7 @@ struct EntityShape {
   /// (bone 0 first), entity frame.
   std::function<void(const engine::EntitySnapshot&, std::vector<Rigid>&)> pose;
   std::vector<Rigid> last_pose;  ///< bones of the last frame (to skip unchanged updates)
+  std::vector<LampPatch> lamps;  ///< its lamps (entity frame, rest pose), light sources when lit
   bool seen = false;             ///< placed in the current frame
 
   EntityShape() = default;
@@ -92,6 +94,7 @@ struct SceneData {
   std::vector<std::string> signal_ids;     ///< signals that switch traffic-light heads
   std::vector<std::string> signal_states;  ///< this frame's state strings, by index
   std::vector<uint8_t> signal_bulbs;       ///< lit bulbs, bit 0 red, 1 yellow, 2 green
+  std::vector<LampPatch> static_lamps;     ///< street lamps and signal bulbs, tracer frame
   /// Labelled static objects by instance id: what they are, their bounds (map frame) and the
   /// signal index of traffic lights (-1 otherwise).
   struct ObjectRecord {

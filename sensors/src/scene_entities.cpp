@@ -99,9 +99,19 @@ void make_shape(Scene& scene, detail::SceneData& d, const engine::EntitySnapshot
     palette.push_back(scene.add_material(m));
   }
   shape.materials.clear();
-  for (const uint16_t m : shape.mesh.material) {
+  std::vector<LightRole> roles;
+  std::vector<Color> emissions;
+  std::vector<uint32_t> bones;
+  for (size_t i = 0; i < shape.mesh.material.size(); ++i) {
+    const uint16_t m = shape.mesh.material[i];
     shape.materials.push_back(palette[m]);
+    const Material& mat = shape.mesh.materials[m];
+    roles.push_back(mat.light);
+    emissions.push_back(mat.emission);
+    bones.push_back(shape.mesh.bone.empty() ? 0u : shape.mesh.bone[shape.mesh.triangles[i][0]]);
   }
+  shape.lamps =
+      detail::find_lamps(shape.mesh.vertices, shape.mesh.triangles, roles, emissions, bones);
   shape.scene = rtcNewScene(d.device);
   shape.geometry = rtcNewGeometry(d.device, RTC_GEOMETRY_TYPE_TRIANGLE);
   const auto& mesh = shape.mesh;

@@ -1,12 +1,14 @@
 #pragma once
 
-// What the renderer and the LiDAR need from the environment: sun direction and colour, sky,
-// fog and rain extinction, wet road, night. Colours are linear RGB radiance in relative units
-// (1 = a white surface facing the noon sun on a clear day).
+// What the renderer and the LiDAR need from the environment: sun direction and colour, the sky
+// (corsa/sensors/sky.h) and its light, fog, haze, rain and snow, wet road, night. Colours are
+// linear RGB in relative units: radiance 1 is a white diffuse surface under 100,000 lux, and
+// an irradiance E is given as E / 100,000 lux (so that a white surface's radiance equals it).
 
 #include "corsa/engine/world_snapshot.h"
 #include "corsa/sensors/color.h"
 #include "corsa/sensors/geometry.h"
+#include "corsa/sensors/sky.h"
 
 namespace corsa::sensors {
 
@@ -23,26 +25,44 @@ double fog_extinction(double visual_range_m);
 /// that 10 mm/h halves a 905 nm LiDAR return at ~440 m two-way and hazes a camera at km range.
 double rain_extinction(double intensity_mm_per_h);
 
+/// Scale height of fog (m): its density falls by e every this many metres above the ground.
+inline constexpr double kFogScaleHeight = 80.0;
+/// Scale height of the clear-air haze (aerosols), m.
+inline constexpr double kHazeScaleHeight = 1200.0;
+
 struct Lighting {
   Vec3 sun_direction{0.0, 0.0, 1.0};  ///< unit vector towards the sun, map frame (x east, y north)
   double sun_elevation = 1.0;         ///< radians
-  Color sun;                          ///< direct sunlight reaching the ground
-  Color sky_zenith;
-  Color sky_horizon;
-  Color ambient;  ///< diffuse sky light on an upward surface
-  Color fog_color;
-  double fog_extinction = 0.0;   ///< 1/m, fog only
+  /// Direct sunlight on a surface facing the sun (after the atmosphere and the clouds).
+  Color sun;
+  double sun_angular_radius = 0.00465;  ///< radians (the solar disc, for soft shadows)
+  SkyModel sky_model;                   ///< sky radiance by direction
+  IrradianceSH sky_light;               ///< sky (and ground) light by surface orientation
+  Color ambient;                        ///< sky light on an upward surface (sky_light of +z)
+  Color fog_color;  ///< radiance of a deep layer of fog or haze lit by the sky and the sun
+  double fog_extinction = 0.0;   ///< 1/m, fog only, at ground level (falls off with height)
+  double haze_extinction = 0.0;  ///< 1/m, clear-air haze at ground level
   double rain_extinction = 0.0;  ///< 1/m
   double rain_intensity = 0.0;   ///< mm/h, 0 when dry or snowing
+  double snow_intensity = 0.0;   ///< mm/h of water, 0 when not snowing
+  double snow_extinction = 0.0;  ///< 1/m, falling snow (cameras only)
+  double cloud_cover = 0.0;      ///< 0 clear .. 1 overcast
   bool wet_road = false;
   bool headlights = false;  ///< dark enough for vehicles to drive with lights
+  double darkness = 0.0;    ///< 0 day .. 1 night: street lamps and lit windows switch on
   double wind_direction = 0.0;
   double wind_speed = 0.0;
 
   /// Total extinction (fog + rain) for light and LiDAR, 1/m.
   double extinction() const { return fog_extinction + rain_extinction; }
-  /// Sky radiance seen in a direction (unit, map frame), without fog.
+  /// Sky radiance seen in a direction (unit, map frame), without fog, with the sun's disc.
   Color sky(Vec3 direction) const;
+  /// Share of light that crosses the air from a point `height` metres above the ground along
+  /// `distance` metres of a ray whose direction has z component `dir_z` (fog and haze thin out
+  /// with height; rain and snow fill the lowest 2 km evenly). What is lost is replaced by
+  /// fog_color: seen = radiance * t + fog_color * (1 - t). `distance` may be infinite (the
+  /// sky, whose model already holds the haze: pass haze = false).
+  double transmittance(double height, double dir_z, double distance, bool haze = true) const;
 };
 
 /// Lighting from the environment: the sun from the snapshot's sun angles when given, otherwise

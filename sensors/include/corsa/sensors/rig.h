@@ -40,12 +40,28 @@ struct CameraIntrinsics {
   double k1 = 0.0, k2 = 0.0, p1 = 0.0, p2 = 0.0;
 };
 
+/// How much work the RGB image gets (docs/sensors.md, "Image formation"): `kFast` shades one
+/// sample per pixel with hard sun shadows and no secondary rays; `kDefault` adds soft sun
+/// shadows, sky occlusion with one bounce, reflections, see-through glass, shadowed street and
+/// vehicle lights and anti-aliased edges; `kHigh` takes more of every kind of sample.
+enum class RenderQuality { kFast, kDefault, kHigh };
+
+/// The rig's word for a quality ("fast", "default", "high").
+std::string_view render_quality_name(RenderQuality quality);
+
 struct RgbOptions {
-  double shutter_speed_s = 0.004;  ///< exposure time: brightness and motion blur
-  double iso = 100.0;              ///< sensitivity: brightness and noise
-  double gamma = 2.2;
+  /// Exposure time (s): brightness and motion blur. With `auto_exposure` the metering chooses
+  /// it per frame and this value is unused.
+  double shutter_speed_s = 0.004;
+  double iso = 100.0;  ///< sensitivity: brightness and noise (auto exposure chooses it too)
+  /// Meter every frame (exposure time, then gain); false when the rig gives shutterSpeed or
+  /// iso, which then fix the exposure as a manual camera would.
+  bool auto_exposure = true;
+  double gamma = 2.2;  ///< display encoding after the tone curve
   double exposure_compensation_ev = 0.0;
+  double vignetting = 0.25;  ///< share of light lost in the image corners (0: none)
   bool noise = true;
+  RenderQuality quality = RenderQuality::kDefault;
 };
 
 struct DepthOptions {
@@ -98,7 +114,8 @@ struct SensorSpec {
 
 struct SensorRig {
   std::string name;
-  std::string file;  ///< as named by the user, for messages
+  RenderQuality quality = RenderQuality::kDefault;  ///< for RGB cameras that name none
+  std::string file;                                 ///< as named by the user, for messages
   std::vector<SensorSpec> sensors;
 
   const SensorSpec* find(std::string_view sensor_name) const;

@@ -1,0 +1,134 @@
+#pragma once
+
+// Microfacet reflection for the camera shading (private): the GGX / Trowbridge-Reitz normal
+// distribution with the height-correlated Smith masking-shadowing term (Walter, Marschner, Li and
+// Torrance, "Microfacet Models for Refraction through Rough Surfaces", EGSR 2007; Heitz,
+// "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs", JCGT 2014),
+// Schlick's Fresnel approximation, and the split-sum environment term in Karis' analytic fit
+// ("Physically Based Shading on Mobile", 2014). Roughness is perceptual (glTF): alpha = r^2.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+
+#include "corsa/sensors/color.h"
+#include "corsa/sensors/geometry.h"
+
+namespace corsa::sensors::detail {
+
+inline constexpr double kPi = std::numbers::pi;
+
+inline Vec3 reflect(Vec3 d, Vec3 n) { return d - n * (2.0 * dot(d, n)); }
+
+inline double luminance(Color c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+/// Schlick: F0 + (1 - F0) (1 - cos)^5.
+inline double schlick_weight(double cos_theta) {
+  const double m = std::clamp(1.0 - cos_theta, 0.0, 1.0);
+  const double m2 = m * m;
+  return m2 * m2 * m;
+}
+inline Color fresnel_schlick(Color f0, double cos_theta) {
+  const double w = schlick_weight(cos_theta);
+  return f0 * (1.0 - w) + Color{w, w, w};
+}
+
+/// GGX normal distribution D(h) for alpha = roughness^2.
+inline double ggx_d(double n_dot_h, double alpha) {
+  const double a2 = alpha * alpha;
+  const double d = n_dot_h * n_dot_h * (a2 - 1.0) + 1.0;
+  return a2 / (kPi * d * d);
+}
+
+/// Height-correlated Smith visibility V = G / (4 n.l n.v).
+inline double smith_visibility(double n_dot_l, double n_dot_v, double alpha) {
+  const double a2 = alpha * alpha;
+  const double gv = n_dot_l * std::sqrt(n_dot_v * n_dot_v * (1.0 - a2) + a2);
+  const double gl = n_dot_v * std::sqrt(n_dot_l * n_dot_l * (1.0 - a2) + a2);
+  return 0.5 / std::max(gv + gl, 1e-9);
+}
+
+/// pi * f_spec * n.l for light from l seen from v (both unit, pointing away from the surface):
+/// multiplied by an irradiance in the renderer's units it gives radiance.
+inline Color ggx_specular(Vec3 n, Vec3 v, Vec3 l, double roughness, Color f0) {
+  const double n_dot_l = dot(n, l);
+  const double n_dot_v = dot(n, v);
+  if (n_dot_l <= 0.0 || n_dot_v <= 0.0) {
+    return {};
+  }
+  const Vec3 h = normalized(l + v);
+  // Very smooth surfaces would give a point light an infinitely small, infinitely bright glint;
+  // the lights have a size, so the lobe is never narrower than alpha 0.002.
+  const double alpha = std::max(roughness * roughness, 0.002);
+  const double s = ggx_d(dot(n, h), alpha) * smith_visibility(n_dot_l, n_dot_v, alpha);
+  return fresnel_schlick(f0, dot(v, h)) * (kPi * s * n_dot_l);
+}
+
+/// Directional albedo of the specular lobe under uniform light, F0 scale and bias (Karis' fit
+/// of the split-sum DFG term).
+inline Color environment_brdf(Color f0, double roughness, double n_dot_v) {
+  const double r0 = roughness * -1.0 + 1.0;
+  const double r1 = roughness * -0.0275 + 0.0425;
+  const double r2 = roughness * -0.572 + 1.04;
+  const double r3 = roughness * 0.022 - 0.04;
+  const double a004 = std::min(r0 * r0, std::exp2(-9.28 * n_dot_v)) * r0 + r1;
+  const double scale = a004 * -1.04 + r2;
+  const double bias = a004 * 1.04 + r3;
+  return f0 * scale + Color{bias, bias, bias};
+}
+
+/// Orthonormal basis around unit n (Duff et al., "Building an Orthonormal Basis, Revisited",
+/// JCGT 2017).
+inline void basis(Vec3 n, Vec3& t, Vec3& b) {
+  const double sign = std::copysign(1.0, n.z);
+  const double a = -1.0 / (sign + n.z);
+  const double c = n.x * n.y * a;
+  t = {1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x};
+  b = {c, sign + n.y * n.y * a, -n.y};
+}
+
+/// Cosine-weighted direction about n from two uniforms in [0, 1).
+inline Vec3 cosine_direction(Vec3 n, double u1, double u2) {
+  Vec3 t, b;
+  basis(n, t, b);
+  const double r = std::sqrt(u1);
+  const double phi = 2.0 * kPi * u2;
+  const double z = std::sqrt(std::max(0.0, 1.0 - u1));
+  return normalized(t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * z);
+}
+
+/// A direction inside the cone of half-angle `radius` about unit axis d, uniform over the disc.
+inline Vec3 cone_direction(Vec3 d, double radius, double u1, double u2) {
+  Vec3 t, b;
+  basis(d, t, b);
+  const double r = radius * std::sqrt(u1);
+  const double phi = 2.0 * kPi * u2;
+  return normalized(d + t * (r * std::cos(phi)) + b * (r * std::sin(phi)));
+}
+
+/// Counter-based uniform in [0, 1): splitmix64 of a key and a counter, the same on any thread.
+inline double hash_uniform(uint64_t key, uint64_t counter) {
+  uint64_t z = key + (counter + 1) * 0x9E3779B97F4A7C15ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/// Key of a pixel's random numbers in a frame.
+inline uint64_t pixel_key(uint64_t frame_seed, uint64_t pixel, uint64_t purpose) {
+  return frame_seed * 0xD1B54A32D192ED03ULL + pixel * 0x8CB92BA72F3D8DD7ULL + purpose * 0x9E37ULL;
+}
+
+/// Point n of Roberts' R2 low-discrepancy sequence, rotated by (r1, r2) (Cranley-Patterson):
+/// stratified sample pairs whose rotation differs per pixel.
+inline void r2_point(int n, double r1, double r2, double& u1, double& u2) {
+  const double a1 = 0.7548776662466927, a2 = 0.5698402909980532;
+  u1 = r1 + a1 * n;
+  u2 = r2 + a2 * n;
+  u1 -= std::floor(u1);
+  u2 -= std::floor(u2);
+}
+
+}  // namespace corsa::sensors::detail

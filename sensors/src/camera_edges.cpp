@@ -1,0 +1,229 @@
+// Stages 3 and 4 of a camera pass: the centre sample of every pixel is composited (terms times
+// filtered visibilities, seen through the air); pixels at the edge of an object, a material or a
+// fold (another surface, depth or orientation next to them) then get extra sub-pixel samples in
+// a jittered grid, and their colour is the mean of all of them. Textures are prefiltered, so
+// pixels inside a surface need no more. An extra sample's lighting comes from the centre sample
+// of a neighbour on the same surface (its filtered visibilities, its mirrored and transmitted
+// light); a sample on a surface no neighbour's centre shows (a thin pole) is lit with one
+// shadow ray to the sun and the open sky. Labels, depth and instance ids stay those of the
+// centre sample.
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+#include "brdf.h"
+#include "camera_frame.h"
+
+namespace corsa::sensors::detail {
+namespace {
+
+bool differs(const PixelRecord& a, const PixelRecord& b) {
+  if (a.surface_id != b.surface_id) {
+    return true;
+  }
+  if (a.surface_id == 0) {
+    return false;
+  }
+  if (std::fabs(a.distance - b.distance) > 0.04f * std::min(a.distance, b.distance)) {
+    return true;
+  }
+  const float c =
+      a.normal[0] * b.normal[0] + a.normal[1] * b.normal[1] + a.normal[2] * b.normal[2];
+  return c < 0.9f;
+}
+
+/// The neighbour (3x3) whose centre sample lies on the same surface closest to `s`, or -1.
+long long matching_neighbour(const Pass& p, int col, int row, const SurfacePoint& s) {
+  long long best = -1;
+  double best_d2 = std::pow(0.05 + 0.02 * s.distance, 2.0);
+  for (int j = -1; j <= 1; ++j) {
+    for (int i = -1; i <= 1; ++i) {
+      const int c = col + i, r = row + j;
+      if (c < 0 || r < 0 || c >= p.width || r >= p.height) {
+        continue;
+      }
+      const size_t q = static_cast<size_t>(r) * p.width + c;
+      const PixelRecord& rec = (*p.records)[q];
+      if (rec.surface_id != s.surface_id) {
+        continue;
+      }
+      const Vec3 d =
+          Vec3{rec.position[0], rec.position[1], rec.position[2]} - s.position;
+      const double d2 = dot(d, d);
+      if (d2 < best_d2) {
+        best_d2 = d2;
+        best = static_cast<long long>(q);
+      }
+    }
+  }
+  return best;
+}
+
+/// The mean radiance of `count` jittered sub-pixel samples of pixel (col, row).
+Color resample(const Pass& p, int col, int row, int count) {
+  const ShadingContext& c = *p.shading;
+  const SceneData& d = *p.scene;
+  const size_t px = static_cast<size_t>(row) * p.width + col;
+  const uint64_t key = pixel_key(p.settings->frame_seed, px, 0xAA);
+  const int gx = count >= 12 ? 4 : 2;
+  const int gy = (count + gx - 1) / gx;
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[16];
+  Vec3 dirs[16];
+  for (int k = 0; k < 16; ++k) {
+    valid[k] = k < count ? -1 : 0;
+    const double x = col + ((k % gx) + hash_uniform(key, 2 * k)) / gx - 0.5;
+    const double y = row + ((k / gx) + hash_uniform(key, 2 * k + 1)) / gy - 0.5;
+    dirs[k] = valid[k] ? ray_at(p, x, y) : Vec3{0.0, 0.0, 1.0};
+    rh.ray.org_x[k] = static_cast<float>(p.origin_local.x);
+    rh.ray.org_y[k] = static_cast<float>(p.origin_local.y);
+    rh.ray.org_z[k] = static_cast<float>(p.origin_local.z);
+    rh.ray.dir_x[k] = static_cast<float>(dirs[k].x);
+    rh.ray.dir_y[k] = static_cast<float>(dirs[k].y);
+    rh.ray.dir_z[k] = static_cast<float>(dirs[k].z);
+    rh.ray.tnear[k] = p.carrier.exit(dirs[k]);
+    rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+    rh.ray.mask[k] = 0xFFFFFFFFu;
+    rh.ray.flags[k] = 0;
+    rh.ray.time[k] = 0.0f;
+    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersect16(valid, d.top, &context, &rh);
+
+  const Lighting& l = *c.lighting;
+  Color sum;
+  for (int k = 0; k < count; ++k) {
+    if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
+      sum = sum + sky_seen(c, p.origin_local, dirs[k]);
+      continue;
+    }
+    SurfaceHit h;
+    h.inst_id = rh.hit.instID[0][k];
+    h.geom_id = rh.hit.geomID[k];
+    h.prim_id = rh.hit.primID[k];
+    h.u = rh.hit.u[k];
+    h.v = rh.hit.v[k];
+    h.view_dir = dirs[k];
+    h.distance = rh.ray.tfar[k];
+    h.position = p.origin_local + dirs[k] * h.distance;
+    const Vec3 n = d.world_normal(h.inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
+    h.normal = dot(n, dirs[k]) > 0.0 ? -n : n;
+    const auto label = d.label(h.inst_id, h.geom_id, h.prim_id);
+    h.semantic = label.semantic;
+    h.entity = label.entity;
+    const SurfacePoint s = surface_at(c, h);
+    const long long q = matching_neighbour(p, col, row, s);
+    Visibility v;
+    ShadeTerms terms;
+    if (q >= 0) {
+      const PixelRecord& rec = (*p.records)[q];
+      const Color mirrored = rec.mirrored.get();
+      const Color behind = rec.behind.get();
+      terms = shade_terms(c, s, rec.has_mirrored ? &mirrored : nullptr,
+                          rec.has_behind ? &behind : nullptr);
+      v = (*p.visibility)[q].get();
+    } else {
+      terms = shade_terms(c, s, nullptr, nullptr);
+      v.sky = {0.85, 0.85, 0.85};
+      if (dot(s.normal, l.sun_direction) > 0.0 && luminance(l.sun) > 0.0) {
+        RTCRay shadow{};
+        const Vec3 o = s.position + s.normal * (0.01 + 1e-4 * s.distance);
+        shadow.org_x = static_cast<float>(o.x);
+        shadow.org_y = static_cast<float>(o.y);
+        shadow.org_z = static_cast<float>(o.z);
+        shadow.dir_x = static_cast<float>(l.sun_direction.x);
+        shadow.dir_y = static_cast<float>(l.sun_direction.y);
+        shadow.dir_z = static_cast<float>(l.sun_direction.z);
+        shadow.tfar = std::numeric_limits<float>::infinity();
+        shadow.mask = 0xFFFFFFFFu;
+        RTCIntersectContext sc;
+        rtcInitIntersectContext(&sc);
+        rtcOccluded1(d.top, &sc, &shadow);
+        v.sun = shadow.tfar >= 0.0f ? 1.0 : 0.0;
+      }
+    }
+    sum = sum + through_air(c, combine(terms, v), p.origin_local, dirs[k], h.distance);
+  }
+  return sum;
+}
+
+}  // namespace
+
+void composite(const Pass& p, std::vector<float>& linear) {
+  const int w = p.width;
+  tbb::parallel_for(tbb::blocked_range<int>(0, p.height), [&](const tbb::blocked_range<int>& r) {
+    for (int row = r.begin(); row != r.end(); ++row) {
+      for (int col = 0; col < w; ++col) {
+        const size_t px = static_cast<size_t>(row) * w + col;
+        const PixelRecord& rec = (*p.records)[px];
+        Color c = rec.terms.base;
+        if (rec.surface_id != 0) {
+          const Color lit = combine(rec.terms, (*p.visibility)[px].get());
+          c = through_air(*p.shading, lit, p.origin_local, ray_at(p, col, row), rec.distance);
+        }
+        float* out = &linear[3 * px];
+        out[0] = static_cast<float>(c.r);
+        out[1] = static_cast<float>(c.g);
+        out[2] = static_cast<float>(c.b);
+      }
+    }
+  });
+}
+
+size_t antialias_edges(const Pass& p, std::vector<float>& linear) {
+  const int samples = std::min(p.shading->quality.edge_samples, 16);
+  if (samples <= 0) {
+    return 0;
+  }
+  const int w = p.width;
+  const int h = p.height;
+  const std::vector<PixelRecord>& rec = *p.records;
+  std::vector<uint8_t> edge(rec.size(), 0);
+  // Row by row: a pixel is marked by its own comparisons with the right and lower neighbour
+  // and theirs with it, so each row writes only its own marks.
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& r) {
+    for (int row = r.begin(); row != r.end(); ++row) {
+      for (int col = 0; col < w; ++col) {
+        const size_t px = static_cast<size_t>(row) * w + col;
+        bool e = false;
+        e = e || (col + 1 < w && differs(rec[px], rec[px + 1]));
+        e = e || (col > 0 && differs(rec[px], rec[px - 1]));
+        e = e || (row + 1 < h && differs(rec[px], rec[px + w]));
+        e = e || (row > 0 && differs(rec[px], rec[px - w]));
+        edge[px] = e ? 1 : 0;
+      }
+    }
+  });
+  std::atomic<size_t> count{0};
+  tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& r) {
+    size_t local = 0;
+    for (int row = r.begin(); row != r.end(); ++row) {
+      for (int col = 0; col < w; ++col) {
+        const size_t px = static_cast<size_t>(row) * w + col;
+        if (!edge[px]) {
+          continue;
+        }
+        ++local;
+        const Color extra = resample(p, col, row, samples);
+        float* out = &linear[3 * px];
+        const double n = samples + 1.0;
+        out[0] = static_cast<float>((out[0] + extra.r) / n);
+        out[1] = static_cast<float>((out[1] + extra.g) / n);
+        out[2] = static_cast<float>((out[2] + extra.b) / n);
+      }
+    }
+    count += local;
+  });
+  return count.load();
+}
+
+}  // namespace corsa::sensors::detail

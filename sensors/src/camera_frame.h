@@ -1,0 +1,107 @@
+#pragma once
+
+// The buffers of one camera pass and its stages (private; camera_render.cpp runs them):
+//   1. trace (camera_trace.cpp): one primary ray through each pixel centre gives depth, class
+//      and instance; for RGB the surface there, its shading terms and the visibilities
+//      estimated with sun, sky, light, reflection and glass rays;
+//   2. filter the visibilities across neighbours of the same surface (camera_denoise.cpp);
+//   3. composite: terms x visibilities, through the air;
+//   4. anti-alias edge pixels with extra sub-pixel samples (camera_edges.cpp).
+
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "carrier.h"
+#include "corsa/sensors/camera_render.h"
+#include "shading.h"
+
+namespace corsa::sensors::detail {
+
+/// A colour in single precision (buffers).
+struct Color3f {
+  float r = 0.0f, g = 0.0f, b = 0.0f;
+  Color3f() = default;
+  explicit Color3f(Color c)
+      : r(static_cast<float>(c.r)), g(static_cast<float>(c.g)), b(static_cast<float>(c.b)) {}
+  Color get() const { return {r, g, b}; }
+};
+
+/// The centre sample of a pixel, as the later stages need it.
+struct PixelRecord {
+  float position[3] = {0, 0, 0};  ///< tracer-local
+  float normal[3] = {0, 0, 0};
+  float distance = 0.0f;     ///< along the ray; infinite for the sky
+  uint32_t surface_id = 0;   ///< 0: sky
+  ShadeTerms terms;          ///< (double colours: the terms are read once per pixel and sample)
+  Color3f mirrored;          ///< radiance from the mirror direction (mirror surfaces)
+  Color3f behind;            ///< radiance through glass
+  bool has_mirrored = false;
+  bool has_behind = false;
+};
+
+/// Visibilities of a pixel's centre sample in single precision (filtered in place).
+struct PixelVisibility {
+  float sun = 1.0f;
+  float sky[3] = {1.0f, 1.0f, 1.0f};
+  float lights = 1.0f;
+
+  Visibility get() const { return {sun, {sky[0], sky[1], sky[2]}, lights}; }
+};
+
+/// Everything one pass shares.
+struct Pass {
+  const SceneData* scene = nullptr;
+  const CameraModel* model = nullptr;
+  const float* rays = nullptr;  ///< per pixel centre, optical frame
+  const RenderSettings* settings = nullptr;
+  const ShadingContext* shading = nullptr;
+  float rotation[3][3] = {};  ///< optical frame to map, single precision
+  Rigid cam_early, cam_late;  ///< inverse poses at +-kMotionHalf (motion vectors)
+  bool motion = false;        ///< compute motion vectors
+  Vec3 origin_local;
+  CarrierExit carrier;  ///< where primary rays leave the carrying vehicle
+  CameraImages* out = nullptr;
+  std::vector<PixelRecord>* records = nullptr;
+  std::vector<PixelVisibility>* visibility = nullptr;
+  std::vector<float>* motion_vectors = nullptr;  ///< pixels over 2 kMotionHalf seconds
+  int width = 0;
+  int height = 0;
+};
+
+/// Motion vectors are computed over +-kMotionHalf seconds and scaled to the exposure time.
+inline constexpr double kMotionHalf = 0.005;
+
+/// Unit ray direction in the map frame through image point (x, y) (pixel units; centres at
+/// integers), interpolated between the precomputed pixel-centre rays.
+Vec3 ray_at(const Pass& p, double x, double y);
+
+/// Ray batches of a tile, kept between tiles to save allocations (one per thread range).
+struct TileScratch {
+  std::vector<RTCRay> rays;  ///< shadow rays (sun, lights)
+  std::vector<int> ray_owner;  ///< the pixel (0..15) a ray belongs to
+  std::vector<int> ray_kind;
+  std::vector<RTCRayHit> hits;  ///< rays that need their hit (sky, mirror, glass)
+  std::vector<int> hit_owner;
+  std::vector<int> hit_kind;
+  std::vector<RTCRay> second;  ///< shadow rays from the secondary hits
+  std::vector<int> second_owner;  ///< index into `hits`
+  std::vector<float> weights;
+};
+
+/// Stage 1 for the 4x4 pixel tile at (col0, row0).
+void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch);
+
+/// Stage 2: filters the visibilities in place (deterministic on any thread count).
+void filter_visibility(const Pass& p);
+
+/// Stage 3: the radiance of every pixel's centre sample into `linear` (3 floats a pixel).
+void composite(const Pass& p, std::vector<float>& linear);
+
+/// Stage 4: anti-aliases pixels whose neighbours show another surface or depth. Returns the
+/// number of pixels resampled.
+size_t antialias_edges(const Pass& p, std::vector<float>& linear);
+
+}  // namespace corsa::sensors::detail

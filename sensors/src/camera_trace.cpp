@@ -1,0 +1,487 @@
+// Stage 1 of a camera pass: primary rays through the pixel centres (4x4 packets) give depth,
+// class and instance; for RGB each hit is shaded into its terms, and its visibilities are
+// estimated with secondary rays traced in batches per tile: shadow rays to the sun (over the
+// solar disc for soft shadows), cosine-distributed sky rays whose occluders return one diffuse
+// bounce, shadow rays to lamps picked in proportion to their light, mirror rays on smooth
+// surfaces and rays through glass. Every random number is a hash of (frame seed, pixel, use),
+// so the bytes do not depend on the thread count.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "brdf.h"
+#include "camera_frame.h"
+
+namespace corsa::sensors::detail {
+namespace {
+
+constexpr int kTile = 4;
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+constexpr double kSkyRayLength = 80.0;  ///< m: beyond, occluders are part of the sky light
+
+enum RayKind : int { kSun, kSky, kLight, kMirror, kGlass };
+
+RTCRay make_ray(Vec3 o, Vec3 d, float tfar) {
+  RTCRay r{};
+  r.org_x = static_cast<float>(o.x);
+  r.org_y = static_cast<float>(o.y);
+  r.org_z = static_cast<float>(o.z);
+  r.dir_x = static_cast<float>(d.x);
+  r.dir_y = static_cast<float>(d.y);
+  r.dir_z = static_cast<float>(d.z);
+  r.tnear = 0.0f;
+  r.tfar = tfar;
+  r.mask = 0xFFFFFFFFu;
+  return r;
+}
+
+RTCRayHit make_hit_ray(Vec3 o, Vec3 d, float tfar) {
+  RTCRayHit h{};
+  h.ray = make_ray(o, d, tfar);
+  h.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  h.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return h;
+}
+
+void occluded(const SceneData& d, std::vector<RTCRay>& rays) {
+  if (rays.empty()) {
+    return;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcOccluded1M(d.top, &context, rays.data(), static_cast<unsigned>(rays.size()), sizeof(RTCRay));
+}
+
+void intersect(const SceneData& d, std::vector<RTCRayHit>& rays) {
+  if (rays.empty()) {
+    return;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcIntersect1M(d.top, &context, rays.data(), static_cast<unsigned>(rays.size()),
+                 sizeof(RTCRayHit));
+}
+
+/// Where a secondary ray starts: off the surface, against self-intersection.
+Vec3 offset(const SurfacePoint& s, Vec3 along) {
+  const double eps = 0.01 + 1e-4 * s.distance;
+  return s.position + (dot(along, s.normal) >= 0.0 ? s.normal : -s.normal) * eps;
+}
+
+/// The surface a secondary ray found, or nullopt for the sky.
+std::optional<SurfacePoint> secondary_surface(const Pass& p, const RTCRayHit& h,
+                                              double path_before) {
+  if (h.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+    return std::nullopt;
+  }
+  const SceneData& d = *p.scene;
+  SurfaceHit s;
+  s.inst_id = h.hit.instID[0];
+  s.geom_id = h.hit.geomID;
+  s.prim_id = h.hit.primID;
+  s.u = h.hit.u;
+  s.v = h.hit.v;
+  const Vec3 dir{h.ray.dir_x, h.ray.dir_y, h.ray.dir_z};
+  s.view_dir = dir;
+  s.position = Vec3{h.ray.org_x, h.ray.org_y, h.ray.org_z} + dir * h.ray.tfar;
+  Vec3 n = d.world_normal(s.inst_id, {h.hit.Ng_x, h.hit.Ng_y, h.hit.Ng_z});
+  s.normal = dot(n, dir) > 0.0 ? -n : n;
+  s.distance = path_before + h.ray.tfar;
+  const auto label = d.label(s.inst_id, s.geom_id, s.prim_id);
+  s.semantic = label.semantic;
+  s.entity = label.entity;
+  // Secondary views are blurred by the curvature they come from: a coarser texture level.
+  return surface_at(*p.shading, s, 2.0);
+}
+
+/// Radiance an occluding surface sends back along a sky ray: one diffuse bounce of sky and sun
+/// light off its base colour (half the sun unless a shadow ray said otherwise).
+Color bounce(const Pass& p, const RTCRayHit& h, double sun_share) {
+  const SceneData& d = *p.scene;
+  const Lighting& l = *p.shading->lighting;
+  const Material& m = d.materials[d.material_of(h.hit.instID[0], h.hit.geomID, h.hit.primID)];
+  const Vec3 dir{h.ray.dir_x, h.ray.dir_y, h.ray.dir_z};
+  Vec3 n = d.world_normal(h.hit.instID[0], {h.hit.Ng_x, h.hit.Ng_y, h.hit.Ng_z});
+  n = dot(n, dir) > 0.0 ? -n : n;
+  Color light = l.sky_light(n) * 0.6;
+  const double n_dot_l = dot(n, l.sun_direction);
+  if (n_dot_l > 0.0) {
+    light = light + l.sun * (n_dot_l * sun_share);
+  }
+  return m.base_color * (1.0 - m.metallic) * light;
+}
+
+/// Light weights of a surface point (luminance each near light adds) for picking shadow rays.
+double light_weights(const ShadingContext& c, const SurfacePoint& s, std::vector<float>& w) {
+  w.clear();
+  double total = 0.0;
+  for (const uint32_t k : c.lights.near(s.position)) {
+    const LightSample ls = illuminate(c.lights.lights()[k], s.position);
+    const double cos_l = dot(s.normal, ls.direction);
+    const double v = cos_l > 0.0 ? luminance(ls.irradiance) * cos_l : 0.0;
+    w.push_back(static_cast<float>(v));
+    total += v;
+  }
+  return total;
+}
+
+struct TileState {
+  int count = 0;
+  size_t pixel[16] = {};
+  bool hit[16] = {};
+  Vec3 dir[16];
+  SurfacePoint surface[16];
+  Visibility vis[16];
+  Color mirrored[16], behind[16];
+  bool has_mirrored[16] = {}, has_behind[16] = {};
+  int sun_rays[16] = {}, sun_free[16] = {};
+  int light_rays[16] = {}, light_free[16] = {};
+  Color sky_sum[16];
+  int sky_rays[16] = {};
+};
+
+/// Queues the secondary rays of one hit pixel.
+void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
+  const ShadingContext& c = *p.shading;
+  const QualitySettings& q = c.quality;
+  const Lighting& l = *c.lighting;
+  const SurfacePoint& sp = t.surface[k];
+  const uint64_t key = pixel_key(p.settings->frame_seed, t.pixel[k], 0x5eed);
+  auto shadow = [&](RTCRay r, int kind) {
+    s.rays.push_back(r);
+    s.ray_owner.push_back(k);
+    s.ray_kind.push_back(kind);
+  };
+  auto probe = [&](RTCRayHit r, int kind) {
+    s.hits.push_back(r);
+    s.hit_owner.push_back(k);
+    s.hit_kind.push_back(kind);
+  };
+  if (l.sun_elevation > -0.01 && luminance(l.sun) > 0.0 && dot(sp.normal, l.sun_direction) > 0.0) {
+    const double r1 = hash_uniform(key, 0), r2 = hash_uniform(key, 1);
+    for (int j = 0; j < q.sun_rays; ++j) {
+      double u1 = 0.0, u2 = 0.0;
+      r2_point(j, r1, r2, u1, u2);
+      const Vec3 d = q.soft_sun ? cone_direction(l.sun_direction, l.sun_angular_radius, u1, u2)
+                                : l.sun_direction;
+      shadow(make_ray(offset(sp, d), d, kInfinity), kSun);
+      ++t.sun_rays[k];
+    }
+  }
+  if (!c.lights.empty() && q.light_rays > 0) {
+    const double total = light_weights(c, sp, s.weights);
+    const auto near = c.lights.near(sp.position);
+    const double r1 = hash_uniform(key, 20), r2 = hash_uniform(key, 21);
+    for (int j = 0; j < q.light_rays && total > 0.0; ++j) {
+      // A light picked in proportion to its weight: the visibility of the pick estimates the
+      // weighted visibility of them all.
+      double u = hash_uniform(key, 10 + j) * total;
+      size_t pick = 0;
+      while (pick + 1 < s.weights.size() && u >= s.weights[pick]) {
+        u -= s.weights[pick];
+        ++pick;
+      }
+      const Light& light = c.lights.lights()[near[pick]];
+      double u1 = 0.0, u2 = 0.0;
+      r2_point(j, r1, r2, u1, u2);
+      const Vec3 target =
+          light.position + Vec3{(u1 - 0.5) * light.radius, (u2 - 0.5) * light.radius, 0.0};
+      const Vec3 o = offset(sp, target - sp.position);
+      const Vec3 to = target - o;
+      const double dist = norm(to);
+      if (dist <= 0.06) {
+        continue;
+      }
+      shadow(make_ray(o, to * (1.0 / dist), static_cast<float>(dist - 0.05)), kLight);
+      ++t.light_rays[k];
+    }
+  }
+  const double r1 = hash_uniform(key, 30), r2 = hash_uniform(key, 31);
+  for (int j = 0; j < q.sky_rays; ++j) {
+    double u1 = 0.0, u2 = 0.0;
+    r2_point(j, r1, r2, u1, u2);
+    const Vec3 d = cosine_direction(sp.normal, u1, u2);
+    probe(make_hit_ray(offset(sp, d), d, static_cast<float>(kSkyRayLength)), kSky);
+    ++t.sky_rays[k];
+  }
+  if (sp.mirror) {
+    const Vec3 r = reflect(sp.view_dir, sp.normal);
+    probe(make_hit_ray(offset(sp, r), r, kInfinity), kMirror);
+  }
+  if (sp.transmission > 0.0 && p.shading->quality.transmission) {
+    // Through thin glass without refraction; past a second pane of the same glass (the far
+    // side of a car) once more.
+    probe(make_hit_ray(offset(sp, sp.view_dir), sp.view_dir, kInfinity), kGlass);
+  }
+}
+
+/// Turns the secondary hits of a tile into visibilities and radiances.
+void resolve_rays(const Pass& p, TileState& t, TileScratch& s) {
+  const ShadingContext& c = *p.shading;
+  const Lighting& l = *c.lighting;
+  const SceneData& d = *p.scene;
+  occluded(d, s.rays);
+  intersect(d, s.hits);
+  for (size_t i = 0; i < s.rays.size(); ++i) {
+    const bool free = s.rays[i].tfar >= 0.0f;  // Embree sets -inf when occluded
+    const int k = s.ray_owner[i];
+    (s.ray_kind[i] == kSun ? t.sun_free[k] : t.light_free[k]) += free ? 1 : 0;
+  }
+  // Secondary surfaces: glass seen through glass is passed once more; the rest get a shadow
+  // ray towards the sun when quality asks for it.
+  std::vector<std::optional<SurfacePoint>> found(s.hits.size());
+  s.second.clear();
+  s.second_owner.clear();
+  const bool shadows = c.quality.reflections;
+  for (size_t i = 0; i < s.hits.size(); ++i) {
+    RTCRayHit& h = s.hits[i];
+    const int k = s.hit_owner[i];
+    if (s.hit_kind[i] == kSky) {
+      if (h.hit.geomID != RTC_INVALID_GEOMETRY_ID && c.quality.bounce_shadow) {
+        const Vec3 o = Vec3{h.ray.org_x, h.ray.org_y, h.ray.org_z} +
+                       Vec3{h.ray.dir_x, h.ray.dir_y, h.ray.dir_z} * (h.ray.tfar * 0.999);
+        s.second.push_back(make_ray(o, l.sun_direction, kInfinity));
+        s.second_owner.push_back(static_cast<int>(i));
+      }
+      continue;
+    }
+    found[i] = secondary_surface(p, h, t.surface[k].distance);
+    if (found[i] && s.hit_kind[i] == kGlass && found[i]->transmission > 0.0) {
+      RTCRayHit again = make_hit_ray(offset(*found[i], found[i]->view_dir), found[i]->view_dir,
+                                     kInfinity);
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      rtcIntersect1(d.top, &context, &again);
+      h = again;
+      found[i] = secondary_surface(p, h, found[i]->distance);
+    }
+    if (found[i] && shadows && dot(found[i]->normal, l.sun_direction) > 0.0 &&
+        luminance(l.sun) > 0.0) {
+      s.second.push_back(make_ray(offset(*found[i], l.sun_direction), l.sun_direction, kInfinity));
+      s.second_owner.push_back(static_cast<int>(i));
+    }
+  }
+  occluded(d, s.second);
+  std::vector<int> sun_seen(s.hits.size(), -1);  // -1: no shadow ray, 0 shadowed, 1 lit
+  for (size_t j = 0; j < s.second.size(); ++j) {
+    sun_seen[s.second_owner[j]] = s.second[j].tfar >= 0.0f ? 1 : 0;
+  }
+  for (size_t i = 0; i < s.hits.size(); ++i) {
+    const RTCRayHit& h = s.hits[i];
+    const int k = s.hit_owner[i];
+    const Vec3 o{h.ray.org_x, h.ray.org_y, h.ray.org_z};
+    const Vec3 dir{h.ray.dir_x, h.ray.dir_y, h.ray.dir_z};
+    if (s.hit_kind[i] == kSky) {
+      const bool escaped = h.hit.geomID == RTC_INVALID_GEOMETRY_ID;
+      const double sun_share = sun_seen[i] >= 0 ? sun_seen[i] : 0.5;
+      t.sky_sum[k] = t.sky_sum[k] + (escaped ? l.sky_model.radiance(dir) : bounce(p, h, sun_share));
+      continue;
+    }
+    Color radiance;
+    if (!found[i]) {
+      radiance = sky_seen(c, o, dir);
+    } else {
+      const bool lit = sun_seen[i] >= 0 ? sun_seen[i] == 1 : !shadows;
+      radiance = through_air(c, shade_secondary(c, *found[i], lit), o, dir, h.ray.tfar);
+    }
+    if (s.hit_kind[i] == kMirror) {
+      t.mirrored[k] = radiance;
+      t.has_mirrored[k] = true;
+    } else {
+      t.behind[k] = radiance;
+      t.has_behind[k] = true;
+    }
+  }
+  for (int k = 0; k < t.count; ++k) {
+    if (!t.hit[k]) {
+      continue;
+    }
+    Visibility& v = t.vis[k];
+    v.sun = t.sun_rays[k] > 0 ? static_cast<double>(t.sun_free[k]) / t.sun_rays[k] : 1.0;
+    v.lights = t.light_rays[k] > 0 ? static_cast<double>(t.light_free[k]) / t.light_rays[k] : 1.0;
+    if (t.sky_rays[k] > 0) {
+      const Color mean = t.sky_sum[k] * (1.0 / t.sky_rays[k]);
+      const Color open = l.sky_light(t.surface[k].normal);
+      auto ratio = [](double a, double b) { return b > 1e-12 ? std::min(a / b, 4.0) : 1.0; };
+      v.sky = {ratio(mean.r, open.r), ratio(mean.g, open.g), ratio(mean.b, open.b)};
+    }
+  }
+}
+
+/// Image motion of a surface point over 2 kMotionHalf seconds. The pinhole projection is used
+/// without the lens distortion: over a blur of a few pixels the difference is far below one.
+void store_motion(const Pass& p, size_t px, Vec3 p_world, int pool) {
+  Vec3 v;
+  if (pool >= 0) {
+    const SceneData& d = *p.scene;
+    const engine::EntitySnapshot& e = d.entities[d.instances[pool].snapshot_index];
+    const Vec3 r = p_world - Vec3{e.pose.x, e.pose.y, e.pose.z};
+    v = Vec3{e.vx, e.vy, e.vz} + Vec3{-e.yaw_rate * r.y, e.yaw_rate * r.x, 0.0};
+  }
+  const Vec3 a = p.cam_early.apply(p_world - v * kMotionHalf);
+  const Vec3 b = p.cam_late.apply(p_world + v * kMotionHalf);
+  if (a.z <= 1e-3 || b.z <= 1e-3) {
+    return;
+  }
+  float* m = &(*p.motion_vectors)[2 * px];
+  m[0] = static_cast<float>(p.model->fx() * (b.x / b.z - a.x / a.z));
+  m[1] = static_cast<float>(p.model->fy() * (b.y / b.z - a.y / a.z));
+}
+
+}  // namespace
+
+Vec3 ray_at(const Pass& p, double x, double y) {
+  const int w = p.width;
+  const int h = p.height;
+  const double cx = std::clamp(x, 0.0, w - 1.0);
+  const double cy = std::clamp(y, 0.0, h - 1.0);
+  const int x0 = std::min(static_cast<int>(cx), w - 2 < 0 ? 0 : w - 2);
+  const int y0 = std::min(static_cast<int>(cy), h - 2 < 0 ? 0 : h - 2);
+  const int x1 = std::min(x0 + 1, w - 1);
+  const int y1 = std::min(y0 + 1, h - 1);
+  // Outside the image (half a pixel at the border) the ray is extrapolated linearly.
+  const double fx = x - x0;
+  const double fy = y - y0;
+  auto at = [&](int c, int r) {
+    const float* v = p.rays + 3 * (static_cast<size_t>(r) * w + c);
+    return Vec3{v[0], v[1], v[2]};
+  };
+  const Vec3 top = at(x0, y0) * (1.0 - fx) + at(x1, y0) * fx;
+  const Vec3 bottom = at(x0, y1) * (1.0 - fx) + at(x1, y1) * fx;
+  const Vec3 local = normalized(top * (1.0 - fy) + bottom * fy);
+  const auto& m = p.rotation;
+  return {m[0][0] * local.x + m[0][1] * local.y + m[0][2] * local.z,
+          m[1][0] * local.x + m[1][1] * local.y + m[1][2] * local.z,
+          m[2][0] * local.x + m[2][1] * local.y + m[2][2] * local.z};
+}
+
+void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch) {
+  const int w = p.width;
+  const int h = p.height;
+  const SceneData& d = *p.scene;
+  const bool rgb = p.settings->outputs.rgb;
+  alignas(64) RTCRayHit16 rh;
+  alignas(64) int valid[16];
+  TileState t;
+  t.count = 16;
+  for (int k = 0; k < 16; ++k) {
+    const int col = col0 + k % kTile;
+    const int row = row0 + k / kTile;
+    valid[k] = col < w && row < h ? -1 : 0;
+    t.pixel[k] = valid[k] ? static_cast<size_t>(row) * w + col : 0;
+    const float* r = p.rays + 3 * t.pixel[k];
+    const auto& m = p.rotation;
+    const Vec3 dir{m[0][0] * r[0] + m[0][1] * r[1] + m[0][2] * r[2],
+                   m[1][0] * r[0] + m[1][1] * r[1] + m[1][2] * r[2],
+                   m[2][0] * r[0] + m[2][1] * r[1] + m[2][2] * r[2]};
+    t.dir[k] = dir;
+    rh.ray.org_x[k] = static_cast<float>(p.origin_local.x);
+    rh.ray.org_y[k] = static_cast<float>(p.origin_local.y);
+    rh.ray.org_z[k] = static_cast<float>(p.origin_local.z);
+    rh.ray.dir_x[k] = static_cast<float>(dir.x);
+    rh.ray.dir_y[k] = static_cast<float>(dir.y);
+    rh.ray.dir_z[k] = static_cast<float>(dir.z);
+    rh.ray.tnear[k] = p.carrier.exit(dir);
+    rh.ray.tfar[k] = kInfinity;
+    rh.ray.mask[k] = 0xFFFFFFFFu;
+    rh.ray.flags[k] = 0;
+    rh.ray.time[k] = 0.0f;
+    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersect16(valid, d.top, &context, &rh);
+
+  scratch.rays.clear();
+  scratch.ray_owner.clear();
+  scratch.ray_kind.clear();
+  scratch.hits.clear();
+  scratch.hit_owner.clear();
+  scratch.hit_kind.clear();
+  for (int k = 0; k < 16; ++k) {
+    if (!valid[k]) {
+      continue;
+    }
+    const size_t px = t.pixel[k];
+    const bool hit = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+    const float* r = p.rays + 3 * px;
+    const double dist = rh.ray.tfar[k];
+    const double z = hit ? dist * r[2] : 0.0;
+    const auto label = hit ? d.label(rh.hit.instID[0][k], rh.hit.geomID[k], rh.hit.primID[k])
+                           : SceneData::Label{SemanticClass::kSky, 0, -1};
+    p.out->instance[px] = label.instance_id;
+    if (!p.out->semantic.empty()) {
+      p.out->semantic[px] = static_cast<uint8_t>(label.semantic);
+    }
+    if (!p.out->depth.empty()) {
+      p.out->depth[px] = hit && z <= p.settings->max_depth_m ? static_cast<float>(z) : 0.0f;
+    }
+    if (!rgb) {
+      continue;
+    }
+    PixelRecord& rec = (*p.records)[px];
+    if (!hit) {
+      rec.surface_id = 0;
+      rec.distance = kInfinity;
+      rec.terms = ShadeTerms{};
+      rec.terms.base = sky_seen(*p.shading, p.origin_local, t.dir[k]);
+      continue;
+    }
+    SurfaceHit sh;
+    sh.inst_id = rh.hit.instID[0][k];
+    sh.geom_id = rh.hit.geomID[k];
+    sh.prim_id = rh.hit.primID[k];
+    sh.u = rh.hit.u[k];
+    sh.v = rh.hit.v[k];
+    sh.view_dir = t.dir[k];
+    sh.position = p.origin_local + t.dir[k] * dist;
+    Vec3 n = d.world_normal(sh.inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
+    sh.normal = dot(n, t.dir[k]) > 0.0 ? -n : n;
+    sh.distance = dist;
+    sh.semantic = label.semantic;
+    sh.entity = label.entity;
+    t.hit[k] = true;
+    t.surface[k] = surface_at(*p.shading, sh);
+    queue_rays(p, t, k, scratch);
+    if (p.motion) {
+      store_motion(p, px, d.to_map(sh.position), label.entity);
+    }
+  }
+  if (!rgb) {
+    return;
+  }
+  resolve_rays(p, t, scratch);
+  for (int k = 0; k < 16; ++k) {
+    if (!valid[k] || !t.hit[k]) {
+      continue;
+    }
+    PixelRecord& rec = (*p.records)[t.pixel[k]];
+    const SurfacePoint& sp = t.surface[k];
+    for (int i = 0; i < 3; ++i) {
+      rec.position[i] = static_cast<float>(i == 0 ? sp.position.x : i == 1 ? sp.position.y
+                                                                           : sp.position.z);
+      rec.normal[i] = static_cast<float>(i == 0 ? sp.normal.x : i == 1 ? sp.normal.y
+                                                                       : sp.normal.z);
+    }
+    rec.distance = static_cast<float>(sp.distance);
+    rec.surface_id = sp.surface_id;
+    rec.has_mirrored = t.has_mirrored[k];
+    rec.has_behind = t.has_behind[k];
+    rec.mirrored = Color3f(t.mirrored[k]);
+    rec.behind = Color3f(t.behind[k]);
+    rec.terms = shade_terms(*p.shading, sp, t.has_mirrored[k] ? &t.mirrored[k] : nullptr,
+                            t.has_behind[k] ? &t.behind[k] : nullptr);
+    PixelVisibility& v = (*p.visibility)[t.pixel[k]];
+    const Visibility& e = t.vis[k];
+    v.sun = static_cast<float>(e.sun);
+    v.sky[0] = static_cast<float>(e.sky.r);
+    v.sky[1] = static_cast<float>(e.sky.g);
+    v.sky[2] = static_cast<float>(e.sky.b);
+    v.lights = static_cast<float>(e.lights);
+  }
+}
+
+}  // namespace corsa::sensors::detail
