@@ -190,10 +190,13 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
       const Vec3 o = offset(sp, target - sp.position);
       const Vec3 to = target - o;
       const double dist = norm(to);
-      if (dist <= 0.06) {
+      // The ray stops short of the lamp: nothing stands in front of a lens within 0.3 m, but
+      // the lamp's own housing, bumper or visor there would shadow the light it sends out.
+      const double clear = std::min(0.3, 0.5 * dist);
+      if (dist - clear <= 0.01) {
         continue;
       }
-      shadow(make_ray(o, to * (1.0 / dist), static_cast<float>(dist - 0.05)), kLight);
+      shadow(make_ray(o, to * (1.0 / dist), static_cast<float>(dist - clear)), kLight);
       ++t.light_rays[k];
     }
   }
@@ -248,8 +251,8 @@ void resolve_rays(const Pass& p, TileState& t, TileScratch& s) {
     }
     found[i] = secondary_surface(p, h, t.surface[k].distance);
     if (found[i] && s.hit_kind[i] == kGlass && found[i]->transmission > 0.0) {
-      RTCRayHit again = make_hit_ray(offset(*found[i], found[i]->view_dir), found[i]->view_dir,
-                                     kInfinity);
+      RTCRayHit again =
+          make_hit_ray(offset(*found[i], found[i]->view_dir), found[i]->view_dir, kInfinity);
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
       rtcIntersect1(d.top, &context, &again);
@@ -461,10 +464,10 @@ void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch) {
     PixelRecord& rec = (*p.records)[t.pixel[k]];
     const SurfacePoint& sp = t.surface[k];
     for (int i = 0; i < 3; ++i) {
-      rec.position[i] = static_cast<float>(i == 0 ? sp.position.x : i == 1 ? sp.position.y
-                                                                           : sp.position.z);
-      rec.normal[i] = static_cast<float>(i == 0 ? sp.normal.x : i == 1 ? sp.normal.y
-                                                                       : sp.normal.z);
+      rec.position[i] = static_cast<float>(i == 0   ? sp.position.x
+                                           : i == 1 ? sp.position.y
+                                                    : sp.position.z);
+      rec.normal[i] = static_cast<float>(i == 0 ? sp.normal.x : i == 1 ? sp.normal.y : sp.normal.z);
     }
     rec.distance = static_cast<float>(sp.distance);
     rec.surface_id = sp.surface_id;
