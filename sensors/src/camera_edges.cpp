@@ -32,8 +32,7 @@ bool differs(const PixelRecord& a, const PixelRecord& b) {
   if (std::fabs(a.distance - b.distance) > 0.04f * std::min(a.distance, b.distance)) {
     return true;
   }
-  const float c =
-      a.normal[0] * b.normal[0] + a.normal[1] * b.normal[1] + a.normal[2] * b.normal[2];
+  const float c = a.normal[0] * b.normal[0] + a.normal[1] * b.normal[1] + a.normal[2] * b.normal[2];
   return c < 0.9f;
 }
 
@@ -52,8 +51,7 @@ long long matching_neighbour(const Pass& p, int col, int row, const SurfacePoint
       if (rec.surface_id != s.surface_id) {
         continue;
       }
-      const Vec3 d =
-          Vec3{rec.position[0], rec.position[1], rec.position[2]} - s.position;
+      const Vec3 d = Vec3{rec.position[0], rec.position[1], rec.position[2]} - s.position;
       const double d2 = dot(d, d);
       if (d2 < best_d2) {
         best_d2 = d2;

@@ -33,11 +33,11 @@ struct Color3f {
 struct PixelRecord {
   float position[3] = {0, 0, 0};  ///< tracer-local
   float normal[3] = {0, 0, 0};
-  float distance = 0.0f;     ///< along the ray; infinite for the sky
-  uint32_t surface_id = 0;   ///< 0: sky
-  ShadeTerms terms;          ///< (double colours: the terms are read once per pixel and sample)
-  Color3f mirrored;          ///< radiance from the mirror direction (mirror surfaces)
-  Color3f behind;            ///< radiance through glass
+  float distance = 0.0f;    ///< along the ray; infinite for the sky
+  uint32_t surface_id = 0;  ///< 0: sky
+  ShadeTerms terms;         ///< (double colours: the terms are read once per pixel and sample)
+  Color3f mirrored;         ///< radiance from the mirror direction (mirror surfaces)
+  Color3f behind;           ///< radiance through glass
   bool has_mirrored = false;
   bool has_behind = false;
 };
@@ -80,13 +80,13 @@ Vec3 ray_at(const Pass& p, double x, double y);
 
 /// Ray batches of a tile, kept between tiles to save allocations (one per thread range).
 struct TileScratch {
-  std::vector<RTCRay> rays;  ///< shadow rays (sun, lights)
+  std::vector<RTCRay> rays;    ///< shadow rays (sun, lights)
   std::vector<int> ray_owner;  ///< the pixel (0..15) a ray belongs to
   std::vector<int> ray_kind;
   std::vector<RTCRayHit> hits;  ///< rays that need their hit (sky, mirror, glass)
   std::vector<int> hit_owner;
   std::vector<int> hit_kind;
-  std::vector<RTCRay> second;  ///< shadow rays from the secondary hits
+  std::vector<RTCRay> second;     ///< shadow rays from the secondary hits
   std::vector<int> second_owner;  ///< index into `hits`
   std::vector<float> weights;
 };

@@ -154,7 +154,8 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
     detail::motion_blur(linear, motion_vectors, w, h);
   }
   if (shading.quality.bloom) {
-    detail::bloom(linear, w, h, 2.0 / exposure.scale);
+    // Only light far beyond white glares: lamps, bulbs and the sun, not a lit window.
+    detail::bloom(linear, w, h, 16.0 / exposure.scale);
   }
   detail::draw_precipitation(linear, ray_distances(records), w, h, model_.fx(), *settings.lighting,
                              exposure.shutter_s, settings.frame_seed);

@@ -121,7 +121,7 @@ Exposure choose_exposure(const std::vector<float>& linear, int width, int height
   const double average = metered_luminance(linear, width, height);
   // Reinhard's key: 0.18 for day scenes, lower for night ones, which should look dark.
   const double night = 1.0 - smoothstep(-13.0, -7.0, std::log2(std::max(average, 1e-12)));
-  const double key = 0.18 - 0.08 * night;
+  const double key = 0.18 - 0.11 * night;
   const double wanted = key / std::max(average, 1e-12) * ev;
   // Exposure time first, then gain, within the camera's limits.
   const double per_second = kAutoAperture / 0.004;  // scale per second at ISO 100
@@ -133,7 +133,11 @@ Exposure choose_exposure(const std::vector<float>& linear, int width, int height
 
 void bloom(std::vector<float>& linear, int width, int height, double threshold) {
   // The light above the threshold, averaged over 4x4 blocks, blurred (Gaussian, sigma 3
-  // blocks) and added back with a weight of 6%: the glare of lamps and the sun in a lens.
+  // blocks) and added back with a weight of 2%: the glare of lamps and the sun in a lens. A
+  // pixel gives at most kCap thresholds of light: the glare of a lamp far brighter than the
+  // exposure is a halo, not a disc of white tens of pixels wide (real lenses spread most of
+  // such light much wider and fainter than this kernel does).
+  constexpr double kCap = 8.0;
   const int bw = (width + 3) / 4;
   const int bh = (height + 3) / 4;
   std::vector<float> bright(3 * static_cast<size_t>(bw) * bh, 0.0f);
@@ -146,7 +150,7 @@ void bloom(std::vector<float>& linear, int width, int height, double threshold) 
         continue;
       }
       any = true;
-      const double keep = (y - threshold) / y / 16.0;
+      const double keep = (std::min(y, kCap * threshold) - threshold) / y / 16.0;
       float* b = &bright[3 * (static_cast<size_t>(row / 4) * bw + col / 4)];
       for (int k = 0; k < 3; ++k) {
         b[k] += static_cast<float>(v[k] * keep);
@@ -205,7 +209,7 @@ void bloom(std::vector<float>& linear, int width, int height, double threshold) 
           auto at = [&](int x, int y) { return bright[3 * (static_cast<size_t>(y) * bw + x) + k]; };
           const double top = at(x0, y0) * (1.0 - tx) + at(x1, y0) * tx;
           const double bottom = at(x0, y1) * (1.0 - tx) + at(x1, y1) * tx;
-          v[k] += static_cast<float>(0.06 * 16.0 * (top * (1.0 - ty) + bottom * ty));
+          v[k] += static_cast<float>(0.02 * 16.0 * (top * (1.0 - ty) + bottom * ty));
         }
       }
     }
@@ -214,9 +218,13 @@ void bloom(std::vector<float>& linear, int width, int height, double threshold) 
 
 std::vector<uint8_t> develop(const std::vector<float>& linear, int width, int height,
                              const RgbOptions& o, const Exposure& exposure, uint64_t frame_seed) {
-  const double gain = exposure.iso / 100.0;
-  const double shot = 0.0004 * gain;  // photon noise variance per unit signal
-  const double read = 0.002 * gain;   // read noise standard deviation
+  // Noise left in the camera's output after its own noise reduction, which works harder the
+  // higher the gain: photon (shot) noise variance per unit signal and read noise standard
+  // deviation both grow as the square root of the gain rather than with the gain itself, so that
+  // a night frame at ISO 6400 is grainy (13% at mid grey) but not buried in noise.
+  const double gain = std::sqrt(exposure.iso / 100.0);
+  const double shot = 0.0004 * gain;
+  const double read = 0.0004 * gain;
   const double inv_gamma = 1.0 / o.gamma;
   // Encoding through a 4096-entry table keeps pow() out of the per-pixel loop.
   std::vector<uint8_t> table(4097);

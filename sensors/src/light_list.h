@@ -28,10 +28,10 @@ enum class LightPattern : uint8_t {
 };
 
 struct Light {
-  Vec3 position;  ///< tracer-local
-  Vec3 axis;      ///< unit, the main direction of the light
-  Vec3 side;      ///< unit, horizontal, perpendicular to the axis (low beams only)
-  Color intensity;  ///< peak luminous intensity / 100,000 (cd per relative unit)
+  Vec3 position;        ///< tracer-local
+  Vec3 axis;            ///< unit, the main direction of the light
+  Vec3 side;            ///< unit, horizontal, perpendicular to the axis (low beams only)
+  Color intensity;      ///< peak luminous intensity / 100,000 (cd per relative unit)
   double radius = 0.1;  ///< emitter size (m): soft shadow rays aim within it
   double range = 30.0;  ///< m: no light beyond
   LightPattern pattern = LightPattern::kLambert;
@@ -74,8 +74,8 @@ class LightList {
   /// The lit lamps of the frame: entity lamps by their lit roles (`entity_lamps`, by instance
   /// pool index), static lamps by `static_lamps` bits and the signals' bulbs. Lights too faint
   /// to matter against the daylight `floor` (renderer units of irradiance at 2 m) are left out.
-  LightList(const SceneData& scene, std::span<const uint32_t> entity_lamps,
-            uint32_t static_lamps, double floor);
+  LightList(const SceneData& scene, std::span<const uint32_t> entity_lamps, uint32_t static_lamps,
+            double floor);
   LightList() = default;
 
   std::span<const Light> lights() const { return lights_; }

@@ -200,10 +200,11 @@ SurfaceSample facade(const Material& m, const TexturePoint& p) {
                          blind < 0.25 ? 0.6 * detail_weight(fp, bay) : 0.0);
   s.albedo = mix(mix(wall, m.secondary, frame), pane, glass);
   s.roughness = lerp(m.roughness, 0.05, glass);
-  // Lit rooms: warm or cool light of a varying strength per window.
+  // Lit rooms: warm or cool light of a varying strength per window, 60-250 cd/m^2 as lit
+  // interiors seen through glass are (renderer radiance unit: kNitsPerUnit, about 32 kcd/m^2).
   const double tint = cell_random(cell_x, cell_y, m.seed ^ 0x99u);
   const Color room = tint < 0.6 ? Color{1.0, 0.72, 0.42} : Color{0.75, 0.85, 1.0};
-  s.emission = room * ((0.04 + 0.1 * tint) * glass * lit * p.darkness);
+  s.emission = room * ((0.002 + 0.006 * tint) * glass * lit * p.darkness);
   return s;
 }
 

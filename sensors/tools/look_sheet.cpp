@@ -4,10 +4,10 @@
 //   COLUMN_LABELS, ROW_LABELS: comma-separated; IMAGE: row by row, COLUMNS x ROWS files (a
 //   missing file leaves its cell grey). The sheet is a JPEG of quality 85.
 
+#include <iostream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -25,8 +25,7 @@ std::vector<std::string> split(const std::string& text) {
 }
 
 void label(cv::Mat& img, const std::string& text, cv::Point at, double scale) {
-  cv::putText(img, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(0, 0, 0), 3,
-              cv::LINE_AA);
+  cv::putText(img, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
   cv::putText(img, text, at, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255, 255, 255), 1,
               cv::LINE_AA);
 }
@@ -51,8 +50,7 @@ int main(int argc, char** argv) {
   }
   const int thumb_h = thumb_w * 9 / 16;
   const int margin = 22;
-  cv::Mat sheet(margin + nrows * thumb_h, margin + cols * thumb_w, CV_8UC3,
-                cv::Scalar(40, 40, 40));
+  cv::Mat sheet(margin + nrows * thumb_h, margin + cols * thumb_w, CV_8UC3, cv::Scalar(40, 40, 40));
   for (int r = 0; r < nrows; ++r) {
     for (int c = 0; c < cols; ++c) {
       cv::Mat img = cv::imread(argv[5 + r * cols + c], cv::IMREAD_COLOR);
