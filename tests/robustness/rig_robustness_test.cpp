@@ -1,6 +1,7 @@
-// Broken sensor rigs through `corsa run --rig`: unknown sensor types, sizes that are zero,
-// negative, text or absurd (a 100000 x 100000 image, a LiDAR of 2e10 beams per revolution) are
-// located errors before the dataset folder is made, never an out-of-memory or a hang.
+// Broken sensor rigs through `corsa run --rig`: unknown sensor types and image qualities, sizes
+// that are zero, negative, text or absurd (a 100000 x 100000 image, a LiDAR of 2e10 beams per
+// revolution) are located errors before the dataset folder is made, never an out-of-memory or a
+// hang.
 
 #include <string>
 #include <vector>
@@ -28,6 +29,9 @@ TEST_CASE("Rigs with unknown sensors and absurd sizes are rejected at their line
        "<Lidar name=\"a\" entity=\"Ego\" channels=\"256\" pointsPerSecond=\"20000000\" "
        "rotationFrequency=\"0.001\"/>",
        "beams per revolution"},
+      {"image quality that does not exist",
+       "<RgbCamera name=\"a\" entity=\"Ego\" quality=\"ultra\"/>",
+       "expected one of 'fast', 'default', 'high'"},
   };
   for (const Case& c : cases) {
     TempDir dir;

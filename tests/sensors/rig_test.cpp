@@ -176,3 +176,48 @@ TEST_CASE("binding a rig to a scenario rejects unknown entities at the sensor's 
 TEST_CASE("loading a missing rig file names it", "[sensors][rig][errors]") {
   CHECK_THROWS_WITH(load_rig("/no/such/rig.xml"), Catch::StartsWith("/no/such/rig.xml: error:"));
 }
+
+TEST_CASE("the rig's quality applies to RGB cameras that do not name their own",
+          "[sensors][rig][quality]") {
+  const SensorRig rig = parse_rig(R"(<SensorRig version="1" quality="fast">
+  <RgbCamera name="a" entity="E"/>
+  <RgbCamera name="b" entity="E" quality="high"/>
+</SensorRig>)",
+                                  "rig.xml");
+  CHECK(rig.quality == RenderQuality::kFast);
+  CHECK(rig.find("a")->rgb.quality == RenderQuality::kFast);
+  CHECK(rig.find("b")->rgb.quality == RenderQuality::kHigh);
+  CHECK(parse_rig(rig_with("<RgbCamera name=\"c\" entity=\"E\"/>"), "rig.xml")
+            .find("c")
+            ->rgb.quality == RenderQuality::kDefault);
+  CHECK(render_quality_name(RenderQuality::kHigh) == "high");
+}
+
+TEST_CASE("an RGB camera meters its exposure unless the rig fixes shutter or ISO",
+          "[sensors][rig]") {
+  const auto camera = [](const std::string& attributes) {
+    const SensorRig rig =
+        parse_rig(rig_with("<RgbCamera name=\"c\" entity=\"E\" " + attributes + "/>"), "rig.xml");
+    return rig.find("c")->rgb;
+  };
+  CHECK(camera("").auto_exposure);
+  const RgbOptions shutter = camera("shutterSpeed=\"0.01\"");
+  CHECK_FALSE(shutter.auto_exposure);
+  CHECK(shutter.shutter_speed_s == 0.01);
+  CHECK(shutter.iso == 100.0);
+  const RgbOptions iso = camera("iso=\"800\"");
+  CHECK_FALSE(iso.auto_exposure);
+  CHECK(iso.shutter_speed_s == 0.004);
+  CHECK(iso.iso == 800.0);
+}
+
+TEST_CASE("a quality the rig does not know is an error at its line", "[sensors][rig][errors]") {
+  const auto d = failure("<SensorRig version=\"1\"\n quality=\"ultra\">\n</SensorRig>\n");
+  CHECK(d.file == "rig.xml");
+  CHECK(d.line == 1);
+  CHECK(d.message ==
+        "attribute 'quality' of <SensorRig> is 'ultra'; expected one of 'fast', 'default', "
+        "'high'");
+  const auto camera = failure(rig_with("<RgbCamera name=\"c\" entity=\"E\" quality=\"best\"/>"));
+  CHECK(camera.line == 2);
+}

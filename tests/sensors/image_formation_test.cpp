@@ -1,0 +1,155 @@
+// Image formation of the RGB camera: the daylight sky, the beam of a low-beam headlight, lit
+// scenes at night, and the bytes of a frame on any thread count at every quality.
+
+#include <tbb/global_control.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "corsa/sensors/camera_render.h"
+#include "fixtures.h"
+#include "brdf.h"
+#include "light_list.h"
+
+using namespace corsa::sensors;
+using corsa::sensors::detail::luminance;
+using corsa::test::box_entity;
+
+namespace {
+
+Lighting sun_at(double azimuth, double elevation) {
+  corsa::engine::EnvironmentState env;
+  env.sun_azimuth = azimuth;
+  env.sun_elevation = elevation;
+  return compute_lighting(env, {});
+}
+
+/// Luminous intensity of `light` towards `point` (irradiance facing it times distance squared).
+double intensity_towards(const detail::Light& light, Vec3 point) {
+  const detail::LightSample s = detail::illuminate(light, point);
+  return luminance(s.irradiance) * s.distance * s.distance;
+}
+
+}  // namespace
+
+TEST_CASE("a clear noon sky is blue overhead and a setting sun turns the horizon warm",
+          "[sensors][camera][sky]") {
+  const Lighting noon = sun_at(M_PI, 1.2);
+  const Color zenith = noon.sky_model.radiance({0.0, 0.0, 1.0});
+  CHECK(zenith.b > 1.2 * zenith.r);
+  // The horizon is paler than the zenith on a clear day (more air, more haze).
+  const Color horizon = noon.sky_model.radiance({0.0, 0.999, 0.045});
+  CHECK(horizon.b / horizon.r < zenith.b / zenith.r);
+
+  const Lighting sunset = sun_at(M_PI, 0.02);
+  const Vec3 towards{sunset.sun_direction.x, sunset.sun_direction.y, 0.05};
+  const Color glow = sunset.sky_model.radiance(normalized(towards));
+  CHECK(glow.r > glow.b);
+  // Far less light than at noon, and the direct sun reddened by the long path through the air.
+  CHECK(luminance(sunset.sky_light({0.0, 0.0, 1.0})) < 0.2 * luminance(noon.sky_light({0, 0, 1})));
+  // Noon sunlight a little warmer than daylight white (about 5000-5500 K); at sunset it is
+  // orange (a red-to-blue ratio of about twice the noon one, or more).
+  const double noon_warmth = noon.sun.r / noon.sun.b;
+  CHECK(noon_warmth > 1.0);
+  CHECK(noon_warmth < 1.5);
+  CHECK(sunset.sun.r / sunset.sun.b > 2.0 * noon_warmth);
+}
+
+TEST_CASE("a low beam lights the road ahead below its cut-off and little above or at the bumper",
+          "[sensors][camera][lights]") {
+  // A headlight 0.65 m above the road, facing +x with its left towards +y, aimed 1 degree down.
+  detail::Light beam;
+  beam.position = {0.0, 0.0, 0.65};
+  beam.axis = normalized(Vec3{1.0, 0.0, -0.0175});
+  beam.side = {0.0, 1.0, 0.0};
+  beam.intensity = {0.12, 0.12, 0.12};
+  beam.range = 80.0;
+  beam.pattern = detail::LightPattern::kLowBeam;
+  const double hot = intensity_towards(beam, {30.0, 0.0, 0.65 - 30.0 * 0.02});  // 1.1 deg down
+  CHECK(hot > 0.8 * 0.12);
+  // 2 degrees above the horizon (an oncoming driver's eyes, a tree crown): the cut-off.
+  CHECK(intensity_towards(beam, {30.0, 0.0, 0.65 + 30.0 * 0.035}) < 0.05 * hot);
+  // The road 2.5 m ahead of the lamp, 15 degrees down: a few per cent of the hot spot.
+  CHECK(intensity_towards(beam, {2.5, 0.0, 0.0}) < 0.05 * hot);
+  // 45 degrees to the side the beam has faded.
+  CHECK(intensity_towards(beam, {20.0, 20.0, 0.0}) < 0.1 * hot);
+  // Behind the lamp: nothing.
+  CHECK(intensity_towards(beam, {-5.0, 0.0, 0.0}) == 0.0);
+  // Beyond its range: nothing.
+  CHECK(intensity_towards(beam, {90.0, 0.0, 0.0}) == 0.0);
+}
+
+TEST_CASE("at night a car's low beams light the road in front of it", "[sensors][camera][lights]") {
+  // A car 20 m ahead facing the camera (heading pi): its beams light the road between.
+  auto car = box_entity(3, "car", 20.0, 0.0, 4.5, 1.8, 1.5, corsa::engine::EntityCategory::kCar);
+  car.pose.h = M_PI;
+  Scene scene;
+  scene.add_road_mesh(corsa::test::flat_road());
+  scene.commit();
+  scene.set_entities(std::vector<corsa::engine::EntitySnapshot>{car});
+  CameraIntrinsics k;
+  k.width = 320;
+  k.height = 240;
+  k.fov_deg = 60.0;
+  const CameraRenderer camera(k);
+  const Lighting night = sun_at(0.0, -0.4);
+  REQUIRE(night.headlights);
+  RenderSettings settings;
+  settings.outputs.rgb = true;
+  settings.lighting = &night;
+  settings.rgb.noise = false;
+  settings.rgb.auto_exposure = false;
+  settings.rgb.iso = 3200.0;
+  settings.rgb.shutter_speed_s = 1.0 / 60.0;
+  CameraMotion motion;
+  motion.world_from_body = rigid_from_pose(0.0, 0.0, 1.2, 0.0, 0.0, 0.0);
+  const CameraImages lit = camera.render(scene, motion, settings);
+  // The scenario switched the low beam off.
+  car.lights_on = 0;
+  car.lights_set = corsa::engine::light_bit(corsa::engine::VehicleLight::kLowBeam);
+  scene.set_entities(std::vector<corsa::engine::EntitySnapshot>{car});
+  const CameraImages dark = camera.render(scene, motion, settings);
+  // Road 12 m ahead of the camera (8 m in front of the car): row 119.5 + f * 1.2 / 12.
+  const double f = 160.0 / std::tan(M_PI / 6.0);
+  const int row = static_cast<int>(119.5 + f * 1.2 / 12.0 + 0.5);
+  auto green = [&](const CameraImages& img) {
+    return static_cast<int>(img.rgb[3 * (static_cast<size_t>(row) * 320 + 160) + 1]);
+  };
+  CHECK(green(lit) > green(dark) + 30);
+}
+
+TEST_CASE("a night frame with lamps is the same bytes on 1 and 2 threads at every quality",
+          "[sensors][camera][determinism]") {
+  auto car = box_entity(4, "car", 15.0, 2.0, 4.5, 1.8, 1.5, corsa::engine::EntityCategory::kCar);
+  car.pose.h = M_PI;
+  car.vx = -8.0;
+  Scene scene;
+  scene.add_road_mesh(corsa::test::flat_road());
+  scene.commit();
+  scene.set_entities(std::vector<corsa::engine::EntitySnapshot>{car});
+  CameraIntrinsics k;
+  k.width = 320;
+  k.height = 240;
+  const CameraRenderer camera(k);
+  const Lighting night = sun_at(0.0, -0.4);
+  for (const RenderQuality quality :
+       {RenderQuality::kFast, RenderQuality::kDefault, RenderQuality::kHigh}) {
+    auto run = [&](int threads) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      RenderSettings settings;
+      settings.outputs = {.rgb = true, .depth = true};
+      settings.lighting = &night;
+      settings.rgb.quality = quality;
+      settings.frame_seed = 11;
+      CameraMotion motion;
+      motion.world_from_body = rigid_from_pose(0.0, 0.0, 1.2, 0.0, 0.0, 0.0);
+      motion.velocity = {8.0, 0.0, 0.0};
+      return camera.render(scene, motion, settings);
+    };
+    INFO("quality " << render_quality_name(quality));
+    const CameraImages a = run(1);
+    const CameraImages b = run(2);
+    CHECK(a.rgb == b.rgb);
+    CHECK(a.depth == b.depth);
+  }
+}
