@@ -133,11 +133,11 @@ Exposure choose_exposure(const std::vector<float>& linear, int width, int height
 
 void bloom(std::vector<float>& linear, int width, int height, double threshold) {
   // The light above the threshold, averaged over 4x4 blocks, blurred (Gaussian, sigma 3
-  // blocks) and added back with a weight of 2%: the glare of lamps and the sun in a lens. A
+  // blocks) and added back with a weight of 1%: the glare of lamps and the sun in a lens. A
   // pixel gives at most kCap thresholds of light: the glare of a lamp far brighter than the
-  // exposure is a halo, not a disc of white tens of pixels wide (real lenses spread most of
-  // such light much wider and fainter than this kernel does).
-  constexpr double kCap = 8.0;
+  // exposure is a faint halo, not a disc of white tens of pixels wide (real lenses spread most
+  // of such light much wider and fainter than this kernel does).
+  constexpr double kCap = 2.0;
   const int bw = (width + 3) / 4;
   const int bh = (height + 3) / 4;
   std::vector<float> bright(3 * static_cast<size_t>(bw) * bh, 0.0f);
@@ -209,7 +209,7 @@ void bloom(std::vector<float>& linear, int width, int height, double threshold) 
           auto at = [&](int x, int y) { return bright[3 * (static_cast<size_t>(y) * bw + x) + k]; };
           const double top = at(x0, y0) * (1.0 - tx) + at(x1, y0) * tx;
           const double bottom = at(x0, y1) * (1.0 - tx) + at(x1, y1) * tx;
-          v[k] += static_cast<float>(0.02 * 16.0 * (top * (1.0 - ty) + bottom * ty));
+          v[k] += static_cast<float>(0.01 * 16.0 * (top * (1.0 - ty) + bottom * ty));
         }
       }
     }

@@ -41,7 +41,9 @@ Photometry photometry(LightRole role) {
     case LightRole::kSignalRed:
     case LightRole::kSignalYellow:
     case LightRole::kSignalGreen:
-      return {400.0, LightPattern::kLambert, 25.0, 0.08};
+      // The on-axis 400 cd spread as a cosine would send out three times the flux of a real
+      // signal head, whose beam is a narrow cone: the average intensity stands in for it.
+      return {150.0, LightPattern::kLambert, 15.0, 0.08};
     default:
       return {};
   }
