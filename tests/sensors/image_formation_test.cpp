@@ -6,9 +6,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "brdf.h"
 #include "corsa/sensors/camera_render.h"
 #include "fixtures.h"
-#include "brdf.h"
 #include "light_list.h"
 
 using namespace corsa::sensors;
