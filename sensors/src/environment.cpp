@@ -208,6 +208,8 @@ Lighting compute_lighting(const engine::EnvironmentState& env, const GeoLocation
   l.headlights = el_deg < 2.0 || ((rain || snow) && el_deg < 10.0) || l.fog_extinction > 0.02;
   l.wind_direction = env.wind_direction;
   l.wind_speed = env.wind_speed;
+  // Every sky pixel, glossy reflection and sky ray reads the sky: from a table from now on.
+  l.sky_model.tabulate();
   return l;
 }
 

@@ -11,8 +11,7 @@ constexpr double kPi = std::numbers::pi;
 
 /// Perez et al.'s all-weather distribution F(theta, gamma) = (1 + A e^(B / cos theta))
 /// (1 + C e^(D gamma) + E cos^2 gamma).
-double perez(const std::array<double, 5>& c, double cos_theta, double gamma) {
-  const double cos_gamma = std::cos(gamma);
+double perez(const std::array<double, 5>& c, double cos_theta, double gamma, double cos_gamma) {
   return (1.0 + c[0] * std::exp(c[1] / cos_theta)) *
          (1.0 + c[2] * std::exp(c[3] * gamma) + c[4] * cos_gamma * cos_gamma);
 }
@@ -53,8 +52,10 @@ PreethamSky make_preetham(double turbidity, double sun_theta) {
 void PreethamSky::xyY(double theta, double gamma, double& x, double& y, double& Y) const {
   // Directions at the horizon make 1 / cos(theta) blow up: the fit is read just above it.
   const double cos_theta = std::max(std::cos(theta), 0.01);
+  const double cos_gamma = std::cos(gamma);
+  const double cos_sun = std::cos(sun_theta);
   auto ratio = [&](const std::array<double, 5>& c) {
-    return perez(c, cos_theta, gamma) / perez(c, 1.0, sun_theta);
+    return perez(c, cos_theta, gamma, cos_gamma) / perez(c, 1.0, sun_theta, cos_sun);
   };
   x = zenith_x * ratio(perez_x);
   y = zenith_y * ratio(perez_y);
@@ -76,13 +77,42 @@ Color rgb_from_xyY(double x, double y, double Y) {
 Color SkyModel::radiance(Vec3 d) const {
   if (d.z < 0.0) {
     // Beyond the modelled ground: the diffuse ground, hazed towards the horizon's sky colour.
-    const Color horizon = radiance({d.x, d.y, 0.0});
+    const double flat = std::sqrt(d.x * d.x + d.y * d.y);
+    const Vec3 level = flat > 0.0 ? Vec3{d.x / flat, d.y / flat, 0.0} : Vec3{1.0, 0.0, 0.0};
+    const Color horizon = radiance(level);
     return mix(ground, horizon, std::exp(40.0 * d.z));
   }
   const double cos_theta = std::min(d.z, 1.0);
+  const double cos_gamma = std::clamp(dot(d, sun_direction), -1.0, 1.0);
+  if (table_.empty()) {
+    return radiance_above(cos_theta, cos_gamma);
+  }
+  const double fr = std::sqrt(cos_theta) * (kTableRows - 1);
+  const double fc = std::sqrt(std::max(0.0, 0.5 * (1.0 - cos_gamma))) * (kTableCols - 1);
+  const int r0 = std::min(static_cast<int>(fr), kTableRows - 2);
+  const int c0 = std::min(static_cast<int>(fc), kTableCols - 2);
+  const double tr = fr - r0, tc = fc - c0;
+  const Color* row0 = &table_[static_cast<size_t>(r0) * kTableCols + c0];
+  const Color* row1 = row0 + kTableCols;
+  return mix(mix(row0[0], row0[1], tc), mix(row1[0], row1[1], tc), tr);
+}
+
+void SkyModel::tabulate() {
+  table_.clear();
+  std::vector<Color> table(static_cast<size_t>(kTableRows) * kTableCols);
+  for (int r = 0; r < kTableRows; ++r) {
+    const double a = static_cast<double>(r) / (kTableRows - 1);
+    for (int c = 0; c < kTableCols; ++c) {
+      const double b = static_cast<double>(c) / (kTableCols - 1);
+      table[static_cast<size_t>(r) * kTableCols + c] = radiance_above(a * a, 1.0 - 2.0 * b * b);
+    }
+  }
+  table_ = std::move(table);
+}
+
+Color SkyModel::radiance_above(double cos_theta, double cos_gamma) const {
   Color c = glow_horizon + (glow_zenith + glow_horizon * -1.0) * std::sqrt(cos_theta);
   if (clear_scale > 0.0) {
-    const double cos_gamma = std::clamp(dot(d, sun_direction), -1.0, 1.0);
     double x = 0.0, y = 0.0, Y = 0.0;
     clear.xyY(std::acos(cos_theta), std::acos(cos_gamma), x, y, Y);
     Color sky = rgb_from_xyY(x, y, Y) * clear_scale;

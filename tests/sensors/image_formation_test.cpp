@@ -3,6 +3,7 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 
@@ -53,6 +54,25 @@ TEST_CASE("a clear noon sky is blue overhead and a setting sun turns the horizon
   CHECK(noon_warmth > 1.0);
   CHECK(noon_warmth < 1.5);
   CHECK(sunset.sun.r / sunset.sun.b > 2.0 * noon_warmth);
+}
+
+TEST_CASE("the tabulated sky reads within 1% of the evaluated one", "[sensors][camera][sky]") {
+  for (const double elevation : {1.2, 0.3, 0.02, -0.05}) {
+    const Lighting l = sun_at(0.7, elevation);
+    for (int i = 0; i < 40; ++i) {
+      for (int j = 0; j < 24; ++j) {
+        const double az = i * 2.0 * M_PI / 40.0 + 0.013;
+        const double el = (j + 0.5) * (M_PI / 2.0) / 24.0;
+        const Vec3 d{std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+        const Color table = l.sky_model.radiance(d);
+        const Color exact =
+            l.sky_model.radiance_above(d.z, std::clamp(dot(d, l.sun_direction), -1.0, 1.0));
+        INFO("sun elevation " << elevation << ", view azimuth " << az << ", elevation " << el);
+        CHECK(luminance(table) == Approx(luminance(exact)).epsilon(0.01));
+        CHECK(table.b / table.r == Approx(exact.b / exact.r).epsilon(0.01));
+      }
+    }
+  }
 }
 
 TEST_CASE("a low beam lights the road ahead below its cut-off and little above or at the bumper",
