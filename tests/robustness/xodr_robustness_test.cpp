@@ -2,6 +2,7 @@
 // case ends with exit 0 (still valid) or exit 2 and a located error, within the time limit, and a
 // rejected mesh leaves no file behind.
 
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -141,6 +142,79 @@ TEST_CASE("Hand-made OpenDRIVE files of the corpus load, or are rejected at thei
   }
   CHECK(bad >= 10);
   CHECK(ok >= 2);
+}
+
+/// The OBJ `v` lines of `obj` that do not hold exactly three numbers.
+std::vector<std::string> bad_vertex_lines(const std::string& obj) {
+  std::vector<std::string> bad;
+  std::istringstream lines(obj);
+  for (std::string line; std::getline(lines, line);) {
+    if (!line.starts_with("v ")) {
+      continue;
+    }
+    std::istringstream fields(line.substr(2));
+    double value = 0.0;
+    int count = 0;
+    while (fields >> value) {
+      ++count;
+    }
+    if (count != 3 || !fields.eof()) {
+      bad.push_back(line.substr(0, 80));
+    }
+  }
+  return bad;
+}
+
+TEST_CASE("The valid maps of the corpus mesh in time, every OBJ vertex with three coordinates",
+          "[robustness][xodr]") {
+  // ok_spiral_overlapping_line.xodr ran for minutes; ok_lane_width_1e206.xodr lost coordinates.
+  const auto corpus = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/robustness/corpus";
+  for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".xodr" || !name.starts_with("ok_")) {
+      continue;
+    }
+    TempDir out;
+    const auto obj = out.path() / "map.obj";
+    const BoundedResult result =
+        run_bounded({"map", "mesh", entry.path().string(), "-o", obj.string()});
+    INFO(describe("map mesh " + name, result));
+    CHECK_FALSE(result.timed_out);
+    CHECK(result.exit_code == 0);
+    if (result.exit_code == 0) {
+      CHECK(bad_vertex_lines(slurp(obj)).empty());
+    }
+  }
+}
+
+TEST_CASE("A road surface beyond the range of doubles is refused at its road, with no mesh",
+          "[robustness][xodr]") {
+  // Two lanes 1.7e308 m wide: their outer border is infinite.
+  const std::string lane =
+      "<lane id=\"ID\" type=\"driving\"><width sOffset=\"0\" a=\"1.7e308\" b=\"0\" c=\"0\" "
+      "d=\"0\"/></lane>\n";
+  std::string lanes;
+  for (const char* id : {"-2", "-1"}) {
+    std::string text = lane;
+    lanes += text.replace(text.find("ID"), 2, id);
+  }
+  std::string map = slurp(std::filesystem::path(CORSA_SOURCE_DIR) /
+                          "tests/robustness/corpus/ok_minimal_road.xodr");
+  const size_t right = map.find("<right>") + 7;
+  const size_t end = map.find("</right>");
+  map.replace(right, end - right, "\n" + lanes);
+  for (const char* extension : {".obj", ".ply"}) {
+    TempDir dir;
+    std::ofstream(dir.path() / "map.xodr") << map;
+    const BoundedResult result =
+        run_bounded({"map", "mesh", (dir.path() / "map.xodr").string(), "-o",
+                     (dir.path() / (std::string("m") + extension)).string()});
+    INFO(describe(std::string("two lanes of 1.7e308 m to ") + extension, result));
+    CHECK(result.exit_code == 2);
+    CHECK(result.err.find("map.xodr:5: error: road '1': its surface reaches beyond the range of "
+                          "numbers") != std::string::npos);
+    CHECK(entry_names(dir.path()) == std::set<std::string>{"map.xodr"});
+  }
 }
 
 }  // namespace

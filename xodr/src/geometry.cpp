@@ -11,8 +11,9 @@
 namespace corsa::xodr {
 
 namespace detail {
+namespace {
 
-RefPoint evaluate_local(const Geometry& geometry, double ds) {
+RefPoint evaluate_shape(const Geometry& geometry, double ds) {
   return std::visit(
       [&](const auto& shape) -> RefPoint {
         using T = std::decay_t<decltype(shape)>;
@@ -31,7 +32,7 @@ RefPoint evaluate_local(const Geometry& geometry, double ds) {
       geometry.shape);
 }
 
-LocalFrame evaluate_local_frame(const Geometry& geometry, double ds) {
+LocalFrame evaluate_shape_frame(const Geometry& geometry, double ds) {
   if (std::holds_alternative<LineGeometry>(geometry.shape)) {
     return LocalFrame{evaluate_line(ds), 1.0, 0.0};
   }
@@ -51,8 +52,41 @@ LocalFrame evaluate_local_frame(const Geometry& geometry, double ds) {
   if (const auto* spiral = std::get_if<SpiralGeometry>(&geometry.shape)) {
     return evaluate_spiral_frame(*spiral, geometry.length, ds);
   }
-  const RefPoint local = evaluate_local(geometry, ds);
+  const RefPoint local = evaluate_shape(geometry, ds);
   return LocalFrame{local, std::cos(local.hdg), std::sin(local.hdg)};
+}
+
+/// The straight continuation of a record read outside [0, length]: `edge` is its frame at the
+/// nearer end, `beyond` the signed distance past it.
+LocalFrame straight_on(const LocalFrame& edge, double beyond) {
+  const RefPoint& p = edge.point;
+  return LocalFrame{RefPoint{p.x + beyond * edge.cos_h, p.y + beyond * edge.sin_h, p.hdg, 0.0},
+                    edge.cos_h, edge.sin_h};
+}
+
+}  // namespace
+
+// A record describes the reference line over its declared length only (OpenDRIVE 1.8 §7.2). It
+// is read outside [0, length] where records overlap or leave a gap, or where a road is longer
+// than its records (all warned about by Map::build): there it goes on straight along its end
+// tangent. Following the formula instead would turn a short tight spiral overlapping a long line
+// into thousands of radians of loops, and cost time (spiral quadrature, index chunks of 0.1 rad)
+// in proportion to them, beyond the turn limit checked on the declared length.
+RefPoint evaluate_local(const Geometry& geometry, double ds) {
+  if (ds >= 0.0 && ds <= geometry.length) {
+    return evaluate_shape(geometry, ds);
+  }
+  return evaluate_local_frame(geometry, ds).point;
+}
+
+LocalFrame evaluate_local_frame(const Geometry& geometry, double ds) {
+  if (ds < 0.0) {
+    return straight_on(evaluate_shape_frame(geometry, 0.0), ds);
+  }
+  if (ds > geometry.length) {
+    return straight_on(evaluate_shape_frame(geometry, geometry.length), ds - geometry.length);
+  }
+  return evaluate_shape_frame(geometry, ds);
 }
 
 }  // namespace detail

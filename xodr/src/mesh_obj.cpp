@@ -1,6 +1,7 @@
 // Wavefront OBJ + MTL text of a road mesh, and write_mesh.
 
 #include <charconv>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -37,11 +38,19 @@ Rgb group_color(size_t group) {
                              : lane_type_color(static_cast<LaneType>(group));
 }
 
+/// Room for any finite double in fixed notation: 309 digits before the point (DBL_MAX is about
+/// 1.8e308), a sign, the point and up to 16 decimals.
+constexpr size_t kFixedChars = 330;
+
 void append_fixed(std::string& out, double value, int decimals) {
-  char buffer[64];
+  char buffer[kFixedChars];
   const auto [end, error] =
       std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed, decimals);
-  out.append(buffer, error == std::errc{} ? end : buffer);
+  if (error != std::errc{}) {
+    // Cannot happen for finite values (build_road_mesh refuses others): never a field left out.
+    throw std::logic_error("OBJ number does not fit its buffer");
+  }
+  out.append(buffer, end);
 }
 
 void append_uint(std::string& out, uint64_t value) {

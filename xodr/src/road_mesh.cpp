@@ -49,6 +49,22 @@ void for_each_section(const Map& map, const MeshOptions& options, Visit visit) {
   }
 }
 
+/// Refuses vertices past the range of doubles (widths like 1e308 m summed across lanes): a mesh
+/// file could not say where they are. Checks the vertices from `checked` on.
+void check_finite(const Map& map, uint32_t road, const RoadMesh& mesh, size_t& checked) {
+  for (; checked < mesh.vertices.size(); ++checked) {
+    const Vec3& v = mesh.vertices[checked];
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
+      const Road& r = map.road(road);
+      throw corsa::InputError(corsa::make_error(
+          map.data().source_file, r.line,
+          "road '" + corsa::clip(r.id) +
+              "': its surface reaches beyond the range of numbers (lane widths, offsets or "
+              "elevation too large for a mesh)"));
+    }
+  }
+}
+
 }  // namespace
 
 namespace detail {
@@ -127,6 +143,7 @@ RoadMesh build_road_mesh(const Map& map, const MeshOptions& options,
   std::vector<detail::SeamVertex> seam;
   std::vector<MarkLine> marks;
   uint32_t seam_road = UINT32_MAX;
+  size_t checked = 0;
   for_each_section(map, options,
                    [&](const detail::SectionView& view, const detail::SectionSamples& samples) {
                      if (view.road_index() != seam_road) {
@@ -141,6 +158,7 @@ RoadMesh build_road_mesh(const Map& map, const MeshOptions& options,
                          detail::mesh_mark_line(line, builder);
                        }
                      }
+                     check_finite(map, view.road_index(), mesh, checked);
                    });
   builder.compact();
   return mesh;

@@ -17,8 +17,10 @@ struct RefPoint {
   double curvature = 0.0;
 };
 
-/// Evaluates `geometry` at `ds` metres from its start (0 <= ds <= length; values outside are
-/// extrapolated along the same formula).
+/// Evaluates `geometry` at `ds` metres from its start. Outside 0 <= ds <= length the record goes
+/// on straight along the tangent at its nearer end (curvature 0): a record describes the line
+/// over its declared length only, and is read beyond it only where a map's records overlap or
+/// leave gaps.
 RefPoint evaluate_geometry(const Geometry& geometry, double ds);
 
 /// Per-kind evaluation in the geometry's local frame (start at the origin, heading 0); the
