@@ -4,19 +4,23 @@
 // Blank lines and lines starting with '#' are skipped. The whole input is checked before
 // anything is printed, so a bad line gives `file:line: error: ...`, exit 2 and no output.
 
-#include <fstream>
+#include <array>
 #include <iostream>
 #include <sstream>
 
 #include "args.h"
 #include "commands.h"
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/input_file.h"
 #include "corsa/core/strings.h"
 #include "corsa/xodr/map.h"
 #include "map_actions.h"
 
 namespace corsa::cli {
 namespace {
+
+/// Longest query line (bytes): a query is three numbers; this bounds what one line may hold.
+constexpr size_t kMaxQueryLine = 4096;
 
 struct Input {
   std::string name;
@@ -33,7 +37,7 @@ std::vector<double> numbers(const Input& input, int line,
   for (size_t i = first; i < fields.size(); ++i) {
     const auto value = corsa::parse_double(fields[i]);
     if (!value) {
-      bad_line(input, line, "'" + std::string(corsa::trim(fields[i])) + "' is not a number");
+      bad_line(input, line, "'" + corsa::clip(corsa::trim(fields[i])) + "' is not a number");
     }
     values.push_back(*value);
   }
@@ -100,22 +104,28 @@ int map_query(std::span<const std::string> args) {
   if (options.max_distance < 0.0) {
     throw UsageError("--max-distance must not be negative");
   }
-  std::ifstream file;
+  // A query file is read whole (a regular file of bounded size, see read_file); standard input
+  // is read line by line, each line bounded, so that no input runs memory out.
+  std::istringstream file;
   Input input{"<stdin>", &std::cin};
   if (const auto path = parsed.value("--in")) {
-    file.open(*path);
-    if (!file) {
-      throw corsa::InputError(corsa::make_error(*path, 0, "cannot open query file"));
-    }
+    file.str(corsa::read_file(*path));
     input = Input{*path, &file};
   }
   const bool to_lane = parsed.flag("--to-lane");
   std::string out;
-  std::string text;
+  std::array<char, kMaxQueryLine + 1> buffer{};
   int line = 0;
-  while (std::getline(*input.stream, text)) {
+  uint64_t bytes = 0;
+  while (input.stream->getline(buffer.data(), buffer.size())) {
     ++line;
-    const std::string_view trimmed = corsa::trim(text);
+    bytes += static_cast<uint64_t>(input.stream->gcount());
+    if (bytes > corsa::kMaxInputBytes) {
+      bad_line(input, line,
+               "more than " + std::to_string(corsa::kMaxInputBytes >> 20) +
+                   " MiB of queries (the output is held until all are read)");
+    }
+    const std::string_view trimmed = corsa::trim(buffer.data());
     if (trimmed.empty() || trimmed.front() == '#') {
       continue;
     }
@@ -123,6 +133,11 @@ int map_query(std::span<const std::string> args) {
     out += to_lane ? world_to_lane(map, input, line, fields, options)
                    : road_to_world(map, input, line, fields);
     out += '\n';
+  }
+  if (!input.stream->eof()) {
+    throw corsa::InputError(corsa::make_error(
+        input.name, line + 1,
+        "line longer than " + std::to_string(kMaxQueryLine) + " bytes (one query per line)"));
   }
   std::cout << out;
   return kExitOk;

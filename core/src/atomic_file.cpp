@@ -134,24 +134,4 @@ void write_file_atomic(const std::filesystem::path& target, std::string_view con
   file.commit();
 }
 
-std::string read_file(const std::filesystem::path& path) {
-  // An ifstream opens a directory without complaint and then reads nothing, which a parser would
-  // report as an empty document.
-  std::error_code status_error;
-  if (std::filesystem::is_directory(path, status_error)) {
-    throw InputError(make_error(path.string(), 0, "is a folder, not a file"));
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw InputError(make_error(path.string(), 0,
-                                std::string("cannot open file (") + std::strerror(errno) + ")"));
-  }
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) {
-    throw InputError(make_error(path.string(), 0, "read failed"));
-  }
-  return content.str();
-}
-
 }  // namespace corsa

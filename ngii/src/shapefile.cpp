@@ -1,6 +1,9 @@
 #include "shapefile.h"
 
+#include <fcntl.h>
 #include <shapefil.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
@@ -8,6 +11,7 @@
 #include <cstring>
 #include <memory>
 
+#include "corsa/core/input_file.h"
 #include "corsa/core/strings.h"
 
 namespace corsa::ngii::detail {
@@ -24,8 +28,28 @@ namespace fs = std::filesystem;
 // shapelib opens "<base>.shp" / ".shx" / ".dbf" itself, trying only lower and upper case
 // extensions; this hook also finds e.g. "A2_LINK.Shx" by a case-insensitive directory scan.
 // It returns a FILE* like shapelib's default hook, so the default read/seek/close hooks apply.
+// Only regular files are opened (fopen would block on a FIFO); the readers check them first to
+// say why (check_input_file), this keeps a file swapped in meanwhile from blocking.
+std::FILE* open_regular(const char* name, const char* access) {
+  const int fd = ::open(name, O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) {
+    return nullptr;
+  }
+  struct stat status {};
+  std::FILE* file = nullptr;
+  if (::fstat(fd, &status) == 0 && S_ISREG(status.st_mode)) {
+    file = ::fdopen(fd, access);
+  } else {
+    errno = EINVAL;
+  }
+  if (file == nullptr) {
+    ::close(fd);
+  }
+  return file;
+}
+
 SAFile open_case_insensitive(const char* name, const char* access) {
-  if (std::FILE* file = std::fopen(name, access)) {
+  if (std::FILE* file = open_regular(name, access)) {
     return reinterpret_cast<SAFile>(file);
   }
   if (errno != ENOENT) {
@@ -36,7 +60,7 @@ SAFile open_case_insensitive(const char* name, const char* access) {
   const fs::path dir = wanted.has_parent_path() ? wanted.parent_path() : fs::path(".");
   for (const auto& entry : fs::directory_iterator(dir, error)) {
     if (iequals(entry.path().filename().string(), wanted.filename().string())) {
-      return reinterpret_cast<SAFile>(std::fopen(entry.path().c_str(), access));
+      return reinterpret_cast<SAFile>(open_regular(entry.path().c_str(), access));
     }
   }
   return nullptr;
@@ -90,6 +114,8 @@ ShapeReader::ShapeReader(const fs::path& shp, ShapeFamily family) : file_(shp.st
   if (!found) {
     fail(shx.string(), -1, "missing Shapefile index (.shx); it must sit next to " + file_);
   }
+  check_input_file(shp);
+  check_input_file(shx);
   SAHooks hooks = make_hooks();
   SHPHandle handle = SHPOpenLL(shp.c_str(), "rb", &hooks);
   if (handle == nullptr) {
@@ -152,6 +178,11 @@ bool ShapeReader::read(int index, std::vector<Point3>& points, int& parts) const
 // --- DbfReader ---------------------------------------------------------------------------------
 
 DbfReader::DbfReader(const fs::path& dbf) : file_(dbf.string()) {
+  bool found = false;
+  const fs::path existing = companion(dbf, dbf.extension().string(), &found);
+  if (found) {
+    check_input_file(existing);
+  }
   SAHooks hooks = make_hooks();
   DBFHandle handle = DBFOpenLL(dbf.c_str(), "rb", &hooks);
   if (handle == nullptr) {

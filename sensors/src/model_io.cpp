@@ -248,9 +248,7 @@ struct Walker {
 
 std::vector<StaticMesh> load_model(const std::filesystem::path& path,
                                    const ModelPlacement& placement) {
-  if (!std::filesystem::exists(path)) {
-    fail(path, "cannot open the model file");
-  }
+  check_input_file(path);  // a regular file of bounded size: assimp would block on a FIFO
   if (!(placement.scale > 0.0) || !std::isfinite(placement.scale)) {
     fail(path, "model scale must be a positive number");
   }

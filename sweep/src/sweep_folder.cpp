@@ -1,8 +1,6 @@
 #include "sweep_folder.h"
 
-#include <fstream>
-#include <sstream>
-
+#include "corsa/core/input_file.h"
 #include "corsa/core/strings.h"
 #include "corsa/sweep/csv.h"
 
@@ -22,12 +20,12 @@ std::optional<std::string> json_member(std::string_view json, std::string_view k
 }
 
 std::optional<Table> read_table(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::error_code error;
+  if (!std::filesystem::exists(file, error)) return std::nullopt;
+  // Anything but a regular file of bounded size is an error (a FIFO would block).
+  const std::string text = read_file(file);
   std::vector<std::vector<std::string>> rows;
-  if (!in || !parse_csv(text.str(), rows) || rows.empty()) return std::nullopt;
+  if (!parse_csv(text, rows) || rows.empty()) return std::nullopt;
   Table table;
   table.header = std::move(rows.front());
   rows.erase(rows.begin());

@@ -28,8 +28,9 @@ struct Table {
   std::vector<std::vector<std::string>> rows;
 };
 
-/// Reads a CSV table; nothing when the file is missing, unreadable, malformed or has rows of
-/// another width than the header.
+/// Reads a CSV table; nothing when the file is missing, malformed or has rows of another width
+/// than the header. Throws InputError for a path that is not a regular file of bounded size (a
+/// FIFO, a device: see read_file).
 std::optional<Table> read_table(const std::filesystem::path& file);
 
 /// The variant index in a row's first field; nothing when it is not a whole number.

@@ -5,6 +5,8 @@
 #include <string_view>
 #include <vector>
 
+#include "corsa/core/input_file.h"  // read_file, which users of this header expect
+
 namespace corsa {
 
 /// An output file that appears under its name only when complete.
@@ -59,8 +61,5 @@ std::vector<std::filesystem::path> create_output_folders(const std::filesystem::
 /// Writes `content` to `target` atomically (see AtomicFile).
 void write_file_atomic(const std::filesystem::path& target, std::string_view content,
                        bool binary = false);
-
-/// Reads a whole file; throws InputError naming the file when it cannot be read.
-std::string read_file(const std::filesystem::path& path);
 
 }  // namespace corsa
