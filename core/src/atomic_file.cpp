@@ -1,7 +1,12 @@
 #include "corsa/core/atomic_file.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -19,6 +24,47 @@ std::filesystem::path temporary_name_for(const std::filesystem::path& target) {
   std::ostringstream name;
   name << '.' << target.filename().string() << ".tmp." << ::getpid() << '.' << counter++;
   return target.parent_path() / name.str();
+}
+
+}  // namespace
+
+bool is_temporary_name(std::string_view name) {
+  if (name.size() < 9 || name.front() != '.') {
+    return false;
+  }
+  const size_t last_dot = name.rfind('.');
+  const size_t pid_dot = last_dot == std::string_view::npos ? last_dot : name.rfind('.', last_dot - 1);
+  if (pid_dot == std::string_view::npos || pid_dot < 5 || name.substr(pid_dot - 4, 4) != ".tmp") {
+    return false;
+  }
+  const auto digits = [&](size_t from, size_t to) {
+    return to > from && std::all_of(name.begin() + static_cast<std::ptrdiff_t>(from),
+                                     name.begin() + static_cast<std::ptrdiff_t>(to),
+                                     [](char c) { return c >= '0' && c <= '9'; });
+  };
+  return digits(pid_dot + 1, last_dot) && digits(last_dot + 1, name.size());
+}
+
+namespace {
+
+/// Removes `path` when it is a regular file no live process holds locked (see AtomicFile).
+bool remove_if_stale(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) {
+    return false;
+  }
+  bool removed = false;
+  struct stat opened {};
+  struct stat named {};
+  // The lock is free once its owner died (or renamed and closed it, in which case the name no
+  // longer leads to this file).
+  if (::flock(fd, LOCK_EX | LOCK_NB) == 0 && ::fstat(fd, &opened) == 0 &&
+      S_ISREG(opened.st_mode) && ::lstat(path.c_str(), &named) == 0 &&
+      named.st_ino == opened.st_ino && named.st_dev == opened.st_dev) {
+    removed = ::unlink(path.c_str()) == 0;
+  }
+  ::close(fd);
+  return removed;
 }
 
 [[noreturn]] void output_error(const std::filesystem::path& target, const std::string& message) {
@@ -77,14 +123,84 @@ std::vector<std::filesystem::path> create_output_folders(const std::filesystem::
   return created;
 }
 
-AtomicFile::AtomicFile(std::filesystem::path target, bool binary)
-    : target_(std::move(target)), temporary_(temporary_name_for(target_)) {
+namespace detail {
+
+/// An output stream buffer over a file descriptor (std::ofstream cannot open with O_EXCL |
+/// O_NOFOLLOW, nor hand out its descriptor for flock).
+class DescriptorStreamBuf final : public std::streambuf {
+ public:
+  explicit DescriptorStreamBuf(int fd) : fd_(fd) { setp(buffer_.data(), buffer_.data() + kSize); }
+  bool failed() const { return failed_; }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (!drain()) {
+      return traits_type::eof();
+    }
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(c);
+      pbump(1);
+    }
+    return traits_type::not_eof(c);
+  }
+  int sync() override { return drain() ? 0 : -1; }
+  std::streamsize xsputn(const char* data, std::streamsize count) override {
+    if (count >= static_cast<std::streamsize>(kSize)) {
+      // Large blocks go straight to the file.
+      if (!drain() || !write_all(data, static_cast<size_t>(count))) {
+        return 0;
+      }
+      return count;
+    }
+    return std::streambuf::xsputn(data, count);
+  }
+
+ private:
+  static constexpr size_t kSize = 1 << 16;
+
+  bool drain() {
+    const auto pending = static_cast<size_t>(pptr() - pbase());
+    const bool ok = write_all(pbase(), pending);
+    setp(buffer_.data(), buffer_.data() + kSize);
+    return ok;
+  }
+  bool write_all(const char* data, size_t size) {
+    while (size > 0 && !failed_) {
+      const ssize_t written = ::write(fd_, data, size);
+      if (written < 0 && errno == EINTR) {
+        continue;
+      }
+      if (written <= 0) {
+        failed_ = true;
+        break;
+      }
+      data += written;
+      size -= static_cast<size_t>(written);
+    }
+    return !failed_;
+  }
+
+  int fd_;
+  bool failed_ = false;
+  std::array<char, kSize> buffer_{};
+};
+
+}  // namespace detail
+
+AtomicFile::AtomicFile(std::filesystem::path target, bool /*binary*/)
+    : target_(std::move(target)), out_(nullptr) {
   check_output_file(target_);
   created_folders_ = create_output_folders(target_.parent_path(), target_);
-  const auto mode =
-      std::ios::out | std::ios::trunc | (binary ? std::ios::binary : std::ios::openmode{});
-  out_.open(temporary_, mode);
-  if (!out_) {
+  // A name taken already (a temporary of a killed process whose pid came round again) is skipped.
+  for (int attempt = 0; attempt < 100 && descriptor_ < 0; ++attempt) {
+    temporary_ = temporary_name_for(target_);
+    descriptor_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
+                         0666);
+    if (descriptor_ < 0 && errno != EEXIST) {
+      break;
+    }
+  }
+  if (descriptor_ < 0) {
     const std::string reason = std::strerror(errno);
     std::error_code ignored;
     for (const auto& folder : created_folders_) {
@@ -92,17 +208,23 @@ AtomicFile::AtomicFile(std::filesystem::path target, bool binary)
     }
     throw InputError(make_error(target_.string(), 0, "cannot create output file (" + reason + ")"));
   }
+  // Held until the temporary is renamed or removed: a free lock marks a stale temporary.
+  ::flock(descriptor_, LOCK_EX | LOCK_NB);
+  buffer_ = std::make_unique<detail::DescriptorStreamBuf>(descriptor_);
+  out_.rdbuf(buffer_.get());
 }
 
 AtomicFile::~AtomicFile() {
   if (!committed_) {
-    out_.close();
     std::error_code ignored;
     std::filesystem::remove(temporary_, ignored);
     // Innermost first; remove() leaves a folder that meanwhile holds something else.
     for (const auto& folder : created_folders_) {
       std::filesystem::remove(folder, ignored);
     }
+  }
+  if (descriptor_ >= 0) {
+    ::close(descriptor_);
   }
 }
 
@@ -111,13 +233,12 @@ void AtomicFile::commit() {
     return;
   }
   out_.flush();
-  const bool write_ok = static_cast<bool>(out_);
-  out_.close();
   std::error_code error;
-  if (!write_ok || out_.fail()) {
+  if (!out_ || buffer_->failed()) {
     std::filesystem::remove(temporary_, error);
     throw InputError(make_error(target_.string(), 0, "write failed (disk full?)"));
   }
+  // Renamed while still open and locked, so that no cleanup takes it for a stale temporary.
   std::filesystem::rename(temporary_, target_, error);
   if (error) {
     std::error_code ignored;
@@ -126,6 +247,59 @@ void AtomicFile::commit() {
         make_error(target_.string(), 0, "cannot move output into place (" + error.message() + ")"));
   }
   committed_ = true;
+  ::close(descriptor_);
+  descriptor_ = -1;
+}
+
+void create_folder_inside(const std::filesystem::path& root, const std::filesystem::path& relative) {
+  std::filesystem::path folder = root;
+  for (const auto& part : relative) {
+    if (part.empty() || part == ".") {
+      continue;
+    }
+    if (part == ".." || part.has_root_directory()) {
+      output_error(root / relative, "leaves the output folder " + root.string());
+    }
+    folder /= part;
+    struct stat status {};
+    if (::lstat(folder.c_str(), &status) != 0) {
+      if (errno == ENOENT && ::mkdir(folder.c_str(), 0777) == 0) {
+        continue;
+      }
+      if (errno != EEXIST || ::lstat(folder.c_str(), &status) != 0) {
+        output_error(folder, std::string("cannot create folder (") + std::strerror(errno) + ")");
+      }
+    }
+    if (S_ISLNK(status.st_mode)) {
+      output_error(folder, "is a symbolic link inside the output folder " + root.string() +
+                               "; Corsa writes only into folders that are really there");
+    }
+    if (!S_ISDIR(status.st_mode)) {
+      output_error(folder, "is in the way of an output folder (it is not a folder)");
+    }
+  }
+}
+
+size_t remove_stale_temporaries(const std::filesystem::path& folder, int depth) {
+  size_t removed = 0;
+  std::error_code error;
+  const auto visit = [&](const std::filesystem::directory_entry& entry) {
+    std::error_code ignored;
+    if (is_temporary_name(entry.path().filename().string()) && entry.is_regular_file(ignored) &&
+        !entry.is_symlink(ignored) && remove_if_stale(entry.path())) {
+      ++removed;
+    }
+  };
+  for (std::filesystem::recursive_directory_iterator it(
+           folder, std::filesystem::directory_options::skip_permission_denied, error),
+       end;
+       !error && it != end; it.increment(error)) {
+    if (it.depth() >= depth) {
+      it.disable_recursion_pending();
+    }
+    visit(*it);
+  }
+  return removed;
 }
 
 void write_file_atomic(const std::filesystem::path& target, std::string_view content, bool binary) {
