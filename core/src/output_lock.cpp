@@ -1,0 +1,117 @@
+#include "corsa/core/output_lock.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <cstring>
+
+#include "corsa/core/diagnostic.h"
+#include "corsa/core/strings.h"
+
+namespace corsa {
+namespace {
+
+[[noreturn]] void lock_error(const std::filesystem::path& folder, const std::string& message) {
+  throw InputError(make_error(folder.string(), 0, message));
+}
+
+std::string host_name() {
+  std::array<char, 256> name{};
+  if (::gethostname(name.data(), name.size() - 1) != 0) {
+    return "?";
+  }
+  return name.data();
+}
+
+/// What a held lock file says of its owner ("pid 123 on host x"), for the message.
+std::string owner_of(int fd) {
+  std::array<char, 300> text{};
+  const ssize_t size = ::pread(fd, text.data(), text.size() - 1, 0);
+  const std::string owner(trim(std::string_view(text.data(), size > 0 ? size_t(size) : 0)));
+  return owner.empty() ? "another process" : clip(owner);
+}
+
+enum class Existing { kGone, kRemovedStale, kHeld };
+
+/// Looks at the lock file of another process: removes it when stale, else says who holds it.
+Existing check_existing(const std::filesystem::path& lock, std::string& owner) {
+  const int fd = ::open(lock.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) {
+    return Existing::kGone;
+  }
+  Existing result = Existing::kGone;
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    owner = owner_of(fd);
+    result = Existing::kHeld;
+  } else {
+    // Free: its owner is gone. Removed only if the name still leads to this file (another process
+    // may have replaced it meanwhile; deciding needs the flock we hold, so they take turns).
+    struct stat opened {};
+    struct stat named {};
+    if (::fstat(fd, &opened) == 0 && ::lstat(lock.c_str(), &named) == 0 &&
+        opened.st_ino == named.st_ino && opened.st_dev == named.st_dev) {
+      ::unlink(lock.c_str());
+      result = Existing::kRemovedStale;
+    }
+  }
+  ::close(fd);
+  return result;
+}
+
+}  // namespace
+
+OutputLock::OutputLock(const std::filesystem::path& folder) : file_(folder / kFileName) {
+  // The lock is written and locked under a temporary name first and then linked to its name, so
+  // that the name never leads to a lock file that is not yet held. The temporary's name is an
+  // AtomicFile one, so a killed process's is cleaned like theirs.
+  const std::string pid = std::to_string(::getpid());
+  const std::filesystem::path staging = folder / (std::string(kFileName) + ".tmp." + pid + ".0");
+  ::unlink(staging.c_str());  // a stale one of a process with the same pid
+  descriptor_ =
+      ::open(staging.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (descriptor_ < 0) {
+    lock_error(folder, std::string("cannot lock the output folder (") + std::strerror(errno) + ")");
+  }
+  ::flock(descriptor_, LOCK_EX | LOCK_NB);
+  const std::string owner = "pid " + pid + " on host " + host_name() + "\n";
+  const bool written = ::write(descriptor_, owner.data(), owner.size()) ==
+                       static_cast<ssize_t>(owner.size());
+  for (int attempt = 0; written && attempt < 10; ++attempt) {
+    if (::link(staging.c_str(), file_.c_str()) == 0) {
+      ::unlink(staging.c_str());
+      return;
+    }
+    if (errno != EEXIST) {
+      break;
+    }
+    std::string holder;
+    if (check_existing(file_, holder) == Existing::kHeld) {
+      ::unlink(staging.c_str());
+      ::close(descriptor_);
+      descriptor_ = -1;
+      lock_error(folder, "another corsa (" + holder +
+                             ") is writing into this folder; wait for it, or choose another "
+                             "output folder (if no such process runs, remove " +
+                             file_.string() + ")");
+    }
+  }
+  const std::string reason = std::strerror(errno);
+  ::unlink(staging.c_str());
+  ::close(descriptor_);
+  descriptor_ = -1;
+  lock_error(folder, "cannot lock the output folder (" + reason + ")");
+}
+
+OutputLock::~OutputLock() {
+  if (descriptor_ >= 0) {
+    // Removed while still held, so that no other process takes the file for a stale lock.
+    ::unlink(file_.c_str());
+    ::close(descriptor_);
+  }
+}
+
+}  // namespace corsa
