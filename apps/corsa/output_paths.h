@@ -4,7 +4,8 @@
 // checked when the arguments are read, before any work (not after an hour of simulation).
 // Missing folders on the way are made when the output is written (like `mkdir -p`); an output
 // file that is a folder, or any output whose path runs through a regular file, is refused with an
-// InputError naming it (exit 2). See corsa/core/atomic_file.h.
+// InputError naming it (exit 2). Temporaries a killed run of Corsa left there (in the output
+// file's folder, or anywhere in an output folder) are removed. See corsa/core/atomic_file.h.
 
 #include <filesystem>
 #include <functional>
