@@ -10,10 +10,12 @@
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/output_lock.h"
 #include "corsa/core/strings.h"
 #include "corsa/core/version.h"
 #include "corsa/sensors/semantic.h"
 #include "corsa/sensors/writers.h"
+#include "dataset_folder.h"
 
 namespace corsa::sensors {
 namespace {
@@ -26,33 +28,6 @@ void make_dir(const fs::path& dir) {
   if (error) {
     throw InputError(make_error(dir.string(), 0, "cannot create the folder: " + error.message()));
   }
-}
-
-// A folder may be (re)used when it is absent, empty, or (with replace) a previous dataset.
-void prepare_directory(const fs::path& dir, bool replace) {
-  std::error_code error;
-  if (fs::exists(dir, error)) {
-    if (!fs::is_directory(dir, error)) {
-      throw InputError(make_error(dir.string(), 0, "exists and is not a folder"));
-    }
-    if (!fs::is_empty(dir, error)) {
-      if (!replace) {
-        throw InputError(make_error(dir.string(), 0,
-                                    "the dataset folder is not empty (use --force to replace a "
-                                    "previous dataset)"));
-      }
-      if (!fs::exists(dir / "run.json", error)) {
-        throw InputError(make_error(dir.string(), 0,
-                                    "--force replaces only a previous dataset (a folder with a "
-                                    "run.json); this folder has none"));
-      }
-      fs::remove_all(dir, error);
-      if (error) {
-        throw InputError(make_error(dir.string(), 0, "cannot remove: " + error.message()));
-      }
-    }
-  }
-  make_dir(dir);
 }
 
 std::string num(double value) { return format_double(value); }
@@ -144,7 +119,14 @@ struct DatasetWriter::Pending {
 DatasetWriter::DatasetWriter(SensorSystem& system, fs::path directory, DatasetRunInfo info,
                              DatasetFormat format, bool replace)
     : system_(system), directory_(std::move(directory)), info_(std::move(info)), format_(format) {
-  prepare_directory(directory_, replace);
+  std::error_code error;
+  if (fs::exists(directory_, error) && !fs::is_directory(directory_, error)) {
+    throw InputError(make_error(directory_.string(), 0, "exists and is not a folder"));
+  }
+  make_dir(directory_);
+  lock_ = std::make_unique<OutputLock>(directory_);  // one writer per dataset folder
+  remove_stale_temporaries(directory_, 2);
+  detail::prepare_dataset_folder(directory_, replace);
   make_dir(directory_ / "poses");
   write_calibration(system_, directory_);
   write_file_atomic(directory_ / "classes.json", class_table_json());

@@ -28,6 +28,10 @@
 #include "corsa/engine/world_snapshot.h"
 #include "corsa/sensors/sensor_system.h"
 
+namespace corsa {
+class OutputLock;
+}
+
 namespace corsa::sensors {
 
 enum class DatasetFormat { kCorsa, kKitti };
@@ -62,9 +66,11 @@ class DatasetWriter final : public engine::CaptureSink {
   /// Waits for the files still being written (errors are dropped: call finish() to see them).
   ~DatasetWriter() override;
 
-  /// Creates the folder (it must be absent or empty, or `replace` and hold a previous dataset,
-  /// i.e. a run.json), the calibration files and a "running" run.json. Throws InputError when
-  /// the folder cannot be used.
+  /// Creates the folder and locks it for this writer (corsa/core/output_lock.h) until destroyed.
+  /// It must be absent or empty, or with `replace` hold a previous dataset and nothing else,
+  /// whose own files are then removed (only those: see prepare_dataset_folder in
+  /// src/dataset_folder.h). Writes the calibration files and a "running" run.json. Throws
+  /// InputError when the folder cannot be used.
   DatasetWriter(SensorSystem& system, std::filesystem::path directory, DatasetRunInfo info,
                 DatasetFormat format, bool replace);
 
@@ -98,6 +104,7 @@ class DatasetWriter final : public engine::CaptureSink {
   double last_time_ = 0.0;
   int64_t kitti_frames_ = 0;
   std::unique_ptr<Pending> pending_;
+  std::unique_ptr<OutputLock> lock_;
 };
 
 /// The file name stem of a frame number: six digits, zero-padded ("000042").
