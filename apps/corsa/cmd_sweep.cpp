@@ -17,6 +17,7 @@
 #include "corsa/sweep/parallel.h"
 #include "corsa/sweep/sweep.h"
 #include "corsa/xosc/scenario.h"
+#include "stop_signals.h"
 #include "sweep_options.h"
 
 namespace corsa::cli {
@@ -54,7 +55,8 @@ ArgParser sweep_parser() {
       "and DIR/summary.csv (index, parameters, status, end reason, sim time, collisions, minimum\n"
       "TTC, minimum distance, maximum deceleration, error, wall time). A failing variant is\n"
       "recorded and the sweep goes on. Exit 0 when every variant ran, 1 when some failed, 2 on\n"
-      "bad input.\n"
+      "bad input. Ctrl-C (or SIGTERM) lets the variants in progress finish and leaves the folder\n"
+      "for --resume (exit 130, 143 for SIGTERM). One corsa writes into a folder at a time.\n"
       "examples:\n"
       "  corsa sweep cut_in_grid.xosc -o out\n"
       "  corsa sweep cut_in.xosc --param Ego_Speed=20:40:5 --param Cut_Lane=-1,-2 -o out\n"
@@ -141,9 +143,17 @@ int run_sweep_command(std::span<const std::string> args) {
   const sweep::VariantPlan plan =
       make_plan(parsed.positionals().front(), parsed, options.simulation.seed, diagnostics);
   ProgressBar progress("sweep", static_cast<double>(options.shard.share(plan.size())), !quiet);
+  const StopSignals signals;
+  options.stop = [] { return StopSignals::reason(); };
   const sweep::SweepReport report = sweep::run_sweep(
       plan, options, diagnostics, [&](size_t done, size_t) { progress.update(double(done)); });
   progress.finish();
+  if (report.interruption) {
+    std::cerr << "corsa sweep: " << *report.interruption << "; " << options.output.string()
+              << " holds " << report.ran + report.resumed << " of " << report.variants
+              << " variants, complete (finish with --resume)\n";
+    return StopSignals::exit_code();
+  }
   if (!quiet) print_report(plan, options, report);
   for (const auto& [index, error] : report.first_failures) {
     std::cerr << "variant " << index << " failed: " << error << '\n';

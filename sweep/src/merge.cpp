@@ -1,12 +1,17 @@
 #include "corsa/sweep/merge.h"
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/output_lock.h"
+#include "corsa/core/strings.h"
 #include "corsa/sweep/csv.h"
 #include "corsa/sweep/summary_table.h"
 #include "sweep_folder.h"
@@ -53,15 +58,50 @@ void link_or_copy(const fs::path& from, const fs::path& to) {
   }
 }
 
-// The files of a finished variant, taken into the merge: exactly those a sweep writes, so not the
-// hidden temporary (".trajectory.csv.tmp.<pid>.<n>") of a run killed half-way through a file.
+// Fails when `path` (inside a shard) is a symbolic link: a sweep folder is made of real files and
+// folders, and following a link would merge what it points at, from anywhere.
+void refuse_link(const fs::path& path) {
+  std::error_code error;
+  if (fs::is_symlink(fs::symlink_status(path, error))) {
+    fail(path, "is a symbolic link; a sweep folder holds real files and folders only");
+  }
+}
+
+// The files of a finished variant, taken into the merge: exactly those a sweep writes (so no
+// temporary a killed run left, nor anything else put there), each a regular file.
 void merge_variant(const fs::path& shard_variant, const fs::path& merged_variant) {
+  refuse_link(shard_variant);
   std::error_code error;
   if (!fs::is_directory(shard_variant, error)) return;
   fs::create_directory(merged_variant);
   for (const char* name : {detail::kTrajectoryFile, detail::kRunSummaryFile, detail::kResultFile}) {
     const fs::path file = shard_variant / name;
+    refuse_link(file);
     if (fs::is_regular_file(file, error)) link_or_copy(file, merged_variant / name);
+  }
+}
+
+// Staging folders of merges into `out` whose process is gone (killed before the rename): the pid
+// in the name is not running here, and no live merge holds the folder's lock.
+void remove_stale_staging(const fs::path& out) {
+  const std::string prefix = "." + out.filename().string() + ".merge.";
+  std::error_code error;
+  const fs::path parent = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+  for (fs::directory_iterator it(parent, error), end; !error && it != end; it.increment(error)) {
+    const std::string name = it->path().filename().string();
+    if (!name.starts_with(prefix)) continue;
+    const auto pid = parse_int(name.substr(prefix.size()));
+    std::error_code ignored;
+    if (!pid || *pid <= 0 || ::kill(static_cast<pid_t>(*pid), 0) == 0 || errno != ESRCH ||
+        fs::is_symlink(it->symlink_status(ignored))) {
+      continue;
+    }
+    try {
+      const OutputLock lock(it->path());
+    } catch (const InputError&) {
+      continue;  // held: a live merge elsewhere
+    }
+    fs::remove_all(it->path(), ignored);
   }
 }
 
@@ -112,9 +152,11 @@ MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard
     }
   }
   if (rows.size() != total) {
+    // The first missing indices; at most rows.size() + 10 looked at, whatever count sweep.json
+    // claims (a count of 1e15 used to be counted through).
     std::string missing;
     size_t count = 0;
-    for (size_t i = 0; i < total; ++i) {
+    for (size_t i = 0; i < total && count < 10; ++i) {
       if (rows.count(i) == 0 && ++count <= 10)
         missing += (count > 1 ? ", " : "") + std::to_string(i);
     }
@@ -123,16 +165,23 @@ MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard
                   "): is a shard folder missing?");
   }
 
+  // A folder another process writes into (a sweep still running) is not replaced.
+  std::optional<OutputLock> out_lock;
+  if (fs::is_directory(out, error)) out_lock.emplace(out);
   // Built next to `out` and renamed into place when complete.
+  remove_stale_staging(out);
   const fs::path staging =
       out.parent_path() / ("." + out.filename().string() + ".merge." + std::to_string(::getpid()));
   fs::remove_all(staging, error);
   MergeReport report{rows.size(), 0, shards.size()};
   try {
-    fs::create_directories(staging / detail::kVariantsFolder);
+    fs::create_directory(staging);
+    std::optional<OutputLock> staging_lock(std::in_place, staging);
+    fs::create_directory(staging / detail::kVariantsFolder);
     write_file_atomic(staging / detail::kDescriptionFile, first.description);
     std::string table = csv_line(first.table.header);
     const size_t status = status_column(first.table.header.size() - kFixedColumnCount);
+    for (const Shard& shard : shards) refuse_link(shard.folder / detail::kVariantsFolder);
     for (const auto& [index, entry] : rows) {
       const fs::path variant = fs::path(detail::kVariantsFolder) / std::to_string(index);
       merge_variant(entry.first->folder / variant, staging / variant);
@@ -140,6 +189,7 @@ MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard
       report.failed += (*entry.second)[status] != "ok" ? 1 : 0;
     }
     write_file_atomic(staging / detail::kSummaryFile, table);
+    staging_lock.reset();
     fs::remove_all(out, error);
     fs::rename(staging, out);
   } catch (...) {

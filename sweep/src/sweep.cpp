@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cstdio>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include "corsa/core/atomic_file.h"
+#include "corsa/core/output_lock.h"
 #include "corsa/core/random.h"
 #include "corsa/core/strings.h"
 #include "corsa/core/version.h"
@@ -53,15 +55,52 @@ std::string json_list(const std::vector<std::string>& items) {
   throw InputError(make_error(folder.string(), 0, message));
 }
 
+// The output folder, made if missing and locked for this process (one writer per folder). If
+// the sweep is refused before keep(), a folder it made is removed again.
+class LockedOutput {
+ public:
+  explicit LockedOutput(const fs::path& folder) : folder_(folder) {
+    std::error_code error;
+    if (fs::exists(folder, error) && !fs::is_directory(folder, error)) {
+      folder_error(folder, "the sweep output (-o) exists and is not a folder");
+    }
+    created_ = fs::create_directories(folder, error);
+    if (error) {
+      folder_error(folder, "cannot create the output folder (" + error.message() + ")");
+    }
+    try {
+      lock_.emplace(folder);
+    } catch (...) {
+      remove_if_made();
+      throw;
+    }
+  }
+  LockedOutput(const LockedOutput&) = delete;
+  LockedOutput& operator=(const LockedOutput&) = delete;
+  ~LockedOutput() {
+    lock_.reset();
+    if (!kept_) remove_if_made();
+  }
+  void keep() { kept_ = true; }
+
+ private:
+  void remove_if_made() {
+    std::error_code ignored;
+    if (created_) fs::remove(folder_, ignored);  // only when still empty
+  }
+
+  fs::path folder_;
+  bool created_ = false;
+  bool kept_ = false;
+  std::optional<OutputLock> lock_;
+};
+
 // Checks what `options.output` holds before anything is written, and clears an earlier sweep
 // when forced. Returns whether the folder already holds this sweep (resume).
 void prepare_output(const SweepOptions& options, const std::string& description,
                     const std::string& shard_text) {
   const fs::path& out = options.output;
   std::error_code error;
-  if (fs::exists(out, error) && !fs::is_directory(out, error)) {
-    folder_error(out, "the sweep output (-o) exists and is not a folder");
-  }
   const fs::path described = out / detail::kDescriptionFile;
   if (!fs::exists(described, error)) {
     return;
@@ -119,14 +158,16 @@ struct Context {
 };
 
 std::vector<std::string> run_one(const Context& c, size_t index, bool& resumed) {
-  const fs::path folder = c.options.output / detail::kVariantsFolder / std::to_string(index);
+  const fs::path relative = fs::path(detail::kVariantsFolder) / std::to_string(index);
+  const fs::path folder = c.options.output / relative;
+  create_folder_inside(c.options.output, relative);
   if (c.options.resume) {
+    remove_stale_temporaries(folder);
     if (auto row = finished_row(folder, index, c.header)) {
       resumed = true;
       return *row;
     }
   }
-  fs::create_directories(folder);
   VariantSpec spec;
   spec.parameters = c.plan.variant(index);
   spec.simulation = c.options.simulation;
@@ -185,10 +226,12 @@ SweepReport run_sweep(const VariantPlan& plan, const SweepOptions& options,
   check_variant_count(plan, options.shard.share(plan.size()));
   const std::string description = sweep_description(plan, options);
   const std::string shard_text = shard_json(options.shard, plan.size());
+  LockedOutput output(options.output);
   prepare_output(options, description, shard_text);
-  fs::create_directories(options.output / detail::kVariantsFolder);
+  create_folder_inside(options.output, detail::kVariantsFolder);
   write_file_atomic(options.output / detail::kDescriptionFile, description);
   if (!shard_text.empty()) write_file_atomic(options.output / detail::kShardFile, shard_text);
+  output.keep();
 
   const std::vector<std::string> header = summary_header(plan.parameter_names());
   const size_t share = options.shard.share(plan.size());
@@ -197,7 +240,16 @@ SweepReport run_sweep(const VariantPlan& plan, const SweepOptions& options,
   const Context context{plan, options, header, inputs, diagnostics};
   std::mutex progress_mutex;
   size_t done = 0;
+  std::optional<std::string> interruption;
+  std::mutex stop_mutex;
+  const auto stopped = [&] {
+    if (!options.stop) return false;
+    std::lock_guard lock(stop_mutex);
+    if (!interruption) interruption = options.stop();
+    return interruption.has_value();
+  };
   parallel_for(share, options.jobs, [&](size_t k) {
+    if (stopped()) return;
     const size_t index = options.shard.index + k * options.shard.count;
     bool was_resumed = false;
     rows[k] = run_one(context, index, was_resumed);
@@ -208,9 +260,21 @@ SweepReport run_sweep(const VariantPlan& plan, const SweepOptions& options,
     }
   });
 
-  std::string table = csv_line(header);
   SweepReport report;
   report.variants = share;
+  if (interruption) {
+    // The variants done are complete in their folders; without summary.csv the folder is an
+    // unfinished sweep, which --resume completes and merge refuses.
+    for (size_t k = 0; k < share; ++k) {
+      if (rows[k].empty()) continue;
+      (resumed[k] != 0 ? report.resumed : report.ran) += 1;
+    }
+    report.interruption = interruption;
+    report.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return report;
+  }
+  std::string table = csv_line(header);
   const size_t status = status_column(plan.parameter_names().size());
   for (size_t k = 0; k < share; ++k) {
     table += csv_line(rows[k]);

@@ -4,6 +4,10 @@
 // exit code 2 with a located `file:line: error:` message, never a crash, a hang or an output file
 // left behind.
 
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <chrono>
 #include <filesystem>
@@ -49,6 +53,36 @@ inline BoundedResult run_bounded(const std::vector<std::string>& args,
   result.timed_out = result.exit_code == 124 || result.exit_code == 137;
   result.err = slurp(dir.path() / "stderr");
   return result;
+}
+
+/// A `corsa` process started in the background (from the source tree, stdin /dev/null, stdout
+/// discarded, stderr to `err_file`), for tests that signal or race it.
+inline pid_t spawn_corsa(const std::vector<std::string>& args,
+                         const std::filesystem::path& err_file) {
+  std::vector<std::string> argv{CORSA_BINARY};
+  argv.insert(argv.end(), args.begin(), args.end());
+  std::vector<char*> pointers;
+  for (auto& arg : argv) pointers.push_back(arg.data());
+  pointers.push_back(nullptr);
+  const pid_t child = fork();
+  if (child == 0) {
+    const int null = ::open("/dev/null", O_RDWR);
+    const int err = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (chdir(CORSA_SOURCE_DIR) != 0 || null < 0 || err < 0) _exit(99);
+    dup2(null, 0);
+    dup2(null, 1);
+    dup2(err, 2);
+    execv(CORSA_BINARY, pointers.data());
+    _exit(98);
+  }
+  return child;
+}
+
+/// Waits for a spawned process: its exit code, -1 when a signal ended it.
+inline int wait_corsa(pid_t child) {
+  int status = 0;
+  if (waitpid(child, &status, 0) != child) return -2;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 /// True when stderr holds a located error: `file:LINE: error: ` with LINE >= 1, or

@@ -1,11 +1,10 @@
 // `corsa run SCENARIO --rig RIG -o DIR` (plugin side; see run_rig.h and docs/datasets.md): parses
-// the options, runs collect::run_dataset and prints. SIGINT and SIGTERM only set a flag (nothing
-// else is safe in a handler); the run asks for it between steps (DatasetRunHooks::stop) and ends
-// after the capture in progress, so the dataset says where it stopped.
+// the options, runs collect::run_dataset and prints. SIGINT and SIGTERM only set a flag
+// (StopSignals); the run asks for it between steps (DatasetRunHooks::stop) and ends after the
+// capture in progress, so the dataset says where it stopped.
 
 #include "run_rig.h"
 
-#include <csignal>
 #include <iostream>
 #include <optional>
 
@@ -14,42 +13,10 @@
 #include "corsa/core/progress.h"
 #include "corsa/core/strings.h"
 #include "plugin_commands.h"
+#include "stop_signals.h"
 
 namespace corsa::cli {
 namespace {
-
-// The one piece of process-wide state: a signal can only reach the run through a flag.
-volatile std::sig_atomic_t& stop_signal() {
-  static volatile std::sig_atomic_t signal_number = 0;
-  return signal_number;
-}
-
-extern "C" void on_stop_signal(int number) { stop_signal() = number; }
-
-// Installs the handlers for the run and restores the previous ones afterwards.
-class SignalScope {
- public:
-  SignalScope() {
-    stop_signal() = 0;
-    struct sigaction action {};
-    action.sa_handler = on_stop_signal;
-    sigemptyset(&action.sa_mask);
-    sigaction(SIGINT, &action, &previous_int_);
-    sigaction(SIGTERM, &action, &previous_term_);
-  }
-  ~SignalScope() {
-    sigaction(SIGINT, &previous_int_, nullptr);
-    sigaction(SIGTERM, &previous_term_, nullptr);
-  }
-  SignalScope(const SignalScope&) = delete;
-  SignalScope& operator=(const SignalScope&) = delete;
-
- private:
-  struct sigaction previous_int_ {};
-  struct sigaction previous_term_ {};
-};
-
-std::string signal_name(int number) { return number == SIGTERM ? "SIGTERM" : "SIGINT"; }
 
 int run_rig_body(std::span<const std::string> args) {
   ArgParser parser("run SCENARIO.xosc --rig RIG.xml -o DIR [options]",
@@ -70,19 +37,14 @@ int run_rig_body(std::span<const std::string> args) {
   const collect::DatasetRunOptions& dataset = options.dataset;
   Diagnostics diagnostics([](const Diagnostic& d) { std::cerr << d.format() << '\n'; });
   ProgressBar progress("run", dataset.run.simulation.duration, !options.quiet);
-  const SignalScope signals;
+  const StopSignals signals;
   collect::DatasetRunHooks hooks;
   hooks.on_step = [&progress](const engine::Simulation& sim) {
     if (progress.visible() && sim.tick() % 16 == 0) {
       progress.update(sim.time());
     }
   };
-  hooks.stop = []() -> std::optional<std::string> {
-    if (stop_signal() == 0) {
-      return std::nullopt;
-    }
-    return "interrupted by " + signal_name(stop_signal());
-  };
+  hooks.stop = [] { return StopSignals::reason(); };
   hooks.on_simulated = [&progress] { progress.finish(); };
   const collect::DatasetRunReport report = collect::run_dataset(dataset, diagnostics, hooks);
   if (report.interrupted) {
@@ -93,7 +55,7 @@ int run_rig_body(std::span<const std::string> args) {
     } else {
       std::cerr << "corsa run: " << report.interruption << " before the first capture\n";
     }
-    return 128 + static_cast<int>(stop_signal());
+    return StopSignals::exit_code();
   }
   if (report.preview && !options.quiet) {
     std::cout << report.preview->summary << '\n';

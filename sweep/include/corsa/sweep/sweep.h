@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,6 +42,10 @@ struct SweepOptions {
   int64_t record_every = 1;  ///< ticks between trajectory rows
   bool trajectories = true;  ///< write variants/<i>/trajectory.csv
   std::string ego;           ///< entity the metrics are measured for; "" chooses
+  /// Asked before each variant starts (from worker threads); a value, the reason (e.g.
+  /// "interrupted by SIGINT"), stops the sweep once the variants in progress are done. Their
+  /// folders are complete; summary.csv is not written, so `--resume` finishes the sweep.
+  std::function<std::optional<std::string>()> stop;
 };
 
 struct SweepReport {
@@ -48,6 +53,8 @@ struct SweepReport {
   size_t ran = 0;
   size_t resumed = 0;  ///< taken from an earlier run (--resume)
   size_t failed = 0;   ///< rows whose status is not ok (ran or resumed)
+  /// Set when SweepOptions::stop stopped the sweep: why. `ran + resumed` variants are done.
+  std::optional<std::string> interruption;
   double wall_seconds = 0.0;
   /// The first few failures by index: variant index and error text.
   std::vector<std::pair<size_t, std::string>> first_failures;
@@ -59,8 +66,10 @@ using SweepProgress = std::function<void(size_t done, size_t total)>;
 
 /// Checks the plan against its scenario (VariantPlan::check), prepares `output` and runs the
 /// shard's variants. Throws InputError, before writing anything, for a bad plan or an output
-/// folder holding another sweep; a failing variant is recorded in its row and never stops the
-/// others.
+/// folder holding another sweep, written by another process at the moment (the folder is locked
+/// for one writer, see corsa/core/output_lock.h) or holding a symbolic link where Corsa writes; a
+/// failing variant is recorded in its row and never stops the others. With `resume`, the
+/// temporaries a killed run left in a variant's folder are removed before it is looked at.
 SweepReport run_sweep(const VariantPlan& plan, const SweepOptions& options,
                       Diagnostics& diagnostics, const SweepProgress& progress = {});
 
