@@ -33,14 +33,15 @@ bool is_temporary_name(std::string_view name) {
     return false;
   }
   const size_t last_dot = name.rfind('.');
-  const size_t pid_dot = last_dot == std::string_view::npos ? last_dot : name.rfind('.', last_dot - 1);
+  const size_t pid_dot =
+      last_dot == std::string_view::npos ? last_dot : name.rfind('.', last_dot - 1);
   if (pid_dot == std::string_view::npos || pid_dot < 5 || name.substr(pid_dot - 4, 4) != ".tmp") {
     return false;
   }
   const auto digits = [&](size_t from, size_t to) {
     return to > from && std::all_of(name.begin() + static_cast<std::ptrdiff_t>(from),
-                                     name.begin() + static_cast<std::ptrdiff_t>(to),
-                                     [](char c) { return c >= '0' && c <= '9'; });
+                                    name.begin() + static_cast<std::ptrdiff_t>(to),
+                                    [](char c) { return c >= '0' && c <= '9'; });
   };
   return digits(pid_dot + 1, last_dot) && digits(last_dot + 1, name.size());
 }
@@ -58,9 +59,9 @@ bool remove_if_stale(const std::filesystem::path& path) {
   struct stat named {};
   // The lock is free once its owner died (or renamed and closed it, in which case the name no
   // longer leads to this file).
-  if (::flock(fd, LOCK_EX | LOCK_NB) == 0 && ::fstat(fd, &opened) == 0 &&
-      S_ISREG(opened.st_mode) && ::lstat(path.c_str(), &named) == 0 &&
-      named.st_ino == opened.st_ino && named.st_dev == opened.st_dev) {
+  if (::flock(fd, LOCK_EX | LOCK_NB) == 0 && ::fstat(fd, &opened) == 0 && S_ISREG(opened.st_mode) &&
+      ::lstat(path.c_str(), &named) == 0 && named.st_ino == opened.st_ino &&
+      named.st_dev == opened.st_dev) {
     removed = ::unlink(path.c_str()) == 0;
   }
   ::close(fd);
@@ -194,8 +195,8 @@ AtomicFile::AtomicFile(std::filesystem::path target, bool /*binary*/)
   // A name taken already (a temporary of a killed process whose pid came round again) is skipped.
   for (int attempt = 0; attempt < 100 && descriptor_ < 0; ++attempt) {
     temporary_ = temporary_name_for(target_);
-    descriptor_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
-                         0666);
+    descriptor_ =
+        ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     if (descriptor_ < 0 && errno != EEXIST) {
       break;
     }
@@ -251,7 +252,8 @@ void AtomicFile::commit() {
   descriptor_ = -1;
 }
 
-void create_folder_inside(const std::filesystem::path& root, const std::filesystem::path& relative) {
+void create_folder_inside(const std::filesystem::path& root,
+                          const std::filesystem::path& relative) {
   std::filesystem::path folder = root;
   for (const auto& part : relative) {
     if (part.empty() || part == ".") {
@@ -290,8 +292,8 @@ size_t remove_stale_temporaries(const std::filesystem::path& folder, int depth) 
       ++removed;
     }
   };
-  for (std::filesystem::recursive_directory_iterator it(
-           folder, std::filesystem::directory_options::skip_permission_denied, error),
+  for (std::filesystem::recursive_directory_iterator
+           it(folder, std::filesystem::directory_options::skip_permission_denied, error),
        end;
        !error && it != end; it.increment(error)) {
     if (it.depth() >= depth) {

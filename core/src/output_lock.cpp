@@ -71,15 +71,14 @@ OutputLock::OutputLock(const std::filesystem::path& folder) : file_(folder / kFi
   const std::string pid = std::to_string(::getpid());
   const std::filesystem::path staging = folder / (std::string(kFileName) + ".tmp." + pid + ".0");
   ::unlink(staging.c_str());  // a stale one of a process with the same pid
-  descriptor_ =
-      ::open(staging.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  descriptor_ = ::open(staging.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (descriptor_ < 0) {
     lock_error(folder, std::string("cannot lock the output folder (") + std::strerror(errno) + ")");
   }
   ::flock(descriptor_, LOCK_EX | LOCK_NB);
   const std::string owner = "pid " + pid + " on host " + host_name() + "\n";
-  const bool written = ::write(descriptor_, owner.data(), owner.size()) ==
-                       static_cast<ssize_t>(owner.size());
+  const bool written =
+      ::write(descriptor_, owner.data(), owner.size()) == static_cast<ssize_t>(owner.size());
   for (int attempt = 0; written && attempt < 10; ++attempt) {
     if (::link(staging.c_str(), file_.c_str()) == 0) {
       ::unlink(staging.c_str());

@@ -35,8 +35,8 @@ struct PreviousDataset {
 
 bool is_sensor_name(const std::string& name) {
   return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
-    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-           c == '_' || c == '-';
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '-';
   });
 }
 
@@ -83,7 +83,8 @@ std::set<fs::path> indexed_files(const fs::path& index) {
     }
     if (trim(row).empty()) continue;
     const size_t comma = row.rfind(',');
-    const fs::path file(std::string(trim(row.substr(comma == std::string_view::npos ? 0 : comma + 1))));
+    const fs::path file(
+        std::string(trim(row.substr(comma == std::string_view::npos ? 0 : comma + 1))));
     if (!is_inside(file)) {
       fail(index, line, "names '" + clip(file.string()) + "', which is not inside the dataset");
     }
@@ -93,9 +94,8 @@ std::set<fs::path> indexed_files(const fs::path& index) {
 }
 
 bool is_frame_name(const std::string& name) {
-  return name.size() > 6 && std::all_of(name.begin(), name.begin() + 6, [](char c) {
-           return c >= '0' && c <= '9';
-         });
+  return name.size() > 6 &&
+         std::all_of(name.begin(), name.begin() + 6, [](char c) { return c >= '0' && c <= '9'; });
 }
 
 /// Whether `file` (relative) is one of the files the previous dataset made.

@@ -40,8 +40,9 @@ TEST_CASE("read_file refuses a file past its cap, naming the file and the cap", 
   const fs::path file = dir.path() / "big.xodr";
   std::ofstream(file, std::ios::binary) << std::string((3 << 20) + 1, ' ');
   const std::string expected =
-      file.string() + ": error: is 3145729 bytes, more than the 3 MiB Corsa reads from one input "
-                      "file";
+      file.string() +
+      ": error: is 3145729 bytes, more than the 3 MiB Corsa reads from one input "
+      "file";
   CHECK(error_of([&] { corsa::read_file(file, 3 << 20); }) == expected);
   CHECK(error_of([&] { corsa::check_input_file(file, 3 << 20); }) == expected);
 }
@@ -58,8 +59,9 @@ TEST_CASE("read_file refuses FIFOs, devices and folders without blocking", "[cor
         "/dev/zero: error: is a character device; Corsa reads its inputs from regular files only");
   CHECK(error_of([&] { corsa::read_file(dir.path()); }) ==
         dir.path().string() + ": error: is a folder, not a file");
-  CHECK(error_of([&] { corsa::read_file(dir.path() / "missing"); })
-            .find("cannot open file (No such file or directory)") != std::string::npos);
+  CHECK(error_of([&] {
+          corsa::read_file(dir.path() / "missing");
+        }).find("cannot open file (No such file or directory)") != std::string::npos);
 }
 
 TEST_CASE("read_file reads files whose size stat does not know", "[core][input]") {

@@ -20,7 +20,8 @@ TEST_CASE("an output folder has one writer at a time", "[core][output_lock]") {
   {
     const corsa::OutputLock lock(dir.path());
     CHECK(fs::is_regular_file(lock_file));
-    CHECK(corsa::read_file(lock_file).starts_with("pid " + std::to_string(::getpid()) + " on host "));
+    CHECK(
+        corsa::read_file(lock_file).starts_with("pid " + std::to_string(::getpid()) + " on host "));
     try {
       const corsa::OutputLock second(dir.path());
       FAIL("a second writer was let in");
@@ -43,7 +44,8 @@ TEST_CASE("the stale lock of a killed writer is taken over", "[core][output_lock
   std::ofstream(dir.path() / ".corsa.lock.tmp.999999.0") << "";
   {
     const corsa::OutputLock lock(dir.path());
-    CHECK(corsa::read_file(dir.path() / ".corsa.lock").starts_with("pid " + std::to_string(::getpid())));
+    CHECK(corsa::read_file(dir.path() / ".corsa.lock")
+              .starts_with("pid " + std::to_string(::getpid())));
   }
   corsa::remove_stale_temporaries(dir.path());
   CHECK(dir.entries() == 0);

@@ -18,8 +18,10 @@ namespace {
 namespace fs = std::filesystem;
 
 std::vector<std::string> rig_run(const fs::path& out, bool force) {
-  std::vector<std::string> args{"run",   "scenarios/cut_in.xosc", "--rig", "scenarios/rigs/lidar64.xml",
-                                "-o",    out.string(),            "--duration", "0.2",
+  std::vector<std::string> args{"run",        "scenarios/cut_in.xosc",
+                                "--rig",      "scenarios/rigs/lidar64.xml",
+                                "-o",         out.string(),
+                                "--duration", "0.2",
                                 "--quiet"};
   if (force) args.push_back("--force");
   return args;
@@ -36,10 +38,10 @@ std::map<std::string, std::string> contents_below(const fs::path& folder) {
   return files;
 }
 
-/// The files a finished dataset is made of: its index's files, the index, run.json and each
-/// sensor's calibration.
+/// The files a finished dataset is made of: its index's files, the index, run.json, the class
+/// table and each sensor's calibration.
 std::set<std::string> dataset_files(const fs::path& dataset) {
-  std::set<std::string> files{"run.json", "frames.csv", "hdl64/calibration.json"};
+  std::set<std::string> files{"run.json", "frames.csv", "classes.json", "hdl64/calibration.json"};
   std::istringstream index(slurp(dataset / "frames.csv"));
   std::string row;
   std::getline(index, row);
@@ -91,7 +93,8 @@ TEST_CASE("--force replaces a previous dataset only when nothing else is in its 
   CHECK(names == dataset_files(out));
 }
 
-TEST_CASE("A dataset folder another corsa writes into is refused", "[robustness][dataset][output]") {
+TEST_CASE("A dataset folder another corsa writes into is refused",
+          "[robustness][dataset][output]") {
   TempDir dir;
   const fs::path out = dir.path() / "dataset";
   fs::create_directory(out);

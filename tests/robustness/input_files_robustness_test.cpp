@@ -102,9 +102,9 @@ TEST_CASE("A character device is refused instead of read until memory runs out",
   check_refused({"map", "info", "/dev/zero"}, "/dev/zero", why);
   check_refused({"run", "/dev/zero", "--quiet"}, "/dev/zero", why);
   check_refused({"map", "query", kMap, "--in", "/dev/zero"}, "/dev/zero", why);
-  check_refused({"run", kScenario, "--quiet", "--rig", "/dev/zero", "-o",
-                 (out.path() / "d").string()},
-                "/dev/zero", why);
+  check_refused(
+      {"run", kScenario, "--quiet", "--rig", "/dev/zero", "-o", (out.path() / "d").string()},
+      "/dev/zero", why);
   CHECK(out.entries() == 0);
 }
 

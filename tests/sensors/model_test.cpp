@@ -153,9 +153,9 @@ TEST_CASE("a broken or missing model file is reported with its name", "[sensors]
     CHECK(error.diagnostic().file == broken.string());
     CHECK_THAT(error.diagnostic().message, Catch::StartsWith("cannot read the model"));
   }
-  CHECK_THROWS_WITH(load_model(dir.path() / "none.glb", {}),
-                    Catch::StartsWith((dir.path() / "none.glb").string() +
-                                      ": error: cannot open file"));
+  CHECK_THROWS_WITH(
+      load_model(dir.path() / "none.glb", {}),
+      Catch::StartsWith((dir.path() / "none.glb").string() + ": error: cannot open file"));
   const fs::path empty = dir.path() / "empty.obj";
   std::ofstream(empty) << "# no faces\nv 0 0 0\n";
   CHECK_THROWS_AS(load_model(empty, {}), corsa::InputError);
