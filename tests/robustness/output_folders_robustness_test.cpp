@@ -23,9 +23,9 @@ const std::string kScenario = "scenarios/suites/regression/cut_in.xosc";
 
 /// A four-variant sweep of `kScenario` into `out` (shard `shard` of 2 when given).
 std::vector<std::string> small_sweep(const fs::path& out, const std::string& shard = {}) {
-  std::vector<std::string> args{"sweep",  kScenario,     "--param", "Ego_Speed=20:23:1",
-                                "-o",     out.string(),  "--quiet", "--duration",
-                                "0.5",    "-j",          "1"};
+  std::vector<std::string> args{"sweep", kScenario,    "--param", "Ego_Speed=20:23:1",
+                                "-o",    out.string(), "--quiet", "--duration",
+                                "0.5",   "-j",         "1"};
   if (!shard.empty()) {
     args.insert(args.end(), {"--shard", shard});
   }
@@ -81,8 +81,49 @@ void make_shards(const TempDir& dir) {
 }
 
 std::vector<std::string> merge_args(const TempDir& dir) {
-  return {"sweep", "merge", (dir.path() / "merged").string(), (dir.path() / "s0").string(),
-          (dir.path() / "s1").string(), "--quiet"};
+  return {"sweep",
+          "merge",
+          (dir.path() / "merged").string(),
+          (dir.path() / "s0").string(),
+          (dir.path() / "s1").string(),
+          "--quiet"};
+}
+
+TEST_CASE("merge --force replaces an earlier sweep only, never a folder of the user's",
+          "[robustness][sweep][output]") {
+  TempDir dir;
+  make_shards(dir);
+  std::vector<std::string> forced = merge_args(dir);
+  forced.push_back("--force");
+  const fs::path merged = dir.path() / "merged";
+  fs::create_directories(merged / "figures");
+  std::ofstream(merged / "thesis.tex") << "\\documentclass{article}\n";
+  std::ofstream(merged / "figures" / "plot.png") << "png";
+  const BoundedResult user = run_bounded(forced);
+  INFO(describe("merge --force onto a user's folder", user));
+  CHECK(user.exit_code == 2);
+  CHECK(user.err.find(merged.string() +
+                      ": error: --force replaces only an earlier sweep or "
+                      "merge (a folder with Corsa's sweep.json); this folder has none, and "
+                      "nothing was removed") != std::string::npos);
+  CHECK(files_below(merged) == std::set<std::string>{"figures/plot.png", "thesis.tex"});
+
+  // An earlier merge is replaced; the same with a file of the user's added is refused.
+  fs::remove_all(merged);
+  REQUIRE(run_bounded(merge_args(dir)).exit_code == 0);
+  const std::set<std::string> merge_files = files_below(merged);
+  CHECK(run_bounded(forced).exit_code == 0);
+  CHECK(files_below(merged) == merge_files);
+  std::ofstream(merged / "variants" / "1" / "notes.txt") << "mine";
+  const BoundedResult added = run_bounded(forced);
+  INFO(describe("merge --force onto a merge with a user's file", added));
+  CHECK(added.exit_code == 2);
+  CHECK(added.err.find(merged.string() +
+                       ": error: --force replaces only an earlier sweep or "
+                       "merge, and this folder also holds 1 entry a sweep does not write "
+                       "(variants/1/notes.txt); nothing was removed") != std::string::npos);
+  CHECK(slurp(merged / "variants" / "1" / "notes.txt") == "mine");
+  CHECK(fs::exists(merged / "summary.csv"));
 }
 
 TEST_CASE("A merge of shards claiming 1e15 variants ends at once", "[robustness][sweep]") {
@@ -128,12 +169,11 @@ TEST_CASE("A merge never follows a symbolic link in a shard nor carries stale te
   INFO(describe("merge", merged));
   CHECK(merged.exit_code == 0);
   CHECK(files_below(dir.path() / "merged") ==
-        std::set<std::string>{"summary.csv", "sweep.json", "variants/0/result.csv",
-                              "variants/0/summary.json", "variants/0/trajectory.csv",
-                              "variants/1/result.csv", "variants/1/summary.json",
-                              "variants/2/result.csv", "variants/2/summary.json",
-                              "variants/2/trajectory.csv", "variants/3/result.csv",
-                              "variants/3/summary.json", "variants/3/trajectory.csv"});
+        std::set<std::string>{
+            "summary.csv", "sweep.json", "variants/0/result.csv", "variants/0/summary.json",
+            "variants/0/trajectory.csv", "variants/1/result.csv", "variants/1/summary.json",
+            "variants/2/result.csv", "variants/2/summary.json", "variants/2/trajectory.csv",
+            "variants/3/result.csv", "variants/3/summary.json", "variants/3/trajectory.csv"});
 }
 
 TEST_CASE("A folder another corsa writes into is refused; a killed writer's lock is taken over",
@@ -173,9 +213,9 @@ TEST_CASE("SIGINT stops a sweep after the variants in progress, and --resume fin
   TempDir dir;
   const fs::path out = dir.path() / "out";
   // 40 variants of about 0.1 s each at a 0.5 ms step.
-  const std::vector<std::string> args{"sweep",      kScenario, "--param", "Ego_Speed=20:39.5:0.5",
-                                      "-o",         out.string(), "--quiet", "--dt",
-                                      "0.0005",     "-j",      "1",       "--no-trajectories"};
+  const std::vector<std::string> args{"sweep",  kScenario,    "--param", "Ego_Speed=20:39.5:0.5",
+                                      "-o",     out.string(), "--quiet", "--dt",
+                                      "0.0005", "-j",         "1",       "--no-trajectories"};
   const pid_t child = spawn_corsa(args, dir.path() / "stderr");
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   std::error_code error;
@@ -224,8 +264,8 @@ TEST_CASE("Temporaries a SIGKILLed run left are removed by the next run of the s
   std::ofstream(dir.path() / "endless.xosc") << scenario;
   const fs::path out = dir.path() / "out";
   const pid_t child =
-      spawn_corsa({"run", (dir.path() / "endless.xosc").string(), "--quiet", "--duration",
-                   "100000", "--record", (out / "trajectories.csv").string()},
+      spawn_corsa({"run", (dir.path() / "endless.xosc").string(), "--quiet", "--duration", "100000",
+                   "--record", (out / "trajectories.csv").string()},
                   dir.path() / "stderr");
   const auto temporaries = [&] {
     size_t count = 0;

@@ -23,8 +23,10 @@ struct MergeReport {
 /// their files belong is an error (it is never followed). The folder is built under a temporary
 /// name next to `out` and renamed into place, so `out` never holds half a merge (staging folders
 /// of killed merges are removed). `out` must not exist or be empty unless `force`, which replaces
-/// it, and must not be locked by a live writer (corsa/core/output_lock.h). Throws InputError
-/// naming the folder and the problem.
+/// an earlier sweep or merge there: a folder with Corsa's sweep.json holding only what a sweep
+/// writes (anything else, and the folder is refused before anything is removed). `out` must not
+/// be locked by a live writer (corsa/core/output_lock.h). Throws InputError naming the folder and
+/// the problem.
 MergeReport merge_sweeps(const std::filesystem::path& out,
                          const std::vector<std::filesystem::path>& shards, bool force = false);
 
