@@ -29,6 +29,9 @@ ArgParser test_parser() {
   parser.flag("--update-goldens",
               "write the golden trajectories from this run instead of "
               "comparing them");
+  parser.flag("--goldens-outside",
+              "let --update-goldens write goldens outside the suite folder (a manifest's\n"
+              "file=\"../...\" or an absolute path, or through a linked folder)");
   parser.option("-j", "N", "threads (default: every core)");
   parser.option("-o", "DIR", "keep each test's trajectory.csv and summary.json in DIR/<test>/");
   parser.flag("--verbose", "also print the worst golden deviation of every column");
@@ -36,7 +39,8 @@ ArgParser test_parser() {
   parser.epilog(
       "A folder suite uses its suite.xml, or else runs every scenario in it, comparing with\n"
       "goldens/<name>.csv when present. Exit 0 when every test passed, 1 when one failed or could\n"
-      "not run, 2 for a malformed suite.\n"
+      "not run, 2 for a malformed suite. --update-goldens writes only inside the suite folder\n"
+      "unless --goldens-outside is given.\n"
       "example: corsa test scenarios/suites/regression --junit report.xml");
   return parser;
 }
@@ -73,6 +77,10 @@ int run_test_command(std::span<const std::string> args) {
     options.jobs = static_cast<size_t>(*jobs);
   }
   options.update_goldens = parsed.flag("--update-goldens");
+  options.goldens_outside = parsed.flag("--goldens-outside");
+  if (options.goldens_outside && !options.update_goldens) {
+    throw UsageError("--goldens-outside only goes with --update-goldens");
+  }
   if (const auto output = output_folder(parsed, "-o")) options.output = *output;
   const std::optional<std::filesystem::path> junit = output_file(parsed, "--junit");
   const bool quiet = parsed.flag("--quiet");

@@ -69,6 +69,7 @@ GoldenSpec read_golden(const std::string& file, const fs::path& folder, const st
   golden.file = (folder / (path ? fs::path(*path) : fs::path("goldens") / (test + ".csv")))
                     .lexically_normal();
   golden.every = static_cast<int64_t>(*parse_int(*e.find("every")));
+  golden.line = e.line;
   const double position = number(e, "position");
   const double heading = number(e, "heading");
   for (const char* c : {"x", "y", "z", "s", "t"})
@@ -154,7 +155,7 @@ Suite folder_suite(const fs::path& folder) {
     const fs::path golden = folder / "goldens" / (test.name + ".csv");
     std::error_code error;
     if (fs::is_regular_file(golden, error))
-      test.golden = GoldenSpec{golden.lexically_normal(), 10, {}};
+      test.golden = GoldenSpec{golden.lexically_normal(), 10, {}, 0};
     suite.tests.push_back(std::move(test));
   }
   if (suite.tests.empty()) {

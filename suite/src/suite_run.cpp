@@ -1,9 +1,12 @@
 #include "corsa/suite/suite_run.h"
 
+#include <sys/stat.h>
+
 #include <chrono>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/suite/expectations.h"
@@ -43,10 +46,70 @@ class InputsByScenario {
   std::map<fs::path, std::string> errors_;
 };
 
-void judge_golden(const TestCase& test, const SuiteOptions& options, TestOutcome& outcome) {
+// The path of `file` below `folder`, or nothing when it lies outside (compared lexically, as
+// absolute paths).
+std::optional<fs::path> path_inside(const fs::path& folder, const fs::path& file) {
+  const fs::path base = fs::absolute(folder.empty() ? fs::path(".") : folder).lexically_normal();
+  const fs::path relative = fs::absolute(file).lexically_normal().lexically_relative(base);
+  if (relative.empty() || relative.is_absolute() || *relative.begin() == "..") return std::nullopt;
+  return relative;
+}
+
+// The first folder on the way from `folder` to `relative` that is a symbolic link, if any.
+std::optional<fs::path> linked_folder(const fs::path& folder, const fs::path& relative) {
+  fs::path path = folder;
+  for (const fs::path& part : relative.parent_path()) {
+    path /= part;
+    struct stat status {};
+    if (::lstat(path.c_str(), &status) != 0) return std::nullopt;  // made when written
+    if (S_ISLNK(status.st_mode)) return path;
+  }
+  return std::nullopt;
+}
+
+// --update-goldens writes inside the suite folder only (unless goldens_outside): every golden
+// that would be written elsewhere, by its path or through a linked folder, is reported at its
+// manifest line before any test runs.
+void check_goldens_inside(const Suite& suite, const std::vector<TestCase>& tests,
+                          Diagnostics& diagnostics) {
+  const std::string manifest =
+      suite.manifest.empty() ? suite.folder.string() : suite.manifest.string();
+  std::vector<Diagnostic> errors;
+  for (const TestCase& test : tests) {
+    if (!test.golden) continue;
+    const GoldenSpec& golden = *test.golden;
+    const auto relative = path_inside(suite.folder, golden.file);
+    if (!relative) {
+      errors.push_back(make_error(
+          manifest, golden.line,
+          "golden file " + golden.file.string() + " of test '" + test.name +
+              "' is outside the suite folder; --update-goldens writes only inside it (pass "
+              "--goldens-outside to write there)"));
+    } else if (const auto link = linked_folder(suite.folder, *relative)) {
+      errors.push_back(make_error(manifest, golden.line,
+                                  "golden file " + golden.file.string() + " of test '" + test.name +
+                                      "' lies in " + link->string() +
+                                      ", a symbolic link; --update-goldens writes only into "
+                                      "real folders of the suite (pass --goldens-outside to "
+                                      "write there)"));
+    }
+  }
+  if (errors.empty()) return;
+  for (size_t i = 0; i + 1 < errors.size(); ++i) diagnostics.add(errors[i]);
+  throw InputError(errors.back());
+}
+
+void judge_golden(const TestCase& test, const SuiteOptions& options, const Suite& suite,
+                  TestOutcome& outcome) {
   if (!test.golden) return;
   if (options.update_goldens) {
-    fs::create_directories(test.golden->file.parent_path());
+    const auto relative = path_inside(suite.folder, test.golden->file);
+    if (options.goldens_outside || !relative) {
+      fs::create_directories(test.golden->file.parent_path());
+    } else {
+      create_folder_inside(suite.folder.empty() ? fs::path(".") : suite.folder,
+                           relative->parent_path());
+    }
     write_file_atomic(test.golden->file, outcome.run.trajectory_text);
     outcome.golden_written = true;
     return;
@@ -64,8 +127,8 @@ void judge_golden(const TestCase& test, const SuiteOptions& options, TestOutcome
   }
 }
 
-TestOutcome run_test(const TestCase& test, const SuiteOptions& options, InputsByScenario& inputs,
-                     Diagnostics& diagnostics) {
+TestOutcome run_test(const TestCase& test, const SuiteOptions& options, const Suite& suite,
+                     InputsByScenario& inputs, Diagnostics& diagnostics) {
   TestOutcome outcome;
   outcome.name = test.name;
   sweep::SharedInputs* shared = inputs.find(test.scenario, outcome.error);
@@ -90,7 +153,7 @@ TestOutcome run_test(const TestCase& test, const SuiteOptions& options, InputsBy
     return outcome;
   }
   outcome.failures = check_expectations(test.expect, outcome.run);
-  judge_golden(test, options, outcome);
+  judge_golden(test, options, suite, outcome);
   outcome.verdict = outcome.failures.empty() ? Verdict::kPassed : Verdict::kFailed;
   return outcome;
 }
@@ -112,14 +175,16 @@ std::string_view to_string(Verdict verdict) {
 SuiteReport run_suite(const Suite& suite, const SuiteOptions& options, Diagnostics& diagnostics,
                       const TestFinished& finished) {
   const auto start = std::chrono::steady_clock::now();
-  InputsByScenario inputs(suite, diagnostics);
   std::vector<TestCase> tests = suite.tests;
   if (options.update_goldens && suite.manifest.empty()) {
     // A folder suite compares with goldens/<stem>.csv when it exists; updating writes them all.
     for (TestCase& test : tests) {
       if (!test.golden)
-        test.golden = GoldenSpec{suite.folder / "goldens" / (test.name + ".csv"), 10, {}};
+        test.golden = GoldenSpec{suite.folder / "goldens" / (test.name + ".csv"), 10, {}, 0};
     }
+  }
+  if (options.update_goldens && !options.goldens_outside) {
+    check_goldens_inside(suite, tests, diagnostics);
   }
   if (!options.update_goldens) {
     // A golden that exists but cannot be read is bad input of the suite: found before any test
@@ -131,11 +196,12 @@ SuiteReport run_suite(const Suite& suite, const SuiteOptions& options, Diagnosti
       }
     }
   }
+  InputsByScenario inputs(suite, diagnostics);
   SuiteReport report;
   report.outcomes.resize(tests.size());
   std::mutex finished_mutex;
   sweep::parallel_for(tests.size(), options.jobs, [&](size_t i) {
-    report.outcomes[i] = run_test(tests[i], options, inputs, diagnostics);
+    report.outcomes[i] = run_test(tests[i], options, suite, inputs, diagnostics);
     if (finished) {
       std::lock_guard lock(finished_mutex);
       finished(report.outcomes[i]);

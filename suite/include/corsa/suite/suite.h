@@ -54,6 +54,7 @@ struct GoldenSpec {
   std::filesystem::path file;  ///< resolved against the suite folder
   int64_t every = 10;          ///< steps between rows
   Tolerances tolerances;
+  int line = 0;  ///< of the <Golden> element in the manifest, 0 in folder mode
 };
 
 struct TestCase {

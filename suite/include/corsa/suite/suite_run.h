@@ -22,6 +22,10 @@ struct SuiteOptions {
   /// Write every test's golden file from this run (tests with a <Golden>, or in folder mode every
   /// scenario) instead of comparing; the other expectations are still checked.
   bool update_goldens = false;
+  /// Let update_goldens write golden files outside the suite folder (a manifest's `file="../x"`
+  /// or an absolute path). Without it such a golden is refused before any test runs, as is a
+  /// symbolic link on the way to a golden inside the folder: updating never writes elsewhere.
+  bool goldens_outside = false;
   /// When set, each test writes <output>/<test>/trajectory.csv and summary.json there.
   std::optional<std::filesystem::path> output;
 };
@@ -52,7 +56,9 @@ struct SuiteReport {
 using TestFinished = std::function<void(const TestOutcome& outcome)>;
 
 /// Runs the suite. A test whose scenario cannot run is an error of that test, never of the
-/// suite; writing a golden file or an output that fails throws.
+/// suite; writing a golden file or an output that fails throws. With update_goldens and without
+/// goldens_outside, every golden outside the suite folder is reported (all but the last through
+/// `diagnostics`, the last thrown as InputError, at their manifest lines) before any test runs.
 SuiteReport run_suite(const Suite& suite, const SuiteOptions& options, Diagnostics& diagnostics,
                       const TestFinished& finished = {});
 
