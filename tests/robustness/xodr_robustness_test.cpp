@@ -219,3 +219,43 @@ TEST_CASE("A road surface beyond the range of doubles is refused at its road, wi
 
 }  // namespace
 }  // namespace corsa::test
+
+namespace corsa::test {
+namespace {
+
+TEST_CASE("OpenDRIVE maps that break the standard with a clear meaning warn at their line",
+          "[robustness][xodr]") {
+  // Each loaded without a word before: a lane section beyond its road's end, a negative lane
+  // width, a zero-length road, a road linked to itself.
+  struct Case {
+    const char* file;
+    std::vector<std::string> warnings;
+  };
+  const Case cases[] = {
+      {"ok_lane_section_beyond_road_end.xodr",
+       {":23: warning: road '1': laneSection at s=150 starts beyond the road's end (length 100 "
+        "m); it covers nothing"}},
+      {"ok_negative_lane_width.xodr",
+       {":18: warning: road '1': lane -1 has a negative width (-1.5 m in its width record at "
+        "sOffset 0); taken as 0 m where it is negative"}},
+      {"ok_zero_length_road.xodr",
+       {":5: warning: road '1' has length 0, which OpenDRIVE does not allow"}},
+      {"ok_road_linked_to_itself.xodr",
+       {":5: warning: road '1' is its own successor at its end; a road cannot continue into the "
+        "same end",
+        ":5: warning: road '1' is its own predecessor, closing a loop, but its end is 100.000 m "
+        "from its start"}},
+  };
+  const auto corpus = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/robustness/corpus";
+  for (const Case& c : cases) {
+    const BoundedResult result = run_bounded({"map", "info", (corpus / c.file).string()});
+    INFO(describe(std::string("map info ") + c.file, result));
+    CHECK(result.exit_code == 0);
+    for (const std::string& warning : c.warnings) {
+      CHECK(result.err.find(c.file + warning) != std::string::npos);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace corsa::test

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <string_view>
 
 #include "corsa/core/strings.h"
 #include "map_impl.h"
@@ -154,17 +155,76 @@ void check_road_length(const Checker& check, const Road& road) {
   }
 }
 
+/// How far below zero a lane width may dip before it is reported (m): a lane tapering to zero
+/// may end a rounding error below it.
+constexpr double kNegativeWidthTolerance = 1e-3;
+
+// A width polynomial below zero at either end of its record: lane_spans.cpp takes it as 0 there
+// (a lane has no negative width, OpenDRIVE 1.8 §9.5.2), which the file should not need.
+void check_lane_widths(const Checker& check, const Road& road, const LaneSection& section,
+                       double section_length) {
+  for (const Lane& lane : section.lanes) {
+    for (size_t i = 0; i < lane.widths.size(); ++i) {
+      const Poly3& width = lane.widths[i];
+      const double end = i + 1 < lane.widths.size() ? lane.widths[i + 1].s : section_length;
+      const double lowest = std::min(width.a, width.value(std::max(end, width.s)));
+      if (lowest < -kNegativeWidthTolerance) {
+        check.warn(
+            "negative width:" + std::to_string(lane.line) + ":" + std::to_string(i), lane.line,
+            "road '" + road.id + "': lane " + std::to_string(lane.id) + " has a negative width (" +
+                corsa::format_double(lowest) + " m in its width record at sOffset " +
+                corsa::format_double(width.s) + "); taken as 0 m where it is negative");
+      }
+    }
+  }
+}
+
 void check_lane_sections(const Checker& check, const Road& road) {
-  for (const LaneSection& section : road.lane_sections) {
+  for (size_t i = 0; i < road.lane_sections.size(); ++i) {
+    const LaneSection& section = road.lane_sections[i];
     if (section.lanes.size() > kMaxLanesPerSection) {
       check.fail(section.line,
                  "more than " + std::to_string(kMaxLanesPerSection) + " lanes in one lane section");
     }
+    if (section.s > road.length + 1e-6) {
+      check.warn("section beyond:" + std::to_string(section.line), section.line,
+                 "road '" + road.id + "': laneSection at s=" + corsa::format_double(section.s) +
+                     " starts beyond the road's end (length " + corsa::format_double(road.length) +
+                     " m); it covers nothing");
+    }
+    const double end =
+        i + 1 < road.lane_sections.size() ? road.lane_sections[i + 1].s : road.length;
+    check_lane_widths(check, road, section, std::max(0.0, end - section.s));
   }
   if (road.lane_sections.front().s > 1e-6) {
     check.warn("first section", road.lane_sections.front().line,
                "road '" + road.id + "': its first laneSection starts at s=" +
                    corsa::format_double(road.lane_sections.front().s) + ", not 0");
+  }
+}
+
+// A road linked to itself closes a loop only from its end to its start (a ring road such as a
+// velodrome) and only when its end meets its start; any other self-link leads nowhere.
+void check_self_link(const Checker& check, const Road& road, const RoadLink& link,
+                     const char* which, const BuildOptions& options) {
+  if (link.element_type != LinkElement::kRoad || link.element_id != road.id) return;
+  const bool successor = std::string_view(which) == "successor";
+  const ContactPoint closing = successor ? ContactPoint::kStart : ContactPoint::kEnd;
+  const std::string key = std::string("self link:") + which + ":" + std::to_string(road.line);
+  if (link.contact_point != closing) {
+    check.warn(key, road.line,
+               "road '" + road.id + "' is its own " + which + " at its " +
+                   (successor ? "end" : "start") + "; a road cannot continue into the same end");
+    return;
+  }
+  const Geometry& first = road.plan_view.front();
+  const Geometry& last = road.plan_view.back();
+  const RefPoint end = evaluate_geometry(last, last.length);
+  const double gap = std::hypot(end.x - first.x, end.y - first.y);
+  if (gap > options.max_joint_gap) {
+    check.warn(key, road.line,
+               "road '" + road.id + "' is its own " + which + ", closing a loop, but its end is " +
+                   corsa::format_fixed(gap, 3) + " m from its start");
   }
 }
 
@@ -226,6 +286,14 @@ void validate_map(const MapData& data, IdIndex& impl, corsa::Diagnostics& diagno
     check_road_link(check, impl, road, road.predecessor, "predecessor");
     check_road_link(check, impl, road, road.successor, "successor");
     check_road_length(check, road);
+    check_self_link(check, road, road.predecessor, "predecessor", options);
+    check_self_link(check, road, road.successor, "successor", options);
+    if (road.length <= 0.0) {
+      check.warn("zero length:" + std::to_string(road.line), road.line,
+                 "road '" + road.id +
+                     "' has length 0, which OpenDRIVE does not allow (its "
+                     "schema type t_grZero is greater than zero); the road covers nothing");
+    }
     check_plan_view(check, road, options);
     check_lane_sections(check, road);
   }
