@@ -2,6 +2,9 @@
 
 #include <tinyxml2.h>
 
+#include <algorithm>
+#include <utility>
+
 namespace corsa {
 
 std::string xml_error_words(int tinyxml2_error) {
@@ -31,6 +34,59 @@ std::string xml_error_words(int tinyxml2_error) {
     default:
       return std::string("cannot parse (") + tinyxml2::XMLDocument::ErrorIDToName(error) + ")";
   }
+}
+
+namespace {
+
+bool is_name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '-' || c == '.' || c == ':' || static_cast<unsigned char>(c) >= 0x80;
+}
+
+}  // namespace
+
+std::optional<XmlTextProblem> find_undeclared_entity(std::string_view xml) {
+  int line = 1;
+  for (size_t i = 0; i < xml.size(); ++i) {
+    // Comments, CDATA sections and processing instructions may hold any '&'.
+    bool skipped = false;
+    for (const auto& [open, close] : {std::pair<std::string_view, std::string_view>{"<!--", "-->"},
+                                      {"<![CDATA[", "]]>"},
+                                      {"<?", "?>"}}) {
+      if (xml.substr(i, open.size()) == open) {
+        const size_t found = xml.find(close, i + open.size());
+        const size_t end = found == std::string_view::npos ? xml.size() : found + close.size();
+        line += static_cast<int>(std::count(xml.begin() + static_cast<std::ptrdiff_t>(i),
+                                            xml.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
+        i = end - 1;
+        skipped = true;
+        break;
+      }
+    }
+    if (skipped) continue;
+    if (xml[i] == '\n') {
+      ++line;
+    } else if (xml.substr(i, 9) == "<!DOCTYPE") {
+      const size_t mark = xml.find_first_of("[>", i);
+      if (mark != std::string_view::npos && xml[mark] == '[') {
+        return XmlTextProblem{
+            line,
+            "a DOCTYPE with declarations is not read (no DTD entity is expanded); "
+            "write the values out"};
+      }
+    } else if (xml[i] == '&') {
+      size_t end = i + 1;
+      while (end < xml.size() && end - i <= 64 && is_name_char(xml[end])) ++end;
+      const std::string_view name = xml.substr(i + 1, end - i - 1);
+      if (end < xml.size() && xml[end] == ';' && !name.empty() && name != "lt" && name != "gt" &&
+          name != "amp" && name != "apos" && name != "quot") {
+        return XmlTextProblem{line, "entity '&" + std::string(name) +
+                                        ";' is not declared (XML 1.0 §4.1); Corsa's XML readers "
+                                        "expand no DTD entities: write the value out"};
+      }
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace corsa

@@ -463,6 +463,9 @@ ValidatedElement XsdSchema::validate(std::string_view xml, const std::string& fi
     throw InputError(make_error(file, std::max(1, doc.ErrorLineNum()),
                                 "not well-formed XML: " + xml_error_words(doc.ErrorID())));
   }
+  if (const auto problem = find_undeclared_entity(xml)) {
+    throw InputError(make_error(file, problem->line, problem->message));
+  }
   const XMLElement* root = doc.RootElement();
   if (root == nullptr || defs_->root_name != root->Name()) {
     throw InputError(make_error(file, root ? root->GetLineNum() : 1,

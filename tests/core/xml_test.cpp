@@ -55,6 +55,24 @@ TEST_CASE("tinyxml2 parse errors are told in words", "[core][xml]") {
              Catch::Contains("XML_ERROR_FILE_NOT_FOUND"));
 }
 
+TEST_CASE("entity references XML does not predefine are found at their line", "[core][xml]") {
+  // Predefined entities, character references, a bare '&' and any '&' in comments, CDATA and
+  // processing instructions are fine.
+  CHECK_FALSE(corsa::find_undeclared_entity(
+      "<a b=\"&lt;&gt;&amp;&apos;&quot;&#38;&#x26; & c\">\n<!-- &x; -->\n<![CDATA[&y;]]>"
+      "<?pi &z;?></a>"));
+  const auto entity = corsa::find_undeclared_entity("<a>\n<!-- &x;\n-->\n<b c=\"&speed;\"/></a>");
+  REQUIRE(entity);
+  CHECK(entity->line == 4);
+  CHECK_THAT(entity->message, Catch::StartsWith("entity '&speed;' is not declared"));
+  const auto doctype = corsa::find_undeclared_entity(
+      "<?xml version=\"1.0\"?>\n<!DOCTYPE a [<!ENTITY x \"1\">]>\n<a/>");
+  REQUIRE(doctype);
+  CHECK(doctype->line == 2);
+  CHECK_THAT(doctype->message, Catch::StartsWith("a DOCTYPE with declarations is not read"));
+  CHECK_FALSE(corsa::find_undeclared_entity("<!DOCTYPE a SYSTEM \"a.dtd\">\n<a/>"));
+}
+
 TEST_CASE("a document that follows the schema comes back with its defaults", "[core][xml][xsd]") {
   const corsa::XsdSchema schema(kSchema);
   const corsa::ValidatedElement root =

@@ -129,6 +129,10 @@ TEST_CASE("Unknown references, cyclic parameters and wrong types are rejected at
       {"int parameter given text", "parameterType=\"double\" value=\"10\"",
        "parameterType=\"int\" value=\"ten\"", 11},
       {"NaN parameter", "value=\"27.78\"", "value=\"nan\"", 9},
+      // tinyxml2 reads no DTD and kept "&x;" as the value.
+      {"undeclared entity", "value=\"27.78\"", "value=\"&x;\"", 9},
+      {"DOCTYPE declaring an entity", "<OpenSCENARIO>",
+       "<!DOCTYPE OpenSCENARIO [\n<!ENTITY x \"27.78\">\n]>\n<OpenSCENARIO>", 6},
       {"unknown entity", "<EntityRef entityRef=\"Cutter\"/>", "<EntityRef entityRef=\"Nobody\"/>",
        76},
       {"unknown catalog entry", "entryName=\"sedan\"", "entryName=\"no_such_car\"", 23},
@@ -157,6 +161,19 @@ TEST_CASE("Unknown references, cyclic parameters and wrong types are rejected at
     CHECK(outcome.run.err.find("scenario.xosc:" + std::to_string(c.line) + ": error: ") !=
           std::string::npos);
   }
+}
+
+TEST_CASE("Messages quote at most 200 bytes of a value from the file", "[robustness][xosc]") {
+  // A 1 MB parameter value was printed whole.
+  const std::string value = std::string(1 << 20, '7') + "x";
+  const Outcome outcome = check_scenario(
+      "1 MB parameter value", edited(cut_in_text(), "value=\"27.78\"", "value=\"" + value + "\""),
+      Expect::kRejected);
+  CHECK(outcome.run.err.find("scenario.xosc:9: error: parameter 'EgoSpeed': '" +
+                             std::string(200, '7') + "...' is not a valid double") !=
+        std::string::npos);
+  CHECK(outcome.run.err.size() < 1000);
+  CHECK(outcome.validate.err.size() < 1000);
 }
 
 TEST_CASE("A step too small for a run ever to end is refused", "[robustness][xosc]") {

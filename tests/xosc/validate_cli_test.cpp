@@ -85,3 +85,20 @@ TEST_CASE("corsa validate reports an unreadable file and a non-OpenSCENARIO docu
   CHECK_THAT(result.err, Catch::Contains("other.xosc:2: error: not an OpenSCENARIO document: the "
                                          "root element is <Scenario>"));
 }
+
+TEST_CASE("corsa validate --json stays valid UTF-8 whatever bytes the file holds",
+          "[xosc][cli][e2e]") {
+  corsa::test::TempDir dir;
+  // Latin-1 bytes where UTF-8 is declared, quoted back by the error message.
+  corsa::test::write_text(
+      dir.path() / "latin1.xosc",
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<OpenSCENARIO>\n"
+      "  <FileHeader revMajor=\"1\" revMinor=\"\xff\xfe\" date=\"2024-01-01T00:00:00\" "
+      "description=\"d\" author=\"a\"/>\n</OpenSCENARIO>\n");
+  const auto result = run_corsa({"validate", "--json", (dir.path() / "latin1.xosc").string()});
+  INFO(result.out);
+  CHECK(result.exit_code == 2);
+  CHECK_THAT(result.out, Catch::Contains("\\ufffd\\ufffd"));
+  CHECK(result.out.find('\xff') == std::string::npos);
+  CHECK(result.out.find('\xfe') == std::string::npos);
+}

@@ -3,6 +3,7 @@
 // dispatch on the document kind.
 
 #include "corsa/core/atomic_file.h"
+#include "message_echo.h"
 #include "parsers.h"
 #include "references.h"
 
@@ -125,7 +126,7 @@ void parse_variables_and_monitors(ParseContext& ctx, Children& kids, Scenario& s
       const std::string text = ctx.req_str(v, "value");
       const auto value = parse_value(variable.type, text);
       if (!value) {
-        ctx.fail(v, "variable '" + variable.name + "': '" + text + "' is not a valid " +
+        ctx.fail(v, "variable '" + echo(variable.name) + "': '" + echo(text) + "' is not a valid " +
                         std::string(to_string(variable.type)));
       }
       if (!ctx.variables.insert(variable.name).second) {

@@ -8,6 +8,7 @@
 #include "corsa/core/strings.h"
 #include "corsa/core/xml_errors.h"
 #include "corsa/xosc/expression.h"
+#include "message_echo.h"
 #include "schema_table.h"
 
 namespace corsa::xosc {
@@ -53,6 +54,9 @@ XmlFile parse_xml(std::string_view text, const std::filesystem::path& path) {
   }
   if (file.document->RootElement() == nullptr) {
     throw InputError(make_error(*file.name, 1, "malformed XML: no root element"));
+  }
+  if (const auto problem = find_undeclared_entity(text)) {
+    throw InputError(make_error(*file.name, problem->line, problem->message));
   }
   return file;
 }
@@ -244,7 +248,7 @@ std::string ParseContext::resolve_in(const Element* element, const std::string& 
   }
   if (text[1] == '{') {
     if (text.back() != '}') {
-      fail(element, "bad expression '" + text + "': missing closing '}'");
+      fail(element, "bad expression '" + echo(text) + "': missing closing '}'");
     }
     const std::string_view body = std::string_view(text).substr(2, text.size() - 3);
     const ParameterLookup find = [&](std::string_view name) -> std::optional<ExprValue> {
@@ -264,7 +268,7 @@ std::string ParseContext::resolve_in(const Element* element, const std::string& 
       if (result.is_bool) return result.boolean ? "true" : "false";
       return format_double(result.number == 0.0 ? 0.0 : result.number);
     } catch (const ExpressionError& error) {
-      fail(element, "bad expression '" + text + "': " + error.what() + " (column " +
+      fail(element, "bad expression '" + echo(text) + "': " + error.what() + " (column " +
                         std::to_string(error.column() + 2) + ")");
     }
   }
@@ -274,7 +278,7 @@ std::string ParseContext::resolve_in(const Element* element, const std::string& 
   }
   const Value* value = lookup(name, upto, element);
   if (value == nullptr) {
-    fail(element, "undefined parameter '" + text + "'");
+    fail(element, "undefined parameter '" + echo(text) + "'");
   }
   return value->text();
 }
@@ -326,8 +330,9 @@ void ParseContext::resolve_entry(size_t scope, size_t index) {
   if (!value) {
     const Source& where = entry->value_source;
     throw InputError(make_error(where.file_name(), where.line,
-                                "parameter '" + entry->declaration.name + "': '" + text +
-                                    "' is not a valid " + type_name(entry->declaration.type)));
+                                "parameter '" + echo(entry->declaration.name) + "': '" +
+                                    echo(text) + "' is not a valid " +
+                                    type_name(entry->declaration.type)));
   }
   entry->declaration.value = *value;
   entry->state = Entry::State::kDone;
@@ -347,7 +352,7 @@ void ParseContext::check_constraints(Entry& entry) {
       constraint.value = resolve(element, constraint.value);
       const auto bound = parse_value(entry.declaration.type, constraint.value);
       if (!bound) {
-        fail(element, "constraint value '" + constraint.value + "' is not a valid " +
+        fail(element, "constraint value '" + echo(constraint.value) + "' is not a valid " +
                           type_name(entry.declaration.type));
       }
       all = all && compare_values(entry.declaration.value, constraint.rule, *bound);
@@ -357,8 +362,8 @@ void ParseContext::check_constraints(Entry& entry) {
   if (!any_group) {
     const Source& where = entry.value_source;
     throw InputError(make_error(where.file_name(), where.line,
-                                "parameter '" + entry.declaration.name + "' = '" +
-                                    entry.declaration.value.text() +
+                                "parameter '" + echo(entry.declaration.name) + "' = '" +
+                                    echo(entry.declaration.value.text()) +
                                     "' violates its value constraints"));
   }
 }
