@@ -199,3 +199,43 @@ TEST_CASE("A step too small for a run ever to end is refused", "[robustness][xos
 
 }  // namespace
 }  // namespace corsa::test
+
+namespace corsa::test {
+namespace {
+
+TEST_CASE("A broken file in a catalog folder is a warning unless an entry it may hold is needed",
+          "[robustness][xosc]") {
+  TempDir dir;
+  const auto catalogs = dir.path() / "catalogs";
+  std::filesystem::create_directory(catalogs);
+  std::filesystem::copy_file(
+      std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/catalogs/vehicles.xosc",
+      catalogs / "vehicles.xosc");
+  std::ofstream(catalogs / "broken.xosc") << "<OpenSCENARIO>\n<Catalog name=\"X\">\n";
+  const std::string scenario =
+      edited(cut_in_text(), "path=\"" + std::string(CORSA_SOURCE_DIR) + "/scenarios/catalogs\"",
+             "path=\"" + catalogs.string() + "\"");
+  const auto broken = (catalogs / "broken.xosc").string();
+  // The entries needed are in vehicles.xosc: the scenario runs, with a warning at the broken file.
+  std::ofstream(dir.path() / "ok.xosc") << scenario;
+  const BoundedResult runs =
+      run_bounded({"run", (dir.path() / "ok.xosc").string(), "--quiet", "--duration", "1"});
+  INFO(describe("run with a broken catalog file beside the one needed", runs));
+  CHECK(runs.exit_code == 0);
+  CHECK(runs.err.find(broken + ":2: warning: catalog file skipped: malformed XML") !=
+        std::string::npos);
+  // An entry found nowhere may be in the broken file: its error, saying what needed it.
+  std::ofstream(dir.path() / "missing.xosc")
+      << edited(scenario, "entryName=\"sedan\"", "entryName=\"no_such_car\"");
+  const BoundedResult missing =
+      run_bounded({"run", (dir.path() / "missing.xosc").string(), "--quiet", "--duration", "1"});
+  INFO(describe("run needing an entry found nowhere", missing));
+  CHECK(missing.exit_code == 2);
+  CHECK(missing.err.find(broken + ":2: error: malformed XML") != std::string::npos);
+  CHECK(missing.err.find("(this catalog file may hold entry 'no_such_car' of catalog "
+                         "'VehicleCatalog', needed at " +
+                         (dir.path() / "missing.xosc").string() + ":23)") != std::string::npos);
+}
+
+}  // namespace
+}  // namespace corsa::test

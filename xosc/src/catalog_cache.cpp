@@ -37,7 +37,16 @@ CatalogFiles read_catalog_directory(const std::filesystem::path& directory) {
   std::sort(paths.begin(), paths.end());
   CatalogFiles files;
   for (const auto& path : paths) {
-    files.push_back(std::make_shared<const XmlFile>(load_xml(path)));
+    try {
+      files.push_back(std::make_shared<const XmlFile>(load_xml(path)));
+    } catch (const InputError&) {
+      // Kept without a document: a scenario that needs none of its entries still runs
+      // (CatalogResolver warns, and fails with this file's error only when an entry is missing).
+      XmlFile unreadable;
+      unreadable.name = std::make_shared<const std::string>(path.string());
+      unreadable.directory = std::filesystem::absolute(path).parent_path();
+      files.push_back(std::make_shared<const XmlFile>(std::move(unreadable)));
+    }
   }
   return files;
 }

@@ -15,8 +15,9 @@ namespace corsa::xosc {
 
 using CatalogFiles = std::vector<std::shared_ptr<const XmlFile>>;
 
-/// The .xosc files of a catalog directory, sorted by path, parsed (throws InputError for a file
-/// that cannot be read or parsed).
+/// The .xosc files of a catalog directory, sorted by path, parsed. A file that cannot be read or
+/// parsed is listed without a document (its error is found again when it matters, see
+/// catalogs.cpp): one broken file must not fail every scenario using the directory.
 CatalogFiles read_catalog_directory(const std::filesystem::path& directory);
 
 struct CatalogCache::Impl {

@@ -1,6 +1,7 @@
 // Catalog lookup for CatalogReferences (§9.4) and catalog documents read on their own.
 
 #include <algorithm>
+#include <cstdlib>
 
 #include "catalog_cache_impl.h"
 #include "corsa/core/atomic_file.h"
@@ -17,6 +18,21 @@ CatalogOrigin parse_catalog_origin(ParseContext& ctx, const Element* reference) 
   origin.reference = ctx.source(reference);
   return origin;
 }
+
+namespace {
+
+// Why a catalog file listed without a document could not be read (it is read again: the error
+// is only needed when a scenario needs an entry that may be in it).
+Diagnostic unreadable_catalog_error(const XmlFile& file) {
+  try {
+    (void)load_xml(*file.name);
+  } catch (const InputError& error) {
+    return error.diagnostic();
+  }
+  return make_error(*file.name, 0, "could not be read while the catalogs were scanned");
+}
+
+}  // namespace
 
 void CatalogResolver::scan(ParseContext& ctx) {
   scanned_ = true;
@@ -45,6 +61,15 @@ void CatalogResolver::scan(ParseContext& ctx) {
             ? ctx.options().catalog_cache->impl().directory(path)
             : std::make_shared<const CatalogFiles>(read_catalog_directory(path));
     for (const auto& xml : *files) {
+      if (xml->document == nullptr) {
+        Diagnostic warning = unreadable_catalog_error(*xml);
+        warning.severity = Severity::kWarning;
+        warning.message = "catalog file skipped: " + warning.message +
+                          " (an error only for a scenario that needs an entry it may hold)";
+        ctx.diagnostics().add_once("catalog-unreadable:" + *xml->name, warning);
+        files_.push_back(xml);
+        continue;
+      }
       const Element* root = xml->document->RootElement();
       const Element* catalog = root->FirstChildElement("Catalog");
       if (catalog == nullptr) continue;  // not a catalog (a scenario kept next to them)
@@ -73,10 +98,22 @@ CatalogResolver::Hit CatalogResolver::find(ParseContext& ctx, const Element* ref
   if (!scanned_) {
     scan(ctx);
   }
+  // An entry not found may be in a catalog file that could not be read: its error is the cause.
+  const auto fail_missing = [&](const std::string& message) {
+    for (const auto& file : files_) {
+      if (file->document != nullptr) continue;
+      Diagnostic cause = unreadable_catalog_error(*file);
+      cause.message += " (this catalog file may hold entry '" + entry_name + "' of catalog '" +
+                       catalog_name + "', needed at " + ctx.source(reference).file_name() + ":" +
+                       std::to_string(ctx.source(reference).line) + ")";
+      throw InputError(std::move(cause));
+    }
+    ctx.fail(reference, message);
+  };
   const auto found = catalogs_.find(catalog_name);
   if (found == catalogs_.end()) {
-    ctx.fail(reference, "catalog '" + catalog_name + "' (for entry '" + entry_name +
-                            "') is not in any catalog directory of <CatalogLocations>");
+    fail_missing("catalog '" + catalog_name + "' (for entry '" + entry_name +
+                 "') is not in any catalog directory of <CatalogLocations>");
   }
   const XmlFile* file = owners_.at(found->second);
   for (const Element* entry = found->second->FirstChildElement(); entry != nullptr;
@@ -90,8 +127,9 @@ CatalogResolver::Hit CatalogResolver::find(ParseContext& ctx, const Element* ref
       return Hit{entry, file};
     }
   }
-  ctx.fail(reference, "catalog '" + catalog_name + "' (" + *file->name + ") has no entry '" +
-                          entry_name + "'");
+  fail_missing("catalog '" + catalog_name + "' (" + *file->name + ") has no entry '" + entry_name +
+               "'");
+  std::abort();  // fail_missing throws
 }
 
 Catalog parse_catalog(ParseContext& ctx, const Element* e) {
