@@ -18,7 +18,9 @@ class AssignControllerInstance final : public InstantAction {
     ControlState& control = control_of(context.state, *context.actor);
     const xosc::ObjectController& oc = action_.controller;
     ControllerKind kind = ControllerKind::kDefault;
-    if (!controller_kind_of(oc.controller, context.state.diagnostics, kind)) {
+    if (names_external(context.state.options, oc)) {
+      kind = ControllerKind::kExternal;
+    } else if (!controller_kind_of(oc.controller, context.state.diagnostics, kind)) {
       context.state.diagnostics.add_once(
           "foreign-controller",
           oc.source.warning("controller '" + oc.controller.name +

@@ -92,7 +92,7 @@ std::unique_ptr<ValueCondition> make_value_condition(const xosc::ByValueConditio
         } else if constexpr (std::is_same_v<T, xosc::TimeOfDayCondition>) {
           return make_time_of_day(c, state);
         } else if constexpr (std::is_same_v<T, xosc::UserDefinedValueCondition>) {
-          return make_unsupported_value("UserDefinedValueCondition", c.source, state);
+          return make_user_defined_value(c, state);
         } else if constexpr (std::is_same_v<T, xosc::TrafficSignalCondition>) {
           return make_traffic_signal_condition(c, state);
         } else {

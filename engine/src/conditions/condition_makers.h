@@ -49,15 +49,14 @@ std::unique_ptr<ValueCondition> make_parameter(const xosc::ParameterCondition& c
                                                const SimState& state);
 std::unique_ptr<ValueCondition> make_variable(const xosc::VariableCondition& c,
                                               const SimState& state);
+std::unique_ptr<ValueCondition> make_user_defined_value(const xosc::UserDefinedValueCondition& c,
+                                                        const SimState& state);
 std::unique_ptr<ValueCondition> make_time_of_day(const xosc::TimeOfDayCondition& c,
                                                  const SimState& state);
 std::unique_ptr<ValueCondition> make_traffic_signal_condition(const xosc::TrafficSignalCondition& c,
                                                               const SimState& state);
 std::unique_ptr<ValueCondition> make_traffic_signal_controller_condition(
     const xosc::TrafficSignalControllerCondition& c, const SimState& state);
-/// A condition kind this engine does not evaluate yet: warns once (located), never holds.
-std::unique_ptr<ValueCondition> make_unsupported_value(const char* kind, const xosc::Source& source,
-                                                       const SimState& state);
 
 /// The entity index of `name`; InputError located at `source` when there is no such entity.
 uint32_t need_entity_index(const SimState& state, const std::string& name,

@@ -11,6 +11,7 @@
 
 #include "controllers/follow_view.h"
 #include "controllers/worker_pool.h"
+#include "controllers/external.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "state/sim_state.h"
@@ -28,10 +29,26 @@ bool controller_kind_of(const xosc::Controller& controller, Diagnostics& diagnos
     }
     diagnostics.add_once("unknown-corsa-controller:" + property.value,
                          property.source.warning("unknown corsa:controller '" + property.value +
-                                                 "' (default, acc or dynamics): the default "
+                                                 "' (default, acc, dynamics or external): the "
+                                                 "default "
                                                  "controller moves the entity"));
     out = ControllerKind::kDefault;
     return true;
+  }
+  return false;
+}
+
+bool names_external(const SimulationOptions& options, const xosc::ObjectController& oc) {
+  for (const std::string& name : options.external_controllers) {
+    if (name == oc.controller.name || (oc.name && *oc.name == name)) {
+      return true;
+    }
+    // esmini spells its controller types as a property of any Controller.
+    for (const xosc::Property& property : oc.controller.properties.properties) {
+      if (property.name == "esminiController" && property.value == name) {
+        return true;
+      }
+    }
   }
   return false;
 }
@@ -41,9 +58,9 @@ void assign_initial_controllers(SimState& state) {
   if (!state.options.controller.empty()) {
     ControllerKind kind;
     if (!parse_controller_kind(state.options.controller, kind)) {
-      throw InputError(Diagnostic{
-          Severity::kError, "", 0, -1, "",
-          "unknown controller '" + state.options.controller + "' (default, acc or dynamics)"});
+      throw InputError(Diagnostic{Severity::kError, "", 0, -1, "",
+                                  "unknown controller '" + state.options.controller +
+                                      "' (default, acc, dynamics or external)"});
     }
     for_vehicles = kind;
   }
@@ -55,6 +72,11 @@ void assign_initial_controllers(SimState& state) {
     if (entity.object != nullptr) {
       for (const xosc::ObjectController& oc : entity.object->controllers) {
         control.assigned = oc.name.value_or(oc.controller.name);
+        if (names_external(state.options, oc)) {
+          control.kind = ControllerKind::kExternal;
+          chosen = true;
+          break;
+        }
         if (controller_kind_of(oc.controller, state.diagnostics, control.kind)) {
           chosen = true;
           break;
@@ -170,6 +192,9 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
       } else {
         finish_dynamics(state, i, motion);
       }
+      break;
+    case ControllerKind::kExternal:
+      step_commanded(state, i, ideal, motion);
       break;
   }
 }

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "corsa/engine/simulation.h"
 #include "motion/controller.h"
 #include "state/control_state.h"
 
@@ -30,6 +31,10 @@ struct SimState;
 /// nothing. An unknown value warns once (located) and means the default controller.
 bool controller_kind_of(const xosc::Controller& controller, Diagnostics& diagnostics,
                         ControllerKind& out);
+
+/// Whether SimulationOptions::external_controllers names this ObjectController (its name, its
+/// Controller's name, or esmini's `esminiController` property): its entity is driven from outside.
+bool names_external(const SimulationOptions& options, const xosc::ObjectController& oc);
 
 /// Gives every entity its controller from the scenario and the options (state.controls sized
 /// to the entities). Throws InputError for an unknown --controller name.

@@ -5,7 +5,8 @@
 // distance ahead, and a PI loop with feed-forward on the commanded speed. Acceleration,
 // deceleration and speed stay within the vehicle's Performance; steering within its front
 // axle's maxSteering. OverrideControllerValueActions replace the driver's throttle, brake and
-// steering while active.
+// steering while active; a command with controls from outside (external_control.h) replaces the
+// driver for its step.
 
 #include <algorithm>
 #include <cmath>
@@ -90,13 +91,38 @@ double limit_rate(double current, double target, double max_rate, double dt) {
   return current + std::clamp(target - current, -max_rate * dt, max_rate * dt);
 }
 
+double max_acceleration(const Entity& entity) {
+  return entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultLimit;
+}
+double max_deceleration(const Entity& entity) {
+  return entity.info.max_deceleration > 0.0 ? entity.info.max_deceleration : kDefaultLimit;
+}
+
+// The inputs of a command from outside (external_control.h): throttle and brake as shares of the
+// Performance limits, the front wheel angle as given; nothing drives beyond maxSpeed.
+VehicleInputs commanded_inputs(const Entity& entity, DynamicsVehicle& vehicle,
+                               const VehicleControls& controls) {
+  VehicleInputs inputs;
+  inputs.accel =
+      controls.throttle * max_acceleration(entity) - controls.brake * max_deceleration(entity);
+  if (entity.info.max_speed > 0.0 && entity.state.speed >= entity.info.max_speed) {
+    inputs.accel = std::min(inputs.accel, 0.0);
+  }
+  inputs.steer = controls.steering;
+  vehicle.throttle = controls.throttle;
+  vehicle.brake = controls.brake;
+  vehicle.steering_wheel = controls.steering * kSteeringRatio;
+  // The driver model takes over afresh after the command (no integral or feed-forward jump).
+  vehicle.integral = 0.0;
+  vehicle.last_command = std::max(0.0, entity.speed_command);
+  return inputs;
+}
+
 // Longitudinal demand (m/s^2): the PI loop on the commanded speed, or the overrides.
 double longitudinal_demand(Entity& entity, DynamicsVehicle& vehicle, const ControlState& control,
                            double dt, bool& reverse) {
-  const double max_acc =
-      entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultLimit;
-  const double max_dec =
-      entity.info.max_deceleration > 0.0 ? entity.info.max_deceleration : kDefaultLimit;
+  const double max_acc = max_acceleration(entity);
+  const double max_dec = max_deceleration(entity);
   const ControllerOverrides& o = control.overrides;
   const double mass = vehicle.model.params().mass;
   reverse = false;
@@ -277,6 +303,11 @@ void begin_vehicle(SimState& state, uint32_t index, const MotionContext& motion,
     vehicle.integral = 0.0;
   }
   vehicle.before = vehicle.model.state();
+  if (control.commanded && control.command.controls) {
+    vehicle.model.begin_step(commanded_inputs(entity, vehicle, *control.command.controls), dt,
+                             fleet);
+    return;
+  }
   VehicleInputs inputs;
   inputs.accel = longitudinal_demand(entity, vehicle, control, dt, inputs.reverse);
   if (control.overrides.steering_wheel.active) {

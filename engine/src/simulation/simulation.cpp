@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "controllers/controllers.h"
+#include "controllers/external.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/route_lanes.h"
@@ -70,7 +72,9 @@ void Simulation::Impl::advance() {
   storyboard->step_actions(state);
   const detail::MotionContext motion{state.map, state.time.dt(), &scratch};
   detail::follow_route_lanes(state, motion);
+  detail::begin_commands(state);
   mover.move(state, motion);
+  detail::end_commands(state);
   ++state.tick;
   detail::update_traffic(state);
   detail::update_contacts(state);
@@ -159,6 +163,16 @@ std::span<const TransitionRecord> Simulation::transitions() const {
 std::optional<ElementState> Simulation::element_state(std::string_view path) const {
   const auto index = impl_->state.elements.find(path);
   return index ? std::optional<ElementState>(impl_->state.elements[*index].state) : std::nullopt;
+}
+
+std::vector<ElementStatusView> Simulation::elements() const {
+  const detail::ElementTable& table = impl_->state.elements;
+  std::vector<ElementStatusView> out;
+  out.reserve(table.size());
+  for (uint32_t i = 0; i < table.size(); ++i) {
+    out.push_back({table[i].type, table[i].path, table[i].state});
+  }
+  return out;
 }
 
 std::span<const CollisionRecord> Simulation::collisions() const { return impl_->state.collisions; }
@@ -273,6 +287,60 @@ void Simulation::add_observer(SimulationObserver& observer) {
 
 void Simulation::set_custom_command_handler(std::string type, CustomCommandHandler handler) {
   impl_->state.custom_handlers[std::move(type)] = std::move(handler);
+}
+
+void Simulation::set_user_value_provider(UserValueProvider provider) {
+  impl_->state.user_values = std::move(provider);
+}
+
+namespace {
+
+void check_command(const ExternalCommand& command) {
+  const auto finite = [](double v) { return std::isfinite(v); };
+  if (command.pose && command.controls) {
+    throw std::invalid_argument("a command gives either a pose or controls, not both");
+  }
+  if (command.pose) {
+    const Pose& p = *command.pose;
+    if (!finite(p.x) || !finite(p.y) || !finite(p.z) || !finite(p.h) || !finite(p.p) ||
+        !finite(p.r)) {
+      throw std::invalid_argument("the commanded pose must be finite numbers");
+    }
+  }
+  if (command.speed && !finite(*command.speed)) {
+    throw std::invalid_argument("the commanded speed must be a finite number of m/s");
+  }
+  if (command.controls) {
+    const VehicleControls& c = *command.controls;
+    if (!(c.throttle >= 0.0 && c.throttle <= 1.0) || !(c.brake >= 0.0 && c.brake <= 1.0)) {
+      throw std::invalid_argument("throttle and brake must be between 0 and 1");
+    }
+    if (!finite(c.steering)) {
+      throw std::invalid_argument("the steering angle must be a finite number of radians");
+    }
+  }
+}
+
+}  // namespace
+
+void Simulation::command(size_t index, const ExternalCommand& command) {
+  detail::SimState& state = impl_->state;
+  if (index >= state.world.entities.size()) {
+    throw std::invalid_argument("no entity with index " + std::to_string(index));
+  }
+  check_command(command);
+  detail::ControlState& control = detail::control_of(state, static_cast<uint32_t>(index));
+  if (!control.commanded) {
+    state.commanded.push_back(static_cast<uint32_t>(index));
+  }
+  control.command = command;
+  control.commanded = true;
+}
+
+bool Simulation::external(size_t index) const {
+  const detail::SimState& state = impl_->state;
+  return index < state.controls.size() &&
+         state.controls[index].kind == detail::ControllerKind::kExternal;
 }
 
 const xosc::Scenario& Simulation::scenario() const { return impl_->state.scenario; }

@@ -9,6 +9,8 @@ bool parse_controller_kind(const std::string& name, ControllerKind& out) {
     out = ControllerKind::kAcc;
   } else if (name == "dynamics") {
     out = ControllerKind::kDynamics;
+  } else if (name == "external") {
+    out = ControllerKind::kExternal;
   } else {
     return false;
   }

@@ -7,15 +7,19 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+
+#include "corsa/engine/external_control.h"
 
 namespace corsa::engine::detail {
 
-/// The controllers this engine has. kDefault is the ideal lane follower (motion/controller.h).
-enum class ControllerKind : uint8_t { kDefault, kAcc, kDynamics };
+/// The controllers this engine has. kDefault is the ideal lane follower (motion/controller.h);
+/// kExternal moves the entity only by commands from outside (controllers/external.h).
+enum class ControllerKind : uint8_t { kDefault, kAcc, kDynamics, kExternal };
 
 /// Parses a controller name as `corsa:controller` and `corsa run --controller` spell it
-/// ("default", "acc", "dynamics"); nothing for an unknown name.
+/// ("default", "acc", "dynamics", "external"); nothing for an unknown name.
 bool parse_controller_kind(const std::string& name, ControllerKind& out);
 
 /// One OverrideControllerValueAction value (§7.5.3): while `active`, `value` replaces what the
@@ -66,9 +70,18 @@ struct ControlState {
   bool crossed_roadway = false;
   /// The dynamics controller's vehicle model (created on its first step).
   std::shared_ptr<DynamicsVehicle> dynamics;
+  /// A command from outside (Simulation::command) for the step under way; it takes the place of
+  /// the controller. `held`: what an entity of the external controller repeats between commands.
+  ExternalCommand command;
+  bool commanded = false;
+  std::optional<ExternalCommand> held;
 
-  /// The controller that moves the entity this step.
+  /// The controller that moves the entity this step: a command's controls go through the
+  /// dynamics controller's vehicle model, its pose or speed through the external controller.
   ControllerKind effective() const {
+    if (commanded) {
+      return command.controls ? ControllerKind::kDynamics : ControllerKind::kExternal;
+    }
     return (longitudinal || lateral) ? kind : ControllerKind::kDefault;
   }
 };

@@ -93,6 +93,10 @@ struct SimState {
   ContactSet contacts;
   std::vector<CollisionRecord> collisions;
   std::map<std::string, CustomCommandHandler, std::less<>> custom_handlers;
+  /// Values of UserDefinedValueConditions (Simulation::set_user_value_provider); may be empty.
+  UserValueProvider user_values;
+  /// Entities with a command from outside for the next step (ControlState::commanded).
+  std::vector<uint32_t> commanded;
   /// Each entity's controller (controllers/controllers.h), indexed like world.entities.
   std::vector<ControlState> controls;
   /// Traffic signals and generated traffic (state/traffic_state.h).

@@ -17,9 +17,11 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/engine/entity_state.h"
+#include "corsa/engine/external_control.h"
 #include "corsa/engine/storyboard_state.h"
 #include "corsa/engine/world_snapshot.h"
 
@@ -51,6 +53,11 @@ struct SimulationOptions {
   /// Threads the entities of a step are moved on (`corsa run --threads`), at least 1. Outputs
   /// are byte-identical for any number; only runs with many entities use more than one.
   unsigned threads = 1;
+  /// Controllers driven from outside (external_control.h): an entity whose ObjectController, by
+  /// its own name or its Controller's (e.g. "ExternalController"), is one of these moves only by
+  /// Simulation::command. Empty: none (the command line's choice; the Python module names
+  /// "ExternalController").
+  std::vector<std::string> external_controllers;
 };
 
 /// One presence of a generated entity (traffic actions, NPCs): when it appeared and, once it
@@ -75,6 +82,13 @@ struct CollisionRecord {
   double time = 0.0;
   uint32_t first = 0;  ///< entity indices, first < second
   uint32_t second = 0;
+};
+
+/// One storyboard element and its state now (Simulation::elements).
+struct ElementStatusView {
+  ElementType type = ElementType::kStory;
+  std::string_view path;  ///< "" for the storyboard itself
+  ElementState state = ElementState::kStandby;
 };
 
 class Simulation;
@@ -128,6 +142,8 @@ class Simulation {
   std::span<const TransitionRecord> transitions() const;
   /// State of the storyboard element with this `::` path; nothing for an unknown path.
   std::optional<ElementState> element_state(std::string_view path) const;
+  /// Every storyboard element in document order (the storyboard first), with its state now.
+  std::vector<ElementStatusView> elements() const;
   std::span<const CollisionRecord> collisions() const;
   /// When a generated entity (traffic, NPCs) appeared and left, in order; empty for the
   /// scenario's own entities.
@@ -147,6 +163,21 @@ class Simulation {
   /// before the first step() (the tick-0 call happens at the first step() or run()).
   void add_observer(SimulationObserver& observer);
   void set_custom_command_handler(std::string type, CustomCommandHandler handler);
+  /// Where UserDefinedValueConditions get their values (none set: they never hold, with a
+  /// located warning once per name).
+  void set_user_value_provider(UserValueProvider provider);
+
+  /// Moves entity `index` over the next step as `command` says, in place of its controller
+  /// (external_control.h); a later command for the same step replaces this one. An entity that is
+  /// not present (absent, deleted) ignores it. Throws std::invalid_argument for an index out of
+  /// range, a command with both a pose and controls, or a value that is not a finite number
+  /// (throttle and brake outside 0..1 included).
+  void command(size_t index, const ExternalCommand& command);
+  /// Whether entity `index` is driven from outside (SimulationOptions::external_controllers, or
+  /// `corsa:controller` = `external`): it moves only by commands. Between commands it repeats the
+  /// last one's speed or controls (after a pose: rolls on at its speed); before the first it keeps
+  /// the speed it has.
+  bool external(size_t index) const;
 
   const xosc::Scenario& scenario() const;
   const xodr::Map* map() const;
