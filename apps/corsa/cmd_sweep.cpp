@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
-#include <variant>
 
 #include "args.h"
 #include "commands.h"
@@ -16,7 +15,6 @@
 #include "corsa/sweep/merge.h"
 #include "corsa/sweep/parallel.h"
 #include "corsa/sweep/sweep.h"
-#include "corsa/xosc/scenario.h"
 #include "stop_signals.h"
 #include "sweep_options.h"
 
@@ -78,21 +76,6 @@ std::vector<sweep::GridAxis> grid_axes(const ParsedArgs& parsed) {
   return grid;
 }
 
-sweep::VariantPlan make_plan(const std::filesystem::path& file, const ParsedArgs& parsed,
-                             uint64_t seed, Diagnostics& diagnostics) {
-  auto grid = grid_axes(parsed);
-  xosc::Document document = xosc::load_document(file, xosc::LoadOptions{}, diagnostics);
-  if (auto* distribution = std::get_if<xosc::ParameterValueDistribution>(&document)) {
-    return sweep::VariantPlan::from_distribution(file, std::move(*distribution), std::move(grid),
-                                                 seed);
-  }
-  if (std::holds_alternative<xosc::Catalog>(document)) {
-    throw InputError(make_error(file.string(), 0,
-                                "this is a catalog; sweep a scenario or a parameter distribution"));
-  }
-  return sweep::VariantPlan::from_scenario(file, std::move(grid));
-}
-
 void print_report(const sweep::VariantPlan& plan, const sweep::SweepOptions& options,
                   const sweep::SweepReport& report) {
   const double rate = report.wall_seconds > 0.0 ? report.ran / report.wall_seconds : 0.0;
@@ -140,8 +123,8 @@ int run_sweep_command(std::span<const std::string> args) {
   sweep::SweepOptions options = sweep_options(parsed);
   const bool quiet = parsed.flag("--quiet");
   Diagnostics diagnostics([](const Diagnostic& d) { std::cerr << d.format() << '\n'; });
-  const sweep::VariantPlan plan =
-      make_plan(parsed.positionals().front(), parsed, options.simulation.seed, diagnostics);
+  const sweep::VariantPlan plan = sweep::VariantPlan::from_file(
+      parsed.positionals().front(), grid_axes(parsed), options.simulation.seed, diagnostics);
   ProgressBar progress("sweep", static_cast<double>(options.shard.share(plan.size())), !quiet);
   const StopSignals signals;
   options.stop = [] { return StopSignals::reason(); };

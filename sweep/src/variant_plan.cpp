@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <variant>
 
 #include "corsa/core/strings.h"
 #include "corsa/xosc/scenario.h"
@@ -148,6 +149,19 @@ VariantPlan VariantPlan::from_scenario(std::filesystem::path scenario, std::vect
   plan.scenario_ = std::move(scenario);
   plan.add_grid(std::move(grid));
   return plan;
+}
+
+VariantPlan VariantPlan::from_file(const std::filesystem::path& file, std::vector<GridAxis> grid,
+                                   uint64_t default_seed, Diagnostics& diagnostics) {
+  xosc::Document document = xosc::load_document(file, xosc::LoadOptions{}, diagnostics);
+  if (auto* distribution = std::get_if<xosc::ParameterValueDistribution>(&document)) {
+    return from_distribution(file, std::move(*distribution), std::move(grid), default_seed);
+  }
+  if (std::holds_alternative<xosc::Catalog>(document)) {
+    throw InputError(make_error(file.string(), 0,
+                                "this is a catalog; sweep a scenario or a parameter distribution"));
+  }
+  return from_scenario(file, std::move(grid));
 }
 
 void VariantPlan::add_name(const std::string& name, const Diagnostic& where) {

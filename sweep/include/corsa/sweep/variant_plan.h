@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "corsa/core/diagnostic.h"
 #include "corsa/sweep/grid.h"
 #include "corsa/xosc/distributions.h"
 
@@ -34,6 +35,11 @@ class VariantPlan {
   /// A grid over a scenario file's parameters: the axes combine as nested loops in order, the
   /// first varying slowest (row-major, like Deterministic entries). No axes: one variant.
   static VariantPlan from_scenario(std::filesystem::path scenario, std::vector<GridAxis> grid);
+  /// What `corsa sweep FILE` sweeps: the distribution's variants when `file` is a
+  /// ParameterValueDistribution, else the grid over the scenario `file`. Throws InputError for a
+  /// file that cannot be read or is a catalog.
+  static VariantPlan from_file(const std::filesystem::path& file, std::vector<GridAxis> grid,
+                               uint64_t default_seed, Diagnostics& diagnostics);
 
   /// The scenario every variant runs.
   const std::filesystem::path& scenario() const { return scenario_; }
