@@ -152,11 +152,10 @@ TEST_CASE("A bad command is refused before it reaches the run", "[engine][extern
 TEST_CASE("UserDefinedValueConditions compare the provider's values", "[engine][external]") {
   FixtureRun run(engine_fixture("external_control.xosc"), external_options());
   std::vector<std::string> asked;
-  run.sim().set_user_value_provider(
-      [&](std::string_view name) -> std::optional<xosc::Value> {
-        asked.emplace_back(name);
-        return xosc::Value{xosc::ParameterType::kBoolean, run.sim().time() >= 2.0};
-      });
+  run.sim().set_user_value_provider([&](std::string_view name) -> std::optional<xosc::Value> {
+    asked.emplace_back(name);
+    return xosc::Value{xosc::ParameterType::kBoolean, run.sim().time() >= 2.0};
+  });
   run.run();
   REQUIRE_FALSE(asked.empty());
   CHECK(asked.front() == "ego_ready");

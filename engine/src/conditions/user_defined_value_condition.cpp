@@ -34,8 +34,8 @@ class UserDefinedValueCheck final : public ValueCondition {
       return xosc::compare_values(*value, condition_.rule, *reference);
     }
     const xosc::Value text{xosc::ParameterType::kString, value->text()};
-    return xosc::compare_values(
-        text, condition_.rule, xosc::Value{xosc::ParameterType::kString, condition_.value});
+    return xosc::compare_values(text, condition_.rule,
+                                xosc::Value{xosc::ParameterType::kString, condition_.value});
   }
 
  private:
