@@ -71,6 +71,39 @@ if(SUNDIALS_INCLUDE_DIR AND SUNDIALS_CVODE_LIBRARY AND SUNDIALS_ARKODE_LIBRARY
 endif()
 corsa_require(SUNDIALS_FOUND "SUNDIALS (CVODE, ARKODE)" libsundials-dev)
 
+# Debian's interpreter, into which python3-numpy and python3-pytest install, even when another
+# python3 (pyenv, a virtualenv) comes first on PATH; -DPython3_EXECUTABLE=... chooses another.
+if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+  set(Python3_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "Python interpreter (module, tests)")
+endif()
+
+if(CORSA_BUILD_PYTHON)
+  find_package(Python3 COMPONENTS Interpreter Development.Module QUIET)
+  corsa_require(Python3_Development.Module_FOUND "the Python 3 headers" python3-dev)
+  find_package(pybind11 CONFIG QUIET)
+  corsa_require(pybind11_FOUND "pybind11" pybind11-dev)
+  # numpy is imported by the module at run time (states(), sensor frames, datasets), not built
+  # against; checked here so that a missing package is named before anything is built.
+  execute_process(COMMAND ${Python3_EXECUTABLE} -c "import numpy"
+                  RESULT_VARIABLE corsa_numpy_missing OUTPUT_QUIET ERROR_QUIET)
+  if(corsa_numpy_missing)
+    set(CORSA_NUMPY_FOUND FALSE)
+  else()
+    set(CORSA_NUMPY_FOUND TRUE)
+  endif()
+  corsa_require(CORSA_NUMPY_FOUND "numpy for ${Python3_EXECUTABLE}" python3-numpy)
+  if(CORSA_BUILD_TESTS)
+    execute_process(COMMAND ${Python3_EXECUTABLE} -c "import pytest"
+                    RESULT_VARIABLE corsa_pytest_missing OUTPUT_QUIET ERROR_QUIET)
+    if(corsa_pytest_missing)
+      set(CORSA_PYTEST_FOUND FALSE)
+    else()
+      set(CORSA_PYTEST_FOUND TRUE)
+    endif()
+    corsa_require(CORSA_PYTEST_FOUND "pytest for ${Python3_EXECUTABLE}" python3-pytest)
+  endif()
+endif()
+
 if(CORSA_BUILD_TESTS)
   find_package(Catch2 2 CONFIG QUIET)
   corsa_require(Catch2_FOUND "Catch2 v2" catch2)
