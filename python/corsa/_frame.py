@@ -46,7 +46,8 @@ class Frame:
         return self.data.keys()
 
     def __repr__(self):
-        shapes = ", ".join(f"{name}: {getattr(array, 'shape', '?')}" for name, array in self.data.items())
+        shapes = ", ".join(f"{name}: {getattr(array, 'shape', '?')}"
+                           for name, array in self.data.items())
         where = "" if self.index is None else f"#{self.index} "
         when = "" if self.time is None else f"t={self.time:g} s "
         return f"<corsa.Frame {where}{when}{{{shapes}}}>"

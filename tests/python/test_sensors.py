@@ -1,0 +1,126 @@
+"""Sensors in the loop (Simulation.capture) and datasets (corsa.collect, corsa.Dataset) as numpy
+arrays."""
+
+import json
+
+import numpy as np
+import pytest
+
+import corsa
+from conftest import CUT_IN, SMALL_RIG
+
+
+@pytest.fixture(scope="module")
+def captured():
+    """The cut-in with the small rig, 0.3 s in, and one capture of every sensor."""
+    sim = corsa.Simulation(CUT_IN, rig=SMALL_RIG)
+    for _ in range(30):
+        sim.step()
+    return sim, sim.capture()
+
+
+def test_capture_gives_every_sensor_as_an_array_of_its_kind(captured):
+    sim, frame = captured
+    assert [s[0] for s in sim.sensors] == ["cam", "depth", "semantic", "instance", "roof_lidar",
+                                          "top"]
+    assert set(frame) == {name for name, *_ in sim.sensors}
+    assert frame["cam"].shape == (108, 192, 3) and frame["cam"].dtype == np.uint8
+    assert frame["depth"].shape == (108, 192) and frame["depth"].dtype == np.float32
+    assert frame["semantic"].dtype == np.uint16 and frame["instance"].dtype == np.uint16
+    assert frame.tick == sim.tick and frame.time == pytest.approx(sim.time)
+    # The road is below the horizon: depth there is finite and within the camera's range.
+    road = frame["depth"][-10:, 90:100]
+    assert np.all((road > 0) & (road <= 150))
+    assert frame["cam"].std() > 5  # a picture, not a flat fill
+
+
+def test_the_lidar_is_a_structured_array_of_returns_around_the_ego(captured):
+    _, frame = captured
+    points = frame["roof_lidar"]
+    assert points.dtype.names == ("x", "y", "z", "intensity", "ring", "class", "instance", "time")
+    assert len(points) > 1000
+    distance = np.hypot(points["x"], points["y"])
+    assert distance.max() <= 80.5 and set(np.unique(points["ring"])) <= set(range(16))
+
+
+def test_the_cutter_is_labelled_and_posed(captured):
+    sim, frame = captured
+    names = {entity["name"] for entity in frame.entities}
+    assert names == {"Ego", "Cutter"}
+    ego = next(e for e in frame.entities if e["name"] == "Ego")
+    assert ego["pose"][0] == pytest.approx(sim.state("Ego").x, abs=1e-6)
+    pose = frame.poses["cam"]
+    assert pose.shape == (4, 4) and np.allclose(pose[3], [0, 0, 0, 1])
+    # The camera sits 1.6 m ahead of the ego's reference point, 1.45 m up (small_rig.xml).
+    assert pose[2, 3] == pytest.approx(sim.state("Ego").z + 1.45, abs=0.05)
+    assert "objects" in frame.labels["cam"]
+
+
+def test_capture_renders_only_the_sensors_named(captured):
+    sim, _ = captured
+    frame = sim.capture("depth")
+    assert list(frame) == ["depth"]
+    with pytest.raises(ValueError):
+        sim.capture(["nope"])
+
+
+def test_capture_without_a_rig_is_refused():
+    with pytest.raises(ValueError, match="no rig"):
+        corsa.Simulation(CUT_IN).capture()
+
+
+def test_a_dataset_reads_back_what_collect_wrote(dataset):
+    data = corsa.Dataset(dataset)
+    run = json.loads((dataset / "run.json").read_text())
+    assert data.layout == "corsa" and data.run == run
+    assert data.sensors == [s["name"] for s in run["sensors"]]
+    frames = list(data)
+    assert len(frames) == len(data) > 1
+    assert [f.index for f in frames] == sorted(f.index for f in frames)
+    first = data[0]
+    assert first["cam"].shape == (108, 192, 3) and first["cam"].dtype == np.uint8
+    assert first["depth"].dtype == np.float32 and first["semantic"].dtype == np.uint16
+    assert first["roof_lidar"].dtype.names[:3] == ("x", "y", "z")
+    assert first.poses["cam"].shape == (4, 4)
+    assert data[-1].index == frames[-1].index
+    assert [f.index for f in data[:2]] == [frames[0].index, frames[1].index]
+    with pytest.raises(IndexError):
+        data[len(data)]
+
+
+def test_a_dataset_frame_matches_a_capture_at_the_same_tick(dataset):
+    data = corsa.Dataset(dataset)
+    first = data[0]
+    sim = corsa.Simulation(CUT_IN, rig=SMALL_RIG, duration=0.5)
+    while sim.tick < first.tick:
+        sim.step()
+    frame = sim.capture(["semantic", "depth"])
+    # Semantic classes are exact; depth went through 16-bit millimetres in the PNG (or EXR).
+    assert np.array_equal(frame["semantic"], first["semantic"])
+    assert np.allclose(frame["depth"], first["depth"], atol=1e-3)
+
+
+def test_the_kitti_export_reads_as_kitti(dataset):
+    kitti = corsa.Dataset(dataset, layout="kitti")
+    assert kitti.layout == "kitti" and len(kitti) > 0
+    frame = kitti[0]
+    assert frame["image_2"].ndim == 3 and frame["velodyne"].shape[1] == 4
+    assert {"P2", "Tr_velo_to_cam"} <= set(frame.calibration["calib"])
+    assert all("type" in label for label in frame.labels.get("label_2", []))
+
+
+def test_the_torch_adapter_gives_dicts_of_arrays(dataset):
+    samples = corsa.TorchDataset(dataset, sensors=["cam"])
+    assert len(samples) == len(corsa.Dataset(dataset))
+    sample = samples[0]
+    assert set(sample) == {"cam", "index", "time"} and sample["cam"].shape == (108, 192, 3)
+
+
+def test_a_folder_that_is_no_dataset_is_an_input_error(tmp_path):
+    with pytest.raises(corsa.InputError, match="neither a Corsa dataset"):
+        corsa.Dataset(tmp_path)
+    (tmp_path / "frames.csv").write_text("nope\n")
+    (tmp_path / "run.json").write_text("{}")
+    with pytest.raises(corsa.InputError) as caught:
+        corsa.Dataset(tmp_path)
+    assert caught.value.line == 1 and caught.value.file.endswith("frames.csv")
