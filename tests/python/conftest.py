@@ -42,4 +42,7 @@ def environment():
     """The environment for a child interpreter: the same module path, no bytecode files."""
     env = dict(os.environ)
     env["PYTHONDONTWRITEBYTECODE"] = "1"
+    # Absolute, for a child that runs in another folder.
+    paths = env.get("PYTHONPATH", "").split(os.pathsep)
+    env["PYTHONPATH"] = os.pathsep.join(os.path.abspath(p) for p in paths if p)
     return env
