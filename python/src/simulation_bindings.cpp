@@ -164,9 +164,10 @@ void set_command(PySimulation& self, const std::string& name, const engine::Exte
   }
 }
 
-}  // namespace
+using SimulationClass = py::class_<PySimulation>;
 
-void bind_simulation(py::module_& m) {
+/// corsa.EntityState, what Simulation.state(name) returns.
+void bind_entity_state(py::module_& m) {
   py::class_<StateView>(m, "EntityState",
                         "One entity now: map frame (m, rad; heading counter-clockwise from +x), "
                         "speed along the heading (m/s), longitudinal acceleration over the last "
@@ -196,27 +197,28 @@ void bind_simulation(py::module_& m) {
                ", speed=" + std::to_string(v.speed) +
                (v.road ? ", road=" + *v.road + ", lane=" + std::to_string(*v.lane) : "") + ")";
       });
+}
 
-  py::class_<PySimulation>(m, "Simulation", "One run of one scenario (see docs/python.md).")
-      .def(
-          py::init([](const std::filesystem::path& path, double dt, uint64_t seed,
-                      const py::object& params, const py::object& controller, const py::object& npc,
-                      const py::object& external, double duration, const py::object& values) {
-            SimulationSetup setup =
-                simulation_setup(path, dt, seed, params, controller, npc, external, duration);
-            auto simulation = std::make_unique<PySimulation>(setup);
-            if (!values.is_none()) {
-              for (const auto& [name, value] : values.cast<py::dict>()) {
-                simulation->set_value(py::str(name), py::reinterpret_borrow<py::object>(value));
-              }
+/// Construction from the options of `corsa run`, stepping, the clock.
+void bind_run(SimulationClass& c) {
+  c.def(py::init([](const std::filesystem::path& path, double dt, uint64_t seed,
+                    const py::object& params, const py::object& controller, const py::object& npc,
+                    const py::object& external, double duration, const py::object& values) {
+          SimulationSetup setup =
+              simulation_setup(path, dt, seed, params, controller, npc, external, duration);
+          auto simulation = std::make_unique<PySimulation>(setup);
+          if (!values.is_none()) {
+            for (const auto& [name, value] : values.cast<py::dict>()) {
+              simulation->set_value(py::str(name), py::reinterpret_borrow<py::object>(value));
             }
-            simulation->warn();
-            return simulation;
-          }),
-          py::arg("path"), py::kw_only(), py::arg("dt") = 0.01, py::arg("seed") = 0,
-          py::arg("params") = py::none(), py::arg("controller") = py::none(),
-          py::arg("npc") = py::none(), py::arg("external") = py::none(),
-          py::arg("duration") = 3600.0, py::arg("values") = py::none())
+          }
+          simulation->warn();
+          return simulation;
+        }),
+        py::arg("path"), py::kw_only(), py::arg("dt") = 0.01, py::arg("seed") = 0,
+        py::arg("params") = py::none(), py::arg("controller") = py::none(),
+        py::arg("npc") = py::none(), py::arg("external") = py::none(), py::arg("duration") = 3600.0,
+        py::arg("values") = py::none())
       .def("step", &PySimulation::step,
            "Advances one step (triggers, actions, controllers); False once the run has ended.")
       .def(
@@ -246,9 +248,13 @@ void bind_simulation(py::module_& m) {
           },
           "'stop trigger', 'stories complete' or 'duration'; None while running")
       .def_property_readonly("scenario",
-                             [](const PySimulation& s) { return s.setup().scenario.string(); })
-      .def_property_readonly("entities", &PySimulation::entity_names,
-                             "Entity names in index order (the rows of states()).")
+                             [](const PySimulation& s) { return s.setup().scenario.string(); });
+}
+
+/// Reading the run: entities, states, storyboard, parameters, log, collisions, warnings.
+void bind_reading(SimulationClass& c) {
+  c.def_property_readonly("entities", &PySimulation::entity_names,
+                          "Entity names in index order (the rows of states()).")
       .def(
           "state",
           [](PySimulation& self, const std::string& name) {
@@ -299,17 +305,21 @@ void bind_simulation(py::module_& m) {
             for (const Diagnostic& d : s.diagnostics().all()) out.append(d.format());
             return out;
           },
-          "Every warning of the load and the run so far, as the command line prints them.")
-      .def(
-          "set_speed",
-          [](PySimulation& self, const std::string& name, double speed) {
-            engine::ExternalCommand c;
-            c.speed = speed;
-            set_command(self, name, c);
-          },
-          py::arg("name"), py::arg("speed"),
-          "Moves the entity along its lane at `speed` (m/s) over the next step, in place of its "
-          "controller.")
+          "Every warning of the load and the run so far, as the command line prints them.");
+}
+
+/// Control from outside: commands, user values, custom-command handlers.
+void bind_control(SimulationClass& c) {
+  c.def(
+       "set_speed",
+       [](PySimulation& self, const std::string& name, double speed) {
+         engine::ExternalCommand c;
+         c.speed = speed;
+         set_command(self, name, c);
+       },
+       py::arg("name"), py::arg("speed"),
+       "Moves the entity along its lane at `speed` (m/s) over the next step, in place of its "
+       "controller.")
       .def(
           "set_pose",
           [](PySimulation& self, const std::string& name, double x, double y, double h,
@@ -349,15 +359,25 @@ void bind_simulation(py::module_& m) {
            "The value of UserDefinedValueConditions named `name`: a bool, int, float or str, or "
            "a callable returning one (None: no value, the condition does not hold).")
       .def("on_command", &PySimulation::on_command, py::arg("type"), py::arg("handler"),
-           "Calls handler(text) for every CustomCommandAction of this type, with its text.")
-      .def("__repr__", [](PySimulation& self) {
-        return "<corsa.Simulation " + self.setup().scenario.string() +
-               " t=" + std::to_string(self.engine().time()) + " s" +
-               (self.engine().ended()
-                    ? ", ended by " + std::string(engine::to_string(self.engine().end_reason()))
-                    : std::string()) +
-               ">";
-      });
+           "Calls handler(text) for every CustomCommandAction of this type, with its text.");
+}
+
+}  // namespace
+
+void bind_simulation(py::module_& m) {
+  bind_entity_state(m);
+  SimulationClass c(m, "Simulation", "One run of one scenario (see docs/python.md).");
+  bind_run(c);
+  bind_reading(c);
+  bind_control(c);
+  c.def("__repr__", [](PySimulation& self) {
+    return "<corsa.Simulation " + self.setup().scenario.string() +
+           " t=" + std::to_string(self.engine().time()) + " s" +
+           (self.engine().ended()
+                ? ", ended by " + std::string(engine::to_string(self.engine().end_reason()))
+                : std::string()) +
+           ">";
+  });
 }
 
 }  // namespace corsa::python

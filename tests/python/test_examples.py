@@ -15,7 +15,7 @@ def test_the_closed_loop_example_drives_the_ego_and_reads_a_dataset_frame(tmp_pa
     assert child.returncode == 0, child.stderr
     run, arrays = child.stdout.splitlines()
     # The Python controller keeps 2 s behind the car that cuts in: no collision.
-    assert run.startswith("0 collisions in ")
+    assert run.startswith("0 collisions; Ego at ")
     assert "'front_rgb': ((180, 320, 3), '|u1')" in arrays
     assert "'front_depth': ((180, 320), '<f4')" in arrays
     assert (tmp_path / "out/py/frames.csv").exists()
