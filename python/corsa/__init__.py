@@ -14,6 +14,7 @@ numpy when an array is first made.
 from ._corsa import CorsaWarning, EntityState, InputError, __version__
 from ._simulation import Simulation
 from ._batch import sweep, test
+from ._trajectory import Trajectory, read_trajectory
 
 __all__ = [
     "Simulation",
@@ -24,6 +25,8 @@ __all__ = [
     "collect",
     "sweep",
     "test",
+    "read_trajectory",
+    "Trajectory",
     "InputError",
     "CorsaWarning",
     "__version__",

@@ -13,6 +13,8 @@ namespace corsa::python {
 
 /// corsa.Simulation and corsa.EntityState (simulation_bindings.cpp).
 void bind_simulation(pybind11::module_& module);
+/// corsa._read_trajectory, the work of corsa.read_trajectory (trajectory.cpp).
+void bind_trajectory(pybind11::module_& module);
 /// corsa._sweep and corsa._test, the work of corsa.sweep and corsa.test (batch.cpp).
 void bind_batch(pybind11::module_& module);
 

@@ -16,4 +16,5 @@ PYBIND11_MODULE(_corsa, module) {
   corsa::python::bind_errors(module);
   corsa::python::bind_simulation(module);
   corsa::python::bind_batch(module);
+  corsa::python::bind_trajectory(module);
 }
