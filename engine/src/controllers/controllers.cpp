@@ -9,9 +9,9 @@
 #include <thread>
 #include <vector>
 
+#include "controllers/external.h"
 #include "controllers/follow_view.h"
 #include "controllers/worker_pool.h"
-#include "controllers/external.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "state/sim_state.h"
