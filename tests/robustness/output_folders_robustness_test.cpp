@@ -252,10 +252,12 @@ TEST_CASE("SIGINT stops a sweep after the variants in progress, and --resume fin
 TEST_CASE("Temporaries a SIGKILLed run left are removed by the next run of the same output",
           "[robustness][output][interrupt]") {
   TempDir dir;
-  // cut_in without its stop conditions: runs until --duration, long enough to be killed.
+  // cut_in without its stop conditions: runs until --duration, long enough to be killed. The
+  // engine runs this scenario at over 20,000x real time, so the delay and the duration are far
+  // beyond any time it reaches before the kill (an hour of wall time or more).
   std::string scenario = cut_in_text();
   for (const auto& [from, to] :
-       {std::pair<std::string, std::string>{"delay=\"5\"", "delay=\"5000\""},
+       {std::pair<std::string, std::string>{"delay=\"5\"", "delay=\"500000000\""},
         std::pair<std::string, std::string>{"value=\"60\" rule", "value=\"1e6\" rule"}}) {
     const size_t at = scenario.find(from);
     REQUIRE(at != std::string::npos);
@@ -264,8 +266,8 @@ TEST_CASE("Temporaries a SIGKILLed run left are removed by the next run of the s
   std::ofstream(dir.path() / "endless.xosc") << scenario;
   const fs::path out = dir.path() / "out";
   const pid_t child =
-      spawn_corsa({"run", (dir.path() / "endless.xosc").string(), "--quiet", "--duration", "100000",
-                   "--record", (out / "trajectories.csv").string()},
+      spawn_corsa({"run", (dir.path() / "endless.xosc").string(), "--quiet", "--duration",
+                   "100000000", "--record", (out / "trajectories.csv").string()},
                   dir.path() / "stderr");
   const auto temporaries = [&] {
     size_t count = 0;
