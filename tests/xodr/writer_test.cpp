@@ -134,3 +134,86 @@ TEST_CASE("write_xodr writes the file atomically", "[xodr][writer]") {
   // Missing folders are created (AtomicFile); a path through a regular file cannot be written.
   CHECK_THROWS_AS(write_xodr(data, path / "deeper.xodr"), corsa::InputError);
 }
+
+TEST_CASE("user data, objects with outlines and markings, tunnels, bridges and controllers "
+          "survive writing and reading",
+          "[xodr][writer]") {
+  MapData data;
+  data.roads.push_back(test::make_road("1", LineGeometry{}, 100.0));
+  Road& road = data.roads[0];
+  road.user_data.push_back({"ngii:road", "A219BS010001"});
+  road.lane_sections[0].lanes.back().user_data = {{"ngii:link", "A"}, {"ngii:link", "B"}};
+  Object crosswalk;
+  crosswalk.id = "cw1";
+  crosswalk.type = "crosswalk";
+  crosswalk.s = 40.0;
+  Outline outline;
+  outline.id = 0;
+  outline.fill_type = "asphalt";
+  for (int i = 0; i < 4; ++i) {
+    outline.corners.push_back(
+        OutlineCorner{true, 38.0 + (i / 2) * 4.0, i % 3 == 0 ? -3.0 : 0.0, 0.0, 0.0, i});
+  }
+  crosswalk.outlines.push_back(outline);
+  crosswalk.markings.push_back(ObjectMarking{"white", 0.5, 0.005, 0.5, 0.5, {0, 1}});
+  crosswalk.user_data.push_back({"ngii:mark", "B3-1"});
+  road.objects.push_back(crosswalk);
+  road.tunnels.push_back(Tunnel{"t1", "tunnel", 10.0, 20.0, "underpass", 1.0, 0.0});
+  road.bridges.push_back(Bridge{"b1", "bridge", 50.0, 30.0, "steel"});
+  Signal signal;
+  signal.id = "s1";
+  signal.type = "1000001";
+  signal.orientation = "+";
+  signal.user_data.push_back({"ngii:type", "2"});
+  road.signals.push_back(signal);
+  data.controllers.push_back(Controller{"c1", "phase 1", 0u, {{"s1", "0"}}, {}, 0});
+  Junction junction;
+  junction.id = "9";
+  junction.controllers.push_back(JunctionController{"c1", "0", 0u});
+  data.junctions.push_back(junction);
+
+  const std::string text = write_xodr_text(data);
+  CHECK(text.find("unit=") == std::string::npos);  // no empty unit (the 1.7 XSD refuses it)
+  corsa::Diagnostics diagnostics;
+  const MapData back = parse_xodr_text(text, "back.xodr", diagnostics);
+  CHECK(diagnostics.size() == 0);
+  REQUIRE(back.roads.size() == 1);
+  const Road& r = back.roads[0];
+  CHECK(r.user_data.size() == 1);
+  CHECK(r.lane_sections[0].lanes.back().user_data.size() == 2);
+  CHECK(r.lane_sections[0].lanes.back().user_data[1].value == "B");
+  REQUIRE(r.objects.size() == 1);
+  REQUIRE(r.objects[0].outlines.size() == 1);
+  CHECK(r.objects[0].outlines[0].corners.size() == 4);
+  CHECK(r.objects[0].outlines[0].corners[2].u == 42.0);
+  CHECK(r.objects[0].outlines[0].fill_type == "asphalt");
+  REQUIRE(r.objects[0].markings.size() == 1);
+  CHECK(r.objects[0].markings[0].corner_references == std::vector<int>{0, 1});
+  REQUIRE(r.tunnels.size() == 1);
+  CHECK(r.tunnels[0].type == "underpass");
+  REQUIRE(r.bridges.size() == 1);
+  CHECK(r.bridges[0].length == 30.0);
+  REQUIRE(r.signals.size() == 1);
+  CHECK(r.signals[0].user_data.size() == 1);
+  REQUIRE(back.controllers.size() == 1);
+  CHECK(back.controllers[0].controls.size() == 1);
+  CHECK(back.controllers[0].sequence == 0u);
+  REQUIRE(back.junctions.size() == 1);
+  REQUIRE(back.junctions[0].controllers.size() == 1);
+  CHECK(back.junctions[0].controllers[0].id == "c1");
+  CHECK(write_xodr_text(back) == text);
+}
+
+TEST_CASE("the compat writer gives each lane one predecessor and one successor",
+          "[xodr][writer]") {
+  MapData data;
+  data.roads.push_back(test::make_road("1", LineGeometry{}, 100.0));
+  Lane& lane = data.roads[0].lane_sections[0].lanes.back();
+  lane.successors = {-1, -2};
+  WriteOptions options;
+  options.single_lane_links = true;
+  const std::string text = write_xodr_text(data, options);
+  CHECK(text.find("<successor id=\"-1\"/>") != std::string::npos);
+  CHECK(text.find("<successor id=\"-2\"/>") == std::string::npos);
+  CHECK(write_xodr_text(data).find("<successor id=\"-2\"/>") != std::string::npos);
+}

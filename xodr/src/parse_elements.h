@@ -29,6 +29,13 @@ Object parse_object(const XmlReader& reader, const XMLElement* e);
 void parse_signals(const XmlReader& reader, const XMLElement* e, Road& road);
 Signal parse_signal(const XmlReader& reader, const XMLElement* e);
 Junction parse_junction(const XmlReader& reader, const XMLElement* e);
+/// Top-level <controller> with its <control>s (§14.6).
+Controller parse_controller(const XmlReader& reader, const XMLElement* e);
+/// Appends <userData code value> to `out` (its free content is read past). Pre-1.5 files (CARLA's)
+/// carry userData without a code, holding only child elements: nothing to keep, skipped.
+void add_user_data(const XmlReader& reader, const XMLElement* e, std::vector<UserData>& out);
+/// `sequence` attributes: a non-negative integer, or nothing when absent.
+std::optional<uint32_t> parse_sequence(const XmlReader& reader, const XMLElement* e);
 Connection parse_connection(const XmlReader& reader, const XMLElement* e);
 
 /// A speed in m/s from a value and an OpenDRIVE unit ("m/s", "km/h", "mph"); unknown unit ->

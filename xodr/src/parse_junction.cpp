@@ -60,11 +60,44 @@ Junction parse_junction(const XmlReader& reader, const XMLElement* e) {
                     "junction)");
       }
       junction.connections.push_back(std::move(connection));
+    } else if (named(child, "controller")) {
+      junction.controllers.push_back(JunctionController{
+          reader.text(child, "id"), reader.text_or(child, "type", ""), parse_sequence(reader, child)});
     } else if (!is_ignored_element(child->name())) {
       reader.unknown_child(e, child);
     }
   }
   return junction;
+}
+
+std::optional<uint32_t> parse_sequence(const XmlReader& reader, const XMLElement* e) {
+  if (e->attribute("sequence") == nullptr) {
+    return std::nullopt;
+  }
+  const int sequence = reader.integer(e, "sequence");
+  if (sequence < 0) {
+    reader.fail(e, "sequence must not be negative");
+  }
+  return static_cast<uint32_t>(sequence);
+}
+
+Controller parse_controller(const XmlReader& reader, const XMLElement* e) {
+  Controller controller;
+  controller.line = e->line();
+  controller.id = reader.text(e, "id");
+  controller.name = reader.text_or(e, "name", "");
+  controller.sequence = parse_sequence(reader, e);
+  for (const XMLElement* child : children(e)) {
+    if (named(child, "control")) {
+      controller.controls.push_back(
+          Control{reader.text(child, "signalId"), reader.text_or(child, "type", "")});
+    } else if (named(child, "userData")) {
+      add_user_data(reader, child, controller.user_data);
+    } else if (!is_ignored_element(child->name())) {
+      reader.unknown_child(e, child);
+    }
+  }
+  return controller;
 }
 
 }  // namespace corsa::xodr::detail

@@ -90,6 +90,8 @@ Lane parse_lane(const XmlReader& reader, const XMLElement* e, bool center) {
       lane.heights.push_back(LaneHeight{reader.non_negative(child, "sOffset"),
                                         reader.number_or(child, "inner", 0.0),
                                         reader.number_or(child, "outer", 0.0)});
+    } else if (name == "userData") {
+      add_user_data(reader, child, lane.user_data);
     } else if (!is_ignored_element(name)) {
       reader.unknown_child(e, child);
     }

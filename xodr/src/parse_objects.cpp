@@ -1,10 +1,92 @@
-// <objects>/<object> and <signals>/<signal>: kept with their road positions (OpenDRIVE 1.8
-// §13, §14), objects with their outlines and repeats. Other sub-structure (validity,
-// materials, markings, ...) is read past.
+// <objects>/<object>, <tunnel>, <bridge> and <signals>/<signal>: kept with their road positions
+// (OpenDRIVE 1.8 §13, §14), objects with their outlines, repeats and markings. The rest of their
+// sub-structure (validity, materials, ...) is read past.
 
 #include "parse_elements.h"
 
 namespace corsa::xodr::detail {
+
+namespace {
+
+Outline parse_outline(const XmlReader& reader, const XMLElement* e) {
+  Outline outline;
+  outline.id = static_cast<int>(reader.number_or(e, "id", 0.0));
+  outline.closed = reader.text_or(e, "closed", "true") != "false";
+  outline.fill_type = reader.text_or(e, "fillType", "");
+  bool road = false;
+  bool local = false;
+  for (const XMLElement* child : children(e)) {
+    if (named(child, "cornerRoad")) {
+      road = true;
+      outline.corners.push_back(OutlineCorner{
+          true, reader.number(child, "s"), reader.number(child, "t"),
+          reader.number_or(child, "dz", 0.0), reader.number_or(child, "height", 0.0),
+          static_cast<int>(reader.number_or(child, "id", 0.0))});
+    } else if (named(child, "cornerLocal")) {
+      local = true;
+      outline.corners.push_back(OutlineCorner{
+          false, reader.number(child, "u"), reader.number(child, "v"),
+          reader.number_or(child, "z", 0.0),
+          reader.number_or(child, "height", 0.0),
+          static_cast<int>(reader.number_or(child, "id", 0.0))});
+    } else if (!is_ignored_element(child->name())) {
+      reader.unknown_child(e, child);
+    }
+  }
+  if (road && local) {
+    reader.fail(e, "an outline mixes cornerRoad and cornerLocal (§13.2: one kind per outline)");
+  }
+  return outline;
+}
+
+/// <repeat> (§13.4); the attributes left out take the object's own values.
+ObjectRepeat parse_repeat(const XmlReader& reader, const XMLElement* e, const Object& object) {
+  ObjectRepeat r;
+  r.s = reader.number(e, "s");
+  r.length = reader.number(e, "length");
+  r.distance = reader.number_or(e, "distance", 0.0);
+  r.t_start = reader.number_or(e, "tStart", object.t);
+  r.t_end = reader.number_or(e, "tEnd", r.t_start);
+  r.height_start = reader.number_or(e, "heightStart", object.height);
+  r.height_end = reader.number_or(e, "heightEnd", r.height_start);
+  r.z_offset_start = reader.number_or(e, "zOffsetStart", object.z_offset);
+  r.z_offset_end = reader.number_or(e, "zOffsetEnd", r.z_offset_start);
+  if (e->attribute("widthStart") != nullptr) {
+    r.width_start = reader.number(e, "widthStart");
+    r.width_end = reader.number_or(e, "widthEnd", *r.width_start);
+  }
+  if (e->attribute("lengthStart") != nullptr) {
+    r.length_start = reader.number(e, "lengthStart");
+    r.length_end = reader.number_or(e, "lengthEnd", *r.length_start);
+  }
+  return r;
+}
+
+ObjectMarking parse_marking(const XmlReader& reader, const XMLElement* e) {
+  ObjectMarking marking;
+  marking.color = reader.text_or(e, "color", "white");
+  marking.width = reader.non_negative_or(e, "width", marking.width);
+  marking.z_offset = reader.non_negative_or(e, "zOffset", 0.0);
+  marking.space_length = reader.non_negative_or(e, "spaceLength", 0.0);
+  marking.line_length = reader.non_negative_or(e, "lineLength", 0.0);
+  for (const XMLElement* child : children(e)) {
+    if (named(child, "cornerReference")) {
+      marking.corner_references.push_back(reader.integer(child, "id"));
+    } else if (!is_ignored_element(child->name())) {
+      reader.unknown_child(e, child);
+    }
+  }
+  return marking;
+}
+
+}  // namespace
+
+void add_user_data(const XmlReader& reader, const XMLElement* e, std::vector<UserData>& out) {
+  std::string code = reader.text_or(e, "code", "");
+  if (!code.empty()) {
+    out.push_back(UserData{std::move(code), reader.text_or(e, "value", "")});
+  }
+}
 
 Object parse_object(const XmlReader& reader, const XMLElement* e) {
   Object object;
@@ -23,58 +105,32 @@ Object parse_object(const XmlReader& reader, const XMLElement* e) {
   object.height = reader.number_or(e, "height", 0.0);
   object.radius = reader.number_or(e, "radius", 0.0);
   object.orientation = reader.text_or(e, "orientation", "none");
-  auto outline = [&](const XMLElement* o) {
-    Outline out;
-    const std::string closed = reader.text_or(o, "closed", "true");
-    out.closed = closed != "false";
-    for (const XMLElement* c : children(o)) {
-      OutlineCorner corner;
-      if (named(c, "cornerLocal")) {
-        corner.u = reader.number(c, "u");
-        corner.v = reader.number(c, "v");
-        corner.z = reader.number_or(c, "z", 0.0);
-      } else if (named(c, "cornerRoad")) {
-        corner.road = true;
-        corner.u = reader.number(c, "s");
-        corner.v = reader.number(c, "t");
-        corner.z = reader.number_or(c, "dz", 0.0);
-      } else {
-        continue;
-      }
-      corner.height = reader.number_or(c, "height", 0.0);
-      out.corners.push_back(corner);
-    }
-    object.outlines.push_back(std::move(out));
-  };
+  object.subtype = reader.text_or(e, "subtype", "");
   for (const XMLElement* child : children(e)) {
-    if (named(child, "outline")) {  // OpenDRIVE 1.4
-      outline(child);
+    if (named(child, "outline")) {
+      object.outlines.push_back(parse_outline(reader, child));
     } else if (named(child, "outlines")) {
-      for (const XMLElement* o : children(child)) {
-        if (named(o, "outline")) {
-          outline(o);
+      for (const XMLElement* outline : children(child)) {
+        if (named(outline, "outline")) {
+          object.outlines.push_back(parse_outline(reader, outline));
+        } else if (!is_ignored_element(outline->name())) {
+          reader.unknown_child(child, outline);
         }
       }
     } else if (named(child, "repeat")) {
-      ObjectRepeat r;
-      r.s = reader.number(child, "s");
-      r.length = reader.number(child, "length");
-      r.distance = reader.number_or(child, "distance", 0.0);
-      r.t_start = reader.number_or(child, "tStart", object.t);
-      r.t_end = reader.number_or(child, "tEnd", r.t_start);
-      r.height_start = reader.number_or(child, "heightStart", object.height);
-      r.height_end = reader.number_or(child, "heightEnd", r.height_start);
-      r.z_offset_start = reader.number_or(child, "zOffsetStart", object.z_offset);
-      r.z_offset_end = reader.number_or(child, "zOffsetEnd", r.z_offset_start);
-      if (child->attribute("widthStart") != nullptr) {
-        r.width_start = reader.number(child, "widthStart");
-        r.width_end = reader.number_or(child, "widthEnd", *r.width_start);
+      object.repeats.push_back(parse_repeat(reader, child, object));
+    } else if (named(child, "markings")) {
+      for (const XMLElement* marking : children(child)) {
+        if (named(marking, "marking")) {
+          object.markings.push_back(parse_marking(reader, marking));
+        } else if (!is_ignored_element(marking->name())) {
+          reader.unknown_child(child, marking);
+        }
       }
-      if (child->attribute("lengthStart") != nullptr) {
-        r.length_start = reader.number(child, "lengthStart");
-        r.length_end = reader.number_or(child, "lengthEnd", *r.length_start);
-      }
-      object.repeats.push_back(r);
+    } else if (named(child, "userData")) {
+      add_user_data(reader, child, object.user_data);
+    } else if (!is_ignored_element(child->name())) {
+      reader.unknown_child(e, child);
     }
   }
   return object;
@@ -84,6 +140,18 @@ void parse_objects(const XmlReader& reader, const XMLElement* e, Road& road) {
   for (const XMLElement* child : children(e)) {
     if (named(child, "object")) {
       road.objects.push_back(parse_object(reader, child));
+    } else if (named(child, "tunnel")) {
+      road.tunnels.push_back(Tunnel{reader.text(child, "id"), reader.text_or(child, "name", ""),
+                                    reader.non_negative(child, "s"),
+                                    reader.non_negative(child, "length"),
+                                    reader.text_or(child, "type", "standard"),
+                                    reader.number_or(child, "lighting", 0.0),
+                                    reader.number_or(child, "daylight", 0.0)});
+    } else if (named(child, "bridge")) {
+      road.bridges.push_back(Bridge{reader.text(child, "id"), reader.text_or(child, "name", ""),
+                                    reader.non_negative(child, "s"),
+                                    reader.non_negative(child, "length"),
+                                    reader.text_or(child, "type", "concrete")});
     } else if (!is_ignored_element(child->name())) {
       reader.unknown_child(e, child);
     }
@@ -113,6 +181,13 @@ Signal parse_signal(const XmlReader& reader, const XMLElement* e) {
   signal.height = reader.number_or(e, "height", 0.0);
   signal.width = reader.number_or(e, "width", 0.0);
   signal.text = reader.text_or(e, "text", "");
+  for (const XMLElement* child : children(e)) {
+    if (named(child, "userData")) {
+      add_user_data(reader, child, signal.user_data);
+    } else if (!is_ignored_element(child->name())) {
+      reader.unknown_child(e, child);
+    }
+  }
   return signal;
 }
 

@@ -213,6 +213,8 @@ Road parse_road(const XmlReader& reader, const XMLElement* e) {
       parse_objects(reader, child, road);
     } else if (name == "signals") {
       parse_signals(reader, child, road);
+    } else if (name == "userData") {
+      add_user_data(reader, child, road.user_data);
     } else if (!is_ignored_element(name)) {
       reader.unknown_child(e, child);
     }

@@ -109,6 +109,8 @@ MapData parse_document(const detail::XmlReader& reader, const detail::XmlElement
       map.roads.push_back(parse_road(reader, child));
     } else if (named(child, "junction")) {
       map.junctions.push_back(parse_junction(reader, child));
+    } else if (named(child, "controller")) {
+      map.controllers.push_back(parse_controller(reader, child));
     } else if (named(child, "header")) {
       if (have_header) {
         reader.fail(child, "a second <header>");

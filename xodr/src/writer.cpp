@@ -1,6 +1,8 @@
-// MapData -> OpenDRIVE 1.8 text, element order as in the 1.8 XSD (road: link, type, planView,
-// elevationProfile, lateralProfile, lanes, objects, signals; lane: link, width|border, roadMark,
-// speed, height).
+// MapData -> OpenDRIVE 1.8 text, element order as in the 1.7/1.8 XSD (document: header, road,
+// controller, junction; road: link, type, planView, elevationProfile, lateralProfile, lanes,
+// objects, signals, userData; lane: link, width|border, roadMark, speed, height, userData).
+// Optional attributes whose value the XSD forbids (roadMark height 0, an empty signal unit) are
+// left out, so the output validates against the ASAM 1.7 XSD.
 
 #include "corsa/xodr/writer.h"
 
@@ -20,6 +22,12 @@ const char* contact_name(ContactPoint c) { return c == ContactPoint::kEnd ? "end
 void write_poly(XmlWriter& w, const char* name, const char* s_name, const Poly3& p) {
   w.open(name).attr(s_name, p.s).attr("a", p.a).attr("b", p.b).attr("c", p.c).attr("d", p.d);
   w.end_empty();
+}
+
+void write_user_data(XmlWriter& w, const std::vector<UserData>& data) {
+  for (const UserData& d : data) {
+    w.open("userData").attr("code", d.code).attr("value", d.value).end_empty();
+  }
 }
 
 void write_header(XmlWriter& w, const Header& h, const WriteOptions& options) {
@@ -84,17 +92,19 @@ void write_geometry(XmlWriter& w, const Geometry& g) {
   w.close();
 }
 
-void write_lane(XmlWriter& w, const Lane& lane) {
+void write_lane(XmlWriter& w, const Lane& lane, const WriteOptions& options) {
   w.open("lane").attr("id", lane.id);
   w.attr("type", lane.type_name.empty() ? std::string(lane_type_name(lane.type)) : lane.type_name);
   w.attr("level", lane.level ? "true" : "false").children();
+  // Pre-1.7 readers (compat) know one predecessor and one successor per lane (1.4 §3.5.2).
+  const size_t most = options.single_lane_links ? 1 : SIZE_MAX;
   if (!lane.predecessors.empty() || !lane.successors.empty()) {
     w.open("link").children();
-    for (const int id : lane.predecessors) {
-      w.open("predecessor").attr("id", id).end_empty();
+    for (size_t i = 0; i < lane.predecessors.size() && i < most; ++i) {
+      w.open("predecessor").attr("id", lane.predecessors[i]).end_empty();
     }
-    for (const int id : lane.successors) {
-      w.open("successor").attr("id", id).end_empty();
+    for (size_t i = 0; i < lane.successors.size() && i < most; ++i) {
+      w.open("successor").attr("id", lane.successors[i]).end_empty();
     }
     w.close();
   }
@@ -107,7 +117,10 @@ void write_lane(XmlWriter& w, const Lane& lane) {
   for (const RoadMark& m : lane.road_marks) {
     w.open("roadMark").attr("sOffset", m.s_offset).attr("type", m.type).attr("weight", m.weight);
     w.attr("color", m.color).attr("laneChange", m.lane_change).attr("width", m.width);
-    w.attr("height", m.height).end_empty();
+    if (m.height > 0.0) {
+      w.attr("height", m.height);
+    }
+    w.end_empty();
   }
   for (const LaneSpeed& speed : lane.speeds) {
     w.open("speed").attr("sOffset", speed.s_offset).attr("max", speed.max_speed);
@@ -117,10 +130,11 @@ void write_lane(XmlWriter& w, const Lane& lane) {
     w.open("height").attr("sOffset", height.s_offset).attr("inner", height.inner);
     w.attr("outer", height.outer).end_empty();
   }
+  write_user_data(w, lane.user_data);
   w.close();
 }
 
-void write_lane_section(XmlWriter& w, const LaneSection& section) {
+void write_lane_section(XmlWriter& w, const LaneSection& section, const WriteOptions& options) {
   w.open("laneSection").attr("s", section.s);
   if (section.single_side) {
     w.attr("singleSide", "true");
@@ -141,7 +155,7 @@ void write_lane_section(XmlWriter& w, const LaneSection& section) {
     w.open(groups[group]).children();
     for (const Lane& lane : section.lanes) {  // already left to right, ids descending
       if (in_group(lane)) {
-        write_lane(w, lane);
+        write_lane(w, lane, options);
       }
     }
     w.close();
@@ -149,15 +163,108 @@ void write_lane_section(XmlWriter& w, const LaneSection& section) {
   w.close();
 }
 
+void write_outline(XmlWriter& w, const Outline& outline) {
+  w.open("outline").attr("id", outline.id);
+  if (!outline.fill_type.empty()) {
+    w.attr("fillType", outline.fill_type);
+  }
+  w.attr("closed", outline.closed ? "true" : "false").children();
+  for (const OutlineCorner& c : outline.corners) {
+    if (c.road) {
+      w.open("cornerRoad").attr("s", c.u).attr("t", c.v).attr("dz", c.z);
+    } else {
+      w.open("cornerLocal").attr("u", c.u).attr("v", c.v).attr("z", c.z);
+    }
+    w.attr("height", c.height).attr("id", c.id).end_empty();
+  }
+  w.close();
+}
+
+/// <repeat> (§13.4; every attribute the 1.7 XSD requires, the optional sizes when given).
+void write_repeat(XmlWriter& w, const ObjectRepeat& r) {
+  w.open("repeat").attr("s", r.s).attr("length", r.length).attr("distance", r.distance);
+  w.attr("tStart", r.t_start).attr("tEnd", r.t_end);
+  w.attr("heightStart", r.height_start).attr("heightEnd", r.height_end);
+  w.attr("zOffsetStart", r.z_offset_start).attr("zOffsetEnd", r.z_offset_end);
+  if (r.width_start) {
+    w.attr("widthStart", *r.width_start).attr("widthEnd", r.width_end.value_or(*r.width_start));
+  }
+  if (r.length_start) {
+    w.attr("lengthStart", *r.length_start)
+        .attr("lengthEnd", r.length_end.value_or(*r.length_start));
+  }
+  w.end_empty();
+}
+
+void write_object(XmlWriter& w, const Object& o) {
+  w.open("object").attr("id", o.id).attr("name", o.name).attr("type", o.type);
+  if (!o.subtype.empty()) {
+    w.attr("subtype", o.subtype);
+  }
+  w.attr("s", o.s).attr("t", o.t).attr("zOffset", o.z_offset).attr("hdg", o.hdg);
+  w.attr("pitch", o.pitch).attr("roll", o.roll);
+  // Either a box or a cylinder (§13.2: radius excludes length and width); 0 sizes are left out.
+  if (o.radius > 0.0) {
+    w.attr("radius", o.radius);
+  } else {
+    if (o.length > 0.0) w.attr("length", o.length);
+    if (o.width > 0.0) w.attr("width", o.width);
+  }
+  if (o.height > 0.0) {
+    w.attr("height", o.height);
+  }
+  w.attr("orientation", o.orientation);
+  if (o.repeats.empty() && o.outlines.empty() && o.markings.empty() && o.user_data.empty()) {
+    w.end_empty();
+    return;
+  }
+  w.children();
+  for (const ObjectRepeat& r : o.repeats) {
+    write_repeat(w, r);
+  }
+  if (!o.outlines.empty()) {
+    w.open("outlines").children();
+    for (const Outline& outline : o.outlines) {
+      write_outline(w, outline);
+    }
+    w.close();
+  }
+  if (!o.markings.empty()) {
+    w.open("markings").children();
+    for (const ObjectMarking& m : o.markings) {
+      w.open("marking").attr("color", m.color).attr("width", m.width).attr("zOffset", m.z_offset);
+      w.attr("spaceLength", m.space_length).attr("lineLength", m.line_length);
+      w.attr("startOffset", 0.0).attr("stopOffset", 0.0);
+      if (m.corner_references.empty()) {
+        w.end_empty();
+        continue;
+      }
+      w.children();
+      for (const int id : m.corner_references) {
+        w.open("cornerReference").attr("id", id).end_empty();
+      }
+      w.close();
+    }
+    w.close();
+  }
+  write_user_data(w, o.user_data);
+  w.close();
+}
+
 void write_objects_and_signals(XmlWriter& w, const Road& road) {
-  if (!road.objects.empty()) {
+  if (!road.objects.empty() || !road.tunnels.empty() || !road.bridges.empty()) {
     w.open("objects").children();
     for (const Object& o : road.objects) {
-      w.open("object").attr("id", o.id).attr("name", o.name).attr("type", o.type);
-      w.attr("s", o.s).attr("t", o.t).attr("zOffset", o.z_offset).attr("hdg", o.hdg);
-      w.attr("pitch", o.pitch).attr("roll", o.roll).attr("length", o.length);
-      w.attr("width", o.width).attr("height", o.height).attr("radius", o.radius);
-      w.attr("orientation", o.orientation).end_empty();
+      write_object(w, o);
+    }
+    for (const Tunnel& t : road.tunnels) {
+      w.open("tunnel").attr("id", t.id).attr("name", t.name).attr("s", t.s);
+      w.attr("length", t.length).attr("type", t.type).attr("lighting", t.lighting);
+      w.attr("daylight", t.daylight).end_empty();
+    }
+    for (const Bridge& b : road.bridges) {
+      w.open("bridge").attr("id", b.id).attr("name", b.name).attr("s", b.s);
+      w.attr("length", b.length).attr("type", b.type).end_empty();
     }
     w.close();
   }
@@ -171,14 +278,23 @@ void write_objects_and_signals(XmlWriter& w, const Road& road) {
       if (g.value) {
         w.attr("value", *g.value);
       }
-      w.attr("unit", g.unit).attr("height", g.height).attr("width", g.width);
-      w.attr("text", g.text).end_empty();
+      if (!g.unit.empty()) {
+        w.attr("unit", g.unit);
+      }
+      w.attr("height", g.height).attr("width", g.width).attr("text", g.text);
+      if (g.user_data.empty()) {
+        w.end_empty();
+        continue;
+      }
+      w.children();
+      write_user_data(w, g.user_data);
+      w.close();
     }
     w.close();
   }
 }
 
-void write_road(XmlWriter& w, const Road& road) {
+void write_road(XmlWriter& w, const Road& road, const WriteOptions& options) {
   w.open("road").attr("name", road.name).attr("length", road.length).attr("id", road.id);
   w.attr("junction", road.junction.empty() ? std::string("-1") : road.junction);
   w.attr("rule", road.rule == TrafficRule::kLeftHand ? "LHT" : "RHT").children();
@@ -230,10 +346,28 @@ void write_road(XmlWriter& w, const Road& road) {
     write_poly(w, "laneOffset", "s", p);
   }
   for (const LaneSection& section : road.lane_sections) {
-    write_lane_section(w, section);
+    write_lane_section(w, section, options);
   }
   w.close();
   write_objects_and_signals(w, road);
+  write_user_data(w, road.user_data);
+  w.close();
+}
+
+void write_controller(XmlWriter& w, const Controller& controller) {
+  w.open("controller").attr("id", controller.id).attr("name", controller.name);
+  if (controller.sequence) {
+    w.attr("sequence", static_cast<int>(*controller.sequence));
+  }
+  w.children();
+  for (const Control& control : controller.controls) {
+    w.open("control").attr("signalId", control.signal_id);
+    if (!control.type.empty()) {
+      w.attr("type", control.type);
+    }
+    w.end_empty();
+  }
+  write_user_data(w, controller.user_data);
   w.close();
 }
 
@@ -262,6 +396,16 @@ void write_junction(XmlWriter& w, const Junction& junction) {
     }
     w.close();
   }
+  for (const JunctionController& controller : junction.controllers) {
+    w.open("controller").attr("id", controller.id);
+    if (!controller.type.empty()) {
+      w.attr("type", controller.type);
+    }
+    if (controller.sequence) {
+      w.attr("sequence", static_cast<int>(*controller.sequence));
+    }
+    w.end_empty();
+  }
   w.close();
 }
 
@@ -272,7 +416,10 @@ std::string write_xodr_text(const MapData& map, const WriteOptions& options) {
   w.open("OpenDRIVE").children();
   write_header(w, map.header, options);
   for (const Road& road : map.roads) {
-    write_road(w, road);
+    write_road(w, road, options);
+  }
+  for (const Controller& controller : map.controllers) {
+    write_controller(w, controller);
   }
   for (const Junction& junction : map.junctions) {
     write_junction(w, junction);

@@ -16,6 +16,13 @@
 
 namespace corsa::xodr {
 
+/// <userData code value>: ancillary data an application attaches to an element (OpenDRIVE 1.7
+/// §2.9 / 1.8 §5.5.4), e.g. the source record an element was converted from. Kept in order.
+struct UserData {
+  std::string code;
+  std::string value;
+};
+
 /// Cubic a + b ds + c ds^2 + d ds^3 starting at `s` (ds = s_query - s). `s` is absolute road s for
 /// elevation/superelevation/laneOffset, and sOffset from the lane section start for widths/borders.
 struct Poly3 {
@@ -124,7 +131,7 @@ struct RoadMark {
   std::string color = "standard";
   std::string lane_change = "both";
   double width = 0.12;  ///< m
-  double height = 0.0;  ///< m
+  double height = 0.0;  ///< m; 0 (flat paint) is not written: the XSD wants height > 0
 };
 
 /// <height> record (OpenDRIVE 1.6 §9.5.7 lane height): the lane surface raised by `inner` at
@@ -153,6 +160,7 @@ struct Lane {
   std::vector<RoadMark> road_marks;
   std::vector<LaneSpeed> speeds;
   std::vector<LaneHeight> heights;  ///< lane height records in s order; empty: level with the road
+  std::vector<UserData> user_data;
   int line = 0;
 };
 
@@ -199,27 +207,32 @@ struct Signal {
   std::string type;
   std::string subtype;
   std::optional<double> value;
-  std::string unit;
+  std::string unit;  ///< e_unit (km/h, m, ...); empty: none (only meaningful with a value)
   double height = 0.0;
   double width = 0.0;
   std::string text;
+  std::vector<UserData> user_data;
   int line = 0;
 };
 
-/// A corner of an object outline (OpenDRIVE 1.8 §13.3): in the object's local u/v frame
-/// (cornerLocal) or in road coordinates (cornerRoad); z relative to the object / road, and the
-/// height of the object at the corner.
+/// A corner of an object outline (OpenDRIVE 1.8 §13.2): cornerRoad (u = s, v = t, z = dz, road
+/// coordinates) or cornerLocal (u, v, z in the object's local frame), metres; one kind per
+/// outline.
 struct OutlineCorner {
-  bool road = false;  ///< cornerRoad (s, t) instead of cornerLocal (u, v)
-  double u = 0.0;     ///< u, or road s
-  double v = 0.0;     ///< v, or road t
-  double z = 0.0;     ///< z (local) or dz (road)
-  double height = 0.0;
+  bool road = false;    ///< cornerRoad (s, t) instead of cornerLocal (u, v)
+  double u = 0.0;       ///< u, or road s
+  double v = 0.0;       ///< v, or road t
+  double z = 0.0;       ///< z (local) or dz (road)
+  double height = 0.0;  ///< m above the corner
+  int id = 0;           ///< unique within the outline (for marking cornerReferences)
 };
 
+/// <outline>: a polygon (closed) or polyline outlining an object.
 struct Outline {
-  std::vector<OutlineCorner> corners;
+  int id = 0;
   bool closed = true;
+  std::string fill_type;  ///< e_outlineFillType (asphalt, grass, paint, ...) or empty
+  std::vector<OutlineCorner> corners;
 };
 
 /// <repeat> (§13.4): the object repeated (distance > 0) or stretched (distance 0) along s.
@@ -231,6 +244,35 @@ struct ObjectRepeat {
   double height_start = 0.0, height_end = 0.0;
   double z_offset_start = 0.0, z_offset_end = 0.0;
   std::optional<double> width_start, width_end, length_start, length_end;
+};
+
+/// <marking> of an object (§13.10): paint along the outline edges between the referenced
+/// corners (crosswalk stripes, stop lines), dashed by line/space lengths (m).
+struct ObjectMarking {
+  std::string color = "white";
+  double width = 0.15;  ///< m
+  double z_offset = 0.005;
+  double space_length = 0.0;
+  double line_length = 0.0;
+  std::vector<int> corner_references;  ///< outline corner ids, in order
+};
+
+/// <tunnel> or <bridge> record (§13.13, §13.14): from road s over `length` metres.
+struct Tunnel {
+  std::string id;
+  std::string name;
+  double s = 0.0;
+  double length = 0.0;
+  std::string type = "standard";  ///< standard or underpass
+  double lighting = 0.0;          ///< 0..1
+  double daylight = 0.0;          ///< 0..1
+};
+struct Bridge {
+  std::string id;
+  std::string name;
+  double s = 0.0;
+  double length = 0.0;
+  std::string type = "concrete";  ///< concrete, steel, brick, wood
 };
 
 struct Object {
@@ -248,8 +290,11 @@ struct Object {
   double height = 0.0;
   double radius = 0.0;
   std::string orientation = "none";
+  std::string subtype;
   std::vector<Outline> outlines;
   std::vector<ObjectRepeat> repeats;
+  std::vector<ObjectMarking> markings;
+  std::vector<UserData> user_data;
   int line = 0;
 };
 
@@ -270,6 +315,9 @@ struct Road {
   std::vector<LaneSection> lane_sections;
   std::vector<Signal> signals;
   std::vector<Object> objects;
+  std::vector<Tunnel> tunnels;
+  std::vector<Bridge> bridges;
+  std::vector<UserData> user_data;
   int line = 0;
 
   bool in_junction() const { return junction != "-1" && !junction.empty(); }
@@ -294,11 +342,38 @@ struct Connection {
   int line = 0;
 };
 
+/// A junction's <controller> reference: which signal controller runs in it, and in which order
+/// (`sequence`) the junction's controllers take their turn (§10.6 / §14.6).
+struct JunctionController {
+  std::string id;
+  std::string type;
+  std::optional<uint32_t> sequence;
+};
+
 struct Junction {
   std::string id;
   std::string name;
   JunctionType type = JunctionType::kDefault;
   std::vector<Connection> connections;
+  std::vector<JunctionController> controllers;
+  int line = 0;
+};
+
+// --- signal controllers (§14.6) -------------------------------------------------------------
+
+/// <control>: one signal a controller switches.
+struct Control {
+  std::string signal_id;
+  std::string type;
+};
+
+/// <controller>: signals that always show the same state (one phase group of an intersection).
+struct Controller {
+  std::string id;
+  std::string name;
+  std::optional<uint32_t> sequence;
+  std::vector<Control> controls;
+  std::vector<UserData> user_data;
   int line = 0;
 };
 
@@ -321,6 +396,7 @@ struct Header {
 struct MapData {
   Header header;
   std::vector<Road> roads;
+  std::vector<Controller> controllers;
   std::vector<Junction> junctions;
   std::string source_file;  ///< file it was read from, for messages; empty when built in memory
 };

@@ -14,6 +14,9 @@ namespace corsa::xodr {
 struct WriteOptions {
   /// <header revMinor>: the writer emits 1.8 structure; older minors only change the number.
   int rev_minor = 8;
+  /// At most one <predecessor> and one <successor> per lane link (what readers of OpenDRIVE
+  /// 1.4 follow); the others are left out.
+  bool single_lane_links = false;
 };
 
 /// The whole document as text.
