@@ -84,7 +84,7 @@ class Assembler {
       const std::string id = road.id;
       road = std::move(built.road);
       road.id = id;
-      road.name = network_.source(plan.lanes[0].links.front()).id;
+      road.name = unique_name(plan);
       road.junction = plan.junction >= 0 ? junction_id_[static_cast<size_t>(plan.junction)] : "-1";
       ConversionSummary& sum = out_.summary;
       sum.lanes += plan.lanes.size();
@@ -95,6 +95,11 @@ class Assembler {
       sum.max_reference_error = std::max(sum.max_reference_error, built.reference_error);
       sum.connecting_roads += plan.junction >= 0;
       for (size_t k = 0; k < built.spans.size(); ++k) {
+        // Provenance: the A2 links along the lane, in order (what --placements lists too).
+        auto& user_data = road.lane_sections.front().lanes[k + 1].user_data;
+        for (const BuiltRoad::Span& span : built.spans[k]) {
+          user_data.push_back(xodr::UserData{"ngii:link", network_.source(span.link).id});
+        }
         for (const BuiltRoad::Span& span : built.spans[k]) {
           out_.placements.push_back(LinkPlacement{network_.source(span.link).id, id,
                                                   lane_id(static_cast<int>(k)), span.s_start,
@@ -106,6 +111,18 @@ class Assembler {
       }
     }
     out_.summary.roads = out_.roads.size();
+  }
+
+  /// The leftmost lane's first A2 link, and its last when it has several ("first..last"); a
+  /// name taken already gets " #2", " #3", ... (connecting roads sharing their first link).
+  std::string unique_name(const RoadPlan& plan) {
+    const PlanLane& lane = plan.lanes[0];
+    std::string name = network_.source(lane.links.front()).id;
+    if (lane.links.size() > 1) {
+      name += ".." + network_.source(lane.links.back()).id;
+    }
+    const int seen = ++names_[name];
+    return seen == 1 ? name : name + " #" + std::to_string(seen);
   }
 
   /// Roads whose lanes continue from (`before`) or into this road's lanes.
@@ -324,6 +341,7 @@ class Assembler {
   int next_id_ = 1;
   std::vector<std::set<int>> successors_;
   std::vector<std::set<int>> predecessors_;
+  std::map<std::string, int> names_;  ///< road names given so far, with their use count
   UnionFind direct_slots_;  ///< road ends (2 r + at_end) joined at shared nodes
 };
 

@@ -1,0 +1,407 @@
+#include "ngii_measure.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+
+namespace corsa::test {
+namespace {
+
+using xodr::LaneRef;
+using xodr::Map;
+
+struct P3 {
+  double x = 0.0, y = 0.0, z = 0.0;
+};
+
+/// Nearest point of a polyline to (x, y): distance, interpolated z, arc length, signed lateral
+/// offset (+ left of the polyline's direction) and whether the foot is inside (not an end
+/// reached from beyond it).
+struct Foot {
+  double distance = 1e300;
+  double z = 0.0;
+  double lateral = 0.0;
+  bool inside = false;
+};
+
+Foot foot_on(const std::vector<P3>& line, double x, double y) {
+  Foot best;
+  for (size_t i = 0; i + 1 < line.size(); ++i) {
+    const double dx = line[i + 1].x - line[i].x, dy = line[i + 1].y - line[i].y;
+    const double len2 = dx * dx + dy * dy;
+    if (len2 <= 0.0) {
+      continue;
+    }
+    const double f = ((x - line[i].x) * dx + (y - line[i].y) * dy) / len2;
+    const double c = std::clamp(f, 0.0, 1.0);
+    const double px = line[i].x + c * dx, py = line[i].y + c * dy;
+    const double d = std::hypot(x - px, y - py);
+    if (d < best.distance) {
+      best.distance = d;
+      best.z = line[i].z + c * (line[i + 1].z - line[i].z);
+      best.lateral = (dx * (y - line[i].y) - dy * (x - line[i].x)) / std::sqrt(len2);
+      best.inside = !((i == 0 && f < 0.0) || (i + 2 == line.size() && f > 1.0));
+    }
+  }
+  return best;
+}
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty()) {
+    return 0.0;
+  }
+  std::sort(values.begin(), values.end());
+  const size_t k = std::min(values.size() - 1, static_cast<size_t>(std::ceil(p * values.size())) - 1);
+  return values[k];
+}
+
+double length_of(const std::vector<ngii::Point3>& points) {
+  double total = 0.0;
+  for (size_t i = 1; i < points.size(); ++i) {
+    total += std::hypot(points[i].x - points[i - 1].x, points[i].y - points[i - 1].y);
+  }
+  return total;
+}
+
+class Measurer {
+ public:
+  Measurer(const ngii::Layers& layers, const Map& map) : layers_(layers), map_(map) {
+    ox_ = map.data().header.offset_x;
+    oy_ = map.data().header.offset_y;
+    for (const auto& link : layers.links) {
+      links_[link.id] = &link;
+    }
+    for (const auto& mark : layers.marks) {
+      if (!mark.right_link.empty()) left_marks_[mark.right_link].push_back(local(mark.points));
+      if (!mark.left_link.empty()) right_marks_[mark.left_link].push_back(local(mark.points));
+    }
+    const auto& roads = map.data().roads;
+    for (uint32_t r = 0; r < roads.size(); ++r) {
+      for (uint32_t k = 0; k < roads[r].lane_sections.size(); ++k) {
+        for (const auto& lane : roads[r].lane_sections[k].lanes) {
+          if (lane.id == 0) {
+            continue;
+          }
+          std::vector<std::string> ids;
+          for (const auto& d : lane.user_data) {
+            if (d.code == "ngii:link") {
+              ids.push_back(d.value);
+            }
+          }
+          if (ids.empty()) {
+            ++figures_.lanes_without_provenance;
+            continue;
+          }
+          const LaneRef ref{r, k, lane.id};
+          lanes_.push_back({ref, ids});
+          for (const auto& id : ids) {
+            lanes_of_[id].push_back(lanes_.size() - 1);
+          }
+        }
+      }
+    }
+  }
+
+  NgiiFigures run() {
+    link_ends();
+    lane_joins();
+    vertical();
+    widths();
+    side_by_side();
+    return figures_;
+  }
+
+ private:
+  struct LaneInfo {
+    LaneRef ref;
+    std::vector<std::string> links;
+  };
+
+  std::vector<P3> local(const std::vector<ngii::Point3>& points) const {
+    std::vector<P3> out;
+    out.reserve(points.size());
+    for (const auto& p : points) {
+      out.push_back({p.x - ox_, p.y - oy_, p.z});
+    }
+    return out;
+  }
+
+  /// Centre of a lane at road s, in its own section (s may be the section end).
+  P3 centre(const LaneRef& ref, double s) const {
+    const auto span = map_.lane_span_in_section(ref.road, ref.section, s, ref.lane);
+    const auto pose = map_.world_pose(ref.road, s, span ? span->t_center() : 0.0);
+    return {pose.x, pose.y, pose.z};
+  }
+
+  double section_start(const LaneRef& ref) const {
+    return map_.road(ref.road).lane_sections[ref.section].s;
+  }
+  double section_end(const LaneRef& ref) const { return map_.section_end(ref.road, ref.section); }
+
+  std::vector<P3> centre_line(const LaneRef& ref, double step) const {
+    const double s0 = section_start(ref), s1 = section_end(ref);
+    const int n = std::max(1, static_cast<int>(std::ceil((s1 - s0) / step)));
+    std::vector<P3> out;
+    for (int i = 0; i <= n; ++i) {
+      out.push_back(centre(ref, s0 + (s1 - s0) * i / n));
+    }
+    return out;
+  }
+
+  static void add_gap(GapFigures& g, double d, const std::string& what) {
+    ++g.count;
+    g.over += d > 0.2;
+    if (d > g.max) {
+      g.max = d;
+      g.worst = what;
+    }
+  }
+
+  void link_ends() {
+    for (const auto& link : layers_.links) {
+      if (length_of(link.points) < 0.1) {
+        continue;
+      }
+      const auto found = lanes_of_.find(link.id);
+      if (found == lanes_of_.end()) {
+        ++figures_.links_without_lane;
+        continue;
+      }
+      const auto first = local({link.points.front()})[0];
+      const auto last = local({link.points.back()})[0];
+      double start_gap = 1e300, end_gap = 1e300;
+      for (const size_t i : found->second) {
+        const LaneInfo& lane = lanes_[i];
+        if (lane.links.front() == link.id) {
+          const P3 p = centre(lane.ref, section_start(lane.ref));
+          start_gap = std::min(start_gap, std::hypot(p.x - first.x, p.y - first.y));
+        }
+        if (lane.links.back() == link.id) {
+          const P3 p = centre(lane.ref, section_end(lane.ref));
+          end_gap = std::min(end_gap, std::hypot(p.x - last.x, p.y - last.y));
+        }
+      }
+      // A link continued in the next lane section of the same lane is measured where it starts
+      // and ends, which is always a lane's first / last link somewhere.
+      if (start_gap < 1e300) add_gap(figures_.link_ends, start_gap, link.id + " start");
+      if (end_gap < 1e300) add_gap(figures_.link_ends, end_gap, link.id + " end");
+    }
+  }
+
+  void lane_joins() {
+    const auto& graph = map_.lane_graph();
+    for (xodr::LaneNode node = 0; node < graph.size(); ++node) {
+      const auto& info = graph.info(node);
+      const P3 a = centre(info.lane, info.s_end);
+      for (const auto& end : graph.successors(node)) {
+        const auto& next = graph.info(end.node);
+        const P3 b = centre(next.lane, end.at_start ? next.s_start : next.s_end);
+        const auto& road = map_.road(info.lane.road);
+        add_gap(figures_.lane_joins, std::hypot(a.x - b.x, a.y - b.y),
+                "road " + road.id + " lane " + std::to_string(info.lane.lane) + " -> road " +
+                    map_.road(next.lane.road).id);
+      }
+    }
+  }
+
+  void vertical() {
+    for (const LaneInfo& lane : lanes_) {
+      const std::vector<P3> line = centre_line(lane.ref, 0.5);
+      std::vector<double> errors;
+      for (const auto& id : lane.links) {
+        const auto it = links_.find(id);
+        if (it == links_.end()) {
+          continue;
+        }
+        for (const P3& v : local(it->second->points)) {
+          const Foot f = foot_on(line, v.x, v.y);
+          if (f.inside && f.distance < 1.0) {
+            errors.push_back(std::abs(f.z - v.z));
+          }
+        }
+      }
+      if (errors.empty()) {
+        continue;
+      }
+      ++figures_.lanes_measured;
+      const double p95 = percentile(errors, 0.95);
+      figures_.vertical_max = std::max(figures_.vertical_max, *std::max_element(errors.begin(), errors.end()));
+      figures_.lanes_over_5cm += p95 > 0.05;
+      if (p95 > figures_.vertical_p95_max) {
+        figures_.vertical_p95_max = p95;
+        figures_.vertical_worst = lane.links.front();
+      }
+    }
+  }
+
+  /// Nearest marks on either side of the lane centre point c (heading h): lateral offsets of
+  /// the marks' feet (inside the mark, within 6 m) seen along the lane; 1e300 when none.
+  static std::pair<double, double> mark_sides(const std::vector<std::vector<P3>>& marks,
+                                              const P3& c, double h) {
+    double left = 1e300, right = 1e300;
+    for (const auto& mark : marks) {
+      const Foot f = foot_on(mark, c.x, c.y);
+      if (!f.inside || f.distance > 6.0) {
+        continue;
+      }
+      // Which side of the lane the mark lies on (marks may be digitised either way): a step
+      // to the left brings it nearer when it is on the left.
+      const double nx = -std::sin(h), ny = std::cos(h);
+      const Foot probe = foot_on(mark, c.x + 0.01 * nx, c.y + 0.01 * ny);
+      const bool on_left = probe.distance < f.distance;
+      (on_left ? left : right) = std::min(on_left ? left : right, f.distance);
+    }
+    return {left, right};
+  }
+
+  void widths() {
+    std::vector<double> all, single;
+    for (const LaneInfo& lane : lanes_) {
+      std::vector<std::vector<P3>> marks;
+      for (const auto& id : lane.links) {
+        for (const auto* table : {&left_marks_, &right_marks_}) {
+          if (const auto it = table->find(id); it != table->end()) {
+            marks.insert(marks.end(), it->second.begin(), it->second.end());
+          }
+        }
+      }
+      if (marks.size() < 2) {
+        continue;
+      }
+      std::vector<xodr::LaneSpan> spans;
+      const double s0 = section_start(lane.ref), s1 = section_end(lane.ref);
+      map_.lane_spans_in_section(lane.ref.road, lane.ref.section, s0, spans);
+      const bool one_lane = spans.size() == 1;
+      for (double s = s0 + 0.5; s < s1 - 0.5; s += 1.0) {
+        const auto span =
+            map_.lane_span_in_section(lane.ref.road, lane.ref.section, s, lane.ref.lane);
+        if (!span) {
+          continue;
+        }
+        const P3 c = centre(lane.ref, s);
+        const P3 ahead = centre(lane.ref, std::min(s1, s + 0.25));
+        const double h = std::atan2(ahead.y - c.y, ahead.x - c.x);
+        const auto [dl, dr] = mark_sides(marks, c, h);
+        if (dl > 10.0 || dr > 10.0) {
+          continue;
+        }
+        const double error = std::abs(span->width() - (dl + dr));
+        all.push_back(error);
+        if (one_lane) {
+          single.push_back(error);
+        }
+      }
+    }
+    figures_.width_samples = all.size();
+    figures_.width_p95 = percentile(all, 0.95);
+    figures_.width_p95_single = percentile(single, 0.95);
+  }
+
+  /// Fraction of `a` (sampled every metre) that has `b` beside it on the given side, 1.5-7 m.
+  double beside_fraction(const std::vector<P3>& a, const std::vector<P3>& b, bool b_right) const {
+    double total = 0.0, beside = 0.0;
+    for (size_t i = 0; i + 1 < a.size(); ++i) {
+      const double len = std::hypot(a[i + 1].x - a[i].x, a[i + 1].y - a[i].y);
+      const int n = std::max(1, static_cast<int>(len));
+      for (int k = 0; k < n; ++k) {
+        const double f = (k + 0.5) / n;
+        const double x = a[i].x + f * (a[i + 1].x - a[i].x);
+        const double y = a[i].y + f * (a[i + 1].y - a[i].y);
+        const Foot foot = foot_on(b, x, y);
+        // b's lateral offset seen from b: a lies left of b when b is on a's right.
+        const double lateral = b_right ? foot.lateral : -foot.lateral;
+        total += len / n;
+        if (foot.inside && lateral > 1.5 && lateral < 7.0) {
+          beside += len / n;
+        }
+      }
+    }
+    return total > 0.0 ? beside / total : 0.0;
+  }
+
+  void side_by_side() {
+    std::set<std::pair<std::string, std::string>> pairs;  // (left, right)
+    for (const auto& link : layers_.links) {
+      if (link.link_type == "1") {
+        continue;
+      }
+      if (const auto it = links_.find(link.right_id); it != links_.end() && it->second->link_type != "1") {
+        pairs.insert({link.id, link.right_id});
+      }
+      if (const auto it = links_.find(link.left_id); it != links_.end() && it->second->link_type != "1") {
+        pairs.insert({link.left_id, link.id});
+      }
+    }
+    for (const auto& [left, right] : pairs) {
+      const auto a = local(links_.at(left)->points);
+      const auto b = local(links_.at(right)->points);
+      if (beside_fraction(a, b, true) < 0.9 || beside_fraction(b, a, false) < 0.9) {
+        continue;
+      }
+      ++figures_.side_by_side_pairs;
+      std::set<uint32_t> roads_left, roads_right;
+      if (const auto it = lanes_of_.find(left); it != lanes_of_.end()) {
+        for (const size_t i : it->second) roads_left.insert(lanes_[i].ref.road);
+      }
+      if (const auto it = lanes_of_.find(right); it != lanes_of_.end()) {
+        for (const size_t i : it->second) roads_right.insert(lanes_[i].ref.road);
+      }
+      const bool shared = std::any_of(roads_left.begin(), roads_left.end(),
+                                      [&](uint32_t r) { return roads_right.contains(r); });
+      if (!shared) {
+        ++figures_.split_pairs;
+        if (figures_.split_examples.size() < 60) {
+          figures_.split_examples.push_back(left + "|" + right);
+        }
+      }
+    }
+  }
+
+  const ngii::Layers& layers_;
+  const Map& map_;
+  double ox_ = 0.0, oy_ = 0.0;
+  std::unordered_map<std::string, const ngii::Link*> links_;
+  std::unordered_map<std::string, std::vector<std::vector<P3>>> left_marks_, right_marks_;
+  std::vector<LaneInfo> lanes_;
+  std::unordered_map<std::string, std::vector<size_t>> lanes_of_;
+  NgiiFigures figures_;
+};
+
+}  // namespace
+
+NgiiFigures measure_ngii(const ngii::Layers& layers, const xodr::Map& map) {
+  return Measurer(layers, map).run();
+}
+
+std::string format_figures(const NgiiFigures& f) {
+  std::ostringstream out;
+  out.precision(3);
+  out << std::fixed;
+  out << "link_ends_measured " << f.link_ends.count << "\n"
+      << "link_ends_over_0.2m " << f.link_ends.over << "\n"
+      << "link_ends_max_m " << f.link_ends.max << " (" << f.link_ends.worst << ")\n"
+      << "lane_joins_measured " << f.lane_joins.count << "\n"
+      << "lane_joins_over_0.2m " << f.lane_joins.over << "\n"
+      << "lane_joins_max_m " << f.lane_joins.max << " (" << f.lane_joins.worst << ")\n"
+      << "lanes_measured " << f.lanes_measured << "\n"
+      << "vertical_p95_max_m " << f.vertical_p95_max << " (" << f.vertical_worst << ")\n"
+      << "vertical_max_m " << f.vertical_max << "\n"
+      << "lanes_vertical_p95_over_5cm " << f.lanes_over_5cm << "\n"
+      << "width_samples " << f.width_samples << "\n"
+      << "width_p95_m " << f.width_p95 << "\n"
+      << "width_p95_single_lane_roads_m " << f.width_p95_single << "\n"
+      << "side_by_side_pairs " << f.side_by_side_pairs << "\n"
+      << "side_by_side_split " << f.split_pairs;
+  for (const auto& e : f.split_examples) {
+    out << " " << e;
+  }
+  out << "\n"
+      << "lanes_without_provenance " << f.lanes_without_provenance << "\n"
+      << "links_without_lane " << f.links_without_lane << "\n";
+  return out.str();
+}
+
+}  // namespace corsa::test

@@ -1,0 +1,54 @@
+#pragma once
+
+// Figures of merit of a converted NGII map, computed from the raw A2/B2 layers and the map as
+// written (its lanes found through their <userData code="ngii:link"> provenance), never from the
+// converter's own intermediate data:
+// - where each lane starts and ends against its A2 link's first and last vertex, and the gaps
+//   between lanes joined in the lane graph (end of one, start of the next);
+// - the vertical error of each lane: the map's lane centre height against the heights of the
+//   A2 vertices along it (p95 per lane);
+// - the lane width against the B2 marks bounding the lane (R_linkID / L_linkID name it);
+// - pairs of A2 links that the survey names as neighbours (L/R link ids) and that run side by
+//   side along >= 90% of both, but which the map still keeps in different roads.
+// Used by the tests and by the `corsa_ngii_measure` program (docs/ngii.md).
+
+#include <string>
+#include <vector>
+
+#include "corsa/ngii/layers.h"
+#include "corsa/xodr/map.h"
+
+namespace corsa::test {
+
+struct GapFigures {
+  size_t count = 0;     ///< measured ends
+  size_t over = 0;      ///< ends farther than the limit (0.2 m)
+  double max = 0.0;     ///< m
+  std::string worst;    ///< what the largest one is (link id, or road/lane)
+};
+
+struct NgiiFigures {
+  GapFigures link_ends;    ///< lane start/end vs its A2 link's first/last vertex
+  GapFigures lane_joins;   ///< lane end vs the start of each lane-graph successor
+  size_t lanes_measured = 0;
+  double vertical_p95_max = 0.0;  ///< largest per-lane p95 of |z map - z A2| (m)
+  double vertical_max = 0.0;      ///< largest single vertex error (m)
+  size_t lanes_over_5cm = 0;      ///< lanes whose p95 exceeds 5 cm
+  std::string vertical_worst;     ///< link id of the worst lane
+  size_t width_samples = 0;
+  double width_p95 = 0.0;         ///< p95 |width map - width between B2 marks| (m), all lanes
+  double width_p95_single = 0.0;  ///< the same on roads with one lane
+  size_t side_by_side_pairs = 0;  ///< neighbour pairs beside each other along >= 90%
+  size_t split_pairs = 0;         ///< of those, kept in different roads
+  std::vector<std::string> split_examples;
+  size_t lanes_without_provenance = 0;
+  size_t links_without_lane = 0;  ///< A2 links (longer than 0.1 m) no lane names
+};
+
+/// Measures `map` against `layers` (the map's header offset places it in the layers' CRS).
+NgiiFigures measure_ngii(const ngii::Layers& layers, const xodr::Map& map);
+
+/// The figures as "name value" lines.
+std::string format_figures(const NgiiFigures& f);
+
+}  // namespace corsa::test
