@@ -1,6 +1,8 @@
 #include "assemble.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <set>
 
@@ -37,6 +39,11 @@ class Assembler {
         index_(plan) {}
 
   Assembly run() {
+    widths_ = measure_widths(plan_, network_, options_.fallback_lane_width);
+    out_.summary.widths_from_marks = widths_.counts[0];
+    out_.summary.widths_from_neighbours = widths_.counts[1];
+    out_.summary.widths_from_topology = widths_.counts[2];
+    out_.summary.fallback_widths = widths_.counts[3];
     number();
     build_roads();
     neighbours();
@@ -79,7 +86,7 @@ class Assembler {
         continue;
       }
       const RoadPlan& plan = plan_.roads[r];
-      BuiltRoad built = build_road(plan, network_, origin_, options_);
+      BuiltRoad built = build_road(plan, network_, origin_, widths_.lanes[r], options_);
       xodr::Road& road = road_of(static_cast<int>(r));
       const std::string id = road.id;
       road = std::move(built.road);
@@ -91,6 +98,9 @@ class Assembler {
       sum.geometries += road.plan_view.size();
       sum.kinks += built.kinks;
       sum.max_lane_error = std::max(sum.max_lane_error, built.source_error);
+      if (std::getenv("CORSA_NGII_DEBUG") && built.source_error > 0.1) {
+        std::fprintf(stderr, "road %s (%s): lane centre error %.3f\n", id.c_str(), road.name.c_str(), built.source_error);
+      }
       sum.max_smoothed_error = std::max(sum.max_smoothed_error, built.lane_error);
       sum.max_reference_error = std::max(sum.max_reference_error, built.reference_error);
       sum.connecting_roads += plan.junction >= 0;
@@ -335,6 +345,7 @@ class Assembler {
   const ConvertOptions& options_;
   Diagnostics& diagnostics_;
   LaneIndex index_;
+  PlanWidths widths_;
   Assembly out_;
   std::vector<int> road_slot_;
   std::vector<std::string> junction_id_;

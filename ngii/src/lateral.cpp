@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "corsa/core/strings.h"
+#include "lane_numbers.h"
 #include "polyline.h"
 
 namespace corsa::ngii::detail {
@@ -243,18 +244,63 @@ class NeighbourRepair {
   CorrectionLog& log_;
 };
 
-/// Whether right-hand neighbour b runs beside a over the same stretch (one road's lanes).
-bool same_road(const Network& net, int a, int b) {
+/// How right-hand neighbour b joins a in one road, if it does.
+enum class Join { kNone, kBeside, kSplit, kMerge };
+
+Join road_join(const Network& net, int a, int b) {
   if (net.source(a).link_type != net.source(b).link_type) {
-    return false;
+    return Join::kNone;
   }
-  const Polyline pa(net.links[static_cast<size_t>(a)].points);
-  const Polyline pb(net.links[static_cast<size_t>(b)].points);
+  const LinkState& la = net.links[static_cast<size_t>(a)];
+  const LinkState& lb = net.links[static_cast<size_t>(b)];
+  const Polyline pa(la.points);
+  const Polyline pb(lb.points);
   const Side side = side_of(pa, pb);
   const double slack = std::max(3.0, 0.1 * std::min(pa.length(), pb.length()));
   const auto lane_gap = [](double lateral) { return lateral < -1.5 && lateral > -7.0; };
-  return lane_gap(side.lat_start) && lane_gap(side.lat_end) && lane_gap(side.lat_mid) &&
-         std::abs(side.stagger_start) <= slack && std::abs(side.stagger_end) <= slack;
+  const bool start_beside = lane_gap(side.lat_start) && std::abs(side.stagger_start) <= slack;
+  const bool end_beside = lane_gap(side.lat_end) && std::abs(side.stagger_end) <= slack;
+  if (start_beside && end_beside && lane_gap(side.lat_mid)) {
+    return Join::kBeside;
+  }
+  // One lane splitting into two (both start at one node) or two merging into one: the same
+  // road, where one of them widens from (narrows to) nothing.
+  if (!side.same_direction || (la.from == lb.from && la.to == lb.to)) {
+    return Join::kNone;
+  }
+  if (la.from == lb.from && end_beside) {
+    return Join::kSplit;
+  }
+  if (la.to == lb.to && start_beside) {
+    return Join::kMerge;
+  }
+  return Join::kNone;
+}
+
+/// Lateral offset (m) of `link`, `reach` metres from its shared end, from the straight
+/// continuation of `other` (the link before or after the shared node): 0 for the lane that
+/// carries straight on.
+double deviation(const Network& net, int link, int other, bool at_start) {
+  const Polyline line(net.links[static_cast<size_t>(link)].points);
+  const Polyline base(net.links[static_cast<size_t>(other)].points);
+  const double reach = std::min(15.0, 0.5 * line.length());
+  const Point3 q = line.at(at_start ? reach : line.length() - reach);
+  const Point3 a = base.at(at_start ? base.length() : 0.0);
+  const Vec2 d = base.direction(at_start ? base.length() : 0.0);
+  return std::abs(cross(d, xy(q) - xy(a)));
+}
+
+/// Which of neighbours `left` and `right` sharing a node is the lane that appears (at_start) or
+/// disappears there: the one turning away from the link through the node; without one, a
+/// left-turn pocket, else the right (outer) lane.
+bool left_one_is_new(const Network& net, int left, int right, bool at_start) {
+  const LinkState& state = net.links[static_cast<size_t>(left)];
+  const auto& through = at_start ? net.ending[static_cast<size_t>(state.from)]
+                                 : net.starting[static_cast<size_t>(state.to)];
+  if (through.size() == 1) {
+    return deviation(net, left, through[0], at_start) > deviation(net, right, through[0], at_start);
+  }
+  return is_pocket_number(net.source(left).lane_no) && !is_pocket_number(net.source(right).lane_no);
 }
 
 }  // namespace
@@ -296,13 +342,30 @@ LateralStructure lateral_structure(const Network& network) {
   }
   for (size_t g = 0; g < out.groups.size(); ++g) {
     const std::vector<int>& group = out.groups[g];
-    LaneRun run{{group[0]}, static_cast<int>(g), 0};
+    const auto single = [&](size_t k) {
+      return LaneRun{{group[k]}, {LaneEnd::kBeside}, {LaneEnd::kBeside}, static_cast<int>(g),
+                     static_cast<int>(k)};
+    };
+    LaneRun run = single(0);
     for (size_t k = 1; k < group.size(); ++k) {
-      if (same_road(network, group[k - 1], group[k])) {
-        run.links.push_back(group[k]);
-      } else {
+      const Join join = road_join(network, group[k - 1], group[k]);
+      if (join == Join::kNone) {
         out.runs.push_back(std::move(run));
-        run = LaneRun{{group[k]}, static_cast<int>(g), static_cast<int>(k)};
+        run = single(k);
+        continue;
+      }
+      run.links.push_back(group[k]);
+      run.starts.push_back(LaneEnd::kBeside);
+      run.ends.push_back(LaneEnd::kBeside);
+      if (join == Join::kSplit || join == Join::kMerge) {
+        const bool at_start = join == Join::kSplit;
+        auto& ends = at_start ? run.starts : run.ends;
+        const size_t right = ends.size() - 1;
+        if (left_one_is_new(network, group[k - 1], group[k], at_start)) {
+          ends[right - 1] = LaneEnd::kFromRight;
+        } else {
+          ends[right] = LaneEnd::kFromLeft;
+        }
       }
     }
     out.runs.push_back(std::move(run));

@@ -13,12 +13,23 @@
 
 namespace corsa::ngii::detail {
 
+/// How a lane of a run begins or ends: at its own place beside the others, or out of (into)
+/// its neighbour, sharing that neighbour's A1 node (a lane that splits off or merges in).
+enum class LaneEnd : uint8_t {
+  kBeside,
+  kFromLeft,   ///< shares its end node with its left neighbour: width 0 there
+  kFromRight,  ///< shares its end node with its right neighbour
+};
+
 /// Laterally adjacent links that run side by side from end to end: one road's lanes, left to
-/// right.
+/// right. A lane that splits off a neighbour (both start at one node) or merges into one (both
+/// end at one node) belongs to the same road; it widens from (narrows to) zero width there.
 struct LaneRun {
   std::vector<int> links;
-  int group = 0;     ///< index of the lateral group it came from
-  int position = 0;  ///< index of its first link within that group
+  std::vector<LaneEnd> starts;  ///< per link: how it begins
+  std::vector<LaneEnd> ends;    ///< per link: how it ends
+  int group = 0;                ///< index of the lateral group it came from
+  int position = 0;             ///< index of its first link within that group
 };
 
 struct LateralStructure {

@@ -21,7 +21,7 @@ constexpr double kCutLength = 10.0;
 
 PlanLane lane_of_link(const Network& network, int link) {
   const LinkState& state = network.links[static_cast<size_t>(link)];
-  return PlanLane{state.points, {link}, {0.0}, state.from, state.to, {}, {}};
+  return PlanLane{state.points, {link}, {0.0}, state.from, state.to, {}, {}, {}, {}};
 }
 
 /// Appends `tail` to `head` (dropping a repeated joint vertex).
@@ -186,8 +186,10 @@ class Planner {
         continue;
       }
       RoadPlan road;
-      for (const int link : run.links) {
-        road.lanes.push_back(lane_of_link(network_, link));
+      for (size_t k = 0; k < run.links.size(); ++k) {
+        road.lanes.push_back(lane_of_link(network_, run.links[k]));
+        road.lanes.back().start_shape = run.starts[k];
+        road.lanes.back().end_shape = run.ends[k];
       }
       plan_.roads.push_back(std::move(road));
     }
@@ -586,9 +588,24 @@ class Planner {
       }
       cut_u = std::clamp(cut_u, 0.01, std::max(0.01, line.length() - 0.01));
       const int key = plan_.node_keys++;
-      PlanLane front{
-          line.slice(0.0, cut_u), lane.links, lane.link_starts, lane.start_node, key, {}, {}};
-      PlanLane back{line.slice(cut_u, line.length()), lane.links, {}, key, lane.end_node, {}, {}};
+      PlanLane front{line.slice(0.0, cut_u),
+                     lane.links,
+                     lane.link_starts,
+                     lane.start_node,
+                     key,
+                     {},
+                     {},
+                     lane.start_shape,
+                     LaneEnd::kBeside};
+      PlanLane back{line.slice(cut_u, line.length()),
+                    lane.links,
+                    {},
+                    key,
+                    lane.end_node,
+                    {},
+                    {},
+                    LaneEnd::kBeside,
+                    lane.end_shape};
       for (const double start : lane.link_starts) {
         back.link_starts.push_back(std::max(0.0, start - cut_u));
       }

@@ -64,7 +64,8 @@ std::pair<double, double> position_at(const std::vector<FitPoint>& points, doubl
 
 /// Thins vertices closer than kMinSpacing (keeping the last), adds points on chords longer
 /// than `max_spacing`, and estimates the data heading at every point.
-std::vector<FitPoint> prepare(std::span<const Point2> input, double max_spacing) {
+std::vector<FitPoint> prepare(std::span<const Point2> input, const CurveFitOptions& options) {
+  const double max_spacing = options.max_spacing;
   std::vector<FitPoint> points;
   points.reserve(input.size());
   for (size_t index = 0; index < input.size(); ++index) {
@@ -115,6 +116,9 @@ std::vector<FitPoint> prepare(std::span<const Point2> input, double max_spacing)
     points[i].heading_slack =
         0.5 * std::abs(std::remainder(
                   std::atan2(b.y - m.y, b.x - m.x) - std::atan2(m.y - a.y, m.x - a.x), 2.0 * M_PI));
+  }
+  if (options.end_heading && points.size() > 1) {
+    points.back().heading = *options.end_heading;
   }
   return points;
 }
@@ -232,7 +236,8 @@ class SegmentFitter {
     // the last record has no next one (and the data heading at the very end is one-sided).
     const bool final_record = j + 1 == points_.size();
     trial.ok = trial.length > 0.0 && within && end_error <= kEndTolerance * options_.tolerance &&
-               (final_record || trial.heading_error <= kEndHeading + last.heading_slack) &&
+               ((final_record && !options_.end_heading) ||
+                trial.heading_error <= kEndHeading + last.heading_slack) &&
                std::abs(c.k0) <= options_.max_curvature &&
                std::abs(k_end) <= options_.max_curvature;
     return trial;
@@ -366,8 +371,8 @@ class ChainFitter {
 
   CurveFit run() {
     CurveFit result;
-    Pose pose{points_[0].x, points_[0].y, initial_heading(), 0.0};
-    bool free_heading = true;
+    Pose pose{points_[0].x, points_[0].y, options_.start_heading.value_or(initial_heading()), 0.0};
+    bool free_heading = !options_.start_heading;
     size_t i0 = 0;
     const size_t last = points_.size() - 1;
     while (i0 < last) {
@@ -575,7 +580,7 @@ class ChainFitter {
 }  // namespace
 
 CurveFit fit_plan_view(std::span<const Point2> input, const CurveFitOptions& options) {
-  const std::vector<FitPoint> points = prepare(input, options.max_spacing);
+  const std::vector<FitPoint> points = prepare(input, options);
   if (points.size() < 2) {
     return {};  // nothing to fit: all vertices coincide
   }

@@ -40,4 +40,13 @@ std::vector<RefSample> sample_reference(const std::vector<xodr::Geometry>& plan_
   return out;
 }
 
+double piecewise_value(const std::vector<xodr::Poly3>& pieces, double s) {
+  if (pieces.empty()) {
+    return 0.0;
+  }
+  auto it = std::upper_bound(pieces.begin(), pieces.end(), s,
+                             [](double value, const xodr::Poly3& p) { return value < p.s; });
+  return (it == pieces.begin() ? pieces.front() : *(it - 1)).value(s);
+}
+
 }  // namespace corsa::ngii::detail

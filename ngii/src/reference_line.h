@@ -19,4 +19,7 @@ struct RefSample {
 std::vector<RefSample> sample_reference(const std::vector<xodr::Geometry>& plan_view,
                                         const std::vector<double>& s_sorted);
 
+/// Value at s of a piecewise cubic (the last piece starting at or before s; the first before).
+double piecewise_value(const std::vector<xodr::Poly3>& pieces, double s);
+
 }  // namespace corsa::ngii::detail

@@ -1,13 +1,14 @@
 #pragma once
 
-// One RoadPlan -> one OpenDRIVE road: the reference line is the leftmost lane's centre shifted
-// left by half its measured width and fitted with lines, arcs and clothoids; the lane offsets
-// are measured at stations along it and turned into laneOffset and width polynomials; elevation
-// comes from the leftmost lane's Z, speeds from MaxSpeed.
+// One RoadPlan -> one OpenDRIVE road: the reference line is the reference lane's left edge
+// (bent at the ends to meet the lanes' end lines square), fitted with lines, arcs and clothoids;
+// the lanes' offsets, heights and widths are measured at stations along it and turned into
+// elevation, superelevation, laneOffset and width polynomials; speeds from MaxSpeed.
 
 #include <vector>
 
 #include "corsa/ngii/convert.h"
+#include "lane_widths.h"
 #include "network.h"
 #include "road_plan.h"
 
@@ -33,10 +34,10 @@ struct BuiltRoad {
   double source_error = 0.0;     ///< the same against the source polylines as surveyed
   double reference_error = 0.0;  ///< plan view fit error (m)
   int kinks = 0;
-  bool measured_width = false;  ///< false when the fallback width was used
 };
 
+/// `widths`: the plan lanes' measured widths (lane_widths.h), one per lane.
 BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin& origin,
-                     const ConvertOptions& options);
+                     const std::vector<WidthProfile>& widths, const ConvertOptions& options);
 
 }  // namespace corsa::ngii::detail

@@ -5,15 +5,6 @@
 
 namespace corsa::ngii::detail {
 
-double piecewise_value(const std::vector<xodr::Poly3>& pieces, double s) {
-  if (pieces.empty()) {
-    return 0.0;
-  }
-  auto it = std::upper_bound(pieces.begin(), pieces.end(), s,
-                             [](double value, const xodr::Poly3& p) { return value < p.s; });
-  return (it == pieces.begin() ? pieces.front() : *(it - 1)).value(s);
-}
-
 RoadFrame::RoadFrame(const xodr::Road& road) : road_(road) {
   const int count = std::max(1, static_cast<int>(std::ceil(road.length / 0.5)));
   s_.resize(static_cast<size_t>(count) + 1);

@@ -11,9 +11,6 @@
 
 namespace corsa::ngii::detail {
 
-/// Value at s of a piecewise cubic (the last piece starting at or before s; the first before).
-double piecewise_value(const std::vector<xodr::Poly3>& pieces, double s);
-
 class RoadFrame {
  public:
   explicit RoadFrame(const xodr::Road& road);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "corsa/ngii/layers.h"
+#include "lateral.h"
 
 namespace corsa::ngii::detail {
 
@@ -22,6 +23,10 @@ struct PlanLane {
   /// one starts, and starting where it ends), for measuring offsets near the ends; may be empty.
   std::vector<Point3> lead_in;
   std::vector<Point3> lead_out;
+  /// Whether the lane starts (ends) beside the others or splits off (merges into) a
+  /// neighbour at a shared node, where its width is zero.
+  LaneEnd start_shape = LaneEnd::kBeside;
+  LaneEnd end_shape = LaneEnd::kBeside;
 };
 
 struct RoadPlan {

@@ -1,6 +1,8 @@
 #include "ngii_measure.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <map>
 #include <set>
@@ -73,6 +75,10 @@ class Measurer {
     oy_ = map.data().header.offset_y;
     for (const auto& link : layers.links) {
       links_[link.id] = &link;
+      if (link.link_type != "1") {
+        ++ordinary_starting_[link.from_node];
+        ++ordinary_ending_[link.to_node];
+      }
     }
     for (const auto& mark : layers.marks) {
       if (!mark.right_link.empty()) left_marks_[mark.right_link].push_back(local(mark.points));
@@ -136,6 +142,38 @@ class Measurer {
     return {pose.x, pose.y, pose.z};
   }
 
+  /// The first (last) A2 link a lane names.
+  const ngii::Link* source_link(const LaneRef& ref, bool first) const {
+    const auto& lane = map_.data().roads[ref.road].lane_sections[ref.section].lanes;
+    for (const auto& l : lane) {
+      if (l.id != ref.lane) {
+        continue;
+      }
+      const xodr::UserData* found = nullptr;
+      for (const auto& d : l.user_data) {
+        if (d.code == "ngii:link" && (found == nullptr || !first)) {
+          found = &d;
+        }
+      }
+      if (found != nullptr) {
+        const auto it = links_.find(found->value);
+        return it == links_.end() ? nullptr : it->second;
+      }
+    }
+    return nullptr;
+  }
+
+  /// Whether `link` (an ordinary lane link) starts (ends) at a node where another ordinary link
+  /// also starts (ends): a lane splitting in two (two merging into one).
+  bool shares_node(const ngii::Link* link, bool at_start) const {
+    if (link == nullptr || link->link_type == "1") {
+      return false;
+    }
+    const auto& table = at_start ? ordinary_starting_ : ordinary_ending_;
+    const auto it = table.find(at_start ? link->from_node : link->to_node);
+    return it != table.end() && it->second > 1;
+  }
+
   double section_start(const LaneRef& ref) const {
     return map_.road(ref.road).lane_sections[ref.section].s;
   }
@@ -151,7 +189,12 @@ class Measurer {
     return out;
   }
 
-  static void add_gap(GapFigures& g, double d, const std::string& what) {
+  /// CORSA_MEASURE_LIST=1 lists every figure over 0.2 m on stderr.
+  void add_gap(GapFigures& g, double d, const std::string& what) {
+    if (std::getenv("CORSA_MEASURE_LIST") != nullptr && d > 0.2) {
+      const char* kind = &g == &figures_.link_ends ? "link_end" : &g == &figures_.lane_joins ? "join" : "split_join";
+      std::fprintf(stderr, "%s %.3f %s\n", kind, d, what.c_str());
+    }
     ++g.count;
     g.over += d > 0.2;
     if (d > g.max) {
@@ -196,13 +239,18 @@ class Measurer {
     for (xodr::LaneNode node = 0; node < graph.size(); ++node) {
       const auto& info = graph.info(node);
       const P3 a = centre(info.lane, info.s_end);
+      const ngii::Link* last = source_link(info.lane, false);
       for (const auto& end : graph.successors(node)) {
         const auto& next = graph.info(end.node);
-        const P3 b = centre(next.lane, end.at_start ? next.s_start : next.s_end);
+        const double s_b = end.at_start ? next.s_start : next.s_end;
+        const P3 b = centre(next.lane, s_b);
         const auto& road = map_.road(info.lane.road);
-        add_gap(figures_.lane_joins, std::hypot(a.x - b.x, a.y - b.y),
+        const bool split = shares_node(source_link(next.lane, true), true) ||
+                           shares_node(last, false);
+        add_gap(split ? figures_.split_joins : figures_.lane_joins,
+                std::hypot(a.x - b.x, a.y - b.y),
                 "road " + road.id + " lane " + std::to_string(info.lane.lane) + " -> road " +
-                    map_.road(next.lane.road).id);
+                    map_.road(next.lane.road).id + " lane " + std::to_string(next.lane.lane));
       }
     }
   }
@@ -364,6 +412,7 @@ class Measurer {
   const Map& map_;
   double ox_ = 0.0, oy_ = 0.0;
   std::unordered_map<std::string, const ngii::Link*> links_;
+  std::unordered_map<std::string, int> ordinary_starting_, ordinary_ending_;  ///< per A1 node
   std::unordered_map<std::string, std::vector<std::vector<P3>>> left_marks_, right_marks_;
   std::vector<LaneInfo> lanes_;
   std::unordered_map<std::string, std::vector<size_t>> lanes_of_;
@@ -386,6 +435,8 @@ std::string format_figures(const NgiiFigures& f) {
       << "lane_joins_measured " << f.lane_joins.count << "\n"
       << "lane_joins_over_0.2m " << f.lane_joins.over << "\n"
       << "lane_joins_max_m " << f.lane_joins.max << " (" << f.lane_joins.worst << ")\n"
+      << "split_merge_joins " << f.split_joins.count << " (over 0.2 m " << f.split_joins.over
+      << ", max " << f.split_joins.max << ")\n"
       << "lanes_measured " << f.lanes_measured << "\n"
       << "vertical_p95_max_m " << f.vertical_p95_max << " (" << f.vertical_worst << ")\n"
       << "vertical_max_m " << f.vertical_max << "\n"

@@ -30,6 +30,11 @@ struct GapFigures {
 struct NgiiFigures {
   GapFigures link_ends;    ///< lane start/end vs its A2 link's first/last vertex
   GapFigures lane_joins;   ///< lane end vs the start of each lane-graph successor
+  /// Joins at a lane split or merge: the ordinary A2 link after (before) the join starts (ends)
+  /// at a node where another ordinary link starts (ends) too. The new lane begins beside its
+  /// neighbour (at zero width at the road's edge), while its link begins at the shared node
+  /// inside that neighbour.
+  GapFigures split_joins;
   size_t lanes_measured = 0;
   double vertical_p95_max = 0.0;  ///< largest per-lane p95 of |z map - z A2| (m)
   double vertical_max = 0.0;      ///< largest single vertex error (m)

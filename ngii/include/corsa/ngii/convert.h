@@ -22,9 +22,12 @@ struct ConvertOptions {
   double tolerance = 0.05;
   /// Largest error (m) of the fitted laneOffset and lane width polynomials at the stations.
   double width_tolerance = 0.02;
-  /// Largest error (m) of the fitted elevation profile.
-  double elevation_tolerance = 0.05;
-  /// Width (m) of a lane with no neighbour to measure against (the paper's 3.25 m lanes).
+  /// Largest error (m) of the fitted elevation profile (at the reference line).
+  double elevation_tolerance = 0.02;
+  /// Largest height error (m) the fitted superelevation may add at the outermost lane centre.
+  double superelevation_tolerance = 0.015;
+  /// Width (m) of a lane with no B2 marks, no neighbour and no lane before or after it to
+  /// measure against (counted in ConversionSummary::fallback_widths, with a warning).
   double fallback_lane_width = 3.25;
   /// Spacing (m) of the stations where lane offsets are measured.
   double station_spacing = 1.0;
@@ -64,6 +67,12 @@ struct ConversionSummary {
   size_t geometries = 0;  ///< planView records
   size_t road_marks = 0;
   size_t signals = 0;
+  /// Lanes by where their width came from: B2 marks, L/R neighbour spacing, the lanes before
+  /// and after them, the fallback width.
+  size_t widths_from_marks = 0;
+  size_t widths_from_neighbours = 0;
+  size_t widths_from_topology = 0;
+  size_t fallback_widths = 0;
   int kinks = 0;  ///< heading jumps where a link turns too sharply for a smooth fit
   /// Largest distance (m) between a lane centre line and its source link polyline at the
   /// measuring stations (survey noise included), the same against the noise-filtered lines

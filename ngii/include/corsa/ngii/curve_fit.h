@@ -4,6 +4,7 @@
 // cubic profiles (elevation, lane widths; §8.4, §9.5) to surveyed points, within a tolerance,
 // with as few records as the tolerance allows rather than one per vertex.
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -25,6 +26,11 @@ struct CurveFitOptions {
   /// Curvature (1/m) beyond which a piece is rejected as unphysical (radius 1 m: the reference
   /// line of a 3 m U-turn lane, shifted half a lane inward, turns at about 1.4 m).
   double max_curvature = 1.0;
+  /// Heading (rad) the chain must start with; fitted when not given.
+  std::optional<double> start_heading;
+  /// Heading (rad) the chain must end with (within 0.02 rad); when not given, the last record
+  /// ends as the data nearest its end asks.
+  std::optional<double> end_heading;
 };
 
 struct CurveFit {

@@ -1,0 +1,44 @@
+#pragma once
+
+// Lane widths measured before any road is fitted, per plan lane as a function of arc length
+// along its centre polyline. Sources, in order: the B2 marks bounding the lane (a mark's
+// R_linkID / L_linkID names the lane it bounds; the width is the distance from the left mark to
+// the right one across the lane centre), the spacing to the lane's L/R neighbour links, the
+// widths where the lanes before and after it end and begin (a junction path takes its approach
+// and exit lanes' widths), and only when none exists a fallback width, counted.
+
+#include <vector>
+
+#include "corsa/ngii/curve_fit.h"
+#include "network.h"
+#include "network_plan.h"
+
+namespace corsa::ngii::detail {
+
+/// Width (m) along one plan lane: samples (u = arc length along PlanLane::points, width).
+class WidthProfile {
+ public:
+  WidthProfile() = default;
+  explicit WidthProfile(std::vector<ProfileSample> samples) : samples_(std::move(samples)) {}
+  bool empty() const { return samples_.empty(); }
+  /// Interpolated width at u (clamped to the first / last sample).
+  double at(double u) const;
+  double front() const { return samples_.front().v; }
+  double back() const { return samples_.back().v; }
+
+ private:
+  std::vector<ProfileSample> samples_;
+};
+
+enum class WidthSource : uint8_t { kMarks, kNeighbours, kTopology, kFallback };
+
+struct PlanWidths {
+  std::vector<std::vector<WidthProfile>> lanes;  ///< [plan road][lane]
+  std::vector<std::vector<WidthSource>> sources;
+  size_t counts[4] = {0, 0, 0, 0};  ///< plan lanes per WidthSource
+};
+
+/// Widths of every lane of every (not removed) plan road.
+PlanWidths measure_widths(const NetworkPlan& plan, const Network& network, double fallback);
+
+}  // namespace corsa::ngii::detail

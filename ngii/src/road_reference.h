@@ -1,0 +1,55 @@
+#pragma once
+
+// The polyline a road's reference line is fitted to: the reference lane's centre shifted left
+// by half its width (its left edge), eased where a tight left turn would fold it, and bent near
+// each end so that the road's end cross-section runs through the ends of all its lanes.
+//
+// Why bend: an OpenDRIVE road ends along the normal of its reference line (§8.2), so every lane
+// ends on one straight line across the road. NGII lanes of one road end at a stop line, which
+// is often skewed; a square end would cut the outer lanes short (or long) by metres. Turning the
+// reference line's last metres so that its normal follows the lanes' common end line lets each
+// lane end where its link does (the lanes themselves keep their course: their offsets are
+// measured along those turned normals).
+
+#include <optional>
+#include <vector>
+
+#include "corsa/ngii/curve_fit.h"
+#include "polyline.h"
+
+namespace corsa::ngii::detail {
+
+/// A straight line across the road through the lane ends: a point and a unit direction.
+struct EndLine {
+  Vec2 point;
+  Vec2 across;
+};
+
+/// The line through `ends` (lane end points, left to right) within 0.25 m, leaving out the
+/// ends farthest off it when needed; nothing when fewer than two remain.
+std::optional<EndLine> end_line(std::vector<Vec2> ends);
+
+/// A polyline for the plan-view fit, with the headings its ends must have so that the normals
+/// there run through the lane ends.
+struct ReferencePolyline {
+  std::vector<Point2> points;
+  double start_heading = 0.0;  ///< rad
+  double end_heading = 0.0;
+};
+
+/// The reference lane's vertices moved left by `half_widths` (per vertex), along the normal of
+/// the chord over +-1 m; in tight left turns the shift shrinks to keep the shifted line's radius
+/// at least 1.5 m (the laneOffset takes up the difference, §9.3). The end headings are the
+/// lane's own there.
+ReferencePolyline shifted_left(const Polyline& lane, const std::vector<double>& half_widths);
+
+/// `reference` bent near its start and end to meet `start` / `end` (when given) square: it ends
+/// heading across the line, on the line's parallel through the anchor (the reference lane's
+/// own end point). `road_width` (m) sets how gently it turns (the outermost lane must not fold);
+/// a turn that does not fit into the road is made only partly. Lines more than 50 degrees off
+/// square are left alone.
+ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<EndLine>& start,
+                             const std::optional<EndLine>& end, Vec2 start_anchor,
+                             Vec2 end_anchor, double road_width);
+
+}  // namespace corsa::ngii::detail
