@@ -9,10 +9,15 @@
 namespace corsa::ngii::detail {
 namespace {
 
-constexpr double kMinWidth = 1.5;  // m: plausible range of a measured lane width
+constexpr double kMinWidth = 1.5;  // m: plausible range of a lane width between marks
 constexpr double kMaxWidth = 10.0;
-constexpr double kMarkReach = 5.5;  // m: farthest mark counted as bounding a lane (half width)
-constexpr int kSmooth = 3;          // vertices averaged on either side
+// m: spacing of neighbouring lane centres that reads as one lane width (farther neighbours
+// are lanes apart, e.g. parallel turning paths with a gap between them)
+constexpr double kMinSpacing = 2.3;
+constexpr double kMaxSpacing = 5.5;
+constexpr double kMarkReach = 6.0;  // m: farthest mark counted as bounding a lane (half width)
+constexpr double kStep = 1.0;       // m between width samples along a lane
+constexpr int kSmooth = 2;          // samples averaged on either side
 
 const double kUnknown = std::numeric_limits<double>::quiet_NaN();
 
@@ -37,12 +42,23 @@ std::vector<double> smoothed(const std::vector<double>& raw) {
   return out;
 }
 
-/// (u, width) samples at the known vertices; empty when none is known.
-std::vector<ProfileSample> samples_of(const Polyline& line, const std::vector<double>& widths) {
+/// Arc lengths every kStep metres along `line` (both ends included).
+std::vector<double> stations_of(const Polyline& line) {
+  const int count = std::max(1, static_cast<int>(std::ceil(line.length() / kStep)));
+  std::vector<double> u(static_cast<size_t>(count) + 1);
+  for (int i = 0; i <= count; ++i) {
+    u[static_cast<size_t>(i)] = line.length() * i / count;
+  }
+  return u;
+}
+
+/// (u, width) samples where the width is known; empty when it is nowhere.
+std::vector<ProfileSample> samples_of(const std::vector<double>& u,
+                                      const std::vector<double>& widths) {
   std::vector<ProfileSample> out;
   for (size_t i = 0; i < widths.size(); ++i) {
     if (!std::isnan(widths[i])) {
-      out.push_back({line.u()[i], widths[i]});
+      out.push_back({u[i], widths[i]});
     }
   }
   return out;
@@ -50,49 +66,44 @@ std::vector<ProfileSample> samples_of(const Polyline& line, const std::vector<do
 
 class WidthMeter {
  public:
-  explicit WidthMeter(const Network& network) : network_(network), marks_(network.size()) {
-    const Layers& layers = network.layers();
-    for (const SurfaceMark& mark : layers.marks) {
+  explicit WidthMeter(const Network& network)
+      : network_(network), left_marks_(network.size()), right_marks_(network.size()) {
+    for (const SurfaceMark& mark : network.layers().marks) {
       std::vector<Point3> points = mark.points;
       remove_duplicates(points);
       if (points.size() < 2) {
         continue;
       }
-      for (const std::string* id : {&mark.right_link, &mark.left_link}) {
-        if (const auto link = network.find(*id)) {
-          marks_[static_cast<size_t>(*link)].emplace_back(points);
-        }
+      // R_linkID is the link on the mark's right: the mark bounds that lane on its left. A mark
+      // naming one link on both sides crosses that lane rather than bounding it.
+      if (mark.right_link == mark.left_link) {
+        continue;
+      }
+      if (const auto link = network.find(mark.right_link)) {
+        left_marks_[static_cast<size_t>(*link)].emplace_back(points);
+      }
+      if (const auto link = network.find(mark.left_link)) {
+        right_marks_[static_cast<size_t>(*link)].emplace_back(points);
       }
     }
   }
 
-  /// Width at each vertex from the marks bounding the lane's links (NaN where not both sides
-  /// have one).
-  std::vector<double> from_marks(const PlanLane& lane, const Polyline& line) const {
-    std::vector<const Polyline*> candidates;
-    for (const int link : lane.links) {
-      for (const Polyline& mark : marks_[static_cast<size_t>(link)]) {
-        candidates.push_back(&mark);
+  /// Width at each station u from the marks bounding the link there (NaN where not both sides
+  /// have one): the nearest mark naming the link on each side, within kMarkReach.
+  std::vector<double> from_marks(const PlanLane& lane, const Polyline& line,
+                                 const std::vector<double>& stations) const {
+    std::vector<double> out(stations.size(), kUnknown);
+    for (size_t i = 0; i < stations.size(); ++i) {
+      const size_t link = static_cast<size_t>(link_at(lane, stations[i]));
+      const auto& left = left_marks_[link];
+      const auto& right = right_marks_[link];
+      if (left.empty() || right.empty()) {
+        continue;
       }
-    }
-    std::vector<double> out(line.size(), kUnknown);
-    if (candidates.size() < 2) {
-      return out;
-    }
-    for (size_t i = 0; i < line.size(); ++i) {
-      const Vec2 v = xy(line.points()[i]);
-      const Vec2 tangent = line.direction(line.u()[i]);
-      double left = 1e300, right = 1e300;
-      for (const Polyline* mark : candidates) {
-        const Projection p = mark->project(v);
-        if (p.along != 0.0 || p.distance > kMarkReach) {
-          continue;
-        }
-        const bool on_left = cross(tangent, xy(mark->at(p.u)) - v) > 0.0;
-        double& side = on_left ? left : right;
-        side = std::min(side, p.distance);
-      }
-      const double width = left + right;
+      const Vec2 v = xy(line.at(stations[i]));
+      const Vec2 tangent = line.direction(stations[i]);
+      const double width = side_distance(left, v, tangent, true) +
+                           side_distance(right, v, tangent, false);
       if (width >= kMinWidth && width <= kMaxWidth) {
         out[i] = width;
       }
@@ -100,24 +111,23 @@ class WidthMeter {
     return smoothed(out);
   }
 
-  /// Width at each vertex from the distance to the lane's links' L/R neighbour links.
-  std::vector<double> from_neighbours(const PlanLane& lane, const Polyline& line) const {
-    std::vector<Polyline> neighbours;
-    for (const int link : lane.links) {
-      const LinkState& state = network_.links[static_cast<size_t>(link)];
+  /// Width at each station u from the distance to the L/R neighbour links of the link there.
+  std::vector<double> from_neighbours(const PlanLane& lane, const Polyline& line,
+                                      const std::vector<double>& stations) const {
+    std::vector<double> out(stations.size(), kUnknown);
+    for (size_t i = 0; i < stations.size(); ++i) {
+      const LinkState& state = network_.links[static_cast<size_t>(link_at(lane, stations[i]))];
+      std::vector<Polyline> neighbours;
       for (const int other : {state.left, state.right}) {
         if (other >= 0) {
           neighbours.emplace_back(network_.links[static_cast<size_t>(other)].points);
         }
       }
-    }
-    std::vector<double> out(line.size(), kUnknown);
-    for (size_t i = 0; i < line.size() && !neighbours.empty(); ++i) {
       double sum = 0.0;
       int count = 0;
       for (const Polyline& other : neighbours) {
-        const Projection p = other.project(xy(line.points()[i]));
-        if (p.along == 0.0 && p.distance >= kMinWidth && p.distance <= kMaxWidth) {
+        const Projection p = other.project(xy(line.at(stations[i])));
+        if (p.along == 0.0 && p.distance >= kMinSpacing && p.distance <= kMaxSpacing) {
           sum += p.distance;
           ++count;
         }
@@ -130,8 +140,37 @@ class WidthMeter {
   }
 
  private:
+  /// The A2 link of the plan lane at arc length u.
+  static int link_at(const PlanLane& lane, double u) {
+    size_t j = 0;
+    while (j + 1 < lane.links.size() && lane.link_starts[j + 1] <= u) {
+      ++j;
+    }
+    return lane.links[j];
+  }
+
+  /// Distance from v to the nearest of `marks` lying on the given side of the direction of
+  /// travel, with its foot inside the mark and within kMarkReach; 1e300 when none.
+  static double side_distance(const std::vector<Polyline>& marks, Vec2 v, Vec2 tangent,
+                              bool left) {
+    double best = 1e300;
+    for (const Polyline& mark : marks) {
+      const Projection p = mark.project(v);
+      if (p.along != 0.0 || p.distance > kMarkReach) {
+        continue;
+      }
+      const bool on_left = cross(tangent, xy(mark.at(p.u)) - v) > 0.0;
+      if (on_left == left) {
+        best = std::min(best, p.distance);
+      }
+    }
+    return best;
+  }
+
   const Network& network_;
-  std::vector<std::vector<Polyline>> marks_;  ///< per A2 link: the marks naming it
+  /// Per A2 link: the marks bounding it on the left (their R_linkID names it) and right.
+  std::vector<std::vector<Polyline>> left_marks_;
+  std::vector<std::vector<Polyline>> right_marks_;
 };
 
 }  // namespace
@@ -164,11 +203,13 @@ PlanWidths measure_widths(const NetworkPlan& plan, const Network& network, doubl
     for (size_t k = 0; k < plan.roads[r].lanes.size(); ++k) {
       const PlanLane& lane = plan.roads[r].lanes[k];
       const Polyline line(lane.points);
+      const std::vector<double> stations = stations_of(line);
       WidthSource source = WidthSource::kMarks;
-      std::vector<ProfileSample> samples = samples_of(line, meter.from_marks(lane, line));
+      std::vector<ProfileSample> samples =
+          samples_of(stations, meter.from_marks(lane, line, stations));
       if (samples.empty()) {
         source = WidthSource::kNeighbours;
-        samples = samples_of(line, meter.from_neighbours(lane, line));
+        samples = samples_of(stations, meter.from_neighbours(lane, line, stations));
       }
       out.lanes[r].emplace_back(std::move(samples));
       out.sources[r].push_back(source);

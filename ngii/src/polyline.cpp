@@ -217,24 +217,19 @@ std::vector<Point3> smooth_polyline(const std::vector<Point3>& points, double ma
         curvature > 0.0 ? std::sqrt(2.0 * max_bias / curvature) : kMaxSigma, kMinSigma, kMaxSigma);
     const int centre = sample_index(u);
     const int half = static_cast<int>(std::ceil(3.0 * sigma / kSampleStep));
-    const int half_z = static_cast<int>(std::ceil(3.0 * kMaxSigma / kSampleStep));
-    double wx = 0.0, x = 0.0, y = 0.0, wz = 0.0, z = 0.0;
-    for (int k = -half_z; k <= half_z; ++k) {
+    double wx = 0.0, x = 0.0, y = 0.0;
+    for (int k = -half; k <= half; ++k) {
       const Point3& p = samples[static_cast<size_t>(std::clamp(centre + k, 0, count - 1))];
       const double d = k * kSampleStep;
-      if (k >= -half && k <= half) {
-        const double w = std::exp(-0.5 * d * d / (sigma * sigma));
-        wx += w;
-        x += w * p.x;
-        y += w * p.y;
-      }
-      const double w = std::exp(-0.5 * d * d / (kMaxSigma * kMaxSigma));
-      wz += w;
-      z += w * p.z;
+      const double w = std::exp(-0.5 * d * d / (sigma * sigma));
+      wx += w;
+      x += w * p.x;
+      y += w * p.y;
     }
     // Never further than max_shift from the surveyed vertex (sharp corners, real or not, are
-    // cut by at most that much).
-    Point3 smooth{x / wx, y / wx, z / wz};
+    // cut by at most that much). Heights stay as surveyed: the elevation fit follows them within
+    // its tolerance.
+    Point3 smooth{x / wx, y / wx, points[v].z};
     const Vec2 shift = xy(smooth) - xy(points[v]);
     const double moved = norm(shift);
     if (moved > max_shift) {

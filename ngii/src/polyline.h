@@ -92,7 +92,7 @@ namespace corsa::ngii::detail {
 /// local curvature, so that the shift it causes on a curve (about sigma^2 curvature / 2) stays
 /// below `max_bias` (m); sigma is between 0.3 m (tight turns) and 2 m (straights). The ends are
 /// kept (odd reflection); no vertex moves more than `max_shift` (m); vertices that would step
-/// backwards are dropped. Heights get a plain 2 m average.
+/// backwards are dropped. Heights are kept as surveyed.
 std::vector<Point3> smooth_polyline(const std::vector<Point3>& points, double max_bias = 0.01,
                                     double max_shift = 0.04);
 

@@ -24,6 +24,7 @@
 #include "border_solver.h"
 #include "corsa/ngii/curve_fit.h"
 #include "lane_tracker.h"
+#include "lateral_profile.h"
 #include "polyline.h"
 #include "reference_line.h"
 #include "road_reference.h"
@@ -54,10 +55,21 @@ LaneLines lane_lines(const RoadPlan& plan, const Origin& origin) {
     const std::vector<Point3> points = shifted(lane.points, origin);
     out.raw.emplace_back(points);
     out.smooth.emplace_back(smooth_polyline(points));
+    // The lane's own vertices win where the neighbours' pieces meet them (links meeting at one
+    // node may disagree on its height).
+    const auto same_place = [](const Point3& a, const Point3& b) {
+      return norm(xy(a) - xy(b)) < 0.1;
+    };
     std::vector<Point3> extended = shifted(lane.lead_in, origin);
+    while (!extended.empty() && same_place(extended.back(), points.front())) {
+      extended.pop_back();
+    }
     const size_t own_first = extended.size();
     extended.insert(extended.end(), points.begin(), points.end());
-    const std::vector<Point3> lead_out = shifted(lane.lead_out, origin);
+    std::vector<Point3> lead_out = shifted(lane.lead_out, origin);
+    while (!lead_out.empty() && same_place(lead_out.front(), points.back())) {
+      lead_out.erase(lead_out.begin());
+    }
     extended.insert(extended.end(), lead_out.begin(), lead_out.end());
     remove_duplicates(extended);
     out.measured.emplace_back(smooth_polyline(extended));
@@ -205,48 +217,6 @@ bool own_part(const Stations& st, const LaneLines& lines, size_t k, size_t i, do
   return u >= -margin && u <= lines.smooth[k].length() + margin;
 }
 
-/// Elevation (at the reference line) and superelevation from a plane through the lanes'
-/// heights at each station (OpenDRIVE 1.8 §8.4); returns the fitted roll per station.
-std::vector<double> fit_lateral_profile(xodr::Road& road, const Stations& st,
-                                        const LaneLines& lines, const ConvertOptions& options) {
-  const size_t n = st.s.size();
-  std::vector<ProfileSample> height(n), roll(n);
-  double reach = 1.0;  // m: largest |t| of a lane centre, to scale the roll tolerance
-  for (size_t i = 0; i < n; ++i) {
-    double sw = 0.0, st_ = 0.0, sz = 0.0, stt = 0.0, stz = 0.0;
-    for (size_t k = 0; k < lines.smooth.size(); ++k) {
-      const Crossing& c = st.crossings[k][i];
-      const double w = own_part(st, lines, k, i, 2.0) ? 1.0 : 0.05;
-      sw += w;
-      st_ += w * c.t;
-      sz += w * c.z;
-      stt += w * c.t * c.t;
-      stz += w * c.t * c.z;
-      reach = std::max(reach, std::abs(c.t));
-    }
-    const double mean_t = st_ / sw, mean_z = sz / sw;
-    const double var = stt / sw - mean_t * mean_t;
-    // One lane (or lanes on top of each other): level across, at the lane's own height.
-    const double slope = var > 0.25 ? (stz / sw - mean_t * mean_z) / var : 0.0;
-    height[i] = {st.s[i], mean_z - slope * mean_t};
-    roll[i] = {st.s[i], std::atan(slope)};
-  }
-  road.elevation = fit_profile(height, options.elevation_tolerance).pieces;
-  std::vector<double> fitted(n, 0.0);
-  const double largest = std::max_element(roll.begin(), roll.end(), [](const auto& a, const auto& b) {
-                           return std::abs(a.v) < std::abs(b.v);
-                         })->v;
-  if (std::abs(largest) * reach < 0.005) {
-    return fitted;  // level within 5 mm at the outermost lane: no superelevation records
-  }
-  // A roll error e moves the outermost lane by about e * reach vertically.
-  road.superelevation = fit_profile(roll, options.superelevation_tolerance / reach).pieces;
-  for (size_t i = 0; i < n; ++i) {
-    fitted[i] = piecewise_value(road.superelevation, st.s[i]);
-  }
-  return fitted;
-}
-
 /// Width target of lane k at station i: its measured width, widened to what it spans along the
 /// reference normal when the lane crosses that normal at an angle (road ends turned square to a
 /// skewed stop line).
@@ -313,6 +283,35 @@ Borders station_borders(const RoadPlan& plan, const Stations& st,
     }
   }
   return borders;
+}
+
+/// Adds stations halfway between neighbours where a lane border moves by more than 8 cm, so
+/// that the separately fitted laneOffset and widths cannot drift apart between them. Returns
+/// whether any was added (the borders must then be solved again).
+bool refine_stations(Stations& st, const Borders& borders, const xodr::Road& road,
+                     const LaneLines& lines) {
+  constexpr double kMaxStep = 0.08;    // m
+  constexpr double kMinSpacing = 0.3;  // m
+  std::vector<double> extra;
+  for (size_t i = 0; i + 1 < st.s.size(); ++i) {
+    if (st.s[i + 1] - st.s[i] < kMinSpacing) {
+      continue;
+    }
+    double step = 0.0;
+    for (size_t k = 0; k < borders.t[i].size(); ++k) {
+      step = std::max(step, std::abs(borders.t[i + 1][k] - borders.t[i][k]));
+    }
+    if (step > kMaxStep) {
+      extra.push_back(0.5 * (st.s[i] + st.s[i + 1]));
+    }
+  }
+  if (extra.empty()) {
+    return false;
+  }
+  st.s.insert(st.s.end(), extra.begin(), extra.end());
+  std::sort(st.s.begin(), st.s.end());
+  measure(st, road, lines);
+  return true;
 }
 
 xodr::LaneType lane_type_of(const Network& network, int link) {
@@ -437,11 +436,31 @@ BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin&
   road.plan_view = std::move(fit.geometries);
   road.types.push_back(xodr::RoadType{0.0, "town", "", std::nullopt});
 
-  const Stations st = measure_stations(road, lines, options.station_spacing);
-  const std::vector<double> roll = fit_lateral_profile(road, st, lines, options);
+  Stations st = measure_stations(road, lines, options.station_spacing);
   Borders borders = station_borders(plan, st, lines, widths, ref);
+  for (int round = 0; round < 2 && refine_stations(st, borders, road, lines); ++round) {
+    borders = station_borders(plan, st, lines, widths, ref);
+  }
+  std::vector<std::vector<LaneHeightSample>> heights(st.s.size());
+  for (size_t i = 0; i < st.s.size(); ++i) {
+    for (size_t k = 0; k < plan.lanes.size(); ++k) {
+      const Crossing& c = st.crossings[k][i];
+      heights[i].push_back({c.t, c.z, own_part(st, lines, k, i, 2.0)});
+    }
+  }
+  const std::vector<double> roll = fit_lateral_profile(road, st.s, heights, options);
   if (const char* debug = std::getenv("CORSA_NGII_DEBUG_ROAD");
       debug != nullptr && network.source(plan.lanes[0].links.front()).id == debug) {
+    for (size_t k = 0; k < plan.lanes.size(); ++k) {
+      for (size_t v = 0; v < std::min<size_t>(6, plan.lanes[k].points.size()); ++v) {
+        std::fprintf(stderr, "lane %zu raw %zu: z %.3f  lead_in %zu\n", k, v,
+                     plan.lanes[k].points[v].z, plan.lanes[k].lead_in.size());
+      }
+      for (size_t v = 0; v < 12 && v < lines.measured[k].size(); ++v) {
+        std::fprintf(stderr, "measured %zu u %.2f z %.3f\n", v, lines.measured[k].u()[v],
+                     lines.measured[k].points()[v].z);
+      }
+    }
     for (size_t i = 0; i < st.s.size(); ++i) {
       std::fprintf(stderr, "s %.2f roll %.4f", st.s[i], roll[i]);
       for (size_t k = 0; k < plan.lanes.size(); ++k) {

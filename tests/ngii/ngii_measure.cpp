@@ -81,6 +81,9 @@ class Measurer {
       }
     }
     for (const auto& mark : layers.marks) {
+      if (mark.right_link == mark.left_link) {
+        continue;  // a mark naming one link on both sides crosses it, it does not bound it
+      }
       if (!mark.right_link.empty()) left_marks_[mark.right_link].push_back(local(mark.points));
       if (!mark.left_link.empty()) right_marks_[mark.left_link].push_back(local(mark.points));
     }
@@ -278,6 +281,10 @@ class Measurer {
       const double p95 = percentile(errors, 0.95);
       figures_.vertical_max = std::max(figures_.vertical_max, *std::max_element(errors.begin(), errors.end()));
       figures_.lanes_over_5cm += p95 > 0.05;
+      if (std::getenv("CORSA_MEASURE_LIST") != nullptr && p95 > 0.05) {
+        std::fprintf(stderr, "vertical %.3f road %s lane %d %s\n", p95,
+                     map_.road(lane.ref.road).id.c_str(), lane.ref.lane, lane.links.front().c_str());
+      }
       if (p95 > figures_.vertical_p95_max) {
         figures_.vertical_p95_max = p95;
         figures_.vertical_worst = lane.links.front();
@@ -285,44 +292,44 @@ class Measurer {
     }
   }
 
-  /// Nearest marks on either side of the lane centre point c (heading h): lateral offsets of
-  /// the marks' feet (inside the mark, within 6 m) seen along the lane; 1e300 when none.
-  static std::pair<double, double> mark_sides(const std::vector<std::vector<P3>>& marks,
-                                              const P3& c, double h) {
-    double left = 1e300, right = 1e300;
+  /// Distance from the lane centre point c (heading h) to the nearest of `marks` on the given
+  /// side (foot inside the mark, within 6 m); 1e300 when none.
+  static double side_distance(const std::vector<std::vector<P3>>& marks, const P3& c, double h,
+                              bool left) {
+    double best = 1e300;
+    const double nx = -std::sin(h), ny = std::cos(h);
     for (const auto& mark : marks) {
       const Foot f = foot_on(mark, c.x, c.y);
       if (!f.inside || f.distance > 6.0) {
         continue;
       }
-      // Which side of the lane the mark lies on (marks may be digitised either way): a step
-      // to the left brings it nearer when it is on the left.
-      const double nx = -std::sin(h), ny = std::cos(h);
-      const Foot probe = foot_on(mark, c.x + 0.01 * nx, c.y + 0.01 * ny);
-      const bool on_left = probe.distance < f.distance;
-      (on_left ? left : right) = std::min(on_left ? left : right, f.distance);
+      // A step to the left brings a mark on the left nearer.
+      const bool on_left = foot_on(mark, c.x + 0.01 * nx, c.y + 0.01 * ny).distance < f.distance;
+      if (on_left == left) {
+        best = std::min(best, f.distance);
+      }
     }
-    return {left, right};
+    return best;
   }
 
   void widths() {
     std::vector<double> all, single;
     for (const LaneInfo& lane : lanes_) {
-      std::vector<std::vector<P3>> marks;
+      // The links along the lane; at each station the nearest one is the lane's link there.
+      std::vector<std::pair<const ngii::Link*, std::vector<P3>>> links;
       for (const auto& id : lane.links) {
-        for (const auto* table : {&left_marks_, &right_marks_}) {
-          if (const auto it = table->find(id); it != table->end()) {
-            marks.insert(marks.end(), it->second.begin(), it->second.end());
-          }
+        if (const auto it = links_.find(id); it != links_.end()) {
+          links.emplace_back(it->second, local(it->second->points));
         }
       }
-      if (marks.size() < 2) {
+      if (links.empty()) {
         continue;
       }
       std::vector<xodr::LaneSpan> spans;
       const double s0 = section_start(lane.ref), s1 = section_end(lane.ref);
       map_.lane_spans_in_section(lane.ref.road, lane.ref.section, s0, spans);
       const bool one_lane = spans.size() == 1;
+      std::vector<double> own;
       for (double s = s0 + 0.5; s < s1 - 0.5; s += 1.0) {
         const auto span =
             map_.lane_span_in_section(lane.ref.road, lane.ref.section, s, lane.ref.lane);
@@ -332,15 +339,38 @@ class Measurer {
         const P3 c = centre(lane.ref, s);
         const P3 ahead = centre(lane.ref, std::min(s1, s + 0.25));
         const double h = std::atan2(ahead.y - c.y, ahead.x - c.x);
-        const auto [dl, dr] = mark_sides(marks, c, h);
+        const ngii::Link* link = links.front().first;
+        double nearest = 1e300;
+        for (const auto& [candidate, line] : links) {
+          const double d = foot_on(line, c.x, c.y).distance;
+          if (d < nearest) {
+            nearest = d;
+            link = candidate;
+          }
+        }
+        // The marks naming that link: R_linkID (the lane on the mark's right) bounds it on the
+        // left, L_linkID on the right.
+        const auto left = left_marks_.find(link->id);
+        const auto right = right_marks_.find(link->id);
+        if (left == left_marks_.end() || right == right_marks_.end()) {
+          continue;
+        }
+        const double dl = side_distance(left->second, c, h, true);
+        const double dr = side_distance(right->second, c, h, false);
         if (dl > 10.0 || dr > 10.0) {
           continue;
         }
         const double error = std::abs(span->width() - (dl + dr));
         all.push_back(error);
+        own.push_back(error);
         if (one_lane) {
           single.push_back(error);
         }
+      }
+      if (std::getenv("CORSA_MEASURE_LIST") != nullptr && percentile(own, 0.95) > 0.2) {
+        std::fprintf(stderr, "width%s %.3f road %s lane %d %s (%zu samples)\n", one_lane ? "1" : "",
+                     percentile(own, 0.95), map_.road(lane.ref.road).id.c_str(), lane.ref.lane,
+                     lane.links.front().c_str(), own.size());
       }
     }
     figures_.width_samples = all.size();
