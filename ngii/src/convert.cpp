@@ -102,6 +102,8 @@ Conversion convert(const Layers& layers, const ConvertOptions& options, Diagnost
       decorate(result.map, result.placements, layers, origin, diagnostics);
   result.summary.road_marks = decorations.road_marks;
   result.summary.signals = decorations.signals;
+  result.summary.controllers = decorations.controllers;
+  result.summary.structures = decorations.structures;
   result.map.header = make_header(layers, origin, result.map.roads);
   result.summary.links_read = layers.links.size();
   for (const LinkState& link : network.links) {
@@ -109,6 +111,9 @@ Conversion convert(const Layers& layers, const ConvertOptions& options, Diagnost
   }
   result.corrections = log.take();
   result.summary.corrections = result.corrections.size();
+  for (const Correction& c : result.corrections) {
+    result.summary.defects += c.kind == CorrectionKind::kDefect;
+  }
   progress(1.0);
   return result;
 }

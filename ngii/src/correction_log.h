@@ -1,8 +1,9 @@
 #pragma once
 
-// Collects the repairs made to the source data: each becomes a Correction row (for
-// --report) and a warning naming the A2_LINK record it touched (DESIGN.md: any repair of bad
-// data warns with the record).
+// Collects the changes made to the source data: each becomes a Correction row (for --report);
+// each repair of a source defect also becomes a warning naming the A2_LINK record it touched
+// (DESIGN.md: any repair of bad data warns with the record). Relabelling that only follows
+// from the converter's own grouping is listed but not warned about.
 
 #include <string>
 #include <vector>
@@ -18,9 +19,9 @@ class CorrectionLog {
       : layers_(layers), diagnostics_(diagnostics) {}
 
   /// Records that `field` of link `link` (index into layers.links) changed from `old_value` to
-  /// `new_value` because of `reason`.
+  /// `new_value` because of `reason`. Source defects warn; relabelling does not.
   void add(int link, std::string field, std::string old_value, std::string new_value,
-           std::string reason);
+           std::string reason, CorrectionKind kind = CorrectionKind::kDefect);
 
   const std::vector<Correction>& corrections() const { return corrections_; }
   std::vector<Correction> take() { return std::move(corrections_); }

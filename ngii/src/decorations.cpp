@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "road_frame.h"
+#include "signal_controllers.h"
 
 namespace corsa::ngii::detail {
 namespace {
@@ -51,6 +52,27 @@ void map_type(const std::string& code, bool reversed, MarkPiece& piece) {
   }
 }
 
+struct SignalCode {
+  const char* type;
+  const char* subtype;
+};
+
+/// OpenDRIVE signal type of an NGII C1 Type code, in the catalogue readers know with country
+/// "OpenDRIVE" (the German VzKat numbers, as maliput, esmini and CARLA read them): 1000001 a
+/// vehicle light, 1000011 arrow lights, 1000002 a pedestrian light, 1000013 a bicycle light.
+SignalCode traffic_light_code(const std::string& ngii_type) {
+  if (ngii_type == "4" || ngii_type == "6") {
+    return {"1000011", "-1"};  // arrow three-colour lights
+  }
+  if (ngii_type == "11") {
+    return {"1000002", "-1"};
+  }
+  if (ngii_type == "12" || ngii_type == "13") {
+    return {"1000013", "-1"};
+  }
+  return {"1000001", "-1"};  // 1-3, 5, 7-10, 14, 15, 99: vehicle lights (4-colour ones too)
+}
+
 std::vector<Vec2> sample_points(const std::vector<Point3>& points, const Origin& origin) {
   std::vector<Vec2> out;
   const size_t step = std::max<size_t>(1, points.size() / 16);
@@ -92,6 +114,58 @@ class Decorator {
       written += write_marks(map_.roads[r], pieces[r]);
     }
     return written;
+  }
+
+  /// Tunnel and bridge records from the A2 RoadType of the links along each road (2 tunnel,
+  /// 3 bridge, 4 underground road, 5 overpass; §13.13, §13.14): the s ranges of the lanes whose
+  /// links have that type, merged per road.
+  size_t structures() {
+    std::unordered_map<std::string, const Link*> links;
+    for (const Link& link : layers_.links) {
+      links.emplace(link.id, &link);
+    }
+    // (road, kind) -> s intervals
+    std::map<std::pair<size_t, char>, std::vector<std::pair<double, double>>> spans;
+    for (const auto& [id, placements] : by_link_) {
+      const auto it = links.find(id);
+      if (it == links.end() || it->second->road_type.size() != 1) {
+        continue;
+      }
+      const char kind = it->second->road_type[0];
+      if (kind < '2' || kind > '5') {
+        continue;
+      }
+      for (const LinkPlacement* p : placements) {
+        spans[{road_index_.at(p->road_id), kind}].emplace_back(p->s_start, p->s_end);
+      }
+    }
+    size_t made = 0;
+    for (auto& [key, intervals] : spans) {
+      std::sort(intervals.begin(), intervals.end());
+      std::vector<std::pair<double, double>> merged;
+      for (const auto& interval : intervals) {
+        if (!merged.empty() && interval.first <= merged.back().second + 0.5) {
+          merged.back().second = std::max(merged.back().second, interval.second);
+        } else {
+          merged.push_back(interval);
+        }
+      }
+      xodr::Road& road = map_.roads[key.first];
+      for (const auto& [s0, s1] : merged) {
+        const std::string id = road.id + "_" + std::to_string(made);
+        if (key.second == '2' || key.second == '4') {
+          road.tunnels.push_back(xodr::Tunnel{id, key.second == '2' ? "tunnel" : "underground road",
+                                              s0, s1 - s0,
+                                              key.second == '2' ? "standard" : "underpass", 1.0,
+                                              0.0});
+        } else {
+          road.bridges.push_back(xodr::Bridge{
+              id, key.second == '3' ? "bridge" : "overpass", s0, s1 - s0, "concrete"});
+        }
+        ++made;
+      }
+    }
+    return made;
   }
 
   size_t signals() {
@@ -252,9 +326,14 @@ class Decorator {
     signal.z_offset = light.position.z - piecewise_value(road.elevation, best.s);
     signal.orientation = "+";
     signal.dynamic = true;
-    signal.country = "KR";
-    signal.type = light.type.empty() ? "-1" : light.type;
-    signal.subtype = "-1";
+    // The generic catalogue of OpenDRIVE signals (country "OpenDRIVE"); the NGII code stays in
+    // userData.
+    const SignalCode code = traffic_light_code(light.type);
+    signal.country = "OpenDRIVE";
+    signal.type = code.type;
+    signal.subtype = code.subtype;
+    signal.user_data.push_back(xodr::UserData{"ngii:C1_TRAFFICLIGHT.Type", light.type});
+    signal.user_data.push_back(xodr::UserData{"ngii:link", light.link_id});
     road.signals.push_back(std::move(signal));
     return true;
   }
@@ -280,6 +359,8 @@ Decorations decorate(xodr::MapData& map, const std::vector<LinkPlacement>& place
     std::stable_sort(road.signals.begin(), road.signals.end(),
                      [](const xodr::Signal& a, const xodr::Signal& b) { return a.s < b.s; });
   }
+  out.controllers = add_signal_controllers(map);
+  out.structures = decorator.structures();
   return out;
 }
 

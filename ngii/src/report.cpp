@@ -8,11 +8,11 @@
 
 namespace corsa::ngii {
 std::string corrections_csv(const std::vector<Correction>& corrections) {
-  std::string out = "link_id,field,old_value,new_value,reason,record\n";
+  std::string out = "link_id,field,old_value,new_value,reason,record,kind\n";
   for (const Correction& c : corrections) {
     out += csv_field(c.link_id) + ',' + csv_field(c.field) + ',' + csv_field(c.old_value) + ',' +
            csv_field(c.new_value) + ',' + csv_field(c.reason) + ',' + std::to_string(c.record) +
-           '\n';
+           ',' + (c.kind == CorrectionKind::kDefect ? "defect" : "relabel") + '\n';
   }
   return out;
 }

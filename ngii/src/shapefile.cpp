@@ -97,11 +97,20 @@ bool family_accepts(ShapeFamily family, int type) {
   if (family == ShapeFamily::kPoint) {
     return type == SHPT_POINT || type == SHPT_POINTZ || type == SHPT_POINTM;
   }
+  if (family == ShapeFamily::kPolygon) {
+    return type == SHPT_POLYGON || type == SHPT_POLYGONZ || type == SHPT_POLYGONM;
+  }
   return type == SHPT_ARC || type == SHPT_ARCZ || type == SHPT_ARCM;
 }
 
 const char* family_name(ShapeFamily family) {
-  return family == ShapeFamily::kPoint ? "Point/PointZ (1/11)" : "PolyLine/PolyLineZ (3/13)";
+  return family == ShapeFamily::kPoint     ? "Point/PointZ (1/11)"
+         : family == ShapeFamily::kPolygon ? "Polygon/PolygonZ (5/15)"
+                                           : "PolyLine/PolyLineZ (3/13)";
+}
+
+uint32_t big_endian(const unsigned char* p) {
+  return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};
 }
 
 }  // namespace
@@ -131,7 +140,68 @@ ShapeReader::ShapeReader(const fs::path& shp, ShapeFamily family) : file_(shp.st
          "wrong shape type " + std::to_string(type) + " (expected " + family_name(family) + ")");
   }
   type_ = type;
-  has_z_ = type == SHPT_POINTZ || type == SHPT_ARCZ;
+  has_z_ = type == SHPT_POINTZ || type == SHPT_ARCZ || type == SHPT_POLYGONZ;
+  try {
+    check_index(shx);
+  } catch (...) {
+    SHPClose(handle);
+    handle_ = nullptr;
+    throw;
+  }
+}
+
+void ShapeReader::check_index(const fs::path& shx) const {
+  // ESRI Shapefile Technical Description (1998): the .shp holds, from byte 100, records of an
+  // 8-byte header (record number from 1, content length in 16-bit words, both big-endian) and
+  // their content; the .shx holds, from byte 100, one 8-byte entry per record (offset in words,
+  // content length in words).
+  std::FILE* shp_file = std::fopen(file_.c_str(), "rb");
+  std::FILE* shx_file = std::fopen(shx.c_str(), "rb");
+  const auto close = [&] {
+    if (shp_file != nullptr) std::fclose(shp_file);
+    if (shx_file != nullptr) std::fclose(shx_file);
+  };
+  if (shp_file == nullptr || shx_file == nullptr) {
+    close();
+    fail(shp_file == nullptr ? file_ : shx.string(), -1, "cannot be read");
+  }
+  unsigned char entry[8];
+  unsigned char header[8];
+  long position = 100;
+  std::string problem;
+  bool shp_short = false;
+  int record = 0;
+  for (; record < count_; ++record) {
+    if (std::fseek(shx_file, 100 + 8L * record, SEEK_SET) != 0 ||
+        std::fread(entry, 1, 8, shx_file) != 8) {
+      problem = "the index ends before its record count";
+      break;
+    }
+    const long offset = 2L * big_endian(entry);
+    const uint32_t length = big_endian(entry + 4);
+    if (std::fseek(shp_file, position, SEEK_SET) != 0 ||
+        std::fread(header, 1, 8, shp_file) != 8) {
+      problem = "truncated or corrupt: the file ends before this record";
+      shp_short = true;
+      break;
+    }
+    const uint32_t number = big_endian(header);
+    const uint32_t shp_length = big_endian(header + 4);
+    if (offset != position || length != shp_length || number != uint32_t(record) + 1) {
+      problem = "the index says offset " + std::to_string(offset) + " and length " +
+                std::to_string(2L * length) + " bytes, but the .shp has record " +
+                std::to_string(number) + " of " + std::to_string(2L * shp_length) +
+                " bytes at offset " + std::to_string(position) +
+                " (an index of another file, or a damaged one, would pair shapes with the wrong "
+                "attributes)";
+      break;
+    }
+    position += 8 + 2L * static_cast<long>(shp_length);
+  }
+  close();
+  if (!problem.empty()) {
+    fail(shp_short ? file_ : shx.string(), record, problem);
+  }
 }
 
 ShapeReader::~ShapeReader() {

@@ -16,12 +16,14 @@
 namespace corsa::ngii::detail {
 
 /// Geometry family a layer must have.
-enum class ShapeFamily { kPoint, kPolyline };
+enum class ShapeFamily { kPoint, kPolyline, kPolygon };
 
 /// Shapefile geometry (.shp with its .shx index).
 class ShapeReader {
  public:
-  /// Opens `shp` (its .shx must sit next to it); checks the shape type against `family`.
+  /// Opens `shp` (its .shx must sit next to it); checks the shape type against `family`, and
+  /// that every .shx entry points at the .shp record of its number with its length (a .shx of
+  /// another file, or a damaged one, would pair shapes with the wrong attributes).
   ShapeReader(const std::filesystem::path& shp, ShapeFamily family);
   ShapeReader(const ShapeReader&) = delete;
   ShapeReader& operator=(const ShapeReader&) = delete;
@@ -39,6 +41,9 @@ class ShapeReader {
   const std::string& file() const { return file_; }
 
  private:
+  /// Throws InputError at the first .shx entry that disagrees with the .shp.
+  void check_index(const std::filesystem::path& shx) const;
+
   void* handle_ = nullptr;  // SHPHandle, kept opaque so shapelib stays out of this header
   std::string file_;
   int count_ = 0;

@@ -100,7 +100,8 @@ TEST_CASE("corsa convert ngii writes K-City with a summary line and a correction
   const auto rows = read_csv(cli.report());
   REQUIRE(rows.size() > 100);
   CHECK(rows[0] ==
-        std::vector<std::string>{"link_id", "field", "old_value", "new_value", "reason", "record"});
+        std::vector<std::string>{"link_id", "field", "old_value", "new_value", "reason", "record",
+                                 "kind"});
   for (size_t i = 1; i < rows.size(); ++i) {
     CHECK_THAT(rows[i][0], Catch::StartsWith("A219BS01"));
   }

@@ -58,7 +58,8 @@ TEST_CASE("K-City groups numbered 2 3 4 5 6 7 and 2 3 are renumbered from 1",
   CHECK(lane_no_after(fixes, "A219BS010409") == "2");
 }
 
-TEST_CASE("repeated lane numbers and two roads sharing one sequence are repaired",
+TEST_CASE("repeated lane numbers are a source defect; numbers continuing across a road split "
+          "are a relabelling, listed but not warned about",
           "[ngii][corrections]") {
   const auto fixes = by_link("kcity");
   REQUIRE(fixes.contains({"A219BS010108", "LaneNo"}));
@@ -66,10 +67,29 @@ TEST_CASE("repeated lane numbers and two roads sharing one sequence are repaired
   CHECK(repeated.old_value == "1");
   CHECK(repeated.new_value == "2");
   CHECK_THAT(repeated.reason, Catch::Contains("read 1 1"));
-  REQUIRE(fixes.contains({"A219BS010074", "LaneNo"}));
-  const auto& shared = fixes.at({"A219BS010074", "LaneNo"});
-  CHECK(shared.new_value == "1");
-  CHECK_THAT(shared.reason, Catch::Contains("two roads sharing one sequence"));
+  CHECK(repeated.kind == corsa::ngii::CorrectionKind::kDefect);
+  // A219BS010103 reads 3 beside A219BS010104 (2); the two are different roads here, so the
+  // road of 103 numbers it 1: the source is not wrong.
+  REQUIRE(fixes.contains({"A219BS010103", "LaneNo"}));
+  const auto& relabel = fixes.at({"A219BS010103", "LaneNo"});
+  CHECK(relabel.old_value == "3");
+  CHECK(relabel.new_value == "1");
+  CHECK(relabel.kind == corsa::ngii::CorrectionKind::kRelabel);
+  CHECK_THAT(relabel.reason, Catch::Contains("continuing the numbers of link A219BS010104"));
+  // Warnings name every defect and no relabelling.
+  const auto& area = converted("kcity");
+  size_t defects = 0, relabels = 0;
+  for (const auto& c : area.conversion.corrections) {
+    (c.kind == corsa::ngii::CorrectionKind::kDefect ? defects : relabels) += 1;
+  }
+  CHECK(relabels > 0);
+  CHECK(area.conversion.summary.defects == defects);
+  size_t repair_warnings = 0;
+  for (const auto& d : area.diagnostics.all()) {
+    repair_warnings += d.message.find("-> '") != std::string::npos;
+    CHECK(d.message.find("A219BS010103: LaneNo") == std::string::npos);
+  }
+  CHECK(repair_warnings == defects);
 }
 
 TEST_CASE("Sangam's LaneNo 10 and L/R pointers to successors are repaired", "[ngii][corrections]") {

@@ -35,7 +35,15 @@ struct ConvertOptions {
   std::function<void(double)> progress;
 };
 
-/// One repair of the source data: which link, which field, the value before and after, and why.
+/// Whether a change is a repair of bad source data or only a relabelling that follows from how
+/// the converter grouped the lanes (the source was not wrong).
+enum class CorrectionKind : uint8_t {
+  kDefect,   ///< the source data breaks its own rules here (warned about)
+  kRelabel,  ///< renumbered to fit the converted roads (e.g. a road split off a lateral group
+             ///< restarts its LaneNo at 1); listed, not warned about
+};
+
+/// One change of the source data: which link, which field, the value before and after, and why.
 struct Correction {
   std::string link_id;
   std::string field;  ///< DBF field name (LaneNo, L_LinkID, R_LinkID) or "geometry"
@@ -43,6 +51,7 @@ struct Correction {
   std::string new_value;
   std::string reason;
   int64_t record = -1;  ///< A2_LINK record number
+  CorrectionKind kind = CorrectionKind::kDefect;
 };
 
 /// Where one A2 link ended up: a lane of a road over an s range. A link may appear in several
@@ -63,10 +72,13 @@ struct ConversionSummary {
   size_t lanes = 0;
   size_t junctions = 0;         ///< default junctions (intersections)
   size_t direct_junctions = 0;  ///< splits and merges of ordinary lanes (OpenDRIVE 1.8 §10.5)
-  size_t corrections = 0;
+  size_t corrections = 0;  ///< all rows of the corrections report
+  size_t defects = 0;      ///< of those, repairs of bad source data (the rest relabel)
   size_t geometries = 0;  ///< planView records
   size_t road_marks = 0;
   size_t signals = 0;
+  size_t controllers = 0;  ///< signal controllers (one per intersection approach)
+  size_t structures = 0;   ///< tunnel and bridge records (A2 RoadType 2-5)
   /// Lanes by where their width came from: B2 marks, L/R neighbour spacing, the lanes before
   /// and after them, the fallback width.
   size_t widths_from_marks = 0;
@@ -94,8 +106,8 @@ struct Conversion {
 Conversion convert(const Layers& layers, const ConvertOptions& options,
                    corsa::Diagnostics& diagnostics);
 
-/// The corrections as CSV: header `link_id,field,old_value,new_value,reason,record`, quoted
-/// where needed (RFC 4180).
+/// The corrections as CSV: header `link_id,field,old_value,new_value,reason,record,kind`
+/// (kind: `defect` or `relabel`), quoted where needed (RFC 4180).
 std::string corrections_csv(const std::vector<Correction>& corrections);
 
 /// Writes corrections_csv atomically. Throws InputError on I/O failure.
