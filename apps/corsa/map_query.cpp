@@ -1,6 +1,7 @@
 // `corsa map query MAP.xodr [--in FILE] [--to-lane]`: CSV in, CSV out, full double precision.
 //   default:    road,s,t  ->  x,y,z,h   (road by its id; h is the reference-line heading)
-//   --to-lane:  x,y       ->  road,lane,s,t  (empty fields when no lane is within reach)
+//   --to-lane:  x,y[,z]   ->  road,lane,s,t  (empty fields when no lane is within reach; with z,
+//               stacked roads resolve to the one at that height)
 // Blank lines and lines starting with '#' are skipped. The whole input is checked before
 // anything is printed, so a bad line gives `file:line: error: ...`, exit 2 and no output.
 
@@ -69,11 +70,15 @@ std::string road_to_world(const xodr::Map& map, const Input& input, int line,
 std::string world_to_lane(const xodr::Map& map, const Input& input, int line,
                           const std::vector<std::string_view>& fields,
                           const xodr::LocateOptions& options) {
-  if (fields.size() != 2) {
-    bad_line(input, line, "expected x,y");
+  if (fields.size() != 2 && fields.size() != 3) {
+    bad_line(input, line, "expected x,y or x,y,z");
   }
   const auto v = numbers(input, line, fields, 0);
-  const auto position = map.locate(v[0], v[1], options);
+  xodr::LocateOptions at = options;
+  if (v.size() == 3) {
+    at.z = v[2];
+  }
+  const auto position = map.locate(v[0], v[1], at);
   if (!position) {
     return ",,,";
   }
@@ -87,10 +92,11 @@ int map_query(std::span<const std::string> args) {
   ArgParser parser("map query MAP.xodr [--in FILE] [--to-lane]",
                    "Evaluates positions on the map, one CSV line per query (stdin by default):\n"
                    "  road,s,t -> x,y,z,h        (road id, metres; heading in radians)\n"
-                   "  x,y -> road,lane,s,t       (with --to-lane; empty fields off the map)");
+                   "  x,y[,z] -> road,lane,s,t   (with --to-lane; empty fields off the map; z picks\n"
+                   "                              the level where roads are stacked)");
   parser.positional("MAP.xodr", "the OpenDRIVE map");
   parser.option("--in", "FILE", "read queries from FILE instead of stdin");
-  parser.flag("--to-lane", "world x,y -> road,lane,s,t");
+  parser.flag("--to-lane", "world x,y[,z] -> road,lane,s,t");
   parser.option("--max-distance", "M", "with --to-lane: farthest a point may be from a lane (5)");
   const ParsedArgs parsed = parser.parse(args);
   if (parsed.help()) {

@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include "sidewalks.h"
 #include "union_find.h"
 
 namespace corsa::ngii::detail {
@@ -51,6 +52,9 @@ class Assembler {
     link_connecting_roads();
     default_junctions();
     direct_junctions();
+    if (options_.sidewalk_width > 0.0) {
+      sidewalks();
+    }
     return std::move(out_);
   }
 
@@ -111,7 +115,7 @@ class Assembler {
           user_data.push_back(xodr::UserData{"ngii:link", network_.source(span.link).id});
         }
         for (const BuiltRoad::Span& span : built.spans[k]) {
-          out_.placements.push_back(LinkPlacement{network_.source(span.link).id, id,
+          out_.placements.push_back(LinkPlacement{network_.source(span.link).id, id, 0,
                                                   lane_id(static_cast<int>(k)), span.s_start,
                                                   span.s_end});
         }
@@ -336,6 +340,31 @@ class Assembler {
       }
       out_.junctions.push_back(std::move(junction));
       ++out_.summary.direct_junctions;
+    }
+  }
+
+  /// Sidewalk lanes (sidewalks.h), joined where their roads join road to road.
+  void sidewalks() {
+    const std::vector<bool> has = add_sidewalks(out_.roads, plan_, road_slot_, network_,
+                                                options_.sidewalk_width);
+    for (size_t r = 0; r < plan_.roads.size(); ++r) {
+      if (!has[r]) {
+        continue;
+      }
+      ++out_.summary.sidewalks;
+      ++out_.summary.lanes;
+      xodr::Road& road = road_of(static_cast<int>(r));
+      xodr::Lane& lane = road.lane_sections.front().lanes.back();
+      for (const bool at_end : {true, false}) {
+        const xodr::RoadLink& link = at_end ? road.successor : road.predecessor;
+        const std::set<int>& next = at_end ? successors_[r] : predecessors_[r];
+        if (link.element_type != xodr::LinkElement::kRoad || next.size() != 1 ||
+            !has[static_cast<size_t>(*next.begin())]) {
+          continue;
+        }
+        const int other = sidewalk_lane_id(road_of(*next.begin()));
+        (at_end ? lane.successors : lane.predecessors).push_back(other);
+      }
     }
   }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "assemble.h"
+#include "corsa/core/strings.h"
 #include "correction_log.h"
 #include "decorations.h"
 #include "lane_numbers.h"
@@ -37,8 +38,9 @@ Origin choose_origin(const Layers& layers) {
 
 void check_options(const ConvertOptions& options) {
   if (!(options.tolerance > 0.0) || !(options.width_tolerance > 0.0) ||
-      !(options.elevation_tolerance > 0.0) || !(options.fallback_lane_width > 0.0) ||
-      !(options.station_spacing > 0.0)) {
+      !(options.elevation_tolerance > 0.0) || !(options.superelevation_tolerance > 0.0) ||
+      !(options.fallback_lane_width > 0.0) || !(options.station_spacing > 0.0) ||
+      !(options.sidewalk_width >= 0.0)) {
     throw std::invalid_argument("ngii::convert: tolerances, widths and spacing must be > 0");
   }
 }
@@ -108,6 +110,14 @@ Conversion convert(const Layers& layers, const ConvertOptions& options, Diagnost
   result.summary.links_read = layers.links.size();
   for (const LinkState& link : network.links) {
     result.summary.links_dropped += link.removed;
+  }
+  if (result.summary.fallback_widths > 0) {
+    diagnostics.add(make_warning(
+        layers.link_file, 0,
+        std::to_string(result.summary.fallback_widths) +
+            " lane(s) have no B2 marks, no neighbour and no lane before or after them to measure "
+            "their width against; " +
+            format_fixed(options.fallback_lane_width, 2) + " m is used"));
   }
   result.corrections = log.take();
   result.summary.corrections = result.corrections.size();

@@ -88,22 +88,22 @@ class WidthMeter {
     }
   }
 
-  /// Width at each station u from the marks bounding the link there (NaN where not both sides
-  /// have one): the nearest mark naming the link on each side, within kMarkReach.
+  /// Width at each station u from the marks bounding the link there: the nearest mark naming
+  /// the link on each side, within kMarkReach. With `one_side`, where only one side has a mark,
+  /// twice the distance to it (the link runs down the lane's middle). NaN where unknown.
   std::vector<double> from_marks(const PlanLane& lane, const Polyline& line,
-                                 const std::vector<double>& stations) const {
+                                 const std::vector<double>& stations, bool one_side) const {
     std::vector<double> out(stations.size(), kUnknown);
     for (size_t i = 0; i < stations.size(); ++i) {
       const size_t link = static_cast<size_t>(link_at(lane, stations[i]));
-      const auto& left = left_marks_[link];
-      const auto& right = right_marks_[link];
-      if (left.empty() || right.empty()) {
-        continue;
-      }
       const Vec2 v = xy(line.at(stations[i]));
       const Vec2 tangent = line.direction(stations[i]);
-      const double width = side_distance(left, v, tangent, true) +
-                           side_distance(right, v, tangent, false);
+      const double left = side_distance(left_marks_[link], v, tangent, true);
+      const double right = side_distance(right_marks_[link], v, tangent, false);
+      double width = left + right;
+      if (one_side && width > 1e299) {
+        width = 2.0 * std::min(left, right);
+      }
       if (width >= kMinWidth && width <= kMaxWidth) {
         out[i] = width;
       }
@@ -111,10 +111,27 @@ class WidthMeter {
     return smoothed(out);
   }
 
-  /// Width at each station u from the distance to the L/R neighbour links of the link there.
+  /// Width at each station u from the distance to the L/R neighbour links of the link there;
+  /// with `any_lane`, to whichever other link runs beside it (either direction: the lane of the
+  /// other carriageway), for links without L/R neighbours.
   std::vector<double> from_neighbours(const PlanLane& lane, const Polyline& line,
-                                      const std::vector<double>& stations) const {
+                                      const std::vector<double>& stations, bool any_lane) const {
     std::vector<double> out(stations.size(), kUnknown);
+    std::vector<Polyline> nearby;
+    if (any_lane) {
+      const Polyline own(lane.points);
+      for (size_t l = 0; l < network_.size(); ++l) {
+        const LinkState& other = network_.links[l];
+        if (other.removed || std::find(lane.links.begin(), lane.links.end(), int(l)) !=
+                                 lane.links.end()) {
+          continue;
+        }
+        const Projection p = own.project(xy(other.points[other.points.size() / 2]));
+        if (p.distance < 50.0 + 0.5 * other.length) {
+          nearby.emplace_back(other.points);
+        }
+      }
+    }
     for (size_t i = 0; i < stations.size(); ++i) {
       const LinkState& state = network_.links[static_cast<size_t>(link_at(lane, stations[i]))];
       std::vector<Polyline> neighbours;
@@ -123,17 +140,22 @@ class WidthMeter {
           neighbours.emplace_back(network_.links[static_cast<size_t>(other)].points);
         }
       }
+      if (any_lane) {
+        neighbours = nearby;
+      }
       double sum = 0.0;
       int count = 0;
+      double nearest = 1e300;
       for (const Polyline& other : neighbours) {
         const Projection p = other.project(xy(line.at(stations[i])));
         if (p.along == 0.0 && p.distance >= kMinSpacing && p.distance <= kMaxSpacing) {
           sum += p.distance;
           ++count;
+          nearest = std::min(nearest, p.distance);
         }
       }
       if (count > 0) {
-        out[i] = sum / count;
+        out[i] = any_lane ? nearest : sum / count;
       }
     }
     return smoothed(out);
@@ -206,10 +228,13 @@ PlanWidths measure_widths(const NetworkPlan& plan, const Network& network, doubl
       const std::vector<double> stations = stations_of(line);
       WidthSource source = WidthSource::kMarks;
       std::vector<ProfileSample> samples =
-          samples_of(stations, meter.from_marks(lane, line, stations));
+          samples_of(stations, meter.from_marks(lane, line, stations, false));
+      if (samples.empty()) {
+        samples = samples_of(stations, meter.from_marks(lane, line, stations, true));
+      }
       if (samples.empty()) {
         source = WidthSource::kNeighbours;
-        samples = samples_of(stations, meter.from_neighbours(lane, line, stations));
+        samples = samples_of(stations, meter.from_neighbours(lane, line, stations, false));
       }
       out.lanes[r].emplace_back(std::move(samples));
       out.sources[r].push_back(source);
@@ -218,9 +243,11 @@ PlanWidths measure_widths(const NetworkPlan& plan, const Network& network, doubl
       }
     }
   }
-  // The rest from the lanes before and after them (twice: chains of junction paths).
+  // The rest from the lanes before and after them, pass after pass while that reaches more
+  // (chains of junction paths).
   const LaneIndex index(plan);
-  for (int pass = 0; pass < 2; ++pass) {
+  for (bool progress = true; progress;) {
+    progress = false;
     for (const auto& [r, k] : unknown) {
       if (!out.lanes[r][k].empty()) {
         continue;
@@ -250,9 +277,18 @@ PlanWidths measure_widths(const NetworkPlan& plan, const Network& network, doubl
       const double w1 = n_after > 0 ? after / n_after : w0;
       out.lanes[r][k] = WidthProfile({{0.0, w0}, {length, w1}});
       out.sources[r][k] = WidthSource::kTopology;
+      progress = true;
     }
   }
   for (const auto& [r, k] : unknown) {
+    if (out.lanes[r][k].empty()) {
+      const PlanLane& lane = plan.roads[r].lanes[k];
+      const Polyline line(lane.points);
+      const std::vector<double> stations = stations_of(line);
+      out.lanes[r][k] =
+          WidthProfile(samples_of(stations, meter.from_neighbours(lane, line, stations, true)));
+      out.sources[r][k] = WidthSource::kNeighbours;
+    }
     if (out.lanes[r][k].empty()) {
       out.lanes[r][k] = WidthProfile({{0.0, fallback}});
       out.sources[r][k] = WidthSource::kFallback;

@@ -1,4 +1,5 @@
-// The corrections report (`corsa convert ngii --report FILE`).
+// The corrections report (`corsa convert ngii --report FILE`) and the placements table
+// (`--placements FILE`).
 
 #include <string>
 
@@ -15,6 +16,21 @@ std::string corrections_csv(const std::vector<Correction>& corrections) {
            ',' + (c.kind == CorrectionKind::kDefect ? "defect" : "relabel") + '\n';
   }
   return out;
+}
+
+std::string placements_csv(const std::vector<LinkPlacement>& placements) {
+  std::string out = "link_id,road_id,lane_section,lane_id,s_start,s_end\n";
+  for (const LinkPlacement& p : placements) {
+    out += csv_field(p.link_id) + ',' + csv_field(p.road_id) + ',' + std::to_string(p.section) +
+           ',' + std::to_string(p.lane_id) + ',' + format_fixed(p.s_start, 3) + ',' +
+           format_fixed(p.s_end, 3) + '\n';
+  }
+  return out;
+}
+
+void write_placements_csv(const std::vector<LinkPlacement>& placements,
+                          const std::filesystem::path& path) {
+  write_file_atomic(path, placements_csv(placements));
 }
 
 void write_corrections_csv(const std::vector<Correction>& corrections,

@@ -82,7 +82,8 @@ TEST_CASE("corsa convert ngii writes K-City with a summary line and a correction
   REQUIRE(cli.result.exit_code == 0);
   CHECK_THAT(cli.result.out, Catch::StartsWith("converted 809 links -> "));
   for (const char* part : {" roads (", " connecting), ", " lanes, ", " junctions + ",
-                           " corrections; largest fit error ", " m (lane centres)"}) {
+                           " controllers), ", "fallback 0; ", " source defects, ",
+                           " relabelled); largest fit error ", " m (lane centres)"}) {
     CHECK_THAT(cli.result.out, Catch::Contains(part));
   }
   CHECK_THAT(cli.result.out, Catch::Contains("corrections: " + cli.report().string()));

@@ -15,10 +15,15 @@ namespace {
 struct Candidate {
   LanePosition position;
   double center_offset = 0.0;
+  double height_gap = 0.0;  ///< |surface height - query z| (m), 0 without a query z
 
   bool better_than(const Candidate& other) const {
     if (position.distance != other.position.distance) {
       return position.distance < other.position.distance;
+    }
+    // Another level (stacked roads) before the centre offset; same level within a metre.
+    if (std::abs(height_gap - other.height_gap) > 1.0) {
+      return height_gap < other.height_gap;
     }
     if (center_offset != other.center_offset) {
       return center_offset < other.center_offset;
@@ -131,7 +136,7 @@ Foot project(const Map& map, const Chunk& chunk, double x, double y) {
 }
 
 /// Ranks one candidate answer against the best so far.
-void record(const Chunk& chunk, const Foot& foot, double t, int lane, double gap,
+void record(const Map& map, const Chunk& chunk, const Foot& foot, double t, int lane, double gap,
             double center_offset, double cos_r, const LocateOptions& options, Candidate& best,
             bool& have) {
   Candidate candidate;
@@ -146,6 +151,9 @@ void record(const Chunk& chunk, const Foot& foot, double t, int lane, double gap
   candidate.center_offset = center_offset;
   if (candidate.position.distance > options.max_distance) {
     return;
+  }
+  if (options.z) {
+    candidate.height_gap = std::abs(map.world_pose(chunk.road, foot.s, t).z - *options.z);
   }
   if (!have || candidate.better_than(best)) {
     best = candidate;
@@ -167,7 +175,8 @@ void evaluate_chunk(const Map& map, const Chunk& chunk, double x, double y,
   LaneSpan hit;
   if (!options.drivable_only && find_lane_at(section, foot.s, offset, t, hit)) {
     // Fast path: the point is on a lane (the common case).
-    record(chunk, foot, t, hit.id, 0.0, std::abs(t - hit.t_center()), 1.0, options, best, have);
+    record(map, chunk, foot, t, hit.id, 0.0, std::abs(t - hit.t_center()), 1.0, options, best,
+           have);
     return;
   }
   if (inside_only && !options.drivable_only) {
@@ -175,8 +184,8 @@ void evaluate_chunk(const Map& map, const Chunk& chunk, double x, double y,
   }
   NearestLane nearest;
   if (nearest_lane(section, foot.s, offset, t, options.drivable_only, nearest)) {
-    record(chunk, foot, t, nearest.lane, nearest.gap, nearest.center_offset, cos_r, options, best,
-           have);
+    record(map, chunk, foot, t, nearest.lane, nearest.gap, nearest.center_offset, cos_r, options,
+           best, have);
   }
 }
 

@@ -371,17 +371,21 @@ void write_controller(XmlWriter& w, const Controller& controller) {
   w.close();
 }
 
-void write_junction(XmlWriter& w, const Junction& junction) {
+void write_junction(XmlWriter& w, const Junction& junction, const WriteOptions& options) {
   const char* types[] = {"default", "direct", "virtual", "crossing"};
+  const bool legacy = options.legacy_junctions && junction.type == JunctionType::kDirect;
   w.open("junction").attr("id", junction.id).attr("name", junction.name);
-  w.attr("type", types[static_cast<int>(junction.type)]).children();
+  if (!legacy) {
+    w.attr("type", types[static_cast<int>(junction.type)]);
+  }
+  w.children();
   for (const Connection& c : junction.connections) {
     w.open("connection").attr("id", c.id).attr("incomingRoad", c.incoming_road);
     if (!c.connecting_road.empty()) {
       w.attr("connectingRoad", c.connecting_road);
     }
     if (!c.linked_road.empty()) {
-      w.attr("linkedRoad", c.linked_road);
+      w.attr(legacy ? "connectingRoad" : "linkedRoad", c.linked_road);
     }
     if (c.contact_point != ContactPoint::kNone) {
       w.attr("contactPoint", contact_name(c.contact_point));
@@ -422,10 +426,18 @@ std::string write_xodr_text(const MapData& map, const WriteOptions& options) {
     write_controller(w, controller);
   }
   for (const Junction& junction : map.junctions) {
-    write_junction(w, junction);
+    write_junction(w, junction, options);
   }
   w.close();
   return w.text();
+}
+
+WriteOptions compat_options(int rev_minor) {
+  WriteOptions options;
+  options.rev_minor = rev_minor;
+  options.single_lane_links = rev_minor < 7;
+  options.legacy_junctions = rev_minor < 7;
+  return options;
 }
 
 void write_xodr(const MapData& map, const std::filesystem::path& path,

@@ -1,6 +1,7 @@
-// `corsa convert ngii DIR -o OUT.xodr [--tolerance M] [--report FILE] [--quiet]`: NGII HD road
-// layers to OpenDRIVE (in the plugin: the import needs PROJ and shapelib). Thin: arguments,
-// progress, printing; the work is corsa::ngii (ngii/).
+// `corsa convert ngii DIR -o OUT.xodr [--tolerance M] [--report FILE] [--placements FILE]
+// [--compat 1.4] [--sidewalks W] [--quiet]`: NGII HD road layers to OpenDRIVE (in the plugin:
+// the import needs PROJ and shapelib). Thin: arguments, progress, printing; the work is
+// corsa::ngii (ngii/).
 
 #include <filesystem>
 #include <iostream>
@@ -19,7 +20,8 @@
 namespace corsa::cli {
 namespace {
 
-/// Warnings printed before "... and N more" (every repair warns; --report lists them all).
+/// Warnings printed before "... and N more" (every repair of a source defect warns; --report
+/// lists them all).
 constexpr size_t kWarningsShown = 20;
 
 ArgParser make_parser() {
@@ -27,7 +29,9 @@ ArgParser make_parser() {
                    "Converts NGII HD road layers (A1_NODE, A2_LINK and, when present, "
                    "B2_SURFACELINEMARK and C1_TRAFFICLIGHT; Shapefile + DBF) to OpenDRIVE 1.8: "
                    "lane numbers and neighbours repaired, lanes grouped into roads, reference "
-                   "lines fitted with lines, arcs and clothoids, junctions, road marks, signals.");
+                   "lines fitted with lines, arcs and clothoids, widths from the lane marks, "
+                   "elevation and superelevation from the lanes' heights, junctions, road marks, "
+                   "signals with their controllers, tunnels and bridges.");
   parser.positional("ngii DIR",
                     "the source format (ngii) and the folder of the layers, or the "
                     "path of its A2_LINK.shp",
@@ -37,8 +41,18 @@ ArgParser make_parser() {
                 "largest distance of the fitted reference line from the "
                 "lane data, metres (default 0.05)");
   parser.option("--report", "FILE",
-                "write every repair of the source data as CSV "
-                "(link_id,field,old_value,new_value,reason,record)");
+                "write every change of the source data as CSV "
+                "(link_id,field,old_value,new_value,reason,record,kind; kind: defect or "
+                "relabel)");
+  parser.option("--placements", "FILE",
+                "write where each A2 link ended up as CSV "
+                "(link_id,road_id,lane_section,lane_id,s_start,s_end)");
+  parser.option("--compat", "VERSION",
+                "write for readers of an older OpenDRIVE: 1.4 (no direct junctions, one lane "
+                "predecessor/successor); default 1.8");
+  parser.option("--sidewalks", "W",
+                "add sidewalk lanes W metres wide on the free outer edge of every road "
+                "(0.5-10)");
   parser.flag("--quiet", "no progress bar, warnings or summary");
   parser.epilog("example:\n  corsa convert ngii data/kcity -o kcity.xodr --report kcity-fixes.csv");
   return parser;
@@ -67,8 +81,16 @@ void print_summary(const ngii::ConversionSummary& s, const std::string& output) 
   std::cout << "converted " << s.links_read << " links -> " << s.roads << " roads ("
             << s.connecting_roads << " connecting), " << s.lanes << " lanes, " << s.junctions
             << " junctions + " << s.direct_junctions << " splits/merges, " << s.road_marks
-            << " road marks, " << s.signals << " signals; " << s.corrections
-            << " corrections; largest fit error " << format_fixed(s.max_lane_error, 3)
+            << " road marks, " << s.signals << " signals (" << s.controllers << " controllers), "
+            << s.structures << " tunnels/bridges";
+  if (s.sidewalks > 0) {
+    std::cout << ", " << s.sidewalks << " sidewalks";
+  }
+  std::cout << "; lane widths from marks " << s.widths_from_marks << ", neighbours "
+            << s.widths_from_neighbours << ", lanes before/after " << s.widths_from_topology
+            << ", fallback " << s.fallback_widths << "; " << s.corrections << " corrections ("
+            << s.defects << " source defects, " << s.corrections - s.defects
+            << " relabelled); largest fit error " << format_fixed(s.max_lane_error, 3)
             << " m (lane centres), " << format_fixed(s.max_reference_error, 3)
             << " m (reference lines), " << s.geometries << " planView records, " << s.kinks
             << " kinks -> " << output << '\n';
@@ -94,8 +116,23 @@ int convert_body(std::span<const std::string> args) {
     }
     options.tolerance = *tolerance;
   }
+  if (const auto sidewalks = parsed.number("--sidewalks")) {
+    if (!(*sidewalks >= 0.5 && *sidewalks <= 10.0)) {
+      throw UsageError("--sidewalks must be between 0.5 and 10 metres");
+    }
+    options.sidewalk_width = *sidewalks;
+  }
+  xodr::WriteOptions write_options;
+  if (const auto compat = parsed.value("--compat")) {
+    if (*compat == "1.4") {
+      write_options = xodr::compat_options(4);
+    } else if (*compat != "1.8") {
+      throw UsageError("--compat takes 1.4 (or 1.8, the default), not '" + *compat + "'");
+    }
+  }
   const bool quiet = parsed.flag("--quiet");
   const std::optional<std::filesystem::path> report = output_file(parsed, "--report");
+  const std::optional<std::filesystem::path> placements = output_file(parsed, "--placements");
 
   Diagnostics diagnostics;
   ngii::Conversion conversion;
@@ -108,9 +145,12 @@ int convert_body(std::span<const std::string> args) {
     // The map must load in Corsa: checked here rather than found by the next user.
     xodr::Map::build(conversion.map, diagnostics);
     progress.update(0.95);
-    xodr::write_xodr(conversion.map, output);
+    xodr::write_xodr(conversion.map, output, write_options);
     if (report) {
       ngii::write_corrections_csv(conversion.corrections, *report);
+    }
+    if (placements) {
+      ngii::write_placements_csv(conversion.placements, *placements);
     }
     progress.finish();
   }
@@ -119,6 +159,9 @@ int convert_body(std::span<const std::string> args) {
     print_summary(conversion.summary, output.string());
     if (report) {
       std::cout << "corrections: " << report->string() << '\n';
+    }
+    if (placements) {
+      std::cout << "placements: " << placements->string() << '\n';
     }
   }
   return kExitOk;

@@ -31,6 +31,9 @@ struct ConvertOptions {
   double fallback_lane_width = 3.25;
   /// Spacing (m) of the stations where lane offsets are measured.
   double station_spacing = 1.0;
+  /// Width (m) of a sidewalk lane added on the outer (right) edge of every road that has no
+  /// lane beside it there (NGII has no sidewalks; pedestrians need somewhere to walk); 0: none.
+  double sidewalk_width = 0.0;
   /// Called as the conversion advances: fraction done in [0, 1]. Optional.
   std::function<void(double)> progress;
 };
@@ -59,6 +62,7 @@ struct Correction {
 struct LinkPlacement {
   std::string link_id;
   std::string road_id;
+  int section = 0;  ///< lane section index within the road
   int lane_id = 0;
   double s_start = 0.0;  ///< road s where the link starts (m)
   double s_end = 0.0;
@@ -79,6 +83,7 @@ struct ConversionSummary {
   size_t signals = 0;
   size_t controllers = 0;  ///< signal controllers (one per intersection approach)
   size_t structures = 0;   ///< tunnel and bridge records (A2 RoadType 2-5)
+  size_t sidewalks = 0;    ///< sidewalk lanes added (ConvertOptions::sidewalk_width)
   /// Lanes by where their width came from: B2 marks, L/R neighbour spacing, the lanes before
   /// and after them, the fallback width.
   size_t widths_from_marks = 0;
@@ -113,5 +118,13 @@ std::string corrections_csv(const std::vector<Correction>& corrections);
 /// Writes corrections_csv atomically. Throws InputError on I/O failure.
 void write_corrections_csv(const std::vector<Correction>& corrections,
                            const std::filesystem::path& path);
+
+/// Where each A2 link ended up, as CSV: header `link_id,road_id,lane_section,lane_id,s_start,
+/// s_end` (s in metres along the road), one row per placement in road order.
+std::string placements_csv(const std::vector<LinkPlacement>& placements);
+
+/// Writes placements_csv atomically. Throws InputError on I/O failure.
+void write_placements_csv(const std::vector<LinkPlacement>& placements,
+                          const std::filesystem::path& path);
 
 }  // namespace corsa::ngii

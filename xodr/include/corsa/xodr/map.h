@@ -71,6 +71,10 @@ struct LocateOptions {
   double max_distance = 5.0;
   /// Only lanes vehicles drive on (driving, entry/exit, ramps, bidirectional, ...).
   bool drivable_only = false;
+  /// The point's height (m), when known: where roads are stacked (an underpass below a bridge),
+  /// of the lanes at (x, y) the one whose surface is nearest this height wins (heights closer
+  /// than 1 m count as the same level, so overlapping junction lanes rank as without z).
+  std::optional<double> z;
 };
 
 struct BuildOptions {

@@ -17,7 +17,15 @@ struct WriteOptions {
   /// At most one <predecessor> and one <successor> per lane link (what readers of OpenDRIVE
   /// 1.4 follow); the others are left out.
   bool single_lane_links = false;
+  /// Direct junctions (§10.5, OpenDRIVE 1.7) written in the form earlier readers follow: a
+  /// junction without a type whose connections name the linked road as connectingRoad (readers
+  /// such as libOpenDRIVE skip connections without one).
+  bool legacy_junctions = false;
 };
+
+/// Options for files that readers of OpenDRIVE 1.4 follow (`corsa convert ngii --compat 1.4`):
+/// revMinor 4, legacy junctions, one lane predecessor/successor.
+WriteOptions compat_options(int rev_minor);
 
 /// The whole document as text.
 std::string write_xodr_text(const MapData& map, const WriteOptions& options = {});
