@@ -117,6 +117,9 @@ if(CORSA_BUILD_TESTS)
   corsa_require(CORSA_SLURMCTLD "slurmctld" slurm-wlm)
   corsa_require(CORSA_SLURMD "slurmd" slurm-wlm)
   corsa_require(CORSA_MUNGED "munged" munge)
+  # xmllint validates every .xodr Corsa writes against the ASAM OpenDRIVE 1.7 XSD (tests/xsd).
+  find_program(CORSA_XMLLINT xmllint)
+  corsa_require(CORSA_XMLLINT "xmllint" libxml2-utils)
 endif()
 
 if(CORSA_BUILD_BENCH)

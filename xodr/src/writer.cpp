@@ -6,6 +6,9 @@
 
 #include "corsa/xodr/writer.h"
 
+#include <algorithm>
+#include <array>
+#include <string_view>
 #include <type_traits>
 
 #include "corsa/core/atomic_file.h"
@@ -196,10 +199,28 @@ void write_repeat(XmlWriter& w, const ObjectRepeat& r) {
   w.end_empty();
 }
 
+/// Object types of the OpenDRIVE 1.7 enumeration (e_objectType); the 1.8 additions would fail
+/// the 1.7 XSD that readers validate against.
+bool standard_object_type(const std::string& type) {
+  static constexpr std::array<std::string_view, 26> kTypes = {
+      "none",       "obstacle",     "car",       "pole",          "tree",      "vegetation",
+      "barrier",    "building",     "parkingSpace", "patch",      "railing",   "trafficIsland",
+      "crosswalk",  "streetLamp",   "gantry",    "soundBarrier",  "van",       "bus",
+      "trailer",    "bike",         "motorbike", "tram",          "train",     "pedestrian",
+      "wind",       "roadMark"};
+  return std::find(kTypes.begin(), kTypes.end(), type) != kTypes.end();
+}
+
 void write_object(XmlWriter& w, const Object& o) {
-  w.open("object").attr("id", o.id).attr("name", o.name).attr("type", o.type);
+  // A type outside the enumeration (older or vendor files: "-1", "guide-post") is written as
+  // "none" with the original kept as the subtype, so the output stays valid.
+  const bool standard = standard_object_type(o.type);
+  w.open("object").attr("id", o.id).attr("name", o.name);
+  w.attr("type", standard ? o.type : std::string("none"));
   if (!o.subtype.empty()) {
     w.attr("subtype", o.subtype);
+  } else if (!standard) {
+    w.attr("subtype", o.type);
   }
   w.attr("s", o.s).attr("t", o.t).attr("zOffset", o.z_offset).attr("hdg", o.hdg);
   w.attr("pitch", o.pitch).attr("roll", o.roll);
