@@ -58,11 +58,15 @@ std::optional<double> skew_of(const std::vector<Point2>& p, const EndLine& line)
   return skew;
 }
 
-/// Bends the end of `p` by `skew` (rad, from the direction of travel): over its last `reach`
-/// metres, a cubic Hermite curve to the point where the line through `anchor` (the reference
-/// lane's end) at that angle meets the line of travel through the end. Returns the new end
-/// heading.
-std::optional<double> bend_end(std::vector<Point2>& p, double skew, Vec2 anchor, double reach) {
+/// Where the reference line must end to meet an end line turned by `skew` from the direction
+/// of travel, through `anchor` (the reference lane's end): the point on the line of travel
+/// through the end of `p`, and the heading there (square to the end line).
+struct EndTarget {
+  Vec2 point;
+  Vec2 square;
+};
+
+std::optional<EndTarget> end_target(const std::vector<Point2>& p, double skew, Vec2 anchor) {
   const auto forward = end_direction(p);
   if (!forward) {
     return std::nullopt;
@@ -75,8 +79,28 @@ std::optional<double> bend_end(std::vector<Point2>& p, double skew, Vec2 anchor,
   if (std::abs(denominator) < 1e-9) {
     return std::nullopt;
   }
-  const Vec2 target = anchor + (cross(last - anchor, *forward) / denominator) * across;
-  // The point `reach` metres before the end, and the direction there.
+  return EndTarget{anchor + (cross(last - anchor, *forward) / denominator) * across, square};
+}
+
+/// Cubic Hermite points from `a` (heading `ta`) to `b` (heading `tb`), every half metre or so,
+/// `a` left out.
+std::vector<Point2> hermite(Vec2 a, Vec2 ta, Vec2 b, Vec2 tb) {
+  const double chord = norm(b - a);
+  const int steps = std::max(4, static_cast<int>(std::ceil(chord / 0.5)));
+  std::vector<Point2> out;
+  for (int k = 1; k <= steps; ++k) {
+    const double f = static_cast<double>(k) / steps;
+    const double h00 = 2 * f * f * f - 3 * f * f + 1, h10 = f * f * f - 2 * f * f + f;
+    const double h01 = -2 * f * f * f + 3 * f * f, h11 = f * f * f - f * f;
+    const Vec2 q = h00 * a + (h10 * chord) * ta + h01 * b + (h11 * chord) * tb;
+    out.push_back(Point2{q.x, q.y});
+  }
+  return out;
+}
+
+/// Bends the end of `p` over its last `reach` metres: a cubic Hermite curve to the target,
+/// arriving square to the end line. Returns the new end heading.
+std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, double reach) {
   double walked = 0.0;
   size_t i = p.size() - 1;
   while (i > 0 && walked + norm(to_vec(p[i]) - to_vec(p[i - 1])) < reach) {
@@ -92,18 +116,11 @@ std::optional<double> bend_end(std::vector<Point2>& p, double skew, Vec2 anchor,
     --j;
   }
   Vec2 heading = j < i ? start - to_vec(p[j]) : to_vec(p[i + 1]) - start;
-  heading = norm(heading) > 1e-9 ? (1.0 / norm(heading)) * heading : *forward;
-  const double chord = norm(target - start);
-  const int steps = std::max(4, static_cast<int>(std::ceil(chord / 0.5)));
+  heading = norm(heading) > 1e-9 ? (1.0 / norm(heading)) * heading : target.square;
   p.resize(i + 1);
-  for (int k = 1; k <= steps; ++k) {
-    const double f = static_cast<double>(k) / steps;
-    const double h00 = 2 * f * f * f - 3 * f * f + 1, h10 = f * f * f - 2 * f * f + f;
-    const double h01 = -2 * f * f * f + 3 * f * f, h11 = f * f * f - f * f;
-    const Vec2 q = h00 * start + (h10 * chord) * heading + h01 * target + (h11 * chord) * square;
-    p.push_back(Point2{q.x, q.y});
-  }
-  return std::atan2(square.y, square.x);
+  const std::vector<Point2> tail = hermite(start, heading, target.point, target.square);
+  p.insert(p.end(), tail.begin(), tail.end());
+  return std::atan2(target.square.y, target.square.x);
 }
 
 /// How far (m) before an end a turn by `skew` must begin so that lanes up to `road_width` away
@@ -120,44 +137,63 @@ double skew_within(double skew, double road_width, double room) {
 
 }  // namespace
 
+namespace {
+
+/// The principal line of `points` (their mean and main direction, oriented first to last).
+EndLine principal_line(const std::vector<Vec2>& points) {
+  Vec2 mean{0.0, 0.0};
+  for (const Vec2& e : points) {
+    mean = mean + (1.0 / static_cast<double>(points.size())) * e;
+  }
+  double sxx = 0.0, sxy = 0.0, syy = 0.0;
+  for (const Vec2& e : points) {
+    const Vec2 d = e - mean;
+    sxx += d.x * d.x;
+    sxy += d.x * d.y;
+    syy += d.y * d.y;
+  }
+  const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+  Vec2 across{std::cos(angle), std::sin(angle)};
+  if (dot(across, points.back() - points.front()) < 0.0) {
+    across = -1.0 * across;
+  }
+  return EndLine{mean, across};
+}
+
+}  // namespace
+
 std::optional<EndLine> end_line(std::vector<Vec2> ends) {
-  // The principal line of the points; the end farthest off it is dropped until the rest lie
-  // within kEndLineTolerance (a lane ending elsewhere keeps a gap, the others none).
-  while (ends.size() >= 2) {
-    Vec2 mean{0.0, 0.0};
-    for (const Vec2& e : ends) {
-      mean = mean + (1.0 / static_cast<double>(ends.size())) * e;
-    }
-    double sxx = 0.0, sxy = 0.0, syy = 0.0;
-    for (const Vec2& e : ends) {
-      const Vec2 d = e - mean;
-      sxx += d.x * d.x;
-      sxy += d.x * d.y;
-      syy += d.y * d.y;
-    }
-    const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
-    Vec2 across{std::cos(angle), std::sin(angle)};
-    if (dot(across, ends.back() - ends.front()) < 0.0) {
-      across = -1.0 * across;
-    }
-    if (norm(ends.back() - ends.front()) < 1.0) {
-      return std::nullopt;  // lane ends on top of each other: no direction to follow
-    }
-    size_t worst = 0;
-    double worst_distance = 0.0;
-    for (size_t i = 0; i < ends.size(); ++i) {
-      const double distance = std::abs(cross(across, ends[i] - mean));
-      if (distance > worst_distance) {
-        worst_distance = distance;
-        worst = i;
+  // The line through the most lane ends (within kEndLineTolerance), tried through every pair,
+  // then refitted through those ends: a lane ending elsewhere keeps its gap, the others none.
+  if (ends.size() < 2) {
+    return std::nullopt;
+  }
+  std::vector<Vec2> best;
+  double best_spread = 0.0;
+  for (size_t i = 0; i < ends.size(); ++i) {
+    for (size_t j = i + 1; j < ends.size(); ++j) {
+      const Vec2 d = ends[j] - ends[i];
+      if (norm(d) < 1.0) {
+        continue;  // lane ends on top of each other: no direction to follow
+      }
+      const Vec2 across = (1.0 / norm(d)) * d;
+      std::vector<Vec2> inliers;
+      for (const Vec2& e : ends) {
+        if (std::abs(cross(across, e - ends[i])) <= kEndLineTolerance) {
+          inliers.push_back(e);
+        }
+      }
+      const double spread = norm(inliers.back() - inliers.front());
+      if (inliers.size() > best.size() || (inliers.size() == best.size() && spread > best_spread)) {
+        best = std::move(inliers);
+        best_spread = spread;
       }
     }
-    if (worst_distance <= kEndLineTolerance) {
-      return EndLine{mean, across};
-    }
-    ends.erase(ends.begin() + static_cast<std::ptrdiff_t>(worst));
   }
-  return std::nullopt;
+  if (best.size() < 2) {
+    return std::nullopt;
+  }
+  return principal_line(best);
 }
 
 ReferencePolyline shifted_left(const Polyline& first, const std::vector<double>& half_widths) {
@@ -225,23 +261,55 @@ ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<En
   std::vector<Point2> reversed(p.rbegin(), p.rend());
   const std::optional<double> end_skew = end ? skew_of(p, *end) : std::nullopt;
   const std::optional<double> start_skew = start ? skew_of(reversed, *start) : std::nullopt;
+  const double length = polyline_length(p);
+  // A short road skewed at both ends (a parallelogram between two stop lines): one curve square
+  // to both lines, from the start target to where it meets the end line, rather than two bends
+  // that do not fit. The lanes then cross its normals at a slant, which their offsets follow
+  // (the laneOffset drifts by about length x tan(skew)).
+  if (end_skew && start_skew &&
+      reach_for(*end_skew, road_width) + reach_for(*start_skew, road_width) > 0.9 * length) {
+    const auto e = end_target(p, *end_skew, end_anchor);
+    const auto s = end_target(reversed, *start_skew, start_anchor);
+    const auto d0 = end_direction(reversed);
+    const auto d1 = end_direction(p);
+    // Only for roads that hardly turn (the curve replaces the lane's own course).
+    if (e && s && d0 && d1 && dot(-1.0 * *d0, *d1) > std::cos(0.35)) {
+      const Vec2 start_square = -1.0 * s->square;
+      const Vec2 across{e->square.y, -e->square.x};
+      const double denominator = cross(start_square, across);
+      if (std::abs(denominator) > 0.5) {
+        const Vec2 meet =
+            s->point + (cross(e->point - s->point, across) / denominator) * start_square;
+        std::vector<Point2> curve{Point2{s->point.x, s->point.y}};
+        const std::vector<Point2> rest = hermite(s->point, start_square, meet, e->square);
+        curve.insert(curve.end(), rest.begin(), rest.end());
+        reference.points = std::move(curve);
+        reference.start_heading = std::atan2(start_square.y, start_square.x);
+        reference.end_heading = std::atan2(e->square.y, e->square.x);
+        return reference;
+      }
+    }
+  }
   // Both ends share the road; one alone may use most of it. A turn that does not fit is made
   // only as far as it can be without folding (the outer lanes then keep part of their gap).
-  const double length = polyline_length(p);
   const double room = (end_skew && start_skew ? 0.45 : 0.85) * length;
   if (end_skew) {
     const double skew = skew_within(*end_skew, road_width, room);
-    const double reach = std::min(room, reach_for(skew, road_width));
-    if (const auto heading = bend_end(p, skew, end_anchor, reach)) {
-      reference.end_heading = *heading;
+    const auto target = end_target(p, skew, end_anchor);
+    if (target) {
+      if (const auto heading = bend_end(p, *target, std::min(room, reach_for(skew, road_width)))) {
+        reference.end_heading = *heading;
+      }
     }
   }
   if (start_skew) {
     const double skew = skew_within(*start_skew, road_width, room);
-    const double reach = std::min(room, reach_for(skew, road_width));
     std::reverse(p.begin(), p.end());
-    if (const auto heading = bend_end(p, skew, start_anchor, reach)) {
-      reference.start_heading = std::remainder(*heading + M_PI, 2.0 * M_PI);
+    const auto target = end_target(p, skew, start_anchor);
+    if (target) {
+      if (const auto heading = bend_end(p, *target, std::min(room, reach_for(skew, road_width)))) {
+        reference.start_heading = std::remainder(*heading + M_PI, 2.0 * M_PI);
+      }
     }
     std::reverse(p.begin(), p.end());
   }
