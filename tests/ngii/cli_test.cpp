@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "corsa/core/atomic_file.h"
+#include "corsa/core/strings.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/parser.h"
 #include "ngii_fixtures.h"
@@ -209,4 +211,207 @@ TEST_CASE("a car on the converted K-City map follows its route through four junc
   CHECK(std::stod(last[0]) < 100.0);
   CHECK(std::stod(last[8]) == 0.0);
   CHECK(junction_of[last[9]] == "-1");
+}
+
+namespace {
+
+using Edge = std::pair<std::pair<std::string, int>, std::pair<std::string, int>>;
+
+/// The lane-to-lane links a reader of OpenDRIVE 1.4 follows (libOpenDRIVE's routing graph): the
+/// first <predecessor>/<successor> of each lane across road links of type road with a contact
+/// point, and junction connections that name a connectingRoad.
+std::set<Edge> legacy_edges(const corsa::xodr::MapData& data) {
+  std::set<Edge> edges;
+  for (const auto& road : data.roads) {
+    for (const auto& lane : road.lane_sections.front().lanes) {
+      if (!lane.successors.empty() && road.successor.element_type == corsa::xodr::LinkElement::kRoad &&
+          road.successor.contact_point != corsa::xodr::ContactPoint::kNone) {
+        edges.insert({{road.id, lane.id}, {road.successor.element_id, lane.successors.front()}});
+      }
+      if (!lane.predecessors.empty() &&
+          road.predecessor.element_type == corsa::xodr::LinkElement::kRoad &&
+          road.predecessor.contact_point != corsa::xodr::ContactPoint::kNone) {
+        edges.insert(
+            {{road.predecessor.element_id, lane.predecessors.front()}, {road.id, lane.id}});
+      }
+    }
+  }
+  for (const auto& junction : data.junctions) {
+    for (const auto& c : junction.connections) {
+      for (const auto& link : c.lane_links) {
+        if (!c.connecting_road.empty()) {
+          edges.insert({{c.incoming_road, link.from}, {c.connecting_road, link.to}});
+        }
+      }
+    }
+  }
+  return edges;
+}
+
+/// Every join of the lane graph from the end of one road to the start of another.
+std::set<Edge> graph_edges(const corsa::xodr::Map& map) {
+  std::set<Edge> edges;
+  const auto& graph = map.lane_graph();
+  for (corsa::xodr::LaneNode node = 0; node < graph.size(); ++node) {
+    const auto& from = graph.info(node).lane;
+    for (const auto& end : graph.successors(node)) {
+      const auto& to = graph.info(end.node).lane;
+      if (end.at_start && to.road != from.road) {
+        edges.insert({{map.road(from.road).id, from.lane}, {map.road(to.road).id, to.lane}});
+      }
+    }
+  }
+  return edges;
+}
+
+}  // namespace
+
+TEST_CASE("with --compat 1.4 a pre-1.7 reader follows every lane link", "[ngii][cli][compat]") {
+  const CliConversion& cli = kcity_cli();
+  REQUIRE(cli.result.exit_code == 0);
+  corsa::test::TempDir dir;
+  const auto old = dir.path() / "kcity-1.4.xodr";
+  const auto run = run_corsa({"convert", "ngii", ngii_area("kcity").string(), "-o", old.string(),
+                              "--compat", "1.4", "--quiet"});
+  REQUIRE(run.exit_code == 0);
+  corsa::Diagnostics diagnostics;
+  const auto modern = corsa::xodr::Map::load(cli.map(), diagnostics);
+  const std::set<Edge> all = graph_edges(modern);
+  REQUIRE(all.size() > 900);
+  // The default output uses linkedRoad (direct junctions): such a reader misses those links.
+  const std::set<Edge> from_modern = legacy_edges(modern.data());
+  size_t missed_modern = 0;
+  for (const Edge& e : all) {
+    missed_modern += !from_modern.contains(e);
+  }
+  CHECK(missed_modern > 100);
+  const auto compat_data = corsa::xodr::parse_xodr(old, diagnostics);
+  CHECK(compat_data.header.rev_minor == 4);
+  const std::set<Edge> from_compat = legacy_edges(compat_data);
+  std::vector<std::string> missed;
+  for (const Edge& e : all) {
+    if (!from_compat.contains(e)) {
+      missed.push_back(e.first.first + ":" + std::to_string(e.first.second) + " -> " +
+                       e.second.first + ":" + std::to_string(e.second.second));
+    }
+  }
+  INFO((missed.empty() ? std::string("none") : missed.front()));
+  CHECK(missed.empty());
+  // And Corsa reads it to the same lane graph, without warnings.
+  corsa::Diagnostics again;
+  const auto reloaded = corsa::xodr::Map::load(old, again);
+  CHECK(graph_edges(reloaded) == all);
+  CHECK(again.size() == 0);
+  const auto bad = run_corsa({"convert", "ngii", ngii_area("kcity").string(), "-o",
+                              (dir.path() / "x.xodr").string(), "--compat", "1.5"});
+  CHECK(bad.exit_code == 2);
+  CHECK_THAT(bad.err, Catch::Contains("--compat takes 1.4"));
+}
+
+TEST_CASE("corsa convert ngii --placements lists where every A2 link went", "[ngii][cli]") {
+  corsa::test::TempDir dir;
+  const auto csv = dir.path() / "placements.csv";
+  const auto run = run_corsa({"convert", "ngii", ngii_area("kcity").string(), "-o",
+                              (dir.path() / "k.xodr").string(), "--placements", csv.string(),
+                              "--quiet"});
+  REQUIRE(run.exit_code == 0);
+  const auto rows = read_csv(csv);
+  REQUIRE(rows.size() > 800);
+  CHECK(rows[0] == std::vector<std::string>{"link_id", "road_id", "lane_section", "lane_id",
+                                            "s_start", "s_end"});
+  corsa::Diagnostics diagnostics;
+  const auto map = corsa::xodr::Map::load(dir.path() / "k.xodr", diagnostics);
+  std::set<std::string> links;
+  for (size_t i = 1; i < rows.size(); ++i) {
+    REQUIRE(rows[i].size() == 6);
+    links.insert(rows[i][0]);
+    const auto road = map.find_road(rows[i][1]);
+    REQUIRE(road);
+    const double s0 = std::stod(rows[i][4]), s1 = std::stod(rows[i][5]);
+    CHECK(s0 <= s1);
+    CHECK(s1 <= map.road(*road).length + 1e-3);
+    // The lane names that link in its provenance.
+    const auto* lane = map.lane(corsa::xodr::LaneRef{static_cast<uint32_t>(*road),
+                                                     static_cast<uint32_t>(std::stoi(rows[i][2])),
+                                                     std::stoi(rows[i][3])});
+    REQUIRE(lane != nullptr);
+    bool named = false;
+    for (const auto& d : lane->user_data) {
+      named = named || (d.code == "ngii:link" && d.value == rows[i][0]);
+    }
+    CHECK(named);
+  }
+  CHECK(links.size() == 809);
+}
+
+TEST_CASE("a .shx whose entries do not point at the .shp records is refused",
+          "[ngii][cli][errors]") {
+  corsa::test::TempDir in;
+  corsa::test::TempDir out;
+  corsa::test::copy_layers(ngii_area("kcity"), in.path(), {"A1_NODE", "A2_LINK"});
+  // The entries of the index in reverse order: every shape would meet another record's
+  // attributes.
+  const auto shx = in.path() / "A2_LINK.shx";
+  std::vector<char> bytes = corsa::test::read_bytes(shx);
+  const size_t entries = (bytes.size() - 100) / 8;
+  std::vector<char> reversed(bytes.begin(), bytes.begin() + 100);
+  for (size_t i = entries; i-- > 0;) {
+    reversed.insert(reversed.end(), bytes.begin() + 100 + 8 * static_cast<std::ptrdiff_t>(i),
+                    bytes.begin() + 108 + 8 * static_cast<std::ptrdiff_t>(i));
+  }
+  corsa::test::write_bytes(shx, reversed);
+  const std::string err = failed_conversion(in.path(), out.path());
+  CHECK_THAT(err, Catch::Contains("A2_LINK.shx: record 0: error: the index says offset"));
+  CHECK_THAT(err, Catch::Contains("but the .shp has record 1"));
+}
+
+TEST_CASE("map query --to-lane with z resolves Sangam's stacked roads", "[ngii][cli][query]") {
+  corsa::test::TempDir dir;
+  const auto map_path = dir.path() / "sangam.xodr";
+  REQUIRE(run_corsa({"convert", "ngii", ngii_area("seoul_sangam_testbed").string(), "-o",
+                     map_path.string(), "--quiet"})
+              .exit_code == 0);
+  corsa::Diagnostics diagnostics;
+  const auto map = corsa::xodr::Map::load(map_path, diagnostics);
+  // A point in the middle of the underground road's lane, and the road above it.
+  const corsa::xodr::Road* under = nullptr;
+  for (const auto& road : map.data().roads) {
+    for (const auto& tunnel : road.tunnels) {
+      if (tunnel.type == "underpass" && under == nullptr) {
+        under = &road;
+      }
+    }
+  }
+  REQUIRE(under != nullptr);
+  // A point on the underground road's lane with another road's lane above it.
+  const size_t index = *map.find_road(under->id);
+  corsa::xodr::WorldPose pose;
+  bool found = false;
+  for (double s = 0.0; s < under->length && !found; s += 2.0) {
+    const auto span = map.lane_span(index, s, -1);
+    REQUIRE(span);
+    pose = map.world_pose(index, s, span->t_center());
+    corsa::xodr::LocateOptions high;
+    high.z = pose.z + 20.0;
+    const auto top = map.locate(pose.x, pose.y, high);
+    found = top && top->road != index && top->distance == 0.0 &&
+            map.world_pose(top->road, top->s, top->t).z > pose.z + 3.0;
+  }
+  REQUIRE(found);
+  const std::string query = corsa::format_double(pose.x) + "," + corsa::format_double(pose.y);
+  const auto file = dir.path() / "q.csv";
+  corsa::write_file_atomic(file, query + "," + corsa::format_double(pose.z) + "\n" + query +
+                                     "," + corsa::format_double(pose.z + 20.0) + "\n" + query +
+                                     "\n");
+  const auto run = run_corsa({"map", "query", map_path.string(), "--to-lane", "--in",
+                              file.string()});
+  REQUIRE(run.exit_code == 0);
+  std::istringstream lines(run.out);
+  std::string low, high, plain;
+  std::getline(lines, low);
+  std::getline(lines, high);
+  std::getline(lines, plain);
+  CHECK_THAT(low, Catch::StartsWith(under->id + ",-1,"));
+  CHECK_THAT(high, !Catch::StartsWith(under->id + ","));
+  CHECK_FALSE(high.empty());
 }
