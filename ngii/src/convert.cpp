@@ -10,6 +10,7 @@
 #include "corsa/core/strings.h"
 #include "correction_log.h"
 #include "decorations.h"
+#include "feature_layers.h"
 #include "lane_numbers.h"
 #include "lateral.h"
 #include "network.h"
@@ -106,6 +107,10 @@ Conversion convert(const Layers& layers, const ConvertOptions& options, Diagnost
   result.summary.signals = decorations.signals;
   result.summary.controllers = decorations.controllers;
   result.summary.structures = decorations.structures;
+  const FeatureCounts features = place_features(result.map, result.placements, layers, origin);
+  result.summary.signs = features.signals;
+  result.summary.objects = features.objects;
+  result.summary.structures += features.structures;
   result.map.header = make_header(layers, origin, result.map.roads);
   result.summary.links_read = layers.links.size();
   for (const LinkState& link : network.links) {

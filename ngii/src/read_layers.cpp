@@ -1,4 +1,5 @@
-// A1/A2/B2/C1 layer import: shapelib for geometry and attributes, CP949 text, CRS from the .prj.
+// Layer import (A1/A2/B2/C1 and the feature layers B1, B3, C3, C4, C6, A3, A4, A5): shapelib for
+// geometry and attributes, CP949 text, CRS from the .prj.
 
 #include <algorithm>
 #include <unordered_map>
@@ -295,6 +296,57 @@ std::vector<TrafficLight> read_lights(const LayerFiles& files, Cp949Decoder& dec
   return lights;
 }
 
+/// One feature layer's file base name, geometry and fields (manual 2023.07 §9.4.3-9.4.14).
+struct FeatureSpec {
+  const char* base;
+  ShapeFamily family;
+  const char* type;    ///< field read into Feature::type, or nullptr
+  const char* kind;    ///< into Feature::kind
+  const char* link;    ///< into Feature::link_id
+  const char* remark;  ///< into Feature::remark
+};
+
+constexpr FeatureSpec kFeatureSpecs[8] = {
+    {"B1_SAFETYSIGN", ShapeFamily::kPolygon, "Type", nullptr, "LinkID", "Remark"},
+    {"B3_SURFACEMARK", ShapeFamily::kPolygon, "Type", "Kind", "LinkID", nullptr},
+    {"C3_VEHICLEPROTECTIONSAFETY", ShapeFamily::kPolyline, "Type", "isCentral", nullptr, nullptr},
+    {"C4_SPEEDBUMP", ShapeFamily::kPolygon, "Type", nullptr, "LinkID", nullptr},
+    {"C6_POSTPOINT", ShapeFamily::kPoint, "Type", nullptr, nullptr, nullptr},
+    {"A3_DRIVEWAYSECTION", ShapeFamily::kPolygon, "Kind", "RoadType", nullptr, nullptr},
+    {"A4_SUBSIDIARYSECTION", ShapeFamily::kPolygon, "SubType", nullptr, nullptr, "Name"},
+    {"A5_PARKINGLOT", ShapeFamily::kPolygon, "Type", nullptr, nullptr, nullptr},
+};
+
+void read_features(const LayerFiles& files, FeatureLayer layer, Cp949Decoder& decoder,
+                   Diagnostics& diagnostics, std::vector<Feature>& out) {
+  const FeatureSpec& spec = kFeatureSpecs[static_cast<size_t>(layer)];
+  OpenLayer open(files, spec.family);
+  TextReader text(open.table, decoder, diagnostics);
+  const int id = open.table.require("ID");
+  // The fields the spec marks NOT NULL are required; a Remark or Name may be missing.
+  const int type = spec.type != nullptr ? open.table.require(spec.type) : -1;
+  const int kind = spec.kind != nullptr ? open.table.require(spec.kind) : -1;
+  const int link = spec.link != nullptr ? open.table.find(spec.link) : -1;
+  const int remark = spec.remark != nullptr ? open.table.find(spec.remark) : -1;
+  SkippedShapes skipped(open.shapes, diagnostics);
+  for (int i = 0; i < open.table.count(); ++i) {
+    Feature feature;
+    int parts = 0;
+    if (!open.shapes.read(i, feature.points, parts)) {
+      skipped.add(i);
+      continue;
+    }
+    feature.layer = layer;
+    feature.record = i;
+    feature.id = text(i, id);
+    feature.type = text(i, type);
+    feature.kind = text(i, kind);
+    feature.link_id = text(i, link);
+    feature.remark = text(i, remark);
+    out.push_back(std::move(feature));
+  }
+}
+
 template <typename Record>
 void check_unique_ids(const std::vector<Record>& records, const std::string& file) {
   std::unordered_map<std::string_view, int64_t> seen;
@@ -379,6 +431,18 @@ Layers read_layers(const fs::path& path, Diagnostics& diagnostics) {
   if (light_files.present) {
     layers.light_file = light_files.dbf.string();
     layers.lights = read_lights(light_files, decoder, diagnostics);
+  }
+  for (size_t k = 0; k < 8; ++k) {
+    const LayerFiles files = locate_layer(layers.dir, kFeatureSpecs[k].base, false);
+    if (!files.present) {
+      continue;
+    }
+    if (!files.prj.empty() && std::string(trim(read_file(files.prj))) != layers.crs.wkt &&
+        detail::read_crs(files.prj).proj_string != layers.crs.proj_string) {
+      fail(files.prj.string(), -1, "CRS differs from A2_LINK.prj (" + layers.crs.proj_string + ")");
+    }
+    layers.feature_files[k] = files.dbf.string();
+    read_features(files, static_cast<FeatureLayer>(k), decoder, diagnostics, layers.features);
   }
   check_unique_ids(layers.nodes, layers.node_file);
   check_unique_ids(layers.links, layers.link_file);

@@ -82,7 +82,8 @@ void print_summary(const ngii::ConversionSummary& s, const std::string& output) 
             << s.connecting_roads << " connecting), " << s.lanes << " lanes, " << s.junctions
             << " junctions + " << s.direct_junctions << " splits/merges, " << s.road_marks
             << " road marks, " << s.signals << " signals (" << s.controllers << " controllers), "
-            << s.structures << " tunnels/bridges";
+            << s.structures << " tunnels/bridges, " << s.signs << " signs, " << s.objects
+            << " objects";
   if (s.sidewalks > 0) {
     std::cout << ", " << s.sidewalks << " sidewalks";
   }

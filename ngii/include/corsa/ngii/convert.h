@@ -84,6 +84,8 @@ struct ConversionSummary {
   size_t controllers = 0;  ///< signal controllers (one per intersection approach)
   size_t structures = 0;   ///< tunnel and bridge records (A2 RoadType 2-5)
   size_t sidewalks = 0;    ///< sidewalk lanes added (ConvertOptions::sidewalk_width)
+  size_t signs = 0;        ///< B1 safety signs (static signals)
+  size_t objects = 0;      ///< objects from B3, C3, C4, C6, A4, A5
   /// Lanes by where their width came from: B2 marks, L/R neighbour spacing, the lanes before
   /// and after them, the fallback width.
   size_t widths_from_marks = 0;

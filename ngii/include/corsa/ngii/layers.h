@@ -76,6 +76,31 @@ struct TrafficLight {
   int64_t record = 0;
 };
 
+/// The layers of road furniture and areas (NGII data model 2020, manual 2023.07 §9.4) that the
+/// converter turns into OpenDRIVE objects, signals and tunnel/bridge records.
+enum class FeatureLayer : uint8_t {
+  kSafetySign,     ///< B1_SAFETYSIGN (PolygonZ): the sign board
+  kSurfaceMark,    ///< B3_SURFACEMARK (PolygonZ): arrows (Type 1), crosswalks (Type 5)
+  kBarrier,        ///< C3_VEHICLEPROTECTIONSAFETY (PolyLineZ): guard rails, walls, kerbs
+  kSpeedBump,      ///< C4_SPEEDBUMP (PolygonZ)
+  kPost,           ///< C6_POSTPOINT (PointZ): posts of signs and lights
+  kSection,        ///< A3_DRIVEWAYSECTION (PolygonZ): bridges, tunnels, underpasses
+  kSubsidiary,     ///< A4_SUBSIDIARYSECTION (PolygonZ): rest areas, sidewalks, cycle paths
+  kParkingLot,     ///< A5_PARKINGLOT (PolygonZ)
+};
+
+/// One record of a feature layer. Fields a layer does not have are empty.
+struct Feature {
+  FeatureLayer layer = FeatureLayer::kSafetySign;
+  std::string id;
+  std::string type;      ///< Type (B1, B3, C3, C4, C6, A5), SubType (A4)
+  std::string kind;      ///< Kind (B3 4-digit mark code, A3 section kind), RoadType (A3)
+  std::string link_id;   ///< LinkID: the A2 link it concerns (B1, B3, C4), or empty
+  std::string remark;    ///< Remark (B1: a speed or weight limit), Name (A4)
+  std::vector<Point3> points;  ///< outline ring (polygons), line, or the point
+  int64_t record = 0;
+};
+
 /// All layers of one area. File paths are as the user named them (for messages).
 struct Layers {
   std::filesystem::path dir;
@@ -88,10 +113,14 @@ struct Layers {
   std::string link_file;             ///< ".../A2_LINK.dbf"
   std::string mark_file;             ///< empty when absent
   std::string light_file;            ///< empty when absent
+  /// The feature layers present (B1, B3, C3, C4, C6, A3, A4, A5), in that layer order, each
+  /// in record order; `feature_files` names each layer's .dbf by FeatureLayer (empty: absent).
+  std::vector<Feature> features;
+  std::string feature_files[8];
 };
 
-/// Reads the layers from `path`: a folder holding A1_NODE.* and A2_LINK.* (B2 and C1 optional),
-/// or the path of A2_LINK.shp itself. File names are matched case-insensitively.
+/// Reads the layers from `path`: a folder holding A1_NODE.* and A2_LINK.* (B2, C1 and the feature
+/// layers optional), or the path of A2_LINK.shp itself. File names are matched case-insensitively.
 ///
 /// Throws corsa::InputError naming the file (and the record, when one is at fault) for: a missing
 /// .shp/.shx/.dbf/.prj, a wrong shape type, a truncated or corrupt .shp, a .dbf whose record
