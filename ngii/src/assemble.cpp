@@ -1,8 +1,6 @@
 #include "assemble.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <map>
 #include <set>
 
@@ -102,9 +100,6 @@ class Assembler {
       sum.geometries += road.plan_view.size();
       sum.kinks += built.kinks;
       sum.max_lane_error = std::max(sum.max_lane_error, built.source_error);
-      if (std::getenv("CORSA_NGII_DEBUG") && built.source_error > 0.1) {
-        std::fprintf(stderr, "road %s (%s): lane centre error %.3f\n", id.c_str(), road.name.c_str(), built.source_error);
-      }
       sum.max_smoothed_error = std::max(sum.max_smoothed_error, built.lane_error);
       sum.max_reference_error = std::max(sum.max_reference_error, built.reference_error);
       sum.connecting_roads += plan.junction >= 0;

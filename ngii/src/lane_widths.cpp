@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "polyline.h"
 
@@ -67,7 +68,10 @@ std::vector<ProfileSample> samples_of(const std::vector<double>& u,
 class WidthMeter {
  public:
   explicit WidthMeter(const Network& network)
-      : network_(network), left_marks_(network.size()), right_marks_(network.size()) {
+      : network_(network),
+        link_lines_(network.size()),
+        left_marks_(network.size()),
+        right_marks_(network.size()) {
     for (const SurfaceMark& mark : network.layers().marks) {
       std::vector<Point3> points = mark.points;
       remove_duplicates(points);
@@ -132,22 +136,26 @@ class WidthMeter {
         }
       }
     }
+    std::vector<const Polyline*> neighbours;
     for (size_t i = 0; i < stations.size(); ++i) {
       const LinkState& state = network_.links[static_cast<size_t>(link_at(lane, stations[i]))];
-      std::vector<Polyline> neighbours;
-      for (const int other : {state.left, state.right}) {
-        if (other >= 0) {
-          neighbours.emplace_back(network_.links[static_cast<size_t>(other)].points);
-        }
-      }
+      neighbours.clear();
       if (any_lane) {
-        neighbours = nearby;
+        for (const Polyline& other : nearby) {
+          neighbours.push_back(&other);
+        }
+      } else {
+        for (const int other : {state.left, state.right}) {
+          if (other >= 0) {
+            neighbours.push_back(&link_line(other));
+          }
+        }
       }
       double sum = 0.0;
       int count = 0;
       double nearest = 1e300;
-      for (const Polyline& other : neighbours) {
-        const Projection p = other.project(xy(line.at(stations[i])));
+      for (const Polyline* other : neighbours) {
+        const Projection p = other->project(xy(line.at(stations[i])));
         if (p.along == 0.0 && p.distance >= kMinSpacing && p.distance <= kMaxSpacing) {
           sum += p.distance;
           ++count;
@@ -189,7 +197,17 @@ class WidthMeter {
     return best;
   }
 
+  /// The (cleaned) polyline of A2 link `link`, made once.
+  const Polyline& link_line(int link) const {
+    auto& slot = link_lines_[static_cast<size_t>(link)];
+    if (!slot) {
+      slot = std::make_unique<Polyline>(network_.links[static_cast<size_t>(link)].points);
+    }
+    return *slot;
+  }
+
   const Network& network_;
+  mutable std::vector<std::unique_ptr<Polyline>> link_lines_;
   /// Per A2 link: the marks bounding it on the left (their R_linkID names it) and right.
   std::vector<std::vector<Polyline>> left_marks_;
   std::vector<std::vector<Polyline>> right_marks_;

@@ -17,8 +17,6 @@
 #include "road_builder.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 
 #include "border_solver.h"
@@ -364,8 +362,10 @@ void fit_lanes(BuiltRoad& built, const RoadPlan& plan, const Network& network,
       }
       const RefSample& ref = st.ref[i];
       const Vec2 point{ref.x - centre_t * std::sin(ref.hdg), ref.y + centre_t * std::cos(ref.hdg)};
-      const Projection nearest = lines.raw[k].project(point);
-      const Projection smooth = lines.smooth[k].project(point);
+      // Near where the station crosses the lane (long lanes loop back on themselves).
+      const double u = st.crossings[k][i].u;
+      const Projection nearest = lines.raw[k].project_within(point, u - 5.0, u + 5.0);
+      const Projection smooth = lines.smooth[k].project_within(point, u - 5.0, u + 5.0);
       if (nearest.along == 0.0 && smooth.along == 0.0) {
         built.source_error = std::max(built.source_error, nearest.distance);
         built.lane_error = std::max(built.lane_error, smooth.distance);
@@ -449,28 +449,6 @@ BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin&
     }
   }
   const std::vector<double> roll = fit_lateral_profile(road, st.s, heights, options);
-  if (const char* debug = std::getenv("CORSA_NGII_DEBUG_ROAD");
-      debug != nullptr && network.source(plan.lanes[0].links.front()).id == debug) {
-    for (size_t k = 0; k < plan.lanes.size(); ++k) {
-      for (size_t v = 0; v < std::min<size_t>(6, plan.lanes[k].points.size()); ++v) {
-        std::fprintf(stderr, "lane %zu raw %zu: z %.3f  lead_in %zu\n", k, v,
-                     plan.lanes[k].points[v].z, plan.lanes[k].lead_in.size());
-      }
-      for (size_t v = 0; v < 12 && v < lines.measured[k].size(); ++v) {
-        std::fprintf(stderr, "measured %zu u %.2f z %.3f\n", v, lines.measured[k].u()[v],
-                     lines.measured[k].points()[v].z);
-      }
-    }
-    for (size_t i = 0; i < st.s.size(); ++i) {
-      std::fprintf(stderr, "s %.2f roll %.4f", st.s[i], roll[i]);
-      for (size_t k = 0; k < plan.lanes.size(); ++k) {
-        const Crossing& c = st.crossings[k][i];
-        std::fprintf(stderr, " | u %.2f t %.2f z %.2f wt %.2f b %.2f", c.u, c.t, c.z,
-                     width_target(st, lines, widths, k, i), borders.t[i][k + 1]);
-      }
-      std::fprintf(stderr, "\n");
-    }
-  }
   for (size_t i = 0; i < st.s.size(); ++i) {
     for (double& b : borders.t[i]) {
       b /= std::cos(roll[i]);  // horizontal offsets -> t along the tilted surface (§8.4.2)
