@@ -15,6 +15,33 @@ constexpr double kNodeGap = 0.1;
 /// Length attributes differing from the geometry by more than this (m) are reported.
 constexpr double kLengthMismatch = 1.0;
 
+/// Removes vertices where the line turns back on itself (more than kSpikeTurn between the
+/// segments before and after), again until none is left: a digitising error that runs a link
+/// back over its own path and forward again. Returns how many were removed.
+constexpr double kSpikeTurn = 160.0 * M_PI / 180.0;
+
+size_t remove_spikes(std::vector<Point3>& points) {
+  size_t removed = 0;
+  for (bool changed = true; changed && points.size() > 2;) {
+    changed = false;
+    for (size_t i = 1; i + 1 < points.size(); ++i) {
+      const Vec2 a = xy(points[i]) - xy(points[i - 1]);
+      const Vec2 b = xy(points[i + 1]) - xy(points[i]);
+      if (norm(a) < 1e-9 || norm(b) < 1e-9) {
+        continue;
+      }
+      const double turn = std::abs(angle_diff(std::atan2(b.y, b.x), std::atan2(a.y, a.x)));
+      if (turn > kSpikeTurn) {
+        points.erase(points.begin() + static_cast<std::ptrdiff_t>(i));
+        removed += 1 + remove_duplicates(points);
+        changed = true;
+        break;
+      }
+    }
+  }
+  return removed;
+}
+
 int find_root(std::vector<int>& alias, int node) {
   while (alias[static_cast<size_t>(node)] != node) {
     node = alias[static_cast<size_t>(node)] =
@@ -88,6 +115,13 @@ void Network::clean_geometry(CorrectionLog& log, Diagnostics& diagnostics) {
       log.add(static_cast<int>(i), "geometry", std::to_string(before) + " vertices",
               std::to_string(state.points.size()) + " vertices",
               "duplicate consecutive vertices removed");
+    }
+    const size_t with_spikes = state.points.size();
+    if (const size_t spikes = remove_spikes(state.points); spikes > 0) {
+      log.add(static_cast<int>(i), "geometry", std::to_string(with_spikes) + " vertices",
+              std::to_string(state.points.size()) + " vertices",
+              "the line turns back on itself (by more than 160 degrees) and forward again; "
+              "those vertices removed");
     }
     state.length = Polyline(state.points).length();
     const Link& link = layers_.links[i];
