@@ -83,12 +83,14 @@ class Assembler {
 
   void build_roads() {
     const size_t total = plan_.roads.size();
+    const std::vector<RoadEndLines> end_lines = road_end_lines(plan_, origin_);
     for (size_t r = 0; r < total; ++r) {
       if (plan_.roads[r].removed) {
         continue;
       }
       const RoadPlan& plan = plan_.roads[r];
-      BuiltRoad built = build_road(plan, network_, origin_, widths_.lanes[r], options_);
+      BuiltRoad built =
+          build_road(plan, network_, origin_, widths_.lanes[r], end_lines[r], options_);
       xodr::Road& road = road_of(static_cast<int>(r));
       const std::string id = road.id;
       road = std::move(built.road);
@@ -340,8 +342,8 @@ class Assembler {
 
   /// Sidewalk lanes (sidewalks.h), joined where their roads join road to road.
   void sidewalks() {
-    const std::vector<bool> has = add_sidewalks(out_.roads, plan_, road_slot_, network_,
-                                                options_.sidewalk_width);
+    const std::vector<bool> has =
+        add_sidewalks(out_.roads, plan_, road_slot_, network_, options_.sidewalk_width);
     for (size_t r = 0; r < plan_.roads.size(); ++r) {
       if (!has[r]) {
         continue;
@@ -377,7 +379,7 @@ class Assembler {
   std::vector<std::set<int>> successors_;
   std::vector<std::set<int>> predecessors_;
   std::map<std::string, int> names_;  ///< road names given so far, with their use count
-  UnionFind direct_slots_;  ///< road ends (2 r + at_end) joined at shared nodes
+  UnionFind direct_slots_;            ///< road ends (2 r + at_end) joined at shared nodes
 };
 
 }  // namespace

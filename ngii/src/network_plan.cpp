@@ -6,6 +6,7 @@
 #include <string>
 
 #include "polyline.h"
+#include "staggered_ends.h"
 #include "union_find.h"
 
 namespace corsa::ngii::detail {
@@ -205,6 +206,7 @@ class Planner {
     for (size_t j = 0; j < plan_.junctions.size(); ++j) {
       chain_connecting_roads(static_cast<int>(j));
     }
+    trim_staggered_ends(plan_);
     add_context();
     return std::move(plan_);
   }
@@ -571,44 +573,8 @@ class Planner {
     for (PlanLane& lane : plan.lanes) {
       const Polyline line(lane.points);
       // Where the cut line (normal through c) crosses this lane: its nearest crossing.
-      double cut_u = std::clamp(u, 0.0, line.length());
-      double best = 1e300;
-      const auto& p = line.points();
-      for (size_t i = 0; i + 1 < p.size(); ++i) {
-        const double g0 = dot(xy(p[i]) - c, d);
-        const double g1 = dot(xy(p[i + 1]) - c, d);
-        if ((g0 <= 0.0) != (g1 <= 0.0)) {
-          const double f = g0 / (g0 - g1);
-          const Vec2 q = xy(p[i]) + f * (xy(p[i + 1]) - xy(p[i]));
-          if (norm(q - c) < best) {
-            best = norm(q - c);
-            cut_u = line.u()[i] + f * (line.u()[i + 1] - line.u()[i]);
-          }
-        }
-      }
-      cut_u = std::clamp(cut_u, 0.01, std::max(0.01, line.length() - 0.01));
-      const int key = plan_.node_keys++;
-      PlanLane front{line.slice(0.0, cut_u),
-                     lane.links,
-                     lane.link_starts,
-                     lane.start_node,
-                     key,
-                     {},
-                     {},
-                     lane.start_shape,
-                     LaneEnd::kBeside};
-      PlanLane back{line.slice(cut_u, line.length()),
-                    lane.links,
-                    {},
-                    key,
-                    lane.end_node,
-                    {},
-                    {},
-                    LaneEnd::kBeside,
-                    lane.end_shape};
-      for (const double start : lane.link_starts) {
-        back.link_starts.push_back(std::max(0.0, start - cut_u));
-      }
+      const double cut_u = crossing_u(line, c, d, std::clamp(u, 0.0, line.length()));
+      auto [front, back] = split_lane(lane, cut_u, plan_.node_keys++);
       if (head) {
         piece.lanes.push_back(std::move(front));
         lane = std::move(back);

@@ -236,8 +236,9 @@ class SegmentFitter {
     // the last record has no next one (and the data heading at the very end is one-sided).
     const bool final_record = j + 1 == points_.size();
     trial.ok = trial.length > 0.0 && within && end_error <= kEndTolerance * options_.tolerance &&
-               ((final_record && !options_.end_heading) ||
-                trial.heading_error <= kEndHeading + last.heading_slack) &&
+               (final_record
+                    ? !options_.end_heading || trial.heading_error <= options_.end_heading_tolerance
+                    : trial.heading_error <= kEndHeading + last.heading_slack) &&
                std::abs(c.k0) <= options_.max_curvature &&
                std::abs(k_end) <= options_.max_curvature;
     return trial;

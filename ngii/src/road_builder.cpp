@@ -41,9 +41,9 @@ std::vector<Point3> shifted(const std::vector<Point3>& points, const Origin& ori
 
 /// The polylines of one road's lanes in map coordinates.
 struct LaneLines {
-  std::vector<Polyline> raw;       ///< as surveyed
-  std::vector<Polyline> smooth;    ///< survey noise removed (what the lanes are fitted to)
-  std::vector<Polyline> measured;  ///< smoothed, with a few metres before and after the lane
+  std::vector<Polyline> raw;           ///< as surveyed
+  std::vector<Polyline> smooth;        ///< survey noise removed (what the lanes are fitted to)
+  std::vector<Polyline> measured;      ///< smoothed, with a few metres before and after the lane
   std::vector<double> measured_start;  ///< arc length on `measured` where the lane starts
 };
 
@@ -82,22 +82,11 @@ LaneLines lane_lines(const RoadPlan& plan, const Origin& origin) {
   return out;
 }
 
-/// How lane k of `plan` effectively starts / ends: a split or merge needs the neighbour it
-/// shares its node with (a single-lane piece of such a lane is an ordinary lane).
-LaneEnd effective(const RoadPlan& plan, size_t k, bool at_start) {
-  const LaneEnd shape = at_start ? plan.lanes[k].start_shape : plan.lanes[k].end_shape;
-  if ((shape == LaneEnd::kFromLeft && k == 0) ||
-      (shape == LaneEnd::kFromRight && k + 1 == plan.lanes.size())) {
-    return LaneEnd::kBeside;
-  }
-  return shape;
-}
-
 /// The leftmost lane that starts and ends beside the others (else the leftmost lane).
 size_t reference_lane(const RoadPlan& plan) {
   for (size_t k = 0; k < plan.lanes.size(); ++k) {
-    if (effective(plan, k, true) == LaneEnd::kBeside &&
-        effective(plan, k, false) == LaneEnd::kBeside) {
+    if (effective_end(plan, k, true) == LaneEnd::kBeside &&
+        effective_end(plan, k, false) == LaneEnd::kBeside) {
       return k;
     }
   }
@@ -106,28 +95,44 @@ size_t reference_lane(const RoadPlan& plan) {
 
 /// The polyline the plan view is fitted to (road_reference.h).
 ReferencePolyline reference_polyline(const RoadPlan& plan, const LaneLines& lines,
-                                       const std::vector<WidthProfile>& widths, size_t ref) {
+                                     const std::vector<WidthProfile>& widths,
+                                     const RoadEndLines& ends, size_t ref) {
   const Polyline& line = lines.smooth[ref];
   // Widths are profiles along the surveyed line; the smoothed one is a little shorter.
-  const double scale =
-      line.length() > 0.0 ? lines.raw[ref].length() / line.length() : 1.0;
+  const double scale = line.length() > 0.0 ? lines.raw[ref].length() / line.length() : 1.0;
+  // Half the lane's width, averaged over +-kShiftWindow metres: where the marks make the width
+  // change quickly, shifting by it would jog the reference line sideways (an S-turn of a few
+  // metres that lanes outside it fold over); the laneOffset takes up the difference.
+  constexpr double kShiftWindow = 15.0;
   std::vector<double> half(line.size());
   for (size_t i = 0; i < line.size(); ++i) {
-    half[i] = 0.5 * widths[ref].at(line.u()[i] * scale);
+    const double u = line.u()[i] * scale;
+    double sum = 0.0;
+    int count = 0;
+    for (double d = -kShiftWindow; d <= kShiftWindow; d += 1.0) {
+      sum += widths[ref].at(u + d);
+      ++count;
+    }
+    half[i] = 0.5 * sum / count;
   }
   double road_width = 0.0;
-  std::vector<Vec2> starts, ends;
+  std::vector<double> width_at(line.size(), 0.0);
   for (size_t k = 0; k < plan.lanes.size(); ++k) {
     road_width += widths[k].at(0.0);
-    if (effective(plan, k, true) == LaneEnd::kBeside) {
-      starts.push_back(xy(lines.raw[k].points().front()));
-    }
-    if (effective(plan, k, false) == LaneEnd::kBeside) {
-      ends.push_back(xy(lines.raw[k].points().back()));
+    for (size_t i = 0; i < line.size(); ++i) {
+      width_at[i] += widths[k].at(line.u()[i] * scale);
     }
   }
-  return align_ends(shifted_left(line, half), end_line(starts), end_line(ends),
-                    xy(lines.raw[ref].points().front()), xy(lines.raw[ref].points().back()),
+  ReferencePolyline shifted = shifted_left(line, half);
+  relax_right_turns(shifted.points, width_at);
+  // On a line shared with the roads beyond, the road ends on that line (where the reference
+  // lane crosses it); else on its parallel through the reference lane's own end.
+  const auto anchor = [](Vec2 own, const std::optional<EndLine>& on, bool shared) {
+    return shared && on ? on->point + dot(own - on->point, on->across) * on->across : own;
+  };
+  return align_ends(std::move(shifted), ends.start, ends.end,
+                    anchor(xy(lines.raw[ref].points().front()), ends.start, ends.start_shared),
+                    anchor(xy(lines.raw[ref].points().back()), ends.end, ends.end_shared),
                     road_width);
 }
 
@@ -232,14 +237,12 @@ double width_target(const Stations& st, const LaneLines& lines,
 /// Lane borders (horizontal t) at every station, and whether each lane is centred on its link
 /// there.
 struct Borders {
-  std::vector<std::vector<double>> t;     ///< [station][border]
+  std::vector<std::vector<double>> t;      ///< [station][border]
   std::vector<std::vector<bool>> centred;  ///< [station][lane]
 };
 
-Borders station_borders(const RoadPlan& plan, const Stations& st,
-                                                 const LaneLines& lines,
-                                                 const std::vector<WidthProfile>& widths,
-                                                 size_t ref) {
+Borders station_borders(const RoadPlan& plan, const Stations& st, const LaneLines& lines,
+                        const std::vector<WidthProfile>& widths, size_t ref) {
   const size_t lanes = plan.lanes.size();
   Borders borders;
   borders.t.resize(st.s.size());
@@ -255,7 +258,7 @@ Borders station_borders(const RoadPlan& plan, const Stations& st,
     // to its full width where the lanes lie side by side.
     for (size_t k = 0; k < lanes; ++k) {
       const bool first_half = st.crossings[k][i].u < 0.5 * lines.smooth[k].length();
-      const LaneEnd shape = effective(plan, k, first_half);
+      const LaneEnd shape = effective_end(plan, k, first_half);
       if (shape == LaneEnd::kBeside) {
         continue;
       }
@@ -269,8 +272,8 @@ Borders station_borders(const RoadPlan& plan, const Stations& st,
       if (k > 0 && k + 1 < lanes) {
         const LaneTarget& left = targets[k - 1];
         const LaneTarget& right = targets[k + 1];
-        targets[k].width = std::max(0.0, left.centre - 0.5 * left.width -
-                                             (right.centre + 0.5 * right.width));
+        targets[k].width =
+            std::max(0.0, left.centre - 0.5 * left.width - (right.centre + 0.5 * right.width));
       } else {
         targets[k].width *= apart / full;
       }
@@ -319,9 +322,8 @@ xodr::LaneType lane_type_of(const Network& network, int link) {
 /// laneOffset and lane widths from the borders (already in the road's tilted t), fitted one
 /// after the other, each against what the previous fitted borders left (so errors do not add
 /// up across lanes). Records the lane centre errors in `built`.
-void fit_lanes(BuiltRoad& built, const RoadPlan& plan, const Network& network,
-               const Stations& st, const LaneLines& lines,
-               const Borders& borders, const std::vector<double>& roll,
+void fit_lanes(BuiltRoad& built, const RoadPlan& plan, const Network& network, const Stations& st,
+               const LaneLines& lines, const Borders& borders, const std::vector<double>& roll,
                const ConvertOptions& options) {
   xodr::Road& road = built.road;
   const size_t n = st.s.size();
@@ -396,12 +398,12 @@ void add_spans(BuiltRoad& built, const RoadPlan& plan, const Network& network, c
       BuiltRoad::Span span;
       span.link = source.links[j];
       const double guess = source.link_starts[j] * scale;
-      const double start_u =
-          j == 0 ? 0.0
-                 : lines.smooth[k]
-                       .project_within(xy(lines.raw[k].at(source.link_starts[j])), guess - 5.0,
-                                       guess + 5.0)
-                       .u;
+      const double start_u = j == 0
+                                 ? 0.0
+                                 : lines.smooth[k]
+                                       .project_within(xy(lines.raw[k].at(source.link_starts[j])),
+                                                       guess - 5.0, guess + 5.0)
+                                       .u;
       span.s_start = j == 0 ? 0.0 : s_at_u(st.s, u_at, start_u);
       span.s_end = road.length;
       if (j > 0) {
@@ -419,13 +421,14 @@ void add_spans(BuiltRoad& built, const RoadPlan& plan, const Network& network, c
 }  // namespace
 
 BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin& origin,
-                     const std::vector<WidthProfile>& widths, const ConvertOptions& options) {
+                     const std::vector<WidthProfile>& widths, const RoadEndLines& ends,
+                     const ConvertOptions& options) {
   BuiltRoad built;
   const LaneLines lines = lane_lines(plan, origin);
   const size_t ref = reference_lane(plan);
   CurveFitOptions fit_options;
   fit_options.tolerance = options.tolerance;
-  const ReferencePolyline reference = reference_polyline(plan, lines, widths, ref);
+  const ReferencePolyline reference = reference_polyline(plan, lines, widths, ends, ref);
   fit_options.start_heading = reference.start_heading;
   fit_options.end_heading = reference.end_heading;
   CurveFit fit = fit_plan_view(reference.points, fit_options);

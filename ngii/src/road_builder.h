@@ -8,17 +8,12 @@
 #include <vector>
 
 #include "corsa/ngii/convert.h"
+#include "end_lines.h"
 #include "lane_widths.h"
 #include "network.h"
 #include "road_plan.h"
 
 namespace corsa::ngii::detail {
-
-/// Shift of the map frame: map x = easting - x, map y = northing - y.
-struct Origin {
-  double x = 0.0;
-  double y = 0.0;
-};
 
 struct BuiltRoad {
   xodr::Road road;  ///< id, name, junction and links are left for the caller
@@ -36,8 +31,10 @@ struct BuiltRoad {
   int kinks = 0;
 };
 
-/// `widths`: the plan lanes' measured widths (lane_widths.h), one per lane.
+/// `widths`: the plan lanes' measured widths (lane_widths.h), one per lane; `ends`: the lines
+/// the road starts and ends on (end_lines.h).
 BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin& origin,
-                     const std::vector<WidthProfile>& widths, const ConvertOptions& options);
+                     const std::vector<WidthProfile>& widths, const RoadEndLines& ends,
+                     const ConvertOptions& options);
 
 }  // namespace corsa::ngii::detail

@@ -4,12 +4,20 @@
 // right), the A2 links along each, and the topology keys of each lane's ends.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "corsa/ngii/layers.h"
 #include "lateral.h"
+#include "polyline.h"
 
 namespace corsa::ngii::detail {
+
+/// Shift of the map frame: map x = easting - x, map y = northing - y.
+struct Origin {
+  double x = 0.0;
+  double y = 0.0;
+};
 
 struct PlanLane {
   std::vector<Point3> points;       ///< centre line, in the driving direction
@@ -35,5 +43,17 @@ struct RoadPlan {
   bool removed = false;         ///< merged into another plan
   bool absorbed = false;        ///< an ordinary road (or its cut-off end) moved into a junction
 };
+
+/// How lane k of `plan` effectively starts (`at_start`) or ends: a split or merge needs the
+/// neighbour it shares its node with (a single-lane piece of such a lane is an ordinary lane).
+LaneEnd effective_end(const RoadPlan& plan, size_t k, bool at_start);
+
+/// Arc length on `line` where it crosses the line through `c` square to `direction` (the
+/// crossing nearest `c`); `fallback` when it does not cross.
+double crossing_u(const Polyline& line, Vec2 c, Vec2 direction, double fallback);
+
+/// `lane` cut at arc length `u` into the part before and the part after; the cut point gets
+/// topology key `key`. Each part names only the links along it.
+std::pair<PlanLane, PlanLane> split_lane(const PlanLane& lane, double u, int key);
 
 }  // namespace corsa::ngii::detail

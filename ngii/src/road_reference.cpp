@@ -6,11 +6,17 @@
 namespace corsa::ngii::detail {
 namespace {
 
-constexpr double kMinShiftRadius = 1.5;  // m: tightest radius of the shifted reference line
-constexpr double kEase = 12.0;           // m over which a reduced shift is eased in and out
+constexpr double kMinShiftRadius = 1.5;     // m: tightest radius of the shifted reference line
+constexpr double kEase = 12.0;              // m over which a reduced shift is eased in and out
 constexpr double kEndLineTolerance = 0.25;  // m: lane ends farther from one line: no line
 constexpr double kMaxSkew = 50.0 * M_PI / 180.0;
 constexpr double kMinSkew = 0.2 * M_PI / 180.0;
+// Right turns (towards the lanes) tighter than the road is wide (plus kFoldClearance) are
+// smoothed over +-kRelaxReach, at most kRelaxRounds times; curvature from chords of kRelaxChord.
+constexpr double kFoldClearance = 0.5;  // m
+constexpr double kRelaxReach = 2.0;     // m
+constexpr double kRelaxChord = 1.0;     // m
+constexpr int kRelaxRounds = 20;
 
 Vec2 to_vec(const Point2& p) { return {p.x, p.y}; }
 
@@ -41,21 +47,18 @@ std::optional<Vec2> end_direction(const std::vector<Point2>& p) {
 }
 
 /// Signed angle (rad) from the direction of travel to the square of `line` (its normal
-/// pointing forward); nothing when the end is already square or past kMaxSkew.
-std::optional<double> skew_of(const std::vector<Point2>& p, const EndLine& line) {
+/// pointing forward); 0 when the end is already square or past kMaxSkew (left alone).
+double skew_of(const std::vector<Point2>& p, const EndLine& line) {
   const auto forward = end_direction(p);
   if (!forward) {
-    return std::nullopt;
+    return 0.0;
   }
   Vec2 square{line.across.y, -line.across.x};
   if (dot(square, *forward) < 0.0) {
     square = -1.0 * square;
   }
   const double skew = std::atan2(cross(*forward, square), dot(*forward, square));
-  if (std::abs(skew) < kMinSkew || std::abs(skew) > kMaxSkew) {
-    return std::nullopt;
-  }
-  return skew;
+  return std::abs(skew) < kMinSkew || std::abs(skew) > kMaxSkew ? 0.0 : skew;
 }
 
 /// Where the reference line must end to meet an end line turned by `skew` from the direction
@@ -196,6 +199,10 @@ std::optional<EndLine> end_line(std::vector<Vec2> ends) {
   return principal_line(best);
 }
 
+bool on_end_line(const EndLine& line, Vec2 p) {
+  return std::abs(cross(line.across, p - line.point)) <= kEndLineTolerance;
+}
+
 ReferencePolyline shifted_left(const Polyline& first, const std::vector<double>& half_widths) {
   const auto& p = first.points();
   const size_t n = p.size();
@@ -219,6 +226,24 @@ ReferencePolyline shifted_left(const Polyline& first, const std::vector<double>&
     if (curvature > 0.0) {
       shift[i] = std::clamp(1.0 / curvature - kMinShiftRadius, 0.0, shift[i]);
     }
+  }
+  // At the ends the chords reach one way only, and on a curve their direction is off the
+  // tangent by half the turn along them (13 degrees on a sparse junction link turning 20 degrees
+  // a vertex): the tangent there is extrapolated from two chords (exact on a circle).
+  constexpr double kEndChord = 1.5;  // m
+  const double length = first.length();
+  if (n >= 2 && length >= 3.0 * kEndChord) {
+    const auto chord = [&](double a, double b) {
+      const Vec2 d = xy(first.at(b)) - xy(first.at(a));
+      return std::atan2(d.y, d.x);
+    };
+    const double s1 = chord(0.0, kEndChord), s2 = chord(kEndChord, 2.0 * kEndChord);
+    const double start = s1 - 0.5 * angle_diff(s2, s1);
+    const double e1 = chord(length - kEndChord, length);
+    const double e2 = chord(length - 2.0 * kEndChord, length - kEndChord);
+    const double end = e1 + 0.5 * angle_diff(e1, e2);
+    normals.front() = Vec2{-std::sin(start), std::cos(start)};
+    normals.back() = Vec2{-std::sin(end), std::cos(end)};
   }
   // Ease the reductions in and out: the smallest shift within kEase on either side, then its
   // mean within kEase / 2 (never above what the turn allows, since every value averaged is a
@@ -254,22 +279,88 @@ ReferencePolyline shifted_left(const Polyline& first, const std::vector<double>&
   return out;
 }
 
+void relax_right_turns(std::vector<Point2>& p, const std::vector<double>& road_width) {
+  const size_t n = p.size();
+  if (n < 3) {
+    return;
+  }
+  std::vector<double> u(n, 0.0);
+  for (size_t i = 1; i < n; ++i) {
+    u[i] = u[i - 1] + norm(to_vec(p[i]) - to_vec(p[i - 1]));
+  }
+  // Point at arc length `at` (clamped to the line), linear between the vertices.
+  const auto at = [&](const std::vector<Point2>& q, double where) {
+    where = std::clamp(where, 0.0, u.back());
+    const size_t i = static_cast<size_t>(std::upper_bound(u.begin(), u.end(), where) - u.begin());
+    if (i >= n) {
+      return to_vec(q.back());
+    }
+    const double f = u[i] > u[i - 1] ? (where - u[i - 1]) / (u[i] - u[i - 1]) : 0.0;
+    return to_vec(q[i - 1]) + f * (to_vec(q[i]) - to_vec(q[i - 1]));
+  };
+  for (int round = 0; round < kRelaxRounds; ++round) {
+    // Vertices within kRelaxReach of a right turn tighter than the road is wide.
+    std::vector<bool> tight(n, false);
+    bool any = false;
+    for (size_t i = 1; i + 1 < n; ++i) {
+      const Vec2 a = at(p, u[i] - kRelaxChord), m = to_vec(p[i]), b = at(p, u[i] + kRelaxChord);
+      if (norm(m - a) < 1e-6 || norm(b - m) < 1e-6) {
+        continue;
+      }
+      const double turn =
+          angle_diff(std::atan2(b.y - m.y, b.x - m.x), std::atan2(m.y - a.y, m.x - a.x));
+      const double curvature = turn / (0.5 * (norm(m - a) + norm(b - m)));
+      if (curvature < -1.0 / (road_width[i] + kFoldClearance)) {
+        for (size_t j = 1; j + 1 < n; ++j) {
+          // The ends and their headings stay (the normals there run through the lane ends).
+          const bool near_end = u[j] < kRelaxReach || u[j] > u.back() - kRelaxReach;
+          tight[j] = tight[j] || (!near_end && std::abs(u[j] - u[i]) <= kRelaxReach);
+        }
+        any = true;
+      }
+    }
+    if (!any) {
+      return;
+    }
+    // A Gaussian average along the line there (sigma = kRelaxChord), ends kept.
+    std::vector<Point2> next(p);
+    for (size_t i = 1; i + 1 < n; ++i) {
+      if (!tight[i]) {
+        continue;
+      }
+      Vec2 sum{0.0, 0.0};
+      double weight = 0.0;
+      for (double d = -3.0 * kRelaxChord; d <= 3.0 * kRelaxChord + 1e-9; d += 0.25) {
+        const double w = std::exp(-0.5 * d * d / (kRelaxChord * kRelaxChord));
+        sum = sum + w * at(p, u[i] + d);
+        weight += w;
+      }
+      // Eased in from nothing at kRelaxReach from an end to all of it at twice that.
+      const double from_end = std::min(u[i], u.back() - u[i]);
+      const double f = std::clamp(from_end / kRelaxReach - 1.0, 0.0, 1.0);
+      next[i] =
+          Point2{p[i].x + f * (sum.x / weight - p[i].x), p[i].y + f * (sum.y / weight - p[i].y)};
+    }
+    p = std::move(next);
+  }
+}
+
 ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<EndLine>& start,
-                             const std::optional<EndLine>& end, Vec2 start_anchor,
-                             Vec2 end_anchor, double road_width) {
+                             const std::optional<EndLine>& end, Vec2 start_anchor, Vec2 end_anchor,
+                             double road_width) {
   std::vector<Point2>& p = reference.points;
   std::vector<Point2> reversed(p.rbegin(), p.rend());
-  const std::optional<double> end_skew = end ? skew_of(p, *end) : std::nullopt;
-  const std::optional<double> start_skew = start ? skew_of(reversed, *start) : std::nullopt;
+  const double end_skew = end ? skew_of(p, *end) : 0.0;
+  const double start_skew = start ? skew_of(reversed, *start) : 0.0;
   const double length = polyline_length(p);
   // A short road skewed at both ends (a parallelogram between two stop lines): one curve square
   // to both lines, from the start target to where it meets the end line, rather than two bends
   // that do not fit. The lanes then cross its normals at a slant, which their offsets follow
   // (the laneOffset drifts by about length x tan(skew)).
-  if (end_skew && start_skew &&
-      reach_for(*end_skew, road_width) + reach_for(*start_skew, road_width) > 0.9 * length) {
-    const auto e = end_target(p, *end_skew, end_anchor);
-    const auto s = end_target(reversed, *start_skew, start_anchor);
+  if (end_skew != 0.0 && start_skew != 0.0 &&
+      reach_for(end_skew, road_width) + reach_for(start_skew, road_width) > 0.9 * length) {
+    const auto e = end_target(p, end_skew, end_anchor);
+    const auto s = end_target(reversed, start_skew, start_anchor);
     const auto d0 = end_direction(reversed);
     const auto d1 = end_direction(p);
     // Only for roads that hardly turn (the curve replaces the lane's own course).
@@ -292,9 +383,9 @@ ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<En
   }
   // Both ends share the road; one alone may use most of it. A turn that does not fit is made
   // only as far as it can be without folding (the outer lanes then keep part of their gap).
-  const double room = (end_skew && start_skew ? 0.45 : 0.85) * length;
-  if (end_skew) {
-    const double skew = skew_within(*end_skew, road_width, room);
+  const double room = (end_skew != 0.0 && start_skew != 0.0 ? 0.45 : 0.85) * length;
+  if (end_skew != 0.0) {
+    const double skew = skew_within(end_skew, road_width, room);
     const auto target = end_target(p, skew, end_anchor);
     if (target) {
       if (const auto heading = bend_end(p, *target, std::min(room, reach_for(skew, road_width)))) {
@@ -302,8 +393,8 @@ ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<En
       }
     }
   }
-  if (start_skew) {
-    const double skew = skew_within(*start_skew, road_width, room);
+  if (start_skew != 0.0) {
+    const double skew = skew_within(start_skew, road_width, room);
     std::reverse(p.begin(), p.end());
     const auto target = end_target(p, skew, start_anchor);
     if (target) {

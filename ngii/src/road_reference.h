@@ -29,6 +29,9 @@ struct EndLine {
 /// ends farthest off it when needed; nothing when fewer than two remain.
 std::optional<EndLine> end_line(std::vector<Vec2> ends);
 
+/// Whether lane end `p` is on `line` (within the 0.25 m end_line allows).
+bool on_end_line(const EndLine& line, Vec2 p);
+
 /// A polyline for the plan-view fit, with the headings its ends must have so that the normals
 /// there run through the lane ends.
 struct ReferencePolyline {
@@ -43,13 +46,20 @@ struct ReferencePolyline {
 /// lane's own there.
 ReferencePolyline shifted_left(const Polyline& lane, const std::vector<double>& half_widths);
 
+/// Smooths `reference` (lanes on its right) where it turns right more tightly than the road is
+/// wide (`road_width` per vertex, m): the road's right edge would lie beyond the centre of
+/// curvature there and fold over. Such turns are survey jogs of a few decimetres within a
+/// metre, or sparse vertices turning at sharp corners; the lanes' offsets keep following the
+/// survey. The first and last 2 m stay (the normals at the ends run through the lane ends).
+void relax_right_turns(std::vector<Point2>& points, const std::vector<double>& road_width);
+
 /// `reference` bent near its start and end to meet `start` / `end` (when given) square: it ends
 /// heading across the line, on the line's parallel through the anchor (the reference lane's
 /// own end point). `road_width` (m) sets how gently it turns (the outermost lane must not fold);
 /// a turn that does not fit into the road is made only partly. Lines more than 50 degrees off
 /// square are left alone.
 ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<EndLine>& start,
-                             const std::optional<EndLine>& end, Vec2 start_anchor,
-                             Vec2 end_anchor, double road_width);
+                             const std::optional<EndLine>& end, Vec2 start_anchor, Vec2 end_anchor,
+                             double road_width);
 
 }  // namespace corsa::ngii::detail

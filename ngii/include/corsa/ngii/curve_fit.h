@@ -28,9 +28,11 @@ struct CurveFitOptions {
   double max_curvature = 1.0;
   /// Heading (rad) the chain must start with; fitted when not given.
   std::optional<double> start_heading;
-  /// Heading (rad) the chain must end with (within 0.02 rad); when not given, the last record
-  /// ends as the data nearest its end asks.
+  /// Heading (rad) the chain must end with (within end_heading_tolerance); when not given, the
+  /// last record ends as the data nearest its end asks.
   std::optional<double> end_heading;
+  /// rad: how closely the chain keeps `end_heading` (0.002: 3 cm across a 16 m wide road end).
+  double end_heading_tolerance = 0.002;
 };
 
 struct CurveFit {

@@ -1,0 +1,87 @@
+#include "end_lines.h"
+
+#include <algorithm>
+#include <map>
+
+#include "union_find.h"
+
+namespace corsa::ngii::detail {
+namespace {
+
+/// The lane's end point (`at_end`) or start point in the map frame.
+Vec2 end_point(const PlanLane& lane, bool at_end, const Origin& origin) {
+  const Point3& p = at_end ? lane.points.back() : lane.points.front();
+  return Vec2{p.x - origin.x, p.y - origin.y};
+}
+
+/// Road end slots: 2r for the start of road r, 2r + 1 for its end; topology keys follow.
+size_t slot(size_t road, bool at_end) { return 2 * road + (at_end ? 1 : 0); }
+
+}  // namespace
+
+std::vector<RoadEndLines> road_end_lines(const NetworkPlan& plan, const Origin& origin) {
+  const size_t roads = plan.roads.size();
+  // Road ends and the keys of their lanes' ends beside the others, joined into joints.
+  UnionFind joints(2 * roads + static_cast<size_t>(plan.node_keys));
+  std::vector<std::optional<Vec2>> key_point(static_cast<size_t>(plan.node_keys));
+  for (size_t r = 0; r < roads; ++r) {
+    const RoadPlan& road = plan.roads[r];
+    if (road.removed) {
+      continue;
+    }
+    for (size_t k = 0; k < road.lanes.size(); ++k) {
+      for (const bool at_end : {false, true}) {
+        if (effective_end(road, k, !at_end) != LaneEnd::kBeside) {
+          continue;
+        }
+        const PlanLane& lane = road.lanes[k];
+        const size_t key = static_cast<size_t>(at_end ? lane.end_node : lane.start_node);
+        joints.unite(slot(r, at_end), 2 * roads + key);
+        if (!key_point[key]) {
+          key_point[key] = end_point(lane, at_end, origin);
+        }
+      }
+    }
+  }
+  // Every joint's points (one per key), and the line through them.
+  std::map<size_t, std::vector<Vec2>> points;
+  for (size_t key = 0; key < key_point.size(); ++key) {
+    if (key_point[key]) {
+      points[joints.find(2 * roads + key)].push_back(*key_point[key]);
+    }
+  }
+  std::map<size_t, std::optional<EndLine>> shared;
+  for (const auto& [joint, p] : points) {
+    shared[joint] = end_line(p);
+  }
+  std::vector<RoadEndLines> out(roads);
+  for (size_t r = 0; r < roads; ++r) {
+    const RoadPlan& road = plan.roads[r];
+    // Connecting roads (one lane each) end square: bent to the approach's line, the tight
+    // turns they often begin with would fold their inner edge.
+    if (road.removed || road.junction >= 0) {
+      continue;
+    }
+    for (const bool at_end : {false, true}) {
+      std::vector<Vec2> own;
+      for (size_t k = 0; k < road.lanes.size(); ++k) {
+        if (effective_end(road, k, !at_end) == LaneEnd::kBeside) {
+          own.push_back(end_point(road.lanes[k], at_end, origin));
+        }
+      }
+      std::optional<EndLine>& line = at_end ? out[r].end : out[r].start;
+      const auto found = shared.find(joints.find(slot(r, at_end)));
+      const std::optional<EndLine>* joint = found == shared.end() ? nullptr : &found->second;
+      if (joint != nullptr && *joint && !own.empty() &&
+          std::all_of(own.begin(), own.end(), [&](Vec2 p) { return on_end_line(**joint, p); })) {
+        line = **joint;
+        (at_end ? out[r].end_shared : out[r].start_shared) = true;
+      } else {
+        line = end_line(own);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace corsa::ngii::detail
