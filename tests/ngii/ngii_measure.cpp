@@ -1,9 +1,9 @@
 #include "ngii_measure.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <map>
 #include <set>
 #include <sstream>
@@ -56,7 +56,8 @@ double percentile(std::vector<double> values, double p) {
     return 0.0;
   }
   std::sort(values.begin(), values.end());
-  const size_t k = std::min(values.size() - 1, static_cast<size_t>(std::ceil(p * values.size())) - 1);
+  const size_t k =
+      std::min(values.size() - 1, static_cast<size_t>(std::ceil(p * values.size())) - 1);
   return values[k];
 }
 
@@ -195,7 +196,10 @@ class Measurer {
   /// CORSA_MEASURE_LIST=1 lists every figure over 0.2 m on stderr.
   void add_gap(GapFigures& g, double d, const std::string& what) {
     if (std::getenv("CORSA_MEASURE_LIST") != nullptr && d > 0.2) {
-      const char* kind = &g == &figures_.link_ends ? "link_end" : &g == &figures_.lane_joins ? "join" : "split_join";
+      const char* kind = &g == &figures_.link_ends    ? "link_end"
+                         : &g == &figures_.split_ends ? "split_end"
+                         : &g == &figures_.lane_joins ? "join"
+                                                      : "split_join";
       std::fprintf(stderr, "%s %.3f %s\n", kind, d, what.c_str());
     }
     ++g.count;
@@ -232,8 +236,14 @@ class Measurer {
       }
       // A link continued in the next lane section of the same lane is measured where it starts
       // and ends, which is always a lane's first / last link somewhere.
-      if (start_gap < 1e300) add_gap(figures_.link_ends, start_gap, link.id + " start");
-      if (end_gap < 1e300) add_gap(figures_.link_ends, end_gap, link.id + " end");
+      if (start_gap < 1e300) {
+        add_gap(shares_node(&link, true) ? figures_.split_ends : figures_.link_ends, start_gap,
+                link.id + " start");
+      }
+      if (end_gap < 1e300) {
+        add_gap(shares_node(&link, false) ? figures_.split_ends : figures_.link_ends, end_gap,
+                link.id + " end");
+      }
     }
   }
 
@@ -248,8 +258,8 @@ class Measurer {
         const double s_b = end.at_start ? next.s_start : next.s_end;
         const P3 b = centre(next.lane, s_b);
         const auto& road = map_.road(info.lane.road);
-        const bool split = shares_node(source_link(next.lane, true), true) ||
-                           shares_node(last, false);
+        const bool split =
+            shares_node(source_link(next.lane, true), true) || shares_node(last, false);
         add_gap(split ? figures_.split_joins : figures_.lane_joins,
                 std::hypot(a.x - b.x, a.y - b.y),
                 "road " + road.id + " lane " + std::to_string(info.lane.lane) + " -> road " +
@@ -279,11 +289,13 @@ class Measurer {
       }
       ++figures_.lanes_measured;
       const double p95 = percentile(errors, 0.95);
-      figures_.vertical_max = std::max(figures_.vertical_max, *std::max_element(errors.begin(), errors.end()));
+      figures_.vertical_max =
+          std::max(figures_.vertical_max, *std::max_element(errors.begin(), errors.end()));
       figures_.lanes_over_5cm += p95 > 0.05;
       if (std::getenv("CORSA_MEASURE_LIST") != nullptr && p95 > 0.05) {
         std::fprintf(stderr, "vertical %.3f road %s lane %d %s\n", p95,
-                     map_.road(lane.ref.road).id.c_str(), lane.ref.lane, lane.links.front().c_str());
+                     map_.road(lane.ref.road).id.c_str(), lane.ref.lane,
+                     lane.links.front().c_str());
       }
       if (p95 > figures_.vertical_p95_max) {
         figures_.vertical_p95_max = p95;
@@ -406,10 +418,12 @@ class Measurer {
       if (link.link_type == "1") {
         continue;
       }
-      if (const auto it = links_.find(link.right_id); it != links_.end() && it->second->link_type != "1") {
+      if (const auto it = links_.find(link.right_id);
+          it != links_.end() && it->second->link_type != "1") {
         pairs.insert({link.id, link.right_id});
       }
-      if (const auto it = links_.find(link.left_id); it != links_.end() && it->second->link_type != "1") {
+      if (const auto it = links_.find(link.left_id);
+          it != links_.end() && it->second->link_type != "1") {
         pairs.insert({link.left_id, link.id});
       }
     }
@@ -462,6 +476,8 @@ std::string format_figures(const NgiiFigures& f) {
   out << "link_ends_measured " << f.link_ends.count << "\n"
       << "link_ends_over_0.2m " << f.link_ends.over << "\n"
       << "link_ends_max_m " << f.link_ends.max << " (" << f.link_ends.worst << ")\n"
+      << "split_merge_ends " << f.split_ends.count << " (over 0.2 m " << f.split_ends.over
+      << ", max " << f.split_ends.max << ")\n"
       << "lane_joins_measured " << f.lane_joins.count << "\n"
       << "lane_joins_over_0.2m " << f.lane_joins.over << "\n"
       << "lane_joins_max_m " << f.lane_joins.max << " (" << f.lane_joins.worst << ")\n"

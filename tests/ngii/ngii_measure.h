@@ -21,15 +21,19 @@
 namespace corsa::test {
 
 struct GapFigures {
-  size_t count = 0;     ///< measured ends
-  size_t over = 0;      ///< ends farther than the limit (0.2 m)
-  double max = 0.0;     ///< m
-  std::string worst;    ///< what the largest one is (link id, or road/lane)
+  size_t count = 0;   ///< measured ends
+  size_t over = 0;    ///< ends farther than the limit (0.2 m)
+  double max = 0.0;   ///< m
+  std::string worst;  ///< what the largest one is (link id, or road/lane)
 };
 
 struct NgiiFigures {
-  GapFigures link_ends;    ///< lane start/end vs its A2 link's first/last vertex
-  GapFigures lane_joins;   ///< lane end vs the start of each lane-graph successor
+  GapFigures link_ends;  ///< lane start/end vs its A2 link's first/last vertex
+  /// Link ends at a lane split or merge (the link starts or ends at a node shared with another
+  /// ordinary link): the lane there has zero width at its neighbour's edge, half a lane width
+  /// from the node.
+  GapFigures split_ends;
+  GapFigures lane_joins;  ///< lane end vs the start of each lane-graph successor
   /// Joins at a lane split or merge: the ordinary A2 link after (before) the join starts (ends)
   /// at a node where another ordinary link starts (ends) too. The new lane begins beside its
   /// neighbour (at zero width at the road's edge), while its link begins at the shared node
