@@ -74,7 +74,8 @@ std::vector<double> solve_borders(const std::vector<LaneTarget>& lanes, size_t r
     solve_dense(a, b, n);
     bool done = true;
     for (size_t k = 0; k < count; ++k) {
-      if (lanes[k].centred && std::abs(0.5 * (b[k] + b[k + 1]) - lanes[k].centre) > kCentreTolerance) {
+      if (lanes[k].centred &&
+          std::abs(0.5 * (b[k] + b[k + 1]) - lanes[k].centre) > kCentreTolerance) {
         alpha[k] *= 10.0;
         done = false;
       }

@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "assemble.h"
-#include "corsa/core/strings.h"
 #include "correction_log.h"
+#include "corsa/core/strings.h"
 #include "decorations.h"
 #include "feature_layers.h"
 #include "lane_numbers.h"

@@ -5,8 +5,13 @@ namespace corsa::ngii::detail {
 void CorrectionLog::add(int link, std::string field, std::string old_value, std::string new_value,
                         std::string reason, CorrectionKind kind) {
   const Link& source = layers_.links[static_cast<size_t>(link)];
-  Correction correction{source.id,         std::move(field), std::move(old_value),
-                        std::move(new_value), std::move(reason), source.record, kind};
+  Correction correction{source.id,
+                        std::move(field),
+                        std::move(old_value),
+                        std::move(new_value),
+                        std::move(reason),
+                        source.record,
+                        kind};
   if (kind == CorrectionKind::kRelabel) {
     corrections_.push_back(std::move(correction));
     return;

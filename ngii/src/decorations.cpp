@@ -154,13 +154,12 @@ class Decorator {
       for (const auto& [s0, s1] : merged) {
         const std::string id = road.id + "_" + std::to_string(made);
         if (key.second == '2' || key.second == '4') {
-          road.tunnels.push_back(xodr::Tunnel{id, key.second == '2' ? "tunnel" : "underground road",
-                                              s0, s1 - s0,
-                                              key.second == '2' ? "standard" : "underpass", 1.0,
-                                              0.0});
+          road.tunnels.push_back(
+              xodr::Tunnel{id, key.second == '2' ? "tunnel" : "underground road", s0, s1 - s0,
+                           key.second == '2' ? "standard" : "underpass", 1.0, 0.0});
         } else {
-          road.bridges.push_back(xodr::Bridge{
-              id, key.second == '3' ? "bridge" : "overpass", s0, s1 - s0, "concrete"});
+          road.bridges.push_back(
+              xodr::Bridge{id, key.second == '3' ? "bridge" : "overpass", s0, s1 - s0, "concrete"});
         }
         ++made;
       }

@@ -170,15 +170,15 @@ class FeaturePlacer {
                         double height) const {
     xodr::Outline outline;
     outline.closed = closed;
-    const size_t n = closed && points.size() > 1 &&
-                             norm(local(points.front()) - local(points.back())) < 1e-6
-                         ? points.size() - 1  // the ring's repeated first vertex
-                         : points.size();
+    const size_t n =
+        closed && points.size() > 1 && norm(local(points.front()) - local(points.back())) < 1e-6
+            ? points.size() - 1  // the ring's repeated first vertex
+            : points.size();
     for (size_t i = 0; i < n; ++i) {
       const RoadFrame::Position p = f.project(local(points[i]));
-      outline.corners.push_back(xodr::OutlineCorner{
-          p.s, p.t, points[i].z - piecewise_value(f.road().elevation, p.s), height,
-          static_cast<int>(i)});
+      outline.corners.push_back(
+          xodr::OutlineCorner{p.s, p.t, points[i].z - piecewise_value(f.road().elevation, p.s),
+                              height, static_cast<int>(i)});
     }
     return outline;
   }
@@ -343,7 +343,8 @@ class FeaturePlacer {
       bool in = false;
       for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
         if (((ring[i].y > q.y) != (ring[j].y > q.y)) &&
-            q.x < (ring[j].x - ring[i].x) * (q.y - ring[i].y) / (ring[j].y - ring[i].y) + ring[i].x) {
+            q.x <
+                (ring[j].x - ring[i].x) * (q.y - ring[i].y) / (ring[j].y - ring[i].y) + ring[i].x) {
           in = !in;
         }
       }
@@ -379,10 +380,9 @@ class FeaturePlacer {
             const std::string id = feature.id + "_" + road.id;
             const char kind = feature.kind[0];
             if (kind == '2' || kind == '4') {
-              road.tunnels.push_back(xodr::Tunnel{id, kind == '2' ? "tunnel" : "underground road",
-                                                  start, end - start,
-                                                  kind == '2' ? "standard" : "underpass", 1.0,
-                                                  0.0});
+              road.tunnels.push_back(
+                  xodr::Tunnel{id, kind == '2' ? "tunnel" : "underground road", start, end - start,
+                               kind == '2' ? "standard" : "underpass", 1.0, 0.0});
             } else {
               road.bridges.push_back(xodr::Bridge{id, kind == '3' ? "bridge" : "overpass", start,
                                                   end - start, "concrete"});

@@ -126,8 +126,8 @@ class WidthMeter {
       const Polyline own(lane.points);
       for (size_t l = 0; l < network_.size(); ++l) {
         const LinkState& other = network_.links[l];
-        if (other.removed || std::find(lane.links.begin(), lane.links.end(), int(l)) !=
-                                 lane.links.end()) {
+        if (other.removed ||
+            std::find(lane.links.begin(), lane.links.end(), int(l)) != lane.links.end()) {
           continue;
         }
         const Projection p = own.project(xy(other.points[other.points.size() / 2]));
@@ -181,8 +181,7 @@ class WidthMeter {
 
   /// Distance from v to the nearest of `marks` lying on the given side of the direction of
   /// travel, with its foot inside the mark and within kMarkReach; 1e300 when none.
-  static double side_distance(const std::vector<Polyline>& marks, Vec2 v, Vec2 tangent,
-                              bool left) {
+  static double side_distance(const std::vector<Polyline>& marks, Vec2 v, Vec2 tangent, bool left) {
     double best = 1e300;
     for (const Polyline& mark : marks) {
       const Projection p = mark.project(v);
@@ -274,14 +273,16 @@ PlanWidths measure_widths(const NetworkPlan& plan, const Network& network, doubl
       double before = 0.0, after = 0.0;
       int n_before = 0, n_after = 0;
       for (const auto& ref : index.ending[static_cast<size_t>(lane.start_node)]) {
-        const WidthProfile& p = out.lanes[static_cast<size_t>(ref.road)][static_cast<size_t>(ref.lane)];
+        const WidthProfile& p =
+            out.lanes[static_cast<size_t>(ref.road)][static_cast<size_t>(ref.lane)];
         if (!p.empty() && &p != &out.lanes[r][k]) {
           before += p.back();
           ++n_before;
         }
       }
       for (const auto& ref : index.starting[static_cast<size_t>(lane.end_node)]) {
-        const WidthProfile& p = out.lanes[static_cast<size_t>(ref.road)][static_cast<size_t>(ref.lane)];
+        const WidthProfile& p =
+            out.lanes[static_cast<size_t>(ref.road)][static_cast<size_t>(ref.lane)];
         if (!p.empty() && &p != &out.lanes[r][k]) {
           after += p.front();
           ++n_after;

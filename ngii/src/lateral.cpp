@@ -343,7 +343,10 @@ LateralStructure lateral_structure(const Network& network) {
   for (size_t g = 0; g < out.groups.size(); ++g) {
     const std::vector<int>& group = out.groups[g];
     const auto single = [&](size_t k) {
-      return LaneRun{{group[k]}, {LaneEnd::kBeside}, {LaneEnd::kBeside}, static_cast<int>(g),
+      return LaneRun{{group[k]},
+                     {LaneEnd::kBeside},
+                     {LaneEnd::kBeside},
+                     static_cast<int>(g),
                      static_cast<int>(k)};
     };
     LaneRun run = single(0);

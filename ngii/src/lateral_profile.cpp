@@ -142,10 +142,10 @@ std::vector<double> fit_lateral_profile(xodr::Road& road, const std::vector<doub
     road.shapes = fit_shapes(s, samples, road.elevation);
     return fitted;
   }
-  const double largest = std::max_element(roll.begin(), roll.end(), [](const auto& a,
-                                                                       const auto& b) {
-                           return std::abs(a.v) < std::abs(b.v);
-                         })->v;
+  const double largest =
+      std::max_element(roll.begin(), roll.end(), [](const auto& a, const auto& b) {
+        return std::abs(a.v) < std::abs(b.v);
+      })->v;
   if (std::abs(largest) * reach < 0.005) {
     return fitted;  // level within 5 mm at the outermost lane: no superelevation records
   }

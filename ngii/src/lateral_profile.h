@@ -16,9 +16,9 @@ namespace corsa::ngii::detail {
 
 /// One lane's centre at one station.
 struct LaneHeightSample {
-  double t = 0.0;       ///< horizontal offset from the reference line (m, + left)
-  double z = 0.0;       ///< height (m)
-  bool own = true;      ///< on the lane itself (not extrapolated past its ends)
+  double t = 0.0;   ///< horizontal offset from the reference line (m, + left)
+  double z = 0.0;   ///< height (m)
+  bool own = true;  ///< on the lane itself (not extrapolated past its ends)
 };
 
 /// Fills road.elevation and either road.superelevation or road.shapes from the samples at

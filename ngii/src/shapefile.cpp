@@ -179,8 +179,7 @@ void ShapeReader::check_index(const fs::path& shx) const {
     }
     const long offset = 2L * big_endian(entry);
     const uint32_t length = big_endian(entry + 4);
-    if (std::fseek(shp_file, position, SEEK_SET) != 0 ||
-        std::fread(header, 1, 8, shp_file) != 8) {
+    if (std::fseek(shp_file, position, SEEK_SET) != 0 || std::fread(header, 1, 8, shp_file) != 8) {
       problem = "truncated or corrupt: the file ends before this record";
       shp_short = true;
       break;

@@ -7,9 +7,9 @@
 namespace corsa::ngii::detail {
 namespace {
 
-constexpr double kKerb = 0.15;       // m: sidewalk height above the road surface
-constexpr double kLaneReach = 3.5;   // m: a lane within this plus the sidewalk is beside it
-constexpr int kSamples = 5;          // points checked along the outermost lane
+constexpr double kKerb = 0.15;      // m: sidewalk height above the road surface
+constexpr double kLaneReach = 3.5;  // m: a lane within this plus the sidewalk is beside it
+constexpr int kSamples = 5;         // points checked along the outermost lane
 
 struct Box {
   double x0, y0, x1, y1;
@@ -29,9 +29,7 @@ Box box_of(const std::vector<Point3>& points) {
 
 }  // namespace
 
-int sidewalk_lane_id(const xodr::Road& road) {
-  return road.lane_sections.front().lanes.back().id;
-}
+int sidewalk_lane_id(const xodr::Road& road) { return road.lane_sections.front().lanes.back().id; }
 
 std::vector<bool> add_sidewalks(std::vector<xodr::Road>& roads, const NetworkPlan& plan,
                                 const std::vector<int>& road_slot, const Network& network,
@@ -76,8 +74,7 @@ std::vector<bool> add_sidewalks(std::vector<xodr::Road>& roads, const NetworkPla
           continue;
         }
         const Projection q = other.line.project(p);
-        if (q.along == 0.0 && q.distance < reach &&
-            dot(xy(other.line.at(q.u)) - p, right) > 0.5) {
+        if (q.along == 0.0 && q.distance < reach && dot(xy(other.line.at(q.u)) - p, right) > 0.5) {
           beside = true;
           break;
         }

@@ -102,9 +102,8 @@ TEST_CASE("corsa convert ngii writes K-City with a summary line and a correction
   // The report: a header and one row per repair, each naming an A2 link.
   const auto rows = read_csv(cli.report());
   REQUIRE(rows.size() > 100);
-  CHECK(rows[0] ==
-        std::vector<std::string>{"link_id", "field", "old_value", "new_value", "reason", "record",
-                                 "kind"});
+  CHECK(rows[0] == std::vector<std::string>{"link_id", "field", "old_value", "new_value", "reason",
+                                            "record", "kind"});
   for (size_t i = 1; i < rows.size(); ++i) {
     CHECK_THAT(rows[i][0], Catch::StartsWith("A219BS01"));
   }
@@ -224,7 +223,8 @@ std::set<Edge> legacy_edges(const corsa::xodr::MapData& data) {
   std::set<Edge> edges;
   for (const auto& road : data.roads) {
     for (const auto& lane : road.lane_sections.front().lanes) {
-      if (!lane.successors.empty() && road.successor.element_type == corsa::xodr::LinkElement::kRoad &&
+      if (!lane.successors.empty() &&
+          road.successor.element_type == corsa::xodr::LinkElement::kRoad &&
           road.successor.contact_point != corsa::xodr::ContactPoint::kNone) {
         edges.insert({{road.id, lane.id}, {road.successor.element_id, lane.successors.front()}});
       }
@@ -311,9 +311,9 @@ TEST_CASE("with --compat 1.4 a pre-1.7 reader follows every lane link", "[ngii][
 TEST_CASE("corsa convert ngii --placements lists where every A2 link went", "[ngii][cli]") {
   corsa::test::TempDir dir;
   const auto csv = dir.path() / "placements.csv";
-  const auto run = run_corsa({"convert", "ngii", ngii_area("kcity").string(), "-o",
-                              (dir.path() / "k.xodr").string(), "--placements", csv.string(),
-                              "--quiet"});
+  const auto run =
+      run_corsa({"convert", "ngii", ngii_area("kcity").string(), "-o",
+                 (dir.path() / "k.xodr").string(), "--placements", csv.string(), "--quiet"});
   REQUIRE(run.exit_code == 0);
   const auto rows = read_csv(csv);
   REQUIRE(rows.size() > 800);
@@ -400,11 +400,10 @@ TEST_CASE("map query --to-lane with z resolves Sangam's stacked roads", "[ngii][
   REQUIRE(found);
   const std::string query = corsa::format_double(pose.x) + "," + corsa::format_double(pose.y);
   const auto file = dir.path() / "q.csv";
-  corsa::write_file_atomic(file, query + "," + corsa::format_double(pose.z) + "\n" + query +
-                                     "," + corsa::format_double(pose.z + 20.0) + "\n" + query +
-                                     "\n");
-  const auto run = run_corsa({"map", "query", map_path.string(), "--to-lane", "--in",
-                              file.string()});
+  corsa::write_file_atomic(file, query + "," + corsa::format_double(pose.z) + "\n" + query + "," +
+                                     corsa::format_double(pose.z + 20.0) + "\n" + query + "\n");
+  const auto run =
+      run_corsa({"map", "query", map_path.string(), "--to-lane", "--in", file.string()});
   REQUIRE(run.exit_code == 0);
   std::istringstream lines(run.out);
   std::string low, high, plain;

@@ -178,7 +178,8 @@ TEST_CASE("every A2 link is a lane whose centre stays within 10 cm of the link",
           ++samples;
           if (n.distance > worst) {
             worst = n.distance;
-            worst_link = p.link_id + " road " + p.road_id + " s " + std::to_string(s) + " at " + std::to_string(x) + "," + std::to_string(y);
+            worst_link = p.link_id + " road " + p.road_id + " s " + std::to_string(s) + " at " +
+                         std::to_string(x) + "," + std::to_string(y);
           }
         }
       }

@@ -58,9 +58,10 @@ TEST_CASE("K-City groups numbered 2 3 4 5 6 7 and 2 3 are renumbered from 1",
   CHECK(lane_no_after(fixes, "A219BS010409") == "2");
 }
 
-TEST_CASE("repeated lane numbers are a source defect; numbers continuing across a road split "
-          "are a relabelling, listed but not warned about",
-          "[ngii][corrections]") {
+TEST_CASE(
+    "repeated lane numbers are a source defect; numbers continuing across a road split "
+    "are a relabelling, listed but not warned about",
+    "[ngii][corrections]") {
   const auto fixes = by_link("kcity");
   REQUIRE(fixes.contains({"A219BS010108", "LaneNo"}));
   const auto& repeated = fixes.at({"A219BS010108", "LaneNo"});

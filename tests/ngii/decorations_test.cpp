@@ -25,8 +25,8 @@ TEST_CASE("traffic lights carry OpenDRIVE catalogue types and keep the NGII code
       CHECK(signal.country == "OpenDRIVE");
       CHECK(signal.dynamic);
       const std::string code = ngii_type.at(signal.id);
-      const std::string expected = code == "11"                 ? "1000002"
-                                   : code == "4" || code == "6" ? "1000011"
+      const std::string expected = code == "11"                   ? "1000002"
+                                   : code == "4" || code == "6"   ? "1000011"
                                    : code == "12" || code == "13" ? "1000013"
                                                                   : "1000001";
       CHECK(signal.type == expected);
@@ -106,7 +106,8 @@ TEST_CASE("Sangam's tunnels and underground road become tunnel records on their 
     INFO(p.link_id);
     bool inside = false;
     for (const auto& tunnel : roads.at(p.road_id)->tunnels) {
-      inside = inside || (tunnel.s <= p.s_start + 1e-6 && tunnel.s + tunnel.length >= p.s_end - 1e-6);
+      inside =
+          inside || (tunnel.s <= p.s_start + 1e-6 && tunnel.s + tunnel.length >= p.s_end - 1e-6);
     }
     CHECK(inside);
   }

@@ -50,8 +50,8 @@ void write_layer(const fs::path& dir, const std::string& name, int type,
       y.push_back(kY + p[1]);
       z.push_back(kZ + p[2]);
     }
-    SHPObject* object = SHPCreateSimpleObject(type, static_cast<int>(x.size()), x.data(),
-                                              y.data(), z.data());
+    SHPObject* object =
+        SHPCreateSimpleObject(type, static_cast<int>(x.size()), x.data(), y.data(), z.data());
     SHPWriteObject(shp, -1, object);
     SHPDestroyObject(object);
     for (size_t f = 0; f < fields.size(); ++f) {
@@ -66,7 +66,8 @@ void write_layer(const fs::path& dir, const std::string& name, int type,
   fs::copy_file(corsa::test::ngii_area("kcity") / "A2_LINK.prj", dir / (name + ".prj"));
 }
 
-std::vector<std::array<double, 3>> rect(double x0, double y0, double x1, double y1, double z = 0.0) {
+std::vector<std::array<double, 3>> rect(double x0, double y0, double x1, double y1,
+                                        double z = 0.0) {
   return {{x0, y0, z}, {x0, y1, z}, {x1, y1, z}, {x1, y0, z}, {x0, y0, z}};
 }
 
@@ -83,36 +84,41 @@ void write_area(const fs::path& dir) {
               {"ID", "LinkType", "LaneNo", "R_LinkID", "L_LinkID", "FromNodeID", "ToNodeID",
                "MaxSpeed", "RoadType"},
               {{lane,
-                {{"ID", "A2TEST000001"}, {"LinkType", "6"}, {"LaneNo", "1"},
-                 {"FromNodeID", "A1TEST000001"}, {"ToNodeID", "A1TEST000002"},
-                 {"MaxSpeed", "50"}, {"RoadType", "1"}}}});
-  write_layer(dir, "B2_SURFACELINEMARK", SHPT_ARCZ, {"ID", "Type", "Kind", "R_linkID", "L_linkID"},
-              {{{{0, 1.75, 0}, {100, 1.75, 0}},
-                {{"ID", "B2TEST000001"}, {"Type", "111"}, {"Kind", "501"},
-                 {"R_linkID", "A2TEST000001"}}},
-               {{{0, -1.75, 0}, {100, -1.75, 0}},
-                {{"ID", "B2TEST000002"}, {"Type", "211"}, {"Kind", "505"},
-                 {"L_linkID", "A2TEST000001"}}}});
+                {{"ID", "A2TEST000001"},
+                 {"LinkType", "6"},
+                 {"LaneNo", "1"},
+                 {"FromNodeID", "A1TEST000001"},
+                 {"ToNodeID", "A1TEST000002"},
+                 {"MaxSpeed", "50"},
+                 {"RoadType", "1"}}}});
+  write_layer(
+      dir, "B2_SURFACELINEMARK", SHPT_ARCZ, {"ID", "Type", "Kind", "R_linkID", "L_linkID"},
+      {{{{0, 1.75, 0}, {100, 1.75, 0}},
+        {{"ID", "B2TEST000001"}, {"Type", "111"}, {"Kind", "501"}, {"R_linkID", "A2TEST000001"}}},
+       {{{0, -1.75, 0}, {100, -1.75, 0}},
+        {{"ID", "B2TEST000002"}, {"Type", "211"}, {"Kind", "505"}, {"L_linkID", "A2TEST000001"}}}});
   // A sign board 0.6 m square, 2.5 m up, 3 m right of the lane, facing the traffic.
-  write_layer(dir, "B1_SAFETYSIGN", SHPT_POLYGONZ, {"ID", "Type", "LinkID", "Ref_Lane", "Remark"},
-              {{{{50, -3.0, 2.5}, {50, -3.0, 3.1}, {50, -3.6, 3.1}, {50, -3.6, 2.5},
-                 {50, -3.0, 2.5}},
-                {{"ID", "B1TEST000001"}, {"Type", "3"}, {"LinkID", "A2TEST000001"},
-                 {"Ref_Lane", "1"}, {"Remark", "50"}}}});
-  write_layer(dir, "B3_SURFACEMARK", SHPT_POLYGONZ, {"ID", "Type", "Kind", "LinkID"},
-              {{rect(70, -1.75, 74, 1.75),
-                {{"ID", "B3TEST000001"}, {"Type", "5"}, {"Kind", "5321"},
-                 {"LinkID", "A2TEST000001"}}},
-               {rect(30, -0.5, 36, 0.5),
-                {{"ID", "B3TEST000002"}, {"Type", "1"}, {"Kind", "5371"},
-                 {"LinkID", "A2TEST000001"}}}});
+  write_layer(
+      dir, "B1_SAFETYSIGN", SHPT_POLYGONZ, {"ID", "Type", "LinkID", "Ref_Lane", "Remark"},
+      {{{{50, -3.0, 2.5}, {50, -3.0, 3.1}, {50, -3.6, 3.1}, {50, -3.6, 2.5}, {50, -3.0, 2.5}},
+        {{"ID", "B1TEST000001"},
+         {"Type", "3"},
+         {"LinkID", "A2TEST000001"},
+         {"Ref_Lane", "1"},
+         {"Remark", "50"}}}});
+  write_layer(
+      dir, "B3_SURFACEMARK", SHPT_POLYGONZ, {"ID", "Type", "Kind", "LinkID"},
+      {{rect(70, -1.75, 74, 1.75),
+        {{"ID", "B3TEST000001"}, {"Type", "5"}, {"Kind", "5321"}, {"LinkID", "A2TEST000001"}}},
+       {rect(30, -0.5, 36, 0.5),
+        {{"ID", "B3TEST000002"}, {"Type", "1"}, {"Kind", "5371"}, {"LinkID", "A2TEST000001"}}}});
   write_layer(dir, "C3_VEHICLEPROTECTIONSAFETY", SHPT_ARCZ, {"ID", "Type", "isCentral"},
               {{{{0, -2.5, 0}, {50, -2.5, 0}, {100, -2.5, 0}},
                 {{"ID", "C3TEST000001"}, {"Type", "2"}, {"isCentral", "0"}}}});
-  write_layer(dir, "C4_SPEEDBUMP", SHPT_POLYGONZ, {"ID", "Type", "LinkID", "Ref_Lane"},
-              {{rect(80, -1.75, 82, 1.75),
-                {{"ID", "C4TEST000001"}, {"Type", "1"}, {"LinkID", "A2TEST000001"},
-                 {"Ref_Lane", "1"}}}});
+  write_layer(
+      dir, "C4_SPEEDBUMP", SHPT_POLYGONZ, {"ID", "Type", "LinkID", "Ref_Lane"},
+      {{rect(80, -1.75, 82, 1.75),
+        {{"ID", "C4TEST000001"}, {"Type", "1"}, {"LinkID", "A2TEST000001"}, {"Ref_Lane", "1"}}}});
   write_layer(dir, "C6_POSTPOINT", SHPT_POINTZ, {"ID", "Type"},
               {{{{50, -3.3, 0}}, {{"ID", "C6TEST000001"}, {"Type", "2"}}}});
   write_layer(dir, "A3_DRIVEWAYSECTION", SHPT_POLYGONZ, {"ID", "Kind", "RoadType"},

@@ -76,9 +76,9 @@ struct ConversionSummary {
   size_t lanes = 0;
   size_t junctions = 0;         ///< default junctions (intersections)
   size_t direct_junctions = 0;  ///< splits and merges of ordinary lanes (OpenDRIVE 1.8 §10.5)
-  size_t corrections = 0;  ///< all rows of the corrections report
-  size_t defects = 0;      ///< of those, repairs of bad source data (the rest relabel)
-  size_t geometries = 0;  ///< planView records
+  size_t corrections = 0;       ///< all rows of the corrections report
+  size_t defects = 0;           ///< of those, repairs of bad source data (the rest relabel)
+  size_t geometries = 0;        ///< planView records
   size_t road_marks = 0;
   size_t signals = 0;
   size_t controllers = 0;  ///< signal controllers (one per intersection approach)

@@ -79,24 +79,24 @@ struct TrafficLight {
 /// The layers of road furniture and areas (NGII data model 2020, manual 2023.07 §9.4) that the
 /// converter turns into OpenDRIVE objects, signals and tunnel/bridge records.
 enum class FeatureLayer : uint8_t {
-  kSafetySign,     ///< B1_SAFETYSIGN (PolygonZ): the sign board
-  kSurfaceMark,    ///< B3_SURFACEMARK (PolygonZ): arrows (Type 1), crosswalks (Type 5)
-  kBarrier,        ///< C3_VEHICLEPROTECTIONSAFETY (PolyLineZ): guard rails, walls, kerbs
-  kSpeedBump,      ///< C4_SPEEDBUMP (PolygonZ)
-  kPost,           ///< C6_POSTPOINT (PointZ): posts of signs and lights
-  kSection,        ///< A3_DRIVEWAYSECTION (PolygonZ): bridges, tunnels, underpasses
-  kSubsidiary,     ///< A4_SUBSIDIARYSECTION (PolygonZ): rest areas, sidewalks, cycle paths
-  kParkingLot,     ///< A5_PARKINGLOT (PolygonZ)
+  kSafetySign,   ///< B1_SAFETYSIGN (PolygonZ): the sign board
+  kSurfaceMark,  ///< B3_SURFACEMARK (PolygonZ): arrows (Type 1), crosswalks (Type 5)
+  kBarrier,      ///< C3_VEHICLEPROTECTIONSAFETY (PolyLineZ): guard rails, walls, kerbs
+  kSpeedBump,    ///< C4_SPEEDBUMP (PolygonZ)
+  kPost,         ///< C6_POSTPOINT (PointZ): posts of signs and lights
+  kSection,      ///< A3_DRIVEWAYSECTION (PolygonZ): bridges, tunnels, underpasses
+  kSubsidiary,   ///< A4_SUBSIDIARYSECTION (PolygonZ): rest areas, sidewalks, cycle paths
+  kParkingLot,   ///< A5_PARKINGLOT (PolygonZ)
 };
 
 /// One record of a feature layer. Fields a layer does not have are empty.
 struct Feature {
   FeatureLayer layer = FeatureLayer::kSafetySign;
   std::string id;
-  std::string type;      ///< Type (B1, B3, C3, C4, C6, A5), SubType (A4)
-  std::string kind;      ///< Kind (B3 4-digit mark code, A3 section kind), RoadType (A3)
-  std::string link_id;   ///< LinkID: the A2 link it concerns (B1, B3, C4), or empty
-  std::string remark;    ///< Remark (B1: a speed or weight limit), Name (A4)
+  std::string type;            ///< Type (B1, B3, C3, C4, C6, A5), SubType (A4)
+  std::string kind;            ///< Kind (B3 4-digit mark code, A3 section kind), RoadType (A3)
+  std::string link_id;         ///< LinkID: the A2 link it concerns (B1, B3, C4), or empty
+  std::string remark;          ///< Remark (B1: a speed or weight limit), Name (A4)
   std::vector<Point3> points;  ///< outline ring (polygons), line, or the point
   int64_t record = 0;
 };
