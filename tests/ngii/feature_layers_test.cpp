@@ -181,8 +181,8 @@ TEST_CASE("the feature layers become signals, objects and bridge records", "[ngi
   REQUIRE(crosswalk->outlines[0].corners.size() == 4);
   double s_min = 1e9, s_max = -1e9;
   for (const auto& c : crosswalk->outlines[0].corners) {
-    s_min = std::min(s_min, c.a);
-    s_max = std::max(s_max, c.a);
+    s_min = std::min(s_min, c.u);
+    s_max = std::max(s_max, c.u);
   }
   CHECK(s_min == Approx(70.0).margin(0.2));
   CHECK(s_max == Approx(74.0).margin(0.2));
