@@ -89,11 +89,12 @@ std::string world_to_lane(const xodr::Map& map, const Input& input, int line,
 }  // namespace
 
 int map_query(std::span<const std::string> args) {
-  ArgParser parser("map query MAP.xodr [--in FILE] [--to-lane]",
-                   "Evaluates positions on the map, one CSV line per query (stdin by default):\n"
-                   "  road,s,t -> x,y,z,h        (road id, metres; heading in radians)\n"
-                   "  x,y[,z] -> road,lane,s,t   (with --to-lane; empty fields off the map; z picks\n"
-                   "                              the level where roads are stacked)");
+  ArgParser parser(
+      "map query MAP.xodr [--in FILE] [--to-lane]",
+      "Evaluates positions on the map, one CSV line per query (stdin by default):\n"
+      "  road,s,t -> x,y,z,h        (road id, metres; heading in radians)\n"
+      "  x,y[,z] -> road,lane,s,t   (with --to-lane; empty fields off the map; z picks\n"
+      "                              the level where roads are stacked)");
   parser.positional("MAP.xodr", "the OpenDRIVE map");
   parser.option("--in", "FILE", "read queries from FILE instead of stdin");
   parser.flag("--to-lane", "world x,y[,z] -> road,lane,s,t");

@@ -176,10 +176,9 @@ class FeaturePlacer {
             : points.size();
     for (size_t i = 0; i < n; ++i) {
       const RoadFrame::Position p = f.project(local(points[i]));
-      outline.corners.push_back(
-          xodr::OutlineCorner{true, p.s, p.t,
-                              points[i].z - piecewise_value(f.road().elevation, p.s), height,
-                              static_cast<int>(i)});
+      outline.corners.push_back(xodr::OutlineCorner{
+          true, p.s, p.t, points[i].z - piecewise_value(f.road().elevation, p.s), height,
+          static_cast<int>(i)});
     }
     return outline;
   }

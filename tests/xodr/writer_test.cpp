@@ -135,9 +135,10 @@ TEST_CASE("write_xodr writes the file atomically", "[xodr][writer]") {
   CHECK_THROWS_AS(write_xodr(data, path / "deeper.xodr"), corsa::InputError);
 }
 
-TEST_CASE("user data, objects with outlines and markings, tunnels, bridges and controllers "
-          "survive writing and reading",
-          "[xodr][writer]") {
+TEST_CASE(
+    "user data, objects with outlines and markings, tunnels, bridges and controllers "
+    "survive writing and reading",
+    "[xodr][writer]") {
   MapData data;
   data.roads.push_back(test::make_road("1", LineGeometry{}, 100.0));
   Road& road = data.roads[0];
@@ -204,8 +205,7 @@ TEST_CASE("user data, objects with outlines and markings, tunnels, bridges and c
   CHECK(write_xodr_text(back) == text);
 }
 
-TEST_CASE("the compat writer gives each lane one predecessor and one successor",
-          "[xodr][writer]") {
+TEST_CASE("the compat writer gives each lane one predecessor and one successor", "[xodr][writer]") {
   MapData data;
   data.roads.push_back(test::make_road("1", LineGeometry{}, 100.0));
   Lane& lane = data.roads[0].lane_sections[0].lanes.back();

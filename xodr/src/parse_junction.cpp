@@ -61,8 +61,9 @@ Junction parse_junction(const XmlReader& reader, const XMLElement* e) {
       }
       junction.connections.push_back(std::move(connection));
     } else if (named(child, "controller")) {
-      junction.controllers.push_back(JunctionController{
-          reader.text(child, "id"), reader.text_or(child, "type", ""), parse_sequence(reader, child)});
+      junction.controllers.push_back(JunctionController{reader.text(child, "id"),
+                                                        reader.text_or(child, "type", ""),
+                                                        parse_sequence(reader, child)});
     } else if (!is_ignored_element(child->name())) {
       reader.unknown_child(e, child);
     }

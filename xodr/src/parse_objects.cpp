@@ -18,17 +18,16 @@ Outline parse_outline(const XmlReader& reader, const XMLElement* e) {
   for (const XMLElement* child : children(e)) {
     if (named(child, "cornerRoad")) {
       road = true;
-      outline.corners.push_back(OutlineCorner{
-          true, reader.number(child, "s"), reader.number(child, "t"),
-          reader.number_or(child, "dz", 0.0), reader.number_or(child, "height", 0.0),
-          static_cast<int>(reader.number_or(child, "id", 0.0))});
+      outline.corners.push_back(
+          OutlineCorner{true, reader.number(child, "s"), reader.number(child, "t"),
+                        reader.number_or(child, "dz", 0.0), reader.number_or(child, "height", 0.0),
+                        static_cast<int>(reader.number_or(child, "id", 0.0))});
     } else if (named(child, "cornerLocal")) {
       local = true;
-      outline.corners.push_back(OutlineCorner{
-          false, reader.number(child, "u"), reader.number(child, "v"),
-          reader.number_or(child, "z", 0.0),
-          reader.number_or(child, "height", 0.0),
-          static_cast<int>(reader.number_or(child, "id", 0.0))});
+      outline.corners.push_back(
+          OutlineCorner{false, reader.number(child, "u"), reader.number(child, "v"),
+                        reader.number_or(child, "z", 0.0), reader.number_or(child, "height", 0.0),
+                        static_cast<int>(reader.number_or(child, "id", 0.0))});
     } else if (!is_ignored_element(child->name())) {
       reader.unknown_child(e, child);
     }
@@ -141,12 +140,11 @@ void parse_objects(const XmlReader& reader, const XMLElement* e, Road& road) {
     if (named(child, "object")) {
       road.objects.push_back(parse_object(reader, child));
     } else if (named(child, "tunnel")) {
-      road.tunnels.push_back(Tunnel{reader.text(child, "id"), reader.text_or(child, "name", ""),
-                                    reader.non_negative(child, "s"),
-                                    reader.non_negative(child, "length"),
-                                    reader.text_or(child, "type", "standard"),
-                                    reader.number_or(child, "lighting", 0.0),
-                                    reader.number_or(child, "daylight", 0.0)});
+      road.tunnels.push_back(Tunnel{
+          reader.text(child, "id"), reader.text_or(child, "name", ""),
+          reader.non_negative(child, "s"), reader.non_negative(child, "length"),
+          reader.text_or(child, "type", "standard"), reader.number_or(child, "lighting", 0.0),
+          reader.number_or(child, "daylight", 0.0)});
     } else if (named(child, "bridge")) {
       road.bridges.push_back(Bridge{reader.text(child, "id"), reader.text_or(child, "name", ""),
                                     reader.non_negative(child, "s"),

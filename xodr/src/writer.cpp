@@ -203,11 +203,11 @@ void write_repeat(XmlWriter& w, const ObjectRepeat& r) {
 /// the 1.7 XSD that readers validate against.
 bool standard_object_type(const std::string& type) {
   static constexpr std::array<std::string_view, 26> kTypes = {
-      "none",       "obstacle",     "car",       "pole",          "tree",      "vegetation",
-      "barrier",    "building",     "parkingSpace", "patch",      "railing",   "trafficIsland",
-      "crosswalk",  "streetLamp",   "gantry",    "soundBarrier",  "van",       "bus",
-      "trailer",    "bike",         "motorbike", "tram",          "train",     "pedestrian",
-      "wind",       "roadMark"};
+      "none",      "obstacle",   "car",          "pole",         "tree",    "vegetation",
+      "barrier",   "building",   "parkingSpace", "patch",        "railing", "trafficIsland",
+      "crosswalk", "streetLamp", "gantry",       "soundBarrier", "van",     "bus",
+      "trailer",   "bike",       "motorbike",    "tram",         "train",   "pedestrian",
+      "wind",      "roadMark"};
   return std::find(kTypes.begin(), kTypes.end(), type) != kTypes.end();
 }
 
