@@ -106,6 +106,23 @@ TEST_CASE("Sangam's LaneNo 10 and L/R pointers to successors are repaired", "[ng
   CHECK_THAT(pointer.reason, Catch::Contains("parallel same-direction link"));
 }
 
+TEST_CASE("vertices where a link turns back on itself are removed as a located defect",
+          "[ngii][corrections]") {
+  // A digitising error runs a link back over its own path and forward again; the plan-view
+  // fit cannot follow it (Sangam's fit missed a lane by 1.6 m).
+  const auto kcity = by_link("kcity");
+  REQUIRE(kcity.contains({"A219BS010048", "geometry"}));
+  const auto& spike = kcity.at({"A219BS010048", "geometry"});
+  CHECK(spike.old_value == "32 vertices");
+  CHECK(spike.new_value == "31 vertices");
+  CHECK_THAT(spike.reason, Catch::Contains("turns back on itself"));
+  CHECK(spike.kind == corsa::ngii::CorrectionKind::kDefect);
+  const auto sangam = by_link("seoul_sangam_testbed");
+  REQUIRE(sangam.contains({"A219AS318684", "geometry"}));
+  CHECK(sangam.at({"A219AS318684", "geometry"}).new_value == "18 vertices");
+  CHECK(converted("seoul_sangam_testbed").conversion.summary.max_lane_error < 0.2);
+}
+
 TEST_CASE("every correction names its link, its A2 record and a reason", "[ngii][corrections]") {
   for (const char* name : {"kcity", "seoul_sangam_testbed"}) {
     INFO(name);

@@ -205,6 +205,65 @@ TEST_CASE(
   CHECK(write_xodr_text(back) == text);
 }
 
+TEST_CASE("object repeats survive writing and reading, local outline corners too",
+          "[xodr][writer]") {
+  MapData data;
+  data.roads.push_back(test::make_road("1", LineGeometry{}, 100.0));
+  Object rail;
+  rail.id = "g1";
+  rail.type = "barrier";
+  rail.s = 10.0;
+  rail.t = -4.0;
+  rail.height = 0.8;
+  ObjectRepeat stretched;
+  stretched.s = 10.0;
+  stretched.length = 50.0;
+  stretched.t_start = -4.0;
+  stretched.t_end = -4.5;
+  stretched.height_start = stretched.height_end = 0.8;
+  stretched.width_start = 0.2;
+  rail.repeats.push_back(stretched);
+  Outline outline;
+  outline.corners = {OutlineCorner{false, -1.0, -0.5, 0.0, 0.8, 0},
+                     OutlineCorner{false, 1.0, -0.5, 0.0, 0.8, 1},
+                     OutlineCorner{false, 1.0, 0.5, 0.0, 0.8, 2}};
+  rail.outlines.push_back(outline);
+  data.roads[0].objects.push_back(rail);
+
+  const std::string text = write_xodr_text(data);
+  corsa::Diagnostics diagnostics;
+  const MapData back = parse_xodr_text(text, "back.xodr", diagnostics);
+  CHECK(diagnostics.size() == 0);
+  REQUIRE(back.roads[0].objects.size() == 1);
+  const Object& o = back.roads[0].objects[0];
+  REQUIRE(o.repeats.size() == 1);
+  CHECK(o.repeats[0].length == 50.0);
+  CHECK(o.repeats[0].t_end == -4.5);
+  REQUIRE(o.repeats[0].width_start);
+  CHECK(*o.repeats[0].width_end == 0.2);  // written as widthEnd = widthStart
+  CHECK_FALSE(o.repeats[0].length_start);
+  REQUIRE(o.outlines.size() == 1);
+  CHECK_FALSE(o.outlines[0].corners[1].road);
+  CHECK(o.outlines[0].corners[1].u == 1.0);
+  CHECK(write_xodr_text(back) == text);
+}
+
+TEST_CASE("an outline mixing cornerRoad and cornerLocal is refused", "[xodr][writer]") {
+  MapData data;
+  data.roads.push_back(test::make_road("1", LineGeometry{}, 100.0));
+  Object o;
+  o.id = "o1";
+  o.type = "obstacle";
+  Outline outline;
+  outline.corners = {OutlineCorner{true, 5.0, 1.0, 0.0, 1.0, 0},
+                     OutlineCorner{false, 1.0, 0.0, 0.0, 1.0, 1}};
+  o.outlines.push_back(outline);
+  data.roads[0].objects.push_back(o);
+  corsa::Diagnostics diagnostics;
+  CHECK_THROWS_WITH(parse_xodr_text(write_xodr_text(data), "mixed.xodr", diagnostics),
+                    Catch::Contains("mixes cornerRoad and cornerLocal"));
+}
+
 TEST_CASE("the compat writer gives each lane one predecessor and one successor", "[xodr][writer]") {
   MapData data;
   data.roads.push_back(test::make_road("1", LineGeometry{}, 100.0));
