@@ -188,8 +188,8 @@ void ShapeReader::check_index(const fs::path& shx) const {
     const uint32_t shp_length = big_endian(header + 4);
     if (offset != position || length != shp_length || number != uint32_t(record) + 1) {
       problem = "the index says offset " + std::to_string(offset) + " and length " +
-                std::to_string(2L * length) + " bytes, but the .shp has record " +
-                std::to_string(number) + " of " + std::to_string(2L * shp_length) +
+                std::to_string(2L * length) + " bytes, but " + fs::path(file_).filename().string() +
+                " has record " + std::to_string(number) + " of " + std::to_string(2L * shp_length) +
                 " bytes at offset " + std::to_string(position) +
                 " (an index of another file, or a damaged one, would pair shapes with the wrong "
                 "attributes)";

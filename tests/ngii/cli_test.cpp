@@ -362,7 +362,7 @@ TEST_CASE("a .shx whose entries do not point at the .shp records is refused",
   corsa::test::write_bytes(shx, reversed);
   const std::string err = failed_conversion(in.path(), out.path());
   CHECK_THAT(err, Catch::Contains("A2_LINK.shx: record 0: error: the index says offset"));
-  CHECK_THAT(err, Catch::Contains("but the .shp has record 1"));
+  CHECK_THAT(err, Catch::Contains("but A2_LINK.shp has record 1"));
 }
 
 TEST_CASE("map query --to-lane with z resolves Sangam's stacked roads", "[ngii][cli][query]") {
