@@ -319,6 +319,27 @@ xodr::LaneType lane_type_of(const Network& network, int link) {
   return network.source(link).link_type == "4" ? xodr::LaneType::kBus : xodr::LaneType::kDriving;
 }
 
+/// Lifts each width record whose value at its start or end dips below zero (a fit within its
+/// tolerance of a lane that widens from, or narrows to, nothing) by a linear term that brings
+/// that end to 0 m: a lane has no negative width (OpenDRIVE 1.8 §9.5.2). Records stay
+/// continuous, since a shared end is lifted alike on both sides.
+void lift_negative_ends(std::vector<xodr::Poly3>& widths, double road_end) {
+  for (size_t i = 0; i < widths.size(); ++i) {
+    xodr::Poly3& w = widths[i];
+    const double end = i + 1 < widths.size() ? widths[i + 1].s : road_end;
+    const double length = end - w.s;
+    const double lift_start = std::max(0.0, -w.a);
+    const double lift_end = std::max(0.0, -w.value(end));
+    if (lift_start == 0.0 && lift_end == 0.0) {
+      continue;
+    }
+    w.a += lift_start;
+    if (length > 0.0) {
+      w.b += (lift_end - lift_start) / length;
+    }
+  }
+}
+
 /// laneOffset and lane widths from the borders (already in the road's tilted t), fitted one
 /// after the other, each against what the previous fitted borders left (so errors do not add
 /// up across lanes). Records the lane centre errors in `built`.
@@ -354,6 +375,7 @@ void fit_lanes(BuiltRoad& built, const RoadPlan& plan, const Network& network, c
     lane.type = lane_type_of(network, plan.lanes[k].links.front());
     lane.type_name = lane.type == xodr::LaneType::kBus ? "bus" : "driving";
     lane.widths = fit_profile(samples, options.width_tolerance).pieces;
+    lift_negative_ends(lane.widths, st.s.back());
     for (size_t i = 0; i < n; ++i) {
       const double w = piecewise_value(lane.widths, st.s[i]);
       // Back to horizontal offsets for the error measurements.
