@@ -1,4 +1,4 @@
-// Data collection (issue #9): the demo dataset — scenarios/demo/cut_in_city.xosc, 20 s of
+// Data collection: the demo dataset — scenarios/demo/cut_in_city.xosc, 20 s of
 // scenario, 1280x720 RGB + depth + semantic + instance cameras, 32-channel LiDAR and a 720x720
 // bird's-eye view at 10 Hz (LiDAR 20 Hz during the cut-in) — written by the corsa executable
 // exactly as a user runs it. Target: under 60 s on the 2-core build machine.

@@ -1,4 +1,4 @@
-// NGII conversion figures (issue #7): per area, the time to read the layers (shapelib, CP949,
+// NGII conversion figures: per area, the time to read the layers (shapelib, CP949,
 // PROJ), to convert them (corrections, grouping, fitting, junctions, marks, signals), to write
 // the OpenDRIVE text, and the whole pipeline as `corsa convert ngii` runs it (read + convert +
 // Map::build check + write to memory). Medians of several runs of process CPU time (the machine

@@ -1,4 +1,4 @@
-// Sweep throughput (issue #10): variants per second of `corsa sweep` (corsa::sweep::run_sweep, the
+// Sweep throughput: variants per second of `corsa sweep` (corsa::sweep::run_sweep, the
 // same code, with its default outputs: every step's trajectory, the run summary and the result
 // row of each variant) at -j1 and -j2, for
 //   - the ASAM SlowPrecedingVehicle deterministic parameter set (2 variants of a ~35 s scenario;

@@ -1,4 +1,4 @@
-// OpenDRIVE library figures (issue #3). Per map: parse time, Map::build time (checks, lane
+// OpenDRIVE library figures. Per map: parse time, Map::build time (checks, lane
 // graph, spatial index), and the time to sample every lane centre every 0.5 m; on Town04,
 // 100k random world -> lane queries. Medians of several runs (the machine is shared and noisy).
 // Times are CPU time of this process (CLOCK_PROCESS_CPUTIME_ID), so that other jobs on the two
