@@ -1,4 +1,5 @@
-// Lane type names (OpenDRIVE 1.8 §9.5.3, e_laneType; 1.4-1.7 names kept where they differ).
+// Lane type names (OpenDRIVE 1.8 §9.5.3, e_laneType; 1.4-1.7 names kept where they differ) and
+// which types vehicles drive on.
 
 #include <array>
 #include <utility>
@@ -49,6 +50,25 @@ std::string_view lane_type_name(LaneType type) {
     }
   }
   return "none";
+}
+
+bool is_drivable(LaneType type) {
+  switch (type) {
+    case LaneType::kDriving:
+    case LaneType::kEntry:
+    case LaneType::kExit:
+    case LaneType::kOffRamp:
+    case LaneType::kOnRamp:
+    case LaneType::kConnectingRamp:
+    case LaneType::kSlipLane:
+    case LaneType::kBidirectional:
+    case LaneType::kBus:
+    case LaneType::kTaxi:
+    case LaneType::kHov:
+      return true;
+    default:
+      return false;
+  }
 }
 
 }  // namespace corsa::xodr

@@ -13,26 +13,6 @@
 #include "road_eval.h"
 
 namespace corsa::xodr {
-
-bool is_drivable(LaneType type) {
-  switch (type) {
-    case LaneType::kDriving:
-    case LaneType::kEntry:
-    case LaneType::kExit:
-    case LaneType::kOffRamp:
-    case LaneType::kOnRamp:
-    case LaneType::kConnectingRamp:
-    case LaneType::kSlipLane:
-    case LaneType::kBidirectional:
-    case LaneType::kBus:
-    case LaneType::kTaxi:
-    case LaneType::kHov:
-      return true;
-    default:
-      return false;
-  }
-}
-
 namespace detail {
 
 double section_lane_offset(const Map& map, size_t road, size_t section, double s) {

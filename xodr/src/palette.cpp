@@ -3,20 +3,13 @@
 namespace corsa::xodr {
 
 Rgb lane_type_color(LaneType type) {
+  if (is_drivable(type)) {
+    // Reserved lanes a reddish asphalt, every other drivable lane asphalt grey.
+    const bool reserved =
+        type == LaneType::kBus || type == LaneType::kTaxi || type == LaneType::kHov;
+    return reserved ? Rgb{112, 96, 96} : Rgb{96, 98, 104};
+  }
   switch (type) {
-    case LaneType::kDriving:
-    case LaneType::kEntry:
-    case LaneType::kExit:
-    case LaneType::kOffRamp:
-    case LaneType::kOnRamp:
-    case LaneType::kConnectingRamp:
-    case LaneType::kSlipLane:
-    case LaneType::kBidirectional:
-      return {96, 98, 104};
-    case LaneType::kBus:
-    case LaneType::kTaxi:
-    case LaneType::kHov:
-      return {112, 96, 96};
     case LaneType::kSidewalk:
     case LaneType::kWalking:
       return {206, 200, 188};
@@ -47,7 +40,7 @@ Rgb lane_type_color(LaneType type) {
     case LaneType::kSpecial3:
     case LaneType::kOther:
       return {150, 146, 150};
-    case LaneType::kNone:
+    default:  // kNone; the drivable types are coloured above
       break;
   }
   return {168, 168, 160};

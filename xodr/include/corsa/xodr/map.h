@@ -84,10 +84,6 @@ struct BuildOptions {
   double max_joint_heading = 0.01;
 };
 
-/// True for lane types vehicles drive on (driving, entry, exit, on/off/connecting ramps, slip
-/// lanes, bidirectional, bus, taxi, HOV).
-bool is_drivable(LaneType type);
-
 class Map {
  public:
   /// Checks and indexes `data`: sorts nothing, but verifies that records are in s order, that

@@ -123,6 +123,11 @@ enum class LaneType : uint8_t {
   kOther,  ///< a type name this model does not know; the original text is in Lane::type_name
 };
 
+/// True for lane types vehicles drive on (driving, entry, exit, on/off/connecting ramps, slip
+/// lanes, bidirectional, bus, taxi, HOV): the one list that routing, lane following, traffic,
+/// world -> lane queries and the map's colours use.
+bool is_drivable(LaneType type);
+
 /// roadMark record (§9.8), sOffset from the lane section start.
 struct RoadMark {
   double s_offset = 0.0;
