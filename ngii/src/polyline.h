@@ -8,21 +8,12 @@
 #include <span>
 #include <vector>
 
+#include "corsa/core/vec.h"
 #include "corsa/ngii/layers.h"
 
 namespace corsa::ngii::detail {
 
-struct Vec2 {
-  double x = 0.0;
-  double y = 0.0;
-};
-inline Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
-inline Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-inline Vec2 operator*(double k, Vec2 a) { return {k * a.x, k * a.y}; }
-inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
-inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-inline double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }  // no hypot: hot path
-inline Vec2 xy(const Point3& p) { return {p.x, p.y}; }
+using Vec2 = corsa::Vec2;
 
 /// Where a point falls on a polyline.
 struct Projection {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "corsa/core/vec.h"
 #include "corsa/xodr/geometry.h"
 #include "geometry/angle.h"
 #include "positions/position_common.h"
@@ -82,14 +83,10 @@ double TrajectoryPath::time_at_s(double s) const {
 
 namespace {
 
-struct Point3 {
-  double x = 0.0, y = 0.0, z = 0.0;
-};
-
-void add_polyline(TrajectoryPath& path, const std::vector<Point3>& points) {
+void add_polyline(TrajectoryPath& path, const std::vector<Vec3>& points) {
   for (size_t i = 1; i < points.size(); ++i) {
-    const Point3& a = points[i - 1];
-    const Point3& b = points[i];
+    const Vec3& a = points[i - 1];
+    const Vec3& b = points[i];
     const double length = std::hypot(b.x - a.x, b.y - a.y);
     if (length <= 0.0) {
       continue;
@@ -105,15 +102,14 @@ void add_polyline(TrajectoryPath& path, const std::vector<Point3>& points) {
   }
 }
 
-Point3 point_of(const xosc::Position& position, const SimState& state,
-                std::optional<uint32_t> self) {
+Vec3 point_of(const xosc::Position& position, const SimState& state, std::optional<uint32_t> self) {
   const ResolvedPosition at = resolve_position(position, state, self);
   return {at.pose.x, at.pose.y, at.pose.z};
 }
 
 void build_polyline(TrajectoryPath& path, const xosc::Polyline& shape, const SimState& state,
                     std::optional<uint32_t> self) {
-  std::vector<Point3> points;
+  std::vector<Vec3> points;
   for (const xosc::Vertex& vertex : shape.vertices) {
     points.push_back(point_of(vertex.position, state, self));
   }
@@ -181,8 +177,8 @@ void build_clothoid_spline(TrajectoryPath& path, const xosc::ClothoidSpline& sha
 }
 
 // Rational B-spline point at parameter u by de Boor's algorithm in homogeneous coordinates.
-Point3 nurbs_point(const std::vector<Point3>& points, const std::vector<double>& weights,
-                   const std::vector<double>& knots, int degree, double u) {
+Vec3 nurbs_point(const std::vector<Vec3>& points, const std::vector<double>& weights,
+                 const std::vector<double>& knots, int degree, double u) {
   const int n = static_cast<int>(points.size());
   int span = degree;
   while (span < n - 1 && u >= knots[span + 1]) {
@@ -224,7 +220,7 @@ void build_nurbs(TrajectoryPath& path, const xosc::Nurbs& shape, const SimState&
     fail(shape.source, "Nurbs has " + std::to_string(shape.knots.size()) + " knots; " +
                            std::to_string(n + order) + " expected (control points + order)");
   }
-  std::vector<Point3> points;
+  std::vector<Vec3> points;
   std::vector<double> weights;
   for (const xosc::ControlPoint& cp : shape.control_points) {
     points.push_back(point_of(cp.position, state, self));
@@ -235,7 +231,7 @@ void build_nurbs(TrajectoryPath& path, const xosc::Nurbs& shape, const SimState&
   const double u1 = shape.knots[n];
   // 32 samples per control point: chord errors far below a centimetre on vehicle-scale curves.
   const size_t samples = 32 * n;
-  std::vector<Point3> polyline;
+  std::vector<Vec3> polyline;
   for (size_t i = 0; i <= samples; ++i) {
     const double u = u0 + (u1 - u0) * static_cast<double>(i) / static_cast<double>(samples);
     polyline.push_back(nurbs_point(points, weights, shape.knots, degree, std::min(u, u1)));

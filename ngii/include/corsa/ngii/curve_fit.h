@@ -8,14 +8,12 @@
 #include <span>
 #include <vector>
 
+#include "corsa/core/vec.h"
 #include "corsa/xodr/model.h"
 
 namespace corsa::ngii {
 
-struct Point2 {
-  double x = 0.0;
-  double y = 0.0;
-};
+using Point2 = corsa::Vec2;
 
 struct CurveFitOptions {
   /// Largest distance (m) allowed between an input vertex and the fitted line.

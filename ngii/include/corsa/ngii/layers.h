@@ -11,15 +11,12 @@
 #include <vector>
 
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/vec.h"
 
 namespace corsa::ngii {
 
 /// A vertex in the layer CRS: metres.
-struct Point3 {
-  double x = 0.0;
-  double y = 0.0;
-  double z = 0.0;
-};
+using Point3 = corsa::Vec3;
 
 /// The coordinate reference system named by a layer's .prj.
 struct Crs {

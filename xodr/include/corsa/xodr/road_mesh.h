@@ -8,17 +8,14 @@
 #include <vector>
 
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/vec.h"
 #include "corsa/xodr/model.h"
 
 namespace corsa::xodr {
 
 class Map;
 
-struct Vec3 {
-  double x = 0.0;
-  double y = 0.0;
-  double z = 0.0;
-};
+using corsa::Vec3;
 
 enum class SurfaceKind : uint8_t { kLane, kRoadMark };
 
