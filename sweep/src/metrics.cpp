@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "corsa/core/strings.h"
-#include "footprint.h"
+#include "corsa/engine/oriented_box.h"
 
 namespace corsa::sweep {
 namespace {
@@ -22,10 +22,21 @@ void raise(Extreme& extreme, double value, double time) {
   }
 }
 
-// Whether two footprints at least `gap` apart (m, a lower bound of their free distance) cannot
-// touch within `horizon` seconds: the gap closes no faster than their relative speed.
-bool cannot_contact_before(const detail::Footprint& a, const detail::Footprint& b, double gap,
-                           double horizon) {
+// An entity's box seen from above and its velocity: what the distance and contact metrics
+// measure.
+struct Moving {
+  engine::OrientedBox box;
+  Vec2 velocity;  ///< m/s, map frame
+};
+
+Moving moving(const engine::Simulation& simulation, size_t entity) {
+  const engine::EntityState& state = simulation.state(entity);
+  return {engine::box_of(simulation.entity(entity).box, state.pose), engine::velocity_of(state)};
+}
+
+// Whether two boxes at least `gap` apart (m, a lower bound of their free distance) cannot touch
+// within `horizon` seconds: the gap closes no faster than their relative speed.
+bool cannot_contact_before(const Moving& a, const Moving& b, double gap, double horizon) {
   if (gap <= 0.0) {
     return false;
   }
@@ -68,23 +79,24 @@ void MetricsObserver::on_step(const engine::Simulation& simulation) {
     raise(metrics_.max_acceleration, std::max(0.0, self.acceleration), time);
   }
   raise(metrics_.max_speed, self.speed, time);
-  const detail::Footprint mine = detail::footprint_of(simulation.entity(ego), self);
+  const Moving mine = moving(simulation, ego);
   for (size_t i = 0; i < simulation.entity_count(); ++i) {
     const engine::EntityState& state = simulation.state(i);
     if (i == ego || !state.placed) {
       continue;
     }
-    const detail::Footprint theirs = detail::footprint_of(simulation.entity(i), state);
+    const Moving theirs = moving(simulation, i);
     const std::string& name = simulation.entity(i).name;
     // Broad phase: a pair whose lower bound cannot beat the extremes so far is not measured
     // exactly (lower() keeps only strictly smaller values, so the results are the same).
-    const double bound = detail::free_distance_bound(mine, theirs);
+    const double bound = engine::box_distance_lower_bound(mine.box, theirs.box);
     if (!metrics_.min_distance.value || bound < *metrics_.min_distance.value) {
-      lower(metrics_.min_distance, detail::free_distance(mine, theirs), time, name);
+      lower(metrics_.min_distance, engine::box_distance(mine.box, theirs.box), time, name);
     }
     if (!metrics_.min_ttc.value ||
         !cannot_contact_before(mine, theirs, bound, *metrics_.min_ttc.value)) {
-      if (const auto ttc = detail::time_to_contact(mine, theirs)) {
+      if (const auto ttc =
+              engine::time_to_contact(mine.box, mine.velocity, theirs.box, theirs.velocity)) {
         lower(metrics_.min_ttc, *ttc, time, name);
       }
     }

@@ -8,20 +8,12 @@
 #include <numbers>
 
 #include "conditions/condition_makers.h"
+#include "corsa/engine/oriented_box.h"
 #include "positions/relative_distance.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {
-
-struct Velocity {
-  double x = 0.0, y = 0.0;
-};
-
-Velocity velocity(const EntityState& s) {
-  const double c = std::cos(s.pose.h), n = std::sin(s.pose.h);
-  return {s.speed * c - s.lateral_speed * n, s.speed * n + s.lateral_speed * c};
-}
 
 class TimeToCollisionCheck final : public EntityCondition {
  public:
@@ -38,20 +30,20 @@ class TimeToCollisionCheck final : public EntityCondition {
     const Entity& from = state.world.entities[entity];
     double distance = 0.0;
     double tx = 0.0, ty = 0.0;
-    Velocity vt;
+    Vec2 vt;
     if (target_) {
       const Entity& to = state.world.entities[*target_];
       distance = entity_distance(state, from, to, spec_);
       tx = to.state.pose.x;
       ty = to.state.pose.y;
-      vt = velocity(to.state);
+      vt = velocity_of(to.state);
     } else {
       const ResolvedPosition at = resolve_position(*c_.target_position, state, entity);
       distance = position_distance(state, from, at, spec_);
       tx = at.pose.x;
       ty = at.pose.y;
     }
-    const Velocity vf = velocity(from.state);
+    const Vec2 vf = velocity_of(from.state);
     // The direction along which the distance shrinks.
     double ux = tx - from.state.pose.x, uy = ty - from.state.pose.y;
     if (spec_.type != xosc::RelativeDistanceType::kEuclidianDistance) {

@@ -1,11 +1,12 @@
-#include "geometry/oriented_box.h"
+#include "corsa/engine/oriented_box.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
-namespace corsa::engine::detail {
+namespace corsa::engine {
 
 OrientedBox box_of(const Box& box, const Pose& pose) {
   OrientedBox out;
@@ -18,6 +19,11 @@ OrientedBox box_of(const Box& box, const Pose& pose) {
   out.z_min = pose.z + box.center_z - 0.5 * box.height;
   out.z_max = pose.z + box.center_z + 0.5 * box.height;
   return out;
+}
+
+Vec2 velocity_of(const EntityState& state) {
+  const double c = std::cos(state.pose.h), s = std::sin(state.pose.h);
+  return {state.speed * c - state.lateral_speed * s, state.speed * s + state.lateral_speed * c};
 }
 
 Interval project(const OrientedBox& box, double ux, double uy) {
@@ -147,4 +153,38 @@ double box_distance(const OrientedBox& a, const OrientedBox& b) {
   return best;
 }
 
-}  // namespace corsa::engine::detail
+double box_distance_lower_bound(const OrientedBox& a, const OrientedBox& b) {
+  const double centres = std::hypot(b.cx - a.cx, b.cy - a.cy);
+  return centres - std::hypot(a.half_length, a.half_width) -
+         std::hypot(b.half_length, b.half_width) - rounding_margin(a, b);
+}
+
+std::optional<double> time_to_contact(const OrientedBox& a, Vec2 va, const OrientedBox& b,
+                                      Vec2 vb) {
+  // b moves relative to a with velocity v; on each axis b's interval slides by (v.n) t, and the
+  // boxes touch exactly when every axis overlaps (separating axis theorem).
+  const Vec2 v = vb - va;
+  const std::array<Vec2, 4> axes = {
+      {{a.cos_h, a.sin_h}, {-a.sin_h, a.cos_h}, {b.cos_h, b.sin_h}, {-b.sin_h, b.cos_h}}};
+  double enter = 0.0;
+  double exit = std::numeric_limits<double>::infinity();
+  for (const Vec2 n : axes) {
+    const Interval ia = project(a, n.x, n.y);
+    const Interval ib = project(b, n.x, n.y);
+    const double rate = dot(v, n);
+    if (rate == 0.0) {
+      if (ib.high < ia.low || ia.high < ib.low) return std::nullopt;  // apart on this axis forever
+      continue;
+    }
+    // Overlap while ia.low <= ib.high + rate t and ib.low + rate t <= ia.high.
+    double t0 = (ia.low - ib.high) / rate;
+    double t1 = (ia.high - ib.low) / rate;
+    if (t0 > t1) std::swap(t0, t1);
+    enter = std::max(enter, t0);
+    exit = std::min(exit, t1);
+    if (enter > exit) return std::nullopt;
+  }
+  return enter;
+}
+
+}  // namespace corsa::engine

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "geometry/oriented_box.h"
+#include "corsa/engine/oriented_box.h"
 #include "lanes/lane_follow.h"
 #include "state/sim_state.h"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "geometry/oriented_box.h"
+#include "corsa/engine/oriented_box.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {

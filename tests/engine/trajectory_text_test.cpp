@@ -1,0 +1,99 @@
+// The trajectory CSV's number text (engine/src/output/decimal_text.h): fixed decimals without
+// trailing zeros for lengths, speeds and angles, the shortest exact text for times, and the
+// shortest round-trip text beyond exact scaling.
+
+#include <catch2/catch.hpp>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+
+#include "output/decimal_text.h"
+
+namespace {
+
+std::string decimal(double value, int decimals) {
+  char buffer[corsa::engine::detail::kDecimalTextMax];
+  return std::string(buffer, corsa::engine::detail::write_decimal(buffer, value, decimals));
+}
+
+std::string exact(double value) {
+  char buffer[corsa::engine::detail::kDecimalTextMax];
+  return std::string(buffer, corsa::engine::detail::write_exact(buffer, value));
+}
+
+std::string shortest(double value) {
+  char buffer[64];
+  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
+}
+
+double read(const std::string& text) {
+  double value = 0.0;
+  std::from_chars(text.data(), text.data() + text.size(), value);
+  return value;
+}
+
+}  // namespace
+
+TEST_CASE("trajectory numbers are rounded to fixed decimals without trailing zeros",
+          "[engine][output]") {
+  CHECK(decimal(50.0, 6) == "50");
+  CHECK(decimal(-5.625, 6) == "-5.625");
+  CHECK(decimal(32.19999999999999, 6) == "32.2");
+  CHECK(decimal(0.05, 6) == "0.05");
+  CHECK(decimal(-0.0000504, 6) == "-0.00005");
+  CHECK(decimal(1.125, 2) == "1.13");  // halves away from zero
+  CHECK(decimal(-2.5, 0) == "-3");
+  CHECK(decimal(0.9999999996, 9) == "1");  // the carry reaches the integer part
+  CHECK(decimal(-0.0000004, 6) == "0");    // never "-0"
+  CHECK(decimal(-0.0, 6) == "0");
+  CHECK(decimal(3.14159265358979, 9) == "3.141592654");
+  CHECK(decimal(-1e-9, 9) == "-0.000000001");
+  CHECK(decimal(7.5, 0) == "8");
+}
+
+TEST_CASE("numbers beyond exact scaling fall back to the shortest round-trip text",
+          "[engine][output]") {
+  CHECK(decimal(1e20, 6) == "1e+20");
+  CHECK(decimal(-2.5e10, 6) == "-2.5e+10");
+  CHECK(decimal(std::numeric_limits<double>::infinity(), 6) == "inf");
+  CHECK(decimal(std::nan(""), 9) == "nan");
+  // Just below the limit the text is still the rounded fixed-decimal one.
+  CHECK(decimal(8.9e9 + 0.25, 6) == "8900000000.25");
+}
+
+TEST_CASE("trajectory times are exact: the shortest text of every step's time",
+          "[engine][output]") {
+  CHECK(exact(0.0) == "0");
+  CHECK(exact(0.49) == "0.49");
+  CHECK(exact(0.1 + 0.2) == "0.30000000000000004");  // off the 9-decimal grid: to_chars
+  CHECK(exact(1e-12) == "1e-12");
+  CHECK(exact(1e12 / 3.0) == shortest(1e12 / 3.0));
+  for (int k = 1; k < 200000; ++k) {
+    // Times as a fixed step gives them (tick / steps per second), and as a product that may be
+    // off the decimal grid (tick * dt): each reads back exactly, and matches to_chars.
+    for (const double t : {k / 100.0, k * 0.01, k / 60.0, k * 0.001}) {
+      const std::string text = exact(t);
+      REQUIRE(read(text) == t);
+      if (t >= 0.001) REQUIRE(text == shortest(t));
+    }
+  }
+}
+
+TEST_CASE("fixed-decimal text reads back within half a unit of its last place",
+          "[engine][output]") {
+  std::mt19937_64 random(20261122);
+  std::uniform_real_distribution<double> value(-5000.0, 5000.0);
+  std::uniform_int_distribution<int> places(0, 9);
+  for (int i = 0; i < 20000; ++i) {
+    const double v = value(random) / std::pow(10.0, places(random));
+    const int decimals = places(random);
+    const std::string text = decimal(v, decimals);
+    REQUIRE(text.find('e') == std::string::npos);
+    const double half_unit = 0.5 * std::pow(10.0, -decimals);
+    CHECK(std::fabs(read(text) - v) <= half_unit * (1.0 + 1e-9) + 1e-12 * std::fabs(v));
+    CHECK(text.back() != '.');
+    CHECK((text.find('.') == std::string::npos || text.back() != '0'));
+  }
+}
