@@ -5,12 +5,16 @@
 namespace corsa::sensors {
 namespace {
 
+// What the label files say of a class: its name, its colour and its KITTI object type.
 struct ClassInfo {
   std::string_view name;
   Rgb8 color;
+  std::string_view kitti = "Misc";
 };
 
-// CARLA 0.9.14 CityObjectLabel order and colours (Cityscapes palette), then Corsa's own.
+// CARLA 0.9.14 CityObjectLabel order and colours (Cityscapes palette), then Corsa's own; KITTI
+// types as its object benchmark names them (trucks and buses "Truck", two-wheelers "Cyclist",
+// trains "Tram", everything else "Misc").
 constexpr std::array<ClassInfo, kSemanticClassCount> kClasses = {{
     {"unlabeled", {0, 0, 0}},
     {"road", {128, 64, 128}},
@@ -24,14 +28,14 @@ constexpr std::array<ClassInfo, kSemanticClassCount> kClasses = {{
     {"vegetation", {107, 142, 35}},
     {"terrain", {152, 251, 152}},
     {"sky", {70, 130, 180}},
-    {"person", {220, 20, 60}},
+    {"person", {220, 20, 60}, "Pedestrian"},
     {"rider", {255, 0, 0}},
-    {"car", {0, 0, 142}},
-    {"truck", {0, 0, 70}},
-    {"bus", {0, 60, 100}},
-    {"train", {0, 80, 100}},
-    {"motorcycle", {0, 0, 230}},
-    {"bicycle", {119, 11, 32}},
+    {"car", {0, 0, 142}, "Car"},
+    {"truck", {0, 0, 70}, "Truck"},
+    {"bus", {0, 60, 100}, "Truck"},
+    {"train", {0, 80, 100}, "Tram"},
+    {"motorcycle", {0, 0, 230}, "Cyclist"},
+    {"bicycle", {119, 11, 32}, "Cyclist"},
     {"static", {110, 190, 160}},
     {"dynamic", {170, 120, 50}},
     {"other", {55, 90, 80}},
@@ -56,6 +60,11 @@ std::string_view semantic_name(SemanticClass c) {
 Rgb8 semantic_color(SemanticClass c) {
   const auto i = static_cast<size_t>(c);
   return i < kClasses.size() ? kClasses[i].color : Rgb8{};
+}
+
+std::string_view kitti_type(SemanticClass c) {
+  const auto i = static_cast<size_t>(c);
+  return i < kClasses.size() ? kClasses[i].kitti : std::string_view("Misc");
 }
 
 SemanticClass semantic_class_of_lane(xodr::LaneType type) {

@@ -58,25 +58,6 @@ std::string box2_json(const Box2& b) {
   return "[" + num(b.x_min) + ", " + num(b.y_min) + ", " + num(b.x_max) + ", " + num(b.y_max) + "]";
 }
 
-std::string kitti_type(SemanticClass c) {
-  switch (c) {
-    case SemanticClass::kCar:
-      return "Car";
-    case SemanticClass::kTruck:
-    case SemanticClass::kBus:
-      return "Truck";
-    case SemanticClass::kPerson:
-      return "Pedestrian";
-    case SemanticClass::kBicycle:
-    case SemanticClass::kMotorcycle:
-      return "Cyclist";
-    case SemanticClass::kTrain:
-      return "Tram";
-    default:
-      return "Misc";
-  }
-}
-
 double wrap_pi(double a) {
   while (a > std::numbers::pi) {
     a -= 2.0 * std::numbers::pi;
@@ -206,7 +187,7 @@ std::string kitti_labels(std::span<const ObjectLabel> labels) {
     const Vec3 bottom = b.center + b.rotation * Vec3{0.0, 0.0, -0.5 * b.height};
     const double ry = kitti_rotation_y(b);
     const double alpha = wrap_pi(ry - std::atan2(bottom.x, bottom.z));
-    out += kitti_type(l.semantic) + " " + format_fixed(l.truncation, 2) + " " +
+    out += std::string(kitti_type(l.semantic)) + " " + format_fixed(l.truncation, 2) + " " +
            std::to_string(kitti_occlusion_level(l.occlusion)) + " " + format_fixed(alpha, 2) + " " +
            format_fixed(l.box_2d.x_min, 2) + " " + format_fixed(l.box_2d.y_min, 2) + " " +
            format_fixed(l.box_2d.x_max, 2) + " " + format_fixed(l.box_2d.y_max, 2) + " " +

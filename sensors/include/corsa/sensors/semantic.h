@@ -64,6 +64,8 @@ struct Rgb8 {
 std::string_view semantic_name(SemanticClass c);
 /// Colour of the class in colour-coded segmentation images (CARLA / Cityscapes palette).
 Rgb8 semantic_color(SemanticClass c);
+/// KITTI object type of the class ("Car", "Truck", "Pedestrian", "Cyclist", "Tram", "Misc").
+std::string_view kitti_type(SemanticClass c);
 /// Class of a lane surface by its OpenDRIVE type: driving, shoulder and the other lanes cars
 /// use -> road; sidewalk, walking and curb -> sidewalk; biking -> bike_lane; parking; rail ->
 /// rail_track; border and median -> terrain.
