@@ -13,6 +13,9 @@ find_package(Threads REQUIRED)
 find_package(tinyxml2 CONFIG QUIET)
 corsa_require(tinyxml2_FOUND "tinyxml2" libtinyxml2-dev)
 
+find_package(nlohmann_json 3 CONFIG QUIET)
+corsa_require(nlohmann_json_FOUND "nlohmann-json" nlohmann-json3-dev)
+
 find_package(Eigen3 3.3 CONFIG QUIET)
 corsa_require(Eigen3_FOUND "Eigen 3" libeigen3-dev)
 

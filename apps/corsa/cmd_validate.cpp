@@ -3,12 +3,12 @@
 // `file:line: error: message`, or as JSON for tools. Exit 0 when every file is valid, 2 if not.
 
 #include <iostream>
-#include <sstream>
 #include <variant>
 
 #include "args.h"
 #include "commands.h"
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/json.h"
 #include "corsa/core/strings.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
@@ -78,26 +78,23 @@ FileReport check_file(const std::string& file, const xosc::LoadOptions& options)
   return report;
 }
 
-std::string severity_json(Severity severity) { return json_quote(severity_name(severity)); }
-
 void print_json(const std::vector<FileReport>& reports, bool all_valid) {
-  std::ostringstream out;
-  out << "{\"valid\":" << (all_valid ? "true" : "false") << ",\"files\":[";
-  for (size_t i = 0; i < reports.size(); ++i) {
-    const auto& r = reports[i];
-    out << (i ? "," : "") << "{\"file\":" << json_quote(r.file)
-        << ",\"kind\":" << json_quote(r.kind) << ",\"valid\":" << (r.valid ? "true" : "false")
-        << ",\"diagnostics\":[";
-    for (size_t k = 0; k < r.diagnostics.size(); ++k) {
-      const auto& d = r.diagnostics[k];
-      out << (k ? "," : "") << "{\"severity\":" << severity_json(d.severity)
-          << ",\"file\":" << json_quote(d.file) << ",\"line\":" << d.line
-          << ",\"message\":" << json_quote(d.message) << ",\"path\":" << json_quote(d.path) << "}";
+  Json files = Json::array();
+  for (const FileReport& r : reports) {
+    Json diagnostics = Json::array();
+    for (const Diagnostic& d : r.diagnostics) {
+      diagnostics.push_back({{"severity", severity_name(d.severity)},
+                             {"file", d.file},
+                             {"line", d.line},
+                             {"message", d.message},
+                             {"path", d.path}});
     }
-    out << "]}";
+    files.push_back({{"file", r.file},
+                     {"kind", r.kind},
+                     {"valid", r.valid},
+                     {"diagnostics", std::move(diagnostics)}});
   }
-  out << "]}\n";
-  std::cout << out.str();
+  std::cout << json_compact({{"valid", all_valid}, {"files", std::move(files)}}) << "\n";
 }
 
 }  // namespace

@@ -78,7 +78,7 @@ void DataRun::finish(const std::string& status, const std::string& reason) const
   end.end_reason = reason;
   end.tick = last_tick_;
   end.time = last_time_;
-  end.windows_json = capture_windows_json(timeline_->windows());
+  end.windows = capture_windows_json(timeline_->windows());
   writer_->finish(end);
 }
 
@@ -86,13 +86,13 @@ int64_t DataRun::captures() const { return writer_ ? writer_->captures() : 0; }
 
 int64_t DataRun::files() const { return writer_ ? writer_->files() : 0; }
 
-std::vector<std::string> capture_windows_json(std::span<const engine::CaptureWindow> windows) {
-  std::vector<std::string> json;
+Json capture_windows_json(std::span<const engine::CaptureWindow> windows) {
+  Json json = Json::array();
   for (const engine::CaptureWindow& w : windows) {
-    json.push_back("{\"sensor\": " + json_quote(w.sensor) +
-                   ", \"open_tick\": " + std::to_string(w.open_tick) + ", \"close_tick\": " +
-                   (w.close_tick < 0 ? std::string("null") : std::to_string(w.close_tick)) +
-                   ", \"rate\": " + format_double(w.rate_hz) + "}");
+    json.push_back({{"sensor", w.sensor},
+                    {"open_tick", w.open_tick},
+                    {"close_tick", w.close_tick < 0 ? Json(nullptr) : Json(w.close_tick)},
+                    {"rate", w.rate_hz}});
   }
   return json;
 }

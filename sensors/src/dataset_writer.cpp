@@ -10,6 +10,7 @@
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/json.h"
 #include "corsa/core/output_lock.h"
 #include "corsa/core/strings.h"
 #include "corsa/core/version.h"
@@ -32,41 +33,39 @@ void make_dir(const fs::path& dir) {
 
 std::string num(double value) { return format_double(value); }
 
-std::string rigid_json(const Rigid& t) { return matrix_json(t); }
-
-std::string environment_json(const engine::EnvironmentState& e) {
-  std::string out = "{\"date\": \"" + std::to_string(e.year) + "-" + std::to_string(e.month) + "-" +
-                    std::to_string(e.day) + "\", \"time_of_day\": " + num(e.time_of_day) +
-                    ", \"fog_visual_range\": " +
-                    (std::isfinite(e.fog_visual_range) ? num(e.fog_visual_range) : "null") +
-                    ", \"precipitation\": \"" +
-                    (e.precipitation == engine::PrecipitationType::kRain   ? "rain"
-                     : e.precipitation == engine::PrecipitationType::kSnow ? "snow"
-                                                                           : "dry") +
-                    "\", \"precipitation_intensity\": " + num(e.precipitation_intensity) +
-                    ", \"cloud_cover\": " + num(e.cloud_cover) +
-                    ", \"wind_speed\": " + num(e.wind_speed) +
-                    ", \"wind_direction\": " + num(e.wind_direction) +
-                    ", \"road_friction_scale\": " + num(e.road_friction_scale) +
-                    ", \"wet_road\": " + (e.wet_road ? "true" : "false");
+Json environment_json(const engine::EnvironmentState& e) {
+  Json out = {{"date", std::to_string(e.year) + "-" + std::to_string(e.month) + "-" +
+                           std::to_string(e.day)},
+              {"time_of_day", e.time_of_day},
+              {"fog_visual_range", e.fog_visual_range},  // infinite (no fog): null
+              {"precipitation", e.precipitation == engine::PrecipitationType::kRain   ? "rain"
+                                : e.precipitation == engine::PrecipitationType::kSnow ? "snow"
+                                                                                      : "dry"},
+              {"precipitation_intensity", e.precipitation_intensity},
+              {"cloud_cover", e.cloud_cover},
+              {"wind_speed", e.wind_speed},
+              {"wind_direction", e.wind_direction},
+              {"road_friction_scale", e.road_friction_scale},
+              {"wet_road", e.wet_road}};
   if (e.sun_azimuth && e.sun_elevation) {
-    out += ", \"sun_azimuth\": " + num(*e.sun_azimuth) +
-           ", \"sun_elevation\": " + num(*e.sun_elevation);
+    out["sun_azimuth"] = *e.sun_azimuth;
+    out["sun_elevation"] = *e.sun_elevation;
   }
-  return out + "}";
+  return out;
 }
 
-std::string entity_json(const engine::EntitySnapshot& e) {
-  return "{\"instance_id\": " + std::to_string(e.instance_id) +
-         ", \"name\": " + json_quote(e.name) +
-         ", \"category\": " + std::to_string(static_cast<int>(e.category)) + ", \"pose\": [" +
-         num(e.pose.x) + ", " + num(e.pose.y) + ", " + num(e.pose.z) + ", " + num(e.pose.h) + ", " +
-         num(e.pose.p) + ", " + num(e.pose.r) + "], \"box\": [" + num(e.box.center_x) + ", " +
-         num(e.box.center_y) + ", " + num(e.box.center_z) + ", " + num(e.box.length) + ", " +
-         num(e.box.width) + ", " + num(e.box.height) + "], \"speed\": " + num(e.speed) +
-         ", \"velocity\": [" + num(e.vx) + ", " + num(e.vy) + ", " + num(e.vz) +
-         "], \"yaw_rate\": " + num(e.yaw_rate) +
-         ", \"visible\": " + (e.visible ? "true" : "false") + "}";
+Json entity_json(const engine::EntitySnapshot& e) {
+  return {
+      {"instance_id", e.instance_id},
+      {"name", e.name},
+      {"category", static_cast<int>(e.category)},
+      {"pose", {e.pose.x, e.pose.y, e.pose.z, e.pose.h, e.pose.p, e.pose.r}},
+      {"box",
+       {e.box.center_x, e.box.center_y, e.box.center_z, e.box.length, e.box.width, e.box.height}},
+      {"speed", e.speed},
+      {"velocity", {e.vx, e.vy, e.vz}},
+      {"yaw_rate", e.yaw_rate},
+      {"visible", e.visible}};
 }
 
 // KITTI's calib file: P0..P3 (3x4), R0_rect (3x3), Tr_velo_to_cam and Tr_imu_to_velo (3x4).
@@ -154,24 +153,24 @@ void DatasetWriter::capture(const engine::WorldSnapshot& world,
   batch->files.resize(batch->frames.size());
   batch->tick = world.tick;
   batch->time = world.time;
-  std::string sensor_poses;
+  Json sensor_poses = Json::array();
   for (const SensorFrame& f : batch->frames) {
-    sensor_poses += std::string(sensor_poses.empty() ? "" : ",\n") +
-                    "    {\"sensor\": " + json_quote(f.sensor) +
-                    ", \"frame\": " + std::to_string(f.frame) +
-                    ", \"world_from_sensor\": " + rigid_json(f.world_from_sensor) + "}";
+    sensor_poses.push_back({{"sensor", f.sensor},
+                            {"frame", f.frame},
+                            {"world_from_sensor", matrix_json(f.world_from_sensor)}});
   }
-  std::string pose = "{\n  \"capture\": " + std::to_string(captures_) +
-                     ",\n  \"tick\": " + std::to_string(world.tick) +
-                     ",\n  \"time\": " + num(world.time) + ",\n  \"sensors\": [\n" + sensor_poses +
-                     "\n  ],\n  \"entities\": [\n";
-  for (size_t i = 0; i < world.entities.size(); ++i) {
-    pose +=
-        "    " + entity_json(world.entities[i]) + (i + 1 < world.entities.size() ? ",\n" : "\n");
+  Json entities = Json::array();
+  for (const engine::EntitySnapshot& e : world.entities) {
+    entities.push_back(entity_json(e));
   }
-  pose += "  ],\n  \"environment\": " + environment_json(world.environment) + "\n}\n";
+  const Json pose = {{"capture", captures_},
+                     {"tick", world.tick},
+                     {"time", world.time},
+                     {"sensors", std::move(sensor_poses)},
+                     {"entities", std::move(entities)},
+                     {"environment", environment_json(world.environment)}};
   const std::string pose_file = "poses/" + frame_stem(captures_) + ".json";
-  write_file_atomic(directory_ / pose_file, pose);
+  write_file_atomic(directory_ / pose_file, json_document(pose));
   batch->pose_rows = std::to_string(captures_) + "," + std::to_string(world.tick) + "," +
                      num(world.time) + ",poses,," + pose_file + "\n";
   // One task per sensor: each writes only its own folder, so the encoders run side by side and
@@ -270,43 +269,42 @@ void DatasetWriter::finish(const DatasetEnd& end) {
 }
 
 void DatasetWriter::write_run_json(const DatasetEnd* end) const {
-  std::string out =
-      "{\n  \"corsa_version\": " + json_quote(version()) +
-      ",\n  \"dataset_format_version\": 1,\n  \"scenario\": " + json_quote(info_.scenario) +
-      ",\n  \"parameters\": {";
-  for (size_t i = 0; i < info_.parameters.size(); ++i) {
-    out += std::string(i == 0 ? "" : ", ") + json_quote(info_.parameters[i].first) + ": " +
-           json_quote(info_.parameters[i].second);
+  Json parameters = Json::object();
+  for (const auto& [name, value] : info_.parameters) {
+    parameters[name] = value;
   }
-  out += "},\n  \"seed\": " + std::to_string(info_.seed) + ",\n  \"dt\": " + num(info_.dt) +
-         ",\n  \"duration\": " + num(info_.duration) + ",\n  \"rig\": " + json_quote(info_.rig) +
-         ",\n  \"format\": \"" + (format_ == DatasetFormat::kKitti ? "kitti" : "corsa") +
-         "\",\n  \"overrides\": {\"time_of_day\": " + json_quote(info_.time_of_day) +
-         ", \"weather\": " + json_quote(info_.weather) + ", \"npc\": " + json_quote(info_.npc) +
-         "},\n  \"sensors\": [";
-  const auto& sensors = system_.rig().sensors;
-  for (size_t i = 0; i < sensors.size(); ++i) {
-    out += std::string(i == 0 ? "" : ", ") + "{\"name\": " + json_quote(sensors[i].name) +
-           ", \"kind\": " + json_quote(sensor_kind_name(sensors[i].kind)) +
-           ", \"entity\": " + json_quote(sensors[i].entity) +
-           ", \"rate\": " + num(sensors[i].rate_hz) + "}";
+  Json sensors = Json::array();
+  for (const SensorSpec& s : system_.rig().sensors) {
+    sensors.push_back({{"name", s.name},
+                       {"kind", sensor_kind_name(s.kind)},
+                       {"entity", s.entity},
+                       {"rate", s.rate_hz}});
   }
-  out += "],\n  \"status\": " + json_quote(end != nullptr ? end->status : "running") +
-         ",\n  \"captures\": " + std::to_string(captures_) +
-         ",\n  \"files\": " + std::to_string(rows_) +
-         ",\n  \"last_capture_tick\": " + std::to_string(last_tick_) +
-         ",\n  \"last_capture_time\": " + num(last_time_);
+  Json run = {
+      {"corsa_version", version()},
+      {"dataset_format_version", 1},
+      {"scenario", info_.scenario},
+      {"parameters", std::move(parameters)},
+      {"seed", info_.seed},
+      {"dt", info_.dt},
+      {"duration", info_.duration},
+      {"rig", info_.rig},
+      {"format", format_ == DatasetFormat::kKitti ? "kitti" : "corsa"},
+      {"overrides",
+       {{"time_of_day", info_.time_of_day}, {"weather", info_.weather}, {"npc", info_.npc}}},
+      {"sensors", std::move(sensors)},
+      {"status", end != nullptr ? end->status : "running"},
+      {"captures", captures_},
+      {"files", rows_},
+      {"last_capture_tick", last_tick_},
+      {"last_capture_time", last_time_}};
   if (end != nullptr) {
-    out += ",\n  \"end_reason\": " + json_quote(end->end_reason) +
-           ",\n  \"end_tick\": " + std::to_string(end->tick) +
-           ",\n  \"end_time\": " + num(end->time) + ",\n  \"windows\": [";
-    for (size_t i = 0; i < end->windows_json.size(); ++i) {
-      out += std::string(i == 0 ? "\n    " : ",\n    ") + end->windows_json[i];
-    }
-    out += end->windows_json.empty() ? "]" : "\n  ]";
+    run["end_reason"] = end->end_reason;
+    run["end_tick"] = end->tick;
+    run["end_time"] = end->time;
+    run["windows"] = end->windows;
   }
-  out += "\n}\n";
-  write_file_atomic(directory_ / "run.json", out);
+  write_file_atomic(directory_ / "run.json", json_document(run));
 }
 
 }  // namespace corsa::sensors

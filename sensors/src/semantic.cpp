@@ -1,6 +1,6 @@
 #include "corsa/sensors/semantic.h"
 
-#include <nlohmann/json.hpp>
+#include "corsa/core/json.h"
 
 namespace corsa::sensors {
 namespace {
@@ -126,18 +126,18 @@ bool is_dynamic_class(SemanticClass c) {
 }
 
 std::string class_table_json() {
-  nlohmann::ordered_json classes = nlohmann::ordered_json::array();
+  Json classes = Json::array();
   for (size_t i = 0; i < kClasses.size(); ++i) {
     const Rgb8 c = kClasses[i].color;
     classes.push_back(
         {{"id", i}, {"name", std::string(kClasses[i].name)}, {"color", {c.r, c.g, c.b}}});
   }
-  nlohmann::ordered_json table;
+  Json table;
   table["format"] = "corsa semantic classes 1";
   table["ids_follow"] = "CARLA 0.9.14 CityObjectLabel (0-28), Corsa (29-31)";
   table["sky_id"] = static_cast<int>(SemanticClass::kSky);
   table["classes"] = std::move(classes);
-  return table.dump(2) + "\n";
+  return json_document(table);
 }
 
 }  // namespace corsa::sensors

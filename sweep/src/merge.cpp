@@ -12,6 +12,7 @@
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/json.h"
 #include "corsa/core/output_lock.h"
 #include "corsa/core/strings.h"
 #include "corsa/sweep/csv.h"
@@ -29,7 +30,8 @@ namespace fs = std::filesystem;
 
 struct Shard {
   fs::path folder;
-  std::string description;
+  std::string description;  ///< sweep.json as written
+  Json described;           ///< ... and as read
   detail::Table table;
 };
 
@@ -39,7 +41,9 @@ Shard read_shard(const fs::path& folder) {
   if (!fs::exists(folder / detail::kDescriptionFile, error)) {
     fail(folder, "not a sweep output folder (it has no sweep.json)");
   }
-  Shard shard{folder, read_file(folder / detail::kDescriptionFile), {}};
+  const fs::path described = folder / detail::kDescriptionFile;
+  Shard shard{folder, read_file(described), {}, {}};
+  shard.described = parse_json(shard.description, described.string());
   auto table = detail::read_table(folder / detail::kSummaryFile);
   if (!table) {
     fail(folder,
@@ -109,10 +113,9 @@ void remove_stale_staging(const fs::path& out) {
 
 // The variant count a sweep.json states.
 size_t variant_count(const Shard& shard) {
-  const auto text = detail::json_member(shard.description, "variants");
-  const auto row = text ? detail::row_index({*text}) : std::nullopt;
-  if (!row) fail(shard.folder / detail::kDescriptionFile, "no variant count in sweep.json");
-  return *row;
+  const auto count = detail::variant_count_of(shard.described);
+  if (!count) fail(shard.folder / detail::kDescriptionFile, "no variant count in sweep.json");
+  return *count;
 }
 
 // Whether `relative` (below a sweep folder; `folder` when it is a real folder, not a link) is one
@@ -138,14 +141,23 @@ bool is_sweep_entry(const fs::path& relative, bool folder) {
   }
 }
 
+// Whether `description` is a sweep.json of Corsa's: JSON with the plan hash.
+bool has_plan(const fs::path& description) {
+  const std::string text = read_file(description);
+  try {
+    return !detail::plan_of(parse_json(text, description.string())).empty();
+  } catch (const InputError&) {
+    return false;  // not JSON: not Corsa's
+  }
+}
+
 // The entries of `out` that --force replaces (files first, then folders innermost first): those
 // of an earlier sweep or merge, and nothing else. A folder without a sweep.json of Corsa's, or
 // with anything a sweep does not write, is refused before anything is removed.
 std::vector<fs::path> replaceable_entries(const fs::path& out) {
   std::error_code error;
   const fs::path description = out / detail::kDescriptionFile;
-  if (!fs::is_regular_file(fs::symlink_status(description, error)) ||
-      !detail::json_member(read_file(description), "plan")) {
+  if (!fs::is_regular_file(fs::symlink_status(description, error)) || !has_plan(description)) {
     fail(out,
          "--force replaces only an earlier sweep or merge (a folder with Corsa's sweep.json); "
          "this folder has none, and nothing was removed");
@@ -196,7 +208,7 @@ MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard
   std::vector<Shard> shards;
   for (const auto& folder : shard_folders) shards.push_back(read_shard(folder));
   const Shard& first = shards.front();
-  const auto plan = detail::json_member(first.description, "plan");
+  const std::string plan = detail::plan_of(first.described);
   const size_t total = variant_count(first);
   // index -> (shard, row)
   std::map<size_t, std::pair<const Shard*, const std::vector<std::string>*>> rows;
@@ -204,7 +216,7 @@ MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard
     fail(first.folder, "summary.csv does not have the columns of a sweep summary");
   }
   for (const Shard& shard : shards) {
-    if (detail::json_member(shard.description, "plan") != plan) {
+    if (detail::plan_of(shard.described) != plan) {
       fail(shard.folder, "holds another sweep than " + first.folder.string() +
                              " (their sweep.json files differ)");
     }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "corsa/core/atomic_file.h"
+#include "corsa/core/json.h"
 #include "corsa/core/output_lock.h"
 #include "corsa/core/random.h"
 #include "corsa/core/strings.h"
@@ -43,12 +44,6 @@ std::string hex(uint64_t value) {
   char text[17];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value));
   return text;
-}
-
-std::string json_list(const std::vector<std::string>& items) {
-  std::string out = "[";
-  for (size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + json_quote(items[i]);
-  return out + "]";
 }
 
 [[noreturn]] void folder_error(const fs::path& folder, const std::string& message) {
@@ -97,8 +92,7 @@ class LockedOutput {
 
 // Checks what `options.output` holds before anything is written, and clears an earlier sweep
 // when forced. Returns whether the folder already holds this sweep (resume).
-void prepare_output(const SweepOptions& options, const std::string& description,
-                    const std::string& shard_text) {
+void prepare_output(const SweepOptions& options, const Json& description, const Json& shard) {
   const fs::path& out = options.output;
   std::error_code error;
   const fs::path described = out / detail::kDescriptionFile;
@@ -117,25 +111,25 @@ void prepare_output(const SweepOptions& options, const std::string& description,
                  "this folder holds a sweep already: pass --resume to finish it, --force to "
                  "replace it, or choose another output folder (-o)");
   }
-  const std::string existing = read_file(described);
-  if (detail::json_member(existing, "plan") != detail::json_member(description, "plan")) {
+  if (detail::plan_of(read_json_file(described)) != detail::plan_of(description)) {
     folder_error(out,
                  "--resume: this folder holds a different sweep (other scenario, "
                  "parameters, variants or options); its sweep.json does not match");
   }
   const fs::path shard_file = out / detail::kShardFile;
-  const std::string existing_shard = fs::exists(shard_file, error) ? read_file(shard_file) : "";
-  if (existing_shard != shard_text) {
+  const Json existing_shard = fs::exists(shard_file, error) ? read_json_file(shard_file) : Json();
+  if (existing_shard != shard) {
     folder_error(out, "--resume: this folder holds another shard of the sweep");
   }
 }
 
-std::string shard_json(const Shard& shard, size_t variants) {
-  if (shard.whole()) return {};
-  return "{\n  \"shard\": " + json_quote(shard.text()) +
-         ",\n  \"index\": " + std::to_string(shard.index) +
-         ",\n  \"count\": " + std::to_string(shard.count) +
-         ",\n  \"variants\": " + std::to_string(shard.share(variants)) + "\n}\n";
+// shard.json: which share of the variants this folder holds; null for the whole sweep (no file).
+Json shard_json(const Shard& shard, size_t variants) {
+  if (shard.whole()) return nullptr;
+  return {{"shard", shard.text()},
+          {"index", shard.index},
+          {"count", shard.count},
+          {"variants", shard.share(variants)}};
 }
 
 // A variant's row from an earlier run, if it finished and has the expected columns.
@@ -189,33 +183,43 @@ std::vector<std::string> run_one(const Context& c, size_t index, bool& resumed) 
   return row;
 }
 
-}  // namespace
-
-std::string sweep_description(const VariantPlan& plan, const SweepOptions& options) {
+// sweep.json's content.
+Json description_of(const VariantPlan& plan, const SweepOptions& options) {
   const std::string source_hash = hex(stable_hash(read_file(plan.source())));
   const std::string scenario_hash =
       plan.source() == plan.scenario() ? source_hash : hex(stable_hash(read_file(plan.scenario())));
-  std::vector<std::string> grid;
+  Json grid = Json::array();
   for (const auto& axis : plan.grid()) grid.push_back(axis.spec);
   // Everything that decides the variants' results, without the paths (shards may see the same
   // files under other mount points): resume and merge compare this.
-  std::string members = "  \"corsa\": " + json_quote(version()) + ",\n";
-  members += "  \"source_hash\": " + json_quote(source_hash) + ",\n";
-  members += "  \"scenario_hash\": " + json_quote(scenario_hash) + ",\n";
-  members += "  \"grid\": " + json_list(grid) + ",\n";
-  members += "  \"parameters\": " + json_list(plan.parameter_names()) + ",\n";
-  members += "  \"variants\": " + std::to_string(plan.size()) + ",\n";
-  members += "  \"default_seed\": " + std::to_string(plan.default_seed()) + ",\n";
-  members += "  \"seed\": " + std::to_string(options.simulation.seed) + ",\n";
-  members += "  \"dt\": " + format_double(options.simulation.dt) + ",\n";
-  members += "  \"duration\": " + format_double(options.simulation.duration) + ",\n";
-  members += "  \"record_every\": " + std::to_string(options.record_every) + ",\n";
-  members +=
-      std::string("  \"trajectories\": ") + (options.trajectories ? "true" : "false") + ",\n";
-  members += "  \"ego\": " + json_quote(options.ego) + ",\n";
-  return "{\n  \"source\": " + json_quote(plan.source().string()) +
-         ",\n  \"scenario\": " + json_quote(plan.scenario().string()) + ",\n" + members +
-         "  \"plan\": " + json_quote(hex(stable_hash(members))) + "\n}\n";
+  const Json decisive = {{"corsa", version()},
+                         {"source_hash", source_hash},
+                         {"scenario_hash", scenario_hash},
+                         {"grid", std::move(grid)},
+                         {"parameters", plan.parameter_names()},
+                         {"variants", plan.size()},
+                         {"default_seed", plan.default_seed()},
+                         {"seed", options.simulation.seed},
+                         {"dt", options.simulation.dt},
+                         {"duration", options.simulation.duration},
+                         {"record_every", options.record_every},
+                         {"trajectories", options.trajectories},
+                         {"ego", options.ego}};
+  // The plan hash covers these members as their lines in sweep.json, each with its comma.
+  std::string lines;
+  for (auto it = decisive.begin(); it != decisive.end(); ++it) {
+    lines += "  " + json_line(it.key()) + ": " + json_line(it.value()) + ",\n";
+  }
+  Json description = {{"source", plan.source().string()}, {"scenario", plan.scenario().string()}};
+  description.update(decisive);
+  description["plan"] = hex(stable_hash(lines));
+  return description;
+}
+
+}  // namespace
+
+std::string sweep_description(const VariantPlan& plan, const SweepOptions& options) {
+  return json_document(description_of(plan, options));
 }
 
 SweepReport run_sweep(const VariantPlan& plan, const SweepOptions& options,
@@ -224,13 +228,14 @@ SweepReport run_sweep(const VariantPlan& plan, const SweepOptions& options,
   SharedInputs inputs(plan.scenario(), diagnostics);
   plan.check(inputs.load({}, diagnostics));
   check_variant_count(plan, options.shard.share(plan.size()));
-  const std::string description = sweep_description(plan, options);
-  const std::string shard_text = shard_json(options.shard, plan.size());
+  const Json description = description_of(plan, options);
+  const Json shard = shard_json(options.shard, plan.size());
   LockedOutput output(options.output);
-  prepare_output(options, description, shard_text);
+  prepare_output(options, description, shard);
   create_folder_inside(options.output, detail::kVariantsFolder);
-  write_file_atomic(options.output / detail::kDescriptionFile, description);
-  if (!shard_text.empty()) write_file_atomic(options.output / detail::kShardFile, shard_text);
+  write_file_atomic(options.output / detail::kDescriptionFile, json_document(description));
+  if (!shard.is_null())
+    write_file_atomic(options.output / detail::kShardFile, json_document(shard));
   output.keep();
 
   const std::vector<std::string> header = summary_header(plan.parameter_names());

@@ -6,17 +6,15 @@
 
 namespace corsa::sweep::detail {
 
-std::optional<std::string> json_member(std::string_view json, std::string_view key) {
-  const std::string needle = "\"" + std::string(key) + "\": ";
-  for (const std::string_view line : split(json, '\n')) {
-    const std::string_view text = trim(line);
-    if (text.substr(0, needle.size()) == needle) {
-      std::string_view value = text.substr(needle.size());
-      if (!value.empty() && value.back() == ',') value.remove_suffix(1);
-      return std::string(value);
-    }
-  }
-  return std::nullopt;
+std::string plan_of(const Json& description) {
+  const auto plan = description.find("plan");
+  return plan != description.end() && plan->is_string() ? plan->get<std::string>() : "";
+}
+
+std::optional<size_t> variant_count_of(const Json& description) {
+  const auto count = description.find("variants");
+  if (count == description.end() || !count->is_number_unsigned()) return std::nullopt;
+  return count->get<size_t>();
 }
 
 std::optional<Table> read_table(const std::filesystem::path& file) {

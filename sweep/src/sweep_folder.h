@@ -5,8 +5,9 @@
 #include <filesystem>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
+
+#include "corsa/core/json.h"
 
 namespace corsa::sweep::detail {
 
@@ -18,9 +19,11 @@ inline constexpr const char* kResultFile = "result.csv";
 inline constexpr const char* kTrajectoryFile = "trajectory.csv";
 inline constexpr const char* kRunSummaryFile = "summary.json";
 
-/// The raw text of a top-level member `"key": value` of a JSON object Corsa wrote (one member per
-/// line); nothing when absent. Strings keep their quotes.
-std::optional<std::string> json_member(std::string_view json, std::string_view key);
+/// The plan hash a sweep.json states (its member "plan"); empty when it has none.
+std::string plan_of(const Json& description);
+
+/// The variant count a sweep.json states (its member "variants"); nothing when it has none.
+std::optional<size_t> variant_count_of(const Json& description);
 
 /// A CSV table: header and rows.
 struct Table {

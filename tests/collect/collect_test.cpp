@@ -53,10 +53,12 @@ TEST_CASE("model texts give the file, the offset in metres and the heading in ra
 TEST_CASE("capture windows are recorded with their ticks, null while open", "[collect][windows]") {
   const std::vector<corsa::engine::CaptureWindow> windows{{"cam", 0, 120, 10.0},
                                                           {"lidar", 40, -1, 2.5}};
-  const std::vector<std::string> json = corsa::collect::capture_windows_json(windows);
+  const corsa::Json json = corsa::collect::capture_windows_json(windows);
   REQUIRE(json.size() == 2);
-  CHECK(json[0] == R"({"sensor": "cam", "open_tick": 0, "close_tick": 120, "rate": 10})");
-  CHECK(json[1] == R"({"sensor": "lidar", "open_tick": 40, "close_tick": null, "rate": 2.5})");
+  CHECK(corsa::json_line(json[0]) ==
+        R"({"sensor": "cam", "open_tick": 0, "close_tick": 120, "rate": 10})");
+  CHECK(corsa::json_line(json[1]) ==
+        R"({"sensor": "lidar", "open_tick": 40, "close_tick": null, "rate": 2.5})");
 }
 
 TEST_CASE("a library call collects a complete dataset", "[collect][run]") {

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 
 #include "corsa/core/atomic_file.h"
+#include "corsa/core/json.h"
 #include "corsa/core/strings.h"
 
 namespace corsa::test {
@@ -19,25 +19,28 @@ namespace fs = std::filesystem;
 
 std::string read_all(const fs::path& path) { return corsa::read_file(path); }
 
-// Every [x_min, y_min, x_max, y_max] after "box_2d": in a labels file.
-std::vector<std::array<double, 4>> boxes_2d(const std::string& json) {
+// The objects of a labels file.
+corsa::Json label_objects(const fs::path& file) {
+  return corsa::read_json_file(file).at("objects");
+}
+
+// Every [x_min, y_min, x_max, y_max] "box_2d" of a labels file.
+std::vector<std::array<double, 4>> boxes_2d(const fs::path& file) {
   std::vector<std::array<double, 4>> out;
-  static const std::regex box(R"re("box_2d": \[([^,\]]+), ([^,\]]+), ([^,\]]+), ([^,\]]+)\])re");
-  for (auto it = std::sregex_iterator(json.begin(), json.end(), box); it != std::sregex_iterator();
-       ++it) {
-    out.push_back(
-        {std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3]), std::stod((*it)[4])});
+  for (const corsa::Json& object : label_objects(file)) {
+    if (object.contains("box_2d")) {
+      out.push_back(object.at("box_2d").get<std::array<double, 4>>());
+    }
   }
   return out;
 }
 
 // (instance id, lidar_points) of every object of a LiDAR labels file.
-std::vector<std::pair<uint32_t, uint64_t>> lidar_objects(const std::string& json) {
+std::vector<std::pair<uint32_t, uint64_t>> lidar_objects(const fs::path& file) {
   std::vector<std::pair<uint32_t, uint64_t>> out;
-  static const std::regex object(R"re("instance_id": (\d+)[^}]*"lidar_points": (\d+))re");
-  for (auto it = std::sregex_iterator(json.begin(), json.end(), object);
-       it != std::sregex_iterator(); ++it) {
-    out.emplace_back(static_cast<uint32_t>(std::stoul((*it)[1])), std::stoull((*it)[2]));
+  for (const corsa::Json& object : label_objects(file)) {
+    out.emplace_back(object.at("instance_id").get<uint32_t>(),
+                     object.at("lidar_points").get<uint64_t>());
   }
   return out;
 }
@@ -71,8 +74,7 @@ void check_lidar(const fs::path& dataset, const std::string& stem_path,
     std::memcpy(&v, labels.data() + i, 4);
     ++per_instance[v >> 16];
   }
-  for (const auto& [instance, points] :
-       lidar_objects(read_all(dataset / (stem_path + "_labels.json")))) {
+  for (const auto& [instance, points] : lidar_objects(dataset / (stem_path + "_labels.json"))) {
     if (per_instance[instance] != points) {
       problems.push_back(stem_path + ": object " + std::to_string(instance) + " has " +
                          std::to_string(points) + " points in its label but " +
@@ -119,8 +121,7 @@ std::vector<std::string> check_dataset(const fs::path& dataset, int width, int h
     }
     const std::string name = fs::path(row.file).filename().string();
     if (name.ends_with("_labels.json")) {
-      const std::string json = read_all(dataset / row.file);
-      for (const auto& b : boxes_2d(json)) {
+      for (const auto& b : boxes_2d(dataset / row.file)) {
         if (b[0] < -0.5 || b[1] < -0.5 || b[2] > width - 0.5 + 1e-9 || b[3] > height - 0.5 + 1e-9 ||
             b[0] > b[2] || b[1] > b[3]) {
           problems.push_back(row.file + ": 2D box outside the image");
@@ -150,22 +151,15 @@ std::vector<std::string> files_under(const fs::path& dir) {
 }
 
 double json_number(const std::string& json, const std::string& key) {
-  const std::string needle = "\"" + key + "\": ";
-  const size_t at = json.find(needle);
-  if (at == std::string::npos) {
-    return std::nan("");
-  }
-  return std::stod(json.substr(at + needle.size(), 30));
+  const corsa::Json document = corsa::parse_json(json, "run.json");
+  const auto value = document.find(key);
+  return value != document.end() && value->is_number() ? value->get<double>() : std::nan("");
 }
 
 std::string json_string(const std::string& json, const std::string& key) {
-  const std::string needle = "\"" + key + "\": \"";
-  const size_t at = json.find(needle);
-  if (at == std::string::npos) {
-    return {};
-  }
-  const size_t begin = at + needle.size();
-  return json.substr(begin, json.find('"', begin) - begin);
+  const corsa::Json document = corsa::parse_json(json, "run.json");
+  const auto value = document.find(key);
+  return value != document.end() && value->is_string() ? value->get<std::string>() : "";
 }
 
 }  // namespace corsa::test

@@ -32,8 +32,9 @@ std::vector<std::string> check_dataset(const std::filesystem::path& dataset, int
 /// Every regular file under `dir`, relative, sorted.
 std::vector<std::string> files_under(const std::filesystem::path& dir);
 
-/// A number after `"key": ` in a JSON text (first occurrence); NaN when absent.
+/// A top-level number member of a JSON object's text (run.json); NaN when absent.
 double json_number(const std::string& json, const std::string& key);
+/// A top-level string member of a JSON object's text (run.json); empty when absent.
 std::string json_string(const std::string& json, const std::string& key);
 
 }  // namespace corsa::test

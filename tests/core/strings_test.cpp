@@ -25,7 +25,7 @@ TEST_CASE("doubles format to the shortest text that reads back exactly", "[core]
   CHECK(corsa::format_fixed(3.14159, 2) == "3.14");
 }
 
-TEST_CASE("text helpers split, trim, compare and quote", "[core][strings]") {
+TEST_CASE("text helpers split, trim and compare", "[core][strings]") {
   const auto parts = corsa::split("a,,b", ',');
   REQUIRE(parts.size() == 3);
   CHECK(parts[1].empty());
@@ -33,23 +33,6 @@ TEST_CASE("text helpers split, trim, compare and quote", "[core][strings]") {
   CHECK(corsa::iequals("L_LinKID", "l_linkid"));
   CHECK_FALSE(corsa::iequals("a", "ab"));
   CHECK(corsa::to_lower("PostID") == "postid");
-  CHECK(corsa::json_quote("a\"b\\\n\x01") == "\"a\\\"b\\\\\\n\\u0001\"");
-}
-
-TEST_CASE("JSON strings stay valid UTF-8 whatever bytes the input held", "[core][strings]") {
-  // Well-formed sequences of 2, 3 and 4 bytes are kept as they are.
-  CHECK(corsa::json_quote("\xC3\xA9\xED\x95\x9C\xF0\x9F\x9A\x97") ==
-        "\"\xC3\xA9\xED\x95\x9C\xF0\x9F\x9A\x97\"");
-  // A stray continuation byte, a lead byte without its continuation, an overlong form, a
-  // surrogate, a code point above U+10FFFF and a cut sequence each become U+FFFD per byte.
-  CHECK(corsa::json_quote("a\x80"
-                          "b") == "\"a\\ufffdb\"");
-  CHECK(corsa::json_quote("\xC3(") == "\"\\ufffd(\"");
-  CHECK(corsa::json_quote("\xC0\xAF") == "\"\\ufffd\\ufffd\"");
-  CHECK(corsa::json_quote("\xED\xA0\x80") == "\"\\ufffd\\ufffd\\ufffd\"");
-  CHECK(corsa::json_quote("\xF4\x90\x80\x80") == "\"\\ufffd\\ufffd\\ufffd\\ufffd\"");
-  CHECK(corsa::json_quote("\xE2\x82") == "\"\\ufffd\\ufffd\"");
-  CHECK(corsa::json_quote("\xFF\xFE") == "\"\\ufffd\\ufffd\"");
 }
 
 TEST_CASE("CSV fields are quoted only when a reader would misread them", "[core][strings]") {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "corsa/collect/dataset_run.h"
+#include "corsa/core/json.h"
 #include "corsa/engine/capture_timeline.h"
 #include "corsa/sensors/rig.h"
 
@@ -65,8 +66,8 @@ class DataRun {
   double last_time_ = 0.0;
 };
 
-/// The capture windows as run.json records them: one JSON object each, with the sensor, the
-/// opening and closing ticks (null while open) and the rate (Hz).
-std::vector<std::string> capture_windows_json(std::span<const engine::CaptureWindow> windows);
+/// The capture windows as run.json records them: an array of one JSON object each, with the
+/// sensor, the opening and closing ticks (null while open) and the rate (Hz).
+Json capture_windows_json(std::span<const engine::CaptureWindow> windows);
 
 }  // namespace corsa::collect

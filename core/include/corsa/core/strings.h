@@ -23,9 +23,6 @@ std::vector<std::string_view> split(std::string_view text, char separator);
 bool iequals(std::string_view a, std::string_view b);
 std::string to_lower(std::string_view text);
 
-/// Escapes a string for inclusion in a JSON document (quotes included).
-std::string json_quote(std::string_view text);
-
 /// One CSV field as Corsa writes it (RFC 4180): quoted with '"' only when it holds a comma, a
 /// quote, a line break or leading/trailing blanks; quotes inside doubled.
 std::string csv_field(std::string_view text);

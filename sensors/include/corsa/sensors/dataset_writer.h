@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "corsa/core/json.h"
 #include "corsa/engine/world_snapshot.h"
 #include "corsa/sensors/sensor_system.h"
 
@@ -55,8 +56,8 @@ struct DatasetEnd {
   std::string end_reason;  ///< the engine's end reason, or what interrupted it
   int64_t tick = 0;        ///< last simulated tick
   double time = 0.0;       ///< s
-  /// Capture windows as JSON objects, e.g. from the capture timeline.
-  std::vector<std::string> windows_json;
+  /// Capture windows, a JSON array of objects, e.g. from the capture timeline.
+  Json windows = Json::array();
 };
 
 class DatasetWriter final : public engine::CaptureSink {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "corsa/core/json.h"
 #include "corsa/sensors/camera_model.h"
 #include "corsa/sensors/geometry.h"
 #include "corsa/sensors/labels.h"
@@ -62,7 +63,7 @@ void write_point_labels(const std::filesystem::path& path, const PointCloud& clo
 // --- calibration and labels (text) -----------------------------------------------------------
 
 /// 4x4 homogeneous matrix as JSON rows.
-std::string matrix_json(const Rigid& t);
+Json matrix_json(const Rigid& t);
 /// Calibration of a sensor as JSON: intrinsics (cameras: K, distortion, size; LiDAR: channels,
 /// elevations, azimuth steps) and extrinsics (T_entity_sensor: sensor body frame in the entity
 /// frame; cameras also T_sensor_optical). `camera` may be null for LiDAR.
