@@ -36,7 +36,8 @@ int command_run(std::span<const std::string> args) {
     parser.print_help(std::cout);
     return kExitOk;
   }
-  const engine::RunOptions options = read_run_options(parsed);
+  engine::RunOptions options = read_run_options(parsed);
+  options.simulation.geo_projection = proj_plugin_geo_projection();
   const bool quiet = parsed.flag("--quiet");
   Diagnostics diagnostics([](const Diagnostic& d) { std::cerr << d.format() << '\n'; });
   ProgressBar progress("run", options.simulation.duration, !quiet);

@@ -15,6 +15,7 @@
 #include "corsa/suite/suite.h"
 #include "corsa/suite/suite_run.h"
 #include "output_paths.h"
+#include "plugin_api.h"
 #include "sweep_options.h"
 
 namespace corsa::cli {
@@ -72,6 +73,7 @@ int run_test_command(std::span<const std::string> args) {
     return kExitOk;
   }
   suite::SuiteOptions options;
+  options.geo_projection = proj_plugin_geo_projection();
   if (const auto jobs = parsed.integer("-j")) {
     if (*jobs < 1) throw UsageError("-j expects a positive number of threads");
     options.jobs = static_cast<size_t>(*jobs);

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "output_paths.h"
+#include "plugin_api.h"
 
 namespace corsa::cli {
 namespace {
@@ -32,6 +33,7 @@ sweep::Shard shard_option(const ParsedArgs& parsed) {
 }
 
 void simulation_options(const ParsedArgs& parsed, engine::SimulationOptions& simulation) {
+  simulation.geo_projection = proj_plugin_geo_projection();
   if (const auto dt = parsed.number("--dt")) {
     // At least 0.1 ms: a step of 1e-300 s is endless steps, a hang rather than a run.
     if (!(*dt >= 1e-4) || *dt > 10.0)

@@ -137,6 +137,7 @@ TestOutcome run_test(const TestCase& test, const SuiteOptions& options, const Su
     return outcome;
   }
   sweep::VariantSpec spec{test.parameters, test.simulation, test.ego};
+  spec.simulation.geo_projection = options.geo_projection;
   sweep::VariantOutputs outputs;
   if (options.output) {
     const fs::path folder = *options.output / test.name;

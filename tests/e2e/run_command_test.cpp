@@ -28,6 +28,23 @@ TEST_CASE("corsa run prints a one-line summary and exits 0", "[e2e][run]") {
   CHECK(std::count(result.out.begin(), result.out.end(), '\n') == 1);
 }
 
+TEST_CASE("corsa run places GeoPositions through PROJ, loaded for them only", "[e2e][run][geo]") {
+  TempDir dir;
+  const auto record = dir.path() / "out.csv";
+  const ProcessResult result =
+      run_corsa({"run", "tests/engine/fixtures/action_teleport_story.xosc", "--quiet", "--duration",
+                 "1.5", "--record", record.string()});
+  REQUIRE(result.exit_code == 0);
+  // The GeoPosition at t = 1 is map point (250, -5.25) (tests/engine/actions_test.cpp).
+  const auto rows = parse_trajectory(slurp(record));
+  const auto jumped = std::find_if(rows.begin(), rows.end(), [](const TrajectoryRow& r) {
+    return r.entity == "Jumper" && r.time == 1.02;
+  });
+  REQUIRE(jumped != rows.end());
+  CHECK(jumped->x == Catch::Detail::Approx(250.0).margin(0.01));
+  CHECK(jumped->y == Catch::Detail::Approx(-5.25).margin(0.01));
+}
+
 TEST_CASE("corsa run rejects bad usage with exit 2", "[e2e][run]") {
   CHECK(run_corsa({"run"}).exit_code == 2);
   CHECK(run_corsa({"run", kCutIn, "--dt", "0"}).exit_code == 2);

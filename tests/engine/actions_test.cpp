@@ -174,6 +174,30 @@ TEST_CASE("TeleportAction during the run reaches GeoPositions and trajectory pos
   CHECK(curl.road->lane == -1);
 }
 
+TEST_CASE("a GeoPosition the map-to-Earth transform cannot serve is a located error",
+          "[engine][action][teleport]") {
+  SECTION("the transform cannot be made") {
+    engine::SimulationOptions options;
+    options.geo_projection = [](const std::string& crs) -> engine::GeographicToMap {
+      throw InputError(make_error("", 0, "PROJ cannot read '" + crs.substr(0, 11) + "'"));
+    };
+    FixtureRun run(engine_fixture("action_teleport_story.xosc"), options);
+    CHECK_THROWS_WITH(run.run(), Catch::Contains("action_teleport_story.xosc:31: error: PROJ "
+                                                 "cannot read '+proj=tmerc'"));
+  }
+  SECTION("the point is outside the CRS") {
+    engine::SimulationOptions options;
+    options.geo_projection = [](const std::string&) -> engine::GeographicToMap {
+      return [](double, double) { return std::optional<Vec2>(); };
+    };
+    FixtureRun run(engine_fixture("action_teleport_story.xosc"), options);
+    CHECK_THROWS_WITH(run.run(), Catch::Contains("action_teleport_story.xosc:31: error: latitude "
+                                                 "37.49995264447614, longitude "
+                                                 "127.00282837009718 is outside the map's "
+                                                 "geoReference '+proj=tmerc"));
+  }
+}
+
 TEST_CASE("TeleportAction to RoutePositions measures path s along the route",
           "[engine][action][teleport][route]") {
   FixtureRun run(engine_fixture("action_teleport_route.xosc"));

@@ -15,6 +15,7 @@
 
 #include "corsa/engine/run.h"
 #include "corsa/engine/simulation.h"
+#include "corsa/geo/crs_transform.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 
@@ -81,6 +82,9 @@ class FixtureRun {
  public:
   explicit FixtureRun(const std::filesystem::path& file, engine::SimulationOptions options = {},
                       std::vector<std::pair<std::string, std::string>> parameters = {}) {
+    if (!options.geo_projection) {
+      options.geo_projection = geo::geographic_to_projected;  // PROJ, for GeoPositions
+    }
     xosc::LoadOptions load;
     load.parameters = std::move(parameters);
     scenario_ = std::make_unique<xosc::Scenario>(xosc::load_scenario(file, load, diagnostics_));

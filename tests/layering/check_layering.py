@@ -5,7 +5,8 @@ Every module is a top-level folder with `include/corsa/<module>/` (public) and `
 A module may include and link only itself and the modules below it:
 
     core <- xodr <- {ngii, render, xosc};  xosc <- engine <- sensors <- collect;
-    engine <- sweep <- suite;  apps (the `corsa` command line) and python may use every module.
+    core <- geo <- sensors;  engine <- sweep <- suite;  apps (the `corsa` command line) and python
+    may use every module.
 
 What is checked, in every module's sources, headers, tools and CMakeLists.txt:
   1. `#include <corsa/M/...>` and `#include "corsa/M/..."` name an allowed module M;
@@ -34,12 +35,13 @@ import tempfile
 # is the closure of these arrows. None: may use every module.
 MODULES: dict[str, tuple[str, list[str] | None]] = {
     "core": ("core", []),
+    "geo": ("geo", ["core"]),
     "xodr": ("xodr", ["core"]),
     "ngii": ("ngii", ["xodr"]),
     "render": ("render", ["xodr"]),
     "xosc": ("xosc", ["xodr"]),
     "engine": ("engine", ["xosc"]),
-    "sensors": ("sensors", ["engine"]),
+    "sensors": ("sensors", ["engine", "geo"]),
     "collect": ("collect", ["sensors"]),
     "sweep": ("sweep", ["engine"]),
     "suite": ("suite", ["sweep"]),

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "corsa/geo/crs_transform.h"
 #include "output_paths.h"
 #include "run_options.h"
 #include "run_rig.h"
@@ -29,6 +30,7 @@ RigRunOptions read_rig_run_options(const ParsedArgs& parsed) {
   RigRunOptions options;
   collect::DatasetRunOptions& dataset = options.dataset;
   dataset.run = read_run_options(parsed);
+  dataset.run.simulation.geo_projection = geo::geographic_to_projected;
   const auto rig = parsed.value("--rig");
   if (!rig || rig->empty()) {
     throw UsageError("missing --rig RIG.xml");

@@ -156,11 +156,16 @@ ResolvedPosition geo(const xosc::GeoPosition& p, const SimState& state) {
   if (!p.latitude_deg || !p.longitude_deg) {
     fail(p.source, "GeoPosition needs a latitude and a longitude");
   }
-  const auto xy = geo_to_map(map.data().header, *p.latitude_deg, *p.longitude_deg);
+  std::optional<Vec2> xy;
+  try {
+    xy = geo_to_map(state, map.data().header, *p.latitude_deg, *p.longitude_deg);
+  } catch (const InputError& error) {
+    fail(p.source, error.diagnostic().message);
+  }
   if (!xy) {
-    fail(p.source, "the map's geoReference '" + std::string(trim(map.data().header.geo_reference)) +
-                       "' is not a simple transverse Mercator or UTM projection on WGS84/GRS80, "
-                       "which GeoPosition needs");
+    fail(p.source, "latitude " + format_double(*p.latitude_deg) + ", longitude " +
+                       format_double(*p.longitude_deg) + " is outside the map's geoReference '" +
+                       std::string(trim(map.data().header.geo_reference)) + "'");
   }
   ResolvedPosition out;
   out.pose.x = xy->x;

@@ -104,6 +104,9 @@ struct SimState {
   /// The Simulation that owns this state, for custom command handlers (refreshed every step,
   /// since a Simulation may be moved).
   const Simulation* simulation = nullptr;
+  /// The map's geographic -> map transform, made from options.geo_projection on the first
+  /// GeoPosition (positions/geo_reference.h); a cache, hence mutable.
+  mutable std::optional<GeographicToMap> geo_to_map;
 
   double now() const { return time.time(tick); }
 };

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/vec.h"
 #include "corsa/engine/entity_state.h"
 #include "corsa/engine/external_control.h"
 #include "corsa/engine/storyboard_state.h"
@@ -36,6 +37,14 @@ class Map;
 }
 
 namespace corsa::engine {
+
+/// WGS84 latitude and longitude (degrees) to x, y (m) in the map's projected CRS, before the
+/// OpenDRIVE header <offset>; nothing where the CRS gives no finite result.
+using GeographicToMap =
+    std::function<std::optional<Vec2>(double latitude_deg, double longitude_deg)>;
+/// Makes the GeographicToMap of a map's geoReference (a PROJ string, WKT or "EPSG:n"); throws
+/// corsa::InputError saying why when it cannot.
+using GeoProjectionFactory = std::function<GeographicToMap(const std::string& geo_reference)>;
 
 struct SimulationOptions {
   double dt = 0.01;          ///< fixed step, s (> 0)
@@ -58,6 +67,11 @@ struct SimulationOptions {
   /// Simulation::command. Empty: none (the command line's choice; the Python module names
   /// "ExternalController").
   std::vector<std::string> external_controllers;
+  /// The map-to-Earth transform GeoPositions need (OpenSCENARIO 1.3 §6.4), called once per
+  /// simulation, on the first GeoPosition: corsa::geo::geographic_to_projected (PROJ) for
+  /// library users; the `corsa` command loads it on demand. Empty: a GeoPosition is an error
+  /// that says so.
+  GeoProjectionFactory geo_projection;
 };
 
 /// One presence of a generated entity (traffic actions, NPCs): when it appeared and, once it

@@ -28,6 +28,9 @@ struct SuiteOptions {
   bool goldens_outside = false;
   /// When set, each test writes <output>/<test>/trajectory.csv and summary.json there.
   std::optional<std::filesystem::path> output;
+  /// The map-to-Earth transform for GeoPositions, given to every test's run
+  /// (engine::SimulationOptions::geo_projection).
+  engine::GeoProjectionFactory geo_projection;
 };
 
 enum class Verdict : uint8_t { kPassed, kFailed, kError };
