@@ -75,23 +75,65 @@ EntityCondition parse_simple_entity_condition(ParseContext& ctx, const Element* 
                                 ctx.source(c)};
 }
 
+CollisionCondition parse_collision_condition(ParseContext& ctx, const Element* c) {
+  Children collision_kids(ctx, c, "CollisionCondition");
+  CollisionCondition condition;
+  const Element* target = collision_kids.choice();
+  if (std::string_view(target->Name()) == "EntityRef") {
+    Children(ctx, target, "EntityRef");
+    condition.entity_ref = entity_attribute(ctx, target, "entityRef");
+  } else {
+    Children(ctx, target, "ByObjectType");
+    condition.by_type = ctx.req_enum<ObjectType>(target, "type");
+  }
+  condition.source = ctx.source(c);
+  return condition;
+}
+
+TimeToCollisionCondition parse_time_to_collision_condition(ParseContext& ctx, const Element* c) {
+  Children ttc_kids(ctx, c, "TimeToCollisionCondition");
+  TimeToCollisionCondition condition;
+  read_distance_options(ctx, c, condition);
+  const Element* target = ttc_kids.one("TimeToCollisionConditionTarget");
+  Children target_kids(ctx, target, "TimeToCollisionConditionTarget");
+  const Element* t = target_kids.choice();
+  if (std::string_view(t->Name()) == "EntityRef") {
+    Children(ctx, t, "EntityRef");
+    condition.target_entity_ref = entity_attribute(ctx, t, "entityRef");
+  } else {
+    condition.target_position = parse_position(ctx, t);
+  }
+  return condition;
+}
+
+RelativeClearanceCondition parse_relative_clearance_condition(ParseContext& ctx, const Element* c) {
+  Children clearance_kids(ctx, c, "RelativeClearanceCondition");
+  RelativeClearanceCondition condition;
+  condition.opposite_lanes = ctx.req_bool(c, "oppositeLanes");
+  condition.free_space = ctx.req_bool(c, "freeSpace");
+  condition.distance_forward = ctx.opt_double(c, "distanceForward");
+  condition.distance_backward = ctx.opt_double(c, "distanceBackward");
+  for (const Element* range : clearance_kids.all("RelativeLaneRange")) {
+    Children(ctx, range, "RelativeLaneRange");
+    RelativeLaneRange lanes;
+    if (const auto from = ctx.opt_int(range, "from")) lanes.from = static_cast<int>(*from);
+    if (const auto to = ctx.opt_int(range, "to")) lanes.to = static_cast<int>(*to);
+    condition.lane_ranges.push_back(lanes);
+  }
+  for (const Element* ref : clearance_kids.all("EntityRef")) {
+    Children(ctx, ref, "EntityRef");
+    condition.entity_refs.push_back(entity_attribute(ctx, ref, "entityRef"));
+  }
+  condition.source = ctx.source(c);
+  return condition;
+}
+
 EntityCondition parse_entity_condition(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "EntityCondition");
   const Element* c = kids.choice();
   const std::string_view name = c->Name();
   if (name == "CollisionCondition") {
-    Children collision_kids(ctx, c, "CollisionCondition");
-    CollisionCondition condition;
-    const Element* target = collision_kids.choice();
-    if (std::string_view(target->Name()) == "EntityRef") {
-      Children(ctx, target, "EntityRef");
-      condition.entity_ref = entity_attribute(ctx, target, "entityRef");
-    } else {
-      Children(ctx, target, "ByObjectType");
-      condition.by_type = ctx.req_enum<ObjectType>(target, "type");
-    }
-    condition.source = ctx.source(c);
-    return condition;
+    return parse_collision_condition(ctx, c);
   }
   if (name == "TimeHeadwayCondition") {
     Children(ctx, c, "TimeHeadwayCondition");
@@ -101,19 +143,7 @@ EntityCondition parse_entity_condition(ParseContext& ctx, const Element* e) {
     return condition;
   }
   if (name == "TimeToCollisionCondition") {
-    Children ttc_kids(ctx, c, "TimeToCollisionCondition");
-    TimeToCollisionCondition condition;
-    read_distance_options(ctx, c, condition);
-    const Element* target = ttc_kids.one("TimeToCollisionConditionTarget");
-    Children target_kids(ctx, target, "TimeToCollisionConditionTarget");
-    const Element* t = target_kids.choice();
-    if (std::string_view(t->Name()) == "EntityRef") {
-      Children(ctx, t, "EntityRef");
-      condition.target_entity_ref = entity_attribute(ctx, t, "entityRef");
-    } else {
-      condition.target_position = parse_position(ctx, t);
-    }
-    return condition;
+    return parse_time_to_collision_condition(ctx, c);
   }
   if (name == "ReachPositionCondition") {
     Children reach_kids(ctx, c, "ReachPositionCondition");
@@ -140,25 +170,7 @@ EntityCondition parse_entity_condition(ParseContext& ctx, const Element* e) {
                                      ctx.source(c)};
   }
   if (name == "RelativeClearanceCondition") {
-    Children clearance_kids(ctx, c, "RelativeClearanceCondition");
-    RelativeClearanceCondition condition;
-    condition.opposite_lanes = ctx.req_bool(c, "oppositeLanes");
-    condition.free_space = ctx.req_bool(c, "freeSpace");
-    condition.distance_forward = ctx.opt_double(c, "distanceForward");
-    condition.distance_backward = ctx.opt_double(c, "distanceBackward");
-    for (const Element* range : clearance_kids.all("RelativeLaneRange")) {
-      Children(ctx, range, "RelativeLaneRange");
-      RelativeLaneRange lanes;
-      if (const auto from = ctx.opt_int(range, "from")) lanes.from = static_cast<int>(*from);
-      if (const auto to = ctx.opt_int(range, "to")) lanes.to = static_cast<int>(*to);
-      condition.lane_ranges.push_back(lanes);
-    }
-    for (const Element* ref : clearance_kids.all("EntityRef")) {
-      Children(ctx, ref, "EntityRef");
-      condition.entity_refs.push_back(entity_attribute(ctx, ref, "entityRef"));
-    }
-    condition.source = ctx.source(c);
-    return condition;
+    return parse_relative_clearance_condition(ctx, c);
   }
   return parse_simple_entity_condition(ctx, c, name);
 }
