@@ -123,15 +123,9 @@ double reduce(double x, int& quadrant) {
   return ((x - k * kPio2Hi) - k * kPio2Mid) - k * kPio2Lo;
 }
 
-}  // namespace
-
-double sin(double x) {
-  if (!std::isfinite(x)) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  int q = 0;
-  const double r = reduce(x, q);
-  switch (q) {
+// sin(r + q pi/2) for the reduced argument r, from the kernels.
+double sin_in_quadrant(double r, int q) {
+  switch (q & 3) {
     case 0:
       return sin_kernel(r);
     case 1:
@@ -143,22 +137,24 @@ double sin(double x) {
   }
 }
 
+}  // namespace
+
+double sin(double x) {
+  if (!std::isfinite(x)) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  int q = 0;
+  const double r = reduce(x, q);
+  return sin_in_quadrant(r, q);
+}
+
 double cos(double x) {
   if (!std::isfinite(x)) {
     return std::numeric_limits<double>::quiet_NaN();
   }
   int q = 0;
   const double r = reduce(x, q);
-  switch (q) {
-    case 0:
-      return cos_kernel(r);
-    case 1:
-      return -sin_kernel(r);
-    case 2:
-      return -cos_kernel(r);
-    default:
-      return sin_kernel(r);
-  }
+  return sin_in_quadrant(r, q + 1);  // cos x = sin(x + pi/2)
 }
 
 }  // namespace corsa::det

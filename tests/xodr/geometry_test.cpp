@@ -27,13 +27,7 @@ RefPoint integrate_spiral(double k0, double k1, double length, double ds) {
 
 Geometry make(GeometryShape shape, double length, double x = 10.0, double y = -5.0,
               double hdg = 0.4) {
-  Geometry g;
-  g.x = x;
-  g.y = y;
-  g.hdg = hdg;
-  g.length = length;
-  g.shape = shape;
-  return g;
+  return Geometry{.x = x, .y = y, .hdg = hdg, .length = length, .shape = shape};
 }
 
 }  // namespace

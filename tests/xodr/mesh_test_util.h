@@ -66,14 +66,7 @@ struct LaneSpec {
 
 inline Geometry geometry(double s, double x, double y, double hdg, double length,
                          GeometryShape shape = LineGeometry{}) {
-  Geometry g;
-  g.s = s;
-  g.x = x;
-  g.y = y;
-  g.hdg = hdg;
-  g.length = length;
-  g.shape = shape;
-  return g;
+  return Geometry{.s = s, .x = x, .y = y, .hdg = hdg, .length = length, .shape = shape};
 }
 
 /// A road with one lane section of `lanes` (the centre lane is added when missing).

@@ -45,14 +45,7 @@ Lane lane(int id, LaneType type, double width) {
 }
 
 Geometry geometry(double s, double x, double y, double hdg, double length, GeometryShape shape) {
-  Geometry g;
-  g.s = s;
-  g.x = x;
-  g.y = y;
-  g.hdg = hdg;
-  g.length = length;
-  g.shape = shape;
-  return g;
+  return Geometry{.s = s, .x = x, .y = y, .hdg = hdg, .length = length, .shape = shape};
 }
 
 RoadType road_type(const char* type, double kmh) {
