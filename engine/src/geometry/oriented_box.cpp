@@ -21,11 +21,6 @@ OrientedBox box_of(const Box& box, const Pose& pose) {
   return out;
 }
 
-Vec2 velocity_of(const EntityState& state) {
-  const double c = std::cos(state.pose.h), s = std::sin(state.pose.h);
-  return {state.speed * c - state.lateral_speed * s, state.speed * s + state.lateral_speed * c};
-}
-
 Interval project(const OrientedBox& box, double ux, double uy) {
   const double center = box.cx * ux + box.cy * uy;
   const double reach = std::abs(box.half_length * (box.cos_h * ux + box.sin_h * uy)) +

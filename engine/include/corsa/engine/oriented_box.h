@@ -5,6 +5,7 @@
 // distances of the distance conditions, and the sweep metrics (free distance, time to contact),
 // all from this one implementation. Map frame, metres, seconds.
 
+#include <cmath>
 #include <optional>
 
 #include "corsa/core/vec.h"
@@ -24,8 +25,12 @@ struct OrientedBox {
 OrientedBox box_of(const Box& box, const Pose& pose);
 
 /// An entity's velocity in the map frame (m/s): its speed along the heading and its lateral
-/// speed across it (to the left).
-Vec2 velocity_of(const EntityState& state);
+/// speed across it (to the left). Inline: conditions ask for it every step, and the compiler
+/// then shares one sincos between the two components.
+inline Vec2 velocity_of(const EntityState& state) {
+  const double c = std::cos(state.pose.h), s = std::sin(state.pose.h);
+  return {state.speed * c - state.lateral_speed * s, state.speed * s + state.lateral_speed * c};
+}
 
 /// Separating-axis test on the four box axes, plus the vertical extents.
 bool overlap(const OrientedBox& a, const OrientedBox& b);
