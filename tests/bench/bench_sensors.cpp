@@ -32,6 +32,7 @@
 #include "corsa/sensors/model_io.h"
 #include "corsa/sensors/sensor_system.h"
 #include "scene_data.h"  // the raw Embree scene, for the baseline
+#include "street_mesh.h"
 
 using namespace corsa::sensors;
 using corsa::engine::EntityCategory;
@@ -72,32 +73,6 @@ std::vector<Timing> measure(int runs, const std::vector<std::function<void()>>& 
     out.push_back({wall[j][wall[j].size() / 2], cpu[j][cpu[j].size() / 2]});
   }
   return out;
-}
-
-corsa::xodr::RoadMesh street() {
-  using corsa::xodr::LaneType;
-  corsa::xodr::RoadMesh road;
-  auto quad = [&](double y0, double y1, double z, LaneType type, bool mark) {
-    const auto base = static_cast<uint32_t>(road.vertices.size());
-    road.vertices.push_back({-100.0, y0, z});
-    road.vertices.push_back({300.0, y0, z});
-    road.vertices.push_back({300.0, y1, z});
-    road.vertices.push_back({-100.0, y1, z});
-    road.triangles.push_back({base, base + 1, base + 2});
-    road.triangles.push_back({base, base + 2, base + 3});
-    corsa::xodr::TriangleInfo info;
-    info.lane_type = type;
-    info.kind = mark ? corsa::xodr::SurfaceKind::kRoadMark : corsa::xodr::SurfaceKind::kLane;
-    road.info.push_back(info);
-    road.info.push_back(info);
-  };
-  quad(-10.0, 10.0, 0.0, LaneType::kDriving, false);
-  quad(-0.08, 0.08, 0.01, LaneType::kDriving, true);
-  quad(-14.0, -10.0, 0.15, LaneType::kSidewalk, false);
-  quad(10.0, 14.0, 0.15, LaneType::kSidewalk, false);
-  quad(-300.0, -14.0, 0.0, LaneType::kShoulder, false);
-  quad(14.0, 300.0, 0.0, LaneType::kShoulder, false);
-  return road;
 }
 
 corsa::engine::WorldSnapshot traffic() {
@@ -143,7 +118,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   Scene scene(SceneOptions{{100.0, 0.0, 0.0}});
-  scene.add_road_mesh(street());
+  scene.add_road_mesh(corsa::bench::street_mesh(10.0, corsa::xodr::LaneType::kShoulder));
   for (auto& m :
        load_model(std::string(CORSA_SOURCE_DIR) + "/scenarios/models/street_district.glb", {})) {
     scene.add_static_mesh(std::move(m));
