@@ -7,33 +7,29 @@
 #include <cmath>
 #include <vector>
 
+#include "corsa/core/vec.h"
 #include "surface.h"
 
 namespace corsa::sensors::detail {
 namespace {
 
-struct P2 {
-  double x = 0.0;
-  double y = 0.0;
-};
-
-double length(P2 p) { return std::hypot(p.x, p.y); }
+double length(Vec2 p) { return std::hypot(p.x, p.y); }
 
 /// Distance to a segment minus a half width: a stroke (negative inside).
-double capsule(P2 p, P2 a, P2 b, double half_width) {
-  const P2 pa{p.x - a.x, p.y - a.y};
-  const P2 ba{b.x - a.x, b.y - a.y};
+double capsule(Vec2 p, Vec2 a, Vec2 b, double half_width) {
+  const Vec2 pa{p.x - a.x, p.y - a.y};
+  const Vec2 ba{b.x - a.x, b.y - a.y};
   const double h = std::clamp((pa.x * ba.x + pa.y * ba.y) / (ba.x * ba.x + ba.y * ba.y), 0.0, 1.0);
   return length({pa.x - ba.x * h, pa.y - ba.y * h}) - half_width;
 }
 
 /// Signed distance to a convex polygon given counter-clockwise (exact inside, a lower bound
 /// outside: enough for antialiasing).
-double convex(P2 p, const std::vector<P2>& poly) {
+double convex(Vec2 p, const std::vector<Vec2>& poly) {
   double d = -1e9;
   for (size_t i = 0; i < poly.size(); ++i) {
-    const P2 a = poly[i];
-    const P2 b = poly[(i + 1) % poly.size()];
+    const Vec2 a = poly[i];
+    const Vec2 b = poly[(i + 1) % poly.size()];
     const double ex = b.x - a.x;
     const double ey = b.y - a.y;
     const double len = std::hypot(ex, ey);
@@ -43,13 +39,13 @@ double convex(P2 p, const std::vector<P2>& poly) {
   return d;
 }
 
-double box(P2 p, double hx, double hy) {
+double box(Vec2 p, double hx, double hy) {
   const double dx = std::fabs(p.x) - hx;
   const double dy = std::fabs(p.y) - hy;
   return std::max(dx, dy);
 }
 
-double shape_distance(SignShape shape, P2 p) {
+double shape_distance(SignShape shape, Vec2 p) {
   const double r2 = std::sqrt(2.0);
   switch (shape) {
     case SignShape::kCircle:
@@ -76,9 +72,9 @@ constexpr std::array<uint8_t, 10> kDigits = {0x3F, 0x06, 0x5B, 0x4F, 0x66,
                                              0x6D, 0x7D, 0x07, 0x7F, 0x6F};
 
 /// One seven-segment glyph in a box of half sizes (w, h) centred at the origin.
-double glyph(P2 p, uint8_t mask, double w, double h, double stroke) {
-  const P2 tl{-w, h}, tr{w, h}, ml{-w, 0.0}, mr{w, 0.0}, bl{-w, -h}, br{w, -h};
-  const std::array<std::array<P2, 2>, 7> seg = {
+double glyph(Vec2 p, uint8_t mask, double w, double h, double stroke) {
+  const Vec2 tl{-w, h}, tr{w, h}, ml{-w, 0.0}, mr{w, 0.0}, bl{-w, -h}, br{w, -h};
+  const std::array<std::array<Vec2, 2>, 7> seg = {
       {{tl, tr}, {tr, mr}, {mr, br}, {bl, br}, {ml, bl}, {tl, ml}, {ml, mr}}};
   double d = 1e9;
   for (int s = 0; s < 7; ++s) {
@@ -90,7 +86,7 @@ double glyph(P2 p, uint8_t mask, double w, double h, double stroke) {
 }
 
 /// A row of glyphs centred in the face, each `h` high.
-double text(P2 p, const std::vector<uint8_t>& masks, double h, double stroke) {
+double text(Vec2 p, const std::vector<uint8_t>& masks, double h, double stroke) {
   const double w = 0.55 * h;
   const double pitch = 2.5 * w;  // glyph width (2 w) plus a gap
   const double total = pitch * static_cast<double>(masks.size()) - 0.5 * w;
@@ -102,7 +98,7 @@ double text(P2 p, const std::vector<uint8_t>& masks, double h, double stroke) {
   return d;
 }
 
-double symbol_distance(const SignFace& f, P2 p) {
+double symbol_distance(const SignFace& f, Vec2 p) {
   switch (f.symbol) {
     case SignSymbol::kNone:
       return 1e9;
@@ -134,7 +130,7 @@ double symbol_distance(const SignFace& f, P2 p) {
     case SignSymbol::kArrowUp:
     case SignSymbol::kArrowLeft:
     case SignSymbol::kArrowRight: {
-      P2 q = p;
+      Vec2 q = p;
       if (f.symbol == SignSymbol::kArrowLeft) {
         q = {p.y, -p.x};
       } else if (f.symbol == SignSymbol::kArrowRight) {
@@ -174,12 +170,12 @@ double cover(double d, double fw) {
 }  // namespace
 
 Color sign_face_color(const SignFace& f, double u, double v, double fw) {
-  const P2 p{2.0 * u - 1.0, 2.0 * v - 1.0};
+  const Vec2 p{2.0 * u - 1.0, 2.0 * v - 1.0};
   const double w = 2.0 * fw;
   const double d = shape_distance(f.shape, p);
   // Symbols live inside the border, scaled to the inner face.
   const double inner = std::max(0.2, 1.0 - f.border_width - 0.06);
-  const P2 q{p.x * f.aspect / inner, p.y / inner};
+  const Vec2 q{p.x * f.aspect / inner, p.y / inner};
   const double s = symbol_distance(f, q) * inner;
   Color c = f.fill;
   c = mix(c, f.symbol_color, cover(s, w));
