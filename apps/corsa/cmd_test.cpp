@@ -65,7 +65,11 @@ void print_outcome(const suite::TestOutcome& outcome, bool quiet, bool verbose) 
   }
 }
 
-int run_test_command(std::span<const std::string> args) {
+}  // namespace
+
+// A filesystem error (an unreadable suite folder, an unwritable -o) reaches guarded(), which
+// reports it as bad input like every command's.
+int command_test(std::span<const std::string> args) {
   const ArgParser parser = test_parser();
   const ParsedArgs parsed = parser.parse(split_jobs_option(args));
   if (parsed.help()) {
@@ -106,17 +110,6 @@ int run_test_command(std::span<const std::string> args) {
             << (report.errors == 1 ? "" : "s") << " (" << format_fixed(report.wall_seconds, 2)
             << " s)\n";
   return report.ok() ? kExitOk : kExitFailed;
-}
-
-}  // namespace
-
-int command_test(std::span<const std::string> args) {
-  try {
-    return run_test_command(args);
-  } catch (const std::filesystem::filesystem_error& error) {
-    std::cerr << "corsa test: error: " << error.what() << '\n';
-    return kExitBadInput;
-  }
 }
 
 }  // namespace corsa::cli
