@@ -61,18 +61,17 @@ double reference_box_distance(const OrientedBox& a, const OrientedBox& b) {
   const auto corners = [](const OrientedBox& box) {
     const double lx = box.cos_h * box.half_length, ly = box.sin_h * box.half_length;
     const double wx = -box.sin_h * box.half_width, wy = box.cos_h * box.half_width;
-    return std::array<std::array<double, 2>, 4>{{{box.cx + lx + wx, box.cy + ly + wy},
-                                                 {box.cx - lx + wx, box.cy - ly + wy},
-                                                 {box.cx - lx - wx, box.cy - ly - wy},
-                                                 {box.cx + lx - wx, box.cy + ly - wy}}};
+    return std::array<corsa::Vec2, 4>{{{box.cx + lx + wx, box.cy + ly + wy},
+                                       {box.cx - lx + wx, box.cy - ly + wy},
+                                       {box.cx - lx - wx, box.cy - ly - wy},
+                                       {box.cx + lx - wx, box.cy + ly - wy}}};
   };
-  const auto point_segment = [](const std::array<double, 2>& p, const std::array<double, 2>& s0,
-                                const std::array<double, 2>& s1) {
-    const double dx = s1[0] - s0[0], dy = s1[1] - s0[1];
+  const auto point_segment = [](corsa::Vec2 p, corsa::Vec2 s0, corsa::Vec2 s1) {
+    const double dx = s1.x - s0.x, dy = s1.y - s0.y;
     const double len2 = dx * dx + dy * dy;
-    double t = len2 > 0.0 ? ((p[0] - s0[0]) * dx + (p[1] - s0[1]) * dy) / len2 : 0.0;
+    double t = len2 > 0.0 ? ((p.x - s0.x) * dx + (p.y - s0.y) * dy) / len2 : 0.0;
     t = std::clamp(t, 0.0, 1.0);
-    return std::hypot(p[0] - (s0[0] + t * dx), p[1] - (s0[1] + t * dy));
+    return std::hypot(p.x - (s0.x + t * dx), p.y - (s0.y + t * dy));
   };
   const auto ca = corners(a);
   const auto cb = corners(b);

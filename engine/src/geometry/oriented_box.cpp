@@ -36,7 +36,7 @@ bool separated_on(const OrientedBox& a, const OrientedBox& b, double ux, double 
   return ia.high < ib.low || ib.high < ia.low;
 }
 
-std::array<std::array<double, 2>, 4> corners(const OrientedBox& box) {
+std::array<Vec2, 4> corners(const OrientedBox& box) {
   const double lx = box.cos_h * box.half_length, ly = box.sin_h * box.half_length;
   const double wx = -box.sin_h * box.half_width, wy = box.cos_h * box.half_width;
   return {{{box.cx + lx + wx, box.cy + ly + wy},
@@ -45,19 +45,18 @@ std::array<std::array<double, 2>, 4> corners(const OrientedBox& box) {
            {box.cx + lx - wx, box.cy + ly - wy}}};
 }
 
-// Offset from the point (px, py) to the nearest point of segment a-b.
+// Offset from the point p to the nearest point of segment a-b.
 struct Offset {
   double dx = 0.0, dy = 0.0;
   double squared() const { return dx * dx + dy * dy; }
 };
 
-Offset point_segment(double px, double py, const std::array<double, 2>& a,
-                     const std::array<double, 2>& b) {
-  const double dx = b[0] - a[0], dy = b[1] - a[1];
+Offset point_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
   const double len2 = dx * dx + dy * dy;
-  double t = len2 > 0.0 ? ((px - a[0]) * dx + (py - a[1]) * dy) / len2 : 0.0;
+  double t = len2 > 0.0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2 : 0.0;
   t = std::clamp(t, 0.0, 1.0);
-  return {px - (a[0] + t * dx), py - (a[1] + t * dy)};
+  return {p.x - (a.x + t * dx), p.y - (a.y + t * dy)};
 }
 
 // Relative margin on squared distances that covers the rounding of dx^2 + dy^2 (a few ulps)
@@ -117,8 +116,8 @@ double box_distance(const OrientedBox& a, const OrientedBox& b) {
   const auto cb = corners(b);
   std::array<double, 8> corner_squared;
   for (int i = 0; i < 4; ++i) {
-    corner_squared[i] = box_point_squared(b, ca[i][0], ca[i][1]);
-    corner_squared[4 + i] = box_point_squared(a, cb[i][0], cb[i][1]);
+    corner_squared[i] = box_point_squared(b, ca[i].x, ca[i].y);
+    corner_squared[4 + i] = box_point_squared(a, cb[i].x, cb[i].y);
   }
   const double nearest = std::sqrt(*std::min_element(corner_squared.begin(), corner_squared.end()));
   const double reach = nearest + rounding_margin(a, b);
@@ -128,10 +127,10 @@ double box_distance(const OrientedBox& a, const OrientedBox& b) {
     if (!(corner_squared[i] <= reach * reach)) {
       continue;
     }
-    const auto& corner = i < 4 ? ca[i] : cb[i - 4];
+    const Vec2 corner = i < 4 ? ca[i] : cb[i - 4];
     const auto& edges = i < 4 ? cb : ca;
     for (int j = 0; j < 4; ++j) {
-      offsets[n++] = point_segment(corner[0], corner[1], edges[j], edges[(j + 1) % 4]);
+      offsets[n++] = point_segment(corner, edges[j], edges[(j + 1) % 4]);
     }
   }
   double least = std::numeric_limits<double>::infinity();
