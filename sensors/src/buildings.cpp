@@ -9,28 +9,26 @@
 namespace corsa::sensors {
 namespace {
 
-using Point = std::array<double, 2>;
-
-double signed_area(const std::vector<Point>& ring) {
+double signed_area(const std::vector<Vec2>& ring) {
   double a = 0.0;
   for (size_t i = 0; i < ring.size(); ++i) {
-    const Point& p = ring[i];
-    const Point& q = ring[(i + 1) % ring.size()];
-    a += p[0] * q[1] - q[0] * p[1];
+    const Vec2& p = ring[i];
+    const Vec2& q = ring[(i + 1) % ring.size()];
+    a += p.x * q.y - q.x * p.y;
   }
   return 0.5 * a;
 }
 
-double cross(const Point& o, const Point& a, const Point& b) {
-  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+double cross(const Vec2& o, const Vec2& a, const Vec2& b) {
+  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
 }
 
-bool inside_triangle(const Point& p, const Point& a, const Point& b, const Point& c) {
+bool inside_triangle(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
   return cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0;
 }
 
 /// Ear clipping of a counter-clockwise simple polygon; returns index triples.
-std::vector<std::array<uint32_t, 3>> triangulate(const std::vector<Point>& ring) {
+std::vector<std::array<uint32_t, 3>> triangulate(const std::vector<Vec2>& ring) {
   std::vector<uint32_t> remaining(ring.size());
   for (uint32_t i = 0; i < ring.size(); ++i) {
     remaining[i] = i;
@@ -70,14 +68,14 @@ std::vector<std::array<uint32_t, 3>> triangulate(const std::vector<Point>& ring)
 }  // namespace
 
 StaticMesh extrude_footprint(const Footprint& f) {
-  std::vector<Point> ring;
-  for (const Point& p : f.ring) {
-    if (ring.empty() || std::hypot(p[0] - ring.back()[0], p[1] - ring.back()[1]) > 1e-9) {
+  std::vector<Vec2> ring;
+  for (const Vec2& p : f.ring) {
+    if (ring.empty() || std::hypot(p.x - ring.back().x, p.y - ring.back().y) > 1e-9) {
       ring.push_back(p);
     }
   }
   if (ring.size() > 1 &&
-      std::hypot(ring.front()[0] - ring.back()[0], ring.front()[1] - ring.back()[1]) <= 1e-9) {
+      std::hypot(ring.front().x - ring.back().x, ring.front().y - ring.back().y) <= 1e-9) {
     ring.pop_back();
   }
   if (ring.size() < 3 || !(f.height > 0.0)) {
@@ -94,19 +92,19 @@ StaticMesh extrude_footprint(const Footprint& f) {
   const double top = f.base_z + f.height;
   // Walls: each edge its own quad (4 vertices) so that corners stay sharp.
   for (uint32_t i = 0; i < n; ++i) {
-    const Point& a = ring[i];
-    const Point& b = ring[(i + 1) % n];
+    const Vec2& a = ring[i];
+    const Vec2& b = ring[(i + 1) % n];
     const auto base = static_cast<uint32_t>(mesh.vertices.size());
-    mesh.vertices.push_back({a[0], a[1], f.base_z});
-    mesh.vertices.push_back({b[0], b[1], f.base_z});
-    mesh.vertices.push_back({b[0], b[1], top});
-    mesh.vertices.push_back({a[0], a[1], top});
+    mesh.vertices.push_back({a.x, a.y, f.base_z});
+    mesh.vertices.push_back({b.x, b.y, f.base_z});
+    mesh.vertices.push_back({b.x, b.y, top});
+    mesh.vertices.push_back({a.x, a.y, top});
     mesh.triangles.push_back({base, base + 1, base + 2});
     mesh.triangles.push_back({base, base + 2, base + 3});
   }
   const auto roof = static_cast<uint32_t>(mesh.vertices.size());
-  for (const Point& p : ring) {
-    mesh.vertices.push_back({p[0], p[1], top});
+  for (const Vec2& p : ring) {
+    mesh.vertices.push_back({p.x, p.y, top});
   }
   for (const auto& t : triangulate(ring)) {
     mesh.triangles.push_back({roof + t[0], roof + t[1], roof + t[2]});

@@ -8,14 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "corsa/core/vec.h"
 #include "corsa/sensors/static_mesh.h"
 
 namespace corsa::sensors {
 
 struct Footprint {
   std::string name;
-  std::vector<std::array<double, 2>> ring;  ///< simple polygon, metres, either orientation
-  double height = 10.0;                     ///< metres above base_z
+  std::vector<Vec2> ring;  ///< simple polygon (x, y in metres), either orientation
+  double height = 10.0;    ///< metres above base_z
   double base_z = 0.0;
   std::optional<Rgb8> color;
 };
