@@ -99,10 +99,27 @@ struct TrajectoryReader::Impl {
     return out;
   }
 
+  // What the structure check carries from one record to the next.
+  struct RecordCheck {
+    size_t known = 0;           ///< entities named so far
+    int64_t frame_tick = 0;     ///< tick of the last frame
+    bool time_pending = false;  ///< a time record waits for its frame
+    bool first_frame = true;
+    bool off_interval = false;  ///< the last frame's tick lies off the recording interval
+  };
+
   void open(const std::filesystem::path& path);
   void check_records();
+  void check_road(size_t& at, size_t start);
+  void check_frame(size_t& at, size_t start, RecordCheck& c);
+  void check_end(size_t& at, size_t start, const RecordCheck& c);
   /// Skips (check) or applies one entity record of a frame at `at`; false at the frame's end.
   bool entity_record(size_t& at, int64_t& previous, size_t known, bool apply);
+  /// The road and lane parts of an entity record (kRoadBit, kLaneBit of `mask`).
+  void record_road_lane(size_t& at, uint64_t mask, codec::EntityHistory& h, bool apply) const;
+  /// The row fields of an entity record: raw doubles, or predictions plus stored residuals.
+  void record_fields(size_t& at, uint64_t mask, uint64_t raw, codec::EntityHistory& h,
+                     bool apply) const;
   int64_t next_tick(int64_t from) const;
   void read_frame();
 };
@@ -177,6 +194,17 @@ bool TrajectoryReader::Impl::entity_record(size_t& at, int64_t& previous, size_t
   } else if (mask == codec::kPresenceBit) {
     return true;  // structure only: appearing or leaving, nothing follows either way
   }
+  record_road_lane(at, mask, h, apply);
+  const int fields = !apply || h.on_road ? detail::kRowFields : detail::kFieldS;
+  if (apply && (mask | raw) & (((1u << detail::kRowFields) - 1) & ~((1u << fields) - 1))) {
+    fail(start, "road coordinates for an entity off the road");
+  }
+  record_fields(at, mask, raw, h, apply);
+  return true;
+}
+
+void TrajectoryReader::Impl::record_road_lane(size_t& at, uint64_t mask, codec::EntityHistory& h,
+                                              bool apply) const {
   if ((mask & codec::kRoadBit) != 0) {
     const uint64_t code = varint(at);
     if (code > 0 && (code - 1 >= road_known.size() || !road_known[code - 1])) {
@@ -194,10 +222,11 @@ bool TrajectoryReader::Impl::entity_record(size_t& at, int64_t& previous, size_t
     }
     h.lane = static_cast<int>(lane);
   }
+}
+
+void TrajectoryReader::Impl::record_fields(size_t& at, uint64_t mask, uint64_t raw,
+                                           codec::EntityHistory& h, bool apply) const {
   const int fields = !apply || h.on_road ? detail::kRowFields : detail::kFieldS;
-  if (apply && (mask | raw) & (((1u << detail::kRowFields) - 1) & ~((1u << fields) - 1))) {
-    fail(start, "road coordinates for an entity off the road");
-  }
   for (int f = 0; f < fields; ++f) {
     codec::FieldHistory& field = h.fields[f];
     if ((raw >> f) & 1) {
@@ -222,20 +251,16 @@ bool TrajectoryReader::Impl::entity_record(size_t& at, int64_t& previous, size_t
     field.accept(value);
     h.values[f] = detail::Scaled{true, value, 0.0};
   }
-  return true;
 }
 
 void TrajectoryReader::Impl::check_records() {
   size_t at = body;
-  size_t known = 0;
-  int64_t frame_tick = first_tick;
-  bool time_pending = false;
-  bool first_frame = true;
-  bool off_interval = false;
+  RecordCheck c;
+  c.frame_tick = first_tick;
   while (true) {
     const size_t start = at;
     const uint8_t tag = byte(at);
-    if (time_pending && tag != codec::kTagFrame) {
+    if (c.time_pending && tag != codec::kTagFrame) {
       fail(start, "a time record is not followed by a frame");
     }
     switch (tag) {
@@ -245,72 +270,81 @@ void TrajectoryReader::Impl::check_records() {
           fail(start, "entities are not named in order");
         }
         names.push_back(text(at));
-        ++known;
+        ++c.known;
         break;
       }
-      case codec::kTagRoad: {
-        const uint64_t index = varint(at);
-        if (index >= codec::kMaxRoads) {
-          fail(start, "a road index is out of range");
-        }
-        if (index >= roads.size()) {
-          roads.resize(index + 1);
-          road_known.resize(index + 1, false);
-        }
-        roads[index] = text(at);
-        road_known[index] = true;
+      case codec::kTagRoad:
+        check_road(at, start);
         break;
-      }
       case codec::kTagTime:
         fixed64(at);
-        time_pending = true;
+        c.time_pending = true;
         break;
-      case codec::kTagFrame: {
-        time_pending = false;
-        const int64_t delta = codec::unzigzag(varint(at));
-        if (delta < (first_frame ? 0 : 1) || delta > (int64_t{1} << 50)) {
-          fail(start, "frames are not in tick order");
-        }
-        if (off_interval) {
-          fail(start, "a frame follows one off the recording interval");
-        }
-        frame_tick += delta;
-        // Only the last tick may lie off the recording interval (checked at the end).
-        off_interval = frame_tick % every != 0;
-        first_frame = false;
-        int64_t previous = -1;
-        while (entity_record(at, previous, known, false)) {
-        }
+      case codec::kTagFrame:
+        check_frame(at, start, c);
         break;
-      }
-      case codec::kTagEnd: {
-        end = start;
-        last_tick = codec::unzigzag(varint(at));
-        if (data.size() - at != 4) {
-          fail(at, "the end record is not at the end");
-        }
-        uint32_t stored = 0;
-        for (int i = 0; i < 4; ++i) {
-          stored |= static_cast<uint32_t>(static_cast<uint8_t>(data[at + i])) << (8 * i);
-        }
-        if (stored != codec::crc32(0, std::string_view(data).substr(0, at))) {
-          fail(at, "the checksum does not match (the file is damaged)");
-        }
-        if (first_tick < 0 || last_tick < first_tick || (!first_frame && frame_tick > last_tick) ||
-            (off_interval && frame_tick != last_tick) ||
-            (first_tick % every != 0 && first_tick != last_tick)) {
-          fail(start, "the recorded ticks do not fit the header");
-        }
-        frames = 1 + static_cast<size_t>(last_tick / every - first_tick / every) +
-                 (last_tick % every != 0 && last_tick != first_tick ? 1 : 0);
-        if (first_tick % every != 0) {
-          frames = 1;
-        }
+      case codec::kTagEnd:
+        check_end(at, start, c);
         return;
-      }
       default:
         fail(start, "unknown record");
     }
+  }
+}
+
+void TrajectoryReader::Impl::check_road(size_t& at, size_t start) {
+  const uint64_t index = varint(at);
+  if (index >= codec::kMaxRoads) {
+    fail(start, "a road index is out of range");
+  }
+  if (index >= roads.size()) {
+    roads.resize(index + 1);
+    road_known.resize(index + 1, false);
+  }
+  roads[index] = text(at);
+  road_known[index] = true;
+}
+
+void TrajectoryReader::Impl::check_frame(size_t& at, size_t start, RecordCheck& c) {
+  c.time_pending = false;
+  const int64_t delta = codec::unzigzag(varint(at));
+  if (delta < (c.first_frame ? 0 : 1) || delta > (int64_t{1} << 50)) {
+    fail(start, "frames are not in tick order");
+  }
+  if (c.off_interval) {
+    fail(start, "a frame follows one off the recording interval");
+  }
+  c.frame_tick += delta;
+  // Only the last tick may lie off the recording interval (checked at the end).
+  c.off_interval = c.frame_tick % every != 0;
+  c.first_frame = false;
+  int64_t previous = -1;
+  while (entity_record(at, previous, c.known, false)) {
+  }
+}
+
+void TrajectoryReader::Impl::check_end(size_t& at, size_t start, const RecordCheck& c) {
+  end = start;
+  last_tick = codec::unzigzag(varint(at));
+  if (data.size() - at != 4) {
+    fail(at, "the end record is not at the end");
+  }
+  uint32_t stored = 0;
+  for (int i = 0; i < 4; ++i) {
+    stored |= static_cast<uint32_t>(static_cast<uint8_t>(data[at + i])) << (8 * i);
+  }
+  if (stored != codec::crc32(0, std::string_view(data).substr(0, at))) {
+    fail(at, "the checksum does not match (the file is damaged)");
+  }
+  if (first_tick < 0 || last_tick < first_tick || (!c.first_frame && c.frame_tick > last_tick) ||
+      (c.off_interval && c.frame_tick != last_tick) ||
+      (first_tick % every != 0 && first_tick != last_tick)) {
+    fail(start, "the recorded ticks do not fit the header");
+  }
+  frames = 1 + static_cast<size_t>(last_tick / every - first_tick / every) +
+           (last_tick % every != 0 && last_tick != first_tick ? 1 : 0);
+  if (first_tick % every != 0) {
+    frames = 1;
   }
 }
 
