@@ -1,4 +1,4 @@
-// Sensor speed (issue #8), on a street scene: the bundled 26-building district, a 400 m road
+// Sensor speed, on a street scene: the bundled 26-building district, a 400 m road
 // with sidewalks and marks, and 30 cars and 10 pedestrians as instances.
 //   1. raw Embree: the 64-channel LiDAR pattern traced with rtcIntersect16 only, one thread: the
 //      same beams in the same order and the same 16-beam packets (one azimuth step's 64 beams
