@@ -10,6 +10,7 @@
 
 #include "bindings.h"
 #include "corsa/core/atomic_file.h"
+#include "corsa/geo/crs_transform.h"
 #include "corsa/suite/junit.h"
 #include "corsa/suite/suite.h"
 #include "corsa/suite/suite_run.h"
@@ -87,6 +88,7 @@ py::dict run_sweep(const std::filesystem::path& file, const std::vector<std::str
   options.simulation.seed = seed;
   options.simulation.dt = dt;
   options.simulation.duration = duration;
+  options.simulation.geo_projection = geo::geographic_to_projected;  // GeoPositions (PROJ)
   options.record_every = record_every;
   options.trajectories = trajectories;
   options.ego = ego;
@@ -121,6 +123,7 @@ py::list run_test(const std::filesystem::path& path,
   suite::SuiteOptions options;
   options.jobs = jobs;
   options.update_goldens = update_goldens;
+  options.geo_projection = geo::geographic_to_projected;  // GeoPositions (PROJ)
   options.output = output;
   Diagnostics diagnostics;
   suite::SuiteReport report;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "bindings.h"
+#include "corsa/geo/crs_transform.h"
 #include "values.h"
 
 namespace corsa::python {
@@ -55,6 +56,7 @@ SimulationSetup simulation_setup(const std::filesystem::path& path, double dt, u
   setup.options.dt = dt;
   setup.options.duration = duration;
   setup.options.seed = seed;
+  setup.options.geo_projection = geo::geographic_to_projected;  // GeoPositions (PROJ)
   if (!params.is_none()) {
     for (const auto& [name, value] : params.cast<py::dict>()) {
       const std::string key = py::str(name);
