@@ -32,6 +32,29 @@ void ProgressBar::advance(double amount) {
   draw_locked(false);
 }
 
+void ProgressBar::set_total(double total) {
+  std::lock_guard lock(mutex_);
+  total_ = total;
+}
+
+void ProgressBar::restart(std::string label, double total) {
+  std::lock_guard lock(mutex_);
+  label_ = std::move(label);
+  total_ = total;
+  done_ = 0.0;
+  finished_ = false;
+  start_ = std::chrono::steady_clock::now();
+  last_draw_ = start_ - std::chrono::seconds(1);
+}
+
+void ProgressBar::complete() {
+  {
+    std::lock_guard lock(mutex_);
+    done_ = total_;
+  }
+  finish();
+}
+
 void ProgressBar::finish() {
   std::lock_guard lock(mutex_);
   if (finished_) {

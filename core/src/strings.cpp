@@ -1,5 +1,7 @@
 #include "corsa/core/strings.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 
@@ -129,6 +131,67 @@ std::string csv_field(std::string_view text) {
     }
   }
   return out + '"';
+}
+
+namespace {
+
+// Optimal string alignment distance (Damerau-Levenshtein without repeated edits of a substring),
+// case-insensitive.
+size_t edit_distance(std::string_view a, std::string_view b) {
+  const size_t n = a.size();
+  const size_t m = b.size();
+  std::vector<size_t> d((n + 1) * (m + 1));
+  auto at = [m1 = m + 1, &d](size_t i, size_t j) -> size_t& { return d[i * m1 + j]; };
+  auto lower = [](char c) {
+    return static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  };
+  for (size_t i = 0; i <= n; ++i) {
+    at(i, 0) = i;
+  }
+  for (size_t j = 0; j <= m; ++j) {
+    at(0, j) = j;
+  }
+  for (size_t i = 1; i <= n; ++i) {
+    for (size_t j = 1; j <= m; ++j) {
+      const size_t cost = lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1;
+      size_t best = std::min({at(i - 1, j) + 1, at(i, j - 1) + 1, at(i - 1, j - 1) + cost});
+      if (i > 1 && j > 1 && lower(a[i - 1]) == lower(b[j - 2]) &&
+          lower(a[i - 2]) == lower(b[j - 1])) {
+        best = std::min(best, at(i - 2, j - 2) + 1);
+      }
+      at(i, j) = best;
+    }
+  }
+  return at(n, m);
+}
+
+}  // namespace
+
+std::optional<std::string> nearest_name(std::string_view word,
+                                        std::span<const std::string> candidates) {
+  // Names are short; a word of thousands of bytes is no one's typo (and would cost n * m).
+  if (word.empty() || word.size() > 256) {
+    return std::nullopt;
+  }
+  const size_t allowed = word.size() <= 4 ? 1 : word.size() <= 8 ? 2 : 3;
+  std::optional<std::string> best;
+  size_t best_distance = allowed + 1;
+  for (const std::string& candidate : candidates) {
+    if (candidate.size() > 256) {
+      continue;
+    }
+    const size_t distance = edit_distance(word, candidate);
+    if (distance < best_distance && distance < std::max(word.size(), candidate.size())) {
+      best = candidate;
+      best_distance = distance;
+    }
+  }
+  return best;
+}
+
+std::string did_you_mean(std::string_view word, std::span<const std::string> candidates) {
+  const std::optional<std::string> name = nearest_name(word, candidates);
+  return name ? " (did you mean '" + *name + "'?)" : std::string();
 }
 
 }  // namespace corsa

@@ -288,7 +288,9 @@ void InstanceValidator::check_value(const XMLElement& e, const std::string& path
     for (const auto& allowed : type.enumeration) {
       list += (list.empty() ? "'" : ", '") + allowed + "'";
     }
-    fail(e, path, what + " is '" + value + "'; expected one of " + list);
+    fail(e, path,
+         what + " is '" + value + "'" + did_you_mean(value, type.enumeration) +
+             "; expected one of " + list);
   }
   if (type.pattern && !std::regex_match(value, *type.pattern)) {
     fail(e, path, what + " '" + value + "' does not match the pattern " + type.pattern_text);
@@ -349,7 +351,12 @@ void InstanceValidator::attributes(const XMLElement& e, const ComplexType& type,
       }
     }
     if (decl == nullptr) {
-      fail(e, path, "unknown attribute '" + name + "' on <" + e.Name() + ">");
+      std::vector<std::string> names;
+      for (const auto& d : decls) {
+        names.push_back(d.name);
+      }
+      fail(e, path,
+           "unknown attribute '" + name + "' on <" + e.Name() + ">" + did_you_mean(name, names));
     }
     check_value(e, path, *decl, a->Value());
     out.attributes[name] = a->Value();

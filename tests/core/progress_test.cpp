@@ -27,3 +27,18 @@ TEST_CASE("the progress bar stays silent when not on a terminal", "[core][progre
   corsa::ProgressBar disabled("off", 1.0, false);
   CHECK_FALSE(disabled.visible());
 }
+
+TEST_CASE("the progress bar can learn its total late, restart and complete", "[core][progress]") {
+  CHECK(corsa::ProgressBar::render("run", 10.0, 20.0, 1.0, 10) == "run [#####-----] 50% ETA 1.0s");
+  std::FILE* sink = std::tmpfile();
+  REQUIRE(sink != nullptr);
+  corsa::ProgressBar bar("run", 3600.0, true, sink);  // not a terminal: silent, but it counts
+  bar.set_total(20.0);
+  bar.update(19.84);
+  bar.complete();
+  bar.restart("preview video", 21.0);
+  bar.update(3.0);
+  bar.finish();
+  CHECK(std::ftell(sink) == 0);
+  std::fclose(sink);
+}

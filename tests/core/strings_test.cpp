@@ -2,6 +2,8 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <string>
+#include <vector>
 
 TEST_CASE("numbers parse strictly", "[core][strings]") {
   CHECK(corsa::parse_double("1.5") == 1.5);
@@ -51,4 +53,17 @@ TEST_CASE("Long text quoted in messages is clipped between characters", "[core][
   // "é" is two bytes: a cut at byte 3 of "aaé..." would split it, so it stops before.
   CHECK(corsa::clip("aa\xC3\xA9zzzz", 3) == "aa...");
   CHECK(corsa::clip("aa\xC3\xA9zzzz", 4) == "aa\xC3\xA9...");
+}
+
+TEST_CASE("A misspelt name gets the nearest valid one as a suggestion", "[core][strings]") {
+  const std::vector<std::string> keys{"fog", "rain", "snow", "clouds", "wind", "wind_dir"};
+  CHECK(corsa::nearest_name("fgo", keys) == "fog");    // swapped neighbours
+  CHECK(corsa::nearest_name("Rian", keys) == "rain");  // case ignored
+  CHECK(corsa::nearest_name("cloud", keys) == "clouds");
+  CHECK(corsa::nearest_name("winddir", keys) == "wind_dir");
+  CHECK_FALSE(corsa::nearest_name("hail", keys));  // nothing near
+  CHECK_FALSE(corsa::nearest_name("", keys));
+  CHECK(corsa::did_you_mean("fgo", keys) == " (did you mean 'fog'?)");
+  CHECK(corsa::did_you_mean("temperature", keys).empty());
+  CHECK_FALSE(corsa::nearest_name(std::string(100000, 'f'), keys));  // no n*m blow-up
 }

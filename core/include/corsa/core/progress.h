@@ -25,8 +25,16 @@ class ProgressBar {
   void update(double done);
   /// Adds to the amount done.
   void advance(double amount = 1.0);
+  /// Changes the total (e.g. once a scenario is loaded and its own end is known).
+  void set_total(double total);
+  /// Starts over with another label and total (the next phase of a command, e.g. encoding a
+  /// video after a run); the elapsed time restarts too.
+  void restart(std::string label, double total);
   /// Draws the final state and ends the line. Called by the destructor if not before.
   void finish();
+  /// All done: the bar is full, drawn and ended (e.g. a run that reached its end between two
+  /// updates).
+  void complete();
 
   bool visible() const { return visible_; }
   /// The bar as text for a given state (exposed for tests): label, bar, percent, ETA.

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,5 +32,13 @@ std::string csv_field(std::string_view text);
 /// (never ending inside a UTF-8 sequence) followed by "...". Keeps a 5 MB name or value in a
 /// malformed input from flooding the terminal.
 std::string clip(std::string_view text, size_t max_bytes = 64);
+
+/// The name of `candidates` nearest to `word` when it is a likely misspelling of it: at most one
+/// edit (insertion, deletion, substitution or swap of neighbours) for words of up to four
+/// letters, two up to eight, three beyond; ties go to the first. Case is ignored.
+std::optional<std::string> nearest_name(std::string_view word,
+                                        std::span<const std::string> candidates);
+/// " (did you mean 'NAME'?)" for the nearest candidate, or "" when none is near.
+std::string did_you_mean(std::string_view word, std::span<const std::string> candidates);
 
 }  // namespace corsa
