@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -93,24 +94,64 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
   return scene;
 }
 
+namespace {
+
+// "+lat_0=49 +lon_0=8" (CARLA's maps) names an origin but no projection: read as a transverse
+// Mercator around that origin, the projection CARLA assumes. Nothing for any other text.
+std::optional<std::string> origin_only_projection(const std::string& geo_reference) {
+  if (geo_reference.find("+proj") != std::string::npos ||
+      geo_reference.find("+lat_0") == std::string::npos ||
+      geo_reference.find("+lon_0") == std::string::npos ||
+      geo_reference.find("EPSG") != std::string::npos ||
+      geo_reference.find('[') != std::string::npos) {
+    return std::nullopt;
+  }
+  return "+proj=tmerc " + std::string(trim(geo_reference)) + " +ellps=WGS84 +units=m";
+}
+
+std::string place_text(const sensors::GeoLocation& where) {
+  return format_fixed(std::fabs(where.latitude_deg), 2) +
+         (where.latitude_deg < 0 ? " S, " : " N, ") +
+         format_fixed(std::fabs(where.longitude_deg), 2) + (where.longitude_deg < 0 ? " W" : " E");
+}
+
+}  // namespace
+
 sensors::GeoLocation run_location(const engine::Simulation& simulation, Diagnostics& diagnostics) {
   const xodr::Map* map = simulation.map();
-  if (map != nullptr && !map->data().header.geo_reference.empty()) {
-    try {
-      return sensors::geolocation_of(map->data().header.geo_reference, map_centre(map));
-    } catch (const InputError& error) {
-      diagnostics.add_once("run-location", make_warning(map->data().source_file, 0,
-                                                        "cannot place the map on Earth (" +
-                                                            error.diagnostic().message +
-                                                            "); the sun is computed for Seoul"));
-      return {};
-    }
+  const sensors::GeoLocation seoul;
+  const std::string fallback = "; the sun is computed at " + place_text(seoul) +
+                               " (Seoul), where a time without a zone is local solar time";
+  if (map == nullptr || map->data().header.geo_reference.empty()) {
+    diagnostics.add_once("run-location",
+                         make_warning(map == nullptr ? "" : map->data().source_file, 0,
+                                      std::string(map == nullptr ? "the scenario has no map"
+                                                                 : "the map has no geoReference") +
+                                          fallback));
+    return seoul;
   }
-  diagnostics.add_once("run-location",
-                       make_warning("", 0,
-                                    "the map has no geoReference; the sun is computed "
-                                    "for Seoul (37.57 N, 126.98 E)"));
-  return {};
+  const std::string& geo_reference = map->data().header.geo_reference;
+  const std::optional<std::string> origin_only = origin_only_projection(geo_reference);
+  try {
+    const sensors::GeoLocation where =
+        sensors::geolocation_of(origin_only.value_or(geo_reference), map_centre(map));
+    if (origin_only) {
+      diagnostics.add_once("run-location",
+                           make_warning(map->data().source_file, 0,
+                                        "geoReference '" + clip(geo_reference) +
+                                            "' names no projection; read as a transverse "
+                                            "Mercator around its origin (as CARLA does): the "
+                                            "sun is computed at " +
+                                            place_text(where)));
+    }
+    return where;
+  } catch (const InputError& error) {
+    diagnostics.add_once("run-location",
+                         make_warning(map->data().source_file, 0,
+                                      "cannot place the map on Earth (" +
+                                          error.diagnostic().message + ")" + fallback));
+    return seoul;
+  }
 }
 
 }  // namespace corsa::collect

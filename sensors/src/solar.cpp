@@ -26,9 +26,13 @@ double julian_day_at_midnight(int year, int month, int day) {
 }  // namespace
 
 SolarPosition solar_position(int year, int month, int day, double local_seconds,
-                             double utc_offset_hours, double latitude_deg, double longitude_deg) {
+                             std::optional<double> utc_offset_hours, double latitude_deg,
+                             double longitude_deg) {
   const double local_minutes = local_seconds / 60.0;
-  const double ut_hours = local_seconds / 3600.0 - utc_offset_hours;
+  // Solar time: the instant is about the local mean time of the longitude (the equation of
+  // time, at most 17 min, moves the declination by less than 0.005 degrees).
+  const double offset = utc_offset_hours.value_or(longitude_deg / 15.0);
+  const double ut_hours = local_seconds / 3600.0 - offset;
   const double jd = julian_day_at_midnight(year, month, day) + ut_hours / 24.0;
   const double t = (jd - 2451545.0) / 36525.0;  // Julian centuries since J2000.0
 
@@ -53,8 +57,10 @@ SolarPosition solar_position(int year, int month, int day, double local_seconds,
        4.0 * e * y * std::sin(m * kDeg) * std::cos(2.0 * l0 * kDeg) -
        0.5 * y * y * std::sin(4.0 * l0 * kDeg) - 1.25 * e * e * std::sin(2.0 * m * kDeg));
 
-  const double true_solar_min = std::fmod(
-      local_minutes + eq_time_min + 4.0 * longitude_deg - 60.0 * utc_offset_hours, 1440.0);
+  const double true_solar_min =
+      utc_offset_hours
+          ? std::fmod(local_minutes + eq_time_min + 4.0 * longitude_deg - 60.0 * offset, 1440.0)
+          : std::fmod(local_minutes, 1440.0);
   double hour_angle = true_solar_min / 4.0 - 180.0;
   if (hour_angle < -180.0) {
     hour_angle += 360.0;

@@ -18,6 +18,35 @@ TEST_CASE("Times of day are read as HH:MM or HH:MM:SS", "[capture][environment]"
   CHECK_THROWS_AS(corsa::engine::parse_time_of_day("12:60"), std::invalid_argument);
 }
 
+TEST_CASE("A time of day may carry a zone; without one it is solar time",
+          "[capture][environment]") {
+  EnvironmentOverride solar;
+  corsa::engine::parse_time_of_day("12:00", solar);
+  CHECK(solar.time_of_day == 12.0 * 3600);
+  CHECK_FALSE(solar.utc_offset_hours);
+  EnvironmentOverride seoul;
+  corsa::engine::parse_time_of_day("07:30+09:00", seoul);
+  CHECK(seoul.time_of_day == 7.5 * 3600);
+  CHECK(seoul.utc_offset_hours == 9.0);
+  EnvironmentOverride west;
+  corsa::engine::parse_time_of_day("18:00:30-05:30", west);
+  CHECK(west.time_of_day == 18.0 * 3600 + 30);
+  CHECK(west.utc_offset_hours == -5.5);
+  EnvironmentOverride utc;
+  corsa::engine::parse_time_of_day("06:00Z", utc);
+  CHECK(utc.utc_offset_hours == 0.0);
+  CHECK_THROWS_WITH(corsa::engine::parse_time_of_day("12:00+9", utc), Catch::Contains("+HH:MM"));
+  CHECK_THROWS_WITH(corsa::engine::parse_time_of_day("12:00+15:00", utc), Catch::Contains("zone"));
+
+  // The override's zone (or none) replaces the scenario's.
+  EnvironmentState e;
+  e.utc_offset_hours = 9.0;
+  corsa::engine::apply_override(solar, e.time_of_day, e);
+  CHECK_FALSE(e.utc_offset_hours);
+  corsa::engine::apply_override(west, e.time_of_day, e);
+  CHECK(e.utc_offset_hours == -5.5);
+}
+
 TEST_CASE("Weather keys override only what they name", "[capture][environment]") {
   EnvironmentOverride o;
   corsa::engine::parse_weather("fog=50,rain=0.6,clouds=0.75,wind=4,wind_dir=90", o);
@@ -45,6 +74,8 @@ TEST_CASE("Bad weather items name the item", "[capture][environment]") {
   EnvironmentOverride o;
   CHECK_THROWS_WITH(corsa::engine::parse_weather("hail=3", o),
                     Catch::Contains("unknown key 'hail'"));
+  CHECK_THROWS_WITH(corsa::engine::parse_weather("fgo=30", o),
+                    Catch::Contains("unknown key 'fgo' (did you mean 'fog'?)"));
   CHECK_THROWS_WITH(corsa::engine::parse_weather("fog=-5", o), Catch::Contains("fog=-5"));
   CHECK_THROWS_WITH(corsa::engine::parse_weather("rain", o), Catch::Contains("KEY=VALUE"));
   CHECK_THROWS_WITH(corsa::engine::parse_weather("clouds=2", o), Catch::Contains("0 to 1"));

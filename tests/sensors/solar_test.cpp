@@ -2,6 +2,8 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include "corsa/sensors/environment.h"
 
@@ -62,7 +64,8 @@ TEST_CASE("lighting follows the sun, the clouds, the fog and the rain", "[sensor
   const Lighting rain = compute_lighting(env, {kSeoulLat, kSeoulLon});
   CHECK(rain.wet_road);
   CHECK(rain.sun.r < 0.3 * noon.sun.r);
-  CHECK(rain.rain_extinction == Approx(2e-4 * std::pow(10.0, 0.6)));
+  // Marshall-Palmer drops, twice their cross-section each: pi N0 / Lambda^3 = 3.65e-4 R^0.63.
+  CHECK(rain.rain_extinction == Approx(3.65e-4 * std::pow(10.0, 0.63)).epsilon(0.01));
   CHECK(fog_extinction(100.0) == Approx(0.03912).epsilon(1e-3));
   env.sun_azimuth = M_PI / 2.0;  // OpenSCENARIO Sun given: east, 30 degrees up
   env.sun_elevation = M_PI / 6.0;
@@ -70,4 +73,43 @@ TEST_CASE("lighting follows the sun, the clouds, the fog and the rain", "[sensor
   CHECK(given.sun_direction.x == Approx(std::cos(M_PI / 6.0)));
   CHECK(given.sun_direction.y == Approx(0.0).margin(1e-12));
   CHECK(given.sun_direction.z == Approx(0.5));
+}
+
+TEST_CASE("a time without a zone is local solar time: 12:00 is the sun's transit anywhere",
+          "[sensors][solar]") {
+  // Town03 (CARLA) sits at 49 N 8 E, K-City at 37.24 N 126.77 E, Seoul's default at 126.98 E;
+  // read as UTC, 12:00 was 21:27 at K-City, night. As solar time it is the highest sun.
+  for (const auto& [lat, lon] : {std::pair{49.0, 8.0}, std::pair{37.24, 126.77},
+                                 std::pair{kSeoulLat, kSeoulLon}, std::pair{-33.9, -70.6}}) {
+    INFO(lat << ", " << lon);
+    const SolarPosition noon = solar_position(2024, 6, 21, 12.0 * 3600.0, std::nullopt, lat, lon);
+    const SolarPosition before = solar_position(2024, 6, 21, 11.5 * 3600.0, std::nullopt, lat, lon);
+    const SolarPosition after = solar_position(2024, 6, 21, 12.5 * 3600.0, std::nullopt, lat, lon);
+    CHECK(noon.elevation / kDeg == Approx(90.0 - std::fabs(lat - 23.44)).margin(0.05));
+    CHECK(noon.elevation > before.elevation);
+    CHECK(noon.elevation > after.elevation);
+    CHECK(before.elevation == Approx(after.elevation).margin(0.002));  // symmetric about noon
+  }
+  // The same instant given with its zone: solar noon at Seoul is 12:33.9 KST.
+  const SolarPosition zoned =
+      solar_position(2024, 6, 21, 12.0 * 3600.0 + 33.9 * 60.0, 9.0, kSeoulLat, kSeoulLon);
+  const SolarPosition solar =
+      solar_position(2024, 6, 21, 12.0 * 3600.0, std::nullopt, kSeoulLat, kSeoulLon);
+  CHECK(zoned.elevation == Approx(solar.elevation).margin(0.0005));
+}
+
+TEST_CASE("the default environment (no EnvironmentAction) lights the scene as a day",
+          "[sensors][solar]") {
+  const corsa::engine::EnvironmentState unset;  // 12:00, no zone
+  REQUIRE_FALSE(unset.utc_offset_hours);
+  for (const GeoLocation where : {GeoLocation{49.0, 8.0}, GeoLocation{37.24, 126.77}}) {
+    const Lighting l = compute_lighting(unset, where);
+    CHECK(l.sun_elevation / kDeg > 60.0);
+    CHECK_FALSE(l.headlights);
+    CHECK(l.sun.g > 0.5);
+  }
+  // An explicit UTC zone is honoured: 12:00Z is late evening in Korea.
+  corsa::engine::EnvironmentState utc;
+  utc.utc_offset_hours = 0.0;
+  CHECK(compute_lighting(utc, GeoLocation{37.24, 126.77}).headlights);
 }

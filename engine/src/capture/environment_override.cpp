@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "corsa/core/strings.h"
 
@@ -33,8 +35,9 @@ bool EnvironmentOverride::empty() const {
 
 double parse_time_of_day(std::string_view text) {
   const std::vector<std::string_view> parts = split(trim(text), ':');
-  const std::string message = "--time-of-day '" + std::string(text) +
-                              "': expected HH:MM or HH:MM:SS between 00:00 and 24:00";
+  const std::string message =
+      "--time-of-day '" + std::string(text) +
+      "': expected HH:MM or HH:MM:SS between 00:00 and 24:00 (a zone may follow: Z, +09:00)";
   if (parts.size() < 2 || parts.size() > 3) {
     throw std::invalid_argument(message);
   }
@@ -51,6 +54,31 @@ double parse_time_of_day(std::string_view text) {
     throw std::invalid_argument(message);
   }
   return total;
+}
+
+void parse_time_of_day(std::string_view text, EnvironmentOverride& out) {
+  const std::string_view value = trim(text);
+  std::optional<double> offset;
+  std::string_view clock = value;
+  if (!value.empty() && (value.back() == 'Z' || value.back() == 'z')) {
+    offset = 0.0;
+    clock = value.substr(0, value.size() - 1);
+  } else if (const size_t sign = value.find_first_of("+-"); sign != std::string_view::npos) {
+    const std::string_view zone = value.substr(sign + 1);
+    const std::vector<std::string_view> parts = split(zone, ':');
+    const std::optional<int64_t> hours = parts.size() == 2 ? parse_int(parts[0]) : std::nullopt;
+    const std::optional<int64_t> minutes = parts.size() == 2 ? parse_int(parts[1]) : std::nullopt;
+    if (!hours || !minutes || parts[0].size() != 2 || parts[1].size() != 2 || *hours > 14 ||
+        *minutes > 59) {
+      throw std::invalid_argument("--time-of-day '" + std::string(text) +
+                                  "': the zone must read +HH:MM or -HH:MM (local minus UTC, "
+                                  "e.g. 12:00+09:00), or Z for UTC");
+    }
+    offset = (value[sign] == '-' ? -1.0 : 1.0) * (static_cast<double>(*hours) + *minutes / 60.0);
+    clock = value.substr(0, sign);
+  }
+  out.time_of_day = parse_time_of_day(clock);
+  out.utc_offset_hours = offset;
 }
 
 void parse_weather(std::string_view text, EnvironmentOverride& out) {
@@ -87,8 +115,10 @@ void parse_weather(std::string_view text, EnvironmentOverride& out) {
     } else if (key == "friction") {
       out.road_friction_scale = number(key, value, 1e-3, 10.0);
     } else {
-      throw std::invalid_argument("--weather: unknown key '" + key +
-                                  "' (keys: fog, rain, snow, clouds, wind, wind_dir, wet, "
+      const std::vector<std::string> keys{"fog",  "rain",     "snow", "clouds",
+                                          "wind", "wind_dir", "wet",  "friction"};
+      throw std::invalid_argument("--weather: unknown key '" + key + "'" + did_you_mean(key, keys) +
+                                  " (keys: fog, rain, snow, clouds, wind, wind_dir, wet, "
                                   "friction)");
     }
   }
@@ -100,6 +130,7 @@ void apply_override(const EnvironmentOverride& o, double scenario_start_time_of_
     double shifted = e.time_of_day - scenario_start_time_of_day + *o.time_of_day;
     shifted = std::fmod(shifted, kDay);
     e.time_of_day = shifted < 0.0 ? shifted + kDay : shifted;
+    e.utc_offset_hours = o.utc_offset_hours;
     // A scenario-given sun belongs to the scenario's time; the renderer computes it instead.
     e.sun_azimuth.reset();
     e.sun_elevation.reset();

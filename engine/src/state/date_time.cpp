@@ -69,6 +69,7 @@ std::optional<DateTime> parse_date_time(std::string_view text) {
   out.seconds_of_day = hour * 3600.0 + minute * 60.0 + second + fraction;
   if (i < text.size()) {
     if (text[i] == 'Z' && i + 1 == text.size()) {
+      out.utc_offset_hours = 0.0;
       return out;
     }
     int zh = 0, zm = 0;
@@ -83,7 +84,7 @@ std::optional<DateTime> parse_date_time(std::string_view text) {
 
 double epoch_seconds(const DateTime& value) {
   return static_cast<double>(days_from_civil(value.year, value.month, value.day)) * 86400.0 +
-         value.seconds_of_day - value.utc_offset_hours * 3600.0;
+         value.seconds_of_day - value.utc_offset_hours.value_or(0.0) * 3600.0;
 }
 
 DateTime advance(const DateTime& value, double seconds) {

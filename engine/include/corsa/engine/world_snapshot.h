@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace corsa::engine {
@@ -104,7 +105,10 @@ enum class PrecipitationType : uint8_t { kDry, kRain, kSnow };
 struct EnvironmentState {
   int year = 2024, month = 6, day = 21;  ///< local date, for the solar position
   double time_of_day = 12.0 * 3600.0;    ///< seconds since local midnight
-  double utc_offset_hours = 0.0;         ///< local time minus UTC
+  /// Local time minus UTC, hours. Nothing when the scenario's dateTime has no zone (or there is
+  /// no TimeOfDay): the time is then local solar time at the map's place (12:00 = the sun due
+  /// south or north, at its highest).
+  std::optional<double> utc_offset_hours;
   /// Sun from OpenSCENARIO Weather/Sun when given (radians: azimuth from north clockwise as the
   /// standard defines it, elevation above the horizon); otherwise computed from date, time and the
   /// map's georeference.
@@ -134,6 +138,8 @@ struct WorldSnapshot {
   std::vector<EntitySnapshot> entities;
   EnvironmentState environment;
   std::vector<SignalSnapshot> signals;  ///< by id
+  /// Entities whose boxes interpenetrate now: pairs of instance ids (smaller first), sorted.
+  std::vector<std::pair<uint32_t, uint32_t>> overlaps;
 };
 
 /// Receives the world at capture times. `sensors` names the sensors due at this time.

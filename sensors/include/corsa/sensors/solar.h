@@ -1,5 +1,7 @@
 #pragma once
 
+#include <optional>
+
 namespace corsa::sensors {
 
 /// Where the sun is: azimuth clockwise from north and elevation above the horizon, radians (the
@@ -12,8 +14,10 @@ struct SolarPosition {
 /// Solar position from the NOAA solar calculator equations (Meeus, "Astronomical Algorithms",
 /// as used in NOAA's spreadsheet; accurate to about 0.01 degree for years 1901-2099).
 /// `local_seconds` since local midnight, `utc_offset_hours` = local time - UTC; latitude and
-/// longitude in degrees (east positive).
+/// longitude in degrees (east positive). Without an offset the time is local apparent solar
+/// time at the place: 12:00 is the sun's transit (its highest), whatever the longitude.
 SolarPosition solar_position(int year, int month, int day, double local_seconds,
-                             double utc_offset_hours, double latitude_deg, double longitude_deg);
+                             std::optional<double> utc_offset_hours, double latitude_deg,
+                             double longitude_deg);
 
 }  // namespace corsa::sensors
