@@ -41,6 +41,8 @@ std::string_view end_reason_token(engine::EndReason reason) {
       return "duration";
     case engine::EndReason::kStoriesComplete:
       return "storiesComplete";
+    case engine::EndReason::kInterrupted:
+      return "interrupted";
     case engine::EndReason::kRunning:
       break;
   }

@@ -113,6 +113,44 @@ TEST_CASE("The run summary names the end, the times and the collisions", "[engin
   CHECK(json.find("{\"name\": \"Runner\"") != std::string::npos);
 }
 
+TEST_CASE("A run stopped from outside still writes its outputs, ending as interrupted",
+          "[engine][output]") {
+  TempDir dir;
+  Diagnostics diagnostics;
+  engine::RunOptions options = options_for("condition_distances.xosc", dir);
+  int64_t steps = 0;
+  options.stop = [&steps] { return ++steps == 300; };
+  const engine::RunReport report = engine::run_scenario(options, diagnostics);
+  CHECK(report.end_reason == engine::EndReason::kInterrupted);
+  CHECK(report.steps == 300);
+  const std::string json = slurp_file(dir.path() / "summary.json");
+  CHECK(json.find("\"end_reason\": \"interrupted\"") != std::string::npos);
+  CHECK(json.find("\"sim_time\": 3,") != std::string::npos);
+  const auto rows = lines(slurp_file(dir.path() / "trajectory.csv"));
+  REQUIRE(rows.size() > 2);
+  CHECK(rows.back().rfind("3,", 0) == 0);  // the last recorded tick is where it stopped
+  CHECK(std::filesystem::exists(dir.path() / "log.csv"));
+}
+
+TEST_CASE("The expected end of a run is its SimulationTime stop trigger, else the cap",
+          "[engine][output]") {
+  Diagnostics diagnostics;
+  const xosc::Scenario demo = xosc::load_scenario(
+      std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/demo/cut_in_city.xosc", {}, diagnostics);
+  CHECK(engine::expected_end_time(demo, 3600.0) == 20.0);  // greaterOrEqual 20
+  CHECK(engine::expected_end_time(demo, 5.0) == 5.0);      // --duration 5 comes first
+  const xosc::Scenario greater_than =
+      xosc::load_scenario(engine_fixture("condition_distances.xosc"), {}, diagnostics);
+  CHECK(engine::expected_end_time(greater_than, 3600.0) == 12.0);
+  // No stop trigger, or one that waits for something other than time: the cap stands.
+  const xosc::Scenario stories =
+      xosc::load_scenario(engine_fixture("storyboard_stories_complete.xosc"), {}, diagnostics);
+  CHECK(engine::expected_end_time(stories, 3600.0) == 3600.0);
+  const xosc::Scenario links =
+      xosc::load_scenario(engine_fixture("motion_lane_links.xosc"), {}, diagnostics);
+  CHECK(engine::expected_end_time(links, 60.0) == 60.0);
+}
+
 TEST_CASE("Same scenario, options and seed give byte-identical outputs", "[engine][output]") {
   TempDir first, second;
   Diagnostics diagnostics;

@@ -55,7 +55,8 @@ void collect_event_actions(const xosc::Scenario& scenario,
 
 std::vector<std::string> parse_sensor_list(std::string_view list,
                                            std::span<const std::string> known,
-                                           const xosc::UserDefinedAction& action) {
+                                           const xosc::UserDefinedAction& action,
+                                           Diagnostics& diagnostics) {
   std::vector<std::string> sensors;
   for (const std::string_view item : split(list, ',')) {
     const std::string name(trim(item));
@@ -68,8 +69,12 @@ std::vector<std::string> parse_sensor_list(std::string_view list,
       for (const std::string& k : known) {
         names += (names.empty() ? "" : ", ") + k;
       }
-      throw InputError(action.source.error("corsa:capture: the rig has no sensor '" + name +
-                                           "' (sensors: " + names + ")"));
+      diagnostics.add_once(
+          "capture-unknown-sensor:" + std::to_string(action.source.line) + ":" + name,
+          action.source.warning("corsa:capture: the rig has no sensor '" + clip(name) + "'" +
+                                did_you_mean(name, known) + " (sensors: " + names +
+                                "); the action leaves it out"));
+      continue;
     }
     if (std::find(sensors.begin(), sensors.end(), name) == sensors.end()) {
       sensors.push_back(name);
@@ -100,7 +105,8 @@ std::vector<std::string_view> words_of(std::string_view text) {
 }  // namespace
 
 CaptureCommand parse_capture_command(const xosc::UserDefinedAction& action,
-                                     std::span<const std::string> known_sensors) {
+                                     std::span<const std::string> known_sensors,
+                                     Diagnostics& diagnostics) {
   const std::vector<std::string_view> words = words_of(action.content);
   const std::string usage =
       " (expected 'start [sensors=NAME,...] [rate=HZ]' or 'stop [sensors=NAME,...]')";
@@ -117,7 +123,8 @@ CaptureCommand parse_capture_command(const xosc::UserDefinedAction& action,
     const std::string_view key = word.substr(0, eq);
     const std::string_view value = eq == std::string_view::npos ? "" : word.substr(eq + 1);
     if (key == "sensors" && eq != std::string_view::npos && !have_sensors) {
-      command.sensors = parse_sensor_list(value, known_sensors, action);
+      command.sensors = parse_sensor_list(value, known_sensors, action, diagnostics);
+      command.every_sensor = false;
       have_sensors = true;
     } else if (key == "rate" && eq != std::string_view::npos && command.start && !command.rate_hz) {
       const std::optional<double> rate = parse_double(value);
@@ -207,7 +214,7 @@ CaptureTimeline::CaptureTimeline(std::vector<CaptureSensor> sensors, const xosc:
   }
   const auto actions = find_capture_actions(scenario);
   for (const xosc::UserDefinedAction* action : actions) {
-    parse_capture_command(*action, names_);  // located errors before the run starts
+    parse_capture_command(*action, names_, diagnostics_);  // located errors before the run
   }
   if (actions.empty()) {
     for (Schedule& schedule : schedules_) {
@@ -226,7 +233,7 @@ void CaptureTimeline::attach(Simulation& simulation, CaptureSink& sink,
       [this](const xosc::UserDefinedAction& action, const Simulation& sim) {
         // Init actions run before the tick-0 state is observed: they open windows at tick 0.
         const int64_t tick = last_tick_ < 0 ? -1 : sim.tick();
-        apply(parse_capture_command(action, names_), tick);
+        apply(parse_capture_command(action, names_, diagnostics_), tick);
       });
 }
 
@@ -265,8 +272,8 @@ void CaptureTimeline::close(Schedule& schedule, int64_t tick) {
 void CaptureTimeline::apply(const CaptureCommand& command, int64_t tick) {
   for (Schedule& schedule : schedules_) {
     const bool named =
-        command.sensors.empty() || std::find(command.sensors.begin(), command.sensors.end(),
-                                             schedule.sensor.name) != command.sensors.end();
+        command.every_sensor || std::find(command.sensors.begin(), command.sensors.end(),
+                                          schedule.sensor.name) != command.sensors.end();
     if (!named) {
       continue;
     }

@@ -18,6 +18,7 @@
 
 #include "controllers/controllers.h"
 #include "controllers/follow_view.h"
+#include "controllers/npc_caution.h"
 #include "lanes/lane_follow.h"
 #include "state/lane_index.h"
 #include "state/sim_state.h"
@@ -116,6 +117,43 @@ std::optional<double> distance_on_path(const LanePath& path, const RoadCoordinat
     }
   }
   return std::nullopt;
+}
+
+// A traffic light on the path ahead that says stop, as a standing leader at its stop line: red,
+// or yellow while the vehicle can still stop comfortably (OpenDRIVE 1.8 §14 signals: a dynamic
+// signal at s on its road, for traffic in the direction of its orientation).
+Leader signal_ahead(const SimState& state, const Entity& me, const LanePath& path) {
+  constexpr double kComfort = 3.0;  // m/s^2, the deceleration a yellow light is stopped with
+  Leader stop;
+  if (state.traffic.signals.empty()) {
+    return stop;
+  }
+  const double my_front = me.info.box.center_x + 0.5 * me.info.box.length;
+  for (size_t i = 0; i < path.count; ++i) {
+    const PathPiece& piece = path.pieces[i];
+    for (const xodr::Signal& signal : state.map->road(piece.road).signals) {
+      const bool facing = signal.orientation == "none" || signal.orientation.empty() ||
+                          (signal.orientation == "+") == (piece.dir > 0);
+      const auto found = state.traffic.signals.find(signal.id);
+      if (!signal.dynamic || !facing || found == state.traffic.signals.end()) {
+        continue;
+      }
+      const double ahead = piece.distance + (signal.s - piece.s_entry) * piece.dir;
+      // On the first piece only what is in front of the vehicle's front.
+      const double gap = ahead - my_front - 1.0;  // stop a metre before the line
+      if (ahead < 0.0 || (i == 0 && gap < -0.5) || gap >= stop.gap) {
+        continue;
+      }
+      const SignalAspect aspect = signal_aspect(found->second);
+      const double v = std::max(me.state.speed, 0.0);
+      if (aspect == SignalAspect::kStop ||
+          (aspect == SignalAspect::kCaution && gap > v * v / (2.0 * kComfort))) {
+        stop.gap = std::max(gap, 0.0);
+        stop.speed = 0.0;
+      }
+    }
+  }
+  return stop;
 }
 
 // The search for the leader: the nearest usable entity ahead on the lane path, as the view
@@ -227,14 +265,23 @@ class LeaderSearch {
   uint32_t chosen_ = UINT32_MAX;
 };
 
-Leader find_leader(const SimState& state, uint32_t self, const FollowView& view,
-                   LanesAhead& ahead) {
+// The leader as the view shows it; for generated traffic also a traffic light that says stop
+// (the light when it is as near).
+Leader find_leader(const SimState& state, uint32_t self, const FollowView& view, LanesAhead& ahead,
+                   bool obey_signals) {
   const Entity& me = state.world.entities[self];
   if (!me.state.road || !me.lane.on_road || state.map == nullptr) {
     return Leader{};
   }
   const LanePath path = path_ahead(*state.map, me, ahead);
-  return LeaderSearch(me, self, path, view).find(*state.map);
+  const Leader leader = LeaderSearch(me, self, path, view).find(*state.map);
+  if (obey_signals) {
+    const Leader stop = signal_ahead(state, me, path);
+    if (stop.gap <= leader.gap) {
+      return stop;
+    }
+  }
+  return leader;
 }
 
 }  // namespace
@@ -243,8 +290,31 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
               LanesAhead& ahead) {
   Entity& entity = state.world.entities[index];
   const double set_speed = entity.speed_command;
-  const Leader leader = find_leader(state, index, view, ahead);
-  double command = set_speed;
+  // Generated traffic also minds traffic lights, whatever reaches into its way, and the
+  // scenario's vehicles coming up from behind (controllers/npc_caution.h).
+  const bool generated = view.targets()[index].generated;
+  Leader leader = find_leader(state, index, view, ahead, generated);
+  double target = set_speed;
+  if (generated) {
+    std::vector<uint32_t>& near = *motion.nearby;
+    const double v = std::max(entity.state.speed, 0.0);
+    const Hazard hazard =
+        corridor_hazard(entity, index, view, std::max(15.0, 3.0 * v + 10.0), near);
+    if (hazard.gap < leader.gap) {
+      leader = {hazard.gap, hazard.speed};
+    }
+    const double ahead_of = keep_ahead_speed(entity, index, view, near);
+    if (ahead_of > target) {
+      target = entity.info.max_speed > 0.0 ? std::min(ahead_of, entity.info.max_speed) : ahead_of;
+    }
+  }
+  double command = target;
+  if (target > set_speed) {
+    // Speeding up to keep ahead: within the vehicle's acceleration.
+    const double max_acc =
+        entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultLimit;
+    command = std::min(target, std::max(entity.state.speed, set_speed) + max_acc * motion.dt);
+  }
   if (std::isfinite(leader.gap)) {
     const double v = entity.state.speed;
     const double desired = kStandstill + kTimeGap * std::max(v, 0.0);
@@ -254,7 +324,7 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
         entity.info.max_deceleration > 0.0 ? entity.info.max_deceleration : kDefaultLimit;
     const double a = std::clamp(kGapGain * (leader.gap - desired) + kSpeedGain * (leader.speed - v),
                                 -max_dec, max_acc);
-    command = std::min(set_speed, std::max(0.0, v + a * motion.dt));
+    command = std::min(command, std::max(0.0, v + a * motion.dt));
   }
   entity.speed_command = command;
   DefaultController().step(entity, motion);

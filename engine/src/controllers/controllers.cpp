@@ -11,6 +11,7 @@
 
 #include "controllers/external.h"
 #include "controllers/follow_view.h"
+#include "controllers/npc_caution.h"
 #include "controllers/worker_pool.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
@@ -132,7 +133,7 @@ std::optional<xodr::LaneType> lane_type_at(const xodr::Map& map, const RoadCoord
 // walks straight along its heading over the lanes and stops on the first sidewalk (or off the
 // road) once it has crossed a lane vehicles drive on.
 void step_pedestrian(SimState& state, uint32_t index, const DefaultController& ideal,
-                     const MotionContext& motion) {
+                     const MotionContext& motion, const FollowView& view) {
   Entity& entity = state.world.entities[index];
   ControlState& control = control_of(state, index);
   if (entity.lane.on_road && std::abs(entity.lane.heading_offset) > 0.25 * std::numbers::pi) {
@@ -140,7 +141,27 @@ void step_pedestrian(SimState& state, uint32_t index, const DefaultController& i
     control.crossing = true;
     control.crossed_roadway = false;
   }
+  double pace_command = -1.0;
+  if (!control.crossing && entity.lane.on_road && is_generated(state, index)) {
+    // Generated walkers keep right of oncoming ones, pass slower ones on the left and never
+    // walk into anyone (controllers/npc_caution.h).
+    constexpr double kSideStepSpeed = 0.6;  // m/s across the sidewalk at most
+    if (control.pace < 0.0) {
+      control.pace = entity.speed_command;
+    }
+    const WalkerMove move = walker_move(entity, index, view, control.pace, *motion.nearby);
+    // Sideways at most half as fast as forwards (27 degrees off the sidewalk): far from the 45
+    // degrees that mean crossing the road, and no sidestep on the spot.
+    const double step =
+        std::min(kSideStepSpeed, 0.5 * std::max(entity.state.speed, 0.0)) * motion.dt;
+    entity.lateral_command += std::clamp(move.lateral - entity.lateral_command, -step, step);
+    pace_command = std::min(move.speed, entity.speed_command);
+    entity.speed_command = pace_command;
+  }
   ideal.step(entity, motion);
+  if (pace_command >= 0.0 && entity.speed_command == pace_command) {
+    entity.speed_command = control.pace;  // back to its own pace unless it reached an end
+  }
   if (!control.crossing || state.map == nullptr) {
     return;
   }
@@ -164,7 +185,8 @@ bool dynamics_moves(const SimState& state, uint32_t index) {
 }
 
 // One entity's move with its controller. It reads and writes only that entity (and its
-// control state), the map and, for car following, the picture `view` taken before the moves.
+// control state), the map and, for car following and generated traffic, the picture `view`
+// taken before the moves.
 void move_one(SimState& state, uint32_t i, const MotionContext& motion, const FollowView& view,
               LanesAhead& ahead) {
   const DefaultController ideal;
@@ -174,7 +196,7 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
   }
   const ControllerKind kind = state.controls[i].effective();
   if (entity.info.kind == ObjectKind::kPedestrian && kind == ControllerKind::kDefault) {
-    step_pedestrian(state, i, ideal, motion);
+    step_pedestrian(state, i, ideal, motion, view);
     return;
   }
   switch (kind) {
@@ -210,8 +232,9 @@ struct EntityMover::Impl {
   std::unique_ptr<WorkerPool> pool;  ///< made on the first parallel step
   FollowView view;
   std::vector<LanesAhead> ahead;  ///< per entity (car following)
-  /// Per worker: lane span scratch.
+  /// Per worker: lane span scratch, and neighbour query scratch.
   std::vector<std::vector<xodr::LaneSpan>> scratch;
+  std::vector<std::vector<uint32_t>> nearby;
   /// The order entities are moved in: by lane, so that one after the other they read the same
   /// parts of the map (the result does not depend on it; with many vehicles spread over a city
   /// map, memory traffic is most of a move's time). Sorted again every kArrangeSteps steps.
@@ -263,17 +286,22 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   if (!dynamic.empty()) {
     begin_dynamics(state, dynamic, motion);
   }
-  if (following) {
-    impl.view.build(state);
+  // Generated traffic looks around itself (controllers/npc_caution.h): the view then also
+  // holds the grid of the others.
+  const bool generated = !state.traffic.lifetimes.empty();
+  if (following || generated) {
+    impl.view.build(state, generated);
   }
   impl.ahead.resize(count);
   impl.arrange(state);
   const std::vector<uint32_t>& order = impl.order;
   const unsigned workers = count >= kParallelEntities ? impl.threads : 1;
   impl.scratch.resize(std::max<size_t>(impl.scratch.size(), workers));
+  impl.nearby.resize(impl.scratch.size());
   if (workers == 1) {
     MotionContext context = motion;
     context.scratch = &impl.scratch[0];
+    context.nearby = &impl.nearby[0];
     for (const uint32_t i : order) {
       move_one(state, i, context, impl.view, impl.ahead[i]);
     }
@@ -287,6 +315,7 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   impl.pool->run(order.size(), [&](size_t begin, size_t end, unsigned worker) {
     MotionContext context = motion;
     context.scratch = &impl.scratch[worker];
+    context.nearby = &impl.nearby[worker];
     for (size_t k = begin; k < end; ++k) {
       const uint32_t i = order[k];
       move_one(state, i, context, impl.view, impl.ahead[i]);

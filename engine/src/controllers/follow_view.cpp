@@ -8,11 +8,13 @@
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
-
-void FollowView::build(const SimState& state) {
+void FollowView::build(const SimState& state, bool neighbours) {
   const auto& entities = state.world.entities;
   targets_.resize(entities.size());
   unindexed_.clear();
+  grid_.clear();
+  max_reach_ = 0.0;
+  max_length_ = 0.0;
   const xodr::LaneGraph* graph = state.map != nullptr ? &state.map->lane_graph() : nullptr;
   lanes_.reset(graph != nullptr ? graph->size() : 0);
   least_rear_ = std::numeric_limits<double>::infinity();
@@ -20,8 +22,10 @@ void FollowView::build(const SimState& state) {
     const Entity& entity = entities[i];
     FollowTarget& target = targets_[i];
     const bool visible = i >= state.controls.size() || state.controls[i].traffic_visible;
-    target.usable = entity.state.placed && entity.state.road.has_value() && visible;
-    if (!target.usable) {
+    target.present = entity.state.placed && visible;
+    target.usable = target.present && entity.state.road.has_value();
+    target.generated = false;
+    if (!target.present) {
       continue;
     }
     target.x = entity.state.pose.x;
@@ -29,6 +33,18 @@ void FollowView::build(const SimState& state) {
     target.h = entity.state.pose.h;
     target.speed = entity.state.speed;
     target.rear = entity.info.box.center_x - 0.5 * entity.info.box.length;
+    target.vehicle = entity.info.kind == ObjectKind::kVehicle;
+    target.length = entity.info.box.length;
+    if (neighbours) {
+      target.shape = box_of(entity.info.box, entity.state.pose);
+      grid_.add(target.x, target.y, i);
+      // NaN stays out of the maxima; such a box is caught by no region anyway.
+      max_reach_ = std::max(max_reach_, box_reach(entity.info.box));
+      max_length_ = std::max(max_length_, target.length);
+    }
+    if (!target.usable) {
+      continue;
+    }
     // NaN stays out of the minimum (no bound then: see below).
     least_rear_ = std::min(least_rear_, target.rear);
     if (std::isnan(target.rear)) {
@@ -52,6 +68,16 @@ void FollowView::build(const SimState& state) {
     }
   }
   lanes_.finish();
+  for (const auto& [index, lifetimes] : state.traffic.lifetimes) {
+    if (index < targets_.size()) {
+      targets_[index].generated = true;
+    }
+  }
+}
+
+void FollowView::near(double x_min, double y_min, double x_max, double y_max,
+                      std::vector<uint32_t>& out) const {
+  grid_.query_box(x_min, y_min, x_max, y_max, out);
 }
 
 }  // namespace corsa::engine::detail

@@ -1,18 +1,22 @@
 #pragma once
 
-// What car following (the acc controller) sees of the other entities: each one as it was when
-// the controllers' step began, and the entities by lane in s order (state/lane_index.h). Every
-// follower reads the same picture whatever the order, or the thread, it is moved in, so a step
-// gives the same result on any number of threads; and a follower looks only at the lanes of its
-// path ahead instead of at every entity.
+// What car following (the acc controller) and the precautions of generated traffic
+// (controllers/npc_caution.h) see of the other entities: each one as it was when the
+// controllers' step began, the entities by lane in s order (state/lane_index.h) and, when there
+// is generated traffic, their reference points in a grid (state/point_grid.h). Every mover reads
+// the same picture whatever the order, or the thread, it is moved in, so a step gives the same
+// result on any number of threads; and a mover looks only at the lanes of its path ahead, or at
+// the grid cells around it, instead of at every entity.
 
 #include <cstdint>
 #include <memory>
 #include <vector>
 
 #include "corsa/engine/entity_state.h"
+#include "corsa/engine/oriented_box.h"
 #include "lanes/lane_follow.h"
 #include "state/lane_index.h"
+#include "state/point_grid.h"
 
 namespace corsa::engine::detail {
 
@@ -27,12 +31,20 @@ struct FollowTarget {
   RoadCoordinates road;
   /// Placed, on a lane and visible to traffic (VisibilityAction): only such an entity leads.
   bool usable = false;
+  /// Placed and visible to traffic, on a lane or not: what generated traffic keeps clear of.
+  /// The fields below (and x, y, h, speed, rear) are set for every present entity.
+  bool present = false;
+  bool generated = false;  ///< made by traffic, not one of the scenario's own
+  bool vehicle = false;    ///< ObjectKind::kVehicle
+  double length = 0.0;     ///< m, of the bounding box
+  OrientedBox shape;       ///< the bounding box at the pose
 };
 
 class FollowView {
  public:
-  /// Takes the picture of `state`'s entities now.
-  void build(const SimState& state);
+  /// Takes the picture of `state`'s entities now; with `neighbours` also the grid of the present
+  /// entities' reference points (near()).
+  void build(const SimState& state, bool neighbours);
 
   const std::vector<FollowTarget>& targets() const { return targets_; }
   const LaneIndex& lanes() const { return lanes_; }
@@ -42,11 +54,26 @@ class FollowView {
   /// entity `ahead` metres along the path is at least ahead - own front + this.
   double least_rear() const { return least_rear_; }
 
+  /// Appends to `out` every present entity whose reference point lies in [x_min, x_max] x
+  /// [y_min, y_max] (m), and possibly some beyond, in no particular order (the view must have
+  /// been built with `neighbours`).
+  void near(double x_min, double y_min, double x_max, double y_max,
+            std::vector<uint32_t>& out) const;
+  /// The farthest (m) a present entity's bounding box reaches from its reference point, and the
+  /// greatest box length (m): how far around a region near() must look for boxes reaching in.
+  double max_reach() const { return max_reach_; }
+  double max_length() const { return max_length_; }
+
  private:
   std::vector<FollowTarget> targets_;
   LaneIndex lanes_;
   std::vector<uint32_t> unindexed_;
   double least_rear_ = 0.0;
+  PointGrid grid_{kGridCell};
+  double max_reach_ = 0.0;
+  double max_length_ = 0.0;
+
+  static constexpr double kGridCell = 32.0;  // m: a corridor query covers a few cells
 };
 
 /// The lanes a follower will drive after the one it is in, as enter_next_lane chooses them at

@@ -83,6 +83,11 @@ double rounding_margin(const OrientedBox& a, const OrientedBox& b) {
 
 }  // namespace
 
+double box_reach(const Box& box) {
+  return std::hypot(std::abs(box.center_x) + 0.5 * box.length,
+                    std::abs(box.center_y) + 0.5 * box.width);
+}
+
 bool overlap(const OrientedBox& a, const OrientedBox& b) {
   if (a.z_max < b.z_min || b.z_max < a.z_min) {
     return false;

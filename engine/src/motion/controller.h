@@ -6,6 +6,7 @@
 // commands exactly along the lanes. Car following and vehicle dynamics (controllers/) are built
 // on it; controllers/controllers.h picks each entity's controller every step.
 
+#include <cstdint>
 #include <vector>
 
 #include "corsa/xodr/map.h"
@@ -17,6 +18,8 @@ struct MotionContext {
   const xodr::Map* map = nullptr;  ///< null: no road network, entities move freely
   double dt = 0.01;                ///< s
   std::vector<xodr::LaneSpan>* scratch = nullptr;
+  /// Scratch for the neighbour queries of generated traffic (entity indices), one per thread.
+  std::vector<uint32_t>* nearby = nullptr;
 };
 
 class Controller {

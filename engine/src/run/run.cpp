@@ -1,7 +1,11 @@
 #include "corsa/engine/run.h"
 
+#include <algorithm>
 #include <chrono>
+#include <optional>
+#include <variant>
 
+#include "corsa/core/strings.h"
 #include "corsa/engine/outputs.h"
 #include "corsa/engine/trajectory_file.h"
 #include "corsa/xodr/map.h"
@@ -21,6 +25,46 @@ std::shared_ptr<const xodr::Map> load_road_network(const xosc::Scenario& scenari
         network.logic_file_path.string() + ")"));
   }
   return std::make_shared<const xodr::Map>(xodr::Map::load(network.logic_file_path, diagnostics));
+}
+
+std::string collision_lines(const RunReport& report, size_t limit) {
+  std::string out;
+  for (size_t i = 0; i < report.collision_texts.size() && i < limit; ++i) {
+    out += "  collision at " + report.collision_texts[i] + "\n";
+  }
+  if (report.collision_texts.size() > limit) {
+    out += "  ... and " + std::to_string(report.collision_texts.size() - limit) +
+           " more (the run summary lists them all)\n";
+  }
+  return out;
+}
+
+double expected_end_time(const xosc::Scenario& scenario, double duration) {
+  double end = duration;
+  const auto& stop = scenario.storyboard.stop_trigger;
+  if (!stop) {
+    return end;
+  }
+  for (const xosc::ConditionGroup& group : stop->groups) {
+    // A group holds when all its conditions do: by time alone it holds from the latest of them.
+    std::optional<double> holds_from;
+    for (const xosc::Condition& condition : group.conditions) {
+      const auto* by_value = std::get_if<xosc::ByValueCondition>(&condition.kind);
+      const auto* time =
+          by_value == nullptr ? nullptr : std::get_if<xosc::SimulationTimeCondition>(by_value);
+      if (time == nullptr ||
+          (time->rule != xosc::Rule::kGreaterThan && time->rule != xosc::Rule::kGreaterOrEqual &&
+           time->rule != xosc::Rule::kEqualTo)) {
+        holds_from.reset();
+        break;
+      }
+      holds_from = std::max(holds_from.value_or(0.0), time->value + condition.delay);
+    }
+    if (holds_from && *holds_from >= 0.0) {
+      end = std::min(end, *holds_from);
+    }
+  }
+  return end;
 }
 
 RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
@@ -48,6 +92,9 @@ RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
     if (on_step) {
       on_step(simulation);
     }
+    if (options.stop && options.stop()) {
+      simulation.interrupt();
+    }
   }
   if (recorder) {
     recorder->finish(simulation);
@@ -69,6 +116,11 @@ RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
   report.steps = simulation.tick();
   report.wall_seconds = wall;
   report.collisions = simulation.collisions().size();
+  for (const CollisionRecord& c : simulation.collisions()) {
+    report.collision_texts.push_back(format_fixed(c.time, 2) +
+                                     " s: " + simulation.entity(c.first).name + " and " +
+                                     simulation.entity(c.second).name);
+  }
   report.entities = simulation.entity_count();
   return report;
 }

@@ -130,6 +130,12 @@ void Simulation::run() {
   }
 }
 
+void Simulation::interrupt() {
+  if (impl_->end == EndReason::kRunning) {
+    impl_->end = EndReason::kInterrupted;
+  }
+}
+
 bool Simulation::ended() const { return impl_->end != EndReason::kRunning; }
 EndReason Simulation::end_reason() const { return impl_->end; }
 int64_t Simulation::tick() const { return impl_->state.tick; }
@@ -279,6 +285,10 @@ void Simulation::fill_snapshot(WorldSnapshot& out) const {
   for (const auto& [id, signal_state] : state.traffic.signals) {
     out.signals.push_back({id, signal_state});
   }
+  out.overlaps.clear();
+  for (const auto& [a, b] : state.contacts.pairs) {
+    out.overlaps.emplace_back(a + 1, b + 1);
+  }
 }
 
 void Simulation::add_observer(SimulationObserver& observer) {
@@ -356,6 +366,8 @@ std::string_view to_string(EndReason reason) {
       return "duration";
     case EndReason::kStoriesComplete:
       return "stories complete";
+    case EndReason::kInterrupted:
+      return "interrupted";
   }
   return "running";
 }

@@ -68,6 +68,9 @@ struct ControlState {
   /// vehicles drive on.
   bool crossing = false;
   bool crossed_roadway = false;
+  /// A generated walker's own pace (m/s), taken at its first step; it slows for others and
+  /// comes back to it (controllers/npc_caution.h). Negative until known.
+  double pace = -1.0;
   /// The dynamics controller's vehicle model (created on its first step).
   std::shared_ptr<DynamicsVehicle> dynamics;
   /// A command from outside (Simulation::command) for the step under way; it takes the place of

@@ -34,12 +34,17 @@ void PointGrid::add(double x, double y, uint32_t id) {
 }
 
 void PointGrid::query(double x, double y, double radius, std::vector<uint32_t>& out) const {
+  query_box(x - radius, y - radius, x + radius, y + radius, out);
+}
+
+void PointGrid::query_box(double x_min, double y_min, double x_max, double y_max,
+                          std::vector<uint32_t>& out) const {
   out.insert(out.end(), overflow_.begin(), overflow_.end());
-  const double i0 = std::floor((x - radius) / cell_), i1 = std::floor((x + radius) / cell_);
-  const double j0 = std::floor((y - radius) / cell_), j1 = std::floor((y + radius) / cell_);
+  const double i0 = std::floor(x_min / cell_), i1 = std::floor(x_max / cell_);
+  const double j0 = std::floor(y_min / cell_), j1 = std::floor(y_max / cell_);
   if (!(i1 - i0 < 64.0 && j1 - j0 < 64.0 && std::abs(i0) < kMaxCell && std::abs(i1) < kMaxCell &&
         std::abs(j0) < kMaxCell && std::abs(j1) < kMaxCell)) {
-    // A huge radius or a far-off point: every point.
+    // A huge or far-off region (or NaN): every point.
     for (const auto& [cell, ids] : cells_) {
       out.insert(out.end(), ids.begin(), ids.end());
     }

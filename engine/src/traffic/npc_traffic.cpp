@@ -4,14 +4,20 @@
 // drawn per lane (8-14 m/s) under the car-following controller (or `--controller`);
 // pedestrians walk along a random sidewalk, either way, at 1.0-1.6 m/s. Places are drawn by
 // lane length over the whole map, at least 10 m (vehicles) or 2 m (pedestrians) from every
-// entity. They are entities like any other: trajectory rows, collisions, conditions, sensors.
+// entity, their boxes at least 1 m (0.5 m) clear of every other box, and vehicles not in the
+// 60 m ahead of a scenario vehicle driving their way (its path). They are entities like any
+// other: trajectory rows, collisions, conditions, sensors. Generated traffic drives and walks
+// with the precautions of controllers/npc_caution.h.
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "corsa/xodr/map.h"
+#include "corsa/engine/oriented_box.h"
 #include "lanes/lane_follow.h"
+#include "state/entity_builder.h"
 #include "state/sim_state.h"
 #include "traffic/spawner.h"
 #include "traffic/traffic_generators.h"
@@ -22,7 +28,74 @@ namespace {
 constexpr double kVehicleClearance = 10.0;  // m
 constexpr double kWalkerClearance = 2.0;    // m
 constexpr int kTriesPerNpc = 50;
-constexpr double kGridCell = 16.0;  // m, cells of the grid the clearances are looked up in
+constexpr double kGridCell = 16.0;         // m, cells of the grid the clearances are looked up in
+constexpr double kVehicleBoxMargin = 1.0;  // m between boxes at the start
+constexpr double kWalkerBoxMargin = 0.5;   // m
+constexpr double kPathAhead = 60.0;        // m ahead of a scenario vehicle kept free
+
+// The placed entities around a new NPC: their reference points in a grid, how far their boxes
+// reach from them, and the scenario's own vehicles (few; their paths are kept free).
+struct Placed {
+  PointGrid grid{kGridCell};
+  double reach = 0.0;  ///< m, the greatest box_reach of a placed entity
+  std::vector<uint32_t> scenario_vehicles;
+  std::vector<uint32_t> near;  ///< scratch
+
+  explicit Placed(const SimState& state) : grid(placed_entities_grid(state, kGridCell)) {
+    for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
+      const Entity& entity = state.world.entities[i];
+      if (!entity.state.placed) {
+        continue;
+      }
+      reach = std::max(reach, box_reach(entity.info.box));
+      if (entity.info.kind == ObjectKind::kVehicle && state.traffic.lifetimes.count(i) == 0) {
+        scenario_vehicles.push_back(i);
+      }
+    }
+  }
+
+  void add(const Entity& entity, uint32_t index) {
+    grid.add(entity.state.pose.x, entity.state.pose.y, index);
+    reach = std::max(reach, box_reach(entity.info.box));
+  }
+};
+
+// Whether an NPC with box `box` at `pose` starts clear of everyone: its box `margin` metres from
+// every placed entity's box, and (vehicles) not in the path just ahead of a scenario vehicle
+// going its way, which would not brake for it. Only the entities whose boxes can be that near
+// are looked at.
+bool starts_clear(const SimState& state, Placed& placed, const Box& box, const Pose& pose,
+                  bool walks, double margin) {
+  const OrientedBox mine = box_of(box, pose);
+  placed.near.clear();
+  placed.grid.query(pose.x, pose.y, margin + box_reach(box) + placed.reach, placed.near);
+  for (const uint32_t i : placed.near) {
+    const Entity& other = state.world.entities[i];
+    if (other.state.placed &&
+        box_distance(mine, box_of(other.info.box, other.state.pose)) < margin) {
+      return false;
+    }
+  }
+  if (walks) {
+    return true;
+  }
+  for (const uint32_t i : placed.scenario_vehicles) {
+    const Entity& other = state.world.entities[i];
+    if (!other.state.placed || std::cos(other.state.pose.h - pose.h) < 0.7) {
+      continue;
+    }
+    // Ahead of it within its width: in its path.
+    const double c = std::cos(other.state.pose.h), s = std::sin(other.state.pose.h);
+    const double dx = pose.x - other.state.pose.x, dy = pose.y - other.state.pose.y;
+    const double along = dx * c + dy * s;
+    const double across = -dx * s + dy * c;
+    if (along > 0.0 && along < kPathAhead &&
+        std::abs(across) < 0.5 * (other.info.box.width + box.width) + 0.5) {
+      return false;
+    }
+  }
+  return true;
+}
 
 struct Candidate {
   uint32_t road = 0;
@@ -62,10 +135,12 @@ xosc::ScenarioObject prototype(bool walks) {
 
 class Npcs final : public GeneratorBase {
  public:
-  explicit Npcs(uint64_t seed)
+  Npcs(uint64_t seed, Diagnostics& diagnostics)
       : GeneratorBase(std::string("corsa:npc"), "npc", seed),
         vehicles_(prototype(false)),
-        walkers_(prototype(true)) {}
+        walkers_(prototype(true)),
+        vehicle_box_(describe_object(vehicles_.prototype(0), diagnostics).box),
+        walker_box_(describe_object(walkers_.prototype(0), diagnostics).box) {}
 
   // NPCs are placed once; afterwards they drive and walk on their own.
   void step(SimState&) override {}
@@ -83,7 +158,7 @@ class Npcs final : public GeneratorBase {
     }
     const WeightedTable by_length(weights);
     const double clearance = walks ? kWalkerClearance : kVehicleClearance;
-    PointGrid others = placed_entities_grid(state, kGridCell);
+    Placed others(state);
     uint32_t placed = 0;
     for (uint32_t attempt = 0; placed < count && attempt < kTriesPerNpc * count; ++attempt) {
       const Candidate& c = lanes[by_length.draw(random_)];
@@ -106,14 +181,16 @@ class Npcs final : public GeneratorBase {
       at.pose = map.world_pose(c.road, s, *t);
       at.pose.h = travel_heading(map, c.road, s, dir);
       at.road = RoadPoint{c.road, s, *t, c.lane};
-      if (!clear_of_others(state, at.pose.x, at.pose.y, clearance, &others)) {
+      if (!clear_of_others(state, at.pose.x, at.pose.y, clearance, &others.grid) ||
+          !starts_clear(state, others, walks ? walker_box_ : vehicle_box_,
+                        Pose{at.pose.x, at.pose.y, at.pose.z, at.pose.h, at.pose.p, at.pose.r},
+                        walks, walks ? kWalkerBoxMargin : kVehicleBoxMargin)) {
         continue;
       }
       const std::string name =
           std::string(walks ? "npc_pedestrian_" : "npc_vehicle_") + std::to_string(placed);
       const uint32_t index = spawn(state, walks ? walkers_ : vehicles_, 0, at, speed, name);
-      const Pose& pose = state.world.entities[index].state.pose;
-      others.add(pose.x, pose.y, index);
+      others.add(state.world.entities[index], index);
       ++placed;
     }
     return placed;
@@ -122,6 +199,8 @@ class Npcs final : public GeneratorBase {
  private:
   TrafficMix vehicles_;
   TrafficMix walkers_;
+  Box vehicle_box_;
+  Box walker_box_;
 };
 
 }  // namespace
@@ -135,7 +214,7 @@ void place_npcs(SimState& state) {
     state.diagnostics.add(make_warning("", 0, "--npc: the scenario has no road network; no NPCs"));
     return;
   }
-  auto npcs = std::make_unique<Npcs>(derive_seed(state.options.seed, "npc"));
+  auto npcs = std::make_unique<Npcs>(derive_seed(state.options.seed, "npc"), state.diagnostics);
   const uint32_t vehicles = npcs->place(state, false, npc.vehicles);
   const uint32_t walkers = npcs->place(state, true, npc.pedestrians);
   if (vehicles < npc.vehicles || walkers < npc.pedestrians) {

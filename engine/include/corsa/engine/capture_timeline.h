@@ -49,14 +49,18 @@ struct CaptureSensor {
 /// The content of a corsa:capture action.
 struct CaptureCommand {
   bool start = true;
-  std::vector<std::string> sensors;  ///< empty: every sensor
+  bool every_sensor = true;          ///< no sensors= list
+  std::vector<std::string> sensors;  ///< the rig's sensors the sensors= list names
   std::optional<double> rate_hz;     ///< start only: this rate instead of each sensor's own
 };
 
 /// Parses a corsa:capture action's content. Throws InputError located at the action for an
-/// unknown word, a sensor not in `known_sensors`, or a rate that is not a positive number.
+/// unknown word or a rate that is not a positive number. A sensor the rig does not have (a rig
+/// made for another scenario) is left out with a warning located at the action (once per
+/// action and name), suggesting the nearest name.
 CaptureCommand parse_capture_command(const xosc::UserDefinedAction& action,
-                                     std::span<const std::string> known_sensors);
+                                     std::span<const std::string> known_sensors,
+                                     Diagnostics& diagnostics);
 
 /// Every corsa:capture action of the scenario (Init and all Events), in document order.
 std::vector<const xosc::UserDefinedAction*> find_capture_actions(const xosc::Scenario& scenario);

@@ -24,6 +24,10 @@ struct OrientedBox {
 /// `box` (in the entity frame) placed at `pose`: heading and position only.
 OrientedBox box_of(const Box& box, const Pose& pose);
 
+/// The farthest (m) a point of `box` lies from the entity's reference point, horizontally: two
+/// boxes closer than some distance have reference points closer than that plus both reaches.
+double box_reach(const Box& box);
+
 /// An entity's velocity in the map frame (m/s): its speed along the heading and its lateral
 /// speed across it (to the left). Inline: conditions ask for it every step, and the compiler
 /// then shares one sincos between the two components.

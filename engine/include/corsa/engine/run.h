@@ -36,6 +36,10 @@ struct RunOptions {
   /// Called once with the simulation before its first step, e.g. to add observers and custom
   /// command handlers (the capture timeline of `corsa run --rig`). Optional.
   std::function<void(Simulation&)> prepare;
+  /// Asked after every step whether to stop now (e.g. a signal arrived). When it says so the
+  /// run ends as EndReason::kInterrupted and its outputs (trajectories, log, summary) are
+  /// written for what was simulated. Optional.
+  std::function<bool()> stop;
 };
 
 struct RunReport {
@@ -44,17 +48,29 @@ struct RunReport {
   int64_t steps = 0;
   double wall_seconds = 0.0;  ///< loading, simulating and writing
   size_t collisions = 0;
+  /// Each collision for people: "5.18 s: Cutter and npc_vehicle_0", in order.
+  std::vector<std::string> collision_texts;
   size_t entities = 0;
 };
+
+/// Prints up to `limit` collision texts of a report, one a line ("  collision at ..."), and
+/// how many more there were.
+std::string collision_lines(const RunReport& report, size_t limit = 10);
 
 /// The scenario's road network (its LogicFile), or null when it has none. Throws InputError,
 /// located at the LogicFile element, when the map cannot be read.
 std::shared_ptr<const xodr::Map> load_road_network(const xosc::Scenario& scenario,
                                                    Diagnostics& diagnostics);
 
+/// When the run will end at the latest (s): the earliest time at which the storyboard's stop
+/// trigger fires by a condition group made only of SimulationTime conditions (greaterThan,
+/// greaterOrEqual or equalTo, plus their delays), else `duration` (the --duration cap). For
+/// progress bars: the default cap of 3600 s says nothing about a 20 s scenario.
+double expected_end_time(const xosc::Scenario& scenario, double duration);
+
 /// Loads, runs and writes as `options` say. `on_step` (optional) sees the simulation after
 /// every step, e.g. for a progress bar. Throws InputError for bad input; outputs are written
-/// only when the run completed.
+/// when the run ended by itself or was stopped (RunOptions::stop), not when it threw.
 RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
                        const std::function<void(const Simulation&)>& on_step = {});
 

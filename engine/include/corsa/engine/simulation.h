@@ -87,6 +87,7 @@ enum class EndReason : uint8_t {
   kStopTrigger,      ///< the Storyboard's stop trigger fired
   kDuration,         ///< the duration cap was reached
   kStoriesComplete,  ///< every story completed and the storyboard has no stop trigger
+  kInterrupted,      ///< stopped from outside (Simulation::interrupt, e.g. Ctrl-C)
 };
 std::string_view to_string(EndReason reason);  ///< "stop trigger", "duration", ...
 
@@ -136,6 +137,9 @@ class Simulation {
   bool step();
   /// Steps until the run ends.
   void run();
+  /// Ends the run here (EndReason::kInterrupted) unless it has ended already: the next step()
+  /// returns false and the state stays as it is, so its outputs can still be written.
+  void interrupt();
 
   bool ended() const;
   EndReason end_reason() const;

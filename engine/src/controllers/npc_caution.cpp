@@ -1,0 +1,255 @@
+// Precautions of generated traffic (controllers/npc_caution.h).
+
+#include "controllers/npc_caution.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "controllers/follow_view.h"
+#include "corsa/engine/oriented_box.h"
+#include "state/sim_state.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+constexpr double kSideMargin = 0.5;      // m each side of a vehicle's corridor
+constexpr double kBehindReach = 40.0;    // m behind, for faster scenario vehicles
+constexpr double kWalkerLook = 4.0;      // m ahead a walker looks
+constexpr double kWalkerBand = 0.9;      // m either side of a walker's path it keeps clear
+constexpr double kWalkerStep = 0.7;      // m a walker steps aside (walkers are 0.6 m wide)
+constexpr double kWalkerContact = 0.9;   // m ahead: too close to walk on
+constexpr double kWalkerAbreast = 0.65;  // m across: walkers nearer than this would touch
+constexpr double kSlack = 0.01;          // m around a grid query, against rounding
+
+/// A frame at an entity's reference point, x along its heading, y to its left.
+struct LocalFrame {
+  double x = 0.0, y = 0.0, c = 1.0, s = 0.0;
+  explicit LocalFrame(const Pose& pose)
+      : x(pose.x), y(pose.y), c(std::cos(pose.h)), s(std::sin(pose.h)) {}
+  void to_local(double wx, double wy, double& lx, double& ly) const {
+    const double dx = wx - x, dy = wy - y;
+    lx = dx * c + dy * s;
+    ly = -dx * s + dy * c;
+  }
+};
+
+/// The extent along x of the part of `box` (another entity's) that lies within |y| <= half in
+/// `frame`; false when no part does.
+bool extent_in_band(const LocalFrame& frame, const OrientedBox& box, double half, double& x_min,
+                    double& x_max) {
+  double px[4], py[4];
+  for (int k = 0; k < 4; ++k) {
+    const double along = (k == 0 || k == 3) ? box.half_length : -box.half_length;
+    const double across = k < 2 ? box.half_width : -box.half_width;
+    frame.to_local(box.cx + along * box.cos_h - across * box.sin_h,
+                   box.cy + along * box.sin_h + across * box.cos_h, px[k], py[k]);
+  }
+  x_min = 1e300;
+  x_max = -1e300;
+  for (int k = 0; k < 4; ++k) {
+    // Clip edge k -> k+1 to the band.
+    const double ax = px[k], ay = py[k];
+    const double bx = px[(k + 1) % 4], by = py[(k + 1) % 4];
+    double t0 = 0.0, t1 = 1.0;
+    const double dy = by - ay;
+    if (std::abs(dy) < 1e-12) {
+      if (std::abs(ay) > half) {
+        continue;
+      }
+    } else {
+      double ta = (-half - ay) / dy, tb = (half - ay) / dy;
+      if (ta > tb) {
+        std::swap(ta, tb);
+      }
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+      if (t0 > t1) {
+        continue;
+      }
+    }
+    for (const double t : {t0, t1}) {
+      const double x = ax + t * (bx - ax);
+      x_min = std::min(x_min, x);
+      x_max = std::max(x_max, x);
+    }
+  }
+  return x_min <= x_max;
+}
+
+// Appends to `near` (emptied first) every present entity of `view` whose reference point may lie
+// within `margin` metres of the rectangle [x0, x1] x [-half, half] of `frame`.
+void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0, double x1,
+                    double half, double margin, std::vector<uint32_t>& near) {
+  near.clear();
+  double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
+  double y_min = x_min, y_max = -x_min;
+  for (const double lx : {x0, x1}) {
+    for (const double ly : {-half, half}) {
+      const double wx = frame.x + lx * frame.c - ly * frame.s;
+      const double wy = frame.y + lx * frame.s + ly * frame.c;
+      x_min = std::min(x_min, wx);
+      x_max = std::max(x_max, wx);
+      y_min = std::min(y_min, wy);
+      y_max = std::max(y_max, wy);
+    }
+  }
+  view.near(x_min - margin, y_min - margin, x_max + margin, y_max + margin, near);
+}
+
+}  // namespace
+
+bool is_generated(const SimState& state, uint32_t index) {
+  return state.traffic.lifetimes.count(index) != 0;
+}
+
+Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view, double reach,
+                       std::vector<uint32_t>& near) {
+  const LocalFrame frame(me.state.pose);
+  const double front = me.info.box.center_x + 0.5 * me.info.box.length;
+  const double rear = me.info.box.center_x - 0.5 * me.info.box.length;
+  const double half = 0.5 * me.info.box.width + kSideMargin;
+  // A box reaching into the corridor has its reference point within max_reach of it.
+  near_rectangle(view, frame, rear, front + reach, half, view.max_reach() + kSlack, near);
+  Hazard hazard;
+  uint32_t chosen = std::numeric_limits<uint32_t>::max();
+  for (const uint32_t j : near) {
+    const FollowTarget& other = view.targets()[j];
+    if (j == index || !other.present) {
+      continue;
+    }
+    const double dx = other.x - me.state.pose.x;
+    const double dy = other.y - me.state.pose.y;
+    const double far = front + reach + other.length + 10.0;
+    if (dx * dx + dy * dy > far * far) {
+      continue;
+    }
+    double x_min = 0.0, x_max = 0.0;
+    if (!extent_in_band(frame, other.shape, half, x_min, x_max) || x_max < rear ||
+        x_min > front + reach) {
+      continue;
+    }
+    // Of equal gaps the lowest index, as a scan of the entities in order keeps.
+    const double gap = std::max(0.0, x_min - front);
+    if (gap < hazard.gap || (gap == hazard.gap && j < chosen)) {
+      chosen = j;
+      hazard.gap = gap;
+      hazard.speed = other.speed * std::cos(other.h - me.state.pose.h);
+    }
+  }
+  return hazard;
+}
+
+double keep_ahead_speed(const Entity& me, uint32_t index, const FollowView& view,
+                        std::vector<uint32_t>& near) {
+  const LocalFrame frame(me.state.pose);
+  const double rear = me.info.box.center_x - 0.5 * me.info.box.length;
+  const double half = 0.5 * me.info.box.width + kSideMargin;
+  near_rectangle(view, frame, rear - kBehindReach, rear, half, view.max_reach() + kSlack, near);
+  double needed = 0.0;
+  for (const uint32_t j : near) {
+    const FollowTarget& other = view.targets()[j];
+    if (j == index || !other.present || other.generated || !other.vehicle) {
+      continue;
+    }
+    const double along = std::cos(other.h - me.state.pose.h);
+    const double speed = other.speed * along;
+    if (along < 0.7 || speed <= me.state.speed) {
+      continue;  // not coming up behind us
+    }
+    double x_min = 0.0, x_max = 0.0;
+    if (!extent_in_band(frame, other.shape, half, x_min, x_max) || x_max > rear ||
+        rear - x_max > kBehindReach) {
+      continue;
+    }
+    needed = std::max(needed, speed + 0.5);
+  }
+  return needed;
+}
+
+SignalAspect signal_aspect(std::string_view state) {
+  std::string text;
+  for (const char ch : state) {
+    text += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  }
+  if (text.find("red") != std::string::npos || text.find("stop") != std::string::npos) {
+    return SignalAspect::kStop;
+  }
+  if (text.find("yellow") != std::string::npos || text.find("amber") != std::string::npos) {
+    return SignalAspect::kCaution;
+  }
+  // Bulb lists, red first: "on;off;off" red, "off;on;off" yellow, "on;on;off" red and yellow.
+  std::vector<std::string> bulbs;
+  size_t from = 0;
+  for (size_t at = 0; at <= text.size(); ++at) {
+    if (at == text.size() || text[at] == ';') {
+      bulbs.push_back(text.substr(from, at - from));
+      from = at + 1;
+    }
+  }
+  if (bulbs.size() >= 3) {
+    if (bulbs[0] == "on") {
+      return SignalAspect::kStop;
+    }
+    if (bulbs[1] == "on") {
+      return SignalAspect::kCaution;
+    }
+  }
+  return SignalAspect::kGo;
+}
+
+WalkerMove walker_move(const Entity& me, uint32_t index, const FollowView& view, double pace,
+                       std::vector<uint32_t>& near) {
+  const LocalFrame frame(me.state.pose);
+  WalkerMove move{0.0, pace};
+  bool oncoming = false;
+  bool slower_ahead = false;
+  bool beside_left = false;  // one going our way beside us: do not step into it
+  bool beside_right = false;
+  const double most = 0.5 * (view.max_length() + me.info.box.length);
+  near_rectangle(view, frame, -most - 0.3, kWalkerLook + most, kWalkerBand + 0.5, kSlack, near);
+  for (const uint32_t j : near) {
+    const FollowTarget& other = view.targets()[j];
+    if (j == index || !other.present) {
+      continue;
+    }
+    double x = 0.0, y = 0.0;
+    frame.to_local(other.x, other.y, x, y);
+    const double reach = 0.5 * (other.length + me.info.box.length);
+    if (x < -reach - 0.3 || x > kWalkerLook + reach || std::abs(y) > kWalkerBand + 0.5) {
+      continue;
+    }
+    const double along = std::cos(other.h - me.state.pose.h);
+    const double their_speed = other.speed * along;
+    if (along < -0.5) {
+      oncoming = oncoming || x > -reach;  // both keep right until they have passed
+    } else if (x > reach && their_speed < pace - 0.05) {
+      slower_ahead = true;  // pass it on the left
+    } else if (std::abs(x) <= reach + 0.3) {
+      (y > 0.0 ? beside_left : beside_right) = true;
+    }
+    // Too close in front to walk on: no faster than they go away from us.
+    if (x > 0.0 && x < kWalkerContact + reach && std::abs(y) < kWalkerAbreast) {
+      move.speed = std::min(move.speed, std::max(0.0, their_speed));
+    }
+  }
+  if (oncoming) {
+    move.lateral = -kWalkerStep;
+  } else if (slower_ahead) {
+    move.lateral = kWalkerStep;
+  }
+  // Never sideways into one walking beside us (the oncoming rule would send both right).
+  if (beside_right) {
+    move.lateral = std::max(move.lateral, me.lateral_command);
+  }
+  if (beside_left) {
+    move.lateral = std::min(move.lateral, me.lateral_command);
+  }
+  return move;
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,152 @@
+// Generated traffic never runs into anyone (controllers/npc_caution.h): NPCs start clear of
+// everyone, vehicles keep out of the scenario's vehicles' way and stop at red lights, walkers
+// pass each other.
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "controllers/npc_caution.h"
+#include "engine_fixture.h"
+
+namespace corsa::test {
+namespace {
+
+std::filesystem::path demo() {
+  return std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/demo/cut_in_city.xosc";
+}
+
+bool is_npc(const std::string& name) { return name.rfind("npc_", 0) == 0; }
+
+}  // namespace
+
+TEST_CASE("Over five seeds of the demo with NPCs no collision involves an NPC",
+          "[engine][npc][collisions]") {
+  // Before the NPCs took precautions: 15 such collisions over these seeds (walkers through
+  // each other, the cutting-in car and the oncoming truck into NPC cars ahead of them).
+  size_t npc_collisions = 0;
+  std::string which;
+  for (uint64_t seed = 0; seed < 5; ++seed) {
+    engine::SimulationOptions options;
+    options.seed = seed;
+    options.npc.vehicles = 6;
+    options.npc.pedestrians = 12;
+    FixtureRun run(demo(), options);
+    REQUIRE(run.sim().entity_count() == 3 + 6 + 12);
+    run.run();
+    for (const engine::CollisionRecord& c : run.sim().collisions()) {
+      const std::string a = run.sim().entity(c.first).name;
+      const std::string b = run.sim().entity(c.second).name;
+      if (is_npc(a) || is_npc(b)) {
+        ++npc_collisions;
+        which += "seed " + std::to_string(seed) + " at " + std::to_string(c.time) + " s: " + a +
+                 " and " + b + "\n";
+      }
+    }
+  }
+  INFO(which);
+  CHECK(npc_collisions == 0);
+}
+
+TEST_CASE("NPCs start clear of everyone and out of the path ahead of scenario vehicles",
+          "[engine][npc]") {
+  for (uint64_t seed = 0; seed < 5; ++seed) {
+    INFO("seed " << seed);
+    engine::SimulationOptions options;
+    options.seed = seed;
+    options.npc.vehicles = 12;
+    options.npc.pedestrians = 30;
+    FixtureRun run(demo(), options);
+    engine::Simulation& sim = run.sim();
+    for (size_t a = 0; a < sim.entity_count(); ++a) {
+      for (size_t b = a + 1; b < sim.entity_count(); ++b) {
+        INFO(sim.entity(a).name << " and " << sim.entity(b).name);
+        CHECK_FALSE(sim.colliding(a, b));
+      }
+    }
+    // No NPC vehicle within 60 m ahead of a scenario vehicle in its lane, going its way.
+    for (size_t s = 0; s < 3; ++s) {
+      const engine::EntityState& scenario = sim.state(s);
+      for (size_t n = 3; n < sim.entity_count(); ++n) {
+        const engine::EntityState& npc = sim.state(n);
+        if (sim.entity(n).kind != engine::ObjectKind::kVehicle || !scenario.road || !npc.road ||
+            npc.road->lane != scenario.road->lane) {
+          continue;
+        }
+        const double ahead = (npc.pose.x - scenario.pose.x) * std::cos(scenario.pose.h) +
+                             (npc.pose.y - scenario.pose.y) * std::sin(scenario.pose.h);
+        INFO(sim.entity(n).name << " " << ahead << " m ahead of " << sim.entity(s).name);
+        CHECK_FALSE((ahead > 0.0 && ahead < 60.0));
+      }
+    }
+  }
+}
+
+TEST_CASE("NPC vehicles stop at a red light and go on at green", "[engine][npc][signals]") {
+  engine::SimulationOptions options;
+  options.seed = 4;
+  options.npc.vehicles = 4;
+  FixtureRun run(engine_fixture("npc_signal.xosc"), options);
+  engine::Simulation& sim = run.sim();
+  // The NPCs driving toward +s that start before the light (s = 200 m).
+  std::vector<size_t> waiting;
+  for (size_t i = 1; i < sim.entity_count(); ++i) {
+    const auto& road = sim.state(i).road;
+    if (road && road->lane == -1 && road->s < 190.0) {
+      waiting.push_back(i);
+    }
+  }
+  REQUIRE(!waiting.empty());
+  while (sim.time() < 14.5) {
+    sim.step();
+    for (const size_t i : waiting) {
+      // The front (rear axle + 3.75 m of the car's box) stays behind the stop line.
+      REQUIRE(sim.state(i).road);
+      CHECK(sim.state(i).road->s + 3.75 < 200.0);
+    }
+  }
+  for (const size_t i : waiting) {
+    CHECK(sim.state(i).speed < 0.5);  // standing in the queue
+  }
+  run.run();
+  for (const size_t i : waiting) {
+    REQUIRE(sim.state(i).road);
+    CHECK(sim.state(i).road->s > 200.0);  // through once green
+  }
+  CHECK(sim.collisions().empty());
+}
+
+TEST_CASE("Generated walkers on a busy sidewalk pass each other without touching",
+          "[engine][npc]") {
+  for (uint64_t seed = 0; seed < 3; ++seed) {
+    INFO("seed " << seed);
+    engine::SimulationOptions options;
+    options.seed = seed;
+    options.npc.pedestrians = 40;
+    options.duration = 60.0;
+    FixtureRun run(engine_fixture("npc_signal.xosc"), options);
+    run.run();
+    for (const engine::CollisionRecord& c : run.sim().collisions()) {
+      INFO(run.sim().entity(c.first).name << " and " << run.sim().entity(c.second).name << " at "
+                                          << c.time);
+      CHECK(false);
+    }
+  }
+}
+
+TEST_CASE("Traffic light states are read as red, yellow or go", "[engine][npc][signals]") {
+  using engine::detail::signal_aspect;
+  using engine::detail::SignalAspect;
+  CHECK(signal_aspect("on;off;off") == SignalAspect::kStop);
+  CHECK(signal_aspect("on;on;off") == SignalAspect::kStop);
+  CHECK(signal_aspect("off;on;off") == SignalAspect::kCaution);
+  CHECK(signal_aspect("off;off;on") == SignalAspect::kGo);
+  CHECK(signal_aspect("Red") == SignalAspect::kStop);
+  CHECK(signal_aspect("stop") == SignalAspect::kStop);
+  CHECK(signal_aspect("amber") == SignalAspect::kCaution);
+  CHECK(signal_aspect("green") == SignalAspect::kGo);
+  CHECK(signal_aspect("flashing") == SignalAspect::kGo);
+}
+
+}  // namespace corsa::test
