@@ -157,7 +157,12 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
     // Only light far beyond white glares: lamps, bulbs and the sun, not a lit window.
     detail::bloom(linear, w, h, 16.0 / exposure.scale);
   }
-  detail::draw_precipitation(linear, ray_distances(records), w, h, model_.fx(), *settings.lighting,
+  // OpenSCENARIO's wind direction is where it blows to; the image's right is the optical x axis.
+  const Lighting& light = *settings.lighting;
+  const Vec3 wind{light.wind_speed * std::cos(light.wind_direction),
+                  light.wind_speed * std::sin(light.wind_direction), 0.0};
+  const double lateral_wind = dot(wind, world_from_cam.rotation.column(0));
+  detail::draw_precipitation(linear, ray_distances(records), w, h, model_.fx(), light, lateral_wind,
                              exposure.shutter_s, settings.frame_seed);
   out.rgb = detail::develop(linear, w, h, settings.rgb, exposure, settings.frame_seed);
   return out;

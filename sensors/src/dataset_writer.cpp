@@ -17,6 +17,7 @@
 #include "corsa/sensors/semantic.h"
 #include "corsa/sensors/writers.h"
 #include "dataset_folder.h"
+#include "kitti_export.h"
 
 namespace corsa::sensors {
 namespace {
@@ -37,6 +38,7 @@ Json environment_json(const engine::EnvironmentState& e) {
   Json out = {{"date", std::to_string(e.year) + "-" + std::to_string(e.month) + "-" +
                            std::to_string(e.day)},
               {"time_of_day", e.time_of_day},
+              {"utc_offset_hours", e.utc_offset_hours ? Json(*e.utc_offset_hours) : Json()},
               {"fog_visual_range", e.fog_visual_range},  // infinite (no fog): null
               {"precipitation", e.precipitation == engine::PrecipitationType::kRain   ? "rain"
                                 : e.precipitation == engine::PrecipitationType::kSnow ? "snow"
@@ -68,36 +70,6 @@ Json entity_json(const engine::EntitySnapshot& e) {
       {"visible", e.visible}};
 }
 
-// KITTI's calib file: P0..P3 (3x4), R0_rect (3x3), Tr_velo_to_cam and Tr_imu_to_velo (3x4).
-std::string kitti_calib(const CameraModel& camera, const Rigid& optical_from_lidar) {
-  auto row34 = [](const double m[3][4]) {
-    std::string out;
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 4; ++c) {
-        out += (r + c == 0 ? "" : " ") + format_double(m[r][c]);
-      }
-    }
-    return out;
-  };
-  const double p[3][4] = {{camera.fx(), 0.0, camera.cx(), 0.0},
-                          {0.0, camera.fy(), camera.cy(), 0.0},
-                          {0.0, 0.0, 1.0, 0.0}};
-  double tr[3][4];
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) {
-      tr[r][c] = optical_from_lidar.rotation.m[r][c];
-    }
-  }
-  tr[0][3] = optical_from_lidar.translation.x;
-  tr[1][3] = optical_from_lidar.translation.y;
-  tr[2][3] = optical_from_lidar.translation.z;
-  const double identity[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
-  const std::string pp = row34(p);
-  return "P0: " + pp + "\nP1: " + pp + "\nP2: " + pp + "\nP3: " + pp +
-         "\nR0_rect: 1 0 0 0 1 0 0 0 1\nTr_velo_to_cam: " + row34(tr) +
-         "\nTr_imu_to_velo: " + row34(identity) + "\n";
-}
-
 }  // namespace
 
 std::string frame_stem(int64_t frame) {
@@ -112,11 +84,12 @@ struct DatasetWriter::Pending {
   int64_t tick = 0;
   double time = 0.0;
   std::string pose_rows;  ///< the pose file's index row(s), after the sensor files
+  size_t overlap = 0;     ///< pairs of entities interpenetrating at this capture
   tbb::task_group tasks;
 };
 
 DatasetWriter::DatasetWriter(SensorSystem& system, fs::path directory, DatasetRunInfo info,
-                             DatasetFormat format, bool replace)
+                             DatasetFormat format, bool replace, KittiOptions kitti)
     : system_(system), directory_(std::move(directory)), info_(std::move(info)), format_(format) {
   std::error_code error;
   if (fs::exists(directory_, error) && !fs::is_directory(directory_, error)) {
@@ -126,10 +99,13 @@ DatasetWriter::DatasetWriter(SensorSystem& system, fs::path directory, DatasetRu
   lock_ = std::make_unique<OutputLock>(directory_);  // one writer per dataset folder
   remove_stale_temporaries(directory_, 2);
   detail::prepare_dataset_folder(directory_, replace);
+  if (format_ == DatasetFormat::kKitti) {
+    kitti_ = std::make_unique<detail::KittiExport>(system_, directory_ / "kitti", kitti);
+  }
   make_dir(directory_ / "poses");
   write_calibration(system_, directory_);
   write_file_atomic(directory_ / "classes.json", class_table_json());
-  index_ = "capture,tick,time,sensor,frame,file\n";
+  index_ = "capture,tick,time,sensor,frame,file,overlap\n";
   write_file_atomic(directory_ / "frames.csv", index_);
   write_run_json(nullptr);
 }
@@ -163,16 +139,24 @@ void DatasetWriter::capture(const engine::WorldSnapshot& world,
   for (const engine::EntitySnapshot& e : world.entities) {
     entities.push_back(entity_json(e));
   }
+  Json overlaps = Json::array();
+  for (const auto& [a, b] : world.overlaps) {
+    overlaps.push_back({a, b});
+  }
   const Json pose = {{"capture", captures_},
                      {"tick", world.tick},
                      {"time", world.time},
                      {"sensors", std::move(sensor_poses)},
                      {"entities", std::move(entities)},
+                     {"overlaps", std::move(overlaps)},
                      {"environment", environment_json(world.environment)}};
   const std::string pose_file = "poses/" + frame_stem(captures_) + ".json";
   write_file_atomic(directory_ / pose_file, json_document(pose));
+  // Captures where entities interpenetrate (a collision) are flagged on every row of the index.
+  batch->overlap = world.overlaps.size();
   batch->pose_rows = std::to_string(captures_) + "," + std::to_string(world.tick) + "," +
-                     num(world.time) + ",poses,," + pose_file + "\n";
+                     num(world.time) + ",poses,," + pose_file + "," +
+                     std::to_string(batch->overlap) + "\n";
   // One task per sensor: each writes only its own folder, so the encoders run side by side and
   // with the next capture's rendering. The KITTI export numbers its frames in capture order: one
   // task writes all of it.
@@ -183,12 +167,8 @@ void DatasetWriter::capture(const engine::WorldSnapshot& world,
       b.files[i] = write_sensor_frame(f, *system_.rig().find(f.sensor), directory_);
     });
   }
-  if (format_ == DatasetFormat::kKitti) {
-    b.tasks.run([this, &b] {
-      for (const SensorFrame& f : b.frames) {
-        write_kitti(f, *system_.rig().find(f.sensor));
-      }
-    });
+  if (kitti_) {
+    b.tasks.run([this, &b] { kitti_->write(b.frames); });
   }
   pending_ = std::move(batch);
 }
@@ -204,7 +184,8 @@ void DatasetWriter::complete_pending() {
     const SensorFrame& f = done->frames[i];
     for (const fs::path& file : done->files[i]) {
       rows += std::to_string(captures_) + "," + std::to_string(done->tick) + "," + num(done->time) +
-              "," + f.sensor + "," + std::to_string(f.frame) + "," + file.generic_string() + "\n";
+              "," + f.sensor + "," + std::to_string(f.frame) + "," + file.generic_string() + "," +
+              std::to_string(done->overlap) + "\n";
       ++rows_;
     }
   }
@@ -218,55 +199,16 @@ void DatasetWriter::complete_pending() {
   last_time_ = done->time;
 }
 
-void DatasetWriter::write_kitti(const SensorFrame& f, const SensorSpec& spec) {
-  // The KITTI layout has one camera (image_2) and one LiDAR (velodyne) per frame: the rig's
-  // first RGB camera defines the frames; the first LiDAR is written when captured at the same
-  // tick.
-  const SensorSpec* camera = nullptr;
-  const SensorSpec* lidar = nullptr;
-  for (const SensorSpec& s : system_.rig().sensors) {
-    if (camera == nullptr && s.kind == SensorKind::kRgbCamera) {
-      camera = &s;
-    }
-    if (lidar == nullptr && s.kind == SensorKind::kLidar) {
-      lidar = &s;
-    }
-  }
-  const fs::path kitti = directory_ / "kitti";
-  if (camera != nullptr && spec.name == camera->name) {
-    const std::string stem = frame_stem(kitti_frames_);
-    make_dir(kitti / "image_2");
-    make_dir(kitti / "label_2");
-    make_dir(kitti / "calib");
-    write_png_rgb8(kitti / "image_2" / (stem + ".png"), f.camera.width, f.camera.height,
-                   f.camera.rgb);
-    write_file_atomic(kitti / "label_2" / (stem + ".txt"), kitti_labels(f.labels));
-    Rigid optical_from_lidar;
-    if (lidar != nullptr) {
-      // Both mounts are on entities; KITTI's Tr_velo_to_cam needs them in one frame: the
-      // camera's world pose at this capture and the LiDAR's mount on its own entity are
-      // combined through the LiDAR mount relative to the camera mount (same entity in practice).
-      const Rigid world_from_optical = f.world_from_sensor * optical_in_body();
-      const Rigid world_from_lidar = f.world_from_sensor *
-                                     entity_from_sensor(spec.mount).inverse() *
-                                     entity_from_sensor(lidar->mount);
-      optical_from_lidar = world_from_optical.inverse() * world_from_lidar;
-    }
-    write_file_atomic(kitti / "calib" / (stem + ".txt"),
-                      kitti_calib(*system_.camera_model(camera->name), optical_from_lidar));
-    ++kitti_frames_;
-  } else if (lidar != nullptr && spec.name == lidar->name && kitti_frames_ > 0) {
-    // The LiDAR of the same tick comes after the camera in rig order only when listed after it;
-    // either way it belongs to the latest camera frame.
-    make_dir(kitti / "velodyne");
-    write_kitti_bin(kitti / "velodyne" / (frame_stem(kitti_frames_ - 1) + ".bin"), f.cloud);
-  }
-}
-
 void DatasetWriter::finish(const DatasetEnd& end) {
   complete_pending();
+  if (kitti_) {
+    kitti_->finish();
+  }
   write_run_json(&end);
 }
+
+int64_t DatasetWriter::kitti_frames() const { return kitti_ ? kitti_->frames() : 0; }
+int64_t DatasetWriter::kitti_skipped() const { return kitti_ ? kitti_->skipped() : 0; }
 
 void DatasetWriter::write_run_json(const DatasetEnd* end) const {
   Json parameters = Json::object();
@@ -298,6 +240,10 @@ void DatasetWriter::write_run_json(const DatasetEnd* end) const {
       {"files", rows_},
       {"last_capture_tick", last_tick_},
       {"last_capture_time", last_time_}};
+  if (kitti_) {
+    run["kitti_frames"] = kitti_->frames();
+    run["kitti_frames_without_lidar"] = kitti_->skipped();
+  }
   if (end != nullptr) {
     run["end_reason"] = end->end_reason;
     run["end_tick"] = end->tick;

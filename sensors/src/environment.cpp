@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "corsa/core/det_math.h"
 #include "corsa/sensors/solar.h"
 
 namespace corsa::sensors {
@@ -92,8 +93,34 @@ double fog_extinction(double visual_range_m) {
   return std::log(50.0) / visual_range_m;
 }
 
+namespace {
+
+// pi N0 / Lambda^3 for an exponential size distribution N0 e^(-Lambda D) of particles much larger
+// than the wavelength (extinction efficiency 2), in 1/m from N0 in 1/(m^3 mm) and Lambda in 1/mm.
+// corsa::det, so that the LiDAR's draws see the same bits everywhere.
+double exponential_extinction(double n0, double lambda) {
+  const double n0_m = n0 * 1e3;          // 1/m^4
+  const double lambda_m = lambda * 1e3;  // 1/m
+  return std::numbers::pi * n0_m / (lambda_m * lambda_m * lambda_m);
+}
+
+double power(double x, double p) { return det::exp(p * det::log(x)); }
+
+}  // namespace
+
 double rain_extinction(double intensity_mm_per_h) {
-  return intensity_mm_per_h > 0.0 ? 2e-4 * std::pow(intensity_mm_per_h, 0.6) : 0.0;
+  if (!(intensity_mm_per_h > 0.0)) {
+    return 0.0;
+  }
+  return exponential_extinction(8000.0, 4.1 * power(intensity_mm_per_h, -0.21));
+}
+
+double snow_extinction(double intensity_mm_per_h) {
+  if (!(intensity_mm_per_h > 0.0)) {
+    return 0.0;
+  }
+  return exponential_extinction(3800.0 * power(intensity_mm_per_h, -0.87),
+                                2.55 * power(intensity_mm_per_h, -0.48));
 }
 
 Color Lighting::sky(Vec3 d) const {
@@ -139,8 +166,7 @@ Lighting compute_lighting(const engine::EnvironmentState& env, const GeoLocation
   l.rain_intensity = rain ? env.precipitation_intensity : 0.0;
   l.rain_extinction = rain_extinction(l.rain_intensity);
   l.snow_intensity = snow ? env.precipitation_intensity : 0.0;
-  // Snow hides more than rain of the same water: about 1 km of visual range at 1 mm/h.
-  l.snow_extinction = snow ? 3.912e-3 * std::pow(env.precipitation_intensity, 0.8) : 0.0;
+  l.snow_extinction = snow_extinction(l.snow_intensity);
   // Clear-air turbidity (Preetham's T): a clear day, hazier in mist.
   const double turbidity =
       2.6 + std::min(4.0, std::isinf(env.fog_visual_range) ? 0.0 : 3000.0 / env.fog_visual_range);
@@ -199,7 +225,7 @@ Lighting compute_lighting(const engine::EnvironmentState& env, const GeoLocation
     horizon = horizon + sky.radiance({std::cos(a) * 0.9986, std::sin(a) * 0.9986, 0.0523}) * 0.125;
   }
   const Color deep = (l.ambient + l.sky_light({0.0, 0.0, -1.0})) * 0.5 + l.sun * 0.15;
-  l.fog_color = mix(horizon, deep, smoothstep(0.0005, 0.01, l.extinction() + l.snow_extinction));
+  l.fog_color = mix(horizon, deep, smoothstep(0.0005, 0.01, l.extinction()));
 
   const double global = luminance(l.ambient) + luminance(l.sun) * sin_el;
   // Street lamps switch on below ~50 lux (photocells), fully by ~5 lux.

@@ -44,7 +44,7 @@ Box3 transform_box(const Rigid& t, const Box3& b) {
 }
 
 /// Projection of a box (optical frame) clipped to the near plane; false if wholly behind.
-bool project_box(const CameraModel& camera, const Box3& box, Box2& out) {
+bool project_box_into(const CameraModel& camera, const Box3& box, Box2& out) {
   const auto c = box.corners();
   std::vector<Vec3> points;
   for (const Vec3& p : c) {
@@ -153,6 +153,14 @@ double kitti_rotation_y(const Box3& box) {
   return std::atan2(-forward.z, forward.x);
 }
 
+std::optional<Box2> projected_box(const CameraModel& camera, const Box3& box) {
+  Box2 out;
+  if (!project_box_into(camera, box, out)) {
+    return std::nullopt;
+  }
+  return out;
+}
+
 Box3 entity_box(const engine::EntitySnapshot& e) {
   const Rigid pose = rigid_from_pose(e.pose.x, e.pose.y, e.pose.z, e.pose.h, e.pose.p, e.pose.r);
   Box3 b;
@@ -194,7 +202,7 @@ std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer&
         static_cast<double>(it->second.x_min), static_cast<double>(it->second.y_min),
         static_cast<double>(it->second.x_max), static_cast<double>(it->second.y_max)};
     Box2 full;
-    if (!project_box(camera, l.box_sensor, full)) {
+    if (!project_box_into(camera, l.box_sensor, full)) {
       continue;
     }
     Box2 clipped{std::max(full.x_min, -0.5), std::max(full.y_min, -0.5),

@@ -10,6 +10,7 @@
 
 #include "lidar_random.h"
 #include "lidar_scan.h"
+#include "lidar_weather.h"
 
 namespace corsa::sensors {
 namespace {
@@ -125,11 +126,65 @@ double LidarSimulator::azimuth(int step) const {
   return (-0.5 * h + h * (step + 0.5) / steps_) * kDeg;
 }
 
+double LidarSimulator::step_time(int step) const {
+  // Counter-clockwise from behind; the forward beam (azimuth 0) fires at the capture time.
+  return azimuth(step) / (2.0 * std::numbers::pi * options_.rotation_frequency_hz);
+}
+
+std::shared_ptr<const detail::LidarWeatherModel> LidarSimulator::weather_model(
+    const LidarWeather& w) const {
+  if (!w.any()) {
+    return nullptr;
+  }
+  const std::lock_guard lock(weather_mutex_);
+  const auto same = [&w](const LidarWeather& v) {
+    return v.fog_extinction == w.fog_extinction && v.rain_rate == w.rain_rate &&
+           v.snow_rate == w.snow_rate;
+  };
+  if (!weather_cache_ || !same(weather_cache_->weather())) {
+    weather_cache_ = std::make_shared<const detail::LidarWeatherModel>(w, options_.range_m);
+  }
+  return weather_cache_;
+}
+
 PointCloud LidarSimulator::scan(const Scene& scene, const Rigid& world_from_sensor,
-                                double weather_extinction, uint64_t frame_seed,
+                                double fog_extinction, uint64_t frame_seed,
                                 const std::optional<Box3>& carrier) const {
+  LidarScanInput input;
+  input.world_from_sensor = world_from_sensor;
+  input.weather.fog_extinction = fog_extinction;
+  input.frame_seed = frame_seed;
+  input.carrier = carrier;
+  return scan(scene, input);
+}
+
+namespace {
+
+/// Sensor pose at time t (s from the capture) under the carrier's motion: turned by yaw_rate t
+/// about the up axis through the pivot and moved by velocity t.
+Rigid pose_at(const Rigid& at_capture, const SensorMotion& m, double t) {
+  const double c = std::cos(m.yaw_rate * t);
+  const double s = std::sin(m.yaw_rate * t);
+  Mat3 turn;
+  turn.m[0][0] = c;
+  turn.m[0][1] = -s;
+  turn.m[1][0] = s;
+  turn.m[1][1] = c;
+  turn.m[2][2] = 1.0;
+  Rigid out;
+  out.rotation = turn * at_capture.rotation;
+  out.translation = m.pivot + m.velocity * t + turn * (at_capture.translation - m.pivot);
+  return out;
+}
+
+}  // namespace
+
+PointCloud LidarSimulator::scan(const Scene& scene, const LidarScanInput& input) const {
+  const Rigid& world_from_sensor = input.world_from_sensor;
   detail::LidarScanContext c;
   c.scene = &scene.data();
+  const bool moving_world = input.scene_motion_span > 0.0 && c.scene->moving_top != nullptr;
+  c.top = moving_world ? c.scene->moving_top : c.scene->top;
   c.options = &options_;
   c.packet_directions = packet_directions_.data();
   c.rays = static_cast<uint64_t>(steps_) * static_cast<uint64_t>(options_.channels);
@@ -141,11 +196,59 @@ PointCloud LidarSimulator::scan(const Scene& scene, const Rigid& world_from_sens
   }
   c.origin = scene.data().to_local(world_from_sensor.translation);
   c.range = static_cast<float>(options_.range_m);
-  c.weather = weather_extinction;
-  c.frame_key = detail::BeamRandom::frame_key(frame_seed);
-  c.carrier = detail::CarrierExit(carrier, world_from_sensor.translation);
+  const std::shared_ptr<const detail::LidarWeatherModel> weather = weather_model(input.weather);
+  c.weather_model = weather.get();
+  c.weather = weather ? weather->extinction() : 0.0;
+  c.self_instance = options_.keep_self_returns ? 0 : input.carrier_instance;
+  c.frame_key = detail::BeamRandom::frame_key(input.frame_seed);
+  c.carrier = detail::CarrierExit(input.carrier, world_from_sensor.translation);
   for (int k = 0; k < kSemanticClassCount; ++k) {
     c.reflectivity[k] = lidar_reflectivity(static_cast<SemanticClass>(k));
+  }
+  // The sweep: per azimuth step its time, and when anything moves, the sensor's pose then.
+  const SensorMotion& m = input.motion;
+  const bool moving_sensor = norm(m.velocity) > 0.0 || m.yaw_rate != 0.0;
+  c.step_times.resize(static_cast<size_t>(steps_));
+  if (moving_sensor || moving_world) {
+    c.step_poses.resize(detail::LidarScanContext::kPoseFloats * static_cast<size_t>(steps_));
+  }
+  if (moving_sensor && options_.deskew) {
+    c.step_deskew.resize(12 * static_cast<size_t>(steps_));
+  }
+  const Mat3 to_capture = world_from_sensor.rotation.transposed();
+  for (int a = 0; a < steps_; ++a) {
+    const double t = step_time(a);
+    c.step_times[static_cast<size_t>(a)] = static_cast<float>(t);
+    if (c.step_poses.empty()) {
+      continue;
+    }
+    const Rigid pose = moving_sensor ? pose_at(world_from_sensor, m, t) : world_from_sensor;
+    float* out = c.step_poses.data() + detail::LidarScanContext::kPoseFloats * a;
+    for (int r = 0; r < 3; ++r) {
+      for (int k = 0; k < 3; ++k) {
+        out[3 * r + k] = static_cast<float>(pose.rotation.m[r][k]);
+      }
+    }
+    const Vec3 origin = scene.data().to_local(pose.translation);
+    out[9] = static_cast<float>(origin.x);
+    out[10] = static_cast<float>(origin.y);
+    out[11] = static_cast<float>(origin.z);
+    out[12] = moving_world
+                  ? static_cast<float>(std::clamp(0.5 + t / input.scene_motion_span, 0.0, 1.0))
+                  : 0.0f;
+    if (!c.step_deskew.empty()) {
+      const Mat3 rotation = to_capture * pose.rotation;
+      const Vec3 shift = to_capture * (pose.translation - world_from_sensor.translation);
+      float* d = c.step_deskew.data() + 12 * static_cast<size_t>(a);
+      for (int r = 0; r < 3; ++r) {
+        for (int k = 0; k < 3; ++k) {
+          d[3 * r + k] = static_cast<float>(rotation.m[r][k]);
+        }
+      }
+      d[9] = static_cast<float>(shift.x);
+      d[10] = static_cast<float>(shift.y);
+      d[11] = static_cast<float>(shift.z);
+    }
   }
 
   // Blocks are traced in parallel, each into one of a few small (cache-sized) slots, and

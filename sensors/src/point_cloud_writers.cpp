@@ -18,9 +18,9 @@ void put(std::string& out, T value) {
   out.append(bytes, sizeof(T));
 }
 
-/// x y z intensity ring semantic instance, 23 bytes per point, packed.
+/// x y z intensity ring label instance time, 27 bytes per point, packed.
 void append_points(std::string& out, const PointCloud& cloud) {
-  out.reserve(out.size() + cloud.points.size() * 23);
+  out.reserve(out.size() + cloud.points.size() * 27);
   for (const auto& p : cloud.points) {
     put(out, p.x);
     put(out, p.y);
@@ -29,6 +29,7 @@ void append_points(std::string& out, const PointCloud& cloud) {
     put(out, p.ring);
     put(out, static_cast<uint8_t>(p.semantic));
     put(out, p.instance_id);
+    put(out, p.time);
   }
 }
 
@@ -40,7 +41,8 @@ void write_ply(const std::filesystem::path& path, const PointCloud& cloud) {
       "(x forward, y left, z up), metres\nelement vertex " +
       std::to_string(cloud.points.size()) +
       "\nproperty float x\nproperty float y\nproperty float z\nproperty float intensity\n"
-      "property ushort ring\nproperty uchar semantic\nproperty uint instance\nend_header\n";
+      "property ushort ring\nproperty uchar label\nproperty uint instance\nproperty float time\n"
+      "end_header\n";
   append_points(out, cloud);
   write_file_atomic(path, out, true);
 }
@@ -49,8 +51,8 @@ void write_pcd(const std::filesystem::path& path, const PointCloud& cloud) {
   const std::string n = std::to_string(cloud.points.size());
   std::string out =
       "# .PCD v0.7 - corsa LiDAR scan, sensor body frame (x forward, y left, z up), metres\n"
-      "VERSION 0.7\nFIELDS x y z intensity ring label instance\nSIZE 4 4 4 4 2 1 4\n"
-      "TYPE F F F F U U U\nCOUNT 1 1 1 1 1 1 1\nWIDTH " +
+      "VERSION 0.7\nFIELDS x y z intensity ring label instance time\nSIZE 4 4 4 4 2 1 4 4\n"
+      "TYPE F F F F U U U F\nCOUNT 1 1 1 1 1 1 1 1\nWIDTH " +
       n + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + n + "\nDATA binary\n";
   append_points(out, cloud);
   write_file_atomic(path, out, true);

@@ -41,13 +41,14 @@ struct Canvas {
   }
 };
 
-void rain(Canvas& canvas, double fx, const Lighting& l, double exposure_s, RandomStream& rng) {
+void rain(Canvas& canvas, double fx, const Lighting& l, double lateral_wind, double exposure_s,
+          RandomStream& rng) {
   const int w = canvas.width;
   const int h = canvas.height;
   const auto count =
       static_cast<int>(std::min(25.0, l.rain_intensity) * static_cast<double>(w) * h / 30000.0);
   const double streak_time = std::max(exposure_s, 0.004);
-  const double wind = std::atan(l.wind_speed / 6.5) * std::sin(l.wind_direction);
+  const double wind = std::atan(lateral_wind / 6.5);
   const Color light = l.ambient * 1.2 + l.fog_color * 0.3;
   for (int i = 0; i < count; ++i) {
     // Uniform in the volume of the view: distances grow as the cube root.
@@ -67,7 +68,8 @@ void rain(Canvas& canvas, double fx, const Lighting& l, double exposure_s, Rando
   }
 }
 
-void snow(Canvas& canvas, double fx, const Lighting& l, double exposure_s, RandomStream& rng) {
+void snow(Canvas& canvas, double fx, const Lighting& l, double lateral_wind, double exposure_s,
+          RandomStream& rng) {
   const int w = canvas.width;
   const int h = canvas.height;
   const auto count =
@@ -79,7 +81,7 @@ void snow(Canvas& canvas, double fx, const Lighting& l, double exposure_s, Rando
     const double y0 = rng.uniform(0.0, h);
     const double radius = std::max(0.6, 0.003 * fx / z);  // 6 mm flakes
     const double fall = std::max(1.0 * exposure_s * fx / z, 0.0);
-    const double drift = l.wind_speed * std::sin(l.wind_direction) * exposure_s * fx / z;
+    const double drift = lateral_wind * exposure_s * fx / z;
     const int steps = static_cast<int>(std::ceil(std::hypot(fall, drift))) + 1;
     const double alpha = std::clamp(1.5 / z, 0.2, 0.85) / steps;
     const int reach = static_cast<int>(std::ceil(radius + 1.0));
@@ -100,18 +102,18 @@ void snow(Canvas& canvas, double fx, const Lighting& l, double exposure_s, Rando
 }  // namespace
 
 void draw_precipitation(std::vector<float>& linear, const std::vector<float>& depth, int width,
-                        int height, double fx, const Lighting& lighting, double exposure_s,
-                        uint64_t frame_seed) {
+                        int height, double fx, const Lighting& lighting, double lateral_wind,
+                        double exposure_s, uint64_t frame_seed) {
   if (lighting.rain_intensity <= 0.0 && lighting.snow_intensity <= 0.0) {
     return;
   }
   Canvas canvas{linear, depth, width, height};
   RandomStream rng(block_seed(frame_seed ^ 0x7261696eULL, 0));
   if (lighting.rain_intensity > 0.0) {
-    rain(canvas, fx, lighting, exposure_s, rng);
+    rain(canvas, fx, lighting, lateral_wind, exposure_s, rng);
   }
   if (lighting.snow_intensity > 0.0) {
-    snow(canvas, fx, lighting, exposure_s, rng);
+    snow(canvas, fx, lighting, lateral_wind, exposure_s, rng);
   }
 }
 

@@ -33,7 +33,7 @@ std::vector<Shot> shots_of(const std::string& index, const std::string& sensor) 
   std::getline(in, line);  // header
   while (std::getline(in, line)) {
     const std::vector<std::string_view> f = split(line, ',');
-    if (f.size() != 6 || f[3] != sensor) {
+    if (f.size() < 6 || f[3] != sensor) {
       continue;
     }
     const std::string file(f[5]);
@@ -136,8 +136,8 @@ double frame_rate(const std::vector<Shot>& shots) {
 
 }  // namespace
 
-PreviewReport write_preview(const fs::path& dataset, const SensorRig& rig,
-                            Diagnostics& diagnostics) {
+PreviewReport write_preview(const fs::path& dataset, const SensorRig& rig, Diagnostics& diagnostics,
+                            const PreviewProgress& progress) {
   PreviewReport report;
   const SensorSpec* camera = nullptr;
   const SensorSpec* birds_eye = nullptr;
@@ -194,6 +194,9 @@ PreviewReport write_preview(const fs::path& dataset, const SensorRig& rig,
       }
       writer.write(frame);
       ++report.frames;
+      if (progress) {
+        progress(report.frames, static_cast<int>(shots.size()));
+      }
     }
     writer.release();
     fs::rename(temporary, report.video, error);

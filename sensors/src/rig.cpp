@@ -105,6 +105,8 @@ LidarOptions read_lidar(const ValidatedElement& e, const std::string& file) {
   l.dropoff_intensity_limit = number(e, "dropoffIntensityLimit");
   l.dropoff_zero_intensity = number(e, "dropoffZeroIntensity");
   l.atmosphere_attenuation_rate = number(e, "atmosphereAttenuationRate");
+  l.keep_self_returns = *e.find("selfReturns") == "keep";
+  l.deskew = boolean(e, "deskew");
   if (l.lower_fov_deg > l.upper_fov_deg) {
     throw InputError(make_error(file, e.line,
                                 "<Lidar> lowerFov (" + format_double(l.lower_fov_deg) +
@@ -271,11 +273,12 @@ void bind_rig(const SensorRig& rig, std::span<const std::string> entity_names) {
       for (const auto& name : entity_names) {
         known += (known.empty() ? "" : ", ") + name;
       }
-      throw InputError(make_error(rig.file, s.line,
-                                  "sensor '" + s.name + "' is attached to entity '" + s.entity +
-                                      "', which the scenario does not have (entities: " +
-                                      (known.empty() ? std::string("none") : known) + ")",
-                                  "SensorRig/" + std::string(sensor_kind_name(s.kind))));
+      throw InputError(make_error(
+          rig.file, s.line,
+          "sensor '" + s.name + "' is attached to entity '" + s.entity +
+              "', which the scenario does not have" + did_you_mean(s.entity, entity_names) +
+              " (entities: " + (known.empty() ? std::string("none") : known) + ")",
+          "SensorRig/" + std::string(sensor_kind_name(s.kind))));
     }
   }
 }

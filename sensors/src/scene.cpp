@@ -18,6 +18,12 @@ SceneData::~SceneData() {
   for (RTCGeometry g : instance_pool) {
     rtcReleaseGeometry(g);
   }
+  for (RTCGeometry g : moving_pool) {
+    rtcReleaseGeometry(g);
+  }
+  if (moving_top != nullptr) {
+    rtcReleaseScene(moving_top);
+  }
   if (top != nullptr) {
     rtcReleaseScene(top);
   }
@@ -396,7 +402,7 @@ void Scene::commit() {
   data_->committed = true;
   // The top level changes with the static scene's bounds: rebuild it with the current entities.
   std::vector<engine::EntitySnapshot> current = data_->entities;
-  set_entities(current);
+  set_entities(current, data_->motion_span);
   check_device(data_->device, "static scene commit");
 }
 

@@ -84,6 +84,12 @@ struct SceneData {
   RTCScene top = nullptr;
   std::vector<StaticGeometry> static_geometries;  ///< by geomID in static_scene
   std::vector<RTCGeometry> instance_pool;         ///< top-level instances, geomID = index + 1
+  /// The same entities moving over an interval (Scene::set_entities with a motion span): two
+  /// time steps each, Embree ray time 0 and 1 at the interval's ends; geomIDs as in `top`. Only
+  /// the LiDAR traces it (a rolling shutter); null until a motion span is first given.
+  RTCScene moving_top = nullptr;
+  std::vector<RTCGeometry> moving_pool;
+  double motion_span = 0.0;  ///< s, of the last set_entities
   std::vector<EntityInstance> instances;          ///< this frame's, by pool index
   std::vector<engine::EntitySnapshot> entities;   ///< this frame's snapshot entities
   std::map<uint32_t, std::unique_ptr<EntityShape>> shapes;  ///< by entity instance id

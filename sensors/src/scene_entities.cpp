@@ -140,13 +140,73 @@ void make_shape(Scene& scene, detail::SceneData& d, const engine::EntitySnapshot
 
 }  // namespace
 
-void Scene::set_entities(std::span<const engine::EntitySnapshot> entities) {
+namespace {
+
+/// Column-major 3x4 instance transform of entity `e` at `t` seconds from the snapshot (its pose
+/// moved on with its velocity and yaw rate): the rotation's columns, then the translation.
+void instance_transform(const engine::EntitySnapshot& e, double t, const detail::SceneData& d,
+                        float xfm[12]) {
+  const Rigid pose = rigid_from_pose(e.pose.x + e.vx * t, e.pose.y + e.vy * t, e.pose.z + e.vz * t,
+                                     e.pose.h + e.yaw_rate * t, e.pose.p, e.pose.r);
+  const Vec3 origin = d.to_local(pose.translation);
+  for (int c = 0; c < 3; ++c) {
+    for (int r = 0; r < 3; ++r) {
+      xfm[3 * c + r] = static_cast<float>(pose.rotation.m[r][c]);
+    }
+  }
+  xfm[9] = static_cast<float>(origin.x);
+  xfm[10] = static_cast<float>(origin.y);
+  xfm[11] = static_cast<float>(origin.z);
+}
+
+/// The top-level scene of moving entities, with the static scene at geomID 0 as in `top`.
+RTCScene make_moving_top(detail::SceneData& d) {
+  RTCScene top = rtcNewScene(d.device);
+  rtcSetSceneBuildQuality(top, RTC_BUILD_QUALITY_LOW);
+  RTCGeometry inst = rtcNewGeometry(d.device, RTC_GEOMETRY_TYPE_INSTANCE);
+  rtcSetGeometryInstancedScene(inst, d.static_scene);
+  const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+  rtcCommitGeometry(inst);
+  rtcAttachGeometryByID(top, inst, 0);
+  rtcReleaseGeometry(inst);
+  return top;
+}
+
+/// The instance of entity slot `used` in the moving top level: the same shape, its pose at
+/// both ends of the motion interval.
+void place_moving(detail::SceneData& d, size_t used, RTCScene shape,
+                  const engine::EntitySnapshot& e) {
+  if (used == d.moving_pool.size()) {
+    RTCGeometry m = rtcNewGeometry(d.device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryTimeStepCount(m, 2);
+    rtcAttachGeometryByID(d.moving_top, m, static_cast<unsigned>(used + 1));
+    d.moving_pool.push_back(m);
+  }
+  RTCGeometry m = d.moving_pool[used];
+  rtcSetGeometryInstancedScene(m, shape);
+  float xfm[12];
+  for (unsigned step = 0; step < 2; ++step) {
+    instance_transform(e, (step == 0 ? -0.5 : 0.5) * d.motion_span, d, xfm);
+    rtcSetGeometryTransform(m, step, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
+  }
+  rtcEnableGeometry(m);
+  rtcCommitGeometry(m);
+}
+
+}  // namespace
+
+void Scene::set_entities(std::span<const engine::EntitySnapshot> entities, double motion_span) {
   detail::SceneData& d = *data_;
   if (!d.committed) {
     throw std::logic_error("Scene::set_entities before Scene::commit");
   }
   d.entities.assign(entities.begin(), entities.end());
   d.instances.clear();
+  d.motion_span = motion_span > 0.0 ? motion_span : 0.0;
+  if (d.motion_span > 0.0 && d.moving_top == nullptr) {
+    d.moving_top = make_moving_top(d);
+  }
   size_t used = 0;
   std::vector<Rigid> bones;
   for (size_t i = 0; i < d.entities.size(); ++i) {
@@ -180,19 +240,14 @@ void Scene::set_entities(std::span<const engine::EntitySnapshot> entities) {
     RTCGeometry g = d.instance_pool[used];
     rtcSetGeometryInstancedScene(g, shape.scene);
     const Rigid pose = rigid_from_pose(e.pose.x, e.pose.y, e.pose.z, e.pose.h, e.pose.p, e.pose.r);
-    const Vec3 origin = d.to_local(pose.translation);
-    float xfm[12];  // column-major 3x4: the rotation's columns, then the translation
-    for (int c = 0; c < 3; ++c) {
-      for (int r = 0; r < 3; ++r) {
-        xfm[3 * c + r] = static_cast<float>(pose.rotation.m[r][c]);
-      }
-    }
-    xfm[9] = static_cast<float>(origin.x);
-    xfm[10] = static_cast<float>(origin.y);
-    xfm[11] = static_cast<float>(origin.z);
+    float xfm[12];
+    instance_transform(e, 0.0, d, xfm);
     rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
     rtcEnableGeometry(g);
     rtcCommitGeometry(g);
+    if (d.motion_span > 0.0) {
+      place_moving(d, used, shape.scene, e);
+    }
     detail::EntityInstance inst;
     inst.semantic = semantic_class_of_entity(e.category);
     inst.instance_id = e.instance_id;
@@ -210,6 +265,13 @@ void Scene::set_entities(std::span<const engine::EntitySnapshot> entities) {
     rtcCommitGeometry(d.instance_pool[i]);
   }
   rtcCommitScene(d.top);
+  if (d.motion_span > 0.0) {
+    for (size_t i = used; i < d.moving_pool.size(); ++i) {
+      rtcDisableGeometry(d.moving_pool[i]);
+      rtcCommitGeometry(d.moving_pool[i]);
+    }
+    rtcCommitScene(d.moving_top);
+  }
   if (rtcGetDeviceError(d.device) != RTC_ERROR_NONE) {
     throw std::runtime_error("Embree error while placing the entities");
   }

@@ -13,7 +13,7 @@ struct ClassInfo {
 };
 
 // CARLA 0.9.14 CityObjectLabel order and colours (Cityscapes palette), then Corsa's own; KITTI
-// types as its object benchmark names them (trucks and buses "Truck", two-wheelers "Cyclist",
+// types as its object benchmark names them (trucks and buses "Truck", riders and two-wheelers "Cyclist",
 // trains "Tram", everything else "Misc").
 constexpr std::array<ClassInfo, kSemanticClassCount> kClasses = {{
     {"unlabeled", {0, 0, 0}},
@@ -29,7 +29,7 @@ constexpr std::array<ClassInfo, kSemanticClassCount> kClasses = {{
     {"terrain", {152, 251, 152}},
     {"sky", {70, 130, 180}},
     {"person", {220, 20, 60}, "Pedestrian"},
-    {"rider", {255, 0, 0}},
+    {"rider", {255, 0, 0}, "Cyclist"},
     {"car", {0, 0, 142}, "Car"},
     {"truck", {0, 0, 70}, "Truck"},
     {"bus", {0, 60, 100}, "Truck"},

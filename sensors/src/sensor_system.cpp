@@ -2,6 +2,7 @@
 
 #include <tbb/task_group.h>
 
+#include <algorithm>
 #include <numbers>
 
 #include "corsa/core/diagnostic.h"
@@ -38,7 +39,7 @@ struct CameraGroup {
 void render_camera_group(const Scene& scene, const CameraRenderer& renderer,
                          const std::vector<const SensorSpec*>& members,
                          const engine::EntitySnapshot& carrier, const RenderSettings& settings,
-                         const std::vector<SensorFrame*>& outputs) {
+                         const std::vector<SensorFrame*>& outputs, bool rgb_instances) {
   CameraMotion motion;
   motion.world_from_body = outputs.front()->world_from_sensor;
   motion.velocity = {carrier.vx, carrier.vy, carrier.vz};
@@ -49,6 +50,8 @@ void render_camera_group(const Scene& scene, const CameraRenderer& renderer,
       camera_labels(scene, renderer, motion.world_from_body, images.instance, carrier.instance_id);
   const auto static_labels =
       static_object_labels(scene, images.instance, images.width, images.semantic);
+  // Copied before an instance camera of the group takes the buffer.
+  const std::vector<uint32_t> rgb_ids = rgb_instances ? images.instance : std::vector<uint32_t>{};
   for (size_t i = 0; i < members.size(); ++i) {
     const SensorSpec& m = *members[i];
     SensorFrame& f = *outputs[i];
@@ -65,6 +68,9 @@ void render_camera_group(const Scene& scene, const CameraRenderer& renderer,
     auto take = [last](auto& image) { return last ? std::move(image) : image; };
     if (m.kind == SensorKind::kRgbCamera) {
       f.camera.rgb = take(images.rgb);
+      if (rgb_instances) {
+        f.camera.instance = rgb_ids;
+      }
     } else if (m.kind == SensorKind::kDepthCamera) {
       f.camera.depth = take(images.depth);
       for (float& z : f.camera.depth) {
@@ -119,10 +125,9 @@ const CameraModel* SensorSystem::camera_model(const std::string& sensor) const {
 
 std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& world,
                                                std::span<const std::string> sensors) {
-  scene_.set_entities(world.entities);
-  scene_.set_signals(world.signals);
   const Lighting lighting = compute_lighting(world.environment, options_.location);
   std::vector<const SensorSpec*> due;
+  double sweep = 0.0;  // s, the longest LiDAR revolution due: the entities move over it
   for (const auto& s : rig_.sensors) {
     bool wanted = sensors.empty();
     for (const auto& name : sensors) {
@@ -130,8 +135,13 @@ std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& worl
     }
     if (wanted) {
       due.push_back(&s);
+      if (s.kind == SensorKind::kLidar) {
+        sweep = std::max(sweep, 1.0 / s.lidar.rotation_frequency_hz);
+      }
     }
   }
+  scene_.set_entities(world.entities, sweep);
+  scene_.set_signals(world.signals);
   // Pose, carrier and frame number of each due sensor.
   std::map<std::string, SensorFrame> frames;
   std::map<std::string, const engine::EntitySnapshot*> carriers;
@@ -214,7 +224,8 @@ std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& worl
     const CameraRenderer& renderer = *cache_->cameras.at(lead.name);
     const engine::EntitySnapshot& carrier = *carriers.at(lead.name);
     tasks.run([this, &g, &renderer, &carrier, settings, outputs] {
-      render_camera_group(scene_, renderer, g.members, carrier, settings, outputs);
+      render_camera_group(scene_, renderer, g.members, carrier, settings, outputs,
+                          options_.rgb_instances);
     });
   }
   for (const SensorSpec* s : due) {
@@ -222,9 +233,20 @@ std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& worl
     const engine::EntitySnapshot& carrier = *carriers.at(s->name);
     if (s->kind == SensorKind::kLidar) {
       const uint64_t seed = frame_seed(*s);
-      tasks.run([this, s, &f, &carrier, &lighting, seed] {
-        f.cloud = cache_->lidars.at(s->name)->scan(
-            scene_, f.world_from_sensor, lighting.extinction(), seed, entity_box(carrier));
+      tasks.run([this, s, &f, &carrier, &lighting, seed, sweep] {
+        LidarScanInput input;
+        input.world_from_sensor = f.world_from_sensor;
+        input.motion.velocity = {carrier.vx, carrier.vy, carrier.vz};
+        input.motion.yaw_rate = carrier.yaw_rate;
+        input.motion.pivot = {carrier.pose.x, carrier.pose.y, carrier.pose.z};
+        input.weather.fog_extinction = lighting.fog_extinction;
+        input.weather.rain_rate = lighting.rain_intensity;
+        input.weather.snow_rate = lighting.snow_intensity;
+        input.frame_seed = seed;
+        input.carrier = entity_box(carrier);
+        input.carrier_instance = carrier.instance_id;
+        input.scene_motion_span = sweep;
+        f.cloud = cache_->lidars.at(s->name)->scan(scene_, input);
         f.labels = lidar_labels(scene_, f.world_from_sensor, f.cloud, s->lidar.range_m,
                                 carrier.instance_id);
       });

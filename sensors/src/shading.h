@@ -146,9 +146,10 @@ std::vector<uint8_t> develop(const std::vector<float>& linear, int width, int he
 
 /// Falling rain or snow drawn into linear radiance before development: streaks and flakes at
 /// random depths in front of the scene (only where the scene is farther), blurred over the
-/// exposure time, lit by the sky. Deterministic per seed.
+/// exposure time, lit by the sky, slanted by the wind across the view (`lateral_wind`, m/s
+/// towards the image's right) over their fall speed. Deterministic per seed.
 void draw_precipitation(std::vector<float>& linear, const std::vector<float>& depth, int width,
-                        int height, double fx, const Lighting& lighting, double exposure_s,
-                        uint64_t frame_seed);
+                        int height, double fx, const Lighting& lighting, double lateral_wind,
+                        double exposure_s, uint64_t frame_seed);
 
 }  // namespace corsa::sensors::detail

@@ -58,16 +58,6 @@ Json box3_json(const Box3& b) {
 
 Json box2_json(const Box2& b) { return {num(b.x_min), num(b.y_min), num(b.x_max), num(b.y_max)}; }
 
-double wrap_pi(double a) {
-  while (a > std::numbers::pi) {
-    a -= 2.0 * std::numbers::pi;
-  }
-  while (a < -std::numbers::pi) {
-    a += 2.0 * std::numbers::pi;
-  }
-  return a;
-}
-
 }  // namespace
 
 Rigid entity_from_sensor(const Mount& m) {
@@ -183,26 +173,6 @@ std::string labels_json(std::span<const ObjectLabel> labels, bool camera,
     document["static_objects"] = static_labels_json(static_labels);
   }
   return json_document(document);
-}
-
-std::string kitti_labels(std::span<const ObjectLabel> labels) {
-  std::string out;
-  for (const ObjectLabel& l : labels) {
-    const Box3& b = l.box_sensor;
-    // KITTI location: the bottom centre of the box in camera coordinates.
-    const Vec3 bottom = b.center + b.rotation * Vec3{0.0, 0.0, -0.5 * b.height};
-    const double ry = kitti_rotation_y(b);
-    const double alpha = wrap_pi(ry - std::atan2(bottom.x, bottom.z));
-    out += std::string(kitti_type(l.semantic)) + " " + format_fixed(l.truncation, 2) + " " +
-           std::to_string(kitti_occlusion_level(l.occlusion)) + " " + format_fixed(alpha, 2) + " " +
-           format_fixed(l.box_2d.x_min, 2) + " " + format_fixed(l.box_2d.y_min, 2) + " " +
-           format_fixed(l.box_2d.x_max, 2) + " " + format_fixed(l.box_2d.y_max, 2) + " " +
-           format_fixed(b.height, 2) + " " + format_fixed(b.width, 2) + " " +
-           format_fixed(b.length, 2) + " " + format_fixed(bottom.x, 2) + " " +
-           format_fixed(bottom.y, 2) + " " + format_fixed(bottom.z, 2) + " " +
-           format_fixed(wrap_pi(ry), 2) + "\n";
-  }
-  return out;
 }
 
 }  // namespace corsa::sensors

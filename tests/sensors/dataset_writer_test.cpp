@@ -100,10 +100,12 @@ TEST_CASE("the dataset index names only captures whose files are all written",
   std::istringstream index(corsa::read_file(dir.path() / "set" / "frames.csv"));
   std::string line;
   std::getline(index, line);
-  CHECK(line == "capture,tick,time,sensor,frame,file");
+  CHECK(line == "capture,tick,time,sensor,frame,file,overlap");
   size_t rows = 0;
   while (std::getline(index, line)) {
-    const std::string file = line.substr(line.rfind(',') + 1);
+    const std::string without_overlap = line.substr(0, line.rfind(','));
+    const std::string file = without_overlap.substr(without_overlap.rfind(',') + 1);
+    CHECK(line.substr(line.rfind(',') + 1) == "0");  // nothing interpenetrates here
     INFO(line);
     CHECK(fs::exists(dir.path() / "set" / file));
     ++rows;

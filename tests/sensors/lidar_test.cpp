@@ -123,8 +123,11 @@ TEST_CASE("fog thins LiDAR returns by the two-way transmission", "[sensors][lida
   Scene scene = plane_scene();
   const LidarSimulator lidar(downward_lidar());
   const PointCloud clear = lidar.scan(scene, kMount, 0.0, 7);
-  const double sigma = fog_extinction(60.0);  // 60 m visual range
-  CHECK(sigma == Approx(3.912 / 60.0).epsilon(1e-3));
+  // 400 m visual range: thick enough to thin the returns, too thin for the fog's own echo to
+  // reach the detection threshold (fog of 300 m and less answers first:
+  // lidar_weather_test.cpp).
+  const double sigma = fog_extinction(400.0);
+  CHECK(sigma == Approx(3.912 / 400.0).epsilon(1e-3));
   double expected = 0.0, variance = 0.0;
   for (const auto& p : clear.points) {
     const double r = std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z);
@@ -135,7 +138,7 @@ TEST_CASE("fog thins LiDAR returns by the two-way transmission", "[sensors][lida
   const PointCloud foggy = lidar.scan(scene, kMount, sigma, 7);
   const double kept = static_cast<double>(foggy.points.size());
   CHECK(std::fabs(kept - expected) < 4.0 * std::sqrt(variance));
-  CHECK(kept < 0.6 * static_cast<double>(clear.points.size()));
+  CHECK(kept < 0.9 * static_cast<double>(clear.points.size()));
   // Far returns suffer most: the mean range shrinks.
   auto mean_range = [](const PointCloud& c) {
     double s = 0.0;

@@ -1,10 +1,12 @@
 #include "corsa/sensors/writers.h"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstring>
 #include <opencv2/imgcodecs.hpp>
 
 #include "corsa/core/atomic_file.h"
+#include "corsa/sensors/kitti.h"
 #include "run_corsa.h"
 #include "temp_dir.h"
 
@@ -27,6 +29,7 @@ PointCloud two_points() {
   b.x = 10.0f;
   b.semantic = SemanticClass::kRoad;
   b.instance_id = 0;
+  b.time = -0.025f;
   c.points = {a, b};
   return c;
 }
@@ -86,13 +89,23 @@ TEST_CASE("point clouds are written as PLY, PCD, KITTI bin and point labels",
   const std::string ply = corsa::read_file(dir.path() / "p.ply");
   const size_t header = ply.find("end_header\n") + 11;
   CHECK(ply.find("element vertex 2\n") != std::string::npos);
-  CHECK(ply.size() == header + 2 * 23);
-  float x = 0.0f;
-  std::memcpy(&x, ply.data() + header + 23, 4);
+  // The class field has PCL's name, `label`, in both formats; each point has its firing time.
+  CHECK(ply.find("property uchar label\nproperty uint instance\nproperty float time\n") !=
+        std::string::npos);
+  CHECK(ply.find("semantic") == std::string::npos);
+  CHECK(ply.size() == header + 2 * 27);
+  float x = 0.0f, time = 0.0f;
+  std::memcpy(&x, ply.data() + header + 27, 4);
+  std::memcpy(&time, ply.data() + header + 27 + 23, 4);
   CHECK(x == 10.0f);
+  CHECK(time == -0.025f);
+  uint8_t label = 0;
+  std::memcpy(&label, ply.data() + header + 18, 1);
+  CHECK(label == static_cast<uint8_t>(SemanticClass::kCar));
   const std::string pcd = corsa::read_file(dir.path() / "p.pcd");
+  CHECK(pcd.find("FIELDS x y z intensity ring label instance time\n") != std::string::npos);
   CHECK(pcd.find("POINTS 2\nDATA binary\n") != std::string::npos);
-  CHECK(pcd.size() == pcd.find("DATA binary\n") + 12 + 2 * 23);
+  CHECK(pcd.size() == pcd.find("DATA binary\n") + 12 + 2 * 27);
   const std::string bin = corsa::read_file(dir.path() / "p.bin");
   REQUIRE(bin.size() == 32);
   float v[8];
@@ -104,8 +117,9 @@ TEST_CASE("point clouds are written as PLY, PCD, KITTI bin and point labels",
   const std::string labels = corsa::read_file(dir.path() / "p.label");
   uint32_t l[2];
   std::memcpy(l, labels.data(), 8);
+  // SemanticKITTI's layout with the dataset's own class ids (the class table).
   CHECK(l[0] == (static_cast<uint32_t>(SemanticClass::kCar) | (7u << 16)));
-  CHECK(l[1] == 1u);
+  CHECK(l[1] == static_cast<uint32_t>(SemanticClass::kRoad));
 }
 
 TEST_CASE("calibration lists intrinsics and extrinsics", "[sensors][writers]") {
@@ -136,20 +150,85 @@ TEST_CASE("calibration lists intrinsics and extrinsics", "[sensors][writers]") {
   CHECK_THAT(calibration_json(l, nullptr), Catch::Contains("\"elevations_deg\": [-10, 0, 10]"));
 }
 
-TEST_CASE("KITTI label lines put the bottom centre in camera coordinates", "[sensors][writers]") {
+TEST_CASE(
+    "KITTI label lines put the bottom centre in camera coordinates, the tight box "
+    "from the instance mask and small or far objects in DontCare",
+    "[sensors][writers][kitti]") {
+  CameraIntrinsics k;
+  k.width = 640;
+  k.height = 360;
+  k.fov_deg = 90.0;
+  const CameraModel pinhole(k);
   ObjectLabel l;
+  l.instance_id = 3;
   l.semantic = SemanticClass::kCar;
-  l.box_2d = {100, 50, 200, 120};
   l.box_sensor.center = {1.0, 0.5, 20.0};
   // Box x (forward) along the camera's z: the car drives away from the camera.
   l.box_sensor.rotation = optical_in_body().rotation.transposed();
   l.box_sensor.length = 4.0;
   l.box_sensor.width = 2.0;
   l.box_sensor.height = 1.5;
+  l.distance = 20.0;
   l.occlusion = 0.3;
-  l.truncation = 0.0;
-  const std::string line = kitti_labels(std::vector{l});
+  // Its visible pixels: columns 330-360, rows 170-209 (40 px high).
+  std::vector<uint32_t> instance(static_cast<size_t>(k.width) * k.height, 0);
+  for (int r = 170; r < 210; ++r) {
+    for (int c = 330; c <= 360; ++c) {
+      instance[static_cast<size_t>(r) * k.width + c] = 3;
+    }
+  }
+  KittiOptions options;
+  const std::string line = kitti_label_lines(std::vector{l}, pinhole, instance, options);
   CHECK_THAT(line, Catch::StartsWith("Car 0.00 1 "));
-  CHECK_THAT(line, Catch::Contains(" 100.00 50.00 200.00 120.00 1.50 2.00 4.00 1.00 1.25 20.00 "));
+  CHECK_THAT(line, Catch::Contains(" 330.00 170.00 360.00 209.00 1.50 2.00 4.00 1.00 1.25 20.00 "));
   CHECK_THAT(line, Catch::EndsWith(" -1.57\n"));
+  // Lower than the minimum height, or farther than the maximum distance: DontCare.
+  options.min_height_px = 41.0;
+  CHECK(kitti_label_lines(std::vector{l}, pinhole, instance, options) ==
+        "DontCare -1 -1 -10 330.00 170.00 360.00 209.00 -1 -1 -1 -1000 -1000 -1000 -10\n");
+  options.min_height_px = 25.0;
+  options.max_distance_m = 15.0;
+  CHECK_THAT(kitti_label_lines(std::vector{l}, pinhole, instance, options),
+             Catch::StartsWith("DontCare "));
+}
+
+TEST_CASE("rectifying a distorted image puts every pixel where the pinhole would see it",
+          "[sensors][writers][kitti]") {
+  CameraIntrinsics k;
+  k.width = 320;
+  k.height = 180;
+  k.fov_deg = 90.0;
+  k.k1 = -0.05;
+  k.k2 = 0.01;
+  const CameraModel lens(k);
+  const CameraModel pinhole = pinhole_of(lens);
+  CHECK_FALSE(pinhole.distorted());
+  // A distorted instance image whose ids say which pinhole pixel each distorted pixel shows.
+  std::vector<uint32_t> ids(static_cast<size_t>(k.width) * k.height, 0);
+  for (int r = 0; r < k.height; ++r) {
+    for (int c = 0; c < k.width; ++c) {
+      const Vec3 ray = lens.ray({static_cast<double>(c), static_cast<double>(r)});
+      const auto seen = pinhole.project(ray);
+      REQUIRE(seen);
+      const auto u = static_cast<uint32_t>(std::lround(seen->u) + 1000);
+      const auto v = static_cast<uint32_t>(std::lround(seen->v) + 1000);
+      ids[static_cast<size_t>(r) * k.width + c] = u * 10000 + v;
+    }
+  }
+  const std::vector<uint32_t> rectified = rectify_ids(lens, ids);
+  size_t off = 0, checked = 0;
+  for (int r = 10; r < k.height - 10; ++r) {
+    for (int c = 10; c < k.width - 10; ++c) {
+      const uint32_t id = rectified[static_cast<size_t>(r) * k.width + c];
+      if (id == 0) {
+        continue;
+      }
+      const int u = static_cast<int>(id / 10000) - 1000;
+      const int v = static_cast<int>(id % 10000) - 1000;
+      off += std::abs(u - c) > 1 || std::abs(v - r) > 1 ? 1 : 0;
+      ++checked;
+    }
+  }
+  CHECK(checked > 40000);
+  CHECK(off == 0);  // within a pixel (nearest-pixel sampling) everywhere
 }

@@ -3,11 +3,13 @@
 // The dataset folder of `corsa run --rig RIG -o DIR` (DESIGN.md, "File formats"; docs/datasets.md):
 //
 //   DIR/run.json             scenario, parameters, seed, step, rig, versions, status, windows
-//   DIR/frames.csv           index: capture,tick,time,sensor,frame,file (one row per file)
+//   DIR/frames.csv           index: capture,tick,time,sensor,frame,file,overlap (one row per
+//                            file; overlap: entity pairs interpenetrating at the capture)
 //   DIR/poses/NNNNNN.json    per capture: every entity's pose and box, every captured sensor's
 //                            world_from_sensor, the environment
 //   DIR/<sensor>/...         the sensor's files (write_sensor_frame) and calibration.json
-//   DIR/kitti/...            with DatasetFormat::kKitti: image_2, velodyne, label_2, calib
+//   DIR/kitti/...            with DatasetFormat::kKitti: training/ (image_2 rectified, velodyne,
+//                            label_2, calib) and ImageSets/ (kitti.h, docs/datasets.md)
 //
 // Written capture by capture: the sensor files and the pose file first (each atomically), then
 // frames.csv is rewritten atomically, so the index only ever names complete captures. The files
@@ -27,6 +29,7 @@
 
 #include "corsa/core/json.h"
 #include "corsa/engine/world_snapshot.h"
+#include "corsa/sensors/kitti.h"
 #include "corsa/sensors/sensor_system.h"
 
 namespace corsa {
@@ -34,6 +37,10 @@ class OutputLock;
 }
 
 namespace corsa::sensors {
+
+namespace detail {
+class KittiExport;
+}
 
 enum class DatasetFormat { kCorsa, kKitti };
 
@@ -72,8 +79,10 @@ class DatasetWriter final : public engine::CaptureSink {
   /// whose own files are then removed (only those: see prepare_dataset_folder in
   /// src/dataset_folder.h). Writes the calibration files and a "running" run.json. Throws
   /// InputError when the folder cannot be used.
+  /// `kitti` chooses the DontCare regions of the KITTI labels (DatasetFormat::kKitti); the
+  /// system must then keep instance ids with RGB frames (SensorSystemOptions::rgb_instances).
   DatasetWriter(SensorSystem& system, std::filesystem::path directory, DatasetRunInfo info,
-                DatasetFormat format, bool replace);
+                DatasetFormat format, bool replace, KittiOptions kitti = {});
 
   void capture(const engine::WorldSnapshot& world, std::span<const std::string> sensors) override;
 
@@ -85,12 +94,14 @@ class DatasetWriter final : public engine::CaptureSink {
   int64_t captures() const { return captures_; }
   int64_t files() const { return static_cast<int64_t>(rows_); }
   const std::filesystem::path& directory() const { return directory_; }
+  /// KITTI frames written, and captures of the camera left out for want of the LiDAR.
+  int64_t kitti_frames() const;
+  int64_t kitti_skipped() const;
 
  private:
   struct Pending;  ///< a capture whose files are being written
 
   void write_run_json(const DatasetEnd* end) const;
-  void write_kitti(const SensorFrame& frame, const SensorSpec& spec);
   /// Waits for the pending capture's files, then adds its rows to frames.csv.
   void complete_pending();
 
@@ -103,7 +114,7 @@ class DatasetWriter final : public engine::CaptureSink {
   int64_t captures_ = 0;
   int64_t last_tick_ = -1;
   double last_time_ = 0.0;
-  int64_t kitti_frames_ = 0;
+  std::unique_ptr<detail::KittiExport> kitti_;
   std::unique_ptr<Pending> pending_;
   std::unique_ptr<OutputLock> lock_;
 };

@@ -5,6 +5,7 @@
 // and the LiDAR point count per object.
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -74,6 +75,10 @@ std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer&
 std::vector<ObjectLabel> lidar_labels(const Scene& scene, const Rigid& world_from_sensor,
                                       const PointCloud& cloud, double range_m,
                                       uint32_t carrier = 0);
+
+/// The image of a box (optical frame) through `camera`: the bounding rectangle of its corners
+/// (and of its edges where they cross the near plane), unclipped; nothing when it is behind.
+std::optional<Box2> projected_box(const CameraModel& camera, const Box3& box_in_optical_frame);
 
 /// The 3D box of an entity in the map frame.
 Box3 entity_box(const engine::EntitySnapshot& entity);

@@ -11,6 +11,7 @@
 // depends on the encoder and is not part of the byte-identical dataset.
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "corsa/core/diagnostic.h"
@@ -26,9 +27,12 @@ struct PreviewReport {
   std::string summary;                  ///< one line for people
 };
 
+/// Called with (video frames encoded, frames in all) while the video is written.
+using PreviewProgress = std::function<void(int done, int total)>;
+
 /// Reads the dataset's frames.csv and images and writes the preview files. Throws InputError
 /// when the dataset cannot be read.
 PreviewReport write_preview(const std::filesystem::path& dataset, const SensorRig& rig,
-                            Diagnostics& diagnostics);
+                            Diagnostics& diagnostics, const PreviewProgress& progress = {});
 
 }  // namespace corsa::sensors

@@ -92,6 +92,12 @@ struct LidarOptions {
   double dropoff_intensity_limit = 0.0;
   double dropoff_zero_intensity = 0.0;
   double atmosphere_attenuation_rate = 0.004;  ///< 1/m
+  /// Keep returns from the entity carrying the sensor (default: masked, like a driver's
+  /// self-filter; a beam that hits the carrier gives no point).
+  bool keep_self_returns = false;
+  /// Points in the sensor frame at the capture time (the sensor's own motion during the sweep
+  /// removed) instead of the frame at each point's firing time.
+  bool deskew = false;
 
   /// Firings per channel in one revolution: points_per_second / (channels * rotation_frequency),
   /// rounded, at least 1.

@@ -88,8 +88,11 @@ class Scene {
   /// Places the entities for the next frame (invisible ones are left out): only their instance
   /// transforms, the articulated parts (wheels, limbs) and the small top-level structure are
   /// rebuilt. An entity seen for the first time gets its shape (generated from its category,
-  /// bounding box, name and the run seed, or from the shape source).
-  void set_entities(std::span<const engine::EntitySnapshot> entities);
+  /// bounding box, name and the run seed, or from the shape source). With a `motion_span` (s)
+  /// the LiDAR also sees each entity move over that interval centred on the snapshot's time (its
+  /// velocity and yaw rate), for the rolling shutter of a spinning sensor; cameras see the
+  /// snapshot's instant.
+  void set_entities(std::span<const engine::EntitySnapshot> entities, double motion_span = 0.0);
   /// The traffic-signal states of the next frame (OpenSCENARIO TrafficSignalState strings by
   /// OpenDRIVE signal id): they switch the bulbs of the traffic-light meshes.
   void set_signals(std::span<const engine::SignalSnapshot> signals);

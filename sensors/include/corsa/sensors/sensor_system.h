@@ -26,6 +26,9 @@ namespace corsa::sensors {
 struct SensorSystemOptions {
   uint64_t seed = 0;     ///< run seed; each frame's noise uses (seed, sensor, frame)
   GeoLocation location;  ///< for the solar position
+  /// RGB frames also carry their camera's instance ids (CameraImages::instance), e.g. for the
+  /// tight boxes of a KITTI export.
+  bool rgb_instances = false;
 };
 
 /// One sensor's output at one capture.

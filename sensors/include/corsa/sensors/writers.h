@@ -49,15 +49,17 @@ std::vector<uint8_t> colorize_semantic(std::span<const uint8_t> classes);
 
 // --- point clouds ----------------------------------------------------------------------------
 
-/// Binary little-endian PLY: x y z intensity (float), ring (ushort), semantic (uchar),
-/// instance (uint).
+/// Binary little-endian PLY: x y z intensity (float), ring (ushort), label (uchar, the class id
+/// of the dataset's class table; PCL's name for a point's class), instance (uint), time (float,
+/// firing time relative to the capture, s).
 void write_ply(const std::filesystem::path& path, const PointCloud& cloud);
-/// PCD v0.7 binary with the same fields (semantic as "label").
+/// PCD v0.7 binary with the same fields under the same names.
 void write_pcd(const std::filesystem::path& path, const PointCloud& cloud);
 /// KITTI velodyne .bin: float32 x y z intensity per point.
 void write_kitti_bin(const std::filesystem::path& path, const PointCloud& cloud);
-/// Per-point labels as in SemanticKITTI .label: uint32 per point, class in the low 16 bits and
-/// instance id in the high 16 bits.
+/// Per-point labels as in SemanticKITTI .label: uint32 per point, the class id of the dataset's
+/// class table (the same ids as the semantic images and the PLY/PCD label field, not
+/// SemanticKITTI's own numbering) in the low 16 bits and the instance id in the high 16 bits.
 void write_point_labels(const std::filesystem::path& path, const PointCloud& cloud);
 
 // --- calibration and labels (text) -----------------------------------------------------------
@@ -71,8 +73,6 @@ std::string calibration_json(const SensorSpec& sensor, const CameraModel* camera
 /// Labels of one frame as JSON (see docs/sensors.md for the fields).
 std::string labels_json(std::span<const ObjectLabel> labels, bool camera,
                         std::span<const StaticObjectLabel> static_labels = {});
-/// KITTI object label lines (camera labels: boxes in the optical frame).
-std::string kitti_labels(std::span<const ObjectLabel> labels);
 
 /// The sensor body frame in the entity frame from a rig mount.
 Rigid entity_from_sensor(const Mount& mount);
