@@ -67,17 +67,17 @@ ArgParser::ArgParser(std::string usage, std::string summary)
     : usage_(std::move(usage)), summary_(std::move(summary)) {}
 
 ArgParser& ArgParser::flag(std::string name, std::string help) {
-  options_.push_back({std::move(name), "", std::move(help), false});
+  options_.push_back({std::move(name), "", std::move(help), false, section_});
   return *this;
 }
 
 ArgParser& ArgParser::option(std::string name, std::string value_name, std::string help) {
-  options_.push_back({std::move(name), std::move(value_name), std::move(help), false});
+  options_.push_back({std::move(name), std::move(value_name), std::move(help), false, section_});
   return *this;
 }
 
 ArgParser& ArgParser::repeated(std::string name, std::string value_name, std::string help) {
-  options_.push_back({std::move(name), std::move(value_name), std::move(help), true});
+  options_.push_back({std::move(name), std::move(value_name), std::move(help), true, section_});
   return *this;
 }
 
@@ -86,6 +86,11 @@ ArgParser& ArgParser::positional(std::string name, std::string help, int min, in
   positional_help_ = std::move(help);
   positional_min_ = min;
   positional_max_ = max;
+  return *this;
+}
+
+ArgParser& ArgParser::section(std::string title) {
+  section_ = std::move(title);
   return *this;
 }
 
@@ -128,7 +133,11 @@ ParsedArgs ArgParser::parse(std::span<const std::string> args) const {
     }
     const Option* option = find(name);
     if (option == nullptr) {
-      throw UsageError("unknown option '" + name + "'");
+      std::vector<std::string> names;
+      for (const Option& o : options_) {
+        names.push_back(o.name);
+      }
+      throw UsageError("unknown option '" + name + "'" + did_you_mean(name, names));
     }
     if (option->value_name.empty()) {
       if (inline_value) {
@@ -168,7 +177,13 @@ void ArgParser::print_help(std::ostream& out) const {
         << positional_help_ << '\n';
   }
   out << "\noptions:\n";
+  out << "  " << std::left << std::setw(24) << "-h, --help" << ' ' << "show this help\n";
+  std::string section;
   for (const auto& option : options_) {
+    if (option.section != section) {
+      section = option.section;
+      out << '\n' << (section.empty() ? std::string("options") : section) << ":\n";
+    }
     std::string left = option.name;
     if (!option.value_name.empty()) {
       left += ' ' + option.value_name;
@@ -178,7 +193,6 @@ void ArgParser::print_help(std::ostream& out) const {
     }
     out << "  " << std::left << std::setw(24) << left << ' ' << option.help << '\n';
   }
-  out << "  " << std::left << std::setw(24) << "-h, --help" << ' ' << "show this help\n";
   if (!epilog_.empty()) {
     out << '\n' << epilog_ << '\n';
   }

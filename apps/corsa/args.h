@@ -51,6 +51,8 @@ class ArgParser {
   ArgParser& positional(std::string name, std::string help, int min = 1, int max = 1);
   /// Free text appended to --help (examples, notes).
   ArgParser& epilog(std::string text);
+  /// Options declared after this are listed in --help under `title` (e.g. "dataset options").
+  ArgParser& section(std::string title);
 
   /// Parses `args` (without the program and subcommand names). --help / -h anywhere sets help().
   ParsedArgs parse(std::span<const std::string> args) const;
@@ -62,6 +64,7 @@ class ArgParser {
     std::string value_name;  // empty for flags
     std::string help;
     bool repeated = false;
+    std::string section;  // --help heading; empty: "options"
   };
   const Option* find(const std::string& name) const;
 
@@ -69,6 +72,7 @@ class ArgParser {
   std::string summary_;
   std::string epilog_;
   std::vector<Option> options_;
+  std::string section_;
   std::string positional_name_;
   std::string positional_help_;
   int positional_min_ = 0;

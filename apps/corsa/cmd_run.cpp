@@ -2,6 +2,8 @@
 // and prints a one-line summary; a progress bar on a terminal.
 
 #include <iostream>
+#include <optional>
+#include <string>
 
 #include "args.h"
 #include "commands.h"
@@ -25,22 +27,31 @@ int command_run(std::span<const std::string> args) {
       "run SCENARIO.xosc [options]",
       "Runs one OpenSCENARIO scenario headless with a fixed step and writes its outputs.");
   declare_run_options(parser);
+  declare_dataset_options(parser);
   parser.epilog(
       "The run ends at the storyboard's stop trigger, when every story is complete (without a\n"
       "stop trigger), or at --duration. Exit 0 when it ran, 2 on bad input.\n"
-      "With --rig RIG.xml -o DIR the run also captures a dataset (docs/datasets.md; see\n"
-      "'corsa run --rig x --help').\n"
-      "example: corsa run scenarios/cut_in.xosc --record out.csv --summary out.json");
+      "With --rig RIG.xml -o DIR the run also captures a dataset (docs/datasets.md).\n"
+      "example: corsa run scenarios/cut_in.xosc --record out.csv --summary out.json\n"
+      "example: corsa run scenarios/demo/cut_in_city.xosc --rig scenarios/demo/rig.xml -o out");
   const ParsedArgs parsed = parser.parse(args);
   if (parsed.help()) {
     parser.print_help(std::cout);
     return kExitOk;
+  }
+  if (const std::optional<std::string> dataset = dataset_option_given(parsed)) {
+    throw UsageError(*dataset + " is a dataset option: it needs --rig RIG.xml");
   }
   engine::RunOptions options = read_run_options(parsed);
   options.simulation.geo_projection = proj_plugin_geo_projection();
   const bool quiet = parsed.flag("--quiet");
   Diagnostics diagnostics([](const Diagnostic& d) { std::cerr << d.format() << '\n'; });
   ProgressBar progress("run", options.simulation.duration, !quiet);
+  // The bar's end is the scenario's own (its SimulationTime stop trigger), once it is loaded.
+  options.prepare = [&progress](engine::Simulation& simulation) {
+    progress.set_total(
+        engine::expected_end_time(simulation.scenario(), simulation.options().duration));
+  };
   const engine::RunReport report =
       engine::run_scenario(options, diagnostics, [&](const engine::Simulation& simulation) {
         // The bar redraws itself at most ~10 times a second; feeding it every 64 steps is plenty.
@@ -48,7 +59,7 @@ int command_run(std::span<const std::string> args) {
           progress.update(simulation.time());
         }
       });
-  progress.finish();
+  progress.complete();
   if (!quiet) {
     const double factor = report.wall_seconds > 0.0 ? report.sim_time / report.wall_seconds : 0.0;
     std::cout << options.scenario.string() << ": ended by " << engine::to_string(report.end_reason)
@@ -58,7 +69,7 @@ int command_run(std::span<const std::string> args) {
     if (report.collisions > 0) {
       std::cout << ", " << report.collisions << " collision" << (report.collisions == 1 ? "" : "s");
     }
-    std::cout << '\n';
+    std::cout << '\n' << engine::collision_lines(report);
   }
   return kExitOk;
 }

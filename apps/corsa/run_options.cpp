@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "corsa/core/strings.h"
 #include "output_paths.h"
@@ -27,7 +30,9 @@ void read_npc(const std::string& text, engine::SimulationOptions& options) {
     } else if (key == "pedestrians") {
       options.npc.pedestrians = static_cast<uint32_t>(*count);
     } else {
-      throw UsageError("--npc: unknown key '" + key + "' (keys: vehicles, pedestrians)");
+      const std::vector<std::string> keys{"vehicles", "pedestrians"};
+      throw UsageError("--npc: unknown key '" + key + "'" + did_you_mean(key, keys) +
+                       " (keys: vehicles, pedestrians)");
     }
   }
 }
@@ -89,7 +94,9 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
   }
   if (auto controller = parsed.value("--controller")) {
     if (*controller != "default" && *controller != "acc" && *controller != "dynamics") {
-      throw UsageError("--controller expects default, acc or dynamics");
+      const std::vector<std::string> names{"default", "acc", "dynamics"};
+      throw UsageError("--controller expects default, acc or dynamics, got '" + *controller + "'" +
+                       did_you_mean(*controller, names));
     }
     options.simulation.controller = *controller;
   }
@@ -114,6 +121,48 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
   options.summary = output_file(parsed, "--summary");
   options.log = output_file(parsed, "--log");
   return options;
+}
+
+namespace {
+
+constexpr const char* kDatasetOptions[] = {
+    "--rig",   "-o",      "--format",  "--kitti-min-height", "--kitti-max-distance",
+    "--force", "--model", "--preview", "--time-of-day",      "--weather"};
+
+}  // namespace
+
+void declare_dataset_options(ArgParser& parser) {
+  parser.section("dataset options (with --rig; docs/datasets.md)");
+  parser.option("--rig", "RIG.xml", "sensor rig (schemas/sensor-rig.xsd): capture a dataset");
+  parser.option("-o", "DIR", "dataset folder (required with --rig; absent or empty)");
+  parser.option("--format", "corsa|kitti",
+                "dataset layout: corsa (default) or kitti (adds kitti/training/ image_2, "
+                "velodyne, label_2, calib and kitti/ImageSets/)");
+  parser.option("--kitti-min-height", "PX",
+                "KITTI labels: objects whose visible box is lower become DontCare (default 25)");
+  parser.option("--kitti-max-distance", "M",
+                "KITTI labels: objects farther away become DontCare (default: the LiDAR's range)");
+  parser.flag("--force", "replace a previous dataset in DIR");
+  parser.option("--time-of-day", "HH:MM[:SS][ZONE]",
+                "override the scenario's time of day: local solar time at the map's place, or "
+                "with a zone (Z, +09:00) clock time");
+  parser.option("--weather", "KEY=VALUE,...",
+                "override the weather: fog=M, rain=MM_PER_H, snow=MM_PER_H, clouds=0..1, "
+                "wind=M_PER_S, wind_dir=DEG, wet=0|1, friction=SCALE");
+  parser.repeated("--model", "FILE[@X,Y[,HEADING_DEG]]",
+                  "add a building model (map metres, z up) at an offset; the scenario's "
+                  "SceneGraphFile is loaded too");
+  parser.flag("--preview", "also write DIR/preview/contact_sheet.png and camera_birds_eye.mp4");
+  parser.section("");
+}
+
+std::optional<std::string> dataset_option_given(const ParsedArgs& parsed) {
+  for (const char* name : kDatasetOptions) {
+    if (parsed.flag(name)) {
+      return std::string(name);
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace corsa::cli

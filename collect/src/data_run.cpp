@@ -34,6 +34,7 @@ void DataRun::prepare(engine::Simulation& simulation) {
   sensors::SensorSystemOptions system_options;
   system_options.seed = simulation.options().seed;
   system_options.location = run_location(simulation, diagnostics_);
+  system_options.rgb_instances = options_.format == sensors::DatasetFormat::kKitti;
   system_ = std::make_unique<sensors::SensorSystem>(rig_, *scene_, system_options);
   sensors::DatasetRunInfo info;
   info.scenario = options_.run.scenario.generic_string();
@@ -53,8 +54,9 @@ void DataRun::prepare(engine::Simulation& simulation) {
   simulation.fill_snapshot(initial);
   start_time_of_day_ = initial.environment.time_of_day;
   // Last, once nothing else can fail: the dataset folder appears only for a run that starts.
-  writer_ = std::make_unique<sensors::DatasetWriter>(*system_, options_.output, std::move(info),
-                                                     options_.format, options_.replace);
+  writer_ =
+      std::make_unique<sensors::DatasetWriter>(*system_, options_.output, std::move(info),
+                                               options_.format, options_.replace, options_.kitti);
   timeline_->attach(simulation, *writer_, [this](engine::WorldSnapshot& world) { adjust(world); });
 }
 
@@ -80,6 +82,13 @@ void DataRun::finish(const std::string& status, const std::string& reason) const
   end.time = last_time_;
   end.windows = capture_windows_json(timeline_->windows());
   writer_->finish(end);
+  if (writer_->kitti_skipped() > 0) {
+    diagnostics_.add(make_warning(
+        "", 0,
+        "--format kitti: " + std::to_string(writer_->kitti_skipped()) +
+            " captures of the camera had no LiDAR scan at the same tick and are not KITTI frames "
+            "(give the camera and the LiDAR rates that meet)"));
+  }
 }
 
 int64_t DataRun::captures() const { return writer_ ? writer_->captures() : 0; }

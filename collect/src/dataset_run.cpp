@@ -1,23 +1,20 @@
 // A whole data-collection run (dataset_run.h).
 //
 // engine::run_scenario with a `prepare` hook that sets up the DataRun once the simulation exists.
-// A stop request is checked between steps and ends the run by throwing out of the step callback,
-// so the capture in progress always completes and the dataset says where it stopped.
+// A stop request is checked between steps (RunOptions::stop): the capture in progress always
+// completes, the run ends as interrupted, and both the engine's outputs (--record, --summary,
+// --log) and the dataset say where it stopped.
 
 #include "corsa/collect/dataset_run.h"
+
+#include <optional>
+#include <string>
 
 #include "corsa/collect/data_run.h"
 #include "corsa/sensors/rig.h"
 #include "corsa/sensors/sensor_system.h"
 
 namespace corsa::collect {
-namespace {
-
-struct Stopped {
-  std::string reason;
-};
-
-}  // namespace
 
 DatasetRunReport run_dataset(const DatasetRunOptions& options, Diagnostics& diagnostics,
                              const DatasetRunHooks& hooks) {
@@ -30,21 +27,22 @@ DatasetRunReport run_dataset(const DatasetRunOptions& options, Diagnostics& diag
     data.prepare(simulation);
   };
   DatasetRunReport report;
-  try {
-    report.run = engine::run_scenario(run, diagnostics, [&](const engine::Simulation& simulation) {
-      data.observe(simulation);  // where the run is, for run.json
-      if (hooks.stop) {
-        if (std::optional<std::string> reason = hooks.stop()) {
-          throw Stopped{std::move(*reason)};
-        }
-      }
-      if (hooks.on_step) {
-        hooks.on_step(simulation);
-      }
-    });
-  } catch (const Stopped& stopped) {
+  std::optional<std::string> stop_reason;
+  if (hooks.stop) {
+    run.stop = [&hooks, &stop_reason] {
+      stop_reason = hooks.stop();
+      return stop_reason.has_value();
+    };
+  }
+  report.run = engine::run_scenario(run, diagnostics, [&](const engine::Simulation& simulation) {
+    data.observe(simulation);  // where the run is, for run.json
+    if (hooks.on_step) {
+      hooks.on_step(simulation);
+    }
+  });
+  if (report.run.end_reason == engine::EndReason::kInterrupted) {
     report.interrupted = true;
-    report.interruption = stopped.reason;
+    report.interruption = stop_reason.value_or("interrupted");
   }
   if (hooks.on_simulated) {
     hooks.on_simulated();
@@ -58,7 +56,8 @@ DatasetRunReport run_dataset(const DatasetRunOptions& options, Diagnostics& diag
   report.captures = data.captures();
   report.files = data.files();
   if (!report.interrupted && options.preview) {
-    report.preview = sensors::write_preview(options.output, data.system().rig(), diagnostics);
+    report.preview =
+        sensors::write_preview(options.output, data.system().rig(), diagnostics, hooks.on_preview);
   }
   return report;
 }

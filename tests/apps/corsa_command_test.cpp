@@ -48,6 +48,35 @@ TEST_CASE("bad usage exits 2 with a message", "[cli][e2e]") {
   }
 }
 
+TEST_CASE("corsa run --help lists the dataset options without --rig", "[cli][e2e]") {
+  const auto result = run_corsa({"run", "--help"});
+  CHECK(result.exit_code == 0);
+  CHECK_THAT(result.out, Catch::Contains("dataset options (with --rig"));
+  for (const char* name : {"--rig", "-o DIR", "--format", "--weather", "--time-of-day", "--preview",
+                           "--model", "--force"}) {
+    INFO(name);
+    CHECK_THAT(result.out, Catch::Contains(std::string("  ") + name));
+  }
+}
+
+TEST_CASE("a dataset option without --rig says what it needs", "[cli][e2e]") {
+  const auto result = run_corsa({"run", "scenarios/cut_in.xosc", "--weather", "fog=50"});
+  CHECK(result.exit_code == 2);
+  CHECK_THAT(result.err, Catch::Contains("--weather is a dataset option: it needs --rig RIG.xml"));
+}
+
+TEST_CASE("a misspelt option, key or name gets the nearest valid one", "[cli][e2e]") {
+  const auto option = run_corsa({"run", "scenarios/cut_in.xosc", "--wether", "fog=50"});
+  CHECK(option.exit_code == 2);
+  CHECK_THAT(option.err, Catch::Contains("unknown option '--wether' (did you mean '--weather'?)"));
+  const auto controller = run_corsa({"run", "scenarios/cut_in.xosc", "--controller", "ac"});
+  CHECK(controller.exit_code == 2);
+  CHECK_THAT(controller.err, Catch::Contains("(did you mean 'acc'?)"));
+  const auto npc = run_corsa({"run", "scenarios/cut_in.xosc", "--npc", "vehicle=3"});
+  CHECK(npc.exit_code == 2);
+  CHECK_THAT(npc.err, Catch::Contains("unknown key 'vehicle' (did you mean 'vehicles'?)"));
+}
+
 TEST_CASE("the plugin with the heavy libraries loads on demand", "[cli][e2e][plugin]") {
   const auto result = run_corsa({"--version", "--plugin"});
   CHECK(result.exit_code == 0);

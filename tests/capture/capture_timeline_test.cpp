@@ -207,11 +207,38 @@ TEST_CASE("Bad corsa:capture content is reported at the action's line", "[captur
   };
   CHECK_THAT(error_for("begin"), Catch::Contains("inline.xosc:2: error: corsa:capture") &&
                                      Catch::Contains("does not begin with start or stop"));
-  CHECK_THAT(error_for("start sensors=radar"),
-             Catch::Contains("no sensor 'radar' (sensors: camera)"));
   CHECK_THAT(error_for("start rate=-1"), Catch::Contains("rate '-1' is not a positive number"));
   CHECK_THAT(error_for("stop rate=5"), Catch::Contains("unexpected 'rate=5'"));
   CHECK_THAT(error_for("start sensors=camera"), Catch::Equals("no error"));
+}
+
+TEST_CASE("A capture action naming a sensor the rig lacks warns and leaves it out",
+          "[capture][windows]") {
+  std::vector<corsa::Diagnostic> warnings;
+  corsa::Diagnostics d([&warnings](const corsa::Diagnostic& w) { warnings.push_back(w); });
+  const corsa::xosc::Scenario scenario = scenario_from(
+      "\n<UserDefinedAction><CustomCommandAction type=\"corsa:capture\">start sensors=camra,radar"
+      "</CustomCommandAction></UserDefinedAction>",
+      d);
+  corsa::engine::Simulation sim(scenario, nullptr, {}, d);
+  CaptureTimeline timeline({{"camera", 10.0}, {"lidar", 10.0}}, scenario, sim.dt(), d);
+  RecordingSink sink;
+  timeline.attach(sim, sink);
+  sim.run();
+  // Each unknown name warns once (not again when the action runs), located at the action.
+  std::vector<std::string> texts;
+  for (const corsa::Diagnostic& w : warnings) {
+    if (w.message.find("corsa:capture") != std::string::npos) {
+      texts.push_back(w.format());
+    }
+  }
+  REQUIRE(texts.size() == 2);
+  CHECK_THAT(texts[0], Catch::Contains("inline.xosc:2: warning: corsa:capture: the rig has no "
+                                       "sensor 'camra' (did you mean 'camera'?)"));
+  CHECK_THAT(texts[1],
+             Catch::Contains("no sensor 'radar'") && Catch::Contains("(sensors: camera, lidar)"));
+  // A start that names only unknown sensors opens nothing (not every sensor).
+  CHECK(sink.ticks.empty());
 }
 
 TEST_CASE("A corsa:capture Init action opens the window at tick 0", "[capture][windows]") {

@@ -89,18 +89,18 @@ std::vector<IndexRow> read_index(const fs::path& dataset) {
   std::istringstream in(read_all(dataset / "frames.csv"));
   std::string line;
   std::getline(in, line);
-  if (line != "capture,tick,time,sensor,frame,file") {
+  if (line != "capture,tick,time,sensor,frame,file,overlap") {
     throw std::runtime_error("bad frames.csv header: " + line);
   }
   std::vector<IndexRow> rows;
   while (std::getline(in, line)) {
     const auto f = corsa::split(line, ',');
-    if (f.size() != 6) {
+    if (f.size() != 7) {
       throw std::runtime_error("bad frames.csv row: " + line);
     }
     rows.push_back({std::stoll(std::string(f[0])), std::stoll(std::string(f[1])),
                     std::stod(std::string(f[2])), std::string(f[3]), std::string(f[4]),
-                    std::string(f[5])});
+                    std::string(f[5]), std::stoll(std::string(f[6]))});
   }
   return rows;
 }

@@ -18,6 +18,7 @@ struct IndexRow {
   std::string sensor;
   std::string frame;
   std::string file;
+  int64_t overlap = 0;  ///< entity pairs interpenetrating at the capture
 };
 
 /// frames.csv rows (the header is checked).

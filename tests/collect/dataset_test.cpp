@@ -103,12 +103,13 @@ TEST_CASE("Capture windows in the dataset follow the scenario's corsa:capture ac
   CHECK(corsa::test::check_dataset(dir.path() / "w", 64, 36).empty());
 }
 
-TEST_CASE("--format kitti adds image_2, velodyne, label_2 and calib frames", "[dataset][kitti]") {
+TEST_CASE("--format kitti writes training/ image_2, velodyne, label_2, calib and ImageSets",
+          "[dataset][kitti]") {
   corsa::test::TempDir dir;
   const auto result = run_small(dir.path() / "k", {"--duration", "0.3", "--format", "kitti"});
   INFO(result.err);
   REQUIRE(result.exit_code == 0);
-  const fs::path kitti = dir.path() / "k/kitti";
+  const fs::path kitti = dir.path() / "k/kitti/training";
   for (const char* stem : {"000000", "000001", "000002", "000003"}) {
     INFO(stem);
     CHECK(fs::exists(kitti / "image_2" / (std::string(stem) + ".png")));
@@ -117,6 +118,8 @@ TEST_CASE("--format kitti adds image_2, velodyne, label_2 and calib frames", "[d
     CHECK(fs::exists(kitti / "calib" / (std::string(stem) + ".txt")));
   }
   CHECK(!fs::exists(kitti / "image_2/000004.png"));
+  CHECK(corsa::read_file(dir.path() / "k/kitti/ImageSets/trainval.txt") ==
+        "000000\n000001\n000002\n000003\n");
   const std::string calib = corsa::read_file(kitti / "calib/000000.txt");
   CHECK_THAT(calib, Catch::StartsWith("P0: ") && Catch::Contains("\nTr_velo_to_cam: "));
   // The LiDAR is 0.6 m behind and 0.45 m above the camera: in the optical frame (x right, y
@@ -129,6 +132,44 @@ TEST_CASE("--format kitti adds image_2, velodyne, label_2 and calib frames", "[d
     tr >> value;
     CHECK(value == Approx(e).margin(1e-9));
   }
+}
+
+TEST_CASE("A rig made for another scenario runs with a warning for each sensor it lacks",
+          "[dataset][windows]") {
+  corsa::test::TempDir dir;
+  const auto run = run_corsa({"run", "tests/capture/fixtures/capture_windows.xosc", "--rig",
+                              kSmallRig, "-o", (dir.path() / "y").string(), "--quiet"});
+  INFO(run.err);
+  CHECK(run.exit_code == 0);
+  CHECK_THAT(run.err, Catch::Contains("capture_windows.xosc:") &&
+                          Catch::Contains("warning: corsa:capture: the rig has no sensor "
+                                          "'camera'") &&
+                          Catch::Contains("no sensor 'lidar'"));
+  CHECK(corsa::test::check_dataset(dir.path() / "y", 192, 108).empty());
+}
+
+TEST_CASE("Captures showing interpenetrating entities are flagged in the index and poses",
+          "[dataset][collisions]") {
+  corsa::test::TempDir dir;
+  // Runner runs into Slow at 11.55 s and stays in contact to the end (12.01 s).
+  const auto run =
+      run_corsa({"run", "tests/engine/fixtures/condition_distances.xosc", "--rig",
+                 "tests/collect/fixtures/runner_rig.xml", "-o", (dir.path() / "c").string()});
+  INFO(run.err);
+  REQUIRE(run.exit_code == 0);
+  CHECK_THAT(run.out, Catch::Contains("1 collision") &&
+                          Catch::Contains("  collision at 11.55 s: Runner and Slow"));
+  std::set<int64_t> flagged, clean;
+  for (const auto& row : corsa::test::read_index(dir.path() / "c")) {
+    (row.overlap > 0 ? flagged : clean).insert(row.tick);
+  }
+  CHECK(flagged == std::set<int64_t>{1200});  // the capture at 12 s
+  CHECK(clean.count(1100) == 1);
+  CHECK(clean.count(1200) == 0);
+  const std::string pose = corsa::read_file(dir.path() / "c/poses/000024.json");
+  CHECK_THAT(pose, Catch::Contains("\"overlaps\": [[1, 2]]"));
+  CHECK_THAT(corsa::read_file(dir.path() / "c/poses/000022.json"),
+             Catch::Contains("\"overlaps\": []"));
 }
 
 TEST_CASE("Bad data-collection input is reported with exit code 2", "[dataset][errors]") {
@@ -145,13 +186,6 @@ TEST_CASE("Bad data-collection input is reported with exit code 2", "[dataset][e
   const auto controller = run_small(dir.path() / "c", {"--controller", "autopilot"});
   CHECK(controller.exit_code == 2);
   CHECK_THAT(controller.err, Catch::Contains("--controller expects default, acc or dynamics"));
-
-  const auto unknown_sensor = run_corsa({"run", "tests/capture/fixtures/capture_windows.xosc",
-                                         "--rig", kSmallRig, "-o", (dir.path() / "y").string()});
-  CHECK(unknown_sensor.exit_code == 2);
-  CHECK_THAT(unknown_sensor.err,
-             Catch::Contains("capture_windows.xosc:") &&
-                 Catch::Contains("corsa:capture: the rig has no sensor 'lidar'"));
 
   fs::create_directories(dir.path() / "full");
   corsa::write_file_atomic(dir.path() / "full/keep.txt", "mine");

@@ -5,6 +5,7 @@
 
 #include "run_rig.h"
 
+#include <chrono>
 #include <iostream>
 #include <optional>
 
@@ -12,6 +13,7 @@
 #include "corsa/collect/dataset_run.h"
 #include "corsa/core/progress.h"
 #include "corsa/core/strings.h"
+#include "corsa/engine/run.h"
 #include "plugin_commands.h"
 #include "stop_signals.h"
 
@@ -33,10 +35,16 @@ int run_rig_body(std::span<const std::string> args) {
     parser.print_help(std::cout);
     return kExitOk;
   }
+  const auto start = std::chrono::steady_clock::now();  // the summary counts all of it
   const RigRunOptions options = read_rig_run_options(parsed);
-  const collect::DatasetRunOptions& dataset = options.dataset;
+  collect::DatasetRunOptions dataset = options.dataset;
   Diagnostics diagnostics([](const Diagnostic& d) { std::cerr << d.format() << '\n'; });
   ProgressBar progress("run", dataset.run.simulation.duration, !options.quiet);
+  // The bar's end is the scenario's own (its SimulationTime stop trigger), once it is loaded.
+  dataset.run.prepare = [&progress](engine::Simulation& simulation) {
+    progress.set_total(
+        engine::expected_end_time(simulation.scenario(), simulation.options().duration));
+  };
   const StopSignals signals;
   collect::DatasetRunHooks hooks;
   hooks.on_step = [&progress](const engine::Simulation& sim) {
@@ -45,8 +53,23 @@ int run_rig_body(std::span<const std::string> args) {
     }
   };
   hooks.stop = [] { return StopSignals::reason(); };
-  hooks.on_simulated = [&progress] { progress.finish(); };
+  hooks.on_simulated = [&progress] {
+    if (!StopSignals::reason()) {
+      progress.complete();  // ended by itself: all of it
+    } else {
+      progress.finish();
+    }
+  };
+  bool encoding = false;
+  hooks.on_preview = [&progress, &encoding](int done, int total) {
+    if (!encoding) {
+      progress.restart("preview video", total);
+      encoding = true;
+    }
+    progress.update(done);
+  };
   const collect::DatasetRunReport report = collect::run_dataset(dataset, diagnostics, hooks);
+  progress.finish();
   if (report.interrupted) {
     if (report.dataset_started) {
       std::cerr << "corsa run: " << report.interruption << "; " << dataset.output.string()
@@ -61,11 +84,18 @@ int run_rig_body(std::span<const std::string> args) {
     std::cout << report.preview->summary << '\n';
   }
   if (!options.quiet) {
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << dataset.run.scenario.string() << ": ended by "
               << engine::to_string(report.run.end_reason) << " at "
               << format_fixed(report.run.sim_time, 2) << " s simulated, " << report.captures
-              << " captures, " << report.files << " files in " << dataset.output.string() << ", "
-              << format_fixed(report.run.wall_seconds, 1) << " s wall\n";
+              << " captures, " << report.files << " files in " << dataset.output.string();
+    if (report.run.collisions > 0) {
+      std::cout << ", " << report.run.collisions << " collision"
+                << (report.run.collisions == 1 ? "" : "s");
+    }
+    std::cout << ", " << format_fixed(wall, 1) << " s wall in all\n"
+              << engine::collision_lines(report.run);
   }
   return kExitOk;
 }

@@ -1,7 +1,11 @@
 // Options of the plugin's `corsa run ... --rig` (see run_rig.h).
 
+#include <cmath>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "corsa/core/strings.h"
 #include "corsa/geo/crs_transform.h"
 #include "output_paths.h"
 #include "run_options.h"
@@ -10,20 +14,7 @@
 namespace corsa::cli {
 void declare_rig_run_options(ArgParser& parser) {
   declare_run_options(parser);
-  parser.option("--rig", "RIG.xml", "sensor rig (schemas/sensor-rig.xsd): capture a dataset");
-  parser.option("-o", "DIR", "dataset folder (required with --rig; absent or empty)");
-  parser.option("--format", "corsa|kitti",
-                "dataset layout: corsa (default) or kitti (adds kitti/ image_2, velodyne, "
-                "label_2, calib)");
-  parser.flag("--force", "replace a previous dataset in DIR");
-  parser.option("--time-of-day", "HH:MM[:SS]", "override the scenario's time of day");
-  parser.option("--weather", "KEY=VALUE,...",
-                "override the weather: fog=M, rain=MM_PER_H, snow=MM_PER_H, clouds=0..1, "
-                "wind=M_PER_S, wind_dir=DEG, wet=0|1, friction=SCALE");
-  parser.repeated("--model", "FILE[@X,Y[,HEADING_DEG]]",
-                  "add a building model (map metres, z up) at an offset; the scenario's "
-                  "SceneGraphFile is loaded too");
-  parser.flag("--preview", "also write DIR/preview/contact_sheet.png and camera_birds_eye.mp4");
+  declare_dataset_options(parser);
 }
 
 RigRunOptions read_rig_run_options(const ParsedArgs& parsed) {
@@ -41,15 +32,33 @@ RigRunOptions read_rig_run_options(const ParsedArgs& parsed) {
     if (*format == "kitti") {
       dataset.format = sensors::DatasetFormat::kKitti;
     } else if (*format != "corsa") {
-      throw UsageError("--format expects corsa or kitti, got '" + *format + "'");
+      const std::vector<std::string> formats{"corsa", "kitti"};
+      throw UsageError("--format expects corsa or kitti, got '" + *format + "'" +
+                       did_you_mean(*format, formats));
     }
+  }
+  if (const auto height = parsed.number("--kitti-min-height")) {
+    if (!(*height >= 0.0) || *height > 1e5) {
+      throw UsageError("--kitti-min-height expects a height in pixels, 0 or more");
+    }
+    dataset.kitti.min_height_px = *height;
+  }
+  if (const auto distance = parsed.number("--kitti-max-distance")) {
+    if (!(*distance > 0.0) || !std::isfinite(*distance)) {
+      throw UsageError("--kitti-max-distance expects a distance in metres above 0");
+    }
+    dataset.kitti.max_distance_m = *distance;
+  }
+  if ((parsed.flag("--kitti-min-height") || parsed.flag("--kitti-max-distance")) &&
+      dataset.format != sensors::DatasetFormat::kKitti) {
+    throw UsageError("--kitti-min-height and --kitti-max-distance need --format kitti");
   }
   dataset.replace = parsed.flag("--force");
   dataset.preview = parsed.flag("--preview");
   options.quiet = parsed.flag("--quiet");
   try {
     if (const auto time = parsed.value("--time-of-day")) {
-      dataset.environment.time_of_day = engine::parse_time_of_day(*time);
+      engine::parse_time_of_day(*time, dataset.environment);
       dataset.time_of_day_text = *time;
     }
     if (const auto weather = parsed.value("--weather")) {

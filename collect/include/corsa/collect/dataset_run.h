@@ -18,6 +18,7 @@
 #include "corsa/engine/environment_override.h"
 #include "corsa/engine/run.h"
 #include "corsa/sensors/dataset_writer.h"
+#include "corsa/sensors/kitti.h"
 #include "corsa/sensors/preview.h"
 
 namespace corsa::collect {
@@ -29,8 +30,9 @@ struct DatasetRunOptions {
   std::filesystem::path rig;     ///< sensor rig file (schemas/sensor-rig.xsd)
   std::filesystem::path output;  ///< dataset folder: absent, empty, or a dataset to `replace`
   sensors::DatasetFormat format = sensors::DatasetFormat::kCorsa;
-  bool replace = false;  ///< replace a previous dataset (a folder holding a run.json)
-  bool preview = false;  ///< also write output/preview/ (contact sheet, video)
+  sensors::KittiOptions kitti;  ///< DontCare regions of the KITTI labels (format kKitti)
+  bool replace = false;         ///< replace a previous dataset (a folder holding a run.json)
+  bool preview = false;         ///< also write output/preview/ (contact sheet, video)
   /// Time of day and weather over the scenario's own environment.
   engine::EnvironmentOverride environment;
   std::vector<ModelSpec> models;  ///< building models added to the scene
@@ -41,7 +43,7 @@ struct DatasetRunOptions {
 };
 
 struct DatasetRunReport {
-  /// The engine's report; filled when the run ended by itself (not interrupted).
+  /// The engine's report (end reason kInterrupted when the run was stopped).
   engine::RunReport run;
   bool interrupted = false;
   std::string interruption;      ///< what stopped it, e.g. "interrupted by SIGINT"
@@ -57,11 +59,14 @@ struct DatasetRunHooks {
   std::function<void(const engine::Simulation&)> on_step;
   /// Asked between steps whether to stop; a value is the reason ("interrupted by SIGINT"). The
   /// run then ends after the capture in progress, leaving a consistent dataset whose run.json
-  /// says "interrupted" with that reason.
+  /// says "interrupted" with that reason; the run's --record, --summary and --log are written
+  /// for what was simulated (end reason "interrupted").
   std::function<std::optional<std::string>()> stop;
   /// Called once the simulation is over (ended or stopped), before the dataset is completed and
   /// the preview written (e.g. to close a progress bar before anything else is printed).
   std::function<void()> on_simulated;
+  /// Sees the preview video being encoded: (frames done, frames in all).
+  sensors::PreviewProgress on_preview;
 };
 
 /// Runs the scenario with the rig and writes the dataset as `options` say. Throws InputError for
