@@ -2,6 +2,7 @@
 // same bytes, windows follow the triggers, KITTI export, located errors.
 
 #include <catch2/catch.hpp>
+#include <cstring>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -170,6 +171,44 @@ TEST_CASE("Captures showing interpenetrating entities are flagged in the index a
   CHECK_THAT(pose, Catch::Contains("\"overlaps\": [[1, 2]]"));
   CHECK_THAT(corsa::read_file(dir.path() / "c/poses/000022.json"),
              Catch::Contains("\"overlaps\": []"));
+}
+
+TEST_CASE("Point labels use the dataset's class table: .label, PLY and PCD agree on it",
+          "[dataset][labels]") {
+  corsa::test::TempDir dir;
+  const auto result = run_small(dir.path() / "l", {"--duration", "0.1", "--npc", "vehicles=4"});
+  INFO(result.err);
+  REQUIRE(result.exit_code == 0);
+  // The ids of classes.json.
+  std::set<uint32_t> ids;
+  const std::string table = corsa::read_file(dir.path() / "l/classes.json");
+  for (size_t at = table.find("\"id\": "); at != std::string::npos;
+       at = table.find("\"id\": ", at + 1)) {
+    ids.insert(static_cast<uint32_t>(std::stoul(table.substr(at + 6))));
+  }
+  REQUIRE(ids.size() > 10);
+  const std::string labels = corsa::read_file(dir.path() / "l/roof_lidar/000000.label");
+  const std::string pcd = corsa::read_file(dir.path() / "l/roof_lidar/000000.pcd");
+  const std::string ply = corsa::read_file(dir.path() / "l/roof_lidar/000000.ply");
+  CHECK_THAT(pcd, Catch::Contains("FIELDS x y z intensity ring label instance time\n"));
+  CHECK_THAT(ply, Catch::Contains("property uchar label\n"));
+  const size_t pcd_data = pcd.find("DATA binary\n") + 12;
+  const size_t ply_data = ply.find("end_header\n") + 11;
+  const size_t points = labels.size() / 4;
+  REQUIRE(points > 100);
+  REQUIRE(pcd.size() - pcd_data == points * 27);
+  std::set<uint32_t> seen;
+  for (size_t i = 0; i < points; ++i) {
+    uint32_t word = 0;
+    std::memcpy(&word, labels.data() + 4 * i, 4);
+    const uint32_t id = word & 0xFFFFu;
+    seen.insert(id);
+    CHECK(ids.count(id) == 1);
+    // The same id as the PCD's and PLY's label field of the same point.
+    CHECK(static_cast<uint8_t>(pcd[pcd_data + 27 * i + 18]) == id);
+    CHECK(static_cast<uint8_t>(ply[ply_data + 27 * i + 18]) == id);
+  }
+  CHECK(seen.size() >= 3);  // road, buildings, cars at least
 }
 
 TEST_CASE("Bad data-collection input is reported with exit code 2", "[dataset][errors]") {
