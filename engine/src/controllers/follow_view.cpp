@@ -13,18 +13,31 @@ void FollowView::build(const SimState& state, bool neighbours) {
   targets_.resize(entities.size());
   unindexed_.clear();
   grid_.clear();
+  scenario_vehicles_.clear();
   max_reach_ = 0.0;
   max_length_ = 0.0;
   const xodr::LaneGraph* graph = state.map != nullptr ? &state.map->lane_graph() : nullptr;
   lanes_.reset(graph != nullptr ? graph->size() : 0);
   least_rear_ = std::numeric_limits<double>::infinity();
+  // Which entities traffic generated: lifetimes only ever gain keys, so the set changes only
+  // when their number does.
+  const auto& lifetimes = state.traffic.lifetimes;
+  if (generated_.size() != entities.size() || generated_seen_ != lifetimes.size()) {
+    generated_.assign(entities.size(), 0);
+    for (const auto& [index, lives] : lifetimes) {
+      if (index < generated_.size()) {
+        generated_[index] = 1;
+      }
+    }
+    generated_seen_ = lifetimes.size();
+  }
   for (uint32_t i = 0; i < entities.size(); ++i) {
     const Entity& entity = entities[i];
     FollowTarget& target = targets_[i];
     const bool visible = i >= state.controls.size() || state.controls[i].traffic_visible;
     target.present = entity.state.placed && visible;
     target.usable = target.present && entity.state.road.has_value();
-    target.generated = false;
+    target.generated = generated_[i] != 0;
     if (!target.present) {
       continue;
     }
@@ -37,9 +50,11 @@ void FollowView::build(const SimState& state, bool neighbours) {
     target.length = entity.info.box.length;
     if (neighbours) {
       target.shape = box_of(entity.info.box, entity.state.pose);
+      target.reach = box_reach(entity.info.box);
       grid_.add(target.x, target.y, i);
-      // NaN stays out of the maxima; such a box is caught by no region anyway.
-      max_reach_ = std::max(max_reach_, box_reach(entity.info.box));
+      // NaN stays out of the maxima (std::max keeps the first); the local tests of
+      // controllers/npc_caution.cpp then reject such a box, as a scan would.
+      max_reach_ = std::max(max_reach_, target.reach);
       max_length_ = std::max(max_length_, target.length);
     }
     if (!target.usable) {
@@ -68,9 +83,12 @@ void FollowView::build(const SimState& state, bool neighbours) {
     }
   }
   lanes_.finish();
-  for (const auto& [index, lifetimes] : state.traffic.lifetimes) {
-    if (index < targets_.size()) {
-      targets_[index].generated = true;
+  if (neighbours) {
+    for (uint32_t i = 0; i < targets_.size(); ++i) {
+      const FollowTarget& target = targets_[i];
+      if (target.present && target.vehicle && !target.generated) {
+        scenario_vehicles_.add(target.x, target.y, i);
+      }
     }
   }
 }
@@ -78,6 +96,11 @@ void FollowView::build(const SimState& state, bool neighbours) {
 void FollowView::near(double x_min, double y_min, double x_max, double y_max,
                       std::vector<uint32_t>& out) const {
   grid_.query_box(x_min, y_min, x_max, y_max, out);
+}
+
+void FollowView::near_scenario_vehicles(double x_min, double y_min, double x_max, double y_max,
+                                        std::vector<uint32_t>& out) const {
+  scenario_vehicles_.query_box(x_min, y_min, x_max, y_max, out);
 }
 
 }  // namespace corsa::engine::detail

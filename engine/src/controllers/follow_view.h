@@ -37,6 +37,7 @@ struct FollowTarget {
   bool generated = false;  ///< made by traffic, not one of the scenario's own
   bool vehicle = false;    ///< ObjectKind::kVehicle
   double length = 0.0;     ///< m, of the bounding box
+  double reach = 0.0;      ///< m, the farthest a point of the box lies from the reference point
   OrientedBox shape;       ///< the bounding box at the pose
 };
 
@@ -59,8 +60,13 @@ class FollowView {
   /// been built with `neighbours`).
   void near(double x_min, double y_min, double x_max, double y_max,
             std::vector<uint32_t>& out) const;
+  /// The same for the present vehicles of the scenario's own (not generated), kept apart: few or
+  /// none among much generated traffic.
+  void near_scenario_vehicles(double x_min, double y_min, double x_max, double y_max,
+                              std::vector<uint32_t>& out) const;
   /// The farthest (m) a present entity's bounding box reaches from its reference point, and the
-  /// greatest box length (m): how far around a region near() must look for boxes reaching in.
+  /// greatest box length (m): how far around a region near() must look for boxes reaching in
+  /// (the same bound serves near_scenario_vehicles()).
   double max_reach() const { return max_reach_; }
   double max_length() const { return max_length_; }
 
@@ -70,6 +76,9 @@ class FollowView {
   std::vector<uint32_t> unindexed_;
   double least_rear_ = 0.0;
   PointGrid grid_{kGridCell};
+  PointGrid scenario_vehicles_{kGridCell};
+  std::vector<char> generated_;  ///< by entity: made by traffic
+  size_t generated_seen_ = 0;    ///< TrafficState::lifetimes.size() generated_ was made from
   double max_reach_ = 0.0;
   double max_length_ = 0.0;
 

@@ -81,10 +81,12 @@ bool extent_in_band(const LocalFrame& frame, const OrientedBox& box, double half
   return x_min <= x_max;
 }
 
-// Appends to `near` (emptied first) every present entity of `view` whose reference point may lie
-// within `margin` metres of the rectangle [x0, x1] x [-half, half] of `frame`.
+// Appends to `near` (emptied first) every present entity of `view` (only the scenario's vehicles
+// with `scenario_vehicles`) whose reference point may lie within `margin` metres of the rectangle
+// [x0, x1] x [-half, half] of `frame`.
 void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0, double x1,
-                    double half, double margin, std::vector<uint32_t>& near) {
+                    double half, double margin, std::vector<uint32_t>& near,
+                    bool scenario_vehicles = false) {
   near.clear();
   double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
   double y_min = x_min, y_max = -x_min;
@@ -98,7 +100,23 @@ void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0, 
       y_max = std::max(y_max, wy);
     }
   }
-  view.near(x_min - margin, y_min - margin, x_max + margin, y_max + margin, near);
+  if (scenario_vehicles) {
+    view.near_scenario_vehicles(x_min - margin, y_min - margin, x_max + margin, y_max + margin,
+                                near);
+  } else {
+    view.near(x_min - margin, y_min - margin, x_max + margin, y_max + margin, near);
+  }
+}
+
+// Whether the box of `other` may reach into [x0, x1] x [-half, half] of `frame`: its reference
+// point within its reach of that rectangle. Rejects most of a grid query's entities before the
+// exact test.
+bool may_reach(const LocalFrame& frame, const FollowTarget& other, double x0, double x1,
+               double half) {
+  double x = 0.0, y = 0.0;
+  frame.to_local(other.x, other.y, x, y);
+  const double r = other.reach + kSlack;
+  return x >= x0 - r && x <= x1 + r && std::abs(y) <= half + r;
 }
 
 }  // namespace
@@ -125,7 +143,7 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
     const double dx = other.x - me.state.pose.x;
     const double dy = other.y - me.state.pose.y;
     const double far = front + reach + other.length + 10.0;
-    if (dx * dx + dy * dy > far * far) {
+    if (dx * dx + dy * dy > far * far || !may_reach(frame, other, rear, front + reach, half)) {
       continue;
     }
     double x_min = 0.0, x_max = 0.0;
@@ -149,11 +167,13 @@ double keep_ahead_speed(const Entity& me, uint32_t index, const FollowView& view
   const LocalFrame frame(me.state.pose);
   const double rear = me.info.box.center_x - 0.5 * me.info.box.length;
   const double half = 0.5 * me.info.box.width + kSideMargin;
-  near_rectangle(view, frame, rear - kBehindReach, rear, half, view.max_reach() + kSlack, near);
+  near_rectangle(view, frame, rear - kBehindReach, rear, half, view.max_reach() + kSlack, near,
+                 true);
   double needed = 0.0;
   for (const uint32_t j : near) {
     const FollowTarget& other = view.targets()[j];
-    if (j == index || !other.present || other.generated || !other.vehicle) {
+    if (j == index || !other.present || other.generated || !other.vehicle ||
+        !may_reach(frame, other, rear - kBehindReach, rear, half)) {
       continue;
     }
     const double along = std::cos(other.h - me.state.pose.h);

@@ -40,6 +40,9 @@ void PointGrid::query(double x, double y, double radius, std::vector<uint32_t>& 
 void PointGrid::query_box(double x_min, double y_min, double x_max, double y_max,
                           std::vector<uint32_t>& out) const {
   out.insert(out.end(), overflow_.begin(), overflow_.end());
+  if (cells_.empty()) {
+    return;
+  }
   const double i0 = std::floor(x_min / cell_), i1 = std::floor(x_max / cell_);
   const double j0 = std::floor(y_min / cell_), j1 = std::floor(y_max / cell_);
   if (!(i1 - i0 < 64.0 && j1 - j0 < 64.0 && std::abs(i0) < kMaxCell && std::abs(i1) < kMaxCell &&
