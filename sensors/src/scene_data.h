@@ -89,9 +89,9 @@ struct SceneData {
   /// the LiDAR traces it (a rolling shutter); null until a motion span is first given.
   RTCScene moving_top = nullptr;
   std::vector<RTCGeometry> moving_pool;
-  double motion_span = 0.0;  ///< s, of the last set_entities
-  std::vector<EntityInstance> instances;          ///< this frame's, by pool index
-  std::vector<engine::EntitySnapshot> entities;   ///< this frame's snapshot entities
+  double motion_span = 0.0;                                 ///< s, of the last set_entities
+  std::vector<EntityInstance> instances;                    ///< this frame's, by pool index
+  std::vector<engine::EntitySnapshot> entities;             ///< this frame's snapshot entities
   std::map<uint32_t, std::unique_ptr<EntityShape>> shapes;  ///< by entity instance id
   std::shared_ptr<EntityShapeSource> shape_source;
   std::vector<Material> materials;  ///< by MaterialId

@@ -57,7 +57,8 @@ double range_of(const LidarPoint& p) { return std::sqrt(p.x * p.x + p.y * p.y + 
 size_t early_returns(const PointCloud& cloud, double within) {
   size_t n = 0;
   for (const LidarPoint& p : cloud.points) {
-    n += p.instance_id == 0 && p.semantic == SemanticClass::kUnlabeled && range_of(p) < within ? 1 : 0;
+    n += p.instance_id == 0 && p.semantic == SemanticClass::kUnlabeled && range_of(p) < within ? 1
+                                                                                               : 0;
   }
   return n;
 }
