@@ -14,6 +14,7 @@ void FollowView::build(const SimState& state, bool neighbours) {
   unindexed_.clear();
   grid_.clear();
   scenario_vehicles_.clear();
+  has_scenario_vehicles_ = false;
   max_reach_ = 0.0;
   max_length_ = 0.0;
   const xodr::LaneGraph* graph = state.map != nullptr ? &state.map->lane_graph() : nullptr;
@@ -50,11 +51,10 @@ void FollowView::build(const SimState& state, bool neighbours) {
     target.length = entity.info.box.length;
     if (neighbours) {
       target.shape = box_of(entity.info.box, entity.state.pose);
-      target.reach = box_reach(entity.info.box);
       grid_.add(target.x, target.y, i);
-      // NaN stays out of the maxima (std::max keeps the first); the local tests of
-      // controllers/npc_caution.cpp then reject such a box, as a scan would.
-      max_reach_ = std::max(max_reach_, target.reach);
+      // NaN stays out of the maxima (std::max keeps the first); the tests of
+      // controllers/npc_caution.cpp reject such a box anyway, as a scan would.
+      max_reach_ = std::max(max_reach_, box_reach(entity.info.box));
       max_length_ = std::max(max_length_, target.length);
     }
     if (!target.usable) {
@@ -88,6 +88,7 @@ void FollowView::build(const SimState& state, bool neighbours) {
       const FollowTarget& target = targets_[i];
       if (target.present && target.vehicle && !target.generated) {
         scenario_vehicles_.add(target.x, target.y, i);
+        has_scenario_vehicles_ = true;
       }
     }
   }

@@ -37,7 +37,6 @@ struct FollowTarget {
   bool generated = false;  ///< made by traffic, not one of the scenario's own
   bool vehicle = false;    ///< ObjectKind::kVehicle
   double length = 0.0;     ///< m, of the bounding box
-  double reach = 0.0;      ///< m, the farthest a point of the box lies from the reference point
   OrientedBox shape;       ///< the bounding box at the pose
 };
 
@@ -64,6 +63,7 @@ class FollowView {
   /// none among much generated traffic.
   void near_scenario_vehicles(double x_min, double y_min, double x_max, double y_max,
                               std::vector<uint32_t>& out) const;
+  bool has_scenario_vehicles() const { return has_scenario_vehicles_; }
   /// The farthest (m) a present entity's bounding box reaches from its reference point, and the
   /// greatest box length (m): how far around a region near() must look for boxes reaching in
   /// (the same bound serves near_scenario_vehicles()).
@@ -77,6 +77,7 @@ class FollowView {
   double least_rear_ = 0.0;
   PointGrid grid_{kGridCell};
   PointGrid scenario_vehicles_{kGridCell};
+  bool has_scenario_vehicles_ = false;
   std::vector<char> generated_;  ///< by entity: made by traffic
   size_t generated_seen_ = 0;    ///< TrafficState::lifetimes.size() generated_ was made from
   double max_reach_ = 0.0;

@@ -108,15 +108,20 @@ void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0, 
   }
 }
 
-// Whether the box of `other` may reach into [x0, x1] x [-half, half] of `frame`: its reference
-// point within its reach of that rectangle. Rejects most of a grid query's entities before the
-// exact test.
+// Whether the box of `other` may reach into [x0, x1] x [-half, half] of `frame`: its bounding
+// rectangle in the frame's axes overlaps that rectangle. Rejects most of a grid query's entities
+// (those of the neighbouring lanes too) before the exact test.
 bool may_reach(const LocalFrame& frame, const FollowTarget& other, double x0, double x1,
                double half) {
+  const OrientedBox& box = other.shape;
   double x = 0.0, y = 0.0;
-  frame.to_local(other.x, other.y, x, y);
-  const double r = other.reach + kSlack;
-  return x >= x0 - r && x <= x1 + r && std::abs(y) <= half + r;
+  frame.to_local(box.cx, box.cy, x, y);
+  // The box's axes in the frame: cos and sin of the heading difference.
+  const double c = std::abs(box.cos_h * frame.c + box.sin_h * frame.s);
+  const double s = std::abs(box.sin_h * frame.c - box.cos_h * frame.s);
+  const double along = box.half_length * c + box.half_width * s + kSlack;
+  const double across = box.half_length * s + box.half_width * c + kSlack;
+  return x + along >= x0 && x - along <= x1 && std::abs(y) - across <= half;
 }
 
 }  // namespace
@@ -164,6 +169,9 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
 
 double keep_ahead_speed(const Entity& me, uint32_t index, const FollowView& view,
                         std::vector<uint32_t>& near) {
+  if (!view.has_scenario_vehicles()) {
+    return 0.0;
+  }
   const LocalFrame frame(me.state.pose);
   const double rear = me.info.box.center_x - 0.5 * me.info.box.length;
   const double half = 0.5 * me.info.box.width + kSideMargin;
