@@ -84,10 +84,11 @@ TEST_CASE("a roof LiDAR does not see its own car unless asked to", "[sensors][li
   for (const LidarPoint& p : kept.points) {
     self += p.instance_id == 1 ? 1 : 0;
   }
-  // 0.4 m above the roof with a -30 degree lower field of view, about a third of the beams end
-  // on the car (29% in the demo, measured).
+  // 0.4 m above the roof with a -30 degree lower field of view, the steepest beams end on the
+  // roof, bonnet and boot: about a tenth of the points of this flat scene (9.9% measured; the
+  // roof, narrower and shorter than the box, lets the shallower beams pass).
   const double share = static_cast<double>(self) / static_cast<double>(kept.points.size());
-  CHECK(share > 0.2);
+  CHECK(share > 0.08);
   for (const LidarPoint& p : masked.points) {
     CHECK(p.instance_id != 1);
   }
@@ -152,9 +153,9 @@ TEST_CASE("a moving LiDAR sees the world move during its sweep; deskew takes it 
 TEST_CASE("entities move during the sweep: a car behind is caught at two places",
           "[sensors][lidar][motion]") {
   Scene scene = committed_scene(false);
-  // A 4 m car 10 m behind the still sensor, driving toward it at 10 m/s.
-  corsa::engine::EntitySnapshot car = corsa::test::box_entity(5, "car", -12.0, 0.0, 4.0, 2.0, 3.0,
-                                                              corsa::engine::EntityCategory::kCar);
+  // A 4 m long box 10 m behind the still sensor, driving toward it at 10 m/s (a plain box, so
+  // that its front face is exactly the box's: a generated car's nose lies a little inside).
+  corsa::engine::EntitySnapshot car = corsa::test::box_entity(5, "car", -12.0, 0.0, 4.0, 2.0, 3.0);
   car.vx = 10.0;
   const double sweep = 0.1;  // s, one turn at 10 Hz
   scene.set_entities(std::vector{car}, sweep);
