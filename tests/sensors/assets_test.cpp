@@ -6,6 +6,8 @@
 #include <set>
 
 #include "corsa/sensors/camera_render.h"
+#include "corsa/sensors/labels.h"
+#include "corsa/sensors/lidar.h"
 #include "fixtures.h"
 #include "noise_tile.h"
 #include "scene_data.h"
@@ -188,6 +190,51 @@ TEST_CASE("a walking person swings its legs with the distance walked and stands 
   // Standing: both thighs nearly vertical.
   CHECK(std::fabs(still[detail::kBoneThighL].rotation.m[0][2]) < 0.05);
   CHECK(std::fabs(still[detail::kBoneThighR].rotation.m[0][2]) < 0.05);
+}
+
+TEST_CASE("a walking person's label box holds the whole stride", "[sensors][assets][labels]") {
+  Scene scene;
+  scene.add_road_mesh(corsa::test::flat_road());
+  scene.commit();
+  // The demo's generated walkers have a 0.5 m long box, shorter than a brisk stride. This one
+  // walks across the LiDAR's view, its stride seen side-on.
+  auto walker = box_entity(7, "walker", 10.0, 0.0, 0.5, 0.6, 1.8, EntityCategory::kPedestrian);
+  walker.pose.h = 0.5 * M_PI;
+  walker.speed = 1.7;
+  LidarOptions o;
+  o.channels = 64;
+  o.lower_fov_deg = -20.0;
+  o.upper_fov_deg = 10.0;
+  o.points_per_second = 64.0 * 3600.0 * 10.0;  // 0.1 degree steps
+  o.range_m = 50.0;
+  const Rigid sensor = rigid_from_pose(0.0, 0.0, 1.0, 0.0, 0.0, 0.0);
+  double longest = 0.0;
+  size_t points = 0, outside = 0;
+  for (int k = 0; k < 8; ++k) {
+    walker.odometer = 0.19 * k;  // through a gait cycle (0.83 statures)
+    scene.set_entities(std::vector{walker});
+    LidarScanInput input;
+    input.world_from_sensor = sensor;
+    const PointCloud cloud = LidarSimulator(o).scan(scene, input);
+    const auto labels = lidar_labels(scene, sensor, cloud, 50.0);
+    REQUIRE(labels.size() == 1);
+    const Box3& b = labels[0].box_sensor;
+    longest = std::max(longest, b.length);
+    for (const LidarPoint& p : cloud.points) {
+      if (p.instance_id != 7) {
+        continue;
+      }
+      ++points;
+      const Vec3 q = b.rotation.transposed() * (Vec3{p.x, p.y, p.z} - b.center);
+      const bool in = std::fabs(q.x) <= 0.5 * b.length + 0.01 &&
+                      std::fabs(q.y) <= 0.5 * b.width + 0.01 &&
+                      std::fabs(q.z) <= 0.5 * b.height + 0.01;
+      outside += in ? 0 : 1;
+    }
+  }
+  CHECK(points > 200);
+  CHECK(outside == 0);
+  CHECK(longest > 0.6);  // the entity's own 0.5 m would not hold the stride
 }
 
 TEST_CASE("riders are labelled rider on their bicycle, people person, every pixel an instance",
