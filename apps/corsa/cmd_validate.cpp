@@ -71,7 +71,8 @@ FileReport check_file(const std::string& file, const xosc::LoadOptions& options)
     report.valid = true;
   } catch (const InputError& error) {
     report.diagnostics = diagnostics.all();
-    report.diagnostics.push_back(error.diagnostic());
+    report.diagnostics.insert(report.diagnostics.end(), error.diagnostics().begin(),
+                              error.diagnostics().end());
     return report;
   }
   report.diagnostics = diagnostics.all();

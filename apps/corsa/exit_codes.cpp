@@ -17,7 +17,7 @@ int guarded(std::string_view command, const std::function<int()>& body) {
     std::cerr << prefix << ": error: " << error.what() << "\n(see '" << prefix << " --help')\n";
     return kExitBadInput;
   } catch (const InputError& error) {
-    std::cerr << error.diagnostic().format() << '\n';
+    std::cerr << error.what() << '\n';
     return kExitBadInput;
   } catch (const std::filesystem::filesystem_error& error) {
     std::cerr << prefix << ": error: " << error.what() << '\n';

@@ -52,7 +52,29 @@ Diagnostic make_warning(std::string file, int line, std::string message, std::st
 }
 
 InputError::InputError(Diagnostic diagnostic)
-    : std::runtime_error(diagnostic.format()), diagnostic_(std::move(diagnostic)) {}
+    : std::runtime_error(diagnostic.format()), diagnostics_{std::move(diagnostic)} {}
+
+namespace {
+std::string joined(const std::vector<Diagnostic>& diagnostics) {
+  std::string text;
+  for (const auto& diagnostic : diagnostics) {
+    text += (text.empty() ? "" : "\n") + diagnostic.format();
+  }
+  return text;
+}
+}  // namespace
+
+std::string InputError::brief() const {
+  std::string text = diagnostics_.front().format();
+  if (diagnostics_.size() > 1) {
+    text += " (and " + std::to_string(diagnostics_.size() - 1) + " more error" +
+            (diagnostics_.size() > 2 ? "s" : "") + ")";
+  }
+  return text;
+}
+
+InputError::InputError(std::vector<Diagnostic> diagnostics)
+    : std::runtime_error(joined(diagnostics)), diagnostics_(std::move(diagnostics)) {}
 
 void Diagnostics::add(Diagnostic diagnostic) {
   std::lock_guard lock(mutex_);

@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
     write_model(meshes, out / "street_district.obj", "obj");
     std::cout << "wrote " << meshes.size() << " buildings to " << out.string() << "\n";
   } catch (const corsa::InputError& error) {
-    std::cerr << error.diagnostic().format() << "\n";
+    std::cerr << error.what() << "\n";
     return 2;
   }
   return 0;

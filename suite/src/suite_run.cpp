@@ -30,7 +30,7 @@ class InputsByScenario {
         inputs_.emplace(test.scenario,
                         std::make_unique<sweep::SharedInputs>(test.scenario, diagnostics));
       } catch (const InputError& error) {
-        errors_.emplace(test.scenario, error.diagnostic().format());
+        errors_.emplace(test.scenario, error.brief());
       }
     }
   }

@@ -119,7 +119,7 @@ VariantResult run_variant(SharedInputs& inputs, const VariantSpec& spec,
   } catch (const InputError& error) {
     result = VariantResult{};  // nothing of a failed run is reported but the failure
     result.status = VariantStatus::kBadInput;
-    result.error = error.diagnostic().format();
+    result.error = error.brief();
   } catch (const std::bad_alloc&) {
     result = VariantResult{};
     result.status = VariantStatus::kInternal;

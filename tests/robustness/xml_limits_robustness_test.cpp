@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bounded_run.h"
+#include "corsa/core/strings.h"
 
 namespace corsa::test {
 namespace {
@@ -68,7 +69,7 @@ TEST_CASE("Megabyte names and values in OpenDRIVE are quoted clipped in messages
     CHECK(result.exit_code == 2);
     CHECK(has_located_error(result.err));
     CHECK(result.err.size() < 2000);
-    CHECK(result.err.find(std::string(64, 'n') + "...") != std::string::npos);
+    CHECK(result.err.find(std::string(corsa::kClipBytes, 'n') + "...") != std::string::npos);
   }
 }
 

@@ -37,14 +37,21 @@ Diagnostic make_error(std::string file, int line, std::string message, std::stri
 Diagnostic make_warning(std::string file, int line, std::string message, std::string path = {});
 
 /// Thrown for bad input (never for our own bugs). Carries the located diagnostic; what() is the
-/// formatted line so that an uncaught one still says where the problem is.
+/// formatted line so that an uncaught one still says where the problem is. A loader that reports
+/// every error of a file in one pass throws one InputError holding all of them, in the order
+/// found: diagnostic() is the first, diagnostics() all, and what() their lines joined by '\n'.
 class InputError : public std::runtime_error {
  public:
   explicit InputError(Diagnostic diagnostic);
-  const Diagnostic& diagnostic() const { return diagnostic_; }
+  /// `diagnostics` must not be empty.
+  explicit InputError(std::vector<Diagnostic> diagnostics);
+  const Diagnostic& diagnostic() const { return diagnostics_.front(); }
+  const std::vector<Diagnostic>& diagnostics() const { return diagnostics_; }
+  /// One line: the first diagnostic, with "(and N more errors)" when there are others.
+  std::string brief() const;
 
  private:
-  Diagnostic diagnostic_;
+  std::vector<Diagnostic> diagnostics_;
 };
 
 /// Collects the warnings (and non-fatal errors) of one load or run. Not global: every loader and

@@ -30,8 +30,9 @@ std::string csv_field(std::string_view text);
 
 /// `text` for quoting in a message: itself when at most `max_bytes` long, else its first bytes
 /// (never ending inside a UTF-8 sequence) followed by "...". Keeps a 5 MB name or value in a
-/// malformed input from flooding the terminal.
-std::string clip(std::string_view text, size_t max_bytes = 64);
+/// malformed input from flooding the terminal; every value a message echoes goes through it.
+inline constexpr size_t kClipBytes = 200;
+std::string clip(std::string_view text, size_t max_bytes = kClipBytes);
 
 /// The name of `candidates` nearest to `word` when it is a likely misspelling of it: at most one
 /// edit (insertion, deletion, substitution or swap of neighbours) for words of up to four
