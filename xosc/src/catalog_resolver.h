@@ -22,9 +22,11 @@ class CatalogResolver {
     const XmlFile* file = nullptr;
   };
   /// The entry `entry_name` of catalog `catalog_name`; fails at `reference` naming both when the
-  /// catalog or the entry does not exist.
+  /// catalog or the entry does not exist. When no catalog file declares `catalog_name` but a
+  /// catalog in the directory given for the entry's kinds (`kinds`, e.g. "Vehicle") has the
+  /// entry, that one is taken with a lenient-reading warning (esmini looks there too).
   Hit find(ParseContext& ctx, const Element* reference, const std::string& catalog_name,
-           const std::string& entry_name);
+           const std::string& entry_name, std::initializer_list<std::string_view> kinds);
 
   const std::vector<std::filesystem::path>& files_read() const { return files_read_; }
 
@@ -37,12 +39,17 @@ class CatalogResolver {
 
  private:
   void scan(ParseContext& ctx);
+  const Element* entry_of(const Element* catalog, const std::string& entry_name);
+  Hit found(const Element* catalog, const Element* entry);
+  /// The catalog directory CatalogLocations gives for entries of kind `kind`, if any.
+  const std::optional<CatalogDirectory>* directory_for(std::string_view kind) const;
 
   const CatalogLocations& locations_;
   bool scanned_ = false;
   std::vector<std::shared_ptr<const XmlFile>> files_;
   std::map<std::string, const Element*> catalogs_;  // catalog name -> Catalog element
   std::map<const Element*, const XmlFile*> owners_;
+  std::map<std::filesystem::path, std::vector<const Element*>> by_directory_;
   std::vector<std::filesystem::path> files_read_;
 };
 
@@ -71,7 +78,7 @@ T expand_catalog_reference(ParseContext& ctx, const Element* reference,
     }
   }
   const CatalogResolver::Hit hit =
-      ctx.catalogs->find(ctx, reference, origin.catalog_name, origin.entry_name);
+      ctx.catalogs->find(ctx, reference, origin.catalog_name, origin.entry_name, kinds);
   bool kind_ok = false;
   std::string expected;
   for (const auto kind : kinds) {

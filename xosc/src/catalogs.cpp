@@ -78,6 +78,7 @@ void CatalogResolver::scan(ParseContext& ctx) {
         throw InputError(
             make_error(*xml->name, catalog->GetLineNum(), "<Catalog> needs the attribute name"));
       }
+      by_directory_[path].push_back(catalog);
       if (!catalogs_.emplace(name, catalog).second) {
         ctx.diagnostics().add_once(
             std::string("catalog-dup:") + name,
@@ -92,9 +93,40 @@ void CatalogResolver::scan(ParseContext& ctx) {
   }
 }
 
+const Element* CatalogResolver::entry_of(const Element* catalog, const std::string& entry_name) {
+  for (const Element* entry = catalog->FirstChildElement(); entry != nullptr;
+       entry = entry->NextSiblingElement()) {
+    const char* name = entry->Attribute("name");
+    if (name != nullptr && entry_name == name) return entry;
+  }
+  return nullptr;
+}
+
+CatalogResolver::Hit CatalogResolver::found(const Element* catalog, const Element* entry) {
+  const XmlFile* file = owners_.at(catalog);
+  const std::filesystem::path path = *file->name;
+  if (std::find(files_read_.begin(), files_read_.end(), path) == files_read_.end()) {
+    files_read_.push_back(path);
+  }
+  return Hit{entry, file};
+}
+
+const std::optional<CatalogDirectory>* CatalogResolver::directory_for(std::string_view kind) const {
+  if (kind == "Vehicle") return &locations_.vehicle;
+  if (kind == "Controller") return &locations_.controller;
+  if (kind == "Pedestrian") return &locations_.pedestrian;
+  if (kind == "MiscObject") return &locations_.misc_object;
+  if (kind == "Environment") return &locations_.environment;
+  if (kind == "Maneuver") return &locations_.maneuver;
+  if (kind == "Trajectory") return &locations_.trajectory;
+  if (kind == "Route") return &locations_.route;
+  return nullptr;
+}
+
 CatalogResolver::Hit CatalogResolver::find(ParseContext& ctx, const Element* reference,
                                            const std::string& catalog_name,
-                                           const std::string& entry_name) {
+                                           const std::string& entry_name,
+                                           std::initializer_list<std::string_view> kinds) {
   if (!scanned_) {
     scan(ctx);
   }
@@ -103,32 +135,41 @@ CatalogResolver::Hit CatalogResolver::find(ParseContext& ctx, const Element* ref
     for (const auto& file : files_) {
       if (file->document != nullptr) continue;
       Diagnostic cause = unreadable_catalog_error(*file);
-      cause.message += " (this catalog file may hold entry '" + entry_name + "' of catalog '" +
-                       catalog_name + "', needed at " + ctx.source(reference).file_name() + ":" +
+      cause.message += " (this catalog file may hold entry '" + clip(entry_name) +
+                       "' of catalog '" + clip(catalog_name) + "', needed at " +
+                       ctx.source(reference).file_name() + ":" +
                        std::to_string(ctx.source(reference).line) + ")";
       throw InputError(std::move(cause));
     }
     ctx.fail(reference, message);
   };
-  const auto found = catalogs_.find(catalog_name);
-  if (found == catalogs_.end()) {
-    fail_missing("catalog '" + catalog_name + "' (for entry '" + entry_name +
-                 "') is not in any catalog directory of <CatalogLocations>");
+  const auto named = catalogs_.find(catalog_name);
+  if (named != catalogs_.end()) {
+    if (const Element* entry = entry_of(named->second, entry_name)) {
+      return found(named->second, entry);
+    }
+    fail_missing("catalog '" + clip(catalog_name) + "' (" + *owners_.at(named->second)->name +
+                 ") has no entry '" + clip(entry_name) + "'");
   }
-  const XmlFile* file = owners_.at(found->second);
-  for (const Element* entry = found->second->FirstChildElement(); entry != nullptr;
-       entry = entry->NextSiblingElement()) {
-    const char* name = entry->Attribute("name");
-    if (name != nullptr && entry_name == name) {
-      const std::filesystem::path path = *file->name;
-      if (std::find(files_read_.begin(), files_read_.end(), path) == files_read_.end()) {
-        files_read_.push_back(path);
-      }
-      return Hit{entry, file};
+  // No catalog of that name: a catalog file whose <Catalog name> differs from the name the
+  // scenario uses (esmini finds entries by the directory of their kind).
+  for (const auto kind : kinds) {
+    const auto* directory = directory_for(kind);
+    if (directory == nullptr || !directory->has_value()) continue;
+    const auto catalogs = by_directory_.find((*directory)->resolved);
+    if (catalogs == by_directory_.end()) continue;
+    for (const Element* catalog : catalogs->second) {
+      const Element* entry = entry_of(catalog, entry_name);
+      if (entry == nullptr || std::string_view(entry->Name()) != kind) continue;
+      ctx.lenient(reference, "no catalog file declares catalog '" + clip(catalog_name) + "'",
+                  "catalog '" + std::string(catalog->Attribute("name")) + "' (" +
+                      *owners_.at(catalog)->name + "), the " + std::string(kind) +
+                      " catalog directory's one with entry '" + clip(entry_name) + "'");
+      return found(catalog, entry);
     }
   }
-  fail_missing("catalog '" + catalog_name + "' (" + *file->name + ") has no entry '" + entry_name +
-               "'");
+  fail_missing("catalog '" + clip(catalog_name) + "' (for entry '" + clip(entry_name) +
+               "') is not in any catalog directory of <CatalogLocations>");
   std::abort();  // fail_missing throws
 }
 
@@ -144,18 +185,24 @@ Catalog parse_catalog(ParseContext& ctx, const Element* e) {
     const std::string_view kind = entry->Name();
     const char* name = entry->Attribute("name");
     if (name != nullptr && !names.insert(name).second) {
-      ctx.fail(entry, "catalog entry name '" + std::string(name) + "' is used twice");
+      ctx.error(entry, "catalog entry name '" + clip(name) + "' is used twice");
     }
-    if (kind == "Vehicle") catalog.vehicles.push_back(parse_vehicle(ctx, entry, scope));
-    if (kind == "Controller") catalog.controllers.push_back(parse_controller(ctx, entry, scope));
-    if (kind == "Pedestrian") catalog.pedestrians.push_back(parse_pedestrian(ctx, entry, scope));
-    if (kind == "MiscObject") catalog.misc_objects.push_back(parse_misc_object(ctx, entry, scope));
-    if (kind == "Environment") {
-      catalog.environments.push_back(parse_environment(ctx, entry, scope));
-    }
-    if (kind == "Maneuver") catalog.maneuvers.push_back(parse_maneuver(ctx, entry, scope));
-    if (kind == "Trajectory") catalog.trajectories.push_back(parse_trajectory(ctx, entry, scope));
-    if (kind == "Route") catalog.routes.push_back(parse_route(ctx, entry, scope));
+    ctx.recover([&] {
+      if (kind == "Vehicle") catalog.vehicles.push_back(parse_vehicle(ctx, entry, scope));
+      if (kind == "Controller") catalog.controllers.push_back(parse_controller(ctx, entry, scope));
+      if (kind == "Pedestrian") catalog.pedestrians.push_back(parse_pedestrian(ctx, entry, scope));
+      if (kind == "MiscObject") {
+        catalog.misc_objects.push_back(parse_misc_object(ctx, entry, scope));
+      }
+      if (kind == "Environment") {
+        catalog.environments.push_back(parse_environment(ctx, entry, scope));
+      }
+      if (kind == "Maneuver") catalog.maneuvers.push_back(parse_maneuver(ctx, entry, scope));
+      if (kind == "Trajectory") {
+        catalog.trajectories.push_back(parse_trajectory(ctx, entry, scope));
+      }
+      if (kind == "Route") catalog.routes.push_back(parse_route(ctx, entry, scope));
+    });
   }
   catalog.source = ctx.source(e);
   return catalog;

@@ -3,7 +3,6 @@
 // dispatch on the document kind.
 
 #include "corsa/core/atomic_file.h"
-#include "message_echo.h"
 #include "parsers.h"
 #include "references.h"
 
@@ -84,8 +83,10 @@ RoadNetwork parse_road_network(ParseContext& ctx, const Element* e) {
     std::error_code error;
     if (ctx.options().check_files &&
         !std::filesystem::is_regular_file(network.logic_file_path, error)) {
-      ctx.fail(logic, "map file '" + network.logic_file->filepath + "' not found (looked for " +
-                          network.logic_file_path.string() + ")");
+      // Reported, and the rest of the document is still checked.
+      ctx.error(logic, "map file '" + clip(network.logic_file->filepath) +
+                           "' not found (looked for " + clip(network.logic_file_path.string()) +
+                           ")");
     }
   }
   if (const Element* scene = kids.opt("SceneGraphFile")) {
@@ -103,7 +104,9 @@ RoadNetwork parse_road_network(ParseContext& ctx, const Element* e) {
   if (const Element* signals = kids.opt("TrafficSignals")) {
     Children signal_kids(ctx, signals, "TrafficSignals");
     for (const Element* controller : signal_kids.all("TrafficSignalController")) {
-      network.traffic_signal_controllers.push_back(parse_signal_controller(ctx, controller));
+      ctx.recover([&] {
+        network.traffic_signal_controllers.push_back(parse_signal_controller(ctx, controller));
+      });
     }
   }
   if (const Element* area = kids.opt("UsedArea")) {
@@ -119,33 +122,38 @@ void parse_variables_and_monitors(ParseContext& ctx, Children& kids, Scenario& s
   if (const Element* variables = kids.opt("VariableDeclarations")) {
     Children variable_kids(ctx, variables, "VariableDeclarations");
     for (const Element* v : variable_kids.all("VariableDeclaration")) {
-      Children(ctx, v, "VariableDeclaration");
-      VariableDeclaration variable;
-      variable.name = ctx.req_str(v, "name");
-      variable.type = ctx.req_enum<ParameterType>(v, "variableType");
-      const std::string text = ctx.req_str(v, "value");
-      const auto value = parse_value(variable.type, text);
-      if (!value) {
-        ctx.fail(v, "variable '" + echo(variable.name) + "': '" + echo(text) + "' is not a valid " +
-                        std::string(to_string(variable.type)));
-      }
-      if (!ctx.variables.insert(variable.name).second) {
-        ctx.fail(v, "variable '" + variable.name + "' is declared twice");
-      }
-      variable.value = *value;
-      variable.source = ctx.source(v);
-      scenario.variables.push_back(std::move(variable));
+      ctx.recover([&] {
+        Children(ctx, v, "VariableDeclaration");
+        VariableDeclaration variable;
+        variable.name = ctx.req_str(v, "name");
+        variable.type = ctx.req_enum<ParameterType>(v, "variableType");
+        const std::string text = ctx.req_str(v, "value");
+        if (!ctx.variables.emplace(variable.name, variable.type).second) {
+          ctx.error(v, "variable '" + clip(variable.name) + "' is declared twice");
+        }
+        const auto value =
+            ctx.typed_value(v, variable.type, text, "variable '" + variable.name + "'");
+        if (!value) {
+          ctx.fail(v, "variable '" + clip(variable.name) + "': '" + clip(text) +
+                          "' is not a valid " + std::string(to_string(variable.type)));
+        }
+        variable.value = *value;
+        variable.source = ctx.source(v);
+        scenario.variables.push_back(std::move(variable));
+      });
     }
   }
   if (const Element* monitors = kids.opt("MonitorDeclarations")) {
     Children monitor_kids(ctx, monitors, "MonitorDeclarations");
     for (const Element* m : monitor_kids.all("MonitorDeclaration")) {
-      Children(ctx, m, "MonitorDeclaration");
-      MonitorDeclaration monitor{ctx.req_str(m, "name"), ctx.req_bool(m, "value"), ctx.source(m)};
-      if (!ctx.monitors.insert(monitor.name).second) {
-        ctx.fail(m, "monitor '" + monitor.name + "' is declared twice");
-      }
-      scenario.monitors.push_back(std::move(monitor));
+      ctx.recover([&] {
+        Children(ctx, m, "MonitorDeclaration");
+        MonitorDeclaration monitor{ctx.req_str(m, "name"), ctx.req_bool(m, "value"), ctx.source(m)};
+        if (!ctx.monitors.insert(monitor.name).second) {
+          ctx.fail(m, "monitor '" + clip(monitor.name) + "' is declared twice");
+        }
+        scenario.monitors.push_back(std::move(monitor));
+      });
     }
   }
 }
@@ -164,7 +172,7 @@ Scenario parse_scenario_root(ParseContext& ctx, const Element* root, Children& k
   Scenario scenario;
   scenario.path = path;
   scenario.source = ctx.source(root);
-  scenario.header = parse_file_header(ctx, kids.one("FileHeader"));
+  ctx.recover([&] { scenario.header = parse_file_header(ctx, kids.one("FileHeader")); });
   scenario.parameters = ctx.push_scope(kids.opt("ParameterDeclarations"),
                                        option_overrides(ctx.options()), true, "the scenario");
   ScopeGuard guard(ctx);
@@ -172,20 +180,22 @@ Scenario parse_scenario_root(ParseContext& ctx, const Element* root, Children& k
     ctx.global_parameters.insert(parameter.name);
   }
   parse_variables_and_monitors(ctx, kids, scenario);
-  scenario.catalog_locations = parse_catalog_locations(ctx, kids.one("CatalogLocations"));
-  scenario.road_network = parse_road_network(ctx, kids.one("RoadNetwork"));
+  ctx.recover([&] {
+    scenario.catalog_locations = parse_catalog_locations(ctx, kids.one("CatalogLocations"));
+  });
+  ctx.recover([&] { scenario.road_network = parse_road_network(ctx, kids.one("RoadNetwork")); });
   for (const auto& controller : scenario.road_network.traffic_signal_controllers) {
     auto& phases = ctx.signal_controllers[controller.name];
     for (const auto& phase : controller.phases) phases.push_back(phase.name);
   }
   CatalogResolver catalogs(scenario.catalog_locations);
   ctx.catalogs = &catalogs;
-  scenario.entities = parse_entities(ctx, kids.one("Entities"));
-  scenario.storyboard = parse_storyboard(ctx, kids.one("Storyboard"));
+  ctx.recover([&] { scenario.entities = parse_entities(ctx, kids.one("Entities")); });
+  ctx.recover([&] { scenario.storyboard = parse_storyboard(ctx, kids.one("Storyboard")); });
   ctx.catalogs = nullptr;
   scenario.catalog_files = catalogs.files_read();
   check_entity_references(ctx, scenario.entities);
-  resolve_storyboard_references(scenario.storyboard);
+  resolve_storyboard_references(ctx, scenario.storyboard);
   return scenario;
 }
 
@@ -216,14 +226,20 @@ ParameterValueDistribution read_distribution(ParseContext& ctx, Children& kids) 
   return distribution;
 }
 
+// Reads one document; every error found is thrown at the end, together.
 template <class Body>
 auto with_document(const XmlFile& xml, const LoadOptions& options, Diagnostics& diagnostics,
                    Body body) {
   ParseContext ctx(diagnostics, options);
   ctx.swap_file({xml.name, xml.directory});
   const Element* root = checked_root(ctx, xml);
-  Children kids(ctx, root, "OpenScenario");
-  return body(ctx, root, kids);
+  std::optional<decltype(body(ctx, root, std::declval<Children&>()))> result;
+  ctx.recover([&] {
+    Children kids(ctx, root, "OpenScenario");
+    result.emplace(body(ctx, root, kids));
+  });
+  ctx.throw_errors();
+  return std::move(*result);
 }
 
 void expect_kind(const XmlFile& xml, DocumentKind expected, const char* what) {

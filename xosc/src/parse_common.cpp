@@ -4,11 +4,30 @@
 
 namespace corsa::xosc {
 
-void note_deprecated_attribute(ParseContext& ctx, const Element* element, const char* name,
-                               std::string_view instead) {
-  if (element->Attribute(name) != nullptr) {
+bool deprecated_attribute(ParseContext& ctx, const Element* element, const char* name,
+                          std::initializer_list<const char*> replacements) {
+  if (element->Attribute(name) == nullptr) return false;
+  std::string instead;
+  bool clash = false;
+  for (const char* replacement : replacements) {
+    instead += (instead.empty() ? "" : " or ") + std::string(replacement);
+    const bool is_element = replacement[0] >= 'A' && replacement[0] <= 'Z';
+    const bool present = is_element ? element->FirstChildElement(replacement) != nullptr
+                                    : element->Attribute(replacement) != nullptr;
+    if (present) {
+      // The file says the same thing twice, possibly two different things: which one is meant
+      // is not clear (the ASAM OpenSCENARIO API checker rejects it too).
+      ctx.error(element, "attribute '" + std::string(name) +
+                             "' is deprecated and must not be used together with " +
+                             (is_element ? "element <" + std::string(replacement) + ">"
+                                         : "attribute '" + std::string(replacement) + "'"));
+      clash = true;
+    }
+  }
+  if (!clash) {
     ctx.deprecated(element, std::string("attribute ") + element->Name() + "." + name, instead);
   }
+  return true;
 }
 
 FileHeader parse_file_header(ParseContext& ctx, const Element* element) {
@@ -39,10 +58,15 @@ FileHeader parse_file_header(ParseContext& ctx, const Element* element) {
   if (const Element* properties = kids.opt("Properties")) {
     header.properties = parse_properties(ctx, properties);
   }
-  if (header.rev_major != 1 || header.rev_minor > 3) {
+  const std::string version =
+      std::to_string(header.rev_major) + "." + std::to_string(header.rev_minor);
+  if (header.rev_major < 1) {
+    // Pre-1.0 drafts (0.9) wrote the 1.0 forms.
+    ctx.lenient(element, "OpenSCENARIO " + version + " is older than 1.0",
+                "1.3 with the deprecated 1.0 forms accepted");
+  } else if (header.rev_major > 1 || header.rev_minor > 3) {
     ctx.warn_once(element, "version",
-                  "OpenSCENARIO " + std::to_string(header.rev_major) + "." +
-                      std::to_string(header.rev_minor) + " is newer than 1.3; reading it as 1.3");
+                  "OpenSCENARIO " + version + " is newer than 1.3; reading it as 1.3");
   }
   return header;
 }

@@ -18,7 +18,7 @@ void read_distance_options(ParseContext& ctx, const Element* e, T& condition) {
   condition.freespace = ctx.req_bool(e, "freespace");
   condition.rule = ctx.req_enum<Rule>(e, "rule");
   condition.along_route = ctx.opt_bool(e, "alongRoute");
-  note_deprecated_attribute(ctx, e, "alongRoute", "coordinateSystem and relativeDistanceType");
+  deprecated_attribute(ctx, e, "alongRoute", {"coordinateSystem", "relativeDistanceType"});
   condition.coordinate_system = ctx.opt_enum<CoordinateSystem>(e, "coordinateSystem");
   condition.relative_distance_type = ctx.opt_enum<RelativeDistanceType>(e, "relativeDistanceType");
   condition.routing_algorithm = ctx.opt_enum<RoutingAlgorithm>(e, "routingAlgorithm");
@@ -280,11 +280,21 @@ Trigger parse_trigger(ParseContext& ctx, const Element* e) {
     ConditionGroup value;
     value.source = ctx.source(group);
     for (const Element* condition : group_kids.at_least("Condition", 1)) {
-      value.conditions.push_back(parse_condition(ctx, condition));
+      ctx.recover([&] { value.conditions.push_back(parse_condition(ctx, condition)); });
     }
     trigger.groups.push_back(std::move(value));
   }
   return trigger;
+}
+
+std::optional<Trigger> parse_start_trigger(ParseContext& ctx, const Element* e) {
+  Trigger trigger = parse_trigger(ctx, e);
+  if (!trigger.groups.empty()) return trigger;
+  // §7.6.1: a trigger is the OR of its condition groups, so an empty one would never fire; the
+  // standard keeps empty triggers only for compatibility with 1.0, where an Act and an Event
+  // had to have a StartTrigger and `<StartTrigger/>` was how "no condition" was written.
+  ctx.lenient(e, "empty <StartTrigger/>", "no StartTrigger: the element starts with its parent");
+  return std::nullopt;
 }
 
 }  // namespace corsa::xosc

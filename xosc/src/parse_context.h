@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/strings.h"
 #include "corsa/xosc/common.h"
 #include "corsa/xosc/parameters.h"
 #include "corsa/xosc/scenario.h"
@@ -26,6 +27,14 @@ namespace corsa::xosc {
 using Element = tinyxml2::XMLElement;
 
 class CatalogResolver;
+
+/// Thrown once a document has so many errors that reading on is pointless; it holds them all
+/// and passes every recover().
+class TooManyErrors : public InputError {
+ public:
+  explicit TooManyErrors(std::vector<Diagnostic> diagnostics)
+      : InputError(std::move(diagnostics)) {}
+};
 
 /// A parsed XML file and the name its elements report.
 struct XmlFile {
@@ -55,8 +64,38 @@ class ParseContext {
 
   // --- location -------------------------------------------------------------------------------
   Source source(const Element* element) const;
+  /// An error that leaves nothing sensible to read of the element: throws, and the nearest
+  /// recover() records it and goes on with the next element.
   [[noreturn]] void fail(const Element* element, std::string message) const;
+  /// An error after which reading can go on (a bad value, an unknown child): recorded, so that
+  /// one pass reports every error of a document.
+  void error(const Element* element, std::string message);
+  /// Records the diagnostics of a caught InputError (once each).
+  void record(const InputError& error);
+  /// Runs `body`; an InputError it throws is recorded and false returned. Placed around each
+  /// element of a list, so that one bad element does not hide the errors of the next.
+  template <class Body>
+  bool recover(Body&& body) {
+    try {
+      body();
+      return true;
+    } catch (const TooManyErrors&) {
+      throw;
+    } catch (const InputError& caught) {
+      record(caught);
+      return false;
+    }
+  }
+  /// The errors recorded so far, in the order found.
+  const std::vector<Diagnostic>& errors() const { return errors_; }
+  /// Throws every recorded error as one InputError, if there are any.
+  void throw_errors() const;
   void warn_once(const Element* element, const std::string& key, std::string message);
+  /// A rule of the standard broken in a way whose meaning is clear (the liberal reading of
+  /// docs/openscenario.md "Lenient reading"): warns `message (read as read_as)` once per place,
+  /// or, with LoadOptions::strict, records it as an error.
+  void lenient(const Element* element, std::string_view message, std::string_view read_as);
+  void lenient(const Source& where, std::string_view message, std::string_view read_as);
   /// A deprecated 1.0/1.1 spelling: one warning per spelling.
   void deprecated(const Element* element, std::string_view what, std::string_view instead);
 
@@ -81,16 +120,23 @@ class ParseContext {
   bool req_bool(const Element* element, const char* name);
   std::optional<bool> opt_bool(const Element* element, const char* name);
 
+  /// `text` as a value of `type` (`what` names it in messages); an integer written with a zero
+  /// fraction ("-5.0") is read leniently. nullopt when it is not one.
+  std::optional<Value> typed_value(const Element* element, ParameterType type,
+                                   std::string_view text, std::string_view what);
+
   template <class E>
   std::optional<E> opt_enum(const Element* element, const char* name) {
     const auto text = attr(element, name);
     if (!text) {
       return std::nullopt;
     }
+    if (failed_) return E{};
     const EnumEntry<E>* entry = find_enum<E>(*text);
     if (entry == nullptr) {
-      fail(element, "attribute " + std::string(name) + ": '" + *text + "' is not a valid " +
-                        std::string(enum_type_name<E>()));
+      error(element, "attribute " + std::string(name) + ": '" + clip(*text) + "' is not a valid " +
+                         std::string(enum_type_name<E>()));
+      return E{};
     }
     if (entry->deprecated) {
       deprecated(element, std::string(enum_type_name<E>()) + " value '" + *text + "'",
@@ -134,6 +180,9 @@ class ParseContext {
   /// Fails unless `name` is a visible or global parameter (ParameterSetAction, ...).
   void check_parameter_ref(const Element* element, const std::string& name);
   void check_variable_ref(const Element* element, const std::string& name);
+  /// The type of a visible (or global) parameter / of a declared variable; nullopt when unknown.
+  std::optional<ParameterType> parameter_type(const std::string& name);
+  std::optional<ParameterType> variable_type(const std::string& name) const;
   void check_monitor_ref(const Element* element, const std::string& name);
 
   /// RoadNetwork/TrafficSignals: controller name -> its phase names.
@@ -142,9 +191,11 @@ class ParseContext {
   /// or phase (a warning: a simulator may know controllers from elsewhere).
   void check_signal_controller(const Element* element, const std::string& controller,
                                const std::string& phase);
-  std::set<std::string> global_parameters;  ///< names of the scenario's global parameters
-  std::set<std::string> variables;          ///< declared VariableDeclarations names
-  std::set<std::string> monitors;           ///< declared MonitorDeclarations names
+  std::set<std::string> global_parameters;         ///< names of the scenario's global parameters
+  std::map<std::string, ParameterType> variables;  ///< declared VariableDeclarations, by name
+  std::set<std::string> monitors;                  ///< declared MonitorDeclarations names
+  /// Entities whose definition had errors (reported): references to them are not errors too.
+  std::set<std::string> unreadable_entities;
   CatalogResolver* catalogs = nullptr;
 
  private:
@@ -162,6 +213,10 @@ class ParseContext {
   };
 
   const Value* lookup(std::string_view name, size_t upto, const Element* from);
+  /// attr() without the bookkeeping: nullopt when absent; `failed_` set when the value could
+  /// not be resolved (the error is recorded).
+  std::optional<std::string> resolved(const Element* element, const char* name);
+  Entry read_declaration(const Element* element);
   void resolve_entry(size_t scope, size_t index);
   void check_constraints(Entry& entry);
   std::string resolve_in(const Element* element, const std::string& text, size_t upto);
@@ -172,6 +227,17 @@ class ParseContext {
   std::vector<Scope> scopes_;
   std::vector<std::string> resolving_;  ///< chain of parameters being resolved (cycle message)
   std::vector<EntityUse> entity_uses_;
+  std::vector<Diagnostic> errors_;
+  /// Set when the last attribute read could not be resolved (its error is recorded): the typed
+  /// readers then return a neutral value without a second error for the same attribute.
+  bool failed_ = false;
+};
+
+/// Thrown to leave an element whose error was recorded already (recover() does not record it
+/// again).
+class RecordedError : public InputError {
+ public:
+  explicit RecordedError(Diagnostic diagnostic) : InputError(std::move(diagnostic)) {}
 };
 
 /// Opens a parameter scope for the lifetime of the guard.
@@ -223,5 +289,9 @@ class Children {
 
 /// Text content of an element ("" when none).
 std::string element_text(const Element* element);
+/// "int", "double", ... as the schema spells the type.
+std::string type_name(ParameterType type);
+/// `OpenSCENARIO/Storyboard/Init` for messages.
+std::string element_path(const Element* element);
 
 }  // namespace corsa::xosc

@@ -25,9 +25,10 @@ OverrideBrake parse_override_brake(ParseContext& ctx, const Element* e) {
     brake.force = input == force;
     brake.value = ctx.req_double(input, "value");
     brake.max_rate = ctx.opt_double(input, "maxRate");
-  } else if (const auto value = ctx.opt_double(e, "value")) {
-    ctx.deprecated(e, std::string("attribute ") + e->Name() + ".value", "BrakePercent");
-    brake.value = value;
+  }
+  if (deprecated_attribute(ctx, e, "value", {"BrakePercent", "BrakeForce"}) && percent == nullptr &&
+      force == nullptr) {
+    brake.value = ctx.opt_double(e, "value");
   }
   brake.source = ctx.source(e);
   return brake;
@@ -48,9 +49,10 @@ OverrideGear parse_override_gear(ParseContext& ctx, const Element* e) {
   } else if (automatic != nullptr) {
     Children(ctx, automatic, "AutomaticGear");
     gear.gear = AutomaticGear{ctx.req_enum<AutomaticGearType>(automatic, "gear")};
-  } else if (const auto number = ctx.opt_double(e, "number")) {
-    ctx.deprecated(e, "attribute Gear.number", "ManualGear");
-    gear.gear = ManualGear{static_cast<int>(*number)};
+  }
+  if (deprecated_attribute(ctx, e, "number", {"ManualGear", "AutomaticGear"}) &&
+      manual == nullptr && automatic == nullptr) {
+    gear.gear = ManualGear{static_cast<int>(ctx.opt_double(e, "number").value_or(0.0))};
   }
   gear.source = ctx.source(e);
   return gear;
@@ -202,9 +204,9 @@ ActivateControllerAction parse_activate_controller(ParseContext& ctx, const Elem
   Children(ctx, e, "ActivateControllerAction");
   ActivateControllerAction action;
   action.object_controller_ref = ctx.opt_str(e, "objectControllerRef");
-  if (const auto old = ctx.opt_str(e, "controllerRef")) {
-    ctx.deprecated(e, "attribute ActivateControllerAction.controllerRef", "objectControllerRef");
-    action.object_controller_ref = action.object_controller_ref.value_or(*old);
+  if (deprecated_attribute(ctx, e, "controllerRef", {"objectControllerRef"})) {
+    action.object_controller_ref =
+        action.object_controller_ref.value_or(ctx.opt_str(e, "controllerRef").value_or(""));
   }
   action.lateral = ctx.opt_bool(e, "lateral");
   action.longitudinal = ctx.opt_bool(e, "longitudinal");
@@ -238,7 +240,12 @@ PrivateAction parse_trailer_action(ParseContext& ctx, const Element* e) {
   if (std::string_view(a->Name()) == "ConnectTrailerAction") {
     Children(ctx, a, "ConnectTrailerAction");
     ConnectTrailerAction action{ctx.req_str(a, "trailerRef"), ctx.source(a)};
-    ctx.use_entity(a, action.trailer_ref, "trailerRef");
+    if (action.trailer_ref.empty()) {
+      // A trailer parameter left empty: there is no trailer to connect.
+      ctx.lenient(a, "trailerRef is empty", "no trailer: the action connects nothing");
+    } else {
+      ctx.use_entity(a, action.trailer_ref, "trailerRef");
+    }
     return action;
   }
   Children(ctx, a, "DisconnectTrailerAction");

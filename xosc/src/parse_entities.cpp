@@ -1,5 +1,6 @@
 // Entities (§6.2): vehicles, pedestrians, misc objects, controllers, selections.
 
+#include <algorithm>
 #include <set>
 
 #include "parsers.h"
@@ -124,14 +125,22 @@ Vehicle parse_vehicle(ParseContext& ctx, const Element* e, const EntryScope& sco
     const Element* which = trailer_kids.choice();
     Trailer value;
     value.source = ctx.source(trailer);
+    bool none = false;
     if (std::string_view(which->Name()) == "Trailer") {
       value.trailer = std::make_shared<const ScenarioObject>(parse_scenario_object(ctx, which));
     } else {
       Children(ctx, which, "EntityRef");
       value.trailer_ref = ctx.req_str(which, "entityRef");
-      ctx.use_entity(which, *value.trailer_ref, "entityRef");
+      // A catalog vehicle whose trailer is a parameter left empty ("no trailer" in esmini's
+      // catalogs): an entityRef must name an entity, the intent is clear.
+      none = value.trailer_ref->empty();
+      if (none) {
+        ctx.lenient(which, "the trailer's entityRef is empty", "no trailer");
+      } else {
+        ctx.use_entity(which, *value.trailer_ref, "entityRef");
+      }
     }
-    vehicle.trailer = std::move(value);
+    if (!none) vehicle.trailer = std::move(value);
   }
   vehicle.source = ctx.source(e);
   return vehicle;
@@ -241,9 +250,13 @@ ScenarioObject parse_scenario_object(ParseContext& ctx, const Element* e) {
   object.name = ctx.req_str(e, "name");
   kids.consume_all();
   const Element* definition = nullptr;
+  const std::string_view kinds[] = {"CatalogReference", "Vehicle", "Pedestrian", "MiscObject",
+                                    "ExternalObjectReference"};
   for (const Element* child = e->FirstChildElement(); child != nullptr;
        child = child->NextSiblingElement()) {
-    if (std::string_view(child->Name()) == "ObjectController") continue;
+    if (std::find(std::begin(kinds), std::end(kinds), child->Name()) == std::end(kinds)) {
+      continue;  // ObjectController, or an unknown element (reported)
+    }
     if (definition != nullptr) {
       ctx.fail(child, "<ScenarioObject> takes one object definition, found <" +
                           std::string(definition->Name()) + "> and <" + child->Name() + ">");
@@ -257,7 +270,7 @@ ScenarioObject parse_scenario_object(ParseContext& ctx, const Element* e) {
   }
   object.object = parse_entity_object(ctx, definition);
   for (const Element* controller : kids.all("ObjectController")) {
-    object.controllers.push_back(parse_object_controller(ctx, controller));
+    ctx.recover([&] { object.controllers.push_back(parse_object_controller(ctx, controller)); });
   }
   object.source = ctx.source(e);
   return object;
@@ -268,16 +281,29 @@ Entities parse_entities(ParseContext& ctx, const Element* e) {
   Entities entities;
   entities.source = ctx.source(e);
   std::set<std::string> names;
+  // An entity whose definition has errors (a missing catalog, say) is reported and left out;
+  // its name stays known, so that its uses do not add errors of their own.
   for (const Element* object : kids.all("ScenarioObject")) {
-    entities.objects.push_back(parse_scenario_object(ctx, object));
+    const bool read =
+        ctx.recover([&] { entities.objects.push_back(parse_scenario_object(ctx, object)); });
+    if (!read) {
+      if (const char* name = object->Attribute("name")) ctx.unreadable_entities.insert(name);
+      continue;
+    }
     if (!names.insert(entities.objects.back().name).second) {
-      ctx.fail(object, "entity name '" + entities.objects.back().name + "' is used twice");
+      ctx.error(object, "entity name '" + clip(entities.objects.back().name) + "' is used twice");
     }
   }
   for (const Element* selection : kids.all("EntitySelection")) {
-    entities.selections.push_back(parse_selection(ctx, selection));
+    const bool read =
+        ctx.recover([&] { entities.selections.push_back(parse_selection(ctx, selection)); });
+    if (!read) {
+      if (const char* name = selection->Attribute("name")) ctx.unreadable_entities.insert(name);
+      continue;
+    }
     if (!names.insert(entities.selections.back().name).second) {
-      ctx.fail(selection, "entity name '" + entities.selections.back().name + "' is used twice");
+      ctx.error(selection,
+                "entity name '" + clip(entities.selections.back().name) + "' is used twice");
     }
   }
   return entities;

@@ -9,9 +9,7 @@ Weather parse_weather(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "Weather");
   Weather weather;
   weather.cloud_state = ctx.opt_enum<CloudState>(e, "cloudState");
-  if (weather.cloud_state) {
-    ctx.deprecated(e, "attribute Weather.cloudState", "fractionalCloudCover");
-  }
+  deprecated_attribute(ctx, e, "cloudState", {"fractionalCloudCover"});
   weather.fractional_cloud_cover = ctx.opt_enum<FractionalCloudCover>(e, "fractionalCloudCover");
   weather.atmospheric_pressure = ctx.opt_double(e, "atmosphericPressure");
   weather.temperature = ctx.opt_double(e, "temperature");
@@ -19,9 +17,8 @@ Weather parse_weather(ParseContext& ctx, const Element* e) {
     Children(ctx, sun, "Sun");
     Sun value{ctx.req_double(sun, "azimuth"), ctx.req_double(sun, "elevation"),
               ctx.opt_double(sun, "illuminance"), ctx.source(sun)};
-    if (const auto intensity = ctx.opt_double(sun, "intensity")) {
-      ctx.deprecated(sun, "attribute Sun.intensity", "illuminance");
-      value.illuminance = value.illuminance.value_or(*intensity);
+    if (deprecated_attribute(ctx, sun, "intensity", {"illuminance"})) {
+      value.illuminance = value.illuminance.value_or(*ctx.opt_double(sun, "intensity"));
     }
     weather.sun = value;
   }
@@ -41,9 +38,8 @@ Weather parse_weather(ParseContext& ctx, const Element* e) {
     Children(ctx, p, "Precipitation");
     Precipitation value{ctx.req_enum<PrecipitationType>(p, "precipitationType"),
                         ctx.opt_double(p, "precipitationIntensity"), ctx.source(p)};
-    if (const auto intensity = ctx.opt_double(p, "intensity")) {
-      ctx.deprecated(p, "attribute Precipitation.intensity", "precipitationIntensity");
-      value.intensity = value.intensity.value_or(*intensity);
+    if (deprecated_attribute(ctx, p, "intensity", {"precipitationIntensity"})) {
+      value.intensity = value.intensity.value_or(*ctx.opt_double(p, "intensity"));
     }
     weather.precipitation = value;
   }

@@ -17,6 +17,30 @@ ModifyRule parse_modify_rule(ParseContext& ctx, const Element* rule, double& val
                                                    : ModifyRule::kMultiplyByValue;
 }
 
+bool is_numeric(ParameterType type) {
+  return type == ParameterType::kDouble || type == ParameterType::kInt ||
+         type == ParameterType::kUnsignedInt || type == ParameterType::kUnsignedShort;
+}
+
+// §9.1.4, §9.3: a SetAction's value must be one of the declared type, and only numbers can be
+// modified. Checked at load, so that a bad value does not wait for its trigger to be found.
+void check_set_value(ParseContext& ctx, const Element* set, std::optional<ParameterType> type,
+                     const std::string& what, const std::string& value) {
+  if (type && !ctx.typed_value(set, *type, value, "value of " + what)) {
+    ctx.error(set, "value '" + clip(value) + "' cannot be set on " + what + " of type " +
+                       type_name(*type));
+  }
+}
+
+void check_modify(ParseContext& ctx, const Element* modify, std::optional<ParameterType> type,
+                  const std::string& what) {
+  if (type && !is_numeric(*type)) {
+    ctx.error(modify, what + " is of type " + type_name(*type) +
+                          "; a ModifyAction needs a numeric type (int, unsignedInt, "
+                          "unsignedShort or double)");
+  }
+}
+
 GlobalAction parse_entity_action(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "EntityAction");
   const std::string entity = ctx.req_str(e, "entityRef");
@@ -36,10 +60,16 @@ GlobalAction parse_parameter_action(ParseContext& ctx, const Element* e) {
   const std::string parameter = ctx.parameter_name(e, "parameterRef");
   ctx.check_parameter_ref(e, parameter);
   const Element* a = kids.choice();
+  const std::optional<ParameterType> type =
+      ctx.record_entities ? ctx.parameter_type(parameter) : std::nullopt;
+  const std::string what = "parameter '" + clip(parameter) + "'";
   if (std::string_view(a->Name()) == "SetAction") {
     Children(ctx, a, "ParameterSetAction");
-    return ParameterSetAction{parameter, ctx.req_str(a, "value"), ctx.source(a)};
+    ParameterSetAction action{parameter, ctx.req_str(a, "value"), ctx.source(a)};
+    check_set_value(ctx, a, type, what, action.value);
+    return action;
   }
+  check_modify(ctx, a, type, what);
   Children modify_kids(ctx, a, "ParameterModifyAction");
   ParameterModifyAction action;
   action.parameter_ref = parameter;
@@ -53,10 +83,16 @@ GlobalAction parse_variable_action(ParseContext& ctx, const Element* e) {
   const std::string variable = ctx.parameter_name(e, "variableRef");
   ctx.check_variable_ref(e, variable);
   const Element* a = kids.choice();
+  const std::optional<ParameterType> type =
+      ctx.record_entities ? ctx.variable_type(variable) : std::nullopt;
+  const std::string what = "variable '" + clip(variable) + "'";
   if (std::string_view(a->Name()) == "SetAction") {
     Children(ctx, a, "VariableSetAction");
-    return VariableSetAction{variable, ctx.req_str(a, "value"), ctx.source(a)};
+    VariableSetAction action{variable, ctx.req_str(a, "value"), ctx.source(a)};
+    check_set_value(ctx, a, type, what, action.value);
+    return action;
   }
+  check_modify(ctx, a, type, what);
   Children modify_kids(ctx, a, "VariableModifyAction");
   VariableModifyAction action;
   action.variable_ref = variable;

@@ -115,17 +115,16 @@ GeoPosition parse_geo(ParseContext& ctx, const Element* e) {
   position.altitude = ctx.opt_double(e, "altitude");
   // 1.0/1.1 gave latitude/longitude in radians and height in metres.
   constexpr double kDegreesPerRadian = 180.0 / std::numbers::pi;
-  if (const auto latitude = ctx.opt_double(e, "latitude")) {
-    ctx.deprecated(e, "attribute GeoPosition.latitude (radians)", "latitudeDeg");
-    position.latitude_deg = position.latitude_deg.value_or(*latitude * kDegreesPerRadian);
+  if (deprecated_attribute(ctx, e, "latitude", {"latitudeDeg"})) {
+    position.latitude_deg =
+        position.latitude_deg.value_or(*ctx.opt_double(e, "latitude") * kDegreesPerRadian);
   }
-  if (const auto longitude = ctx.opt_double(e, "longitude")) {
-    ctx.deprecated(e, "attribute GeoPosition.longitude (radians)", "longitudeDeg");
-    position.longitude_deg = position.longitude_deg.value_or(*longitude * kDegreesPerRadian);
+  if (deprecated_attribute(ctx, e, "longitude", {"longitudeDeg"})) {
+    position.longitude_deg =
+        position.longitude_deg.value_or(*ctx.opt_double(e, "longitude") * kDegreesPerRadian);
   }
-  if (const auto height = ctx.opt_double(e, "height")) {
-    ctx.deprecated(e, "attribute GeoPosition.height", "altitude");
-    position.altitude = position.altitude.value_or(*height);
+  if (deprecated_attribute(ctx, e, "height", {"altitude"})) {
+    position.altitude = position.altitude.value_or(*ctx.opt_double(e, "height"));
   }
   if (!position.latitude_deg || !position.longitude_deg) {
     ctx.fail(e, "<GeoPosition> needs latitudeDeg and longitudeDeg");

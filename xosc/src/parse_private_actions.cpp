@@ -19,7 +19,11 @@ TransitionDynamics parse_dynamics(ParseContext& ctx, const Element* e) {
                               ctx.req_double(e, "value"),
                               ctx.opt_enum<FollowingMode>(e, "followingMode"), ctx.source(e)};
   if (dynamics.value < 0.0) {
-    ctx.fail(e, "transition dynamics value must not be negative");
+    // A negative rate ("-4" for braking at 4 m/s^2) says which way the speed goes, which the
+    // target says already; time, distance and rate are magnitudes (§7.4.1.1).
+    ctx.lenient(e, "transition dynamics value " + format_double(dynamics.value) + " is negative",
+                "its magnitude " + format_double(-dynamics.value));
+    dynamics.value = -dynamics.value;
   }
   return dynamics;
 }

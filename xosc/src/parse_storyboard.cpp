@@ -7,13 +7,16 @@
 namespace corsa::xosc {
 namespace {
 
-// Storyboard element names must be unique among siblings of one parent (§8.1 naming): the
-// `::`-qualified references rely on it.
+// Storyboard element names should be unique among siblings of one parent (§8.1 naming): the
+// `::`-qualified references rely on it. Real files repeat them; both elements run, and only a
+// reference to the repeated name is an error (references.cpp).
 void check_unique(ParseContext& ctx, std::set<std::string>& names, const Element* e,
                   const std::string& name, const char* kind) {
   if (!names.insert(name).second) {
-    ctx.fail(e, std::string(kind) + " name '" + name + "' is used twice in <" +
-                    e->Parent()->ToElement()->Name() + ">");
+    ctx.lenient(e,
+                std::string(kind) + " name '" + clip(name) + "' is used twice in <" +
+                    e->Parent()->ToElement()->Name() + ">",
+                "two " + std::string(kind) + "s of that name");
   }
 }
 
@@ -50,11 +53,13 @@ Event parse_event(ParseContext& ctx, const Element* e, const std::string& parent
   }
   std::set<std::string> names;
   for (const Element* action : kids.at_least("Action", 1)) {
-    event.actions.push_back(parse_action(ctx, action, event.path));
-    check_unique(ctx, names, action, event.actions.back().name, "action");
+    ctx.recover([&] {
+      event.actions.push_back(parse_action(ctx, action, event.path));
+      check_unique(ctx, names, action, event.actions.back().name, "action");
+    });
   }
   if (const Element* start = kids.opt("StartTrigger")) {
-    event.start_trigger = parse_trigger(ctx, start);
+    ctx.recover([&] { event.start_trigger = parse_start_trigger(ctx, start); });
   }
   event.source = ctx.source(e);
   return event;
@@ -83,7 +88,14 @@ ManeuverGroup parse_maneuver_group(ParseContext& ctx, const Element* e, const st
   group.actors.select_triggering_entities = ctx.req_bool(actors, "selectTriggeringEntities");
   for (const Element* ref : actor_kids.all("EntityRef")) {
     Children(ctx, ref, "EntityRef");
-    group.actors.entity_refs.push_back(ctx.req_str(ref, "entityRef"));
+    std::string name = ctx.req_str(ref, "entityRef");
+    if (name.empty() && ref->Attribute("entityRef") != nullptr &&
+        ref->Attribute("entityRef")[0] == '$') {
+      ctx.lenient(ref, "actor entityRef '" + clip(ref->Attribute("entityRef")) + "' is empty",
+                  "no actor");
+      continue;
+    }
+    group.actors.entity_refs.push_back(std::move(name));
     ctx.use_entity(ref, group.actors.entity_refs.back(), "entityRef");
   }
   group.actors.source = ctx.source(actors);
@@ -93,20 +105,22 @@ ManeuverGroup parse_maneuver_group(ParseContext& ctx, const Element* e, const st
   for (const Element* child = e->FirstChildElement(); child != nullptr;
        child = child->NextSiblingElement()) {
     const std::string_view kind = child->Name();
-    if (kind == "Maneuver") {
-      group.maneuvers.push_back(parse_maneuver(ctx, child));
-    } else if (kind == "CatalogReference") {
-      group.maneuvers.push_back(expand_catalog_reference<Maneuver>(
-          ctx, child, {"Maneuver"}, [&](const Element* entry, CatalogOrigin& origin) {
-            Maneuver maneuver = parse_maneuver(ctx, entry, {&origin.assignments, true, "maneuver"});
-            maneuver.catalog = origin;
-            return maneuver;
-          }));
-    } else {
-      continue;
-    }
-    set_paths(group.maneuvers.back(), group.path);
-    check_unique(ctx, names, child, group.maneuvers.back().name, "maneuver");
+    if (kind != "Maneuver" && kind != "CatalogReference") continue;
+    ctx.recover([&] {
+      if (kind == "Maneuver") {
+        group.maneuvers.push_back(parse_maneuver(ctx, child));
+      } else {
+        group.maneuvers.push_back(expand_catalog_reference<Maneuver>(
+            ctx, child, {"Maneuver"}, [&](const Element* entry, CatalogOrigin& origin) {
+              Maneuver maneuver =
+                  parse_maneuver(ctx, entry, {&origin.assignments, true, "maneuver"});
+              maneuver.catalog = origin;
+              return maneuver;
+            }));
+      }
+      set_paths(group.maneuvers.back(), group.path);
+      check_unique(ctx, names, child, group.maneuvers.back().name, "maneuver");
+    });
   }
   group.source = ctx.source(e);
   return group;
@@ -119,12 +133,20 @@ Act parse_act(ParseContext& ctx, const Element* e, const std::string& parent) {
   act.path = join(parent, act.name);
   std::set<std::string> names;
   for (const Element* group : kids.at_least("ManeuverGroup", 1)) {
-    act.maneuver_groups.push_back(parse_maneuver_group(ctx, group, act.path));
-    check_unique(ctx, names, group, act.maneuver_groups.back().name, "maneuver group");
+    ctx.recover([&] {
+      act.maneuver_groups.push_back(parse_maneuver_group(ctx, group, act.path));
+      check_unique(ctx, names, group, act.maneuver_groups.back().name, "maneuver group");
+    });
   }
-  if (const Element* start = kids.opt("StartTrigger"))
-    act.start_trigger = parse_trigger(ctx, start);
-  if (const Element* stop = kids.opt("StopTrigger")) act.stop_trigger = parse_trigger(ctx, stop);
+  if (const Element* start = kids.opt("StartTrigger")) {
+    ctx.recover([&] { act.start_trigger = parse_start_trigger(ctx, start); });
+  }
+  if (const Element* stop = kids.opt("StopTrigger")) {
+    ctx.recover([&] {
+      act.stop_trigger = parse_trigger(ctx, stop);
+      if (act.stop_trigger->groups.empty()) act.stop_trigger.reset();  // never fires either way
+    });
+  }
   act.source = ctx.source(e);
   return act;
 }
@@ -138,8 +160,10 @@ Story parse_story(ParseContext& ctx, const Element* e) {
   story.path = story.name;
   std::set<std::string> names;
   for (const Element* act : kids.at_least("Act", 1)) {
-    story.acts.push_back(parse_act(ctx, act, story.path));
-    check_unique(ctx, names, act, story.acts.back().name, "act");
+    ctx.recover([&] {
+      story.acts.push_back(parse_act(ctx, act, story.path));
+      check_unique(ctx, names, act, story.acts.back().name, "act");
+    });
   }
   story.source = ctx.source(e);
   return story;
@@ -152,21 +176,23 @@ Init parse_init(ParseContext& ctx, const Element* e) {
   const Element* actions = kids.one("Actions");
   Children action_kids(ctx, actions, "InitActions");
   for (const Element* global : action_kids.all("GlobalAction")) {
-    init.global_actions.push_back(parse_global_action(ctx, global));
+    ctx.recover([&] { init.global_actions.push_back(parse_global_action(ctx, global)); });
   }
   for (const Element* user : action_kids.all("UserDefinedAction")) {
-    init.user_defined_actions.push_back(parse_user_defined_action(ctx, user));
+    ctx.recover([&] { init.user_defined_actions.push_back(parse_user_defined_action(ctx, user)); });
   }
   for (const Element* p : action_kids.all("Private")) {
-    Children private_kids(ctx, p, "Private");
-    InitPrivate entry;
-    entry.entity_ref = ctx.req_str(p, "entityRef");
-    ctx.use_entity(p, entry.entity_ref, "entityRef");
-    for (const Element* action : private_kids.at_least("PrivateAction", 1)) {
-      entry.actions.push_back(parse_private_action(ctx, action));
-    }
-    entry.source = ctx.source(p);
-    init.privates.push_back(std::move(entry));
+    ctx.recover([&] {
+      Children private_kids(ctx, p, "Private");
+      InitPrivate entry;
+      entry.entity_ref = ctx.req_str(p, "entityRef");
+      ctx.use_entity(p, entry.entity_ref, "entityRef");
+      for (const Element* action : private_kids.at_least("PrivateAction", 1)) {
+        ctx.recover([&] { entry.actions.push_back(parse_private_action(ctx, action)); });
+      }
+      entry.source = ctx.source(p);
+      init.privates.push_back(std::move(entry));
+    });
   }
   return init;
 }
@@ -181,8 +207,10 @@ Maneuver parse_maneuver(ParseContext& ctx, const Element* e, const EntryScope& s
   maneuver.name = ctx.req_str(e, "name");
   std::set<std::string> names;
   for (const Element* event : kids.at_least("Event", 1)) {
-    maneuver.events.push_back(parse_event(ctx, event, maneuver.name));
-    check_unique(ctx, names, event, maneuver.events.back().name, "event");
+    ctx.recover([&] {
+      maneuver.events.push_back(parse_event(ctx, event, maneuver.name));
+      check_unique(ctx, names, event, maneuver.events.back().name, "event");
+    });
   }
   maneuver.source = ctx.source(e);
   set_paths(maneuver, "");
@@ -192,14 +220,20 @@ Maneuver parse_maneuver(ParseContext& ctx, const Element* e, const EntryScope& s
 Storyboard parse_storyboard(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "Storyboard");
   Storyboard storyboard;
-  storyboard.init = parse_init(ctx, kids.one("Init"));
+  ctx.recover([&] { storyboard.init = parse_init(ctx, kids.one("Init")); });
   std::set<std::string> names;
   for (const Element* story : kids.all("Story")) {
-    storyboard.stories.push_back(parse_story(ctx, story));
-    check_unique(ctx, names, story, storyboard.stories.back().name, "story");
+    ctx.recover([&] {
+      storyboard.stories.push_back(parse_story(ctx, story));
+      check_unique(ctx, names, story, storyboard.stories.back().name, "story");
+    });
   }
   if (const Element* stop = kids.opt("StopTrigger")) {
-    storyboard.stop_trigger = parse_trigger(ctx, stop);
+    ctx.recover([&] {
+      storyboard.stop_trigger = parse_trigger(ctx, stop);
+      // An empty StopTrigger never fires, as none: the run ends when the stories complete.
+      if (storyboard.stop_trigger->groups.empty()) storyboard.stop_trigger.reset();
+    });
   }
   storyboard.source = ctx.source(e);
   return storyboard;

@@ -83,7 +83,7 @@ TrafficSwarmAction parse_swarm(ParseContext& ctx, const Element* e,
   action.semi_major_axis = ctx.req_double(e, "semiMajorAxis");
   action.semi_minor_axis = ctx.req_double(e, "semiMinorAxis");
   action.velocity = ctx.opt_double(e, "velocity");
-  note_deprecated_attribute(ctx, e, "velocity", "InitialSpeedRange");
+  deprecated_attribute(ctx, e, "velocity", {"InitialSpeedRange"});
   action.traffic_definition = optional_definition(ctx, kids);
   action.traffic_distribution = optional_distribution(ctx, kids);
   if (const Element* range = kids.opt("InitialSpeedRange")) {
@@ -191,9 +191,8 @@ GlobalAction parse_traffic_action(ParseContext& ctx, const Element* e) {
     action.radius = ctx.req_double(a, "radius");
     action.rate = ctx.req_double(a, "rate");
     action.speed = ctx.opt_double(a, "speed");
-    if (const auto velocity = ctx.opt_double(a, "velocity")) {
-      ctx.deprecated(a, "attribute TrafficSourceAction.velocity", "speed");
-      action.speed = action.speed.value_or(*velocity);
+    if (deprecated_attribute(ctx, a, "velocity", {"speed"})) {
+      action.speed = action.speed.value_or(*ctx.opt_double(a, "velocity"));
     }
     action.position = parse_position(ctx, source_kids.one("Position"));
     action.traffic_definition = optional_definition(ctx, source_kids);

@@ -23,9 +23,9 @@ Clothoid parse_clothoid(ParseContext& ctx, const Element* e) {
   Clothoid clothoid;
   clothoid.curvature = ctx.req_double(e, "curvature");
   clothoid.curvature_prime = ctx.opt_double(e, "curvaturePrime");
-  if (const auto dot = ctx.opt_double(e, "curvatureDot")) {
-    ctx.deprecated(e, "attribute Clothoid.curvatureDot", "curvaturePrime");
-    clothoid.curvature_prime = clothoid.curvature_prime.value_or(*dot);
+  if (deprecated_attribute(ctx, e, "curvatureDot", {"curvaturePrime"})) {
+    clothoid.curvature_prime =
+        clothoid.curvature_prime.value_or(*ctx.opt_double(e, "curvatureDot"));
   }
   clothoid.length = ctx.req_double(e, "length");
   if (clothoid.length <= 0.0) {

@@ -81,6 +81,8 @@ TrafficDefinition parse_traffic_definition(ParseContext& ctx, const Element* ele
 
 // conditions
 Trigger parse_trigger(ParseContext& ctx, const Element* element);
+/// A StartTrigger; an empty one (1.0 style) is read as none, with a lenient-reading warning.
+std::optional<Trigger> parse_start_trigger(ParseContext& ctx, const Element* element);
 
 // storyboard
 Maneuver parse_maneuver(ParseContext& ctx, const Element* element, const EntryScope& scope = {});
@@ -98,9 +100,11 @@ Catalog parse_catalog(ParseContext& ctx, const Element* element);
 ParameterValueDistribution parse_parameter_value_distribution(ParseContext& ctx,
                                                               const Element* element);
 
-/// Warns that an attribute is deprecated when it is present.
-void note_deprecated_attribute(ParseContext& ctx, const Element* element, const char* name,
-                               std::string_view instead);
+/// A deprecated 1.0/1.1 attribute: when present, a warning naming its replacements (attributes,
+/// or child elements when capitalised); written together with one of them, an error. Returns
+/// whether the attribute is present.
+bool deprecated_attribute(ParseContext& ctx, const Element* element, const char* name,
+                          std::initializer_list<const char*> replacements);
 
 }  // namespace corsa::xosc
 

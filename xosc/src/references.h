@@ -13,7 +13,9 @@ void check_entity_references(ParseContext& ctx, const Entities& entities);
 
 /// Resolves every StoryboardElementStateCondition with the standard's name lookup (§8.1): a
 /// reference is a name or a `::`-qualified name; it matches the elements of the given type whose
-/// full path ends with it, and must match exactly one. Sets resolved_path.
-void resolve_storyboard_references(Storyboard& storyboard);
+/// full path ends with it, and must match exactly one; of several, the one nearest to the
+/// condition (the longest enclosing path shared with it) is taken with a lenient-reading warning,
+/// and a tie is an error naming both. Sets resolved_path; errors are recorded in `ctx`.
+void resolve_storyboard_references(ParseContext& ctx, Storyboard& storyboard);
 
 }  // namespace corsa::xosc

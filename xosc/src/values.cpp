@@ -49,7 +49,45 @@ bool is_date_time(std::string_view text) {
          text[i + 3] == ':' && digits(text, i + 4, 2);
 }
 
+// Days since 1970-01-01 of a proleptic Gregorian date (H. Hinnant's days_from_civil).
+int64_t days_from_civil(int64_t y, int64_t m, int64_t d) {
+  y -= m <= 2 ? 1 : 0;
+  const int64_t era = (y >= 0 ? y : y - 399) / 400;
+  const int64_t yoe = y - era * 400;
+  const int64_t doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
+  const int64_t doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+  return era * 146097 + doe - 719468;
+}
+
+int number_at(std::string_view text, size_t from, size_t count) {
+  int value = 0;
+  for (size_t i = from; i < from + count; ++i) value = value * 10 + (text[i] - '0');
+  return value;
+}
+
 }  // namespace
+
+std::optional<double> date_time_instant(std::string_view text) {
+  text = trim(text);
+  if (!is_date_time(text)) return std::nullopt;
+  const int64_t days =
+      days_from_civil(number_at(text, 0, 4), number_at(text, 5, 2), number_at(text, 8, 2));
+  double seconds = static_cast<double>(days) * 86400.0 + number_at(text, 11, 2) * 3600.0 +
+                   number_at(text, 14, 2) * 60.0 + number_at(text, 17, 2);
+  size_t i = 19;
+  if (i < text.size() && text[i] == '.') {
+    double scale = 0.1;
+    for (++i; i < text.size() && text[i] >= '0' && text[i] <= '9'; ++i, scale /= 10.0) {
+      seconds += (text[i] - '0') * scale;
+    }
+  }
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) {
+    // The time is local to the zone: UTC = local - offset.
+    const double offset = number_at(text, i + 1, 2) * 3600.0 + number_at(text, i + 4, 2) * 60.0;
+    seconds += text[i] == '+' ? -offset : offset;
+  }
+  return seconds;
+}
 
 std::string Value::text() const {
   if (const auto* b = std::get_if<bool>(&data)) {
@@ -130,11 +168,19 @@ bool compare_values(const Value& left, Rule rule, const Value& right) {
     }
     return false;
   }
+  if (left.type == ParameterType::kDateTime && right.type == ParameterType::kDateTime) {
+    // Instants, whatever the time zones they are written in (xsd:dateTime).
+    const auto a = date_time_instant(left.text());
+    const auto b = date_time_instant(right.text());
+    if (a && b) {
+      return compare_values(Value{ParameterType::kDouble, *a}, rule,
+                            Value{ParameterType::kDouble, *b});
+    }
+  }
   const std::string a = left.text();
   const std::string b = right.text();
-  // dateTime texts of one format order chronologically as strings; plain strings only compare
-  // for (in)equality.
-  const bool ordered = left.type == ParameterType::kDateTime;
+  // Plain strings only compare for (in)equality (§9.1.3 allows no other rule on them).
+  const bool ordered = false;
   switch (rule) {
     case Rule::kEqualTo:
       return a == b;

@@ -6,7 +6,9 @@
 // VariableCondition / VariableSetAction can work on the values at run time.
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -31,9 +33,13 @@ struct Value {
 /// "70000" for unsignedShort, "1.5" for int).
 std::optional<Value> parse_value(ParameterType type, std::string_view text);
 
+/// Seconds since 1970-01-01T00:00:00Z of an xsd:dateTime text (a time without zone is taken as
+/// UTC); nullopt when it is not one.
+std::optional<double> date_time_instant(std::string_view text);
+
 /// Compares two values with `rule` as ParameterCondition / VariableCondition / ValueConstraint do:
-/// numerically for numeric and boolean types, textually (equalTo / notEqualTo only, else false)
-/// for string and dateTime.
+/// numerically for numeric and boolean types, as instants (time zones applied) for dateTime,
+/// textually (equalTo / notEqualTo only, else false) for strings.
 bool compare_values(const Value& left, Rule rule, const Value& right);
 
 /// ValueConstraint: the parameter's value must satisfy `rule value` (§9.1.3).

@@ -79,12 +79,16 @@ struct LoadOptions {
   std::vector<std::pair<std::string, std::string>> parameters;
   /// Check that the LogicFile exists (an error when not). Off for fuzzing.
   bool check_files = true;
+  /// Lenient readings (a rule of the standard broken in a way whose meaning is clear, read as
+  /// its author meant with a `(read as ...)` warning) become errors (`--strict`).
+  bool strict = false;
   /// Catalog files parsed once and shared between loads (sweeps); null: each load reads them.
   std::shared_ptr<CatalogCache> catalog_cache;
 };
 
-/// Loads a scenario file. Throws InputError (file:line: message) for the first error; warnings
-/// (deprecated spellings, unsupported optional features) go to `diagnostics`.
+/// Loads a scenario file. Throws one InputError holding every error found (file:line: message,
+/// in the order found); warnings (deprecated spellings, unsupported optional features, lenient
+/// readings) go to `diagnostics`.
 Scenario load_scenario(const std::filesystem::path& path, const LoadOptions& options,
                        Diagnostics& diagnostics);
 

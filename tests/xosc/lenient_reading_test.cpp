@@ -1,0 +1,265 @@
+// Files that break a rule of the standard in a way whose meaning is clear are read as their
+// authors meant, with a located `(read as ...)` warning; with LoadOptions::strict the same
+// files are refused with the same text as an error.
+
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "corsa/xosc/scenario.h"
+#include "scenario_text.h"
+#include "temp_dir.h"
+
+using namespace corsa::xosc;
+using corsa::test::line_of;
+using corsa::test::ScenarioText;
+
+namespace {
+
+struct Loaded {
+  std::optional<Scenario> scenario;
+  std::vector<corsa::Diagnostic> warnings;
+  std::vector<corsa::Diagnostic> errors;
+};
+
+Loaded load(const corsa::test::TempDir& dir, const std::string& xml, bool strict = false) {
+  corsa::test::write_text(dir.path() / "map.xodr", corsa::test::minimal_xodr());
+  corsa::test::write_text(dir.path() / "s.xosc", xml);
+  corsa::Diagnostics diagnostics;
+  Loaded loaded;
+  LoadOptions options;
+  options.strict = strict;
+  try {
+    loaded.scenario = load_scenario(dir.path() / "s.xosc", options, diagnostics);
+  } catch (const corsa::InputError& error) {
+    loaded.errors = error.diagnostics();
+  }
+  for (const auto& diagnostic : diagnostics.all()) {
+    if (diagnostic.severity == corsa::Severity::kWarning) loaded.warnings.push_back(diagnostic);
+  }
+  return loaded;
+}
+
+/// The warning containing `text`, or a failed check.
+corsa::Diagnostic warning_with(const Loaded& loaded, const std::string& text) {
+  for (const auto& warning : loaded.warnings) {
+    if (warning.message.find(text) != std::string::npos) return warning;
+  }
+  FAIL("no warning containing '" << text << "'");
+  return {};
+}
+
+/// Loads leniently (a warning with `(read as`, at `line`) and strictly (an error at `line`).
+void check_both_ways(const std::string& xml, const std::string& text, int line) {
+  corsa::test::TempDir dir;
+  const Loaded lenient = load(dir, xml);
+  INFO((lenient.errors.empty() ? std::string() : lenient.errors[0].format()));
+  REQUIRE(lenient.errors.empty());
+  const auto warning = warning_with(lenient, text);
+  CHECK(warning.line == line);
+  CHECK_THAT(warning.message, Catch::Contains("(read as "));
+  const Loaded strict = load(dir, xml, true);
+  REQUIRE(!strict.errors.empty());
+  CHECK(strict.errors[0].line == line);
+  CHECK_THAT(strict.errors[0].message, Catch::Contains(text));
+  CHECK_THAT(strict.errors[0].message, Catch::Contains("--strict"));
+}
+
+}  // namespace
+
+TEST_CASE("a string parameter holding a number is read as that number in an expression",
+          "[xosc][lenient]") {
+  ScenarioText text;
+  text.parameters = "<ParameterDeclaration name=\"Lane\" parameterType=\"string\" value=\"-1\"/>\n";
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position>"
+      "<WorldPosition x=\"${$Lane * 3.5}\" y=\"0\" h=\"0\"/></Position></TeleportAction>"
+      "</PrivateAction>\n</Private>\n";
+  const std::string xml = text.str();
+  check_both_ways(xml, "string parameter '$Lane' = '-1' used in an expression",
+                  line_of(xml, "WorldPosition"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  const auto& teleport =
+      std::get<TeleportAction>(loaded.scenario->storyboard.init.privates[0].actions[0]);
+  CHECK(std::get<WorldPosition>(teleport.position.kind).x == -3.5);
+}
+
+TEST_CASE("ordering rules on string parameters holding numbers compare the numbers",
+          "[xosc][lenient]") {
+  ScenarioText text;
+  text.parameters =
+      "<ParameterDeclaration name=\"LaneId\" parameterType=\"string\" value=\"-4\">\n"
+      "<ConstraintGroup><ValueConstraint rule=\"lessOrEqual\" value=\"-3\"/>\n"
+      "<ValueConstraint rule=\"greaterOrEqual\" value=\"-5\"/></ConstraintGroup>\n"
+      "</ParameterDeclaration>\n";
+  const std::string xml = text.str();
+  check_both_ways(xml, "rule lessOrEqual on string parameter 'LaneId'",
+                  line_of(xml, "rule=\"lessOrEqual\""));
+  // As text, "-4" <= "-3" happens to hold too, but "-4" >= "-5" does not: the numbers decide.
+  ScenarioText out_of_range = text;
+  out_of_range.parameters =
+      "<ParameterDeclaration name=\"LaneId\" parameterType=\"string\" value=\"-6\">\n"
+      "<ConstraintGroup><ValueConstraint rule=\"greaterOrEqual\" value=\"-5\"/>"
+      "</ConstraintGroup>\n</ParameterDeclaration>\n";
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, out_of_range.str());
+  REQUIRE(loaded.errors.size() == 1);
+  CHECK(loaded.errors[0].message == "parameter 'LaneId' = '-6' violates its value constraints");
+}
+
+TEST_CASE("dateTime constraints compare instants across time zones", "[xosc][lenient]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  // 11:00+04:00 and 10:00+03:00 are the same instant (07:00Z): notEqualTo fails, equalTo holds.
+  text.parameters =
+      "<ParameterDeclaration name=\"Same\" parameterType=\"dateTime\" "
+      "value=\"2021-07-09T11:00:00.34+04:00\">\n"
+      "<ConstraintGroup><ValueConstraint rule=\"equalTo\" "
+      "value=\"2021-07-09T10:00:00.34+03:00\"/></ConstraintGroup>\n</ParameterDeclaration>\n"
+      "<ParameterDeclaration name=\"Later\" parameterType=\"dateTime\" "
+      "value=\"2021-07-09T10:00:00Z\">\n"
+      "<ConstraintGroup><ValueConstraint rule=\"greaterThan\" "
+      "value=\"2021-07-09T11:30:00+02:00\"/></ConstraintGroup>\n</ParameterDeclaration>\n";
+  const Loaded loaded = load(dir, text.str());
+  CHECK(loaded.errors.empty());
+  CHECK(date_time_instant("1970-01-02T00:00:00Z") == 86400.0);
+  CHECK(date_time_instant("1970-01-01T01:00:00+01:00") == 0.0);
+}
+
+TEST_CASE("an int written with a zero fraction is read as that int", "[xosc][lenient]") {
+  ScenarioText text;
+  text.parameters = "<ParameterDeclaration name=\"N\" parameterType=\"int\" value=\"-5.0\"/>\n";
+  const std::string xml = text.str();
+  check_both_ways(xml, "parameter 'N': '-5.0' is not an int", line_of(xml, "name=\"N\""));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  CHECK(std::get<int64_t>(loaded.scenario->parameters[0].value.data) == -5);
+  // 2.5 is no int at all.
+  text.parameters = "<ParameterDeclaration name=\"N\" parameterType=\"int\" value=\"2.5\"/>\n";
+  CHECK(load(dir, text.str()).errors.size() == 1);
+}
+
+TEST_CASE("a parameter declared with a leading $ is the name without it", "[xosc][lenient]") {
+  ScenarioText text;
+  text.parameters =
+      "<ParameterDeclaration name=\"$Who\" parameterType=\"string\" value=\"Ego\"/>\n";
+  text.init =
+      "<Private entityRef=\"$Who\">\n"
+      "<PrivateAction><TeleportAction><Position>"
+      "<WorldPosition x=\"0\" y=\"0\" h=\"0\"/></Position></TeleportAction></PrivateAction>\n"
+      "</Private>\n";
+  const std::string xml = text.str();
+  check_both_ways(xml, "parameter name '$Who' starts with '$'", line_of(xml, "name=\"$Who\""));
+}
+
+TEST_CASE("a repeated parameter declaration is read as the later one", "[xosc][lenient]") {
+  ScenarioText text;
+  text.parameters =
+      "<ParameterDeclaration name=\"V\" parameterType=\"double\" value=\"1\"/>\n"
+      "<ParameterDeclaration name=\"V\" parameterType=\"double\" value=\"2\"/>\n";
+  const std::string xml = text.str();
+  check_both_ways(xml, "parameter 'V' is declared twice", line_of(xml, "value=\"2\""));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  REQUIRE(loaded.scenario->parameters.size() == 1);
+  CHECK(std::get<double>(loaded.scenario->parameters[0].value.data) == 2.0);
+}
+
+TEST_CASE("a negative transition dynamics value is read as its magnitude", "[xosc][lenient]") {
+  ScenarioText text;
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><LongitudinalAction><SpeedAction>\n"
+      "<SpeedActionDynamics dynamicsShape=\"linear\" dynamicsDimension=\"rate\" value=\"-4\"/>\n"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"0\"/></SpeedActionTarget>"
+      "</SpeedAction></LongitudinalAction></PrivateAction>\n</Private>\n";
+  const std::string xml = text.str();
+  check_both_ways(xml, "transition dynamics value -4 is negative", line_of(xml, "value=\"-4\""));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  const auto& speed =
+      std::get<SpeedAction>(loaded.scenario->storyboard.init.privates[0].actions[0]);
+  CHECK(speed.dynamics.value == 4.0);
+}
+
+TEST_CASE("an empty StartTrigger is read as none, an empty StopTrigger never fires",
+          "[xosc][lenient]") {
+  ScenarioText text;
+  text.stories = corsa::test::story_with(
+      "<Event name=\"E\" priority=\"override\">\n"
+      "<Action name=\"Go\"><PrivateAction><LongitudinalAction><SpeedAction>"
+      "<SpeedActionDynamics dynamicsShape=\"step\" dynamicsDimension=\"time\" value=\"0\"/>"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"5\"/></SpeedActionTarget></SpeedAction>"
+      "</LongitudinalAction></PrivateAction></Action>\n"
+      "<StartTrigger/>\n</Event>\n");
+  const std::string xml = text.str();
+  check_both_ways(xml, "empty <StartTrigger/>", line_of(xml, "<StartTrigger/>"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  const auto& event =
+      loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
+  CHECK(!event.start_trigger);
+}
+
+TEST_CASE("an empty trailer entityRef is no trailer", "[xosc][lenient]") {
+  ScenarioText text;
+  text.parameters = "<ParameterDeclaration name=\"T\" parameterType=\"string\" value=\"\"/>\n";
+  const std::string vehicle_end = "</Axles>\n";
+  text.entities.replace(text.entities.find(vehicle_end), vehicle_end.size(),
+                        vehicle_end + "<Trailer><TrailerRef entityRef=\"$T\"/></Trailer>\n");
+  const std::string xml = text.str();
+  check_both_ways(xml, "the trailer's entityRef is empty", line_of(xml, "entityRef=\"$T\""));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  CHECK(!std::get<Vehicle>(loaded.scenario->entities.objects[0].object).trailer);
+}
+
+TEST_CASE("a name attribute that is no expression is the literal name", "[xosc][lenient]") {
+  ScenarioText text;
+  text.stories = corsa::test::story_with(corsa::test::speed_event("Go"), "${Ego overtakes}");
+  const std::string xml = text.str();
+  check_both_ways(xml, "name '${Ego overtakes}' is not an expression",
+                  line_of(xml, "<Story name="));
+  corsa::test::TempDir dir;
+  CHECK(load(dir, xml).scenario->storyboard.stories[0].name == "${Ego overtakes}");
+}
+
+TEST_CASE("an OpenSCENARIO 0.9 header is an old file, not a newer one", "[xosc][lenient]") {
+  ScenarioText text;
+  std::string xml = text.str();
+  xml.replace(xml.find("revMajor=\"1\" revMinor=\"3\""), 25, "revMajor=\"0\" revMinor=\"9\"");
+  check_both_ways(xml, "OpenSCENARIO 0.9 is older than 1.0", line_of(xml, "<FileHeader"));
+}
+
+TEST_CASE("an ambiguous storyboard reference resolves to the element nearest to it",
+          "[xosc][lenient]") {
+  // Two stories with the same inner names, as when one maneuver is instantiated twice: each
+  // event refers to "First", meaning the one in its own maneuver.
+  ScenarioText text;
+  const auto events = [](const std::string& story) {
+    return corsa::test::speed_event("First") +
+           corsa::test::speed_event("Second", "20",
+                                    corsa::test::state_condition("event", "First")) +
+           "<!-- " + story + " -->\n";
+  };
+  text.stories =
+      corsa::test::story_with(events("S1"), "S1") + corsa::test::story_with(events("S2"), "S2");
+  const std::string xml = text.str();
+  check_both_ways(xml, "the event name 'First' is not unique",
+                  line_of(xml, "storyboardElementRef=\"First\""));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  const auto resolved = [&](size_t story) {
+    const auto& event = loaded.scenario->storyboard.stories[story]
+                            .acts[0]
+                            .maneuver_groups[0]
+                            .maneuvers[0]
+                            .events[1];
+    return std::get<StoryboardElementStateCondition>(
+               std::get<ByValueCondition>(event.start_trigger->groups[0].conditions[0].kind))
+        .resolved_path;
+  };
+  CHECK(resolved(0) == "S1::A::G::M::First");
+  CHECK(resolved(1) == "S2::A::G::M::First");
+}

@@ -1,0 +1,217 @@
+// One pass reports every error of a document: a missing map or catalog, a bad value or an
+// unknown element does not hide the errors after it. Deprecated attributes written together with
+// their replacement, Set/Modify actions that do not suit their variable's type, and echoed values
+// are checked too.
+
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "corsa/core/strings.h"
+#include "corsa/xosc/scenario.h"
+#include "scenario_text.h"
+#include "temp_dir.h"
+
+using namespace corsa::xosc;
+using corsa::test::line_of;
+using corsa::test::ScenarioText;
+
+namespace {
+
+std::vector<corsa::Diagnostic> errors_of(const corsa::test::TempDir& dir, const std::string& xml,
+                                         bool with_map = true) {
+  if (with_map) corsa::test::write_text(dir.path() / "map.xodr", corsa::test::minimal_xodr());
+  corsa::test::write_text(dir.path() / "s.xosc", xml);
+  corsa::Diagnostics diagnostics;
+  try {
+    load_scenario(dir.path() / "s.xosc", {}, diagnostics);
+  } catch (const corsa::InputError& error) {
+    return error.diagnostics();
+  }
+  return {};
+}
+
+bool has(const std::vector<corsa::Diagnostic>& errors, int line, const std::string& text) {
+  for (const auto& error : errors) {
+    if (error.line == line && error.message.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+std::string describe(const std::vector<corsa::Diagnostic>& errors) {
+  std::string text;
+  for (const auto& error : errors) text += error.format() + "\n";
+  return text;
+}
+
+std::string variable_action(const std::string& name, const std::string& variable,
+                            const std::string& inner) {
+  return "<Action name=\"" + name + "\"><GlobalAction><VariableAction variableRef=\"" + variable +
+         "\">" + inner + "</VariableAction></GlobalAction></Action>\n";
+}
+
+}  // namespace
+
+TEST_CASE("a missing map and catalog do not hide the errors after them", "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.parameters =
+      "<ParameterDeclaration name=\"Speed\" parameterType=\"double\" value=\"fast\"/>\n"
+      "<ParameterDeclaration name=\"Limit\" parameterType=\"double\" value=\"61\">\n"
+      "<ConstraintGroup><ValueConstraint rule=\"lessThan\" value=\"60\"/></ConstraintGroup>\n"
+      "</ParameterDeclaration>\n";
+  text.catalogs = "<VehicleCatalog><Directory path=\"Catalogs/None\"/></VehicleCatalog>\n";
+  text.entities +=
+      "<ScenarioObject name=\"Other\">\n"
+      "<CatalogReference catalogName=\"VehicleCatalog\" entryName=\"car\"/>\n"
+      "</ScenarioObject>\n<Unknown/>\n";
+  text.init =
+      "<Private entityRef=\"Other\">\n"
+      "<PrivateAction><TeleportAction><Position>"
+      "<WorldPosition x=\"ezert\" y=\"0\" h=\"0\"/></Position></TeleportAction></PrivateAction>\n"
+      "<PrivateAction><LongitudinalAction><SpeedAction>\n"
+      "<SpeedActionDynamics dynamicsShape=\"jump\" dynamicsDimension=\"time\" value=\"0\"/>\n"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"${1 / 0}\"/></SpeedActionTarget>"
+      "</SpeedAction></LongitudinalAction></PrivateAction>\n</Private>\n";
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml, false);
+  INFO(describe(errors));
+  CHECK(has(errors, line_of(xml, "name=\"Speed\""), "'fast' is not a valid double"));
+  CHECK(has(errors, line_of(xml, "name=\"Limit\""), "violates its value constraints"));
+  CHECK(has(errors, line_of(xml, "<LogicFile"), "map file 'map.xodr' not found"));
+  CHECK(has(errors, line_of(xml, "entryName=\"car\""), "catalog 'VehicleCatalog'"));
+  CHECK(has(errors, line_of(xml, "<Unknown/>"), "unknown element <Unknown> in <Entities>"));
+  CHECK(has(errors, line_of(xml, "x=\"ezert\""), "'ezert' is not a number"));
+  CHECK(has(errors, line_of(xml, "\"jump\""), "'jump' is not a valid DynamicsShape"));
+  CHECK(has(errors, line_of(xml, "${1 / 0}"), "division by zero"));
+  // The entity whose catalog is missing is still known: its uses add no errors of their own.
+  CHECK(errors.size() == 8);
+}
+
+TEST_CASE("two errors in one element are both reported", "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position>"
+      "<WorldPosition x=\"left\" y=\"$Nowhere\" h=\"${sqrt(-1)}\"/></Position></TeleportAction>"
+      "</PrivateAction>\n</Private>\n";
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  const int line = line_of(xml, "x=\"left\"");
+  CHECK(has(errors, line, "'left' is not a number"));
+  CHECK(has(errors, line, "undefined parameter '$Nowhere'"));
+  CHECK(has(errors, line, "sqrt"));
+  CHECK(errors.size() == 3);
+}
+
+TEST_CASE("every parameter that violates its constraints is reported", "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  const char* rules[] = {"equalTo",     "notEqualTo",  "lessThan",
+                         "lessOrEqual", "greaterThan", "greaterOrEqual"};
+  for (const char* rule : rules) {
+    // A value each rule refuses against 5.
+    const std::string r = rule;
+    const char* value = r == "equalTo" || r == "lessOrEqual" ? "7"
+                        : r == "greaterOrEqual"              ? "3"
+                                                             : "5";
+    text.parameters += "<ParameterDeclaration name=\"p_" + r + "\" parameterType=\"int\" value=\"" +
+                       value + "\">\n" + "<ConstraintGroup><ValueConstraint rule=\"" + r +
+                       "\" value=\"5\"/></ConstraintGroup></ParameterDeclaration>\n";
+  }
+  text.parameters +=
+      "<ParameterDeclaration name=\"bad_bound\" parameterType=\"unsignedShort\" "
+      "value=\"1\">\n<ConstraintGroup><ValueConstraint rule=\"equalTo\" "
+      "value=\"many\"/></ConstraintGroup></ParameterDeclaration>\n";
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  for (const char* rule : rules) {
+    CHECK(has(errors, line_of(xml, "name=\"p_" + std::string(rule) + "\""),
+              "violates its value constraints"));
+  }
+  CHECK(has(errors, line_of(xml, "value=\"many\""),
+            "constraint value 'many' of parameter 'bad_bound' is not a valid unsignedShort"));
+  CHECK(errors.size() == 8);
+}
+
+TEST_CASE("a deprecated attribute together with its replacement is an error", "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position>\n"
+      "<GeoPosition latitudeDeg=\"10\" latitude=\"0.2\" longitudeDeg=\"10\"/>\n"
+      "</Position></TeleportAction></PrivateAction>\n</Private>\n";
+  text.stories = corsa::test::story_with(
+      "<Event name=\"E\" priority=\"override\"><Action name=\"W\"><GlobalAction>"
+      "<EnvironmentAction><Environment name=\"env\"><TimeOfDay animation=\"false\" "
+      "dateTime=\"2024-01-01T12:00:00\"/>\n"
+      "<Weather cloudState=\"free\" fractionalCloudCover=\"zeroOktas\">\n"
+      "<Sun azimuth=\"0\" elevation=\"1\" intensity=\"1000\" illuminance=\"1000\"/>\n"
+      "</Weather><RoadCondition frictionScaleFactor=\"1\"/></Environment></EnvironmentAction>"
+      "</GlobalAction></Action></Event>\n");
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  CHECK(has(errors, line_of(xml, "latitude=\"0.2\""),
+            "attribute 'latitude' is deprecated and must not be used together with attribute "
+            "'latitudeDeg'"));
+  CHECK(has(errors, line_of(xml, "cloudState="),
+            "attribute 'cloudState' is deprecated and must not be used together with attribute "
+            "'fractionalCloudCover'"));
+  CHECK(has(errors, line_of(xml, "intensity="), "attribute 'intensity' is deprecated"));
+  CHECK(errors.size() == 3);
+}
+
+TEST_CASE("variable Set and Modify actions are checked against the variable's type",
+          "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.variables =
+      "<VariableDeclaration name=\"Flag\" variableType=\"boolean\" value=\"false\"/>\n"
+      "<VariableDeclaration name=\"Label\" variableType=\"string\" value=\"x\"/>\n"
+      "<VariableDeclaration name=\"Count\" variableType=\"unsignedInt\" value=\"3\"/>\n";
+  text.stories = corsa::test::story_with(
+      "<Event name=\"E\" priority=\"override\">\n" +
+      variable_action("A1", "Flag", "<SetAction value=\"perhaps\"/>") +
+      variable_action("A2", "Count", "<SetAction value=\"-1\"/>") +
+      variable_action("A3", "Label",
+                      "<ModifyAction><Rule><AddValue value=\"1\"/></Rule></ModifyAction>") +
+      variable_action("A4", "Count",
+                      "<ModifyAction><Rule><MultiplyByValue value=\"2\"/></Rule></ModifyAction>") +
+      variable_action("A5", "Nothing", "<SetAction value=\"1\"/>") + "</Event>\n");
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  CHECK(has(errors, line_of(xml, "\"A1\""),
+            "value 'perhaps' cannot be set on variable 'Flag' of type boolean"));
+  CHECK(has(errors, line_of(xml, "\"A2\""),
+            "value '-1' cannot be set on variable 'Count' of type unsignedInt"));
+  CHECK(has(errors, line_of(xml, "\"A3\""),
+            "variable 'Label' is of type string; a ModifyAction needs a numeric type"));
+  CHECK(has(errors, line_of(xml, "\"A5\""), "undefined variable 'Nothing'"));
+  CHECK(errors.size() == 4);
+}
+
+TEST_CASE("values echoed in messages are clipped to 200 bytes", "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  const std::string huge(100000, 'z');
+  text.parameters =
+      "<ParameterDeclaration name=\"P\" parameterType=\"double\" value=\"" + huge + "\"/>\n";
+  const auto errors = errors_of(dir, text.str());
+  REQUIRE(errors.size() == 1);
+  CHECK_THAT(errors[0].message, Catch::Contains(std::string(corsa::kClipBytes, 'z') + "..."));
+  CHECK(errors[0].message.size() < 400);
+}
+
+TEST_CASE("the load reports at most 500 errors", "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  for (int i = 0; i < 2000; ++i) text.entities += "<Junk/>\n";
+  const auto errors = errors_of(dir, text.str());
+  REQUIRE(errors.size() == 501);
+  CHECK_THAT(errors.back().message, Catch::StartsWith("too many errors"));
+}

@@ -1,0 +1,127 @@
+// Children of an element checked against the schema rule of its XSD type.
+
+#include <algorithm>
+#include <exception>
+
+#include "parse_context.h"
+#include "schema_table.h"
+
+namespace corsa::xosc {
+
+Children::Children(ParseContext& context, const Element* element, std::string_view type)
+    : context_(context), element_(element), type_(type) {
+  const TypeRule* rule = find_type_rule(type);
+  if (rule == nullptr) {
+    context.fail(element, "internal: no schema rule for type " + std::string(type));
+  }
+  for (const Element* child = element->FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    if (!rule->allows_child(child->Name())) {
+      std::string message =
+          "unknown element <" + std::string(child->Name()) + "> in <" + element->Name() + ">";
+      if (!rule->children.empty()) {
+        message += " (expected ";
+        for (size_t i = 0; i < rule->children.size(); ++i) {
+          message += (i == 0                           ? ""
+                      : i + 1 == rule->children.size() ? " or "
+                                                       : ", ") +
+                     std::string(rule->children[i]);
+        }
+        message += ")";
+      }
+      context.error(child, std::move(message));  // reported; the child is not read
+    }
+  }
+  for (const tinyxml2::XMLAttribute* a = element->FirstAttribute(); a != nullptr; a = a->Next()) {
+    const std::string_view name = a->Name();
+    if (!rule->allows_attribute(name) && name.substr(0, 5) != "xmlns" &&
+        name.substr(0, 4) != "xsi:") {
+      context.warn_once(element, "attribute:" + std::string(element->Name()) + "." + a->Name(),
+                        "unknown attribute '" + std::string(a->Name()) + "' of <" +
+                            element->Name() + "> ignored");
+    }
+  }
+}
+
+Children::~Children() {
+  if (consumed_all_ || std::uncaught_exceptions() > 0) return;
+  const TypeRule* rule = find_type_rule(type_);
+  for (const Element* child = element_->FirstChildElement(); child != nullptr;
+       child = child->NextSiblingElement()) {
+    const std::string_view name = child->Name();
+    if (!rule->allows_child(name)) continue;  // an unknown element, reported as an error
+    if (std::find(consumed_.begin(), consumed_.end(), name) == consumed_.end()) {
+      context_.warn_once(child, "unread:" + std::string(type_) + "." + std::string(name),
+                         "<" + std::string(name) + "> in <" + element_->Name() +
+                             "> is not supported yet; ignored");
+    }
+  }
+}
+
+void Children::consumed(std::string_view name) {
+  if (std::find(consumed_.begin(), consumed_.end(), name) == consumed_.end()) {
+    consumed_.push_back(name);
+  }
+}
+
+const Element* Children::opt(const char* name) {
+  consumed(name);
+  const Element* first = element_->FirstChildElement(name);
+  if (first != nullptr && first->NextSiblingElement(name) != nullptr) {
+    context_.error(first->NextSiblingElement(name),
+                   "<" + std::string(element_->Name()) + "> may contain only one <" + name + ">");
+  }
+  return first;
+}
+
+const Element* Children::one(const char* name) {
+  const Element* child = opt(name);
+  if (child == nullptr) {
+    context_.fail(element_, "<" + std::string(element_->Name()) + "> needs a <" + name + ">");
+  }
+  return child;
+}
+
+std::vector<const Element*> Children::all(const char* name) {
+  consumed(name);
+  std::vector<const Element*> result;
+  for (const Element* child = element_->FirstChildElement(name); child != nullptr;
+       child = child->NextSiblingElement(name)) {
+    result.push_back(child);
+  }
+  return result;
+}
+
+std::vector<const Element*> Children::at_least(const char* name, size_t minimum) {
+  auto result = all(name);
+  if (result.size() < minimum) {
+    context_.fail(element_, "<" + std::string(element_->Name()) + "> needs at least " +
+                                std::to_string(minimum) + " <" + name + ">");
+  }
+  return result;
+}
+
+const Element* Children::choice() {
+  consumed_all_ = true;
+  const Element* child = element_->FirstChildElement();
+  if (child == nullptr) {
+    const TypeRule* rule = find_type_rule(type_);
+    std::string options;
+    for (size_t i = 0; i < rule->children.size(); ++i) {
+      options += (i == 0 ? "" : ", ") + std::string(rule->children[i]);
+    }
+    context_.fail(element_, "<" + std::string(element_->Name()) + "> needs one of: " + options);
+  }
+  const TypeRule* rule = find_type_rule(type_);
+  if (!rule->allows_child(child->Name())) {
+    // Reported by the constructor; nothing of the element can be read.
+    throw RecordedError(context_.source(child).error("unknown element"));
+  }
+  if (const Element* second = child->NextSiblingElement(); second != nullptr) {
+    context_.error(second, "<" + std::string(element_->Name()) + "> takes one child, found <" +
+                               child->Name() + "> and <" + second->Name() + ">");
+  }
+  return child;
+}
+
+}  // namespace corsa::xosc
