@@ -95,14 +95,22 @@ T expand_catalog_reference(ParseContext& ctx, const Element* reference,
                             " catalog references expanded; do catalog entries reference each "
                             "other in a loop?");
   }
+  // Restored however the entry's parse ends: an error in it is recorded and reading goes on
+  // in the referencing file.
+  struct Restore {
+    ParseContext& ctx;
+    ParseContext::FileState previous;
+    bool record;
+    ~Restore() {
+      ctx.record_entities = record;
+      ctx.swap_file(previous);
+      ctx.catalogs->expanding.pop_back();
+    }
+  };
   ctx.catalogs->expanding.push_back(key);
-  const auto previous = ctx.swap_file({hit.file->name, hit.file->directory});
-  const bool record = ctx.record_entities;
-  T value = parse(hit.entry, origin);
-  ctx.record_entities = record;
-  ctx.swap_file(previous);
-  ctx.catalogs->expanding.pop_back();
-  return value;
+  const Restore restore{ctx, ctx.swap_file({hit.file->name, hit.file->directory}),
+                        ctx.record_entities};
+  return parse(hit.entry, origin);
 }
 
 }  // namespace corsa::xosc

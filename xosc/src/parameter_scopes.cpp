@@ -211,9 +211,13 @@ void ParseContext::check_constraints(Entry& entry) {
   }
   if (!any_group) {
     const Source& where = entry.value_source;
+    const size_t before = errors_.size();
     record(InputError(make_error(where.file_name(), where.line,
                                  what + " = '" + clip(entry.declaration.value.text()) +
                                      "' violates its value constraints")));
+    if (entry.declaration.overridden && errors_.size() > before) {
+      outside_violations_.push_back(errors_.size() - 1);
+    }
   }
 }
 

@@ -114,7 +114,9 @@ void ParseContext::record(const InputError& caught) {
 }
 
 void ParseContext::throw_errors() const {
-  if (!errors_.empty()) throw InputError(errors_);
+  if (errors_.empty()) return;
+  if (outside_violations_.size() == errors_.size()) throw ConstraintViolation(errors_);
+  throw InputError(errors_);
 }
 
 void ParseContext::lenient(const Element* element, std::string_view message,

@@ -228,6 +228,9 @@ class ParseContext {
   std::vector<std::string> resolving_;  ///< chain of parameters being resolved (cycle message)
   std::vector<EntityUse> entity_uses_;
   std::vector<Diagnostic> errors_;
+  /// Indices in errors_ of value-constraint violations by values from outside (LoadOptions,
+  /// catalog assignments): when they are all the errors, the document itself is fine.
+  std::vector<size_t> outside_violations_;
   /// Set when the last attribute read could not be resolved (its error is recorded): the typed
   /// readers then return a neutral value without a second error for the same attribute.
   bool failed_ = false;

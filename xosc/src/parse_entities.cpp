@@ -100,6 +100,64 @@ BoundingBox parse_bounding_box(ParseContext& ctx, const Element* e) {
   return box;
 }
 
+namespace {
+
+// Whether `attribute` of `e` resolves to an empty text (a parameter left empty).
+bool empty_reference(ParseContext& ctx, const Element* e, const char* attribute) {
+  const auto value = ctx.opt_str(e, attribute);
+  return value && value->empty();
+}
+
+}  // namespace
+
+// §6.2.4 Trailer: <Trailer> (an inline ScenarioObject) or <TrailerRef entityRef>. esmini's
+// catalogs (OpenSCENARIO 1.1, before trailers were standard) write <EntityRef>, a <Vehicle> or a
+// <CatalogReference> there instead, often with a parameter left empty to mean "no trailer":
+// their meaning is clear, so they are read leniently; the first that names a trailer counts.
+std::optional<Trailer> parse_trailer(ParseContext& ctx, const Element* e) {
+  Children kids(ctx, e, "Trailer");
+  kids.consume_all();
+  Trailer value;
+  value.source = ctx.source(e);
+  for (const Element* which = e->FirstChildElement(); which != nullptr;
+       which = which->NextSiblingElement()) {
+    const std::string_view kind = which->Name();
+    if (kind == "Trailer") {
+      value.trailer = std::make_shared<const ScenarioObject>(parse_scenario_object(ctx, which));
+      return value;
+    }
+    if (kind == "TrailerRef" || kind == "EntityRef") {
+      Children(ctx, which, "EntityRef");
+      if (kind == "EntityRef") {
+        ctx.lenient(which, "<EntityRef> in <Trailer> (esmini's form)", "<TrailerRef>");
+      }
+      const std::string ref = ctx.req_str(which, "entityRef");
+      if (ref.empty()) {
+        ctx.lenient(which, "the trailer's entityRef is empty", "no trailer");
+        continue;
+      }
+      value.trailer_ref = ref;
+      ctx.use_entity(which, ref, "entityRef");
+      return value;
+    }
+    if (kind == "CatalogReference" && empty_reference(ctx, which, "entryName")) {
+      ctx.lenient(which, "the trailer's catalog entryName is empty", "no trailer");
+      continue;
+    }
+    if (kind == "Vehicle" || kind == "CatalogReference") {
+      ctx.lenient(which, "<" + std::string(kind) + "> directly in <Trailer> (esmini's form)",
+                  "<Trailer><Trailer> holding it");
+      ScenarioObject object;
+      object.object = parse_entity_object(ctx, which);
+      object.name = std::visit([](const auto& o) { return o.name; }, object.object);
+      object.source = ctx.source(which);
+      value.trailer = std::make_shared<const ScenarioObject>(std::move(object));
+      return value;
+    }
+  }
+  return std::nullopt;
+}
+
 Vehicle parse_vehicle(ParseContext& ctx, const Element* e, const EntryScope& scope) {
   Children kids(ctx, e, "Vehicle");
   Vehicle vehicle;
@@ -121,26 +179,7 @@ Vehicle parse_vehicle(ParseContext& ctx, const Element* e, const EntryScope& sco
     vehicle.trailer_coupler = parse_coupling(ctx, coupler);
   }
   if (const Element* trailer = kids.opt("Trailer")) {
-    Children trailer_kids(ctx, trailer, "Trailer");
-    const Element* which = trailer_kids.choice();
-    Trailer value;
-    value.source = ctx.source(trailer);
-    bool none = false;
-    if (std::string_view(which->Name()) == "Trailer") {
-      value.trailer = std::make_shared<const ScenarioObject>(parse_scenario_object(ctx, which));
-    } else {
-      Children(ctx, which, "EntityRef");
-      value.trailer_ref = ctx.req_str(which, "entityRef");
-      // A catalog vehicle whose trailer is a parameter left empty ("no trailer" in esmini's
-      // catalogs): an entityRef must name an entity, the intent is clear.
-      none = value.trailer_ref->empty();
-      if (none) {
-        ctx.lenient(which, "the trailer's entityRef is empty", "no trailer");
-      } else {
-        ctx.use_entity(which, *value.trailer_ref, "entityRef");
-      }
-    }
-    if (!none) vehicle.trailer = std::move(value);
+    vehicle.trailer = parse_trailer(ctx, trailer);
   }
   vehicle.source = ctx.source(e);
   return vehicle;

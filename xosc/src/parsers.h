@@ -66,6 +66,8 @@ ObjectController parse_object_controller(ParseContext& ctx, const Element* eleme
 /// ExternalObjectReference) among the children of a ScenarioObject / ScenarioObjectTemplate.
 EntityObject parse_entity_object(ParseContext& ctx, const Element* element);
 ScenarioObject parse_scenario_object(ParseContext& ctx, const Element* element);
+/// A Vehicle's <Trailer>; nothing when it names no trailer (an empty reference).
+std::optional<Trailer> parse_trailer(ParseContext& ctx, const Element* element);
 Entities parse_entities(ParseContext& ctx, const Element* element);
 
 // environment

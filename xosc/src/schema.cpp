@@ -248,7 +248,7 @@ TrafficSinkAction|Position TrafficDefinition|radius rate
 TrafficSourceAction|Position TrafficDefinition TrafficDistribution|radius rate velocity speed
 TrafficStopAction||
 TrafficSwarmAction|CentralObject TrafficDefinition TrafficDistribution InitialSpeedRange DirectionOfTravelDistribution|innerRadius numberOfVehicles offset semiMajorAxis semiMinorAxis velocity
-Trailer|Trailer TrailerRef|
+Trailer|Trailer TrailerRef EntityRef CatalogReference Vehicle|
 TrailerAction|ConnectTrailerAction DisconnectTrailerAction|
 Trajectory|ParameterDeclarations Shape|closed name
 TrajectoryFollowingMode||followingMode

@@ -86,6 +86,16 @@ struct LoadOptions {
   std::shared_ptr<CatalogCache> catalog_cache;
 };
 
+/// Thrown by load_scenario when the only errors are values given from outside (LoadOptions::
+/// parameters, a catalog reference's assignments) that violate their declarations' value
+/// constraints: the document is fine, that combination of values is not one it allows (a sweep
+/// skips such variants, as the ASAM ALKS variation files expect).
+class ConstraintViolation : public InputError {
+ public:
+  explicit ConstraintViolation(std::vector<Diagnostic> diagnostics)
+      : InputError(std::move(diagnostics)) {}
+};
+
 /// Loads a scenario file. Throws one InputError holding every error found (file:line: message,
 /// in the order found); warnings (deprecated spellings, unsupported optional features, lenient
 /// readings) go to `diagnostics`.
