@@ -48,6 +48,7 @@ ArgParser sweep_parser() {
                 "entity the metrics are measured for (default: Ego, hero, or "
                 "the first entity)");
   parser.flag("--quiet", "no progress bar and no summary line");
+  parser.flag("--strict", "refuse lenient readings ('(read as ...)' warnings) in every variant");
   parser.epilog(
       "Writes DIR/sweep.json, DIR/variants/<index>/ (trajectory.csv, summary.json, result.csv)\n"
       "and DIR/summary.csv (index, parameters, status, end reason, sim time, collisions, minimum\n"
@@ -86,6 +87,9 @@ void print_report(const sweep::VariantPlan& plan, const sweep::SweepOptions& opt
   std::cout << " of " << plan.scenario().string() << " into " << options.output.string() << ": "
             << report.ran << " ran";
   if (report.resumed > 0) std::cout << ", " << report.resumed << " resumed";
+  if (report.skipped > 0) {
+    std::cout << ", " << report.skipped << " skipped (values outside the scenario's constraints)";
+  }
   std::cout << ", " << report.failed << " failed; " << format_fixed(report.wall_seconds, 2)
             << " s, " << format_fixed(rate, 1) << " variants/s\n";
 }
@@ -123,8 +127,9 @@ int run_sweep_command(std::span<const std::string> args) {
   sweep::SweepOptions options = sweep_options(parsed);
   const bool quiet = parsed.flag("--quiet");
   Diagnostics diagnostics([](const Diagnostic& d) { std::cerr << d.format() << '\n'; });
-  const sweep::VariantPlan plan = sweep::VariantPlan::from_file(
-      parsed.positionals().front(), grid_axes(parsed), options.simulation.seed, diagnostics);
+  const sweep::VariantPlan plan =
+      sweep::VariantPlan::from_file(parsed.positionals().front(), grid_axes(parsed),
+                                    options.simulation.seed, diagnostics, parsed.flag("--strict"));
   ProgressBar progress("sweep", static_cast<double>(options.shard.share(plan.size())), !quiet);
   const StopSignals signals;
   options.stop = [] { return StopSignals::reason(); };

@@ -37,6 +37,7 @@ ArgParser test_parser() {
   parser.option("-o", "DIR", "keep each test's trajectory.csv and summary.json in DIR/<test>/");
   parser.flag("--verbose", "also print the worst golden deviation of every column");
   parser.flag("--quiet", "print only failures and errors");
+  parser.flag("--strict", "refuse lenient readings ('(read as ...)' warnings) in every test");
   parser.epilog(
       "A folder suite uses its suite.xml, or else runs every scenario in it, comparing with\n"
       "goldens/<name>.csv when present. Exit 0 when every test passed, 1 when one failed or could\n"
@@ -87,6 +88,7 @@ int command_test(std::span<const std::string> args) {
   if (options.goldens_outside && !options.update_goldens) {
     throw UsageError("--goldens-outside only goes with --update-goldens");
   }
+  options.strict = parsed.flag("--strict");
   if (const auto output = output_folder(parsed, "-o")) options.output = *output;
   const std::optional<std::filesystem::path> junit = output_file(parsed, "--junit");
   const bool quiet = parsed.flag("--quiet");

@@ -101,13 +101,16 @@ void print_json(const std::vector<FileReport>& reports, bool all_valid) {
 }  // namespace
 
 int command_validate(std::span<const std::string> args) {
-  ArgParser parser("validate FILE... [--json] [--param NAME=VALUE]...",
+  ArgParser parser("validate FILE... [--json] [--strict] [--param NAME=VALUE]...",
                    "Checks OpenSCENARIO (.xosc) and OpenDRIVE (.xodr) files; prints file:line "
                    "errors.");
   parser.positional("FILE", "files to check (.xosc scenario, catalog or distribution; .xodr)", 1,
                     -1);
   parser.flag("--json", "print one JSON report on stdout instead of messages");
   parser.repeated("--param", "NAME=VALUE", "override a global scenario parameter");
+  parser.flag("--strict",
+              "report lenient readings ('(read as ...)' warnings: rules of the standard broken "
+              "in a way whose meaning is clear) as errors");
   parser.epilog(
       "Exit code 0 when every file is valid, 2 when any is not.\n"
       "example: corsa validate scenarios/cut_in.xosc --param EgoSpeed=30");
@@ -117,6 +120,7 @@ int command_validate(std::span<const std::string> args) {
     return kExitOk;
   }
   xosc::LoadOptions options;
+  options.strict = parsed.flag("--strict");
   for (const auto& assignment : parsed.values("--param")) {
     const size_t eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0) {

@@ -61,6 +61,9 @@ void declare_run_options(ArgParser& parser) {
                 "threads the entities of a step are moved on (default: every core); results "
                 "are the same for any number");
   parser.flag("--quiet", "no progress bar and no summary line");
+  parser.flag("--strict",
+              "refuse what would run with a '(read as ...)' warning: rules of the standard the "
+              "scenario breaks in a way whose meaning is clear");
 }
 
 engine::RunOptions read_run_options(const ParsedArgs& parsed) {
@@ -111,6 +114,7 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
   if (const auto npc = parsed.value("--npc")) {
     read_npc(*npc, options.simulation);
   }
+  options.simulation.strict = parsed.flag("--strict");
   if (const auto every = parsed.integer("--record-every")) {
     if (*every < 1) {
       throw UsageError("--record-every expects a positive integer");

@@ -50,6 +50,7 @@ void simulation_options(const ParsedArgs& parsed, engine::SimulationOptions& sim
     if (*seed < 0) throw UsageError("--seed expects a non-negative integer");
     simulation.seed = static_cast<uint64_t>(*seed);
   }
+  simulation.strict = parsed.flag("--strict");
 }
 
 }  // namespace

@@ -69,7 +69,8 @@ def _text(value):
 
 
 def sweep(file, params=None, *, output="sweep", jobs=0, shard=None, resume=False, force=False,
-          seed=0, dt=0.01, duration=3600.0, record_every=1, trajectories=True, ego=None):
+          seed=0, dt=0.01, duration=3600.0, record_every=1, trajectories=True, ego=None,
+          strict=False):
     """Runs the variants of a ParameterValueDistribution file, or a grid over a scenario's
     parameters, as `corsa sweep` does, and returns summary.csv as a list of dicts (one per
     variant of this shard, by index).
@@ -77,8 +78,8 @@ def sweep(file, params=None, *, output="sweep", jobs=0, shard=None, resume=False
     params   {name: 'LOW:HIGH:STEP' | [values] | value}: grid axes (`--param`), the first varying
              slowest
     output   the sweep folder (`-o`); jobs threads (0: every core); shard 'K/N' or 'auto';
-             resume, force, seed, dt, duration, record_every, trajectories, ego as the options of
-             `corsa sweep` (docs/sweeps-and-suites.md)
+             resume, force, seed, dt, duration, record_every, trajectories, ego, strict as the
+             options of `corsa sweep` (docs/sweeps-and-suites.md)
 
     A variant that fails is a row with status 'error' and its message; a bad plan or output
     folder raises corsa.InputError before anything runs.
@@ -86,7 +87,7 @@ def sweep(file, params=None, *, output="sweep", jobs=0, shard=None, resume=False
     output = os.fspath(output)
     _corsa._sweep(os.fspath(file), _grid(params), output, int(jobs), shard, bool(resume),
                   bool(force), int(seed), float(dt), float(duration), int(record_every),
-                  bool(trajectories), ego or "")
+                  bool(trajectories), ego or "", bool(strict))
     return read_summary(os.path.join(output, "summary.csv"))
 
 

@@ -71,7 +71,7 @@ sweep::Shard shard_of(const py::object& shard) {
 py::dict run_sweep(const std::filesystem::path& file, const std::vector<std::string>& grid_specs,
                    const std::filesystem::path& output, size_t jobs, const py::object& shard,
                    bool resume, bool force, uint64_t seed, double dt, double duration,
-                   int64_t record_every, bool trajectories, const std::string& ego) {
+                   int64_t record_every, bool trajectories, const std::string& ego, bool strict) {
   check_step(dt, duration);
   if (resume && force) {
     throw py::value_error("resume and force exclude each other");
@@ -92,6 +92,7 @@ py::dict run_sweep(const std::filesystem::path& file, const std::vector<std::str
   options.record_every = record_every;
   options.trajectories = trajectories;
   options.ego = ego;
+  options.simulation.strict = strict;
   Diagnostics diagnostics;
   sweep::SweepReport report;
   {
@@ -104,7 +105,7 @@ py::dict run_sweep(const std::filesystem::path& file, const std::vector<std::str
       room -= grid.back().values.size();
     }
     const sweep::VariantPlan plan =
-        sweep::VariantPlan::from_file(file, std::move(grid), seed, diagnostics);
+        sweep::VariantPlan::from_file(file, std::move(grid), seed, diagnostics, strict);
     report = sweep::run_sweep(plan, options, diagnostics);
   }
   warn_new(diagnostics, 0);
@@ -146,7 +147,8 @@ py::list run_test(const std::filesystem::path& path,
 void bind_batch(py::module_& m) {
   m.def("_sweep", &run_sweep, py::arg("file"), py::arg("grid"), py::arg("output"), py::arg("jobs"),
         py::arg("shard"), py::arg("resume"), py::arg("force"), py::arg("seed"), py::arg("dt"),
-        py::arg("duration"), py::arg("record_every"), py::arg("trajectories"), py::arg("ego"));
+        py::arg("duration"), py::arg("record_every"), py::arg("trajectories"), py::arg("ego"),
+        py::arg("strict"));
   m.def("_test", &run_test, py::arg("suite"), py::arg("junit"), py::arg("update_goldens"),
         py::arg("jobs"), py::arg("output"));
 }

@@ -276,7 +276,8 @@ MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard
       const fs::path variant = fs::path(detail::kVariantsFolder) / std::to_string(index);
       merge_variant(entry.first->folder / variant, staging / variant);
       table += csv_line(*entry.second);
-      report.failed += (*entry.second)[status] != "ok" ? 1 : 0;
+      const std::string& state = (*entry.second)[status];
+      report.failed += state != "ok" && state != "skipped" ? 1 : 0;
     }
     write_file_atomic(staging / detail::kSummaryFile, table);
     staging_lock.reset();

@@ -145,6 +145,7 @@ std::optional<std::vector<std::string>> finished_row(const fs::path& folder, siz
 
 struct Context {
   const VariantPlan& plan;
+  const std::vector<std::string>& unused;  ///< distribution parameters the scenario lacks
   const SweepOptions& options;
   const std::vector<std::string>& header;
   SharedInputs& inputs;
@@ -164,6 +165,10 @@ std::vector<std::string> run_one(const Context& c, size_t index, bool& resumed) 
   }
   VariantSpec spec;
   spec.parameters = c.plan.variant(index);
+  const ParameterValues all_values = spec.parameters;
+  std::erase_if(spec.parameters, [&](const auto& value) {
+    return std::find(c.unused.begin(), c.unused.end(), value.first) != c.unused.end();
+  });
   spec.simulation = c.options.simulation;
   spec.ego = c.options.ego;
   VariantOutputs outputs;
@@ -177,8 +182,7 @@ std::vector<std::string> run_one(const Context& c, size_t index, bool& resumed) 
     fs::remove(folder / detail::kTrajectoryFile, ignored);
     fs::remove(folder / detail::kRunSummaryFile, ignored);
   }
-  std::vector<std::string> row =
-      summary_row(index, c.plan.parameter_names(), spec.parameters, result);
+  std::vector<std::string> row = summary_row(index, c.plan.parameter_names(), all_values, result);
   write_file_atomic(folder / detail::kResultFile, csv_line(c.header) + csv_line(row));
   return row;
 }
@@ -226,7 +230,9 @@ SweepReport run_sweep(const VariantPlan& plan, const SweepOptions& options,
                       Diagnostics& diagnostics, const SweepProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   SharedInputs inputs(plan.scenario(), diagnostics);
-  plan.check(inputs.load({}, diagnostics));
+  const std::vector<std::string> unused =
+      plan.check(inputs.load({}, diagnostics, options.simulation.strict), options.simulation.strict,
+                 diagnostics);
   check_variant_count(plan, options.shard.share(plan.size()));
   const Json description = description_of(plan, options);
   const Json shard = shard_json(options.shard, plan.size());
@@ -242,7 +248,7 @@ SweepReport run_sweep(const VariantPlan& plan, const SweepOptions& options,
   const size_t share = options.shard.share(plan.size());
   std::vector<std::vector<std::string>> rows(share);
   std::vector<char> resumed(share, 0);
-  const Context context{plan, options, header, inputs, diagnostics};
+  const Context context{plan, unused, options, header, inputs, diagnostics};
   std::mutex progress_mutex;
   size_t done = 0;
   std::optional<std::string> interruption;
@@ -284,7 +290,9 @@ SweepReport run_sweep(const VariantPlan& plan, const SweepOptions& options,
   for (size_t k = 0; k < share; ++k) {
     table += csv_line(rows[k]);
     report.resumed += resumed[k] != 0 ? 1 : 0;
-    if (rows[k][status] != "ok") {
+    if (rows[k][status] == "skipped") {
+      ++report.skipped;
+    } else if (rows[k][status] != "ok") {
       ++report.failed;
       if (report.first_failures.size() < SweepReport::kFailuresListed) {
         report.first_failures.emplace_back(options.shard.index + k * options.shard.count,

@@ -46,8 +46,32 @@ void check_value(const xosc::ParameterDeclaration& p, const std::string& value, 
   }
 }
 
+// The checks of one check() call: which distribution parameters the scenario lacks.
+struct Unused {
+  bool strict;
+  Diagnostics& diagnostics;
+  std::vector<std::string> names;
+
+  // Whether `name` is declared; if not, warned about (once) and remembered, or an error.
+  bool declared(const xosc::Scenario& scenario, const std::string& name, const xosc::Source& at) {
+    if (scenario.find_parameter(name) != nullptr) return true;
+    const std::string message = "parameter '" + name + "' is not declared in scenario '" +
+                                scenario.path.string() + "' (its ParameterDeclarations)";
+    if (strict) {
+      throw InputError(at.error(message + " (an error under --strict; otherwise read as not "
+                                          "varied)"));
+    }
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      names.push_back(name);
+      diagnostics.add(at.warning(message + " (read as not varied: its values are left out)"));
+    }
+    return false;
+  }
+};
+
 void check_single(const xosc::Scenario& scenario,
-                  const xosc::DeterministicSingleParameterDistribution& single) {
+                  const xosc::DeterministicSingleParameterDistribution& single, Unused& unused) {
+  if (!unused.declared(scenario, single.parameter_name, single.source)) return;
   const auto& p = declared(scenario, single.parameter_name, single.source.error(""));
   if (const auto* set = std::get_if<xosc::DistributionSet>(&single.distribution)) {
     for (const auto& value : set->values) check_value(p, value, set->source.error(""));
@@ -70,7 +94,9 @@ bool integer_type(xosc::ParameterType type) {
          type == xosc::ParameterType::kUnsignedShort;
 }
 
-void check_stochastic(const xosc::Scenario& scenario, const xosc::StochasticDistribution& d) {
+void check_stochastic(const xosc::Scenario& scenario, const xosc::StochasticDistribution& d,
+                      Unused& unused) {
+  if (!unused.declared(scenario, d.parameter_name, d.source)) return;
   const auto& p = declared(scenario, d.parameter_name, d.source.error(""));
   if (const auto* set = std::get_if<xosc::ProbabilityDistributionSet>(&d.distribution)) {
     for (const auto& element : set->elements) check_value(p, element.value, set->source.error(""));
@@ -152,8 +178,10 @@ VariantPlan VariantPlan::from_scenario(std::filesystem::path scenario, std::vect
 }
 
 VariantPlan VariantPlan::from_file(const std::filesystem::path& file, std::vector<GridAxis> grid,
-                                   uint64_t default_seed, Diagnostics& diagnostics) {
-  xosc::Document document = xosc::load_document(file, xosc::LoadOptions{}, diagnostics);
+                                   uint64_t default_seed, Diagnostics& diagnostics, bool strict) {
+  xosc::LoadOptions load;
+  load.strict = strict;
+  xosc::Document document = xosc::load_document(file, load, diagnostics);
   if (auto* distribution = std::get_if<xosc::ParameterValueDistribution>(&document)) {
     return from_distribution(file, std::move(*distribution), std::move(grid), default_seed);
   }
@@ -205,20 +233,23 @@ ParameterValues VariantPlan::variant(size_t index) const {
   return values;
 }
 
-void VariantPlan::check(const xosc::Scenario& scenario) const {
+std::vector<std::string> VariantPlan::check(const xosc::Scenario& scenario, bool strict,
+                                            Diagnostics& diagnostics) const {
+  Unused unused{strict, diagnostics, {}};
   if (distribution_) {
     if (const auto* stochastic = std::get_if<xosc::Stochastic>(&distribution_->definition)) {
-      for (const auto& d : stochastic->distributions) check_stochastic(scenario, d);
+      for (const auto& d : stochastic->distributions) check_stochastic(scenario, d, unused);
     } else {
       for (const auto& entry : std::get<xosc::Deterministic>(distribution_->definition).entries) {
         if (const auto* single =
                 std::get_if<xosc::DeterministicSingleParameterDistribution>(&entry)) {
-          check_single(scenario, *single);
+          check_single(scenario, *single, unused);
           continue;
         }
         for (const auto& set :
              std::get<xosc::DeterministicMultiParameterDistribution>(entry).value_sets) {
           for (const auto& a : set) {
+            if (!unused.declared(scenario, a.parameter_ref, a.source)) continue;
             check_value(declared(scenario, a.parameter_ref, a.source.error("")), a.value,
                         a.source.error(""));
           }
@@ -230,6 +261,7 @@ void VariantPlan::check(const xosc::Scenario& scenario) const {
     const auto& p = declared(scenario, axis.name, grid_error(axis, ""));
     for (const auto& value : axis.values) check_value(p, value, grid_error(axis, ""));
   }
+  return unused.names;
 }
 
 }  // namespace corsa::sweep

@@ -36,7 +36,7 @@ class TrajectoryText final : public engine::SimulationObserver {
 void simulate(SharedInputs& inputs, const VariantSpec& spec, const VariantOutputs& outputs,
               Diagnostics& diagnostics, VariantResult& result,
               std::chrono::steady_clock::time_point start) {
-  const xosc::Scenario scenario = inputs.load(spec.parameters, diagnostics);
+  const xosc::Scenario scenario = inputs.load(spec.parameters, diagnostics, spec.simulation.strict);
   engine::Simulation simulation(scenario, inputs.road_network(scenario), spec.simulation,
                                 diagnostics);
   const std::optional<size_t> ego = choose_ego(simulation, spec.ego);
@@ -93,6 +93,8 @@ int exit_status(VariantStatus status) {
       return 2;
     case VariantStatus::kInternal:
       return 3;
+    case VariantStatus::kSkipped:
+      return 0;
   }
   return 3;
 }
@@ -105,6 +107,8 @@ std::string_view to_string(VariantStatus status) {
       return "error";
     case VariantStatus::kInternal:
       return "internal error";
+    case VariantStatus::kSkipped:
+      return "skipped";
   }
   return "internal error";
 }
@@ -116,6 +120,10 @@ VariantResult run_variant(SharedInputs& inputs, const VariantSpec& spec,
   try {
     simulate(inputs, spec, outputs, diagnostics, result, start);
     return result;
+  } catch (const xosc::ConstraintViolation& violation) {
+    result = VariantResult{};
+    result.status = VariantStatus::kSkipped;
+    result.error = violation.brief();
   } catch (const InputError& error) {
     result = VariantResult{};  // nothing of a failed run is reported but the failure
     result.status = VariantStatus::kBadInput;

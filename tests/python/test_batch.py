@@ -58,8 +58,13 @@ def test_a_bad_sweep_is_a_located_input_error_before_anything_runs(tmp_path):
     with pytest.raises(corsa.InputError, match="Nope") as caught:
         corsa.sweep(FOLLOW, {"Nope": [1, 2]}, output=tmp_path / "bad")
     assert caught.value.file
+    # A distribution parameter the scenario does not declare: left out with a located warning,
+    # an error with strict=True.
+    with pytest.warns(corsa.CorsaWarning, match="Wind_Speed' is not declared"):
+        corsa.sweep(ROOT / "tests/sweep/fixtures/undeclared.xosc", output=tmp_path / "lenient")
     with pytest.raises(corsa.InputError) as caught:
-        corsa.sweep(ROOT / "tests/sweep/fixtures/undeclared.xosc", output=tmp_path / "bad2")
+        corsa.sweep(ROOT / "tests/sweep/fixtures/undeclared.xosc", output=tmp_path / "bad2",
+                    strict=True)
     assert caught.value.file.endswith("undeclared.xosc") and caught.value.line
     with pytest.raises(ValueError, match="resume and force"):
         corsa.sweep(GRID, output=tmp_path / "x", resume=True, force=True)

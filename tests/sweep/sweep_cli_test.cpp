@@ -181,8 +181,8 @@ TEST_CASE("--shard auto takes a Kubernetes completion index with --shard-count",
 
 TEST_CASE("bad sweep input is located and exits 2", "[sweep][cli][errors]") {
   TempDir dir;
-  const auto undeclared =
-      run_corsa({"sweep", fixture("undeclared.xosc").string(), "-o", dir.path().string()});
+  const auto undeclared = run_corsa(
+      {"sweep", fixture("undeclared.xosc").string(), "--strict", "-o", dir.path().string()});
   CHECK(undeclared.exit_code == 2);
   CHECK(undeclared.err.find("undeclared.xosc:10: error: parameter 'Wind_Speed' is not declared") !=
         std::string::npos);
@@ -197,6 +197,30 @@ TEST_CASE("bad sweep input is located and exits 2", "[sweep][cli][errors]") {
   const auto usage = run_corsa({"sweep", fixture("grid.xosc").string(), "-j", "0"});
   CHECK(usage.exit_code == 2);
   CHECK(dir.entries() == 0);
+}
+
+TEST_CASE("a distribution parameter the scenario lacks is not varied, with a warning",
+          "[sweep][cli]") {
+  TempDir dir;
+  const auto result =
+      run_corsa({"sweep", fixture("undeclared.xosc").string(), "-o", dir.path().string()});
+  CHECK(result.exit_code == 0);
+  CHECK(result.out.find("swept 2 variants") != std::string::npos);
+  CHECK(result.err.find("undeclared.xosc:10: warning: parameter 'Wind_Speed' is not declared") !=
+        std::string::npos);
+}
+
+TEST_CASE("variants outside the scenario's value constraints are skipped, not failed",
+          "[sweep][cli]") {
+  TempDir dir;
+  const auto result = run_corsa({"sweep", fixture("follow.xosc").string(), "--param",
+                                 "Brake_Rate=-1,4", "-o", dir.path().string()});
+  CHECK(result.exit_code == 0);
+  CHECK(result.out.find("1 skipped") != std::string::npos);
+  CHECK(result.out.find("0 failed") != std::string::npos);
+  const std::string table = corsa::read_file(dir.path() / "summary.csv");
+  CHECK(table.find(",skipped,0,") != std::string::npos);
+  CHECK(table.find("violates its value constraints") != std::string::npos);
 }
 
 TEST_CASE("failed variants make the sweep exit 1 and are listed", "[sweep][cli]") {

@@ -16,9 +16,11 @@ using corsa::sweep::test::follow_scenario;
 
 namespace {
 
+// Checks strictly: a distribution parameter the scenario lacks is an error then.
 std::string check_error(const VariantPlan& plan) {
+  corsa::Diagnostics diagnostics;
   try {
-    plan.check(follow_scenario());
+    plan.check(follow_scenario(), true, diagnostics);
   } catch (const InputError& error) {
     return error.diagnostic().format();
   }
@@ -41,7 +43,7 @@ TEST_CASE("deterministic distributions combine as nested loops, the first slowes
   CHECK(plan.variant(2)[1].second == "-3");
   CHECK(plan.variant(11) ==
         ParameterValues{{"Ego_Speed", "30"}, {"Lane", "-3"}, {"Gap", "60"}, {"Lead_Speed", "20"}});
-  CHECK_NOTHROW(plan.check(follow_scenario()));
+  CHECK(check_error(plan) == "no error");
 }
 
 TEST_CASE("a command-line grid varies fastest inside a distribution", "[sweep][plan]") {
@@ -78,7 +80,7 @@ TEST_CASE("stochastic variants are reproducible and independent of each other", 
           corsa::xosc::variant_at(*plan.distribution(), i, corsa::xosc::VariantOptions{}).values);
   }
   CHECK(plan.variant(3) != plan.variant(4));
-  CHECK_NOTHROW(plan.check(follow_scenario()));
+  CHECK(check_error(plan) == "no error");
 }
 
 TEST_CASE("a parameter varied twice is refused", "[sweep][plan]") {
@@ -95,6 +97,15 @@ TEST_CASE("a distribution over an undeclared parameter is located in the distrib
   const std::string error = check_error(plan);
   CHECK(error.find("undeclared.xosc:10: error: parameter 'Wind_Speed' is not declared in "
                    "scenario") != std::string::npos);
+  // Leniently, that parameter is not varied: a located warning, and its name to leave out.
+  corsa::Diagnostics diagnostics;
+  CHECK(plan.check(follow_scenario(), false, diagnostics) ==
+        std::vector<std::string>{"Wind_Speed"});
+  REQUIRE(diagnostics.size() == 1);
+  CHECK_THAT(
+      diagnostics.all()[0].format(),
+      Catch::Contains("undeclared.xosc:10: warning: parameter 'Wind_Speed' is not declared") &&
+          Catch::Contains("(read as not varied: its values are left out)"));
   const VariantPlan grid =
       VariantPlan::from_scenario(fixture("follow.xosc"), {parse_grid_axis("speed=1,2")});
   CHECK(check_error(grid).find("--param speed=1,2: error: parameter 'speed' is not declared") == 0);

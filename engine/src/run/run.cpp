@@ -72,6 +72,7 @@ RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
   const auto start = std::chrono::steady_clock::now();
   xosc::LoadOptions load;
   load.parameters = options.parameters;
+  load.strict = options.simulation.strict;
   const xosc::Scenario scenario = xosc::load_scenario(options.scenario, load, diagnostics);
   Simulation simulation(scenario, load_road_network(scenario, diagnostics), options.simulation,
                         diagnostics);

@@ -72,6 +72,10 @@ struct SimulationOptions {
   /// library users; the `corsa` command loads it on demand. Empty: a GeoPosition is an error
   /// that says so.
   GeoProjectionFactory geo_projection;
+  /// Lenient readings (a rule of the standard broken in a way whose meaning is clear, run as
+  /// its author meant with a `(read as ...)` warning) are errors instead (`--strict`): the
+  /// scenario's load (xosc::LoadOptions::strict) and what the engine reads at run time.
+  bool strict = false;
 };
 
 /// One presence of a generated entity (traffic actions, NPCs): when it appeared and, once it

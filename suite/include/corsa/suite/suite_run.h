@@ -31,6 +31,8 @@ struct SuiteOptions {
   /// The map-to-Earth transform for GeoPositions, given to every test's run
   /// (engine::SimulationOptions::geo_projection).
   engine::GeoProjectionFactory geo_projection;
+  /// Every test refuses lenient readings (engine::SimulationOptions::strict, `--strict`).
+  bool strict = false;
 };
 
 enum class Verdict : uint8_t { kPassed, kFailed, kError };

@@ -38,8 +38,10 @@ class SharedInputs {
   const std::string& scenario_text() const { return scenario_text_; }
 
   /// The scenario with `parameters` overriding its global parameter values (xosc::LoadOptions),
-  /// parsed from the shared text with the shared catalogs. Throws InputError.
-  xosc::Scenario load(const ParameterValues& parameters, Diagnostics& diagnostics) const;
+  /// parsed from the shared text with the shared catalogs; `strict` refuses lenient readings.
+  /// Throws InputError.
+  xosc::Scenario load(const ParameterValues& parameters, Diagnostics& diagnostics,
+                      bool strict = false) const;
 
   /// The scenario's road network (null when it has none), loaded once per LogicFile path and
   /// then shared; a map that failed to load fails every variant that uses it, with the same

@@ -52,7 +52,8 @@ struct SweepReport {
   size_t variants = 0;  ///< in this shard
   size_t ran = 0;
   size_t resumed = 0;  ///< taken from an earlier run (--resume)
-  size_t failed = 0;   ///< rows whose status is not ok (ran or resumed)
+  size_t failed = 0;   ///< rows whose status is neither ok nor skipped (ran or resumed)
+  size_t skipped = 0;  ///< variants whose values violate the scenario's value constraints
   /// Set when SweepOptions::stop stopped the sweep: why. `ran + resumed` variants are done.
   std::optional<std::string> interruption;
   double wall_seconds = 0.0;

@@ -37,9 +37,11 @@ class VariantPlan {
   static VariantPlan from_scenario(std::filesystem::path scenario, std::vector<GridAxis> grid);
   /// What `corsa sweep FILE` sweeps: the distribution's variants when `file` is a
   /// ParameterValueDistribution, else the grid over the scenario `file`. Throws InputError for a
-  /// file that cannot be read or is a catalog.
+  /// file that cannot be read or is a catalog. `strict`: its lenient readings are errors
+  /// (xosc::LoadOptions::strict, `corsa sweep --strict`).
   static VariantPlan from_file(const std::filesystem::path& file, std::vector<GridAxis> grid,
-                               uint64_t default_seed, Diagnostics& diagnostics);
+                               uint64_t default_seed, Diagnostics& diagnostics,
+                               bool strict = false);
 
   /// The scenario every variant runs.
   const std::filesystem::path& scenario() const { return scenario_; }
@@ -61,8 +63,12 @@ class VariantPlan {
   /// parameter must be a declared global parameter, and every value the plan can give (the sets,
   /// value sets, range ends and steps, grid values; the kind of each stochastic distribution)
   /// must suit the parameter's type. Throws InputError located at the distribution element or the
-  /// --param option.
-  void check(const xosc::Scenario& scenario) const;
+  /// --param option. A distribution parameter the scenario does not declare (ASAM's ALKS
+  /// variation files vary a model their scenario does not have) is not varied, with a located
+  /// `(read as ...)` warning in `diagnostics`, or an error when `strict`; those names are
+  /// returned, to be left out of every variant's values.
+  std::vector<std::string> check(const xosc::Scenario& scenario, bool strict,
+                                 Diagnostics& diagnostics) const;
 
  private:
   VariantPlan() = default;

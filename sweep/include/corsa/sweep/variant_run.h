@@ -36,9 +36,13 @@ enum class VariantStatus : uint8_t {
   kOk,        ///< ran to its end (collisions or not)
   kBadInput,  ///< the variant's scenario, parameters or map are bad input (exit status 2)
   kInternal,  ///< an unexpected error, a bug in Corsa (exit status 3)
+  /// Not run: the variant's values violate the scenario's value constraints (a combination the
+  /// scenario does not allow; exit status 0, not a failure of the sweep).
+  kSkipped,
 };
 int exit_status(VariantStatus status);
-std::string_view to_string(VariantStatus status);  ///< "ok", "error", "internal error"
+/// "ok", "error", "internal error", "skipped"
+std::string_view to_string(VariantStatus status);
 
 struct VariantResult {
   VariantStatus status = VariantStatus::kOk;
