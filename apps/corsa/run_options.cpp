@@ -42,6 +42,8 @@ void read_npc(const std::string& text, engine::SimulationOptions& options) {
 void declare_run_options(ArgParser& parser) {
   parser.positional("SCENARIO.xosc", "the scenario to run");
   parser.repeated("--param", "NAME=VALUE", "override a global scenario parameter");
+  parser.repeated("--value", "NAME=VALUE",
+                  "a value UserDefinedValueConditions named NAME compare with");
   parser.option("--dt", "SECONDS", "fixed step (default 0.01)");
   parser.option("--duration", "SECONDS",
                 "stop at this simulated time at the latest (default 3600)");
@@ -75,6 +77,13 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
       throw UsageError("--param expects NAME=VALUE, got '" + assignment + "'");
     }
     options.parameters.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
+  }
+  for (const auto& assignment : parsed.values("--value")) {
+    const size_t eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw UsageError("--value expects NAME=VALUE, got '" + assignment + "'");
+    }
+    options.simulation.values.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
   }
   if (const auto dt = parsed.number("--dt")) {
     // At least 0.1 ms: a step of 1e-300 s is endless steps, a hang rather than a run.

@@ -32,16 +32,6 @@ constexpr std::string_view kind_name() {
     return "FollowTrajectoryAction";
   else if constexpr (std::is_same_v<T, xosc::AcquirePositionAction>)
     return "AcquirePositionAction";
-  else if constexpr (std::is_same_v<T, xosc::RandomRouteAction>)
-    return "RandomRouteAction";
-  else if constexpr (std::is_same_v<T, xosc::LightStateAction>)
-    return "LightStateAction";
-  else if constexpr (std::is_same_v<T, xosc::AnimationAction>)
-    return "AnimationAction";
-  else if constexpr (std::is_same_v<T, xosc::ConnectTrailerAction>)
-    return "ConnectTrailerAction";
-  else if constexpr (std::is_same_v<T, xosc::DisconnectTrailerAction>)
-    return "DisconnectTrailerAction";
   else if constexpr (std::is_same_v<T, xosc::AddEntityAction>)
     return "AddEntityAction";
   else if constexpr (std::is_same_v<T, xosc::DeleteEntityAction>)
@@ -50,8 +40,6 @@ constexpr std::string_view kind_name() {
     return "TrafficSignalControllerAction";
   else if constexpr (std::is_same_v<T, xosc::TrafficSignalStateAction>)
     return "TrafficSignalStateAction";
-  else if constexpr (std::is_same_v<T, xosc::SetMonitorAction>)
-    return "SetMonitorAction";
   else if constexpr (std::is_same_v<T, xosc::TrafficSourceAction>)
     return "TrafficSourceAction";
   else if constexpr (std::is_same_v<T, xosc::TrafficSinkAction>)
@@ -104,6 +92,14 @@ std::unique_ptr<ActionInstance> make_private_action(const xosc::PrivateAction& a
           return make_lateral_distance_action(a);
         } else if constexpr (std::is_same_v<T, xosc::SpeedProfileAction>) {
           return make_speed_profile_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::ConnectTrailerAction>) {
+          return make_connect_trailer_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::DisconnectTrailerAction>) {
+          return make_disconnect_trailer_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::RandomRouteAction>) {
+          return make_random_route_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::AnimationAction>) {
+          return make_animation_action(a);
         } else {
           return make_unsupported_action(kind_name<T>(), a.source);
         }
@@ -143,6 +139,8 @@ std::unique_ptr<ActionInstance> make_global_action(const xosc::GlobalAction& act
           return make_traffic_sink_action(a);
         } else if constexpr (std::is_same_v<T, xosc::TrafficStopAction>) {
           return make_traffic_stop_action(a);
+        } else if constexpr (std::is_same_v<T, xosc::SetMonitorAction>) {
+          return make_set_monitor_action(a);
         } else {
           return make_unsupported_action(kind_name<T>(), a.source);
         }

@@ -20,6 +20,14 @@ std::unique_ptr<ActionInstance> make_parameter_set_action(const xosc::ParameterS
 std::unique_ptr<ActionInstance> make_parameter_modify_action(
     const xosc::ParameterModifyAction& action);
 std::unique_ptr<ActionInstance> make_variable_set_action(const xosc::VariableSetAction& action);
+std::unique_ptr<ActionInstance> make_set_monitor_action(const xosc::SetMonitorAction& action);
+std::unique_ptr<ActionInstance> make_light_state_action(const xosc::LightStateAction& action);
+std::unique_ptr<ActionInstance> make_animation_action(const xosc::AnimationAction& action);
+std::unique_ptr<ActionInstance> make_random_route_action(const xosc::RandomRouteAction& action);
+std::unique_ptr<ActionInstance> make_connect_trailer_action(
+    const xosc::ConnectTrailerAction& action);
+std::unique_ptr<ActionInstance> make_disconnect_trailer_action(
+    const xosc::DisconnectTrailerAction& action);
 std::unique_ptr<ActionInstance> make_variable_modify_action(
     const xosc::VariableModifyAction& action);
 std::unique_ptr<ActionInstance> make_environment_action(const xosc::EnvironmentAction& action);
@@ -28,7 +36,6 @@ std::unique_ptr<ActionInstance> make_custom_command_action(const xosc::UserDefin
 std::unique_ptr<ActionInstance> make_add_entity_action(const xosc::AddEntityAction& action);
 std::unique_ptr<ActionInstance> make_delete_entity_action(const xosc::DeleteEntityAction& action);
 std::unique_ptr<ActionInstance> make_visibility_action(const xosc::VisibilityAction& action);
-std::unique_ptr<ActionInstance> make_light_state_action(const xosc::LightStateAction& action);
 std::unique_ptr<ActionInstance> make_activate_controller_action(
     const xosc::ActivateControllerAction& action);
 std::unique_ptr<ActionInstance> make_assign_controller_action(

@@ -1,7 +1,7 @@
 // AssignControllerAction (OpenSCENARIO 1.3 §7.5.2): the actor gets a new controller, which is
 // active in the domains the action's activate* attributes switch on. A Controller whose
-// Properties say `corsa:controller` picks one of this engine's controllers; any other stands
-// for the default controller (with a warning, once).
+// Properties say `corsa:controller` picks one of this engine's controllers; for any other the
+// acc controller stands in (substitute_controller: warned, and listed in the run summary).
 
 #include "actions/action_makers.h"
 #include "controllers/controllers.h"
@@ -18,20 +18,19 @@ class AssignControllerInstance final : public InstantAction {
     ControlState& control = control_of(context.state, *context.actor);
     const xosc::ObjectController& oc = action_.controller;
     ControllerKind kind = ControllerKind::kDefault;
+    const ControllerKind before = control.kind;
     if (names_external(context.state.options, oc)) {
-      kind = ControllerKind::kExternal;
-    } else if (!controller_kind_of(oc.controller, context.state.diagnostics, kind)) {
-      context.state.diagnostics.add_once(
-          "foreign-controller",
-          oc.source.warning("controller '" + oc.controller.name +
-                            "' is not one of this engine's (default, acc, dynamics via the "
-                            "corsa:controller property): the default controller moves '" +
-                            context.entity().info.name + "'"));
+      control.kind = ControllerKind::kExternal;
+      control.substitute_for.clear();
+    } else if (controller_kind_of(oc.controller, context.state.diagnostics, kind)) {
+      control.kind = kind;
+      control.substitute_for.clear();
+    } else {
+      substitute_controller(context.state, *context.actor, oc);
     }
-    if (kind != control.kind) {
+    if (control.kind != before) {
       control.dynamics.reset();  // a new vehicle model starts from the current motion
     }
-    control.kind = kind;
     control.assigned = oc.name.value_or(oc.controller.name);
     // §7.5.2: activation as the attributes say; a 1.0-style assignment without them activates
     // nothing, which leaves the entity under the default controller until activated.

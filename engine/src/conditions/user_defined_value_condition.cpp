@@ -1,12 +1,15 @@
-// UserDefinedValueCondition (OpenSCENARIO 1.3 §8.3.2): a named value that the simulator or the
-// user provides (Simulation::set_user_value_provider, external_control.h), compared with the
-// condition's value by its rule. The condition's text is read as a value of the provided value's
-// type (numerically for numbers and booleans); text that is not one compares as a string
-// (equalTo / notEqualTo only, as for string parameters). Without a value (no provider, or the
-// provider has none for the name) the condition does not hold, with a located warning once per
-// name.
+// UserDefinedValueCondition (OpenSCENARIO 1.3 §8.3.2): a named value that the user's environment
+// provides, compared with the condition's value by its rule. Values come from outside the
+// scenario: `corsa run --value NAME=VALUE` (SimulationOptions::values) and
+// Simulation::set_user_value give text, which wins; Simulation::set_user_value_provider
+// (external_control.h) gives typed values. Given text compares as a number when both sides are
+// numbers, else as text (equalTo / notEqualTo only, as for string parameters). A provided value
+// reads the condition's text as a value of its type (numerically for numbers and booleans); text
+// that is not one compares as a string. A name with no value never holds, with a located warning
+// once per name.
 
 #include "conditions/condition_makers.h"
+#include "corsa/core/strings.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -18,6 +21,10 @@ class UserDefinedValueCheck final : public ValueCondition {
       : condition_(condition) {}
 
   bool holds(const SimState& state) override {
+    if (const auto given = state.given_values.find(condition_.name);
+        given != state.given_values.end()) {
+      return compare_given(given->second);
+    }
     std::optional<xosc::Value> value;
     if (state.user_values) {
       value = state.user_values(condition_.name);
@@ -26,19 +33,33 @@ class UserDefinedValueCheck final : public ValueCondition {
       state.diagnostics.add_once(
           "user-defined-value:" + condition_.name,
           condition_.source.warning("UserDefinedValueCondition '" + condition_.name +
-                                    "' has no value in this run (nothing provides it); it does "
-                                    "not hold"));
+                                    "' has no value in this run: no value '" + condition_.name +
+                                    "' is given (corsa run --value " + condition_.name +
+                                    "=...) and no value provider has one; it does not hold"));
       return false;
     }
     if (auto reference = xosc::parse_value(value->type, condition_.value)) {
       return xosc::compare_values(*value, condition_.rule, *reference);
     }
-    const xosc::Value text{xosc::ParameterType::kString, value->text()};
-    return xosc::compare_values(text, condition_.rule,
-                                xosc::Value{xosc::ParameterType::kString, condition_.value});
+    return compare_text(value->text());
   }
 
  private:
+  bool compare_given(const std::string& given) const {
+    const auto left = parse_double(given);
+    const auto right = parse_double(condition_.value);
+    if (left && right) {
+      return xosc::compare_values(xosc::Value{xosc::ParameterType::kDouble, *left}, condition_.rule,
+                                  xosc::Value{xosc::ParameterType::kDouble, *right});
+    }
+    return compare_text(given);
+  }
+
+  bool compare_text(const std::string& text) const {
+    return xosc::compare_values(xosc::Value{xosc::ParameterType::kString, text}, condition_.rule,
+                                xosc::Value{xosc::ParameterType::kString, condition_.value});
+  }
+
   const xosc::UserDefinedValueCondition& condition_;
 };
 

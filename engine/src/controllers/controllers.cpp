@@ -54,6 +54,19 @@ bool names_external(const SimulationOptions& options, const xosc::ObjectControll
   return false;
 }
 
+void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectController& oc) {
+  ControlState& control = control_of(state, index);
+  const std::string& entity = state.world.entities[index].info.name;
+  control.kind = ControllerKind::kAcc;
+  control.substitute_for = oc.controller.name;
+  state.diagnostics.add_once(
+      "foreign-controller:" + entity + ":" + oc.controller.name,
+      oc.source.warning("controller '" + oc.controller.name +
+                        "' is not one of this engine's (default, acc, dynamics via the "
+                        "corsa:controller property): the acc controller stands in for it on '" +
+                        entity + "' once activated"));
+}
+
 void assign_initial_controllers(SimState& state) {
   std::optional<ControllerKind> for_vehicles;
   if (!state.options.controller.empty()) {
@@ -88,15 +101,7 @@ void assign_initial_controllers(SimState& state) {
         // EndOfTrafficJam's ego): the acc controller stands in for a driver that does not run
         // into the vehicle ahead. As the standard has it (§7.5), it moves the entity only once
         // an ActivateControllerAction activates it; until then the default controller does.
-        const xosc::ObjectController& oc = entity.object->controllers.front();
-        state.diagnostics.add_once(
-            "foreign-controller",
-            oc.source.warning("controller '" + oc.controller.name +
-                              "' is not one of this engine's (default, acc, dynamics via the "
-                              "corsa:controller property): the acc controller stands in for it "
-                              "on '" +
-                              entity.info.name + "' once activated"));
-        control.kind = ControllerKind::kAcc;
+        substitute_controller(state, static_cast<uint32_t>(i), entity.object->controllers.front());
         control.longitudinal = false;
         control.lateral = false;
         chosen = true;
@@ -191,8 +196,8 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
               LanesAhead& ahead) {
   const DefaultController ideal;
   Entity& entity = state.world.entities[i];
-  if (!entity.state.placed) {
-    return;
+  if (!entity.state.placed || entity.towed_by) {
+    return;  // a connected trailer follows its tower (motion/trailers.h)
   }
   const ControllerKind kind = state.controls[i].effective();
   if (entity.info.kind == ObjectKind::kPedestrian && kind == ControllerKind::kDefault) {
@@ -277,7 +282,7 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   std::vector<uint32_t> dynamic;
   bool following = false;
   for (uint32_t i = 0; i < count; ++i) {
-    if (dynamics_moves(state, i)) {
+    if (dynamics_moves(state, i) && !state.world.entities[i].towed_by) {
       dynamic.push_back(i);
     }
     following = following || (state.world.entities[i].state.placed &&

@@ -36,6 +36,12 @@ bool controller_kind_of(const xosc::Controller& controller, Diagnostics& diagnos
 /// Controller's name, or esmini's `esminiController` property): its entity is driven from outside.
 bool names_external(const SimulationOptions& options, const xosc::ObjectController& oc);
 
+/// A controller this engine does not have (an external driver model, esmini's ALKSController):
+/// the acc controller stands in for it on entity `index` (a driver that does not run into the
+/// vehicle ahead). Recorded in ControlState::substitute_for (the run summary lists it) and
+/// warned once per entity and controller, located at the ObjectController.
+void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectController& oc);
+
 /// Gives every entity its controller from the scenario and the options (state.controls sized
 /// to the entities). Throws InputError for an unknown --controller name.
 void assign_initial_controllers(SimState& state);

@@ -21,6 +21,11 @@ Json entity_json(const Simulation& simulation, size_t i) {
     out["road"] = simulation.road_id(s.road->road);
     out["lane"] = s.road->lane;
   }
+  // A controller of the scenario this engine does not have: acc drove in its place.
+  if (const auto substitute = simulation.controller_substitute(i); !substitute.empty()) {
+    out["controller"] = "acc";
+    out["substitute_for"] = substitute;
+  }
   // Generated entities (traffic actions, NPCs): whether present at the end, and when each
   // presence began and ended (the pose above is where it was last).
   if (const auto lives = simulation.lifetimes(i); !lives.empty()) {
@@ -57,7 +62,7 @@ std::string summary_json(const Simulation& simulation, double wall_seconds) {
         {{"time", number(c.time)},
          {"entities", {simulation.entity(c.first).name, simulation.entity(c.second).name}}});
   }
-  const Json summary = {
+  Json summary = {
       {"scenario", scenario.path.string()},
       {"parameters", std::move(parameters)},
       {"seed", simulation.options().seed},
@@ -67,8 +72,16 @@ std::string summary_json(const Simulation& simulation, double wall_seconds) {
       {"steps", simulation.tick()},
       {"wall_time", number(wall_seconds)},
       {"real_time_factor", number(wall_seconds > 0.0 ? simulation.time() / wall_seconds : 0.0)},
-      {"entities", std::move(entities)},
-      {"collisions", std::move(collisions)}};
+      {"entities", std::move(entities)}};
+  // The scenario's own verdicts (MonitorDeclarations, SetMonitorAction), by name.
+  if (const auto monitors = simulation.monitors(); !monitors.empty()) {
+    Json verdicts = Json::object();
+    for (const auto& [name, value] : monitors) {
+      verdicts[name] = value;
+    }
+    summary["monitors"] = std::move(verdicts);
+  }
+  summary["collisions"] = std::move(collisions);
   return json_document(summary);
 }
 

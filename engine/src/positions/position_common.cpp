@@ -1,5 +1,6 @@
 #include "positions/position_common.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -7,6 +8,7 @@
 #include "corsa/xodr/lane_graph.h"
 #include "geometry/angle.h"
 #include "lanes/lane_follow.h"
+#include "state/lenient.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -43,17 +45,22 @@ uint32_t need_road(const xodr::Map& map, const std::string& id, const xosc::Sour
   return static_cast<uint32_t>(*road);
 }
 
-void check_s(const xodr::Map& map, uint32_t road, double s, const xosc::Source& source) {
+double checked_s(const SimState& state, const xodr::Map& map, uint32_t road, double s,
+                 const xosc::Source& source) {
   const double length = map.road(road).length;
-  if (!(s >= -1e-9 && s <= length + 1e-9)) {
-    fail(source, "s = " + format_double(s) + " is outside road '" + map.road(road).id +
-                     "' (length " + format_double(length) + " m)");
-  }
+  if (s >= -1e-9 && s <= length + 1e-9) return std::clamp(s, 0.0, length);
+  constexpr double kSlack = 50.0;  // m: an s written for a slightly longer version of the road
+  const std::string where = "s = " + format_double(s) + " is outside road '" + map.road(road).id +
+                            "' (length " + format_double(length) + " m)";
+  if (s < -kSlack || s > length + kSlack) fail(source, where);
+  const double end = s < 0.0 ? 0.0 : length;
+  lenient(state, source, where, "s = " + format_double(end) + ", the road's end");
+  return end;
 }
 
-int parse_lane_id(const std::string& text, const xosc::Source& source) {
+int parse_lane_id(const std::string& text, const xosc::Source& source, bool allow_center) {
   const auto id = parse_int(text);
-  if (!id || *id == 0 || *id > 1000 || *id < -1000) {
+  if (!id || (*id == 0 && !allow_center) || *id > 1000 || *id < -1000) {
     fail(source, "laneId '" + text + "' is not a lane id (a non-zero integer)");
   }
   return static_cast<int>(*id);

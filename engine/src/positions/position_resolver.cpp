@@ -78,18 +78,22 @@ ResolvedPosition relative_object(const xosc::RelativeObjectPosition& p, const Si
 ResolvedPosition road(const xosc::RoadPosition& p, const SimState& state) {
   const xodr::Map& map = need_map(state, p.source, "RoadPosition");
   const uint32_t road_index = need_road(map, p.road_id, p.source);
-  check_s(map, road_index, p.s, p.source);
-  return on_road(map, road_index, p.s, p.t, std::nullopt, p.orientation);
+  const double s = checked_s(state, map, road_index, p.s, p.source);
+  return on_road(map, road_index, s, p.t, std::nullopt, p.orientation);
 }
 
 ResolvedPosition lane(const xosc::LanePosition& p, const SimState& state) {
   const xodr::Map& map = need_map(state, p.source, "LanePosition");
   const uint32_t road_index = need_road(map, p.road_id, p.source);
-  check_s(map, road_index, p.s, p.source);
-  const int lane_id = parse_lane_id(p.lane_id, p.source);
-  const double t =
-      need_lane_center(map, road_index, p.s, lane_id, p.source) + p.offset.value_or(0.0);
-  return on_road(map, road_index, p.s, t, lane_id, p.orientation);
+  const double s = checked_s(state, map, road_index, p.s, p.source);
+  const int lane_id = parse_lane_id(p.lane_id, p.source, true);
+  if (lane_id == 0) {
+    // The centre lane (OpenDRIVE: lane 0, no width): on the reference line, plus the offset; the
+    // entity then follows the lane it stands in.
+    return on_road(map, road_index, s, p.offset.value_or(0.0), std::nullopt, p.orientation);
+  }
+  const double t = need_lane_center(map, road_index, s, lane_id, p.source) + p.offset.value_or(0.0);
+  return on_road(map, road_index, s, t, lane_id, p.orientation);
 }
 
 // Where the reference entity is on the road (it must be on one).

@@ -8,6 +8,7 @@
 #include "corsa/xodr/geometry.h"
 #include "geometry/angle.h"
 #include "positions/position_common.h"
+#include "state/lenient.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -154,7 +155,16 @@ void build_clothoid_spline(TrajectoryPath& path, const xosc::ClothoidSpline& sha
       cursor = {start.pose.x, start.pose.y, start.pose.z, start.pose.h};
       have_cursor = true;
     } else if (!have_cursor) {
-      fail(segment.source, "the first ClothoidSplineSegment needs a PositionStart");
+      // The first segment needs a PositionStart (1.3 ClothoidSplineSegment); without one the
+      // spline clearly continues from where the entity following it stands.
+      if (!self || !state.world.entities[*self].state.placed) {
+        fail(segment.source, "the first ClothoidSplineSegment needs a PositionStart");
+      }
+      lenient(state, segment.source, "the first ClothoidSplineSegment has no PositionStart",
+              "a start at the entity following it");
+      const auto& pose = state.world.entities[*self].state.pose;
+      cursor = {pose.x, pose.y, pose.z, pose.h};
+      have_cursor = true;
     }
     TrajectoryPath::Segment seg;
     seg.clothoid = true;

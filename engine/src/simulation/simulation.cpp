@@ -9,6 +9,7 @@
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/route_lanes.h"
+#include "motion/trailers.h"
 #include "simulation/simulation_impl.h"
 #include "state/entity_builder.h"
 #include "state/environment_clock.h"
@@ -36,6 +37,7 @@ Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xod
                        const SimulationOptions& options, Diagnostics& diagnostics)
     : state(scenario, std::move(map), options, diagnostics), mover(options.threads) {
   check_options(options);
+  for (const auto& [name, value] : options.values) state.given_values[name] = value;
   detail::build_entities(state);
   detail::assign_initial_controllers(state);
   detail::init_traffic(state);
@@ -45,6 +47,7 @@ Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xod
   for (const xosc::VariableDeclaration& v : scenario.variables) {
     state.variables.declare(v.name, v.value);
   }
+  for (const xosc::MonitorDeclaration& m : scenario.monitors) state.monitors[m.name] = m.value;
   storyboard = std::make_unique<detail::Storyboard>(state);
   init.run(state);
   for (detail::Entity& entity : state.world.entities) {
@@ -75,6 +78,7 @@ void Simulation::Impl::advance() {
   detail::begin_commands(state);
   mover.move(state, motion);
   detail::end_commands(state);
+  detail::move_trailers(state, state.time.dt());
   ++state.tick;
   detail::update_traffic(state);
   detail::update_contacts(state);
@@ -189,6 +193,16 @@ std::span<const Lifetime> Simulation::lifetimes(size_t index) const {
   return it == all.end() ? std::span<const Lifetime>() : std::span<const Lifetime>(it->second);
 }
 
+std::vector<std::pair<std::string, bool>> Simulation::monitors() const {
+  return {impl_->state.monitors.begin(), impl_->state.monitors.end()};
+}
+
+std::string_view Simulation::controller_substitute(size_t index) const {
+  const auto& controls = impl_->state.controls;
+  return index < controls.size() ? std::string_view(controls[index].substitute_for)
+                                 : std::string_view();
+}
+
 bool Simulation::colliding(size_t a, size_t b) const {
   return a != b && impl_->state.contacts.get(static_cast<uint32_t>(a), static_cast<uint32_t>(b));
 }
@@ -280,6 +294,11 @@ void Simulation::fill_snapshot(WorldSnapshot& out) const {
       entity_lights(entity, out.time, snap);
     }
     snap.visible = entity.state.visible && entity.state.placed;
+    const double now = state.now();
+    snap.animations.clear();
+    for (const auto& [type, animation] : entity.animations) {
+      snap.animations.push_back({type, detail::animation_state(animation, now)});
+    }
   }
   out.signals.clear();
   for (const auto& [id, signal_state] : state.traffic.signals) {
@@ -351,6 +370,10 @@ bool Simulation::external(size_t index) const {
   const detail::SimState& state = impl_->state;
   return index < state.controls.size() &&
          state.controls[index].kind == detail::ControllerKind::kExternal;
+}
+
+void Simulation::set_user_value(std::string name, std::string value) {
+  impl_->state.given_values[std::move(name)] = std::move(value);
 }
 
 const xosc::Scenario& Simulation::scenario() const { return impl_->state.scenario; }

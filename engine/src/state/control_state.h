@@ -53,6 +53,8 @@ struct ControlState {
   ControllerKind kind = ControllerKind::kDefault;
   /// Name of the assigned ObjectController (for ActivateControllerAction's reference).
   std::string assigned;
+  /// The scenario's controller that `kind` stands in for ("" when the scenario's own runs).
+  std::string substitute_for;
   /// Domains the assigned controller is active in (ActivateControllerAction); when none is, the
   /// default controller moves the entity.
   bool longitudinal = true;

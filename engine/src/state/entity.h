@@ -6,11 +6,13 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 
 #include "corsa/engine/entity_state.h"
 #include "corsa/xodr/lane_graph.h"
+#include "corsa/xosc/enums.h"
 
 namespace corsa::xosc {
 struct ScenarioObject;
@@ -120,6 +122,24 @@ struct Entity {
   /// Lights set by LightStateAction, by VehicleLight; unset ones follow the motion.
   std::array<std::optional<LightSetting>, kVehicleLightCount> lights{};
   LanePoseMemo lane_pose_memo;
+  /// AnimationAction: each animation by type name, going from `from` to `to` over `duration`.
+  struct Animation {
+    double from = 0.0, to = 1.0, start = 0.0, duration = 0.0;
+    bool loop = false;
+  };
+  std::map<std::string, Animation> animations;
+
+  /// Trailers (§7.4.8): the entity towing this one, and the one this one tows.
+  std::optional<uint32_t> towed_by;
+  std::optional<uint32_t> towing;
+  /// A trailer just disconnected from this entity: while their boxes still overlap at the hitch,
+  /// that is no collision.
+  std::optional<uint32_t> unhitched_from;
+  /// The entity of a trailer defined inline in this vehicle, connected at Init.
+  std::optional<uint32_t> initial_trailer;
 };
+
+/// An animation's state (0..1) at run time `now` (s).
+double animation_state(const Entity::Animation& animation, double now);
 
 }  // namespace corsa::engine::detail

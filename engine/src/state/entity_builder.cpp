@@ -115,6 +115,28 @@ void build_entities(SimState& state) {
     }
     state.world.entities.push_back(std::move(entity));
   }
+  // A trailer defined inside a Vehicle (§6.2.4 Trailer) is an entity of its own, named as its
+  // ScenarioObject (or "<tower>_trailer" when that name is taken), connected at Init. The loop
+  // sees the entities it appends, so a trailer's own trailer is added too.
+  for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
+    const xosc::ScenarioObject* tower = state.world.entities[i].object;
+    const auto* vehicle = tower ? std::get_if<xosc::Vehicle>(&tower->object) : nullptr;
+    if (vehicle == nullptr || !vehicle->trailer || !vehicle->trailer->trailer) continue;
+    const xosc::ScenarioObject& object = *vehicle->trailer->trailer;
+    Entity trailer;
+    trailer.info = describe_object(object, state.diagnostics);
+    trailer.object = &object;
+    if (state.world.by_name.contains(trailer.info.name)) {
+      trailer.info.name = state.world.entities[i].info.name + "_trailer";
+    }
+    const auto index = static_cast<uint32_t>(state.world.entities.size());
+    if (!state.world.by_name.emplace(trailer.info.name, index).second) {
+      throw InputError(
+          object.source.error("a second entity is called '" + trailer.info.name + "'"));
+    }
+    state.world.entities[i].initial_trailer = index;
+    state.world.entities.push_back(std::move(trailer));
+  }
 }
 
 }  // namespace corsa::engine::detail

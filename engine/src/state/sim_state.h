@@ -97,6 +97,11 @@ struct SimState {
   UserValueProvider user_values;
   /// Entities with a command from outside for the next step (ControlState::commanded).
   std::vector<uint32_t> commanded;
+  /// MonitorDeclarations' values (SetMonitorAction), by name.
+  std::map<std::string, bool, std::less<>> monitors;
+  /// Values of UserDefinedValueConditions given as text, by name (SimulationOptions::values,
+  /// Simulation::set_user_value); they win over `user_values`.
+  std::map<std::string, std::string, std::less<>> given_values;
   /// Each entity's controller (controllers/controllers.h), indexed like world.entities.
   std::vector<ControlState> controls;
   /// Traffic signals and generated traffic (state/traffic_state.h).

@@ -101,6 +101,16 @@ void update_contacts(SimState& state) {
     boxes.push_back(box);
   }
   auto& now = state.contacts.pairs;
+  std::vector<std::pair<uint32_t, uint32_t>> touching;  // coupled pairs whose boxes overlap
+  // A trailer and the vehicle towing it meet at the hitch (also for a while after they were
+  // disconnected, until they part): that is no collision.
+  const auto record = [&](const Item& p, const Item& q) {
+    const Entity& first = entities[p.index];
+    const bool coupled = first.towed_by == q.index || first.towing == q.index ||
+                         first.unhitched_from == q.index ||
+                         entities[q.index].unhitched_from == p.index;
+    (coupled ? touching : now).emplace_back(std::min(p.index, q.index), std::max(p.index, q.index));
+  };
   if (finite && y1 - y0 > x1 - x0) {
     // Spread more along y (a road running north): sweep along y instead, and test a pair when
     // the x sweep would have (the later of the two in x order starts before the earlier ends).
@@ -115,8 +125,7 @@ void update_contacts(SimState& state) {
         const Item& second = a_first ? items[b] : items[a];
         if (second.low <= first.high && !y_apart(items[a], items[b]) &&
             overlap(boxes[items[a].box], boxes[items[b].box])) {
-          now.emplace_back(std::min(items[a].index, items[b].index),
-                           std::max(items[a].index, items[b].index));
+          record(items[a], items[b]);
         }
       }
     }
@@ -125,11 +134,20 @@ void update_contacts(SimState& state) {
     for (size_t a = 0; a < items.size(); ++a) {
       for (size_t b = a + 1; b < items.size() && items[b].low <= items[a].high; ++b) {
         if (!y_apart(items[a], items[b]) && overlap(boxes[items[a].box], boxes[items[b].box])) {
-          now.emplace_back(std::min(items[a].index, items[b].index),
-                           std::max(items[a].index, items[b].index));
+          record(items[a], items[b]);
         }
       }
     }
+  }
+  // A disconnected trailer that no longer touches its former tower can collide with it again.
+  for (uint32_t i = 0; i < entities.size(); ++i) {
+    const auto other = state.world.entities[i].unhitched_from;
+    if (!other) continue;
+    const bool still = std::any_of(touching.begin(), touching.end(), [&](const auto& pair) {
+      return (pair.first == i && pair.second == *other) ||
+             (pair.first == *other && pair.second == i);
+    });
+    if (!still) state.world.entities[i].unhitched_from.reset();
   }
   // Entity order, independent of the sweep order; new contacts are recorded in that order.
   std::sort(now.begin(), now.end());

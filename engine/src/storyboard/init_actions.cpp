@@ -1,8 +1,14 @@
 #include "storyboard/init_actions.h"
 
+#include <algorithm>
+
 #include "actions/action_factory.h"
 #include "corsa/xosc/scenario.h"
+#include "motion/placement.h"
+#include "motion/trailers.h"
 #include "positions/position_resolver.h"
+#include "positions/trajectory_path.h"
+#include "state/lenient.h"
 #include "state/sim_state.h"
 #include "storyboard/entity_refs.h"
 
@@ -14,6 +20,55 @@ struct Placement {
   const xosc::PrivateAction* action = nullptr;
   const xosc::TeleportAction* teleport = nullptr;
 };
+
+// An entity no TeleportAction places but whose Init has it follow a trajectory: it clearly starts
+// where the trajectory starts (at its initialDistanceOffset), and is recorded from tick 0. The
+// standard places entities by TeleportAction only (§7.4.3), so this is a lenient reading.
+void place_on_trajectories(SimState& state) {
+  for (const xosc::InitPrivate& init : state.scenario.storyboard.init.privates) {
+    for (const uint32_t entity : expand_entity_refs({init.entity_ref}, state, init.source)) {
+      for (const xosc::PrivateAction& action : init.actions) {
+        const auto* follow = std::get_if<xosc::FollowTrajectoryAction>(&action);
+        if (follow == nullptr || state.world.entities[entity].state.placed) continue;
+        const TrajectoryPath path = build_trajectory_path(follow->trajectory, state, entity);
+        const PathPoint start =
+            path.at(std::clamp(follow->initial_distance_offset.value_or(0.0), 0.0, path.length()));
+        lenient(state, follow->source,
+                "entity '" + state.world.entities[entity].info.name +
+                    "' has no initial position (no TeleportAction in Init)",
+                "the start of the trajectory it follows");
+        ResolvedPosition position;
+        position.pose.x = start.x;
+        position.pose.y = start.y;
+        position.pose.z = start.z;
+        position.pose.h = start.h;
+        if (state.map != nullptr) {
+          position.road = locate_point(*state.map, start.x, start.y, 0.0);
+        }
+        place_entity(state, state.world.entities[entity], position, follow->source, true);
+      }
+    }
+  }
+}
+
+// A Vehicle's <Trailer> (§6.2.4): connected from the start, in line behind it.
+void connect_initial_trailers(SimState& state) {
+  for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
+    const Entity& tower = state.world.entities[i];
+    const auto* vehicle =
+        tower.object ? std::get_if<xosc::Vehicle>(&tower.object->object) : nullptr;
+    if (vehicle == nullptr || !vehicle->trailer || !tower.state.placed) continue;
+    std::optional<uint32_t> trailer = tower.initial_trailer;
+    if (vehicle->trailer->trailer_ref) {
+      trailer = state.world.find(*vehicle->trailer->trailer_ref);
+      if (!trailer || *trailer == i) {
+        throw InputError(vehicle->trailer->source.error(
+            "trailer '" + *vehicle->trailer->trailer_ref + "' is not another entity"));
+      }
+    }
+    if (trailer) connect_trailer(state, i, *trailer, true);
+  }
+}
 
 }  // namespace
 
@@ -52,6 +107,8 @@ void InitActions::place_entities(SimState& state) {
     }
     pending = std::move(waiting);
   }
+  place_on_trajectories(state);
+  connect_initial_trailers(state);
 }
 
 void InitActions::launch(SimState& state, RunningInstance instance) {

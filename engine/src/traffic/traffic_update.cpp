@@ -14,6 +14,15 @@ namespace {
 
 void apply_phase(TrafficState& traffic, const SignalControllerRun& run) {
   const xosc::Phase& phase = run.definition->phases[run.phase];
+  if (phase.group_state) {
+    // TrafficSignalGroupState (1.2): the state of the controller's whole group of signals, that
+    // is every signal its phases name; a TrafficSignalState of the phase refines one of them.
+    for (const xosc::Phase& any : run.definition->phases) {
+      for (const xosc::TrafficSignalState& signal : any.states) {
+        traffic.signals[signal.traffic_signal_id] = *phase.group_state;
+      }
+    }
+  }
   for (const xosc::TrafficSignalState& signal : phase.states) {
     traffic.signals[signal.traffic_signal_id] = signal.state;
   }

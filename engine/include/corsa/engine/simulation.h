@@ -76,6 +76,9 @@ struct SimulationOptions {
   /// its author meant with a `(read as ...)` warning) are errors instead (`--strict`): the
   /// scenario's load (xosc::LoadOptions::strict) and what the engine reads at run time.
   bool strict = false;
+  /// Values of UserDefinedValueConditions by name (`corsa run --value NAME=VALUE`); see also
+  /// Simulation::set_user_value.
+  std::vector<std::pair<std::string, std::string>> values;
 };
 
 /// One presence of a generated entity (traffic actions, NPCs): when it appeared and, once it
@@ -170,9 +173,15 @@ class Simulation {
   /// When a generated entity (traffic, NPCs) appeared and left, in order; empty for the
   /// scenario's own entities.
   std::span<const Lifetime> lifetimes(size_t index) const;
+  /// The scenario's controller of entity `index` that this engine does not have and for which
+  /// the acc controller stands in (e.g. "ALKSController"); "" when none.
+  std::string_view controller_substitute(size_t index) const;
   /// Pairs of entities overlapping at the current tick.
   bool colliding(size_t a, size_t b) const;
 
+  /// The monitors (MonitorDeclarations, set by SetMonitorAction) and their current values, by
+  /// name: the scenario's own verdicts.
+  std::vector<std::pair<std::string, bool>> monitors() const;
   /// Current value of a global parameter / variable (after ParameterSet/VariableSet actions).
   std::optional<xosc::Value> parameter(std::string_view name) const;
   std::optional<xosc::Value> variable(std::string_view name) const;
@@ -200,6 +209,9 @@ class Simulation {
   /// last one's speed or controls (after a pose: rolls on at its speed); before the first it keeps
   /// the speed it has.
   bool external(size_t index) const;
+  /// Sets (or changes) the value UserDefinedValueConditions named `name` compare with, e.g.
+  /// from a driver model or the Python module between steps. Wins over the value provider.
+  void set_user_value(std::string name, std::string value);
 
   const xosc::Scenario& scenario() const;
   const xodr::Map* map() const;

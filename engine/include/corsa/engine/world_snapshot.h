@@ -76,6 +76,14 @@ inline constexpr uint32_t light_bit(VehicleLight light) {
   return 1u << static_cast<unsigned>(light);
 }
 
+/// An animation state of an entity (AnimationAction, OpenSCENARIO 1.3 §7.4.7.2).
+struct AnimationSnapshot {
+  /// "doorFrontLeft", ... (components), "walking", ... (pedestrian motions), a user-defined type
+  /// or an animation file's path.
+  std::string type;
+  double state = 0.0;  ///< 0 .. 1 (AnimationState), following animationDuration
+};
+
 struct EntitySnapshot {
   uint32_t instance_id = 0;  ///< stable for the whole run, 1-based in document order
   std::string name;
@@ -95,7 +103,8 @@ struct EntitySnapshot {
   /// Lights a LightStateAction set (on, off or flashing): the sensors leave these alone, and
   /// choose the others themselves (headlights when it is dark).
   uint32_t lights_set = 0;
-  bool visible = true;  ///< VisibilityAction (sensors flag)
+  bool visible = true;                        ///< VisibilityAction (sensors flag)
+  std::vector<AnimationSnapshot> animations;  ///< by type name
 };
 
 enum class PrecipitationType : uint8_t { kDry, kRain, kSnow };

@@ -1,0 +1,185 @@
+// What used to warn and complete at once now runs: monitors, lights, animations, user-defined
+// values, random routes; a controller the engine does not have is stood in for and listed; the
+// run-time lenient readings (the centre lane, an s past the road's end) and their --strict form.
+
+#include <catch2/catch.hpp>
+
+#include "corsa/engine/outputs.h"
+#include "corsa/engine/world_snapshot.h"
+#include "engine_fixture.h"
+#include "temp_dir.h"
+
+using corsa::test::engine_fixture;
+using corsa::test::FixtureRun;
+
+namespace {
+
+const corsa::engine::EntitySnapshot& snapshot_of(const corsa::engine::WorldSnapshot& world,
+                                                 const std::string& name) {
+  for (const auto& entity : world.entities) {
+    if (entity.name == name) return entity;
+  }
+  FAIL("no entity " << name << " in the snapshot");
+  return world.entities.front();
+}
+
+corsa::engine::SimulationOptions with_gap(const std::string& gap) {
+  corsa::engine::SimulationOptions options;
+  options.values = {{"Gap", gap}};
+  return options;
+}
+
+}  // namespace
+
+TEST_CASE("SetMonitorAction sets the scenario's verdicts, which the summary reports",
+          "[engine][compat][monitors]") {
+  FixtureRun run(engine_fixture("compat_appearance_values.xosc"));
+  run.run();
+  const auto monitors = run.sim().monitors();
+  REQUIRE(monitors.size() == 2);
+  CHECK(monitors[0] == std::pair<std::string, bool>{"Passed", true});
+  CHECK(monitors[1] == std::pair<std::string, bool>{"Untouched", false});
+  const std::string summary = corsa::engine::summary_json(run.sim(), 0.0);
+  CHECK_THAT(summary, Catch::Contains("\"monitors\": {\"Passed\": true, \"Untouched\": false}"));
+}
+
+TEST_CASE("a light switched by LightStateAction and an animation reach the world snapshot",
+          "[engine][compat][appearance]") {
+  using corsa::engine::light_bit;
+  using corsa::engine::VehicleLight;
+  FixtureRun run(engine_fixture("compat_appearance_values.xosc"));
+  corsa::engine::WorldSnapshot world;
+  // The low beam is switched on at the first step past 0.5 s; the door opens from 1 s over 1 s.
+  while (run.sim().time() < 0.45) run.sim().step();
+  run.sim().fill_snapshot(world);
+  CHECK((snapshot_of(world, "Car").lights_set & light_bit(VehicleLight::kLowBeam)) == 0);
+  CHECK(snapshot_of(world, "Car").animations.empty());
+  while (run.sim().time() < 1.505) run.sim().step();
+  run.sim().fill_snapshot(world);
+  const auto& halfway = snapshot_of(world, "Car");
+  CHECK((halfway.lights_set & light_bit(VehicleLight::kLowBeam)) != 0);
+  CHECK((halfway.lights_on & light_bit(VehicleLight::kLowBeam)) != 0);
+  REQUIRE(halfway.animations.size() == 1);
+  CHECK(halfway.animations[0].type == "doorFrontLeft");
+  CHECK(halfway.animations[0].state == Approx(0.4).margin(0.02));
+  run.run();
+  run.sim().fill_snapshot(world);
+  const auto& end = snapshot_of(world, "Car");
+  REQUIRE(end.animations.size() == 1);
+  CHECK(end.animations[0].state == Approx(0.8));
+  CHECK(snapshot_of(world, "Far").lights_set == 0);
+  CHECK(snapshot_of(world, "Far").animations.empty());
+}
+
+TEST_CASE("UserDefinedValueConditions compare with values given from outside",
+          "[engine][compat][values]") {
+  FixtureRun wide(engine_fixture("compat_appearance_values.xosc"), with_gap("5"));
+  wide.run();
+  CHECK(wide.sim().variable("Reacted")->text() == "true");
+  FixtureRun narrow(engine_fixture("compat_appearance_values.xosc"), with_gap("2"));
+  narrow.run();
+  CHECK(narrow.sim().variable("Reacted")->text() == "false");
+  // Set during the run, as a driver model or the Python module would.
+  FixtureRun later(engine_fixture("compat_appearance_values.xosc"));
+  while (later.sim().time() < 2.0) later.sim().step();
+  CHECK(later.sim().variable("Reacted")->text() == "false");
+  CHECK_THAT(corsa::test::all_text(later.diagnostics()),
+             Catch::Contains("no value 'Gap' is given (corsa run --value Gap=...)"));
+  later.sim().set_user_value("Gap", "10");
+  later.run();
+  CHECK(later.sim().variable("Reacted")->text() == "true");
+}
+
+TEST_CASE("an entity whose controller the engine lacks runs under acc, and the summary says so",
+          "[engine][compat][controllers]") {
+  FixtureRun run(engine_fixture("compat_appearance_values.xosc"));
+  run.run();
+  CHECK(run.sim().controller_substitute(run.entity("Car")) == "ALKSController");
+  CHECK(run.sim().controller_substitute(run.entity("Far")).empty());
+  const std::string summary = corsa::engine::summary_json(run.sim(), 0.0);
+  CHECK_THAT(summary, Catch::Contains("\"controller\": \"acc\", \"substitute_for\": "
+                                      "\"ALKSController\""));
+  CHECK_THAT(corsa::test::all_text(run.diagnostics()),
+             Catch::Contains("controller 'ALKSController' is not one of this engine's") &&
+                 Catch::Contains("stands in for it on 'Car'"));
+}
+
+TEST_CASE("a LanePosition on the centre lane and an s past the road's end are read leniently",
+          "[engine][compat][lenient]") {
+  FixtureRun run(engine_fixture("compat_appearance_values.xosc"));
+  run.run();
+  // laneId 0 is the reference line: offset -1.75 m puts the car in lane -1.
+  const auto& car = run.at(0.0, "Car");
+  REQUIRE(car.road);
+  CHECK(car.road->lane == -1);
+  CHECK(car.road->t == Approx(-1.75));
+  // s 1010 on a 1000 m road: at its end, with a warning.
+  const auto& far = run.at(0.0, "Far");
+  REQUIRE(far.road);
+  CHECK(far.road->s == Approx(1000.0));
+  CHECK_THAT(corsa::test::all_text(run.diagnostics()),
+             Catch::Contains("s = 1010 is outside road '1' (length 1000 m) (read as s = 1000, "
+                             "the road's end)"));
+  corsa::engine::SimulationOptions strict;
+  strict.strict = true;
+  CHECK_THROWS_WITH(FixtureRun(engine_fixture("compat_appearance_values.xosc"), strict),
+                    Catch::Contains("s = 1010 is outside road '1'") &&
+                        Catch::Contains("an error under --strict"));
+}
+
+namespace {
+
+// The tower's hitch and the trailer's coupler, world x/y.
+std::pair<double, double> point_ahead(const corsa::engine::EntityState& state, double dx) {
+  return {state.pose.x + dx * std::cos(state.pose.h), state.pose.y + dx * std::sin(state.pose.h)};
+}
+
+}  // namespace
+
+TEST_CASE("a Vehicle's inline trailer is an entity towed behind it, through a lane change",
+          "[engine][compat][trailer]") {
+  FixtureRun run(engine_fixture("compat_trailer.xosc"));
+  run.run();
+  REQUIRE(run.sim().entity_count() == 2);
+  CHECK(run.sim().entity(1).name == "Box");
+  double largest_angle = 0.0;
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    const auto hitch = point_ahead(states[0], 0.5);
+    const auto coupler = point_ahead(states[1], 8.0);
+    INFO("tick " << tick);
+    CHECK(std::hypot(hitch.first - coupler.first, hitch.second - coupler.second) < 1e-6);
+    largest_angle = std::max(largest_angle, std::abs(states[0].pose.h - states[1].pose.h));
+  }
+  // The trailer starts in line, lags the tractor's turns, and is straight again at the end.
+  CHECK(run.at(0.0, "Box").pose.h == Approx(run.at(0.0, "Tractor").pose.h));
+  CHECK(largest_angle > 0.01);
+  CHECK(run.now("Box").pose.h == Approx(run.now("Tractor").pose.h).margin(0.01));
+  CHECK(run.now("Box").speed == Approx(15.0).margin(0.05));
+  CHECK(run.sim().collisions().empty());  // the tractor and its trailer touch at the hitch
+}
+
+TEST_CASE("ConnectTrailerAction hooks a standing trailer up, DisconnectTrailerAction leaves it",
+          "[engine][compat][trailer]") {
+  FixtureRun run(corsa::test::asam("TrailerConnect.xosc"), corsa::test::with_duration(30));
+  run.run();
+  const auto connected = run.first("ConnectAction", corsa::engine::TransitionKind::kEnd);
+  const auto released = run.first("DisconnectAction", corsa::engine::TransitionKind::kEnd);
+  REQUIRE(connected);
+  REQUIRE(released);
+  // While connected the coupler (3.25 m ahead) is on the car's hitch (1.2 m behind).
+  for (double t = *connected + 0.01; t < *released - 0.005; t += 0.5) {
+    const auto hitch = point_ahead(run.at(t, "Car"), -1.2);
+    const auto coupler = point_ahead(run.at(t, "Trailer"), 3.25);
+    INFO("t = " << t);
+    CHECK(std::hypot(hitch.first - coupler.first, hitch.second - coupler.second) < 1e-6);
+  }
+  // Standing before, moved by the car while connected, standing after.
+  CHECK(run.at(*connected - 0.5, "Trailer").speed == 0.0);
+  CHECK(std::abs(run.at(*released - 0.5, "Trailer").speed) > 3.0);
+  const auto left = run.at(*released + 0.5, "Trailer").pose;
+  CHECK(run.now("Trailer").pose.x == left.x);
+  CHECK(run.now("Trailer").pose.y == left.y);
+  // The car keeps reversing at 4 m/s after its trajectory ends (2 s before the connection), into
+  // the standing trailer: that contact is the scenario's; none while they are connected.
+  for (const auto& collision : run.sim().collisions()) CHECK(collision.time < *connected);
+}
