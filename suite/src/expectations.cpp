@@ -1,5 +1,6 @@
 #include "corsa/suite/expectations.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -104,6 +105,22 @@ std::vector<std::string> check_expectations(const Expectations& expect,
   for (const MetricBound& bound : expect.metrics) {
     std::string failure = check_bound(bound, run);
     if (!failure.empty()) failures.push_back(std::move(failure));
+  }
+  // Monitors are the scenario's own verdicts: each must end true unless the test says otherwise.
+  for (const auto& [name, value] : run.monitors) {
+    bool wanted = true;
+    for (const auto& [expected_name, expected] : expect.monitors) {
+      if (expected_name == name) wanted = expected;
+    }
+    if (value != wanted) {
+      failures.push_back("monitor '" + name + "' ended " + (value ? "true" : "false") +
+                         ", expected " + (wanted ? "true" : "false"));
+    }
+  }
+  for (const auto& [name, value] : expect.monitors) {
+    const bool known = std::any_of(run.monitors.begin(), run.monitors.end(),
+                                   [&](const auto& monitor) { return monitor.first == name; });
+    if (!known) failures.push_back("the scenario declares no monitor '" + name + "'");
   }
   return failures;
 }

@@ -49,6 +49,11 @@ Expectations read_expect(const std::string& file, const ValidatedElement& e) {
     expect.collision = *collision == "true" || *collision == "1";
   }
   for (const auto& m : e.children) {
+    if (m.name == "Monitor") {
+      const std::string& value = *m.find("value");
+      expect.monitors.emplace_back(*m.find("name"), value == "true" || value == "1");
+      continue;
+    }
     MetricBound bound;
     bound.metric = *metric_from_string(*m.find("name"));
     if (optional(m, "min")) bound.min = number(m, "min");

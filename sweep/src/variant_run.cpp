@@ -76,6 +76,7 @@ void simulate(SharedInputs& inputs, const VariantSpec& spec, const VariantOutput
     }
   }
   result.metrics = metrics.metrics();
+  result.monitors = simulation.monitors();
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (outputs.summary) {

@@ -48,6 +48,9 @@ struct Expectations {
   /// true: at least one contact between two entities is required; false: none is allowed.
   std::optional<bool> collision;
   std::vector<MetricBound> metrics;
+  /// Monitors (the scenario's MonitorDeclarations) expected to end with a given value; every
+  /// other monitor must end true, the scenario's own "passed".
+  std::vector<std::pair<std::string, bool>> monitors;
 };
 
 struct GoldenSpec {

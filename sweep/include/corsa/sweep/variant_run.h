@@ -56,6 +56,8 @@ struct VariantResult {
   /// The first contact as text, "Ego and A1 at t=12.34 s"; "" when none.
   std::string first_collision;
   RunMetrics metrics;
+  /// The scenario's monitors (MonitorDeclarations) and their values at the end, by name.
+  std::vector<std::pair<std::string, bool>> monitors;
   double wall_seconds = 0.0;
   std::string trajectory_text;  ///< with VariantOutputs::keep_trajectory_text
 
