@@ -9,7 +9,8 @@
 //
 // One line per file: the outcome (stop trigger, stories complete, duration, load error, run
 // error), simulated and wall time, how many lenient readings ("read as") and unsupported
-// features warned, and the first error. Then the totals. Exit 0 always (it reports).
+// features warned, and the first error. Then the totals. Exit 0 (it reports); 2 for a usage
+// error or a folder that cannot be listed.
 
 #include <unistd.h>
 
@@ -158,6 +159,9 @@ Options parse(int argc, char** argv) {
       options.sweep_variants = static_cast<size_t>(corsa::parse_int(argv[++i]).value_or(0));
     } else if (arg == "--strict") {
       options.strict = true;
+    } else if (arg == "--help" || arg == "-h") {
+      options.inputs.clear();
+      return options;
     } else {
       options.inputs.emplace_back(arg);
     }
@@ -174,8 +178,20 @@ int main(int argc, char** argv) {
     return 2;
   }
   Totals totals;
-  for (const fs::path& file : collect(options.inputs)) {
-    const Kind kind = kind_of(file);
+  std::vector<fs::path> files;
+  try {
+    files = collect(options.inputs);
+  } catch (const fs::filesystem_error& error) {
+    std::cerr << "corsa_conformance: " << error.what() << '\n';
+    return 2;
+  }
+  for (const fs::path& file : files) {
+    Kind kind = Kind::kOther;
+    try {
+      kind = kind_of(file);
+    } catch (const corsa::InputError& error) {
+      std::cerr << error.what() << '\n';  // an unreadable path: said, and the others still run
+    }
     if (kind == Kind::kScenario) run_scenario(file, options, totals);
     if (kind == Kind::kDistribution && options.sweep_variants > 0) {
       sweep_distribution(file, options, totals);
