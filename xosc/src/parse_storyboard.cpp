@@ -230,9 +230,9 @@ Storyboard parse_storyboard(ParseContext& ctx, const Element* e) {
   }
   if (const Element* stop = kids.opt("StopTrigger")) {
     ctx.recover([&] {
+      // An empty StopTrigger is kept: it never fires, so the run goes on until its duration
+      // (a run without stories that only moves traffic, for instance).
       storyboard.stop_trigger = parse_trigger(ctx, stop);
-      // An empty StopTrigger never fires, as none: the run ends when the stories complete.
-      if (storyboard.stop_trigger->groups.empty()) storyboard.stop_trigger.reset();
     });
   }
   storyboard.source = ctx.source(e);
