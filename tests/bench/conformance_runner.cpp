@@ -38,7 +38,12 @@ struct Options {
   double duration = 600.0;
   size_t sweep_variants = 0;  ///< 0: do not sweep variation files
   bool strict = false;
+  bool help = false;
+  std::string usage_error;  ///< set for an option it does not know or a value it cannot read
 };
+
+constexpr const char* kUsage =
+    "usage: corsa_conformance [--duration S] [--sweep N] [--strict] PATH...\n";
 
 struct Totals {
   size_t scenarios = 0;
@@ -153,15 +158,28 @@ Options parse(int argc, char** argv) {
   Options options;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--duration" && i + 1 < argc) {
-      options.duration = corsa::parse_double(argv[++i]).value_or(options.duration);
-    } else if (arg == "--sweep" && i + 1 < argc) {
-      options.sweep_variants = static_cast<size_t>(corsa::parse_int(argv[++i]).value_or(0));
+    if (arg == "--duration" || arg == "--sweep") {
+      const std::string value = i + 1 < argc ? argv[++i] : "";
+      bool read = false;
+      if (arg == "--duration") {
+        const double seconds = corsa::parse_double(value).value_or(-1.0);
+        read = seconds > 0.0;
+        if (read) options.duration = seconds;
+      } else {
+        const int64_t count = corsa::parse_int(value).value_or(-1);
+        read = count >= 0;
+        if (read) options.sweep_variants = static_cast<size_t>(count);
+      }
+      if (!read) {
+        options.usage_error = arg + " needs a number (seconds above 0, a variant count), not '" +
+                              corsa::clip(value) + "'";
+      }
     } else if (arg == "--strict") {
       options.strict = true;
     } else if (arg == "--help" || arg == "-h") {
-      options.inputs.clear();
-      return options;
+      options.help = true;
+    } else if (arg.rfind("--", 0) == 0) {
+      options.usage_error = "unknown option " + corsa::clip(arg);
     } else {
       options.inputs.emplace_back(arg);
     }
@@ -173,8 +191,14 @@ Options parse(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   const Options options = parse(argc, argv);
-  if (options.inputs.empty()) {
-    std::cerr << "usage: corsa_conformance [--duration S] [--sweep N] [--strict] PATH...\n";
+  if (options.help) {
+    std::cout << kUsage;
+    return 0;
+  }
+  if (!options.usage_error.empty() || options.inputs.empty()) {
+    if (!options.usage_error.empty())
+      std::cerr << "corsa_conformance: " << options.usage_error << '\n';
+    std::cerr << kUsage;
     return 2;
   }
   Totals totals;
