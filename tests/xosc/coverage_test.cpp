@@ -44,7 +44,12 @@ TEST_CASE("docs/osc-coverage.md lists exactly the elements the loader knows, wit
     INFO(element.name);
     const auto found = documented.find(std::string(element.name));
     REQUIRE(found != documented.end());
-    CHECK(found->second == (element.support == Support::kParsed ? "parsed" : "not yet"));
+    // Which parsed elements are also performed is the engine's to say (tests/engine/coverage_test).
+    if (element.support == Support::kParsed) {
+      CHECK((found->second == "parsed" || found->second == "performed"));
+    } else {
+      CHECK(found->second == "not yet");
+    }
   }
   for (const auto& [name, status] : documented) {
     INFO(name);
