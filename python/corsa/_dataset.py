@@ -88,13 +88,20 @@ class _CorsaLayout:
                 rows = list(csv.reader(f))
         except OSError as error:
             raise input_error(index, f"cannot read ({error.strerror})") from None
-        if not rows or rows[0] != ["capture", "tick", "time", "sensor", "frame", "file"]:
+        columns = ["capture", "tick", "time", "sensor", "frame", "file"]
+        # Datasets since the overlap flag have a seventh column (entity pairs interpenetrating).
+        if not rows or rows[0] not in (columns, columns + ["overlap"]):
             raise input_error(index, "not a Corsa frame index (header "
-                              "capture,tick,time,sensor,frame,file)", 1)
+                              "capture,tick,time,sensor,frame,file[,overlap])", 1)
+        width = len(rows[0])
         by_capture = {}
         for line, row in enumerate(rows[1:], start=2):
             try:
-                capture, tick, time, sensor, frame, file = row
+                if len(row) != width:
+                    raise ValueError(f"expected {width} fields")
+                capture, tick, time, sensor, frame, file = row[:6]
+                if width == 7:
+                    int(row[6])
                 key = int(capture)
                 entry = by_capture.setdefault(key, (int(tick), float(time), []))
                 entry[2].append((sensor, frame, file))
@@ -232,7 +239,7 @@ class Dataset:
     A Corsa dataset (`corsa run --rig ... -o DIR`, corsa.collect): one Frame per capture, with
     every sensor captured then (frame.data[sensor] as in Simulation.capture()), its labels,
     sensor poses, calibration and every entity. A KITTI folder (image_2/, velodyne/, label_2/,
-    calib/), or the kitti/ export of a Corsa dataset with layout='kitti': frame.data holds
+    calib/, directly or in training/), or the kitti/ export of a Corsa dataset with layout='kitti': frame.data holds
     'image_2' (uint8 HxWx3) and 'velodyne' (float32 Nx4: x y z intensity), frame.labels
     'label_2' (dicts), frame.calibration 'calib' (P0..P3, R0_rect, Tr_velo_to_cam, ...).
     layout: None (by content), 'corsa' or 'kitti'. Bad or missing files raise corsa.InputError.
@@ -246,6 +253,10 @@ class Dataset:
             raise input_error(folder, "no such dataset folder")
         if layout == "kitti" and (folder / "kitti").is_dir():
             folder = folder / "kitti"
+        # KITTI's own layout keeps the frames in training/ (beside ImageSets/).
+        if layout != "corsa" and not (folder / "frames.csv").exists() \
+                and (folder / "training").is_dir() and not (folder / "image_2").is_dir():
+            folder = folder / "training"
         if layout is None:
             if (folder / "frames.csv").exists():
                 layout = "corsa"

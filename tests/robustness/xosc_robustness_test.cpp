@@ -136,12 +136,9 @@ TEST_CASE("Unknown references, cyclic parameters and wrong types are rejected at
       {"unknown entity", "<EntityRef entityRef=\"Cutter\"/>", "<EntityRef entityRef=\"Nobody\"/>",
        76},
       {"unknown catalog entry", "entryName=\"sedan\"", "entryName=\"no_such_car\"", 23},
-      {"unknown catalog", "catalogName=\"VehicleCatalog\"", "catalogName=\"NoSuchCatalog\"", 23},
       {"missing map", "motorway_2km.xodr", "no_such_map.xodr", 19},
       {"unknown storyboard element", "storyboardElementRef=\"CutInAction\"",
        "storyboardElementRef=\"NoSuchAction\"", 126},
-      {"negative transition rate", "value=\"2\" dynamicsDimension=\"rate\"",
-       "value=\"-2\" dynamicsDimension=\"rate\"", 114},
       {"unknown road", "roadId=\"1\"", "roadId=\"99\"", 36, Expect::kRejectedByRun},
       {"unknown lane", "laneId=\"-2\"", "laneId=\"-9\"", 36, Expect::kRejectedByRun},
       {"negative s", "s=\"100\"", "s=\"-5\"", 36, Expect::kRejectedByRun},
@@ -160,6 +157,41 @@ TEST_CASE("Unknown references, cyclic parameters and wrong types are rejected at
     INFO(c.name << ": " << outcome.run.err);
     CHECK(outcome.run.err.find("scenario.xosc:" + std::to_string(c.line) + ": error: ") !=
           std::string::npos);
+  }
+}
+
+TEST_CASE("Defects whose meaning is clear run with a warning at their line, and --strict refuses them",
+          "[robustness][xosc]") {
+  struct Case {
+    const char* name;
+    const char* from;
+    const char* to;
+    int line;  ///< where the warning (and under --strict the error) must point
+  };
+  const Case cases[] = {
+      // The Vehicle catalog directory has one catalog holding the entry asked for.
+      {"unknown catalog", "catalogName=\"VehicleCatalog\"", "catalogName=\"NoSuchCatalog\"", 23},
+      // A rate's sign is the direction of the change, which the target already gives.
+      {"negative transition rate", "value=\"2\" dynamicsDimension=\"rate\"",
+       "value=\"-2\" dynamicsDimension=\"rate\"", 114},
+  };
+  const std::string original = cut_in_text();
+  for (const Case& c : cases) {
+    const Outcome outcome = check_scenario(c.name, edited(original, c.from, c.to), Expect::kMayRun);
+    const std::string at = "scenario.xosc:" + std::to_string(c.line) + ": ";
+    INFO(c.name << ": " << outcome.run.err);
+    CHECK(outcome.run.exit_code == 0);
+    CHECK(outcome.run.err.find(at + "warning: ") != std::string::npos);
+
+    TempDir dir;
+    const auto scenario = dir.path() / "scenario.xosc";
+    std::ofstream(scenario, std::ios::binary) << edited(original, c.from, c.to);
+    for (const char* command : {"validate", "run"}) {
+      const BoundedResult strict = run_bounded({command, scenario.string(), "--strict"});
+      INFO(describe(c.name + std::string(" (") + command + " --strict)", strict));
+      CHECK(strict.exit_code == 2);
+      CHECK(strict.err.find(at + "error: ") != std::string::npos);
+    }
   }
 }
 
