@@ -21,7 +21,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kIndexHeader = "capture,tick,time,sensor,frame,file";
+// The frame index's header; datasets since the overlap flag add a seventh column.
+constexpr std::string_view kIndexHeader = "capture,tick,time,sensor,frame,file";
+constexpr std::string_view kIndexHeaderWithOverlap = "capture,tick,time,sensor,frame,file,overlap";
+constexpr size_t kIndexFileColumn = 5;
 
 [[noreturn]] void fail(const fs::path& where, int line, const std::string& message) {
   throw InputError(make_error(where.string(), line, message));
@@ -78,13 +81,17 @@ std::set<fs::path> indexed_files(const fs::path& index) {
   for (const std::string_view row : split(text, '\n')) {
     ++line;
     if (line == 1) {
-      if (trim(row) != kIndexHeader) fail(index, 1, "is not the index of a Corsa dataset");
+      if (trim(row) != kIndexHeader && trim(row) != kIndexHeaderWithOverlap) {
+        fail(index, 1, "is not the index of a Corsa dataset");
+      }
       continue;
     }
     if (trim(row).empty()) continue;
-    const size_t comma = row.rfind(',');
-    const fs::path file(
-        std::string(trim(row.substr(comma == std::string_view::npos ? 0 : comma + 1))));
+    const std::vector<std::string_view> fields = split(trim(row), ',');
+    if (fields.size() <= kIndexFileColumn) {
+      fail(index, line, "is not a row of a Corsa dataset's index");
+    }
+    const fs::path file(std::string(trim(fields[kIndexFileColumn])));
     if (!is_inside(file)) {
       fail(index, line, "names '" + clip(file.string()) + "', which is not inside the dataset");
     }
@@ -118,8 +125,12 @@ bool is_own(const fs::path& file, const PreviousDataset& previous) {
     }
     return false;
   }
+  // The KITTI export: training/<folder>/NNNNNN.* and ImageSets/{train,val,trainval}.txt.
   static const std::set<std::string> kKittiFolders{"image_2", "label_2", "calib", "velodyne"};
-  return parts.size() == 3 && folder == "kitti" && kKittiFolders.contains(parts[1]) &&
+  static const std::set<std::string> kKittiSets{"train.txt", "val.txt", "trainval.txt"};
+  if (folder != "kitti") return false;
+  if (parts.size() == 3) return parts[1] == "ImageSets" && kKittiSets.contains(name);
+  return parts.size() == 4 && parts[1] == "training" && kKittiFolders.contains(parts[2]) &&
          is_frame_name(name);
 }
 
