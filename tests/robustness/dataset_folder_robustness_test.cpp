@@ -45,7 +45,12 @@ std::set<std::string> dataset_files(const fs::path& dataset) {
   std::istringstream index(slurp(dataset / "frames.csv"));
   std::string row;
   std::getline(index, row);
-  while (std::getline(index, row)) files.insert(row.substr(row.rfind(',') + 1));
+  // capture,tick,time,sensor,frame,file,overlap: the sixth field names the file.
+  while (std::getline(index, row)) {
+    size_t start = 0;
+    for (int field = 0; field < 5; ++field) start = row.find(',', start) + 1;
+    files.insert(row.substr(start, row.find(',', start) - start));
+  }
   return files;
 }
 
