@@ -13,8 +13,8 @@ struct ClassInfo {
 };
 
 // CARLA 0.9.14 CityObjectLabel order and colours (Cityscapes palette), then Corsa's own; KITTI
-// types as its object benchmark names them (trucks and buses "Truck", riders and two-wheelers "Cyclist",
-// trains "Tram", everything else "Misc").
+// types as its object benchmark names them (trucks and buses "Truck", riders and two-wheelers
+// "Cyclist", trains "Tram", everything else "Misc").
 constexpr std::array<ClassInfo, kSemanticClassCount> kClasses = {{
     {"unlabeled", {0, 0, 0}},
     {"road", {128, 64, 128}},

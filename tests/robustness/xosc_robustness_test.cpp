@@ -159,13 +159,14 @@ TEST_CASE("Unknown references, cyclic parameters and wrong types are rejected at
   }
 }
 
-TEST_CASE("Defects whose meaning is clear run with a warning at their line, and --strict refuses them",
-          "[robustness][xosc]") {
+TEST_CASE(
+    "Defects whose meaning is clear run with a warning at their line, and --strict refuses them",
+    "[robustness][xosc]") {
   struct Case {
     const char* name;
     const char* from;
     const char* to;
-    int line;  ///< where the warning (and under --strict the error) must point
+    int line;                      ///< where the warning (and under --strict the error) must point
     bool runs_to_end = true;       ///< false: a later element fails because of the reading
     bool seen_by_validate = true;  ///< false: found only when the map is loaded (run)
   };

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "corsa/xodr/map.h"
 #include "corsa/engine/oriented_box.h"
+#include "corsa/xodr/map.h"
 #include "lanes/lane_follow.h"
 #include "state/entity_builder.h"
 #include "state/sim_state.h"
