@@ -101,8 +101,33 @@ std::vector<Point2> hermite(Vec2 a, Vec2 ta, Vec2 b, Vec2 tb) {
   return out;
 }
 
-/// Bends the end of `p` over its last `reach` metres: a cubic Hermite curve to the target,
-/// arriving square to the end line. Returns the new end heading.
+/// Where on the end line through `target` a turn from `start` (heading `heading`) ends when it
+/// turns evenly, like an arc: the chord halves the turn. An arc spreads the turn over the whole
+/// reach (curvature turn / reach), where a curve back to the line of travel (an S) turns up to
+/// four times as tightly at its end and folds the lanes on its inside. The laneOffset takes up
+/// the arc's sideways drift (§9.3). `target.point` when the chord does not meet the line ahead,
+/// and for bends shorter than kMinEvenTurn (a road of a few metres: its plan view could not
+/// follow the drift within the fit tolerance, and its lanes' ends would move).
+constexpr double kMinEvenTurn = 4.0;  // m
+Vec2 even_turn_end(Vec2 start, Vec2 heading, const EndTarget& target) {
+  if (norm(target.point - start) < kMinEvenTurn) {
+    return target.point;
+  }
+  const double turn = std::atan2(cross(heading, target.square), dot(heading, target.square));
+  const double half = 0.5 * turn;
+  const Vec2 chord{std::cos(half) * heading.x - std::sin(half) * heading.y,
+                   std::sin(half) * heading.x + std::cos(half) * heading.y};
+  const Vec2 across{target.square.y, -target.square.x};
+  const double denominator = cross(chord, across);
+  if (std::abs(denominator) < 1e-9) {
+    return target.point;
+  }
+  const double along = cross(target.point - start, across) / denominator;
+  return along > 0.5 ? start + along * chord : target.point;
+}
+
+/// Bends the end of `p` over its last `reach` metres: a cubic Hermite curve turning evenly to
+/// the end line, arriving square to it. Returns the new end heading.
 std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, double reach) {
   double walked = 0.0;
   size_t i = p.size() - 1;
@@ -121,7 +146,8 @@ std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, 
   Vec2 heading = j < i ? start - to_vec(p[j]) : to_vec(p[i + 1]) - start;
   heading = norm(heading) > 1e-9 ? (1.0 / norm(heading)) * heading : target.square;
   p.resize(i + 1);
-  const std::vector<Point2> tail = hermite(start, heading, target.point, target.square);
+  const std::vector<Point2> tail =
+      hermite(start, heading, even_turn_end(start, heading, target), target.square);
   p.insert(p.end(), tail.begin(), tail.end());
   return std::atan2(target.square.y, target.square.x);
 }
@@ -129,7 +155,7 @@ std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, 
 /// How far (m) before an end a turn by `skew` must begin so that lanes up to `road_width` away
 /// do not fold (their normals must not cross: turn rate * width well below 1); and the turn
 /// that fits into `room` metres.
-constexpr double kFoldMargin = 1.5;
+constexpr double kFoldMargin = 2.0;
 double reach_for(double skew, double road_width) {
   return std::max(8.0, kFoldMargin * road_width * std::tan(std::abs(skew)));
 }
@@ -369,8 +395,7 @@ ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<En
       const Vec2 across{e->square.y, -e->square.x};
       const double denominator = cross(start_square, across);
       if (std::abs(denominator) > 0.5) {
-        const Vec2 meet =
-            s->point + (cross(e->point - s->point, across) / denominator) * start_square;
+        const Vec2 meet = even_turn_end(s->point, start_square, *e);
         std::vector<Point2> curve{Point2{s->point.x, s->point.y}};
         const std::vector<Point2> rest = hermite(s->point, start_square, meet, e->square);
         curve.insert(curve.end(), rest.begin(), rest.end());

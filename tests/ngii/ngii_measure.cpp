@@ -9,6 +9,8 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "mesh_folds.h"
+
 namespace corsa::test {
 namespace {
 
@@ -466,7 +468,9 @@ class Measurer {
 }  // namespace
 
 NgiiFigures measure_ngii(const ngii::Layers& layers, const xodr::Map& map) {
-  return Measurer(layers, map).run();
+  NgiiFigures figures = Measurer(layers, map).run();
+  figures.folded_roads = corsa::test::folded_roads(map);
+  return figures;
 }
 
 std::string format_figures(const NgiiFigures& f) {
@@ -497,7 +501,8 @@ std::string format_figures(const NgiiFigures& f) {
   }
   out << "\n"
       << "lanes_without_provenance " << f.lanes_without_provenance << "\n"
-      << "links_without_lane " << f.links_without_lane << "\n";
+      << "links_without_lane " << f.links_without_lane << "\n"
+      << "folded_roads " << f.folded_roads << "\n";
   return out.str();
 }
 

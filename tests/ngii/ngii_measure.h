@@ -9,7 +9,8 @@
 //   A2 vertices along it (p95 per lane);
 // - the lane width against the B2 marks bounding the lane (R_linkID / L_linkID name it);
 // - pairs of A2 links that the survey names as neighbours (L/R link ids) and that run side by
-//   side along >= 90% of both, but which the map still keeps in different roads.
+//   side along >= 90% of both, but which the map still keeps in different roads;
+// - the roads whose mesh folds over itself (mesh_folds.h).
 // Used by the tests and by the `corsa_ngii_measure` program (docs/ngii.md).
 
 #include <string>
@@ -52,6 +53,7 @@ struct NgiiFigures {
   std::vector<std::string> split_examples;
   size_t lanes_without_provenance = 0;
   size_t links_without_lane = 0;  ///< A2 links (longer than 0.1 m) no lane names
+  size_t folded_roads = 0;        ///< roads whose mesh folds over itself (mesh_folds.h)
 };
 
 /// Measures `map` against `layers` (the map's header offset places it in the layers' CRS).

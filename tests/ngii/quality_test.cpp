@@ -34,7 +34,7 @@ TEST_CASE("every lane starts and ends where its link does but for a known few",
   // Before: roads were cut square to their leftmost lane, and one K-City lane (A219BS010339, on
   // the start grid, whose neighbour ends 8 m earlier) started 8.0 m late. What remains in
   // Sangam: lanes whose ends are not on one line with the others' (A219AS319389 and five more,
-  // within 2 m). Ends at splits and merges are counted apart (ngii_measure.h).
+  // within 1.8 m). Ends at splits and merges are counted apart (ngii_measure.h).
   const NgiiFigures& k = figures("kcity");
   INFO(k.link_ends.worst);
   CHECK(k.link_ends.count > 1400);
@@ -44,7 +44,7 @@ TEST_CASE("every lane starts and ends where its link does but for a known few",
   INFO(s.link_ends.worst);
   CHECK(s.link_ends.count > 3300);
   CHECK(s.link_ends.over <= 6);
-  CHECK(s.link_ends.max < 2.0);
+  CHECK(s.link_ends.max < 1.8);
 }
 
 TEST_CASE("a lane reaching metres beyond its neighbours at a dead end ends in a road of its own",
@@ -69,7 +69,7 @@ TEST_CASE("lanes joined across road ends meet within 0.2 m but for a known few",
   // Before: roads were cut square to their leftmost lane; 105 (K-City) and 243 (Sangam) joins
   // were more than 0.2 m apart, up to 3.9 m. What remains: lanes whose ends are not on one line
   // with the others' (K-City road of A219BS010106, Sangam roads of A219AS319268, 112, 122, ...),
-  // each within 1.2 m; splits and merges are counted apart (ngii_measure.h).
+  // each within 1.07 m; splits and merges are counted apart (ngii_measure.h).
   const NgiiFigures& k = figures("kcity");
   INFO(k.lane_joins.worst);
   CHECK(k.lane_joins.count > 800);
@@ -79,7 +79,18 @@ TEST_CASE("lanes joined across road ends meet within 0.2 m but for a known few",
   INFO(s.lane_joins.worst);
   CHECK(s.lane_joins.count > 1500);
   CHECK(s.lane_joins.over <= 3);
-  CHECK(s.lane_joins.max < 1.1);
+  CHECK(s.lane_joins.max < 1.07);
+}
+
+TEST_CASE("lane borders fold over themselves on a known few roads", "[ngii][quality][folds]") {
+  // A fold: a lane border beyond the reference line's centre of curvature, left out of the
+  // mesh (mesh_folds.h). Before: road ends were bent to a skewed end line along an S curve back
+  // to the line of travel, turning four times as tightly at the end as an even turn, and
+  // folded wide roads there (K-City 50, Sangam 34 roads). What remains: one-lane roads, mostly
+  // junction paths, where the plan view's clothoids turn sharply between survey vertices, and a
+  // few short roads whose skewed ends leave no room for an even turn.
+  CHECK(figures("kcity").folded_roads <= 46);
+  CHECK(figures("seoul_sangam_testbed").folded_roads <= 16);
 }
 
 TEST_CASE("the heights across each road follow its lanes within 5 cm (p95 per lane)",
