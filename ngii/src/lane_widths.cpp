@@ -246,7 +246,11 @@ PlanWidths measure_widths(const NetworkPlan& plan, const Network& network, doubl
       WidthSource source = WidthSource::kMarks;
       std::vector<ProfileSample> samples =
           samples_of(stations, meter.from_marks(lane, line, stations, false));
-      if (samples.empty()) {
+      // A junction path with a mark on one side only has no lane mark there but the
+      // intersection's edge or a guide line for another turn: twice the distance to it is not
+      // its width (up to 12 m in K-City); the paths before and after it give a better one.
+      const bool junction_path = plan.roads[r].junction >= 0 && !plan.roads[r].absorbed;
+      if (samples.empty() && !junction_path) {
         samples = samples_of(stations, meter.from_marks(lane, line, stations, true));
       }
       if (samples.empty()) {
