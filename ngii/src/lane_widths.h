@@ -4,9 +4,9 @@
 // along its centre polyline. Sources, in order: the B2 marks bounding the lane (a mark's
 // R_linkID / L_linkID names the lane it bounds; the width is the distance from the left mark to
 // the right one across the lane centre, or twice the distance to the one mark where the lane has
-// a mark on one side only, except on junction paths), the spacing to the lane's L/R neighbour links, the widths where the
-// lanes before and after it end and begin (a junction path takes its approach and exit lanes'
-// widths), and only when none exists a fallback width, counted.
+// a mark on one side only, except on junction paths), the spacing to the lane's L/R neighbour
+// links, the widths where the lanes before and after it end and begin (a junction path takes its
+// approach and exit lanes' widths), and only when none exists a fallback width, counted.
 
 #include <vector>
 
