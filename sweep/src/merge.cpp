@@ -118,83 +118,6 @@ size_t variant_count(const Shard& shard) {
   return *count;
 }
 
-// Whether `relative` (below a sweep folder; `folder` when it is a real folder, not a link) is one
-// of the entries a sweep or a merge writes: sweep.json, shard.json, summary.csv, the lock,
-// variants/<i>/ and their trajectory.csv, summary.json and result.csv, and temporaries.
-bool is_sweep_entry(const fs::path& relative, bool folder) {
-  const std::vector<std::string> parts(relative.begin(), relative.end());
-  const std::string& name = parts.back();
-  if (is_temporary_name(name)) return !folder;
-  switch (parts.size()) {
-    case 1:
-      return folder ? name == detail::kVariantsFolder
-                    : name == detail::kDescriptionFile || name == detail::kShardFile ||
-                          name == detail::kSummaryFile || name == OutputLock::kFileName;
-    case 2:
-      return folder && parts[0] == detail::kVariantsFolder && detail::row_index({name});
-    case 3:
-      return !folder && parts[0] == detail::kVariantsFolder &&
-             (name == detail::kTrajectoryFile || name == detail::kRunSummaryFile ||
-              name == detail::kResultFile);
-    default:
-      return false;
-  }
-}
-
-// Whether `description` is a sweep.json of Corsa's: JSON with the plan hash.
-bool has_plan(const fs::path& description) {
-  const std::string text = read_file(description);
-  try {
-    return !detail::plan_of(parse_json(text, description.string())).empty();
-  } catch (const InputError&) {
-    return false;  // not JSON: not Corsa's
-  }
-}
-
-// The entries of `out` that --force replaces (files first, then folders innermost first): those
-// of an earlier sweep or merge, and nothing else. A folder without a sweep.json of Corsa's, or
-// with anything a sweep does not write, is refused before anything is removed.
-std::vector<fs::path> replaceable_entries(const fs::path& out) {
-  std::error_code error;
-  const fs::path description = out / detail::kDescriptionFile;
-  if (!fs::is_regular_file(fs::symlink_status(description, error)) || !has_plan(description)) {
-    fail(out,
-         "--force replaces only an earlier sweep or merge (a folder with Corsa's sweep.json); "
-         "this folder has none, and nothing was removed");
-  }
-  std::vector<fs::path> files;
-  std::vector<fs::path> folders;
-  std::vector<std::string> foreign;
-  for (fs::recursive_directory_iterator it(out, error), end; !error && it != end;
-       it.increment(error)) {
-    std::error_code ignored;
-    const bool folder = fs::is_directory(it->symlink_status(ignored));
-    const fs::path relative = it->path().lexically_relative(out);
-    if (!is_sweep_entry(relative, folder)) {
-      foreign.push_back(relative.string());
-      if (folder) it.disable_recursion_pending();
-    }
-    (folder ? folders : files).push_back(it->path());
-  }
-  if (error) fail(out, "cannot read the folder (" + error.message() + ")");
-  if (!foreign.empty()) {
-    std::sort(foreign.begin(), foreign.end());
-    std::string examples;
-    for (size_t i = 0; i < foreign.size() && i < 3; ++i) {
-      examples += (i ? ", " : "") + clip(foreign[i]);
-    }
-    fail(out, "--force replaces only an earlier sweep or merge, and this folder also holds " +
-                  std::to_string(foreign.size()) + " entr" + (foreign.size() == 1 ? "y" : "ies") +
-                  " a sweep does not write (" + examples + (foreign.size() > 3 ? ", ..." : "") +
-                  "); nothing was removed: move them away or choose another folder");
-  }
-  std::sort(folders.begin(), folders.end(), [](const fs::path& a, const fs::path& b) {
-    return std::distance(a.begin(), a.end()) > std::distance(b.begin(), b.end());
-  });
-  files.insert(files.end(), folders.begin(), folders.end());
-  return files;
-}
-
 }  // namespace
 
 MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard_folders,
@@ -254,7 +177,7 @@ MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard
   if (fs::is_directory(out, error)) {
     const bool empty = fs::is_empty(out, error);
     out_lock.emplace(out);
-    if (!empty) replaced = replaceable_entries(out);
+    if (!empty) replaced = detail::replaceable_entries(out);
   } else if (fs::exists(fs::symlink_status(out, error))) {
     fail(out, "the merge output exists and is not a folder");
   }

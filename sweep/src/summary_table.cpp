@@ -57,8 +57,4 @@ std::vector<std::string> summary_row(size_t index, const std::vector<std::string
   return row;
 }
 
-std::string without_wall_time(const std::vector<std::string>& row) {
-  return csv_line(std::vector<std::string>(row.begin(), row.end() - (row.empty() ? 0 : 1)));
-}
-
 }  // namespace corsa::sweep

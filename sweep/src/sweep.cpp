@@ -90,19 +90,21 @@ class LockedOutput {
   std::optional<OutputLock> lock_;
 };
 
-// Checks what `options.output` holds before anything is written, and clears an earlier sweep
-// when forced. Returns whether the folder already holds this sweep (resume).
+// Checks what `options.output` holds before anything is written: nothing of a sweep, this sweep
+// (--resume), or an earlier sweep to replace (--force), whose own entries are then removed and
+// nothing else (a folder holding anything more is refused untouched).
 void prepare_output(const SweepOptions& options, const Json& description, const Json& shard) {
   const fs::path& out = options.output;
   std::error_code error;
-  const fs::path described = out / detail::kDescriptionFile;
-  if (!fs::exists(described, error)) {
+  if (!fs::exists(out / detail::kDescriptionFile, error)) {
     return;
   }
   if (options.force) {
-    for (const char* name : {detail::kDescriptionFile, detail::kShardFile, detail::kSummaryFile,
-                             detail::kVariantsFolder}) {
-      fs::remove_all(out / name, error);
+    const fs::path lock = out / OutputLock::kFileName;  // ours, held
+    for (const fs::path& entry : detail::replaceable_entries(out)) {
+      if (entry != lock && !fs::remove(entry, error) && error) {
+        folder_error(entry, "cannot remove (" + error.message() + ")");
+      }
     }
     return;
   }
@@ -111,16 +113,7 @@ void prepare_output(const SweepOptions& options, const Json& description, const 
                  "this folder holds a sweep already: pass --resume to finish it, --force to "
                  "replace it, or choose another output folder (-o)");
   }
-  if (detail::plan_of(read_json_file(described)) != detail::plan_of(description)) {
-    folder_error(out,
-                 "--resume: this folder holds a different sweep (other scenario, "
-                 "parameters, variants or options); its sweep.json does not match");
-  }
-  const fs::path shard_file = out / detail::kShardFile;
-  const Json existing_shard = fs::exists(shard_file, error) ? read_json_file(shard_file) : Json();
-  if (existing_shard != shard) {
-    folder_error(out, "--resume: this folder holds another shard of the sweep");
-  }
+  detail::check_resumable(out, description, shard);
 }
 
 // shard.json: which share of the variants this folder holds; null for the whole sweep (no file).
@@ -130,17 +123,6 @@ Json shard_json(const Shard& shard, size_t variants) {
           {"index", shard.index},
           {"count", shard.count},
           {"variants", shard.share(variants)}};
-}
-
-// A variant's row from an earlier run, if it finished and has the expected columns.
-std::optional<std::vector<std::string>> finished_row(const fs::path& folder, size_t index,
-                                                     const std::vector<std::string>& header) {
-  const auto table = detail::read_table(folder / detail::kResultFile);
-  if (!table || table->header != header || table->rows.size() != 1 ||
-      detail::row_index(table->rows.front()) != index) {
-    return std::nullopt;
-  }
-  return table->rows.front();
 }
 
 struct Context {
@@ -158,7 +140,7 @@ std::vector<std::string> run_one(const Context& c, size_t index, bool& resumed) 
   create_folder_inside(c.options.output, relative);
   if (c.options.resume) {
     remove_stale_temporaries(folder);
-    if (auto row = finished_row(folder, index, c.header)) {
+    if (auto row = detail::finished_row(folder, index, c.header)) {
       resumed = true;
       return *row;
     }

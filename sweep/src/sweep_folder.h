@@ -39,4 +39,24 @@ std::optional<Table> read_table(const std::filesystem::path& file);
 /// The variant index in a row's first field; nothing when it is not a whole number.
 std::optional<size_t> row_index(const std::vector<std::string>& row);
 
+/// The entries of `out` that replacing the earlier sweep or merge there removes (files first,
+/// then folders innermost first): exactly what a sweep writes and sweep.json accounts for, which
+/// is sweep.json, shard.json, summary.csv, the lock, variants/<i>/ for i below sweep.json's
+/// variant count with their trajectory.csv, summary.json and result.csv, and Corsa's
+/// temporaries. A folder without a sweep.json of Corsa's (JSON with a plan and a variant count),
+/// or with anything else in it (a file of the user's, a symbolic link, variants/<i> beyond the
+/// count), is an InputError before anything is removed: `--force` never empties a folder whole.
+std::vector<std::filesystem::path> replaceable_entries(const std::filesystem::path& out);
+
+/// `--resume`: throws InputError unless `out` holds the sweep `description` describes (its
+/// sweep.json has the same plan) and the same shard (`shard`, null for a whole sweep, equals
+/// shard.json, absent for a whole sweep).
+void check_resumable(const std::filesystem::path& out, const Json& description, const Json& shard);
+
+/// A variant's row from an earlier run in its folder's result.csv, if it finished: a table of
+/// exactly `header` with one row, for variant `index`.
+std::optional<std::vector<std::string>> finished_row(const std::filesystem::path& folder,
+                                                     size_t index,
+                                                     const std::vector<std::string>& header);
+
 }  // namespace corsa::sweep::detail

@@ -126,6 +126,55 @@ TEST_CASE("merge --force replaces an earlier sweep only, never a folder of the u
   CHECK(fs::exists(merged / "summary.csv"));
 }
 
+TEST_CASE("sweep --force removes only what the earlier sweep's own index accounts for",
+          "[robustness][sweep][output]") {
+  TempDir dir;
+  const fs::path out = dir.path() / "out";
+  std::vector<std::string> forced = small_sweep(out);
+  forced.push_back("--force");
+  REQUIRE(run_bounded(small_sweep(out)).exit_code == 0);
+  const std::set<std::string> sweep_files = files_below(out);
+  // An earlier sweep alone, and with a killed run's temporary, is replaced file by file.
+  std::ofstream(out / "variants" / "2" / ".trajectory.csv.tmp.99999.3") << "half";
+  const BoundedResult replaced = run_bounded(forced);
+  INFO(describe("sweep --force onto an earlier sweep", replaced));
+  CHECK(replaced.exit_code == 0);
+  CHECK(files_below(out) == sweep_files);
+
+  // A file of the user's in variants/ (the whole folder used to be removed with it), in a
+  // variant's folder, or a variant folder beyond sweep.json's count: refused, nothing removed.
+  const std::string refusal = out.string() +
+                              ": error: --force replaces only an earlier sweep or merge, and "
+                              "this folder also holds 1 entry a sweep does not write (";
+  for (const std::string planted : {"variants/notes.txt", "variants/1/plot.png",
+                                    "variants/99/result.csv"}) {
+    fs::create_directories((out / planted).parent_path());
+    std::ofstream(out / planted) << "mine";
+    const BoundedResult user = run_bounded(forced);
+    INFO(describe("sweep --force with " + planted, user));
+    CHECK(user.exit_code == 2);
+    CHECK(user.err.find(refusal + (planted == "variants/99/result.csv" ? "variants/99" : planted) +
+                        "); nothing was removed") != std::string::npos);
+    CHECK(slurp(out / planted) == "mine");
+    std::set<std::string> expected = sweep_files;
+    expected.insert(planted);
+    CHECK(files_below(out) == expected);
+    fs::remove(out / planted);
+    if (planted == "variants/99/result.csv") fs::remove(out / "variants" / "99");
+  }
+
+  // A sweep.json that is not Corsa's: nothing of the folder is an earlier sweep.
+  std::ofstream(out / "sweep.json", std::ios::trunc) << "{\"my\": \"notes\"}\n";
+  const BoundedResult foreign = run_bounded(forced);
+  INFO(describe("sweep --force onto a folder with a sweep.json of the user's", foreign));
+  CHECK(foreign.exit_code == 2);
+  CHECK(foreign.err.find(out.string() +
+                         ": error: --force replaces only an earlier sweep or merge (a folder "
+                         "with Corsa's sweep.json); this folder has none, and nothing was "
+                         "removed") != std::string::npos);
+  CHECK(files_below(out) == sweep_files);
+}
+
 TEST_CASE("A merge of shards claiming 1e15 variants ends at once", "[robustness][sweep]") {
   TempDir dir;
   make_shards(dir);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "corsa/sweep/csv.h"
 #include "corsa/sweep/variant_plan.h"
 #include "corsa/sweep/variant_run.h"
 
@@ -25,7 +26,9 @@ std::vector<std::string> summary_row(size_t index, const std::vector<std::string
                                      const ParameterValues& values, const VariantResult& result);
 
 /// A row's text without its last field (wall_time): what must be identical between runs.
-std::string without_wall_time(const std::vector<std::string>& row);
+inline std::string without_wall_time(const std::vector<std::string>& row) {
+  return csv_line(std::vector<std::string>(row.begin(), row.end() - (row.empty() ? 0 : 1)));
+}
 
 /// Number of columns that are not parameters (index, status, ..., wall_time).
 inline constexpr size_t kFixedColumnCount = 12;
