@@ -24,8 +24,8 @@ using corsa::ngii::detail::ShapeFamily;
 
 // The DBF fields read_layers looks up (../shared/data/ngii/README.md), and how it reads them.
 const std::vector<std::string> kTextFields{
-    "ID",       "NodeType", "LinkType", "RoadRank", "RoadType", "RoadNo", "R_LinkID",
-    "L_LinkID", "FromNodeID", "ToNodeID", "Type", "Kind", "LinkID", "SubType", "Remark", "Name"};
+    "ID",         "NodeType", "LinkType", "RoadRank", "RoadType", "RoadNo",  "R_LinkID", "L_LinkID",
+    "FromNodeID", "ToNodeID", "Type",     "Kind",     "LinkID",   "SubType", "Remark",   "Name"};
 const std::vector<std::string> kIntegerFields{"LaneNo", "MaxSpeed", "Ref_Lane"};
 const std::vector<std::string> kRealFields{"Length"};
 

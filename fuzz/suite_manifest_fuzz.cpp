@@ -1,7 +1,8 @@
 // libFuzzer target: a suite manifest (schemas/suite.xsd) and a golden trajectory CSV, cut apart
 // at the part separator (fuzz_parts.h). The manifest "lives" in the bundled regression suite, so
 // that its scenario and golden references resolve against real files; the golden is checked as
-// `corsa test` checks every golden before running, then compared with a real trajectory. Bad input must end in corsa::InputError.
+// `corsa test` checks every golden before running, then compared with a real trajectory. Bad input
+// must end in corsa::InputError.
 
 #include <cstddef>
 #include <cstdint>

@@ -25,8 +25,9 @@ namespace fs = std::filesystem;
 // What `corsa sweep` would compare against: a plan hash and no shard.
 const corsa::Json kDescription = {{"plan", "6c1b0a3f4e2d9c87"}, {"variants", 4}};
 const std::vector<std::string> kHeader{
-    "index",      "Ego_Speed", "status",       "exit_status",      "end_reason", "sim_time", "steps",
-    "collisions", "min_ttc",   "min_distance", "max_deceleration", "error",      "wall_time"};
+    "index",    "Ego_Speed",  "status",  "exit_status",  "end_reason",       "sim_time",
+    "steps",    "collisions", "min_ttc", "min_distance", "max_deceleration", "error",
+    "wall_time"};
 
 void write_if_given(const fs::path& file, const std::string& bytes) {
   if (!bytes.empty()) corsa::fuzz::write_bytes(file, bytes);

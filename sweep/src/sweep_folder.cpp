@@ -20,7 +20,8 @@ namespace fs = std::filesystem;
 
 // Whether `relative` (below a sweep folder; `folder` when it is a real folder, not a link) is one
 // of the entries a sweep or a merge writes: sweep.json, shard.json, summary.csv, the lock,
-// variants/<i>/ (i below `variants`) and their trajectory.csv, summary.json and result.csv, and temporaries.
+// variants/<i>/ (i below `variants`) and their trajectory.csv, summary.json and result.csv, and
+// temporaries.
 bool is_sweep_entry(const fs::path& relative, bool folder, size_t variants) {
   const std::vector<std::string> parts(relative.begin(), relative.end());
   const std::string& name = parts.back();
@@ -28,16 +29,15 @@ bool is_sweep_entry(const fs::path& relative, bool folder, size_t variants) {
   switch (parts.size()) {
     case 1:
       return folder ? name == kVariantsFolder
-                    : name == kDescriptionFile || name == kShardFile ||
-                          name == kSummaryFile || name == OutputLock::kFileName;
+                    : name == kDescriptionFile || name == kShardFile || name == kSummaryFile ||
+                          name == OutputLock::kFileName;
     case 2: {
       const auto index = row_index({name});
       return folder && parts[0] == kVariantsFolder && index && *index < variants;
     }
     case 3:
       return !folder && parts[0] == kVariantsFolder &&
-             (name == kTrajectoryFile || name == kRunSummaryFile ||
-              name == kResultFile);
+             (name == kTrajectoryFile || name == kRunSummaryFile || name == kResultFile);
     default:
       return false;
   }

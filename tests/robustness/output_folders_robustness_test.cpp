@@ -146,8 +146,8 @@ TEST_CASE("sweep --force removes only what the earlier sweep's own index account
   const std::string refusal = out.string() +
                               ": error: --force replaces only an earlier sweep or merge, and "
                               "this folder also holds 1 entry a sweep does not write (";
-  for (const std::string planted : {"variants/notes.txt", "variants/1/plot.png",
-                                    "variants/99/result.csv"}) {
+  for (const std::string planted :
+       {"variants/notes.txt", "variants/1/plot.png", "variants/99/result.csv"}) {
     fs::create_directories((out / planted).parent_path());
     std::ofstream(out / planted) << "mine";
     const BoundedResult user = run_bounded(forced);
