@@ -185,6 +185,24 @@ Json parse_json(std::string_view text, const std::string& file) {
       reason.erase(0, colon + 2);
     }
     throw InputError(make_error(file, line, "not valid JSON: " + reason));
+  } catch (const Json::out_of_range& error) {
+    // A number beyond the range of doubles (RFC 8259 §6 leaves the range to the reader):
+    // "[json.exception.out_of_range.406] number overflow parsing '1e400'". Located at the line
+    // of the first occurrence of that number.
+    std::string reason = error.what();
+    if (const size_t bracket = reason.find("] "); bracket != std::string::npos) {
+      reason.erase(0, bracket + 2);
+    }
+    int line = 1;
+    const size_t open = reason.find('\'');
+    const size_t close = reason.rfind('\'');
+    if (open != std::string::npos && close > open + 1) {
+      const size_t at = text.find(reason.substr(open + 1, close - open - 1));
+      if (at != std::string_view::npos) {
+        line += static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+      }
+    }
+    throw InputError(make_error(file, line, "not valid JSON: " + clip(reason)));
   }
 }
 

@@ -108,6 +108,12 @@ TEST_CASE("JSON that cannot be read is located at its file and line", "[core][js
   CHECK_THROWS_WITH(corsa::parse_json("{\"a\": \"\xFF\"}", "bad.json"),
                     Catch::StartsWith("bad.json:1: error: not valid JSON: "));
   CHECK_THROWS_AS(corsa::parse_json("", "empty.json"), corsa::InputError);
+  // A number beyond the range of doubles: an InputError at its line (it escaped as nlohmann's
+  // out_of_range, an internal error).
+  CHECK_THROWS_WITH(corsa::parse_json("{\n  \"dt\": 0.01,\n  \"seed\": 117e401\n}\n", "sweep.json"),
+                    "sweep.json:3: error: not valid JSON: number overflow parsing '117e401'");
+  CHECK_THROWS_WITH(corsa::parse_json("[-1e400]", "a.json"),
+                    "a.json:1: error: not valid JSON: number overflow parsing '-1e400'");
   // Members keep their order when read.
   const Json read = corsa::parse_json(R"({"b": 1, "a": 2})", "o.json");
   CHECK(read.begin().key() == "b");

@@ -195,6 +195,35 @@ TEST_CASE("A merge of shards claiming 1e15 variants ends at once", "[robustness]
   CHECK_FALSE(fs::exists(dir.path() / "merged"));
 }
 
+TEST_CASE("A sweep.json holding a number beyond the range of doubles is located bad input",
+          "[robustness][sweep]") {
+  TempDir dir;
+  make_shards(dir);
+  const fs::path description = dir.path() / "s1" / "sweep.json";
+  std::string text = slurp(description);
+  const size_t at = text.find("\"seed\": 0,");
+  REQUIRE(at != std::string::npos);
+  text.replace(at, 10, "\"seed\": 117e401,");
+  std::ofstream(description, std::ios::trunc) << text;
+  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+  const std::string located = description.string() + ":" + std::to_string(line) +
+                              ": error: not valid JSON: number overflow parsing '117e401'";
+  // The merge reads it (exit 3, an uncaught exception, before).
+  const BoundedResult merged = run_bounded(merge_args(dir));
+  INFO(describe("merge of a shard whose sweep.json holds 117e401", merged));
+  CHECK(merged.exit_code == 2);
+  CHECK(merged.err.find(located) != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.path() / "merged"));
+  // So does --resume of that shard.
+  fs::remove(dir.path() / "s1" / "summary.csv");
+  std::vector<std::string> resume = small_sweep(dir.path() / "s1", "1/2");
+  resume.push_back("--resume");
+  const BoundedResult resumed = run_bounded(resume);
+  INFO(describe("--resume of a shard whose sweep.json holds 117e401", resumed));
+  CHECK(resumed.exit_code == 2);
+  CHECK(resumed.err.find(located) != std::string::npos);
+}
+
 TEST_CASE("A merge never follows a symbolic link in a shard nor carries stale temporaries",
           "[robustness][sweep][output]") {
   TempDir dir;
