@@ -82,7 +82,8 @@ def cut_layer(base, records):
 def ngii(out):
     for area in ("kcity", "seoul_sangam_testbed"):
         folder = SHARED / "data/ngii" / area
-        save(out, area + "_C1", [b"\x00" + (folder / "C1_TRAFFICLIGHT.shp").read_bytes()] +
+        # First byte: geometry family (0 point, 1 line) + 4 to read the .prj through PROJ.
+        save(out, area + "_C1", [b"\x04" + (folder / "C1_TRAFFICLIGHT.shp").read_bytes()] +
              [(folder / ("C1_TRAFFICLIGHT" + e)).read_bytes() for e in (".shx", ".dbf", ".prj")])
         for layer, family in (("A1_NODE", 0), ("A2_LINK", 1), ("B2_SURFACELINEMARK", 1)):
             parts = cut_layer(folder / (layer + ".shp"), 4)
