@@ -6,9 +6,11 @@
 #include "dataset_folder.h"
 
 #include <algorithm>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "corsa/core/atomic_file.h"
