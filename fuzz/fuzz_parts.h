@@ -34,7 +34,17 @@ inline std::vector<std::string> split_parts(const uint8_t* data, size_t size, si
   return parts;
 }
 
-/// A folder of this process's own, emptied: /dev/shm (memory) when there is one, else TMPDIR.
+/// Removes its folder when the process exits (libFuzzer ends with exit()).
+struct RemovedAtExit {
+  std::filesystem::path folder;
+  ~RemovedAtExit() {
+    std::error_code ignored;
+    std::filesystem::remove_all(folder, ignored);
+  }
+};
+
+/// A folder of this process's own, emptied, and removed at exit: /dev/shm (memory) when there is
+/// one, else TMPDIR.
 inline std::filesystem::path scratch_folder(const std::string& name) {
   std::error_code error;
   std::filesystem::path base = "/dev/shm";
@@ -45,6 +55,8 @@ inline std::filesystem::path scratch_folder(const std::string& name) {
   const std::filesystem::path folder = base / (name + "." + std::to_string(::getpid()));
   std::filesystem::remove_all(folder, error);
   std::filesystem::create_directories(folder);
+  static std::vector<RemovedAtExit> made;
+  made.push_back({folder});
   return folder;
 }
 
