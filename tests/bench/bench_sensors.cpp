@@ -14,8 +14,9 @@
 //   4. a 1280x720 RGB + depth + semantic frame (one shared pass, shadows, motion blur, noise,
 //      labels) through SensorSystem, on 2 threads.
 // A small timing program (median of several runs; the machine is shared and noisy).
-// Usage: corsa_bench_sensors [RUNS] [lidar|camera|both] [fast|default|high]   (default: both,
-// at the camera quality `default`)
+// Usage: corsa_bench_sensors [RUNS] [lidar|camera|both] [fast|default|high] [RGB_PNG]
+// (default: both, at the camera quality `default`); RGB_PNG: where to write the camera frame, to
+// look at it and to compare it with another build's.
 
 #include <tbb/global_control.h>
 
@@ -31,6 +32,7 @@
 #include "corsa/sensors/lidar.h"
 #include "corsa/sensors/model_io.h"
 #include "corsa/sensors/sensor_system.h"
+#include "corsa/sensors/writers.h"
 #include "scene_data.h"  // the raw Embree scene, for the baseline
 #include "street_mesh.h"
 
@@ -236,11 +238,16 @@ int main(int argc, char** argv) {
   </SensorRig>)";
   SensorSystem system(parse_rig(rig_text, "bench"), scene, {});
   size_t labelled = 0;
+  CameraImages image;
   tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
   const auto t = measure(runs, {[&] {
-                           const auto frames = system.capture(world, {});
+                           auto frames = system.capture(world, {});
                            labelled = frames.front().labels.size();
+                           image = std::move(frames.front().camera);
                          }});
+  if (argc > 4) {
+    write_png_rgb8(argv[4], image.width, image.height, image.rgb);
+  }
   std::printf(
       "1280x720 RGB+depth+semantic frame at quality %s, 2 threads: %.1f ms wall, %.1f ms CPU "
       "(%.1f ms per core; target %s; %zu labelled objects)\n",
