@@ -302,7 +302,7 @@ ShadeTerms shade_terms(const ShadingContext& c, const SurfacePoint& s, const Col
   } else {
     // Rougher lobes see a blurred sky: between the mirrored sky and the sky light.
     const double blur = smoothstep(0.0, 0.7, s.roughness);
-    const Color sky_env = mix(l.sky(r), l.sky_light(r), blur);
+    const Color sky_env = mix(mirrored != nullptr ? l.sky(r) : env, l.sky_light(r), blur);
     t.sky = t.sky + sky_env * spec_albedo * under;
   }
   if (s.clearcoat > 0.0) {

@@ -99,34 +99,52 @@ const NoiseTile& NoiseTile::instance() {
   return tile;
 }
 
-std::array<float, 4> NoiseTile::bilinear(const Level& level, double x, double y) const {
+NoiseTile::Footprint NoiseTile::footprint(const Level& level, double x, double y) const {
   const int n = level.size;
   const double px = x * n / kSize - 0.5;
   const double py = y * n / kSize - 0.5;
   const double fx = std::floor(px);
   const double fy = std::floor(py);
-  const auto ax = static_cast<float>(px - fx);
-  const auto ay = static_cast<float>(py - fy);
-  // Wrap with a mask (sizes are powers of two); large coordinates are first brought near 0 in
-  // double precision so that the integer conversion never overflows.
-  const double period = static_cast<double>(n);
-  const auto ix = static_cast<int64_t>(fx - period * std::floor(fx / period));
-  const auto iy = static_cast<int64_t>(fy - period * std::floor(fy / period));
-  const int x0 = static_cast<int>(ix) & (n - 1);
+  // Wrap with a mask (sizes are powers of two). Whole numbers below 2^52 convert exactly and
+  // their two's complement low bits are the wrapped index; larger coordinates are first brought
+  // near 0 in double precision so that the integer conversion never overflows.
+  constexpr double kExact = 4503599627370496.0;  // 2^52
+  auto wrap = [n](double f) {
+    const double period = static_cast<double>(n);
+    const auto i = std::fabs(f) < kExact ? static_cast<int64_t>(f)
+                                         : static_cast<int64_t>(f - period * std::floor(f / period));
+    return static_cast<int>(i & (n - 1));
+  };
+  const int x0 = wrap(fx);
   const int x1 = (x0 + 1) & (n - 1);
-  const int y0 = static_cast<int>(iy) & (n - 1);
+  const int y0 = wrap(fy);
   const int y1 = (y0 + 1) & (n - 1);
-  const float* a = &level.texels[4 * (static_cast<size_t>(y0) * n + x0)];
-  const float* b = &level.texels[4 * (static_cast<size_t>(y0) * n + x1)];
-  const float* c = &level.texels[4 * (static_cast<size_t>(y1) * n + x0)];
-  const float* d = &level.texels[4 * (static_cast<size_t>(y1) * n + x1)];
+  Footprint f;
+  f.texel[0] = &level.texels[4 * (static_cast<size_t>(y0) * n + x0)];
+  f.texel[1] = &level.texels[4 * (static_cast<size_t>(y0) * n + x1)];
+  f.texel[2] = &level.texels[4 * (static_cast<size_t>(y1) * n + x0)];
+  f.texel[3] = &level.texels[4 * (static_cast<size_t>(y1) * n + x1)];
+  f.ax = static_cast<float>(px - fx);
+  f.ay = static_cast<float>(py - fy);
+  return f;
+}
+
+std::array<float, 4> NoiseTile::bilinear(const Level& level, double x, double y) const {
+  const Footprint f = footprint(level, x, y);
   std::array<float, 4> out{};
   for (int k = 0; k < 4; ++k) {
-    const float top = a[k] + (b[k] - a[k]) * ax;
-    const float bottom = c[k] + (d[k] - c[k]) * ax;
-    out[k] = top + (bottom - top) * ay;
+    const float top = f.texel[0][k] + (f.texel[1][k] - f.texel[0][k]) * f.ax;
+    const float bottom = f.texel[2][k] + (f.texel[3][k] - f.texel[2][k]) * f.ax;
+    out[k] = top + (bottom - top) * f.ay;
   }
   return out;
+}
+
+float NoiseTile::bilinear(const Level& level, double x, double y, int k) const {
+  const Footprint f = footprint(level, x, y);
+  const float top = f.texel[0][k] + (f.texel[1][k] - f.texel[0][k]) * f.ax;
+  const float bottom = f.texel[2][k] + (f.texel[3][k] - f.texel[2][k]) * f.ax;
+  return top + (bottom - top) * f.ay;
 }
 
 std::array<float, 4> NoiseTile::sample(double x, double y, double texels) const {
@@ -147,6 +165,24 @@ std::array<float, 4> NoiseTile::sample(double x, double y, double texels) const 
     for (int k = 0; k < 4; ++k) {
       a[k] += (b[k] - a[k]) * t;
     }
+  }
+  return a;
+}
+
+float NoiseTile::sample(int channel, double x, double y, double texels) const {
+  if (!std::isfinite(x) || !std::isfinite(y)) {
+    return 0.5f;
+  }
+  const double lod = texels > 1.0 ? std::log2(texels) : 0.0;
+  const double top = static_cast<double>(levels_.size() - 1);
+  if (lod >= top) {
+    return levels_.back().texels[channel];
+  }
+  const auto l0 = static_cast<size_t>(lod);
+  const auto t = static_cast<float>(lod - static_cast<double>(l0));
+  float a = bilinear(levels_[l0], x, y, channel);
+  if (t > 0.0f) {
+    a += (bilinear(levels_[l0 + 1], x, y, channel) - a) * t;
   }
   return a;
 }

@@ -40,6 +40,8 @@ class NoiseTile {
   /// level (the tile repeats every kSize texels), averaged over `texels` texels (the footprint
   /// of the pixel; <= 1 reads the full-size level).
   std::array<float, 4> sample(double x, double y, double texels) const;
+  /// Channel `channel` (0..3) of sample(x, y, texels), the same value read without the others.
+  float sample(int channel, double x, double y, double texels) const;
 
  private:
   NoiseTile();
@@ -47,7 +49,15 @@ class NoiseTile {
     int size = 0;
     std::vector<float> texels;  ///< 4 floats per texel, row-major
   };
+  /// The four texels around (x, y) (full-size texel units) on a level and the weights between
+  /// them.
+  struct Footprint {
+    const float* texel[4];  ///< (x0, y0), (x1, y0), (x0, y1), (x1, y1)
+    float ax = 0.0f, ay = 0.0f;
+  };
+  Footprint footprint(const Level& level, double x, double y) const;
   std::array<float, 4> bilinear(const Level& level, double x, double y) const;
+  float bilinear(const Level& level, double x, double y, int channel) const;
   std::vector<Level> levels_;
 };
 
@@ -55,7 +65,7 @@ class NoiseTile {
 /// over a pixel footprint of `footprint_m` metres: the workhorse of the patterns.
 inline float noise(int channel, double u, double v, double tile_m, double footprint_m) {
   const double scale = NoiseTile::kSize / tile_m;
-  return NoiseTile::instance().sample(u * scale, v * scale, footprint_m * scale)[channel];
+  return NoiseTile::instance().sample(channel, u * scale, v * scale, footprint_m * scale);
 }
 
 /// Share of [x - w/2, x + w/2] covered by the pulses [k p, k p + d) (k integer): the box
