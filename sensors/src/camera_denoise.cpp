@@ -17,7 +17,7 @@ namespace corsa::sensors::detail {
 namespace {
 
 /// Similarity of neighbour q to centre p: 0 (another surface) .. 1 (the same plane).
-float geometry_weight(const PixelRecord& p, const PixelRecord& q) {
+float geometry_weight(const PixelGeometry& p, const PixelGeometry& q) {
   if (q.surface_id == 0) {
     return 0.0f;
   }
@@ -39,14 +39,14 @@ void filter_step(const Pass& p, const std::vector<PixelVisibility>& in,
                  std::vector<PixelVisibility>& out, int step, bool sun) {
   const int w = p.width;
   const int h = p.height;
-  const std::vector<PixelRecord>& rec = *p.records;
+  const std::vector<PixelGeometry>& rec = *p.geometry;
   constexpr float kernel[3] = {0.25f, 0.5f, 0.25f};
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
     for (int row = rows.begin(); row != rows.end(); ++row) {
       for (int col = 0; col < w; ++col) {
         const size_t px = static_cast<size_t>(row) * w + col;
         out[px] = in[px];
-        const PixelRecord& c = rec[px];
+        const PixelGeometry& c = rec[px];
         if (c.surface_id == 0) {
           continue;
         }
@@ -97,7 +97,8 @@ void filter_step(const Pass& p, const std::vector<PixelVisibility>& in,
 
 void filter_visibility(const Pass& p) {
   std::vector<PixelVisibility>& vis = *p.visibility;
-  std::vector<PixelVisibility> tmp(vis.size());
+  std::vector<PixelVisibility>& tmp = *p.visibility_scratch;
+  tmp.resize(vis.size());
   filter_step(p, vis, tmp, 1, true);
   filter_step(p, tmp, vis, 2, false);
 }

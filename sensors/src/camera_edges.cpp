@@ -22,7 +22,7 @@
 namespace corsa::sensors::detail {
 namespace {
 
-bool differs(const PixelRecord& a, const PixelRecord& b) {
+bool differs(const PixelGeometry& a, const PixelGeometry& b) {
   if (a.surface_id != b.surface_id) {
     return true;
   }
@@ -47,7 +47,7 @@ long long matching_neighbour(const Pass& p, int col, int row, const SurfacePoint
         continue;
       }
       const size_t q = static_cast<size_t>(r) * p.width + c;
-      const PixelRecord& rec = (*p.records)[q];
+      const PixelGeometry& rec = (*p.geometry)[q];
       if (rec.surface_id != s.surface_id) {
         continue;
       }
@@ -163,10 +163,11 @@ void composite(const Pass& p, std::vector<float>& linear) {
       for (int col = 0; col < w; ++col) {
         const size_t px = static_cast<size_t>(row) * w + col;
         const PixelRecord& rec = (*p.records)[px];
+        const PixelGeometry& g = (*p.geometry)[px];
         Color c = rec.terms.base;
-        if (rec.surface_id != 0) {
+        if (g.surface_id != 0) {
           const Color lit = combine(rec.terms, (*p.visibility)[px].get());
-          c = through_air(*p.shading, lit, p.origin_local, ray_at(p, col, row), rec.distance);
+          c = through_air(*p.shading, lit, p.origin_local, ray_at(p, col, row), g.distance);
         }
         float* out = &linear[3 * px];
         out[0] = static_cast<float>(c.r);
@@ -184,8 +185,9 @@ size_t antialias_edges(const Pass& p, std::vector<float>& linear) {
   }
   const int w = p.width;
   const int h = p.height;
-  const std::vector<PixelRecord>& rec = *p.records;
-  std::vector<uint8_t> edge(rec.size(), 0);
+  const std::vector<PixelGeometry>& rec = *p.geometry;
+  std::vector<uint8_t>& edge = *p.edges;
+  edge.resize(rec.size());
   // Row by row: a pixel is marked by its own comparisons with the right and lower neighbour
   // and theirs with it, so each row writes only its own marks.
   tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& r) {

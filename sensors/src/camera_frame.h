@@ -11,6 +11,7 @@
 #include <embree3/rtcore.h>
 
 #include <cstdint>
+#include <mutex>
 #include <optional>
 #include <vector>
 
@@ -29,12 +30,17 @@ struct Color3f {
   Color get() const { return {r, g, b}; }
 };
 
-/// The centre sample of a pixel, as the later stages need it.
-struct PixelRecord {
+/// Where the centre sample of a pixel lies: what the filter and the edge test compare across
+/// neighbourhoods, kept apart from the shading (32 bytes a pixel, two to a cache line).
+struct PixelGeometry {
   float position[3] = {0, 0, 0};  ///< tracer-local
   float normal[3] = {0, 0, 0};
   float distance = 0.0f;    ///< along the ray; infinite for the sky
   uint32_t surface_id = 0;  ///< 0: sky
+};
+
+/// The light of the centre sample of a pixel, as the later stages need it.
+struct PixelRecord {
   ShadeTerms terms;         ///< (double colours: the terms are read once per pixel and sample)
   Color3f mirrored;         ///< radiance from the mirror direction (mirror surfaces)
   Color3f behind;           ///< radiance through glass
@@ -64,11 +70,32 @@ struct Pass {
   Vec3 origin_local;
   CarrierExit carrier;  ///< where primary rays leave the carrying vehicle
   CameraImages* out = nullptr;
+  std::vector<PixelGeometry>* geometry = nullptr;
   std::vector<PixelRecord>* records = nullptr;
   std::vector<PixelVisibility>* visibility = nullptr;
   std::vector<float>* motion_vectors = nullptr;  ///< pixels over 2 kMotionHalf seconds
+  std::vector<PixelVisibility>* visibility_scratch = nullptr;  ///< the filter's other buffer
+  std::vector<uint8_t>* edges = nullptr;                      ///< anti-aliasing marks
   int width = 0;
   int height = 0;
+};
+
+/// The per-pixel buffers of one pass. A renderer keeps them from frame to frame: at 1280x720
+/// they take about 200 MB, and fresh pages every frame (page faults and the kernel zeroing
+/// them) cost about a fifth of a `fast` frame. Every stage writes each pixel it later reads, so
+/// nothing needs clearing between frames. One pass at a time holds `mutex`; a pass that finds
+/// them in use (two cameras of one renderer at once) allocates its own.
+struct FrameBuffers {
+  std::mutex mutex;
+  std::vector<PixelGeometry> geometry;
+  std::vector<PixelRecord> records;
+  std::vector<PixelVisibility> visibility;
+  std::vector<PixelVisibility> visibility_scratch;
+  std::vector<float> motion_vectors;
+  std::vector<float> linear;       ///< radiance, 3 floats a pixel
+  std::vector<float> linear_copy;  ///< the sharp image under motion blur
+  std::vector<float> distances;    ///< along each pixel's ray, for the precipitation
+  std::vector<uint8_t> edges;
 };
 
 /// Motion vectors are computed over +-kMotionHalf seconds and scaled to the exposure time.
@@ -89,6 +116,18 @@ struct TileScratch {
   std::vector<RTCRay> second;     ///< shadow rays from the secondary hits
   std::vector<int> second_owner;  ///< index into `hits`
   std::vector<float> weights;
+  std::vector<std::optional<SurfacePoint>> found;  ///< per hit: the surface a mirror or glass
+                                                   ///< ray found
+  std::vector<int> sun_seen;  ///< per hit: -1 no shadow ray, 0 shadowed, 1 lit
+
+  void clear() {
+    rays.clear();
+    ray_owner.clear();
+    ray_kind.clear();
+    hits.clear();
+    hit_owner.clear();
+    hit_kind.clear();
+  }
 };
 
 /// Stage 1 for the 4x4 pixel tile at (col0, row0).

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <mutex>
 
 #include "camera_frame.h"
 #include "scene_data.h"
@@ -33,12 +34,11 @@ bool anything_moves(const Scene& scene, const CameraMotion& motion) {
 }
 
 /// Depth along each pixel's ray (infinite for the sky), for the precipitation's depth test.
-std::vector<float> ray_distances(const std::vector<detail::PixelRecord>& records) {
-  std::vector<float> out(records.size());
+void ray_distances(const std::vector<detail::PixelGeometry>& records, std::vector<float>& out) {
+  out.resize(records.size());
   for (size_t i = 0; i < records.size(); ++i) {
     out[i] = records[i].distance;
   }
-  return out;
 }
 
 }  // namespace
@@ -47,7 +47,8 @@ Rigid world_from_optical(const Rigid& world_from_body) {
   return world_from_body * optical_in_body();
 }
 
-CameraRenderer::CameraRenderer(const CameraIntrinsics& intrinsics) : model_(intrinsics) {
+CameraRenderer::CameraRenderer(const CameraIntrinsics& intrinsics)
+    : model_(intrinsics), buffers_(std::make_shared<detail::FrameBuffers>()) {
   const int w = intrinsics.width;
   const int h = intrinsics.height;
   rays_.resize(static_cast<size_t>(w) * h * 3);
@@ -88,9 +89,11 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   RenderSettings effective = settings;
   effective.outputs.rgb = settings.outputs.rgb && settings.lighting != nullptr;
   const bool rgb = effective.outputs.rgb;
-  std::vector<detail::PixelRecord> records;
-  std::vector<detail::PixelVisibility> visibility;
-  std::vector<float> motion_vectors;
+  std::unique_lock<std::mutex> lock(buffers_->mutex, std::try_to_lock);
+  detail::FrameBuffers own;  // only when another pass holds the kept buffers
+  detail::FrameBuffers& b = lock.owns_lock() ? *buffers_ : own;
+  std::vector<detail::PixelRecord>& records = b.records;
+  std::vector<float>& motion_vectors = b.motion_vectors;
   detail::ShadingContext shading;
   detail::Pass p;
   p.scene = &scene.data();
@@ -112,10 +115,16 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
     shading = detail::make_shading_context(scene.data(), *settings.lighting, 1.0 / model_.fx(),
                                            settings.rgb.quality);
     p.shading = &shading;
+    b.geometry.resize(n);
     records.resize(n);
-    visibility.resize(n);
+    b.visibility.resize(n);
+    b.visibility_scratch.resize(n);
+    b.edges.resize(n);
+    p.geometry = &b.geometry;
     p.records = &records;
-    p.visibility = &visibility;
+    p.visibility = &b.visibility;
+    p.visibility_scratch = &b.visibility_scratch;
+    p.edges = &b.edges;
     p.motion = anything_moves(scene, motion);
     if (p.motion) {
       p.cam_early = camera_at(motion, world_from_cam, -detail::kMotionHalf).inverse();
@@ -140,10 +149,10 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   if (shading.quality.denoise) {
     detail::filter_visibility(p);
   }
-  std::vector<float> linear(3 * n, 0.0f);
+  std::vector<float>& linear = b.linear;
+  linear.resize(3 * n);
   detail::composite(p, linear);
   detail::antialias_edges(p, linear);
-  visibility = {};
   const detail::Exposure exposure = detail::choose_exposure(linear, w, h, settings.rgb);
   if (p.motion) {
     // The vectors span 2 kMotionHalf seconds; the blur spans the exposure time.
@@ -151,7 +160,7 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
     for (float& v : motion_vectors) {
       v *= scale;
     }
-    detail::motion_blur(linear, motion_vectors, w, h);
+    detail::motion_blur(linear, motion_vectors, w, h, b.linear_copy);
   }
   if (shading.quality.bloom) {
     // Only light far beyond white glares: lamps, bulbs and the sun, not a lit window.
@@ -162,7 +171,8 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   const Vec3 wind{light.wind_speed * std::cos(light.wind_direction),
                   light.wind_speed * std::sin(light.wind_direction), 0.0};
   const double lateral_wind = dot(wind, world_from_cam.rotation.column(0));
-  detail::draw_precipitation(linear, ray_distances(records), w, h, model_.fx(), light, lateral_wind,
+  ray_distances(b.geometry, b.distances);
+  detail::draw_precipitation(linear, b.distances, w, h, model_.fx(), light, lateral_wind,
                              exposure.shutter_s, settings.frame_seed);
   out.rgb = detail::develop(linear, w, h, settings.rgb, exposure, settings.frame_seed);
   return out;

@@ -219,10 +219,9 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
   }
 }
 
-/// Turns the secondary hits of a tile into visibilities and radiances.
-void resolve_rays(const Pass& p, TileState& t, TileScratch& s) {
-  const ShadingContext& c = *p.shading;
-  const Lighting& l = *c.lighting;
+/// Traces a tile's shadow rays and probe rays, and counts each pixel's unoccluded sun and lamp
+/// rays.
+void trace_queued(const Pass& p, TileState& t, TileScratch& s) {
   const SceneData& d = *p.scene;
   occluded(d, s.rays);
   intersect(d, s.hits);
@@ -231,9 +230,16 @@ void resolve_rays(const Pass& p, TileState& t, TileScratch& s) {
     const int k = s.ray_owner[i];
     (s.ray_kind[i] == kSun ? t.sun_free[k] : t.light_free[k]) += free ? 1 : 0;
   }
-  // Secondary surfaces: glass seen through glass is passed once more; the rest get a shadow
-  // ray towards the sun when quality asks for it.
-  std::vector<std::optional<SurfacePoint>> found(s.hits.size());
+}
+
+/// The surfaces the mirror and glass rays found (glass seen through glass is passed once more),
+/// and shadow rays towards the sun from them (when quality asks for it) and from the occluders
+/// the sky rays hit (when quality asks for the bounce's shadow); then traces those.
+void find_secondary(const Pass& p, const TileState& t, TileScratch& s) {
+  const ShadingContext& c = *p.shading;
+  const Lighting& l = *c.lighting;
+  const SceneData& d = *p.scene;
+  s.found.assign(s.hits.size(), std::nullopt);
   s.second.clear();
   s.second_owner.clear();
   const bool shadows = c.quality.reflections;
@@ -249,44 +255,52 @@ void resolve_rays(const Pass& p, TileState& t, TileScratch& s) {
       }
       continue;
     }
-    found[i] = secondary_surface(p, h, t.surface[k].distance);
-    if (found[i] && s.hit_kind[i] == kGlass && found[i]->transmission > 0.0) {
-      RTCRayHit again =
-          make_hit_ray(offset(*found[i], found[i]->view_dir), found[i]->view_dir, kInfinity);
+    std::optional<SurfacePoint>& found = s.found[i];
+    found = secondary_surface(p, h, t.surface[k].distance);
+    if (found && s.hit_kind[i] == kGlass && found->transmission > 0.0) {
+      RTCRayHit again = make_hit_ray(offset(*found, found->view_dir), found->view_dir, kInfinity);
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
       rtcIntersect1(d.top, &context, &again);
       h = again;
-      found[i] = secondary_surface(p, h, found[i]->distance);
+      found = secondary_surface(p, h, found->distance);
     }
-    if (found[i] && shadows && dot(found[i]->normal, l.sun_direction) > 0.0 &&
-        luminance(l.sun) > 0.0) {
-      s.second.push_back(make_ray(offset(*found[i], l.sun_direction), l.sun_direction, kInfinity));
+    if (found && shadows && dot(found->normal, l.sun_direction) > 0.0 && luminance(l.sun) > 0.0) {
+      s.second.push_back(make_ray(offset(*found, l.sun_direction), l.sun_direction, kInfinity));
       s.second_owner.push_back(static_cast<int>(i));
     }
   }
   occluded(d, s.second);
-  std::vector<int> sun_seen(s.hits.size(), -1);  // -1: no shadow ray, 0 shadowed, 1 lit
+  s.sun_seen.assign(s.hits.size(), -1);
   for (size_t j = 0; j < s.second.size(); ++j) {
-    sun_seen[s.second_owner[j]] = s.second[j].tfar >= 0.0f ? 1 : 0;
+    s.sun_seen[s.second_owner[j]] = s.second[j].tfar >= 0.0f ? 1 : 0;
   }
+}
+
+/// What the probe rays bring back: sky rays the sky radiance or the bounce off the occluder they
+/// hit (summed per pixel), mirror and glass rays the radiance of what they found.
+void gather_probes(const Pass& p, TileState& t, const TileScratch& s) {
+  const ShadingContext& c = *p.shading;
+  const Lighting& l = *c.lighting;
+  const bool shadows = c.quality.reflections;
   for (size_t i = 0; i < s.hits.size(); ++i) {
     const RTCRayHit& h = s.hits[i];
     const int k = s.hit_owner[i];
     const Vec3 o{h.ray.org_x, h.ray.org_y, h.ray.org_z};
     const Vec3 dir{h.ray.dir_x, h.ray.dir_y, h.ray.dir_z};
+    const int sun_seen = s.sun_seen[i];  // -1: no shadow ray, 0 shadowed, 1 lit
     if (s.hit_kind[i] == kSky) {
       const bool escaped = h.hit.geomID == RTC_INVALID_GEOMETRY_ID;
-      const double sun_share = sun_seen[i] >= 0 ? sun_seen[i] : 0.5;
+      const double sun_share = sun_seen >= 0 ? sun_seen : 0.5;
       t.sky_sum[k] = t.sky_sum[k] + (escaped ? l.sky_model.radiance(dir) : bounce(p, h, sun_share));
       continue;
     }
     Color radiance;
-    if (!found[i]) {
+    if (!s.found[i]) {
       radiance = sky_seen(c, o, dir);
     } else {
-      const bool lit = sun_seen[i] >= 0 ? sun_seen[i] == 1 : !shadows;
-      radiance = through_air(c, shade_secondary(c, *found[i], lit), o, dir, h.ray.tfar);
+      const bool lit = sun_seen >= 0 ? sun_seen == 1 : !shadows;
+      radiance = through_air(c, shade_secondary(c, *s.found[i], lit), o, dir, h.ray.tfar);
     }
     if (s.hit_kind[i] == kMirror) {
       t.mirrored[k] = radiance;
@@ -296,6 +310,12 @@ void resolve_rays(const Pass& p, TileState& t, TileScratch& s) {
       t.has_behind[k] = true;
     }
   }
+}
+
+/// The visibilities of each lit pixel: the share of its free sun and lamp rays, and the sky its
+/// sky rays brought back against the open sky's light.
+void finish_visibility(const Pass& p, TileState& t) {
+  const Lighting& l = *p.shading->lighting;
   for (int k = 0; k < t.count; ++k) {
     if (!t.hit[k]) {
       continue;
@@ -310,6 +330,14 @@ void resolve_rays(const Pass& p, TileState& t, TileScratch& s) {
       v.sky = {ratio(mean.r, open.r), ratio(mean.g, open.g), ratio(mean.b, open.b)};
     }
   }
+}
+
+/// Turns the secondary rays of a tile into visibilities and radiances.
+void resolve_rays(const Pass& p, TileState& t, TileScratch& s) {
+  trace_queued(p, t, s);
+  find_secondary(p, t, s);
+  gather_probes(p, t, s);
+  finish_visibility(p, t);
 }
 
 /// Image motion of a surface point over 2 kMotionHalf seconds. The pinhole projection is used
@@ -330,6 +358,114 @@ void store_motion(const Pass& p, size_t px, Vec3 p_world, int pool) {
   float* m = &(*p.motion_vectors)[2 * px];
   m[0] = static_cast<float>(p.model->fx() * (b.x / b.z - a.x / a.z));
   m[1] = static_cast<float>(p.model->fy() * (b.y / b.z - a.y / a.z));
+}
+
+/// The primary rays of the 4x4 tile at (col0, row0) as one packet (pixels outside the image
+/// masked off): from the camera, past the carrying vehicle.
+void primary_packet(const Pass& p, int col0, int row0, TileState& t, RTCRayHit16& rh,
+                    int* valid) {
+  for (int k = 0; k < 16; ++k) {
+    const int col = col0 + k % kTile;
+    const int row = row0 + k / kTile;
+    valid[k] = col < p.width && row < p.height ? -1 : 0;
+    t.pixel[k] = valid[k] ? static_cast<size_t>(row) * p.width + col : 0;
+    const float* r = p.rays + 3 * t.pixel[k];
+    const auto& m = p.rotation;
+    const Vec3 dir{m[0][0] * r[0] + m[0][1] * r[1] + m[0][2] * r[2],
+                   m[1][0] * r[0] + m[1][1] * r[1] + m[1][2] * r[2],
+                   m[2][0] * r[0] + m[2][1] * r[1] + m[2][2] * r[2]};
+    t.dir[k] = dir;
+    rh.ray.org_x[k] = static_cast<float>(p.origin_local.x);
+    rh.ray.org_y[k] = static_cast<float>(p.origin_local.y);
+    rh.ray.org_z[k] = static_cast<float>(p.origin_local.z);
+    rh.ray.dir_x[k] = static_cast<float>(dir.x);
+    rh.ray.dir_y[k] = static_cast<float>(dir.y);
+    rh.ray.dir_z[k] = static_cast<float>(dir.z);
+    rh.ray.tnear[k] = p.carrier.exit(dir);
+    rh.ray.tfar[k] = kInfinity;
+    rh.ray.mask[k] = 0xFFFFFFFFu;
+    rh.ray.flags[k] = 0;
+    rh.ray.time[k] = 0.0f;
+    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+}
+
+/// Instance id, class and depth (along the optical axis) of pixel `px` from its primary ray
+/// (lane k of the packet); returns the label.
+SceneData::Label store_labels(const Pass& p, const RTCRayHit16& rh, int k, size_t px) {
+  const bool hit = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+  const auto label = hit ? p.scene->label(rh.hit.instID[0][k], rh.hit.geomID[k], rh.hit.primID[k])
+                         : SceneData::Label{SemanticClass::kSky, 0, -1};
+  p.out->instance[px] = label.instance_id;
+  if (!p.out->semantic.empty()) {
+    p.out->semantic[px] = static_cast<uint8_t>(label.semantic);
+  }
+  if (!p.out->depth.empty()) {
+    const double z = hit ? static_cast<double>(rh.ray.tfar[k]) * p.rays[3 * px + 2] : 0.0;
+    p.out->depth[px] = hit && z <= p.settings->max_depth_m ? static_cast<float>(z) : 0.0f;
+  }
+  return label;
+}
+
+/// The sky seen by pixel `px` along `dir`: its whole record (every field: the buffers are kept
+/// from frame to frame) and unit visibilities.
+void store_sky(const Pass& p, size_t px, Vec3 dir) {
+  PixelGeometry& g = (*p.geometry)[px];
+  g = PixelGeometry{};
+  g.distance = kInfinity;
+  PixelRecord& rec = (*p.records)[px];
+  rec = PixelRecord{};
+  rec.terms.base = sky_seen(*p.shading, p.origin_local, dir);
+  (*p.visibility)[px] = PixelVisibility{};
+}
+
+/// What lane k of the primary packet hit, as shading needs it.
+SurfaceHit primary_hit(const Pass& p, const RTCRayHit16& rh, int k, Vec3 dir,
+                       const SceneData::Label& label) {
+  SurfaceHit sh;
+  sh.inst_id = rh.hit.instID[0][k];
+  sh.geom_id = rh.hit.geomID[k];
+  sh.prim_id = rh.hit.primID[k];
+  sh.u = rh.hit.u[k];
+  sh.v = rh.hit.v[k];
+  sh.view_dir = dir;
+  sh.distance = rh.ray.tfar[k];
+  sh.position = p.origin_local + dir * sh.distance;
+  const Vec3 n = p.scene->world_normal(sh.inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
+  sh.normal = dot(n, dir) > 0.0 ? -n : n;
+  sh.semantic = label.semantic;
+  sh.entity = label.entity;
+  return sh;
+}
+
+/// The record (surface, shading terms, mirrored and transmitted light) and the visibilities of
+/// lit pixel k of a resolved tile.
+void store_lit(const Pass& p, const TileState& t, int k) {
+  const SurfacePoint& sp = t.surface[k];
+  PixelGeometry& g = (*p.geometry)[t.pixel[k]];
+  g.position[0] = static_cast<float>(sp.position.x);
+  g.position[1] = static_cast<float>(sp.position.y);
+  g.position[2] = static_cast<float>(sp.position.z);
+  g.normal[0] = static_cast<float>(sp.normal.x);
+  g.normal[1] = static_cast<float>(sp.normal.y);
+  g.normal[2] = static_cast<float>(sp.normal.z);
+  g.distance = static_cast<float>(sp.distance);
+  g.surface_id = sp.surface_id;
+  PixelRecord& rec = (*p.records)[t.pixel[k]];
+  rec.has_mirrored = t.has_mirrored[k];
+  rec.has_behind = t.has_behind[k];
+  rec.mirrored = Color3f(t.mirrored[k]);
+  rec.behind = Color3f(t.behind[k]);
+  rec.terms = shade_terms(*p.shading, sp, t.has_mirrored[k] ? &t.mirrored[k] : nullptr,
+                          t.has_behind[k] ? &t.behind[k] : nullptr);
+  PixelVisibility& v = (*p.visibility)[t.pixel[k]];
+  const Visibility& e = t.vis[k];
+  v.sun = static_cast<float>(e.sun);
+  v.sky[0] = static_cast<float>(e.sky.r);
+  v.sky[1] = static_cast<float>(e.sky.g);
+  v.sky[2] = static_cast<float>(e.sky.b);
+  v.lights = static_cast<float>(e.lights);
 }
 
 }  // namespace
@@ -360,97 +496,36 @@ Vec3 ray_at(const Pass& p, double x, double y) {
 }
 
 void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch) {
-  const int w = p.width;
-  const int h = p.height;
-  const SceneData& d = *p.scene;
-  const bool rgb = p.settings->outputs.rgb;
   alignas(64) RTCRayHit16 rh;
   alignas(64) int valid[16];
   TileState t;
   t.count = 16;
-  for (int k = 0; k < 16; ++k) {
-    const int col = col0 + k % kTile;
-    const int row = row0 + k / kTile;
-    valid[k] = col < w && row < h ? -1 : 0;
-    t.pixel[k] = valid[k] ? static_cast<size_t>(row) * w + col : 0;
-    const float* r = p.rays + 3 * t.pixel[k];
-    const auto& m = p.rotation;
-    const Vec3 dir{m[0][0] * r[0] + m[0][1] * r[1] + m[0][2] * r[2],
-                   m[1][0] * r[0] + m[1][1] * r[1] + m[1][2] * r[2],
-                   m[2][0] * r[0] + m[2][1] * r[1] + m[2][2] * r[2]};
-    t.dir[k] = dir;
-    rh.ray.org_x[k] = static_cast<float>(p.origin_local.x);
-    rh.ray.org_y[k] = static_cast<float>(p.origin_local.y);
-    rh.ray.org_z[k] = static_cast<float>(p.origin_local.z);
-    rh.ray.dir_x[k] = static_cast<float>(dir.x);
-    rh.ray.dir_y[k] = static_cast<float>(dir.y);
-    rh.ray.dir_z[k] = static_cast<float>(dir.z);
-    rh.ray.tnear[k] = p.carrier.exit(dir);
-    rh.ray.tfar[k] = kInfinity;
-    rh.ray.mask[k] = 0xFFFFFFFFu;
-    rh.ray.flags[k] = 0;
-    rh.ray.time[k] = 0.0f;
-    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-  }
+  primary_packet(p, col0, row0, t, rh, valid);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  rtcIntersect16(valid, d.top, &context, &rh);
+  rtcIntersect16(valid, p.scene->top, &context, &rh);
 
-  scratch.rays.clear();
-  scratch.ray_owner.clear();
-  scratch.ray_kind.clear();
-  scratch.hits.clear();
-  scratch.hit_owner.clear();
-  scratch.hit_kind.clear();
+  const bool rgb = p.settings->outputs.rgb;
+  scratch.clear();
   for (int k = 0; k < 16; ++k) {
     if (!valid[k]) {
       continue;
     }
-    const size_t px = t.pixel[k];
-    const bool hit = rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
-    const float* r = p.rays + 3 * px;
-    const double dist = rh.ray.tfar[k];
-    const double z = hit ? dist * r[2] : 0.0;
-    const auto label = hit ? d.label(rh.hit.instID[0][k], rh.hit.geomID[k], rh.hit.primID[k])
-                           : SceneData::Label{SemanticClass::kSky, 0, -1};
-    p.out->instance[px] = label.instance_id;
-    if (!p.out->semantic.empty()) {
-      p.out->semantic[px] = static_cast<uint8_t>(label.semantic);
-    }
-    if (!p.out->depth.empty()) {
-      p.out->depth[px] = hit && z <= p.settings->max_depth_m ? static_cast<float>(z) : 0.0f;
-    }
+    const SceneData::Label label = store_labels(p, rh, k, t.pixel[k]);
     if (!rgb) {
       continue;
     }
-    PixelRecord& rec = (*p.records)[px];
-    if (!hit) {
-      rec.surface_id = 0;
-      rec.distance = kInfinity;
-      rec.terms = ShadeTerms{};
-      rec.terms.base = sky_seen(*p.shading, p.origin_local, t.dir[k]);
+    if (rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
+      store_sky(p, t.pixel[k], t.dir[k]);
       continue;
     }
-    SurfaceHit sh;
-    sh.inst_id = rh.hit.instID[0][k];
-    sh.geom_id = rh.hit.geomID[k];
-    sh.prim_id = rh.hit.primID[k];
-    sh.u = rh.hit.u[k];
-    sh.v = rh.hit.v[k];
-    sh.view_dir = t.dir[k];
-    sh.position = p.origin_local + t.dir[k] * dist;
-    Vec3 n = d.world_normal(sh.inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
-    sh.normal = dot(n, t.dir[k]) > 0.0 ? -n : n;
-    sh.distance = dist;
-    sh.semantic = label.semantic;
-    sh.entity = label.entity;
+    const SurfaceHit sh = primary_hit(p, rh, k, t.dir[k], label);
     t.hit[k] = true;
     t.surface[k] = surface_at(*p.shading, sh);
     queue_rays(p, t, k, scratch);
     if (p.motion) {
-      store_motion(p, px, d.to_map(sh.position), label.entity);
+      store_motion(p, t.pixel[k], p.scene->to_map(sh.position), label.entity);
     }
   }
   if (!rgb) {
@@ -458,32 +533,9 @@ void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch) {
   }
   resolve_rays(p, t, scratch);
   for (int k = 0; k < 16; ++k) {
-    if (!valid[k] || !t.hit[k]) {
-      continue;
+    if (valid[k] && t.hit[k]) {
+      store_lit(p, t, k);
     }
-    PixelRecord& rec = (*p.records)[t.pixel[k]];
-    const SurfacePoint& sp = t.surface[k];
-    for (int i = 0; i < 3; ++i) {
-      rec.position[i] = static_cast<float>(i == 0   ? sp.position.x
-                                           : i == 1 ? sp.position.y
-                                                    : sp.position.z);
-      rec.normal[i] = static_cast<float>(i == 0 ? sp.normal.x : i == 1 ? sp.normal.y : sp.normal.z);
-    }
-    rec.distance = static_cast<float>(sp.distance);
-    rec.surface_id = sp.surface_id;
-    rec.has_mirrored = t.has_mirrored[k];
-    rec.has_behind = t.has_behind[k];
-    rec.mirrored = Color3f(t.mirrored[k]);
-    rec.behind = Color3f(t.behind[k]);
-    rec.terms = shade_terms(*p.shading, sp, t.has_mirrored[k] ? &t.mirrored[k] : nullptr,
-                            t.has_behind[k] ? &t.behind[k] : nullptr);
-    PixelVisibility& v = (*p.visibility)[t.pixel[k]];
-    const Visibility& e = t.vis[k];
-    v.sun = static_cast<float>(e.sun);
-    v.sky[0] = static_cast<float>(e.sky.r);
-    v.sky[1] = static_cast<float>(e.sky.g);
-    v.sky[2] = static_cast<float>(e.sky.b);
-    v.lights = static_cast<float>(e.lights);
   }
 }
 

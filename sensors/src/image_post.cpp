@@ -15,8 +15,8 @@
 namespace corsa::sensors::detail {
 
 void motion_blur(std::vector<float>& linear, const std::vector<float>& motion, int width,
-                 int height) {
-  const std::vector<float> sharp = linear;
+                 int height, std::vector<float>& sharp) {
+  sharp = linear;
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
     for (int row = r.begin(); row != r.end(); ++row) {
       for (int col = 0; col < width; ++col) {

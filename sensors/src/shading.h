@@ -121,9 +121,10 @@ Color sky_seen(const ShadingContext& c, Vec3 origin, Vec3 direction);
 Color through_air(const ShadingContext& c, Color radiance, Vec3 origin, Vec3 direction,
                   double distance);
 
-/// Motion blur along per-pixel motion vectors (pixels, 2 floats per pixel), in place.
+/// Motion blur along per-pixel motion vectors (pixels, 2 floats per pixel), in place; `sharp`
+/// is scratch space (a copy of the image before the blur).
 void motion_blur(std::vector<float>& linear, const std::vector<float>& motion, int width,
-                 int height);
+                 int height, std::vector<float>& sharp);
 
 /// The exposure (linear scale before the tone curve) of a frame: the rig's manual one, or the
 /// metered one with its exposure time (s) and ISO.

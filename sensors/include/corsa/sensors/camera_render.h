@@ -6,6 +6,7 @@
 // sensor noise, gamma and lens distortion. Same bytes for the same seed on any thread count.
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -16,6 +17,10 @@
 #include "corsa/sensors/scene.h"
 
 namespace corsa::sensors {
+
+namespace detail {
+struct FrameBuffers;
+}
 
 /// Which images one render pass produces (cameras sharing intrinsics and pose share a pass).
 struct CameraOutputs {
@@ -70,6 +75,8 @@ class CameraRenderer {
  private:
   CameraModel model_;
   std::vector<float> rays_;  ///< 3 floats per pixel, optical frame
+  /// The per-pixel buffers of a pass, kept from frame to frame (see camera_frame.h).
+  std::shared_ptr<detail::FrameBuffers> buffers_;
 };
 
 /// Camera optical frame to map for a sensor body pose.
