@@ -22,8 +22,9 @@ constexpr double kSkyRayLength = 80.0;  ///< m: beyond, occluders are part of th
 
 enum RayKind : int { kSun, kSky, kLight, kMirror, kGlass };
 
-RTCRay make_ray(Vec3 o, Vec3 d, float tfar) {
-  RTCRay r{};
+/// A ray from o along unit d up to tfar, written in place: built on the stack and copied into
+/// the batch, the rays stalled the store buffer (narrow writes read back wide).
+void set_ray(RTCRay& r, Vec3 o, Vec3 d, float tfar) {
   r.org_x = static_cast<float>(o.x);
   r.org_y = static_cast<float>(o.y);
   r.org_z = static_cast<float>(o.z);
@@ -33,23 +34,29 @@ RTCRay make_ray(Vec3 o, Vec3 d, float tfar) {
   r.tnear = 0.0f;
   r.tfar = tfar;
   r.mask = 0xFFFFFFFFu;
-  return r;
+  r.time = 0.0f;
+  r.id = 0;
+  r.flags = 0;
 }
 
-RTCRayHit make_hit_ray(Vec3 o, Vec3 d, float tfar) {
-  RTCRayHit h{};
-  h.ray = make_ray(o, d, tfar);
+/// The same for a ray whose hit is wanted.
+void set_hit_ray(RTCRayHit& h, Vec3 o, Vec3 d, float tfar) {
+  set_ray(h.ray, o, d, tfar);
   h.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   h.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  return h;
 }
 
-void occluded(const SceneData& d, std::vector<RTCRay>& rays) {
+/// Occlusion of a batch; `coherent`: rays of nearly one direction from nearby points (Embree
+/// then traces them as packets).
+void occluded(const SceneData& d, std::vector<RTCRay>& rays, bool coherent = false) {
   if (rays.empty()) {
     return;
   }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
+  if (coherent) {
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  }
   rtcOccluded1M(d.top, &context, rays.data(), static_cast<unsigned>(rays.size()), sizeof(RTCRay));
 }
 
@@ -148,13 +155,13 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
   const Lighting& l = *c.lighting;
   const SurfacePoint& sp = t.surface[k];
   const uint64_t key = pixel_key(p.settings->frame_seed, t.pixel[k], 0x5eed);
-  auto shadow = [&](RTCRay r, int kind) {
-    s.rays.push_back(r);
+  auto shadow = [&](Vec3 o, Vec3 d, float tfar, int kind) {
+    set_ray(s.rays.emplace_back(), o, d, tfar);
     s.ray_owner.push_back(k);
     s.ray_kind.push_back(kind);
   };
-  auto probe = [&](RTCRayHit r, int kind) {
-    s.hits.push_back(r);
+  auto probe = [&](Vec3 o, Vec3 d, float tfar, int kind) {
+    set_hit_ray(s.hits.emplace_back(), o, d, tfar);
     s.hit_owner.push_back(k);
     s.hit_kind.push_back(kind);
   };
@@ -165,7 +172,7 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
       r2_point(j, r1, r2, u1, u2);
       const Vec3 d = q.soft_sun ? cone_direction(l.sun_direction, l.sun_angular_radius, u1, u2)
                                 : l.sun_direction;
-      shadow(make_ray(offset(sp, d), d, kInfinity), kSun);
+      shadow(offset(sp, d), d, kInfinity, kSun);
       ++t.sun_rays[k];
     }
   }
@@ -196,7 +203,7 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
       if (dist - clear <= 0.01) {
         continue;
       }
-      shadow(make_ray(o, to * (1.0 / dist), static_cast<float>(dist - clear)), kLight);
+      shadow(o, to * (1.0 / dist), static_cast<float>(dist - clear), kLight);
       ++t.light_rays[k];
     }
   }
@@ -205,17 +212,17 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
     double u1 = 0.0, u2 = 0.0;
     r2_point(j, r1, r2, u1, u2);
     const Vec3 d = cosine_direction(sp.normal, u1, u2);
-    probe(make_hit_ray(offset(sp, d), d, static_cast<float>(kSkyRayLength)), kSky);
+    probe(offset(sp, d), d, static_cast<float>(kSkyRayLength), kSky);
     ++t.sky_rays[k];
   }
   if (sp.mirror) {
     const Vec3 r = reflect(sp.view_dir, sp.normal);
-    probe(make_hit_ray(offset(sp, r), r, kInfinity), kMirror);
+    probe(offset(sp, r), r, kInfinity, kMirror);
   }
   if (sp.transmission > 0.0 && p.shading->quality.transmission) {
     // Through thin glass without refraction; past a second pane of the same glass (the far
     // side of a car) once more.
-    probe(make_hit_ray(offset(sp, sp.view_dir), sp.view_dir, kInfinity), kGlass);
+    probe(offset(sp, sp.view_dir), sp.view_dir, kInfinity, kGlass);
   }
 }
 
@@ -223,7 +230,8 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
 /// rays.
 void trace_queued(const Pass& p, TileState& t, TileScratch& s) {
   const SceneData& d = *p.scene;
-  occluded(d, s.rays);
+  // A tile's sun rays are nearly parallel and start side by side; lamp rays are not.
+  occluded(d, s.rays, std::find(s.ray_kind.begin(), s.ray_kind.end(), kLight) == s.ray_kind.end());
   intersect(d, s.hits);
   for (size_t i = 0; i < s.rays.size(); ++i) {
     const bool free = s.rays[i].tfar >= 0.0f;  // Embree sets -inf when occluded
@@ -250,7 +258,7 @@ void find_secondary(const Pass& p, const TileState& t, TileScratch& s) {
       if (h.hit.geomID != RTC_INVALID_GEOMETRY_ID && c.quality.bounce_shadow) {
         const Vec3 o = Vec3{h.ray.org_x, h.ray.org_y, h.ray.org_z} +
                        Vec3{h.ray.dir_x, h.ray.dir_y, h.ray.dir_z} * (h.ray.tfar * 0.999);
-        s.second.push_back(make_ray(o, l.sun_direction, kInfinity));
+        set_ray(s.second.emplace_back(), o, l.sun_direction, kInfinity);
         s.second_owner.push_back(static_cast<int>(i));
       }
       continue;
@@ -258,15 +266,14 @@ void find_secondary(const Pass& p, const TileState& t, TileScratch& s) {
     std::optional<SurfacePoint>& found = s.found[i];
     found = secondary_surface(p, h, t.surface[k].distance);
     if (found && s.hit_kind[i] == kGlass && found->transmission > 0.0) {
-      RTCRayHit again = make_hit_ray(offset(*found, found->view_dir), found->view_dir, kInfinity);
+      set_hit_ray(h, offset(*found, found->view_dir), found->view_dir, kInfinity);
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
-      rtcIntersect1(d.top, &context, &again);
-      h = again;
+      rtcIntersect1(d.top, &context, &h);
       found = secondary_surface(p, h, found->distance);
     }
     if (found && shadows && dot(found->normal, l.sun_direction) > 0.0 && luminance(l.sun) > 0.0) {
-      s.second.push_back(make_ray(offset(*found, l.sun_direction), l.sun_direction, kInfinity));
+      set_ray(s.second.emplace_back(), offset(*found, l.sun_direction), l.sun_direction, kInfinity);
       s.second_owner.push_back(static_cast<int>(i));
     }
   }
