@@ -6,6 +6,7 @@
 // average, never an aliased sample. Built once from fixed seeds (the same bytes everywhere).
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -47,13 +48,20 @@ class NoiseTile {
   NoiseTile();
   struct Level {
     int size = 0;
-    std::vector<float> texels;  ///< 4 floats per texel, row-major
+    std::vector<float> texels;  ///< 4 planes (channels) of size x size texels, row-major
   };
   /// The four texels around (x, y) (full-size texel units) on a level and the weights between
   /// them.
   struct Footprint {
-    const float* texel[4];  ///< (x0, y0), (x1, y0), (x0, y1), (x1, y1)
+    const float* texel[4];  ///< channel 0 of (x0, y0), (x1, y0), (x0, y1), (x1, y1)
+    size_t plane = 0;       ///< from one channel to the next
     float ax = 0.0f, ay = 0.0f;
+    float lerp(int k) const {
+      const size_t o = static_cast<size_t>(k) * plane;
+      const float top = texel[0][o] + (texel[1][o] - texel[0][o]) * ax;
+      const float bottom = texel[2][o] + (texel[3][o] - texel[2][o]) * ax;
+      return top + (bottom - top) * ay;
+    }
   };
   Footprint footprint(const Level& level, double x, double y) const;
   std::array<float, 4> bilinear(const Level& level, double x, double y) const;
