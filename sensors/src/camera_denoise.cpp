@@ -101,6 +101,11 @@ void filter_visibility(const Pass& p) {
   tmp.resize(vis.size());
   filter_step(p, vis, tmp, 1, true);
   filter_step(p, tmp, vis, 2, false);
+  if (p.shading->quality.sky_rays == 1) {
+    // One sky ray a pixel: a third, wider step for the sky and lamp visibility.
+    filter_step(p, vis, tmp, 4, false);
+    vis.swap(tmp);
+  }
 }
 
 }  // namespace corsa::sensors::detail

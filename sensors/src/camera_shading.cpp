@@ -166,7 +166,7 @@ QualitySettings quality_settings(RenderQuality q) {
       return s;
     case RenderQuality::kDefault:
       s.soft_sun = true;
-      s.sky_rays = 2;
+      s.sky_rays = 1;
       s.light_rays = 1;
       s.reflections = true;
       s.transmission = true;
