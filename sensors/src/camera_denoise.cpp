@@ -2,8 +2,9 @@
 // over neighbours that lie on the same surface (the same plane within a few centimetres and the
 // same orientation): an edge-avoiding a-trous filter (Dammertz, Sewtz, Hanika and Lensch,
 // "Edge-Avoiding A-Trous Wavelet Transform for fast Global Illumination Filtering", HPG 2010)
-// with a 3x3 B-spline kernel, steps 1 and 2 for sky and light visibility, step 1 for the sun
-// (whose penumbrae are narrow). Only visibilities are filtered, never textures.
+// with a 3x3 B-spline kernel, steps 1 and 2 for sky and light visibility (and 4 as well when a
+// pixel has a single sky ray), step 1 for the sun (whose penumbrae are narrow). Only
+// visibilities are filtered, never textures.
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

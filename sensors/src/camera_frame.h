@@ -41,9 +41,9 @@ struct PixelGeometry {
 
 /// The light of the centre sample of a pixel, as the later stages need it.
 struct PixelRecord {
-  ShadeTerms terms;         ///< (double colours: the terms are read once per pixel and sample)
-  Color3f mirrored;         ///< radiance from the mirror direction (mirror surfaces)
-  Color3f behind;           ///< radiance through glass
+  ShadeTerms terms;  ///< (double colours: the terms are read once per pixel and sample)
+  Color3f mirrored;  ///< radiance from the mirror direction (mirror surfaces)
+  Color3f behind;    ///< radiance through glass
   bool has_mirrored = false;
   bool has_behind = false;
 };
@@ -75,7 +75,7 @@ struct Pass {
   std::vector<PixelVisibility>* visibility = nullptr;
   std::vector<float>* motion_vectors = nullptr;  ///< pixels over 2 kMotionHalf seconds
   std::vector<PixelVisibility>* visibility_scratch = nullptr;  ///< the filter's other buffer
-  std::vector<uint8_t>* edges = nullptr;                      ///< anti-aliasing marks
+  std::vector<uint8_t>* edges = nullptr;                       ///< anti-aliasing marks
   int width = 0;
   int height = 0;
 };
@@ -118,7 +118,7 @@ struct TileScratch {
   std::vector<float> weights;
   std::vector<std::optional<SurfacePoint>> found;  ///< per hit: the surface a mirror or glass
                                                    ///< ray found
-  std::vector<int> sun_seen;  ///< per hit: -1 no shadow ray, 0 shadowed, 1 lit
+  std::vector<int> sun_seen;                       ///< per hit: -1 no shadow ray, 0 shadowed, 1 lit
 
   void clear() {
     rays.clear();

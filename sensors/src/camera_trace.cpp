@@ -369,8 +369,7 @@ void store_motion(const Pass& p, size_t px, Vec3 p_world, int pool) {
 
 /// The primary rays of the 4x4 tile at (col0, row0) as one packet (pixels outside the image
 /// masked off): from the camera, past the carrying vehicle.
-void primary_packet(const Pass& p, int col0, int row0, TileState& t, RTCRayHit16& rh,
-                    int* valid) {
+void primary_packet(const Pass& p, int col0, int row0, TileState& t, RTCRayHit16& rh, int* valid) {
   for (int k = 0; k < 16; ++k) {
     const int col = col0 + k % kTile;
     const int row = row0 + k / kTile;
@@ -439,7 +438,8 @@ SurfaceHit primary_hit(const Pass& p, const RTCRayHit16& rh, int k, Vec3 dir,
   sh.view_dir = dir;
   sh.distance = rh.ray.tfar[k];
   sh.position = p.origin_local + dir * sh.distance;
-  const Vec3 n = p.scene->world_normal(sh.inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
+  const Vec3 n =
+      p.scene->world_normal(sh.inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
   sh.normal = dot(n, dir) > 0.0 ? -n : n;
   sh.semantic = label.semantic;
   sh.entity = label.entity;

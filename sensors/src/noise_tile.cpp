@@ -123,8 +123,9 @@ NoiseTile::Footprint NoiseTile::footprint(const Level& level, double x, double y
   constexpr double kExact = 4503599627370496.0;  // 2^52
   auto wrap = [n](double f) {
     const double period = static_cast<double>(n);
-    const auto i = std::fabs(f) < kExact ? static_cast<int64_t>(f)
-                                         : static_cast<int64_t>(f - period * std::floor(f / period));
+    const auto i = std::fabs(f) < kExact
+                       ? static_cast<int64_t>(f)
+                       : static_cast<int64_t>(f - period * std::floor(f / period));
     return static_cast<int>(i & (n - 1));
   };
   const int x0 = wrap(fx);
