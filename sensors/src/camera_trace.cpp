@@ -46,17 +46,12 @@ void set_hit_ray(RTCRayHit& h, Vec3 o, Vec3 d, float tfar) {
   h.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
-/// Occlusion of a batch; `coherent`: rays of nearly one direction from nearby points (Embree
-/// then traces them as packets).
-void occluded(const SceneData& d, std::vector<RTCRay>& rays, bool coherent = false) {
+void occluded(const SceneData& d, std::vector<RTCRay>& rays) {
   if (rays.empty()) {
     return;
   }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  if (coherent) {
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  }
   rtcOccluded1M(d.top, &context, rays.data(), static_cast<unsigned>(rays.size()), sizeof(RTCRay));
 }
 
@@ -230,8 +225,7 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
 /// rays.
 void trace_queued(const Pass& p, TileState& t, TileScratch& s) {
   const SceneData& d = *p.scene;
-  // A tile's sun rays are nearly parallel and start side by side; lamp rays are not.
-  occluded(d, s.rays, std::find(s.ray_kind.begin(), s.ray_kind.end(), kLight) == s.ray_kind.end());
+  occluded(d, s.rays);
   intersect(d, s.hits);
   for (size_t i = 0; i < s.rays.size(); ++i) {
     const bool free = s.rays[i].tfar >= 0.0f;  // Embree sets -inf when occluded
