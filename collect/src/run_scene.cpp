@@ -56,7 +56,7 @@ sensors::Vec3 map_centre(const xodr::Map* map) {
 
 std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simulation,
                                                 const std::vector<ModelSpec>& models,
-                                                Diagnostics& diagnostics) {
+                                                bool generate_buildings, Diagnostics& diagnostics) {
   const xodr::Map* map = simulation.map();
   auto scene = std::make_unique<sensors::Scene>(
       sensors::SceneOptions{map_centre(map), simulation.options().seed});
@@ -85,9 +85,11 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
   }
   scene->commit();
   if (map != nullptr) {
-    // Ground, vegetation, street lights, signals and objects; plants keep clear of the models.
+    // Ground, vegetation, street lights, signals, objects, rails and generated buildings; plants
+    // and generated buildings keep clear of the models.
     sensors::WorldOptions world;
     world.seed = simulation.options().seed;
+    world.buildings = generate_buildings;
     sensors::build_world(*map, *scene, world, diagnostics);
     scene->commit();
   }

@@ -244,6 +244,7 @@ SensorRig parse_rig(std::string_view xml, const std::string& file) {
   rig.name = *root.find("name");
   rig.file = file;
   rig.quality = quality_of(*root.find("quality"));
+  rig.generate_buildings = *root.find("buildings") == "generate";
   std::set<std::string> names;
   RigBudget budget(file);
   for (const auto& e : root.children) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "corsa/core/strings.h"
 #include "world_build.h"
 
 namespace corsa::sensors {
@@ -15,6 +16,54 @@ int64_t cell_key(double x, double y) {
 }
 
 }  // namespace
+
+Edge edge_at(const xodr::Map& map, size_t road, double s, int side,
+             std::vector<xodr::LaneSpan>& spans) {
+  map.lane_spans(road, s, spans);
+  Edge e;
+  const size_t section = map.section_index(road, s);
+  const auto& lanes = map.road(road).lane_sections[section].lanes;
+  const xodr::LaneSpan* outer = nullptr;
+  for (const auto& span : spans) {
+    if ((side > 0 && span.id > 0) || (side < 0 && span.id < 0)) {
+      if (outer == nullptr || std::abs(span.id) > std::abs(outer->id)) {
+        outer = &span;
+      }
+    }
+  }
+  if (outer == nullptr) {
+    return e;
+  }
+  e.valid = true;
+  e.t_outer = outer->t_outer;
+  for (const auto& lane : lanes) {
+    if (lane.id == outer->id) {
+      e.sidewalk = lane.type == xodr::LaneType::kSidewalk || lane.type == xodr::LaneType::kWalking;
+    }
+  }
+  e.kerb = outer->t_inner;
+  return e;
+}
+
+bool next_to_junction(const xodr::Map& map, size_t road, double s, double margin) {
+  const xodr::Road& r = map.road(road);
+  return (s < margin && r.predecessor.element_type == xodr::LinkElement::kJunction) ||
+         (s > r.length - margin && r.successor.element_type == xodr::LinkElement::kJunction);
+}
+
+bool motorway_at(const xodr::Road& road, double s) {
+  const xodr::RoadType* type = nullptr;
+  for (const auto& t : road.types) {
+    if (t.s <= s + 1e-9) {
+      type = &t;
+    }
+  }
+  if (type == nullptr) {
+    return false;
+  }
+  return to_lower(type->type) == "motorway" ||
+         (type->max_speed && *type->max_speed >= 80.0 / 3.6 - 1e-6);
+}
 
 uint32_t WorldBuild::place(const ArticulatedMesh& mesh, const Rigid& pose, const std::string& name,
                            const ObjectInfo& info, const std::string& signal_id) {
@@ -71,6 +120,14 @@ WorldReport build_world(const xodr::Map& map, Scene& scene, const WorldOptions& 
   }
   if (options.objects) {
     detail::build_objects(w);
+  }
+  if (options.guard_rails) {
+    detail::build_rails(w);
+  }
+  if (options.buildings) {
+    // Plants and street lights keep clear of buildings found by rays: commit them first.
+    detail::build_buildings(w);
+    scene.commit();
   }
   if (options.vegetation || options.street_lights) {
     detail::build_roadside(w);

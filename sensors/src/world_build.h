@@ -13,6 +13,23 @@
 
 namespace corsa::sensors::detail {
 
+/// The outermost lane span on one side of a road (+1 left, -1 right) at s: its outer border,
+/// its inner border (`kerb`, the border towards the road when it is a sidewalk) and whether it
+/// is a sidewalk or walkway. `valid` is false when the side has no lane there.
+struct Edge {
+  double t_outer = 0.0;
+  double kerb = 0.0;
+  bool sidewalk = false;
+  bool valid = false;
+};
+/// `spans` is scratch space kept between calls.
+Edge edge_at(const xodr::Map& map, size_t road, double s, int side,
+             std::vector<xodr::LaneSpan>& spans);
+/// True within `margin` metres of a road end that meets a junction.
+bool next_to_junction(const xodr::Map& map, size_t road, double s, double margin);
+/// True when the road's type at s is a motorway, or its speed limit there is 80 km/h or more.
+bool motorway_at(const xodr::Road& road, double s);
+
 struct WorldBuild {
   const xodr::Map& map;
   Scene& scene;
@@ -42,5 +59,9 @@ void build_roadside(WorldBuild& w);
 void build_signals(WorldBuild& w);
 /// OpenDRIVE objects.
 void build_objects(WorldBuild& w);
+/// Guard rails and right-of-way fences along the outer edges of motorways.
+void build_rails(WorldBuild& w);
+/// Generated buildings along streets, where no building stands.
+void build_buildings(WorldBuild& w);
 
 }  // namespace corsa::sensors::detail

@@ -15,49 +15,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-/// The outermost lane span on one side (+1 left, -1 right) at s, and whether it is a sidewalk
-/// (then `kerb` is its border towards the road).
-struct Edge {
-  double t_outer = 0.0;
-  double kerb = 0.0;
-  bool sidewalk = false;
-  bool valid = false;
-};
-
-Edge edge_at(const xodr::Map& map, size_t road, double s, int side,
-             std::vector<xodr::LaneSpan>& spans) {
-  map.lane_spans(road, s, spans);
-  Edge e;
-  const size_t section = map.section_index(road, s);
-  const auto& lanes = map.road(road).lane_sections[section].lanes;
-  const xodr::LaneSpan* outer = nullptr;
-  for (const auto& span : spans) {
-    if ((side > 0 && span.id > 0) || (side < 0 && span.id < 0)) {
-      if (outer == nullptr || std::abs(span.id) > std::abs(outer->id)) {
-        outer = &span;
-      }
-    }
-  }
-  if (outer == nullptr) {
-    return e;
-  }
-  e.valid = true;
-  e.t_outer = outer->t_outer;
-  for (const auto& lane : lanes) {
-    if (lane.id == outer->id) {
-      e.sidewalk = lane.type == xodr::LaneType::kSidewalk || lane.type == xodr::LaneType::kWalking;
-    }
-  }
-  e.kerb = outer->t_inner;
-  return e;
-}
-
-bool next_to_junction(const xodr::Map& map, size_t road, double s, double margin) {
-  const xodr::Road& r = map.road(road);
-  return (s < margin && r.predecessor.element_type == xodr::LinkElement::kJunction) ||
-         (s > r.length - margin && r.successor.element_type == xodr::LinkElement::kJunction);
-}
-
 }  // namespace
 
 void build_roadside(WorldBuild& w) {

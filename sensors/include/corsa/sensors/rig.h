@@ -121,6 +121,9 @@ struct SensorSpec {
 struct SensorRig {
   std::string name;
   RenderQuality quality = RenderQuality::kDefault;  ///< for RGB cameras that name none
+  /// buildings="generate": the world gets generated buildings along its streets where none
+  /// stands (WorldOptions::buildings).
+  bool generate_buildings = false;
   std::string file;                                 ///< as named by the user, for messages
   std::vector<SensorSpec> sensors;
 

@@ -3,8 +3,9 @@
 // The world beyond the road surface, built from an OpenDRIVE map and a seed: ground to the
 // horizon (terrain under and around the roads), roadside vegetation and street lights placed
 // deterministically along the roads, OpenDRIVE signals drawn as traffic lights and signs (their
-// bulbs follow the scenario's signal states), and OpenDRIVE objects (crosswalks, stop lines,
-// poles, trees, barriers, buildings, parking spaces; outlines and repeats).
+// bulbs follow the scenario's signal states), OpenDRIVE objects (crosswalks, stop lines,
+// poles, trees, barriers, buildings, parking spaces; outlines and repeats), guard rails and
+// fences along motorways, and, when asked, generated buildings along the streets.
 
 #include <cstddef>
 #include <cstdint>
@@ -22,6 +23,13 @@ struct WorldOptions {
   bool street_lights = true;   ///< street lights along roads with sidewalks
   bool signals = true;         ///< OpenDRIVE <signal>s
   bool objects = true;         ///< OpenDRIVE <object>s
+  /// Guard rails at the outer edge of motorways (roads typed motorway or limited to 80 km/h or
+  /// more) and a right-of-way fence beyond, on sides without a sidewalk, where the map's own
+  /// objects bring no rail.
+  bool guard_rails = true;
+  /// Generated buildings along streets (not motorways), where no building stands: facades with
+  /// windows, doors and shop fronts, flat or pitched roofs; no two alike, drawn from the seed.
+  bool buildings = false;
   double tree_spacing = 14.0;  ///< m between plants along a road side (on average)
 };
 
@@ -34,6 +42,9 @@ struct WorldReport {
   size_t traffic_lights = 0;
   size_t signs = 0;
   size_t objects = 0;
+  size_t guard_rails = 0;  ///< generated rail pieces (at most 10 m each)
+  size_t fences = 0;       ///< generated fence pieces (at most 10 m each)
+  size_t buildings = 0;    ///< generated buildings
 };
 
 /// Adds the world to a scene holding the map's road mesh (and any models). The scene must be
