@@ -50,17 +50,16 @@ void motion_blur(std::vector<float>& linear, const std::vector<float>& motion, i
 
 namespace {
 
-double smoothstep(double e0, double e1, double x) {
-  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
 
 /// The auto-exposed camera gathers 64 times the light of the manual reference (ISO 100, 4 ms
 /// and the aperture of the sunny-16 rule): a fixed f/2 lens, as automotive cameras have.
 constexpr double kAutoAperture = 64.0;
 constexpr double kMinShutter = 1.0 / 20000.0;
 constexpr double kMaxShutter = 1.0 / 60.0;  // longer would smear the scene at driving speed
-constexpr double kMaxIso = 6400.0;
+/// Automotive and machine-vision sensors (small pixels) stop at about 24 dB of gain over their
+/// base sensitivity: 16 times ISO 100. Beyond it read noise buries the image, so at night the
+/// camera runs out of exposure and the scene stays dark, as a dash camera's does.
+constexpr double kMaxIso = 1600.0;
 
 /// ACES filmic tone curve, Narkowicz's fit of the RRT + ODT ("ACES Filmic Tone Mapping Curve",
 /// 2016): a toe, a linear middle and a soft shoulder into white.
@@ -107,6 +106,17 @@ double metered_luminance(const std::vector<float>& linear, int width, int height
 
 }  // namespace
 
+double exposure_key(double scene_cd_m2) {
+  // Down to dusk (30 cd/m^2 of log-average scene luminance) the camera adapts fully and gives
+  // the average the photographic 0.18. Below it adapts only partly: its exposure grows as the
+  // square root of the light lost, so a scene 100 times darker shows 10 times darker. Night
+  // photographs are exposed so (the exposure tables of ANSI PH2.7-1986 put street scenes at
+  // night at EV100 5-8, two to four stops short of full adaptation); this puts the demo street
+  // at 22:00, lit by street lamps (log average 0.4 cd/m^2), at EV100 5.3.
+  constexpr double kFullAdaptation = 30.0;  // cd/m^2
+  return std::clamp(0.18 * std::sqrt(std::max(scene_cd_m2, 0.0) / kFullAdaptation), 0.005, 0.18);
+}
+
 Exposure choose_exposure(const std::vector<float>& linear, int width, int height,
                          const RgbOptions& o) {
   Exposure e;
@@ -119,9 +129,7 @@ Exposure choose_exposure(const std::vector<float>& linear, int width, int height
     return e;
   }
   const double average = metered_luminance(linear, width, height);
-  // Reinhard's key: 0.18 for day scenes, lower for night ones, which should look dark.
-  const double night = 1.0 - smoothstep(-13.0, -7.0, std::log2(std::max(average, 1e-12)));
-  const double key = 0.18 - 0.11 * night;
+  const double key = exposure_key(average * kNitsPerUnit);
   const double wanted = key / std::max(average, 1e-12) * ev;
   // Exposure time first, then gain, within the camera's limits.
   const double per_second = kAutoAperture / 0.004;  // scale per second at ISO 100
@@ -221,7 +229,7 @@ std::vector<uint8_t> develop(const std::vector<float>& linear, int width, int he
   // Noise left in the camera's output after its own noise reduction, which works harder the
   // higher the gain: photon (shot) noise variance per unit signal and read noise standard
   // deviation both grow as the square root of the gain rather than with the gain itself, so that
-  // a night frame at ISO 6400 is grainy (13% at mid grey) but not buried in noise.
+  // a night frame at ISO 1600 is grainy but not buried in noise.
   const double gain = std::sqrt(exposure.iso / 100.0);
   const double shot = 0.0004 * gain;
   const double read = 0.0004 * gain;

@@ -133,6 +133,10 @@ struct Exposure {
   double shutter_s = 0.004;
   double iso = 100.0;
 };
+/// The display value (before the tone curve) auto exposure gives a scene's log-average
+/// luminance `scene_cd_m2` (cd/m^2): 0.18 from dusk (30 cd/m^2) up, falling below it as the
+/// square root of the luminance (0.02 at 0.4 cd/m^2, a street lit at night), at least 0.005.
+double exposure_key(double scene_cd_m2);
 Exposure choose_exposure(const std::vector<float>& linear, int width, int height,
                          const RgbOptions& options);
 

@@ -112,8 +112,10 @@ ArticulatedMesh make_street_light(double height, double reach) {
   b.tube({0, 0, height - 0.15}, {reach, 0, height + 0.1}, 0.045, 0.04, 8, true);
   b.material(dark_paint());
   b.box({reach - 0.3, -0.16, height}, {reach + 0.35, 0.16, height + 0.14});
-  // The lamp's diffuser faces down; it glows when it is dark.
-  b.material(materials::lamp("street lamp", linear_rgb(230, 225, 210), Color{8.0, 7.0, 5.0},
+  // The lamp's diffuser faces down; it glows when it is dark, as bright as its 3,000 cd
+  // (light_list.cpp) spread over its 0.13 m^2 make it: about 23,000 cd/m^2, 0.72 in the
+  // renderer's radiance unit (kNitsPerUnit), in a warm LED white.
+  b.material(materials::lamp("street lamp", linear_rgb(230, 225, 210), Color{0.8, 0.72, 0.55},
                              LightRole::kStreetLamp));
   b.box({reach - 0.25, -0.12, height - 0.02}, {reach + 0.3, 0.12, height});
   return b.take();
