@@ -221,3 +221,17 @@ TEST_CASE("a quality the rig does not know is an error at its line", "[sensors][
   const auto camera = failure(rig_with("<RgbCamera name=\"c\" entity=\"E\" quality=\"best\"/>"));
   CHECK(camera.line == 2);
 }
+
+TEST_CASE("the rig asks for generated buildings with buildings=\"generate\"",
+          "[sensors][rig][buildings]") {
+  CHECK_FALSE(parse_rig(rig_with("<RgbCamera name=\"c\" entity=\"E\"/>"), "rig.xml")
+                  .generate_buildings);
+  CHECK_FALSE(parse_rig("<SensorRig version=\"1\" buildings=\"none\"/>", "rig.xml")
+                  .generate_buildings);
+  CHECK(parse_rig("<SensorRig version=\"1\" buildings=\"generate\"/>", "rig.xml")
+            .generate_buildings);
+  const auto d = failure("<SensorRig version=\"1\"\n buildings=\"many\">\n</SensorRig>\n");
+  CHECK(d.line == 1);
+  CHECK(d.message ==
+        "attribute 'buildings' of <SensorRig> is 'many'; expected one of 'none', 'generate'");
+}
