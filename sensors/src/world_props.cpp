@@ -235,9 +235,10 @@ ArticulatedMesh make_rail(double length, bool fence) {
     }
   }
   if (fence) {
-    Material mesh_panel = materials::plain("fence panel", linear_rgb(90, 100, 92), 0.6);
+    // Galvanised wire mesh: seen from the road mostly the light wires against what is behind.
+    Material mesh_panel = materials::plain("fence panel", linear_rgb(168, 172, 166), 0.6);
     mesh_panel.pattern = Pattern::kMetalGrid;
-    mesh_panel.secondary = linear_rgb(40, 45, 40);
+    mesh_panel.secondary = linear_rgb(92, 98, 90);
     b.material(mesh_panel);
     b.box({0, -0.01, 0.05}, {length, 0.01, 1.75});
   } else {
