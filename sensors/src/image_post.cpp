@@ -50,7 +50,6 @@ void motion_blur(std::vector<float>& linear, const std::vector<float>& motion, i
 
 namespace {
 
-
 /// The auto-exposed camera gathers 64 times the light of the manual reference (ISO 100, 4 ms
 /// and the aperture of the sunny-16 rule): a fixed f/2 lens, as automotive cameras have.
 constexpr double kAutoAperture = 64.0;

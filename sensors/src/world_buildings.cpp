@@ -27,9 +27,7 @@ struct Lot {
   Vec3 a, b;
   Vec3 out;  ///< unit, horizontal, away from the road
   double depth = 0.0;
-  std::array<Vec3, 4> corners() const {
-    return {a, b, b + out * depth, a + out * depth};
-  }
+  std::array<Vec3, 4> corners() const { return {a, b, b + out * depth, a + out * depth}; }
 };
 
 /// Separating-axis test of two convex quads in plan, grown by `slack` metres.
@@ -74,14 +72,15 @@ Material facade_material(RandomStream& rng, double floor_h, double ground_h, uin
                                                                      {170, 180, 190},
                                                                      {212, 152, 122},
                                                                      {150, 160, 140}}};
-  const auto& w = kWalls[static_cast<size_t>(rng.uniform_int(0, static_cast<int64_t>(kWalls.size()) - 1))];
+  const auto& w =
+      kWalls[static_cast<size_t>(rng.uniform_int(0, static_cast<int64_t>(kWalls.size()) - 1))];
   Material m = materials::plain("generated facade", linear_rgb(w[0], w[1], w[2]), 0.85);
   m.base_color = jitter(rng, m.base_color, 0.08);
   m.pattern = Pattern::kFacade;
   m.pattern_scale = floor_h;
   m.params = {rng.uniform(2.3, 4.0), rng.uniform(0.35, 0.65), rng.uniform(0.38, 0.6), ground_h};
   const double trim = rng.uniform01();
-  m.secondary = trim < 0.4   ? linear_rgb(58, 56, 54)
+  m.secondary = trim < 0.4    ? linear_rgb(58, 56, 54)
                 : trim < 0.75 ? linear_rgb(218, 215, 208)
                               : linear_rgb(108, 78, 58);
   m.seed = seed;
@@ -94,7 +93,8 @@ Material door_material(RandomStream& rng, bool glazed) {
   }
   static constexpr std::array<std::array<uint8_t, 3>, 6> kDoors = {
       {{70, 45, 30}, {40, 70, 50}, {40, 55, 90}, {120, 30, 30}, {30, 30, 30}, {220, 220, 215}}};
-  const auto& d = kDoors[static_cast<size_t>(rng.uniform_int(0, static_cast<int64_t>(kDoors.size()) - 1))];
+  const auto& d =
+      kDoors[static_cast<size_t>(rng.uniform_int(0, static_cast<int64_t>(kDoors.size()) - 1))];
   return materials::plain("generated door", linear_rgb(d[0], d[1], d[2]), 0.5);
 }
 
@@ -110,15 +110,16 @@ void add_door(MeshBuilder& b, RandomStream& rng, double x, double width, double 
 }
 
 /// A pitched roof over [0, w] x [0, d dir] from the eaves at `eave` metres, ridge along x.
-void add_pitched_roof(MeshBuilder& b, RandomStream& rng, const Material& walls, double w,
-                      double d, double dir, double eave) {
+void add_pitched_roof(MeshBuilder& b, RandomStream& rng, const Material& walls, double w, double d,
+                      double dir, double eave) {
   const double rise = 0.5 * d * std::tan(rng.uniform(0.45, 0.7));
   const double o = 0.3;  // overhang of the eaves
   const double y0 = -o * dir, y1 = (d + o) * dir, ym = 0.5 * d * dir;
   const double drop = o * rise / (0.5 * d);
   static constexpr std::array<std::array<uint8_t, 3>, 4> kTiles = {
       {{150, 70, 48}, {84, 80, 80}, {110, 60, 44}, {60, 62, 66}}};
-  const auto& t = kTiles[static_cast<size_t>(rng.uniform_int(0, static_cast<int64_t>(kTiles.size()) - 1))];
+  const auto& t =
+      kTiles[static_cast<size_t>(rng.uniform_int(0, static_cast<int64_t>(kTiles.size()) - 1))];
   Material tiles = materials::plain("generated roof tiles", linear_rgb(t[0], t[1], t[2]), 0.75);
   tiles.pattern = Pattern::kPaving;
   tiles.pattern_scale = 0.4;
@@ -175,7 +176,8 @@ ArticulatedMesh make_building(RandomStream& rng, Kind kind, double w, double d, 
     if (shops && rng.uniform01() < 0.7) {
       static constexpr std::array<std::array<uint8_t, 3>, 4> kAwnings = {
           {{150, 30, 30}, {30, 80, 60}, {40, 50, 110}, {200, 160, 60}}};
-      const auto& a = kAwnings[static_cast<size_t>(rng.uniform_int(0, static_cast<int64_t>(kAwnings.size()) - 1))];
+      const auto& a = kAwnings[static_cast<size_t>(
+          rng.uniform_int(0, static_cast<int64_t>(kAwnings.size()) - 1))];
       b.material(materials::plain("generated awning", linear_rgb(a[0], a[1], a[2]), 0.9));
       const double reach = rng.uniform(0.9, 1.5);
       b.box({0.2, std::min(0.0, -reach * dir), ground_h - 0.85},
@@ -204,8 +206,8 @@ void build_buildings(WorldBuild& w) {
       continue;
     }
     for (int side : {1, -1}) {
-      RandomStream rng(derive_seed(w.options.seed,
-                                   "buildings " + road.id + (side > 0 ? " left" : " right")));
+      RandomStream rng(
+          derive_seed(w.options.seed, "buildings " + road.id + (side > 0 ? " left" : " right")));
       double s = rng.uniform(0.0, 4.0);
       while (s < road.length) {
         // Every draw of a lot is taken before any test, so one lot's fate never shifts the next.

@@ -32,8 +32,8 @@ bool has_own_rails(const xodr::Road& road) {
 }
 
 /// One piece from s0 to s1 at `offset` beyond the edge on `side`; false when it may not stand.
-bool place_piece(WorldBuild& w, size_t r, double s0, double s1, int side, double offset,
-                 bool fence, std::vector<xodr::LaneSpan>& spans) {
+bool place_piece(WorldBuild& w, size_t r, double s0, double s1, int side, double offset, bool fence,
+                 std::vector<xodr::LaneSpan>& spans) {
   const xodr::Map& map = w.map;
   const Edge e0 = edge_at(map, r, s0, side, spans);
   const Edge e1 = edge_at(map, r, s1, side, spans);
@@ -64,7 +64,8 @@ bool place_piece(WorldBuild& w, size_t r, double s0, double s1, int side, double
   const double sink = fence ? 0.15 : 0.0;
   ObjectInfo info;
   info.kind = fence ? "fence" : "guard_rail";
-  w.place(make_rail(length, fence), rigid_from_pose(from.x, from.y, from.z - sink, heading, pitch, 0),
+  w.place(make_rail(length, fence),
+          rigid_from_pose(from.x, from.y, from.z - sink, heading, pitch, 0),
           std::string(fence ? "fence " : "guard rail ") + map.road(r).id, info);
   // Plants keep clear of the line.
   for (double d = 0.0; d <= length; d += 2.5) {

@@ -224,12 +224,12 @@ TEST_CASE("a quality the rig does not know is an error at its line", "[sensors][
 
 TEST_CASE("the rig asks for generated buildings with buildings=\"generate\"",
           "[sensors][rig][buildings]") {
-  CHECK_FALSE(parse_rig(rig_with("<RgbCamera name=\"c\" entity=\"E\"/>"), "rig.xml")
-                  .generate_buildings);
-  CHECK_FALSE(parse_rig("<SensorRig version=\"1\" buildings=\"none\"/>", "rig.xml")
-                  .generate_buildings);
-  CHECK(parse_rig("<SensorRig version=\"1\" buildings=\"generate\"/>", "rig.xml")
-            .generate_buildings);
+  CHECK_FALSE(
+      parse_rig(rig_with("<RgbCamera name=\"c\" entity=\"E\"/>"), "rig.xml").generate_buildings);
+  CHECK_FALSE(
+      parse_rig("<SensorRig version=\"1\" buildings=\"none\"/>", "rig.xml").generate_buildings);
+  CHECK(
+      parse_rig("<SensorRig version=\"1\" buildings=\"generate\"/>", "rig.xml").generate_buildings);
   const auto d = failure("<SensorRig version=\"1\"\n buildings=\"many\">\n</SensorRig>\n");
   CHECK(d.line == 1);
   CHECK(d.message ==

@@ -31,9 +31,8 @@ struct Built {
 
 std::unique_ptr<Built> build(const corsa::xodr::Map& map, bool buildings, uint64_t seed = 3) {
   const auto& h = map.data().header;
-  auto out = std::make_unique<Built>(
-      Built{Scene(SceneOptions{{0.5 * (h.east + h.west), 0.5 * (h.north + h.south), 0.0}, seed}),
-            {}});
+  auto out = std::make_unique<Built>(Built{
+      Scene(SceneOptions{{0.5 * (h.east + h.west), 0.5 * (h.north + h.south), 0.0}, seed}), {}});
   out->scene.add_road_mesh(corsa::xodr::build_road_mesh(map));
   out->scene.commit();
   corsa::Diagnostics quiet;
@@ -135,8 +134,8 @@ TEST_CASE("motorways get guard rails and fences at their outer edges, town stree
   size_t road = town04.road_count();
   for (size_t r = 0; r < town04.road_count(); ++r) {
     const auto& rd = town04.road(r);
-    if (!rd.in_junction() && rd.length > 150.0 && !rd.types.empty() &&
-        rd.types.front().max_speed && *rd.types.front().max_speed > 29.0) {
+    if (!rd.in_junction() && rd.length > 150.0 && !rd.types.empty() && rd.types.front().max_speed &&
+        *rd.types.front().max_speed > 29.0) {
       road = r;
       break;
     }

@@ -124,7 +124,7 @@ struct SensorRig {
   /// buildings="generate": the world gets generated buildings along its streets where none
   /// stands (WorldOptions::buildings).
   bool generate_buildings = false;
-  std::string file;                                 ///< as named by the user, for messages
+  std::string file;  ///< as named by the user, for messages
   std::vector<SensorSpec> sensors;
 
   const SensorSpec* find(std::string_view sensor_name) const;

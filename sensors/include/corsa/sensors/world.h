@@ -17,12 +17,12 @@
 namespace corsa::sensors {
 
 struct WorldOptions {
-  uint64_t seed = 0;           ///< run seed: where plants stand, which species, sizes
-  bool ground = true;          ///< terrain around the roads, out to the horizon
-  bool vegetation = true;      ///< trees and bushes beside the roads
-  bool street_lights = true;   ///< street lights along roads with sidewalks
-  bool signals = true;         ///< OpenDRIVE <signal>s
-  bool objects = true;         ///< OpenDRIVE <object>s
+  uint64_t seed = 0;          ///< run seed: where plants stand, which species, sizes
+  bool ground = true;         ///< terrain around the roads, out to the horizon
+  bool vegetation = true;     ///< trees and bushes beside the roads
+  bool street_lights = true;  ///< street lights along roads with sidewalks
+  bool signals = true;        ///< OpenDRIVE <signal>s
+  bool objects = true;        ///< OpenDRIVE <object>s
   /// Guard rails at the outer edge of motorways (roads typed motorway or limited to 80 km/h or
   /// more) and a right-of-way fence beyond, on sides without a sidewalk, where the map's own
   /// objects bring no rail.
