@@ -164,7 +164,7 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   }
   if (shading.quality.bloom) {
     // Only light far beyond white glares: lamps, bulbs and the sun, not a lit window.
-    detail::bloom(linear, w, h, 16.0 / exposure.scale);
+    detail::bloom(linear, w, h, 64.0 / exposure.scale);  // a lit window at night stays below
   }
   // OpenSCENARIO's wind direction is where it blows to; the image's right is the optical x axis.
   const Lighting& light = *settings.lighting;
