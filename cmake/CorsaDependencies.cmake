@@ -8,6 +8,19 @@ function(corsa_require found what package)
   endif()
 endfunction()
 
+# A Python module the interpreter must import at run time (not built against): checked here so
+# that a missing package is named before anything is built.
+function(corsa_require_python_module module package)
+  execute_process(COMMAND ${Python3_EXECUTABLE} -c "import ${module}"
+                  RESULT_VARIABLE corsa_import_failed OUTPUT_QUIET ERROR_QUIET)
+  if(corsa_import_failed)
+    set(corsa_python_module_found FALSE)
+  else()
+    set(corsa_python_module_found TRUE)
+  endif()
+  corsa_require(corsa_python_module_found "${module} for ${Python3_EXECUTABLE}" ${package})
+endfunction()
+
 find_package(Threads REQUIRED)
 
 find_package(tinyxml2 CONFIG QUIET)
@@ -30,9 +43,6 @@ corsa_require(PROJ_FOUND "PROJ" libproj-dev)
 
 find_package(TBB CONFIG QUIET)
 corsa_require(TBB_FOUND "oneTBB" libtbb-dev)
-
-find_package(nlohmann_json 3 CONFIG QUIET)
-corsa_require(nlohmann_json_FOUND "nlohmann-json" nlohmann-json3-dev)
 
 # shapelib ships only a pkg-config file on Debian.
 find_path(SHAPELIB_INCLUDE_DIR shapefil.h)
@@ -85,25 +95,10 @@ if(CORSA_BUILD_PYTHON)
   corsa_require(Python3_Development.Module_FOUND "the Python 3 headers" python3-dev)
   find_package(pybind11 CONFIG QUIET)
   corsa_require(pybind11_FOUND "pybind11" pybind11-dev)
-  # numpy is imported by the module at run time (states(), sensor frames, datasets), not built
-  # against; checked here so that a missing package is named before anything is built.
-  execute_process(COMMAND ${Python3_EXECUTABLE} -c "import numpy"
-                  RESULT_VARIABLE corsa_numpy_missing OUTPUT_QUIET ERROR_QUIET)
-  if(corsa_numpy_missing)
-    set(CORSA_NUMPY_FOUND FALSE)
-  else()
-    set(CORSA_NUMPY_FOUND TRUE)
-  endif()
-  corsa_require(CORSA_NUMPY_FOUND "numpy for ${Python3_EXECUTABLE}" python3-numpy)
+  # The module imports numpy at run time (states(), sensor frames, datasets).
+  corsa_require_python_module(numpy python3-numpy)
   if(CORSA_BUILD_TESTS)
-    execute_process(COMMAND ${Python3_EXECUTABLE} -c "import pytest"
-                    RESULT_VARIABLE corsa_pytest_missing OUTPUT_QUIET ERROR_QUIET)
-    if(corsa_pytest_missing)
-      set(CORSA_PYTEST_FOUND FALSE)
-    else()
-      set(CORSA_PYTEST_FOUND TRUE)
-    endif()
-    corsa_require(CORSA_PYTEST_FOUND "pytest for ${Python3_EXECUTABLE}" python3-pytest)
+    corsa_require_python_module(pytest python3-pytest)
   endif()
 endif()
 
