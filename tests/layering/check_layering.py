@@ -4,7 +4,7 @@
 Every module is a top-level folder with `include/corsa/<module>/` (public) and `src/` (private).
 A module may include and link only itself and the modules below it:
 
-    core <- xodr <- {ngii, render, xosc};  xosc <- engine <- sensors <- collect;
+    core <- xodr <- {ngii, render, engine};  core <- xosc <- engine <- sensors <- collect;
     core <- geo <- sensors;  engine <- sweep <- suite;  apps (the `corsa` command line) and python
     may use every module.
 
@@ -39,8 +39,8 @@ MODULES: dict[str, tuple[str, list[str] | None]] = {
     "xodr": ("xodr", ["core"]),
     "ngii": ("ngii", ["xodr"]),
     "render": ("render", ["xodr"]),
-    "xosc": ("xosc", ["xodr"]),
-    "engine": ("engine", ["xosc"]),
+    "xosc": ("xosc", ["core"]),
+    "engine": ("engine", ["xodr", "xosc"]),
     "sensors": ("sensors", ["engine", "geo"]),
     "collect": ("collect", ["sensors"]),
     "sweep": ("sweep", ["engine"]),
