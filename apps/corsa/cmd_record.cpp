@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "actions.h"
 #include "args.h"
 #include "commands.h"
 #include "corsa/core/strings.h"
@@ -52,33 +53,20 @@ int record_info(std::span<const std::string> args) {
   return kExitOk;
 }
 
-void print_help(std::ostream& out) {
-  out << "usage: corsa record ACTION RUN.corsatraj [options]\n\n"
-         "Binary trajectories (corsa run --record FILE.corsatraj; docs/trajectory-format.md).\n\n"
-         "actions:\n"
-         "  export  the trajectory CSV of the run, byte for byte (-o OUT.csv)\n"
-         "  info    step, recorded ticks, entities and roads of the file\n\n"
-         "  corsa record ACTION --help   options of one action\n";
-}
+constexpr Action kActions[] = {
+    {"export", "the trajectory CSV of the run, byte for byte (-o OUT.csv)", record_export},
+    {"info", "step, recorded ticks, entities and roads of the file", record_info},
+};
 
 }  // namespace
 
 int command_record(std::span<const std::string> args) {
-  if (args.empty()) {
-    print_help(std::cerr);
-    return kExitBadInput;
-  }
-  if (args[0] == "--help" || args[0] == "-h") {
-    print_help(std::cout);
-    return kExitOk;
-  }
-  if (args[0] == "export") {
-    return record_export(args.subspan(1));
-  }
-  if (args[0] == "info") {
-    return record_info(args.subspan(1));
-  }
-  throw UsageError("unknown record action '" + args[0] + "' (export, info)");
+  return run_action({.command = "record",
+                     .synopsis = "ACTION RUN.corsatraj [options]",
+                     .description = "Binary trajectories (corsa run --record FILE.corsatraj; "
+                                    "docs/trajectory-format.md).",
+                     .actions = kActions},
+                    args);
 }
 
 }  // namespace corsa::cli
