@@ -39,6 +39,19 @@ std::vector<std::string> ParsedArgs::values(const std::string& name) const {
   return all;
 }
 
+std::vector<std::pair<std::string, std::string>> ParsedArgs::assignments(
+    const std::string& name) const {
+  std::vector<std::pair<std::string, std::string>> all;
+  for (const std::string& assignment : values(name)) {
+    const size_t eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw UsageError(name + " expects NAME=VALUE, got '" + assignment + "'");
+    }
+    all.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
+  }
+  return all;
+}
+
 std::optional<double> ParsedArgs::number(const std::string& name) const {
   const auto text = value(name);
   if (!text) {

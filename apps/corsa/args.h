@@ -5,6 +5,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace corsa::cli {
@@ -27,6 +28,9 @@ class ParsedArgs {
   std::string value_or(const std::string& name, const std::string& fallback) const;
   /// Every value of a repeatable option, in command-line order.
   std::vector<std::string> values(const std::string& name) const;
+  /// Every value of a repeatable NAME=VALUE option (--param), split at the first '=', in
+  /// command-line order; throws UsageError naming the option for a value without a NAME=.
+  std::vector<std::pair<std::string, std::string>> assignments(const std::string& name) const;
   /// A numeric option; throws UsageError naming the option when the text is not a number.
   std::optional<double> number(const std::string& name) const;
   std::optional<long long> integer(const std::string& name) const;

@@ -121,13 +121,7 @@ int command_validate(std::span<const std::string> args) {
   }
   xosc::LoadOptions options;
   options.strict = parsed.flag("--strict");
-  for (const auto& assignment : parsed.values("--param")) {
-    const size_t eq = assignment.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      throw UsageError("--param expects NAME=VALUE, got '" + assignment + "'");
-    }
-    options.parameters.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
-  }
+  options.parameters = parsed.assignments("--param");
   std::vector<FileReport> reports;
   bool all_valid = true;
   for (const auto& file : parsed.positionals()) {

@@ -71,20 +71,8 @@ void declare_run_options(ArgParser& parser) {
 engine::RunOptions read_run_options(const ParsedArgs& parsed) {
   engine::RunOptions options;
   options.scenario = parsed.positionals().front();
-  for (const auto& assignment : parsed.values("--param")) {
-    const size_t eq = assignment.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      throw UsageError("--param expects NAME=VALUE, got '" + assignment + "'");
-    }
-    options.parameters.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
-  }
-  for (const auto& assignment : parsed.values("--value")) {
-    const size_t eq = assignment.find('=');
-    if (eq == std::string::npos || eq == 0) {
-      throw UsageError("--value expects NAME=VALUE, got '" + assignment + "'");
-    }
-    options.simulation.values.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
-  }
+  options.parameters = parsed.assignments("--param");
+  options.simulation.values = parsed.assignments("--value");
   if (const auto dt = parsed.number("--dt")) {
     // At least 0.1 ms: a step of 1e-300 s is endless steps, a hang rather than a run.
     if (!(*dt >= 1e-4) || *dt > 10.0) {

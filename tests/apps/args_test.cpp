@@ -32,6 +32,23 @@ TEST_CASE("options, flags, repeated options and positionals parse", "[cli][args]
   CHECK_FALSE(parsed.help());
 }
 
+TEST_CASE("NAME=VALUE options split at their first equals sign", "[cli][args]") {
+  const std::vector<std::string> args{"a.xosc",   "--param", "speed=30", "--param",
+                                      "expr=a=b", "--param", "empty="};
+  const auto parsed = run_parser().parse(args);
+  using Assignments = std::vector<std::pair<std::string, std::string>>;
+  CHECK(parsed.assignments("--param") ==
+        Assignments{{"speed", "30"}, {"expr", "a=b"}, {"empty", ""}});
+  CHECK(parsed.assignments("--dt").empty());
+  SECTION("a value without a name is refused with the option named") {
+    for (const std::string bad : {"speed", "=30"}) {
+      const std::vector<std::string> one{"a.xosc", "--param", bad};
+      CHECK_THROWS_WITH(run_parser().parse(one).assignments("--param"),
+                        "--param expects NAME=VALUE, got '" + bad + "'");
+    }
+  }
+}
+
 TEST_CASE("bad usage is reported with the option named", "[cli][args]") {
   const auto parser = run_parser();
   SECTION("unknown option") {
