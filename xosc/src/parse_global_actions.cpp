@@ -54,6 +54,33 @@ GlobalAction parse_entity_action(ParseContext& ctx, const Element* e) {
   return DeleteEntityAction{entity, ctx.source(a)};
 }
 
+/// What tells the SetAction / ModifyAction of a ParameterAction from those of a VariableAction:
+/// the XSD types of the two and the noun messages use.
+struct ValueActionKind {
+  std::string_view noun;         // "parameter"
+  std::string_view set_type;     // "ParameterSetAction"
+  std::string_view modify_type;  // "ParameterModifyAction"
+};
+
+/// The SetAction or ModifyAction `a` on the parameter or variable `name`, checked against its
+/// declared type when that is known (§9.1.4, §9.3).
+template <typename SetAction, typename ModifyAction>
+GlobalAction parse_set_or_modify(ParseContext& ctx, const Element* a, const std::string& name,
+                                 std::optional<ParameterType> type, const ValueActionKind& kind) {
+  const std::string what = std::string(kind.noun) + " '" + clip(name) + "'";
+  if (std::string_view(a->Name()) == "SetAction") {
+    Children(ctx, a, kind.set_type);
+    SetAction action{name, ctx.req_str(a, "value"), ctx.source(a)};
+    check_set_value(ctx, a, type, what, action.value);
+    return action;
+  }
+  check_modify(ctx, a, type, what);
+  Children modify_kids(ctx, a, kind.modify_type);
+  double value = 0.0;
+  const ModifyRule rule = parse_modify_rule(ctx, modify_kids.one("Rule"), value);
+  return ModifyAction{name, rule, value, ctx.source(a)};
+}
+
 GlobalAction parse_parameter_action(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "ParameterAction");
   ctx.deprecated(e, "<ParameterAction>", "<VariableAction>");
@@ -62,20 +89,8 @@ GlobalAction parse_parameter_action(ParseContext& ctx, const Element* e) {
   const Element* a = kids.choice();
   const std::optional<ParameterType> type =
       ctx.record_entities ? ctx.parameter_type(parameter) : std::nullopt;
-  const std::string what = "parameter '" + clip(parameter) + "'";
-  if (std::string_view(a->Name()) == "SetAction") {
-    Children(ctx, a, "ParameterSetAction");
-    ParameterSetAction action{parameter, ctx.req_str(a, "value"), ctx.source(a)};
-    check_set_value(ctx, a, type, what, action.value);
-    return action;
-  }
-  check_modify(ctx, a, type, what);
-  Children modify_kids(ctx, a, "ParameterModifyAction");
-  ParameterModifyAction action;
-  action.parameter_ref = parameter;
-  action.rule = parse_modify_rule(ctx, modify_kids.one("Rule"), action.value);
-  action.source = ctx.source(a);
-  return action;
+  return parse_set_or_modify<ParameterSetAction, ParameterModifyAction>(
+      ctx, a, parameter, type, {"parameter", "ParameterSetAction", "ParameterModifyAction"});
 }
 
 GlobalAction parse_variable_action(ParseContext& ctx, const Element* e) {
@@ -85,20 +100,8 @@ GlobalAction parse_variable_action(ParseContext& ctx, const Element* e) {
   const Element* a = kids.choice();
   const std::optional<ParameterType> type =
       ctx.record_entities ? ctx.variable_type(variable) : std::nullopt;
-  const std::string what = "variable '" + clip(variable) + "'";
-  if (std::string_view(a->Name()) == "SetAction") {
-    Children(ctx, a, "VariableSetAction");
-    VariableSetAction action{variable, ctx.req_str(a, "value"), ctx.source(a)};
-    check_set_value(ctx, a, type, what, action.value);
-    return action;
-  }
-  check_modify(ctx, a, type, what);
-  Children modify_kids(ctx, a, "VariableModifyAction");
-  VariableModifyAction action;
-  action.variable_ref = variable;
-  action.rule = parse_modify_rule(ctx, modify_kids.one("Rule"), action.value);
-  action.source = ctx.source(a);
-  return action;
+  return parse_set_or_modify<VariableSetAction, VariableModifyAction>(
+      ctx, a, variable, type, {"variable", "VariableSetAction", "VariableModifyAction"});
 }
 
 GlobalAction parse_infrastructure_action(ParseContext& ctx, const Element* e) {
