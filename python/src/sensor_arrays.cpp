@@ -6,6 +6,8 @@
 #include <cstring>
 #include <vector>
 
+#include "numpy_dtype.h"
+
 namespace corsa::python {
 namespace py = pybind11;
 namespace {
@@ -38,27 +40,18 @@ struct LidarRecord {
 static_assert(sizeof(LidarRecord) == 32);
 
 py::dtype lidar_dtype() {
-  py::list names, formats, offsets;
-  const auto field = [&](const char* name, const char* format, size_t offset) {
-    names.append(name);
-    formats.append(format);
-    offsets.append(offset);
-  };
-  field("x", "<f4", offsetof(LidarRecord, x));
-  field("y", "<f4", offsetof(LidarRecord, y));
-  field("z", "<f4", offsetof(LidarRecord, z));
-  field("intensity", "<f4", offsetof(LidarRecord, intensity));
-  field("ring", "<u2", offsetof(LidarRecord, ring));
-  field("class", "<u2", offsetof(LidarRecord, label));
-  field("instance", "<u4", offsetof(LidarRecord, instance));
-  field("time", "<f8", offsetof(LidarRecord, time));
-  py::dict spec;
-  spec["names"] = names;
-  spec["formats"] = formats;
-  spec["offsets"] = offsets;
-  spec["itemsize"] = sizeof(LidarRecord);
-  return py::reinterpret_steal<py::dtype>(
-      py::module_::import("numpy").attr("dtype")(spec).release());
+  return record_dtype(
+      {
+          {"x", "<f4", offsetof(LidarRecord, x)},
+          {"y", "<f4", offsetof(LidarRecord, y)},
+          {"z", "<f4", offsetof(LidarRecord, z)},
+          {"intensity", "<f4", offsetof(LidarRecord, intensity)},
+          {"ring", "<u2", offsetof(LidarRecord, ring)},
+          {"class", "<u2", offsetof(LidarRecord, label)},
+          {"instance", "<u4", offsetof(LidarRecord, instance)},
+          {"time", "<f8", offsetof(LidarRecord, time)},
+      },
+      sizeof(LidarRecord));
 }
 
 py::array lidar(const sensors::SensorFrame& frame) {

@@ -11,6 +11,7 @@
 
 #include "bindings.h"
 #include "corsa/engine/trajectory_file.h"
+#include "numpy_dtype.h"
 
 namespace corsa::python {
 namespace py = pybind11;
@@ -28,33 +29,25 @@ struct TrajectoryRecord {
 static_assert(sizeof(TrajectoryRecord) == 104);
 
 py::dtype trajectory_dtype() {
-  py::list names, formats, offsets;
-  const auto field = [&](const char* name, const char* format, size_t offset) {
-    names.append(name);
-    formats.append(format);
-    offsets.append(offset);
-  };
-  field("tick", "<i8", offsetof(TrajectoryRecord, tick));
-  field("time", "<f8", offsetof(TrajectoryRecord, time));
-  field("entity", "<u4", offsetof(TrajectoryRecord, entity));
-  field("x", "<f8", offsetof(TrajectoryRecord, x));
-  field("y", "<f8", offsetof(TrajectoryRecord, y));
-  field("z", "<f8", offsetof(TrajectoryRecord, z));
-  field("h", "<f8", offsetof(TrajectoryRecord, h));
-  field("p", "<f8", offsetof(TrajectoryRecord, p));
-  field("r", "<f8", offsetof(TrajectoryRecord, r));
-  field("speed", "<f8", offsetof(TrajectoryRecord, speed));
-  field("on_road", "?", offsetof(TrajectoryRecord, on_road));
-  field("road", "<u4", offsetof(TrajectoryRecord, road));
-  field("lane", "<i4", offsetof(TrajectoryRecord, lane));
-  field("s", "<f8", offsetof(TrajectoryRecord, s));
-  field("t", "<f8", offsetof(TrajectoryRecord, t));
-  py::dict spec;
-  spec["names"] = names;
-  spec["formats"] = formats;
-  spec["offsets"] = offsets;
-  spec["itemsize"] = sizeof(TrajectoryRecord);
-  return py::dtype::from_args(spec);
+  return record_dtype(
+      {
+          {"tick", "<i8", offsetof(TrajectoryRecord, tick)},
+          {"time", "<f8", offsetof(TrajectoryRecord, time)},
+          {"entity", "<u4", offsetof(TrajectoryRecord, entity)},
+          {"x", "<f8", offsetof(TrajectoryRecord, x)},
+          {"y", "<f8", offsetof(TrajectoryRecord, y)},
+          {"z", "<f8", offsetof(TrajectoryRecord, z)},
+          {"h", "<f8", offsetof(TrajectoryRecord, h)},
+          {"p", "<f8", offsetof(TrajectoryRecord, p)},
+          {"r", "<f8", offsetof(TrajectoryRecord, r)},
+          {"speed", "<f8", offsetof(TrajectoryRecord, speed)},
+          {"on_road", "?", offsetof(TrajectoryRecord, on_road)},
+          {"road", "<u4", offsetof(TrajectoryRecord, road)},
+          {"lane", "<i4", offsetof(TrajectoryRecord, lane)},
+          {"s", "<f8", offsetof(TrajectoryRecord, s)},
+          {"t", "<f8", offsetof(TrajectoryRecord, t)},
+      },
+      sizeof(TrajectoryRecord));
 }
 
 py::dict read_trajectory(const std::filesystem::path& path) {
