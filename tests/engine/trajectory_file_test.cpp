@@ -134,6 +134,40 @@ TEST_CASE("The CSV export of a binary trajectory is the run's CSV, byte for byte
   }
 }
 
+namespace {
+
+// Every tick's rows made afresh (TrajectoryRecorder::append_rows), as a recorder that made
+// every row anew would write them.
+class FreshRows final : public engine::SimulationObserver {
+ public:
+  void on_step(const engine::Simulation& sim) override {
+    engine::TrajectoryRecorder::append_rows(sim, text);
+  }
+  std::string text = engine::kTrajectoryHeader;
+};
+
+}  // namespace
+
+TEST_CASE("Rows of entities that stand still are the bytes of rows made afresh, in both files",
+          "[engine][output][trajectory]") {
+  // TrafficJam's vehicles stand from the start; the fixtures' entities stop, appear, leave,
+  // leave the road and are spawned by traffic.
+  const std::vector<std::filesystem::path> scenarios = {
+      asam("TrafficJam.xosc"), engine_fixture("entity_add_delete_visibility.xosc"),
+      engine_fixture("traffic_source_sink.xosc"), engine_fixture("condition_road.xosc")};
+  for (const auto& scenario : scenarios) {
+    INFO(scenario.filename().string());
+    const Recorded run = record_both(scenario, 1);
+    FixtureRun fresh(scenario);
+    FreshRows rows;
+    fresh.sim().add_observer(rows);
+    fresh.run();
+    CHECK(run.csv.size() > 1000);
+    CHECK(run.csv == rows.text);
+    CHECK(run.exported == rows.text);
+  }
+}
+
 TEST_CASE("A binary trajectory's rows are the numbers the CSV rows read back as",
           "[engine][output][trajectory]") {
   TempDir dir;

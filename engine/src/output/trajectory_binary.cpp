@@ -29,16 +29,23 @@ struct BinaryTrajectoryRecorder::State {
   int64_t last_recorded = -1;
   int64_t last_frame = 0;
   std::vector<codec::EntityHistory> entities;
+  /// Per entity: the inputs of its last row, when that row repeats its prediction (valid):
+  /// then equal inputs mean no record, without making the row.
+  struct Steady {
+    bool valid = false;
+    detail::RowInputs inputs;
+  };
+  std::vector<Steady> steady;
   std::vector<bool> road_named;
   std::string roads;    ///< road records of roads first met at this tick
   std::string frame;    ///< the entity records of this tick
-  std::string payload;  ///< scratch: an entity's road and lane
-  std::string values;   ///< scratch: an entity's numbers
 
   void start(const Simulation& simulation);
   void record(const Simulation& simulation);
   /// Appends the record of entity `index` to `frame` when its row differs from the prediction
-  /// (`previous`: the index of the frame's last record, -1 before the first).
+  /// (`previous`: the index of the frame's last record, -1 before the first). An entity whose
+  /// row inputs are bit for bit those of its last row, when that row repeated its prediction,
+  /// is as predicted again: it is skipped without making its row.
   void encode(const Simulation& simulation, uint32_t index, int64_t& previous);
   void flush();
 };
@@ -81,18 +88,27 @@ void BinaryTrajectoryRecorder::State::start(const Simulation& simulation) {
 void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint32_t index,
                                              int64_t& previous) {
   codec::EntityHistory& history = entities[index];
+  Steady& seen = steady[index];
   const EntityState& state = simulation.state(index);
   uint32_t mask = 0;
   uint32_t raw = 0;
-  payload.clear();
-  values.clear();
+  // The road and lane, then the numbers: at most 5 + 10 bytes, and 9 numbers of 10.
+  char payload[16];
+  char values[detail::kRowFields * 10];
+  char* payload_end = payload;
+  char* values_end = values;
   if (!state.placed) {
+    seen.valid = false;
     if (!history.present) {
       return;
     }
     history.present = false;
     mask = codec::kPresenceBit;  // gone: nothing else follows
   } else {
+    const detail::RowInputs inputs = detail::row_inputs(state);
+    if (seen.valid && history.present && inputs == seen.inputs) {
+      return;  // the same row as last time, which its history predicts to repeat
+    }
     if (!history.present) {
       history.appear();
       mask |= codec::kPresenceBit;
@@ -106,7 +122,7 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
         road_named[road] = true;
         put_string(roads, codec::kTagRoad, road, simulation.road_id(road));
       }
-      codec::put_varint(payload, row.on_road ? uint64_t{road} + 1 : 0);
+      payload_end = codec::put_varint(payload_end, row.on_road ? uint64_t{road} + 1 : 0);
       history.on_road = row.on_road;
       history.road = road;
       history.fields[detail::kFieldS].fresh = true;
@@ -114,41 +130,50 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
     }
     if (row.on_road && row.lane != history.lane) {
       mask |= codec::kLaneBit;
-      codec::put_varint(payload, codec::zigzag(int64_t{row.lane} - history.lane));
+      payload_end = codec::put_varint(payload_end, codec::zigzag(int64_t{row.lane} - history.lane));
       history.lane = row.lane;
     }
     // s and t only on a road (the CSV leaves them empty off it).
     const int fields = row.on_road ? detail::kRowFields : detail::kFieldS;
+    bool repeats = true;  // every field predicted to keep its value
     for (int f = 0; f < fields; ++f) {
       const detail::Scaled& v = row.fields[f];
       codec::FieldHistory& field = history.fields[f];
       if (!v.exact) {
         raw |= 1u << f;
-        codec::put_fixed64(values, std::bit_cast<uint64_t>(v.raw));
+        values_end = codec::put_fixed64(values_end, std::bit_cast<uint64_t>(v.raw));
         field.fresh = true;
+        repeats = false;
         continue;
       }
       const int64_t residual = v.units - field.predicted();
       if (residual != 0) {
         mask |= 1u << f;
-        codec::put_varint(values, codec::zigzag(residual));
+        values_end = codec::put_varint(values_end, codec::zigzag(residual));
       }
       field.accept(v.units);
+      repeats = repeats && field.change == 0;
     }
     if (raw != 0) {
       mask |= codec::kRawBit;
     }
+    // While the inputs stay these, the row stays this one and every prediction holds: the
+    // next ticks need neither the row nor a record.
+    seen.valid = repeats;
+    seen.inputs = inputs;
   }
   if (mask == 0) {
     return;  // as predicted: nothing to store
   }
-  codec::put_varint(frame, static_cast<uint64_t>(index - previous));
-  codec::put_varint(frame, mask);
+  char head[30];
+  char* head_end = codec::put_varint(head, static_cast<uint64_t>(index - previous));
+  head_end = codec::put_varint(head_end, mask);
   if (raw != 0) {
-    codec::put_varint(frame, raw);
+    head_end = codec::put_varint(head_end, raw);
   }
-  frame += payload;
-  frame += values;
+  frame.append(head, static_cast<size_t>(head_end - head));
+  frame.append(payload, static_cast<size_t>(payload_end - payload));
+  frame.append(values, static_cast<size_t>(values_end - values));
   previous = index;
 }
 
@@ -161,6 +186,7 @@ void BinaryTrajectoryRecorder::State::record(const Simulation& simulation) {
   while (entities.size() < simulation.entity_count()) {
     put_string(buffer, codec::kTagEntity, entities.size(), simulation.entity(entities.size()).name);
     entities.emplace_back();
+    steady.emplace_back();
   }
   roads.clear();
   frame.clear();

@@ -48,6 +48,16 @@ inline void put_varint(std::string& out, uint64_t value) {
   out.push_back(static_cast<char>(value));
 }
 
+/// The same into a buffer with room for 10 bytes; returns the end.
+inline char* put_varint(char* out, uint64_t value) {
+  while (value >= 0x80) {
+    *out++ = static_cast<char>((value & 0x7f) | 0x80);
+    value >>= 7;
+  }
+  *out++ = static_cast<char>(value);
+  return out;
+}
+
 inline uint64_t zigzag(int64_t value) {
   return (static_cast<uint64_t>(value) << 1) ^ static_cast<uint64_t>(value >> 63);
 }
@@ -59,6 +69,12 @@ inline void put_fixed64(std::string& out, uint64_t value) {
   for (int i = 0; i < 8; ++i) {
     out.push_back(static_cast<char>((value >> (8 * i)) & 0xff));
   }
+}
+inline char* put_fixed64(char* out, uint64_t value) {
+  for (int i = 0; i < 8; ++i) {
+    *out++ = static_cast<char>((value >> (8 * i)) & 0xff);
+  }
+  return out;
 }
 
 /// One numeric field's history: the next value is predicted to repeat the last change (a

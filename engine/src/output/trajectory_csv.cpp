@@ -1,6 +1,8 @@
+#include <algorithm>
 #include <charconv>
 #include <cstring>
 #include <string_view>
+#include <vector>
 
 #include "corsa/engine/outputs.h"
 #include "output/decimal_text.h"
@@ -92,53 +94,111 @@ double field_value(const Scaled& number, int decimals) {
 }  // namespace detail
 
 TrajectoryRecorder::TrajectoryRecorder(std::filesystem::path file, int64_t every)
-    : file_(std::move(file)), every_(every < 1 ? 1 : every) {
+    : file_(std::move(file)), every_(every < 1 ? 1 : every), cache_(std::make_unique<RowCache>()) {
   buffer_ = kTrajectoryHeader;
 }
 
+namespace {
+
+// Appends the row of entity `name` in `state` after its time field: "name,x,...,t\n" (`road`:
+// the road's id, null off the road).
+void append_row_tail(std::string& out, std::string_view name, const EntityState& state,
+                     const std::string* road) {
+  // The numbers straight from the state (write_fixed is write_scaled of scale_decimal, what
+  // append_row writes from RowValues), without building the RowValues: 15% of a row's cost.
+  const size_t room =
+      name.size() + (road ? road->size() : 0) + 10 * (detail::kDecimalTextMax + 1) + 16;
+  const size_t start = out.size();
+  out.resize(start + room);
+  char* p = out.data() + start;
+  p = detail::put(p, name);
+  *p++ = ',';
+  p = detail::put_fixed<detail::kLengthDecimals>(p, state.pose.x);
+  p = detail::put_fixed<detail::kLengthDecimals>(p, state.pose.y);
+  p = detail::put_fixed<detail::kLengthDecimals>(p, state.pose.z);
+  p = detail::put_fixed<detail::kAngleDecimals>(p, state.pose.h);
+  p = detail::put_fixed<detail::kAngleDecimals>(p, state.pose.p);
+  p = detail::put_fixed<detail::kAngleDecimals>(p, state.pose.r);
+  p = detail::put_fixed<detail::kLengthDecimals>(p, state.speed);
+  if (road) {
+    p = detail::put(p, *road);
+    *p++ = ',';
+    p = std::to_chars(p, p + 12, state.road->lane).ptr;
+    *p++ = ',';
+    p = detail::put_fixed<detail::kLengthDecimals>(p, state.road->s);
+    p = detail::write_fixed<detail::kLengthDecimals>(p, state.road->t);
+  } else {
+    p = detail::put(p, ",,,");
+  }
+  *p++ = '\n';
+  out.resize(static_cast<size_t>(p - out.data()));
+}
+
+// The time field of the current tick's rows: the exact text of the time (shortest round-trip,
+// so that rows can be matched to steps), made once per tick, and its comma.
+std::string_view time_field(const Simulation& simulation, char (&text)[detail::kDecimalTextMax + 1]) {
+  char* end = detail::write_exact(text, simulation.time());
+  *end++ = ',';
+  return std::string_view(text, static_cast<size_t>(end - text));
+}
+
+const std::string* road_of(const Simulation& simulation, const EntityState& state) {
+  return state.road ? &simulation.road_id(state.road->road) : nullptr;
+}
+
+}  // namespace
+
+/// Per entity: the inputs of its last row and, once they repeat, the row's text after the time
+/// (an entity standing still gets its row copied instead of written again).
+struct TrajectoryRecorder::RowCache {
+  struct Entry {
+    bool valid = false;
+    detail::RowInputs inputs;
+    std::string text;  ///< empty until the inputs repeat
+  };
+  std::vector<Entry> entries;
+};
+
+TrajectoryRecorder::~TrajectoryRecorder() = default;
+
 void TrajectoryRecorder::append_rows(const Simulation& simulation, std::string& out) {
-  // The time is the same on every row of the step: its exact text (shortest round-trip, so that
-  // rows can be matched to steps) is made once.
   char time_text[detail::kDecimalTextMax + 1];
-  char* time_end = detail::write_exact(time_text, simulation.time());
-  *time_end++ = ',';
-  const std::string_view time(time_text, static_cast<size_t>(time_end - time_text));
+  const std::string_view time = time_field(simulation, time_text);
   for (size_t i = 0; i < simulation.entity_count(); ++i) {
     const EntityState& state = simulation.state(i);
     if (!state.placed) {
       continue;  // not added yet or deleted (AddEntityAction, DeleteEntityAction, traffic)
     }
-    const std::string& name = simulation.entity(i).name;
-    const std::string* road = state.road ? &simulation.road_id(state.road->road) : nullptr;
-    // The numbers straight from the state (write_fixed is write_scaled of scale_decimal, what
-    // append_row writes from RowValues), without building the RowValues: 15% of a row's cost.
-    const size_t room = time.size() + name.size() + (road ? road->size() : 0) +
-                        10 * (detail::kDecimalTextMax + 1) + 16;
-    const size_t start = out.size();
-    out.resize(start + room);
-    char* p = out.data() + start;
-    p = detail::put(p, time);
-    p = detail::put(p, name);
-    *p++ = ',';
-    p = detail::put_fixed<detail::kLengthDecimals>(p, state.pose.x);
-    p = detail::put_fixed<detail::kLengthDecimals>(p, state.pose.y);
-    p = detail::put_fixed<detail::kLengthDecimals>(p, state.pose.z);
-    p = detail::put_fixed<detail::kAngleDecimals>(p, state.pose.h);
-    p = detail::put_fixed<detail::kAngleDecimals>(p, state.pose.p);
-    p = detail::put_fixed<detail::kAngleDecimals>(p, state.pose.r);
-    p = detail::put_fixed<detail::kLengthDecimals>(p, state.speed);
-    if (road) {
-      p = detail::put(p, *road);
-      *p++ = ',';
-      p = std::to_chars(p, p + 12, state.road->lane).ptr;
-      *p++ = ',';
-      p = detail::put_fixed<detail::kLengthDecimals>(p, state.road->s);
-      p = detail::write_fixed<detail::kLengthDecimals>(p, state.road->t);
-    } else {
-      p = detail::put(p, ",,,");
+    out += time;
+    append_row_tail(out, simulation.entity(i).name, state, road_of(simulation, state));
+  }
+}
+
+void TrajectoryRecorder::append_cached_rows(const Simulation& simulation) {
+  char time_text[detail::kDecimalTextMax + 1];
+  const std::string_view time = time_field(simulation, time_text);
+  auto& entries = cache_->entries;
+  entries.resize(std::max(entries.size(), simulation.entity_count()));
+  for (size_t i = 0; i < simulation.entity_count(); ++i) {
+    const EntityState& state = simulation.state(i);
+    RowCache::Entry& entry = entries[i];
+    if (!state.placed) {
+      entry.valid = false;
+      continue;
     }
-    *p++ = '\n';
-    out.resize(static_cast<size_t>(p - out.data()));
+    buffer_ += time;
+    const detail::RowInputs inputs = detail::row_inputs(state);
+    if (entry.valid && entry.inputs == inputs) {
+      if (entry.text.empty()) {
+        append_row_tail(entry.text, simulation.entity(i).name, state, road_of(simulation, state));
+      }
+      buffer_ += entry.text;
+      continue;
+    }
+    entry.valid = true;
+    entry.inputs = inputs;
+    entry.text.clear();
+    append_row_tail(buffer_, simulation.entity(i).name, state, road_of(simulation, state));
   }
 }
 
@@ -146,7 +206,7 @@ void TrajectoryRecorder::on_step(const Simulation& simulation) {
   if (simulation.tick() % every_ != 0) {
     return;
   }
-  append_rows(simulation, buffer_);
+  append_cached_rows(simulation);
   last_recorded_ = simulation.tick();
   if (buffer_.size() > (1u << 20)) {
     flush();
@@ -160,7 +220,7 @@ void TrajectoryRecorder::flush() {
 
 void TrajectoryRecorder::finish(const Simulation& simulation) {
   if (last_recorded_ != simulation.tick()) {
-    append_rows(simulation, buffer_);
+    append_cached_rows(simulation);
     last_recorded_ = simulation.tick();
   }
   flush();

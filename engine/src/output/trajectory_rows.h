@@ -4,6 +4,8 @@
 // hold them: each rounded to its decimals (Scaled), so that the CSV written during a run and the
 // CSV exported from a binary trajectory (output/trajectory_binary.h) are the same bytes.
 
+#include <array>
+#include <bit>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -44,6 +46,34 @@ struct RowValues {
   bool on_road = false;
   int lane = 0;
 };
+
+/// What a placed entity's row is made of, bit for bit: the numbers (s and t 0 off the road),
+/// the road and the lane. Equal inputs give the same row, so a writer that has the row of
+/// equal inputs at hand (an entity standing still) need not make it again.
+struct RowInputs {
+  std::array<uint64_t, kRowFields> bits{};
+  bool on_road = false;
+  uint32_t road = 0;
+  int lane = 0;
+
+  bool operator==(const RowInputs&) const = default;
+};
+
+inline RowInputs row_inputs(const EntityState& state) {
+  RowInputs in;
+  in.bits = {std::bit_cast<uint64_t>(state.pose.x), std::bit_cast<uint64_t>(state.pose.y),
+             std::bit_cast<uint64_t>(state.pose.z), std::bit_cast<uint64_t>(state.pose.h),
+             std::bit_cast<uint64_t>(state.pose.p), std::bit_cast<uint64_t>(state.pose.r),
+             std::bit_cast<uint64_t>(state.speed), 0, 0};
+  if (state.road) {
+    in.on_road = true;
+    in.road = state.road->road;
+    in.lane = state.road->lane;
+    in.bits[kFieldS] = std::bit_cast<uint64_t>(state.road->s);
+    in.bits[kFieldT] = std::bit_cast<uint64_t>(state.road->t);
+  }
+  return in;
+}
 
 /// The row values of an entity's state.
 RowValues row_values(const EntityState& state);

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "corsa/core/atomic_file.h"
@@ -26,6 +27,7 @@ class TrajectoryRecorder final : public SimulationObserver {
  public:
   /// `every`: record every N-th tick (tick 0 and the last tick are always recorded).
   explicit TrajectoryRecorder(std::filesystem::path file, int64_t every = 1);
+  ~TrajectoryRecorder() override;
   void on_step(const Simulation& simulation) override;
   /// Records the final tick if it was skipped and commits the file (throws InputError when it
   /// cannot be written).
@@ -35,12 +37,16 @@ class TrajectoryRecorder final : public SimulationObserver {
   static void append_rows(const Simulation& simulation, std::string& out);
 
  private:
+  struct RowCache;
   void flush();
+  /// append_rows into buffer_, copying the rows of entities whose state is as it was.
+  void append_cached_rows(const Simulation& simulation);
 
   AtomicFile file_;
   int64_t every_;
   int64_t last_recorded_ = -1;
   std::string buffer_;
+  std::unique_ptr<RowCache> cache_;
 };
 
 /// Header line of the trajectory CSV (with newline).
