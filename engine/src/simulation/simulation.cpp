@@ -58,7 +58,7 @@ Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xod
     }
   }
   detail::place_npcs(state);
-  detail::update_contacts(state);
+  detail::update_contacts(state, contact_sweep);
   detail::update_timers(state, false);
 }
 
@@ -81,7 +81,7 @@ void Simulation::Impl::advance() {
   detail::move_trailers(state, state.time.dt());
   ++state.tick;
   detail::update_traffic(state);
-  detail::update_contacts(state);
+  detail::update_contacts(state, contact_sweep);
   detail::update_timers(state, true);
   init.settle(state);
   storyboard->settle(state);

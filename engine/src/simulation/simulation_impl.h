@@ -7,6 +7,7 @@
 #include "controllers/controllers.h"
 #include "motion/controller.h"
 #include "state/sim_state.h"
+#include "state/world_update.h"
 #include "storyboard/init_actions.h"
 #include "storyboard/storyboard.h"
 
@@ -21,6 +22,7 @@ struct Simulation::Impl {
   std::unique_ptr<detail::Storyboard> storyboard;
   detail::DefaultController default_controller;
   detail::EntityMover mover;
+  detail::ContactSweep contact_sweep;
   std::vector<xodr::LaneSpan> scratch;
   std::vector<SimulationObserver*> observers;
   bool announced = false;  ///< observers have seen tick 0

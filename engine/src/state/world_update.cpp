@@ -66,9 +66,49 @@ bool sweep_order(const Item& a, const Item& b) {
   return a.low < b.low || (a.low == b.low && a.index < b.index);
 }
 
+// Sorts `items` by `less` (a strict total order), starting from the order of the last sweep
+// (`order`, entity indices) when it ran along the same axis: boxes move little in a step, so
+// the items are then nearly sorted and an insertion sort takes about one pass. The order is
+// unique, so the result is std::sort's. `order` is updated.
+template <typename Less>
+void sort_from_last(std::vector<Item>& items, std::vector<uint32_t>& order, bool same_axis,
+                    size_t entity_count, Less less) {
+  if (same_axis && !order.empty()) {
+    std::vector<uint32_t> slot(entity_count, UINT32_MAX);
+    for (uint32_t k = 0; k < items.size(); ++k) slot[items[k].index] = k;
+    std::vector<Item> arranged;
+    arranged.reserve(items.size());
+    for (const uint32_t entity : order) {
+      if (entity < entity_count && slot[entity] != UINT32_MAX) {
+        arranged.push_back(items[slot[entity]]);
+        slot[entity] = UINT32_MAX;
+      }
+    }
+    for (const Item& item : items) {
+      if (slot[item.index] != UINT32_MAX) arranged.push_back(item);  // new since the last sweep
+    }
+    items.swap(arranged);
+    // Insertion sort, given up for std::sort when the order has changed much.
+    size_t budget = 8 * items.size() + 64;
+    for (size_t k = 1; k < items.size() && budget > 0; ++k) {
+      const Item item = items[k];
+      size_t j = k;
+      for (; j > 0 && less(item, items[j - 1]) && budget > 0; --j, --budget) {
+        items[j] = items[j - 1];
+      }
+      items[j] = item;
+    }
+    if (budget == 0) std::sort(items.begin(), items.end(), less);
+  } else {
+    std::sort(items.begin(), items.end(), less);
+  }
+  order.resize(items.size());
+  for (size_t k = 0; k < items.size(); ++k) order[k] = items[k].index;
+}
+
 }  // namespace
 
-void update_contacts(SimState& state) {
+void update_contacts(SimState& state, ContactSweep& sweep) {
   // Nothing moved, appeared or left: the contacts are those of the last update, and none is new.
   if (contact_inputs_unchanged(state)) {
     return;
@@ -111,12 +151,15 @@ void update_contacts(SimState& state) {
                          entities[q.index].unhitched_from == p.index;
     (coupled ? touching : now).emplace_back(std::min(p.index, q.index), std::max(p.index, q.index));
   };
+  auto& order = sweep.order;
   if (finite && y1 - y0 > x1 - x0) {
     // Spread more along y (a road running north): sweep along y instead, and test a pair when
     // the x sweep would have (the later of the two in x order starts before the earlier ends).
-    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
-      return a.ylow < b.ylow || (a.ylow == b.ylow && a.index < b.index);
-    });
+    sort_from_last(items, order, sweep.along_y, entities.size(),
+                   [](const Item& a, const Item& b) {
+                     return a.ylow < b.ylow || (a.ylow == b.ylow && a.index < b.index);
+                   });
+    sweep.along_y = true;
     for (size_t a = 0; a < items.size(); ++a) {
       const double reach = items[a].yhigh + margin(items[a].yhigh);
       for (size_t b = a + 1; b < items.size() && items[b].ylow <= reach; ++b) {
@@ -130,7 +173,14 @@ void update_contacts(SimState& state) {
       }
     }
   } else {
-    std::sort(items.begin(), items.end(), sweep_order);
+    if (finite) {
+      sort_from_last(items, order, !sweep.along_y, entities.size(), sweep_order);
+      sweep.along_y = false;
+    } else {
+      // NaN or infinite extents: no total order to start from.
+      std::sort(items.begin(), items.end(), sweep_order);
+      order.clear();
+    }
     for (size_t a = 0; a < items.size(); ++a) {
       for (size_t b = a + 1; b < items.size() && items[b].low <= items[a].high; ++b) {
         if (!y_apart(items[a], items[b]) && overlap(boxes[items[a].box], boxes[items[b].box])) {
