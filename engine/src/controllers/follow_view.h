@@ -63,6 +63,16 @@ class FollowView {
   /// none among much generated traffic.
   void near_scenario_vehicles(double x_min, double y_min, double x_max, double y_max,
                               std::vector<uint32_t>& out) const;
+  /// The present entities (only the scenario's vehicles with `scenario_vehicles`) whose
+  /// reference point lies in [along_min, along_max] x [-half, half] of the frame at (x, y) with
+  /// axis cosine `c` and sine `s` (PointGrid::query_band; [x_min, x_max] x [y_min, y_max] bounds
+  /// that rectangle), and those with non-finite coordinates, appended to `out`.
+  void near_band(double x_min, double y_min, double x_max, double y_max, double x, double y,
+                 double c, double s, double along_min, double along_max, double half,
+                 bool scenario_vehicles, std::vector<uint32_t>& out) const {
+    (scenario_vehicles ? scenario_vehicles_ : grid_)
+        .query_band(x_min, y_min, x_max, y_max, x, y, c, s, along_min, along_max, half, out);
+  }
   bool has_scenario_vehicles() const { return has_scenario_vehicles_; }
   /// The farthest (m) a present entity's bounding box reaches from its reference point, and the
   /// greatest box length (m): how far around a region near() must look for boxes reaching in

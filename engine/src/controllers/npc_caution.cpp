@@ -83,7 +83,10 @@ bool extent_in_band(const LocalFrame& frame, const OrientedBox& box, double half
 
 // Appends to `near` (emptied first) every present entity of `view` (only the scenario's vehicles
 // with `scenario_vehicles`) whose reference point may lie within `margin` metres of the rectangle
-// [x0, x1] x [-half, half] of `frame`.
+// [x0, x1] x [-half, half] of `frame`: those whose frame coordinates lie in that rectangle
+// widened by `margin` on every side (a superset; the frame coordinates are computed as
+// LocalFrame::to_local computes them, so a caller's own test of a reference point in the
+// rectangle never keeps one that this left out).
 void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0, double x1,
                     double half, double margin, std::vector<uint32_t>& near,
                     bool scenario_vehicles = false) {
@@ -100,11 +103,20 @@ void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0, 
       y_max = std::max(y_max, wy);
     }
   }
-  if (scenario_vehicles) {
-    view.near_scenario_vehicles(x_min - margin, y_min - margin, x_max + margin, y_max + margin,
-                                near);
+  x_min -= margin, y_min -= margin, x_max += margin, y_max += margin;
+  const bool finite = std::isfinite(frame.x) && std::isfinite(frame.y) &&
+                      std::isfinite(frame.c) && std::isfinite(frame.s) && std::isfinite(x0) &&
+                      std::isfinite(x1) && std::isfinite(half) && std::isfinite(margin);
+  if (finite) {
+    // Only the band of the rectangle, not its whole bounding box (a corridor at 45 degrees
+    // covers a seventh of it): with dense traffic most of the box's entities are in other
+    // lanes and roads.
+    view.near_band(x_min, y_min, x_max, y_max, frame.x, frame.y, frame.c, frame.s, x0 - margin,
+                   x1 + margin, half + margin, scenario_vehicles, near);
+  } else if (scenario_vehicles) {
+    view.near_scenario_vehicles(x_min, y_min, x_max, y_max, near);
   } else {
-    view.near(x_min - margin, y_min - margin, x_max + margin, y_max + margin, near);
+    view.near(x_min, y_min, x_max, y_max, near);
   }
 }
 

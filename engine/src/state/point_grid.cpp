@@ -19,7 +19,14 @@ uint64_t key(int64_t i, int64_t j) {
 PointGrid::PointGrid(double cell) : cell_(cell > 0.0 ? cell : 1.0) {}
 
 void PointGrid::clear() {
-  cells_.clear();
+  // Cells emptied in place keep their memory for the next points; a grid that has gathered
+  // many more cells than points (points that wandered far) starts afresh.
+  if (cells_.size() > 4 * points_ + 1024) {
+    cells_.clear();
+  } else {
+    for (auto& [cell, points] : cells_) points.clear();
+  }
+  points_ = 0;
   overflow_.clear();
 }
 
@@ -30,17 +37,18 @@ void PointGrid::add(double x, double y, uint32_t id) {
     overflow_.push_back(id);
     return;
   }
-  cells_[key(static_cast<int64_t>(i), static_cast<int64_t>(j))].push_back(id);
+  cells_[key(static_cast<int64_t>(i), static_cast<int64_t>(j))].push_back({x, y, id});
+  ++points_;
 }
 
 void PointGrid::query(double x, double y, double radius, std::vector<uint32_t>& out) const {
   query_box(x - radius, y - radius, x + radius, y + radius, out);
 }
 
-void PointGrid::query_box(double x_min, double y_min, double x_max, double y_max,
-                          std::vector<uint32_t>& out) const {
-  out.insert(out.end(), overflow_.begin(), overflow_.end());
-  if (cells_.empty()) {
+template <typename Visit>
+void PointGrid::visit_cells(double x_min, double y_min, double x_max, double y_max,
+                            Visit visit) const {
+  if (points_ == 0) {
     return;
   }
   const double i0 = std::floor(x_min / cell_), i1 = std::floor(x_max / cell_);
@@ -48,8 +56,8 @@ void PointGrid::query_box(double x_min, double y_min, double x_max, double y_max
   if (!(i1 - i0 < 64.0 && j1 - j0 < 64.0 && std::abs(i0) < kMaxCell && std::abs(i1) < kMaxCell &&
         std::abs(j0) < kMaxCell && std::abs(j1) < kMaxCell)) {
     // A huge or far-off region (or NaN): every point.
-    for (const auto& [cell, ids] : cells_) {
-      out.insert(out.end(), ids.begin(), ids.end());
+    for (const auto& [cell, points] : cells_) {
+      visit(points);
     }
     return;
   }
@@ -57,10 +65,34 @@ void PointGrid::query_box(double x_min, double y_min, double x_max, double y_max
     for (auto j = static_cast<int64_t>(j0); j <= static_cast<int64_t>(j1); ++j) {
       const auto it = cells_.find(key(i, j));
       if (it != cells_.end()) {
-        out.insert(out.end(), it->second.begin(), it->second.end());
+        visit(it->second);
       }
     }
   }
+}
+
+void PointGrid::query_box(double x_min, double y_min, double x_max, double y_max,
+                          std::vector<uint32_t>& out) const {
+  out.insert(out.end(), overflow_.begin(), overflow_.end());
+  visit_cells(x_min, y_min, x_max, y_max, [&](const std::vector<Point>& points) {
+    for (const Point& p : points) out.push_back(p.id);
+  });
+}
+
+void PointGrid::query_band(double x_min, double y_min, double x_max, double y_max, double x,
+                           double y, double c, double s, double along_min, double along_max,
+                           double half, std::vector<uint32_t>& out) const {
+  out.insert(out.end(), overflow_.begin(), overflow_.end());
+  visit_cells(x_min, y_min, x_max, y_max, [&](const std::vector<Point>& points) {
+    for (const Point& p : points) {
+      const double dx = p.x - x, dy = p.y - y;
+      const double along = dx * c + dy * s;
+      const double across = -dx * s + dy * c;
+      if (along >= along_min && along <= along_max && std::abs(across) <= half) {
+        out.push_back(p.id);
+      }
+    }
+  });
 }
 
 }  // namespace corsa::engine::detail
