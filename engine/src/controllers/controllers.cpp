@@ -125,6 +125,9 @@ namespace {
 // Entities from which a step is shared out among threads: below that the hand-over costs more
 // than the moves.
 constexpr uint32_t kParallelEntities = 128;
+// Entities a thread takes at a time (consecutive in the moving order, so mostly of one lane):
+// small enough that the threads end together, large enough that taking one costs nothing.
+constexpr size_t kChunkEntities = 32;
 constexpr uint32_t kArrangeSteps = 50;
 
 std::optional<xodr::LaneType> lane_type_at(const xodr::Map& map, const RoadCoordinates& road) {
@@ -317,7 +320,7 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   }
   // Each entity's move depends only on itself and the picture taken above, so how the entities
   // are shared out among threads does not change any result.
-  impl.pool->run(order.size(), [&](size_t begin, size_t end, unsigned worker) {
+  impl.pool->run(order.size(), kChunkEntities, [&](size_t begin, size_t end, unsigned worker) {
     MotionContext context = motion;
     context.scratch = &impl.scratch[worker];
     context.nearby = &impl.nearby[worker];

@@ -1,15 +1,8 @@
 #include "controllers/worker_pool.h"
 
+#include <algorithm>
+
 namespace corsa::engine::detail {
-namespace {
-
-// The run of worker `w` of `n` over [0, count).
-void bounds(size_t count, unsigned n, unsigned w, size_t& begin, size_t& end) {
-  begin = count * w / n;
-  end = count * (w + 1) / n;
-}
-
-}  // namespace
 
 WorkerPool::WorkerPool(unsigned threads) {
   for (unsigned w = 1; w < threads; ++w) {
@@ -28,31 +21,43 @@ WorkerPool::~WorkerPool() {
   }
 }
 
-void WorkerPool::run(size_t count, const std::function<void(size_t, size_t, unsigned)>& work) {
-  const unsigned n = threads();
+void WorkerPool::drain(unsigned worker) {
+  std::exception_ptr error;
+  while (true) {
+    const size_t begin = next_.fetch_add(chunk_, std::memory_order_relaxed);
+    if (begin >= count_) {
+      break;
+    }
+    try {
+      (*work_)(begin, std::min(count_, begin + chunk_), worker);
+    } catch (...) {
+      if (!error) error = std::current_exception();
+    }
+  }
+  if (error) {
+    std::lock_guard lock(mutex_);
+    if (!error_) error_ = error;
+  }
+}
+
+void WorkerPool::run(size_t count, size_t chunk,
+                     const std::function<void(size_t, size_t, unsigned)>& work) {
   {
     std::lock_guard lock(mutex_);
     work_ = &work;
     count_ = count;
-    pending_ = n - 1;
+    chunk_ = std::max<size_t>(chunk, 1);
+    next_.store(0, std::memory_order_relaxed);
     error_ = nullptr;
+    open_ = true;
     ++generation_;
   }
   start_.notify_all();
-  std::exception_ptr mine;
-  try {
-    size_t begin = 0, end = 0;
-    bounds(count, n, 0, begin, end);
-    work(begin, end, 0);
-  } catch (...) {
-    mine = std::current_exception();
-  }
+  drain(0);
   std::unique_lock lock(mutex_);
-  done_.wait(lock, [this] { return pending_ == 0; });
+  open_ = false;  // a worker waking up from now on has missed this run
+  done_.wait(lock, [this] { return active_ == 0; });
   work_ = nullptr;
-  if (mine) {
-    std::rethrow_exception(mine);
-  }
   if (error_) {
     std::rethrow_exception(error_);
   }
@@ -67,22 +72,14 @@ void WorkerPool::serve(unsigned worker) {
       return;
     }
     seen = generation_;
-    const auto* work = work_;
-    const size_t count = count_;
+    if (!open_) {
+      continue;
+    }
+    ++active_;
     lock.unlock();
-    std::exception_ptr error;
-    try {
-      size_t begin = 0, end = 0;
-      bounds(count, threads(), worker, begin, end);
-      (*work)(begin, end, worker);
-    } catch (...) {
-      error = std::current_exception();
-    }
+    drain(worker);
     lock.lock();
-    if (error && !error_) {
-      error_ = error;
-    }
-    if (--pending_ == 0) {
+    if (--active_ == 0) {
       done_.notify_one();
     }
   }

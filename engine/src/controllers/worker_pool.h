@@ -1,11 +1,14 @@
 #pragma once
 
 // A few threads kept for the moves of a step (controllers/controllers.h, EntityMover): a step's
-// entities are cut into as many contiguous runs as there are threads, the calling thread takes
-// the first and waits for the others. Which thread moves which entity does not change a result
-// (each move reads only its own entity and the picture taken before the moves), so the cut is
-// simply even.
+// entities are cut into chunks that the calling thread and the workers take one after the other
+// from a shared counter. Which thread moves which entity does not change a result (each move
+// reads only its own entity and the picture taken before the moves), so the chunks go to
+// whoever is free. The calling thread never waits for a worker to wake up: on a machine whose
+// cores are busy with other work a worker may get its core only milliseconds later, and the
+// caller then moves every chunk itself; it waits only for chunks a worker has started.
 
+#include <atomic>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -27,12 +30,15 @@ class WorkerPool {
 
   unsigned threads() const { return static_cast<unsigned>(workers_.size()) + 1; }
 
-  /// Calls work(begin, end, worker) for the runs of [0, count), worker 0 on the calling
-  /// thread, and returns when all are done. An exception of any run is rethrown here.
-  void run(size_t count, const std::function<void(size_t, size_t, unsigned)>& work);
+  /// Calls work(begin, end, worker) for chunks of at most `chunk` items covering [0, count),
+  /// each exactly once, worker 0 on the calling thread (1.. on the pool's threads that join in
+  /// time), and returns when all are done. An exception of any chunk is rethrown here.
+  void run(size_t count, size_t chunk, const std::function<void(size_t, size_t, unsigned)>& work);
 
  private:
   void serve(unsigned worker);
+  /// Takes chunks until none is left; records the first exception.
+  void drain(unsigned worker);
 
   std::vector<std::thread> workers_;
   std::mutex mutex_;
@@ -40,8 +46,11 @@ class WorkerPool {
   std::condition_variable done_;
   const std::function<void(size_t, size_t, unsigned)>* work_ = nullptr;
   size_t count_ = 0;
+  size_t chunk_ = 1;
+  std::atomic<size_t> next_{0};
   uint64_t generation_ = 0;
-  unsigned pending_ = 0;
+  bool open_ = false;   ///< workers may still join the current run
+  unsigned active_ = 0;  ///< workers inside the current run
   bool stop_ = false;
   std::exception_ptr error_;
 };
