@@ -105,8 +105,7 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
     history.present = false;
     mask = codec::kPresenceBit;  // gone: nothing else follows
   } else {
-    const detail::RowInputs inputs = detail::row_inputs(state);
-    if (seen.valid && history.present && inputs == seen.inputs) {
+    if (seen.valid && history.present && detail::same_row_inputs(seen.inputs, state)) {
       return;  // the same row as last time, which its history predicts to repeat
     }
     if (!history.present) {
@@ -160,7 +159,9 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
     // While the inputs stay these, the row stays this one and every prediction holds: the
     // next ticks need neither the row nor a record.
     seen.valid = repeats;
-    seen.inputs = inputs;
+    if (repeats) {
+      seen.inputs = detail::row_inputs(state);
+    }
   }
   if (mask == 0) {
     return;  // as predicted: nothing to store
@@ -192,6 +193,12 @@ void BinaryTrajectoryRecorder::State::record(const Simulation& simulation) {
   frame.clear();
   int64_t previous = -1;
   for (uint32_t i = 0; i < entities.size(); ++i) {
+    // encode's first test, without the call: most entities of a long run stand.
+    const EntityState& state = simulation.state(i);
+    if (steady[i].valid && entities[i].present && state.placed &&
+        detail::same_row_inputs(steady[i].inputs, state)) {
+      continue;
+    }
     encode(simulation, i, previous);
   }
   const double time = simulation.time();

@@ -187,8 +187,7 @@ void TrajectoryRecorder::append_cached_rows(const Simulation& simulation) {
       continue;
     }
     buffer_ += time;
-    const detail::RowInputs inputs = detail::row_inputs(state);
-    if (entry.valid && entry.inputs == inputs) {
+    if (entry.valid && detail::same_row_inputs(entry.inputs, state)) {
       if (entry.text.empty()) {
         append_row_tail(entry.text, simulation.entity(i).name, state, road_of(simulation, state));
       }
@@ -196,7 +195,7 @@ void TrajectoryRecorder::append_cached_rows(const Simulation& simulation) {
       continue;
     }
     entry.valid = true;
-    entry.inputs = inputs;
+    entry.inputs = detail::row_inputs(state);
     entry.text.clear();
     append_row_tail(buffer_, simulation.entity(i).name, state, road_of(simulation, state));
   }

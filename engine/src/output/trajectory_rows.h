@@ -75,6 +75,23 @@ inline RowInputs row_inputs(const EntityState& state) {
   return in;
 }
 
+/// Whether `state` has the inputs `in` (row_inputs(state) == in), stopping at the first field
+/// that differs: a moving entity's x mostly.
+inline bool same_row_inputs(const RowInputs& in, const EntityState& state) {
+  const auto same = [](uint64_t bits, double value) {
+    return bits == std::bit_cast<uint64_t>(value);
+  };
+  if (!same(in.bits[kFieldX], state.pose.x) || !same(in.bits[kFieldY], state.pose.y) ||
+      !same(in.bits[kFieldZ], state.pose.z) || !same(in.bits[kFieldH], state.pose.h) ||
+      !same(in.bits[kFieldP], state.pose.p) || !same(in.bits[kFieldR], state.pose.r) ||
+      !same(in.bits[kFieldSpeed], state.speed) || in.on_road != state.road.has_value()) {
+    return false;
+  }
+  return !state.road ||
+         (in.road == state.road->road && in.lane == state.road->lane &&
+          same(in.bits[kFieldS], state.road->s) && same(in.bits[kFieldT], state.road->t));
+}
+
 /// The row values of an entity's state.
 RowValues row_values(const EntityState& state);
 
