@@ -104,9 +104,9 @@ void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0, 
     }
   }
   x_min -= margin, y_min -= margin, x_max += margin, y_max += margin;
-  const bool finite = std::isfinite(frame.x) && std::isfinite(frame.y) &&
-                      std::isfinite(frame.c) && std::isfinite(frame.s) && std::isfinite(x0) &&
-                      std::isfinite(x1) && std::isfinite(half) && std::isfinite(margin);
+  const bool finite = std::isfinite(frame.x) && std::isfinite(frame.y) && std::isfinite(frame.c) &&
+                      std::isfinite(frame.s) && std::isfinite(x0) && std::isfinite(x1) &&
+                      std::isfinite(half) && std::isfinite(margin);
   if (finite) {
     // Only the band of the rectangle, not its whole bounding box (a corridor at 45 degrees
     // covers a seventh of it): with dense traffic most of the box's entities are in other

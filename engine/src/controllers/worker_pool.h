@@ -49,7 +49,7 @@ class WorkerPool {
   size_t chunk_ = 1;
   std::atomic<size_t> next_{0};
   uint64_t generation_ = 0;
-  bool open_ = false;   ///< workers may still join the current run
+  bool open_ = false;    ///< workers may still join the current run
   unsigned active_ = 0;  ///< workers inside the current run
   bool stop_ = false;
   std::exception_ptr error_;

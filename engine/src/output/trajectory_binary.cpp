@@ -37,8 +37,8 @@ struct BinaryTrajectoryRecorder::State {
   };
   std::vector<Steady> steady;
   std::vector<bool> road_named;
-  std::string roads;    ///< road records of roads first met at this tick
-  std::string frame;    ///< the entity records of this tick
+  std::string roads;  ///< road records of roads first met at this tick
+  std::string frame;  ///< the entity records of this tick
 
   void start(const Simulation& simulation);
   void record(const Simulation& simulation);

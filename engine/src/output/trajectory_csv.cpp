@@ -136,7 +136,8 @@ void append_row_tail(std::string& out, std::string_view name, const EntityState&
 
 // The time field of the current tick's rows: the exact text of the time (shortest round-trip,
 // so that rows can be matched to steps), made once per tick, and its comma.
-std::string_view time_field(const Simulation& simulation, char (&text)[detail::kDecimalTextMax + 1]) {
+std::string_view time_field(const Simulation& simulation,
+                            char (&text)[detail::kDecimalTextMax + 1]) {
   char* end = detail::write_exact(text, simulation.time());
   *end++ = ',';
   return std::string_view(text, static_cast<size_t>(end - text));

@@ -61,10 +61,15 @@ struct RowInputs {
 
 inline RowInputs row_inputs(const EntityState& state) {
   RowInputs in;
-  in.bits = {std::bit_cast<uint64_t>(state.pose.x), std::bit_cast<uint64_t>(state.pose.y),
-             std::bit_cast<uint64_t>(state.pose.z), std::bit_cast<uint64_t>(state.pose.h),
-             std::bit_cast<uint64_t>(state.pose.p), std::bit_cast<uint64_t>(state.pose.r),
-             std::bit_cast<uint64_t>(state.speed), 0, 0};
+  in.bits = {std::bit_cast<uint64_t>(state.pose.x),
+             std::bit_cast<uint64_t>(state.pose.y),
+             std::bit_cast<uint64_t>(state.pose.z),
+             std::bit_cast<uint64_t>(state.pose.h),
+             std::bit_cast<uint64_t>(state.pose.p),
+             std::bit_cast<uint64_t>(state.pose.r),
+             std::bit_cast<uint64_t>(state.speed),
+             0,
+             0};
   if (state.road) {
     in.on_road = true;
     in.road = state.road->road;

@@ -155,10 +155,9 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
   if (finite && y1 - y0 > x1 - x0) {
     // Spread more along y (a road running north): sweep along y instead, and test a pair when
     // the x sweep would have (the later of the two in x order starts before the earlier ends).
-    sort_from_last(items, order, sweep.along_y, entities.size(),
-                   [](const Item& a, const Item& b) {
-                     return a.ylow < b.ylow || (a.ylow == b.ylow && a.index < b.index);
-                   });
+    sort_from_last(items, order, sweep.along_y, entities.size(), [](const Item& a, const Item& b) {
+      return a.ylow < b.ylow || (a.ylow == b.ylow && a.index < b.index);
+    });
     sweep.along_y = true;
     for (size_t a = 0; a < items.size(); ++a) {
       const double reach = items[a].yhigh + margin(items[a].yhigh);
