@@ -84,6 +84,128 @@ void render_camera_group(const Scene& scene, const CameraRenderer& renderer,
   }
 }
 
+/// The rig's sensors named in `names` (all of them when `names` is empty), in rig order.
+std::vector<const SensorSpec*> due_sensors(const SensorRig& rig,
+                                           std::span<const std::string> names) {
+  std::vector<const SensorSpec*> due;
+  for (const auto& s : rig.sensors) {
+    if (names.empty() || std::find(names.begin(), names.end(), s.name) != names.end()) {
+      due.push_back(&s);
+    }
+  }
+  return due;
+}
+
+/// The longest LiDAR revolution (s) among `due`; 0 without a LiDAR.
+double longest_sweep(const std::vector<const SensorSpec*>& due) {
+  double sweep = 0.0;
+  for (const SensorSpec* s : due) {
+    if (s->kind == SensorKind::kLidar) {
+      sweep = std::max(sweep, 1.0 / s->lidar.rotation_frequency_hz);
+    }
+  }
+  return sweep;
+}
+
+/// The entity carrying `sensor` (the last of that name); InputError at the sensor's rig line
+/// when it is not in the world.
+const engine::EntitySnapshot& carrier_of(const SensorRig& rig, const SensorSpec& sensor,
+                                         const engine::WorldSnapshot& world) {
+  const engine::EntitySnapshot* carrier = nullptr;
+  for (const auto& e : world.entities) {
+    carrier = e.name == sensor.entity ? &e : carrier;
+  }
+  if (carrier == nullptr) {
+    throw InputError(make_error(rig.file, sensor.line,
+                                "sensor '" + sensor.name + "' is attached to entity '" +
+                                    sensor.entity + "', which is not in the world at tick " +
+                                    std::to_string(world.tick)));
+  }
+  return *carrier;
+}
+
+/// A frame of `sensor` numbered `frame`, posed on its carrier at the world's tick.
+SensorFrame start_frame(const SensorSpec& sensor, const engine::EntitySnapshot& carrier,
+                        const engine::WorldSnapshot& world, int64_t frame) {
+  SensorFrame f;
+  f.sensor = sensor.name;
+  f.kind = sensor.kind;
+  f.frame = frame;
+  f.tick = world.tick;
+  f.time = world.time;
+  const auto& p = carrier.pose;
+  f.world_from_sensor =
+      rigid_from_pose(p.x, p.y, p.z, p.h, p.p, p.r) * entity_from_sensor(sensor.mount);
+  return f;
+}
+
+/// The due cameras grouped by optics: one render pass per group.
+std::vector<CameraGroup> camera_groups(const std::vector<const SensorSpec*>& due) {
+  std::vector<CameraGroup> groups;
+  for (const SensorSpec* s : due) {
+    if (!is_camera(s->kind)) {
+      continue;
+    }
+    CameraGroup* group = nullptr;
+    for (auto& g : groups) {
+      if (same_optics(*g.members.front(), *s) && !(s->kind == SensorKind::kRgbCamera && g.rgb)) {
+        group = &g;
+      }
+    }
+    if (group == nullptr) {
+      groups.emplace_back();
+      group = &groups.back();
+    }
+    group->members.push_back(s);
+    group->rgb = s->kind == SensorKind::kRgbCamera ? s : group->rgb;
+    group->outputs.rgb = group->outputs.rgb || s->kind == SensorKind::kRgbCamera;
+    group->outputs.depth = group->outputs.depth || s->kind == SensorKind::kDepthCamera;
+    group->outputs.semantic = group->outputs.semantic || s->kind == SensorKind::kSemanticCamera;
+    group->outputs.instance = true;
+  }
+  return groups;
+}
+
+/// What one render pass of group `g` needs: its outputs, light, carrier box, the deepest range
+/// any member keeps, the RGB member's settings and the frame's seed.
+RenderSettings group_settings(const CameraGroup& g, const Lighting& lighting,
+                              const engine::EntitySnapshot& carrier, uint64_t frame_seed) {
+  RenderSettings settings;
+  settings.outputs = g.outputs;
+  settings.lighting = &lighting;
+  settings.carrier = entity_box(carrier);
+  double max_depth = 0.0;
+  for (const SensorSpec* m : g.members) {
+    max_depth =
+        std::max(max_depth, m->kind == SensorKind::kDepthCamera ? m->depth.max_range_m : 1e9);
+  }
+  settings.max_depth_m = max_depth;
+  if (g.rgb != nullptr) {
+    settings.rgb = g.rgb->rgb;
+  }
+  settings.frame_seed = frame_seed;
+  return settings;
+}
+
+/// A LiDAR scan's inputs: the pose of frame `f`, its carrier's motion over the revolution, the
+/// weather and the seed.
+LidarScanInput lidar_input(const SensorFrame& f, const engine::EntitySnapshot& carrier,
+                           const Lighting& lighting, uint64_t seed, double sweep) {
+  LidarScanInput input;
+  input.world_from_sensor = f.world_from_sensor;
+  input.motion.velocity = {carrier.vx, carrier.vy, carrier.vz};
+  input.motion.yaw_rate = carrier.yaw_rate;
+  input.motion.pivot = {carrier.pose.x, carrier.pose.y, carrier.pose.z};
+  input.weather.fog_extinction = lighting.fog_extinction;
+  input.weather.rain_rate = lighting.rain_intensity;
+  input.weather.snow_rate = lighting.snow_intensity;
+  input.frame_seed = seed;
+  input.carrier = entity_box(carrier);
+  input.carrier_instance = carrier.instance_id;
+  input.scene_motion_span = sweep;
+  return input;
+}
+
 }  // namespace
 
 struct SensorSystem::Cache {
@@ -126,103 +248,39 @@ const CameraModel* SensorSystem::camera_model(const std::string& sensor) const {
 std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& world,
                                                std::span<const std::string> sensors) {
   const Lighting lighting = compute_lighting(world.environment, options_.location);
-  std::vector<const SensorSpec*> due;
-  double sweep = 0.0;  // s, the longest LiDAR revolution due: the entities move over it
-  for (const auto& s : rig_.sensors) {
-    bool wanted = sensors.empty();
-    for (const auto& name : sensors) {
-      wanted = wanted || name == s.name;
-    }
-    if (wanted) {
-      due.push_back(&s);
-      if (s.kind == SensorKind::kLidar) {
-        sweep = std::max(sweep, 1.0 / s.lidar.rotation_frequency_hz);
-      }
-    }
-  }
+  const std::vector<const SensorSpec*> due = due_sensors(rig_, sensors);
+  const double sweep = longest_sweep(due);  // s: the entities move over a LiDAR revolution
   scene_.set_entities(world.entities, sweep);
   scene_.set_signals(world.signals);
   // Pose, carrier and frame number of each due sensor.
   std::map<std::string, SensorFrame> frames;
   std::map<std::string, const engine::EntitySnapshot*> carriers;
   for (const SensorSpec* s : due) {
-    const engine::EntitySnapshot* carrier = nullptr;
-    for (const auto& e : world.entities) {
-      carrier = e.name == s->entity ? &e : carrier;
-    }
-    if (carrier == nullptr) {
-      throw InputError(make_error(rig_.file, s->line,
-                                  "sensor '" + s->name + "' is attached to entity '" + s->entity +
-                                      "', which is not in the world at tick " +
-                                      std::to_string(world.tick)));
-    }
-    carriers[s->name] = carrier;
-    SensorFrame f;
-    f.sensor = s->name;
-    f.kind = s->kind;
-    f.frame = frames_[s->name]++;
-    f.tick = world.tick;
-    f.time = world.time;
-    const auto& p = carrier->pose;
-    f.world_from_sensor =
-        rigid_from_pose(p.x, p.y, p.z, p.h, p.p, p.r) * entity_from_sensor(s->mount);
-    frames[s->name] = std::move(f);
+    const engine::EntitySnapshot& carrier = carrier_of(rig_, *s, world);
+    carriers[s->name] = &carrier;
+    frames[s->name] = start_frame(*s, carrier, world, frames_[s->name]++);
   }
   auto frame_seed = [&](const SensorSpec& s) {
     return derive_seed(options_.seed, s.name + "#" + std::to_string(frames.at(s.name).frame));
   };
 
-  // Cameras: group by optics, one pass per group.
-  std::vector<CameraGroup> groups;
-  for (const SensorSpec* s : due) {
-    if (!is_camera(s->kind)) {
-      continue;
-    }
-    CameraGroup* group = nullptr;
-    for (auto& g : groups) {
-      if (same_optics(*g.members.front(), *s) && !(s->kind == SensorKind::kRgbCamera && g.rgb)) {
-        group = &g;
-      }
-    }
-    if (group == nullptr) {
-      groups.emplace_back();
-      group = &groups.back();
-    }
-    group->members.push_back(s);
-    group->rgb = s->kind == SensorKind::kRgbCamera ? s : group->rgb;
-    group->outputs.rgb = group->outputs.rgb || s->kind == SensorKind::kRgbCamera;
-    group->outputs.depth = group->outputs.depth || s->kind == SensorKind::kDepthCamera;
-    group->outputs.semantic = group->outputs.semantic || s->kind == SensorKind::kSemanticCamera;
-    group->outputs.instance = true;
-  }
   // Every camera group, LiDAR and bird's-eye view is one task: each writes only its own frames
   // and reads the scene, which does not change until the next capture. Each is deterministic on
   // its own (fixed blocks, seeds by sensor and frame), so running them side by side keeps the
   // bytes; it fills the cores where one sensor's work runs out of parallelism (labels, the
   // bird's-eye view's rows, the end of a parallel loop).
+  const std::vector<CameraGroup> groups = camera_groups(due);
   tbb::task_group tasks;
   for (const CameraGroup& g : groups) {
     const SensorSpec& lead = *g.members.front();
-    RenderSettings settings;
-    settings.outputs = g.outputs;
-    settings.lighting = &lighting;
-    settings.carrier = entity_box(*carriers.at(lead.name));
-    double max_depth = 0.0;
-    for (const SensorSpec* m : g.members) {
-      max_depth =
-          std::max(max_depth, m->kind == SensorKind::kDepthCamera ? m->depth.max_range_m : 1e9);
-    }
-    settings.max_depth_m = max_depth;
-    if (g.rgb != nullptr) {
-      settings.rgb = g.rgb->rgb;
-    }
-    settings.frame_seed = frame_seed(g.rgb != nullptr ? *g.rgb : lead);
+    const engine::EntitySnapshot& carrier = *carriers.at(lead.name);
+    const RenderSettings settings =
+        group_settings(g, lighting, carrier, frame_seed(g.rgb != nullptr ? *g.rgb : lead));
     std::vector<SensorFrame*> outputs;
     for (const SensorSpec* m : g.members) {
       outputs.push_back(&frames.at(m->name));
     }
     const CameraRenderer& renderer = *cache_->cameras.at(lead.name);
-    const engine::EntitySnapshot& carrier = *carriers.at(lead.name);
     tasks.run([this, &g, &renderer, &carrier, settings, outputs] {
       render_camera_group(scene_, renderer, g.members, carrier, settings, outputs,
                           options_.rgb_instances);
@@ -232,20 +290,8 @@ std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& worl
     SensorFrame& f = frames.at(s->name);
     const engine::EntitySnapshot& carrier = *carriers.at(s->name);
     if (s->kind == SensorKind::kLidar) {
-      const uint64_t seed = frame_seed(*s);
-      tasks.run([this, s, &f, &carrier, &lighting, seed, sweep] {
-        LidarScanInput input;
-        input.world_from_sensor = f.world_from_sensor;
-        input.motion.velocity = {carrier.vx, carrier.vy, carrier.vz};
-        input.motion.yaw_rate = carrier.yaw_rate;
-        input.motion.pivot = {carrier.pose.x, carrier.pose.y, carrier.pose.z};
-        input.weather.fog_extinction = lighting.fog_extinction;
-        input.weather.rain_rate = lighting.rain_intensity;
-        input.weather.snow_rate = lighting.snow_intensity;
-        input.frame_seed = seed;
-        input.carrier = entity_box(carrier);
-        input.carrier_instance = carrier.instance_id;
-        input.scene_motion_span = sweep;
+      const LidarScanInput input = lidar_input(f, carrier, lighting, frame_seed(*s), sweep);
+      tasks.run([this, s, &f, &carrier, input] {
         f.cloud = cache_->lidars.at(s->name)->scan(scene_, input);
         f.labels = lidar_labels(scene_, f.world_from_sensor, f.cloud, s->lidar.range_m,
                                 carrier.instance_id);
