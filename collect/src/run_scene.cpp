@@ -54,6 +54,24 @@ sensors::Vec3 map_centre(const xodr::Map* map) {
   return {};
 }
 
+namespace {
+
+/// The centre of the map in its geoReference's CRS: OpenDRIVE's header <offset> moves the file's
+/// coordinates there (x_geo = offset + R(hdg) x_file, §2.6); a converted NGII map keeps its
+/// coordinates small and the UTM origin in the offset, so without it the map lands far away.
+sensors::Vec3 map_centre_in_crs(const xodr::Map* map) {
+  const sensors::Vec3 c = map_centre(map);
+  if (map == nullptr) {
+    return c;
+  }
+  const xodr::Header& h = map->data().header;
+  const double cos_h = std::cos(h.offset_hdg), sin_h = std::sin(h.offset_hdg);
+  return {h.offset_x + cos_h * c.x - sin_h * c.y, h.offset_y + sin_h * c.x + cos_h * c.y,
+          h.offset_z + c.z};
+}
+
+}  // namespace
+
 std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simulation,
                                                 const std::vector<ModelSpec>& models,
                                                 bool generate_buildings, Diagnostics& diagnostics) {
@@ -136,7 +154,7 @@ sensors::GeoLocation run_location(const engine::Simulation& simulation, Diagnost
   const std::optional<std::string> origin_only = origin_only_projection(geo_reference);
   try {
     const sensors::GeoLocation where =
-        sensors::geolocation_of(origin_only.value_or(geo_reference), map_centre(map));
+        sensors::geolocation_of(origin_only.value_or(geo_reference), map_centre_in_crs(map));
     if (origin_only) {
       diagnostics.add_once("run-location",
                            make_warning(map->data().source_file, 0,
