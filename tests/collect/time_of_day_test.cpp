@@ -136,6 +136,14 @@ TEST_CASE("Noon without a zone is day on a converted K-City map; 12:00Z is eveni
   CHECK(shoot(kst, dir.path() / "kst").brightness > 100.0);
   // --time-of-day with a zone too.
   CHECK(shoot(solar, dir.path() / "cli", "12:00Z").brightness < 20.0);
+  // The map is placed through its header <offset> (its UTM origin): at K-City, 37.24 N, the sun
+  // at 18:30 on 21 June stands 8.4 degrees up (NOAA; tests/sensors/solar_test.cpp). Without
+  // the offset the map landed on the equator, where it had set (-6.9 degrees): a night frame.
+  const Shot evening = shoot(solar, dir.path() / "evening", "18:30");
+  const Shot late = shoot(solar, dir.path() / "late", "22:00");
+  INFO(evening.brightness << " at 18:30, " << late.brightness << " at 22:00");
+  CHECK(evening.brightness > 60.0);
+  CHECK(late.brightness < 20.0);
 }
 
 TEST_CASE("A map that cannot be placed says once where the sun is computed",

@@ -113,3 +113,20 @@ TEST_CASE("the default environment (no EnvironmentAction) lights the scene as a 
   utc.utc_offset_hours = 0.0;
   CHECK(compute_lighting(utc, GeoLocation{37.24, 126.77}).headlights);
 }
+
+TEST_CASE("the evening sun at K-City on 21 June is within a degree of NOAA's, with and without a zone",
+          "[sensors][solar]") {
+  // NOAA solar calculator equations worked by hand for 37.24 N, 126.77 E on 2026-06-21:
+  // declination 23.44, equation of time -1.8 min. 18:30+09:00 is 17:55.3 apparent solar time,
+  // hour angle 88.8: sin(el) = sin 37.24 sin 23.44 + cos 37.24 cos 23.44 cos 88.8, el = 14.8.
+  // 18:30 without a zone is 18:30 apparent solar time, hour angle 97.5: el = 8.4.
+  const double lat = 37.24, lon = 126.77, t = 18.5 * 3600.0;
+  const SolarPosition kst = solar_position(2026, 6, 21, t, 9.0, lat, lon);
+  const SolarPosition solar = solar_position(2026, 6, 21, t, std::nullopt, lat, lon);
+  CHECK(kst.elevation / kDeg == Approx(14.8).margin(1.0));
+  CHECK(solar.elevation / kDeg == Approx(8.4).margin(1.0));
+  // Azimuths from the same triangle: 288.4 and 293.2 (west-north-west, north of west at the
+  // solstice).
+  CHECK(kst.azimuth / kDeg == Approx(288.4).margin(1.0));
+  CHECK(solar.azimuth / kDeg == Approx(293.2).margin(1.0));
+}
