@@ -131,8 +131,8 @@ std::optional<std::string> origin_only_projection(const std::string& geo_referen
 
 std::string place_text(const sensors::GeoLocation& where) {
   return format_fixed(std::fabs(where.latitude_deg), 2) +
-         (where.latitude_deg < 0 ? " S, " : " N, ") +
-         format_fixed(std::fabs(where.longitude_deg), 2) + (where.longitude_deg < 0 ? " W" : " E");
+         (where.latitude_deg <= -0.005 ? " S, " : " N, ") +
+         format_fixed(std::fabs(where.longitude_deg), 2) + (where.longitude_deg <= -0.005 ? " W" : " E");
 }
 
 }  // namespace
@@ -163,6 +163,15 @@ sensors::GeoLocation run_location(const engine::Simulation& simulation, Diagnost
                                             "Mercator around its origin (as CARLA does): the "
                                             "sun is computed at " +
                                             place_text(where)));
+    } else if (std::fabs(where.latitude_deg) < 0.01 && std::fabs(where.longitude_deg) < 0.01) {
+      // RoadRunner's default geoReference (a transverse Mercator at 0 N, 0 E, as in CARLA's
+      // Town04 to Town07) is honoured, but said: on the equator the sun sets near 18:00 local
+      // solar time all year, so an evening there is darker than at most real places.
+      diagnostics.add_once("run-location",
+                           make_warning(map->data().source_file, 0,
+                                        "the geoReference places the map at " + place_text(where) +
+                                            " (a default origin?); the sun is computed there, "
+                                            "where it sets near 18:00 local solar time"));
     }
     return where;
   } catch (const InputError& error) {

@@ -116,6 +116,21 @@ TEST_CASE("Noon without a zone is day on Town03, placed by its origin-only geoRe
   CHECK(count_containing(noon.warnings, "the sun is computed at 49.00 N, 8.00 E") == 1);
 }
 
+TEST_CASE("Town04's default geoReference is honoured at 0 N, 0 E and said once",
+          "[collect][time-of-day]") {
+  corsa::test::TempDir dir;
+  const fs::path town04 = fs::path(CORSA_SHARED_DIR) / "data/xodr/Town04.xodr";
+  const fs::path scenario = write_scenario(dir.path(), town04, world_position(0.0, 0.0));
+  // On the equator on 21 June the sun sets at about 18:04 apparent solar time (NOAA): 17:30 is
+  // day, 18:30 (-6.9 degrees) is night.
+  const Shot day = shoot(scenario, dir.path() / "day", "17:30");
+  const Shot dusk = shoot(scenario, dir.path() / "dusk", "18:30");
+  INFO(day.brightness << " at 17:30, " << dusk.brightness << " at 18:30");
+  CHECK(day.brightness > 60.0);
+  CHECK(dusk.brightness < day.brightness / 2.0);
+  CHECK(count_containing(day.warnings, "a default origin?") == 1);
+}
+
 TEST_CASE("Noon without a zone is day on a converted K-City map; 12:00Z is evening there",
           "[collect][time-of-day]") {
   corsa::test::TempDir dir;
