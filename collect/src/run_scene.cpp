@@ -132,7 +132,8 @@ std::optional<std::string> origin_only_projection(const std::string& geo_referen
 std::string place_text(const sensors::GeoLocation& where) {
   return format_fixed(std::fabs(where.latitude_deg), 2) +
          (where.latitude_deg <= -0.005 ? " S, " : " N, ") +
-         format_fixed(std::fabs(where.longitude_deg), 2) + (where.longitude_deg <= -0.005 ? " W" : " E");
+         format_fixed(std::fabs(where.longitude_deg), 2) +
+         (where.longitude_deg <= -0.005 ? " W" : " E");
 }
 
 }  // namespace

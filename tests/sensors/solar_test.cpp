@@ -114,8 +114,9 @@ TEST_CASE("the default environment (no EnvironmentAction) lights the scene as a 
   CHECK(compute_lighting(utc, GeoLocation{37.24, 126.77}).headlights);
 }
 
-TEST_CASE("the evening sun at K-City on 21 June is within a degree of NOAA's, with and without a zone",
-          "[sensors][solar]") {
+TEST_CASE(
+    "the evening sun at K-City on 21 June is within a degree of NOAA's, with and without a zone",
+    "[sensors][solar]") {
   // NOAA solar calculator equations worked by hand for 37.24 N, 126.77 E on 2026-06-21:
   // declination 23.44, equation of time -1.8 min. 18:30+09:00 is 17:55.3 apparent solar time,
   // hour angle 88.8: sin(el) = sin 37.24 sin 23.44 + cos 37.24 cos 23.44 cos 88.8, el = 14.8.
