@@ -118,23 +118,15 @@ size_t variant_count(const Shard& shard) {
   return *count;
 }
 
-}  // namespace
+// A variant's summary row and the shard it came from, by variant index.
+using Rows = std::map<size_t, std::pair<const Shard*, const std::vector<std::string>*>>;
 
-MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard_folders,
-                         bool force) {
-  if (shard_folders.empty()) fail(out, "no shard folders to merge");
-  std::error_code error;
-  if (fs::exists(out, error) && !force &&
-      !(fs::is_directory(out, error) && fs::is_empty(out, error))) {
-    fail(out, "the merge output exists and is not empty (pass --force to replace it)");
-  }
-  std::vector<Shard> shards;
-  for (const auto& folder : shard_folders) shards.push_back(read_shard(folder));
+// Every variant's row from `shards`, checked: one sweep (same plan and columns), indices below
+// `total`, a variant in two shards the same but for its wall time, none missing.
+Rows merged_rows(const fs::path& out, const std::vector<Shard>& shards, size_t total) {
   const Shard& first = shards.front();
   const std::string plan = detail::plan_of(first.described);
-  const size_t total = variant_count(first);
-  // index -> (shard, row)
-  std::map<size_t, std::pair<const Shard*, const std::vector<std::string>*>> rows;
+  Rows rows;
   if (first.table.header.size() < kFixedColumnCount) {
     fail(first.folder, "summary.csv does not have the columns of a sweep summary");
   }
@@ -169,6 +161,24 @@ MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard
                   " variants are in none of the shards (e.g. " + missing +
                   "): is a shard folder missing?");
   }
+  return rows;
+}
+
+}  // namespace
+
+MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard_folders,
+                         bool force) {
+  if (shard_folders.empty()) fail(out, "no shard folders to merge");
+  std::error_code error;
+  if (fs::exists(out, error) && !force &&
+      !(fs::is_directory(out, error) && fs::is_empty(out, error))) {
+    fail(out, "the merge output exists and is not empty (pass --force to replace it)");
+  }
+  std::vector<Shard> shards;
+  for (const auto& folder : shard_folders) shards.push_back(read_shard(folder));
+  const Shard& first = shards.front();
+  const size_t total = variant_count(first);
+  const Rows rows = merged_rows(out, shards, total);
 
   // A folder another process writes into (a sweep still running) is not replaced, nor one that
   // holds anything but an earlier sweep.
