@@ -30,6 +30,12 @@
 namespace corsa::ngii::detail {
 namespace {
 
+/// Clearance (m) between the road's right edge and the reference line's centre of curvature in
+/// right turns (as road_reference.cpp keeps when it eases them).
+constexpr double kFoldClearance = 0.5;
+/// How often a reference line is eased and refitted where its records fold the road's edge.
+constexpr int kFoldRefits = 8;
+
 std::vector<Point3> shifted(const std::vector<Point3>& points, const Origin& origin) {
   std::vector<Point3> out(points);
   for (Point3& p : out) {
@@ -130,10 +136,13 @@ ReferencePolyline reference_polyline(const RoadPlan& plan, const LaneLines& line
   const auto anchor = [](Vec2 own, const std::optional<EndLine>& on, bool shared) {
     return shared && on ? on->point + dot(own - on->point, on->across) * on->across : own;
   };
-  return align_ends(std::move(shifted), ends.start, ends.end,
-                    anchor(xy(lines.raw[ref].points().front()), ends.start, ends.start_shared),
-                    anchor(xy(lines.raw[ref].points().back()), ends.end, ends.end_shared),
-                    road_width);
+  ReferencePolyline aligned =
+      align_ends(std::move(shifted), ends.start, ends.end,
+                 anchor(xy(lines.raw[ref].points().front()), ends.start, ends.start_shared),
+                 anchor(xy(lines.raw[ref].points().back()), ends.end, ends.end_shared),
+                 road_width);
+  aligned.widest = *std::max_element(width_at.begin(), width_at.end());
+  return aligned;
 }
 
 std::vector<double> make_stations(double length, double spacing) {
@@ -450,10 +459,23 @@ BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin&
   const size_t ref = reference_lane(plan);
   CurveFitOptions fit_options;
   fit_options.tolerance = options.tolerance;
-  const ReferencePolyline reference = reference_polyline(plan, lines, widths, ends, ref);
+  ReferencePolyline reference = reference_polyline(plan, lines, widths, ends, ref);
   fit_options.start_heading = reference.start_heading;
   fit_options.end_heading = reference.end_heading;
   CurveFit fit = fit_plan_view(reference.points, fit_options);
+  // Records that turn right more tightly than the road is wide fold its right edge over. They
+  // follow survey jogs of a few centimetres within a metre (a short record must meet the data
+  // heading at its end: an S of curvature -0.5 and back), which the lanes' offsets follow anyway
+  // (they are measured from whatever line is fitted): the polyline is eased there and refitted.
+  const double tightest = 1.0 / (reference.widest + kFoldClearance);
+  for (int round = 0; round < kFoldRefits; ++round) {
+    const std::vector<double> tight = tight_right_turns(fit, tightest);
+    if (tight.empty()) {
+      break;
+    }
+    ease_near(reference.points, tight);
+    fit = fit_plan_view(reference.points, fit_options);
+  }
   built.reference_error = fit.max_error;
   built.kinks = fit.kinks;
   xodr::Road& road = built.road;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 namespace corsa::ngii::detail {
 namespace {
@@ -19,6 +20,53 @@ constexpr double kRelaxChord = 1.0;     // m
 constexpr int kRelaxRounds = 20;
 
 Vec2 to_vec(const Point2& p) { return {p.x, p.y}; }
+
+std::vector<double> arc_lengths(const std::vector<Point2>& p) {
+  std::vector<double> u(p.size(), 0.0);
+  for (size_t i = 1; i < p.size(); ++i) {
+    u[i] = u[i - 1] + norm(to_vec(p[i]) - to_vec(p[i - 1]));
+  }
+  return u;
+}
+
+/// Point of `q` at arc length `where` by the stations `u` (clamped), linear between vertices.
+Vec2 point_at(const std::vector<Point2>& q, const std::vector<double>& u, double where) {
+  where = std::clamp(where, 0.0, u.back());
+  const size_t i = static_cast<size_t>(std::upper_bound(u.begin(), u.end(), where) - u.begin());
+  if (i >= q.size()) {
+    return to_vec(q.back());
+  }
+  const double f = u[i] > u[i - 1] ? (where - u[i - 1]) / (u[i] - u[i - 1]) : 0.0;
+  return to_vec(q[i - 1]) + f * (to_vec(q[i]) - to_vec(q[i - 1]));
+}
+
+/// A Gaussian average along `p` (sigma kRelaxChord, stations `u`) of the vertices within
+/// kRelaxReach of the arc lengths `tight`; eased in from nothing at kRelaxReach from an end to
+/// all of it at twice that (the ends and their headings stay: the normals there run through
+/// the lane ends).
+void ease_at(std::vector<Point2>& p, const std::vector<double>& u, const std::vector<double>& tight) {
+  const size_t n = p.size();
+  std::vector<Point2> next(p);
+  for (size_t i = 1; i + 1 < n; ++i) {
+    const bool near_end = u[i] < kRelaxReach || u[i] > u.back() - kRelaxReach;
+    const bool near = std::any_of(tight.begin(), tight.end(),
+                                  [&](double t) { return std::abs(u[i] - t) <= kRelaxReach; });
+    if (near_end || !near) {
+      continue;
+    }
+    Vec2 sum{0.0, 0.0};
+    double weight = 0.0;
+    for (double d = -3.0 * kRelaxChord; d <= 3.0 * kRelaxChord + 1e-9; d += 0.25) {
+      const double w = std::exp(-0.5 * d * d / (kRelaxChord * kRelaxChord));
+      sum = sum + w * point_at(p, u, u[i] + d);
+      weight += w;
+    }
+    const double from_end = std::min(u[i], u.back() - u[i]);
+    const double f = std::clamp(from_end / kRelaxReach - 1.0, 0.0, 1.0);
+    next[i] = Point2{p[i].x + f * (sum.x / weight - p[i].x), p[i].y + f * (sum.y / weight - p[i].y)};
+  }
+  p = std::move(next);
+}
 
 double polyline_length(const std::vector<Point2>& p) {
   double total = 0.0;
@@ -314,20 +362,10 @@ void relax_right_turns(std::vector<Point2>& p, const std::vector<double>& road_w
   for (size_t i = 1; i < n; ++i) {
     u[i] = u[i - 1] + norm(to_vec(p[i]) - to_vec(p[i - 1]));
   }
-  // Point at arc length `at` (clamped to the line), linear between the vertices.
-  const auto at = [&](const std::vector<Point2>& q, double where) {
-    where = std::clamp(where, 0.0, u.back());
-    const size_t i = static_cast<size_t>(std::upper_bound(u.begin(), u.end(), where) - u.begin());
-    if (i >= n) {
-      return to_vec(q.back());
-    }
-    const double f = u[i] > u[i - 1] ? (where - u[i - 1]) / (u[i] - u[i - 1]) : 0.0;
-    return to_vec(q[i - 1]) + f * (to_vec(q[i]) - to_vec(q[i - 1]));
-  };
+  const auto at = [&](const std::vector<Point2>& q, double where) { return point_at(q, u, where); };
   for (int round = 0; round < kRelaxRounds; ++round) {
-    // Vertices within kRelaxReach of a right turn tighter than the road is wide.
-    std::vector<bool> tight(n, false);
-    bool any = false;
+    // Arc lengths of right turns tighter than the road is wide.
+    std::vector<double> tight;
     for (size_t i = 1; i + 1 < n; ++i) {
       const Vec2 a = at(p, u[i] - kRelaxChord), m = to_vec(p[i]), b = at(p, u[i] + kRelaxChord);
       if (norm(m - a) < 1e-6 || norm(b - m) < 1e-6) {
@@ -337,38 +375,38 @@ void relax_right_turns(std::vector<Point2>& p, const std::vector<double>& road_w
           angle_diff(std::atan2(b.y - m.y, b.x - m.x), std::atan2(m.y - a.y, m.x - a.x));
       const double curvature = turn / (0.5 * (norm(m - a) + norm(b - m)));
       if (curvature < -1.0 / (road_width[i] + kFoldClearance)) {
-        for (size_t j = 1; j + 1 < n; ++j) {
-          // The ends and their headings stay (the normals there run through the lane ends).
-          const bool near_end = u[j] < kRelaxReach || u[j] > u.back() - kRelaxReach;
-          tight[j] = tight[j] || (!near_end && std::abs(u[j] - u[i]) <= kRelaxReach);
-        }
-        any = true;
+        tight.push_back(u[i]);
       }
     }
-    if (!any) {
+    if (tight.empty()) {
       return;
     }
-    // A Gaussian average along the line there (sigma = kRelaxChord), ends kept.
-    std::vector<Point2> next(p);
-    for (size_t i = 1; i + 1 < n; ++i) {
-      if (!tight[i]) {
-        continue;
-      }
-      Vec2 sum{0.0, 0.0};
-      double weight = 0.0;
-      for (double d = -3.0 * kRelaxChord; d <= 3.0 * kRelaxChord + 1e-9; d += 0.25) {
-        const double w = std::exp(-0.5 * d * d / (kRelaxChord * kRelaxChord));
-        sum = sum + w * at(p, u[i] + d);
-        weight += w;
-      }
-      // Eased in from nothing at kRelaxReach from an end to all of it at twice that.
-      const double from_end = std::min(u[i], u.back() - u[i]);
-      const double f = std::clamp(from_end / kRelaxReach - 1.0, 0.0, 1.0);
-      next[i] =
-          Point2{p[i].x + f * (sum.x / weight - p[i].x), p[i].y + f * (sum.y / weight - p[i].y)};
-    }
-    p = std::move(next);
+    ease_at(p, u, tight);
   }
+}
+
+void ease_near(std::vector<Point2>& points, const std::vector<double>& at) {
+  if (points.size() < 3 || at.empty()) {
+    return;
+  }
+  ease_at(points, arc_lengths(points), at);
+}
+
+std::vector<double> tight_right_turns(const CurveFit& fit, double curvature) {
+  std::vector<double> out;
+  for (const xodr::Geometry& g : fit.geometries) {
+    double k0 = 0.0, k1 = 0.0;
+    if (const auto* arc = std::get_if<xodr::ArcGeometry>(&g.shape)) {
+      k0 = k1 = arc->curvature;
+    } else if (const auto* spiral = std::get_if<xodr::SpiralGeometry>(&g.shape)) {
+      k0 = spiral->curv_start;
+      k1 = spiral->curv_end;
+    }
+    if (std::min(k0, k1) < -curvature) {
+      out.push_back(g.s + (k0 < k1 ? 0.0 : g.length));
+    }
+  }
+  return out;
 }
 
 ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<EndLine>& start,

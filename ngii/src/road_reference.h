@@ -38,6 +38,9 @@ struct ReferencePolyline {
   std::vector<Point2> points;
   double start_heading = 0.0;  ///< rad
   double end_heading = 0.0;
+  /// The road's greatest width (m, all lanes right of the reference line): the plan-view fit
+  /// turns right no more tightly than this allows (CurveFitOptions::max_right_curvature).
+  double widest = 0.0;
 };
 
 /// The reference lane's vertices moved left by `half_widths` (per vertex), along the normal of
@@ -52,6 +55,14 @@ ReferencePolyline shifted_left(const Polyline& lane, const std::vector<double>& 
 /// metre, or sparse vertices turning at sharp corners; the lanes' offsets keep following the
 /// survey. The first and last 2 m stay (the normals at the ends run through the lane ends).
 void relax_right_turns(std::vector<Point2>& points, const std::vector<double>& road_width);
+
+/// Smooths `points` within kRelaxReach (2 m) of the arc lengths `at` (m along the polyline),
+/// as relax_right_turns does, by a Gaussian average of sigma 1 m; the first and last 2 m stay.
+void ease_near(std::vector<Point2>& points, const std::vector<double>& at);
+
+/// Arc lengths (m) where the records of `fit` turn right more tightly than `curvature` (1/m,
+/// positive): at each such record's tightest end.
+std::vector<double> tight_right_turns(const CurveFit& fit, double curvature);
 
 /// `reference` bent near its start and end to meet `start` / `end` (when given) square: it ends
 /// heading across the line, on the line's parallel through the anchor (the reference lane's
