@@ -121,6 +121,7 @@ class Measurer {
     link_ends();
     lane_joins();
     vertical();
+    figures_.lateral_p95 = percentile(lateral_, 0.95);
     widths();
     side_by_side();
     return figures_;
@@ -283,6 +284,7 @@ class Measurer {
           const Foot f = foot_on(line, v.x, v.y);
           if (f.inside && f.distance < 1.0) {
             errors.push_back(std::abs(f.z - v.z));
+            lateral_.push_back(f.distance);
           }
         }
       }
@@ -463,6 +465,7 @@ class Measurer {
   std::vector<LaneInfo> lanes_;
   std::unordered_map<std::string, std::vector<size_t>> lanes_of_;
   NgiiFigures figures_;
+  std::vector<double> lateral_;  ///< distances of A2 vertices from their lane centres (m)
 };
 
 }  // namespace
@@ -488,6 +491,7 @@ std::string format_figures(const NgiiFigures& f) {
       << "split_merge_joins " << f.split_joins.count << " (over 0.2 m " << f.split_joins.over
       << ", max " << f.split_joins.max << ")\n"
       << "lanes_measured " << f.lanes_measured << "\n"
+      << "lateral_p95_m " << f.lateral_p95 << "\n"
       << "vertical_p95_max_m " << f.vertical_p95_max << " (" << f.vertical_worst << ")\n"
       << "vertical_max_m " << f.vertical_max << "\n"
       << "lanes_vertical_p95_over_5cm " << f.lanes_over_5cm << "\n"

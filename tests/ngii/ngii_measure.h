@@ -41,6 +41,9 @@ struct NgiiFigures {
   /// inside that neighbour.
   GapFigures split_joins;
   size_t lanes_measured = 0;
+  /// p95 over every A2 vertex of its distance from its lane's centre line in the map (m), of
+  /// the vertices whose foot lies inside that line and within 1 m (as for the heights).
+  double lateral_p95 = 0.0;
   double vertical_p95_max = 0.0;  ///< largest per-lane p95 of |z map - z A2| (m)
   double vertical_max = 0.0;      ///< largest single vertex error (m)
   size_t lanes_over_5cm = 0;      ///< lanes whose p95 exceeds 5 cm

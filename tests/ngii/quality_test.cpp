@@ -86,13 +86,24 @@ TEST_CASE("lane borders fold over themselves on a known few roads", "[ngii][qual
   // A fold: a lane border beyond the reference line's centre of curvature, left out of the
   // mesh (mesh_folds.h). Before: road ends were bent to a skewed end line along an S curve back
   // to the line of travel, turning four times as tightly at the end as an even turn, and
-  // folded wide roads there (K-City 50, Sangam 34 roads: 46 and 16 after that), and junction
+  // folded wide roads there (K-City 50, Sangam 34 roads: 46 and 16 after that); junction
   // paths with a mark on one side only took twice the distance to it as their width (up to
-  // 12 m). What remains: one-lane roads, mostly junction paths, where the plan view's clothoids
-  // turn sharply between survey vertices or the marks on both sides are far apart, and a few
-  // short roads whose skewed ends leave no room for an even turn.
-  CHECK(figures("kcity").folded_roads <= 38);
-  CHECK(figures("seoul_sangam_testbed").folded_roads <= 14);
+  // 12 m: 38 and 14 after that); short clothoids swung to -0.5 1/m and back over survey jogs
+  // (20 and 4 after easing and refitting there). What remains: one-lane junction paths (and
+  // one K-City road end) that turn right within 2 m of an end, where the reference line must
+  // keep the end's point and heading: the heading extrapolated from the lane's first chords
+  // lies left of the lane where a sparse path runs straight and then turns (0.22 rad on
+  // K-City's A219BS010543).
+  CHECK(figures("kcity").folded_roads <= 20);
+  CHECK(figures("seoul_sangam_testbed").folded_roads <= 4);
+}
+
+TEST_CASE("lane centres follow their A2 links within 3.5 cm (p95 over all vertices)",
+          "[ngii][quality][accuracy]") {
+  // K-City 2.8 cm, Sangam 3.1 cm: easing the reference line where it folds leaves them as
+  // they were (the lanes' offsets are measured from whatever line is fitted).
+  CHECK(figures("kcity").lateral_p95 < 0.035);
+  CHECK(figures("seoul_sangam_testbed").lateral_p95 < 0.035);
 }
 
 TEST_CASE("the heights across each road follow its lanes within 5 cm (p95 per lane)",
