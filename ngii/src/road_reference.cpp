@@ -18,6 +18,8 @@ constexpr double kFoldClearance = 0.5;  // m
 constexpr double kRelaxReach = 2.0;     // m
 constexpr double kRelaxChord = 1.0;     // m
 constexpr int kRelaxRounds = 20;
+// Length (m) of the chords a road end's tangent is extrapolated from (shifted_left).
+constexpr double kEndChord = 1.5;
 
 Vec2 to_vec(const Point2& p) { return {p.x, p.y}; }
 
@@ -277,6 +279,31 @@ bool on_end_line(const EndLine& line, Vec2 p) {
   return std::abs(cross(line.across, p - line.point)) <= kEndLineTolerance;
 }
 
+/// How much of a circle's end tangent extrapolation applies at the start (or `at_end`) of the
+/// vertices `p`: 1 unless the first segment is at least kEndChord long and the corner at its far
+/// vertex is smaller than the next one (2 r - 1 for the ratio r of the two corners: 1 on a
+/// circle, 0 where a straight segment runs into an evenly turning one).
+double circle_share(const std::vector<Point3>& p, bool at_end) {
+  const size_t n = p.size();
+  if (n < 4) {
+    return 1.0;
+  }
+  const auto at = [&](size_t i) { return xy(p[at_end ? n - 1 - i : i]); };
+  if (norm(at(1) - at(0)) < kEndChord) {
+    return 1.0;
+  }
+  const auto heading = [&](size_t i) {
+    const Vec2 d = at(i + 1) - at(i);
+    return std::atan2(d.y, d.x);
+  };
+  const double c1 = angle_diff(heading(1), heading(0));
+  const double c2 = angle_diff(heading(2), heading(1));
+  if (std::abs(c2) < 1e-3) {
+    return 1.0;
+  }
+  return std::clamp(2.0 * c1 / c2 - 1.0, 0.0, 1.0);
+}
+
 ReferencePolyline shifted_left(const Polyline& first, const std::vector<double>& half_widths) {
   const auto& p = first.points();
   const size_t n = p.size();
@@ -304,18 +331,23 @@ ReferencePolyline shifted_left(const Polyline& first, const std::vector<double>&
   // At the ends the chords reach one way only, and on a curve their direction is off the
   // tangent by half the turn along them (13 degrees on a sparse junction link turning 20 degrees
   // a vertex): the tangent there is extrapolated from two chords (exact on a circle).
-  constexpr double kEndChord = 1.5;  // m
   const double length = first.length();
   if (n >= 2 && length >= 3.0 * kEndChord) {
     const auto chord = [&](double a, double b) {
       const Vec2 d = xy(first.at(b)) - xy(first.at(a));
       return std::atan2(d.y, d.x);
     };
+    // Where the first (last) chord lies on one segment of sparse data, the extrapolation holds
+    // only if the data turns like a circle there: equal corners at the next two vertices. A
+    // junction path that runs straight for metres and then turns has half the corner at the
+    // first (the turn begins there), and its first segment is the tangent; extrapolating would
+    // point up to 0.22 rad off it into the outside of the turn, and the line would have to
+    // turn back within a metre, folding the lane on the inside. Between the two, in proportion.
     const double s1 = chord(0.0, kEndChord), s2 = chord(kEndChord, 2.0 * kEndChord);
-    const double start = s1 - 0.5 * angle_diff(s2, s1);
+    const double start = s1 - circle_share(p, false) * 0.5 * angle_diff(s2, s1);
     const double e1 = chord(length - kEndChord, length);
     const double e2 = chord(length - 2.0 * kEndChord, length - kEndChord);
-    const double end = e1 + 0.5 * angle_diff(e1, e2);
+    const double end = e1 + circle_share(p, true) * 0.5 * angle_diff(e1, e2);
     normals.front() = Vec2{-std::sin(start), std::cos(start)};
     normals.back() = Vec2{-std::sin(end), std::cos(end)};
   }

@@ -8,6 +8,8 @@
 #include "corsa/ngii/convert.h"
 #include "corsa/xodr/map.h"
 #include "mesh_folds.h"
+#include "polyline.h"
+#include "road_reference.h"
 
 namespace {
 
@@ -84,4 +86,36 @@ TEST_CASE("a lane over a survey jog of a few centimetres does not fold its right
   CHECK(corsa::test::folded_roads(map) == 0);
   // The lane still follows the survey (the laneOffset takes up the eased reference line).
   CHECK(conversion.summary.max_lane_error <= 0.05);
+}
+
+TEST_CASE("a sparse lane that runs straight and then turns right starts along its first segment",
+          "[ngii][folds]") {
+  // A junction path as surveyed: 2 m straight (no vertex between), then a right turn at a
+  // radius of 7 m with a vertex every 30 degrees. The start tangent extrapolated from two
+  // chords (exact on a circle) pointed 0.1 rad to the left of the straight part, into the
+  // outside of the turn; the plan view had to turn back within a metre and folded the lane's
+  // right edge there (K-City's A219BS010543: 0.22 rad).
+  std::vector<Point3> points{{0.0, 0.0, 0.0}};
+  for (int k = 0; k <= 3; ++k) {
+    const double a = k * M_PI / 6.0;
+    points.push_back({2.0 + 7.0 * std::sin(a), -7.0 * (1.0 - std::cos(a)), 0.0});
+  }
+  const corsa::ngii::detail::Polyline lane(points);
+  const auto reference = corsa::ngii::detail::shifted_left(lane, std::vector<double>(5, 2.0));
+  CHECK(std::abs(reference.start_heading) < 1e-9);
+}
+
+TEST_CASE("a lane turning evenly from its first vertex starts along the circle's tangent",
+          "[ngii][folds]") {
+  // The same turn without the straight part: the corners at the first vertices are equal, so
+  // the tangent is extrapolated from the two first chords as before (a circle).
+  std::vector<Point3> points;
+  for (int k = 0; k <= 30; ++k) {
+    const double a = k * M_PI / 60.0;
+    points.push_back({7.0 * std::sin(a), -7.0 * (1.0 - std::cos(a)), 0.0});
+  }
+  const corsa::ngii::detail::Polyline lane(points);
+  const auto reference = corsa::ngii::detail::shifted_left(lane, std::vector<double>(31, 2.0));
+  CHECK(reference.start_heading == Approx(0.0).margin(0.01));
+  CHECK(reference.end_heading == Approx(-M_PI / 2.0).margin(0.01));
 }
