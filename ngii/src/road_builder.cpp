@@ -30,9 +30,6 @@
 namespace corsa::ngii::detail {
 namespace {
 
-/// Clearance (m) between the road's right edge and the reference line's centre of curvature in
-/// right turns (as road_reference.cpp keeps when it eases them).
-constexpr double kFoldClearance = 0.5;
 /// How often a reference line is eased and refitted where its records fold the road's edge.
 constexpr int kFoldRefits = 8;
 
@@ -139,8 +136,7 @@ ReferencePolyline reference_polyline(const RoadPlan& plan, const LaneLines& line
   ReferencePolyline aligned =
       align_ends(std::move(shifted), ends.start, ends.end,
                  anchor(xy(lines.raw[ref].points().front()), ends.start, ends.start_shared),
-                 anchor(xy(lines.raw[ref].points().back()), ends.end, ends.end_shared),
-                 road_width);
+                 anchor(xy(lines.raw[ref].points().back()), ends.end, ends.end_shared), road_width);
   aligned.widest = *std::max_element(width_at.begin(), width_at.end());
   return aligned;
 }

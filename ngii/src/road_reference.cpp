@@ -14,9 +14,8 @@ constexpr double kMaxSkew = 50.0 * M_PI / 180.0;
 constexpr double kMinSkew = 0.2 * M_PI / 180.0;
 // Right turns (towards the lanes) tighter than the road is wide (plus kFoldClearance) are
 // smoothed over +-kRelaxReach, at most kRelaxRounds times; curvature from chords of kRelaxChord.
-constexpr double kFoldClearance = 0.5;  // m
-constexpr double kRelaxReach = 2.0;     // m
-constexpr double kRelaxChord = 1.0;     // m
+constexpr double kRelaxReach = 2.0;  // m
+constexpr double kRelaxChord = 1.0;  // m
 constexpr int kRelaxRounds = 20;
 // Length (m) of the chords a road end's tangent is extrapolated from (shifted_left).
 constexpr double kEndChord = 1.5;
@@ -46,7 +45,8 @@ Vec2 point_at(const std::vector<Point2>& q, const std::vector<double>& u, double
 /// kRelaxReach of the arc lengths `tight`; eased in from nothing at kRelaxReach from an end to
 /// all of it at twice that (the ends and their headings stay: the normals there run through
 /// the lane ends).
-void ease_at(std::vector<Point2>& p, const std::vector<double>& u, const std::vector<double>& tight) {
+void ease_at(std::vector<Point2>& p, const std::vector<double>& u,
+             const std::vector<double>& tight) {
   const size_t n = p.size();
   std::vector<Point2> next(p);
   for (size_t i = 1; i + 1 < n; ++i) {
@@ -65,7 +65,8 @@ void ease_at(std::vector<Point2>& p, const std::vector<double>& u, const std::ve
     }
     const double from_end = std::min(u[i], u.back() - u[i]);
     const double f = std::clamp(from_end / kRelaxReach - 1.0, 0.0, 1.0);
-    next[i] = Point2{p[i].x + f * (sum.x / weight - p[i].x), p[i].y + f * (sum.y / weight - p[i].y)};
+    next[i] =
+        Point2{p[i].x + f * (sum.x / weight - p[i].x), p[i].y + f * (sum.y / weight - p[i].y)};
   }
   p = std::move(next);
 }

@@ -19,6 +19,11 @@
 
 namespace corsa::ngii::detail {
 
+/// Clearance (m) kept between a road's right edge and its reference line's centre of curvature
+/// in right turns (relax_right_turns, and the refits of the plan view where its records turn
+/// more tightly).
+constexpr double kFoldClearance = 0.5;
+
 /// A straight line across the road through the lane ends: a point and a unit direction.
 struct EndLine {
   Vec2 point;
