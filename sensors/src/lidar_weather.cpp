@@ -99,19 +99,22 @@ LidarWeatherModel::LidarWeatherModel(const LidarWeather& weather, double max_ran
     const double n0 = rain ? 8000.0 : 3800.0 * power(rate, -0.87);             // 1/(m^3 mm)
     size_rate_ = rain ? 4.1 * power(rate, -0.21) : 2.55 * power(rate, -0.48);  // 1/mm
     reflectance_ = rain ? kWaterReflectance : kSnowReflectance;
+    // rho_w / C3 in 1/mm: (1000 kg/m^3 / C3) / (1000 mm/m).
+    flake_swell_ = rain ? 0.0 : 1.0 / kDrySnowDensityDiameter;
     // Detectable particles per metre of beam at range r: the beam's cross-section times the
     // number density of particles of at least the diameter that reaches the threshold there.
     auto rate_at = [&](double r) {
       const double beam_mm = 1e3 * kBeamDivergence * r;
       const double seen = reflectance_ * overlap(r);
       if (seen <= 0.0) {
-        return std::pair{0.0, beam_mm};
+        return std::pair{0.0, melted_diameter(beam_mm)};
       }
       const double need = threshold_ * r * r * det::exp(2.0 * alpha_ * r) / seen;
-      const double d_min = beam_mm * std::sqrt(need);  // mm; >= beam: nothing is enough
-      if (!(d_min < beam_mm)) {
-        return std::pair{0.0, beam_mm};
+      const double seen_min = beam_mm * std::sqrt(need);  // mm; >= beam: nothing is enough
+      if (!(seen_min < beam_mm)) {
+        return std::pair{0.0, melted_diameter(beam_mm)};
       }
+      const double d_min = melted_diameter(seen_min);
       const double beam_area = kPi * 0.25 * (beam_mm * 1e-3) * (beam_mm * 1e-3);  // m^2
       return std::pair{beam_area * (n0 / size_rate_) * det::exp(-size_rate_ * d_min), d_min};
     };
@@ -148,6 +151,19 @@ WeatherReturn LidarWeatherModel::fog_echo(double r0) const {
   return fog_table_[std::min(index, fog_table_.size() - 1)];
 }
 
+double LidarWeatherModel::seen_diameter(double melted_mm) const {
+  // D_f^2 = (rho_w / C3) D^3; below D = C3 / rho_w (0.17 mm) the law would make the flake
+  // denser than water, and it is taken as the drop.
+  return std::max(melted_mm, std::sqrt(flake_swell_ * melted_mm * melted_mm * melted_mm));
+}
+
+double LidarWeatherModel::melted_diameter(double seen_mm) const {
+  if (!(flake_swell_ * seen_mm > 1.0)) {
+    return seen_mm;
+  }
+  return power(seen_mm * seen_mm / flake_swell_, 1.0 / 3.0);
+}
+
 double LidarWeatherModel::particle_power(double range, double diameter_mm) const {
   const double beam_mm = 1e3 * kBeamDivergence * range;
   const double share = std::min(1.0, (diameter_mm / beam_mm) * (diameter_mm / beam_mm));
@@ -171,7 +187,7 @@ WeatherReturn LidarWeatherModel::particle(BeamRandom& random, double limit) cons
   if (!(range < limit) || range < kOverlapStart) {
     return {};
   }
-  return {range, particle_power(range, diameter)};
+  return {range, particle_power(range, seen_diameter(diameter))};
 }
 
 }  // namespace corsa::sensors::detail

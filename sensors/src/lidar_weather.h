@@ -21,14 +21,16 @@
 //
 // Rain and snow (Kilic et al.): single particles. Drop sizes follow Marshall and Palmer (1948),
 // N(D) = 8000 e^(-4.1 R^-0.21 D) (1/(m^3 mm)), snowflakes Gunn and Marshall (1958),
-// N(D) = 3800 R^-0.87 e^(-2.55 R^-0.48 D), R in mm/h (water equivalent), D in mm. A particle of
-// diameter D at range r intercepts the share min(1, (D / D_beam)^2) of the beam (D_beam = r
-// times the 3 mrad divergence) and returns rho_p xi(r) min(1, (D / D_beam)^2) e^(-2 alpha r) / r^2
-// with rho_p the Fresnel reflectance of water (n = 1.328: 0.020) or, for the rough flakes, the
-// diffuse reflectance of snow (0.8). Particles are detectable where that exceeds P_min (beyond
-// r1), so each beam meets them as a Poisson process along its path whose rate is the number of
-// detectable particles per metre of beam; the first one met is the candidate.
-// Their extinction is sensors::rain_extinction / snow_extinction (environment.h).
+// N(D) = 3800 R^-0.87 e^(-2.55 R^-0.48 D), R in mm/h (water equivalent), D in mm the melted
+// diameter. A flake is an aggregate of density C3 / D_f (sensors::kDrySnowDensityDiameter), so
+// the flake of melted diameter D is D_f = sqrt(rho_w D^3 / C3) across (never less than D). A
+// particle of diameter D_f at range r intercepts the share min(1, (D_f / D_beam)^2) of the beam
+// (D_beam = r times the 3 mrad divergence) and returns rho_p xi(r) min(1, (D_f / D_beam)^2)
+// e^(-2 alpha r) / r^2 with rho_p the Fresnel reflectance of water (n = 1.328: 0.020) or, for the
+// rough flakes, the diffuse reflectance of snow (0.8). Particles are detectable where that
+// exceeds P_min (beyond r1), so each beam meets them as a Poisson process along its path whose
+// rate is the number of detectable particles per metre of beam; the first one met is the
+// candidate. Their extinction is sensors::rain_extinction / snow_extinction (environment.h).
 
 #include <cstdint>
 #include <vector>
@@ -65,6 +67,10 @@ class LidarWeatherModel {
 
  private:
   double particle_power(double range, double diameter_mm) const;
+  /// Across the particle of melted diameter `melted_mm` (mm): the drop itself, or the flake.
+  double seen_diameter(double melted_mm) const;
+  /// The melted diameter of the particle `seen_mm` across (inverse of seen_diameter).
+  double melted_diameter(double seen_mm) const;
 
   LidarWeather weather_;
   double alpha_ = 0.0;
@@ -77,8 +83,9 @@ class LidarWeatherModel {
   // Particles: probability that the first detectable one lies before each 5 cm bin edge
   // (first_cdf_[k] for range r1 + k * 5 cm), and the exponential size law of the precipitation.
   std::vector<double> first_cdf_;
-  std::vector<double> min_diameter_;  ///< mm, smallest detectable at each bin edge
-  double size_rate_ = 0.0;            ///< Lambda, 1/mm
+  std::vector<double> min_diameter_;  ///< mm (melted), smallest detectable at each bin edge
+  double size_rate_ = 0.0;            ///< Lambda, 1/mm (of melted diameter)
+  double flake_swell_ = 0.0;          ///< rho_w / C3, 1/mm, for snow; 0 for rain
   double reflectance_ = 0.0;
 };
 

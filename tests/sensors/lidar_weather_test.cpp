@@ -268,13 +268,52 @@ TEST_CASE("rain drops and snowflakes near the sensor answer some beams; snow mor
   CHECK(rain_share < 0.01);
   CHECK(snow_share > 0.05);
   CHECK(snow_share > 10.0 * rain_share);
-  // Extinctions from the size distributions (pi N0 / Lambda^3).
+  // Rain's extinction from Marshall and Palmer's drops (pi N0 / Lambda^3).
   CHECK(rain_extinction(10.0) == Approx(3.65e-4 * std::pow(10.0, 0.63)).epsilon(0.01));
-  CHECK(snow_extinction(1.0) == Approx(7.2e-4).epsilon(0.01));
   // Same seed, same drops.
   input.weather.snow_rate = 0.0;
   input.weather.rain_rate = 10.0;
   CHECK(lidar.scan(scene, input).points.size() == rain.points.size());
+}
+
+TEST_CASE("dry snow of 1 mm/h water equivalent leaves about 0.8 km of visual range, less the "
+          "harder it snows",
+          "[sensors][weather]") {
+  // Rasmussen et al. 1999, Eq. 13 in the paper's cgs units: S = 1.3 C3 Vt / Vis with S the
+  // liquid-equivalent rate (cm/s), C3 = 0.017 g/cm^2 and Vt = 100 cm/s for dry aggregates, Vis
+  // in cm; 1.3 = 3.912 / 3, so sigma = 3 S / (C3 Vt) per cm.
+  auto rasmussen = [](double mm_per_h) {
+    const double s_cm_per_s = mm_per_h / 10.0 / 3600.0;
+    return 3.0 * s_cm_per_s / (0.017 * 100.0) * 100.0;  // 1/m
+  };
+  for (const double rate : {0.2, 1.0, 2.0, 5.0}) {
+    CHECK(snow_extinction(rate) == Approx(rasmussen(rate)).epsilon(1e-9));
+  }
+  const auto visual_range = [](double rate) { return 3.912 / snow_extinction(rate); };
+  // 1 mm/h: 0.80 km (the melted-drop extinction of Gunn and Marshall's flakes, 7.2e-4 1/m,
+  // gave 5.4 km, the range of light rain).
+  CHECK(visual_range(1.0) > 500.0);
+  CHECK(visual_range(1.0) < 1500.0);
+  // 2 mm/h: the paper's Fig. 10 reads 0.3 km for dry snow, its Eq. 13 gives 0.40 km.
+  CHECK(visual_range(2.0) > 300.0);
+  CHECK(visual_range(2.0) < 450.0);
+  CHECK(visual_range(5.0) < visual_range(1.0) / 4.0);
+  CHECK(visual_range(0.2) > 3000.0);  // light snow
+  // Snow obscures far more than rain of the same water: 1 mm/h of rain leaves 10 km.
+  CHECK(snow_extinction(1.0) > 10.0 * rain_extinction(1.0));
+  // The LiDAR's flakes are the same aggregates: Gunn and Marshall's (1958) melted diameters
+  // N(D) = 3800 R^-0.87 e^(-2.55 R^-0.48 D) made flakes of density C3 / D_f
+  // (D_f^2 = rho_w D^3 / C3, never below D), each removing twice its cross-section, give
+  // Rasmussen's extinction within a few percent at 1 mm/h (numerical integral, D in mm).
+  const double c3 = 0.017 * 10.0;  // g/cm^2 -> kg/m^2
+  double integral = 0.0;           // 1/m
+  const double step = 1e-4;        // mm
+  for (double d = 0.5 * step; d < 30.0; d += step) {
+    const double flake_mm = std::max(d, std::sqrt(1000.0 / c3 * 1e-3 * d * d * d));
+    const double n = 3800.0 * std::exp(-2.55 * d);  // 1/(m^3 mm)
+    integral += 2.0 * 0.25 * kPi * (flake_mm * 1e-3) * (flake_mm * 1e-3) * n * step;
+  }
+  CHECK(integral == Approx(snow_extinction(1.0)).epsilon(0.05));
 }
 
 TEST_CASE("snow falls in the camera image and the wind slants rain and snow across the view",
