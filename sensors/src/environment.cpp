@@ -119,8 +119,8 @@ double snow_extinction(double intensity_mm_per_h) {
   if (!(intensity_mm_per_h > 0.0)) {
     return 0.0;
   }
-  constexpr double kWaterDensity = 1000.0;                         // kg/m^3
-  const double flux = intensity_mm_per_h * 1e-3 / 3600.0;             // m/s of water
+  constexpr double kWaterDensity = 1000.0;                 // kg/m^3
+  const double flux = intensity_mm_per_h * 1e-3 / 3600.0;  // m/s of water
   return 3.0 * kWaterDensity * flux / (kDrySnowDensityDiameter * kDrySnowFallSpeed);
 }
 

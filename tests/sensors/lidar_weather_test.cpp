@@ -276,9 +276,10 @@ TEST_CASE("rain drops and snowflakes near the sensor answer some beams; snow mor
   CHECK(lidar.scan(scene, input).points.size() == rain.points.size());
 }
 
-TEST_CASE("dry snow of 1 mm/h water equivalent leaves about 0.8 km of visual range, less the "
-          "harder it snows",
-          "[sensors][weather]") {
+TEST_CASE(
+    "dry snow of 1 mm/h water equivalent leaves about 0.8 km of visual range, less the "
+    "harder it snows",
+    "[sensors][weather]") {
   // Rasmussen et al. 1999, Eq. 13 in the paper's cgs units: S = 1.3 C3 Vt / Vis with S the
   // liquid-equivalent rate (cm/s), C3 = 0.017 g/cm^2 and Vt = 100 cm/s for dry aggregates, Vis
   // in cm; 1.3 = 3.912 / 3, so sigma = 3 S / (C3 Vt) per cm.
