@@ -7,6 +7,12 @@ if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_L
   # concatenation with a temporary (GCC bug 105329), which depends on inlining decisions.
   target_compile_options(corsa_build_flags INTERFACE -Wno-restrict -Wno-stringop-overflow)
 endif()
+if(CMAKE_UNITY_BUILD AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  # A unity build compiles several .cpp files as one: GCC then treats every included .cpp as a
+  # header and warns about its classes holding types from its own anonymous namespace, which is
+  # right for a real header and meaningless here.
+  target_compile_options(corsa_build_flags INTERFACE -Wno-subobject-linkage)
+endif()
 if(CORSA_WERROR)
   target_compile_options(corsa_build_flags INTERFACE -Werror)
 endif()

@@ -14,10 +14,9 @@
 
 #include "corsa/sensors/color.h"
 #include "corsa/sensors/geometry.h"
+#include "scalar_math.h"
 
 namespace corsa::sensors::detail {
-
-inline constexpr double kPi = std::numbers::pi;
 
 inline Vec3 reflect(Vec3 d, Vec3 n) { return d - n * (2.0 * dot(d, n)); }
 

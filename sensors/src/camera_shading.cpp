@@ -10,6 +10,7 @@
 
 #include "brdf.h"
 #include "noise_tile.h"
+#include "scalar_math.h"
 #include "shading.h"
 #include "surface.h"
 
@@ -23,11 +24,6 @@ bool is_road_like(SemanticClass c) {
 }
 
 constexpr uint32_t bit(LightRole r) { return 1u << static_cast<unsigned>(r); }
-
-double smoothstep(double e0, double e1, double x) {
-  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
 
 /// The lamps of an entity lit this frame: what the scenario set, and otherwise headlights and
 /// tail lamps when it is dark, brake lamps and indicators as the engine reports them,

@@ -6,13 +6,12 @@
 #include <numbers>
 
 #include "corsa/core/random.h"
+#include "scalar_math.h"
 #include "scene_data.h"
 #include "vehicle_generators.h"
 
 namespace corsa::sensors::detail {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 using PoseFn = std::function<void(const engine::EntitySnapshot&, std::vector<Rigid>&)>;
 

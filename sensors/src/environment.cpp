@@ -7,16 +7,13 @@
 
 #include "corsa/core/det_math.h"
 #include "corsa/sensors/solar.h"
+#include "scalar_math.h"
 
 namespace corsa::sensors {
+
+using detail::kDeg;
+using detail::smoothstep;
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-double smoothstep(double e0, double e1, double x) {
-  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
 
 double luminance(Color c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 

@@ -8,13 +8,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "scalar_math.h"
 #include "vehicle_generators.h"
 
 namespace corsa::sensors::detail {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 
 /// Joint heights and offsets as shares of the stature (standing, arms hanging).
 struct Joints {

@@ -11,11 +11,13 @@
 #include "lidar_random.h"
 #include "lidar_scan.h"
 #include "lidar_weather.h"
+#include "scalar_math.h"
 
 namespace corsa::sensors {
+
+using detail::kDeg;
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 /// Packets per work block (2,048 beams): big enough to amortise the task, small enough to
 /// spread a revolution over the threads. Draws are per beam, so the size never changes a point.
 constexpr uint64_t kPacketsPerBlock = 128;

@@ -9,11 +9,11 @@
 
 #include "corsa/core/det_math.h"
 #include "corsa/sensors/environment.h"
+#include "scalar_math.h"
 
 namespace corsa::sensors::detail {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kPulseLength = 299792458.0 * 20e-9;  // c tau_H, m (tau_H = 20 ns)
 constexpr double kOverlapStart = 1.5;                 // r1, m
 constexpr double kOverlapFull = 5.0;                  // r2, m

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "brdf.h"
+#include "scalar_math.h"
 #include "scene_data.h"
 
 namespace corsa::sensors::detail {
@@ -53,11 +54,6 @@ Photometry photometry(LightRole role) {
 Color hue(Color emission) {
   const double y = luminance(emission);
   return y > 0.0 ? emission * (1.0 / y) : Color{1.0, 1.0, 1.0};
-}
-
-double smoothstep(double e0, double e1, double x) {
-  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
 }
 
 /// Relative intensity of a pattern towards unit direction d (from the light).

@@ -8,15 +8,11 @@
 
 #include "corsa/sensors/texture_image.h"
 #include "noise_tile.h"
+#include "scalar_math.h"
 #include "surface.h"
 
 namespace corsa::sensors::detail {
 namespace {
-
-double smoothstep(double e0, double e1, double x) {
-  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
 
 /// 1 while features of `size` metres are resolved (footprint below a quarter of them), falling
 /// to 0 at three quarters: the weight of per-cell variation, whose average is 0.

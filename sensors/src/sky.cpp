@@ -4,21 +4,19 @@
 #include <cmath>
 #include <numbers>
 
-namespace corsa::sensors {
-namespace {
+#include "scalar_math.h"
 
-constexpr double kPi = std::numbers::pi;
+namespace corsa::sensors {
+
+using detail::kPi;
+using detail::smoothstep;
+namespace {
 
 /// Perez et al.'s all-weather distribution F(theta, gamma) = (1 + A e^(B / cos theta))
 /// (1 + C e^(D gamma) + E cos^2 gamma).
 double perez(const std::array<double, 5>& c, double cos_theta, double gamma, double cos_gamma) {
   return (1.0 + c[0] * std::exp(c[1] / cos_theta)) *
          (1.0 + c[2] * std::exp(c[3] * gamma) + c[4] * cos_gamma * cos_gamma);
-}
-
-double smoothstep(double e0, double e1, double x) {
-  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
 }
 
 }  // namespace

@@ -3,10 +3,12 @@
 #include <cmath>
 #include <numbers>
 
-namespace corsa::sensors {
-namespace {
+#include "scalar_math.h"
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+namespace corsa::sensors {
+
+using detail::kDeg;
+namespace {
 
 double wrap360(double degrees) {
   const double r = std::fmod(degrees, 360.0);

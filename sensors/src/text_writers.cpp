@@ -6,11 +6,12 @@
 #include "corsa/core/strings.h"
 #include "corsa/sensors/camera_render.h"
 #include "corsa/sensors/writers.h"
+#include "scalar_math.h"
 
 namespace corsa::sensors {
-namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using detail::kDeg;
+namespace {
 
 double num(double v) { return v == 0.0 ? 0.0 : v; }  // no "-0"
 

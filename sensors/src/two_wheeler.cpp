@@ -6,12 +6,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "scalar_math.h"
 #include "vehicle_generators.h"
 
 namespace corsa::sensors::detail {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 /// A spoked bicycle wheel: a thin tyre ring, a rim, spokes and a hub, open between the spokes.
 void add_bicycle_wheel(MeshBuilder& b, const WheelSpec& w) {

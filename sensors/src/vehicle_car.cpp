@@ -8,16 +8,12 @@
 #include <cmath>
 #include <vector>
 
+#include "scalar_math.h"
 #include "vehicle_generators.h"
 #include "vehicle_parts.h"
 
 namespace corsa::sensors::detail {
 namespace {
-
-double smoothstep(double e0, double e1, double x) {
-  const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
 
 using Curve = std::vector<std::array<double, 2>>;
 

@@ -6,10 +6,10 @@
 #include <numbers>
 #include <string>
 
+#include "scalar_math.h"
+
 namespace corsa::sensors::detail {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Material paint(const std::string& name, Color c, bool metallic_flake) {
   Material m;

@@ -18,7 +18,7 @@
 namespace corsa::sensors::detail {
 namespace {
 
-constexpr double kJunctionGap = 12.0;  // m kept clear at road ends meeting a junction
+constexpr double kBuildingJunctionGap = 12.0;  // m kept clear at road ends meeting a junction
 
 enum class Kind { kHouse, kBlock, kShop };
 
@@ -220,8 +220,9 @@ void build_buildings(WorldBuild& w) {
         RandomStream look(rng.next_u64());
         const double s0 = s, s1 = s + frontage;
         s = s1 + gap;
-        if (s1 > road.length || next_to_junction(map, r, s0, kJunctionGap) ||
-            next_to_junction(map, r, s1, kJunctionGap) || motorway_at(road, 0.5 * (s0 + s1))) {
+        if (s1 > road.length || next_to_junction(map, r, s0, kBuildingJunctionGap) ||
+            next_to_junction(map, r, s1, kBuildingJunctionGap) ||
+            motorway_at(road, 0.5 * (s0 + s1))) {
           continue;
         }
         const Edge e0 = edge_at(map, r, s0, side, spans);

@@ -11,13 +11,12 @@
 #include <numbers>
 
 #include "corsa/core/strings.h"
+#include "scalar_math.h"
 #include "world_build.h"
 #include "world_props.h"
 
 namespace corsa::sensors::detail {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Material paint_white() {
   Material m = materials::plain("road paint", linear_rgb(232, 232, 222), 0.6);

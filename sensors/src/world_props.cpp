@@ -5,11 +5,10 @@
 #include <numbers>
 
 #include "noise_tile.h"
+#include "scalar_math.h"
 
 namespace corsa::sensors::detail {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 Material bark() {
   Material m = materials::plain("bark", linear_rgb(82, 64, 48), 0.95);

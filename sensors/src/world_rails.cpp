@@ -15,10 +15,10 @@
 namespace corsa::sensors::detail {
 namespace {
 
-constexpr double kPiece = 10.0;        // m, longest straight piece
-constexpr double kRailOffset = 0.5;    // m beyond the outer lane edge
-constexpr double kFenceOffset = 7.0;   // m beyond the outer lane edge
-constexpr double kJunctionGap = 10.0;  // m kept clear at road ends meeting a junction
+constexpr double kPiece = 10.0;            // m, longest straight piece
+constexpr double kRailOffset = 0.5;        // m beyond the outer lane edge
+constexpr double kFenceOffset = 7.0;       // m beyond the outer lane edge
+constexpr double kRailJunctionGap = 10.0;  // m kept clear at road ends meeting a junction
 
 bool has_own_rails(const xodr::Road& road) {
   for (const xodr::Object& o : road.objects) {
@@ -81,15 +81,15 @@ void build_rails(WorldBuild& w) {
   std::vector<xodr::LaneSpan> spans;
   for (size_t r = 0; r < map.road_count(); ++r) {
     const xodr::Road& road = map.road(r);
-    if (road.in_junction() || road.length < 2.0 * kJunctionGap || has_own_rails(road)) {
+    if (road.in_junction() || road.length < 2.0 * kRailJunctionGap || has_own_rails(road)) {
       continue;
     }
     for (int side : {-1, 1}) {
       for (double s = 0.0; s < road.length - 0.5;) {
         const double s1 = std::min(road.length, s + kPiece);
         const double mid = 0.5 * (s + s1);
-        if (motorway_at(road, mid) && !next_to_junction(map, r, s, kJunctionGap) &&
-            !next_to_junction(map, r, s1, kJunctionGap)) {
+        if (motorway_at(road, mid) && !next_to_junction(map, r, s, kRailJunctionGap) &&
+            !next_to_junction(map, r, s1, kRailJunctionGap)) {
           if (place_piece(w, r, s, s1, side, kRailOffset, false, spans)) {
             ++w.report.guard_rails;
           }

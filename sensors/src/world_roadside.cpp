@@ -7,15 +7,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "scalar_math.h"
 #include "world_build.h"
 #include "world_props.h"
 
 namespace corsa::sensors::detail {
-namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-}  // namespace
+namespace {}  // namespace
 
 void build_roadside(WorldBuild& w) {
   const xodr::Map& map = w.map;

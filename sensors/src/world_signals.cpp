@@ -10,13 +10,12 @@
 #include <optional>
 
 #include "corsa/core/strings.h"
+#include "scalar_math.h"
 #include "world_build.h"
 #include "world_props.h"
 
 namespace corsa::sensors::detail {
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 const Color kRed = linear_rgb(196, 22, 28);
 const Color kWhite = linear_rgb(236, 236, 232);

@@ -28,21 +28,21 @@ namespace fs = std::filesystem;
   throw InputError(make_error(where.string(), 0, message));
 }
 
-struct Shard {
+struct ShardOutput {
   fs::path folder;
   std::string description;  ///< sweep.json as written
   Json described;           ///< ... and as read
   detail::Table table;
 };
 
-Shard read_shard(const fs::path& folder) {
+ShardOutput read_shard(const fs::path& folder) {
   std::error_code error;
   if (!fs::is_directory(folder, error)) fail(folder, "not a folder");
   if (!fs::exists(folder / detail::kDescriptionFile, error)) {
     fail(folder, "not a sweep output folder (it has no sweep.json)");
   }
   const fs::path described = folder / detail::kDescriptionFile;
-  Shard shard{folder, read_file(described), {}, {}};
+  ShardOutput shard{folder, read_file(described), {}, {}};
   shard.described = parse_json(shard.description, described.string());
   auto table = detail::read_table(folder / detail::kSummaryFile);
   if (!table) {
@@ -112,25 +112,25 @@ void remove_stale_staging(const fs::path& out) {
 }
 
 // The variant count a sweep.json states.
-size_t variant_count(const Shard& shard) {
+size_t variant_count(const ShardOutput& shard) {
   const auto count = detail::variant_count_of(shard.described);
   if (!count) fail(shard.folder / detail::kDescriptionFile, "no variant count in sweep.json");
   return *count;
 }
 
 // A variant's summary row and the shard it came from, by variant index.
-using Rows = std::map<size_t, std::pair<const Shard*, const std::vector<std::string>*>>;
+using Rows = std::map<size_t, std::pair<const ShardOutput*, const std::vector<std::string>*>>;
 
 // Every variant's row from `shards`, checked: one sweep (same plan and columns), indices below
 // `total`, a variant in two shards the same but for its wall time, none missing.
-Rows merged_rows(const fs::path& out, const std::vector<Shard>& shards, size_t total) {
-  const Shard& first = shards.front();
+Rows merged_rows(const fs::path& out, const std::vector<ShardOutput>& shards, size_t total) {
+  const ShardOutput& first = shards.front();
   const std::string plan = detail::plan_of(first.described);
   Rows rows;
   if (first.table.header.size() < kFixedColumnCount) {
     fail(first.folder, "summary.csv does not have the columns of a sweep summary");
   }
-  for (const Shard& shard : shards) {
+  for (const ShardOutput& shard : shards) {
     if (detail::plan_of(shard.described) != plan) {
       fail(shard.folder, "holds another sweep than " + first.folder.string() +
                              " (their sweep.json files differ)");
@@ -174,9 +174,9 @@ MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard
       !(fs::is_directory(out, error) && fs::is_empty(out, error))) {
     fail(out, "the merge output exists and is not empty (pass --force to replace it)");
   }
-  std::vector<Shard> shards;
+  std::vector<ShardOutput> shards;
   for (const auto& folder : shard_folders) shards.push_back(read_shard(folder));
-  const Shard& first = shards.front();
+  const ShardOutput& first = shards.front();
   const size_t total = variant_count(first);
   const Rows rows = merged_rows(out, shards, total);
 
@@ -204,7 +204,7 @@ MergeReport merge_sweeps(const fs::path& out, const std::vector<fs::path>& shard
     write_file_atomic(staging / detail::kDescriptionFile, first.description);
     std::string table = csv_line(first.table.header);
     const size_t status = status_column(first.table.header.size() - kFixedColumnCount);
-    for (const Shard& shard : shards) refuse_link(shard.folder / detail::kVariantsFolder);
+    for (const ShardOutput& shard : shards) refuse_link(shard.folder / detail::kVariantsFolder);
     for (const auto& [index, entry] : rows) {
       const fs::path variant = fs::path(detail::kVariantsFolder) / std::to_string(index);
       merge_variant(entry.first->folder / variant, staging / variant);

@@ -20,6 +20,19 @@
 
 namespace corsa::test {
 
+/// The bundled map and scenario the reader cases start from (paths from the source folder).
+inline const std::string kMap = "scenarios/maps/motorway_2km.xodr";
+inline const std::string kScenario = "scenarios/cut_in.xosc";
+
+/// The command line `corsa args...` as text, for messages.
+inline std::string joined(const std::vector<std::string>& args) {
+  std::string text = "corsa";
+  for (const auto& arg : args) {
+    text += ' ' + arg;
+  }
+  return text;
+}
+
 /// What one time-limited `corsa` process did.
 struct BoundedResult {
   int exit_code = -1;  ///< -1 when killed by a signal (a crash)

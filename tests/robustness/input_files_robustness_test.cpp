@@ -21,14 +21,6 @@ constexpr int kLimit = 10;
 
 void make_fifo(const fs::path& path) { REQUIRE(::mkfifo(path.c_str(), 0600) == 0); }
 
-std::string joined(const std::vector<std::string>& args) {
-  std::string text = "corsa";
-  for (const auto& arg : args) {
-    text += ' ' + arg;
-  }
-  return text;
-}
-
 /// Runs `args` and checks exit 2, in time, with `path: error: ...` holding `why`.
 void check_refused(const std::vector<std::string>& args, const std::string& path,
                    const std::string& why) {
@@ -39,9 +31,6 @@ void check_refused(const std::vector<std::string>& args, const std::string& path
   CHECK(result.err.find(path + ": error: ") != std::string::npos);
   CHECK(result.err.find(why) != std::string::npos);
 }
-
-const std::string kMap = "scenarios/maps/motorway_2km.xodr";
-const std::string kScenario = "scenarios/cut_in.xosc";
 
 TEST_CASE("Every reader refuses a FIFO at once instead of waiting for a writer",
           "[robustness][paths]") {

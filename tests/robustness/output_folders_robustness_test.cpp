@@ -19,13 +19,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kScenario = "scenarios/suites/regression/cut_in.xosc";
+const std::string kSuiteScenario = "scenarios/suites/regression/cut_in.xosc";
 
-/// A four-variant sweep of `kScenario` into `out` (shard `shard` of 2 when given).
+/// A four-variant sweep of `kSuiteScenario` into `out` (shard `shard` of 2 when given).
 std::vector<std::string> small_sweep(const fs::path& out, const std::string& shard = {}) {
-  std::vector<std::string> args{"sweep", kScenario,    "--param", "Ego_Speed=20:23:1",
-                                "-o",    out.string(), "--quiet", "--duration",
-                                "0.5",   "-j",         "1"};
+  std::vector<std::string> args{"sweep", kSuiteScenario, "--param", "Ego_Speed=20:23:1",
+                                "-o",    out.string(),   "--quiet", "--duration",
+                                "0.5",   "-j",           "1"};
   if (!shard.empty()) {
     args.insert(args.end(), {"--shard", shard});
   }
@@ -291,9 +291,9 @@ TEST_CASE("SIGINT stops a sweep after the variants in progress, and --resume fin
   TempDir dir;
   const fs::path out = dir.path() / "out";
   // 40 variants of about 0.1 s each at a 0.5 ms step.
-  const std::vector<std::string> args{"sweep",  kScenario,    "--param", "Ego_Speed=20:39.5:0.5",
-                                      "-o",     out.string(), "--quiet", "--dt",
-                                      "0.0005", "-j",         "1",       "--no-trajectories"};
+  const std::vector<std::string> args{"sweep",  kSuiteScenario, "--param", "Ego_Speed=20:39.5:0.5",
+                                      "-o",     out.string(),   "--quiet", "--dt",
+                                      "0.0005", "-j",           "1",       "--no-trajectories"};
   const pid_t child = spawn_corsa(args, dir.path() / "stderr");
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   std::error_code error;
@@ -363,8 +363,8 @@ TEST_CASE("Temporaries a SIGKILLed run left are removed by the next run of the s
   REQUIRE(kill(child, SIGKILL) == 0);
   CHECK(wait_corsa(child) == -1);
   REQUIRE(temporaries() == 1);
-  const BoundedResult next =
-      run_bounded({"run", kScenario, "--quiet", "--record", (out / "trajectories.csv").string()});
+  const BoundedResult next = run_bounded(
+      {"run", kSuiteScenario, "--quiet", "--record", (out / "trajectories.csv").string()});
   INFO(describe("the next run into the same folder", next));
   CHECK(next.exit_code == 0);
   CHECK(temporaries() == 0);

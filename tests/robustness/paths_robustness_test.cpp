@@ -12,9 +12,6 @@
 namespace corsa::test {
 namespace {
 
-const std::string kMap = "scenarios/maps/motorway_2km.xodr";
-const std::string kScenario = "scenarios/cut_in.xosc";
-
 /// The commands that read one input file, with `input` in the input's place.
 std::vector<std::vector<std::string>> readers(const std::string& input, const std::string& out) {
   return {{"validate", input},
@@ -22,14 +19,6 @@ std::vector<std::vector<std::string>> readers(const std::string& input, const st
           {"map", "mesh", input, "-o", out + "/mesh.obj"},
           {"run", input, "--quiet", "--record", out + "/out.csv"},
           {"sweep", input, "-o", out + "/sweep", "--quiet"}};
-}
-
-std::string joined(const std::vector<std::string>& args) {
-  std::string text = "corsa";
-  for (const auto& arg : args) {
-    text += ' ' + arg;
-  }
-  return text;
 }
 
 /// Runs every reader on `input` and checks exit 2, a message naming `input` and an empty `out`.

@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* const kRig = R"(<SensorRig version="1" name="small">
+const char* const kSmallRig = R"(<SensorRig version="1" name="small">
   <RgbCamera name="rgb" entity="Ego" width="160" height="96" fov="90"><Mount x="1.5" z="1.4"/></RgbCamera>
   <DepthCamera name="depth" entity="Ego" width="160" height="96" fov="90" maxRange="60"><Mount x="1.5" z="1.4"/></DepthCamera>
   <SemanticCamera name="sem" entity="Ego" width="160" height="96" fov="90"><Mount x="1.5" z="1.4"/></SemanticCamera>
@@ -56,7 +56,7 @@ Scene district() {
 std::vector<fs::path> run(const fs::path& dir, int threads) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   Scene scene = district();
-  SensorRig rig = parse_rig(kRig, "small.xml");
+  SensorRig rig = parse_rig(kSmallRig, "small.xml");
   const std::vector<std::string> names{"Ego", "Lead", "Walker"};
   bind_rig(rig, names);
   SensorSystemOptions options;
@@ -121,7 +121,7 @@ TEST_CASE("a second run gives byte-identical files on any thread count",
 TEST_CASE("capturing a sensor whose entity is missing names the rig line",
           "[sensors][system][errors]") {
   Scene scene = district();
-  SensorSystem system(parse_rig(kRig, "small.xml"), scene, {});
+  SensorSystem system(parse_rig(kSmallRig, "small.xml"), scene, {});
   corsa::engine::WorldSnapshot empty;
   CHECK_THROWS_WITH(system.capture(empty, {}),
                     Catch::StartsWith("small.xml:2: error: sensor 'rgb' is attached to entity "

@@ -8,49 +8,28 @@
 #include "corsa/sensors/camera_render.h"
 #include "corsa/sensors/world.h"
 #include "corsa/xodr/road_mesh.h"
+#include "world_fixture.h"
 
 using namespace corsa::sensors;
+
+using corsa::test::build_world_scene;
+using corsa::test::kXodrData;
+using corsa::test::load_map;
+using corsa::test::wide_camera;
 
 namespace {
 
 const std::filesystem::path kSource = CORSA_SOURCE_DIR;
-const std::filesystem::path kShared = std::filesystem::path(CORSA_SHARED_DIR) / "data" / "xodr";
-
-corsa::xodr::Map load(const std::filesystem::path& path) {
-  corsa::Diagnostics quiet;
-  return corsa::xodr::Map::load(path, quiet);
-}
 
 /// The demo street (one straight 320 m road, sidewalks on both sides) without its models.
-corsa::xodr::Map demo_street() { return load(kSource / "scenarios/demo/city_street.xodr"); }
+corsa::xodr::Map demo_street() { return load_map(kSource / "scenarios/demo/city_street.xodr"); }
 
-struct Built {
-  Scene scene;
-  WorldReport report;
-};
-
-std::unique_ptr<Built> build(const corsa::xodr::Map& map, bool buildings, uint64_t seed = 3) {
-  const auto& h = map.data().header;
-  auto out = std::make_unique<Built>(Built{
-      Scene(SceneOptions{{0.5 * (h.east + h.west), 0.5 * (h.north + h.south), 0.0}, seed}), {}});
-  out->scene.add_road_mesh(corsa::xodr::build_road_mesh(map));
-  out->scene.commit();
-  corsa::Diagnostics quiet;
-  WorldOptions options;
-  options.seed = seed;
-  options.buildings = buildings;
-  out->report = build_world(map, out->scene, options, quiet);
-  out->scene.commit();
+/// The world with or without generated buildings, the scene ready for rendering (no entities).
+std::unique_ptr<corsa::test::BuiltWorld> build(const corsa::xodr::Map& map, bool buildings,
+                                               uint64_t seed = 3) {
+  auto out = build_world_scene(map, seed, buildings);
   out->scene.set_entities({});
   return out;
-}
-
-CameraIntrinsics wide() {
-  CameraIntrinsics k;
-  k.width = 480;
-  k.height = 270;
-  k.fov_deg = 90.0;
-  return k;
 }
 
 /// A camera 1.5 m above lane `t` of road 0 at s, looking along the road.
@@ -89,7 +68,7 @@ TEST_CASE("generated buildings line a street when asked and none stand there oth
   CHECK(on->report.buildings >= 20);
   // No two alike: every building brings at least its own facade material.
   CHECK(on->scene.material_count() >= off->scene.material_count() + on->report.buildings);
-  const CameraRenderer camera(wide());
+  const CameraRenderer camera(wide_camera());
   RenderSettings settings;
   settings.outputs.semantic = true;
   const CameraMotion motion = on_road(map, 0, 60.0, -5.25);
@@ -111,7 +90,7 @@ TEST_CASE("generated buildings are the same for a seed and others for another",
   CHECK(a->report.buildings == b->report.buildings);
   CHECK(a->scene.static_triangle_count() == b->scene.static_triangle_count());
   CHECK(a->scene.material_count() == b->scene.material_count());
-  const CameraRenderer camera(wide());
+  const CameraRenderer camera(wide_camera());
   RenderSettings settings;
   settings.outputs = {.semantic = true, .instance = true};
   const CameraMotion motion = on_road(map, 0, 100.0, 5.25);
@@ -126,7 +105,7 @@ TEST_CASE("generated buildings are the same for a seed and others for another",
 TEST_CASE("motorways get guard rails and fences at their outer edges, town streets none",
           "[sensors][world][rails]") {
   // Town04's highway loop is limited to 55-65 mph (88-105 km/h); its town part to 30-35 mph.
-  const auto town04 = load(kShared / "Town04.xodr");
+  const auto town04 = load_map(kXodrData / "Town04.xodr");
   auto built = build(town04, false);
   CHECK(built->report.guard_rails > 100);
   CHECK(built->report.fences > 50);
@@ -155,7 +134,7 @@ TEST_CASE("motorways get guard rails and fences at their outer edges, town stree
     }
   }
   REQUIRE(outer != nullptr);
-  const CameraRenderer camera(wide());
+  const CameraRenderer camera(wide_camera());
   RenderSettings settings;
   settings.outputs.semantic = true;
   const CameraImages img = camera.render(
@@ -170,7 +149,7 @@ TEST_CASE("a lit street at night is far darker than at noon under auto exposure"
           "[sensors][camera][night]") {
   const auto map = demo_street();
   auto built = build(map, true);
-  const CameraRenderer camera(wide());
+  const CameraRenderer camera(wide_camera());
   auto render = [&](double sun_elevation) {
     corsa::engine::EnvironmentState env;
     env.sun_azimuth = 2.0;

@@ -11,54 +11,19 @@
 #include "corsa/sensors/camera_render.h"
 #include "corsa/sensors/labels.h"
 #include "corsa/xodr/road_mesh.h"
+#include "world_fixture.h"
 
 using namespace corsa::sensors;
 
-namespace {
-
-const std::filesystem::path kShared = std::filesystem::path(CORSA_SHARED_DIR) / "data" / "xodr";
-
-corsa::xodr::Map load(const std::string& name) {
-  corsa::Diagnostics quiet;
-  return corsa::xodr::Map::load(kShared / name, quiet);
-}
-
-struct Built {
-  Scene scene;
-  WorldReport report;
-  std::vector<corsa::Diagnostic> warnings;
-};
-
-std::unique_ptr<Built> build(const corsa::xodr::Map& map, uint64_t seed = 3) {
-  const auto& h = map.data().header;
-  auto out = std::make_unique<Built>(
-      Built{Scene(SceneOptions{{0.5 * (h.east + h.west), 0.5 * (h.north + h.south), 0.0}, seed}),
-            {},
-            {}});
-  out->scene.add_road_mesh(corsa::xodr::build_road_mesh(map));
-  out->scene.commit();
-  corsa::Diagnostics diagnostics([&](const corsa::Diagnostic& d) { out->warnings.push_back(d); });
-  WorldOptions options;
-  options.seed = seed;
-  out->report = build_world(map, out->scene, options, diagnostics);
-  out->scene.commit();
-  return out;
-}
-
-CameraIntrinsics wide() {
-  CameraIntrinsics k;
-  k.width = 480;
-  k.height = 270;
-  k.fov_deg = 90.0;
-  return k;
-}
-
-}  // namespace
+using corsa::test::build_world_scene;
+using corsa::test::kXodrData;
+using corsa::test::load_map;
+using corsa::test::wide_camera;
 
 TEST_CASE("on Town04 the ground reaches the horizon and the junction shows lights and poles",
           "[sensors][world]") {
-  const auto map = load("Town04.xodr");
-  auto built = build(map);
+  const auto map = load_map(kXodrData / "Town04.xodr");
+  auto built = build_world_scene(map, 3);
   CHECK(built->report.ground_triangles > 10000);
   CHECK(built->report.traffic_lights == 43);  // every signal of the map is a traffic light
   CHECK(built->report.trees + built->report.bushes > 200);
@@ -66,7 +31,7 @@ TEST_CASE("on Town04 the ground reaches the horizon and the junction shows light
   const auto pose = map.world_pose(*map.find_road("1"), 52.0, -8.75);
   const Rigid eye = rigid_from_pose(pose.x, pose.y, pose.z + 1.5, pose.h, 0.0, 0.0);
   built->scene.set_entities({});
-  const CameraRenderer camera(wide());
+  const CameraRenderer camera(wide_camera());
   RenderSettings settings;
   settings.outputs.semantic = true;
   CameraMotion motion;
@@ -107,10 +72,10 @@ TEST_CASE("on Town04 the ground reaches the horizon and the junction shows light
 
 TEST_CASE("the world is the same for the same seed and other plants for another",
           "[sensors][world][determinism]") {
-  const auto map = load("fabriksgatan.xodr");
-  auto a = build(map, 5);
-  auto b = build(map, 5);
-  auto c = build(map, 6);
+  const auto map = load_map(kXodrData / "fabriksgatan.xodr");
+  auto a = build_world_scene(map, 5);
+  auto b = build_world_scene(map, 5);
+  auto c = build_world_scene(map, 6);
   CHECK(a->scene.static_triangle_count() == b->scene.static_triangle_count());
   CHECK(a->report.trees == b->report.trees);
   CHECK(a->report.bushes == b->report.bushes);
@@ -120,8 +85,8 @@ TEST_CASE("the world is the same for the same seed and other plants for another"
 TEST_CASE("signals of types Corsa does not draw become generic signs with one warning",
           "[sensors][world][signals]") {
   // SampleDatabase has German signs and a few types outside the catalogue.
-  const auto map = load("SampleDatabase.xodr");
-  auto built = build(map);
+  const auto map = load_map(kXodrData / "SampleDatabase.xodr");
+  auto built = build_world_scene(map, 3);
   CHECK(built->report.signs + built->report.traffic_lights > 0);
   std::map<std::string, int> per_message;
   for (const auto& w : built->warnings) {
@@ -136,11 +101,11 @@ TEST_CASE("signals of types Corsa does not draw become generic signs with one wa
 
 TEST_CASE("a camera frame of a built world is the same bytes on 1 and 2 threads",
           "[sensors][world][determinism]") {
-  const auto map = load("Town04.xodr");
-  auto built = build(map);
+  const auto map = load_map(kXodrData / "Town04.xodr");
+  auto built = build_world_scene(map, 3);
   built->scene.set_entities({});
   const auto pose = map.world_pose(*map.find_road("1"), 40.0, -8.75);
-  const CameraRenderer camera(wide());
+  const CameraRenderer camera(wide_camera());
   corsa::engine::EnvironmentState env;
   env.sun_azimuth = 2.0;
   env.sun_elevation = 0.9;

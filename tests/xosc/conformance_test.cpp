@@ -6,17 +6,18 @@
 #include <vector>
 
 #include "corsa/xosc/scenario.h"
+#include "shared_data.h"
 
 namespace fs = std::filesystem;
 using namespace corsa::xosc;
 
-namespace {
+using corsa::test::kAsamExamples;
 
-const fs::path kConformance = fs::path(CORSA_SHARED_DIR) / "conformance" / "asam-osc-1.3";
+namespace {
 
 std::vector<fs::path> all_xosc_files() {
   std::vector<fs::path> files;
-  for (const auto& entry : fs::recursive_directory_iterator(kConformance)) {
+  for (const auto& entry : fs::recursive_directory_iterator(kAsamExamples)) {
     if (entry.is_regular_file() && entry.path().extension() == ".xosc") {
       files.push_back(entry.path());
     }

@@ -7,14 +7,15 @@
 #include "corsa/core/strings.h"
 #include "corsa/xosc/distributions.h"
 #include "scenario_text.h"
+#include "shared_data.h"
 #include "temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace corsa::xosc;
 
-namespace {
+using corsa::test::kAsamExamples;
 
-const fs::path kConformance = fs::path(CORSA_SHARED_DIR) / "conformance" / "asam-osc-1.3";
+namespace {
 
 ParameterValueDistribution load_text(const corsa::test::TempDir& dir, const std::string& body) {
   corsa::test::write_text(dir.path() / "s.xosc", "<OpenSCENARIO/>\n");
@@ -34,9 +35,9 @@ TEST_CASE("the ASAM deterministic parameter set enumerates its value sets in ord
           "[xosc][distribution]") {
   corsa::Diagnostics diagnostics;
   const auto distribution = load_distribution(
-      kConformance / "SlowPrecedingVehicleDeterministicParameterSet.xosc", diagnostics);
+      kAsamExamples / "SlowPrecedingVehicleDeterministicParameterSet.xosc", diagnostics);
   CHECK(distribution.scenario_path ==
-        (kConformance / "SlowPrecedingVehicle.xosc").lexically_normal());
+        (kAsamExamples / "SlowPrecedingVehicle.xosc").lexically_normal());
   const auto variants = enumerate_variants(distribution);
   REQUIRE(variants.size() == 2);
   using Values = std::vector<std::pair<std::string, std::string>>;
@@ -75,7 +76,7 @@ TEST_CASE("stochastic variants are reproducible and independent of each other",
           "[xosc][distribution]") {
   corsa::Diagnostics diagnostics;
   const auto distribution = load_distribution(
-      kConformance / "SlowPrecedingVehicleStochasticParameterSet.xosc", diagnostics);
+      kAsamExamples / "SlowPrecedingVehicleStochasticParameterSet.xosc", diagnostics);
   REQUIRE(variant_count(distribution) == 100);
   const auto first = enumerate_variants(distribution);
   const auto second = enumerate_variants(distribution);

@@ -3,17 +3,18 @@
 #include <variant>
 
 #include "corsa/xosc/scenario.h"
+#include "shared_data.h"
 
 namespace fs = std::filesystem;
 using namespace corsa::xosc;
 
-namespace {
+using corsa::test::kAsamExamples;
 
-const fs::path kConformance = fs::path(CORSA_SHARED_DIR) / "conformance" / "asam-osc-1.3";
+namespace {
 
 Scenario load(const char* name, const LoadOptions& options = {}) {
   corsa::Diagnostics diagnostics;
-  return load_scenario(kConformance / name, options, diagnostics);
+  return load_scenario(kAsamExamples / name, options, diagnostics);
 }
 
 template <class T>
@@ -33,7 +34,7 @@ TEST_CASE("expressions and parameters in TrailerConnect resolve to numbers", "[x
   CHECK(world.x == Approx(1.7 - 12.0));         // ${$X0 - $TrajRadius}
   CHECK(world.y == Approx(13.5 + 12.0 + 4.7));  // ${$Y0 + $TrajRadius + 4.7}
   CHECK(world.source.line == 43);
-  CHECK(world.source.file_name() == (kConformance / "TrailerConnect.xosc").string());
+  CHECK(world.source.file_name() == (kAsamExamples / "TrailerConnect.xosc").string());
 
   const auto& maneuver =
       scenario.storyboard.stories.at(0).acts.at(0).maneuver_groups.at(0).maneuvers.at(0);
@@ -63,7 +64,7 @@ TEST_CASE("catalog references expand to the entry with its parameters", "[xosc][
   CHECK(vehicle.catalog->catalog_name == "VehicleCatalog");
   CHECK(vehicle.catalog->entry_name == "car_trailer");
   CHECK(vehicle.source.file_name() ==
-        (kConformance / "Catalogs/Vehicles/VehicleCatalog.xosc").lexically_normal().string());
+        (kAsamExamples / "Catalogs/Vehicles/VehicleCatalog.xosc").lexically_normal().string());
   REQUIRE(vehicle.trailer_coupler.has_value());
   CHECK(vehicle.trailer_coupler->dx == 3.25);
   REQUIRE(scenario.catalog_files.size() == 1);
@@ -96,7 +97,7 @@ TEST_CASE("the road network LogicFile resolves against the scenario's folder", "
   const Scenario scenario = load("CutIn.xosc");
   CHECK(scenario.road_network.logic_file->filepath == "Databases/AB_RQ31_Straight.xodr");
   CHECK(scenario.road_network.logic_file_path ==
-        fs::absolute(kConformance / "Databases/AB_RQ31_Straight.xodr").lexically_normal());
+        fs::absolute(kAsamExamples / "Databases/AB_RQ31_Straight.xodr").lexically_normal());
 }
 
 TEST_CASE("parameter overrides replace declared values before anything uses them",

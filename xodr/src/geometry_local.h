@@ -4,9 +4,20 @@
 // record's heading cosine/sine precomputed (Map caches them: most lookups are on lines, which
 // then need no trigonometry at all). Private to corsa_xodr.
 
+#include <array>
+
 #include "corsa/xodr/geometry.h"
 
 namespace corsa::xodr::detail {
+
+/// 10-point Gauss-Legendre quadrature on [-1, 1]: the positive nodes (the others are their
+/// negatives) and their weights; exact for polynomials up to degree 19.
+inline constexpr std::array<double, 5> kGaussNodes = {0.1488743389816312, 0.4333953941292472,
+                                                      0.6794095682990244, 0.8650633666889845,
+                                                      0.9739065285171717};
+inline constexpr std::array<double, 5> kGaussWeights = {0.2955242247147529, 0.2692667193099963,
+                                                        0.2190863625159820, 0.1494513491505806,
+                                                        0.0666713443086881};
 
 /// The record's shape at ds, start at the origin heading along +x.
 RefPoint evaluate_local(const Geometry& geometry, double ds);

@@ -10,16 +10,10 @@
 #include <cmath>
 
 #include "corsa/xodr/geometry.h"
+#include "geometry_local.h"
 
 namespace corsa::xodr {
 namespace {
-
-constexpr std::array<double, 5> kNodes = {0.1488743389816312, 0.4333953941292472,
-                                          0.6794095682990244, 0.8650633666889845,
-                                          0.9739065285171717};
-constexpr std::array<double, 5> kWeights = {0.2955242247147529, 0.2692667193099963,
-                                            0.2190863625159820, 0.1494513491505806,
-                                            0.0666713443086881};
 
 double poly3_slope(const Poly3Geometry& p, double u) {
   return p.b + u * (2.0 * p.c + 3.0 * p.d * u);
@@ -32,10 +26,10 @@ double poly3_arc_length(const Poly3Geometry& p, double u) {
   double total = 0.0;
   for (int piece = 0; piece < pieces; ++piece) {
     const double mid = (piece + 0.5) * step;
-    for (size_t i = 0; i < kNodes.size(); ++i) {
+    for (size_t i = 0; i < detail::kGaussNodes.size(); ++i) {
       for (const double sign : {-1.0, 1.0}) {
-        const double slope = poly3_slope(p, mid + sign * kNodes[i] * 0.5 * step);
-        total += kWeights[i] * std::sqrt(1.0 + slope * slope);
+        const double slope = poly3_slope(p, mid + sign * detail::kGaussNodes[i] * 0.5 * step);
+        total += detail::kGaussWeights[i] * std::sqrt(1.0 + slope * slope);
       }
     }
   }

@@ -49,14 +49,6 @@ constexpr std::array<double, kMaxTerms + 2> kInverse = [] {
   return table;
 }();
 
-// 10-point Gauss-Legendre nodes and weights on [-1, 1].
-constexpr std::array<double, 5> kNodes = {0.1488743389816312, 0.4333953941292472,
-                                          0.6794095682990244, 0.8650633666889845,
-                                          0.9739065285171717};
-constexpr std::array<double, 5> kWeights = {0.2955242247147529, 0.2692667193099963,
-                                            0.2190863625159820, 0.1494513491505806,
-                                            0.0666713443086881};
-
 RefPoint spiral_by_quadrature(double k0, double c, double ds) {
   const double turn = std::abs(k0 * ds) + 0.5 * std::abs(c) * ds * ds;
   const int pieces = 1 + static_cast<int>(std::min(turn / 0.5, kMaxQuadraturePieces));
@@ -65,12 +57,12 @@ RefPoint spiral_by_quadrature(double k0, double c, double ds) {
   double y = 0.0;
   for (int piece = 0; piece < pieces; ++piece) {
     const double mid = (piece + 0.5) * step;
-    for (size_t i = 0; i < kNodes.size(); ++i) {
+    for (size_t i = 0; i < detail::kGaussNodes.size(); ++i) {
       for (const double sign : {-1.0, 1.0}) {
-        const double sigma = mid + sign * kNodes[i] * 0.5 * step;
+        const double sigma = mid + sign * detail::kGaussNodes[i] * 0.5 * step;
         const double theta = sigma * (k0 + 0.5 * c * sigma);
-        x += kWeights[i] * std::cos(theta);
-        y += kWeights[i] * std::sin(theta);
+        x += detail::kGaussWeights[i] * std::cos(theta);
+        y += detail::kGaussWeights[i] * std::sin(theta);
       }
     }
   }

@@ -44,12 +44,12 @@ struct DynamicsVehicle {
 
 namespace {
 
-constexpr double kSpeedGain = 1.5;       // 1/s
-constexpr double kIntegralGain = 0.4;    // 1/s^2
-constexpr double kSteeringRatio = 15.0;  // steering wheel angle / front wheel angle
-constexpr double kDefaultLimit = 6.0;    // m/s^2 when the Performance gives none
-constexpr double kLookaheadTime = 0.8;   // s
-constexpr double kMinLookahead = 4.0;    // m
+constexpr double kProportionalGain = 1.5;   // 1/s
+constexpr double kIntegralGain = 0.4;       // 1/s^2
+constexpr double kSteeringRatio = 15.0;     // steering wheel angle / front wheel angle
+constexpr double kDefaultAccelLimit = 6.0;  // m/s^2 when the Performance gives none
+constexpr double kLookaheadTime = 0.8;      // s
+constexpr double kMinLookahead = 4.0;       // m
 
 VehicleParams params_of(const SimState& state, const Entity& entity) {
   VehicleParams p;
@@ -92,10 +92,10 @@ double limit_rate(double current, double target, double max_rate, double dt) {
 }
 
 double max_acceleration(const Entity& entity) {
-  return entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultLimit;
+  return entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultAccelLimit;
 }
 double max_deceleration(const Entity& entity) {
-  return entity.info.max_deceleration > 0.0 ? entity.info.max_deceleration : kDefaultLimit;
+  return entity.info.max_deceleration > 0.0 ? entity.info.max_deceleration : kDefaultAccelLimit;
 }
 
 // The inputs of a command from outside (external_control.h): throttle and brake as shares of the
@@ -151,7 +151,7 @@ double longitudinal_demand(Entity& entity, DynamicsVehicle& vehicle, const Contr
   const double error = command - entity.state.speed;
   const double feed_forward = std::clamp((command - vehicle.last_command) / dt, -max_dec, max_acc);
   vehicle.last_command = command;
-  const double raw = feed_forward + kSpeedGain * error + kIntegralGain * vehicle.integral;
+  const double raw = feed_forward + kProportionalGain * error + kIntegralGain * vehicle.integral;
   const double demand = std::clamp(raw, -max_dec, max_acc);
   if (demand == raw) {
     vehicle.integral += error * dt;  // no wind-up while saturated

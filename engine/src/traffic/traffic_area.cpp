@@ -25,13 +25,13 @@
 namespace corsa::engine::detail {
 namespace {
 
-constexpr double kDefaultSpeed = 13.9;      // m/s (50 km/h): the action gives no speed
-constexpr double kWalkingSpeed = 1.3;       // m/s
-constexpr double kVehicleClearance = 12.0;  // m from any other entity's reference point
-constexpr double kWalkerClearance = 2.0;    // m
-constexpr int kTriesPerStep = 8;
-constexpr int kTriesPerEntity = 40;  // for the one-off fill
-constexpr double kGridCell = 16.0;   // m, cells of the grid the fill looks clearances up in
+constexpr double kAreaDefaultSpeed = 13.9;      // m/s (50 km/h): the action gives no speed
+constexpr double kWalkingSpeed = 1.3;           // m/s
+constexpr double kAreaVehicleClearance = 12.0;  // m from any other entity's reference point
+constexpr double kAreaWalkerClearance = 2.0;    // m
+constexpr int kAreaTriesPerStep = 8;
+constexpr int kTriesPerEntity = 40;     // for the one-off fill
+constexpr double kAreaGridCell = 16.0;  // m, cells of the grid the fill looks clearances up in
 
 struct Piece {
   uint32_t road = 0;
@@ -130,7 +130,7 @@ class Area final : public GeneratorBase {
     if (!action_.continuous) {
       // Once: the area is filled now, the entities then go where they go.
       const int tries = kTriesPerEntity * static_cast<int>(action_.number_of_entities);
-      PointGrid others = placed_entities_grid(state, kGridCell);
+      PointGrid others = placed_entities_grid(state, kAreaGridCell);
       for (int i = 0; i < tries && mine_.size() < action_.number_of_entities; ++i) {
         try_spawn(state, &others);
       }
@@ -142,7 +142,7 @@ class Area final : public GeneratorBase {
         despawn(state, index);
       }
     }
-    for (int i = 0; i < kTriesPerStep && mine_.size() < action_.number_of_entities; ++i) {
+    for (int i = 0; i < kAreaTriesPerStep && mine_.size() < action_.number_of_entities; ++i) {
       try_spawn(state);
     }
   }
@@ -170,10 +170,10 @@ class Area final : public GeneratorBase {
     const auto at =
         polygon_.empty() ? spot_on_range(*state.map, walks) : spot_in_polygon(*state.map, walks);
     if (!at || !clear_of_others(state, at->pose.x, at->pose.y,
-                                walks ? kWalkerClearance : kVehicleClearance, others)) {
+                                walks ? kAreaWalkerClearance : kAreaVehicleClearance, others)) {
       return;
     }
-    const uint32_t index = spawn(state, mix_, kind, *at, walks ? kWalkingSpeed : kDefaultSpeed);
+    const uint32_t index = spawn(state, mix_, kind, *at, walks ? kWalkingSpeed : kAreaDefaultSpeed);
     if (others != nullptr) {
       const Pose& pose = state.world.entities[index].state.pose;
       others->add(pose.x, pose.y, index);
