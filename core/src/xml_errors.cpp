@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "corsa/core/strings.h"
+
 namespace corsa {
 
 std::string xml_error_words(int tinyxml2_error) {
@@ -45,6 +47,41 @@ bool is_name_char(char c) {
 
 }  // namespace
 
+std::optional<uint32_t> xml_character_reference(std::string_view body) {
+  const bool hex = body.starts_with('x') || body.starts_with('X');
+  const std::string_view digits = body.substr(hex ? 1 : 0);
+  if (digits.empty()) {
+    return std::nullopt;
+  }
+  uint32_t code = 0;
+  for (const char c : digits) {
+    uint32_t digit = 0;
+    if (c >= '0' && c <= '9') {
+      digit = static_cast<uint32_t>(c - '0');
+    } else if (hex && c >= 'a' && c <= 'f') {
+      digit = static_cast<uint32_t>(c - 'a' + 10);
+    } else if (hex && c >= 'A' && c <= 'F') {
+      digit = static_cast<uint32_t>(c - 'A' + 10);
+    } else {
+      return std::nullopt;
+    }
+    code = code * (hex ? 16 : 10) + digit;
+    if (code > 0x10FFFF) {
+      return std::nullopt;  // stops before the digits could overflow
+    }
+  }
+  const bool allowed = code == 0x9 || code == 0xA || code == 0xD ||
+                       (code >= 0x20 && code <= 0xD7FF) || (code >= 0xE000 && code <= 0xFFFD) ||
+                       code >= 0x10000;
+  return allowed ? std::optional<uint32_t>(code) : std::nullopt;
+}
+
+std::string bad_character_reference_message(std::string_view body) {
+  return "bad character reference '&#" + clip(body) +
+         ";' (XML 1.0 §4.1, §2.2: plain digits naming a character other than NUL, a control "
+         "character, a surrogate, U+FFFE or U+FFFF)";
+}
+
 std::optional<XmlTextProblem> find_undeclared_entity(std::string_view xml) {
   int line = 1;
   for (size_t i = 0; i < xml.size(); ++i) {
@@ -73,6 +110,13 @@ std::optional<XmlTextProblem> find_undeclared_entity(std::string_view xml) {
             line,
             "a DOCTYPE with declarations is not read (no DTD entity is expanded); "
             "write the values out"};
+      }
+    } else if (xml[i] == '&' && i + 1 < xml.size() && xml[i + 1] == '#') {
+      const size_t semi = xml.find(';', i + 2);
+      const std::string_view body =
+          xml.substr(i + 2, semi == std::string_view::npos ? std::string_view::npos : semi - i - 2);
+      if (semi == std::string_view::npos || !xml_character_reference(body)) {
+        return XmlTextProblem{line, bad_character_reference_message(body)};
       }
     } else if (xml[i] == '&') {
       size_t end = i + 1;

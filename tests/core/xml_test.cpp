@@ -73,6 +73,28 @@ TEST_CASE("entity references XML does not predefine are found at their line", "[
   CHECK_FALSE(corsa::find_undeclared_entity("<!DOCTYPE a SYSTEM \"a.dtd\">\n<a/>"));
 }
 
+TEST_CASE("character references are plain digits naming a character XML allows", "[core][xml]") {
+  CHECK(corsa::xml_character_reference("9") == 9u);
+  CHECK(corsa::xml_character_reference("x0041") == 0x41u);  // leading zeros are fine
+  CHECK(corsa::xml_character_reference("X1F600") == 0x1F600u);
+  CHECK(corsa::xml_character_reference("xFFFD") == 0xFFFDu);
+  CHECK(corsa::xml_character_reference("1114111") == 0x10FFFFu);
+  // A sign or blank (strtoul reads "-18446744073709551615" as 1), no digits, NUL and other
+  // control characters, surrogates, U+FFFE/U+FFFF, past U+10FFFF.
+  for (const char* body : {"-18446744073709551615", "+65", " 65", "", "x", "0", "1", "x1F", "xD800",
+                           "xDFFF", "xFFFE", "x110000", "99999999999999999999"}) {
+    INFO(body);
+    CHECK_FALSE(corsa::xml_character_reference(body));
+  }
+  const auto found =
+      corsa::find_undeclared_entity("<a>\n<!-- &#0; -->\n<b c=\"&#65;&#xD800;\"/></a>");
+  REQUIRE(found);
+  CHECK(found->line == 3);
+  CHECK_THAT(found->message, Catch::StartsWith("bad character reference '&#xD800;' (XML 1.0"));
+  CHECK(corsa::find_undeclared_entity("<a b=\"&#65\"/>")->message ==
+        corsa::bad_character_reference_message("65\"/>"));
+}
+
 TEST_CASE("a document that follows the schema comes back with its defaults", "[core][xml][xsd]") {
   const corsa::XsdSchema schema(kSchema);
   const corsa::ValidatedElement root =

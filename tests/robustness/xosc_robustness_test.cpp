@@ -131,6 +131,11 @@ TEST_CASE("Unknown references, cyclic parameters and wrong types are rejected at
       {"NaN parameter", "value=\"27.78\"", "value=\"nan\"", 9},
       // tinyxml2 reads no DTD and kept "&x;" as the value.
       {"undeclared entity", "value=\"27.78\"", "value=\"&x;\"", 9},
+      // tinyxml2 kept a signed reference as its text, wrote a surrogate as bytes no UTF-8 reader
+      // accepts and ended a value at a NUL reference.
+      {"signed character reference", "author=\"Corsa\"", "author=\"&#-18446744073709551615;\"", 7},
+      {"surrogate character reference", "author=\"Corsa\"", "author=\"&#xD800;\"", 7},
+      {"NUL character reference", "author=\"Corsa\"", "author=\"Co&#0;rsa\"", 7},
       {"DOCTYPE declaring an entity", "<OpenSCENARIO>",
        "<!DOCTYPE OpenSCENARIO [\n<!ENTITY x \"27.78\">\n]>\n<OpenSCENARIO>", 6},
       {"unknown entity", "<EntityRef entityRef=\"Cutter\"/>", "<EntityRef entityRef=\"Nobody\"/>",

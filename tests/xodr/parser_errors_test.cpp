@@ -158,15 +158,16 @@ TEST_CASE("character references are digits naming a character XML allows", "[xod
   // XML 1.0 §4.1 [66] and §2.2 [2]: tab, line feed, carriage return and U+0020 up, except the
   // surrogates, U+FFFE and U+FFFF; leading zeros are fine.
   corsa::Diagnostics diagnostics;
-  const MapData data = parse_xodr_text(
-      replace(kRoad, R"(name="t")", R"(name="&#9;&#x0041;&#0066;&#xD7FF;&#xE000;&#x1F600;&#xFFFD;")"),
-      "x.xodr", diagnostics);
+  const MapData data =
+      parse_xodr_text(replace(kRoad, R"(name="t")",
+                              R"(name="&#9;&#x0041;&#0066;&#xD7FF;&#xE000;&#x1F600;&#xFFFD;")"),
+                      "x.xodr", diagnostics);
   CHECK(data.header.name == "\tAB\xED\x9F\xBF\xEE\x80\x80\xF0\x9F\x98\x80\xEF\xBF\xBD");
   // A sign, a blank or a wrapped number (strtoul read -18446744073709551615 as 1), NUL, another
   // control character, a surrogate (no UTF-8 for it), a non-character, past U+10FFFF.
-  for (const std::string ref : {"&#-18446744073709551615;", "&#+65;", "&# 65;", "&#x;", "&#0;",
-                                "&#1;", "&#x1F;", "&#xD800;", "&#xDFFF;", "&#xFFFE;", "&#x110000;",
-                                "&#99999999999999999999;"}) {
+  for (const std::string ref :
+       {"&#-18446744073709551615;", "&#+65;", "&# 65;", "&#x;", "&#0;", "&#1;", "&#x1F;",
+        "&#xD800;", "&#xDFFF;", "&#xFFFE;", "&#x110000;", "&#99999999999999999999;"}) {
     INFO(ref);
     const std::string error = load_error(replace(kRoad, R"(name="t")", "name=\"" + ref + "\""));
     CHECK(error.rfind("bad.xodr:3: error: malformed XML: bad character reference '" + ref + "'",

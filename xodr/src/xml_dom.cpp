@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
-#include <optional>
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/core/strings.h"
+#include "corsa/core/xml_errors.h"
 
 namespace corsa::xodr::detail {
 
@@ -51,40 +51,6 @@ constexpr auto kClass = [] {
   }
   return table;
 }();
-
-// The code point of a character reference's body after '#' ("65", "x41"), if it is one XML 1.0
-// allows (§4.1 [66]: decimal or hexadecimal digits and nothing else, no sign or blank; §2.2 [2]:
-// a Char, i.e. tab, line feed, carriage return, U+0020-U+D7FF, U+E000-U+FFFD or
-// U+10000-U+10FFFF: never NUL, another control, a surrogate, which UTF-8 cannot encode, or
-// U+FFFE/U+FFFF).
-std::optional<unsigned long> character_reference(std::string_view body) {
-  const bool hex = body.starts_with('x') || body.starts_with('X');
-  const std::string_view digits = body.substr(hex ? 1 : 0);
-  if (digits.empty()) {
-    return std::nullopt;
-  }
-  unsigned long code = 0;
-  for (const char c : digits) {
-    unsigned long digit = 0;
-    if (c >= '0' && c <= '9') {
-      digit = static_cast<unsigned long>(c - '0');
-    } else if (hex && c >= 'a' && c <= 'f') {
-      digit = static_cast<unsigned long>(c - 'a' + 10);
-    } else if (hex && c >= 'A' && c <= 'F') {
-      digit = static_cast<unsigned long>(c - 'A' + 10);
-    } else {
-      return std::nullopt;
-    }
-    code = code * (hex ? 16 : 10) + digit;
-    if (code > 0x10FFFF) {
-      return std::nullopt;  // stops before the digits could overflow
-    }
-  }
-  const bool allowed = code == 0x9 || code == 0xA || code == 0xD ||
-                       (code >= 0x20 && code <= 0xD7FF) || (code >= 0xE000 && code <= 0xFFFD) ||
-                       code >= 0x10000;
-  return allowed ? std::optional<unsigned long>(code) : std::nullopt;
-}
 
 }  // namespace
 
@@ -191,11 +157,9 @@ std::string_view XmlParser::decode(char* start, char* stop) {
     } else if (entity == "apos") {
       code = '\'';
     } else if (entity.size() > 1 && entity[0] == '#') {
-      const std::optional<unsigned long> referenced = character_reference(entity.substr(1));
+      const std::optional<uint32_t> referenced = corsa::xml_character_reference(entity.substr(1));
       if (!referenced) {
-        fail(in, "bad character reference '&" + clip(entity) +
-                     ";' (XML 1.0 §4.1, §2.2: plain digits naming a character other than "
-                     "NUL, a control character, a surrogate, U+FFFE or U+FFFF)");
+        fail(in, corsa::bad_character_reference_message(entity.substr(1)));
       }
       code = *referenced;
     } else {
