@@ -371,5 +371,23 @@ TEST_CASE("Temporaries a SIGKILLed run left are removed by the next run of the s
   CHECK(entry_names(out) == std::set<std::string>{"trajectories.csv"});
 }
 
+TEST_CASE("sweep --resume removes the temporaries a killed run left in its variants",
+          "[robustness][sweep][interrupt]") {
+  TempDir dir;
+  const fs::path out = dir.path() / "out";
+  REQUIRE(run_bounded(small_sweep(out)).exit_code == 0);
+  const std::set<std::string> sweep_files = files_below(out);
+  // A variant the killed run finished, with its temporary left behind, and one it did not finish.
+  std::ofstream(out / "variants" / "2" / ".trajectory.csv.tmp.99999.3") << "half";
+  std::ofstream(out / "variants" / "3" / ".result.csv.tmp.99999.4") << "half";
+  fs::remove(out / "variants" / "3" / "result.csv");
+  std::vector<std::string> resume = small_sweep(out);
+  resume.push_back("--resume");
+  const BoundedResult resumed = run_bounded(resume);
+  INFO(describe("sweep --resume over a killed run's temporaries", resumed));
+  CHECK(resumed.exit_code == 0);
+  CHECK(files_below(out) == sweep_files);
+}
+
 }  // namespace
 }  // namespace corsa::test
