@@ -167,7 +167,7 @@ void composite(const Pass& p, std::vector<float>& linear) {
         Color c = rec.terms.base;
         if (g.surface_id != 0) {
           const Color lit = combine(rec.terms, (*p.visibility)[px].get());
-          c = through_air(*p.shading, lit, p.origin_local, ray_at(p, col, row), g.distance);
+          c = through_air(*p.shading, lit, p.origin_local, centre_ray(p, px), g.distance);
         }
         float* out = &linear[3 * px];
         out[0] = static_cast<float>(c.r);

@@ -105,6 +105,16 @@ inline constexpr double kMotionHalf = 0.005;
 /// integers), interpolated between the precomputed pixel-centre rays.
 Vec3 ray_at(const Pass& p, double x, double y);
 
+/// ray_at() at the centre of pixel `px` (the same value, without the interpolation).
+inline Vec3 centre_ray(const Pass& p, size_t px) {
+  const float* v = p.rays + 3 * px;
+  const Vec3 local = normalized(Vec3{v[0], v[1], v[2]});
+  const auto& m = p.rotation;
+  return {m[0][0] * local.x + m[0][1] * local.y + m[0][2] * local.z,
+          m[1][0] * local.x + m[1][1] * local.y + m[1][2] * local.z,
+          m[2][0] * local.x + m[2][1] * local.y + m[2][2] * local.z};
+}
+
 /// Ray batches of a tile, kept between tiles to save allocations (one per thread range).
 struct TileScratch {
   std::vector<RTCRay> rays;    ///< shadow rays (sun, lights)

@@ -114,6 +114,7 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   if (rgb) {
     shading = detail::make_shading_context(scene.data(), *settings.lighting, 1.0 / model_.fx(),
                                            settings.rgb.quality);
+    detail::place_eye(shading, p.origin_local);
     p.shading = &shading;
     b.geometry.resize(n);
     records.resize(n);

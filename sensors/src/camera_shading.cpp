@@ -206,6 +206,11 @@ ShadingContext make_shading_context(const SceneData& scene, const Lighting& ligh
   return c;
 }
 
+void place_eye(ShadingContext& c, Vec3 eye) {
+  c.eye_z = eye.z;
+  c.eye_air = c.lighting->air_start(eye.z - c.ground_z);
+}
+
 SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double footprint_scale) {
   const SceneData& d = *c.scene;
   const Lighting& l = *c.lighting;
@@ -348,11 +353,20 @@ Color shade_secondary(const ShadingContext& c, const SurfacePoint& s, bool sun_v
   return s.diffuse * light + spec * mirrored * 0.8 + s.emission;
 }
 
+namespace {
+
+/// The air at a ray's origin: the eye's, computed once, or its own.
+Lighting::AirStart air_at(const ShadingContext& c, Vec3 origin) {
+  return origin.z == c.eye_z ? c.eye_air : c.lighting->air_start(origin.z - c.ground_z);
+}
+
+}  // namespace
+
 Color sky_seen(const ShadingContext& c, Vec3 origin, Vec3 direction) {
   const Lighting& l = *c.lighting;
   // The sky model already holds the haze of the whole atmosphere: only fog and precipitation
   // stand in front of it.
-  const double t = l.transmittance(origin.z - c.ground_z, direction.z,
+  const double t = l.transmittance(air_at(c, origin), direction.z,
                                    std::numeric_limits<double>::infinity(), false);
   return l.sky(direction) * t + l.fog_color * (1.0 - t);
 }
@@ -360,7 +374,7 @@ Color sky_seen(const ShadingContext& c, Vec3 origin, Vec3 direction) {
 Color through_air(const ShadingContext& c, Color radiance, Vec3 origin, Vec3 direction,
                   double distance) {
   const Lighting& l = *c.lighting;
-  const double t = l.transmittance(origin.z - c.ground_z, direction.z, distance, true);
+  const double t = l.transmittance(air_at(c, origin), direction.z, distance, true);
   return radiance * t + l.fog_color * (1.0 - t);
 }
 

@@ -47,13 +47,20 @@ double expm1_ratio(double x) {
   return -std::expm1(-x) / x;
 }
 
-/// Optical depth of an exponential layer (extinction sigma at the ground, scale height H) along
-/// a ray from height h with direction z component dz over distance d (may be infinite).
-double layer_depth(double sigma, double scale_height, double h, double dz, double d) {
+/// Extinction (1/m) at height h of an exponential layer (sigma at the ground, scale height H).
+double layer_start(double sigma, double scale_height, double h) {
   if (sigma <= 0.0) {
     return 0.0;
   }
-  const double at_start = sigma * std::exp(-std::max(h, -scale_height) / scale_height);
+  return sigma * std::exp(-std::max(h, -scale_height) / scale_height);
+}
+
+/// Optical depth of an exponential layer of scale height H along a ray that starts where its
+/// extinction is `at_start`, with direction z component dz, over distance d (may be infinite).
+double layer_depth(double at_start, double scale_height, double dz, double d) {
+  if (at_start <= 0.0) {
+    return 0.0;
+  }
   if (std::isinf(d)) {
     return dz > 1e-4 ? at_start * scale_height / dz : std::numeric_limits<double>::infinity();
   }
@@ -137,9 +144,19 @@ Color Lighting::sky(Vec3 d) const {
 }
 
 double Lighting::transmittance(double height, double dir_z, double distance, bool haze) const {
-  double tau = layer_depth(fog_extinction, kFogScaleHeight, height, dir_z, distance);
+  return transmittance(air_start(height), dir_z, distance, haze);
+}
+
+Lighting::AirStart Lighting::air_start(double height) const {
+  return {layer_start(fog_extinction, kFogScaleHeight, height),
+          layer_start(haze_extinction, kHazeScaleHeight, height)};
+}
+
+double Lighting::transmittance(const AirStart& start, double dir_z, double distance,
+                               bool haze) const {
+  double tau = layer_depth(start.fog, kFogScaleHeight, dir_z, distance);
   if (haze) {
-    tau += layer_depth(haze_extinction, kHazeScaleHeight, height, dir_z, distance);
+    tau += layer_depth(start.haze, kHazeScaleHeight, dir_z, distance);
   }
   // Rain and snow fill the lowest 2 km evenly.
   const double falling = rain_extinction + snow_extinction;

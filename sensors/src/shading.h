@@ -6,6 +6,7 @@
 // filtered without blurring the textures (see camera_render.cpp).
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -43,6 +44,10 @@ struct ShadingContext {
   double pixel_angle = 1e-3;           ///< radians per pixel, for texture footprints
   double ground_z = 0.0;               ///< tracer-local height of the ground (fog density)
   QualitySettings quality;
+  /// Tracer-local height of the camera (NaN: none) and the air there: most rays seen through
+  /// the air start at the eye, and its fog and haze densities are the same for all of them.
+  double eye_z = std::numeric_limits<double>::quiet_NaN();
+  Lighting::AirStart eye_air;
 };
 
 /// What a camera ray hit, as shading needs it.
@@ -95,6 +100,8 @@ struct Visibility {
 
 ShadingContext make_shading_context(const SceneData& scene, const Lighting& lighting,
                                     double pixel_angle, RenderQuality quality);
+/// Tells the context where the camera is (tracer-local), for the air in front of it.
+void place_eye(ShadingContext& c, Vec3 eye);
 
 /// The material at a hit, prefiltered to the pixel footprint (`footprint_scale` widens it for
 /// secondary rays), with wet road, puddles and snow cover applied.

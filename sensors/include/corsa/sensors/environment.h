@@ -82,6 +82,17 @@ struct Lighting {
   /// fog_color: seen = radiance * t + fog_color * (1 - t). `distance` may be infinite (the
   /// sky, whose model already holds the haze: pass haze = false).
   double transmittance(double height, double dir_z, double distance, bool haze = true) const;
+
+  /// The part of transmittance() that depends only on where rays start: the fog and haze
+  /// extinction (1/m) at that height. A camera's primary rays all start at one height.
+  struct AirStart {
+    double fog = 0.0;
+    double haze = 0.0;
+  };
+  AirStart air_start(double height) const;
+  /// transmittance() of a ray starting where `start` was taken (the same value).
+  double transmittance(const AirStart& start, double dir_z, double distance,
+                       bool haze = true) const;
 };
 
 /// Lighting from the environment: the sun from the snapshot's sun angles when given, otherwise
