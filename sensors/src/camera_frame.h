@@ -117,9 +117,10 @@ inline Vec3 centre_ray(const Pass& p, size_t px) {
 
 /// Ray batches of a tile, kept between tiles to save allocations (one per thread range).
 struct TileScratch {
-  std::vector<RTCRay> rays;    ///< shadow rays (sun, lights)
+  std::vector<RTCRay16> sun;   ///< sun shadow rays, 16 to a packet (lanes in use: sun_owner)
+  std::vector<int> sun_owner;  ///< the pixel (0..15) a sun ray belongs to
+  std::vector<RTCRay> rays;    ///< shadow rays to the lights
   std::vector<int> ray_owner;  ///< the pixel (0..15) a ray belongs to
-  std::vector<int> ray_kind;
   std::vector<RTCRayHit> hits;  ///< rays that need their hit (sky, mirror, glass)
   std::vector<int> hit_owner;
   std::vector<int> hit_kind;
@@ -131,9 +132,9 @@ struct TileScratch {
   std::vector<int> sun_seen;                       ///< per hit: -1 no shadow ray, 0 shadowed, 1 lit
 
   void clear() {
+    sun_owner.clear();
     rays.clear();
     ray_owner.clear();
-    ray_kind.clear();
     hits.clear();
     hit_owner.clear();
     hit_kind.clear();

@@ -297,13 +297,20 @@ ShadeTerms shade_terms(const ShadingContext& c, const SurfacePoint& s, const Col
 
   // Sky light, and the sky mirrored by rough surfaces (occluded like the sky light).
   t.sky = s.diffuse * l.sky_light(n) * under;
-  const Color env = mirrored != nullptr ? *mirrored : l.sky(r);
-  if (s.mirror && mirrored != nullptr) {
+  const bool traced_mirror = s.mirror && mirrored != nullptr;
+  // Rougher lobes see a blurred sky: between the mirrored sky and the sky light (at the ends
+  // of the range only one of them, which is all that is looked up: mix() gives it exactly).
+  const double blur = traced_mirror ? 0.0 : smoothstep(0.0, 0.7, s.roughness);
+  const bool sky_mirrored = (!traced_mirror && blur < 1.0) ||
+                            (s.clearcoat > 0.0 && mirrored == nullptr);
+  const Color sky_r = sky_mirrored ? l.sky(r) : Color{};
+  const Color env = mirrored != nullptr ? *mirrored : sky_r;
+  if (traced_mirror) {
     t.base = t.base + env * spec_albedo * under;
   } else {
-    // Rougher lobes see a blurred sky: between the mirrored sky and the sky light.
-    const double blur = smoothstep(0.0, 0.7, s.roughness);
-    const Color sky_env = mix(mirrored != nullptr ? l.sky(r) : env, l.sky_light(r), blur);
+    const Color sky_env = blur <= 0.0   ? sky_r
+                          : blur >= 1.0 ? l.sky_light(r)
+                                        : mix(sky_r, l.sky_light(r), blur);
     t.sky = t.sky + sky_env * spec_albedo * under;
   }
   if (s.clearcoat > 0.0) {

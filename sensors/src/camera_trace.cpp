@@ -20,7 +20,7 @@ constexpr int kTile = 4;
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr double kSkyRayLength = 80.0;  ///< m: beyond, occluders are part of the sky light
 
-enum RayKind : int { kSun, kSky, kLight, kMirror, kGlass };
+enum RayKind : int { kSky, kMirror, kGlass };
 
 /// A ray from o along unit d up to tfar, written in place: built on the stack and copied into
 /// the batch, the rays stalled the store buffer (narrow writes read back wide).
@@ -44,6 +44,36 @@ void set_hit_ray(RTCRayHit& h, Vec3 o, Vec3 d, float tfar) {
   set_ray(h.ray, o, d, tfar);
   h.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   h.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+/// Lane k of a packet: a ray from o along unit d up to tfar.
+void set_lane(RTCRay16& r, int k, Vec3 o, Vec3 d, float tfar) {
+  r.org_x[k] = static_cast<float>(o.x);
+  r.org_y[k] = static_cast<float>(o.y);
+  r.org_z[k] = static_cast<float>(o.z);
+  r.dir_x[k] = static_cast<float>(d.x);
+  r.dir_y[k] = static_cast<float>(d.y);
+  r.dir_z[k] = static_cast<float>(d.z);
+  r.tnear[k] = 0.0f;
+  r.tfar[k] = tfar;
+  r.mask[k] = 0xFFFFFFFFu;
+  r.time[k] = 0.0f;
+  r.id[k] = 0;
+  r.flags[k] = 0;
+}
+
+/// Traces the first `count` lanes of the packets (the sun rays of a tile: nearly parallel and
+/// from neighbouring points, they share most of their way through the scene).
+void occluded(const SceneData& d, std::vector<RTCRay16>& packets, int count) {
+  for (int first = 0; first < count; first += 16) {
+    alignas(64) int valid[16];
+    for (int k = 0; k < 16; ++k) {
+      valid[k] = first + k < count ? -1 : 0;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded16(valid, d.top, &context, &packets[first / 16]);
+  }
 }
 
 void occluded(const SceneData& d, std::vector<RTCRay>& rays) {
@@ -150,10 +180,9 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
   const Lighting& l = *c.lighting;
   const SurfacePoint& sp = t.surface[k];
   const uint64_t key = pixel_key(p.settings->frame_seed, t.pixel[k], 0x5eed);
-  auto shadow = [&](Vec3 o, Vec3 d, float tfar, int kind) {
+  auto shadow = [&](Vec3 o, Vec3 d, float tfar) {
     set_ray(s.rays.emplace_back(), o, d, tfar);
     s.ray_owner.push_back(k);
-    s.ray_kind.push_back(kind);
   };
   auto probe = [&](Vec3 o, Vec3 d, float tfar, int kind) {
     set_hit_ray(s.hits.emplace_back(), o, d, tfar);
@@ -167,7 +196,12 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
       r2_point(j, r1, r2, u1, u2);
       const Vec3 d = q.soft_sun ? cone_direction(l.sun_direction, l.sun_angular_radius, u1, u2)
                                 : l.sun_direction;
-      shadow(offset(sp, d), d, kInfinity, kSun);
+      const size_t n = s.sun_owner.size();
+      if (n / 16 >= s.sun.size()) {
+        s.sun.emplace_back();
+      }
+      set_lane(s.sun[n / 16], static_cast<int>(n % 16), offset(sp, d), d, kInfinity);
+      s.sun_owner.push_back(k);
       ++t.sun_rays[k];
     }
   }
@@ -198,7 +232,7 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
       if (dist - clear <= 0.01) {
         continue;
       }
-      shadow(o, to * (1.0 / dist), static_cast<float>(dist - clear), kLight);
+      shadow(o, to * (1.0 / dist), static_cast<float>(dist - clear));
       ++t.light_rays[k];
     }
   }
@@ -225,12 +259,16 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
 /// rays.
 void trace_queued(const Pass& p, TileState& t, TileScratch& s) {
   const SceneData& d = *p.scene;
+  const int suns = static_cast<int>(s.sun_owner.size());
+  occluded(d, s.sun, suns);
   occluded(d, s.rays);
   intersect(d, s.hits);
+  // Embree sets tfar to -inf when a ray is occluded.
+  for (int i = 0; i < suns; ++i) {
+    t.sun_free[s.sun_owner[i]] += s.sun[i / 16].tfar[i % 16] >= 0.0f ? 1 : 0;
+  }
   for (size_t i = 0; i < s.rays.size(); ++i) {
-    const bool free = s.rays[i].tfar >= 0.0f;  // Embree sets -inf when occluded
-    const int k = s.ray_owner[i];
-    (s.ray_kind[i] == kSun ? t.sun_free[k] : t.light_free[k]) += free ? 1 : 0;
+    t.light_free[s.ray_owner[i]] += s.rays[i].tfar >= 0.0f ? 1 : 0;
   }
 }
 
