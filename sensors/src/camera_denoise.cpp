@@ -17,8 +17,9 @@
 namespace corsa::sensors::detail {
 namespace {
 
-/// Similarity of neighbour q to centre p: 0 (another surface) .. 1 (the same plane).
-float geometry_weight(const PixelGeometry& p, const PixelGeometry& q) {
+/// Similarity of neighbour q to centre p: 0 (another surface) .. 1 (the same plane), for
+/// `inv_tolerance` = 1 / (0.02 + 0.004 distance of p) (m^-1: how far off p's plane q may lie).
+float geometry_weight(const PixelGeometry& p, const PixelGeometry& q, float inv_tolerance) {
   if (q.surface_id == 0) {
     return 0.0f;
   }
@@ -26,8 +27,7 @@ float geometry_weight(const PixelGeometry& p, const PixelGeometry& q) {
   const float dy = q.position[1] - p.position[1];
   const float dz = q.position[2] - p.position[2];
   const float plane = std::fabs(p.normal[0] * dx + p.normal[1] * dy + p.normal[2] * dz);
-  const float tolerance = 0.02f + 0.004f * p.distance;
-  const float t = plane / tolerance;
+  const float t = plane * inv_tolerance;
   const float along = 1.0f / (1.0f + t * t);
   float c = p.normal[0] * q.normal[0] + p.normal[1] * q.normal[1] + p.normal[2] * q.normal[2];
   c = std::max(c, 0.0f);
@@ -51,6 +51,7 @@ void filter_step(const Pass& p, const std::vector<PixelVisibility>& in,
         if (c.surface_id == 0) {
           continue;
         }
+        const float inv_tolerance = 1.0f / (0.02f + 0.004f * c.distance);
         float sum_w = 0.0f, sum_w_sun = 0.0f;
         float sky[3] = {0, 0, 0}, lights = 0.0f, sun_v = 0.0f;
         for (int j = -1; j <= 1; ++j) {
@@ -65,7 +66,7 @@ void filter_step(const Pass& p, const std::vector<PixelVisibility>& in,
             }
             const size_t qx = static_cast<size_t>(r) * w + q;
             const float g =
-                (qx == px ? 1.0f : geometry_weight(c, rec[qx])) * kernel[i + 1] * kernel[j + 1];
+                (qx == px ? 1.0f : geometry_weight(c, rec[qx], inv_tolerance)) * kernel[i + 1] * kernel[j + 1];
             if (g <= 0.0f) {
               continue;
             }
