@@ -65,8 +65,8 @@ void filter_step(const Pass& p, const std::vector<PixelVisibility>& in,
               continue;
             }
             const size_t qx = static_cast<size_t>(r) * w + q;
-            const float g =
-                (qx == px ? 1.0f : geometry_weight(c, rec[qx], inv_tolerance)) * kernel[i + 1] * kernel[j + 1];
+            const float g = (qx == px ? 1.0f : geometry_weight(c, rec[qx], inv_tolerance)) *
+                            kernel[i + 1] * kernel[j + 1];
             if (g <= 0.0f) {
               continue;
             }

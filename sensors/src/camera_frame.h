@@ -117,10 +117,10 @@ inline Vec3 centre_ray(const Pass& p, size_t px) {
 
 /// Ray batches of a tile, kept between tiles to save allocations (one per thread range).
 struct TileScratch {
-  std::vector<RTCRay16> sun;   ///< sun shadow rays, 16 to a packet (lanes in use: sun_owner)
-  std::vector<int> sun_owner;  ///< the pixel (0..15) a sun ray belongs to
-  std::vector<RTCRay> rays;    ///< shadow rays to the lights
-  std::vector<int> ray_owner;  ///< the pixel (0..15) a ray belongs to
+  std::vector<RTCRay16> sun;    ///< sun shadow rays, 16 to a packet (lanes in use: sun_owner)
+  std::vector<int> sun_owner;   ///< the pixel (0..15) a sun ray belongs to
+  std::vector<RTCRay> rays;     ///< shadow rays to the lights
+  std::vector<int> ray_owner;   ///< the pixel (0..15) a ray belongs to
   std::vector<RTCRayHit> hits;  ///< rays that need their hit (sky, mirror, glass)
   std::vector<int> hit_owner;
   std::vector<int> hit_kind;

@@ -301,8 +301,8 @@ ShadeTerms shade_terms(const ShadingContext& c, const SurfacePoint& s, const Col
   // Rougher lobes see a blurred sky: between the mirrored sky and the sky light (at the ends
   // of the range only one of them, which is all that is looked up: mix() gives it exactly).
   const double blur = traced_mirror ? 0.0 : smoothstep(0.0, 0.7, s.roughness);
-  const bool sky_mirrored = (!traced_mirror && blur < 1.0) ||
-                            (s.clearcoat > 0.0 && mirrored == nullptr);
+  const bool sky_mirrored =
+      (!traced_mirror && blur < 1.0) || (s.clearcoat > 0.0 && mirrored == nullptr);
   const Color sky_r = sky_mirrored ? l.sky(r) : Color{};
   const Color env = mirrored != nullptr ? *mirrored : sky_r;
   if (traced_mirror) {
