@@ -3,7 +3,7 @@
 // The buffers of one camera pass and its stages (private; camera_render.cpp runs them):
 //   1. trace (camera_trace.cpp): one primary ray through each pixel centre gives depth, class
 //      and instance; for RGB the surface there, its shading terms and the visibilities
-//      estimated with sun, sky, light, reflection and glass rays;
+//      estimated with sun, sky, light, reflection and glass rays (camera_rays.cpp);
 //   2. filter the visibilities across neighbours of the same surface (camera_denoise.cpp);
 //   3. composite: terms x visibilities, through the air;
 //   4. anti-alias edge pixels with extra sub-pixel samples (camera_edges.cpp).
