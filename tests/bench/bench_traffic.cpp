@@ -2,13 +2,15 @@
 // time or more on 2 cores; 800 vehicles in at most 10x the time of 100; recording a trajectory
 // at most 10% of a long run's time).
 //
-//   corsa_bench_traffic [--runs N] [--part scale|long|all]
+//   corsa_bench_traffic [--runs N] [--part scale|long|all] [--vehicles N] [--seconds S]
 //
 // scale: `--npc vehicles=N` on ../shared/data/xodr/Town04.xodr (an empty scenario of its own), N
 //   from 100 to 1,000, 10 s simulated (1,000 steps of 0.01 s) on a fresh Simulation per run;
 //   the NPCs' placement is timed apart from the steps. 1,000 and 800 vehicles also on 2 threads.
 //   Printed: median wall and CPU time of the steps, the real-time factor (simulated / wall),
 //   microseconds per vehicle-step, and the 800 / 100 ratio (100 vehicles is the baseline).
+//   `--vehicles N` runs only N vehicles on one thread and `--seconds S` simulates S seconds
+//   instead of 10: a short run of one size for a profiler (perf, callgrind).
 // long: the 1,200 s scenarios of tests/bench/scenarios (long_standstill: seven vehicles that
 //   stop within 40 s and stand; long_motorway: 24 car followers on the Town04 motorway loop),
 //   each without a trajectory (the baseline), with the CSV and with the binary trajectory
@@ -41,7 +43,13 @@ using corsa::bench::median;
 using corsa::bench::process_cpu_ms;
 using Clock = std::chrono::steady_clock;
 
-constexpr double kScaleSeconds = 10.0;
+/// What the command line asks for.
+struct Settings {
+  int runs = 5;
+  std::string part = "all";
+  uint32_t vehicles = 0;  ///< only this many (one thread); 0: every size
+  double seconds = 10.0;  ///< simulated per traffic run
+};
 
 double load_average() {
   double load[1] = {0.0};
@@ -68,10 +76,10 @@ struct StepTiming {
 
 StepTiming step_npcs(const corsa::xosc::Scenario& scenario,
                      const std::shared_ptr<const corsa::xodr::Map>& map, uint32_t vehicles,
-                     unsigned threads) {
+                     unsigned threads, double seconds) {
   corsa::Diagnostics diagnostics;
   corsa::engine::SimulationOptions options;
-  options.duration = kScaleSeconds;
+  options.duration = seconds;
   options.npc.vehicles = vehicles;
   options.threads = threads;
   StepTiming timing;
@@ -92,7 +100,8 @@ StepTiming step_npcs(const corsa::xosc::Scenario& scenario,
   return timing;
 }
 
-void scale(int runs) {
+void scale(const Settings& settings) {
+  const int runs = settings.runs;
   corsa::Diagnostics diagnostics;
   char text[1024];
   std::snprintf(text, sizeof text, kTown04, shared("data/xodr/Town04.xodr").c_str());
@@ -107,9 +116,12 @@ void scale(int runs) {
   std::vector<Case> cases = {{100, 1, {}, {}, {}}, {200, 1, {}, {}, {}}, {400, 1, {}, {}, {}},
                              {800, 1, {}, {}, {}}, {800, 2, {}, {}, {}}, {1000, 1, {}, {}, {}},
                              {1000, 2, {}, {}, {}}};
+  if (settings.vehicles > 0) {
+    cases = {{settings.vehicles, 1, {}, {}, {}}};
+  }
   for (int r = 0; r < runs; ++r) {
     for (Case& c : cases) {
-      const StepTiming t = step_npcs(scenario, map, c.vehicles, c.threads);
+      const StepTiming t = step_npcs(scenario, map, c.vehicles, c.threads, settings.seconds);
       c.place.push_back(t.place_ms);
       c.wall.push_back(t.wall_ms);
       c.cpu.push_back(t.cpu_ms);
@@ -118,15 +130,15 @@ void scale(int runs) {
   std::printf(
       "Town04, --npc vehicles=N (car following), %.0f s simulated, median of %d runs, "
       "load average %.1f\n",
-      kScaleSeconds, runs, load_average());
+      settings.seconds, runs, load_average());
   std::printf("%9s %8s %11s %13s %12s %17s %14s\n", "vehicles", "threads", "place (ms)",
               "steps wall ms", "steps CPU ms", "real-time factor", "us/vehicle-step");
   double wall_100 = 0.0, wall_800 = 0.0, cpu_100 = 0.0, cpu_800 = 0.0;
   for (const Case& c : cases) {
     const double wall = median(c.wall), cpu = median(c.cpu);
     std::printf("%9u %8u %11.1f %13.1f %12.1f %16.1fx %14.3f\n", c.vehicles, c.threads,
-                median(c.place), wall, cpu, kScaleSeconds * 1e3 / wall,
-                wall * 1e3 / (kScaleSeconds * 100.0 * c.vehicles));
+                median(c.place), wall, cpu, settings.seconds * 1e3 / wall,
+                wall * 1e3 / (settings.seconds * 100.0 * c.vehicles));
     if (c.threads == 1 && c.vehicles == 100) {
       wall_100 = wall, cpu_100 = cpu;
     }
@@ -134,8 +146,11 @@ void scale(int runs) {
       wall_800 = wall, cpu_800 = cpu;
     }
   }
-  std::printf("800 / 100 vehicles: %.1fx the wall time, %.1fx the CPU time (target <= 10x)\n\n",
-              wall_800 / wall_100, cpu_800 / cpu_100);
+  if (wall_100 > 0.0 && wall_800 > 0.0) {
+    std::printf("800 / 100 vehicles: %.1fx the wall time, %.1fx the CPU time (target <= 10x)\n",
+                wall_800 / wall_100, cpu_800 / cpu_100);
+  }
+  std::printf("\n");
 }
 
 // CPU ms of a whole run (load, simulate, write) of `scenario` recording to `record` (none when
@@ -185,20 +200,23 @@ void long_runs(int runs) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int runs = 5;
-  std::string part = "all";
+  Settings settings;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::strcmp(argv[i], "--runs") == 0) {
-      runs = std::max(1, std::atoi(argv[i + 1]));
+      settings.runs = std::max(1, std::atoi(argv[i + 1]));
     } else if (std::strcmp(argv[i], "--part") == 0) {
-      part = argv[i + 1];
+      settings.part = argv[i + 1];
+    } else if (std::strcmp(argv[i], "--vehicles") == 0) {
+      settings.vehicles = static_cast<uint32_t>(std::max(0, std::atoi(argv[i + 1])));
+    } else if (std::strcmp(argv[i], "--seconds") == 0) {
+      settings.seconds = std::max(0.01, std::atof(argv[i + 1]));
     }
   }
-  if (part == "scale" || part == "all") {
-    scale(runs);
+  if (settings.part == "scale" || settings.part == "all") {
+    scale(settings);
   }
-  if (part == "long" || part == "all") {
-    long_runs(runs);
+  if (settings.part == "long" || settings.part == "all") {
+    long_runs(settings.runs);
   }
   return 0;
 }
