@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <bit>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -21,6 +22,7 @@
 #include "engine_fixture.h"
 #include "motorway_fleet.h"
 #include "state/lane_index.h"
+#include "state/packed_point_grid.h"
 #include "state/point_grid.h"
 
 namespace {
@@ -224,5 +226,68 @@ TEST_CASE("The point grid returns every point within the radius of a query", "[e
         CHECK(std::binary_search(found.begin(), found.end(), i));
       }
     }
+  }
+}
+
+TEST_CASE("The packed point grid returns every point of a box or a tilted band, as a scan would",
+          "[engine][traffic]") {
+  corsa::RandomStream random(11);
+  corsa::engine::detail::PackedPointGrid grid(8.0);
+  std::vector<std::pair<double, double>> points;
+  for (int round = 0; round < 2; ++round) {  // the second round refills the grid in place
+    grid.clear();
+    points.clear();
+    for (uint32_t i = 0; i < 1500; ++i) {
+      // Some points on cell borders and on one spot: the cases rounding could get wrong.
+      const double x =
+          i % 7 == 0 ? 8.0 * random.uniform_int(-40, 40) : random.uniform(-330.0, 330.0);
+      const double y = i % 11 == 0 ? 24.0 : random.uniform(-210.0, 210.0);
+      points.emplace_back(x, y);
+      grid.add(x, y, i);
+    }
+    grid.add(std::nan(""), 0.0, 1500);  // a point nowhere: every query returns it
+    grid.finish();
+    CHECK(grid.size() == points.size());
+    for (int q = 0; q < 300; ++q) {
+      const double x = random.uniform(-360.0, 360.0), y = random.uniform(-240.0, 240.0);
+      const double h = random.uniform(-3.2, 3.2), c = std::cos(h), s = std::sin(h);
+      const double along_min = random.uniform(-10.0, 0.0), along_max = random.uniform(0.0, 60.0);
+      const double half = random.uniform(0.5, 12.0);
+      double x_min = 1e300, x_max = -1e300, y_min = 1e300, y_max = -1e300;
+      for (const double a : {along_min, along_max}) {
+        for (const double b : {-half, half}) {
+          x_min = std::min(x_min, x + a * c - b * s), x_max = std::max(x_max, x + a * c - b * s);
+          y_min = std::min(y_min, y + a * s + b * c), y_max = std::max(y_max, y + a * s + b * c);
+        }
+      }
+      x_min -= 0.01, y_min -= 0.01, x_max += 0.01, y_max += 0.01;
+      std::vector<uint32_t> band, box;
+      grid.query_band(x_min, y_min, x_max, y_max, x, y, c, s, along_min, along_max, half, band);
+      grid.query_box(x_min, y_min, x_max, y_max, box);
+      std::vector<uint32_t> in_band, in_box;
+      for (uint32_t i = 0; i < points.size(); ++i) {
+        const double dx = points[i].first - x, dy = points[i].second - y;
+        const double along = dx * c + dy * s, across = -dx * s + dy * c;
+        if (along >= along_min && along <= along_max && std::abs(across) <= half) {
+          in_band.push_back(i);
+        }
+        if (points[i].first >= x_min && points[i].first <= x_max && points[i].second >= y_min &&
+            points[i].second <= y_max) {
+          in_box.push_back(i);
+        }
+      }
+      in_band.push_back(1500);
+      std::sort(band.begin(), band.end());
+      CHECK(band == in_band);  // the band test is exact: nothing more, nothing less
+      std::sort(box.begin(), box.end());
+      CHECK(std::includes(box.begin(), box.end(), in_box.begin(), in_box.end()));
+      CHECK(std::binary_search(box.begin(), box.end(), 1500u));
+    }
+    std::vector<uint32_t> all;
+    grid.query_box(std::nan(""), 0.0, 1.0, 1.0, all);  // no region: every point
+    CHECK(all.size() == points.size() + 1);
+    std::vector<uint32_t> none;
+    grid.query_box(1e6, 1e6, 2e6, 2e6, none);
+    CHECK(none == std::vector<uint32_t>{1500});
   }
 }

@@ -298,8 +298,13 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
   if (generated) {
     std::vector<uint32_t>& near = *motion.nearby;
     const double v = std::max(entity.state.speed, 0.0);
-    const Hazard hazard =
-        corridor_hazard(entity, index, view, std::max(15.0, 3.0 * v + 10.0), near);
+    // Only what is nearer than the leader already found can take its place (a hazard wins with
+    // a smaller gap, and a hazard's gap is where its box enters the corridor): the corridor ends
+    // there, a metre on against rounding. In dense traffic the leader is close, and the
+    // corridor then covers a few cars' lengths instead of up to a hundred metres.
+    const double reach = std::max(15.0, 3.0 * v + 10.0);
+    const double within = leader.gap < reach ? std::max(0.0, leader.gap + 1.0) : reach;
+    const Hazard hazard = corridor_hazard(entity, index, view, within, near);
     if (hazard.gap < leader.gap) {
       leader = {hazard.gap, hazard.speed};
     }

@@ -92,6 +92,8 @@ void FollowView::build(const SimState& state, bool neighbours) {
       }
     }
   }
+  grid_.finish();
+  scenario_vehicles_.finish();
 }
 
 void FollowView::near(double x_min, double y_min, double x_max, double y_max,

@@ -16,7 +16,7 @@
 #include "corsa/engine/oriented_box.h"
 #include "lanes/lane_follow.h"
 #include "state/lane_index.h"
-#include "state/point_grid.h"
+#include "state/packed_point_grid.h"
 
 namespace corsa::engine::detail {
 
@@ -65,8 +65,8 @@ class FollowView {
                               std::vector<uint32_t>& out) const;
   /// The present entities (only the scenario's vehicles with `scenario_vehicles`) whose
   /// reference point lies in [along_min, along_max] x [-half, half] of the frame at (x, y) with
-  /// axis cosine `c` and sine `s` (PointGrid::query_band; [x_min, x_max] x [y_min, y_max] bounds
-  /// that rectangle), and those with non-finite coordinates, appended to `out`.
+  /// axis cosine `c` and sine `s` (PackedPointGrid::query_band; [x_min, x_max] x [y_min, y_max]
+  /// bounds that rectangle), and those with non-finite coordinates, appended to `out`.
   void near_band(double x_min, double y_min, double x_max, double y_max, double x, double y,
                  double c, double s, double along_min, double along_max, double half,
                  bool scenario_vehicles, std::vector<uint32_t>& out) const {
@@ -85,15 +85,17 @@ class FollowView {
   LaneIndex lanes_;
   std::vector<uint32_t> unindexed_;
   double least_rear_ = 0.0;
-  PointGrid grid_{kGridCell};
-  PointGrid scenario_vehicles_{kGridCell};
+  PackedPointGrid grid_{kGridCell};
+  PackedPointGrid scenario_vehicles_{kGridCell};
   bool has_scenario_vehicles_ = false;
   std::vector<char> generated_;  ///< by entity: made by traffic
   size_t generated_seen_ = 0;    ///< TrafficState::lifetimes.size() generated_ was made from
   double max_reach_ = 0.0;
   double max_length_ = 0.0;
 
-  static constexpr double kGridCell = 32.0;  // m: a corridor query covers a few cells
+  // m: about two car lengths; a corridor query visits only the cells it crosses (a lane of a
+  // few cars' length covers some ten), each a short run of memory.
+  static constexpr double kGridCell = 8.0;
 };
 
 /// The lanes a follower will drive after the one it is in, as enter_next_lane chooses them at
