@@ -3,6 +3,7 @@
 // lights_set). The transition time, luminous intensity and colour are not modelled (the light
 // switches at once, with the renderer's lamp colour); user-defined light types warn once.
 
+#include <memory>
 #include <variant>
 
 #include "actions/action_makers.h"
@@ -43,7 +44,11 @@ class LightStateInstance final : public InstantAction {
     setting.since = context.state.now();
     const auto index = static_cast<size_t>(*type);
     if (index < kVehicleLightCount) {
-      context.entity().lights[index] = setting;
+      auto& lights = context.entity().lights;
+      if (!lights) {
+        lights = std::make_unique<LightSettings>();
+      }
+      (*lights)[index] = setting;
     }
   }
 

@@ -250,13 +250,17 @@ void entity_lights(const detail::Entity& entity, double time, EntitySnapshot& ou
     out.lights_on |= light_bit(state.lateral_speed > 0.0 ? VehicleLight::kIndicatorLeft
                                                          : VehicleLight::kIndicatorRight);
   }
+  if (!entity.lights) {
+    return;
+  }
   for (size_t i = 0; i < detail::kVehicleLightCount; ++i) {
-    if (!entity.lights[i]) {
+    const auto& light = (*entity.lights)[i];
+    if (!light) {
       continue;
     }
     const uint32_t bit = 1u << i;
     out.lights_set |= bit;
-    out.lights_on = lit(*entity.lights[i], time) ? (out.lights_on | bit) : (out.lights_on & ~bit);
+    out.lights_on = lit(*light, time) ? (out.lights_on | bit) : (out.lights_on & ~bit);
   }
 }
 

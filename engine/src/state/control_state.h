@@ -49,19 +49,18 @@ struct ControllerOverrides {
 
 struct DynamicsVehicle;
 
+/// The flags every step reads of every entity (the controller, whether it is commanded or seen
+/// by traffic) come first, in one cache line; the rest is read only by the entities it concerns.
 struct ControlState {
   ControllerKind kind = ControllerKind::kDefault;
-  /// Name of the assigned ObjectController (for ActivateControllerAction's reference).
-  std::string assigned;
-  /// The scenario's controller that `kind` stands in for ("" when the scenario's own runs).
-  std::string substitute_for;
+  /// A command from outside (Simulation::command, `command` below) for the step under way.
+  bool commanded = false;
   /// Domains the assigned controller is active in (ActivateControllerAction); when none is, the
   /// default controller moves the entity.
   bool longitudinal = true;
   bool lateral = true;
   bool animation = false;
   bool lighting = false;
-  ControllerOverrides overrides;
   /// VisibilityAction (§7.4.5): whether other traffic (car following, collisions) and the
   /// image generator see the entity; the sensors flag is EntityState::visible.
   bool traffic_visible = true;
@@ -73,12 +72,17 @@ struct ControlState {
   /// A generated walker's own pace (m/s), taken at its first step; it slows for others and
   /// comes back to it (controllers/npc_caution.h). Negative until known.
   double pace = -1.0;
+  /// Name of the assigned ObjectController (for ActivateControllerAction's reference).
+  std::string assigned;
+  /// The scenario's controller that `kind` stands in for ("" when the scenario's own runs).
+  std::string substitute_for;
+  ControllerOverrides overrides;
   /// The dynamics controller's vehicle model (created on its first step).
   std::shared_ptr<DynamicsVehicle> dynamics;
-  /// A command from outside (Simulation::command) for the step under way; it takes the place of
-  /// the controller. `held`: what an entity of the external controller repeats between commands.
+  /// A command from outside (Simulation::command) for the step under way, while `commanded`; it
+  /// takes the place of the controller. `held`: what an entity of the external controller
+  /// repeats between commands.
   ExternalCommand command;
-  bool commanded = false;
   std::optional<ExternalCommand> held;
 
   /// The controller that moves the entity this step: a command's controls go through the

@@ -83,11 +83,16 @@ struct LightSetting {
 };
 inline constexpr size_t kVehicleLightCount = 13;
 
+/// The lights an entity has had set (LightStateAction), by VehicleLight.
+using LightSettings = std::array<std::optional<LightSetting>, kVehicleLightCount>;
+
+/// The fields are in the order a step reads them: first what every step's passes over all
+/// entities touch (state, lane, box, commands, timers), then what only some entities or events
+/// need. With hundreds of vehicles the entities no longer fit in a core's cache, and a pass
+/// then costs the cache lines it reads of each entity.
 struct Entity {
-  EntityInfo info;
   EntityState state;
   LaneFollow lane;
-  const xosc::ScenarioObject* object = nullptr;
 
   /// What the running actions ask for at the end of the current step: speed (m/s) and lateral
   /// offset (m, see LaneFollow::lateral). Controllers turn them into motion.
@@ -102,32 +107,12 @@ struct Entity {
 
   /// Timers (s) for the duration-based conditions (StandStill, Offroad, EndOfRoad).
   bool standing_still = false;
-  double standstill_time = 0.0;
-  double offroad_time = 0.0;
   bool was_offroad = false;
   bool end_of_road = false;  ///< stuck at a lane end without successor
   bool was_at_end = false;
+  double standstill_time = 0.0;
+  double offroad_time = 0.0;
   double end_of_road_time = 0.0;
-
-  /// The running action that owns each domain (index 0 longitudinal, 1 lateral), or null.
-  std::array<ActionInstance*, kDomainSlots> owners{};
-  /// Chooses among lane successors at lane ends (a route); null: the straightest.
-  const LaneChooser* chooser = nullptr;
-  /// Owns the route chooser (AssignRouteAction, AcquirePositionAction) `chooser` points at.
-  std::shared_ptr<const LaneChooser> route;
-  RouteProgress route_progress;
-  /// A pose an action sets for the end of the step (FollowTrajectoryAction): the controller
-  /// puts the entity there instead of moving it along its lane (motion/pose_command.h).
-  std::optional<Pose> pose_command;
-  /// Lights set by LightStateAction, by VehicleLight; unset ones follow the motion.
-  std::array<std::optional<LightSetting>, kVehicleLightCount> lights{};
-  LanePoseMemo lane_pose_memo;
-  /// AnimationAction: each animation by type name, going from `from` to `to` over `duration`.
-  struct Animation {
-    double from = 0.0, to = 1.0, start = 0.0, duration = 0.0;
-    bool loop = false;
-  };
-  std::map<std::string, Animation> animations;
 
   /// Trailers (§7.4.8): the entity towing this one, and the one this one tows.
   std::optional<uint32_t> towed_by;
@@ -135,6 +120,32 @@ struct Entity {
   /// A trailer just disconnected from this entity: while their boxes still overlap at the hitch,
   /// that is no collision.
   std::optional<uint32_t> unhitched_from;
+
+  EntityInfo info;
+
+  /// Chooses among lane successors at lane ends (a route); null: the straightest.
+  const LaneChooser* chooser = nullptr;
+  /// The running action that owns each domain (index 0 longitudinal, 1 lateral), or null.
+  std::array<ActionInstance*, kDomainSlots> owners{};
+  /// A pose an action sets for the end of the step (FollowTrajectoryAction): the controller
+  /// puts the entity there instead of moving it along its lane (motion/pose_command.h).
+  std::optional<Pose> pose_command;
+  LanePoseMemo lane_pose_memo;
+
+  // Below: what only some entities, or some events, read.
+  const xosc::ScenarioObject* object = nullptr;
+  /// Owns the route chooser (AssignRouteAction, AcquirePositionAction) `chooser` points at.
+  std::shared_ptr<const LaneChooser> route;
+  RouteProgress route_progress;
+  /// Lights set by LightStateAction; null until the first is set (unset ones follow the
+  /// motion). Out of line: 520 bytes that most entities never use.
+  std::unique_ptr<LightSettings> lights;
+  /// AnimationAction: each animation by type name, going from `from` to `to` over `duration`.
+  struct Animation {
+    double from = 0.0, to = 1.0, start = 0.0, duration = 0.0;
+    bool loop = false;
+  };
+  std::map<std::string, Animation> animations;
   /// The entity of a trailer defined inline in this vehicle, connected at Init.
   std::optional<uint32_t> initial_trailer;
 };
