@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -38,7 +39,10 @@ struct BinaryTrajectoryRecorder::State {
   std::vector<Steady> steady;
   std::vector<bool> road_named;
   std::string roads;  ///< road records of roads first met at this tick
-  std::string frame;  ///< the entity records of this tick
+  /// The entity records of this tick: the first frame_size bytes of `frame` (which only grows,
+  /// so that a record is written in place without clearing its room first).
+  std::vector<char> frame;
+  size_t frame_size = 0;
 
   void start(const Simulation& simulation);
   void record(const Simulation& simulation);
@@ -92,11 +96,11 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
   const EntityState& state = simulation.state(index);
   uint32_t mask = 0;
   uint32_t raw = 0;
-  // The road and lane, then the numbers: at most 5 + 10 bytes, and 9 numbers of 10.
-  char payload[16];
-  char values[detail::kRowFields * 10];
-  char* payload_end = payload;
-  char* values_end = values;
+  // The record's body (road and lane, at most 10 + 10 bytes, then nine numbers of 10), made
+  // before its head (index step, mask and raw bits, at most 10 + 5 + 5), which needs the mask.
+  constexpr size_t kHead = 20;
+  char body[20 + detail::kRowFields * 10];
+  char* out = body;
   if (!state.placed) {
     seen.valid = false;
     if (!history.present) {
@@ -121,7 +125,7 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
         road_named[road] = true;
         put_string(roads, codec::kTagRoad, road, simulation.road_id(road));
       }
-      payload_end = codec::put_varint(payload_end, row.on_road ? uint64_t{road} + 1 : 0);
+      out = codec::put_varint(out, row.on_road ? uint64_t{road} + 1 : 0);
       history.on_road = row.on_road;
       history.road = road;
       history.fields[detail::kFieldS].fresh = true;
@@ -129,7 +133,7 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
     }
     if (row.on_road && row.lane != history.lane) {
       mask |= codec::kLaneBit;
-      payload_end = codec::put_varint(payload_end, codec::zigzag(int64_t{row.lane} - history.lane));
+      out = codec::put_varint(out, codec::zigzag(int64_t{row.lane} - history.lane));
       history.lane = row.lane;
     }
     // s and t only on a road (the CSV leaves them empty off it).
@@ -140,7 +144,7 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
       codec::FieldHistory& field = history.fields[f];
       if (!v.exact) {
         raw |= 1u << f;
-        values_end = codec::put_fixed64(values_end, std::bit_cast<uint64_t>(v.raw));
+        out = codec::put_fixed64(out, std::bit_cast<uint64_t>(v.raw));
         field.fresh = true;
         repeats = false;
         continue;
@@ -148,7 +152,7 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
       const int64_t residual = v.units - field.predicted();
       if (residual != 0) {
         mask |= 1u << f;
-        values_end = codec::put_varint(values_end, codec::zigzag(residual));
+        out = codec::put_varint(out, codec::zigzag(residual));
       }
       field.accept(v.units);
       repeats = repeats && field.change == 0;
@@ -166,15 +170,18 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
   if (mask == 0) {
     return;  // as predicted: nothing to store
   }
-  char head[30];
-  char* head_end = codec::put_varint(head, static_cast<uint64_t>(index - previous));
-  head_end = codec::put_varint(head_end, mask);
-  if (raw != 0) {
-    head_end = codec::put_varint(head_end, raw);
+  const auto body_size = static_cast<size_t>(out - body);
+  if (frame.size() < frame_size + kHead + body_size) {
+    frame.resize(std::max(2 * frame.size(), frame_size + kHead + sizeof body));
   }
-  frame.append(head, static_cast<size_t>(head_end - head));
-  frame.append(payload, static_cast<size_t>(payload_end - payload));
-  frame.append(values, static_cast<size_t>(values_end - values));
+  char* end = frame.data() + frame_size;
+  end = codec::put_varint(end, static_cast<uint64_t>(index - previous));
+  end = codec::put_varint(end, mask);
+  if (raw != 0) {
+    end = codec::put_varint(end, raw);
+  }
+  std::memcpy(end, body, body_size);
+  frame_size = static_cast<size_t>(end - frame.data()) + body_size;
   previous = index;
 }
 
@@ -190,7 +197,7 @@ void BinaryTrajectoryRecorder::State::record(const Simulation& simulation) {
     steady.emplace_back();
   }
   roads.clear();
-  frame.clear();
+  frame_size = 0;
   int64_t previous = -1;
   for (uint32_t i = 0; i < entities.size(); ++i) {
     // encode's first test, without the call: most entities of a long run stand.
@@ -204,7 +211,7 @@ void BinaryTrajectoryRecorder::State::record(const Simulation& simulation) {
   const double time = simulation.time();
   const bool odd_time =
       std::bit_cast<uint64_t>(time) != std::bit_cast<uint64_t>(tick_time(tick, per_second, dt));
-  if (frame.empty() && !odd_time) {
+  if (frame_size == 0 && !odd_time) {
     return;  // every present entity as predicted: the tick costs nothing
   }
   buffer += roads;
@@ -214,7 +221,7 @@ void BinaryTrajectoryRecorder::State::record(const Simulation& simulation) {
   }
   buffer.push_back(static_cast<char>(codec::kTagFrame));
   codec::put_varint(buffer, codec::zigzag(tick - last_frame));
-  buffer += frame;
+  buffer.append(frame.data(), frame_size);
   codec::put_varint(buffer, 0);
   last_frame = tick;
   if (buffer.size() > (1u << 20)) {

@@ -12,24 +12,6 @@ namespace corsa::engine {
 
 namespace detail {
 
-RowValues row_values(const EntityState& state) {
-  RowValues v;
-  v.fields[kFieldX] = scale_decimal<kLengthDecimals>(state.pose.x);
-  v.fields[kFieldY] = scale_decimal<kLengthDecimals>(state.pose.y);
-  v.fields[kFieldZ] = scale_decimal<kLengthDecimals>(state.pose.z);
-  v.fields[kFieldH] = scale_decimal<kAngleDecimals>(state.pose.h);
-  v.fields[kFieldP] = scale_decimal<kAngleDecimals>(state.pose.p);
-  v.fields[kFieldR] = scale_decimal<kAngleDecimals>(state.pose.r);
-  v.fields[kFieldSpeed] = scale_decimal<kLengthDecimals>(state.speed);
-  v.on_road = state.road.has_value();
-  if (v.on_road) {
-    v.lane = state.road->lane;
-    v.fields[kFieldS] = scale_decimal<kLengthDecimals>(state.road->s);
-    v.fields[kFieldT] = scale_decimal<kLengthDecimals>(state.road->t);
-  }
-  return v;
-}
-
 namespace {
 
 template <int Decimals>

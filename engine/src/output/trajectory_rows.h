@@ -97,8 +97,25 @@ inline bool same_row_inputs(const RowInputs& in, const EntityState& state) {
           same(in.bits[kFieldS], state.road->s) && same(in.bits[kFieldT], state.road->t));
 }
 
-/// The row values of an entity's state.
-RowValues row_values(const EntityState& state);
+/// The row values of an entity's state (inline: the binary recorder makes one per moving
+/// entity and tick).
+inline RowValues row_values(const EntityState& state) {
+  RowValues v;
+  v.fields[kFieldX] = scale_decimal<kLengthDecimals>(state.pose.x);
+  v.fields[kFieldY] = scale_decimal<kLengthDecimals>(state.pose.y);
+  v.fields[kFieldZ] = scale_decimal<kLengthDecimals>(state.pose.z);
+  v.fields[kFieldH] = scale_decimal<kAngleDecimals>(state.pose.h);
+  v.fields[kFieldP] = scale_decimal<kAngleDecimals>(state.pose.p);
+  v.fields[kFieldR] = scale_decimal<kAngleDecimals>(state.pose.r);
+  v.fields[kFieldSpeed] = scale_decimal<kLengthDecimals>(state.speed);
+  v.on_road = state.road.has_value();
+  if (v.on_road) {
+    v.lane = state.road->lane;
+    v.fields[kFieldS] = scale_decimal<kLengthDecimals>(state.road->s);
+    v.fields[kFieldT] = scale_decimal<kLengthDecimals>(state.road->t);
+  }
+  return v;
+}
 
 /// Appends the CSV row `time_text` (with its comma), `name`, the numbers, and `road` (the road
 /// id; unused off the road).
