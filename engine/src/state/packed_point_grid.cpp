@@ -9,9 +9,11 @@ namespace {
 // Coordinates beyond this many cells from 0 go to the overflow list (as in PointGrid): cell
 // numbers stay exact, and the points' bounds stay sane.
 constexpr double kMaxCell = 1e9;
-// Cells at most this many, or four per point: a grid over points spread far apart gets larger
-// cells instead of a huge array.
-constexpr size_t kMinCellBudget = 16384;
+// Cells at most eight per point (and at least this many): building the grid costs in proportion
+// to the points, and sparse points get larger cells (a step's few hundred vehicles spread over a
+// city map then share 32 m cells, a dense thousand 16 m ones).
+constexpr size_t kMinCellBudget = 256;
+constexpr size_t kCellsPerPoint = 8;
 
 }  // namespace
 
@@ -52,7 +54,8 @@ void PackedPointGrid::finish() {
     x0_ = std::min(x0_, p.x), x1 = std::max(x1, p.x);
     y0_ = std::min(y0_, p.y), y1 = std::max(y1, p.y);
   }
-  const double budget = static_cast<double>(std::max(kMinCellBudget, 4 * staged_.size()));
+  const double budget =
+      static_cast<double>(std::max(kMinCellBudget, kCellsPerPoint * staged_.size()));
   size_ = cell_;
   while ((std::floor((x1 - x0_) / size_) + 1.0) * (std::floor((y1 - y0_) / size_) + 1.0) > budget) {
     size_ *= 2.0;
@@ -65,12 +68,14 @@ void PackedPointGrid::finish() {
   for (size_t k = 0; k < staged_.size(); ++k) {
     const int64_t cell = cell_of(staged_[k].x, x0_, nx_) * ny_ + cell_of(staged_[k].y, y0_, ny_);
     cells_[k] = static_cast<uint32_t>(cell);
-    ++starts_[cells_[k] + 1];
+    ++starts_[cells_[k]];
   }
-  for (size_t c = 1; c < starts_.size(); ++c) starts_[c] += starts_[c - 1];
+  for (size_t c = 1; c + 1 < starts_.size(); ++c) starts_[c] += starts_[c - 1];  // cell ends
   points_.resize(staged_.size());
-  std::vector<uint32_t> next(starts_.begin(), starts_.end() - 1);
-  for (size_t k = 0; k < staged_.size(); ++k) points_[next[cells_[k]]++] = staged_[k];
+  // Each point goes before its cell's end, counted down (the last point first, so that a cell
+  // keeps the order of adding): each cell's end becomes its start.
+  for (size_t k = staged_.size(); k-- > 0;) points_[--starts_[cells_[k]]] = staged_[k];
+  starts_.back() = static_cast<uint32_t>(points_.size());
 }
 
 bool PackedPointGrid::span_of(double low, double high, double origin, int64_t count, int64_t& first,
