@@ -36,11 +36,11 @@ struct BuiltWorld {
 inline std::unique_ptr<BuiltWorld> build_world_scene(const xodr::Map& map, uint64_t seed,
                                                      bool buildings = false) {
   const auto& h = map.data().header;
-  auto out = std::make_unique<BuiltWorld>(BuiltWorld{
-      sensors::Scene(
-          sensors::SceneOptions{{0.5 * (h.east + h.west), 0.5 * (h.north + h.south), 0.0}, seed}),
-      {},
-      {}});
+  auto out = std::make_unique<BuiltWorld>(
+      BuiltWorld{sensors::Scene(sensors::SceneOptions{
+                     {0.5 * (h.east + h.west), 0.5 * (h.north + h.south), 0.0}, seed}),
+                 {},
+                 {}});
   out->scene.add_road_mesh(xodr::build_road_mesh(map));
   out->scene.commit();
   Diagnostics diagnostics([&](const Diagnostic& d) { out->warnings.push_back(d); });
