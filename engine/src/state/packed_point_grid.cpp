@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "state/point_grid.h"
+
 namespace corsa::engine::detail {
 namespace {
 
-// Coordinates beyond this many cells from 0 go to the overflow list (as in PointGrid): cell
-// numbers stay exact, and the points' bounds stay sane.
-constexpr double kMaxCell = 1e9;
 // Cells at most eight per point (and at least this many): building the grid costs in proportion
 // to the points, and sparse points get larger cells (800 vehicles on Town04 get 16 m cells, 100
 // get 32-64 m ones, depending on how far they spread).
@@ -28,7 +27,7 @@ void PackedPointGrid::clear() {
 }
 
 void PackedPointGrid::add(double x, double y, uint32_t id) {
-  if (!(std::abs(x / cell_) < kMaxCell) || !(std::abs(y / cell_) < kMaxCell)) {
+  if (!(std::abs(x / cell_) < kMaxGridCell) || !(std::abs(y / cell_) < kMaxGridCell)) {
     overflow_.push_back(id);
     return;
   }

@@ -5,10 +5,6 @@
 namespace corsa::engine::detail {
 namespace {
 
-// Cell coordinates beyond this (|x| / cell) go to the overflow list: keys stay exact 32-bit
-// integers, and a query never loops over absurd ranges.
-constexpr double kMaxCell = 1e9;
-
 uint64_t key(int64_t i, int64_t j) {
   return (static_cast<uint64_t>(static_cast<uint32_t>(i)) << 32) |
          static_cast<uint64_t>(static_cast<uint32_t>(j));
@@ -33,7 +29,7 @@ void PointGrid::clear() {
 void PointGrid::add(double x, double y, uint32_t id) {
   const double i = std::floor(x / cell_);
   const double j = std::floor(y / cell_);
-  if (!(std::abs(i) < kMaxCell) || !(std::abs(j) < kMaxCell)) {
+  if (!(std::abs(i) < kMaxGridCell) || !(std::abs(j) < kMaxGridCell)) {
     overflow_.push_back(id);
     return;
   }
@@ -53,8 +49,9 @@ void PointGrid::visit_cells(double x_min, double y_min, double x_max, double y_m
   }
   const double i0 = std::floor(x_min / cell_), i1 = std::floor(x_max / cell_);
   const double j0 = std::floor(y_min / cell_), j1 = std::floor(y_max / cell_);
-  if (!(i1 - i0 < 64.0 && j1 - j0 < 64.0 && std::abs(i0) < kMaxCell && std::abs(i1) < kMaxCell &&
-        std::abs(j0) < kMaxCell && std::abs(j1) < kMaxCell)) {
+  if (!(i1 - i0 < 64.0 && j1 - j0 < 64.0 && std::abs(i0) < kMaxGridCell &&
+        std::abs(i1) < kMaxGridCell && std::abs(j0) < kMaxGridCell &&
+        std::abs(j1) < kMaxGridCell)) {
     // A huge or far-off region (or NaN): every point.
     for (const auto& [cell, points] : cells_) {
       visit(points);

@@ -12,6 +12,10 @@
 
 namespace corsa::engine::detail {
 
+/// Cell coordinates (|x| / cell) at or beyond this go to a grid's overflow list: cell keys stay
+/// exact 32-bit integers, a query never loops over absurd ranges, and the bounds stay sane.
+inline constexpr double kMaxGridCell = 1e9;
+
 class PointGrid {
  public:
   /// `cell`: side of a cell (m, > 0); queries reaching a few cells are the cheapest.
