@@ -104,20 +104,8 @@ Color resample(const Pass& p, int col, int row, int count) {
       sum = sum + sky_seen(c, p.origin_local, dirs[k]);
       continue;
     }
-    SurfaceHit h;
-    h.inst_id = rh.hit.instID[0][k];
-    h.geom_id = rh.hit.geomID[k];
-    h.prim_id = rh.hit.primID[k];
-    h.u = rh.hit.u[k];
-    h.v = rh.hit.v[k];
-    h.view_dir = dirs[k];
-    h.distance = rh.ray.tfar[k];
-    h.position = p.origin_local + dirs[k] * h.distance;
-    const Vec3 n = d.world_normal(h.inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
-    h.normal = dot(n, dirs[k]) > 0.0 ? -n : n;
-    const auto label = d.label(h.inst_id, h.geom_id, h.prim_id);
-    h.semantic = label.semantic;
-    h.entity = label.entity;
+    const SurfaceHit h = primary_hit(
+        p, rh, k, dirs[k], d.label(rh.hit.instID[0][k], rh.hit.geomID[k], rh.hit.primID[k]));
     const SurfacePoint s = surface_at(c, h);
     const long long q = matching_neighbour(p, col, row, s);
     Visibility v;

@@ -80,6 +80,11 @@ struct Pass {
   int height = 0;
 };
 
+/// What lane k of a packet traced from the pass's origin along unit `dir` hit, as shading needs
+/// it: ids, barycentrics, tracer-local position, world normal facing the viewer, and `label`.
+SurfaceHit primary_hit(const Pass& p, const RTCRayHit16& rh, int k, Vec3 dir,
+                       const SceneData::Label& label);
+
 /// The per-pixel buffers of one pass. A renderer keeps them from frame to frame: at 1280x720
 /// they take about 200 MB, and fresh pages every frame (page faults and the kernel zeroing
 /// them) cost about a fifth of a `fast` frame. Every stage writes each pixel it later reads, so

@@ -93,26 +93,6 @@ void store_sky(const Pass& p, size_t px, Vec3 dir) {
   (*p.visibility)[px] = PixelVisibility{};
 }
 
-/// What lane k of the primary packet hit, as shading needs it.
-SurfaceHit primary_hit(const Pass& p, const RTCRayHit16& rh, int k, Vec3 dir,
-                       const SceneData::Label& label) {
-  SurfaceHit sh;
-  sh.inst_id = rh.hit.instID[0][k];
-  sh.geom_id = rh.hit.geomID[k];
-  sh.prim_id = rh.hit.primID[k];
-  sh.u = rh.hit.u[k];
-  sh.v = rh.hit.v[k];
-  sh.view_dir = dir;
-  sh.distance = rh.ray.tfar[k];
-  sh.position = p.origin_local + dir * sh.distance;
-  const Vec3 n =
-      p.scene->world_normal(sh.inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
-  sh.normal = dot(n, dir) > 0.0 ? -n : n;
-  sh.semantic = label.semantic;
-  sh.entity = label.entity;
-  return sh;
-}
-
 /// The record (surface, shading terms, mirrored and transmitted light) and the visibilities of
 /// lit pixel k of a resolved tile.
 void store_lit(const Pass& p, const TileState& t, int k) {
@@ -143,6 +123,25 @@ void store_lit(const Pass& p, const TileState& t, int k) {
 }
 
 }  // namespace
+
+SurfaceHit primary_hit(const Pass& p, const RTCRayHit16& rh, int k, Vec3 dir,
+                       const SceneData::Label& label) {
+  SurfaceHit sh;
+  sh.inst_id = rh.hit.instID[0][k];
+  sh.geom_id = rh.hit.geomID[k];
+  sh.prim_id = rh.hit.primID[k];
+  sh.u = rh.hit.u[k];
+  sh.v = rh.hit.v[k];
+  sh.view_dir = dir;
+  sh.distance = rh.ray.tfar[k];
+  sh.position = p.origin_local + dir * sh.distance;
+  const Vec3 n =
+      p.scene->world_normal(sh.inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
+  sh.normal = dot(n, dir) > 0.0 ? -n : n;
+  sh.semantic = label.semantic;
+  sh.entity = label.entity;
+  return sh;
+}
 
 Vec3 ray_at(const Pass& p, double x, double y) {
   const int w = p.width;
