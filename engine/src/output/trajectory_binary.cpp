@@ -39,6 +39,11 @@ struct BinaryTrajectoryRecorder::State {
     uint32_t road = 0;
     int lane = 0;
     uint32_t fresh = codec::kFieldBits;  ///< fields whose history starts afresh (predicted 0)
+    /// Fields whose last value came from the bits in `bits` and repeated the one before: while
+    /// the bits stay, the field is as predicted and keeps its history (z, pitch and roll on a
+    /// flat road, a steady speed), without scaling it again.
+    uint32_t still = 0;
+    std::array<uint64_t, detail::kRowFields> bits{};
     std::array<int64_t, detail::kRowFields> last{};  ///< the value last taken
     std::array<int64_t, detail::kRowFields> next{};  ///< last + its change: the prediction
   };
@@ -143,6 +148,7 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
       track.on_road = on_road;
       track.road = road;
       track.fresh |= (1u << detail::kFieldS) | (1u << detail::kFieldT);
+      track.still &= ~((1u << detail::kFieldS) | (1u << detail::kFieldT));
     }
     if (on_road && state.road->lane != track.lane) {
       mask |= codec::kLaneBit;
@@ -164,10 +170,15 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
     bool repeats = true;  // every field predicted to keep its value
     for (int f = 0; f < fields; ++f) {
       const uint32_t bit = 1u << f;
+      const uint64_t bits = std::bit_cast<uint64_t>(values[f]);
+      if ((track.still & bit) != 0 && bits == track.bits[f]) {
+        continue;  // the same units again, as predicted: residual and change 0
+      }
       const double scaled = values[f] * detail::decimal_text::kScale[detail::kFieldDecimals[f]];
       if (!(std::fabs(scaled) < detail::decimal_text::kExactLimit)) {
         raw |= bit;  // stored as it is; its history starts afresh after it
-        out = codec::put_fixed64(out, std::bit_cast<uint64_t>(values[f]));
+        out = codec::put_fixed64(out, bits);
+        track.still &= ~bit;
         repeats = false;
         continue;
       }
@@ -178,6 +189,8 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
       track.last[f] = units;
       track.next[f] = units + change;
       repeats = repeats && change == 0;
+      track.bits[f] = bits;
+      track.still = change == 0 ? track.still | bit : track.still & ~bit;
       if (residual != 0) {
         mask |= bit;
         out = codec::put_varint(out, codec::zigzag(residual));
