@@ -2,6 +2,7 @@
 // whose row differs from what its previous rows predict gets a record of the differences.
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -29,7 +30,24 @@ struct BinaryTrajectoryRecorder::State {
   double dt = 0.0;
   int64_t last_recorded = -1;
   int64_t last_frame = 0;
-  std::vector<codec::EntityHistory> entities;
+  /// The writer's side of an entity's history (codec::EntityHistory's predictions, kept as the
+  /// value each field is predicted to take next, so that a moving entity's field costs a
+  /// subtraction and no test of its history's state).
+  struct Track {
+    bool present = false;
+    bool on_road = false;
+    uint32_t road = 0;
+    int lane = 0;
+    uint32_t fresh = codec::kFieldBits;  ///< fields whose history starts afresh (predicted 0)
+    /// Fields whose last value came from the bits in `bits` and repeated the one before: while
+    /// the bits stay, the field is as predicted and keeps its history (z, pitch and roll on a
+    /// flat road, a steady speed), without scaling it again.
+    uint32_t still = 0;
+    std::array<uint64_t, detail::kRowFields> bits{};
+    std::array<int64_t, detail::kRowFields> last{};  ///< the value last taken
+    std::array<int64_t, detail::kRowFields> next{};  ///< last + its change: the prediction
+  };
+  std::vector<Track> entities;
   /// Per entity: the inputs of its last row, when that row repeats its prediction (valid):
   /// then equal inputs mean no record, without making the row.
   struct Steady {
@@ -91,7 +109,7 @@ void BinaryTrajectoryRecorder::State::start(const Simulation& simulation) {
 
 void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint32_t index,
                                              int64_t& previous) {
-  codec::EntityHistory& history = entities[index];
+  Track& track = entities[index];
   Steady& seen = steady[index];
   const EntityState& state = simulation.state(index);
   uint32_t mask = 0;
@@ -103,60 +121,83 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
   char* out = body;
   if (!state.placed) {
     seen.valid = false;
-    if (!history.present) {
+    if (!track.present) {
       return;
     }
-    history.present = false;
+    track.present = false;
     mask = codec::kPresenceBit;  // gone: nothing else follows
   } else {
-    if (seen.valid && history.present && detail::same_row_inputs(seen.inputs, state)) {
+    if (seen.valid && track.present && detail::same_row_inputs(seen.inputs, state)) {
       return;  // the same row as last time, which its history predicts to repeat
     }
-    if (!history.present) {
-      history.appear();
+    if (!track.present) {
+      track = Track{};
+      track.present = true;
       mask |= codec::kPresenceBit;
     }
-    const detail::RowValues row = detail::row_values(state);
-    const uint32_t road = row.on_road ? state.road->road : 0;
-    if (row.on_road != history.on_road || road != history.road) {
+    const bool on_road = state.road.has_value();
+    const uint32_t road = on_road ? state.road->road : 0;
+    if (on_road != track.on_road || road != track.road) {
       mask |= codec::kRoadBit;
-      if (row.on_road && (road >= road_named.size() || !road_named[road])) {
+      if (on_road && (road >= road_named.size() || !road_named[road])) {
         road_named.resize(std::max<size_t>(road_named.size(), road + 1), false);
         road_named[road] = true;
         put_string(roads, codec::kTagRoad, road, simulation.road_id(road));
       }
-      out = codec::put_varint(out, row.on_road ? uint64_t{road} + 1 : 0);
-      history.on_road = row.on_road;
-      history.road = road;
-      history.fields[detail::kFieldS].fresh = true;
-      history.fields[detail::kFieldT].fresh = true;
+      out = codec::put_varint(out, on_road ? uint64_t{road} + 1 : 0);
+      track.on_road = on_road;
+      track.road = road;
+      track.fresh |= (1u << detail::kFieldS) | (1u << detail::kFieldT);
+      track.still &= ~((1u << detail::kFieldS) | (1u << detail::kFieldT));
     }
-    if (row.on_road && row.lane != history.lane) {
+    if (on_road && state.road->lane != track.lane) {
       mask |= codec::kLaneBit;
-      out = codec::put_varint(out, codec::zigzag(int64_t{row.lane} - history.lane));
-      history.lane = row.lane;
+      out = codec::put_varint(out, codec::zigzag(int64_t{state.road->lane} - track.lane));
+      track.lane = state.road->lane;
     }
-    // s and t only on a road (the CSV leaves them empty off it).
-    const int fields = row.on_road ? detail::kRowFields : detail::kFieldS;
+    // The row's numbers as row_values scales them; s and t only on a road (the CSV leaves them
+    // empty off it).
+    const double values[detail::kRowFields] = {state.pose.x,
+                                               state.pose.y,
+                                               state.pose.z,
+                                               state.pose.h,
+                                               state.pose.p,
+                                               state.pose.r,
+                                               state.speed,
+                                               on_road ? state.road->s : 0.0,
+                                               on_road ? state.road->t : 0.0};
+    const int fields = on_road ? detail::kRowFields : detail::kFieldS;
     bool repeats = true;  // every field predicted to keep its value
     for (int f = 0; f < fields; ++f) {
-      const detail::Scaled& v = row.fields[f];
-      codec::FieldHistory& field = history.fields[f];
-      if (!v.exact) {
-        raw |= 1u << f;
-        out = codec::put_fixed64(out, std::bit_cast<uint64_t>(v.raw));
-        field.fresh = true;
+      const uint32_t bit = 1u << f;
+      const uint64_t bits = std::bit_cast<uint64_t>(values[f]);
+      if ((track.still & bit) != 0 && bits == track.bits[f]) {
+        continue;  // the same units again, as predicted: residual and change 0
+      }
+      const double scaled = values[f] * detail::decimal_text::kScale[detail::kFieldDecimals[f]];
+      if (!(std::fabs(scaled) < detail::decimal_text::kExactLimit)) {
+        raw |= bit;  // stored as it is; its history starts afresh after it
+        out = codec::put_fixed64(out, bits);
+        track.still &= ~bit;
         repeats = false;
         continue;
       }
-      const int64_t residual = v.units - field.predicted();
+      const int64_t units = detail::decimal_text::round_half_away(scaled);
+      const bool fresh = (track.fresh & bit) != 0;
+      const int64_t residual = units - (fresh ? 0 : track.next[f]);
+      const int64_t change = fresh ? 0 : units - track.last[f];
+      track.last[f] = units;
+      track.next[f] = units + change;
+      repeats = repeats && change == 0;
+      track.bits[f] = bits;
+      track.still = change == 0 ? track.still | bit : track.still & ~bit;
       if (residual != 0) {
-        mask |= 1u << f;
+        mask |= bit;
         out = codec::put_varint(out, codec::zigzag(residual));
       }
-      field.accept(v.units);
-      repeats = repeats && field.change == 0;
     }
+    // The fields taken are predicted from now on, the raw ones start afresh.
+    track.fresh = (track.fresh & ~((1u << fields) - 1)) | raw;
     if (raw != 0) {
       mask |= codec::kRawBit;
     }
