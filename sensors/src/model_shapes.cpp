@@ -130,8 +130,8 @@ bool ModelShapeSource::shape_of(const engine::EntitySnapshot& e, StaticMesh& mes
           "model3d:" + file.string(),
           chosen != nullptr
               ? make_warning(rig_file_, chosen->line,
-                             "cannot use the model '" + file.string() + "' for entity '" +
-                                 e.name + "' (" + error.diagnostic().message +
+                             "cannot use the model '" + file.string() + "' for entity '" + e.name +
+                                 "' (" + error.diagnostic().message +
                                  "); generated shapes stand in")
               : make_warning(file.string(), 0,
                              "cannot use the model of entity '" + e.name + "' (" +

@@ -152,12 +152,11 @@ bool build_signal_marking(WorldBuild& w, size_t r, const xodr::Signal& s) {
   }
   if (covered.empty()) {
     const double width = s.width > 0.1 ? s.width : 3.0;
-    w.diagnostics.add_once(
-        "signal-marking-lanes:" + s.id,
-        make_warning(file, s.line,
-                     "road marking signal " + s.id + " covers no lane at s " +
-                         format_fixed(s_mid, 2) + "; painted " + format_fixed(width, 2) +
-                         " m wide around its t"));
+    w.diagnostics.add_once("signal-marking-lanes:" + s.id,
+                           make_warning(file, s.line,
+                                        "road marking signal " + s.id + " covers no lane at s " +
+                                            format_fixed(s_mid, 2) + "; painted " +
+                                            format_fixed(width, 2) + " m wide around its t"));
     covered.emplace_back(s.t - 0.5 * width, s.t + 0.5 * width);
   }
   std::sort(covered.begin(), covered.end());

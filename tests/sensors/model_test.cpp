@@ -262,7 +262,8 @@ void write_plain_box(const fs::path& file) {
   }
 }
 
-corsa::engine::EntitySnapshot category_entity(const std::string& name, corsa::engine::EntityCategory c) {
+corsa::engine::EntitySnapshot category_entity(const std::string& name,
+                                              corsa::engine::EntityCategory c) {
   corsa::engine::EntitySnapshot e;
   e.name = name;
   e.category = c;
@@ -310,9 +311,10 @@ TEST_CASE("the rig's entity models shape entities without model3d by name, then 
   CHECK(warnings.empty());
 }
 
-TEST_CASE("a missing or unreadable entity model of the rig is a warning at its element and the "
-          "generated shape stands in",
-          "[sensors][model][model3d][errors]") {
+TEST_CASE(
+    "a missing or unreadable entity model of the rig is a warning at its element and the "
+    "generated shape stands in",
+    "[sensors][model][model3d][errors]") {
   using corsa::engine::EntityCategory;
   corsa::test::TempDir dir;
   std::ofstream(dir.path() / "broken.glb") << "not a model";

@@ -257,9 +257,10 @@ TEST_CASE("a rig names the user's models by category or by entity, beside the ri
   CHECK_NOTHROW(bind_rig(rig, names));
 }
 
-TEST_CASE("an entity model with both or neither of category and entity, an unknown category or "
-          "an unknown entity is an error at its line",
-          "[sensors][rig][model3d][errors]") {
+TEST_CASE(
+    "an entity model with both or neither of category and entity, an unknown category or "
+    "an unknown entity is an error at its line",
+    "[sensors][rig][model3d][errors]") {
   auto d = failure(R"(<SensorRig version="1">
   <EntityModel category="car" entity="Ego" file="a.obj"/>
 </SensorRig>)");

@@ -17,7 +17,8 @@ namespace {
 /// and a sidewalk on the right, every lane 3.5 m and sidewalks 2 m wide; its signals are
 /// `signals`.
 corsa::xodr::Map street_with(const std::string& signals) {
-  const std::string lane = R"(<lane id="ID" type="TYPE"><width sOffset="0" a="W" b="0" c="0" d="0"/></lane>)";
+  const std::string lane =
+      R"(<lane id="ID" type="TYPE"><width sOffset="0" a="W" b="0" c="0" d="0"/></lane>)";
   auto make = [&](const char* id, const char* type, const char* w) {
     std::string l = lane;
     l.replace(l.find("ID"), 2, id);
@@ -33,11 +34,10 @@ corsa::xodr::Map street_with(const std::string& signals) {
       make("2", "sidewalk", "2") + make("1", "driving", "3.5") + R"(</left>
 <center><lane id="0" type="none"/></center><right>)" +
       make("-1", "driving", "3.5") + make("-2", "driving", "3.5") + make("-3", "sidewalk", "2") +
-      R"(</right></laneSection></lanes><signals>)" + signals +
-      R"(</signals></road></OpenDRIVE>)";
+      R"(</right></laneSection></lanes><signals>)" + signals + R"(</signals></road></OpenDRIVE>)";
   corsa::Diagnostics diagnostics;
-  return corsa::xodr::Map::build(
-      corsa::xodr::parse_xodr_text(text, "markings.xodr", diagnostics), diagnostics);
+  return corsa::xodr::Map::build(corsa::xodr::parse_xodr_text(text, "markings.xodr", diagnostics),
+                                 diagnostics);
 }
 
 /// The world of `map` without plants and street lights (nothing over the road but the signals).
@@ -71,9 +71,9 @@ TEST_CASE("a stop line signal is painted across the lanes its orientation serves
   CHECK(world->report.markings == 1);
   CHECK(world->report.signs == 0);  // no post with a generic sign
   CHECK(world->warnings.empty());
-  CHECK(paint_at(world->scene, 30.0, -1.0));   // lane -1
-  CHECK(paint_at(world->scene, 30.0, -6.0));   // lane -2
-  CHECK(paint_at(world->scene, 30.2, -3.5));   // 0.5 m wide, centred on s
+  CHECK(paint_at(world->scene, 30.0, -1.0));  // lane -1
+  CHECK(paint_at(world->scene, 30.0, -6.0));  // lane -2
+  CHECK(paint_at(world->scene, 30.2, -3.5));  // 0.5 m wide, centred on s
   CHECK_FALSE(paint_at(world->scene, 30.4, -3.5));
   CHECK_FALSE(paint_at(world->scene, 30.0, 1.75));  // the oncoming lane
   CHECK(down_at(world->scene, 30.0, -8.0).semantic == SemanticClass::kSidewalk);
