@@ -30,7 +30,7 @@ void DataRun::prepare(engine::Simulation& simulation) {
   }
   timeline_ = std::make_unique<engine::CaptureTimeline>(capture_sensors, simulation.scenario(),
                                                         simulation.dt(), diagnostics_);
-  scene_ = build_run_scene(simulation, options_.models, rig_.generate_buildings, diagnostics_);
+  scene_ = build_run_scene(simulation, options_.models, rig_, diagnostics_);
   sensors::SensorSystemOptions system_options;
   system_options.seed = simulation.options().seed;
   system_options.location = run_location(simulation, diagnostics_);

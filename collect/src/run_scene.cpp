@@ -74,13 +74,15 @@ sensors::Vec3 map_centre_in_crs(const xodr::Map* map) {
 
 std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simulation,
                                                 const std::vector<ModelSpec>& models,
-                                                bool generate_buildings, Diagnostics& diagnostics) {
+                                                const sensors::SensorRig& rig,
+                                                Diagnostics& diagnostics) {
   const xodr::Map* map = simulation.map();
   auto scene = std::make_unique<sensors::Scene>(
       sensors::SceneOptions{map_centre(map), simulation.options().seed});
-  // Entities with a model3d file get that model (relative paths from the scenario's folder).
+  // Entities with a model3d file get that model (relative paths from the scenario's folder), the
+  // others the rig's model for their name or category.
   scene->set_entity_shape_source(std::make_shared<sensors::ModelShapeSource>(
-      simulation.scenario().path.parent_path(), diagnostics));
+      simulation.scenario().path.parent_path(), diagnostics, rig.entity_models, rig.file));
   if (map != nullptr) {
     scene->add_road_mesh(xodr::build_road_mesh(*map, xodr::MeshOptions{}, diagnostics));
   }
@@ -107,7 +109,7 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
     // and generated buildings keep clear of the models.
     sensors::WorldOptions world;
     world.seed = simulation.options().seed;
-    world.buildings = generate_buildings;
+    world.buildings = rig.generate_buildings;
     sensors::build_world(*map, *scene, world, diagnostics);
     scene->commit();
   }

@@ -85,7 +85,7 @@ class SensorSession {
       std::vector<std::string> names;
       for (size_t i = 0; i < sim.entity_count(); ++i) names.push_back(sim.entity(i).name);
       sensors::bind_rig(rig, names);
-      scene_ = collect::build_run_scene(sim, specs, rig.generate_buildings, diagnostics_);
+      scene_ = collect::build_run_scene(sim, specs, rig, diagnostics_);
       sensors::SensorSystemOptions options;
       options.seed = sim.options().seed;
       options.location = collect::run_location(sim, diagnostics_);

@@ -85,19 +85,35 @@ StaticMesh merge(const std::vector<StaticMesh>& parts, SemanticClass semantic) {
 }  // namespace
 
 ModelShapeSource::ModelShapeSource(std::filesystem::path base, Diagnostics& diagnostics,
-                                   std::map<std::string, std::filesystem::path> catalog)
-    : base_(std::move(base)), diagnostics_(diagnostics), catalog_(std::move(catalog)) {}
+                                   std::vector<EntityModel> models, std::string rig_file)
+    : base_(std::move(base)),
+      diagnostics_(diagnostics),
+      models_(std::move(models)),
+      rig_file_(std::move(rig_file)) {}
+
+const EntityModel* ModelShapeSource::model_for(const engine::EntitySnapshot& e) const {
+  const EntityModel* by_category = nullptr;
+  for (const EntityModel& m : models_) {
+    if (!m.entity.empty() && m.entity == e.name) {
+      return &m;
+    }
+    if (by_category == nullptr && m.entity.empty() && m.category == category_name(e.category)) {
+      by_category = &m;
+    }
+  }
+  return by_category;
+}
 
 bool ModelShapeSource::shape_of(const engine::EntitySnapshot& e, StaticMesh& mesh) {
   std::filesystem::path file = e.model3d;
+  const EntityModel* chosen = nullptr;
   if (file.empty()) {
-    const auto it = catalog_.find(category_name(e.category));
-    if (it == catalog_.end()) {
+    chosen = model_for(e);
+    if (chosen == nullptr) {
       return false;
     }
-    file = it->second;
-  }
-  if (file.is_relative()) {
+    file = chosen->file;  // already resolved against the rig's folder
+  } else if (file.is_relative()) {
     file = base_ / file;
   }
   const SemanticClass semantic = semantic_class_of_entity(e.category);
@@ -109,11 +125,17 @@ bool ModelShapeSource::shape_of(const engine::EntitySnapshot& e, StaticMesh& mes
       placement.diagnostics = &diagnostics_;
       slot = load_model(file, placement);
     } catch (const InputError& error) {
+      // A rig's model is reported at its element; a model3d at the file it names.
       diagnostics_.add_once(
           "model3d:" + file.string(),
-          make_warning(file.string(), 0,
-                       "cannot use the model of entity '" + e.name + "' (" +
-                           error.diagnostic().message + "); a generated shape stands in"));
+          chosen != nullptr
+              ? make_warning(rig_file_, chosen->line,
+                             "cannot use the model '" + file.string() + "' for entity '" + e.name +
+                                 "' (" + error.diagnostic().message +
+                                 "); generated shapes stand in")
+              : make_warning(file.string(), 0,
+                             "cannot use the model of entity '" + e.name + "' (" +
+                                 error.diagnostic().message + "); a generated shape stands in"));
       slot = std::vector<StaticMesh>{};
     }
   }

@@ -1,5 +1,6 @@
 #include "corsa/sensors/rig.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -191,6 +192,27 @@ SensorSpec read_sensor(const ValidatedElement& e, const std::string& file,
   return s;
 }
 
+EntityModel read_entity_model(const ValidatedElement& e, const std::string& file) {
+  EntityModel m;
+  const std::string* category = e.find("category");
+  const std::string* entity = e.find("entity");
+  m.category = category != nullptr ? *category : "";
+  m.entity = entity != nullptr ? *entity : "";
+  m.line = e.line;
+  if (m.category.empty() == m.entity.empty()) {
+    throw InputError(make_error(file, e.line,
+                                "an EntityModel names either a category or an entity (not both, "
+                                "not neither)",
+                                e.path));
+  }
+  // Relative model paths are the rig file's neighbours, as a user writes them.
+  m.file = *e.find("file");
+  if (m.file.is_relative()) {
+    m.file = std::filesystem::path(file).parent_path() / m.file;
+  }
+  return m;
+}
+
 }  // namespace
 
 std::string_view render_quality_name(RenderQuality quality) {
@@ -248,6 +270,10 @@ SensorRig parse_rig(std::string_view xml, const std::string& file) {
   std::set<std::string> names;
   RigBudget budget(file);
   for (const auto& e : root.children) {
+    if (e.name == "EntityModel") {
+      rig.entity_models.push_back(read_entity_model(e, file));
+      continue;
+    }
     SensorSpec s = read_sensor(e, file, rig.quality);
     budget.add(s, e);
     if (!names.insert(s.name).second) {
@@ -264,6 +290,16 @@ SensorRig load_rig(const std::filesystem::path& path) {
 }
 
 void bind_rig(const SensorRig& rig, std::span<const std::string> entity_names) {
+  for (const EntityModel& m : rig.entity_models) {
+    if (!m.entity.empty() &&
+        std::find(entity_names.begin(), entity_names.end(), m.entity) == entity_names.end()) {
+      throw InputError(make_error(rig.file, m.line,
+                                  "an EntityModel names entity '" + m.entity +
+                                      "', which the scenario does not have" +
+                                      did_you_mean(m.entity, entity_names),
+                                  "SensorRig/EntityModel"));
+    }
+  }
   for (const auto& s : rig.sensors) {
     bool found = false;
     for (const auto& name : entity_names) {

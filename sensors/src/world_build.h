@@ -57,6 +57,9 @@ void build_ground(WorldBuild& w, const xodr::RoadMesh& road);
 void build_roadside(WorldBuild& w);
 /// OpenDRIVE signals as traffic lights and signs.
 void build_signals(WorldBuild& w);
+/// A signal that stands for paint on the road (stop line, crosswalk, give-way line) painted across
+/// the lanes it covers; false when the signal is no road marking.
+bool build_signal_marking(WorldBuild& w, size_t road, const xodr::Signal& signal);
 /// OpenDRIVE objects.
 void build_objects(WorldBuild& w);
 /// Guard rails and right-of-way fences along the outer edges of motorways.

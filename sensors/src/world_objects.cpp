@@ -18,14 +18,6 @@
 namespace corsa::sensors::detail {
 namespace {
 
-Material paint_white() {
-  Material m = materials::plain("road paint", linear_rgb(232, 232, 222), 0.6);
-  m.pattern = Pattern::kPaint;
-  m.secondary = linear_rgb(92, 92, 94);
-  m.params[0] = 0.5;
-  return m;
-}
-
 ObjectInfo kind_info(std::string kind) {
   ObjectInfo info;
   info.kind = std::move(kind);
@@ -134,7 +126,7 @@ void build_objects(WorldBuild& w) {
         const double height = o.height > 0.0 ? o.height : 0.0;
         if (type == "crosswalk") {
           // Zebra stripes 0.5 m wide, 0.5 m apart, across the walking direction (the long side).
-          b.semantic(SemanticClass::kLaneMarking).material(paint_white());
+          b.semantic(SemanticClass::kLaneMarking).material(road_paint());
           const bool along_x = (x1 - x0) >= (y1 - y0);
           const double a0 = along_x ? x0 : y0, a1 = along_x ? x1 : y1;
           for (double a = a0 + 0.25; a + 0.5 <= a1 - 0.1; a += 1.0) {
@@ -145,7 +137,7 @@ void build_objects(WorldBuild& w) {
             }
           }
         } else if (type == "parkingspace") {
-          b.semantic(SemanticClass::kLaneMarking).material(paint_white());
+          b.semantic(SemanticClass::kLaneMarking).material(road_paint());
           std::vector<Vec3> ring =
               outline.size() >= 3
                   ? outline
@@ -160,7 +152,7 @@ void build_objects(WorldBuild& w) {
                       {});
           }
         } else if (name == "StopLine" || type == "stopline") {
-          b.semantic(SemanticClass::kLaneMarking).material(paint_white());
+          b.semantic(SemanticClass::kLaneMarking).material(road_paint());
           const double half = std::max(0.2, 0.5 * (y1 - y0));
           const double across = std::max(x1 - x0, 1.0);
           // CARLA gives the line's length across the lanes and no width: 0.4 m wide.

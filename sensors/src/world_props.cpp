@@ -221,6 +221,14 @@ ArticulatedMesh make_sign(const SignFace& face, double width, double height, dou
   return b.take();
 }
 
+Material road_paint() {
+  Material m = materials::plain("road paint", linear_rgb(232, 232, 222), 0.6);
+  m.pattern = Pattern::kPaint;
+  m.secondary = linear_rgb(92, 92, 94);
+  m.params[0] = 0.5;
+  return m;
+}
+
 ArticulatedMesh make_rail(double length, bool fence) {
   MeshBuilder b;
   b.semantic(fence ? SemanticClass::kFence : SemanticClass::kGuardRail).material(steel());

@@ -31,6 +31,9 @@ ArticulatedMesh make_traffic_light(SignalLayout layout, double bottom, double he
 ArticulatedMesh make_sign(const SignFace& face, double width, double height, double bottom,
                           const std::string& name);
 
+/// White road paint, worn (class lane_marking is the caller's): crosswalks, stop lines, outlines.
+Material road_paint();
+
 /// A W-beam guard rail `length` metres long along +x (posts every 2 m), or a fence (mesh panels
 /// on posts) when `fence`.
 ArticulatedMesh make_rail(double length, bool fence);

@@ -3,6 +3,7 @@
 // CARLA's "OpenDRIVE" country, horizontal heads in Korea; their bulbs follow the scenario's
 // TrafficSignalState (WorldSnapshot::signals). Signs: the common German (StVO) and Korean types
 // by shape, colours and symbol; any other type a generic white sign with one located warning.
+// Signals that stand for road markings are painted on the road (world_markings.cpp).
 
 #include <algorithm>
 #include <cmath>
@@ -187,6 +188,9 @@ void build_signals(WorldBuild& w) {
                                    bottom, head),
                 pose, "traffic light " + s.id, info, s.id);
         ++w.report.traffic_lights;
+        continue;
+      }
+      if (!is_korean(s.country) && build_signal_marking(w, r, s)) {
         continue;
       }
       const int type = type_number(s.type);

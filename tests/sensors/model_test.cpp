@@ -6,6 +6,7 @@
 #include "corsa/sensors/buildings.h"
 #include "corsa/sensors/georeference.h"
 #include "corsa/sensors/model_io.h"
+#include "corsa/sensors/rig.h"
 #include "corsa/sensors/scene.h"
 #include "corsa/sensors/texture_image.h"
 #include "corsa/sensors/writers.h"
@@ -243,4 +244,97 @@ TEST_CASE("a missing texture or an unreadable model is a located warning and a s
   REQUIRE(warnings.size() == 2);  // once per file
   CHECK_THAT(warnings[1].file, Catch::Contains("broken.glb"));
   CHECK_THAT(warnings[1].message, Catch::Contains("stands in"));
+}
+
+namespace {
+
+/// A plain 4 x 2 x 1 OBJ box (no material), as a user's stand-in model.
+void write_plain_box(const fs::path& file) {
+  std::ofstream obj(file);
+  for (int i = 0; i < 8; ++i) {
+    obj << "v " << (i & 1 ? 2.0 : -2.0) << " " << (i & 2 ? 1.0 : -1.0) << " " << (i & 4 ? 1.0 : 0.0)
+        << "\n";
+  }
+  const int faces[6][4] = {{1, 3, 4, 2}, {5, 6, 8, 7}, {1, 2, 6, 5},
+                           {3, 7, 8, 4}, {1, 5, 7, 3}, {2, 4, 8, 6}};
+  for (const auto& f : faces) {
+    obj << "f " << f[0] << " " << f[1] << " " << f[2] << " " << f[3] << "\n";
+  }
+}
+
+corsa::engine::EntitySnapshot category_entity(const std::string& name,
+                                              corsa::engine::EntityCategory c) {
+  corsa::engine::EntitySnapshot e;
+  e.name = name;
+  e.category = c;
+  e.box = {1.4, 0.0, 0.75, 4.6, 1.9, 1.5};
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("the rig's entity models shape entities without model3d by name, then by category",
+          "[sensors][model][model3d]") {
+  using corsa::engine::EntityCategory;
+  corsa::test::TempDir dir;
+  fs::create_directories(dir.path() / "rig" / "models");
+  write_plain_box(dir.path() / "rig" / "models" / "car.obj");
+  write_plain_box(dir.path() / "rig" / "models" / "ego.obj");
+  write_plain_box(dir.path() / "own.obj");
+  const fs::path rig_file = dir.path() / "rig" / "rig.xml";
+  const SensorRig rig = parse_rig(R"(<SensorRig version="1">
+  <EntityModel category="car" file="models/car.obj"/>
+  <EntityModel entity="Ego" file="models/ego.obj"/>
+</SensorRig>)",
+                                  rig_file.string());
+  std::vector<corsa::Diagnostic> warnings;
+  corsa::Diagnostics diagnostics([&](const corsa::Diagnostic& d) { warnings.push_back(d); });
+  ModelShapeSource source(dir.path(), diagnostics, rig.entity_models, rig.file);
+  StaticMesh mesh;
+  REQUIRE(source.shape_of(category_entity("Target", EntityCategory::kCar), mesh));
+  CHECK_THAT(mesh.name, Catch::EndsWith("car.obj"));
+  const Bounds b = bounds_of({mesh});  // the 4 x 2 x 1 model stretched onto the box
+  CHECK(b.min.x == Approx(1.4 - 2.3));
+  CHECK(b.max.y == Approx(0.95));
+  CHECK(b.max.z == Approx(1.5));
+  CHECK(mesh.classes == std::vector<SemanticClass>{SemanticClass::kCar});
+  // The entity's own name wins over its category, and its own model3d over both.
+  REQUIRE(source.shape_of(category_entity("Ego", EntityCategory::kCar), mesh));
+  CHECK_THAT(mesh.name, Catch::EndsWith("ego.obj"));
+  auto own = category_entity("Other", EntityCategory::kCar);
+  own.model3d = "own.obj";
+  REQUIRE(source.shape_of(own, mesh));
+  CHECK_THAT(mesh.name, Catch::EndsWith("own.obj"));
+  // Categories the rig does not name keep their generated shapes.
+  CHECK_FALSE(source.shape_of(category_entity("Walker", EntityCategory::kPedestrian), mesh));
+  CHECK_FALSE(source.shape_of(category_entity("Box", EntityCategory::kVan), mesh));
+  CHECK(warnings.empty());
+}
+
+TEST_CASE(
+    "a missing or unreadable entity model of the rig is a warning at its element and the "
+    "generated shape stands in",
+    "[sensors][model][model3d][errors]") {
+  using corsa::engine::EntityCategory;
+  corsa::test::TempDir dir;
+  std::ofstream(dir.path() / "broken.glb") << "not a model";
+  const fs::path rig_file = dir.path() / "rig.xml";
+  const SensorRig rig = parse_rig(R"(<SensorRig version="1">
+  <EntityModel category="car" file="nothere.obj"/>
+  <EntityModel category="pedestrian" file="broken.glb"/>
+</SensorRig>)",
+                                  rig_file.string());
+  std::vector<corsa::Diagnostic> warnings;
+  corsa::Diagnostics diagnostics([&](const corsa::Diagnostic& d) { warnings.push_back(d); });
+  ModelShapeSource source(dir.path(), diagnostics, rig.entity_models, rig.file);
+  StaticMesh mesh;
+  CHECK_FALSE(source.shape_of(category_entity("a", EntityCategory::kCar), mesh));
+  CHECK_FALSE(source.shape_of(category_entity("b", EntityCategory::kCar), mesh));
+  CHECK_FALSE(source.shape_of(category_entity("c", EntityCategory::kPedestrian), mesh));
+  REQUIRE(warnings.size() == 2);  // once per file
+  CHECK(warnings[0].file == rig_file.string());
+  CHECK(warnings[0].line == 2);
+  CHECK_THAT(warnings[0].message, Catch::Contains("nothere.obj") && Catch::Contains("stand in"));
+  CHECK(warnings[1].line == 3);
+  CHECK_THAT(warnings[1].message, Catch::Contains("broken.glb"));
 }

@@ -1,6 +1,7 @@
 #include "corsa/sensors/rig.h"
 
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -234,4 +235,57 @@ TEST_CASE("the rig asks for generated buildings with buildings=\"generate\"",
   CHECK(d.line == 1);
   CHECK(d.message ==
         "attribute 'buildings' of <SensorRig> is 'many'; expected one of 'none', 'generate'");
+}
+
+TEST_CASE("a rig names the user's models by category or by entity, beside the rig file",
+          "[sensors][rig][model3d]") {
+  const SensorRig rig = parse_rig(R"(<SensorRig version="1">
+  <EntityModel category="car" file="models/sedan.glb"/>
+  <RgbCamera name="front" entity="Ego"/>
+  <EntityModel entity="Ego" file="/abs/ego.obj"/>
+</SensorRig>)",
+                                  "rigs/city.xml");
+  REQUIRE(rig.entity_models.size() == 2);
+  CHECK(rig.sensors.size() == 1);
+  CHECK(rig.entity_models[0].category == "car");
+  CHECK(rig.entity_models[0].entity.empty());
+  CHECK(rig.entity_models[0].file == std::filesystem::path("rigs/models/sedan.glb"));
+  CHECK(rig.entity_models[0].line == 2);
+  CHECK(rig.entity_models[1].entity == "Ego");
+  CHECK(rig.entity_models[1].file == std::filesystem::path("/abs/ego.obj"));
+  const std::vector<std::string> names = {"Ego"};
+  CHECK_NOTHROW(bind_rig(rig, names));
+}
+
+TEST_CASE(
+    "an entity model with both or neither of category and entity, an unknown category or "
+    "an unknown entity is an error at its line",
+    "[sensors][rig][model3d][errors]") {
+  auto d = failure(R"(<SensorRig version="1">
+  <EntityModel category="car" entity="Ego" file="a.obj"/>
+</SensorRig>)");
+  CHECK(d.line == 2);
+  CHECK_THAT(d.message, Catch::Contains("either a category or an entity"));
+  d = failure(R"(<SensorRig version="1">
+
+  <EntityModel file="a.obj"/>
+</SensorRig>)");
+  CHECK(d.line == 3);
+  d = failure(R"(<SensorRig version="1">
+  <EntityModel category="spaceship" file="a.obj"/>
+</SensorRig>)");
+  CHECK(d.line == 2);
+  CHECK_THAT(d.message, Catch::Contains("spaceship"));
+  const SensorRig rig = parse_rig(R"(<SensorRig version="1">
+  <EntityModel entity="Egg" file="a.obj"/>
+</SensorRig>)",
+                                  "rig.xml");
+  const std::vector<std::string> names = {"Ego", "Target"};
+  try {
+    bind_rig(rig, names);
+    FAIL("an unknown entity was accepted");
+  } catch (const InputError& error) {
+    CHECK(error.diagnostic().line == 2);
+    CHECK_THAT(error.diagnostic().message, Catch::Contains("'Egg'") && Catch::Contains("Ego"));
+  }
 }

@@ -248,6 +248,38 @@ TEST_CASE("object repeats survive writing and reading, local outline corners too
   CHECK(write_xodr_text(back) == text);
 }
 
+TEST_CASE("a signal's lane validities and length survive writing and reading", "[xodr][writer]") {
+  MapData data;
+  data.roads.push_back(test::make_road("1", LineGeometry{}, 100.0));
+  Signal stop;
+  stop.id = "s1";
+  stop.s = 40.0;
+  stop.t = -3.5;
+  stop.orientation = "+";
+  stop.country = "DE";
+  stop.type = "294";
+  stop.subtype = "-1";
+  stop.width = 7.0;
+  stop.length = 0.5;
+  stop.validities = {LaneValidity{-2, -1}, LaneValidity{1, 1}};
+  data.roads[0].signals.push_back(stop);
+
+  const std::string text = write_xodr_text(data);
+  corsa::Diagnostics diagnostics;
+  const MapData back = parse_xodr_text(text, "back.xodr", diagnostics);
+  CHECK(diagnostics.size() == 0);
+  REQUIRE(back.roads[0].signals.size() == 1);
+  const Signal& g = back.roads[0].signals[0];
+  CHECK(g.length == 0.5);
+  REQUIRE(g.validities.size() == 2);
+  CHECK(g.validities[0].from_lane == -2);
+  CHECK(g.validities[0].to_lane == -1);
+  CHECK(g.validities[1].to_lane == 1);
+  CHECK(write_xodr_text(back) == text);
+  // OpenDRIVE 1.7 has no signal length: the compat writer leaves it out.
+  CHECK(write_xodr_text(back, compat_options(7)).find("length=\"0.5") == std::string::npos);
+}
+
 TEST_CASE("an outline mixing cornerRoad and cornerLocal is refused", "[xodr][writer]") {
   MapData data;
   data.roads.push_back(test::make_road("1", LineGeometry{}, 100.0));

@@ -1,6 +1,6 @@
 // <objects>/<object>, <tunnel>, <bridge> and <signals>/<signal>: kept with their road positions
-// (OpenDRIVE 1.8 §13, §14), objects with their outlines, repeats and markings. The rest of their
-// sub-structure (validity, materials, ...) is read past.
+// (OpenDRIVE 1.8 §13, §14), objects with their outlines, repeats and markings, signals with their
+// lane validities. The rest of their sub-structure (object validity, materials, ...) is read past.
 
 #include "parse_elements.h"
 
@@ -178,9 +178,13 @@ Signal parse_signal(const XmlReader& reader, const XMLElement* e) {
   signal.unit = reader.text_or(e, "unit", "");
   signal.height = reader.number_or(e, "height", 0.0);
   signal.width = reader.number_or(e, "width", 0.0);
+  signal.length = reader.number_or(e, "length", 0.0);
   signal.text = reader.text_or(e, "text", "");
   for (const XMLElement* child : children(e)) {
-    if (named(child, "userData")) {
+    if (named(child, "validity")) {
+      signal.validities.push_back(
+          LaneValidity{reader.integer(child, "fromLane"), reader.integer(child, "toLane")});
+    } else if (named(child, "userData")) {
       add_user_data(reader, child, signal.user_data);
     } else if (!is_ignored_element(child->name())) {
       reader.unknown_child(e, child);

@@ -272,7 +272,7 @@ void write_object(XmlWriter& w, const Object& o) {
   w.close();
 }
 
-void write_objects_and_signals(XmlWriter& w, const Road& road) {
+void write_objects_and_signals(XmlWriter& w, const Road& road, const WriteOptions& options) {
   if (!road.objects.empty() || !road.tunnels.empty() || !road.bridges.empty()) {
     w.open("objects").children();
     for (const Object& o : road.objects) {
@@ -303,11 +303,17 @@ void write_objects_and_signals(XmlWriter& w, const Road& road) {
         w.attr("unit", g.unit);
       }
       w.attr("height", g.height).attr("width", g.width).attr("text", g.text);
-      if (g.user_data.empty()) {
+      if (g.length > 0.0 && options.rev_minor >= 8) {
+        w.attr("length", g.length);  // a signal's length is new in OpenDRIVE 1.8
+      }
+      if (g.user_data.empty() && g.validities.empty()) {
         w.end_empty();
         continue;
       }
       w.children();
+      for (const LaneValidity& v : g.validities) {
+        w.open("validity").attr("fromLane", v.from_lane).attr("toLane", v.to_lane).end_empty();
+      }
       write_user_data(w, g.user_data);
       w.close();
     }
@@ -370,7 +376,7 @@ void write_road(XmlWriter& w, const Road& road, const WriteOptions& options) {
     write_lane_section(w, section, options);
   }
   w.close();
-  write_objects_and_signals(w, road);
+  write_objects_and_signals(w, road, options);
   write_user_data(w, road.user_data);
   w.close();
 }

@@ -42,11 +42,12 @@ sensors::Vec3 map_centre(const xodr::Map* map);
 /// The committed scene of a run: the road mesh of the simulation's map (when it has one), the
 /// scenario's SceneGraphFile (map coordinates; InputError located at the RoadNetwork when the
 /// file is missing) and `models`, then the world around the roads (sensors::build_world, with
-/// generated buildings along the streets when `generate_buildings`, the rig's
-/// buildings="generate").
+/// generated buildings along the streets when the rig says buildings="generate"). Entities get
+/// their model3d files, or the rig's <EntityModel>s, or generated shapes.
 std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simulation,
                                                 const std::vector<ModelSpec>& models,
-                                                bool generate_buildings, Diagnostics& diagnostics);
+                                                const sensors::SensorRig& rig,
+                                                Diagnostics& diagnostics);
 
 /// Where the map's centre lies on Earth, from its geoReference; Seoul with a warning when the map
 /// has none or it cannot be used.

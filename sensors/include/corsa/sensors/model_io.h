@@ -11,6 +11,7 @@
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/sensors/geometry.h"
+#include "corsa/sensors/rig.h"
 #include "corsa/sensors/scene.h"
 #include "corsa/sensors/semantic.h"
 #include "corsa/sensors/static_mesh.h"
@@ -41,20 +42,25 @@ struct ModelPlacement {
 
 /// Shapes of entities from their OpenSCENARIO model3d files (any format assimp reads, with
 /// their materials and textures), scaled to each entity's bounding box (the model's bounds
-/// stretched onto the box; models face +x with z up, glTF/GLB turned z-up). A file that cannot
-/// be read is one located warning and the entity gets its generated shape. Relative paths are
-/// resolved against `base` (the scenario's folder); `catalog` maps an entity category name
-/// ("car", "pedestrian", ...) to a model file for entities without model3d.
+/// stretched onto the box; models face +x with z up, glTF/GLB turned z-up). Relative model3d
+/// paths are resolved against `base` (the scenario's folder). Entities without model3d take the
+/// user's model from `models` (the rig's <EntityModel>s, named by `rig_file` in messages): the
+/// one naming the entity, else the first for its category; with none they keep their generated
+/// shape. A file that is missing or cannot be read is one located warning (at the rig's element
+/// for `models`) and the entity gets its generated shape.
 class ModelShapeSource : public EntityShapeSource {
  public:
   ModelShapeSource(std::filesystem::path base, Diagnostics& diagnostics,
-                   std::map<std::string, std::filesystem::path> catalog = {});
+                   std::vector<EntityModel> models = {}, std::string rig_file = {});
   bool shape_of(const engine::EntitySnapshot& entity, StaticMesh& mesh) override;
 
  private:
+  const EntityModel* model_for(const engine::EntitySnapshot& entity) const;
+
   std::filesystem::path base_;
   Diagnostics& diagnostics_;
-  std::map<std::string, std::filesystem::path> catalog_;
+  std::vector<EntityModel> models_;
+  std::string rig_file_;
   std::map<std::string, std::optional<std::vector<StaticMesh>>> loaded_;
 };
 

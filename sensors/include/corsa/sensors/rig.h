@@ -118,6 +118,16 @@ struct SensorSpec {
   int line = 0;  ///< line of the sensor element in the rig file, for messages
 };
 
+/// The user's model for entities without a model3d of their own (<EntityModel>): for one
+/// scenario entity by name, or for every entity of an OpenSCENARIO category. The model is
+/// stretched onto each entity's bounding box (see ModelShapeSource in model_io.h).
+struct EntityModel {
+  std::string category;        ///< "car", "pedestrian", ...; empty when `entity` is given
+  std::string entity;          ///< a scenario entity's name; empty: the whole category
+  std::filesystem::path file;  ///< as written, resolved against the rig file's folder
+  int line = 0;                ///< line of the element in the rig file, for messages
+};
+
 struct SensorRig {
   std::string name;
   RenderQuality quality = RenderQuality::kDefault;  ///< for RGB cameras that name none
@@ -126,6 +136,7 @@ struct SensorRig {
   bool generate_buildings = false;
   std::string file;  ///< as named by the user, for messages
   std::vector<SensorSpec> sensors;
+  std::vector<EntityModel> entity_models;  ///< in rig order; an entity's own name first
 
   const SensorSpec* find(std::string_view sensor_name) const;
 };
@@ -136,7 +147,7 @@ SensorRig load_rig(const std::filesystem::path& path);
 SensorRig parse_rig(std::string_view xml, const std::string& file);
 
 /// Checks the rig against the scenario's entity names: an unknown entity throws InputError
-/// located at the sensor's line in the rig file.
+/// located at the sensor's (or entity model's) line in the rig file.
 void bind_rig(const SensorRig& rig, std::span<const std::string> entity_names);
 
 }  // namespace corsa::sensors

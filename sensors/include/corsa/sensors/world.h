@@ -3,7 +3,8 @@
 // The world beyond the road surface, built from an OpenDRIVE map and a seed: ground to the
 // horizon (terrain under and around the roads), roadside vegetation and street lights placed
 // deterministically along the roads, OpenDRIVE signals drawn as traffic lights and signs (their
-// bulbs follow the scenario's signal states), OpenDRIVE objects (crosswalks, stop lines,
+// bulbs follow the scenario's signal states) or painted on the road (stop lines, crosswalks),
+// OpenDRIVE objects (crosswalks, stop lines,
 // poles, trees, barriers, buildings, parking spaces; outlines and repeats), guard rails and
 // fences along motorways, and, when asked, generated buildings along the streets.
 
@@ -41,6 +42,7 @@ struct WorldReport {
   size_t street_lights = 0;
   size_t traffic_lights = 0;
   size_t signs = 0;
+  size_t markings = 0;  ///< signals painted on the road (stop lines, crosswalks, give-way lines)
   size_t objects = 0;
   size_t guard_rails = 0;  ///< generated rail pieces (at most 10 m each)
   size_t fences = 0;       ///< generated fence pieces (at most 10 m each)

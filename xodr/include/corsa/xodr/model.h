@@ -199,6 +199,13 @@ struct RoadType {
 
 enum class TrafficRule : uint8_t { kRightHand, kLeftHand };
 
+/// <validity> of a signal (OpenDRIVE 1.8 §14.2): the lanes fromLane..toLane (ids, both ends
+/// included) that it applies to.
+struct LaneValidity {
+  int from_lane = 0;
+  int to_lane = 0;
+};
+
 struct Signal {
   std::string id;
   std::string name;
@@ -215,7 +222,10 @@ struct Signal {
   std::string unit;  ///< e_unit (km/h, m, ...); empty: none (only meaningful with a value)
   double height = 0.0;
   double width = 0.0;
+  double length = 0.0;  ///< m, the bounding box along u (OpenDRIVE 1.8; 0: not given)
   std::string text;
+  /// The lanes it applies to; empty: the lanes its orientation gives (§14.2).
+  std::vector<LaneValidity> validities;
   std::vector<UserData> user_data;
   int line = 0;
 };

@@ -1,0 +1,188 @@
+// OpenDRIVE signals that are paint on the road rather than posts. OpenDRIVE 1.8 §14 lets a
+// signal stand for a road marking; the German StVO catalogue (also CARLA's country "OpenDRIVE"
+// and VIRES' sample maps) numbers the markings 293-299 and 340-341. Drawn: 293
+// Fussgaengerueberweg (zebra bars 0.5 m wide and 0.5 m apart, 4 m along the road), 294 Haltlinie
+// (a stop line 0.5 m wide) and 341 Wartelinie (a give-way line 0.5 m wide, dashes 0.5 m long with
+// 0.25 m gaps; dimensions of the German RMS), all across the lanes the signal covers: its
+// <validity> lanes (§14.2), or else the drivable lanes its orientation serves ("+": the lanes
+// carrying traffic towards +s; a crosswalk spans every drivable lane). The signal's `length`
+// (1.8), when given, is the paint's extent along the road. The other markings (lines, arrows,
+// hatched areas) are left out with one warning: a road's lanes draw their lines already.
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "corsa/core/strings.h"
+#include "world_build.h"
+#include "world_props.h"
+
+namespace corsa::sensors::detail {
+namespace {
+
+enum class MarkKind { kCrosswalk, kStopLine, kGiveWayLine };
+
+struct MarkSpec {
+  MarkKind kind;
+  double along;  ///< m along the road when the signal gives no length
+  const char* label;
+};
+
+std::optional<MarkSpec> german_marking(const std::string& type) {
+  if (type == "293") {
+    return MarkSpec{MarkKind::kCrosswalk, 4.0, "crosswalk"};
+  }
+  if (type == "294") {
+    return MarkSpec{MarkKind::kStopLine, 0.5, "stop_line"};
+  }
+  if (type == "341") {
+    return MarkSpec{MarkKind::kGiveWayLine, 0.5, "give_way_line"};
+  }
+  return std::nullopt;
+}
+
+bool other_german_marking(const std::string& type) {
+  const auto n = parse_int(type);
+  return n && ((*n >= 295 && *n <= 299) || *n == 340);
+}
+
+/// True when the marking covers the lane: one of its validity ranges holds it, or (without
+/// validities) it is a drivable or biking lane that its orientation serves.
+bool covers(const xodr::Signal& s, const xodr::Lane& lane, bool left_hand, bool every_side) {
+  if (lane.id == 0) {
+    return false;
+  }
+  if (!s.validities.empty()) {
+    return std::any_of(s.validities.begin(), s.validities.end(), [&](const xodr::LaneValidity& v) {
+      return lane.id >= std::min(v.from_lane, v.to_lane) &&
+             lane.id <= std::max(v.from_lane, v.to_lane);
+    });
+  }
+  if (!xodr::is_drivable(lane.type) && lane.type != xodr::LaneType::kBiking) {
+    return false;
+  }
+  if (every_side || (s.orientation != "+" && s.orientation != "-")) {
+    return true;
+  }
+  // Right-hand traffic drives towards +s on the right lanes (negative ids), left-hand traffic on
+  // the left ones.
+  const bool towards_plus_s = (lane.id < 0) != left_hand;
+  return (s.orientation == "+") == towards_plus_s;
+}
+
+/// Paints flat quads given in road coordinates (s along, t across) into a mesh in `frame`.
+class RoadPainter {
+ public:
+  RoadPainter(const xodr::Map& map, size_t road, const Rigid& frame)
+      : map_(map), road_(road), back_(frame.inverse()) {
+    b_.semantic(SemanticClass::kLaneMarking).material(road_paint());
+  }
+  void quad(double s0, double s1, double t0, double t1) {
+    if (t1 - t0 < 0.01 || s1 - s0 < 0.01) {
+      return;
+    }
+    b_.polygon({at(s0, t0), at(s1, t0), at(s1, t1), at(s0, t1)}, {});
+  }
+  MeshBuilder& builder() { return b_; }
+
+ private:
+  Vec3 at(double s, double t) const {
+    const xodr::WorldPose p = map_.world_pose(road_, s, t);
+    return back_.apply({p.x, p.y, p.z + 0.012});  // 1.2 cm above the surface, as lane marks
+  }
+  const xodr::Map& map_;
+  size_t road_;
+  Rigid back_;
+  MeshBuilder b_;
+};
+
+void paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1, double t0,
+                double t1, double t_first) {
+  if (spec.kind == MarkKind::kStopLine) {
+    paint.quad(s0, s1, t0, t1);
+    return;
+  }
+  // Bars (crosswalk: 0.5 m every 1.0 m) or dashes (give-way line: 0.5 m every 0.75 m) laid out
+  // from the first covered lane's edge, so that they run on across lane borders.
+  const double bar = 0.5;
+  const double period = spec.kind == MarkKind::kCrosswalk ? 1.0 : 0.75;
+  const double k0 = std::floor((t0 - t_first) / period);
+  for (double a = t_first + k0 * period; a < t1; a += period) {
+    paint.quad(s0, s1, std::max(a, t0), std::min(a + bar, t1));
+  }
+}
+
+}  // namespace
+
+bool build_signal_marking(WorldBuild& w, size_t r, const xodr::Signal& s) {
+  const std::string& file = w.map.data().source_file;
+  const std::optional<MarkSpec> spec = german_marking(s.type);
+  if (!spec) {
+    if (!other_german_marking(s.type)) {
+      return false;
+    }
+    w.diagnostics.add_once(
+        "signal-marking:" + s.country + ":" + s.type,
+        make_warning(file, s.line,
+                     "signal type '" + s.type + "' (country '" + s.country +
+                         "') is a road marking Corsa does not paint from a signal; left out"));
+    return true;
+  }
+  const xodr::Road& road = w.map.road(r);
+  const double along = std::min(s.length > 0.01 ? s.length : spec->along, road.length);
+  // Centred on s, shifted to stay on the road (a stop line at a road's end, as maps put them).
+  const double s0 = std::clamp(s.s - 0.5 * along, 0.0, road.length - along);
+  const double s1 = s0 + along;
+  const double s_mid = 0.5 * (s0 + s1);
+  std::vector<xodr::LaneSpan> spans;
+  w.map.lane_spans(r, s_mid, spans);
+  const auto& lanes = road.lane_sections[w.map.section_index(r, s_mid)].lanes;
+  std::vector<std::pair<double, double>> covered;
+  for (const xodr::LaneSpan& span : spans) {
+    const auto lane = std::find_if(lanes.begin(), lanes.end(),
+                                   [&](const xodr::Lane& l) { return l.id == span.id; });
+    if (lane != lanes.end() && span.width() > 0.05 &&
+        covers(s, *lane, road.rule == xodr::TrafficRule::kLeftHand,
+               spec->kind == MarkKind::kCrosswalk)) {
+      covered.emplace_back(span.t_min(), span.t_max());
+    }
+  }
+  if (covered.empty()) {
+    const double width = s.width > 0.1 ? s.width : 3.0;
+    w.diagnostics.add_once("signal-marking-lanes:" + s.id,
+                           make_warning(file, s.line,
+                                        "road marking signal " + s.id + " covers no lane at s " +
+                                            format_fixed(s_mid, 2) + "; painted " +
+                                            format_fixed(width, 2) + " m wide around its t"));
+    covered.emplace_back(s.t - 0.5 * width, s.t + 0.5 * width);
+  }
+  std::sort(covered.begin(), covered.end());
+  const xodr::WorldPose p = w.map.world_pose(r, s_mid, 0.0);
+  const Rigid frame = rigid_from_pose(p.x, p.y, p.z, p.h, 0.0, 0.0);
+  RoadPainter paint(w.map, r, frame);
+  for (const auto& [t0, t1] : covered) {
+    paint_span(paint, *spec, s0, s1, t0, t1, covered.front().first);
+  }
+  if (paint.builder().triangle_count() == 0) {
+    return true;
+  }
+  ObjectInfo info;
+  info.kind = spec->label;
+  info.signal_id = s.id;
+  info.country = s.country;
+  info.type = s.type;
+  info.subtype = s.subtype;
+  StaticMesh mesh = to_static_mesh(paint.builder().take(), frame, "road marking " + s.id);
+  mesh.object = info;
+  // Paint is stuff and gets no instance id by its class; a marking painted from a signal is one
+  // object with labels (its kind and signal id), so it takes the next static id as props do.
+  mesh.instance_id = kStaticInstanceBase + static_cast<uint32_t>(w.scene.static_mesh_count());
+  w.scene.add_static_mesh(std::move(mesh));
+  ++w.report.markings;
+  return true;
+}
+
+}  // namespace corsa::sensors::detail

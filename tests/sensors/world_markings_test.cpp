@@ -1,0 +1,137 @@
+// OpenDRIVE signals that stand for road markings: painted across the lanes they cover, labelled,
+// never drawn as a sign on a post.
+
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "corsa/sensors/labels.h"
+#include "corsa/sensors/world.h"
+#include "corsa/xodr/parser.h"
+#include "world_fixture.h"
+
+using namespace corsa::sensors;
+
+namespace {
+
+/// A straight 100 m road along +x (so t is y): a sidewalk and one lane on the left, two lanes
+/// and a sidewalk on the right, every lane 3.5 m and sidewalks 2 m wide; its signals are
+/// `signals`.
+corsa::xodr::Map street_with(const std::string& signals) {
+  const std::string lane =
+      R"(<lane id="ID" type="TYPE"><width sOffset="0" a="W" b="0" c="0" d="0"/></lane>)";
+  auto make = [&](const char* id, const char* type, const char* w) {
+    std::string l = lane;
+    l.replace(l.find("ID"), 2, id);
+    l.replace(l.find("TYPE"), 4, type);
+    l.replace(l.find("W\""), 1, w);
+    return l;
+  };
+  const std::string text =
+      R"(<?xml version="1.0"?><OpenDRIVE><header revMajor="1" revMinor="8"/>
+<road id="1" length="100" junction="-1"><planView>
+<geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry></planView>
+<lanes><laneSection s="0"><left>)" +
+      make("2", "sidewalk", "2") + make("1", "driving", "3.5") + R"(</left>
+<center><lane id="0" type="none"/></center><right>)" +
+      make("-1", "driving", "3.5") + make("-2", "driving", "3.5") + make("-3", "sidewalk", "2") +
+      R"(</right></laneSection></lanes><signals>)" + signals + R"(</signals></road></OpenDRIVE>)";
+  corsa::Diagnostics diagnostics;
+  return corsa::xodr::Map::build(corsa::xodr::parse_xodr_text(text, "markings.xodr", diagnostics),
+                                 diagnostics);
+}
+
+/// The world of `map` without plants and street lights (nothing over the road but the signals).
+std::unique_ptr<corsa::test::BuiltWorld> marked_world(const corsa::xodr::Map& map) {
+  WorldOptions options;
+  options.seed = 3;
+  options.vegetation = false;
+  options.street_lights = false;
+  return corsa::test::build_world_scene(map, options);
+}
+
+/// What a ray straight down at (x, y) hits first.
+RayHit down_at(const Scene& scene, double x, double y) {
+  const auto hit = scene.intersect({x, y, 5.0}, {0.0, 0.0, -1.0}, 10.0);
+  REQUIRE(hit);
+  return *hit;
+}
+
+bool paint_at(const Scene& scene, double x, double y) {
+  return down_at(scene, x, y).semantic == SemanticClass::kLaneMarking;
+}
+
+}  // namespace
+
+TEST_CASE("a stop line signal is painted across the lanes its orientation serves",
+          "[sensors][world][signals][markings]") {
+  // StVO 294, for traffic towards +s: the right lanes (-1, -2) of right-hand traffic.
+  const auto map = street_with(
+      R"(<signal id="stop" s="30" t="-7" orientation="+" dynamic="no" country="DE" type="294" subtype="-1"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.markings == 1);
+  CHECK(world->report.signs == 0);  // no post with a generic sign
+  CHECK(world->warnings.empty());
+  CHECK(paint_at(world->scene, 30.0, -1.0));  // lane -1
+  CHECK(paint_at(world->scene, 30.0, -6.0));  // lane -2
+  CHECK(paint_at(world->scene, 30.2, -3.5));  // 0.5 m wide, centred on s
+  CHECK_FALSE(paint_at(world->scene, 30.4, -3.5));
+  CHECK_FALSE(paint_at(world->scene, 30.0, 1.75));  // the oncoming lane
+  CHECK(down_at(world->scene, 30.0, -8.0).semantic == SemanticClass::kSidewalk);
+  // Labelled as one object with the signal's id and type.
+  const RayHit hit = down_at(world->scene, 30.0, -1.0);
+  REQUIRE(hit.instance_id >= kStaticInstanceBase);
+  const std::vector<uint32_t> instance = {hit.instance_id};
+  const std::vector<uint8_t> semantic = {static_cast<uint8_t>(SemanticClass::kLaneMarking)};
+  const auto labels = static_object_labels(world->scene, instance, 1, semantic);
+  REQUIRE(labels.size() == 1);
+  CHECK(labels[0].info.kind == "stop_line");
+  CHECK(labels[0].info.signal_id == "stop");
+  CHECK(labels[0].info.type == "294");
+}
+
+TEST_CASE("a crosswalk signal is zebra bars across every drivable lane",
+          "[sensors][world][signals][markings]") {
+  // StVO 293 in CARLA's country code; bars 0.5 m wide every metre from the right lanes' edge
+  // at t = -7, 4 m along the road.
+  const auto map = street_with(
+      R"(<signal id="zebra" s="60" t="0" orientation="none" dynamic="no" country="OpenDRIVE" type="293" subtype="-1"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.markings == 1);
+  CHECK(world->report.signs == 0);
+  CHECK(paint_at(world->scene, 60.0, -6.75));
+  CHECK_FALSE(paint_at(world->scene, 60.0, -6.25));  // the gap between bars
+  CHECK(paint_at(world->scene, 61.9, -0.75));
+  CHECK(paint_at(world->scene, 60.0, 1.25));  // the oncoming lane too
+  CHECK(paint_at(world->scene, 60.0, 3.25));
+  CHECK_FALSE(paint_at(world->scene, 62.2, -0.75));  // 4 m along the road
+  CHECK(down_at(world->scene, 60.0, 4.5).semantic == SemanticClass::kSidewalk);
+}
+
+TEST_CASE("a give-way line signal covers only its validity lanes, in dashes",
+          "[sensors][world][signals][markings]") {
+  // StVO 341 with <validity> lane -1 only; a length of 0.3 m from the signal (OpenDRIVE 1.8).
+  const auto map = street_with(
+      R"(<signal id="wait" s="90" t="-3.5" orientation="+" dynamic="no" country="DE" type="341" subtype="-1" length="0.3"><validity fromLane="-1" toLane="-1"/></signal>)");
+  auto world = marked_world(map);
+  CHECK(world->report.markings == 1);
+  CHECK(paint_at(world->scene, 90.0, -3.25));        // a dash from the lane's edge at t = -3.5
+  CHECK_FALSE(paint_at(world->scene, 90.0, -2.9));   // the gap after it
+  CHECK(paint_at(world->scene, 90.0, -2.5));         // the next dash
+  CHECK_FALSE(paint_at(world->scene, 90.2, -3.25));  // 0.3 m along the road
+  CHECK_FALSE(paint_at(world->scene, 90.0, -5.0));   // lane -2 is not in the validity
+}
+
+TEST_CASE("road marking signals Corsa does not paint are left out with one located warning",
+          "[sensors][world][signals][markings]") {
+  // StVO 297 (arrows) twice: no sign post in the road, one warning at the first signal.
+  const auto map = street_with(
+      R"(<signal id="a1" s="20" t="-1.75" orientation="+" dynamic="no" country="DE" type="297" subtype="10"/>
+         <signal id="a2" s="25" t="-5.25" orientation="+" dynamic="no" country="DE" type="297" subtype="10"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.signs == 0);
+  CHECK(world->report.markings == 0);
+  REQUIRE(world->warnings.size() == 1);
+  CHECK(world->warnings[0].line > 0);
+  CHECK_THAT(world->warnings[0].message, Catch::Contains("road marking Corsa does not paint"));
+  CHECK(down_at(world->scene, 20.0, -1.75).semantic == SemanticClass::kRoad);
+}
