@@ -20,6 +20,9 @@ struct MotionContext {
   std::vector<xodr::LaneSpan>* scratch = nullptr;
   /// Scratch for the neighbour queries of generated traffic (entity indices), one per thread.
   std::vector<uint32_t>* nearby = nullptr;
+  /// A step's travel is the speed at its end times dt (semi-implicit Euler, esmini's choice)
+  /// instead of the trapezoid rule, exact for the linear speed change within a step.
+  bool end_speed_travel = false;
 };
 
 class Controller {

@@ -121,7 +121,9 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
   const double dt = context.dt;
   const double v0 = state.speed;
   double v1 = entity.speed_command;
-  const double distance = 0.5 * (v0 + v1) * dt;
+  // The speed changes linearly within the step, so the trapezoid rule is its exact integral;
+  // esmini moves by the speed at the step's end (SimulationOptions::semantics).
+  const double distance = context.end_speed_travel ? v1 * dt : 0.5 * (v0 + v1) * dt;
   const double h0 = state.pose.h;
   double path = std::abs(distance);
   double lateral_change = 0.0;
