@@ -2,6 +2,8 @@
 // (SimulationOptions::semantics, `corsa run --semantics esmini`; docs/openscenario.md,
 // "Differences from esmini"), on focused scenarios whose values are derived by hand.
 
+#include <cmath>
+
 #include "engine_fixture.h"
 
 namespace corsa::test {
@@ -40,6 +42,31 @@ TEST_CASE("A step's travel is the exact integral of the speed, or esmini's speed
     CHECK(run.at(2.0, "Car").road->s == Approx(20.05).margin(1e-9));
     CHECK(run.at(4.0, "Car").road->s == Approx(40.05).margin(1e-9));
     CHECK(run.at(2.0, "Car").speed == Approx(10.0).margin(1e-12));
+  }
+}
+
+TEST_CASE("During a lane change the lane is followed at the speed, or esmini's path at it",
+          "[engine][semantics]") {
+  // At 10 m/s the car changes 3.5 m to the right linearly in 1 s: 0.035 m across in each step of
+  // 0.1 m. Standard reading: the lane is followed at 10 m/s, s(4) = 10 + 10 * 4 = 50, and the
+  // heading turns by atan(0.035 / 0.1) = 0.3366748 rad toward the new lane.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_lateral_travel.xosc"));
+    run.run();
+    CHECK(run.at(4.0, "Car").road->s == Approx(50.0).margin(1e-9));
+    CHECK(run.at(1.5, "Car").pose.h == Approx(-std::atan(0.35)).margin(1e-9));
+    CHECK(run.at(4.0, "Car").road->lane == -2);
+  }
+  SECTION("esmini") {
+    // The path is 0.1 m a step, so the lane gets sqrt(0.1^2 - 0.035^2) = 0.0936750 m of it for
+    // the 100 steps of the change: s(4) = 50 - 100 * (0.1 - 0.0936750) = 49.3674970, and the
+    // heading turns by asin(0.35) = 0.3575711 rad.
+    FixtureRun run(engine_fixture("semantics_lateral_travel.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(4.0, "Car").road->s ==
+          Approx(50.0 - 100.0 * (0.1 - std::sqrt(0.008775))).margin(1e-6));
+    CHECK(run.at(1.5, "Car").pose.h == Approx(-std::asin(0.35)).margin(1e-9));
+    CHECK(run.at(4.0, "Car").road->lane == -2);
   }
 }
 
