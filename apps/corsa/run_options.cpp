@@ -39,6 +39,19 @@ void read_npc(const std::string& text, engine::SimulationOptions& options) {
 
 }  // namespace
 
+engine::Semantics read_semantics(const ParsedArgs& parsed) {
+  const auto semantics = parsed.value("--semantics");
+  if (!semantics || *semantics == "standard") {
+    return engine::Semantics::kStandard;
+  }
+  if (*semantics == "esmini") {
+    return engine::Semantics::kEsmini;
+  }
+  const std::vector<std::string> names{"standard", "esmini"};
+  throw UsageError("--semantics expects standard or esmini, got '" + *semantics + "'" +
+                   did_you_mean(*semantics, names));
+}
+
 void declare_run_options(ArgParser& parser) {
   parser.positional("SCENARIO.xosc", "the scenario to run");
   parser.repeated("--param", "NAME=VALUE", "override a global scenario parameter");
@@ -62,6 +75,9 @@ void declare_run_options(ArgParser& parser) {
   parser.option("--threads", "N",
                 "threads the entities of a step are moved on (default: every core); results "
                 "are the same for any number");
+  parser.option("--semantics", "standard|esmini",
+                "read what the standard leaves open as the standard does (default) or as esmini "
+                "does (docs/openscenario.md, differences from esmini)");
   parser.flag("--quiet", "no progress bar and no summary line");
   parser.flag("--strict",
               "refuse what would run with a '(read as ...)' warning: rules of the standard the "
@@ -112,6 +128,7 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
     read_npc(*npc, options.simulation);
   }
   options.simulation.strict = parsed.flag("--strict");
+  options.simulation.semantics = read_semantics(parsed);
   if (const auto every = parsed.integer("--record-every")) {
     if (*every < 1) {
       throw UsageError("--record-every expects a positive integer");

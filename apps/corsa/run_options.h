@@ -18,6 +18,9 @@ void declare_run_options(ArgParser& parser);
 /// Reads what declare_run_options declared; throws UsageError for bad values.
 engine::RunOptions read_run_options(const ParsedArgs& parsed);
 
+/// The `--semantics standard|esmini` option (run and sweep); throws UsageError for other values.
+engine::Semantics read_semantics(const ParsedArgs& parsed);
+
 /// Declares the dataset options (--rig, -o, --format, --force, --time-of-day, --weather,
 /// --model, --preview) under their own --help heading. The executable declares them too, so
 /// that `corsa run --help` lists them and a dataset option without --rig gets a clear message.

@@ -5,6 +5,7 @@
 
 #include "output_paths.h"
 #include "plugin_api.h"
+#include "run_options.h"
 
 namespace corsa::cli {
 namespace {
@@ -51,6 +52,7 @@ void simulation_options(const ParsedArgs& parsed, engine::SimulationOptions& sim
     simulation.seed = static_cast<uint64_t>(*seed);
   }
   simulation.strict = parsed.flag("--strict");
+  simulation.semantics = read_semantics(parsed);
 }
 
 }  // namespace

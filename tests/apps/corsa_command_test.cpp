@@ -72,6 +72,13 @@ TEST_CASE("a misspelt option, key or name gets the nearest valid one", "[cli][e2
   const auto controller = run_corsa({"run", "scenarios/cut_in.xosc", "--controller", "ac"});
   CHECK(controller.exit_code == 2);
   CHECK_THAT(controller.err, Catch::Contains("(did you mean 'acc'?)"));
+  const auto semantics = run_corsa({"run", "scenarios/cut_in.xosc", "--semantics", "esmin"});
+  CHECK(semantics.exit_code == 2);
+  CHECK_THAT(semantics.err, Catch::Contains("--semantics expects standard or esmini, got 'esmin' "
+                                            "(did you mean 'esmini'?)"));
+  const auto sweep = run_corsa({"sweep", "scenarios/cut_in.xosc", "--semantics", "esmin"});
+  CHECK(sweep.exit_code == 2);
+  CHECK_THAT(sweep.err, Catch::Contains("--semantics expects standard or esmini, got 'esmin'"));
   const auto npc = run_corsa({"run", "scenarios/cut_in.xosc", "--npc", "vehicle=3"});
   CHECK(npc.exit_code == 2);
   CHECK_THAT(npc.err, Catch::Contains("unknown key 'vehicle' (did you mean 'vehicles'?)"));

@@ -110,6 +110,17 @@ double path_scale(const xodr::Map& map, const Entity& entity) {
   return k == 0.0 ? 1.0 : std::clamp(1.0 - k * entity.state.road->t, 0.2, 5.0);
 }
 
+// The step's travel along the lane: all of `distance`, or with MotionContext::path_speed_lateral
+// what is left of it beside the lateral change (the path then is `distance` long; a lateral
+// change of at least `distance`, a jump rather than a motion at the speed, leaves it whole).
+double along_lane(const Entity& entity, double distance, const MotionContext& context) {
+  const double lateral = entity.lateral_command - entity.lane.lateral;
+  if (!context.path_speed_lateral || lateral == 0.0 || std::abs(lateral) >= std::abs(distance)) {
+    return distance;
+  }
+  return std::copysign(std::sqrt(distance * distance - lateral * lateral), distance);
+}
+
 }  // namespace
 
 void DefaultController::step(Entity& entity, const MotionContext& context) const {
@@ -121,7 +132,9 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
   const double dt = context.dt;
   const double v0 = state.speed;
   double v1 = entity.speed_command;
-  const double distance = 0.5 * (v0 + v1) * dt;
+  // The speed changes linearly within the step, so the trapezoid rule is its exact integral;
+  // esmini moves by the speed at the step's end (SimulationOptions::semantics).
+  const double distance = context.end_speed_travel ? v1 * dt : 0.5 * (v0 + v1) * dt;
   const double h0 = state.pose.h;
   double path = std::abs(distance);
   double lateral_change = 0.0;
@@ -133,8 +146,8 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     // not drive faster than its speed.
     // Standing still needs no scale (and on a cubic reference line it costs an evaluation).
     const double scale = distance == 0.0 ? 1.0 : path_scale(*context.map, entity);
-    const AdvanceResult moved =
-        advance_along_lanes(*context.map, lane, distance / scale, entity.chooser);
+    const AdvanceResult moved = advance_along_lanes(
+        *context.map, lane, along_lane(entity, distance, context) / scale, entity.chooser);
     const double travelled = moved.travelled * scale;
     lateral_change = entity.lateral_command - lane.lateral;
     if (std::abs(travelled) > 1e-9) {

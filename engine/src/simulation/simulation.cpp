@@ -73,7 +73,9 @@ void Simulation::Impl::announce(const Simulation& owner) {
 void Simulation::Impl::advance() {
   init.step_actions(state);
   storyboard->step_actions(state);
-  const detail::MotionContext motion{state.map, state.time.dt(), &scratch};
+  detail::MotionContext motion{state.map, state.time.dt(), &scratch};
+  motion.end_speed_travel = state.options.semantics == Semantics::kEsmini;
+  motion.path_speed_lateral = state.options.semantics == Semantics::kEsmini;
   detail::follow_route_lanes(state, motion);
   detail::begin_commands(state);
   mover.move(state, motion);

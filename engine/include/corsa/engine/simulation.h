@@ -46,6 +46,13 @@ using GeographicToMap =
 /// corsa::InputError saying why when it cannot.
 using GeoProjectionFactory = std::function<GeographicToMap(const std::string& geo_reference)>;
 
+/// How the engine reads what the standard leaves to the simulator (docs/openscenario.md,
+/// "Differences from esmini"): the standard's reading, or esmini's where it differs.
+enum class Semantics : uint8_t {
+  kStandard,  ///< the default: e.g. a step's travel is the exact integral of a linear speed change
+  kEsmini,    ///< esmini's choices, to compare trajectories with esmini's (`--semantics esmini`)
+};
+
 struct SimulationOptions {
   double dt = 0.01;          ///< fixed step, s (> 0)
   double duration = 3600.0;  ///< cap on simulated time, s: the run ends there at the latest
@@ -79,6 +86,8 @@ struct SimulationOptions {
   /// Values of UserDefinedValueConditions by name (`corsa run --value NAME=VALUE`); see also
   /// Simulation::set_user_value.
   std::vector<std::pair<std::string, std::string>> values;
+  /// Standard or esmini-compatible reading of what the standard leaves open (`--semantics`).
+  Semantics semantics = Semantics::kStandard;
 };
 
 /// One presence of a generated entity (traffic actions, NPCs): when it appeared and, once it
