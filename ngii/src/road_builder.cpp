@@ -3,7 +3,9 @@
 // Lane layout: every converted road carries its lanes on the right of the reference line
 // (ids -1..-n, OpenDRIVE 1.8 §9.1), since NGII links are one-way; the reference line follows the
 // left edge of the reference lane (the leftmost lane that starts and ends beside the others; a
-// lane splitting off on the left sits left of it, the laneOffset making room for it). The steps:
+// lane splitting off on the left sits left of it, the laneOffset making room for it); a
+// one-lane road turning right whose lane would fold on the inside of the turn follows its
+// lane's right edge instead, the lane left of it (road_reference.h). The steps:
 // 1. lane lines: each lane's surveyed polyline, smoothed, and extended by a few metres of the
 //    lanes before and after it (for stations beyond its own ends);
 // 2. reference polyline (road_reference.h), fitted with lines, arcs and clothoids;
