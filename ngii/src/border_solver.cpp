@@ -39,6 +39,22 @@ void solve_dense(double* a, std::vector<double>& b, size_t n) {
 
 }  // namespace
 
+void narrow_inside_of_turn(std::vector<LaneTarget>& lanes, double curvature, double clearance,
+                           double min_width) {
+  if (lanes.empty() || std::abs(curvature) < 1e-9) {
+    return;
+  }
+  // The centre of curvature at t = 1 / curvature; the outermost lane on that side.
+  const double radius = 1.0 / std::abs(curvature);
+  LaneTarget& lane = curvature < 0.0 ? lanes.back() : lanes.front();
+  if (!lane.centred) {
+    return;
+  }
+  // Distance from the lane's centre towards the turn's centre, less the clearance.
+  const double room = (curvature < 0.0 ? lane.centre + radius : radius - lane.centre) - clearance;
+  lane.width = std::min(lane.width, std::max(2.0 * room, min_width));
+}
+
 std::vector<double> solve_borders(const std::vector<LaneTarget>& lanes, size_t reference) {
   const size_t count = lanes.size();
   const size_t n = count + 1;

@@ -20,6 +20,17 @@ struct LaneTarget {
   bool centred = true;
 };
 
+/// Narrows the outermost lane on the inside of a turn of the reference line (`curvature`,
+/// 1/m, + left) where its outer border would lie within `clearance` (m) of the centre of
+/// curvature or beyond it: there the lane's border folds over itself (OpenDRIVE 1.8 §9.3:
+/// borders are offsets along the reference line's normals, which cross at that centre). The
+/// lane keeps its centre and narrows on both sides, to no less than `min_width` (m; a lane
+/// whose centre is that close to the turn's centre keeps min_width and folds less). Such turns
+/// are junction paths whose sparse survey vertices turn at radii of 1-3 m under lanes 3.5-5 m
+/// wide: the real lane edge there is the kerb corner, nearer the lane's centre.
+void narrow_inside_of_turn(std::vector<LaneTarget>& lanes, double curvature, double clearance,
+                           double min_width);
+
 /// Borders b_0..b_n for n = lanes.size() lanes; `reference` is the lane whose inner border is
 /// kept near t = 0.
 std::vector<double> solve_borders(const std::vector<LaneTarget>& lanes, size_t reference);

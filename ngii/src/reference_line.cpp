@@ -40,6 +40,23 @@ std::vector<RefSample> sample_reference(const std::vector<xodr::Geometry>& plan_
   return out;
 }
 
+double curvature_at(const std::vector<xodr::Geometry>& plan_view, double s) {
+  if (plan_view.empty()) {
+    return 0.0;
+  }
+  auto it = std::upper_bound(plan_view.begin(), plan_view.end(), s,
+                             [](double value, const xodr::Geometry& g) { return value < g.s; });
+  const xodr::Geometry& g = it == plan_view.begin() ? plan_view.front() : *(it - 1);
+  if (const auto* arc = std::get_if<xodr::ArcGeometry>(&g.shape)) {
+    return arc->curvature;
+  }
+  if (const auto* spiral = std::get_if<xodr::SpiralGeometry>(&g.shape)) {
+    const double f = g.length > 0.0 ? std::clamp((s - g.s) / g.length, 0.0, 1.0) : 0.0;
+    return spiral->curv_start + f * (spiral->curv_end - spiral->curv_start);
+  }
+  return 0.0;
+}
+
 double piecewise_value(const std::vector<xodr::Poly3>& pieces, double s) {
   if (pieces.empty()) {
     return 0.0;

@@ -19,6 +19,9 @@ struct RefSample {
 std::vector<RefSample> sample_reference(const std::vector<xodr::Geometry>& plan_view,
                                         const std::vector<double>& s_sorted);
 
+/// Curvature (1/m, + left) of `plan_view` at s (0 on lines and records of other kinds).
+double curvature_at(const std::vector<xodr::Geometry>& plan_view, double s);
+
 /// Value at s of a piecewise cubic (the last piece starting at or before s; the first before).
 double piecewise_value(const std::vector<xodr::Poly3>& pieces, double s);
 

@@ -3,7 +3,9 @@
 // Lane layout: every converted road carries its lanes on the right of the reference line
 // (ids -1..-n, OpenDRIVE 1.8 §9.1), since NGII links are one-way; the reference line follows the
 // left edge of the reference lane (the leftmost lane that starts and ends beside the others; a
-// lane splitting off on the left sits left of it, the laneOffset making room for it). The steps:
+// lane splitting off on the left sits left of it, the laneOffset making room for it); a
+// one-lane road turning right whose lane would fold on the inside of the turn follows its
+// lane's right edge instead, the lane left of it (road_reference.h). The steps:
 // 1. lane lines: each lane's surveyed polyline, smoothed, and extended by a few metres of the
 //    lanes before and after it (for stations beyond its own ends);
 // 2. reference polyline (road_reference.h), fitted with lines, arcs and clothoids;
@@ -32,6 +34,8 @@ namespace {
 
 /// How often a reference line is eased and refitted where its records fold the road's edge.
 constexpr int kFoldRefits = 8;
+/// m: the least width a lane is narrowed to on the inside of a tight turn (border_solver.h).
+constexpr double kNarrowestInTurn = 1.5;
 
 std::vector<Point3> shifted(const std::vector<Point3>& points, const Origin& origin) {
   std::vector<Point3> out(points);
@@ -99,7 +103,7 @@ size_t reference_lane(const RoadPlan& plan) {
 /// The polyline the plan view is fitted to (road_reference.h).
 ReferencePolyline reference_polyline(const RoadPlan& plan, const LaneLines& lines,
                                      const std::vector<WidthProfile>& widths,
-                                     const RoadEndLines& ends, size_t ref) {
+                                     const RoadEndLines& ends, size_t ref, bool lanes_left) {
   const Polyline& line = lines.smooth[ref];
   // Widths are profiles along the surveyed line; the smoothed one is a little shorter.
   const double scale = line.length() > 0.0 ? lines.raw[ref].length() / line.length() : 1.0;
@@ -118,6 +122,12 @@ ReferencePolyline reference_polyline(const RoadPlan& plan, const LaneLines& line
     }
     half[i] = 0.5 * sum / count;
   }
+  // Along the right edge: the lane lies left of the line (the laneOffset carries it there).
+  if (lanes_left) {
+    for (double& h : half) {
+      h = -h;
+    }
+  }
   double road_width = 0.0;
   std::vector<double> width_at(line.size(), 0.0);
   for (size_t k = 0; k < plan.lanes.size(); ++k) {
@@ -127,7 +137,7 @@ ReferencePolyline reference_polyline(const RoadPlan& plan, const LaneLines& line
     }
   }
   ReferencePolyline shifted = shifted_left(line, half);
-  relax_right_turns(shifted.points, width_at);
+  relax_right_turns(shifted.points, width_at, lanes_left);
   // On a line shared with the roads beyond, the road ends on that line (where the reference
   // lane crosses it); else on its parallel through the reference lane's own end.
   const auto anchor = [](Vec2 own, const std::optional<EndLine>& on, bool shared) {
@@ -138,6 +148,7 @@ ReferencePolyline reference_polyline(const RoadPlan& plan, const LaneLines& line
                  anchor(xy(lines.raw[ref].points().front()), ends.start, ends.start_shared),
                  anchor(xy(lines.raw[ref].points().back()), ends.end, ends.end_shared), road_width);
   aligned.widest = *std::max_element(width_at.begin(), width_at.end());
+  aligned.lanes_left = lanes_left;
   return aligned;
 }
 
@@ -168,11 +179,16 @@ double s_at_u(const std::vector<double>& stations, const std::vector<double>& u,
 struct Stations {
   std::vector<double> s;
   std::vector<RefSample> ref;
+  std::vector<double> curvature;                 ///< of the reference line, 1/m
   std::vector<std::vector<Crossing>> crossings;  ///< [lane][station]
 };
 
 void measure(Stations& st, const xodr::Road& road, const LaneLines& lines) {
   st.ref = sample_reference(road.plan_view, st.s);
+  st.curvature.resize(st.s.size());
+  for (size_t i = 0; i < st.s.size(); ++i) {
+    st.curvature[i] = curvature_at(road.plan_view, st.s[i]);
+  }
   st.crossings.assign(lines.measured.size(), std::vector<Crossing>(st.s.size()));
   for (size_t k = 0; k < lines.measured.size(); ++k) {
     LaneTracker tracker(lines.measured[k], lines.measured_start[k]);
@@ -283,6 +299,7 @@ Borders station_borders(const RoadPlan& plan, const Stations& st, const LaneLine
         targets[k].width *= apart / full;
       }
     }
+    narrow_inside_of_turn(targets, st.curvature[i], kFoldClearance, kNarrowestInTurn);
     borders.t[i] = solve_borders(targets, ref);
     for (const LaneTarget& target : targets) {
       borders.centred[i].push_back(target.centred);
@@ -445,17 +462,30 @@ void add_spans(BuiltRoad& built, const RoadPlan& plan, const Network& network, c
   }
 }
 
-}  // namespace
+/// Whether a lane border lies beyond the reference line's centre of curvature at a station
+/// (the mesh folds over there).
+bool folds_at_stations(const Stations& st, const Borders& borders) {
+  for (size_t i = 0; i < st.s.size(); ++i) {
+    const double k = st.curvature[i];
+    for (double b : borders.t[i]) {
+      if (k * b >= 1.0) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
 
-BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin& origin,
-                     const std::vector<WidthProfile>& widths, const RoadEndLines& ends,
-                     const ConvertOptions& options) {
+/// The road along the reference lane's left edge (`lanes_left`: its right edge); `folds` is
+/// set when a border lies beyond the centre of curvature at a station.
+BuiltRoad build_road_along(const RoadPlan& plan, const Network& network, const LaneLines& lines,
+                           const std::vector<WidthProfile>& widths, const RoadEndLines& ends,
+                           const ConvertOptions& options, bool lanes_left, bool& folds) {
   BuiltRoad built;
-  const LaneLines lines = lane_lines(plan, origin);
   const size_t ref = reference_lane(plan);
   CurveFitOptions fit_options;
   fit_options.tolerance = options.tolerance;
-  ReferencePolyline reference = reference_polyline(plan, lines, widths, ends, ref);
+  ReferencePolyline reference = reference_polyline(plan, lines, widths, ends, ref, lanes_left);
   fit_options.start_heading = reference.start_heading;
   fit_options.end_heading = reference.end_heading;
   CurveFit fit = fit_plan_view(reference.points, fit_options);
@@ -465,7 +495,7 @@ BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin&
   // (they are measured from whatever line is fitted): the polyline is eased there and refitted.
   const double tightest = 1.0 / (reference.widest + kFoldClearance);
   for (int round = 0; round < kFoldRefits; ++round) {
-    const std::vector<double> tight = tight_right_turns(fit, tightest);
+    const std::vector<double> tight = tight_right_turns(fit, tightest, reference.lanes_left);
     if (tight.empty()) {
       break;
     }
@@ -484,6 +514,7 @@ BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin&
   for (int round = 0; round < 2 && refine_stations(st, borders, road, lines); ++round) {
     borders = station_borders(plan, st, lines, widths, ref);
   }
+  folds = folds_at_stations(st, borders);
   std::vector<std::vector<LaneHeightSample>> heights(st.s.size());
   for (size_t i = 0; i < st.s.size(); ++i) {
     for (size_t k = 0; k < plan.lanes.size(); ++k) {
@@ -499,6 +530,29 @@ BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin&
   }
   fit_lanes(built, plan, network, st, lines, borders, roll, options);
   add_spans(built, plan, network, st, lines);
+  return built;
+}
+
+}  // namespace
+
+BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin& origin,
+                     const std::vector<WidthProfile>& widths, const RoadEndLines& ends,
+                     const ConvertOptions& options) {
+  const LaneLines lines = lane_lines(plan, origin);
+  bool folds = false;
+  BuiltRoad built = build_road_along(plan, network, lines, widths, ends, options, false, folds);
+  // A one-lane road turning right whose lane folds over on the inside of the turn: along its
+  // right edge instead, the lane lies on the outside of every right turn, where borders cannot
+  // fold (road_reference.h, along_right_edge). Only then: a line along the inside is shorter
+  // and follows a junction path's steep height steps over less s.
+  if (folds && plan.lanes.size() == 1 && along_right_edge(lines.smooth[reference_lane(plan)])) {
+    bool right_folds = false;
+    BuiltRoad right =
+        build_road_along(plan, network, lines, widths, ends, options, true, right_folds);
+    if (!right_folds) {
+      built = std::move(right);
+    }
+  }
   return built;
 }
 

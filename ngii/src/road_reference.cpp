@@ -19,6 +19,8 @@ constexpr double kRelaxChord = 1.0;  // m
 constexpr int kRelaxRounds = 20;
 // Length (m) of the chords a road end's tangent is extrapolated from (shifted_left).
 constexpr double kEndChord = 1.5;
+// rad: how far a one-lane road must turn right overall to be fitted along its right edge.
+constexpr double kInsideTurn = 0.5;
 
 Vec2 to_vec(const Point2& p) { return {p.x, p.y}; }
 
@@ -305,6 +307,33 @@ double circle_share(const std::vector<Point3>& p, bool at_end) {
   return std::clamp(2.0 * c1 / c2 - 1.0, 0.0, 1.0);
 }
 
+bool along_right_edge(const Polyline& lane) {
+  const auto& p = lane.points();
+  double turn = 0.0;
+  for (size_t i = 2; i < p.size(); ++i) {
+    const double h0 = std::atan2(p[i - 1].y - p[i - 2].y, p[i - 1].x - p[i - 2].x);
+    const double h1 = std::atan2(p[i].y - p[i - 1].y, p[i].x - p[i - 1].x);
+    turn += angle_diff(h1, h0);
+  }
+  if (turn > -kInsideTurn) {
+    return false;
+  }
+  for (size_t i = 0; i < p.size(); ++i) {
+    const double u = lane.u()[i];
+    const Vec2 back = xy(lane.at(u)) - xy(lane.at(u - 1.0));
+    const Vec2 ahead = xy(lane.at(u + 1.0)) - xy(lane.at(u));
+    if (norm(back) < 1e-9 || norm(ahead) < 1e-9) {
+      continue;
+    }
+    const double bend = angle_diff(std::atan2(ahead.y, ahead.x), std::atan2(back.y, back.x));
+    const double curvature = bend / (0.5 * (norm(back) + norm(ahead)));
+    if (curvature < 0.0 && 1.0 / -curvature < kMinShiftRadius) {
+      return false;
+    }
+  }
+  return true;
+}
+
 ReferencePolyline shifted_left(const Polyline& first, const std::vector<double>& half_widths) {
   const auto& p = first.points();
   const size_t n = p.size();
@@ -325,8 +354,11 @@ ReferencePolyline shifted_left(const Polyline& first, const std::vector<double>&
     const double arc = 0.5 * (norm(back) + norm(ahead));
     const double curvature = arc > 1e-9 ? turn / arc : 0.0;
     shift[i] = half_widths[i];
-    if (curvature > 0.0) {
-      shift[i] = std::clamp(1.0 / curvature - kMinShiftRadius, 0.0, shift[i]);
+    // Shifted towards the inside of a turn, the line turns more tightly: at least kMinShiftRadius.
+    if (curvature * shift[i] > 0.0) {
+      shift[i] = std::copysign(
+          std::clamp(1.0 / std::abs(curvature) - kMinShiftRadius, 0.0, std::abs(shift[i])),
+          shift[i]);
     }
   }
   // At the ends the chords reach one way only, and on a curve their direction is off the
@@ -374,11 +406,18 @@ ReferencePolyline shifted_left(const Polyline& first, const std::vector<double>&
     }
     return result;
   };
+  // On magnitudes: a line shifted right (negative shifts) is reduced towards zero alike.
+  const double side =
+      std::any_of(shift.begin(), shift.end(), [](double v) { return v < 0.0; }) ? -1.0 : 1.0;
+  for (double& v : shift) {
+    v = std::abs(v);
+  }
   const std::vector<double> eased = window(window(shift, kEase, true), 0.5 * kEase, false);
   ReferencePolyline out;
   out.points.resize(n);
   for (size_t i = 0; i < n; ++i) {
-    out.points[i] = Point2{p[i].x + eased[i] * normals[i].x, p[i].y + eased[i] * normals[i].y};
+    const double d = side * eased[i];
+    out.points[i] = Point2{p[i].x + d * normals[i].x, p[i].y + d * normals[i].y};
   }
   // The headings of the normals used at the ends (the normal is the tangent turned left).
   out.start_heading = std::atan2(-normals.front().x, normals.front().y);
@@ -386,7 +425,8 @@ ReferencePolyline shifted_left(const Polyline& first, const std::vector<double>&
   return out;
 }
 
-void relax_right_turns(std::vector<Point2>& p, const std::vector<double>& road_width) {
+void relax_right_turns(std::vector<Point2>& p, const std::vector<double>& road_width,
+                       bool lanes_left) {
   const size_t n = p.size();
   if (n < 3) {
     return;
@@ -406,7 +446,7 @@ void relax_right_turns(std::vector<Point2>& p, const std::vector<double>& road_w
       }
       const double turn =
           angle_diff(std::atan2(b.y - m.y, b.x - m.x), std::atan2(m.y - a.y, m.x - a.x));
-      const double curvature = turn / (0.5 * (norm(m - a) + norm(b - m)));
+      const double curvature = (lanes_left ? -turn : turn) / (0.5 * (norm(m - a) + norm(b - m)));
       if (curvature < -1.0 / (road_width[i] + kFoldClearance)) {
         tight.push_back(u[i]);
       }
@@ -425,7 +465,7 @@ void ease_near(std::vector<Point2>& points, const std::vector<double>& at) {
   ease_at(points, arc_lengths(points), at);
 }
 
-std::vector<double> tight_right_turns(const CurveFit& fit, double curvature) {
+std::vector<double> tight_right_turns(const CurveFit& fit, double curvature, bool lanes_left) {
   std::vector<double> out;
   for (const xodr::Geometry& g : fit.geometries) {
     double k0 = 0.0, k1 = 0.0;
@@ -434,6 +474,10 @@ std::vector<double> tight_right_turns(const CurveFit& fit, double curvature) {
     } else if (const auto* spiral = std::get_if<xodr::SpiralGeometry>(&g.shape)) {
       k0 = spiral->curv_start;
       k1 = spiral->curv_end;
+    }
+    if (lanes_left) {
+      k0 = -k0;
+      k1 = -k1;
     }
     if (std::min(k0, k1) < -curvature) {
       out.push_back(g.s + (k0 < k1 ? 0.0 : g.length));

@@ -46,6 +46,9 @@ struct ReferencePolyline {
   /// The road's greatest width (m, all lanes right of the reference line): the plan-view fit
   /// turns right no more tightly than this allows (CurveFitOptions::max_right_curvature).
   double widest = 0.0;
+  /// The lanes lie left of the line (it runs along the road's right edge, the inside of a
+  /// right turn): its left turns are the ones that could fold them.
+  bool lanes_left = false;
 };
 
 /// The reference lane's vertices moved left by `half_widths` (per vertex), along the normal of
@@ -54,20 +57,31 @@ struct ReferencePolyline {
 /// lane's own there.
 ReferencePolyline shifted_left(const Polyline& lane, const std::vector<double>& half_widths);
 
-/// Smooths `reference` (lanes on its right) where it turns right more tightly than the road is
-/// wide (`road_width` per vertex, m): the road's right edge would lie beyond the centre of
-/// curvature there and fold over. Such turns are survey jogs of a few decimetres within a
-/// metre, or sparse vertices turning at sharp corners; the lanes' offsets keep following the
-/// survey. The first and last 2 m stay (the normals at the ends run through the lane ends).
-void relax_right_turns(std::vector<Point2>& points, const std::vector<double>& road_width);
+/// Whether a one-lane road along `lane` is better fitted along its right edge: it turns right
+/// overall (by more than kInsideTurn, 0.5 rad), and its centre nowhere turns right at a radius
+/// under kMinShiftRadius (1.5 m; curvature from chords of 1 m each way), where the right edge
+/// could not follow it. Its lane then lies left of the reference line, on the outside of the turn,
+/// where lane borders cannot fold over (they would lie beyond the centre of curvature on the
+/// inside; K-City's right-turn junction paths turn at radii of 2-4 m under lanes 3.5-5 m wide).
+bool along_right_edge(const Polyline& lane);
+
+/// Smooths `reference` (lanes on its right; with `lanes_left` mirrored: left turns) where it
+/// turns right more tightly than the road is wide (`road_width` per vertex, m): the road's right
+/// edge would lie beyond the centre of curvature there and fold over. Such turns are survey jogs of
+/// a few decimetres within a metre, or sparse vertices turning at sharp corners; the lanes' offsets
+/// keep following the survey. The first and last 2 m stay (the normals at the ends run through the
+/// lane ends).
+void relax_right_turns(std::vector<Point2>& points, const std::vector<double>& road_width,
+                       bool lanes_left = false);
 
 /// Smooths `points` within kRelaxReach (2 m) of the arc lengths `at` (m along the polyline),
 /// as relax_right_turns does, by a Gaussian average of sigma 1 m; the first and last 2 m stay.
 void ease_near(std::vector<Point2>& points, const std::vector<double>& at);
 
-/// Arc lengths (m) where the records of `fit` turn right more tightly than `curvature` (1/m,
-/// positive): at each such record's tightest end.
-std::vector<double> tight_right_turns(const CurveFit& fit, double curvature);
+/// Arc lengths (m) where the records of `fit` turn right (with `lanes_left`: left) more tightly
+/// than `curvature` (1/m, positive): at each such record's tightest end.
+std::vector<double> tight_right_turns(const CurveFit& fit, double curvature,
+                                      bool lanes_left = false);
 
 /// `reference` bent near its start and end to meet `start` / `end` (when given) square: it ends
 /// heading across the line, on the line's parallel through the anchor (the reference lane's

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <variant>
 
+#include "border_solver.h"
 #include "corsa/ngii/convert.h"
 #include "corsa/xodr/map.h"
 #include "mesh_folds.h"
@@ -118,4 +119,78 @@ TEST_CASE("a lane turning evenly from its first vertex starts along the circle's
   const auto reference = corsa::ngii::detail::shifted_left(lane, std::vector<double>(31, 2.0));
   CHECK(reference.start_heading == Approx(0.0).margin(0.01));
   CHECK(reference.end_heading == Approx(-M_PI / 2.0).margin(0.01));
+}
+
+TEST_CASE("the outermost lane narrows on the inside of a turn tighter than it is wide",
+          "[ngii][folds]") {
+  using corsa::ngii::detail::LaneTarget;
+  // One lane 3.5 m wide whose centre is 1.75 m right of the reference line, which turns right
+  // at a radius of 2.5 m: its right border (t = -3.5) would lie 1 m beyond the centre of
+  // curvature (t = -2.5), where the normals cross and the border folds back.
+  std::vector<LaneTarget> lanes{{-1.75, 3.5, true}};
+  corsa::ngii::detail::narrow_inside_of_turn(lanes, -0.4, 0.5, 0.2);
+  const auto borders = corsa::ngii::detail::solve_borders(lanes, 0);
+  CHECK(0.5 * (borders[0] + borders[1]) == Approx(-1.75).margin(0.02));
+  CHECK(borders[1] >= -2.5 + 0.5 - 0.02);  // the solver keeps centres within 2 cm
+  CHECK(borders[1] < -1.75);
+  // Not narrower than asked for.
+  lanes = {{-1.75, 3.5, true}};
+  corsa::ngii::detail::narrow_inside_of_turn(lanes, -0.4, 0.5, 1.5);
+  CHECK(lanes[0].width == Approx(1.5));
+  // A left turn narrows the leftmost lane only, a gentle turn nothing.
+  lanes = {{0.5, 3.5, true}, {-3.0, 3.5, true}};
+  corsa::ngii::detail::narrow_inside_of_turn(lanes, 0.5, 0.5, 0.2);
+  CHECK(lanes[0].width == Approx(2.0));
+  CHECK(lanes[1].width == 3.5);
+  lanes = {{-1.75, 3.5, true}};
+  corsa::ngii::detail::narrow_inside_of_turn(lanes, -0.1, 0.5, 0.2);
+  CHECK(lanes[0].width == 3.5);
+}
+
+TEST_CASE("a junction path turning right tightly after its node does not fold", "[ngii][folds]") {
+  // A one-lane path surveyed every 0.25 m that leaves its node turning right at a radius of
+  // 2 m (lane centre) by a quarter turn, then runs 8 m straight. Along its left edge, the
+  // reference line keeps the data's course over its first metres (its end point and heading),
+  // and the lane's 3.25 m width put its right edge beyond the centre of curvature there (it
+  // folded with or without narrowing). Along its right edge, the inside of the turn, no
+  // border lies on the inside.
+  const double x0 = 300000.0, y0 = 4100000.0, r = 2.0;
+  std::vector<Point3> points;
+  const int steps = static_cast<int>(std::ceil(0.5 * M_PI * r / 0.25));
+  for (int k = 0; k <= steps; ++k) {
+    const double a = 0.5 * M_PI * k / steps;
+    points.push_back({x0 + r * std::sin(a), y0 - r * (1.0 - std::cos(a)), 50.0});
+  }
+  for (int i = 1; i <= 32; ++i) {
+    points.push_back({x0 + r, y0 - r - 0.25 * i, 50.0});
+  }
+  corsa::Diagnostics diagnostics;
+  const auto conversion = corsa::ngii::convert(one_lane(points), {}, diagnostics);
+  const auto map = corsa::xodr::Map::build(conversion.map, diagnostics);
+  REQUIRE(conversion.map.roads.size() == 1);
+  // The lane lies left of the reference line (positive laneOffset at the start).
+  const auto& road = conversion.map.roads.front();
+  REQUIRE(!road.lane_offsets.empty());
+  CHECK(road.lane_offsets.front().a > 1.0);
+  CHECK(corsa::test::folded_roads(map) == 0);
+  CHECK(conversion.summary.max_lane_error <= 0.06);
+}
+
+TEST_CASE("only one-lane roads turning right without sharp corners follow their right edge",
+          "[ngii][folds]") {
+  using corsa::ngii::detail::along_right_edge;
+  using corsa::ngii::detail::Polyline;
+  const auto turn = [](double radius, double sign) {
+    std::vector<Point3> points;
+    for (int k = 0; k <= 40; ++k) {
+      const double a = 0.5 * M_PI * k / 40;
+      points.push_back({radius * std::sin(a), sign * radius * (1.0 - std::cos(a)), 0.0});
+    }
+    return Polyline(std::span<const Point3>(points));
+  };
+  CHECK(along_right_edge(turn(4.0, -1.0)));
+  CHECK_FALSE(along_right_edge(turn(4.0, 1.0)));   // a left turn
+  CHECK_FALSE(along_right_edge(turn(1.0, -1.0)));  // the right edge could not follow
+  const std::vector<Point3> straight{{0.0, 0.0, 0.0}, {20.0, 0.0, 0.0}};
+  CHECK_FALSE(along_right_edge(Polyline(std::span<const Point3>(straight))));
 }
