@@ -401,3 +401,50 @@ TEST_CASE("an OpenSCENARIO 0.9 element names its 1.0 replacement", "[xosc]") {
              Catch::Contains("<Catalogs> is OpenSCENARIO 0.9") &&
                  Catch::Contains("replaced with <CatalogLocations>"));
 }
+
+TEST_CASE("a catalog entry using a parameter only the scenario declares reads the scenario's",
+          "[xosc][lenient]") {
+  const std::string catalog =
+      "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n"
+      "<FileHeader revMajor=\"1\" revMinor=\"3\" date=\"2024-01-01T00:00:00\" "
+      "description=\"c\" author=\"corsa\"/>\n"
+      "<Catalog name=\"Moves\">\n<Maneuver name=\"Speed\">\n" +
+      corsa::test::speed_event("Go", "$Target") + "</Maneuver>\n</Catalog>\n</OpenSCENARIO>\n";
+  ScenarioText text;
+  text.parameters =
+      "<ParameterDeclaration name=\"Target\" parameterType=\"double\" value=\"12\"/>\n";
+  text.catalogs = "<ManeuverCatalog><Directory path=\"cat\"/></ManeuverCatalog>\n";
+  text.stories =
+      "<Story name=\"S\">\n<Act name=\"A\">\n"
+      "<ManeuverGroup name=\"G\" maximumExecutionCount=\"1\">\n"
+      "<Actors selectTriggeringEntities=\"false\"><EntityRef entityRef=\"Ego\"/></Actors>\n"
+      "<CatalogReference catalogName=\"Moves\" entryName=\"Speed\"/>\n"
+      "</ManeuverGroup>\n</Act>\n</Story>\n";
+  const std::string xml = text.str();
+  corsa::test::TempDir dir;
+  corsa::test::write_text(dir.path() / "cat" / "moves.xosc", catalog);
+  const Loaded lenient = load(dir, xml);
+  INFO((lenient.errors.empty() ? std::string() : lenient.errors[0].format()));
+  REQUIRE(lenient.errors.empty());
+  const auto warning = warning_with(lenient, "parameter '$Target' is not declared in its catalog");
+  CHECK(warning.line == line_of(catalog, "AbsoluteTargetSpeed"));
+  CHECK_THAT(warning.message, Catch::Contains("(read as the scenario's global parameter, '12')"));
+  const auto& action = lenient.scenario->storyboard.stories[0]
+                           .acts[0]
+                           .maneuver_groups[0]
+                           .maneuvers[0]
+                           .events[0]
+                           .actions[0];
+  const auto& speed = std::get<SpeedAction>(std::get<PrivateAction>(action.action));
+  CHECK(std::get<AbsoluteTargetSpeed>(speed.target).value == 12.0);
+  const Loaded strict = load(dir, xml, true);
+  REQUIRE(!strict.errors.empty());
+  CHECK_THAT(strict.errors[0].message, Catch::Contains("not declared in its catalog entry"));
+
+  // A name the scenario does not declare either stays undefined.
+  std::string undeclared = xml;
+  undeclared.replace(undeclared.find("name=\"Target\""), 13, "name=\"Other\"");
+  const Loaded refused = load(dir, undeclared);
+  REQUIRE(!refused.errors.empty());
+  CHECK_THAT(refused.errors[0].message, Catch::Contains("undefined parameter '$Target'"));
+}
