@@ -448,3 +448,22 @@ TEST_CASE("a catalog entry using a parameter only the scenario declares reads th
   REQUIRE(!refused.errors.empty());
   CHECK_THAT(refused.errors[0].message, Catch::Contains("undefined parameter '$Target'"));
 }
+
+TEST_CASE("a relative object position without dx or dy is read as no offset", "[xosc][lenient]") {
+  ScenarioText text;
+  text.init +=
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position>\n"
+      "<RelativeObjectPosition entityRef=\"Ego\" dy=\"2\"/>\n"
+      "</Position></TeleportAction></PrivateAction>\n</Private>\n";
+  const std::string xml = text.str();
+  check_both_ways(xml, "<RelativeObjectPosition> without dx",
+                  line_of(xml, "<RelativeObjectPosition"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  const auto& teleport =
+      std::get<TeleportAction>(loaded.scenario->storyboard.init.privates[1].actions[0]);
+  const auto& relative = std::get<RelativeObjectPosition>(teleport.position.kind);
+  CHECK(relative.dx == 0.0);
+  CHECK(relative.dy == 2.0);
+}
