@@ -467,3 +467,19 @@ TEST_CASE("a relative object position without dx or dy is read as no offset", "[
   CHECK(relative.dx == 0.0);
   CHECK(relative.dy == 2.0);
 }
+
+TEST_CASE("a VisibilityAction flag left out leaves that visibility unchanged", "[xosc][lenient]") {
+  ScenarioText text;
+  text.init +=
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><VisibilityAction sensors=\"false\"/></PrivateAction>\n</Private>\n";
+  const std::string xml = text.str();
+  check_both_ways(xml, "<VisibilityAction> without graphics", line_of(xml, "<VisibilityAction"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  const auto& visibility =
+      std::get<VisibilityAction>(loaded.scenario->storyboard.init.privates[1].actions[0]);
+  CHECK(visibility.sensors == std::optional<bool>(false));
+  CHECK(!visibility.graphics);
+  CHECK(!visibility.traffic);
+}

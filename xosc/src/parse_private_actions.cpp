@@ -192,9 +192,18 @@ PrivateAction parse_lateral(ParseContext& ctx, const Element* e) {
 VisibilityAction parse_visibility(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "VisibilityAction");
   VisibilityAction action;
-  action.graphics = ctx.req_bool(e, "graphics");
-  action.sensors = ctx.req_bool(e, "sensors");
-  action.traffic = ctx.req_bool(e, "traffic");
+  // All three flags are required; esmini's examples write only those the action changes
+  // (<VisibilityAction sensors="false"/> hides the actor from sensors and nothing else), so an
+  // absent flag leaves that visibility as it is.
+  for (const char* flag : {"graphics", "sensors", "traffic"}) {
+    if (e->Attribute(flag) == nullptr) {
+      ctx.lenient(e, std::string("<VisibilityAction> without ") + flag,
+                  std::string(flag) + " visibility unchanged");
+    }
+  }
+  action.graphics = ctx.opt_bool(e, "graphics");
+  action.sensors = ctx.opt_bool(e, "sensors");
+  action.traffic = ctx.opt_bool(e, "traffic");
   if (const Element* set = kids.opt("SensorReferenceSet")) {
     Children set_kids(ctx, set, "SensorReferenceSet");
     for (const Element* ref : set_kids.at_least("SensorReference", 1)) {
