@@ -357,8 +357,11 @@ TEST_CASE("a capitalised boolean is read as its lower-case value", "[xosc][lenie
   check_both_ways(xml, "attribute selectTriggeringEntities: 'True' is not lower case",
                   line_of(xml, "<Actors"));
   corsa::test::TempDir dir;
-  CHECK(load(dir, xml).scenario->storyboard.stories[0].acts[0].maneuver_groups[0].actors
-            .select_triggering_entities);
+  CHECK(load(dir, xml)
+            .scenario->storyboard.stories[0]
+            .acts[0]
+            .maneuver_groups[0]
+            .actors.select_triggering_entities);
   std::string wrong = xml;
   wrong.replace(wrong.find("\"True\""), 6, "\"no\"");
   const Loaded refused = load(dir, wrong);
@@ -397,9 +400,8 @@ TEST_CASE("an OpenSCENARIO 0.9 element names its 1.0 replacement", "[xosc]") {
   const Loaded loaded = load(dir, xml);
   REQUIRE(!loaded.errors.empty());
   CHECK(loaded.errors[0].line == line_of(xml, "<Catalogs>"));
-  CHECK_THAT(loaded.errors[0].message,
-             Catch::Contains("<Catalogs> is OpenSCENARIO 0.9") &&
-                 Catch::Contains("replaced with <CatalogLocations>"));
+  CHECK_THAT(loaded.errors[0].message, Catch::Contains("<Catalogs> is OpenSCENARIO 0.9") &&
+                                           Catch::Contains("replaced with <CatalogLocations>"));
 }
 
 TEST_CASE("a catalog entry using a parameter only the scenario declares reads the scenario's",

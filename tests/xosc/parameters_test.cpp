@@ -149,8 +149,7 @@ TEST_CASE("catalog assignments override the entry's defaults and see the caller'
   CHECK(other.mass == 1200.0);
 }
 
-TEST_CASE("catalog entries do not see the scenario's parameters under --strict",
-          "[xosc][params]") {
+TEST_CASE("catalog entries do not see the scenario's parameters under --strict", "[xosc][params]") {
   corsa::test::TempDir dir;
   corsa::test::write_text(dir.path() / "cat/c.xosc", R"(<?xml version="1.0"?>
 <OpenSCENARIO>

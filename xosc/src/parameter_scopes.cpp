@@ -127,8 +127,7 @@ const Value* ParseContext::lookup(std::string_view name, size_t upto, const Elem
     if (globals[i].declaration.name != name) continue;
     resolve_entry(0, i);
     const Value& value = scopes_[0].entries[i].declaration.value;
-    lenient(from,
-            "parameter '$" + std::string(name) + "' is not declared in its catalog entry",
+    lenient(from, "parameter '$" + std::string(name) + "' is not declared in its catalog entry",
             "the scenario's global parameter, '" + clip(value.text()) + "'");
     return &value;
   }
