@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -48,7 +49,8 @@ constexpr const char* kUsage =
 struct Totals {
   size_t scenarios = 0;
   size_t stop_trigger = 0;
-  size_t other_end = 0;
+  size_t stories_complete = 0;
+  size_t duration = 0;
   size_t load_errors = 0;
   size_t run_errors = 0;
   size_t distributions = 0;
@@ -57,10 +59,24 @@ struct Totals {
 
 enum class Kind { kScenario, kDistribution, kOther };
 
+/// Whether `text` has the element `name` (not merely one whose name starts with it, as
+/// <StoryboardElementStateCondition> in a maneuver catalog starts with <Storyboard).
+bool has_element(const std::string& text, const std::string& name) {
+  const std::string open = "<" + name;
+  for (size_t at = text.find(open); at != std::string::npos; at = text.find(open, at + 1)) {
+    const size_t next = at + open.size();
+    if (next < text.size() && (text[next] == '>' || text[next] == '/' ||
+                               std::isspace(static_cast<unsigned char>(text[next])) != 0)) {
+      return true;
+    }
+  }
+  return false;
+}
+
 Kind kind_of(const fs::path& file) {
   const std::string text = corsa::read_file(file);
-  if (text.find("<ParameterValueDistribution") != std::string::npos) return Kind::kDistribution;
-  if (text.find("<Storyboard") != std::string::npos) return Kind::kScenario;
+  if (has_element(text, "ParameterValueDistribution")) return Kind::kDistribution;
+  if (has_element(text, "Storyboard")) return Kind::kScenario;
   return Kind::kOther;
 }
 
@@ -107,8 +123,16 @@ void run_scenario(const fs::path& file, const Options& options, Totals& totals) 
     run.run();
     outcome = std::string(corsa::engine::to_string(run.end_reason()));
     sim_time = run.time();
-    ++(run.end_reason() == corsa::engine::EndReason::kStopTrigger ? totals.stop_trigger
-                                                                  : totals.other_end);
+    switch (run.end_reason()) {
+      case corsa::engine::EndReason::kStopTrigger:
+        ++totals.stop_trigger;
+        break;
+      case corsa::engine::EndReason::kStoriesComplete:
+        ++totals.stories_complete;
+        break;
+      default:
+        ++totals.duration;
+    }
   } catch (const corsa::InputError& caught) {
     error = caught.brief();
     ++(outcome == "load error" ? totals.load_errors : totals.run_errors);
@@ -222,10 +246,10 @@ int main(int argc, char** argv) {
     }
   }
   std::printf(
-      "\n%zu scenarios: %zu ran to their stop trigger, %zu ended otherwise (stories complete or "
-      "duration), %zu failed to load, %zu failed while running\n",
-      totals.scenarios, totals.stop_trigger, totals.other_end, totals.load_errors,
-      totals.run_errors);
+      "\n%zu scenarios: %zu ran to their stop trigger, %zu ended with their last story (no stop "
+      "trigger), %zu ran until the duration, %zu failed to load, %zu failed while running\n",
+      totals.scenarios, totals.stop_trigger, totals.stories_complete, totals.duration,
+      totals.load_errors, totals.run_errors);
   if (options.sweep_variants > 0) {
     std::printf("%zu variation files: %zu swept without a failed variant\n", totals.distributions,
                 totals.distributions_clean);

@@ -263,3 +263,225 @@ TEST_CASE("an ambiguous storyboard reference resolves to the element nearest to 
   CHECK(resolved(0) == "S1::A::G::M::First");
   CHECK(resolved(1) == "S2::A::G::M::First");
 }
+
+TEST_CASE("a step transition without dimension or value is read as a step at once",
+          "[xosc][lenient]") {
+  ScenarioText text;
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><LongitudinalAction><SpeedAction>\n"
+      "<SpeedActionDynamics dynamicsShape=\"step\"/>\n"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"20\"/></SpeedActionTarget>"
+      "</SpeedAction></LongitudinalAction></PrivateAction>\n</Private>\n";
+  const std::string xml = text.str();
+  check_both_ways(xml, "step transition dynamics without dynamicsDimension and value",
+                  line_of(xml, "dynamicsShape=\"step\""));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  const auto& speed =
+      std::get<SpeedAction>(loaded.scenario->storyboard.init.privates[0].actions[0]);
+  CHECK(speed.dynamics.shape == DynamicsShape::kStep);
+  CHECK(speed.dynamics.dimension == DynamicsDimension::kTime);
+  CHECK(speed.dynamics.value == 0.0);
+
+  // Only the value missing names only the value.
+  std::string no_value = xml;
+  no_value.replace(no_value.find("dynamicsShape=\"step\""), 20,
+                   "dynamicsShape=\"step\" dynamicsDimension=\"rate\"");
+  check_both_ways(no_value, "step transition dynamics without value",
+                  line_of(no_value, "dynamicsShape=\"step\""));
+}
+
+TEST_CASE("a linear transition without its value stays an error", "[xosc][lenient]") {
+  ScenarioText text;
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><LongitudinalAction><SpeedAction>\n"
+      "<SpeedActionDynamics dynamicsShape=\"linear\" dynamicsDimension=\"rate\"/>\n"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"20\"/></SpeedActionTarget>"
+      "</SpeedAction></LongitudinalAction></PrivateAction>\n</Private>\n";
+  const std::string xml = text.str();
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  REQUIRE(loaded.errors.size() == 1);
+  CHECK(loaded.errors[0].line == line_of(xml, "dynamicsShape=\"linear\""));
+  CHECK_THAT(loaded.errors[0].message, Catch::Contains("needs the attribute value"));
+}
+
+TEST_CASE("a condition without conditionEdge is read as edge none", "[xosc][lenient]") {
+  ScenarioText text;
+  text.stories = corsa::test::story_with(corsa::test::speed_event(
+      "Go", "10",
+      "<ConditionGroup><Condition name=\"C\" delay=\"0\"><ByValueCondition>"
+      "<SimulationTimeCondition value=\"1\" rule=\"greaterThan\"/></ByValueCondition>"
+      "</Condition></ConditionGroup>\n"));
+  const std::string xml = text.str();
+  check_both_ways(xml, "<Condition> without conditionEdge", line_of(xml, "<Condition name"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  const auto& event =
+      loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
+  CHECK(event.start_trigger->groups[0].conditions[0].edge == ConditionEdge::kNone);
+}
+
+TEST_CASE("the draft attribute edge of a condition is read as conditionEdge", "[xosc][lenient]") {
+  const std::string condition =
+      "<ConditionGroup><Condition name=\"C\" delay=\"0\" edge=\"rising\"><ByValueCondition>"
+      "<SimulationTimeCondition value=\"1\" rule=\"greaterThan\"/></ByValueCondition>"
+      "</Condition></ConditionGroup>\n";
+  ScenarioText text;
+  text.stories = corsa::test::story_with(corsa::test::speed_event("Go", "10", condition));
+  const std::string xml = text.str();
+  check_both_ways(xml, "attribute 'edge' of <Condition>", line_of(xml, "<Condition name"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  CHECK(loaded.warnings.size() == 1);  // no "unknown attribute" besides the reading
+  const auto& event =
+      loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
+  CHECK(event.start_trigger->groups[0].conditions[0].edge == ConditionEdge::kRising);
+
+  // Both spellings at once say the edge twice: an error.
+  std::string both = xml;
+  both.replace(both.find("edge=\"rising\""), 13, "edge=\"rising\" conditionEdge=\"none\"");
+  const Loaded twice = load(dir, both);
+  REQUIRE(twice.errors.size() == 1);
+  CHECK_THAT(twice.errors[0].message, Catch::Contains("'edge' and 'conditionEdge' together"));
+}
+
+TEST_CASE("a capitalised boolean is read as its lower-case value", "[xosc][lenient]") {
+  ScenarioText text;
+  text.stories = corsa::test::story_with(corsa::test::speed_event("Go"));
+  std::string xml = text.str();
+  xml.replace(xml.find("selectTriggeringEntities=\"false\""), 32,
+              "selectTriggeringEntities=\"True\"");
+  check_both_ways(xml, "attribute selectTriggeringEntities: 'True' is not lower case",
+                  line_of(xml, "<Actors"));
+  corsa::test::TempDir dir;
+  CHECK(load(dir, xml)
+            .scenario->storyboard.stories[0]
+            .acts[0]
+            .maneuver_groups[0]
+            .actors.select_triggering_entities);
+  std::string wrong = xml;
+  wrong.replace(wrong.find("\"True\""), 6, "\"no\"");
+  const Loaded refused = load(dir, wrong);
+  REQUIRE(refused.errors.size() == 1);
+  CHECK_THAT(refused.errors[0].message, Catch::Contains("is not a boolean"));
+}
+
+TEST_CASE("an empty Storyboard StopTrigger lets a run with stories end with its stories",
+          "[xosc]") {
+  ScenarioText text;
+  text.stories = corsa::test::story_with(corsa::test::speed_event("Go"));
+  std::string xml = text.str();
+  xml.replace(xml.find("</Storyboard>"), 13, "<StopTrigger/>\n</Storyboard>");
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  REQUIRE(loaded.errors.empty());
+  CHECK(!loaded.scenario->storyboard.stop_trigger);
+  CHECK(loaded.warnings.empty());  // valid 1.0 form: no reading needed
+
+  // Without stories it is kept, so a traffic-only run goes on until its duration.
+  ScenarioText traffic;
+  std::string bare = traffic.str();
+  bare.replace(bare.find("</Storyboard>"), 13, "<StopTrigger/>\n</Storyboard>");
+  const Loaded kept = load(dir, bare);
+  REQUIRE(kept.scenario);
+  REQUIRE(kept.scenario->storyboard.stop_trigger);
+  CHECK(kept.scenario->storyboard.stop_trigger->groups.empty());
+}
+
+TEST_CASE("an OpenSCENARIO 0.9 element names its 1.0 replacement", "[xosc]") {
+  ScenarioText text;
+  std::string xml = text.str();
+  xml.replace(xml.find("<CatalogLocations>"), 18, "<Catalogs>");
+  xml.replace(xml.find("</CatalogLocations>"), 19, "</Catalogs>");
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  REQUIRE(!loaded.errors.empty());
+  CHECK(loaded.errors[0].line == line_of(xml, "<Catalogs>"));
+  CHECK_THAT(loaded.errors[0].message, Catch::Contains("<Catalogs> is OpenSCENARIO 0.9") &&
+                                           Catch::Contains("replaced with <CatalogLocations>"));
+}
+
+TEST_CASE("a catalog entry using a parameter only the scenario declares reads the scenario's",
+          "[xosc][lenient]") {
+  const std::string catalog =
+      "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n"
+      "<FileHeader revMajor=\"1\" revMinor=\"3\" date=\"2024-01-01T00:00:00\" "
+      "description=\"c\" author=\"corsa\"/>\n"
+      "<Catalog name=\"Moves\">\n<Maneuver name=\"Speed\">\n" +
+      corsa::test::speed_event("Go", "$Target") + "</Maneuver>\n</Catalog>\n</OpenSCENARIO>\n";
+  ScenarioText text;
+  text.parameters =
+      "<ParameterDeclaration name=\"Target\" parameterType=\"double\" value=\"12\"/>\n";
+  text.catalogs = "<ManeuverCatalog><Directory path=\"cat\"/></ManeuverCatalog>\n";
+  text.stories =
+      "<Story name=\"S\">\n<Act name=\"A\">\n"
+      "<ManeuverGroup name=\"G\" maximumExecutionCount=\"1\">\n"
+      "<Actors selectTriggeringEntities=\"false\"><EntityRef entityRef=\"Ego\"/></Actors>\n"
+      "<CatalogReference catalogName=\"Moves\" entryName=\"Speed\"/>\n"
+      "</ManeuverGroup>\n</Act>\n</Story>\n";
+  const std::string xml = text.str();
+  corsa::test::TempDir dir;
+  corsa::test::write_text(dir.path() / "cat" / "moves.xosc", catalog);
+  const Loaded lenient = load(dir, xml);
+  INFO((lenient.errors.empty() ? std::string() : lenient.errors[0].format()));
+  REQUIRE(lenient.errors.empty());
+  const auto warning = warning_with(lenient, "parameter '$Target' is not declared in its catalog");
+  CHECK(warning.line == line_of(catalog, "AbsoluteTargetSpeed"));
+  CHECK_THAT(warning.message, Catch::Contains("(read as the scenario's global parameter, '12')"));
+  const auto& action = lenient.scenario->storyboard.stories[0]
+                           .acts[0]
+                           .maneuver_groups[0]
+                           .maneuvers[0]
+                           .events[0]
+                           .actions[0];
+  const auto& speed = std::get<SpeedAction>(std::get<PrivateAction>(action.action));
+  CHECK(std::get<AbsoluteTargetSpeed>(speed.target).value == 12.0);
+  const Loaded strict = load(dir, xml, true);
+  REQUIRE(!strict.errors.empty());
+  CHECK_THAT(strict.errors[0].message, Catch::Contains("not declared in its catalog entry"));
+
+  // A name the scenario does not declare either stays undefined.
+  std::string undeclared = xml;
+  undeclared.replace(undeclared.find("name=\"Target\""), 13, "name=\"Other\"");
+  const Loaded refused = load(dir, undeclared);
+  REQUIRE(!refused.errors.empty());
+  CHECK_THAT(refused.errors[0].message, Catch::Contains("undefined parameter '$Target'"));
+}
+
+TEST_CASE("a relative object position without dx or dy is read as no offset", "[xosc][lenient]") {
+  ScenarioText text;
+  text.init +=
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position>\n"
+      "<RelativeObjectPosition entityRef=\"Ego\" dy=\"2\"/>\n"
+      "</Position></TeleportAction></PrivateAction>\n</Private>\n";
+  const std::string xml = text.str();
+  check_both_ways(xml, "<RelativeObjectPosition> without dx",
+                  line_of(xml, "<RelativeObjectPosition"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  const auto& teleport =
+      std::get<TeleportAction>(loaded.scenario->storyboard.init.privates[1].actions[0]);
+  const auto& relative = std::get<RelativeObjectPosition>(teleport.position.kind);
+  CHECK(relative.dx == 0.0);
+  CHECK(relative.dy == 2.0);
+}
+
+TEST_CASE("a VisibilityAction flag left out leaves that visibility unchanged", "[xosc][lenient]") {
+  ScenarioText text;
+  text.init +=
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><VisibilityAction sensors=\"false\"/></PrivateAction>\n</Private>\n";
+  const std::string xml = text.str();
+  check_both_ways(xml, "<VisibilityAction> without graphics", line_of(xml, "<VisibilityAction"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = load(dir, xml);
+  const auto& visibility =
+      std::get<VisibilityAction>(loaded.scenario->storyboard.init.privates[1].actions[0]);
+  CHECK(visibility.sensors == std::optional<bool>(false));
+  CHECK(!visibility.graphics);
+  CHECK(!visibility.traffic);
+}

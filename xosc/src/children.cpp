@@ -2,11 +2,35 @@
 
 #include <algorithm>
 #include <exception>
+#include <string>
+#include <utility>
 
 #include "parse_context.h"
 #include "schema_table.h"
 
 namespace corsa::xosc {
+namespace {
+
+// Elements of the OpenSCENARIO 0.9 draft that 1.0 renamed (esmini still ships a few 0.9 files):
+// naming the 1.0 form tells the reader why a whole file is refused.
+std::string_view draft_replacement(std::string_view name) {
+  static constexpr std::pair<std::string_view, std::string_view> kDraft[] = {
+      {"ParameterDeclaration", "ParameterDeclarations"},
+      {"Catalogs", "CatalogLocations"},
+      {"Logics", "LogicFile"},
+      {"SceneGraph", "SceneGraphFile"},
+      {"Object", "ScenarioObject"},
+      {"Sequence", "ManeuverGroup"},
+      {"StartConditions", "StartTrigger"},
+      {"Conditions", "StartTrigger and StopTrigger"},
+  };
+  for (const auto& [draft, replacement] : kDraft) {
+    if (name == draft) return replacement;
+  }
+  return {};
+}
+
+}  // namespace
 
 Children::Children(ParseContext& context, const Element* element, std::string_view type)
     : context_(context), element_(element), type_(type) {
@@ -28,6 +52,12 @@ Children::Children(ParseContext& context, const Element* element, std::string_vi
                      std::string(rule->children[i]);
         }
         message += ")";
+      }
+      if (const std::string_view replacement = draft_replacement(child->Name());
+          !replacement.empty()) {
+        message += "; <" + std::string(child->Name()) +
+                   "> is OpenSCENARIO 0.9 (a draft before 1.0), which 1.0 replaced with <" +
+                   std::string(replacement) + ">: Corsa reads 1.0 to 1.3";
       }
       context.error(child, std::move(message));  // reported; the child is not read
     }

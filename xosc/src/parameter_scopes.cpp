@@ -101,7 +101,6 @@ std::string ParseContext::resolve_in(const Element* element, const std::string& 
 }
 
 const Value* ParseContext::lookup(std::string_view name, size_t upto, const Element* from) {
-  (void)from;
   if (upto == 0) return nullptr;
   const size_t barrier = scopes_[upto - 1].barrier;
   for (size_t k = upto; k-- > barrier;) {
@@ -118,6 +117,19 @@ const Value* ParseContext::lookup(std::string_view name, size_t upto, const Elem
         return &scopes_[k].entries[i].declaration.value;
       }
     }
+  }
+  if (barrier == 0 || from == nullptr) return nullptr;
+  // §9.4: a catalog entry sees only its own declarations. esmini's catalogs use parameters that
+  // only the scenario declares (its HWManeuvers use $AccRate), which esmini resolves in the
+  // scenario's global scope: one parameter of that name, so the meaning is clear.
+  auto& globals = scopes_[0].entries;
+  for (size_t i = 0; i < globals.size(); ++i) {
+    if (globals[i].declaration.name != name) continue;
+    resolve_entry(0, i);
+    const Value& value = scopes_[0].entries[i].declaration.value;
+    lenient(from, "parameter '$" + std::string(name) + "' is not declared in its catalog entry",
+            "the scenario's global parameter, '" + clip(value.text()) + "'");
+    return &value;
   }
   return nullptr;
 }

@@ -258,7 +258,20 @@ Condition parse_condition(ParseContext& ctx, const Element* e) {
   if (condition.delay < 0.0) {
     ctx.fail(e, "condition delay must not be negative");
   }
-  condition.edge = ctx.req_enum<ConditionEdge>(e, "conditionEdge");
+  std::optional<ConditionEdge> edge = ctx.opt_enum<ConditionEdge>(e, "conditionEdge");
+  if (edge && e->Attribute("edge") != nullptr) {
+    ctx.error(e, "attributes 'edge' and 'conditionEdge' together (the file says it twice)");
+  } else if (!edge && e->Attribute("edge") != nullptr) {
+    // `edge` is the attribute's name in pre-1.0 drafts; esmini's examples still write it.
+    edge = ctx.opt_enum<ConditionEdge>(e, "edge");
+    ctx.lenient(e, "attribute 'edge' of <Condition>",
+                "conditionEdge " + std::string(to_string(*edge)));
+  } else if (!edge) {
+    // §7.6.2: `none` evaluates the condition as it is; an edge needs saying (esmini's 1.0
+    // examples leave the attribute out for the plain condition).
+    ctx.lenient(e, "<Condition> without conditionEdge", "conditionEdge none");
+  }
+  condition.edge = edge.value_or(ConditionEdge::kNone);
   const Element* kind = kids.choice();
   if (std::string_view(kind->Name()) == "ByEntityCondition") {
     condition.kind = parse_by_entity(ctx, kind);

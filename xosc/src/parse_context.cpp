@@ -1,6 +1,7 @@
 #include "parse_context.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <exception>
 
@@ -322,6 +323,15 @@ std::optional<bool> ParseContext::opt_bool(const Element* element, const char* n
   if (failed_) return false;
   const auto value = parse_value(ParameterType::kBoolean, *text);
   if (!value) {
+    // xsd:boolean is lower case; `False` / `TRUE` (some writers capitalise) can mean one thing.
+    std::string lower = *text;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (lower == "true" || lower == "false") {
+      lenient(element, "attribute " + std::string(name) + ": '" + *text + "' is not lower case",
+              lower);
+      return lower == "true";
+    }
     error(element, "attribute " + std::string(name) + ": '" + clip(*text) +
                        "' is not a boolean (true or false)");
     return false;

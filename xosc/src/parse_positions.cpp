@@ -27,8 +27,15 @@ T parse_relative_xyz(ParseContext& ctx, const Element* e, const char* type) {
   T position;
   position.entity_ref = ctx.req_str(e, "entityRef");
   ctx.use_entity(e, position.entity_ref, "entityRef");
-  position.dx = ctx.req_double(e, "dx");
-  position.dy = ctx.req_double(e, "dy");
+  // dx and dy are required; an offset left out is no offset (esmini's clothoid example writes
+  // <RelativeObjectPosition entityRef="Car"/> for "where the car is"), as dz already is.
+  for (const char* axis : {"dx", "dy"}) {
+    if (e->Attribute(axis) == nullptr) {
+      ctx.lenient(e, std::string("<") + type + "> without " + axis, std::string(axis) + " 0");
+    }
+  }
+  position.dx = ctx.opt_double(e, "dx").value_or(0.0);
+  position.dy = ctx.opt_double(e, "dy").value_or(0.0);
   position.dz = ctx.opt_double(e, "dz");
   position.orientation = optional_orientation(ctx, kids);
   position.source = ctx.source(e);

@@ -14,9 +14,24 @@ namespace {
 
 TransitionDynamics parse_dynamics(ParseContext& ctx, const Element* e) {
   Children(ctx, e, "TransitionDynamics");
-  TransitionDynamics dynamics{ctx.req_enum<DynamicsDimension>(e, "dynamicsDimension"),
-                              ctx.req_enum<DynamicsShape>(e, "dynamicsShape"),
-                              ctx.req_double(e, "value"),
+  std::optional<DynamicsDimension> dimension =
+      ctx.opt_enum<DynamicsDimension>(e, "dynamicsDimension");
+  const auto shape = ctx.req_enum<DynamicsShape>(e, "dynamicsShape");
+  std::optional<double> value = ctx.opt_double(e, "value");
+  if (shape == DynamicsShape::kStep && (!dimension || !value)) {
+    // A step reaches its target at once (§7.4.1.1), whatever its dimension and value say:
+    // esmini's examples write `<SpeedActionDynamics dynamicsShape="step"/>` for "at once".
+    const char* absent = !dimension && !value ? "dynamicsDimension and value"
+                         : !dimension         ? "dynamicsDimension"
+                                              : "value";
+    ctx.lenient(e, std::string("step transition dynamics without ") + absent,
+                "a step: the target at once");
+    dimension = dimension.value_or(DynamicsDimension::kTime);
+    value = value.value_or(0.0);
+  }
+  if (!dimension) ctx.missing(e, "dynamicsDimension");
+  if (!value) ctx.missing(e, "value");
+  TransitionDynamics dynamics{*dimension, shape, *value,
                               ctx.opt_enum<FollowingMode>(e, "followingMode"), ctx.source(e)};
   if (dynamics.value < 0.0) {
     // A negative rate ("-4" for braking at 4 m/s^2) says which way the speed goes, which the
@@ -177,9 +192,18 @@ PrivateAction parse_lateral(ParseContext& ctx, const Element* e) {
 VisibilityAction parse_visibility(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "VisibilityAction");
   VisibilityAction action;
-  action.graphics = ctx.req_bool(e, "graphics");
-  action.sensors = ctx.req_bool(e, "sensors");
-  action.traffic = ctx.req_bool(e, "traffic");
+  // All three flags are required; esmini's examples write only those the action changes
+  // (<VisibilityAction sensors="false"/> hides the actor from sensors and nothing else), so an
+  // absent flag leaves that visibility as it is.
+  for (const char* flag : {"graphics", "sensors", "traffic"}) {
+    if (e->Attribute(flag) == nullptr) {
+      ctx.lenient(e, std::string("<VisibilityAction> without ") + flag,
+                  std::string(flag) + " visibility unchanged");
+    }
+  }
+  action.graphics = ctx.opt_bool(e, "graphics");
+  action.sensors = ctx.opt_bool(e, "sensors");
+  action.traffic = ctx.opt_bool(e, "traffic");
   if (const Element* set = kids.opt("SensorReferenceSet")) {
     Children set_kids(ctx, set, "SensorReferenceSet");
     for (const Element* ref : set_kids.at_least("SensorReference", 1)) {

@@ -230,9 +230,14 @@ Storyboard parse_storyboard(ParseContext& ctx, const Element* e) {
   }
   if (const Element* stop = kids.opt("StopTrigger")) {
     ctx.recover([&] {
-      // An empty StopTrigger is kept: it never fires, so the run goes on until its duration
-      // (a run without stories that only moves traffic, for instance).
+      // An empty StopTrigger never fires. Without stories it is kept, so the run goes on until
+      // its duration (a run that only moves traffic). With stories it is dropped, so the run
+      // ends with its last story: 1.0 required a Storyboard StopTrigger, and `<StopTrigger/>`
+      // was how "no stop condition" was written (esmini ends such runs when all acts are done).
       storyboard.stop_trigger = parse_trigger(ctx, stop);
+      if (storyboard.stop_trigger->groups.empty() && !storyboard.stories.empty()) {
+        storyboard.stop_trigger.reset();
+      }
     });
   }
   storyboard.source = ctx.source(e);

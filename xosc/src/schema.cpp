@@ -57,7 +57,7 @@ Color|ColorRgb ColorCmyk|colorType
 ColorCmyk||cyan magenta yellow key
 ColorRgb||red green blue
 ComponentAnimation|VehicleComponent UserDefinedComponent|
-Condition|ByEntityCondition ByValueCondition|conditionEdge delay name
+Condition|ByEntityCondition ByValueCondition|conditionEdge delay edge name
 ConditionGroup|Condition|
 ConnectTrailerAction||trailerRef
 Controller|ParameterDeclarations Properties|name controllerType

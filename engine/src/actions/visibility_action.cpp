@@ -14,10 +14,11 @@ class VisibilityInstance final : public InstantAction {
  public:
   explicit VisibilityInstance(const xosc::VisibilityAction& action) : action_(action) {}
   void start(ActionContext& context) override {
-    context.entity().state.visible = action_.sensors;
+    // A flag the file left out keeps the visibility it had (a lenient reading).
+    if (action_.sensors) context.entity().state.visible = *action_.sensors;
     ControlState& control = control_of(context.state, *context.actor);
-    control.traffic_visible = action_.traffic;
-    control.graphics_visible = action_.graphics;
+    if (action_.traffic) control.traffic_visible = *action_.traffic;
+    if (action_.graphics) control.graphics_visible = *action_.graphics;
     if (!action_.sensor_refs.empty()) {
       context.state.diagnostics.add_once(
           "visibility-sensor-refs",

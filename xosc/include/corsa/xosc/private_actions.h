@@ -124,9 +124,10 @@ struct LateralDistanceAction {
 };
 
 struct VisibilityAction {
-  bool graphics = true;
-  bool sensors = true;
-  bool traffic = true;
+  /// Each flag is required by the standard; absent (a lenient reading) means "unchanged".
+  std::optional<bool> graphics = true;
+  std::optional<bool> sensors = true;
+  std::optional<bool> traffic = true;
   std::vector<std::string> sensor_refs;  ///< SensorReferenceSet names
   Source source;
 };
