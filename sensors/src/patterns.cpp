@@ -61,7 +61,6 @@ SurfaceSample asphalt(const Material& m, const TexturePoint& p) {
   const double grain = noise(0, q.a, q.b, 1.5, fp);  // aggregate, ~6 mm texels
   const double mid = noise(1, q.a, q.b, 14.0, fp);   // patches of a few metres
   const double wear = noise(2, q.a, q.b, 90.0, fp);  // older, lighter stretches
-  const double field = noise(3, q.a, q.b, 9.0, fp);
   double tone = 1.0 + 0.7 * (grain - 0.5) + 0.45 * (mid - 0.5);
   tone *= 1.0 + 0.35 * m.params[0] * smoothstep(0.45, 0.75, wear);
   // Light stones of the aggregate: one in ten 1 cm cells.
@@ -72,9 +71,15 @@ SurfaceSample asphalt(const Material& m, const TexturePoint& p) {
     tone += stone_weight * (r < 0.1 ? 0.5 : 0.0) - stone_weight * 0.05;
   }
   // Cracks: the 0.5 level line of a field, thin; below a resolvable size they only darken.
-  const double crack = (1.0 - smoothstep(0.0, 0.005, std::fabs(field - 0.5))) *
-                       (1.0 - smoothstep(0.004, 0.02, fp)) * smoothstep(0.6, 0.75, wear);
-  tone *= 1.0 - 0.35 * crack;
+  // Their field is read only where they can show (a footprint under 2 cm on worn asphalt):
+  // elsewhere a factor is exactly 0, and skipping the read keeps every value.
+  const double resolved = 1.0 - smoothstep(0.004, 0.02, fp);
+  const double worn = smoothstep(0.6, 0.75, wear);
+  if (resolved > 0.0 && worn > 0.0) {
+    const double field = noise(3, q.a, q.b, 9.0, fp);
+    const double crack = (1.0 - smoothstep(0.0, 0.005, std::fabs(field - 0.5))) * resolved * worn;
+    tone *= 1.0 - 0.35 * crack;
+  }
   s.albedo = m.base_color * std::max(0.2, tone);
   s.roughness = std::clamp(m.roughness - 0.15 * (1.0 - wear), 0.3, 1.0);
   return s;
