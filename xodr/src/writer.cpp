@@ -272,7 +272,7 @@ void write_object(XmlWriter& w, const Object& o) {
   w.close();
 }
 
-void write_objects_and_signals(XmlWriter& w, const Road& road, const WriteOptions& options) {
+void write_objects_and_signals(XmlWriter& w, const Road& road) {
   if (!road.objects.empty() || !road.tunnels.empty() || !road.bridges.empty()) {
     w.open("objects").children();
     for (const Object& o : road.objects) {
@@ -303,9 +303,8 @@ void write_objects_and_signals(XmlWriter& w, const Road& road, const WriteOption
         w.attr("unit", g.unit);
       }
       w.attr("height", g.height).attr("width", g.width).attr("text", g.text);
-      if (g.length > 0.0 && options.rev_minor >= 8) {
-        w.attr("length", g.length);  // a signal's length is new in OpenDRIVE 1.8
-      }
+      // A signal's length (new in OpenDRIVE 1.8) is not written: every map Corsa writes stays
+      // within the 1.7 schema, which xmllint can check (it cannot compile the 1.8 one).
       if (g.user_data.empty() && g.validities.empty()) {
         w.end_empty();
         continue;
@@ -376,7 +375,7 @@ void write_road(XmlWriter& w, const Road& road, const WriteOptions& options) {
     write_lane_section(w, section, options);
   }
   w.close();
-  write_objects_and_signals(w, road, options);
+  write_objects_and_signals(w, road);
   write_user_data(w, road.user_data);
   w.close();
 }
