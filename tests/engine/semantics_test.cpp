@@ -45,6 +45,23 @@ TEST_CASE("A step's travel is the exact integral of the speed, or esmini's speed
   }
 }
 
+TEST_CASE("The step in which a step-shaped SpeedAction starts is driven at the new speed",
+          "[engine][semantics]") {
+  // The car stands at s = 10 until a story's SpeedAction of shape step sets 10 m/s at once. The
+  // step that starts the action moves 10 x dt = 0.1 m (averaging 0 and 10 over it would give
+  // 0.05 m), and from then on the car covers 10 m each second.
+  FixtureRun run(engine_fixture("semantics_speed_jump.xosc"));
+  run.run();
+  const double dt = run.sim().dt();
+  const auto started = run.first("jump", engine::TransitionKind::kStart);
+  REQUIRE(started);
+  const double t0 = *started;
+  CHECK(run.at(t0, "Car").road->s == Approx(10.0).margin(1e-12));
+  CHECK(run.at(t0 + dt, "Car").speed == Approx(10.0).margin(1e-12));
+  CHECK(run.at(t0 + dt, "Car").road->s == Approx(10.1).margin(1e-9));
+  CHECK(run.at(t0 + 1.0, "Car").road->s == Approx(20.0).margin(1e-9));
+}
+
 TEST_CASE("During a lane change the lane is followed at the speed, or esmini's path at it",
           "[engine][semantics]") {
   // At 10 m/s the car changes 3.5 m to the right linearly in 1 s: 0.035 m across in each step of

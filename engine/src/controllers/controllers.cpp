@@ -199,10 +199,14 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
               LanesAhead& ahead) {
   const DefaultController ideal;
   Entity& entity = state.world.entities[i];
+  const ControllerKind kind = state.controls[i].effective();
+  if (kind != ControllerKind::kDefault || !entity.state.placed || entity.towed_by) {
+    // Car following and the vehicle model reach a new speed their own way, not by a jump.
+    entity.speed_jump = false;
+  }
   if (!entity.state.placed || entity.towed_by) {
     return;  // a connected trailer follows its tower (motion/trailers.h)
   }
-  const ControllerKind kind = state.controls[i].effective();
   if (entity.info.kind == ObjectKind::kPedestrian && kind == ControllerKind::kDefault) {
     step_pedestrian(state, i, ideal, motion, view);
     return;

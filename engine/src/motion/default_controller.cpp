@@ -132,9 +132,12 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
   const double dt = context.dt;
   const double v0 = state.speed;
   double v1 = entity.speed_command;
-  // The speed changes linearly within the step, so the trapezoid rule is its exact integral;
-  // esmini moves by the speed at the step's end (SimulationOptions::semantics).
-  const double distance = context.end_speed_travel ? v1 * dt : 0.5 * (v0 + v1) * dt;
+  // The speed changes linearly within the step, so the trapezoid rule is its exact integral; a
+  // jump (step shape) holds the new speed from the step's start. esmini moves by the speed at
+  // the step's end (SimulationOptions::semantics).
+  const bool at_end_speed = context.end_speed_travel || entity.speed_jump;
+  entity.speed_jump = false;
+  const double distance = at_end_speed ? v1 * dt : 0.5 * (v0 + v1) * dt;
   const double h0 = state.pose.h;
   double path = std::abs(distance);
   double lateral_change = 0.0;
