@@ -207,6 +207,7 @@ class Planner {
       chain_connecting_roads(static_cast<int>(j));
     }
     trim_staggered_ends(plan_);
+    trim_off_line_ends(plan_);
     add_context();
     return std::move(plan_);
   }

@@ -160,13 +160,17 @@ std::vector<Point2> hermite(Vec2 a, Vec2 ta, Vec2 b, Vec2 tb) {
 /// four times as tightly at its end and folds the lanes on its inside. The laneOffset takes up
 /// the arc's sideways drift (§9.3). `target.point` when the chord does not meet the line ahead,
 /// and for bends shorter than kMinEvenTurn (a road of a few metres: its plan view could not
-/// follow the drift within the fit tolerance, and its lanes' ends would move).
-constexpr double kMinEvenTurn = 4.0;  // m
+/// follow the drift within the fit tolerance, and its lanes' ends would move) unless it hardly
+/// turns (under kStraightTurn): a piece of a metre between two parallel skewed lines (a road
+/// cut where one lane ends short of the others' stop line) then runs straight from line to line,
+/// where a curve to the line of travel would swing by twice the skew and fold its lanes.
+constexpr double kMinEvenTurn = 4.0;   // m
+constexpr double kStraightTurn = 0.05;  // rad
 Vec2 even_turn_end(Vec2 start, Vec2 heading, const EndTarget& target) {
-  if (norm(target.point - start) < kMinEvenTurn) {
+  const double turn = std::atan2(cross(heading, target.square), dot(heading, target.square));
+  if (norm(target.point - start) < kMinEvenTurn && std::abs(turn) >= kStraightTurn) {
     return target.point;
   }
-  const double turn = std::atan2(cross(heading, target.square), dot(heading, target.square));
   const double half = 0.5 * turn;
   const Vec2 chord{std::cos(half) * heading.x - std::sin(half) * heading.y,
                    std::sin(half) * heading.x + std::cos(half) * heading.y};

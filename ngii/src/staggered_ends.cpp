@@ -1,8 +1,11 @@
 #include "staggered_ends.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "road_plan.h"
+#include "road_reference.h"
 
 namespace corsa::ngii::detail {
 namespace {
@@ -59,7 +62,115 @@ Stagger stagger_of(const RoadPlan& road, bool at_end) {
   return out;
 }
 
+/// m: lanes ending farther off their neighbours' end line than this are left alone (another
+/// mechanism, or none, must take them: a lane section's worth of difference is not a stop line).
+constexpr double kMaxOffLine = 4.0;
+
+/// A cut of one road end: which lanes are cut, and the line they are cut along.
+struct OffLineCut {
+  std::vector<bool> cut;
+  Vec2 point;
+  Vec2 normal;  ///< square to the cut line (crossing_u's direction)
+};
+
+/// Where lanes of `road` end off the line through the others' ends at that end (all lanes
+/// ending beside each other, the stray ones on one side of the line by about the same amount).
+std::optional<OffLineCut> off_line_cut(const RoadPlan& road, bool at_end) {
+  const size_t n = road.lanes.size();
+  std::vector<Vec2> ends;
+  for (size_t k = 0; k < n; ++k) {
+    if (effective_end(road, k, !at_end) != LaneEnd::kBeside) {
+      return std::nullopt;
+    }
+    const PlanLane& lane = road.lanes[k];
+    ends.push_back(xy(at_end ? lane.points.back() : lane.points.front()));
+  }
+  const std::optional<EndLine> line = end_line(ends);
+  if (!line) {
+    return std::nullopt;
+  }
+  // Outward (beyond the road's end) along the road.
+  const Polyline first(road.lanes[0].points);
+  const Vec2 out = (at_end ? 1.0 : -1.0) * first.direction(at_end ? first.length() : 0.0);
+  Vec2 normal{line->across.y, -line->across.x};
+  if (dot(normal, out) < 0.0) {
+    normal = -1.0 * normal;
+  }
+  if (dot(normal, out) < 0.5) {
+    return std::nullopt;  // an end line along the road: nothing sensible to cut
+  }
+  std::vector<double> off(n);
+  std::vector<size_t> stray;
+  for (size_t k = 0; k < n; ++k) {
+    off[k] = dot(ends[k] - line->point, normal);  // > 0: beyond the line
+    if (!on_end_line(*line, ends[k])) {
+      stray.push_back(k);
+    }
+  }
+  if (stray.empty() || stray.size() + 2 > n + 1) {
+    return std::nullopt;
+  }
+  const auto [low, high] = std::minmax_element(stray.begin(), stray.end(), [&](size_t a, size_t b) {
+    return off[a] < off[b];
+  });
+  if ((off[*low] < 0.0) != (off[*high] < 0.0) || off[*high] - off[*low] > 0.25 ||
+      std::max(std::abs(off[*low]), std::abs(off[*high])) > kMaxOffLine) {
+    return std::nullopt;
+  }
+  OffLineCut cut{std::vector<bool>(n, false), line->point, normal};
+  if (off[*low] > 0.0) {
+    // Reaching beyond: the stray lanes are cut on the line.
+    for (const size_t k : stray) {
+      cut.cut[k] = true;
+    }
+  } else {
+    // Ending short: the others are cut on the parallel through the stray ends.
+    cut.point = line->point + off[*high] * normal;
+    for (size_t k = 0; k < n; ++k) {
+      cut.cut[k] = std::find(stray.begin(), stray.end(), k) == stray.end();
+    }
+  }
+  return cut;
+}
+
+/// Cuts the lanes `cut` of road `r` at that end along the line; each run of neighbouring cut
+/// lanes becomes a road of its own (appended to `plan`).
+void cut_off_lane_runs(NetworkPlan& plan, size_t r, bool at_end, const std::vector<bool>& cut,
+                       Vec2 point, Vec2 normal) {
+  for (size_t k = 0; k < cut.size();) {
+    if (!cut[k]) {
+      ++k;
+      continue;
+    }
+    RoadPlan piece;
+    for (; k < cut.size() && cut[k]; ++k) {
+      PlanLane& lane = plan.roads[r].lanes[k];
+      const Polyline line(lane.points);
+      const double u = crossing_u(line, point, normal, at_end ? line.length() : 0.0);
+      auto [front, back] = split_lane(lane, u, plan.node_keys++);
+      piece.lanes.push_back(std::move(at_end ? back : front));
+      lane = std::move(at_end ? front : back);
+    }
+    plan.roads.push_back(std::move(piece));
+  }
+}
+
 }  // namespace
+
+void trim_off_line_ends(NetworkPlan& plan) {
+  const size_t count = plan.roads.size();
+  for (size_t r = 0; r < count; ++r) {
+    for (const bool at_end : {false, true}) {
+      const RoadPlan& road = plan.roads[r];
+      if (road.removed || road.junction >= 0 || road.lanes.size() < 3) {
+        continue;
+      }
+      if (const auto cut = off_line_cut(road, at_end)) {
+        cut_off_lane_runs(plan, r, at_end, cut->cut, cut->point, cut->normal);
+      }
+    }
+  }
+}
 
 void trim_staggered_ends(NetworkPlan& plan) {
   const LaneIndex index(plan);

@@ -14,4 +14,12 @@ namespace corsa::ngii::detail {
 /// (appended to `plan`; the cut points get fresh topology keys).
 void trim_staggered_ends(NetworkPlan& plan);
 
+/// Lanes of an ordinary road that end off the line through the other lanes' ends (by more than
+/// the 0.25 m end_line allows, road_reference.h): an OpenDRIVE road ends on one straight line
+/// across it (§8.2), so either the lane reaching beyond that line or, for a lane ending short of
+/// it, the other lanes are cut where they cross the line (its parallel through the short lane's
+/// end), and the cut-off parts become a road of their own. Every lane then starts and ends where
+/// its link does; the road ends meet in a direct junction where more than one road continues.
+void trim_off_line_ends(NetworkPlan& plan);
+
 }  // namespace corsa::ngii::detail
