@@ -16,12 +16,13 @@ void CorrectionLog::add(int link, std::string field, std::string old_value, std:
     corrections_.push_back(std::move(correction));
     return;
   }
-  Diagnostic warning = make_warning(layers_.link_file, 0,
-                                    "link " + correction.link_id + ": " + correction.field + " '" +
-                                        correction.old_value + "' -> '" + correction.new_value +
-                                        "': " + correction.reason);
-  warning.record = source.record;
-  diagnostics_.add(std::move(warning));
+  Diagnostic note = make_warning(layers_.link_file, 0,
+                                 "link " + correction.link_id + ": " + correction.field + " '" +
+                                     correction.old_value + "' -> '" + correction.new_value +
+                                     "': " + correction.reason);
+  note.severity = Severity::kNote;
+  note.record = source.record;
+  diagnostics_.add(std::move(note));
   corrections_.push_back(std::move(correction));
 }
 

@@ -1,9 +1,10 @@
 #pragma once
 
 // Collects the changes made to the source data: each becomes a Correction row (for --report);
-// each repair of a source defect also becomes a warning naming the A2_LINK record it touched
-// (DESIGN.md: any repair of bad data warns with the record). Relabelling that only follows
-// from the converter's own grouping is listed but not warned about.
+// each repair of a source defect also becomes a located note naming the A2_LINK record it
+// touched (a repair whose meaning is clear, made on every NGII delivery: the command line prints
+// one line counting them, each with --verbose, and refuses them with --strict; docs/ngii.md).
+// Relabelling that only follows from the converter's own grouping is listed, with no note.
 
 #include <string>
 #include <vector>
@@ -19,7 +20,7 @@ class CorrectionLog {
       : layers_(layers), diagnostics_(diagnostics) {}
 
   /// Records that `field` of link `link` (index into layers.links) changed from `old_value` to
-  /// `new_value` because of `reason`. Source defects warn; relabelling does not.
+  /// `new_value` because of `reason`. Source defects add a located note; relabelling does not.
   void add(int link, std::string field, std::string old_value, std::string new_value,
            std::string reason, CorrectionKind kind = CorrectionKind::kDefect);
 

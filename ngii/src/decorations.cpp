@@ -228,12 +228,15 @@ class Decorator {
       piece.mark = &mark;
       map_type(mark.type, reversed, piece);
       if (piece.type.empty()) {
-        Diagnostic warning = make_warning(layers_.mark_file, 0,
-                                          "marking Type '" + mark.type +
-                                              "' has no OpenDRIVE roadMark; such marks are left "
-                                              "out (first seen here)");
-        warning.record = mark.record;
-        diagnostics_.add_once("ngii-mark-type:" + mark.type, std::move(warning));
+        // A located note, not a warning: the code is valid in the data model (999 "other")
+        // and names no kind of line to draw; nothing is guessed.
+        Diagnostic note = make_warning(layers_.mark_file, 0,
+                                       "marking Type '" + mark.type +
+                                           "' has no OpenDRIVE roadMark; such marks are left "
+                                           "out (first seen here)");
+        note.severity = Severity::kNote;
+        note.record = mark.record;
+        diagnostics_.add_once("ngii-mark-type:" + mark.type, std::move(note));
         continue;
       }
       pieces[road].push_back(piece);

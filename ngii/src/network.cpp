@@ -135,12 +135,15 @@ void Network::clean_geometry(CorrectionLog& log, Diagnostics& diagnostics) {
     }
   }
   if (no_speed > 0) {
-    Diagnostic warning = make_warning(layers_.link_file, 0,
-                                      std::to_string(no_speed) +
-                                          " link(s) have MaxSpeed 0 (missing): no speed limit is "
-                                          "written for their lanes (the first is this one)");
-    warning.record = layers_.links[static_cast<size_t>(first_no_speed)].record;
-    diagnostics.add(std::move(warning));
+    // A located note: 0 is how the data marks a missing limit, and none is written (nothing
+    // is guessed).
+    Diagnostic note = make_warning(layers_.link_file, 0,
+                                   std::to_string(no_speed) +
+                                       " link(s) have MaxSpeed 0 (missing): no speed limit is "
+                                       "written for their lanes (the first is this one)");
+    note.severity = Severity::kNote;
+    note.record = layers_.links[static_cast<size_t>(first_no_speed)].record;
+    diagnostics.add(std::move(note));
   }
 }
 

@@ -115,7 +115,9 @@ void warn_missing_z(const ShapeReader& shapes, Diagnostics& diagnostics) {
   fail(shapes.file(), record, "record has no geometry");
 }
 
-/// Counts records without geometry in an optional layer; they are skipped with one warning.
+/// Counts records without geometry in an optional layer; they are skipped with one located note
+/// (a Null shape is a valid Shapefile record, ESRI Shapefile Technical Description, "Null Shapes": there is
+/// nothing to draw, and nothing is guessed).
 class SkippedShapes {
  public:
   SkippedShapes(const ShapeReader& shapes, Diagnostics& diagnostics)
@@ -127,11 +129,12 @@ class SkippedShapes {
   }
   ~SkippedShapes() {
     if (count_ > 0) {
-      Diagnostic warning = make_warning(
+      Diagnostic note = make_warning(
           shapes_.file(), 0,
           std::to_string(count_) + " record(s) without geometry skipped (the first is this one)");
-      warning.record = first_;
-      diagnostics_.add(std::move(warning));
+      note.severity = Severity::kNote;
+      note.record = first_;
+      diagnostics_.add(std::move(note));
     }
   }
 

@@ -109,6 +109,61 @@ TEST_CASE("corsa convert ngii writes K-City with a summary line and a correction
   }
 }
 
+TEST_CASE("both areas convert without a warning; repairs are one note line, each with --verbose",
+          "[ngii][cli][notes]") {
+  for (const char* area : {"kcity", "seoul_sangam_testbed"}) {
+    INFO(area);
+    corsa::test::TempDir dir;
+    const fs::path report = dir.path() / "fixes.csv";
+    const auto plain = run_corsa({"convert", "ngii", ngii_area(area).string(), "-o",
+                                  (dir.path() / "a.xodr").string(), "--report", report.string()});
+    REQUIRE(plain.exit_code == 0);
+    CHECK(plain.err.find("warning") == std::string::npos);
+    // One line on stderr counts the located notes (the progress bar goes elsewhere when not a
+    // terminal).
+    CHECK_THAT(plain.err, Catch::Contains(" located notes (source defects repaired or left out"));
+    CHECK(plain.err.find(": record ") == std::string::npos);
+    // --verbose prints one located line per repaired defect, as the report lists them.
+    const auto verbose = run_corsa({"convert", "ngii", ngii_area(area).string(), "-o",
+                                    (dir.path() / "b.xodr").string(), "--verbose"});
+    REQUIRE(verbose.exit_code == 0);
+    size_t defects = 0;
+    for (const auto& row : read_csv(report)) {
+      defects += row.back() == "defect";
+    }
+    size_t located = 0;
+    for (size_t at = verbose.err.find("A2_LINK.dbf: record "); at != std::string::npos;
+         at = verbose.err.find("A2_LINK.dbf: record ", at + 1)) {
+      located += verbose.err.compare(verbose.err.find(": ", at + 12) + 2, 6, "note: ") == 0 &&
+                 verbose.err.find("' -> '", at) < verbose.err.find('\n', at);
+    }
+    CHECK(defects > 300);
+    CHECK(located == defects);
+    CHECK(corsa::test::slurp(dir.path() / "a.xodr") == corsa::test::slurp(dir.path() / "b.xodr"));
+  }
+}
+
+TEST_CASE("corsa convert ngii --strict refuses every repair with its record and writes nothing",
+          "[ngii][cli][notes][errors]") {
+  corsa::test::TempDir out;
+  const fs::path output = out.path() / "k.xodr";
+  const auto result =
+      run_corsa({"convert", "ngii", ngii_area("kcity").string(), "-o", output.string(), "--strict"});
+  CHECK(result.exit_code == 2);
+  CHECK_FALSE(fs::exists(output));
+  CHECK_THAT(result.err,
+             Catch::Contains("A2_LINK.dbf: record 0: error: link A219BS010001: geometry '260 "
+                             "vertices' -> '259 vertices': duplicate consecutive vertices removed "
+                             "(refused by --strict)"));
+  // Every one, in one pass.
+  size_t errors = 0;
+  for (size_t at = result.err.find(": error: "); at != std::string::npos;
+       at = result.err.find(": error: ", at + 1)) {
+    ++errors;
+  }
+  CHECK(errors > 300);
+}
+
 TEST_CASE("corsa convert ngii is byte for byte repeatable", "[ngii][cli]") {
   const CliConversion& cli = kcity_cli();
   REQUIRE(cli.result.exit_code == 0);

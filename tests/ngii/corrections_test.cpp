@@ -60,7 +60,7 @@ TEST_CASE("K-City groups numbered 2 3 4 5 6 7 and 2 3 are renumbered from 1",
 
 TEST_CASE(
     "repeated lane numbers are a source defect; numbers continuing across a road split "
-    "are a relabelling, listed but not warned about",
+    "are a relabelling, listed without a note",
     "[ngii][corrections]") {
   const auto fixes = by_link("kcity");
   REQUIRE(fixes.contains({"A219BS010108", "LaneNo"}));
@@ -77,7 +77,7 @@ TEST_CASE(
   CHECK(relabel.new_value == "1");
   CHECK(relabel.kind == corsa::ngii::CorrectionKind::kRelabel);
   CHECK_THAT(relabel.reason, Catch::Contains("continuing the numbers of link A219BS010104"));
-  // Warnings name every defect and no relabelling.
+  // Located notes name every defect and no relabelling.
   const auto& area = converted("kcity");
   size_t defects = 0, relabels = 0;
   for (const auto& c : area.conversion.corrections) {
@@ -85,12 +85,16 @@ TEST_CASE(
   }
   CHECK(relabels > 0);
   CHECK(area.conversion.summary.defects == defects);
-  size_t repair_warnings = 0;
+  size_t repair_notes = 0;
   for (const auto& d : area.diagnostics.all()) {
-    repair_warnings += d.message.find("-> '") != std::string::npos;
+    if (d.message.find("-> '") != std::string::npos) {
+      ++repair_notes;
+      CHECK(d.severity == corsa::Severity::kNote);
+      CHECK(d.record >= 0);
+    }
     CHECK(d.message.find("A219BS010103: LaneNo") == std::string::npos);
   }
-  CHECK(repair_warnings == defects);
+  CHECK(repair_notes == defects);
 }
 
 TEST_CASE("Sangam's LaneNo 10 and L/R pointers to successors are repaired", "[ngii][corrections]") {
@@ -136,10 +140,10 @@ TEST_CASE("every correction names its link, its A2 record and a reason", "[ngii]
       CHECK_FALSE(c.reason.empty());
       CHECK(c.old_value != c.new_value);
     }
-    // The warnings name the same records.
+    // The notes name the same records.
     size_t located = 0;
     for (const auto& d : area.diagnostics.all()) {
-      located += d.severity == corsa::Severity::kWarning && d.record >= 0;
+      located += d.severity == corsa::Severity::kNote && d.record >= 0;
     }
     CHECK(located >= area.conversion.corrections.size() / 2);
   }

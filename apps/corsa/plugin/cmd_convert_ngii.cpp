@@ -1,11 +1,12 @@
 // `corsa convert ngii DIR -o OUT.xodr [--tolerance M] [--report FILE] [--placements FILE]
-// [--compat 1.4] [--sidewalks W] [--quiet]`: NGII HD road layers to OpenDRIVE (in the plugin:
+// [--compat 1.4] [--sidewalks W] [--verbose] [--strict] [--quiet]`: NGII HD road layers to OpenDRIVE (in the plugin:
 // the import needs PROJ and shapelib). Thin: arguments, progress, printing; the work is
 // corsa::ngii (ngii/).
 
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "args.h"
 #include "commands.h"
@@ -20,8 +21,9 @@
 namespace corsa::cli {
 namespace {
 
-/// Warnings printed before "... and N more" (every repair of a source defect warns; --report
-/// lists them all).
+/// Warnings printed before "... and N more". Repairs of source defects are located notes, not
+/// warnings: one line counts them (--verbose prints each, --report lists each, --strict refuses
+/// them).
 constexpr size_t kWarningsShown = 20;
 
 ArgParser make_parser() {
@@ -53,16 +55,31 @@ ArgParser make_parser() {
   parser.option("--sidewalks", "W",
                 "add sidewalk lanes W metres wide on the free outer edge of every road "
                 "(0.5-10)");
-  parser.flag("--quiet", "no progress bar, warnings or summary");
+  parser.flag("--verbose",
+              "print every located note (each repaired source defect with its A2 record)");
+  parser.flag("--strict",
+              "refuse source defects: every repair the conversion would make is an error "
+              "(exit 2, nothing written)");
+  parser.flag("--quiet", "no progress bar, warnings, notes or summary");
   parser.epilog("example:\n  corsa convert ngii data/kcity -o kcity.xodr --report kcity-fixes.csv");
   return parser;
 }
 
-void print_warnings(const Diagnostics& diagnostics) {
+/// The first kWarningsShown warnings; the notes (repaired source defects, skipped empty records)
+/// each with `verbose`, else one line counting them.
+void print_diagnostics(const Diagnostics& diagnostics, bool verbose) {
   size_t shown = 0;
   size_t hidden = 0;
+  size_t notes = 0;
   for (const Diagnostic& d : diagnostics.all()) {
     if (d.severity == Severity::kError) {
+      continue;
+    }
+    if (d.severity == Severity::kNote) {
+      ++notes;
+      if (verbose) {
+        std::cerr << d << '\n';
+      }
       continue;
     }
     if (shown < kWarningsShown) {
@@ -73,7 +90,29 @@ void print_warnings(const Diagnostics& diagnostics) {
     }
   }
   if (hidden > 0) {
-    std::cerr << "... and " << hidden << " more warnings (--report lists every repair)\n";
+    std::cerr << "... and " << hidden << " more warnings\n";
+  }
+  if (notes > 0 && !verbose) {
+    std::cerr << "note: " << notes
+              << " located notes (source defects repaired or left out, each with its record; "
+                 "--verbose prints them, --report lists every repair, --strict refuses them)\n";
+  }
+}
+
+/// With --strict: the notes of reading and converting (each a repaired source defect, or data
+/// left out: a record without geometry, a mark of type "other", a missing speed limit) as one
+/// InputError, before anything is written.
+void refuse_repairs(const Diagnostics& diagnostics) {
+  std::vector<Diagnostic> errors;
+  for (Diagnostic d : diagnostics.all()) {
+    if (d.severity == Severity::kNote) {
+      d.severity = Severity::kError;
+      d.message += " (refused by --strict)";
+      errors.push_back(std::move(d));
+    }
+  }
+  if (!errors.empty()) {
+    throw InputError(std::move(errors));
   }
 }
 
@@ -132,6 +171,7 @@ int convert_body(std::span<const std::string> args) {
     }
   }
   const bool quiet = parsed.flag("--quiet");
+  const bool verbose = parsed.flag("--verbose");
   const std::optional<std::filesystem::path> report = output_file(parsed, "--report");
   const std::optional<std::filesystem::path> placements = output_file(parsed, "--placements");
 
@@ -143,6 +183,9 @@ int convert_body(std::span<const std::string> args) {
     const ngii::Layers layers = ngii::read_layers(parsed.positionals().at(1), diagnostics);
     progress.update(0.1);
     conversion = ngii::convert(layers, options, diagnostics);
+    if (parsed.flag("--strict")) {
+      refuse_repairs(diagnostics);
+    }
     // The map must load in Corsa: checked here rather than found by the next user.
     xodr::Map::build(conversion.map, diagnostics);
     progress.update(0.95);
@@ -156,7 +199,7 @@ int convert_body(std::span<const std::string> args) {
     progress.finish();
   }
   if (!quiet) {
-    print_warnings(diagnostics);
+    print_diagnostics(diagnostics, verbose);
     print_summary(conversion.summary, output.string());
     if (report) {
       std::cout << "corrections: " << report->string() << '\n';

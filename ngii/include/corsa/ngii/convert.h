@@ -41,9 +41,9 @@ struct ConvertOptions {
 /// Whether a change is a repair of bad source data or only a relabelling that follows from how
 /// the converter grouped the lanes (the source was not wrong).
 enum class CorrectionKind : uint8_t {
-  kDefect,   ///< the source data breaks its own rules here (warned about)
+  kDefect,   ///< the source data breaks its own rules here (a located note names the record)
   kRelabel,  ///< renumbered to fit the converted roads (e.g. a road split off a lateral group
-             ///< restarts its LaneNo at 1); listed, not warned about
+             ///< restarts its LaneNo at 1); listed, no note
 };
 
 /// One change of the source data: which link, which field, the value before and after, and why.
@@ -108,8 +108,10 @@ struct Conversion {
   ConversionSummary summary;
 };
 
-/// Converts read layers. Data faults are repaired and reported (corrections, and one warning
-/// per repair naming the A2 record); faults that cannot be repaired throw corsa::InputError.
+/// Converts read layers. Data faults are repaired and reported (corrections, and one located
+/// note per repair naming the A2 record, Severity::kNote); faults that cannot be repaired throw
+/// corsa::InputError. What is left uncertain (no width to measure, a mark type OpenDRIVE lacks)
+/// is a warning.
 Conversion convert(const Layers& layers, const ConvertOptions& options,
                    corsa::Diagnostics& diagnostics);
 
