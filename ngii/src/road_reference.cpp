@@ -1,3 +1,6 @@
+// The reference polyline of a road (see road_reference.h): its reference lane shifted to its
+// left edge, and eased where its turns would fold the lanes; road_end_bend.cpp bends its ends.
+
 #include "road_reference.h"
 
 #include <algorithm>
@@ -9,9 +12,6 @@ namespace {
 
 constexpr double kMinShiftRadius = 1.5;     // m: tightest radius of the shifted reference line
 constexpr double kEase = 12.0;              // m over which a reduced shift is eased in and out
-constexpr double kEndLineTolerance = 0.25;  // m: lane ends farther from one line: no line
-constexpr double kMaxSkew = 50.0 * M_PI / 180.0;
-constexpr double kMinSkew = 0.2 * M_PI / 180.0;
 // Right turns (towards the lanes) tighter than the road is wide (plus kFoldClearance) are
 // smoothed over +-kRelaxReach, at most kRelaxRounds times; curvature from chords of kRelaxChord.
 constexpr double kRelaxReach = 2.0;  // m
@@ -21,8 +21,6 @@ constexpr int kRelaxRounds = 20;
 constexpr double kEndChord = 1.5;
 // rad: how far a one-lane road must turn right overall to be fitted along its right edge.
 constexpr double kInsideTurn = 0.5;
-
-Vec2 to_vec(const Point2& p) { return {p.x, p.y}; }
 
 std::vector<double> arc_lengths(const std::vector<Point2>& p) {
   std::vector<double> u(p.size(), 0.0);
@@ -73,218 +71,7 @@ void ease_at(std::vector<Point2>& p, const std::vector<double>& u,
   p = std::move(next);
 }
 
-double polyline_length(const std::vector<Point2>& p) {
-  double total = 0.0;
-  for (size_t i = 1; i < p.size(); ++i) {
-    total += norm(to_vec(p[i]) - to_vec(p[i - 1]));
-  }
-  return total;
-}
-
-/// The direction of travel at the end of `p` (over its last metre or so), or nothing.
-std::optional<Vec2> end_direction(const std::vector<Point2>& p) {
-  const size_t n = p.size();
-  if (n < 2) {
-    return std::nullopt;
-  }
-  const Vec2 last = to_vec(p[n - 1]);
-  size_t back = n - 2;
-  while (back > 0 && norm(last - to_vec(p[back])) < 1.0) {
-    --back;
-  }
-  const Vec2 forward = last - to_vec(p[back]);
-  if (norm(forward) < 1e-9) {
-    return std::nullopt;
-  }
-  return (1.0 / norm(forward)) * forward;
-}
-
-/// Signed angle (rad) from the direction of travel to the square of `line` (its normal
-/// pointing forward); 0 when the end is already square or past kMaxSkew (left alone).
-double skew_of(const std::vector<Point2>& p, const EndLine& line) {
-  const auto forward = end_direction(p);
-  if (!forward) {
-    return 0.0;
-  }
-  Vec2 square{line.across.y, -line.across.x};
-  if (dot(square, *forward) < 0.0) {
-    square = -1.0 * square;
-  }
-  const double skew = std::atan2(cross(*forward, square), dot(*forward, square));
-  return std::abs(skew) < kMinSkew || std::abs(skew) > kMaxSkew ? 0.0 : skew;
-}
-
-/// Where the reference line must end to meet an end line turned by `skew` from the direction
-/// of travel, through `anchor` (the reference lane's end): the point on the line of travel
-/// through the end of `p`, and the heading there (square to the end line).
-struct EndTarget {
-  Vec2 point;
-  Vec2 square;
-};
-
-std::optional<EndTarget> end_target(const std::vector<Point2>& p, double skew, Vec2 anchor) {
-  const auto forward = end_direction(p);
-  if (!forward) {
-    return std::nullopt;
-  }
-  const Vec2 last = to_vec(p.back());
-  const Vec2 square{std::cos(skew) * forward->x - std::sin(skew) * forward->y,
-                    std::sin(skew) * forward->x + std::cos(skew) * forward->y};
-  const Vec2 across{square.y, -square.x};
-  const double denominator = cross(across, *forward);
-  if (std::abs(denominator) < 1e-9) {
-    return std::nullopt;
-  }
-  return EndTarget{anchor + (cross(last - anchor, *forward) / denominator) * across, square};
-}
-
-/// Cubic Hermite points from `a` (heading `ta`) to `b` (heading `tb`), every half metre or so,
-/// `a` left out.
-std::vector<Point2> hermite(Vec2 a, Vec2 ta, Vec2 b, Vec2 tb) {
-  const double chord = norm(b - a);
-  const int steps = std::max(4, static_cast<int>(std::ceil(chord / 0.5)));
-  std::vector<Point2> out;
-  for (int k = 1; k <= steps; ++k) {
-    const double f = static_cast<double>(k) / steps;
-    const double h00 = 2 * f * f * f - 3 * f * f + 1, h10 = f * f * f - 2 * f * f + f;
-    const double h01 = -2 * f * f * f + 3 * f * f, h11 = f * f * f - f * f;
-    const Vec2 q = h00 * a + (h10 * chord) * ta + h01 * b + (h11 * chord) * tb;
-    out.push_back(Point2{q.x, q.y});
-  }
-  return out;
-}
-
-/// Where on the end line through `target` a turn from `start` (heading `heading`) ends when it
-/// turns evenly, like an arc: the chord halves the turn. An arc spreads the turn over the whole
-/// reach (curvature turn / reach), where a curve back to the line of travel (an S) turns up to
-/// four times as tightly at its end and folds the lanes on its inside. The laneOffset takes up
-/// the arc's sideways drift (§9.3). `target.point` when the chord does not meet the line ahead,
-/// and for bends shorter than kMinEvenTurn (a road of a few metres: its plan view could not
-/// follow the drift within the fit tolerance, and its lanes' ends would move) unless it hardly
-/// turns (under kStraightTurn): a piece of a metre between two parallel skewed lines (a road
-/// cut where one lane ends short of the others' stop line) then runs straight from line to line,
-/// where a curve to the line of travel would swing by twice the skew and fold its lanes.
-constexpr double kMinEvenTurn = 4.0;   // m
-constexpr double kStraightTurn = 0.05;  // rad
-Vec2 even_turn_end(Vec2 start, Vec2 heading, const EndTarget& target) {
-  const double turn = std::atan2(cross(heading, target.square), dot(heading, target.square));
-  if (norm(target.point - start) < kMinEvenTurn && std::abs(turn) >= kStraightTurn) {
-    return target.point;
-  }
-  const double half = 0.5 * turn;
-  const Vec2 chord{std::cos(half) * heading.x - std::sin(half) * heading.y,
-                   std::sin(half) * heading.x + std::cos(half) * heading.y};
-  const Vec2 across{target.square.y, -target.square.x};
-  const double denominator = cross(chord, across);
-  if (std::abs(denominator) < 1e-9) {
-    return target.point;
-  }
-  const double along = cross(target.point - start, across) / denominator;
-  return along > 0.5 ? start + along * chord : target.point;
-}
-
-/// Bends the end of `p` over its last `reach` metres: a cubic Hermite curve turning evenly to
-/// the end line, arriving square to it. Returns the new end heading.
-std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, double reach) {
-  double walked = 0.0;
-  size_t i = p.size() - 1;
-  while (i > 0 && walked + norm(to_vec(p[i]) - to_vec(p[i - 1])) < reach) {
-    walked += norm(to_vec(p[i]) - to_vec(p[i - 1]));
-    --i;
-  }
-  if (i + 1 >= p.size()) {
-    return std::nullopt;
-  }
-  const Vec2 start = to_vec(p[i]);
-  size_t j = i;
-  while (j > 0 && norm(start - to_vec(p[j - 1])) < 1.0) {
-    --j;
-  }
-  Vec2 heading = j < i ? start - to_vec(p[j]) : to_vec(p[i + 1]) - start;
-  heading = norm(heading) > 1e-9 ? (1.0 / norm(heading)) * heading : target.square;
-  p.resize(i + 1);
-  const std::vector<Point2> tail =
-      hermite(start, heading, even_turn_end(start, heading, target), target.square);
-  p.insert(p.end(), tail.begin(), tail.end());
-  return std::atan2(target.square.y, target.square.x);
-}
-
-/// How far (m) before an end a turn by `skew` must begin so that lanes up to `road_width` away
-/// do not fold (their normals must not cross: turn rate * width well below 1); and the turn
-/// that fits into `room` metres.
-constexpr double kFoldMargin = 2.0;
-double reach_for(double skew, double road_width) {
-  return std::max(8.0, kFoldMargin * road_width * std::tan(std::abs(skew)));
-}
-double skew_within(double skew, double road_width, double room) {
-  const double most = std::atan(room / (kFoldMargin * std::max(road_width, 1e-3)));
-  return std::copysign(std::min(std::abs(skew), most), skew);
-}
-
 }  // namespace
-
-namespace {
-
-/// The principal line of `points` (their mean and main direction, oriented first to last).
-EndLine principal_line(const std::vector<Vec2>& points) {
-  Vec2 mean{0.0, 0.0};
-  for (const Vec2& e : points) {
-    mean = mean + (1.0 / static_cast<double>(points.size())) * e;
-  }
-  double sxx = 0.0, sxy = 0.0, syy = 0.0;
-  for (const Vec2& e : points) {
-    const Vec2 d = e - mean;
-    sxx += d.x * d.x;
-    sxy += d.x * d.y;
-    syy += d.y * d.y;
-  }
-  const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
-  Vec2 across{std::cos(angle), std::sin(angle)};
-  if (dot(across, points.back() - points.front()) < 0.0) {
-    across = -1.0 * across;
-  }
-  return EndLine{mean, across};
-}
-
-}  // namespace
-
-std::optional<EndLine> end_line(std::vector<Vec2> ends) {
-  // The line through the most lane ends (within kEndLineTolerance), tried through every pair,
-  // then refitted through those ends: a lane ending elsewhere keeps its gap, the others none.
-  if (ends.size() < 2) {
-    return std::nullopt;
-  }
-  std::vector<Vec2> best;
-  double best_spread = 0.0;
-  for (size_t i = 0; i < ends.size(); ++i) {
-    for (size_t j = i + 1; j < ends.size(); ++j) {
-      const Vec2 d = ends[j] - ends[i];
-      if (norm(d) < 1.0) {
-        continue;  // lane ends on top of each other: no direction to follow
-      }
-      const Vec2 across = (1.0 / norm(d)) * d;
-      std::vector<Vec2> inliers;
-      for (const Vec2& e : ends) {
-        if (std::abs(cross(across, e - ends[i])) <= kEndLineTolerance) {
-          inliers.push_back(e);
-        }
-      }
-      const double spread = norm(inliers.back() - inliers.front());
-      if (inliers.size() > best.size() || (inliers.size() == best.size() && spread > best_spread)) {
-        best = std::move(inliers);
-        best_spread = spread;
-      }
-    }
-  }
-  if (best.size() < 2) {
-    return std::nullopt;
-  }
-  return principal_line(best);
-}
-
-bool on_end_line(const EndLine& line, Vec2 p) {
-  return std::abs(cross(line.across, p - line.point)) <= kEndLineTolerance;
-}
 
 /// How much of a circle's end tangent extrapolation applies at the start (or `at_end`) of the
 /// vertices `p`: 1 unless the first segment is at least kEndChord long and the corner at its far
@@ -488,67 +275,6 @@ std::vector<double> tight_right_turns(const CurveFit& fit, double curvature, boo
     }
   }
   return out;
-}
-
-ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<EndLine>& start,
-                             const std::optional<EndLine>& end, Vec2 start_anchor, Vec2 end_anchor,
-                             double road_width) {
-  std::vector<Point2>& p = reference.points;
-  std::vector<Point2> reversed(p.rbegin(), p.rend());
-  const double end_skew = end ? skew_of(p, *end) : 0.0;
-  const double start_skew = start ? skew_of(reversed, *start) : 0.0;
-  const double length = polyline_length(p);
-  // A short road skewed at both ends (a parallelogram between two stop lines): one curve square
-  // to both lines, from the start target to where it meets the end line, rather than two bends
-  // that do not fit. The lanes then cross its normals at a slant, which their offsets follow
-  // (the laneOffset drifts by about length x tan(skew)).
-  if (end_skew != 0.0 && start_skew != 0.0 &&
-      reach_for(end_skew, road_width) + reach_for(start_skew, road_width) > 0.9 * length) {
-    const auto e = end_target(p, end_skew, end_anchor);
-    const auto s = end_target(reversed, start_skew, start_anchor);
-    const auto d0 = end_direction(reversed);
-    const auto d1 = end_direction(p);
-    // Only for roads that hardly turn (the curve replaces the lane's own course).
-    if (e && s && d0 && d1 && dot(-1.0 * *d0, *d1) > std::cos(0.35)) {
-      const Vec2 start_square = -1.0 * s->square;
-      const Vec2 across{e->square.y, -e->square.x};
-      const double denominator = cross(start_square, across);
-      if (std::abs(denominator) > 0.5) {
-        const Vec2 meet = even_turn_end(s->point, start_square, *e);
-        std::vector<Point2> curve{Point2{s->point.x, s->point.y}};
-        const std::vector<Point2> rest = hermite(s->point, start_square, meet, e->square);
-        curve.insert(curve.end(), rest.begin(), rest.end());
-        reference.points = std::move(curve);
-        reference.start_heading = std::atan2(start_square.y, start_square.x);
-        reference.end_heading = std::atan2(e->square.y, e->square.x);
-        return reference;
-      }
-    }
-  }
-  // Both ends share the road; one alone may use most of it. A turn that does not fit is made
-  // only as far as it can be without folding (the outer lanes then keep part of their gap).
-  const double room = (end_skew != 0.0 && start_skew != 0.0 ? 0.45 : 0.85) * length;
-  if (end_skew != 0.0) {
-    const double skew = skew_within(end_skew, road_width, room);
-    const auto target = end_target(p, skew, end_anchor);
-    if (target) {
-      if (const auto heading = bend_end(p, *target, std::min(room, reach_for(skew, road_width)))) {
-        reference.end_heading = *heading;
-      }
-    }
-  }
-  if (start_skew != 0.0) {
-    const double skew = skew_within(start_skew, road_width, room);
-    std::reverse(p.begin(), p.end());
-    const auto target = end_target(p, skew, start_anchor);
-    if (target) {
-      if (const auto heading = bend_end(p, *target, std::min(room, reach_for(skew, road_width)))) {
-        reference.start_heading = std::remainder(*heading + M_PI, 2.0 * M_PI);
-      }
-    }
-    std::reverse(p.begin(), p.end());
-  }
-  return reference;
 }
 
 }  // namespace corsa::ngii::detail

@@ -24,6 +24,9 @@ namespace corsa::ngii::detail {
 /// more tightly).
 constexpr double kFoldClearance = 0.5;
 
+/// A polyline vertex as a vector.
+inline Vec2 to_vec(const Point2& p) { return {p.x, p.y}; }
+
 /// A straight line across the road through the lane ends: a point and a unit direction.
 struct EndLine {
   Vec2 point;
@@ -83,7 +86,7 @@ void ease_near(std::vector<Point2>& points, const std::vector<double>& at);
 std::vector<double> tight_right_turns(const CurveFit& fit, double curvature,
                                       bool lanes_left = false);
 
-/// `reference` bent near its start and end to meet `start` / `end` (when given) square: it ends
+/// `reference` bent near its start and end (road_end_bend.cpp) to meet `start` / `end` (when given) square: it ends
 /// heading across the line, on the line's parallel through the anchor (the reference lane's
 /// own end point). `road_width` (m) sets how gently it turns (the outermost lane must not fold);
 /// a turn that does not fit into the road is made only partly. Lines more than 50 degrees off
