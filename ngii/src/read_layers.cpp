@@ -116,8 +116,8 @@ void warn_missing_z(const ShapeReader& shapes, Diagnostics& diagnostics) {
 }
 
 /// Counts records without geometry in an optional layer; they are skipped with one located note
-/// (a Null shape is a valid Shapefile record, ESRI Shapefile Technical Description, "Null Shapes": there is
-/// nothing to draw, and nothing is guessed).
+/// (a Null shape is a valid Shapefile record, ESRI Shapefile Technical Description, "Null Shapes":
+/// there is nothing to draw, and nothing is guessed).
 class SkippedShapes {
  public:
   SkippedShapes(const ShapeReader& shapes, Diagnostics& diagnostics)

@@ -6,11 +6,11 @@
 // lane splitting off on the left sits left of it, the laneOffset making room for it); a
 // one-lane road turning right whose lane would fold on the inside of the turn follows its
 // lane's right edge instead, the lane left of it (road_reference.h). The steps:
-// 1. lane lines: each lane's surveyed polyline, smoothed, and extended by a few metres of the
-//    lanes before and after it (for stations beyond its own ends);
+// 1. lane lines (road_stations.h): each lane's surveyed polyline, smoothed, and extended by a
+//    few metres of the lanes before and after it (for stations beyond its own ends);
 // 2. reference polyline (road_reference.h), fitted with lines, arcs and clothoids;
-// 3. stations along it (every metre and at the lanes' vertices), where each lane's crossing of
-//    the normal gives its lateral offset, height and direction;
+// 3. stations along it (road_stations.h: every metre and at the lanes' vertices), where each
+//    lane's crossing of the normal gives its lateral offset, height and direction;
 // 4. lateral profile: per station a plane through the lanes' heights gives the elevation at the
 //    reference line and the superelevation (roll), both fitted as cubics;
 // 5. lane borders per station (border_solver.h) from the measured centres and widths, turned
@@ -28,6 +28,7 @@
 #include "polyline.h"
 #include "reference_line.h"
 #include "road_reference.h"
+#include "road_stations.h"
 
 namespace corsa::ngii::detail {
 namespace {
@@ -36,58 +37,6 @@ namespace {
 constexpr int kFoldRefits = 8;
 /// m: the least width a lane is narrowed to on the inside of a tight turn (border_solver.h).
 constexpr double kNarrowestInTurn = 1.5;
-
-std::vector<Point3> shifted(const std::vector<Point3>& points, const Origin& origin) {
-  std::vector<Point3> out(points);
-  for (Point3& p : out) {
-    p.x -= origin.x;
-    p.y -= origin.y;
-  }
-  return out;
-}
-
-/// The polylines of one road's lanes in map coordinates.
-struct LaneLines {
-  std::vector<Polyline> raw;           ///< as surveyed
-  std::vector<Polyline> smooth;        ///< survey noise removed (what the lanes are fitted to)
-  std::vector<Polyline> measured;      ///< smoothed, with a few metres before and after the lane
-  std::vector<double> measured_start;  ///< arc length on `measured` where the lane starts
-};
-
-LaneLines lane_lines(const RoadPlan& plan, const Origin& origin) {
-  LaneLines out;
-  for (const PlanLane& lane : plan.lanes) {
-    const std::vector<Point3> points = shifted(lane.points, origin);
-    out.raw.emplace_back(points);
-    out.smooth.emplace_back(smooth_polyline(points));
-    // The lane's own vertices win where the neighbours' pieces meet them (links meeting at one
-    // node may disagree on its height).
-    const auto same_place = [](const Point3& a, const Point3& b) {
-      return norm(xy(a) - xy(b)) < 0.1;
-    };
-    std::vector<Point3> extended = shifted(lane.lead_in, origin);
-    while (!extended.empty() && same_place(extended.back(), points.front())) {
-      extended.pop_back();
-    }
-    const size_t own_first = extended.size();
-    extended.insert(extended.end(), points.begin(), points.end());
-    std::vector<Point3> lead_out = shifted(lane.lead_out, origin);
-    while (!lead_out.empty() && same_place(lead_out.front(), points.back())) {
-      lead_out.erase(lead_out.begin());
-    }
-    extended.insert(extended.end(), lead_out.begin(), lead_out.end());
-    remove_duplicates(extended);
-    out.measured.emplace_back(smooth_polyline(extended));
-    double start = 0.0;
-    if (own_first > 0) {
-      // Near the end of the lead-in (a looping lane may pass its own start again later).
-      const double lead = Polyline(shifted(lane.lead_in, origin)).length();
-      start = out.measured.back().project_within(xy(points.front()), 0.0, lead + 1.0).u;
-    }
-    out.measured_start.push_back(start);
-  }
-  return out;
-}
 
 /// The leftmost lane that starts and ends beside the others (else the leftmost lane).
 size_t reference_lane(const RoadPlan& plan) {
@@ -150,95 +99,6 @@ ReferencePolyline reference_polyline(const RoadPlan& plan, const LaneLines& line
   aligned.widest = *std::max_element(width_at.begin(), width_at.end());
   aligned.lanes_left = lanes_left;
   return aligned;
-}
-
-std::vector<double> make_stations(double length, double spacing) {
-  const int count = std::max(1, static_cast<int>(std::ceil(length / spacing)));
-  std::vector<double> s(static_cast<size_t>(count) + 1);
-  for (int i = 0; i <= count; ++i) {
-    s[static_cast<size_t>(i)] = length * i / count;
-  }
-  return s;
-}
-
-/// Road s at which the lane's arc length reaches `u`, from the station measurements.
-double s_at_u(const std::vector<double>& stations, const std::vector<double>& u, double target) {
-  if (target <= u.front()) {
-    return stations.front();
-  }
-  for (size_t i = 1; i < u.size(); ++i) {
-    if (u[i] >= target) {
-      const double f = u[i] > u[i - 1] ? (target - u[i - 1]) / (u[i] - u[i - 1]) : 0.0;
-      return stations[i - 1] + f * (stations[i] - stations[i - 1]);
-    }
-  }
-  return stations.back();
-}
-
-/// The measurements along the fitted reference line.
-struct Stations {
-  std::vector<double> s;
-  std::vector<RefSample> ref;
-  std::vector<double> curvature;                 ///< of the reference line, 1/m
-  std::vector<std::vector<Crossing>> crossings;  ///< [lane][station]
-};
-
-void measure(Stations& st, const xodr::Road& road, const LaneLines& lines) {
-  st.ref = sample_reference(road.plan_view, st.s);
-  st.curvature.resize(st.s.size());
-  for (size_t i = 0; i < st.s.size(); ++i) {
-    st.curvature[i] = curvature_at(road.plan_view, st.s[i]);
-  }
-  st.crossings.assign(lines.measured.size(), std::vector<Crossing>(st.s.size()));
-  for (size_t k = 0; k < lines.measured.size(); ++k) {
-    LaneTracker tracker(lines.measured[k], lines.measured_start[k]);
-    for (size_t i = 0; i < st.s.size(); ++i) {
-      const Vec2 tangent{std::cos(st.ref[i].hdg), std::sin(st.ref[i].hdg)};
-      st.crossings[k][i] = tracker.measure(st.s[i], Vec2{st.ref[i].x, st.ref[i].y}, tangent);
-    }
-  }
-}
-
-/// Stations every `spacing` metres plus where each lane's vertices are (so that the widths
-/// follow the lanes into sharp corners of coarsely digitised links), at least 0.2 m apart.
-Stations measure_stations(const xodr::Road& road, const LaneLines& lines, double spacing) {
-  Stations st;
-  st.s = make_stations(road.length, spacing);
-  measure(st, road, lines);
-  std::vector<double> extra;
-  for (size_t k = 0; k < lines.smooth.size(); ++k) {
-    std::vector<double> u(st.s.size());
-    for (size_t i = 0; i < st.s.size(); ++i) {
-      u[i] = st.crossings[k][i].u;
-    }
-    for (const double vertex_u : lines.smooth[k].u()) {
-      const double s = s_at_u(st.s, u, vertex_u);
-      if (s > 0.05 && s < road.length - 0.05) {
-        extra.push_back(s);
-      }
-    }
-  }
-  if (extra.empty()) {
-    return st;
-  }
-  st.s.insert(st.s.end(), extra.begin(), extra.end());
-  std::sort(st.s.begin(), st.s.end());
-  std::vector<double> kept;
-  for (const double s : st.s) {
-    if (kept.empty() || s - kept.back() >= 0.2 || s == road.length) {
-      kept.push_back(s);
-    }
-  }
-  kept.back() = road.length;
-  st.s = std::move(kept);
-  measure(st, road, lines);
-  return st;
-}
-
-/// Whether station i of lane k is on the lane itself (not on its lead-in or lead-out).
-bool own_part(const Stations& st, const LaneLines& lines, size_t k, size_t i, double margin) {
-  const double u = st.crossings[k][i].u;
-  return u >= -margin && u <= lines.smooth[k].length() + margin;
 }
 
 /// Width target of lane k at station i: its measured width, widened to what it spans along the
@@ -306,35 +166,6 @@ Borders station_borders(const RoadPlan& plan, const Stations& st, const LaneLine
     }
   }
   return borders;
-}
-
-/// Adds stations halfway between neighbours where a lane border moves by more than 8 cm, so
-/// that the separately fitted laneOffset and widths cannot drift apart between them. Returns
-/// whether any was added (the borders must then be solved again).
-bool refine_stations(Stations& st, const Borders& borders, const xodr::Road& road,
-                     const LaneLines& lines) {
-  constexpr double kMaxStep = 0.08;    // m
-  constexpr double kMinSpacing = 0.3;  // m
-  std::vector<double> extra;
-  for (size_t i = 0; i + 1 < st.s.size(); ++i) {
-    if (st.s[i + 1] - st.s[i] < kMinSpacing) {
-      continue;
-    }
-    double step = 0.0;
-    for (size_t k = 0; k < borders.t[i].size(); ++k) {
-      step = std::max(step, std::abs(borders.t[i + 1][k] - borders.t[i][k]));
-    }
-    if (step > kMaxStep) {
-      extra.push_back(0.5 * (st.s[i] + st.s[i + 1]));
-    }
-  }
-  if (extra.empty()) {
-    return false;
-  }
-  st.s.insert(st.s.end(), extra.begin(), extra.end());
-  std::sort(st.s.begin(), st.s.end());
-  measure(st, road, lines);
-  return true;
 }
 
 xodr::LaneType lane_type_of(const Network& network, int link) {
@@ -511,7 +342,7 @@ BuiltRoad build_road_along(const RoadPlan& plan, const Network& network, const L
 
   Stations st = measure_stations(road, lines, options.station_spacing);
   Borders borders = station_borders(plan, st, lines, widths, ref);
-  for (int round = 0; round < 2 && refine_stations(st, borders, road, lines); ++round) {
+  for (int round = 0; round < 2 && refine_stations(st, borders.t, road, lines); ++round) {
     borders = station_borders(plan, st, lines, widths, ref);
   }
   folds = folds_at_stations(st, borders);

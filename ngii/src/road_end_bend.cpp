@@ -2,11 +2,11 @@
 // the lane ends (end_line), and the reference polyline turned near each end so that its normal
 // there runs along that line (align_ends).
 
-#include "road_reference.h"
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
+
+#include "road_reference.h"
 
 namespace corsa::ngii::detail {
 namespace {
@@ -106,7 +106,7 @@ std::vector<Point2> hermite(Vec2 a, Vec2 ta, Vec2 b, Vec2 tb) {
 /// turns (under kStraightTurn): a piece of a metre between two parallel skewed lines (a road
 /// cut where one lane ends short of the others' stop line) then runs straight from line to line,
 /// where a curve to the line of travel would swing by twice the skew and fold its lanes.
-constexpr double kMinEvenTurn = 4.0;   // m
+constexpr double kMinEvenTurn = 4.0;    // m
 constexpr double kStraightTurn = 0.05;  // rad
 Vec2 even_turn_end(Vec2 start, Vec2 heading, const EndTarget& target) {
   const double turn = std::atan2(cross(heading, target.square), dot(heading, target.square));

@@ -10,8 +10,8 @@
 namespace corsa::ngii::detail {
 namespace {
 
-constexpr double kMinShiftRadius = 1.5;     // m: tightest radius of the shifted reference line
-constexpr double kEase = 12.0;              // m over which a reduced shift is eased in and out
+constexpr double kMinShiftRadius = 1.5;  // m: tightest radius of the shifted reference line
+constexpr double kEase = 12.0;           // m over which a reduced shift is eased in and out
 // Right turns (towards the lanes) tighter than the road is wide (plus kFoldClearance) are
 // smoothed over +-kRelaxReach, at most kRelaxRounds times; curvature from chords of kRelaxChord.
 constexpr double kRelaxReach = 2.0;  // m

@@ -86,11 +86,11 @@ void ease_near(std::vector<Point2>& points, const std::vector<double>& at);
 std::vector<double> tight_right_turns(const CurveFit& fit, double curvature,
                                       bool lanes_left = false);
 
-/// `reference` bent near its start and end (road_end_bend.cpp) to meet `start` / `end` (when given) square: it ends
-/// heading across the line, on the line's parallel through the anchor (the reference lane's
-/// own end point). `road_width` (m) sets how gently it turns (the outermost lane must not fold);
-/// a turn that does not fit into the road is made only partly. Lines more than 50 degrees off
-/// square are left alone.
+/// `reference` bent near its start and end (road_end_bend.cpp) to meet `start` / `end` (when given)
+/// square: it ends heading across the line, on the line's parallel through the anchor (the
+/// reference lane's own end point). `road_width` (m) sets how gently it turns (the outermost lane
+/// must not fold); a turn that does not fit into the road is made only partly. Lines more than 50
+/// degrees off square are left alone.
 ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<EndLine>& start,
                              const std::optional<EndLine>& end, Vec2 start_anchor, Vec2 end_anchor,
                              double road_width);

@@ -110,9 +110,8 @@ std::optional<OffLineCut> off_line_cut(const RoadPlan& road, bool at_end) {
   if (stray.empty() || stray.size() + 2 > n + 1) {
     return std::nullopt;
   }
-  const auto [low, high] = std::minmax_element(stray.begin(), stray.end(), [&](size_t a, size_t b) {
-    return off[a] < off[b];
-  });
+  const auto [low, high] = std::minmax_element(stray.begin(), stray.end(),
+                                               [&](size_t a, size_t b) { return off[a] < off[b]; });
   if ((off[*low] < 0.0) != (off[*high] < 0.0) || off[*high] - off[*low] > 0.25 ||
       std::max(std::abs(off[*low]), std::abs(off[*high])) > kMaxOffLine) {
     return std::nullopt;

@@ -147,8 +147,8 @@ TEST_CASE("corsa convert ngii --strict refuses every repair with its record and 
           "[ngii][cli][notes][errors]") {
   corsa::test::TempDir out;
   const fs::path output = out.path() / "k.xodr";
-  const auto result =
-      run_corsa({"convert", "ngii", ngii_area("kcity").string(), "-o", output.string(), "--strict"});
+  const auto result = run_corsa(
+      {"convert", "ngii", ngii_area("kcity").string(), "-o", output.string(), "--strict"});
   CHECK(result.exit_code == 2);
   CHECK_FALSE(fs::exists(output));
   CHECK_THAT(result.err,

@@ -1,7 +1,7 @@
 // `corsa convert ngii DIR -o OUT.xodr [--tolerance M] [--report FILE] [--placements FILE]
-// [--compat 1.4] [--sidewalks W] [--verbose] [--strict] [--quiet]`: NGII HD road layers to OpenDRIVE (in the plugin:
-// the import needs PROJ and shapelib). Thin: arguments, progress, printing; the work is
-// corsa::ngii (ngii/).
+// [--compat 1.4] [--sidewalks W] [--verbose] [--strict] [--quiet]`: NGII HD road layers to
+// OpenDRIVE (in the plugin: the import needs PROJ and shapelib). Thin: arguments, progress,
+// printing; the work is corsa::ngii (ngii/).
 
 #include <filesystem>
 #include <iostream>
