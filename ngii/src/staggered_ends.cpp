@@ -183,23 +183,7 @@ void trim_staggered_ends(NetworkPlan& plan) {
       }
       const Stagger stagger = stagger_of(plan.roads[r], at_end);
       // Each run of neighbouring protruding lanes becomes one road.
-      for (size_t k = 0; k < stagger.protrudes.size();) {
-        if (!stagger.protrudes[k]) {
-          ++k;
-          continue;
-        }
-        RoadPlan piece;
-        for (; k < stagger.protrudes.size() && stagger.protrudes[k]; ++k) {
-          PlanLane& lane = plan.roads[r].lanes[k];
-          const Polyline line(lane.points);
-          const double u =
-              crossing_u(line, stagger.cut_point, stagger.direction, at_end ? line.length() : 0.0);
-          auto [front, back] = split_lane(lane, u, plan.node_keys++);
-          piece.lanes.push_back(std::move(at_end ? back : front));
-          lane = std::move(at_end ? front : back);
-        }
-        plan.roads.push_back(std::move(piece));
-      }
+      cut_off_lane_runs(plan, r, at_end, stagger.protrudes, stagger.cut_point, stagger.direction);
     }
   }
 }
