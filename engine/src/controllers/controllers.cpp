@@ -324,6 +324,19 @@ EntityMover::~EntityMover() = default;
 EntityMover::EntityMover(EntityMover&&) noexcept = default;
 EntityMover& EntityMover::operator=(EntityMover&&) noexcept = default;
 
+void EntityMover::share(size_t count, const std::function<void(size_t, size_t)>& work) {
+  Impl& impl = *impl_;
+  if (impl.threads == 1 || count < kParallelEntities) {
+    work(0, count);
+    return;
+  }
+  if (!impl.pool) {
+    impl.pool = std::make_unique<WorkerPool>(impl.threads);
+  }
+  impl.pool->run(count, 2 * kChunkEntities,
+                 [&](size_t begin, size_t end, unsigned) { work(begin, end); });
+}
+
 void EntityMover::move(SimState& state, const MotionContext& motion) {
   Impl& impl = *impl_;
   const auto count = static_cast<uint32_t>(state.world.entities.size());
