@@ -2,15 +2,17 @@
 // time or more on 2 cores; 800 vehicles in at most 10x the time of 100; recording a trajectory
 // at most 10% of a long run's time).
 //
-//   corsa_bench_traffic [--runs N] [--part scale|long|all] [--vehicles N] [--seconds S]
+//   corsa_bench_traffic [--runs N] [--part scale|long|all] [--vehicles N] [--threads T]
+//                       [--seconds S]
 //
 // scale: `--npc vehicles=N` on ../shared/data/xodr/Town04.xodr (an empty scenario of its own), N
 //   from 100 to 1,000, 10 s simulated (1,000 steps of 0.01 s) on a fresh Simulation per run;
 //   the NPCs' placement is timed apart from the steps. 1,000 and 800 vehicles also on 2 threads.
 //   Printed: median wall and CPU time of the steps, the real-time factor (simulated / wall),
 //   microseconds per vehicle-step, and the 800 / 100 ratio (100 vehicles is the baseline).
-//   `--vehicles N` runs only N vehicles on one thread and `--seconds S` simulates S seconds
-//   instead of 10: a short run of one size for a profiler (perf, callgrind).
+//   `--vehicles N` runs only N vehicles (on `--threads T`, default 1) and `--seconds S`
+//   simulates S seconds instead of 10: a short run of one size for a profiler (perf, callgrind;
+//   `valgrind --tool=callgrind --separate-threads=yes` counts each thread's part).
 // long: the 1,200 s scenarios of tests/bench/scenarios (long_standstill: seven vehicles that
 //   stop within 40 s and stand; long_motorway: 24 car followers on the Town04 motorway loop),
 //   each without a trajectory (the baseline), with the CSV and with the binary trajectory
@@ -47,7 +49,8 @@ using Clock = std::chrono::steady_clock;
 struct Settings {
   int runs = 5;
   std::string part = "all";
-  uint32_t vehicles = 0;  ///< only this many (one thread); 0: every size
+  uint32_t vehicles = 0;  ///< only this many (on `threads`); 0: every size
+  unsigned threads = 1;   ///< with `vehicles`
   double seconds = 10.0;  ///< simulated per traffic run
 };
 
@@ -117,7 +120,7 @@ void scale(const Settings& settings) {
                              {800, 1, {}, {}, {}}, {800, 2, {}, {}, {}}, {1000, 1, {}, {}, {}},
                              {1000, 2, {}, {}, {}}};
   if (settings.vehicles > 0) {
-    cases = {{settings.vehicles, 1, {}, {}, {}}};
+    cases = {{settings.vehicles, settings.threads, {}, {}, {}}};
   }
   for (int r = 0; r < runs; ++r) {
     for (Case& c : cases) {
@@ -208,6 +211,8 @@ int main(int argc, char** argv) {
       settings.part = argv[i + 1];
     } else if (std::strcmp(argv[i], "--vehicles") == 0) {
       settings.vehicles = static_cast<uint32_t>(std::max(0, std::atoi(argv[i + 1])));
+    } else if (std::strcmp(argv[i], "--threads") == 0) {
+      settings.threads = static_cast<unsigned>(std::max(1, std::atoi(argv[i + 1])));
     } else if (std::strcmp(argv[i], "--seconds") == 0) {
       settings.seconds = std::max(0.01, std::atof(argv[i + 1]));
     }

@@ -97,3 +97,61 @@ TEST_CASE("fixed-decimal text reads back within half a unit of its last place",
     CHECK((text.find('.') == std::string::npos || text.back() != '0'));
   }
 }
+
+namespace {
+
+// The text of `units` x 10^-Decimals built the plain way: the integer part, a point and the
+// decimals padded to full width, then the trailing zeros and a bare point dropped.
+template <int Decimals>
+std::string plain_units(int64_t units) {
+  const uint64_t magnitude = units < 0 ? 0 - static_cast<uint64_t>(units) : units;
+  uint64_t unit = 1;
+  for (int k = 0; k < Decimals; ++k) unit *= 10;
+  std::string fraction = Decimals == 0 ? "" : std::to_string(magnitude % unit);
+  fraction.insert(0, Decimals - fraction.size(), '0');
+  while (!fraction.empty() && fraction.back() == '0') fraction.pop_back();
+  const std::string text =
+      std::to_string(magnitude / unit) + (fraction.empty() ? "" : "." + fraction);
+  return units < 0 ? "-" + text : text;
+}
+
+template <int Decimals>
+void check_units(int64_t units) {
+  char buffer[corsa::engine::detail::kDecimalTextMax];
+  const std::string text(buffer, corsa::engine::detail::write_units<Decimals>(buffer, units));
+  REQUIRE(text == plain_units<Decimals>(units));
+}
+
+}  // namespace
+
+TEST_CASE("fixed-decimal text of a number's integer equals the plain division's text",
+          "[engine][output]") {
+  std::mt19937_64 random(20261127);
+  // Magnitudes of every order up to the exact-scaling bound (9e15 units), both signs, and
+  // numbers ending in runs of zeros.
+  std::uniform_int_distribution<int> order(0, 15);
+  std::uniform_int_distribution<int> zeros(0, 9);
+  for (int i = 0; i < 200000; ++i) {
+    const double magnitude =
+        std::pow(10.0, order(random) + std::generate_canonical<double, 53>(random));
+    int64_t units = static_cast<int64_t>(std::min(magnitude, 8.999e15));
+    int64_t step = 1;
+    for (int z = zeros(random); z > 0; --z) step *= 10;
+    units = units / step * step;  // the last few digits zero
+    units = (i % 2 == 0) ? units : -units;
+    check_units<6>(units);
+    check_units<9>(units);
+    check_units<2>(units);
+    check_units<1>(units);
+    check_units<0>(units);
+  }
+  for (const int64_t units :
+       {int64_t{1}, int64_t{9}, int64_t{10}, int64_t{99}, int64_t{100}, int64_t{999'999},
+        int64_t{1'000'000}, int64_t{1'000'001}, int64_t{10'000'000}, int64_t{99'999'999},
+        int64_t{8'999'999'999'999'999}}) {
+    check_units<6>(units);
+    check_units<6>(-units);
+    check_units<9>(units);
+    check_units<0>(units);
+  }
+}

@@ -233,6 +233,53 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
   }
 }
 
+// How many entities ahead in the moving order their memory is asked for (prefetch_move): a
+// move takes about a microsecond, a cache miss to memory a tenth of that.
+constexpr size_t kPrefetchAhead = 2;
+
+// Asks for the cache lines a move of entity `i` reads first: its hot fields (entity.h keeps
+// them in front), its picture in the view and its lanes ahead. The entities are moved in lane
+// order, not index order, so the hardware's stride prefetcher cannot guess them; with hundreds
+// of vehicles each move otherwise begins with a handful of misses. A hint only: nothing read
+// changes.
+void prefetch_move(const SimState& state, const FollowView& view,
+                   const std::vector<LanesAhead>& ahead, uint32_t i) {
+  const char* entity = reinterpret_cast<const char*>(&state.world.entities[i]);
+  constexpr size_t kHotBytes = std::min<size_t>(sizeof(Entity), 512);
+  for (size_t offset = 0; offset < kHotBytes; offset += 64) {
+    __builtin_prefetch(entity + offset);
+  }
+  __builtin_prefetch(&ahead[i]);
+  if (i < view.targets().size()) {
+    const char* target = reinterpret_cast<const char*>(&view.targets()[i]);
+    __builtin_prefetch(target);
+    __builtin_prefetch(target + 64);
+  }
+}
+
+// The lanes ahead of entity `i` (prefetched with its LanesAhead one entity earlier).
+void prefetch_lanes_ahead(const std::vector<LanesAhead>& ahead, uint32_t i) {
+  if (!ahead[i].next.empty()) {
+    __builtin_prefetch(ahead[i].next.data());
+  }
+}
+
+// Moves the entities order[begin, end) in that order, asking ahead for the memory of the next.
+void move_range(SimState& state, const MotionContext& motion, const FollowView& view,
+                std::vector<LanesAhead>& ahead, const std::vector<uint32_t>& order, size_t begin,
+                size_t end) {
+  for (size_t k = begin; k < end; ++k) {
+    if (k + kPrefetchAhead < end) {
+      prefetch_move(state, view, ahead, order[k + kPrefetchAhead]);
+    }
+    if (k + 1 < end) {
+      prefetch_lanes_ahead(ahead, order[k + 1]);
+    }
+    const uint32_t i = order[k];
+    move_one(state, i, motion, view, ahead[i]);
+  }
+}
+
 }  // namespace
 
 struct EntityMover::Impl {
@@ -277,6 +324,19 @@ EntityMover::~EntityMover() = default;
 EntityMover::EntityMover(EntityMover&&) noexcept = default;
 EntityMover& EntityMover::operator=(EntityMover&&) noexcept = default;
 
+void EntityMover::share(size_t count, const std::function<void(size_t, size_t)>& work) {
+  Impl& impl = *impl_;
+  if (impl.threads == 1 || count < kParallelEntities) {
+    work(0, count);
+    return;
+  }
+  if (!impl.pool) {
+    impl.pool = std::make_unique<WorkerPool>(impl.threads);
+  }
+  impl.pool->run(count, 2 * kChunkEntities,
+                 [&](size_t begin, size_t end, unsigned) { work(begin, end); });
+}
+
 void EntityMover::move(SimState& state, const MotionContext& motion) {
   Impl& impl = *impl_;
   const auto count = static_cast<uint32_t>(state.world.entities.size());
@@ -301,26 +361,24 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   // Generated traffic looks around itself (controllers/npc_caution.h): the view then also
   // holds the grid of the others.
   const bool generated = !state.traffic.lifetimes.empty();
+  const unsigned workers = count >= kParallelEntities ? impl.threads : 1;
+  if (workers > 1 && !impl.pool) {
+    impl.pool = std::make_unique<WorkerPool>(impl.threads);
+  }
   if (following || generated) {
-    impl.view.build(state, generated);
+    impl.view.build(state, generated, workers > 1 ? impl.pool.get() : nullptr);
   }
   impl.ahead.resize(count);
   impl.arrange(state);
   const std::vector<uint32_t>& order = impl.order;
-  const unsigned workers = count >= kParallelEntities ? impl.threads : 1;
   impl.scratch.resize(std::max<size_t>(impl.scratch.size(), workers));
   impl.nearby.resize(impl.scratch.size());
   if (workers == 1) {
     MotionContext context = motion;
     context.scratch = &impl.scratch[0];
     context.nearby = &impl.nearby[0];
-    for (const uint32_t i : order) {
-      move_one(state, i, context, impl.view, impl.ahead[i]);
-    }
+    move_range(state, context, impl.view, impl.ahead, order, 0, order.size());
     return;
-  }
-  if (!impl.pool) {
-    impl.pool = std::make_unique<WorkerPool>(impl.threads);
   }
   // Each entity's move depends only on itself and the picture taken above, so how the entities
   // are shared out among threads does not change any result.
@@ -328,10 +386,7 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     MotionContext context = motion;
     context.scratch = &impl.scratch[worker];
     context.nearby = &impl.nearby[worker];
-    for (size_t k = begin; k < end; ++k) {
-      const uint32_t i = order[k];
-      move_one(state, i, context, impl.view, impl.ahead[i]);
-    }
+    move_range(state, context, impl.view, impl.ahead, order, begin, end);
   });
 }
 

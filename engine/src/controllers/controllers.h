@@ -8,7 +8,9 @@
 // `corsa:controller` = default | acc | dynamics; otherwise from `corsa run --controller NAME`
 // (SimulationOptions::controller) for vehicles; otherwise the default controller.
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -62,6 +64,11 @@ class EntityMover {
   EntityMover& operator=(EntityMover&&) noexcept;
 
   void move(SimState& state, const MotionContext& motion);
+
+  /// Calls work(begin, end) for ranges covering [0, count), each once: on the mover's threads
+  /// when it has several and `count` is large enough to be worth sharing, else here in one call.
+  /// For per-entity work whose result does not depend on the thread (e.g. the contacts' boxes).
+  void share(size_t count, const std::function<void(size_t, size_t)>& work);
 
  private:
   struct Impl;

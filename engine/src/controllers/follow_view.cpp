@@ -4,13 +4,65 @@
 #include <cmath>
 #include <limits>
 
+#include "controllers/worker_pool.h"
 #include "corsa/xodr/map.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
-void FollowView::build(const SimState& state, bool neighbours) {
+namespace {
+
+// Entities from which the picture's per-entity part is shared out among threads, and how many
+// a thread takes at a time.
+constexpr size_t kParallelTargets = 128;
+constexpr size_t kTargetChunk = 64;
+
+}  // namespace
+
+void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours) {
+  const Entity& entity = state.world.entities[i];
+  FollowTarget& target = targets_[i];
+  const bool visible = i >= state.controls.size() || state.controls[i].traffic_visible;
+  target.present = entity.state.placed && visible;
+  target.usable = target.present && entity.state.road.has_value();
+  target.generated = generated_[i] != 0;
+  if (!target.present) {
+    return;
+  }
+  target.x = entity.state.pose.x;
+  target.y = entity.state.pose.y;
+  target.h = entity.state.pose.h;
+  target.speed = entity.state.speed;
+  target.rear = entity.info.box.center_x - 0.5 * entity.info.box.length;
+  target.vehicle = entity.info.kind == ObjectKind::kVehicle;
+  target.length = entity.info.box.length;
+  if (neighbours) {
+    target.shape = box_of(entity.info.box, entity.state.pose);
+    reach_[i] = box_reach(entity.info.box);
+  }
+  if (!target.usable) {
+    return;
+  }
+  target.road = *entity.state.road;
+  // Mostly the entity is in the lane it follows, whose node it knows.
+  const LaneFollow& follow = entity.lane;
+  const bool followed = follow.on_road && follow.node != xodr::kNoLane &&
+                        follow.road == target.road.road && follow.section == target.road.section &&
+                        follow.lane == target.road.lane;
+  const xodr::LaneGraph* graph = state.map != nullptr ? &state.map->lane_graph() : nullptr;
+  const auto node =
+      followed ? std::optional<xodr::LaneNode>(follow.node)
+      : graph != nullptr
+          ? graph->find(xodr::LaneRef{target.road.road, target.road.section, target.road.lane})
+          : std::nullopt;
+  nodes_[i] = node.value_or(xodr::kNoLane);
+}
+
+void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool) {
   const auto& entities = state.world.entities;
-  targets_.resize(entities.size());
+  const auto count = static_cast<uint32_t>(entities.size());
+  targets_.resize(count);
+  nodes_.resize(count);
+  reach_.resize(count);
   unindexed_.clear();
   grid_.clear();
   scenario_vehicles_.clear();
@@ -32,29 +84,26 @@ void FollowView::build(const SimState& state, bool neighbours) {
     }
     generated_seen_ = lifetimes.size();
   }
-  for (uint32_t i = 0; i < entities.size(); ++i) {
-    const Entity& entity = entities[i];
-    FollowTarget& target = targets_[i];
-    const bool visible = i >= state.controls.size() || state.controls[i].traffic_visible;
-    target.present = entity.state.placed && visible;
-    target.usable = target.present && entity.state.road.has_value();
-    target.generated = generated_[i] != 0;
+  // Each entity's picture depends only on that entity (the box's sine and cosine, the lane
+  // look-up): on threads when there are many. What gathers them (the lane index, the grid, the
+  // bounds) follows in index order on this thread, so the result is the same on any number.
+  if (pool != nullptr && pool->threads() > 1 && count >= kParallelTargets) {
+    pool->run(count, kTargetChunk, [&](size_t begin, size_t end, unsigned) {
+      for (size_t i = begin; i < end; ++i) fill_target(state, static_cast<uint32_t>(i), neighbours);
+    });
+  } else {
+    for (uint32_t i = 0; i < count; ++i) fill_target(state, i, neighbours);
+  }
+  for (uint32_t i = 0; i < count; ++i) {
+    const FollowTarget& target = targets_[i];
     if (!target.present) {
       continue;
     }
-    target.x = entity.state.pose.x;
-    target.y = entity.state.pose.y;
-    target.h = entity.state.pose.h;
-    target.speed = entity.state.speed;
-    target.rear = entity.info.box.center_x - 0.5 * entity.info.box.length;
-    target.vehicle = entity.info.kind == ObjectKind::kVehicle;
-    target.length = entity.info.box.length;
     if (neighbours) {
-      target.shape = box_of(entity.info.box, entity.state.pose);
       grid_.add(target.x, target.y, i);
       // NaN stays out of the maxima (std::max keeps the first); the tests of
       // controllers/npc_caution.cpp reject such a box anyway, as a scan would.
-      max_reach_ = std::max(max_reach_, box_reach(entity.info.box));
+      max_reach_ = std::max(max_reach_, reach_[i]);
       max_length_ = std::max(max_length_, target.length);
     }
     if (!target.usable) {
@@ -65,19 +114,8 @@ void FollowView::build(const SimState& state, bool neighbours) {
     if (std::isnan(target.rear)) {
       least_rear_ = -std::numeric_limits<double>::infinity();
     }
-    target.road = *entity.state.road;
-    // Mostly the entity is in the lane it follows, whose node it knows.
-    const LaneFollow& follow = entity.lane;
-    const bool followed = follow.on_road && follow.node != xodr::kNoLane &&
-                          follow.road == target.road.road &&
-                          follow.section == target.road.section && follow.lane == target.road.lane;
-    const auto node =
-        followed ? std::optional<xodr::LaneNode>(follow.node)
-        : graph != nullptr
-            ? graph->find(xodr::LaneRef{target.road.road, target.road.section, target.road.lane})
-            : std::nullopt;
-    if (node) {
-      lanes_.add(*node, target.road.s, i);
+    if (nodes_[i] != xodr::kNoLane) {
+      lanes_.add(nodes_[i], target.road.s, i);
     } else {
       unindexed_.push_back(i);
     }

@@ -21,6 +21,7 @@
 namespace corsa::engine::detail {
 
 struct SimState;
+class WorkerPool;
 
 /// One entity as car following sees it.
 struct FollowTarget {
@@ -43,8 +44,9 @@ struct FollowTarget {
 class FollowView {
  public:
   /// Takes the picture of `state`'s entities now; with `neighbours` also the grid of the present
-  /// entities' reference points (near()).
-  void build(const SimState& state, bool neighbours);
+  /// entities' reference points (near()). With a `pool` of more than one thread the entities'
+  /// pictures are made on its threads (the same picture).
+  void build(const SimState& state, bool neighbours, WorkerPool* pool = nullptr);
 
   const std::vector<FollowTarget>& targets() const { return targets_; }
   const LaneIndex& lanes() const { return lanes_; }
@@ -81,7 +83,12 @@ class FollowView {
   double max_length() const { return max_length_; }
 
  private:
+  /// Entity `i`'s target, its lane node (nodes_) and box reach (reach_).
+  void fill_target(const SimState& state, uint32_t i, bool neighbours);
+
   std::vector<FollowTarget> targets_;
+  std::vector<xodr::LaneNode> nodes_;  ///< by entity: its lane's node, kNoLane when not indexed
+  std::vector<double> reach_;          ///< by entity: box_reach of its box (m), with neighbours
   LaneIndex lanes_;
   std::vector<uint32_t> unindexed_;
   double least_rear_ = 0.0;

@@ -110,8 +110,46 @@ Scaled scale_decimal(double value) {
   return Scaled{true, round_half_away(scaled), 0.0};
 }
 
+namespace decimal_text {
+
+/// Writes the `Count` decimal digits of `value` (< 10^Count), leading zeros included, at `out`:
+/// two digits per step from the end, a loop of fixed length (unrolled), no test per digit.
+template <int Count>
+inline void fixed_digits(char* out, uint64_t value) {
+  for (int k = Count; k >= 2; k -= 2) {
+    const uint64_t pair = value % 100;
+    value /= 100;
+    out[k - 2] = kDigitPairs[2 * pair];
+    out[k - 1] = kDigitPairs[2 * pair + 1];
+  }
+  if constexpr (Count % 2 == 1) {
+    out[0] = static_cast<char>('0' + value);
+  }
+}
+
+/// Writes the digits of `value` at `out` and returns their end; values below 100 (most integer
+/// parts of a trajectory: speeds, headings, lateral offsets) without counting digits.
+inline char* whole_digits(char* out, uint64_t value) {
+  if (value < 10) {
+    *out = static_cast<char>('0' + value);
+    return out + 1;
+  }
+  if (value < 100) {
+    out[0] = kDigitPairs[2 * value];
+    out[1] = kDigitPairs[2 * value + 1];
+    return out + 2;
+  }
+  int digits = 3;
+  while (digits < 19 && value >= kPowers[digits]) ++digits;
+  digits_before(out + digits, value);
+  return out + digits;
+}
+
+}  // namespace decimal_text
+
 /// Writes a number of `Decimals` decimals given by its integer `units` (|units| < 9e15): "0" for
-/// 0 (never "-0"), trailing zeros and a bare point left out.
+/// 0 (never "-0"), trailing zeros and a bare point left out. The decimals are written in full
+/// (fixed width) and the trailing zeros then dropped from the text.
 template <int Decimals>
 char* write_units(char* out, int64_t units) {
   using namespace decimal_text;
@@ -124,25 +162,19 @@ char* write_units(char* out, int64_t units) {
   }
   const uint64_t magnitude = static_cast<uint64_t>(units < 0 ? -units : units);
   constexpr uint64_t kUnit = kIntScale[Decimals];
-  const uint64_t whole = magnitude / kUnit;
-  uint64_t fraction = magnitude % kUnit;
-  // Digits are written backwards from where they end: the integer part's length first.
-  int whole_digits = 1;
-  while (whole_digits < 19 && whole >= kPowers[whole_digits]) ++whole_digits;
-  out += whole_digits;
-  digits_before(out, whole);
-  if (fraction == 0) {
-    return out;
+  out = whole_digits(out, magnitude / kUnit);
+  if constexpr (Decimals > 0) {
+    const uint64_t fraction = magnitude % kUnit;
+    if (fraction == 0) {
+      return out;
+    }
+    *out = '.';
+    fixed_digits<Decimals>(out + 1, fraction);
+    char* end = out + 1 + Decimals;
+    while (end[-1] == '0') --end;  // trailing zeros say nothing; fraction > 0 keeps a digit
+    return end;
   }
-  int places = Decimals;
-  while (fraction % 10 == 0) {  // trailing zeros say nothing
-    fraction /= 10;
-    --places;
-  }
-  *out++ = '.';
-  char* const end = out + places;
-  for (char* first = digits_before(end, fraction); first != out;) *--first = '0';
-  return end;
+  return out;
 }
 
 /// Writes a Scaled number: its decimals, or the shortest round-trip text of the raw value.

@@ -77,22 +77,32 @@ double field_value(const Scaled& number, int decimals) {
 
 TrajectoryRecorder::TrajectoryRecorder(std::filesystem::path file, int64_t every)
     : file_(std::move(file)), every_(every < 1 ? 1 : every), cache_(std::make_unique<RowCache>()) {
-  buffer_ = kTrajectoryHeader;
+  const std::string_view header = kTrajectoryHeader;
+  std::memcpy(room(header.size()), header.data(), header.size());
+  used_ = header.size();
+}
+
+char* TrajectoryRecorder::room(size_t count) {
+  if (buffer_.size() < used_ + count) {
+    buffer_.resize(std::max(2 * buffer_.size(), used_ + count));
+  }
+  return buffer_.data() + used_;
 }
 
 namespace {
 
-// Appends the row of entity `name` in `state` after its time field: "name,x,...,t\n" (`road`:
-// the road's id, null off the road).
-void append_row_tail(std::string& out, std::string_view name, const EntityState& state,
+// Characters the row of an entity named `name` on road `road` (null: off the road) may take
+// after its time field.
+size_t row_room(std::string_view name, const std::string* road) {
+  return name.size() + (road ? road->size() : 0) + 10 * (detail::kDecimalTextMax + 1) + 16;
+}
+
+// Writes the row of entity `name` in `state` after its time field at `p` (row_room characters
+// there): "name,x,...,t\n" (`road`: the road's id, null off the road); returns its end.
+char* write_row_tail(char* p, std::string_view name, const EntityState& state,
                      const std::string* road) {
   // The numbers straight from the state (write_fixed is write_scaled of scale_decimal, what
   // append_row writes from RowValues), without building the RowValues: 15% of a row's cost.
-  const size_t room =
-      name.size() + (road ? road->size() : 0) + 10 * (detail::kDecimalTextMax + 1) + 16;
-  const size_t start = out.size();
-  out.resize(start + room);
-  char* p = out.data() + start;
   p = detail::put(p, name);
   *p++ = ',';
   p = detail::put_fixed<detail::kLengthDecimals>(p, state.pose.x);
@@ -113,7 +123,16 @@ void append_row_tail(std::string& out, std::string_view name, const EntityState&
     p = detail::put(p, ",,,");
   }
   *p++ = '\n';
-  out.resize(static_cast<size_t>(p - out.data()));
+  return p;
+}
+
+// write_row_tail at the end of `out`.
+void append_row_tail(std::string& out, std::string_view name, const EntityState& state,
+                     const std::string* road) {
+  const size_t start = out.size();
+  out.resize(start + row_room(name, road));
+  char* const end = write_row_tail(out.data() + start, name, state, road);
+  out.resize(static_cast<size_t>(end - out.data()));
 }
 
 // The time field of the current tick's rows: the exact text of the time (shortest round-trip,
@@ -169,18 +188,26 @@ void TrajectoryRecorder::append_cached_rows(const Simulation& simulation) {
       entry.valid = false;
       continue;
     }
-    buffer_ += time;
+    const std::string& name = simulation.entity(i).name;
+    const std::string* road = road_of(simulation, state);
     if (entry.valid && detail::same_row_inputs(entry.inputs, state)) {
       if (entry.text.empty()) {
-        append_row_tail(entry.text, simulation.entity(i).name, state, road_of(simulation, state));
+        append_row_tail(entry.text, name, state, road);
       }
-      buffer_ += entry.text;
+      char* p = room(time.size() + entry.text.size());
+      std::memcpy(p, time.data(), time.size());
+      std::memcpy(p + time.size(), entry.text.data(), entry.text.size());
+      used_ += time.size() + entry.text.size();
       continue;
     }
     entry.valid = true;
     entry.inputs = detail::row_inputs(state);
     entry.text.clear();
-    append_row_tail(buffer_, simulation.entity(i).name, state, road_of(simulation, state));
+    // Written in place behind the rows before it: one check of the room per row.
+    char* const start = room(time.size() + row_room(name, road));
+    std::memcpy(start, time.data(), time.size());
+    char* const end = write_row_tail(start + time.size(), name, state, road);
+    used_ += static_cast<size_t>(end - start);
   }
 }
 
@@ -190,14 +217,14 @@ void TrajectoryRecorder::on_step(const Simulation& simulation) {
   }
   append_cached_rows(simulation);
   last_recorded_ = simulation.tick();
-  if (buffer_.size() > (1u << 20)) {
+  if (used_ > (1u << 20)) {
     flush();
   }
 }
 
 void TrajectoryRecorder::flush() {
-  file_.stream().write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-  buffer_.clear();
+  file_.stream().write(buffer_.data(), static_cast<std::streamsize>(used_));
+  used_ = 0;
 }
 
 void TrajectoryRecorder::finish(const Simulation& simulation) {

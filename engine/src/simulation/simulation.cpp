@@ -37,6 +37,9 @@ Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xod
                        const SimulationOptions& options, Diagnostics& diagnostics)
     : state(scenario, std::move(map), options, diagnostics), mover(options.threads) {
   check_options(options);
+  contact_sweep.share = [this](size_t count, const std::function<void(size_t, size_t)>& work) {
+    mover.share(count, work);
+  };
   for (const auto& [name, value] : options.values) state.given_values[name] = value;
   detail::build_entities(state);
   detail::assign_initial_controllers(state);

@@ -119,26 +119,43 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
   // Boxes whose extents along x overlap (sweep and prune) are tested exactly. Pairs apart along
   // y (with a rounding margin) cannot overlap and are skipped.
   std::vector<Item> items;
-  std::vector<OrientedBox> boxes;
   items.reserve(entities.size());
-  boxes.reserve(entities.size());
+  // Each box depends only on its entity: made on several threads when the sweep may share
+  // them out; gathered below in index order, so the result is the same on any number.
+  std::vector<OrientedBox>& boxes = sweep.boxes;
+  boxes.resize(entities.size());
+  sweep.x_extent.resize(entities.size());
+  sweep.y_extent.resize(entities.size());
+  const auto make_boxes = [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      if (!entities[i].state.placed || entities[i].info.box.length <= 0.0) {
+        continue;
+      }
+      boxes[i] = box_of(entities[i].info.box, entities[i].state.pose);
+      sweep.x_extent[i] = project(boxes[i], 1.0, 0.0);
+      sweep.y_extent[i] = project(boxes[i], 0.0, 1.0);
+    }
+  };
+  if (sweep.share) {
+    sweep.share(entities.size(), make_boxes);
+  } else {
+    make_boxes(0, entities.size());
+  }
   bool finite = true;
   double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
   for (uint32_t i = 0; i < entities.size(); ++i) {
     if (!entities[i].state.placed || entities[i].info.box.length <= 0.0) {
       continue;
     }
-    const OrientedBox box = box_of(entities[i].info.box, entities[i].state.pose);
-    const Interval x = project(box, 1.0, 0.0);
-    const Interval y = project(box, 0.0, 1.0);
+    const Interval x = sweep.x_extent[i];
+    const Interval y = sweep.y_extent[i];
     finite = finite && std::isfinite(x.low) && std::isfinite(x.high) && std::isfinite(y.low) &&
              std::isfinite(y.high);
     x0 = items.empty() ? x.low : std::min(x0, x.low);
     x1 = items.empty() ? x.high : std::max(x1, x.high);
     y0 = items.empty() ? y.low : std::min(y0, y.low);
     y1 = items.empty() ? y.high : std::max(y1, y.high);
-    items.push_back({x.low, x.high, y.low, y.high, i, static_cast<uint32_t>(boxes.size())});
-    boxes.push_back(box);
+    items.push_back({x.low, x.high, y.low, y.high, i, i});
   }
   auto& now = state.contacts.pairs;
   std::vector<std::pair<uint32_t, uint32_t>> touching;  // coupled pairs whose boxes overlap

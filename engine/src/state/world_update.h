@@ -3,8 +3,12 @@
 // What is updated once the entities have moved: contacts between bounding boxes (collisions,
 // OpenSCENARIO CollisionCondition) and the per-entity timers of the duration conditions.
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
+
+#include "corsa/engine/oriented_box.h"
 
 namespace corsa::engine::detail {
 
@@ -16,6 +20,13 @@ struct SimState;
 struct ContactSweep {
   std::vector<uint32_t> order;
   bool along_y = false;
+  /// Calls work(begin, end) for ranges covering [0, count), each once, possibly on several
+  /// threads at a time (the mover's, controllers/controllers.h); null: work(0, count) here.
+  /// The boxes of the entities are made through it.
+  std::function<void(size_t count, const std::function<void(size_t, size_t)>& work)> share;
+  /// The boxes of the last update, by entity (those not placed or without a length unset).
+  std::vector<OrientedBox> boxes;
+  std::vector<Interval> x_extent, y_extent;
 };
 
 /// Recomputes which placed entities overlap now, and records the pairs that just started to.

@@ -45,8 +45,13 @@ class TrajectoryRecorder final : public SimulationObserver {
   AtomicFile file_;
   int64_t every_;
   int64_t last_recorded_ = -1;
+  /// Rows not yet written: the first used_ characters (the string only grows, so that a row is
+  /// written into it without zeroing its room first).
   std::string buffer_;
+  size_t used_ = 0;
   std::unique_ptr<RowCache> cache_;
+  /// Room for `count` more characters at buffer_'s end (used_ unchanged).
+  char* room(size_t count);
 };
 
 /// Header line of the trajectory CSV (with newline).
