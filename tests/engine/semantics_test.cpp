@@ -221,4 +221,22 @@ TEST_CASE("A time headway towards an entity behind is infinite, or esmini's cond
   }
 }
 
+TEST_CASE("A RelativeLanePosition without Orientation faces its lane's traffic, or esmini's ref",
+          "[engine][semantics][positions]") {
+  // Ref stands on lane 1 facing +s (against that lane's traffic); Other is placed one lane
+  // further left (lane 2) and 10 m on, without Orientation.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_heading.xosc"));
+    run.run();
+    CHECK(run.at(0.0, "Other").road->lane == 2);
+    CHECK(std::abs(run.at(0.0, "Other").pose.h) == Approx(std::numbers::pi).margin(1e-9));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_heading.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(0.0, "Other").road->lane == 2);
+    CHECK(run.at(0.0, "Other").pose.h == Approx(0.0).margin(1e-9));
+  }
+}
+
 }  // namespace corsa::test

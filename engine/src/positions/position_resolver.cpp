@@ -164,7 +164,15 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
   const LaneFollow at = walk(map, rc, ds, p.source);
   const int lane_id = step_lane_id(at.lane, at.dir * p.d_lane);
   const double t = need_lane_center(map, at.road, at.s, lane_id, p.source) + p.offset.value_or(0.0);
-  return on_road(map, at.road, at.s, t, lane_id, p.orientation);
+  ResolvedPosition out = on_road(map, at.road, at.s, t, lane_id, p.orientation);
+  if (state.options.semantics == Semantics::kEsmini && !p.orientation) {
+    // esmini faces a position without Orientation the way the reference entity faces along its
+    // road, not the target lane's direction of travel.
+    const double ref_offset = wrap_angle(ref.state.pose.h - map.reference(rc.road, rc.s).hdg);
+    const bool ref_backward = std::abs(ref_offset) > 0.5 * std::numbers::pi;
+    out.pose.h = travel_heading(map, at.road, at.s, ref_backward ? -at.dir : at.dir);
+  }
+  return out;
 }
 
 ResolvedPosition geo(const xosc::GeoPosition& p, const SimState& state) {
