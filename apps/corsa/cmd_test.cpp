@@ -16,6 +16,7 @@
 #include "corsa/suite/suite_run.h"
 #include "output_paths.h"
 #include "plugin_api.h"
+#include "run_options.h"
 #include "sweep_options.h"
 
 namespace corsa::cli {
@@ -38,6 +39,9 @@ ArgParser test_parser() {
   parser.flag("--verbose", "also print the worst golden deviation of every column");
   parser.flag("--quiet", "print only failures and errors");
   parser.flag("--strict", "refuse lenient readings ('(read as ...)' warnings) in every test");
+  parser.option("--semantics", "standard|esmini",
+                "read what the standard leaves open as the standard does (default) or as esmini "
+                "does, in every test (docs/openscenario.md, differences from esmini)");
   parser.epilog(
       "A folder suite uses its suite.xml, or else runs every scenario in it, comparing with\n"
       "goldens/<name>.csv when present. Exit 0 when every test passed, 1 when one failed or could\n"
@@ -89,6 +93,7 @@ int command_test(std::span<const std::string> args) {
     throw UsageError("--goldens-outside only goes with --update-goldens");
   }
   options.strict = parsed.flag("--strict");
+  if (parsed.value("--semantics")) options.semantics = read_semantics(parsed);
   if (const auto output = output_folder(parsed, "-o")) options.output = *output;
   const std::optional<std::filesystem::path> junit = output_file(parsed, "--junit");
   const bool quiet = parsed.flag("--quiet");

@@ -78,6 +78,9 @@ void declare_run_options(ArgParser& parser) {
   parser.option("--semantics", "standard|esmini",
                 "read what the standard leaves open as the standard does (default) or as esmini "
                 "does (docs/openscenario.md, differences from esmini)");
+  parser.flag("--disable-controllers",
+              "ignore the scenario's controllers: every entity moves under the default "
+              "controller (or --controller's), as esmini's --disable_controllers");
   parser.flag("--quiet", "no progress bar and no summary line");
   parser.flag("--strict",
               "refuse what would run with a '(read as ...)' warning: rules of the standard the "
@@ -129,6 +132,7 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
   }
   options.simulation.strict = parsed.flag("--strict");
   options.simulation.semantics = read_semantics(parsed);
+  options.simulation.disable_controllers = parsed.flag("--disable-controllers");
   if (const auto every = parsed.integer("--record-every")) {
     if (*every < 1) {
       throw UsageError("--record-every expects a positive integer");

@@ -9,7 +9,8 @@ class Simulation(_corsa.Simulation):
     """One run of one scenario, stepped from Python.
 
     Simulation(path, *, dt=0.01, seed=0, params=None, controller=None, npc=None, external=None,
-               duration=3600.0, values=None, rig=None, models=(), time_of_day=None, weather=None)
+               duration=3600.0, values=None, rig=None, models=(), time_of_day=None, weather=None,
+               semantics='standard')
 
     path         the .xosc scenario (its map and catalogs are found from it, as `corsa run` does)
     dt           the fixed step, s (0.0001..10)
@@ -25,15 +26,17 @@ class Simulation(_corsa.Simulation):
     models       building models for the rig's scene, 'FILE[@X,Y[,HEADING_DEG]]' (`--model`)
     time_of_day  'HH:MM[:SS]' for the rig's lighting (`--time-of-day`)
     weather      'fog=50,rain=0.6,...' for the rig's sensors (`--weather`)
+    semantics    'standard' or 'esmini': how what the standard leaves open is read (`--semantics`)
 
     Bad input raises corsa.InputError with the command line's 'file:line: error: message'.
     """
 
     def __init__(self, path, *, dt=0.01, seed=0, params=None, controller=None, npc=None,
                  external=None, duration=3600.0, values=None, rig=None, models=(),
-                 time_of_day=None, weather=None):
+                 time_of_day=None, weather=None, semantics="standard"):
         super().__init__(os.fspath(path), dt=dt, seed=seed, params=params, controller=controller,
-                         npc=npc, external=external, duration=duration, values=values)
+                         npc=npc, external=external, duration=duration, values=values,
+                         semantics=semantics)
         self._sensors = None
         if rig is None:
             if models or time_of_day is not None or weather is not None:

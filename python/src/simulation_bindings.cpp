@@ -203,9 +203,16 @@ void bind_entity_state(py::module_& m) {
 void bind_run(SimulationClass& c) {
   c.def(py::init([](const std::filesystem::path& path, double dt, uint64_t seed,
                     const py::object& params, const py::object& controller, const py::object& npc,
-                    const py::object& external, double duration, const py::object& values) {
+                    const py::object& external, double duration, const py::object& values,
+                    const std::string& semantics) {
           SimulationSetup setup =
               simulation_setup(path, dt, seed, params, controller, npc, external, duration);
+          if (semantics == "esmini") {
+            setup.options.semantics = engine::Semantics::kEsmini;
+          } else if (semantics != "standard") {
+            throw py::value_error("semantics expects 'standard' or 'esmini', not '" + semantics +
+                                  "'");
+          }
           auto simulation = std::make_unique<PySimulation>(setup);
           if (!values.is_none()) {
             for (const auto& [name, value] : values.cast<py::dict>()) {
@@ -218,7 +225,7 @@ void bind_run(SimulationClass& c) {
         py::arg("path"), py::kw_only(), py::arg("dt") = 0.01, py::arg("seed") = 0,
         py::arg("params") = py::none(), py::arg("controller") = py::none(),
         py::arg("npc") = py::none(), py::arg("external") = py::none(), py::arg("duration") = 3600.0,
-        py::arg("values") = py::none())
+        py::arg("values") = py::none(), py::arg("semantics") = "standard")
       .def("step", &PySimulation::step,
            "Advances one step (triggers, actions, controllers); False once the run has ended.")
       .def(

@@ -139,6 +139,7 @@ TestOutcome run_test(const TestCase& test, const SuiteOptions& options, const Su
   sweep::VariantSpec spec{test.parameters, test.simulation, test.ego};
   spec.simulation.geo_projection = options.geo_projection;
   spec.simulation.strict = spec.simulation.strict || options.strict;
+  if (options.semantics) spec.simulation.semantics = *options.semantics;
   sweep::VariantOutputs outputs;
   if (options.output) {
     const fs::path folder = *options.output / test.name;

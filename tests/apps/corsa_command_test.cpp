@@ -79,6 +79,9 @@ TEST_CASE("a misspelt option, key or name gets the nearest valid one", "[cli][e2
   const auto sweep = run_corsa({"sweep", "scenarios/cut_in.xosc", "--semantics", "esmin"});
   CHECK(sweep.exit_code == 2);
   CHECK_THAT(sweep.err, Catch::Contains("--semantics expects standard or esmini, got 'esmin'"));
+  const auto test = run_corsa({"test", "scenarios/suites/alks", "--semantics", "esmin"});
+  CHECK(test.exit_code == 2);
+  CHECK_THAT(test.err, Catch::Contains("--semantics expects standard or esmini, got 'esmin'"));
   const auto npc = run_corsa({"run", "scenarios/cut_in.xosc", "--npc", "vehicle=3"});
   CHECK(npc.exit_code == 2);
   CHECK_THAT(npc.err, Catch::Contains("unknown key 'vehicle' (did you mean 'vehicles'?)"));

@@ -3,6 +3,7 @@
 // "Differences from esmini"), on focused scenarios whose values are derived by hand.
 
 #include <cmath>
+#include <numbers>
 
 #include "engine_fixture.h"
 
@@ -84,6 +85,157 @@ TEST_CASE("During a lane change the lane is followed at the speed, or esmini's p
           Approx(50.0 - 100.0 * (0.1 - std::sqrt(0.008775))).margin(1e-6));
     CHECK(run.at(1.5, "Car").pose.h == Approx(-std::asin(0.35)).margin(1e-9));
     CHECK(run.at(4.0, "Car").road->lane == -2);
+  }
+}
+
+TEST_CASE("A SpeedAction beyond the Performance is exact, or esmini's stretched to its limits",
+          "[engine][semantics]") {
+  // 10 m/s; Performance 2 m/s^2 up, 4 m/s^2 down, 15 m/s. At t1 = 1 s: linear to 20 m/s in 2 s;
+  // at t2 = 5 s: cubic to 5 m/s in 1 s (3 x 15 / 2 = 22.5 m/s^2 at its steepest).
+  SECTION("standard") {
+    // The TransitionDynamics hold as written: 15 m/s half way, 20 m/s at t1 + 2; then 12.5 m/s
+    // half way down and 5 m/s at t2 + 1.
+    FixtureRun run(engine_fixture("semantics_performance.xosc"));
+    run.run();
+    const auto up = run.first("up", engine::TransitionKind::kStart);
+    const auto down = run.first("down", engine::TransitionKind::kStart);
+    REQUIRE(up);
+    REQUIRE(down);
+    CHECK(run.at(*up + 1.0, "Car").speed == Approx(15.0).margin(1e-9));
+    CHECK(run.at(*up + 2.0, "Car").speed == Approx(20.0).margin(1e-9));
+    CHECK(run.at(*down + 0.5, "Car").speed == Approx(12.5).margin(1e-9));
+    CHECK(run.at(*down + 1.0, "Car").speed == Approx(5.0).margin(1e-9));
+    // esmini's DefaultController is ours: no substitute.
+    CHECK(run.sim().controller_substitute(run.entity("Car")).empty());
+  }
+  SECTION("esmini") {
+    // The target is held to maxSpeed, 15 m/s; 5 m/s in 2 s (2.5 m/s^2) is stretched to 2.5 s
+    // at 2 m/s^2: 12 m/s at t1 + 1, 15 m/s from t1 + 2.5. Down, 10 m/s by a cubic peaking at
+    // 15 m/s^2 is stretched by 15 / 4 to 3.75 s: at t2 + 1.87 (p = 1.87 / 3.75, just before half
+    // way) 15 - 10 (3 p^2 - 2 p^3) = 10.02 m/s, and 5 m/s at its end.
+    FixtureRun run(engine_fixture("semantics_performance.xosc"), esmini_reading());
+    run.run();
+    const auto up = run.first("up", engine::TransitionKind::kStart);
+    const auto down = run.first("down", engine::TransitionKind::kStart);
+    REQUIRE(up);
+    REQUIRE(down);
+    CHECK(run.at(*up + 1.0, "Car").speed == Approx(12.0).margin(1e-9));
+    CHECK(run.at(*up + 2.0, "Car").speed == Approx(14.0).margin(1e-9));
+    CHECK(run.at(*up + 2.5, "Car").speed == Approx(15.0).margin(1e-9));
+    CHECK(run.at(*up + 3.5, "Car").speed == Approx(15.0).margin(1e-9));
+    const double p = 1.87 / 3.75;
+    CHECK(run.at(*down + 1.87, "Car").speed ==
+          Approx(15.0 - 10.0 * (3.0 * p * p - 2.0 * p * p * p)).margin(1e-9));
+    CHECK(run.at(*down + 3.75, "Car").speed == Approx(5.0).margin(1e-9));
+  }
+}
+
+TEST_CASE("--disable-controllers moves every entity under the default controller",
+          "[engine][semantics][controllers]") {
+  // The fixture's Car has ALKSController, which acc stands in for; esmini's
+  // --disable_controllers ignores it, and so does SimulationOptions::disable_controllers.
+  engine::SimulationOptions options;
+  options.disable_controllers = true;
+  FixtureRun run(engine_fixture("compat_appearance_values.xosc"), options);
+  run.run();
+  CHECK(run.sim().controller_substitute(run.entity("Car")).empty());
+  CHECK_THAT(corsa::test::all_text(run.diagnostics()),
+             !Catch::Contains("controller 'ALKSController' is not one of this engine's"));
+}
+
+TEST_CASE("SynchronizeAction keeps within the Performance, or esmini's plan regardless of it",
+          "[engine][semantics][synchronize]") {
+  // Master covers 85 m at 10 m/s in 8.5 s; Slow (maxSpeed 8 m/s, maxAcceleration 2 m/s^2) needs
+  // 90 m from standstill in that time (on lane 1 of road 4, from s = 95 down to s = 5). Within
+  // its Performance it covers 52 m and arrives late (motion_test.cpp); esmini plans a constant
+  // acceleration of 2 x 90 / 8.5^2 = 2.49 m/s^2 up to 21.2 m/s and keeps the appointment.
+  FixtureRun run(engine_fixture("sync_limits_performance.xosc"), esmini_reading());
+  run.run();
+  const auto& slow = run.at(8.5, "Slow");
+  REQUIRE(slow.road);
+  CHECK(slow.road->s == Approx(5.0).margin(0.5));
+  CHECK(slow.speed > 8.0);
+  CHECK_THAT(corsa::test::all_text(run.diagnostics()),
+             !Catch::Contains("'Slow' cannot reach its target"));
+}
+
+TEST_CASE("An Act its StopTrigger stops takes the stopTransition, or esmini's endTransition",
+          "[engine][semantics][storyboard]") {
+  // Act "first" is stopped at 1 s; Act "second" waits for first's endTransition to set 10 m/s.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_act_stop.xosc"));
+    run.run();
+    CHECK(run.first("first", engine::TransitionKind::kStop));
+    CHECK_FALSE(run.first("first", engine::TransitionKind::kEnd));
+    CHECK_FALSE(run.first("second", engine::TransitionKind::kStart));
+    CHECK(run.now("Car").speed == Approx(0.0));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_act_stop.xosc"), esmini_reading());
+    run.run();
+    const auto ended = run.first("first", engine::TransitionKind::kEnd);
+    REQUIRE(ended);
+    CHECK(*ended == Approx(1.0));
+    CHECK(run.first("second", engine::TransitionKind::kStart));
+    CHECK(run.now("Car").speed == Approx(10.0));
+  }
+}
+
+TEST_CASE("A relative Orientation on a left lane turns from the road's s, or esmini's lane",
+          "[engine][semantics][positions]") {
+  // Lane 1 at s = 100, h = pi relative, 10 m/s for 2 s.
+  SECTION("standard") {
+    // pi from the road's +s: facing -s, with the lane's traffic; s(2) = 100 - 20.
+    FixtureRun run(engine_fixture("semantics_lane_orientation.xosc"));
+    run.run();
+    CHECK(std::abs(run.at(0.0, "Car").pose.h) == Approx(std::numbers::pi).margin(1e-9));
+    CHECK(run.at(2.0, "Car").road->s == Approx(80.0).margin(1e-9));
+  }
+  SECTION("esmini") {
+    // pi from the lane's direction of travel (-s): facing +s; s(2) = 100 + 20.
+    FixtureRun run(engine_fixture("semantics_lane_orientation.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(0.0, "Car").pose.h == Approx(0.0).margin(1e-9));
+    CHECK(run.at(2.0, "Car").road->s == Approx(120.0).margin(1e-9));
+  }
+}
+
+TEST_CASE("A time headway towards an entity behind is infinite, or esmini's condition is false",
+          "[engine][semantics][conditions]") {
+  // Car (s = 50) waits for its headway to Behind (s = 10) to exceed 1 s before going 20 m/s.
+  SECTION("standard") {
+    // No headway is defined towards an entity behind: it is infinite, so greaterThan 1 holds at
+    // once and Car speeds up in the first step.
+    FixtureRun run(engine_fixture("semantics_headway_behind.xosc"));
+    run.run();
+    const auto started = run.first("away", engine::TransitionKind::kStart);
+    REQUIRE(started);
+    CHECK(*started == Approx(0.0));
+    CHECK(run.now("Car").speed == Approx(20.0));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_headway_behind.xosc"), esmini_reading());
+    run.run();
+    CHECK_FALSE(run.first("away", engine::TransitionKind::kStart));
+    CHECK(run.now("Car").speed == Approx(10.0));
+  }
+}
+
+TEST_CASE("A RelativeLanePosition without Orientation faces its lane's traffic, or esmini's ref",
+          "[engine][semantics][positions]") {
+  // Ref stands on lane 1 facing +s (against that lane's traffic); Other is placed one lane
+  // further left (lane 2) and 10 m on, without Orientation.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_heading.xosc"));
+    run.run();
+    CHECK(run.at(0.0, "Other").road->lane == 2);
+    CHECK(std::abs(run.at(0.0, "Other").pose.h) == Approx(std::numbers::pi).margin(1e-9));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_heading.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(0.0, "Other").road->lane == 2);
+    CHECK(run.at(0.0, "Other").pose.h == Approx(0.0).margin(1e-9));
   }
 }
 

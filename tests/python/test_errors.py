@@ -49,6 +49,7 @@ def test_a_bad_parameter_value_is_located_as_on_the_command_line():
     ({"npc": "vehicles=3"}, TypeError, "npc expects a dict"),
     ({"params": {"CutInGap": [1]}}, TypeError, "must be a bool, int, float or str"),
     ({"external": "Driver"}, TypeError, "list of controller names"),
+    ({"semantics": "sumo"}, ValueError, "semantics expects 'standard' or 'esmini'"),
     ({"models": ["a.obj"]}, ValueError, "are for a rig"),
 ])
 def test_bad_arguments_are_refused_before_loading(options, error, text):

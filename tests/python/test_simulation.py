@@ -142,3 +142,16 @@ def test_two_simulations_do_not_see_each_other():
         a.step()
     assert b.time == 0.0 and a.time == pytest.approx(1.0)
     assert b.state("Ego").x == 100.0
+
+
+def test_the_esmini_reading_reaches_the_engine():
+    # From s = 10 a linear speed-up from 0 to 10 m/s in 2 s: exactly 12.5 m at 1 s under the
+    # standard reading; esmini moves each step by the speed at its end, dt/2 x 5 m/s further.
+    path = ROOT / "tests" / "engine" / "fixtures" / "semantics_speed_travel.xosc"
+    standard = corsa.Simulation(path)
+    esmini = corsa.Simulation(path, semantics="esmini")
+    for sim in (standard, esmini):
+        while sim.time < 1.0 - 1e-9:
+            sim.step()
+    assert standard.state("Car").s == pytest.approx(12.5, abs=1e-9)
+    assert esmini.state("Car").s == pytest.approx(12.525, abs=1e-9)

@@ -15,6 +15,9 @@ class AssignControllerInstance final : public InstantAction {
   explicit AssignControllerInstance(const xosc::AssignControllerAction& action) : action_(action) {}
 
   void start(ActionContext& context) override {
+    if (context.state.options.disable_controllers) {
+      return;  // the run ignores the scenario's controllers (SimulationOptions)
+    }
     ControlState& control = control_of(context.state, *context.actor);
     const xosc::ObjectController& oc = action_.controller;
     ControllerKind kind = ControllerKind::kDefault;

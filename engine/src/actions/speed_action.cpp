@@ -2,6 +2,7 @@
 // target or one relative to another entity (delta or factor), with a TransitionDynamics shape
 // over time, distance or rate. A continuous relative target keeps tracking and never ends.
 
+#include <algorithm>
 #include <cmath>
 
 #include "actions/action_makers.h"
@@ -48,6 +49,10 @@ class SpeedInstance final : public ActionInstance {
           break;
       }
     }
+    esmini_limits_ = context.state.options.semantics == Semantics::kEsmini;
+    if (esmini_limits_ && duration > 0.0) {
+      duration = stretched_to_performance(entity, target, duration);
+    }
     duration_ = duration;
     if (duration_ <= 0.0) {
       command(context, target);
@@ -60,13 +65,14 @@ class SpeedInstance final : public ActionInstance {
   void step(ActionContext& context) override {
     const double target = target_speed(context);
     if (reached_) {
-      command(context, target);  // continuous: keep tracking the reference
+      command(context, within_performance(context, target));  // continuous: keep tracking
       return;
     }
     const double elapsed = context.state.time.time(context.state.tick + 1 - start_tick_);
     const double p = elapsed >= duration_ ? 1.0 : elapsed / duration_;
     command(context,
-            start_speed_ + shape_value(action_.dynamics.shape, p) * (target - start_speed_));
+            within_performance(context, start_speed_ + shape_value(action_.dynamics.shape, p) *
+                                                           (target - start_speed_)));
     reached_ = p >= 1.0;
   }
 
@@ -74,13 +80,50 @@ class SpeedInstance final : public ActionInstance {
 
  private:
   double target_speed(const ActionContext& context) const {
+    double target = 0.0;
     if (const auto* absolute = std::get_if<xosc::AbsoluteTargetSpeed>(&action_.target)) {
-      return absolute->value;
+      target = absolute->value;
+    } else {
+      const auto& relative = std::get<xosc::RelativeTargetSpeed>(action_.target);
+      const double reference = context.state.world.entities[reference_index_].state.speed;
+      target = relative.value_type == xosc::SpeedTargetValueType::kDelta
+                   ? reference + relative.value
+                   : reference * relative.value;
     }
-    const auto& relative = std::get<xosc::RelativeTargetSpeed>(action_.target);
-    const double reference = context.state.world.entities[reference_index_].state.speed;
-    return relative.value_type == xosc::SpeedTargetValueType::kDelta ? reference + relative.value
-                                                                     : reference * relative.value;
+    const double max_speed = context.entity().info.max_speed;
+    if (context.state.options.semantics == Semantics::kEsmini && max_speed > 0.0) {
+      target = std::clamp(target, -max_speed, max_speed);  // esmini: never beyond maxSpeed
+    }
+    return target;
+  }
+
+  // esmini's reading of Performance: a transition whose steepest speed change exceeds the
+  // entity's maxAcceleration (speeding up) or maxDeceleration (slowing down) is stretched in
+  // time, keeping its shape, until its steepest change equals that limit.
+  double stretched_to_performance(const Entity& entity, double target, double duration) const {
+    const double limit =
+        target > start_speed_ ? entity.info.max_acceleration : entity.info.max_deceleration;
+    const double peak =
+        std::abs(target - start_speed_) * shape_peak_slope(action_.dynamics.shape) / duration;
+    return limit > 0.0 && peak > limit ? duration * peak / limit : duration;
+  }
+
+  // esmini's reading of Performance: no step changes the speed by more than maxAcceleration x dt
+  // (or maxDeceleration x dt), whatever the transition asks.
+  double within_performance(const ActionContext& context, double speed) const {
+    if (!esmini_limits_) {
+      return speed;
+    }
+    const Entity& entity = context.entity();
+    const double dt = context.state.time.dt();
+    const double current = entity.state.speed;
+    if (entity.info.max_acceleration > 0.0) {
+      speed = std::min(speed, current + entity.info.max_acceleration * dt);
+    }
+    if (entity.info.max_deceleration > 0.0) {
+      speed = std::max(speed, current - entity.info.max_deceleration * dt);
+    }
+    return speed;
   }
 
   void command(ActionContext& context, double speed) const {
@@ -98,6 +141,7 @@ class SpeedInstance final : public ActionInstance {
   int64_t start_tick_ = 0;
   double duration_ = 0.0;
   bool reached_ = false;
+  bool esmini_limits_ = false;  ///< Performance bounds the transition (Semantics::kEsmini)
 };
 
 }  // namespace

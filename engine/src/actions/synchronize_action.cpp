@@ -16,10 +16,12 @@
 // moves toward the plan by at most the acceleration or deceleration limit times dt and never
 // above maxSpeed. When, at the master's current speed, the actor can no longer cover its
 // distance in the master's time within those limits (too far: it arrives late; too near: it
-// arrives early even braking to a stop), a located warning says so, once.
+// arrives early even braking to a stop), a located warning says so, once. esmini's reading
+// (Semantics::kEsmini) follows the plan without the Performance.
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "actions/action_makers.h"
 #include "actions/dynamic_limits.h"
@@ -82,6 +84,12 @@ class SynchronizeInstance final : public ActionInstance {
     own_to_go_.start(state, context.entity(),
                      resolve_position(action_.target_position, state, context.actor));
     limits_ = speed_limits(context.entity(), std::nullopt);
+    if (state.options.semantics == Semantics::kEsmini) {
+      // esmini plans the speed without the Performance: the actor keeps the appointment.
+      unlimited_ = true;
+      limits_.acceleration = limits_.deceleration = limits_.speed =
+          std::numeric_limits<double>::infinity();
+    }
   }
 
   void step(ActionContext& context) override {
@@ -138,7 +146,7 @@ class SynchronizeInstance final : public ActionInstance {
   }
 
   void warn_if_unreachable(ActionContext& context, double d_own, double t_master) {
-    if (warned_) {
+    if (warned_ || unlimited_) {
       return;
     }
     const Entity& entity = context.entity();
@@ -205,6 +213,7 @@ class SynchronizeInstance final : public ActionInstance {
   DistanceToGo master_to_go_;
   DistanceToGo own_to_go_;
   SpeedLimits limits_;
+  bool unlimited_ = false;  ///< no Performance bounds the plan (Semantics::kEsmini)
   bool arrived_ = false;
   bool settled_ = false;  ///< arrived and at the final speed
   bool warned_ = false;

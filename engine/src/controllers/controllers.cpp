@@ -22,6 +22,11 @@ namespace corsa::engine::detail {
 bool controller_kind_of(const xosc::Controller& controller, Diagnostics& diagnostics,
                         ControllerKind& out) {
   for (const xosc::Property& property : controller.properties.properties) {
+    // esmini's DefaultController performs the actions as given, as ours does: no substitute.
+    if (property.name == "esminiController" && property.value == "DefaultController") {
+      out = ControllerKind::kDefault;
+      return true;
+    }
     if (property.name != "corsa:controller") {
       continue;
     }
@@ -83,7 +88,7 @@ void assign_initial_controllers(SimState& state) {
     const Entity& entity = state.world.entities[i];
     ControlState& control = state.controls[i];
     bool chosen = false;
-    if (entity.object != nullptr) {
+    if (entity.object != nullptr && !state.options.disable_controllers) {
       for (const xosc::ObjectController& oc : entity.object->controllers) {
         control.assigned = oc.name.value_or(oc.controller.name);
         if (names_external(state.options, oc)) {

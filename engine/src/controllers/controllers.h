@@ -29,7 +29,8 @@ namespace corsa::engine::detail {
 
 struct SimState;
 
-/// The corsa controller a scenario Controller asks for (its `corsa:controller` property), or
+/// The corsa controller a scenario Controller asks for (its `corsa:controller` property, or
+/// esmini's `esminiController` = DefaultController, which is the default controller), or
 /// nothing. An unknown value warns once (located) and means the default controller.
 bool controller_kind_of(const xosc::Controller& controller, Diagnostics& diagnostics,
                         ControllerKind& out);

@@ -93,7 +93,19 @@ ResolvedPosition lane(const xosc::LanePosition& p, const SimState& state) {
     return on_road(map, road_index, s, p.offset.value_or(0.0), std::nullopt, p.orientation);
   }
   const double t = need_lane_center(map, road_index, s, lane_id, p.source) + p.offset.value_or(0.0);
-  return on_road(map, road_index, s, t, lane_id, p.orientation);
+  ResolvedPosition out = on_road(map, road_index, s, t, lane_id, p.orientation);
+  if (state.options.semantics == Semantics::kEsmini && p.orientation &&
+      p.orientation->type == xosc::ReferenceContext::kRelative &&
+      lane_runs_backward(map, road_index, s, lane_id)) {
+    // esmini turns a relative orientation from the lane's direction of travel, not from the
+    // road's +s (docs/openscenario.md, differences from esmini).
+    const double dp = p.orientation->p.value_or(0.0);
+    const double dr = p.orientation->r.value_or(0.0);
+    out.pose.h = wrap_angle(out.pose.h + std::numbers::pi);
+    out.pose.p = dp - (out.pose.p - dp);
+    out.pose.r = dr - (out.pose.r - dr);
+  }
+  return out;
 }
 
 // Where the reference entity is on the road (it must be on one).
@@ -152,7 +164,15 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
   const LaneFollow at = walk(map, rc, ds, p.source);
   const int lane_id = step_lane_id(at.lane, at.dir * p.d_lane);
   const double t = need_lane_center(map, at.road, at.s, lane_id, p.source) + p.offset.value_or(0.0);
-  return on_road(map, at.road, at.s, t, lane_id, p.orientation);
+  ResolvedPosition out = on_road(map, at.road, at.s, t, lane_id, p.orientation);
+  if (state.options.semantics == Semantics::kEsmini && !p.orientation) {
+    // esmini faces a position without Orientation the way the reference entity faces along its
+    // road, not the target lane's direction of travel.
+    const double ref_offset = wrap_angle(ref.state.pose.h - map.reference(rc.road, rc.s).hdg);
+    const bool ref_backward = std::abs(ref_offset) > 0.5 * std::numbers::pi;
+    out.pose.h = travel_heading(map, at.road, at.s, ref_backward ? -at.dir : at.dir);
+  }
+  return out;
 }
 
 ResolvedPosition geo(const xosc::GeoPosition& p, const SimState& state) {

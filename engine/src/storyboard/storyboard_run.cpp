@@ -370,7 +370,11 @@ void Storyboard::stop_act(SimState& state, ActNode& act, bool propagate) {
       move(state, group.element, TransitionKind::kStop, ElementState::kComplete);
     }
   }
-  move(state, act.element, TransitionKind::kStop, ElementState::kComplete);
+  // §8.4: an Act its own StopTrigger stops takes the stopTransition; esmini reports it as the
+  // Act's endTransition, which its examples' StoryboardElementStateConditions wait for.
+  const bool esmini_end = propagate && state.options.semantics == Semantics::kEsmini;
+  move(state, act.element, esmini_end ? TransitionKind::kEnd : TransitionKind::kStop,
+       ElementState::kComplete);
   if (propagate) {
     check_story(state, *act.story);
   }

@@ -88,6 +88,10 @@ struct SimulationOptions {
   std::vector<std::pair<std::string, std::string>> values;
   /// Standard or esmini-compatible reading of what the standard leaves open (`--semantics`).
   Semantics semantics = Semantics::kStandard;
+  /// The scenario's controllers are ignored (`corsa run --disable-controllers`, esmini's
+  /// `--disable_controllers`): ObjectControllers and AssignControllerActions choose nothing, so
+  /// every entity moves under the default controller (or `controller` for vehicles).
+  bool disable_controllers = false;
 };
 
 /// One presence of a generated entity (traffic actions, NPCs): when it appeared and, once it

@@ -33,6 +33,9 @@ struct SuiteOptions {
   engine::GeoProjectionFactory geo_projection;
   /// Every test refuses lenient readings (engine::SimulationOptions::strict, `--strict`).
   bool strict = false;
+  /// Every test reads what the standard leaves open this way (engine::SimulationOptions::
+  /// semantics, `--semantics`); unset: each test's own.
+  std::optional<engine::Semantics> semantics;
 };
 
 enum class Verdict : uint8_t { kPassed, kFailed, kError };
