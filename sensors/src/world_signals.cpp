@@ -140,17 +140,17 @@ std::optional<SignSpec> korean_sign(int type, const xodr::Signal& s) {
   return spec;
 }
 
-bool is_korean(const std::string& country) {
-  const std::string c = to_lower(country);
-  return c == "kr" || c == "kor" || c == "korea";
-}
-
 bool is_traffic_light(const xodr::Signal& s) {
   const int type = type_number(s.type);
   return s.dynamic || (type >= 1000000 && type < 1001000);
 }
 
 }  // namespace
+
+bool is_korean(const std::string& country) {
+  const std::string c = to_lower(country);
+  return c == "kr" || c == "kor" || c == "korea";
+}
 
 void build_signals(WorldBuild& w) {
   const xodr::Map& map = w.map;
@@ -190,7 +190,7 @@ void build_signals(WorldBuild& w) {
         ++w.report.traffic_lights;
         continue;
       }
-      if (!is_korean(s.country) && build_signal_marking(w, r, s)) {
+      if (build_signal_marking(w, r, s)) {
         continue;
       }
       const int type = type_number(s.type);
