@@ -1,6 +1,6 @@
 // OpenDRIVE signals (OpenDRIVE 1.8 §14) drawn as traffic lights and signs. Traffic lights:
 // dynamic signals and the German 1000xxx types; vertical three-light heads in Germany and for
-// CARLA's "OpenDRIVE" country, horizontal heads in Korea; their bulbs follow the scenario's
+// CARLA's "OpenDRIVE" country, horizontal heads in Korea (also the lights the NGII import writes); their bulbs follow the scenario's
 // TrafficSignalState (WorldSnapshot::signals). Signs: the common German (StVO) and Korean types
 // by shape, colours and symbol; any other type a generic white sign with one located warning.
 // Signals that stand for road markings are painted on the road (world_markings.cpp).
@@ -140,6 +140,15 @@ std::optional<SignSpec> korean_sign(int type, const xodr::Signal& s) {
   return spec;
 }
 
+/// True for a signal `corsa convert ngii` made from a Korean NGII C1 traffic light: it writes the
+/// German catalogue's numbers with country "OpenDRIVE" so that every reader knows the type, and
+/// keeps the NGII layer in the signal's userData.
+bool from_korean_layer(const xodr::Signal& s) {
+  return std::any_of(s.user_data.begin(), s.user_data.end(), [](const xodr::UserData& d) {
+    return d.code.rfind("ngii:C1_TRAFFICLIGHT", 0) == 0;
+  });
+}
+
 bool is_traffic_light(const xodr::Signal& s) {
   const int type = type_number(s.type);
   return s.dynamic || (type >= 1000000 && type < 1001000);
@@ -171,7 +180,7 @@ void build_signals(WorldBuild& w) {
       info.value = s.value;
       info.text = s.text;
       if (is_traffic_light(s)) {
-        const bool korean = is_korean(s.country);
+        const bool korean = is_korean(s.country) || from_korean_layer(s);
         const double head = s.height > 0.3 ? std::min(s.height, 1.4) : (korean ? 0.4 : 0.95);
         double bottom = s.z_offset;
         if (bottom < 1.5) {

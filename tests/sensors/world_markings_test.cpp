@@ -234,3 +234,24 @@ TEST_CASE("roadMark objects are painted in their outline, arrows included",
   CHECK(labels[0].info.kind == "road_mark");
   CHECK(labels[0].info.type == "5371");
 }
+
+TEST_CASE("traffic lights from the NGII import get Korean horizontal heads",
+          "[sensors][world][signals][korea]") {
+  // The same light twice: written by `corsa convert ngii` (German catalogue number, country
+  // "OpenDRIVE", the NGII layer in userData) at s 30, and a plain one at s 70. Both stand at
+  // t = -8 facing traffic towards +s, heads 5 m up.
+  const auto map = street_with(
+      R"(<signal id="ngii" s="30" t="-8" zOffset="5" orientation="+" dynamic="yes" country="OpenDRIVE" type="1000001" subtype="-1"><userData code="ngii:C1_TRAFFICLIGHT.Type" value="1"/></signal>
+         <signal id="plain" s="70" t="-8" zOffset="5" orientation="+" dynamic="yes" country="OpenDRIVE" type="1000001" subtype="-1"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.traffic_lights == 2);
+  // A horizontal head reaches 0.8 m to either side of the signal; a vertical one 0.18 m.
+  const auto head_at = [&](double s, double t) {
+    const auto hit = world->scene.intersect({s - 10.0, t, 5.2}, {1.0, 0.0, 0.0}, 12.0);
+    return hit && hit->semantic == SemanticClass::kTrafficLight;
+  };
+  CHECK(head_at(30.0, -7.4));
+  CHECK(head_at(30.0, -8.6));
+  CHECK_FALSE(head_at(70.0, -7.4));
+  CHECK(head_at(70.0, -8.0));
+}
