@@ -144,8 +144,9 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
 namespace {
 
 constexpr const char* kDatasetOptions[] = {
-    "--rig",   "-o",      "--format",  "--kitti-min-height", "--kitti-max-distance",
-    "--force", "--model", "--preview", "--time-of-day",      "--weather", "--entity-model"};
+    "--rig",         "-o",      "--format",  "--kitti-min-height", "--kitti-max-distance",
+    "--force",       "--model", "--preview", "--time-of-day",      "--weather",
+    "--entity-model"};
 
 }  // namespace
 

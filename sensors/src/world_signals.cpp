@@ -1,9 +1,10 @@
 // OpenDRIVE signals (OpenDRIVE 1.8 §14) drawn as traffic lights and signs. Traffic lights:
 // dynamic signals and the German 1000xxx types; vertical three-light heads in Germany and for
-// CARLA's "OpenDRIVE" country, horizontal heads in Korea (also the lights the NGII import writes); their bulbs follow the scenario's
-// TrafficSignalState (WorldSnapshot::signals). Signs: the common German (StVO) and Korean types
-// by shape, colours and symbol; any other type a generic white sign with one located warning.
-// Signals that stand for road markings are painted on the road (world_markings.cpp).
+// CARLA's "OpenDRIVE" country, horizontal heads in Korea (also the lights the NGII import writes);
+// their bulbs follow the scenario's TrafficSignalState (WorldSnapshot::signals). Signs: the common
+// German (StVO) and Korean types by shape, colours and symbol; any other type a generic white sign
+// with one located warning. Signals that stand for road markings are painted on the road
+// (world_markings.cpp).
 
 #include <algorithm>
 #include <cmath>

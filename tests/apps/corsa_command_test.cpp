@@ -67,8 +67,8 @@ TEST_CASE("a dataset option without --rig says what it needs", "[cli][e2e]") {
 
 TEST_CASE("a malformed --entity-model is refused before any run with exit 2", "[cli][e2e]") {
   const auto result = run_corsa({"run", "scenarios/demo/cut_in_city.xosc", "--rig",
-                                 "tests/collect/fixtures/small_rig.xml", "-o",
-                                 "out/never_written", "--entity-model", "car.glb"});
+                                 "tests/collect/fixtures/small_rig.xml", "-o", "out/never_written",
+                                 "--entity-model", "car.glb"});
   CHECK(result.exit_code == 2);
   CHECK_THAT(result.err, Catch::Contains("--entity-model 'car.glb': expected WHO=FILE"));
   const auto who = run_corsa({"run", "scenarios/demo/cut_in_city.xosc", "--rig",

@@ -174,9 +174,9 @@ TEST_CASE("a Korean crosswalk-ahead signal is a hollow diamond in each lane it s
   auto world = marked_world(map);
   CHECK(world->report.markings == 1);
   CHECK(world->warnings.empty());
-  CHECK(paint_at(world->scene, 42.3, -1.75));   // near the forward tip, lane -1
-  CHECK(paint_at(world->scene, 40.0, -1.1));    // the left corner's stroke
-  CHECK(paint_at(world->scene, 40.0, -2.4));    // the right corner's stroke
+  CHECK(paint_at(world->scene, 42.3, -1.75));        // near the forward tip, lane -1
+  CHECK(paint_at(world->scene, 40.0, -1.1));         // the left corner's stroke
+  CHECK(paint_at(world->scene, 40.0, -2.4));         // the right corner's stroke
   CHECK_FALSE(paint_at(world->scene, 40.0, -1.75));  // hollow inside
   CHECK_FALSE(paint_at(world->scene, 40.0, -0.9));   // 1.35 m wide
   CHECK(paint_at(world->scene, 37.7, -5.25));        // the second lane's diamond
@@ -205,7 +205,8 @@ TEST_CASE("roadMark objects are painted in their outline, arrows included",
   // An NGII-style stop line (a closed outline 0.4 m wide in road coordinates) and an arrow
   // (a non-convex outline in local u, v), as `corsa convert ngii` writes B2 and B3 marks.
   const auto map = street_with(
-      "", R"(<object id="sl" type="roadMark" subtype="stopLine" name="stop line" s="30" t="-3.5" zOffset="0">
+      "",
+      R"(<object id="sl" type="roadMark" subtype="stopLine" name="stop line" s="30" t="-3.5" zOffset="0">
             <outlines><outline id="0" closed="true">
               <cornerRoad s="29.8" t="-7" dz="0" height="0"/><cornerRoad s="30.2" t="-7" dz="0" height="0"/>
               <cornerRoad s="30.2" t="0" dz="0" height="0"/><cornerRoad s="29.8" t="0" dz="0" height="0"/>
