@@ -148,8 +148,9 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
 namespace {
 
 constexpr const char* kDatasetOptions[] = {
-    "--rig",   "-o",      "--format",  "--kitti-min-height", "--kitti-max-distance",
-    "--force", "--model", "--preview", "--time-of-day",      "--weather"};
+    "--rig",         "-o",      "--format",  "--kitti-min-height", "--kitti-max-distance",
+    "--force",       "--model", "--preview", "--time-of-day",      "--weather",
+    "--entity-model"};
 
 }  // namespace
 
@@ -174,6 +175,10 @@ void declare_dataset_options(ArgParser& parser) {
   parser.repeated("--model", "FILE[@X,Y[,HEADING_DEG]]",
                   "add a building model (map metres, z up) at an offset; the scenario's "
                   "SceneGraphFile is loaded too");
+  parser.repeated("--entity-model", "WHO=FILE",
+                  "a model (glTF/GLB, FBX, OBJ, ...) for the entities without a model3d: WHO is "
+                  "an entity's name or a category (car, truck, pedestrian, ...); wins over the "
+                  "rig's EntityModel");
   parser.flag("--preview", "also write DIR/preview/contact_sheet.png and camera_birds_eye.mp4");
   parser.section("");
 }

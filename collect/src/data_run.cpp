@@ -24,6 +24,14 @@ void DataRun::prepare(engine::Simulation& simulation) {
     names.push_back(simulation.entity(i).name);
   }
   sensors::bind_rig(rig_, names);
+  // The command line's models first, so that they win over the rig's for the same entity or
+  // category.
+  std::vector<sensors::EntityModel> models;
+  for (const EntityModelSpec& spec : options_.entity_models) {
+    models.push_back(resolve_entity_model(spec, names));
+  }
+  models.insert(models.end(), rig_.entity_models.begin(), rig_.entity_models.end());
+  rig_.entity_models = std::move(models);
   std::vector<engine::CaptureSensor> capture_sensors;
   for (const sensors::SensorSpec& s : rig_.sensors) {
     capture_sensors.push_back({s.name, s.rate_hz});

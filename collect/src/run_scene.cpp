@@ -2,6 +2,7 @@
 
 #include "corsa/collect/run_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -41,6 +42,40 @@ ModelSpec parse_model_spec(std::string_view text) {
   spec.placement.offset = {values[0], values[1], 0.0};
   spec.placement.heading = values.size() == 3 ? values[2] * std::numbers::pi / 180.0 : 0.0;
   return spec;
+}
+
+EntityModelSpec parse_entity_model_spec(std::string_view text) {
+  const size_t eq = text.find('=');
+  if (eq == std::string_view::npos || trim(text.substr(0, eq)).empty() ||
+      text.substr(eq + 1).empty()) {
+    throw std::invalid_argument("'" + std::string(text) +
+                                "': expected WHO=FILE (a category such as car or pedestrian, "
+                                "or an entity's name, then the model file)");
+  }
+  return {std::string(trim(text.substr(0, eq))), std::string(text.substr(eq + 1)),
+          std::string(text)};
+}
+
+sensors::EntityModel resolve_entity_model(const EntityModelSpec& spec,
+                                          const std::vector<std::string>& entity_names) {
+  sensors::EntityModel m;
+  m.file = spec.file;
+  m.origin = "--entity-model " + spec.text;
+  const auto& categories = sensors::entity_category_names();
+  if (std::find(entity_names.begin(), entity_names.end(), spec.who) != entity_names.end()) {
+    m.entity = spec.who;
+  } else if (std::find(categories.begin(), categories.end(), spec.who) != categories.end()) {
+    m.category = spec.who;
+  } else {
+    std::vector<std::string> known = entity_names;
+    known.insert(known.end(), categories.begin(), categories.end());
+    throw InputError(make_error(m.origin, 0,
+                                "'" + spec.who +
+                                    "' is neither an entity of the scenario nor a category "
+                                    "(car, van, truck, bus, motorbike, bicycle, pedestrian, ...)" +
+                                    did_you_mean(spec.who, known)));
+  }
+  return m;
 }
 
 sensors::Vec3 map_centre(const xodr::Map* map) {

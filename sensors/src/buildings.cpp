@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "corsa/core/random.h"
+#include "mesh_builder.h"
 
 namespace corsa::sensors {
 namespace {
@@ -17,52 +18,6 @@ double signed_area(const std::vector<Vec2>& ring) {
     a += p.x * q.y - q.x * p.y;
   }
   return 0.5 * a;
-}
-
-double cross(const Vec2& o, const Vec2& a, const Vec2& b) {
-  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-}
-
-bool inside_triangle(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
-  return cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0;
-}
-
-/// Ear clipping of a counter-clockwise simple polygon; returns index triples.
-std::vector<std::array<uint32_t, 3>> triangulate(const std::vector<Vec2>& ring) {
-  std::vector<uint32_t> remaining(ring.size());
-  for (uint32_t i = 0; i < ring.size(); ++i) {
-    remaining[i] = i;
-  }
-  std::vector<std::array<uint32_t, 3>> triangles;
-  size_t guard = 0;
-  while (remaining.size() > 3 && guard++ < 10 * ring.size() * ring.size()) {
-    const size_t n = remaining.size();
-    bool clipped = false;
-    for (size_t i = 0; i < n; ++i) {
-      const uint32_t a = remaining[(i + n - 1) % n], b = remaining[i], c = remaining[(i + 1) % n];
-      if (cross(ring[a], ring[b], ring[c]) <= 0.0) {
-        continue;  // reflex corner
-      }
-      bool ear = true;
-      for (uint32_t k : remaining) {
-        if (k != a && k != b && k != c && inside_triangle(ring[k], ring[a], ring[b], ring[c])) {
-          ear = false;
-          break;
-        }
-      }
-      if (ear) {
-        triangles.push_back({a, b, c});
-        remaining.erase(remaining.begin() + static_cast<std::ptrdiff_t>(i));
-        clipped = true;
-        break;
-      }
-    }
-    if (!clipped) {
-      throw std::invalid_argument("footprint is not a simple polygon");
-    }
-  }
-  triangles.push_back({remaining[0], remaining[1], remaining[2]});
-  return triangles;
 }
 
 }  // namespace
@@ -106,7 +61,11 @@ StaticMesh extrude_footprint(const Footprint& f) {
   for (const Vec2& p : ring) {
     mesh.vertices.push_back({p.x, p.y, top});
   }
-  for (const auto& t : triangulate(ring)) {
+  const auto roof_triangles = detail::ear_clip(ring);
+  if (roof_triangles.empty()) {
+    throw std::invalid_argument("footprint is not a simple polygon");
+  }
+  for (const auto& t : roof_triangles) {
     mesh.triangles.push_back({roof + t[0], roof + t[1], roof + t[2]});
   }
   return mesh;

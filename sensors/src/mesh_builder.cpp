@@ -1,5 +1,6 @@
 #include "mesh_builder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -160,6 +161,96 @@ void MeshBuilder::polygon(const std::vector<Vec3>& points,
   for (size_t i = 1; i + 1 < ids.size(); ++i) {
     triangle(ids[0], ids[i], ids[i + 1]);
   }
+}
+
+namespace {
+
+double ring_turn(const Vec2& o, const Vec2& a, const Vec2& b) {
+  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+}
+
+bool in_ear(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c) {
+  return ring_turn(a, b, p) >= 0.0 && ring_turn(b, c, p) >= 0.0 && ring_turn(c, a, p) >= 0.0;
+}
+
+}  // namespace
+
+std::vector<std::array<uint32_t, 3>> ear_clip(const std::vector<Vec2>& ring) {
+  if (ring.size() < 3) {
+    return {};
+  }
+  std::vector<uint32_t> remaining(ring.size());
+  for (uint32_t i = 0; i < ring.size(); ++i) {
+    remaining[i] = i;
+  }
+  std::vector<std::array<uint32_t, 3>> triangles;
+  while (remaining.size() > 3) {
+    const size_t n = remaining.size();
+    bool clipped = false;
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t a = remaining[(i + n - 1) % n], b = remaining[i], c = remaining[(i + 1) % n];
+      if (ring_turn(ring[a], ring[b], ring[c]) <= 0.0) {
+        continue;  // reflex corner
+      }
+      bool ear = true;
+      for (uint32_t k : remaining) {
+        if (k != a && k != b && k != c && in_ear(ring[k], ring[a], ring[b], ring[c])) {
+          ear = false;
+          break;
+        }
+      }
+      if (ear) {
+        triangles.push_back({a, b, c});
+        remaining.erase(remaining.begin() + static_cast<std::ptrdiff_t>(i));
+        clipped = true;
+        break;
+      }
+    }
+    if (!clipped) {
+      return {};  // every ear fails: the ring crosses itself
+    }
+  }
+  triangles.push_back({remaining[0], remaining[1], remaining[2]});
+  return triangles;
+}
+
+bool MeshBuilder::filled_ring(const std::vector<Vec3>& ring) {
+  std::vector<Vec3> points;
+  for (const Vec3& p : ring) {
+    if (points.empty() || std::hypot(p.x - points.back().x, p.y - points.back().y) > 1e-6) {
+      points.push_back(p);
+    }
+  }
+  while (points.size() > 1 && std::hypot(points.front().x - points.back().x,
+                                         points.front().y - points.back().y) <= 1e-6) {
+    points.pop_back();  // a closed outline repeats its first corner
+  }
+  double area = 0.0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Vec3& p = points[i];
+    const Vec3& q = points[(i + 1) % points.size()];
+    area += p.x * q.y - q.x * p.y;
+  }
+  if (area < 0.0) {
+    std::reverse(points.begin(), points.end());
+  }
+  std::vector<Vec2> flat;
+  flat.reserve(points.size());
+  for (const Vec3& p : points) {
+    flat.push_back({p.x, p.y});
+  }
+  const auto triangles = ear_clip(flat);
+  if (triangles.empty()) {
+    return false;
+  }
+  std::vector<uint32_t> ids;
+  for (const Vec3& p : points) {
+    ids.push_back(vertex(p));
+  }
+  for (const auto& t : triangles) {
+    triangle(ids[t[0]], ids[t[1]], ids[t[2]]);
+  }
+  return true;
 }
 
 StaticMesh to_static_mesh(const ArticulatedMesh& mesh, const Rigid& placement, std::string name) {

@@ -62,6 +62,10 @@ class MeshBuilder {
   void loft(const std::vector<std::vector<Vec3>>& rings, bool cap_ends);
   /// A flat convex polygon (counter-clockwise), with uvs given per point.
   void polygon(const std::vector<Vec3>& points, const std::vector<std::array<float, 2>>& uvs);
+  /// A simple polygon, convex or not and of either winding, filled by ear clipping in its x-y
+  /// plane and wound counter-clockwise seen from +z (paint outlines such as arrows). Returns
+  /// false and adds nothing when the ring is not a simple polygon of at least 3 points.
+  bool filled_ring(const std::vector<Vec3>& ring);
 
   /// Gives an already added triangle another material (e.g. glass cut out of a body loft).
   void set_material(size_t triangle, const Material& m);
@@ -84,6 +88,10 @@ class MeshBuilder {
 /// The mesh as a static mesh placed by `placement` (bones ignored), one class per triangle,
 /// its palette and uvs carried over.
 StaticMesh to_static_mesh(const ArticulatedMesh& mesh, const Rigid& placement, std::string name);
+
+/// Ear clipping of a counter-clockwise simple polygon: index triples into `ring`; empty when
+/// the ring has fewer than 3 points or is not simple (no ear to clip).
+std::vector<std::array<uint32_t, 3>> ear_clip(const std::vector<Vec2>& ring);
 
 /// Unit vectors e1, e2 perpendicular to a unit axis and to each other (a stable choice).
 void perpendicular_basis(Vec3 axis, Vec3& e1, Vec3& e2);

@@ -84,6 +84,23 @@ StaticMesh merge(const std::vector<StaticMesh>& parts, SemanticClass semantic) {
 
 }  // namespace
 
+const std::vector<std::string>& entity_category_names() {
+  static const std::vector<std::string> names = [] {
+    using engine::EntityCategory;
+    std::vector<std::string> out;
+    for (const EntityCategory c :
+         {EntityCategory::kCar, EntityCategory::kVan, EntityCategory::kTruck,
+          EntityCategory::kTrailer, EntityCategory::kSemitrailer, EntityCategory::kBus,
+          EntityCategory::kMotorbike, EntityCategory::kBicycle, EntityCategory::kTrain,
+          EntityCategory::kTram, EntityCategory::kPedestrian, EntityCategory::kWheelchair,
+          EntityCategory::kAnimal, EntityCategory::kObstacle}) {
+      out.emplace_back(category_name(c));
+    }
+    return out;
+  }();
+  return names;
+}
+
 ModelShapeSource::ModelShapeSource(std::filesystem::path base, Diagnostics& diagnostics,
                                    std::vector<EntityModel> models, std::string rig_file)
     : base_(std::move(base)),
@@ -129,7 +146,7 @@ bool ModelShapeSource::shape_of(const engine::EntitySnapshot& e, StaticMesh& mes
       diagnostics_.add_once(
           "model3d:" + file.string(),
           chosen != nullptr
-              ? make_warning(rig_file_, chosen->line,
+              ? make_warning(chosen->origin.empty() ? rig_file_ : chosen->origin, chosen->line,
                              "cannot use the model '" + file.string() + "' for entity '" + e.name +
                                  "' (" + error.diagnostic().message +
                                  "); generated shapes stand in")

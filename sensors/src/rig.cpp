@@ -199,6 +199,7 @@ EntityModel read_entity_model(const ValidatedElement& e, const std::string& file
   m.category = category != nullptr ? *category : "";
   m.entity = entity != nullptr ? *entity : "";
   m.line = e.line;
+  m.origin = file;
   if (m.category.empty() == m.entity.empty()) {
     throw InputError(make_error(file, e.line,
                                 "an EntityModel names either a category or an entity (not both, "

@@ -73,6 +73,15 @@ uint32_t WorldBuild::place(const ArticulatedMesh& mesh, const Rigid& pose, const
   return scene.add_static_mesh(std::move(m));
 }
 
+uint32_t WorldBuild::place_paint(const ArticulatedMesh& mesh, const Rigid& pose,
+                                 const std::string& name, const ObjectInfo& info) {
+  StaticMesh m = to_static_mesh(mesh, pose, name);
+  m.object = info;
+  // Paint is stuff and gets no instance id by its class; painted objects take the next static id.
+  m.instance_id = kStaticInstanceBase + static_cast<uint32_t>(scene.static_mesh_count());
+  return scene.add_static_mesh(std::move(m));
+}
+
 bool WorldBuild::clear_of_props(double x, double y, double radius) const {
   for (int di = -2; di <= 2; ++di) {
     for (int dj = -2; dj <= 2; ++dj) {

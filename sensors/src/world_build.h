@@ -42,6 +42,10 @@ struct WorldBuild {
   /// Adds a prop mesh placed in the map frame; returns its instance id.
   uint32_t place(const ArticulatedMesh& mesh, const Rigid& pose, const std::string& name,
                  const ObjectInfo& info = {}, const std::string& signal_id = {});
+  /// Adds paint on the road (class lane_marking) placed in the map frame as one labelled object
+  /// with an instance id of its own (paint is stuff by its class); returns that id.
+  uint32_t place_paint(const ArticulatedMesh& mesh, const Rigid& pose, const std::string& name,
+                       const ObjectInfo& info);
   /// True when no prop stands within `radius` (plus theirs) of (x, y).
   bool clear_of_props(double x, double y, double radius) const;
   void remember(double x, double y, double radius);
@@ -55,10 +59,13 @@ struct WorldBuild {
 void build_ground(WorldBuild& w, const xodr::RoadMesh& road);
 /// Trees, bushes and street lights along the roads.
 void build_roadside(WorldBuild& w);
+/// True for the OpenDRIVE country codes of Korea ("KR", "KOR", "Korea", any case).
+bool is_korean(const std::string& country);
 /// OpenDRIVE signals as traffic lights and signs.
 void build_signals(WorldBuild& w);
-/// A signal that stands for paint on the road (stop line, crosswalk, give-way line) painted across
-/// the lanes it covers; false when the signal is no road marking.
+/// A signal that stands for paint on the road (German StVO or Korean 5xx numbers: stop line,
+/// crosswalk, give-way line, crosswalk-ahead diamond) painted across the lanes it covers (a
+/// marking Corsa does not paint is left out with a warning); false when it is no road marking.
 bool build_signal_marking(WorldBuild& w, size_t road, const xodr::Signal& signal);
 /// OpenDRIVE objects.
 void build_objects(WorldBuild& w);

@@ -1,13 +1,18 @@
 // OpenDRIVE signals that are paint on the road rather than posts. OpenDRIVE 1.8 §14 lets a
-// signal stand for a road marking; the German StVO catalogue (also CARLA's country "OpenDRIVE"
+// signal stand for a road marking. The German StVO catalogue (also CARLA's country "OpenDRIVE"
 // and VIRES' sample maps) numbers the markings 293-299 and 340-341. Drawn: 293
 // Fussgaengerueberweg (zebra bars 0.5 m wide and 0.5 m apart, 4 m along the road), 294 Haltlinie
 // (a stop line 0.5 m wide) and 341 Wartelinie (a give-way line 0.5 m wide, dashes 0.5 m long with
-// 0.25 m gaps; dimensions of the German RMS), all across the lanes the signal covers: its
-// <validity> lanes (§14.2), or else the drivable lanes its orientation serves ("+": the lanes
-// carrying traffic towards +s; a crosswalk spans every drivable lane). The signal's `length`
-// (1.8), when given, is the paint's extent along the road. The other markings (lines, arrows,
-// hatched areas) are left out with one warning: a road's lanes draw their lines already.
+// 0.25 m gaps; dimensions of the German RMS). The Korean road traffic safety signs number the
+// road surface markings 501-549 (Enforcement Rule of the Road Traffic Act, annex 6, part 5;
+// maps with country "KR"/"KOR", such as OpenDRIVE made from NGII data). Drawn: 530 stop line
+// (30-60 cm wide: 0.45 m), 532 and 533 crosswalk and raised crosswalk (zebra, at least 4 m along
+// the road) and 529 crosswalk ahead (a hollow diamond 1.35 m wide with 2.5 m sides, per lane).
+// All lie across the lanes the signal covers: its <validity> lanes (§14.2), or else the drivable
+// lanes its orientation serves ("+": the lanes carrying traffic towards +s; a crosswalk spans
+// every drivable lane). The signal's `length` (1.8), when given, is the paint's extent along the
+// road. The other markings (lines, arrows, text, hatched areas) are left out with one warning per
+// type: a road's lanes draw their lines already.
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +28,7 @@
 namespace corsa::sensors::detail {
 namespace {
 
-enum class MarkKind { kCrosswalk, kStopLine, kGiveWayLine };
+enum class MarkKind { kCrosswalk, kStopLine, kGiveWayLine, kCrosswalkAhead };
 
 struct MarkSpec {
   MarkKind kind;
@@ -47,6 +52,28 @@ std::optional<MarkSpec> german_marking(const std::string& type) {
 bool other_german_marking(const std::string& type) {
   const auto n = parse_int(type);
   return n && ((*n >= 295 && *n <= 299) || *n == 340);
+}
+
+/// Korean road surface markings (annex 6, part 5 of the Road Traffic Act's rule).
+std::optional<MarkSpec> korean_marking(const std::string& type) {
+  if (type == "530") {
+    return MarkSpec{MarkKind::kStopLine, 0.45, "stop_line"};
+  }
+  if (type == "532" || type == "533") {
+    return MarkSpec{MarkKind::kCrosswalk, 4.0, "crosswalk"};
+  }
+  if (type == "529") {
+    return MarkSpec{MarkKind::kCrosswalkAhead, 2.0 * std::sqrt(2.5 * 2.5 - 0.675 * 0.675),
+                    "crosswalk_ahead"};
+  }
+  return std::nullopt;
+}
+
+/// True for the other numbers of the Korean marking series (lines, arrows, text, areas), which
+/// are paint too and never a sign on a post.
+bool other_korean_marking(const std::string& type) {
+  const auto n = parse_int(type);
+  return n && *n >= 500 && *n <= 599;
 }
 
 /// True when the marking covers the lane: one of its validity ranges holds it, or (without
@@ -86,6 +113,14 @@ class RoadPainter {
     }
     b_.polygon({at(s0, t0), at(s1, t0), at(s1, t1), at(s0, t1)}, {});
   }
+  /// A convex polygon of (s, t) corners.
+  void polygon(const std::vector<std::pair<double, double>>& corners) {
+    std::vector<Vec3> points;
+    for (const auto& [s, t] : corners) {
+      points.push_back(at(s, t));
+    }
+    b_.polygon(points, {});
+  }
   MeshBuilder& builder() { return b_; }
 
  private:
@@ -99,8 +134,34 @@ class RoadPainter {
   MeshBuilder b_;
 };
 
+/// A hollow diamond (stroke 0.15 m) filling s0..s1 along the road and 1.35 m across, centred on
+/// the lane t0..t1: the Korean crosswalk-ahead sign (120-150 cm wide, sides 2.5 m).
+void paint_diamond(RoadPainter& paint, double s0, double s1, double t0, double t1) {
+  const double sc = 0.5 * (s0 + s1), tc = 0.5 * (t0 + t1);
+  const double half_l = 0.5 * (s1 - s0), half_w = std::min(0.675, 0.5 * (t1 - t0));
+  const double stroke = 0.15;
+  // The inner diamond is the outer one scaled so that every edge moves in by the stroke.
+  const double inset = 1.0 - stroke * std::hypot(half_l, half_w) / (half_l * half_w);
+  if (half_w < 0.3 || inset <= 0.0) {
+    return;
+  }
+  const double ds[4] = {half_l, 0.0, -half_l, 0.0};
+  const double dt[4] = {0.0, half_w, 0.0, -half_w};
+  for (int i = 0; i < 4; ++i) {
+    const int j = (i + 1) % 4;
+    paint.polygon({{sc + ds[i], tc + dt[i]},
+                   {sc + ds[j], tc + dt[j]},
+                   {sc + inset * ds[j], tc + inset * dt[j]},
+                   {sc + inset * ds[i], tc + inset * dt[i]}});
+  }
+}
+
 void paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1, double t0,
                 double t1, double t_first) {
+  if (spec.kind == MarkKind::kCrosswalkAhead) {
+    paint_diamond(paint, s0, s1, t0, t1);
+    return;
+  }
   if (spec.kind == MarkKind::kStopLine) {
     paint.quad(s0, s1, t0, t1);
     return;
@@ -119,9 +180,10 @@ void paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1, 
 
 bool build_signal_marking(WorldBuild& w, size_t r, const xodr::Signal& s) {
   const std::string& file = w.map.data().source_file;
-  const std::optional<MarkSpec> spec = german_marking(s.type);
+  const bool korean = is_korean(s.country);
+  const std::optional<MarkSpec> spec = korean ? korean_marking(s.type) : german_marking(s.type);
   if (!spec) {
-    if (!other_german_marking(s.type)) {
+    if (!(korean ? other_korean_marking(s.type) : other_german_marking(s.type))) {
       return false;
     }
     w.diagnostics.add_once(

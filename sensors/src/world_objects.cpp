@@ -124,6 +124,8 @@ void build_objects(WorldBuild& w) {
         double x0, x1, y0, y1;
         extent(o, outline, x0, x1, y0, y1);
         const double height = o.height > 0.0 ? o.height : 0.0;
+        const bool paint = type == "crosswalk" || type == "parkingspace" || type == "roadmark" ||
+                           type == "stopline" || name == "StopLine";
         if (type == "crosswalk") {
           // Zebra stripes 0.5 m wide, 0.5 m apart, across the walking direction (the long side).
           b.semantic(SemanticClass::kLaneMarking).material(road_paint());
@@ -151,6 +153,26 @@ void build_objects(WorldBuild& w) {
                        c + n + Vec3{0, 0, 0.012}, a + n + Vec3{0, 0, 0.012}},
                       {});
           }
+        } else if (type == "roadmark") {
+          // Paint whose outline is its shape (§13.3: stop lines, arrows, symbols; the NGII
+          // import writes B2 stop lines and B3 arrows so), or else the object's box.
+          b.semantic(SemanticClass::kLaneMarking).material(road_paint());
+          std::vector<Vec3> ring = outline;
+          for (Vec3& p : ring) {
+            p.z += 0.012;  // 1.2 cm above the surface, as lane marks
+          }
+          if (ring.size() < 3 || !b.filled_ring(ring)) {
+            if (ring.size() >= 3) {
+              w.diagnostics.add_once(
+                  "object-roadmark-outline",
+                  make_warning(file, o.line,
+                               "road mark object " + o.id +
+                                   ": its outline crosses itself; its bounding box is painted"));
+            }
+            paint_rect(b, x0, x1, y0, y1);
+          }
+          info.kind = to_lower(o.subtype) == "stopline" ? "stop_line" : "road_mark";
+          info.type = o.subtype;
         } else if (name == "StopLine" || type == "stopline") {
           b.semantic(SemanticClass::kLaneMarking).material(road_paint());
           const double half = std::max(0.2, 0.5 * (y1 - y0));
@@ -245,7 +267,10 @@ void build_objects(WorldBuild& w) {
                            "object type '" + o.type + "' (name '" + name + "') is not drawn"));
           continue;
         }
-        if (b.triangle_count() > 0) {
+        if (b.triangle_count() > 0 && paint) {
+          w.place_paint(b.take(), frame, "object " + o.id, info);
+          ++w.report.objects;
+        } else if (b.triangle_count() > 0) {
           w.place(b.take(), frame, "object " + o.id, info);
           ++w.report.objects;
         }

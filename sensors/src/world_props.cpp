@@ -127,13 +127,16 @@ ArticulatedMesh make_traffic_light(SignalLayout layout, double bottom, double he
   const double cell = horizontal ? head_height : head_height / 3.0;  // bulb pitch
   const double w = horizontal ? cell * bulbs : cell * 1.1;
   const double h = horizontal ? cell * 1.1 : head_height;
-  // Post: beside the head for vertical lights, a mast arm for horizontal ones.
+  // Post: beside the head for vertical lights, a mast arm for horizontal ones. The mast stands
+  // 2 m beyond the head's +y end: on the right of the traffic the head faces (+y is the facing
+  // drivers' right; the kerb side under right-hand traffic), so that a head hung over the lanes
+  // keeps its post off them.
   b.semantic(SemanticClass::kPole).material(steel());
   if (horizontal) {
-    b.tube({-0.2, -0.5 * w - 2.0, 0}, {-0.2, -0.5 * w - 2.0, bottom + 0.5 * h + 0.3}, 0.12, 0.1, 10,
+    b.tube({-0.2, 0.5 * w + 2.0, 0}, {-0.2, 0.5 * w + 2.0, bottom + 0.5 * h + 0.3}, 0.12, 0.1, 10,
            true);
-    b.tube({-0.2, -0.5 * w - 2.0, bottom + 0.5 * h + 0.25},
-           {-0.2, 0.5 * w, bottom + 0.5 * h + 0.25}, 0.06, 0.05, 8, true);
+    b.tube({-0.2, 0.5 * w + 2.0, bottom + 0.5 * h + 0.25},
+           {-0.2, -0.5 * w, bottom + 0.5 * h + 0.25}, 0.06, 0.05, 8, true);
   } else {
     b.tube({-0.2, 0, 0}, {-0.2, 0, bottom + h}, 0.07, 0.06, 10, true);
   }

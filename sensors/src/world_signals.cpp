@@ -1,9 +1,10 @@
 // OpenDRIVE signals (OpenDRIVE 1.8 §14) drawn as traffic lights and signs. Traffic lights:
 // dynamic signals and the German 1000xxx types; vertical three-light heads in Germany and for
-// CARLA's "OpenDRIVE" country, horizontal heads in Korea; their bulbs follow the scenario's
-// TrafficSignalState (WorldSnapshot::signals). Signs: the common German (StVO) and Korean types
-// by shape, colours and symbol; any other type a generic white sign with one located warning.
-// Signals that stand for road markings are painted on the road (world_markings.cpp).
+// CARLA's "OpenDRIVE" country, horizontal heads in Korea (also the lights the NGII import writes);
+// their bulbs follow the scenario's TrafficSignalState (WorldSnapshot::signals). Signs: the common
+// German (StVO) and Korean types by shape, colours and symbol; any other type a generic white sign
+// with one located warning. Signals that stand for road markings are painted on the road
+// (world_markings.cpp).
 
 #include <algorithm>
 #include <cmath>
@@ -140,9 +141,13 @@ std::optional<SignSpec> korean_sign(int type, const xodr::Signal& s) {
   return spec;
 }
 
-bool is_korean(const std::string& country) {
-  const std::string c = to_lower(country);
-  return c == "kr" || c == "kor" || c == "korea";
+/// True for a signal `corsa convert ngii` made from a Korean NGII C1 traffic light: it writes the
+/// German catalogue's numbers with country "OpenDRIVE" so that every reader knows the type, and
+/// keeps the NGII layer in the signal's userData.
+bool from_korean_layer(const xodr::Signal& s) {
+  return std::any_of(s.user_data.begin(), s.user_data.end(), [](const xodr::UserData& d) {
+    return d.code.rfind("ngii:C1_TRAFFICLIGHT", 0) == 0;
+  });
 }
 
 bool is_traffic_light(const xodr::Signal& s) {
@@ -151,6 +156,11 @@ bool is_traffic_light(const xodr::Signal& s) {
 }
 
 }  // namespace
+
+bool is_korean(const std::string& country) {
+  const std::string c = to_lower(country);
+  return c == "kr" || c == "kor" || c == "korea";
+}
 
 void build_signals(WorldBuild& w) {
   const xodr::Map& map = w.map;
@@ -171,7 +181,7 @@ void build_signals(WorldBuild& w) {
       info.value = s.value;
       info.text = s.text;
       if (is_traffic_light(s)) {
-        const bool korean = is_korean(s.country);
+        const bool korean = is_korean(s.country) || from_korean_layer(s);
         const double head = s.height > 0.3 ? std::min(s.height, 1.4) : (korean ? 0.4 : 0.95);
         double bottom = s.z_offset;
         if (bottom < 1.5) {
@@ -190,7 +200,7 @@ void build_signals(WorldBuild& w) {
         ++w.report.traffic_lights;
         continue;
       }
-      if (!is_korean(s.country) && build_signal_marking(w, r, s)) {
+      if (build_signal_marking(w, r, s)) {
         continue;
       }
       const int type = type_number(s.type);

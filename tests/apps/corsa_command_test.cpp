@@ -53,7 +53,7 @@ TEST_CASE("corsa run --help lists the dataset options without --rig", "[cli][e2e
   CHECK(result.exit_code == 0);
   CHECK_THAT(result.out, Catch::Contains("dataset options (with --rig"));
   for (const char* name : {"--rig", "-o DIR", "--format", "--weather", "--time-of-day", "--preview",
-                           "--model", "--force"}) {
+                           "--model", "--entity-model", "--force"}) {
     INFO(name);
     CHECK_THAT(result.out, Catch::Contains(std::string("  ") + name));
   }
@@ -63,6 +63,21 @@ TEST_CASE("a dataset option without --rig says what it needs", "[cli][e2e]") {
   const auto result = run_corsa({"run", "scenarios/cut_in.xosc", "--weather", "fog=50"});
   CHECK(result.exit_code == 2);
   CHECK_THAT(result.err, Catch::Contains("--weather is a dataset option: it needs --rig RIG.xml"));
+}
+
+TEST_CASE("a malformed --entity-model is refused before any run with exit 2", "[cli][e2e]") {
+  const auto result = run_corsa({"run", "scenarios/demo/cut_in_city.xosc", "--rig",
+                                 "tests/collect/fixtures/small_rig.xml", "-o", "out/never_written",
+                                 "--entity-model", "car.glb"});
+  CHECK(result.exit_code == 2);
+  CHECK_THAT(result.err, Catch::Contains("--entity-model 'car.glb': expected WHO=FILE"));
+  const auto who = run_corsa({"run", "scenarios/demo/cut_in_city.xosc", "--rig",
+                              "tests/collect/fixtures/small_rig.xml", "-o", "out/never_written",
+                              "--entity-model", "Eg0=car.glb"});
+  CHECK(who.exit_code == 2);
+  CHECK_THAT(who.err, Catch::Contains("--entity-model Eg0=car.glb: error: 'Eg0' is neither an "
+                                      "entity of the scenario nor a category") &&
+                          Catch::Contains("(did you mean 'Ego'?)"));
 }
 
 TEST_CASE("a misspelt option, key or name gets the nearest valid one", "[cli][e2e]") {

@@ -117,3 +117,64 @@ TEST_CASE("a rig that cannot be read stops the run before any dataset folder app
   CHECK_THROWS_AS(corsa::collect::run_dataset(options, diagnostics), corsa::InputError);
   CHECK_FALSE(fs::exists(options.output));
 }
+
+TEST_CASE("entity model texts name an entity or a category and the file",
+          "[collect][models][entity-model]") {
+  const std::vector<std::string> entities{"Ego", "Cutter"};
+  const auto ego = corsa::collect::parse_entity_model_spec("Ego=models/ego.glb");
+  CHECK(ego.who == "Ego");
+  CHECK(ego.file == "models/ego.glb");
+  const corsa::sensors::EntityModel by_name = corsa::collect::resolve_entity_model(ego, entities);
+  CHECK(by_name.entity == "Ego");
+  CHECK(by_name.category.empty());
+  CHECK(by_name.origin == "--entity-model Ego=models/ego.glb");
+  const corsa::sensors::EntityModel by_category = corsa::collect::resolve_entity_model(
+      corsa::collect::parse_entity_model_spec("pedestrian=a=b.obj"), entities);
+  CHECK(by_category.category == "pedestrian");
+  CHECK(by_category.file == "a=b.obj");  // the first '=' ends the name
+  for (const char* bad : {"car", "=car.glb", "car=", " =x.obj"}) {
+    INFO(bad);
+    CHECK_THROWS_WITH(corsa::collect::parse_entity_model_spec(bad),
+                      Catch::Contains("expected WHO=FILE"));
+  }
+  try {
+    corsa::collect::resolve_entity_model(corsa::collect::parse_entity_model_spec("Eg=x.glb"),
+                                         entities);
+    FAIL("a name that is neither an entity nor a category was taken");
+  } catch (const corsa::InputError& error) {
+    CHECK(error.diagnostic().file == "--entity-model Eg=x.glb");
+    CHECK_THAT(error.diagnostic().message,
+               Catch::Contains("neither an entity of the scenario nor a category") &&
+                   Catch::Contains("did you mean 'Ego'?"));
+  }
+}
+
+TEST_CASE(
+    "a command-line entity model wins over the rig's and an unreadable one is a warning at the "
+    "option while the generated shape stands in",
+    "[collect][run][entity-model]") {
+  corsa::test::TempDir dir;
+  // The rig names a model for cars too; the command line's comes first, so only its (missing)
+  // file is tried and reported.
+  std::string rig = corsa::read_file("tests/collect/fixtures/small_rig.xml");
+  rig.replace(rig.find("</SensorRig>"), 12,
+              "<EntityModel category=\"car\" file=\"rig_car.obj\"/></SensorRig>");
+  corsa::write_file_atomic(dir.path() / "rig.xml", rig);
+  auto options = small_run(dir.path() / "data", 0.1);
+  options.rig = dir.path() / "rig.xml";
+  const std::string missing = (dir.path() / "nothere.glb").string();
+  options.entity_models.push_back(corsa::collect::parse_entity_model_spec("car=" + missing));
+  std::vector<corsa::Diagnostic> warnings;
+  corsa::Diagnostics diagnostics([&](const corsa::Diagnostic& d) {
+    if (d.message.find("model") != std::string::npos) {
+      warnings.push_back(d);
+    }
+  });
+  const auto report = corsa::collect::run_dataset(options, diagnostics);
+  CHECK(report.dataset_started);
+  CHECK(corsa::test::check_dataset(options.output, 192, 108).empty());
+  REQUIRE(warnings.size() == 1);  // once for the file, not once per car
+  CHECK(warnings[0].file == "--entity-model car=" + missing);
+  CHECK(warnings[0].line == 0);
+  CHECK_THAT(warnings[0].message, Catch::Contains("nothere.glb") && Catch::Contains("stand in"));
+}

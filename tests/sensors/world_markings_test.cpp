@@ -1,5 +1,5 @@
-// OpenDRIVE signals that stand for road markings: painted across the lanes they cover, labelled,
-// never drawn as a sign on a post.
+// OpenDRIVE signals that stand for road markings (German and Korean numbers) and roadMark
+// objects: painted on the road, labelled, never drawn as a sign on a post.
 
 #include <catch2/catch.hpp>
 #include <string>
@@ -15,8 +15,8 @@ namespace {
 
 /// A straight 100 m road along +x (so t is y): a sidewalk and one lane on the left, two lanes
 /// and a sidewalk on the right, every lane 3.5 m and sidewalks 2 m wide; its signals are
-/// `signals`.
-corsa::xodr::Map street_with(const std::string& signals) {
+/// `signals` and its objects `objects`.
+corsa::xodr::Map street_with(const std::string& signals, const std::string& objects = "") {
   const std::string lane =
       R"(<lane id="ID" type="TYPE"><width sOffset="0" a="W" b="0" c="0" d="0"/></lane>)";
   auto make = [&](const char* id, const char* type, const char* w) {
@@ -34,7 +34,8 @@ corsa::xodr::Map street_with(const std::string& signals) {
       make("2", "sidewalk", "2") + make("1", "driving", "3.5") + R"(</left>
 <center><lane id="0" type="none"/></center><right>)" +
       make("-1", "driving", "3.5") + make("-2", "driving", "3.5") + make("-3", "sidewalk", "2") +
-      R"(</right></laneSection></lanes><signals>)" + signals + R"(</signals></road></OpenDRIVE>)";
+      R"(</right></laneSection></lanes><objects>)" + objects + R"(</objects><signals>)" + signals +
+      R"(</signals></road></OpenDRIVE>)";
   corsa::Diagnostics diagnostics;
   return corsa::xodr::Map::build(corsa::xodr::parse_xodr_text(text, "markings.xodr", diagnostics),
                                  diagnostics);
@@ -134,4 +135,124 @@ TEST_CASE("road marking signals Corsa does not paint are left out with one locat
   CHECK(world->warnings[0].line > 0);
   CHECK_THAT(world->warnings[0].message, Catch::Contains("road marking Corsa does not paint"));
   CHECK(down_at(world->scene, 20.0, -1.75).semantic == SemanticClass::kRoad);
+}
+
+TEST_CASE("Korean stop line and crosswalk signals are painted as their German counterparts",
+          "[sensors][world][signals][markings][korea]") {
+  // 530 stop line (0.45 m wide) for traffic towards +s, 532 crosswalk over every lane.
+  const auto map = street_with(
+      R"(<signal id="k-stop" s="30" t="-3.5" orientation="+" dynamic="no" country="KR" type="530" subtype="-1"/>
+         <signal id="k-zebra" s="60" t="0" orientation="none" dynamic="no" country="KOR" type="532" subtype="-1"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.markings == 2);
+  CHECK(world->report.signs == 0);
+  CHECK(world->warnings.empty());
+  CHECK(paint_at(world->scene, 30.0, -1.0));
+  CHECK(paint_at(world->scene, 30.0, -6.0));
+  CHECK(paint_at(world->scene, 30.2, -3.5));
+  CHECK_FALSE(paint_at(world->scene, 30.25, -3.5));  // 0.45 m wide, centred on s
+  CHECK_FALSE(paint_at(world->scene, 30.0, 1.75));
+  CHECK(paint_at(world->scene, 60.0, -6.75));
+  CHECK_FALSE(paint_at(world->scene, 60.0, -6.25));
+  CHECK(paint_at(world->scene, 60.0, 1.25));
+  const RayHit hit = down_at(world->scene, 60.0, -6.75);
+  const std::vector<uint32_t> instance = {hit.instance_id};
+  const std::vector<uint8_t> semantic = {static_cast<uint8_t>(SemanticClass::kLaneMarking)};
+  const auto labels = static_object_labels(world->scene, instance, 1, semantic);
+  REQUIRE(labels.size() == 1);
+  CHECK(labels[0].info.kind == "crosswalk");
+  CHECK(labels[0].info.country == "KOR");
+  CHECK(labels[0].info.type == "532");
+}
+
+TEST_CASE("a Korean crosswalk-ahead signal is a hollow diamond in each lane it serves",
+          "[sensors][world][signals][markings][korea]") {
+  // 529 for traffic towards +s: lanes -1 (t -3.5..0) and -2 (t -7..-3.5); the diamond is
+  // 4.8 m along the road and 1.35 m across, with a 0.15 m stroke.
+  const auto map = street_with(
+      R"(<signal id="ahead" s="40" t="-3.5" orientation="+" dynamic="no" country="KR" type="529" subtype="-1"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.markings == 1);
+  CHECK(world->warnings.empty());
+  CHECK(paint_at(world->scene, 42.3, -1.75));        // near the forward tip, lane -1
+  CHECK(paint_at(world->scene, 40.0, -1.1));         // the left corner's stroke
+  CHECK(paint_at(world->scene, 40.0, -2.4));         // the right corner's stroke
+  CHECK_FALSE(paint_at(world->scene, 40.0, -1.75));  // hollow inside
+  CHECK_FALSE(paint_at(world->scene, 40.0, -0.9));   // 1.35 m wide
+  CHECK(paint_at(world->scene, 37.7, -5.25));        // the second lane's diamond
+  CHECK_FALSE(paint_at(world->scene, 40.0, 1.75));   // not the oncoming lane
+}
+
+TEST_CASE("Korean marking numbers Corsa does not paint warn once and are never signs",
+          "[sensors][world][signals][markings][korea]") {
+  // 537 (direction arrows) twice and 521 (the word for stop) once.
+  const auto map = street_with(
+      R"(<signal id="a1" s="20" t="-1.75" orientation="+" dynamic="no" country="KR" type="537" subtype="-1"/>
+         <signal id="a2" s="25" t="-5.25" orientation="+" dynamic="no" country="KR" type="537" subtype="-1"/>
+         <signal id="t1" s="45" t="-1.75" orientation="+" dynamic="no" country="KR" type="521" subtype="-1"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.signs == 0);
+  CHECK(world->report.markings == 0);
+  REQUIRE(world->warnings.size() == 2);
+  CHECK(world->warnings[0].line > 0);
+  CHECK_THAT(world->warnings[0].message, Catch::Contains("'537'"));
+  CHECK_THAT(world->warnings[1].message, Catch::Contains("'521'"));
+  CHECK(down_at(world->scene, 20.0, -1.75).semantic == SemanticClass::kRoad);
+}
+
+TEST_CASE("roadMark objects are painted in their outline, arrows included",
+          "[sensors][world][objects][markings]") {
+  // An NGII-style stop line (a closed outline 0.4 m wide in road coordinates) and an arrow
+  // (a non-convex outline in local u, v), as `corsa convert ngii` writes B2 and B3 marks.
+  const auto map = street_with(
+      "",
+      R"(<object id="sl" type="roadMark" subtype="stopLine" name="stop line" s="30" t="-3.5" zOffset="0">
+            <outlines><outline id="0" closed="true">
+              <cornerRoad s="29.8" t="-7" dz="0" height="0"/><cornerRoad s="30.2" t="-7" dz="0" height="0"/>
+              <cornerRoad s="30.2" t="0" dz="0" height="0"/><cornerRoad s="29.8" t="0" dz="0" height="0"/>
+            </outline></outlines></object>
+          <object id="arrow" type="roadMark" subtype="5371" name="arrow" s="50" t="-1.75" zOffset="0" hdg="0">
+            <outlines><outline id="0" closed="true">
+              <cornerLocal u="-2" v="-0.15" z="0" height="0"/><cornerLocal u="1" v="-0.15" z="0" height="0"/>
+              <cornerLocal u="1" v="-0.6" z="0" height="0"/><cornerLocal u="2.5" v="0" z="0" height="0"/>
+              <cornerLocal u="1" v="0.6" z="0" height="0"/><cornerLocal u="1" v="0.15" z="0" height="0"/>
+              <cornerLocal u="-2" v="0.15" z="0" height="0"/>
+            </outline></outlines></object>)");
+  auto world = marked_world(map);
+  CHECK(world->warnings.empty());
+  CHECK(paint_at(world->scene, 30.0, -1.0));
+  CHECK(paint_at(world->scene, 30.0, -6.5));
+  CHECK_FALSE(paint_at(world->scene, 30.3, -3.5));
+  CHECK(paint_at(world->scene, 49.0, -1.75));        // the shaft
+  CHECK_FALSE(paint_at(world->scene, 49.0, -2.1));   // beside the shaft: not its bounding box
+  CHECK(paint_at(world->scene, 51.2, -2.2));         // the head is wider than the shaft
+  CHECK_FALSE(paint_at(world->scene, 52.7, -1.75));  // beyond the tip
+  const RayHit hit = down_at(world->scene, 49.0, -1.75);
+  const std::vector<uint32_t> instance = {hit.instance_id};
+  const std::vector<uint8_t> semantic = {static_cast<uint8_t>(SemanticClass::kLaneMarking)};
+  const auto labels = static_object_labels(world->scene, instance, 1, semantic);
+  REQUIRE(labels.size() == 1);
+  CHECK(labels[0].info.kind == "road_mark");
+  CHECK(labels[0].info.type == "5371");
+}
+
+TEST_CASE("traffic lights from the NGII import get Korean horizontal heads",
+          "[sensors][world][signals][korea]") {
+  // The same light twice: written by `corsa convert ngii` (German catalogue number, country
+  // "OpenDRIVE", the NGII layer in userData) at s 30, and a plain one at s 70. Both stand at
+  // t = -8 facing traffic towards +s, heads 5 m up.
+  const auto map = street_with(
+      R"(<signal id="ngii" s="30" t="-8" zOffset="5" orientation="+" dynamic="yes" country="OpenDRIVE" type="1000001" subtype="-1"><userData code="ngii:C1_TRAFFICLIGHT.Type" value="1"/></signal>
+         <signal id="plain" s="70" t="-8" zOffset="5" orientation="+" dynamic="yes" country="OpenDRIVE" type="1000001" subtype="-1"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.traffic_lights == 2);
+  // A horizontal head reaches 0.8 m to either side of the signal; a vertical one 0.18 m.
+  const auto head_at = [&](double s, double t) {
+    const auto hit = world->scene.intersect({s - 10.0, t, 5.2}, {1.0, 0.0, 0.0}, 12.0);
+    return hit && hit->semantic == SemanticClass::kTrafficLight;
+  };
+  CHECK(head_at(30.0, -7.4));
+  CHECK(head_at(30.0, -8.6));
+  CHECK_FALSE(head_at(70.0, -7.4));
+  CHECK(head_at(70.0, -8.0));
 }

@@ -80,6 +80,13 @@ RigRunOptions read_rig_run_options(const ParsedArgs& parsed) {
       throw UsageError(std::string("--model ") + error.what());
     }
   }
+  for (const std::string& model : parsed.values("--entity-model")) {
+    try {
+      dataset.entity_models.push_back(collect::parse_entity_model_spec(model));
+    } catch (const std::invalid_argument& error) {
+      throw UsageError(std::string("--entity-model ") + error.what());
+    }
+  }
   return options;
 }
 

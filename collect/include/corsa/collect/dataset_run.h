@@ -36,6 +36,9 @@ struct DatasetRunOptions {
   /// Time of day and weather over the scenario's own environment.
   engine::EnvironmentOverride environment;
   std::vector<ModelSpec> models;  ///< building models added to the scene
+  /// Entity models from the command line; they come before the rig's <EntityModel>s (an
+  /// entity's model3d still wins, then a model naming the entity, then one for its category).
+  std::vector<EntityModelSpec> entity_models;
   /// How the user gave the overrides, recorded in run.json (empty: not given).
   std::string time_of_day_text;
   std::string weather_text;

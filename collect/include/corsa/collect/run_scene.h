@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "corsa/sensors/environment.h"
 #include "corsa/sensors/geometry.h"
 #include "corsa/sensors/model_io.h"
+#include "corsa/sensors/rig.h"
 
 namespace corsa::engine {
 class Simulation;
@@ -34,6 +36,25 @@ struct ModelSpec {
 /// Reads "FILE[@X,Y[,HEADING_DEG]]": X, Y in map metres, the heading in degrees counter-clockwise
 /// from +x. Throws std::invalid_argument ("expected FILE@X,Y[,HEADING_DEG]") for anything else.
 ModelSpec parse_model_spec(std::string_view text);
+
+/// A model for entities given on the command line (`--entity-model WHO=FILE`): WHO names a
+/// scenario entity or an OpenSCENARIO category; FILE is taken as written (relative to the
+/// working directory). `text` is the option's value, for messages.
+struct EntityModelSpec {
+  std::string who;
+  std::filesystem::path file;
+  std::string text;
+};
+
+/// Reads "WHO=FILE". Throws std::invalid_argument ("... expected WHO=FILE ...") when either side
+/// is empty.
+EntityModelSpec parse_entity_model_spec(std::string_view text);
+
+/// The rig-style model of `spec`: for the entity of that name when the scenario has one, else for
+/// the category of that name. Throws InputError located at "--entity-model TEXT" when WHO is
+/// neither (with the nearest name).
+sensors::EntityModel resolve_entity_model(const EntityModelSpec& spec,
+                                          const std::vector<std::string>& entity_names);
 
 /// The middle of the map's header bounds (m, map frame), or the origin when the header gives no
 /// bounds (or `map` is null). The scene is centred there so that float coordinates stay small.

@@ -44,10 +44,15 @@ struct ModelPlacement {
 /// their materials and textures), scaled to each entity's bounding box (the model's bounds
 /// stretched onto the box; models face +x with z up, glTF/GLB turned z-up). Relative model3d
 /// paths are resolved against `base` (the scenario's folder). Entities without model3d take the
-/// user's model from `models` (the rig's <EntityModel>s, named by `rig_file` in messages): the
-/// one naming the entity, else the first for its category; with none they keep their generated
-/// shape. A file that is missing or cannot be read is one located warning (at the rig's element
-/// for `models`) and the entity gets its generated shape.
+/// user's model from `models` (the command line's --entity-model and the rig's <EntityModel>s,
+/// each located by its `origin`, else by `rig_file`, in messages): the first naming the entity,
+/// else the first for its category; with none they keep their generated shape. A file that is
+/// missing or cannot be read is one located warning (at the rig's element or the command-line
+/// option for `models`) and the entity gets its generated shape.
+/// The OpenSCENARIO vehicle, pedestrian and misc-object category names an EntityModel may
+/// name ("car", "van", ..., "pedestrian", ..., "obstacle"), in the standard's order.
+const std::vector<std::string>& entity_category_names();
+
 class ModelShapeSource : public EntityShapeSource {
  public:
   ModelShapeSource(std::filesystem::path base, Diagnostics& diagnostics,

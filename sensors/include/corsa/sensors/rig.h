@@ -126,6 +126,9 @@ struct EntityModel {
   std::string entity;          ///< a scenario entity's name; empty: the whole category
   std::filesystem::path file;  ///< as written, resolved against the rig file's folder
   int line = 0;                ///< line of the element in the rig file, for messages
+  /// Where it was given, for messages: the rig file, or the command line's
+  /// "--entity-model WHO=FILE" (line 0).
+  std::string origin;
 };
 
 struct SensorRig {
