@@ -181,6 +181,13 @@ TEST_CASE("an entity added relative to itself after its deletion starts where it
   CHECK_THAT(corsa::test::all_text(run.diagnostics()),
              Catch::Contains("entity 'Gone' is referenced after it was deleted (read as the "
                              "position it was deleted at)"));
+  // esmini's re-added entity drives on at the speed it was deleted at.
+  corsa::engine::SimulationOptions options;
+  options.semantics = corsa::engine::Semantics::kEsmini;
+  FixtureRun esmini(engine_fixture("compat_esmini_readings.xosc"), options);
+  esmini.run();
+  CHECK(esmini.at(2.5, "Gone").speed == Approx(10.0));
+  CHECK(esmini.at(2.5, "Gone").pose.x > esmini.at(2.02, "Gone").pose.x + 4.0);
 }
 
 namespace {

@@ -39,8 +39,12 @@ class AddEntityInstance final : public InstantAction {
       return;
     }
     const ResolvedPosition at = resolve_position(action_.position, state, index);
-    entity.state.speed = 0.0;
-    entity.speed_command = 0.0;
+    // Added standing; esmini keeps the object of a deleted entity, which drives on at the speed
+    // it was deleted at when added again (`--semantics esmini`).
+    const bool keep_speed = entity.removed && state.options.semantics == Semantics::kEsmini;
+    const double speed = keep_speed ? entity.removed_speed : 0.0;
+    entity.state.speed = speed;
+    entity.speed_command = speed;
     entity.lateral_command = 0.0;
     place_entity(state, entity, at, action_.position.source, false);
     control_of(state, index).dynamics.reset();

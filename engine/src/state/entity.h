@@ -122,6 +122,7 @@ struct Entity {
   /// reading of a reference to a deleted entity, with a lenient-reading warning).
   bool removed = false;
   std::optional<RoadCoordinates> removed_road;
+  double removed_speed = 0.0;  ///< m/s when it was removed (esmini re-adds it at that speed)
 
   /// Trailers (§7.4.8): the entity towing this one, and the one this one tows.
   std::optional<uint32_t> towed_by;
