@@ -1,6 +1,7 @@
 // What used to warn and complete at once now runs: monitors, lights, animations, user-defined
 // values, random routes; a controller the engine does not have is stood in for and listed; the
-// run-time lenient readings (the centre lane, an s past the road's end) and their --strict form.
+// run-time lenient readings (the centre lane, an s past the road's end, a deleted entity's last
+// position) and their --strict form; esmini's frame of a relative orientation on a lane.
 
 #include <catch2/catch.hpp>
 
@@ -125,6 +126,68 @@ TEST_CASE("a LanePosition on the centre lane and an s past the road's end are re
   CHECK_THROWS_WITH(FixtureRun(engine_fixture("compat_appearance_values.xosc"), strict),
                     Catch::Contains("s = 1010 is outside road '1'") &&
                         Catch::Contains("an error under --strict"));
+}
+
+TEST_CASE("a relative orientation on a left lane turns from the road, or from the lane for esmini",
+          "[engine][compat][positions]") {
+  // Lanes 1 and 2 of the straight road (heading 0) run towards -s in right-hand traffic: without
+  // an Orientation a car there faces pi. Relative h = pi turns from the road's +s (the standard
+  // reading: the lane's (s,t) frame runs along the reference line) to pi, or, with esmini's
+  // semantics, from the lane's direction of travel back to +s.
+  FixtureRun standard(engine_fixture("compat_esmini_readings.xosc"));
+  standard.run();
+  CHECK(std::cos(standard.at(0.0, "Left").pose.h) == Approx(-1.0));
+  CHECK(std::cos(standard.at(0.0, "LeftTurned").pose.h) == Approx(-1.0));
+  corsa::engine::SimulationOptions options;
+  options.semantics = corsa::engine::Semantics::kEsmini;
+  FixtureRun esmini(engine_fixture("compat_esmini_readings.xosc"), options);
+  esmini.run();
+  CHECK(std::cos(esmini.at(0.0, "Left").pose.h) == Approx(-1.0));
+  CHECK(std::cos(esmini.at(0.0, "LeftTurned").pose.h) == Approx(1.0));
+  CHECK(esmini.at(0.0, "LeftTurned").pose.y > 0.0);
+}
+
+TEST_CASE("an s far past the road's end is the road's end, with a warning",
+          "[engine][compat][lenient]") {
+  FixtureRun run(engine_fixture("compat_esmini_readings.xosc"));
+  run.run();
+  const auto& far = run.at(0.0, "Far");
+  REQUIRE(far.road);
+  CHECK(far.road->s == Approx(1000.0));
+  CHECK_THAT(corsa::test::all_text(run.diagnostics()),
+             Catch::Contains("s = 1400 is outside road '1' (length 1000 m) (read as s = 1000, "
+                             "the road's end)"));
+  corsa::engine::SimulationOptions strict;
+  strict.strict = true;
+  CHECK_THROWS_WITH(FixtureRun(engine_fixture("compat_esmini_readings.xosc"), strict),
+                    Catch::Contains("s = 1400 is outside road '1'") &&
+                        Catch::Contains("an error under --strict"));
+}
+
+TEST_CASE("an entity added relative to itself after its deletion starts where it was deleted",
+          "[engine][compat][lenient]") {
+  FixtureRun run(engine_fixture("compat_esmini_readings.xosc"));
+  run.run();
+  // The conditions hold at 1.01 s and 2.01 s; their actions act on the next step: deleted from
+  // 1.02 s where it was at 1.01 s (10 m/s from s 20), added again at 2.02 s 50 m further on,
+  // standing.
+  const auto& deleted = run.at(1.5, "Gone");
+  CHECK(!deleted.placed);
+  CHECK(deleted.pose.x == Approx(30.1));
+  const auto& added = run.at(2.02, "Gone");
+  CHECK(added.placed);
+  CHECK(added.pose.x == Approx(deleted.pose.x + 50.0));
+  CHECK(added.speed == 0.0);
+  CHECK_THAT(corsa::test::all_text(run.diagnostics()),
+             Catch::Contains("entity 'Gone' is referenced after it was deleted (read as the "
+                             "position it was deleted at)"));
+  // esmini's re-added entity drives on at the speed it was deleted at.
+  corsa::engine::SimulationOptions options;
+  options.semantics = corsa::engine::Semantics::kEsmini;
+  FixtureRun esmini(engine_fixture("compat_esmini_readings.xosc"), options);
+  esmini.run();
+  CHECK(esmini.at(2.5, "Gone").speed == Approx(10.0));
+  CHECK(esmini.at(2.5, "Gone").pose.x > esmini.at(2.02, "Gone").pose.x + 4.0);
 }
 
 namespace {

@@ -6,65 +6,16 @@
 #include <string>
 
 #include "corsa/xosc/scenario.h"
+#include "lenient_load.h"
 #include "scenario_text.h"
 #include "temp_dir.h"
 
 using namespace corsa::xosc;
+using corsa::test::check_both_ways;
 using corsa::test::line_of;
+using corsa::test::Loaded;
 using corsa::test::ScenarioText;
-
-namespace {
-
-struct Loaded {
-  std::optional<Scenario> scenario;
-  std::vector<corsa::Diagnostic> warnings;
-  std::vector<corsa::Diagnostic> errors;
-};
-
-Loaded load(const corsa::test::TempDir& dir, const std::string& xml, bool strict = false) {
-  corsa::test::write_text(dir.path() / "map.xodr", corsa::test::minimal_xodr());
-  corsa::test::write_text(dir.path() / "s.xosc", xml);
-  corsa::Diagnostics diagnostics;
-  Loaded loaded;
-  LoadOptions options;
-  options.strict = strict;
-  try {
-    loaded.scenario = load_scenario(dir.path() / "s.xosc", options, diagnostics);
-  } catch (const corsa::InputError& error) {
-    loaded.errors = error.diagnostics();
-  }
-  for (const auto& diagnostic : diagnostics.all()) {
-    if (diagnostic.severity == corsa::Severity::kWarning) loaded.warnings.push_back(diagnostic);
-  }
-  return loaded;
-}
-
-/// The warning containing `text`, or a failed check.
-corsa::Diagnostic warning_with(const Loaded& loaded, const std::string& text) {
-  for (const auto& warning : loaded.warnings) {
-    if (warning.message.find(text) != std::string::npos) return warning;
-  }
-  FAIL("no warning containing '" << text << "'");
-  return {};
-}
-
-/// Loads leniently (a warning with `(read as`, at `line`) and strictly (an error at `line`).
-void check_both_ways(const std::string& xml, const std::string& text, int line) {
-  corsa::test::TempDir dir;
-  const Loaded lenient = load(dir, xml);
-  INFO((lenient.errors.empty() ? std::string() : lenient.errors[0].format()));
-  REQUIRE(lenient.errors.empty());
-  const auto warning = warning_with(lenient, text);
-  CHECK(warning.line == line);
-  CHECK_THAT(warning.message, Catch::Contains("(read as "));
-  const Loaded strict = load(dir, xml, true);
-  REQUIRE(!strict.errors.empty());
-  CHECK(strict.errors[0].line == line);
-  CHECK_THAT(strict.errors[0].message, Catch::Contains(text));
-  CHECK_THAT(strict.errors[0].message, Catch::Contains("--strict"));
-}
-
-}  // namespace
+using corsa::test::warning_with;
 
 TEST_CASE("a string parameter holding a number is read as that number in an expression",
           "[xosc][lenient]") {
@@ -79,7 +30,7 @@ TEST_CASE("a string parameter holding a number is read as that number in an expr
   check_both_ways(xml, "string parameter '$Lane' = '-1' used in an expression",
                   line_of(xml, "WorldPosition"));
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   const auto& teleport =
       std::get<TeleportAction>(loaded.scenario->storyboard.init.privates[0].actions[0]);
   CHECK(std::get<WorldPosition>(teleport.position.kind).x == -3.5);
@@ -103,7 +54,7 @@ TEST_CASE("ordering rules on string parameters holding numbers compare the numbe
       "<ConstraintGroup><ValueConstraint rule=\"greaterOrEqual\" value=\"-5\"/>"
       "</ConstraintGroup>\n</ParameterDeclaration>\n";
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, out_of_range.str());
+  const Loaded loaded = corsa::test::lenient_load(dir, out_of_range.str());
   REQUIRE(loaded.errors.size() == 1);
   CHECK(loaded.errors[0].message == "parameter 'LaneId' = '-6' violates its value constraints");
 }
@@ -121,7 +72,7 @@ TEST_CASE("dateTime constraints compare instants across time zones", "[xosc][len
       "value=\"2021-07-09T10:00:00Z\">\n"
       "<ConstraintGroup><ValueConstraint rule=\"greaterThan\" "
       "value=\"2021-07-09T11:30:00+02:00\"/></ConstraintGroup>\n</ParameterDeclaration>\n";
-  const Loaded loaded = load(dir, text.str());
+  const Loaded loaded = corsa::test::lenient_load(dir, text.str());
   CHECK(loaded.errors.empty());
   CHECK(date_time_instant("1970-01-02T00:00:00Z") == 86400.0);
   CHECK(date_time_instant("1970-01-01T01:00:00+01:00") == 0.0);
@@ -133,11 +84,11 @@ TEST_CASE("an int written with a zero fraction is read as that int", "[xosc][len
   const std::string xml = text.str();
   check_both_ways(xml, "parameter 'N': '-5.0' is not an int", line_of(xml, "name=\"N\""));
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   CHECK(std::get<int64_t>(loaded.scenario->parameters[0].value.data) == -5);
   // 2.5 is no int at all.
   text.parameters = "<ParameterDeclaration name=\"N\" parameterType=\"int\" value=\"2.5\"/>\n";
-  CHECK(load(dir, text.str()).errors.size() == 1);
+  CHECK(corsa::test::lenient_load(dir, text.str()).errors.size() == 1);
 }
 
 TEST_CASE("a parameter declared with a leading $ is the name without it", "[xosc][lenient]") {
@@ -161,7 +112,7 @@ TEST_CASE("a repeated parameter declaration is read as the later one", "[xosc][l
   const std::string xml = text.str();
   check_both_ways(xml, "parameter 'V' is declared twice", line_of(xml, "value=\"2\""));
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   REQUIRE(loaded.scenario->parameters.size() == 1);
   CHECK(std::get<double>(loaded.scenario->parameters[0].value.data) == 2.0);
 }
@@ -177,7 +128,7 @@ TEST_CASE("a negative transition dynamics value is read as its magnitude", "[xos
   const std::string xml = text.str();
   check_both_ways(xml, "transition dynamics value -4 is negative", line_of(xml, "value=\"-4\""));
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   const auto& speed =
       std::get<SpeedAction>(loaded.scenario->storyboard.init.privates[0].actions[0]);
   CHECK(speed.dynamics.value == 4.0);
@@ -196,7 +147,7 @@ TEST_CASE("an empty StartTrigger is read as none, an empty StopTrigger never fir
   const std::string xml = text.str();
   check_both_ways(xml, "empty <StartTrigger/>", line_of(xml, "<StartTrigger/>"));
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   const auto& event =
       loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
   CHECK(!event.start_trigger);
@@ -211,7 +162,7 @@ TEST_CASE("an empty trailer entityRef is no trailer", "[xosc][lenient]") {
   const std::string xml = text.str();
   check_both_ways(xml, "the trailer's entityRef is empty", line_of(xml, "entityRef=\"$T\""));
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   CHECK(!std::get<Vehicle>(loaded.scenario->entities.objects[0].object).trailer);
 }
 
@@ -222,7 +173,8 @@ TEST_CASE("a name attribute that is no expression is the literal name", "[xosc][
   check_both_ways(xml, "name '${Ego overtakes}' is not an expression",
                   line_of(xml, "<Story name="));
   corsa::test::TempDir dir;
-  CHECK(load(dir, xml).scenario->storyboard.stories[0].name == "${Ego overtakes}");
+  CHECK(corsa::test::lenient_load(dir, xml).scenario->storyboard.stories[0].name ==
+        "${Ego overtakes}");
 }
 
 TEST_CASE("an OpenSCENARIO 0.9 header is an old file, not a newer one", "[xosc][lenient]") {
@@ -249,7 +201,7 @@ TEST_CASE("an ambiguous storyboard reference resolves to the element nearest to 
   check_both_ways(xml, "the event name 'First' is not unique",
                   line_of(xml, "storyboardElementRef=\"First\""));
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   const auto resolved = [&](size_t story) {
     const auto& event = loaded.scenario->storyboard.stories[story]
                             .acts[0]
@@ -277,7 +229,7 @@ TEST_CASE("a step transition without dimension or value is read as a step at onc
   check_both_ways(xml, "step transition dynamics without dynamicsDimension and value",
                   line_of(xml, "dynamicsShape=\"step\""));
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   const auto& speed =
       std::get<SpeedAction>(loaded.scenario->storyboard.init.privates[0].actions[0]);
   CHECK(speed.dynamics.shape == DynamicsShape::kStep);
@@ -302,7 +254,7 @@ TEST_CASE("a linear transition without its value stays an error", "[xosc][lenien
       "</SpeedAction></LongitudinalAction></PrivateAction>\n</Private>\n";
   const std::string xml = text.str();
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   REQUIRE(loaded.errors.size() == 1);
   CHECK(loaded.errors[0].line == line_of(xml, "dynamicsShape=\"linear\""));
   CHECK_THAT(loaded.errors[0].message, Catch::Contains("needs the attribute value"));
@@ -318,7 +270,7 @@ TEST_CASE("a condition without conditionEdge is read as edge none", "[xosc][leni
   const std::string xml = text.str();
   check_both_ways(xml, "<Condition> without conditionEdge", line_of(xml, "<Condition name"));
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   const auto& event =
       loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
   CHECK(event.start_trigger->groups[0].conditions[0].edge == ConditionEdge::kNone);
@@ -334,7 +286,7 @@ TEST_CASE("the draft attribute edge of a condition is read as conditionEdge", "[
   const std::string xml = text.str();
   check_both_ways(xml, "attribute 'edge' of <Condition>", line_of(xml, "<Condition name"));
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   CHECK(loaded.warnings.size() == 1);  // no "unknown attribute" besides the reading
   const auto& event =
       loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
@@ -343,7 +295,7 @@ TEST_CASE("the draft attribute edge of a condition is read as conditionEdge", "[
   // Both spellings at once say the edge twice: an error.
   std::string both = xml;
   both.replace(both.find("edge=\"rising\""), 13, "edge=\"rising\" conditionEdge=\"none\"");
-  const Loaded twice = load(dir, both);
+  const Loaded twice = corsa::test::lenient_load(dir, both);
   REQUIRE(twice.errors.size() == 1);
   CHECK_THAT(twice.errors[0].message, Catch::Contains("'edge' and 'conditionEdge' together"));
 }
@@ -357,14 +309,14 @@ TEST_CASE("a capitalised boolean is read as its lower-case value", "[xosc][lenie
   check_both_ways(xml, "attribute selectTriggeringEntities: 'True' is not lower case",
                   line_of(xml, "<Actors"));
   corsa::test::TempDir dir;
-  CHECK(load(dir, xml)
+  CHECK(corsa::test::lenient_load(dir, xml)
             .scenario->storyboard.stories[0]
             .acts[0]
             .maneuver_groups[0]
             .actors.select_triggering_entities);
   std::string wrong = xml;
   wrong.replace(wrong.find("\"True\""), 6, "\"no\"");
-  const Loaded refused = load(dir, wrong);
+  const Loaded refused = corsa::test::lenient_load(dir, wrong);
   REQUIRE(refused.errors.size() == 1);
   CHECK_THAT(refused.errors[0].message, Catch::Contains("is not a boolean"));
 }
@@ -376,7 +328,7 @@ TEST_CASE("an empty Storyboard StopTrigger lets a run with stories end with its 
   std::string xml = text.str();
   xml.replace(xml.find("</Storyboard>"), 13, "<StopTrigger/>\n</Storyboard>");
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   REQUIRE(loaded.errors.empty());
   CHECK(!loaded.scenario->storyboard.stop_trigger);
   CHECK(loaded.warnings.empty());  // valid 1.0 form: no reading needed
@@ -385,7 +337,7 @@ TEST_CASE("an empty Storyboard StopTrigger lets a run with stories end with its 
   ScenarioText traffic;
   std::string bare = traffic.str();
   bare.replace(bare.find("</Storyboard>"), 13, "<StopTrigger/>\n</Storyboard>");
-  const Loaded kept = load(dir, bare);
+  const Loaded kept = corsa::test::lenient_load(dir, bare);
   REQUIRE(kept.scenario);
   REQUIRE(kept.scenario->storyboard.stop_trigger);
   CHECK(kept.scenario->storyboard.stop_trigger->groups.empty());
@@ -397,7 +349,7 @@ TEST_CASE("an OpenSCENARIO 0.9 element names its 1.0 replacement", "[xosc]") {
   xml.replace(xml.find("<CatalogLocations>"), 18, "<Catalogs>");
   xml.replace(xml.find("</CatalogLocations>"), 19, "</Catalogs>");
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   REQUIRE(!loaded.errors.empty());
   CHECK(loaded.errors[0].line == line_of(xml, "<Catalogs>"));
   CHECK_THAT(loaded.errors[0].message, Catch::Contains("<Catalogs> is OpenSCENARIO 0.9") &&
@@ -425,7 +377,7 @@ TEST_CASE("a catalog entry using a parameter only the scenario declares reads th
   const std::string xml = text.str();
   corsa::test::TempDir dir;
   corsa::test::write_text(dir.path() / "cat" / "moves.xosc", catalog);
-  const Loaded lenient = load(dir, xml);
+  const Loaded lenient = corsa::test::lenient_load(dir, xml);
   INFO((lenient.errors.empty() ? std::string() : lenient.errors[0].format()));
   REQUIRE(lenient.errors.empty());
   const auto warning = warning_with(lenient, "parameter '$Target' is not declared in its catalog");
@@ -439,14 +391,14 @@ TEST_CASE("a catalog entry using a parameter only the scenario declares reads th
                            .actions[0];
   const auto& speed = std::get<SpeedAction>(std::get<PrivateAction>(action.action));
   CHECK(std::get<AbsoluteTargetSpeed>(speed.target).value == 12.0);
-  const Loaded strict = load(dir, xml, true);
+  const Loaded strict = corsa::test::lenient_load(dir, xml, true);
   REQUIRE(!strict.errors.empty());
   CHECK_THAT(strict.errors[0].message, Catch::Contains("not declared in its catalog entry"));
 
   // A name the scenario does not declare either stays undefined.
   std::string undeclared = xml;
   undeclared.replace(undeclared.find("name=\"Target\""), 13, "name=\"Other\"");
-  const Loaded refused = load(dir, undeclared);
+  const Loaded refused = corsa::test::lenient_load(dir, undeclared);
   REQUIRE(!refused.errors.empty());
   CHECK_THAT(refused.errors[0].message, Catch::Contains("undefined parameter '$Target'"));
 }
@@ -462,7 +414,7 @@ TEST_CASE("a relative object position without dx or dy is read as no offset", "[
   check_both_ways(xml, "<RelativeObjectPosition> without dx",
                   line_of(xml, "<RelativeObjectPosition"));
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   const auto& teleport =
       std::get<TeleportAction>(loaded.scenario->storyboard.init.privates[1].actions[0]);
   const auto& relative = std::get<RelativeObjectPosition>(teleport.position.kind);
@@ -478,7 +430,7 @@ TEST_CASE("a VisibilityAction flag left out leaves that visibility unchanged", "
   const std::string xml = text.str();
   check_both_ways(xml, "<VisibilityAction> without graphics", line_of(xml, "<VisibilityAction"));
   corsa::test::TempDir dir;
-  const Loaded loaded = load(dir, xml);
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
   const auto& visibility =
       std::get<VisibilityAction>(loaded.scenario->storyboard.init.privates[1].actions[0]);
   CHECK(visibility.sensors == std::optional<bool>(false));

@@ -34,6 +34,13 @@ CatalogLocations parse_catalog_locations(ParseContext& ctx, const Element* e) {
   for (const auto& [name, slot] : slots) {
     if (const Element* location = kids.opt(name)) {
       Children location_kids(ctx, location, "CatalogLocation");
+      // A location needs its Directory (§9.2 CatalogLocations); esmini's examples write an
+      // empty <RouteCatalog/> for "no route catalog", which is what leaving it out means.
+      if (location->FirstChildElement() == nullptr) {
+        ctx.lenient(location, "<" + std::string(name) + "> without a <Directory>",
+                    "no " + std::string(name));
+        continue;
+      }
       const Element* directory = location_kids.one("Directory");
       Children(ctx, directory, "Directory");
       CatalogDirectory value;

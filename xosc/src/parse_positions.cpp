@@ -21,21 +21,25 @@ WorldPosition parse_world(ParseContext& ctx, const Element* e) {
                        ctx.source(e)};
 }
 
+// An offset left out of a relative position is no offset: the entity's own place (esmini's
+// clothoid example writes <RelativeObjectPosition entityRef="Car"/>, its traj-heading-trig
+// <RelativeRoadPosition entityRef="Car0"/>, for "where the car is"), as dz already is.
+double offset_or_zero(ParseContext& ctx, const Element* e, const char* type, const char* axis) {
+  if (e->Attribute(axis) == nullptr) {
+    ctx.lenient(e, std::string("<") + type + "> without " + axis, std::string(axis) + " 0");
+    return 0.0;
+  }
+  return ctx.req_double(e, axis);
+}
+
 template <class T>
 T parse_relative_xyz(ParseContext& ctx, const Element* e, const char* type) {
   Children kids(ctx, e, type);
   T position;
   position.entity_ref = ctx.req_str(e, "entityRef");
   ctx.use_entity(e, position.entity_ref, "entityRef");
-  // dx and dy are required; an offset left out is no offset (esmini's clothoid example writes
-  // <RelativeObjectPosition entityRef="Car"/> for "where the car is"), as dz already is.
-  for (const char* axis : {"dx", "dy"}) {
-    if (e->Attribute(axis) == nullptr) {
-      ctx.lenient(e, std::string("<") + type + "> without " + axis, std::string(axis) + " 0");
-    }
-  }
-  position.dx = ctx.opt_double(e, "dx").value_or(0.0);
-  position.dy = ctx.opt_double(e, "dy").value_or(0.0);
+  position.dx = offset_or_zero(ctx, e, type, "dx");
+  position.dy = offset_or_zero(ctx, e, type, "dy");
   position.dz = ctx.opt_double(e, "dz");
   position.orientation = optional_orientation(ctx, kids);
   position.source = ctx.source(e);
@@ -50,9 +54,12 @@ RoadPosition parse_road(ParseContext& ctx, const Element* e) {
 
 RelativeRoadPosition parse_relative_road(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "RelativeRoadPosition");
-  RelativeRoadPosition position{ctx.req_str(e, "entityRef"), ctx.req_double(e, "ds"),
-                                ctx.req_double(e, "dt"), optional_orientation(ctx, kids),
-                                ctx.source(e)};
+  RelativeRoadPosition position;
+  position.entity_ref = ctx.req_str(e, "entityRef");
+  position.ds = offset_or_zero(ctx, e, "RelativeRoadPosition", "ds");
+  position.dt = offset_or_zero(ctx, e, "RelativeRoadPosition", "dt");
+  position.orientation = optional_orientation(ctx, kids);
+  position.source = ctx.source(e);
   ctx.use_entity(e, position.entity_ref, "entityRef");
   return position;
 }
@@ -69,14 +76,20 @@ RelativeLanePosition parse_relative_lane(ParseContext& ctx, const Element* e) {
   RelativeLanePosition position;
   position.entity_ref = ctx.req_str(e, "entityRef");
   ctx.use_entity(e, position.entity_ref, "entityRef");
-  position.d_lane = static_cast<int>(ctx.req_int(e, "dLane"));
+  if (e->Attribute("dLane") == nullptr) {
+    ctx.lenient(e, "<RelativeLanePosition> without dLane", "dLane 0");
+    position.d_lane = 0;
+  } else {
+    position.d_lane = static_cast<int>(ctx.req_int(e, "dLane"));
+  }
   position.ds = ctx.opt_double(e, "ds");
   position.ds_lane = ctx.opt_double(e, "dsLane");
   if (position.ds && position.ds_lane) {
     ctx.fail(e, "<RelativeLanePosition> takes ds or dsLane, not both");
   }
   if (!position.ds && !position.ds_lane) {
-    ctx.fail(e, "<RelativeLanePosition> needs ds or dsLane");
+    ctx.lenient(e, "<RelativeLanePosition> without ds or dsLane", "ds 0");
+    position.ds = 0.0;
   }
   position.offset = ctx.opt_double(e, "offset");
   position.orientation = optional_orientation(ctx, kids);

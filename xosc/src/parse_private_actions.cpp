@@ -71,10 +71,20 @@ SpeedAction parse_speed_action(ParseContext& ctx, const Element* e) {
     action.target = AbsoluteTargetSpeed{ctx.req_double(t, "value"), ctx.source(t)};
   } else {
     Children(ctx, t, "RelativeTargetSpeed");
+    const std::string entity = entity_attribute(ctx, t, "entityRef");
+    const double value = ctx.req_double(t, "value");
+    SpeedTargetValueType type = SpeedTargetValueType::kDelta;
+    if (t->Attribute("speedTargetValueType") == nullptr && value == 0.0) {
+      // speedTargetValueType is required; esmini's highway_merge leaves it out of a continuous
+      // target of value 0 on another car: that car's speed (a factor 0 would stop the entity
+      // whatever the other car does). Any other value stays an error.
+      ctx.lenient(t, "<RelativeTargetSpeed> of value 0 without speedTargetValueType",
+                  "delta: the speed of '" + clip(entity) + "'");
+    } else {
+      type = ctx.req_enum<SpeedTargetValueType>(t, "speedTargetValueType");
+    }
     action.target =
-        RelativeTargetSpeed{entity_attribute(ctx, t, "entityRef"), ctx.req_double(t, "value"),
-                            ctx.req_enum<SpeedTargetValueType>(t, "speedTargetValueType"),
-                            ctx.req_bool(t, "continuous"), ctx.source(t)};
+        RelativeTargetSpeed{entity, value, type, ctx.req_bool(t, "continuous"), ctx.source(t)};
   }
   action.source = ctx.source(e);
   return action;

@@ -1,5 +1,6 @@
 // The storyboard (§8.2-8.4): Init, Story, Act, ManeuverGroup, Maneuver, Event, Action.
 
+#include <limits>
 #include <set>
 
 #include "parsers.h"
@@ -20,6 +21,25 @@ void check_unique(ParseContext& ctx, std::set<std::string>& names, const Element
   }
 }
 
+// maximumExecutionCount is an unsignedInt (§8.4.3 Event, §8.3.2 ManeuverGroup). esmini and
+// openPASS document -1 as "any number of times", and their examples write it: read as no limit.
+std::optional<uint32_t> execution_count(ParseContext& ctx, const Element* e, bool required) {
+  const char* raw = e->Attribute("maximumExecutionCount");
+  if (raw != nullptr) {
+    const std::optional<std::string> text = ctx.attr(e, "maximumExecutionCount");
+    if (text && trim(*text) == "-1") {
+      ctx.lenient(e, "maximumExecutionCount -1 is not an unsignedInt", "no limit");
+      return std::numeric_limits<uint32_t>::max();
+    }
+  }
+  const std::optional<int64_t> count =
+      required ? std::optional<int64_t>(
+                     ctx.req_int(e, "maximumExecutionCount", ParameterType::kUnsignedInt))
+               : ctx.opt_int(e, "maximumExecutionCount", ParameterType::kUnsignedInt);
+  if (!count) return std::nullopt;
+  return static_cast<uint32_t>(*count);
+}
+
 std::string join(const std::string& parent, const std::string& name) {
   return parent.empty() ? name : parent + "::" + name;
 }
@@ -29,6 +49,15 @@ Action parse_action(ParseContext& ctx, const Element* e, const std::string& pare
   Action action;
   action.name = ctx.req_str(e, "name");
   action.path = join(parent, action.name);
+  if (e->FirstChildElement() == nullptr) {
+    // An Action holds one of the three kinds (§8.4.4). esmini's collision test writes an empty
+    // <Action/> in an event that only marks when its trigger fires: an action that does nothing.
+    ctx.lenient(e, "<Action> '" + clip(action.name) + "' without an action",
+                "an action that does nothing and completes at once");
+    action.action = UserDefinedAction{"", "", ctx.source(e)};
+    action.source = ctx.source(e);
+    return action;
+  }
   const Element* a = kids.choice();
   const std::string_view kind = a->Name();
   if (kind == "PrivateAction") {
@@ -48,8 +77,8 @@ Event parse_event(ParseContext& ctx, const Element* e, const std::string& parent
   event.name = ctx.req_str(e, "name");
   event.path = join(parent, event.name);
   event.priority = ctx.req_enum<Priority>(e, "priority");
-  if (const auto count = ctx.opt_int(e, "maximumExecutionCount", ParameterType::kUnsignedInt)) {
-    event.maximum_execution_count = static_cast<uint32_t>(*count);
+  if (const auto count = execution_count(ctx, e, false)) {
+    event.maximum_execution_count = *count;
   }
   std::set<std::string> names;
   for (const Element* action : kids.at_least("Action", 1)) {
@@ -81,8 +110,7 @@ ManeuverGroup parse_maneuver_group(ParseContext& ctx, const Element* e, const st
   ManeuverGroup group;
   group.name = ctx.req_str(e, "name");
   group.path = join(parent, group.name);
-  group.maximum_execution_count =
-      static_cast<uint32_t>(ctx.req_int(e, "maximumExecutionCount", ParameterType::kUnsignedInt));
+  group.maximum_execution_count = *execution_count(ctx, e, true);
   const Element* actors = kids.one("Actors");
   Children actor_kids(ctx, actors, "Actors");
   group.actors.select_triggering_entities = ctx.req_bool(actors, "selectTriggeringEntities");
@@ -204,7 +232,13 @@ Maneuver parse_maneuver(ParseContext& ctx, const Element* e, const EntryScope& s
   Maneuver maneuver;
   maneuver.parameters = open_scope(ctx, kids, scope);
   ScopeGuard guard(ctx);
-  maneuver.name = ctx.req_str(e, "name");
+  if (e->Attribute("name") == nullptr) {
+    // name is required (§8.3.3); esmini's alks_pedestrian leaves it out of the one maneuver it
+    // has, which nothing refers to.
+    ctx.lenient(e, "<Maneuver> without name", "an unnamed maneuver nothing can refer to");
+  } else {
+    maneuver.name = ctx.req_str(e, "name");
+  }
   std::set<std::string> names;
   for (const Element* event : kids.at_least("Event", 1)) {
     ctx.recover([&] {

@@ -1,12 +1,14 @@
 // AddEntityAction and DeleteEntityAction (OpenSCENARIO 1.3 §7.5.4 EntityAction). The entities
 // are those of the scenario's Entities; a deleted entity is absent: no controller moves it, it
 // has no trajectory rows, no contacts, and conditions about it do not hold. Adding places it
-// (as a TeleportAction would) and makes it present again, standing, under its controller.
+// (as a TeleportAction would) and makes it present again, standing, under its controller;
+// adding an entity that is present does nothing (with a lenient-reading warning).
 
 #include "actions/action_makers.h"
 #include "controllers/controllers.h"
 #include "motion/placement.h"
 #include "positions/position_resolver.h"
+#include "state/lenient.h"
 #include "state/sim_state.h"
 #include "traffic/traffic_update.h"
 
@@ -27,13 +29,23 @@ class AddEntityInstance final : public InstantAction {
   void start(ActionContext& context) override {
     SimState& state = context.state;
     const uint32_t index = entity_index(state, action_.entity_ref, action_.source);
-    const ResolvedPosition at = resolve_position(action_.position, state, index);
     Entity& entity = state.world.entities[index];
-    if (!entity.state.placed) {
-      entity.state.speed = 0.0;
-      entity.speed_command = 0.0;
-      entity.lateral_command = 0.0;
+    if (entity.state.placed) {
+      // §7.5.4: an AddEntityAction adds an entity that is not in the simulation; esmini's
+      // add_delete_entity adds one that is ("ExpectedToFail") and esmini leaves it as it is.
+      lenient(state, action_.source,
+              "AddEntityAction on '" + action_.entity_ref + "', which is already present",
+              "no action: the entity stays where it is");
+      return;
     }
+    const ResolvedPosition at = resolve_position(action_.position, state, index);
+    // Added standing; esmini keeps the object of a deleted entity, which drives on at the speed
+    // it was deleted at when added again (`--semantics esmini`).
+    const bool keep_speed = entity.removed && state.options.semantics == Semantics::kEsmini;
+    const double speed = keep_speed ? entity.removed_speed : 0.0;
+    entity.state.speed = speed;
+    entity.speed_command = speed;
+    entity.lateral_command = 0.0;
     place_entity(state, entity, at, action_.position.source, false);
     control_of(state, index).dynamics.reset();
   }

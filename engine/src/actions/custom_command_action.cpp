@@ -14,6 +14,9 @@ class CustomCommandInstance final : public InstantAction {
   explicit CustomCommandInstance(const xosc::UserDefinedAction& action) : action_(action) {}
   void start(ActionContext& context) override {
     SimState& state = context.state;
+    if (action_.type.empty()) {
+      return;  // an empty <Action/>, read at load as an action that does nothing
+    }
     const auto handler = state.custom_handlers.find(action_.type);
     if (handler == state.custom_handlers.end()) {
       state.diagnostics.add_once(

@@ -12,6 +12,8 @@ void place_entity(SimState& state, Entity& entity, const ResolvedPosition& posit
   entity.state.pose = {position.pose.x, position.pose.y, position.pose.z,
                        position.pose.h, position.pose.p, position.pose.r};
   entity.state.placed = true;
+  entity.removed = false;
+  entity.removed_road.reset();
   entity.lane = LaneFollow{};
   entity.end_of_road = false;
   entity.end_of_road_time = 0.0;

@@ -32,13 +32,17 @@ int parse_lane_id(const std::string& text, const xosc::Source& source, bool allo
 double need_lane_center(const xodr::Map& map, uint32_t road, double s, int lane,
                         const xosc::Source& source);
 bool lane_runs_backward(const xodr::Map& map, uint32_t road, double s, int lane);
-/// Orientation of a road-based position: given (type relative: to the road's +s frame;
-/// otherwise absolute), or by default aligned with the lane's direction of travel.
+/// What a relative Orientation turns from: the road's +s direction, or the lane's direction of
+/// travel (esmini's reading of LanePosition and RelativeLanePosition, `--semantics esmini`).
+enum class OrientationFrame { kRoad, kLane };
+/// Orientation of a road-based position: given (type relative: turned from `frame`; otherwise
+/// absolute), or by default aligned with the lane's direction of travel.
 void orient_on_road(xodr::WorldPose& pose, const std::optional<xosc::Orientation>& orientation,
-                    bool backward);
+                    bool backward, OrientationFrame frame = OrientationFrame::kRoad);
 /// A position on a road at (s, t), oriented by orient_on_road.
 ResolvedPosition on_road(const xodr::Map& map, uint32_t road, double s, double t,
                          std::optional<int> lane,
-                         const std::optional<xosc::Orientation>& orientation);
+                         const std::optional<xosc::Orientation>& orientation,
+                         OrientationFrame frame = OrientationFrame::kRoad);
 
 }  // namespace corsa::engine::detail

@@ -75,6 +75,15 @@ ResolvedPosition relative_object(const xosc::RelativeObjectPosition& p, const Si
   return finish_free(out, state);
 }
 
+// What a relative Orientation of a lane position turns from. 1.3 LanePosition: "the
+// (s,t)-coordinate system of the target lane", whose s runs along the road's reference line
+// (the standard reading); esmini turns from the lane's direction of travel, so that h = pi
+// relative on a left lane of right-hand traffic faces +s (`--semantics esmini`).
+OrientationFrame lane_frame(const SimState& state) {
+  return state.options.semantics == Semantics::kEsmini ? OrientationFrame::kLane
+                                                       : OrientationFrame::kRoad;
+}
+
 ResolvedPosition road(const xosc::RoadPosition& p, const SimState& state) {
   const xodr::Map& map = need_map(state, p.source, "RoadPosition");
   const uint32_t road_index = need_road(map, p.road_id, p.source);
@@ -93,24 +102,15 @@ ResolvedPosition lane(const xosc::LanePosition& p, const SimState& state) {
     return on_road(map, road_index, s, p.offset.value_or(0.0), std::nullopt, p.orientation);
   }
   const double t = need_lane_center(map, road_index, s, lane_id, p.source) + p.offset.value_or(0.0);
-  ResolvedPosition out = on_road(map, road_index, s, t, lane_id, p.orientation);
-  if (state.options.semantics == Semantics::kEsmini && p.orientation &&
-      p.orientation->type == xosc::ReferenceContext::kRelative &&
-      lane_runs_backward(map, road_index, s, lane_id)) {
-    // esmini turns a relative orientation from the lane's direction of travel, not from the
-    // road's +s (docs/openscenario.md, differences from esmini).
-    const double dp = p.orientation->p.value_or(0.0);
-    const double dr = p.orientation->r.value_or(0.0);
-    out.pose.h = wrap_angle(out.pose.h + std::numbers::pi);
-    out.pose.p = dp - (out.pose.p - dp);
-    out.pose.r = dr - (out.pose.r - dr);
-  }
-  return out;
+  return on_road(map, road_index, s, t, lane_id, p.orientation, lane_frame(state));
 }
 
 // Where the reference entity is on the road (it must be on one).
 const RoadCoordinates& need_road_coordinates(const Entity& ref, const std::string& name,
                                              const xosc::Source& source) {
+  if (!ref.state.placed && ref.removed && ref.removed_road) {
+    return *ref.removed_road;  // deleted: where it was (need_entity warned)
+  }
   if (!ref.state.road) {
     fail(source, "entity '" + name +
                      "' is not on a road, so a road-relative position cannot "
@@ -164,7 +164,8 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
   const LaneFollow at = walk(map, rc, ds, p.source);
   const int lane_id = step_lane_id(at.lane, at.dir * p.d_lane);
   const double t = need_lane_center(map, at.road, at.s, lane_id, p.source) + p.offset.value_or(0.0);
-  ResolvedPosition out = on_road(map, at.road, at.s, t, lane_id, p.orientation);
+  ResolvedPosition out =
+      on_road(map, at.road, at.s, t, lane_id, p.orientation, lane_frame(state));
   if (state.options.semantics == Semantics::kEsmini && !p.orientation) {
     // esmini faces a position without Orientation the way the reference entity faces along its
     // road, not the target lane's direction of travel.

@@ -117,6 +117,13 @@ struct Entity {
   double offroad_time = 0.0;
   double end_of_road_time = 0.0;
 
+  /// Set by a DeleteEntityAction (or a sink) until the entity is placed again; state.pose and
+  /// removed_road keep where it was, which a position relative to it is read from (esmini's
+  /// reading of a reference to a deleted entity, with a lenient-reading warning).
+  bool removed = false;
+  std::optional<RoadCoordinates> removed_road;
+  double removed_speed = 0.0;  ///< m/s when it was removed (esmini re-adds it at that speed)
+
   /// Trailers (§7.4.8): the entity towing this one, and the one this one tows.
   std::optional<uint32_t> towed_by;
   std::optional<uint32_t> towing;

@@ -130,6 +130,11 @@ void update_traffic(SimState& state) {
 void remove_entity(SimState& state, uint32_t index) {
   ++state.traffic.removals;
   Entity& entity = state.world.entities[index];
+  entity.removed = entity.state.placed || entity.removed;
+  if (entity.state.placed) {
+    entity.removed_road = entity.state.road;
+    entity.removed_speed = entity.state.speed;
+  }
   entity.state.placed = false;
   entity.state.speed = 0.0;
   entity.state.acceleration = 0.0;
