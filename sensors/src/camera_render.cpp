@@ -126,7 +126,8 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
     p.visibility = &b.visibility;
     p.visibility_scratch = &b.visibility_scratch;
     p.edges = &b.edges;
-    p.motion = anything_moves(scene, motion);
+    // `fast` leaves out the blur, and with it the motion vectors that only the blur reads.
+    p.motion = shading.quality.motion_blur && anything_moves(scene, motion);
     if (p.motion) {
       p.cam_early = camera_at(motion, world_from_cam, -detail::kMotionHalf).inverse();
       p.cam_late = camera_at(motion, world_from_cam, detail::kMotionHalf).inverse();

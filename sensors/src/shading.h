@@ -30,6 +30,7 @@ struct QualitySettings {
   int edge_samples = 0;        ///< extra sub-pixel samples on edge pixels (anti-aliasing)
   bool denoise = false;        ///< filter the visibilities across similar neighbours
   bool bloom = false;          ///< glare of very bright pixels
+  bool motion_blur = false;    ///< smear each pixel along its image motion during the exposure
 };
 QualitySettings quality_settings(RenderQuality quality);
 
