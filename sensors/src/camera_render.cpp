@@ -159,10 +159,7 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   if (p.motion) {
     // The vectors span 2 kMotionHalf seconds; the blur spans the exposure time.
     const float scale = static_cast<float>(exposure.shutter_s / (2.0 * detail::kMotionHalf));
-    for (float& v : motion_vectors) {
-      v *= scale;
-    }
-    detail::motion_blur(linear, motion_vectors, w, h, b.linear_copy);
+    detail::motion_blur(linear, motion_vectors, scale, w, h, b.linear_copy);
   }
   if (shading.quality.bloom) {
     // Only light far beyond white glares: lamps, bulbs and the sun, not a lit window.
