@@ -192,6 +192,7 @@ TEST_CASE("the fast preset leaves out motion blur and default keeps it",
     settings.outputs = {.rgb = true, .depth = true, .semantic = true};
     settings.lighting = &noon;
     settings.rgb.quality = quality;
+    settings.rgb.auto_exposure = false;
     settings.rgb.shutter_speed_s = 0.02;  // a long exposure: blur of several pixels
     settings.frame_seed = 3;
     CameraMotion motion;
