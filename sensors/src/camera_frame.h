@@ -98,7 +98,7 @@ struct FrameBuffers {
   std::vector<PixelVisibility> visibility_scratch;
   std::vector<float> motion_vectors;
   std::vector<float> linear;       ///< radiance, 3 floats a pixel
-  std::vector<float> linear_copy;  ///< the sharp image under motion blur
+  std::vector<float> linear_copy;  ///< the motion blur's other buffer (swapped with linear)
   std::vector<float> distances;    ///< along each pixel's ray, for the precipitation
   std::vector<uint8_t> edges;
 };

@@ -126,7 +126,8 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
     p.visibility = &b.visibility;
     p.visibility_scratch = &b.visibility_scratch;
     p.edges = &b.edges;
-    p.motion = anything_moves(scene, motion);
+    // `fast` leaves out the blur, and with it the motion vectors that only the blur reads.
+    p.motion = shading.quality.motion_blur && anything_moves(scene, motion);
     if (p.motion) {
       p.cam_early = camera_at(motion, world_from_cam, -detail::kMotionHalf).inverse();
       p.cam_late = camera_at(motion, world_from_cam, detail::kMotionHalf).inverse();
@@ -158,10 +159,7 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   if (p.motion) {
     // The vectors span 2 kMotionHalf seconds; the blur spans the exposure time.
     const float scale = static_cast<float>(exposure.shutter_s / (2.0 * detail::kMotionHalf));
-    for (float& v : motion_vectors) {
-      v *= scale;
-    }
-    detail::motion_blur(linear, motion_vectors, w, h, b.linear_copy);
+    detail::motion_blur(linear, motion_vectors, scale, w, h, b.linear_copy);
   }
   if (shading.quality.bloom) {
     // Only light far beyond white glares: lamps, bulbs and the sun, not a lit window.

@@ -169,6 +169,7 @@ QualitySettings quality_settings(RenderQuality q) {
       s.edge_samples = 4;
       s.denoise = true;
       s.bloom = true;
+      s.motion_blur = true;
       return s;
     case RenderQuality::kHigh:
       s.sun_rays = 4;
@@ -181,6 +182,7 @@ QualitySettings quality_settings(RenderQuality q) {
       s.edge_samples = 12;
       s.denoise = true;
       s.bloom = true;
+      s.motion_blur = true;
       return s;
   }
   return s;

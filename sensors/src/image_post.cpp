@@ -14,24 +14,41 @@
 
 namespace corsa::sensors::detail {
 
-void motion_blur(std::vector<float>& linear, const std::vector<float>& motion, int width,
-                 int height, std::vector<float>& sharp) {
-  sharp = linear;
+void motion_blur(std::vector<float>& linear, const std::vector<float>& motion, float scale,
+                 int width, int height, std::vector<float>& scratch) {
+  // The blurred image is written into `scratch` (pixels that do not move copied as they are)
+  // and the two buffers swapped: no copy of the sharp image first.
+  scratch.resize(linear.size());
+  const std::vector<float>& sharp = linear;
+  // Where sample s of n lies along the motion, as a share of it: the same doubles for every
+  // pixel, computed once.
+  constexpr int kMaxSamples = 16;
+  double along[kMaxSamples + 1][kMaxSamples] = {};
+  for (int n = 2; n <= kMaxSamples; ++n) {
+    for (int s = 0; s < n; ++s) {
+      along[n][s] = static_cast<double>(s) / (n - 1) - 0.5;
+    }
+  }
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
     for (int row = r.begin(); row != r.end(); ++row) {
       for (int col = 0; col < width; ++col) {
         const size_t px = static_cast<size_t>(row) * width + col;
-        const double mx = motion[2 * px];
-        const double my = motion[2 * px + 1];
+        const double mx = motion[2 * px] * scale;
+        const double my = motion[2 * px + 1] * scale;
         const double length = std::sqrt(mx * mx + my * my);
+        float* out = &scratch[3 * px];
         if (length < 0.5) {
+          const float* v = &sharp[3 * px];
+          out[0] = v[0];
+          out[1] = v[1];
+          out[2] = v[2];
           continue;
         }
         // One sample per pixel of motion, at most 16 (longer streaks are sampled more sparsely).
-        const int samples = std::min(16, static_cast<int>(std::ceil(length)) + 1);
+        const int samples = std::min(kMaxSamples, static_cast<int>(std::ceil(length)) + 1);
         double sum[3] = {0.0, 0.0, 0.0};
         for (int s = 0; s < samples; ++s) {
-          const double f = static_cast<double>(s) / (samples - 1) - 0.5;
+          const double f = along[samples][s];
           // Nearest pixel: clamp first, then round the non-negative coordinate by truncation.
           const int c = static_cast<int>(std::clamp(col + f * mx, 0.0, width - 1.0) + 0.5);
           const int q = static_cast<int>(std::clamp(row + f * my, 0.0, height - 1.0) + 0.5);
@@ -41,11 +58,12 @@ void motion_blur(std::vector<float>& linear, const std::vector<float>& motion, i
           sum[2] += v[2];
         }
         for (int k = 0; k < 3; ++k) {
-          linear[3 * px + k] = static_cast<float>(sum[k] / samples);
+          out[k] = static_cast<float>(sum[k] / samples);
         }
       }
     }
   });
+  linear.swap(scratch);
 }
 
 namespace {

@@ -111,35 +111,43 @@ const NoiseTile& NoiseTile::instance() {
   return tile;
 }
 
+namespace {
+
+/// floor(v) wrapped into [0, n) (n a power of two) and v - floor(v). Whole numbers below 2^52
+/// convert exactly and their two's complement low bits are the wrapped index, so there the
+/// floor is a truncation corrected by one below zero (the same values as std::floor, without
+/// its call); larger coordinates are first brought near 0 in double precision so that the
+/// integer conversion never overflows.
+void wrap_split(double v, int n, int& index, float& frac) {
+  constexpr double kExact = 4503599627370496.0;  // 2^52
+  if (std::fabs(v) < kExact) {
+    auto i = static_cast<int64_t>(v);
+    i -= v < static_cast<double>(i) ? 1 : 0;
+    index = static_cast<int>(i & (n - 1));
+    frac = static_cast<float>(v - static_cast<double>(i));
+    return;
+  }
+  const double f = std::floor(v);
+  const double period = static_cast<double>(n);
+  index = static_cast<int>(static_cast<int64_t>(f - period * std::floor(f / period)) & (n - 1));
+  frac = static_cast<float>(v - f);
+}
+
+}  // namespace
+
 NoiseTile::Footprint NoiseTile::footprint(const Level& level, double x, double y) const {
   const int n = level.size;
-  const double px = x * n / kSize - 0.5;
-  const double py = y * n / kSize - 0.5;
-  const double fx = std::floor(px);
-  const double fy = std::floor(py);
-  // Wrap with a mask (sizes are powers of two). Whole numbers below 2^52 convert exactly and
-  // their two's complement low bits are the wrapped index; larger coordinates are first brought
-  // near 0 in double precision so that the integer conversion never overflows.
-  constexpr double kExact = 4503599627370496.0;  // 2^52
-  auto wrap = [n](double f) {
-    const double period = static_cast<double>(n);
-    const auto i = std::fabs(f) < kExact
-                       ? static_cast<int64_t>(f)
-                       : static_cast<int64_t>(f - period * std::floor(f / period));
-    return static_cast<int>(i & (n - 1));
-  };
-  const int x0 = wrap(fx);
-  const int x1 = (x0 + 1) & (n - 1);
-  const int y0 = wrap(fy);
-  const int y1 = (y0 + 1) & (n - 1);
   Footprint f;
+  int x0 = 0, y0 = 0;
+  wrap_split(x * n / kSize - 0.5, n, x0, f.ax);
+  wrap_split(y * n / kSize - 0.5, n, y0, f.ay);
+  const int x1 = (x0 + 1) & (n - 1);
+  const int y1 = (y0 + 1) & (n - 1);
   f.plane = static_cast<size_t>(n) * n;
   f.texel[0] = &level.texels[static_cast<size_t>(y0) * n + x0];
   f.texel[1] = &level.texels[static_cast<size_t>(y0) * n + x1];
   f.texel[2] = &level.texels[static_cast<size_t>(y1) * n + x0];
   f.texel[3] = &level.texels[static_cast<size_t>(y1) * n + x1];
-  f.ax = static_cast<float>(px - fx);
-  f.ay = static_cast<float>(py - fy);
   return f;
 }
 

@@ -30,6 +30,7 @@ struct QualitySettings {
   int edge_samples = 0;        ///< extra sub-pixel samples on edge pixels (anti-aliasing)
   bool denoise = false;        ///< filter the visibilities across similar neighbours
   bool bloom = false;          ///< glare of very bright pixels
+  bool motion_blur = false;    ///< smear each pixel along its image motion during the exposure
 };
 QualitySettings quality_settings(RenderQuality quality);
 
@@ -128,10 +129,10 @@ Color sky_seen(const ShadingContext& c, Vec3 origin, Vec3 direction);
 Color through_air(const ShadingContext& c, Color radiance, Vec3 origin, Vec3 direction,
                   double distance);
 
-/// Motion blur along per-pixel motion vectors (pixels, 2 floats per pixel), in place; `sharp`
-/// is scratch space (a copy of the image before the blur).
-void motion_blur(std::vector<float>& linear, const std::vector<float>& motion, int width,
-                 int height, std::vector<float>& sharp);
+/// Motion blur along per-pixel motion vectors (pixels, 2 floats per pixel, times `scale`):
+/// `linear` becomes the blurred image; `scratch` is swapped with it (its old contents are lost).
+void motion_blur(std::vector<float>& linear, const std::vector<float>& motion, float scale,
+                 int width, int height, std::vector<float>& scratch);
 
 /// The exposure (linear scale before the tone curve) of a frame: the rig's manual one, or the
 /// metered one with its exposure time (s) and ISO.

@@ -128,18 +128,6 @@ Color SkyModel::radiance_above(double cos_theta, double cos_gamma) const {
   return c;
 }
 
-Color IrradianceSH::operator()(Vec3 n) const {
-  // Ramamoorthi and Hanrahan 2001, eq. 13, divided by pi.
-  constexpr double c1 = 0.429043, c2 = 0.511664, c3 = 0.743125, c4 = 0.886227, c5 = 0.247708;
-  const auto& L = coefficients;
-  const double x = n.x, y = n.y, z = n.z;
-  const Color e = L[8] * (c1 * (x * x - y * y)) + L[6] * (c3 * z * z) + L[0] * c4 + L[6] * -c5 +
-                  (L[4] * (x * y) + L[7] * (x * z) + L[5] * (y * z)) * (2.0 * c1) +
-                  (L[3] * x + L[1] * y + L[2] * z) * (2.0 * c2);
-  const double inv_pi = 1.0 / kPi;
-  return {std::max(0.0, e.r * inv_pi), std::max(0.0, e.g * inv_pi), std::max(0.0, e.b * inv_pi)};
-}
-
 IrradianceSH project_sky(const SkyModel& sky) {
   // Midpoint quadrature over the sphere; the sky varies slowly except near the sun, whose disc
   // is direct light and not part of this.

@@ -173,3 +173,42 @@ TEST_CASE("a night frame with lamps is the same bytes on 1 and 2 threads at ever
     CHECK(a.depth == b.depth);
   }
 }
+
+TEST_CASE("the fast preset leaves out motion blur and default keeps it",
+          "[sensors][camera][quality]") {
+  auto car = box_entity(4, "car", 12.0, 2.0, 4.5, 1.8, 1.5, corsa::engine::EntityCategory::kCar);
+  car.vx = -10.0;
+  Scene scene;
+  scene.add_road_mesh(corsa::test::flat_road());
+  scene.commit();
+  scene.set_entities(std::vector<corsa::engine::EntitySnapshot>{car});
+  CameraIntrinsics k;
+  k.width = 320;
+  k.height = 240;
+  const CameraRenderer camera(k);
+  const Lighting noon = sun_at(M_PI, 1.2);
+  auto frame = [&](RenderQuality quality, double speed) {
+    RenderSettings settings;
+    settings.outputs = {.rgb = true, .depth = true, .semantic = true};
+    settings.lighting = &noon;
+    settings.rgb.quality = quality;
+    settings.rgb.auto_exposure = false;
+    settings.rgb.shutter_speed_s = 0.02;  // a long exposure: blur of several pixels
+    settings.frame_seed = 3;
+    CameraMotion motion;
+    motion.world_from_body = rigid_from_pose(0.0, 0.0, 1.2, 0.0, 0.0, 0.0);
+    motion.velocity = {speed, 0.0, 0.0};
+    return camera.render(scene, motion, settings);
+  };
+  // The car moves in both frames; only the camera's own speed differs. Without blur the
+  // frame is that instant's, whatever moves.
+  const CameraImages fast_moving = frame(RenderQuality::kFast, 15.0);
+  const CameraImages fast_still = frame(RenderQuality::kFast, 0.0);
+  CHECK(fast_moving.rgb == fast_still.rgb);
+  const CameraImages default_moving = frame(RenderQuality::kDefault, 15.0);
+  const CameraImages default_still = frame(RenderQuality::kDefault, 0.0);
+  CHECK(default_moving.rgb != default_still.rgb);
+  // Labels and depth never depend on the preset or the blur.
+  CHECK(fast_moving.semantic == default_moving.semantic);
+  CHECK(fast_moving.depth == default_moving.depth);
+}

@@ -7,7 +7,9 @@
 // renderer's relative unit: 1 is the radiance of a white diffuse surface lit by 100,000 lux,
 // i.e. 100,000 / pi cd/m^2.
 
+#include <algorithm>
 #include <array>
+#include <numbers>
 #include <vector>
 
 #include "corsa/sensors/color.h"
@@ -76,8 +78,19 @@ struct SkyModel {
 struct IrradianceSH {
   std::array<Color, 9> coefficients{};
 
-  /// Irradiance / pi (the radiance of a white diffuse surface) for unit normal n.
-  Color operator()(Vec3 n) const;
+  /// Irradiance / pi (the radiance of a white diffuse surface) for unit normal n. Inline: the
+  /// camera evaluates it two to three times a pixel.
+  Color operator()(Vec3 n) const {
+    // Ramamoorthi and Hanrahan 2001, eq. 13, divided by pi.
+    constexpr double c1 = 0.429043, c2 = 0.511664, c3 = 0.743125, c4 = 0.886227, c5 = 0.247708;
+    const auto& L = coefficients;
+    const double x = n.x, y = n.y, z = n.z;
+    const Color e = L[8] * (c1 * (x * x - y * y)) + L[6] * (c3 * z * z) + L[0] * c4 + L[6] * -c5 +
+                    (L[4] * (x * y) + L[7] * (x * z) + L[5] * (y * z)) * (2.0 * c1) +
+                    (L[3] * x + L[1] * y + L[2] * z) * (2.0 * c2);
+    const double inv_pi = 1.0 / std::numbers::pi;
+    return {std::max(0.0, e.r * inv_pi), std::max(0.0, e.g * inv_pi), std::max(0.0, e.b * inv_pi)};
+  }
 };
 
 /// Projects the sky model (including the ground below the horizon) by numerical quadrature.
