@@ -164,8 +164,7 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
   const LaneFollow at = walk(map, rc, ds, p.source);
   const int lane_id = step_lane_id(at.lane, at.dir * p.d_lane);
   const double t = need_lane_center(map, at.road, at.s, lane_id, p.source) + p.offset.value_or(0.0);
-  ResolvedPosition out =
-      on_road(map, at.road, at.s, t, lane_id, p.orientation, lane_frame(state));
+  ResolvedPosition out = on_road(map, at.road, at.s, t, lane_id, p.orientation, lane_frame(state));
   if (state.options.semantics == Semantics::kEsmini && !p.orientation) {
     // esmini faces a position without Orientation the way the reference entity faces along its
     // road, not the target lane's direction of travel.
