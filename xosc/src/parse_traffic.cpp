@@ -72,7 +72,18 @@ TrafficSwarmAction parse_swarm(ParseContext& ctx, const Element* e,
   Children kids(ctx, e, "TrafficSwarmAction");
   TrafficSwarmAction action;
   action.traffic_name = std::move(name);
-  const Element* central = kids.one("CentralObject");
+  // Every revision's XSD names the element CentralObject (its type is CentralSwarmObject); esmini's
+  // swarm example writes the type name, whose meaning is plain.
+  const Element* central = kids.opt("CentralObject");
+  if (central == nullptr) {
+    central = kids.opt("CentralSwarmObject");
+    if (central != nullptr) {
+      ctx.lenient(central, "<CentralSwarmObject> in <TrafficSwarmAction> is the type's name",
+                  "<CentralObject>");
+    } else {
+      central = kids.one("CentralObject");
+    }
+  }
   Children(ctx, central, "CentralSwarmObject");
   action.central_object = ctx.req_str(central, "entityRef");
   ctx.use_entity(central, action.central_object, "entityRef");

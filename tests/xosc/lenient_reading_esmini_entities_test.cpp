@@ -1,0 +1,71 @@
+// Rule breaks met in esmini's examples whose meaning is clear, read as meant with a located
+// `(read as ...)` warning and refused under LoadOptions::strict: a swarm's central object written
+// with its type's name <CentralSwarmObject>.
+
+#include <catch2/catch.hpp>
+#include <string>
+#include <variant>
+
+#include "corsa/xosc/scenario.h"
+#include "lenient_load.h"
+#include "scenario_text.h"
+#include "temp_dir.h"
+
+using namespace corsa::xosc;
+using corsa::test::check_both_ways;
+using corsa::test::lenient_load;
+using corsa::test::line_of;
+using corsa::test::Loaded;
+using corsa::test::ScenarioText;
+
+namespace {
+
+// A story whose one event starts a TrafficSwarmAction around Ego, its central object written
+// as `central` (an element name).
+std::string swarm_story(const std::string& central) {
+  return "<Story name=\"S\">\n<Act name=\"Act\">\n<ManeuverGroup name=\"G\" "
+         "maximumExecutionCount=\"1\">\n<Actors selectTriggeringEntities=\"false\"/>\n"
+         "<Maneuver name=\"M\">\n<Event name=\"E\" priority=\"override\">\n<Action name=\"A\">"
+         "<GlobalAction><TrafficAction><TrafficSwarmAction innerRadius=\"20\" "
+         "numberOfVehicles=\"1\" offset=\"0\" semiMajorAxis=\"120\" semiMinorAxis=\"15\">\n<" +
+         central +
+         " entityRef=\"Ego\"/>\n</TrafficSwarmAction></TrafficAction></GlobalAction></Action>\n"
+         "<StartTrigger><ConditionGroup><Condition name=\"C\" delay=\"0\" conditionEdge=\"none\">"
+         "<ByValueCondition><SimulationTimeCondition value=\"1\" rule=\"greaterThan\"/>"
+         "</ByValueCondition></Condition></ConditionGroup></StartTrigger>\n"
+         "</Event>\n</Maneuver>\n</ManeuverGroup>\n</Act>\n</Story>\n";
+}
+
+const TrafficSwarmAction& only_swarm(const Loaded& loaded) {
+  const auto& event =
+      loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
+  return std::get<TrafficSwarmAction>(std::get<GlobalAction>(event.actions[0].action));
+}
+
+}  // namespace
+
+TEST_CASE("a swarm's CentralSwarmObject is read as its CentralObject", "[xosc][lenient]") {
+  // 1.0 and 1.3 both name the element CentralObject; CentralSwarmObject is its type's name.
+  for (const std::string version : {"0", "3"}) {
+    ScenarioText text;
+    text.version = version;
+    text.stories = swarm_story("CentralSwarmObject");
+    const std::string xml = text.str();
+    check_both_ways(xml, "<CentralSwarmObject> in <TrafficSwarmAction>",
+                    line_of(xml, "<CentralSwarmObject"));
+    corsa::test::TempDir dir;
+    const Loaded loaded = lenient_load(dir, xml);
+    REQUIRE(loaded.scenario);
+    CHECK(only_swarm(loaded).central_object == "Ego");
+  }
+  ScenarioText valid;
+  valid.stories = swarm_story("CentralObject");
+  corsa::test::TempDir dir;
+  const Loaded loaded = lenient_load(dir, valid.str(), true);
+  REQUIRE(loaded.errors.empty());
+  CHECK(only_swarm(loaded).central_object == "Ego");
+  // Any other name is still an unknown element and leaves the required CentralObject missing.
+  ScenarioText other;
+  other.stories = swarm_story("CentralThing");
+  CHECK(!lenient_load(dir, other.str()).errors.empty());
+}
