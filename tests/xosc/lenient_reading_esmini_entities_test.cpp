@@ -1,6 +1,6 @@
 // Rule breaks met in esmini's examples whose meaning is clear, read as meant with a located
 // `(read as ...)` warning and refused under LoadOptions::strict: a swarm's central object written
-// with its type's name <CentralSwarmObject>.
+// with its type's name <CentralSwarmObject>, a Performance without one of its limits.
 
 #include <catch2/catch.hpp>
 #include <string>
@@ -42,6 +42,15 @@ const TrafficSwarmAction& only_swarm(const Loaded& loaded) {
   return std::get<TrafficSwarmAction>(std::get<GlobalAction>(event.actions[0].action));
 }
 
+std::string performance_entities(const std::string& performance) {
+  ScenarioText text;
+  const std::string valid =
+      "<Performance maxSpeed=\"69\" maxAcceleration=\"10\" maxDeceleration=\"10\"/>";
+  std::string entities = text.entities;
+  entities.replace(entities.find(valid), valid.size(), performance);
+  return entities;
+}
+
 }  // namespace
 
 TEST_CASE("a swarm's CentralSwarmObject is read as its CentralObject", "[xosc][lenient]") {
@@ -68,4 +77,19 @@ TEST_CASE("a swarm's CentralSwarmObject is read as its CentralObject", "[xosc][l
   ScenarioText other;
   other.stories = swarm_story("CentralThing");
   CHECK(!lenient_load(dir, other.str()).errors.empty());
+}
+
+TEST_CASE("a Performance without maxAcceleration is read as no limit given", "[xosc][lenient]") {
+  ScenarioText text;
+  text.version = "0";
+  text.entities = performance_entities("<Performance maxSpeed=\"69\" maxDeceleration=\"30\"/>");
+  const std::string xml = text.str();
+  check_both_ways(xml, "<Performance> has no maxAcceleration", line_of(xml, "<Performance"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  REQUIRE(loaded.scenario);
+  const auto& vehicle = std::get<Vehicle>(loaded.scenario->entities.objects[0].object);
+  CHECK(vehicle.performance.max_acceleration == 0.0);
+  CHECK(vehicle.performance.max_deceleration == 30.0);
+  CHECK(vehicle.performance.max_speed == 69.0);
 }

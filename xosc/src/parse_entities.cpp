@@ -11,9 +11,18 @@ namespace {
 Performance parse_performance(ParseContext& ctx, const Element* e) {
   Children(ctx, e, "Performance");
   Performance performance;
-  performance.max_speed = ctx.req_double(e, "maxSpeed");
-  performance.max_acceleration = ctx.req_double(e, "maxAcceleration");
-  performance.max_deceleration = ctx.req_double(e, "maxDeceleration");
+  // All three limits are required (1.0-1.3 XSD); esmini's pedestrian example leaves maxAcceleration
+  // out. A missing one is read as 0, the value the engine takes as "no limit given".
+  const auto limit = [&](const char* name) {
+    if (e->Attribute(name) == nullptr) {
+      ctx.lenient(e, std::string("<Performance> has no ") + name, "0, no limit of its own");
+      return 0.0;
+    }
+    return ctx.req_double(e, name);
+  };
+  performance.max_speed = limit("maxSpeed");
+  performance.max_acceleration = limit("maxAcceleration");
+  performance.max_deceleration = limit("maxDeceleration");
   performance.max_acceleration_rate = ctx.opt_double(e, "maxAccelerationRate");
   performance.max_deceleration_rate = ctx.opt_double(e, "maxDecelerationRate");
   performance.source = ctx.source(e);
