@@ -1,6 +1,7 @@
 // Rule breaks met in esmini's examples whose meaning is clear, read as meant with a located
 // `(read as ...)` warning and refused under LoadOptions::strict: a swarm's central object written
-// with its type's name <CentralSwarmObject>, a Performance without one of its limits.
+// with its type's name <CentralSwarmObject>, a Performance without one of its limits, esmini's
+// misspelled <Axels> of <Axel> elements.
 
 #include <catch2/catch.hpp>
 #include <string>
@@ -92,4 +93,40 @@ TEST_CASE("a Performance without maxAcceleration is read as no limit given", "[x
   CHECK(vehicle.performance.max_acceleration == 0.0);
   CHECK(vehicle.performance.max_deceleration == 30.0);
   CHECK(vehicle.performance.max_speed == 69.0);
+}
+
+TEST_CASE("esmini's Axels of Axel elements are read as Axles placed by their positionX",
+          "[xosc][lenient]") {
+  ScenarioText text;
+  text.version = "0";
+  const std::string axels =
+      "<Axels>\n"
+      "<Axel maxSteering=\"0\" positionX=\"0\" positionZ=\"0.4\" trackWidth=\"1.6\" "
+      "wheelDiameter=\"0.7\"/>\n"
+      "<Axel maxSteering=\"0.5\" positionX=\"2.98\" positionZ=\"0.4\" trackWidth=\"1.68\" "
+      "wheelDiameter=\"0.8\"/>\n"
+      "</Axels>\n";
+  std::string entities = text.entities;
+  const size_t begin = entities.find("<Axles>");
+  const size_t end = entities.find("</Axles>\n") + std::string("</Axles>\n").size();
+  entities.replace(begin, end - begin, axels);
+  text.entities = entities;
+  const std::string xml = text.str();
+  check_both_ways(xml, "<Axels> of <Axel> elements is a misspelling of <Axles>",
+                  line_of(xml, "<Axels>"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  REQUIRE(loaded.scenario);
+  const auto& axles = std::get<Vehicle>(loaded.scenario->entities.objects[0].object).axles;
+  REQUIRE(axles.front_axle);
+  CHECK(axles.front_axle->position_x == 2.98);
+  CHECK(axles.front_axle->max_steering == 0.5);
+  CHECK(axles.rear_axle.position_x == 0.0);
+  CHECK(axles.rear_axle.track_width == 1.6);
+  CHECK(axles.additional_axles.empty());
+  // Only this misspelling: another spelling stays an unknown element (and Axles stays missing).
+  ScenarioText other = text;
+  other.entities.replace(other.entities.find("<Axels>"), 7, "<Axells>");
+  other.entities.replace(other.entities.find("</Axels>"), 8, "</Axells>");
+  CHECK(!lenient_load(dir, other.str()).errors.empty());
 }

@@ -50,6 +50,34 @@ Axles parse_axles(ParseContext& ctx, const Element* e) {
   return axles;
 }
 
+// esmini's full_e6mini writes <Axels> for <Axles>, holding <Axel> elements. Only this misspelling
+// is read: its axles told apart by positionX (measured forward from the reference point, Axle):
+// the foremost is the FrontAxle, the rearmost the RearAxle, any others AdditionalAxles.
+Axles parse_misspelled_axles(ParseContext& ctx, const Element* e) {
+  if (e->FirstChildElement("Axel") == nullptr) {
+    ctx.lenient(e, "<Axels> is a misspelling of <Axles>", "<Axles>");
+    return parse_axles(ctx, e);
+  }
+  ctx.lenient(e, "<Axels> of <Axel> elements is a misspelling of <Axles>",
+              "<Axles>: the foremost <Axel> (largest positionX) its FrontAxle, the rearmost its "
+              "RearAxle, any others AdditionalAxles");
+  Children kids(ctx, e, "Axels");
+  std::vector<Axle> listed;
+  for (const Element* axel : kids.all("Axel")) {
+    listed.push_back(parse_axle(ctx, axel));
+  }
+  std::stable_sort(listed.begin(), listed.end(),
+                   [](const Axle& a, const Axle& b) { return a.position_x > b.position_x; });
+  Axles axles;
+  axles.rear_axle = listed.back();
+  if (listed.size() > 1) {
+    axles.front_axle = listed.front();
+    axles.additional_axles.assign(listed.begin() + 1, listed.end() - 1);
+  }
+  axles.source = ctx.source(e);
+  return axles;
+}
+
 TrailerCoupling parse_coupling(ParseContext& ctx, const Element* e) {
   Children(ctx, e, "TrailerCoupling");
   return TrailerCoupling{ctx.req_double(e, "dx"), ctx.opt_double(e, "dz"), ctx.source(e)};
@@ -179,7 +207,11 @@ Vehicle parse_vehicle(ParseContext& ctx, const Element* e, const EntryScope& sco
   vehicle.model3d = ctx.opt_str(e, "model3d");
   vehicle.bounding_box = parse_bounding_box(ctx, kids.one("BoundingBox"));
   vehicle.performance = parse_performance(ctx, kids.one("Performance"));
-  vehicle.axles = parse_axles(ctx, kids.one("Axles"));
+  if (e->FirstChildElement("Axels") != nullptr && e->FirstChildElement("Axles") == nullptr) {
+    vehicle.axles = parse_misspelled_axles(ctx, kids.one("Axels"));
+  } else {
+    vehicle.axles = parse_axles(ctx, kids.one("Axles"));
+  }
   vehicle.properties = optional_properties(ctx, kids, e);
   if (const Element* hitch = kids.opt("TrailerHitch")) {
     vehicle.trailer_hitch = parse_coupling(ctx, hitch);

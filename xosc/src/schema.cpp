@@ -37,6 +37,7 @@ AssignRouteAction|Route CatalogReference|
 AutomaticGear||gear
 Axle||maxSteering positionX positionZ trackWidth wheelDiameter
 Axles|FrontAxle RearAxle AdditionalAxle|
+Axels|FrontAxle RearAxle AdditionalAxle Axel|
 BoundingBox|Center Dimensions|
 Brake||value maxRate
 ByEntityCondition|TriggeringEntities EntityCondition|
@@ -276,7 +277,7 @@ VariableDeclaration||name variableType value
 VariableDeclarations|VariableDeclaration|
 VariableModifyAction|Rule|
 VariableSetAction||value
-Vehicle|ParameterDeclarations BoundingBox Performance Axles Properties TrailerHitch TrailerCoupler Trailer|name vehicleCategory role mass model3d
+Vehicle|ParameterDeclarations BoundingBox Performance Axles Axels Properties TrailerHitch TrailerCoupler Trailer|name vehicleCategory role mass model3d
 VehicleCategoryDistribution|VehicleCategoryDistributionEntry|
 VehicleCategoryDistributionEntry||category weight
 VehicleComponent||vehicleComponentType
