@@ -1,7 +1,7 @@
 // Rule breaks met in esmini's examples whose meaning is clear, read as meant with a located
 // `(read as ...)` warning and refused under LoadOptions::strict: a swarm's central object written
-// with its type's name <CentralSwarmObject>, a Performance without one of its limits, esmini's
-// misspelled <Axels> of <Axel> elements.
+// with its type's name <CentralSwarmObject> or without its offset, a Performance without one of its
+// limits, esmini's misspelled <Axels> of <Axel> elements.
 
 #include <catch2/catch.hpp>
 #include <string>
@@ -78,6 +78,21 @@ TEST_CASE("a swarm's CentralSwarmObject is read as its CentralObject", "[xosc][l
   ScenarioText other;
   other.stories = swarm_story("CentralThing");
   CHECK(!lenient_load(dir, other.str()).errors.empty());
+}
+
+TEST_CASE("a swarm without offset is read as centred on its central object", "[xosc][lenient]") {
+  ScenarioText text;
+  text.version = "0";
+  text.stories = swarm_story("CentralObject");
+  const std::string with_offset = " offset=\"0\"";
+  text.stories.erase(text.stories.find(with_offset), with_offset.size());
+  const std::string xml = text.str();
+  check_both_ways(xml, "<TrafficSwarmAction> without offset", line_of(xml, "<TrafficSwarmAction"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  REQUIRE(loaded.scenario);
+  CHECK(only_swarm(loaded).offset == 0.0);
+  CHECK(only_swarm(loaded).semi_major_axis == 120.0);
 }
 
 TEST_CASE("a Performance without maxAcceleration is read as no limit given", "[xosc][lenient]") {

@@ -90,7 +90,15 @@ TrafficSwarmAction parse_swarm(ParseContext& ctx, const Element* e,
   action.inner_radius = ctx.req_double(e, "innerRadius");
   action.number_of_vehicles =
       static_cast<uint32_t>(ctx.req_int(e, "numberOfVehicles", ParameterType::kUnsignedInt));
-  action.offset = ctx.req_double(e, "offset");
+  // offset is required in every revision (1.0-1.3 XSD); esmini's swarm example leaves it out.
+  // Read as 0: the ellipse centred on the central object.
+  if (e->Attribute("offset") == nullptr) {
+    ctx.lenient(e, "<TrafficSwarmAction> without offset",
+                "offset 0: centred on the central object");
+    action.offset = 0.0;
+  } else {
+    action.offset = ctx.req_double(e, "offset");
+  }
   action.semi_major_axis = ctx.req_double(e, "semiMajorAxis");
   action.semi_minor_axis = ctx.req_double(e, "semiMinorAxis");
   action.velocity = ctx.opt_double(e, "velocity");
