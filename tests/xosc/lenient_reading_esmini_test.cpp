@@ -1,8 +1,8 @@
 // Rule breaks met in esmini's examples whose meaning is clear, read as meant with a located
 // `(read as ...)` warning and refused under LoadOptions::strict: a maximumExecutionCount of -1,
 // relative road and lane positions without their offsets, a catalog location without its
-// Directory, an empty Action, a Maneuver without a name, a relative target speed of 0 without its
-// value type.
+// Directory, an empty Action, a Maneuver or Story without a name, a relative target speed of 0
+// without its value type.
 
 #include <catch2/catch.hpp>
 #include <limits>
@@ -143,6 +143,21 @@ TEST_CASE("a Maneuver without a name is an unnamed maneuver", "[xosc][lenient]")
       loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0];
   CHECK(maneuver.name.empty());
   CHECK(maneuver.events.size() == 1);
+}
+
+TEST_CASE("a Story without a name is an unnamed story", "[xosc][lenient]") {
+  ScenarioText text;
+  text.stories = esmini_story("1", kSpeedAction);
+  text.stories.replace(text.stories.find("<Story name=\"S\">"), 16, "<Story >");
+  const std::string xml = text.str();
+  check_both_ways(xml, "<Story> without name", line_of(xml, "<Story >"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  REQUIRE(loaded.scenario);
+  const auto& story = loaded.scenario->storyboard.stories[0];
+  CHECK(story.name.empty());
+  CHECK(story.acts[0].path == "Act");
+  CHECK(only_event(loaded).path == "Act::G::M::E");
 }
 
 TEST_CASE("a relative target speed of 0 without its value type is the other entity's speed",
