@@ -18,6 +18,7 @@ using corsa::test::lenient_load;
 using corsa::test::line_of;
 using corsa::test::Loaded;
 using corsa::test::ScenarioText;
+using corsa::test::warning_with;
 
 namespace {
 
@@ -144,4 +145,48 @@ TEST_CASE("esmini's Axels of Axel elements are read as Axles placed by their pos
   other.entities.replace(other.entities.find("<Axels>"), 7, "<Axells>");
   other.entities.replace(other.entities.find("</Axels>"), 8, "</Axells>");
   CHECK(!lenient_load(dir, other.str()).errors.empty());
+}
+
+TEST_CASE("an environment catalog file named like the vehicle catalog is found by its directory",
+          "[xosc][lenient]") {
+  // esmini's EnvironmentCatalog.xosc calls itself VehicleCatalog: a second catalog of that name,
+  // which the lookup by name skips, but the Environment directory's file still holds the entry.
+  const auto catalog_file = [](const std::string& entry) {
+    return "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n"
+           "<FileHeader revMajor=\"1\" revMinor=\"3\" date=\"2024-01-01T00:00:00\" "
+           "description=\"c\" author=\"corsa\"/>\n<Catalog name=\"VehicleCatalog\">\n" +
+           entry + "</Catalog>\n</OpenSCENARIO>\n";
+  };
+  ScenarioText text;
+  text.catalogs =
+      "<VehicleCatalog><Directory path=\"veh\"/></VehicleCatalog>\n"
+      "<EnvironmentCatalog><Directory path=\"env\"/></EnvironmentCatalog>\n";
+  text.stories = corsa::test::story_with(
+      "<Event name=\"E\" priority=\"override\">\n<Action name=\"A\"><GlobalAction>"
+      "<EnvironmentAction>\n<CatalogReference catalogName=\"EnvironmentCatalog\" "
+      "entryName=\"winter\"/>\n</EnvironmentAction></GlobalAction></Action>\n</Event>\n");
+  const std::string xml = text.str();
+  corsa::test::TempDir dir;
+  corsa::test::write_text(dir.path() / "veh" / "VehicleCatalog.xosc",
+                          catalog_file("<Controller name=\"unused\"/>\n"));
+  corsa::test::write_text(
+      dir.path() / "env" / "EnvironmentCatalog.xosc",
+      catalog_file("<Environment name=\"winter\">\n<TimeOfDay animation=\"false\" "
+                   "dateTime=\"2024-01-01T12:00:00\"/>\n<Weather/>\n"
+                   "<RoadCondition frictionScaleFactor=\"0.4\"/>\n</Environment>\n"));
+  const Loaded lenient = lenient_load(dir, xml);
+  INFO((lenient.errors.empty() ? std::string() : lenient.errors[0].format()));
+  REQUIRE(lenient.errors.empty());
+  const auto warning =
+      warning_with(lenient, "no catalog file declares catalog 'EnvironmentCatalog'");
+  CHECK(warning.line == line_of(xml, "<CatalogReference"));
+  CHECK_THAT(warning.message, Catch::Contains("EnvironmentCatalog.xosc"));
+  const auto& event =
+      lenient.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
+  const auto& environment =
+      std::get<EnvironmentAction>(std::get<GlobalAction>(event.actions[0].action)).environment;
+  CHECK(environment.name == "winter");
+  const Loaded strict = lenient_load(dir, xml, true);
+  REQUIRE(!strict.errors.empty());
+  CHECK_THAT(strict.errors[0].message, Catch::Contains("no catalog file declares catalog"));
 }

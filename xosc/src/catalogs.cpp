@@ -78,17 +78,18 @@ void CatalogResolver::scan(ParseContext& ctx) {
         throw InputError(
             make_error(*xml->name, catalog->GetLineNum(), "<Catalog> needs the attribute name"));
       }
+      // Kept (and owned) even when its name repeats another file's: the lookup by directory may
+      // still need it (esmini's environment catalog file calls itself VehicleCatalog).
       by_directory_[path].push_back(catalog);
+      owners_[catalog] = xml.get();
+      files_.push_back(xml);
       if (!catalogs_.emplace(name, catalog).second) {
         ctx.diagnostics().add_once(
             std::string("catalog-dup:") + name,
             make_warning(*xml->name, catalog->GetLineNum(),
                          std::string("catalog '") + name +
                              "' is defined in more than one file; using the first"));
-        continue;
       }
-      owners_[catalog] = xml.get();
-      files_.push_back(xml);
     }
   }
 }
