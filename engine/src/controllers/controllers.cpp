@@ -238,48 +238,11 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
   }
 }
 
-// How many entities ahead in the moving order their memory is asked for (prefetch_move): a
-// move takes about a microsecond, a cache miss to memory a tenth of that.
-constexpr size_t kPrefetchAhead = 2;
-
-// Asks for the cache lines a move of entity `i` reads first: its hot fields (entity.h keeps
-// them in front), its picture in the view and its lanes ahead. The entities are moved in lane
-// order, not index order, so the hardware's stride prefetcher cannot guess them; with hundreds
-// of vehicles each move otherwise begins with a handful of misses. A hint only: nothing read
-// changes.
-void prefetch_move(const SimState& state, const FollowView& view,
-                   const std::vector<LanesAhead>& ahead, uint32_t i) {
-  const char* entity = reinterpret_cast<const char*>(&state.world.entities[i]);
-  constexpr size_t kHotBytes = std::min<size_t>(sizeof(Entity), 512);
-  for (size_t offset = 0; offset < kHotBytes; offset += 64) {
-    __builtin_prefetch(entity + offset);
-  }
-  __builtin_prefetch(&ahead[i]);
-  if (i < view.targets().size()) {
-    const char* target = reinterpret_cast<const char*>(&view.targets()[i]);
-    __builtin_prefetch(target);
-    __builtin_prefetch(target + 64);
-  }
-}
-
-// The lanes ahead of entity `i` (prefetched with its LanesAhead one entity earlier).
-void prefetch_lanes_ahead(const std::vector<LanesAhead>& ahead, uint32_t i) {
-  if (!ahead[i].next.empty()) {
-    __builtin_prefetch(ahead[i].next.data());
-  }
-}
-
-// Moves the entities order[begin, end) in that order, asking ahead for the memory of the next.
+// Moves the entities order[begin, end) in that order.
 void move_range(SimState& state, const MotionContext& motion, const FollowView& view,
                 std::vector<LanesAhead>& ahead, const std::vector<uint32_t>& order, size_t begin,
                 size_t end) {
   for (size_t k = begin; k < end; ++k) {
-    if (k + kPrefetchAhead < end) {
-      prefetch_move(state, view, ahead, order[k + kPrefetchAhead]);
-    }
-    if (k + 1 < end) {
-      prefetch_lanes_ahead(ahead, order[k + 1]);
-    }
     const uint32_t i = order[k];
     move_one(state, i, motion, view, ahead[i]);
   }
