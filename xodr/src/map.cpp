@@ -231,14 +231,11 @@ std::optional<LaneSpan> Map::lane_span_in_section(size_t road_index, size_t sect
                                                   int lane_id) const {
   const Road& r = road(road_index);
   s = clamp_s(r, s);
-  LaneSpan spans[detail::kMaxLanesPerSection];
-  const size_t n =
-      detail::compute_spans(r.lane_sections[section], s,
-                            detail::section_lane_offset(*this, road_index, section, s), spans);
-  for (size_t i = 0; i < n; ++i) {
-    if (spans[i].id == lane_id) {
-      return spans[i];
-    }
+  LaneSpan span;
+  if (detail::compute_span(r.lane_sections[section], s,
+                           detail::section_lane_offset(*this, road_index, section, s), lane_id,
+                           span)) {
+    return span;
   }
   return std::nullopt;
 }
