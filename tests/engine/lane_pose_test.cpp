@@ -20,7 +20,9 @@ using corsa::engine::detail::LanePose;
 using corsa::xodr::LaneSpan;
 using corsa::xodr::Map;
 
-bool same_bits(double a, double b) { return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b); }
+bool same_bits(double a, double b) {
+  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
+}
 
 bool same_pose(const LanePose& a, const LanePose& b) {
   return same_bits(a.t, b.t) && a.lane_at == b.lane_at && same_bits(a.pose.x, b.pose.x) &&
@@ -50,7 +52,8 @@ void compare_everywhere(const Map& map, const std::string& name, Comparison& out
         map.lane_spans_in_section(road, section, s, spans);
         for (const LaneSpan& span : std::vector<LaneSpan>(spans)) {
           const double half = 0.5 * span.width();
-          for (const double lateral : {0.0, 0.3 * half, -0.9 * half, half, -half, 1.5 * half, 4.0}) {
+          for (const double lateral :
+               {0.0, 0.3 * half, -0.9 * half, half, -half, 1.5 * half, 4.0}) {
             for (const int dir : {1, -1}) {
               LaneFollow follow;
               follow.on_road = true;
@@ -64,12 +67,12 @@ void compare_everywhere(const Map& map, const std::string& name, Comparison& out
               const LanePose all = corsa::engine::detail::lane_pose(map, follow, spans);
               const LanePose near = corsa::engine::detail::lane_pose_of(map, follow, scratch);
               ++out.poses;
-              out.inside += all.lane_at == span.id && span.width() > 0.0 &&
-                            all.t > span.t_min() && all.t < span.t_max();
+              out.inside += all.lane_at == span.id && span.width() > 0.0 && all.t > span.t_min() &&
+                            all.t < span.t_max();
               if (!same_pose(all, near) && out.mismatches++ == 0) {
                 out.first_mismatch = name + " road " + map.road(road).id + " section " +
-                                     std::to_string(section) + " lane " +
-                                     std::to_string(span.id) + " s " + std::to_string(s);
+                                     std::to_string(section) + " lane " + std::to_string(span.id) +
+                                     " s " + std::to_string(s);
               }
             }
           }
@@ -96,8 +99,8 @@ TEST_CASE("The lane pose from the followed lane alone equals the one from every 
 TEST_CASE("Lanes that overlap through border records give the lane pose of every lane's span",
           "[engine][lanes]") {
   corsa::xodr::MapData data;
-  data.roads.push_back(corsa::xodr::test::make_road("1", corsa::xodr::LineGeometry{}, 100.0,
-                                                    2, 3.0));
+  data.roads.push_back(
+      corsa::xodr::test::make_road("1", corsa::xodr::LineGeometry{}, 100.0, 2, 3.0));
   // Lane 2's outer border comes back inside lane 1 (t = 2 m), so a point in lane 1 near its
   // outer border is also in lane 2; -2's border crosses -1 likewise. The inner lane must win.
   auto& lanes = data.roads[0].lane_sections[0].lanes;

@@ -60,8 +60,7 @@ size_t compute_spans(const LaneSection& section, double s, double offset, LaneSp
   return count;
 }
 
-bool compute_span(const LaneSection& section, double s, double offset, int lane_id,
-                  LaneSpan& out) {
+bool compute_span(const LaneSection& section, double s, double offset, int lane_id, LaneSpan& out) {
   const double ds = s - section.s;
   const size_t n = section.lanes.size();
   const size_t center = center_index(section);

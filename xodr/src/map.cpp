@@ -190,7 +190,8 @@ WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const
   WorldPose pose;
   pose.x = ref.x - std::sin(ref.hdg) * horizontal;
   pose.y = ref.y + std::cos(ref.hdg) * horizontal;
-  pose.z = elevation + t * sin_r + h * cos_r + (r.shapes.empty() ? 0.0 : shape_height(road_index, s, t));
+  pose.z =
+      elevation + t * sin_r + h * cos_r + (r.shapes.empty() ? 0.0 : shape_height(road_index, s, t));
   pose.h = ref.hdg;
   pose.p = -(slope == 0.0 ? slope : std::atan(slope));
   pose.r = roll;

@@ -315,8 +315,7 @@ void begin_vehicle(SimState& state, uint32_t index, const MotionContext& motion,
                    control.overrides.steering_wheel.max_rate, dt);
     inputs.steer = vehicle.steering_wheel / kSteeringRatio;
   } else {
-    inputs.steer =
-        steering_demand(state, entity, vehicle.before, vehicle.model.params().wheelbase);
+    inputs.steer = steering_demand(state, entity, vehicle.before, vehicle.model.params().wheelbase);
     vehicle.steering_wheel = inputs.steer * kSteeringRatio;
   }
   vehicle.model.begin_step(inputs, dt, fleet);
