@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/slurm/sweep.sbatch end to end on a real single-node Slurm (tests/cluster/slurm_local.sh):
-#   1. a 4-task array with CORSA_MERGE=1; task 2 is cancelled (scancel) while it runs, so the merge
-#      job it depends on must be cancelled too (--kill-on-invalid-dep), not left pending;
+#   1. a 4-task array with CORSA_MERGE=1; task 2 is held after its first variant and cancelled
+#      (scancel), so the merge job it depends on must be cancelled too (--kill-on-invalid-dep), not
+#      left pending;
 #   2. the documented recovery: task 2 resubmitted alone (sbatch --array=2) resumes shard 2 of 4
 #      (the count from the shards' shard.json) and submits the merge again;
 #   3. the merge equals the unsharded sweep: same files, trajectories and sweep.json byte for byte,
@@ -57,10 +58,18 @@ sweep_args=(--param Ego_Speed=20:39.5:0.5 --param Gap=30,50,70,90 --dt 0.0002 --
 dist="$source_dir/tests/sweep/fixtures/follow.xosc"
 script="$source_dir/scripts/slurm/sweep.sbatch"
 
-# 1. The array; task 2 cancelled once it has finished a variant but not its shard.
-array=$(CORSA_MERGE=1 sbatch --parsable --array=0-3 "$script" "$dist" "$dir/out" "${sweep_args[@]}")
+# 1. The array; task 2 cancelled once it has finished a variant but not its shard. Its corsa is
+# held (stopped) after the first variant (tests/cluster/held_corsa.sh), so that the cancel lands
+# mid-shard however loaded the machine is: a shard left running ends in about 2 s.
+held="$dir/task-2-held"
+array=$(CORSA_MERGE=1 CORSA="$source_dir/tests/cluster/held_corsa.sh" CORSA_REAL="$corsa" \
+  CORSA_HOLD_TASK=2 CORSA_HOLD_OUT="$dir/out" CORSA_HOLD_FILE="$held" \
+  sbatch --parsable --array=0-3 "$script" "$dist" "$dir/out" "${sweep_args[@]}")
+task2_held_or_ended() { [[ -f $held || $(job_state "${array}_2") =~ ^(COMPLETED|FAILED)$ ]]; }
+wait_until 60 "task 2 to finish its first variant" task2_held_or_ended
+[[ -f $held ]] || die "task 2 was not held mid-shard (state $(job_state "${array}_2"))"
 shard2_started() { compgen -G "$dir/out/shard-2/variants/*/result.csv" >/dev/null; }
-wait_until 60 "task 2 to finish its first variant" shard2_started
+check "task 2 finished a variant before it was cancelled" shard2_started
 scancel "${array}_2"
 wait_until 30 "task 2 to end" bash -c "[[ \$(scontrol show job ${array}_2 | grep -c 'JobState=CANCELLED') == 1 ]]"
 check "task 2 was cancelled before its shard was done" test ! -f "$dir/out/shard-2/summary.csv"

@@ -60,6 +60,39 @@ size_t compute_spans(const LaneSection& section, double s, double offset, LaneSp
   return count;
 }
 
+bool compute_span(const LaneSection& section, double s, double offset, int lane_id, LaneSpan& out) {
+  const double ds = s - section.s;
+  const size_t n = section.lanes.size();
+  const size_t center = center_index(section);
+  // The lanes before the centre index all have positive ids (center_index), so a negative id is
+  // only looked for on the right; a positive one on the left first, then on the right as
+  // compute_spans would (ids are sorted and unique, so it is on the left).
+  if (lane_id > 0) {
+    double t = offset;
+    for (size_t i = center; i-- > 0;) {
+      const Lane& lane = section.lanes[i];
+      const double outer = outer_border(lane, ds, t, 1.0);
+      if (lane.id == lane_id) {
+        out = LaneSpan{lane.id, t, outer};
+        return true;
+      }
+      t = outer;
+    }
+  }
+  const bool has_center = center < n && section.lanes[center].id == 0;
+  double t = offset;
+  for (size_t i = center + (has_center ? 1 : 0); i < n; ++i) {
+    const Lane& lane = section.lanes[i];
+    const double outer = outer_border(lane, ds, t, -1.0);
+    if (lane.id == lane_id) {
+      out = LaneSpan{lane.id, t, outer};
+      return true;
+    }
+    t = outer;
+  }
+  return false;
+}
+
 bool nearest_lane(const LaneSection& section, double s, double offset, double t, bool drivable_only,
                   NearestLane& out) {
   const double ds = s - section.s;

@@ -167,9 +167,22 @@ double Map::shape_height(size_t road_index, double s, double t) const {
 
 WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const {
   const RefPoint ref = reference(road_index, s);
-  const double roll = superelevation(road_index, s);
-  const double cos_r = std::cos(roll);
-  const double sin_r = std::sin(roll);
+  const Road& r = road(road_index);
+  const double cs = clamp_s(r, s);
+  // Flat roads are the common case: no superelevation, no slope. The shortcuts give the bits
+  // the library would (cos(+0) = 1, sin(+0) = +0, atan(+-0) = +-0) without calling it.
+  const double roll = detail::poly_value(r.superelevation, cs);
+  const bool level = roll == 0.0 && !std::signbit(roll);
+  const double cos_r = level ? 1.0 : std::cos(roll);
+  const double sin_r = level ? 0.0 : std::sin(roll);
+  double elevation = 0.0;
+  double slope = 0.0;
+  if (!r.elevation.empty() && cs >= r.elevation.front().s) {
+    const Poly3& record =
+        r.elevation[detail::record_index(r.elevation, cs, [](const Poly3& p) { return p.s; })];
+    elevation = record.value(cs);
+    slope = record.slope(cs);
+  }
   // §2.3 / §8.4.2: the t axis is the reference line's left normal rotated about s by the
   // superelevation roll, so t moves cos(roll) horizontally and sin(roll) up; h runs along the
   // rotated surface normal.
@@ -177,9 +190,10 @@ WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const
   WorldPose pose;
   pose.x = ref.x - std::sin(ref.hdg) * horizontal;
   pose.y = ref.y + std::cos(ref.hdg) * horizontal;
-  pose.z = elevation(road_index, s) + t * sin_r + h * cos_r + shape_height(road_index, s, t);
+  pose.z =
+      elevation + t * sin_r + h * cos_r + (r.shapes.empty() ? 0.0 : shape_height(road_index, s, t));
   pose.h = ref.hdg;
-  pose.p = -std::atan(elevation_slope(road_index, s));
+  pose.p = -(slope == 0.0 ? slope : std::atan(slope));
   pose.r = roll;
   return pose;
 }
@@ -218,14 +232,11 @@ std::optional<LaneSpan> Map::lane_span_in_section(size_t road_index, size_t sect
                                                   int lane_id) const {
   const Road& r = road(road_index);
   s = clamp_s(r, s);
-  LaneSpan spans[detail::kMaxLanesPerSection];
-  const size_t n =
-      detail::compute_spans(r.lane_sections[section], s,
-                            detail::section_lane_offset(*this, road_index, section, s), spans);
-  for (size_t i = 0; i < n; ++i) {
-    if (spans[i].id == lane_id) {
-      return spans[i];
-    }
+  LaneSpan span;
+  if (detail::compute_span(r.lane_sections[section], s,
+                           detail::section_lane_offset(*this, road_index, section, s), lane_id,
+                           span)) {
+    return span;
   }
   return std::nullopt;
 }

@@ -72,6 +72,11 @@ inline double offset_poly_value(const std::vector<Poly3>& records, double ds) {
 /// (rounding at a lane's start or end) counts as 0. Returns the number of spans written.
 size_t compute_spans(const LaneSection& section, double s, double offset, LaneSpan* out);
 
+/// The span of lane `lane_id` of `section` at s, as compute_spans makes it (the same arithmetic
+/// in the same order), evaluating only the lanes from the centre out to it. False when the
+/// section has no such lane.
+bool compute_span(const LaneSection& section, double s, double offset, int lane_id, LaneSpan& out);
+
 /// The lane of `section` containing t at s (walking outward from the centre lane on t's side,
 /// so only the lanes up to it are evaluated; a shared border belongs to the inner lane). False
 /// when t is outside every lane of that side.

@@ -165,9 +165,8 @@ double longitudinal_demand(Entity& entity, DynamicsVehicle& vehicle, const Contr
 
 // The world point (x, y) of a followed lane position, as lane_pose places it (Map::world_pose
 // at h = 0), without the z, pitch, roll and containing lane that pure pursuit does not need.
-std::pair<double, double> lane_point(const xodr::Map& map, const LaneFollow& follow,
-                                     std::vector<xodr::LaneSpan>& spans) {
-  const double t = followed_t(map, follow, spans);
+std::pair<double, double> lane_point(const xodr::Map& map, const LaneFollow& follow) {
+  const double t = followed_t(map, follow);
   const xodr::RefPoint ref = map.reference(follow.road, follow.s);
   // OpenDRIVE 1.8 §8.4.2: t runs along the normal tilted by the superelevation roll.
   const double horizontal = t * std::cos(map.superelevation(follow.road, follow.s));
@@ -176,7 +175,7 @@ std::pair<double, double> lane_point(const xodr::Map& map, const LaneFollow& fol
 
 // Front wheel angle (rad) toward the commanded path, by pure pursuit from the rear axle.
 double steering_demand(const SimState& state, Entity& entity, const VehicleState& now,
-                       double vehicle_wheelbase, std::vector<xodr::LaneSpan>& scratch) {
+                       double vehicle_wheelbase) {
   if (!entity.lane.on_road || state.map == nullptr) {
     return 0.0;  // off the lanes: hold the heading
   }
@@ -185,7 +184,7 @@ double steering_demand(const SimState& state, Entity& entity, const VehicleState
   probe.heading_offset = 0.0;
   const double lookahead = std::max(kMinLookahead, kLookaheadTime * std::abs(now.vx));
   advance_along_lanes(*state.map, probe, lookahead, entity.chooser);
-  const auto [target_x, target_y] = lane_point(*state.map, probe, scratch);
+  const auto [target_x, target_y] = lane_point(*state.map, probe);
   const double dx = target_x - now.x, dy = target_y - now.y;
   const double distance = std::hypot(dx, dy);
   if (distance < 1e-6) {
@@ -316,8 +315,7 @@ void begin_vehicle(SimState& state, uint32_t index, const MotionContext& motion,
                    control.overrides.steering_wheel.max_rate, dt);
     inputs.steer = vehicle.steering_wheel / kSteeringRatio;
   } else {
-    inputs.steer = steering_demand(state, entity, vehicle.before, vehicle.model.params().wheelbase,
-                                   *motion.scratch);
+    inputs.steer = steering_demand(state, entity, vehicle.before, vehicle.model.params().wheelbase);
     vehicle.steering_wheel = inputs.steer * kSteeringRatio;
   }
   vehicle.model.begin_step(inputs, dt, fleet);

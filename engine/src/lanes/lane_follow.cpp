@@ -160,8 +160,54 @@ void enter_next_lane(const xodr::Map& map, LaneFollow& follow, std::span<const x
   follow.s = next.at_start ? next_info.s_start : next_info.s_end;
 }
 
-double followed_t(const xodr::Map& map, const LaneFollow& follow,
-                  std::vector<xodr::LaneSpan>& spans) {
+double followed_t(const xodr::Map& map, const LaneFollow& follow) {
+  const auto span = map.lane_span_in_section(follow.road, follow.section, follow.s, follow.lane);
+  return (span ? span->t_center() : 0.0) + follow.dir * follow.lateral;
+}
+
+namespace {
+
+// The world pose of t on the followed road, turned to the direction of travel.
+xodr::WorldPose travel_pose(const xodr::Map& map, const LaneFollow& follow, double t) {
+  xodr::WorldPose pose = map.world_pose(follow.road, follow.s, t);
+  if (follow.dir < 0) {
+    pose.h += std::numbers::pi;
+    pose.p = -pose.p;
+    pose.r = -pose.r;
+  }
+  pose.h = wrap_angle(pose.h + follow.heading_offset);
+  return pose;
+}
+
+// The lane containing t among `spans`: borders belong to the inner lane, as Map::lane_at decides.
+std::optional<int> lane_containing(const std::vector<xodr::LaneSpan>& spans, double t) {
+  std::optional<int> lane_at;
+  for (const auto& span : spans) {
+    if (span.width() > 0.0 && t >= span.t_min() && t <= span.t_max() &&
+        (!lane_at || std::abs(span.id) < std::abs(*lane_at))) {
+      lane_at = span.id;
+    }
+  }
+  return lane_at;
+}
+
+// Whether every lane of the section has its outer border from widths (none from <border>
+// records): then the lanes of each side follow one another outward from the lane offset without
+// overlapping (widths below 0 count as 0), so a point strictly inside one lane of positive
+// width is in no other.
+bool widths_only(const xodr::LaneSection& section) {
+  for (const xodr::Lane& lane : section.lanes) {
+    if (lane.widths.empty() && !lane.borders.empty()) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+LanePose lane_pose(const xodr::Map& map, const LaneFollow& follow,
+                   std::vector<xodr::LaneSpan>& spans) {
   map.lane_spans_in_section(follow.road, follow.section, follow.s, spans);
   double center = 0.0;
   for (const auto& span : spans) {
@@ -170,27 +216,26 @@ double followed_t(const xodr::Map& map, const LaneFollow& follow,
       break;
     }
   }
-  return center + follow.dir * follow.lateral;
+  LanePose out;
+  out.t = center + follow.dir * follow.lateral;
+  out.lane_at = lane_containing(spans, out.t);
+  out.pose = travel_pose(map, follow, out.t);
+  return out;
 }
 
-LanePose lane_pose(const xodr::Map& map, const LaneFollow& follow,
-                   std::vector<xodr::LaneSpan>& spans) {
+LanePose lane_pose_of(const xodr::Map& map, const LaneFollow& follow,
+                      std::vector<xodr::LaneSpan>& scratch) {
+  const auto span = map.lane_span_in_section(follow.road, follow.section, follow.s, follow.lane);
   LanePose out;
-  out.t = followed_t(map, follow, spans);
-  // The lane containing t: borders belong to the inner lane, as Map::lane_at decides.
-  for (const auto& span : spans) {
-    if (span.width() > 0.0 && out.t >= span.t_min() && out.t <= span.t_max() &&
-        (!out.lane_at || std::abs(span.id) < std::abs(*out.lane_at))) {
-      out.lane_at = span.id;
-    }
+  out.t = (span ? span->t_center() : 0.0) + follow.dir * follow.lateral;
+  if (span && span->width() > 0.0 && out.t > span->t_min() && out.t < span->t_max() &&
+      widths_only(map.road(follow.road).lane_sections[follow.section])) {
+    out.lane_at = follow.lane;
+  } else {
+    map.lane_spans_in_section(follow.road, follow.section, follow.s, scratch);
+    out.lane_at = lane_containing(scratch, out.t);
   }
-  out.pose = map.world_pose(follow.road, follow.s, out.t);
-  if (follow.dir < 0) {
-    out.pose.h += std::numbers::pi;
-    out.pose.p = -out.pose.p;
-    out.pose.r = -out.pose.r;
-  }
-  out.pose.h = wrap_angle(out.pose.h + follow.heading_offset);
+  out.pose = travel_pose(map, follow, out.t);
   return out;
 }
 

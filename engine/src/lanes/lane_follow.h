@@ -70,12 +70,17 @@ struct LanePose {
   double t = 0.0;
   std::optional<int> lane_at;  ///< lane containing the point, nothing when outside every lane
 };
+/// `spans` is left holding every lane's span at follow.s.
 LanePose lane_pose(const xodr::Map& map, const LaneFollow& follow,
                    std::vector<xodr::LaneSpan>& spans);
 
+/// The same pose, evaluating the lanes only out to the followed one when the point is strictly
+/// inside it (the common case); `scratch` is scratch space, left in no particular state.
+LanePose lane_pose_of(const xodr::Map& map, const LaneFollow& follow,
+                      std::vector<xodr::LaneSpan>& scratch);
+
 /// t (m) of a followed lane position: the followed lane's centre in its section at follow.s
-/// plus the lateral offset in the direction of travel. `spans` is scratch space.
-double followed_t(const xodr::Map& map, const LaneFollow& follow,
-                  std::vector<xodr::LaneSpan>& spans);
+/// plus the lateral offset in the direction of travel.
+double followed_t(const xodr::Map& map, const LaneFollow& follow);
 
 }  // namespace corsa::engine::detail

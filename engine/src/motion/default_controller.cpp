@@ -47,7 +47,7 @@ void update_pose_from_lane(Entity& entity, const xodr::Map& map,
       same_pose(memo.pose, entity.state.pose) && same_road(memo.road, entity.state.road)) {
     return;
   }
-  const LanePose lp = lane_pose(map, entity.lane, scratch);
+  const LanePose lp = lane_pose_of(map, entity.lane, scratch);
   entity.state.pose = {lp.pose.x, lp.pose.y, lp.pose.z, lp.pose.h, lp.pose.p, lp.pose.r};
   if (lp.lane_at) {
     entity.state.road =

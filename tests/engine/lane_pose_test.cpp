@@ -1,0 +1,120 @@
+// The default controller's lane pose (lanes/lane_follow.h, lane_pose_of) evaluates the lanes
+// only out to the followed one when the point is strictly inside it. It must give the bits of
+// lane_pose, which evaluates every lane of the section, everywhere: on every lane of the shared
+// maps, at lateral offsets inside, on and beyond the lane's borders, and on a road whose lanes
+// overlap through <border> records.
+
+#include <bit>
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "../xodr/xodr_test_util.h"
+#include "lanes/lane_follow.h"
+
+namespace {
+
+using corsa::engine::detail::LaneFollow;
+using corsa::engine::detail::LanePose;
+using corsa::xodr::LaneSpan;
+using corsa::xodr::Map;
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
+}
+
+bool same_pose(const LanePose& a, const LanePose& b) {
+  return same_bits(a.t, b.t) && a.lane_at == b.lane_at && same_bits(a.pose.x, b.pose.x) &&
+         same_bits(a.pose.y, b.pose.y) && same_bits(a.pose.z, b.pose.z) &&
+         same_bits(a.pose.h, b.pose.h) && same_bits(a.pose.p, b.pose.p) &&
+         same_bits(a.pose.r, b.pose.r);
+}
+
+struct Comparison {
+  size_t poses = 0;
+  size_t inside = 0;  ///< poses strictly inside the followed lane
+  size_t mismatches = 0;
+  std::string first_mismatch;
+};
+
+// Every lane of every section at five s, each at lateral offsets from its centre to beyond its
+// borders (and exactly on them), in both directions of travel.
+void compare_everywhere(const Map& map, const std::string& name, Comparison& out) {
+  std::vector<LaneSpan> spans, scratch;
+  for (uint32_t road = 0; road < map.road_count(); ++road) {
+    const auto& sections = map.road(road).lane_sections;
+    for (uint32_t section = 0; section < sections.size(); ++section) {
+      const double start = sections[section].s;
+      const double end = map.section_end(road, section);
+      for (int k = 0; k <= 4; ++k) {
+        const double s = start + (end - start) * k / 4.0;
+        map.lane_spans_in_section(road, section, s, spans);
+        for (const LaneSpan& span : std::vector<LaneSpan>(spans)) {
+          const double half = 0.5 * span.width();
+          for (const double lateral :
+               {0.0, 0.3 * half, -0.9 * half, half, -half, 1.5 * half, 4.0}) {
+            for (const int dir : {1, -1}) {
+              LaneFollow follow;
+              follow.on_road = true;
+              follow.road = road;
+              follow.section = section;
+              follow.lane = span.id;
+              follow.s = s;
+              follow.dir = dir;
+              follow.lateral = lateral;
+              follow.heading_offset = 0.01;
+              const LanePose all = corsa::engine::detail::lane_pose(map, follow, spans);
+              const LanePose near = corsa::engine::detail::lane_pose_of(map, follow, scratch);
+              ++out.poses;
+              out.inside += all.lane_at == span.id && span.width() > 0.0 && all.t > span.t_min() &&
+                            all.t < span.t_max();
+              if (!same_pose(all, near) && out.mismatches++ == 0) {
+                out.first_mismatch = name + " road " + map.road(road).id + " section " +
+                                     std::to_string(section) + " lane " + std::to_string(span.id) +
+                                     " s " + std::to_string(s);
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("The lane pose from the followed lane alone equals the one from every lane's span",
+          "[engine][lanes]") {
+  Comparison result;
+  for (const auto& path : corsa::xodr::test::all_shared_maps()) {
+    const Map map = corsa::xodr::test::load_map(path);
+    compare_everywhere(map, path.filename().string(), result);
+  }
+  INFO(result.first_mismatch);
+  CHECK(result.mismatches == 0);
+  CHECK(result.inside > result.poses / 4);  // the shortcut is taken, not only the fallback
+}
+
+TEST_CASE("Lanes that overlap through border records give the lane pose of every lane's span",
+          "[engine][lanes]") {
+  corsa::xodr::MapData data;
+  data.roads.push_back(
+      corsa::xodr::test::make_road("1", corsa::xodr::LineGeometry{}, 100.0, 2, 3.0));
+  // Lane 2's outer border comes back inside lane 1 (t = 2 m), so a point in lane 1 near its
+  // outer border is also in lane 2; -2's border crosses -1 likewise. The inner lane must win.
+  auto& lanes = data.roads[0].lane_sections[0].lanes;
+  for (auto& lane : lanes) {
+    if (lane.id == 2 || lane.id == -2) {
+      lane.widths.clear();
+      lane.borders.push_back(corsa::xodr::Poly3{0.0, lane.id > 0 ? 2.0 : -2.0, 0.0, 0.0, 0.0});
+    }
+  }
+  corsa::Diagnostics diagnostics;
+  const Map map = Map::build(std::move(data), diagnostics);
+  Comparison result;
+  compare_everywhere(map, "overlapping borders", result);
+  INFO(result.first_mismatch);
+  CHECK(result.mismatches == 0);
+  CHECK(result.poses > 0);
+}
