@@ -341,6 +341,31 @@ TEST_CASE("LateralDistanceAction moves 2.5 m right of the reference at its later
   }
 }
 
+TEST_CASE("Distance actions without DynamicConstraints reach their distance at once",
+          "[engine][distance]") {
+  FixtureRun run(engine_fixture("action_distance_unlimited.xosc"));
+  run.run();
+  // Init, before time starts: 25 m between the 4.5 m boxes (29.5 m between reference points),
+  // at Lead's speed; Side 2.5 m right of Lead (lane -2's centre at -5.25 m).
+  const auto& lead0 = run.at(0.0, "Lead");
+  CHECK(lead0.pose.x - run.at(0.0, "Follower").pose.x == Approx(29.5).margin(1e-6));
+  CHECK(run.at(0.0, "Follower").speed == Approx(10.0));
+  CHECK(run.at(0.0, "Side").pose.y == Approx(lead0.pose.y - 2.5).margin(1e-6));
+  // Non-continuous: over once placed; the Follower drives on at 10 m/s while Lead speeds up.
+  CHECK(run.at(1.0, "Follower").pose.x == Approx(80.5).margin(1e-6));
+  CHECK(run.now("Follower").speed == Approx(10.0));
+  // Continuous from 1 s: Tail is 15 m behind at once and stays so while Lead speeds up at
+  // 4 m/s^2, twice Tail's Performance (unlimited dynamics are not held to it).
+  const auto start = run.first("S0::Act0::G::M::E::A", TransitionKind::kStart);
+  REQUIRE(start);
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    if (run.sim().time_of(tick) < *start + 0.015) continue;
+    const double gap = states[run.entity("Lead")].pose.x - states[run.entity("Tail")].pose.x;
+    CHECK(gap == Approx(15.0).margin(0.01));
+  }
+  CHECK(run.now("Tail").speed == Approx(30.0));
+}
+
 TEST_CASE("SpeedProfileAction goes through its entries, linearly or smoothly, within limits",
           "[engine][speed_profile]") {
   FixtureRun run(engine_fixture("action_distance_profile.xosc"));
