@@ -277,6 +277,25 @@ TEST_CASE("FollowTrajectoryAction in follow mode drives toward the path like a d
   CHECK(run.at(*end, "Follow").pose.x == Approx(110.0).margin(0.5));
 }
 
+TEST_CASE("A timed polyline whose last vertex repeats waits there until the last time",
+          "[engine][trajectory]") {
+  FixtureRun run(engine_fixture("action_follow_trajectory.xosc"));
+  run.run();
+  const auto start = run.first("S7::Act7::G::M::E::A", TransitionKind::kStart);
+  const auto end = run.first("S7::Act7::G::M::E::A", TransitionKind::kEnd);
+  REQUIRE(start);
+  REQUIRE(end);
+  // 20 m in 2 s, then the same point from trajectory time 2 to 3: standing for that second.
+  CHECK(run.at(*start + 1.0, "Wait").pose.x == Approx(710.0).margin(1e-6));
+  CHECK(run.at(*start + 1.0, "Wait").speed == Approx(10.0).margin(1e-6));
+  CHECK(run.at(*start + 2.5, "Wait").pose.x == Approx(720.0).margin(1e-6));
+  CHECK(run.at(*start + 2.5, "Wait").speed == Approx(0.0).margin(1e-6));
+  CHECK(*end - *start == Approx(3.0).margin(0.011));
+  // Then it stands where the trajectory left it, at the speed its last step gave it.
+  CHECK(run.now("Wait").pose.x == Approx(720.0).margin(1e-6));
+  CHECK(run.now("Wait").speed == 0.0);
+}
+
 TEST_CASE("ASAM TrailerConnect: the car reverses along the quarter circle facing forward",
           "[engine][asam][trajectory]") {
   FixtureRun run(asam("TrailerConnect.xosc"), with_duration(120.0));
