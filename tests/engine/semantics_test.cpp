@@ -239,4 +239,23 @@ TEST_CASE("A RelativeLanePosition without Orientation faces its lane's traffic, 
   }
 }
 
+TEST_CASE("A RelativeLanePosition's dLane skips the centre lane, or esmini's lands on it",
+          "[engine][semantics][positions]") {
+  // Ref drives lane -1 facing +s; Other is dLane 1, ds 10, offset 1 from it.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"));
+    run.run();
+    CHECK(run.at(0.0, "Other").road->lane == 1);
+    CHECK(run.at(0.0, "Other").pose.y == Approx(1.75 + 1.0).margin(1e-9));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(0.0, "Other").pose.y == Approx(1.0).margin(1e-9));
+    CHECK(run.at(0.0, "Other").pose.x == Approx(110.0).margin(1e-9));
+    CHECK(run.at(0.0, "Other").pose.h == Approx(0.0).margin(1e-9));  // as Ref's lane runs
+    CHECK(run.at(0.0, "Other").road->lane == 1);                     // the lane the offset reaches
+  }
+}
+
 }  // namespace corsa::test
