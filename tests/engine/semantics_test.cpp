@@ -258,4 +258,36 @@ TEST_CASE("A RelativeLanePosition's dLane skips the centre lane, or esmini's lan
   }
 }
 
+TEST_CASE("A ReachPositionCondition ignores the Orientation, or esmini's compares the heading",
+          "[engine][semantics][conditions]") {
+  // The car's own place with a relative Orientation h = 0.1, from 0.2 s on; the action
+  // teleports the car to its own road position, aligned with the road.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_reach_heading.xosc"));
+    run.run();
+    const auto start = run.first("S::A::G::M::Aligned::Align", engine::TransitionKind::kStart);
+    REQUIRE(start);
+    CHECK(*start == Approx(0.21));
+    // The teleport is at the start of the step, which the car then drives: 0.1 m on.
+    CHECK(run.at(*start + 0.01, "Car").pose.x ==
+          Approx(run.at(*start, "Car").pose.x + 0.1).margin(1e-9));
+    CHECK(run.at(*start + 0.01, "Car").pose.h == Approx(0.0).margin(1e-12));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_reach_heading.xosc"), esmini_reading());
+    run.run();
+    const auto start = run.first("S::A::G::M::Aligned::Align", engine::TransitionKind::kStart);
+    REQUIRE(start);
+    // Heading within 0.05 rad of 0.1: 10 m/s x 0.05 of lateral speed, 1.374 sin(pi t / 4) m/s
+    // from 0.01 s on: t = 0.474 s, first seen at 0.49 s.
+    CHECK(*start == Approx(0.49));
+    CHECK(run.at(*start, "Car").pose.h > 0.05);
+    CHECK(run.at(*start - 0.01, "Car").pose.h < 0.05);
+    // esmini's teleport takes the step: the car stands where it was put, then drives on.
+    CHECK(run.at(*start + 0.01, "Car").pose.x == Approx(run.at(*start, "Car").pose.x));
+    CHECK(run.at(*start + 0.02, "Car").pose.x ==
+          Approx(run.at(*start, "Car").pose.x + 0.1).margin(1e-9));
+  }
+}
+
 }  // namespace corsa::test
