@@ -76,6 +76,23 @@ TEST_CASE("The default controller follows lanes through sections, road links and
   CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
 }
 
+TEST_CASE("An entity stopped at the end of the road drives on at its speed once put elsewhere",
+          "[engine][motion]") {
+  FixtureRun run(engine_fixture("motion_end_of_road_teleport.xosc"));
+  run.run();
+  // 40 m at 20 m/s to the end at 2 s, where it stands; the EndOfRoadCondition (0.5 s) holds at
+  // 2.5 s and teleports it back to s = 100.
+  CHECK(run.at(2.0, "Runner").pose.x == Approx(1000.0));
+  CHECK(run.at(2.3, "Runner").speed == 0.0);
+  CHECK(run.at(2.3, "Runner").pose.x == Approx(1000.0));
+  const auto back = run.first("S::A::G::M::Back::Back", TransitionKind::kStart);
+  REQUIRE(back);
+  CHECK(*back == Approx(2.5));
+  // From there at the 20 m/s the SpeedAction asked for (the first step from standstill).
+  CHECK(run.now("Runner").speed == Approx(20.0));
+  CHECK(run.now("Runner").pose.x == Approx(100.0 + 0.1 + 20.0 * (run.sim().time() - 2.51)));
+}
+
 TEST_CASE("Entities placed on a missing road or lane, or off the map, fail before the run",
           "[engine][motion][errors]") {
   const auto message = [](const std::string& fixture) -> std::string {
