@@ -290,4 +290,19 @@ TEST_CASE("A ReachPositionCondition ignores the Orientation, or esmini's compare
   }
 }
 
+TEST_CASE("A step to a continuous relative speed jumps under either reading",
+          "[engine][semantics]") {
+  for (const bool esmini : {false, true}) {
+    FixtureRun run(engine_fixture("semantics_step_relative_speed.xosc"),
+                   esmini ? esmini_reading() : engine::SimulationOptions{});
+    run.run();
+    const auto start = run.first("S::A::G::M::E::Go", engine::TransitionKind::kStart);
+    REQUIRE(start);
+    // 1.2 x 30 m/s from the step the action starts in; a Performance of 10 m/s^2 would have
+    // allowed 0.1 m/s there.
+    CHECK(run.at(*start + 0.01, "Chaser").speed == Approx(36.0));
+    CHECK(run.now("Chaser").speed == Approx(36.0));
+  }
+}
+
 }  // namespace corsa::test
