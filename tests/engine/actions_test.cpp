@@ -129,6 +129,20 @@ TEST_CASE("LaneOffsetAction respects maxLateralAcc and a continuous relative off
   CHECK(run.count("ShadowEvent::Mirror", TransitionKind::kEnd) == 0);
 }
 
+TEST_CASE("Lane offsets are along the lane's t-axis, also for cars driving toward -s",
+          "[engine][action][lane]") {
+  FixtureRun run(engine_fixture("action_lane_offset_t_axis.xosc"));
+  run.run();
+  // Left lanes (centres t = 1.75 and 5.25), driven toward -s: +1 is toward the road's +t, to
+  // the right of the car; the relative offset adds to West's offset along t too.
+  CHECK(run.now("West").road->t == Approx(2.75).margin(1e-9));
+  CHECK(run.now("Mirror").road->t == Approx(5.25 + 1.0 + 0.5).margin(1e-9));
+  CHECK(run.now("Changer").road->lane == 1);
+  CHECK(run.now("Changer").road->t == Approx(1.25).margin(1e-9));
+  // Driving toward +s the t-axis is the car's left.
+  CHECK(run.now("East").road->t == Approx(-0.75).margin(1e-9));
+}
+
 TEST_CASE("TeleportAction places entities at every road-based and world position",
           "[engine][action][teleport]") {
   FixtureRun run(engine_fixture("action_teleport_positions.xosc"));

@@ -76,6 +76,23 @@ TEST_CASE("The default controller follows lanes through sections, road links and
   CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
 }
 
+TEST_CASE("An entity stopped at the end of the road drives on at its speed once put elsewhere",
+          "[engine][motion]") {
+  FixtureRun run(engine_fixture("motion_end_of_road_teleport.xosc"));
+  run.run();
+  // 40 m at 20 m/s to the end at 2 s, where it stands; the EndOfRoadCondition (0.5 s) holds at
+  // 2.5 s and teleports it back to s = 100.
+  CHECK(run.at(2.0, "Runner").pose.x == Approx(1000.0));
+  CHECK(run.at(2.3, "Runner").speed == 0.0);
+  CHECK(run.at(2.3, "Runner").pose.x == Approx(1000.0));
+  const auto back = run.first("S::A::G::M::Back::Back", TransitionKind::kStart);
+  REQUIRE(back);
+  CHECK(*back == Approx(2.5));
+  // From there at the 20 m/s the SpeedAction asked for (the first step from standstill).
+  CHECK(run.now("Runner").speed == Approx(20.0));
+  CHECK(run.now("Runner").pose.x == Approx(100.0 + 0.1 + 20.0 * (run.sim().time() - 2.51)));
+}
+
 TEST_CASE("Entities placed on a missing road or lane, or off the map, fail before the run",
           "[engine][motion][errors]") {
   const auto message = [](const std::string& fixture) -> std::string {
@@ -277,6 +294,25 @@ TEST_CASE("FollowTrajectoryAction in follow mode drives toward the path like a d
   CHECK(run.at(*end, "Follow").pose.x == Approx(110.0).margin(0.5));
 }
 
+TEST_CASE("A timed polyline whose last vertex repeats waits there until the last time",
+          "[engine][trajectory]") {
+  FixtureRun run(engine_fixture("action_follow_trajectory.xosc"));
+  run.run();
+  const auto start = run.first("S7::Act7::G::M::E::A", TransitionKind::kStart);
+  const auto end = run.first("S7::Act7::G::M::E::A", TransitionKind::kEnd);
+  REQUIRE(start);
+  REQUIRE(end);
+  // 20 m in 2 s, then the same point from trajectory time 2 to 3: standing for that second.
+  CHECK(run.at(*start + 1.0, "Wait").pose.x == Approx(710.0).margin(1e-6));
+  CHECK(run.at(*start + 1.0, "Wait").speed == Approx(10.0).margin(1e-6));
+  CHECK(run.at(*start + 2.5, "Wait").pose.x == Approx(720.0).margin(1e-6));
+  CHECK(run.at(*start + 2.5, "Wait").speed == Approx(0.0).margin(1e-6));
+  CHECK(*end - *start == Approx(3.0).margin(0.011));
+  // Then it stands where the trajectory left it, at the speed its last step gave it.
+  CHECK(run.now("Wait").pose.x == Approx(720.0).margin(1e-6));
+  CHECK(run.now("Wait").speed == 0.0);
+}
+
 TEST_CASE("ASAM TrailerConnect: the car reverses along the quarter circle facing forward",
           "[engine][asam][trajectory]") {
   FixtureRun run(asam("TrailerConnect.xosc"), with_duration(120.0));
@@ -339,6 +375,31 @@ TEST_CASE("LateralDistanceAction moves 2.5 m right of the reference at its later
   for (const auto& [tick, states] : run.trace().ticks()) {
     CHECK(std::abs(states[run.entity("Side")].lateral_speed) <= 0.5 + 1e-9);
   }
+}
+
+TEST_CASE("Distance actions without DynamicConstraints reach their distance at once",
+          "[engine][distance]") {
+  FixtureRun run(engine_fixture("action_distance_unlimited.xosc"));
+  run.run();
+  // Init, before time starts: 25 m between the 4.5 m boxes (29.5 m between reference points),
+  // at Lead's speed; Side 2.5 m right of Lead (lane -2's centre at -5.25 m).
+  const auto& lead0 = run.at(0.0, "Lead");
+  CHECK(lead0.pose.x - run.at(0.0, "Follower").pose.x == Approx(29.5).margin(1e-6));
+  CHECK(run.at(0.0, "Follower").speed == Approx(10.0));
+  CHECK(run.at(0.0, "Side").pose.y == Approx(lead0.pose.y - 2.5).margin(1e-6));
+  // Non-continuous: over once placed; the Follower drives on at 10 m/s while Lead speeds up.
+  CHECK(run.at(1.0, "Follower").pose.x == Approx(80.5).margin(1e-6));
+  CHECK(run.now("Follower").speed == Approx(10.0));
+  // Continuous from 1 s: Tail is 15 m behind at once and stays so while Lead speeds up at
+  // 4 m/s^2, twice Tail's Performance (unlimited dynamics are not held to it).
+  const auto start = run.first("S0::Act0::G::M::E::A", TransitionKind::kStart);
+  REQUIRE(start);
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    if (run.sim().time_of(tick) < *start + 0.015) continue;
+    const double gap = states[run.entity("Lead")].pose.x - states[run.entity("Tail")].pose.x;
+    CHECK(gap == Approx(15.0).margin(0.01));
+  }
+  CHECK(run.now("Tail").speed == Approx(30.0));
 }
 
 TEST_CASE("SpeedProfileAction goes through its entries, linearly or smoothly, within limits",

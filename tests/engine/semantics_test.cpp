@@ -239,4 +239,70 @@ TEST_CASE("A RelativeLanePosition without Orientation faces its lane's traffic, 
   }
 }
 
+TEST_CASE("A RelativeLanePosition's dLane skips the centre lane, or esmini's lands on it",
+          "[engine][semantics][positions]") {
+  // Ref drives lane -1 facing +s; Other is dLane 1, ds 10, offset 1 from it.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"));
+    run.run();
+    CHECK(run.at(0.0, "Other").road->lane == 1);
+    CHECK(run.at(0.0, "Other").pose.y == Approx(1.75 + 1.0).margin(1e-9));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(0.0, "Other").pose.y == Approx(1.0).margin(1e-9));
+    CHECK(run.at(0.0, "Other").pose.x == Approx(110.0).margin(1e-9));
+    CHECK(run.at(0.0, "Other").pose.h == Approx(0.0).margin(1e-9));  // as Ref's lane runs
+    CHECK(run.at(0.0, "Other").road->lane == 1);                     // the lane the offset reaches
+  }
+}
+
+TEST_CASE("A ReachPositionCondition ignores the Orientation, or esmini's compares the heading",
+          "[engine][semantics][conditions]") {
+  // The car's own place with a relative Orientation h = 0.1, from 0.2 s on; the action
+  // teleports the car to its own road position, aligned with the road.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_reach_heading.xosc"));
+    run.run();
+    const auto start = run.first("S::A::G::M::Aligned::Align", engine::TransitionKind::kStart);
+    REQUIRE(start);
+    CHECK(*start == Approx(0.21));
+    // The teleport is at the start of the step, which the car then drives: 0.1 m on.
+    CHECK(run.at(*start + 0.01, "Car").pose.x ==
+          Approx(run.at(*start, "Car").pose.x + 0.1).margin(1e-9));
+    CHECK(run.at(*start + 0.01, "Car").pose.h == Approx(0.0).margin(1e-12));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_reach_heading.xosc"), esmini_reading());
+    run.run();
+    const auto start = run.first("S::A::G::M::Aligned::Align", engine::TransitionKind::kStart);
+    REQUIRE(start);
+    // Heading within 0.05 rad of 0.1: 10 m/s x 0.05 of lateral speed, 1.374 sin(pi t / 4) m/s
+    // from 0.01 s on: t = 0.474 s, first seen at 0.49 s.
+    CHECK(*start == Approx(0.49));
+    CHECK(run.at(*start, "Car").pose.h > 0.05);
+    CHECK(run.at(*start - 0.01, "Car").pose.h < 0.05);
+    // esmini's teleport takes the step: the car stands where it was put, then drives on.
+    CHECK(run.at(*start + 0.01, "Car").pose.x == Approx(run.at(*start, "Car").pose.x));
+    CHECK(run.at(*start + 0.02, "Car").pose.x ==
+          Approx(run.at(*start, "Car").pose.x + 0.1).margin(1e-9));
+  }
+}
+
+TEST_CASE("A step to a continuous relative speed jumps under either reading",
+          "[engine][semantics]") {
+  for (const bool esmini : {false, true}) {
+    FixtureRun run(engine_fixture("semantics_step_relative_speed.xosc"),
+                   esmini ? esmini_reading() : engine::SimulationOptions{});
+    run.run();
+    const auto start = run.first("S::A::G::M::E::Go", engine::TransitionKind::kStart);
+    REQUIRE(start);
+    // 1.2 x 30 m/s from the step the action starts in; a Performance of 10 m/s^2 would have
+    // allowed 0.1 m/s there.
+    CHECK(run.at(*start + 0.01, "Chaser").speed == Approx(36.0));
+    CHECK(run.now("Chaser").speed == Approx(36.0));
+  }
+}
+
 }  // namespace corsa::test

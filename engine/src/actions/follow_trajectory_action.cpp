@@ -12,7 +12,9 @@
 // steers toward a point kLookahead seconds (at least kMinLookahead m) ahead on the path and
 // drives its own heading, as a driver would: it cuts corners a little and lags the path.
 // A negative speed drives the path in reverse gear (the vehicle faces against the path). The
-// action ends at the path's end; the actor's lane following takes over from there.
+// action ends at the path's end, timed at its last time (§6.7.3: the actor is at each vertex at
+// its time, so a repeated last vertex with a later time is a wait there); the actor's lane
+// following takes over from there, at the speed the last step of the path gave it.
 
 #include <algorithm>
 #include <cmath>
@@ -78,7 +80,9 @@ class FollowTrajectoryInstance final : public ActionInstance {
     }
     const double facing = entity.speed_command < 0.0 ? std::numbers::pi : 0.0;
     s_next = std::min(s_next, path_.length());
-    ended_ = ended_ || s_next >= path_.length() - 1e-9;
+    // With a Timing the times say when the action ends: a last segment of zero length between
+    // two times (a vertex repeated) holds the actor there until the last time, at speed 0.
+    ended_ = timing_ ? ended_ : s_next >= path_.length() - 1e-9;
     if (action_.following_mode == xosc::FollowingMode::kFollow) {
       Pose along = entity.state.pose;
       along.h = wrap_angle(along.h + facing);  // steer the direction of travel

@@ -1,7 +1,9 @@
 // LaneChangeAction (OpenSCENARIO 1.3 §7.4.2.1): the actor moves to an absolute lane or to a lane
 // relative to an entity (RelativeTargetLane: lanes to the left, positive, of that entity's
-// direction of travel), ending targetLaneOffset metres left of the target lane's centre, along a
-// TransitionDynamics shape over time, distance or rate (m/s of lateral speed).
+// direction of travel), ending targetLaneOffset metres from the target lane's centre along the
+// lane's t-axis (§6.3: lane coordinates are road-based, t pointing left of the road's +s; so to
+// the right of an entity driving toward -s), along a TransitionDynamics shape over time,
+// distance or rate (m/s of lateral speed).
 //
 // The default controller switches to following the target lane at once, with the lateral
 // offset that keeps the entity where it is; the action then brings the offset to the target.
@@ -45,7 +47,7 @@ class LaneChangeInstance final : public ActionInstance {
     lane.node = *node;
     lane.lateral = (t_now - *target_center) * lane.dir;
     start_lateral_ = lane.lateral;
-    target_lateral_ = action_.target_lane_offset.value_or(0.0);
+    target_lateral_ = lane.dir * action_.target_lane_offset.value_or(0.0);  // t -> travel frame
     entity.lateral_command = start_lateral_;
     start_tick_ = context.state.tick;
     start_distance_ = entity.longitudinal_distance;

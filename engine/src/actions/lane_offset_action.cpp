@@ -1,7 +1,10 @@
 // LaneOffsetAction (OpenSCENARIO 1.3 §7.4.2.2): the actor keeps its lane but moves its lateral
-// offset from the lane centre (positive to the left of its direction of travel) to an absolute
-// value or to another entity's offset plus a value, with a dynamics shape whose duration follows
-// from maxLateralAcc. Continuous actions keep tracking and never end.
+// offset from the lane centre to an absolute value or to another entity's offset plus a value,
+// with a dynamics shape whose duration follows from maxLateralAcc. Continuous actions keep
+// tracking and never end. The offset is along the lane's t-axis: lane coordinates are
+// road-based (§6.3; a LanePosition's offset "in the direction of the t-axis"), t pointing left of
+// the road's +s, so a positive offset is to the right of an entity driving toward -s (esmini
+// reads it so too). LaneFollow::lateral, left of the direction of travel, is dir times it.
 
 #include <cmath>
 #include <numbers>
@@ -82,12 +85,15 @@ class LaneOffsetInstance final : public ActionInstance {
   bool finished() const override { return reached_ && !action_.continuous; }
 
  private:
+  // The target as LaneFollow::lateral (left of the actor's direction of travel).
   double target_offset(const ActionContext& context) const {
+    const int dir = context.entity().lane.dir;
     if (const auto* absolute = std::get_if<xosc::AbsoluteTargetLaneOffset>(&action_.target)) {
-      return absolute->value;
+      return dir * absolute->value;
     }
     const auto& relative = std::get<xosc::RelativeTargetLaneOffset>(action_.target);
-    return context.state.world.entities[reference_].lane.lateral + relative.value;
+    const LaneFollow& reference = context.state.world.entities[reference_].lane;
+    return dir * (reference.dir * reference.lateral + relative.value);  // along t, then back
   }
 
   const xosc::LaneOffsetAction& action_;

@@ -7,14 +7,24 @@
 // error e: kOmega * e near the goal, at most sqrt(2 b |e|) far from it (b = kBrakeShare of the
 // weaker of the acceleration limits), so that the approach can always be stopped in time
 // within the limits; the speed tracks that with gain 4 kOmega (together a critically damped
-// approach near the goal). Acceleration and speed stay within the DynamicConstraints (else the
-// Performance). Without `continuous` the action ends once the gap is within kGapTolerance and
-// the speeds match within kSpeedTolerance.
+// approach near the goal). Acceleration and speed stay within the DynamicConstraints.
+// Without `continuous` the action ends once the gap is within kGapTolerance and the speeds match
+// within kSpeedTolerance.
+//
+// Without DynamicConstraints the dynamics are unlimited (the class model: "either unlimited
+// dynamics (if omitted) or limited maxAcceleration/maxDeceleration/maxSpeed"): the actor is put
+// at the wanted gap at once, moved along its lanes, and takes the reference's speed, so that
+// the gap holds. In Init this happens before time starts (ASAM's ALKS scenarios place their
+// lead vehicle so, "the LongitudinalDistanceAction will position the Lead vehicle precisely").
+// Without `continuous` it then ends; with it, it holds the gap so every step. esmini does the
+// same (LongDistanceAction::Step: MoveAlongS by the gap error, the target's speed copied).
 
 #include <cmath>
 
 #include "actions/action_makers.h"
 #include "actions/dynamic_limits.h"
+#include "lanes/lane_follow.h"
+#include "motion/controller.h"
 #include "positions/position_common.h"
 #include "positions/relative_distance.h"
 #include "state/sim_state.h"
@@ -26,6 +36,10 @@ constexpr double kOmega = 1.0;  // rad/s
 constexpr double kBrakeShare = 0.8;
 constexpr double kGapTolerance = 0.1;     // m
 constexpr double kSpeedTolerance = 0.05;  // m/s
+// The unlimited placement measures again after a move (free-space gaps stay 0 while the boxes
+// overlap, and curved lanes make the measured gap differ from the distance moved).
+constexpr int kPlacementPasses = 4;
+constexpr double kPlacementTolerance = 1e-3;  // m
 
 class LongitudinalDistanceInstance final : public ActionInstance {
  public:
@@ -48,9 +62,17 @@ class LongitudinalDistanceInstance final : public ActionInstance {
     } else {
       side_ = displacement == xosc::LongitudinalDisplacement::kTrailingReferencedEntity ? 1 : -1;
     }
+    if (!action_.constraints && context.init) {
+      place_at_gap(context);  // before time starts; the first step places it again and ends
+    }
   }
 
   void step(ActionContext& context) override {
+    if (!action_.constraints) {
+      place_at_gap(context);
+      settled_ = !action_.continuous;
+      return;
+    }
     Entity& entity = context.entity();
     const Entity& reference = context.state.world.entities[reference_];
     const double v = entity.state.speed;
@@ -76,6 +98,44 @@ class LongitudinalDistanceInstance final : public ActionInstance {
   bool finished() const override { return settled_; }
 
  private:
+  // Unlimited dynamics: the actor moves along its lanes (or its heading, off them) until the gap
+  // is the wanted one, and drives on at the reference's speed.
+  void place_at_gap(ActionContext& context) const {
+    Entity& entity = context.entity();
+    const Entity& reference = context.state.world.entities[reference_];
+    const double v_ref = reference.state.speed;
+    // Both drive at v_ref afterwards, so the follower's speed of a time gap is v_ref.
+    const double wanted = action_.distance ? *action_.distance : *action_.time_gap * v_ref;
+    for (int pass = 0; pass < kPlacementPasses; ++pass) {
+      const double error = -side_ * signed_offset(context) - wanted;
+      if (std::abs(error) < kPlacementTolerance) break;
+      // Closing the gap moves the actor toward the reference's front when it trails (side +1).
+      const double same_way =
+          std::cos(entity.state.pose.h - reference.state.pose.h) >= 0.0 ? 1.0 : -1.0;
+      move_along(context, side_ * same_way * error);
+    }
+    entity.speed_command = v_ref;
+    entity.speed_jump = !context.init;
+    if (context.init) {
+      entity.state.speed = v_ref;
+    }
+  }
+
+  // Moves the actor `distance` metres forward (negative: back) along its lanes or its heading.
+  static void move_along(ActionContext& context, double distance) {
+    Entity& entity = context.entity();
+    const xodr::Map* map = context.state.map;
+    if (map != nullptr && entity.lane.on_road) {
+      advance_along_lanes(*map, entity.lane, distance, entity.chooser);
+      std::vector<xodr::LaneSpan> scratch;
+      update_pose_from_lane(entity, *map, scratch);
+      return;
+    }
+    entity.state.pose.x += distance * std::cos(entity.state.pose.h);
+    entity.state.pose.y += distance * std::sin(entity.state.pose.h);
+    update_road_from_pose(entity, map);
+  }
+
   // Where the actor is relative to the reference along the reference's travel direction: > 0
   // ahead of it. Freespace: between the boxes (0 while they overlap lengthwise).
   double signed_offset(const ActionContext& context) const {

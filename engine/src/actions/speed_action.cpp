@@ -65,7 +65,11 @@ class SpeedInstance final : public ActionInstance {
   void step(ActionContext& context) override {
     const double target = target_speed(context);
     if (reached_) {
-      command(context, within_performance(context, target));  // continuous: keep tracking
+      // Continuous: keep tracking. A step's jump stands in the step it is made in, also under
+      // esmini's Performance limits ("a step shape still jumps at once"; esmini's cut-in has
+      // its OverTaker at 1.2 x the Ego's 30 m/s from the act's start on).
+      const bool jumped_now = duration_ <= 0.0 && context.state.tick == start_tick_;
+      command(context, jumped_now ? target : within_performance(context, target));
       return;
     }
     const double elapsed = context.state.time.time(context.state.tick + 1 - start_tick_);

@@ -1,4 +1,7 @@
 // TeleportAction (OpenSCENARIO 1.3 §7.4.3): the actor jumps to a position, instantaneously.
+// The jump is at the start of the step, which the actor then drives on from there. esmini's
+// reading (Semantics::kEsmini): the jump takes the whole step, at whose end the actor stands at
+// the new position (esmini marks the object teleported and its default controller leaves it).
 
 #include "actions/action_makers.h"
 #include "motion/placement.h"
@@ -16,6 +19,11 @@ class TeleportInstance final : public InstantAction {
   void start(ActionContext& context) override {
     const ResolvedPosition at = resolve_position(action_.position, context.state, context.actor);
     place_entity(context.state, context.entity(), at, action_.position.source, context.init);
+    const bool ideal =
+        context.state.controls[*context.actor].effective() == ControllerKind::kDefault;
+    if (!context.init && ideal && context.state.options.semantics == Semantics::kEsmini) {
+      context.entity().pose_command = context.entity().state.pose;  // held there this step
+    }
   }
 
  private:

@@ -1,33 +1,71 @@
 // ReachPositionCondition (OpenSCENARIO 1.3 §8.3.1, deprecated for DistanceCondition): the
 // entity's reference point is within `tolerance` metres of a position.
+//
+// The standard's tolerance is a radius (m) and the condition checks that the entity "has reached
+// a given position": an Orientation of that position is not compared (it has no angular
+// tolerance). esmini's reading (Semantics::kEsmini; its TrigByReachPosition): a position with an
+// Orientation (or a WorldPosition with h, p or r) is reached only while the entity's heading,
+// pitch and roll are also within kEsminiAngularTolerance of the position's (esmini's
+// traj-heading-trig waits so for a lane change's heading).
 
 #include <cmath>
+#include <type_traits>
 
 #include "conditions/condition_makers.h"
+#include "geometry/angle.h"
 #include "positions/position_resolver.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 namespace {
 
+constexpr double kEsminiAngularTolerance = 0.05;  // rad
+
+// Whether the position states an orientation of its own.
+bool has_orientation(const xosc::Position& position) {
+  return std::visit(
+      [](const auto& kind) {
+        using Kind = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<Kind, xosc::WorldPosition>) {
+          return kind.h.has_value() || kind.p.has_value() || kind.r.has_value();
+        } else {
+          return kind.orientation.has_value();
+        }
+      },
+      position.kind);
+}
+
 class ReachPositionCheck final : public EntityCondition {
  public:
-  explicit ReachPositionCheck(const xosc::ReachPositionCondition& c) : c_(c) {}
+  ReachPositionCheck(const xosc::ReachPositionCondition& c, const SimState& state)
+      : c_(c),
+        check_orientation_(state.options.semantics == Semantics::kEsmini &&
+                           has_orientation(c.position)) {}
+
   bool holds(const SimState& state, uint32_t entity) override {
     const ResolvedPosition target = resolve_position(c_.position, state, entity);
     const Pose& p = state.world.entities[entity].state.pose;
-    return std::hypot(target.pose.x - p.x, target.pose.y - p.y) <= c_.tolerance;
+    if (std::hypot(target.pose.x - p.x, target.pose.y - p.y) > c_.tolerance) {
+      return false;
+    }
+    if (!check_orientation_) {
+      return true;
+    }
+    return std::abs(wrap_angle(p.h - target.pose.h)) < kEsminiAngularTolerance &&
+           std::abs(wrap_angle(p.p - target.pose.p)) < kEsminiAngularTolerance &&
+           std::abs(wrap_angle(p.r - target.pose.r)) < kEsminiAngularTolerance;
   }
 
  private:
   const xosc::ReachPositionCondition& c_;
+  bool check_orientation_ = false;
 };
 
 }  // namespace
 
 std::unique_ptr<EntityCondition> make_reach_position(const xosc::ReachPositionCondition& c,
-                                                     const SimState&) {
-  return std::make_unique<ReachPositionCheck>(c);
+                                                     const SimState& state) {
+  return std::make_unique<ReachPositionCheck>(c, state);
 }
 
 }  // namespace corsa::engine::detail

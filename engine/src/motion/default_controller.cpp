@@ -160,11 +160,12 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     }
     lane.lateral = entity.lateral_command;
     // At a lane end without successor the entity stops; it stays "at the end of the road"
-    // until it moves away from it.
+    // until it moves away from it. The speed it was asked for stays asked for (no action changed
+    // it): put elsewhere (a TeleportAction), it drives on at that speed, as esmini's
+    // lane_change_simple expects of its car after each teleport back from the road's end.
     entity.end_of_road = moved.hit_end || (entity.end_of_road && moved.travelled == 0.0);
     if (moved.hit_end) {
       v1 = 0.0;
-      entity.speed_command = 0.0;
     }
     path = std::hypot(travelled, lateral_change);
     entity.longitudinal_distance += std::abs(travelled);

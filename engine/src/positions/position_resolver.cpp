@@ -162,10 +162,21 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
     ds = factor > 1e-6 ? *p.ds_lane / factor : *p.ds_lane;
   }
   const LaneFollow at = walk(map, rc, ds, p.source);
-  const int lane_id = step_lane_id(at.lane, at.dir * p.d_lane);
-  const double t = need_lane_center(map, at.road, at.s, lane_id, p.source) + p.offset.value_or(0.0);
-  ResolvedPosition out = on_road(map, at.road, at.s, t, lane_id, p.orientation, lane_frame(state));
-  if (state.options.semantics == Semantics::kEsmini && !p.orientation) {
+  // dLane counts lanes, the centre lane not among them (-1 + 1 is lane 1); esmini adds it to the
+  // lane id, so that -1 + 1 is the centre lane 0, on the reference line.
+  const bool esmini = state.options.semantics == Semantics::kEsmini;
+  const int lane_id =
+      esmini ? at.lane + at.dir * p.d_lane : step_lane_id(at.lane, at.dir * p.d_lane);
+  // The centre lane has no width nor direction: on the reference line (as a LanePosition on
+  // lane 0), oriented as the reference's lane, in the lane the offset reaches.
+  const double t = (lane_id == 0 ? 0.0 : need_lane_center(map, at.road, at.s, lane_id, p.source)) +
+                   p.offset.value_or(0.0);
+  ResolvedPosition out = on_road(map, at.road, at.s, t, lane_id == 0 ? at.lane : lane_id,
+                                 p.orientation, lane_frame(state));
+  if (lane_id == 0) {
+    out.road->lane = map.lane_at(at.road, at.s, t);
+  }
+  if (esmini && !p.orientation) {
     // esmini faces a position without Orientation the way the reference entity faces along its
     // road, not the target lane's direction of travel.
     const double ref_offset = wrap_angle(ref.state.pose.h - map.reference(rc.road, rc.s).hdg);
