@@ -71,22 +71,20 @@ ArrowSizes arrow_sizes(double length, double width) {
 void add_turn(std::vector<PaintPolygon>& out, const ArrowSizes& z, double width, double shaft_y,
               double branch_x, int side) {
   const double tip_y = side * 0.5 * width;
-  out.push_back(stroke({branch_x, shaft_y}, {branch_x, tip_y - side * z.turn_length}, z.shaft,
-                       true, false));
-  out.push_back(head({branch_x, tip_y}, {0.0, static_cast<double>(side)}, z.turn_length,
-                     z.turn_width));
+  out.push_back(
+      stroke({branch_x, shaft_y}, {branch_x, tip_y - side * z.turn_length}, z.shaft, true, false));
+  out.push_back(
+      head({branch_x, tip_y}, {0.0, static_cast<double>(side)}, z.turn_length, z.turn_width));
 }
 
 void add_straight(std::vector<PaintPolygon>& out, const ArrowSizes& z, double length,
                   double shaft_y) {
-  out.push_back(
-      stroke({-0.5 * length, shaft_y}, {0.5 * length - z.head_length, shaft_y}, z.shaft, false,
-             false));
+  out.push_back(stroke({-0.5 * length, shaft_y}, {0.5 * length - z.head_length, shaft_y}, z.shaft,
+                       false, false));
   out.push_back(head({0.5 * length, shaft_y}, {1.0, 0.0}, z.head_length, z.head_width));
 }
 
-void add_u_turn(std::vector<PaintPolygon>& out, const ArrowSizes& z, double length,
-                double width) {
+void add_u_turn(std::vector<PaintPolygon>& out, const ArrowSizes& z, double length, double width) {
   // Up on the right, over a half circle, back down on the left to a head pointing -x.
   const double y_r = -0.5 * width + 0.5 * z.shaft;
   const double y_l = 0.5 * width - 0.5 * z.head_width;
@@ -94,12 +92,14 @@ void add_u_turn(std::vector<PaintPolygon>& out, const ArrowSizes& z, double leng
   const double x_c = 0.5 * length - radius - 0.5 * z.shaft;
   const double y_c = 0.5 * (y_l + y_r);
   out.push_back(stroke({-0.5 * length, y_r}, {x_c, y_r}, z.shaft, false, true));
-  constexpr int kSteps = 10;
+  // 9-degree steps: the notches on the outside of the bend stay under 1.2 cm, and the
+  // segments are not lengthened there, so the bend keeps within the box.
+  constexpr int kSteps = 20;
   Vec2 prev{x_c, y_r};
   for (int i = 1; i <= kSteps; ++i) {
     const double a = std::numbers::pi * i / kSteps;
     const Vec2 p{x_c + radius * std::sin(a), y_c - radius * std::cos(a)};
-    out.push_back(stroke(prev, p, z.shaft, true, true));
+    out.push_back(stroke(prev, p, z.shaft, false, false));
     prev = p;
   }
   const double tip_x = x_c - 0.55 * length;
@@ -269,8 +269,8 @@ bool text_symbol(std::string_view text, double length, double width,
   return true;
 }
 
-std::vector<PaintPolygon> hatch_symbol(double length, double width, double stroke_w,
-                                       double spacing, bool cross_hatch) {
+std::vector<PaintPolygon> hatch_symbol(double length, double width, double stroke_w, double spacing,
+                                       bool cross_hatch) {
   std::vector<PaintPolygon> out;
   const double hx = 0.5 * length, hy = 0.5 * width;
   out.push_back(rect(-hx, hx, -hy, -hy + stroke_w));
@@ -282,14 +282,13 @@ std::vector<PaintPolygon> hatch_symbol(double length, double width, double strok
   const int families = cross_hatch ? 2 : 1;
   for (int f = 0; f < families; ++f) {
     const Vec2 n = f == 0 ? Vec2{s, -s} : Vec2{s, s};  // across the stripes
-    const Vec2 d{-n.y, n.x};                            // along them
+    const Vec2 d{-n.y, n.x};                           // along them
     const int k_max = static_cast<int>(std::ceil(reach / spacing));
     for (int k = -k_max; k <= k_max; ++k) {
       const double c = k * spacing;
-      PaintPolygon band = counter_clockwise({n * (c - 0.5 * stroke_w) - d * reach,
-                                             n * (c - 0.5 * stroke_w) + d * reach,
-                                             n * (c + 0.5 * stroke_w) + d * reach,
-                                             n * (c + 0.5 * stroke_w) - d * reach});
+      PaintPolygon band = counter_clockwise(
+          {n * (c - 0.5 * stroke_w) - d * reach, n * (c - 0.5 * stroke_w) + d * reach,
+           n * (c + 0.5 * stroke_w) + d * reach, n * (c + 0.5 * stroke_w) - d * reach});
       band = clip(band, {1.0, 0.0}, hx);
       band = clip(band, {-1.0, 0.0}, hx);
       band = clip(band, {0.0, 1.0}, hy);

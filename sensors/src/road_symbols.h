@@ -42,8 +42,8 @@ bool text_symbol(std::string_view text, double length, double width,
 
 /// A hatched area: its outline (a border `stroke` wide) and diagonal stripes `stroke` wide
 /// every `spacing` metres, at 45 degrees, clipped to the box; both diagonals when `cross`.
-std::vector<PaintPolygon> hatch_symbol(double length, double width, double stroke,
-                                       double spacing, bool cross);
+std::vector<PaintPolygon> hatch_symbol(double length, double width, double stroke, double spacing,
+                                       bool cross);
 
 /// Adds the polygons to `b` at `lift` metres above the frame's x-y plane.
 void add_paint(MeshBuilder& b, const std::vector<PaintPolygon>& polygons, double lift = 0.012);

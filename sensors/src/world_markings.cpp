@@ -277,11 +277,10 @@ void add_marking(WorldBuild& w, RoadPainter& paint, const Rigid& frame, const Ma
 void build_hatched_area(WorldBuild& w, size_t r, const xodr::Signal& s, const MarkSpec& spec) {
   const xodr::Road& road = w.map.road(r);
   if (s.length < 0.5 || s.width < 0.5) {
-    w.diagnostics.add_once(
-        "signal-marking-size:" + s.country + ":" + s.type,
-        make_warning(w.map.data().source_file, s.line,
-                     "hatched area signal " + s.id + " (type '" + s.type +
-                         "') gives no length and width; left out"));
+    w.diagnostics.add_once("signal-marking-size:" + s.country + ":" + s.type,
+                           make_warning(w.map.data().source_file, s.line,
+                                        "hatched area signal " + s.id + " (type '" + s.type +
+                                            "') gives no length and width; left out"));
     return;
   }
   const double along = std::min(s.length, road.length);
@@ -293,10 +292,10 @@ void build_hatched_area(WorldBuild& w, size_t r, const xodr::Signal& s, const Ma
     paint.builder().material(yellow_road_paint());
   }
   // Stripes 0.3 m wide every 1.5 m (cross-hatched every 2 m), a 0.2 m border.
-  paint_symbol(paint,
-               hatch_symbol(along, s.width, spec.yellow ? 0.2 : 0.3, spec.yellow ? 2.0 : 1.5,
-                            spec.yellow),
-               s_mid, s.t, 1);
+  paint_symbol(
+      paint,
+      hatch_symbol(along, s.width, spec.yellow ? 0.2 : 0.3, spec.yellow ? 2.0 : 1.5, spec.yellow),
+      s_mid, s.t, 1);
   add_marking(w, paint, frame, spec, s);
 }
 

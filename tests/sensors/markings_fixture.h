@@ -60,5 +60,4 @@ inline bool paint_at(const sensors::Scene& scene, double x, double y) {
   return down_at(scene, x, y).semantic == sensors::SemanticClass::kLaneMarking;
 }
 
-
 }  // namespace corsa::test

@@ -8,8 +8,10 @@
 #include "corsa/sensors/labels.h"
 #include "corsa/sensors/world.h"
 #include "markings_fixture.h"
+#include "road_symbols.h"
 
 using namespace corsa::sensors;
+using corsa::Vec2;
 using corsa::test::down_at;
 using corsa::test::marked_world;
 using corsa::test::paint_at;
@@ -28,7 +30,53 @@ ObjectInfo object_at(const Scene& scene, double x, double y) {
   return labels[0].info;
 }
 
+/// True when (x, y) lies in one of the symbol's convex counter-clockwise polygons.
+bool in_symbol(const std::vector<detail::PaintPolygon>& symbol, double x, double y) {
+  for (const detail::PaintPolygon& p : symbol) {
+    bool inside = true;
+    for (size_t i = 0; i < p.size() && inside; ++i) {
+      const Vec2 a = p[i], b = p[(i + 1) % p.size()];
+      inside = cross(b - a, Vec2{x, y} - a) >= 0.0;
+    }
+    if (inside) {
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
+
+TEST_CASE("the arrow shapes keep to their box and point where their names say",
+          "[sensors][world][markings]") {
+  // 5 m x 1.8 m: the shaft 0.3 m wide, heads 1.2 m long (along x) or 0.72 m (across).
+  using detail::ArrowShape;
+  const auto u_turn = detail::arrow_symbol(ArrowShape::kUTurn, 5.0, 1.8);
+  CHECK(in_symbol(u_turn, -2.0, -0.75));       // up the right leg from the back
+  CHECK(in_symbol(u_turn, 2.3, 0.0));          // over the top of the bend
+  CHECK(in_symbol(u_turn, -0.3, 0.45));        // the head on the left leg, pointing back
+  CHECK_FALSE(in_symbol(u_turn, -2.0, 0.45));  // the left leg ends at its tip
+  CHECK_FALSE(in_symbol(u_turn, 0.0, 0.0));    // nothing between the legs
+  const auto both = detail::arrow_symbol(ArrowShape::kLeftRight, 5.0, 1.8);
+  CHECK(in_symbol(both, -1.0, 0.0));        // the shaft in the middle
+  CHECK(in_symbol(both, 2.05, 0.8));        // a head to the left
+  CHECK(in_symbol(both, 2.05, -0.8));       // and one to the right
+  CHECK_FALSE(in_symbol(both, 2.45, 0.0));  // no head ahead
+  for (const auto& symbol : {u_turn, both}) {
+    for (const auto& polygon : symbol) {
+      for (const Vec2& p : polygon) {
+        CHECK(std::abs(p.x) <= 2.5 + 1e-9);
+        CHECK(std::abs(p.y) <= 0.9 + 1e-9);
+      }
+    }
+  }
+  // Block letters: an unknown character is refused, nothing added.
+  std::vector<detail::PaintPolygon> text;
+  CHECK_FALSE(detail::text_symbol("STOP!", 2.0, 2.0, text));
+  CHECK(text.empty());
+  CHECK(detail::text_symbol("STOP", 2.0, 2.0, text));
+  CHECK(text.size() > 10);
+}
 
 TEST_CASE("a Korean straight arrow signal is painted in each lane it serves, pointing its way",
           "[sensors][world][signals][markings][korea]") {
@@ -119,10 +167,10 @@ TEST_CASE("CARLA's turn-arrow and STOP stencils are paint in their lane, read th
   CHECK(arrow.kind == "road_mark");
   CHECK(arrow.type == "Stencil_ArrowType4L");
   CHECK(arrow.subtype == "arrow_left");
-  CHECK(paint_at(world->scene, 60.0, -3.5 + 0.297));   // the T's stem
-  CHECK(paint_at(world->scene, 60.0, -3.5 - 0.098));   // the O's left side
-  CHECK_FALSE(paint_at(world->scene, 60.0, -3.796));   // inside the O
-  CHECK_FALSE(paint_at(world->scene, 61.5, -3.5));     // 2.87 m along
+  CHECK(paint_at(world->scene, 60.0, -3.5 + 0.297));  // the T's stem
+  CHECK(paint_at(world->scene, 60.0, -3.5 - 0.098));  // the O's left side
+  CHECK_FALSE(paint_at(world->scene, 60.0, -3.796));  // inside the O
+  CHECK_FALSE(paint_at(world->scene, 61.5, -3.5));    // 2.87 m along
   const ObjectInfo stop = object_at(world->scene, 60.0, -3.5 + 0.297);
   CHECK(stop.text == "STOP");
   CHECK(stop.subtype == "text");
@@ -159,8 +207,8 @@ TEST_CASE("on Town04 the turn arrows ahead of a junction show as lane_marking in
   CameraMotion motion;
   motion.world_from_body = eye;
   const CameraImages img = camera.render(built->scene, motion, settings);
-  // Paint on the road 6.5-10 m ahead (a 240 px focal length, 1.5 m up): the arrows (no lane line crosses there except
-  // the broken one between the lanes); its labels name the stencils.
+  // Paint on the road 6.5-10 m ahead (a 240 px focal length, 1.5 m up): the arrows (no lane line
+  // crosses there except the broken one between the lanes); its labels name the stencils.
   std::set<std::string> stencils;
   int paint = 0;
   for (int row = img.height / 2 + 35; row < img.height / 2 + 55; ++row) {
