@@ -5,7 +5,7 @@ import os
 
 def collect(scenario, rig, output, *, format="corsa", force=False, preview=False, dt=0.01,
             seed=0, params=None, controller=None, npc=None, duration=3600.0, models=(),
-            time_of_day=None, weather=None):
+            entity_models=(), time_of_day=None, weather=None):
     """Runs the scenario with the sensor rig and writes a dataset folder, as `corsa run
     --rig RIG -o OUTPUT` does (docs/datasets.md); read it back with corsa.Dataset(output).
 
@@ -18,5 +18,5 @@ def collect(scenario, rig, output, *, format="corsa", force=False, preview=False
 
     return _sensors.collect(os.fspath(scenario), os.fspath(rig), os.fspath(output), format,
                             bool(force), bool(preview), float(dt), int(seed), params, controller,
-                            npc, float(duration), [str(m) for m in models], time_of_day,
-                            weather)
+                            npc, float(duration), [str(m) for m in models],
+                            [str(m) for m in entity_models], time_of_day, weather)

@@ -9,8 +9,8 @@ class Simulation(_corsa.Simulation):
     """One run of one scenario, stepped from Python.
 
     Simulation(path, *, dt=0.01, seed=0, params=None, controller=None, npc=None, external=None,
-               duration=3600.0, values=None, rig=None, models=(), time_of_day=None, weather=None,
-               semantics='standard')
+               duration=3600.0, values=None, rig=None, models=(), entity_models=(),
+               time_of_day=None, weather=None, semantics='standard')
 
     path         the .xosc scenario (its map and catalogs are found from it, as `corsa run` does)
     dt           the fixed step, s (0.0001..10)
@@ -24,6 +24,8 @@ class Simulation(_corsa.Simulation):
     values       {name: value or callable} for UserDefinedValueConditions (see set_value)
     rig          a sensor rig file: capture() then renders its sensors (loads the sensor library)
     models       building models for the rig's scene, 'FILE[@X,Y[,HEADING_DEG]]' (`--model`)
+    entity_models  models for entities, 'WHO=FILE': WHO an entity's name or a category such
+                 as car or pedestrian (`--entity-model`); they win over the rig's <EntityModel>s
     time_of_day  'HH:MM[:SS]' for the rig's lighting (`--time-of-day`)
     weather      'fog=50,rain=0.6,...' for the rig's sensors (`--weather`)
     semantics    'standard' or 'esmini': how what the standard leaves open is read (`--semantics`)
@@ -33,19 +35,21 @@ class Simulation(_corsa.Simulation):
 
     def __init__(self, path, *, dt=0.01, seed=0, params=None, controller=None, npc=None,
                  external=None, duration=3600.0, values=None, rig=None, models=(),
-                 time_of_day=None, weather=None, semantics="standard"):
+                 entity_models=(), time_of_day=None, weather=None, semantics="standard"):
         super().__init__(os.fspath(path), dt=dt, seed=seed, params=params, controller=controller,
                          npc=npc, external=external, duration=duration, values=values,
                          semantics=semantics)
         self._sensors = None
         if rig is None:
-            if models or time_of_day is not None or weather is not None:
-                raise ValueError("models, time_of_day and weather are for a rig: pass rig=...")
+            if models or entity_models or time_of_day is not None or weather is not None:
+                raise ValueError(
+                    "models, entity_models, time_of_day and weather are for a rig: pass rig=...")
             return
         from . import _sensors
 
         self._sensors = _sensors.SensorSession(self, os.fspath(rig), [str(m) for m in models],
-                                               time_of_day, weather)
+                                               [str(m) for m in entity_models], time_of_day,
+                                               weather)
 
     @property
     def sensors(self):

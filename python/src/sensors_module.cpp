@@ -67,16 +67,31 @@ std::vector<collect::ModelSpec> model_specs(const std::vector<std::string>& mode
   return out;
 }
 
+std::vector<collect::EntityModelSpec> entity_model_specs(
+    const std::vector<std::string>& entity_models) {
+  std::vector<collect::EntityModelSpec> out;
+  for (const std::string& text : entity_models) {
+    try {
+      out.push_back(collect::parse_entity_model_spec(text));
+    } catch (const std::invalid_argument& error) {
+      throw py::value_error(std::string("entity_models: ") + error.what());
+    }
+  }
+  return out;
+}
+
 /// A rig bound to one corsa.Simulation: its scene and sensor system, rendering on demand.
 class SensorSession {
  public:
   SensorSession(py::object simulation, const std::filesystem::path& rig_file,
                 const std::vector<std::string>& models,
+                const std::vector<std::string>& entity_models,
                 const std::optional<std::string>& time_of_day,
                 const std::optional<std::string>& weather)
       : owner_(std::move(simulation)), simulation_(owner_.cast<PySimulation&>()) {
     environment_ = environment_override(time_of_day, weather);
     const std::vector<collect::ModelSpec> specs = model_specs(models);
+    const std::vector<collect::EntityModelSpec> entity_specs = entity_model_specs(entity_models);
     const PySimulation::Busy busy(simulation_);
     const engine::Simulation& sim = simulation_.engine();
     {
@@ -85,6 +100,13 @@ class SensorSession {
       std::vector<std::string> names;
       for (size_t i = 0; i < sim.entity_count(); ++i) names.push_back(sim.entity(i).name);
       sensors::bind_rig(rig, names);
+      // The caller's entity models first, so that they win over the rig's (as `corsa run`).
+      std::vector<sensors::EntityModel> chosen;
+      for (const collect::EntityModelSpec& spec : entity_specs) {
+        chosen.push_back(collect::resolve_entity_model(spec, names));
+      }
+      chosen.insert(chosen.end(), rig.entity_models.begin(), rig.entity_models.end());
+      rig.entity_models = std::move(chosen);
       scene_ = collect::build_run_scene(sim, specs, rig, diagnostics_);
       sensors::SensorSystemOptions options;
       options.seed = sim.options().seed;
@@ -172,6 +194,7 @@ py::dict collect_dataset(const std::filesystem::path& scenario, const std::files
                          bool preview, double dt, uint64_t seed, const py::object& params,
                          const py::object& controller, const py::object& npc, double duration,
                          const std::vector<std::string>& models,
+                         const std::vector<std::string>& entity_models,
                          const std::optional<std::string>& time_of_day,
                          const std::optional<std::string>& weather) {
   const SimulationSetup setup =
@@ -193,6 +216,7 @@ py::dict collect_dataset(const std::filesystem::path& scenario, const std::files
   options.time_of_day_text = time_of_day.value_or("");
   options.weather_text = weather.value_or("");
   options.models = model_specs(models);
+  options.entity_models = entity_model_specs(entity_models);
   Diagnostics diagnostics;
   collect::DatasetRunHooks hooks;
   bool interrupted = false;
@@ -236,14 +260,15 @@ PYBIND11_MODULE(_sensors, module) {
       "and corsa.collect).";
   py::class_<SensorSession>(module, "SensorSession")
       .def(py::init<py::object, const std::filesystem::path&, const std::vector<std::string>&,
-                    const std::optional<std::string>&, const std::optional<std::string>&>(),
-           py::arg("simulation"), py::arg("rig"), py::arg("models"), py::arg("time_of_day"),
-           py::arg("weather"))
+                    const std::vector<std::string>&, const std::optional<std::string>&,
+                    const std::optional<std::string>&>(),
+           py::arg("simulation"), py::arg("rig"), py::arg("models"), py::arg("entity_models"),
+           py::arg("time_of_day"), py::arg("weather"))
       .def("capture", &SensorSession::capture, py::arg("sensors"))
       .def_property_readonly("sensors", &SensorSession::sensors);
   module.def("collect", &corsa::python::collect_dataset, py::arg("scenario"), py::arg("rig"),
              py::arg("output"), py::arg("format"), py::arg("force"), py::arg("preview"),
              py::arg("dt"), py::arg("seed"), py::arg("params"), py::arg("controller"),
-             py::arg("npc"), py::arg("duration"), py::arg("models"), py::arg("time_of_day"),
-             py::arg("weather"));
+             py::arg("npc"), py::arg("duration"), py::arg("models"), py::arg("entity_models"),
+             py::arg("time_of_day"), py::arg("weather"));
 }

@@ -7,12 +7,16 @@
 // road surface markings 501-549 (Enforcement Rule of the Road Traffic Act, annex 6, part 5;
 // maps with country "KR"/"KOR", such as OpenDRIVE made from NGII data). Drawn: 530 stop line
 // (30-60 cm wide: 0.45 m), 532 and 533 crosswalk and raised crosswalk (zebra, at least 4 m along
-// the road) and 529 crosswalk ahead (a hollow diamond 1.35 m wide with 2.5 m sides, per lane).
-// All lie across the lanes the signal covers: its <validity> lanes (§14.2), or else the drivable
-// lanes its orientation serves ("+": the lanes carrying traffic towards +s; a crosswalk spans
-// every drivable lane). The signal's `length` (1.8), when given, is the paint's extent along the
-// road. The other markings (lines, arrows, text, hatched areas) are left out with one warning per
-// type: a road's lanes draw their lines already.
+// the road), 529 crosswalk ahead (a hollow diamond 1.35 m wide with 2.5 m sides, per lane), the
+// direction arrows 537-541 (straight, left, right, straight and left, straight and right; one
+// per lane, pointing the lane's way) and, when the signal gives its length and width, the
+// hatched areas 524 (no-stopping zone: yellow, cross-hatched) and 531 (safety zone: white,
+// diagonal stripes).
+// Lane markings lie across the lanes the signal covers: its <validity> lanes (§14.2), or else
+// the drivable lanes its orientation serves ("+": the lanes carrying traffic towards +s; a
+// crosswalk spans every drivable lane). The signal's `length` (1.8), when given, is the paint's
+// extent along the road. The other markings (lines, words, other symbols) are left out with one
+// warning per type: a road's lanes draw their lines already.
 
 #include <algorithm>
 #include <cmath>
@@ -22,18 +26,21 @@
 #include <vector>
 
 #include "corsa/core/strings.h"
+#include "road_symbols.h"
 #include "world_build.h"
 #include "world_props.h"
 
 namespace corsa::sensors::detail {
 namespace {
 
-enum class MarkKind { kCrosswalk, kStopLine, kGiveWayLine, kCrosswalkAhead };
+enum class MarkKind { kCrosswalk, kStopLine, kGiveWayLine, kCrosswalkAhead, kArrow, kHatch };
 
 struct MarkSpec {
   MarkKind kind;
   double along;  ///< m along the road when the signal gives no length
   const char* label;
+  ArrowShape arrow = ArrowShape::kStraight;  ///< kArrow
+  bool yellow = false;                       ///< kHatch: yellow paint, cross-hatched
 };
 
 std::optional<MarkSpec> german_marking(const std::string& type) {
@@ -65,6 +72,21 @@ std::optional<MarkSpec> korean_marking(const std::string& type) {
   if (type == "529") {
     return MarkSpec{MarkKind::kCrosswalkAhead, 2.0 * std::sqrt(2.5 * 2.5 - 0.675 * 0.675),
                     "crosswalk_ahead"};
+  }
+  // Direction arrows, 5 m long (the rule's urban size; 6 m on fast roads is the signal's length).
+  constexpr std::pair<const char*, ArrowShape> kArrows[] = {
+      {"537", ArrowShape::kStraight},      {"538", ArrowShape::kLeft},
+      {"539", ArrowShape::kRight},         {"540", ArrowShape::kStraightLeft},
+      {"541", ArrowShape::kStraightRight},
+  };
+  for (const auto& [code, shape] : kArrows) {
+    if (type == code) {
+      return MarkSpec{MarkKind::kArrow, 5.0, "arrow", shape};
+    }
+  }
+  if (type == "524" || type == "531") {
+    return MarkSpec{MarkKind::kHatch, 0.0, type == "524" ? "no_stopping_zone" : "safety_zone",
+                    ArrowShape::kStraight, type == "524"};
   }
   return std::nullopt;
 }
@@ -156,10 +178,42 @@ void paint_diamond(RoadPainter& paint, double s0, double s1, double t0, double t
   }
 }
 
-void paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1, double t0,
-                double t1, double t_first) {
+/// A lane the marking covers: its borders (t0 < t1) and the way its traffic drives along s
+/// (+1 or -1).
+struct CoveredLane {
+  double t0, t1;
+  int dir;
+  bool operator<(const CoveredLane& o) const { return t0 < o.t0; }
+};
+
+/// Symbol polygons (x the lane's way, y to its left) painted centred on (s_mid, t_mid).
+void paint_symbol(RoadPainter& paint, const std::vector<PaintPolygon>& symbol, double s_mid,
+                  double t_mid, int dir) {
+  std::vector<std::pair<double, double>> corners;
+  for (const PaintPolygon& polygon : symbol) {
+    corners.clear();
+    for (const Vec2& p : polygon) {
+      corners.emplace_back(s_mid + dir * p.x, t_mid + dir * p.y);  // a half turn keeps winding
+    }
+    paint.polygon(corners);
+  }
+}
+
+void paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1,
+                const CoveredLane& lane, double t_first) {
+  const double t0 = lane.t0, t1 = lane.t1;
   if (spec.kind == MarkKind::kCrosswalkAhead) {
     paint_diamond(paint, s0, s1, t0, t1);
+    return;
+  }
+  if (spec.kind == MarkKind::kArrow) {
+    // A straight arrow 0.9 m across (its head), a turning one 1.8 m, kept 0.3 m off the lines.
+    const bool straight = spec.arrow == ArrowShape::kStraight;
+    const double across = std::min(straight ? 0.9 : 1.8, t1 - t0 - 0.6);
+    if (across > 0.3) {
+      paint_symbol(paint, arrow_symbol(spec.arrow, s1 - s0, across), 0.5 * (s0 + s1),
+                   0.5 * (t0 + t1), lane.dir);
+    }
     return;
   }
   if (spec.kind == MarkKind::kStopLine) {
@@ -174,6 +228,75 @@ void paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1, 
   for (double a = t_first + k0 * period; a < t1; a += period) {
     paint.quad(s0, s1, std::max(a, t0), std::min(a + bar, t1));
   }
+}
+
+/// The lanes a marking covers at s_mid (see covers()).
+std::vector<CoveredLane> covered_lanes(const WorldBuild& w, size_t r, const xodr::Signal& s,
+                                       const MarkSpec& spec, double s_mid) {
+  const xodr::Road& road = w.map.road(r);
+  const bool left_hand = road.rule == xodr::TrafficRule::kLeftHand;
+  std::vector<xodr::LaneSpan> spans;
+  w.map.lane_spans(r, s_mid, spans);
+  const auto& lanes = road.lane_sections[w.map.section_index(r, s_mid)].lanes;
+  std::vector<CoveredLane> covered;
+  for (const xodr::LaneSpan& span : spans) {
+    const auto lane = std::find_if(lanes.begin(), lanes.end(),
+                                   [&](const xodr::Lane& l) { return l.id == span.id; });
+    if (lane != lanes.end() && span.width() > 0.05 &&
+        covers(s, *lane, left_hand, spec.kind == MarkKind::kCrosswalk)) {
+      const bool towards_plus_s = (lane->id < 0) != left_hand;
+      covered.push_back({span.t_min(), span.t_max(), towards_plus_s ? 1 : -1});
+    }
+  }
+  std::sort(covered.begin(), covered.end());
+  return covered;
+}
+
+/// Adds the painted marking as one labelled object (paint is stuff by its class, but a marking
+/// painted from a signal is one object with labels, so it takes the next static id as props do).
+void add_marking(WorldBuild& w, RoadPainter& paint, const Rigid& frame, const MarkSpec& spec,
+                 const xodr::Signal& s) {
+  if (paint.builder().triangle_count() == 0) {
+    return;
+  }
+  ObjectInfo info;
+  info.kind = spec.label;
+  info.signal_id = s.id;
+  info.country = s.country;
+  info.type = s.type;
+  info.subtype = s.subtype;
+  StaticMesh mesh = to_static_mesh(paint.builder().take(), frame, "road marking " + s.id);
+  mesh.object = info;
+  mesh.instance_id = kStaticInstanceBase + static_cast<uint32_t>(w.scene.static_mesh_count());
+  w.scene.add_static_mesh(std::move(mesh));
+  ++w.report.markings;
+}
+
+/// A hatched area of the signal's length and width, centred on its s and t along the road;
+/// left out with a located warning when the signal gives no size.
+void build_hatched_area(WorldBuild& w, size_t r, const xodr::Signal& s, const MarkSpec& spec) {
+  const xodr::Road& road = w.map.road(r);
+  if (s.length < 0.5 || s.width < 0.5) {
+    w.diagnostics.add_once("signal-marking-size:" + s.country + ":" + s.type,
+                           make_warning(w.map.data().source_file, s.line,
+                                        "hatched area signal " + s.id + " (type '" + s.type +
+                                            "') gives no length and width; left out"));
+    return;
+  }
+  const double along = std::min(s.length, road.length);
+  const double s_mid = std::clamp(s.s, 0.5 * along, road.length - 0.5 * along);
+  const xodr::WorldPose p = w.map.world_pose(r, s_mid, 0.0);
+  const Rigid frame = rigid_from_pose(p.x, p.y, p.z, p.h, 0.0, 0.0);
+  RoadPainter paint(w.map, r, frame);
+  if (spec.yellow) {
+    paint.builder().material(yellow_road_paint());
+  }
+  // Stripes 0.3 m wide every 1.5 m (cross-hatched every 2 m), a 0.2 m border.
+  paint_symbol(
+      paint,
+      hatch_symbol(along, s.width, spec.yellow ? 0.2 : 0.3, spec.yellow ? 2.0 : 1.5, spec.yellow),
+      s_mid, s.t, 1);
+  add_marking(w, paint, frame, spec, s);
 }
 
 }  // namespace
@@ -193,25 +316,17 @@ bool build_signal_marking(WorldBuild& w, size_t r, const xodr::Signal& s) {
                          "') is a road marking Corsa does not paint from a signal; left out"));
     return true;
   }
+  if (spec->kind == MarkKind::kHatch) {
+    build_hatched_area(w, r, s, *spec);
+    return true;
+  }
   const xodr::Road& road = w.map.road(r);
   const double along = std::min(s.length > 0.01 ? s.length : spec->along, road.length);
   // Centred on s, shifted to stay on the road (a stop line at a road's end, as maps put them).
   const double s0 = std::clamp(s.s - 0.5 * along, 0.0, road.length - along);
   const double s1 = s0 + along;
   const double s_mid = 0.5 * (s0 + s1);
-  std::vector<xodr::LaneSpan> spans;
-  w.map.lane_spans(r, s_mid, spans);
-  const auto& lanes = road.lane_sections[w.map.section_index(r, s_mid)].lanes;
-  std::vector<std::pair<double, double>> covered;
-  for (const xodr::LaneSpan& span : spans) {
-    const auto lane = std::find_if(lanes.begin(), lanes.end(),
-                                   [&](const xodr::Lane& l) { return l.id == span.id; });
-    if (lane != lanes.end() && span.width() > 0.05 &&
-        covers(s, *lane, road.rule == xodr::TrafficRule::kLeftHand,
-               spec->kind == MarkKind::kCrosswalk)) {
-      covered.emplace_back(span.t_min(), span.t_max());
-    }
-  }
+  std::vector<CoveredLane> covered = covered_lanes(w, r, s, *spec, s_mid);
   if (covered.empty()) {
     const double width = s.width > 0.1 ? s.width : 3.0;
     w.diagnostics.add_once("signal-marking-lanes:" + s.id,
@@ -219,31 +334,15 @@ bool build_signal_marking(WorldBuild& w, size_t r, const xodr::Signal& s) {
                                         "road marking signal " + s.id + " covers no lane at s " +
                                             format_fixed(s_mid, 2) + "; painted " +
                                             format_fixed(width, 2) + " m wide around its t"));
-    covered.emplace_back(s.t - 0.5 * width, s.t + 0.5 * width);
+    covered.push_back({s.t - 0.5 * width, s.t + 0.5 * width, s.orientation == "-" ? -1 : 1});
   }
-  std::sort(covered.begin(), covered.end());
   const xodr::WorldPose p = w.map.world_pose(r, s_mid, 0.0);
   const Rigid frame = rigid_from_pose(p.x, p.y, p.z, p.h, 0.0, 0.0);
   RoadPainter paint(w.map, r, frame);
-  for (const auto& [t0, t1] : covered) {
-    paint_span(paint, *spec, s0, s1, t0, t1, covered.front().first);
+  for (const CoveredLane& lane : covered) {
+    paint_span(paint, *spec, s0, s1, lane, covered.front().t0);
   }
-  if (paint.builder().triangle_count() == 0) {
-    return true;
-  }
-  ObjectInfo info;
-  info.kind = spec->label;
-  info.signal_id = s.id;
-  info.country = s.country;
-  info.type = s.type;
-  info.subtype = s.subtype;
-  StaticMesh mesh = to_static_mesh(paint.builder().take(), frame, "road marking " + s.id);
-  mesh.object = info;
-  // Paint is stuff and gets no instance id by its class; a marking painted from a signal is one
-  // object with labels (its kind and signal id), so it takes the next static id as props do.
-  mesh.instance_id = kStaticInstanceBase + static_cast<uint32_t>(w.scene.static_mesh_count());
-  w.scene.add_static_mesh(std::move(mesh));
-  ++w.report.markings;
+  add_marking(w, paint, frame, *spec, s);
   return true;
 }
 

@@ -2,15 +2,17 @@
 // parking spaces (their outline painted), stop lines, poles, street lamps, trees and vegetation,
 // barriers, guard rails and railings, buildings (outline extruded, or the box), obstacles;
 // repeats place a copy every `distance` metres or stretch rails along the road. CARLA's maps
-// name some objects instead of typing them: "StopLine" and "Speed_NN" (a speed-limit sign) are
-// drawn; other untyped objects (its duplicated lane lines and stencils) are left out with one
-// warning per name.
+// name some objects instead of typing them: "StopLine", "Speed_NN" (a speed-limit sign) and
+// the RoadRunner stencils "Stencil_ArrowType4L/R" (turn arrows), "Stencil_ArrowType1*"
+// (straight arrows) and "Stencil_STOP" (the word) are drawn; other untyped objects (its
+// duplicated lane lines, other stencils) are left out with one warning per name.
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "corsa/core/strings.h"
+#include "road_symbols.h"
 #include "scalar_math.h"
 #include "world_build.h"
 #include "world_props.h"
@@ -97,6 +99,36 @@ void object_frames(const xodr::Map& map, size_t r, const xodr::Object& o,
       }
     }
   }
+}
+
+/// The paint of a RoadRunner stencil (CARLA's maps), laid along the object's heading (the way
+/// its traffic reads it); `subtype` names the symbol. False for a stencil it does not know.
+bool stencil_paint(const std::string& name, double length, double width,
+                   std::vector<PaintPolygon>& out, std::string& subtype) {
+  // CARLA's exporter writes the stencil's box with length and width swapped on some roads
+  // (Town04: 1.96 x 2.58 m and 2.56 x 1.95 m for the same arrow), so the longer side is taken
+  // along the heading, and a missing size falls back to a 2.5 x 1.5 m stencil.
+  const double along = std::max(length, width) > 0.1 ? std::max(length, width) : 2.5;
+  const double across = std::min(length, width) > 0.1 ? std::min(length, width) : 1.5;
+  if (name == "Stencil_ArrowType4L" || name == "Stencil_ArrowType4R") {
+    const bool left = name.back() == 'L';
+    // The box holds the lane's whole width on some roads (3.06 x 3.15 m); a turn arrow's bend
+    // reaches at most 0.6 of its length across, as the stencil's own drawing does.
+    out = arrow_symbol(left ? ArrowShape::kLeft : ArrowShape::kRight, along,
+                       std::min(across, 0.6 * along));
+    subtype = left ? "arrow_left" : "arrow_right";
+    return true;
+  }
+  if (name.rfind("Stencil_ArrowType1", 0) == 0) {
+    out = arrow_symbol(ArrowShape::kStraight, along, across);
+    subtype = "arrow_straight";
+    return true;
+  }
+  if (name == "Stencil_STOP") {
+    subtype = "text";
+    return text_symbol("STOP", along, across, out);
+  }
+  return false;
 }
 
 }  // namespace
@@ -259,6 +291,16 @@ void build_objects(WorldBuild& w) {
           w.place(make_sign(f, 0.6, 0.6, 2.0, "sign DE 274 " + std::to_string(f.number)), turned,
                   "object " + o.id, sign);
           ++w.report.signs;
+          continue;
+        } else if (std::vector<PaintPolygon> symbol;
+                   o.type == "-1" && stencil_paint(name, o.length, o.width, symbol, info.subtype)) {
+          b.semantic(SemanticClass::kLaneMarking).material(road_paint());
+          add_paint(b, symbol);
+          info.kind = "road_mark";
+          info.type = name;
+          info.text = info.subtype == "text" ? "STOP" : "";
+          w.place_paint(b.take(), frame, "object " + o.id, info);
+          ++w.report.objects;
           continue;
         } else {
           w.diagnostics.add_once(

@@ -6,62 +6,14 @@
 
 #include "corsa/sensors/labels.h"
 #include "corsa/sensors/world.h"
-#include "corsa/xodr/parser.h"
-#include "world_fixture.h"
+#include "markings_fixture.h"
 
 using namespace corsa::sensors;
 
-namespace {
-
-/// A straight 100 m road along +x (so t is y): a sidewalk and one lane on the left, two lanes
-/// and a sidewalk on the right, every lane 3.5 m and sidewalks 2 m wide; its signals are
-/// `signals` and its objects `objects`.
-corsa::xodr::Map street_with(const std::string& signals, const std::string& objects = "") {
-  const std::string lane =
-      R"(<lane id="ID" type="TYPE"><width sOffset="0" a="W" b="0" c="0" d="0"/></lane>)";
-  auto make = [&](const char* id, const char* type, const char* w) {
-    std::string l = lane;
-    l.replace(l.find("ID"), 2, id);
-    l.replace(l.find("TYPE"), 4, type);
-    l.replace(l.find("W\""), 1, w);
-    return l;
-  };
-  const std::string text =
-      R"(<?xml version="1.0"?><OpenDRIVE><header revMajor="1" revMinor="8"/>
-<road id="1" length="100" junction="-1"><planView>
-<geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry></planView>
-<lanes><laneSection s="0"><left>)" +
-      make("2", "sidewalk", "2") + make("1", "driving", "3.5") + R"(</left>
-<center><lane id="0" type="none"/></center><right>)" +
-      make("-1", "driving", "3.5") + make("-2", "driving", "3.5") + make("-3", "sidewalk", "2") +
-      R"(</right></laneSection></lanes><objects>)" + objects + R"(</objects><signals>)" + signals +
-      R"(</signals></road></OpenDRIVE>)";
-  corsa::Diagnostics diagnostics;
-  return corsa::xodr::Map::build(corsa::xodr::parse_xodr_text(text, "markings.xodr", diagnostics),
-                                 diagnostics);
-}
-
-/// The world of `map` without plants and street lights (nothing over the road but the signals).
-std::unique_ptr<corsa::test::BuiltWorld> marked_world(const corsa::xodr::Map& map) {
-  WorldOptions options;
-  options.seed = 3;
-  options.vegetation = false;
-  options.street_lights = false;
-  return corsa::test::build_world_scene(map, options);
-}
-
-/// What a ray straight down at (x, y) hits first.
-RayHit down_at(const Scene& scene, double x, double y) {
-  const auto hit = scene.intersect({x, y, 5.0}, {0.0, 0.0, -1.0}, 10.0);
-  REQUIRE(hit);
-  return *hit;
-}
-
-bool paint_at(const Scene& scene, double x, double y) {
-  return down_at(scene, x, y).semantic == SemanticClass::kLaneMarking;
-}
-
-}  // namespace
+using corsa::test::down_at;
+using corsa::test::marked_world;
+using corsa::test::paint_at;
+using corsa::test::street_with;
 
 TEST_CASE("a stop line signal is painted across the lanes its orientation serves",
           "[sensors][world][signals][markings]") {
@@ -185,18 +137,18 @@ TEST_CASE("a Korean crosswalk-ahead signal is a hollow diamond in each lane it s
 
 TEST_CASE("Korean marking numbers Corsa does not paint warn once and are never signs",
           "[sensors][world][signals][markings][korea]") {
-  // 537 (direction arrows) twice and 521 (the word for stop) once.
+  // 521 (the word for stop) twice and 542 (unprotected left turn) once.
   const auto map = street_with(
-      R"(<signal id="a1" s="20" t="-1.75" orientation="+" dynamic="no" country="KR" type="537" subtype="-1"/>
-         <signal id="a2" s="25" t="-5.25" orientation="+" dynamic="no" country="KR" type="537" subtype="-1"/>
-         <signal id="t1" s="45" t="-1.75" orientation="+" dynamic="no" country="KR" type="521" subtype="-1"/>)");
+      R"(<signal id="t1" s="20" t="-1.75" orientation="+" dynamic="no" country="KR" type="521" subtype="-1"/>
+         <signal id="t2" s="25" t="-5.25" orientation="+" dynamic="no" country="KR" type="521" subtype="-1"/>
+         <signal id="u1" s="45" t="-1.75" orientation="+" dynamic="no" country="KR" type="542" subtype="-1"/>)");
   auto world = marked_world(map);
   CHECK(world->report.signs == 0);
   CHECK(world->report.markings == 0);
   REQUIRE(world->warnings.size() == 2);
   CHECK(world->warnings[0].line > 0);
-  CHECK_THAT(world->warnings[0].message, Catch::Contains("'537'"));
-  CHECK_THAT(world->warnings[1].message, Catch::Contains("'521'"));
+  CHECK_THAT(world->warnings[0].message, Catch::Contains("'521'"));
+  CHECK_THAT(world->warnings[1].message, Catch::Contains("'542'"));
   CHECK(down_at(world->scene, 20.0, -1.75).semantic == SemanticClass::kRoad);
 }
 

@@ -1,0 +1,229 @@
+// Symbols painted on the road: Korean direction arrows and hatched areas given as signals, and
+// the RoadRunner stencils of CARLA's maps (turn arrows, the word STOP) given as untyped objects.
+
+#include <catch2/catch.hpp>
+#include <set>
+#include <string>
+
+#include "corsa/sensors/labels.h"
+#include "corsa/sensors/world.h"
+#include "markings_fixture.h"
+#include "road_symbols.h"
+
+using namespace corsa::sensors;
+using corsa::Vec2;
+using corsa::test::down_at;
+using corsa::test::marked_world;
+using corsa::test::paint_at;
+using corsa::test::street_with;
+
+namespace {
+
+/// The labels of the static object a ray straight down at (x, y) hits.
+ObjectInfo object_at(const Scene& scene, double x, double y) {
+  const RayHit hit = down_at(scene, x, y);
+  REQUIRE(hit.instance_id >= kStaticInstanceBase);
+  const std::vector<uint32_t> instance = {hit.instance_id};
+  const std::vector<uint8_t> semantic = {static_cast<uint8_t>(hit.semantic)};
+  const auto labels = static_object_labels(scene, instance, 1, semantic);
+  REQUIRE(labels.size() == 1);
+  return labels[0].info;
+}
+
+/// True when (x, y) lies in one of the symbol's convex counter-clockwise polygons.
+bool in_symbol(const std::vector<detail::PaintPolygon>& symbol, double x, double y) {
+  for (const detail::PaintPolygon& p : symbol) {
+    bool inside = true;
+    for (size_t i = 0; i < p.size() && inside; ++i) {
+      const Vec2 a = p[i], b = p[(i + 1) % p.size()];
+      inside = cross(b - a, Vec2{x, y} - a) >= 0.0;
+    }
+    if (inside) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("the arrow shapes keep to their box and point where their names say",
+          "[sensors][world][markings]") {
+  // 5 m x 1.8 m: the shaft 0.3 m wide, heads 1.2 m long (along x) or 0.72 m (across).
+  using detail::ArrowShape;
+  const auto u_turn = detail::arrow_symbol(ArrowShape::kUTurn, 5.0, 1.8);
+  CHECK(in_symbol(u_turn, -2.0, -0.75));       // up the right leg from the back
+  CHECK(in_symbol(u_turn, 2.3, 0.0));          // over the top of the bend
+  CHECK(in_symbol(u_turn, -0.3, 0.45));        // the head on the left leg, pointing back
+  CHECK_FALSE(in_symbol(u_turn, -2.0, 0.45));  // the left leg ends at its tip
+  CHECK_FALSE(in_symbol(u_turn, 0.0, 0.0));    // nothing between the legs
+  const auto both = detail::arrow_symbol(ArrowShape::kLeftRight, 5.0, 1.8);
+  CHECK(in_symbol(both, -1.0, 0.0));        // the shaft in the middle
+  CHECK(in_symbol(both, 2.05, 0.8));        // a head to the left
+  CHECK(in_symbol(both, 2.05, -0.8));       // and one to the right
+  CHECK_FALSE(in_symbol(both, 2.45, 0.0));  // no head ahead
+  for (const auto& symbol : {u_turn, both}) {
+    for (const auto& polygon : symbol) {
+      for (const Vec2& p : polygon) {
+        CHECK(std::abs(p.x) <= 2.5 + 1e-9);
+        CHECK(std::abs(p.y) <= 0.9 + 1e-9);
+      }
+    }
+  }
+  // Block letters: an unknown character is refused, nothing added.
+  std::vector<detail::PaintPolygon> text;
+  CHECK_FALSE(detail::text_symbol("STOP!", 2.0, 2.0, text));
+  CHECK(text.empty());
+  CHECK(detail::text_symbol("STOP", 2.0, 2.0, text));
+  CHECK(text.size() > 10);
+}
+
+TEST_CASE("a Korean straight arrow signal is painted in each lane it serves, pointing its way",
+          "[sensors][world][signals][markings][korea]") {
+  // 537 for traffic towards +s: lanes -1 and -2, an arrow 5 m long centred on s 20; the shaft
+  // 0.3 m wide, the head 1.2 m long and 0.9 m wide at the front.
+  const auto map = street_with(
+      R"(<signal id="up" s="20" t="-3.5" orientation="+" dynamic="no" country="KR" type="537" subtype="-1"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.markings == 1);
+  CHECK(world->report.signs == 0);
+  CHECK(world->warnings.empty());
+  CHECK(paint_at(world->scene, 18.0, -1.75));        // the shaft, lane -1
+  CHECK(paint_at(world->scene, 18.0, -5.25));        // the shaft, lane -2
+  CHECK_FALSE(paint_at(world->scene, 18.0, -1.45));  // beside the shaft
+  CHECK(paint_at(world->scene, 21.5, -1.45));        // the head is wider, at the front (+s)
+  CHECK_FALSE(paint_at(world->scene, 17.3, -1.75));  // 5 m long, from s 17.5
+  CHECK_FALSE(paint_at(world->scene, 20.0, 1.75));   // not the oncoming lane
+  const ObjectInfo info = object_at(world->scene, 18.0, -1.75);
+  CHECK(info.kind == "arrow");
+  CHECK(info.type == "537");
+  CHECK(info.signal_id == "up");
+}
+
+TEST_CASE("a Korean left-turn arrow for the other direction turns to that driver's left",
+          "[sensors][world][signals][markings][korea]") {
+  // 538 with orientation "-": lane 1, driven towards -s, so the driver's left is -t. The arrow
+  // is 1.8 m across: the shaft 0.75 m right of the lane's centre (t 2.5), the bend 2.05 m
+  // ahead of s 50 (s 47.95) reaching 0.9 m to the left (t 0.85).
+  const auto map = street_with(
+      R"(<signal id="left" s="50" t="1.75" orientation="-" dynamic="no" country="KOR" type="538" subtype="-1"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.markings == 1);
+  CHECK(world->warnings.empty());
+  CHECK(paint_at(world->scene, 50.0, 2.5));          // the shaft
+  CHECK_FALSE(paint_at(world->scene, 50.0, 1.75));   // not the lane's centre
+  CHECK(paint_at(world->scene, 47.95, 1.15));        // the head, towards -t
+  CHECK_FALSE(paint_at(world->scene, 47.95, 2.9));   // nothing towards +t
+  CHECK_FALSE(paint_at(world->scene, 52.2, 1.15));   // the back end has no head
+  CHECK_FALSE(paint_at(world->scene, 50.0, -1.75));  // the other lanes are not its own
+}
+
+TEST_CASE("a Korean no-stopping zone with a size is a yellow cross-hatched box",
+          "[sensors][world][signals][markings][korea]") {
+  // 524, 6 m along and 3 m across centred on (70, -3.5): a 0.2 m border, stripes 0.2 m wide
+  // every 2 m in both diagonals through the centre. 531 without a size is left out, warned.
+  const auto map = street_with(
+      R"(<signal id="box" s="70" t="-3.5" orientation="none" dynamic="no" country="KR" type="524" subtype="-1" length="6" width="3"/>
+         <signal id="island" s="30" t="0" orientation="none" dynamic="no" country="KR" type="531" subtype="-1"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.markings == 1);
+  CHECK(paint_at(world->scene, 67.1, -3.5));         // the border at the back
+  CHECK(paint_at(world->scene, 70.0, -4.9));         // the border at the side
+  CHECK(paint_at(world->scene, 70.0, -3.5));         // both diagonals cross at the centre
+  CHECK_FALSE(paint_at(world->scene, 70.5, -3.5));   // between the stripes
+  CHECK_FALSE(paint_at(world->scene, 70.0, -5.15));  // 3 m across
+  CHECK_FALSE(paint_at(world->scene, 73.2, -3.5));   // 6 m along
+  const RayHit hit = down_at(world->scene, 70.0, -3.5);
+  CHECK(hit.semantic == SemanticClass::kLaneMarking);
+  const ObjectInfo info = object_at(world->scene, 70.0, -3.5);
+  CHECK(info.kind == "no_stopping_zone");
+  REQUIRE(world->warnings.size() == 1);
+  CHECK(world->warnings[0].line > 0);
+  CHECK_THAT(world->warnings[0].message, Catch::Contains("gives no length and width"));
+  CHECK_FALSE(paint_at(world->scene, 30.0, 0.0));
+}
+
+TEST_CASE("CARLA's turn-arrow and STOP stencils are paint in their lane, read the lane's way",
+          "[sensors][world][objects][markings]") {
+  // As Town04 writes them: untyped objects named after the RoadRunner stencil, the box 3.06 x
+  // 3.15 m (length and width as the exporter gives them), heading 0 in lane -1. The left arrow
+  // is 3.15 m long and 1.89 m across: its shaft at t -2.54, its head 1.1 m ahead reaching to
+  // t -0.8. STOP is 2.87 m along and 2.27 m across, letters in cells 0.099 m wide: the T's stem
+  // at t -3.2, the O hollow at t -3.8 with its left side at t -3.6.
+  const auto map = street_with(
+      "",
+      R"(<object id="1933" type="-1" name="Stencil_ArrowType4L" s="20" t="-1.75" zOffset="0" hdg="0" orientation="-" length="3.0568" width="3.1478" pitch="0" roll="0"/>
+         <object id="1993" type="-1" name="Stencil_STOP" s="60" t="-3.5" zOffset="0" hdg="0" orientation="-" length="2.2740" width="2.8653" pitch="0" roll="0"/>
+         <object id="9" type="-1" name="Stencil_BIKE" s="80" t="-1.75" zOffset="0" hdg="0" orientation="-" length="2" width="1" pitch="0" roll="0"/>
+         <object id="10" type="-1" name="Stencil_BIKE" s="85" t="-1.75" zOffset="0" hdg="0" orientation="-" length="2" width="1" pitch="0" roll="0"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.signs == 0);
+  CHECK(paint_at(world->scene, 19.0, -2.54));        // the shaft
+  CHECK_FALSE(paint_at(world->scene, 19.0, -1.4));   // left of the shaft, behind the bend
+  CHECK(paint_at(world->scene, 21.1, -1.15));        // the head, pointing left (+t)
+  CHECK_FALSE(paint_at(world->scene, 21.1, -3.0));   // nothing to the right
+  CHECK_FALSE(paint_at(world->scene, 21.7, -2.54));  // 3.15 m long
+  const ObjectInfo arrow = object_at(world->scene, 19.0, -2.54);
+  CHECK(arrow.kind == "road_mark");
+  CHECK(arrow.type == "Stencil_ArrowType4L");
+  CHECK(arrow.subtype == "arrow_left");
+  CHECK(paint_at(world->scene, 60.0, -3.5 + 0.297));  // the T's stem
+  CHECK(paint_at(world->scene, 60.0, -3.5 - 0.098));  // the O's left side
+  CHECK_FALSE(paint_at(world->scene, 60.0, -3.796));  // inside the O
+  CHECK_FALSE(paint_at(world->scene, 61.5, -3.5));    // 2.87 m along
+  const ObjectInfo stop = object_at(world->scene, 60.0, -3.5 + 0.297);
+  CHECK(stop.text == "STOP");
+  CHECK(stop.subtype == "text");
+  // An unknown stencil: not painted, one located warning for its name.
+  CHECK(down_at(world->scene, 80.0, -1.75).semantic == SemanticClass::kRoad);
+  REQUIRE(world->warnings.size() == 1);
+  CHECK(world->warnings[0].line > 0);
+  CHECK_THAT(world->warnings[0].message, Catch::Contains("Stencil_BIKE"));
+}
+
+TEST_CASE("on Town04 the turn arrows ahead of a junction show as lane_marking in the image",
+          "[sensors][world][objects][markings]") {
+  // Road 23's two lanes carry a left and a right turn arrow at s 97 (objects 1933 and 1937);
+  // a camera 1.5 m up in lane -3 at s 89 looks along the road at them.
+  const auto map = corsa::test::load_map(corsa::test::kXodrData / "Town04.xodr");
+  WorldOptions options;
+  options.seed = 3;
+  options.vegetation = false;
+  options.street_lights = false;
+  auto built = corsa::test::build_world_scene(map, options);
+  for (const auto& w : built->warnings) {
+    CHECK_THAT(w.message, !Catch::Contains("Stencil_"));
+  }
+  const size_t road = *map.find_road("23");
+  const auto arrow_pose = map.world_pose(road, 96.0, -1.75 - 0.79);  // object 1933's shaft
+  const RayHit hit = down_at(built->scene, arrow_pose.x, arrow_pose.y);
+  CHECK(hit.semantic == SemanticClass::kLaneMarking);
+  const auto pose = map.world_pose(road, 89.0, -5.25);
+  const Rigid eye = rigid_from_pose(pose.x, pose.y, pose.z + 1.5, pose.h, 0.0, 0.0);
+  built->scene.set_entities({});
+  const CameraRenderer camera(corsa::test::wide_camera());
+  RenderSettings settings;
+  settings.outputs.semantic = true;
+  CameraMotion motion;
+  motion.world_from_body = eye;
+  const CameraImages img = camera.render(built->scene, motion, settings);
+  // Paint on the road 6.5-10 m ahead (a 240 px focal length, 1.5 m up): the arrows (no lane line
+  // crosses there except the broken one between the lanes); its labels name the stencils.
+  std::set<std::string> stencils;
+  int paint = 0;
+  for (int row = img.height / 2 + 35; row < img.height / 2 + 55; ++row) {
+    for (int col = 0; col < img.width; ++col) {
+      const size_t i = static_cast<size_t>(row) * img.width + col;
+      paint += img.semantic[i] == static_cast<uint8_t>(SemanticClass::kLaneMarking) ? 1 : 0;
+    }
+  }
+  const auto labels = static_object_labels(built->scene, img.instance, img.width, img.semantic);
+  for (const auto& l : labels) {
+    if (l.info.kind == "road_mark") {
+      stencils.insert(l.info.type);
+    }
+  }
+  CHECK(paint > 150);
+  CHECK(stencils.count("Stencil_ArrowType4L") == 1);
+  CHECK(stencils.count("Stencil_ArrowType4R") == 1);
+}
