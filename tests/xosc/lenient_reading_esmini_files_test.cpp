@@ -65,3 +65,61 @@ TEST_CASE("a ManeuverGroup without Actors has no actors", "[xosc][lenient]") {
   CHECK(actors.entity_refs == std::vector<std::string>{"Ego"});
   CHECK(plain.warnings.empty());
 }
+
+TEST_CASE("an attribute written twice in a tag is read as its first value", "[xosc][lenient]") {
+  ScenarioText text;
+  text.stories = story_with_group(
+      "<ManeuverGroup maximumExecutionCount=\"2\" name=\"G\" maximumExecutionCount=\"5\">\n"
+      "<Actors selectTriggeringEntities=\"false\"><EntityRef entityRef=\"Ego\"/></Actors>\n"
+      "</ManeuverGroup>\n");
+  // A comment and a '>' inside a value are not tags: neither misleads the scan.
+  text.parameters =
+      "<!-- <X a=\"1\" a=\"2\"> -->\n"
+      "<ParameterDeclaration name=\"Gt\" parameterType=\"string\" value=\"a>b\"/>\n";
+  const std::string xml = text.str();
+  const int line = line_of(xml, "<ManeuverGroup");
+  check_both_ways(xml, "attribute maximumExecutionCount written twice in <ManeuverGroup>", line);
+  corsa::test::TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  REQUIRE(loaded.scenario);
+  CHECK(warning_with(loaded, "written twice").message.find("'2', then '5'") != std::string::npos);
+  const auto& group = loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0];
+  CHECK(group.maximum_execution_count == 2);
+  // Lines after the repaired tag keep their numbers.
+  CHECK(group.actors.source.line == line_of(xml, "<Actors"));
+  CHECK(loaded.scenario->parameters.size() == 1);
+  CHECK(loaded.warnings.size() == 1);
+  // Other attribute errors stay malformed XML at their line.
+  std::string broken = xml;
+  broken.replace(broken.find("name=\"G\""), 8, "name=G");
+  const Loaded refused = lenient_load(dir, broken);
+  REQUIRE(refused.errors.size() == 1);
+  CHECK_THAT(refused.errors[0].message, Catch::Contains("malformed XML: bad attribute"));
+  CHECK(refused.errors[0].line == line);
+}
+
+TEST_CASE("an attribute written twice in a catalog file is warned at the catalog's line",
+          "[xosc][lenient]") {
+  corsa::test::TempDir dir;
+  std::filesystem::create_directories(dir.path() / "catalogs");
+  const std::string catalog =
+      "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n"
+      "<FileHeader revMajor=\"1\" revMinor=\"3\" date=\"2024-01-01T00:00:00\" "
+      "description=\"c\" author=\"corsa\"/>\n"
+      "<Catalog name=\"Controllers\">\n"
+      "<Controller name=\"Plain\" name=\"Other\"><Properties/></Controller>\n"
+      "</Catalog>\n</OpenSCENARIO>\n";
+  corsa::test::write_text(dir.path() / "catalogs" / "c.xosc", catalog);
+  ScenarioText text;
+  text.catalogs = "<ControllerCatalog><Directory path=\"catalogs\"/></ControllerCatalog>\n";
+  text.entities.replace(text.entities.find("</ScenarioObject>"), 17,
+                        "<ObjectController><CatalogReference catalogName=\"Controllers\" "
+                        "entryName=\"Plain\"/></ObjectController>\n</ScenarioObject>");
+  const Loaded loaded = lenient_load(dir, text.str());
+  INFO((loaded.errors.empty() ? std::string() : loaded.errors[0].format()));
+  REQUIRE(loaded.scenario);
+  const auto warning = warning_with(loaded, "attribute name written twice in <Controller>");
+  CHECK(warning.line == line_of(catalog, "<Controller "));
+  CHECK_THAT(warning.file, Catch::EndsWith("c.xosc"));
+  CHECK(!lenient_load(dir, text.str(), true).errors.empty());
+}
