@@ -169,9 +169,10 @@ TEST_CASE("A route whose turn lane cannot be reached warns once at the route and
   CHECK_THAT(warnings, Catch::Contains("to road '102' (lane -1 does)"));
 }
 
-TEST_CASE("A route that only exists against a lane's direction of travel is driven so, with a "
-          "warning",
-          "[engine][route]") {
+TEST_CASE(
+    "A route that only exists against a lane's direction of travel is driven so, with a "
+    "warning",
+    "[engine][route]") {
   FixtureRun run(engine_fixture("route_against_traffic.xosc"));
   run.run();
   // Lane 1 of right-hand traffic is driven toward -s; the route takes it toward +s.

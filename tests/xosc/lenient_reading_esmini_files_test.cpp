@@ -42,8 +42,7 @@ TEST_CASE("a ManeuverGroup without Actors has no actors", "[xosc][lenient]") {
       "</LongitudinalAction></PrivateAction></Action></Event></Maneuver>\n"
       "</ManeuverGroup>\n");
   const std::string xml = text.str();
-  check_both_ways(xml, "<ManeuverGroup> 'Dummy' without <Actors>",
-                  line_of(xml, "<ManeuverGroup"));
+  check_both_ways(xml, "<ManeuverGroup> 'Dummy' without <Actors>", line_of(xml, "<ManeuverGroup"));
   corsa::test::TempDir dir;
   const Loaded loaded = lenient_load(dir, xml);
   REQUIRE(loaded.scenario);

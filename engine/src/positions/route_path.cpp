@@ -65,11 +65,11 @@ void warn_against_traffic(const SimState& state, const xosc::Route& route, size_
         "route '" + route.name + "': waypoint " + std::to_string(leg_index + 1) +
         " can be reached from waypoint " + std::to_string(leg_index) +
         " only against the direction of travel (lane " + std::to_string(step.lane.lane) +
-        " of road " + map.road(step.lane.road).id + " driven toward " +
-        (forward ? "+s" : "-s") + "); the route drives it so";
-    state.diagnostics.add_once("route-against-traffic:" + where.file_name() + ":" +
-                                   std::to_string(where.line),
-                               where.warning(text));
+        " of road " + map.road(step.lane.road).id + " driven toward " + (forward ? "+s" : "-s") +
+        "); the route drives it so";
+    state.diagnostics.add_once(
+        "route-against-traffic:" + where.file_name() + ":" + std::to_string(where.line),
+        where.warning(text));
     return;
   }
 }
