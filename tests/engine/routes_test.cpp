@@ -169,5 +169,24 @@ TEST_CASE("A route whose turn lane cannot be reached warns once at the route and
   CHECK_THAT(warnings, Catch::Contains("to road '102' (lane -1 does)"));
 }
 
+TEST_CASE(
+    "A route that only exists against a lane's direction of travel is driven so, with a "
+    "warning",
+    "[engine][route]") {
+  FixtureRun run(engine_fixture("route_against_traffic.xosc"));
+  run.run();
+  // Lane 1 of right-hand traffic is driven toward -s; the route takes it toward +s.
+  const auto& at = run.now("Wrong").road;
+  REQUIRE(at);
+  CHECK(at->lane == 1);
+  CHECK(at->s == Approx(150.1).margin(0.2));
+  const auto warnings = all_text(run.diagnostics());
+  CHECK(run.diagnostics().count(Severity::kWarning) == 1);
+  CHECK_THAT(warnings, Catch::Contains("route_against_traffic.xosc:26: warning:"));
+  CHECK_THAT(warnings, Catch::Contains("route 'Upstream': waypoint 2 can be reached from waypoint "
+                                       "1 only against the direction of travel (lane 1 of road 1 "
+                                       "driven toward +s)"));
+}
+
 }  // namespace
 }  // namespace corsa::test

@@ -181,6 +181,29 @@ TEST_CASE("An Act its StopTrigger stops takes the stopTransition, or esmini's en
   }
 }
 
+TEST_CASE("A TrafficSwarmAction ends once its swarm started, or esmini's when it is stopped",
+          "[engine][semantics][traffic]") {
+  // The swarm starts at 0.5 s and a TrafficStopAction stops it at 20 s; the run ends at 25 s.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("traffic_swarm.xosc"));
+    run.run();
+    const auto ended = run.first("StartSwarm", engine::TransitionKind::kEnd);
+    REQUIRE(ended);
+    CHECK(*ended < 0.6);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("traffic_swarm.xosc"), esmini_reading());
+    run.run();
+    const auto started = run.first("StartSwarm", engine::TransitionKind::kStart);
+    const auto ended = run.first("StartSwarm", engine::TransitionKind::kEnd);
+    REQUIRE(started);
+    REQUIRE(ended);
+    CHECK(*started < 0.6);
+    CHECK(*ended >= 20.0);
+    CHECK(*ended < 20.1);
+  }
+}
+
 TEST_CASE("A relative Orientation on a left lane turns from the road's s, or esmini's lane",
           "[engine][semantics][positions]") {
   // Lane 1 at s = 100, h = pi relative, 10 m/s for 2 s.

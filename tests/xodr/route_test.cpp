@@ -74,6 +74,15 @@ TEST_CASE("left lanes are driven against s under right-hand traffic", "[xodr][ro
   // Backwards along a one-way lane there is no way.
   CHECK_FALSE(find_route(map, LanePoint{0, -1, 400.0}, LanePoint{0, -1, 10.0}).has_value());
   CHECK_FALSE(find_route(map, LanePoint{0, 1, 10.0}, LanePoint{0, 1, 400.0}).has_value());
+  // Unless driving against the direction of travel is allowed.
+  RouteOptions wrong_way;
+  wrong_way.against_traffic = true;
+  const auto against = find_route(map, LanePoint{0, 1, 10.0}, LanePoint{0, 1, 400.0}, wrong_way);
+  REQUIRE(against);
+  CHECK(against->length == Approx(390.0).margin(1e-6));
+  REQUIRE(against->steps.size() == 1);
+  CHECK(against->steps[0].s_from == Approx(10.0));
+  CHECK(against->steps[0].s_to == Approx(400.0));
 }
 
 TEST_CASE("routes change to adjacent lanes of the same direction", "[xodr][route]") {

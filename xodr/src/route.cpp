@@ -38,7 +38,7 @@ class Router {
     if (!is_drivable(info.type)) {
       return false;
     }
-    return info.direction == TravelDirection::kBoth ||
+    return options_.against_traffic || info.direction == TravelDirection::kBoth ||
            (info.direction == TravelDirection::kForward) == forward;
   }
   /// Fraction of the lane travelled (in direction) at road s.

@@ -40,7 +40,7 @@ class CatalogResolver {
  private:
   void scan(ParseContext& ctx);
   const Element* entry_of(const Element* catalog, const std::string& entry_name);
-  Hit found(const Element* catalog, const Element* entry);
+  Hit found(ParseContext& ctx, const Element* catalog, const Element* entry);
   /// The catalog directory CatalogLocations gives for entries of kind `kind`, if any.
   const std::optional<CatalogDirectory>* directory_for(std::string_view kind) const;
 

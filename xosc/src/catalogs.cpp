@@ -103,11 +103,13 @@ const Element* CatalogResolver::entry_of(const Element* catalog, const std::stri
   return nullptr;
 }
 
-CatalogResolver::Hit CatalogResolver::found(const Element* catalog, const Element* entry) {
+CatalogResolver::Hit CatalogResolver::found(ParseContext& ctx, const Element* catalog,
+                                            const Element* entry) {
   const XmlFile* file = owners_.at(catalog);
   const std::filesystem::path path = *file->name;
   if (std::find(files_read_.begin(), files_read_.end(), path) == files_read_.end()) {
     files_read_.push_back(path);
+    warn_repeated_attributes(ctx, *file);
   }
   return Hit{entry, file};
 }
@@ -147,7 +149,7 @@ CatalogResolver::Hit CatalogResolver::find(ParseContext& ctx, const Element* ref
   const auto named = catalogs_.find(catalog_name);
   if (named != catalogs_.end()) {
     if (const Element* entry = entry_of(named->second, entry_name)) {
-      return found(named->second, entry);
+      return found(ctx, named->second, entry);
     }
     fail_missing("catalog '" + clip(catalog_name) + "' (" + *owners_.at(named->second)->name +
                  ") has no entry '" + clip(entry_name) + "'");
@@ -166,7 +168,7 @@ CatalogResolver::Hit CatalogResolver::find(ParseContext& ctx, const Element* ref
                   "catalog '" + std::string(catalog->Attribute("name")) + "' (" +
                       *owners_.at(catalog)->name + "), the " + std::string(kind) +
                       " catalog directory's one with entry '" + clip(entry_name) + "'");
-      return found(catalog, entry);
+      return found(ctx, catalog, entry);
     }
   }
   fail_missing("catalog '" + clip(catalog_name) + "' (for entry '" + clip(entry_name) +

@@ -34,7 +34,17 @@ XmlFile parse_xml(std::string_view text, const std::filesystem::path& path) {
   file.name = std::make_shared<const std::string>(path.string());
   file.directory = std::filesystem::absolute(path).parent_path();
   file.document = std::make_unique<tinyxml2::XMLDocument>();
-  const tinyxml2::XMLError error = file.document->Parse(text.data(), text.size());
+  tinyxml2::XMLError error = file.document->Parse(text.data(), text.size());
+  if (error == tinyxml2::XML_ERROR_PARSING_ATTRIBUTE) {
+    // An attribute written twice (esmini's reader takes the first): read again without the
+    // repeats, whose places are kept for the warnings. Any other attribute error stays.
+    std::string repaired(text);
+    file.repeated_attributes = blank_repeated_attributes(repaired);
+    if (!file.repeated_attributes.empty()) {
+      file.document = std::make_unique<tinyxml2::XMLDocument>();
+      error = file.document->Parse(repaired.data(), repaired.size());
+    }
+  }
   if (error != tinyxml2::XML_SUCCESS) {
     if (error == tinyxml2::XML_ERROR_MISMATCHED_ELEMENT ||
         error == tinyxml2::XML_ERROR_PARSING_ELEMENT) {
@@ -58,6 +68,16 @@ XmlFile parse_xml(std::string_view text, const std::filesystem::path& path) {
 }
 
 XmlFile load_xml(const std::filesystem::path& path) { return parse_xml(read_file(path), path); }
+
+void warn_repeated_attributes(ParseContext& ctx, const XmlFile& file) {
+  for (const RepeatedAttribute& repeat : file.repeated_attributes) {
+    ctx.lenient(Source{file.name, repeat.line},
+                "attribute " + clip(repeat.attribute) + " written twice in <" +
+                    clip(repeat.element) + ">: '" + clip(repeat.kept) + "', then '" +
+                    clip(repeat.dropped) + "'",
+                "its first value '" + clip(repeat.kept) + "', as esmini's XML reader takes it");
+  }
+}
 
 std::string element_text(const Element* element) {
   const char* text = element->GetText();

@@ -21,6 +21,7 @@
 #include "corsa/xosc/parameters.h"
 #include "corsa/xosc/scenario.h"
 #include "enum_tables.h"
+#include "xml_attributes.h"
 
 namespace corsa::xosc {
 
@@ -41,12 +42,19 @@ struct XmlFile {
   std::unique_ptr<tinyxml2::XMLDocument> document;
   std::shared_ptr<const std::string> name;
   std::filesystem::path directory;  ///< folder relative paths in the file are resolved against
+  /// Attributes written twice in a tag, read as their first value (XML 1.0 §3.1 forbids the
+  /// repeat); whoever reads the document warns about them (warn_repeated_attributes).
+  std::vector<RepeatedAttribute> repeated_attributes;
 };
 
 /// Parses XML text; throws InputError "malformed XML: ..." at the offending line.
 XmlFile parse_xml(std::string_view text, const std::filesystem::path& path);
 /// Reads and parses a file (InputError when it cannot be read).
 XmlFile load_xml(const std::filesystem::path& path);
+
+class ParseContext;
+/// The lenient-reading warning (an error under --strict) for each repeated attribute of `file`.
+void warn_repeated_attributes(ParseContext& ctx, const XmlFile& file);
 
 /// A use of an entity name, checked after the Entities are known.
 struct EntityUse {

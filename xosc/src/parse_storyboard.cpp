@@ -105,16 +105,10 @@ void set_paths(Maneuver& maneuver, const std::string& parent) {
   }
 }
 
-ManeuverGroup parse_maneuver_group(ParseContext& ctx, const Element* e, const std::string& parent) {
-  Children kids(ctx, e, "ManeuverGroup");
-  ManeuverGroup group;
-  group.name = ctx.req_str(e, "name");
-  group.path = join(parent, group.name);
-  group.maximum_execution_count = *execution_count(ctx, e, true);
-  const Element* actors = kids.one("Actors");
-  Children actor_kids(ctx, actors, "Actors");
-  group.actors.select_triggering_entities = ctx.req_bool(actors, "selectTriggeringEntities");
-  for (const Element* ref : actor_kids.all("EntityRef")) {
+void parse_actors(ParseContext& ctx, const Element* e, Actors& actors) {
+  Children kids(ctx, e, "Actors");
+  actors.select_triggering_entities = ctx.req_bool(e, "selectTriggeringEntities");
+  for (const Element* ref : kids.all("EntityRef")) {
     Children(ctx, ref, "EntityRef");
     std::string name = ctx.req_str(ref, "entityRef");
     if (name.empty() && ref->Attribute("entityRef") != nullptr &&
@@ -123,10 +117,29 @@ ManeuverGroup parse_maneuver_group(ParseContext& ctx, const Element* e, const st
                   "no actor");
       continue;
     }
-    group.actors.entity_refs.push_back(std::move(name));
-    ctx.use_entity(ref, group.actors.entity_refs.back(), "entityRef");
+    actors.entity_refs.push_back(std::move(name));
+    ctx.use_entity(ref, actors.entity_refs.back(), "entityRef");
   }
-  group.actors.source = ctx.source(actors);
+  actors.source = ctx.source(e);
+}
+
+ManeuverGroup parse_maneuver_group(ParseContext& ctx, const Element* e, const std::string& parent) {
+  Children kids(ctx, e, "ManeuverGroup");
+  ManeuverGroup group;
+  group.name = ctx.req_str(e, "name");
+  group.path = join(parent, group.name);
+  group.maximum_execution_count = *execution_count(ctx, e, true);
+  const Element* actors = kids.opt("Actors");
+  if (actors == nullptr) {
+    // ManeuverGroup: Actors is required (1..1), but it may list no entity at all; esmini's
+    // straight_500m_pedestrian leaves it out of a ManeuverGroup that holds nothing, and esmini
+    // reads a missing Actors as none. The actions still act on the entities they name.
+    ctx.lenient(e, "<ManeuverGroup> '" + clip(group.name) + "' without <Actors>",
+                "no actors, selectTriggeringEntities false");
+    group.actors.source = ctx.source(e);
+  } else {
+    parse_actors(ctx, actors, group.actors);
+  }
   std::set<std::string> names;
   kids.consume_all();
   // Inline maneuvers and catalog references, in document order.

@@ -1,5 +1,13 @@
 // TrafficSwarmAction (OpenSCENARIO 1.3 §7.5.6): starts a traffic generator
 // (traffic/traffic_generators.h) that works every step until a TrafficStopAction names it.
+//
+// When the action itself ends the standard does not say. The standard reading: it completes once
+// its swarm is started (the swarm lives on), so an Act holding only it ends at once. esmini's
+// reading (Semantics::kEsmini): the action runs as long as its swarm does, until a
+// TrafficStopAction or the end of the run, and so keeps its Act and Story running (esmini's swarm
+// example, whose Storyboard has an empty StopTrigger, runs on with its swarm).
+
+#include <algorithm>
 
 #include "actions/action_makers.h"
 #include "state/sim_state.h"
@@ -8,15 +16,27 @@
 namespace corsa::engine::detail {
 namespace {
 
-class TrafficSwarmInstance final : public InstantAction {
+class TrafficSwarmInstance final : public ActionInstance {
  public:
   explicit TrafficSwarmInstance(const xosc::TrafficSwarmAction& action) : action_(action) {}
   void start(ActionContext& context) override {
-    context.state.traffic.generators.push_back(make_swarm(action_, context.state));
+    auto swarm = make_swarm(action_, context.state);
+    swarm->serial = ++context.state.traffic.generators_made;
+    serial_ = swarm->serial;
+    context.state.traffic.generators.push_back(std::move(swarm));
+    running_ = context.state.options.semantics == Semantics::kEsmini;
   }
+  void step(ActionContext& context) override {
+    const auto& generators = context.state.traffic.generators;
+    running_ = std::any_of(generators.begin(), generators.end(),
+                           [&](const auto& generator) { return generator->serial == serial_; });
+  }
+  bool finished() const override { return !running_; }
 
  private:
   const xosc::TrafficSwarmAction& action_;
+  uint64_t serial_ = 0;
+  bool running_ = false;
 };
 
 }  // namespace

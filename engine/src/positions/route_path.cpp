@@ -46,6 +46,34 @@ uint64_t split_mix(uint64_t& state) {
   return z ^ (z >> 31);
 }
 
+// The warning for a leg that drives some lane against its direction of travel, naming the
+// first such lane.
+void warn_against_traffic(const SimState& state, const xosc::Route& route, size_t leg_index,
+                          const xodr::Map& map, const xodr::Route& leg) {
+  const xodr::LaneGraph& graph = map.lane_graph();
+  for (const xodr::RouteStep& step : leg.steps) {
+    const auto node = graph.find(step.lane);
+    if (!node || step.s_to == step.s_from) continue;
+    const xodr::TravelDirection direction = graph.info(*node).direction;
+    const bool forward = step.s_to > step.s_from;
+    if (direction == xodr::TravelDirection::kBoth ||
+        (direction == xodr::TravelDirection::kForward) == forward) {
+      continue;
+    }
+    const xosc::Source& where = route.waypoints[leg_index].source;
+    const std::string text =
+        "route '" + route.name + "': waypoint " + std::to_string(leg_index + 1) +
+        " can be reached from waypoint " + std::to_string(leg_index) +
+        " only against the direction of travel (lane " + std::to_string(step.lane.lane) +
+        " of road " + map.road(step.lane.road).id + " driven toward " + (forward ? "+s" : "-s") +
+        "); the route drives it so";
+    state.diagnostics.add_once(
+        "route-against-traffic:" + where.file_name() + ":" + std::to_string(where.line),
+        where.warning(text));
+    return;
+  }
+}
+
 }  // namespace
 
 xodr::RouteOptions route_options(const xodr::Map& map, xosc::RouteStrategy strategy,
@@ -100,9 +128,20 @@ RoutePath build_route_path(const xosc::Route& route, const SimState& state,
   for (size_t i = 1; i < points.size(); ++i) {
     // §6.6: a waypoint's routeStrategy is how to reach it from the previous one. Random draws
     // depend on the run seed and the leg, so two legs do not share their weights.
-    const xodr::RouteOptions options =
+    xodr::RouteOptions options =
         route_options(map, route.waypoints[i].route_strategy, state.options.seed * 1000003u + i);
-    const auto leg = xodr::find_route(map, points[i - 1], points[i], options);
+    auto leg = xodr::find_route(map, points[i - 1], points[i], options);
+    if (!leg) {
+      // §6.8.2 leaves the way between waypoints to the simulator and does not forbid driving a
+      // lane against its direction of travel; esmini routes along roads either way (its
+      // route_lane_change drives a left lane toward the junction). Only when no route follows
+      // the lanes' directions.
+      options.against_traffic = true;
+      leg = xodr::find_route(map, points[i - 1], points[i], options);
+      if (leg) {
+        warn_against_traffic(state, route, i, map, *leg);
+      }
+    }
     if (!leg) {
       fail(route.waypoints[i].source, "route '" + route.name + "': waypoint " +
                                           std::to_string(i + 1) + " cannot be reached from " +

@@ -41,6 +41,9 @@ class TrafficGenerator {
   virtual void step(SimState& state) = 0;
   /// The TrafficAction's trafficName (TrafficStopAction stops generators by it).
   virtual const std::optional<std::string>& name() const = 0;
+  /// Set by an action that runs as long as its generator does (TrafficState::generators_made):
+  /// unique within a run, so that the action finds out when a TrafficStopAction removed it.
+  uint64_t serial = 0;
 };
 
 struct TrafficState {
@@ -49,6 +52,8 @@ struct TrafficState {
   /// "off;off;on"), from controller phases and TrafficSignalStateActions.
   std::map<std::string, std::string, std::less<>> signals;
   std::vector<std::unique_ptr<TrafficGenerator>> generators;
+  /// Serials handed out to generators (TrafficGenerator::serial).
+  uint64_t generators_made = 0;
   /// Objects of the entities the generators spawned (Entity::object points here; a deque
   /// keeps the addresses).
   std::deque<xosc::ScenarioObject> spawned_objects;

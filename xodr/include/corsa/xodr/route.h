@@ -23,6 +23,9 @@ struct RouteOptions {
   /// Per lane node: extra cost (>= 0) of entering that lane over a lane end (empty: none), e.g.
   /// a penalty on junction lanes for the route through the fewest intersections.
   std::vector<double> lane_entry_cost;
+  /// Drivable lanes may be driven either way, against their direction of travel too (wrong-way
+  /// driving; OpenSCENARIO's routes do not forbid it), for a route that has no other way.
+  bool against_traffic = false;
 };
 
 /// A place on a lane: road index, lane id, road s.
