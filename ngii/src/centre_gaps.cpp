@@ -86,7 +86,7 @@ class StripBuilder {
   }
 
   bool eligible(const xodr::Road& road) const {
-    return !road.in_junction() && road.lane_sections.size() == 1 &&
+    return road.lane_sections.size() == 1 &&
            road.lane_sections.front().lanes.size() >= 2 &&
            road.lane_sections.front().lanes.front().id == 0;  // no left lanes yet
   }
