@@ -20,6 +20,9 @@ constexpr double kStripMinWidth = 0.025;  // m: a strip lane narrower everywhere
 constexpr double kStripTolerance = 0.01;  // m: linear width pieces stay this close to the gaps
 constexpr double kStripOpposite = -0.8;   // cos of the heading difference of opposing roads
 constexpr double kStripReach = 2.0;       // m: roads whose box is farther are not looked at
+// m: farthest a road's left edge lies from its reference line (the laneOffset of a one-lane
+// turn fitted along its right edge is a lane width), for the road-to-road prefilter
+constexpr double kStripEdgeReach = 10.0;
 
 /// A centre mark: yellow (Type 1xx) or Kind 501 (centre line).
 bool is_centre_mark(const SurfaceMark& mark) {
@@ -37,9 +40,9 @@ std::set<std::string> centre_bounded_links(const Layers& layers) {
   return out;
 }
 
+/// Where a road's leftmost lane has a centre mark on its left (road s range).
 struct StripSpan {
   double s0 = 0.0, s1 = 0.0;
-  bool bounded = false;  ///< the road's leftmost lane has a centre mark on its left here
 };
 
 class StripBuilder {
@@ -50,15 +53,26 @@ class StripBuilder {
     std::map<std::string, size_t> index;
     for (size_t r = 0; r < roads.size(); ++r) {
       index[roads[r].id] = r;
-      if (eligible(roads[r])) {
-        frames_[r] = std::make_unique<RoadFrame>(roads[r]);
-      }
     }
     const std::set<std::string> bounded = centre_bounded_links(layers);
     for (const LinkPlacement& p : placements) {
       const auto it = index.find(p.road_id);
-      if (it != index.end() && p.lane_id == -1 && p.section == 0) {
-        spans_[it->second].push_back({p.s_start, p.s_end, bounded.count(p.link_id) > 0});
+      if (it != index.end() && p.lane_id == -1 && p.section == 0 && bounded.count(p.link_id)) {
+        spans_[it->second].push_back({p.s_start, p.s_end});
+      }
+    }
+    // Only roads with a centre mark on their left somewhere are measured or measured against.
+    for (size_t r = 0; r < roads.size(); ++r) {
+      if (!spans_[r].empty() && eligible(roads[r])) {
+        frames_[r] = std::make_unique<RoadFrame>(roads[r]);
+      }
+    }
+    near_.resize(roads.size());
+    for (size_t r = 0; r < roads.size(); ++r) {
+      for (size_t o = 0; frames_[r] && o < roads.size(); ++o) {
+        if (o != r && frames_[o] && frames_[r]->box_gap(*frames_[o]) <= kStripReach + kStripEdgeReach) {
+          near_[r].push_back(o);
+        }
       }
     }
   }
@@ -95,7 +109,7 @@ class StripBuilder {
  private:
   bool bounded_at(size_t r, double s) const {
     for (const StripSpan& span : spans_[r]) {
-      if (s >= span.s0 - 1e-6 && s <= span.s1 + 1e-6 && span.bounded) {
+      if (s >= span.s0 - 1e-6 && s <= span.s1 + 1e-6) {
         return true;
       }
     }
@@ -107,8 +121,8 @@ class StripBuilder {
   /// kCentreStripMaxGap on the left.
   double gap_from(size_t r, Vec2 edge, double hdg) const {
     double best = 0.0;
-    for (size_t o = 0; o < frames_.size(); ++o) {
-      if (o == r || !frames_[o] || frames_[o]->box_distance(edge) > kStripReach) {
+    for (const size_t o : near_[r]) {
+      if (frames_[o]->box_distance(edge) > kStripReach) {
         continue;
       }
       const RoadFrame& other = *frames_[o];
@@ -129,6 +143,7 @@ class StripBuilder {
   std::vector<xodr::Road>& roads_;
   std::vector<std::unique_ptr<RoadFrame>> frames_;
   std::vector<std::vector<StripSpan>> spans_;
+  std::vector<std::vector<size_t>> near_;  ///< per road, the measured roads within reach
 };
 
 /// Linear pieces through the samples, each as long as every sample it spans stays within
