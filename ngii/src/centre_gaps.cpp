@@ -70,7 +70,8 @@ class StripBuilder {
     near_.resize(roads.size());
     for (size_t r = 0; r < roads.size(); ++r) {
       for (size_t o = 0; frames_[r] && o < roads.size(); ++o) {
-        if (o != r && frames_[o] && frames_[r]->box_gap(*frames_[o]) <= kStripReach + kStripEdgeReach) {
+        if (o != r && frames_[o] &&
+            frames_[r]->box_gap(*frames_[o]) <= kStripReach + kStripEdgeReach) {
           near_[r].push_back(o);
         }
       }
@@ -100,8 +101,7 @@ class StripBuilder {
   }
 
   bool eligible(const xodr::Road& road) const {
-    return road.lane_sections.size() == 1 &&
-           road.lane_sections.front().lanes.size() >= 2 &&
+    return road.lane_sections.size() == 1 && road.lane_sections.front().lanes.size() >= 2 &&
            road.lane_sections.front().lanes.front().id == 0;  // no left lanes yet
   }
   bool has_frame(size_t r) const { return frames_[r] != nullptr; }
@@ -190,9 +190,9 @@ size_t close_centre_gaps(std::vector<xodr::Road>& roads,
   }
   size_t added = 0;
   for (size_t r = 0; r < roads.size(); ++r) {
-    const auto widest = std::max_element(
-        strips[r].begin(), strips[r].end(),
-        [](const ProfileSample& a, const ProfileSample& b) { return a.v < b.v; });
+    const auto widest =
+        std::max_element(strips[r].begin(), strips[r].end(),
+                         [](const ProfileSample& a, const ProfileSample& b) { return a.v < b.v; });
     if (widest == strips[r].end() || widest->v < kStripMinWidth) {
       continue;
     }
@@ -201,7 +201,8 @@ size_t close_centre_gaps(std::vector<xodr::Road>& roads,
     lane.type = xodr::LaneType::kRestricted;
     lane.type_name = "restricted";
     lane.widths = linear_pieces(strips[r]);
-    lane.user_data.push_back(xodr::UserData{"ngii:centre-strip", "half the gap to the opposing road"});
+    lane.user_data.push_back(
+        xodr::UserData{"ngii:centre-strip", "half the gap to the opposing road"});
     auto& lanes = roads[r].lane_sections.front().lanes;
     lanes.insert(lanes.begin(), std::move(lane));
     ++added;

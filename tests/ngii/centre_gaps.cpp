@@ -9,10 +9,10 @@
 namespace corsa::test {
 namespace {
 
-constexpr double kPairReach = 1.6;   // m: farthest opposing centre mark read as the pair
-constexpr double kInside = 0.3;      // m sampled beyond each mark, inside its lane
-constexpr double kSampleStep = 0.02; // m between samples across the strip
-constexpr double kGapLimit = 0.05;   // m
+constexpr double kPairReach = 1.6;    // m: farthest opposing centre mark read as the pair
+constexpr double kInside = 0.3;       // m sampled beyond each mark, inside its lane
+constexpr double kSampleStep = 0.02;  // m between samples across the strip
+constexpr double kGapLimit = 0.05;    // m
 
 struct Pt {
   double x = 0.0, y = 0.0;
@@ -84,9 +84,8 @@ CentreGapFigures centre_gaps(const ngii::Layers& layers, const xodr::Map& map) {
     CentreMark m{&mark, {}, {}};
     for (const auto& p : mark.points) {
       const Pt q{p.x - ox, p.y - oy};
-      const double step = m.points.empty() ? 0.0
-                                            : std::hypot(q.x - m.points.back().x,
-                                                         q.y - m.points.back().y);
+      const double step =
+          m.points.empty() ? 0.0 : std::hypot(q.x - m.points.back().x, q.y - m.points.back().y);
       if (!m.points.empty() && step <= 1e-6) {
         continue;
       }
