@@ -8,6 +8,7 @@
 #include <string>
 
 #include "corsa/ngii/curve_fit.h"
+#include "polyline.h"
 #include "reference_line.h"
 #include "road_frame.h"
 
@@ -29,12 +30,36 @@ bool is_centre_mark(const SurfaceMark& mark) {
   return (!mark.type.empty() && mark.type[0] == '1') || mark.kind == "501";
 }
 
-/// Links bounded on their left by a centre mark (the mark's R_linkID).
+/// Whether links a and b run opposite ways beside point q.
+bool links_opposed(const Link& a, const Link& b, Vec2 q) {
+  if (a.points.size() < 2 || b.points.size() < 2) {
+    return false;
+  }
+  const Polyline la(a.points), lb(b.points);
+  const Projection pa = la.project(q), pb = lb.project(q);
+  return pa.distance < 10.0 && pb.distance < 10.0 &&
+         dot(la.direction(pa.u), lb.direction(pb.u)) < kStripOpposite;
+}
+
+/// Links bounded on their left by a centre mark: the mark's R_linkID, and its L_linkID where
+/// that link runs the other way (one mark digitised for both directions).
 std::set<std::string> centre_bounded_links(const Layers& layers) {
+  std::map<std::string, const Link*> links;
+  for (const Link& link : layers.links) {
+    links[link.id] = &link;
+  }
   std::set<std::string> out;
   for (const SurfaceMark& mark : layers.marks) {
-    if (is_centre_mark(mark) && !mark.right_link.empty() && mark.right_link != mark.left_link) {
-      out.insert(mark.right_link);
+    if (!is_centre_mark(mark) || mark.right_link.empty() || mark.right_link == mark.left_link) {
+      continue;
+    }
+    out.insert(mark.right_link);
+    const auto right = links.find(mark.right_link), left = links.find(mark.left_link);
+    if (right != links.end() && left != links.end() && !mark.points.empty()) {
+      const Point3& middle = mark.points[mark.points.size() / 2];
+      if (links_opposed(*right->second, *left->second, Vec2{middle.x, middle.y})) {
+        out.insert(mark.left_link);
+      }
     }
   }
   return out;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <string>
 #include <vector>
 
 namespace corsa::test {
@@ -96,6 +98,24 @@ CentreGapFigures centre_gaps(const ngii::Layers& layers, const xodr::Map& map) {
       marks.push_back(std::move(m));
     }
   }
+  std::map<std::string, std::vector<Pt>> links;
+  for (const auto& link : layers.links) {
+    auto& line = links[link.id];
+    for (const auto& p : link.points) {
+      line.push_back({p.x - ox, p.y - oy});
+    }
+  }
+  // Whether links a and b run opposite ways beside point v (a mark naming both sides may as
+  // well part two lanes of one direction).
+  const auto opposed = [&](const std::string& a, const std::string& b, Pt v) {
+    const auto la = links.find(a), lb = links.find(b);
+    if (la == links.end() || lb == links.end()) {
+      return false;
+    }
+    const LineFoot fa = foot_of(la->second, v), fb = foot_of(lb->second, v);
+    return fa.distance < 10.0 && fb.distance < 10.0 &&
+           fa.direction.x * fb.direction.x + fa.direction.y * fb.direction.y < -0.8;
+  };
   CentreGapFigures out;
   xodr::LocateOptions options;
   options.max_distance = 1.0;
@@ -105,7 +125,7 @@ CentreGapFigures centre_gaps(const ngii::Layers& layers, const xodr::Map& map) {
       point_at(m, s, v, d);
       // The opposing mark: left of this one (its link lies on its right), running the other way.
       double width = -1.0;
-      if (!m.mark->left_link.empty()) {
+      if (opposed(m.mark->right_link, m.mark->left_link, v)) {
         width = 0.0;  // one mark naming both directions' links
       }
       for (const CentreMark& o : marks) {

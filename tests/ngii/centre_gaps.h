@@ -3,7 +3,7 @@
 // The strip between the two directions of a road where a B2 centre mark pairs them: a centre mark
 // (yellow, or Kind 501) naming a link on its right, with another centre mark naming a link of
 // the opposite direction at most 1.6 m to its left (K-City's double yellow lines digitised as two
-// marks), or one mark naming links on both sides. Across each such pair, every metre along it,
+// marks), or one mark naming links of both directions. Across each such pair, every metre along it,
 // the line from 0.3 m inside one mark to 0.3 m inside the other is sampled every 2 cm and each
 // sample looked up in the map (Map::locate, any lane type): the longest run of samples on no
 // lane is the gap between the two roads there. Computed from the B2 layer and the map only.
