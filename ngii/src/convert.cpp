@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "assemble.h"
+#include "centre_gaps.h"
 #include "correction_log.h"
 #include "corsa/core/strings.h"
 #include "decorations.h"
@@ -111,6 +112,8 @@ Conversion convert(const Layers& layers, const ConvertOptions& options, Diagnost
   result.summary.signs = features.signals;
   result.summary.objects = features.objects;
   result.summary.structures += features.structures;
+  // After the decorations, which index a road's lanes from its centre lane.
+  result.summary.centre_strips = close_centre_gaps(result.map.roads, result.placements, layers);
   result.map.header = make_header(layers, origin, result.map.roads);
   result.summary.links_read = layers.links.size();
   for (const LinkState& link : network.links) {

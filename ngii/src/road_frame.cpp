@@ -37,6 +37,12 @@ double RoadFrame::box_distance(Vec2 point) const {
   return std::hypot(dx, dy);
 }
 
+double RoadFrame::box_gap(const RoadFrame& other) const {
+  const double dx = std::max({x0_ - other.x1_, 0.0, other.x0_ - x1_});
+  const double dy = std::max({y0_ - other.y1_, 0.0, other.y0_ - y1_});
+  return std::hypot(dx, dy);
+}
+
 RoadFrame::Position RoadFrame::project(Vec2 point) const {
   // The samples are 0.5 m apart, so chord length and road s agree to well under a millimetre.
   const Projection p = line_.project(point);

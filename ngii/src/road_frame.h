@@ -30,6 +30,8 @@ class RoadFrame {
   const xodr::Road& road() const { return road_; }
   /// Distance (m) from a point to the bounding box of the reference line (0 inside).
   double box_distance(Vec2 point) const;
+  /// Gap (m) between the bounding boxes of two reference lines (0 where they overlap).
+  double box_gap(const RoadFrame& other) const;
 
  private:
   const xodr::Road& road_;

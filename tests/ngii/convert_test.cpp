@@ -94,7 +94,9 @@ TEST_CASE("the summary counts what the map holds", "[ngii][convert]") {
       geometries += road.plan_view.size();
       signals += road.signals.size();
     }
-    CHECK(s.lanes == lanes);
+    // Lanes of the survey, and the restricted strips between double centre lines.
+    CHECK(s.lanes + s.centre_strips == lanes);
+    CHECK(s.centre_strips > 100);
     CHECK(s.connecting_roads == connecting);
     CHECK(s.geometries == geometries);
     CHECK(s.signals == signals);

@@ -103,6 +103,12 @@ class Measurer {
               ids.push_back(d.value);
             }
           }
+          const bool strip =
+              std::any_of(lane.user_data.begin(), lane.user_data.end(),
+                          [](const auto& d) { return d.code == "ngii:centre-strip"; });
+          if (ids.empty() && strip && lane.type == xodr::LaneType::kRestricted) {
+            continue;  // the converter's fill between double centre lines, named as such
+          }
           if (ids.empty()) {
             ++figures_.lanes_without_provenance;
             continue;
@@ -344,7 +350,9 @@ class Measurer {
       std::vector<xodr::LaneSpan> spans;
       const double s0 = section_start(lane.ref), s1 = section_end(lane.ref);
       map_.lane_spans_in_section(lane.ref.road, lane.ref.section, s0, spans);
-      const bool one_lane = spans.size() == 1;
+      // The driving side only: a centre strip (lane +1, below) is no lane of the survey.
+      const bool one_lane =
+          std::count_if(spans.begin(), spans.end(), [](const auto& x) { return x.id < 0; }) == 1;
       std::vector<double> own;
       for (double s = s0 + 0.5; s < s1 - 0.5; s += 1.0) {
         const auto span =
@@ -473,6 +481,7 @@ class Measurer {
 NgiiFigures measure_ngii(const ngii::Layers& layers, const xodr::Map& map) {
   NgiiFigures figures = Measurer(layers, map).run();
   figures.folded_roads = corsa::test::folded_roads(map);
+  figures.centre_gaps = corsa::test::centre_gaps(layers, map);
   return figures;
 }
 
@@ -506,7 +515,9 @@ std::string format_figures(const NgiiFigures& f) {
   out << "\n"
       << "lanes_without_provenance " << f.lanes_without_provenance << "\n"
       << "links_without_lane " << f.links_without_lane << "\n"
-      << "folded_roads " << f.folded_roads << "\n";
+      << "folded_roads " << f.folded_roads << "\n"
+      << "centre_gap_stations " << f.centre_gaps.stations << " (over 5 cm " << f.centre_gaps.over
+      << ", max " << f.centre_gaps.max << " at " << f.centre_gaps.worst << ")\n";
   return out.str();
 }
 

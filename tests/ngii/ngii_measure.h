@@ -10,12 +10,14 @@
 // - the lane width against the B2 marks bounding the lane (R_linkID / L_linkID name it);
 // - pairs of A2 links that the survey names as neighbours (L/R link ids) and that run side by
 //   side along >= 90% of both, but which the map still keeps in different roads;
-// - the roads whose mesh folds over itself (mesh_folds.h).
+// - the roads whose mesh folds over itself (mesh_folds.h);
+// - gaps between opposing roads where a B2 centre mark pairs them (centre_gaps.h).
 // Used by the tests and by the `corsa_ngii_measure` program (docs/ngii.md).
 
 #include <string>
 #include <vector>
 
+#include "centre_gaps.h"
 #include "corsa/ngii/layers.h"
 #include "corsa/xodr/map.h"
 
@@ -57,6 +59,7 @@ struct NgiiFigures {
   size_t lanes_without_provenance = 0;
   size_t links_without_lane = 0;  ///< A2 links (longer than 0.1 m) no lane names
   size_t folded_roads = 0;        ///< roads whose mesh folds over itself (mesh_folds.h)
+  CentreGapFigures centre_gaps;   ///< strips between opposing roads (centre_gaps.h)
 };
 
 /// Measures `map` against `layers` (the map's header offset places it in the layers' CRS).

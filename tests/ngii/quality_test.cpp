@@ -202,8 +202,8 @@ TEST_CASE("every lane names its A2 links and every road has its own name",
     }
     for (const auto& road : map.roads) {
       for (const auto& lane : road.lane_sections.front().lanes) {
-        if (lane.id == 0) {
-          continue;
+        if (lane.id == 0 || lane.type == corsa::xodr::LaneType::kRestricted) {
+          continue;  // the centre lane, and the strips between double centre lines (below)
         }
         std::vector<std::string> links;
         for (const auto& d : lane.user_data) {
@@ -212,5 +212,45 @@ TEST_CASE("every lane names its A2 links and every road has its own name",
         CHECK(links == placed[{road.id, lane.id}]);
       }
     }
+  }
+}
+
+TEST_CASE("opposing roads meet between double centre lines without moving a lane centre",
+          "[ngii][quality][centre]") {
+  // K-City digitises many double yellow centre lines as two B2 marks 0.5-1.0 m apart (Sangam
+  // 0.3-0.5 m), each naming only its own direction's link, so each road stopped at its own line
+  // and terrain showed between them: 6031 of 14385 K-City and 12405 of 14377 Sangam stations
+  // across paired centre marks had a gap over 5 cm (up to 1.84 / 2.2 m). Each road now carries a
+  // restricted lane (+1) half the gap wide. What is left lies at road ends and junction mouths.
+  const auto& k = figures("kcity").centre_gaps;
+  INFO(k.worst);
+  CHECK(k.stations > 14000);
+  CHECK(k.over <= 71);
+  const auto& s = figures("seoul_sangam_testbed").centre_gaps;
+  INFO(s.worst);
+  CHECK(s.stations > 14000);
+  CHECK(s.over <= 276);
+  for (const char* area : {"kcity", "seoul_sangam_testbed"}) {
+    INFO(area);
+    size_t strips = 0;
+    for (const auto& road : converted(area).conversion.map.roads) {
+      for (const auto& lane : road.lane_sections.front().lanes) {
+        if (lane.type != corsa::xodr::LaneType::kRestricted) {
+          continue;
+        }
+        ++strips;
+        // Left of the reference line, half a painted strip at most wide, named as a fill.
+        CHECK(lane.id == 1);
+        REQUIRE(lane.user_data.size() == 1);
+        CHECK(lane.user_data.front().code == "ngii:centre-strip");
+        for (const auto& w : lane.widths) {
+          CHECK(w.a >= -1e-9);
+          CHECK(w.a <= 0.8 + 1e-6);
+        }
+      }
+    }
+    CHECK(strips > 100);
+    // The lanes of the survey stay where they were (figures as before the strips).
+    CHECK(figures(area).lateral_p95 < 0.035);
   }
 }

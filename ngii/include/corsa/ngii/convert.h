@@ -86,6 +86,8 @@ struct ConversionSummary {
   size_t sidewalks = 0;    ///< sidewalk lanes added (ConvertOptions::sidewalk_width)
   size_t signs = 0;        ///< B1 safety signs (static signals)
   size_t objects = 0;      ///< objects from B3, C3, C4, C6, A4, A5
+  /// ordinary roads given a restricted lane over the strip between double centre lines
+  size_t centre_strips = 0;
   /// Lanes by where their width came from: B2 marks, L/R neighbour spacing, the lanes before
   /// and after them, the fallback width.
   size_t widths_from_marks = 0;
