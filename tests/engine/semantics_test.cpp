@@ -328,4 +328,43 @@ TEST_CASE("A step to a continuous relative speed jumps under either reading",
   }
 }
 
+TEST_CASE("A lane change goes on to its target lane from where a teleport put the car, or stops",
+          "[engine][semantics]") {
+  // At 10 m/s the car changes from lane -1 (t = -1.75) to lane -2 (t = -5.25) linearly in 2 s
+  // from t = 1.01 s. Halfway, at 2.01 s, a TeleportAction puts it on lane -3 (t = -8.75) at
+  // s = 100. The teleport assigns no lateral control (Annex A), so the lane change carries on:
+  // the second half of the line runs from t = -8.75 to lane -2, 0.035 m in each step, so
+  // t(2.51) = -7.0 and the car is on lane -2 from 3.01 s, when the action ends. No step swerves
+  // back toward the lanes it left (the lateral offset was measured from lane -1's centre).
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_teleport_lane_change.xosc"));
+    run.run();
+    CHECK(run.at(2.02, "Car").road->s == Approx(100.1).margin(1e-9));
+    CHECK(run.at(2.02, "Car").road->t == Approx(-8.715).margin(1e-9));
+    CHECK(run.at(2.51, "Car").road->t == Approx(-7.0).margin(1e-9));
+    CHECK(run.at(3.01, "Car").road->t == Approx(-5.25).margin(1e-9));
+    CHECK(run.at(4.0, "Car").road->lane == -2);
+    CHECK(run.at(4.0, "Car").road->t == Approx(-5.25).margin(1e-9));
+    for (int tick = 202; tick < 301; ++tick) {
+      const double step =
+          run.at((tick + 1) * 0.01, "Car").road->t - run.at(tick * 0.01, "Car").road->t;
+      CHECK(step == Approx(0.035).margin(1e-9));
+    }
+    const auto ended = run.first("ChangeAction", engine::TransitionKind::kEnd);
+    REQUIRE(ended);
+    CHECK(*ended == Approx(3.01).margin(0.011));
+  }
+  SECTION("esmini") {
+    // esmini's TeleportAction takes the lateral and longitudinal domains: the lane change stops
+    // and the car stays on lane -3, where the teleport put it.
+    FixtureRun run(engine_fixture("semantics_teleport_lane_change.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(2.02, "Car").road->t == Approx(-8.75).margin(1e-9));
+    CHECK(run.at(4.0, "Car").road->lane == -3);
+    CHECK(run.at(4.0, "Car").road->t == Approx(-8.75).margin(1e-9));
+    CHECK(run.first("ChangeAction", engine::TransitionKind::kStop));
+    CHECK_FALSE(run.first("ChangeAction", engine::TransitionKind::kEnd));
+  }
+}
+
 }  // namespace corsa::test

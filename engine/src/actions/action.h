@@ -37,6 +37,10 @@ class ActionInstance {
   virtual void step(ActionContext& context) { (void)context; }
   /// True once the action reached its goal (endTransition).
   virtual bool finished() const = 0;
+  /// The actor was put elsewhere (a TeleportAction) while this action holds one of its domains.
+  /// An action whose motion is measured from where the actor was recomputes it from where the
+  /// actor is now; the others carry on unchanged.
+  virtual void actor_placed(ActionContext& context) { (void)context; }
 
   /// Stopped before it finished (overridden, or its Act/Storyboard was stopped).
   void mark_stopped() { stopped_ = true; }
@@ -46,6 +50,10 @@ class ActionInstance {
  private:
   bool stopped_ = false;
 };
+
+/// Stops the running actions that hold any of `domains` (ActionDomain bits) on `entity`, except
+/// `keep`, and takes every domain they held from them (they are overridden, §7.4).
+void stop_domain_owners(Entity& entity, uint8_t domains, const ActionInstance* keep = nullptr);
 
 /// An action that completes the moment it starts (Parameter/Variable set, Environment, ...).
 class InstantAction : public ActionInstance {

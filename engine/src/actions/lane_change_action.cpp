@@ -7,6 +7,9 @@
 //
 // The default controller switches to following the target lane at once, with the lateral
 // offset that keeps the entity where it is; the action then brings the offset to the target.
+// The target lane is fixed when the action starts. A TeleportAction while it runs takes no
+// lateral control from it (Annex A): the rest of the transition runs from where the teleport put
+// the entity to the target lane there, along the rest of the shape in the time or distance left.
 
 #include <cmath>
 
@@ -34,6 +37,7 @@ class LaneChangeInstance final : public ActionInstance {
     }
     LaneFollow& lane = entity.lane;
     const int target = target_lane(context);
+    target_ = target;
     const auto target_center = followed_lane_center_t(*map, lane, target);
     const auto node = map->lane_graph().find(xodr::LaneRef{lane.road, lane.section, target});
     if (!target_center || !node) {
@@ -73,21 +77,61 @@ class LaneChangeInstance final : public ActionInstance {
     if (done_) {
       return;
     }
-    Entity& entity = context.entity();
     // Progress at the end of this step: time, or distance with this step's travel predicted.
-    const double elapsed = by_distance_
-                               ? entity.longitudinal_distance - start_distance_ +
-                                     std::abs(entity.state.speed) * context.state.time.dt()
-                               : context.state.time.time(context.state.tick + 1 - start_tick_);
-    const double p = elapsed >= total_ ? 1.0 : elapsed / total_;
-    entity.lateral_command = start_lateral_ + shape_value(action_.dynamics.shape, p) *
-                                                  (target_lateral_ - start_lateral_);
+    const double p = progress(context, 1);
+    const double left = 1.0 - from_;
+    const double part = left > 0.0 ? (shape_value(action_.dynamics.shape, p) - from_) / left : 1.0;
+    context.entity().lateral_command = start_lateral_ + part * (target_lateral_ - start_lateral_);
     done_ = p >= 1.0;
+  }
+
+  void actor_placed(ActionContext& context) override {
+    if (done_) {
+      return;
+    }
+    Entity& entity = context.entity();
+    LaneFollow& lane = entity.lane;
+    const xodr::Map* map = context.state.map;
+    std::optional<double> target_center;
+    std::optional<xodr::LaneNode> node;
+    if (map != nullptr && lane.on_road) {
+      target_center = followed_lane_center_t(*map, lane, target_);
+      node = map->lane_graph().find(xodr::LaneRef{lane.road, lane.section, target_});
+    }
+    if (!target_center || !node) {
+      context.state.diagnostics.add(
+          action_.source.warning("LaneChangeAction: the TeleportAction put entity '" +
+                                 entity.info.name + "' where its road has no lane " +
+                                 std::to_string(target_) + "; the lane change ends there"));
+      entity.lateral_command = lane.lateral;
+      done_ = true;
+      return;
+    }
+    const double t_now =
+        followed_lane_center_t(*map, lane, lane.lane).value_or(0.0) + lane.dir * lane.lateral;
+    lane.lane = target_;
+    lane.node = *node;
+    lane.lateral = (t_now - *target_center) * lane.dir;
+    entity.lateral_command = lane.lateral;
+    start_lateral_ = lane.lateral;
+    target_lateral_ = lane.dir * action_.target_lane_offset.value_or(0.0);
+    from_ = shape_value(action_.dynamics.shape, progress(context, 0));
   }
 
   bool finished() const override { return done_; }
 
  private:
+  /// Share of the transition done `ahead` steps (0 or 1) after the current state: time, or
+  /// distance with the coming step's travel predicted.
+  double progress(const ActionContext& context, int ahead) const {
+    const Entity& entity = context.entity();
+    const double elapsed = by_distance_
+                               ? entity.longitudinal_distance - start_distance_ +
+                                     ahead * std::abs(entity.state.speed) * context.state.time.dt()
+                               : context.state.time.time(context.state.tick + ahead - start_tick_);
+    return elapsed >= total_ ? 1.0 : elapsed / total_;
+  }
+
   int target_lane(const ActionContext& context) const {
     if (const auto* absolute = std::get_if<xosc::AbsoluteTargetLane>(&action_.target)) {
       return parse_lane_id(absolute->value, absolute->source);
@@ -106,7 +150,10 @@ class LaneChangeInstance final : public ActionInstance {
   }
 
   const xosc::LaneChangeAction& action_;
+  int target_ = 0;
   double start_lateral_ = 0.0;
+  /// Shape value (0..1) the transition was last started from: 0, or where a teleport put it.
+  double from_ = 0.0;
   double target_lateral_ = 0.0;
   int64_t start_tick_ = 0;
   double start_distance_ = 0.0;

@@ -2,6 +2,11 @@
 // The jump is at the start of the step, which the actor then drives on from there. esmini's
 // reading (Semantics::kEsmini): the jump takes the whole step, at whose end the actor stands at
 // the new position (esmini marks the object teleported and its default controller leaves it).
+//
+// A teleport assigns no longitudinal or lateral control strategy (Annex A, action tables), so
+// the actions running on the actor go on from where it now is (a LaneChangeAction towards its
+// target lane). esmini's reading: the teleport takes both domains, which stops those actions
+// (esmini lists this among its known deviations from the standard).
 
 #include "actions/action_makers.h"
 #include "motion/placement.h"
@@ -19,6 +24,9 @@ class TeleportInstance final : public InstantAction {
   void start(ActionContext& context) override {
     const ResolvedPosition at = resolve_position(action_.position, context.state, context.actor);
     place_entity(context.state, context.entity(), at, action_.position.source, context.init);
+    if (!context.init) {
+      carry_on_or_stop(context);
+    }
     const bool ideal =
         context.state.controls[*context.actor].effective() == ControllerKind::kDefault;
     if (!context.init && ideal && context.state.options.semantics == Semantics::kEsmini) {
@@ -27,6 +35,21 @@ class TeleportInstance final : public InstantAction {
   }
 
  private:
+  static void carry_on_or_stop(ActionContext& context) {
+    Entity& entity = context.entity();
+    if (context.state.options.semantics == Semantics::kEsmini) {
+      stop_domain_owners(entity, kDomainLongitudinal | kDomainLateral);
+      return;
+    }
+    // Copied first: an action told of the jump may end, and one may hold both domains.
+    const auto owners = entity.owners;
+    for (size_t slot = 0; slot < owners.size(); ++slot) {
+      if (owners[slot] != nullptr && (slot == 0 || owners[slot] != owners[0])) {
+        owners[slot]->actor_placed(context);
+      }
+    }
+  }
+
   const xosc::TeleportAction& action_;
 };
 

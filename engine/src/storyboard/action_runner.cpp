@@ -9,23 +9,11 @@ void start_instance(SimState& state, RunningInstance& running, bool init) {
   const uint8_t domains = running.action->domains();
   if (running.actor && domains != kDomainNone) {
     Entity& entity = state.world.entities[*running.actor];
+    stop_domain_owners(entity, domains, running.action.get());
     for (int slot = 0; slot < kDomainSlots; ++slot) {
-      if ((domains & (1u << slot)) == 0) {
-        continue;
+      if ((domains & (1u << slot)) != 0) {
+        entity.owners[slot] = running.action.get();
       }
-      ActionInstance* previous = entity.owners[slot];
-      if (previous != nullptr && previous != running.action.get()) {
-        // Overridden: the previous action stops and loses every domain it held on this entity.
-        if (!previous->done()) {
-          previous->mark_stopped();
-        }
-        for (auto& owner : entity.owners) {
-          if (owner == previous) {
-            owner = nullptr;
-          }
-        }
-      }
-      entity.owners[slot] = running.action.get();
     }
   }
   running.action->start(context);
