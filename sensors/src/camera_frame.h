@@ -76,6 +76,10 @@ struct Pass {
   std::vector<float>* motion_vectors = nullptr;  ///< pixels over 2 kMotionHalf seconds
   std::vector<PixelVisibility>* visibility_scratch = nullptr;  ///< the filter's other buffer
   std::vector<uint8_t>* edges = nullptr;                       ///< anti-aliasing marks
+  /// Set when no later stage reads a pixel's terms and visibilities (no filter, no extra edge
+  /// samples): stage 1 then composites each pixel itself into these 3 floats a pixel, and
+  /// `records` and `visibility` are neither written nor read.
+  float* direct = nullptr;
   int width = 0;
   int height = 0;
 };
@@ -154,6 +158,12 @@ void filter_visibility(const Pass& p);
 
 /// Stage 3: the radiance of every pixel's centre sample into `linear` (3 floats a pixel).
 void composite(const Pass& p, std::vector<float>& linear);
+
+/// Stage 3 for one pixel: its terms times its visibilities (each rounded to the single
+/// precision the buffers keep, so that compositing at once gives the bytes composite() gives),
+/// seen through the air over `distance` (rounded likewise) along its centre ray.
+Color composite_pixel(const Pass& p, size_t px, const ShadeTerms& terms,
+                      const PixelVisibility& vis, float distance);
 
 /// Stage 4: anti-aliases pixels whose neighbours show another surface or depth. Returns the
 /// number of pixels resampled.
