@@ -34,8 +34,12 @@ inline double cell_random(int64_t x, int64_t y, uint32_t seed) {
 class NoiseTile {
  public:
   static constexpr int kSize = 256;
-  /// The shared tile (built at first use; immutable afterwards).
-  static const NoiseTile& instance();
+  /// The shared tile (built at first use; immutable afterwards). Inline: every texture read
+  /// asks for it, and out of line the call cost more than the check.
+  static const NoiseTile& instance() {
+    static const NoiseTile tile;
+    return tile;
+  }
 
   /// The four channels (each about 0..1, mean 0.5) at texel coordinates (x, y) of the full-size
   /// level (the tile repeats every kSize texels), averaged over `texels` texels (the footprint
