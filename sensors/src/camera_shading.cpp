@@ -218,36 +218,49 @@ SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double foo
   const Lighting& l = *c.lighting;
   const MaterialId id = d.material_of(h.inst_id, h.geom_id, h.prim_id);
   const Material& m = d.materials[id];
-  TexturePoint tp;
+  Vec3 position = h.position;  // in the surface's own frame
+  Vec3 normal = h.normal;
+  double base_z = 0.0;
   if (h.entity < 0) {
-    tp.position = h.position;
-    tp.normal = h.normal;
-    tp.base_z = d.static_geometries[h.geom_id].base_z;
+    base_z = d.static_geometries[h.geom_id].base_z;
   } else {
     const Rigid& w = d.instances[h.entity].world_from_entity;
     const Mat3 back = w.rotation.transposed();
-    tp.position = back * (d.to_map(h.position) - w.translation);
-    tp.normal = back * h.normal;
+    position = back * (d.to_map(h.position) - w.translation);
+    normal = back * h.normal;
   }
+  const double cos_view = std::clamp(-dot(h.view_dir, h.normal), 0.0, 1.0);
+  // Every field given at once (as for the surface point below).
+  TexturePoint tp{.position = position,
+                  .normal = normal,
+                  .u = 0.0,
+                  .v = 0.0,
+                  .footprint = footprint_scale * h.distance * c.pixel_angle /
+                               std::sqrt(std::max(cos_view, 0.05)),
+                  .uv_per_m = 1.0,
+                  .base_z = base_z,
+                  .darkness = c.darkness};
   if (needs_uv(m)) {
     hit_uv(c, h, tp);
   }
-  const double cos_view = std::clamp(-dot(h.view_dir, h.normal), 0.0, 1.0);
-  tp.footprint = footprint_scale * h.distance * c.pixel_angle / std::sqrt(std::max(cos_view, 0.05));
-  tp.darkness = c.darkness;
   const SurfaceSample t = sample_surface(m, tp);
 
-  SurfacePoint s;
-  s.position = h.position;
-  s.normal = h.normal;
-  s.view_dir = h.view_dir;
-  s.distance = h.distance;
   const double metallic = std::clamp(t.metallic, 0.0, 1.0);
-  s.diffuse = t.albedo * (1.0 - metallic) * (1.0 - t.transmission);
   const double q = (m.ior - 1.0) / (m.ior + 1.0);
-  s.f0 = mix(Color{q * q, q * q, q * q}, t.albedo, metallic);
-  s.clearcoat = t.clearcoat;
-  s.transmission = t.transmission;
+  // Every field given at once: declared first and assigned after, the point was cleared with a
+  // string store in the caller's return slot.
+  SurfacePoint s{.position = h.position,
+                 .normal = h.normal,
+                 .view_dir = h.view_dir,
+                 .distance = h.distance,
+                 .diffuse = t.albedo * (1.0 - metallic) * (1.0 - t.transmission),
+                 .f0 = mix(Color{q * q, q * q, q * q}, t.albedo, metallic),
+                 .roughness = 0.0,
+                 .clearcoat = t.clearcoat,
+                 .transmission = t.transmission,
+                 .emission = t.emission,
+                 .mirror = false,
+                 .surface_id = 0};
   double roughness = std::clamp(t.roughness, 0.0, 1.0);
   if (l.wet_road && is_road_like(h.semantic)) {
     // Tracer-local positions: the puddles stay put on the road.
@@ -259,7 +272,6 @@ SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double foo
     snow(l, tp, h.semantic, s, roughness);
   }
   s.roughness = roughness;
-  s.emission = t.emission;
   if (lamp_lit(c, h, m)) {
     s.emission = s.emission + m.emission;
   }
