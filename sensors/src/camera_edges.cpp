@@ -144,8 +144,8 @@ Color resample(const Pass& p, int col, int row, int count) {
 
 }  // namespace
 
-Color composite_pixel(const Pass& p, size_t px, const ShadeTerms& terms,
-                      const PixelVisibility& vis, float distance) {
+Color composite_pixel(const Pass& p, size_t px, const ShadeTerms& terms, const PixelVisibility& vis,
+                      float distance) {
   const Color lit = combine(terms, vis.get());
   return through_air(*p.shading, lit, p.origin_local, centre_ray(p, px), distance);
 }

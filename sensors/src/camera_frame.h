@@ -5,7 +5,8 @@
 //      and instance; for RGB the surface there, its shading terms and the visibilities
 //      estimated with sun, sky, light, reflection and glass rays (camera_rays.cpp);
 //   2. filter the visibilities across neighbours of the same surface (camera_denoise.cpp);
-//   3. composite: terms x visibilities, through the air;
+//   3. composite: terms x visibilities, through the air (in stage 1 itself, pixel by pixel, when
+//      neither the filter nor the edge samples read the terms: Pass::direct);
 //   4. anti-alias edge pixels with extra sub-pixel samples (camera_edges.cpp).
 
 #include <embree3/rtcore.h>
@@ -162,8 +163,8 @@ void composite(const Pass& p, std::vector<float>& linear);
 /// Stage 3 for one pixel: its terms times its visibilities (each rounded to the single
 /// precision the buffers keep, so that compositing at once gives the bytes composite() gives),
 /// seen through the air over `distance` (rounded likewise) along its centre ray.
-Color composite_pixel(const Pass& p, size_t px, const ShadeTerms& terms,
-                      const PixelVisibility& vis, float distance);
+Color composite_pixel(const Pass& p, size_t px, const ShadeTerms& terms, const PixelVisibility& vis,
+                      float distance);
 
 /// Stage 4: anti-aliases pixels whose neighbours show another surface or depth. Returns the
 /// number of pixels resampled.
