@@ -181,7 +181,10 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   ray_distances(b.geometry, b.distances);
   detail::draw_precipitation(linear, b.distances, w, h, model_.fx(), light, lateral_wind,
                              exposure.shutter_s, settings.frame_seed);
-  out.rgb = detail::develop(linear, w, h, settings.rgb, exposure, settings.frame_seed);
+  // `fast` develops without sensor noise: a clean image, and no random draw per channel.
+  RgbOptions developed = settings.rgb;
+  developed.noise = developed.noise && shading.quality.sensor_noise;
+  out.rgb = detail::develop(linear, w, h, developed, exposure, settings.frame_seed);
   return out;
 }
 

@@ -125,8 +125,8 @@ bool lamp_lit(const ShadingContext& c, const SurfaceHit& h, const Material& m) {
 void wet(const Lighting& l, const TexturePoint& tp, SurfacePoint& s, double& roughness) {
   const double rain = std::max(l.rain_intensity, 1.0);
   const double level = 0.32 + 0.05 * std::min(std::log2(rain), 4.0);
-  const double field =
-      noise(2, tp.position.x * 0.7 + 31.0, tp.position.y * 0.7 - 17.0, 12.0, tp.footprint);
+  const double field = noise(2, tp.position.x * 0.7 + 31.0, tp.position.y * 0.7 - 17.0, 12.0,
+                             tp.footprint, tp.one_level);
   const double puddle = 1.0 - smoothstep(level - 0.02, level + 0.02, field);
   s.diffuse = s.diffuse * (0.55 - 0.35 * puddle);
   roughness = std::min(roughness, 0.3) * (1.0 - puddle) + 0.02 * puddle;
@@ -142,7 +142,8 @@ void snow(const Lighting& l, const TexturePoint& tp, SemanticClass cls, SurfaceP
     return;
   }
   const double amount = std::min(1.0, l.snow_intensity / 1.5 + 0.3);
-  const double patch = noise(1, tp.position.x * 1.3, tp.position.y * 1.3, 6.0, tp.footprint);
+  const double patch =
+      noise(1, tp.position.x * 1.3, tp.position.y * 1.3, 6.0, tp.footprint, tp.one_level);
   double cover = cls == SemanticClass::kRoad || cls == SemanticClass::kLaneMarking
                      ? smoothstep(0.55, 0.75, patch + 0.2 * amount) * 0.8
                      : smoothstep(0.2, 0.45, patch + 0.3 * amount);
@@ -170,6 +171,8 @@ QualitySettings quality_settings(RenderQuality q) {
       s.denoise = true;
       s.bloom = true;
       s.motion_blur = true;
+      s.trilinear = true;
+      s.sensor_noise = true;
       return s;
     case RenderQuality::kHigh:
       s.sun_rays = 4;
@@ -183,6 +186,8 @@ QualitySettings quality_settings(RenderQuality q) {
       s.denoise = true;
       s.bloom = true;
       s.motion_blur = true;
+      s.trilinear = true;
+      s.sensor_noise = true;
       return s;
   }
   return s;
@@ -239,7 +244,8 @@ SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double foo
                                std::sqrt(std::max(cos_view, 0.05)),
                   .uv_per_m = 1.0,
                   .base_z = base_z,
-                  .darkness = c.darkness};
+                  .darkness = c.darkness,
+                  .one_level = !c.quality.trilinear};
   if (needs_uv(m)) {
     hit_uv(c, h, tp);
   }

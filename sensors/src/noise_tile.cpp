@@ -1,6 +1,7 @@
 #include "noise_tile.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace corsa::sensors::detail {
@@ -210,6 +211,23 @@ float NoiseTile::sample(int channel, double x, double y, double texels) const {
     a += (bilinear(levels_[l0 + 1], x, y, channel) - a) * t;
   }
   return a;
+}
+
+float NoiseTile::sample_one_level(int channel, double x, double y, double texels) const {
+  if (!std::isfinite(x) || !std::isfinite(y)) {
+    return 0.5f;
+  }
+  // round(log2(texels)) is the binary exponent of texels * sqrt(2) (read from its bits; texels
+  // above 1 is a normal positive double).
+  size_t level = 0;
+  if (texels > 1.0) {
+    const double scaled = texels * 1.4142135623730951;
+    level = static_cast<size_t>((std::bit_cast<uint64_t>(scaled) >> 52) - 1023);
+  }
+  if (level >= levels_.size() - 1) {
+    return levels_.back().texels[channel];
+  }
+  return bilinear(levels_[level], x, y, channel);
 }
 
 double filtered_pulse(double x, double period, double duty, double w) {

@@ -47,6 +47,10 @@ class NoiseTile {
   std::array<float, 4> sample(double x, double y, double texels) const;
   /// Channel `channel` (0..3) of sample(x, y, texels), the same value read without the others.
   float sample(int channel, double x, double y, double texels) const;
+  /// Channel `channel` read bilinearly on the one level nearest the footprint (log2(texels)
+  /// rounded), not blended between two: half the texel reads and no log2, with a visible step
+  /// in the texture's sharpness where the level changes (the `fast` camera preset).
+  float sample_one_level(int channel, double x, double y, double texels) const;
 
  private:
   NoiseTile();
@@ -74,10 +78,14 @@ class NoiseTile {
 };
 
 /// Average of one noise channel of `tile_m`-metre tiles around a surface point (u, v metres)
-/// over a pixel footprint of `footprint_m` metres: the workhorse of the patterns.
-inline float noise(int channel, double u, double v, double tile_m, double footprint_m) {
+/// over a pixel footprint of `footprint_m` metres: the workhorse of the patterns. `one_level`:
+/// read the nearest mip level only (NoiseTile::sample_one_level) instead of blending two.
+inline float noise(int channel, double u, double v, double tile_m, double footprint_m,
+                   bool one_level) {
   const double scale = NoiseTile::kSize / tile_m;
-  return NoiseTile::instance().sample(channel, u * scale, v * scale, footprint_m * scale);
+  const NoiseTile& tile = NoiseTile::instance();
+  return one_level ? tile.sample_one_level(channel, u * scale, v * scale, footprint_m * scale)
+                   : tile.sample(channel, u * scale, v * scale, footprint_m * scale);
 }
 
 /// Share of [x - w/2, x + w/2] covered by the pulses [k p, k p + d) (k integer): the box
