@@ -171,6 +171,7 @@ QualitySettings quality_settings(RenderQuality q) {
       s.denoise = true;
       s.bloom = true;
       s.motion_blur = true;
+      s.glossy_sky = true;
       s.trilinear = true;
       s.sensor_noise = true;
       return s;
@@ -186,6 +187,7 @@ QualitySettings quality_settings(RenderQuality q) {
       s.denoise = true;
       s.bloom = true;
       s.motion_blur = true;
+      s.glossy_sky = true;
       s.trilinear = true;
       s.sensor_noise = true;
       return s;
@@ -318,7 +320,8 @@ ShadeTerms shade_terms(const ShadingContext& c, const SurfacePoint& s, const Col
   }
 
   // Sky light, and the sky mirrored by rough surfaces (occluded like the sky light).
-  sky_term = s.diffuse * l.sky_light(n) * under;
+  const Color sky_n = l.sky_light(n);
+  sky_term = s.diffuse * sky_n * under;
   const bool traced_mirror = s.mirror && mirrored != nullptr;
   // Rougher lobes see a blurred sky: between the mirrored sky and the sky light (at the ends
   // of the range only one of them, which is all that is looked up: mix() gives it exactly).
@@ -330,9 +333,11 @@ ShadeTerms shade_terms(const ShadingContext& c, const SurfacePoint& s, const Col
   if (traced_mirror) {
     base = base + env * spec_albedo * under;
   } else {
-    const Color sky_env = blur <= 0.0   ? sky_r
-                          : blur >= 1.0 ? l.sky_light(r)
-                                        : mix(sky_r, l.sky_light(r), blur);
+    // Without the glossy sky (`fast`) the blurred sky is the sky light on the normal, already
+    // at hand: one spherical-harmonic evaluation a pixel instead of two.
+    const bool glossy = blur > 0.0 && c.quality.glossy_sky;
+    const Color blurred = glossy ? l.sky_light(r) : sky_n;
+    const Color sky_env = blur <= 0.0 ? sky_r : blur >= 1.0 ? blurred : mix(sky_r, blurred, blur);
     sky_term = sky_term + sky_env * spec_albedo * under;
   }
   if (s.clearcoat > 0.0) {
