@@ -144,6 +144,12 @@ Color resample(const Pass& p, int col, int row, int count) {
 
 }  // namespace
 
+Color composite_pixel(const Pass& p, size_t px, const ShadeTerms& terms, const PixelVisibility& vis,
+                      float distance) {
+  const Color lit = combine(terms, vis.get());
+  return through_air(*p.shading, lit, p.origin_local, centre_ray(p, px), distance);
+}
+
 void composite(const Pass& p, std::vector<float>& linear) {
   const int w = p.width;
   tbb::parallel_for(tbb::blocked_range<int>(0, p.height), [&](const tbb::blocked_range<int>& r) {
@@ -154,8 +160,7 @@ void composite(const Pass& p, std::vector<float>& linear) {
         const PixelGeometry& g = (*p.geometry)[px];
         Color c = rec.terms.base;
         if (g.surface_id != 0) {
-          const Color lit = combine(rec.terms, (*p.visibility)[px].get());
-          c = through_air(*p.shading, lit, p.origin_local, centre_ray(p, px), g.distance);
+          c = composite_pixel(p, px, rec.terms, (*p.visibility)[px], g.distance);
         }
         float* out = &linear[3 * px];
         out[0] = static_cast<float>(c.r);

@@ -5,7 +5,8 @@
 //      and instance; for RGB the surface there, its shading terms and the visibilities
 //      estimated with sun, sky, light, reflection and glass rays (camera_rays.cpp);
 //   2. filter the visibilities across neighbours of the same surface (camera_denoise.cpp);
-//   3. composite: terms x visibilities, through the air;
+//   3. composite: terms x visibilities, through the air (in stage 1 itself, pixel by pixel, when
+//      neither the filter nor the edge samples read the terms: Pass::direct);
 //   4. anti-alias edge pixels with extra sub-pixel samples (camera_edges.cpp).
 
 #include <embree3/rtcore.h>
@@ -76,6 +77,10 @@ struct Pass {
   std::vector<float>* motion_vectors = nullptr;  ///< pixels over 2 kMotionHalf seconds
   std::vector<PixelVisibility>* visibility_scratch = nullptr;  ///< the filter's other buffer
   std::vector<uint8_t>* edges = nullptr;                       ///< anti-aliasing marks
+  /// Set when no later stage reads a pixel's terms and visibilities (no filter, no extra edge
+  /// samples): stage 1 then composites each pixel itself into these 3 floats a pixel, and
+  /// `records` and `visibility` are neither written nor read.
+  float* direct = nullptr;
   int width = 0;
   int height = 0;
 };
@@ -154,6 +159,12 @@ void filter_visibility(const Pass& p);
 
 /// Stage 3: the radiance of every pixel's centre sample into `linear` (3 floats a pixel).
 void composite(const Pass& p, std::vector<float>& linear);
+
+/// Stage 3 for one pixel: its terms times its visibilities (each rounded to the single
+/// precision the buffers keep, so that compositing at once gives the bytes composite() gives),
+/// seen through the air over `distance` (rounded likewise) along its centre ray.
+Color composite_pixel(const Pass& p, size_t px, const ShadeTerms& terms, const PixelVisibility& vis,
+                      float distance);
 
 /// Stage 4: anti-aliases pixels whose neighbours show another surface or depth. Returns the
 /// number of pixels resampled.

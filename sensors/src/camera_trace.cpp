@@ -81,15 +81,28 @@ SceneData::Label store_labels(const Pass& p, const RTCRayHit16& rh, int k, size_
   return label;
 }
 
+/// Radiance into 3 floats of pixel `px`, as composite() stores it.
+void store_radiance(float* linear, size_t px, Color c) {
+  float* out = linear + 3 * px;
+  out[0] = static_cast<float>(c.r);
+  out[1] = static_cast<float>(c.g);
+  out[2] = static_cast<float>(c.b);
+}
+
 /// The sky seen by pixel `px` along `dir`: its whole record (every field: the buffers are kept
-/// from frame to frame) and unit visibilities.
+/// from frame to frame) and unit visibilities, or its radiance when the pass composites at once.
 void store_sky(const Pass& p, size_t px, Vec3 dir) {
   PixelGeometry& g = (*p.geometry)[px];
   g = PixelGeometry{};
   g.distance = kInfinity;
+  const Color sky = sky_seen(*p.shading, p.origin_local, dir);
+  if (p.direct != nullptr) {
+    store_radiance(p.direct, px, sky);
+    return;
+  }
   PixelRecord& rec = (*p.records)[px];
   rec = PixelRecord{};
-  rec.terms.base = sky_seen(*p.shading, p.origin_local, dir);
+  rec.terms.base = sky;
   (*p.visibility)[px] = PixelVisibility{};
 }
 
@@ -106,20 +119,26 @@ void store_lit(const Pass& p, const TileState& t, int k) {
   g.normal[2] = static_cast<float>(sp.normal.z);
   g.distance = static_cast<float>(sp.distance);
   g.surface_id = sp.surface_id;
-  PixelRecord& rec = (*p.records)[t.pixel[k]];
-  rec.has_mirrored = t.has_mirrored[k];
-  rec.has_behind = t.has_behind[k];
-  rec.mirrored = Color3f(t.mirrored[k]);
-  rec.behind = Color3f(t.behind[k]);
-  rec.terms = shade_terms(*p.shading, sp, t.has_mirrored[k] ? &t.mirrored[k] : nullptr,
-                          t.has_behind[k] ? &t.behind[k] : nullptr);
-  PixelVisibility& v = (*p.visibility)[t.pixel[k]];
   const Visibility& e = t.vis[k];
+  PixelVisibility v;
   v.sun = static_cast<float>(e.sun);
   v.sky[0] = static_cast<float>(e.sky.r);
   v.sky[1] = static_cast<float>(e.sky.g);
   v.sky[2] = static_cast<float>(e.sky.b);
   v.lights = static_cast<float>(e.lights);
+  const ShadeTerms terms = shade_terms(*p.shading, sp, t.has_mirrored[k] ? &t.mirrored[k] : nullptr,
+                                       t.has_behind[k] ? &t.behind[k] : nullptr);
+  if (p.direct != nullptr) {
+    store_radiance(p.direct, t.pixel[k], composite_pixel(p, t.pixel[k], terms, v, g.distance));
+    return;
+  }
+  PixelRecord& rec = (*p.records)[t.pixel[k]];
+  rec.has_mirrored = t.has_mirrored[k];
+  rec.has_behind = t.has_behind[k];
+  rec.mirrored = Color3f(t.mirrored[k]);
+  rec.behind = Color3f(t.behind[k]);
+  rec.terms = terms;
+  (*p.visibility)[t.pixel[k]] = v;
 }
 
 }  // namespace

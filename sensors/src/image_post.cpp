@@ -275,9 +275,10 @@ std::vector<uint8_t> develop(const std::vector<float>& linear, int width, int he
           if (o.noise) {
             // Irwin-Hall: the sum of four 16-bit uniforms, rescaled, is close to a unit normal
             // and costs one 64-bit draw (image noise need not be exactly Gaussian).
+            // (Summed as integers: below 2^18, every partial sum is exact in a double too.)
             const uint64_t bits = rng.next_u64();
-            const double s = static_cast<double>(bits & 0xFFFF) + ((bits >> 16) & 0xFFFF) +
-                             ((bits >> 32) & 0xFFFF) + (bits >> 48);
+            const double s = static_cast<double>((bits & 0xFFFF) + ((bits >> 16) & 0xFFFF) +
+                                                 ((bits >> 32) & 0xFFFF) + (bits >> 48));
             const double z = (s / 65536.0 - 2.0) * std::sqrt(3.0);
             v += z * std::sqrt(std::max(0.0, v) * shot + read * read);
           }

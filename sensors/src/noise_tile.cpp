@@ -1,6 +1,7 @@
 #include "noise_tile.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace corsa::sensors::detail {
@@ -106,11 +107,6 @@ NoiseTile::NoiseTile() {
   }
 }
 
-const NoiseTile& NoiseTile::instance() {
-  static const NoiseTile tile;
-  return tile;
-}
-
 namespace {
 
 /// floor(v) wrapped into [0, n) (n a power of two) and v - floor(v). Whole numbers below 2^52
@@ -161,7 +157,20 @@ std::array<float, 4> NoiseTile::bilinear(const Level& level, double x, double y)
 }
 
 float NoiseTile::bilinear(const Level& level, double x, double y, int k) const {
-  return footprint(level, x, y).lerp(k);
+  // footprint(level, x, y).lerp(k), reading the one plane without the four pointers of all.
+  const int n = level.size;
+  int x0 = 0, y0 = 0;
+  float ax = 0.0f, ay = 0.0f;
+  wrap_split(x * n / kSize - 0.5, n, x0, ax);
+  wrap_split(y * n / kSize - 0.5, n, y0, ay);
+  const int x1 = (x0 + 1) & (n - 1);
+  const int y1 = (y0 + 1) & (n - 1);
+  const float* plane = level.texels.data() + static_cast<size_t>(k) * n * n;
+  const float* row0 = plane + static_cast<size_t>(y0) * n;
+  const float* row1 = plane + static_cast<size_t>(y1) * n;
+  const float top = row0[x0] + (row0[x1] - row0[x0]) * ax;
+  const float bottom = row1[x0] + (row1[x1] - row1[x0]) * ax;
+  return top + (bottom - top) * ay;
 }
 
 std::array<float, 4> NoiseTile::sample(double x, double y, double texels) const {
@@ -202,6 +211,23 @@ float NoiseTile::sample(int channel, double x, double y, double texels) const {
     a += (bilinear(levels_[l0 + 1], x, y, channel) - a) * t;
   }
   return a;
+}
+
+float NoiseTile::sample_one_level(int channel, double x, double y, double texels) const {
+  if (!std::isfinite(x) || !std::isfinite(y)) {
+    return 0.5f;
+  }
+  // round(log2(texels)) is the binary exponent of texels * sqrt(2) (read from its bits; texels
+  // above 1 is a normal positive double).
+  size_t level = 0;
+  if (texels > 1.0) {
+    const double scaled = texels * 1.4142135623730951;
+    level = static_cast<size_t>((std::bit_cast<uint64_t>(scaled) >> 52) - 1023);
+  }
+  if (level >= levels_.size() - 1) {
+    return levels_.back().texels[channel];
+  }
+  return bilinear(levels_[level], x, y, channel);
 }
 
 double filtered_pulse(double x, double period, double duty, double w) {

@@ -34,8 +34,12 @@ inline double cell_random(int64_t x, int64_t y, uint32_t seed) {
 class NoiseTile {
  public:
   static constexpr int kSize = 256;
-  /// The shared tile (built at first use; immutable afterwards).
-  static const NoiseTile& instance();
+  /// The shared tile (built at first use; immutable afterwards). Inline: every texture read
+  /// asks for it, and out of line the call cost more than the check.
+  static const NoiseTile& instance() {
+    static const NoiseTile tile;
+    return tile;
+  }
 
   /// The four channels (each about 0..1, mean 0.5) at texel coordinates (x, y) of the full-size
   /// level (the tile repeats every kSize texels), averaged over `texels` texels (the footprint
@@ -43,6 +47,10 @@ class NoiseTile {
   std::array<float, 4> sample(double x, double y, double texels) const;
   /// Channel `channel` (0..3) of sample(x, y, texels), the same value read without the others.
   float sample(int channel, double x, double y, double texels) const;
+  /// Channel `channel` read bilinearly on the one level nearest the footprint (log2(texels)
+  /// rounded), not blended between two: half the texel reads and no log2, with a visible step
+  /// in the texture's sharpness where the level changes (the `fast` camera preset).
+  float sample_one_level(int channel, double x, double y, double texels) const;
 
  private:
   NoiseTile();
@@ -70,10 +78,14 @@ class NoiseTile {
 };
 
 /// Average of one noise channel of `tile_m`-metre tiles around a surface point (u, v metres)
-/// over a pixel footprint of `footprint_m` metres: the workhorse of the patterns.
-inline float noise(int channel, double u, double v, double tile_m, double footprint_m) {
+/// over a pixel footprint of `footprint_m` metres: the workhorse of the patterns. `one_level`:
+/// read the nearest mip level only (NoiseTile::sample_one_level) instead of blending two.
+inline float noise(int channel, double u, double v, double tile_m, double footprint_m,
+                   bool one_level) {
   const double scale = NoiseTile::kSize / tile_m;
-  return NoiseTile::instance().sample(channel, u * scale, v * scale, footprint_m * scale);
+  const NoiseTile& tile = NoiseTile::instance();
+  return one_level ? tile.sample_one_level(channel, u * scale, v * scale, footprint_m * scale)
+                   : tile.sample(channel, u * scale, v * scale, footprint_m * scale);
 }
 
 /// Share of [x - w/2, x + w/2] covered by the pulses [k p, k p + d) (k integer): the box

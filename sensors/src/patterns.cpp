@@ -20,6 +20,12 @@ double detail_weight(double footprint, double size) {
   return 1.0 - smoothstep(0.25 * size, 0.75 * size, footprint);
 }
 
+/// The noise channel at (u, v) read with the point's filtering (surface.h TexturePoint).
+double pattern_noise(const TexturePoint& p, int channel, double u, double v, double tile_m,
+                     double footprint_m) {
+  return noise(channel, u, v, tile_m, footprint_m, p.one_level);
+}
+
 double lerp(double a, double b, double t) { return a + (b - a) * t; }
 
 /// Union of two coverages.
@@ -58,9 +64,9 @@ SurfaceSample asphalt(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
   const Plane q = plane_of(p, m.seed);
   const double fp = p.footprint;
-  const double grain = noise(0, q.a, q.b, 1.5, fp);  // aggregate, ~6 mm texels
-  const double mid = noise(1, q.a, q.b, 14.0, fp);   // patches of a few metres
-  const double wear = noise(2, q.a, q.b, 90.0, fp);  // older, lighter stretches
+  const double grain = pattern_noise(p, 0, q.a, q.b, 1.5, fp);  // aggregate, ~6 mm texels
+  const double mid = pattern_noise(p, 1, q.a, q.b, 14.0, fp);   // patches of a few metres
+  const double wear = pattern_noise(p, 2, q.a, q.b, 90.0, fp);  // older, lighter stretches
   double tone = 1.0 + 0.7 * (grain - 0.5) + 0.45 * (mid - 0.5);
   tone *= 1.0 + 0.35 * m.params[0] * smoothstep(0.45, 0.75, wear);
   // Light stones of the aggregate: one in ten 1 cm cells.
@@ -76,7 +82,7 @@ SurfaceSample asphalt(const Material& m, const TexturePoint& p) {
   const double resolved = 1.0 - smoothstep(0.004, 0.02, fp);
   const double worn = smoothstep(0.6, 0.75, wear);
   if (resolved > 0.0 && worn > 0.0) {
-    const double field = noise(3, q.a, q.b, 9.0, fp);
+    const double field = pattern_noise(p, 3, q.a, q.b, 9.0, fp);
     const double crack = (1.0 - smoothstep(0.0, 0.005, std::fabs(field - 0.5))) * resolved * worn;
     tone *= 1.0 - 0.35 * crack;
   }
@@ -89,8 +95,8 @@ SurfaceSample paint(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
   const Plane q = plane_of(p, m.seed);
   const double fp = p.footprint;
-  const double worn = noise(1, q.a, q.b, 4.0, fp);
-  const double grain = noise(0, q.a, q.b, 1.0, fp);
+  const double worn = pattern_noise(p, 1, q.a, q.b, 4.0, fp);
+  const double grain = pattern_noise(p, 0, q.a, q.b, 1.0, fp);
   const double asphalt = smoothstep(0.32, 0.18, worn * 0.8 + grain * 0.2) * m.params[0];
   s.albedo = mix(m.base_color * (0.9 + 0.2 * grain), m.secondary, asphalt);
   return s;
@@ -101,8 +107,8 @@ SurfaceSample concrete(const Material& m, const TexturePoint& p) {
   const Plane q = plane_of(p, m.seed);
   const double fp = p.footprint;
   const double size = std::max(0.1, m.pattern_scale);
-  const double fine = noise(0, q.a, q.b, 2.0, fp);
-  const double stain = noise(2, q.a, q.b, 20.0, fp);
+  const double fine = pattern_noise(p, 0, q.a, q.b, 2.0, fp);
+  const double stain = pattern_noise(p, 2, q.a, q.b, 20.0, fp);
   double tone = (1.0 + 0.25 * (fine - 0.5)) * (1.0 + 0.3 * (stain - 0.5));
   const double slab = cell_random(static_cast<int64_t>(std::floor(q.a / size)),
                                   static_cast<int64_t>(std::floor(q.b / size)), m.seed);
@@ -128,7 +134,8 @@ SurfaceSample paving(const Material& m, const TexturePoint& p) {
   // A fifth of the bricks in the secondary tone; the average mixes both.
   const Color brick = r < 0.2 ? mix(m.base_color, m.secondary, w * 0.6 + 0.2 * (1.0 - w))
                               : mix(m.base_color, m.secondary, 0.2 * (1.0 - w));
-  const double tone = 1.0 + 0.2 * (r - 0.5) * w + 0.2 * (noise(0, q.a, q.b, 2.0, fp) - 0.5);
+  const double tone =
+      1.0 + 0.2 * (r - 0.5) * w + 0.2 * (pattern_noise(p, 0, q.a, q.b, 2.0, fp) - 0.5);
   const double joint = 0.006;
   const double lines = either(filtered_pulse(shifted, length, joint / length, fp),
                               filtered_pulse(q.b, width, joint / width, fp));
@@ -139,8 +146,8 @@ SurfaceSample paving(const Material& m, const TexturePoint& p) {
 SurfaceSample roof(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
   const Plane q = plane_of(p, m.seed);
-  const double gravel = noise(0, q.a, q.b, 3.0, p.footprint);
-  const double tar = noise(1, q.a, q.b, 25.0, p.footprint);
+  const double gravel = pattern_noise(p, 0, q.a, q.b, 3.0, p.footprint);
+  const double tar = pattern_noise(p, 1, q.a, q.b, 25.0, p.footprint);
   s.albedo = Color{0.13, 0.13, 0.13} * (0.8 + 0.5 * gravel) * (0.7 + 0.6 * tar);
   s.roughness = 0.95;
   return s;
@@ -159,11 +166,12 @@ SurfaceSample facade(const Material& m, const TexturePoint& p) {
   const double share_y = std::clamp(m.params[2], 0.2, 0.8);
   const double ground = std::max(0.0, m.params[3]);
   const double z = p.position.z - p.base_z;
-  const double wall_tone =
-      1.0 + 0.16 * (noise(0, q.a, z, 6.0, fp) - 0.5) + 0.12 * (noise(2, q.a, z, 40.0, fp) - 0.5);
+  const double wall_tone = 1.0 + 0.16 * (pattern_noise(p, 0, q.a, z, 6.0, fp) - 0.5) +
+                           0.12 * (pattern_noise(p, 2, q.a, z, 40.0, fp) - 0.5);
   Color wall = m.base_color * wall_tone;
   // Rain streaks under windows and at the top: darker vertical stains.
-  wall = wall * (1.0 - 0.12 * smoothstep(0.55, 0.8, noise(3, q.a * 6.0, z * 0.25, 30.0, fp)));
+  wall = wall *
+         (1.0 - 0.12 * smoothstep(0.55, 0.8, pattern_noise(p, 3, q.a * 6.0, z * 0.25, 30.0, fp)));
   double glass = 0.0;
   double frame = 0.0;
   double lit = 0.0;
@@ -213,10 +221,11 @@ SurfaceSample foliage(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
   const double fp = p.footprint;
   const Vec3 x = p.position;
-  const double leaves = noise(0, x.x + x.z * 0.7, x.y - x.z * 0.4, 0.8, fp);
-  const double clumps = noise(1, x.x - x.z * 0.5, x.y + x.z * 0.8, 5.0, fp);
+  const double leaves = pattern_noise(p, 0, x.x + x.z * 0.7, x.y - x.z * 0.4, 0.8, fp);
+  const double clumps = pattern_noise(p, 1, x.x - x.z * 0.5, x.y + x.z * 0.8, 5.0, fp);
   const double t = smoothstep(0.3, 0.7, 0.55 * leaves + 0.45 * clumps);
-  s.albedo = mix(m.secondary, m.base_color, t) * (0.75 + 0.5 * noise(2, x.x, x.y + x.z, 2.0, fp));
+  s.albedo = mix(m.secondary, m.base_color, t) *
+             (0.75 + 0.5 * pattern_noise(p, 2, x.x, x.y + x.z, 2.0, fp));
   return s;
 }
 
@@ -224,9 +233,10 @@ SurfaceSample grass(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
   const Plane q = plane_of(p, m.seed);
   const double fp = p.footprint;
-  const double blades = noise(0, q.a, q.b, 0.6, fp);
-  const double patches = noise(1, q.a, q.b, 10.0, fp);
-  const double dry = smoothstep(0.5, 0.75, noise(2, q.a, q.b, 70.0, fp) * 0.6 + patches * 0.4);
+  const double blades = pattern_noise(p, 0, q.a, q.b, 0.6, fp);
+  const double patches = pattern_noise(p, 1, q.a, q.b, 10.0, fp);
+  const double dry =
+      smoothstep(0.5, 0.75, pattern_noise(p, 2, q.a, q.b, 70.0, fp) * 0.6 + patches * 0.4);
   s.albedo = mix(m.base_color, m.secondary, 0.7 * dry) * (0.7 + 0.6 * blades);
   return s;
 }
@@ -235,8 +245,8 @@ SurfaceSample dirt(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
   const Plane q = plane_of(p, m.seed);
   const double fp = p.footprint;
-  const double fine = noise(0, q.a, q.b, 1.2, fp);
-  const double mid = noise(1, q.a, q.b, 8.0, fp);
+  const double fine = pattern_noise(p, 0, q.a, q.b, 1.2, fp);
+  const double mid = pattern_noise(p, 1, q.a, q.b, 8.0, fp);
   double tone = (0.75 + 0.5 * fine) * (0.85 + 0.3 * mid);
   const double w = detail_weight(fp, 0.03);
   if (w > 0.0) {
@@ -251,8 +261,9 @@ SurfaceSample dirt(const Material& m, const TexturePoint& p) {
 SurfaceSample terrain(const Material& m, const TexturePoint& p) {
   const Plane q = plane_of(p, m.seed);
   const double fp = p.footprint;
-  const double bare = smoothstep(
-      0.6, 0.72, noise(3, q.a, q.b, 160.0, fp) * 0.7 + noise(1, q.a, q.b, 12.0, fp) * 0.3);
+  const double bare = smoothstep(0.6, 0.72,
+                                 pattern_noise(p, 3, q.a, q.b, 160.0, fp) * 0.7 +
+                                     pattern_noise(p, 1, q.a, q.b, 12.0, fp) * 0.3);
   Material g = m;
   g.secondary = Color{0.16, 0.14, 0.05};  // dry grass
   SurfaceSample s = grass(g, p);
@@ -268,14 +279,14 @@ SurfaceSample terrain(const Material& m, const TexturePoint& p) {
 SurfaceSample bark(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
   const Plane q = plane_of(p, m.seed);
-  const double furrows = noise(0, q.a * 6.0, q.b * 0.6, 1.0, p.footprint * 6.0);
+  const double furrows = pattern_noise(p, 0, q.a * 6.0, q.b * 0.6, 1.0, p.footprint * 6.0);
   s.albedo = m.base_color * (0.55 + 0.9 * furrows);
   return s;
 }
 
 SurfaceSample rubber(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
-  const double n = noise(0, p.position.x + p.position.z, p.position.y, 0.5, p.footprint);
+  const double n = pattern_noise(p, 0, p.position.x + p.position.z, p.position.y, 0.5, p.footprint);
   s.albedo = m.base_color * (0.85 + 0.3 * n);
   return s;
 }

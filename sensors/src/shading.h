@@ -31,6 +31,10 @@ struct QualitySettings {
   bool denoise = false;        ///< filter the visibilities across similar neighbours
   bool bloom = false;          ///< glare of very bright pixels
   bool motion_blur = false;    ///< smear each pixel along its image motion during the exposure
+  bool glossy_sky = false;     ///< rough reflections see the sky light along the mirror direction
+                               ///< (else the sky light on the normal)
+  bool trilinear = false;      ///< texture noise blended between two mip levels (else the nearest)
+  bool sensor_noise = false;   ///< the sensor's shot and read noise (when the camera asks for it)
 };
 QualitySettings quality_settings(RenderQuality quality);
 

@@ -19,6 +19,7 @@ struct TexturePoint {
   double uv_per_m = 1.0;   ///< texture-coordinate units per metre on this triangle
   double base_z = 0.0;     ///< height of the mesh's lowest point (facades count floors from it)
   double darkness = 0.0;   ///< 0 day .. 1 night: how many windows are lit
+  bool one_level = false;  ///< noise read on the nearest mip level only (the `fast` preset)
 };
 
 /// A material's look at a point.

@@ -42,7 +42,7 @@ void blob(MeshBuilder& b, Vec3 c, Vec3 r, uint32_t seed) {
   for (size_t i = first; i < mesh.vertices.size(); ++i) {
     const Vec3 d = mesh.vertices[i] - c;
     const double bump =
-        noise(static_cast<int>(seed % 4), d.x * 3.0 + d.z * 2.0, d.y * 3.0 - d.z, 4.0, 0.0);
+        noise(static_cast<int>(seed % 4), d.x * 3.0 + d.z * 2.0, d.y * 3.0 - d.z, 4.0, 0.0, false);
     mesh.vertices[i] = c + d * (0.8 + 0.45 * bump);
   }
 }

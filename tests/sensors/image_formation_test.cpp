@@ -212,3 +212,51 @@ TEST_CASE("the fast preset leaves out motion blur and default keeps it",
   CHECK(fast_moving.semantic == default_moving.semantic);
   CHECK(fast_moving.depth == default_moving.depth);
 }
+
+TEST_CASE("the fast preset develops without sensor noise and default adds it",
+          "[sensors][camera][quality]") {
+  Scene scene;
+  scene.add_road_mesh(corsa::test::flat_road());
+  scene.commit();
+  CameraIntrinsics k;
+  k.width = 160;
+  k.height = 120;
+  const CameraRenderer camera(k);
+  const Lighting noon = sun_at(M_PI, 1.2);
+  // The noise is the only part of a still frame without rain that the frame seed changes: at a
+  // high gain it shows in every channel of every pixel.
+  auto frame = [&](RenderQuality quality, uint64_t seed) {
+    RenderSettings settings;
+    settings.outputs.rgb = true;
+    settings.lighting = &noon;
+    settings.rgb.quality = quality;
+    settings.rgb.auto_exposure = false;
+    settings.rgb.iso = 1600.0;
+    settings.rgb.shutter_speed_s = 1.0 / 4000.0;
+    settings.frame_seed = seed;
+    CameraMotion motion;
+    motion.world_from_body = rigid_from_pose(0.0, 0.0, 1.2, 0.0, 0.0, 0.0);
+    return camera.render(scene, motion, settings).rgb;
+  };
+  const std::vector<uint8_t> fast_a = frame(RenderQuality::kFast, 3);
+  CHECK(fast_a == frame(RenderQuality::kFast, 4));
+  const std::vector<uint8_t> default_a = frame(RenderQuality::kDefault, 3);
+  const std::vector<uint8_t> default_b = frame(RenderQuality::kDefault, 4);
+  size_t differing = 0;
+  for (size_t i = 0; i < default_a.size(); ++i) {
+    differing += default_a[i] != default_b[i] ? 1 : 0;
+  }
+  CHECK(differing > default_a.size() / 4);
+  // A flat patch of the fast frame (the road straight ahead, whose texture is averaged over
+  // the distant pixels, and the sky above the horizon) changes smoothly: neighbours along a
+  // sky row differ by at most one level.
+  const auto at = [&](int row, int col, int c) {
+    return static_cast<int>(fast_a[3 * (static_cast<size_t>(row) * k.width + col) + c]);
+  };
+  for (int col = 40; col < 120; ++col) {
+    for (int c = 0; c < 3; ++c) {
+      INFO("sky row 10, column " << col << ", channel " << c);
+      CHECK(std::abs(at(10, col + 1, c) - at(10, col, c)) <= 1);
+    }
+  }
+}
