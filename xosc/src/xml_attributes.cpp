@@ -5,6 +5,8 @@
 #include <optional>
 #include <string_view>
 
+#include "xml_cursor.h"
+
 namespace corsa::xosc {
 namespace {
 
@@ -19,22 +21,17 @@ struct AttributeSpan {
   size_t end;    ///< one past the closing quote
 };
 
-class AttributeScanner {
+// Reads through the cursor's view of the text and blanks repeats through `writable_`, the same
+// characters (blanking keeps the length, so the view stays valid).
+class AttributeScanner : private XmlCursor {
  public:
-  explicit AttributeScanner(std::string& text) : text_(text) {}
+  explicit AttributeScanner(std::string& text) : XmlCursor(text), writable_(text) {}
 
   std::vector<RepeatedAttribute> run() {
-    while (pos_ < text_.size()) {
-      const size_t lt = text_.find('<', pos_);
-      if (lt == std::string::npos) break;
-      advance_to(lt);
+    while (next_markup()) {
       bool scanned = true;
-      if (starts("<!--")) {
-        scanned = skip_past("-->");
-      } else if (starts("<![CDATA[")) {
-        scanned = skip_past("]]>");
-      } else if (starts("<?")) {
-        scanned = skip_past("?>");
+      if (const auto closed = skip_comment_cdata_or_pi()) {
+        scanned = *closed;
       } else if (starts("<!") || starts("</")) {
         scanned = skip_past(">");
       } else {
@@ -46,23 +43,6 @@ class AttributeScanner {
   }
 
  private:
-  bool starts(std::string_view prefix) const {
-    return std::string_view(text_).substr(pos_, prefix.size()) == prefix;
-  }
-
-  void advance_to(size_t to) {
-    for (; pos_ < to && pos_ < text_.size(); ++pos_) {
-      if (text_[pos_] == '\n') ++line_;
-    }
-  }
-
-  bool skip_past(std::string_view end) {
-    const size_t found = text_.find(end, pos_);
-    if (found == std::string::npos) return false;
-    advance_to(found + end.size());
-    return true;
-  }
-
   void skip_blanks() {
     while (pos_ < text_.size() && is_blank(text_[pos_])) advance_to(pos_ + 1);
   }
@@ -74,7 +54,7 @@ class AttributeScanner {
     size_t end = pos_;
     while (end < text_.size() && !ends_attribute_name(text_[end])) ++end;
     if (end == pos_) return std::nullopt;
-    span.name = std::string_view(text_).substr(pos_, end - pos_);
+    span.name = text_.substr(pos_, end - pos_);
     advance_to(end);
     skip_blanks();
     if (pos_ >= text_.size() || text_[pos_] != '=') return std::nullopt;
@@ -82,17 +62,17 @@ class AttributeScanner {
     skip_blanks();
     if (pos_ >= text_.size() || (text_[pos_] != '"' && text_[pos_] != '\'')) return std::nullopt;
     const size_t close = text_.find(text_[pos_], pos_ + 1);
-    if (close == std::string::npos) return std::nullopt;
-    span.value = std::string_view(text_).substr(pos_ + 1, close - pos_ - 1);
+    if (close == std::string_view::npos) return std::nullopt;
+    span.value = text_.substr(pos_ + 1, close - pos_ - 1);
     advance_to(close + 1);
     span.end = pos_;
     return span;
   }
 
-  // Blanks out text_[begin, end) except its line breaks.
+  // Blanks out the text's [begin, end) except its line breaks.
   void blank(size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      if (text_[i] != '\n' && text_[i] != '\r') text_[i] = ' ';
+      if (writable_[i] != '\n' && writable_[i] != '\r') writable_[i] = ' ';
     }
   }
 
@@ -100,7 +80,7 @@ class AttributeScanner {
     advance_to(pos_ + 1);
     size_t end = pos_;
     while (end < text_.size() && !ends_attribute_name(text_[end])) ++end;
-    const std::string element = text_.substr(pos_, end - pos_);
+    const std::string element(text_.substr(pos_, end - pos_));
     advance_to(end);
     std::vector<AttributeSpan> seen;
     for (;;) {
@@ -125,9 +105,7 @@ class AttributeScanner {
     }
   }
 
-  std::string& text_;
-  size_t pos_ = 0;
-  int line_ = 1;
+  std::string& writable_;
   std::vector<RepeatedAttribute> found_;
 };
 

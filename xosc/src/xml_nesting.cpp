@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "corsa/core/strings.h"
+#include "xml_cursor.h"
 
 namespace corsa::xosc {
 namespace {
@@ -20,21 +21,14 @@ bool name_char(char c) {
   return !(c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '>' || c == '/' || c == '\0');
 }
 
-class Scanner {
+class Scanner : private XmlCursor {
  public:
-  explicit Scanner(std::string_view text) : text_(text) {}
+  explicit Scanner(std::string_view text) : XmlCursor(text) {}
 
   std::optional<NestingError> run() {
-    while (pos_ < text_.size()) {
-      const size_t lt = text_.find('<', pos_);
-      if (lt == std::string_view::npos) break;
-      advance_to(lt);
-      if (starts("<!--")) {
-        if (!skip_past("-->")) return std::nullopt;
-      } else if (starts("<![CDATA[")) {
-        if (!skip_past("]]>")) return std::nullopt;
-      } else if (starts("<?")) {
-        if (!skip_past("?>")) return std::nullopt;
+    while (next_markup()) {
+      if (const auto closed = skip_comment_cdata_or_pi()) {
+        if (!*closed) return std::nullopt;
       } else if (starts("<!")) {
         if (!skip_declaration()) return std::nullopt;
       } else if (starts("</")) {
@@ -53,21 +47,6 @@ class Scanner {
   }
 
  private:
-  bool starts(std::string_view prefix) const { return text_.substr(pos_, prefix.size()) == prefix; }
-
-  void advance_to(size_t to) {
-    for (; pos_ < to && pos_ < text_.size(); ++pos_) {
-      if (text_[pos_] == '\n') ++line_;
-    }
-  }
-
-  bool skip_past(std::string_view end) {
-    const size_t found = text_.find(end, pos_);
-    if (found == std::string_view::npos) return false;
-    advance_to(found + end.size());
-    return true;
-  }
-
   // <!DOCTYPE ...> with an optional [internal subset].
   bool skip_declaration() {
     int depth = 0;
@@ -133,9 +112,6 @@ class Scanner {
     return std::nullopt;
   }
 
-  std::string_view text_;
-  size_t pos_ = 0;
-  int line_ = 1;
   std::vector<Open> stack_;
 };
 
