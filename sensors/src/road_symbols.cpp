@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "corsa/sensors/material.h"
+#include "world_props.h"
 
 namespace corsa::sensors::detail {
 namespace {
@@ -313,10 +314,9 @@ void add_paint(MeshBuilder& b, const std::vector<PaintPolygon>& polygons, double
 }
 
 Material yellow_road_paint() {
-  Material m = materials::plain("yellow road paint", linear_rgb(226, 178, 40), 0.6);
-  m.pattern = Pattern::kPaint;
-  m.secondary = linear_rgb(92, 92, 94);
-  m.params[0] = 0.5;
+  Material m = road_paint();  // the same worn paint, in yellow
+  m.name = "yellow road paint";
+  m.base_color = linear_rgb(226, 178, 40);
   return m;
 }
 
