@@ -5,8 +5,10 @@
 // converter's own intermediate data:
 // - where each lane starts and ends against its A2 link's first and last vertex, and the gaps
 //   between lanes joined in the lane graph (end of one, start of the next);
-// - the vertical error of each lane: the map's lane centre height against the heights of the
-//   A2 vertices along it (p95 per lane);
+// - the vertical error of each lane: the map's road surface under each A2 vertex along it
+//   against the vertex's height (p95 per lane), and the same against the lane centre's height
+//   level with the vertex (which counts a cross slope as error where a link leaves its lane's
+//   centre, as a lane splitting off its neighbour does);
 // - the lane width against the B2 marks bounding the lane (R_linkID / L_linkID name it);
 // - pairs of A2 links that the survey names as neighbours (L/R link ids) and that run side by
 //   side along >= 90% of both, but which the map still keeps in different roads;
@@ -46,10 +48,15 @@ struct NgiiFigures {
   /// p95 over every A2 vertex of its distance from its lane's centre line in the map (m), of
   /// the vertices whose foot lies inside that line and within 1 m (as for the heights).
   double lateral_p95 = 0.0;
-  double vertical_p95_max = 0.0;  ///< largest per-lane p95 of |z map - z A2| (m)
-  double vertical_max = 0.0;      ///< largest single vertex error (m)
-  size_t lanes_over_5cm = 0;      ///< lanes whose p95 exceeds 5 cm
-  std::string vertical_worst;     ///< link id of the worst lane
+  /// Largest per-lane p95 of |z map - z A2| (m), the map's surface under the A2 vertex.
+  double vertical_p95_max = 0.0;
+  double vertical_max = 0.0;   ///< largest single vertex error (m)
+  size_t lanes_over_5cm = 0;   ///< lanes whose p95 exceeds 5 cm
+  std::string vertical_worst;  ///< link id of the worst lane
+  /// The same against the lane centre's height level with the vertex (up to 1 m beside it).
+  double vertical_centre_p95_max = 0.0;
+  size_t lanes_centre_over_5cm = 0;
+  std::string vertical_centre_worst;
   size_t width_samples = 0;
   double width_p95 = 0.0;         ///< p95 |width map - width between B2 marks| (m), all lanes
   double width_p95_single = 0.0;  ///< the same on roads with one lane
