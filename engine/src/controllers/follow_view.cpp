@@ -36,7 +36,9 @@ void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours)
   target.vehicle = entity.info.kind == ObjectKind::kVehicle;
   target.length = entity.info.box.length;
   if (neighbours) {
-    target.shape = box_of(entity.info.box, entity.state.pose);
+    // Mostly the entity stands where the contacts boxed it after the last moves.
+    const OrientedBox* boxed = state.contacts.unmoved_box(i, entity);
+    target.shape = boxed != nullptr ? *boxed : box_of(entity.info.box, entity.state.pose);
     reach_[i] = box_reach(entity.info.box);
   }
   if (!target.usable) {

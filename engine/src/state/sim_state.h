@@ -5,6 +5,7 @@
 // xodr::Map) are referenced, never modified.
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "corsa/core/diagnostic.h"
+#include "corsa/engine/oriented_box.h"
 #include "corsa/engine/simulation.h"
 #include "corsa/engine/world_snapshot.h"
 #include "state/control_state.h"
@@ -49,6 +51,20 @@ struct ContactInput {
   bool placed = false;
   Pose pose;
   Box box;
+
+  /// Whether `entity` is placed, posed and sized as this records, to the bit (box_of gives the
+  /// same box then; -0 and +0 differ, NaN equals itself).
+  bool same_as(const Entity& entity) const {
+    const auto same = [](double a, double b) {
+      return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
+    };
+    const Pose& p = entity.state.pose;
+    const Box& b = entity.info.box;
+    return placed == entity.state.placed && same(pose.x, p.x) && same(pose.y, p.y) &&
+           same(pose.z, p.z) && same(pose.h, p.h) && same(box.center_x, b.center_x) &&
+           same(box.center_y, b.center_y) && same(box.center_z, b.center_z) &&
+           same(box.length, b.length) && same(box.width, b.width) && same(box.height, b.height);
+  }
 };
 
 /// Pairs of entities whose boxes overlap now: (first, second) with first < second, sorted.
@@ -56,6 +72,21 @@ struct ContactSet {
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   /// Every entity's box at the last update: when none has changed, neither have the pairs.
   std::vector<ContactInput> inputs;
+  /// box_of(inputs[i].box, inputs[i].pose) for every entity that was placed with a length (not
+  /// at or below 0) at the last update; the others' are left as they were.
+  std::vector<OrientedBox> boxes;
+
+  /// Entity `i`'s box as the last update made it, when `entity` (that entity now) is still
+  /// placed, posed and sized as then, to the bit: the same value box_of would give. Null
+  /// otherwise. The followers' picture, taken before the next moves, reads it instead of making
+  /// the box again.
+  const OrientedBox* unmoved_box(uint32_t i, const Entity& entity) const {
+    if (i >= inputs.size() || i >= boxes.size() || !entity.state.placed ||
+        entity.info.box.length <= 0.0 || !inputs[i].same_as(entity)) {
+      return nullptr;
+    }
+    return &boxes[i];
+  }
 
   bool get(uint32_t a, uint32_t b) const {
     const auto key = a < b ? std::make_pair(a, b) : std::make_pair(b, a);
