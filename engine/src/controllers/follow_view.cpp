@@ -71,6 +71,7 @@ void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool)
   has_scenario_vehicles_ = false;
   max_reach_ = 0.0;
   max_length_ = 0.0;
+  has_shapes_ = neighbours;
   const xodr::LaneGraph* graph = state.map != nullptr ? &state.map->lane_graph() : nullptr;
   lanes_.reset(graph != nullptr ? graph->size() : 0);
   least_rear_ = std::numeric_limits<double>::infinity();
