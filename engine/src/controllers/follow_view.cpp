@@ -39,7 +39,12 @@ void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours)
     // Mostly the entity stands where the contacts boxed it after the last moves.
     const OrientedBox* boxed = state.contacts.unmoved_box(i, entity);
     target.shape = boxed != nullptr ? *boxed : box_of(entity.info.box, entity.state.pose);
-    reach_[i] = box_reach(entity.info.box);
+    // The reach (a hypot) is made again only when the box has changed since it was made: a
+    // box of zeros (reach_boxes_' default) has the reach 0 (reach_'s default).
+    if (!same_bits(reach_boxes_[i], entity.info.box)) {
+      reach_[i] = box_reach(entity.info.box);
+      reach_boxes_[i] = entity.info.box;
+    }
   }
   if (!target.usable) {
     return;
@@ -65,6 +70,7 @@ void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool)
   targets_.resize(count);
   nodes_.resize(count);
   reach_.resize(count);
+  reach_boxes_.resize(count);
   unindexed_.clear();
   grid_.clear();
   scenario_vehicles_.clear();

@@ -92,6 +92,7 @@ class FollowView {
   std::vector<FollowTarget> targets_;
   std::vector<xodr::LaneNode> nodes_;  ///< by entity: its lane's node, kNoLane when not indexed
   std::vector<double> reach_;          ///< by entity: box_reach of its box (m), with neighbours
+  std::vector<Box> reach_boxes_;       ///< by entity: the box reach_ was made from
   LaneIndex lanes_;
   std::vector<uint32_t> unindexed_;
   double least_rear_ = 0.0;

@@ -3,7 +3,6 @@
 #include "controllers/npc_caution.h"
 
 #include <algorithm>
-#include <bit>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -49,7 +48,7 @@ LocalFrame frame_at(const Entity& me, uint32_t index, const FollowView& view) {
   const Pose& pose = me.state.pose;
   if (view.has_shapes() && index < view.targets().size()) {
     const FollowTarget& seen = view.targets()[index];
-    if (seen.present && std::bit_cast<uint64_t>(seen.h) == std::bit_cast<uint64_t>(pose.h)) {
+    if (seen.present && same_bits(seen.h, pose.h)) {
       return LocalFrame(pose.x, pose.y, seen.shape.cos_h, seen.shape.sin_h);
     }
   }

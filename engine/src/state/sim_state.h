@@ -46,6 +46,17 @@ struct World {
   }
 };
 
+/// Whether `a` and `b` have the same bits (-0 and +0 differ, a NaN equals itself): a function
+/// of either gives the same value.
+inline bool same_bits(double a, double b) {
+  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
+}
+inline bool same_bits(const Box& a, const Box& b) {
+  return same_bits(a.center_x, b.center_x) && same_bits(a.center_y, b.center_y) &&
+         same_bits(a.center_z, b.center_z) && same_bits(a.length, b.length) &&
+         same_bits(a.width, b.width) && same_bits(a.height, b.height);
+}
+
 /// What the contacts of an entity were last computed from (state/world_update.h).
 struct ContactInput {
   bool placed = false;
@@ -55,15 +66,9 @@ struct ContactInput {
   /// Whether `entity` is placed, posed and sized as this records, to the bit (box_of gives the
   /// same box then; -0 and +0 differ, NaN equals itself).
   bool same_as(const Entity& entity) const {
-    const auto same = [](double a, double b) {
-      return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
-    };
     const Pose& p = entity.state.pose;
-    const Box& b = entity.info.box;
-    return placed == entity.state.placed && same(pose.x, p.x) && same(pose.y, p.y) &&
-           same(pose.z, p.z) && same(pose.h, p.h) && same(box.center_x, b.center_x) &&
-           same(box.center_y, b.center_y) && same(box.center_z, b.center_z) &&
-           same(box.length, b.length) && same(box.width, b.width) && same(box.height, b.height);
+    return placed == entity.state.placed && same_bits(pose.x, p.x) && same_bits(pose.y, p.y) &&
+           same_bits(pose.z, p.z) && same_bits(pose.h, p.h) && same_bits(box, entity.info.box);
   }
 };
 
