@@ -190,8 +190,12 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
     if (gap < hazard.gap || (gap == hazard.gap && j < chosen)) {
       chosen = j;
       hazard.gap = gap;
-      hazard.speed = other.speed * std::cos(other.h - me.state.pose.h);
     }
+  }
+  // The speed (a cosine) of the one chosen only, not of every nearer one met before it.
+  if (chosen != std::numeric_limits<uint32_t>::max()) {
+    const FollowTarget& other = view.targets()[chosen];
+    hazard.speed = other.speed * std::cos(other.h - me.state.pose.h);
   }
   return hazard;
 }
