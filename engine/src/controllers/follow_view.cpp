@@ -36,8 +36,15 @@ void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours)
   target.vehicle = entity.info.kind == ObjectKind::kVehicle;
   target.length = entity.info.box.length;
   if (neighbours) {
-    target.shape = box_of(entity.info.box, entity.state.pose);
-    reach_[i] = box_reach(entity.info.box);
+    // Mostly the entity stands where the contacts boxed it after the last moves.
+    const OrientedBox* boxed = state.contacts.unmoved_box(i, entity);
+    target.shape = boxed != nullptr ? *boxed : box_of(entity.info.box, entity.state.pose);
+    // The reach (a hypot) is made again only when the box has changed since it was made: a
+    // box of zeros (reach_boxes_' default) has the reach 0 (reach_'s default).
+    if (!same_bits(reach_boxes_[i], entity.info.box)) {
+      reach_[i] = box_reach(entity.info.box);
+      reach_boxes_[i] = entity.info.box;
+    }
   }
   if (!target.usable) {
     return;
@@ -63,12 +70,14 @@ void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool)
   targets_.resize(count);
   nodes_.resize(count);
   reach_.resize(count);
+  reach_boxes_.resize(count);
   unindexed_.clear();
   grid_.clear();
   scenario_vehicles_.clear();
   has_scenario_vehicles_ = false;
   max_reach_ = 0.0;
   max_length_ = 0.0;
+  has_shapes_ = neighbours;
   const xodr::LaneGraph* graph = state.map != nullptr ? &state.map->lane_graph() : nullptr;
   lanes_.reset(graph != nullptr ? graph->size() : 0);
   least_rear_ = std::numeric_limits<double>::infinity();

@@ -81,6 +81,9 @@ class FollowView {
   /// (the same bound serves near_scenario_vehicles()).
   double max_reach() const { return max_reach_; }
   double max_length() const { return max_length_; }
+  /// Whether the present entities' FollowTarget::shape is that of this picture (built with
+  /// `neighbours`).
+  bool has_shapes() const { return has_shapes_; }
 
  private:
   /// Entity `i`'s target, its lane node (nodes_) and box reach (reach_).
@@ -89,6 +92,7 @@ class FollowView {
   std::vector<FollowTarget> targets_;
   std::vector<xodr::LaneNode> nodes_;  ///< by entity: its lane's node, kNoLane when not indexed
   std::vector<double> reach_;          ///< by entity: box_reach of its box (m), with neighbours
+  std::vector<Box> reach_boxes_;       ///< by entity: the box reach_ was made from
   LaneIndex lanes_;
   std::vector<uint32_t> unindexed_;
   double least_rear_ = 0.0;
@@ -99,6 +103,7 @@ class FollowView {
   size_t generated_seen_ = 0;    ///< TrafficState::lifetimes.size() generated_ was made from
   double max_reach_ = 0.0;
   double max_length_ = 0.0;
+  bool has_shapes_ = false;
 
   // m: about two car lengths; a corridor query visits only the cells it crosses (a lane of a
   // few cars' length covers some ten), each a short run of memory.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -31,12 +32,28 @@ struct LocalFrame {
   double x = 0.0, y = 0.0, c = 1.0, s = 0.0;
   explicit LocalFrame(const Pose& pose)
       : x(pose.x), y(pose.y), c(std::cos(pose.h)), s(std::sin(pose.h)) {}
+  LocalFrame(double x_in, double y_in, double c_in, double s_in)
+      : x(x_in), y(y_in), c(c_in), s(s_in) {}
   void to_local(double wx, double wy, double& lx, double& ly) const {
     const double dx = wx - x, dy = wy - y;
     lx = dx * c + dy * s;
     ly = -dx * s + dy * c;
   }
 };
+
+/// The frame at `me`, entity `index` of `view`. The cosine and sine of its heading are those of
+/// its box in the view when the view took the same heading, to the bit (box_of computes them as
+/// LocalFrame(pose) does): the picture was mostly taken at the pose the entity still has.
+LocalFrame frame_at(const Entity& me, uint32_t index, const FollowView& view) {
+  const Pose& pose = me.state.pose;
+  if (view.has_shapes() && index < view.targets().size()) {
+    const FollowTarget& seen = view.targets()[index];
+    if (seen.present && same_bits(seen.h, pose.h)) {
+      return LocalFrame(pose.x, pose.y, seen.shape.cos_h, seen.shape.sin_h);
+    }
+  }
+  return LocalFrame(pose);
+}
 
 /// The extent along x of the part of `box` (another entity's) that lies within |y| <= half in
 /// `frame`; false when no part does.
@@ -144,7 +161,7 @@ bool is_generated(const SimState& state, uint32_t index) {
 
 Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view, double reach,
                        std::vector<uint32_t>& near) {
-  const LocalFrame frame(me.state.pose);
+  const LocalFrame frame = frame_at(me, index, view);
   const double front = me.info.box.center_x + 0.5 * me.info.box.length;
   const double rear = me.info.box.center_x - 0.5 * me.info.box.length;
   const double half = 0.5 * me.info.box.width + kSideMargin;
@@ -173,8 +190,12 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
     if (gap < hazard.gap || (gap == hazard.gap && j < chosen)) {
       chosen = j;
       hazard.gap = gap;
-      hazard.speed = other.speed * std::cos(other.h - me.state.pose.h);
     }
+  }
+  // The speed (a cosine) of the one chosen only, not of every nearer one met before it.
+  if (chosen != std::numeric_limits<uint32_t>::max()) {
+    const FollowTarget& other = view.targets()[chosen];
+    hazard.speed = other.speed * std::cos(other.h - me.state.pose.h);
   }
   return hazard;
 }
@@ -184,7 +205,7 @@ double keep_ahead_speed(const Entity& me, uint32_t index, const FollowView& view
   if (!view.has_scenario_vehicles()) {
     return 0.0;
   }
-  const LocalFrame frame(me.state.pose);
+  const LocalFrame frame = frame_at(me, index, view);
   const double rear = me.info.box.center_x - 0.5 * me.info.box.length;
   const double half = 0.5 * me.info.box.width + kSideMargin;
   near_rectangle(view, frame, rear - kBehindReach, rear, half, view.max_reach() + kSlack, near,
@@ -244,7 +265,7 @@ SignalAspect signal_aspect(std::string_view state) {
 
 WalkerMove walker_move(const Entity& me, uint32_t index, const FollowView& view, double pace,
                        std::vector<uint32_t>& near) {
-  const LocalFrame frame(me.state.pose);
+  const LocalFrame frame = frame_at(me, index, view);
   WalkerMove move{0.0, pace};
   bool oncoming = false;
   bool slower_ahead = false;

@@ -5,6 +5,7 @@
 // xodr::Map) are referenced, never modified.
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "corsa/core/diagnostic.h"
+#include "corsa/engine/oriented_box.h"
 #include "corsa/engine/simulation.h"
 #include "corsa/engine/world_snapshot.h"
 #include "state/control_state.h"
@@ -44,11 +46,30 @@ struct World {
   }
 };
 
+/// Whether `a` and `b` have the same bits (-0 and +0 differ, a NaN equals itself): a function
+/// of either gives the same value.
+inline bool same_bits(double a, double b) {
+  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
+}
+inline bool same_bits(const Box& a, const Box& b) {
+  return same_bits(a.center_x, b.center_x) && same_bits(a.center_y, b.center_y) &&
+         same_bits(a.center_z, b.center_z) && same_bits(a.length, b.length) &&
+         same_bits(a.width, b.width) && same_bits(a.height, b.height);
+}
+
 /// What the contacts of an entity were last computed from (state/world_update.h).
 struct ContactInput {
   bool placed = false;
   Pose pose;
   Box box;
+
+  /// Whether `entity` is placed, posed and sized as this records, to the bit (box_of gives the
+  /// same box then; -0 and +0 differ, NaN equals itself).
+  bool same_as(const Entity& entity) const {
+    const Pose& p = entity.state.pose;
+    return placed == entity.state.placed && same_bits(pose.x, p.x) && same_bits(pose.y, p.y) &&
+           same_bits(pose.z, p.z) && same_bits(pose.h, p.h) && same_bits(box, entity.info.box);
+  }
 };
 
 /// Pairs of entities whose boxes overlap now: (first, second) with first < second, sorted.
@@ -56,6 +77,21 @@ struct ContactSet {
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   /// Every entity's box at the last update: when none has changed, neither have the pairs.
   std::vector<ContactInput> inputs;
+  /// box_of(inputs[i].box, inputs[i].pose) for every entity that was placed with a length (not
+  /// at or below 0) at the last update; the others' are left as they were.
+  std::vector<OrientedBox> boxes;
+
+  /// Entity `i`'s box as the last update made it, when `entity` (that entity now) is still
+  /// placed, posed and sized as then, to the bit: the same value box_of would give. Null
+  /// otherwise. The followers' picture, taken before the next moves, reads it instead of making
+  /// the box again.
+  const OrientedBox* unmoved_box(uint32_t i, const Entity& entity) const {
+    if (i >= inputs.size() || i >= boxes.size() || !entity.state.placed ||
+        entity.info.box.length <= 0.0 || !inputs[i].same_as(entity)) {
+      return nullptr;
+    }
+    return &boxes[i];
+  }
 
   bool get(uint32_t a, uint32_t b) const {
     const auto key = a < b ? std::make_pair(a, b) : std::make_pair(b, a);

@@ -1,7 +1,6 @@
 #include "state/world_update.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -12,20 +11,6 @@ namespace corsa::engine::detail {
 
 namespace {
 
-bool same_bits(double a, double b) {
-  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
-}
-
-bool same_input(const ContactInput& a, const Entity& e) {
-  const Pose& p = e.state.pose;
-  const Box& b = e.info.box;
-  return a.placed == e.state.placed && same_bits(a.pose.x, p.x) && same_bits(a.pose.y, p.y) &&
-         same_bits(a.pose.z, p.z) && same_bits(a.pose.h, p.h) &&
-         same_bits(a.box.center_x, b.center_x) && same_bits(a.box.center_y, b.center_y) &&
-         same_bits(a.box.center_z, b.center_z) && same_bits(a.box.length, b.length) &&
-         same_bits(a.box.width, b.width) && same_bits(a.box.height, b.height);
-}
-
 // Whether every entity's box is where it was at the last update (nothing moved, appeared,
 // left or changed size); records the boxes of now otherwise.
 bool contact_inputs_unchanged(SimState& state) {
@@ -33,7 +18,7 @@ bool contact_inputs_unchanged(SimState& state) {
   const auto& entities = state.world.entities;
   bool same = inputs.size() == entities.size();
   for (size_t i = 0; same && i < entities.size(); ++i) {
-    same = same_input(inputs[i], entities[i]);
+    same = inputs[i].same_as(entities[i]);
   }
   if (same) {
     return true;
@@ -122,7 +107,7 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
   items.reserve(entities.size());
   // Each box depends only on its entity: made on several threads when the sweep may share
   // them out; gathered below in index order, so the result is the same on any number.
-  std::vector<OrientedBox>& boxes = sweep.boxes;
+  std::vector<OrientedBox>& boxes = state.contacts.boxes;
   boxes.resize(entities.size());
   sweep.x_extent.resize(entities.size());
   sweep.y_extent.resize(entities.size());

@@ -24,8 +24,8 @@ struct ContactSweep {
   /// threads at a time (the mover's, controllers/controllers.h); null: work(0, count) here.
   /// The boxes of the entities are made through it.
   std::function<void(size_t count, const std::function<void(size_t, size_t)>& work)> share;
-  /// The boxes of the last update, by entity (those not placed or without a length unset).
-  std::vector<OrientedBox> boxes;
+  /// The boxes' extents along x and y at the last update, by entity (the boxes themselves are
+  /// kept in ContactSet::boxes).
   std::vector<Interval> x_extent, y_extent;
 };
 
