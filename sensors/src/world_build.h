@@ -61,6 +61,8 @@ void build_ground(WorldBuild& w, const xodr::RoadMesh& road);
 void build_roadside(WorldBuild& w);
 /// True for the OpenDRIVE country codes of Korea ("KR", "KOR", "Korea", any case).
 bool is_korean(const std::string& country);
+/// The labels every drawn signal carries: its id, country, type and subtype.
+ObjectInfo signal_info(const xodr::Signal& s);
 /// OpenDRIVE signals as traffic lights and signs.
 void build_signals(WorldBuild& w);
 /// A signal that stands for paint on the road (German StVO or Korean 5xx numbers: stop line,

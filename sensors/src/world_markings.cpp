@@ -259,12 +259,8 @@ void add_marking(WorldBuild& w, RoadPainter& paint, const Rigid& frame, const Ma
   if (paint.builder().triangle_count() == 0) {
     return;
   }
-  ObjectInfo info;
+  ObjectInfo info = signal_info(s);
   info.kind = spec.label;
-  info.signal_id = s.id;
-  info.country = s.country;
-  info.type = s.type;
-  info.subtype = s.subtype;
   StaticMesh mesh = to_static_mesh(paint.builder().take(), frame, "road marking " + s.id);
   mesh.object = info;
   mesh.instance_id = kStaticInstanceBase + static_cast<uint32_t>(w.scene.static_mesh_count());

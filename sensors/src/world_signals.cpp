@@ -162,6 +162,15 @@ bool is_korean(const std::string& country) {
   return c == "kr" || c == "kor" || c == "korea";
 }
 
+ObjectInfo signal_info(const xodr::Signal& s) {
+  ObjectInfo info;
+  info.signal_id = s.id;
+  info.country = s.country;
+  info.type = s.type;
+  info.subtype = s.subtype;
+  return info;
+}
+
 void build_signals(WorldBuild& w) {
   const xodr::Map& map = w.map;
   const std::string& file = map.data().source_file;
@@ -173,11 +182,7 @@ void build_signals(WorldBuild& w) {
       // "+": for traffic driving towards +s, so the face looks back along -s.
       const double facing = p.h + s.h_offset + (s.orientation == "-" ? 0.0 : kPi);
       const Rigid pose = rigid_from_pose(p.x, p.y, p.z, facing, 0.0, 0.0);
-      ObjectInfo info;
-      info.signal_id = s.id;
-      info.country = s.country;
-      info.type = s.type;
-      info.subtype = s.subtype;
+      ObjectInfo info = signal_info(s);
       info.value = s.value;
       info.text = s.text;
       if (is_traffic_light(s)) {
