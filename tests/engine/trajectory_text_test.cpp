@@ -1,6 +1,7 @@
 // The trajectory CSV's number text (engine/src/output/decimal_text.h): fixed decimals without
 // trailing zeros for lengths, speeds and angles, the shortest exact text for times, and the
-// shortest round-trip text beyond exact scaling.
+// shortest round-trip text beyond exact scaling; and the binary trajectory's integers
+// (engine/src/output/trajectory_codec.h): the unrolled varint writes the loop's bytes.
 
 #include <catch2/catch.hpp>
 #include <charconv>
@@ -8,8 +9,10 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "output/decimal_text.h"
+#include "output/trajectory_codec.h"
 
 namespace {
 
@@ -153,5 +156,41 @@ TEST_CASE("fixed-decimal text of a number's integer equals the plain division's 
     check_units<6>(-units);
     check_units<9>(units);
     check_units<0>(units);
+  }
+}
+
+TEST_CASE("rounding to units takes halves away from zero, as llround does", "[engine][output]") {
+  using corsa::engine::detail::decimal_text::round_half_away;
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> magnitude(-12.0, 15.0);
+  for (int i = 0; i < 200000; ++i) {
+    const double value = std::copysign(std::pow(10.0, magnitude(random)), i % 2 == 0 ? 1.0 : -1.0);
+    REQUIRE(round_half_away(value) == std::llround(value));
+  }
+  for (const double value : {0.5, -0.5, 1.5, -1.5, 2.5, -2.5, 0.49999999999999994, -0.0, 0.0,
+                             4503599627370495.5, -4503599627370495.5}) {
+    REQUIRE(round_half_away(value) == std::llround(value));
+  }
+}
+
+TEST_CASE("the unrolled varint writes the bytes of the loop, for every length",
+          "[engine][output]") {
+  namespace codec = corsa::engine::detail::trajectory_codec;
+  std::vector<uint64_t> values = {0, 1, 0x7f, 0x80, 0x3fff, 0x4000, UINT64_MAX};
+  for (int bits = 1; bits < 64; ++bits) {
+    const uint64_t top = uint64_t{1} << bits;
+    values.insert(values.end(), {top - 1, top, top + 1});
+  }
+  std::mt19937_64 random(11);
+  for (int i = 0; i < 100000; ++i) {
+    values.push_back(random() >> (random() % 64));
+  }
+  for (const uint64_t value : values) {
+    char loop[16] = {}, unrolled[16] = {};
+    const auto loop_size = codec::put_varint(loop, value) - loop;
+    const auto unrolled_size = codec::put_varint_unrolled(unrolled, value) - unrolled;
+    REQUIRE(unrolled_size == loop_size);
+    REQUIRE(std::string(unrolled, static_cast<size_t>(unrolled_size)) ==
+            std::string(loop, static_cast<size_t>(loop_size)));
   }
 }
