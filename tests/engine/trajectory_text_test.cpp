@@ -1,7 +1,6 @@
 // The trajectory CSV's number text (engine/src/output/decimal_text.h): fixed decimals without
 // trailing zeros for lengths, speeds and angles, the shortest exact text for times, and the
-// shortest round-trip text beyond exact scaling; and the binary trajectory's integers
-// (engine/src/output/trajectory_codec.h): the unrolled varint writes the loop's bytes.
+// shortest round-trip text beyond exact scaling.
 
 #include <catch2/catch.hpp>
 #include <charconv>
@@ -9,10 +8,8 @@
 #include <limits>
 #include <random>
 #include <string>
-#include <vector>
 
 #include "output/decimal_text.h"
-#include "output/trajectory_codec.h"
 
 namespace {
 
@@ -170,27 +167,5 @@ TEST_CASE("rounding to units takes halves away from zero, as llround does", "[en
   for (const double value : {0.5, -0.5, 1.5, -1.5, 2.5, -2.5, 0.49999999999999994, -0.0, 0.0,
                              4503599627370495.5, -4503599627370495.5}) {
     REQUIRE(round_half_away(value) == std::llround(value));
-  }
-}
-
-TEST_CASE("the unrolled varint writes the bytes of the loop, for every length",
-          "[engine][output]") {
-  namespace codec = corsa::engine::detail::trajectory_codec;
-  std::vector<uint64_t> values = {0, 1, 0x7f, 0x80, 0x3fff, 0x4000, UINT64_MAX};
-  for (int bits = 1; bits < 64; ++bits) {
-    const uint64_t top = uint64_t{1} << bits;
-    values.insert(values.end(), {top - 1, top, top + 1});
-  }
-  std::mt19937_64 random(11);
-  for (int i = 0; i < 100000; ++i) {
-    values.push_back(random() >> (random() % 64));
-  }
-  for (const uint64_t value : values) {
-    char loop[16] = {}, unrolled[16] = {};
-    const auto loop_size = codec::put_varint(loop, value) - loop;
-    const auto unrolled_size = codec::put_varint_unrolled(unrolled, value) - unrolled;
-    REQUIRE(unrolled_size == loop_size);
-    REQUIRE(std::string(unrolled, static_cast<size_t>(unrolled_size)) ==
-            std::string(loop, static_cast<size_t>(loop_size)));
   }
 }

@@ -191,13 +191,10 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
       repeats = repeats & (change == 0);
       track.bits[f] = bits;
       track.still = change == 0 ? track.still | bit : track.still & ~bit;
-      // Whether a moving value's residual is 0 follows no pattern (it rounds one way or the
-      // other): the residual is written in any case and kept only when it is not 0, without a
-      // branch (the body has room for the bytes written past its end).
-      const bool differs = residual != 0;
-      char* const end = codec::put_varint_unrolled(out, codec::zigzag(residual));
-      mask |= bit & (0u - static_cast<uint32_t>(differs));
-      out = differs ? end : out;
+      if (residual != 0) {
+        mask |= bit;
+        out = codec::put_varint(out, codec::zigzag(residual));
+      }
     }
     // The fields taken are predicted from now on, the raw ones start afresh.
     track.fresh = (track.fresh & ~((1u << fields) - 1)) | raw;

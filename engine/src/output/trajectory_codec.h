@@ -6,9 +6,7 @@
 // run the same prediction over the same integers, so a value costs only its surprise.
 
 #include <array>
-#include <bit>
 #include <cstdint>
-#include <cstring>
 #include <string>
 #include <string_view>
 
@@ -58,33 +56,6 @@ inline char* put_varint(char* out, uint64_t value) {
   }
   *out++ = static_cast<char>(value);
   return out;
-}
-
-/// The same as put_varint into a buffer, with less branching: a value below 2^56 (every
-/// residual of a moving entity but a jump) has its 7-bit groups spread into bytes and its length
-/// counted from its highest bit, and is stored as 8 bytes of which the first `length` count.
-/// Needs room for 10 bytes at `out` (bytes past the varint's end may be overwritten); returns
-/// the end of the varint.
-inline char* put_varint_unrolled(char* out, uint64_t value) {
-  if (value >= (uint64_t{1} << 56)) [[unlikely]] {
-    return put_varint(out, value);
-  }
-  const int groups = (std::bit_width(value | 1) + 6) / 7;  // 1..8 bytes
-  uint64_t spread = 0;
-  for (int k = 0; k < 8; ++k) {
-    spread |= (value << k) & (uint64_t{0x7f} << (8 * k));
-  }
-  // Every byte but the last has its continuation bit.
-  const uint64_t more = uint64_t{0x0080808080808080} & ((uint64_t{1} << (8 * (groups - 1))) - 1);
-  spread |= more;
-  if constexpr (std::endian::native == std::endian::little) {
-    std::memcpy(out, &spread, sizeof spread);
-  } else {
-    for (int k = 0; k < 8; ++k) {
-      out[k] = static_cast<char>((spread >> (8 * k)) & 0xff);
-    }
-  }
-  return out + groups;
 }
 
 inline uint64_t zigzag(int64_t value) {
