@@ -155,3 +155,17 @@ TEST_CASE("fixed-decimal text of a number's integer equals the plain division's 
     check_units<0>(units);
   }
 }
+
+TEST_CASE("rounding to units takes halves away from zero, as llround does", "[engine][output]") {
+  using corsa::engine::detail::decimal_text::round_half_away;
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> magnitude(-12.0, 15.0);
+  for (int i = 0; i < 200000; ++i) {
+    const double value = std::copysign(std::pow(10.0, magnitude(random)), i % 2 == 0 ? 1.0 : -1.0);
+    REQUIRE(round_half_away(value) == std::llround(value));
+  }
+  for (const double value : {0.5, -0.5, 1.5, -1.5, 2.5, -2.5, 0.49999999999999994, -0.0, 0.0,
+                             4503599627370495.5, -4503599627370495.5}) {
+    REQUIRE(round_half_away(value) == std::llround(value));
+  }
+}

@@ -66,8 +66,7 @@ LanePath path_ahead(const xodr::Map& map, const Entity& me, LanesAhead& ahead) {
     ahead.dir = me.lane.dir;
     ahead.chooser = me.chooser;
     ahead.route = me.route;
-    ahead.next.clear();
-    ahead.dead_end = false;
+    ahead.clear();
   }
   LanePath path;
   LaneFollow follow = me.lane;
@@ -82,8 +81,8 @@ LanePath path_ahead(const xodr::Map& map, const Entity& me, LanesAhead& ahead) {
     if (distance >= kRange) {
       break;
     }
-    if (k < ahead.next.size()) {
-      follow = ahead.next[k];
+    if (k < ahead.count) {
+      follow = ahead.next(static_cast<uint32_t>(k));
       continue;
     }
     const auto ends = graph.ends(follow.node, follow.dir < 0);
@@ -93,7 +92,7 @@ LanePath path_ahead(const xodr::Map& map, const Entity& me, LanesAhead& ahead) {
     }
     follow.s = boundary;
     enter_next_lane(map, follow, ends, me.chooser);
-    ahead.next.push_back(follow);
+    ahead.push(follow);
   }
   return path;
 }

@@ -238,13 +238,12 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
   }
 }
 
-// Moves the entities order[begin, end) in that order.
+// Moves the entities order[begin, end) in that order; ahead[k] is entity order[k]'s.
 void move_range(SimState& state, const MotionContext& motion, const FollowView& view,
                 std::vector<LanesAhead>& ahead, const std::vector<uint32_t>& order, size_t begin,
                 size_t end) {
   for (size_t k = begin; k < end; ++k) {
-    const uint32_t i = order[k];
-    move_one(state, i, motion, view, ahead[i]);
+    move_one(state, order[k], motion, view, ahead[k]);
   }
 }
 
@@ -258,7 +257,9 @@ struct EntityMover::Impl {
   unsigned threads;
   std::unique_ptr<WorkerPool> pool;  ///< made on the first parallel step
   FollowView view;
-  std::vector<LanesAhead> ahead;  ///< per entity (car following)
+  /// Car following's lanes ahead, in move order: ahead[k] belongs to entity order[k] (so that
+  /// the movers read them one after the other).
+  std::vector<LanesAhead> ahead;
   /// Per worker: lane span scratch, and neighbour query scratch.
   std::vector<std::vector<xodr::LaneSpan>> scratch;
   std::vector<std::vector<uint32_t>> nearby;
@@ -274,6 +275,12 @@ struct EntityMover::Impl {
       return;
     }
     steps_since_arranged = 0;
+    // Each entity's lanes ahead go with it to its new place in the order (entities added
+    // since the last arrangement start without any).
+    std::vector<LanesAhead> by_entity(count);
+    for (size_t k = 0; k < order.size() && k < ahead.size(); ++k) {
+      by_entity[order[k]] = std::move(ahead[k]);
+    }
     order.resize(count);
     std::vector<std::pair<uint64_t, uint32_t>> keys(count);
     for (uint32_t i = 0; i < count; ++i) {
@@ -281,8 +288,10 @@ struct EntityMover::Impl {
       keys[i] = {lane.on_road ? uint64_t{lane.node} : UINT64_MAX, i};
     }
     std::sort(keys.begin(), keys.end());
+    ahead.resize(count);
     for (uint32_t k = 0; k < count; ++k) {
       order[k] = keys[k].second;
+      ahead[k] = std::move(by_entity[order[k]]);
     }
   }
 };
@@ -336,7 +345,6 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   if (following || generated) {
     impl.view.build(state, generated, workers > 1 ? impl.pool.get() : nullptr);
   }
-  impl.ahead.resize(count);
   impl.arrange(state);
   const std::vector<uint32_t>& order = impl.order;
   impl.scratch.resize(std::max<size_t>(impl.scratch.size(), workers));

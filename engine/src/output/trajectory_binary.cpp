@@ -188,7 +188,7 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
       const int64_t change = fresh ? 0 : units - track.last[f];
       track.last[f] = units;
       track.next[f] = units + change;
-      repeats = repeats && change == 0;
+      repeats = repeats & (change == 0);
       track.bits[f] = bits;
       track.still = change == 0 ? track.still | bit : track.still & ~bit;
       if (residual != 0) {

@@ -87,9 +87,10 @@ inline constexpr size_t kVehicleLightCount = 13;
 using LightSettings = std::array<std::optional<LightSetting>, kVehicleLightCount>;
 
 /// The fields are in the order a step reads them: first what every step's passes over all
-/// entities touch (state, lane, box, commands, timers), then what only some entities or events
-/// need. With hundreds of vehicles the entities no longer fit in a core's cache, and a pass
-/// then costs the cache lines it reads of each entity.
+/// entities touch (state, lane, commands, timers, trailer links, the pose command, the box in
+/// `info`, the lane pose memo), then what only some entities or events need (a removed
+/// entity's last place among them). With hundreds of vehicles the entities no longer fit in a
+/// core's cache, and a move then costs the cache lines it reads of its entity.
 struct Entity {
   EntityState state;
   LaneFollow lane;
@@ -117,21 +118,12 @@ struct Entity {
   double offroad_time = 0.0;
   double end_of_road_time = 0.0;
 
-  /// Set by a DeleteEntityAction (or a sink) until the entity is placed again; state.pose and
-  /// removed_road keep where it was, which a position relative to it is read from (esmini's
-  /// reading of a reference to a deleted entity, with a lenient-reading warning).
-  bool removed = false;
-  std::optional<RoadCoordinates> removed_road;
-  double removed_speed = 0.0;  ///< m/s when it was removed (esmini re-adds it at that speed)
-
   /// Trailers (§7.4.8): the entity towing this one, and the one this one tows.
   std::optional<uint32_t> towed_by;
   std::optional<uint32_t> towing;
   /// A trailer just disconnected from this entity: while their boxes still overlap at the hitch,
   /// that is no collision.
   std::optional<uint32_t> unhitched_from;
-
-  EntityInfo info;
 
   /// Chooses among lane successors at lane ends (a route); null: the straightest.
   const LaneChooser* chooser = nullptr;
@@ -140,9 +132,17 @@ struct Entity {
   /// A pose an action sets for the end of the step (FollowTrajectoryAction): the controller
   /// puts the entity there instead of moving it along its lane (motion/pose_command.h).
   std::optional<Pose> pose_command;
+  EntityInfo info;
   LanePoseMemo lane_pose_memo;
 
   // Below: what only some entities, or some events, read.
+  /// Set by a DeleteEntityAction (or a sink) until the entity is placed again; state.pose and
+  /// removed_road keep where it was, which a position relative to it is read from (esmini's
+  /// reading of a reference to a deleted entity, with a lenient-reading warning).
+  bool removed = false;
+  std::optional<RoadCoordinates> removed_road;
+  double removed_speed = 0.0;  ///< m/s when it was removed (esmini re-adds it at that speed)
+
   const xosc::ScenarioObject* object = nullptr;
   /// Owns the route chooser (AssignRouteAction, AcquirePositionAction) `chooser` points at.
   std::shared_ptr<const LaneChooser> route;
