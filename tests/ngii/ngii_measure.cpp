@@ -258,10 +258,21 @@ class Measurer {
     }
   }
 
+  bool centre_strip(const LaneRef& ref) const {
+    const xodr::Lane* lane = map_.lane(ref);
+    return lane != nullptr && lane->type == xodr::LaneType::kRestricted &&
+           std::any_of(lane->user_data.begin(), lane->user_data.end(),
+                       [](const auto& d) { return d.code == "ngii:centre-strip"; });
+  }
+
+  /// Joins of the survey's lanes (the centre strips' joins are strip_joins.h's).
   void lane_joins() {
     const auto& graph = map_.lane_graph();
     for (xodr::LaneNode node = 0; node < graph.size(); ++node) {
       const auto& info = graph.info(node);
+      if (centre_strip(info.lane)) {
+        continue;
+      }
       const P3 a = centre(info.lane, info.s_end);
       const ngii::Link* last = source_link(info.lane, false);
       for (const auto& end : graph.successors(node)) {
@@ -526,6 +537,7 @@ NgiiFigures measure_ngii(const ngii::Layers& layers, const xodr::Map& map) {
   NgiiFigures figures = Measurer(layers, map).run();
   figures.folded_roads = corsa::test::folded_roads(map);
   figures.centre_gaps = corsa::test::centre_gaps(layers, map);
+  figures.strip_joins = corsa::test::strip_joins(map);
   return figures;
 }
 
@@ -564,7 +576,12 @@ std::string format_figures(const NgiiFigures& f) {
       << "links_without_lane " << f.links_without_lane << "\n"
       << "folded_roads " << f.folded_roads << "\n"
       << "centre_gap_stations " << f.centre_gaps.stations << " (over 5 cm " << f.centre_gaps.over
-      << ", max " << f.centre_gaps.max << " at " << f.centre_gaps.worst << ")\n";
+      << ", max " << f.centre_gaps.max << " at " << f.centre_gaps.worst << ")\n"
+      << "centre_strip_joins " << f.strip_joins.joined << " of " << f.strip_joins.touching
+      << " touching pairs (" << f.strip_joins.strip_ends << " strip ends; first unjoined: "
+      << (f.strip_joins.unjoined.empty() ? "none" : f.strip_joins.unjoined) << ")\n"
+      << "centre_strip_join_outer_gap_max_m " << f.strip_joins.outer_gap_max << " ("
+      << f.strip_joins.outer_worst << ")\n";
   return out.str();
 }
 

@@ -13,7 +13,8 @@
 // - pairs of A2 links that the survey names as neighbours (L/R link ids) and that run side by
 //   side along >= 90% of both, but which the map still keeps in different roads;
 // - the roads whose mesh folds over itself (mesh_folds.h);
-// - gaps between opposing roads where a B2 centre mark pairs them (centre_gaps.h).
+// - gaps between opposing roads where a B2 centre mark pairs them (centre_gaps.h);
+// - centre strips touching end to end without a lane-graph join (strip_joins.h).
 // Used by the tests and by the `corsa_ngii_measure` program (docs/ngii.md).
 
 #include <string>
@@ -22,6 +23,7 @@
 #include "centre_gaps.h"
 #include "corsa/ngii/layers.h"
 #include "corsa/xodr/map.h"
+#include "strip_joins.h"
 
 namespace corsa::test {
 
@@ -67,6 +69,7 @@ struct NgiiFigures {
   size_t links_without_lane = 0;  ///< A2 links (longer than 0.1 m) no lane names
   size_t folded_roads = 0;        ///< roads whose mesh folds over itself (mesh_folds.h)
   CentreGapFigures centre_gaps;   ///< strips between opposing roads (centre_gaps.h)
+  StripJoinFigures strip_joins;   ///< centre strips continuing into each other (strip_joins.h)
 };
 
 /// Measures `map` against `layers` (the map's header offset places it in the layers' CRS).

@@ -271,3 +271,20 @@ TEST_CASE("opposing roads meet between double centre lines without moving a lane
     CHECK(figures(area).lateral_p95 < 0.035);
   }
 }
+
+TEST_CASE("centre strips touching end to start continue into each other in the lane graph",
+          "[ngii][quality][centre][strips]") {
+  // Before they were linked, every one was a dead end: 0 of 43 K-City and 0 of 249 Sangam
+  // touching pairs were joined, so a lane-link check (or libOpenDRIVE) saw the painted strip
+  // between double centre lines stop at every road end.
+  for (const char* area : {"kcity", "seoul_sangam_testbed"}) {
+    INFO(area);
+    const auto& f = figures(area).strip_joins;
+    INFO(f.unjoined);
+    CHECK(f.touching > 40);
+    CHECK(f.joined == f.touching);
+    // Joined strips meet at their outer edges too (each is half the gap where it ends).
+    INFO(f.outer_worst);
+    CHECK(f.outer_gap_max < 0.35);
+  }
+}
