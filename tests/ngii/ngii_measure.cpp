@@ -125,6 +125,12 @@ class Measurer {
     }
   }
 
+  /// Lane ends the mouth-gap measure leaves out: centre strips, and lane ends at a split or
+  /// merge (the lane begins or ends at zero width beside its neighbour).
+  bool skip_mouth(const LaneRef& ref, bool at_start) const {
+    return centre_strip(ref) || shares_node(source_link(ref, at_start), at_start);
+  }
+
   NgiiFigures run() {
     link_ends();
     lane_joins();
@@ -534,7 +540,10 @@ class Measurer {
 }  // namespace
 
 NgiiFigures measure_ngii(const ngii::Layers& layers, const xodr::Map& map) {
-  NgiiFigures figures = Measurer(layers, map).run();
+  Measurer measurer(layers, map);
+  NgiiFigures figures = measurer.run();
+  figures.mouth_gaps = corsa::test::mouth_gaps(
+      map, [&](const LaneRef& ref, bool at_start) { return measurer.skip_mouth(ref, at_start); });
   figures.folded_roads = corsa::test::folded_roads(map);
   figures.centre_gaps = corsa::test::centre_gaps(layers, map);
   figures.strip_joins = corsa::test::strip_joins(map);
@@ -553,6 +562,8 @@ std::string format_figures(const NgiiFigures& f) {
       << "lane_joins_measured " << f.lane_joins.count << "\n"
       << "lane_joins_over_0.2m " << f.lane_joins.over << "\n"
       << "lane_joins_max_m " << f.lane_joins.max << " (" << f.lane_joins.worst << ")\n"
+      << "mouth_gaps " << f.mouth_gaps.over << " of " << f.mouth_gaps.ends
+      << " joined lane ends (max " << f.mouth_gaps.max << ", " << f.mouth_gaps.worst << ")\n"
       << "split_merge_joins " << f.split_joins.count << " (over 0.2 m " << f.split_joins.over
       << ", max " << f.split_joins.max << ")\n"
       << "lanes_measured " << f.lanes_measured << "\n"

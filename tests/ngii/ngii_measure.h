@@ -4,7 +4,8 @@
 // written (its lanes found through their <userData code="ngii:link"> provenance), never from the
 // converter's own intermediate data:
 // - where each lane starts and ends against its A2 link's first and last vertex, and the gaps
-//   between lanes joined in the lane graph (end of one, start of the next);
+//   between lanes joined in the lane graph (end of one, start of the next), and unpaved wedges
+//   and slivers just beyond the joined lane ends (mouth_gaps.h);
 // - the vertical error of each lane: the map's road surface under each A2 vertex along it
 //   against the vertex's height (p95 per lane), and the same against the lane centre's height
 //   level with the vertex (which counts a cross slope as error where a link leaves its lane's
@@ -23,6 +24,7 @@
 #include "centre_gaps.h"
 #include "corsa/ngii/layers.h"
 #include "corsa/xodr/map.h"
+#include "mouth_gaps.h"
 #include "strip_joins.h"
 
 namespace corsa::test {
@@ -46,6 +48,7 @@ struct NgiiFigures {
   /// neighbour (at zero width at the road's edge), while its link begins at the shared node
   /// inside that neighbour.
   GapFigures split_joins;
+  MouthGapFigures mouth_gaps;  ///< unpaved runs just beyond joined lane ends (mouth_gaps.h)
   size_t lanes_measured = 0;
   /// p95 over every A2 vertex of its distance from its lane's centre line in the map (m), of
   /// the vertices whose foot lies inside that line and within 1 m (as for the heights).

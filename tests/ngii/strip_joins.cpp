@@ -64,8 +64,8 @@ StripJoinFigures strip_joins(const xodr::Map& map) {
       // One strip's end at the other's start (both are lane +1, left of their reference
       // lines: only roads running the same way put them side by side), pointing out of their
       // lanes in opposite directions.
-      if (a.node == b.node || a.at_start == b.at_start || std::hypot(a.x - b.x, a.y - b.y) > kTouch ||
-          std::cos(a.heading - b.heading) > -0.5) {
+      if (a.node == b.node || a.at_start == b.at_start ||
+          std::hypot(a.x - b.x, a.y - b.y) > kTouch || std::cos(a.heading - b.heading) > -0.5) {
         continue;
       }
       ++f.touching;

@@ -16,10 +16,10 @@
 namespace corsa::test {
 
 struct StripJoinFigures {
-  size_t strip_ends = 0;  ///< ends of strip lanes
-  size_t touching = 0;    ///< pairs of strip ends that touch
-  size_t joined = 0;      ///< of those, joined in the lane graph
-  std::string unjoined;   ///< the first touching pair not joined ("road:lane end -> ...")
+  size_t strip_ends = 0;       ///< ends of strip lanes
+  size_t touching = 0;         ///< pairs of strip ends that touch
+  size_t joined = 0;           ///< of those, joined in the lane graph
+  std::string unjoined;        ///< the first touching pair not joined ("road:lane end -> ...")
   double outer_gap_max = 0.0;  ///< largest distance (m) of the outer edges at a joined pair
   std::string outer_worst;     ///< where it is
 };

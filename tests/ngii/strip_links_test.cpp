@@ -1,10 +1,11 @@
 // Lane links of the centre strips (strip_links.h) on small synthetic maps, and on both areas.
 
+#include "strip_links.h"
+
 #include <catch2/catch.hpp>
 #include <string>
 
 #include "corsa/xodr/map.h"
-#include "strip_links.h"
 
 namespace {
 
@@ -51,8 +52,7 @@ corsa::xodr::RoadLink to_junction(const std::string& id) {
   return {LinkElement::kJunction, id, ContactPoint::kNone};
 }
 
-const corsa::xodr::Lane& lane_of(const corsa::xodr::MapData& map, const std::string& road,
-                                 int id) {
+const corsa::xodr::Lane& lane_of(const corsa::xodr::MapData& map, const std::string& road, int id) {
   for (const auto& r : map.roads) {
     for (const auto& lane : r.lane_sections.front().lanes) {
       if (r.id == road && lane.id == id) {
@@ -87,14 +87,13 @@ TEST_CASE("centre strips continue into each other from road to road and through 
   map.roads[4].predecessor = to_road("d", ContactPoint::kEnd);
   corsa::xodr::Junction junction;
   junction.id = "9";
-  junction.connections.push_back(corsa::xodr::Connection{
-      .id = "0",
-      .incoming_road = "b",
-      .connecting_road = "c",
-      .linked_road = "",
-      .contact_point = ContactPoint::kStart,
-      .lane_links = {{-1, -1}},
-      .line = 0});
+  junction.connections.push_back(corsa::xodr::Connection{.id = "0",
+                                                         .incoming_road = "b",
+                                                         .connecting_road = "c",
+                                                         .linked_road = "",
+                                                         .contact_point = ContactPoint::kStart,
+                                                         .lane_links = {{-1, -1}},
+                                                         .line = 0});
   map.junctions.push_back(junction);
 
   SECTION("linked where they touch") {
