@@ -30,8 +30,7 @@ double uncovered(const xodr::Map& map, const xodr::LaneRef& ref, double s, bool 
   double run = 0.0, longest = 0.0;
   for (int i = 0; i <= steps; ++i) {
     const double f = static_cast<double>(i) / steps;
-    const auto at =
-        map.locate(a.x + f * (b.x - a.x) + dx, a.y + f * (b.y - a.y) + dy, options);
+    const auto at = map.locate(a.x + f * (b.x - a.x) + dx, a.y + f * (b.y - a.y) + dy, options);
     if (at && at->distance <= 1e-6) {
       run = 0.0;
     } else {
@@ -55,8 +54,7 @@ MouthGapFigures mouth_gaps(const xodr::Map& map,
       if (graph.ends(node, at_start).empty() || skip(info.lane, at_start)) {
         continue;
       }
-      const double gap =
-          uncovered(map, info.lane, at_start ? info.s_start : info.s_end, at_start);
+      const double gap = uncovered(map, info.lane, at_start ? info.s_start : info.s_end, at_start);
       ++f.ends;
       const std::string what = "road " + map.road(info.lane.road).id + " lane " +
                                std::to_string(info.lane.lane) + (at_start ? " start" : " end");

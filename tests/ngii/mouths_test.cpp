@@ -69,14 +69,14 @@ struct Builder {
   /// A white lane line from (x0, y) to (x1, y) with `right` on its right and `left` on its left.
   void mark(const std::string& id, double x0, double x1, double y, const std::string& right,
             const std::string& left) {
-    layers.marks.push_back(corsa::ngii::SurfaceMark{
-        .id = id,
-        .type = "211",
-        .kind = "503",
-        .right_link = right,
-        .left_link = left,
-        .points = {at(x0, y), at(x1, y)},
-        .record = static_cast<int64_t>(layers.marks.size())});
+    layers.marks.push_back(
+        corsa::ngii::SurfaceMark{.id = id,
+                                 .type = "211",
+                                 .kind = "503",
+                                 .right_link = right,
+                                 .left_link = left,
+                                 .points = {at(x0, y), at(x1, y)},
+                                 .record = static_cast<int64_t>(layers.marks.size())});
   }
 };
 
@@ -110,8 +110,7 @@ corsa::test::MouthGapFigures mouth_gaps_of(const Layers& layers) {
 
 }  // namespace
 
-TEST_CASE("a junction path leaving a skewed stop line starts on it",
-          "[ngii][mouths]") {
+TEST_CASE("a junction path leaving a skewed stop line starts on it", "[ngii][mouths]") {
   // B ends 1.5 m beyond A: the approach road ends on a line skewed by 23 degrees. A path that
   // started square across its own heading left a wedge beside A's end (1.8 m along its edge).
   const auto gaps = mouth_gaps_of(mouth(31.5).layers);
