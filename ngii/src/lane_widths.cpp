@@ -289,6 +289,9 @@ void match_path_ends(const NetworkPlan& plan, const LaneIndex& index,
           ordinary_width(plan, index.starting[static_cast<size_t>(lane.end_node)], widths, false);
       const Polyline line(lane.points);
       const double length = line.length();
+      if (length <= 0.0) {
+        continue;
+      }
       // Only plausible lane widths, and differences a few metres of easing can take up.
       const auto change = [](double target, double own) {
         return target >= kMinSpacing && target <= kMaxSpacing &&

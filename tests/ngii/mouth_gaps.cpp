@@ -7,26 +7,26 @@
 namespace corsa::test {
 namespace {
 
-constexpr double kBeyond = 0.05;  // m past the lane end
-constexpr double kInside = 0.05;  // m inside each border
-constexpr double kStep = 0.025;   // m between samples across
-constexpr double kLimit = 0.1;    // m: longer unpaved runs are counted
+constexpr double kMouthBeyond = 0.05;  // m past the lane end
+constexpr double kMouthInside = 0.05;  // m inside each border
+constexpr double kMouthStep = 0.025;   // m between samples across
+constexpr double kMouthLimit = 0.1;    // m: longer unpaved runs are counted
 
-/// Longest run (m) of samples on no lane across the lane's end edge moved kBeyond out of it.
+/// Longest run (m) of samples on no lane across the lane's end edge moved kMouthBeyond out of it.
 double uncovered(const xodr::Map& map, const xodr::LaneRef& ref, double s, bool at_start) {
   const auto span = map.lane_span_in_section(ref.road, ref.section, s, ref.lane);
-  if (!span || span->width() < 2 * kInside + kStep) {
+  if (!span || span->width() < 2 * kMouthInside + kMouthStep) {
     return 0.0;
   }
   xodr::LocateOptions options;
   options.max_distance = 1.0;
-  const xodr::WorldPose a = map.world_pose(ref.road, s, span->t_min() + kInside);
-  const xodr::WorldPose b = map.world_pose(ref.road, s, span->t_max() - kInside);
+  const xodr::WorldPose a = map.world_pose(ref.road, s, span->t_min() + kMouthInside);
+  const xodr::WorldPose b = map.world_pose(ref.road, s, span->t_max() - kMouthInside);
   // Out of the lane: along the road at its end, against it at its start.
   const double out = at_start ? a.h + M_PI : a.h;
-  const double dx = kBeyond * std::cos(out), dy = kBeyond * std::sin(out);
+  const double dx = kMouthBeyond * std::cos(out), dy = kMouthBeyond * std::sin(out);
   const double length = std::hypot(b.x - a.x, b.y - a.y);
-  const int steps = std::max(1, static_cast<int>(std::ceil(length / kStep)));
+  const int steps = std::max(1, static_cast<int>(std::ceil(length / kMouthStep)));
   double run = 0.0, longest = 0.0;
   for (int i = 0; i <= steps; ++i) {
     const double f = static_cast<double>(i) / steps;
@@ -58,7 +58,7 @@ MouthGapFigures mouth_gaps(const xodr::Map& map,
       ++f.ends;
       const std::string what = "road " + map.road(info.lane.road).id + " lane " +
                                std::to_string(info.lane.lane) + (at_start ? " start" : " end");
-      if (gap > kLimit) {
+      if (gap > kMouthLimit) {
         ++f.over;
         if (list) {
           const auto p = map.world_pose(info.lane.road, at_start ? info.s_start : info.s_end, 0.0);
