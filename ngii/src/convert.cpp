@@ -16,6 +16,7 @@
 #include "lateral.h"
 #include "network.h"
 #include "network_plan.h"
+#include "strip_links.h"
 
 namespace corsa::ngii {
 namespace {
@@ -114,6 +115,7 @@ Conversion convert(const Layers& layers, const ConvertOptions& options, Diagnost
   result.summary.structures += features.structures;
   // After the decorations, which index a road's lanes from its centre lane.
   result.summary.centre_strips = close_centre_gaps(result.map.roads, result.placements, layers);
+  link_centre_strips(result.map);
   result.map.header = make_header(layers, origin, result.map.roads);
   result.summary.links_read = layers.links.size();
   for (const LinkState& link : network.links) {

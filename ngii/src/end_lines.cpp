@@ -57,9 +57,11 @@ std::vector<RoadEndLines> road_end_lines(const NetworkPlan& plan, const Origin& 
   std::vector<RoadEndLines> out(roads);
   for (size_t r = 0; r < roads; ++r) {
     const RoadPlan& road = plan.roads[r];
-    // Connecting roads (one lane each) end square: bent to the approach's line, the tight
-    // turns they often begin with would fold their inner edge.
-    if (road.removed || road.junction >= 0) {
+    // Connecting roads (one lane each) end on the line of the road they leave or enter where
+    // their lane end lies on it, so that they start where the approach's lanes end, with no
+    // wedge between a skewed stop line and a square start; the bend's even turn (road_end_bend)
+    // keeps their inner edge from folding. Elsewhere they end square.
+    if (road.removed) {
       continue;
     }
     for (const bool at_end : {false, true}) {

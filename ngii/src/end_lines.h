@@ -4,7 +4,8 @@
 // road's lanes ending where the next roads' lanes start, at a split of six lanes into five and
 // one, say) share one line through all the lane ends there, so that the lanes end and start on
 // the same line and meet without a gap; a road whose own lane ends are not all on that shared
-// line (within 0.25 m) keeps the line through its own (road_reference.h).
+// line (within 0.25 m) keeps the line through its own (road_reference.h). Junction paths (one
+// lane) take the shared line where their lane's end lies on it, and otherwise end square.
 
 #include <optional>
 #include <vector>

@@ -19,6 +19,16 @@ constexpr double kMaxSpacing = 5.5;
 constexpr double kMarkReach = 6.0;  // m: farthest mark counted as bounding a lane (half width)
 constexpr double kStep = 1.0;       // m between width samples along a lane
 constexpr int kSmooth = 2;          // samples averaged on either side
+// Junction path ends: a path whose width where it starts (ends) differs from the ordinary lanes
+// it leaves (enters) by more than kPathEndMatch takes theirs there, easing back to its own over
+// kPathEndRamp (at most kPathEndRampShare of its length); at least kMinPathWidth wide. Only
+// for widths of kMinSpacing-kMaxSpacing differing by kPathEndMaxChange at most (a wider exit
+// is a lane that widens, not the path's width).
+constexpr double kPathEndMatch = 0.02;  // m
+constexpr double kPathEndRamp = 6.0;    // m
+constexpr double kPathEndRampShare = 0.4;
+constexpr double kMinPathWidth = 1.5;      // m
+constexpr double kPathEndMaxChange = 1.5;  // m: larger differences are left as they are
 
 const double kUnknown = std::numeric_limits<double>::quiet_NaN();
 
@@ -229,6 +239,83 @@ double WidthProfile::at(double u) const {
   return a.v + f * (b.v - a.v);
 }
 
+namespace {
+
+/// Mean width where the ordinary lanes (not junction paths) in `refs` end (`at_end`) or begin;
+/// 0 when there are none.
+double ordinary_width(const NetworkPlan& plan, const std::vector<LaneIndex::Ref>& refs,
+                      const std::vector<std::vector<WidthProfile>>& widths, bool at_end) {
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& ref : refs) {
+    const RoadPlan& road = plan.roads[static_cast<size_t>(ref.road)];
+    const WidthProfile& p = widths[static_cast<size_t>(ref.road)][static_cast<size_t>(ref.lane)];
+    if (road.removed || (road.junction >= 0 && !road.absorbed) || p.empty()) {
+      continue;
+    }
+    sum += at_end ? p.back() : p.front();
+    ++n;
+  }
+  return n > 0 ? sum / n : 0.0;
+}
+
+/// 1 at x = 0 easing to 0 at x = 1 with zero slope at both (a smoothstep), 0 beyond.
+double ease_out(double x) {
+  if (x >= 1.0) {
+    return 0.0;
+  }
+  const double y = std::max(0.0, x);
+  return 1.0 - y * y * (3.0 - 2.0 * y);
+}
+
+}  // namespace
+
+void match_path_ends(const NetworkPlan& plan, const LaneIndex& index,
+                     std::vector<std::vector<WidthProfile>>& widths) {
+  for (size_t r = 0; r < plan.roads.size(); ++r) {
+    const RoadPlan& road = plan.roads[r];
+    if (road.removed || road.junction < 0 || road.absorbed) {
+      continue;
+    }
+    for (size_t k = 0; k < road.lanes.size(); ++k) {
+      const PlanLane& lane = road.lanes[k];
+      WidthProfile& profile = widths[r][k];
+      if (profile.empty()) {
+        continue;
+      }
+      const double before =
+          ordinary_width(plan, index.ending[static_cast<size_t>(lane.start_node)], widths, true);
+      const double after =
+          ordinary_width(plan, index.starting[static_cast<size_t>(lane.end_node)], widths, false);
+      const Polyline line(lane.points);
+      const double length = line.length();
+      if (length <= 0.0) {
+        continue;
+      }
+      // Only plausible lane widths, and differences a few metres of easing can take up.
+      const auto change = [](double target, double own) {
+        return target >= kMinSpacing && target <= kMaxSpacing &&
+                       std::abs(target - own) <= kPathEndMaxChange
+                   ? target - own
+                   : 0.0;
+      };
+      const double d0 = change(before, profile.front());
+      const double d1 = change(after, profile.back());
+      if (std::abs(d0) < kPathEndMatch && std::abs(d1) < kPathEndMatch) {
+        continue;
+      }
+      const double ramp = std::min(kPathEndRamp, kPathEndRampShare * length);
+      std::vector<ProfileSample> samples;
+      for (const double u : stations_of(line)) {
+        const double w =
+            profile.at(u) + d0 * ease_out(u / ramp) + d1 * ease_out((length - u) / ramp);
+        samples.push_back({u, std::max(w, kMinPathWidth)});
+      }
+      profile = WidthProfile(std::move(samples));
+    }
+  }
+}
+
 PlanWidths measure_widths(const NetworkPlan& plan, const Network& network, double fallback) {
   const WidthMeter meter(network);
   PlanWidths out;
@@ -322,6 +409,7 @@ PlanWidths measure_widths(const NetworkPlan& plan, const Network& network, doubl
       ++out.counts[static_cast<size_t>(source)];
     }
   }
+  match_path_ends(plan, index, out.lanes);
   return out;
 }
 

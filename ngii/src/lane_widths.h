@@ -39,6 +39,13 @@ struct PlanWidths {
   size_t counts[4] = {0, 0, 0, 0};  ///< plan lanes per WidthSource
 };
 
+/// Junction paths take the widths of the ordinary lanes they leave and enter at their ends
+/// (easing back to their own over a few metres), so that a path narrower or wider than the
+/// approach lane leaves no sliver of unpaved ground beside the joint and no step in the edge.
+/// Part of measure_widths; exposed for tests.
+void match_path_ends(const NetworkPlan& plan, const LaneIndex& index,
+                     std::vector<std::vector<WidthProfile>>& widths);
+
 /// Widths of every lane of every (not removed) plan road.
 PlanWidths measure_widths(const NetworkPlan& plan, const Network& network, double fallback);
 

@@ -160,8 +160,10 @@ CentreGapFigures centre_gaps(const ngii::Layers& layers, const xodr::Map& map) {
       if (longest > kGapLimit) {
         ++out.over;
         if (std::getenv("CORSA_MEASURE_LIST") != nullptr) {
-          std::fprintf(stderr, "centre gap %.2f m at mark %s (s %.0f, %.2f m to its pair)\n",
-                       longest, m.mark->id.c_str(), s, width);
+          std::fprintf(stderr,
+                       "centre gap %.2f m at mark %s (s %.0f, %.2f m to its pair; map x %.1f y "
+                       "%.1f)\n",
+                       longest, m.mark->id.c_str(), s, width, v.x, v.y);
         }
       }
       if (longest > out.max) {

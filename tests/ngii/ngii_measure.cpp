@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <map>
 #include <set>
-#include <sstream>
 #include <unordered_map>
 
 #include "mesh_folds.h"
@@ -123,6 +122,12 @@ class Measurer {
         }
       }
     }
+  }
+
+  /// Lane ends the mouth-gap measure leaves out: centre strips, and lane ends at a split or
+  /// merge (the lane begins or ends at zero width beside its neighbour).
+  bool skip_mouth(const LaneRef& ref, bool at_start) const {
+    return centre_strip(ref) || shares_node(source_link(ref, at_start), at_start);
   }
 
   NgiiFigures run() {
@@ -258,10 +263,21 @@ class Measurer {
     }
   }
 
+  bool centre_strip(const LaneRef& ref) const {
+    const xodr::Lane* lane = map_.lane(ref);
+    return lane != nullptr && lane->type == xodr::LaneType::kRestricted &&
+           std::any_of(lane->user_data.begin(), lane->user_data.end(),
+                       [](const auto& d) { return d.code == "ngii:centre-strip"; });
+  }
+
+  /// Joins of the survey's lanes (the centre strips' joins are strip_joins.h's).
   void lane_joins() {
     const auto& graph = map_.lane_graph();
     for (xodr::LaneNode node = 0; node < graph.size(); ++node) {
       const auto& info = graph.info(node);
+      if (centre_strip(info.lane)) {
+        continue;
+      }
       const P3 a = centre(info.lane, info.s_end);
       const ngii::Link* last = source_link(info.lane, false);
       for (const auto& end : graph.successors(node)) {
@@ -523,49 +539,14 @@ class Measurer {
 }  // namespace
 
 NgiiFigures measure_ngii(const ngii::Layers& layers, const xodr::Map& map) {
-  NgiiFigures figures = Measurer(layers, map).run();
+  Measurer measurer(layers, map);
+  NgiiFigures figures = measurer.run();
+  figures.mouth_gaps = corsa::test::mouth_gaps(
+      map, [&](const LaneRef& ref, bool at_start) { return measurer.skip_mouth(ref, at_start); });
   figures.folded_roads = corsa::test::folded_roads(map);
   figures.centre_gaps = corsa::test::centre_gaps(layers, map);
+  figures.strip_joins = corsa::test::strip_joins(map);
   return figures;
-}
-
-std::string format_figures(const NgiiFigures& f) {
-  std::ostringstream out;
-  out.precision(3);
-  out << std::fixed;
-  out << "link_ends_measured " << f.link_ends.count << "\n"
-      << "link_ends_over_0.2m " << f.link_ends.over << "\n"
-      << "link_ends_max_m " << f.link_ends.max << " (" << f.link_ends.worst << ")\n"
-      << "split_merge_ends " << f.split_ends.count << " (over 0.2 m " << f.split_ends.over
-      << ", max " << f.split_ends.max << ")\n"
-      << "lane_joins_measured " << f.lane_joins.count << "\n"
-      << "lane_joins_over_0.2m " << f.lane_joins.over << "\n"
-      << "lane_joins_max_m " << f.lane_joins.max << " (" << f.lane_joins.worst << ")\n"
-      << "split_merge_joins " << f.split_joins.count << " (over 0.2 m " << f.split_joins.over
-      << ", max " << f.split_joins.max << ")\n"
-      << "lanes_measured " << f.lanes_measured << "\n"
-      << "lateral_p95_m " << f.lateral_p95 << "\n"
-      << "vertical_p95_max_m " << f.vertical_p95_max << " (" << f.vertical_worst << ")\n"
-      << "vertical_max_m " << f.vertical_max << "\n"
-      << "lanes_vertical_p95_over_5cm " << f.lanes_over_5cm << "\n"
-      << "vertical_centre_p95_max_m " << f.vertical_centre_p95_max << " ("
-      << f.vertical_centre_worst << ")\n"
-      << "lanes_vertical_centre_p95_over_5cm " << f.lanes_centre_over_5cm << "\n"
-      << "width_samples " << f.width_samples << "\n"
-      << "width_p95_m " << f.width_p95 << "\n"
-      << "width_p95_single_lane_roads_m " << f.width_p95_single << "\n"
-      << "side_by_side_pairs " << f.side_by_side_pairs << "\n"
-      << "side_by_side_split " << f.split_pairs;
-  for (const auto& e : f.split_examples) {
-    out << " " << e;
-  }
-  out << "\n"
-      << "lanes_without_provenance " << f.lanes_without_provenance << "\n"
-      << "links_without_lane " << f.links_without_lane << "\n"
-      << "folded_roads " << f.folded_roads << "\n"
-      << "centre_gap_stations " << f.centre_gaps.stations << " (over 5 cm " << f.centre_gaps.over
-      << ", max " << f.centre_gaps.max << " at " << f.centre_gaps.worst << ")\n";
-  return out.str();
 }
 
 }  // namespace corsa::test

@@ -4,7 +4,8 @@
 // written (its lanes found through their <userData code="ngii:link"> provenance), never from the
 // converter's own intermediate data:
 // - where each lane starts and ends against its A2 link's first and last vertex, and the gaps
-//   between lanes joined in the lane graph (end of one, start of the next);
+//   between lanes joined in the lane graph (end of one, start of the next), and unpaved wedges
+//   and slivers just beyond the joined lane ends (mouth_gaps.h);
 // - the vertical error of each lane: the map's road surface under each A2 vertex along it
 //   against the vertex's height (p95 per lane), and the same against the lane centre's height
 //   level with the vertex (which counts a cross slope as error where a link leaves its lane's
@@ -13,7 +14,8 @@
 // - pairs of A2 links that the survey names as neighbours (L/R link ids) and that run side by
 //   side along >= 90% of both, but which the map still keeps in different roads;
 // - the roads whose mesh folds over itself (mesh_folds.h);
-// - gaps between opposing roads where a B2 centre mark pairs them (centre_gaps.h).
+// - gaps between opposing roads where a B2 centre mark pairs them (centre_gaps.h);
+// - centre strips touching end to end without a lane-graph join (strip_joins.h).
 // Used by the tests and by the `corsa_ngii_measure` program (docs/ngii.md).
 
 #include <string>
@@ -22,6 +24,8 @@
 #include "centre_gaps.h"
 #include "corsa/ngii/layers.h"
 #include "corsa/xodr/map.h"
+#include "mouth_gaps.h"
+#include "strip_joins.h"
 
 namespace corsa::test {
 
@@ -44,6 +48,7 @@ struct NgiiFigures {
   /// neighbour (at zero width at the road's edge), while its link begins at the shared node
   /// inside that neighbour.
   GapFigures split_joins;
+  MouthGapFigures mouth_gaps;  ///< unpaved runs just beyond joined lane ends (mouth_gaps.h)
   size_t lanes_measured = 0;
   /// p95 over every A2 vertex of its distance from its lane's centre line in the map (m), of
   /// the vertices whose foot lies inside that line and within 1 m (as for the heights).
@@ -67,6 +72,7 @@ struct NgiiFigures {
   size_t links_without_lane = 0;  ///< A2 links (longer than 0.1 m) no lane names
   size_t folded_roads = 0;        ///< roads whose mesh folds over itself (mesh_folds.h)
   CentreGapFigures centre_gaps;   ///< strips between opposing roads (centre_gaps.h)
+  StripJoinFigures strip_joins;   ///< centre strips continuing into each other (strip_joins.h)
 };
 
 /// Measures `map` against `layers` (the map's header offset places it in the layers' CRS).

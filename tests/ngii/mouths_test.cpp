@@ -1,0 +1,135 @@
+// Junction mouths on small synthetic layers: a junction path leaves an approach lane without a
+// wedge or sliver of unpaved ground between them (mouth_gaps.h).
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "corsa/ngii/convert.h"
+#include "corsa/xodr/map.h"
+#include "mouth_gaps.h"
+
+namespace {
+
+using corsa::ngii::Layers;
+using corsa::ngii::Link;
+using corsa::ngii::Node;
+using corsa::ngii::Point3;
+
+constexpr double kX0 = 300000.0, kY0 = 4100000.0;
+
+Point3 at(double x, double y) { return {kX0 + x, kY0 + y, 50.0}; }
+
+struct Builder {
+  Layers layers;
+
+  Builder() {
+    layers.node_file = "A1_NODE.dbf";
+    layers.link_file = "A2_LINK.dbf";
+    layers.mark_file = "B2_SURFACELINEMARK.dbf";
+  }
+  void node(const std::string& id, double x, double y) {
+    layers.nodes.push_back(Node{.id = id,
+                                .node_type = "99",
+                                .position = at(x, y),
+                                .record = static_cast<int64_t>(layers.nodes.size())});
+  }
+  /// A straight link from node a to node b (both added before).
+  void link(const std::string& id, const std::string& type, int lane_no, const std::string& a,
+            const std::string& b, const std::string& right = "", const std::string& left = "") {
+    Point3 pa{}, pb{};
+    for (const Node& n : layers.nodes) {
+      pa = n.id == a ? n.position : pa;
+      pb = n.id == b ? n.position : pb;
+    }
+    std::vector<Point3> points;
+    const double length = std::hypot(pb.x - pa.x, pb.y - pa.y);
+    const int steps = static_cast<int>(std::ceil(length));
+    for (int i = 0; i <= steps; ++i) {
+      const double f = static_cast<double>(i) / steps;
+      points.push_back({pa.x + f * (pb.x - pa.x), pa.y + f * (pb.y - pa.y), 50.0});
+    }
+    layers.links.push_back(Link{.id = id,
+                                .link_type = type,
+                                .road_rank = "",
+                                .road_type = "1",
+                                .road_no = "",
+                                .lane_no = lane_no,
+                                .max_speed = 0,
+                                .right_id = right,
+                                .left_id = left,
+                                .from_node = a,
+                                .to_node = b,
+                                .length_attr = length,
+                                .points = std::move(points),
+                                .record = static_cast<int64_t>(layers.links.size())});
+  }
+  /// A white lane line from (x0, y) to (x1, y) with `right` on its right and `left` on its left.
+  void mark(const std::string& id, double x0, double x1, double y, const std::string& right,
+            const std::string& left) {
+    layers.marks.push_back(
+        corsa::ngii::SurfaceMark{.id = id,
+                                 .type = "211",
+                                 .kind = "503",
+                                 .right_link = right,
+                                 .left_link = left,
+                                 .points = {at(x0, y), at(x1, y)},
+                                 .record = static_cast<int64_t>(layers.marks.size())});
+  }
+};
+
+/// Two eastbound lanes (A left, B 3.5 m to its right) ending at x = 30 (A) and `b_end` (B), a
+/// junction path from A's end straight on to a two-lane exit road from x = 50.
+Builder mouth(double b_end) {
+  Builder b;
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("B0", 0.0, -3.5);
+  b.node("B1", b_end, -3.5);
+  b.node("E0", 50.0, 0.0);
+  b.node("E1", 80.0, 0.0);
+  b.node("F0", 50.0, -3.5);
+  b.node("F1", 80.0, -3.5);
+  b.link("A2TEST00000A", "6", 1, "A0", "A1", "A2TEST00000B", "");
+  b.link("A2TEST00000B", "6", 2, "B0", "B1", "", "A2TEST00000A");
+  b.link("A2TEST00000P", "1", 1, "A1", "E0");
+  b.link("A2TEST00000E", "6", 1, "E0", "E1", "A2TEST00000F", "");
+  b.link("A2TEST00000F", "6", 2, "F0", "F1", "", "A2TEST00000E");
+  return b;
+}
+
+corsa::test::MouthGapFigures mouth_gaps_of(const Layers& layers) {
+  corsa::Diagnostics diagnostics;
+  const auto conversion = corsa::ngii::convert(layers, {}, diagnostics);
+  CHECK(diagnostics.count(corsa::Severity::kWarning) == 0);
+  const auto map = corsa::xodr::Map::build(conversion.map, diagnostics);
+  return corsa::test::mouth_gaps(map, [](const corsa::xodr::LaneRef&, bool) { return false; });
+}
+
+}  // namespace
+
+TEST_CASE("a junction path leaving a skewed stop line starts on it", "[ngii][mouths]") {
+  // B ends 1.5 m beyond A: the approach road ends on a line skewed by 23 degrees. A path that
+  // started square across its own heading left a wedge beside A's end (1.8 m along its edge).
+  const auto gaps = mouth_gaps_of(mouth(31.5).layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 4);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE("a junction path narrower than the lane it leaves widens to it at the joint",
+          "[ngii][mouths]") {
+  // The path's marks are 3.0 m apart, the approach and exit lanes 3.5 m: at its ends it takes
+  // their width (easing back over a few metres), so no sliver of 0.25 m opens beside it.
+  Builder b = mouth(30.0);
+  b.mark("B2L", 30.0, 50.0, 1.5, "A2TEST00000P", "");
+  b.mark("B2R", 30.0, 50.0, -1.5, "", "A2TEST00000P");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 4);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
