@@ -198,6 +198,13 @@ TEST_CASE(
   CHECK(run.now("Stray").pose.h == Approx(std::numbers::pi / 2).margin(1e-6));
   CHECK(run.now("Stray").pose.x == Approx(225.25).margin(0.01));
   CHECK(all_text(run.diagnostics()).find("cannot follow its route") == std::string::npos);
+  SECTION("the dynamics controller steers along too") {
+    options.controller = "dynamics";
+    FixtureRun dynamics(engine_fixture("route_lane_blocked.xosc"), options);
+    dynamics.run();
+    CHECK(dynamics.now("Stray").pose.h == Approx(std::numbers::pi / 2).margin(0.05));
+    CHECK(dynamics.now("Stray").pose.x == Approx(225.25).margin(0.5));
+  }
 }
 
 TEST_CASE(
