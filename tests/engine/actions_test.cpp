@@ -117,6 +117,28 @@ TEST_CASE("LaneChangeAction reaches relative and absolute target lanes", "[engin
   }
 }
 
+TEST_CASE(
+    "A teleport during a lane change onto a road without the target lane ends the change "
+    "with a warning",
+    "[engine][action][lane]") {
+  FixtureRun run(engine_fixture("action_teleport_lane_change_no_lane.xosc"));
+  run.run();
+  // Road 3 has lanes 1 and -1 only: the change to lane -2 ends where the teleport put the car,
+  // on lane -1's centre, and stays there.
+  const auto warnings = all_text(run.diagnostics());
+  CHECK(run.diagnostics().count(Severity::kWarning) == 1);
+  CHECK_THAT(warnings, Catch::Contains("action_teleport_lane_change_no_lane.xosc:31: warning:"));
+  CHECK_THAT(warnings, Catch::Contains("the TeleportAction put entity 'Car' where its road has no "
+                                       "lane -2; the lane change ends there"));
+  const auto ended = run.first("ChangeAction", engine::TransitionKind::kEnd);
+  REQUIRE(ended);
+  CHECK(*ended == Approx(2.01).margin(0.011));
+  CHECK(run.sim().road_id(run.now("Car").road->road) == "3");
+  CHECK(run.now("Car").road->lane == -1);
+  CHECK(run.now("Car").road->t == Approx(-1.75).margin(1e-9));
+  CHECK(run.at(3.0, "Car").road->t == Approx(-1.75).margin(1e-9));
+}
+
 TEST_CASE("LaneOffsetAction respects maxLateralAcc and a continuous relative offset tracks",
           "[engine][action][lane]") {
   FixtureRun run(engine_fixture("action_lane_offset.xosc"));

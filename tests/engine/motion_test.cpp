@@ -272,6 +272,32 @@ TEST_CASE("FollowTrajectoryAction drives polylines, clothoids and NURBS by their
   CHECK(run.at(*start + 0.01, "Offset").pose.x == Approx(320.1).margin(0.02));
 }
 
+TEST_CASE("A NURBS trajectory's time is its fourth dimension, interpolated like its position",
+          "[engine][trajectory]") {
+  // x(u) = 10 + 80 u + 20 u^2 and, the control points' times being "the time dimension of the
+  // control point", time(u) = 2 u (1 - u) 1 s + u^2 10 s = 2 u + 8 u^2 (weights 1). At 5 s:
+  // u = 0.67539, x = 73.154; at 0.5 s: u = 0.15451, x = 22.838. (The middle point's time at its
+  // Greville abscissa, interpolated in arc length, gave x = 79.444 at 5 s.)
+  FixtureRun run(engine_fixture("trajectory_nurbs_timing.xosc"));
+  run.run();
+  const auto start = run.first("FollowAction", TransitionKind::kStart);
+  REQUIRE(start);
+  CHECK(run.at(*start + 0.5, "Car").pose.x == Approx(22.838).margin(0.01));
+  CHECK(run.at(*start + 5.0, "Car").pose.x == Approx(73.154).margin(0.01));
+  CHECK(run.at(*start + 10.0, "Car").pose.x == Approx(110.0).margin(1e-6));
+  SECTION("esmini") {
+    // esmini's NurbsShape: 101 samples of u (the control polygon is 100 m); the middle point's
+    // basis function peaks at the sample u = 50 / 101, and time goes linearly in u from one
+    // peak to the next: at 5 s u = 0.49505 + 4 / 9 x 0.50495 = 0.71947, x = 77.911.
+    engine::SimulationOptions options;
+    options.semantics = engine::Semantics::kEsmini;
+    FixtureRun esmini(engine_fixture("trajectory_nurbs_timing.xosc"), options);
+    esmini.run();
+    CHECK(esmini.at(*start + 5.0, "Car").pose.x == Approx(77.911).margin(0.01));
+    CHECK(esmini.at(*start + 10.0, "Car").pose.x == Approx(110.0).margin(1e-6));
+  }
+}
+
 TEST_CASE("FollowTrajectoryAction in follow mode drives toward the path like a driver",
           "[engine][trajectory]") {
   FixtureRun run(engine_fixture("action_follow_trajectory.xosc"));

@@ -367,4 +367,27 @@ TEST_CASE("A lane change goes on to its target lane from where a teleport put th
   }
 }
 
+TEST_CASE(
+    "Under esmini's reading a lane change started in the step of a teleport goes from where the "
+    "teleport put the car",
+    "[engine][semantics][lane]") {
+  // The teleport (to lane -3, t = -8.75) takes the step from 1.01 s to 1.02 s; the linear 2 s
+  // change to lane -2 (t = -5.25) started in the same step then moves the car 0.0175 m a step
+  // to the left, never right of lane -3's centre (it used to be measured from the wrong lane,
+  // 3.5 m off: t = -12.25).
+  FixtureRun run(engine_fixture("semantics_teleport_and_lane_change.xosc"), esmini_reading());
+  run.run();
+  CHECK(run.at(1.02, "Car").road->s == Approx(100.0).margin(1e-9));
+  CHECK(run.at(1.02, "Car").road->t == Approx(-8.75).margin(1e-9));
+  for (int tick = 102; tick < 400; ++tick) {
+    const double t = run.at(tick * 0.01, "Car").road->t;
+    INFO("tick " << tick);
+    CHECK(t >= -8.75 - 1e-9);
+    CHECK(t <= -5.25 + 1e-9);
+  }
+  CHECK(run.at(2.02, "Car").road->t == Approx(-7.0).margin(0.02));
+  CHECK(run.at(4.0, "Car").road->lane == -2);
+  CHECK(run.at(4.0, "Car").road->t == Approx(-5.25).margin(1e-9));
+}
+
 }  // namespace corsa::test

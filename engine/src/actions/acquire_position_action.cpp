@@ -37,9 +37,9 @@ class AcquirePositionInstance final : public InstantAction {
                entity.info.name + "'");
     }
     const size_t last = route->steps.empty() ? 0 : route->steps.size() - 1;
-    assign_route(
-        entity,
-        RoutePlan{std::move(route->steps), {last}, "AcquirePositionAction", action_.source});
+    RoutePlan plan{std::move(route->steps), {last}, "AcquirePositionAction", action_.source};
+    plan.from_any_lane = state.options.semantics == Semantics::kEsmini;
+    assign_route(entity, std::move(plan));
   }
 
  private:

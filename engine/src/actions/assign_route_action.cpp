@@ -18,8 +18,10 @@ class AssignRouteInstance final : public InstantAction {
 
   void start(ActionContext& context) override {
     RoutePath path = build_route_path(action_.route, context.state, context.actor);
-    assign_route(context.entity(), RoutePlan{std::move(path.steps), std::move(path.waypoint_steps),
-                                             action_.route.name, action_.route.source});
+    RoutePlan plan{std::move(path.steps), std::move(path.waypoint_steps), action_.route.name,
+                   action_.route.source};
+    plan.from_any_lane = context.state.options.semantics == Semantics::kEsmini;
+    assign_route(context.entity(), std::move(plan));
   }
 
  private:

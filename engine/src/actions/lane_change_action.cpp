@@ -52,6 +52,7 @@ class LaneChangeInstance final : public ActionInstance {
     lane.lateral = (t_now - *target_center) * lane.dir;
     start_lateral_ = lane.lateral;
     target_lateral_ = lane.dir * action_.target_lane_offset.value_or(0.0);  // t -> travel frame
+    seen_shift_ = lane.frame_shift;
     entity.lateral_command = start_lateral_;
     start_tick_ = context.state.tick;
     start_distance_ = entity.longitudinal_distance;
@@ -77,6 +78,12 @@ class LaneChangeInstance final : public ActionInstance {
     if (done_) {
       return;
     }
+    // A route carried the entity on from a neighbouring lane's end (LaneFollow::frame_shift):
+    // the start and the target move with the followed lane's frame.
+    const double shift = context.entity().lane.frame_shift - seen_shift_;
+    seen_shift_ += shift;
+    start_lateral_ += shift;
+    target_lateral_ += shift;
     // Progress at the end of this step: time, or distance with this step's travel predicted.
     const double p = progress(context, 1);
     const double left = 1.0 - from_;
@@ -115,6 +122,7 @@ class LaneChangeInstance final : public ActionInstance {
     entity.lateral_command = lane.lateral;
     start_lateral_ = lane.lateral;
     target_lateral_ = lane.dir * action_.target_lane_offset.value_or(0.0);
+    seen_shift_ = lane.frame_shift;
     from_ = shape_value(action_.dynamics.shape, progress(context, 0));
   }
 
@@ -155,6 +163,7 @@ class LaneChangeInstance final : public ActionInstance {
   /// Shape value (0..1) the transition was last started from: 0, or where a teleport put it.
   double from_ = 0.0;
   double target_lateral_ = 0.0;
+  double seen_shift_ = 0.0;  ///< LaneFollow::frame_shift that start_ and target_ are measured in
   int64_t start_tick_ = 0;
   double start_distance_ = 0.0;
   double total_ = 0.0;

@@ -260,6 +260,8 @@ void sync_lane(const SimState& state, Entity& entity, DynamicsVehicle& vehicle,
   const double dx = entity.state.pose.x - foot.pose.x, dy = entity.state.pose.y - foot.pose.y;
   centre.lateral = c * dy - s * dx;
   centre.heading_offset = wrap_angle(entity.state.pose.h - foot.pose.h);
+  // Carried on from a neighbouring lane's end: the offset asked for moves with the lane frame.
+  entity.lateral_command += centre.frame_shift - entity.lane.frame_shift;
   entity.lane = centre;
   entity.longitudinal_distance += std::abs(moved);
   entity.end_of_road = hit_end || (entity.end_of_road && moved == 0.0);

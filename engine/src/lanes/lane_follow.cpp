@@ -148,9 +148,25 @@ AdvanceResult advance_along_lanes(const xodr::Map& map, LaneFollow& follow, doub
 
 void enter_next_lane(const xodr::Map& map, LaneFollow& follow, std::span<const xodr::LaneEnd> ends,
                      const LaneChooser* chooser) {
-  const size_t pick = chooser != nullptr ? chooser->choose(map, follow, ends)
-                                         : choose_straightest(map, follow, ends);
-  const xodr::LaneEnd next = ends[pick];
+  std::optional<LaneRedirect> redirect;
+  if (chooser != nullptr) {
+    redirect = chooser->redirect(map, follow, ends);
+  }
+  if (redirect) {
+    const auto own = followed_lane_center_t(map, follow, follow.lane);
+    const auto via = followed_lane_center_t(map, follow, redirect->via_lane);
+    if (own && via) {
+      const double shift = (*own - *via) * follow.dir;
+      follow.lateral += shift;
+      follow.frame_shift += shift;
+    } else {
+      redirect.reset();
+    }
+  }
+  const xodr::LaneEnd next = redirect
+                                 ? redirect->end
+                                 : ends[chooser != nullptr ? chooser->choose(map, follow, ends)
+                                                           : choose_straightest(map, follow, ends)];
   const auto& next_info = map.lane_graph().info(next.node);
   follow.node = next.node;
   follow.road = next_info.lane.road;

@@ -15,6 +15,13 @@
 
 namespace corsa::engine::detail {
 
+/// A lane end joined to another lane of the followed lane's section, at the same s, that the
+/// entity takes instead of the ends of its own lane (LaneChooser::redirect).
+struct LaneRedirect {
+  xodr::LaneEnd end;
+  int via_lane = 0;  ///< the lane of the followed section whose end `end` is joined to
+};
+
 /// Picks where to continue at a lane end among the joined lane ends. The default picks the
 /// straightest; a route (motion/route_chooser.h) picks the one on the route.
 class LaneChooser {
@@ -23,6 +30,12 @@ class LaneChooser {
   /// Index into `candidates` (never empty).
   virtual size_t choose(const xodr::Map& map, const LaneFollow& lane,
                         std::span<const xodr::LaneEnd> candidates) const = 0;
+  /// Where to go on from another lane's end instead of the candidates (none by default).
+  virtual std::optional<LaneRedirect> redirect(
+      const xodr::Map& /*map*/, const LaneFollow& /*lane*/,
+      std::span<const xodr::LaneEnd> /*candidates*/) const {
+    return std::nullopt;
+  }
 };
 
 /// The deterministic default: prefer drivable lanes entered in their own travel direction, then
@@ -57,6 +70,8 @@ struct AdvanceResult {
 
 /// At a lane end: picks among the joined `ends` (never empty) with `chooser` (or the
 /// straightest) and puts `follow` at the start of the chosen lane in its direction of travel.
+/// When the chooser redirects it to a neighbouring lane's successor, the lateral offset moves by
+/// the distance between the two lanes' centres (LaneFollow::frame_shift), keeping the place.
 void enter_next_lane(const xodr::Map& map, LaneFollow& follow, std::span<const xodr::LaneEnd> ends,
                      const LaneChooser* chooser);
 

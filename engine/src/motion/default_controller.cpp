@@ -149,8 +149,11 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     // not drive faster than its speed.
     // Standing still needs no scale (and on a cubic reference line it costs an evaluation).
     const double scale = distance == 0.0 ? 1.0 : path_scale(*context.map, entity);
+    const double shift_before = lane.frame_shift;
     const AdvanceResult moved = advance_along_lanes(
         *context.map, lane, along_lane(entity, distance, context) / scale, entity.chooser);
+    // Carried on from a neighbouring lane's end: the offset asked for moves with the lane frame.
+    entity.lateral_command += lane.frame_shift - shift_before;
     const double travelled = moved.travelled * scale;
     lateral_change = entity.lateral_command - lane.lateral;
     if (std::abs(travelled) > 1e-9) {

@@ -29,6 +29,12 @@ void move_to_pose_command(Entity& entity, const MotionContext& context) {
   if (context.map == nullptr) {
     return;
   }
+  // Held where it stands (esmini's teleport, which takes its step): the followed lane was set
+  // with the pose, and a LaneChangeAction started in the same step may since have switched it
+  // to its target lane, keeping the place; that lane and offset stay.
+  if (moved == 0.0 && target.h == h0 && entity.lane.on_road) {
+    return;
+  }
   // Keep the followed lane in step with the pose (half a metre of slack off the lane edges),
   // so that the lane, s and t are recorded and lane following can take over at the end.
   const auto at = locate_point(*context.map, target.x, target.y, 0.5);

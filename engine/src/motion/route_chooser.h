@@ -3,6 +3,7 @@
 // Following a route through junctions (OpenSCENARIO 1.3 §6.6 routes, §7.4.4.1 AssignRouteAction):
 // at a lane end with several successors the entity takes the one the route drives on.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,11 @@ struct RoutePlan {
   std::vector<size_t> waypoint_steps;
   std::string name;     ///< the route's name, for messages
   xosc::Source source;  ///< where the route (or the action that made it) is written
+  /// esmini's reading (Semantics::kEsmini): at a lane end that does not lead on along the route,
+  /// the entity takes the route's way from the route's lane beside it, keeping its lateral
+  /// place (a lane change under way across a junction goes on along the route's connecting
+  /// road). Otherwise it leaves the route there.
+  bool from_any_lane = false;
 };
 
 class RouteChooser final : public LaneChooser {
@@ -30,6 +36,12 @@ class RouteChooser final : public LaneChooser {
   /// route (the route changes lanes there); else the straightest (the entity left its route).
   size_t choose(const xodr::Map& map, const LaneFollow& lane,
                 std::span<const xodr::LaneEnd> candidates) const override;
+
+  /// With RoutePlan::from_any_lane, when no candidate is on a road of the route: the successor
+  /// on the route of the route's lane in the same section and direction, when the route leaves
+  /// the section there.
+  std::optional<LaneRedirect> redirect(const xodr::Map& map, const LaneFollow& lane,
+                                       std::span<const xodr::LaneEnd> candidates) const override;
 
   const std::vector<xodr::RouteStep>& steps() const { return plan_.steps; }
   const RoutePlan& plan() const { return plan_; }

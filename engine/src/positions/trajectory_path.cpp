@@ -217,6 +217,97 @@ Vec3 nurbs_point(const std::vector<Vec3>& points, const std::vector<double>& wei
   return {d[degree][0] / w, d[degree][1] / w, d[degree][2] / w};
 }
 
+// A NURBS sampled uniformly in u from u0 to u1: sample i at u0 + (u1 - u0) i / (s.size() - 1),
+// s its arc length (m) along the samples.
+struct NurbsSamples {
+  const std::vector<Vec3>& points;
+  const std::vector<double>& weights;
+  int degree = 0;
+  double u0 = 0.0;
+  double u1 = 0.0;
+  std::vector<double> s;
+
+  /// Arc length (m) at parameter u, interpolated between the samples.
+  double s_at(double u) const {
+    const size_t last = s.size() - 1;
+    const double x =
+        u1 > u0 ? std::clamp((u - u0) / (u1 - u0), 0.0, 1.0) * static_cast<double>(last) : 0.0;
+    const size_t lo = std::min(static_cast<size_t>(x), last - 1);
+    return s[lo] + (x - static_cast<double>(lo)) * (s[lo + 1] - s[lo]);
+  }
+};
+
+std::vector<double> sample_lengths(const std::vector<Vec3>& polyline) {
+  std::vector<double> s(polyline.size(), 0.0);
+  for (size_t i = 1; i < polyline.size(); ++i) {
+    s[i] =
+        s[i - 1] + std::hypot(polyline[i].x - polyline[i - 1].x, polyline[i].y - polyline[i - 1].y);
+  }
+  return s;
+}
+
+// Some control points without a time: each time is put where its point has most influence, its
+// Greville abscissa (the mean of its `degree` inner knots), and interpolated in arc length.
+void add_greville_times(TrajectoryPath& path, const xosc::Nurbs& shape,
+                        const NurbsSamples& sampled) {
+  for (size_t i = 0; i < shape.control_points.size(); ++i) {
+    if (!shape.control_points[i].time) {
+      continue;
+    }
+    double greville = 0.0;
+    for (int k = 1; k <= sampled.degree; ++k) {
+      greville += shape.knots[i + k];
+    }
+    path.add_time(sampled.s_at(greville / sampled.degree), *shape.control_points[i].time);
+  }
+}
+
+// esmini's timing of a NURBS (its NurbsShape::CalculatePolyLine): the curve is sampled at
+// 1 + (control polygon length in m) even steps of u from 0 to the last knot; each control
+// point's time belongs to the sample where its (non-rational) basis function peaks, and the
+// time goes linearly in u from one such peak to the next (beyond the last two, on the same
+// line).
+void add_esmini_nurbs_times(TrajectoryPath& path, const xosc::Nurbs& shape,
+                            const NurbsSamples& sampled) {
+  const size_t n = sampled.points.size();
+  double polygon = 0.0;
+  for (size_t i = 1; i < n; ++i) {
+    polygon += std::hypot(sampled.points[i].x - sampled.points[i - 1].x,
+                          sampled.points[i].y - sampled.points[i - 1].y);
+  }
+  const int steps = static_cast<int>(1.0 + polygon);
+  const double step = shape.knots.back() / steps;
+  std::vector<Vec3> unit(n, Vec3{0.0, 0.0, 0.0});
+  const std::vector<double> ones(n, 1.0);
+  std::vector<double> peak(n, 0.0);
+  std::vector<double> peak_value(n, 0.0);
+  for (int i = 0; i <= steps; ++i) {
+    const double u = i * step;
+    const double clamped = std::clamp(u, sampled.u0, sampled.u1 - 1e-10);
+    for (size_t j = 0; j < n; ++j) {
+      unit[j].x = 1.0;
+      const double basis = nurbs_point(unit, ones, shape.knots, sampled.degree, clamped).x;
+      unit[j].x = 0.0;
+      if (basis > peak_value[j]) {
+        peak_value[j] = basis;
+        peak[j] = u;
+      }
+    }
+  }
+  size_t current = 0;
+  for (int i = 0; i <= steps; ++i) {
+    const double u = i * step;
+    if (u >= peak[current + 1]) {
+      current = std::min(current + 1, n - 2);
+    }
+    const double span = peak[current + 1] - peak[current];
+    const double w = span > 0.0 ? (u - peak[current]) / span : 1.0;
+    const double t0 = *shape.control_points[current].time;
+    const double t1 = *shape.control_points[current + 1].time;
+    path.add_time(sampled.s_at(u), t0 + w * (t1 - t0));
+  }
+}
+
 void build_nurbs(TrajectoryPath& path, const xosc::Nurbs& shape, const SimState& state,
                  std::optional<uint32_t> self) {
   const size_t n = shape.control_points.size();
@@ -247,28 +338,27 @@ void build_nurbs(TrajectoryPath& path, const xosc::Nurbs& shape, const SimState&
     polyline.push_back(nurbs_point(points, weights, shape.knots, degree, std::min(u, u1)));
   }
   add_polyline(path, polyline);
-  // A control point's time belongs to the curve where that point has most influence: its
-  // Greville abscissa (the mean of its `degree` inner knots), mapped to arc length through the
-  // samples (uniform in u).
-  std::vector<double> sample_s(polyline.size(), 0.0);
-  for (size_t i = 1; i < polyline.size(); ++i) {
-    sample_s[i] = sample_s[i - 1] +
-                  std::hypot(polyline[i].x - polyline[i - 1].x, polyline[i].y - polyline[i - 1].y);
-  }
-  for (size_t i = 0; i < n; ++i) {
-    if (!shape.control_points[i].time) {
-      continue;
+  const bool all_timed =
+      std::all_of(shape.control_points.begin(), shape.control_points.end(),
+                  [](const xosc::ControlPoint& cp) { return cp.time.has_value(); });
+  const NurbsSamples sampled{points, weights, degree, u0, u1, sample_lengths(polyline)};
+  if (all_timed && state.options.semantics == Semantics::kEsmini) {
+    add_esmini_nurbs_times(path, shape, sampled);
+  } else if (all_timed) {
+    // OpenSCENARIO 1.3 ControlPoint: time is "the time dimension of the control point", so the
+    // curve is four-dimensional: its time at u is the same rational B-spline of the control
+    // points' times as its position is of their positions.
+    std::vector<Vec3> times;
+    for (const xosc::ControlPoint& cp : shape.control_points) {
+      times.push_back({*cp.time, 0.0, 0.0});
     }
-    double greville = 0.0;
-    for (int k = 1; k <= degree; ++k) {
-      greville += shape.knots[i + k];
+    for (size_t i = 0; i < polyline.size(); ++i) {
+      const double u = u0 + (u1 - u0) * static_cast<double>(i) / static_cast<double>(samples);
+      path.add_time(sampled.s[i],
+                    nurbs_point(times, weights, shape.knots, degree, std::min(u, u1)).x);
     }
-    greville /= degree;
-    const double x = u1 > u0 ? std::clamp((greville - u0) / (u1 - u0), 0.0, 1.0) * samples : 0.0;
-    const size_t lo = std::min(static_cast<size_t>(x), samples - 1);
-    const double s =
-        sample_s[lo] + (x - static_cast<double>(lo)) * (sample_s[lo + 1] - sample_s[lo]);
-    path.add_time(s, *shape.control_points[i].time);
+  } else {
+    add_greville_times(path, shape, sampled);
   }
 }
 

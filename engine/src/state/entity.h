@@ -38,6 +38,10 @@ struct LaneFollow {
   double lateral = 0.0;
   /// Heading (rad) relative to the lane's direction of travel, from lateral motion.
   double heading_offset = 0.0;
+  /// Sum (m, left of travel) of the shifts of `lateral` made when a route carried the entity on
+  /// from the end of a neighbouring lane (LaneChooser::redirect): an offset commanded before
+  /// such a shift is moved by it, so that the entity keeps its place across the lane end.
+  double frame_shift = 0.0;
 };
 
 /// The lane position an entity's pose and road coordinates were last computed from, and what
