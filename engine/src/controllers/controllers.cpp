@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "controllers/external.h"
+#include "controllers/follow_ghost.h"
 #include "controllers/follow_view.h"
 #include "controllers/npc_caution.h"
 #include "controllers/worker_pool.h"
@@ -88,6 +89,25 @@ void assign_initial_controllers(SimState& state) {
     const Entity& entity = state.world.entities[i];
     ControlState& control = state.controls[i];
     bool chosen = false;
+    if (entity.ghost) {
+      // The ghost performs its entity's actions as written, seen by no one (state/ghost_state.h).
+      control.traffic_visible = false;
+      control.graphics_visible = false;
+      continue;
+    }
+    if (state.ghost && state.ghost->entity == i) {
+      // esmini's followGhost (controllers/follow_ghost.h): as any assigned controller, it moves
+      // the entity once an ActivateControllerAction activates it.
+      for (const xosc::ObjectController& oc : entity.object->controllers) {
+        if (oc.controller.properties.get("esminiController") == "FollowGhostController") {
+          control.assigned = oc.name.value_or(oc.controller.name);
+        }
+      }
+      control.kind = ControllerKind::kFollowGhost;
+      control.longitudinal = false;
+      control.lateral = false;
+      continue;
+    }
     if (entity.object != nullptr && !state.options.disable_controllers) {
       for (const xosc::ObjectController& oc : entity.object->controllers) {
         control.assigned = oc.name.value_or(oc.controller.name);
@@ -209,8 +229,10 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
     // Car following and the vehicle model reach a new speed their own way, not by a jump.
     entity.speed_jump = false;
   }
-  if (!entity.state.placed || entity.towed_by) {
-    return;  // a connected trailer follows its tower (motion/trailers.h)
+  if (!entity.state.placed || entity.towed_by || state.frozen(i)) {
+    // A connected trailer follows its tower (motion/trailers.h); during a ghost's head start
+    // only the ghost moves.
+    return;
   }
   if (entity.info.kind == ObjectKind::kPedestrian && kind == ControllerKind::kDefault) {
     step_pedestrian(state, i, ideal, motion, view);
@@ -234,6 +256,9 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
       break;
     case ControllerKind::kExternal:
       step_commanded(state, i, ideal, motion);
+      break;
+    case ControllerKind::kFollowGhost:
+      step_follow_ghost(state, i, motion);
       break;
   }
 }

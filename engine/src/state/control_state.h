@@ -16,7 +16,8 @@ namespace corsa::engine::detail {
 
 /// The controllers this engine has. kDefault is the ideal lane follower (motion/controller.h);
 /// kExternal moves the entity only by commands from outside (controllers/external.h).
-enum class ControllerKind : uint8_t { kDefault, kAcc, kDynamics, kExternal };
+/// kFollowGhost drives after the entity's ghost (controllers/follow_ghost.h).
+enum class ControllerKind : uint8_t { kDefault, kAcc, kDynamics, kExternal, kFollowGhost };
 
 /// Parses a controller name as `corsa:controller` and `corsa run --controller` spell it
 /// ("default", "acc", "dynamics", "external"); nothing for an unknown name.
