@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <numbers>
 #include <thread>
@@ -60,9 +61,47 @@ bool names_external(const SimulationOptions& options, const xosc::ObjectControll
   return false;
 }
 
+namespace {
+
+// esmini's controller type: its `esminiController` property, else the Controller's name.
+std::string esmini_type(const xosc::Controller& controller) {
+  return controller.properties.get("esminiController").value_or(controller.name);
+}
+
+// A number property of esmini's ACCController, or nothing (a value that is no number warns).
+std::optional<double> acc_number(SimState& state, const xosc::Controller& controller,
+                                 const char* name) {
+  for (const xosc::Property& property : controller.properties.properties) {
+    if (property.name != name) continue;
+    char* end = nullptr;
+    const double value = std::strtod(property.value.c_str(), &end);
+    if (end != property.value.c_str() && *end == '\0' && std::isfinite(value) && value >= 0.0) {
+      return value;
+    }
+    state.diagnostics.add(property.source.warning("ACCController property '" + property.name +
+                                                  "' is not a non-negative number ('" +
+                                                  property.value + "'): its default is used"));
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectController& oc) {
   ControlState& control = control_of(state, index);
   const std::string& entity = state.world.entities[index].info.name;
+  if (esmini_type(oc.controller) == "ACCController") {
+    // esmini's ACC: the acc controller with esmini's law (controllers/acc_controller.cpp).
+    EsminiAcc acc;
+    acc.time_gap = acc_number(state, oc.controller, "timeGap").value_or(acc.time_gap);
+    if (oc.controller.properties.get("mode") == "override") {
+      acc.set_speed = acc_number(state, oc.controller, "setSpeed");
+    }
+    control.kind = ControllerKind::kAcc;
+    control.substitute_for.clear();
+    control.esmini_acc = acc;
+    return;
+  }
   control.kind = ControllerKind::kAcc;
   control.substitute_for = oc.controller.name;
   state.diagnostics.add_once(

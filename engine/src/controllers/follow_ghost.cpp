@@ -17,7 +17,7 @@
 namespace corsa::engine::detail {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr double kFullTurn = 2.0 * std::numbers::pi;
 // esmini's vehicle model (its vehicle.cpp) as the followGhost controller sets it up.
 constexpr double kFollowerMaxAcceleration = 10.0;  // m/s^2, also the speed loop's gain (1/s)
 constexpr double kFollowerMaxSpeed = 100.0;        // m/s
@@ -164,7 +164,7 @@ TrailPoint trail_at(const SimState& state, double time) {
   out.x = a.x + w * (b.x - a.x);
   out.y = a.y + w * (b.y - a.y);
   out.z = a.z + w * (b.z - a.z);
-  out.h = a.h + w * std::remainder(b.h - a.h, kTwoPi);
+  out.h = a.h + w * std::remainder(b.h - a.h, kFullTurn);
   out.speed = a.speed + w * (b.speed - a.speed);
   return out;
 }
@@ -178,7 +178,7 @@ void step_follow_ghost(SimState& state, uint32_t index, const MotionContext& mot
     car.started = true;
     car.x = entity.state.pose.x;
     car.y = entity.state.pose.y;
-    car.h = entity.state.pose.h - kTwoPi * std::floor(entity.state.pose.h / kTwoPi);
+    car.h = entity.state.pose.h - kFullTurn * std::floor(entity.state.pose.h / kFullTurn);
     car.speed = entity.state.speed;
     car.length = entity.info.box.length > 0.0 ? entity.info.box.length : 5.0;
   }
@@ -213,15 +213,15 @@ void step_follow_ghost(SimState& state, uint32_t index, const MotionContext& mot
   const double slip = std::atan(kPivotFraction * std::tan(wheel));
   const double course = car.h + slip;
   const double yaw_rate = car.speed * std::sin(slip) / (car.length * kPivotFraction);
-  car.h = std::fmod(car.h + dt * yaw_rate, kTwoPi);
-  if (car.h < 0.0) car.h += kTwoPi;
+  car.h = std::fmod(car.h + dt * yaw_rate, kFullTurn);
+  if (car.h < 0.0) car.h += kFullTurn;
   car.x += dt * car.speed * std::cos(course);
   car.y += dt * car.speed * std::sin(course);
 
   Pose pose = entity.state.pose;
   pose.x = car.x;
   pose.y = car.y;
-  pose.h = std::remainder(car.h, kTwoPi);
+  pose.h = std::remainder(car.h, kFullTurn);
   if (motion.map != nullptr) {
     if (const auto at = locate_point(*motion.map, car.x, car.y, 0.5)) {
       const xodr::WorldPose surface = motion.map->world_pose(at->road, at->s, at->t);

@@ -50,6 +50,14 @@ struct ControllerOverrides {
 
 struct DynamicsVehicle;
 
+/// esmini's ACCController (its Properties), which the acc controller then follows instead of its
+/// own car-following law (controllers/acc_controller.cpp).
+struct EsminiAcc {
+  double time_gap = 1.5;      ///< s (property timeGap)
+  /// Property setSpeed in mode "override" (m/s); otherwise the actions' speed is the set speed.
+  std::optional<double> set_speed;
+};
+
 /// The flags every step reads of every entity (the controller, whether it is commanded or seen
 /// by traffic) come first, in one cache line; the rest is read only by the entities it concerns.
 struct ControlState {
@@ -77,6 +85,8 @@ struct ControlState {
   std::string assigned;
   /// The scenario's controller that `kind` stands in for ("" when the scenario's own runs).
   std::string substitute_for;
+  /// Set when the acc controller emulates esmini's ACCController.
+  std::optional<EsminiAcc> esmini_acc;
   ControllerOverrides overrides;
   /// The dynamics controller's vehicle model (created on its first step).
   std::shared_ptr<DynamicsVehicle> dynamics;
