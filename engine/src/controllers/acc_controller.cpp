@@ -309,8 +309,8 @@ double esmini_acc_speed(const Entity& entity, const EsminiAcc& acc, double set_s
     const double a = std::clamp(2.5 * f - f * dv_set - (1.0 - f) * dv_min, -max_dec, max_acc);
     return std::max(0.0, v + a * dt);
   }
-  const double a = std::clamp((set_speed - v) * kSetSpeedGain * max_acc, -max_dec,
-                              kSetSpeedGain * max_acc);
+  const double a =
+      std::clamp((set_speed - v) * kSetSpeedGain * max_acc, -max_dec, kSetSpeedGain * max_acc);
   const double next = v + a * dt;
   return std::abs(next - set_speed) > std::abs(v - set_speed) ? set_speed : next;
 }
@@ -323,8 +323,8 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
   const double set_speed = entity.speed_command;
   if (const auto& esmini = state.controls[index].esmini_acc) {
     const Leader leader = find_leader(state, index, view, ahead, false);
-    const double command = esmini_acc_speed(entity, *esmini, esmini->set_speed.value_or(set_speed),
-                                            leader, motion.dt);
+    const double command =
+        esmini_acc_speed(entity, *esmini, esmini->set_speed.value_or(set_speed), leader, motion.dt);
     entity.speed_command = command;
     DefaultController().step(entity, motion);
     if (entity.speed_command == command) {

@@ -138,7 +138,7 @@ void assign_initial_controllers(SimState& state) {
       // esmini's followGhost (controllers/follow_ghost.h): as any assigned controller, it moves
       // the entity once an ActivateControllerAction activates it.
       for (const xosc::ObjectController& oc : entity.object->controllers) {
-        if (oc.controller.properties.get("esminiController") == "FollowGhostController") {
+        if (is_follow_ghost(oc)) {
           control.assigned = oc.name.value_or(oc.controller.name);
         }
       }

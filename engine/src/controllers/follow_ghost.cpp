@@ -24,11 +24,6 @@ constexpr double kFollowerMaxSpeed = 100.0;        // m/s
 constexpr double kMaxWheelAngle = 60.0 * std::numbers::pi / 180.0;
 constexpr double kPivotFraction = 0.15;  // the model's reference point, of the length from the rear
 
-bool is_follow_ghost(const xosc::ObjectController& oc) {
-  const auto kind = oc.controller.properties.get("esminiController");
-  return kind && *kind == "FollowGhostController";
-}
-
 // A numeric property of the controller, or `fallback` (a value that is no number warns).
 double number_property(SimState& state, const xosc::Controller& controller, const char* name,
                        double fallback) {
@@ -39,10 +34,9 @@ double number_property(SimState& state, const xosc::Controller& controller, cons
     if (end != property.value.c_str() && *end == '\0' && std::isfinite(value) && value >= 0.0) {
       return value;
     }
-    state.diagnostics.add(property.source.warning("followGhost property '" + property.name +
-                                                  "' is not a non-negative number ('" +
-                                                  property.value + "'): " +
-                                                  std::to_string(fallback) + " is used"));
+    state.diagnostics.add(property.source.warning(
+        "followGhost property '" + property.name + "' is not a non-negative number ('" +
+        property.value + "'): " + std::to_string(fallback) + " is used"));
     return fallback;
   }
   return fallback;
@@ -52,7 +46,8 @@ void read_properties(SimState& state, const xosc::ObjectController& oc, GhostLin
   const xosc::Controller& c = oc.controller;
   link.headstart = number_property(state, c, "headstartTime", link.headstart);
   link.lookahead_speed = number_property(state, c, "lookaheadSpeed", link.lookahead_speed);
-  link.min_lookahead_speed = number_property(state, c, "minLookaheadSpeed", link.min_lookahead_speed);
+  link.min_lookahead_speed =
+      number_property(state, c, "minLookaheadSpeed", link.min_lookahead_speed);
   link.lookahead_steering = number_property(state, c, "lookaheadSteering", link.lookahead_steering);
   link.min_lookahead_steering =
       number_property(state, c, "minLookaheadSteering", link.min_lookahead_steering);
@@ -69,6 +64,11 @@ void read_properties(SimState& state, const xosc::ObjectController& oc, GhostLin
 }
 
 }  // namespace
+
+bool is_follow_ghost(const xosc::ObjectController& oc) {
+  return oc.controller.properties.get("esminiController").value_or(oc.controller.name) ==
+         "FollowGhostController";
+}
 
 void setup_ghost(SimState& state) {
   if (state.options.disable_controllers) {
@@ -98,8 +98,9 @@ void setup_ghost(SimState& state) {
       ghost.state.visible = false;
       link.ghost = static_cast<uint32_t>(state.world.entities.size());
       if (!state.world.by_name.emplace(ghost.info.name, link.ghost).second) {
-        throw InputError(oc.source.error("the ghost of '" + entity.info.name + "' would be called '" +
-                                         ghost.info.name + "', which another entity is called"));
+        throw InputError(oc.source.error("the ghost of '" + entity.info.name +
+                                         "' would be called '" + ghost.info.name +
+                                         "', which another entity is called"));
       }
       state.world.entities.push_back(std::move(ghost));
       state.tick = -link.headstart_ticks;
@@ -203,9 +204,8 @@ void step_follow_ghost(SimState& state, uint32_t index, const MotionContext& mot
   const double heading_error = std::asin(std::clamp(cross, -1.0, 1.0));
   // Speed: a proportional loop within the model's acceleration; steering: the wheel turned
   // straight to the heading error, its range narrowing with speed.
-  const double acceleration =
-      std::clamp(kFollowerMaxAcceleration * (target_speed - car.speed), -kFollowerMaxAcceleration,
-                 kFollowerMaxAcceleration);
+  const double acceleration = std::clamp(kFollowerMaxAcceleration * (target_speed - car.speed),
+                                         -kFollowerMaxAcceleration, kFollowerMaxAcceleration);
   car.speed = std::clamp(car.speed + acceleration * dt, -kFollowerMaxSpeed, kFollowerMaxSpeed);
   const double range = kMaxWheelAngle / (1.0 + link.steering_speed_inertia * car.speed * car.speed);
   const double wheel = std::clamp(heading_error, -range, range);

@@ -29,15 +29,21 @@ struct SimState;
 struct TrailPoint;
 
 /// Makes the ghost of the first entity whose ObjectController is esmini's followGhost
-/// (Property esminiController = FollowGhostController), unless controllers are disabled or
-/// driven from outside, and sets the run's first tick to -headstart. Call after the entities
-/// are built and before the controllers are assigned. A second such entity gets none (as in
-/// esmini, which sets up the first ghost only; a warning says so).
+/// (Property esminiController, else the Controller's name, FollowGhostController), unless
+/// controllers are disabled or driven from outside, and sets the run's first tick to -headstart.
+/// Call after the entities are built and before the controllers are assigned. A second such entity
+/// gets none (as in esmini, which sets up the first ghost only; a warning says so).
 void setup_ghost(SimState& state);
+
+/// Whether `oc` is esmini's followGhost controller.
+bool is_follow_ghost(const xosc::ObjectController& oc);
 
 /// Whether the ghost performs this action of its entity in the stories (the motion actions
 /// listed above).
 bool ghost_performs(const xosc::PrivateAction& action);
+
+/// Whether `oc` is esmini's followGhost controller.
+bool is_follow_ghost(const xosc::ObjectController& oc);
 
 /// Whether the ghost performs this Init action of its entity too (all but the controller ones).
 bool ghost_copies_init(const xosc::PrivateAction& action);

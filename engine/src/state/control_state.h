@@ -53,7 +53,7 @@ struct DynamicsVehicle;
 /// esmini's ACCController (its Properties), which the acc controller then follows instead of its
 /// own car-following law (controllers/acc_controller.cpp).
 struct EsminiAcc {
-  double time_gap = 1.5;      ///< s (property timeGap)
+  double time_gap = 1.5;  ///< s (property timeGap)
   /// Property setSpeed in mode "override" (m/s); otherwise the actions' speed is the set speed.
   std::optional<double> set_speed;
 };
