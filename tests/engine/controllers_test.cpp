@@ -1,6 +1,7 @@
 // Controllers (OpenSCENARIO 1.3 §7.5): the acc car follower (behind a slower vehicle, across a
 // road link, in the ASAM TrafficJam), OverrideControllerValueAction, ActivateControllerAction and
-// AssignControllerAction, `--controller`, and an external controller stood in for. The dynamics
+// AssignControllerAction, `--controller`, an external controller stood in for, and esmini's
+// ACCController emulated. The dynamics
 // vehicle itself: dynamics_test.cpp.
 
 #include <cmath>
@@ -29,6 +30,23 @@ TEST_CASE("The acc controller keeps a time gap behind a slower vehicle", "[engin
   CHECK(follower.speed == Approx(12.0).margin(0.3));
   const double gap = lead.pose.x - follower.pose.x - 4.5;  // same box, bumper to bumper
   CHECK(gap == Approx(3.0 + 1.5 * 12.0).margin(2.0));
+}
+
+TEST_CASE("esmini's ACCController settles 3 m + timeGap x the lead's speed behind it",
+          "[engine][controllers][esmini-acc]") {
+  // Its law accelerates by 2.5 f - f (v - set) - (1 - f) (v - min(set, lead)), f = (gap -
+  // follow) / follow: it is at rest (0) only at v = lead speed and f = 0, i.e. at the gap
+  // follow = 3 + timeGap x 12 m/s = 15 m bumper to bumper.
+  FixtureRun run(engine_fixture("controller_esmini_acc.xosc"));
+  run.run();
+  CHECK(run.sim().collisions().empty());
+  CHECK(run.sim().controller_substitute(run.entity("Follower")).empty());
+  const auto& lead = run.now("Lead");
+  const auto& follower = run.now("Follower");
+  CHECK(follower.speed == Approx(12.0).margin(0.01));
+  CHECK(lead.pose.x - follower.pose.x - 4.5 == Approx(3.0 + 1.0 * 12.0).margin(0.05));
+  // Far behind, f = 1 and the set speed held: it first speeds up by 2.5 m/s^2 beyond it.
+  CHECK(run.at(1.0, "Follower").speed > 25.5);
 }
 
 TEST_CASE("The acc controller follows a standing vehicle just across a road link",

@@ -121,9 +121,11 @@ TEST_CASE("The CSV export of a binary trajectory is the run's CSV, byte for byte
     CHECK(run.exported == run.csv);
     CHECK(run.binary.size() * 5 < run.csv.size());
   }
-  // Entities added, deleted and spawned by traffic; every 7th step; another controller.
-  for (const char* fixture : {"entity_add_delete_visibility.xosc", "traffic_source_sink.xosc",
-                              "traffic_swarm.xosc", "condition_road.xosc"}) {
+  // Entities added, deleted and spawned by traffic; a ghost's run from -2 s (negative ticks,
+  // -200 no multiple of 7); every 7th step; another controller.
+  for (const char* fixture :
+       {"entity_add_delete_visibility.xosc", "traffic_source_sink.xosc", "traffic_swarm.xosc",
+        "condition_road.xosc", "controller_follow_ghost.xosc"}) {
     INFO(fixture);
     const Recorded every = record_both(engine_fixture(fixture), 7);
     CHECK(every.exported == every.csv);

@@ -43,6 +43,10 @@ std::unique_ptr<EntityCondition> make_relative_angle(const xosc::RelativeAngleCo
 // By value
 std::unique_ptr<ValueCondition> make_simulation_time(const xosc::SimulationTimeCondition& c,
                                                      const SimState& state);
+/// A SimulationTimeCondition whose value counts `shift` s later (negative: earlier), as the
+/// triggers that esmini's ghost takes over (controllers/follow_ghost.h) read it.
+std::unique_ptr<ValueCondition> make_shifted_simulation_time(const xosc::SimulationTimeCondition& c,
+                                                             double shift);
 std::unique_ptr<ValueCondition> make_storyboard_element_state(
     const xosc::StoryboardElementStateCondition& c, const SimState& state);
 std::unique_ptr<ValueCondition> make_parameter(const xosc::ParameterCondition& c,

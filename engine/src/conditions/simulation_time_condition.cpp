@@ -9,18 +9,27 @@ namespace {
 
 class SimulationTimeCheck final : public ValueCondition {
  public:
-  explicit SimulationTimeCheck(const xosc::SimulationTimeCondition& c) : c_(c) {}
-  bool holds(const SimState& state) override { return compare(state.now(), c_.rule, c_.value); }
+  SimulationTimeCheck(const xosc::SimulationTimeCondition& c, double shift)
+      : c_(c), shift_(shift) {}
+  bool holds(const SimState& state) override {
+    return compare(state.now(), c_.rule, c_.value + shift_);
+  }
 
  private:
   const xosc::SimulationTimeCondition& c_;
+  double shift_ = 0.0;
 };
 
 }  // namespace
 
 std::unique_ptr<ValueCondition> make_simulation_time(const xosc::SimulationTimeCondition& c,
                                                      const SimState&) {
-  return std::make_unique<SimulationTimeCheck>(c);
+  return std::make_unique<SimulationTimeCheck>(c, 0.0);
+}
+
+std::unique_ptr<ValueCondition> make_shifted_simulation_time(const xosc::SimulationTimeCondition& c,
+                                                             double shift) {
+  return std::make_unique<SimulationTimeCheck>(c, shift);
 }
 
 }  // namespace corsa::engine::detail

@@ -283,12 +283,54 @@ Leader find_leader(const SimState& state, uint32_t self, const FollowView& view,
   return leader;
 }
 
+// esmini's ACCController (its ControllerACC::Step): the speed after this step. Without a leader
+// it approaches the set speed at 0.7 x maxAcceleration per m/s of difference (at most 0.7 x
+// maxAcceleration, at least -maxDeceleration) and stops at it. With one, it keeps 3 m plus
+// timeGap x the faster one's speed: the acceleration 2.5 f - f (v - set) - (1 - f) (v -
+// min(set, lead)), f = min(1, (gap - follow) / follow), within the Performance; a gap under 1 m
+// stops it. It sees leaders no further than max(50 m, 6 m + v^2 / maxDeceleration).
+double esmini_acc_speed(const Entity& entity, const EsminiAcc& acc, double set_speed,
+                        const Leader& leader, double dt) {
+  constexpr double kMinDist = 3.0;  // m
+  constexpr double kSetSpeedGain = 0.7;
+  const double max_acc =
+      entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultLimit;
+  const double max_dec =
+      entity.info.max_deceleration > 0.0 ? entity.info.max_deceleration : kDefaultLimit;
+  const double v = entity.state.speed;
+  const double lookahead = std::max(50.0, 2.0 * kMinDist + v * v / max_dec);
+  if (std::isfinite(leader.gap) && leader.gap <= lookahead) {
+    if (leader.gap < 1.0) return 0.0;
+    const double follow = kMinDist + acc.time_gap * std::abs(std::max(v, leader.speed));
+    const double f = std::min(1.0, (leader.gap - follow) / follow);
+    const double dv_min = v - std::min(set_speed, leader.speed);
+    const double dv_set = v - set_speed;
+    const double a = std::clamp(2.5 * f - f * dv_set - (1.0 - f) * dv_min, -max_dec, max_acc);
+    return std::max(0.0, v + a * dt);
+  }
+  const double a =
+      std::clamp((set_speed - v) * kSetSpeedGain * max_acc, -max_dec, kSetSpeedGain * max_acc);
+  const double next = v + a * dt;
+  return std::abs(next - set_speed) > std::abs(v - set_speed) ? set_speed : next;
+}
+
 }  // namespace
 
 void step_acc(SimState& state, uint32_t index, const MotionContext& motion, const FollowView& view,
               LanesAhead& ahead) {
   Entity& entity = state.world.entities[index];
   const double set_speed = entity.speed_command;
+  if (const auto& esmini = state.controls[index].esmini_acc) {
+    const Leader leader = find_leader(state, index, view, ahead, false);
+    const double command =
+        esmini_acc_speed(entity, *esmini, esmini->set_speed.value_or(set_speed), leader, motion.dt);
+    entity.speed_command = command;
+    DefaultController().step(entity, motion);
+    if (entity.speed_command == command) {
+      entity.speed_command = set_speed;
+    }
+    return;
+  }
   // Generated traffic also minds traffic lights, whatever reaches into its way, and the
   // scenario's vehicles coming up from behind (controllers/npc_caution.h).
   const bool generated = view.targets()[index].generated;

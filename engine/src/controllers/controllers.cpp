@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <numbers>
 #include <thread>
 #include <vector>
 
 #include "controllers/external.h"
+#include "controllers/follow_ghost.h"
 #include "controllers/follow_view.h"
 #include "controllers/npc_caution.h"
 #include "controllers/worker_pool.h"
@@ -59,9 +61,47 @@ bool names_external(const SimulationOptions& options, const xosc::ObjectControll
   return false;
 }
 
+namespace {
+
+// esmini's controller type: its `esminiController` property, else the Controller's name.
+std::string esmini_type(const xosc::Controller& controller) {
+  return controller.properties.get("esminiController").value_or(controller.name);
+}
+
+// A number property of esmini's ACCController, or nothing (a value that is no number warns).
+std::optional<double> acc_number(SimState& state, const xosc::Controller& controller,
+                                 const char* name) {
+  for (const xosc::Property& property : controller.properties.properties) {
+    if (property.name != name) continue;
+    char* end = nullptr;
+    const double value = std::strtod(property.value.c_str(), &end);
+    if (end != property.value.c_str() && *end == '\0' && std::isfinite(value) && value >= 0.0) {
+      return value;
+    }
+    state.diagnostics.add(property.source.warning("ACCController property '" + property.name +
+                                                  "' is not a non-negative number ('" +
+                                                  property.value + "'): its default is used"));
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectController& oc) {
   ControlState& control = control_of(state, index);
   const std::string& entity = state.world.entities[index].info.name;
+  if (esmini_type(oc.controller) == "ACCController") {
+    // esmini's ACC: the acc controller with esmini's law (controllers/acc_controller.cpp).
+    EsminiAcc acc;
+    acc.time_gap = acc_number(state, oc.controller, "timeGap").value_or(acc.time_gap);
+    if (oc.controller.properties.get("mode") == "override") {
+      acc.set_speed = acc_number(state, oc.controller, "setSpeed");
+    }
+    control.kind = ControllerKind::kAcc;
+    control.substitute_for.clear();
+    control.esmini_acc = acc;
+    return;
+  }
   control.kind = ControllerKind::kAcc;
   control.substitute_for = oc.controller.name;
   state.diagnostics.add_once(
@@ -88,6 +128,25 @@ void assign_initial_controllers(SimState& state) {
     const Entity& entity = state.world.entities[i];
     ControlState& control = state.controls[i];
     bool chosen = false;
+    if (entity.ghost) {
+      // The ghost performs its entity's actions as written, seen by no one (state/ghost_state.h).
+      control.traffic_visible = false;
+      control.graphics_visible = false;
+      continue;
+    }
+    if (state.ghost && state.ghost->entity == i) {
+      // esmini's followGhost (controllers/follow_ghost.h): as any assigned controller, it moves
+      // the entity once an ActivateControllerAction activates it.
+      for (const xosc::ObjectController& oc : entity.object->controllers) {
+        if (is_follow_ghost(oc)) {
+          control.assigned = oc.name.value_or(oc.controller.name);
+        }
+      }
+      control.kind = ControllerKind::kFollowGhost;
+      control.longitudinal = false;
+      control.lateral = false;
+      continue;
+    }
     if (entity.object != nullptr && !state.options.disable_controllers) {
       for (const xosc::ObjectController& oc : entity.object->controllers) {
         control.assigned = oc.name.value_or(oc.controller.name);
@@ -209,8 +268,10 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
     // Car following and the vehicle model reach a new speed their own way, not by a jump.
     entity.speed_jump = false;
   }
-  if (!entity.state.placed || entity.towed_by) {
-    return;  // a connected trailer follows its tower (motion/trailers.h)
+  if (!entity.state.placed || entity.towed_by || state.frozen(i)) {
+    // A connected trailer follows its tower (motion/trailers.h); during a ghost's head start
+    // only the ghost moves.
+    return;
   }
   if (entity.info.kind == ObjectKind::kPedestrian && kind == ControllerKind::kDefault) {
     step_pedestrian(state, i, ideal, motion, view);
@@ -234,6 +295,9 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
       break;
     case ControllerKind::kExternal:
       step_commanded(state, i, ideal, motion);
+      break;
+    case ControllerKind::kFollowGhost:
+      step_follow_ghost(state, i, motion);
       break;
   }
 }

@@ -24,6 +24,9 @@ namespace codec = detail::trajectory_codec;
 
 namespace {
 
+// a / b rounded toward -infinity (b > 0): ticks before time 0 count like the others.
+int64_t floor_div(int64_t a, int64_t b) { return a / b - (a % b != 0 && a < 0 ? 1 : 0); }
+
 // Values beyond this many units cannot come from the writer (it stores them raw).
 constexpr int64_t kMaxUnits = 9'000'000'000'000'000;
 
@@ -336,12 +339,13 @@ void TrajectoryReader::Impl::check_end(size_t& at, size_t start, const RecordChe
   if (stored != codec::crc32(0, std::string_view(data).substr(0, at))) {
     fail(at, "the checksum does not match (the file is damaged)");
   }
-  if (first_tick < 0 || last_tick < first_tick || (!c.first_frame && c.frame_tick > last_tick) ||
+  // Ticks may be negative: a run with a ghost starts before time 0 (controllers/follow_ghost.h).
+  if (last_tick < first_tick || (!c.first_frame && c.frame_tick > last_tick) ||
       (c.off_interval && c.frame_tick != last_tick) ||
       (first_tick % every != 0 && first_tick != last_tick)) {
     fail(start, "the recorded ticks do not fit the header");
   }
-  frames = 1 + static_cast<size_t>(last_tick / every - first_tick / every) +
+  frames = 1 + static_cast<size_t>(floor_div(last_tick, every) - floor_div(first_tick, every)) +
            (last_tick % every != 0 && last_tick != first_tick ? 1 : 0);
   if (first_tick % every != 0) {
     frames = 1;
@@ -349,7 +353,7 @@ void TrajectoryReader::Impl::check_end(size_t& at, size_t start, const RecordChe
 }
 
 int64_t TrajectoryReader::Impl::next_tick(int64_t from) const {
-  const int64_t next = (from / every + 1) * every;
+  const int64_t next = (floor_div(from, every) + 1) * every;
   return next <= last_tick ? next : last_tick;
 }
 

@@ -6,6 +6,7 @@
 
 #include "controllers/controllers.h"
 #include "controllers/external.h"
+#include "controllers/follow_ghost.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/route_lanes.h"
@@ -42,6 +43,7 @@ Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xod
   };
   for (const auto& [name, value] : options.values) state.given_values[name] = value;
   detail::build_entities(state);
+  detail::setup_ghost(state);
   detail::assign_initial_controllers(state);
   detail::init_traffic(state);
   for (const xosc::ParameterDeclaration& p : scenario.parameters) {
@@ -63,6 +65,7 @@ Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xod
   detail::place_npcs(state);
   detail::update_contacts(state, contact_sweep);
   detail::update_timers(state, false);
+  detail::record_trail(state);
 }
 
 void Simulation::Impl::announce(const Simulation& owner) {
@@ -85,6 +88,7 @@ void Simulation::Impl::advance() {
   detail::end_commands(state);
   detail::move_trailers(state, state.time.dt());
   ++state.tick;
+  detail::record_trail(state);
   detail::update_traffic(state);
   detail::update_contacts(state, contact_sweep);
   detail::update_timers(state, true);

@@ -16,7 +16,8 @@ namespace corsa::engine::detail {
 
 /// The controllers this engine has. kDefault is the ideal lane follower (motion/controller.h);
 /// kExternal moves the entity only by commands from outside (controllers/external.h).
-enum class ControllerKind : uint8_t { kDefault, kAcc, kDynamics, kExternal };
+/// kFollowGhost drives after the entity's ghost (controllers/follow_ghost.h).
+enum class ControllerKind : uint8_t { kDefault, kAcc, kDynamics, kExternal, kFollowGhost };
 
 /// Parses a controller name as `corsa:controller` and `corsa run --controller` spell it
 /// ("default", "acc", "dynamics", "external"); nothing for an unknown name.
@@ -49,6 +50,14 @@ struct ControllerOverrides {
 
 struct DynamicsVehicle;
 
+/// esmini's ACCController (its Properties), which the acc controller then follows instead of its
+/// own car-following law (controllers/acc_controller.cpp).
+struct EsminiAcc {
+  double time_gap = 1.5;  ///< s (property timeGap)
+  /// Property setSpeed in mode "override" (m/s); otherwise the actions' speed is the set speed.
+  std::optional<double> set_speed;
+};
+
 /// The flags every step reads of every entity (the controller, whether it is commanded or seen
 /// by traffic) come first, in one cache line; the rest is read only by the entities it concerns.
 struct ControlState {
@@ -76,6 +85,8 @@ struct ControlState {
   std::string assigned;
   /// The scenario's controller that `kind` stands in for ("" when the scenario's own runs).
   std::string substitute_for;
+  /// Set when the acc controller emulates esmini's ACCController.
+  std::optional<EsminiAcc> esmini_acc;
   ControllerOverrides overrides;
   /// The dynamics controller's vehicle model (created on its first step).
   std::shared_ptr<DynamicsVehicle> dynamics;

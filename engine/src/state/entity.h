@@ -162,6 +162,9 @@ struct Entity {
   std::map<std::string, Animation> animations;
   /// The entity of a trailer defined inline in this vehicle, connected at Init.
   std::optional<uint32_t> initial_trailer;
+  /// esmini's ghost of another entity (state/ghost_state.h): recorded, but no other entity,
+  /// sensor or collision sees it.
+  bool ghost = false;
 };
 
 /// An animation's state (0..1) at run time `now` (s).

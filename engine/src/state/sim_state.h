@@ -22,6 +22,7 @@
 #include "state/control_state.h"
 #include "state/element_table.h"
 #include "state/entity.h"
+#include "state/ghost_state.h"
 #include "state/time_base.h"
 #include "state/traffic_state.h"
 #include "state/value_store.h"
@@ -148,6 +149,13 @@ struct SimState {
   /// The map's geographic -> map transform, made from options.geo_projection on the first
   /// GeoPosition (positions/geo_reference.h); a cache, hence mutable.
   mutable std::optional<GeographicToMap> geo_to_map;
+  /// esmini's ghost of an entity under the followGhost controller (state/ghost_state.h); the run
+  /// then starts at tick -headstart_ticks.
+  std::optional<GhostLink> ghost;
+
+  /// Whether entity `index` stands still this step: while the ghost has its head start (before
+  /// time 0) only the ghost moves.
+  bool frozen(uint32_t index) const { return ghost && tick < 0 && index != ghost->ghost; }
 
   double now() const { return time.time(tick); }
 };

@@ -113,7 +113,7 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
   sweep.y_extent.resize(entities.size());
   const auto make_boxes = [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      if (!entities[i].state.placed || entities[i].info.box.length <= 0.0) {
+      if (!entities[i].state.placed || entities[i].info.box.length <= 0.0 || entities[i].ghost) {
         continue;
       }
       boxes[i] = box_of(entities[i].info.box, entities[i].state.pose);
@@ -129,7 +129,7 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
   bool finite = true;
   double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
   for (uint32_t i = 0; i < entities.size(); ++i) {
-    if (!entities[i].state.placed || entities[i].info.box.length <= 0.0) {
+    if (!entities[i].state.placed || entities[i].info.box.length <= 0.0 || entities[i].ghost) {
       continue;
     }
     const Interval x = sweep.x_extent[i];

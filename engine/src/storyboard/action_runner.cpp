@@ -20,7 +20,8 @@ void start_instance(SimState& state, RunningInstance& running, bool init) {
 }
 
 void step_instance(SimState& state, RunningInstance& running) {
-  if (running.action->done()) {
+  if (running.action->done() || (running.actor && state.frozen(*running.actor))) {
+    // An entity that stands while a ghost has its head start waits with its actions too.
     return;
   }
   ActionContext context{state, running.actor, false};

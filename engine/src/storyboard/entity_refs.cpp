@@ -27,7 +27,8 @@ void expand(const std::string& name, const SimState& state, const xosc::Source& 
   }
   for (const xosc::ByType& by_type : selection->by_type) {
     for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
-      if (state.world.entities[i].info.kind == object_kind(by_type.object_type)) {
+      if (state.world.entities[i].info.kind == object_kind(by_type.object_type) &&
+          !state.world.entities[i].ghost) {
         out.push_back(i);
       }
     }

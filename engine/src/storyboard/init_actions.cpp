@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "actions/action_factory.h"
+#include "controllers/follow_ghost.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/placement.h"
 #include "motion/trailers.h"
@@ -70,16 +71,28 @@ void connect_initial_trailers(SimState& state) {
   }
 }
 
+// The entities an Init action of `init` acts on: those it names, and esmini's ghost with its
+// entity for all but the controller actions (controllers/follow_ghost.h).
+std::vector<uint32_t> init_actors(const xosc::InitPrivate& init, const xosc::PrivateAction& action,
+                                  const SimState& state) {
+  std::vector<uint32_t> actors = expand_entity_refs({init.entity_ref}, state, init.source);
+  if (state.ghost && ghost_copies_init(action) &&
+      std::find(actors.begin(), actors.end(), state.ghost->entity) != actors.end()) {
+    actors.push_back(state.ghost->ghost);
+  }
+  return actors;
+}
+
 }  // namespace
 
 void InitActions::place_entities(SimState& state) {
   std::vector<Placement> pending;
   for (const xosc::InitPrivate& init : state.scenario.storyboard.init.privates) {
-    for (const uint32_t entity : expand_entity_refs({init.entity_ref}, state, init.source)) {
-      for (const xosc::PrivateAction& action : init.actions) {
-        if (const auto* teleport = std::get_if<xosc::TeleportAction>(&action)) {
-          pending.push_back({entity, &action, teleport});
-        }
+    for (const xosc::PrivateAction& action : init.actions) {
+      const auto* teleport = std::get_if<xosc::TeleportAction>(&action);
+      if (teleport == nullptr) continue;
+      for (const uint32_t entity : init_actors(init, action, state)) {
+        pending.push_back({entity, &action, teleport});
       }
     }
   }
@@ -132,6 +145,18 @@ void InitActions::run(SimState& state) {
       for (const xosc::PrivateAction& action : private_init.actions) {
         if (!std::holds_alternative<xosc::TeleportAction>(action)) {
           launch(state, {make_private_action(action), entity});
+        }
+      }
+    }
+  }
+  if (state.ghost) {
+    // The ghost's copies of its entity's Init actions, after all the entities' own.
+    for (const xosc::InitPrivate& private_init : init.privates) {
+      for (const xosc::PrivateAction& action : private_init.actions) {
+        const auto actors = init_actors(private_init, action, state);
+        if (!std::holds_alternative<xosc::TeleportAction>(action) &&
+            std::find(actors.begin(), actors.end(), state.ghost->ghost) != actors.end()) {
+          launch(state, {make_private_action(action), state.ghost->ghost});
         }
       }
     }

@@ -1,5 +1,8 @@
 // Building the run-time storyboard tree from the document.
 
+#include <algorithm>
+
+#include "controllers/follow_ghost.h"
 #include "corsa/xosc/scenario.h"
 #include "positions/position_resolver.h"
 #include "state/sim_state.h"
@@ -85,10 +88,25 @@ std::unique_ptr<StoryNode> build_story(const xosc::Story& story, SimState& state
   return node;
 }
 
-// The start and stop triggers of an act and its events.
+// Whether esmini's ghost takes over this event: one of its actions is a motion action of the
+// ghost's entity (controllers/follow_ghost.h).
+bool ghost_event(const EventNode& event, const GroupNode& group, const SimState& state) {
+  if (!state.ghost) return false;
+  const bool actor = std::find(group.actors.begin(), group.actors.end(), state.ghost->entity) !=
+                     group.actors.end();
+  if (!actor) return false;
+  for (const xosc::Action& action : event.def->actions) {
+    const auto* private_action = std::get_if<xosc::PrivateAction>(&action.action);
+    if (private_action != nullptr && ghost_performs(*private_action)) return true;
+  }
+  return false;
+}
+
+// The start and stop triggers of an act and its events. esmini's ghost takes over every Act's
+// start trigger and those of the events it performs (controllers/follow_ghost.h).
 void compile_triggers(ActNode& act, const SimState& state) {
   if (act.def->start_trigger) {
-    act.start_trigger.emplace(*act.def->start_trigger, state);
+    act.start_trigger.emplace(*act.def->start_trigger, state, state.ghost.has_value());
   }
   if (act.def->stop_trigger) {
     act.stop_trigger.emplace(*act.def->stop_trigger, state);
@@ -97,7 +115,8 @@ void compile_triggers(ActNode& act, const SimState& state) {
     for (ManeuverNode& maneuver : group.maneuvers) {
       for (EventNode& event : maneuver.events) {
         if (event.def->start_trigger) {
-          event.start_trigger.emplace(*event.def->start_trigger, state);
+          event.start_trigger.emplace(*event.def->start_trigger, state,
+                                      ghost_event(event, group, state));
         }
       }
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "actions/action_factory.h"
+#include "controllers/follow_ghost.h"
 #include "state/sim_state.h"
 #include "storyboard/storyboard_nodes.h"
 
@@ -190,7 +191,12 @@ void Storyboard::start_event(SimState& state, EventNode& event,
             action.def->source.warning("private action '" + action.def->name +
                                        "' has no actors; it completes at once"));
       }
-      for (const uint32_t actor : actors) {
+      for (uint32_t actor : actors) {
+        // esmini's ghost performs its entity's motion actions (controllers/follow_ghost.h).
+        if (state.ghost && actor == state.ghost->entity &&
+            ghost_performs(std::get<xosc::PrivateAction>(action.def->action))) {
+          actor = state.ghost->ghost;
+        }
         action.instances.push_back({make_action(*action.def), actor});
       }
     } else {

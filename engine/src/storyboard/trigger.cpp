@@ -2,12 +2,29 @@
 
 #include <algorithm>
 
+#include "conditions/condition_makers.h"
 #include "state/sim_state.h"
 #include "storyboard/entity_refs.h"
 
 namespace corsa::engine::detail {
+namespace {
 
-CompiledCondition::CompiledCondition(const xosc::Condition& condition, const SimState& state)
+// The by-entity conditions whose triggering entity esmini hands over to the ghost.
+bool ghost_condition(const xosc::EntityCondition& condition) {
+  return std::holds_alternative<xosc::CollisionCondition>(condition) ||
+         std::holds_alternative<xosc::ReachPositionCondition>(condition) ||
+         std::holds_alternative<xosc::TraveledDistanceCondition>(condition) ||
+         std::holds_alternative<xosc::SpeedCondition>(condition) ||
+         std::holds_alternative<xosc::AccelerationCondition>(condition) ||
+         std::holds_alternative<xosc::EndOfRoadCondition>(condition) ||
+         std::holds_alternative<xosc::OffroadCondition>(condition) ||
+         std::holds_alternative<xosc::StandStillCondition>(condition);
+}
+
+}  // namespace
+
+CompiledCondition::CompiledCondition(const xosc::Condition& condition, const SimState& state,
+                                     bool ghost)
     : condition_(condition), delay_ticks_(state.time.ticks(condition.delay)) {
   if (condition.delay < 0.0) {
     throw InputError(
@@ -18,8 +35,18 @@ CompiledCondition::CompiledCondition(const xosc::Condition& condition, const Sim
                                      by_entity->triggering_entities.source);
     all_ = by_entity->triggering_entities.rule == xosc::TriggeringEntitiesRule::kAll;
     entity_ = make_entity_condition(by_entity->condition, state);
+    if (ghost && state.ghost && ghost_condition(by_entity->condition)) {
+      std::replace(candidates_.begin(), candidates_.end(), state.ghost->entity, state.ghost->ghost);
+      std::sort(candidates_.begin(), candidates_.end());
+    }
   } else {
-    value_ = make_value_condition(std::get<xosc::ByValueCondition>(condition.kind), state);
+    const auto& by_value = std::get<xosc::ByValueCondition>(condition.kind);
+    const auto* time = std::get_if<xosc::SimulationTimeCondition>(&by_value);
+    if (ghost && state.ghost && time != nullptr) {
+      value_ = make_shifted_simulation_time(*time, -state.ghost->headstart);
+    } else {
+      value_ = make_value_condition(by_value, state);
+    }
   }
 }
 
@@ -83,12 +110,12 @@ bool CompiledCondition::evaluate(const SimState& state, std::vector<uint32_t>& t
   return false;
 }
 
-Trigger::Trigger(const xosc::Trigger& trigger, const SimState& state) {
+Trigger::Trigger(const xosc::Trigger& trigger, const SimState& state, bool ghost) {
   for (const xosc::ConditionGroup& group : trigger.groups) {
     std::vector<CompiledCondition> conditions;
     conditions.reserve(group.conditions.size());
     for (const xosc::Condition& condition : group.conditions) {
-      conditions.emplace_back(condition, state);
+      conditions.emplace_back(condition, state, ghost);
     }
     groups_.push_back(std::move(conditions));
   }

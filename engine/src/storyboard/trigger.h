@@ -23,7 +23,9 @@ struct SimState;
 
 class CompiledCondition {
  public:
-  CompiledCondition(const xosc::Condition& condition, const SimState& state);
+  /// `ghost`: the condition belongs to a trigger esmini's ghost takes over (an Act's start
+  /// trigger, or an event whose motion actions the ghost performs; controllers/follow_ghost.h).
+  CompiledCondition(const xosc::Condition& condition, const SimState& state, bool ghost = false);
 
   /// The condition's value now. When it holds, the entities that made it hold are appended to
   /// `triggering` (by-entity conditions).
@@ -49,7 +51,7 @@ class CompiledCondition {
 
 class Trigger {
  public:
-  Trigger(const xosc::Trigger& trigger, const SimState& state);
+  Trigger(const xosc::Trigger& trigger, const SimState& state, bool ghost = false);
 
   /// Whether the trigger fires now; `triggering` receives the triggering entities of the groups
   /// that hold (sorted, unique).

@@ -1,0 +1,239 @@
+// esmini's followGhost controller and its ghost (controllers/follow_ghost.h).
+
+#include "controllers/follow_ghost.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+#include <string>
+
+#include "corsa/xodr/map.h"
+#include "corsa/xosc/scenario.h"
+#include "motion/pose_command.h"
+#include "positions/position_resolver.h"
+#include "state/sim_state.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+constexpr double kFullTurn = 2.0 * std::numbers::pi;
+// esmini's vehicle model (its vehicle.cpp) as the followGhost controller sets it up.
+constexpr double kFollowerMaxAcceleration = 10.0;  // m/s^2, also the speed loop's gain (1/s)
+constexpr double kFollowerMaxSpeed = 100.0;        // m/s
+constexpr double kMaxWheelAngle = 60.0 * std::numbers::pi / 180.0;
+constexpr double kPivotFraction = 0.15;  // the model's reference point, of the length from the rear
+
+// A numeric property of the controller, or `fallback` (a value that is no number warns).
+double number_property(SimState& state, const xosc::Controller& controller, const char* name,
+                       double fallback) {
+  for (const xosc::Property& property : controller.properties.properties) {
+    if (property.name != name) continue;
+    char* end = nullptr;
+    const double value = std::strtod(property.value.c_str(), &end);
+    if (end != property.value.c_str() && *end == '\0' && std::isfinite(value) && value >= 0.0) {
+      return value;
+    }
+    state.diagnostics.add(property.source.warning(
+        "followGhost property '" + property.name + "' is not a non-negative number ('" +
+        property.value + "'): " + std::to_string(fallback) + " is used"));
+    return fallback;
+  }
+  return fallback;
+}
+
+void read_properties(SimState& state, const xosc::ObjectController& oc, GhostLink& link) {
+  const xosc::Controller& c = oc.controller;
+  link.headstart = number_property(state, c, "headstartTime", link.headstart);
+  link.lookahead_speed = number_property(state, c, "lookaheadSpeed", link.lookahead_speed);
+  link.min_lookahead_speed =
+      number_property(state, c, "minLookaheadSpeed", link.min_lookahead_speed);
+  link.lookahead_steering = number_property(state, c, "lookaheadSteering", link.lookahead_steering);
+  link.min_lookahead_steering =
+      number_property(state, c, "minLookaheadSteering", link.min_lookahead_steering);
+  link.steering_speed_inertia =
+      number_property(state, c, "steeringSpeedInertia", link.steering_speed_inertia);
+  for (const xosc::Property& property : c.properties.properties) {
+    if (property.name == "followMode" && property.value != "time") {
+      // esmini's "position" mode looks ahead by distances from the closest trail point.
+      state.diagnostics.add(property.source.warning(
+          "followGhost followMode '" + property.value +
+          "' is not supported (read as time: the trail is followed by time)"));
+    }
+  }
+}
+
+}  // namespace
+
+bool is_follow_ghost(const xosc::ObjectController& oc) {
+  return oc.controller.properties.get("esminiController").value_or(oc.controller.name) ==
+         "FollowGhostController";
+}
+
+void setup_ghost(SimState& state) {
+  if (state.options.disable_controllers) {
+    return;
+  }
+  const auto count = static_cast<uint32_t>(state.world.entities.size());
+  for (uint32_t i = 0; i < count; ++i) {
+    const Entity& entity = state.world.entities[i];
+    if (entity.object == nullptr) continue;
+    for (const xosc::ObjectController& oc : entity.object->controllers) {
+      if (!is_follow_ghost(oc)) continue;
+      if (state.ghost) {
+        state.diagnostics.add(oc.source.warning(
+            "only the first entity under followGhost gets a ghost (as in esmini); '" +
+            entity.info.name + "' runs under a stand-in"));
+        break;
+      }
+      GhostLink link;
+      link.entity = i;
+      read_properties(state, oc, link);
+      link.headstart_ticks = state.time.ticks(link.headstart);
+      Entity ghost;
+      ghost.info = entity.info;
+      ghost.info.name = entity.info.name + "_ghost";
+      ghost.object = nullptr;  // no controllers, no trailer of its own
+      ghost.ghost = true;
+      ghost.state.visible = false;
+      link.ghost = static_cast<uint32_t>(state.world.entities.size());
+      if (!state.world.by_name.emplace(ghost.info.name, link.ghost).second) {
+        throw InputError(oc.source.error("the ghost of '" + entity.info.name +
+                                         "' would be called '" + ghost.info.name +
+                                         "', which another entity is called"));
+      }
+      state.world.entities.push_back(std::move(ghost));
+      state.tick = -link.headstart_ticks;
+      state.environment_tick = state.tick;
+      state.ghost = std::move(link);
+      break;
+    }
+  }
+}
+
+bool ghost_performs(const xosc::PrivateAction& action) {
+  return std::holds_alternative<xosc::SpeedAction>(action) ||
+         std::holds_alternative<xosc::SpeedProfileAction>(action) ||
+         std::holds_alternative<xosc::LaneChangeAction>(action) ||
+         std::holds_alternative<xosc::LaneOffsetAction>(action) ||
+         std::holds_alternative<xosc::SynchronizeAction>(action) ||
+         std::holds_alternative<xosc::FollowTrajectoryAction>(action) ||
+         std::holds_alternative<xosc::AssignRouteAction>(action) ||
+         std::holds_alternative<xosc::TeleportAction>(action);
+}
+
+bool ghost_copies_init(const xosc::PrivateAction& action) {
+  return !std::holds_alternative<xosc::ActivateControllerAction>(action) &&
+         !std::holds_alternative<xosc::AssignControllerAction>(action) &&
+         !std::holds_alternative<xosc::OverrideControllerValueAction>(action);
+}
+
+void record_trail(SimState& state) {
+  if (!state.ghost) return;
+  GhostLink& link = *state.ghost;
+  const Entity& ghost = state.world.entities[link.ghost];
+  if (!ghost.state.placed) return;
+  const double now = state.now();
+  auto& trail = link.trail;
+  const double since = trail.empty() ? 0.0 : now - trail.back().time;
+  if (!trail.empty() && since <= kTrailSampleTime + 1e-9) return;
+  // A ghost standing still adds nothing (the last sample holds); after a pause the last
+  // sample is repeated just before the new one, so that the pause keeps its place in time.
+  if (!trail.empty() && std::abs(trail.back().speed) < 1e-9 && std::abs(ghost.state.speed) < 1e-9) {
+    return;
+  }
+  if (!trail.empty() && since > 2.0 * kTrailSampleTime + 1e-9) {
+    TrailPoint held = trail.back();
+    held.time = now - kTrailSampleTime;
+    trail.push_back(held);
+  }
+  const Pose& p = ghost.state.pose;
+  trail.push_back({now, p.x, p.y, p.z, p.h, ghost.state.speed});
+}
+
+TrailPoint trail_at(const SimState& state, double time) {
+  const auto& trail = state.ghost->trail;
+  if (time <= trail.front().time) return trail.front();
+  if (time >= trail.back().time) return trail.back();
+  const auto after = std::upper_bound(trail.begin(), trail.end(), time,
+                                      [](double t, const TrailPoint& p) { return t < p.time; });
+  const TrailPoint& b = *after;
+  const TrailPoint& a = *(after - 1);
+  const double w = b.time > a.time ? (time - a.time) / (b.time - a.time) : 0.0;
+  TrailPoint out;
+  out.time = time;
+  out.x = a.x + w * (b.x - a.x);
+  out.y = a.y + w * (b.y - a.y);
+  out.z = a.z + w * (b.z - a.z);
+  out.h = a.h + w * std::remainder(b.h - a.h, kFullTurn);
+  out.speed = a.speed + w * (b.speed - a.speed);
+  return out;
+}
+
+void step_follow_ghost(SimState& state, uint32_t index, const MotionContext& motion) {
+  GhostLink& link = *state.ghost;
+  Entity& entity = state.world.entities[index];
+  GhostFollower& car = link.follower;
+  const double dt = motion.dt;
+  if (!car.started) {
+    car.started = true;
+    car.x = entity.state.pose.x;
+    car.y = entity.state.pose.y;
+    car.h = entity.state.pose.h - kFullTurn * std::floor(entity.state.pose.h / kFullTurn);
+    car.speed = entity.state.speed;
+    car.length = entity.info.box.length > 0.0 ? entity.info.box.length : 5.0;
+  }
+  // Targets on the trail, behind the ghost by the head start (time of the end of this step).
+  const double t = state.time.time(state.tick + 1) - link.headstart;
+  double target_speed = 0.0;
+  double aim_x = car.x, aim_y = car.y;
+  if (!link.trail.empty()) {
+    target_speed =
+        trail_at(state, t + std::max(link.min_lookahead_speed, link.lookahead_speed)).speed;
+    const TrailPoint aim =
+        trail_at(state, t + std::max(link.min_lookahead_steering, link.lookahead_steering));
+    aim_x = aim.x;
+    aim_y = aim.y;
+  }
+  double dx = aim_x - car.x, dy = aim_y - car.y;
+  const double len = std::hypot(dx, dy);
+  dx = len > 1e-10 ? dx / len : 0.0;
+  dy = len > 1e-10 ? dy / len : 0.0;
+  // The heading error: asin of the cross product of the car's direction and the aim's.
+  const double cross = std::cos(car.h) * dy - std::sin(car.h) * dx;
+  const double heading_error = std::asin(std::clamp(cross, -1.0, 1.0));
+  // Speed: a proportional loop within the model's acceleration; steering: the wheel turned
+  // straight to the heading error, its range narrowing with speed.
+  const double acceleration = std::clamp(kFollowerMaxAcceleration * (target_speed - car.speed),
+                                         -kFollowerMaxAcceleration, kFollowerMaxAcceleration);
+  car.speed = std::clamp(car.speed + acceleration * dt, -kFollowerMaxSpeed, kFollowerMaxSpeed);
+  const double range = kMaxWheelAngle / (1.0 + link.steering_speed_inertia * car.speed * car.speed);
+  const double wheel = std::clamp(heading_error, -range, range);
+  // Kinematic single-track model about a point 15% of the length ahead of the rear axle.
+  const double slip = std::atan(kPivotFraction * std::tan(wheel));
+  const double course = car.h + slip;
+  const double yaw_rate = car.speed * std::sin(slip) / (car.length * kPivotFraction);
+  car.h = std::fmod(car.h + dt * yaw_rate, kFullTurn);
+  if (car.h < 0.0) car.h += kFullTurn;
+  car.x += dt * car.speed * std::cos(course);
+  car.y += dt * car.speed * std::sin(course);
+
+  Pose pose = entity.state.pose;
+  pose.x = car.x;
+  pose.y = car.y;
+  pose.h = std::remainder(car.h, kFullTurn);
+  if (motion.map != nullptr) {
+    if (const auto at = locate_point(*motion.map, car.x, car.y, 0.5)) {
+      const xodr::WorldPose surface = motion.map->world_pose(at->road, at->s, at->t);
+      pose.z = surface.z;
+      pose.p = surface.p;
+    }
+  }
+  const double speed_command = entity.speed_command;
+  entity.pose_command = pose;
+  entity.speed_command = car.speed;
+  move_to_pose_command(entity, motion);
+  entity.speed_command = speed_command;
+}
+
+}  // namespace corsa::engine::detail
