@@ -102,7 +102,8 @@ void build_seams(WorldBuild& w) {
         const SeamSample next = sample_at(map, r, road.length * i / n, side, spans);
         if (prev.on && next.on && prev.c == next.c) {
           const auto k = static_cast<uint32_t>(band.vertices.size());
-          band.vertices.insert(band.vertices.end(), {prev.inner, prev.outer, next.inner, next.outer});
+          band.vertices.insert(band.vertices.end(),
+                               {prev.inner, prev.outer, next.inner, next.outer});
           // Counter-clockwise from above: the outer side is on the right of +s when side < 0.
           if (side < 0) {
             band.triangles.push_back({k, k + 1, k + 3});

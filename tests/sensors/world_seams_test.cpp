@@ -24,7 +24,8 @@ corsa::xodr::Map opposing_roads(const std::string& gap) {
   const std::string text =
       R"(<?xml version="1.0"?><OpenDRIVE><header revMajor="1" revMinor="8"/>
 <road id="1" length="60" junction="-1"><planView><geometry s="0" x="0" y="0" hdg="0" length="60"><line/></geometry></planView>)" +
-      lanes + R"(</road><road id="2" length="60" junction="-1"><planView><geometry s="0" x="60" y=")" +
+      lanes +
+      R"(</road><road id="2" length="60" junction="-1"><planView><geometry s="0" x="60" y=")" +
       std::to_string(1.0 + std::stod(gap)) +
       R"(" hdg="3.141592653589793" length="60"><line/></geometry></planView>)" + lanes +
       R"(</road></OpenDRIVE>)";
