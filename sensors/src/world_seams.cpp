@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "corsa/sensors/semantic.h"
 #include "world_build.h"
@@ -83,42 +84,123 @@ SeamSample sample_at(const xodr::Map& map, size_t r, double s, int side,
   return out;
 }
 
+/// The class of the lane at lateral position t at s of road r (nothing off the road).
+std::optional<SemanticClass> class_at(const xodr::Map& map, size_t r, double s, double t) {
+  const auto id = map.lane_at(r, s, t);
+  if (!id) {
+    return std::nullopt;
+  }
+  const xodr::Lane* lane =
+      map.lane({static_cast<uint32_t>(r), static_cast<uint32_t>(map.section_index(r, s)), *id});
+  return lane == nullptr ? std::nullopt : std::optional(semantic_class_of_lane(lane->type));
+}
+
+/// A sample across a road's end (s = 0 or its length) at t: the band reaches `kBeyond` past
+/// the end along the road's heading where a point `kProbe` past it lies on another road whose
+/// lane has the same class.
+SeamSample end_sample(const xodr::Map& map, size_t r, double s, int outward, double t) {
+  SeamSample out;
+  const auto c = class_at(map, r, s, t);
+  if (!c) {
+    return out;
+  }
+  const xodr::WorldPose p = map.world_pose(r, s, t);
+  const double dx = outward * std::cos(p.h), dy = outward * std::sin(p.h);
+  xodr::LocateOptions o;
+  o.max_distance = kBeyond;
+  o.z = p.z;
+  const auto at = map.locate(p.x + kProbe * dx, p.y + kProbe * dy, o);
+  if (!at || at->road == r) {
+    return out;
+  }
+  const xodr::Lane* lane = map.lane(at->lane_ref());
+  if (lane == nullptr || semantic_class_of_lane(lane->type) != *c) {
+    return out;
+  }
+  out.on = true;
+  out.c = *c;
+  out.inner = {p.x - kInside * dx, p.y - kInside * dy, p.z - kDrop};
+  out.outer = {p.x + kBeyond * dx, p.y + kBeyond * dy, p.z - kDrop};
+  return out;
+}
+
+/// Adds the band piece between two samples (both on, same class); `flip` when the samples'
+/// inner-to-outer direction turns clockwise into the direction from `a` to `b`.
+void add_piece(StaticMesh& band, const SeamSample& a, const SeamSample& b, bool flip) {
+  const auto k = static_cast<uint32_t>(band.vertices.size());
+  band.vertices.insert(band.vertices.end(), {a.inner, a.outer, b.inner, b.outer});
+  if (flip) {
+    band.triangles.push_back({k, k + 3, k + 1});
+    band.triangles.push_back({k, k + 2, k + 3});
+  } else {
+    band.triangles.push_back({k, k + 1, k + 3});
+    band.triangles.push_back({k, k + 3, k + 2});
+  }
+  band.classes.push_back(a.c);
+  band.classes.push_back(a.c);
+}
+
+/// Bands along both outer borders of road r.
+void side_seams(const xodr::Map& map, size_t r, StaticMesh& band, double& length) {
+  std::vector<xodr::LaneSpan> spans;
+  const double road_length = map.road(r).length;
+  const int n = std::max(1, static_cast<int>(std::ceil(road_length / kStep)));
+  for (int side : {-1, 1}) {
+    SeamSample prev = sample_at(map, r, 0.0, side, spans);
+    for (int i = 1; i <= n; ++i) {
+      const SeamSample next = sample_at(map, r, road_length * i / n, side, spans);
+      if (prev.on && next.on && prev.c == next.c) {
+        // Counter-clockwise from above: the outer side is on the right of +s when side < 0.
+        add_piece(band, prev, next, side > 0);
+        length += road_length / n;
+      }
+      prev = next;
+    }
+  }
+}
+
+/// Bands across both ends of road r, from its right edge to its left one.
+void end_seams(const xodr::Map& map, size_t r, StaticMesh& band, double& length) {
+  std::vector<xodr::LaneSpan> spans;
+  const double road_length = map.road(r).length;
+  for (int outward : {-1, 1}) {
+    const double s = outward > 0 ? road_length : 0.0;
+    const size_t section = map.section_index(r, s);
+    map.lane_spans_in_section(r, section, s, spans);
+    if (spans.empty()) {
+      continue;
+    }
+    // Spans run left to right: from the last one's outer border to the first one's.
+    const double t0 = spans.back().t_min(), t1 = spans.front().t_max();
+    const int n = std::max(1, static_cast<int>(std::ceil((t1 - t0) / kStep)));
+    // Just inside the end, so the lane found there is the end's own.
+    const double probe_s = std::clamp(s - outward * 1e-3, 0.0, road_length);
+    SeamSample prev = end_sample(map, r, probe_s, outward, t0 + 1e-3);
+    for (int i = 1; i <= n; ++i) {
+      const double t = i == n ? t1 - 1e-3 : t0 + (t1 - t0) * i / n;
+      const SeamSample next = end_sample(map, r, probe_s, outward, t);
+      if (prev.on && next.on && prev.c == next.c) {
+        // Across the end, t grows to the left: outward along +s is counter-clockwise.
+        add_piece(band, prev, next, outward < 0);
+        length += (t1 - t0) / n;
+      }
+      prev = next;
+    }
+  }
+}
+
 }  // namespace
 
 void build_seams(WorldBuild& w) {
   const xodr::Map& map = w.map;
-  std::vector<xodr::LaneSpan> spans;
   StaticMesh band;
   band.name = "road seams";
   for (size_t r = 0; r < map.road_count(); ++r) {
-    const xodr::Road& road = map.road(r);
-    if (road.length <= 0.0) {
+    if (map.road(r).length <= 0.0) {
       continue;
     }
-    const int n = std::max(1, static_cast<int>(std::ceil(road.length / kStep)));
-    for (int side : {-1, 1}) {
-      SeamSample prev = sample_at(map, r, 0.0, side, spans);
-      for (int i = 1; i <= n; ++i) {
-        const SeamSample next = sample_at(map, r, road.length * i / n, side, spans);
-        if (prev.on && next.on && prev.c == next.c) {
-          const auto k = static_cast<uint32_t>(band.vertices.size());
-          band.vertices.insert(band.vertices.end(),
-                               {prev.inner, prev.outer, next.inner, next.outer});
-          // Counter-clockwise from above: the outer side is on the right of +s when side < 0.
-          if (side < 0) {
-            band.triangles.push_back({k, k + 1, k + 3});
-            band.triangles.push_back({k, k + 3, k + 2});
-          } else {
-            band.triangles.push_back({k, k + 3, k + 1});
-            band.triangles.push_back({k, k + 2, k + 3});
-          }
-          band.classes.push_back(prev.c);
-          band.classes.push_back(prev.c);
-          w.report.seam_length += road.length / n;
-        }
-        prev = next;
-      }
-    }
+    side_seams(map, r, band, w.report.seam_length);
+    end_seams(map, r, band, w.report.seam_length);
   }
   if (!band.triangles.empty()) {
     w.scene.add_static_mesh(std::move(band));

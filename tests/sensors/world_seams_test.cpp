@@ -61,3 +61,32 @@ TEST_CASE("a road's outer edge with no road beside it keeps the ground beyond it
   CHECK(down_at(world->scene, 30.0, 0.98).semantic == SemanticClass::kTerrain);
   CHECK(down_at(world->scene, 30.0, -3.52).semantic == SemanticClass::kTerrain);  // outer edge
 }
+
+TEST_CASE("a crack of millimetres where one road ends and the next begins shows road",
+          "[sensors][world][seams]") {
+  // Two 50 m roads along x, two 3.5 m lanes each: the second begins 5 mm after the first ends
+  // (as where a road meets a junction's connecting roads); a third lies 0.5 m beyond the second,
+  // a true gap.
+  const std::string lanes =
+      R"(<lanes><laneSection s="0"><left><lane id="1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></left>
+<center><lane id="0" type="none"/></center><right><lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right></laneSection></lanes>)";
+  auto road = [&](const char* id, const char* x) {
+    return std::string(R"(<road id=")") + id +
+           R"(" length="50" junction="-1"><planView><geometry s="0" x=")" + x +
+           R"(" y="0" hdg="0" length="50"><line/></geometry></planView>)" + lanes + "</road>";
+  };
+  const std::string text =
+      R"(<?xml version="1.0"?><OpenDRIVE><header revMajor="1" revMinor="8"/>)" + road("1", "0") +
+      road("2", "50.005") + road("3", "100.505") + "</OpenDRIVE>";
+  corsa::Diagnostics diagnostics;
+  const auto map = corsa::xodr::Map::build(
+      corsa::xodr::parse_xodr_text(text, "ends.xodr", diagnostics), diagnostics);
+  auto world = marked_world(map);
+  for (double y = -3.2; y < 3.5; y += 0.9) {
+    CAPTURE(y);
+    const RayHit hit = down_at(world->scene, 50.0025, y);  // in the crack
+    CHECK(hit.semantic == SemanticClass::kRoad);
+    CHECK(hit.point.z == Approx(0.0).margin(0.002));
+    CHECK(down_at(world->scene, 100.25, y).semantic == SemanticClass::kTerrain);  // the true gap
+  }
+}
