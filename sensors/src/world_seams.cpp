@@ -18,12 +18,12 @@
 namespace corsa::sensors::detail {
 namespace {
 
-constexpr double kStep = 0.5;      // m between samples along the border
-constexpr double kBeyond = 0.05;   // m the band reaches past the border (the widest crack closed)
-constexpr double kInside = 0.02;   // m the band reaches under its own lane
-constexpr double kProbe = 0.04;    // m beyond the border where the neighbour is looked for
-constexpr double kDrop = 0.001;    // m the band lies below the road surface
-constexpr double kEndProbe = 0.3;  // m inside a road's ends where the neighbour is looked for
+constexpr double kSeamStep = 0.5;      // m between samples along the border
+constexpr double kSeamBeyond = 0.05;   // m the band reaches past the border (widest crack closed)
+constexpr double kSeamInside = 0.02;   // m the band reaches under its own lane
+constexpr double kSeamProbe = 0.04;    // m beyond the border where the neighbour is looked for
+constexpr double kSeamDrop = 0.001;    // m the band lies below the road surface
+constexpr double kSeamEndProbe = 0.3;  // m inside a road's ends where the neighbour is looked for
 
 /// The class of the outermost lane on `side` of road `r` at s (one there: edge_at found it).
 SemanticClass outer_class(const xodr::Map& map, size_t r, double s, int side) {
@@ -37,13 +37,13 @@ SemanticClass outer_class(const xodr::Map& map, size_t r, double s, int side) {
   return outer == nullptr ? SemanticClass::kRoad : semantic_class_of_lane(outer->type);
 }
 
-/// True when the point `kProbe` beyond the border at s lies on another road whose lane there has
-/// class `c`.
+/// True when the point `kSeamProbe` beyond the border at s lies on another road whose lane there
+/// has class `c`.
 bool meets_neighbour(const xodr::Map& map, size_t r, double s, int side, double t_outer,
                      SemanticClass c) {
-  const xodr::WorldPose p = map.world_pose(r, s, t_outer + side * kProbe);
+  const xodr::WorldPose p = map.world_pose(r, s, t_outer + side * kSeamProbe);
   xodr::LocateOptions o;
-  o.max_distance = kBeyond;
+  o.max_distance = kSeamBeyond;
   o.z = p.z;
   const auto at = map.locate(p.x, p.y, o);
   if (!at || at->road == r) {
@@ -69,18 +69,18 @@ SeamSample sample_at(const xodr::Map& map, size_t r, double s, int side,
   const SemanticClass c = outer_class(map, r, s, side);
   // At a road's ends the neighbour is looked for a little inside: right at the end the point may
   // be nearer to the junction or road that continues the neighbour.
-  const double end_margin = std::min(kEndProbe, 0.25 * map.road(r).length);
+  const double end_margin = std::min(kSeamEndProbe, 0.25 * map.road(r).length);
   const double probe_s = std::clamp(s, end_margin, map.road(r).length - end_margin);
   const Edge probe = edge_at(map, r, probe_s, side, spans);
   if (!probe.valid || !meets_neighbour(map, r, probe_s, side, probe.t_outer, c)) {
     return out;
   }
-  const xodr::WorldPose a = map.world_pose(r, s, e.t_outer - side * kInside);
-  const xodr::WorldPose b = map.world_pose(r, s, e.t_outer + side * kBeyond);
+  const xodr::WorldPose a = map.world_pose(r, s, e.t_outer - side * kSeamInside);
+  const xodr::WorldPose b = map.world_pose(r, s, e.t_outer + side * kSeamBeyond);
   out.on = true;
   out.c = c;
-  out.inner = {a.x, a.y, a.z - kDrop};
-  out.outer = {b.x, b.y, b.z - kDrop};
+  out.inner = {a.x, a.y, a.z - kSeamDrop};
+  out.outer = {b.x, b.y, b.z - kSeamDrop};
   return out;
 }
 
@@ -95,8 +95,8 @@ std::optional<SemanticClass> class_at(const xodr::Map& map, size_t r, double s, 
   return lane == nullptr ? std::nullopt : std::optional(semantic_class_of_lane(lane->type));
 }
 
-/// A sample across a road's end (s = 0 or its length) at t: the band reaches `kBeyond` past
-/// the end along the road's heading where a point `kProbe` past it lies on another road whose
+/// A sample across a road's end (s = 0 or its length) at t: the band reaches `kSeamBeyond` past
+/// the end along the road's heading where a point `kSeamProbe` past it lies on another road whose
 /// lane has the same class.
 SeamSample end_sample(const xodr::Map& map, size_t r, double s, int outward, double t) {
   SeamSample out;
@@ -107,9 +107,9 @@ SeamSample end_sample(const xodr::Map& map, size_t r, double s, int outward, dou
   const xodr::WorldPose p = map.world_pose(r, s, t);
   const double dx = outward * std::cos(p.h), dy = outward * std::sin(p.h);
   xodr::LocateOptions o;
-  o.max_distance = kBeyond;
+  o.max_distance = kSeamBeyond;
   o.z = p.z;
-  const auto at = map.locate(p.x + kProbe * dx, p.y + kProbe * dy, o);
+  const auto at = map.locate(p.x + kSeamProbe * dx, p.y + kSeamProbe * dy, o);
   if (!at || at->road == r) {
     return out;
   }
@@ -119,8 +119,8 @@ SeamSample end_sample(const xodr::Map& map, size_t r, double s, int outward, dou
   }
   out.on = true;
   out.c = *c;
-  out.inner = {p.x - kInside * dx, p.y - kInside * dy, p.z - kDrop};
-  out.outer = {p.x + kBeyond * dx, p.y + kBeyond * dy, p.z - kDrop};
+  out.inner = {p.x - kSeamInside * dx, p.y - kSeamInside * dy, p.z - kSeamDrop};
+  out.outer = {p.x + kSeamBeyond * dx, p.y + kSeamBeyond * dy, p.z - kSeamDrop};
   return out;
 }
 
@@ -144,7 +144,7 @@ void add_piece(StaticMesh& band, const SeamSample& a, const SeamSample& b, bool 
 void side_seams(const xodr::Map& map, size_t r, StaticMesh& band, double& length) {
   std::vector<xodr::LaneSpan> spans;
   const double road_length = map.road(r).length;
-  const int n = std::max(1, static_cast<int>(std::ceil(road_length / kStep)));
+  const int n = std::max(1, static_cast<int>(std::ceil(road_length / kSeamStep)));
   for (int side : {-1, 1}) {
     SeamSample prev = sample_at(map, r, 0.0, side, spans);
     for (int i = 1; i <= n; ++i) {
@@ -172,7 +172,7 @@ void end_seams(const xodr::Map& map, size_t r, StaticMesh& band, double& length)
     }
     // Spans run left to right: from the last one's outer border to the first one's.
     const double t0 = spans.back().t_min(), t1 = spans.front().t_max();
-    const int n = std::max(1, static_cast<int>(std::ceil((t1 - t0) / kStep)));
+    const int n = std::max(1, static_cast<int>(std::ceil((t1 - t0) / kSeamStep)));
     // Just inside the end, so the lane found there is the end's own.
     const double probe_s = std::clamp(s - outward * 1e-3, 0.0, road_length);
     SeamSample prev = end_sample(map, r, probe_s, outward, t0 + 1e-3);
