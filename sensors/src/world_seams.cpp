@@ -1,12 +1,13 @@
-// Seams between roads that lie side by side: two roads whose outer lane borders meet (the two
-// halves of a centre strip between opposing carriageways, each on its own road) are evaluated
-// from two reference lines, so their borders agree only to the maps' fitting error and leave
-// cracks of a few millimetres through which rays reach the ground. Each such border gets a
-// narrow band of its lane's surface a hair below the road, reaching under the neighbour, so the
-// crack shows the same surface as both sides. Only where a point just beyond the border lies on
-// another road (a connecting road of a junction too: a junction's lanes run beside the roads
-// that enter it) whose lane has the same class; elsewhere the border is the road's true edge and
-// is left as it is.
+// Seams between roads that lie side by side or end to end: two roads whose borders meet (the
+// two halves of a centre strip between opposing carriageways, each on its own road; a road and
+// the junction's connecting roads that continue it) are evaluated from two reference lines, so
+// their borders agree only to the map's fitting error and leave cracks of a few millimetres
+// through which rays reach the ground. Each such border or end gets a narrow band of its lane's
+// surface a hair below the road, reaching under the neighbour, so the crack shows the same
+// surface as both sides. Only where a point just beyond lies on another road (a junction's
+// connecting road too) whose lane has the same class and whose surface there is at most 3 cm
+// below this one's (a step down is closed from the lower side); elsewhere the border is the
+// road's true edge and is left as it is.
 
 #include <algorithm>
 #include <cmath>
@@ -24,6 +25,7 @@ constexpr double kSeamInside = 0.02;   // m the band reaches under its own lane
 constexpr double kSeamProbe = 0.04;    // m beyond the border where the neighbour is looked for
 constexpr double kSeamDrop = 0.001;    // m the band lies below the road surface
 constexpr double kSeamEndProbe = 0.3;  // m inside a road's ends where the neighbour is looked for
+constexpr double kSeamHeight = 0.03;   // m the neighbour's surface may lie below this one
 
 /// The class of the outermost lane on `side` of road `r` at s (one there: edge_at found it).
 SemanticClass outer_class(const xodr::Map& map, size_t r, double s, int side) {
@@ -37,20 +39,28 @@ SemanticClass outer_class(const xodr::Map& map, size_t r, double s, int side) {
   return outer == nullptr ? SemanticClass::kRoad : semantic_class_of_lane(outer->type);
 }
 
-/// True when the point `kSeamProbe` beyond the border at s lies on another road whose lane there
-/// has class `c`.
-bool meets_neighbour(const xodr::Map& map, size_t r, double s, int side, double t_outer,
-                     SemanticClass c) {
-  const xodr::WorldPose p = map.world_pose(r, s, t_outer + side * kSeamProbe);
+/// True when (x, y) lies on another road than r whose lane there has class `c` and whose
+/// surface is at most `kSeamHeight` below `z`: a band reaching over a much lower surface would
+/// stand above it (that crack is closed from the lower road's side, whose band passes under
+/// the higher one).
+bool neighbour_at(const xodr::Map& map, size_t r, double x, double y, double z, SemanticClass c) {
   xodr::LocateOptions o;
   o.max_distance = kSeamBeyond;
-  o.z = p.z;
-  const auto at = map.locate(p.x, p.y, o);
+  o.z = z;
+  const auto at = map.locate(x, y, o);
   if (!at || at->road == r) {
     return false;
   }
   const xodr::Lane* lane = map.lane(at->lane_ref());
-  return lane != nullptr && semantic_class_of_lane(lane->type) == c;
+  return lane != nullptr && semantic_class_of_lane(lane->type) == c &&
+         map.world_pose(at->road, at->s, at->t).z > z - kSeamHeight;
+}
+
+/// True when the point `kSeamProbe` beyond the border at s lies on a neighbour (neighbour_at).
+bool meets_neighbour(const xodr::Map& map, size_t r, double s, int side, double t_outer,
+                     SemanticClass c) {
+  const xodr::WorldPose p = map.world_pose(r, s, t_outer + side * kSeamProbe);
+  return neighbour_at(map, r, p.x, p.y, p.z, c);
 }
 
 struct SeamSample {
@@ -106,15 +116,7 @@ SeamSample end_sample(const xodr::Map& map, size_t r, double s, int outward, dou
   }
   const xodr::WorldPose p = map.world_pose(r, s, t);
   const double dx = outward * std::cos(p.h), dy = outward * std::sin(p.h);
-  xodr::LocateOptions o;
-  o.max_distance = kSeamBeyond;
-  o.z = p.z;
-  const auto at = map.locate(p.x + kSeamProbe * dx, p.y + kSeamProbe * dy, o);
-  if (!at || at->road == r) {
-    return out;
-  }
-  const xodr::Lane* lane = map.lane(at->lane_ref());
-  if (lane == nullptr || semantic_class_of_lane(lane->type) != *c) {
+  if (!neighbour_at(map, r, p.x + kSeamProbe * dx, p.y + kSeamProbe * dy, p.z, *c)) {
     return out;
   }
   out.on = true;

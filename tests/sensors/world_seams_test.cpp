@@ -16,8 +16,9 @@ namespace {
 
 /// Two opposing 60 m roads along x, each with a 0.5 m restricted strip on its left and a 3.5 m
 /// driving lane on its right: road 1 eastwards with its strip up to y = 0.5, road 2 westwards
-/// from y = 0.5 + gap, so `gap` metres of nothing lie between the strips.
-corsa::xodr::Map opposing_roads(const std::string& gap) {
+/// from y = 0.5 + gap, so `gap` metres of nothing lie between the strips; road 2's surface
+/// `rise` metres above road 1's.
+corsa::xodr::Map opposing_roads(const std::string& gap, const std::string& rise = "0") {
   const std::string lanes =
       R"(<lanes><laneSection s="0"><left><lane id="1" type="restricted"><width sOffset="0" a="0.5" b="0" c="0" d="0"/></lane></left>
 <center><lane id="0" type="none"/></center><right><lane id="-1" type="driving"><width sOffset="0" a="3.5" b="0" c="0" d="0"/></lane></right></laneSection></lanes>)";
@@ -27,8 +28,8 @@ corsa::xodr::Map opposing_roads(const std::string& gap) {
       lanes +
       R"(</road><road id="2" length="60" junction="-1"><planView><geometry s="0" x="60" y=")" +
       std::to_string(1.0 + std::stod(gap)) +
-      R"(" hdg="3.141592653589793" length="60"><line/></geometry></planView>)" + lanes +
-      R"(</road></OpenDRIVE>)";
+      R"(" hdg="3.141592653589793" length="60"><line/></geometry></planView><elevationProfile><elevation s="0" a=")" +
+      rise + R"(" b="0" c="0" d="0"/></elevationProfile>)" + lanes + R"(</road></OpenDRIVE>)";
   corsa::Diagnostics diagnostics;
   return corsa::xodr::Map::build(corsa::xodr::parse_xodr_text(text, "seam.xodr", diagnostics),
                                  diagnostics);
@@ -60,6 +61,20 @@ TEST_CASE("a road's outer edge with no road beside it keeps the ground beyond it
   CHECK(down_at(world->scene, 30.0, 0.52).semantic == SemanticClass::kTerrain);
   CHECK(down_at(world->scene, 30.0, 0.98).semantic == SemanticClass::kTerrain);
   CHECK(down_at(world->scene, 30.0, -3.52).semantic == SemanticClass::kTerrain);  // outer edge
+}
+
+TEST_CASE("a crack where one road lies a few centimetres above the other is closed from below",
+          "[sensors][world][seams]") {
+  // Road 2 5 cm above road 1: road 2's band would stand over road 1's surface, so only road
+  // 1's band is laid, under the crack and under road 2's edge.
+  auto world = marked_world(opposing_roads("0.003", "0.05"));
+  CHECK(world->report.seam_length == Approx(60.0));
+  for (double x = 1.0; x < 60.0; x += 7.3) {
+    CAPTURE(x);
+    const RayHit hit = down_at(world->scene, x, 0.5015);
+    CHECK(hit.semantic == SemanticClass::kRoad);
+    CHECK(hit.point.z == Approx(0.0).margin(0.002));  // road 1's band, not above it
+  }
 }
 
 TEST_CASE("a crack of millimetres where one road ends and the next begins shows road",
