@@ -105,6 +105,9 @@ Profile profile_of(CarStyle style, RandomStream& rng) {
 /// The body's dimensions and its analytic cross-sections.
 struct Body {
   double x0 = 0.0, length = 4.5;  ///< rear end, length (m)
+  /// Ends of the bounding box (m): the body stops short of them so that lamps and plates can
+  /// stand proud of its rear and front faces and still keep inside the box.
+  double box_x0 = 0.0, box_x1 = 4.5;
   double yc = 0.0, hw = 0.9;      ///< centre line, half width of the body
   double box_hw = 1.0;            ///< half width of the box (mirrors reach it)
   double zb = 0.0, height = 1.5;  ///< ground (box bottom), height
@@ -284,7 +287,7 @@ void add_details(MeshBuilder& b, const Body& body, RandomStream& rng) {
           }
         }
         // Proud of the surface by 4 mm, never out of the bounding box.
-        const double face = std::clamp(x + facing * 0.004, body.x0, body.x0 + body.length);
+        const double face = std::clamp(x + facing * 0.004, body.box_x0, body.box_x1);
         add_lamp(b, mat, face, 0.5 * (ya + yb), 0.5 * (za + zb), std::fabs(yb - ya), zb - za,
                  facing);
       }
@@ -311,12 +314,11 @@ void add_details(MeshBuilder& b, const Body& body, RandomStream& rng) {
   lamp(trim_material(), yc - 0.85 * hw, yc + 0.85 * hw, z_low - 0.02, 0.1, -1);
   // Plates: front low on the bumper, rear between the tail lamps.
   const double z_front_plate = z_low + 0.14;
-  const double x_front = body.x0 + body.length;
-  add_plate(b, std::min(body.surface_x(yc + 0.26, z_front_plate, 1) + 0.01, x_front - 0.012), yc,
-            z_front_plate, 1, rng);
+  add_plate(b, std::min(body.surface_x(yc + 0.26, z_front_plate, 1) + 0.01, body.box_x1 - 0.012),
+            yc, z_front_plate, 1, rng);
   const double z_rear_plate = std::max(z_low + 0.15, z_tail - 0.2);
-  add_plate(b, std::max(body.surface_x(yc + 0.26, z_rear_plate, -1) - 0.01, body.x0 + 0.012), yc,
-            z_rear_plate, -1, rng);
+  add_plate(b, std::max(body.surface_x(yc + 0.26, z_rear_plate, -1) - 0.01, body.box_x0 + 0.012),
+            yc, z_rear_plate, -1, rng);
   // Rear windows of steep tails (vans, SUVs, hatchbacks) as panes on the surface: the body's
   // sections there are too coarse to cut them out.
   const double top_rear = body.zb + body.height * interpolate(body.p.top, 0.03);
@@ -369,8 +371,13 @@ CarStyle car_style_for(engine::EntityCategory category, const engine::Box& box, 
 
 GeneratedVehicle generate_car(CarStyle style, const engine::Box& box, RandomStream& rng) {
   Body body;
-  body.length = box.length;
-  body.x0 = box.center_x - 0.5 * box.length;
+  // The body 15 mm short of each end of the box: lamps stand 4 mm and plates 11 mm proud of its
+  // end faces (flush with them they would z-fight, or hide inside the body).
+  constexpr double kEndInset = 0.015;
+  body.box_x0 = box.center_x - 0.5 * box.length;
+  body.box_x1 = box.center_x + 0.5 * box.length;
+  body.length = std::max(box.length - 2.0 * kEndInset, 0.5 * box.length);
+  body.x0 = box.center_x - 0.5 * body.length;
   body.yc = box.center_y;
   // Bounding boxes of cars include the mirrors: the body is a little narrower.
   body.box_hw = 0.5 * box.width;

@@ -123,6 +123,7 @@ WorldReport build_world(const xodr::Map& map, Scene& scene, const WorldOptions& 
   detail::WorldBuild w{map, scene, options, diagnostics, {}, {}};
   if (options.ground) {
     detail::build_ground(w, xodr::build_road_mesh(map, xodr::MeshOptions{.road_marks = false}));
+    detail::build_seams(w);
   }
   if (options.signals) {
     detail::build_signals(w);

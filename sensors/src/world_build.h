@@ -57,6 +57,8 @@ struct WorldBuild {
 
 /// Ground: a terrain height field under and around the road surface, and a skirt to the horizon.
 void build_ground(WorldBuild& w, const xodr::RoadMesh& road);
+/// Bands of lane surface under the cracks where two roads' outer borders meet side by side.
+void build_seams(WorldBuild& w);
 /// Trees, bushes and street lights along the roads.
 void build_roadside(WorldBuild& w);
 /// True for the OpenDRIVE country codes of Korea ("KR", "KOR", "Korea", any case).

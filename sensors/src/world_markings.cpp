@@ -91,6 +91,23 @@ std::optional<MarkSpec> korean_marking(const std::string& type) {
   return std::nullopt;
 }
 
+/// What a Korean marking number Corsa does not paint stands for, where the annex's name is
+/// confirmed (519 and 520 slow, 521 stop, 542 unprotected left turn, 543 lane change: their
+/// drawings carry Hangul words or symbols Corsa does not draw); empty for the others.
+std::string korean_marking_name(const std::string& type) {
+  if (type == "519" || type == "520") {
+    return "slow";
+  }
+  constexpr std::pair<const char*, const char*> kNames[] = {
+      {"521", "stop"}, {"542", "unprotected left turn"}, {"543", "lane change"}};
+  for (const auto& [code, name] : kNames) {
+    if (type == code) {
+      return name;
+    }
+  }
+  return {};
+}
+
 /// True for the other numbers of the Korean marking series (lines, arrows, text, areas), which
 /// are paint too and never a sign on a post.
 bool other_korean_marking(const std::string& type) {
@@ -305,11 +322,13 @@ bool build_signal_marking(WorldBuild& w, size_t r, const xodr::Signal& s) {
     if (!(korean ? other_korean_marking(s.type) : other_german_marking(s.type))) {
       return false;
     }
+    const std::string name = korean ? korean_marking_name(s.type) : std::string();
     w.diagnostics.add_once(
         "signal-marking:" + s.country + ":" + s.type,
         make_warning(file, s.line,
-                     "signal type '" + s.type + "' (country '" + s.country +
-                         "') is a road marking Corsa does not paint from a signal; left out"));
+                     "signal type '" + s.type + "' (country '" + s.country + "'" +
+                         (name.empty() ? "" : ", " + name) +
+                         ") is a road marking Corsa does not paint from a signal; left out"));
     return true;
   }
   if (spec->kind == MarkKind::kHatch) {

@@ -4,8 +4,10 @@
 // repeats place a copy every `distance` metres or stretch rails along the road. CARLA's maps
 // name some objects instead of typing them: "StopLine", "Speed_NN" (a speed-limit sign) and
 // the RoadRunner stencils "Stencil_ArrowType4L/R" (turn arrows), "Stencil_ArrowType1*"
-// (straight arrows) and "Stencil_STOP" (the word) are drawn; other untyped objects (its
-// duplicated lane lines, other stencils) are left out with one warning per name.
+// (straight arrows) and "Stencil_STOP" (the word) are drawn, and "DashedShortSingleWhite" (the
+// RoadRunner lane-marking style CARLA exports as an object: a line of short white dashes along
+// its outline, which is the line itself, not a ring); other untyped objects (its duplicated lane
+// lines, other stencils) are left out with one warning per name.
 
 #include <algorithm>
 #include <cmath>
@@ -19,6 +21,12 @@
 
 namespace corsa::sensors::detail {
 namespace {
+
+// RoadRunner's short-dash style in metres: 2 ft dashes, 4 ft gaps (the middle of the MUTCD's
+// 2-6 ft), 6 in wide, as US line extensions through junctions (Town04 is a US town).
+constexpr double kShortDash = 0.61;
+constexpr double kShortDashGap = 1.22;
+constexpr double kShortDashWidth = 0.15;
 
 ObjectInfo kind_info(std::string kind) {
   ObjectInfo info;
@@ -129,6 +137,41 @@ bool stencil_paint(const std::string& name, double length, double width,
     return text_symbol("STOP", along, across, out);
   }
   return false;
+}
+
+/// A line of short dashes along `line` (points in the object frame, in order): dashes
+/// `dash` metres long every `dash + gap` metres of the line's length, `width` wide, 1.2 cm above
+/// it; each dash follows the line's bends. The dotted line that extends lane lines through a
+/// junction is made of dashes noticeably shorter, with shorter gaps, than a broken lane line
+/// (MUTCD 2009 §3A.06: 2 ft segments, 2-6 ft gaps).
+void dash_line(MeshBuilder& b, const std::vector<Vec3>& line, double dash, double gap,
+               double width) {
+  std::vector<double> at(line.size(), 0.0);  // length along the line at each point
+  for (size_t i = 1; i < line.size(); ++i) {
+    at[i] = at[i - 1] + std::hypot(line[i].x - line[i - 1].x, line[i].y - line[i - 1].y);
+  }
+  auto point_at = [&](size_t i, double d) {
+    const double f = at[i + 1] > at[i] ? (d - at[i]) / (at[i + 1] - at[i]) : 0.0;
+    return line[i] + (line[i + 1] - line[i]) * f;
+  };
+  const double total = line.empty() ? 0.0 : at.back();
+  // Centred on the line's length, so both ends keep the same margin.
+  const int count = static_cast<int>((total + gap) / (dash + gap));
+  const double start = 0.5 * (total - (count * (dash + gap) - gap));
+  const Vec3 lift{0.0, 0.0, 0.012};
+  for (int k = 0; k < count; ++k) {
+    const double d0 = start + k * (dash + gap), d1 = d0 + dash;
+    for (size_t i = 0; i + 1 < line.size(); ++i) {
+      const double a = std::max(d0, at[i]), c = std::min(d1, at[i + 1]);
+      if (c <= a) {
+        continue;
+      }
+      const Vec3 p = point_at(i, a), q = point_at(i, c);
+      const Vec3 along = normalized(line[i + 1] - line[i]);
+      const Vec3 n{-along.y * 0.5 * width, along.x * 0.5 * width, 0.0};
+      b.polygon({p - n + lift, q - n + lift, q + n + lift, p + n + lift}, {});
+    }
+  }
 }
 
 }  // namespace
@@ -291,6 +334,25 @@ void build_objects(WorldBuild& w) {
           w.place(make_sign(f, 0.6, 0.6, 2.0, "sign DE 274 " + std::to_string(f.number)), turned,
                   "object " + o.id, sign);
           ++w.report.signs;
+          continue;
+        } else if (o.type == "-1" && name == "DashedShortSingleWhite") {
+          // The outline is the line (open, in order); without one, the object's length along
+          // its heading.
+          b.semantic(SemanticClass::kLaneMarking).material(road_paint());
+          std::vector<Vec3> line = outline;
+          if (line.size() < 2) {
+            const double l = std::max(o.length, 0.0);
+            line = {{-0.5 * l, 0.0, 0.0}, {0.5 * l, 0.0, 0.0}};
+          }
+          dash_line(b, line, kShortDash, kShortDashGap, kShortDashWidth);
+          if (b.triangle_count() == 0) {
+            continue;
+          }
+          info.kind = "road_mark";
+          info.type = name;
+          info.subtype = "dashed_short";
+          w.place_paint(b.take(), frame, "object " + o.id, info);
+          ++w.report.objects;
           continue;
         } else if (std::vector<PaintPolygon> symbol;
                    o.type == "-1" && stencil_paint(name, o.length, o.width, symbol, info.subtype)) {

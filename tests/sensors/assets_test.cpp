@@ -1,5 +1,7 @@
 // Generated entity shapes, materials, procedural textures and lamps.
 
+#include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
@@ -33,6 +35,20 @@ size_t count_material(const detail::ArticulatedMesh& m, auto pred) {
     n += pred(m.materials[i]) ? 1 : 0;
   }
   return n;
+}
+
+/// The extent along x of the vertices of the triangles whose material `pred` accepts.
+std::array<double, 2> x_extent(const detail::ArticulatedMesh& m, auto pred) {
+  std::array<double, 2> out = {1e300, -1e300};
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    if (pred(m.materials[m.material[t]])) {
+      for (const uint32_t v : m.triangles[t]) {
+        out[0] = std::min(out[0], m.vertices[v].x);
+        out[1] = std::max(out[1], m.vertices[v].x);
+      }
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -147,6 +163,28 @@ TEST_CASE("a generated car has a body, glazing, lamps for every role, plates and
     steered += std::fabs(r.m[0][1]) > 1e-3 ? 1 : 0;  // axle turned about the vertical
   }
   CHECK(steered == 2);
+}
+
+TEST_CASE("a generated car's plates and tail lamps are not flush with its end faces, in its box",
+          "[sensors][assets]") {
+  // Flush with the body's end faces they z-fought with the paint (a speckled stripe across the
+  // tail) or hid inside the body (no plate seen from behind).
+  for (uint64_t seed = 1; seed <= 6; ++seed) {
+    CAPTURE(seed);
+    detail::EntityShape shape;
+    detail::build_entity_shape(car_at(0.0, 0.0, 0.0), seed, shape);
+    const auto& m = shape.mesh;
+    const auto paint = x_extent(m, [](const Material& x) { return x.clearcoat > 0.5; });
+    const auto plates = x_extent(m, [](const Material& x) { return x.pattern == Pattern::kPlate; });
+    const auto tail = x_extent(m, [](const Material& x) { return x.light == LightRole::kTail; });
+    CHECK(plates[0] < paint[0] - 0.005);  // the rear plate behind the rear face
+    CHECK(plates[1] > paint[1] + 0.005);  // the front plate ahead of the front face
+    // Tail lamps 4 mm proud of the surface under them: behind the rear face, or on a tail
+    // that slopes in above it, but never flush with the face.
+    CHECK(std::fabs(tail[0] - paint[0]) > 0.003);
+    CHECK(plates[0] >= -0.9 - 1e-9);  // the box: x from -0.9 to 3.7 m
+    CHECK(plates[1] <= 3.7 + 1e-9);
+  }
 }
 
 TEST_CASE("looks come from the seed and the name: same seed same look, names differ",

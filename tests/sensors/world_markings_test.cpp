@@ -147,8 +147,9 @@ TEST_CASE("Korean marking numbers Corsa does not paint warn once and are never s
   CHECK(world->report.markings == 0);
   REQUIRE(world->warnings.size() == 2);
   CHECK(world->warnings[0].line > 0);
-  CHECK_THAT(world->warnings[0].message, Catch::Contains("'521'"));
-  CHECK_THAT(world->warnings[1].message, Catch::Contains("'542'"));
+  CHECK_THAT(world->warnings[0].message, Catch::Contains("'521' (country 'KR', stop)"));
+  CHECK_THAT(world->warnings[1].message,
+             Catch::Contains("'542' (country 'KR', unprotected left turn)"));
   CHECK(down_at(world->scene, 20.0, -1.75).semantic == SemanticClass::kRoad);
 }
 

@@ -1,5 +1,6 @@
 // Symbols painted on the road: Korean direction arrows and hatched areas given as signals, and
-// the RoadRunner stencils of CARLA's maps (turn arrows, the word STOP) given as untyped objects.
+// the RoadRunner stencils of CARLA's maps (turn arrows, the word STOP) and its short-dash lines
+// given as untyped objects.
 
 #include <catch2/catch.hpp>
 #include <set>
@@ -181,6 +182,37 @@ TEST_CASE("CARLA's turn-arrow and STOP stencils are paint in their lane, read th
   CHECK_THAT(world->warnings[0].message, Catch::Contains("Stencil_BIKE"));
 }
 
+TEST_CASE("CARLA's short-dash line objects are short white dashes along their outline",
+          "[sensors][world][objects][markings]") {
+  // As Town04 writes them in its junctions: an untyped object named after the RoadRunner
+  // marking style, its open outline the line itself (here 10 m: 5 m along the road, then 5 m
+  // turning left at 37 degrees). Six dashes of 0.61 m every 1.83 m, centred: the first from
+  // 0.12 m to 0.73 m along the line, the fourth 0.61-1.22 m into the bent leg.
+  const auto map = street_with(
+      "",
+      R"(<object id="1775" type="-1" name="DashedShortSingleWhite" s="40" t="-1.75" zOffset="0" hdg="0" orientation="+" length="9" width="3" pitch="0" roll="0">
+           <outline><cornerLocal u="-5" v="0" z="0"/><cornerLocal u="0" v="0" z="0"/><cornerLocal u="4" v="3" z="0"/></outline>
+         </object>)");
+  auto world = marked_world(map);
+  CHECK(world->warnings.empty());
+  CHECK(world->report.objects == 1);
+  CHECK(paint_at(world->scene, 35.4, -1.75));         // the first dash
+  CHECK(paint_at(world->scene, 35.4, -1.75 + 0.06));  // 0.15 m wide
+  CHECK_FALSE(paint_at(world->scene, 35.4, -1.75 + 0.1));
+  CHECK_FALSE(paint_at(world->scene, 36.3, -1.75));      // the gap
+  CHECK(paint_at(world->scene, 37.25, -1.75));           // the second dash
+  CHECK_FALSE(paint_at(world->scene, 34.8, -1.75));      // before the first
+  CHECK(paint_at(world->scene, 40.732, -1.75 + 0.549));  // the fourth, along the bend
+  CHECK_FALSE(paint_at(world->scene, 43.0, -1.75));      // the bounding box is not painted
+  const ObjectInfo dash = object_at(world->scene, 35.4, -1.75);
+  CHECK(dash.kind == "road_mark");
+  CHECK(dash.type == "DashedShortSingleWhite");
+  CHECK(dash.subtype == "dashed_short");
+  // All dashes are one labelled object.
+  CHECK(down_at(world->scene, 35.4, -1.75).instance_id ==
+        down_at(world->scene, 40.732, -1.75 + 0.549).instance_id);
+}
+
 TEST_CASE("on Town04 the turn arrows ahead of a junction show as lane_marking in the image",
           "[sensors][world][objects][markings]") {
   // Road 23's two lanes carry a left and a right turn arrow at s 97 (objects 1933 and 1937);
@@ -193,6 +225,7 @@ TEST_CASE("on Town04 the turn arrows ahead of a junction show as lane_marking in
   auto built = corsa::test::build_world_scene(map, options);
   for (const auto& w : built->warnings) {
     CHECK_THAT(w.message, !Catch::Contains("Stencil_"));
+    CHECK_THAT(w.message, !Catch::Contains("DashedShortSingleWhite"));
   }
   const size_t road = *map.find_road("23");
   const auto arrow_pose = map.world_pose(road, 96.0, -1.75 - 0.79);  // object 1933's shaft

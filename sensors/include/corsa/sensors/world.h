@@ -18,8 +18,10 @@
 namespace corsa::sensors {
 
 struct WorldOptions {
-  uint64_t seed = 0;          ///< run seed: where plants stand, which species, sizes
-  bool ground = true;         ///< terrain around the roads, out to the horizon
+  uint64_t seed = 0;  ///< run seed: where plants stand, which species, sizes
+  /// Terrain around the roads, out to the horizon, and lane surface under the cracks between
+  /// roads that lie side by side (a centre strip split between two roads).
+  bool ground = true;
   bool vegetation = true;     ///< trees and bushes beside the roads
   bool street_lights = true;  ///< street lights along roads with sidewalks
   bool signals = true;        ///< OpenDRIVE <signal>s
@@ -37,6 +39,7 @@ struct WorldOptions {
 /// What build_world added.
 struct WorldReport {
   size_t ground_triangles = 0;
+  double seam_length = 0.0;  ///< m of road borders with a band under the crack to a neighbour
   size_t trees = 0;
   size_t bushes = 0;
   size_t street_lights = 0;
