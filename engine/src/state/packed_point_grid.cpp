@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "state/point_grid.h"
 
@@ -117,11 +118,71 @@ void PackedPointGrid::query_box(double x_min, double y_min, double x_max, double
   });
 }
 
+template <typename Visit>
+void PackedPointGrid::visit_band(double x_min, double y_min, double x_max, double y_max, double x,
+                                 double y, double c, double s, double along_min, double along_max,
+                                 double half, double slack, Visit visit) const {
+  int64_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+  if (points_.empty() || !span_of(x_min, x_max, x0_, nx_, i0, i1) ||
+      !span_of(y_min, y_max, y0_, ny_, j0, j1)) {
+    return;
+  }
+  // The band's corners in the world, in order around it. The cells of the band widened by slack
+  // hold every point the band test keeps; the walk stays within the box's cells, so it keeps
+  // exactly the points the box's cells would give, in the same order.
+  double px[4], py[4];
+  for (int k = 0; k < 4; ++k) {
+    const double a = (k == 0 || k == 3) ? along_min : along_max;
+    const double b = k < 2 ? -half : half;
+    px[k] = x + a * c - b * s;
+    py[k] = y + a * s + b * c;
+  }
+  for (int64_t i = i0; i <= i1; ++i) {
+    // The band's extent across column i (widened by slack): its edges clipped to the column.
+    const double left = x0_ + static_cast<double>(i) * size_ - slack;
+    const double right = x0_ + static_cast<double>(i + 1) * size_ + slack;
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (int k = 0; k < 4; ++k) {
+      const double ax = px[k], ay = py[k], bx = px[(k + 1) % 4], by = py[(k + 1) % 4];
+      const double dx = bx - ax;
+      double t0 = 0.0, t1 = 1.0;
+      if (dx == 0.0) {
+        if (ax < left || ax > right) {
+          continue;
+        }
+      } else {
+        double ta = (left - ax) / dx, tb = (right - ax) / dx;
+        if (ta > tb) {
+          std::swap(ta, tb);
+        }
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+        if (t0 > t1) {
+          continue;
+        }
+      }
+      const double ya = ay + t0 * (by - ay), yb = ay + t1 * (by - ay);
+      low = std::min(low, std::min(ya, yb));
+      high = std::max(high, std::max(ya, yb));
+    }
+    int64_t first = 0, last = 0;
+    if (!span_of(low - slack, high + slack, y0_, ny_, first, last)) {
+      continue;
+    }
+    first = std::max(first, j0);
+    last = std::min(last, j1);
+    if (first <= last) {
+      visit(points_.data() + starts_[i * ny_ + first],
+            points_.data() + starts_[i * ny_ + last + 1]);
+    }
+  }
+}
+
 void PackedPointGrid::query_band(double x_min, double y_min, double x_max, double y_max, double x,
                                  double y, double c, double s, double along_min, double along_max,
                                  double half, std::vector<uint32_t>& out) const {
   out.insert(out.end(), overflow_.begin(), overflow_.end());
-  visit_box(x_min, y_min, x_max, y_max, [&](const Point* first, const Point* last) {
+  const auto keep = [&](const Point* first, const Point* last) {
     for (const Point* p = first; p != last; ++p) {
       const double dx = p->x - x, dy = p->y - y;
       const double along = dx * c + dy * s;
@@ -130,7 +191,20 @@ void PackedPointGrid::query_band(double x_min, double y_min, double x_max, doubl
         out.push_back(p->id);
       }
     }
-  });
+  };
+  const double scale = std::abs(x) + std::abs(y) + std::abs(along_min) + std::abs(along_max) +
+                       std::abs(half) + size_;
+  const bool walkable = std::isfinite(x_min) && std::isfinite(y_min) && std::isfinite(x_max) &&
+                        std::isfinite(y_max) && std::isfinite(scale) && std::isfinite(c) &&
+                        std::isfinite(s) && std::abs(c * c + s * s - 1.0) <= 1e-9 &&
+                        along_min <= along_max && half >= 0.0;
+  if (!walkable) {
+    visit_box(x_min, y_min, x_max, y_max, keep);
+    return;
+  }
+  // Every point the band test keeps lies in the band up to rounding, far below this slack.
+  const double slack = 1e-9 * scale;
+  visit_band(x_min, y_min, x_max, y_max, x, y, c, s, along_min, along_max, half, slack, keep);
 }
 
 }  // namespace corsa::engine::detail
