@@ -14,6 +14,9 @@ namespace {
 // get 32-64 m ones, depending on how far they spread).
 constexpr size_t kMinCellBudget = 256;
 constexpr size_t kCellsPerPoint = 8;
+// A band within this cosine of upright spans one or two columns: the band query then takes the
+// box's rows in each (dividing by a cosine this small would lose the slack to rounding).
+constexpr double kSteep = 1e-3;
 
 }  // namespace
 
@@ -127,50 +130,30 @@ void PackedPointGrid::visit_band(double x_min, double y_min, double x_max, doubl
       !span_of(y_min, y_max, y0_, ny_, j0, j1)) {
     return;
   }
-  // The band's corners in the world, in order around it. The cells of the band widened by slack
-  // hold every point the band test keeps; the walk stays within the box's cells, so it keeps
-  // exactly the points the box's cells would give, in the same order.
-  double px[4], py[4];
-  for (int k = 0; k < 4; ++k) {
-    const double a = (k == 0 || k == 3) ? along_min : along_max;
-    const double b = k < 2 ? -half : half;
-    px[k] = x + a * c - b * s;
-    py[k] = y + a * s + b * c;
-  }
+  // The band lies within its centre line, from along_min to along_max, widened by an upright
+  // box (half |s| across x, half |c| across y): over column i the centre line spans the x of the
+  // column widened by that box, and its y there, widened again, gives the rows. A few products
+  // per column, where clipping the band's edges cost more than the points it spared.
+  const double xa = x + along_min * c, ya = y + along_min * s;
+  const double xb = x + along_max * c;
+  const double slope = s / c;  // |c| >= kSteep: at most the tangent of 89.9 degrees
+  const double wx = std::abs(s) * half + slack, wy = std::abs(c) * half + slack;
+  const double line_low = std::min(xa, xb) - wx, line_high = std::max(xa, xb) + wx;
+  const double inverse = 1.0 / size_;
   for (int64_t i = i0; i <= i1; ++i) {
-    // The band's extent across column i (widened by slack): its edges clipped to the column.
-    const double left = x0_ + static_cast<double>(i) * size_ - slack;
-    const double right = x0_ + static_cast<double>(i + 1) * size_ + slack;
-    double low = std::numeric_limits<double>::infinity(), high = -low;
-    for (int k = 0; k < 4; ++k) {
-      const double ax = px[k], ay = py[k], bx = px[(k + 1) % 4], by = py[(k + 1) % 4];
-      const double dx = bx - ax;
-      double t0 = 0.0, t1 = 1.0;
-      if (dx == 0.0) {
-        if (ax < left || ax > right) {
-          continue;
-        }
-      } else {
-        double ta = (left - ax) / dx, tb = (right - ax) / dx;
-        if (ta > tb) {
-          std::swap(ta, tb);
-        }
-        t0 = std::max(t0, ta);
-        t1 = std::min(t1, tb);
-        if (t0 > t1) {
-          continue;
-        }
-      }
-      const double ya = ay + t0 * (by - ay), yb = ay + t1 * (by - ay);
-      low = std::min(low, std::min(ya, yb));
-      high = std::max(high, std::max(ya, yb));
-    }
-    int64_t first = 0, last = 0;
-    if (!span_of(low - slack, high + slack, y0_, ny_, first, last)) {
+    const double left = x0_ + static_cast<double>(i) * size_;
+    const double low = std::max(left - wx, line_low);
+    const double high = std::min(left + size_ + wx, line_high);
+    if (low > high) {
       continue;
     }
-    first = std::max(first, j0);
-    last = std::min(last, j1);
+    const double y_low = ya + (low - xa) * slope, y_high = ya + (high - xa) * slope;
+    // Rows truncated, never below j0 (>= 0) nor above j1: only the box's cells, perhaps one more
+    // of them than the band needs at an edge.
+    const double a = (std::min(y_low, y_high) - wy - y0_) * inverse;
+    const double b = (std::max(y_low, y_high) + wy - y0_) * inverse;
+    const int64_t first = a > static_cast<double>(j0) ? static_cast<int64_t>(a) : j0;
+    const int64_t last = b < static_cast<double>(j1) ? static_cast<int64_t>(b) : j1;
     if (first <= last) {
       visit(points_.data() + starts_[i * ny_ + first],
             points_.data() + starts_[i * ny_ + last + 1]);
@@ -197,7 +180,7 @@ void PackedPointGrid::query_band(double x_min, double y_min, double x_max, doubl
   const bool walkable = std::isfinite(x_min) && std::isfinite(y_min) && std::isfinite(x_max) &&
                         std::isfinite(y_max) && std::isfinite(scale) && std::isfinite(c) &&
                         std::isfinite(s) && std::abs(c * c + s * s - 1.0) <= 1e-9 &&
-                        along_min <= along_max && half >= 0.0;
+                        std::abs(c) >= kSteep && along_min <= along_max && half >= 0.0;
   if (!walkable) {
     visit_box(x_min, y_min, x_max, y_max, keep);
     return;

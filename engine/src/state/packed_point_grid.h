@@ -62,7 +62,8 @@ class PackedPointGrid {
   void visit_box(double x_min, double y_min, double x_max, double y_max, Visit visit) const;
   /// Calls visit(first, last) with runs of the points of the cells that the band of query_band
   /// (widened by `slack` m on every side) crosses, among those covering the box, in the order
-  /// visit_box would give them: per column, only the rows the band crosses there.
+  /// visit_box would give them: per column, only the rows the band may cross there (a superset
+  /// of them, cheap to find).
   template <typename Visit>
   void visit_band(double x_min, double y_min, double x_max, double y_max, double x, double y,
                   double c, double s, double along_min, double along_max, double half, double slack,
