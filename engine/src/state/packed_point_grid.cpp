@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "state/point_grid.h"
 
@@ -14,9 +13,6 @@ namespace {
 // get 32-64 m ones, depending on how far they spread).
 constexpr size_t kMinCellBudget = 256;
 constexpr size_t kCellsPerPoint = 8;
-// A band within this cosine of upright spans one or two columns: the band query then takes the
-// box's rows in each (dividing by a cosine this small would lose the slack to rounding).
-constexpr double kSteep = 1e-3;
 
 }  // namespace
 
@@ -121,51 +117,11 @@ void PackedPointGrid::query_box(double x_min, double y_min, double x_max, double
   });
 }
 
-template <typename Visit>
-void PackedPointGrid::visit_band(double x_min, double y_min, double x_max, double y_max, double x,
-                                 double y, double c, double s, double along_min, double along_max,
-                                 double half, double slack, Visit visit) const {
-  int64_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;
-  if (points_.empty() || !span_of(x_min, x_max, x0_, nx_, i0, i1) ||
-      !span_of(y_min, y_max, y0_, ny_, j0, j1)) {
-    return;
-  }
-  // The band lies within its centre line, from along_min to along_max, widened by an upright
-  // box (half |s| across x, half |c| across y): over column i the centre line spans the x of the
-  // column widened by that box, and its y there, widened again, gives the rows. A few products
-  // per column, where clipping the band's edges cost more than the points it spared.
-  const double xa = x + along_min * c, ya = y + along_min * s;
-  const double xb = x + along_max * c;
-  const double slope = s / c;  // |c| >= kSteep: at most the tangent of 89.9 degrees
-  const double wx = std::abs(s) * half + slack, wy = std::abs(c) * half + slack;
-  const double line_low = std::min(xa, xb) - wx, line_high = std::max(xa, xb) + wx;
-  const double inverse = 1.0 / size_;
-  for (int64_t i = i0; i <= i1; ++i) {
-    const double left = x0_ + static_cast<double>(i) * size_;
-    const double low = std::max(left - wx, line_low);
-    const double high = std::min(left + size_ + wx, line_high);
-    if (low > high) {
-      continue;
-    }
-    const double y_low = ya + (low - xa) * slope, y_high = ya + (high - xa) * slope;
-    // Rows truncated, never below j0 (>= 0) nor above j1: only the box's cells, perhaps one more
-    // of them than the band needs at an edge.
-    const double a = (std::min(y_low, y_high) - wy - y0_) * inverse;
-    const double b = (std::max(y_low, y_high) + wy - y0_) * inverse;
-    const int64_t first = a > static_cast<double>(j0) ? static_cast<int64_t>(a) : j0;
-    const int64_t last = b < static_cast<double>(j1) ? static_cast<int64_t>(b) : j1;
-    if (first <= last) {
-      visit(points_.data() + starts_[i * ny_ + first],
-            points_.data() + starts_[i * ny_ + last + 1]);
-    }
-  }
-}
-
 void PackedPointGrid::query_band(double x_min, double y_min, double x_max, double y_max, double x,
                                  double y, double c, double s, double along_min, double along_max,
                                  double half, std::vector<uint32_t>& out) const {
   out.insert(out.end(), overflow_.begin(), overflow_.end());
-  const auto keep = [&](const Point* first, const Point* last) {
+  visit_box(x_min, y_min, x_max, y_max, [&](const Point* first, const Point* last) {
     for (const Point* p = first; p != last; ++p) {
       const double dx = p->x - x, dy = p->y - y;
       const double along = dx * c + dy * s;
@@ -174,20 +130,7 @@ void PackedPointGrid::query_band(double x_min, double y_min, double x_max, doubl
         out.push_back(p->id);
       }
     }
-  };
-  const double scale = std::abs(x) + std::abs(y) + std::abs(along_min) + std::abs(along_max) +
-                       std::abs(half) + size_;
-  const bool walkable = std::isfinite(x_min) && std::isfinite(y_min) && std::isfinite(x_max) &&
-                        std::isfinite(y_max) && std::isfinite(scale) && std::isfinite(c) &&
-                        std::isfinite(s) && std::abs(c * c + s * s - 1.0) <= 1e-9 &&
-                        std::abs(c) >= kSteep && along_min <= along_max && half >= 0.0;
-  if (!walkable) {
-    visit_box(x_min, y_min, x_max, y_max, keep);
-    return;
-  }
-  // Every point the band test keeps lies in the band up to rounding, far below this slack.
-  const double slack = 1e-9 * scale;
-  visit_band(x_min, y_min, x_max, y_max, x, y, c, s, along_min, along_max, half, slack, keep);
+  });
 }
 
 }  // namespace corsa::engine::detail

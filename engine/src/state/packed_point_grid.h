@@ -36,9 +36,7 @@ class PackedPointGrid {
   /// rectangle's bounding box) whose frame coordinates,
   /// (px - x) * c + (py - y) * s along and -(px - x) * s + (py - y) * c across, lie in
   /// [along_min, along_max] x [-half, half], and the points of the overflow list. The same
-  /// contract as PointGrid::query_band. Only the cells the band crosses are looked at (a band
-  /// at 45 degrees crosses a fraction of its bounding box's cells); the result, and its order,
-  /// are those of a filter of the box's cells.
+  /// contract as PointGrid::query_band.
   void query_band(double x_min, double y_min, double x_max, double y_max, double x, double y,
                   double c, double s, double along_min, double along_max, double half,
                   std::vector<uint32_t>& out) const;
@@ -60,14 +58,6 @@ class PackedPointGrid {
   /// point for a NaN bound).
   template <typename Visit>
   void visit_box(double x_min, double y_min, double x_max, double y_max, Visit visit) const;
-  /// Calls visit(first, last) with runs of the points of the cells that the band of query_band
-  /// (widened by `slack` m on every side) crosses, among those covering the box, in the order
-  /// visit_box would give them: per column, only the rows the band may cross there (a superset
-  /// of them, cheap to find).
-  template <typename Visit>
-  void visit_band(double x_min, double y_min, double x_max, double y_max, double x, double y,
-                  double c, double s, double along_min, double along_max, double half, double slack,
-                  Visit visit) const;
 
   double cell_;  ///< m, asked for
   double size_;  ///< m, the side used since the last finish()
