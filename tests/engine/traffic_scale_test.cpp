@@ -9,7 +9,9 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <iterator>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -330,5 +332,77 @@ TEST_CASE("The packed point grid returns every point of a box or a tilted band, 
     std::vector<uint32_t> none;
     grid.query_box(1e6, 1e6, 2e6, 2e6, none);
     CHECK(none == std::vector<uint32_t>{1500});
+  }
+}
+
+TEST_CASE(
+    "The band query keeps what a filter of its box's cells keeps, in the same order, on dense and "
+    "sparse layouts, far from the origin too",
+    "[engine][traffic]") {
+  corsa::RandomStream random(23);
+  corsa::engine::detail::PackedPointGrid grid(8.0);
+  for (int layout = 0; layout < 6; ++layout) {
+    grid.clear();
+    std::vector<std::pair<double, double>> points;
+    // Dense layouts (small cells) and sparse ones (cells made larger), far from the origin too.
+    const uint32_t count = layout % 2 == 0 ? 3000 : 150;
+    const double ox = layout < 4 ? 0.0 : 2.5e5, oy = layout < 4 ? 0.0 : -1.5e5;
+    for (uint32_t i = 0; i < count; ++i) {
+      points.emplace_back(ox + random.uniform(-400.0, 400.0), oy + random.uniform(-250.0, 250.0));
+    }
+    // Queries: long thin corridors and short wide ones at every heading, from inside and outside
+    // the points' extent; some points on each band's edges and corners, where rounding decides.
+    struct Query {
+      double x, y, c, s, along_min, along_max, half;
+    };
+    std::vector<Query> queries;
+    for (int q = 0; q < 200; ++q) {
+      const double h = q % 10 == 0 ? (q / 10) * std::numbers::pi / 4.0 : random.uniform(-3.2, 3.2);
+      const bool thin = q % 2 == 0;
+      queries.push_back({ox + random.uniform(-450.0, 450.0), oy + random.uniform(-300.0, 300.0),
+                         std::cos(h), std::sin(h), random.uniform(-45.0, 0.0),
+                         random.uniform(0.0, thin ? 150.0 : 20.0),
+                         thin ? random.uniform(0.0, 2.5) : random.uniform(2.0, 30.0)});
+      const Query& b = queries.back();
+      for (const double a : {b.along_min, b.along_max, 0.5 * (b.along_min + b.along_max)}) {
+        for (const double across : {-b.half, b.half}) {
+          points.emplace_back(b.x + a * b.c - across * b.s, b.y + a * b.s + across * b.c);
+        }
+      }
+    }
+    for (uint32_t i = 0; i < points.size(); ++i) grid.add(points[i].first, points[i].second, i);
+    grid.finish();
+    uint32_t kept = 0;
+    for (const Query& b : queries) {
+      double x_min = 1e300, x_max = -1e300, y_min = 1e300, y_max = -1e300;
+      for (const double a : {b.along_min, b.along_max}) {
+        for (const double across : {-b.half, b.half}) {
+          const double wx = b.x + a * b.c - across * b.s, wy = b.y + a * b.s + across * b.c;
+          x_min = std::min(x_min, wx), x_max = std::max(x_max, wx);
+          y_min = std::min(y_min, wy), y_max = std::max(y_max, wy);
+        }
+      }
+      std::vector<uint32_t> band, box, filtered, scanned;
+      grid.query_band(x_min, y_min, x_max, y_max, b.x, b.y, b.c, b.s, b.along_min, b.along_max,
+                      b.half, band);
+      // Its box's cells, filtered: the order the outputs' bytes depend on (a query that looked
+      // at fewer cells would have to keep it).
+      grid.query_box(x_min, y_min, x_max, y_max, box);
+      const auto in_band = [&](uint32_t i) {
+        const double dx = points[i].first - b.x, dy = points[i].second - b.y;
+        const double along = dx * b.c + dy * b.s, across = -dx * b.s + dy * b.c;
+        return along >= b.along_min && along <= b.along_max && std::abs(across) <= b.half;
+      };
+      std::copy_if(box.begin(), box.end(), std::back_inserter(filtered), in_band);
+      CHECK(band == filtered);
+      // And a scan of every point (the box may leave out a point rounding puts on its border).
+      for (uint32_t i = 0; i < points.size(); ++i) {
+        if (in_band(i)) scanned.push_back(i);
+      }
+      std::sort(band.begin(), band.end());
+      CHECK(band == scanned);
+      kept += static_cast<uint32_t>(band.size());
+    }
+    CHECK(kept > queries.size());  // the bands hold points: the comparisons are not of nothing
   }
 }

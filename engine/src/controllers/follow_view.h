@@ -106,8 +106,9 @@ class FollowView {
   double max_length_ = 0.0;
   bool has_shapes_ = false;
 
-  // m: about two car lengths; a corridor query visits only the cells it crosses (a lane of a
-  // few cars' length covers some ten), each a short run of memory.
+  // m: about two car lengths (the grid makes its cells larger when the points are sparse); a
+  // corridor query reads the cells of its bounding box a column at a time, each column's cells
+  // one run of memory, so empty cells cost nothing.
   static constexpr double kGridCell = 8.0;
 };
 
