@@ -17,6 +17,7 @@ constexpr double kEase = 12.0;           // m over which a reduced shift is ease
 constexpr double kRelaxReach = 2.0;  // m
 constexpr double kRelaxChord = 1.0;  // m
 constexpr int kRelaxRounds = 20;
+// m: how much of a road end stays unchanged when the tight turn lies at that end itself.
 constexpr double kEndKeep = 0.5;
 // Length (m) of the chords a road end's tangent is extrapolated from (shifted_left).
 constexpr double kEndChord = 1.5;
@@ -45,7 +46,7 @@ Vec2 point_at(const std::vector<Point2>& q, const std::vector<double>& u, double
 /// A Gaussian average along `p` (sigma kRelaxChord, stations `u`) of the vertices within
 /// kRelaxReach of the arc lengths `tight`; eased in from nothing at kRelaxReach from an end to
 /// all of it at twice that (the ends and their headings stay: the normals there run through
-/// the lane ends).
+/// the lane ends), or from kEndKeep to twice that at an end a tight turn lies near.
 void ease_at(std::vector<Point2>& p, const std::vector<double>& u,
              const std::vector<double>& tight) {
   const size_t n = p.size();
@@ -74,8 +75,8 @@ void ease_at(std::vector<Point2>& p, const std::vector<double>& u,
       sum = sum + w * point_at(p, u, u[i] + d);
       weight += w;
     }
-    const double f = std::clamp(std::min(u[i] / keep_start, (u.back() - u[i]) / keep_end) - 1.0,
-                                0.0, 1.0);
+    const double f =
+        std::clamp(std::min(u[i] / keep_start, (u.back() - u[i]) / keep_end) - 1.0, 0.0, 1.0);
     next[i] =
         Point2{p[i].x + f * (sum.x / weight - p[i].x), p[i].y + f * (sum.y / weight - p[i].y)};
   }
