@@ -17,6 +17,8 @@ constexpr double kEase = 12.0;           // m over which a reduced shift is ease
 constexpr double kRelaxReach = 2.0;  // m
 constexpr double kRelaxChord = 1.0;  // m
 constexpr int kRelaxRounds = 20;
+// m: how much of a road end stays unchanged when the tight turn lies at that end itself.
+constexpr double kEndKeep = 0.5;
 // Length (m) of the chords a road end's tangent is extrapolated from (shifted_left).
 constexpr double kEndChord = 1.5;
 // rad: how far a one-lane road must turn right overall to be fitted along its right edge.
@@ -44,13 +46,23 @@ Vec2 point_at(const std::vector<Point2>& q, const std::vector<double>& u, double
 /// A Gaussian average along `p` (sigma kRelaxChord, stations `u`) of the vertices within
 /// kRelaxReach of the arc lengths `tight`; eased in from nothing at kRelaxReach from an end to
 /// all of it at twice that (the ends and their headings stay: the normals there run through
-/// the lane ends).
+/// the lane ends), or from kEndKeep to twice that at an end a tight turn lies near.
 void ease_at(std::vector<Point2>& p, const std::vector<double>& u,
              const std::vector<double>& tight) {
   const size_t n = p.size();
   std::vector<Point2> next(p);
+  // An end stays as it is over kRelaxReach, unless a tight turn lies there itself (a short
+  // record meeting the end's heading): then only over kEndKeep.
+  const auto keep = [&](bool at_end) {
+    const bool tight_there = std::any_of(tight.begin(), tight.end(), [&](double t) {
+      return at_end ? t > u.back() - kRelaxReach : t < kRelaxReach;
+    });
+    return tight_there ? kEndKeep : kRelaxReach;
+  };
+  const double keep_start = keep(false);
+  const double keep_end = keep(true);
   for (size_t i = 1; i + 1 < n; ++i) {
-    const bool near_end = u[i] < kRelaxReach || u[i] > u.back() - kRelaxReach;
+    const bool near_end = u[i] < keep_start || u[i] > u.back() - keep_end;
     const bool near = std::any_of(tight.begin(), tight.end(),
                                   [&](double t) { return std::abs(u[i] - t) <= kRelaxReach; });
     if (near_end || !near) {
@@ -63,8 +75,8 @@ void ease_at(std::vector<Point2>& p, const std::vector<double>& u,
       sum = sum + w * point_at(p, u, u[i] + d);
       weight += w;
     }
-    const double from_end = std::min(u[i], u.back() - u[i]);
-    const double f = std::clamp(from_end / kRelaxReach - 1.0, 0.0, 1.0);
+    const double f =
+        std::clamp(std::min(u[i] / keep_start, (u.back() - u[i]) / keep_end) - 1.0, 0.0, 1.0);
     next[i] =
         Point2{p[i].x + f * (sum.x / weight - p[i].x), p[i].y + f * (sum.y / weight - p[i].y)};
   }

@@ -73,12 +73,14 @@ bool along_right_edge(const Polyline& lane);
 /// edge would lie beyond the centre of curvature there and fold over. Such turns are survey jogs of
 /// a few decimetres within a metre, or sparse vertices turning at sharp corners; the lanes' offsets
 /// keep following the survey. The first and last 2 m stay (the normals at the ends run through the
-/// lane ends).
+/// lane ends), or only the first and last 0.5 m where a tight turn lies within 2 m of that end.
 void relax_right_turns(std::vector<Point2>& points, const std::vector<double>& road_width,
                        bool lanes_left = false);
 
 /// Smooths `points` within kRelaxReach (2 m) of the arc lengths `at` (m along the polyline),
-/// as relax_right_turns does, by a Gaussian average of sigma 1 m; the first and last 2 m stay.
+/// as relax_right_turns does, by a Gaussian average of sigma 1 m; the first and last 2 m stay
+/// (0.5 m at an end within 2 m of which an arc length of `at` lies: a short record meeting the
+/// end's heading that turns too tightly).
 void ease_near(std::vector<Point2>& points, const std::vector<double>& at);
 
 /// Arc lengths (m) where the records of `fit` turn right (with `lanes_left`: left) more tightly

@@ -194,3 +194,31 @@ TEST_CASE("only one-lane roads turning right without sharp corners follow their 
   const std::vector<Point3> straight{{0.0, 0.0, 0.0}, {20.0, 0.0, 0.0}};
   CHECK_FALSE(along_right_edge(Polyline(std::span<const Point3>(straight))));
 }
+
+TEST_CASE("a lane turning right tightly within a metre or two of its end does not fold",
+          "[ngii][folds]") {
+  // A one-lane path surveyed every 0.25 m that runs 12 m straight and turns right by 0.6 rad
+  // at a radius of 2.5 m in its last 1.5 m (K-City's A219BS010733 and A219BS010805 end so).
+  // The last record must meet the end's point and heading, and turns within 2 m of a road end
+  // were never eased: that record turned right at -0.5 1/m, and the right edge of the 3.25 m
+  // lane lay beyond its centre of curvature.
+  const double x0 = 300000.0, y0 = 4100000.0;
+  const double r = 2.5, turn = 0.6;
+  std::vector<Point3> points;
+  for (int i = 0; i <= 48; ++i) {
+    points.push_back({x0 + 0.25 * i, y0, 50.0});
+  }
+  const int steps = static_cast<int>(std::ceil(turn * r / 0.25));
+  for (int k = 1; k <= steps; ++k) {
+    const double a = turn * k / steps;
+    points.push_back({x0 + 12.0 + r * std::sin(a), y0 - r * (1.0 - std::cos(a)), 50.0});
+  }
+  corsa::Diagnostics diagnostics;
+  const auto conversion = corsa::ngii::convert(one_lane(points), {}, diagnostics);
+  const auto map = corsa::xodr::Map::build(conversion.map, diagnostics);
+  REQUIRE(conversion.map.roads.size() == 1);
+  const auto& road = conversion.map.roads.front();
+  INFO("tightest right turn " << tightest_right_turn(road));
+  CHECK(corsa::test::folded_roads(map) == 0);
+  CHECK(conversion.summary.max_lane_error <= 0.06);
+}

@@ -131,10 +131,14 @@ TEST_CASE("lane borders fold over themselves on a known few roads", "[ngii][qual
   // straight and then turn was extrapolated into the outside of the turn (17 and 4 after);
   // one-lane junction paths turning right within 2 m of an end, where the reference line keeps
   // the end's point and heading, folded their lane on the inside (4 and 2 after narrowing the
-  // lane there and fitting such roads along their right edge). What remains: one K-City road
-  // end (5 lanes under a 12 m turn) and a few one-lane paths with sharp corners.
-  CHECK(figures("kcity").folded_roads <= 4);
-  CHECK(figures("seoul_sangam_testbed").folded_roads <= 2);
+  // lane there and fitting such roads along their right edge); the last (first) record of a
+  // path meeting its end's heading turned right more tightly than the lane is wide within 2 m
+  // of the end, where the reference line was never eased (2 and 1 after easing it there down
+  // to 0.5 m from the end). What remains: one K-City road end (5 lanes under a 12-15 m turn),
+  // K-City's A219BS010786 (a path whose first record turns at a radius of 1 m, its lane up to
+  // 12 m wide) and Sangam's A219AS319240 (a 5.4-6.3 m lane turning at radii of 2-5 m).
+  CHECK(figures("kcity").folded_roads <= 2);
+  CHECK(figures("seoul_sangam_testbed").folded_roads <= 1);
 }
 
 TEST_CASE("lane centres follow their A2 links within 3.5 cm (p95 over all vertices)",
