@@ -223,6 +223,26 @@ TEST_CASE("A relative Orientation on a left lane turns from the road's s, or esm
   }
 }
 
+TEST_CASE("A RoutePosition's relative Orientation turns from the road's s, or esmini's lane",
+          "[engine][semantics][positions][route]") {
+  // Lane 1 at path s 50 of a route along road 1 from s = 50 (road s 100), h = pi relative,
+  // 10 m/s for 2 s.
+  SECTION("standard") {
+    // pi from the road's +s (1.3 RoutePosition: the road's s and t): facing -s; s(2) = 80.
+    FixtureRun run(engine_fixture("semantics_route_orientation.xosc"));
+    run.run();
+    CHECK(std::abs(run.at(0.0, "Car").pose.h) == Approx(std::numbers::pi).margin(1e-9));
+    CHECK(run.at(2.0, "Car").road->s == Approx(80.0).margin(1e-9));
+  }
+  SECTION("esmini") {
+    // pi from the lane's direction of travel (-s): facing +s; s(2) = 120.
+    FixtureRun run(engine_fixture("semantics_route_orientation.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(0.0, "Car").pose.h == Approx(0.0).margin(1e-9));
+    CHECK(run.at(2.0, "Car").road->s == Approx(120.0).margin(1e-9));
+  }
+}
+
 TEST_CASE("A time headway towards an entity behind is infinite, or esmini's condition is false",
           "[engine][semantics][conditions]") {
   // Car (s = 50) waits for its headway to Behind (s = 10) to exceed 1 s before going 20 m/s.

@@ -102,12 +102,19 @@ double curvature_at(const xodr::Map& map, uint32_t road, double s) {
 
 // Path length per metre of reference s (1 - k t) where the entity is, kept within [0.2, 5] so
 // that a point near or beyond the centre of curvature of a tight curve cannot stall or fling it.
+// Outside every lane of the road (a lateral offset beyond its outer lane, e.g. a lane change that
+// a route carries onto a connecting road with fewer lanes) t comes from the followed lane.
 double path_scale(const xodr::Map& map, const Entity& entity) {
-  if (!entity.state.road || entity.state.road->road != entity.lane.road) {
+  const bool located = entity.state.road && entity.state.road->road == entity.lane.road;
+  if (!located && entity.state.road) {
     return 1.0;
   }
   const double k = curvature_at(map, entity.lane.road, entity.lane.s);
-  return k == 0.0 ? 1.0 : std::clamp(1.0 - k * entity.state.road->t, 0.2, 5.0);
+  if (k == 0.0) {
+    return 1.0;
+  }
+  const double t = located ? entity.state.road->t : followed_t(map, entity.lane);
+  return std::clamp(1.0 - k * t, 0.2, 5.0);
 }
 
 // The step's travel along the lane: all of `distance`, or with MotionContext::path_speed_lateral

@@ -202,14 +202,22 @@ ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, con
           const RouteLocation at = locate_on_route(path, in_route.path_s);
           double t = 0.0;
           std::optional<int> lane;
+          // A relative Orientation turns from the road's s and t (1.3 RoutePosition); esmini
+          // turns one given in lane coordinates from the lane's direction of travel, as for a
+          // LanePosition (`--semantics esmini`).
+          OrientationFrame frame = OrientationFrame::kRoad;
           if constexpr (std::is_same_v<T, xosc::PositionInRoadCoordinates>) {
             t = in_route.t;
           } else {
             lane = parse_lane_id(in_route.lane_id, in_route.source);
             t = need_lane_center(map, at.lane.road, at.s, *lane, in_route.source) +
                 in_route.lane_offset.value_or(0.0);
+            if (state.options.semantics == Semantics::kEsmini) {
+              frame = OrientationFrame::kLane;
+            }
           }
-          ResolvedPosition out = on_road(map, at.lane.road, at.s, t, lane, position.orientation);
+          ResolvedPosition out =
+              on_road(map, at.lane.road, at.s, t, lane, position.orientation, frame);
           if (!position.orientation) {
             // Without an orientation the entity faces along the route.
             out.pose.h = wrap_angle(map.reference(at.lane.road, at.s).hdg +
