@@ -9,6 +9,8 @@
 // ("avc1") when the FFmpeg build offers it, else MPEG-4 part 2 ("mp4v"), else Motion JPEG in
 // camera_birds_eye.avi, and the summary says which. The contact sheet is deterministic; the video
 // depends on the encoder and is not part of the byte-identical dataset.
+// During a run the video is encoded capture by capture (PreviewRecorder, beside the rendering);
+// write_preview() keeps it when it equals what encoding the finished dataset would give.
 
 #include <cstdint>
 #include <filesystem>
