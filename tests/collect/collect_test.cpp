@@ -223,7 +223,9 @@ TEST_CASE("the preview video encoded during a run is the one encoded from the fi
         std::vector<fs::path>{report.preview->video.filename(), "contact_sheet.png"});
   const std::string during = corsa::read_file(report.preview->video);
 
-  // Encoded again from the dataset's files alone, as before the recorder: the same bytes.
+  // Encoded again from the dataset's files alone, as before the recorder: the same frames, and
+  // for a video within the encoder's 40-frame look-ahead (nothing decided before the end) the
+  // same bytes.
   const corsa::sensors::SensorRig rig = corsa::sensors::load_rig(options.rig);
   const corsa::sensors::PreviewReport after =
       corsa::sensors::write_preview(options.output, rig, diagnostics);

@@ -39,10 +39,12 @@ using PreviewProgress = std::function<void(int done, int total)>;
 
 /// The preview video encoded while the dataset is collected: each capture's frame is composed
 /// from its files once they are in the index, on a task that runs beside the next capture's
-/// rendering, so the encoder's single thread no longer runs alone after the last capture.
-/// write_preview() keeps this video only when it holds exactly the frames, size and rate it would
-/// have encoded itself (the same composing code, the same encoder and settings); otherwise it
-/// encodes the video from the files as before. Not thread-safe: one caller (the dataset writer).
+/// rendering, so the encoder no longer runs alone after the last capture. write_preview() keeps
+/// this video only when it holds exactly the frames, size and rate it would have encoded itself
+/// (the same composing code, the same encoder and settings); otherwise it encodes the video from
+/// the files as before. The frames are the same either way; libx264's bytes for a video longer
+/// than its look-ahead depend on when the frames arrive (docs/datasets.md, Preview). Not
+/// thread-safe: one caller (the dataset writer).
 class PreviewRecorder {
  public:
   /// A file of a capture: the sensor's name and the file's path relative to the dataset.
