@@ -56,8 +56,8 @@ DatasetRunReport run_dataset(const DatasetRunOptions& options, Diagnostics& diag
   report.captures = data.captures();
   report.files = data.files();
   if (!report.interrupted && options.preview) {
-    report.preview = sensors::write_preview(options.output, data.system().rig(), diagnostics,
-                                            hooks.on_preview, data.preview());
+    report.preview =
+        sensors::write_preview(options.output, data.system().rig(), diagnostics, hooks.on_preview);
   }
   return report;
 }

@@ -14,7 +14,6 @@
 #include "corsa/core/output_lock.h"
 #include "corsa/core/strings.h"
 #include "corsa/core/version.h"
-#include "corsa/sensors/preview.h"
 #include "corsa/sensors/semantic.h"
 #include "corsa/sensors/writers.h"
 #include "dataset_folder.h"
@@ -112,7 +111,6 @@ DatasetWriter::DatasetWriter(SensorSystem& system, fs::path directory, DatasetRu
 }
 
 DatasetWriter::~DatasetWriter() {
-  preview_.reset();  // an unfinished video is removed
   if (pending_) {
     try {
       pending_->tasks.wait();
@@ -182,16 +180,13 @@ void DatasetWriter::complete_pending() {
   const std::unique_ptr<Pending> done = std::move(pending_);
   done->tasks.wait();  // rethrows a task's exception (the capture is then not indexed)
   std::string rows;
-  const std::string time = num(done->time);
-  std::vector<PreviewRecorder::CaptureFile> files;
   for (size_t i = 0; i < done->frames.size(); ++i) {
     const SensorFrame& f = done->frames[i];
     for (const fs::path& file : done->files[i]) {
-      rows += std::to_string(captures_) + "," + std::to_string(done->tick) + "," + time + "," +
-              f.sensor + "," + std::to_string(f.frame) + "," + file.generic_string() + "," +
+      rows += std::to_string(captures_) + "," + std::to_string(done->tick) + "," + num(done->time) +
+              "," + f.sensor + "," + std::to_string(f.frame) + "," + file.generic_string() + "," +
               std::to_string(done->overlap) + "\n";
       ++rows_;
-      files.emplace_back(f.sensor, file);
     }
   }
   rows += done->pose_rows;
@@ -202,13 +197,6 @@ void DatasetWriter::complete_pending() {
   ++captures_;
   last_tick_ = done->tick;
   last_time_ = done->time;
-  if (preview_) {
-    preview_->add(done->tick, time, files);  // encoded beside the next capture's rendering
-  }
-}
-
-void DatasetWriter::record_preview() {
-  preview_ = std::make_unique<PreviewRecorder>(directory_, system_.rig());
 }
 
 void DatasetWriter::finish(const DatasetEnd& end) {

@@ -2,10 +2,7 @@
 
 #include "corsa/sensors/preview.h"
 
-#include <tbb/task_group.h>
-
 #include <algorithm>
-#include <cmath>
 #include <map>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -107,10 +104,8 @@ fs::path write_contact_sheet(const fs::path& dataset, const std::vector<Shot>& s
 
 // Opens a writer with the first codec the OpenCV build offers; the file is written under a
 // temporary name and renamed when complete.
-// `stem` names the temporary file (the run's recorder and write_preview use different ones).
 bool open_video(cv::VideoWriter& writer, const fs::path& dir, cv::Size size, double fps,
-                fs::path& final_path, fs::path& temporary, std::string& codec,
-                const std::string& stem) {
+                fs::path& final_path, fs::path& temporary, std::string& codec) {
   struct Choice {
     const char* fourcc;
     const char* extension;
@@ -118,7 +113,7 @@ bool open_video(cv::VideoWriter& writer, const fs::path& dir, cv::Size size, dou
   for (const Choice choice :
        {Choice{"avc1", ".mp4"}, Choice{"mp4v", ".mp4"}, Choice{"MJPG", ".avi"}}) {
     final_path = dir / (std::string("camera_birds_eye") + choice.extension);
-    temporary = dir / (stem + choice.extension);
+    temporary = dir / (std::string(".camera_birds_eye.tmp") + choice.extension);
     const int fourcc = cv::VideoWriter::fourcc(choice.fourcc[0], choice.fourcc[1], choice.fourcc[2],
                                                choice.fourcc[3]);
     if (writer.open(temporary.string(), cv::CAP_FFMPEG, fourcc, fps, size, true) ||
@@ -139,45 +134,11 @@ double frame_rate(const std::vector<Shot>& shots) {
   return static_cast<double>(shots.size() - 1) / (shots.back().time - shots.front().time);
 }
 
-constexpr int kVideoHeight = 720;
+}  // namespace
 
-/// The video's frame size and the width of its bird's-eye column (0 without one), from the
-/// first camera frame fitted to the video's height.
-struct VideoLayout {
-  cv::Size size;
-  int side = 0;
-};
-
-VideoLayout video_layout(const cv::Mat& first_fitted, bool with_top) {
-  VideoLayout layout;
-  layout.side = with_top ? kVideoHeight : 0;
-  // Even sizes keep every codec (H.264 needs them) happy.
-  layout.size = cv::Size((first_fitted.cols + layout.side + 1) / 2 * 2, kVideoHeight);
-  return layout;
-}
-
-/// One video frame: the camera shot stamped with its time and, beside it, the latest bird's-eye
-/// frame at or before the shot's tick in `top` (`latest_top`, kept from frame to frame: black
-/// until the first).
-cv::Mat video_frame(const fs::path& dataset, const Shot& shot,
-                    const std::map<int64_t, std::string>& top, const VideoLayout& layout,
-                    cv::Mat& latest_top) {
-  cv::Mat frame(layout.size, CV_8UC3, cv::Scalar(0, 0, 0));
-  cv::Mat cam = fit_height(read_rgb(dataset / shot.file), kVideoHeight);
-  stamp(cam, "t = " + format_fixed(shot.time, 1) + " s", 1.0);
-  cam.copyTo(frame(cv::Rect(0, 0, cam.cols, cam.rows)));
-  if (layout.side > 0) {
-    const auto found = top.upper_bound(shot.tick);
-    if (found != top.begin()) {
-      latest_top = fit_height(read_rgb(dataset / std::prev(found)->second), kVideoHeight);
-    }
-    latest_top.copyTo(frame(cv::Rect(cam.cols, 0, latest_top.cols, latest_top.rows)));
-  }
-  return frame;
-}
-
-/// The first RGB camera and the first bird's-eye camera of the rig (null when it has none).
-std::pair<const SensorSpec*, const SensorSpec*> preview_sensors(const SensorRig& rig) {
+PreviewReport write_preview(const fs::path& dataset, const SensorRig& rig, Diagnostics& diagnostics,
+                            const PreviewProgress& progress) {
+  PreviewReport report;
   const SensorSpec* camera = nullptr;
   const SensorSpec* birds_eye = nullptr;
   for (const SensorSpec& s : rig.sensors) {
@@ -188,174 +149,6 @@ std::pair<const SensorSpec*, const SensorSpec*> preview_sensors(const SensorRig&
       birds_eye = &s;
     }
   }
-  return {camera, birds_eye};
-}
-
-bool is_frame_image(const fs::path& file) {
-  const std::string name = file.filename().string();
-  return name.size() == 10 && name.ends_with(".png");  // 000000.png, not _color.png or labels
-}
-
-/// Encodes the video from the dataset's files after the run (the recorder's video was not the
-/// one wanted, or there was none).
-void encode_video(const fs::path& dataset, const std::vector<Shot>& shots,
-                  const std::map<int64_t, std::string>& top, Diagnostics& diagnostics,
-                  const PreviewProgress& progress, PreviewReport& report) {
-  const VideoLayout layout =
-      video_layout(fit_height(read_rgb(dataset / shots.front().file), kVideoHeight), !top.empty());
-  cv::VideoWriter writer;
-  fs::path temporary;
-  if (!open_video(writer, dataset / "preview", layout.size, frame_rate(shots), report.video,
-                  temporary, report.codec, ".camera_birds_eye.tmp")) {
-    diagnostics.add(make_warning("", 0,
-                                 "preview: this OpenCV build cannot encode video (no avc1, mp4v "
-                                 "or MJPG writer); only the contact sheet was written"));
-    report.video.clear();
-    return;
-  }
-  cv::Mat latest_top(kVideoHeight, layout.side, CV_8UC3, cv::Scalar(0, 0, 0));
-  for (const Shot& shot : shots) {
-    writer.write(video_frame(dataset, shot, top, layout, latest_top));
-    ++report.frames;
-    if (progress) {
-      progress(report.frames, static_cast<int>(shots.size()));
-    }
-  }
-  writer.release();
-  std::error_code error;
-  fs::rename(temporary, report.video, error);
-  if (error) {
-    throw InputError(make_error(report.video.string(), 0, "cannot write: " + error.message()));
-  }
-}
-
-}  // namespace
-
-struct PreviewRecorder::State {
-  fs::path dataset;
-  std::string camera;                  ///< the first RGB camera's name (empty: nothing to record)
-  std::string birds_eye;               ///< the first bird's-eye camera's name, or empty
-  double rate = 10.0;                  ///< the camera's rate, Hz: the video's frame rate
-  std::map<int64_t, std::string> top;  ///< bird's-eye frames so far by tick
-  std::vector<std::string> encoded;    ///< the camera frames in the video, in order
-  cv::VideoWriter writer;
-  VideoLayout layout;
-  cv::Mat latest_top;
-  fs::path video;
-  fs::path temporary;
-  std::string codec;
-  bool opened = false;
-  bool failed = false;
-  tbb::task_group task;  ///< encodes one capture's frame at a time
-
-  void encode(const Shot& shot) {
-    if (!opened) {
-      const cv::Mat first = fit_height(read_rgb(dataset / shot.file), kVideoHeight);
-      layout = video_layout(first, !birds_eye.empty());
-      std::error_code error;
-      fs::create_directories(dataset / "preview", error);
-      if (!open_video(writer, dataset / "preview", layout.size, rate, video, temporary, codec,
-                      ".camera_birds_eye.run.tmp")) {
-        failed = true;
-        return;
-      }
-      opened = true;
-      latest_top = cv::Mat(kVideoHeight, layout.side, CV_8UC3, cv::Scalar(0, 0, 0));
-    }
-    writer.write(video_frame(dataset, shot, top, layout, latest_top));
-    encoded.push_back(shot.file);
-  }
-
-  /// Waits for the frame in progress; closes the writer and removes its file.
-  void discard() {
-    task.wait();
-    if (opened) {
-      writer.release();
-      std::error_code ignored;
-      fs::remove(temporary, ignored);
-      opened = false;
-    }
-    failed = true;
-  }
-};
-
-PreviewRecorder::PreviewRecorder(fs::path dataset, const SensorRig& rig)
-    : state_(std::make_unique<State>()) {
-  state_->dataset = std::move(dataset);
-  const auto [camera, birds_eye] = preview_sensors(rig);
-  if (camera != nullptr) {
-    state_->camera = camera->name;
-    state_->rate = camera->rate_hz;
-  }
-  if (birds_eye != nullptr) {
-    state_->birds_eye = birds_eye->name;
-  }
-}
-
-PreviewRecorder::~PreviewRecorder() { state_->discard(); }
-
-void PreviewRecorder::add(int64_t tick, const std::string& time_text,
-                          const std::vector<CaptureFile>& files) {
-  State& s = *state_;
-  s.task.wait();  // one frame at a time, in capture order; the task catches its own errors
-  if (s.failed || s.camera.empty()) {
-    return;
-  }
-  std::vector<Shot> shots;
-  for (const auto& [sensor, file] : files) {
-    if (!is_frame_image(file)) {
-      continue;
-    }
-    if (sensor == s.birds_eye) {
-      s.top[tick] = file.generic_string();
-    } else if (sensor == s.camera) {
-      // The time as write_preview reads it back from the index.
-      shots.push_back({tick, parse_double(time_text).value_or(0.0), file.generic_string()});
-    }
-  }
-  if (shots.empty()) {
-    return;
-  }
-  s.task.run([&s, shots = std::move(shots)] {
-    try {
-      for (const Shot& shot : shots) {
-        s.encode(shot);
-      }
-    } catch (...) {  // write_preview starts over and reports what fails
-      s.failed = true;
-    }
-  });
-}
-
-bool PreviewRecorder::finish(const std::vector<std::string>& files, double fps, bool with_top,
-                             PreviewReport& report) {
-  State& s = *state_;
-  s.task.wait();
-  const bool same = !s.failed && s.opened && s.encoded == files &&
-                    (s.layout.side > 0) == with_top && std::abs(fps - s.rate) <= 1e-9 * s.rate;
-  if (!same) {
-    s.discard();
-    return false;
-  }
-  s.writer.release();
-  s.opened = false;
-  s.failed = true;  // finished: nothing more is added
-  std::error_code error;
-  fs::rename(s.temporary, s.video, error);
-  if (error) {
-    throw InputError(make_error(s.video.string(), 0, "cannot write: " + error.message()));
-  }
-  report.video = s.video;
-  report.codec = s.codec;
-  report.frames = static_cast<int>(s.encoded.size());
-  report.during_run = true;
-  return true;
-}
-
-PreviewReport write_preview(const fs::path& dataset, const SensorRig& rig, Diagnostics& diagnostics,
-                            const PreviewProgress& progress, PreviewRecorder* recorded) {
-  PreviewReport report;
-  const auto [camera, birds_eye] = preview_sensors(rig);
   const std::string index = read_file(dataset / "frames.csv");
   const std::vector<Shot> shots = camera ? shots_of(index, camera->name) : std::vector<Shot>{};
   if (shots.empty()) {
@@ -372,16 +165,44 @@ PreviewReport write_preview(const fs::path& dataset, const SensorRig& rig, Diagn
       top[s.tick] = s.file;
     }
   }
-  std::vector<std::string> files;
-  for (const Shot& shot : shots) {
-    files.push_back(shot.file);
-  }
-  if (recorded != nullptr && recorded->finish(files, frame_rate(shots), !top.empty(), report)) {
-    if (progress) {
-      progress(report.frames, static_cast<int>(shots.size()));
-    }
+  constexpr int kHeight = 720;
+  cv::Mat first = fit_height(read_rgb(dataset / shots.front().file), kHeight);
+  const int side = top.empty() ? 0 : kHeight;
+  // Even sizes keep every codec (H.264 needs them) happy.
+  const cv::Size size((first.cols + side + 1) / 2 * 2, kHeight);
+  cv::VideoWriter writer;
+  fs::path temporary;
+  if (!open_video(writer, dataset / "preview", size, frame_rate(shots), report.video, temporary,
+                  report.codec)) {
+    diagnostics.add(make_warning("", 0,
+                                 "preview: this OpenCV build cannot encode video (no avc1, mp4v "
+                                 "or MJPG writer); only the contact sheet was written"));
+    report.video.clear();
   } else {
-    encode_video(dataset, shots, top, diagnostics, progress, report);
+    cv::Mat latest_top(kHeight, side, CV_8UC3, cv::Scalar(0, 0, 0));
+    for (const Shot& shot : shots) {
+      cv::Mat frame(size, CV_8UC3, cv::Scalar(0, 0, 0));
+      cv::Mat cam = fit_height(read_rgb(dataset / shot.file), kHeight);
+      stamp(cam, "t = " + format_fixed(shot.time, 1) + " s", 1.0);
+      cam.copyTo(frame(cv::Rect(0, 0, cam.cols, cam.rows)));
+      if (side > 0) {
+        const auto found = top.upper_bound(shot.tick);
+        if (found != top.begin()) {
+          latest_top = fit_height(read_rgb(dataset / std::prev(found)->second), kHeight);
+        }
+        latest_top.copyTo(frame(cv::Rect(cam.cols, 0, latest_top.cols, latest_top.rows)));
+      }
+      writer.write(frame);
+      ++report.frames;
+      if (progress) {
+        progress(report.frames, static_cast<int>(shots.size()));
+      }
+    }
+    writer.release();
+    fs::rename(temporary, report.video, error);
+    if (error) {
+      throw InputError(make_error(report.video.string(), 0, "cannot write: " + error.message()));
+    }
   }
   report.summary = "preview: " + report.contact_sheet.string();
   if (!report.video.empty()) {

@@ -1,13 +1,10 @@
 // The collect library on its own: --model texts, the capture windows of run.json, and whole
-// data-collection runs through collect::run_dataset (complete, and stopped by the caller), with
-// the preview video encoded during the run.
+// data-collection runs through collect::run_dataset (complete, and stopped by the caller).
 
-#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,8 +12,6 @@
 #include "corsa/collect/data_run.h"
 #include "corsa/collect/dataset_run.h"
 #include "corsa/core/atomic_file.h"
-#include "corsa/sensors/preview.h"
-#include "corsa/sensors/rig.h"
 #include "dataset_check.h"
 #include "temp_dir.h"
 
@@ -182,87 +177,4 @@ TEST_CASE(
   CHECK(warnings[0].file == "--entity-model car=" + missing);
   CHECK(warnings[0].line == 0);
   CHECK_THAT(warnings[0].message, Catch::Contains("nothere.glb") && Catch::Contains("stand in"));
-}
-
-namespace {
-
-std::vector<fs::path> files_in(const fs::path& folder) {
-  std::vector<fs::path> out;
-  std::error_code ignored;
-  for (const auto& entry : fs::directory_iterator(folder, ignored)) {
-    out.push_back(entry.path().filename());
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-}  // namespace
-
-TEST_CASE("the preview video encoded during a run is the one encoded from the files afterwards",
-          "[collect][run][preview]") {
-  corsa::test::TempDir dir;
-  auto options = small_run(dir.path() / "data", 0.5);
-  options.preview = true;
-  corsa::Diagnostics diagnostics;
-  std::vector<int> progress;
-  corsa::collect::DatasetRunHooks hooks;
-  hooks.on_preview = [&progress](int done, int total) {
-    progress.push_back(done);
-    CHECK(total == 6);
-  };
-  const corsa::collect::DatasetRunReport report =
-      corsa::collect::run_dataset(options, diagnostics, hooks);
-  REQUIRE(report.preview.has_value());
-  REQUIRE_FALSE(report.preview->video.empty());
-  CHECK(report.preview->during_run);
-  // The camera at 10 Hz over 0.5 s: ticks 0 to 50; the 3 Hz bird's-eye view beside it.
-  CHECK(report.preview->frames == 6);
-  CHECK(progress == std::vector<int>{6});  // nothing left to encode after the run
-  const fs::path preview = options.output / "preview";
-  CHECK(files_in(preview) ==
-        std::vector<fs::path>{report.preview->video.filename(), "contact_sheet.png"});
-  const std::string during = corsa::read_file(report.preview->video);
-
-  // Encoded again from the dataset's files alone, as before the recorder: the same frames, and
-  // for a video within the encoder's 40-frame look-ahead (nothing decided before the end) the
-  // same bytes.
-  const corsa::sensors::SensorRig rig = corsa::sensors::load_rig(options.rig);
-  const corsa::sensors::PreviewReport after =
-      corsa::sensors::write_preview(options.output, rig, diagnostics);
-  CHECK_FALSE(after.during_run);
-  CHECK(after.video == report.preview->video);
-  CHECK(after.frames == 6);
-  CHECK(corsa::read_file(after.video) == during);
-
-  SECTION("a recording that misses frames is dropped and the video encoded from the files") {
-    corsa::sensors::PreviewRecorder partial(options.output, rig);
-    // Only the first capture's camera frame, with a time that is not the index's.
-    partial.add(0, "0", {{"cam", "cam/000000.png"}});
-    const corsa::sensors::PreviewReport redone =
-        corsa::sensors::write_preview(options.output, rig, diagnostics, {}, &partial);
-    CHECK_FALSE(redone.during_run);
-    CHECK(redone.frames == 6);
-    CHECK(corsa::read_file(redone.video) == during);
-    CHECK(files_in(preview) ==
-          std::vector<fs::path>{report.preview->video.filename(), "contact_sheet.png"});
-  }
-}
-
-TEST_CASE("a run stopped with a preview on leaves no video being encoded behind",
-          "[collect][run][preview][interrupt]") {
-  corsa::test::TempDir dir;
-  auto options = small_run(dir.path() / "data", 5.0);
-  options.preview = true;
-  corsa::Diagnostics diagnostics;
-  int64_t last_tick = 0;
-  corsa::collect::DatasetRunHooks hooks;
-  hooks.on_step = [&last_tick](const corsa::engine::Simulation& s) { last_tick = s.tick(); };
-  hooks.stop = [&last_tick]() -> std::optional<std::string> {
-    return last_tick >= 25 ? std::optional<std::string>("stopped by the test") : std::nullopt;
-  };
-  const corsa::collect::DatasetRunReport report =
-      corsa::collect::run_dataset(options, diagnostics, hooks);
-  CHECK(report.interrupted);
-  CHECK_FALSE(report.preview.has_value());
-  CHECK(files_in(options.output / "preview").empty());
 }

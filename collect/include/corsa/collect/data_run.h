@@ -23,7 +23,6 @@ namespace corsa::sensors {
 class Scene;
 class SensorSystem;
 class DatasetWriter;
-class PreviewRecorder;
 }  // namespace corsa::sensors
 
 namespace corsa::collect {
@@ -48,8 +47,6 @@ class DataRun {
 
   bool started() const { return writer_ != nullptr; }
   int64_t captures() const;
-  /// The preview video recorded during the run (DatasetRunOptions::preview), or null.
-  sensors::PreviewRecorder* preview() const;
   int64_t files() const;
   /// The sensor system (valid after prepare()); its rig is bound to the run's entities.
   const sensors::SensorSystem& system() const { return *system_; }

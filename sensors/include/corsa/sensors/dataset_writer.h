@@ -38,8 +38,6 @@ class OutputLock;
 
 namespace corsa::sensors {
 
-class PreviewRecorder;
-
 namespace detail {
 class KittiExport;
 }
@@ -99,11 +97,6 @@ class DatasetWriter final : public engine::CaptureSink {
   /// KITTI frames written, and captures of the camera left out for want of the LiDAR.
   int64_t kitti_frames() const;
   int64_t kitti_skipped() const;
-  /// Encodes the preview video while the run goes on, each capture's frame once the capture is
-  /// indexed (corsa/sensors/preview.h); pass preview() to write_preview() at the end.
-  void record_preview();
-  /// The recorder of record_preview(), or null.
-  PreviewRecorder* preview() const { return preview_.get(); }
 
  private:
   struct Pending;  ///< a capture whose files are being written
@@ -124,7 +117,6 @@ class DatasetWriter final : public engine::CaptureSink {
   std::unique_ptr<detail::KittiExport> kitti_;
   std::unique_ptr<Pending> pending_;
   std::unique_ptr<OutputLock> lock_;
-  std::unique_ptr<PreviewRecorder> preview_;  ///< destroyed first: it waits for its frame
 };
 
 /// The file name stem of a frame number: six digits, zero-padded ("000042").
