@@ -116,14 +116,17 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
                                            settings.rgb.quality);
     detail::place_eye(shading, p.origin_local);
     p.shading = &shading;
-    b.geometry.resize(n);
-    p.geometry = &b.geometry;
     b.linear.resize(3 * n);
     if (!shading.quality.denoise && shading.quality.edge_samples <= 0) {
-      // Nothing reads a pixel's terms after it is shaded: composite it at once (the same bytes,
-      // without the about 150 bytes a pixel written and read back).
+      // Nothing reads a pixel's terms or geometry after it is shaded: composite it at once and
+      // keep only its distance (the same bytes, without the about 180 bytes a pixel written and
+      // read back).
       p.direct = b.linear.data();
+      b.distances.resize(n);
+      p.distances = b.distances.data();
     } else {
+      b.geometry.resize(n);
+      p.geometry = &b.geometry;
       records.resize(n);
       b.visibility.resize(n);
       b.visibility_scratch.resize(n);
@@ -178,7 +181,9 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   const Vec3 wind{light.wind_speed * std::cos(light.wind_direction),
                   light.wind_speed * std::sin(light.wind_direction), 0.0};
   const double lateral_wind = dot(wind, world_from_cam.rotation.column(0));
-  ray_distances(b.geometry, b.distances);
+  if (p.direct == nullptr) {
+    ray_distances(b.geometry, b.distances);  // stage 1 wrote them itself otherwise
+  }
   detail::draw_precipitation(linear, b.distances, w, h, model_.fx(), light, lateral_wind,
                              exposure.shutter_s, settings.frame_seed);
   // `fast` develops without sensor noise: a clean image, and no random draw per channel.

@@ -92,14 +92,15 @@ void store_radiance(float* linear, size_t px, Color c) {
 /// The sky seen by pixel `px` along `dir`: its whole record (every field: the buffers are kept
 /// from frame to frame) and unit visibilities, or its radiance when the pass composites at once.
 void store_sky(const Pass& p, size_t px, Vec3 dir) {
-  PixelGeometry& g = (*p.geometry)[px];
-  g = PixelGeometry{};
-  g.distance = kInfinity;
   const Color sky = sky_seen(*p.shading, p.origin_local, dir);
   if (p.direct != nullptr) {
+    p.distances[px] = kInfinity;
     store_radiance(p.direct, px, sky);
     return;
   }
+  PixelGeometry& g = (*p.geometry)[px];
+  g = PixelGeometry{};
+  g.distance = kInfinity;
   PixelRecord& rec = (*p.records)[px];
   rec = PixelRecord{};
   rec.terms.base = sky;
@@ -110,15 +111,20 @@ void store_sky(const Pass& p, size_t px, Vec3 dir) {
 /// lit pixel k of a resolved tile.
 void store_lit(const Pass& p, const TileState& t, int k) {
   const SurfacePoint& sp = t.surface[k];
-  PixelGeometry& g = (*p.geometry)[t.pixel[k]];
-  g.position[0] = static_cast<float>(sp.position.x);
-  g.position[1] = static_cast<float>(sp.position.y);
-  g.position[2] = static_cast<float>(sp.position.z);
-  g.normal[0] = static_cast<float>(sp.normal.x);
-  g.normal[1] = static_cast<float>(sp.normal.y);
-  g.normal[2] = static_cast<float>(sp.normal.z);
-  g.distance = static_cast<float>(sp.distance);
-  g.surface_id = sp.surface_id;
+  const float distance = static_cast<float>(sp.distance);
+  if (p.direct != nullptr) {
+    p.distances[t.pixel[k]] = distance;
+  } else {
+    PixelGeometry& g = (*p.geometry)[t.pixel[k]];
+    g.position[0] = static_cast<float>(sp.position.x);
+    g.position[1] = static_cast<float>(sp.position.y);
+    g.position[2] = static_cast<float>(sp.position.z);
+    g.normal[0] = static_cast<float>(sp.normal.x);
+    g.normal[1] = static_cast<float>(sp.normal.y);
+    g.normal[2] = static_cast<float>(sp.normal.z);
+    g.distance = distance;
+    g.surface_id = sp.surface_id;
+  }
   const Visibility& e = t.vis[k];
   PixelVisibility v;
   v.sun = static_cast<float>(e.sun);
@@ -129,7 +135,7 @@ void store_lit(const Pass& p, const TileState& t, int k) {
   const ShadeTerms terms = shade_terms(*p.shading, sp, t.has_mirrored[k] ? &t.mirrored[k] : nullptr,
                                        t.has_behind[k] ? &t.behind[k] : nullptr);
   if (p.direct != nullptr) {
-    store_radiance(p.direct, t.pixel[k], composite_pixel(p, t.pixel[k], terms, v, g.distance));
+    store_radiance(p.direct, t.pixel[k], composite_pixel(p, t.pixel[k], terms, v, distance));
     return;
   }
   PixelRecord& rec = (*p.records)[t.pixel[k]];

@@ -1,5 +1,6 @@
 // Image formation of the RGB camera: the daylight sky, the beam of a low-beam headlight, lit
-// scenes at night, and the bytes of a frame on any thread count at every quality.
+// scenes at night, the bytes of a frame on any thread count at every quality, and a `fast`
+// frame in rain that owes nothing to the frame before it.
 
 #include <tbb/global_control.h>
 
@@ -259,4 +260,57 @@ TEST_CASE("the fast preset develops without sensor noise and default adds it",
       CHECK(std::abs(at(10, col + 1, c) - at(10, col, c)) <= 1);
     }
   }
+}
+
+TEST_CASE("a fast frame in rain draws its streaks by each pixel's own distance",
+          "[sensors][camera][quality]") {
+  // `fast` composites in the tile and keeps only each pixel's distance for the rain's depth
+  // test, in buffers kept from frame to frame: every pixel must be written anew, the sky too.
+  auto car = box_entity(4, "car", 6.0, 0.0, 4.5, 1.8, 1.5, corsa::engine::EntityCategory::kCar);
+  Scene scene;
+  scene.add_road_mesh(corsa::test::flat_road());
+  scene.commit();
+  scene.set_entities(std::vector<corsa::engine::EntitySnapshot>{car});
+  CameraIntrinsics k;
+  k.width = 320;
+  k.height = 240;
+  corsa::engine::EnvironmentState env;
+  env.sun_azimuth = M_PI;
+  env.sun_elevation = 0.8;
+  env.precipitation = corsa::engine::PrecipitationType::kRain;
+  env.precipitation_intensity = 25.0;
+  const Lighting rain = compute_lighting(env, {});
+  Lighting no_streaks = rain;  // the same light and air, nothing drawn over the image
+  no_streaks.rain_intensity = 0.0;
+  auto frame = [&](const CameraRenderer& camera, const Lighting& light, RenderQuality quality,
+                   double heading) {
+    RenderSettings settings;
+    settings.outputs = {.rgb = true, .semantic = true};
+    settings.lighting = &light;
+    settings.rgb.quality = quality;
+    settings.frame_seed = 5;
+    CameraMotion motion;
+    motion.world_from_body = rigid_from_pose(0.0, 0.0, 1.2, heading, 0.0, 0.0);
+    return camera.render(scene, motion, settings);
+  };
+  const CameraRenderer used(k);
+  frame(used, rain, RenderQuality::kDefault, 0.0);  // the car and its distances in the buffers
+  const CameraImages after = frame(used, rain, RenderQuality::kFast, M_PI);  // looking away
+  const CameraRenderer fresh(k);
+  CHECK(after.rgb == frame(fresh, rain, RenderQuality::kFast, M_PI).rgb);
+  // Streaks cross the sky (infinitely far: every streak is in front of it).
+  const CameraImages dry = frame(fresh, no_streaks, RenderQuality::kFast, M_PI);
+  size_t sky = 0, streaked_sky = 0;
+  for (size_t px = 0; px < after.semantic.size(); ++px) {
+    if (after.semantic[px] == static_cast<uint8_t>(SemanticClass::kSky)) {
+      ++sky;
+      bool changed = false;
+      for (int c = 0; c < 3; ++c) {
+        changed = changed || after.rgb[3 * px + c] != dry.rgb[3 * px + c];
+      }
+      streaked_sky += changed ? 1 : 0;
+    }
+  }
+  CHECK(sky > after.semantic.size() / 4);
+  CHECK(streaked_sky > 50);
 }
