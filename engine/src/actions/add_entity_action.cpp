@@ -61,16 +61,10 @@ class DeleteEntityInstance final : public InstantAction {
     SimState& state = context.state;
     const uint32_t index = entity_index(state, action_.entity_ref, action_.source);
     remove_entity(state, index);
-    // esmini's ghost (controllers/follow_ghost.h) goes with its entity; deleting the ghost alone
-    // leaves its entity a trail that ends there.
-    if (state.ghost && index == state.ghost->entity &&
-        state.world.entities[state.ghost->ghost].state.placed) {
+    // esmini's ghost (controllers/follow_ghost.h) goes with its entity. (A scenario cannot name
+    // the ghost: it is made after the file's references are resolved.)
+    if (state.ghost && index == state.ghost->entity) {
       remove_entity(state, state.ghost->ghost);
-    } else if (state.ghost && index == state.ghost->ghost) {
-      state.diagnostics.add(
-          action_.source.warning("deleting the ghost '" + action_.entity_ref + "': '" +
-                                 state.world.entities[state.ghost->entity].info.name +
-                                 "' follows its trail to where it ends and stops there"));
     }
   }
 

@@ -238,18 +238,7 @@ void record_trail(SimState& state) {
   const Entity& ghost = state.world.entities[link.ghost];
   const double now = state.now();
   auto& trail = link.trail;
-  if (!ghost.state.placed) {
-    // The ghost was deleted: its trail ends standing where it was last, so that the follower
-    // stops there rather than drive on at the ghost's last speed.
-    if (!trail.empty() && std::abs(trail.back().speed) > 1e-9) {
-      TrailPoint stop = trail.back();
-      stop.time = std::max(now, stop.time + kTrailSampleTime);
-      stop.speed = 0.0;
-      stop.jump = false;
-      trail.push_back(stop);
-    }
-    return;
-  }
+  if (!ghost.state.placed) return;
   const double since = trail.empty() ? 0.0 : now - trail.back().time;
   if (!trail.empty() && since <= kTrailSampleTime + 1e-9) return;
   // A ghost standing still adds nothing (the last sample holds); after a pause the last
