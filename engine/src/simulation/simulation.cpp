@@ -156,6 +156,9 @@ int64_t Simulation::start_tick() const {
   return impl_->state.ghost ? -impl_->state.ghost->headstart_ticks : 0;
 }
 int64_t Simulation::steps() const { return tick() - start_tick(); }
+bool Simulation::is_ghost(size_t index) const {
+  return impl_->state.world.entities.at(index).ghost;
+}
 double Simulation::time() const { return impl_->state.now(); }
 double Simulation::dt() const { return impl_->state.time.dt(); }
 double Simulation::time_of(int64_t tick) const { return impl_->state.time.time(tick); }

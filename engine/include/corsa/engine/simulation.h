@@ -170,6 +170,9 @@ class Simulation {
   int64_t start_tick() const;
   /// Steps taken so far: tick() - start_tick().
   int64_t steps() const;
+  /// Whether entity `index` is esmini's followGhost ghost, which nothing else sees: metrics,
+  /// like sensors and conditions, leave it out.
+  bool is_ghost(size_t index) const;
   double dt() const;
   double time_of(int64_t tick) const;
   const SimulationOptions& options() const;
