@@ -63,9 +63,11 @@ int command_run(std::span<const std::string> args) {
   if (!quiet) {
     const double factor = report.wall_seconds > 0.0 ? report.sim_time / report.wall_seconds : 0.0;
     std::cout << options.scenario.string() << ": ended by " << engine::to_string(report.end_reason)
-              << " at " << format_fixed(report.sim_time, 2) << " s simulated, " << report.steps
-              << " steps, " << format_fixed(report.wall_seconds, 3) << " s wall ("
-              << format_fixed(factor, 0) << "x real time)";
+              << " at " << format_fixed(report.sim_time, 2) << " s simulated"
+              << (report.start_time < 0.0 ? " from " + format_fixed(report.start_time, 2) + " s"
+                                          : "")
+              << ", " << report.steps << " steps, " << format_fixed(report.wall_seconds, 3)
+              << " s wall (" << format_fixed(factor, 0) << "x real time)";
     if (report.collisions > 0) {
       std::cout << ", " << report.collisions << " collision" << (report.collisions == 1 ? "" : "s");
     }

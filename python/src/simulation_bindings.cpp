@@ -243,6 +243,13 @@ void bind_run(SimulationClass& c) {
           "The run summary now (wall_time 0).")
       .def_property_readonly("time", [](const PySimulation& s) { return s.engine().time(); })
       .def_property_readonly("tick", [](const PySimulation& s) { return s.engine().tick(); })
+      .def_property_readonly(
+          "start_time",
+          [](const PySimulation& s) { return s.engine().time_of(s.engine().start_tick()); },
+          "Seconds the run started at: 0, or minus esmini's followGhost head start.")
+      .def_property_readonly(
+          "steps", [](const PySimulation& s) { return s.engine().steps(); },
+          "Steps taken so far (from start_time).")
       .def_property_readonly("dt", [](const PySimulation& s) { return s.engine().dt(); })
       .def_property_readonly("seed",
                              [](const PySimulation& s) { return s.engine().options().seed; })

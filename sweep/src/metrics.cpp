@@ -73,8 +73,8 @@ void MetricsObserver::on_step(const engine::Simulation& simulation) {
   if (metrics_.ego.empty()) {
     metrics_.ego = simulation.entity(ego).name;
   }
-  // Accelerations are over the last step, so tick 0 (the initial state) has none yet.
-  if (simulation.tick() > 0) {
+  // Accelerations are over the last step, so the first tick (the initial state) has none yet.
+  if (simulation.steps() > 0) {
     raise(metrics_.max_deceleration, std::max(0.0, -self.acceleration), time);
     raise(metrics_.max_acceleration, std::max(0.0, self.acceleration), time);
   }
@@ -82,7 +82,7 @@ void MetricsObserver::on_step(const engine::Simulation& simulation) {
   const Moving mine = moving(simulation, ego);
   for (size_t i = 0; i < simulation.entity_count(); ++i) {
     const engine::EntityState& state = simulation.state(i);
-    if (i == ego || !state.placed) {
+    if (i == ego || !state.placed || simulation.is_ghost(i)) {
       continue;
     }
     const Moving theirs = moving(simulation, i);

@@ -65,7 +65,7 @@ void simulate(SharedInputs& inputs, const VariantSpec& spec, const VariantOutput
   }
   result.end_reason = simulation.end_reason();
   result.sim_time = simulation.time();
-  result.steps = simulation.tick();
+  result.steps = simulation.steps();
   result.collisions = simulation.collisions().size();
   for (const engine::CollisionRecord& c : simulation.collisions()) {
     result.ego_collisions += ego && (c.first == *ego || c.second == *ego) ? 1 : 0;

@@ -13,7 +13,9 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <string>
 
+#include "corsa/engine/outputs.h"
 #include "corsa/engine/world_snapshot.h"
 #include "engine_fixture.h"
 
@@ -99,4 +101,18 @@ TEST_CASE("without controllers followGhost makes no ghost and the entity perform
   run.run();
   CHECK(run.first("ChangeLane", TransitionKind::kStart) == Approx(5.01));
   CHECK(run.at(15.0, "Ego").road->lane == -2);
+}
+
+TEST_CASE("a ghost run counts the steps taken from its negative start, not the final tick",
+          "[engine][controllers][ghost]") {
+  FixtureRun run(engine_fixture("controller_follow_ghost.xosc"));
+  CHECK(run.sim().start_tick() == -200);
+  CHECK(run.sim().steps() == 0);
+  run.run();
+  // From -2 s to 15 s at 0.01 s: 1700 steps, though the final tick is 1500.
+  CHECK(run.sim().tick() == 1500);
+  CHECK(run.sim().steps() == 1700);
+  const std::string summary = corsa::engine::summary_json(run.sim(), 1.0);
+  CHECK(summary.find("\"steps\": 1700") != std::string::npos);
+  CHECK(summary.find("\"start_time\": -2") != std::string::npos);
 }

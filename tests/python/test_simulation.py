@@ -155,3 +155,16 @@ def test_the_esmini_reading_reaches_the_engine():
             sim.step()
     assert standard.state("Car").s == pytest.approx(12.5, abs=1e-9)
     assert esmini.state("Car").s == pytest.approx(12.525, abs=1e-9)
+
+
+def test_a_ghost_run_starts_at_its_negative_head_start_everywhere():
+    # esmini's followGhost: the run starts 2 s early; time, tick, the log and the summary agree.
+    sim = corsa.Simulation(ROOT / "tests/engine/fixtures/controller_follow_ghost.xosc")
+    assert sim.start_time == pytest.approx(-2.0)
+    assert sim.tick == -200 and sim.time == pytest.approx(-2.0) and sim.steps == 0
+    assert sim.entities[-1] == "Ego_ghost"
+    summary = sim.run()
+    assert sim.tick == 1500 and sim.steps == 1700
+    assert summary["steps"] == 1700 and summary["start_time"] == pytest.approx(-2.0)
+    first = sim.log()[0]
+    assert first["tick"] < 0 and first["time"] == pytest.approx(first["tick"] * sim.dt)

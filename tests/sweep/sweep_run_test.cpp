@@ -194,3 +194,19 @@ TEST_CASE("an unknown ego is the variant's error", "[sweep][run]") {
   CHECK(result.status == corsa::sweep::VariantStatus::kBadInput);
   CHECK(result.error.find("the ego entity 'Nobody'") != std::string::npos);
 }
+
+TEST_CASE("a ghost run counts its steps from the head start and measures no distance to the ghost",
+          "[sweep][run]") {
+  // esmini's followGhost: the run starts at -2 s; Ego_ghost stands on Ego until it drives off.
+  Diagnostics diagnostics;
+  corsa::sweep::SharedInputs inputs(
+      fs::path(CORSA_SOURCE_DIR) / "tests/engine/fixtures/controller_follow_ghost.xosc",
+      diagnostics);
+  const auto result = corsa::sweep::run_variant(inputs, {}, {}, diagnostics);
+  CHECK(result.steps == 1700);
+  // The nearest entity is Other, in lane -3, beside Ego once Ego is in lane -2 (3.5 m between
+  // the lanes' centres, less the 2 m width); the ghost would be 0 m.
+  REQUIRE(result.metrics.min_distance.value);
+  CHECK(*result.metrics.min_distance.value > 1.0);
+  CHECK(result.metrics.min_distance.other == "Other");
+}

@@ -29,6 +29,16 @@ class ActivateControllerInstance final : public InstantAction {
     if (action_.lateral) control.lateral = *action_.lateral;
     if (action_.animation) control.animation = *action_.animation;
     if (action_.lighting) control.lighting = *action_.lighting;
+    if (context.state.ghost && *context.actor == context.state.ghost->entity &&
+        control.kind == ControllerKind::kFollowGhost && !control.longitudinal && !control.lateral) {
+      // esmini's followGhost switched off (controllers/follow_ghost.h): the default controller
+      // keeps the entity's speed and lane, its motion actions still going to the ghost; a later
+      // activation follows the trail again from where the entity is then.
+      context.state.diagnostics.add(action_.source.warning(
+          "followGhost of '" + context.entity().info.name +
+          "' deactivated: its motion actions go on to its ghost, and it keeps its speed and lane "
+          "until the controller is activated again"));
+    }
   }
 
  private:

@@ -61,6 +61,11 @@ class DeleteEntityInstance final : public InstantAction {
     SimState& state = context.state;
     const uint32_t index = entity_index(state, action_.entity_ref, action_.source);
     remove_entity(state, index);
+    // esmini's ghost (controllers/follow_ghost.h) goes with its entity. (A scenario cannot name
+    // the ghost: it is made after the file's references are resolved.)
+    if (state.ghost && index == state.ghost->entity) {
+      remove_entity(state, state.ghost->ghost);
+    }
   }
 
  private:

@@ -5,6 +5,7 @@
 
 #include "actions/action_makers.h"
 #include "controllers/controllers.h"
+#include "controllers/follow_ghost.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -22,7 +23,18 @@ class AssignControllerInstance final : public InstantAction {
     const xosc::ObjectController& oc = action_.controller;
     ControllerKind kind = ControllerKind::kDefault;
     const ControllerKind before = control.kind;
-    if (names_external(context.state.options, oc)) {
+    const bool ghosted = context.state.ghost && *context.actor == context.state.ghost->entity;
+    if (ghosted && !is_follow_ghost(oc)) {
+      context.state.diagnostics.add(action_.source.warning(
+          "'" + context.state.world.entities[*context.actor].info.name +
+          "' has a ghost (followGhost): its motion actions go on to the ghost, so under this "
+          "controller it performs none of them"));
+    }
+    if (ghosted && is_follow_ghost(oc)) {
+      // esmini's followGhost again, on the entity that has the ghost: it follows the trail.
+      control.kind = ControllerKind::kFollowGhost;
+      control.substitute_for.clear();
+    } else if (names_external(context.state.options, oc)) {
       control.kind = ControllerKind::kExternal;
       control.substitute_for.clear();
     } else if (controller_kind_of(oc.controller, context.state.diagnostics, kind)) {

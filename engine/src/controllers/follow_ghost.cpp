@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
@@ -54,13 +56,115 @@ void read_properties(SimState& state, const xosc::ObjectController& oc, GhostLin
   link.steering_speed_inertia =
       number_property(state, c, "steeringSpeedInertia", link.steering_speed_inertia);
   for (const xosc::Property& property : c.properties.properties) {
-    if (property.name == "followMode" && property.value != "time") {
-      // esmini's "position" mode looks ahead by distances from the closest trail point.
-      state.diagnostics.add(property.source.warning(
-          "followGhost followMode '" + property.value +
-          "' is not supported (read as time: the trail is followed by time)"));
+    if (property.name != "followMode") continue;
+    if (property.value == "position") {
+      link.by_position = true;
+    } else if (property.value != "time") {
+      // esmini falls back to time too, with a message.
+      state.diagnostics.add(
+          property.source.warning("followGhost followMode '" + property.value +
+                                  "' is neither time nor position: read as time"));
     }
   }
+}
+
+// How the follower's model is told where to go this step.
+struct FollowTarget {
+  double speed = 0.0;                 // m/s
+  double x = 0.0, y = 0.0;            // the steering aim, map frame
+  std::optional<TrailPoint> jump_to;  // the ghost jumped there: the follower jumps too
+};
+
+// The trail's point `distance` m along it from sample `from`, not across a jump: the last sample
+// before a jump, or the trail's end, holds.
+TrailPoint trail_ahead(const std::vector<TrailPoint>& trail, size_t from, double distance) {
+  size_t k = from;
+  while (k + 1 < trail.size() && !trail[k + 1].jump && trail[k + 1].s < distance) ++k;
+  if (k + 1 >= trail.size() || trail[k + 1].jump) return trail[k];
+  const TrailPoint& a = trail[k];
+  const TrailPoint& b = trail[k + 1];
+  const double w = b.s > a.s ? std::clamp((distance - a.s) / (b.s - a.s), 0.0, 1.0) : 0.0;
+  TrailPoint out = a;
+  out.x = a.x + w * (b.x - a.x);
+  out.y = a.y + w * (b.y - a.y);
+  out.speed = a.speed + w * (b.speed - a.speed);
+  out.s = distance;
+  return out;
+}
+
+// Trail samples searched ahead of the last nearest one in position mode (50 s of trail): keeps a
+// step's search bounded however long the run; the entity does not drive past that in one step.
+constexpr size_t kNearestWindow = 250;
+
+// Position mode (esmini's FOLLOW_MODE_POSITION): the trail point nearest the entity, searched
+// from the last one on, then the speed and steering targets max(min, lookahead * speed) m ahead
+// of it along the trail.
+FollowTarget position_target(GhostLink& link, double speed) {
+  const auto& trail = link.trail;
+  GhostFollower& car = link.follower;
+  size_t best = car.follow_index;
+  double best_s = trail[best].s;
+  double best_distance = std::hypot(car.x - trail[best].x, car.y - trail[best].y);
+  const size_t end = std::min(trail.size() - 1, car.follow_index + kNearestWindow);
+  for (size_t k = car.follow_index; k < end; ++k) {
+    if (trail[k + 1].jump) break;
+    const TrailPoint& a = trail[k];
+    const TrailPoint& b = trail[k + 1];
+    const double ex = b.x - a.x, ey = b.y - a.y;
+    const double length2 = ex * ex + ey * ey;
+    const double u = length2 > 1e-12
+                         ? std::clamp(((car.x - a.x) * ex + (car.y - a.y) * ey) / length2, 0.0, 1.0)
+                         : 0.0;
+    const double distance = std::hypot(car.x - (a.x + u * ex), car.y - (a.y + u * ey));
+    if (distance < best_distance) {
+      best = k;
+      best_distance = distance;
+      best_s = a.s + u * (b.s - a.s);
+    }
+  }
+  car.follow_index = best;
+  FollowTarget target;
+  // At the end of a stretch that a jump ends, the follower jumps after the ghost.
+  size_t last = best;
+  while (last + 1 < trail.size() && !trail[last + 1].jump) ++last;
+  if (last + 1 < trail.size() && best_s >= trail[last].s - 1e-6) {
+    target.jump_to = trail[last + 1];
+    car.follow_index = last + 1;
+    return target;
+  }
+  const TrailPoint at_speed = trail_ahead(
+      trail, best, best_s + std::max(link.min_lookahead_speed, link.lookahead_speed * speed));
+  const TrailPoint aim = trail_ahead(
+      trail, best, best_s + std::max(link.min_lookahead_steering, link.lookahead_steering * speed));
+  target.speed = at_speed.speed;
+  target.x = aim.x;
+  target.y = aim.y;
+  return target;
+}
+
+// Time mode (esmini's default): the trail points lookahead s after the ghost's time of
+// `follower_time` (the end of this step minus the head start).
+FollowTarget time_target(const SimState& state, double follower_time, double dt) {
+  const GhostLink& link = *state.ghost;
+  const auto& trail = link.trail;
+  FollowTarget target;
+  // A jump of the ghost that the follower's time passed this step.
+  const auto after = std::upper_bound(trail.begin(), trail.end(), follower_time - dt,
+                                      [](double t, const TrailPoint& p) { return t < p.time; });
+  for (auto it = after; it != trail.end() && it->time <= follower_time; ++it) {
+    if (it->jump) {
+      target.jump_to = *it;
+      return target;
+    }
+  }
+  target.speed =
+      trail_at(state, follower_time + std::max(link.min_lookahead_speed, link.lookahead_speed))
+          .speed;
+  const TrailPoint aim = trail_at(
+      state, follower_time + std::max(link.min_lookahead_steering, link.lookahead_steering));
+  target.x = aim.x;
+  target.y = aim.y;
+  return target;
 }
 
 }  // namespace
@@ -132,9 +236,9 @@ void record_trail(SimState& state) {
   if (!state.ghost) return;
   GhostLink& link = *state.ghost;
   const Entity& ghost = state.world.entities[link.ghost];
-  if (!ghost.state.placed) return;
   const double now = state.now();
   auto& trail = link.trail;
+  if (!ghost.state.placed) return;
   const double since = trail.empty() ? 0.0 : now - trail.back().time;
   if (!trail.empty() && since <= kTrailSampleTime + 1e-9) return;
   // A ghost standing still adds nothing (the last sample holds); after a pause the last
@@ -148,7 +252,17 @@ void record_trail(SimState& state) {
     trail.push_back(held);
   }
   const Pose& p = ghost.state.pose;
-  trail.push_back({now, p.x, p.y, p.z, p.h, ghost.state.speed});
+  TrailPoint point{now, p.x, p.y, p.z, p.h, ghost.state.speed, 0.0, false};
+  if (!trail.empty()) {
+    const TrailPoint& last = trail.back();
+    const double moved = std::hypot(p.x - last.x, p.y - last.y);
+    // Farther than twice the faster speed could take it, and a metre: the ghost jumped.
+    const double reach =
+        2.0 * std::max(std::abs(last.speed), std::abs(ghost.state.speed)) * (now - last.time);
+    point.jump = moved > reach + 1.0;
+    point.s = last.s + (point.jump ? 0.0 : moved);
+  }
+  trail.push_back(point);
 }
 
 TrailPoint trail_at(const SimState& state, double time) {
@@ -159,6 +273,7 @@ TrailPoint trail_at(const SimState& state, double time) {
                                       [](double t, const TrailPoint& p) { return t < p.time; });
   const TrailPoint& b = *after;
   const TrailPoint& a = *(after - 1);
+  if (b.jump) return a;  // the ghost stood at a until it jumped to b
   const double w = b.time > a.time ? (time - a.time) / (b.time - a.time) : 0.0;
   TrailPoint out;
   out.time = time;
@@ -175,7 +290,9 @@ void step_follow_ghost(SimState& state, uint32_t index, const MotionContext& mot
   Entity& entity = state.world.entities[index];
   GhostFollower& car = link.follower;
   const double dt = motion.dt;
-  if (!car.started) {
+  if (!car.started || car.last_tick + 1 != state.tick) {
+    // First step, or the first after the controller was off or the entity away: the model
+    // starts from the entity's pose and speed (esmini resets its vehicle on activation).
     car.started = true;
     car.x = entity.state.pose.x;
     car.y = entity.state.pose.y;
@@ -183,18 +300,25 @@ void step_follow_ghost(SimState& state, uint32_t index, const MotionContext& mot
     car.speed = entity.state.speed;
     car.length = entity.info.box.length > 0.0 ? entity.info.box.length : 5.0;
   }
-  // Targets on the trail, behind the ghost by the head start (time of the end of this step).
-  const double t = state.time.time(state.tick + 1) - link.headstart;
-  double target_speed = 0.0;
-  double aim_x = car.x, aim_y = car.y;
+  car.last_tick = state.tick;
+  FollowTarget target{0.0, car.x, car.y, std::nullopt};
   if (!link.trail.empty()) {
-    target_speed =
-        trail_at(state, t + std::max(link.min_lookahead_speed, link.lookahead_speed)).speed;
-    const TrailPoint aim =
-        trail_at(state, t + std::max(link.min_lookahead_steering, link.lookahead_steering));
-    aim_x = aim.x;
-    aim_y = aim.y;
+    // Time mode: behind the ghost by the head start, at the end of this step.
+    target = link.by_position
+                 ? position_target(link, car.speed)
+                 : time_target(state, state.time.time(state.tick + 1) - link.headstart, dt);
   }
+  if (target.jump_to) {
+    car.x = target.jump_to->x;
+    car.y = target.jump_to->y;
+    car.h = target.jump_to->h - kFullTurn * std::floor(target.jump_to->h / kFullTurn);
+    car.speed = target.jump_to->speed;
+    target.speed = car.speed;
+    target.x = car.x + std::cos(car.h);
+    target.y = car.y + std::sin(car.h);
+  }
+  const double target_speed = target.speed;
+  const double aim_x = target.x, aim_y = target.y;
   double dx = aim_x - car.x, dy = aim_y - car.y;
   const double len = std::hypot(dx, dy);
   dx = len > 1e-10 ? dx / len : 0.0;

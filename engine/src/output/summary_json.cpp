@@ -69,7 +69,8 @@ std::string summary_json(const Simulation& simulation, double wall_seconds) {
       {"dt", number(simulation.dt())},
       {"end_reason", to_string(simulation.end_reason())},
       {"sim_time", number(simulation.time())},
-      {"steps", simulation.tick()},
+      {"start_time", number(simulation.time_of(simulation.start_tick()))},
+      {"steps", simulation.steps()},
       {"wall_time", number(wall_seconds)},
       {"real_time_factor", number(wall_seconds > 0.0 ? simulation.time() / wall_seconds : 0.0)},
       {"entities", std::move(entities)}};

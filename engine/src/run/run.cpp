@@ -114,7 +114,8 @@ RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
   RunReport report;
   report.end_reason = simulation.end_reason();
   report.sim_time = simulation.time();
-  report.steps = simulation.tick();
+  report.steps = simulation.steps();
+  report.start_time = simulation.time_of(simulation.start_tick());
   report.wall_seconds = wall;
   report.collisions = simulation.collisions().size();
   for (const CollisionRecord& c : simulation.collisions()) {

@@ -152,6 +152,13 @@ void Simulation::interrupt() {
 bool Simulation::ended() const { return impl_->end != EndReason::kRunning; }
 EndReason Simulation::end_reason() const { return impl_->end; }
 int64_t Simulation::tick() const { return impl_->state.tick; }
+int64_t Simulation::start_tick() const {
+  return impl_->state.ghost ? -impl_->state.ghost->headstart_ticks : 0;
+}
+int64_t Simulation::steps() const { return tick() - start_tick(); }
+bool Simulation::is_ghost(size_t index) const {
+  return impl_->state.world.entities.at(index).ghost;
+}
 double Simulation::time() const { return impl_->state.now(); }
 double Simulation::dt() const { return impl_->state.time.dt(); }
 double Simulation::time_of(int64_t tick) const { return impl_->state.time.time(tick); }

@@ -45,7 +45,9 @@ struct RunOptions {
 struct RunReport {
   EndReason end_reason = EndReason::kRunning;
   double sim_time = 0.0;  ///< s
-  int64_t steps = 0;
+  /// s the run started at: 0, or the negative head start of esmini's followGhost ghost.
+  double start_time = 0.0;
+  int64_t steps = 0;          ///< steps taken, from start_time to sim_time
   double wall_seconds = 0.0;  ///< loading, simulating and writing
   size_t collisions = 0;
   /// Each collision for people: "5.18 s: Cutter and npc_vehicle_0", in order.

@@ -165,6 +165,14 @@ class Simulation {
   EndReason end_reason() const;
   int64_t tick() const;
   double time() const;  ///< seconds: tick on the step grid
+  /// The tick the run started at: 0, or minus the head start of esmini's followGhost ghost
+  /// (the run then begins at negative simulation times).
+  int64_t start_tick() const;
+  /// Steps taken so far: tick() - start_tick().
+  int64_t steps() const;
+  /// Whether entity `index` is esmini's followGhost ghost, which nothing else sees: metrics,
+  /// like sensors and conditions, leave it out.
+  bool is_ghost(size_t index) const;
   double dt() const;
   double time_of(int64_t tick) const;
   const SimulationOptions& options() const;

@@ -1,0 +1,110 @@
+// esmini's followGhost controller (controllers/follow_ghost.h) where a scenario does odd things
+// to the entity or its ghost mid-run, and its position follow mode. The fixtures are
+// tests/engine/fixtures/controller_follow_ghost.xosc with one change each (their headers say
+// which): the run goes on to its 15 s end with located warnings where the file is odd, and the
+// entity never jumps but where its ghost did.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+
+#include "engine_fixture.h"
+
+using corsa::test::engine_fixture;
+using corsa::test::FixtureRun;
+
+namespace {
+
+// The warning whose message holds `text`, with the line it points at (0: none such).
+int warning_line(FixtureRun& run, const std::string& text) {
+  for (const auto& d : run.diagnostics().all()) {
+    if (d.message.find(text) != std::string::npos) return d.line;
+  }
+  return 0;
+}
+
+// The largest distance Ego moved in one step over [from, to] s.
+double largest_step(const FixtureRun& run, double from, double to) {
+  double worst = 0.0;
+  for (double t = from; t < to - 1e-9; t += 0.01) {
+    const auto& a = run.at(t, "Ego").pose;
+    const auto& b = run.at(t + 0.01, "Ego").pose;
+    worst = std::max(worst, std::hypot(b.x - a.x, b.y - a.y));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("deleting the entity under followGhost takes its ghost with it",
+          "[engine][controllers][ghost]") {
+  FixtureRun run(engine_fixture("controller_follow_ghost_delete.xosc"));
+  run.run();
+  CHECK(run.sim().time() == Approx(15.0));
+  CHECK(run.at(6.9, "Ego").placed);
+  CHECK(run.at(6.9, "Ego_ghost").placed);
+  CHECK_FALSE(run.at(7.02, "Ego").placed);
+  CHECK_FALSE(run.at(7.02, "Ego_ghost").placed);
+  CHECK_FALSE(run.sim().state(run.entity("Ego_ghost")).placed);
+}
+
+TEST_CASE("the entity under followGhost jumps where its ghost was teleported, when it gets there",
+          "[engine][controllers][ghost]") {
+  FixtureRun run(engine_fixture("controller_follow_ghost_teleport.xosc"));
+  run.run();
+  // The ghost jumps at 7 s (the event's > 9, 2 s earlier), Ego 2 s later.
+  CHECK(run.at(7.05, "Ego_ghost").pose.x > 195.0);
+  CHECK(run.at(8.9, "Ego").pose.x < 150.0);
+  CHECK(run.at(9.1, "Ego").pose.x > 195.0);
+  CHECK(run.at(9.1, "Ego").pose.y == Approx(-8.75).margin(0.3));
+  CHECK(run.at(15.0, "Ego").road->lane == -3);
+  // One jump; before and after it Ego drives.
+  CHECK(largest_step(run, 0.0, 8.9) < 0.2);
+  CHECK(largest_step(run, 9.2, 15.0) < 0.2);
+}
+
+TEST_CASE("followGhost switched off and on again drives on from where the entity is",
+          "[engine][controllers][ghost]") {
+  FixtureRun run(engine_fixture("controller_follow_ghost_deactivate.xosc"));
+  run.run();
+  CHECK(warning_line(run, "followGhost of 'Ego' deactivated") > 0);
+  // Off from 4 s: the default controller keeps lane -1 where the trail changes lane at 5 s.
+  CHECK(run.at(8.9, "Ego").road->lane == -1);
+  CHECK(run.at(8.9, "Ego").speed == Approx(10.0).margin(0.5));
+  // On at 9 s: no jump back to where the model was at 4 s; it reaches the ghost's lane.
+  CHECK(largest_step(run, 0.0, 15.0) < 0.2);
+  CHECK(run.at(15.0, "Ego").road->lane == -2);
+}
+
+TEST_CASE("another controller assigned to the entity under followGhost warns",
+          "[engine][controllers][ghost]") {
+  FixtureRun run(engine_fixture("controller_follow_ghost_assign.xosc"));
+  run.run();
+  CHECK(warning_line(run, "its motion actions go on to the ghost") > 0);
+  // The default controller keeps Ego's speed and lane; the ghost changes lane and speeds up.
+  CHECK(run.at(15.0, "Ego").road->lane == -1);
+  CHECK(run.at(15.0, "Ego").speed == Approx(10.0).margin(0.5));
+  CHECK(run.at(13.0, "Ego_ghost").speed == Approx(15.0));
+  CHECK(largest_step(run, 0.0, 15.0) < 0.2);
+}
+
+TEST_CASE("followGhost in position mode follows the trail by the point nearest the entity",
+          "[engine][controllers][ghost]") {
+  FixtureRun run(engine_fixture("controller_follow_ghost_position.xosc"));
+  run.run();
+  CHECK(warning_line(run, "followMode") == 0);
+  // Ego's distance to the ghost's path (its positions over the run) at every step.
+  double worst = 0.0;
+  for (int tick = 0; tick <= 1500; ++tick) {
+    const auto& ego = run.at(tick * 0.01, "Ego").pose;
+    double nearest = 1e9;
+    for (int g = -200; g <= 1500; g += 2) {
+      const auto& ghost = run.at(g * 0.01, "Ego_ghost").pose;
+      nearest = std::min(nearest, std::hypot(ego.x - ghost.x, ego.y - ghost.y));
+    }
+    worst = std::max(worst, nearest);
+  }
+  CHECK(worst < 0.5);
+  CHECK(run.at(15.0, "Ego").road->lane == -2);
+  CHECK(run.at(15.0, "Ego").speed == Approx(15.0).margin(0.2));
+}
