@@ -21,6 +21,23 @@
 
 namespace corsa::engine::detail {
 
+std::optional<double> nonnegative_property(SimState& state, const xosc::Controller& controller,
+                                           const char* name, const char* controller_label) {
+  for (const xosc::Property& property : controller.properties.properties) {
+    if (property.name != name) continue;
+    char* end = nullptr;
+    const double value = std::strtod(property.value.c_str(), &end);
+    if (end != property.value.c_str() && *end == '\0' && std::isfinite(value) && value >= 0.0) {
+      return value;
+    }
+    state.diagnostics.add(property.source.warning(
+        std::string(controller_label) + " property '" + property.name +
+        "' is not a non-negative number ('" + property.value + "'): its default is used"));
+    return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 bool controller_kind_of(const xosc::Controller& controller, Diagnostics& diagnostics,
                         ControllerKind& out) {
   for (const xosc::Property& property : controller.properties.properties) {
@@ -68,23 +85,6 @@ std::string esmini_type(const xosc::Controller& controller) {
   return controller.properties.get("esminiController").value_or(controller.name);
 }
 
-// A number property of esmini's ACCController, or nothing (a value that is no number warns).
-std::optional<double> acc_number(SimState& state, const xosc::Controller& controller,
-                                 const char* name) {
-  for (const xosc::Property& property : controller.properties.properties) {
-    if (property.name != name) continue;
-    char* end = nullptr;
-    const double value = std::strtod(property.value.c_str(), &end);
-    if (end != property.value.c_str() && *end == '\0' && std::isfinite(value) && value >= 0.0) {
-      return value;
-    }
-    state.diagnostics.add(property.source.warning("ACCController property '" + property.name +
-                                                  "' is not a non-negative number ('" +
-                                                  property.value + "'): its default is used"));
-  }
-  return std::nullopt;
-}
-
 }  // namespace
 
 void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectController& oc) {
@@ -93,9 +93,10 @@ void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectCo
   if (esmini_type(oc.controller) == "ACCController") {
     // esmini's ACC: the acc controller with esmini's law (controllers/acc_controller.cpp).
     EsminiAcc acc;
-    acc.time_gap = acc_number(state, oc.controller, "timeGap").value_or(acc.time_gap);
+    acc.time_gap = nonnegative_property(state, oc.controller, "timeGap", "ACCController")
+                       .value_or(acc.time_gap);
     if (oc.controller.properties.get("mode") == "override") {
-      acc.set_speed = acc_number(state, oc.controller, "setSpeed");
+      acc.set_speed = nonnegative_property(state, oc.controller, "setSpeed", "ACCController");
     }
     control.kind = ControllerKind::kAcc;
     control.substitute_for.clear();

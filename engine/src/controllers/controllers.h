@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -44,6 +45,13 @@ bool names_external(const SimulationOptions& options, const xosc::ObjectControll
 /// vehicle ahead). Recorded in ControlState::substitute_for (the run summary lists it) and
 /// warned once per entity and controller, located at the ObjectController.
 void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectController& oc);
+
+/// The Property `name` of a scenario Controller as a non-negative number (esmini's controllers
+/// take their parameters so: `timeGap`, `headstartTime`, ...), or nothing when it is absent. A
+/// value that is no finite non-negative number warns, located at the property, naming
+/// `controller_label`, and counts as absent (the caller's default is used).
+std::optional<double> nonnegative_property(SimState& state, const xosc::Controller& controller,
+                                           const char* name, const char* controller_label);
 
 /// Gives every entity its controller from the scenario and the options (state.controls sized
 /// to the entities). Throws InputError for an unknown --controller name.

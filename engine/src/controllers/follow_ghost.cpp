@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "controllers/controllers.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/pose_command.h"
@@ -26,35 +27,22 @@ constexpr double kFollowerMaxSpeed = 100.0;        // m/s
 constexpr double kMaxWheelAngle = 60.0 * std::numbers::pi / 180.0;
 constexpr double kPivotFraction = 0.15;  // the model's reference point, of the length from the rear
 
-// A numeric property of the controller, or `fallback` (a value that is no number warns).
-double number_property(SimState& state, const xosc::Controller& controller, const char* name,
-                       double fallback) {
-  for (const xosc::Property& property : controller.properties.properties) {
-    if (property.name != name) continue;
-    char* end = nullptr;
-    const double value = std::strtod(property.value.c_str(), &end);
-    if (end != property.value.c_str() && *end == '\0' && std::isfinite(value) && value >= 0.0) {
-      return value;
-    }
-    state.diagnostics.add(property.source.warning(
-        "followGhost property '" + property.name + "' is not a non-negative number ('" +
-        property.value + "'): " + std::to_string(fallback) + " is used"));
-    return fallback;
-  }
-  return fallback;
-}
-
 void read_properties(SimState& state, const xosc::ObjectController& oc, GhostLink& link) {
   const xosc::Controller& c = oc.controller;
-  link.headstart = number_property(state, c, "headstartTime", link.headstart);
-  link.lookahead_speed = number_property(state, c, "lookaheadSpeed", link.lookahead_speed);
-  link.min_lookahead_speed =
-      number_property(state, c, "minLookaheadSpeed", link.min_lookahead_speed);
-  link.lookahead_steering = number_property(state, c, "lookaheadSteering", link.lookahead_steering);
+  link.headstart =
+      nonnegative_property(state, c, "headstartTime", "followGhost").value_or(link.headstart);
+  link.lookahead_speed = nonnegative_property(state, c, "lookaheadSpeed", "followGhost")
+                             .value_or(link.lookahead_speed);
+  link.min_lookahead_speed = nonnegative_property(state, c, "minLookaheadSpeed", "followGhost")
+                                 .value_or(link.min_lookahead_speed);
+  link.lookahead_steering = nonnegative_property(state, c, "lookaheadSteering", "followGhost")
+                                .value_or(link.lookahead_steering);
   link.min_lookahead_steering =
-      number_property(state, c, "minLookaheadSteering", link.min_lookahead_steering);
+      nonnegative_property(state, c, "minLookaheadSteering", "followGhost")
+          .value_or(link.min_lookahead_steering);
   link.steering_speed_inertia =
-      number_property(state, c, "steeringSpeedInertia", link.steering_speed_inertia);
+      nonnegative_property(state, c, "steeringSpeedInertia", "followGhost")
+          .value_or(link.steering_speed_inertia);
   for (const xosc::Property& property : c.properties.properties) {
     if (property.name != "followMode") continue;
     if (property.value == "position") {
