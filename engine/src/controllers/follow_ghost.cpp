@@ -57,7 +57,7 @@ void read_properties(SimState& state, const xosc::ObjectController& oc, GhostLin
 }
 
 // How the follower's model is told where to go this step.
-struct FollowTarget {
+struct GhostAim {
   double speed = 0.0;                 // m/s
   double x = 0.0, y = 0.0;            // the steering aim, map frame
   std::optional<TrailPoint> jump_to;  // the ghost jumped there: the follower jumps too
@@ -87,7 +87,7 @@ constexpr size_t kNearestWindow = 250;
 // Position mode (esmini's FOLLOW_MODE_POSITION): the trail point nearest the entity, searched
 // from the last one on, then the speed and steering targets max(min, lookahead * speed) m ahead
 // of it along the trail.
-FollowTarget position_target(GhostLink& link, double speed) {
+GhostAim position_target(GhostLink& link, double speed) {
   const auto& trail = link.trail;
   GhostFollower& car = link.follower;
   size_t best = car.follow_index;
@@ -111,7 +111,7 @@ FollowTarget position_target(GhostLink& link, double speed) {
     }
   }
   car.follow_index = best;
-  FollowTarget target;
+  GhostAim target;
   // At the end of a stretch that a jump ends, the follower jumps after the ghost.
   size_t last = best;
   while (last + 1 < trail.size() && !trail[last + 1].jump) ++last;
@@ -132,10 +132,10 @@ FollowTarget position_target(GhostLink& link, double speed) {
 
 // Time mode (esmini's default): the trail points lookahead s after the ghost's time of
 // `follower_time` (the end of this step minus the head start).
-FollowTarget time_target(const SimState& state, double follower_time, double dt) {
+GhostAim time_target(const SimState& state, double follower_time, double dt) {
   const GhostLink& link = *state.ghost;
   const auto& trail = link.trail;
-  FollowTarget target;
+  GhostAim target;
   // A jump of the ghost that the follower's time passed this step.
   const auto after = std::upper_bound(trail.begin(), trail.end(), follower_time - dt,
                                       [](double t, const TrailPoint& p) { return t < p.time; });
@@ -289,7 +289,7 @@ void step_follow_ghost(SimState& state, uint32_t index, const MotionContext& mot
     car.length = entity.info.box.length > 0.0 ? entity.info.box.length : 5.0;
   }
   car.last_tick = state.tick;
-  FollowTarget target{0.0, car.x, car.y, std::nullopt};
+  GhostAim target{0.0, car.x, car.y, std::nullopt};
   if (!link.trail.empty()) {
     // Time mode: behind the ghost by the head start, at the end of this step.
     target = link.by_position
