@@ -169,3 +169,93 @@ TEST_CASE("rounding to units takes halves away from zero, as llround does", "[en
     REQUIRE(round_half_away(value) == std::llround(value));
   }
 }
+
+namespace {
+
+// The `Count` digits of `value`, leading zeros included, one division by 10 at a time.
+template <int Count>
+std::string plain_digits(uint64_t value) {
+  std::string text(Count, '0');
+  for (int k = Count - 1; k >= 0; --k, value /= 10) text[k] = static_cast<char>('0' + value % 10);
+  return text;
+}
+
+template <int Count>
+void check_fixed_digits(uint64_t value) {
+  char buffer[16];
+  corsa::engine::detail::decimal_text::fixed_digits<Count>(buffer, value);
+  REQUIRE(std::string(buffer, Count) == plain_digits<Count>(value));
+}
+
+// write_fixed's text the plain way: the value scaled and rounded by llround, then plain_units;
+// the shortest round-trip text beyond exact scaling.
+template <int Decimals>
+std::string plain_fixed(double value) {
+  const double scaled = value * std::pow(10.0, Decimals);
+  return std::fabs(scaled) < 9.0e15 ? plain_units<Decimals>(std::llround(scaled))
+                                    : shortest(value + 0.0);
+}
+
+template <int Decimals>
+void check_fixed(double value) {
+  char buffer[corsa::engine::detail::kDecimalTextMax];
+  const std::string text(buffer, corsa::engine::detail::write_fixed<Decimals>(buffer, value));
+  REQUIRE(text == plain_fixed<Decimals>(value));
+}
+
+}  // namespace
+
+TEST_CASE("fixed-width decimals by multiplication equal the digits of repeated division",
+          "[engine][output]") {
+  // Every value of 1 to 6 digits, and 7 to 9 digits at random and at the ends of their range.
+  for (uint64_t v = 0; v < 1'000'000; ++v) {
+    check_fixed_digits<6>(v);
+    if (v < 100'000) check_fixed_digits<5>(v);
+    if (v < 10'000) check_fixed_digits<4>(v);
+    if (v < 1'000) check_fixed_digits<3>(v);
+    if (v < 100) check_fixed_digits<2>(v);
+    if (v < 10) check_fixed_digits<1>(v);
+  }
+  std::mt19937_64 random(20261127);
+  for (int i = 0; i < 300000; ++i) {
+    const uint64_t v = random() % 1'000'000'000;
+    check_fixed_digits<9>(v);
+    check_fixed_digits<8>(v % 100'000'000);
+    check_fixed_digits<7>(v % 10'000'000);
+  }
+  for (const uint64_t v : {0ULL, 1ULL, 9ULL, 10ULL, 99ULL, 100ULL, 999'999ULL, 1'000'000ULL,
+                           9'999'999ULL, 99'999'999ULL, 100'000'000ULL, 999'999'999ULL}) {
+    check_fixed_digits<9>(v);
+    if (v < 100'000'000) check_fixed_digits<8>(v);
+    if (v < 10'000'000) check_fixed_digits<7>(v);
+  }
+}
+
+TEST_CASE("fixed-decimal text equals llround and the plain division on values of every kind",
+          "[engine][output]") {
+  std::mt19937_64 random(27112026);
+  std::uniform_real_distribution<double> exponent(-10.0, 16.0);
+  std::uniform_int_distribution<int64_t> halves(-2'000'000'000, 2'000'000'000);
+  for (int i = 0; i < 200000; ++i) {
+    const double sign = i % 2 == 0 ? 1.0 : -1.0;
+    const double v = sign * std::pow(10.0, exponent(random));
+    check_fixed<6>(v);
+    check_fixed<9>(v);
+    check_fixed<2>(v);
+    // Halves of the last place (rounded away from zero), as far as the scaling keeps them.
+    const double half = (static_cast<double>(halves(random)) + 0.5);
+    check_fixed<6>(half / 1e6);
+    check_fixed<9>(half / 1e9);
+    check_fixed<0>(half);
+  }
+  for (const double v :
+       {-0.0,          0.0,        0.5e-6,    -0.5e-6,       0.4999999e-6,
+        -0.4999999e-9, 0.5e-9,     1e-300,    -1e-300,       8.99e9,
+        -8.99e9,       8.99e6,     9.0e9,     1e300,         -1e300,
+        9999.9999995,  99.9999995, 0.9999995, -9999.9999995, 123456789.123456789}) {
+    check_fixed<6>(v);
+    check_fixed<9>(v);
+    check_fixed<0>(v);
+  }
+  CHECK(plain_fixed<6>(-0.0) == "0");  // the reference says "0" for negative zero too
+}

@@ -10,6 +10,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 namespace corsa::engine::detail {
 
@@ -57,19 +58,20 @@ inline constexpr char kDigitPairs[] =
     "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
     "8081828384858687888990919293949596979899";
 
+/// Writes the two digits of `pair` (< 100) at `out`: one two-byte copy.
+inline void put_pair(char* out, uint64_t pair) { std::memcpy(out, &kDigitPairs[2 * pair], 2); }
+
 /// Writes the decimal digits of `value` so that they end just before `end`; returns their start.
 inline char* digits_before(char* end, uint64_t value) {
   while (value >= 100) {
     const uint64_t pair = value % 100;
     value /= 100;
     end -= 2;
-    end[0] = kDigitPairs[2 * pair];
-    end[1] = kDigitPairs[2 * pair + 1];
+    put_pair(end, pair);
   }
   if (value >= 10) {
     end -= 2;
-    end[0] = kDigitPairs[2 * value];
-    end[1] = kDigitPairs[2 * value + 1];
+    put_pair(end, value);
   } else {
     *--end = static_cast<char>('0' + value);
   }
@@ -113,34 +115,56 @@ Scaled scale_decimal(double value) {
 
 namespace decimal_text {
 
-/// Writes the `Count` decimal digits of `value` (< 10^Count), leading zeros included, at `out`:
-/// two digits per step from the end, a loop of fixed length (unrolled), no test per digit.
+/// Writes the `Count` decimal digits of `value` (< 10^Count), leading zeros included, at `out`.
+/// `value` becomes a binary fraction of its leading group (value / 10^(Count - lead), 57
+/// fraction bits, rounded up): each next pair is the integer part of the rest times 100, a mask,
+/// a multiplication and a shift instead of a division by 100 and a remainder per pair. Exact
+/// while 10^(2 Count - lead) < 2^57 (the rounding error, under 10^Count / 2^57, stays below the
+/// smallest distance 10^-(Count - lead) of a true fraction to the next integer): Count <= 9.
 template <int Count>
 inline void fixed_digits(char* out, uint64_t value) {
-  for (int k = Count; k >= 2; k -= 2) {
-    const uint64_t pair = value % 100;
-    value /= 100;
-    out[k - 2] = kDigitPairs[2 * pair];
-    out[k - 1] = kDigitPairs[2 * pair + 1];
+  static_assert(Count >= 1 && Count <= kMaxDecimals);
+  constexpr int kLead = 2 - Count % 2;  // digits of the first group
+  constexpr int kShift = 57;
+  constexpr uint64_t kOne = uint64_t{1} << kShift;
+  constexpr uint64_t kDivisor = kIntScale[Count - kLead];
+  constexpr uint64_t kReciprocal = (kOne + kDivisor - 1) / kDivisor;
+  uint64_t y = value * kReciprocal;  // < 100 * 2^57 < 2^64
+  if constexpr (kLead == 1) {
+    out[0] = static_cast<char>('0' + (y >> kShift));
+  } else {
+    put_pair(out, y >> kShift);
   }
-  if constexpr (Count % 2 == 1) {
-    out[0] = static_cast<char>('0' + value);
+  for (int k = kLead; k < Count; k += 2) {
+    y = (y & (kOne - 1)) * 100;  // < 2^57 * 100 < 2^64
+    put_pair(out + k, y >> kShift);
   }
 }
 
-/// Writes the digits of `value` at `out` and returns their end; values below 100 (most integer
-/// parts of a trajectory: speeds, headings, lateral offsets) without counting digits.
+/// Writes the digits of `value` at `out` and returns their end; values below 10^4 (most integer
+/// parts of a trajectory: speeds, headings, lateral offsets, coordinates on a map of a few km)
+/// without counting digits.
 inline char* whole_digits(char* out, uint64_t value) {
   if (value < 10) {
     *out = static_cast<char>('0' + value);
     return out + 1;
   }
   if (value < 100) {
-    out[0] = kDigitPairs[2 * value];
-    out[1] = kDigitPairs[2 * value + 1];
+    put_pair(out, value);
     return out + 2;
   }
-  int digits = 3;
+  if (value < 10'000) {
+    const uint64_t high = value / 100;
+    const bool four = high >= 10;
+    if (four) {
+      put_pair(out, high);
+    } else {
+      out[0] = static_cast<char>('0' + high);
+    }
+    put_pair(out + 1 + four, value - 100 * high);
+    return out + 3 + four;
+  }
+  int digits = 5;
   while (digits < 19 && value >= kPowers[digits]) ++digits;
   digits_before(out + digits, value);
   return out + digits;

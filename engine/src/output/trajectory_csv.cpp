@@ -82,9 +82,19 @@ TrajectoryRecorder::TrajectoryRecorder(std::filesystem::path file, int64_t every
   used_ = header.size();
 }
 
+namespace {
+
+// Grows `buffer` to hold `needed` characters (at least doubling it); apart from room's check so
+// that the check, made once per row, is inlined where it is made.
+void grow_buffer(std::string& buffer, size_t needed) {
+  buffer.resize(std::max(2 * buffer.size(), needed));
+}
+
+}  // namespace
+
 char* TrajectoryRecorder::room(size_t count) {
-  if (buffer_.size() < used_ + count) {
-    buffer_.resize(std::max(2 * buffer_.size(), used_ + count));
+  if (buffer_.size() < used_ + count) [[unlikely]] {
+    grow_buffer(buffer_, used_ + count);
   }
   return buffer_.data() + used_;
 }
