@@ -204,6 +204,22 @@ Box3 label_box(const engine::EntitySnapshot& e, const detail::EntityInstance& in
   return b;
 }
 
+// What a camera or LiDAR label of an entity's instance holds before the sensor's own measures:
+// who it is, its class and its box in the world and in the sensor's frame.
+ObjectLabel entity_label(const detail::SceneData& d, const detail::EntityInstance& inst,
+                         const Rigid& sensor_from_world) {
+  const engine::EntitySnapshot& e = d.entities[inst.snapshot_index];
+  ObjectLabel l;
+  l.instance_id = inst.instance_id;
+  l.track_id = e.instance_id;
+  l.name = e.name;
+  l.semantic = inst.semantic;
+  l.box_world = label_box(e, inst);
+  l.box_sensor = transform_box(sensor_from_world, l.box_world);
+  l.distance = norm(l.box_sensor.center);
+  return l;
+}
+
 }  // namespace
 
 std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer& renderer,
@@ -222,15 +238,7 @@ std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer&
     if (it == stats.end() || inst.instance_id == carrier) {
       continue;
     }
-    const engine::EntitySnapshot& e = d.entities[inst.snapshot_index];
-    ObjectLabel l;
-    l.instance_id = inst.instance_id;
-    l.track_id = e.instance_id;
-    l.name = e.name;
-    l.semantic = inst.semantic;
-    l.box_world = label_box(e, inst);
-    l.box_sensor = transform_box(cam_from_world, l.box_world);
-    l.distance = norm(l.box_sensor.center);
+    ObjectLabel l = entity_label(d, inst, cam_from_world);
     l.visible_pixels = it->second.count;
     l.box_2d_visible = {
         static_cast<double>(it->second.x_min), static_cast<double>(it->second.y_min),
@@ -318,15 +326,7 @@ std::vector<ObjectLabel> lidar_labels(const Scene& scene, const Rigid& world_fro
     if (inst.instance_id == carrier) {
       continue;
     }
-    const engine::EntitySnapshot& e = d.entities[inst.snapshot_index];
-    ObjectLabel l;
-    l.instance_id = inst.instance_id;
-    l.track_id = e.instance_id;
-    l.name = e.name;
-    l.semantic = inst.semantic;
-    l.box_world = label_box(e, inst);
-    l.box_sensor = transform_box(sensor_from_world, l.box_world);
-    l.distance = norm(l.box_sensor.center);
+    ObjectLabel l = entity_label(d, inst, sensor_from_world);
     if (l.distance > range_m) {
       continue;
     }
