@@ -107,44 +107,71 @@ void store_sky(const Pass& p, size_t px, Vec3 dir) {
   (*p.visibility)[px] = PixelVisibility{};
 }
 
-/// The record (surface, shading terms, mirrored and transmitted light) and the visibilities of
-/// lit pixel k of a resolved tile.
-void store_lit(const Pass& p, const TileState& t, int k) {
-  const SurfacePoint& sp = t.surface[k];
-  const float distance = static_cast<float>(sp.distance);
-  if (p.direct != nullptr) {
-    p.distances[t.pixel[k]] = distance;
-  } else {
-    PixelGeometry& g = (*p.geometry)[t.pixel[k]];
-    g.position[0] = static_cast<float>(sp.position.x);
-    g.position[1] = static_cast<float>(sp.position.y);
-    g.position[2] = static_cast<float>(sp.position.z);
-    g.normal[0] = static_cast<float>(sp.normal.x);
-    g.normal[1] = static_cast<float>(sp.normal.y);
-    g.normal[2] = static_cast<float>(sp.normal.z);
-    g.distance = distance;
-    g.surface_id = sp.surface_id;
-  }
-  const Visibility& e = t.vis[k];
+/// A pixel's visibilities in the single precision the per-pixel buffers keep.
+PixelVisibility single_precision(const Visibility& e) {
   PixelVisibility v;
   v.sun = static_cast<float>(e.sun);
   v.sky[0] = static_cast<float>(e.sky.r);
   v.sky[1] = static_cast<float>(e.sky.g);
   v.sky[2] = static_cast<float>(e.sky.b);
   v.lights = static_cast<float>(e.lights);
-  const ShadeTerms terms = shade_terms(*p.shading, sp, t.has_mirrored[k] ? &t.mirrored[k] : nullptr,
-                                       t.has_behind[k] ? &t.behind[k] : nullptr);
-  if (p.direct != nullptr) {
-    store_radiance(p.direct, t.pixel[k], composite_pixel(p, t.pixel[k], terms, v, distance));
-    return;
-  }
+  return v;
+}
+
+ShadeTerms lit_terms(const Pass& p, const TileState& t, int k) {
+  return shade_terms(*p.shading, t.surface[k], t.has_mirrored[k] ? &t.mirrored[k] : nullptr,
+                     t.has_behind[k] ? &t.behind[k] : nullptr);
+}
+
+/// The record (surface, shading terms, mirrored and transmitted light) and the visibilities of
+/// lit pixel k of a resolved tile, for the later stages.
+void store_lit(const Pass& p, const TileState& t, int k) {
+  const SurfacePoint& sp = t.surface[k];
+  PixelGeometry& g = (*p.geometry)[t.pixel[k]];
+  g.position[0] = static_cast<float>(sp.position.x);
+  g.position[1] = static_cast<float>(sp.position.y);
+  g.position[2] = static_cast<float>(sp.position.z);
+  g.normal[0] = static_cast<float>(sp.normal.x);
+  g.normal[1] = static_cast<float>(sp.normal.y);
+  g.normal[2] = static_cast<float>(sp.normal.z);
+  g.distance = static_cast<float>(sp.distance);
+  g.surface_id = sp.surface_id;
   PixelRecord& rec = (*p.records)[t.pixel[k]];
   rec.has_mirrored = t.has_mirrored[k];
   rec.has_behind = t.has_behind[k];
   rec.mirrored = Color3f(t.mirrored[k]);
   rec.behind = Color3f(t.behind[k]);
-  rec.terms = terms;
-  (*p.visibility)[t.pixel[k]] = v;
+  rec.terms = lit_terms(p, t, k);
+  (*p.visibility)[t.pixel[k]] = single_precision(t.vis[k]);
+}
+
+/// The lit pixels of a resolved tile composited at once (Pass::direct): composite_pixel()'s
+/// terms times visibilities, then the air in front of them for the whole tile in one call (its
+/// exponentials two pixels at a time: Lighting::transmittances).
+void composite_lit(const Pass& p, const TileState& t, const int* valid) {
+  const ShadingContext& c = *p.shading;
+  Color lit[16];
+  double dir_z[16], distance[16], kept[16];
+  size_t pixel[16];
+  int n = 0;
+  for (int k = 0; k < 16; ++k) {
+    if (!valid[k] || !t.hit[k]) {
+      continue;
+    }
+    // Rounded to single precision as the buffers of the other presets keep them.
+    const float d = static_cast<float>(t.surface[k].distance);
+    p.distances[t.pixel[k]] = d;
+    lit[n] = combine(lit_terms(p, t, k), single_precision(t.vis[k]).get());
+    dir_z[n] = centre_ray(p, t.pixel[k]).z;
+    distance[n] = d;
+    pixel[n] = t.pixel[k];
+    ++n;
+  }
+  c.lighting->transmittances(c.eye_air, dir_z, distance, n, kept);
+  const Color fog = c.lighting->fog_color;
+  for (int i = 0; i < n; ++i) {
+    store_radiance(p.direct, pixel[i], lit[i] * kept[i] + fog * (1.0 - kept[i]));
+  }
 }
 
 }  // namespace
@@ -230,6 +257,10 @@ void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch) {
     return;
   }
   resolve_rays(p, t, scratch);
+  if (p.direct != nullptr) {
+    composite_lit(p, t, valid);
+    return;
+  }
   for (int k = 0; k < 16; ++k) {
     if (valid[k] && t.hit[k]) {
       store_lit(p, t, k);
