@@ -150,9 +150,9 @@ void store_lit(const Pass& p, const TileState& t, int k) {
 /// exponentials two pixels at a time: Lighting::transmittances).
 void composite_lit(const Pass& p, const TileState& t, const int* valid) {
   const ShadingContext& c = *p.shading;
-  Color lit[16];
+  ShadeTerms terms[16];
+  int lit[16];
   double dir_z[16], distance[16], kept[16];
-  size_t pixel[16];
   int n = 0;
   for (int k = 0; k < 16; ++k) {
     if (!valid[k] || !t.hit[k]) {
@@ -161,16 +161,18 @@ void composite_lit(const Pass& p, const TileState& t, const int* valid) {
     // Rounded to single precision as the buffers of the other presets keep them.
     const float d = static_cast<float>(t.surface[k].distance);
     p.distances[t.pixel[k]] = d;
-    lit[n] = combine(lit_terms(p, t, k), single_precision(t.vis[k]).get());
+    // All the tile's terms before any is read (as the hits in trace_tile).
+    terms[n] = lit_terms(p, t, k);
     dir_z[n] = centre_ray(p, t.pixel[k]).z;
     distance[n] = d;
-    pixel[n] = t.pixel[k];
+    lit[n] = k;
     ++n;
   }
   c.lighting->transmittances(c.eye_air, dir_z, distance, n, kept);
   const Color fog = c.lighting->fog_color;
   for (int i = 0; i < n; ++i) {
-    store_radiance(p.direct, pixel[i], lit[i] * kept[i] + fog * (1.0 - kept[i]));
+    const Color seen = combine(terms[i], single_precision(t.vis[lit[i]]).get());
+    store_radiance(p.direct, t.pixel[lit[i]], seen * kept[i] + fog * (1.0 - kept[i]));
   }
 }
 
@@ -178,21 +180,22 @@ void composite_lit(const Pass& p, const TileState& t, const int* valid) {
 
 SurfaceHit primary_hit(const Pass& p, const RTCRayHit16& rh, int k, Vec3 dir,
                        const SceneData::Label& label) {
-  SurfaceHit sh;
-  sh.inst_id = rh.hit.instID[0][k];
-  sh.geom_id = rh.hit.geomID[k];
-  sh.prim_id = rh.hit.primID[k];
-  sh.u = rh.hit.u[k];
-  sh.v = rh.hit.v[k];
-  sh.view_dir = dir;
-  sh.distance = rh.ray.tfar[k];
-  sh.position = p.origin_local + dir * sh.distance;
-  const Vec3 n =
-      p.scene->world_normal(sh.inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
-  sh.normal = dot(n, dir) > 0.0 ? -n : n;
-  sh.semantic = label.semantic;
-  sh.entity = label.entity;
-  return sh;
+  const unsigned inst_id = rh.hit.instID[0][k];
+  const double distance = rh.ray.tfar[k];
+  const Vec3 n = p.scene->world_normal(inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
+  // Every field given at once: assigned one by one, the hit was first cleared with a string
+  // store in the caller's return slot (a third of this function's time).
+  return SurfaceHit{.inst_id = inst_id,
+                    .geom_id = rh.hit.geomID[k],
+                    .prim_id = rh.hit.primID[k],
+                    .u = rh.hit.u[k],
+                    .v = rh.hit.v[k],
+                    .position = p.origin_local + dir * distance,
+                    .normal = dot(n, dir) > 0.0 ? -n : n,
+                    .view_dir = dir,
+                    .distance = distance,
+                    .semantic = label.semantic,
+                    .entity = label.entity};
 }
 
 Vec3 ray_at(const Pass& p, double x, double y) {
@@ -233,6 +236,9 @@ void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch) {
 
   const bool rgb = p.settings->outputs.rgb;
   scratch.clear();
+  // The tile's hits first, then their surfaces: each hit read right after it was written
+  // stalled the load on the store buffer (wide loads of narrow stores).
+  SurfaceHit hits[16];
   for (int k = 0; k < 16; ++k) {
     if (!valid[k]) {
       continue;
@@ -245,16 +251,21 @@ void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch) {
       store_sky(p, t.pixel[k], t.dir[k]);
       continue;
     }
-    const SurfaceHit sh = primary_hit(p, rh, k, t.dir[k], label);
+    hits[k] = primary_hit(p, rh, k, t.dir[k], label);
     t.hit[k] = true;
-    t.surface[k] = surface_at(*p.shading, sh);
-    queue_rays(p, t, k, scratch);
-    if (p.motion) {
-      store_motion(p, t.pixel[k], p.scene->to_map(sh.position), label.entity);
-    }
   }
   if (!rgb) {
     return;
+  }
+  for (int k = 0; k < 16; ++k) {
+    if (!t.hit[k]) {
+      continue;
+    }
+    t.surface[k] = surface_at(*p.shading, hits[k]);
+    queue_rays(p, t, k, scratch);
+    if (p.motion) {
+      store_motion(p, t.pixel[k], p.scene->to_map(hits[k].position), hits[k].entity);
+    }
   }
   resolve_rays(p, t, scratch);
   if (p.direct != nullptr) {
