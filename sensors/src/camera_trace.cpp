@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 
 #include "camera_tile.h"
 
@@ -162,7 +163,7 @@ void composite_lit(const Pass& p, const TileState& t, const int* valid) {
     const float d = static_cast<float>(t.surface[k].distance);
     p.distances[t.pixel[k]] = d;
     // All the tile's terms before any is read (as the hits in trace_tile).
-    terms[n] = lit_terms(p, t, k);
+    new (&terms[n]) ShadeTerms(lit_terms(p, t, k));
     dir_z[n] = centre_ray(p, t.pixel[k]).z;
     distance[n] = d;
     lit[n] = k;
@@ -236,8 +237,10 @@ void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch) {
 
   const bool rgb = p.settings->outputs.rgb;
   scratch.clear();
-  // The tile's hits first, then their surfaces: each hit read right after it was written
-  // stalled the load on the store buffer (wide loads of narrow stores).
+  // The tile's hits first, then their surfaces, then their rays: each result read right after
+  // it was written stalled the load on the store buffer (wide loads of narrow stores). Results
+  // are built in place (placement new of the returned value): assigned, they were returned
+  // into a temporary and copied at once, a copy that stalled the same way.
   SurfaceHit hits[16];
   for (int k = 0; k < 16; ++k) {
     if (!valid[k]) {
@@ -251,7 +254,7 @@ void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch) {
       store_sky(p, t.pixel[k], t.dir[k]);
       continue;
     }
-    hits[k] = primary_hit(p, rh, k, t.dir[k], label);
+    new (&hits[k]) SurfaceHit(primary_hit(p, rh, k, t.dir[k], label));
     t.hit[k] = true;
   }
   if (!rgb) {
@@ -261,7 +264,12 @@ void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch) {
     if (!t.hit[k]) {
       continue;
     }
-    t.surface[k] = surface_at(*p.shading, hits[k]);
+    new (&t.surface[k]) SurfacePoint(surface_at(*p.shading, hits[k]));
+  }
+  for (int k = 0; k < 16; ++k) {
+    if (!t.hit[k]) {
+      continue;
+    }
     queue_rays(p, t, k, scratch);
     if (p.motion) {
       store_motion(p, t.pixel[k], p.scene->to_map(hits[k].position), hits[k].entity);
