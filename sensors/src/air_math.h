@@ -3,7 +3,7 @@
 // The exponentials of the air's transmittance, two rays at a time (private): e^x and
 // (1 - e^-x) / x on pairs of doubles (GCC vector extensions: one SSE2 register, on any x86-64),
 // without a call into the maths library. Against the library's: e^x within 1 ulp (the same
-// value for 93% of arguments), (1 - e^-x) / x within 3 ulp (the same for 81%). Additions,
+// value for 91% of arguments), (1 - e^-x) / x within 3 ulp (the same for 81%). Additions,
 // multiplications, one division and integer operations on the bits, in a fixed order (the build
 // compiles with -ffp-contract=off): the same bits on every x86-64 and at any thread count.
 
