@@ -109,7 +109,7 @@ void store_sky(const Pass& p, size_t px, Vec3 dir) {
 }
 
 /// A pixel's visibilities in the single precision the per-pixel buffers keep.
-PixelVisibility single_precision(const Visibility& e) {
+PixelVisibility visibility_as_stored(const Visibility& e) {
   PixelVisibility v;
   v.sun = static_cast<float>(e.sun);
   v.sky[0] = static_cast<float>(e.sky.r);
@@ -119,7 +119,7 @@ PixelVisibility single_precision(const Visibility& e) {
   return v;
 }
 
-ShadeTerms lit_terms(const Pass& p, const TileState& t, int k) {
+ShadeTerms tile_pixel_terms(const Pass& p, const TileState& t, int k) {
   return shade_terms(*p.shading, t.surface[k], t.has_mirrored[k] ? &t.mirrored[k] : nullptr,
                      t.has_behind[k] ? &t.behind[k] : nullptr);
 }
@@ -142,8 +142,8 @@ void store_lit(const Pass& p, const TileState& t, int k) {
   rec.has_behind = t.has_behind[k];
   rec.mirrored = Color3f(t.mirrored[k]);
   rec.behind = Color3f(t.behind[k]);
-  rec.terms = lit_terms(p, t, k);
-  (*p.visibility)[t.pixel[k]] = single_precision(t.vis[k]);
+  rec.terms = tile_pixel_terms(p, t, k);
+  (*p.visibility)[t.pixel[k]] = visibility_as_stored(t.vis[k]);
 }
 
 /// The lit pixels of a resolved tile composited at once (Pass::direct): composite_pixel()'s
@@ -163,7 +163,7 @@ void composite_lit(const Pass& p, const TileState& t, const int* valid) {
     const float d = static_cast<float>(t.surface[k].distance);
     p.distances[t.pixel[k]] = d;
     // All the tile's terms before any is read (as the hits in trace_tile).
-    new (&terms[n]) ShadeTerms(lit_terms(p, t, k));
+    new (&terms[n]) ShadeTerms(tile_pixel_terms(p, t, k));
     dir_z[n] = centre_ray(p, t.pixel[k]).z;
     distance[n] = d;
     lit[n] = k;
@@ -172,7 +172,7 @@ void composite_lit(const Pass& p, const TileState& t, const int* valid) {
   c.lighting->transmittances(c.eye_air, dir_z, distance, n, kept);
   const Color fog = c.lighting->fog_color;
   for (int i = 0; i < n; ++i) {
-    const Color seen = combine(terms[i], single_precision(t.vis[lit[i]]).get());
+    const Color seen = combine(terms[i], visibility_as_stored(t.vis[lit[i]]).get());
     store_radiance(p.direct, t.pixel[lit[i]], seen * kept[i] + fog * (1.0 - kept[i]));
   }
 }
