@@ -8,6 +8,7 @@
 // ("Physically Based Shading on Mobile", 2014). Roughness is perceptual (glTF): alpha = r^2.
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -71,7 +72,14 @@ inline Color environment_brdf(Color f0, double roughness, double n_dot_v) {
   const double r1 = roughness * -0.0275 + 0.0425;
   const double r2 = roughness * -0.572 + 1.04;
   const double r3 = roughness * 0.022 - 0.04;
-  const double a004 = std::min(r0 * r0, std::exp2(-9.28 * n_dot_v)) * r0 + r1;
+  // min(r0^2, 2^e) without the exponential where 2^e is certainly the larger: r0^2 is below
+  // 2^(b - 1022) for its biased binary exponent b, and 2^e >= 2^(b - 1021) when e >= b - 1021
+  // (the same value as always calling exp2).
+  const double r0_2 = r0 * r0;
+  const double e = -9.28 * n_dot_v;
+  const auto biased = static_cast<int>(std::bit_cast<uint64_t>(r0_2) >> 52);
+  const double a004 =
+      (r0_2 >= 0.0 && e >= biased - 1021 ? r0_2 : std::min(r0_2, std::exp2(e))) * r0 + r1;
   const double scale = a004 * -1.04 + r2;
   const double bias = a004 * 1.04 + r3;
   return f0 * scale + Color{bias, bias, bias};

@@ -165,8 +165,9 @@ void filter_visibility(const Pass& p);
 void composite(const Pass& p, std::vector<float>& linear);
 
 /// Stage 3 for one pixel: its terms times its visibilities (each rounded to the single
-/// precision the buffers keep, so that compositing at once gives the bytes composite() gives),
-/// seen through the air over `distance` (rounded likewise) along its centre ray.
+/// precision the buffers keep), seen through the air over `distance` (rounded likewise) along
+/// its centre ray. A pass that composites at once (Pass::direct) does the same a tile at a time,
+/// with the air's exponentials of Lighting::transmittances.
 Color composite_pixel(const Pass& p, size_t px, const ShadeTerms& terms, const PixelVisibility& vis,
                       float distance);
 

@@ -208,12 +208,16 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
     s.hit_kind.push_back(kind);
   };
   if (l.sun_elevation > -0.01 && luminance(l.sun) > 0.0 && dot(sp.normal, l.sun_direction) > 0.0) {
-    const double r1 = hash_uniform(key, 0), r2 = hash_uniform(key, 1);
+    // Hard shadows aim every ray at the sun's centre: no random numbers to draw.
+    const double r1 = q.soft_sun ? hash_uniform(key, 0) : 0.0;
+    const double r2 = q.soft_sun ? hash_uniform(key, 1) : 0.0;
     for (int j = 0; j < q.sun_rays; ++j) {
-      double u1 = 0.0, u2 = 0.0;
-      r2_point(j, r1, r2, u1, u2);
-      const Vec3 d = q.soft_sun ? cone_direction(l.sun_direction, l.sun_angular_radius, u1, u2)
-                                : l.sun_direction;
+      Vec3 d = l.sun_direction;
+      if (q.soft_sun) {
+        double u1 = 0.0, u2 = 0.0;
+        r2_point(j, r1, r2, u1, u2);
+        d = cone_direction(l.sun_direction, l.sun_angular_radius, u1, u2);
+      }
       const size_t n = s.sun_owner.size();
       if (n / 16 >= s.sun.size()) {
         s.sun.emplace_back();
@@ -254,7 +258,8 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
       ++t.light_rays[k];
     }
   }
-  const double r1 = hash_uniform(key, 30), r2 = hash_uniform(key, 31);
+  const double r1 = q.sky_rays > 0 ? hash_uniform(key, 30) : 0.0;
+  const double r2 = q.sky_rays > 0 ? hash_uniform(key, 31) : 0.0;
   for (int j = 0; j < q.sky_rays; ++j) {
     double u1 = 0.0, u2 = 0.0;
     r2_point(j, r1, r2, u1, u2);

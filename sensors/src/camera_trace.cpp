@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <new>
 
 #include "camera_tile.h"
 
@@ -107,65 +108,95 @@ void store_sky(const Pass& p, size_t px, Vec3 dir) {
   (*p.visibility)[px] = PixelVisibility{};
 }
 
-/// The record (surface, shading terms, mirrored and transmitted light) and the visibilities of
-/// lit pixel k of a resolved tile.
-void store_lit(const Pass& p, const TileState& t, int k) {
-  const SurfacePoint& sp = t.surface[k];
-  const float distance = static_cast<float>(sp.distance);
-  if (p.direct != nullptr) {
-    p.distances[t.pixel[k]] = distance;
-  } else {
-    PixelGeometry& g = (*p.geometry)[t.pixel[k]];
-    g.position[0] = static_cast<float>(sp.position.x);
-    g.position[1] = static_cast<float>(sp.position.y);
-    g.position[2] = static_cast<float>(sp.position.z);
-    g.normal[0] = static_cast<float>(sp.normal.x);
-    g.normal[1] = static_cast<float>(sp.normal.y);
-    g.normal[2] = static_cast<float>(sp.normal.z);
-    g.distance = distance;
-    g.surface_id = sp.surface_id;
-  }
-  const Visibility& e = t.vis[k];
+/// A pixel's visibilities in the single precision the per-pixel buffers keep.
+PixelVisibility visibility_as_stored(const Visibility& e) {
   PixelVisibility v;
   v.sun = static_cast<float>(e.sun);
   v.sky[0] = static_cast<float>(e.sky.r);
   v.sky[1] = static_cast<float>(e.sky.g);
   v.sky[2] = static_cast<float>(e.sky.b);
   v.lights = static_cast<float>(e.lights);
-  const ShadeTerms terms = shade_terms(*p.shading, sp, t.has_mirrored[k] ? &t.mirrored[k] : nullptr,
-                                       t.has_behind[k] ? &t.behind[k] : nullptr);
-  if (p.direct != nullptr) {
-    store_radiance(p.direct, t.pixel[k], composite_pixel(p, t.pixel[k], terms, v, distance));
-    return;
-  }
+  return v;
+}
+
+ShadeTerms tile_pixel_terms(const Pass& p, const TileState& t, int k) {
+  return shade_terms(*p.shading, t.surface[k], t.has_mirrored[k] ? &t.mirrored[k] : nullptr,
+                     t.has_behind[k] ? &t.behind[k] : nullptr);
+}
+
+/// The record (surface, shading terms, mirrored and transmitted light) and the visibilities of
+/// lit pixel k of a resolved tile, for the later stages.
+void store_lit(const Pass& p, const TileState& t, int k) {
+  const SurfacePoint& sp = t.surface[k];
+  PixelGeometry& g = (*p.geometry)[t.pixel[k]];
+  g.position[0] = static_cast<float>(sp.position.x);
+  g.position[1] = static_cast<float>(sp.position.y);
+  g.position[2] = static_cast<float>(sp.position.z);
+  g.normal[0] = static_cast<float>(sp.normal.x);
+  g.normal[1] = static_cast<float>(sp.normal.y);
+  g.normal[2] = static_cast<float>(sp.normal.z);
+  g.distance = static_cast<float>(sp.distance);
+  g.surface_id = sp.surface_id;
   PixelRecord& rec = (*p.records)[t.pixel[k]];
   rec.has_mirrored = t.has_mirrored[k];
   rec.has_behind = t.has_behind[k];
   rec.mirrored = Color3f(t.mirrored[k]);
   rec.behind = Color3f(t.behind[k]);
-  rec.terms = terms;
-  (*p.visibility)[t.pixel[k]] = v;
+  rec.terms = tile_pixel_terms(p, t, k);
+  (*p.visibility)[t.pixel[k]] = visibility_as_stored(t.vis[k]);
+}
+
+/// The lit pixels of a resolved tile composited at once (Pass::direct): composite_pixel()'s
+/// terms times visibilities, then the air in front of them for the whole tile in one call (its
+/// exponentials two pixels at a time: Lighting::transmittances).
+void composite_lit(const Pass& p, const TileState& t, const int* valid) {
+  const ShadingContext& c = *p.shading;
+  ShadeTerms terms[16];
+  int lit[16];
+  double dir_z[16], distance[16], kept[16];
+  int n = 0;
+  for (int k = 0; k < 16; ++k) {
+    if (!valid[k] || !t.hit[k]) {
+      continue;
+    }
+    // Rounded to single precision as the buffers of the other presets keep them.
+    const float d = static_cast<float>(t.surface[k].distance);
+    p.distances[t.pixel[k]] = d;
+    // All the tile's terms before any is read (as the hits in trace_tile).
+    new (&terms[n]) ShadeTerms(tile_pixel_terms(p, t, k));
+    dir_z[n] = centre_ray(p, t.pixel[k]).z;
+    distance[n] = d;
+    lit[n] = k;
+    ++n;
+  }
+  c.lighting->transmittances(c.eye_air, dir_z, distance, n, kept);
+  const Color fog = c.lighting->fog_color;
+  for (int i = 0; i < n; ++i) {
+    const Color seen = combine(terms[i], visibility_as_stored(t.vis[lit[i]]).get());
+    store_radiance(p.direct, t.pixel[lit[i]], seen * kept[i] + fog * (1.0 - kept[i]));
+  }
 }
 
 }  // namespace
 
 SurfaceHit primary_hit(const Pass& p, const RTCRayHit16& rh, int k, Vec3 dir,
                        const SceneData::Label& label) {
-  SurfaceHit sh;
-  sh.inst_id = rh.hit.instID[0][k];
-  sh.geom_id = rh.hit.geomID[k];
-  sh.prim_id = rh.hit.primID[k];
-  sh.u = rh.hit.u[k];
-  sh.v = rh.hit.v[k];
-  sh.view_dir = dir;
-  sh.distance = rh.ray.tfar[k];
-  sh.position = p.origin_local + dir * sh.distance;
-  const Vec3 n =
-      p.scene->world_normal(sh.inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
-  sh.normal = dot(n, dir) > 0.0 ? -n : n;
-  sh.semantic = label.semantic;
-  sh.entity = label.entity;
-  return sh;
+  const unsigned inst_id = rh.hit.instID[0][k];
+  const double distance = rh.ray.tfar[k];
+  const Vec3 n = p.scene->world_normal(inst_id, {rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]});
+  // Every field given at once: assigned one by one, the hit was first cleared with a string
+  // store in the caller's return slot (a third of this function's time).
+  return SurfaceHit{.inst_id = inst_id,
+                    .geom_id = rh.hit.geomID[k],
+                    .prim_id = rh.hit.primID[k],
+                    .u = rh.hit.u[k],
+                    .v = rh.hit.v[k],
+                    .position = p.origin_local + dir * distance,
+                    .normal = dot(n, dir) > 0.0 ? -n : n,
+                    .view_dir = dir,
+                    .distance = distance,
+                    .semantic = label.semantic,
+                    .entity = label.entity};
 }
 
 Vec3 ray_at(const Pass& p, double x, double y) {
@@ -206,6 +237,11 @@ void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch) {
 
   const bool rgb = p.settings->outputs.rgb;
   scratch.clear();
+  // The tile's hits first, then their surfaces, then their rays: each result read right after
+  // it was written stalled the load on the store buffer (wide loads of narrow stores). Results
+  // are built in place (placement new of the returned value): assigned, they were returned
+  // into a temporary and copied at once, a copy that stalled the same way.
+  SurfaceHit hits[16];
   for (int k = 0; k < 16; ++k) {
     if (!valid[k]) {
       continue;
@@ -218,18 +254,32 @@ void trace_tile(const Pass& p, int col0, int row0, TileScratch& scratch) {
       store_sky(p, t.pixel[k], t.dir[k]);
       continue;
     }
-    const SurfaceHit sh = primary_hit(p, rh, k, t.dir[k], label);
+    new (&hits[k]) SurfaceHit(primary_hit(p, rh, k, t.dir[k], label));
     t.hit[k] = true;
-    t.surface[k] = surface_at(*p.shading, sh);
-    queue_rays(p, t, k, scratch);
-    if (p.motion) {
-      store_motion(p, t.pixel[k], p.scene->to_map(sh.position), label.entity);
-    }
   }
   if (!rgb) {
     return;
   }
+  for (int k = 0; k < 16; ++k) {
+    if (!t.hit[k]) {
+      continue;
+    }
+    new (&t.surface[k]) SurfacePoint(surface_at(*p.shading, hits[k]));
+  }
+  for (int k = 0; k < 16; ++k) {
+    if (!t.hit[k]) {
+      continue;
+    }
+    queue_rays(p, t, k, scratch);
+    if (p.motion) {
+      store_motion(p, t.pixel[k], p.scene->to_map(hits[k].position), hits[k].entity);
+    }
+  }
   resolve_rays(p, t, scratch);
+  if (p.direct != nullptr) {
+    composite_lit(p, t, valid);
+    return;
+  }
   for (int k = 0; k < 16; ++k) {
     if (valid[k] && t.hit[k]) {
       store_lit(p, t, k);

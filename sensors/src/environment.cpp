@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "air_math.h"
 #include "corsa/core/det_math.h"
 #include "corsa/sensors/solar.h"
 #include "scalar_math.h"
@@ -165,6 +166,36 @@ double Lighting::transmittance(const AirStart& start, double dir_z, double dista
     tau += falling * std::min(distance, column);
   }
   return std::isinf(tau) ? 0.0 : std::exp(-tau);
+}
+
+void Lighting::transmittances(const AirStart& start, const double* dir_z, const double* distance,
+                              int n, double* out) const {
+  using detail::AirLanes;
+  // transmittance() two rays at a time, each operation in the same order.
+  auto depth = [](double at_start, double scale_height, AirLanes dz, AirLanes d) {
+    return at_start * d * detail::air_expm1_ratio(d * dz / scale_height);
+  };
+  const double falling = rain_extinction + snow_extinction;
+  for (int i = 0; i < n; i += 2) {
+    const int j = i + 1 < n ? i + 1 : i;  // an odd count repeats its last ray
+    const AirLanes dz{dir_z[i], dir_z[j]};
+    const AirLanes d{distance[i], distance[j]};
+    AirLanes tau{0.0, 0.0};
+    if (start.fog > 0.0) {
+      tau = depth(start.fog, kFogScaleHeight, dz, d);
+    }
+    if (start.haze > 0.0) {
+      tau += depth(start.haze, kHazeScaleHeight, dz, d);
+    }
+    if (falling > 0.0) {
+      constexpr double kInf = std::numeric_limits<double>::infinity();
+      const AirLanes column = dz > 1e-3 ? 2000.0 / dz : kInf;
+      tau += falling * (column < d ? column : d);
+    }
+    const AirLanes t = detail::air_exp_limited(-tau);
+    out[i] = t[0];
+    out[j] = t[1];
+  }
 }
 
 Lighting compute_lighting(const engine::EnvironmentState& env, const GeoLocation& where) {

@@ -93,6 +93,12 @@ struct Lighting {
   /// transmittance() of a ray starting where `start` was taken (the same value).
   double transmittance(const AirStart& start, double dir_z, double distance,
                        bool haze = true) const;
+  /// transmittance(start, dir_z[i], distance[i]) with the haze into out[i] for n rays of finite
+  /// distance, two at a time, with exponentials of its own instead of the maths library's
+  /// (within a few ulp of them: sensors/src/air_math.h). Deterministic; not the same bits as
+  /// transmittance() on every ray (the `fast` camera's primary rays).
+  void transmittances(const AirStart& start, const double* dir_z, const double* distance, int n,
+                      double* out) const;
 };
 
 /// Lighting from the environment: the sun from the snapshot's sun angles when given, otherwise
