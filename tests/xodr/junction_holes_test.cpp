@@ -130,3 +130,20 @@ TEST_CASE("a junction boundary segment of an unknown type is a located error",
     CHECK_THAT(e.diagnostic().format(), Catch::Contains("'lane' or 'joint'"));
   }
 }
+
+TEST_CASE("a junction boundary segment naming a missing road is a located error",
+          "[xodr][holes][errors]") {
+  HoleRing ring = hole_ring("M", 0);
+  ring.boundary =
+      R"(<segment type="lane" roadId="nowhere" boundaryLane="-1" sStart="0" sEnd="end"/>)";
+  corsa::Diagnostics diagnostics;
+  try {
+    (void)Map::build(
+        parse_xodr_text(hole_rings_document(hole_ring_xodr(ring)), "bad.xodr", diagnostics),
+        diagnostics);
+    FAIL("no error");
+  } catch (const corsa::InputError& e) {
+    CHECK(e.diagnostic().format().rfind("bad.xodr:", 0) == 0);
+    CHECK_THAT(e.diagnostic().format(), Catch::Contains("road 'nowhere', which does not exist"));
+  }
+}

@@ -30,6 +30,7 @@ constexpr double kBinSize = 16.0;     // m, side of the bins the mesh's triangle
 constexpr double kLevelBand = 2.0;    // m above or below the junction where other roads count
 constexpr double kOutlineStep = 0.5;  // m between samples along a boundary lane segment
 constexpr double kFlat = 0.05;        // m, height below which an object or signal lies flat
+constexpr double kMaxCells = 4e6;     // cells of one junction's grid at most
 constexpr double kHeadHeight = 1.5;   // m, zOffset from which a traffic light is a head in the air
 
 /// Lanes that stand for a kerbed or raised border: an island they surround is not roadway.
@@ -541,7 +542,9 @@ bool sample_junction(const Map& map, const RoadMesh& mesh, const TriangleBins& b
     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
   }
-  g.cell = options.cell;
+  // A junction spread over hundreds of metres is sampled more coarsely, so the grid stays
+  // within kMaxCells (a 200 x 200 m area at 0.1 m).
+  g.cell = std::max(options.cell, std::sqrt((hi.x - lo.x) * (hi.y - lo.y) / kMaxCells));
   g.x0 = std::floor(lo.x / g.cell) * g.cell - 2 * g.cell;
   g.y0 = std::floor(lo.y / g.cell) * g.cell - 2 * g.cell;
   g.nx = static_cast<int>(std::ceil((hi.x - g.x0) / g.cell)) + 2;
