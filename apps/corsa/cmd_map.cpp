@@ -12,6 +12,8 @@ constexpr Action kActions[] = {
     {"query", "road,s,t -> x,y,z,h (or x,y -> road,lane,s,t with --to-lane), CSV", map_query},
     {"render", "top-down picture of the map (PNG)", map_render},
     {"mesh", "road surface mesh (OBJ or PLY)", map_mesh},
+    {"holes", "holes in junctions: paved by the sensor world or kept (islands), per kind",
+     map_holes},
 };
 
 }  // namespace

@@ -122,8 +122,10 @@ WorldReport build_world(const xodr::Map& map, Scene& scene, const WorldOptions& 
                         Diagnostics& diagnostics) {
   detail::WorldBuild w{map, scene, options, diagnostics, {}, {}};
   if (options.ground) {
-    detail::build_ground(w, xodr::build_road_mesh(map, xodr::MeshOptions{.road_marks = false}));
+    const xodr::RoadMesh road = xodr::build_road_mesh(map, xodr::MeshOptions{.road_marks = false});
+    detail::build_ground(w, road);
     detail::build_seams(w);
+    detail::build_junction_paving(w, road);
   }
   if (options.signals) {
     detail::build_signals(w);

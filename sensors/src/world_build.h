@@ -59,6 +59,8 @@ struct WorldBuild {
 void build_ground(WorldBuild& w, const xodr::RoadMesh& road);
 /// Bands of lane surface under the cracks where two roads' outer borders meet side by side.
 void build_seams(WorldBuild& w);
+/// Road surface in the small holes that junctions' roads enclose (xodr::find_junction_holes).
+void build_junction_paving(WorldBuild& w, const xodr::RoadMesh& road);
 /// Trees, bushes and street lights along the roads.
 void build_roadside(WorldBuild& w);
 /// True for the OpenDRIVE country codes of Korea ("KR", "KOR", "Korea", any case).

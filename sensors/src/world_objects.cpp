@@ -4,10 +4,11 @@
 // repeats place a copy every `distance` metres or stretch rails along the road. CARLA's maps
 // name some objects instead of typing them: "StopLine", "Speed_NN" (a speed-limit sign) and
 // the RoadRunner stencils "Stencil_ArrowType4L/R" (turn arrows), "Stencil_ArrowType1*"
-// (straight arrows) and "Stencil_STOP" (the word) are drawn, and "DashedShortSingleWhite" (the
-// RoadRunner lane-marking style CARLA exports as an object: a line of short white dashes along
-// its outline, which is the line itself, not a ring); other untyped objects (its duplicated lane
-// lines, other stencils) are left out with one warning per name.
+// (straight arrows) and "Stencil_STOP" (the word) are drawn, and "DashedShortSingleWhite" and
+// "DashedSingleYellow" (RoadRunner lane-marking styles CARLA exports as objects: a line of white
+// short dashes or yellow dashes along the outline, which is the line itself, not a ring); other
+// untyped objects (its duplicated lane lines, other stencils) are left out with one warning per
+// name.
 
 #include <algorithm>
 #include <cmath>
@@ -22,11 +23,36 @@
 namespace corsa::sensors::detail {
 namespace {
 
-// RoadRunner's short-dash style in metres: 2 ft dashes, 4 ft gaps (the middle of the MUTCD's
-// 2-6 ft), 6 in wide, as US line extensions through junctions (Town04 is a US town).
-constexpr double kShortDash = 0.61;
-constexpr double kShortDashGap = 1.22;
-constexpr double kShortDashWidth = 0.15;
+/// A RoadRunner dashed marking style that CARLA exports as an untyped object named after it.
+struct RoadRunnerDashStyle {
+  const char* name;
+  const char* subtype;  ///< the label's subtype
+  double dash;          ///< m of paint
+  double gap;           ///< m bare between dashes
+  double width;         ///< m
+  bool yellow;
+};
+
+// RoadRunner's own dash sizes are not published; these are the US markings the styles name
+// (Town04 is a US town, signed in mph).
+constexpr RoadRunnerDashStyle kRoadRunnerDashes[] = {
+    // Dotted line extension through a junction: 2 ft dashes, 4 ft gaps (the middle of the
+    // MUTCD's 2-6 ft, 2009 §3A.06), 6 in wide.
+    {"DashedShortSingleWhite", "dashed_short", 0.61, 1.22, 0.15, false},
+    // Normal broken yellow centre line (MUTCD 2009 §3A.06 broken line: 10 ft segments, 30 ft
+    // gaps; §3B.01 yellow centre line), as wide as Town04's own broken yellow roadMarks (0.125 m,
+    // within the MUTCD's 4-6 in normal width).
+    {"DashedSingleYellow", "dashed", 3.05, 9.14, 0.125, true},
+};
+
+const RoadRunnerDashStyle* roadrunner_dash_style(const std::string& name) {
+  for (const RoadRunnerDashStyle& style : kRoadRunnerDashes) {
+    if (name == style.name) {
+      return &style;
+    }
+  }
+  return nullptr;
+}
 
 ObjectInfo kind_info(std::string kind) {
   ObjectInfo info;
@@ -141,9 +167,7 @@ bool stencil_paint(const std::string& name, double length, double width,
 
 /// A line of short dashes along `line` (points in the object frame, in order): dashes
 /// `dash` metres long every `dash + gap` metres of the line's length, `width` wide, 1.2 cm above
-/// it; each dash follows the line's bends. The dotted line that extends lane lines through a
-/// junction is made of dashes noticeably shorter, with shorter gaps, than a broken lane line
-/// (MUTCD 2009 §3A.06: 2 ft segments, 2-6 ft gaps).
+/// it; each dash follows the line's bends (sizes per style: kRoadRunnerDashes).
 void dash_line(MeshBuilder& b, const std::vector<Vec3>& line, double dash, double gap,
                double width) {
   std::vector<double> at(line.size(), 0.0);  // length along the line at each point
@@ -335,22 +359,24 @@ void build_objects(WorldBuild& w) {
                   "object " + o.id, sign);
           ++w.report.signs;
           continue;
-        } else if (o.type == "-1" && name == "DashedShortSingleWhite") {
+        } else if (const RoadRunnerDashStyle* style = roadrunner_dash_style(name);
+                   o.type == "-1" && style != nullptr) {
           // The outline is the line (open, in order); without one, the object's length along
           // its heading.
-          b.semantic(SemanticClass::kLaneMarking).material(road_paint());
+          b.semantic(SemanticClass::kLaneMarking)
+              .material(style->yellow ? yellow_road_paint() : road_paint());
           std::vector<Vec3> line = outline;
           if (line.size() < 2) {
             const double l = std::max(o.length, 0.0);
             line = {{-0.5 * l, 0.0, 0.0}, {0.5 * l, 0.0, 0.0}};
           }
-          dash_line(b, line, kShortDash, kShortDashGap, kShortDashWidth);
+          dash_line(b, line, style->dash, style->gap, style->width);
           if (b.triangle_count() == 0) {
             continue;
           }
           info.kind = "road_mark";
           info.type = name;
-          info.subtype = "dashed_short";
+          info.subtype = style->subtype;
           w.place_paint(b.take(), frame, "object " + o.id, info);
           ++w.report.objects;
           continue;

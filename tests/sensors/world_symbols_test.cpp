@@ -10,6 +10,7 @@
 #include "corsa/sensors/world.h"
 #include "markings_fixture.h"
 #include "road_symbols.h"
+#include "scene_data.h"
 
 using namespace corsa::sensors;
 using corsa::Vec2;
@@ -213,6 +214,48 @@ TEST_CASE("CARLA's short-dash line objects are short white dashes along their ou
         down_at(world->scene, 40.732, -1.75 + 0.549).instance_id);
 }
 
+TEST_CASE("CARLA's broken yellow line objects are yellow dashes of the US centre line",
+          "[sensors][world][objects][markings]") {
+  // As Town04 writes its one: an untyped object named after the RoadRunner marking style, its
+  // open outline the line (here 30 m along the road's centre). Three dashes of 3.05 m every
+  // 12.19 m (MUTCD broken line: 10 ft paint, 30 ft gap), centred: 1.285-4.335 m,
+  // 13.475-16.525 m and 25.665-28.715 m along the line, 0.125 m wide.
+  const auto map = street_with(
+      "",
+      R"(<object id="1696" type="-1" name="DashedSingleYellow" s="40" t="0" zOffset="0" hdg="0" orientation="+" length="30" width="0" pitch="0" roll="0">
+           <outline><cornerLocal u="-15" v="0" z="0"/><cornerLocal u="0" v="0" z="0"/><cornerLocal u="15" v="0" z="0"/></outline>
+         </object>)");
+  auto world = marked_world(map);
+  CHECK(world->warnings.empty());
+  CHECK(world->report.objects == 1);
+  CHECK_FALSE(paint_at(world->scene, 26.2, 0.0));  // before the first dash
+  CHECK(paint_at(world->scene, 26.4, 0.0));        // the first dash
+  CHECK(paint_at(world->scene, 29.2, 0.0));
+  CHECK(paint_at(world->scene, 27.0, 0.05));  // 0.125 m wide
+  CHECK_FALSE(paint_at(world->scene, 27.0, 0.08));
+  CHECK_FALSE(paint_at(world->scene, 29.5, 0.0));  // the 9.14 m gap
+  CHECK_FALSE(paint_at(world->scene, 38.3, 0.0));
+  CHECK(paint_at(world->scene, 38.6, 0.0));  // the second dash
+  CHECK(paint_at(world->scene, 53.6, 0.0));  // the third
+  CHECK_FALSE(paint_at(world->scene, 53.9, 0.0));
+  const ObjectInfo dash = object_at(world->scene, 38.6, 0.0);
+  CHECK(dash.kind == "road_mark");
+  CHECK(dash.type == "DashedSingleYellow");
+  CHECK(dash.subtype == "dashed");
+  // All dashes are one labelled object, in yellow paint.
+  CHECK(down_at(world->scene, 26.4, 0.0).instance_id ==
+        down_at(world->scene, 53.6, 0.0).instance_id);
+  const uint32_t id = down_at(world->scene, 38.6, 0.0).instance_id;
+  size_t found = 0;
+  for (const auto& geometry : world->scene.data().static_geometries) {
+    if (geometry.instance_id == id) {
+      ++found;
+      CHECK(world->scene.material(geometry.material_of(0)).name == "yellow road paint");
+    }
+  }
+  CHECK(found == 1);
+}
+
 TEST_CASE("on Town04 the turn arrows ahead of a junction show as lane_marking in the image",
           "[sensors][world][objects][markings]") {
   // Road 23's two lanes carry a left and a right turn arrow at s 97 (objects 1933 and 1937);
@@ -226,6 +269,7 @@ TEST_CASE("on Town04 the turn arrows ahead of a junction show as lane_marking in
   for (const auto& w : built->warnings) {
     CHECK_THAT(w.message, !Catch::Contains("Stencil_"));
     CHECK_THAT(w.message, !Catch::Contains("DashedShortSingleWhite"));
+    CHECK_THAT(w.message, !Catch::Contains("DashedSingleYellow"));
   }
   const size_t road = *map.find_road("23");
   const auto arrow_pose = map.world_pose(road, 96.0, -1.75 - 0.79);  // object 1933's shaft

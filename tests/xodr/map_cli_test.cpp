@@ -102,3 +102,14 @@ TEST_CASE("corsa map reports bad maps and usage with exit 2", "[xodr][cli]") {
   CHECK(run_corsa({"map", "--help"}).exit_code == 0);
   CHECK(run_corsa({"map", "info", "--help"}).out.find("map info MAP.xodr") != std::string::npos);
 }
+
+TEST_CASE("corsa map holes counts the holes in a map's junctions by kind", "[xodr][cli][holes]") {
+  // Town04: mouth wedges between its connecting roads (paved), the 109 m² gore of an on-ramp
+  // (kept as an island) and a patch beside a kerbed island (kept).
+  const auto result = run_corsa({"map", "holes", shared("Town04.xodr"), "--list"});
+  CHECK(result.exit_code == 0);
+  CHECK(result.out.find("junction holes: 36, paved 34 (184.2 m2), large 1 (108.7 m2), kerbed 1 "
+                        "(11.2 m2), occupied 0 (0.0 m2)") != std::string::npos);
+  CHECK(result.out.find("junction,kind,area_m2,width_m,x,y,z\n") != std::string::npos);
+  CHECK(result.out.find("459,large,108.65,6.30,319.52,195.43,0.00\n") != std::string::npos);
+}

@@ -250,6 +250,12 @@ void check_junction(const Checker& check, const IdIndex& impl, const Junction& j
       }
     }
   }
+  for (const JunctionBoundarySegment& segment : junction.boundary) {
+    if (!impl.road_by_id.contains(segment.road_id)) {
+      check.fail(segment.line, "junction '" + junction.id + "': boundary segment refers to road '" +
+                                   segment.road_id + "', which does not exist");
+    }
+  }
 }
 
 }  // namespace

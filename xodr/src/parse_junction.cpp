@@ -1,5 +1,7 @@
 // <junction> with its connections and laneLinks (OpenDRIVE 1.8 §10).
 
+#include <limits>
+
 #include "corsa/core/strings.h"
 #include "parse_elements.h"
 
@@ -30,6 +32,58 @@ Connection parse_connection(const XmlReader& reader, const XMLElement* e) {
   }
   return connection;
 }
+
+namespace {
+
+/// sStart/sEnd of a lane segment: metres, or the keywords "begin"/"start" (0) and "end".
+double parse_boundary_s(const XmlReader& reader, const XMLElement* e, const char* name) {
+  const std::string text = reader.text(e, name);
+  if (text == "begin" || text == "start") {
+    return 0.0;
+  }
+  if (text == "end") {
+    return std::numeric_limits<double>::infinity();
+  }
+  const double s = reader.number(e, name);
+  if (s < 0.0) {
+    reader.fail(e, std::string(name) + " must not be negative");
+  }
+  return s;
+}
+
+JunctionBoundarySegment parse_boundary_segment(const XmlReader& reader, const XMLElement* e) {
+  JunctionBoundarySegment segment;
+  segment.line = e->line();
+  segment.road_id = reader.text(e, "roadId");
+  const std::string type = reader.text(e, "type");
+  if (type == "lane") {
+    segment.boundary_lane = reader.integer(e, "boundaryLane");
+    segment.s_start = parse_boundary_s(reader, e, "sStart");
+    segment.s_end = parse_boundary_s(reader, e, "sEnd");
+  } else if (type == "joint") {
+    segment.joint = true;
+    const std::string contact = reader.text(e, "contactPoint");
+    if (contact == "start") {
+      segment.contact_point = ContactPoint::kStart;
+    } else if (contact == "end") {
+      segment.contact_point = ContactPoint::kEnd;
+    } else {
+      reader.fail(e, "contactPoint must be 'start' or 'end', not '" + corsa::clip(contact) + "'");
+    }
+    if (e->attribute("jointLaneStart") != nullptr) {
+      segment.joint_lane_start = reader.integer(e, "jointLaneStart");
+    }
+    if (e->attribute("jointLaneEnd") != nullptr) {
+      segment.joint_lane_end = reader.integer(e, "jointLaneEnd");
+    }
+  } else {
+    reader.fail(e,
+                "boundary segment type must be 'lane' or 'joint', not '" + corsa::clip(type) + "'");
+  }
+  return segment;
+}
+
+}  // namespace
 
 Junction parse_junction(const XmlReader& reader, const XMLElement* e) {
   Junction junction;
@@ -64,6 +118,14 @@ Junction parse_junction(const XmlReader& reader, const XMLElement* e) {
       junction.controllers.push_back(JunctionController{reader.text(child, "id"),
                                                         reader.text_or(child, "type", ""),
                                                         parse_sequence(reader, child)});
+    } else if (named(child, "boundary")) {
+      for (const XMLElement* segment : children(child)) {
+        if (named(segment, "segment")) {
+          junction.boundary.push_back(parse_boundary_segment(reader, segment));
+        } else if (!is_ignored_element(segment->name())) {
+          reader.unknown_child(child, segment);
+        }
+      }
     } else if (!is_ignored_element(child->name())) {
       reader.unknown_child(e, child);
     }

@@ -2,12 +2,14 @@
 // controller, junction; road: link, type, planView, elevationProfile, lateralProfile, lanes,
 // objects, signals, userData; lane: link, width|border, roadMark, speed, height, userData).
 // Optional attributes whose value the XSD forbids (roadMark height 0, an empty signal unit) are
-// left out, so the output validates against the ASAM 1.7 XSD.
+// left out, so the output validates against the ASAM 1.7 XSD (a junction's <boundary>, new in
+// 1.8, is written only at revMinor 8).
 
 #include "corsa/xodr/writer.h"
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <string_view>
 #include <type_traits>
 
@@ -397,6 +399,37 @@ void write_controller(XmlWriter& w, const Controller& controller) {
   w.close();
 }
 
+/// <boundary> (OpenDRIVE 1.8 §10.9): a lane segment's "end" (infinite s) written as the keyword.
+void write_boundary(XmlWriter& w, const std::vector<JunctionBoundarySegment>& boundary) {
+  w.open("boundary").children();
+  for (const JunctionBoundarySegment& segment : boundary) {
+    w.open("segment")
+        .attr("type", segment.joint ? "joint" : "lane")
+        .attr("roadId", segment.road_id);
+    if (segment.joint) {
+      w.attr("contactPoint", contact_name(segment.contact_point));
+      if (segment.joint_lane_start) {
+        w.attr("jointLaneStart", *segment.joint_lane_start);
+      }
+      if (segment.joint_lane_end) {
+        w.attr("jointLaneEnd", *segment.joint_lane_end);
+      }
+    } else {
+      w.attr("boundaryLane", segment.boundary_lane);
+      for (const auto& [name, s] :
+           {std::pair{"sStart", segment.s_start}, std::pair{"sEnd", segment.s_end}}) {
+        if (std::isinf(s)) {
+          w.attr(name, "end");
+        } else {
+          w.attr(name, s);
+        }
+      }
+    }
+    w.end_empty();
+  }
+  w.close();
+}
+
 void write_junction(XmlWriter& w, const Junction& junction, const WriteOptions& options) {
   const char* types[] = {"default", "direct", "virtual", "crossing"};
   const bool legacy = options.legacy_junctions && junction.type == JunctionType::kDirect;
@@ -435,6 +468,9 @@ void write_junction(XmlWriter& w, const Junction& junction, const WriteOptions& 
       w.attr("sequence", static_cast<int>(*controller.sequence));
     }
     w.end_empty();
+  }
+  if (!junction.boundary.empty() && options.rev_minor >= 8) {
+    write_boundary(w, junction.boundary);
   }
   w.close();
 }

@@ -19,8 +19,9 @@ namespace corsa::sensors {
 
 struct WorldOptions {
   uint64_t seed = 0;  ///< run seed: where plants stand, which species, sizes
-  /// Terrain around the roads, out to the horizon, and lane surface under the cracks between
-  /// roads that lie side by side (a centre strip split between two roads).
+  /// Terrain around the roads, out to the horizon, lane surface under the cracks between
+  /// roads that lie side by side (a centre strip split between two roads), and road surface in
+  /// the small holes that a junction's roads enclose (xodr::find_junction_holes).
   bool ground = true;
   bool vegetation = true;     ///< trees and bushes beside the roads
   bool street_lights = true;  ///< street lights along roads with sidewalks
@@ -39,7 +40,10 @@ struct WorldOptions {
 /// What build_world added.
 struct WorldReport {
   size_t ground_triangles = 0;
-  double seam_length = 0.0;  ///< m of road borders with a band under the crack to a neighbour
+  double seam_length = 0.0;   ///< m of road borders with a band under the crack to a neighbour
+  size_t junction_holes = 0;  ///< holes found in junctions (paved or not)
+  size_t junction_holes_paved = 0;   ///< of those, paved as road
+  double junction_paved_area = 0.0;  ///< m² paved
   size_t trees = 0;
   size_t bushes = 0;
   size_t street_lights = 0;

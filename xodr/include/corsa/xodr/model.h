@@ -365,12 +365,30 @@ struct JunctionController {
   std::optional<uint32_t> sequence;
 };
 
+/// One <segment> of a junction's <boundary> (OpenDRIVE 1.8 §10.9): along the outer border of a
+/// lane (`lane`), or across a road's end (`joint`) between two lanes' outer borders.
+struct JunctionBoundarySegment {
+  bool joint = false;
+  std::string road_id;
+  int boundary_lane = 0;  ///< lane segments: the lane whose outer border the boundary follows
+  /// Lane segments: from s_start to s_end along the road (m; "begin"/"start" are 0, "end" is
+  /// +infinity, clamped to the road's length when evaluated).
+  double s_start = 0.0;
+  double s_end = 0.0;
+  ContactPoint contact_point = ContactPoint::kNone;  ///< joint segments: which end
+  /// Joint segments: the lanes whose outer borders the segment joins; none: the road's outermost.
+  std::optional<int> joint_lane_start;
+  std::optional<int> joint_lane_end;
+  int line = 0;
+};
+
 struct Junction {
   std::string id;
   std::string name;
   JunctionType type = JunctionType::kDefault;
   std::vector<Connection> connections;
   std::vector<JunctionController> controllers;
+  std::vector<JunctionBoundarySegment> boundary;  ///< the junction's outline, in order
   int line = 0;
 };
 
