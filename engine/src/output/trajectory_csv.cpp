@@ -239,9 +239,11 @@ void TrajectoryRecorder::append_cached_rows(const Simulation& simulation) {
     entry.valid = true;
     entry.inputs = detail::row_inputs(state);
     entry.text.clear();
-    // Written in place behind the rows before it: one check of the room per row.
+    // Written in place behind the rows before it: one check of the room per row. The time is
+    // copied at its buffer's fixed size (no memcpy call; the row's room holds it, and the row
+    // overwrites what follows the time's end).
     char* const start = room(time.size() + row_room(name, road));
-    std::memcpy(start, time.data(), time.size());
+    std::memcpy(start, time_text, sizeof time_text);
     char* const end = write_row_tail(start + time.size(), name, state, road);
     used_ += static_cast<size_t>(end - start);
   }
