@@ -69,30 +69,33 @@ LanePath path_ahead(const xodr::Map& map, const Entity& me, LanesAhead& ahead) {
     ahead.clear();
   }
   LanePath path;
-  LaneFollow follow = me.lane;
+  LaneEntry at = LaneEntry::of(me.lane);
   const auto& graph = map.lane_graph();
   double distance = 0.0;
   for (size_t k = 0; path.count < kMaxPieces; ++k) {
-    path.pieces[path.count++] = PathPiece{follow.road, follow.section, follow.lane, follow.node,
-                                          follow.s,    follow.dir,     distance};
-    const auto& info = graph.info(follow.node);
-    const double boundary = follow.dir > 0 ? info.s_end : info.s_start;
-    distance += std::abs(boundary - follow.s);
+    path.pieces[path.count++] =
+        PathPiece{at.road, at.section, at.lane, at.node, at.s, at.dir, distance};
+    const auto& info = graph.info(at.node);
+    const double boundary = at.dir > 0 ? info.s_end : info.s_start;
+    distance += std::abs(boundary - at.s);
     if (distance >= kRange) {
       break;
     }
     if (k < ahead.count) {
-      follow = ahead.next(static_cast<uint32_t>(k));
+      at = ahead.next(static_cast<uint32_t>(k));
       continue;
     }
-    const auto ends = graph.ends(follow.node, follow.dir < 0);
+    const auto ends = graph.ends(at.node, at.dir < 0);
     if (ahead.dead_end || ends.empty()) {
       ahead.dead_end = true;
       break;
     }
+    // The next lane from the whole of the last one: the entity's own lane, or the last known.
+    LaneFollow follow = k == 0 ? me.lane : ahead.last;
     follow.s = boundary;
     enter_next_lane(map, follow, ends, me.chooser);
     ahead.push(follow);
+    at = ahead.next(static_cast<uint32_t>(k));
   }
   return path;
 }

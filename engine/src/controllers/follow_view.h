@@ -112,6 +112,21 @@ class FollowView {
   static constexpr double kGridCell = 8.0;
 };
 
+/// Where a follower's path enters one of its following lanes: what a piece of the path needs of
+/// the LaneFollow that enter_next_lane made (32 bytes of its 64).
+struct LaneEntry {
+  uint32_t road = 0;
+  uint32_t section = 0;
+  int lane = 0;
+  xodr::LaneNode node = xodr::kNoLane;
+  double s = 0.0;  ///< m, where the path enters the lane
+  int dir = 1;     ///< LaneFollow::dir
+
+  static LaneEntry of(const LaneFollow& follow) {
+    return LaneEntry{follow.road, follow.section, follow.lane, follow.node, follow.s, follow.dir};
+  }
+};
+
 /// The lanes a follower will drive after the one it is in, as enter_next_lane chooses them at
 /// each lane end. They depend only on that lane, the direction and the chooser, so a follower
 /// keeps them from step to step while those stay the same, and looks them up instead of choosing
@@ -120,7 +135,9 @@ class FollowView {
 /// The first lanes are held inline, beside the rest, and the movers keep these records in the
 /// order they move the entities (controllers/controllers.cpp): a follower's look-up then reads
 /// memory next to the last follower's instead of a heap block of its own (with hundreds of
-/// vehicles, the cache misses of those reads were a large part of car following).
+/// vehicles, the cache misses of those reads were a large part of car following). The lanes
+/// are held as LaneEntry, two to a cache line; only the last one is kept whole (`last`), which
+/// is where a longer path continues from (enter_next_lane reads and moves its lateral offset).
 struct LanesAhead {
   xodr::LaneNode node = xodr::kNoLane;
   int dir = 0;
@@ -130,18 +147,20 @@ struct LanesAhead {
   /// Holds the route `chooser` belongs to, so that its address is not reused by another.
   std::shared_ptr<const LaneChooser> route;
   static constexpr uint32_t kInline = 4;
-  /// Where the path enters each following lane (road, section, lane, node, s, dir): the first
-  /// kInline here, the others in `more`.
-  std::array<LaneFollow, kInline> first;
-  std::vector<LaneFollow> more;
+  /// Where the path enters each following lane: the first kInline here, the others in `more`.
+  std::array<LaneEntry, kInline> first;
+  std::vector<LaneEntry> more;
+  /// The last following lane as enter_next_lane left it (valid while count > 0).
+  LaneFollow last;
 
-  const LaneFollow& next(uint32_t k) const { return k < kInline ? first[k] : more[k - kInline]; }
+  const LaneEntry& next(uint32_t k) const { return k < kInline ? first[k] : more[k - kInline]; }
   void push(const LaneFollow& follow) {
     if (count < kInline) {
-      first[count] = follow;
+      first[count] = LaneEntry::of(follow);
     } else {
-      more.push_back(follow);
+      more.push_back(LaneEntry::of(follow));
     }
+    last = follow;
     ++count;
   }
   void clear() {

@@ -67,8 +67,9 @@ struct BinaryTrajectoryRecorder::State {
   /// Appends the record of entity `index` to `frame` when its row differs from the prediction
   /// (`previous`: the index of the frame's last record, -1 before the first). An entity whose
   /// row inputs are bit for bit those of its last row, when that row repeated its prediction,
-  /// is as predicted again: it is skipped without making its row.
-  void encode(const Simulation& simulation, uint32_t index, int64_t& previous);
+  /// is as predicted again: it is skipped without making its row. `state` is the entity's.
+  void encode(const Simulation& simulation, uint32_t index, const EntityState& state,
+              int64_t& previous);
   void flush();
 };
 
@@ -107,11 +108,62 @@ void BinaryTrajectoryRecorder::State::start(const Simulation& simulation) {
   last_frame = simulation.tick();
 }
 
+namespace {
+
+// Codes an entity's numeric fields into its record's body, one field at a time with the field's
+// number known when compiled (its decimals and mask bit constants, no loop over a table): as
+// the loop it replaces, about a tenth fewer instructions per row. `Track` is
+// BinaryTrajectoryRecorder::State::Track.
+template <class Track>
+struct FieldCoder {
+  Track& track;
+  uint32_t& raw;
+  uint32_t& mask;
+  char* out;
+  bool repeats = true;  ///< every field so far predicted to keep its value
+
+  template <int... F>
+  void fields(const double (&values)[detail::kRowFields]) {
+    (field<F>(values[F]), ...);
+  }
+
+  template <int F>
+  void field(double value) {
+    constexpr uint32_t kBit = 1u << F;
+    const uint64_t bits = std::bit_cast<uint64_t>(value);
+    if ((track.still & kBit) != 0 && bits == track.bits[F]) {
+      return;  // the same units again, as predicted: residual and change 0
+    }
+    const double scaled = value * detail::decimal_text::kScale[detail::kFieldDecimals[F]];
+    if (!(std::fabs(scaled) < detail::decimal_text::kExactLimit)) {
+      raw |= kBit;  // stored as it is; its history starts afresh after it
+      out = codec::put_fixed64(out, bits);
+      track.still &= ~kBit;
+      repeats = false;
+      return;
+    }
+    const int64_t units = detail::decimal_text::round_half_away(scaled);
+    const bool fresh = (track.fresh & kBit) != 0;
+    const int64_t residual = units - (fresh ? 0 : track.next[F]);
+    const int64_t change = fresh ? 0 : units - track.last[F];
+    track.last[F] = units;
+    track.next[F] = units + change;
+    repeats = repeats & (change == 0);
+    track.bits[F] = bits;
+    track.still = change == 0 ? track.still | kBit : track.still & ~kBit;
+    if (residual != 0) {
+      mask |= kBit;
+      out = codec::put_varint(out, codec::zigzag(residual));
+    }
+  }
+};
+
+}  // namespace
+
 void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint32_t index,
-                                             int64_t& previous) {
+                                             const EntityState& state, int64_t& previous) {
   Track& track = entities[index];
   Steady& seen = steady[index];
-  const EntityState& state = simulation.state(index);
   uint32_t mask = 0;
   uint32_t raw = 0;
   // The record's body (road and lane, at most 10 + 10 bytes, then nine numbers of 10), made
@@ -167,35 +219,14 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
                                                on_road ? state.road->s : 0.0,
                                                on_road ? state.road->t : 0.0};
     const int fields = on_road ? detail::kRowFields : detail::kFieldS;
-    bool repeats = true;  // every field predicted to keep its value
-    for (int f = 0; f < fields; ++f) {
-      const uint32_t bit = 1u << f;
-      const uint64_t bits = std::bit_cast<uint64_t>(values[f]);
-      if ((track.still & bit) != 0 && bits == track.bits[f]) {
-        continue;  // the same units again, as predicted: residual and change 0
-      }
-      const double scaled = values[f] * detail::decimal_text::kScale[detail::kFieldDecimals[f]];
-      if (!(std::fabs(scaled) < detail::decimal_text::kExactLimit)) {
-        raw |= bit;  // stored as it is; its history starts afresh after it
-        out = codec::put_fixed64(out, bits);
-        track.still &= ~bit;
-        repeats = false;
-        continue;
-      }
-      const int64_t units = detail::decimal_text::round_half_away(scaled);
-      const bool fresh = (track.fresh & bit) != 0;
-      const int64_t residual = units - (fresh ? 0 : track.next[f]);
-      const int64_t change = fresh ? 0 : units - track.last[f];
-      track.last[f] = units;
-      track.next[f] = units + change;
-      repeats = repeats & (change == 0);
-      track.bits[f] = bits;
-      track.still = change == 0 ? track.still | bit : track.still & ~bit;
-      if (residual != 0) {
-        mask |= bit;
-        out = codec::put_varint(out, codec::zigzag(residual));
-      }
+    FieldCoder<Track> coder{track, raw, mask, out};
+    coder.fields<detail::kFieldX, detail::kFieldY, detail::kFieldZ, detail::kFieldH,
+                 detail::kFieldP, detail::kFieldR, detail::kFieldSpeed>(values);
+    if (on_road) {
+      coder.fields<detail::kFieldS, detail::kFieldT>(values);
     }
+    const bool repeats = coder.repeats;
+    out = coder.out;
     // The fields taken are predicted from now on, the raw ones start afresh.
     track.fresh = (track.fresh & ~((1u << fields) - 1)) | raw;
     if (raw != 0) {
@@ -212,7 +243,9 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
     return;  // as predicted: nothing to store
   }
   const auto body_size = static_cast<size_t>(out - body);
-  if (frame.size() < frame_size + kHead + body_size) {
+  // Room for the whole of `body`, so that it is copied at its full, fixed size (a few vector
+  // moves in place of a call of memcpy); the bytes after its end are not part of the frame.
+  if (frame.size() < frame_size + kHead + sizeof body) {
     frame.resize(std::max(2 * frame.size(), frame_size + kHead + sizeof body));
   }
   char* end = frame.data() + frame_size;
@@ -221,7 +254,7 @@ void BinaryTrajectoryRecorder::State::encode(const Simulation& simulation, uint3
   if (raw != 0) {
     end = codec::put_varint(end, raw);
   }
-  std::memcpy(end, body, body_size);
+  std::memcpy(end, body, sizeof body);
   frame_size = static_cast<size_t>(end - frame.data()) + body_size;
   previous = index;
 }
@@ -247,7 +280,7 @@ void BinaryTrajectoryRecorder::State::record(const Simulation& simulation) {
         detail::same_row_inputs(steady[i].inputs, state)) {
       continue;
     }
-    encode(simulation, i, previous);
+    encode(simulation, i, state, previous);
   }
   const double time = simulation.time();
   const bool odd_time =

@@ -92,7 +92,7 @@ void grow_buffer(std::string& buffer, size_t needed) {
 
 }  // namespace
 
-char* TrajectoryRecorder::room(size_t count) {
+inline char* TrajectoryRecorder::room(size_t count) {
   if (buffer_.size() < used_ + count) [[unlikely]] {
     grow_buffer(buffer_, used_ + count);
   }
@@ -109,8 +109,10 @@ size_t row_room(std::string_view name, const std::string* road) {
 
 // Writes the row of entity `name` in `state` after its time field at `p` (row_room characters
 // there): "name,x,...,t\n" (`road`: the road's id, null off the road); returns its end.
-char* write_row_tail(char* p, std::string_view name, const EntityState& state,
-                     const std::string* road) {
+// Flattened: the number writers are inlined into it (the compiler kept write_fixed and
+// write_units as calls, two per number, a fifth of the row's instructions).
+[[gnu::flatten]] char* write_row_tail(char* p, std::string_view name, const EntityState& state,
+                                      const std::string* road) {
   // The numbers straight from the state (write_fixed is write_scaled of scale_decimal, what
   // append_row writes from RowValues), without building the RowValues: 15% of a row's cost.
   p = detail::put(p, name);
@@ -161,14 +163,34 @@ const std::string* road_of(const Simulation& simulation, const EntityState& stat
 }  // namespace
 
 /// Per entity: the inputs of its last row and, once they repeat, the row's text after the time
-/// (an entity standing still gets its row copied instead of written again).
+/// (an entity standing still gets its row copied instead of written again); its name, and the
+/// roads' ids, kept here so that a row asks the simulation only for the entity's state.
 struct TrajectoryRecorder::RowCache {
   struct Entry {
     bool valid = false;
     detail::RowInputs inputs;
     std::string text;  ///< empty until the inputs repeat
+    std::string name;  ///< the entity's (an entity index keeps its name for the whole run)
   };
   std::vector<Entry> entries;
+  /// By road index: its OpenDRIVE id (Simulation::road_id, which the map holds), null until a
+  /// row on that road needs it.
+  std::vector<const std::string*> road_ids;
+
+  const std::string* road_of(const Simulation& simulation, const EntityState& state) {
+    if (!state.road) {
+      return nullptr;
+    }
+    const uint32_t road = state.road->road;
+    if (road >= road_ids.size()) [[unlikely]] {
+      road_ids.resize(road + 1, nullptr);
+    }
+    const std::string*& id = road_ids[road];
+    if (id == nullptr) [[unlikely]] {
+      id = &simulation.road_id(road);
+    }
+    return id;
+  }
 };
 
 TrajectoryRecorder::~TrajectoryRecorder() = default;
@@ -189,17 +211,21 @@ void TrajectoryRecorder::append_rows(const Simulation& simulation, std::string& 
 void TrajectoryRecorder::append_cached_rows(const Simulation& simulation) {
   char time_text[detail::kDecimalTextMax + 1];
   const std::string_view time = time_field(simulation, time_text);
-  auto& entries = cache_->entries;
-  entries.resize(std::max(entries.size(), simulation.entity_count()));
-  for (size_t i = 0; i < simulation.entity_count(); ++i) {
+  RowCache& cache = *cache_;
+  auto& entries = cache.entries;
+  const size_t count = simulation.entity_count();
+  for (size_t i = entries.size(); i < count; ++i) {
+    entries.emplace_back().name = simulation.entity(i).name;
+  }
+  for (size_t i = 0; i < count; ++i) {
     const EntityState& state = simulation.state(i);
     RowCache::Entry& entry = entries[i];
     if (!state.placed) {
       entry.valid = false;
       continue;
     }
-    const std::string& name = simulation.entity(i).name;
-    const std::string* road = road_of(simulation, state);
+    const std::string& name = entry.name;
+    const std::string* road = cache.road_of(simulation, state);
     if (entry.valid && detail::same_row_inputs(entry.inputs, state)) {
       if (entry.text.empty()) {
         append_row_tail(entry.text, name, state, road);
@@ -213,9 +239,11 @@ void TrajectoryRecorder::append_cached_rows(const Simulation& simulation) {
     entry.valid = true;
     entry.inputs = detail::row_inputs(state);
     entry.text.clear();
-    // Written in place behind the rows before it: one check of the room per row.
+    // Written in place behind the rows before it: one check of the room per row. The time is
+    // copied at its buffer's fixed size (no memcpy call; the row's room holds it, and the row
+    // overwrites what follows the time's end).
     char* const start = room(time.size() + row_room(name, road));
-    std::memcpy(start, time.data(), time.size());
+    std::memcpy(start, time_text, sizeof time_text);
     char* const end = write_row_tail(start + time.size(), name, state, road);
     used_ += static_cast<size_t>(end - start);
   }

@@ -81,12 +81,13 @@ struct ControlState {
   /// A generated walker's own pace (m/s), taken at its first step; it slows for others and
   /// comes back to it (controllers/npc_caution.h). Negative until known.
   double pace = -1.0;
+  /// Set when the acc controller emulates esmini's ACCController. In the first cache line too:
+  /// every car-following step tests it.
+  std::optional<EsminiAcc> esmini_acc;
   /// Name of the assigned ObjectController (for ActivateControllerAction's reference).
   std::string assigned;
   /// The scenario's controller that `kind` stands in for ("" when the scenario's own runs).
   std::string substitute_for;
-  /// Set when the acc controller emulates esmini's ACCController.
-  std::optional<EsminiAcc> esmini_acc;
   ControllerOverrides overrides;
   /// The dynamics controller's vehicle model (created on its first step).
   std::shared_ptr<DynamicsVehicle> dynamics;
