@@ -7,6 +7,7 @@
 // line (within 0.25 m) keeps the line through its own (road_reference.h). Junction paths (one
 // lane) take the shared line where their lane's end lies on it, and otherwise end square.
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -26,5 +27,22 @@ struct RoadEndLines {
 
 /// Per road of `plan` (removed ones get no lines).
 std::vector<RoadEndLines> road_end_lines(const NetworkPlan& plan, const Origin& origin);
+
+/// Where a built road's reference line starts or (`at_end`) ends, and its heading (rad) there:
+/// the normal through that point is the line its lanes end on. Nothing for a road not built.
+struct BuiltEnd {
+  Vec2 point;  ///< map frame
+  double heading = 0.0;
+};
+using BuiltEndOf = std::function<std::optional<BuiltEnd>(size_t road, bool at_end)>;
+
+/// Junction paths (connecting roads of one lane; not the ordinary pieces moved into a
+/// junction) end on the cross-section of the ordinary road their lane leaves or enters, where
+/// exactly one does (`end_of`: that road's end normal). Where the surveyed links meet at a
+/// corner (10-20 degrees at many junction mouths) a path ending square to its own course left a
+/// wedge of unpaved ground on one side of the joint, up to half the lane wide; on the same line
+/// the two lane ends meet edge to edge. Replaces those ends' lines in `lines`.
+void join_path_ends(const NetworkPlan& plan, const BuiltEndOf& end_of,
+                    std::vector<RoadEndLines>& lines);
 
 }  // namespace corsa::ngii::detail
