@@ -88,7 +88,7 @@ class Assembler {
     const size_t total = plan_.roads.size();
     std::vector<RoadEndLines> end_lines = road_end_lines(plan_, origin_);
     // Ordinary roads first: junction paths then end on the cross-sections those roads end on
-    // (join_path_ends).
+    // (join_ends).
     std::vector<std::optional<BuiltRoad>> built(total);
     size_t done = 0;
     const auto build = [&](size_t r) {
@@ -107,21 +107,24 @@ class Assembler {
       }
     }
     const std::vector<RoadEndLines> own_lines = end_lines;
-    join_path_ends(
-        plan_,
-        [&](size_t r, bool at_end) -> std::optional<BuiltEnd> {
-          if (!built[r] || built[r]->road.plan_view.empty()) {
-            return std::nullopt;
-          }
-          const auto& records = built[r]->road.plan_view;
-          const xodr::Geometry& g = at_end ? records.back() : records.front();
-          const xodr::RefPoint p = xodr::evaluate_geometry(g, at_end ? g.length : 0.0);
-          return BuiltEnd{Vec2{p.x, p.y}, p.hdg};
-        },
-        end_lines);
+    const auto end_of = [&](size_t r, bool at_end) -> std::optional<BuiltEnd> {
+      if (!built[r] || built[r]->road.plan_view.empty()) {
+        return std::nullopt;
+      }
+      const auto& records = built[r]->road.plan_view;
+      const xodr::Geometry& g = at_end ? records.back() : records.front();
+      const xodr::RefPoint p = xodr::evaluate_geometry(g, at_end ? g.length : 0.0);
+      return BuiltEnd{Vec2{p.x, p.y}, p.hdg};
+    };
+    // One-lane ordinary roads starting where one other ordinary road ends, again on its end's
+    // cross-section (their ends stay, so the roads they lead into keep theirs).
+    for (const size_t r : join_ends(plan_, end_of, JoinedEnds::kOrdinaryStarts, end_lines)) {
+      build_joined(r, end_lines[r], own_lines[r], built[r]);
+    }
+    join_ends(plan_, end_of, JoinedEnds::kJunctionPaths, end_lines);
     for (size_t r = 0; r < total; ++r) {
       if (!plan_.roads[r].removed && path(r)) {
-        build_path(r, end_lines[r], own_lines[r], built[r]);
+        build_joined(r, end_lines[r], own_lines[r], built[r]);
         if (options_.progress) {
           options_.progress(0.1 + 0.85 * static_cast<double>(++done) / static_cast<double>(total));
         }
@@ -167,8 +170,8 @@ class Assembler {
   /// that cannot turn onto a joined line within its length (its lane would fold or end off its
   /// link's end, a short path between two lines skewed by 20-50 degrees) keeps its own line at
   /// that end, the other end first.
-  void build_path(size_t r, const RoadEndLines& joined, const RoadEndLines& own,
-                  std::optional<BuiltRoad>& out) const {
+  void build_joined(size_t r, const RoadEndLines& joined, const RoadEndLines& own,
+                    std::optional<BuiltRoad>& out) const {
     constexpr double kPathEndError = 0.1;  // m: farthest a lane end may move off its link's
     RoadEndLines start_only = joined;
     start_only.end = own.end;
