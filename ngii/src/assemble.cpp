@@ -1,9 +1,12 @@
 #include "assemble.h"
 
 #include <algorithm>
+#include <array>
 #include <map>
+#include <optional>
 #include <set>
 
+#include "corsa/xodr/geometry.h"
 #include "sidewalks.h"
 #include "union_find.h"
 
@@ -83,45 +86,107 @@ class Assembler {
 
   void build_roads() {
     const size_t total = plan_.roads.size();
-    const std::vector<RoadEndLines> end_lines = road_end_lines(plan_, origin_);
+    std::vector<RoadEndLines> end_lines = road_end_lines(plan_, origin_);
+    // Ordinary roads first: junction paths then end on the cross-sections those roads end on
+    // (join_ends).
+    std::vector<std::optional<BuiltRoad>> built(total);
+    size_t done = 0;
+    const auto build = [&](size_t r) {
+      built[r] =
+          build_road(plan_.roads[r], network_, origin_, widths_.lanes[r], end_lines[r], options_);
+      if (options_.progress) {
+        options_.progress(0.1 + 0.85 * static_cast<double>(++done) / static_cast<double>(total));
+      }
+    };
+    const auto path = [&](size_t r) {
+      return plan_.roads[r].junction >= 0 && !plan_.roads[r].absorbed;
+    };
+    for (size_t r = 0; r < total; ++r) {
+      if (!plan_.roads[r].removed && !path(r)) {
+        build(r);
+      }
+    }
+    const std::vector<RoadEndLines> own_lines = end_lines;
+    const auto end_of = [&](size_t r, bool at_end) -> std::optional<BuiltEnd> {
+      if (!built[r] || built[r]->road.plan_view.empty()) {
+        return std::nullopt;
+      }
+      const auto& records = built[r]->road.plan_view;
+      const xodr::Geometry& g = at_end ? records.back() : records.front();
+      const xodr::RefPoint p = xodr::evaluate_geometry(g, at_end ? g.length : 0.0);
+      return BuiltEnd{Vec2{p.x, p.y}, p.hdg};
+    };
+    // One-lane ordinary roads starting where one other ordinary road ends, again on its end's
+    // cross-section (their ends stay, so the roads they lead into keep theirs).
+    for (const size_t r : join_ends(plan_, end_of, JoinedEnds::kOrdinaryStarts, end_lines)) {
+      build_joined(r, end_lines[r], own_lines[r], built[r]);
+    }
+    join_ends(plan_, end_of, JoinedEnds::kJunctionPaths, end_lines);
+    for (size_t r = 0; r < total; ++r) {
+      if (!plan_.roads[r].removed && path(r)) {
+        build_joined(r, end_lines[r], own_lines[r], built[r]);
+        if (options_.progress) {
+          options_.progress(0.1 + 0.85 * static_cast<double>(++done) / static_cast<double>(total));
+        }
+      }
+    }
     for (size_t r = 0; r < total; ++r) {
       if (plan_.roads[r].removed) {
         continue;
       }
       const RoadPlan& plan = plan_.roads[r];
-      BuiltRoad built =
-          build_road(plan, network_, origin_, widths_.lanes[r], end_lines[r], options_);
+      BuiltRoad& built_road = *built[r];
       xodr::Road& road = road_of(static_cast<int>(r));
       const std::string id = road.id;
-      road = std::move(built.road);
+      road = std::move(built_road.road);
       road.id = id;
       road.name = unique_name(plan);
       road.junction = plan.junction >= 0 ? junction_id_[static_cast<size_t>(plan.junction)] : "-1";
       ConversionSummary& sum = out_.summary;
       sum.lanes += plan.lanes.size();
       sum.geometries += road.plan_view.size();
-      sum.kinks += built.kinks;
-      sum.max_lane_error = std::max(sum.max_lane_error, built.source_error);
-      sum.max_smoothed_error = std::max(sum.max_smoothed_error, built.lane_error);
-      sum.max_reference_error = std::max(sum.max_reference_error, built.reference_error);
+      sum.kinks += built_road.kinks;
+      sum.max_lane_error = std::max(sum.max_lane_error, built_road.source_error);
+      sum.max_smoothed_error = std::max(sum.max_smoothed_error, built_road.lane_error);
+      sum.max_reference_error = std::max(sum.max_reference_error, built_road.reference_error);
       sum.connecting_roads += plan.junction >= 0;
-      for (size_t k = 0; k < built.spans.size(); ++k) {
+      for (size_t k = 0; k < built_road.spans.size(); ++k) {
         // Provenance: the A2 links along the lane, in order (what --placements lists too).
         auto& user_data = road.lane_sections.front().lanes[k + 1].user_data;
-        for (const BuiltRoad::Span& span : built.spans[k]) {
+        for (const BuiltRoad::Span& span : built_road.spans[k]) {
           user_data.push_back(xodr::UserData{"ngii:link", network_.source(span.link).id});
         }
-        for (const BuiltRoad::Span& span : built.spans[k]) {
+        for (const BuiltRoad::Span& span : built_road.spans[k]) {
           out_.placements.push_back(LinkPlacement{network_.source(span.link).id, id, 0,
                                                   lane_id(static_cast<int>(k)), span.s_start,
                                                   span.s_end});
         }
       }
-      if (options_.progress) {
-        options_.progress(0.1 + 0.85 * static_cast<double>(r + 1) / static_cast<double>(total));
-      }
     }
     out_.summary.roads = out_.roads.size();
+  }
+
+  /// A junction path on the lines of the roads it joins (`joined`), else on `own`: a path
+  /// that cannot turn onto a joined line within its length (its lane would fold or end off its
+  /// link's end, a short path between two lines skewed by 20-50 degrees) keeps its own line at
+  /// that end, the other end first.
+  void build_joined(size_t r, const RoadEndLines& joined, const RoadEndLines& own,
+                    std::optional<BuiltRoad>& out) const {
+    constexpr double kPathEndError = 0.1;  // m: farthest a lane end may move off its link's
+    RoadEndLines start_only = joined;
+    start_only.end = own.end;
+    start_only.end_shared = own.end_shared;
+    RoadEndLines end_only = joined;
+    end_only.start = own.start;
+    end_only.start_shared = own.start_shared;
+    for (const RoadEndLines* lines :
+         std::array<const RoadEndLines*, 3>{&joined, &start_only, &end_only}) {
+      out = build_road(plan_.roads[r], network_, origin_, widths_.lanes[r], *lines, options_);
+      if (!out->folds && !fitted_road_folds(out->road) && out->end_error <= kPathEndError) {
+        return;
+      }
+    }
+    out = build_road(plan_.roads[r], network_, origin_, widths_.lanes[r], own, options_);
   }
 
   /// The leftmost lane's first A2 link, and its last when it has several ("first..last"); a

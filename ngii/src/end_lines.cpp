@@ -1,7 +1,9 @@
 #include "end_lines.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
+#include <set>
 
 #include "union_find.h"
 
@@ -84,6 +86,70 @@ std::vector<RoadEndLines> road_end_lines(const NetworkPlan& plan, const Origin& 
     }
   }
   return out;
+}
+
+std::vector<size_t> join_ends(const NetworkPlan& plan, const BuiltEndOf& end_of, JoinedEnds which,
+                              std::vector<RoadEndLines>& lines) {
+  const LaneIndex index(plan);
+  const auto ordinary = [&](int road) {
+    const RoadPlan& p = plan.roads[static_cast<size_t>(road)];
+    return !p.removed && (p.junction < 0 || p.absorbed);
+  };
+  const bool paths = which == JoinedEnds::kJunctionPaths;
+  std::vector<size_t> changed;
+  for (size_t r = 0; r < plan.roads.size(); ++r) {
+    const RoadPlan& road = plan.roads[r];
+    if (road.removed || road.lanes.size() != 1 || ordinary(static_cast<int>(r)) == paths) {
+      continue;
+    }
+    const PlanLane& lane = road.lanes.front();
+    bool any = false;
+    for (const bool at_end : {false, true}) {
+      // One-lane ordinary roads: only their start, and only where no line is shared there
+      // (a joint of one lane on either side).
+      if (!paths && (at_end || lines[r].start_shared)) {
+        continue;
+      }
+      // The lanes on the other side of the joint: ending where the road starts, starting where
+      // it ends; only ordinary ones that end there beside their neighbours (not at zero width).
+      const int key = at_end ? lane.end_node : lane.start_node;
+      if (key < 0) {
+        continue;
+      }
+      const auto& refs = at_end ? index.starting[static_cast<size_t>(key)]
+                                : index.ending[static_cast<size_t>(key)];
+      std::set<int> joined;
+      bool usable = true;
+      for (const LaneIndex::Ref& ref : refs) {
+        if (!ordinary(ref.road)) {
+          continue;
+        }
+        const RoadPlan& other = plan.roads[static_cast<size_t>(ref.road)];
+        usable = usable && ref.road != static_cast<int>(r) &&
+                 effective_end(other, static_cast<size_t>(ref.lane), at_end) == LaneEnd::kBeside;
+        joined.insert(ref.road);
+      }
+      // An ordinary road joins only a one-lane road (a piece cut off a wider road's end keeps
+      // the line it was cut on).
+      if (!usable || joined.size() != 1 ||
+          (!paths && plan.roads[static_cast<size_t>(*joined.begin())].lanes.size() != 1)) {
+        continue;
+      }
+      // The road's start meets that road's end, and its end that road's start.
+      const auto end = end_of(static_cast<size_t>(*joined.begin()), !at_end);
+      if (!end) {
+        continue;
+      }
+      (at_end ? lines[r].end : lines[r].start) =
+          EndLine{end->point, Vec2{-std::sin(end->heading), std::cos(end->heading)}};
+      (at_end ? lines[r].end_shared : lines[r].start_shared) = true;
+      any = true;
+    }
+    if (any) {
+      changed.push_back(r);
+    }
+  }
+  return changed;
 }
 
 }  // namespace corsa::ngii::detail

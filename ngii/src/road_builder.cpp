@@ -234,11 +234,16 @@ void fit_lanes(BuiltRoad& built, const RoadPlan& plan, const Network& network, c
       // Back to horizontal offsets for the error measurements.
       const double centre_t = (inner[i] - 0.5 * w) * std::cos(roll[i]);
       inner[i] -= w;
+      const RefSample& ref = st.ref[i];
+      const Vec2 point{ref.x - centre_t * std::sin(ref.hdg), ref.y + centre_t * std::cos(ref.hdg)};
+      if ((i == 0 || i + 1 == n) && borders.centred[i][k]) {
+        const auto& surveyed = lines.raw[k].points();
+        const Vec2 end = xy(i == 0 ? surveyed.front() : surveyed.back());
+        built.end_error = std::max(built.end_error, norm(point - end));
+      }
       if (!borders.centred[i][k] || !own_part(st, lines, k, i, 0.0)) {
         continue;
       }
-      const RefSample& ref = st.ref[i];
-      const Vec2 point{ref.x - centre_t * std::sin(ref.hdg), ref.y + centre_t * std::cos(ref.hdg)};
       // Near where the station crosses the lane (long lanes loop back on themselves).
       const double u = st.crossings[k][i].u;
       const Projection nearest = lines.raw[k].project_within(point, u - 5.0, u + 5.0);
@@ -307,11 +312,10 @@ bool folds_at_stations(const Stations& st, const Borders& borders) {
   return false;
 }
 
-/// The road along the reference lane's left edge (`lanes_left`: its right edge); `folds` is
-/// set when a border lies beyond the centre of curvature at a station.
+/// The road along the reference lane's left edge (`lanes_left`: its right edge).
 BuiltRoad build_road_along(const RoadPlan& plan, const Network& network, const LaneLines& lines,
                            const std::vector<WidthProfile>& widths, const RoadEndLines& ends,
-                           const ConvertOptions& options, bool lanes_left, bool& folds) {
+                           const ConvertOptions& options, bool lanes_left) {
   BuiltRoad built;
   const size_t ref = reference_lane(plan);
   CurveFitOptions fit_options;
@@ -345,7 +349,7 @@ BuiltRoad build_road_along(const RoadPlan& plan, const Network& network, const L
   for (int round = 0; round < 2 && refine_stations(st, borders.t, road, lines); ++round) {
     borders = station_borders(plan, st, lines, widths, ref);
   }
-  folds = folds_at_stations(st, borders);
+  built.folds = folds_at_stations(st, borders);
   std::vector<std::vector<LaneHeightSample>> heights(st.s.size());
   for (size_t i = 0; i < st.s.size(); ++i) {
     for (size_t k = 0; k < plan.lanes.size(); ++k) {
@@ -366,21 +370,55 @@ BuiltRoad build_road_along(const RoadPlan& plan, const Network& network, const L
 
 }  // namespace
 
+bool fitted_road_folds(const xodr::Road& road) {
+  constexpr double kFoldStep = 0.02;  // m between samples along the road
+  constexpr double kMarkReach = 0.1;  // m: half a road mark's width, and some
+  constexpr double kMaxSlant = 2.0;   // sideways metres per metre forward
+  if (road.lane_sections.empty() || road.length <= 0.0) {
+    return false;
+  }
+  const auto& lanes = road.lane_sections.front().lanes;
+  const auto borders = [&](double s) {
+    std::vector<double> t{piecewise_value(road.lane_offsets, s)};
+    for (const xodr::Lane& lane : lanes) {
+      if (lane.id < 0) {
+        t.push_back(t.back() - piecewise_value(lane.widths, s));
+      }
+    }
+    return t;
+  };
+  const int steps = std::max(1, static_cast<int>(std::ceil(road.length / kFoldStep)));
+  std::vector<double> before = borders(0.0);
+  for (int j = 1; j <= steps; ++j) {
+    const double s0 = road.length * (j - 1) / steps;
+    const double s1 = road.length * j / steps;
+    const double k = curvature_at(road.plan_view, s0);
+    const std::vector<double> after = borders(s1);
+    for (size_t b = 0; b < after.size(); ++b) {
+      // Forward progress of the border (and of a mark beside it) per metre of s.
+      const double forward = 1.0 - k * (before[b] + std::copysign(kMarkReach, k));
+      if (forward <= 0.0 || std::abs(after[b] - before[b]) > kMaxSlant * forward * (s1 - s0)) {
+        return true;
+      }
+    }
+    before = after;
+  }
+  return false;
+}
+
 BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin& origin,
                      const std::vector<WidthProfile>& widths, const RoadEndLines& ends,
                      const ConvertOptions& options) {
   const LaneLines lines = lane_lines(plan, origin);
-  bool folds = false;
-  BuiltRoad built = build_road_along(plan, network, lines, widths, ends, options, false, folds);
+  BuiltRoad built = build_road_along(plan, network, lines, widths, ends, options, false);
   // A one-lane road turning right whose lane folds over on the inside of the turn: along its
   // right edge instead, the lane lies on the outside of every right turn, where borders cannot
   // fold (road_reference.h, along_right_edge). Only then: a line along the inside is shorter
   // and follows a junction path's steep height steps over less s.
-  if (folds && plan.lanes.size() == 1 && along_right_edge(lines.smooth[reference_lane(plan)])) {
-    bool right_folds = false;
-    BuiltRoad right =
-        build_road_along(plan, network, lines, widths, ends, options, true, right_folds);
-    if (!right_folds) {
+  if (built.folds && plan.lanes.size() == 1 &&
+      along_right_edge(lines.smooth[reference_lane(plan)])) {
+    BuiltRoad right = build_road_along(plan, network, lines, widths, ends, options, true);
+    if (!right.folds) {
       built = std::move(right);
     }
   }

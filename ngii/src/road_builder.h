@@ -28,8 +28,21 @@ struct BuiltRoad {
                                  ///< the smoothed lane lines it was fitted to
   double source_error = 0.0;     ///< the same against the source polylines as surveyed
   double reference_error = 0.0;  ///< plan view fit error (m)
+  /// Largest distance (m) of a lane centre's start or end from its surveyed line's, over the
+  /// lanes that start or end beside the others (not at zero width).
+  double end_error = 0.0;
+  /// A lane border lies beyond the reference line's centre of curvature at a station (the
+  /// mesh folds over there).
+  bool folds = false;
   int kinks = 0;
 };
+
+/// Whether a lane border of the fitted `road` (one lane section, lanes on the right), or a road
+/// mark up to 0.1 m outside it, lies beyond the reference line's centre of curvature somewhere
+/// along it, or runs sideways across the normals more than twice as fast as it goes forward
+/// (sampled every 2 cm): where the road mesh folds over itself, or its triangles between samples
+/// a few decimetres apart turn over.
+bool fitted_road_folds(const xodr::Road& road);
 
 /// `widths`: the plan lanes' measured widths (lane_widths.h), one per lane; `ends`: the lines
 /// the road starts and ends on (end_lines.h).

@@ -133,3 +133,30 @@ TEST_CASE("a junction path narrower than the lane it leaves widens to it at the 
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
 }
+
+TEST_CASE("a junction path leaving a lane at a corner starts on that lane's end line",
+          "[ngii][mouths]") {
+  // One-lane roads east, a junction path between them heading 15 degrees north of east: the
+  // links meet at a corner of 15 degrees at both of its ends. A path ending square to its own
+  // course left a wedge of unpaved ground on the outside of each corner, about half the lane
+  // wide (1.5 m); on the end lines of the roads it joins, none.
+  Builder b;
+  const double px = 30.0 + 15.0 * std::cos(15.0 * M_PI / 180.0);
+  const double py = 15.0 * std::sin(15.0 * M_PI / 180.0);
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("E0", px, py);
+  b.node("E1", px + 30.0, py);
+  b.link("A2TEST00000A", "6", 1, "A0", "A1");
+  b.link("A2TEST00000P", "1", 1, "A1", "E0");
+  b.link("A2TEST00000E", "6", 1, "E0", "E1");
+  b.mark("B2AL", 0.0, 30.0, 1.75, "A2TEST00000A", "");
+  b.mark("B2AR", 0.0, 30.0, -1.75, "", "A2TEST00000A");
+  b.mark("B2EL", px, px + 30.0, py + 1.75, "A2TEST00000E", "");
+  b.mark("B2ER", px, px + 30.0, py - 1.75, "", "A2TEST00000E");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 4);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
