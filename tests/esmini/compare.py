@@ -341,8 +341,8 @@ def main():
     in_kit = [s for s in per_scenario if status.get(s) != 'not in the kit']
     kit_rows = sum(len(per_scenario[s]) for s in in_kit)
     print(f'{within_rows} of {total} rows within {WITHIN_M} m ({kit_rows} rows of the '
-          f'{len(in_kit)} scenarios in the kit); {within_scenarios} of {ran} scenarios that ran within '
-          f'p95 {P95_M} m / max {MAX_M} m ({len(per_scenario)} scenarios with rows)')
+          f'{len(in_kit)} scenarios in the kit); {within_scenarios} of {ran} scenarios that ran '
+          f'within p95 {P95_M} m / max {MAX_M} m ({len(per_scenario)} scenarios with rows)')
 
 
 if __name__ == '__main__':
