@@ -333,6 +333,32 @@ TEST_CASE("A ReachPositionCondition ignores the Orientation, or esmini's compare
   }
 }
 
+TEST_CASE(
+    "A RelativeSpeedCondition's direction is the triggering entity's, or esmini's reference's",
+    "[engine][semantics][conditions]") {
+  // Ref drives 10 m/s along +x, Trig 10 m/s along a line 60 degrees to it. Longitudinally, in
+  // Trig's frame: 10 - 10 cos 60 = 5 m/s; in Ref's frame: 10 cos 60 - 10 = -5 m/s. "faster"
+  // waits for more than 0, "slower" for less than -4; both are checked from the first step on.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_speed_frame.xosc"));
+    run.run();
+    CHECK(run.at(1.0, "Trig").pose.h == Approx(std::numbers::pi / 3).margin(1e-9));
+    CHECK(run.at(1.0, "Ref").pose.h == Approx(0.0).margin(1e-12));
+    const auto faster = run.first("S::A::G::M::faster", engine::TransitionKind::kStart);
+    REQUIRE(faster);
+    CHECK(*faster == Approx(0.0).margin(1e-12));
+    CHECK_FALSE(run.first("S::A::G::M::slower", engine::TransitionKind::kStart));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_speed_frame.xosc"), esmini_reading());
+    run.run();
+    const auto slower = run.first("S::A::G::M::slower", engine::TransitionKind::kStart);
+    REQUIRE(slower);
+    CHECK(*slower == Approx(0.0).margin(1e-12));
+    CHECK_FALSE(run.first("S::A::G::M::faster", engine::TransitionKind::kStart));
+  }
+}
+
 TEST_CASE("A step to a continuous relative speed jumps under either reading",
           "[engine][semantics]") {
   for (const bool esmini : {false, true}) {
