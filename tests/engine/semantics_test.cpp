@@ -436,4 +436,30 @@ TEST_CASE(
   CHECK(run.at(4.0, "Car").road->t == Approx(-5.25).margin(1e-9));
 }
 
+TEST_CASE("A continuous LaneOffsetAction never ends, or ends at its target as esmini's",
+          "[engine][semantics][lane]") {
+  // action_lane_offset.xosc: from 1.01 s Shifter moves 1 m sideways (sinusoidal, 0.5 m/s^2: pi
+  // seconds, not continuous); Shadow's continuous LaneOffsetAction, a step to Shifter's offset
+  // less 0.5 m, reaches its target at once. The standard: a continuous action does not end, and
+  // Shadow keeps tracking Shifter. esmini ends it there (its smoke test: test_maneuver_groups_x_3,
+  // test_action_dynamics), and Shadow keeps the offset it had, -0.5 m.
+  for (const bool esmini : {false, true}) {
+    CAPTURE(esmini);
+    FixtureRun run(engine_fixture("action_lane_offset.xosc"),
+                   esmini ? esmini_reading() : engine::SimulationOptions{});
+    run.run();
+    CHECK(run.first("ShiftEvent::Shift", engine::TransitionKind::kEnd) == Approx(4.16));
+    CHECK(run.now("Shifter").road->t == Approx(-4.25));
+    const auto mirror_end = run.first("ShadowEvent::Mirror", engine::TransitionKind::kEnd);
+    if (esmini) {
+      REQUIRE(mirror_end);
+      CHECK(*mirror_end == Approx(1.01).margin(0.011));
+      CHECK(run.now("Shadow").road->t == Approx(-8.75 - 0.5));
+    } else {
+      CHECK_FALSE(mirror_end);
+      CHECK(run.now("Shadow").road->t == Approx(-8.75 + 1.0 - 0.5));
+    }
+  }
+}
+
 }  // namespace corsa::test
