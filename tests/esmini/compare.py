@@ -12,7 +12,10 @@ rear axle centre on the ground), heading modulo 2 pi, and speed.
 
 A row is "within" when its position differs by at most 0.5 m; a scenario is "within" when every
 one of its rows was compared and the 95th percentile of their position differences is at most
-0.5 m and the largest at most 2 m.
+0.5 m and the largest at most 2 m. A row whose time is earlier than one asserted before it in the
+same test is marked "rewound": esmini's ghost restarts run the ghost's time again and record rows
+with those times, which Corsa's trajectory (one time line) cannot match; they are compared and
+counted like the others.
 
 usage: compare.py [--kit DIR] [--corsa BIN] [--extra "ARGS"] [--only NAME] [--rows]
                   [--check-kit] [-v]
@@ -47,6 +50,7 @@ class SmokeRow:
         self.name = name
         self.x, self.y, self.h, self.speed = x, y, h, speed
         self.text = text  # the assertion's pattern, as the test writes it
+        self.rewound = False  # earlier than a row asserted before it in the same test
 
 
 def logical_lines(text):
@@ -125,6 +129,7 @@ def read_smoke_rows(path):
     names = module_strings(text)
     rows, seen = [], set()
     test, scenario, args = None, None, ''
+    latest = -math.inf
     skip_indent = None
     for line in logical_lines(text):
         indent = len(line) - len(line.lstrip())
@@ -137,6 +142,7 @@ def read_smoke_rows(path):
         m = re.match(r'def\s+(test_\w+)\s*\(', stripped)
         if m:
             test, scenario, args = m.group(1), None, ''
+            latest = -math.inf
             continue
         m = re.search(r"run_scenario\(\s*os\.path\.join\(\s*ESMINI_PATH\s*,\s*" + STRING +
                       r"\s*\)(.*)", stripped)
@@ -157,8 +163,11 @@ def read_smoke_rows(path):
         if key in seen:
             continue
         seen.add(key)
-        rows.append(SmokeRow(test, scenario, args, fields['time'], fields['name'], fields['x'],
-                             fields['y'], fields['h'], fields['speed'], pattern))
+        row = SmokeRow(test, scenario, args, fields['time'], fields['name'], fields['x'],
+                       fields['y'], fields['h'], fields['speed'], pattern)
+        row.rewound = row.time < latest - 1e-9
+        latest = max(latest, row.time)
+        rows.append(row)
     return rows
 
 
@@ -308,6 +317,8 @@ def main():
                 dh = heading_difference(got[2], r.h)
                 dv = got[3] - r.speed
                 mark = 'ok' if d <= WITHIN_M else 'FAR'
+                if r.rewound:
+                    mark += ' (rewound)'
                 print(f'   {r.time:8.3f} {r.name:12} d={d:8.3f} m  dh={dh:+.3f} rad  '
                       f'dv={dv:+8.3f} m/s  esmini ({r.x:.3f}, {r.y:.3f}) '
                       f'corsa ({got[0]:.3f}, {got[1]:.3f})  {mark}')
@@ -333,9 +344,12 @@ def main():
         good = len(distances) == n and p95 <= P95_M and worst <= MAX_M
         within_scenarios += good
         missing = n - len(distances)
+        rewound = sum(1 for r, _ in results if r.rewound)
         verdict = 'within' if good else 'differs'
         if missing:
             verdict += f' ({missing} rows missing)'
+        if rewound:
+            verdict += f' ({rewound} rows rewound)'
         print(f'{name:42} {n:4} {ok:6} {p95:8.3f} {worst:8.3f}  {verdict}')
     print()
     in_kit = [s for s in per_scenario if status.get(s) != 'not in the kit']
