@@ -333,6 +333,32 @@ TEST_CASE("A ReachPositionCondition ignores the Orientation, or esmini's compare
   }
 }
 
+TEST_CASE(
+    "A RelativeSpeedCondition's direction is the triggering entity's, or esmini's reference's",
+    "[engine][semantics][conditions]") {
+  // Ref drives 10 m/s along +x, Trig 10 m/s along a line 60 degrees to it. Longitudinally, in
+  // Trig's frame: 10 - 10 cos 60 = 5 m/s; in Ref's frame: 10 cos 60 - 10 = -5 m/s. "faster"
+  // waits for more than 0, "slower" for less than -4; both are checked from the first step on.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_speed_frame.xosc"));
+    run.run();
+    CHECK(run.at(1.0, "Trig").pose.h == Approx(std::numbers::pi / 3).margin(1e-9));
+    CHECK(run.at(1.0, "Ref").pose.h == Approx(0.0).margin(1e-12));
+    const auto faster = run.first("S::A::G::M::faster", engine::TransitionKind::kStart);
+    REQUIRE(faster);
+    CHECK(*faster == Approx(0.0).margin(1e-12));
+    CHECK_FALSE(run.first("S::A::G::M::slower", engine::TransitionKind::kStart));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_speed_frame.xosc"), esmini_reading());
+    run.run();
+    const auto slower = run.first("S::A::G::M::slower", engine::TransitionKind::kStart);
+    REQUIRE(slower);
+    CHECK(*slower == Approx(0.0).margin(1e-12));
+    CHECK_FALSE(run.first("S::A::G::M::faster", engine::TransitionKind::kStart));
+  }
+}
+
 TEST_CASE("A step to a continuous relative speed jumps under either reading",
           "[engine][semantics]") {
   for (const bool esmini : {false, true}) {
@@ -408,6 +434,32 @@ TEST_CASE(
   CHECK(run.at(2.02, "Car").road->t == Approx(-7.0).margin(0.02));
   CHECK(run.at(4.0, "Car").road->lane == -2);
   CHECK(run.at(4.0, "Car").road->t == Approx(-5.25).margin(1e-9));
+}
+
+TEST_CASE("A continuous LaneOffsetAction never ends, or ends at its target as esmini's",
+          "[engine][semantics][lane]") {
+  // action_lane_offset.xosc: from 1.01 s Shifter moves 1 m sideways (sinusoidal, 0.5 m/s^2: pi
+  // seconds, not continuous); Shadow's continuous LaneOffsetAction, a step to Shifter's offset
+  // less 0.5 m, reaches its target at once. The standard: a continuous action does not end, and
+  // Shadow keeps tracking Shifter. esmini ends it there (its smoke test: test_maneuver_groups_x_3,
+  // test_action_dynamics), and Shadow keeps the offset it had, -0.5 m.
+  for (const bool esmini : {false, true}) {
+    CAPTURE(esmini);
+    FixtureRun run(engine_fixture("action_lane_offset.xosc"),
+                   esmini ? esmini_reading() : engine::SimulationOptions{});
+    run.run();
+    CHECK(run.first("ShiftEvent::Shift", engine::TransitionKind::kEnd) == Approx(4.16));
+    CHECK(run.now("Shifter").road->t == Approx(-4.25));
+    const auto mirror_end = run.first("ShadowEvent::Mirror", engine::TransitionKind::kEnd);
+    if (esmini) {
+      REQUIRE(mirror_end);
+      CHECK(*mirror_end == Approx(1.01).margin(0.011));
+      CHECK(run.now("Shadow").road->t == Approx(-8.75 - 0.5));
+    } else {
+      CHECK_FALSE(mirror_end);
+      CHECK(run.now("Shadow").road->t == Approx(-8.75 + 1.0 - 0.5));
+    }
+  }
 }
 
 }  // namespace corsa::test

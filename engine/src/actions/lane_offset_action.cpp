@@ -1,10 +1,13 @@
 // LaneOffsetAction (OpenSCENARIO 1.3 §7.4.2.2): the actor keeps its lane but moves its lateral
 // offset from the lane centre to an absolute value or to another entity's offset plus a value,
 // with a dynamics shape whose duration follows from maxLateralAcc. Continuous actions keep
-// tracking and never end. The offset is along the lane's t-axis: lane coordinates are
-// road-based (§6.3; a LanePosition's offset "in the direction of the t-axis"), t pointing left of
-// the road's +s, so a positive offset is to the right of an entity driving toward -s (esmini
-// reads it so too). LaneFollow::lateral, left of the direction of travel, is dir times it.
+// tracking and never end (the standard: continuous "does not end"); `--semantics esmini` ends
+// them, as esmini does, once the target is reached (its smoke test: test_maneuver_groups_x_3's
+// event ends at 1.12 s, test_action_dynamics's at 25.96 s). The offset is along the lane's t-axis:
+// lane coordinates are road-based (§6.3; a LanePosition's offset "in the direction of the t-axis"),
+// t pointing left of the road's +s, so a positive offset is to the right of an entity driving
+// toward -s (esmini reads it so too). LaneFollow::lateral, left of the direction of travel, is dir
+// times it.
 
 #include <cmath>
 #include <numbers>
@@ -55,6 +58,8 @@ class LaneOffsetInstance final : public ActionInstance {
       need_entity(context.state, relative->entity_ref, relative->source);
       reference_ = *context.state.world.find(relative->entity_ref);
     }
+    ends_when_reached_ =
+        !action_.continuous || context.state.options.semantics == Semantics::kEsmini;
     start_ = entity.lane.lateral;
     start_tick_ = context.state.tick;
     const double target = target_offset(context);
@@ -82,7 +87,7 @@ class LaneOffsetInstance final : public ActionInstance {
     reached_ = p >= 1.0;
   }
 
-  bool finished() const override { return reached_ && !action_.continuous; }
+  bool finished() const override { return reached_ && ends_when_reached_; }
 
  private:
   // The target as LaneFollow::lateral (left of the actor's direction of travel).
@@ -98,6 +103,7 @@ class LaneOffsetInstance final : public ActionInstance {
 
   const xosc::LaneOffsetAction& action_;
   uint32_t reference_ = 0;
+  bool ends_when_reached_ = true;  ///< not continuous, or continuous under Semantics::kEsmini
   double start_ = 0.0;
   int64_t start_tick_ = 0;
   double duration_ = 0.0;

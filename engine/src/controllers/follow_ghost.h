@@ -4,7 +4,8 @@
 // sets up), which esmini's example scenarios name explicitly:
 //   - the entity gets a ghost, "<name>_ghost", a copy of it appended after the scenario's
 //     entities, which starts the run `headstartTime` seconds earlier: the run begins at
-//     simulation time -headstartTime, and until time 0 only the ghost moves;
+//     simulation time -headstartTime, and until time 0 only the ghost moves (the other
+//     entities' actions begin at time 0: storyboard/action_runner.h);
 //   - the ghost performs the entity's Init actions (all but the controller ones) and, in the
 //     stories, the entity's motion actions (Speed, SpeedProfile, LaneChange, LaneOffset,
 //     Synchronize, FollowTrajectory, AssignRoute, Teleport); the SimulationTimeConditions of

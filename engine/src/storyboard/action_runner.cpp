@@ -5,6 +5,11 @@
 namespace corsa::engine::detail {
 
 void start_instance(SimState& state, RunningInstance& running, bool init) {
+  if (!init && running.actor && state.frozen(*running.actor)) {
+    running.started = false;
+    return;
+  }
+  running.started = true;
   ActionContext context{state, running.actor, init};
   const uint8_t domains = running.action->domains();
   if (running.actor && domains != kDomainNone) {
@@ -23,6 +28,12 @@ void step_instance(SimState& state, RunningInstance& running) {
   if (running.action->done() || (running.actor && state.frozen(*running.actor))) {
     // An entity that stands while a ghost has its head start waits with its actions too.
     return;
+  }
+  if (!running.started) {
+    start_instance(state, running, false);
+    if (running.action->done()) {
+      return;
+    }
   }
   ActionContext context{state, running.actor, false};
   running.action->step(context);

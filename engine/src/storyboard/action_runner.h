@@ -18,11 +18,15 @@ struct SimState;
 struct RunningInstance {
   std::unique_ptr<ActionInstance> action;
   std::optional<uint32_t> actor;
+  /// False while the start waits for its actor: one that stands while a ghost has its head
+  /// start begins its actions at time 0, as esmini (its rows of test_ghost_restart2).
+  bool started = true;
 };
 
-/// Claims the actor's domains (stopping their previous owners) and starts the action.
+/// Claims the actor's domains (stopping their previous owners) and starts the action; for an
+/// actor that stands during a ghost's head start, that waits until its first step at time >= 0.
 void start_instance(SimState& state, RunningInstance& running, bool init);
-/// Steps the instance unless it is done.
+/// Steps the instance unless it is done (starting it first if its start waited).
 void step_instance(SimState& state, RunningInstance& running);
 /// Gives the instance's domains back (call when it is done, before destroying it).
 void release_instance(SimState& state, RunningInstance& running);
