@@ -108,18 +108,18 @@ Color resample(const Pass& p, int col, int row, int count) {
         p, rh, k, dirs[k], d.label(rh.hit.instID[0][k], rh.hit.geomID[k], rh.hit.primID[k]));
     const SurfacePoint s = surface_at(c, h);
     const long long q = matching_neighbour(p, col, row, s);
-    // The terms initialised by the call (assigned, they were returned into a temporary and
-    // copied at once with wide loads of the narrow stores just made).
-    const PixelRecord* rec = q >= 0 ? &(*p.records)[q] : nullptr;
-    const Color mirrored = rec != nullptr ? rec->mirrored.get() : Color{};
-    const Color behind = rec != nullptr ? rec->behind.get() : Color{};
-    const ShadeTerms terms =
-        shade_terms(c, s, rec != nullptr && rec->has_mirrored ? &mirrored : nullptr,
-                    rec != nullptr && rec->has_behind ? &behind : nullptr);
-    Visibility v = rec != nullptr
-                       ? (*p.visibility)[q].get()
-                       : Visibility{.sun = 1.0, .sky = {0.85, 0.85, 0.85}, .lights = 1.0};
-    if (rec == nullptr) {
+    Visibility v;
+    ShadeTerms terms;
+    if (q >= 0) {
+      const PixelRecord& rec = (*p.records)[q];
+      const Color mirrored = rec.mirrored.get();
+      const Color behind = rec.behind.get();
+      terms = shade_terms(c, s, rec.has_mirrored ? &mirrored : nullptr,
+                          rec.has_behind ? &behind : nullptr);
+      v = (*p.visibility)[q].get();
+    } else {
+      terms = shade_terms(c, s, nullptr, nullptr);
+      v.sky = {0.85, 0.85, 0.85};
       if (dot(s.normal, l.sun_direction) > 0.0 && luminance(l.sun) > 0.0) {
         RTCRay shadow{};
         const Vec3 o = s.position + s.normal * (0.01 + 1e-4 * s.distance);

@@ -142,10 +142,8 @@ void store_lit(const Pass& p, const TileState& t, int k) {
   rec.has_behind = t.has_behind[k];
   rec.mirrored = Color3f(t.mirrored[k]);
   rec.behind = Color3f(t.behind[k]);
-  // Built in place: assigned, the terms were returned into a temporary and copied at once with
-  // wide loads of the narrow stores just made (nearly half of trace_tile's time in `default`).
-  new (&rec.terms) ShadeTerms(tile_pixel_terms(p, t, k));
-  new (&(*p.visibility)[t.pixel[k]]) PixelVisibility(visibility_as_stored(t.vis[k]));
+  rec.terms = tile_pixel_terms(p, t, k);
+  (*p.visibility)[t.pixel[k]] = visibility_as_stored(t.vis[k]);
 }
 
 /// The lit pixels of a resolved tile composited at once (Pass::direct): composite_pixel()'s
