@@ -8,10 +8,6 @@
 #include <algorithm>
 #include <cmath>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "corsa/core/random.h"
 #include "fast_normal.h"
 #include "shading.h"
@@ -114,49 +110,6 @@ void develop_clean_row(const float* in, const double* scale, int width, const ui
   }
   for (; i < n; ++i) {
     out[i] = encode(aces(in[i] * scale[i / 3]));
-  }
-}
-
-/// A Gaussian-like draw from one 64-bit random number: Irwin-Hall, the sum of its four 16-bit
-/// uniforms, rescaled, is close to a unit normal (image noise need not be exactly Gaussian).
-/// (Summed as integers: below 2^18, every partial sum is exact in a double too.)
-double irwin_hall_sum(uint64_t bits) {
-  return static_cast<double>((bits & 0xFFFF) + ((bits >> 16) & 0xFFFF) + ((bits >> 32) & 0xFFFF) +
-                             (bits >> 48));
-}
-
-/// One row of development with sensor noise (as develop_clean_row, with the noise): each
-/// value's draw taken from `rng` in order, the square roots and the tone curve two values at a
-/// time with the same operations on each (the same bits as one at a time).
-void develop_noisy_row(const float* in, const double* scale, int width, const uint8_t* table,
-                       double shot, double read, RandomStream& rng, uint8_t* out) {
-  const int n = 3 * width;
-  const double floor_var = read * read;
-  auto encode = [table](double a) { return table[static_cast<size_t>(a * 4096.0 + 0.5)]; };
-  auto noisy = [&](double v, uint64_t bits) {
-    const double z = (irwin_hall_sum(bits) / 65536.0 - 2.0) * std::sqrt(3.0);
-    return v + z * std::sqrt(std::max(0.0, v) * shot + floor_var);
-  };
-  int i = 0;
-  for (; i + 1 < n; i += 2) {
-    const uint64_t b0 = rng.next_u64();
-    const uint64_t b1 = rng.next_u64();
-    ToneLanes v{in[i] * scale[i / 3], in[i + 1] * scale[(i + 1) / 3]};
-    const ToneLanes z =
-        (ToneLanes{irwin_hall_sum(b0), irwin_hall_sum(b1)} / 65536.0 - 2.0) * std::sqrt(3.0);
-    const ToneLanes var = (0.0 < v ? v : 0.0) * shot + floor_var;  // std::max(0.0, v)
-#if defined(__SSE2__)
-    const ToneLanes sd = _mm_sqrt_pd(var);
-#else
-    const ToneLanes sd{std::sqrt(var[0]), std::sqrt(var[1])};
-#endif
-    v += z * sd;
-    const ToneLanes a = aces_lanes(v);
-    out[i] = encode(a[0]);
-    out[i + 1] = encode(a[1]);
-  }
-  for (; i < n; ++i) {
-    out[i] = encode(aces(noisy(in[i] * scale[i / 3], rng.next_u64())));
   }
 }
 
@@ -352,8 +305,22 @@ std::vector<uint8_t> develop(const std::vector<float>& linear, int width, int he
         continue;
       }
       RandomStream rng(block_seed(frame_seed ^ 0x6e6f697365ULL, static_cast<uint64_t>(row)));
-      develop_noisy_row(linear.data() + first, scales.data(), width, table.data(), shot, read, rng,
-                        out.data() + first);
+      for (int col = 0; col < width; ++col) {
+        const double scale = scales[col];
+        const size_t i0 = first + 3 * static_cast<size_t>(col);
+        for (size_t i = i0; i < i0 + 3; ++i) {
+          double v = linear[i] * scale;
+          // Irwin-Hall: the sum of four 16-bit uniforms, rescaled, is close to a unit normal
+          // and costs one 64-bit draw (image noise need not be exactly Gaussian).
+          // (Summed as integers: below 2^18, every partial sum is exact in a double too.)
+          const uint64_t bits = rng.next_u64();
+          const double s = static_cast<double>((bits & 0xFFFF) + ((bits >> 16) & 0xFFFF) +
+                                               ((bits >> 32) & 0xFFFF) + (bits >> 48));
+          const double z = (s / 65536.0 - 2.0) * std::sqrt(3.0);
+          v += z * std::sqrt(std::max(0.0, v) * shot + read * read);
+          out[i] = table[static_cast<size_t>(aces(v) * 4096.0 + 0.5)];
+        }
+      }
     }
   });
   return out;
