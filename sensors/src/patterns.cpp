@@ -97,15 +97,16 @@ AsphaltLanePoint asphalt_lane_point(const TexturePoint& p) {
 }
 
 /// Largest feature (m) of asphalt's aggregate grain.
-constexpr double kAsphaltGrainSize = 0.08;
+constexpr double kAsphaltGrainSize = 0.03;
 
 SurfaceSample asphalt(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
   const Plane q = plane_of(p, m.seed);
   const double fp = p.footprint;
-  // The aggregate's grain: the fBm's features under 8 cm alone (the field less its average over
-  // 8 cm; ~6 mm texels), so that it is a grain and not soft patches of a metre. Where a pixel
-  // covers 8 cm or more both reads give the average: 0, without reading.
+  // The aggregate's grain: the fBm's features under 3 cm alone (the field less its average over
+  // 3 cm; ~6 mm texels), so that it is a grain and not soft patches (the whole fBm of a 1.5 m
+  // tile has features up to a metre). Where a pixel covers 3 cm or more both reads give the
+  // average: 0, without reading.
   double grain = 0.0;
   if (fp < kAsphaltGrainSize) {
     grain = pattern_noise(p, 0, q.a, q.b, 1.5, fp) -
@@ -114,7 +115,7 @@ SurfaceSample asphalt(const Material& m, const TexturePoint& p) {
   const double mid = pattern_noise(p, 1, q.a, q.b, 40.0, fp);   // tone over tens of metres
   const double wear = pattern_noise(p, 2, q.a, q.b, 90.0, fp);  // older, lighter stretches
   // Mostly the aggregate's grain; the large-scale tone is subtle (asphalt laid in one go).
-  double tone = 1.0 + 1.6 * grain + 0.14 * (mid - 0.5);
+  double tone = 1.0 + 2.0 * grain + 0.14 * (mid - 0.5);
   tone *= 1.0 + 0.14 * m.params[0] * smoothstep(0.5, 0.75, wear);
   // Light stones of the aggregate: one in ten 1 cm cells.
   const double stone_weight = detail_weight(fp, 0.01);
