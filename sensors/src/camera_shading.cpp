@@ -94,7 +94,8 @@ void hit_uv(const ShadingContext& c, const SurfaceHit& h, TexturePoint& tp) {
 }
 
 bool needs_uv(const Material& m) {
-  return m.image != nullptr || m.pattern == Pattern::kSignFace || m.pattern == Pattern::kPlate;
+  return m.image != nullptr || m.pattern == Pattern::kSignFace || m.pattern == Pattern::kPlate ||
+         m.pattern == Pattern::kAsphalt;  // wheel paths and repairs follow the lanes
 }
 
 /// Whether a material's emission is switched on at this hit.

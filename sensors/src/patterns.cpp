@@ -60,15 +60,63 @@ SurfaceSample base(const Material& m) {
   return s;
 }
 
+/// The share of a footprint `w` wide centred on x that lies in [a, b] (a box filter, exact).
+double box_coverage(double x, double a, double b, double w) {
+  const double half = 0.5 * std::max(w, 1e-4);
+  return std::clamp((std::min(x + half, b) - std::max(x - half, a)) / (2.0 * half), 0.0, 1.0);
+}
+
+/// A band of Gaussian profile (height 1, spread sigma) at distance `d` from its centre line,
+/// convolved with the footprint (taken as a Gaussian of spread w / 2): wider and fainter with
+/// the same integral, so it never aliases.
+double filtered_band(double d, double sigma, double w) {
+  const double spread2 = sigma * sigma + 0.25 * w * w;
+  return sigma / std::sqrt(spread2) * std::exp(-0.5 * d * d / spread2);
+}
+
+/// Where an asphalt point lies in its lane (from the road mesh's lane coordinates as uv).
+struct AsphaltLanePoint {
+  double along = 0.0;   ///< road s (m)
+  double across = 0.0;  ///< metres from the lane's centre line
+  double width = 0.0;   ///< the lane's width (m); 0 off the lanes (no lane coordinates)
+  int64_t lane = 0;     ///< the lane's index across (|id| - 1 on road meshes)
+};
+
+AsphaltLanePoint asphalt_lane_point(const TexturePoint& p) {
+  AsphaltLanePoint l;
+  // u is metres along, v lanes across: uv_per_m^2 is 1 / the lane's width.
+  if (p.uv_per_m <= 0.0 || (p.u == 0.0 && p.v == 0.0)) {
+    return l;
+  }
+  l.width = 1.0 / (p.uv_per_m * p.uv_per_m);
+  const double lane = std::floor(p.v);
+  l.lane = static_cast<int64_t>(lane);
+  l.across = (p.v - lane - 0.5) * l.width;
+  l.along = p.u;
+  return l;
+}
+
+/// Largest feature (m) of asphalt's aggregate grain.
+constexpr double kAsphaltGrainSize = 0.03;
+
 SurfaceSample asphalt(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
   const Plane q = plane_of(p, m.seed);
   const double fp = p.footprint;
-  const double grain = pattern_noise(p, 0, q.a, q.b, 1.5, fp);  // aggregate, ~6 mm texels
-  const double mid = pattern_noise(p, 1, q.a, q.b, 14.0, fp);   // patches of a few metres
+  // The aggregate's grain: the fBm's features under 3 cm alone (the field less its average over
+  // 3 cm; ~6 mm texels), so that it is a grain and not soft patches (the whole fBm of a 1.5 m
+  // tile has features up to a metre). Where a pixel covers 3 cm or more both reads give the
+  // average: 0, without reading.
+  double grain = 0.0;
+  if (fp < kAsphaltGrainSize) {
+    grain = pattern_noise(p, 0, q.a, q.b, 1.5, fp) -
+            pattern_noise(p, 0, q.a, q.b, 1.5, kAsphaltGrainSize);
+  }
+  const double mid = pattern_noise(p, 1, q.a, q.b, 40.0, fp);   // tone over tens of metres
   const double wear = pattern_noise(p, 2, q.a, q.b, 90.0, fp);  // older, lighter stretches
-  double tone = 1.0 + 0.7 * (grain - 0.5) + 0.45 * (mid - 0.5);
-  tone *= 1.0 + 0.35 * m.params[0] * smoothstep(0.45, 0.75, wear);
+  // Mostly the aggregate's grain; the large-scale tone is subtle (asphalt laid in one go).
+  double tone = 1.0 + 2.0 * grain + 0.14 * (mid - 0.5);
+  tone *= 1.0 + 0.14 * m.params[0] * smoothstep(0.5, 0.75, wear);
   // Light stones of the aggregate: one in ten 1 cm cells.
   const double stone_weight = detail_weight(fp, 0.01);
   if (stone_weight > 0.0) {
@@ -76,18 +124,48 @@ SurfaceSample asphalt(const Material& m, const TexturePoint& p) {
                                  static_cast<int64_t>(std::floor(q.b * 100.0)), m.seed);
     tone += stone_weight * (r < 0.1 ? 0.5 : 0.0) - stone_weight * 0.05;
   }
-  // Cracks: the 0.5 level line of a field, thin; below a resolvable size they only darken.
-  // Their field is read only where they can show (a footprint under 2 cm on worn asphalt):
-  // elsewhere a factor is exactly 0, and skipping the read keeps every value.
-  const double resolved = 1.0 - smoothstep(0.004, 0.02, fp);
+  double polish = 0.0;
+  const AsphaltLanePoint lane = asphalt_lane_point(p);
+  // Traffic lanes only (not shoulders, bike lanes or wide areas).
+  const double traffic =
+      lane.width > 0.0 ? smoothstep(2.2, 2.8, lane.width) * (1.0 - smoothstep(5.0, 6.0, lane.width))
+                       : 0.0;
+  if (traffic > 0.0) {
+    // Wheel paths: oil and rubber darken two bands 0.85 m either side of the lane's centre
+    // (a car's track), more in some stretches than others; drips darken the centre a little.
+    const double wheels = filtered_band(std::fabs(lane.across) - 0.85, 0.25, fp);
+    const double drips = filtered_band(lane.across, 0.3, fp);
+    const double traffic_wear = traffic * (0.6 + 0.8 * mid);
+    tone *= 1.0 - traffic_wear * (0.16 * wheels + 0.05 * drips);
+    polish = traffic * wheels;
+    // Repairs: in some 10 m stretches of a lane a rectangle of newer, darker asphalt with a
+    // finer grain (a patched pothole or trench), boxes filtered over the footprint.
+    const auto cell = static_cast<int64_t>(std::floor(lane.along / 10.0));
+    const uint32_t seed = m.seed ^ 0x5EA1u;
+    if (cell_random(cell, lane.lane, seed) < 0.05 + 0.1 * m.params[0]) {
+      const double length = 1.0 + 3.0 * cell_random(cell, lane.lane, seed + 1);
+      const double start = cell * 10.0 + (10.0 - length) * cell_random(cell, lane.lane, seed + 2);
+      const double w = (0.3 + 0.5 * cell_random(cell, lane.lane, seed + 3)) * lane.width;
+      const double left =
+          (cell_random(cell, lane.lane, seed + 4) - 0.5) * (lane.width - w) - 0.5 * w;
+      const double patch = box_coverage(lane.along, start, start + length, fp) *
+                           box_coverage(lane.across, left, left + w, fp);
+      tone = lerp(tone, 0.8 + 0.8 * grain, patch);
+    }
+  }
+  // Cracks, sealed with bitumen on worn asphalt: the 0.5 level line of a field, a dark line of a
+  // few centimetres that fades out (to its small average) before the field's filtering would
+  // widen it into blotches. The field is read only where they can show; elsewhere a factor is
+  // exactly 0, and skipping the read keeps every value.
+  const double resolved = 1.0 - smoothstep(0.01, 0.04, fp);
   const double worn = smoothstep(0.6, 0.75, wear);
   if (resolved > 0.0 && worn > 0.0) {
     const double field = pattern_noise(p, 3, q.a, q.b, 9.0, fp);
-    const double crack = (1.0 - smoothstep(0.0, 0.005, std::fabs(field - 0.5))) * resolved * worn;
-    tone *= 1.0 - 0.35 * crack;
+    const double crack = (1.0 - smoothstep(0.004, 0.012, std::fabs(field - 0.5))) * resolved * worn;
+    tone *= 1.0 - 0.45 * crack;
   }
   s.albedo = m.base_color * std::max(0.2, tone);
-  s.roughness = std::clamp(m.roughness - 0.15 * (1.0 - wear), 0.3, 1.0);
+  s.roughness = std::clamp(m.roughness - 0.15 * (1.0 - wear) - 0.1 * polish, 0.3, 1.0);
   return s;
 }
 

@@ -274,6 +274,10 @@ void Scene::add_road_mesh(const xodr::RoadMesh& road) {
     mesh.vertices.push_back({v.x, v.y, v.z});
   }
   mesh.triangles = road.triangles;
+  // The lane coordinates as uvs: asphalt darkens its wheel paths and lays repairs along them.
+  if (road.lane_coords.size() == road.vertices.size()) {
+    mesh.uvs = road.lane_coords;
+  }
   mesh.classes.reserve(road.info.size());
   // Palette: the class looks, plus yellow paint for yellow marks.
   for (int c = 0; c < kSemanticClassCount; ++c) {

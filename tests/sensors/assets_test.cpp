@@ -93,6 +93,52 @@ TEST_CASE("procedural textures fade to their average where pixels are larger tha
   CHECK(spread(0.002) > 3.0 * spread(20.0));
 }
 
+TEST_CASE("asphalt darkens the wheel paths of its lanes, filtered at a distance",
+          "[sensors][textures]") {
+  Material asphalt;
+  asphalt.pattern = Pattern::kAsphalt;
+  asphalt.base_color = {0.1, 0.1, 0.1};
+  asphalt.params[0] = 0.0;  // no repairs: the bands alone
+  const double width = 3.5;
+  // Mean albedo along 2 km of a lane (the road mesh's lane coordinates: u metres along, v lanes
+  // across, uv_per_m^2 = 1 / lane width) at `across` metres from the lane's centre.
+  auto mean_at = [&](double across, double footprint) {
+    double sum = 0.0;
+    const int n = 2000;
+    for (int i = 0; i < n; ++i) {
+      detail::TexturePoint p;
+      p.position = {1.0 * i, across, 0.0};
+      p.normal = {0.0, 0.0, 1.0};
+      p.footprint = footprint;
+      p.u = 1.0 * i;
+      p.v = 1.5 + across / width;  // lane -2: across 1 .. 2
+      p.uv_per_m = 1.0 / std::sqrt(width);
+      sum += detail::sample_surface(asphalt, p).albedo.g;
+    }
+    return sum / n;
+  };
+  const double wheel = mean_at(0.85, 0.002);
+  const double between = mean_at(0.4, 0.002);
+  const double verge = mean_at(1.6, 0.002);
+  CHECK(wheel < 0.93 * between);
+  CHECK(wheel < 0.93 * verge);
+  // Seen from far (a 2 m footprint) the band blurs: less contrast, same darkening on average.
+  const double far_wheel = mean_at(0.85, 2.0);
+  const double far_between = mean_at(0.4, 2.0);
+  CHECK(far_wheel / far_between > wheel / between);
+  CHECK(far_wheel < far_between);
+  // Without lane coordinates (uv 0) there are no bands.
+  detail::TexturePoint a;
+  a.position = {3.0, 0.85, 0.0};
+  a.normal = {0.0, 0.0, 1.0};
+  a.footprint = 0.002;
+  detail::TexturePoint b = a;
+  b.u = 3.0;
+  b.v = 1.5 + 0.85 / width;
+  b.uv_per_m = 1.0 / std::sqrt(width);
+  CHECK(detail::sample_surface(asphalt, b).albedo.g < detail::sample_surface(asphalt, a).albedo.g);
+}
+
 TEST_CASE("sign faces are drawn from their shape, border and symbol", "[sensors][textures]") {
   SignFace stop;
   stop.shape = SignShape::kOctagon;

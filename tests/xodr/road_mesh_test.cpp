@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <set>
+#include <string>
 
 #include "mesh_test_util.h"
 
@@ -176,6 +177,48 @@ TEST_CASE("the mesh of a map is the same every time", "[xodr][mesh]") {
   for (size_t i = 0; i < a.info.size(); ++i) {
     REQUIRE(a.info[i].lane_id == b.info[i].lane_id);
     REQUIRE(a.info[i].road_index == b.info[i].road_index);
+  }
+}
+
+TEST_CASE("lane vertices carry their s and their place across the lanes", "[xodr][mesh]") {
+  for (const char* name : kSingleRoadMaps) {
+    if (std::string(name) == "two_plus_one.xodr") {
+      // Its lanes open from zero width: there the lanes either side of the closed one share a
+      // vertex, which carries the first one's value (a known limit of per-vertex coordinates).
+      continue;
+    }
+    INFO(name);
+    const Map map = load(shared_map(name));
+    const double length = map.road(0).length;
+    const RoadMesh mesh = build_road_mesh(map);
+    REQUIRE(mesh.lane_coords.size() == mesh.vertices.size());
+    LocateOptions options;
+    options.max_distance = 0.01;
+    size_t lanes = 0;
+    for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+      if (!is_lane(mesh.info[i])) {
+        continue;
+      }
+      // A lane |id| k spans k - 1 (its inner border) to k (its outer border) across.
+      const double outer = std::abs(mesh.info[i].lane_id);
+      double across_sum = 0.0;
+      for (uint32_t v : mesh.triangles[i]) {
+        const auto& coords = mesh.lane_coords[v];
+        CHECK(coords[1] >= outer - 1.0 - 1e-6);
+        CHECK(coords[1] <= outer + 1e-6);
+        across_sum += coords[1];
+        const Vec3& p = mesh.vertices[v];
+        const auto position = map.locate(p.x, p.y, options);
+        REQUIRE(position.has_value());
+        // s of a closed loop's first and last rows are the same place.
+        CHECK(std::remainder(coords[0] - position->s, length) == Approx(0.0).margin(1e-3));
+      }
+      // Corners on both borders: the triangle spans the lane.
+      CHECK(across_sum / 3.0 > outer - 1.0 + 0.2);
+      CHECK(across_sum / 3.0 < outer - 0.2);
+      ++lanes;
+    }
+    CHECK(lanes > 0);
   }
 }
 

@@ -3,6 +3,7 @@
 // Accumulates the road mesh: vertices, triangles with their info, and the warnings of the build.
 // Private to corsa_xodr.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -28,7 +29,8 @@ class MeshBuilder {
   MeshBuilder(RoadMesh& mesh, corsa::Diagnostics& diagnostics, std::string file)
       : mesh_(mesh), diagnostics_(diagnostics), file_(std::move(file)) {}
 
-  uint32_t add_vertex(const Vec3& p);
+  /// `lane`: the vertex's lane coordinates (RoadMesh::lane_coords).
+  uint32_t add_vertex(const Vec3& p, std::array<float, 2> lane = {0.0F, 0.0F});
   const Vec3& vertex(uint32_t index) const { return mesh_.vertices[index]; }
   /// Adds a triangle that should face up: added when it is counter-clockwise seen from above
   /// with a non-zero area; a clockwise one means the surface folds over itself there (a border

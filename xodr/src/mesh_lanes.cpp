@@ -117,7 +117,7 @@ class SectionMesher {
   /// The vertex of border t on the current row: the previous border's when a zero-width lane
   /// lies between them (so that its neighbours share an edge), the previous section's on the
   /// seam, else a new one.
-  uint32_t make_vertex(const RoadFrame& f, double t, double h,
+  uint32_t make_vertex(const RoadFrame& f, double t, double h, double across,
                        const std::vector<SeamVertex>* seam) {
     if (last_.valid && std::abs(t - last_.t) <= kMinWidth &&
         std::abs(h - last_.height) <= kSameHeight) {
@@ -136,10 +136,18 @@ class SectionMesher {
       }
     }
     if (index == UINT32_MAX) {
-      index = builder_.add_vertex(p);
+      index = builder_.add_vertex(p, {static_cast<float>(f.s), static_cast<float>(across)});
     }
     last_ = LastVertex{true, t, h, index};
     return index;
+  }
+
+  /// Lane coordinate across (RoadMesh::lane_coords) of lane i's left (`left` true) or right
+  /// border: a left lane (id > 0) has its outer border on its left, a right lane on its right.
+  double border_across(size_t i, bool left) const {
+    const int id = view_.lane(i).id;
+    const double outer = std::abs(id);
+    return (id > 0) == left ? outer : outer - 1.0;
   }
 
   void make_row(size_t r, const std::vector<SeamVertex>* seam) {
@@ -150,17 +158,18 @@ class SectionMesher {
       const bool has_left_lane = j > 0;  // lane j - 1 ends at border j on its right
       const bool has_right_lane = j < n_;
       if (has_left_lane && has_right_lane && !split_[j]) {
-        const uint32_t v = make_vertex(f, t[j], height(r, j - 1, false), seam);
+        const uint32_t v =
+            make_vertex(f, t[j], height(r, j - 1, false), border_across(j, true), seam);
         column(r, j - 1, static_cast<size_t>(columns_[j - 1])) = v;
         column(r, j, 0) = v;
         continue;
       }
       if (has_left_lane) {
         column(r, j - 1, static_cast<size_t>(columns_[j - 1])) =
-            make_vertex(f, t[j], height(r, j - 1, false), seam);
+            make_vertex(f, t[j], height(r, j - 1, false), border_across(j - 1, false), seam);
       }
       if (has_right_lane) {
-        column(r, j, 0) = make_vertex(f, t[j], height(r, j, true), seam);
+        column(r, j, 0) = make_vertex(f, t[j], height(r, j, true), border_across(j, true), seam);
       }
     }
     last_ = LastVertex{};
@@ -168,8 +177,10 @@ class SectionMesher {
       for (int k = 1; k < columns_[i]; ++k) {
         const double w = static_cast<double>(k) / columns_[i];
         const double h = height(r, i, true) + w * (height(r, i, false) - height(r, i, true));
+        const double across =
+            border_across(i, true) + w * (border_across(i, false) - border_across(i, true));
         column(r, i, static_cast<size_t>(k)) =
-            make_vertex(f, column_t(r, i, static_cast<size_t>(k)), h, nullptr);
+            make_vertex(f, column_t(r, i, static_cast<size_t>(k)), h, across, nullptr);
       }
     }
   }

@@ -69,8 +69,9 @@ void check_finite(const Map& map, uint32_t road, const RoadMesh& mesh, size_t& c
 
 namespace detail {
 
-uint32_t MeshBuilder::add_vertex(const Vec3& p) {
+uint32_t MeshBuilder::add_vertex(const Vec3& p, std::array<float, 2> lane) {
   mesh_.vertices.push_back(p);
+  mesh_.lane_coords.push_back(lane);
   return static_cast<uint32_t>(mesh_.vertices.size() - 1);
 }
 
@@ -122,10 +123,12 @@ void MeshBuilder::compact() {
   for (size_t v = 0; v < remap.size(); ++v) {
     if (remap[v] == 0) {
       mesh_.vertices[next] = mesh_.vertices[v];
+      mesh_.lane_coords[next] = mesh_.lane_coords[v];
       remap[v] = next++;
     }
   }
   mesh_.vertices.resize(next);
+  mesh_.lane_coords.resize(next);
   for (auto& triangle : mesh_.triangles) {
     for (uint32_t& v : triangle) {
       v = remap[v];

@@ -45,6 +45,11 @@ struct TriangleInfo {
 /// Triangles in map coordinates (metres), counter-clockwise seen from above (normals up).
 struct RoadMesh {
   std::vector<Vec3> vertices;
+  /// Per vertex, lane coordinates: [0] the road's s (m), [1] across the lanes, counted in lanes
+  /// from the centre line: a border between lanes |id| k and k + 1 is at k (the centre line at
+  /// 0), so a lane |id| k spans k - 1 (inner border) to k (outer) and a vertex shared by two
+  /// lanes has one value. Road-mark vertices are at {0, 0}.
+  std::vector<std::array<float, 2>> lane_coords;
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<TriangleInfo> info;  ///< one per triangle
 };
