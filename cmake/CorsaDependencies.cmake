@@ -67,6 +67,17 @@ foreach(module core imgproc imgcodecs videoio)
   target_link_libraries(corsa::opencv INTERFACE "${OPENCV_${module}_LIBRARY}")
 endforeach()
 
+# libdeflate: the dataset's PNG files are deflated with it (sensors/src/png_encoder.cpp).
+find_path(LIBDEFLATE_INCLUDE_DIR libdeflate.h)
+find_library(LIBDEFLATE_LIBRARY NAMES deflate)
+if(LIBDEFLATE_INCLUDE_DIR AND LIBDEFLATE_LIBRARY)
+  set(LIBDEFLATE_FOUND TRUE)
+  add_library(corsa::libdeflate UNKNOWN IMPORTED)
+  set_target_properties(corsa::libdeflate PROPERTIES
+    IMPORTED_LOCATION "${LIBDEFLATE_LIBRARY}" INTERFACE_INCLUDE_DIRECTORIES "${LIBDEFLATE_INCLUDE_DIR}")
+endif()
+corsa_require(LIBDEFLATE_FOUND "libdeflate" libdeflate-dev)
+
 # SUNDIALS: CVODE with the serial vector and the dense linear solver; ARKODE (explicit
 # Runge-Kutta) for the vehicle dynamics of the engine's `dynamics` controller.
 find_path(SUNDIALS_INCLUDE_DIR cvode/cvode.h)

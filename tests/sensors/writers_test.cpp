@@ -232,3 +232,56 @@ TEST_CASE("rectifying a distorted image puts every pixel where the pinhole would
   CHECK(checked > 40000);
   CHECK(off == 0);  // within a pixel (nearest-pixel sampling) everywhere
 }
+
+TEST_CASE("PNG files hold exactly the pixels given, in every layout, with the same bytes each time",
+          "[sensors][writers][png]") {
+  corsa::test::TempDir dir;
+  // An odd size, values over the whole range (16-bit values above 255 check the byte order) and
+  // a run of equal values (what deflate's matcher finds in class images).
+  constexpr int kWidth = 61;
+  constexpr int kHeight = 17;
+  constexpr size_t kPixels = static_cast<size_t>(kWidth) * kHeight;
+  std::vector<uint8_t> rgb(3 * kPixels);
+  std::vector<uint8_t> gray(kPixels);
+  std::vector<uint16_t> wide(kPixels);
+  uint32_t state = 12345;
+  const auto next = [&state] { return state = state * 1664525u + 1013904223u; };
+  for (size_t i = 0; i < kPixels; ++i) {
+    const bool run = i >= 100 && i < 400;
+    for (int c = 0; c < 3; ++c) {
+      rgb[3 * i + c] = run ? static_cast<uint8_t>(40 * c) : static_cast<uint8_t>(next() >> 24);
+    }
+    gray[i] = run ? 7 : static_cast<uint8_t>(next() >> 24);
+    wide[i] = run ? 1235 : static_cast<uint16_t>(next() >> 16);
+  }
+  write_png_rgb8(dir.path() / "rgb.png", kWidth, kHeight, rgb);
+  write_png_gray8(dir.path() / "gray.png", kWidth, kHeight, gray);
+  write_png_gray16(dir.path() / "wide.png", kWidth, kHeight, wide);
+
+  const cv::Mat rgb_read = cv::imread((dir.path() / "rgb.png").string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat gray_read = cv::imread((dir.path() / "gray.png").string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat wide_read = cv::imread((dir.path() / "wide.png").string(), cv::IMREAD_UNCHANGED);
+  REQUIRE(rgb_read.type() == CV_8UC3);
+  REQUIRE(gray_read.type() == CV_8UC1);
+  REQUIRE(wide_read.type() == CV_16UC1);
+  REQUIRE((rgb_read.cols == kWidth && rgb_read.rows == kHeight));
+  REQUIRE((wide_read.cols == kWidth && wide_read.rows == kHeight));
+  size_t wrong = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const size_t i = static_cast<size_t>(y) * kWidth + x;
+      const cv::Vec3b bgr = rgb_read.at<cv::Vec3b>(y, x);
+      wrong += bgr[2] != rgb[3 * i] || bgr[1] != rgb[3 * i + 1] || bgr[0] != rgb[3 * i + 2];
+      wrong += gray_read.at<uint8_t>(y, x) != gray[i];
+      wrong += wide_read.at<uint16_t>(y, x) != wide[i];
+    }
+  }
+  CHECK(wrong == 0);
+
+  write_png_rgb8(dir.path() / "rgb2.png", kWidth, kHeight, rgb);
+  write_png_gray16(dir.path() / "wide2.png", kWidth, kHeight, wide);
+  CHECK(corsa::read_file(dir.path() / "rgb.png") == corsa::read_file(dir.path() / "rgb2.png"));
+  CHECK(corsa::read_file(dir.path() / "wide.png") == corsa::read_file(dir.path() / "wide2.png"));
+  // The run of equal values is found: the class image is smaller than its raw bytes.
+  CHECK(fs::file_size(dir.path() / "gray.png") < kPixels);
+}
