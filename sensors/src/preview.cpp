@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -13,6 +14,7 @@
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
+#include "h264_writer.h"
 
 namespace corsa::sensors {
 namespace {
@@ -170,15 +172,24 @@ PreviewReport write_preview(const fs::path& dataset, const SensorRig& rig, Diagn
   const int side = top.empty() ? 0 : kHeight;
   // Even sizes keep every codec (H.264 needs them) happy.
   const cv::Size size((first.cols + side + 1) / 2 * 2, kHeight);
+  // H.264 through libx264 directly when FFmpeg has it; otherwise OpenCV's writers.
+  const fs::path h264_temporary = dataset / "preview" / ".camera_birds_eye.tmp.mp4";
+  std::unique_ptr<detail::H264Writer> h264 =
+      detail::H264Writer::open(h264_temporary, size, frame_rate(shots));
   cv::VideoWriter writer;
   fs::path temporary;
-  if (!open_video(writer, dataset / "preview", size, frame_rate(shots), report.video, temporary,
-                  report.codec)) {
+  if (h264 != nullptr) {
+    report.video = dataset / "preview" / "camera_birds_eye.mp4";
+    report.codec = "avc1";
+    temporary = h264_temporary;
+  } else if (!open_video(writer, dataset / "preview", size, frame_rate(shots), report.video,
+                         temporary, report.codec)) {
     diagnostics.add(make_warning("", 0,
                                  "preview: this OpenCV build cannot encode video (no avc1, mp4v "
                                  "or MJPG writer); only the contact sheet was written"));
     report.video.clear();
-  } else {
+  }
+  if (!report.video.empty()) {
     cv::Mat latest_top(kHeight, side, CV_8UC3, cv::Scalar(0, 0, 0));
     for (const Shot& shot : shots) {
       cv::Mat frame(size, CV_8UC3, cv::Scalar(0, 0, 0));
@@ -192,13 +203,22 @@ PreviewReport write_preview(const fs::path& dataset, const SensorRig& rig, Diagn
         }
         latest_top.copyTo(frame(cv::Rect(cam.cols, 0, latest_top.cols, latest_top.rows)));
       }
-      writer.write(frame);
+      if (h264 != nullptr) {
+        h264->write(frame);
+      } else {
+        writer.write(frame);
+      }
       ++report.frames;
       if (progress) {
         progress(report.frames, static_cast<int>(shots.size()));
       }
     }
-    writer.release();
+    if (h264 != nullptr) {
+      h264->finish();
+      h264.reset();
+    } else {
+      writer.release();
+    }
     fs::rename(temporary, report.video, error);
     if (error) {
       throw InputError(make_error(report.video.string(), 0, "cannot write: " + error.message()));
