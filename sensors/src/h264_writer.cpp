@@ -18,13 +18,13 @@ namespace corsa::sensors::detail {
 namespace {
 
 // libx264's `veryfast` preset at its default quality (CRF 23): a preview to look at, not to
-// measure from. Against OpenCV's `medium` preset at OpenCV's bit rate it takes about a quarter of
-// the encoder's CPU. A fixed number of encoder threads keeps the bytes the same on every machine
-// (libx264's output depends on its thread count, never on timing); two frame threads keep both
-// cores of a small machine busy while the frames are read and composed on the caller's thread.
+// measure from. Against OpenCV's `medium` preset at OpenCV's bit rate it takes about a third of
+// the encoder's CPU. One encoder thread: with two, libx264's output was not the same bytes from
+// one run to the next (three runs over the same 31 frames gave three files); on one thread it
+// is, and the caller overlaps its reading of the next frame with the encoding instead.
 constexpr const char* kX264Preset = "veryfast";
 constexpr const char* kX264Crf = "23";
-constexpr int kX264Threads = 2;
+constexpr int kX264Threads = 1;
 
 std::string av_error_text(int code) {
   char text[AV_ERROR_MAX_STRING_SIZE] = {};

@@ -9,7 +9,7 @@
 #include "corsa/core/diagnostic.h"
 #include "corsa/sensors/semantic.h"
 #include "corsa/sensors/writers.h"
-#include "png_encoder.h"
+#include "png_codec.h"
 
 namespace corsa::sensors {
 namespace {

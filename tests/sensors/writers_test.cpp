@@ -7,6 +7,7 @@
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/sensors/kitti.h"
+#include "png_codec.h"
 #include "run_corsa.h"
 #include "temp_dir.h"
 
@@ -284,4 +285,49 @@ TEST_CASE("PNG files hold exactly the pixels given, in every layout, with the sa
   CHECK(corsa::read_file(dir.path() / "wide.png") == corsa::read_file(dir.path() / "wide2.png"));
   // The run of equal values is found: the class image is smaller than its raw bytes.
   CHECK(fs::file_size(dir.path() / "gray.png") < kPixels);
+}
+
+TEST_CASE("the preview's PNG reader gives OpenCV's pixels for any filter and refuses bad files",
+          "[sensors][writers][png]") {
+  // A gradient with noise in places, written by OpenCV at compression 6: libpng's adaptive
+  // filtering chooses a filter row by row, not only Sub as our encoder.
+  cv::Mat bgr(23, 41, CV_8UC3);
+  uint32_t state = 777;
+  for (int y = 0; y < bgr.rows; ++y) {
+    for (int x = 0; x < bgr.cols; ++x) {
+      state = state * 1664525u + 1013904223u;
+      const int noise = y % 3 == 0 ? static_cast<int>(state >> 28) : 0;
+      bgr.at<cv::Vec3b>(y, x) = cv::Vec3b(static_cast<uint8_t>(5 * x + noise),
+                                          static_cast<uint8_t>(7 * y), static_cast<uint8_t>(x * y));
+    }
+  }
+  std::vector<uchar> by_opencv;
+  REQUIRE(cv::imencode(".png", bgr, by_opencv, {cv::IMWRITE_PNG_COMPRESSION, 6}));
+  const std::optional<cv::Mat> decoded = corsa::sensors::detail::decode_png_rgb8(
+      std::string_view(reinterpret_cast<const char*>(by_opencv.data()), by_opencv.size()));
+  REQUIRE(decoded.has_value());
+  CHECK(cv::norm(*decoded, bgr, cv::NORM_INF) == 0);
+
+  // Our own encoder's files, read back.
+  std::vector<uint8_t> rgb(3 * bgr.total());
+  for (size_t i = 0; i < bgr.total(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      rgb[3 * i + c] = bgr.data[3 * i + 2 - c];
+    }
+  }
+  std::string ours = corsa::sensors::detail::encode_png(
+      bgr.cols, bgr.rows, corsa::sensors::detail::PngPixels::kRgb8, rgb);
+  const std::optional<cv::Mat> ours_decoded = corsa::sensors::detail::decode_png_rgb8(ours);
+  REQUIRE(ours_decoded.has_value());
+  CHECK(cv::norm(*ours_decoded, bgr, cv::NORM_INF) == 0);
+
+  // A flipped bit in the data fails its CRC; a grey image is left to OpenCV.
+  ours[ours.size() / 2] = static_cast<char>(ours[ours.size() / 2] ^ 0x10);
+  CHECK_FALSE(corsa::sensors::detail::decode_png_rgb8(ours).has_value());
+  const std::vector<uint8_t> gray(bgr.total(), 9);
+  CHECK_FALSE(corsa::sensors::detail::decode_png_rgb8(
+                  corsa::sensors::detail::encode_png(
+                      bgr.cols, bgr.rows, corsa::sensors::detail::PngPixels::kGray8, gray))
+                  .has_value());
+  CHECK_FALSE(corsa::sensors::detail::decode_png_rgb8("not a png").has_value());
 }
