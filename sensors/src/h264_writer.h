@@ -2,8 +2,8 @@
 
 // The preview video's H.264 encoder: libx264 through FFmpeg's libraries (libavcodec, libavformat,
 // libswscale), called directly so that the encoder's preset and rate control can be chosen.
-// OpenCV's VideoWriter opens libx264 with no options at all (its default `medium` preset at a
-// bit rate OpenCV picks), which made the preview video cost as much CPU as a fifth of the camera.
+// OpenCV's VideoWriter opens libx264 with no options at all: its default `medium` preset, at a
+// bit rate OpenCV picks.
 
 #include <cstdint>
 #include <filesystem>
