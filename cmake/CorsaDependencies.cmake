@@ -67,6 +67,30 @@ foreach(module core imgproc imgcodecs videoio)
   target_link_libraries(corsa::opencv INTERFACE "${OPENCV_${module}_LIBRARY}")
 endforeach()
 
+# libdeflate: the dataset's PNG files are deflated with it (sensors/src/png_codec.cpp).
+find_path(LIBDEFLATE_INCLUDE_DIR libdeflate.h)
+find_library(LIBDEFLATE_LIBRARY NAMES deflate)
+if(LIBDEFLATE_INCLUDE_DIR AND LIBDEFLATE_LIBRARY)
+  set(LIBDEFLATE_FOUND TRUE)
+  add_library(corsa::libdeflate UNKNOWN IMPORTED)
+  set_target_properties(corsa::libdeflate PROPERTIES
+    IMPORTED_LOCATION "${LIBDEFLATE_LIBRARY}" INTERFACE_INCLUDE_DIRECTORIES "${LIBDEFLATE_INCLUDE_DIR}")
+endif()
+corsa_require(LIBDEFLATE_FOUND "libdeflate" libdeflate-dev)
+
+# FFmpeg's libraries: the preview video is encoded with libx264 through them
+# (sensors/src/h264_writer.cpp). OpenCV's videoio is built on the same libraries.
+add_library(corsa::ffmpeg INTERFACE IMPORTED)
+foreach(ffmpeg_lib avcodec avformat avutil swscale)
+  string(TOUPPER ${ffmpeg_lib} ffmpeg_upper)
+  find_path(${ffmpeg_upper}_INCLUDE_DIR lib${ffmpeg_lib}/version.h)
+  find_library(${ffmpeg_upper}_LIBRARY NAMES ${ffmpeg_lib})
+  corsa_require(${ffmpeg_upper}_LIBRARY "FFmpeg's lib${ffmpeg_lib}" lib${ffmpeg_lib}-dev)
+  corsa_require(${ffmpeg_upper}_INCLUDE_DIR "FFmpeg's lib${ffmpeg_lib} headers" lib${ffmpeg_lib}-dev)
+  target_include_directories(corsa::ffmpeg INTERFACE "${${ffmpeg_upper}_INCLUDE_DIR}")
+  target_link_libraries(corsa::ffmpeg INTERFACE "${${ffmpeg_upper}_LIBRARY}")
+endforeach()
+
 # SUNDIALS: CVODE with the serial vector and the dense linear solver; ARKODE (explicit
 # Runge-Kutta) for the vehicle dynamics of the engine's `dynamics` controller.
 find_path(SUNDIALS_INCLUDE_DIR cvode/cvode.h)

@@ -9,6 +9,7 @@
 #include "corsa/core/diagnostic.h"
 #include "corsa/sensors/semantic.h"
 #include "corsa/sensors/writers.h"
+#include "png_codec.h"
 
 namespace corsa::sensors {
 namespace {
@@ -40,43 +41,30 @@ void encode_and_write(const std::filesystem::path& path, const char* ext, const 
       path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), true);
 }
 
-// PNG is lossless at any setting; these favour speed, since every frame of a dataset is encoded
-// and the RGB camera's sensor noise leaves little for deflate to find anyway. Naming only the
-// strategy keeps OpenCV 4.6's speed path (the Sub filter on every row and zlib level 1, instead of
-// libpng's per-row search over all five filters): a 1280x720 RGB frame takes about a third of the
-// CPU of level 3 and comes out smaller. 8-bit images use run-length matching (class and instance
-// images are long runs); 16-bit images the default matcher (depth in millimetres changes along a
-// row, RLE doubles its size).
-const std::vector<int> kPng8Params = {cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_RLE};
-const std::vector<int> kPng16Params = {cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_DEFAULT};
+void write_dataset_png(const std::filesystem::path& path, int width, int height,
+                       detail::PngPixels layout, std::span<const uint8_t> pixels) {
+  write_file_atomic(path, detail::encode_png(width, height, layout, pixels), true);
+}
 
 }  // namespace
 
 void write_png_rgb8(const std::filesystem::path& path, int width, int height,
                     std::span<const uint8_t> rgb) {
   check_size(path, width, height, rgb.size(), 3);
-  cv::Mat image(height, width, CV_8UC3);
-  for (size_t i = 0; i < static_cast<size_t>(width) * height; ++i) {
-    uchar* p = image.data + 3 * i;  // OpenCV stores B G R
-    p[0] = rgb[3 * i + 2];
-    p[1] = rgb[3 * i + 1];
-    p[2] = rgb[3 * i];
-  }
-  encode_and_write(path, ".png", image, kPng8Params);
+  write_dataset_png(path, width, height, detail::PngPixels::kRgb8, rgb);
 }
 
 void write_png_gray8(const std::filesystem::path& path, int width, int height,
                      std::span<const uint8_t> values) {
   check_size(path, width, height, values.size(), 1);
-  const cv::Mat image(height, width, CV_8UC1, const_cast<uint8_t*>(values.data()));
-  encode_and_write(path, ".png", image, kPng8Params);
+  write_dataset_png(path, width, height, detail::PngPixels::kGray8, values);
 }
 
 void write_png_gray16(const std::filesystem::path& path, int width, int height,
                       std::span<const uint16_t> values) {
   check_size(path, width, height, values.size(), 1);
-  const cv::Mat image(height, width, CV_16UC1, const_cast<uint16_t*>(values.data()));
-  encode_and_write(path, ".png", image, kPng16Params);
+  write_dataset_png(path, width, height, detail::PngPixels::kGray16,
+                    {reinterpret_cast<const uint8_t*>(values.data()), values.size() * 2});
 }
 
 void write_exr_float(const std::filesystem::path& path, int width, int height,

@@ -3,16 +3,21 @@
 #include "corsa/sensors/preview.h"
 
 #include <algorithm>
+#include <future>
 #include <map>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
+#include <optional>
 #include <sstream>
 #include <vector>
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
+#include "h264_writer.h"
+#include "png_codec.h"
 
 namespace corsa::sensors {
 namespace {
@@ -46,7 +51,15 @@ std::vector<Shot> shots_of(const std::string& index, const std::string& sensor) 
   return out;
 }
 
+// The dataset's camera images are 8-bit RGB PNGs, decoded here with libdeflate (about half the
+// CPU of OpenCV's libpng + zlib); anything else is read by OpenCV.
 cv::Mat read_rgb(const fs::path& path) {
+  std::error_code error;
+  if (path.extension() == ".png" && fs::is_regular_file(path, error)) {
+    if (std::optional<cv::Mat> decoded = detail::decode_png_rgb8(read_file(path))) {
+      return *std::move(decoded);
+    }
+  }
   cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
   if (image.empty()) {
     throw InputError(make_error(path.string(), 0, "cannot read the image for the preview"));
@@ -55,6 +68,9 @@ cv::Mat read_rgb(const fs::path& path) {
 }
 
 cv::Mat fit_height(const cv::Mat& image, int height) {
+  if (image.rows == height) {
+    return image;  // shares the pixels: no copy
+  }
   cv::Mat out;
   const int width = std::max(1, image.cols * height / std::max(1, image.rows));
   cv::resize(image, out, cv::Size(width, height), 0, 0, cv::INTER_AREA);
@@ -170,35 +186,63 @@ PreviewReport write_preview(const fs::path& dataset, const SensorRig& rig, Diagn
   const int side = top.empty() ? 0 : kHeight;
   // Even sizes keep every codec (H.264 needs them) happy.
   const cv::Size size((first.cols + side + 1) / 2 * 2, kHeight);
+  // H.264 through libx264 directly when FFmpeg has it; otherwise OpenCV's writers.
+  const fs::path h264_temporary = dataset / "preview" / ".camera_birds_eye.tmp.mp4";
+  std::unique_ptr<detail::H264Writer> h264 =
+      detail::H264Writer::open(h264_temporary, size, frame_rate(shots));
   cv::VideoWriter writer;
   fs::path temporary;
-  if (!open_video(writer, dataset / "preview", size, frame_rate(shots), report.video, temporary,
-                  report.codec)) {
+  if (h264 != nullptr) {
+    report.video = dataset / "preview" / "camera_birds_eye.mp4";
+    report.codec = "avc1";
+    temporary = h264_temporary;
+  } else if (!open_video(writer, dataset / "preview", size, frame_rate(shots), report.video,
+                         temporary, report.codec)) {
     diagnostics.add(make_warning("", 0,
                                  "preview: this OpenCV build cannot encode video (no avc1, mp4v "
                                  "or MJPG writer); only the contact sheet was written"));
     report.video.clear();
-  } else {
-    cv::Mat latest_top(kHeight, side, CV_8UC3, cv::Scalar(0, 0, 0));
-    for (const Shot& shot : shots) {
+  }
+  if (!report.video.empty()) {
+    // The camera frame, stamped, beside the latest bird's-eye view at or before its tick (black
+    // before the first).
+    const auto compose = [&](size_t i) {
       cv::Mat frame(size, CV_8UC3, cv::Scalar(0, 0, 0));
-      cv::Mat cam = fit_height(read_rgb(dataset / shot.file), kHeight);
-      stamp(cam, "t = " + format_fixed(shot.time, 1) + " s", 1.0);
+      cv::Mat cam = fit_height(read_rgb(dataset / shots[i].file), kHeight);
+      stamp(cam, "t = " + format_fixed(shots[i].time, 1) + " s", 1.0);
       cam.copyTo(frame(cv::Rect(0, 0, cam.cols, cam.rows)));
-      if (side > 0) {
-        const auto found = top.upper_bound(shot.tick);
-        if (found != top.begin()) {
-          latest_top = fit_height(read_rgb(dataset / std::prev(found)->second), kHeight);
-        }
+      const auto found = top.upper_bound(shots[i].tick);
+      if (side > 0 && found != top.begin()) {
+        const cv::Mat latest_top =
+            fit_height(read_rgb(dataset / std::prev(found)->second), kHeight);
         latest_top.copyTo(frame(cv::Rect(cam.cols, 0, latest_top.cols, latest_top.rows)));
       }
-      writer.write(frame);
+      return frame;
+    };
+    // The next frame is read and composed on a thread of its own while this one is encoded on
+    // the caller's thread: the encoder sees the same frames in the same order, so the same bytes.
+    std::future<cv::Mat> next = std::async(std::launch::async, compose, size_t{0});
+    for (size_t i = 0; i < shots.size(); ++i) {
+      const cv::Mat frame = next.get();
+      if (i + 1 < shots.size()) {
+        next = std::async(std::launch::async, compose, i + 1);
+      }
+      if (h264 != nullptr) {
+        h264->write(frame);
+      } else {
+        writer.write(frame);
+      }
       ++report.frames;
       if (progress) {
         progress(report.frames, static_cast<int>(shots.size()));
       }
     }
-    writer.release();
+    if (h264 != nullptr) {
+      h264->finish();
+      h264.reset();
+    } else {
+      writer.release();
+    }
     fs::rename(temporary, report.video, error);
     if (error) {
       throw InputError(make_error(report.video.string(), 0, "cannot write: " + error.message()));

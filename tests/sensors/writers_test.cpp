@@ -7,6 +7,7 @@
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/sensors/kitti.h"
+#include "png_codec.h"
 #include "run_corsa.h"
 #include "temp_dir.h"
 
@@ -231,4 +232,102 @@ TEST_CASE("rectifying a distorted image puts every pixel where the pinhole would
   }
   CHECK(checked > 40000);
   CHECK(off == 0);  // within a pixel (nearest-pixel sampling) everywhere
+}
+
+TEST_CASE("PNG files hold exactly the pixels given, in every layout, with the same bytes each time",
+          "[sensors][writers][png]") {
+  corsa::test::TempDir dir;
+  // An odd size, values over the whole range (16-bit values above 255 check the byte order) and
+  // a run of equal values (what deflate's matcher finds in class images).
+  constexpr int kWidth = 61;
+  constexpr int kHeight = 17;
+  constexpr size_t kPixels = static_cast<size_t>(kWidth) * kHeight;
+  std::vector<uint8_t> rgb(3 * kPixels);
+  std::vector<uint8_t> gray(kPixels);
+  std::vector<uint16_t> wide(kPixels);
+  uint32_t state = 12345;
+  const auto next = [&state] { return state = state * 1664525u + 1013904223u; };
+  for (size_t i = 0; i < kPixels; ++i) {
+    const bool run = i >= 100 && i < 400;
+    for (int c = 0; c < 3; ++c) {
+      rgb[3 * i + c] = run ? static_cast<uint8_t>(40 * c) : static_cast<uint8_t>(next() >> 24);
+    }
+    gray[i] = run ? 7 : static_cast<uint8_t>(next() >> 24);
+    wide[i] = run ? 1235 : static_cast<uint16_t>(next() >> 16);
+  }
+  write_png_rgb8(dir.path() / "rgb.png", kWidth, kHeight, rgb);
+  write_png_gray8(dir.path() / "gray.png", kWidth, kHeight, gray);
+  write_png_gray16(dir.path() / "wide.png", kWidth, kHeight, wide);
+
+  const cv::Mat rgb_read = cv::imread((dir.path() / "rgb.png").string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat gray_read = cv::imread((dir.path() / "gray.png").string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat wide_read = cv::imread((dir.path() / "wide.png").string(), cv::IMREAD_UNCHANGED);
+  REQUIRE(rgb_read.type() == CV_8UC3);
+  REQUIRE(gray_read.type() == CV_8UC1);
+  REQUIRE(wide_read.type() == CV_16UC1);
+  REQUIRE((rgb_read.cols == kWidth && rgb_read.rows == kHeight));
+  REQUIRE((wide_read.cols == kWidth && wide_read.rows == kHeight));
+  size_t wrong = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const size_t i = static_cast<size_t>(y) * kWidth + x;
+      const cv::Vec3b bgr = rgb_read.at<cv::Vec3b>(y, x);
+      wrong += bgr[2] != rgb[3 * i] || bgr[1] != rgb[3 * i + 1] || bgr[0] != rgb[3 * i + 2];
+      wrong += gray_read.at<uint8_t>(y, x) != gray[i];
+      wrong += wide_read.at<uint16_t>(y, x) != wide[i];
+    }
+  }
+  CHECK(wrong == 0);
+
+  write_png_rgb8(dir.path() / "rgb2.png", kWidth, kHeight, rgb);
+  write_png_gray16(dir.path() / "wide2.png", kWidth, kHeight, wide);
+  CHECK(corsa::read_file(dir.path() / "rgb.png") == corsa::read_file(dir.path() / "rgb2.png"));
+  CHECK(corsa::read_file(dir.path() / "wide.png") == corsa::read_file(dir.path() / "wide2.png"));
+  // The run of equal values is found: the class image is smaller than its raw bytes.
+  CHECK(fs::file_size(dir.path() / "gray.png") < kPixels);
+}
+
+TEST_CASE("the preview's PNG reader gives OpenCV's pixels for any filter and refuses bad files",
+          "[sensors][writers][png]") {
+  // A gradient with noise in places, written by OpenCV at compression 6: libpng's adaptive
+  // filtering chooses a filter row by row, not only Sub as our encoder.
+  cv::Mat bgr(23, 41, CV_8UC3);
+  uint32_t state = 777;
+  for (int y = 0; y < bgr.rows; ++y) {
+    for (int x = 0; x < bgr.cols; ++x) {
+      state = state * 1664525u + 1013904223u;
+      const int noise = y % 3 == 0 ? static_cast<int>(state >> 28) : 0;
+      bgr.at<cv::Vec3b>(y, x) = cv::Vec3b(static_cast<uint8_t>(5 * x + noise),
+                                          static_cast<uint8_t>(7 * y), static_cast<uint8_t>(x * y));
+    }
+  }
+  std::vector<uchar> by_opencv;
+  REQUIRE(cv::imencode(".png", bgr, by_opencv, {cv::IMWRITE_PNG_COMPRESSION, 6}));
+  const std::optional<cv::Mat> decoded = corsa::sensors::detail::decode_png_rgb8(
+      std::string_view(reinterpret_cast<const char*>(by_opencv.data()), by_opencv.size()));
+  REQUIRE(decoded.has_value());
+  CHECK(cv::norm(*decoded, bgr, cv::NORM_INF) == 0);
+
+  // Our own encoder's files, read back.
+  std::vector<uint8_t> rgb(3 * bgr.total());
+  for (size_t i = 0; i < bgr.total(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      rgb[3 * i + c] = bgr.data[3 * i + 2 - c];
+    }
+  }
+  std::string ours = corsa::sensors::detail::encode_png(
+      bgr.cols, bgr.rows, corsa::sensors::detail::PngPixels::kRgb8, rgb);
+  const std::optional<cv::Mat> ours_decoded = corsa::sensors::detail::decode_png_rgb8(ours);
+  REQUIRE(ours_decoded.has_value());
+  CHECK(cv::norm(*ours_decoded, bgr, cv::NORM_INF) == 0);
+
+  // A flipped bit in the data fails its CRC; a grey image is left to OpenCV.
+  ours[ours.size() / 2] = static_cast<char>(ours[ours.size() / 2] ^ 0x10);
+  CHECK_FALSE(corsa::sensors::detail::decode_png_rgb8(ours).has_value());
+  const std::vector<uint8_t> gray(bgr.total(), 9);
+  CHECK_FALSE(corsa::sensors::detail::decode_png_rgb8(
+                  corsa::sensors::detail::encode_png(
+                      bgr.cols, bgr.rows, corsa::sensors::detail::PngPixels::kGray8, gray))
+                  .has_value());
+  CHECK_FALSE(corsa::sensors::detail::decode_png_rgb8("not a png").has_value());
 }

@@ -5,10 +5,12 @@
 //                                   each stamped with its time
 //   DIR/preview/camera_birds_eye.mp4  the camera beside the bird's-eye view, at the camera rate
 // The first RGB camera and the first bird's-eye camera of the rig are used (the video shows the
-// camera alone without a bird's-eye camera). The video is encoded with OpenCV's videoio: H.264
-// ("avc1") when the FFmpeg build offers it, else MPEG-4 part 2 ("mp4v"), else Motion JPEG in
-// camera_birds_eye.avi, and the summary says which. The contact sheet is deterministic; the video
-// depends on the encoder and is not part of the byte-identical dataset.
+// camera alone without a bird's-eye camera). The video is H.264 ("avc1") from libx264 through
+// FFmpeg's libraries at a fast preset (sensors/src/h264_writer.h) when FFmpeg has libx264; else
+// OpenCV's videoio writes the first it can of H.264, MPEG-4 part 2 ("mp4v") or Motion JPEG in
+// camera_birds_eye.avi, and the summary says which. The contact sheet is deterministic; the H.264
+// video is the same bytes from run to run with the same FFmpeg and libx264, but depends on their
+// versions and is not part of the byte-identical dataset.
 
 #include <filesystem>
 #include <functional>
