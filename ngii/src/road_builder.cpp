@@ -37,6 +37,10 @@ namespace {
 constexpr int kFoldRefits = 8;
 /// m: the least width a lane is narrowed to on the inside of a tight turn (border_solver.h).
 constexpr double kNarrowestInTurn = 1.5;
+/// m of width per metre of s over which a lane narrowed on the inside of a turn is eased in
+/// and out: narrowed at one station only, its borders would slant across the road at the
+/// turn's end (a lane narrowing by 2.5 m within 0.5 m), and the mesh folds over there anyway.
+constexpr double kNarrowingEase = 1.0;
 
 /// The leftmost lane that starts and ends beside the others (else the leftmost lane).
 size_t reference_lane(const RoadPlan& plan) {
@@ -128,8 +132,12 @@ Borders station_borders(const RoadPlan& plan, const Stations& st, const LaneLine
   Borders borders;
   borders.t.resize(st.s.size());
   borders.centred.resize(st.s.size());
-  std::vector<LaneTarget> targets(lanes);
-  for (size_t i = 0; i < st.s.size(); ++i) {
+  const size_t n = st.s.size();
+  std::vector<std::vector<LaneTarget>> all_targets(n, std::vector<LaneTarget>(lanes));
+  // How much narrow_inside_of_turn took off each lane's width at each station.
+  std::vector<std::vector<double>> narrowed(n, std::vector<double>(lanes, 0.0));
+  for (size_t i = 0; i < n; ++i) {
+    std::vector<LaneTarget>& targets = all_targets[i];
     for (size_t k = 0; k < lanes; ++k) {
       targets[k] = {st.crossings[k][i].t, width_target(st, lines, widths, k, i), true};
     }
@@ -159,9 +167,39 @@ Borders station_borders(const RoadPlan& plan, const Stations& st, const LaneLine
         targets[k].width *= apart / full;
       }
     }
+    std::vector<double> before(lanes);
+    for (size_t k = 0; k < lanes; ++k) {
+      before[k] = targets[k].width;
+    }
     narrow_inside_of_turn(targets, st.curvature[i], kFoldClearance, kNarrowestInTurn);
-    borders.t[i] = solve_borders(targets, ref);
-    for (const LaneTarget& target : targets) {
+    for (size_t k = 0; k < lanes; ++k) {
+      narrowed[i][k] = before[k] - targets[k].width;
+    }
+  }
+  // Each station narrows a lane by at least what a station within reach narrows it, less
+  // kNarrowingEase per metre between them (a forward and a backward sweep).
+  for (size_t k = 0; k < lanes; ++k) {
+    std::vector<double> eased(n);
+    for (size_t i = 0; i < n; ++i) {
+      eased[i] = narrowed[i][k];
+      if (i > 0) {
+        eased[i] = std::max(eased[i], eased[i - 1] - kNarrowingEase * (st.s[i] - st.s[i - 1]));
+      }
+    }
+    for (size_t i = n; i-- > 1;) {
+      eased[i - 1] = std::max(eased[i - 1], eased[i] - kNarrowingEase * (st.s[i] - st.s[i - 1]));
+    }
+    for (size_t i = 0; i < n; ++i) {
+      LaneTarget& target = all_targets[i][k];
+      const double extra = eased[i] - narrowed[i][k];
+      if (target.centred && extra > 0.0 && target.width > kNarrowestInTurn) {
+        target.width = std::max(target.width - extra, kNarrowestInTurn);
+      }
+    }
+  }
+  for (size_t i = 0; i < n; ++i) {
+    borders.t[i] = solve_borders(all_targets[i], ref);
+    for (const LaneTarget& target : all_targets[i]) {
       borders.centred[i].push_back(target.centred);
     }
   }
@@ -414,12 +452,27 @@ BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin&
   // A one-lane road turning right whose lane folds over on the inside of the turn: along its
   // right edge instead, the lane lies on the outside of every right turn, where borders cannot
   // fold (road_reference.h, along_right_edge). Only then: a line along the inside is shorter
-  // and follows a junction path's steep height steps over less s.
-  if (built.folds && plan.lanes.size() == 1 &&
-      along_right_edge(lines.smooth[reference_lane(plan)])) {
+  // and follows a junction path's steep height steps over less s. Folding is either a border
+  // beyond the centre of curvature at a station or one the fitted records give (a border
+  // slanting across the road, fitted_road_folds).
+  if (plan.lanes.size() != 1) {
+    return built;
+  }
+  const Polyline& lane = lines.smooth[reference_lane(plan)];
+  if ((built.folds || fitted_road_folds(built.road)) && along_right_edge(lane)) {
     BuiltRoad right = build_road_along(plan, network, lines, widths, ends, options, true);
     if (!right.folds) {
-      built = std::move(right);
+      return right;
+    }
+  }
+  // A lane still beyond the centre of curvature at a station: along its right edge even
+  // where that turns more tightly than the 1.5 m radius (a corner right after its start), as
+  // the last resort only: such a right edge rarely turns onto the line of the road it joins
+  // (that end keeps its own line), and for every road that turns so Sangam's centre gaps grow.
+  if (built.folds && !along_right_edge(lane) && along_right_edge(lane, true)) {
+    BuiltRoad right = build_road_along(plan, network, lines, widths, ends, options, true);
+    if (!right.folds) {
+      return right;
     }
   }
   return built;

@@ -110,7 +110,7 @@ double circle_share(const std::vector<Point3>& p, bool at_end) {
   return std::clamp(2.0 * c1 / c2 - 1.0, 0.0, 1.0);
 }
 
-bool along_right_edge(const Polyline& lane) {
+bool along_right_edge(const Polyline& lane, bool tight_corners) {
   const auto& p = lane.points();
   double turn = 0.0;
   for (size_t i = 2; i < p.size(); ++i) {
@@ -120,6 +120,9 @@ bool along_right_edge(const Polyline& lane) {
   }
   if (turn > -kInsideTurn) {
     return false;
+  }
+  if (tight_corners) {
+    return true;
   }
   for (size_t i = 0; i < p.size(); ++i) {
     const double u = lane.u()[i];

@@ -66,7 +66,9 @@ ReferencePolyline shifted_left(const Polyline& lane, const std::vector<double>& 
 /// could not follow it. Its lane then lies left of the reference line, on the outside of the turn,
 /// where lane borders cannot fold over (they would lie beyond the centre of curvature on the
 /// inside; K-City's right-turn junction paths turn at radii of 2-4 m under lanes 3.5-5 m wide).
-bool along_right_edge(const Polyline& lane);
+/// With `tight_corners` the radius is not asked for (the last resort of a lane that folds
+/// along its left edge).
+bool along_right_edge(const Polyline& lane, bool tight_corners = false);
 
 /// Smooths `reference` (lanes on its right; with `lanes_left` mirrored: left turns) where it
 /// turns right more tightly than the road is wide (`road_width` per vertex, m): the road's right
