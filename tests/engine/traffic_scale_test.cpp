@@ -4,6 +4,7 @@
 // standing entity costs does not change what it records.
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -12,9 +13,11 @@
 #include <iterator>
 #include <memory>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "controllers/worker_pool.h"
 #include "corsa/core/random.h"
 #include "corsa/engine/outputs.h"
 #include "corsa/engine/run.h"
@@ -404,5 +407,40 @@ TEST_CASE(
       kept += static_cast<uint32_t>(band.size());
     }
     CHECK(kept > queries.size());  // the bands hold points: the comparisons are not of nothing
+  }
+}
+
+TEST_CASE("The worker pool hands out every item once, in chunks, and rethrows a chunk's error",
+          "[engine][traffic]") {
+  using corsa::engine::detail::WorkerPool;
+  for (const unsigned threads : {1u, 2u, 3u}) {
+    WorkerPool pool(threads);
+    REQUIRE(pool.threads() == threads);
+    // Several runs in a row: each thread's share is set again for every run.
+    for (const size_t count : {size_t{0}, size_t{1}, size_t{7}, size_t{64}, size_t{1000}}) {
+      for (const size_t chunk : {size_t{1}, size_t{3}, size_t{32}}) {
+        std::vector<std::atomic<int>> taken(count);
+        std::atomic<bool> bad_range{false};
+        pool.run(count, chunk, [&](size_t begin, size_t end, unsigned worker) {
+          if (begin >= end || end > count || end - begin > chunk || begin % chunk != 0 ||
+              worker >= threads) {
+            bad_range = true;
+          }
+          for (size_t i = begin; i < end; ++i) ++taken[i];
+        });
+        CHECK_FALSE(bad_range);
+        size_t once = 0;
+        for (const std::atomic<int>& t : taken) once += t.load() == 1 ? 1 : 0;
+        CHECK(once == count);
+      }
+    }
+    CHECK_THROWS_AS(pool.run(100, 8,
+                             [](size_t begin, size_t, unsigned) {
+                               if (begin == 48) throw std::runtime_error("chunk 6");
+                             }),
+                    std::runtime_error);
+    std::atomic<size_t> sum{0};
+    pool.run(100, 8, [&](size_t begin, size_t end, unsigned) { sum += end - begin; });
+    CHECK(sum == 100);  // still hands out every item after an error
   }
 }

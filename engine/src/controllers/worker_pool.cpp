@@ -1,10 +1,25 @@
 #include "controllers/worker_pool.h"
 
 #include <algorithm>
+#include <chrono>
 
 namespace corsa::engine::detail {
 
-WorkerPool::WorkerPool(unsigned threads) {
+namespace {
+
+// How long the caller spins for the chunks workers have started before it sleeps: a few
+// chunks' time (a chunk of 32 moves of 1,000 vehicles on Town04 takes 15-30 us).
+constexpr std::chrono::microseconds kPoolSpinWait{100};
+
+void pool_spin_pause() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#endif
+}
+
+}  // namespace
+
+WorkerPool::WorkerPool(unsigned threads) : shares_(std::max(threads, 1u)) {
   for (unsigned w = 1; w < threads; ++w) {
     workers_.emplace_back([this, w] { serve(w); });
   }
@@ -23,15 +38,20 @@ WorkerPool::~WorkerPool() {
 
 void WorkerPool::drain(unsigned worker) {
   std::exception_ptr error;
-  while (true) {
-    const size_t begin = next_.fetch_add(chunk_, std::memory_order_relaxed);
-    if (begin >= count_) {
-      break;
-    }
-    try {
-      (*work_)(begin, std::min(count_, begin + chunk_), worker);
-    } catch (...) {
-      if (!error) error = std::current_exception();
+  // Its own share first, then what is left of the others'.
+  for (size_t k = 0; k < shares_.size(); ++k) {
+    PoolShare& share = shares_[(worker + k) % shares_.size()];
+    while (true) {
+      const size_t chunk = share.next.fetch_add(1, std::memory_order_relaxed);
+      if (chunk >= share.end) {
+        break;
+      }
+      const size_t begin = chunk * chunk_;
+      try {
+        (*work_)(begin, std::min(count_, begin + chunk_), worker);
+      } catch (...) {
+        if (!error) error = std::current_exception();
+      }
     }
   }
   if (error) {
@@ -47,7 +67,11 @@ void WorkerPool::run(size_t count, size_t chunk,
     work_ = &work;
     count_ = count;
     chunk_ = std::max<size_t>(chunk, 1);
-    next_.store(0, std::memory_order_relaxed);
+    const size_t chunks = (count + chunk_ - 1) / chunk_;
+    for (size_t w = 0; w < shares_.size(); ++w) {
+      shares_[w].next.store(chunks * w / shares_.size(), std::memory_order_relaxed);
+      shares_[w].end = chunks * (w + 1) / shares_.size();
+    }
     error_ = nullptr;
     open_ = true;
     ++generation_;
@@ -56,6 +80,16 @@ void WorkerPool::run(size_t count, size_t chunk,
   drain(0);
   std::unique_lock lock(mutex_);
   open_ = false;  // a worker waking up from now on has missed this run
+  if (active_.load(std::memory_order_relaxed) != 0) {
+    // No worker joins any more: wait for those inside, first awake.
+    lock.unlock();
+    const auto until = std::chrono::steady_clock::now() + kPoolSpinWait;
+    while (active_.load(std::memory_order_relaxed) != 0 &&
+           std::chrono::steady_clock::now() < until) {
+      pool_spin_pause();
+    }
+    lock.lock();
+  }
   done_.wait(lock, [this] { return active_ == 0; });
   work_ = nullptr;
   if (error_) {
