@@ -190,6 +190,10 @@ namespace {
 // Entities from which a step is shared out among threads: below that the hand-over costs more
 // than the moves.
 constexpr uint32_t kParallelEntities = 128;
+// Entities from which light per-entity work (EntityMover::share: the contacts' boxes, a few
+// nanoseconds each) is shared out: handing it to another core costs more below that (as the
+// picture's targets, controllers/follow_view.cpp).
+constexpr size_t kParallelLightEntities = 8192;
 // Entities a thread takes at a time (consecutive in the moving order, so mostly of one lane):
 // small enough that the threads end together, large enough that taking one costs nothing.
 constexpr size_t kChunkEntities = 32;
@@ -368,7 +372,7 @@ EntityMover& EntityMover::operator=(EntityMover&&) noexcept = default;
 
 void EntityMover::share(size_t count, const std::function<void(size_t, size_t)>& work) {
   Impl& impl = *impl_;
-  if (impl.threads == 1 || count < kParallelEntities) {
+  if (impl.threads == 1 || count < kParallelLightEntities) {
     work(0, count);
     return;
   }

@@ -75,7 +75,8 @@ class EntityMover {
   void move(SimState& state, const MotionContext& motion);
 
   /// Calls work(begin, end) for ranges covering [0, count), each once: on the mover's threads
-  /// when it has several and `count` is large enough to be worth sharing, else here in one call.
+  /// when it has several and `count` is large enough to be worth sharing (thousands: light
+  /// work), else here in one call.
   /// For per-entity work whose result does not depend on the thread (e.g. the contacts' boxes).
   void share(size_t count, const std::function<void(size_t, size_t)>& work);
 

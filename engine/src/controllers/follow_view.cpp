@@ -12,8 +12,12 @@ namespace corsa::engine::detail {
 namespace {
 
 // Entities from which the picture's per-entity part is shared out among threads, and how many
-// a thread takes at a time.
-constexpr size_t kParallelTargets = 128;
+// a thread takes at a time. An entity's part is light (about 15 ns), and handing a run to
+// another core costs tens of microseconds, with the pictures then read back from that core's
+// cache: with 1,000 vehicles on two cores the shared picture took longer than this thread
+// alone (docs/performance-traffic.md). 8,192 is where the half of the work spared would
+// outweigh that, estimated from those costs (not measured).
+constexpr size_t kParallelTargets = 8192;
 constexpr size_t kTargetChunk = 64;
 
 }  // namespace
