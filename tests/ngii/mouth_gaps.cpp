@@ -1,5 +1,6 @@
 #include "mouth_gaps.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -41,6 +42,57 @@ double uncovered(const xodr::Map& map, const xodr::LaneRef& ref, double s, bool 
   return longest;
 }
 
+/// A lane's end edge: its borders' world points (t_min, then t_max) and its width (m).
+struct MouthEndEdge {
+  xodr::WorldPose a, b;
+  double width = 0.0;
+};
+
+MouthEndEdge mouth_end_edge(const xodr::Map& map, const xodr::LaneRef& ref, double s) {
+  MouthEndEdge e;
+  if (const auto span = map.lane_span_in_section(ref.road, ref.section, s, ref.lane)) {
+    e.a = map.world_pose(ref.road, s, span->t_min());
+    e.b = map.world_pose(ref.road, s, span->t_max());
+    e.width = span->width();
+  }
+  return e;
+}
+
+/// Lists (stderr) each lane end joined to this one: its width, junction, where its borders lie
+/// along this end's edge (m from its t_min border) and beyond it (m, out of the lane), and the
+/// heading difference of the two lanes (degrees): what tells a width step from a corner.
+void describe_mouth_join(const xodr::Map& map, const xodr::LaneGraph& graph, xodr::LaneNode node,
+                         bool at_start) {
+  const auto& info = graph.info(node);
+  const MouthEndEdge own = mouth_end_edge(map, info.lane, at_start ? info.s_start : info.s_end);
+  const double ux = own.b.x - own.a.x, uy = own.b.y - own.a.y;
+  const double length = std::max(1e-9, std::hypot(ux, uy));
+  const double out = own.a.h + (at_start ? M_PI : 0.0);
+  std::fprintf(stderr, "  own: %s w %.2f junction %s\n", map.road(info.lane.road).id.c_str(),
+               own.width, map.road(info.lane.road).junction.c_str());
+  for (const auto& end : graph.ends(node, at_start)) {
+    const auto& other = graph.info(end.node);
+    const MouthEndEdge o =
+        mouth_end_edge(map, other.lane, end.at_start ? other.s_start : other.s_end);
+    const auto along = [&](const xodr::WorldPose& p) {
+      return ((p.x - own.a.x) * ux + (p.y - own.a.y) * uy) / length;
+    };
+    const auto beyond = [&](const xodr::WorldPose& p) {
+      return (p.x - own.a.x) * std::cos(out) + (p.y - own.a.y) * std::sin(out);
+    };
+    // Lanes meeting end to start run the same way; start to start or end to end, opposite.
+    const double turn =
+        std::remainder(o.a.h - own.a.h + (end.at_start == at_start ? M_PI : 0.0), 2.0 * M_PI);
+    std::fprintf(stderr,
+                 "  -> road %s lane %d %s w %.2f junction %s: borders at %.2f / %.2f "
+                 "(beyond %.2f / %.2f) of %.2f, heading diff %.1f deg\n",
+                 map.road(other.lane.road).id.c_str(), other.lane.lane,
+                 end.at_start ? "start" : "end", o.width,
+                 map.road(other.lane.road).junction.c_str(), along(o.a), along(o.b), beyond(o.a),
+                 beyond(o.b), length, turn * 180.0 / M_PI);
+  }
+}
+
 }  // namespace
 
 MouthGapFigures mouth_gaps(const xodr::Map& map,
@@ -64,6 +116,9 @@ MouthGapFigures mouth_gaps(const xodr::Map& map,
           const auto p = map.world_pose(info.lane.road, at_start ? info.s_start : info.s_end, 0.0);
           std::fprintf(stderr, "mouth gap %.2f m at %s (map x %.1f y %.1f)\n", gap, what.c_str(),
                        p.x, p.y);
+          if (std::getenv("CORSA_MEASURE_DETAIL")) {
+            describe_mouth_join(map, graph, node, at_start);
+          }
         }
       }
       if (gap > f.max) {

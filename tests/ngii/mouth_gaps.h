@@ -8,6 +8,9 @@
 // any lane type). The longest run of samples on no lane is the gap at that lane end. Lane ends
 // at splits and merges (a lane beginning at zero width beside its neighbour) are left out, as are
 // the centre strips (strip_joins.h). Computed from the map and the A2 nodes only.
+// CORSA_MEASURE_LIST=1 lists each gap over 10 cm with its map position; CORSA_MEASURE_DETAIL=1
+// as well adds the lane ends joined to it (widths, borders along its end edge, heading
+// difference), which tells a width step from a corner.
 
 #include <cstddef>
 #include <functional>
