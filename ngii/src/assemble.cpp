@@ -7,6 +7,7 @@
 #include <set>
 
 #include "corsa/xodr/geometry.h"
+#include "reference_line.h"
 #include "sidewalks.h"
 #include "union_find.h"
 
@@ -121,6 +122,25 @@ class Assembler {
     for (const size_t r : join_ends(plan_, end_of, JoinedEnds::kOrdinaryStarts, end_lines)) {
       build_joined(r, end_lines[r], own_lines[r], built[r]);
     }
+    // Junction paths take the built widths of the lanes they join at their ends.
+    const auto joined_end = [&](const LaneIndex::Ref& ref,
+                                bool at_end) -> std::optional<JoinedLaneEnd> {
+      const auto end = end_of(static_cast<size_t>(ref.road), at_end);
+      if (!end) {
+        return std::nullopt;
+      }
+      const xodr::Road& road = built[static_cast<size_t>(ref.road)]->road;
+      const xodr::LaneSection& section =
+          at_end ? road.lane_sections.back() : road.lane_sections.front();
+      for (const xodr::Lane& lane : section.lanes) {
+        if (lane.id == lane_id(ref.lane)) {
+          const double s = at_end ? road.length - section.s : 0.0;
+          return JoinedLaneEnd{piecewise_value(lane.widths, s), end->heading};
+        }
+      }
+      return std::nullopt;
+    };
+    match_path_ends(plan_, index_, joined_end, widths_.lanes);
     join_ends(plan_, end_of, JoinedEnds::kJunctionPaths, end_lines);
     for (size_t r = 0; r < total; ++r) {
       if (!plan_.roads[r].removed && path(r)) {
@@ -168,8 +188,9 @@ class Assembler {
 
   /// A junction path on the lines of the roads it joins (`joined`), else on `own`: a path
   /// that cannot turn onto a joined line within its length (its lane would fold or end off its
-  /// link's end, a short path between two lines skewed by 20-50 degrees) keeps its own line at
-  /// that end, the other end first.
+  /// link's end, a short path between two lines skewed by 20-50 degrees, or its reference line
+  /// would need a corner tighter than the fit's 1 m minimum radius: a kink) keeps its own line
+  /// at that end, the other end first.
   void build_joined(size_t r, const RoadEndLines& joined, const RoadEndLines& own,
                     std::optional<BuiltRoad>& out) const {
     constexpr double kPathEndError = 0.1;  // m: farthest a lane end may move off its link's
@@ -182,7 +203,8 @@ class Assembler {
     for (const RoadEndLines* lines :
          std::array<const RoadEndLines*, 3>{&joined, &start_only, &end_only}) {
       out = build_road(plan_.roads[r], network_, origin_, widths_.lanes[r], *lines, options_);
-      if (!out->folds && !fitted_road_folds(out->road) && out->end_error <= kPathEndError) {
+      if (!out->folds && out->kinks == 0 && !fitted_road_folds(out->road) &&
+          out->end_error <= kPathEndError) {
         return;
       }
     }

@@ -19,16 +19,17 @@ constexpr double kMaxSpacing = 5.5;
 constexpr double kMarkReach = 6.0;  // m: farthest mark counted as bounding a lane (half width)
 constexpr double kStep = 1.0;       // m between width samples along a lane
 constexpr int kSmooth = 2;          // samples averaged on either side
-// Junction path ends: a path whose width where it starts (ends) differs from the ordinary lanes
-// it leaves (enters) by more than kPathEndMatch takes theirs there, easing back to its own over
-// kPathEndRamp (at most kPathEndRampShare of its length); at least kMinPathWidth wide. Only
-// for widths of kMinSpacing-kMaxSpacing differing by kPathEndMaxChange at most (a wider exit
-// is a lane that widens, not the path's width).
+// Junction path ends: a path whose width where it starts (ends) differs from the built
+// ordinary lanes it leaves (enters) by more than kPathEndMatch takes theirs there (when that is
+// a plausible lane width, kMinSpacing-kMaxSpacing: a wider exit is a lane that widens, not the
+// path's width), easing back to its own over kPathEndRamp (at most kPathEndRampShare of its
+// length), or over the whole stretch before the marks first give its width (at most half its
+// length: there its own width is only the nearest sample held flat, often the 6-8 m a path
+// measures between the intersection's edges deep inside it); at least kMinPathWidth wide.
 constexpr double kPathEndMatch = 0.02;  // m
-constexpr double kPathEndRamp = 6.0;    // m
+constexpr double kPathEndRamp = 3.0;    // m
 constexpr double kPathEndRampShare = 0.4;
-constexpr double kMinPathWidth = 1.5;      // m
-constexpr double kPathEndMaxChange = 1.5;  // m: larger differences are left as they are
+constexpr double kMinPathWidth = 1.5;  // m
 
 const double kUnknown = std::numeric_limits<double>::quiet_NaN();
 
@@ -241,19 +242,27 @@ double WidthProfile::at(double u) const {
 
 namespace {
 
-/// Mean width where the ordinary lanes (not junction paths) in `refs` end (`at_end`) or begin;
+/// Mean width the ordinary lanes (not junction paths) in `refs` have where they end
+/// (`at_end`) or begin, as built, taken across a path whose lane runs along `direction` there
+/// (a lane crossing the joined road's end at an angle spans its width / cos(angle) of it);
 /// 0 when there are none.
-double ordinary_width(const NetworkPlan& plan, const std::vector<LaneIndex::Ref>& refs,
-                      const std::vector<std::vector<WidthProfile>>& widths, bool at_end) {
+double joined_width(const NetworkPlan& plan, const std::vector<LaneIndex::Ref>& refs,
+                    const JoinedLaneEndOf& joined, bool at_end, Vec2 direction) {
+  constexpr double kMinAlong = 0.6;  // as the road builder's width targets (road_builder.cpp)
   double sum = 0.0;
   int n = 0;
   for (const auto& ref : refs) {
     const RoadPlan& road = plan.roads[static_cast<size_t>(ref.road)];
-    const WidthProfile& p = widths[static_cast<size_t>(ref.road)][static_cast<size_t>(ref.lane)];
-    if (road.removed || (road.junction >= 0 && !road.absorbed) || p.empty()) {
+    if (road.removed || (road.junction >= 0 && !road.absorbed)) {
       continue;
     }
-    sum += at_end ? p.back() : p.front();
+    const std::optional<JoinedLaneEnd> end = joined(ref, at_end);
+    if (!end) {
+      continue;
+    }
+    const double along =
+        std::abs(dot(direction, Vec2{std::cos(end->heading), std::sin(end->heading)}));
+    sum += end->width * std::max(along, kMinAlong);
     ++n;
   }
   return n > 0 ? sum / n : 0.0;
@@ -270,7 +279,7 @@ double ease_out(double x) {
 
 }  // namespace
 
-void match_path_ends(const NetworkPlan& plan, const LaneIndex& index,
+void match_path_ends(const NetworkPlan& plan, const LaneIndex& index, const JoinedLaneEndOf& joined,
                      std::vector<std::vector<WidthProfile>>& widths) {
   for (size_t r = 0; r < plan.roads.size(); ++r) {
     const RoadPlan& road = plan.roads[r];
@@ -280,24 +289,17 @@ void match_path_ends(const NetworkPlan& plan, const LaneIndex& index,
     for (size_t k = 0; k < road.lanes.size(); ++k) {
       const PlanLane& lane = road.lanes[k];
       WidthProfile& profile = widths[r][k];
-      if (profile.empty()) {
-        continue;
-      }
-      const double before =
-          ordinary_width(plan, index.ending[static_cast<size_t>(lane.start_node)], widths, true);
-      const double after =
-          ordinary_width(plan, index.starting[static_cast<size_t>(lane.end_node)], widths, false);
       const Polyline line(lane.points);
       const double length = line.length();
-      if (length <= 0.0) {
+      if (profile.empty() || length <= 0.0) {
         continue;
       }
-      // Only plausible lane widths, and differences a few metres of easing can take up.
+      const double before = joined_width(plan, index.ending[static_cast<size_t>(lane.start_node)],
+                                         joined, true, line.direction(0.0));
+      const double after = joined_width(plan, index.starting[static_cast<size_t>(lane.end_node)],
+                                        joined, false, line.direction(length));
       const auto change = [](double target, double own) {
-        return target >= kMinSpacing && target <= kMaxSpacing &&
-                       std::abs(target - own) <= kPathEndMaxChange
-                   ? target - own
-                   : 0.0;
+        return target >= kMinSpacing && target <= kMaxSpacing ? target - own : 0.0;
       };
       const double d0 = change(before, profile.front());
       const double d1 = change(after, profile.back());
@@ -305,10 +307,12 @@ void match_path_ends(const NetworkPlan& plan, const LaneIndex& index,
         continue;
       }
       const double ramp = std::min(kPathEndRamp, kPathEndRampShare * length);
+      const double ramp0 = std::min(std::max(ramp, profile.first_u()), 0.5 * length);
+      const double ramp1 = std::min(std::max(ramp, length - profile.last_u()), 0.5 * length);
       std::vector<ProfileSample> samples;
       for (const double u : stations_of(line)) {
         const double w =
-            profile.at(u) + d0 * ease_out(u / ramp) + d1 * ease_out((length - u) / ramp);
+            profile.at(u) + d0 * ease_out(u / ramp0) + d1 * ease_out((length - u) / ramp1);
         samples.push_back({u, std::max(w, kMinPathWidth)});
       }
       profile = WidthProfile(std::move(samples));
@@ -409,7 +413,6 @@ PlanWidths measure_widths(const NetworkPlan& plan, const Network& network, doubl
       ++out.counts[static_cast<size_t>(source)];
     }
   }
-  match_path_ends(plan, index, out.lanes);
   return out;
 }
 

@@ -134,6 +134,24 @@ TEST_CASE("a junction path narrower than the lane it leaves widens to it at the 
   CHECK(gaps.max < 0.1);
 }
 
+TEST_CASE(
+    "a junction path whose marks are far apart in its middle starts and ends as wide as "
+    "its lanes",
+    "[ngii][mouths]") {
+  // The path's marks lie 3.5 m either side of it between x = 38 and 42 only (the intersection's
+  // edges): the marks give its width there alone, 7 m, which was held flat out to its ends, so
+  // it stuck out 1.75 m beyond both sides of the 3.5 m lanes it joins. It now takes their width
+  // at its ends (as built) and widens to its own between the ends and x = 38 / 42.
+  Builder b = mouth(30.0);
+  b.mark("B2L", 38.0, 42.0, 3.5, "A2TEST00000P", "");
+  b.mark("B2R", 38.0, 42.0, -3.5, "", "A2TEST00000P");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 4);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
 TEST_CASE("a junction path leaving a lane at a corner starts on that lane's end line",
           "[ngii][mouths]") {
   // One-lane roads east, a junction path between them heading 15 degrees north of east: the

@@ -304,16 +304,18 @@ TEST_CASE("lanes joined at junction mouths leave no unpaved ground beyond their 
   // narrower path); 293 / 179 before junction paths (and one-lane roads after one-lane roads)
   // ended on the cross-section of the road they join (wedges where the links meet at a
   // corner); 78 / 113 before one-lane roads whose fitted records fold (a border slanting
-  // across the road) were fitted along their right edge too, on the joined road's line. What
-  // remains: lanes whose widths differ by more than 1.5 m (or wider than 5.5 m) from the
-  // path's, paths that could not turn onto the joined road's line, and joins of wider ordinary
-  // roads at a corner.
+  // across the road) were fitted along their right edge too, on the joined road's line; 74 /
+  // 113 before junction paths took the built widths of the lanes they join whatever the
+  // difference (paths of 4.5-7.6 m whose marks give their width only deep inside the
+  // intersection, held flat out to their ends, on lanes of 2.8-4.1 m). What remains: ordinary
+  // roads joined end to end whose lanes differ in width, joins at a corner, paths that could
+  // not turn onto the joined road's line, lanes narrower than 2.3 m or wider than 5.5 m.
   const auto& k = figures("kcity").mouth_gaps;
   INFO(k.worst);
   CHECK(k.ends > 1400);
-  CHECK(k.over <= 74);
+  CHECK(k.over <= 45);
   const auto& s = figures("seoul_sangam_testbed").mouth_gaps;
   INFO(s.worst);
   CHECK(s.ends > 3200);
-  CHECK(s.over <= 113);
+  CHECK(s.over <= 80);
 }
