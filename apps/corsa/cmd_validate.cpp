@@ -11,6 +11,7 @@
 #include "corsa/core/json.h"
 #include "corsa/core/strings.h"
 #include "corsa/xodr/map.h"
+#include "corsa/xodr/parser.h"
 #include "corsa/xosc/scenario.h"
 
 namespace corsa::cli {
@@ -63,6 +64,7 @@ FileReport check_file(const std::string& file, const xosc::LoadOptions& options)
     if (to_lower(path.extension().string()) == ".xodr") {
       report.kind = "opendrive";
       const xodr::Map map = xodr::Map::load(path, diagnostics);
+      if (options.strict) xodr::refuse_lenient_readings(map.data());
       report.summary = "OpenDRIVE map";
     } else {
       report.kind = "openscenario";

@@ -1,7 +1,11 @@
 // Conditions: one fixture per family (tests/engine/fixtures/condition_*.xosc). Each condition
 // starts a marker event; the tests check when it started.
 
+#include <fstream>
+#include <sstream>
+
 #include "engine_fixture.h"
+#include "temp_dir.h"
 
 namespace corsa::test {
 namespace {
@@ -60,6 +64,28 @@ TEST_CASE("Distance conditions between reference points, free space and boxes",
   REQUIRE(!run.sim().collisions().empty());
   CHECK(run.sim().collisions().front().time == Approx(11.55));
   CHECK(run.sim().colliding(run.entity("Runner"), run.entity("Slow")));
+}
+
+TEST_CASE("a lane of type none is off the road", "[engine][condition][road]") {
+  // OpenDRIVE 1.8 §9.5.3: a lane of type none is the space where a driver has left the road.
+  // The fixture's Drifter steps 3.5 m right of lane -3, into lane -4, made of type none here.
+  corsa::test::TempDir dir;
+  const auto copy = [&](const std::string& name, const std::string& from, const std::string& to) {
+    std::ostringstream read;
+    read << std::ifstream(engine_fixture(name), std::ios::binary).rdbuf();
+    std::string text = read.str();
+    REQUIRE(text.find(from) != std::string::npos);
+    text.replace(text.find(from), from.size(), to);
+    std::ofstream(dir.path() / name, std::ios::binary) << text;
+  };
+  copy("straight.xodr", "<lane id=\"-4\" type=\"sidewalk\"", "<lane id=\"-4\" type=\"none\"");
+  copy("condition_road.xosc", "<AbsoluteTargetLaneOffset value=\"-6\"/>",
+       "<AbsoluteTargetLaneOffset value=\"-3.5\"/>");
+  FixtureRun run(dir.path() / "condition_road.xosc");
+  run.run();
+  REQUIRE(run.at(1.02, "Drifter").road.has_value());
+  CHECK(run.at(1.02, "Drifter").road->lane == -4);
+  CHECK(started(run, "OffRoad") == Approx(1.52));
 }
 
 TEST_CASE("End-of-road, off-road and relative clearance conditions", "[engine][condition][road]") {

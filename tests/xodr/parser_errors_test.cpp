@@ -1,5 +1,6 @@
 // Bad input gives located errors (file:line), never a crash; oddities warn once.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <string>
 
@@ -179,4 +180,71 @@ TEST_CASE("a missing file is an error naming it", "[xodr][errors]") {
   corsa::Diagnostics diagnostics;
   CHECK_THROWS_WITH(parse_xodr("/nonexistent/map.xodr", diagnostics),
                     Catch::Contains("/nonexistent/map.xodr"));
+}
+
+namespace {
+
+// 1-based line of the first occurrence of `needle` in `text`.
+int line_of(const std::string& text, const std::string& needle) {
+  const size_t at = text.find(needle);
+  REQUIRE(at != std::string::npos);
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+}
+
+}  // namespace
+
+TEST_CASE("an object without s is placed by its repeat, or left out, with a lenient warning",
+          "[xodr][parser][lenient]") {
+  // esmini's crest-curve.xodr: a barrier written only by its <repeat> (1.8 §13.4: a repeat's
+  // attributes overrule the object's).
+  const std::string text = replace(
+      kRoad, "    <lanes>\n",
+      "    <objects>\n"
+      "      <object type=\"barrier\" id=\"8\" length=\"5\">\n"
+      "        <repeat s=\"20\" length=\"55\" distance=\"0\" tStart=\"-15\" tEnd=\"-40\"/>\n"
+      "      </object>\n"
+      "      <object type=\"pole\" id=\"9\" t=\"2\"/>\n"
+      "      <object type=\"pole\" id=\"10\" s=\"5\" t=\"3\"/>\n"
+      "    </objects>\n"
+      "    <lanes>\n");
+  corsa::Diagnostics diagnostics;
+  const MapData data = parse_xodr_text(text, "objects.xodr", diagnostics);
+  const Road& road = data.roads.at(0);
+  REQUIRE(road.objects.size() == 2);
+  CHECK(road.objects[0].id == "8");
+  CHECK(road.objects[0].s == 20.0);
+  CHECK(road.objects[0].t == -15.0);
+  REQUIRE(road.objects[0].repeats.size() == 1);
+  CHECK(road.objects[0].repeats[0].t_end == -40.0);
+  CHECK(road.objects[1].id == "10");
+  REQUIRE(data.lenient_readings.size() == 2);
+  const int placed = line_of(text, "<object type=\"barrier\"");
+  const int dropped = line_of(text, "<object type=\"pole\" id=\"9\"");
+  CHECK(data.lenient_readings[0].line == placed);
+  CHECK(data.lenient_readings[1].line == dropped);
+  std::vector<std::string> warnings;
+  for (const auto& d : diagnostics.all()) warnings.push_back(d.format());
+  CHECK_THAT(warnings.at(0),
+             Catch::Equals("objects.xodr:" + std::to_string(placed) +
+                           ": warning: <object> '8' without s and t (read as s 20, t -15: its "
+                           "<repeat>'s start, whose attributes overrule the object's) [in "
+                           "OpenDRIVE/road/objects/object]"));
+  const std::string dropped_at = "objects.xodr:" + std::to_string(dropped);
+  CHECK_THAT(warnings.at(1),
+             Catch::StartsWith(dropped_at + ": warning: <object> '9' without s "
+                                            "(read as no object: nothing places it on its "
+                                            "road)"));
+  // Refused where lenient readings are (--strict): every one, at its line.
+  try {
+    refuse_lenient_readings(data);
+    FAIL("a map read leniently was not refused");
+  } catch (const corsa::InputError& error) {
+    REQUIRE(error.diagnostics().size() == 2);
+    CHECK(error.diagnostics()[0].line == placed);
+    CHECK_THAT(error.diagnostics()[0].message,
+               Catch::Contains("(an error under --strict; otherwise read as s 20, t -15"));
+  }
+  // A map read as written has nothing to refuse.
+  corsa::Diagnostics plain;
+  CHECK_NOTHROW(refuse_lenient_readings(parse_xodr_text(kRoad, "plain.xodr", plain)));
 }

@@ -25,7 +25,8 @@ Poly3 parse_width_record(const XmlReader& reader, const XMLElement* e);
 RoadMark parse_road_mark(const XmlReader& reader, const XMLElement* e);
 LaneSpeed parse_lane_speed(const XmlReader& reader, const XMLElement* e);
 void parse_objects(const XmlReader& reader, const XMLElement* e, Road& road);
-Object parse_object(const XmlReader& reader, const XMLElement* e);
+/// nullopt for an object left out (a lenient reading: nothing places it on its road).
+std::optional<Object> parse_object(const XmlReader& reader, const XMLElement* e);
 void parse_signals(const XmlReader& reader, const XMLElement* e, Road& road);
 Signal parse_signal(const XmlReader& reader, const XMLElement* e);
 Junction parse_junction(const XmlReader& reader, const XMLElement* e);

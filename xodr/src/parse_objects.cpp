@@ -2,6 +2,9 @@
 // (OpenDRIVE 1.8 §13, §14), objects with their outlines, repeats and markings, signals with their
 // lane validities. The rest of their sub-structure (object validity, materials, ...) is read past.
 
+#include <optional>
+
+#include "corsa/core/strings.h"
 #include "parse_elements.h"
 
 namespace corsa::xodr::detail {
@@ -78,6 +81,43 @@ ObjectMarking parse_marking(const XmlReader& reader, const XMLElement* e) {
   return marking;
 }
 
+// The first <repeat> of an object that gives s, or null.
+const XMLElement* first_repeat_with_s(const XMLElement* object) {
+  for (const XMLElement* child : children(object)) {
+    if (named(child, "repeat") && child->attribute("s") != nullptr) return child;
+  }
+  return nullptr;
+}
+
+// s and t are required of every <object> (1.4 to 1.8). esmini's crest-curve.xodr has a barrier
+// written only by its <repeat> (s 200, length 55, t 15 to 40): a repeat's attributes overrule
+// the object's (1.8 §13.4, "Attributes of the repeated object shall overrule the attributes from
+// the original object"), so the object's own s and t say nothing it does not, and its first
+// repeat's s and tStart are read for them. An object without s (or t) and no repeat to give it
+// has no place on its road: it is left out. Returns false when the object is left out.
+bool place_object_by_repeat(const XmlReader& reader, const XMLElement* e, Object& object) {
+  const bool has_s = e->attribute("s") != nullptr;
+  const bool has_t = e->attribute("t") != nullptr;
+  if (has_s && has_t) {
+    object.s = reader.number(e, "s");
+    object.t = reader.number(e, "t");
+    return true;
+  }
+  const std::string missing = !has_s && !has_t ? "s and t" : !has_s ? "s" : "t";
+  const std::string what = "<object> '" + corsa::clip(object.id) + "' without " + missing;
+  const XMLElement* repeat = first_repeat_with_s(e);
+  if (repeat == nullptr || (!has_t && repeat->attribute("tStart") == nullptr)) {
+    reader.lenient(e, what, "no object: nothing places it on its road");
+    return false;
+  }
+  object.s = has_s ? reader.number(e, "s") : reader.number(repeat, "s");
+  object.t = has_t ? reader.number(e, "t") : reader.number(repeat, "tStart");
+  reader.lenient(e, what,
+                 "s " + corsa::format_double(object.s) + ", t " + corsa::format_double(object.t) +
+                     ": its <repeat>'s start, whose attributes overrule the object's");
+  return true;
+}
+
 }  // namespace
 
 void add_user_data(const XmlReader& reader, const XMLElement* e, std::vector<UserData>& out) {
@@ -87,14 +127,15 @@ void add_user_data(const XmlReader& reader, const XMLElement* e, std::vector<Use
   }
 }
 
-Object parse_object(const XmlReader& reader, const XMLElement* e) {
+std::optional<Object> parse_object(const XmlReader& reader, const XMLElement* e) {
   Object object;
   object.line = e->line();
   object.id = reader.text(e, "id");
   object.name = reader.text_or(e, "name", "");
   object.type = reader.text_or(e, "type", "none");
-  object.s = reader.number(e, "s");
-  object.t = reader.number(e, "t");
+  if (!place_object_by_repeat(reader, e, object)) {
+    return std::nullopt;
+  }
   object.z_offset = reader.number_or(e, "zOffset", 0.0);
   object.hdg = reader.number_or(e, "hdg", 0.0);
   object.pitch = reader.number_or(e, "pitch", 0.0);
@@ -138,7 +179,9 @@ Object parse_object(const XmlReader& reader, const XMLElement* e) {
 void parse_objects(const XmlReader& reader, const XMLElement* e, Road& road) {
   for (const XMLElement* child : children(e)) {
     if (named(child, "object")) {
-      road.objects.push_back(parse_object(reader, child));
+      if (std::optional<Object> object = parse_object(reader, child)) {
+        road.objects.push_back(std::move(*object));
+      }
     } else if (named(child, "tunnel")) {
       road.tunnels.push_back(Tunnel{
           reader.text(child, "id"), reader.text_or(child, "name", ""),

@@ -124,6 +124,7 @@ MapData parse_document(const detail::XmlReader& reader, const detail::XmlElement
   if (!have_header) {
     reader.fail(root, "<OpenDRIVE> has no <header>");
   }
+  map.lenient_readings = reader.take_lenient_readings();
   return map;
 }
 
@@ -147,6 +148,18 @@ MapData parse_xodr_text(std::string_view text, const std::string& source_name,
 
 MapData parse_xodr(const std::filesystem::path& path, corsa::Diagnostics& diagnostics) {
   return parse_owned_text(corsa::read_file(path), path.string(), diagnostics);
+}
+
+void refuse_lenient_readings(const MapData& data) {
+  if (data.lenient_readings.empty()) return;
+  std::vector<corsa::Diagnostic> errors;
+  for (const LenientReading& reading : data.lenient_readings) {
+    errors.push_back(corsa::make_error(
+        data.source_file, reading.line,
+        reading.message + " (an error under --strict; otherwise read as " + reading.read_as + ")",
+        reading.path));
+  }
+  throw corsa::InputError(std::move(errors));
 }
 
 }  // namespace corsa::xodr

@@ -1,5 +1,6 @@
 #include "xml_reader.h"
 
+#include <utility>
 #include <vector>
 
 #include "corsa/core/strings.h"
@@ -50,6 +51,19 @@ void XmlReader::unknown_child(const XMLElement* parent, const XMLElement* child)
   warn_once(key, child,
             "unknown element " + tag(child) + " in " + tag(parent) +
                 " ignored (further ones not reported)");
+}
+
+void XmlReader::lenient(const XMLElement* e, const std::string& message,
+                        const std::string& read_as) const {
+  LenientReading reading{e ? e->line() : 0, e ? element_path(e) : std::string(),
+                         corsa::clip(message, kMaxMessage), corsa::clip(read_as, kMaxMessage)};
+  diagnostics_.add(corsa::make_warning(
+      file_, reading.line, reading.message + " (read as " + reading.read_as + ")", reading.path));
+  lenient_readings_.push_back(std::move(reading));
+}
+
+std::vector<LenientReading> XmlReader::take_lenient_readings() const {
+  return std::exchange(lenient_readings_, {});
 }
 
 double XmlReader::number(const XMLElement* e, const char* name) const {

@@ -6,8 +6,10 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "corsa/core/diagnostic.h"
+#include "corsa/xodr/model.h"
 #include "xml_dom.h"
 
 namespace corsa::xodr::detail {
@@ -55,6 +57,11 @@ class XmlReader {
   void warn_once(const std::string& key, const XMLElement* e, const std::string& message) const;
   /// Warns once per (parent, child name) that a child element is not understood.
   void unknown_child(const XMLElement* parent, const XMLElement* child) const;
+  /// A rule broken in a way whose meaning is clear: warns `message (read as read_as)` at `e` and
+  /// records it (MapData::lenient_readings), so that a strict reader can refuse the map.
+  void lenient(const XMLElement* e, const std::string& message, const std::string& read_as) const;
+  /// The lenient readings recorded so far, handed over (parse_document moves them into MapData).
+  std::vector<LenientReading> take_lenient_readings() const;
 
   /// Required number: missing, empty, text, NaN or infinite -> error.
   double number(const XMLElement* e, const char* name) const;
@@ -72,6 +79,8 @@ class XmlReader {
  private:
   std::string file_;
   corsa::Diagnostics& diagnostics_;
+  /// A record of what was read, filled while parsing through the const reader.
+  mutable std::vector<LenientReading> lenient_readings_;
 };
 
 /// "OpenDRIVE/road/planView/geometry" for an element.

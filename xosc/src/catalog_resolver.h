@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,12 @@ class CatalogResolver {
   /// entry, that one is taken with a lenient-reading warning (esmini looks there too).
   Hit find(ParseContext& ctx, const Element* reference, const std::string& catalog_name,
            const std::string& entry_name, std::initializer_list<std::string_view> kinds);
+
+  /// The file of catalog `catalog_name` when that catalog is at hand, every catalog file could
+  /// be read, and it has no entry `entry_name`; nullopt otherwise (found, or a failure find()
+  /// reports with its cause).
+  std::optional<std::string> file_lacking_entry(ParseContext& ctx, const std::string& catalog_name,
+                                                const std::string& entry_name);
 
   const std::vector<std::filesystem::path>& files_read() const { return files_read_; }
 

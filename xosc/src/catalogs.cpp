@@ -126,6 +126,22 @@ const std::optional<CatalogDirectory>* CatalogResolver::directory_for(std::strin
   return nullptr;
 }
 
+std::optional<std::string> CatalogResolver::file_lacking_entry(ParseContext& ctx,
+                                                               const std::string& catalog_name,
+                                                               const std::string& entry_name) {
+  if (!scanned_) {
+    scan(ctx);
+  }
+  for (const auto& file : files_) {
+    if (file->document == nullptr) return std::nullopt;  // it may hold the entry
+  }
+  const auto named = catalogs_.find(catalog_name);
+  if (named == catalogs_.end() || entry_of(named->second, entry_name) != nullptr) {
+    return std::nullopt;
+  }
+  return *owners_.at(named->second)->name;
+}
+
 CatalogResolver::Hit CatalogResolver::find(ParseContext& ctx, const Element* reference,
                                            const std::string& catalog_name,
                                            const std::string& entry_name,

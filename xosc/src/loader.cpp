@@ -3,6 +3,7 @@
 // dispatch on the document kind.
 
 #include "corsa/core/atomic_file.h"
+#include "file_paths.h"
 #include "parsers.h"
 #include "references.h"
 
@@ -45,7 +46,8 @@ CatalogLocations parse_catalog_locations(ParseContext& ctx, const Element* e) {
       Children(ctx, directory, "Directory");
       CatalogDirectory value;
       value.path = ctx.req_str(directory, "path");
-      value.resolved = resolve_path(ctx.file().directory, value.path);
+      value.resolved =
+          resolve_named_path(ctx, directory, value.path, PathKind::kDirectory, "catalog directory");
       value.source = ctx.source(directory);
       *slot = std::move(value);
     }
@@ -86,13 +88,18 @@ RoadNetwork parse_road_network(ParseContext& ctx, const Element* e) {
   network.source = ctx.source(e);
   if (const Element* logic = kids.opt("LogicFile")) {
     network.logic_file = parse_file(ctx, logic);
-    network.logic_file_path = resolve_path(ctx.file().directory, network.logic_file->filepath);
+    network.logic_file_path =
+        resolve_named_path(ctx, logic, network.logic_file->filepath, PathKind::kFile, "map file");
     std::error_code error;
     if (ctx.options().check_files &&
         !std::filesystem::is_regular_file(network.logic_file_path, error)) {
       // Reported, and the rest of the document is still checked.
+      const bool relative = std::filesystem::path(network.logic_file->filepath).is_relative();
       ctx.error(logic, "map file '" + clip(network.logic_file->filepath) +
                            "' not found (looked for " + clip(network.logic_file_path.string()) +
+                           (relative ? ", and for the same path from the " +
+                                           std::to_string(kAncestorLevels) + " folders above"
+                                     : std::string()) +
                            ")");
     }
   }

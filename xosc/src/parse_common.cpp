@@ -30,14 +30,39 @@ bool deprecated_attribute(ParseContext& ctx, const Element* element, const char*
   return true;
 }
 
+namespace {
+
+// A revision number (unsignedShort). esmini's speed-profile writes revMinor="1+" ("1 or later"):
+// its leading number says the revision the file was written for, and the rest is a note. Text
+// that does not start with a digit stays an error.
+int read_revision(ParseContext& ctx, const Element* element, const char* name) {
+  const char* raw = element->Attribute(name);
+  if (raw != nullptr) {
+    const std::string_view text(raw);
+    size_t digits = 0;
+    while (digits < text.size() && digits < 5 && text[digits] >= '0' && text[digits] <= '9') {
+      ++digits;
+    }
+    if (digits > 0 && digits < text.size() && text[digits] != '.') {
+      const std::string number(text.substr(0, digits));
+      ctx.lenient(element,
+                  "attribute " + std::string(name) + ": '" + clip(std::string(text)) +
+                      "' is not an unsignedShort",
+                  number + ", its leading number");
+      return std::stoi(number);
+    }
+  }
+  return static_cast<int>(ctx.req_int(element, name, ParameterType::kUnsignedShort));
+}
+
+}  // namespace
+
 FileHeader parse_file_header(ParseContext& ctx, const Element* element) {
   Children kids(ctx, element, "FileHeader");
   FileHeader header;
   header.source = ctx.source(element);
-  header.rev_major =
-      static_cast<int>(ctx.req_int(element, "revMajor", ParameterType::kUnsignedShort));
-  header.rev_minor =
-      static_cast<int>(ctx.req_int(element, "revMinor", ParameterType::kUnsignedShort));
+  header.rev_major = read_revision(ctx, element, "revMajor");
+  header.rev_minor = read_revision(ctx, element, "revMinor");
   // date, description and author are required by the XSD; tools often leave them out, which
   // costs nothing here, so a missing one is only a warning.
   for (const char* name : {"date", "description", "author"}) {

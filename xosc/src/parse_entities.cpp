@@ -273,9 +273,37 @@ Controller parse_controller(ParseContext& ctx, const Element* e, const EntryScop
   return controller;
 }
 
+// A controller's CatalogReference whose catalog is at hand but lacks the entry (esmini's
+// follow_reference names `followReference`, highway_driver `NaturalDriver`, neither in the
+// ControllerCatalog its tree holds). A controller is a driver model the engine may lack anyway
+// (it then runs the acc controller in its place, docs/engine.md), and the entry's name names
+// that model: read as a controller of that name without properties, which the engine treats as
+// any controller it lacks. A missing entity entry stays an error: nothing could stand in for it.
+std::optional<Controller> controller_lacking_entry(ParseContext& ctx, const Element* e) {
+  if (ctx.catalogs == nullptr) return std::nullopt;
+  const std::string catalog_name = ctx.req_str(e, "catalogName");
+  const std::string entry_name = ctx.req_str(e, "entryName");
+  const std::optional<std::string> file =
+      ctx.catalogs->file_lacking_entry(ctx, catalog_name, entry_name);
+  if (!file) return std::nullopt;
+  Controller controller;
+  controller.catalog = parse_catalog_origin(ctx, e);
+  controller.name = entry_name;
+  controller.source = ctx.source(e);
+  ctx.lenient(e,
+              "catalog '" + clip(catalog_name) + "' (" + *file + ") has no controller entry '" +
+                  clip(entry_name) + "'",
+              "a controller '" + clip(entry_name) +
+                  "' this engine lacks: the acc controller stands in for it once activated");
+  return controller;
+}
+
 Controller parse_controller_choice(ParseContext& ctx, const Element* e) {
   if (std::string_view(e->Name()) == "Controller") {
     return parse_controller(ctx, e);
+  }
+  if (std::optional<Controller> lacking = controller_lacking_entry(ctx, e)) {
+    return std::move(*lacking);
   }
   return expand_catalog_reference<
       Controller>(ctx, e, {"Controller"}, [&](const Element* entry, CatalogOrigin& origin) {

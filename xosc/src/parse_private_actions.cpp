@@ -156,7 +156,15 @@ LaneChangeAction parse_lane_change(ParseContext& ctx, const Element* e) {
 LaneOffsetAction parse_lane_offset(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "LaneOffsetAction");
   LaneOffsetAction action;
-  action.continuous = ctx.req_bool(e, "continuous");
+  if (e->Attribute("continuous") == nullptr) {
+    // continuous is required (1.0-1.3 XSD); esmini's lane_change leaves it out of an offset that
+    // moves its car 8 m aside in a chain of events. Read as false: the action ends once the
+    // target offset is reached (a continuous one would never end, holding its event).
+    ctx.lenient(e, "<LaneOffsetAction> without continuous", "continuous=\"false\"");
+    action.continuous = false;
+  } else {
+    action.continuous = ctx.req_bool(e, "continuous");
+  }
   const Element* dynamics = kids.one("LaneOffsetActionDynamics");
   Children(ctx, dynamics, "LaneOffsetActionDynamics");
   action.shape = ctx.req_enum<DynamicsShape>(dynamics, "dynamicsShape");
@@ -243,6 +251,71 @@ std::optional<SteadyState> optional_steady_state(ParseContext& ctx, const Elemen
   return std::nullopt;
 }
 
+// The speed element of a FinalSpeed beside esmini's <SteadyState> (which the choice of the
+// schema does not allow): its one AbsoluteSpeed or RelativeSpeedToMaster.
+const Element* speed_beside_steady_state(ParseContext& ctx, const Element* final_speed) {
+  const Element* absolute = final_speed->FirstChildElement("AbsoluteSpeed");
+  const Element* relative = final_speed->FirstChildElement("RelativeSpeedToMaster");
+  if ((absolute == nullptr) == (relative == nullptr)) {
+    ctx.fail(final_speed, "<FinalSpeed> needs one of: AbsoluteSpeed, RelativeSpeedToMaster");
+  }
+  return absolute != nullptr ? absolute : relative;
+}
+
+// In 1.1 to 1.3 SteadyState is an XSD group, not an element: its TargetDistanceSteadyState or
+// TargetTimeSteadyState is a child of the final speed it belongs to. esmini's
+// pedestrian_traj_synch writes it as an element beside <AbsoluteSpeed>, which says the same:
+// read as that speed's steady state. esmini itself reads only a first child of the speed
+// element, so it runs this file without the steady state.
+std::optional<SteadyState> steady_state_beside(ParseContext& ctx, const Element* wrapper,
+                                               const Element* speed,
+                                               std::optional<SteadyState> own) {
+  Children wrapper_kids(ctx, wrapper, "SteadyState");
+  std::optional<SteadyState> steady = optional_steady_state(ctx, wrapper, wrapper_kids);
+  if (own) {
+    ctx.fail(wrapper, "<SteadyState> beside a <" + std::string(speed->Name()) +
+                          "> that has a steady state of its own");
+  }
+  const std::string owner = "<" + std::string(speed->Name()) + ">";
+  if (!steady) {
+    ctx.lenient(wrapper, "an empty <SteadyState> in <FinalSpeed>", "no steady state");
+  } else if (const auto* distance = std::get_if<TargetDistanceSteadyState>(&*steady)) {
+    ctx.lenient(wrapper, "<SteadyState> in <FinalSpeed> (a group of the schema, not an element)",
+                owner + "'s steady state: TargetDistanceSteadyState " +
+                    format_double(distance->distance) + " m");
+  } else {
+    ctx.lenient(wrapper, "<SteadyState> in <FinalSpeed> (a group of the schema, not an element)",
+                owner + "'s steady state: TargetTimeSteadyState " +
+                    format_double(std::get<TargetTimeSteadyState>(*steady).time) + " s");
+  }
+  return steady;
+}
+
+std::variant<AbsoluteSpeed, RelativeSpeedToMaster> parse_final_speed(ParseContext& ctx,
+                                                                     const Element* e) {
+  Children kids(ctx, e, "FinalSpeed");
+  const Element* wrapper = kids.opt("SteadyState");
+  const Element* s = nullptr;
+  if (wrapper == nullptr) {
+    s = kids.choice();
+  } else {
+    kids.consume_all();
+    s = speed_beside_steady_state(ctx, e);
+  }
+  const bool absolute = std::string_view(s->Name()) == "AbsoluteSpeed";
+  Children speed_kids(ctx, s, absolute ? "AbsoluteSpeed" : "RelativeSpeedToMaster");
+  std::optional<SteadyState> steady = optional_steady_state(ctx, s, speed_kids);
+  if (wrapper != nullptr) {
+    steady = steady_state_beside(ctx, wrapper, s, std::move(steady));
+  }
+  if (absolute) {
+    return AbsoluteSpeed{ctx.req_double(s, "value"), std::move(steady), ctx.source(s)};
+  }
+  return RelativeSpeedToMaster{ctx.req_double(s, "value"),
+                               ctx.req_enum<SpeedTargetValueType>(s, "speedTargetValueType"),
+                               std::move(steady), ctx.source(s)};
+}
+
 SynchronizeAction parse_synchronize(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "SynchronizeAction");
   SynchronizeAction action;
@@ -252,18 +325,7 @@ SynchronizeAction parse_synchronize(ParseContext& ctx, const Element* e) {
   action.target_tolerance_master = ctx.opt_double(e, "targetToleranceMaster");
   action.target_tolerance = ctx.opt_double(e, "targetTolerance");
   if (const Element* final_speed = kids.opt("FinalSpeed")) {
-    Children final_kids(ctx, final_speed, "FinalSpeed");
-    const Element* s = final_kids.choice();
-    if (std::string_view(s->Name()) == "AbsoluteSpeed") {
-      Children speed_kids(ctx, s, "AbsoluteSpeed");
-      action.final_speed = AbsoluteSpeed{ctx.req_double(s, "value"),
-                                         optional_steady_state(ctx, s, speed_kids), ctx.source(s)};
-    } else {
-      Children speed_kids(ctx, s, "RelativeSpeedToMaster");
-      action.final_speed = RelativeSpeedToMaster{
-          ctx.req_double(s, "value"), ctx.req_enum<SpeedTargetValueType>(s, "speedTargetValueType"),
-          optional_steady_state(ctx, s, speed_kids), ctx.source(s)};
-    }
+    action.final_speed = parse_final_speed(ctx, final_speed);
   }
   action.source = ctx.source(e);
   return action;
@@ -295,9 +357,18 @@ FollowTrajectoryAction parse_follow_trajectory(ParseContext& ctx, const Element*
     action.trajectory = parse_trajectory_choice(ctx, direct);
   }
   action.time_reference = parse_time_reference(ctx, kids.one("TimeReference"));
-  const Element* mode = kids.one("TrajectoryFollowingMode");
-  Children(ctx, mode, "TrajectoryFollowingMode");
-  action.following_mode = ctx.req_enum<FollowingMode>(mode, "followingMode");
+  if (e->FirstChildElement("TrajectoryFollowingMode") == nullptr) {
+    // TrajectoryFollowingMode is required (1.0-1.3 XSD); esmini's pedestrian_traj_synch leaves it
+    // out, and esmini then follows the trajectory in its `follow` mode (steered along it, "applying
+    // follow"), which is how its author saw the file run: read so.
+    ctx.lenient(e, "<FollowTrajectoryAction> without <TrajectoryFollowingMode>",
+                "followingMode=\"follow\", esmini's default");
+    action.following_mode = FollowingMode::kFollow;
+  } else {
+    const Element* mode = kids.one("TrajectoryFollowingMode");
+    Children(ctx, mode, "TrajectoryFollowingMode");
+    action.following_mode = ctx.req_enum<FollowingMode>(mode, "followingMode");
+  }
   action.source = ctx.source(e);
   return action;
 }

@@ -173,7 +173,15 @@ Act parse_act(ParseContext& ctx, const Element* e, const std::string& parent) {
   act.name = ctx.req_str(e, "name");
   act.path = join(parent, act.name);
   std::set<std::string> names;
-  for (const Element* group : kids.at_least("ManeuverGroup", 1)) {
+  if (e->FirstChildElement("ManeuverGroup") == nullptr) {
+    // An Act holds 1..n ManeuverGroups (1.0-1.3 XSD); esmini's swarm writes `<Act name="act"/>`,
+    // its story only a frame for the swarm its Init starts. An act of no groups has nothing to
+    // wait for: it starts with its trigger and completes at once (§8.4.5: an Act ends when all
+    // its ManeuverGroups have).
+    ctx.lenient(e, "<Act> '" + clip(act.name) + "' without <ManeuverGroup>",
+                "an empty act, which completes as soon as it starts");
+  }
+  for (const Element* group : kids.all("ManeuverGroup")) {
     ctx.recover([&] {
       act.maneuver_groups.push_back(parse_maneuver_group(ctx, group, act.path));
       check_unique(ctx, names, group, act.maneuver_groups.back().name, "maneuver group");
@@ -207,7 +215,14 @@ Story parse_story(ParseContext& ctx, const Element* e) {
   }
   story.path = story.name;
   std::set<std::string> names;
-  for (const Element* act : kids.at_least("Act", 1)) {
+  if (e->FirstChildElement("Act") == nullptr) {
+    // A Story holds 1..n Acts (1.0-1.3 XSD); esmini's source writes an empty story, its traffic
+    // coming from the Init's TrafficSourceAction and its end from the Storyboard's StopTrigger. A
+    // story of no acts has nothing to wait for: it completes when the storyboard starts.
+    ctx.lenient(e, "<Story> '" + clip(story.name) + "' without <Act>",
+                "an empty story, which completes at once");
+  }
+  for (const Element* act : kids.all("Act")) {
     ctx.recover([&] {
       story.acts.push_back(parse_act(ctx, act, story.path));
       check_unique(ctx, names, act, story.acts.back().name, "act");

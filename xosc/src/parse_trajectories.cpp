@@ -38,15 +38,67 @@ Clothoid parse_clothoid(ParseContext& ctx, const Element* e) {
   return clothoid;
 }
 
+// A curvature of esmini's draft <Segment>: the 1.3 attribute, else the draft's (curvStart,
+// curvEnd); nullopt when neither is written.
+std::optional<double> draft_curvature(ParseContext& ctx, const Element* s, const char* name,
+                                      const char* draft_name) {
+  if (s->Attribute(name) != nullptr) return ctx.req_double(s, name);
+  return ctx.opt_double(s, draft_name);
+}
+
+// esmini's lane-change_clothoid_spline_based_trajectory writes the segments of a ClothoidSpline
+// as <Segment curvStart curvEnd>, the names of the prototype the 1.3 ClothoidSplineSegment
+// (curvatureStart, curvatureEnd) came from; esmini reads both. In that prototype a curvature
+// left out continues the curve: a start the previous segment's end curvature, an end the
+// segment's own start curvature (an arc). Read so, with the curvatures named in the warning.
+ClothoidSplineSegment parse_draft_segment(ParseContext& ctx, const Element* s,
+                                          const ClothoidSpline& spline) {
+  ClothoidSplineSegment segment;
+  std::optional<double> start = draft_curvature(ctx, s, "curvatureStart", "curvStart");
+  std::optional<double> end = draft_curvature(ctx, s, "curvatureEnd", "curvEnd");
+  std::string notes;
+  if (!start) {
+    if (spline.segments.empty()) {
+      ctx.fail(s, "the first <Segment> of a <ClothoidSpline> needs curvStart (curvatureStart)");
+    }
+    start = spline.segments.back().curvature_end;
+    notes += ", curvStart left out: the previous segment's end";
+  }
+  if (!end) {
+    end = *start;
+    notes += ", curvEnd left out: its start curvature";
+  }
+  segment.curvature_start = *start;
+  segment.curvature_end = *end;
+  ctx.lenient(s, "<Segment> in <ClothoidSpline> (a draft name)",
+              "<ClothoidSplineSegment curvatureStart=\"" + format_double(*start) +
+                  "\" curvatureEnd=\"" + format_double(*end) + "\">" + notes);
+  return segment;
+}
+
 ClothoidSpline parse_clothoid_spline(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "ClothoidSpline");
   ClothoidSpline spline;
   spline.time_end = ctx.opt_double(e, "timeEnd");
-  for (const Element* s : kids.at_least("ClothoidSplineSegment", 1)) {
-    Children segment_kids(ctx, s, "ClothoidSplineSegment");
+  kids.consume_all();
+  std::vector<const Element*> segments;
+  for (const Element* s = e->FirstChildElement(); s != nullptr; s = s->NextSiblingElement()) {
+    const std::string_view name = s->Name();
+    if (name == "ClothoidSplineSegment" || name == "Segment") segments.push_back(s);
+  }
+  if (segments.empty()) {
+    ctx.fail(e, "<ClothoidSpline> needs at least 1 <ClothoidSplineSegment>");
+  }
+  for (const Element* s : segments) {
+    const bool draft = std::string_view(s->Name()) == "Segment";
+    Children segment_kids(ctx, s, draft ? "Segment" : "ClothoidSplineSegment");
     ClothoidSplineSegment segment;
-    segment.curvature_start = ctx.req_double(s, "curvatureStart");
-    segment.curvature_end = ctx.req_double(s, "curvatureEnd");
+    if (draft) {
+      segment = parse_draft_segment(ctx, s, spline);
+    } else {
+      segment.curvature_start = ctx.req_double(s, "curvatureStart");
+      segment.curvature_end = ctx.req_double(s, "curvatureEnd");
+    }
     segment.length = ctx.req_double(s, "length");
     segment.h_offset = ctx.opt_double(s, "hOffset");
     segment.time_start = ctx.opt_double(s, "timeStart");

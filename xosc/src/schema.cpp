@@ -1,6 +1,7 @@
 // The OpenSCENARIO 1.3 schema as the loader checks it: for each XSD complex type the element
 // names it may contain and its attribute names (transcribed from OpenSCENARIO.xsd 1.3, with the
-// XSD groups expanded and the 1.0/1.1 deprecated children and attributes included). Parse
+// XSD groups expanded, the 1.0/1.1 deprecated children and attributes included, and the
+// non-standard forms read leniently, docs/openscenario.md "Lenient reading"). Parse
 // functions name the type they read; children not listed are errors ("unknown element"),
 // attributes not listed are warnings. known_elements() is derived from this table.
 
@@ -51,7 +52,7 @@ CatalogReference|ParameterAssignments|catalogName entryName
 Center||x y z
 CentralSwarmObject||entityRef
 Clothoid|Position|curvature curvatureDot length startTime stopTime curvaturePrime
-ClothoidSpline|ClothoidSplineSegment|timeEnd
+ClothoidSpline|ClothoidSplineSegment Segment|timeEnd
 ClothoidSplineSegment|PositionStart|curvatureStart curvatureEnd length hOffset timeStart
 CollisionCondition|EntityRef ByType|
 Color|ColorRgb ColorCmyk|colorType
@@ -96,7 +97,7 @@ Event|Action StartTrigger|maximumExecutionCount name priority
 ExternalObjectReference||name
 File||filepath
 FileHeader|License Properties|author date description revMajor revMinor
-FinalSpeed|AbsoluteSpeed RelativeSpeedToMaster|
+FinalSpeed|AbsoluteSpeed RelativeSpeedToMaster SteadyState|
 Fog|BoundingBox|visualRange
 FollowTrajectoryAction|Trajectory CatalogReference TimeReference TrajectoryFollowingMode TrajectoryRef|initialDistanceOffset
 GeoPosition|Orientation|latitude longitude height latitudeDeg longitudeDeg altitude verticalRoadSelection
@@ -200,6 +201,7 @@ RouteRef|Route CatalogReference|
 RoutingAction|AssignRouteAction FollowTrajectoryAction AcquirePositionAction RandomRouteAction|
 ScenarioObject|CatalogReference Vehicle Pedestrian MiscObject ExternalObjectReference ObjectController|name
 ScenarioObjectTemplate|CatalogReference Vehicle Pedestrian MiscObject ExternalObjectReference ObjectController|
+Segment|PositionStart|curvStart curvEnd curvatureStart curvatureEnd length hOffset timeStart
 SelectedEntities|EntityRef ByType|
 SensorReference||name
 SensorReferenceSet|SensorReference|
@@ -212,6 +214,7 @@ SpeedCondition||rule value direction
 SpeedProfileAction|DynamicConstraints SpeedProfileEntry|entityRef followingMode
 SpeedProfileEntry||speed time
 StandStillCondition||duration
+SteadyState|TargetDistanceSteadyState TargetTimeSteadyState|
 Stochastic|StochasticDistribution|numberOfTestRuns randomSeed
 StochasticDistribution|ProbabilityDistributionSet NormalDistribution LogNormalDistribution UniformDistribution PoissonDistribution Histogram UserDefinedDistribution|parameterName
 Story|ParameterDeclarations Act|name

@@ -1,5 +1,6 @@
 // The duration conditions (OpenSCENARIO 1.3 §8.3.1): StandStillCondition (speed zero for at
-// least `duration` s), OffroadCondition (off every lane for at least `duration` s) and
+// least `duration` s), OffroadCondition (off every lane, or on a lane of type none, for at least
+// `duration` s; state/world_update.cpp) and
 // EndOfRoadCondition (stuck at a lane end without successor for at least `duration` s). The
 // timers are kept per entity and advanced every step.
 
@@ -31,7 +32,8 @@ class OffroadCheck final : public EntityCondition {
   explicit OffroadCheck(double duration) : duration_(duration) {}
   bool holds(const SimState& state, uint32_t entity) override {
     const Entity& e = state.world.entities[entity];
-    return !e.state.road && state.map != nullptr && reached(state, e.offroad_time, duration_);
+    // was_offroad: off the road at the last timer update (state/world_update.cpp).
+    return e.was_offroad && state.map != nullptr && reached(state, e.offroad_time, duration_);
   }
 
  private:

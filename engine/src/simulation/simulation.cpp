@@ -8,6 +8,7 @@
 #include "controllers/external.h"
 #include "controllers/follow_ghost.h"
 #include "corsa/xodr/map.h"
+#include "corsa/xodr/parser.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/route_lanes.h"
 #include "motion/trailers.h"
@@ -38,6 +39,11 @@ Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xod
                        const SimulationOptions& options, Diagnostics& diagnostics)
     : state(scenario, std::move(map), options, diagnostics), mover(options.threads) {
   check_options(options);
+  if (options.strict && state.map_owner) {
+    // A map is read once and may be shared by runs of both kinds (sweeps), so it records its
+    // lenient readings and a strict run refuses them here.
+    xodr::refuse_lenient_readings(state.map_owner->data());
+  }
   contact_sweep.share = [this](size_t count, const std::function<void(size_t, size_t)>& work) {
     mover.share(count, work);
   };

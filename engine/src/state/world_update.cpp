@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "corsa/engine/oriented_box.h"
+#include "corsa/xodr/map.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -209,6 +210,23 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
   }
 }
 
+namespace {
+
+// Off the road: on no lane, or on a lane of type none. OpenDRIVE 1.8 §9.5.3: a lane of type none
+// "describes the space on the outermost edge of the road and does not have actual content. Its
+// only purpose is for applications to register that ASAM OpenDRIVE is still present in case the
+// (human) driver leaves the road". esmini's OffroadCondition counts it off the road too (the road
+// width without such lanes).
+bool off_road(const SimState& state, const Entity& entity) {
+  if (!entity.state.road) return true;
+  if (state.map == nullptr || entity.state.road->lane == 0) return false;
+  const RoadCoordinates& at = *entity.state.road;
+  const xodr::Lane* lane = state.map->lane(xodr::LaneRef{at.road, at.section, at.lane});
+  return lane != nullptr && lane->type == xodr::LaneType::kNone;
+}
+
+}  // namespace
+
 void update_timers(SimState& state, bool advance) {
   const double dt = advance ? state.time.dt() : 0.0;
   for (Entity& entity : state.world.entities) {
@@ -218,7 +236,7 @@ void update_timers(SimState& state, bool advance) {
     entity.standing_still = std::abs(entity.state.speed) < 1e-9;
     entity.standstill_time =
         entity.standing_still ? (was_still ? entity.standstill_time + dt : 0.0) : 0.0;
-    const bool offroad = !entity.state.road;
+    const bool offroad = off_road(state, entity);
     entity.offroad_time = offroad ? (entity.was_offroad ? entity.offroad_time + dt : 0.0) : 0.0;
     entity.was_offroad = offroad;
     entity.end_of_road_time =

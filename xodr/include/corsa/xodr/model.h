@@ -426,12 +426,23 @@ struct Header {
 };
 
 /// A whole OpenDRIVE document. Roads and junctions in document order.
+/// A rule of OpenDRIVE the file broke in a way whose meaning is clear, read as its author meant
+/// (docs/opendrive.md "Lenient reading"): warned about as `message (read as read_as)`, and an
+/// error where lenient readings are refused (`--strict`, refuse_lenient_readings in parser.h).
+struct LenientReading {
+  int line = 0;      ///< in MapData::source_file
+  std::string path;  ///< element path, e.g. OpenDRIVE/road/objects/object
+  std::string message;
+  std::string read_as;
+};
+
 struct MapData {
   Header header;
   std::vector<Road> roads;
   std::vector<Controller> controllers;
   std::vector<Junction> junctions;
   std::string source_file;  ///< file it was read from, for messages; empty when built in memory
+  std::vector<LenientReading> lenient_readings;  ///< in document order
 };
 
 }  // namespace corsa::xodr

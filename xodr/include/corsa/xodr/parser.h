@@ -23,6 +23,11 @@ MapData parse_xodr(const std::filesystem::path& path, corsa::Diagnostics& diagno
 MapData parse_xodr_text(std::string_view text, const std::string& source_name,
                         corsa::Diagnostics& diagnostics);
 
+/// Refuses a map read leniently (`--strict`): throws InputError with each of
+/// `data.lenient_readings` as an error at its line, `message (an error under --strict; otherwise
+/// read as read_as)`. Does nothing when there are none.
+void refuse_lenient_readings(const MapData& data);
+
 /// LaneType from its OpenDRIVE name (case-insensitive); kOther for an unknown name.
 LaneType lane_type_from_name(std::string_view name);
 /// The OpenDRIVE name of a lane type ("driving", "sidewalk", ...); "none" for kOther.
