@@ -3,7 +3,7 @@
 // at most 10% of a long run's time).
 //
 //   corsa_bench_traffic [--runs N] [--part scale|long|all] [--vehicles N] [--threads T]
-//                       [--seconds S]
+//                       [--seconds S] [--out DIR]
 //
 // scale: `--npc vehicles=N` on ../shared/data/xodr/Town04.xodr (an empty scenario of its own), N
 //   from 100 to 1,000, 10 s simulated (1,000 steps of 0.01 s) on a fresh Simulation per run;
@@ -17,10 +17,14 @@
 //   stop within 40 s and stand; long_motorway: 24 car followers on the Town04 motorway loop),
 //   each without a trajectory (the baseline), with the CSV and with the binary trajectory
 //   (.corsatraj); median CPU time of the whole run (load, simulate, write) and the recording's
-//   share.
+//   share, and the median system time of the runs with a trajectory (the kernel's part of
+//   writing it: most of it is not the recorder's to save). The files go to a new folder in
+//   `--out DIR` (default: the temporary folder; /dev/shm keeps the disk out of the figures).
 // Release build; medians of `runs` (default 5) repetitions, alternating the variants within
 // each repetition so that a change in the machine's load hits them alike. The load average is
 // printed: on the shared machine wall time includes waiting for a core.
+
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -52,6 +56,7 @@ struct Settings {
   uint32_t vehicles = 0;  ///< only this many (on `threads`); 0: every size
   unsigned threads = 1;   ///< with `vehicles`
   double seconds = 10.0;  ///< simulated per traffic run
+  std::filesystem::path out = std::filesystem::temp_directory_path();  ///< long runs' files
 };
 
 double load_average() {
@@ -156,9 +161,23 @@ void scale(const Settings& settings) {
   std::printf("\n");
 }
 
-// CPU ms of a whole run (load, simulate, write) of `scenario` recording to `record` (none when
+/// CPU time of a whole run (ms): all of it, and the system's part.
+struct RunCpu {
+  double total_ms = 0.0;
+  double system_ms = 0.0;
+};
+
+// This process's system CPU time so far (ms).
+double system_cpu_ms() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return 1e3 * static_cast<double>(usage.ru_stime.tv_sec) +
+         1e-3 * static_cast<double>(usage.ru_stime.tv_usec);
+}
+
+// CPU time of a whole run (load, simulate, write) of `scenario` recording to `record` (none when
 // empty).
-double run_cpu_ms(const std::filesystem::path& scenario, const std::filesystem::path& record) {
+RunCpu run_cpu(const std::filesystem::path& scenario, const std::filesystem::path& record) {
   corsa::Diagnostics diagnostics;
   corsa::engine::RunOptions options;
   options.scenario = scenario;
@@ -167,36 +186,44 @@ double run_cpu_ms(const std::filesystem::path& scenario, const std::filesystem::
     options.record = record;
   }
   const double cpu = process_cpu_ms();
+  const double system = system_cpu_ms();
   corsa::engine::run_scenario(options, diagnostics);
-  return process_cpu_ms() - cpu;
+  return {process_cpu_ms() - cpu, system_cpu_ms() - system};
 }
 
-void long_runs(int runs) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("corsa-bench-traffic-" + std::to_string(getpid()));
+void long_runs(int runs, const std::filesystem::path& out) {
+  const std::filesystem::path dir = out / ("corsa-bench-traffic-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   std::printf(
       "1,200 s scenarios (tests/bench/scenarios), CPU ms of the whole run, median of %d "
-      "runs, load average %.1f\n",
-      runs, load_average());
-  std::printf("%-16s %10s %10s %12s %10s %12s %12s %12s\n", "scenario", "no record", "CSV",
-              "CSV share", "binary", "binary share", "CSV bytes", "binary bytes");
+      "runs, load average %.1f, files in %s\n",
+      runs, load_average(), out.c_str());
+  std::printf("%-16s %10s %10s %12s %10s %12s %12s %12s %11s %11s\n", "scenario", "no record",
+              "CSV", "CSV share", "binary", "binary share", "CSV bytes", "binary bytes",
+              "CSV system", "bin. system");
   for (const char* name : {"long_standstill", "long_motorway"}) {
     const auto scenario = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/bench/scenarios" /
                           (std::string(name) + ".xosc");
-    std::vector<double> none, csv, binary;
+    std::vector<double> none, csv, binary, csv_system, binary_system;
     for (int r = 0; r < runs; ++r) {
-      none.push_back(run_cpu_ms(scenario, {}));
-      csv.push_back(run_cpu_ms(scenario, dir / "run.csv"));
-      binary.push_back(run_cpu_ms(scenario, dir / "run.corsatraj"));
+      none.push_back(run_cpu(scenario, {}).total_ms);
+      const RunCpu with_csv = run_cpu(scenario, dir / "run.csv");
+      const RunCpu with_binary = run_cpu(scenario, dir / "run.corsatraj");
+      csv.push_back(with_csv.total_ms);
+      csv_system.push_back(with_csv.system_ms);
+      binary.push_back(with_binary.total_ms);
+      binary_system.push_back(with_binary.system_ms);
     }
     const double base = median(none), c = median(csv), b = median(binary);
-    std::printf("%-16s %10.1f %10.1f %11.1f%% %10.1f %11.1f%% %12ju %12ju\n", name, base, c,
-                100.0 * (c - base) / c, b, 100.0 * (b - base) / b,
+    std::printf("%-16s %10.1f %10.1f %11.1f%% %10.1f %11.1f%% %12ju %12ju %11.1f %11.1f\n", name,
+                base, c, 100.0 * (c - base) / c, b, 100.0 * (b - base) / b,
                 static_cast<uintmax_t>(std::filesystem::file_size(dir / "run.csv")),
-                static_cast<uintmax_t>(std::filesystem::file_size(dir / "run.corsatraj")));
+                static_cast<uintmax_t>(std::filesystem::file_size(dir / "run.corsatraj")),
+                median(csv_system), median(binary_system));
   }
-  std::printf("(share: the recording's part of the run with it, (with - without) / with)\n\n");
+  std::printf(
+      "(share: the recording's part of the run with it, (with - without) / with; system: ms of "
+      "the run's CPU time spent in the kernel)\n\n");
   std::filesystem::remove_all(dir);
 }
 
@@ -215,13 +242,15 @@ int main(int argc, char** argv) {
       settings.threads = static_cast<unsigned>(std::max(1, std::atoi(argv[i + 1])));
     } else if (std::strcmp(argv[i], "--seconds") == 0) {
       settings.seconds = std::max(0.01, std::atof(argv[i + 1]));
+    } else if (std::strcmp(argv[i], "--out") == 0) {
+      settings.out = argv[i + 1];
     }
   }
   if (settings.part == "scale" || settings.part == "all") {
     scale(settings);
   }
   if (settings.part == "long" || settings.part == "all") {
-    long_runs(settings.runs);
+    long_runs(settings.runs, settings.out);
   }
   return 0;
 }
