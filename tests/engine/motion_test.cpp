@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 #include <string>
 
 #include "engine_fixture.h"
@@ -318,6 +319,33 @@ TEST_CASE("FollowTrajectoryAction in follow mode drives toward the path like a d
   CHECK(worst < 0.5);   // it follows
   CHECK(worst > 1e-3);  // but not exactly: it cuts the corner at x = 60
   CHECK(run.at(*end, "Follow").pose.x == Approx(110.0).margin(0.5));
+}
+
+TEST_CASE(
+    "A follow-mode driver facing away from its path turns back to it and drives it to its end",
+    "[engine][trajectory]") {
+  // A pedestrian at (50, -8.75) facing +x walks, untimed, a path that leads back along -x to
+  // x = 40 and then across to (40, -1.75). The look-ahead point starts behind it: a pure-pursuit
+  // curvature of 2 sin(alpha) / L vanishes there, and the walker used to go straight on along +x
+  // (to x = 68) until it had walked the path's 17 m, ending 28 m from the path's end.
+  FixtureRun run(engine_fixture("action_follow_trajectory_turn_back.xosc"));
+  run.run();
+  const auto start = run.first("S::Act::G::M::E::Walk", TransitionKind::kStart);
+  const auto end = run.first("S::Act::G::M::E::Walk", TransitionKind::kEnd);
+  REQUIRE(start);
+  REQUIRE(end);
+  double farthest = 0.0;
+  for (double t = *start; t <= *end; t += 0.1) {
+    farthest = std::max(farthest, run.at(t, "Walker").pose.x);
+  }
+  CHECK(farthest < 53.0);  // it turns on a tight circle, then walks back
+  // The action ends where the walker's nearest path point reaches the end, beside the end.
+  const auto& at_end = run.at(*end, "Walker").pose;
+  CHECK(std::hypot(at_end.x - 40.0, at_end.y + 1.75) < 0.6);
+  // Past the end it walks out along the last leg's direction (+y) instead of circling the end.
+  const auto& later = run.at(*end + 2.0, "Walker").pose;
+  CHECK(later.y - at_end.y > 2.5);
+  CHECK(std::abs(later.h - 0.5 * std::numbers::pi) < 0.25);
 }
 
 TEST_CASE("A timed polyline whose last vertex repeats waits there until the last time",
