@@ -182,8 +182,9 @@ TEST_CASE("A route that a lane change leaves for the oncoming lane warns once at
           "[engine][route][lanes]") {
   FixtureRun run(engine_fixture("route_lane_oncoming.xosc"));
   run.run();
-  // The LaneChangeAction takes Stray into lane 1, driven the other way: no lane of the route's
-  // side is beside it at the junction, so it leaves its route.
+  // The LaneChangeAction takes Stray into lane 1, driven the other way, which has no lane end at
+  // the junction on this map: it can be carried on along the route neither by its own lane nor
+  // from the route's lane beside it, so it is off its route (it stops at road 1's end).
   CHECK(road_of(run, run.now("Stray")) == "1");
   CHECK(run.now("Stray").road->lane == 1);
   const auto warnings = all_text(run.diagnostics());
@@ -191,6 +192,30 @@ TEST_CASE("A route that a lane change leaves for the oncoming lane warns once at
   CHECK_THAT(warnings, Catch::Contains("route_lane_oncoming.xosc:23: warning:"));
   CHECK_THAT(warnings, Catch::Contains("'Stray' cannot follow its route 'LeftTurn'"));
   CHECK_THAT(warnings, Catch::Contains("to road '102' (lane -1 does)"));
+}
+
+TEST_CASE(
+    "An entity a lane change holds in the oncoming lane takes the route's way through the "
+    "junction, without a warning",
+    "[engine][route][lanes][semantics]") {
+  // Lane 1 of road 1 ends at the junction too (connecting road 103, the way back from road 2),
+  // but not along the route: Stray, on lane 1 there, takes the route's left turn (connecting
+  // road 102) from lane -1 beside it and drives on along road 3 (heading north). It is not off
+  // its route while its lane's end still leads on along it, so nothing warns (the warning used
+  // to come when the lane change switched it to lane 1).
+  for (const engine::Semantics semantics :
+       {engine::Semantics::kStandard, engine::Semantics::kEsmini}) {
+    engine::SimulationOptions options;
+    options.semantics = semantics;
+    FixtureRun run(engine_fixture("route_lane_oncoming_twoway.xosc"), options);
+    run.run();
+    INFO("semantics " << static_cast<int>(semantics));
+    CHECK(run.at(5.0, "Stray").road->lane == 1);
+    REQUIRE(run.now("Stray").road);
+    CHECK(road_of(run, run.now("Stray")) == "3");
+    CHECK(run.now("Stray").pose.h == Approx(std::numbers::pi / 2).margin(1e-6));
+    CHECK(run.diagnostics().count(Severity::kWarning) == 0);
+  }
 }
 
 TEST_CASE(
