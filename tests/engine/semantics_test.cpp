@@ -143,22 +143,6 @@ TEST_CASE("--disable-controllers moves every entity under the default controller
              !Catch::Contains("controller 'ALKSController' is not one of this engine's"));
 }
 
-TEST_CASE("SynchronizeAction keeps within the Performance, or esmini's plan regardless of it",
-          "[engine][semantics][synchronize]") {
-  // Master covers 85 m at 10 m/s in 8.5 s; Slow (maxSpeed 8 m/s, maxAcceleration 2 m/s^2) needs
-  // 90 m from standstill in that time (on lane 1 of road 4, from s = 95 down to s = 5). Within
-  // its Performance it covers 52 m and arrives late (motion_test.cpp); esmini plans a constant
-  // acceleration of 2 x 90 / 8.5^2 = 2.49 m/s^2 up to 21.2 m/s and keeps the appointment.
-  FixtureRun run(engine_fixture("sync_limits_performance.xosc"), esmini_reading());
-  run.run();
-  const auto& slow = run.at(8.5, "Slow");
-  REQUIRE(slow.road);
-  CHECK(slow.road->s == Approx(5.0).margin(0.5));
-  CHECK(slow.speed > 8.0);
-  CHECK_THAT(corsa::test::all_text(run.diagnostics()),
-             !Catch::Contains("'Slow' cannot reach its target"));
-}
-
 TEST_CASE("An Act its StopTrigger stops takes the stopTransition, or esmini's endTransition",
           "[engine][semantics][storyboard]") {
   // Act "first" is stopped at 1 s; Act "second" waits for first's endTransition to set 10 m/s.

@@ -38,7 +38,6 @@ class AcquirePositionInstance final : public InstantAction {
     }
     const size_t last = route->steps.empty() ? 0 : route->steps.size() - 1;
     RoutePlan plan{std::move(route->steps), {last}, "AcquirePositionAction", action_.source};
-    plan.from_any_lane = state.options.semantics == Semantics::kEsmini;
     assign_route(entity, std::move(plan));
   }
 

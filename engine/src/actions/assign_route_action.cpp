@@ -20,7 +20,6 @@ class AssignRouteInstance final : public InstantAction {
     RoutePath path = build_route_path(action_.route, context.state, context.actor);
     RoutePlan plan{std::move(path.steps), std::move(path.waypoint_steps), action_.route.name,
                    action_.route.source};
-    plan.from_any_lane = context.state.options.semantics == Semantics::kEsmini;
     assign_route(context.entity(), std::move(plan));
   }
 

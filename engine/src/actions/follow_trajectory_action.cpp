@@ -10,7 +10,12 @@
 // initialDistanceOffset starts that many metres along the path (relative timing starts at the
 // time of that point). Following mode `position`: the actor is exactly on the path. `follow`: it
 // steers toward a point kLookahead seconds (at least kMinLookahead m) ahead on the path and
-// drives its own heading, as a driver would: it cuts corners a little and lags the path.
+// drives its own heading, as a driver would: it cuts corners a little and lags the path. A point
+// behind it (an actor facing away from the path) turns it on its tightest circle through that
+// point; past the path's end the point runs on along the end's heading, so that the actor drives
+// out along the end instead of circling the end point. Untimed, the progress along the path is
+// the path point nearest the actor (not the distance driven, which a detour makes longer), and
+// the action ends when that point reaches the path's end.
 // A negative speed drives the path in reverse gear (the vehicle faces against the path). The
 // action ends at the path's end, timed at its last time (§6.7.3: the actor is at each vertex at
 // its time, so a repeated last vertex with a later time is a wait there); the actor's lane
@@ -86,9 +91,14 @@ class FollowTrajectoryInstance final : public ActionInstance {
     if (action_.following_mode == xosc::FollowingMode::kFollow) {
       Pose along = entity.state.pose;
       along.h = wrap_angle(along.h + facing);  // steer the direction of travel
-      Pose pose = pursue(along, s_next - s_, s_, dt);
+      const double distance = s_next - s_;
+      Pose pose = pursue(along, distance, s_, dt);
       pose.h = wrap_angle(pose.h + facing);
       entity.pose_command = pose;
+      if (!timing_) {
+        s_next = nearest_ahead(pose, lookahead(distance, dt));
+        ended_ = s_next >= path_.length() - 1e-9;
+      }
     } else {
       const PathPoint p = path_.at(s_next);
       entity.pose_command = Pose{p.x, p.y, p.z, wrap_angle(p.h + facing), 0.0, 0.0};
@@ -99,15 +109,63 @@ class FollowTrajectoryInstance final : public ActionInstance {
   bool finished() const override { return ended_; }
 
  private:
+  static double lookahead(double distance, double dt) {
+    return std::max(kMinLookahead, kLookahead * distance / dt);
+  }
+
+  // The path's point at arc length s, continued straight past the end along the end's heading.
+  PathPoint continued(double s) const {
+    PathPoint p = path_.at(s);
+    const double beyond = s - path_.length();
+    if (beyond > 0.0) {
+      p.x += std::cos(p.h) * beyond;
+      p.y += std::sin(p.h) * beyond;
+    }
+    return p;
+  }
+
+  // Arc length of the path point nearest `pose`, searched from the progress so far up to
+  // `reach` metres further: 32 samples, then a ternary search between the best one's neighbours.
+  double nearest_ahead(const Pose& pose, double reach) const {
+    const auto gap = [&](double s) {
+      const PathPoint p = path_.at(s);
+      return std::hypot(p.x - pose.x, p.y - pose.y);
+    };
+    constexpr int kSamples = 32;
+    const double end = std::min(s_ + reach, path_.length());
+    const double step = (end - s_) / kSamples;
+    int best = 0;
+    for (int i = 1; i <= kSamples; ++i) {
+      if (gap(s_ + step * i) < gap(s_ + step * best)) {
+        best = i;
+      }
+    }
+    double lo = s_ + step * std::max(0, best - 1);
+    double hi = s_ + step * std::min(kSamples, best + 1);
+    for (int i = 0; i < 40; ++i) {
+      const double a = lo + (hi - lo) / 3.0;
+      const double b = hi - (hi - lo) / 3.0;
+      if (gap(a) < gap(b)) {
+        hi = b;
+      } else {
+        lo = a;
+      }
+    }
+    return std::max(s_, 0.5 * (lo + hi));
+  }
+
   // One step of a pure-pursuit driver (Coulter 1992): toward the look-ahead point L metres
   // ahead on the path at bearing alpha from the heading, along the arc of curvature
-  // 2 sin(alpha) / L for `distance` metres.
+  // 2 sin(alpha) / L for `distance` metres. A point behind (|alpha| > 90 degrees) gets the
+  // tightest circle through it (curvature 2 / chord) on its side: sin(alpha) would fall back to 0
+  // and send the driver straight on, away from the path.
   Pose pursue(const Pose& from, double distance, double s, double dt) const {
-    const double lookahead = std::max(kMinLookahead, kLookahead * distance / dt);
-    const PathPoint target = path_.at(s + lookahead);
+    const PathPoint target = continued(s + lookahead(distance, dt));
     const double chord = std::max(1e-6, std::hypot(target.x - from.x, target.y - from.y));
     const double alpha = wrap_angle(std::atan2(target.y - from.y, target.x - from.x) - from.h);
-    const double turn = 2.0 * std::sin(alpha) / chord * distance;
+    const double sine =
+        std::abs(alpha) > 0.5 * std::numbers::pi ? (alpha < 0.0 ? -1.0 : 1.0) : std::sin(alpha);
+    const double turn = 2.0 * sine / chord * distance;
     const double mid = from.h + 0.5 * turn;
     return Pose{from.x + std::cos(mid) * distance,
                 from.y + std::sin(mid) * distance,

@@ -1,6 +1,14 @@
 // SpeedAction (OpenSCENARIO 1.3 §7.4.1.1): the actor's longitudinal speed goes to an absolute
 // target or one relative to another entity (delta or factor), with a TransitionDynamics shape
 // over time, distance or rate. A continuous relative target keeps tracking and never ends.
+//
+// The transition holds as written (TransitionDynamics followingMode `position`, the default:
+// "forces the actor to strictly adhere to a given shape"). In mode `follow` "the actor tries to
+// follow the shape as best as it can. This may be restricted by the 'Performance' properties
+// (for vehicles)": the shape is then held to the vehicle's Performance, as esmini's reading holds
+// every SpeedAction (Semantics::kEsmini): the target within maxSpeed, the transition stretched in
+// time until its steepest change is within maxAcceleration / maxDeceleration, and no step
+// changing the speed by more than that limit x dt.
 
 #include <algorithm>
 #include <cmath>
@@ -21,6 +29,8 @@ class SpeedInstance final : public ActionInstance {
 
   void start(ActionContext& context) override {
     Entity& entity = context.entity();
+    performance_limits_ = context.state.options.semantics == Semantics::kEsmini ||
+                          action_.dynamics.following_mode == xosc::FollowingMode::kFollow;
     if (const auto* relative = std::get_if<xosc::RelativeTargetSpeed>(&action_.target)) {
       need_entity(context.state, relative->entity_ref, relative->source);
       reference_index_ = *context.state.world.find(relative->entity_ref);
@@ -49,8 +59,7 @@ class SpeedInstance final : public ActionInstance {
           break;
       }
     }
-    esmini_limits_ = context.state.options.semantics == Semantics::kEsmini;
-    if (esmini_limits_ && duration > 0.0) {
+    if (performance_limits_ && duration > 0.0) {
       duration = stretched_to_performance(entity, target, duration);
     }
     duration_ = duration;
@@ -66,7 +75,7 @@ class SpeedInstance final : public ActionInstance {
     const double target = target_speed(context);
     if (reached_) {
       // Continuous: keep tracking. A step's jump stands in the step it is made in, also under
-      // esmini's Performance limits ("a step shape still jumps at once"; esmini's cut-in has
+      // the Performance limits ("a step shape still jumps at once"; esmini's cut-in has
       // its OverTaker at 1.2 x the Ego's 30 m/s from the act's start on).
       const bool jumped_now = duration_ <= 0.0 && context.state.tick == start_tick_;
       command(context, jumped_now ? target : within_performance(context, target));
@@ -95,13 +104,13 @@ class SpeedInstance final : public ActionInstance {
                    : reference * relative.value;
     }
     const double max_speed = context.entity().info.max_speed;
-    if (context.state.options.semantics == Semantics::kEsmini && max_speed > 0.0) {
-      target = std::clamp(target, -max_speed, max_speed);  // esmini: never beyond maxSpeed
+    if (performance_limits_ && max_speed > 0.0) {
+      target = std::clamp(target, -max_speed, max_speed);  // never beyond maxSpeed
     }
     return target;
   }
 
-  // esmini's reading of Performance: a transition whose steepest speed change exceeds the
+  // Performance limits: a transition whose steepest speed change exceeds the
   // entity's maxAcceleration (speeding up) or maxDeceleration (slowing down) is stretched in
   // time, keeping its shape, until its steepest change equals that limit.
   double stretched_to_performance(const Entity& entity, double target, double duration) const {
@@ -112,10 +121,10 @@ class SpeedInstance final : public ActionInstance {
     return limit > 0.0 && peak > limit ? duration * peak / limit : duration;
   }
 
-  // esmini's reading of Performance: no step changes the speed by more than maxAcceleration x dt
+  // Performance limits: no step changes the speed by more than maxAcceleration x dt
   // (or maxDeceleration x dt), whatever the transition asks.
   double within_performance(const ActionContext& context, double speed) const {
-    if (!esmini_limits_) {
+    if (!performance_limits_) {
       return speed;
     }
     const Entity& entity = context.entity();
@@ -145,7 +154,8 @@ class SpeedInstance final : public ActionInstance {
   int64_t start_tick_ = 0;
   double duration_ = 0.0;
   bool reached_ = false;
-  bool esmini_limits_ = false;  ///< Performance bounds the transition (Semantics::kEsmini)
+  /// Performance bounds the transition: followingMode `follow`, or Semantics::kEsmini.
+  bool performance_limits_ = false;
 };
 
 }  // namespace

@@ -11,21 +11,16 @@
 // d = T/4 (v0 + 2 v_p + v_f), ending at v_f. The action ends when either entity is within its
 // tolerance of its target (or has passed it); the final speed then stays commanded.
 //
-// The planned speed is followed within the actor's Performance (§7.4: maxSpeed, maxAcceleration,
-// maxDeceleration; SynchronizeAction has no DynamicConstraints of its own): each step's speed
-// moves toward the plan by at most the acceleration or deceleration limit times dt and never
-// above maxSpeed. When, at the master's current speed, the actor can no longer cover its
-// distance in the master's time within those limits (too far: it arrives late; too near: it
-// arrives early even braking to a stop), a located warning says so, once. esmini's reading
-// (Semantics::kEsmini) follows the plan without the Performance.
+// The actor follows the plan whatever its Performance: the action gives each entity a position
+// "which shall be reached at the same time", has no DynamicConstraints, and the default
+// controller enforces the control strategies "exactly as they are described by the actions"
+// (§6.6.1); the standard never bounds it by maxSpeed, maxAcceleration or maxDeceleration. So
+// the actor keeps the appointment (esmini reads it so too).
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "actions/action_makers.h"
-#include "actions/dynamic_limits.h"
-#include "corsa/core/strings.h"
 #include "corsa/xodr/route.h"
 #include "positions/position_common.h"
 #include "state/sim_state.h"
@@ -83,13 +78,6 @@ class SynchronizeInstance final : public ActionInstance {
                         resolve_position(action_.target_position_master, state, master_));
     own_to_go_.start(state, context.entity(),
                      resolve_position(action_.target_position, state, context.actor));
-    limits_ = speed_limits(context.entity(), std::nullopt);
-    if (state.options.semantics == Semantics::kEsmini) {
-      // esmini plans the speed without the Performance: the actor keeps the appointment.
-      unlimited_ = true;
-      limits_.acceleration = limits_.deceleration = limits_.speed =
-          std::numeric_limits<double>::infinity();
-    }
   }
 
   void step(ActionContext& context) override {
@@ -101,23 +89,21 @@ class SynchronizeInstance final : public ActionInstance {
     const auto v_final = final_speed(master.state.speed);
     if (arrived_ || d_master <= action_.target_tolerance_master.value_or(0.0) ||
         d_own <= action_.target_tolerance.value_or(0.0)) {
+      // The final speed, taken at once: the action ends.
+      if (v_final) {
+        entity.speed_command = *v_final;
+      }
       arrived_ = true;
-      // The final speed, reached within the limits: the action ends when it is.
-      const double target = v_final ? *v_final : entity.speed_command;
-      entity.speed_command = limits_.step_toward(entity.state.speed, target, dt);
-      settled_ = std::abs(entity.speed_command - std::min(target, limits_.speed)) < 1e-9;
       return;
     }
     if (master.state.speed <= 1e-6) {
       return;  // the master stands: no arrival time to aim at, keep the speed
     }
     const double t_master = d_master / master.state.speed;
-    warn_if_unreachable(context, d_own, t_master);
-    entity.speed_command = limits_.step_toward(
-        entity.state.speed, planned_speed(entity.state.speed, d_own, t_master, v_final, dt), dt);
+    entity.speed_command = planned_speed(entity.state.speed, d_own, t_master, v_final, dt);
   }
 
-  bool finished() const override { return settled_; }
+  bool finished() const override { return arrived_; }
 
  private:
   std::optional<double> final_speed(double master_speed) const {
@@ -131,44 +117,6 @@ class SynchronizeInstance final : public ActionInstance {
     return relative.value_type == xosc::SpeedTargetValueType::kDelta
                ? master_speed + relative.value
                : master_speed * relative.value;
-  }
-
-  // Distances (m) the actor can cover in `t` seconds from speed v0 within its limits: at most
-  // accelerating to maxSpeed and holding it, at least braking to a stop.
-  std::pair<double, double> reachable(double v0, double t) const {
-    const double a = limits_.acceleration, b = limits_.deceleration;
-    const double v_max = std::max(v0, limits_.speed);
-    const double t_up = (v_max - v0) / a;
-    const double farthest =
-        t <= t_up ? v0 * t + 0.5 * a * t * t : 0.5 * (v0 + v_max) * t_up + v_max * (t - t_up);
-    const double nearest = v0 >= b * t ? v0 * t - 0.5 * b * t * t : v0 * v0 / (2.0 * b);
-    return {nearest, farthest};
-  }
-
-  void warn_if_unreachable(ActionContext& context, double d_own, double t_master) {
-    if (warned_ || unlimited_) {
-      return;
-    }
-    const Entity& entity = context.entity();
-    const auto [nearest, farthest] = reachable(entity.state.speed, t_master);
-    // A little slack: the receding-horizon plan absorbs rounding and step effects.
-    const double slack = 0.5 + 0.01 * d_own;
-    const bool late = d_own > farthest + slack;
-    const bool early = d_own < nearest - slack;
-    if (!late && !early) {
-      return;
-    }
-    warned_ = true;
-    context.state.diagnostics.add_once(
-        "synchronize-limits:" + entity.info.name + ":" + std::to_string(action_.source.line),
-        action_.source.warning(
-            "SynchronizeAction: '" + entity.info.name + "' cannot reach its target when '" +
-            action_.master_entity_ref + "' reaches its own (" + format_double(d_own) + " m in " +
-            format_double(t_master) + " s; within maxSpeed " + format_double(limits_.speed) +
-            " m/s, maxAcceleration " + format_double(limits_.acceleration) +
-            " m/s^2 and maxDeceleration " + format_double(limits_.deceleration) +
-            " m/s^2 it covers " + format_double(nearest) + " to " + format_double(farthest) +
-            " m): it arrives " + (late ? "late" : "early")));
   }
 
   // The steady state before the target: (distance m, time s) at the final speed.
@@ -212,11 +160,7 @@ class SynchronizeInstance final : public ActionInstance {
   uint32_t master_ = 0;
   DistanceToGo master_to_go_;
   DistanceToGo own_to_go_;
-  SpeedLimits limits_;
-  bool unlimited_ = false;  ///< no Performance bounds the plan (Semantics::kEsmini)
-  bool arrived_ = false;
-  bool settled_ = false;  ///< arrived and at the final speed
-  bool warned_ = false;
+  bool arrived_ = false;  ///< within a tolerance of a target: at the final speed, the action ends
 };
 
 }  // namespace

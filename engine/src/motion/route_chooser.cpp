@@ -48,8 +48,7 @@ size_t RouteChooser::choose(const xodr::Map& map, const LaneFollow& lane,
 std::optional<LaneRedirect> RouteChooser::redirect(
     const xodr::Map& map, const LaneFollow& lane, std::span<const xodr::LaneEnd> candidates) const {
   const xodr::LaneGraph& graph = map.lane_graph();
-  if (!plan_.from_any_lane ||
-      std::any_of(candidates.begin(), candidates.end(),
+  if (std::any_of(candidates.begin(), candidates.end(),
                   [&](const xodr::LaneEnd& end) { return route_score(plan_, graph, end) > 0; })) {
     return std::nullopt;
   }

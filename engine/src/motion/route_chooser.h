@@ -21,11 +21,6 @@ struct RoutePlan {
   std::vector<size_t> waypoint_steps;
   std::string name;     ///< the route's name, for messages
   xosc::Source source;  ///< where the route (or the action that made it) is written
-  /// esmini's reading (Semantics::kEsmini): at a lane end that does not lead on along the route,
-  /// the entity takes the route's way from the route's lane beside it, keeping its lateral
-  /// place (a lane change under way across a junction goes on along the route's connecting
-  /// road). Otherwise it leaves the route there.
-  bool from_any_lane = false;
 };
 
 class RouteChooser final : public LaneChooser {
@@ -37,9 +32,11 @@ class RouteChooser final : public LaneChooser {
   size_t choose(const xodr::Map& map, const LaneFollow& lane,
                 std::span<const xodr::LaneEnd> candidates) const override;
 
-  /// With RoutePlan::from_any_lane, when no candidate is on a road of the route: the successor
-  /// on the route of the route's lane in the same section and direction, when the route leaves
-  /// the section there.
+  /// When no candidate is on a road of the route (a lateral action holds the entity in another
+  /// lane): the successor on the route of the route's lane in the same section and direction,
+  /// when the route leaves the section there. The entity takes the route's way from that lane,
+  /// keeping its lateral place (a lane change under way across a junction goes on along the
+  /// route's connecting road): §6.8, routes define the decision behaviour at junctions.
   std::optional<LaneRedirect> redirect(const xodr::Map& map, const LaneFollow& lane,
                                        std::span<const xodr::LaneEnd> candidates) const override;
 

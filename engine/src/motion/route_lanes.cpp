@@ -45,8 +45,32 @@ void warn(SimState& state, const Entity& entity, const RoutePlan& plan, const st
                           "': " + why + "; it drives on"));
 }
 
+// Whether an entity off the route's lanes, in the section `exit` leaves the route from (a
+// lateral action holds it in another lane, maybe across the centre line), is still carried on
+// along the route at its lane's end: to the road of the step after `exit`, either as the lane's
+// own successor or from the route's lane beside it (LaneChooser::redirect).
+bool leads_on(const xodr::Map& map, const Entity& entity, const RoutePlan& plan, size_t exit) {
+  const LaneFollow& lane = entity.lane;
+  const xodr::RouteStep& here = plan.steps[exit];
+  if (entity.chooser == nullptr || here.lane.road != lane.road ||
+      here.lane.section != lane.section) {
+    return false;
+  }
+  const xodr::LaneGraph& graph = map.lane_graph();
+  const auto ends = graph.ends(lane.node, lane.dir < 0);
+  if (ends.empty()) {
+    return false;
+  }
+  if (entity.chooser->redirect(map, lane, ends)) {
+    return true;
+  }
+  const xodr::LaneEnd& next = ends[entity.chooser->choose(map, lane, ends)];
+  return graph.info(next.node).lane.road == plan.steps[exit + 1].lane.road;
+}
+
 // Finds the route steps of the section the entity is in (RouteProgress::step), from where it
-// was along the route. Warns once when it has left the route before its end.
+// was along the route. Warns once when it has left the route before its end (not while it is
+// still carried on along the route at its lane's end).
 bool locate(SimState& state, Entity& entity, const RoutePlan& plan) {
   RouteProgress& progress = entity.route_progress;
   const auto& steps = plan.steps;
@@ -63,7 +87,7 @@ bool locate(SimState& state, Entity& entity, const RoutePlan& plan) {
   }
   if (progress.joined && !progress.lost && progress.step < steps.size()) {
     const size_t last = group_end(plan, progress.step);
-    if (last + 1 < steps.size()) {
+    if (last + 1 < steps.size() && !leads_on(*state.map, entity, plan, last)) {
       progress.lost = true;
       const xodr::Map& map = *state.map;
       warn(state, entity, plan,
