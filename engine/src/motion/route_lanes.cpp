@@ -42,7 +42,9 @@ void warn(SimState& state, const Entity& entity, const RoutePlan& plan, const st
   state.diagnostics.add_once(
       "route-lanes:" + entity.info.name,
       plan.source.warning("'" + entity.info.name + "' cannot follow its route '" + plan.name +
-                          "': " + why + "; it drives on"));
+                          "': " + why +
+                          "; it leaves the route and takes its lane's straightest successor "
+                          "(it stops where there is none)"));
 }
 
 // Whether an entity off the route's lanes, in the section `exit` leaves the route from (a
