@@ -1,12 +1,12 @@
 // Stages 3 and 4 of a camera pass: the centre sample of every pixel is composited (terms times
 // filtered visibilities, seen through the air); pixels at the edge of an object, a material or a
 // fold (another surface, depth or orientation next to them; not foliage's folds) then get extra
-// sub-pixel samples in a jittered grid, and their colour is the mean of all of them. Textures are prefiltered, so
-// pixels inside a surface need no more. An extra sample's lighting comes from the centre sample
-// of a neighbour on the same surface (its filtered visibilities, its mirrored and transmitted
-// light); a sample on a surface no neighbour's centre shows (a thin pole) is lit with one
-// shadow ray to the sun and the open sky. Labels, depth and instance ids stay those of the
-// centre sample.
+// sub-pixel samples in a jittered grid, and their colour is the mean of all of them. Textures
+// are prefiltered, so pixels inside a surface need no more. An extra sample's lighting comes
+// from the centre sample of a neighbour on the same surface (its filtered visibilities, its
+// mirrored and transmitted light); a sample on a surface no neighbour's centre shows (a thin
+// pole) is lit with one shadow ray to the sun and the open sky. Labels, depth and instance ids
+// stay those of the centre sample.
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
