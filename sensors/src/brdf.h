@@ -124,13 +124,17 @@ inline Vec3 cone_direction(Vec3 d, double radius, double u1, double u2) {
   return normalized(d + t * (r * c) + b * (r * s));
 }
 
-/// Counter-based uniform in [0, 1): splitmix64 of a key and a counter, the same on any thread.
-inline double hash_uniform(uint64_t key, uint64_t counter) {
+/// Counter-based 64 random bits: splitmix64 of a key and a counter, the same on any thread.
+inline uint64_t hash_bits(uint64_t key, uint64_t counter) {
   uint64_t z = key + (counter + 1) * 0x9E3779B97F4A7C15ULL;
   z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
   z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  z ^= z >> 31;
-  return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
+  return z ^ (z >> 31);
+}
+
+/// Counter-based uniform in [0, 1) from hash_bits.
+inline double hash_uniform(uint64_t key, uint64_t counter) {
+  return static_cast<double>(hash_bits(key, counter) >> 11) * (1.0 / 9007199254740992.0);
 }
 
 /// Key of a pixel's random numbers in a frame.
@@ -147,5 +151,46 @@ inline void r2_point(int n, double r1, double r2, double& u1, double& u2) {
   u1 -= std::floor(u1);
   u2 -= std::floor(u2);
 }
+
+/// One pixel's sample of an interleaved pattern (below): a point of [0, 1)^2.
+struct InterleavedSample {
+  double u1 = 0.0, u2 = 0.0;
+};
+
+/// A stratified pattern shared by each aligned 8x8 block of pixels (interleaved sampling:
+/// Keller and Heidrich, "Interleaved Sampling", Eurographics Workshop on Rendering 2001). A
+/// pixel's cell of an 8x8 grid over [0, 1)^2 has its column and row bits reversed, so each
+/// aligned 8x8 block of pixels holds one point in each of the 64 cells, each aligned 4x4 block
+/// one in each cell of the 4x4 grid and each 2x2 block one in each quadrant; the cells are dealt
+/// to a block's pixels by a per-block XOR (which keeps all three: no regular dither where the
+/// filter cannot average) and each pixel's point is jittered within its cell. The visibility
+/// filter (camera_denoise.cpp), whose 3x3 taps at steps 1, 2 and 4 reach 7 pixels either way,
+/// so averages stratified rays: on a plane under the sky their spread is what is left within
+/// each cell, not across the hemisphere, which independent rays left as soft blotches a metre
+/// across on walls. (One jitter for the whole frame would leave no spread, but bias each frame:
+/// a few directions cannot weigh a bright sky near the sun right; walls came out 10% dark.)
+class InterleavedPattern {
+ public:
+  InterleavedPattern() = default;
+  /// `key`: the frame's key for one use (another use, another dealing and jitter).
+  explicit InterleavedPattern(uint64_t key) : key_(key) {}
+
+  InterleavedSample at(uint64_t col, uint64_t row) const {
+    // 3-bit reversal: bit 0 of the pixel's coordinate decides the half, bit 1 the quarter.
+    auto reversed = [](uint64_t v) { return ((v & 1u) << 2) | (v & 2u) | ((v >> 2) & 1u); };
+    const uint64_t block = ((row >> 3) << 32) ^ (col >> 3);
+    const uint64_t deal = hash_bits(key_, block);
+    const uint64_t cx = reversed(col & 7u) ^ (deal >> 61);
+    const uint64_t cy = reversed(row & 7u) ^ ((deal >> 58) & 7u);
+    const uint64_t jitter = hash_bits(key_ ^ 0x6a09e667f3bcc909ULL, (row << 32) ^ col);
+    constexpr double kUnit = 1.0 / 4294967296.0;  // 2^-32
+    const double j1 = static_cast<double>(jitter >> 32) * kUnit;
+    const double j2 = static_cast<double>(jitter & 0xFFFFFFFFu) * kUnit;
+    return {(static_cast<double>(cx) + j1) * 0.125, (static_cast<double>(cy) + j2) * 0.125};
+  }
+
+ private:
+  uint64_t key_ = 0;
+};
 
 }  // namespace corsa::sensors::detail

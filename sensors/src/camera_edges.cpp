@@ -1,12 +1,12 @@
 // Stages 3 and 4 of a camera pass: the centre sample of every pixel is composited (terms times
 // filtered visibilities, seen through the air); pixels at the edge of an object, a material or a
-// fold (another surface, depth or orientation next to them) then get extra sub-pixel samples in
-// a jittered grid, and their colour is the mean of all of them. Textures are prefiltered, so
-// pixels inside a surface need no more. An extra sample's lighting comes from the centre sample
-// of a neighbour on the same surface (its filtered visibilities, its mirrored and transmitted
-// light); a sample on a surface no neighbour's centre shows (a thin pole) is lit with one
-// shadow ray to the sun and the open sky. Labels, depth and instance ids stay those of the
-// centre sample.
+// fold (another surface, depth or orientation next to them; not foliage's folds) then get extra
+// sub-pixel samples in a jittered grid, and their colour is the mean of all of them. Textures
+// are prefiltered, so pixels inside a surface need no more. An extra sample's lighting comes
+// from the centre sample of a neighbour on the same surface (its filtered visibilities, its
+// mirrored and transmitted light); a sample on a surface no neighbour's centre shows (a thin
+// pole) is lit with one shadow ray to the sun and the open sky. Labels, depth and instance ids
+// stay those of the centre sample.
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -31,6 +31,9 @@ bool differs(const PixelGeometry& a, const PixelGeometry& b) {
   }
   if (std::fabs(a.distance - b.distance) > 0.04f * std::min(a.distance, b.distance)) {
     return true;
+  }
+  if ((a.surface_id & kFoldlessSurface) != 0) {
+    return false;  // a fold in foliage (shading.h)
   }
   const float c = a.normal[0] * b.normal[0] + a.normal[1] * b.normal[1] + a.normal[2] * b.normal[2];
   return c < 0.9f;

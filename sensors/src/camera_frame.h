@@ -16,6 +16,7 @@
 #include <optional>
 #include <vector>
 
+#include "brdf.h"
 #include "carrier.h"
 #include "corsa/sensors/camera_render.h"
 #include "shading.h"
@@ -58,6 +59,15 @@ struct PixelVisibility {
   Visibility get() const { return {sun, {sky[0], sky[1], sky[2]}, lights}; }
 };
 
+/// The interleaved patterns (brdf.h) of a frame's secondary rays (camera_rays.cpp): the
+/// directions of the sky rays.
+struct RayPatterns {
+  InterleavedPattern sky;
+
+  RayPatterns() = default;
+  explicit RayPatterns(uint64_t frame_seed) : sky(pixel_key(frame_seed, 0, 0x5eed04)) {}
+};
+
 /// Everything one pass shares.
 struct Pass {
   const SceneData* scene = nullptr;
@@ -85,6 +95,7 @@ struct Pass {
   /// its geometry a later stage reads (the precipitation's depth test); `geometry` is then
   /// neither written nor read (32 bytes a pixel less to store).
   float* distances = nullptr;
+  RayPatterns patterns;  ///< of the frame's seed
   int width = 0;
   int height = 0;
 };

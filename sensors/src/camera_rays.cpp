@@ -3,8 +3,9 @@
 // the sun (over the solar disc for soft shadows; 16-ray packets, nearly parallel rays from
 // neighbouring points), cosine-distributed sky rays whose occluders return one diffuse bounce,
 // shadow rays to lamps picked in proportion to their light, mirror rays on smooth surfaces and
-// rays through glass. Every random number is a hash of (frame seed, pixel, use), so the bytes
-// do not depend on the thread count.
+// rays through glass. Every random number is a hash of (frame seed, pixel, use) or, for the sky
+// rays, of (frame seed, the pixel's 4x4 block) through an interleaved pattern (brdf.h), so the
+// bytes do not depend on the thread count.
 
 #include <algorithm>
 #include <cmath>
@@ -258,11 +259,17 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
       ++t.light_rays[k];
     }
   }
-  const double r1 = q.sky_rays > 0 ? hash_uniform(key, 30) : 0.0;
-  const double r2 = q.sky_rays > 0 ? hash_uniform(key, 31) : 0.0;
+  // Sky rays from the interleaved pattern: the filter averages them into smooth sky light on
+  // walls and the ground. The sun and lamp rays keep independent draws per pixel: their
+  // visibilities change within a few pixels (penumbrae), where the filter's narrow steps would
+  // leave the pattern's blocks, not averaged, as a regular texture in the shadow's edge.
+  const InterleavedSample r = q.sky_rays > 0
+                                  ? p.patterns.sky.at(t.pixel[k] % static_cast<size_t>(p.width),
+                                                      t.pixel[k] / static_cast<size_t>(p.width))
+                                  : InterleavedSample{};
   for (int j = 0; j < q.sky_rays; ++j) {
     double u1 = 0.0, u2 = 0.0;
-    r2_point(j, r1, r2, u1, u2);
+    r2_point(j, r.u1, r.u2, u1, u2);
     const Vec3 d = cosine_direction(sp.normal, u1, u2);
     probe(offset(sp, d), d, static_cast<float>(kSkyRayLength), kSky);
     ++t.sky_rays[k];

@@ -102,6 +102,7 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   p.settings = &effective;
   p.width = w;
   p.height = h;
+  p.patterns = detail::RayPatterns(effective.frame_seed);
   const Rigid world_from_cam = world_from_optical(motion.world_from_body);
   p.origin_local = scene.data().to_local(world_from_cam.translation);
   for (int r = 0; r < 3; ++r) {

@@ -287,8 +287,12 @@ SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double foo
   s.mirror = s.mirror || roughness < 0.2 || s.clearcoat > 0.0 || s.transmission > 0.0;
   s.mirror = s.mirror && c.quality.reflections;
   const auto sid = static_cast<uint32_t>(h.inst_id * 0x9E3779B1u ^ (h.geom_id + 1) * 0x85EBCA77u ^
-                                         (id + 1u) * 0xC2B2AE3Du);
+                                         (id + 1u) * 0xC2B2AE3Du) &
+                   ~kFoldlessSurface;
   s.surface_id = sid == 0 ? 1u : sid;  // 0 is the sky
+  if (m.pattern == Pattern::kFoliage) {
+    s.surface_id |= kFoldlessSurface;
+  }
   return s;
 }
 

@@ -31,19 +31,52 @@ Material foliage(RandomStream& rng) {
 Material steel() { return materials::metal("galvanised steel", linear_rgb(150, 152, 150), 0.45); }
 Material dark_paint() { return materials::plain("signal housing", linear_rgb(28, 30, 30), 0.6); }
 
-/// A lumpy blob: an ellipsoid whose radius varies with direction (leaf clusters).
-void blob(MeshBuilder& b, Vec3 c, Vec3 r, uint32_t seed) {
-  const int slices = 18;
-  const int stacks = 11;
+/// A lumpy blob: an ellipsoid whose radius varies with direction, `slices` x `stacks` vertices.
+void blob(MeshBuilder& b, Vec3 c, Vec3 r, uint32_t seed, int slices = 18, int stacks = 11) {
   const size_t first = b.mesh().vertices.size();
   b.ellipsoid(c, r, Mat3{}, slices, stacks);
-  // Push each vertex in or out by a smooth random amount.
+  // Push each vertex in or out by a smooth random amount, read from the 4-unit noise tile at
+  // the blob's own scale (a blob 2.5 m across spans about two tiles whatever its size) and at a
+  // place of the tile chosen by the seed, so that small blobs are as lumpy as large ones and
+  // no two alike.
   ArticulatedMesh& mesh = b.edit();
+  const double scale = 2.5 / std::max({r.x, r.y, r.z});
+  const double ox = 4.0 * static_cast<double>((seed >> 2) & 255u) / 256.0;
+  const double oy = 4.0 * static_cast<double>((seed >> 10) & 255u) / 256.0;
   for (size_t i = first; i < mesh.vertices.size(); ++i) {
     const Vec3 d = mesh.vertices[i] - c;
-    const double bump =
-        noise(static_cast<int>(seed % 4), d.x * 3.0 + d.z * 2.0, d.y * 3.0 - d.z, 4.0, 0.0, false);
+    const double bump = noise(static_cast<int>(seed % 4), (d.x * 3.0 + d.z * 2.0) * scale + ox,
+                              (d.y * 3.0 - d.z) * scale + oy, 4.0, 0.0, false);
     mesh.vertices[i] = c + d * (0.8 + 0.45 * bump);
+  }
+}
+
+/// Foliage inside the ellipsoid of radii `r` about `c`: a dense core (the crown's shaded inside,
+/// seen through the gaps) and leaf clusters of radius `cluster` metres on its shell. A crown
+/// seen from the street is clumps of leaves with sky between them at its edge, not one smooth
+/// lumpy solid: the shell's clusters, each a small blob at a random depth in the outer third,
+/// give the outline its bumps and gaps and the faces their many small shaded facets.
+void leafy_crown(MeshBuilder& b, RandomStream& rng, Vec3 c, Vec3 r, double cluster) {
+  blob(b, c, r * 0.66, static_cast<uint32_t>(rng.next_u64()), 14, 9);
+  // Enough clusters to cover about 1.3 times the shell's area (overlapping: gaps stay where
+  // the draws leave them).
+  const double rm = std::cbrt(r.x * r.y * r.z);
+  const double area = 4.0 * kPi * rm * rm;
+  const int count = std::clamp(static_cast<int>(1.3 * area / (kPi * cluster * cluster)), 8, 120);
+  for (int k = 0; k < count; ++k) {
+    // Uniform on the sphere, fewer on the underside (light comes from above, and so do leaves).
+    double z = rng.uniform(-1.0, 1.0);
+    if (z < -0.3 && rng.uniform01() < 0.5) {
+      z = -z;
+    }
+    const double a = rng.uniform(0.0, 2.0 * kPi);
+    const double rho = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double depth = rng.uniform(0.7, 0.98);
+    const Vec3 at{c.x + r.x * depth * rho * std::cos(a), c.y + r.y * depth * rho * std::sin(a),
+                  c.z + r.z * depth * z};
+    const double size = cluster * rng.uniform(0.7, 1.3);
+    const Vec3 radii{size * rng.uniform(0.8, 1.2), size * rng.uniform(0.8, 1.2), 0.8 * size};
+    blob(b, at, radii, static_cast<uint32_t>(rng.next_u64()), 7, 5);
   }
 }
 
@@ -78,29 +111,17 @@ ArticulatedMesh make_tree(RandomStream& rng, double height, bool allow_conifer) 
   b.material(foliage(rng));
   const double crown_h = height - crown_base;
   const double crown_r = std::min(3.2, crown_h * rng.uniform(0.3, 0.42));
-  const int lumps = static_cast<int>(rng.uniform_int(3, 5));
-  for (int k = 0; k < lumps; ++k) {
-    const double a = 2.0 * kPi * k / lumps + rng.uniform01();
-    const double off = k == 0 ? 0.0 : 0.45 * crown_r;
-    const Vec3 c{off * std::cos(a), off * std::sin(a),
-                 crown_base + crown_h * (k == 0 ? 0.55 : rng.uniform(0.35, 0.6))};
-    const double r = crown_r * (k == 0 ? 1.0 : rng.uniform(0.55, 0.75));
-    blob(b, c, {r, r, 0.5 * crown_h * (k == 0 ? 1.0 : 0.7)}, static_cast<uint32_t>(rng.next_u64()));
-  }
+  // Leaf clusters about 0.55 m across for an 8 m tree (0.07 of the height, 0.35-0.8 m).
+  leafy_crown(b, rng, {0, 0, crown_base + 0.55 * crown_h}, {crown_r, crown_r, 0.5 * crown_h},
+              std::clamp(0.07 * height, 0.35, 0.8));
   return b.take();
 }
 
 ArticulatedMesh make_bush(RandomStream& rng, double size) {
   MeshBuilder b;
   b.semantic(SemanticClass::kVegetation).material(foliage(rng));
-  const int lumps = static_cast<int>(rng.uniform_int(2, 3));
-  for (int k = 0; k < lumps; ++k) {
-    const double a = rng.uniform(0.0, 2.0 * kPi);
-    const double off = k == 0 ? 0.0 : 0.3 * size;
-    const double r = 0.5 * size * rng.uniform(0.7, 1.0);
-    blob(b, {off * std::cos(a), off * std::sin(a), 0.55 * r}, {r, r, 0.7 * r},
-         static_cast<uint32_t>(rng.next_u64()));
-  }
+  const double r = 0.5 * size * rng.uniform(0.8, 1.0);
+  leafy_crown(b, rng, {0, 0, 0.6 * r}, {r, r, 0.7 * r}, std::clamp(0.1 * size, 0.12, 0.3));
   return b.take();
 }
 
