@@ -15,8 +15,11 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "controllers/follow_view.h"
+#include "controllers/npc_caution.h"
 #include "controllers/worker_pool.h"
 #include "corsa/core/random.h"
 #include "corsa/engine/outputs.h"
@@ -29,6 +32,7 @@
 #include "state/lane_index.h"
 #include "state/packed_point_grid.h"
 #include "state/point_grid.h"
+#include "state/sim_state.h"
 
 namespace {
 
@@ -408,6 +412,50 @@ TEST_CASE(
     }
     CHECK(kept > queries.size());  // the bands hold points: the comparisons are not of nothing
   }
+}
+
+TEST_CASE(
+    "A generated vehicle's corridor holds the boxes that reach into it, wherever their reference "
+    "points are",
+    "[engine][traffic]") {
+  namespace detail = corsa::engine::detail;
+  const corsa::xosc::Scenario scenario;
+  Diagnostics diagnostics;
+  detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
+  const auto add = [&](double x, double y, double h, const corsa::engine::Box& box) {
+    detail::Entity entity;
+    entity.state.placed = true;
+    entity.state.pose.x = x;
+    entity.state.pose.y = y;
+    entity.state.pose.h = h;
+    entity.info.box = box;
+    state.world.entities.push_back(std::move(entity));
+  };
+  // The generated car at the origin, heading along x: its front 3.65 m ahead, its corridor
+  // 0.9 + 0.5 m either side.
+  add(0.0, 0.0, 0.0, {1.4, 0.0, 0.75, 4.5, 1.8, 1.5});
+  state.traffic.lifetimes[0];
+  // Its reference point in the corridor, its box 7-9 m to the left: not in the way.
+  add(10.0, 0.0, 0.0, {0.0, 8.0, 0.75, 4.0, 2.0, 1.5});
+  // Its reference point 9 m to the left and its box's centre 7 m to its right, reaching from
+  // y = 0 to y = 4 and from x = 18 to x = 22: in the way 14.35 m ahead.
+  add(20.0, 9.0, 0.0, {0.0, -7.0, 0.75, 4.0, 4.0, 1.5});
+  // A bus across the road, its reference point at its front 11.6 m off the corridor, its box
+  // 12 m behind that (x from 28.75 to 31.25, y from -13 to -1): in the way 25.1 m ahead.
+  add(30.0, -13.0, -std::numbers::pi / 2.0, {-6.0, 0.0, 1.5, 12.0, 2.5, 3.0});
+  detail::FollowView view;
+  view.build(state, true);
+  std::vector<uint32_t> near;
+  const detail::Hazard hazard =
+      detail::corridor_hazard(state.world.entities[0], 0, view, 20.0, near);
+  CHECK(hazard.gap == Approx(14.35));
+  // Asked farther, the box at 14.35 m is still the nearest.
+  CHECK(detail::corridor_hazard(state.world.entities[0], 0, view, 60.0, near).gap == Approx(14.35));
+  // Without that box the bus is the nearest, and beyond a corridor of 20 m there is nothing.
+  state.world.entities[2].state.placed = false;
+  view.build(state, true);
+  CHECK(detail::corridor_hazard(state.world.entities[0], 0, view, 60.0, near).gap == Approx(25.1));
+  CHECK(std::isinf(detail::corridor_hazard(state.world.entities[0], 0, view, 20.0, near).gap));
 }
 
 TEST_CASE("The worker pool hands out every item once, in chunks, and rethrows a chunk's error",

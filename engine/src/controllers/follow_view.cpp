@@ -43,11 +43,13 @@ void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours)
     // Mostly the entity stands where the contacts boxed it after the last moves.
     const OrientedBox* boxed = state.contacts.unmoved_box(i, entity);
     target.shape = boxed != nullptr ? *boxed : box_of(entity.info.box, entity.state.pose);
-    // The reach (a hypot) is made again only when the box has changed since it was made: a
-    // box of zeros (reach_boxes_' default) has the reach 0 (reach_'s default).
-    if (!same_bits(reach_boxes_[i], entity.info.box)) {
-      reach_[i] = box_reach(entity.info.box);
-      reach_boxes_[i] = entity.info.box;
+    // The reach and offset (hypots) are made again only when the box has changed since they
+    // were made: a box of zeros (reach_boxes_' default) has both 0 (their default).
+    const Box& box = entity.info.box;
+    if (!same_bits(reach_boxes_[i], box)) {
+      reach_[i] = std::hypot(0.5 * box.length, 0.5 * box.width);
+      offset_[i] = std::hypot(box.center_x, box.center_y);
+      reach_boxes_[i] = box;
     }
   }
   if (!target.usable) {
@@ -74,12 +76,14 @@ void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool)
   targets_.resize(count);
   nodes_.resize(count);
   reach_.resize(count);
+  offset_.resize(count);
   reach_boxes_.resize(count);
   unindexed_.clear();
   grid_.clear();
   scenario_vehicles_.clear();
   has_scenario_vehicles_ = false;
   max_reach_ = 0.0;
+  max_offset_ = 0.0;
   max_length_ = 0.0;
   has_shapes_ = neighbours;
   const xodr::LaneGraph* graph = state.map != nullptr ? &state.map->lane_graph() : nullptr;
@@ -113,10 +117,11 @@ void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool)
       continue;
     }
     if (neighbours) {
-      grid_.add(target.x, target.y, i);
+      grid_.add(target.shape.cx, target.shape.cy, i);
       // NaN stays out of the maxima (std::max keeps the first); the tests of
       // controllers/npc_caution.cpp reject such a box anyway, as a scan would.
       max_reach_ = std::max(max_reach_, reach_[i]);
+      max_offset_ = std::max(max_offset_, offset_[i]);
       max_length_ = std::max(max_length_, target.length);
     }
     if (!target.usable) {
@@ -138,7 +143,7 @@ void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool)
     for (uint32_t i = 0; i < targets_.size(); ++i) {
       const FollowTarget& target = targets_[i];
       if (target.present && target.vehicle && !target.generated) {
-        scenario_vehicles_.add(target.x, target.y, i);
+        scenario_vehicles_.add(target.shape.cx, target.shape.cy, i);
         has_scenario_vehicles_ = true;
       }
     }

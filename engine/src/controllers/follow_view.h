@@ -3,7 +3,7 @@
 // What car following (the acc controller) and the precautions of generated traffic
 // (controllers/npc_caution.h) see of the other entities: each one as it was when the
 // controllers' step began, the entities by lane in s order (state/lane_index.h) and, when there
-// is generated traffic, their reference points in a grid (state/point_grid.h). Every mover reads
+// is generated traffic, their boxes' centres in a grid (state/point_grid.h). Every mover reads
 // the same picture whatever the order, or the thread, it is moved in, so a step gives the same
 // result on any number of threads; and a mover looks only at the lanes of its path ahead, or at
 // the grid cells around it, instead of at every entity.
@@ -57,18 +57,18 @@ class FollowView {
   /// entity `ahead` metres along the path is at least ahead - own front + this.
   double least_rear() const { return least_rear_; }
 
-  /// Appends to `out` every present entity whose reference point lies in [x_min, x_max] x
-  /// [y_min, y_max] (m), and possibly some beyond, in no particular order (the view must have
-  /// been built with `neighbours`).
+  /// Appends to `out` every present entity whose box centre (FollowTarget::shape) lies in
+  /// [x_min, x_max] x [y_min, y_max] (m), and possibly some beyond, in no particular order (the
+  /// view must have been built with `neighbours`).
   void near(double x_min, double y_min, double x_max, double y_max,
             std::vector<uint32_t>& out) const;
   /// The same for the present vehicles of the scenario's own (not generated), kept apart: few or
   /// none among much generated traffic.
   void near_scenario_vehicles(double x_min, double y_min, double x_max, double y_max,
                               std::vector<uint32_t>& out) const;
-  /// The present entities (only the scenario's vehicles with `scenario_vehicles`) whose
-  /// reference point lies in [along_min, along_max] x [-half, half] of the frame at (x, y) with
-  /// axis cosine `c` and sine `s` (PackedPointGrid::query_band; [x_min, x_max] x [y_min, y_max]
+  /// The present entities (only the scenario's vehicles with `scenario_vehicles`) whose box
+  /// centre lies in [along_min, along_max] x [-half, half] of the frame at (x, y) with axis
+  /// cosine `c` and sine `s` (PackedPointGrid::query_band; [x_min, x_max] x [y_min, y_max]
   /// bounds that rectangle), and those with non-finite coordinates, appended to `out`.
   void near_band(double x_min, double y_min, double x_max, double y_max, double x, double y,
                  double c, double s, double along_min, double along_max, double half,
@@ -77,10 +77,16 @@ class FollowView {
         .query_band(x_min, y_min, x_max, y_max, x, y, c, s, along_min, along_max, half, out);
   }
   bool has_scenario_vehicles() const { return has_scenario_vehicles_; }
-  /// The farthest (m) a present entity's bounding box reaches from its reference point, and the
-  /// greatest box length (m): how far around a region near() must look for boxes reaching in
-  /// (the same bound serves near_scenario_vehicles()).
+  /// The farthest (m) a present entity's bounding box reaches from its centre (half its
+  /// diagonal): how far around a region near() must look for boxes reaching in (the same bound
+  /// serves near_scenario_vehicles()). Centres, not reference points, are kept in the grids
+  /// because a vehicle's reference point is its rear axle: the box reaches farther from it (a
+  /// car's 3.8 m against 2.4 m), and every corridor query would look that much wider.
   double max_reach() const { return max_reach_; }
+  /// The farthest (m) a present entity's box centre lies from its reference point: how far
+  /// around a region near() must look for reference points in it.
+  double max_offset() const { return max_offset_; }
+  /// The greatest box length (m).
   double max_length() const { return max_length_; }
   /// Whether the present entities' FollowTarget::shape is that of this picture (built with
   /// `neighbours`).
@@ -92,8 +98,9 @@ class FollowView {
 
   std::vector<FollowTarget> targets_;
   std::vector<xodr::LaneNode> nodes_;  ///< by entity: its lane's node, kNoLane when not indexed
-  std::vector<double> reach_;          ///< by entity: box_reach of its box (m), with neighbours
-  std::vector<Box> reach_boxes_;       ///< by entity: the box reach_ was made from
+  std::vector<double> reach_;          ///< by entity: its box's half diagonal (m), with neighbours
+  std::vector<double> offset_;    ///< by entity: its box centre's distance from the reference (m)
+  std::vector<Box> reach_boxes_;  ///< by entity: the box reach_ and offset_ were made from
   LaneIndex lanes_;
   std::vector<uint32_t> unindexed_;
   double least_rear_ = 0.0;
@@ -103,6 +110,7 @@ class FollowView {
   std::vector<char> generated_;  ///< by entity: made by traffic
   size_t generated_seen_ = 0;    ///< TrafficState::lifetimes.size() generated_ was made from
   double max_reach_ = 0.0;
+  double max_offset_ = 0.0;
   double max_length_ = 0.0;
   bool has_shapes_ = false;
 

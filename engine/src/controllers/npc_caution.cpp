@@ -99,11 +99,11 @@ bool extent_in_band(const LocalFrame& frame, const OrientedBox& box, double half
 }
 
 // Appends to `near` (emptied first) every present entity of `view` (only the scenario's vehicles
-// with `scenario_vehicles`) whose reference point may lie within `margin` metres of the rectangle
-// [x0, x1] x [-half, half] of `frame`: those whose frame coordinates lie in that rectangle
-// widened by `margin` on every side (a superset; the frame coordinates are computed as
-// LocalFrame::to_local computes them, so a caller's own test of a reference point in the
-// rectangle never keeps one that this left out).
+// with `scenario_vehicles`) whose box centre may lie within `margin` metres of the rectangle
+// [x0, x1] x [-half, half] of `frame`: those whose centre's frame coordinates lie in that
+// rectangle widened by `margin` on every side (a superset). A box reaching into the rectangle
+// has its centre within FollowView::max_reach() of it, a reference point in the rectangle within
+// FollowView::max_offset().
 void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0, double x1,
                     double half, double margin, std::vector<uint32_t>& near,
                     bool scenario_vehicles = false) {
@@ -165,7 +165,7 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
   const double front = me.info.box.center_x + 0.5 * me.info.box.length;
   const double rear = me.info.box.center_x - 0.5 * me.info.box.length;
   const double half = 0.5 * me.info.box.width + kSideMargin;
-  // A box reaching into the corridor has its reference point within max_reach of it.
+  // A box reaching into the corridor has its centre within max_reach of it.
   near_rectangle(view, frame, rear, front + reach, half, view.max_reach() + kSlack, near);
   Hazard hazard;
   uint32_t chosen = std::numeric_limits<uint32_t>::max();
@@ -272,7 +272,8 @@ WalkerMove walker_move(const Entity& me, uint32_t index, const FollowView& view,
   bool beside_left = false;  // one going our way beside us: do not step into it
   bool beside_right = false;
   const double most = 0.5 * (view.max_length() + me.info.box.length);
-  near_rectangle(view, frame, -most - 0.3, kWalkerLook + most, kWalkerBand + 0.5, kSlack, near);
+  near_rectangle(view, frame, -most - 0.3, kWalkerLook + most, kWalkerBand + 0.5,
+                 view.max_offset() + kSlack, near);
   for (const uint32_t j : near) {
     const FollowTarget& other = view.targets()[j];
     if (j == index || !other.present) {
