@@ -121,6 +121,19 @@ bool lamp_lit(const ShadingContext& c, const SurfaceHit& h, const Material& m) {
   return (c.static_lamps & b) != 0;
 }
 
+/// A lit lamp's emission at a hit: the material's own, unless a LightStateAction gave the
+/// entity's lamp of that role a look.
+Color lamp_emission(const ShadingContext& c, const SurfaceHit& h, const Material& m) {
+  if (h.entity >= 0 && static_cast<size_t>(h.entity) < c.entity_looks.size()) {
+    const LampLooks& looks = c.entity_looks[h.entity];
+    const auto role = static_cast<size_t>(m.light);
+    if (role < looks.size() && looks[role] != nullptr) {
+      return looked_emission(*looks[role], m.light, m.emission);
+    }
+  }
+  return m.emission;
+}
+
 /// Wet road: water darkens the porous surface and smooths it; in puddles (the low spots of a
 /// 12 m noise field, more of them the harder it rains) it is a mirror over a dark bottom.
 void wet(const Lighting& l, const TexturePoint& tp, SurfacePoint& s, double& roughness) {
@@ -206,13 +219,20 @@ ShadingContext make_shading_context(const SceneData& scene, const Lighting& ligh
   c.darkness = lighting.darkness;
   c.static_lamps =
       bit(LightRole::kAlways) | (lighting.darkness > 0.3 ? bit(LightRole::kStreetLamp) : 0u);
+  bool looks = false;
   for (const auto& inst : scene.instances) {
     c.entity_lamps.push_back(entity_lamp_bits(inst, scene.entities[inst.snapshot_index], lighting));
+    looks = looks || !scene.entities[inst.snapshot_index].light_looks.empty();
+  }
+  if (looks) {
+    for (const auto& inst : scene.instances) {
+      c.entity_looks.push_back(lamp_looks(scene.entities[inst.snapshot_index]));
+    }
   }
   c.ground_z = scene.bounds.empty() ? 0.0 : scene.bounds.min.z - scene.options.origin.z;
   // Lamps fainter than a thousandth of the daylight at 2 m are not worth their cost.
   const double daylight = luminance(lighting.ambient) + luminance(lighting.sun);
-  c.lights = LightList(scene, c.entity_lamps, c.static_lamps, 1e-3 * daylight);
+  c.lights = LightList(scene, c.entity_lamps, c.entity_looks, c.static_lamps, 1e-3 * daylight);
   return c;
 }
 
@@ -282,7 +302,7 @@ SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double foo
   }
   s.roughness = roughness;
   if (lamp_lit(c, h, m)) {
-    s.emission = s.emission + m.emission;
+    s.emission = s.emission + lamp_emission(c, h, m);
   }
   s.mirror = s.mirror || roughness < 0.2 || s.clearcoat > 0.0 || s.transmission > 0.0;
   s.mirror = s.mirror && c.quality.reflections;

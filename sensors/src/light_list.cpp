@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <numbers>
 
 #include "brdf.h"
@@ -55,6 +56,8 @@ Color hue(Color emission) {
   const double y = luminance(emission);
   return y > 0.0 ? emission * (1.0 / y) : Color{1.0, 1.0, 1.0};
 }
+
+Color rgb_color(const std::array<double, 3>& c) { return Color{c[0], c[1], c[2]}; }
 
 /// Relative intensity of a pattern towards unit direction d (from the light).
 double pattern_gain(const Light& l, Vec3 d) {
@@ -159,8 +162,54 @@ std::vector<LampPatch> find_lamps(std::span<const Vec3> vertices,
   return out;
 }
 
+LampLooks lamp_looks(const engine::EntitySnapshot& entity) {
+  LampLooks out{};
+  using engine::VehicleLight;
+  auto look_of = [&](VehicleLight v) -> const engine::LightLook* {
+    for (const engine::LightLook& look : entity.light_looks) {
+      if (look.light == v && (entity.lights_on & engine::light_bit(v)) != 0) {
+        return &look;
+      }
+    }
+    return nullptr;
+  };
+  auto first = [&](std::initializer_list<VehicleLight> lights) -> const engine::LightLook* {
+    for (VehicleLight v : lights) {
+      if (const engine::LightLook* look = look_of(v)) {
+        return look;
+      }
+    }
+    return nullptr;
+  };
+  if (entity.light_looks.empty()) {
+    return out;
+  }
+  out[static_cast<size_t>(LightRole::kHeadlight)] =
+      first({VehicleLight::kLowBeam, VehicleLight::kHighBeam, VehicleLight::kDaytimeRunning});
+  out[static_cast<size_t>(LightRole::kBrake)] = first({VehicleLight::kBrake});
+  out[static_cast<size_t>(LightRole::kIndicatorLeft)] =
+      first({VehicleLight::kIndicatorLeft, VehicleLight::kWarning});
+  out[static_cast<size_t>(LightRole::kIndicatorRight)] =
+      first({VehicleLight::kIndicatorRight, VehicleLight::kWarning});
+  out[static_cast<size_t>(LightRole::kReversing)] = first({VehicleLight::kReversing});
+  return out;
+}
+
+Color looked_emission(const engine::LightLook& look, LightRole role, Color own) {
+  // EntitySnapshot::LightLook: fixed_cd + lamp_colour_cd * h + I0 * (colour_share +
+  // lamp_share * h) with h = hue(own), scaled from cd to the units of `own` (I0 emits `own`).
+  const double own_cd = photometry(role).candela;
+  const double y = luminance(own);
+  if (own_cd <= 0.0 || y <= 0.0) {
+    return own * look.lamp_share;
+  }
+  const Color h = hue(own);
+  const Color cd = rgb_color(look.fixed_cd) + h * look.lamp_colour_cd;
+  return cd * (y / own_cd) + rgb_color(look.colour_share) * y + own * look.lamp_share;
+}
+
 LightList::LightList(const SceneData& d, std::span<const uint32_t> entity_lamps,
-                     uint32_t static_lamps, double floor) {
+                     std::span<const LampLooks> looks, uint32_t static_lamps, double floor) {
   auto keep = [&](const Light& l) {
     if (luminance(l.intensity) / 4.0 >= floor) {
       add(l);
@@ -214,6 +263,10 @@ LightList::LightList(const SceneData& d, std::span<const uint32_t> entity_lamps,
       }
       l.position = d.to_local(w.apply(p.centre)) + l.axis * 0.05;
       l.intensity = hue(p.emission) * (ph.candela / 100000.0);
+      const auto role = static_cast<size_t>(p.role);
+      if (i < looks.size() && role < looks[i].size() && looks[i][role] != nullptr) {
+        l.intensity = looked_emission(*looks[i][role], p.role, l.intensity);
+      }
       l.range = ph.range;
       l.radius = ph.radius;
       l.pattern = ph.pattern;

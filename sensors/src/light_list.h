@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "corsa/engine/world_snapshot.h"
 #include "corsa/sensors/color.h"
 #include "corsa/sensors/environment.h"
 #include "corsa/sensors/geometry.h"
@@ -67,6 +68,19 @@ std::vector<LampPatch> find_lamps(std::span<const Vec3> vertices,
                                   std::span<const Color> emissions,
                                   std::span<const uint32_t> bones);
 
+/// The LightStateAction looks of an entity's lamps by LightRole (up to kReversing); null: the
+/// lamp as it is.
+using LampLooks = std::array<const engine::LightLook*, 8>;
+
+/// Which of an entity's looks drive its lamps: the headlights the low beam's, else the high
+/// beam's or the daytime running lights' (whichever is lit), brake and reversing lamps their
+/// own, an indicator its own or else the warning lights'. Tail lamps keep their own look.
+LampLooks lamp_looks(const engine::EntitySnapshot& entity);
+
+/// What a lamp of `role` whose own emission is `own` emits under `look` (same units as `own`;
+/// the role's peak intensity stands for the lamp's own intensity).
+Color looked_emission(const engine::LightLook& look, LightRole role, Color own);
+
 class LightList {
  public:
   static constexpr int kMaxLightsPerCell = 16;
@@ -74,8 +88,9 @@ class LightList {
   /// The lit lamps of the frame: entity lamps by their lit roles (`entity_lamps`, by instance
   /// pool index), static lamps by `static_lamps` bits and the signals' bulbs. Lights too faint
   /// to matter against the daylight `floor` (renderer units of irradiance at 2 m) are left out.
-  LightList(const SceneData& scene, std::span<const uint32_t> entity_lamps, uint32_t static_lamps,
-            double floor);
+  /// `looks` (by instance pool index, or empty) tints and scales the entity lamps.
+  LightList(const SceneData& scene, std::span<const uint32_t> entity_lamps,
+            std::span<const LampLooks> looks, uint32_t static_lamps, double floor);
   LightList() = default;
 
   std::span<const Light> lights() const { return lights_; }

@@ -48,6 +48,8 @@ struct ShadingContext {
   double darkness = 0.0;               ///< 0 day .. 1 night (lit windows)
   double pixel_angle = 1e-3;           ///< radians per pixel, for texture footprints
   double ground_z = 0.0;               ///< tracer-local height of the ground (fog density)
+  /// By instance pool index: the lamps' LightStateAction looks; empty when no entity has one.
+  std::vector<LampLooks> entity_looks;
   QualitySettings quality;
   /// Tracer-local height of the camera (NaN: none) and the air there: most rays seen through
   /// the air start at the eye, and its fog and haze densities are the same for all of them.

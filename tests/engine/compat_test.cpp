@@ -4,6 +4,7 @@
 // position) and their --strict form; esmini's frame of a relative orientation on a lane.
 
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "corsa/engine/outputs.h"
 #include "corsa/engine/world_snapshot.h"
@@ -245,4 +246,75 @@ TEST_CASE("ConnectTrailerAction hooks a standing trailer up, DisconnectTrailerAc
   // The car keeps reversing at 4 m/s after its trajectory ends (2 s before the connection), into
   // the standing trailer: that contact is the scenario's; none while they are connected.
   for (const auto& collision : run.sim().collisions()) CHECK(collision.time < *connected);
+}
+
+namespace {
+
+/// The look of `light` in `entity`'s snapshot, or null.
+const corsa::engine::LightLook* look_of(const corsa::engine::EntitySnapshot& entity,
+                                        corsa::engine::VehicleLight light) {
+  for (const auto& look : entity.light_looks) {
+    if (look.light == light) return &look;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("a LightStateAction fades linearly over its transitionTime to its intensity and colour",
+          "[engine][compat][appearance]") {
+  using corsa::engine::light_bit;
+  using corsa::engine::VehicleLight;
+  FixtureRun run(engine_fixture("light_fades.xosc"));
+  corsa::engine::WorldSnapshot world;
+  const double dt = run.sim().dt();
+  const double red_cd = 100.0 / 0.2126;  // 100 cd of pure red: luminance 0.2126 per unit of red
+  // Each action starts at the first step past its trigger time.
+  auto start_after = [&](double t) { return (std::floor(t / dt + 1e-9) + 1.0) * dt; };
+  auto at = [&](double t) -> const corsa::engine::EntitySnapshot& {
+    while (run.sim().time() < t - 1e-9) run.sim().step();
+    run.sim().fill_snapshot(world);
+    return snapshot_of(world, "Car");
+  };
+  SECTION("a light set without intensity, colour or fade has no look") {
+    const auto& car = at(0.8);
+    CHECK((car.lights_on & light_bit(VehicleLight::kLowBeam)) != 0);
+    CHECK(look_of(car, VehicleLight::kLowBeam) == nullptr);
+    const auto* brake = look_of(car, VehicleLight::kBrake);
+    REQUIRE(brake != nullptr);
+    CHECK(brake->fixed_cd[0] == Approx(red_cd));
+    CHECK(brake->fixed_cd[1] == 0.0);
+    CHECK(brake->lamp_colour_cd == 0.0);
+  }
+  SECTION("the brake lamp fades from red at 100 cd to its own colour at 300 cd over 2 s") {
+    const double since = start_after(1.0);
+    for (const double into : {0.5, 1.0, 1.5}) {
+      const auto& car = at(since + into);
+      const double done = into / 2.0;
+      const auto* brake = look_of(car, VehicleLight::kBrake);
+      REQUIRE(brake != nullptr);
+      INFO("t = " << run.sim().time());
+      CHECK(brake->fixed_cd[0] == Approx((1.0 - done) * red_cd));
+      CHECK(brake->lamp_colour_cd == Approx(done * 300.0));
+      CHECK(brake->lamp_share == 0.0);
+      CHECK((car.lights_on & light_bit(VehicleLight::kBrake)) != 0);
+    }
+    const auto& done = at(since + 2.5);
+    const auto* brake = look_of(done, VehicleLight::kBrake);
+    REQUIRE(brake != nullptr);  // still a luminous intensity
+    CHECK(brake->fixed_cd[0] == 0.0);
+    CHECK(brake->lamp_colour_cd == Approx(300.0));
+  }
+  SECTION("the low beam fades out over 1 s, lit until it has faded") {
+    const double since = start_after(2.0);
+    const auto& quarter = at(since + 0.25);
+    const auto* beam = look_of(quarter, VehicleLight::kLowBeam);
+    REQUIRE(beam != nullptr);
+    CHECK(beam->lamp_share == Approx(0.75));
+    CHECK((quarter.lights_on & light_bit(VehicleLight::kLowBeam)) != 0);
+    const auto& off = at(since + 1.2);
+    CHECK(look_of(off, VehicleLight::kLowBeam) == nullptr);
+    CHECK((off.lights_on & light_bit(VehicleLight::kLowBeam)) == 0);
+    CHECK((off.lights_set & light_bit(VehicleLight::kLowBeam)) != 0);
+  }
 }

@@ -139,6 +139,65 @@ TEST_CASE("at night a car's low beams light the road in front of it", "[sensors]
   CHECK(green(lit) > green(dark) + 30);
 }
 
+TEST_CASE("a LightStateAction's colour tints a low beam and its intensity scales it",
+          "[sensors][camera][lights]") {
+  using corsa::engine::light_bit;
+  using corsa::engine::VehicleLight;
+  auto car = box_entity(3, "car", 20.0, 0.0, 4.5, 1.8, 1.5, corsa::engine::EntityCategory::kCar);
+  car.pose.h = M_PI;
+  car.lights_on = car.lights_set = light_bit(VehicleLight::kLowBeam);
+  Scene scene;
+  scene.add_road_mesh(corsa::test::flat_road());
+  scene.commit();
+  CameraIntrinsics k;
+  k.width = 160;
+  k.height = 120;
+  k.fov_deg = 60.0;
+  const CameraRenderer camera(k);
+  const Lighting night = sun_at(0.0, -0.4);
+  RenderSettings settings;
+  settings.outputs.rgb = true;
+  settings.lighting = &night;
+  settings.rgb.noise = false;
+  settings.rgb.auto_exposure = false;
+  settings.rgb.iso = 800.0;
+  settings.rgb.shutter_speed_s = 1.0 / 60.0;
+  CameraMotion motion;
+  motion.world_from_body = rigid_from_pose(0.0, 0.0, 1.2, 0.0, 0.0, 0.0);
+  auto render = [&](std::vector<corsa::engine::LightLook> looks) {
+    car.light_looks = std::move(looks);
+    scene.set_entities(std::vector<corsa::engine::EntitySnapshot>{car});
+    return camera.render(scene, motion, settings);
+  };
+  // Road 12 m ahead of the camera (8 m in front of the car), in the beams.
+  const double f = 80.0 / std::tan(M_PI / 6.0);
+  const int row = static_cast<int>(59.5 + f * 1.2 / 12.0 + 0.5);
+  auto road = [&](const CameraImages& img, int channel) {
+    return static_cast<int>(img.rgb[3 * (static_cast<size_t>(row) * 160 + 80) + channel]);
+  };
+  const CameraImages plain = render({});
+  corsa::engine::LightLook red{.light = VehicleLight::kLowBeam};
+  red.colour_share = {1.0 / 0.2126, 0.0, 0.0};  // pure red at the lamp's own intensity
+  const CameraImages tinted = render({red});
+  corsa::engine::LightLook dim{.light = VehicleLight::kLowBeam};
+  dim.lamp_colour_cd = 3000.0;  // a quarter of the renderer's 12,000 cd low beam
+  const CameraImages dimmed = render({dim});
+  INFO("road pixel: plain " << road(plain, 0) << "/" << road(plain, 1) << "/" << road(plain, 2)
+                            << ", red " << road(tinted, 0) << "/" << road(tinted, 1) << "/"
+                            << road(tinted, 2) << ", dimmed " << road(dimmed, 1));
+  REQUIRE(road(plain, 1) > 40);
+  // Red light: the road's red stays, its green and blue go dark.
+  CHECK(road(tinted, 0) > road(tinted, 1) + 30);
+  CHECK(road(tinted, 1) < road(plain, 1) / 3);
+  CHECK(road(tinted, 2) < road(plain, 2) / 3);
+  // A quarter of the intensity: clearly darker, still lit.
+  CHECK(road(dimmed, 1) < road(plain, 1) - 20);
+  // The same look with the lamp's own share reproduces the plain frame byte for byte.
+  corsa::engine::LightLook same{.light = VehicleLight::kLowBeam};
+  same.lamp_share = 1.0;
+  CHECK(render({same}).rgb == plain.rgb);
+}
+
 TEST_CASE("a night frame with lamps is the same bytes on 1 and 2 threads at every quality",
           "[sensors][camera][determinism]") {
   auto car = box_entity(4, "car", 15.0, 2.0, 4.5, 1.8, 1.5, corsa::engine::EntityCategory::kCar);

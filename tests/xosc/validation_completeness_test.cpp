@@ -215,3 +215,40 @@ TEST_CASE("the load reports at most 500 errors", "[xosc][errors]") {
   REQUIRE(errors.size() == 501);
   CHECK_THAT(errors.back().message, Catch::StartsWith("too many errors"));
 }
+
+TEST_CASE("LightState values out of their ranges are located errors, all in one pass",
+          "[xosc][errors][lights]") {
+  corsa::test::TempDir dir;
+  auto light_event = [](const std::string& name, const std::string& transition,
+                        const std::string& state) {
+    return "<Event name=\"" + name + "\" priority=\"parallel\">\n<Action name=\"" + name +
+           "\"><PrivateAction><AppearanceAction><LightStateAction" + transition +
+           "><LightType><VehicleLight vehicleLightType=\"lowBeam\"/></LightType>\n" + state +
+           "</LightStateAction></AppearanceAction></PrivateAction></Action>\n</Event>\n";
+  };
+  ScenarioText text;
+  text.stories = corsa::test::story_with(
+      light_event("Dim", " transitionTime=\"-1\"",
+                  "<LightState mode=\"on\" luminousIntensity=\"-5\"/>\n") +
+      light_event("Rgb", "",
+                  "<LightState mode=\"on\"><Color colorType=\"other\">\n"
+                  "<ColorRgb red=\"1.5\" green=\"0.5\" blue=\"-0.1\"/></Color></LightState>\n") +
+      light_event("Cmyk", "",
+                  "<LightState mode=\"on\"><Color colorType=\"other\">\n"
+                  "<ColorCmyk cyan=\"0\" magenta=\"2\" yellow=\"0\" key=\"0\"/></Color>"
+                  "</LightState>\n") +
+      light_event("Fine", " transitionTime=\"0.5\"",
+                  "<LightState mode=\"on\" luminousIntensity=\"0\"><Color colorType=\"red\">\n"
+                  "<ColorRgb red=\"1\" green=\"0\" blue=\"0\"/></Color></LightState>\n"));
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  CHECK(errors.size() == 5);
+  CHECK(
+      has(errors, line_of(xml, "transitionTime=\"-1\""), "transitionTime -1 must not be negative"));
+  CHECK(has(errors, line_of(xml, "luminousIntensity=\"-5\""),
+            "luminousIntensity -5 must not be negative"));
+  CHECK(has(errors, line_of(xml, "red=\"1.5\""), "red 1.5 is outside [0, 1]"));
+  CHECK(has(errors, line_of(xml, "red=\"1.5\""), "blue -0.1 is outside [0, 1]"));
+  CHECK(has(errors, line_of(xml, "magenta=\"2\""), "magenta 2 is outside [0, 1]"));
+}

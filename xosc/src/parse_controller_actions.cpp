@@ -1,5 +1,7 @@
 // Controller, appearance and trailer actions (§7.4.5, §7.4.7, §7.4.8).
 
+#include <limits>
+
 #include "parsers.h"
 
 namespace corsa::xosc {
@@ -103,10 +105,23 @@ AssignControllerAction parse_assign_controller(ParseContext& ctx, const Element*
   return action;
 }
 
+constexpr double kNoLimit = std::numeric_limits<double>::infinity();
+
+/// OpenSCENARIO 1.2 LightState: luminousIntensity (cd) and transitionTime (s) range over
+/// [0..inf[, the ColorRgb and ColorCmyk components over [0..1].
+void check_light_value(ParseContext& ctx, const Element* e, const char* name,
+                       std::optional<double> value, double max) {
+  if (value && !(*value >= 0.0 && *value <= max)) {
+    ctx.error(e, std::string(name) + " " + format_double(*value) +
+                     (max < 2.0 ? " is outside [0, 1]" : " must not be negative"));
+  }
+}
+
 LightStateAction parse_light_state_action(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "LightStateAction");
   LightStateAction action;
   action.transition_time = ctx.opt_double(e, "transitionTime");
+  check_light_value(ctx, e, "transitionTime", action.transition_time, kNoLimit);
   const Element* type = kids.one("LightType");
   Children type_kids(ctx, type, "LightType");
   const Element* t = type_kids.choice();
@@ -124,18 +139,28 @@ LightStateAction parse_light_state_action(ParseContext& ctx, const Element* e) {
   light.luminous_intensity = ctx.opt_double(state, "luminousIntensity");
   light.flashing_on_duration = ctx.opt_double(state, "flashingOnDuration");
   light.flashing_off_duration = ctx.opt_double(state, "flashingOffDuration");
+  check_light_value(ctx, state, "luminousIntensity", light.luminous_intensity, kNoLimit);
   if (const Element* color = state_kids.opt("Color")) {
     Children color_kids(ctx, color, "Color");
     Color value;
     value.type = ctx.req_enum<ColorType>(color, "colorType");
     if (const Element* rgb = color_kids.opt("ColorRgb")) {
       Children(ctx, rgb, "ColorRgb");
-      value.value = ColorRgb{ctx.req_double(rgb, "red"), ctx.req_double(rgb, "green"),
-                             ctx.req_double(rgb, "blue")};
+      const ColorRgb c{ctx.req_double(rgb, "red"), ctx.req_double(rgb, "green"),
+                       ctx.req_double(rgb, "blue")};
+      check_light_value(ctx, rgb, "red", c.red, 1.0);
+      check_light_value(ctx, rgb, "green", c.green, 1.0);
+      check_light_value(ctx, rgb, "blue", c.blue, 1.0);
+      value.value = c;
     } else if (const Element* cmyk = color_kids.opt("ColorCmyk")) {
       Children(ctx, cmyk, "ColorCmyk");
-      value.value = ColorCmyk{ctx.req_double(cmyk, "cyan"), ctx.req_double(cmyk, "magenta"),
-                              ctx.req_double(cmyk, "yellow"), ctx.req_double(cmyk, "key")};
+      const ColorCmyk c{ctx.req_double(cmyk, "cyan"), ctx.req_double(cmyk, "magenta"),
+                        ctx.req_double(cmyk, "yellow"), ctx.req_double(cmyk, "key")};
+      check_light_value(ctx, cmyk, "cyan", c.cyan, 1.0);
+      check_light_value(ctx, cmyk, "magenta", c.magenta, 1.0);
+      check_light_value(ctx, cmyk, "yellow", c.yellow, 1.0);
+      check_light_value(ctx, cmyk, "key", c.key, 1.0);
+      value.value = c;
     }
     value.source = ctx.source(color);
     light.color = value;

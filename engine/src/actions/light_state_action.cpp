@@ -1,9 +1,12 @@
 // LightStateAction (OpenSCENARIO 1.2 §7.4.3.5): switches one of the actor's vehicle lights on,
-// off or flashing; the world snapshot carries it to the sensors (EntitySnapshot::lights_on,
-// lights_set). The transition time, luminous intensity and colour are not modelled (the light
-// switches at once, with the renderer's lamp colour); user-defined light types warn once.
+// off or flashing, at a luminous intensity (cd) and in a colour when the LightState gives them,
+// fading linearly over transitionTime from the light's state before; the world snapshot carries
+// it to the sensors (EntitySnapshot::lights_on, lights_set, light_looks). User-defined light
+// types warn once.
 
+#include <array>
 #include <memory>
+#include <optional>
 #include <variant>
 
 #include "actions/action_makers.h"
@@ -11,6 +14,45 @@
 
 namespace corsa::engine::detail {
 namespace {
+
+/// A LightState Color as linear RGB: ColorRgb as given, ColorCmyk converted (r = (1 - c)(1 - k)),
+/// a colorType alone as its usual RGB; "other" without values keeps the lamp's colour.
+std::optional<std::array<double, 3>> light_rgb(const xosc::Color& color) {
+  if (color.value) {
+    if (const auto* rgb = std::get_if<xosc::ColorRgb>(&*color.value)) {
+      return std::array<double, 3>{rgb->red, rgb->green, rgb->blue};
+    }
+    const auto& c = std::get<xosc::ColorCmyk>(*color.value);
+    return std::array<double, 3>{(1.0 - c.cyan) * (1.0 - c.key), (1.0 - c.magenta) * (1.0 - c.key),
+                                 (1.0 - c.yellow) * (1.0 - c.key)};
+  }
+  using T = xosc::ColorType;
+  switch (color.type) {
+    case T::kRed:
+      return std::array<double, 3>{1.0, 0.0, 0.0};
+    case T::kYellow:
+      return std::array<double, 3>{1.0, 1.0, 0.0};
+    case T::kGreen:
+      return std::array<double, 3>{0.0, 1.0, 0.0};
+    case T::kBlue:
+      return std::array<double, 3>{0.0, 0.0, 1.0};
+    case T::kViolet:
+      return std::array<double, 3>{0.5, 0.0, 1.0};
+    case T::kOrange:
+      return std::array<double, 3>{1.0, 0.5, 0.0};
+    case T::kBrown:
+      return std::array<double, 3>{0.6, 0.3, 0.1};
+    case T::kBlack:
+      return std::array<double, 3>{0.0, 0.0, 0.0};
+    case T::kGrey:
+      return std::array<double, 3>{0.5, 0.5, 0.5};
+    case T::kWhite:
+      return std::array<double, 3>{1.0, 1.0, 1.0};
+    case T::kOther:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
 
 class LightStateInstance final : public InstantAction {
  public:
@@ -42,13 +84,23 @@ class LightStateInstance final : public InstantAction {
       setting.on_s = setting.off_s = 1.0 / 3.0;
     }
     setting.since = context.state.now();
+    setting.candela = state.luminous_intensity;
+    if (state.color) {
+      setting.rgb = light_rgb(*state.color);
+    }
+    setting.transition_s = action_.transition_time.value_or(0.0);
     const auto index = static_cast<size_t>(*type);
     if (index < kVehicleLightCount) {
       auto& lights = context.entity().lights;
       if (!lights) {
         lights = std::make_unique<LightSettings>();
       }
-      (*lights)[index] = setting;
+      std::optional<LightSetting>& slot = (*lights)[index];
+      if (setting.transition_s > 0.0 && slot) {
+        // A fade starts from whatever the light shows now, itself perhaps still fading.
+        setting.previous = std::make_shared<const LightSetting>(std::move(*slot));
+      }
+      slot = std::move(setting);
     }
   }
 

@@ -254,6 +254,55 @@ bool lit(const detail::LightSetting& light, double time) {
   return into < light.on_s;
 }
 
+/// How far the fade of `light` is at `time`: 0 at its start, 1 once over (or without one).
+double light_fade_done(const detail::LightSetting& light, double time) {
+  if (!(light.transition_s > 0.0)) {
+    return 1.0;
+  }
+  return std::clamp((time - light.since) / light.transition_s, 0.0, 1.0);
+}
+
+/// Adds what `light` emits at `time`, weighted by `weight`, to `look`: its fading-out previous
+/// state (an unset light counts as off) mixed linearly with its own.
+void add_light_look(const detail::LightSetting& light, double time, double weight,
+                    LightLook& look) {
+  const double done = light_fade_done(light, time);
+  if (done < 1.0 && light.previous) {
+    add_light_look(*light.previous, time, weight * (1.0 - done), look);
+  }
+  const double w = weight * done;
+  if (w <= 0.0 || !lit(light, time)) {
+    return;
+  }
+  std::array<double, 3> unit{};
+  if (light.rgb) {
+    const auto& c = *light.rgb;
+    const double y = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];  // Rec. 709 luminance
+    for (int k = 0; k < 3 && y > 0.0; ++k) {
+      unit[k] = c[k] / y;  // a black light emits nothing
+    }
+  }
+  if (light.candela && light.rgb) {
+    for (int k = 0; k < 3; ++k) {
+      look.fixed_cd[k] += w * *light.candela * unit[k];
+    }
+  } else if (light.candela) {
+    look.lamp_colour_cd += w * *light.candela;
+  } else if (light.rgb) {
+    for (int k = 0; k < 3; ++k) {
+      look.colour_share[k] += w * unit[k];
+    }
+  } else {
+    look.lamp_share += w;
+  }
+}
+
+bool look_emits(const LightLook& look) {
+  const auto any = [](const std::array<double, 3>& v) { return v[0] + v[1] + v[2] > 0.0; };
+  return any(look.fixed_cd) || look.lamp_colour_cd > 0.0 || any(look.colour_share) ||
+         look.lamp_share > 0.0;
+}
+
 /// The lights an entity shows at `time`: the ones LightStateAction set, and otherwise brake
 /// lights while it decelerates by more than 0.5 m/s^2 or stands after having moved (held on the
 /// brake), and a flashing indicator (1.5 Hz, the middle of UN ECE R48's 90 +- 30 per minute)
@@ -261,6 +310,7 @@ bool lit(const detail::LightSetting& light, double time) {
 void entity_lights(const detail::Entity& entity, double time, EntitySnapshot& out) {
   out.lights_on = 0;
   out.lights_set = 0;
+  out.light_looks.clear();
   const EntityState& state = entity.state;
   const bool braking =
       state.acceleration < -0.5 || (std::abs(state.speed) < 0.05 && state.odometer > 0.0);
@@ -282,7 +332,15 @@ void entity_lights(const detail::Entity& entity, double time, EntitySnapshot& ou
     }
     const uint32_t bit = 1u << i;
     out.lights_set |= bit;
-    out.lights_on = lit(*light, time) ? (out.lights_on | bit) : (out.lights_on & ~bit);
+    bool on = lit(*light, time);
+    if (light->candela || light->rgb || light_fade_done(*light, time) < 1.0) {
+      LightLook look;
+      look.light = static_cast<VehicleLight>(i);
+      add_light_look(*light, time, 1.0, look);
+      on = look_emits(look);
+      out.light_looks.push_back(look);
+    }
+    out.lights_on = on ? (out.lights_on | bit) : (out.lights_on & ~bit);
   }
 }
 

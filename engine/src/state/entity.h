@@ -81,9 +81,17 @@ inline constexpr int kDomainSlots = 2;
 struct LightSetting {
   enum class Mode : uint8_t { kOff, kOn, kFlashing };
   Mode mode = Mode::kOn;
-  double on_s = 0.5;   ///< flashing: s lit per cycle
-  double off_s = 0.5;  ///< flashing: s dark per cycle
-  double since = 0.0;  ///< simulation time it was set (flashing starts lit)
+  double on_s = 0.5;              ///< flashing: s lit per cycle
+  double off_s = 0.5;             ///< flashing: s dark per cycle
+  double since = 0.0;             ///< simulation time it was set (flashing starts lit)
+  std::optional<double> candela;  ///< LightState luminousIntensity; none: the lamp's own
+  /// LightState Color as linear RGB (0..1 each); none: the lamp's own colour.
+  std::optional<std::array<double, 3>> rgb;
+  /// transitionTime (s): the light fades linearly from `previous` to this state from `since`.
+  double transition_s = 0.0;
+  /// The setting this one replaced (none: the light was unset, read as off); kept while the
+  /// fade runs.
+  std::shared_ptr<const LightSetting> previous;
 };
 inline constexpr size_t kVehicleLightCount = 13;
 
@@ -152,7 +160,7 @@ struct Entity {
   std::shared_ptr<const LaneChooser> route;
   RouteProgress route_progress;
   /// Lights set by LightStateAction; null until the first is set (unset ones follow the
-  /// motion). Out of line: 520 bytes that most entities never use.
+  /// motion). Out of line: most entities never use them.
   std::unique_ptr<LightSettings> lights;
   /// AnimationAction: each animation by type name, going from `from` to `to` over `duration`.
   struct Animation {

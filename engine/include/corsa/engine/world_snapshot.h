@@ -4,6 +4,7 @@
 // box and motion, and the environment. The engine owns this interface so that it builds and is
 // tested without Embree; the command line connects a sensors-side sink to it.
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -76,6 +77,20 @@ inline constexpr uint32_t light_bit(VehicleLight light) {
   return 1u << static_cast<unsigned>(light);
 }
 
+/// How a light that a LightStateAction set with a luminous intensity, a colour or a transition
+/// time emits (OpenSCENARIO 1.2 LightState), as a sum of parts in linear RGB whose luminance
+/// (Rec. 709 weights) is their intensity in cd: a fade mixes two states linearly, so every mix
+/// is such a sum. With the lamp's own intensity I0 (cd) and colour h (luminance 1) the light
+/// emits fixed_cd + lamp_colour_cd * h + I0 * (colour_share + lamp_share * h); a light set
+/// without any of the three has no look and emits I0 * h when lit.
+struct LightLook {
+  VehicleLight light = VehicleLight::kLowBeam;
+  std::array<double, 3> fixed_cd{};      ///< given colours at given intensities (cd)
+  double lamp_colour_cd = 0.0;           ///< the lamp's colour at given intensities (cd)
+  std::array<double, 3> colour_share{};  ///< given colours at the lamp's intensity (share of I0)
+  double lamp_share = 0.0;               ///< the lamp as it is (share of I0 * h)
+};
+
 /// An animation state of an entity (AnimationAction, OpenSCENARIO 1.3 §7.4.7.2).
 struct AnimationSnapshot {
   /// "doorFrontLeft", ... (components), "walking", ... (pedestrian motions), a user-defined type
@@ -103,6 +118,9 @@ struct EntitySnapshot {
   /// Lights a LightStateAction set (on, off or flashing): the sensors leave these alone, and
   /// choose the others themselves (headlights when it is dark).
   uint32_t lights_set = 0;
+  /// The lights of lights_set with a luminous intensity, a colour or a fade, by VehicleLight
+  /// order; a lit bit of lights_on then means the look emits something.
+  std::vector<LightLook> light_looks;
   bool visible = true;                        ///< VisibilityAction (sensors flag)
   std::vector<AnimationSnapshot> animations;  ///< by type name
 };
