@@ -24,7 +24,7 @@ namespace corsa::sensors {
 namespace detail {
 namespace {
 
-void stamp_time(cv::Mat& image, const std::string& text, double scale) {
+void stamp(cv::Mat& image, const std::string& text, double scale) {
   const cv::Point at(8, static_cast<int>(24 * scale));
   cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.7 * scale, cv::Scalar(0, 0, 0),
               static_cast<int>(4 * scale), cv::LINE_AA);
@@ -53,7 +53,7 @@ cv::Mat compose_preview_frame(const cv::Mat& camera, double time, const cv::Mat&
                               cv::Size size) {
   cv::Mat frame(size, CV_8UC3, cv::Scalar(0, 0, 0));
   cv::Mat cam = fit_height(camera, kPreviewHeight);
-  stamp_time(cam, "t = " + format_fixed(time, 1) + " s", 1.0);
+  stamp(cam, "t = " + format_fixed(time, 1) + " s", 1.0);
   cam.copyTo(frame(cv::Rect(0, 0, cam.cols, cam.rows)));
   if (!birds_eye.empty()) {
     const cv::Mat top = fit_height(birds_eye, kPreviewHeight);
@@ -123,7 +123,7 @@ fs::path write_contact_sheet(const fs::path& dataset, const std::vector<Shot>& s
     cv::Mat tile;
     const int height = image.rows * kTileWidth / std::max(1, image.cols);
     cv::resize(image, tile, cv::Size(kTileWidth, height), 0, 0, cv::INTER_AREA);
-    detail::stamp_time(tile, "t = " + format_fixed(shots[pick].time, 1) + " s", 0.8);
+    detail::stamp(tile, "t = " + format_fixed(shots[pick].time, 1) + " s", 0.8);
     tiles.push_back(tile);
   }
   const int rows = static_cast<int>((n + kColumns - 1) / kColumns);

@@ -10,7 +10,7 @@ namespace corsa::sensors::detail {
 namespace {
 
 /// Captures the encoder may fall behind before add() waits (each holds about 4 MB of images).
-constexpr size_t kPreviewShotsQueued = 3;
+constexpr size_t kQueued = 3;
 
 }  // namespace
 
@@ -66,7 +66,7 @@ void PreviewStream::add(std::span<const SensorFrame> frames) {
     // this same double.
     Shot shot{copy(f.camera.rgb, f.camera.width, f.camera.height), f.time, latest_birds_eye_};
     std::unique_lock lock(mutex_);
-    changed_.wait(lock, [this] { return queue_.size() < kPreviewShotsQueued; });
+    changed_.wait(lock, [this] { return queue_.size() < kQueued; });
     queue_.push_back(std::move(shot));
     if (!encoder_.joinable()) {
       // Started by the thread that runs the captures (and would otherwise encode the files after
