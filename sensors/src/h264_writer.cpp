@@ -131,10 +131,6 @@ std::unique_ptr<H264Writer> H264Writer::open(const std::filesystem::path& path, 
   return std::unique_ptr<H264Writer>(new H264Writer(std::move(codec)));
 }
 
-bool H264Writer::same_frame_rate(double a, double b) {
-  return av_cmp_q(av_d2q(a, 1000000), av_d2q(b, 1000000)) == 0;
-}
-
 H264Writer::H264Writer(std::unique_ptr<Codec> codec) : codec_(std::move(codec)) {}
 
 H264Writer::~H264Writer() = default;
