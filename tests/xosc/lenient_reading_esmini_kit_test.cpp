@@ -86,6 +86,13 @@ std::string trajectory_story(const std::string& shape) {
       "</RoutingAction></PrivateAction></Action></Event>\n");
 }
 
+// The first action of the first event of the loaded scenario's first story, a PrivateAction.
+const PrivateAction& first_private_action(const Loaded& loaded) {
+  const auto& event =
+      loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
+  return std::get<PrivateAction>(event.actions[0].action);
+}
+
 }  // namespace
 
 TEST_CASE("a ClothoidSpline's draft Segment is read as its ClothoidSplineSegment",
@@ -113,10 +120,7 @@ TEST_CASE("a ClothoidSpline's draft Segment is read as its ClothoidSplineSegment
   const auto continued = warning_with(loaded, "curvStart left out");
   CHECK(continued.line == third);
   CHECK_THAT(continued.message, Catch::Contains("curvatureStart=\"0.02\" curvatureEnd=\"-0.01\""));
-  const auto& event =
-      loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
-  const auto& follow =
-      std::get<FollowTrajectoryAction>(std::get<PrivateAction>(event.actions[0].action));
+  const auto& follow = std::get<FollowTrajectoryAction>(first_private_action(loaded));
   const auto& spline = std::get<ClothoidSpline>(follow.trajectory.shape);
   REQUIRE(spline.segments.size() == 3);
   CHECK(spline.segments[0].curvature_end == 0.01);
@@ -146,13 +150,7 @@ TEST_CASE("a LaneOffsetAction without continuous is read as not continuous", "[x
   corsa::test::TempDir dir;
   const Loaded loaded = lenient_load(dir, xml);
   REQUIRE(loaded.scenario);
-  const auto& action = loaded.scenario->storyboard.stories[0]
-                           .acts[0]
-                           .maneuver_groups[0]
-                           .maneuvers[0]
-                           .events[0]
-                           .actions[0];
-  CHECK(!std::get<LaneOffsetAction>(std::get<PrivateAction>(action.action)).continuous);
+  CHECK(!std::get<LaneOffsetAction>(first_private_action(loaded)).continuous);
   CHECK_THAT(warning_with(loaded, "without continuous").message,
              Catch::EndsWith("(read as continuous=\"false\")"));
   check_cli_text(dir, xml, "<LaneOffsetAction> without continuous", line);
@@ -185,13 +183,7 @@ TEST_CASE("a SteadyState beside a FinalSpeed's speed is read as that speed's ste
   CHECK_THAT(warning_with(loaded, "<SteadyState>").message,
              Catch::EndsWith("(read as <AbsoluteSpeed>'s steady state: "
                              "TargetDistanceSteadyState 5 m)"));
-  const auto& action = loaded.scenario->storyboard.stories[0]
-                           .acts[0]
-                           .maneuver_groups[0]
-                           .maneuvers[0]
-                           .events[0]
-                           .actions[0];
-  const auto& sync = std::get<SynchronizeAction>(std::get<PrivateAction>(action.action));
+  const auto& sync = std::get<SynchronizeAction>(first_private_action(loaded));
   REQUIRE(sync.final_speed);
   const auto& speed = std::get<AbsoluteSpeed>(*sync.final_speed);
   CHECK(speed.value == 5.0);
@@ -223,13 +215,7 @@ TEST_CASE("a FollowTrajectoryAction without its following mode is read as follow
   corsa::test::TempDir dir;
   const Loaded loaded = lenient_load(dir, xml);
   REQUIRE(loaded.scenario);
-  const auto& action = loaded.scenario->storyboard.stories[0]
-                           .acts[0]
-                           .maneuver_groups[0]
-                           .maneuvers[0]
-                           .events[0]
-                           .actions[0];
-  CHECK(std::get<FollowTrajectoryAction>(std::get<PrivateAction>(action.action)).following_mode ==
+  CHECK(std::get<FollowTrajectoryAction>(first_private_action(loaded)).following_mode ==
         FollowingMode::kFollow);
   check_cli_text(dir, xml, what, line);
 }
