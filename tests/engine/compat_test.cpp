@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <utility>
 
 #include "corsa/engine/outputs.h"
 #include "corsa/engine/world_snapshot.h"
@@ -316,5 +317,17 @@ TEST_CASE("a LightStateAction fades linearly over its transitionTime to its inte
     CHECK(look_of(off, VehicleLight::kLowBeam) == nullptr);
     CHECK((off.lights_on & light_bit(VehicleLight::kLowBeam)) == 0);
     CHECK((off.lights_set & light_bit(VehicleLight::kLowBeam)) != 0);
+  }
+  SECTION(
+      "a flashing light without durations is on 0.5 s and off 0.5 s, the class model's default") {
+    const double since = start_after(0.5);
+    const uint32_t bit = light_bit(VehicleLight::kWarning);
+    const std::pair<double, bool> samples[] = {{0.05, true},  {0.45, true}, {0.55, false},
+                                               {0.95, false}, {1.05, true}, {1.45, true},
+                                               {1.55, false}};
+    for (const auto& [into, lit] : samples) {
+      INFO("into the flashing " << into << " s");
+      CHECK(((at(since + into).lights_on & bit) != 0) == lit);
+    }
   }
 }

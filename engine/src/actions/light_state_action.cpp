@@ -15,6 +15,9 @@
 namespace corsa::engine::detail {
 namespace {
 
+// The class model's default for flashingOnDuration and flashingOffDuration, in seconds.
+constexpr double kLightDefaultFlashS = 0.5;
+
 /// A LightState Color as linear RGB: ColorRgb as given, ColorCmyk converted (r = (1 - c)(1 - k)),
 /// a colorType alone as its usual RGB; "other" without values keeps the lamp's colour.
 std::optional<std::array<double, 3>> light_rgb(const xosc::Color& color) {
@@ -72,16 +75,16 @@ class LightStateInstance final : public InstantAction {
     setting.mode = state.mode == xosc::LightMode::kOff  ? LightSetting::Mode::kOff
                    : state.mode == xosc::LightMode::kOn ? LightSetting::Mode::kOn
                                                         : LightSetting::Mode::kFlashing;
-    // Without durations a flashing light blinks at 1.5 Hz, the middle of UN ECE R48's
-    // 90 +- 30 flashes per minute.
-    setting.on_s = state.flashing_on_duration.value_or(1.0 / 3.0);
-    setting.off_s = state.flashing_off_duration.value_or(1.0 / 3.0);
+    // Without durations a flashing light is on and off 0.5 s each, the class model's default
+    // for both (1 Hz, within UN ECE R48's 90 +- 30 flashes per minute at its lower end).
+    setting.on_s = state.flashing_on_duration.value_or(kLightDefaultFlashS);
+    setting.off_s = state.flashing_off_duration.value_or(kLightDefaultFlashS);
     if (!(setting.on_s > 0.0) || !(setting.off_s >= 0.0)) {
       context.state.diagnostics.add_once(
           "light-state-durations",
           action_.source.warning("LightStateAction: flashing durations must be positive; "
-                                 "using 1/3 s on and off"));
-      setting.on_s = setting.off_s = 1.0 / 3.0;
+                                 "using 0.5 s on and off"));
+      setting.on_s = setting.off_s = kLightDefaultFlashS;
     }
     setting.since = context.state.now();
     setting.candela = state.luminous_intensity;
