@@ -2,9 +2,10 @@
 // `(read as ...)` warning and refused under --strict: a ClothoidSpline's draft <Segment>, a
 // LaneOffsetAction without continuous, <SteadyState> beside a FinalSpeed's speed, a
 // FollowTrajectoryAction without its following mode, a Story without Act, an Act without
-// ManeuverGroup, revMinor="1+", map and catalog paths from esmini's working folder, and a
-// controller entry the catalog at hand lacks. Each file also runs through `corsa run` (exit 0,
-// the warning at its line) and is refused by `corsa run --strict` (exit 2).
+// ManeuverGroup, revMinor="1+", map and catalog paths from esmini's working folder, a
+// controller entry the catalog at hand lacks, an XML declaration after comments, an Action
+// without name and an attribute written with other capitals. Each file also runs through `corsa
+// run` (exit 0, the warning at its line) and is refused by `corsa run --strict` (exit 2).
 
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -434,4 +435,74 @@ TEST_CASE("a map object without s runs placed by its repeat, and --strict refuse
   const auto validate = run_corsa({"validate", "--strict", (dir.path() / "crest.xodr").string()});
   CHECK(validate.exit_code == 2);
   CHECK(run_corsa({"validate", (dir.path() / "crest.xodr").string()}).exit_code == 0);
+}
+
+TEST_CASE("an XML declaration after comments is read as the file's own", "[xosc][lenient]") {
+  const std::string xml =
+      "<!-- a licence note before the declaration -->\n" + stopping_scenario().str();
+  const std::string what = "XML declaration after comments";
+  check_both_ways(xml, what, 2);
+  corsa::test::TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  REQUIRE(loaded.scenario);
+  CHECK_THAT(warning_with(loaded, what).message,
+             Catch::EndsWith("(read as the file's own declaration)"));
+  check_cli_text(dir, xml, what, 2);
+  // After an element, a declaration is no declaration: still malformed.
+  const std::string after = "<a/>\n" + stopping_scenario().str();
+  const Loaded refused = lenient_load(dir, after);
+  REQUIRE(!refused.errors.empty());
+  CHECK_THAT(refused.errors[0].message, Catch::Contains("malformed XML"));
+}
+
+TEST_CASE("an Action without name is read as an unnamed action", "[xosc][lenient]") {
+  ScenarioText text = stopping_scenario();
+  text.stories = corsa::test::story_with(
+      "<Event name=\"E\" priority=\"override\">\n<Action><PrivateAction><LongitudinalAction>"
+      "<SpeedAction><SpeedActionDynamics dynamicsShape=\"step\" value=\"0\" "
+      "dynamicsDimension=\"time\"/><SpeedActionTarget><AbsoluteTargetSpeed value=\"5\"/>"
+      "</SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction></Action>"
+      "</Event>\n");
+  const std::string xml = text.str();
+  const int line = line_of(xml, "<Action>");
+  const std::string what = "<Action> without name";
+  check_both_ways(xml, what, line);
+  corsa::test::TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  REQUIRE(loaded.scenario);
+  CHECK(std::holds_alternative<SpeedAction>(first_private_action(loaded)));
+  CHECK(loaded.scenario->storyboard.stories[0]
+            .acts[0]
+            .maneuver_groups[0]
+            .maneuvers[0]
+            .events[0]
+            .actions[0]
+            .name.empty());
+  check_cli_text(dir, xml, what, line);
+}
+
+TEST_CASE("an attribute written with other capitals is read as the attribute it misspells",
+          "[xosc][lenient]") {
+  ScenarioText text = stopping_scenario();
+  text.stop +=
+      "<ConditionGroup><Condition name=\"Far\" delay=\"0\" conditionEdge=\"none\">"
+      "<ByEntityCondition><TriggeringEntities triggeringEntitiesRule=\"any\"><EntityRef "
+      "entityRef=\"Ego\"/></TriggeringEntities><EntityCondition>\n<RelativeDistanceCondition "
+      "entityRef=\"Ego\" relativeDistanceType=\"longitudinal\" value=\"100\" freeSpace=\"true\" "
+      "rule=\"greaterThan\"/></EntityCondition></ByEntityCondition></Condition>"
+      "</ConditionGroup>\n";
+  const std::string xml = text.str();
+  const int line = line_of(xml, "<RelativeDistanceCondition");
+  const std::string what =
+      "attribute 'freeSpace' of <RelativeDistanceCondition> misspells "
+      "freespace";
+  check_both_ways(xml, what, line);
+  corsa::test::TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  REQUIRE(loaded.scenario);
+  CHECK_THAT(warning_with(loaded, what).message, Catch::EndsWith("(read as freespace)"));
+  for (const auto& warning : loaded.warnings) {
+    CHECK_THAT(warning.message, !Catch::Contains("unknown attribute"));
+  }
+  check_cli_text(dir, xml, what, line);
 }

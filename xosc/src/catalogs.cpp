@@ -109,7 +109,7 @@ CatalogResolver::Hit CatalogResolver::found(ParseContext& ctx, const Element* ca
   const std::filesystem::path path = *file->name;
   if (std::find(files_read_.begin(), files_read_.end(), path) == files_read_.end()) {
     files_read_.push_back(path);
-    warn_repeated_attributes(ctx, *file);
+    warn_xml_repairs(ctx, *file);
   }
   return Hit{entry, file};
 }

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "corsa/core/strings.h"
 #include "parse_context.h"
 #include "schema_table.h"
 
@@ -64,7 +65,13 @@ Children::Children(ParseContext& context, const Element* element, std::string_vi
   }
   for (const tinyxml2::XMLAttribute* a = element->FirstAttribute(); a != nullptr; a = a->Next()) {
     const std::string_view name = a->Name();
-    if (!rule->allows_attribute(name) && name.substr(0, 5) != "xmlns" &&
+    // An allowed attribute written with other capitals is warned about where it is read.
+    const bool misspelled = std::any_of(
+        rule->attributes.begin(), rule->attributes.end(), [&](std::string_view allowed) {
+          return iequals(allowed, name) &&
+                 element->Attribute(std::string(allowed).c_str()) == nullptr;
+        });
+    if (!rule->allows_attribute(name) && !misspelled && name.substr(0, 5) != "xmlns" &&
         name.substr(0, 4) != "xsi:") {
       context.warn_once(element, "attribute:" + std::string(element->Name()) + "." + a->Name(),
                         "unknown attribute '" + std::string(a->Name()) + "' of <" +

@@ -246,7 +246,7 @@ auto with_document(const XmlFile& xml, const LoadOptions& options, Diagnostics& 
                    Body body) {
   ParseContext ctx(diagnostics, options);
   ctx.swap_file({xml.name, xml.directory});
-  warn_repeated_attributes(ctx, xml);
+  warn_xml_repairs(ctx, xml);
   const Element* root = checked_root(ctx, xml);
   std::optional<decltype(body(ctx, root, std::declval<Children&>()))> result;
   ctx.recover([&] {

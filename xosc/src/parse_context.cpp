@@ -35,10 +35,23 @@ XmlFile parse_xml(std::string_view text, const std::filesystem::path& path) {
   file.directory = std::filesystem::absolute(path).parent_path();
   file.document = std::make_unique<tinyxml2::XMLDocument>();
   tinyxml2::XMLError error = file.document->Parse(text.data(), text.size());
+  std::string repaired;  // the text with the repairs made so far
+  if (error == tinyxml2::XML_ERROR_PARSING_DECLARATION) {
+    // An XML declaration after leading comments (esmini's two_plus_one_road): read again with
+    // it blanked, as if it opened the file. Any other declaration error stays.
+    repaired.assign(text);
+    file.late_declaration_line = blank_late_declaration(repaired);
+    if (file.late_declaration_line > 0) {
+      file.document = std::make_unique<tinyxml2::XMLDocument>();
+      error = file.document->Parse(repaired.data(), repaired.size());
+    }
+  }
   if (error == tinyxml2::XML_ERROR_PARSING_ATTRIBUTE) {
     // An attribute written twice (esmini's reader takes the first): read again without the
     // repeats, whose places are kept for the warnings. Any other attribute error stays.
-    std::string repaired(text);
+    if (repaired.empty()) {
+      repaired.assign(text);
+    }
     file.repeated_attributes = blank_repeated_attributes(repaired);
     if (!file.repeated_attributes.empty()) {
       file.document = std::make_unique<tinyxml2::XMLDocument>();
@@ -69,7 +82,12 @@ XmlFile parse_xml(std::string_view text, const std::filesystem::path& path) {
 
 XmlFile load_xml(const std::filesystem::path& path) { return parse_xml(read_file(path), path); }
 
-void warn_repeated_attributes(ParseContext& ctx, const XmlFile& file) {
+void warn_xml_repairs(ParseContext& ctx, const XmlFile& file) {
+  if (file.late_declaration_line > 0) {
+    ctx.lenient(Source{file.name, file.late_declaration_line},
+                "XML declaration after comments (XML allows it only at the file's start)",
+                "the file's own declaration");
+  }
   for (const RepeatedAttribute& repeat : file.repeated_attributes) {
     ctx.lenient(Source{file.name, repeat.line},
                 "attribute " + clip(repeat.attribute) + " written twice in <" +
@@ -189,7 +207,19 @@ std::optional<std::string> ParseContext::attr(const Element* element, const char
 std::optional<std::string> ParseContext::resolved(const Element* element, const char* name) {
   const char* raw = element->Attribute(name);
   if (raw == nullptr) {
-    return std::nullopt;
+    // XML names are case-sensitive; esmini's two_plus_one_road writes freeSpace for freespace.
+    const tinyxml2::XMLAttribute* other = element->FirstAttribute();
+    while (other != nullptr && !iequals(other->Name(), name)) {
+      other = other->Next();
+    }
+    if (other == nullptr) {
+      return std::nullopt;
+    }
+    lenient(
+        element,
+        "attribute '" + clip(other->Name()) + "' of <" + element->Name() + "> misspells " + name,
+        name);
+    raw = other->Value();
   }
   try {
     return resolve(element, raw);

@@ -43,8 +43,11 @@ struct XmlFile {
   std::shared_ptr<const std::string> name;
   std::filesystem::path directory;  ///< folder relative paths in the file are resolved against
   /// Attributes written twice in a tag, read as their first value (XML 1.0 §3.1 forbids the
-  /// repeat); whoever reads the document warns about them (warn_repeated_attributes).
+  /// repeat); whoever reads the document warns about them (warn_xml_repairs).
   std::vector<RepeatedAttribute> repeated_attributes;
+  /// Line of an XML declaration that follows comments instead of opening the file (XML 1.0
+  /// §2.8 allows it only at the very start), read as if it opened the file; 0 when none.
+  int late_declaration_line = 0;
 };
 
 /// Parses XML text; throws InputError "malformed XML: ..." at the offending line.
@@ -53,8 +56,9 @@ XmlFile parse_xml(std::string_view text, const std::filesystem::path& path);
 XmlFile load_xml(const std::filesystem::path& path);
 
 class ParseContext;
-/// The lenient-reading warning (an error under --strict) for each repeated attribute of `file`.
-void warn_repeated_attributes(ParseContext& ctx, const XmlFile& file);
+/// The lenient-reading warnings (errors under --strict) for what parse_xml repaired in `file`:
+/// each repeated attribute, a late XML declaration.
+void warn_xml_repairs(ParseContext& ctx, const XmlFile& file);
 
 /// A use of an entity name, checked after the Entities are known.
 struct EntityUse {

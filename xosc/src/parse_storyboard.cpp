@@ -47,7 +47,13 @@ std::string join(const std::string& parent, const std::string& name) {
 Action parse_action(ParseContext& ctx, const Element* e, const std::string& parent) {
   Children kids(ctx, e, "Action");
   Action action;
-  action.name = ctx.req_str(e, "name");
+  if (e->Attribute("name") == nullptr) {
+    // name is required (1.0-1.3 XSD); esmini's two_plus_one_road leaves it out of an action
+    // nothing refers to. Read as the unnamed Maneuver is: an empty name.
+    ctx.lenient(e, "<Action> without name", "an unnamed action nothing can refer to");
+  } else {
+    action.name = ctx.req_str(e, "name");
+  }
   action.path = join(parent, action.name);
   if (e->FirstChildElement() == nullptr) {
     // An Action holds one of the three kinds (§8.4.4). esmini's collision test writes an empty

@@ -1,7 +1,9 @@
-// Attributes written twice in one start tag (xml_attributes.h).
+// Attributes written twice in one start tag, and an XML declaration after comments
+// (xml_attributes.h).
 
 #include "xml_attributes.h"
 
+#include <algorithm>
 #include <optional>
 #include <string_view>
 
@@ -113,6 +115,39 @@ class AttributeScanner : private XmlCursor {
 
 std::vector<RepeatedAttribute> blank_repeated_attributes(std::string& text) {
   return AttributeScanner(text).run();
+}
+
+int blank_late_declaration(std::string& text) {
+  size_t at = 0;
+  for (;;) {
+    while (at < text.size() && is_blank(text[at])) {
+      ++at;
+    }
+    if (text.compare(at, 4, "<!--") != 0) {
+      break;
+    }
+    const size_t end = text.find("-->", at + 4);
+    if (end == std::string::npos) {
+      return 0;
+    }
+    at = end + 3;
+  }
+  const bool declaration =
+      text.compare(at, 5, "<?xml") == 0 && at + 5 < text.size() && is_blank(text[at + 5]);
+  if (at == 0 || !declaration) {
+    return 0;
+  }
+  const size_t end = text.find("?>", at);
+  if (end == std::string::npos) {
+    return 0;
+  }
+  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + at, '\n'));
+  for (size_t i = at; i < end + 2; ++i) {
+    if (text[i] != '\n') {
+      text[i] = ' ';
+    }
+  }
+  return line;
 }
 
 }  // namespace corsa::xosc

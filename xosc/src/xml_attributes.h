@@ -24,4 +24,9 @@ struct RepeatedAttribute {
 /// A tag too broken to scan ends the scan: the parser's own error then says where.
 std::vector<RepeatedAttribute> blank_repeated_attributes(std::string& text);
 
+/// Blanks (with spaces, keeping line breaks) an XML declaration `<?xml ...?>` that follows
+/// only white space and comments but does not open `text`; returns its line, 0 when there is
+/// no such declaration (none, one at the very start, or one after other content).
+int blank_late_declaration(std::string& text);
+
 }  // namespace corsa::xosc
