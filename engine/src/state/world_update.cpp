@@ -221,6 +221,13 @@ bool off_road(const SimState& state, const Entity& entity) {
   if (!entity.state.road) return true;
   if (state.map == nullptr || entity.state.road->lane == 0) return false;
   const RoadCoordinates& at = *entity.state.road;
+  const LaneFollow& follow = entity.lane;
+  if (follow.node != xodr::kNoLane && follow.road == at.road && follow.section == at.section &&
+      follow.lane == at.lane) {
+    // The lane it follows (nearly always): its type from the lane graph's node, one read
+    // instead of a search through the road's lanes every step.
+    return state.map->lane_graph().info(follow.node).type == xodr::LaneType::kNone;
+  }
   const xodr::Lane* lane = state.map->lane(xodr::LaneRef{at.road, at.section, at.lane});
   return lane != nullptr && lane->type == xodr::LaneType::kNone;
 }
