@@ -415,6 +415,35 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "The band query keeps hundreds of points of one cell in their order, appended to what the "
+    "list held",
+    "[engine][traffic]") {
+  // More points in the band than the query's buffer holds (it goes to the list in blocks), half
+  // of them outside the band's sides, and the list not empty before the query.
+  corsa::RandomStream random(31);
+  corsa::engine::detail::PackedPointGrid grid(8.0);
+  std::vector<std::pair<double, double>> points;
+  for (uint32_t i = 0; i < 1200; ++i) {
+    points.emplace_back(random.uniform(0.0, 6.0), random.uniform(-2.0, 2.0));
+    grid.add(points.back().first, points.back().second, i);
+  }
+  grid.finish();
+  const double c = std::cos(0.3), s = std::sin(0.3);
+  std::vector<uint32_t> band = {7777, 8888};
+  grid.query_band(-10.0, -10.0, 20.0, 20.0, 0.0, 0.0, c, s, 0.5, 5.5, 1.0, band);
+  std::vector<uint32_t> expected = {7777, 8888};
+  for (uint32_t i = 0; i < points.size(); ++i) {
+    const double along = points[i].first * c + points[i].second * s;
+    const double across = -points[i].first * s + points[i].second * c;
+    if (along >= 0.5 && along <= 5.5 && std::abs(across) <= 1.0) expected.push_back(i);
+  }
+  // One cell: the points in the order they were added.
+  CHECK(band == expected);
+  CHECK(expected.size() > 2 + 2 * 128);
+  CHECK(expected.size() < 2 + points.size());
+}
+
+TEST_CASE(
     "A generated vehicle's corridor holds the boxes that reach into it, wherever their reference "
     "points are",
     "[engine][traffic]") {

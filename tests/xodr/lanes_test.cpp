@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
 
 #include "corsa/xodr/map.h"
 #include "xodr_test_util.h"
@@ -102,4 +103,80 @@ TEST_CASE("reference positions are clamped to the road", "[xodr][lanes]") {
   CHECK(start.x == zero.x);
   CHECK(map.section_index(0, 1e9) == map.road(0).lane_sections.size() - 1);
   CHECK(map.section_end(0, map.road(0).lane_sections.size() - 1) == map.road(0).length);
+}
+
+namespace {
+
+bool same_span_bits(const LaneSpan& a, const LaneSpan& b) {
+  return a.id == b.id && std::memcmp(&a.t_inner, &b.t_inner, sizeof(double)) == 0 &&
+         std::memcmp(&a.t_outer, &b.t_outer, sizeof(double)) == 0;
+}
+
+// Every lane's span alone (Map::lane_span_in_section, from the packed sections) against the
+// section's spans together (Map::lane_spans_in_section, from the Lane records), at the section's
+// start, inside it and at its end; returns the spans compared.
+size_t check_lane_spans_alone(const Map& map) {
+  size_t compared = 0;
+  std::vector<LaneSpan> spans;
+  for (size_t road = 0; road < map.road_count(); ++road) {
+    const auto& sections = map.road(road).lane_sections;
+    for (size_t section = 0; section < sections.size(); ++section) {
+      const double start = sections[section].s, end = map.section_end(road, section);
+      for (const double s :
+           {start, start + 0.37 * (end - start), start + 0.5 * (end - start), end}) {
+        map.lane_spans_in_section(road, section, s, spans);
+        for (const LaneSpan& span : spans) {
+          const auto alone = map.lane_span_in_section(road, section, s, span.id);
+          REQUIRE(alone);
+          REQUIRE(same_span_bits(*alone, span));
+          ++compared;
+        }
+        CHECK_FALSE(map.lane_span_in_section(road, section, s, 1000));
+      }
+    }
+  }
+  return compared;
+}
+
+}  // namespace
+
+TEST_CASE("a lane's span alone is its span among the section's, to the bit", "[xodr][lanes]") {
+  SECTION("every outer border rule: one width, widths, one border, borders, neither") {
+    Road road = test::make_road("rules", LineGeometry{}, 100.0, 3, 3.0);
+    road.lane_offsets.push_back(Poly3{0.0, 0.25, 0.01, 0.0, 0.0});
+    road.lane_offsets.push_back(Poly3{40.0, 0.65, 0.0, -0.0002, 0.0});
+    for (Lane& lane : road.lane_sections[0].lanes) {
+      if (lane.id == 3) {  // one border record, no widths
+        lane.widths.clear();
+        lane.borders.push_back(Poly3{0.0, 9.4, 0.002, 0.0, 0.0});
+      } else if (lane.id == 2) {  // widths of two records
+        lane.widths = {Poly3{0.0, 3.0, 0.0, 0.0, 0.0}, Poly3{30.0, 3.0, 0.01, 0.0, -1e-6}};
+      } else if (lane.id == -2) {  // borders of two records
+        lane.widths.clear();
+        lane.borders = {Poly3{0.0, -5.9, 0.0, 0.0, 0.0}, Poly3{50.0, -5.9, -0.02, 0.0, 0.0}};
+      } else if (lane.id == -3) {  // neither
+        lane.widths.clear();
+      } else if (lane.id == -1) {  // a negative width (counted as 0) over its first metres
+        lane.widths = {Poly3{0.0, -0.5, 0.2, 0.0, 0.0}};
+      }
+    }
+    MapData data;
+    data.roads.push_back(road);
+    corsa::Diagnostics diagnostics;
+    const Map map = Map::build(std::move(data), diagnostics);
+    CHECK(check_lane_spans_alone(map) == 4 * 6);
+    // The rules themselves: one border record gives the border, neither the inner border.
+    const auto border = map.lane_span_in_section(0, 0, 10.0, 3);
+    REQUIRE(border);
+    CHECK(border->t_outer == Approx(9.42));
+    const auto neither = map.lane_span_in_section(0, 0, 10.0, -3);
+    REQUIRE(neither);
+    CHECK(neither->t_outer == neither->t_inner);
+  }
+  SECTION("the shared maps") {
+    for (const auto& path : test::all_shared_maps()) {
+      INFO(path.string());
+      CHECK(check_lane_spans_alone(test::load_map(path)) > 0);
+    }
+  }
 }

@@ -57,6 +57,7 @@ Map Map::build(MapData data, corsa::Diagnostics& diagnostics, const BuildOptions
       impl->trig.emplace_back(std::cos(geometry.hdg), std::sin(geometry.hdg));
     }
   }
+  impl->spans.build(impl->data.roads);
   Map map(std::move(impl));
   map.impl_->graph = detail::build_lane_graph(map, diagnostics);
   return map;
@@ -233,9 +234,9 @@ std::optional<LaneSpan> Map::lane_span_in_section(size_t road_index, size_t sect
   const Road& r = road(road_index);
   s = clamp_s(r, s);
   LaneSpan span;
-  if (detail::compute_span(r.lane_sections[section], s,
-                           detail::section_lane_offset(*this, road_index, section, s), lane_id,
-                           span)) {
+  if (impl_->spans.span(road_index, section, s,
+                        detail::section_lane_offset(*this, road_index, section, s), lane_id,
+                        span)) {
     return span;
   }
   return std::nullopt;

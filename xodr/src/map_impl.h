@@ -10,6 +10,7 @@
 
 #include "corsa/xodr/lane_graph.h"
 #include "corsa/xodr/map.h"
+#include "span_table.h"
 #include "spatial_index.h"
 
 namespace corsa::xodr {
@@ -39,6 +40,8 @@ struct Map::Impl {
   std::vector<std::pair<double, double>> trig;
   std::vector<size_t> trig_start;
   LaneGraph graph;
+  /// The lane sections packed for lane spans (lane_span_in_section), made from `data`.
+  detail::SpanTable spans;
   /// Prepared by the first world -> lane query (Map::locate), not by Map::build: most runs never
   /// ask one (lane positions and lane following need none). Preparing is cheap (a bound per
   /// lane section); each section's chunks are built when a query first reaches it, so a run

@@ -121,16 +121,36 @@ void PackedPointGrid::query_band(double x_min, double y_min, double x_max, doubl
                                  double y, double c, double s, double along_min, double along_max,
                                  double half, std::vector<uint32_t>& out) const {
   out.insert(out.end(), overflow_.begin(), overflow_.end());
+  // Whether a point is in the band follows no pattern a branch predictor learns (800 vehicles
+  // on Town04: a corridor's query looks at 5.8 points and keeps 2.5), so every point's id is
+  // written to a buffer on the stack and the buffer's end moved by the test; the buffer goes to
+  // `out` when full and at the end. The same ids in the same order as a test and push_back per
+  // point, at more instructions (the three comparisons of every point) and fewer mispredicted
+  // branches.
+  constexpr size_t kBuffer = 128;
+  uint32_t kept[kBuffer];
+  size_t count = 0;
   visit_box(x_min, y_min, x_max, y_max, [&](const Point* first, const Point* last) {
-    for (const Point* p = first; p != last; ++p) {
-      const double dx = p->x - x, dy = p->y - y;
-      const double along = dx * c + dy * s;
-      const double across = -dx * s + dy * c;
-      if (along >= along_min && along <= along_max && std::abs(across) <= half) {
-        out.push_back(p->id);
+    while (first != last) {
+      if (count == kBuffer) {
+        out.insert(out.end(), kept, kept + count);
+        count = 0;
       }
+      // At most as many points as the buffer has room for, so that every write fits.
+      const Point* const end =
+          first + std::min<size_t>(kBuffer - count, static_cast<size_t>(last - first));
+      for (const Point* p = first; p != end; ++p) {
+        const double dx = p->x - x, dy = p->y - y;
+        const double along = dx * c + dy * s;
+        const double across = -dx * s + dy * c;
+        kept[count] = p->id;
+        count += static_cast<size_t>((along >= along_min) & (along <= along_max) &
+                                     (std::abs(across) <= half));
+      }
+      first = end;
     }
   });
+  out.insert(out.end(), kept, kept + count);
 }
 
 }  // namespace corsa::engine::detail

@@ -1,0 +1,54 @@
+#pragma once
+
+// The lanes of every lane section as a lane's span reads them (Map::lane_span_in_section),
+// packed one after the other: a lane's id and, for the usual lane of one width (or border)
+// record, that record. A span walks the lanes from the centre out to the one asked for; read
+// from the sections' Lane records it touched each lane's record (about 250 bytes, with its
+// names, links and marks) and the heap block of its widths, and with hundreds of vehicles on a
+// large map those reads were cache misses on every move.
+
+#include <cstdint>
+#include <vector>
+
+#include "corsa/xodr/map.h"
+#include "corsa/xodr/model.h"
+
+namespace corsa::xodr::detail {
+
+/// How a packed lane's outer border follows from its inner one.
+enum class SpanRule : uint8_t {
+  kWidth,    ///< inner + side x max(0, poly) (one width record)
+  kBorder,   ///< poly (no width, one border record)
+  kNone,     ///< the inner border (neither)
+  kRecords,  ///< the lane's own records (more than one): read from `lane`
+};
+
+struct SpanLane {
+  int id = 0;
+  SpanRule rule = SpanRule::kNone;
+  Poly3 poly;                  ///< with kWidth and kBorder
+  const Lane* lane = nullptr;  ///< with kRecords
+};
+
+struct SpanSection {
+  double s = 0.0;      ///< m, the section's start (LaneSection::s)
+  uint32_t first = 0;  ///< its first lane in SpanTable::lanes
+  uint32_t count = 0;
+  uint32_t center = 0;  ///< center_index of the section
+  bool has_center = false;
+};
+
+class SpanTable {
+ public:
+  /// Packs the lane sections of `roads`, which must outlive the table unchanged (a Map's data).
+  void build(const std::vector<Road>& roads);
+  /// What compute_span(road's section, s, offset, lane_id, out) gives, to the bit.
+  bool span(size_t road, size_t section, double s, double offset, int lane_id, LaneSpan& out) const;
+
+ private:
+  std::vector<SpanLane> lanes_;
+  std::vector<SpanSection> sections_;
+  std::vector<uint32_t> road_first_;  ///< by road: its first section in sections_
+};
+
+}  // namespace corsa::xodr::detail
