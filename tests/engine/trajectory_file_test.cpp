@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "corsa/core/random.h"
@@ -159,6 +160,45 @@ TEST_CASE("The CSV export of a binary trajectory is the run's CSV, byte for byte
     const Recorded other = record_both(engine_fixture(fixture), 1, dynamics);
     CHECK(other.exported == other.csv);
   }
+}
+
+TEST_CASE("A binary trajectory encoded on the writer thread is the same bytes as on the caller's",
+          "[engine][output][trajectory]") {
+  // CutIn's 3 vehicles over 5,500 ticks fill several of the writer's batches; the fixtures add
+  // and delete entities, spawn traffic, leave the road and start at negative ticks (a ghost).
+  for (const auto& [scenario, every] : std::vector<std::pair<std::filesystem::path, int64_t>>{
+           {asam("CutIn.xosc"), 1},
+           {asam("FastOvertakeWithReInitialization.xosc"), 1},
+           {engine_fixture("entity_add_delete_visibility.xosc"), 1},
+           {engine_fixture("traffic_swarm.xosc"), 3},
+           {engine_fixture("condition_road.xosc"), 1},
+           {engine_fixture("controller_follow_ghost.xosc"), 7}}) {
+    INFO(scenario.filename().string());
+    TempDir dir;
+    FixtureRun run(scenario);
+    engine::BinaryTrajectoryRecorder caller(dir.path() / "caller.corsatraj", every,
+                                            engine::RecordingThread::kCaller);
+    engine::BinaryTrajectoryRecorder writer(dir.path() / "writer.corsatraj", every,
+                                            engine::RecordingThread::kWriter);
+    run.sim().add_observer(caller);
+    run.sim().add_observer(writer);
+    run.run();
+    caller.finish(run.sim());
+    writer.finish(run.sim());
+    const std::string bytes = read_all(dir.path() / "caller.corsatraj");
+    CHECK(bytes.size() > 100);
+    CHECK(read_all(dir.path() / "writer.corsatraj") == bytes);
+  }
+  // A recorder destroyed without finish stops its thread and leaves no file.
+  TempDir dir;
+  {
+    FixtureRun run(asam("CutIn.xosc"));
+    engine::BinaryTrajectoryRecorder writer(dir.path() / "dropped.corsatraj", 1,
+                                            engine::RecordingThread::kWriter);
+    run.sim().add_observer(writer);
+    run.run();
+  }
+  CHECK_FALSE(std::filesystem::exists(dir.path() / "dropped.corsatraj"));
 }
 
 namespace {
