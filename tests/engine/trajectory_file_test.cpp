@@ -164,7 +164,7 @@ TEST_CASE("The CSV export of a binary trajectory is the run's CSV, byte for byte
 
 TEST_CASE("A binary trajectory encoded on the writer thread is the same bytes as on the caller's",
           "[engine][output][trajectory]") {
-  // 80 s of long_motorway's 24 vehicles (192,024 rows) fill six of the writer's batches, more
+  // 80 s of long_motorway's 24 vehicles (192,024 rows) fill 24 of the writer's batches, more
   // than it queues; the fixtures add and delete entities, spawn traffic, leave the road and
   // start at negative ticks (a ghost). Every run is cut at 80 s.
   const auto motorway =
