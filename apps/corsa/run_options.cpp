@@ -73,8 +73,9 @@ void declare_run_options(ArgParser& parser) {
                 "add seeded random NPCs: vehicles on driving lanes (car following), pedestrians "
                 "walking on sidewalks");
   parser.option("--threads", "N",
-                "threads the entities of a step are moved on (default: every core); results "
-                "are the same for any number");
+                "threads the entities of a step are moved on (default: every core); from 2, a "
+                "binary trajectory is also encoded on a thread of its own; results are the "
+                "same for any number");
   parser.option("--semantics", "standard|esmini",
                 "read what the standard leaves open as the standard does (default) or as esmini "
                 "does (docs/openscenario.md, differences from esmini)");

@@ -80,7 +80,10 @@ RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
   std::optional<TrajectoryRecorder> recorder;
   std::optional<BinaryTrajectoryRecorder> binary;
   if (options.record && is_binary_trajectory(*options.record)) {
-    binary.emplace(*options.record, options.record_every);
+    // With a second thread to spare, the recorder encodes and writes on it.
+    binary.emplace(
+        *options.record, options.record_every,
+        options.simulation.threads >= 2 ? RecordingThread::kWriter : RecordingThread::kCaller);
     simulation.add_observer(*binary);
   } else if (options.record) {
     recorder.emplace(*options.record, options.record_every);

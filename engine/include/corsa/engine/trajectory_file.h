@@ -23,13 +23,23 @@
 
 namespace corsa::engine {
 
+/// Where the binary trajectory is encoded and written.
+enum class RecordingThread : uint8_t {
+  kCaller,  ///< in on_step, on the simulation's thread
+  /// On a thread of the recorder's own, fed with copies of the recorded ticks' rows in batches,
+  /// so that encoding and writing overlap with the next steps on a second core. The file is the
+  /// same bytes.
+  kWriter,
+};
+
 /// Records the binary trajectory while the simulation runs: register it with
 /// Simulation::add_observer before the first step, call finish() after the run (as
 /// TrajectoryRecorder, the CSV one).
 class BinaryTrajectoryRecorder final : public SimulationObserver {
  public:
   /// `every`: record every N-th tick (tick 0 and the last tick are always recorded).
-  explicit BinaryTrajectoryRecorder(std::filesystem::path file, int64_t every = 1);
+  explicit BinaryTrajectoryRecorder(std::filesystem::path file, int64_t every = 1,
+                                    RecordingThread thread = RecordingThread::kCaller);
   ~BinaryTrajectoryRecorder() override;
   void on_step(const Simulation& simulation) override;
   /// Records the final tick if it was skipped and commits the file (throws InputError when it

@@ -1,0 +1,256 @@
+// The binary trajectory's encoder: at each recorded tick, each entity whose row differs from
+// what its previous rows predict gets a record of the differences (docs/trajectory-format.md).
+
+#include "output/trajectory_encoder.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+namespace corsa::engine::detail {
+
+namespace codec = trajectory_codec;
+
+namespace {
+
+// The N of a step dt = 1 / N (the engine then counts time as tick / N), or 0.
+int64_t steps_per_second(double dt) {
+  const double n = std::round(1.0 / dt);
+  return n >= 1.0 && n < 1e9 && std::abs(1.0 / n - dt) <= 1e-15 * dt ? static_cast<int64_t>(n) : 0;
+}
+
+double tick_time(int64_t tick, int64_t per_second, double dt) {
+  return per_second > 0 ? static_cast<double>(tick) / static_cast<double>(per_second)
+                        : static_cast<double>(tick) * dt;
+}
+
+void put_string(std::string& out, uint8_t tag, uint64_t index, const std::string& text) {
+  out.push_back(static_cast<char>(tag));
+  codec::put_varint(out, index);
+  codec::put_varint(out, text.size());
+  out += text;
+}
+
+// Codes an entity's numeric fields into its record's body, one field at a time with the field's
+// number known when compiled (its decimals and mask bit constants, no loop over a table): as
+// the loop it replaces, about a tenth fewer instructions per row. `Track` is
+// TrajectoryEncoder::Track.
+template <class Track>
+struct TrajectoryFieldCoder {
+  Track& track;
+  uint32_t& raw;
+  uint32_t& mask;
+  char* out;
+  bool repeats = true;  ///< every field so far predicted to keep its value
+
+  template <int... F>
+  void fields(const std::array<double, kRowFields>& values) {
+    (field<F>(values[F]), ...);
+  }
+
+  template <int F>
+  void field(double value) {
+    constexpr uint32_t kBit = 1u << F;
+    const uint64_t bits = std::bit_cast<uint64_t>(value);
+    if ((track.still & kBit) != 0 && bits == track.bits[F]) {
+      return;  // the same units again, as predicted: residual and change 0
+    }
+    const double scaled = value * decimal_text::kScale[kFieldDecimals[F]];
+    if (!(std::fabs(scaled) < decimal_text::kExactLimit)) {
+      raw |= kBit;  // stored as it is; its history starts afresh after it
+      out = codec::put_fixed64(out, bits);
+      track.still &= ~kBit;
+      repeats = false;
+      return;
+    }
+    const int64_t units = decimal_text::round_half_away(scaled);
+    const bool fresh = (track.fresh & kBit) != 0;
+    const int64_t residual = units - (fresh ? 0 : track.next[F]);
+    const int64_t change = fresh ? 0 : units - track.last[F];
+    track.last[F] = units;
+    track.next[F] = units + change;
+    repeats = repeats & (change == 0);
+    track.bits[F] = bits;
+    track.still = change == 0 ? track.still | kBit : track.still & ~kBit;
+    if (residual != 0) {
+      mask |= kBit;
+      out = codec::put_varint(out, codec::zigzag(residual));
+    }
+  }
+};
+
+}  // namespace
+
+TrajectoryEncoder::TrajectoryEncoder(std::filesystem::path path, int64_t every)
+    : file_(std::move(path), true), every_(every < 1 ? 1 : every) {}
+
+void TrajectoryEncoder::name_road(uint32_t road, const std::string* id) {
+  if (road >= road_ids_.size()) {
+    road_ids_.resize(road + 1, nullptr);
+  }
+  road_ids_[road] = id;
+}
+
+void TrajectoryEncoder::start(double dt, int64_t tick) {
+  started_ = true;
+  dt_ = dt;
+  per_second_ = steps_per_second(dt);
+  buffer_.append(codec::kMagic);
+  buffer_.push_back(static_cast<char>(codec::kVersion));
+  codec::put_fixed64(buffer_, std::bit_cast<uint64_t>(dt));
+  codec::put_varint(buffer_, static_cast<uint64_t>(per_second_));
+  codec::put_varint(buffer_, static_cast<uint64_t>(every_));
+  codec::put_varint(buffer_, codec::zigzag(tick));
+  last_frame_ = tick;
+}
+
+void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int64_t& previous) {
+  Track& track = entities_[index];
+  Steady& seen = steady_[index];
+  uint32_t mask = 0;
+  uint32_t raw = 0;
+  // The record's body (road and lane, at most 10 + 10 bytes, then nine numbers of 10), made
+  // before its head (index step, mask and raw bits, at most 10 + 5 + 5), which needs the mask.
+  constexpr size_t kHead = 20;
+  char body[20 + kRowFields * 10];
+  char* out = body;
+  if (!row.placed) {
+    seen.valid = false;
+    if (!track.present) {
+      return;
+    }
+    track.present = false;
+    mask = codec::kPresenceBit;  // gone: nothing else follows
+  } else {
+    if (seen.valid && track.present && same_row_copy(seen.inputs, row)) {
+      return;  // the same row as last time, which its history predicts to repeat
+    }
+    if (!track.present) {
+      track = Track{};
+      track.present = true;
+      mask |= codec::kPresenceBit;
+    }
+    const bool on_road = row.on_road;
+    const uint32_t road = row.road;
+    if (on_road != track.on_road || road != track.road) {
+      mask |= codec::kRoadBit;
+      if (on_road && (road >= road_named_.size() || !road_named_[road])) {
+        road_named_.resize(std::max<size_t>(road_named_.size(), road + 1), false);
+        road_named_[road] = true;
+        put_string(roads_, codec::kTagRoad, road, *road_ids_.at(road));
+      }
+      out = codec::put_varint(out, on_road ? uint64_t{road} + 1 : 0);
+      track.on_road = on_road;
+      track.road = road;
+      track.fresh |= (1u << kFieldS) | (1u << kFieldT);
+      track.still &= ~((1u << kFieldS) | (1u << kFieldT));
+    }
+    if (on_road && row.lane != track.lane) {
+      mask |= codec::kLaneBit;
+      out = codec::put_varint(out, codec::zigzag(int64_t{row.lane} - track.lane));
+      track.lane = row.lane;
+    }
+    // s and t only on a road (the CSV leaves them empty off it).
+    const int fields = on_road ? kRowFields : kFieldS;
+    TrajectoryFieldCoder<Track> coder{track, raw, mask, out};
+    coder.fields<kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed>(row.values);
+    if (on_road) {
+      coder.fields<kFieldS, kFieldT>(row.values);
+    }
+    const bool repeats = coder.repeats;
+    out = coder.out;
+    // The fields taken are predicted from now on, the raw ones start afresh.
+    track.fresh = (track.fresh & ~((1u << fields) - 1)) | raw;
+    if (raw != 0) {
+      mask |= codec::kRawBit;
+    }
+    // While the inputs stay these, the row stays this one and every prediction holds: the
+    // next ticks need neither the row nor a record.
+    seen.valid = repeats;
+    if (repeats) {
+      seen.inputs = row;
+    }
+  }
+  if (mask == 0) {
+    return;  // as predicted: nothing to store
+  }
+  const auto body_size = static_cast<size_t>(out - body);
+  // Room for the whole of `body`, so that it is copied at its full, fixed size (a few vector
+  // moves in place of a call of memcpy); the bytes after its end are not part of the frame.
+  if (frame_.size() < frame_size_ + kHead + sizeof body) {
+    frame_.resize(std::max(2 * frame_.size(), frame_size_ + kHead + sizeof body));
+  }
+  char* end = frame_.data() + frame_size_;
+  end = codec::put_varint(end, static_cast<uint64_t>(index - previous));
+  end = codec::put_varint(end, mask);
+  if (raw != 0) {
+    end = codec::put_varint(end, raw);
+  }
+  std::memcpy(end, body, sizeof body);
+  frame_size_ = static_cast<size_t>(end - frame_.data()) + body_size;
+  previous = index;
+}
+
+void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const TrajectoryRowCopy* rows) {
+  if (!started_) {
+    start(dt, head.tick);
+  }
+  const int64_t tick = head.tick;
+  while (entities_.size() < head.entities) {
+    put_string(buffer_, codec::kTagEntity, entities_.size(), names_.at(entities_.size()));
+    entities_.emplace_back();
+    steady_.emplace_back();
+  }
+  roads_.clear();
+  frame_size_ = 0;
+  int64_t previous = -1;
+  for (uint32_t i = 0; i < head.entities; ++i) {
+    // encode's first test, without the call: most entities of a long run stand.
+    const TrajectoryRowCopy& row = rows[i];
+    if (steady_[i].valid && entities_[i].present && row.placed &&
+        same_row_copy(steady_[i].inputs, row)) {
+      continue;
+    }
+    encode(i, row, previous);
+  }
+  const double time = head.time;
+  const bool odd_time =
+      std::bit_cast<uint64_t>(time) != std::bit_cast<uint64_t>(tick_time(tick, per_second_, dt_));
+  if (frame_size_ == 0 && !odd_time) {
+    return;  // every present entity as predicted: the tick costs nothing
+  }
+  buffer_ += roads_;
+  if (odd_time) {
+    buffer_.push_back(static_cast<char>(codec::kTagTime));
+    codec::put_fixed64(buffer_, std::bit_cast<uint64_t>(time));
+  }
+  buffer_.push_back(static_cast<char>(codec::kTagFrame));
+  codec::put_varint(buffer_, codec::zigzag(tick - last_frame_));
+  buffer_.append(frame_.data(), frame_size_);
+  codec::put_varint(buffer_, 0);
+  last_frame_ = tick;
+  if (buffer_.size() > (1u << 20)) {
+    flush();
+  }
+}
+
+void TrajectoryEncoder::flush() {
+  crc_ = codec::crc32(crc_, buffer_);
+  file_.stream().write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  buffer_.clear();
+}
+
+void TrajectoryEncoder::finish(int64_t last_tick) {
+  buffer_.push_back(static_cast<char>(codec::kTagEnd));
+  codec::put_varint(buffer_, codec::zigzag(last_tick));
+  flush();
+  std::string end;
+  for (int i = 0; i < 4; ++i) {
+    end.push_back(static_cast<char>((crc_ >> (8 * i)) & 0xff));
+  }
+  file_.stream().write(end.data(), static_cast<std::streamsize>(end.size()));
+  file_.commit();
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,139 @@
+#pragma once
+
+// The binary trajectory's encoder (docs/trajectory-format.md): it turns the rows of recorded
+// ticks, copied out of the simulation (TickRows), into the file's bytes. It reads nothing of the
+// simulation, so that it can run on a thread of its own while the simulation steps on
+// (output/trajectory_binary.cpp); the bytes are the same on either thread.
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "corsa/core/atomic_file.h"
+#include "output/trajectory_codec.h"
+#include "output/trajectory_rows.h"
+
+namespace corsa::engine::detail {
+
+/// An entity's row inputs at a recorded tick, copied from its EntityState: the numbers in
+/// RowField order (s and t 0 off the road), the road and lane (0 off the road).
+struct TrajectoryRowCopy {
+  std::array<double, kRowFields> values{};
+  uint32_t road = 0;
+  int32_t lane = 0;
+  bool placed = false;
+  bool on_road = false;
+};
+
+/// The copy of `state` (inline: the recorder makes one per entity and recorded tick).
+inline void copy_row(TrajectoryRowCopy& row, const EntityState& state) {
+  row.values[kFieldX] = state.pose.x;
+  row.values[kFieldY] = state.pose.y;
+  row.values[kFieldZ] = state.pose.z;
+  row.values[kFieldH] = state.pose.h;
+  row.values[kFieldP] = state.pose.p;
+  row.values[kFieldR] = state.pose.r;
+  row.values[kFieldSpeed] = state.speed;
+  row.placed = state.placed;
+  row.on_road = state.road.has_value();
+  if (row.on_road) {
+    row.values[kFieldS] = state.road->s;
+    row.values[kFieldT] = state.road->t;
+    row.road = state.road->road;
+    row.lane = state.road->lane;
+  } else {
+    row.values[kFieldS] = 0.0;
+    row.values[kFieldT] = 0.0;
+    row.road = 0;
+    row.lane = 0;
+  }
+}
+
+/// Whether two copies make the same row, bit for bit (row_inputs equality).
+inline bool same_row_copy(const TrajectoryRowCopy& a, const TrajectoryRowCopy& b) {
+  for (int f = 0; f < kRowFields; ++f) {
+    if (std::bit_cast<uint64_t>(a.values[f]) != std::bit_cast<uint64_t>(b.values[f])) {
+      return false;
+    }
+  }
+  return a.road == b.road && a.lane == b.lane && a.on_road == b.on_road;
+}
+
+/// One recorded tick: its rows are the `entities` copies that follow the previous tick's.
+struct TickRowsHead {
+  int64_t tick = 0;
+  double time = 0.0;  ///< s, Simulation::time()
+  uint32_t entities = 0;
+};
+
+class TrajectoryEncoder {
+ public:
+  /// `every`: a tick in `every` is recorded (and the last).
+  TrajectoryEncoder(std::filesystem::path path, int64_t every);
+
+  /// Names entity `index` (entities are named in order, before the first tick that counts them).
+  void name_entity(std::string name) { names_.push_back(std::move(name)); }
+  /// The OpenDRIVE id of road `road`, before the first tick a row is on it (the string must
+  /// outlive the encoder: the map holds it).
+  void name_road(uint32_t road, const std::string* id);
+
+  /// Encodes one recorded tick (`rows`: head.entities copies). `dt`: the run's step (s).
+  void record(double dt, const TickRowsHead& head, const TrajectoryRowCopy* rows);
+  /// Ends the file at `last_tick` and commits it (InputError when it cannot be written).
+  void finish(int64_t last_tick);
+
+ private:
+  /// The writer's side of an entity's history (codec::EntityHistory's predictions, kept as the
+  /// value each field is predicted to take next, so that a moving entity's field costs a
+  /// subtraction and no test of its history's state).
+  struct Track {
+    bool present = false;
+    bool on_road = false;
+    uint32_t road = 0;
+    int lane = 0;
+    uint32_t fresh = trajectory_codec::kFieldBits;  ///< fields predicted 0 (history afresh)
+    /// Fields whose last value came from the bits in `bits` and repeated the one before: while
+    /// the bits stay, the field is as predicted and keeps its history (z, pitch and roll on a
+    /// flat road, a steady speed), without scaling it again.
+    uint32_t still = 0;
+    std::array<uint64_t, kRowFields> bits{};
+    std::array<int64_t, kRowFields> last{};  ///< the value last taken
+    std::array<int64_t, kRowFields> next{};  ///< last + its change: the prediction
+  };
+  /// Per entity: the inputs of its last row, when that row repeats its prediction (valid):
+  /// then equal inputs mean no record, without making the row.
+  struct Steady {
+    bool valid = false;
+    TrajectoryRowCopy inputs;
+  };
+
+  void start(double dt, int64_t tick);
+  /// Appends the record of entity `index` to `frame_` when its row differs from the prediction
+  /// (`previous`: the index of the frame's last record, -1 before the first).
+  void encode(uint32_t index, const TrajectoryRowCopy& row, int64_t& previous);
+  void flush();
+
+  AtomicFile file_;
+  int64_t every_;
+  std::string buffer_;  ///< bytes not yet written to the file
+  uint32_t crc_ = 0;    ///< of the bytes written so far
+  bool started_ = false;
+  int64_t per_second_ = 0;  ///< N when the time of tick k is k / N
+  double dt_ = 0.0;
+  int64_t last_frame_ = 0;
+  std::vector<std::string> names_;
+  std::vector<Track> entities_;
+  std::vector<Steady> steady_;
+  std::vector<const std::string*> road_ids_;  ///< by road index, null until named
+  std::vector<bool> road_named_;              ///< written as a road record
+  std::string roads_;                         ///< road records of roads first met at this tick
+  /// The entity records of this tick: the first frame_size_ bytes of `frame_` (which only
+  /// grows, so that a record is written in place without clearing its room first).
+  std::vector<char> frame_;
+  size_t frame_size_ = 0;
+};
+
+}  // namespace corsa::engine::detail
