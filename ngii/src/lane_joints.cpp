@@ -58,7 +58,7 @@ struct BorderVotes {
 
 /// Whether lane k of borders `t` (left to right, + left) is the outermost lane of at least
 /// kMinJointWidth on its left (`left`) or right side.
-bool outermost(const std::vector<double>& t, size_t k, bool left) {
+bool outermost_at_joint(const std::vector<double>& t, size_t k, bool left) {
   if (left) {
     for (size_t m = 0; m < k; ++m) {
       if (t[m] - t[m + 1] >= kMinJointWidth) {
@@ -120,8 +120,8 @@ std::optional<PairBorders> pair_borders(const std::vector<double>& ta, size_t i,
     for (const bool left : {true, false}) {
       const size_t ka = left ? i : i + 1;
       const size_t kb = left ? j : j + 1;
-      const bool outer_a = outermost(ta, i, left);
-      const bool outer_b = outermost(tb, j, left);
+      const bool outer_a = outermost_at_joint(ta, i, left);
+      const bool outer_b = outermost_at_joint(tb, j, left);
       to.a[left] = meeting_border(ta[ka], outer_a, tb[kb], outer_b, left, halfway);
       to.b[left] = meeting_border(tb[kb], outer_b, ta[ka], outer_a, left, halfway);
     }
@@ -149,7 +149,8 @@ std::optional<PairBorders> pair_borders(const std::vector<double>& ta, size_t i,
 
 /// The averaged votes as EndBorders points; borders of a lane under kMinJointWidth wide move
 /// with its neighbour that moves (`own`: the road's own border points there).
-std::vector<std::optional<Vec2>> settled(const BorderVotes& votes, const std::vector<Vec2>& own) {
+std::vector<std::optional<Vec2>> settled_border_points(const BorderVotes& votes,
+                                                       const std::vector<Vec2>& own) {
   std::vector<std::optional<Vec2>> out(own.size());
   if (votes.sum.empty()) {
     return {};
@@ -273,10 +274,10 @@ std::vector<EndBorders> joint_borders(const NetworkPlan& plan, const LaneIndex& 
   std::vector<EndBorders> out(roads);
   for (size_t r = 0; r < roads; ++r) {
     if (!start_votes[r].sum.empty()) {
-      out[r].start = settled(start_votes[r], end_of(r, false)->borders);
+      out[r].start = settled_border_points(start_votes[r], end_of(r, false)->borders);
     }
     if (!end_votes[r].sum.empty()) {
-      out[r].end = settled(end_votes[r], end_of(r, true)->borders);
+      out[r].end = settled_border_points(end_votes[r], end_of(r, true)->borders);
     }
   }
   return out;
