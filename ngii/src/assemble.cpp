@@ -7,6 +7,7 @@
 #include <set>
 
 #include "corsa/xodr/geometry.h"
+#include "lane_joints.h"
 #include "reference_line.h"
 #include "sidewalks.h"
 #include "union_find.h"
@@ -117,11 +118,14 @@ class Assembler {
       const xodr::RefPoint p = xodr::evaluate_geometry(g, at_end ? g.length : 0.0);
       return BuiltEnd{Vec2{p.x, p.y}, p.hdg};
     };
-    // One-lane ordinary roads starting where one other ordinary road ends, again on its end's
-    // cross-section (their ends stay, so the roads they lead into keep theirs).
+    // Ordinary roads of one lane (and lanes splitting off it) starting where one other one-lane
+    // road ends, again on its end's cross-section (their ends stay, so the roads they lead into
+    // keep theirs).
+    std::vector<RoadEndLines> used_lines = end_lines;
     for (const size_t r : join_ends(plan_, end_of, JoinedEnds::kOrdinaryStarts, end_lines)) {
-      build_joined(r, end_lines[r], own_lines[r], built[r]);
+      used_lines[r] = build_joined(r, end_lines[r], own_lines[r], built[r]);
     }
+    meet_joined_lanes(used_lines, built);
     // Junction paths take the built widths of the lanes they join at their ends.
     const auto joined_end = [&](const LaneIndex::Ref& ref,
                                 bool at_end) -> std::optional<JoinedLaneEnd> {
@@ -191,8 +195,8 @@ class Assembler {
   /// link's end, a short path between two lines skewed by 20-50 degrees, or its reference line
   /// would need a corner tighter than the fit's 1 m minimum radius: a kink) keeps its own line
   /// at that end, the other end first.
-  void build_joined(size_t r, const RoadEndLines& joined, const RoadEndLines& own,
-                    std::optional<BuiltRoad>& out) const {
+  RoadEndLines build_joined(size_t r, const RoadEndLines& joined, const RoadEndLines& own,
+                            std::optional<BuiltRoad>& out) const {
     constexpr double kPathEndError = 0.1;  // m: farthest a lane end may move off its link's
     RoadEndLines start_only = joined;
     start_only.end = own.end;
@@ -205,10 +209,34 @@ class Assembler {
       out = build_road(plan_.roads[r], network_, origin_, widths_.lanes[r], *lines, options_);
       if (!out->folds && out->kinks == 0 && !fitted_road_folds(out->road) &&
           out->end_error <= kPathEndError) {
-        return;
+        return *lines;
       }
     }
     out = build_road(plan_.roads[r], network_, origin_, widths_.lanes[r], own, options_);
+    return own;
+  }
+
+  /// Ordinary lanes joined end to start meet edge to edge (lane_joints.h): each ordinary road
+  /// whose borders move at an end is built again on the lines it was built on (`lines`), and
+  /// kept where it neither folds nor has more kinks than before.
+  void meet_joined_lanes(const std::vector<RoadEndLines>& lines,
+                         std::vector<std::optional<BuiltRoad>>& built) const {
+    const std::vector<EndBorders> targets =
+        joint_borders(plan_, index_, [&](size_t r) -> const xodr::Road* {
+          const RoadPlan& road = plan_.roads[r];
+          const bool path = road.junction >= 0 && !road.absorbed;
+          return road.removed || path || !built[r] ? nullptr : &built[r]->road;
+        });
+    for (size_t r = 0; r < targets.size(); ++r) {
+      if (targets[r].empty()) {
+        continue;
+      }
+      BuiltRoad again = build_road(plan_.roads[r], network_, origin_, widths_.lanes[r], lines[r],
+                                   options_, targets[r]);
+      if (!again.folds && again.kinks <= built[r]->kinks && !fitted_road_folds(again.road)) {
+        built[r] = std::move(again);
+      }
+    }
   }
 
   /// The leftmost lane's first A2 link, and its last when it has several ("first..last"); a

@@ -16,6 +16,15 @@ Vec2 end_point(const PlanLane& lane, bool at_end, const Origin& origin) {
   return Vec2{p.x - origin.x, p.y - origin.y};
 }
 
+/// How many lanes of `road` start (`at_start`) or end beside the others (not at zero width).
+size_t lanes_beside(const RoadPlan& road, bool at_start) {
+  size_t count = 0;
+  for (size_t k = 0; k < road.lanes.size(); ++k) {
+    count += effective_end(road, k, at_start) == LaneEnd::kBeside;
+  }
+  return count;
+}
+
 /// Road end slots: 2r for the start of road r, 2r + 1 for its end; topology keys follow.
 size_t slot(size_t road, bool at_end) { return 2 * road + (at_end ? 1 : 0); }
 
@@ -99,13 +108,23 @@ std::vector<size_t> join_ends(const NetworkPlan& plan, const BuiltEndOf& end_of,
   std::vector<size_t> changed;
   for (size_t r = 0; r < plan.roads.size(); ++r) {
     const RoadPlan& road = plan.roads[r];
-    if (road.removed || road.lanes.size() != 1 || ordinary(static_cast<int>(r)) == paths) {
+    if (road.removed || ordinary(static_cast<int>(r)) == paths) {
       continue;
     }
-    const PlanLane& lane = road.lanes.front();
+    // The road's one lane; an ordinary road's other lanes may start at zero width beside it
+    // (splitting off it: their start lies on that lane's, so the road's start line is its).
+    if (road.lanes.size() != 1 && (paths || lanes_beside(road, true) != 1)) {
+      continue;
+    }
+    size_t beside = 0;
+    while (!paths && beside + 1 < road.lanes.size() &&
+           effective_end(road, beside, true) != LaneEnd::kBeside) {
+      ++beside;
+    }
+    const PlanLane& lane = road.lanes[beside];
     bool any = false;
     for (const bool at_end : {false, true}) {
-      // One-lane ordinary roads: only their start, and only where no line is shared there
+      // Ordinary roads: only their start, and only where no line is shared there
       // (a joint of one lane on either side).
       if (!paths && (at_end || lines[r].start_shared)) {
         continue;

@@ -42,8 +42,9 @@ enum class JoinedEnds {
   /// Junction paths (connecting roads of one lane; not the ordinary pieces moved into a
   /// junction), at both ends.
   kJunctionPaths,
-  /// One-lane ordinary roads, at their start where no line is shared and the road before them
-  /// has one lane too (one lane on either side of the joint).
+  /// Ordinary roads with one lane starting beside the others (any other lanes split off it at
+  /// zero width), at their start where no line is shared and the road before them has one
+  /// lane: one lane on either side of the joint.
   kOrdinaryStarts,
 };
 

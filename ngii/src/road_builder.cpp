@@ -206,6 +206,65 @@ Borders station_borders(const RoadPlan& plan, const Stations& st, const LaneLine
   return borders;
 }
 
+/// 1 at x = 0 easing to 0 at x = 1 with zero slope at both (a smoothstep), 0 beyond.
+double end_border_ease(double x) {
+  if (x >= 1.0) {
+    return 0.0;
+  }
+  const double y = std::max(0.0, x);
+  return 1.0 - y * y * (3.0 - 2.0 * y);
+}
+
+/// Moves the borders at the road's first and last station onto `targets` (EndBorders) and
+/// eases the move out over the stations within reach of that end: the laneOffset and widths
+/// fitted to them then meet the joined lanes' borders at the end with zero slope there.
+void meet_end_borders(const Stations& st, const EndBorders& targets, Borders& borders) {
+  constexpr double kMinMove = 0.01;     // m: smaller moves are left alone
+  constexpr double kMinRamp = 1.5;      // m
+  constexpr double kRampPerMove = 3.0;  // m of ramp per metre moved (slant at most 0.5)
+  constexpr double kRampShare = 0.45;   // of the road's length, at most, per end
+  const size_t n = st.s.size();
+  if (n < 2) {
+    return;
+  }
+  const double length = st.s.back();
+  for (const bool at_end : {false, true}) {
+    const std::vector<std::optional<Vec2>>& points = at_end ? targets.end : targets.start;
+    const size_t i0 = at_end ? n - 1 : 0;
+    if (points.size() != borders.t[i0].size()) {
+      continue;
+    }
+    const RefSample& ref = st.ref[i0];
+    const Vec2 origin{ref.x, ref.y};
+    const Vec2 normal{-std::sin(ref.hdg), std::cos(ref.hdg)};
+    std::vector<double> move(points.size(), 0.0);
+    double largest = 0.0;
+    for (size_t b = 0; b < points.size(); ++b) {
+      if (points[b]) {
+        move[b] = dot(*points[b] - origin, normal) - borders.t[i0][b];
+        largest = std::max(largest, std::abs(move[b]));
+      }
+    }
+    if (largest < kMinMove) {
+      continue;
+    }
+    const double ramp = std::min(std::max(kMinRamp, kRampPerMove * largest), kRampShare * length);
+    for (size_t i = 0; i < n; ++i) {
+      const double f = end_border_ease((at_end ? length - st.s[i] : st.s[i]) / ramp);
+      if (f == 0.0) {
+        continue;
+      }
+      std::vector<double>& t = borders.t[i];
+      for (size_t b = 0; b < t.size(); ++b) {
+        t[b] += f * move[b];
+        if (b > 0) {
+          t[b] = std::min(t[b], t[b - 1]);  // no lane narrower than nothing
+        }
+      }
+    }
+  }
+}
+
 xodr::LaneType lane_type_of(const Network& network, int link) {
   return network.source(link).link_type == "4" ? xodr::LaneType::kBus : xodr::LaneType::kDriving;
 }
@@ -353,7 +412,8 @@ bool folds_at_stations(const Stations& st, const Borders& borders) {
 /// The road along the reference lane's left edge (`lanes_left`: its right edge).
 BuiltRoad build_road_along(const RoadPlan& plan, const Network& network, const LaneLines& lines,
                            const std::vector<WidthProfile>& widths, const RoadEndLines& ends,
-                           const ConvertOptions& options, bool lanes_left) {
+                           const EndBorders& end_borders, const ConvertOptions& options,
+                           bool lanes_left) {
   BuiltRoad built;
   const size_t ref = reference_lane(plan);
   CurveFitOptions fit_options;
@@ -384,8 +444,10 @@ BuiltRoad build_road_along(const RoadPlan& plan, const Network& network, const L
 
   Stations st = measure_stations(road, lines, options.station_spacing);
   Borders borders = station_borders(plan, st, lines, widths, ref);
+  meet_end_borders(st, end_borders, borders);
   for (int round = 0; round < 2 && refine_stations(st, borders.t, road, lines); ++round) {
     borders = station_borders(plan, st, lines, widths, ref);
+    meet_end_borders(st, end_borders, borders);
   }
   built.folds = folds_at_stations(st, borders);
   std::vector<std::vector<LaneHeightSample>> heights(st.s.size());
@@ -446,9 +508,9 @@ bool fitted_road_folds(const xodr::Road& road) {
 
 BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin& origin,
                      const std::vector<WidthProfile>& widths, const RoadEndLines& ends,
-                     const ConvertOptions& options) {
+                     const ConvertOptions& options, const EndBorders& borders) {
   const LaneLines lines = lane_lines(plan, origin);
-  BuiltRoad built = build_road_along(plan, network, lines, widths, ends, options, false);
+  BuiltRoad built = build_road_along(plan, network, lines, widths, ends, borders, options, false);
   // A one-lane road turning right whose lane folds over on the inside of the turn: along its
   // right edge instead, the lane lies on the outside of every right turn, where borders cannot
   // fold (road_reference.h, along_right_edge). Only then: a line along the inside is shorter
@@ -460,7 +522,7 @@ BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin&
   }
   const Polyline& lane = lines.smooth[reference_lane(plan)];
   if ((built.folds || fitted_road_folds(built.road)) && along_right_edge(lane)) {
-    BuiltRoad right = build_road_along(plan, network, lines, widths, ends, options, true);
+    BuiltRoad right = build_road_along(plan, network, lines, widths, ends, borders, options, true);
     if (!right.folds) {
       return right;
     }
@@ -470,7 +532,7 @@ BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin&
   // the last resort only: such a right edge rarely turns onto the line of the road it joins
   // (that end keeps its own line), and for every road that turns so Sangam's centre gaps grow.
   if (built.folds && !along_right_edge(lane) && along_right_edge(lane, true)) {
-    BuiltRoad right = build_road_along(plan, network, lines, widths, ends, options, true);
+    BuiltRoad right = build_road_along(plan, network, lines, widths, ends, borders, options, true);
     if (!right.folds) {
       return right;
     }

@@ -5,6 +5,7 @@
 // the lanes' offsets, heights and widths are measured at stations along it and turned into
 // elevation, superelevation, laneOffset and width polynomials; speeds from MaxSpeed.
 
+#include <optional>
 #include <vector>
 
 #include "corsa/ngii/convert.h"
@@ -44,10 +45,23 @@ struct BuiltRoad {
 /// a few decimetres apart turn over.
 bool fitted_road_folds(const xodr::Road& road);
 
+/// Where a road's lane borders are to lie where it starts and ends: one map point (horizontal)
+/// per border b_0..b_n, left to right, or nothing where the border solver's is kept. The
+/// borders are moved onto them at the end and eased back to the solver's (a smoothstep over
+/// 1.5 m, or 3 m per metre moved, at most 45 % of the road's length: the marks give each lane
+/// its own width right up to the joint, and a longer ease takes more of the lane off them), so
+/// that two lanes of different widths meet edge to edge at a joint (lane_joints.h).
+struct EndBorders {
+  std::vector<std::optional<Vec2>> start;  ///< empty: none at the start
+  std::vector<std::optional<Vec2>> end;
+  bool empty() const { return start.empty() && end.empty(); }
+};
+
 /// `widths`: the plan lanes' measured widths (lane_widths.h), one per lane; `ends`: the lines
-/// the road starts and ends on (end_lines.h).
+/// the road starts and ends on (end_lines.h); `borders`: where its lane borders are to lie at
+/// its ends.
 BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin& origin,
                      const std::vector<WidthProfile>& widths, const RoadEndLines& ends,
-                     const ConvertOptions& options);
+                     const ConvertOptions& options, const EndBorders& borders = {});
 
 }  // namespace corsa::ngii::detail

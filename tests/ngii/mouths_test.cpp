@@ -1,6 +1,7 @@
 // Junction mouths on small synthetic layers: a junction path leaves an approach lane without a
 // wedge or sliver of unpaved ground between them (mouth_gaps.h).
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
@@ -53,6 +54,33 @@ struct Builder {
     }
     layers.links.push_back(Link{.id = id,
                                 .link_type = type,
+                                .road_rank = "",
+                                .road_type = "1",
+                                .road_no = "",
+                                .lane_no = lane_no,
+                                .max_speed = 0,
+                                .right_id = right,
+                                .left_id = left,
+                                .from_node = a,
+                                .to_node = b,
+                                .length_attr = length,
+                                .points = std::move(points),
+                                .record = static_cast<int64_t>(layers.links.size())});
+  }
+  /// A link through the given points (x, y), from node a to node b.
+  void link_through(const std::string& id, int lane_no, const std::string& a, const std::string& b,
+                    const std::vector<std::pair<double, double>>& xy, const std::string& right = "",
+                    const std::string& left = "") {
+    std::vector<Point3> points;
+    double length = 0.0;
+    for (size_t i = 0; i < xy.size(); ++i) {
+      points.push_back(at(xy[i].first, xy[i].second));
+      if (i > 0) {
+        length += std::hypot(xy[i].first - xy[i - 1].first, xy[i].second - xy[i - 1].second);
+      }
+    }
+    layers.links.push_back(Link{.id = id,
+                                .link_type = "6",
                                 .road_rank = "",
                                 .road_type = "1",
                                 .road_no = "",
@@ -175,6 +203,107 @@ TEST_CASE("a junction path leaving a lane at a corner starts on that lane's end 
   const auto gaps = mouth_gaps_of(b.layers);
   INFO(gaps.worst);
   CHECK(gaps.ends >= 4);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+/// A one-lane road east from x = 0 to 30 whose marks lie `half_a` either side of it, continued
+/// by a road of two lanes from x = 30: its left lane straight on (marks `half_b` either side),
+/// its right lane splitting off that one at zero width at x = 30 and lying beside it from
+/// x = 40.
+Builder lane_count_change(double half_a, double half_b) {
+  Builder b;
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("B1", 70.0, 0.0);
+  b.node("C1", 70.0, -3.5);
+  b.link("A2TEST00000A", "6", 1, "A0", "A1");
+  b.link("A2TEST00000B", "6", 1, "A1", "B1", "A2TEST00000C", "");
+  b.link_through("A2TEST00000C", 2, "A1", "C1",
+                 {{30.0, 0.0}, {35.0, -1.0}, {40.0, -3.5}, {55.0, -3.5}, {70.0, -3.5}}, "",
+                 "A2TEST00000B");
+  b.mark("B2AL", 0.0, 30.0, half_a, "A2TEST00000A", "");
+  b.mark("B2AR", 0.0, 30.0, -half_a, "", "A2TEST00000A");
+  b.mark("B2BL", 30.0, 70.0, half_b, "A2TEST00000B", "");
+  b.mark("B2BR", 30.0, 70.0, -half_b, "A2TEST00000C", "A2TEST00000B");
+  b.mark("B2CR", 40.0, 70.0, -3.5 - half_b, "", "A2TEST00000C");
+  return b;
+}
+
+TEST_CASE("an ordinary lane wider than the lane it continues into meets it edge to edge",
+          "[ngii][mouths]") {
+  // The one-lane road's marks are 4.0 m apart, the continuing lane's 3.2 m: each road took
+  // its own marks' width up to the joint, and the wider lane's end stuck out 0.4 m beyond
+  // both sides of the narrower one's start. The narrower lane now widens to the wider one's
+  // borders at the joint (its centre stays on its link) and eases back to its own width.
+  const Builder b = lane_count_change(2.0, 1.6);
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 2);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+  // Its width 5 m on is its own again (3.2 m, measured every metre from the marks).
+  corsa::Diagnostics diagnostics;
+  const auto conversion = corsa::ngii::convert(b.layers, {}, diagnostics);
+  const auto map = corsa::xodr::Map::build(conversion.map, diagnostics);
+  bool found = false;
+  for (const auto& road : conversion.map.roads) {
+    const auto& lanes = road.lane_sections.front().lanes;
+    if (std::count_if(lanes.begin(), lanes.end(), [](const auto& l) { return l.id < 0; }) != 2) {
+      continue;
+    }
+    found = true;
+    const auto width_at = [&](double s) {
+      for (const auto& lane : lanes) {
+        if (lane.id == -1) {
+          for (size_t i = lane.widths.size(); i-- > 0;) {
+            if (lane.widths[i].s <= s) {
+              return lane.widths[i].value(s);
+            }
+          }
+        }
+      }
+      return 0.0;
+    };
+    CHECK(width_at(0.0) == Approx(4.0).margin(0.05));
+    CHECK(width_at(5.0) == Approx(3.2).margin(0.05));
+  }
+  CHECK(found);
+}
+
+TEST_CASE("a lane narrower than the lane it continues into meets it edge to edge",
+          "[ngii][mouths]") {
+  // The other way round: 3.2 m, then 4.0 m. The one-lane road widens to the wider lane at its
+  // end.
+  const auto gaps = mouth_gaps_of(lane_count_change(1.6, 2.0).layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 2);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE(
+    "a road whose second lane splits off its first starts on the end line of the road "
+    "before it",
+    "[ngii][mouths]") {
+  // The lane continuing the one-lane road turns 3 degrees left at the node: a start square to
+  // its own course left a wedge beside the joint (7 cm deep at the lane's edge) that the
+  // measure sees 5 cm beyond the end as a run of unpaved ground; on the end line of the road
+  // before it, none.
+  Builder b;
+  const double dy = 40.0 * std::tan(3.0 * M_PI / 180.0);
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("B1", 70.0, dy);
+  b.node("C1", 70.0, dy - 3.5);
+  b.link("A2TEST00000A", "6", 1, "A0", "A1");
+  b.link("A2TEST00000B", "6", 1, "A1", "B1", "A2TEST00000C", "");
+  b.link_through("A2TEST00000C", 2, "A1", "C1",
+                 {{30.0, 0.0}, {35.0, -1.0}, {40.0, 0.5 * dy - 3.5}, {70.0, dy - 3.5}}, "",
+                 "A2TEST00000B");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 2);
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
 }

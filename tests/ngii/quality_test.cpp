@@ -248,11 +248,11 @@ TEST_CASE("opposing roads meet between double centre lines without moving a lane
   const auto& k = figures("kcity").centre_gaps;
   INFO(k.worst);
   CHECK(k.stations > 14000);
-  CHECK(k.over <= 71);
+  CHECK(k.over <= 67);
   const auto& s = figures("seoul_sangam_testbed").centre_gaps;
   INFO(s.worst);
   CHECK(s.stations > 14000);
-  CHECK(s.over <= 276);
+  CHECK(s.over <= 275);
   for (const char* area : {"kcity", "seoul_sangam_testbed"}) {
     INFO(area);
     size_t strips = 0;
@@ -307,15 +307,18 @@ TEST_CASE("lanes joined at junction mouths leave no unpaved ground beyond their 
   // across the road) were fitted along their right edge too, on the joined road's line; 74 /
   // 113 before junction paths took the built widths of the lanes they join whatever the
   // difference (paths of 4.5-7.6 m whose marks give their width only deep inside the
-  // intersection, held flat out to their ends, on lanes of 2.8-4.1 m). What remains: ordinary
-  // roads joined end to end whose lanes differ in width, joins at a corner, paths that could
-  // not turn onto the joined road's line, lanes narrower than 2.3 m or wider than 5.5 m.
+  // intersection, held flat out to their ends, on lanes of 2.8-4.1 m); 45 / 80 before ordinary
+  // lanes joined end to start met edge to edge where their widths differ (lane_joints.h) and
+  // roads whose other lanes split off their one lane started on the end line of the one-lane
+  // road before them. What remains: ordinary lanes whose widths differ on one side only (their
+  // centres would leave their links), joins at a corner, paths that could not turn onto the
+  // joined road's line, lanes narrower than 2.3 m or wider than 5.5 m.
   const auto& k = figures("kcity").mouth_gaps;
   INFO(k.worst);
   CHECK(k.ends > 1400);
-  CHECK(k.over <= 45);
+  CHECK(k.over <= 35);
   const auto& s = figures("seoul_sangam_testbed").mouth_gaps;
   INFO(s.worst);
   CHECK(s.ends > 3200);
-  CHECK(s.over <= 80);
+  CHECK(s.over <= 59);
 }
