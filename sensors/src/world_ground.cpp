@@ -100,6 +100,7 @@ void build_ground(WorldBuild& w, const xodr::RoadMesh& road) {
       }
     }
   }
+  w.ground = GroundField{x0, y0, kCell, nx, ny, h};
   StaticMesh ground;
   ground.name = "ground";
   ground.classes = {SemanticClass::kTerrain};
