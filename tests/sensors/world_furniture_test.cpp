@@ -2,6 +2,7 @@
 // are labelled.
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <map>
 #include <set>
 #include <string>
@@ -224,5 +225,38 @@ TEST_CASE("the ground meets road and sidewalk edges in a verge that reaches unde
     CHECK((walk->semantic == SemanticClass::kSidewalk ||
            is_furniture(built->scene, walk->instance_id) ||
            walk->semantic == SemanticClass::kVegetation || walk->semantic == SemanticClass::kPole));
+  }
+}
+
+TEST_CASE("on the 2 m sidewalks of a CARLA town only slim furniture stands, at the kerb",
+          "[sensors][world][furniture]") {
+  // Town04's sidewalks are 2 m wide: a 1.5 m walking path leaves room for posts alone.
+  const auto map = corsa::test::load_map(corsa::test::kXodrData / "Town04.xodr");
+  auto built = corsa::test::build_world_scene(map, 3);
+  const auto items = furniture_of(built->scene);
+  CHECK(items.size() >= 10);
+  for (const auto& [kind, b] : items) {
+    INFO(kind << " at " << b.min.x << ", " << b.min.y);
+    CHECK((kind == "bollard" || kind == "street_name_sign" || kind == "bus_stop_sign"));
+    // It stands on a sidewalk, by the kerb (its box's middle within 1 m of the kerb: a bollard's
+    // 0.35 m, a street-name sign's blade over the path shifts it to about 0.7 m).
+    const double x = 0.5 * (b.min.x + b.max.x);
+    const double y = 0.5 * (b.min.y + b.max.y);
+    const auto at = map.locate(x, y);
+    REQUIRE(at);
+    CHECK(at->distance == 0.0);
+    const auto& lanes = map.road(at->road).lane_sections[at->section].lanes;
+    for (const auto& lane : lanes) {
+      if (lane.id == at->lane) {
+        CHECK(lane.type == corsa::xodr::LaneType::kSidewalk);
+      }
+    }
+    std::vector<corsa::xodr::LaneSpan> spans;
+    map.lane_spans(at->road, at->s, spans);
+    for (const auto& span : spans) {
+      if (span.id == at->lane) {
+        CHECK(std::fabs(at->t - span.t_inner) < 1.0);
+      }
+    }
   }
 }
