@@ -27,7 +27,7 @@ Material furniture_paint(RandomStream& rng) {
   return powder_coat(kNames[i], kColours[i]);
 }
 
-Material timber() {
+Material bench_timber() {
   Material m = materials::plain("bench timber", linear_rgb(120, 84, 52), 0.75);
   m.pattern = Pattern::kBark;  // grain along the slats
   return m;
@@ -117,7 +117,7 @@ ArticulatedMesh make_bench(RandomStream& rng) {
     b.box({-0.25, y - 0.03, 0.4}, {0.24, y + 0.03, 0.44});
     b.box({-0.27, y - 0.03, 0.44}, {-0.22, y + 0.03, 0.85});
   }
-  b.material(timber());
+  b.material(bench_timber());
   for (int k = 0; k < 4; ++k) {  // seat slats
     const double x0 = -0.25 + 0.125 * k;
     b.box({x0, -kHalf, 0.44}, {x0 + 0.1, kHalf, 0.47});

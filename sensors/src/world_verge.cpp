@@ -17,12 +17,12 @@
 namespace corsa::sensors::detail {
 namespace {
 
-constexpr double kVergeWidth = 0.8;   ///< m beyond the edge
-constexpr double kUnderEdge = 0.03;   ///< m the strip reaches under the road's edge
-constexpr double kEdgeDrop = 0.012;   ///< m the strip lies under the road surface at the edge
-constexpr double kOverGround = 0.02;  ///< m above the ground mesh at its outer side
-constexpr double kMaxDrop = 0.5;      ///< m of ground below the edge beyond which no strip
-constexpr double kStep = 1.5;         ///< m between cross sections along the road
+constexpr double kVergeWidth = 0.8;        ///< m beyond the edge
+constexpr double kVergeUnderEdge = 0.03;   ///< m the strip reaches under the road's edge
+constexpr double kVergeEdgeDrop = 0.012;   ///< m the strip lies under the road surface at the edge
+constexpr double kVergeOverGround = 0.02;  ///< m above the ground mesh at its outer side
+constexpr double kVergeMaxDrop = 0.5;      ///< m of ground below the edge beyond which no strip
+constexpr double kVergeStep = 1.5;         ///< m between cross sections along the road
 
 /// One cross section of a verge strip: its two vertices, or nothing where there is none.
 struct VergeSection {
@@ -34,8 +34,8 @@ struct VergeSection {
 
 /// The outermost lane on `side` at s, when it is one the road mesh draws as a hard surface (not
 /// terrain): its outer border's t.
-std::optional<double> hard_edge(const xodr::Map& map, size_t r, double s, int side,
-                                std::vector<xodr::LaneSpan>& spans) {
+std::optional<double> verge_hard_edge(const xodr::Map& map, size_t r, double s, int side,
+                                      std::vector<xodr::LaneSpan>& spans) {
   map.lane_spans(r, s, spans);
   const xodr::LaneSpan* outer = nullptr;
   for (const auto& span : spans) {
@@ -62,15 +62,15 @@ std::optional<double> hard_edge(const xodr::Map& map, size_t r, double s, int si
 VergeSection verge_section(const WorldBuild& w, size_t r, double s, int side,
                            std::vector<xodr::LaneSpan>& spans) {
   VergeSection v;
-  const auto t_edge = hard_edge(w.map, r, s, side, spans);
+  const auto t_edge = verge_hard_edge(w.map, r, s, side, spans);
   if (!t_edge) {
     return v;
   }
   const xodr::WorldPose edge = w.map.world_pose(r, s, *t_edge);
-  const xodr::WorldPose inner = w.map.world_pose(r, s, *t_edge - side * kUnderEdge);
+  const xodr::WorldPose inner = w.map.world_pose(r, s, *t_edge - side * kVergeUnderEdge);
   const xodr::WorldPose outer = w.map.world_pose(r, s, *t_edge + side * kVergeWidth);
   const auto ground = w.ground.height_at(outer.x, outer.y);
-  if (!ground || edge.z - *ground > kMaxDrop || *ground > edge.z - kEdgeDrop) {
+  if (!ground || edge.z - *ground > kVergeMaxDrop || *ground > edge.z - kVergeEdgeDrop) {
     return v;
   }
   xodr::LocateOptions on_lane;
@@ -79,8 +79,8 @@ VergeSection verge_section(const WorldBuild& w, size_t r, double s, int side,
     return v;  // another road's lane: no ground to meet
   }
   v.valid = true;
-  v.inner = {inner.x, inner.y, edge.z - kEdgeDrop};
-  v.outer = {outer.x, outer.y, *ground + kOverGround};
+  v.inner = {inner.x, inner.y, edge.z - kVergeEdgeDrop};
+  v.outer = {outer.x, outer.y, *ground + kVergeOverGround};
   v.s = s;
   return v;
 }
@@ -100,7 +100,7 @@ void build_verges(WorldBuild& w) {
   std::vector<xodr::LaneSpan> spans;
   for (size_t r = 0; r < map.road_count(); ++r) {
     const double length = map.road(r).length;
-    const int n = std::max(1, static_cast<int>(std::ceil(length / kStep)));
+    const int n = std::max(1, static_cast<int>(std::ceil(length / kVergeStep)));
     for (int side : {1, -1}) {
       VergeSection last;
       for (int k = 0; k <= n; ++k) {
