@@ -140,8 +140,8 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
   }
   scene->commit();
   if (map != nullptr) {
-    // Ground, vegetation, street lights, signals, objects, rails and generated buildings; plants
-    // and generated buildings keep clear of the models.
+    // Ground, vegetation, street lights, street furniture, signals, objects, rails and generated
+    // buildings; plants and generated buildings keep clear of the models.
     sensors::WorldOptions world;
     world.seed = simulation.options().seed;
     world.buildings = rig.generate_buildings;

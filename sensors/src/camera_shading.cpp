@@ -93,9 +93,27 @@ void hit_uv(const ShadingContext& c, const SurfaceHit& h, TexturePoint& tp) {
   tp.v = w0 * (*uv[0])[1] + h.u * (*uv[1])[1] + h.v * (*uv[2])[1];
 }
 
+/// The shading normal of a static hit: the mesh's vertex normals interpolated at the hit and
+/// turned to the viewer's side of the surface, or the flat normal when the mesh has none.
+Vec3 smooth_normal(const StaticGeometry& g, const SurfaceHit& h) {
+  if (g.normals.empty()) {
+    return h.normal;
+  }
+  const auto& t = g.normal_triangles[h.prim_id];
+  const double w0 = 1.0 - h.u - h.v;
+  const auto& a = g.normals[t[0]];
+  const auto& b = g.normals[t[1]];
+  const auto& c = g.normals[t[2]];
+  const Vec3 n =
+      normalized(Vec3{w0 * a[0] + h.u * b[0] + h.v * c[0], w0 * a[1] + h.u * b[1] + h.v * c[1],
+                      w0 * a[2] + h.u * b[2] + h.v * c[2]});
+  return dot(n, h.normal) < 0.0 ? n * -1.0 : n;
+}
+
 bool needs_uv(const Material& m) {
   return m.image != nullptr || m.pattern == Pattern::kSignFace || m.pattern == Pattern::kPlate ||
-         m.pattern == Pattern::kAsphalt;  // wheel paths and repairs follow the lanes
+         m.pattern == Pattern::kAsphalt ||  // wheel paths and repairs follow the lanes
+         m.pattern == Pattern::kTerrain;    // verges follow the kerbs
 }
 
 /// Whether a material's emission is switched on at this hit.
@@ -251,6 +269,7 @@ SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double foo
   double base_z = 0.0;
   if (h.entity < 0) {
     base_z = d.static_geometries[h.geom_id].base_z;
+    normal = smooth_normal(d.static_geometries[h.geom_id], h);
   } else {
     const Rigid& w = d.instances[h.entity].world_from_entity;
     const Mat3 back = w.rotation.transposed();
@@ -265,6 +284,7 @@ SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double foo
                   .v = 0.0,
                   .footprint = footprint_scale * h.distance * c.pixel_angle /
                                std::sqrt(std::max(cos_view, 0.05)),
+                  .stretch = 1.0 / std::sqrt(std::max(cos_view, 0.05)),
                   .uv_per_m = 1.0,
                   .base_z = base_z,
                   .darkness = c.darkness,
@@ -279,7 +299,7 @@ SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double foo
   // Every field given at once: declared first and assigned after, the point was cleared with a
   // string store in the caller's return slot.
   SurfacePoint s{.position = h.position,
-                 .normal = h.normal,
+                 .normal = h.entity < 0 ? normal : h.normal,
                  .view_dir = h.view_dir,
                  .distance = h.distance,
                  .diffuse = t.albedo * (1.0 - metallic) * (1.0 - t.transmission),

@@ -307,15 +307,49 @@ SurfaceSample foliage(const Material& m, const TexturePoint& p) {
   return s;
 }
 
+/// Lawn with a blade-scale grain, patches of lusher and thinner growth and dry (straw) patches:
+/// the grass's colour before any bare soil. `dry_color` is straw. The metre-scale noise is read
+/// from two tiles of incommensurate sizes turned against each other, so that a wide lawn shows
+/// no period of the noise tile (a single tile repeats every few metres: a faint checker).
+Color lawn(const Material& m, const TexturePoint& p, const Plane& q, Color dry_color) {
+  // Read at the footprint's long axis: grass seen at a grazing angle (all of it, from a car)
+  // shows moire stripes of the noise lattice when read at the mean footprint.
+  const double fp = p.footprint * p.stretch;
+  // The plane turned by 36.87 degrees (a 3-4-5 rotation): the second tile's axes.
+  const double ra = 0.8 * q.a - 0.6 * q.b;
+  const double rb = 0.6 * q.a + 0.8 * q.b;
+  const double patch =
+      0.5 * (pattern_noise(p, 1, q.a, q.b, 7.3, fp) + pattern_noise(p, 2, ra, rb, 11.9, fp));
+  const double field = pattern_noise(p, 3, rb, -ra, 97.0, fp);  // tens of metres
+  // Blades: 3 mm texels of a 0.7 m tile, and one value per 1.5 cm cell (a tuft of blades) while
+  // the pixel resolves it; beyond, their average (0).
+  double blades = pattern_noise(p, 0, ra, rb, 0.7, fp) - 0.5;
+  const double tuft_w = detail_weight(fp, 0.015);
+  if (tuft_w > 0.0) {
+    const double r = cell_random(static_cast<int64_t>(std::floor(q.a * 66.0)),
+                                 static_cast<int64_t>(std::floor(q.b * 66.0)), m.seed ^ 0x51u);
+    blades += tuft_w * 0.5 * (r - 0.5);
+  }
+  // Clover and weeds: a darker, bluer green in some 10 cm cells.
+  double clover = 0.0;
+  const double clover_w = detail_weight(fp, 0.1);
+  if (clover_w > 0.0) {
+    const double r = cell_random(static_cast<int64_t>(std::floor(ra * 10.0)),
+                                 static_cast<int64_t>(std::floor(rb * 10.0)), m.seed ^ 0xc1u);
+    clover = r < 0.08 ? clover_w : 0.0;
+  }
+  // Lusher (darker, bluer) and thinner (lighter, yellower) growth by patch and field.
+  const double lush = (patch - 0.5) * 1.6 + (field - 0.5) * 0.8;
+  Color green = m.base_color * Color{1.0 - 0.1 * lush, 1.0 - 0.04 * lush, 1.0 + 0.12 * lush};
+  green = mix(green, m.base_color * Color{0.7, 0.85, 0.9}, 0.6 * clover);
+  const double dry = smoothstep(0.56, 0.74, 0.55 * field + 0.45 * patch);
+  const Color c = mix(green, dry_color, 0.75 * dry);
+  return c * (1.0 + 1.1 * blades - 0.12 * (patch - 0.5));
+}
+
 SurfaceSample grass(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
-  const Plane q = plane_of(p, m.seed);
-  const double fp = p.footprint;
-  const double blades = pattern_noise(p, 0, q.a, q.b, 0.6, fp);
-  const double patches = pattern_noise(p, 1, q.a, q.b, 10.0, fp);
-  const double dry =
-      smoothstep(0.5, 0.75, pattern_noise(p, 2, q.a, q.b, 70.0, fp) * 0.6 + patches * 0.4);
-  s.albedo = mix(m.base_color, m.secondary, 0.7 * dry) * (0.7 + 0.6 * blades);
+  s.albedo = lawn(m, p, plane_of(p, m.seed), m.secondary);
   return s;
 }
 
@@ -336,20 +370,47 @@ SurfaceSample dirt(const Material& m, const TexturePoint& p) {
   return s;
 }
 
+/// Metres from a point of a terrain strip to its nearer hard edge (kerb, road edge), from the
+/// lane coordinates its mesh carries as uvs (as asphalt reads them: u along, v lanes across,
+/// uv_per_m^2 = 1 / the strip's width); infinite without them (the open ground).
+double verge_distance(const TexturePoint& p) {
+  const AsphaltLanePoint l = asphalt_lane_point(p);
+  if (l.width <= 0.0) {
+    return 1e9;
+  }
+  return std::max(0.0, 0.5 * l.width - std::fabs(l.across));
+}
+
+/// Grass and bare soil, and a verge along hard edges: the last 0.1-0.35 m of a strip beside a
+/// kerb or a road's edge is trodden, dusty and thin (dirt and grit showing through), its inner
+/// border wavering with the noise so that no line is drawn.
 SurfaceSample terrain(const Material& m, const TexturePoint& p) {
+  SurfaceSample s = base(m);
   const Plane q = plane_of(p, m.seed);
-  const double fp = p.footprint;
-  const double bare = smoothstep(0.6, 0.72,
-                                 pattern_noise(p, 3, q.a, q.b, 160.0, fp) * 0.7 +
-                                     pattern_noise(p, 1, q.a, q.b, 12.0, fp) * 0.3);
-  Material g = m;
-  g.secondary = Color{0.16, 0.14, 0.05};  // dry grass
-  SurfaceSample s = grass(g, p);
+  const double fp = p.footprint * p.stretch;  // as the lawn's (no stripes at grazing views)
+  const double soil =
+      pattern_noise(p, 3, q.a, q.b, 160.0, fp) * 0.7 +
+      pattern_noise(p, 1, 0.6 * q.a + 0.8 * q.b, 0.8 * q.a - 0.6 * q.b, 13.1, fp) * 0.3;
+  double bare = smoothstep(0.6, 0.72, soil);
+  const double edge = verge_distance(p);
+  if (edge < 1.0) {
+    // Soil shows through thin, trodden grass by the edge: most at the edge, none beyond a width
+    // that wavers along it, patchy within.
+    const AsphaltLanePoint l = asphalt_lane_point(p);
+    const double width = std::clamp(0.25 * l.width, 0.08, 0.25);
+    const double waver = pattern_noise(p, 2, q.a, q.b, 3.1, fp) - 0.5;
+    const double patchy = pattern_noise(p, 0, q.b, q.a, 1.3, fp);
+    const double worn = 1.0 - smoothstep(0.0, width, edge + 0.8 * width * waver);
+    bare = either(bare, worn * (0.35 + 0.5 * patchy));
+  }
+  s.albedo = lawn(m, p, q, Color{0.16, 0.14, 0.05});  // straw
   if (bare > 0.0) {
     Material d = m;
     d.base_color = m.secondary;
     d.secondary = m.secondary * 0.7;
-    s.albedo = mix(s.albedo, dirt(d, p).albedo, bare);
+    TexturePoint wide = p;
+    wide.footprint = fp;
+    s.albedo = mix(s.albedo, dirt(d, wide).albedo, bare);
   }
   return s;
 }

@@ -94,6 +94,9 @@ void validate_mesh(const StaticMesh& mesh) {
   if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.vertices.size()) {
     throw std::invalid_argument("static mesh '" + mesh.name + "': one uv per vertex expected");
   }
+  if (!mesh.normals.empty() && mesh.normals.size() != mesh.vertices.size()) {
+    throw std::invalid_argument("static mesh '" + mesh.name + "': one normal per vertex expected");
+  }
   for (const auto& t : mesh.triangles) {
     for (uint32_t i : t) {
       if (i >= mesh.vertices.size()) {
@@ -392,6 +395,13 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
       const double uv_area =
           std::fabs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
       info.uv_per_m.push_back(area > 0.0 ? static_cast<float>(std::sqrt(uv_area / area)) : 1.0f);
+    }
+  }
+  if (!mesh.normals.empty()) {
+    info.normal_triangles = mesh.triangles;
+    for (const Vec3& n : mesh.normals) {
+      info.normals.push_back(
+          {static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z)});
     }
   }
   add_static_lamps(d, mesh, info);

@@ -31,6 +31,9 @@ struct StaticGeometry {
   std::vector<std::array<float, 2>> uvs;
   std::vector<std::array<uint32_t, 3>> uv_triangles;
   std::vector<float> uv_per_m;
+  /// Shading normals per vertex and the triangles (only for meshes that have them).
+  std::vector<std::array<float, 3>> normals;
+  std::vector<std::array<uint32_t, 3>> normal_triangles;
 
   SemanticClass class_of(unsigned prim) const {
     return classes.size() == 1 ? classes[0] : classes[prim];

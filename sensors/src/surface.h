@@ -16,6 +16,11 @@ struct TexturePoint {
   double u = 0.0;  ///< the mesh's texture coordinates (0 when it has none)
   double v = 0.0;
   double footprint = 0.0;  ///< metres covered by the pixel on the surface
+  /// The footprint's long axis over `footprint` (1 / sqrt(cos incidence)): at grazing views
+  /// the pixel covers this much more along the view than `footprint`, and a pattern whose
+  /// features line up on a lattice (the noise tile's texels) would alias into stripes there
+  /// unless read at the long axis.
+  double stretch = 1.0;
   double uv_per_m = 1.0;   ///< texture-coordinate units per metre on this triangle
   double base_z = 0.0;     ///< height of the mesh's lowest point (facades count floors from it)
   double darkness = 0.0;   ///< 0 day .. 1 night: how many windows are lit

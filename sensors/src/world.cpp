@@ -82,6 +82,22 @@ uint32_t WorldBuild::place_paint(const ArticulatedMesh& mesh, const Rigid& pose,
   return scene.add_static_mesh(std::move(m));
 }
 
+std::optional<double> GroundField::height_at(double x, double y) const {
+  const double fx = (x - x0) / cell;
+  const double fy = (y - y0) / cell;
+  if (nx < 2 || ny < 2 || !(fx >= 0.0) || !(fy >= 0.0) || fx >= nx - 1 || fy >= ny - 1) {
+    return std::nullopt;
+  }
+  const int i = static_cast<int>(fx);
+  const int j = static_cast<int>(fy);
+  const double u = fx - i;
+  const double v = fy - j;
+  const size_t a = static_cast<size_t>(j) * nx + i;
+  const double ha = h[a], hb = h[a + 1], hc = h[a + nx + 1], hd = h[a + nx];
+  // The triangles (a, b, c) and (a, c, d) of the ground mesh.
+  return u >= v ? ha + u * (hb - ha) + v * (hc - hb) : ha + v * (hd - ha) + u * (hc - hd);
+}
+
 bool WorldBuild::clear_of_props(double x, double y, double radius) const {
   for (int di = -2; di <= 2; ++di) {
     for (int dj = -2; dj <= 2; ++dj) {
@@ -120,10 +136,11 @@ bool WorldBuild::under_building(double x, double y, double z) const {
 
 WorldReport build_world(const xodr::Map& map, Scene& scene, const WorldOptions& options,
                         Diagnostics& diagnostics) {
-  detail::WorldBuild w{map, scene, options, diagnostics, {}, {}};
+  detail::WorldBuild w{map, scene, options, diagnostics, {}, {}, {}};
   if (options.ground) {
     const xodr::RoadMesh road = xodr::build_road_mesh(map, xodr::MeshOptions{.road_marks = false});
     detail::build_ground(w, road);
+    detail::build_verges(w);
     detail::build_seams(w);
     detail::build_junction_paving(w, road);
   }
@@ -143,6 +160,11 @@ WorldReport build_world(const xodr::Map& map, Scene& scene, const WorldOptions& 
   }
   if (options.vegetation || options.street_lights) {
     detail::build_roadside(w);
+  }
+  if (options.street_furniture) {
+    // After the trees and lights, which have the kerb first; after the signals and objects,
+    // whose crosswalks it keeps clear of.
+    detail::build_furniture(w);
   }
   return w.report;
 }

@@ -2,6 +2,7 @@
 
 // Shared state of the world builder (private; see corsa/sensors/world.h).
 
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -30,6 +31,19 @@ bool next_to_junction(const xodr::Map& map, size_t road, double s, double margin
 /// True when the road's type at s is a motorway, or its speed limit there is 80 km/h or more.
 bool motorway_at(const xodr::Road& road, double s);
 
+/// The ground's height field (build_ground): vertices every `cell` metres from (x0, y0), nx by
+/// ny, each cell split along its (i, j)-(i+1, j+1) diagonal as the ground mesh is.
+struct GroundField {
+  double x0 = 0.0;
+  double y0 = 0.0;
+  double cell = 4.0;
+  int nx = 0;
+  int ny = 0;
+  std::vector<double> h;
+  /// The ground mesh's height at (x, y); nothing outside the field (or before it is built).
+  std::optional<double> height_at(double x, double y) const;
+};
+
 struct WorldBuild {
   const xodr::Map& map;
   Scene& scene;
@@ -38,6 +52,7 @@ struct WorldBuild {
   WorldReport report;
   /// Props placed so far, by 4 m grid cell: their positions and clearance radii.
   std::unordered_map<int64_t, std::vector<std::array<double, 3>>> placed;
+  GroundField ground;
 
   /// Adds a prop mesh placed in the map frame; returns its instance id.
   uint32_t place(const ArticulatedMesh& mesh, const Rigid& pose, const std::string& name,
@@ -57,6 +72,9 @@ struct WorldBuild {
 
 /// Ground: a terrain height field under and around the road surface, and a skirt to the horizon.
 void build_ground(WorldBuild& w, const xodr::RoadMesh& road);
+/// Verges: strips of terrain from the outer edge of roads and sidewalks down to the ground,
+/// carrying their distance from the edge so that the grass thins into a trodden verge there.
+void build_verges(WorldBuild& w);
 /// Bands of lane surface under the cracks where two roads' outer borders meet side by side.
 void build_seams(WorldBuild& w);
 /// Road surface in the small holes that junctions' roads enclose (xodr::find_junction_holes).
@@ -79,5 +97,8 @@ void build_objects(WorldBuild& w);
 void build_rails(WorldBuild& w);
 /// Generated buildings along streets, where no building stands.
 void build_buildings(WorldBuild& w);
+/// Street furniture (bus stops, street-name signs, hydrants, bins, benches, bollards) in the
+/// kerb-side zone of sidewalks, clear of the walking path, crosswalks, junction mouths and props.
+void build_furniture(WorldBuild& w);
 
 }  // namespace corsa::sensors::detail

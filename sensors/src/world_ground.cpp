@@ -100,6 +100,7 @@ void build_ground(WorldBuild& w, const xodr::RoadMesh& road) {
       }
     }
   }
+  w.ground = GroundField{x0, y0, kCell, nx, ny, h};
   StaticMesh ground;
   ground.name = "ground";
   ground.classes = {SemanticClass::kTerrain};
@@ -108,6 +109,19 @@ void build_ground(WorldBuild& w, const xodr::RoadMesh& road) {
     for (int i = 0; i < nx; ++i) {
       ground.vertices.push_back(
           {x0 + i * kCell, y0 + j * kCell, h[static_cast<size_t>(j) * nx + i]});
+    }
+  }
+  // Smooth shading normals from the field's slopes (central differences): with flat normals each
+  // 4 m triangle of a slope would take its own shade in the sun (facets on hills and banks).
+  ground.normals.reserve(ground.vertices.capacity());
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const auto at = [&](int ii, int jj) {
+        return h[static_cast<size_t>(std::clamp(jj, 0, ny - 1)) * nx + std::clamp(ii, 0, nx - 1)];
+      };
+      const double dx = (at(i + 1, j) - at(i - 1, j)) / (2.0 * kCell);
+      const double dy = (at(i, j + 1) - at(i, j - 1)) / (2.0 * kCell);
+      ground.normals.push_back(normalized(Vec3{-dx, -dy, 1.0}));
     }
   }
   for (int j = 0; j + 1 < ny; ++j) {
@@ -137,6 +151,7 @@ void build_ground(WorldBuild& w, const xodr::RoadMesh& road) {
     const double k = 20000.0 / std::max(d, 1.0);
     outer.push_back(static_cast<uint32_t>(ground.vertices.size()));
     ground.vertices.push_back({cx + (p.x - cx) * k, cy + (p.y - cy) * k, edge - 2.0});
+    ground.normals.push_back({0.0, 0.0, 1.0});
   }
   for (size_t i = 0; i < border.size(); ++i) {
     const size_t n = (i + 1) % border.size();

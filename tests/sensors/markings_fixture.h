@@ -40,12 +40,14 @@ inline corsa::xodr::Map street_with(const std::string& signals, const std::strin
                                  diagnostics);
 }
 
-/// The world of `map` without plants and street lights (nothing over the road but the signals).
+/// The world of `map` without plants, street lights and street furniture (nothing over the road
+/// but the signals).
 inline std::unique_ptr<BuiltWorld> marked_world(const corsa::xodr::Map& map) {
   sensors::WorldOptions options;
   options.seed = 3;
   options.vegetation = false;
   options.street_lights = false;
+  options.street_furniture = false;
   return build_world_scene(map, options);
 }
 

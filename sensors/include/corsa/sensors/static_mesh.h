@@ -46,6 +46,10 @@ struct StaticMesh {
   std::vector<uint16_t> material_indices;
   /// Texture coordinates per vertex (empty when the mesh has none).
   std::vector<std::array<float, 2>> uvs;
+  /// Shading normals per vertex (unit, map frame), interpolated over each triangle so that a
+  /// smooth surface made of flat triangles (the ground) shades without facets; empty: each
+  /// triangle shades with its own flat normal.
+  std::vector<Vec3> normals;
   /// Traffic-light heads: the OpenDRIVE signal id whose state (WorldSnapshot::signals) switches
   /// the bulbs (materials with LightRole kSignalRed/Yellow/Green).
   std::string signal_id;

@@ -1,12 +1,12 @@
 #pragma once
 
 // The world beyond the road surface, built from an OpenDRIVE map and a seed: ground to the
-// horizon (terrain under and around the roads), roadside vegetation and street lights placed
-// deterministically along the roads, OpenDRIVE signals drawn as traffic lights and signs (their
-// bulbs follow the scenario's signal states) or painted on the road (stop lines, crosswalks),
-// OpenDRIVE objects (crosswalks, stop lines,
-// poles, trees, barriers, buildings, parking spaces; outlines and repeats), guard rails and
-// fences along motorways, and, when asked, generated buildings along the streets.
+// horizon (terrain under and around the roads), roadside vegetation, street lights and street
+// furniture placed deterministically along the roads, OpenDRIVE signals drawn as traffic lights and
+// signs (their bulbs follow the scenario's signal states) or painted on the road (stop lines,
+// crosswalks), OpenDRIVE objects (crosswalks, stop lines, poles, trees, barriers, buildings,
+// parking spaces; outlines and repeats), guard rails and fences along motorways, and, when asked,
+// generated buildings along the streets.
 
 #include <cstddef>
 #include <cstdint>
@@ -25,8 +25,11 @@ struct WorldOptions {
   bool ground = true;
   bool vegetation = true;     ///< trees and bushes beside the roads
   bool street_lights = true;  ///< street lights along roads with sidewalks
-  bool signals = true;        ///< OpenDRIVE <signal>s
-  bool objects = true;        ///< OpenDRIVE <object>s
+  /// Street furniture at the kerb of sidewalks wide enough to keep a walking path clear: bus
+  /// shelters and stop signs, street-name signs, fire hydrants, litter bins, benches, bollards.
+  bool street_furniture = true;
+  bool signals = true;  ///< OpenDRIVE <signal>s
+  bool objects = true;  ///< OpenDRIVE <object>s
   /// Guard rails at the outer edge of motorways (roads typed motorway or limited to 80 km/h or
   /// more) and a right-of-way fence beyond, on sides without a sidewalk, where the map's own
   /// objects bring no rail.
@@ -40,13 +43,15 @@ struct WorldOptions {
 /// What build_world added.
 struct WorldReport {
   size_t ground_triangles = 0;
-  double seam_length = 0.0;   ///< m of road borders with a band under the crack to a neighbour
-  size_t junction_holes = 0;  ///< holes found in junctions (paved or not)
+  size_t verge_triangles = 0;  ///< strips of terrain from road and sidewalk edges to the ground
+  double seam_length = 0.0;    ///< m of road borders with a band under the crack to a neighbour
+  size_t junction_holes = 0;   ///< holes found in junctions (paved or not)
   size_t junction_holes_paved = 0;   ///< of those, paved as road
   double junction_paved_area = 0.0;  ///< m² paved
   size_t trees = 0;
   size_t bushes = 0;
   size_t street_lights = 0;
+  size_t street_furniture = 0;  ///< pieces of street furniture (each bollard is one)
   size_t traffic_lights = 0;
   size_t signs = 0;
   size_t markings = 0;  ///< signals painted on the road (stop lines, crosswalks, give-way lines)
