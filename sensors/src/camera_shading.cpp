@@ -13,6 +13,7 @@
 #include "scalar_math.h"
 #include "shading.h"
 #include "surface.h"
+#include "vehicle_lamps.h"
 
 namespace corsa::sensors::detail {
 namespace {
@@ -24,39 +25,6 @@ bool is_road_like(SemanticClass c) {
 }
 
 constexpr uint32_t bit(LightRole r) { return 1u << static_cast<unsigned>(r); }
-
-/// The lamps of an entity lit this frame: what the scenario set, and otherwise headlights and
-/// tail lamps when it is dark, brake lamps and indicators as the engine reports them,
-/// reversing lamps when it backs up.
-uint32_t entity_lamp_bits(const EntityInstance& inst, const engine::EntitySnapshot& e,
-                          const Lighting& l) {
-  using engine::VehicleLight;
-  auto on = [&](VehicleLight v) { return (inst.lights_on & engine::light_bit(v)) != 0; };
-  auto set = [&](VehicleLight v) { return (inst.lights_set & engine::light_bit(v)) != 0; };
-  uint32_t bits = bit(LightRole::kAlways);
-  const bool beams_set = set(VehicleLight::kLowBeam) || set(VehicleLight::kHighBeam);
-  const bool beams =
-      beams_set ? on(VehicleLight::kLowBeam) || on(VehicleLight::kHighBeam) : l.headlights;
-  if (beams) {
-    bits |= bit(LightRole::kHeadlight) | bit(LightRole::kTail);
-  }
-  if (on(VehicleLight::kDaytimeRunning)) {
-    bits |= bit(LightRole::kHeadlight);
-  }
-  if (on(VehicleLight::kBrake)) {
-    bits |= bit(LightRole::kBrake);
-  }
-  if (on(VehicleLight::kIndicatorLeft) || on(VehicleLight::kWarning)) {
-    bits |= bit(LightRole::kIndicatorLeft);
-  }
-  if (on(VehicleLight::kIndicatorRight) || on(VehicleLight::kWarning)) {
-    bits |= bit(LightRole::kIndicatorRight);
-  }
-  if (on(VehicleLight::kReversing) || (!set(VehicleLight::kReversing) && e.speed < -0.1)) {
-    bits |= bit(LightRole::kReversing);
-  }
-  return bits;
-}
 
 /// Texture coordinates at a hit and the texture units per metre there.
 void hit_uv(const ShadingContext& c, const SurfaceHit& h, TexturePoint& tp) {
@@ -239,7 +207,8 @@ ShadingContext make_shading_context(const SceneData& scene, const Lighting& ligh
       bit(LightRole::kAlways) | (lighting.darkness > 0.3 ? bit(LightRole::kStreetLamp) : 0u);
   bool looks = false;
   for (const auto& inst : scene.instances) {
-    c.entity_lamps.push_back(entity_lamp_bits(inst, scene.entities[inst.snapshot_index], lighting));
+    c.entity_lamps.push_back(
+        vehicle_lamp_state(scene.entities[inst.snapshot_index], lighting.headlights).roles);
     looks = looks || !scene.entities[inst.snapshot_index].light_looks.empty();
   }
   if (looks) {

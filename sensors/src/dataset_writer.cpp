@@ -224,7 +224,8 @@ void DatasetWriter::write_run_json(const DatasetEnd* end) const {
   }
   Json run = {
       {"corsa_version", version()},
-      {"dataset_format_version", 1},
+      // 2: camera labels give vehicles' lights ("lights", "lamps"); otherwise as 1.
+      {"dataset_format_version", 2},
       {"scenario", info_.scenario},
       {"parameters", std::move(parameters)},
       {"seed", info_.seed},

@@ -6,6 +6,7 @@
 
 #include "corsa/sensors/camera_render.h"
 #include "scene_data.h"
+#include "vehicle_lamps.h"
 
 namespace corsa::sensors {
 namespace {
@@ -220,13 +221,60 @@ ObjectLabel entity_label(const detail::SceneData& d, const detail::EntityInstanc
   return l;
 }
 
+bool has_vehicle_lights(engine::EntityCategory c) {
+  using C = engine::EntityCategory;
+  return c != C::kPedestrian && c != C::kWheelchair && c != C::kAnimal && c != C::kObstacle;
+}
+
+/// A vehicle's lights as the frame draws them: every light lit, flashing or set, and the lamps of
+/// its shape that are lit.
+VehicleLightsLabel vehicle_lights_label(const engine::EntitySnapshot& e,
+                                        const detail::EntityInstance& inst, bool dark) {
+  const detail::VehicleLampState state = detail::vehicle_lamp_state(e, dark);
+  VehicleLightsLabel out;
+  size_t next_setting = 0;  // light_settings are in VehicleLight order
+  for (size_t i = 0; i < engine::kVehicleLightTypes; ++i) {
+    const auto light = static_cast<engine::VehicleLight>(i);
+    const uint32_t bit = engine::light_bit(light);
+    LightLabel l;
+    l.light = light;
+    l.lit = (state.lit & bit) != 0;
+    l.mode = (state.flashing & bit) != 0 ? engine::LightMode::kFlashing
+             : l.lit                     ? engine::LightMode::kOn
+                                         : engine::LightMode::kOff;
+    while (next_setting < e.light_settings.size() && e.light_settings[next_setting].light < light) {
+      ++next_setting;
+    }
+    if (next_setting < e.light_settings.size() && e.light_settings[next_setting].light == light) {
+      const engine::LightSettingView& s = e.light_settings[next_setting];
+      l.set = true;
+      l.mode = s.mode;  // a light fading out is lit with its mode already off
+      l.intensity_cd = s.candela;
+      l.rgb = s.rgb;
+    }
+    if (l.set || l.lit || l.mode != engine::LightMode::kOff) {
+      out.lights.push_back(l);
+    }
+  }
+  uint32_t shape_roles = 0;
+  if (inst.shape != nullptr) {
+    for (const detail::LampPatch& lamp : inst.shape->lamps) {
+      shape_roles |= 1u << static_cast<unsigned>(lamp.role);
+    }
+  }
+  out.lamps = state.roles & shape_roles;
+  return out;
+}
+
 }  // namespace
 
 std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer& renderer,
                                        const Rigid& world_from_body,
-                                       std::span<const uint32_t> instance, uint32_t carrier) {
+                                       std::span<const uint32_t> instance, uint32_t carrier,
+                                       const Lighting* lighting) {
   const detail::SceneData& d = scene.data();
   const CameraModel& camera = renderer.model();
+  const bool dark = lighting != nullptr && lighting->headlights;
   const int w = camera.width();
   const int h = camera.height();
   const Rigid world_from_cam = world_from_optical(world_from_body);
@@ -256,6 +304,10 @@ std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer&
     l.truncation =
         full.area() > 0.0 ? std::clamp(1.0 - clipped.area() / full.area(), 0.0, 1.0) : 0.0;
     l.occlusion = occlusion_of(inst, renderer, world_from_cam, clipped, instance, w);
+    if (const engine::EntitySnapshot& e = d.entities[inst.snapshot_index];
+        has_vehicle_lights(e.category)) {
+      l.lights = vehicle_lights_label(e, inst, dark);
+    }
     labels.push_back(std::move(l));
   }
   return labels;

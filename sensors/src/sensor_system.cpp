@@ -46,8 +46,8 @@ void render_camera_group(const Scene& scene, const CameraRenderer& renderer,
   motion.yaw_rate = carrier.yaw_rate;
   motion.pivot = {carrier.pose.x, carrier.pose.y, carrier.pose.z};
   CameraImages images = renderer.render(scene, motion, settings);
-  const auto labels =
-      camera_labels(scene, renderer, motion.world_from_body, images.instance, carrier.instance_id);
+  const auto labels = camera_labels(scene, renderer, motion.world_from_body, images.instance,
+                                    carrier.instance_id, settings.lighting);
   const auto static_labels =
       static_object_labels(scene, images.instance, images.width, images.semantic);
   // Copied before an instance camera of the group takes the buffer.

@@ -1,6 +1,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <string_view>
 
 #include "corsa/core/json.h"
 #include "corsa/core/strings.h"
@@ -144,6 +145,61 @@ Json static_labels_json(std::span<const StaticObjectLabel> labels) {
   return objects;
 }
 
+/// Names of the lamps (LightRole) a vehicle shape has.
+std::string_view lamp_name(LightRole role) {
+  switch (role) {
+    case LightRole::kHeadlight:
+      return "headlight";
+    case LightRole::kTail:
+      return "tail";
+    case LightRole::kBrake:
+      return "brake";
+    case LightRole::kIndicatorLeft:
+      return "indicator_left";
+    case LightRole::kIndicatorRight:
+      return "indicator_right";
+    case LightRole::kReversing:
+      return "reversing";
+    default:
+      return "";
+  }
+}
+
+std::string_view light_mode_text(engine::LightMode mode) {
+  return mode == engine::LightMode::kOn    ? "on"
+         : mode == engine::LightMode::kOff ? "off"
+                                           : "flashing";
+}
+
+/// A vehicle's lights: {name: {mode, lit[, set, intensity_cd, colour]}} by OpenSCENARIO name,
+/// and the lamps drawn lit.
+void add_lights_json(const VehicleLightsLabel& v, Json& object) {
+  Json lights = Json::object();
+  for (const LightLabel& l : v.lights) {
+    Json light = {{"mode", std::string(light_mode_text(l.mode))}, {"lit", l.lit}};
+    if (l.set) {
+      light["set"] = true;
+    }
+    if (l.intensity_cd) {
+      light["intensity_cd"] = num(*l.intensity_cd);
+    }
+    if (l.rgb) {
+      light["colour"] = {num((*l.rgb)[0]), num((*l.rgb)[1]), num((*l.rgb)[2])};
+    }
+    lights[std::string(engine::kVehicleLightNames[static_cast<size_t>(l.light)])] =
+        std::move(light);
+  }
+  Json lamps = Json::array();
+  for (unsigned r = 0; r <= static_cast<unsigned>(LightRole::kReversing); ++r) {
+    if (const auto name = lamp_name(static_cast<LightRole>(r));
+        (v.lamps >> r & 1u) && !name.empty()) {
+      lamps.push_back(std::string(name));
+    }
+  }
+  object["lights"] = std::move(lights);
+  object["lamps"] = std::move(lamps);
+}
+
 }  // namespace
 
 std::string labels_json(std::span<const ObjectLabel> labels, bool camera,
@@ -164,6 +220,9 @@ std::string labels_json(std::span<const ObjectLabel> labels, bool camera,
       object["occlusion"] = num(l.occlusion);
       object["occlusion_level"] = kitti_occlusion_level(l.occlusion);
       object["visible_pixels"] = l.visible_pixels;
+      if (l.lights) {
+        add_lights_json(*l.lights, object);
+      }
     } else {
       object["lidar_points"] = l.lidar_points;
     }

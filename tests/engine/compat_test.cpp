@@ -3,6 +3,8 @@
 // run-time lenient readings (the centre lane, an s past the road's end, a deleted entity's last
 // position) and their --strict form; esmini's frame of a relative orientation on a lane.
 
+#include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <utility>
@@ -327,7 +329,44 @@ TEST_CASE("a LightStateAction fades linearly over its transitionTime to its inte
                                                {1.55, false}};
     for (const auto& [into, lit] : samples) {
       INFO("into the flashing " << into << " s");
-      CHECK(((at(since + into).lights_on & bit) != 0) == lit);
+      const auto& car = at(since + into);
+      CHECK(((car.lights_on & bit) != 0) == lit);
+      // Flashing in its off phase too, as the scenario set it.
+      CHECK((car.lights_flashing & bit) != 0);
+      const auto setting =
+          std::find_if(car.light_settings.begin(), car.light_settings.end(),
+                       [](const auto& s) { return s.light == VehicleLight::kWarning; });
+      REQUIRE(setting != car.light_settings.end());
+      CHECK(setting->mode == corsa::engine::LightMode::kFlashing);
+      CHECK(setting->since == Approx(since));
+      CHECK(setting->on_s == 0.5);
+      CHECK(setting->off_s == 0.5);
     }
+  }
+  SECTION("the snapshot and the run's record keep the lights as they were set, in order") {
+    const auto& car = at(2.5);
+    // Brake (set twice), low beam (fading out: lit, its mode already off), warning lights.
+    REQUIRE(car.light_settings.size() == 3);
+    CHECK(car.light_settings[0].light == VehicleLight::kLowBeam);
+    CHECK(car.light_settings[0].mode == corsa::engine::LightMode::kOff);
+    CHECK(car.light_settings[0].transition_s == 1.0);
+    CHECK((car.lights_on & light_bit(VehicleLight::kLowBeam)) != 0);
+    CHECK(car.light_settings[1].light == VehicleLight::kBrake);
+    CHECK(car.light_settings[1].candela == 300.0);
+    CHECK(!car.light_settings[1].rgb);
+    CHECK(car.lights_flashing == light_bit(VehicleLight::kWarning));
+    const auto changes = run.sim().light_changes();
+    REQUIRE(changes.size() == 5);
+    // Three set at the first step past 0.5 s in document order, then 1 s and 2 s.
+    CHECK(changes[0].setting.light == VehicleLight::kBrake);
+    CHECK(changes[0].setting.rgb == std::array<double, 3>{1.0, 0.0, 0.0});
+    CHECK(changes[0].setting.candela == 100.0);
+    CHECK(changes[1].setting.light == VehicleLight::kLowBeam);
+    CHECK(changes[2].setting.light == VehicleLight::kWarning);
+    CHECK(changes[3].setting.since == Approx(start_after(1.0)));
+    CHECK(changes[4].setting.mode == corsa::engine::LightMode::kOff);
+    const std::string summary = corsa::engine::summary_json(run.sim(), 0.0);
+    CHECK_THAT(summary, Catch::Contains("{\"time\": 2.01, \"light\": \"lowBeam\", \"mode\": "
+                                        "\"off\", \"transition_time\": 1}"));
   }
 }

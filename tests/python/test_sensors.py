@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import corsa
-from conftest import CUT_IN, SMALL_RIG
+from conftest import CUT_IN, ROOT, SMALL_RIG
 
 
 @pytest.fixture(scope="module")
@@ -182,3 +182,34 @@ def test_collect_takes_entity_models(tmp_path):
     with pytest.raises(corsa.InputError, match="neither an entity"):
         corsa.collect(CUT_IN, SMALL_RIG, tmp_path / "other", duration=0.2,
                       entity_models=["Cuter=car.glb"])
+
+
+LIGHTS = ROOT / "tests/collect/fixtures/braking_lights.xosc"
+LIGHTS_RIG = ROOT / "tests/collect/fixtures/lights_rig.xml"
+
+
+def test_vehicle_lights_are_in_the_labels_of_a_dataset_and_of_a_capture(tmp_path):
+    """Lead brakes from 0.5 s and flashes its left indicator green (0.4 s on, 0.4 s off)."""
+    folder = tmp_path / "lights"
+    corsa.collect(LIGHTS, LIGHTS_RIG, folder)
+    at = {round(frame.time, 2): frame for frame in corsa.Dataset(folder)}
+
+    def lead(labels):
+        return next(o for o in labels["cam"]["objects"] if o["name"] == "Lead")
+
+    before = lead(at[0.4].labels)
+    assert before["lights"] == {} and before["lamps"] == []
+    lit = lead(at[0.8].labels)
+    assert lit["lights"]["brakeLights"] == {"mode": "on", "lit": True}
+    assert lit["lights"]["indicatorLeft"] == {"mode": "flashing", "lit": True, "set": True,
+                                              "intensity_cd": 200, "colour": [0, 1, 0]}
+    assert lit["lamps"] == ["brake", "indicator_left"]
+    off_phase = lead(at[1.2].labels)
+    assert off_phase["lights"]["indicatorLeft"]["lit"] is False
+    assert off_phase["lamps"] == ["brake"]
+    # Simulation.capture() labels the same lights at the same tick.
+    sim = corsa.Simulation(LIGHTS, rig=LIGHTS_RIG)
+    for _ in range(80):
+        sim.step()
+    live = lead(sim.capture("cam").labels)
+    assert live["lights"] == lit["lights"] and live["lamps"] == lit["lamps"]

@@ -2,9 +2,11 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <string>
 
 #include "corsa/sensors/camera_render.h"
 #include "corsa/sensors/labels.h"
+#include "corsa/sensors/writers.h"
 #include "fixtures.h"
 
 using namespace corsa::sensors;
@@ -126,6 +128,75 @@ TEST_CASE("an object at the image edge is labelled truncated by the share outsid
   CHECK(labels[0].truncation == Approx(1.0 - inside / full).margin(1e-6));
   CHECK(labels[0].truncation > 0.2);
   CHECK(labels[0].box_2d.x_max == Approx(639.5));
+}
+
+TEST_CASE("a vehicle's label gives its lights as the frame draws them; a walker has none",
+          "[sensors][camera][labels][lights]") {
+  using corsa::engine::light_bit;
+  using corsa::engine::LightMode;
+  using corsa::engine::VehicleLight;
+  // A car 15 m ahead seen from behind, backing up at 1 m/s with its reversing lights switched
+  // off by the scenario, braking, its right indicator flashing in its on phase; a walker beside.
+  auto car = box_entity(4, "car", 15.0, 0.0, 4.5, 1.8, 1.5, corsa::engine::EntityCategory::kCar);
+  car.speed = -1.0;
+  car.lights_on = light_bit(VehicleLight::kBrake) | light_bit(VehicleLight::kIndicatorRight);
+  car.lights_flashing = light_bit(VehicleLight::kIndicatorRight);
+  car.lights_set = light_bit(VehicleLight::kReversing);
+  corsa::engine::LightSettingView reversing_off;
+  reversing_off.light = VehicleLight::kReversing;
+  reversing_off.mode = LightMode::kOff;
+  car.light_settings.push_back(reversing_off);
+  auto walker =
+      box_entity(5, "walker", 10.0, 3.0, 0.5, 0.6, 1.8, corsa::engine::EntityCategory::kPedestrian);
+  const Scene scene = road_with({car, walker});
+  const CameraRenderer camera(vga());
+  const CameraImages img = render(scene, camera, {});
+  corsa::engine::EnvironmentState midnight;
+  midnight.sun_elevation = -0.4;
+  midnight.sun_azimuth = 0.0;
+  const Lighting night = compute_lighting(midnight, {});
+  REQUIRE(night.headlights);
+
+  const auto day = camera_labels(scene, camera, kEye, img.instance);
+  REQUIRE(day.size() == 2);
+  REQUIRE(day[0].lights);
+  CHECK(!day[1].lights);
+  const auto& lights = day[0].lights->lights;
+  REQUIRE(lights.size() == 3);
+  CHECK(lights[0].light == VehicleLight::kBrake);
+  CHECK(lights[0].mode == LightMode::kOn);
+  CHECK(lights[1].light == VehicleLight::kIndicatorRight);
+  CHECK(lights[1].mode == LightMode::kFlashing);
+  CHECK(lights[1].lit);
+  CHECK(!lights[1].set);
+  CHECK(lights[2].light == VehicleLight::kReversing);
+  CHECK(lights[2].set);
+  CHECK(!lights[2].lit);
+  const std::string text = labels_json(day, true);
+  CHECK_THAT(text,
+             Catch::Contains("\"lights\": {\"brakeLights\": {\"mode\": \"on\", \"lit\": true}, "
+                             "\"indicatorRight\": {\"mode\": \"flashing\", \"lit\": true}, "
+                             "\"reversingLights\": {\"mode\": \"off\", \"lit\": false, \"set\": "
+                             "true}}, \"lamps\": [\"brake\", \"indicator_right\"]}"));
+  // One "lights" member: the car's; the walker's label line has none.
+  CHECK(text.find("\"lights\"") == text.rfind("\"lights\""));
+
+  // At night the renderer lights the low beam (with the tail lamps) that nobody set.
+  const auto dark = camera_labels(scene, camera, kEye, img.instance, 0, &night);
+  REQUIRE(dark[0].lights);
+  REQUIRE(dark[0].lights->lights.size() == 4);
+  const LightLabel& beam = dark[0].lights->lights[0];
+  CHECK(beam.light == VehicleLight::kLowBeam);
+  CHECK(beam.mode == LightMode::kOn);
+  CHECK(beam.lit);
+  CHECK(!beam.set);
+  const uint32_t lamps = dark[0].lights->lamps;
+  for (const LightRole role :
+       {LightRole::kHeadlight, LightRole::kTail, LightRole::kBrake, LightRole::kIndicatorRight}) {
+    CHECK((lamps >> static_cast<unsigned>(role) & 1u) == 1u);
+  }
+  CHECK((lamps >> static_cast<unsigned>(LightRole::kReversing) & 1u) == 0u);
+  CHECK((lamps >> static_cast<unsigned>(LightRole::kIndicatorLeft) & 1u) == 0u);
 }
 
 TEST_CASE("a camera inside its own vehicle does not see it", "[sensors][camera]") {

@@ -72,9 +72,9 @@ class LightStateInstance final : public InstantAction {
     }
     const xosc::LightState& state = action_.light_state;
     LightSetting setting;
-    setting.mode = state.mode == xosc::LightMode::kOff  ? LightSetting::Mode::kOff
-                   : state.mode == xosc::LightMode::kOn ? LightSetting::Mode::kOn
-                                                        : LightSetting::Mode::kFlashing;
+    setting.mode = state.mode == xosc::LightMode::kOff  ? LightMode::kOff
+                   : state.mode == xosc::LightMode::kOn ? LightMode::kOn
+                                                        : LightMode::kFlashing;
     // Without durations a flashing light is on and off 0.5 s each, the class model's default
     // for both (1 Hz, within UN ECE R48's 90 +- 30 flashes per minute at its lower end).
     setting.on_s = state.flashing_on_duration.value_or(kLightDefaultFlashS);
@@ -94,6 +94,8 @@ class LightStateInstance final : public InstantAction {
     setting.transition_s = action_.transition_time.value_or(0.0);
     const auto index = static_cast<size_t>(*type);
     if (index < kVehicleLightCount) {
+      context.state.light_changes.push_back(
+          {*context.actor, setting.view(static_cast<VehicleLight>(index))});
       auto& lights = context.entity().lights;
       if (!lights) {
         lights = std::make_unique<LightSettings>();

@@ -1,3 +1,6 @@
+#include <string>
+#include <string_view>
+
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/json.h"
 #include "corsa/engine/outputs.h"
@@ -8,6 +11,38 @@ namespace {
 
 // -0 as 0; infinities and NaN become null in the text.
 double number(double value) { return value + 0.0; }
+
+std::string_view light_mode_name(LightMode mode) {
+  return mode == LightMode::kOn ? "on" : mode == LightMode::kOff ? "off" : "flashing";
+}
+
+/// The lights LightStateActions set on entity `i`, in order: when, which, and how.
+Json light_changes_json(const Simulation& simulation, size_t i) {
+  Json out = Json::array();
+  for (const LightChange& change : simulation.light_changes()) {
+    if (change.entity != i) {
+      continue;
+    }
+    const LightSettingView& s = change.setting;
+    Json one = {{"time", number(s.since)},
+                {"light", std::string(kVehicleLightNames[static_cast<size_t>(s.light)])},
+                {"mode", std::string(light_mode_name(s.mode))}};
+    if (s.mode == LightMode::kFlashing) {
+      one["flashing"] = {number(s.on_s), number(s.off_s)};
+    }
+    if (s.candela) {
+      one["intensity_cd"] = number(*s.candela);
+    }
+    if (s.rgb) {
+      one["colour"] = {number((*s.rgb)[0]), number((*s.rgb)[1]), number((*s.rgb)[2])};
+    }
+    if (s.transition_s > 0.0) {
+      one["transition_time"] = number(s.transition_s);
+    }
+    out.push_back(std::move(one));
+  }
+  return out;
+}
 
 Json entity_json(const Simulation& simulation, size_t i) {
   const EntityState& s = simulation.state(i);
@@ -25,6 +60,10 @@ Json entity_json(const Simulation& simulation, size_t i) {
   if (const auto substitute = simulation.controller_substitute(i); !substitute.empty()) {
     out["controller"] = "acc";
     out["substitute_for"] = substitute;
+  }
+  // The lights LightStateActions set: the record of when each light state changed.
+  if (Json lights = light_changes_json(simulation, i); !lights.empty()) {
+    out["lights"] = std::move(lights);
   }
   // Generated entities (traffic actions, NPCs): whether present at the end, and when each
   // presence began and ended (the pose above is where it was last).

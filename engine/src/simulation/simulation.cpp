@@ -209,6 +209,10 @@ std::vector<ElementStatusView> Simulation::elements() const {
 
 std::span<const CollisionRecord> Simulation::collisions() const { return impl_->state.collisions; }
 
+std::span<const LightChange> Simulation::light_changes() const {
+  return impl_->state.light_changes;
+}
+
 std::span<const Lifetime> Simulation::lifetimes(size_t index) const {
   const auto& all = impl_->state.traffic.lifetimes;
   const auto it = all.find(static_cast<uint32_t>(index));
@@ -310,7 +314,9 @@ bool look_emits(const LightLook& look) {
 void entity_lights(const detail::Entity& entity, double time, EntitySnapshot& out) {
   out.lights_on = 0;
   out.lights_set = 0;
+  out.lights_flashing = 0;
   out.light_looks.clear();
+  out.light_settings.clear();
   const EntityState& state = entity.state;
   const bool braking =
       state.acceleration < -0.5 || (std::abs(state.speed) < 0.05 && state.odometer > 0.0);
@@ -318,9 +324,11 @@ void entity_lights(const detail::Entity& entity, double time, EntitySnapshot& ou
     out.lights_on |= light_bit(VehicleLight::kBrake);
   }
   const bool flash_phase = std::fmod(time, 2.0 / 3.0) < 1.0 / 3.0;
-  if (std::abs(state.lateral_speed) > 0.2 && flash_phase) {
-    out.lights_on |= light_bit(state.lateral_speed > 0.0 ? VehicleLight::kIndicatorLeft
-                                                         : VehicleLight::kIndicatorRight);
+  if (std::abs(state.lateral_speed) > 0.2) {
+    const uint32_t indicator = light_bit(state.lateral_speed > 0.0 ? VehicleLight::kIndicatorLeft
+                                                                   : VehicleLight::kIndicatorRight);
+    out.lights_flashing |= indicator;
+    out.lights_on |= flash_phase ? indicator : 0u;
   }
   if (!entity.lights) {
     return;
@@ -332,6 +340,9 @@ void entity_lights(const detail::Entity& entity, double time, EntitySnapshot& ou
     }
     const uint32_t bit = 1u << i;
     out.lights_set |= bit;
+    out.light_settings.push_back(light->view(static_cast<VehicleLight>(i)));
+    const bool flashing = light->mode == LightMode::kFlashing;
+    out.lights_flashing = flashing ? (out.lights_flashing | bit) : (out.lights_flashing & ~bit);
     bool on = lit(*light, time);
     if (light->candela || light->rgb || light_fade_done(*light, time) < 1.0) {
       LightLook look;

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "corsa/engine/entity_state.h"
+#include "corsa/engine/world_snapshot.h"
 #include "corsa/xodr/lane_graph.h"
 #include "corsa/xosc/enums.h"
 
@@ -79,7 +80,7 @@ inline constexpr int kDomainSlots = 2;
 
 /// A vehicle light a LightStateAction set (OpenSCENARIO 1.2 §7.4.3.5 LightStateAction).
 struct LightSetting {
-  enum class Mode : uint8_t { kOff, kOn, kFlashing };
+  using Mode = LightMode;
   Mode mode = Mode::kOn;
   double on_s = 0.5;              ///< flashing: s lit per cycle
   double off_s = 0.5;             ///< flashing: s dark per cycle
@@ -92,8 +93,13 @@ struct LightSetting {
   /// The setting this one replaced (none: the light was unset, read as off); kept while the
   /// fade runs.
   std::shared_ptr<const LightSetting> previous;
+
+  /// As the world snapshot and the run summary show it (light `light`).
+  LightSettingView view(VehicleLight light) const {
+    return {light, mode, candela, rgb, since, transition_s, on_s, off_s};
+  }
 };
-inline constexpr size_t kVehicleLightCount = 13;
+inline constexpr size_t kVehicleLightCount = kVehicleLightTypes;
 
 /// The lights an entity has had set (LightStateAction), by VehicleLight.
 using LightSettings = std::array<std::optional<LightSetting>, kVehicleLightCount>;

@@ -129,6 +129,8 @@ struct SimState {
   ElementTable elements;
   ContactSet contacts;
   std::vector<CollisionRecord> collisions;
+  /// Lights set by LightStateActions, in the order they were set (the run summary's record).
+  std::vector<LightChange> light_changes;
   std::map<std::string, CustomCommandHandler, std::less<>> custom_handlers;
   /// Values of UserDefinedValueConditions (Simulation::set_user_value_provider); may be empty.
   UserValueProvider user_values;

@@ -119,6 +119,12 @@ struct CollisionRecord {
   uint32_t second = 0;
 };
 
+/// A light of entity `entity` (index) set by a LightStateAction, at `setting.since`.
+struct LightChange {
+  uint32_t entity = 0;
+  LightSettingView setting;
+};
+
 /// One storyboard element and its state now (Simulation::elements).
 struct ElementStatusView {
   ElementType type = ElementType::kStory;
@@ -191,6 +197,9 @@ class Simulation {
   /// Every storyboard element in document order (the storyboard first), with its state now.
   std::vector<ElementStatusView> elements() const;
   std::span<const CollisionRecord> collisions() const;
+  /// Every light a LightStateAction set so far, in the order they were set (user-defined light
+  /// types, which only warn, are not among them).
+  std::span<const LightChange> light_changes() const;
   /// When a generated entity (traffic, NPCs) appeared and left, in order; empty for the
   /// scenario's own entities.
   std::span<const Lifetime> lifetimes(size_t index) const;

@@ -5,11 +5,13 @@
 // tested without Embree; the command line connects a sensors-side sink to it.
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -76,6 +78,31 @@ enum class VehicleLight : uint8_t {
 inline constexpr uint32_t light_bit(VehicleLight light) {
   return 1u << static_cast<unsigned>(light);
 }
+inline constexpr size_t kVehicleLightTypes = 13;
+/// OpenSCENARIO's names of the lights (vehicleLightType), by VehicleLight.
+inline constexpr std::array<std::string_view, kVehicleLightTypes> kVehicleLightNames = {
+    "daytimeRunningLights", "lowBeam",        "highBeam",        "fogLights",
+    "fogLightsFront",       "fogLightsRear",  "brakeLights",     "warningLights",
+    "indicatorLeft",        "indicatorRight", "reversingLights", "licensePlateIllumination",
+    "specialPurposeLights"};
+
+/// How a light is switched (OpenSCENARIO LightMode).
+enum class LightMode : uint8_t { kOff, kOn, kFlashing };
+
+/// A light as a LightStateAction set it: the values the scenario gave, for the labels and the
+/// run summary (the sensors draw from lights_on and light_looks).
+struct LightSettingView {
+  VehicleLight light = VehicleLight::kLowBeam;
+  LightMode mode = LightMode::kOn;
+  std::optional<double> candela;  ///< luminousIntensity (cd); none: the lamp's own
+  /// Color as linear RGB, 0..1 each (CMYK and a colorType alone converted, docs/engine.md);
+  /// none: the lamp's own colour.
+  std::optional<std::array<double, 3>> rgb;
+  double since = 0.0;         ///< s, simulation time the action set it
+  double transition_s = 0.0;  ///< transitionTime (s): the fade from the state before
+  double on_s = 0.5;          ///< flashing: s lit per cycle
+  double off_s = 0.5;         ///< flashing: s dark per cycle
+};
 
 /// How a light that a LightStateAction set with a luminous intensity, a colour or a transition
 /// time emits (OpenSCENARIO 1.2 LightState), as a sum of parts in linear RGB whose luminance
@@ -118,6 +145,11 @@ struct EntitySnapshot {
   /// Lights a LightStateAction set (on, off or flashing): the sensors leave these alone, and
   /// choose the others themselves (headlights when it is dark).
   uint32_t lights_set = 0;
+  /// Lights in a flashing mode, in their on phase or not: LightStateAction's flashing ones and
+  /// the indicator the engine flashes while the entity moves across its lane.
+  uint32_t lights_flashing = 0;
+  /// The lights of lights_set as the scenario set them, by VehicleLight order.
+  std::vector<LightSettingView> light_settings;
   /// The lights of lights_set with a luminous intensity, a colour or a fade, by VehicleLight
   /// order; a lit bit of lights_on then means the look emits something.
   std::vector<LightLook> light_looks;

@@ -4,6 +4,7 @@
 // truncation for cameras, 3D boxes in the sensor and map frames, class, instance and track id,
 // and the LiDAR point count per object.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -13,6 +14,7 @@
 #include "corsa/sensors/box.h"
 #include "corsa/sensors/camera_model.h"
 #include "corsa/sensors/camera_render.h"
+#include "corsa/sensors/environment.h"
 #include "corsa/sensors/geometry.h"
 #include "corsa/sensors/lidar.h"
 #include "corsa/sensors/scene.h"
@@ -20,6 +22,24 @@
 #include "corsa/sensors/static_mesh.h"
 
 namespace corsa::sensors {
+
+/// A vehicle light in a camera label, as the frame shows it (docs/datasets.md, "Vehicle
+/// lights in the labels").
+struct LightLabel {
+  engine::VehicleLight light = engine::VehicleLight::kLowBeam;
+  engine::LightMode mode = engine::LightMode::kOff;
+  bool lit = false;  ///< emitting in this frame (a flashing light in its on phase)
+  bool set = false;  ///< a LightStateAction set it (else the engine or the renderer chose it)
+  std::optional<double> intensity_cd;        ///< luminousIntensity as set (cd)
+  std::optional<std::array<double, 3>> rgb;  ///< Color as set: linear RGB, 0..1 each
+};
+
+/// A vehicle's lights in a camera label.
+struct VehicleLightsLabel {
+  /// The lights that are lit, flashing or set, by VehicleLight order.
+  std::vector<LightLabel> lights;
+  uint32_t lamps = 0;  ///< LightRole bits of the lamps its shape has and the frame lit
+};
 
 struct ObjectLabel {
   uint32_t instance_id = 0;
@@ -35,6 +55,7 @@ struct ObjectLabel {
   double truncation = 0.0;  ///< share of the projected box outside the image, 0..1
   double occlusion = 0.0;   ///< share of the object's silhouette hidden by others, 0..1
   uint64_t visible_pixels = 0;
+  std::optional<VehicleLightsLabel> lights;  ///< vehicles only
   // LiDAR only:
   uint64_t lidar_points = 0;
 };
@@ -65,10 +86,12 @@ double kitti_rotation_y(const Box3& box_in_optical_frame);
 
 /// Labels of a camera frame: every visible entity with at least one visible pixel, except the
 /// entity with instance id `carrier` (the sensor's own vehicle; 0 for none).
-/// `instance` is the camera's instance buffer (CameraImages::instance).
+/// `instance` is the camera's instance buffer (CameraImages::instance). Vehicles have their
+/// lights as the frame lit by `lighting` draws them (null: a frame in daylight).
 std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer& camera,
                                        const Rigid& world_from_body,
-                                       std::span<const uint32_t> instance, uint32_t carrier = 0);
+                                       std::span<const uint32_t> instance, uint32_t carrier = 0,
+                                       const Lighting* lighting = nullptr);
 
 /// Labels of a LiDAR frame: every visible entity whose centre is within `range_m`, except the
 /// carrier.
