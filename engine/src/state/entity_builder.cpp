@@ -66,6 +66,8 @@ EntityInfo describe_object(const xosc::ScenarioObject& object, Diagnostics& diag
           info.max_speed = o.performance.max_speed;
           info.max_acceleration = o.performance.max_acceleration;
           info.max_deceleration = o.performance.max_deceleration;
+          info.max_acceleration_rate = o.performance.max_acceleration_rate.value_or(0.0);
+          info.max_deceleration_rate = o.performance.max_deceleration_rate.value_or(0.0);
         } else if constexpr (std::is_same_v<T, xosc::Pedestrian>) {
           info.kind = ObjectKind::kPedestrian;
           info.category = pedestrian_category(o.category);
