@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <string>
@@ -577,6 +578,16 @@ TEST_CASE("A jerk-limited speed plan rounds the corners of the profile's lines",
     const JerkProfile moving({{0.0, 10.0}, {4.0, 20.0}}, 2.0, limits);
     CHECK((moving.speed_at(0.01) - 10.0) / 0.01 == Approx(2.0).margin(0.05));
     CHECK(moving.speed_at(moving.end_time()) == 20.0);
+  }
+  SECTION("a rate not given is unbounded: the acceleration may jump that way") {
+    const double inf = std::numeric_limits<double>::infinity();
+    const JerkProfile plan({{0.0, 0.0}, {4.0, 10.0}, {6.0, 10.0}}, 0.0, {5.0, 10.0, inf, 3.0});
+    CHECK(plan.speed_at(1.0) == Approx(2.5).margin(1e-12));  // on the first line at once
+    CHECK(plan.end_time() == Approx(4.0 + 2.5 / 3.0 / 2.0).margin(1e-12));
+    for (double t = 0.0; t < 6.0; t += 0.01) {
+      CHECK(std::isfinite(plan.speed_at(t)));
+    }
+    CHECK(plan.speed_at(6.0) == 10.0);
   }
 }
 
