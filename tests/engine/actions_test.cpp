@@ -76,29 +76,6 @@ TEST_CASE("SpeedAction follows each shape over time, rate and distance",
   }
 }
 
-TEST_CASE("SpeedAction in followingMode follow is held to the vehicle's Performance",
-          "[engine][action]") {
-  // 1.3 TransitionDynamics followingMode: in mode follow "the actor tries to follow the shape as
-  // best as it can. This may be restricted by the 'Performance' properties (for vehicles)".
-  // 10 m/s; Performance 2 m/s^2 up, 4 m/s^2 down, 15 m/s. Up: 20 m/s in 2 s is held to 15 m/s,
-  // and 5 m/s in 2 s (2.5 m/s^2) stretched to 2.5 s at 2 m/s^2. Down: 10 m/s by a cubic peaking
-  // at 15 m/s^2 stretched by 15 / 4 to 3.75 s. (In mode position, the default, the same actions
-  // hold as written: semantics_test's "A SpeedAction beyond the Performance is exact*".)
-  FixtureRun run(engine_fixture("speed_follow_performance.xosc"));
-  run.run();
-  const auto up = run.first("up", engine::TransitionKind::kStart);
-  const auto down = run.first("down", engine::TransitionKind::kStart);
-  REQUIRE(up);
-  REQUIRE(down);
-  CHECK(run.at(*up + 1.0, "Car").speed == Approx(12.0).margin(1e-9));
-  CHECK(run.at(*up + 2.5, "Car").speed == Approx(15.0).margin(1e-9));
-  CHECK(run.at(*up + 3.5, "Car").speed == Approx(15.0).margin(1e-9));
-  const double p = 1.87 / 3.75;
-  CHECK(run.at(*down + 1.87, "Car").speed ==
-        Approx(15.0 - 10.0 * (3.0 * p * p - 2.0 * p * p * p)).margin(1e-9));
-  CHECK(run.at(*down + 3.75, "Car").speed == Approx(5.0).margin(1e-9));
-}
-
 TEST_CASE("SpeedAction with a relative target tracks continuously or applies once",
           "[engine][action][speed]") {
   FixtureRun run(engine_fixture("action_speed_relative.xosc"));

@@ -225,6 +225,27 @@ TEST_CASE("a Vehicle's inline trailer is an entity towed behind it, through a la
   CHECK(run.sim().collisions().empty());  // the tractor and its trailer touch at the hitch
 }
 
+TEST_CASE("a trailer no ScenarioObject names is called after its tower, as esmini calls it",
+          "[engine][compat][trailer]") {
+  // esmini's catalogs write a <Vehicle> or <CatalogReference> directly in <Trailer> (a lenient
+  // reading): the file names no trailer entity, and esmini calls it "<tower>+" (its
+  // lane_change_trig_by_variable's rows have "Truck+"), so Corsa does too, also down a chain.
+  FixtureRun run(engine_fixture("compat_trailer_esmini_form.xosc"));
+  run.run();
+  REQUIRE(run.sim().entity_count() == 3);
+  CHECK(run.sim().entity(0).name == "Tractor");
+  CHECK(run.sim().entity(1).name == "Tractor+");
+  CHECK(run.sim().entity(2).name == "Tractor++");
+  // Still towed: each coupler on its tower's hitch.
+  const auto hitch = point_ahead(run.now("Tractor"), 0.5);
+  const auto coupler = point_ahead(run.now("Tractor+"), 8.0);
+  CHECK(std::hypot(hitch.first - coupler.first, hitch.second - coupler.second) < 1e-6);
+  const auto second_hitch = point_ahead(run.now("Tractor+"), -3.0);
+  const auto second_coupler = point_ahead(run.now("Tractor++"), 5.0);
+  CHECK(std::hypot(second_hitch.first - second_coupler.first,
+                   second_hitch.second - second_coupler.second) < 1e-6);
+}
+
 TEST_CASE("ConnectTrailerAction hooks a standing trailer up, DisconnectTrailerAction leaves it",
           "[engine][compat][trailer]") {
   FixtureRun run(corsa::test::asam("TrailerConnect.xosc"), corsa::test::with_duration(30));

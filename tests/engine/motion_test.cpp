@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <string>
 
 #include "engine_fixture.h"
+#include "motion/jerk_profile.h"
 
 namespace corsa::test {
 namespace {
@@ -501,6 +503,134 @@ TEST_CASE("SpeedProfileAction goes through its entries, linearly or smoothly, wi
   for (const auto& [tick, states] : run.trace().ticks()) {
     CHECK(states[run.entity("Profile")].acceleration <= 2.0 + 1e-9);
     CHECK(states[run.entity("Smooth")].acceleration <= 4.0 + 1e-9);
+  }
+}
+
+TEST_CASE("A jerk-limited speed plan rounds the corners of the profile's lines",
+          "[engine][speed_profile]") {
+  using engine::detail::JerkLimits;
+  using engine::detail::JerkProfile;
+  const JerkLimits limits{5.0, 10.0, 4.0, 3.0};  // m/s^2 up, down; m/s^3 up, down
+  // Largest change of acceleration (m/s^3) between 1 ms samples, up (> 0) and down (< 0).
+  const auto jerk_range = [](const JerkProfile& plan) {
+    double up = 0.0;
+    double down = 0.0;
+    const double h = 1e-3;
+    for (double t = h; t + h <= plan.end_time() + 1.0; t += h) {
+      const double jerk =
+          (plan.speed_at(t + h) - 2.0 * plan.speed_at(t) + plan.speed_at(t - h)) / (h * h);
+      up = std::max(up, jerk);
+      down = std::min(down, jerk);
+    }
+    return std::make_pair(up, down);
+  };
+  SECTION("several entries: parallel to the first line, on the later ones, late to the last") {
+    // From rest: 10 m/s at 4 s, 4 m/s at 8 s, 8 m/s at 10 s (slopes 2.5, -1.5, 2 m/s^2).
+    const JerkProfile plan({{0.0, 0.0}, {4.0, 10.0}, {8.0, 4.0}, {10.0, 8.0}}, 0.0, limits);
+    // 0 to 2.5 m/s^2 takes 0.625 s at 4 m/s^3: 0.78125 m/s then, 0.78125 m/s below the line.
+    CHECK(plan.speed_at(0.625) == Approx(0.78125).margin(1e-12));
+    CHECK(plan.speed_at(2.0) == Approx(5.0 - 0.78125).margin(1e-12));
+    // The corner onto -1.5 m/s^2 (3 m/s^3 down, 4/3 s long) is centred where that parallel
+    // line, 2.5 t - 0.78125, crosses the second, 16 - 1.5 t: t = 16.78125 / 4.
+    const double corner = 16.78125 / 4.0;
+    const double start = corner - 2.0 / 3.0;
+    const double tau = 4.0 - start;
+    CHECK(plan.speed_at(4.0) ==
+          Approx(2.5 * start - 0.78125 + 2.5 * tau - 1.5 * tau * tau).margin(1e-9));
+    CHECK(plan.speed_at(4.0) == Approx(8.885).margin(1e-3));  // esmini's row at 6.00 s
+    // On the second line itself between its corners, and 8 m/s from 10 + (2 / 3) / 2 s.
+    CHECK(plan.speed_at(7.0) == Approx(5.5).margin(1e-12));
+    CHECK(plan.end_time() == Approx(10.0 + 1.0 / 3.0).margin(1e-12));
+    CHECK(plan.speed_at(plan.end_time()) == 8.0);
+    CHECK(plan.speed_at(12.0) == 8.0);
+    const auto [up, down] = jerk_range(plan);
+    CHECK(up <= 4.0 + 1e-3);
+    CHECK(down >= -3.0 - 1e-3);
+  }
+  SECTION("one entry the limits allow is reached on time") {
+    const JerkProfile plan({{0.0, 10.0}, {5.0, 13.0}}, 0.0, limits);
+    CHECK(plan.end_time() == Approx(5.0).margin(1e-9));
+    CHECK(plan.speed_at(5.0) == 13.0);
+    // Ramps to A and back (c = 1/4 + 1/3 s^2/m per m/s^2 of A) with A held between: 3 m/s in
+    // 5 s gives A^2 c / 2 + A (5 - A c) = 3, A = (5 - sqrt(25 - 6 c)) / c = 0.6227 m/s^2.
+    const double c = 1.0 / 4.0 + 1.0 / 3.0;
+    const double peak = (5.0 - std::sqrt(25.0 - 6.0 * c)) / c;
+    CHECK(plan.speed_at(3.0) - plan.speed_at(2.0) == Approx(peak).margin(1e-9));
+  }
+  SECTION("one entry the limits do not allow on time is reached as soon as they do") {
+    // 10 m/s down: a ramp to the peak deceleration A at 3 m/s^3 and back at 4 m/s^3 gains
+    // A^2 (1/3 + 1/4) / 2, so A = sqrt(240 / 7) = 5.855 m/s^2, reached after A (1/3 + 1/4).
+    const JerkProfile plan({{0.0, 15.0}, {3.0, 5.0}}, 0.0, limits);
+    const double peak = std::sqrt(240.0 / 7.0);
+    CHECK(plan.end_time() == Approx(peak * 7.0 / 12.0).margin(1e-9));
+    CHECK(plan.speed_at(plan.end_time()) == 5.0);
+    const auto [up, down] = jerk_range(plan);
+    CHECK(up <= 4.0 + 1e-3);
+    CHECK(down >= -3.0 - 1e-3);
+  }
+  SECTION("the peak acceleration is held to the limit, and a start accelerating is kept") {
+    // 0 to 40 m/s: a triangle would peak above 5 m/s^2, so 5 m/s^2 is held in between.
+    const JerkProfile plan({{0.0, 0.0}, {1.0, 40.0}}, 0.0, limits);
+    const double ramps = 5.0 / 4.0 + 5.0 / 3.0;
+    CHECK(plan.end_time() == Approx(ramps + (40.0 - 12.5 * (1.0 / 4.0 + 1.0 / 3.0)) / 5.0));
+    CHECK(plan.speed_at(plan.end_time()) == 40.0);
+    // Already at 2 m/s^2: the plan starts with that slope.
+    const JerkProfile moving({{0.0, 10.0}, {4.0, 20.0}}, 2.0, limits);
+    CHECK((moving.speed_at(0.01) - 10.0) / 0.01 == Approx(2.0).margin(0.05));
+    CHECK(moving.speed_at(moving.end_time()) == 20.0);
+  }
+  SECTION("a rate not given is unbounded: the acceleration may jump that way") {
+    const double inf = std::numeric_limits<double>::infinity();
+    const JerkProfile plan({{0.0, 0.0}, {4.0, 10.0}, {6.0, 10.0}}, 0.0, {5.0, 10.0, inf, 3.0});
+    CHECK(plan.speed_at(1.0) == Approx(2.5).margin(1e-12));  // on the first line at once
+    CHECK(plan.end_time() == Approx(4.0 + 2.5 / 3.0 / 2.0).margin(1e-12));
+    for (double t = 0.0; t < 6.0; t += 0.01) {
+      CHECK(std::isfinite(plan.speed_at(t)));
+    }
+    CHECK(plan.speed_at(6.0) == 10.0);
+  }
+}
+
+TEST_CASE("SpeedProfileAction in followingMode follow keeps its jerk limits",
+          "[engine][speed_profile]") {
+  FixtureRun run(engine_fixture("speed_profile_jerk.xosc"));
+  run.run();
+  const auto corners = run.first("corners", TransitionKind::kStart);
+  const auto corners_end = run.first("corners", TransitionKind::kEnd);
+  const auto on_time = run.first("on_time", TransitionKind::kStart);
+  const auto on_time_end = run.first("on_time", TransitionKind::kEnd);
+  const auto late = run.first("late", TransitionKind::kStart);
+  const auto late_end = run.first("late", TransitionKind::kEnd);
+  REQUIRE(corners);
+  REQUIRE(corners_end);
+  REQUIRE(on_time);
+  REQUIRE(on_time_end);
+  REQUIRE(late);
+  REQUIRE(late_end);
+  const double dt = 0.01;
+  // The profile's lines, rounded: 8.885 m/s at its second entry (esmini's speed-profile_test row
+  // at 6.00 s, its action started at 2 s), 5.5 m/s on the second line, 8 m/s 1/3 s after the
+  // last entry's time.
+  CHECK(run.at(*corners + 4.0, "Car").speed == Approx(8.885).margin(1e-3));
+  CHECK(run.at(*corners + 7.0, "Car").speed == Approx(5.5).margin(1e-9));
+  CHECK(*corners_end - *corners == Approx(10.0 + 1.0 / 3.0).margin(dt));
+  CHECK(run.at(*corners_end, "Car").speed == Approx(8.0).margin(1e-9));
+  // 13 m/s on time, 5 s on; then 3 m/s late, after sqrt(240 / 7) 7 / 12 = 3.416 s, not 3 s (the
+  // Performance's rates, no DynamicConstraints; the small acceleration left from the last step
+  // before, 0.015 m/s^2, adds 0.005 s).
+  CHECK(*on_time_end - *on_time == Approx(5.0).margin(dt));
+  CHECK(run.at(*on_time_end, "Car").speed == Approx(13.0).margin(1e-9));
+  CHECK(*late_end - *late == Approx(std::sqrt(240.0 / 7.0) * 7.0 / 12.0).margin(2.0 * dt));
+  CHECK(run.now("Car").speed == Approx(3.0).margin(1e-9));
+  // The acceleration changes by at most 4 m/s^3 up and 3 m/s^3 down, and stays within 5 / 10.
+  double previous = 0.0;
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    const double a = states[run.entity("Car")].acceleration;
+    CHECK(a <= 5.0 + 1e-9);
+    CHECK(a >= -10.0 - 1e-9);
+    CHECK((a - previous) / dt <= 4.0 + 1e-6);
+    CHECK((a - previous) / dt >= -3.0 - 1e-6);
+    previous = a;
   }
 }
 

@@ -189,6 +189,7 @@ std::optional<Trailer> parse_trailer(ParseContext& ctx, const Element* e) {
       object.name = std::visit([](const auto& o) { return o.name; }, object.object);
       object.source = ctx.source(which);
       value.trailer = std::make_shared<const ScenarioObject>(std::move(object));
+      value.named_by_file = false;
       return value;
     }
   }

@@ -2,14 +2,25 @@
 // turn. An entry with a time reaches its speed that many seconds after the previous entry was
 // reached; one without is reached as fast as the dynamic constraints allow (DynamicConstraints,
 // else the entity's Performance). With an entityRef the speeds are deltas to that entity's
-// speed. followingMode `position` changes speed linearly between entries; `follow` with a
-// smooth (cubic, zero acceleration at both ends) transition. Both keep the constraints: the
-// acceleration never exceeds maxAcceleration / maxDeceleration, nor the speed maxSpeed.
+// speed. followingMode `position` changes speed linearly between entries. `follow` applies
+// "jerk (change rate of acceleration/deceleration) and other optional constraints" (1.3
+// SpeedProfileAction): with a maxAccelerationRate or maxDecelerationRate (DynamicConstraints,
+// else the vehicle's Performance) the speed follows a jerk-limited plan made at the start
+// (motion/jerk_profile.h: the lines between the entries with their corners rounded, a single
+// entry reached on time when the limits allow, else late), with an entityRef the deltas taken
+// to that entity's speed at the start; without either rate a smooth (cubic, zero acceleration
+// at both ends) transition per entry. Both modes keep the acceleration within maxAcceleration /
+// maxDeceleration and the speed within maxSpeed.
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
 
 #include "actions/action_makers.h"
 #include "actions/dynamic_limits.h"
+#include "motion/jerk_profile.h"
 #include "motion/transition_shape.h"
 #include "positions/position_common.h"
 #include "state/sim_state.h"
@@ -32,11 +43,20 @@ class SpeedProfileInstance final : public ActionInstance {
     limits_ = speed_limits(entity, action_.constraints);
     done_ = action_.entries.empty();
     begin_entry(context, entity.state.speed);
+    if (!done_ && action_.following_mode == xosc::FollowingMode::kFollow) {
+      plan_jerk_limited(context);
+    }
   }
 
   void step(ActionContext& context) override {
     Entity& entity = context.entity();
     const double dt = context.state.time.dt();
+    if (plan_) {
+      const double elapsed = context.state.time.time(context.state.tick + 1 - entry_tick_);
+      entity.speed_command = limits_.step_toward(entity.state.speed, plan_->speed_at(elapsed), dt);
+      done_ = elapsed >= plan_->end_time() - 1e-9;
+      return;
+    }
     const xosc::SpeedProfileEntry& entry = action_.entries[index_];
     const double target = target_speed(context, entry);
     double speed = target;
@@ -70,6 +90,50 @@ class SpeedProfileInstance final : public ActionInstance {
     entry_tick_ = context.state.tick;
   }
 
+  /// The `follow` plan when a jerk limit is given (DynamicConstraints, else Performance): the
+  /// entries as points (time, speed) from the start, a time-less entry as far on as the
+  /// acceleration limit takes its change. A first entry of time 0 is the current speed (a jump
+  /// is no follow), a later entry of no duration replaces the point before it.
+  void plan_jerk_limited(const ActionContext& context) {
+    const Entity& entity = context.entity();
+    const auto rate = [](const std::optional<double>& given, double performance) {
+      const double r = given && *given > 0.0 ? *given : performance;
+      return r > 0.0 ? r : std::numeric_limits<double>::infinity();
+    };
+    const auto& c = action_.constraints;
+    JerkLimits jerk{
+        limits_.acceleration, limits_.deceleration,
+        rate(c ? c->max_acceleration_rate : std::nullopt, entity.info.max_acceleration_rate),
+        rate(c ? c->max_deceleration_rate : std::nullopt, entity.info.max_deceleration_rate)};
+    if (std::isinf(jerk.acceleration_rate) && std::isinf(jerk.deceleration_rate)) {
+      return;
+    }
+    const double offset = reference_ ? context.state.world.entities[*reference_].state.speed : 0.0;
+    std::vector<SpeedVertex> points{{0.0, entity.state.speed}};
+    for (size_t i = 0; i < action_.entries.size(); ++i) {
+      const xosc::SpeedProfileEntry& entry = action_.entries[i];
+      const double v = std::min(entry.speed + offset, limits_.speed);
+      const double dv = v - points.back().v;
+      double duration = 0.0;
+      if (entry.time && *entry.time > 1e-9) {
+        duration = *entry.time;
+      } else if (entry.time && points.size() > 1) {
+        points.back().v = v;
+        continue;
+      } else if (entry.time && i == 0) {
+        continue;
+      } else if (std::abs(dv) < 1e-9) {
+        continue;
+      } else {
+        duration = std::abs(dv) / (dv > 0.0 ? limits_.acceleration : limits_.deceleration);
+      }
+      points.push_back({points.back().t + duration, v});
+    }
+    const double a0 =
+        std::clamp(entity.state.acceleration, -limits_.deceleration, limits_.acceleration);
+    plan_.emplace(points, a0, jerk);
+  }
+
   double target_speed(const ActionContext& context, const xosc::SpeedProfileEntry& entry) const {
     if (reference_) {
       return context.state.world.entities[*reference_].state.speed + entry.speed;
@@ -80,6 +144,7 @@ class SpeedProfileInstance final : public ActionInstance {
   const xosc::SpeedProfileAction& action_;
   std::optional<uint32_t> reference_;
   SpeedLimits limits_;
+  std::optional<JerkProfile> plan_;
   size_t index_ = 0;
   double entry_speed_ = 0.0;
   int64_t entry_tick_ = 0;

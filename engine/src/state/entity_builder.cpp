@@ -66,6 +66,8 @@ EntityInfo describe_object(const xosc::ScenarioObject& object, Diagnostics& diag
           info.max_speed = o.performance.max_speed;
           info.max_acceleration = o.performance.max_acceleration;
           info.max_deceleration = o.performance.max_deceleration;
+          info.max_acceleration_rate = o.performance.max_acceleration_rate.value_or(0.0);
+          info.max_deceleration_rate = o.performance.max_deceleration_rate.value_or(0.0);
         } else if constexpr (std::is_same_v<T, xosc::Pedestrian>) {
           info.kind = ObjectKind::kPedestrian;
           info.category = pedestrian_category(o.category);
@@ -116,7 +118,9 @@ void build_entities(SimState& state) {
     state.world.entities.push_back(std::move(entity));
   }
   // A trailer defined inside a Vehicle (§6.2.4 Trailer) is an entity of its own, named as its
-  // ScenarioObject (or "<tower>_trailer" when that name is taken), connected at Init. The loop
+  // ScenarioObject (or "<tower>_trailer" when that name is taken), connected at Init. esmini's
+  // form without a ScenarioObject (a <Vehicle> or <CatalogReference> directly in <Trailer>)
+  // names none: such a trailer is "<tower>+", as esmini names it. The loop
   // sees the entities it appends, so a trailer's own trailer is added too.
   for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
     const xosc::ScenarioObject* tower = state.world.entities[i].object;
@@ -126,6 +130,9 @@ void build_entities(SimState& state) {
     Entity trailer;
     trailer.info = describe_object(object, state.diagnostics);
     trailer.object = &object;
+    if (!vehicle->trailer->named_by_file) {
+      trailer.info.name = state.world.entities[i].info.name + "+";
+    }
     if (state.world.by_name.contains(trailer.info.name)) {
       trailer.info.name = state.world.entities[i].info.name + "_trailer";
     }

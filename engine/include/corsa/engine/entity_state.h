@@ -25,6 +25,9 @@ struct EntityInfo {
   double max_speed = 0.0;
   double max_acceleration = 0.0;
   double max_deceleration = 0.0;
+  /// Performance maxAccelerationRate / maxDecelerationRate (m/s^3, 1.2+); zero when not given.
+  double max_acceleration_rate = 0.0;
+  double max_deceleration_rate = 0.0;
 };
 
 /// Road coordinates of an entity's reference point (OpenDRIVE 1.8 §2.3 reference line frame).

@@ -68,6 +68,9 @@ struct ScenarioObject;
 struct Trailer {
   std::shared_ptr<const ScenarioObject> trailer;  ///< set for <Trailer><Trailer ...>
   std::optional<std::string> trailer_ref;         ///< set for <TrailerRef entityRef=...>
+  /// False for esmini's <Vehicle> / <CatalogReference> directly in <Trailer> (a lenient
+  /// reading): no ScenarioObject names the trailer, and `trailer->name` is the vehicle's.
+  bool named_by_file = true;
   Source source;
 };
 
