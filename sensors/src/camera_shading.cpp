@@ -95,7 +95,8 @@ void hit_uv(const ShadingContext& c, const SurfaceHit& h, TexturePoint& tp) {
 
 bool needs_uv(const Material& m) {
   return m.image != nullptr || m.pattern == Pattern::kSignFace || m.pattern == Pattern::kPlate ||
-         m.pattern == Pattern::kAsphalt;  // wheel paths and repairs follow the lanes
+         m.pattern == Pattern::kGlazing ||  // panes: their column, floor and share across
+         m.pattern == Pattern::kAsphalt;    // wheel paths and repairs follow the lanes
 }
 
 /// Whether a material's emission is switched on at this hit.
@@ -310,7 +311,7 @@ SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double foo
                                          (id + 1u) * 0xC2B2AE3Du) &
                    ~kFoldlessSurface;
   s.surface_id = sid == 0 ? 1u : sid;  // 0 is the sky
-  if (m.pattern == Pattern::kFoliage) {
+  if (m.pattern == Pattern::kFoliage || m.pattern == Pattern::kPlaster) {
     s.surface_id |= kFoldlessSurface;
   }
   return s;
