@@ -293,13 +293,17 @@ void add_storey(MeshBuilder& b, const WallPlan& p, const FacadeStyle& s, double 
   }
 }
 
-/// String courses, pilasters, cornice and parapet.
+/// The string course over the ground floor (in the trim), string courses at the floors,
+/// pilasters, cornice and parapet.
 void add_mouldings(MeshBuilder& b, const WallPlan& p, const FacadeStyle& s, double length) {
   const double g = p.ground_h;
   b.material(s.trim);
   if (p.upper_floors > 0) {
     proud_box(b, {0.0, -0.1, g - 0.12}, {length, 0.0, g + 0.08});  // over the ground floor
   }
+  // String courses, pilasters and the cornice are rendered like the wall (their folds are no
+  // anti-aliasing edges; the sun and shade draw them).
+  b.material(s.plaster);
   if (s.ledges) {
     for (int k = 1; k < p.upper_floors; ++k) {
       const double z = g + k * s.floor_h;
@@ -318,7 +322,6 @@ void add_mouldings(MeshBuilder& b, const WallPlan& p, const FacadeStyle& s, doub
     proud_box(b, {-reach, -reach, p.top - s.cornice}, {length + reach, 0.0, p.top});
   }
   if (s.parapet > 0.0) {
-    b.material(s.plaster);
     b.box({0.0, 0.0, p.top}, {length, 0.25, p.top + s.parapet});
     b.material(s.trim);
     b.box({-0.04, -0.04, p.top + s.parapet}, {length + 0.04, 0.29, p.top + s.parapet + 0.06});
