@@ -3,7 +3,9 @@
 // mesh (roofs, walls of other shapes) keeps the flat look it was given.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -23,9 +25,11 @@ struct WallPlane {
   double area = 0.0;
 };
 
-/// Vertical triangles grouped by plane, in the order of their first triangle.
+/// Vertical triangles grouped by plane (normal to 1e-4, offset to a millimetre), in the order
+/// of their first triangle.
 std::vector<WallPlane> vertical_planes(const StaticMesh& mesh) {
   std::vector<WallPlane> planes;
+  std::map<std::array<int64_t, 3>, size_t> index;  // the plane's rounded normal and offset
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
     const Vec3 a = mesh.vertices[tri[0]];
@@ -37,15 +41,15 @@ std::vector<WallPlane> vertical_planes(const StaticMesh& mesh) {
     const double h = std::hypot(c.x, c.y);
     const Vec3 n{c.x / h, c.y / h, 0.0};
     const double offset = n.x * a.x + n.y * a.y;
-    auto it = std::find_if(planes.begin(), planes.end(), [&](const WallPlane& p) {
-      return norm(p.normal - n) < 1e-4 && std::fabs(p.offset - offset) < 1e-3;
-    });
-    if (it == planes.end()) {
+    const std::array<int64_t, 3> key = {std::llround(n.x * 1e4), std::llround(n.y * 1e4),
+                                        std::llround(offset * 1e3)};
+    const auto [it, added] = index.try_emplace(key, planes.size());
+    if (added) {
       planes.push_back({n, offset, {}, 0.0});
-      it = planes.end() - 1;
     }
-    it->triangles.push_back(t);
-    it->area += 0.5 * len;
+    WallPlane& plane = planes[it->second];
+    plane.triangles.push_back(t);
+    plane.area += 0.5 * len;
   }
   return planes;
 }
