@@ -80,6 +80,7 @@ Vec3 smooth_normal(const StaticGeometry& g, const SurfaceHit& h) {
 
 bool needs_uv(const Material& m) {
   return m.image != nullptr || m.pattern == Pattern::kSignFace || m.pattern == Pattern::kPlate ||
+         m.pattern == Pattern::kGlazing ||  // panes: their column, floor and share across
          m.pattern == Pattern::kAsphalt ||  // wheel paths and repairs follow the lanes
          m.pattern == Pattern::kTerrain;    // verges follow the kerbs
 }
@@ -299,7 +300,7 @@ SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double foo
                                          (id + 1u) * 0xC2B2AE3Du) &
                    ~kFoldlessSurface;
   s.surface_id = sid == 0 ? 1u : sid;  // 0 is the sky
-  if (m.pattern == Pattern::kFoliage) {
+  if (m.pattern == Pattern::kFoliage || m.pattern == Pattern::kPlaster) {
     s.surface_id |= kFoldlessSurface;
   }
   return s;

@@ -231,6 +231,80 @@ SurfaceSample roof(const Material& m, const TexturePoint& p) {
   return s;
 }
 
+/// A wall's colour at (a along it, z above the mesh's base): the tone varying over metres and
+/// tens of metres, darker vertical rain streaks.
+Color wall_albedo(const Material& m, const TexturePoint& p, double a, double z) {
+  const double fp = p.footprint;
+  const double wall_tone = 1.0 + 0.16 * (pattern_noise(p, 0, a, z, 6.0, fp) - 0.5) +
+                           0.12 * (pattern_noise(p, 2, a, z, 40.0, fp) - 0.5);
+  const double streaks = smoothstep(0.55, 0.8, pattern_noise(p, 3, a * 6.0, z * 0.25, 30.0, fp));
+  return m.base_color * wall_tone * (1.0 - 0.12 * streaks);
+}
+
+/// Walls without painted windows; horizontal faces (the heads and bottoms of window reveals)
+/// in the wall's tone.
+SurfaceSample plaster(const Material& m, const TexturePoint& p) {
+  const Plane q = plane_of(p, m.seed);
+  SurfaceSample s = base(m);
+  s.albedo = wall_albedo(m, p, q.a, p.position.z - p.base_z);
+  return s;
+}
+
+/// A window pane: the frame around it with its mullions and transom, and behind the glass a
+/// dark room, curtains drawn to the sides, a blind part lowered or net curtains, chosen per
+/// window (the uv's integer parts); some rooms lit at night.
+SurfaceSample glazing(const Material& m, const TexturePoint& p) {
+  SurfaceSample s = base(m);
+  const double w = std::max(0.2, m.params[0]);
+  const double h = std::max(0.2, m.params[1]);
+  const double col = std::floor(p.u);
+  const double row = std::floor(p.v);
+  const double x = (p.u - col) * w;  // metres across the pane from its left edge
+  const double z = (p.v - row) * h;  // metres up from its bottom
+  const double fp = p.footprint;
+  const auto cx = static_cast<int64_t>(col);
+  const auto cy = static_cast<int64_t>(row);
+  constexpr double kFrame = 0.06;  // m, frame and bar widths
+  const double inside =
+      box_coverage(x, kFrame, w - kFrame, fp) * box_coverage(z, kFrame, h - kFrame, fp);
+  double bars = 0.0;
+  const int mullions = static_cast<int>(std::clamp(m.params[2], 0.0, 3.0));
+  for (int k = 1; k <= mullions; ++k) {
+    const double at = k * w / (mullions + 1);
+    bars = either(bars, box_coverage(x, at - 0.5 * kFrame, at + 0.5 * kFrame, fp));
+  }
+  if (m.params[3] > 0.0) {
+    const double at = h * (1.0 - m.params[3]);
+    bars = either(bars, box_coverage(z, at - 0.5 * kFrame, at + 0.5 * kFrame, fp));
+  }
+  const double glass = inside * (1.0 - bars);
+  const double pick = cell_random(cx, cy, m.seed ^ 0xC0u);
+  const double shade = cell_random(cx, cy, m.seed ^ 0xC1u);
+  static constexpr Color kFabrics[] = {
+      {0.62, 0.6, 0.55}, {0.55, 0.47, 0.36}, {0.4, 0.4, 0.42}, {0.7, 0.68, 0.64}};
+  const Color fabric = kFabrics[static_cast<size_t>(shade * 4.0) % 4];
+  double cloth = 0.0;
+  if (pick < 0.3) {  // curtains drawn to both sides
+    const double open = (0.15 + 0.15 * shade) * w;
+    cloth = either(box_coverage(x, 0.0, open, fp), box_coverage(x, w - open, w, fp));
+  } else if (pick < 0.45) {  // a blind lowered part of the way
+    cloth = box_coverage(z, h * (0.3 + 0.5 * shade), h, fp);
+  } else if (pick < 0.55) {  // net curtains: the room shows faintly through
+    cloth = 0.7;
+  }
+  const Color room = m.base_color * (0.7 + 0.8 * cell_random(cx, cy, m.seed ^ 0xC2u));
+  s.albedo = mix(m.secondary, mix(room, fabric, cloth), glass);
+  s.roughness = lerp(0.55, 0.04, glass);
+  // Lit rooms at night: warm or cool light, 60-250 cd/m^2 as lit interiors seen through glass
+  // are (renderer radiance unit: kNitsPerUnit, about 32 kcd/m^2); through cloth a dimmer glow.
+  if (p.darkness > 0.0 && cell_random(cx, cy, m.seed ^ 0xC3u) < 0.3) {
+    const double tint = cell_random(cx, cy, m.seed ^ 0xC4u);
+    const Color light = tint < 0.6 ? Color{1.0, 0.72, 0.42} : Color{0.75, 0.85, 1.0};
+    s.emission = light * ((0.002 + 0.006 * tint) * glass * (1.0 - 0.5 * cloth) * p.darkness);
+  }
+  return s;
+}
+
 SurfaceSample facade(const Material& m, const TexturePoint& p) {
   const Plane q = plane_of(p, m.seed);
   if (!q.wall) {
@@ -244,12 +318,7 @@ SurfaceSample facade(const Material& m, const TexturePoint& p) {
   const double share_y = std::clamp(m.params[2], 0.2, 0.8);
   const double ground = std::max(0.0, m.params[3]);
   const double z = p.position.z - p.base_z;
-  const double wall_tone = 1.0 + 0.16 * (pattern_noise(p, 0, q.a, z, 6.0, fp) - 0.5) +
-                           0.12 * (pattern_noise(p, 2, q.a, z, 40.0, fp) - 0.5);
-  Color wall = m.base_color * wall_tone;
-  // Rain streaks under windows and at the top: darker vertical stains.
-  wall = wall *
-         (1.0 - 0.12 * smoothstep(0.55, 0.8, pattern_noise(p, 3, q.a * 6.0, z * 0.25, 30.0, fp)));
+  const Color wall = wall_albedo(m, p, q.a, z);
   double glass = 0.0;
   double frame = 0.0;
   double lit = 0.0;
@@ -465,6 +534,10 @@ SurfaceSample sample_surface(const Material& m, const TexturePoint& p) {
       return facade(m, p);
     case Pattern::kRoof:
       return roof(m, p);
+    case Pattern::kPlaster:
+      return plaster(m, p);
+    case Pattern::kGlazing:
+      return glazing(m, p);
     case Pattern::kFoliage:
       return foliage(m, p);
     case Pattern::kGrass:

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "facade.h"
 #include "material_defaults.h"
 #include "noise_tile.h"
 #include "scene_data.h"
@@ -317,6 +318,15 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
   }
   if (mesh.triangles.empty()) {
     return mesh.instance_id;
+  }
+  if (mesh.materials.empty() && mesh.color && mesh.classes.size() == 1 &&
+      mesh.classes[0] == SemanticClass::kBuilding) {
+    // Its rectangular walls become facades in real geometry (recessed windows, ledges, shop
+    // fronts); the roof and other walls keep the facade pattern tinted by its colour.
+    const Material rest = tinted_facade(*mesh.color, mesh.instance_id);
+    const uint64_t seed =
+        derive_seed(d.options.seed, "building facade " + std::to_string(mesh.instance_id));
+    mesh = detail::dress_building(std::move(mesh), rest, seed);
   }
   RTCGeometry geom = make_triangles(d.device, mesh, d.options.origin);
   const unsigned id = rtcAttachGeometry(d.static_scene, geom);

@@ -89,9 +89,10 @@ struct SurfacePoint {
   uint32_t surface_id = 0;  ///< the same for samples of one object and material (AA reuse)
 };
 
-/// The bit of SurfacePoint::surface_id set on foliage: its facets stand for clumps of leaves,
-/// so a fold between two of them is no edge to anti-alias (camera_edges.cpp); outlines and
-/// depth steps still are. The other 31 bits are the surface's hash.
+/// The bit of SurfacePoint::surface_id set on foliage and on facade walls: foliage's facets
+/// stand for clumps of leaves and a wall's folds into its window reveals are soft in shade, so a
+/// fold between two of them is no edge to anti-alias (camera_edges.cpp); outlines, depth steps
+/// and other materials (panes, sills) still are. The other 31 bits are the surface's hash.
 inline constexpr uint32_t kFoldlessSurface = 0x80000000u;
 
 /// Radiance of a sample = base + sun * sun visibility + sky (x) sky visibility + lights *

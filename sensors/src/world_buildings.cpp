@@ -4,8 +4,8 @@
 // building drawn from the run seed and the road: a terraced house (two to four floors, pitched
 // tiled roof, front doors with steps), a block of flats or offices (four to nine floors, shop
 // fronts on the ground floor, an entrance, a flat roof with a plant room) or a low shop (one or
-// two floors, shop fronts under an awning). Facades are the procedural facade pattern with the
-// colour, floor height, bay width and window sizes of that building, so no two are alike. A
+// two floors, shop fronts under awnings). Facades are real geometry (facade.h: recessed windows,
+// ledges, cornices, balconies, shop fronts) in a style drawn per building, so no two are alike. A
 // lot is left empty where it would touch a lane of any road, another building (the map's
 // models, its objects or one generated before), a prop, or lie within 12 m of a junction.
 
@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 
+#include "facade.h"
 #include "world_build.h"
 
 namespace corsa::sensors::detail {
@@ -60,8 +61,8 @@ Color jitter(RandomStream& rng, Color c, double amount) {
   return Color{c.r * k * rng.uniform(0.97, 1.03), c.g * k, c.b * k * rng.uniform(0.97, 1.03)};
 }
 
-/// The facade of one building: colour, trim, floor height, bays and windows from its stream.
-Material facade_material(RandomStream& rng, double floor_h, double ground_h, uint32_t seed) {
+/// The wall colour of one building, from its stream.
+Color wall_colour(RandomStream& rng) {
   static constexpr std::array<std::array<uint8_t, 3>, 10> kWalls = {{{225, 215, 190},
                                                                      {232, 230, 222},
                                                                      {205, 185, 150},
@@ -74,39 +75,7 @@ Material facade_material(RandomStream& rng, double floor_h, double ground_h, uin
                                                                      {150, 160, 140}}};
   const auto& w =
       kWalls[static_cast<size_t>(rng.uniform_int(0, static_cast<int64_t>(kWalls.size()) - 1))];
-  Material m = materials::plain("generated facade", linear_rgb(w[0], w[1], w[2]), 0.85);
-  m.base_color = jitter(rng, m.base_color, 0.08);
-  m.pattern = Pattern::kFacade;
-  m.pattern_scale = floor_h;
-  m.params = {rng.uniform(2.3, 4.0), rng.uniform(0.35, 0.65), rng.uniform(0.38, 0.6), ground_h};
-  const double trim = rng.uniform01();
-  m.secondary = trim < 0.4    ? linear_rgb(58, 56, 54)
-                : trim < 0.75 ? linear_rgb(218, 215, 208)
-                              : linear_rgb(108, 78, 58);
-  m.seed = seed;
-  return m;
-}
-
-Material door_material(RandomStream& rng, bool glazed) {
-  if (glazed) {
-    return materials::plain("generated glazed door", linear_rgb(20, 24, 28), 0.1);
-  }
-  static constexpr std::array<std::array<uint8_t, 3>, 6> kDoors = {
-      {{70, 45, 30}, {40, 70, 50}, {40, 55, 90}, {120, 30, 30}, {30, 30, 30}, {220, 220, 215}}};
-  const auto& d =
-      kDoors[static_cast<size_t>(rng.uniform_int(0, static_cast<int64_t>(kDoors.size()) - 1))];
-  return materials::plain("generated door", linear_rgb(d[0], d[1], d[2]), 0.5);
-}
-
-/// A door of `width` on the front face (y = 0, the street at -dir) at x, with a step.
-void add_door(MeshBuilder& b, RandomStream& rng, double x, double width, double dir, bool glazed) {
-  const double h = glazed ? 2.4 : rng.uniform(2.05, 2.3);
-  b.material(door_material(rng, glazed));
-  b.box({x - 0.5 * width, std::min(0.0, -0.06 * dir), 0.0},
-        {x + 0.5 * width, std::max(0.0, -0.06 * dir), h});
-  b.material(materials::plain("generated step", linear_rgb(150, 148, 142), 0.9));
-  b.box({x - 0.5 * width - 0.2, std::min(0.0, -0.45 * dir), 0.0},
-        {x + 0.5 * width + 0.2, std::max(0.0, -0.45 * dir), 0.16});
+  return jitter(rng, linear_rgb(w[0], w[1], w[2]), 0.08);
 }
 
 /// A pitched roof over [0, w] x [0, d dir] from the eaves at `eave` metres, ridge along x.
@@ -145,46 +114,50 @@ void add_pitched_roof(MeshBuilder& b, RandomStream& rng, const Material& walls, 
 }
 
 /// One building filling a lot of frontage `w` and depth `d` (local frame: front face along +x
-/// at y = 0, the building towards y dir, ground at z = 0).
+/// at y = 0, the building towards y dir, ground at z = 0): four facade walls (shop fronts and
+/// entrances on the front), a flat roof with a plant room or a pitched roof with gables.
 ArticulatedMesh make_building(RandomStream& rng, Kind kind, double w, double d, double dir,
                               uint32_t seed) {
   MeshBuilder b;
   b.semantic(SemanticClass::kBuilding);
-  const double floor_h = rng.uniform(2.8, 3.4);
+  FacadeBrief brief;
+  brief.floor_h = rng.uniform(2.8, 3.4);
   const bool shops = kind == Kind::kShop || (kind == Kind::kBlock && rng.uniform01() < 0.6);
-  const double ground_h = shops ? rng.uniform(3.8, 4.6) : 0.0;
+  brief.ground_h = shops ? rng.uniform(3.8, 4.6) : 0.0;
   const int floors = kind == Kind::kHouse   ? static_cast<int>(rng.uniform_int(2, 4))
                      : kind == Kind::kBlock ? static_cast<int>(rng.uniform_int(4, 9))
                                             : static_cast<int>(rng.uniform_int(1, 2));
-  const double height = shops ? ground_h + (floors - 1) * floor_h : floors * floor_h;
-  const Material walls = facade_material(rng, floor_h, ground_h, seed);
-  const double y_lo = std::min(0.0, d * dir), y_hi = std::max(0.0, d * dir);
-  b.material(walls);
-  b.box({0.0, y_lo, -0.3}, {w, y_hi, height});  // 0.3 m foundation below the ground
+  const double height =
+      shops ? brief.ground_h + (floors - 1) * brief.floor_h : floors * brief.floor_h;
+  brief.wall = wall_colour(rng);
+  brief.flat_roof = kind != Kind::kHouse;
+  brief.seed = seed;
+  const FacadeStyle style = draw_facade_style(rng, brief);
+  // The footprint's corners anticlockwise seen from above (the outside on the right of each
+  // wall); the front wall first.
+  std::array<Vec3, 4> ring = {Vec3{0.0, 0.0, 0.0}, Vec3{w, 0.0, 0.0}, Vec3{w, d * dir, 0.0},
+                              Vec3{0.0, d * dir, 0.0}};
+  if (dir < 0.0) {
+    ring = {ring[1], ring[0], ring[3], ring[2]};
+  }
+  for (size_t i = 0; i < 4; ++i) {
+    add_facade_wall(b, {.a = ring[i], .b = ring[(i + 1) % 4], .height = height, .street = i == 0},
+                    style, rng);
+  }
   if (kind == Kind::kHouse) {
-    add_pitched_roof(b, rng, walls, w, d, dir, height);
-    // A front door per house of about 6 m frontage (a terrace of houses in one block).
-    const int doors = std::max(1, static_cast<int>(w / 6.0));
-    for (int i = 0; i < doors; ++i) {
-      const double x = (i + rng.uniform(0.25, 0.75)) * w / doors;
-      add_door(b, rng, x, rng.uniform(0.95, 1.15), dir, false);
-    }
+    add_pitched_roof(b, rng, style.plaster, w, d, dir, height);
   } else {
-    // The entrance (glazed in a shop front), an awning over shop fronts, a plant room on top.
-    const double x = rng.uniform(0.2, 0.8) * w;
-    add_door(b, rng, x, shops ? rng.uniform(1.6, 2.2) : rng.uniform(1.2, 1.8), dir, shops);
-    if (shops && rng.uniform01() < 0.7) {
-      static constexpr std::array<std::array<uint8_t, 3>, 4> kAwnings = {
-          {{150, 30, 30}, {30, 80, 60}, {40, 50, 110}, {200, 160, 60}}};
-      const auto& a = kAwnings[static_cast<size_t>(
-          rng.uniform_int(0, static_cast<int64_t>(kAwnings.size()) - 1))];
-      b.material(materials::plain("generated awning", linear_rgb(a[0], a[1], a[2]), 0.9));
-      const double reach = rng.uniform(0.9, 1.5);
-      b.box({0.2, std::min(0.0, -reach * dir), ground_h - 0.85},
-            {w - 0.2, std::max(0.0, -reach * dir), ground_h - 0.75});
+    Material roof = materials::plain("generated flat roof", linear_rgb(90, 90, 90), 0.95);
+    roof.pattern = Pattern::kRoof;
+    roof.seed = seed;
+    b.material(roof);
+    std::vector<Vec3> top;
+    for (const Vec3& c : ring) {
+      top.push_back(c + Vec3{0.0, 0.0, height});
     }
+    b.polygon(top, {});
     if (kind == Kind::kBlock && w > 8.0 && d > 8.0) {
-      b.material(walls);
+      b.material(style.plaster);
       const double cx = rng.uniform(0.3, 0.7) * w, cy = rng.uniform(0.35, 0.65) * d * dir;
       b.box({cx - 2.0, cy - 2.0, height}, {cx + 2.0, cy + 2.0, height + rng.uniform(2.0, 3.0)});
     }

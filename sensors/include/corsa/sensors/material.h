@@ -42,6 +42,11 @@ enum class Pattern : uint8_t {
   kPlate,      ///< licence plate: characters in secondary on the base colour, from uv
   kMetalGrid,  ///< louvres and grilles: dark slots across a metal part
   kPaint,      ///< road paint worn down to the asphalt (secondary) in patches
+  kPlaster,    ///< walls without painted windows (the facade generator's are geometry), and
+               ///< their window reveals
+  kGlazing,    ///< window panes from uv (u: column + share across, v: floor + share up);
+               ///< params {pane width m, pane height m, mullions, transom share from the top};
+               ///< base_color the room behind, secondary the frame
 };
 
 /// What switches a material's emission on.
