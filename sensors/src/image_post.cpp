@@ -100,7 +100,7 @@ ToneLanes aces_lanes(ToneLanes x) {
 /// kept) instead of each by itself, which runs every channel of a warm shop window or a coloured
 /// lamp's halo into the same white. Film and camera curves keep such colour a few stops above
 /// white; far above it (5 to 10 stops: lamp filaments, the sun) the core burns out to white
-/// again, as on a photograph.
+/// again, as on a photograph, and so do highlights that are nearly white already.
 constexpr double kHueKnee = 1.0;
 
 /// The tone curve of one pixel: aces() of each channel below the knee; above it, blended
@@ -111,8 +111,12 @@ void keep_highlight_hue(const double v[3], double a[3]) {
   if (m <= kHueKnee) {
     return;
   }
+  // Near-white highlights (the warm sun glinting on white paint, a cool-white room) go to white
+  // as before, as a camera balanced for the light shows them; coloured ones keep their hue.
+  const double saturation = 1.0 - std::max(std::min({v[0], v[1], v[2]}), 0.0) / m;
   const double keep = smoothstep(kHueKnee, 4.0 * kHueKnee, m) *
-                      (1.0 - smoothstep(5.0, 10.0, std::log2(m / kHueKnee)));
+                      (1.0 - smoothstep(5.0, 10.0, std::log2(m / kHueKnee))) *
+                      smoothstep(0.15, 0.45, saturation);
   const double together = aces(m) / m;
   for (int k = 0; k < 3; ++k) {
     a[k] += (std::max(v[k], 0.0) * together - a[k]) * keep;
