@@ -77,6 +77,33 @@ TEST_CASE("a city's night sky is a dark glow, brighter towards the horizon",
   CHECK(low_colour.r > low_colour.b);
 }
 
+TEST_CASE("a street lamp throws its light along the road: a pool beneath, no dark gap between",
+          "[sensors][camera][lights]") {
+  detail::Light lamp;
+  lamp.position = {0.0, 0.0, 7.5};
+  lamp.axis = {0.0, 0.0, -1.0};
+  lamp.intensity = Color{0.03, 0.03, 0.03};  // a 3,000 cd peak
+  lamp.radius = 0.2;
+  lamp.range = 60.0;
+  lamp.pattern = detail::LightPattern::kStreetLamp;
+  // A batwing: brighter 65 degrees from the vertical than straight down, dark above 88.
+  const double down = intensity_towards(lamp, {0.0, 0.0, 0.0});
+  const double slant = intensity_towards(lamp, {7.5 * std::tan(65.0 * M_PI / 180.0), 0.0, 0.0});
+  CHECK(slant > 1.5 * down);
+  CHECK(intensity_towards(lamp, {300.0, 0.0, 0.0}) == 0.0);
+  // Lux on the road under the lamp and half-way to the next (30 m on): the two lamps' light
+  // there is at least a quarter of the pool's (it was an eighth with the light straight down).
+  auto lux = [&](Vec3 p) {
+    const detail::LightSample s = detail::illuminate(lamp, p);
+    return luminance(s.irradiance) * s.direction.z * 100000.0;
+  };
+  const double pool = lux({0.0, 0.0, 0.0}) + 2.0 * lux({30.0, 0.0, 0.0});
+  const double between = 2.0 * lux({15.0, 0.0, 0.0});
+  INFO("lux under the lamp " << pool << ", half-way " << between);
+  CHECK(pool > between);
+  CHECK(between > 0.25 * pool);
+}
+
 TEST_CASE("highlights past white keep their hue and burn out to white far above it",
           "[sensors][camera][tone]") {
   RgbOptions options;
