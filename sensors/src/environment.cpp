@@ -244,10 +244,12 @@ Lighting compute_lighting(const engine::EnvironmentState& env, const GeoLocation
   const double per_kcd = 1000.0 / kNitsPerUnit;
   sky.clear_scale = per_kcd * fade * scale;
   sky.twilight_tint = {0.55, 0.75, 1.45};
-  // Night: city light scattered back by the air (tens of mcd/m^2; clouds reflect more).
+  // Night: city light scattered back by the air. Over a city centre a clear night sky is some
+  // 100 times the natural sky (0.17 mcd/m^2) overhead, about 20 mcd/m^2 (17 mag/arcsec^2), and
+  // ten times that in the light dome near the horizon; clouds reflect more.
   const double glow = (1.0 + 4.0 * clouds) / kNitsPerUnit;
-  sky.glow_zenith = Color{0.5, 0.5, 0.6} * (0.01 * glow);
-  sky.glow_horizon = Color{1.0, 0.72, 0.45} * (0.04 * glow);
+  sky.glow_zenith = Color{0.5, 0.5, 0.6} * (0.038 * glow);
+  sky.glow_horizon = Color{1.0, 0.72, 0.45} * (0.25 * glow);
   // What the clear sky alone gives, to size the overcast sky and the ground.
   const double clear_sky_up = luminance(project_sky(sky)({0.0, 0.0, 1.0}));
   const double clear_global = clear_sky_up + luminance(clear_sun) * sin_el;

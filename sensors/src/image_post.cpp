@@ -10,6 +10,7 @@
 
 #include "corsa/core/random.h"
 #include "fast_normal.h"
+#include "scalar_math.h"
 #include "shading.h"
 
 namespace corsa::sensors::detail {
@@ -94,9 +95,37 @@ ToneLanes aces_lanes(ToneLanes x) {
   return y < 0.0 ? 0.0 : (1.0 < y ? 1.0 : y);  // std::clamp(y, 0.0, 1.0)
 }
 
+/// Highlights keep their hue: where a pixel's brightest channel passes white (the curve's 0.8),
+/// its channels are compressed together by the curve of that brightest channel (their ratios
+/// kept) instead of each by itself, which runs every channel of a warm shop window or a coloured
+/// lamp's halo into the same white. Film and camera curves keep such colour a few stops above
+/// white; far above it (5 to 10 stops: lamp filaments, the sun) the core burns out to white
+/// again, as on a photograph, and so do highlights that are nearly white already.
+constexpr double kHueKnee = 1.0;
+
+/// The tone curve of one pixel: aces() of each channel below the knee; above it, blended
+/// towards the same compression for all three channels. `v` is the exposed pixel, `a` its
+/// channels through aces() (the curve of each channel alone), overwritten.
+void keep_highlight_hue(const double v[3], double a[3]) {
+  const double m = std::max({v[0], v[1], v[2]});
+  if (m <= kHueKnee) {
+    return;
+  }
+  // Near-white highlights (the warm sun glinting on white paint, a cool-white room) go to white
+  // as before, as a camera balanced for the light shows them; coloured ones keep their hue.
+  const double saturation = 1.0 - std::max(std::min({v[0], v[1], v[2]}), 0.0) / m;
+  const double keep = smoothstep(kHueKnee, 4.0 * kHueKnee, m) *
+                      (1.0 - smoothstep(5.0, 10.0, std::log2(m / kHueKnee))) *
+                      smoothstep(0.15, 0.45, saturation);
+  const double together = aces(m) / m;
+  for (int k = 0; k < 3; ++k) {
+    a[k] += (std::max(v[k], 0.0) * together - a[k]) * keep;
+  }
+}
+
 /// One row of development without sensor noise: each value times its pixel's exposure and
 /// vignetting `scale`, through the tone curve two at a time, encoded by `table` (as the loop of
-/// develop() with noise, value for value).
+/// develop() with noise, value for value); pixels past the knee again, a pixel at a time.
 void develop_clean_row(const float* in, const double* scale, int width, const uint8_t* table,
                        uint8_t* out) {
   const int n = 3 * width;
@@ -110,6 +139,19 @@ void develop_clean_row(const float* in, const double* scale, int width, const ui
   }
   for (; i < n; ++i) {
     out[i] = encode(aces(in[i] * scale[i / 3]));
+  }
+  for (int col = 0; col < width; ++col) {
+    const float* p = in + 3 * col;
+    const double s = scale[col];
+    const double v[3] = {p[0] * s, p[1] * s, p[2] * s};
+    if (v[0] <= kHueKnee && v[1] <= kHueKnee && v[2] <= kHueKnee) {
+      continue;
+    }
+    double a[3] = {aces(v[0]), aces(v[1]), aces(v[2])};
+    keep_highlight_hue(v, a);
+    for (int k = 0; k < 3; ++k) {
+      out[3 * col + k] = encode(a[k]);
+    }
   }
 }
 
@@ -308,8 +350,9 @@ std::vector<uint8_t> develop(const std::vector<float>& linear, int width, int he
       for (int col = 0; col < width; ++col) {
         const double scale = scales[col];
         const size_t i0 = first + 3 * static_cast<size_t>(col);
-        for (size_t i = i0; i < i0 + 3; ++i) {
-          double v = linear[i] * scale;
+        double v[3], a[3];
+        for (int k = 0; k < 3; ++k) {
+          v[k] = linear[i0 + k] * scale;
           // Irwin-Hall: the sum of four 16-bit uniforms, rescaled, is close to a unit normal
           // and costs one 64-bit draw (image noise need not be exactly Gaussian).
           // (Summed as integers: below 2^18, every partial sum is exact in a double too.)
@@ -317,8 +360,12 @@ std::vector<uint8_t> develop(const std::vector<float>& linear, int width, int he
           const double s = static_cast<double>((bits & 0xFFFF) + ((bits >> 16) & 0xFFFF) +
                                                ((bits >> 32) & 0xFFFF) + (bits >> 48));
           const double z = (s / 65536.0 - 2.0) * std::sqrt(3.0);
-          v += z * std::sqrt(std::max(0.0, v) * shot + read * read);
-          out[i] = table[static_cast<size_t>(aces(v) * 4096.0 + 0.5)];
+          v[k] += z * std::sqrt(std::max(0.0, v[k]) * shot + read * read);
+          a[k] = aces(v[k]);
+        }
+        keep_highlight_hue(v, a);
+        for (int k = 0; k < 3; ++k) {
+          out[i0 + k] = table[static_cast<size_t>(a[k] * 4096.0 + 0.5)];
         }
       }
     }

@@ -63,9 +63,16 @@ Color rgb_color(const std::array<double, 3>& c) { return Color{c[0], c[1], c[2]}
 double pattern_gain(const Light& l, Vec3 d) {
   const double c = dot(d, l.axis);
   switch (l.pattern) {
-    case LightPattern::kStreetLamp:
-      // 0.35 + 0.65 cos inside 80 degrees, fading to nothing at 88.
-      return c <= 0.03 ? 0.0 : (0.35 + 0.65 * c) * smoothstep(0.03, 0.17, c);
+    case LightPattern::kStreetLamp: {
+      // A batwing, as street lanterns are built to throw their light along the road and even
+      // out the pools: half the peak straight down, rising with the sine squared of the angle
+      // from the vertical to the peak at 70-75 degrees, fading to nothing at 88.
+      if (c <= 0.03) {
+        return 0.0;
+      }
+      const double s2 = 1.0 - c * c;
+      return (0.5 + 0.5 * s2 / 0.9) / 1.04 * smoothstep(0.03, 0.25, c);
+    }
     case LightPattern::kLowBeam: {
       if (c <= 0.0) {
         return 0.0;

@@ -109,7 +109,9 @@ void SkyModel::tabulate() {
 }
 
 Color SkyModel::radiance_above(double cos_theta, double cos_gamma) const {
-  Color c = glow_horizon + (glow_zenith + glow_horizon * -1.0) * std::sqrt(cos_theta);
+  // The city's glow: a dome of light low over the horizon (the light scattered towards the
+  // camera through the most air), fading to the zenith's within some 30 degrees.
+  Color c = mix(glow_zenith, glow_horizon, std::exp(-cos_theta / 0.25));
   if (clear_scale > 0.0) {
     double x = 0.0, y = 0.0, Y = 0.0;
     clear.xyY(std::acos(cos_theta), std::acos(cos_gamma), x, y, Y);

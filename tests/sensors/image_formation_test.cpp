@@ -12,6 +12,7 @@
 #include "corsa/sensors/camera_render.h"
 #include "fixtures.h"
 #include "light_list.h"
+#include "shading.h"
 
 using namespace corsa::sensors;
 using corsa::sensors::detail::luminance;
@@ -55,6 +56,91 @@ TEST_CASE("a clear noon sky is blue overhead and a setting sun turns the horizon
   CHECK(noon_warmth > 1.0);
   CHECK(noon_warmth < 1.5);
   CHECK(sunset.sun.r / sunset.sun.b > 2.0 * noon_warmth);
+}
+
+TEST_CASE("a city's night sky is a dark glow, brighter towards the horizon",
+          "[sensors][camera][sky][night]") {
+  const Lighting night = sun_at(M_PI, -0.4);
+  const double zenith = luminance(night.sky_model.radiance({0.0, 0.0, 1.0})) * kNitsPerUnit;
+  const double high =
+      luminance(night.sky_model.radiance(normalized(Vec3{0.0, 1.0, 1.0}))) * kNitsPerUnit;
+  const Color low_colour = night.sky_model.radiance(normalized(Vec3{0.0, 1.0, 0.05}));
+  const double low = luminance(low_colour) * kNitsPerUnit;
+  INFO("cd/m^2: zenith " << zenith << ", 45 degrees " << high << ", 3 degrees " << low);
+  // A city centre's clear night sky: some 100 times the natural 0.17 mcd/m^2 overhead, several
+  // times that in the light dome low over the horizon, warm from the street lamps.
+  CHECK(zenith > 0.008);
+  CHECK(zenith < 0.05);
+  CHECK(high > zenith);
+  CHECK(low > 4.0 * high);
+  CHECK(low < 0.5);
+  CHECK(low_colour.r > low_colour.b);
+}
+
+TEST_CASE("a street lamp throws its light along the road: a pool beneath, no dark gap between",
+          "[sensors][camera][lights]") {
+  detail::Light lamp;
+  lamp.position = {0.0, 0.0, 7.5};
+  lamp.axis = {0.0, 0.0, -1.0};
+  lamp.intensity = Color{0.03, 0.03, 0.03};  // a 3,000 cd peak
+  lamp.radius = 0.2;
+  lamp.range = 60.0;
+  lamp.pattern = detail::LightPattern::kStreetLamp;
+  // A batwing: brighter 65 degrees from the vertical than straight down, dark above 88.
+  const double down = intensity_towards(lamp, {0.0, 0.0, 0.0});
+  const double slant = intensity_towards(lamp, {7.5 * std::tan(65.0 * M_PI / 180.0), 0.0, 0.0});
+  CHECK(slant > 1.5 * down);
+  CHECK(intensity_towards(lamp, {300.0, 0.0, 0.0}) == 0.0);
+  // Lux on the road under the lamp and half-way to the next (30 m on): the two lamps' light
+  // there is at least a quarter of the pool's (it was an eighth with the light straight down).
+  auto lux = [&](Vec3 p) {
+    const detail::LightSample s = detail::illuminate(lamp, p);
+    return luminance(s.irradiance) * s.direction.z * 100000.0;
+  };
+  const double pool = lux({0.0, 0.0, 0.0}) + 2.0 * lux({30.0, 0.0, 0.0});
+  const double between = 2.0 * lux({15.0, 0.0, 0.0});
+  INFO("lux under the lamp " << pool << ", half-way " << between);
+  CHECK(pool > between);
+  CHECK(between > 0.25 * pool);
+}
+
+TEST_CASE("highlights past white keep their hue and burn out to white far above it",
+          "[sensors][camera][tone]") {
+  RgbOptions options;
+  options.noise = false;
+  options.vignetting = 0.0;
+  detail::Exposure exposure;
+  exposure.scale = 1.0;
+  // Four pixels, exposed: a mid grey, a warm lit window 13 times white, a red lamp's halo and
+  // a lamp's core 2,000 times white.
+  const std::vector<float> linear = {0.18f, 0.18f, 0.18f, 13.0f,   9.0f,    5.0f,
+                                     6.0f,  0.6f,  0.3f,  2000.0f, 1500.0f, 900.0f};
+  for (const bool noise : {false, true}) {
+    options.noise = noise;
+    const std::vector<uint8_t> out = detail::develop(linear, 4, 1, options, exposure, 7);
+    INFO("noise " << noise << ": window " << int(out[3]) << ", " << int(out[4]) << ", "
+                  << int(out[5]) << "; halo " << int(out[6]) << ", " << int(out[7]) << ", "
+                  << int(out[8]) << "; core " << int(out[9]) << ", " << int(out[10]) << ", "
+                  << int(out[11]));
+    // Mid grey stays grey and mid-tone.
+    CHECK(std::abs(out[0] - out[1]) <= 2);
+    CHECK(out[0] > 60);
+    CHECK(out[0] < 160);
+    // The window: its brightest channel at white, the others short of it, in their order (the
+    // channels compressed one by one all come out at 255).
+    CHECK(out[3] >= 250);
+    CHECK(out[5] < 235);
+    CHECK(out[3] > out[4]);
+    CHECK(out[4] > out[5]);
+    // The red halo stays red.
+    CHECK(out[6] >= 245);
+    CHECK(out[7] < 150);
+    CHECK(out[8] < out[7]);
+    // The core burns out.
+    CHECK(out[9] == 255);
+    CHECK(out[10] == 255);
+    CHECK(out[11] == 255);
+  }
 }
 
 TEST_CASE("the tabulated sky reads within 1% of the evaluated one", "[sensors][camera][sky]") {

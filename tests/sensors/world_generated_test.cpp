@@ -168,7 +168,7 @@ TEST_CASE("a lit street at night is far darker than at noon under auto exposure"
   const double noon_luma = mean_luma(noon);
   const double night_luma = mean_luma(night);
   INFO("mean 8-bit luma: noon " << noon_luma << ", night " << night_luma);
-  // Measured: 134 at noon, 53 at night (117 under the exposure that lifted night towards day).
+  // Measured: 134 at noon, 52 at night (117 under the exposure that lifted night towards day).
   CHECK(night_luma < 0.45 * noon_luma);
   // The night sky is black, not a dim grey.
   double sky = 0.0;
@@ -181,4 +181,30 @@ TEST_CASE("a lit street at night is far darker than at noon under auto exposure"
   }
   REQUIRE(sky_pixels > 100);
   CHECK(sky / sky_pixels < 20.0);
+  // ... nor black: the city's glow, brighter in the sky's lowest rows than in its highest.
+  CHECK(sky / sky_pixels > 3.0);
+  const int width = wide_camera().width;
+  std::vector<std::pair<int, double>> rows;  // (row, mean green) of rows with 20+ sky pixels
+  for (int row = 0; row < wide_camera().height; ++row) {
+    double sum = 0.0;
+    int n = 0;
+    for (int col = 0; col < width; ++col) {
+      const size_t i = static_cast<size_t>(row) * width + col;
+      if (night.semantic[i] == static_cast<uint8_t>(SemanticClass::kSky)) {
+        sum += night.rgb[3 * i + 1];
+        ++n;
+      }
+    }
+    if (n >= 20) {
+      rows.emplace_back(row, sum / n);
+    }
+  }
+  REQUIRE(rows.size() >= 20);
+  double top = 0.0, bottom = 0.0;
+  for (size_t k = 0; k < 10; ++k) {
+    top += rows[k].second / 10.0;
+    bottom += rows[rows.size() - 1 - k].second / 10.0;
+  }
+  INFO("sky green, highest 10 rows " << top << ", lowest 10 " << bottom);
+  CHECK(bottom > top + 1.0);
 }
