@@ -76,9 +76,10 @@ std::vector<std::string> lamps(const json& object) {
 
 }  // namespace
 
-TEST_CASE("Camera labels give a braking car's brake lamps and its flashing green indicator as "
-          "drawn, and the summary says when the lights were set",
-          "[collect][lights]") {
+TEST_CASE(
+    "Camera labels give a braking car's brake lamps and its flashing green indicator as "
+    "drawn, and the summary says when the lights were set",
+    "[collect][lights]") {
   corsa::test::TempDir dir;
   const fs::path a = dir.path() / "one_thread";
   const fs::path b = dir.path() / "two_threads";
