@@ -22,7 +22,7 @@ constexpr double kSkyRayLength = 80.0;  ///< m: beyond, occluders are part of th
 /// m: sky rays see the full scene this far, then the far scene (buildings as plain meshes, as
 /// SceneData::far_static): beyond, a facade's recesses and ledges change which pixels of a wall
 /// a ray meets, not how much sky it hides, and tracing them cost a fifth of a frame.
-constexpr double kSkyNear = 3.0;
+constexpr double kSkyNear = 4.0;
 /// RTCRay::id of a sky ray whose hit is in the far static scene.
 constexpr unsigned kFarHit = 1;
 
