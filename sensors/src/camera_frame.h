@@ -149,8 +149,11 @@ struct TileScratch {
   std::vector<RTCRayHit> hits;  ///< rays that need their hit (sky, mirror, glass)
   std::vector<int> hit_owner;
   std::vector<int> hit_kind;
-  std::vector<RTCRay> second;     ///< shadow rays from the secondary hits
-  std::vector<int> second_owner;  ///< index into `hits`
+  std::vector<RTCRayHit> far;         ///< sky rays past their near stretch, through the entities
+  std::vector<RTCRayHit> far_static;  ///< the same through the far static scene
+  std::vector<size_t> far_index;      ///< index into `hits`
+  std::vector<RTCRay> second;         ///< shadow rays from the secondary hits
+  std::vector<int> second_owner;      ///< index into `hits`
   std::vector<float> weights;
   std::vector<std::optional<SurfacePoint>> found;  ///< per hit: the surface a mirror or glass
                                                    ///< ray found

@@ -19,6 +19,12 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr double kSkyRayLength = 80.0;  ///< m: beyond, occluders are part of the sky light
+/// m: sky rays see the full scene this far, then the far scene (buildings as plain meshes, as
+/// SceneData::far_static): beyond, a facade's recesses and ledges change which pixels of a wall
+/// a ray meets, not how much sky it hides, and tracing them cost a fifth of a frame.
+constexpr double kSkyNear = 4.0;
+/// RTCRay::id of a sky ray whose hit is in the far static scene.
+constexpr unsigned kFarHit = 1;
 
 enum RayKind : int { kSky, kMirror, kGlass };
 
@@ -85,7 +91,7 @@ void occluded(const SceneData& d, std::vector<RTCRay>& rays) {
   rtcOccluded1M(d.top, &context, rays.data(), static_cast<unsigned>(rays.size()), sizeof(RTCRay));
 }
 
-void intersect(const SceneData& d, std::vector<RTCRayHit>& rays) {
+void intersect(RTCScene scene, std::vector<RTCRayHit>& rays) {
   // 16 at a time as packets: the rays of a tile start from neighbouring points.
   for (size_t first = 0; first < rays.size(); first += 16) {
     const size_t n = std::min<size_t>(16, rays.size() - first);
@@ -111,7 +117,7 @@ void intersect(const SceneData& d, std::vector<RTCRayHit>& rays) {
     }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    rtcIntersect16(valid, d.top, &context, &p);
+    rtcIntersect16(valid, scene, &context, &p);
     for (size_t k = 0; k < n; ++k) {
       RTCRayHit& r = rays[first + k];
       r.ray.tfar = p.ray.tfar[k];
@@ -164,7 +170,10 @@ std::optional<SurfacePoint> secondary_surface(const Pass& p, const RTCRayHit& h,
 Color bounce(const Pass& p, const RTCRayHit& h, double sun_share) {
   const SceneData& d = *p.scene;
   const Lighting& l = *p.shading->lighting;
-  const Material& m = d.materials[d.material_of(h.hit.instID[0], h.hit.geomID, h.hit.primID)];
+  const MaterialId id = h.ray.id == kFarHit
+                            ? d.static_geometries[h.hit.geomID].far_material_of(h.hit.primID)
+                            : d.material_of(h.hit.instID[0], h.hit.geomID, h.hit.primID);
+  const Material& m = d.materials[id];
   const Vec3 dir{h.ray.dir_x, h.ray.dir_y, h.ray.dir_z};
   Vec3 n = d.world_normal(h.hit.instID[0], {h.hit.Ng_x, h.hit.Ng_y, h.hit.Ng_z});
   n = dot(n, dir) > 0.0 ? -n : n;
@@ -271,7 +280,7 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
     double u1 = 0.0, u2 = 0.0;
     r2_point(j, r.u1, r.u2, u1, u2);
     const Vec3 d = cosine_direction(sp.normal, u1, u2);
-    probe(offset(sp, d), d, static_cast<float>(kSkyRayLength), kSky);
+    probe(offset(sp, d), d, static_cast<float>(kSkyNear), kSky);
     ++t.sky_rays[k];
   }
   if (sp.mirror) {
@@ -287,6 +296,47 @@ void queue_rays(const Pass& p, TileState& t, int k, TileScratch& s) {
 
 namespace {
 
+/// Continues the sky rays that met nothing within kSkyNear out to kSkyRayLength: through the
+/// entities of the top scene (the static instance masked off) and through the far static scene,
+/// the nearer hit kept (a far static hit as the static instance's, flagged kFarHit).
+void trace_far_sky(const SceneData& d, TileScratch& s) {
+  s.far.clear();
+  s.far_index.clear();
+  for (size_t i = 0; i < s.hits.size(); ++i) {
+    const RTCRayHit& h = s.hits[i];
+    if (s.hit_kind[i] == kSky && h.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+      RTCRayHit& f = s.far.emplace_back(h);
+      f.ray.tnear = static_cast<float>(kSkyNear);
+      f.ray.tfar = static_cast<float>(kSkyRayLength);
+      f.ray.mask = ~kStaticMask;
+      s.far_index.push_back(i);
+    }
+  }
+  if (s.far.empty()) {
+    return;
+  }
+  s.far_static = s.far;
+  for (RTCRayHit& f : s.far_static) {
+    f.ray.mask = 0xFFFFFFFFu;
+  }
+  intersect(d.top, s.far);
+  intersect(d.far_static, s.far_static);
+  for (size_t j = 0; j < s.far.size(); ++j) {
+    RTCRayHit& h = s.hits[s.far_index[j]];
+    const RTCRayHit& e = s.far[j];
+    const RTCRayHit& w = s.far_static[j];
+    if (w.hit.geomID != RTC_INVALID_GEOMETRY_ID && w.ray.tfar <= e.ray.tfar) {
+      h.ray.tfar = w.ray.tfar;
+      h.hit = w.hit;
+      h.hit.instID[0] = 0;
+      h.ray.id = kFarHit;
+    } else if (e.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+      h.ray.tfar = e.ray.tfar;
+      h.hit = e.hit;
+    }
+  }
+}
+
 /// Traces a tile's shadow rays and probe rays, and counts each pixel's unoccluded sun and lamp
 /// rays.
 void trace_queued(const Pass& p, TileState& t, TileScratch& s) {
@@ -294,7 +344,8 @@ void trace_queued(const Pass& p, TileState& t, TileScratch& s) {
   const int suns = static_cast<int>(s.sun_owner.size());
   occluded(d, s.sun, suns);
   occluded(d, s.rays);
-  intersect(d, s.hits);
+  intersect(d.top, s.hits);
+  trace_far_sky(d, s);
   // Embree sets tfar to -inf when a ray is occluded.
   for (int i = 0; i < suns; ++i) {
     t.sun_free[s.sun_owner[i]] += s.sun[i / 16].tfar[i % 16] >= 0.0f ? 1 : 0;

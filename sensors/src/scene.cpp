@@ -31,6 +31,9 @@ SceneData::~SceneData() {
   if (static_scene != nullptr) {
     rtcReleaseScene(static_scene);
   }
+  if (far_static != nullptr) {
+    rtcReleaseScene(far_static);
+  }
   if (device != nullptr) {
     rtcReleaseDevice(device);
   }
@@ -73,6 +76,20 @@ RTCGeometry make_triangles(RTCDevice device, const StaticMesh& mesh, Vec3 origin
       idx[3 * i + k] = mesh.triangles[i][k];
     }
   }
+  rtcCommitGeometry(geom);
+  return geom;
+}
+
+/// A geometry over the vertex and index buffers of `source` (a far-scene twin: no copy); the
+/// caller releases the returned reference once attached.
+RTCGeometry share_triangles(RTCDevice device, RTCGeometry source, const StaticMesh& mesh) {
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                             rtcGetGeometryBufferData(source, RTC_BUFFER_TYPE_VERTEX, 0), 0,
+                             3 * sizeof(float), mesh.vertices.size());
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                             rtcGetGeometryBufferData(source, RTC_BUFFER_TYPE_INDEX, 0), 0,
+                             3 * sizeof(unsigned), mesh.triangles.size());
   rtcCommitGeometry(geom);
   return geom;
 }
@@ -225,6 +242,8 @@ Scene::Scene(const SceneOptions& options) : data_(std::make_unique<detail::Scene
   }
   data_->static_scene = rtcNewScene(data_->device);
   rtcSetSceneBuildQuality(data_->static_scene, RTC_BUILD_QUALITY_HIGH);
+  data_->far_static = rtcNewScene(data_->device);
+  rtcSetSceneBuildQuality(data_->far_static, RTC_BUILD_QUALITY_HIGH);
   data_->top = rtcNewScene(data_->device);
   // The top level holds only instances and is rebuilt every frame: favour build speed.
   rtcSetSceneBuildQuality(data_->top, RTC_BUILD_QUALITY_LOW);
@@ -237,6 +256,7 @@ Scene::Scene(const SceneOptions& options) : data_(std::make_unique<detail::Scene
   rtcSetGeometryInstancedScene(inst, data_->static_scene);
   const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
   rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+  rtcSetGeometryMask(inst, detail::kStaticMask);
   rtcCommitGeometry(inst);
   rtcAttachGeometryByID(data_->top, inst, 0);
   rtcReleaseGeometry(inst);
@@ -319,6 +339,7 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
   if (mesh.triangles.empty()) {
     return mesh.instance_id;
   }
+  std::optional<MaterialId> far_material;
   if (mesh.materials.empty() && mesh.color && mesh.classes.size() == 1 &&
       mesh.classes[0] == SemanticClass::kBuilding) {
     // Its rectangular walls become facades in real geometry (recessed windows, ledges, shop
@@ -326,15 +347,26 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
     const Material rest = tinted_facade(*mesh.color, mesh.instance_id);
     const uint64_t seed =
         derive_seed(d.options.seed, "building facade " + std::to_string(mesh.instance_id));
+    // Far sky rays see its plain mesh (walls without openings) in the rest's material.
+    RTCGeometry plain = make_triangles(d.device, mesh, d.options.origin);
+    rtcAttachGeometryByID(d.far_static, plain, static_cast<unsigned>(d.static_geometries.size()));
+    rtcReleaseGeometry(plain);
+    far_material = add_material(rest);
     mesh = detail::dress_building(std::move(mesh), rest, seed);
   }
   RTCGeometry geom = make_triangles(d.device, mesh, d.options.origin);
   const unsigned id = rtcAttachGeometry(d.static_scene, geom);
+  if (!far_material) {
+    RTCGeometry twin = share_triangles(d.device, geom, mesh);
+    rtcAttachGeometryByID(d.far_static, twin, id);
+    rtcReleaseGeometry(twin);
+  }
   rtcReleaseGeometry(geom);
   if (id != d.static_geometries.size()) {
     throw std::logic_error("static geometry ids out of step");
   }
   detail::StaticGeometry info;
+  info.far_material = far_material;
   info.instance_id = mesh.instance_id;
   info.triangles = mesh.triangles.size();
   if (!mesh.materials.empty()) {
@@ -423,6 +455,7 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
 
 void Scene::commit() {
   rtcCommitScene(data_->static_scene);
+  rtcCommitScene(data_->far_static);
   data_->committed = true;
   // The top level changes with the static scene's bounds: rebuild it with the current entities.
   std::vector<engine::EntitySnapshot> current = data_->entities;

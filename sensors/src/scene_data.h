@@ -19,6 +19,9 @@
 namespace corsa::sensors::detail {
 
 /// Labels and material of one geometry of the static scene.
+/// Ray mask bit of the static instance in the top-level scenes (entities have every bit).
+constexpr unsigned kStaticMask = 1u;
+
 struct StaticGeometry {
   std::vector<SemanticClass> classes;  ///< per triangle, or one entry for all
   std::vector<MaterialId> materials;   ///< per triangle, or one entry for all
@@ -41,6 +44,12 @@ struct StaticGeometry {
   MaterialId material_of(unsigned prim) const {
     return materials.size() == 1 ? materials[0] : materials[prim];
   }
+  /// The material of a hit in the far scene (SceneData::far_static): a dressed building's
+  /// plain walls have one, every other geometry is the same there.
+  MaterialId far_material_of(unsigned prim) const {
+    return far_material ? *far_material : material_of(prim);
+  }
+  std::optional<MaterialId> far_material;  ///< set for dressed buildings (their plain mesh)
 };
 
 /// The shape of one entity in its own frame, with its Embree scene. Articulated shapes (wheels,
@@ -85,6 +94,11 @@ struct SceneData {
   RTCDevice device = nullptr;
   RTCScene static_scene = nullptr;
   RTCScene top = nullptr;
+  /// The static scene as far sky rays see it (same geomIDs): dressed buildings as their plain
+  /// meshes (walls without the facade geometry), every other geometry shared with static_scene.
+  /// In `top` the static instance has mask kStaticMask, so rays without that bit see only the
+  /// entities there.
+  RTCScene far_static = nullptr;
   std::vector<StaticGeometry> static_geometries;  ///< by geomID in static_scene
   std::vector<RTCGeometry> instance_pool;         ///< top-level instances, geomID = index + 1
   /// The same entities moving over an interval (Scene::set_entities with a motion span): two

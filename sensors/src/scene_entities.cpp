@@ -167,6 +167,7 @@ RTCScene make_moving_top(detail::SceneData& d) {
   rtcSetGeometryInstancedScene(inst, d.static_scene);
   const float identity[12] = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
   rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, identity);
+  rtcSetGeometryMask(inst, detail::kStaticMask);
   rtcCommitGeometry(inst);
   rtcAttachGeometryByID(top, inst, 0);
   rtcReleaseGeometry(inst);
