@@ -37,12 +37,7 @@ Material bench_timber() {
 /// between y0..y1 and z0..z1, with uvs over its rectangle.
 void sign_blade(MeshBuilder& b, const SignFace& face, const char* name, double x, double y0,
                 double y1, double z0, double z1, bool back) {
-  Material m;
-  m.name = name;
-  m.pattern = Pattern::kSignFace;
-  m.sign = face;
-  m.roughness = 0.5;
-  m.base_color = face.fill;
+  const Material m = sign_face_material(face, name);
   b.material(m);
   const float u0 = back ? 1.0f : 0.0f;
   const float u1 = back ? 0.0f : 1.0f;

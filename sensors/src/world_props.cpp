@@ -193,12 +193,7 @@ ArticulatedMesh make_sign(const SignFace& face, double width, double height, dou
   b.semantic(SemanticClass::kPole).material(steel());
   b.tube({-0.05, 0, 0}, {-0.05, 0, bottom + 0.8 * height}, 0.035, 0.035, 8, true);
   b.semantic(SemanticClass::kTrafficSign);
-  Material m;
-  m.name = name;
-  m.pattern = Pattern::kSignFace;
-  m.sign = face;
-  m.roughness = 0.5;
-  m.base_color = face.fill;
+  Material m = sign_face_material(face, name);
   // The face polygon follows the shape (circles as 24-gons), uv over its square.
   std::vector<Vec3> points;
   std::vector<std::array<float, 2>> uvs;
@@ -243,6 +238,16 @@ ArticulatedMesh make_sign(const SignFace& face, double width, double height, dou
   b.material(steel());
   b.polygon(back, {});
   return b.take();
+}
+
+Material sign_face_material(const SignFace& face, const std::string& name) {
+  Material m;
+  m.name = name;
+  m.pattern = Pattern::kSignFace;
+  m.sign = face;
+  m.roughness = 0.5;
+  m.base_color = face.fill;
+  return m;
 }
 
 Material road_paint() {

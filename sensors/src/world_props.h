@@ -31,6 +31,9 @@ ArticulatedMesh make_traffic_light(SignalLayout layout, double bottom, double he
 ArticulatedMesh make_sign(const SignFace& face, double width, double height, double bottom,
                           const std::string& name);
 
+/// The material of a sign's face: `face` drawn over the face's uvs, its fill as base colour.
+Material sign_face_material(const SignFace& face, const std::string& name);
+
 /// White road paint, worn (class lane_marking is the caller's): crosswalks, stop lines, outlines.
 Material road_paint();
 
