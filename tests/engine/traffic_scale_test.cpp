@@ -256,6 +256,54 @@ TEST_CASE("The lane index finds every entity of a lane within an s range, in s o
   }
 }
 
+TEST_CASE(
+    "The lane index orders a lane by s and entity however its entities were added, and gives "
+    "its order back",
+    "[engine][traffic]") {
+  corsa::RandomStream random(13);
+  corsa::engine::detail::LaneIndex index;
+  // Lane 0: 300 entities, some at equal s (entity breaks the tie); lane 1: 5. Added in entity
+  // order (random s), in the last order with a few moved (nearly sorted: the insertion sort),
+  // and backwards (past its budget: std::sort).
+  std::vector<double> s(305);
+  for (double& v : s) v = std::round(random.uniform(0.0, 100.0) * 4.0) / 4.0;
+  const auto lane_of = [](uint32_t i) { return i < 300 ? 0u : 1u; };
+  const auto sorted = [&](uint32_t lane) {
+    std::vector<uint32_t> out;
+    for (uint32_t i = 0; i < s.size(); ++i) {
+      if (lane_of(i) == lane) out.push_back(i);
+    }
+    std::sort(out.begin(), out.end(),
+              [&](uint32_t a, uint32_t b) { return s[a] < s[b] || (s[a] == s[b] && a < b); });
+    return out;
+  };
+  const auto entities = [&](uint32_t lane) {
+    std::vector<uint32_t> out;
+    for (const auto& entry : index.lane(lane)) out.push_back(entry.entity);
+    return out;
+  };
+  const auto fill = [&](const std::vector<uint32_t>& order) {
+    index.reset(2);
+    for (const uint32_t i : order) index.add(lane_of(i), s[i], i);
+    index.finish();
+    CHECK(entities(0) == sorted(0));
+    CHECK(entities(1) == sorted(1));
+  };
+  std::vector<uint32_t> order(s.size());
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  fill(order);
+  std::vector<uint32_t> last;
+  index.order(last);
+  std::vector<uint32_t> both = sorted(0);
+  const std::vector<uint32_t> second = sorted(1);
+  both.insert(both.end(), second.begin(), second.end());
+  CHECK(last == both);
+  for (int k = 0; k < 10; ++k) s[static_cast<size_t>(random.uniform_int(0, 304))] += 0.3;
+  fill(last);
+  std::reverse(last.begin(), last.end());
+  fill(last);
+}
+
 TEST_CASE("The point grid returns every point within the radius of a query", "[engine][traffic]") {
   corsa::RandomStream random(5);
   corsa::engine::detail::PointGrid grid(16.0);
