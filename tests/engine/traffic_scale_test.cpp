@@ -33,6 +33,7 @@
 #include "state/packed_point_grid.h"
 #include "state/point_grid.h"
 #include "state/sim_state.h"
+#include "state/world_update.h"
 
 namespace {
 
@@ -253,6 +254,54 @@ TEST_CASE("The lane index finds every entity of a lane within an s range, in s o
       CHECK(found == expected);
     }
   }
+}
+
+TEST_CASE(
+    "The lane index orders a lane by s and entity however its entities were added, and gives "
+    "its order back",
+    "[engine][traffic]") {
+  corsa::RandomStream random(13);
+  corsa::engine::detail::LaneIndex index;
+  // Lane 0: 300 entities, some at equal s (entity breaks the tie); lane 1: 5. Added in entity
+  // order (random s), in the last order with a few moved (nearly sorted: the insertion sort),
+  // and backwards (past its budget: std::sort).
+  std::vector<double> s(305);
+  for (double& v : s) v = std::round(random.uniform(0.0, 100.0) * 4.0) / 4.0;
+  const auto lane_of = [](uint32_t i) { return i < 300 ? 0u : 1u; };
+  const auto sorted = [&](uint32_t lane) {
+    std::vector<uint32_t> out;
+    for (uint32_t i = 0; i < s.size(); ++i) {
+      if (lane_of(i) == lane) out.push_back(i);
+    }
+    std::sort(out.begin(), out.end(),
+              [&](uint32_t a, uint32_t b) { return s[a] < s[b] || (s[a] == s[b] && a < b); });
+    return out;
+  };
+  const auto entities = [&](uint32_t lane) {
+    std::vector<uint32_t> out;
+    for (const auto& entry : index.lane(lane)) out.push_back(entry.entity);
+    return out;
+  };
+  const auto fill = [&](const std::vector<uint32_t>& order) {
+    index.reset(2);
+    for (const uint32_t i : order) index.add(lane_of(i), s[i], i);
+    index.finish();
+    CHECK(entities(0) == sorted(0));
+    CHECK(entities(1) == sorted(1));
+  };
+  std::vector<uint32_t> order(s.size());
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  fill(order);
+  std::vector<uint32_t> last;
+  index.order(last);
+  std::vector<uint32_t> both = sorted(0);
+  const std::vector<uint32_t> second = sorted(1);
+  both.insert(both.end(), second.begin(), second.end());
+  CHECK(last == both);
+  for (int k = 0; k < 10; ++k) s[static_cast<size_t>(random.uniform_int(0, 304))] += 0.3;
+  fill(last);
+  std::reverse(last.begin(), last.end());
+  fill(last);
 }
 
 TEST_CASE("The point grid returns every point within the radius of a query", "[engine][traffic]") {
@@ -485,6 +534,77 @@ TEST_CASE(
   view.build(state, true);
   CHECK(detail::corridor_hazard(state.world.entities[0], 0, view, 60.0, near).gap == Approx(25.1));
   CHECK(std::isinf(detail::corridor_hazard(state.world.entities[0], 0, view, 20.0, near).gap));
+}
+
+TEST_CASE("The contacts of many boxes of every size and heading are the pairs a test of all finds",
+          "[engine][traffic]") {
+  namespace detail = corsa::engine::detail;
+  const corsa::xosc::Scenario scenario;
+  Diagnostics diagnostics;
+  // Walkers, cars and a few 18 m trucks at random headings, dense in a small square and sparse
+  // around it, spread more along x in one layout and along y in the other; a few not placed or
+  // without a box; then moved a little, as a step does.
+  for (const bool along_y : {false, true}) {
+    detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
+    corsa::RandomStream random(along_y ? 7 : 5);
+    const auto place = [&](detail::Entity& entity, bool dense) {
+      const double spread = dense ? 60.0 : 2000.0;
+      const double wide = random.uniform(-spread, spread);
+      const double narrow = random.uniform(-spread / 4.0, spread / 4.0);
+      entity.state.pose.x = along_y ? narrow : wide;
+      entity.state.pose.y = along_y ? wide : narrow;
+      entity.state.pose.h = random.uniform(-std::numbers::pi, std::numbers::pi);
+    };
+    for (int i = 0; i < 900; ++i) {
+      detail::Entity entity;
+      entity.state.placed = i % 97 != 3;
+      const int kind = random.uniform_int(0, 19);
+      entity.info.box = kind == 0     ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
+                        : kind < 5    ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
+                        : i % 89 == 5 ? corsa::engine::Box{}
+                                      : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5};
+      place(entity, i % 4 != 0);
+      state.world.entities.push_back(std::move(entity));
+    }
+    const auto all_pairs = [&] {
+      std::vector<std::pair<uint32_t, uint32_t>> pairs;
+      const auto& entities = state.world.entities;
+      for (uint32_t a = 0; a < entities.size(); ++a) {
+        for (uint32_t b = a + 1; b < entities.size(); ++b) {
+          const auto usable = [](const detail::Entity& e) {
+            return e.state.placed && e.info.box.length > 0.0;
+          };
+          if (usable(entities[a]) && usable(entities[b]) &&
+              corsa::engine::overlap(
+                  corsa::engine::box_of(entities[a].info.box, entities[a].state.pose),
+                  corsa::engine::box_of(entities[b].info.box, entities[b].state.pose))) {
+            pairs.emplace_back(a, b);
+          }
+        }
+      }
+      return pairs;
+    };
+    detail::ContactSweep sweep;
+    detail::update_contacts(state, sweep);
+    const auto first = all_pairs();
+    CHECK(state.contacts.pairs == first);
+    CHECK(first.size() > 100);
+    CHECK(state.collisions.size() == first.size());
+    for (detail::Entity& entity : state.world.entities) {
+      entity.state.pose.x += random.uniform(-1.0, 1.0);
+      entity.state.pose.y += random.uniform(-1.0, 1.0);
+    }
+    detail::update_contacts(state, sweep);
+    const auto second = all_pairs();
+    CHECK(state.contacts.pairs == second);
+    // Only the pairs that were not touching before are new collisions.
+    size_t fresh = 0;
+    for (const auto& pair : second) {
+      fresh += std::binary_search(first.begin(), first.end(), pair) ? 0 : 1;
+    }
+    CHECK(fresh > 0);
+    CHECK(state.collisions.size() == first.size() + fresh);
+  }
 }
 
 TEST_CASE("The worker pool hands out every item once, in chunks, and rethrows a chunk's error",

@@ -204,13 +204,29 @@ class LeaderSearch {
     return local >= kRange + kSlack || (local - my_front_) + view_.least_rear() > leader_.gap;
   }
 
+  // The first entry of `lane` (sorted by s) whose s is not below `s`: std::lower_bound's, found
+  // without a branch on the comparisons (a conditional move halves the range), which follow no
+  // pattern a branch predictor learns.
+  static const LaneIndex::Entry* first_from(std::span<const LaneIndex::Entry> lane, double s) {
+    const LaneIndex::Entry* base = lane.data();
+    size_t n = lane.size();
+    if (n == 0) {
+      return base;
+    }
+    while (n > 1) {
+      const size_t half = n / 2;
+      base = base[half].s < s ? base + half : base;
+      n -= half;
+    }
+    return base + (base->s < s ? 1 : 0);
+  }
+
   // The entities of lane `node` from the piece's entry on, in the direction of travel.
   void walk(const PathPiece& piece, xodr::LaneNode node) {
     const auto lane = view_.lanes().lane(node);
-    const auto by_s = [](const LaneIndex::Entry& e, double s) { return e.s < s; };
+    const LaneIndex::Entry* const end = lane.data() + lane.size();
     if (piece.dir > 0) {
-      auto it = std::lower_bound(lane.begin(), lane.end(), piece.s_entry - kSlack, by_s);
-      for (; it != lane.end(); ++it) {
+      for (const LaneIndex::Entry* it = first_from(lane, piece.s_entry - kSlack); it != end; ++it) {
         if (beyond(piece.distance + (it->s - piece.s_entry))) {
           break;
         }
@@ -218,9 +234,9 @@ class LeaderSearch {
       }
       return;
     }
-    auto it = std::lower_bound(lane.begin(), lane.end(), piece.s_entry + kSlack, by_s);
+    const LaneIndex::Entry* it = first_from(lane, piece.s_entry + kSlack);
     // Entries before `it` have s < entry + slack: walk them backwards (toward -s).
-    while (it != lane.begin()) {
+    while (it != lane.data()) {
       --it;
       if (it->s > piece.s_entry + kSlack) {
         continue;

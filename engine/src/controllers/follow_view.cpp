@@ -87,6 +87,10 @@ void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool)
   max_length_ = 0.0;
   has_shapes_ = neighbours;
   const xodr::LaneGraph* graph = state.map != nullptr ? &state.map->lane_graph() : nullptr;
+  // The lanes' entities are added in the order of the last index, those not in it after them
+  // in index order (LaneIndex::finish).
+  lane_order_.clear();
+  lanes_.order(lane_order_);
   lanes_.reset(graph != nullptr ? graph->size() : 0);
   least_rear_ = std::numeric_limits<double>::infinity();
   // Which entities traffic generated: lifetimes only ever gain keys, so the set changes only
@@ -132,10 +136,23 @@ void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool)
     if (std::isnan(target.rear)) {
       least_rear_ = -std::numeric_limits<double>::infinity();
     }
-    if (nodes_[i] != xodr::kNoLane) {
-      lanes_.add(nodes_[i], target.road.s, i);
-    } else {
+    if (nodes_[i] == xodr::kNoLane) {
       unindexed_.push_back(i);
+    }
+  }
+  const auto in_lane = [&](uint32_t i) {
+    return targets_[i].present && targets_[i].usable && nodes_[i] != xodr::kNoLane;
+  };
+  in_index_.assign(count, 0);
+  for (const uint32_t i : lane_order_) {
+    if (i < count && in_lane(i)) {
+      lanes_.add(nodes_[i], targets_[i].road.s, i);
+      in_index_[i] = 1;
+    }
+  }
+  for (uint32_t i = 0; i < count; ++i) {
+    if (!in_index_[i] && in_lane(i)) {
+      lanes_.add(nodes_[i], targets_[i].road.s, i);
     }
   }
   lanes_.finish();

@@ -102,6 +102,8 @@ class FollowView {
   std::vector<double> offset_;    ///< by entity: its box centre's distance from the reference (m)
   std::vector<Box> reach_boxes_;  ///< by entity: the box reach_ and offset_ were made from
   LaneIndex lanes_;
+  std::vector<uint32_t> lane_order_;  ///< the last index's entities, lane after lane (in s order)
+  std::vector<char> in_index_;        ///< by entity: added to the index from lane_order_
   std::vector<uint32_t> unindexed_;
   double least_rear_ = 0.0;
   PackedPointGrid grid_{kGridCell};

@@ -29,11 +29,30 @@ void LaneIndex::add(xodr::LaneNode node, double s, uint32_t entity) {
 }
 
 void LaneIndex::finish() {
+  // A strict total order (no NaN s is added, an entity once): every sort gives the same order.
+  const auto before = [](const Entry& a, const Entry& b) {
+    return a.s < b.s || (a.s == b.s && a.entity < b.entity);
+  };
   for (const xodr::LaneNode node : used_) {
     auto& lane = lanes_[node];
-    std::sort(lane.begin(), lane.end(), [](const Entry& a, const Entry& b) {
-      return a.s < b.s || (a.s == b.s && a.entity < b.entity);
-    });
+    size_t budget = 4 * lane.size() + 16;
+    for (size_t k = 1; k < lane.size() && budget > 0; ++k) {
+      const Entry entry = lane[k];
+      size_t j = k;
+      for (; j > 0 && budget > 0 && before(entry, lane[j - 1]); --j, --budget) {
+        lane[j] = lane[j - 1];
+      }
+      lane[j] = entry;
+    }
+    if (budget == 0) {
+      std::sort(lane.begin(), lane.end(), before);
+    }
+  }
+}
+
+void LaneIndex::order(std::vector<uint32_t>& out) const {
+  for (const xodr::LaneNode node : used_) {
+    for (const Entry& entry : lanes_[node]) out.push_back(entry.entity);
   }
 }
 

@@ -21,8 +21,14 @@ class LaneIndex {
   void reset(size_t nodes);
   /// Entity `entity` is in lane `node` at road s `s` (m). Call finish() after the last add.
   void add(xodr::LaneNode node, double s, uint32_t entity);
-  /// Sorts every lane's entities by (s, entity).
+  /// Sorts every lane's entities by (s, entity). An insertion sort (std::sort past a budget of
+  /// moves): entities added in the order of the last index (order()) are nearly sorted, as
+  /// vehicles seldom pass each other within a lane in a step, and then take about one
+  /// comparison each, where a sort of entities added in index order compares them in no
+  /// pattern a branch predictor learns.
   void finish();
+  /// Appends to `out` the entities of the index, lane after lane, each lane's in s order.
+  void order(std::vector<uint32_t>& out) const;
 
   struct Entry {
     double s = 0.0;  ///< m, road s

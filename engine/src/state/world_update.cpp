@@ -44,12 +44,42 @@ struct Item {
 // boxes the exact test finds overlapping is never rejected for rounding in the extents.
 double margin(double v) { return 1e-6 + 1e-12 * std::abs(v); }
 
+bool sweep_order(const Item& a, const Item& b) {
+  return a.low < b.low || (a.low == b.low && a.index < b.index);
+}
+
 bool y_apart(const Item& a, const Item& b) {
   return b.ylow > a.yhigh + margin(a.yhigh) || a.ylow > b.yhigh + margin(b.yhigh);
 }
 
-bool sweep_order(const Item& a, const Item& b) {
-  return a.low < b.low || (a.low == b.low && a.index < b.index);
+// !y_apart(a, b) for finite extents, without a branch: most pairs a sweep meets are apart, some
+// not, in no pattern a predictor learns (the compiler makes branches of the two comparisons
+// however they are combined). For finite u and v, u - v <= 0 exactly when u <= v (a difference
+// rounds to 0 only for equal values), so the greater of the two differences is at most 0
+// exactly when neither comparison of y_apart holds.
+bool y_near_finite(const Item& a, const Item& b) {
+  return std::max(b.ylow - (a.yhigh + margin(a.yhigh)), a.ylow - (b.yhigh + margin(b.yhigh))) <=
+         0.0;
+}
+
+// Calls test(b) for each item b after `a` in `items` (sorted for a sweep) until ends(b) (true
+// from some item on), whose pair with a is near(b): the items are gathered by a pass without a
+// branch per pair (each index written, the count moved by near), then tested, in the order of
+// the sweep.
+template <typename Ends, typename Near, typename Test>
+void sweep_from(const std::vector<Item>& items, size_t a, Ends ends, Near near, Test test) {
+  constexpr size_t kBuffer = 64;
+  uint32_t kept[kBuffer];
+  size_t count = 0;
+  for (size_t b = a + 1; b < items.size() && !ends(items[b]); ++b) {
+    kept[count] = static_cast<uint32_t>(b);
+    count += static_cast<size_t>(near(items[b]));
+    if (count == kBuffer) {
+      for (size_t k = 0; k < count; ++k) test(items[kept[k]]);
+      count = 0;
+    }
+  }
+  for (size_t k = 0; k < count; ++k) test(items[kept[k]]);
 }
 
 // Sorts `items` by `less` (a strict total order), starting from the order of the last sweep
@@ -163,16 +193,20 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
     });
     sweep.along_y = true;
     for (size_t a = 0; a < items.size(); ++a) {
-      const double reach = items[a].yhigh + margin(items[a].yhigh);
-      for (size_t b = a + 1; b < items.size() && items[b].ylow <= reach; ++b) {
-        const bool a_first = sweep_order(items[a], items[b]);
-        const Item& first = a_first ? items[a] : items[b];
-        const Item& second = a_first ? items[b] : items[a];
-        if (second.low <= first.high && !y_apart(items[a], items[b]) &&
-            overlap(boxes[items[a].box], boxes[items[b].box])) {
-          record(items[a], items[b]);
-        }
-      }
+      const Item& p = items[a];
+      const double reach = p.yhigh + margin(p.yhigh);
+      sweep_from(
+          items, a, [&](const Item& q) { return !(q.ylow <= reach); },
+          [&](const Item& q) {
+            // sweep_order(p, q), and the x extents' test for the pair in that order.
+            const bool p_first = (p.low < q.low) | ((p.low == q.low) & (p.index < q.index));
+            const double first_high = p_first ? p.high : q.high;
+            const double second_low = p_first ? q.low : p.low;
+            return (second_low <= first_high) & y_near_finite(p, q);
+          },
+          [&](const Item& q) {
+            if (overlap(boxes[p.box], boxes[q.box])) record(p, q);
+          });
     }
   } else {
     if (finite) {
@@ -184,10 +218,17 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
       order.clear();
     }
     for (size_t a = 0; a < items.size(); ++a) {
-      for (size_t b = a + 1; b < items.size() && items[b].low <= items[a].high; ++b) {
-        if (!y_apart(items[a], items[b]) && overlap(boxes[items[a].box], boxes[items[b].box])) {
-          record(items[a], items[b]);
-        }
+      const Item& p = items[a];
+      const auto ends = [&](const Item& q) { return !(q.low <= p.high); };
+      const auto test = [&](const Item& q) {
+        if (overlap(boxes[p.box], boxes[q.box])) record(p, q);
+      };
+      if (finite) {
+        sweep_from(
+            items, a, ends, [&](const Item& q) { return y_near_finite(p, q); }, test);
+      } else {
+        sweep_from(
+            items, a, ends, [&](const Item& q) { return !y_apart(p, q); }, test);
       }
     }
   }
