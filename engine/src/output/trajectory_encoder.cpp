@@ -107,7 +107,6 @@ void TrajectoryEncoder::start(double dt, int64_t tick) {
 
 void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int64_t& previous) {
   Track& track = entities_[index];
-  Steady& seen = steady_[index];
   uint32_t mask = 0;
   uint32_t raw = 0;
   // The record's body (road and lane, at most 10 + 10 bytes, then nine numbers of 10), made
@@ -116,14 +115,14 @@ void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int
   char body[20 + kRowFields * 10];
   char* out = body;
   if (!row.placed) {
-    seen.valid = false;
+    track.steady = false;
     if (!track.present) {
       return;
     }
     track.present = false;
     mask = codec::kPresenceBit;  // gone: nothing else follows
   } else {
-    if (seen.valid && track.present && same_row_copy(seen.inputs, row)) {
+    if (track.steady && track.present && track.repeats(row)) {
       return;  // the same row as last time, which its history predicts to repeat
     }
     if (!track.present) {
@@ -167,10 +166,7 @@ void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int
     }
     // While the inputs stay these, the row stays this one and every prediction holds: the
     // next ticks need neither the row nor a record.
-    seen.valid = repeats;
-    if (repeats) {
-      seen.inputs = row;
-    }
+    track.steady = repeats;
   }
   if (mask == 0) {
     return;  // as predicted: nothing to store
@@ -200,7 +196,6 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Trajec
   while (entities_.size() < head.entities) {
     put_string(buffer_, codec::kTagEntity, entities_.size(), names_.at(entities_.size()));
     entities_.emplace_back();
-    steady_.emplace_back();
   }
   roads_.clear();
   frame_size_ = 0;
@@ -208,8 +203,8 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Trajec
   for (uint32_t i = 0; i < head.entities; ++i) {
     // encode's first test, without the call: most entities of a long run stand.
     const TrajectoryRowCopy& row = rows[i];
-    if (steady_[i].valid && entities_[i].present && row.placed &&
-        same_row_copy(steady_[i].inputs, row)) {
+    const Track& track = entities_[i];
+    if (track.steady && track.present && row.placed && track.repeats(row)) {
       continue;
     }
     encode(i, row, previous);

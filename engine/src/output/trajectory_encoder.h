@@ -52,16 +52,6 @@ inline void copy_row(TrajectoryRowCopy& row, const EntityState& state) {
   }
 }
 
-/// Whether two copies make the same row, bit for bit (row_inputs equality).
-inline bool same_row_copy(const TrajectoryRowCopy& a, const TrajectoryRowCopy& b) {
-  for (int f = 0; f < kRowFields; ++f) {
-    if (std::bit_cast<uint64_t>(a.values[f]) != std::bit_cast<uint64_t>(b.values[f])) {
-      return false;
-    }
-  }
-  return a.road == b.road && a.lane == b.lane && a.on_road == b.on_road;
-}
-
 /// One recorded tick: its rows are the `entities` copies that follow the previous tick's.
 struct TickRowsHead {
   int64_t tick = 0;
@@ -88,12 +78,17 @@ class TrajectoryEncoder {
  private:
   /// The writer's side of an entity's history (codec::EntityHistory's predictions, kept as the
   /// value each field is predicted to take next, so that a moving entity's field costs a
-  /// subtraction and no test of its history's state).
+  /// subtraction and no test of its history's state). 240 bytes, all a row's coding reads of
+  /// the entity besides its row: between two recorded ticks the simulation's own data push
+  /// most of it out of the first-level cache, so every byte more is a miss more.
   struct Track {
     bool present = false;
     bool on_road = false;
-    uint32_t road = 0;
+    /// The last row repeats its prediction: a row of the same inputs (bits, road and lane) is
+    /// the same row again, and needs neither to be made nor a record.
+    bool steady = false;
     int lane = 0;
+    uint32_t road = 0;
     uint32_t fresh = trajectory_codec::kFieldBits;  ///< fields predicted 0 (history afresh)
     /// Fields whose last value came from the bits in `bits` and repeated the one before: while
     /// the bits stay, the field is as predicted and keeps its history (z, pitch and roll on a
@@ -102,12 +97,23 @@ class TrajectoryEncoder {
     std::array<uint64_t, kRowFields> bits{};
     std::array<int64_t, kRowFields> last{};  ///< the value last taken
     std::array<int64_t, kRowFields> next{};  ///< last + its change: the prediction
-  };
-  /// Per entity: the inputs of its last row, when that row repeats its prediction (valid):
-  /// then equal inputs mean no record, without making the row.
-  struct Steady {
-    bool valid = false;
-    TrajectoryRowCopy inputs;
+
+    /// Whether placed `row` has the inputs of the steady last row. While steady, every field
+    /// taken last time (s and t on a road) holds the bits of its last row in `bits`; off the
+    /// road a row's s, t and lane are 0.
+    bool repeats(const TrajectoryRowCopy& row) const {
+      for (int f = 0; f < kFieldS; ++f) {
+        if (std::bit_cast<uint64_t>(row.values[f]) != bits[f]) {
+          return false;
+        }
+      }
+      if (row.on_road != on_road || row.road != road) {
+        return false;
+      }
+      return !on_road ||
+             (row.lane == lane && std::bit_cast<uint64_t>(row.values[kFieldS]) == bits[kFieldS] &&
+              std::bit_cast<uint64_t>(row.values[kFieldT]) == bits[kFieldT]);
+    }
   };
 
   void start(double dt, int64_t tick);
@@ -126,7 +132,6 @@ class TrajectoryEncoder {
   int64_t last_frame_ = 0;
   std::vector<std::string> names_;
   std::vector<Track> entities_;
-  std::vector<Steady> steady_;
   std::vector<const std::string*> road_ids_;  ///< by road index, null until named
   std::vector<bool> road_named_;              ///< written as a road record
   std::string roads_;                         ///< road records of roads first met at this tick
