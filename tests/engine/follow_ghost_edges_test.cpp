@@ -4,9 +4,11 @@
 // which): the run goes on to its 15 s end with located warnings where the file is odd, and the
 // entity never jumps but where its ghost did.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "engine_fixture.h"
 
@@ -124,4 +126,66 @@ TEST_CASE("an entity that stands during the ghost's head start begins its action
   CHECK(run.at(6.0, "Other").road->s == Approx(40.0).margin(1e-6));
   // The ghost's own run is unchanged: it left at -2 s.
   CHECK(run.at(0.0, "Ego_ghost").road->s == Approx(40.0).margin(1e-6));
+}
+
+namespace {
+
+// The run's time and Ego's and the ghost's s at every step, in the order of the steps (a ghost
+// restart runs times again, which a map by tick would fold).
+class StepTimes final : public corsa::engine::SimulationObserver {
+ public:
+  struct Step {
+    double time, ego_s, ghost_s;
+  };
+  StepTimes(size_t ego, size_t ghost) : ego_(ego), ghost_(ghost) {}
+  void on_step(const corsa::engine::Simulation& sim) override {
+    steps.push_back({sim.time(), sim.state(ego_).road->s, sim.state(ghost_).road->s});
+  }
+  std::vector<Step> steps;
+
+ private:
+  size_t ego_, ghost_;
+};
+
+}  // namespace
+
+TEST_CASE("an event on a condition the ghost cannot meet ahead restarts the ghost from the entity",
+          "[engine][controllers][ghost]") {
+  // Ego brakes on a parameter set at 5 s: the ghost is put back onto Ego at 5.01 s, the time goes
+  // back 2 s and the ghost alone runs to 5.01 s again, braking; Ego brakes 2 s behind it, from
+  // about 5 s (without the restart it would brake from 7 s, 20 m further on).
+  FixtureRun run(engine_fixture("controller_follow_ghost_restart.xosc"));
+  StepTimes times(run.entity("Ego"), run.entity("Ego_ghost"));
+  run.sim().add_observer(times);
+  run.run();
+  CHECK(run.sim().time() == Approx(15.0));
+  // 1700 steps from -2 s to 15 s and the 200 run again.
+  CHECK(run.sim().steps() == 1900);
+  // The one step back: from 5.01 s to 3.02 s; meanwhile Ego stands at 70.1 m and the ghost, put
+  // back there, drives on ahead of it.
+  size_t back = 0, at = 0;
+  for (size_t i = 1; i < times.steps.size(); ++i) {
+    if (times.steps[i].time < times.steps[i - 1].time) {
+      ++back;
+      at = i;
+    }
+  }
+  REQUIRE(back == 1);
+  CHECK(times.steps[at - 1].time == Approx(5.01));
+  CHECK(times.steps[at].time == Approx(3.02));
+  CHECK(times.steps[at].ego_s == Approx(70.1).margin(1e-6));
+  CHECK(times.steps[at].ghost_s == Approx(70.2).margin(1e-6));
+  CHECK(times.steps[at + 198].time == Approx(5.0));
+  CHECK(times.steps[at + 198].ego_s == Approx(70.1).margin(1e-6));
+  CHECK(times.steps[at + 198].ghost_s == Approx(85.0).margin(0.2));
+  // Ego brakes after the new trail: 5 m/s at 7 s, at rest about 20 m after 70 m.
+  CHECK(run.at(7.0, "Ego").speed == Approx(5.0).margin(0.2));
+  CHECK(run.at(15.0, "Ego").speed == Approx(0.0).margin(0.01));
+  CHECK(run.at(15.0, "Ego").road->s == Approx(90.0).margin(0.5));
+  // Ego never jumps, the step back in time included (it stands through the replay).
+  double worst = 0.0;
+  for (size_t i = 1; i < times.steps.size(); ++i) {
+    worst = std::max(worst, std::abs(times.steps[i].ego_s - times.steps[i - 1].ego_s));
+  }
+  CHECK(worst < 0.2);
 }

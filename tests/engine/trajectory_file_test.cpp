@@ -5,6 +5,7 @@
 
 #include "corsa/engine/trajectory_file.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <fstream>
@@ -159,6 +160,38 @@ TEST_CASE("The CSV export of a binary trajectory is the run's CSV, byte for byte
     dynamics.controller = "dynamics";
     const Recorded other = record_both(engine_fixture(fixture), 1, dynamics);
     CHECK(other.exported == other.csv);
+  }
+}
+
+TEST_CASE("A ghost restart's ticks run again are in the CSV twice and in the binary file once",
+          "[engine][output][trajectory]") {
+  // controller_follow_ghost_restart.xosc: the time goes back from 5.01 s to 3.02 s once, and
+  // the 200 ticks up to 5.01 s are run (and written to the CSV) again. The binary file keeps the
+  // first rows of each tick: its export is the CSV without the rows of times run again.
+  for (const int64_t every : {int64_t{1}, int64_t{7}}) {
+    INFO(every);
+    const Recorded run = record_both(engine_fixture("controller_follow_ghost_restart.xosc"), every);
+    std::istringstream lines(run.csv);
+    std::string line, first_rows;
+    std::getline(lines, line);
+    first_rows = line + "\n";
+    double latest = -1e300;
+    bool kept = false;
+    size_t dropped = 0;
+    while (std::getline(lines, line)) {
+      const double time = std::stod(line.substr(0, line.find(',')));
+      kept = time > latest || (time == latest && kept);
+      latest = std::max(latest, time);
+      if (kept) {
+        first_rows += line + "\n";
+      } else {
+        ++dropped;
+      }
+    }
+    // Three entities (Ego, Other, Ego_ghost) at the recorded ticks among the 200 run again,
+    // ticks 302 to 501: all of them, or the 28 multiples of 7 (308 to 497).
+    CHECK(dropped == (every == 1 ? 600u : 3u * 28u));
+    CHECK(run.exported == first_rows);
   }
 }
 

@@ -214,6 +214,62 @@ bool ghost_performs(const xosc::PrivateAction& action) {
          std::holds_alternative<xosc::TeleportAction>(action);
 }
 
+bool ghost_meets(const xosc::EntityCondition& condition) {
+  return std::holds_alternative<xosc::CollisionCondition>(condition) ||
+         std::holds_alternative<xosc::ReachPositionCondition>(condition) ||
+         std::holds_alternative<xosc::TraveledDistanceCondition>(condition) ||
+         std::holds_alternative<xosc::SpeedCondition>(condition) ||
+         std::holds_alternative<xosc::AccelerationCondition>(condition) ||
+         std::holds_alternative<xosc::EndOfRoadCondition>(condition) ||
+         std::holds_alternative<xosc::OffroadCondition>(condition) ||
+         std::holds_alternative<xosc::StandStillCondition>(condition);
+}
+
+bool ghost_restarts_on(const xosc::Trigger& trigger, const SimState& state) {
+  if (!state.ghost) return false;
+  const std::string& entity = state.world.entities[state.ghost->entity].info.name;
+  for (const xosc::ConditionGroup& group : trigger.groups) {
+    for (const xosc::Condition& condition : group.conditions) {
+      if (const auto* by_value = std::get_if<xosc::ByValueCondition>(&condition.kind)) {
+        // The ghost meets a simulation time headstartTime earlier; any other value it cannot.
+        if (!std::holds_alternative<xosc::SimulationTimeCondition>(*by_value)) return true;
+        continue;
+      }
+      const auto& by_entity = std::get<xosc::ByEntityCondition>(condition.kind);
+      if (!ghost_meets(by_entity.condition)) return true;
+      for (const std::string& name : by_entity.triggering_entities.entity_refs) {
+        if (name != entity) return true;  // another entity's condition, met in its own time
+      }
+    }
+  }
+  return false;
+}
+
+bool restart_ghost(SimState& state) {
+  GhostLink& link = *state.ghost;
+  Entity& entity = state.world.entities[link.entity];
+  Entity& ghost = state.world.entities[link.ghost];
+  // The ghost takes the entity's place, lane and speed (a teleport; the storyboard has stopped
+  // what ran on it).
+  const bool visible = ghost.state.visible;
+  ghost.state = entity.state;
+  ghost.state.visible = visible;
+  ghost.lane = entity.lane;
+  ghost.speed_command = entity.state.speed;
+  ghost.lateral_command = entity.lateral_command;
+  ghost.pose_command.reset();
+  if (state.now() <= 1e-9) {
+    return false;  // during the head start: a teleport only (esmini's restart waits for time 0)
+  }
+  link.trail.clear();
+  link.follower.follow_index = 0;
+  // A restart during a replay runs on to the latest tick the run had reached (esmini's true time).
+  link.replay_end_tick = std::max(link.replay_end_tick, state.tick);
+  link.replayed_ticks += link.headstart_ticks;
+  state.tick -= link.headstart_ticks;
+  return true;
+}
+
 bool ghost_copies_init(const xosc::PrivateAction& action) {
   return !std::holds_alternative<xosc::ActivateControllerAction>(action) &&
          !std::holds_alternative<xosc::AssignControllerAction>(action) &&

@@ -16,11 +16,19 @@
 //     activated, drives a simple vehicle model after it: at time t it steers toward the trail's
 //     point of time t - headstart + lookaheadSteering and takes the speed of the point of
 //     time t - headstart + lookaheadSpeed.
+//   - an event the ghost performs whose start trigger holds a condition the ghost cannot meet
+//     ahead of its entity (one on a value other than the simulation time, one on another entity,
+//     or a by-entity condition not handed over) restarts the ghost when it starts after time 0:
+//     the ghost is put back onto the entity (pose and speed), its trail starts again, the run's
+//     time goes back by headstartTime and, as in the head start, only the ghost moves until the
+//     time reached before (rows of those times are recorded again); the completed events the
+//     ghost performs may start again. At time 0 or before it only puts the ghost onto the entity.
 // The ghost is recorded (esmini records it too) but no other entity, sensor or condition sees
 // it, and it collides with nothing.
 
 #include <cstdint>
 
+#include "corsa/xosc/conditions.h"
 #include "corsa/xosc/private_actions.h"
 #include "motion/controller.h"
 
@@ -48,6 +56,20 @@ bool is_follow_ghost(const xosc::ObjectController& oc);
 
 /// Whether the ghost performs this Init action of its entity too (all but the controller ones).
 bool ghost_copies_init(const xosc::PrivateAction& action);
+
+/// Whether esmini hands a by-entity condition of this kind over to the ghost when its triggering
+/// entity is the ghost's entity (Collision, ReachPosition, TraveledDistance, Speed, Acceleration,
+/// EndOfRoad, Offroad, StandStill).
+bool ghost_meets(const xosc::EntityCondition& condition);
+
+/// Whether an event the ghost performs restarts the ghost when it starts: its start trigger
+/// holds a condition the ghost cannot meet ahead of its entity (above).
+bool ghost_restarts_on(const xosc::Trigger& trigger, const SimState& state);
+
+/// esmini's ghost restart, at the start of such an event (above), before its actions start and
+/// after the actions running on the ghost were stopped (a teleport takes both domains).
+/// Returns whether the run's time went back (the completed ghost events may start again).
+bool restart_ghost(SimState& state);
 
 /// Adds the ghost's sample of the current tick to its trail when one is due.
 void record_trail(SimState& state);

@@ -229,15 +229,21 @@ void BinaryTrajectoryRecorder::on_step(const Simulation& simulation) {
   if (simulation.tick() % state_->every != 0) {
     return;
   }
+  if (state_->started && simulation.tick() <= state_->last_recorded) {
+    // A tick run again (esmini's ghost restart, whose rows the CSV holds twice): the binary
+    // file keeps each tick once, as first recorded (docs/trajectory-format.md).
+    return;
+  }
   state_->capture(simulation);
 }
 
 void BinaryTrajectoryRecorder::finish(const Simulation& simulation) {
   State& state = *state_;
-  if (!state.started || state.last_recorded != simulation.tick()) {
+  if (!state.started || state.last_recorded < simulation.tick()) {
     state.capture(simulation);
   }
-  state.finish(simulation.tick());
+  // A run that ends while a ghost restart runs ticks again ends at its last tick recorded.
+  state.finish(std::max(simulation.tick(), state.last_recorded));
 }
 
 }  // namespace corsa::engine

@@ -161,7 +161,10 @@ int64_t Simulation::tick() const { return impl_->state.tick; }
 int64_t Simulation::start_tick() const {
   return impl_->state.ghost ? -impl_->state.ghost->headstart_ticks : 0;
 }
-int64_t Simulation::steps() const { return tick() - start_tick(); }
+int64_t Simulation::steps() const {
+  // A ghost restart runs ticks a second time (controllers/follow_ghost.h).
+  return tick() - start_tick() + (impl_->state.ghost ? impl_->state.ghost->replayed_ticks : 0);
+}
 bool Simulation::is_ghost(size_t index) const {
   return impl_->state.world.entities.at(index).ghost;
 }

@@ -49,6 +49,12 @@ struct GhostLink {
   /// behind the ghost; true ("position") by distance from the trail point nearest the entity.
   bool by_position = false;
   int64_t headstart_ticks = 0;
+  /// Until this tick only the ghost moves: 0 during its head start; after a restart (esmini's
+  /// ghost restart, controllers/follow_ghost.h) the tick the run had reached when the ghost was
+  /// put back, which the ghost then runs up to again from headstart_ticks earlier.
+  int64_t replay_end_tick = 0;
+  /// Ticks run a second time by restarts (the run's step count adds them).
+  int64_t replayed_ticks = 0;
   /// Look-ahead along the trail for the speed and the steering target (properties
   /// lookaheadSpeed / minLookaheadSpeed, lookaheadSteering / minLookaheadSteering): in time mode
   /// all four are s; in position mode the look-ahead is max(min, lookahead * speed) in m.

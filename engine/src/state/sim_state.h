@@ -156,8 +156,10 @@ struct SimState {
   std::optional<GhostLink> ghost;
 
   /// Whether entity `index` stands still this step: while the ghost has its head start (before
-  /// time 0) only the ghost moves.
-  bool frozen(uint32_t index) const { return ghost && tick < 0 && index != ghost->ghost; }
+  /// time 0), or runs its head start again after a restart, only the ghost moves.
+  bool frozen(uint32_t index) const {
+    return ghost && tick < ghost->replay_end_tick && index != ghost->ghost;
+  }
 
   double now() const { return time.time(tick); }
 };

@@ -67,6 +67,8 @@ class Storyboard {
   void start_group(SimState& state, GroupNode& group);
   void start_event(SimState& state, EventNode& event, const std::vector<uint32_t>& triggering);
   void stop_event(SimState& state, EventNode& event);
+  /// esmini's ghost restart: the ghost's completed events that teleport it go back to standby.
+  void reset_ghost_events(SimState& state);
   /// `propagate`: let the story end when this was its last act (not while stopping all).
   void stop_act(SimState& state, ActNode& act, bool propagate);
   void stop_all(SimState& state);

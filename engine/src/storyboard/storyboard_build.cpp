@@ -114,9 +114,10 @@ void compile_triggers(ActNode& act, const SimState& state) {
   for (GroupNode& group : act.groups) {
     for (ManeuverNode& maneuver : group.maneuvers) {
       for (EventNode& event : maneuver.events) {
+        event.ghost = ghost_event(event, group, state);
         if (event.def->start_trigger) {
-          event.start_trigger.emplace(*event.def->start_trigger, state,
-                                      ghost_event(event, group, state));
+          event.start_trigger.emplace(*event.def->start_trigger, state, event.ghost);
+          event.ghost_restart = event.ghost && ghost_restarts_on(*event.def->start_trigger, state);
         }
       }
     }

@@ -24,6 +24,10 @@ struct Storyboard::EventNode {
   ManeuverNode* maneuver = nullptr;
   std::optional<Trigger> start_trigger;
   std::vector<ActionNode> actions;
+  /// esmini's ghost performs this event's motion actions (controllers/follow_ghost.h) ...
+  bool ghost = false;
+  /// ... and its start restarts the ghost (a condition the ghost cannot meet ahead).
+  bool ghost_restart = false;
 };
 
 struct Storyboard::ManeuverNode {

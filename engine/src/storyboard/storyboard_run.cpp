@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "actions/action.h"
 #include "actions/action_factory.h"
 #include "controllers/follow_ghost.h"
 #include "state/sim_state.h"
@@ -171,6 +172,16 @@ void Storyboard::start_event(SimState& state, EventNode& event,
                              const std::vector<uint32_t>& triggering) {
   state.elements.count_execution(event.element);
   move(state, event.element, TransitionKind::kStart, ElementState::kRunning);
+  if (event.ghost_restart && state.ghost) {
+    // esmini's ghost restart (controllers/follow_ghost.h): a teleport of the ghost onto its
+    // entity, which stops what ran on it; when the run's time went back, the ghost's completed
+    // events may start again on the way.
+    stop_domain_owners(state.world.entities[state.ghost->ghost],
+                       kDomainLongitudinal | kDomainLateral);
+    if (restart_ghost(state)) {
+      reset_ghost_events(state);
+    }
+  }
   const GroupNode& group = *event.maneuver->group;
   std::vector<uint32_t> actors = group.actors;
   if (group.def->actors.select_triggering_entities) {
@@ -209,6 +220,38 @@ void Storyboard::start_event(SimState& state, EventNode& event,
   for (ActionNode& action : event.actions) {
     if (action.running) {
       settle_action(state, action);
+    }
+  }
+}
+
+void Storyboard::reset_ghost_events(SimState& state) {
+  for (auto& story : stories_) {
+    for (ActNode& act : story->acts) {
+      for (GroupNode& group : act.groups) {
+        for (ManeuverNode& maneuver : group.maneuvers) {
+          for (EventNode& event : maneuver.events) {
+            if (!event.ghost || state.elements[event.element].state != ElementState::kComplete) {
+              continue;
+            }
+            // esmini's reading: an event of the ghost's that puts the ghost somewhere (its
+            // restart, or a TeleportAction of its own).
+            const bool teleports =
+                event.ghost_restart ||
+                std::any_of(event.def->actions.begin(), event.def->actions.end(),
+                            [](const xosc::Action& a) {
+                              const auto* p = std::get_if<xosc::PrivateAction>(&a.action);
+                              return p != nullptr &&
+                                     std::holds_alternative<xosc::TeleportAction>(*p);
+                            });
+            if (!teleports) continue;
+            state.elements.enter_standby(event.element);
+            state.elements.reset_executions(event.element);
+            for (ActionNode& action : event.actions) {
+              state.elements.enter_standby(action.element);
+            }
+          }
+        }
+      }
     }
   }
 }

@@ -3,25 +3,11 @@
 #include <algorithm>
 
 #include "conditions/condition_makers.h"
+#include "controllers/follow_ghost.h"
 #include "state/sim_state.h"
 #include "storyboard/entity_refs.h"
 
 namespace corsa::engine::detail {
-namespace {
-
-// The by-entity conditions whose triggering entity esmini hands over to the ghost.
-bool ghost_condition(const xosc::EntityCondition& condition) {
-  return std::holds_alternative<xosc::CollisionCondition>(condition) ||
-         std::holds_alternative<xosc::ReachPositionCondition>(condition) ||
-         std::holds_alternative<xosc::TraveledDistanceCondition>(condition) ||
-         std::holds_alternative<xosc::SpeedCondition>(condition) ||
-         std::holds_alternative<xosc::AccelerationCondition>(condition) ||
-         std::holds_alternative<xosc::EndOfRoadCondition>(condition) ||
-         std::holds_alternative<xosc::OffroadCondition>(condition) ||
-         std::holds_alternative<xosc::StandStillCondition>(condition);
-}
-
-}  // namespace
 
 CompiledCondition::CompiledCondition(const xosc::Condition& condition, const SimState& state,
                                      bool ghost)
@@ -35,7 +21,7 @@ CompiledCondition::CompiledCondition(const xosc::Condition& condition, const Sim
                                      by_entity->triggering_entities.source);
     all_ = by_entity->triggering_entities.rule == xosc::TriggeringEntitiesRule::kAll;
     entity_ = make_entity_condition(by_entity->condition, state);
-    if (ghost && state.ghost && ghost_condition(by_entity->condition)) {
+    if (ghost && state.ghost && ghost_meets(by_entity->condition)) {
       std::replace(candidates_.begin(), candidates_.end(), state.ghost->entity, state.ghost->ghost);
       std::sort(candidates_.begin(), candidates_.end());
     }

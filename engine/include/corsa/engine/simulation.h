@@ -174,7 +174,8 @@ class Simulation {
   /// The tick the run started at: 0, or minus the head start of esmini's followGhost ghost
   /// (the run then begins at negative simulation times).
   int64_t start_tick() const;
-  /// Steps taken so far: tick() - start_tick().
+  /// Steps taken so far: tick() - start_tick(), plus the ticks esmini's ghost restarts ran a
+  /// second time (time() goes back by the ghost's head start at each restart).
   int64_t steps() const;
   /// Whether entity `index` is esmini's followGhost ghost, which nothing else sees: metrics,
   /// like sensors and conditions, leave it out.
