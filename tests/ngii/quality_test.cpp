@@ -310,15 +310,16 @@ TEST_CASE("lanes joined at junction mouths leave no unpaved ground beyond their 
   // intersection, held flat out to their ends, on lanes of 2.8-4.1 m); 45 / 80 before ordinary
   // lanes joined end to start met edge to edge where their widths differ (lane_joints.h) and
   // roads whose other lanes split off their one lane started on the end line of the one-lane
-  // road before them. What remains: ordinary lanes whose widths differ on one side only (their
-  // centres would leave their links), joins at a corner, paths that could not turn onto the
-  // joined road's line, lanes narrower than 2.3 m or wider than 5.5 m.
+  // road before them; 35 / 59 before junction paths took the widths of lanes narrower than
+  // 2.3 m or wider than 5.5 m at their ends too. What remains: ordinary lanes whose widths
+  // differ on one side only (their centres would leave their links), joins at a corner, paths
+  // that could not turn onto the joined road's line.
   const auto& k = figures("kcity").mouth_gaps;
   INFO(k.worst);
   CHECK(k.ends > 1400);
-  CHECK(k.over <= 35);
+  CHECK(k.over <= 27);
   const auto& s = figures("seoul_sangam_testbed").mouth_gaps;
   INFO(s.worst);
   CHECK(s.ends > 3200);
-  CHECK(s.over <= 59);
+  CHECK(s.over <= 57);
 }
