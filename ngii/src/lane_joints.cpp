@@ -75,6 +75,13 @@ bool outermost_at_joint(const std::vector<double>& t, size_t k, bool left) {
   return true;
 }
 
+/// How two outer borders of a joined pair meet: the inner one moves onto the outer one (the
+/// narrower lane widens to the wider one's edge), both meet halfway, or the outer one moves onto
+/// the inner one (the wider lane narrows to the narrower one's edge: where the narrower lane's
+/// other border is between two lanes of its road, so that it cannot widen without moving its
+/// centre, the wider lane takes both its borders and keeps its own centre).
+enum class JointMeeting { kOntoOuter, kHalfway, kOntoInner };
+
 /// Where a border of lane A (`a`, t along A's end normal, + left) is to lie at the joint with
 /// the lane it joins, whose border on the same side (`left`) is `b`. Inner borders (between two
 /// lanes of a road) stay: the neighbouring lane covers the ground beyond them. An outer border
@@ -82,18 +89,19 @@ bool outermost_at_joint(const std::vector<double>& t, size_t k, bool left) {
 /// and of two outer borders the inner one moves onto the outer one, or with `halfway` both
 /// meet halfway. Nothing where A's border stays.
 std::optional<double> meeting_border(double a, bool a_outer, double b, bool b_outer, bool left,
-                                     bool halfway) {
+                                     JointMeeting meeting) {
   if (!a_outer) {
     return std::nullopt;
   }
   if (!b_outer) {
     return b;
   }
-  if (halfway) {
+  if (meeting == JointMeeting::kHalfway) {
     return 0.5 * (a + b);
   }
   const bool inside = left ? a < b : a > b;
-  return inside ? std::optional<double>(b) : std::nullopt;
+  const bool moves = meeting == JointMeeting::kOntoOuter ? inside : !inside;
+  return moves ? std::optional<double>(b) : std::nullopt;
 }
 
 /// Where the borders of lane i of road A (borders `ta`) and lane j of road B (`tb`, both in
@@ -115,15 +123,16 @@ std::optional<PairBorders> pair_borders(const std::vector<double>& ta, size_t i,
   const auto centre_move = [](const std::optional<double>* to, double left, double right) {
     return 0.5 * (to[1].value_or(left) - left + to[0].value_or(right) - right);
   };
-  for (const bool halfway : {false, true}) {
+  for (const JointMeeting meeting :
+       {JointMeeting::kOntoOuter, JointMeeting::kHalfway, JointMeeting::kOntoInner}) {
     PairBorders to;
     for (const bool left : {true, false}) {
       const size_t ka = left ? i : i + 1;
       const size_t kb = left ? j : j + 1;
       const bool outer_a = outermost_at_joint(ta, i, left);
       const bool outer_b = outermost_at_joint(tb, j, left);
-      to.a[left] = meeting_border(ta[ka], outer_a, tb[kb], outer_b, left, halfway);
-      to.b[left] = meeting_border(tb[kb], outer_b, ta[ka], outer_a, left, halfway);
+      to.a[left] = meeting_border(ta[ka], outer_a, tb[kb], outer_b, left, meeting);
+      to.b[left] = meeting_border(tb[kb], outer_b, ta[ka], outer_a, left, meeting);
     }
     const double move_a = centre_move(to.a, ta[i], ta[i + 1]);
     const double move_b = centre_move(to.b, tb[j], tb[j + 1]);
