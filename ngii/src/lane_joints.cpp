@@ -185,6 +185,68 @@ std::vector<std::optional<Vec2>> settled_border_points(const BorderVotes& votes,
   return out;
 }
 
+/// Two roads whose lanes continue one to one, every lane of one into the lane of the other in
+/// the same place (a road cut in two, a joint where only the widths change): where their
+/// centres are within kMaxCentreMove of each other but the borders between their lanes differ
+/// (each pair alone would move a neighbour's centre), the road whose lanes span less across
+/// takes all the other's borders, so that its lanes widen to the other's edges and the two
+/// cross-sections meet everywhere. `ea` is road `a`'s end, `ta` its borders along its end
+/// normal; votes go to `a_votes` or to road b's start in `start_votes`. False where the roads
+/// do not qualify (the lane pairs are then met one by one).
+template <typename EndOf>
+bool meet_whole_sections(const NetworkPlan& plan, const LaneIndex& index, size_t a,
+                         const JointEnd& ea, const std::vector<double>& ta, const EndOf& end_of,
+                         BorderVotes& a_votes, std::vector<BorderVotes>& start_votes) {
+  const RoadPlan& from = plan.roads[a];
+  int b = -1;
+  for (size_t i = 0; i < from.lanes.size(); ++i) {
+    const auto& refs = index.starting[static_cast<size_t>(from.lanes[i].end_node)];
+    if (refs.size() != 1 || refs[0].lane != static_cast<int>(i) || (i > 0 && refs[0].road != b)) {
+      return false;
+    }
+    b = refs[0].road;
+  }
+  if (b < 0 || static_cast<size_t>(b) == a ||
+      plan.roads[static_cast<size_t>(b)].lanes.size() != from.lanes.size()) {
+    return false;
+  }
+  const JointEnd* eb = end_of(static_cast<size_t>(b), false);
+  if (eb == nullptr || std::abs(angle_diff(eb->heading, ea.heading)) > kMaxJointTurn) {
+    return false;
+  }
+  const Vec2 normal{-std::sin(ea.heading), std::cos(ea.heading)};
+  const Vec2 tangent{std::cos(ea.heading), std::sin(ea.heading)};
+  std::vector<double> tb;
+  for (const Vec2& p : eb->borders) {
+    tb.push_back(dot(p - ea.point, normal));
+  }
+  double largest = 0.0;
+  for (size_t i = 0; i + 1 < ta.size(); ++i) {
+    const Vec2 mid_a = 0.5 * (ea.borders[i] + ea.borders[i + 1]);
+    const Vec2 mid_b = 0.5 * (eb->borders[i] + eb->borders[i + 1]);
+    if (ta[i] - ta[i + 1] < kMinJointWidth || tb[i] - tb[i + 1] < kMinJointWidth ||
+        std::abs(dot(mid_b - mid_a, normal)) > kMaxCentreMove ||
+        std::abs(dot(mid_b - mid_a, tangent)) > kMaxAlong) {
+      return false;
+    }
+  }
+  for (size_t k = 0; k < ta.size(); ++k) {
+    largest = std::max(largest, std::abs(ta[k] - tb[k]));
+  }
+  if (largest > kMaxBorderMove || largest < kMinUsefulMove) {
+    return false;
+  }
+  const bool a_moves = ta.front() - ta.back() < tb.front() - tb.back();
+  for (size_t k = 0; k < ta.size(); ++k) {
+    if (a_moves) {
+      a_votes.add(k, ea.point + normal * tb[k], ta.size());
+    } else {
+      start_votes[static_cast<size_t>(b)].add(k, ea.point + normal * ta[k], ta.size());
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 std::vector<Vec2> built_border_points(const xodr::Road& road, bool at_end) {
@@ -239,6 +301,9 @@ std::vector<EndBorders> joint_borders(const NetworkPlan& plan, const LaneIndex& 
     std::vector<double> ta;
     for (const Vec2& p : ea.borders) {
       ta.push_back(dot(p - ea.point, normal));
+    }
+    if (meet_whole_sections(plan, index, a, ea, ta, end_of, end_votes[a], start_votes)) {
+      continue;
     }
     for (size_t i = 0; i < from.lanes.size(); ++i) {
       for (const LaneIndex::Ref& ref :
