@@ -194,7 +194,10 @@ class Assembler {
   /// that cannot turn onto a joined line within its length (its lane would fold or end off its
   /// link's end, a short path between two lines skewed by 20-50 degrees, or its reference line
   /// would need a corner tighter than the fit's 1 m minimum radius: a kink) keeps its own line
-  /// at that end, the other end first.
+  /// at that end, the other end first. A road whose fitted records fold on its own lines too
+  /// (fitted_road_folds: a border or mark slanting across the road at a tight corner of its
+  /// records, which the joined lines do not cause) takes the first joined lines on which only
+  /// that check fails: its own lines leave the wedge at the joint for no gain.
   RoadEndLines build_joined(size_t r, const RoadEndLines& joined, const RoadEndLines& own,
                             std::optional<BuiltRoad>& out) const {
     constexpr double kPathEndError = 0.1;  // m: farthest a lane end may move off its link's
@@ -204,15 +207,27 @@ class Assembler {
     RoadEndLines end_only = joined;
     end_only.start = own.start;
     end_only.start_shared = own.start_shared;
+    std::optional<BuiltRoad> records_fold;
+    const RoadEndLines* records_fold_lines = nullptr;
     for (const RoadEndLines* lines :
          std::array<const RoadEndLines*, 3>{&joined, &start_only, &end_only}) {
       out = build_road(plan_.roads[r], network_, origin_, widths_.lanes[r], *lines, options_);
-      if (!out->folds && out->kinks == 0 && !fitted_road_folds(out->road) &&
-          out->end_error <= kPathEndError) {
+      if (out->folds || out->kinks != 0 || out->end_error > kPathEndError) {
+        continue;
+      }
+      if (!fitted_road_folds(out->road)) {
         return *lines;
+      }
+      if (!records_fold) {
+        records_fold = std::move(out);
+        records_fold_lines = lines;
       }
     }
     out = build_road(plan_.roads[r], network_, origin_, widths_.lanes[r], own, options_);
+    if (records_fold && fitted_road_folds(out->road)) {
+      out = std::move(records_fold);
+      return *records_fold_lines;
+    }
     return own;
   }
 

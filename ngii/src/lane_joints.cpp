@@ -75,6 +75,13 @@ bool outermost_at_joint(const std::vector<double>& t, size_t k, bool left) {
   return true;
 }
 
+/// How two outer borders of a joined pair meet: the inner one moves onto the outer one (the
+/// narrower lane widens to the wider one's edge), both meet halfway, or the outer one moves onto
+/// the inner one (the wider lane narrows to the narrower one's edge: where the narrower lane's
+/// other border is between two lanes of its road, so that it cannot widen without moving its
+/// centre, the wider lane takes both its borders and keeps its own centre).
+enum class JointMeeting { kOntoOuter, kHalfway, kOntoInner };
+
 /// Where a border of lane A (`a`, t along A's end normal, + left) is to lie at the joint with
 /// the lane it joins, whose border on the same side (`left`) is `b`. Inner borders (between two
 /// lanes of a road) stay: the neighbouring lane covers the ground beyond them. An outer border
@@ -82,18 +89,19 @@ bool outermost_at_joint(const std::vector<double>& t, size_t k, bool left) {
 /// and of two outer borders the inner one moves onto the outer one, or with `halfway` both
 /// meet halfway. Nothing where A's border stays.
 std::optional<double> meeting_border(double a, bool a_outer, double b, bool b_outer, bool left,
-                                     bool halfway) {
+                                     JointMeeting meeting) {
   if (!a_outer) {
     return std::nullopt;
   }
   if (!b_outer) {
     return b;
   }
-  if (halfway) {
+  if (meeting == JointMeeting::kHalfway) {
     return 0.5 * (a + b);
   }
   const bool inside = left ? a < b : a > b;
-  return inside ? std::optional<double>(b) : std::nullopt;
+  const bool moves = meeting == JointMeeting::kOntoOuter ? inside : !inside;
+  return moves ? std::optional<double>(b) : std::nullopt;
 }
 
 /// Where the borders of lane i of road A (borders `ta`) and lane j of road B (`tb`, both in
@@ -115,15 +123,16 @@ std::optional<PairBorders> pair_borders(const std::vector<double>& ta, size_t i,
   const auto centre_move = [](const std::optional<double>* to, double left, double right) {
     return 0.5 * (to[1].value_or(left) - left + to[0].value_or(right) - right);
   };
-  for (const bool halfway : {false, true}) {
+  for (const JointMeeting meeting :
+       {JointMeeting::kOntoOuter, JointMeeting::kHalfway, JointMeeting::kOntoInner}) {
     PairBorders to;
     for (const bool left : {true, false}) {
       const size_t ka = left ? i : i + 1;
       const size_t kb = left ? j : j + 1;
       const bool outer_a = outermost_at_joint(ta, i, left);
       const bool outer_b = outermost_at_joint(tb, j, left);
-      to.a[left] = meeting_border(ta[ka], outer_a, tb[kb], outer_b, left, halfway);
-      to.b[left] = meeting_border(tb[kb], outer_b, ta[ka], outer_a, left, halfway);
+      to.a[left] = meeting_border(ta[ka], outer_a, tb[kb], outer_b, left, meeting);
+      to.b[left] = meeting_border(tb[kb], outer_b, ta[ka], outer_a, left, meeting);
     }
     const double move_a = centre_move(to.a, ta[i], ta[i + 1]);
     const double move_b = centre_move(to.b, tb[j], tb[j + 1]);
@@ -174,6 +183,68 @@ std::vector<std::optional<Vec2>> settled_border_points(const BorderVotes& votes,
     }
   }
   return out;
+}
+
+/// Two roads whose lanes continue one to one, every lane of one into the lane of the other in
+/// the same place (a road cut in two, a joint where only the widths change): where their
+/// centres are within kMaxCentreMove of each other but the borders between their lanes differ
+/// (each pair alone would move a neighbour's centre), the road whose lanes span less across
+/// takes all the other's borders, so that its lanes widen to the other's edges and the two
+/// cross-sections meet everywhere. `ea` is road `a`'s end, `ta` its borders along its end
+/// normal; votes go to `a_votes` or to road b's start in `start_votes`. False where the roads
+/// do not qualify (the lane pairs are then met one by one).
+template <typename EndOf>
+bool meet_whole_sections(const NetworkPlan& plan, const LaneIndex& index, size_t a,
+                         const JointEnd& ea, const std::vector<double>& ta, const EndOf& end_of,
+                         BorderVotes& a_votes, std::vector<BorderVotes>& start_votes) {
+  const RoadPlan& from = plan.roads[a];
+  int b = -1;
+  for (size_t i = 0; i < from.lanes.size(); ++i) {
+    const auto& refs = index.starting[static_cast<size_t>(from.lanes[i].end_node)];
+    if (refs.size() != 1 || refs[0].lane != static_cast<int>(i) || (i > 0 && refs[0].road != b)) {
+      return false;
+    }
+    b = refs[0].road;
+  }
+  if (b < 0 || static_cast<size_t>(b) == a ||
+      plan.roads[static_cast<size_t>(b)].lanes.size() != from.lanes.size()) {
+    return false;
+  }
+  const JointEnd* eb = end_of(static_cast<size_t>(b), false);
+  if (eb == nullptr || std::abs(angle_diff(eb->heading, ea.heading)) > kMaxJointTurn) {
+    return false;
+  }
+  const Vec2 normal{-std::sin(ea.heading), std::cos(ea.heading)};
+  const Vec2 tangent{std::cos(ea.heading), std::sin(ea.heading)};
+  std::vector<double> tb;
+  for (const Vec2& p : eb->borders) {
+    tb.push_back(dot(p - ea.point, normal));
+  }
+  double largest = 0.0;
+  for (size_t i = 0; i + 1 < ta.size(); ++i) {
+    const Vec2 mid_a = 0.5 * (ea.borders[i] + ea.borders[i + 1]);
+    const Vec2 mid_b = 0.5 * (eb->borders[i] + eb->borders[i + 1]);
+    if (ta[i] - ta[i + 1] < kMinJointWidth || tb[i] - tb[i + 1] < kMinJointWidth ||
+        std::abs(dot(mid_b - mid_a, normal)) > kMaxCentreMove ||
+        std::abs(dot(mid_b - mid_a, tangent)) > kMaxAlong) {
+      return false;
+    }
+  }
+  for (size_t k = 0; k < ta.size(); ++k) {
+    largest = std::max(largest, std::abs(ta[k] - tb[k]));
+  }
+  if (largest > kMaxBorderMove || largest < kMinUsefulMove) {
+    return false;
+  }
+  const bool a_moves = ta.front() - ta.back() < tb.front() - tb.back();
+  for (size_t k = 0; k < ta.size(); ++k) {
+    if (a_moves) {
+      a_votes.add(k, ea.point + normal * tb[k], ta.size());
+    } else {
+      start_votes[static_cast<size_t>(b)].add(k, ea.point + normal * ta[k], ta.size());
+    }
+  }
+  return true;
 }
 
 }  // namespace
@@ -230,6 +301,9 @@ std::vector<EndBorders> joint_borders(const NetworkPlan& plan, const LaneIndex& 
     std::vector<double> ta;
     for (const Vec2& p : ea.borders) {
       ta.push_back(dot(p - ea.point, normal));
+    }
+    if (meet_whole_sections(plan, index, a, ea, ta, end_of, end_votes[a], start_votes)) {
+      continue;
     }
     for (size_t i = 0; i < from.lanes.size(); ++i) {
       for (const LaneIndex::Ref& ref :

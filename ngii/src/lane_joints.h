@@ -37,7 +37,13 @@ using BuiltOrdinaryRoad = std::function<const xodr::Road*(size_t r)>;
 ///   border, or onto the other lane's outer border where that lies further out, so that the
 ///   narrower lane widens to the wider one's edge and no ground either lane covered is left;
 ///   where that moves a lane's centre more than 3 cm (lanes differing in width on one side),
-///   two outer borders meet halfway instead.
+///   two outer borders meet halfway instead, and where that still does, the outer of two outer
+///   borders moves onto the inner one (the wider lane narrows to the narrower one's edges: a
+///   narrower lane with a lane of its road beside it cannot widen there without moving its
+///   centre, while a wider lane meeting both its borders keeps its own).
+/// Two roads whose lanes continue one to one (every lane of one into the lane of the other in
+/// the same place, the centres within 3 cm) meet with all their borders instead: the road whose
+/// lanes span less takes the other's, the borders between its lanes too.
 /// A pair is left alone where a lane's centre still moves more than 3 cm, the two centres end
 /// up further apart than they were (and than 0.1 m), a border would move more than 0.75 m (a
 /// lane at the tip of a painted island, not a lane's width) or none moves as much as 8 cm. The

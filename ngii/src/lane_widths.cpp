@@ -20,10 +20,11 @@ constexpr double kMarkReach = 6.0;  // m: farthest mark counted as bounding a la
 constexpr double kStep = 1.0;       // m between width samples along a lane
 constexpr int kSmooth = 2;          // samples averaged on either side
 // Junction path ends: a path whose width where it starts (ends) differs from the built
-// ordinary lanes it leaves (enters) by more than kPathEndMatch takes theirs there (when that is
-// a plausible lane width, kMinSpacing-kMaxSpacing: a wider exit is a lane that widens, not the
-// path's width), easing back to its own over kPathEndRamp (at most kPathEndRampShare of its
-// length), or over the whole stretch before the marks first give its width (at most half its
+// ordinary lanes it leaves (enters) by more than kPathEndMatch takes theirs there (any width
+// between marks, kMinPathWidth-kMaxWidth: a 2 m lane end or a 9 m one widening into a turn
+// pocket is the edge the path meets, and a path narrower or wider than it there leaves unpaved
+// ground beside the joint), easing back to its own over kPathEndRamp (at most kPathEndRampShare of
+// its length), or over the whole stretch before the marks first give its width (at most half its
 // length: there its own width is only the nearest sample held flat, often the 6-8 m a path
 // measures between the intersection's edges deep inside it); at least kMinPathWidth wide.
 constexpr double kPathEndMatch = 0.02;  // m
@@ -299,7 +300,7 @@ void match_path_ends(const NetworkPlan& plan, const LaneIndex& index, const Join
       const double after = joined_width(plan, index.starting[static_cast<size_t>(lane.end_node)],
                                         joined, false, line.direction(length));
       const auto change = [](double target, double own) {
-        return target >= kMinSpacing && target <= kMaxSpacing ? target - own : 0.0;
+        return target >= kMinPathWidth && target <= kMaxWidth ? target - own : 0.0;
       };
       const double d0 = change(before, profile.front());
       const double d1 = change(after, profile.back());

@@ -307,3 +307,64 @@ TEST_CASE(
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
 }
+
+TEST_CASE("two two-lane roads whose lanes continue one to one meet with all their borders",
+          "[ngii][mouths]") {
+  // Lanes centred 3.5 m apart on both sides of a joint at x = 30: before it 4.1 m and 2.9 m wide,
+  // after it 3.5 m each, so that the border between the lanes lies 0.3 m apart across the joint
+  // and each road sticks out 0.3 m beyond the other on one side. Meeting lane by lane would
+  // move a centre by 0.15 m (the neighbour's border is shared), so the pairs were left alone
+  // and both sides kept a 0.3 m sliver of unpaved ground. The road after the joint now takes
+  // the road before's borders there, every lane keeping its centre.
+  Builder b;
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("B0", 0.0, -3.5);
+  b.node("B1", 30.0, -3.5);
+  b.node("C1", 60.0, 0.0);
+  b.node("D1", 60.0, -3.5);
+  b.link("A2TEST00000A", "6", 1, "A0", "A1", "A2TEST00000B", "");
+  b.link("A2TEST00000B", "6", 2, "B0", "B1", "", "A2TEST00000A");
+  b.link("A2TEST00000C", "6", 1, "A1", "C1", "A2TEST00000D", "");
+  b.link("A2TEST00000D", "6", 2, "B1", "D1", "", "A2TEST00000C");
+  b.mark("B2A", 0.0, 30.0, 2.05, "A2TEST00000A", "");
+  b.mark("B2AB", 0.0, 30.0, -2.05, "A2TEST00000B", "A2TEST00000A");
+  b.mark("B2B", 0.0, 30.0, -4.95, "", "A2TEST00000B");
+  b.mark("B2C", 30.0, 60.0, 1.75, "A2TEST00000C", "");
+  b.mark("B2CD", 30.0, 60.0, -1.75, "A2TEST00000D", "A2TEST00000C");
+  b.mark("B2D", 30.0, 60.0, -5.25, "", "A2TEST00000D");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 4);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE("a wider lane ending where a narrower one with a neighbour starts narrows to its edges",
+          "[ngii][mouths]") {
+  // A one-lane road 3.8 m wide ends at x = 30 where the first lane of a two-lane road starts,
+  // 3.0 m wide on the same centre line, its second lane beside it on the right. The narrower
+  // lane cannot widen to the wider one's edges without moving its centre (its right border is
+  // its neighbour's), so the wider lane's left edge stuck out 0.4 m beyond it: unpaved ground
+  // just past the joint. The wider lane now narrows to the narrower one's edges at the joint,
+  // keeping its own centre.
+  Builder b;
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("C1", 60.0, 0.0);
+  b.node("D0", 30.0, -3.25);
+  b.node("D1", 60.0, -3.25);
+  b.link("A2TEST00000A", "6", 1, "A0", "A1");
+  b.link("A2TEST00000C", "6", 1, "A1", "C1", "A2TEST00000D", "");
+  b.link("A2TEST00000D", "6", 2, "D0", "D1", "", "A2TEST00000C");
+  b.mark("B2AL", 0.0, 30.0, 1.9, "A2TEST00000A", "");
+  b.mark("B2AR", 0.0, 30.0, -1.9, "", "A2TEST00000A");
+  b.mark("B2C", 30.0, 60.0, 1.5, "A2TEST00000C", "");
+  b.mark("B2CD", 30.0, 60.0, -1.5, "A2TEST00000D", "A2TEST00000C");
+  b.mark("B2D", 30.0, 60.0, -5.0, "", "A2TEST00000D");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 2);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
