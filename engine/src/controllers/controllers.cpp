@@ -269,10 +269,6 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
   const DefaultController ideal;
   Entity& entity = state.world.entities[i];
   const ControllerKind kind = state.controls[i].effective();
-  if (kind != ControllerKind::kDefault || !entity.state.placed || entity.towed_by) {
-    // Car following and the vehicle model reach a new speed their own way, not by a jump.
-    entity.speed_jump = false;
-  }
   if (!entity.state.placed || entity.towed_by || state.frozen(i)) {
     // A connected trailer follows its tower (motion/trailers.h); during a ghost's head start
     // only the ghost moves.

@@ -139,12 +139,11 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
   const double dt = context.dt;
   const double v0 = state.speed;
   double v1 = entity.speed_command;
-  // The speed changes linearly within the step, so the trapezoid rule is its exact integral; a
-  // jump (step shape) holds the new speed from the step's start. esmini moves by the speed at
-  // the step's end (SimulationOptions::semantics).
-  const bool at_end_speed = context.end_speed_travel || entity.speed_jump;
-  entity.speed_jump = false;
-  const double distance = at_end_speed ? v1 * dt : 0.5 * (v0 + v1) * dt;
+  // A step travels its end speed times dt (semi-implicit Euler, as esmini and most players
+  // integrate). The standard gives the speed over time (TransitionDynamics) and leaves how a
+  // simulator turns it into positions to the simulator; the trapezoid rule would be the exact
+  // integral of the speed's linear change within a step, dt / 2 per m/s gained shorter.
+  const double distance = v1 * dt;
   const double h0 = state.pose.h;
   double path = std::abs(distance);
   double lateral_change = 0.0;
