@@ -60,28 +60,27 @@ TEST_CASE("The step in which a step-shaped SpeedAction starts is driven at the n
   CHECK(run.at(t0 + 1.0, "Car").road->s == Approx(20.0).margin(1e-9));
 }
 
-TEST_CASE("During a lane change the lane is followed at the speed, or esmini's path at it",
+TEST_CASE("During a lane change the path is as long as the speed gives, under either reading",
           "[engine][semantics]") {
   // At 10 m/s the car changes 3.5 m to the right linearly in 1 s: 0.035 m across in each step of
-  // 0.1 m. Standard reading: the lane is followed at 10 m/s, s(4) = 10 + 10 * 4 = 50, and the
-  // heading turns by atan(0.035 / 0.1) = 0.3366748 rad toward the new lane.
-  SECTION("standard") {
-    FixtureRun run(engine_fixture("semantics_lateral_travel.xosc"));
-    run.run();
-    CHECK(run.at(4.0, "Car").road->s == Approx(50.0).margin(1e-9));
-    CHECK(run.at(1.5, "Car").pose.h == Approx(-std::atan(0.35)).margin(1e-9));
-    CHECK(run.at(4.0, "Car").road->lane == -2);
-  }
-  SECTION("esmini") {
-    // The path is 0.1 m a step, so the lane gets sqrt(0.1^2 - 0.035^2) = 0.0936750 m of it for
-    // the 100 steps of the change: s(4) = 50 - 100 * (0.1 - 0.0936750) = 49.3674970, and the
-    // heading turns by asin(0.35) = 0.3575711 rad.
-    FixtureRun run(engine_fixture("semantics_lateral_travel.xosc"), esmini_reading());
+  // 0.1 m. The path is 0.1 m a step, so the lane gets sqrt(0.1^2 - 0.035^2) = 0.0936750 m of it
+  // for the 100 steps of the change: s(4) = 50 - 100 * (0.1 - 0.0936750) = 49.3674970 (not 50,
+  // as if the lane were followed at the speed with the lateral motion on top), and the heading
+  // turns by asin(0.35) = 0.3575711 rad toward the new lane, as esmini's.
+  const auto check = [](FixtureRun& run) {
     run.run();
     CHECK(run.at(4.0, "Car").road->s ==
           Approx(50.0 - 100.0 * (0.1 - std::sqrt(0.008775))).margin(1e-6));
     CHECK(run.at(1.5, "Car").pose.h == Approx(-std::asin(0.35)).margin(1e-9));
     CHECK(run.at(4.0, "Car").road->lane == -2);
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_lateral_travel.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_lateral_travel.xosc"), esmini_reading());
+    check(run);
   }
 }
 
@@ -376,7 +375,8 @@ TEST_CASE("A lane change goes on to its target lane from where a teleport put th
   SECTION("standard") {
     FixtureRun run(engine_fixture("semantics_teleport_lane_change.xosc"));
     run.run();
-    CHECK(run.at(2.02, "Car").road->s == Approx(100.1).margin(1e-9));
+    // The path is 0.1 m a step, the lane's share sqrt(0.1^2 - 0.035^2) of it.
+    CHECK(run.at(2.02, "Car").road->s == Approx(100.0 + std::sqrt(0.008775)).margin(1e-9));
     CHECK(run.at(2.02, "Car").road->t == Approx(-8.715).margin(1e-9));
     CHECK(run.at(2.51, "Car").road->t == Approx(-7.0).margin(1e-9));
     CHECK(run.at(3.01, "Car").road->t == Approx(-5.25).margin(1e-9));

@@ -20,10 +20,6 @@ struct MotionContext {
   std::vector<xodr::LaneSpan>* scratch = nullptr;
   /// Scratch for the neighbour queries of generated traffic (entity indices), one per thread.
   std::vector<uint32_t>* nearby = nullptr;
-  /// While the lateral offset changes, the step's travel along the lane is shortened so that the
-  /// path (along and across) is as long as the speed gives (esmini's choice); otherwise the
-  /// lane is followed at the speed and the lateral motion comes on top.
-  bool path_speed_lateral = false;
 };
 
 class Controller {
