@@ -174,18 +174,20 @@ TEST_CASE("an entity added relative to itself after its deletion starts where it
   run.run();
   // The conditions hold at 1.01 s and 2.01 s; their actions act on the next step: deleted from
   // 1.02 s where it was at 1.01 s (10 m/s from s 20), added again at 2.02 s 50 m further on,
-  // standing.
+  // at the 10 m/s it was deleted at (as esmini's re-added entity), so that it drives that step
+  // on from there (0.1 m) and on.
   const auto& deleted = run.at(1.5, "Gone");
   CHECK(!deleted.placed);
   CHECK(deleted.pose.x == Approx(30.1));
   const auto& added = run.at(2.02, "Gone");
   CHECK(added.placed);
-  CHECK(added.pose.x == Approx(deleted.pose.x + 50.0));
-  CHECK(added.speed == 0.0);
+  CHECK(added.pose.x == Approx(deleted.pose.x + 50.0 + 0.1));
+  CHECK(added.speed == Approx(10.0));
+  CHECK(run.at(2.5, "Gone").pose.x == Approx(added.pose.x + 10.0 * 0.48).margin(1e-6));
   CHECK_THAT(corsa::test::all_text(run.diagnostics()),
              Catch::Contains("entity 'Gone' is referenced after it was deleted (read as the "
                              "position it was deleted at)"));
-  // esmini's re-added entity drives on at the speed it was deleted at.
+  // The same under esmini's reading.
   corsa::engine::SimulationOptions options;
   options.semantics = corsa::engine::Semantics::kEsmini;
   FixtureRun esmini(engine_fixture("compat_esmini_readings.xosc"), options);
