@@ -272,22 +272,25 @@ TEST_CASE("A RelativeLanePosition without Orientation faces its lane's traffic, 
   }
 }
 
-TEST_CASE("A RelativeLanePosition's dLane skips the centre lane, or esmini's lands on it",
+TEST_CASE("A RelativeLanePosition's dLane is added to the lane id, under either reading",
           "[engine][semantics][positions]") {
-  // Ref drives lane -1 facing +s; Other is dLane 1, ds 10, offset 1 from it.
-  SECTION("standard") {
-    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"));
-    run.run();
-    CHECK(run.at(0.0, "Other").road->lane == 1);
-    CHECK(run.at(0.0, "Other").pose.y == Approx(1.75 + 1.0).margin(1e-9));
-  }
-  SECTION("esmini") {
-    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"), esmini_reading());
+  // Ref drives lane -1 facing +s; Other is dLane 1, ds 10, offset 1 from it: lane id -1 + 1 = 0,
+  // the centre lane (1.3: "adding dLane to that of the reference entity"), on the reference line
+  // plus the offset, as esmini places it.
+  const auto check = [](FixtureRun& run) {
     run.run();
     CHECK(run.at(0.0, "Other").pose.y == Approx(1.0).margin(1e-9));
     CHECK(run.at(0.0, "Other").pose.x == Approx(110.0).margin(1e-9));
     CHECK(run.at(0.0, "Other").pose.h == Approx(0.0).margin(1e-9));  // as Ref's lane runs
     CHECK(run.at(0.0, "Other").road->lane == 1);                     // the lane the offset reaches
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"), esmini_reading());
+    check(run);
   }
 }
 

@@ -162,11 +162,12 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
     ds = factor > 1e-6 ? *p.ds_lane / factor : *p.ds_lane;
   }
   const LaneFollow at = walk(map, rc, ds, p.source);
-  // dLane counts lanes, the centre lane not among them (-1 + 1 is lane 1); esmini adds it to the
-  // lane id, so that -1 + 1 is the centre lane 0, on the reference line.
+  // 1.3 RelativeLanePosition: "Find the target lane by adding dLane to that of the reference
+  // entity", dLane being "The deviation value between the laneId of the lane, where the
+  // reference entity is located, and the target laneId": the lane id plus dLane, so that -1 + 1
+  // is the centre lane 0, on the reference line (as esmini). Lanes are not counted.
   const bool esmini = state.options.semantics == Semantics::kEsmini;
-  const int lane_id =
-      esmini ? at.lane + at.dir * p.d_lane : step_lane_id(at.lane, at.dir * p.d_lane);
+  const int lane_id = at.lane + at.dir * p.d_lane;
   // The centre lane has no width nor direction: on the reference line (as a LanePosition on
   // lane 0), oriented as the reference's lane, in the lane the offset reaches.
   const double t = (lane_id == 0 ? 0.0 : need_lane_center(map, at.road, at.s, lane_id, p.source)) +
