@@ -194,42 +194,41 @@ TEST_CASE("A TrafficSwarmAction ends once its swarm started, or esmini's when it
   }
 }
 
-TEST_CASE("A relative Orientation on a left lane turns from the road's s, or esmini's lane",
+TEST_CASE("A relative Orientation on a left lane turns from the lane's direction of travel",
           "[engine][semantics][positions]") {
-  // Lane 1 at s = 100, h = pi relative, 10 m/s for 2 s.
-  SECTION("standard") {
-    // pi from the road's +s: facing -s, with the lane's traffic; s(2) = 100 - 20.
-    FixtureRun run(engine_fixture("semantics_lane_orientation.xosc"));
-    run.run();
-    CHECK(std::abs(run.at(0.0, "Car").pose.h) == Approx(std::numbers::pi).margin(1e-9));
-    CHECK(run.at(2.0, "Car").road->s == Approx(80.0).margin(1e-9));
-  }
-  SECTION("esmini") {
-    // pi from the lane's direction of travel (-s): facing +s; s(2) = 100 + 20.
-    FixtureRun run(engine_fixture("semantics_lane_orientation.xosc"), esmini_reading());
+  // Lane 1 at s = 100, h = pi relative, 10 m/s for 2 s: pi from the lane's direction of travel
+  // (-s) faces +s; s(2) = 100 + 20, under either reading (esmini's).
+  const auto check = [](FixtureRun& run) {
     run.run();
     CHECK(run.at(0.0, "Car").pose.h == Approx(0.0).margin(1e-9));
     CHECK(run.at(2.0, "Car").road->s == Approx(120.0).margin(1e-9));
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_lane_orientation.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_lane_orientation.xosc"), esmini_reading());
+    check(run);
   }
 }
 
-TEST_CASE("A RoutePosition's relative Orientation turns from the road's s, or esmini's lane",
+TEST_CASE("A RoutePosition's relative Orientation in lane coordinates turns from the lane",
           "[engine][semantics][positions][route]") {
   // Lane 1 at path s 50 of a route along road 1 from s = 50 (road s 100), h = pi relative,
-  // 10 m/s for 2 s.
-  SECTION("standard") {
-    // pi from the road's +s (1.3 RoutePosition: the road's s and t): facing -s; s(2) = 80.
-    FixtureRun run(engine_fixture("semantics_route_orientation.xosc"));
-    run.run();
-    CHECK(std::abs(run.at(0.0, "Car").pose.h) == Approx(std::numbers::pi).margin(1e-9));
-    CHECK(run.at(2.0, "Car").road->s == Approx(80.0).margin(1e-9));
-  }
-  SECTION("esmini") {
-    // pi from the lane's direction of travel (-s): facing +s; s(2) = 120.
-    FixtureRun run(engine_fixture("semantics_route_orientation.xosc"), esmini_reading());
+  // 10 m/s for 2 s: pi from the lane's direction of travel (-s) faces +s; s(2) = 120.
+  const auto check = [](FixtureRun& run) {
     run.run();
     CHECK(run.at(0.0, "Car").pose.h == Approx(0.0).margin(1e-9));
     CHECK(run.at(2.0, "Car").road->s == Approx(120.0).margin(1e-9));
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_route_orientation.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_route_orientation.xosc"), esmini_reading());
+    check(run);
   }
 }
 
