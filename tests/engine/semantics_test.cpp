@@ -302,8 +302,9 @@ TEST_CASE("A ReachPositionCondition ignores the Orientation, or esmini's compare
     const auto start = run.first("S::A::G::M::Aligned::Align", engine::TransitionKind::kStart);
     REQUIRE(start);
     CHECK(*start == Approx(0.21));
-    // The teleport is at the start of the step, which the car then drives: 0.1 m on.
-    CHECK(run.at(*start + 0.01, "Car").pose.x ==
+    // The teleport takes the step (as esmini's): the car stands where it was put, then drives on.
+    CHECK(run.at(*start + 0.01, "Car").pose.x == Approx(run.at(*start, "Car").pose.x));
+    CHECK(run.at(*start + 0.02, "Car").pose.x ==
           Approx(run.at(*start, "Car").pose.x + 0.1).margin(1e-9));
     CHECK(run.at(*start + 0.01, "Car").pose.h == Approx(0.0).margin(1e-12));
   }
@@ -317,7 +318,7 @@ TEST_CASE("A ReachPositionCondition ignores the Orientation, or esmini's compare
     CHECK(*start == Approx(0.49));
     CHECK(run.at(*start, "Car").pose.h > 0.05);
     CHECK(run.at(*start - 0.01, "Car").pose.h < 0.05);
-    // esmini's teleport takes the step: the car stands where it was put, then drives on.
+    // The teleport takes the step: the car stands where it was put, then drives on.
     CHECK(run.at(*start + 0.01, "Car").pose.x == Approx(run.at(*start, "Car").pose.x));
     CHECK(run.at(*start + 0.02, "Car").pose.x ==
           Approx(run.at(*start, "Car").pose.x + 0.1).margin(1e-9));
@@ -370,20 +371,22 @@ TEST_CASE("A lane change goes on to its target lane from where a teleport put th
   // At 10 m/s the car changes from lane -1 (t = -1.75) to lane -2 (t = -5.25) linearly in 2 s
   // from t = 1.01 s. Halfway, at 2.01 s, a TeleportAction puts it on lane -3 (t = -8.75) at
   // s = 100. The teleport assigns no lateral control (Annex A), so the lane change carries on:
-  // the second half of the line runs from t = -8.75 to lane -2, 0.035 m in each step, so
-  // t(2.51) = -7.0 and the car is on lane -2 from 3.01 s, when the action ends. No step swerves
-  // back toward the lanes it left (the lateral offset was measured from lane -1's centre).
+  // the second half of the line runs from t = -8.75 to lane -2, so t(2.51) = -7.0 and the car is
+  // on lane -2 from 3.01 s, when the action ends. The teleport takes its step (the car stands at
+  // s = 100, t = -8.75 at 2.02 s); the next step makes up its 0.035 m, then 0.035 m a step. No
+  // step swerves back toward the lanes it left (the lateral offset was measured from lane -1's
+  // centre).
   SECTION("standard") {
     FixtureRun run(engine_fixture("semantics_teleport_lane_change.xosc"));
     run.run();
-    // The path is 0.1 m a step, the lane's share sqrt(0.1^2 - 0.035^2) of it.
-    CHECK(run.at(2.02, "Car").road->s == Approx(100.0 + std::sqrt(0.008775)).margin(1e-9));
-    CHECK(run.at(2.02, "Car").road->t == Approx(-8.715).margin(1e-9));
+    CHECK(run.at(2.02, "Car").road->s == Approx(100.0).margin(1e-9));
+    CHECK(run.at(2.02, "Car").road->t == Approx(-8.75).margin(1e-9));
+    CHECK(run.at(2.03, "Car").road->t == Approx(-8.75 + 0.07).margin(1e-9));
     CHECK(run.at(2.51, "Car").road->t == Approx(-7.0).margin(1e-9));
     CHECK(run.at(3.01, "Car").road->t == Approx(-5.25).margin(1e-9));
     CHECK(run.at(4.0, "Car").road->lane == -2);
     CHECK(run.at(4.0, "Car").road->t == Approx(-5.25).margin(1e-9));
-    for (int tick = 202; tick < 301; ++tick) {
+    for (int tick = 203; tick < 301; ++tick) {
       const double step =
           run.at((tick + 1) * 0.01, "Car").road->t - run.at(tick * 0.01, "Car").road->t;
       CHECK(step == Approx(0.035).margin(1e-9));
