@@ -43,8 +43,8 @@ ArgParser sweep_parser() {
   parser.option("--dt", "SECONDS", "fixed step (default 0.01)");
   parser.option("--duration", "SECONDS", "stop each run at this simulated time at the latest");
   parser.option("--semantics", "standard|esmini",
-                "read what the standard leaves open as the standard does (default) or as esmini "
-                "does");
+                "where the standard's text and esmini differ, read as the standard (default) or "
+                "as esmini");
   parser.option("--record-every", "N", "trajectory row every N-th step (default 1)");
   parser.flag("--no-trajectories", "write no trajectory.csv per variant");
   parser.option("--ego", "NAME",

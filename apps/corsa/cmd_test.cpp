@@ -40,8 +40,9 @@ ArgParser test_parser() {
   parser.flag("--quiet", "print only failures and errors");
   parser.flag("--strict", "refuse lenient readings ('(read as ...)' warnings) in every test");
   parser.option("--semantics", "standard|esmini",
-                "read what the standard leaves open as the standard does (default) or as esmini "
-                "does, in every test (docs/openscenario.md, differences from esmini)");
+                "where the standard's text and esmini differ, read as the standard (default) or "
+                "as esmini, in every test; what the standard leaves open is read as esmini "
+                "either way (docs/openscenario.md, differences from esmini)");
   parser.epilog(
       "A folder suite uses its suite.xml, or else runs every scenario in it, comparing with\n"
       "goldens/<name>.csv when present. Exit 0 when every test passed, 1 when one failed or could\n"

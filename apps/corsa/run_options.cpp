@@ -77,8 +77,9 @@ void declare_run_options(ArgParser& parser) {
                 "binary trajectory is also encoded on a thread of its own; results are the "
                 "same for any number");
   parser.option("--semantics", "standard|esmini",
-                "read what the standard leaves open as the standard does (default) or as esmini "
-                "does (docs/openscenario.md, differences from esmini)");
+                "where the standard's text and esmini differ, read as the standard (default) or "
+                "as esmini; what the standard leaves open is read as esmini either way "
+                "(docs/openscenario.md, differences from esmini)");
   parser.flag("--disable-controllers",
               "ignore the scenario's controllers: every entity moves under the default "
               "controller (or --controller's), as esmini's --disable_controllers");

@@ -28,7 +28,7 @@ class Simulation(_corsa.Simulation):
                  as car or pedestrian (`--entity-model`); they win over the rig's <EntityModel>s
     time_of_day  'HH:MM[:SS]' for the rig's lighting (`--time-of-day`)
     weather      'fog=50,rain=0.6,...' for the rig's sensors (`--weather`)
-    semantics    'standard' or 'esmini': how what the standard leaves open is read (`--semantics`)
+    semantics    'standard' or 'esmini': where the standard's text and esmini differ (`--semantics`)
 
     Bad input raises corsa.InputError with the command line's 'file:line: error: message'.
     """

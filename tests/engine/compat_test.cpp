@@ -132,16 +132,15 @@ TEST_CASE("a LanePosition on the centre lane and an s past the road's end are re
                         Catch::Contains("an error under --strict"));
 }
 
-TEST_CASE("a relative orientation on a left lane turns from the road, or from the lane for esmini",
+TEST_CASE("a relative orientation on a left lane turns from the lane's direction of travel",
           "[engine][compat][positions]") {
   // Lanes 1 and 2 of the straight road (heading 0) run towards -s in right-hand traffic: without
-  // an Orientation a car there faces pi. Relative h = pi turns from the road's +s (the standard
-  // reading: the lane's (s,t) frame runs along the reference line) to pi, or, with esmini's
-  // semantics, from the lane's direction of travel back to +s.
+  // an Orientation a car there faces pi. Relative h = pi turns from the lane's direction of
+  // travel back to +s, under either reading (as esmini turns it).
   FixtureRun standard(engine_fixture("compat_esmini_readings.xosc"));
   standard.run();
   CHECK(std::cos(standard.at(0.0, "Left").pose.h) == Approx(-1.0));
-  CHECK(std::cos(standard.at(0.0, "LeftTurned").pose.h) == Approx(-1.0));
+  CHECK(std::cos(standard.at(0.0, "LeftTurned").pose.h) == Approx(1.0));
   corsa::engine::SimulationOptions options;
   options.semantics = corsa::engine::Semantics::kEsmini;
   FixtureRun esmini(engine_fixture("compat_esmini_readings.xosc"), options);
@@ -174,18 +173,20 @@ TEST_CASE("an entity added relative to itself after its deletion starts where it
   run.run();
   // The conditions hold at 1.01 s and 2.01 s; their actions act on the next step: deleted from
   // 1.02 s where it was at 1.01 s (10 m/s from s 20), added again at 2.02 s 50 m further on,
-  // standing.
+  // at the 10 m/s it was deleted at (as esmini's re-added entity), so that it drives that step
+  // on from there (0.1 m) and on.
   const auto& deleted = run.at(1.5, "Gone");
   CHECK(!deleted.placed);
   CHECK(deleted.pose.x == Approx(30.1));
   const auto& added = run.at(2.02, "Gone");
   CHECK(added.placed);
-  CHECK(added.pose.x == Approx(deleted.pose.x + 50.0));
-  CHECK(added.speed == 0.0);
+  CHECK(added.pose.x == Approx(deleted.pose.x + 50.0 + 0.1));
+  CHECK(added.speed == Approx(10.0));
+  CHECK(run.at(2.5, "Gone").pose.x == Approx(added.pose.x + 10.0 * 0.48).margin(1e-6));
   CHECK_THAT(corsa::test::all_text(run.diagnostics()),
              Catch::Contains("entity 'Gone' is referenced after it was deleted (read as the "
                              "position it was deleted at)"));
-  // esmini's re-added entity drives on at the speed it was deleted at.
+  // The same under esmini's reading.
   corsa::engine::SimulationOptions options;
   options.semantics = corsa::engine::Semantics::kEsmini;
   FixtureRun esmini(engine_fixture("compat_esmini_readings.xosc"), options);

@@ -20,29 +20,26 @@ engine::SimulationOptions esmini_reading() {
 
 }  // namespace
 
-TEST_CASE("A step's travel is the exact integral of the speed, or esmini's speed at its end",
+TEST_CASE("A step travels the speed at its end times dt, under either reading",
           "[engine][semantics]") {
   // From s = 10 the car speeds up linearly from 0 to 10 m/s in 2 s (a = 5 m/s^2), then holds
-  // 10 m/s. Exact: s(2) = 10 + 5 * 2^2 / 2 = 20, s(4) = 20 + 10 * 2 = 40; the trapezoid rule
-  // integrates a speed that is linear within each step exactly.
-  SECTION("standard") {
-    FixtureRun run(engine_fixture("semantics_speed_travel.xosc"));
-    run.run();
-    CHECK(run.at(1.0, "Car").road->s == Approx(12.5).margin(1e-9));
-    CHECK(run.at(2.0, "Car").road->s == Approx(20.0).margin(1e-9));
-    CHECK(run.at(4.0, "Car").road->s == Approx(40.0).margin(1e-9));
-    CHECK(run.at(2.0, "Car").speed == Approx(10.0).margin(1e-12));
-  }
-  SECTION("esmini") {
-    // Each step moves by the speed at its end: sum over k = 1..n of v(k dt) dt, which exceeds
-    // the integral by dt/2 times the speed gained, 0.01 / 2 * 5 = 0.025 m after 1 s and
-    // 0.01 / 2 * 10 = 0.05 m from 2 s on. The speeds are the same under both readings.
-    FixtureRun run(engine_fixture("semantics_speed_travel.xosc"), esmini_reading());
+  // 10 m/s. Each step moves by the speed at its end: sum over k = 1..n of v(k dt) dt, which
+  // exceeds the exact integral (s(1) = 12.5, s(2) = 20, s(4) = 40) by dt/2 times the speed gained,
+  // 0.01 / 2 * 5 = 0.025 m after 1 s and 0.01 / 2 * 10 = 0.05 m from 2 s on, as esmini's.
+  const auto check = [](FixtureRun& run) {
     run.run();
     CHECK(run.at(1.0, "Car").road->s == Approx(12.525).margin(1e-9));
     CHECK(run.at(2.0, "Car").road->s == Approx(20.05).margin(1e-9));
     CHECK(run.at(4.0, "Car").road->s == Approx(40.05).margin(1e-9));
     CHECK(run.at(2.0, "Car").speed == Approx(10.0).margin(1e-12));
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_speed_travel.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_speed_travel.xosc"), esmini_reading());
+    check(run);
   }
 }
 
@@ -63,28 +60,27 @@ TEST_CASE("The step in which a step-shaped SpeedAction starts is driven at the n
   CHECK(run.at(t0 + 1.0, "Car").road->s == Approx(20.0).margin(1e-9));
 }
 
-TEST_CASE("During a lane change the lane is followed at the speed, or esmini's path at it",
+TEST_CASE("During a lane change the path is as long as the speed gives, under either reading",
           "[engine][semantics]") {
   // At 10 m/s the car changes 3.5 m to the right linearly in 1 s: 0.035 m across in each step of
-  // 0.1 m. Standard reading: the lane is followed at 10 m/s, s(4) = 10 + 10 * 4 = 50, and the
-  // heading turns by atan(0.035 / 0.1) = 0.3366748 rad toward the new lane.
-  SECTION("standard") {
-    FixtureRun run(engine_fixture("semantics_lateral_travel.xosc"));
-    run.run();
-    CHECK(run.at(4.0, "Car").road->s == Approx(50.0).margin(1e-9));
-    CHECK(run.at(1.5, "Car").pose.h == Approx(-std::atan(0.35)).margin(1e-9));
-    CHECK(run.at(4.0, "Car").road->lane == -2);
-  }
-  SECTION("esmini") {
-    // The path is 0.1 m a step, so the lane gets sqrt(0.1^2 - 0.035^2) = 0.0936750 m of it for
-    // the 100 steps of the change: s(4) = 50 - 100 * (0.1 - 0.0936750) = 49.3674970, and the
-    // heading turns by asin(0.35) = 0.3575711 rad.
-    FixtureRun run(engine_fixture("semantics_lateral_travel.xosc"), esmini_reading());
+  // 0.1 m. The path is 0.1 m a step, so the lane gets sqrt(0.1^2 - 0.035^2) = 0.0936750 m of it
+  // for the 100 steps of the change: s(4) = 50 - 100 * (0.1 - 0.0936750) = 49.3674970 (not 50,
+  // as if the lane were followed at the speed with the lateral motion on top), and the heading
+  // turns by asin(0.35) = 0.3575711 rad toward the new lane, as esmini's.
+  const auto check = [](FixtureRun& run) {
     run.run();
     CHECK(run.at(4.0, "Car").road->s ==
           Approx(50.0 - 100.0 * (0.1 - std::sqrt(0.008775))).margin(1e-6));
     CHECK(run.at(1.5, "Car").pose.h == Approx(-std::asin(0.35)).margin(1e-9));
     CHECK(run.at(4.0, "Car").road->lane == -2);
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_lateral_travel.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_lateral_travel.xosc"), esmini_reading());
+    check(run);
   }
 }
 
@@ -175,18 +171,10 @@ TEST_CASE("An Act its StopTrigger stops takes the stopTransition, or esmini's en
   }
 }
 
-TEST_CASE("A TrafficSwarmAction ends once its swarm started, or esmini's when it is stopped",
+TEST_CASE("A TrafficSwarmAction ends when its swarm is stopped, under either reading",
           "[engine][semantics][traffic]") {
   // The swarm starts at 0.5 s and a TrafficStopAction stops it at 20 s; the run ends at 25 s.
-  SECTION("standard") {
-    FixtureRun run(engine_fixture("traffic_swarm.xosc"));
-    run.run();
-    const auto ended = run.first("StartSwarm", engine::TransitionKind::kEnd);
-    REQUIRE(ended);
-    CHECK(*ended < 0.6);
-  }
-  SECTION("esmini") {
-    FixtureRun run(engine_fixture("traffic_swarm.xosc"), esmini_reading());
+  const auto check = [](FixtureRun& run) {
     run.run();
     const auto started = run.first("StartSwarm", engine::TransitionKind::kStart);
     const auto ended = run.first("StartSwarm", engine::TransitionKind::kEnd);
@@ -195,66 +183,72 @@ TEST_CASE("A TrafficSwarmAction ends once its swarm started, or esmini's when it
     CHECK(*started < 0.6);
     CHECK(*ended >= 20.0);
     CHECK(*ended < 20.1);
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("traffic_swarm.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("traffic_swarm.xosc"), esmini_reading());
+    check(run);
   }
 }
 
-TEST_CASE("A relative Orientation on a left lane turns from the road's s, or esmini's lane",
+TEST_CASE("A relative Orientation on a left lane turns from the lane's direction of travel",
           "[engine][semantics][positions]") {
-  // Lane 1 at s = 100, h = pi relative, 10 m/s for 2 s.
-  SECTION("standard") {
-    // pi from the road's +s: facing -s, with the lane's traffic; s(2) = 100 - 20.
-    FixtureRun run(engine_fixture("semantics_lane_orientation.xosc"));
-    run.run();
-    CHECK(std::abs(run.at(0.0, "Car").pose.h) == Approx(std::numbers::pi).margin(1e-9));
-    CHECK(run.at(2.0, "Car").road->s == Approx(80.0).margin(1e-9));
-  }
-  SECTION("esmini") {
-    // pi from the lane's direction of travel (-s): facing +s; s(2) = 100 + 20.
-    FixtureRun run(engine_fixture("semantics_lane_orientation.xosc"), esmini_reading());
+  // Lane 1 at s = 100, h = pi relative, 10 m/s for 2 s: pi from the lane's direction of travel
+  // (-s) faces +s; s(2) = 100 + 20, under either reading (esmini's).
+  const auto check = [](FixtureRun& run) {
     run.run();
     CHECK(run.at(0.0, "Car").pose.h == Approx(0.0).margin(1e-9));
     CHECK(run.at(2.0, "Car").road->s == Approx(120.0).margin(1e-9));
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_lane_orientation.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_lane_orientation.xosc"), esmini_reading());
+    check(run);
   }
 }
 
-TEST_CASE("A RoutePosition's relative Orientation turns from the road's s, or esmini's lane",
+TEST_CASE("A RoutePosition's relative Orientation in lane coordinates turns from the lane",
           "[engine][semantics][positions][route]") {
   // Lane 1 at path s 50 of a route along road 1 from s = 50 (road s 100), h = pi relative,
-  // 10 m/s for 2 s.
-  SECTION("standard") {
-    // pi from the road's +s (1.3 RoutePosition: the road's s and t): facing -s; s(2) = 80.
-    FixtureRun run(engine_fixture("semantics_route_orientation.xosc"));
-    run.run();
-    CHECK(std::abs(run.at(0.0, "Car").pose.h) == Approx(std::numbers::pi).margin(1e-9));
-    CHECK(run.at(2.0, "Car").road->s == Approx(80.0).margin(1e-9));
-  }
-  SECTION("esmini") {
-    // pi from the lane's direction of travel (-s): facing +s; s(2) = 120.
-    FixtureRun run(engine_fixture("semantics_route_orientation.xosc"), esmini_reading());
+  // 10 m/s for 2 s: pi from the lane's direction of travel (-s) faces +s; s(2) = 120.
+  const auto check = [](FixtureRun& run) {
     run.run();
     CHECK(run.at(0.0, "Car").pose.h == Approx(0.0).margin(1e-9));
     CHECK(run.at(2.0, "Car").road->s == Approx(120.0).margin(1e-9));
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_route_orientation.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_route_orientation.xosc"), esmini_reading());
+    check(run);
   }
 }
 
-TEST_CASE("A time headway towards an entity behind is infinite, or esmini's condition is false",
+TEST_CASE("A time headway towards an entity behind holds for no rule, under either reading",
           "[engine][semantics][conditions]") {
-  // Car (s = 50) waits for its headway to Behind (s = 10) to exceed 1 s before going 20 m/s.
-  SECTION("standard") {
-    // No headway is defined towards an entity behind: it is infinite, so greaterThan 1 holds at
-    // once and Car speeds up in the first step.
-    FixtureRun run(engine_fixture("semantics_headway_behind.xosc"));
-    run.run();
-    const auto started = run.first("away", engine::TransitionKind::kStart);
-    REQUIRE(started);
-    CHECK(*started == Approx(0.0));
-    CHECK(run.now("Car").speed == Approx(20.0));
-  }
-  SECTION("esmini") {
-    FixtureRun run(engine_fixture("semantics_headway_behind.xosc"), esmini_reading());
+  // Car (s = 50) waits for its headway to Behind (s = 10) to exceed 1 s before going 20 m/s. No
+  // headway is defined towards an entity behind: the condition does not hold (esmini's reading;
+  // an infinite headway would start the event at once).
+  const auto check = [](FixtureRun& run) {
     run.run();
     CHECK_FALSE(run.first("away", engine::TransitionKind::kStart));
     CHECK(run.now("Car").speed == Approx(10.0));
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_headway_behind.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_headway_behind.xosc"), esmini_reading());
+    check(run);
   }
 }
 
@@ -276,22 +270,25 @@ TEST_CASE("A RelativeLanePosition without Orientation faces its lane's traffic, 
   }
 }
 
-TEST_CASE("A RelativeLanePosition's dLane skips the centre lane, or esmini's lands on it",
+TEST_CASE("A RelativeLanePosition's dLane is added to the lane id, under either reading",
           "[engine][semantics][positions]") {
-  // Ref drives lane -1 facing +s; Other is dLane 1, ds 10, offset 1 from it.
-  SECTION("standard") {
-    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"));
-    run.run();
-    CHECK(run.at(0.0, "Other").road->lane == 1);
-    CHECK(run.at(0.0, "Other").pose.y == Approx(1.75 + 1.0).margin(1e-9));
-  }
-  SECTION("esmini") {
-    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"), esmini_reading());
+  // Ref drives lane -1 facing +s; Other is dLane 1, ds 10, offset 1 from it: lane id -1 + 1 = 0,
+  // the centre lane (1.3: "adding dLane to that of the reference entity"), on the reference line
+  // plus the offset, as esmini places it.
+  const auto check = [](FixtureRun& run) {
     run.run();
     CHECK(run.at(0.0, "Other").pose.y == Approx(1.0).margin(1e-9));
     CHECK(run.at(0.0, "Other").pose.x == Approx(110.0).margin(1e-9));
     CHECK(run.at(0.0, "Other").pose.h == Approx(0.0).margin(1e-9));  // as Ref's lane runs
     CHECK(run.at(0.0, "Other").road->lane == 1);                     // the lane the offset reaches
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"), esmini_reading());
+    check(run);
   }
 }
 
@@ -305,8 +302,9 @@ TEST_CASE("A ReachPositionCondition ignores the Orientation, or esmini's compare
     const auto start = run.first("S::A::G::M::Aligned::Align", engine::TransitionKind::kStart);
     REQUIRE(start);
     CHECK(*start == Approx(0.21));
-    // The teleport is at the start of the step, which the car then drives: 0.1 m on.
-    CHECK(run.at(*start + 0.01, "Car").pose.x ==
+    // The teleport takes the step (as esmini's): the car stands where it was put, then drives on.
+    CHECK(run.at(*start + 0.01, "Car").pose.x == Approx(run.at(*start, "Car").pose.x));
+    CHECK(run.at(*start + 0.02, "Car").pose.x ==
           Approx(run.at(*start, "Car").pose.x + 0.1).margin(1e-9));
     CHECK(run.at(*start + 0.01, "Car").pose.h == Approx(0.0).margin(1e-12));
   }
@@ -320,7 +318,7 @@ TEST_CASE("A ReachPositionCondition ignores the Orientation, or esmini's compare
     CHECK(*start == Approx(0.49));
     CHECK(run.at(*start, "Car").pose.h > 0.05);
     CHECK(run.at(*start - 0.01, "Car").pose.h < 0.05);
-    // esmini's teleport takes the step: the car stands where it was put, then drives on.
+    // The teleport takes the step: the car stands where it was put, then drives on.
     CHECK(run.at(*start + 0.01, "Car").pose.x == Approx(run.at(*start, "Car").pose.x));
     CHECK(run.at(*start + 0.02, "Car").pose.x ==
           Approx(run.at(*start, "Car").pose.x + 0.1).margin(1e-9));
@@ -373,19 +371,22 @@ TEST_CASE("A lane change goes on to its target lane from where a teleport put th
   // At 10 m/s the car changes from lane -1 (t = -1.75) to lane -2 (t = -5.25) linearly in 2 s
   // from t = 1.01 s. Halfway, at 2.01 s, a TeleportAction puts it on lane -3 (t = -8.75) at
   // s = 100. The teleport assigns no lateral control (Annex A), so the lane change carries on:
-  // the second half of the line runs from t = -8.75 to lane -2, 0.035 m in each step, so
-  // t(2.51) = -7.0 and the car is on lane -2 from 3.01 s, when the action ends. No step swerves
-  // back toward the lanes it left (the lateral offset was measured from lane -1's centre).
+  // the second half of the line runs from t = -8.75 to lane -2, so t(2.51) = -7.0 and the car is
+  // on lane -2 from 3.01 s, when the action ends. The teleport takes its step (the car stands at
+  // s = 100, t = -8.75 at 2.02 s); the next step makes up its 0.035 m, then 0.035 m a step. No
+  // step swerves back toward the lanes it left (the lateral offset was measured from lane -1's
+  // centre).
   SECTION("standard") {
     FixtureRun run(engine_fixture("semantics_teleport_lane_change.xosc"));
     run.run();
-    CHECK(run.at(2.02, "Car").road->s == Approx(100.1).margin(1e-9));
-    CHECK(run.at(2.02, "Car").road->t == Approx(-8.715).margin(1e-9));
+    CHECK(run.at(2.02, "Car").road->s == Approx(100.0).margin(1e-9));
+    CHECK(run.at(2.02, "Car").road->t == Approx(-8.75).margin(1e-9));
+    CHECK(run.at(2.03, "Car").road->t == Approx(-8.75 + 0.07).margin(1e-9));
     CHECK(run.at(2.51, "Car").road->t == Approx(-7.0).margin(1e-9));
     CHECK(run.at(3.01, "Car").road->t == Approx(-5.25).margin(1e-9));
     CHECK(run.at(4.0, "Car").road->lane == -2);
     CHECK(run.at(4.0, "Car").road->t == Approx(-5.25).margin(1e-9));
-    for (int tick = 202; tick < 301; ++tick) {
+    for (int tick = 203; tick < 301; ++tick) {
       const double step =
           run.at((tick + 1) * 0.01, "Car").road->t - run.at(tick * 0.01, "Car").road->t;
       CHECK(step == Approx(0.035).margin(1e-9));

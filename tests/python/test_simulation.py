@@ -145,16 +145,17 @@ def test_two_simulations_do_not_see_each_other():
 
 
 def test_the_esmini_reading_reaches_the_engine():
-    # From s = 10 a linear speed-up from 0 to 10 m/s in 2 s: exactly 12.5 m at 1 s under the
-    # standard reading; esmini moves each step by the speed at its end, dt/2 x 5 m/s further.
-    path = ROOT / "tests" / "engine" / "fixtures" / "semantics_speed_travel.xosc"
+    # From 10 m/s a linear speed-up to 20 m/s in 2 s from 1 s on, beyond the car's Performance
+    # (2 m/s^2, 15 m/s): exactly as written under the standard reading, 20 m/s at 4 s; esmini
+    # holds it to the Performance, 15 m/s.
+    path = ROOT / "tests" / "engine" / "fixtures" / "semantics_performance.xosc"
     standard = corsa.Simulation(path)
     esmini = corsa.Simulation(path, semantics="esmini")
     for sim in (standard, esmini):
-        while sim.time < 1.0 - 1e-9:
+        while sim.time < 4.0 - 1e-9:
             sim.step()
-    assert standard.state("Car").s == pytest.approx(12.5, abs=1e-9)
-    assert esmini.state("Car").s == pytest.approx(12.525, abs=1e-9)
+    assert standard.state("Car").speed == pytest.approx(20.0, abs=1e-9)
+    assert esmini.state("Car").speed == pytest.approx(15.0, abs=1e-9)
 
 
 def test_a_ghost_run_starts_at_its_negative_head_start_everywhere():

@@ -1,8 +1,9 @@
 // AddEntityAction and DeleteEntityAction (OpenSCENARIO 1.3 §7.5.4 EntityAction). The entities
 // are those of the scenario's Entities; a deleted entity is absent: no controller moves it, it
 // has no trajectory rows, no contacts, and conditions about it do not hold. Adding places it
-// (as a TeleportAction would) and makes it present again, standing, under its controller;
-// adding an entity that is present does nothing (with a lenient-reading warning).
+// (as a TeleportAction would) and makes it present again under its controller, at the speed it
+// was deleted at (standing if it never ran); adding an entity that is present does nothing (with
+// a lenient-reading warning).
 
 #include "actions/action_makers.h"
 #include "controllers/controllers.h"
@@ -39,10 +40,10 @@ class AddEntityInstance final : public InstantAction {
       return;
     }
     const ResolvedPosition at = resolve_position(action_.position, state, index);
-    // Added standing; esmini keeps the object of a deleted entity, which drives on at the speed
-    // it was deleted at when added again (`--semantics esmini`).
-    const bool keep_speed = entity.removed && state.options.semantics == Semantics::kEsmini;
-    const double speed = keep_speed ? entity.removed_speed : 0.0;
+    // 1.3 AddEntityAction: "Adds an entity to the scenario, at a predefined position": a position
+    // only, the speed is left open. An entity added again drives on at the speed it was deleted
+    // at, as esmini's object of a deleted entity does; one never present before stands.
+    const double speed = entity.removed ? entity.removed_speed : 0.0;
     entity.state.speed = speed;
     entity.speed_command = speed;
     entity.lateral_command = 0.0;

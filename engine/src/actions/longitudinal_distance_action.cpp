@@ -115,7 +115,6 @@ class LongitudinalDistanceInstance final : public ActionInstance {
       move_along(context, side_ * same_way * error);
     }
     entity.speed_command = v_ref;
-    entity.speed_jump = !context.init;
     if (context.init) {
       entity.state.speed = v_ref;
     }

@@ -65,8 +65,6 @@ class SpeedInstance final : public ActionInstance {
     duration_ = duration;
     if (duration_ <= 0.0) {
       command(context, target);
-      // A step (or an instant transition): the new speed holds from this step's start.
-      entity.speed_jump = !context.init;
       reached_ = true;
     }
   }

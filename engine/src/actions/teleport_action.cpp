@@ -1,7 +1,7 @@
 // TeleportAction (OpenSCENARIO 1.3 §7.4.3): the actor jumps to a position, instantaneously.
-// The jump is at the start of the step, which the actor then drives on from there. esmini's
-// reading (Semantics::kEsmini): the jump takes the whole step, at whose end the actor stands at
-// the new position (esmini marks the object teleported and its default controller leaves it).
+// Whether it also drives the step in which it jumps the standard does not say: under the default
+// controller the jump takes the whole step, at whose end the actor stands at the new position,
+// as esmini reads it (esmini marks the object teleported and its default controller leaves it).
 //
 // A teleport assigns no longitudinal or lateral control strategy (Annex A, action tables), so
 // the actions running on the actor go on from where it now is (a LaneChangeAction towards its
@@ -29,7 +29,7 @@ class TeleportInstance final : public InstantAction {
     }
     const bool ideal =
         context.state.controls[*context.actor].effective() == ControllerKind::kDefault;
-    if (!context.init && ideal && context.state.options.semantics == Semantics::kEsmini) {
+    if (!context.init && ideal) {
       context.entity().pose_command = context.entity().state.pose;  // held there this step
     }
   }

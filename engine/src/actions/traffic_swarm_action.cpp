@@ -1,11 +1,10 @@
 // TrafficSwarmAction (OpenSCENARIO 1.3 §7.5.6): starts a traffic generator
 // (traffic/traffic_generators.h) that works every step until a TrafficStopAction names it.
 //
-// When the action itself ends the standard does not say. The standard reading: it completes once
-// its swarm is started (the swarm lives on), so an Act holding only it ends at once. esmini's
-// reading (Semantics::kEsmini): the action runs as long as its swarm does, until a
-// TrafficStopAction or the end of the run, and so keeps its Act and Story running (esmini's swarm
-// example, whose Storyboard has an empty StopTrigger, runs on with its swarm).
+// When the action itself ends the standard does not say. It runs as long as its swarm does,
+// until a TrafficStopAction or the end of the run, and so keeps its Act and Story running, as
+// esmini reads it (esmini's swarm example, whose Storyboard has an empty StopTrigger, runs on
+// with its swarm instead of ending once the swarm has started).
 
 #include <algorithm>
 
@@ -24,7 +23,7 @@ class TrafficSwarmInstance final : public ActionInstance {
     swarm->serial = ++context.state.traffic.generators_made;
     serial_ = swarm->serial;
     context.state.traffic.generators.push_back(std::move(swarm));
-    running_ = context.state.options.semantics == Semantics::kEsmini;
+    running_ = true;
   }
   void step(ActionContext& context) override {
     const auto& generators = context.state.traffic.generators;

@@ -1,11 +1,11 @@
 // TimeHeadwayCondition (OpenSCENARIO 1.3 §8.3.1): the time the triggering entity needs, at its
 // current speed, to cover the longitudinal distance to a reference entity ahead of it
-// (distance / speed). With the reference behind, or when standing, there is no headway: it is
-// infinite (so `greaterThan` holds). esmini's reading (Semantics::kEsmini): the condition does not
-// hold then, whatever its rule.
+// (distance / speed). With the reference behind, or when standing, no headway is defined, and
+// what the condition then says the standard leaves open: it does not hold, whatever its rule, as
+// esmini reads it (its multi_lane_changes waits with `greaterThan` until the car has passed the
+// one it watches).
 
 #include <cmath>
-#include <limits>
 
 #include "conditions/condition_makers.h"
 #include "positions/relative_distance.h"
@@ -26,12 +26,10 @@ class TimeHeadwayCheck final : public EntityCondition {
     const Entity& from = state.world.entities[entity];
     const double d = entity_distance(state, from, state.world.entities[reference_], spec_);
     const double speed = from.state.speed;
-    if ((d < 0.0 || speed <= 0.0) && state.options.semantics == Semantics::kEsmini) {
-      return false;  // esmini: no headway is defined, and the condition does not hold
+    if (d < 0.0 || speed <= 0.0) {
+      return false;  // no headway is defined, and the condition does not hold
     }
-    const double headway =
-        d >= 0.0 && speed > 0.0 ? d / speed : std::numeric_limits<double>::infinity();
-    return entity != reference_ && compare(headway, c_.rule, c_.value);
+    return entity != reference_ && compare(d / speed, c_.rule, c_.value);
   }
 
  private:

@@ -227,12 +227,13 @@ void step_pedestrian(SimState& state, uint32_t index, const DefaultController& i
       control.pace = entity.speed_command;
     }
     const WalkerMove move = walker_move(entity, index, view, control.pace, *motion.nearby);
-    // Sideways at most half as fast as forwards (27 degrees off the sidewalk): far from the 45
-    // degrees that mean crossing the road, and no sidestep on the spot.
-    const double step =
-        std::min(kSideStepSpeed, 0.5 * std::max(entity.state.speed, 0.0)) * motion.dt;
-    entity.lateral_command += std::clamp(move.lateral - entity.lateral_command, -step, step);
     pace_command = std::min(move.speed, entity.speed_command);
+    // Sideways at most half as fast as forwards in this step (30 degrees off the sidewalk): far
+    // from the 45 degrees that mean crossing the road, and no sidestep on the spot. (Bounded by
+    // the speed of the step before, a walker that has to slow down sharply stepped aside nearly
+    // on the spot, turned past 45 degrees and crossed into the walker beside it.)
+    const double step = std::min(kSideStepSpeed, 0.5 * std::max(pace_command, 0.0)) * motion.dt;
+    entity.lateral_command += std::clamp(move.lateral - entity.lateral_command, -step, step);
     entity.speed_command = pace_command;
   }
   ideal.step(entity, motion);
@@ -269,10 +270,6 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
   const DefaultController ideal;
   Entity& entity = state.world.entities[i];
   const ControllerKind kind = state.controls[i].effective();
-  if (kind != ControllerKind::kDefault || !entity.state.placed || entity.towed_by) {
-    // Car following and the vehicle model reach a new speed their own way, not by a jump.
-    entity.speed_jump = false;
-  }
   if (!entity.state.placed || entity.towed_by || state.frozen(i)) {
     // A connected trailer follows its tower (motion/trailers.h); during a ghost's head start
     // only the ghost moves.

@@ -294,9 +294,13 @@ WalkerMove walker_move(const Entity& me, uint32_t index, const FollowView& view,
     } else if (std::abs(x) <= reach + 0.3) {
       (y > 0.0 ? beside_left : beside_right) = true;
     }
-    // Too close in front to walk on: no faster than they go away from us.
+    // Too close in front to walk on: slower than they go away from us, the more so the closer
+    // (at the contact distance their speed, touching nothing), so that a gap opens again; held
+    // at their speed a walker close behind one would keep the gap it had, and a sidestep turns
+    // its box into the other's.
     if (x > 0.0 && x < kWalkerContact + reach && std::abs(y) < kWalkerAbreast) {
-      move.speed = std::min(move.speed, std::max(0.0, their_speed));
+      const double room = std::clamp((x - reach) / kWalkerContact, 0.0, 1.0);
+      move.speed = std::min(move.speed, std::max(0.0, their_speed) * room);
     }
   }
   if (oncoming) {

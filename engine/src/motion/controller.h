@@ -20,13 +20,6 @@ struct MotionContext {
   std::vector<xodr::LaneSpan>* scratch = nullptr;
   /// Scratch for the neighbour queries of generated traffic (entity indices), one per thread.
   std::vector<uint32_t>* nearby = nullptr;
-  /// A step's travel is the speed at its end times dt (semi-implicit Euler, esmini's choice)
-  /// instead of the trapezoid rule, exact for the linear speed change within a step.
-  bool end_speed_travel = false;
-  /// While the lateral offset changes, the step's travel along the lane is shortened so that the
-  /// path (along and across) is as long as the speed gives (esmini's choice); otherwise the
-  /// lane is followed at the speed and the lateral motion comes on top.
-  bool path_speed_lateral = false;
 };
 
 class Controller {
@@ -35,10 +28,10 @@ class Controller {
   virtual void step(Entity& entity, const MotionContext& context) const = 0;
 };
 
-/// The default controller: along the followed lane at the commanded speed (trapezoidal
-/// integration of speed over the step), lateral offset as commanded, heading following the road
-/// plus the angle of the lateral motion; off the road straight along the heading. An entity that
-/// reaches a lane end without successor stops there (EndOfRoadCondition).
+/// The default controller: along the followed lane at the commanded speed (a step travels the
+/// speed at its end times dt, semi-implicit Euler), lateral offset as commanded, heading following
+/// the road plus the angle of the lateral motion; off the road straight along the heading. An
+/// entity that reaches a lane end without successor stops there (EndOfRoadCondition).
 class DefaultController final : public Controller {
  public:
   void step(Entity& entity, const MotionContext& context) const override;

@@ -117,12 +117,15 @@ double path_scale(const xodr::Map& map, const Entity& entity) {
   return std::clamp(1.0 - k * t, 0.2, 5.0);
 }
 
-// The step's travel along the lane: all of `distance`, or with MotionContext::path_speed_lateral
-// what is left of it beside the lateral change (the path then is `distance` long; a lateral
-// change of at least `distance`, a jump rather than a motion at the speed, leaves it whole).
-double along_lane(const Entity& entity, double distance, const MotionContext& context) {
+// The step's travel along the lane: what is left of `distance` beside the lateral change, so
+// that the path (along and across) is as long as the speed gives. The speed is the entity's
+// (1.3 SpeedCondition compares "the total speed" unless a direction is given); the lateral
+// actions give the offset over time or distance and leave the travel along the lane open
+// (esmini's reading). A lateral change of at least `distance`, a jump rather than a motion at
+// the speed, leaves it whole.
+double along_lane(const Entity& entity, double distance) {
   const double lateral = entity.lateral_command - entity.lane.lateral;
-  if (!context.path_speed_lateral || lateral == 0.0 || std::abs(lateral) >= std::abs(distance)) {
+  if (lateral == 0.0 || std::abs(lateral) >= std::abs(distance)) {
     return distance;
   }
   return std::copysign(std::sqrt(distance * distance - lateral * lateral), distance);
@@ -139,12 +142,11 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
   const double dt = context.dt;
   const double v0 = state.speed;
   double v1 = entity.speed_command;
-  // The speed changes linearly within the step, so the trapezoid rule is its exact integral; a
-  // jump (step shape) holds the new speed from the step's start. esmini moves by the speed at
-  // the step's end (SimulationOptions::semantics).
-  const bool at_end_speed = context.end_speed_travel || entity.speed_jump;
-  entity.speed_jump = false;
-  const double distance = at_end_speed ? v1 * dt : 0.5 * (v0 + v1) * dt;
+  // A step travels its end speed times dt (semi-implicit Euler, as esmini and most players
+  // integrate). The standard gives the speed over time (TransitionDynamics) and leaves how a
+  // simulator turns it into positions to the simulator; the trapezoid rule would be the exact
+  // integral of the speed's linear change within a step, dt / 2 per m/s gained shorter.
+  const double distance = v1 * dt;
   const double h0 = state.pose.h;
   double path = std::abs(distance);
   double lateral_change = 0.0;
@@ -158,7 +160,7 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     const double scale = distance == 0.0 ? 1.0 : path_scale(*context.map, entity);
     const double shift_before = lane.frame_shift;
     const AdvanceResult moved = advance_along_lanes(
-        *context.map, lane, along_lane(entity, distance, context) / scale, entity.chooser);
+        *context.map, lane, along_lane(entity, distance) / scale, entity.chooser);
     // Carried on from a neighbouring lane's end: the offset asked for moves with the lane frame.
     entity.lateral_command += lane.frame_shift - shift_before;
     const double travelled = moved.travelled * scale;

@@ -127,12 +127,11 @@ std::optional<Need> next_need(const RoutePlan& plan, size_t first, const LaneFol
 }
 
 // Sets this step's lateral command of the lane change under way (progress by the distance
-// driven at the end of the step, the step's travel predicted by the trapezoid rule).
+// driven at the end of the step, which travels its end speed times dt).
 void continue_change(Entity& entity, double dt) {
   RouteProgress& progress = entity.route_progress;
   const double travelled =
-      entity.longitudinal_distance - progress.start_distance +
-      0.5 * (std::abs(entity.state.speed) + std::abs(entity.speed_command)) * dt;
+      entity.longitudinal_distance - progress.start_distance + std::abs(entity.speed_command) * dt;
   const double p = progress.length > 0.0 ? std::min(1.0, travelled / progress.length) : 1.0;
   entity.lateral_command = progress.from + shape_value(xosc::DynamicsShape::kSinusoidal, p) *
                                                (progress.to - progress.from);

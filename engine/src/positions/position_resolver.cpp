@@ -75,14 +75,15 @@ ResolvedPosition relative_object(const xosc::RelativeObjectPosition& p, const Si
   return finish_free(out, state);
 }
 
-// What a relative Orientation of a lane position turns from. 1.3 LanePosition: "the
-// (s,t)-coordinate system of the target lane", whose s runs along the road's reference line
-// (the standard reading); esmini turns from the lane's direction of travel, so that h = pi
-// relative on a left lane of right-hand traffic faces +s (`--semantics esmini`).
-OrientationFrame lane_frame(const SimState& state) {
-  return state.options.semantics == Semantics::kEsmini ? OrientationFrame::kLane
-                                                       : OrientationFrame::kRoad;
-}
+// What a relative Orientation of a lane position turns from: the lane's direction of travel, so
+// that h = pi relative on a left lane of right-hand traffic faces +s, as esmini turns it. 1.3
+// LanePosition turns it from "the (s,t)-coordinate system of the target lane" ("counting from
+// the tangent to the lane s-axis"), RelativeLanePosition from that "of the lane where the target
+// position is located"; which way a lane's s-axis runs the standard leaves open (§6.3: "The
+// definition of the s- and t-axes depends on the reference part of the road in use"), and a
+// missing Orientation, "the relative reference context with Heading=Pitch=Roll=0", faces the
+// lane's traffic only if it runs the way the lane is driven.
+constexpr OrientationFrame kLanePositionFrame = OrientationFrame::kLane;
 
 ResolvedPosition road(const xosc::RoadPosition& p, const SimState& state) {
   const xodr::Map& map = need_map(state, p.source, "RoadPosition");
@@ -102,7 +103,7 @@ ResolvedPosition lane(const xosc::LanePosition& p, const SimState& state) {
     return on_road(map, road_index, s, p.offset.value_or(0.0), std::nullopt, p.orientation);
   }
   const double t = need_lane_center(map, road_index, s, lane_id, p.source) + p.offset.value_or(0.0);
-  return on_road(map, road_index, s, t, lane_id, p.orientation, lane_frame(state));
+  return on_road(map, road_index, s, t, lane_id, p.orientation, kLanePositionFrame);
 }
 
 // Where the reference entity is on the road (it must be on one).
@@ -162,17 +163,18 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
     ds = factor > 1e-6 ? *p.ds_lane / factor : *p.ds_lane;
   }
   const LaneFollow at = walk(map, rc, ds, p.source);
-  // dLane counts lanes, the centre lane not among them (-1 + 1 is lane 1); esmini adds it to the
-  // lane id, so that -1 + 1 is the centre lane 0, on the reference line.
+  // 1.3 RelativeLanePosition: "Find the target lane by adding dLane to that of the reference
+  // entity", dLane being "The deviation value between the laneId of the lane, where the
+  // reference entity is located, and the target laneId": the lane id plus dLane, so that -1 + 1
+  // is the centre lane 0, on the reference line (as esmini). Lanes are not counted.
   const bool esmini = state.options.semantics == Semantics::kEsmini;
-  const int lane_id =
-      esmini ? at.lane + at.dir * p.d_lane : step_lane_id(at.lane, at.dir * p.d_lane);
+  const int lane_id = at.lane + at.dir * p.d_lane;
   // The centre lane has no width nor direction: on the reference line (as a LanePosition on
   // lane 0), oriented as the reference's lane, in the lane the offset reaches.
   const double t = (lane_id == 0 ? 0.0 : need_lane_center(map, at.road, at.s, lane_id, p.source)) +
                    p.offset.value_or(0.0);
   ResolvedPosition out = on_road(map, at.road, at.s, t, lane_id == 0 ? at.lane : lane_id,
-                                 p.orientation, lane_frame(state));
+                                 p.orientation, kLanePositionFrame);
   if (lane_id == 0) {
     out.road->lane = map.lane_at(at.road, at.s, t);
   }

@@ -202,9 +202,10 @@ ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, con
           const RouteLocation at = locate_on_route(path, in_route.path_s);
           double t = 0.0;
           std::optional<int> lane;
-          // A relative Orientation turns from the road's s and t (1.3 RoutePosition); esmini
-          // turns one given in lane coordinates from the lane's direction of travel, as for a
-          // LanePosition (`--semantics esmini`).
+          // A relative Orientation turns from the road's s and t, one given in lane coordinates
+          // from the lane's direction of travel (1.3 RoutePosition: "the referenced road's s and
+          // t coordinates, to the current lane's s and t coordinates"; a lane's s-axis as for
+          // a LanePosition), as esmini turns them.
           OrientationFrame frame = OrientationFrame::kRoad;
           if constexpr (std::is_same_v<T, xosc::PositionInRoadCoordinates>) {
             t = in_route.t;
@@ -212,9 +213,7 @@ ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, con
             lane = parse_lane_id(in_route.lane_id, in_route.source);
             t = need_lane_center(map, at.lane.road, at.s, *lane, in_route.source) +
                 in_route.lane_offset.value_or(0.0);
-            if (state.options.semantics == Semantics::kEsmini) {
-              frame = OrientationFrame::kLane;
-            }
+            frame = OrientationFrame::kLane;
           }
           ResolvedPosition out =
               on_road(map, at.lane.road, at.s, t, lane, position.orientation, frame);

@@ -86,8 +86,6 @@ void Simulation::Impl::advance() {
   init.step_actions(state);
   storyboard->step_actions(state);
   detail::MotionContext motion{state.map, state.time.dt(), &scratch};
-  motion.end_speed_travel = state.options.semantics == Semantics::kEsmini;
-  motion.path_speed_lateral = state.options.semantics == Semantics::kEsmini;
   detail::follow_route_lanes(state, motion);
   detail::begin_commands(state);
   mover.move(state, motion);

@@ -129,9 +129,6 @@ struct Entity {
   bool was_offroad = false;
   bool end_of_road = false;  ///< stuck at a lane end without successor
   bool was_at_end = false;
-  /// speed_command is a jump made at the start of this step (a step-shaped TransitionDynamics):
-  /// the default controller moves the whole step at the new speed. Cleared by the move.
-  bool speed_jump = false;
   double standstill_time = 0.0;
   double offroad_time = 0.0;
   double end_of_road_time = 0.0;

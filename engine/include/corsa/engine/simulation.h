@@ -46,10 +46,10 @@ using GeographicToMap =
 /// corsa::InputError saying why when it cannot.
 using GeoProjectionFactory = std::function<GeographicToMap(const std::string& geo_reference)>;
 
-/// How the engine reads what the standard leaves to the simulator (docs/openscenario.md,
-/// "Differences from esmini"): the standard's reading, or esmini's where it differs.
+/// How the engine reads where the standard's text and esmini differ (docs/openscenario.md,
+/// "Differences from esmini"); what the text leaves open is read as esmini reads it under both.
 enum class Semantics : uint8_t {
-  kStandard,  ///< the default: e.g. a step's travel is the exact integral of a linear speed change
+  kStandard,  ///< the default: e.g. a SpeedAction's TransitionDynamics hold beyond the Performance
   kEsmini,    ///< esmini's choices, to compare trajectories with esmini's (`--semantics esmini`)
 };
 
@@ -86,7 +86,7 @@ struct SimulationOptions {
   /// Values of UserDefinedValueConditions by name (`corsa run --value NAME=VALUE`); see also
   /// Simulation::set_user_value.
   std::vector<std::pair<std::string, std::string>> values;
-  /// Standard or esmini-compatible reading of what the standard leaves open (`--semantics`).
+  /// Standard or esmini reading where the standard's text and esmini differ (`--semantics`).
   Semantics semantics = Semantics::kStandard;
   /// The scenario's controllers are ignored (`corsa run --disable-controllers`, esmini's
   /// `--disable_controllers`): ObjectControllers and AssignControllerActions choose nothing, so
