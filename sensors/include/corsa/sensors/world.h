@@ -5,8 +5,9 @@
 // furniture placed deterministically along the roads, OpenDRIVE signals drawn as traffic lights and
 // signs (their bulbs follow the scenario's signal states) or painted on the road (stop lines,
 // crosswalks), OpenDRIVE objects (crosswalks, stop lines, poles, trees, barriers, buildings,
-// parking spaces; outlines and repeats), guard rails and fences along motorways, and, when asked,
-// generated buildings along the streets.
+// parking spaces; outlines and repeats), guard rails and fences along motorways, parked cars in
+// the map's parking lanes and spaces (and, when asked, along kerbs), and, when asked, generated
+// buildings along the streets.
 
 #include <cstddef>
 #include <cstdint>
