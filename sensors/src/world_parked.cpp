@@ -35,8 +35,6 @@ constexpr double kParkStripWidth = 2.1;
 /// Metres between a parked car's side and the kerb (parallel parking, 15-35 cm).
 constexpr double kParkKerbGapMin = 0.15;
 constexpr double kParkKerbGapMax = 0.35;
-/// Physical size of a prop for the overlap test: half its clearance radius, at least this.
-constexpr double kParkPropMargin = 0.2;
 
 /// One parked car's model: body style, size (m) and the label's name of the style.
 struct ParkedModel {

@@ -61,7 +61,7 @@ std::vector<ParkedCar> parked_cars(const Scene& scene) {
 
 /// Points over a car's footprint (its box's ground rectangle, `inset` metres inside its
 /// edges), every 0.3 m.
-std::vector<Vec3> footprint(const Box3& b, double inset) {
+std::vector<Vec3> car_footprint(const Box3& b, double inset) {
   std::vector<Vec3> out;
   const double hl = 0.5 * b.length - inset, hw = 0.5 * b.width - inset;
   for (double u = -hl; u <= hl + 1e-9; u += 2.0 * hl / std::ceil(2.0 * hl / 0.3)) {
@@ -99,7 +99,7 @@ TEST_CASE("parked cars fill the map's parking lane and parking spaces, never a d
   int in_lane = 0, in_spaces = 0;
   for (const ParkedCar& car : cars) {
     INFO(car.info.type << " at " << car.box.center.x << ", " << car.box.center.y);
-    for (const Vec3& p : footprint(car.box, 0.05)) {
+    for (const Vec3& p : car_footprint(car.box, 0.05)) {
       const auto type = lane_type_at(map, p.x, p.y);
       CHECK((!type || !corsa::xodr::is_drivable(*type)));
       if (type) {
@@ -140,7 +140,7 @@ TEST_CASE("parked cars stand clear of trees, poles, furniture and each other",
     INFO(car.info.type << " at " << car.box.center.x << ", " << car.box.center.y);
     // Straight down through the car's volume, from above its roof: the first thing hit is the
     // car itself or paving; never another object inside the car's box.
-    for (const Vec3& p : footprint(car.box, 0.02)) {
+    for (const Vec3& p : car_footprint(car.box, 0.02)) {
       const double top = car.box.center.z + 0.5 * car.box.height + 0.05;
       auto hit = built->scene.intersect({p.x, p.y, top}, {0.0, 0.0, -1.0}, top + 1.0);
       REQUIRE(hit);
