@@ -107,6 +107,33 @@ sensors::Vec3 map_centre_in_crs(const xodr::Map* map) {
 
 }  // namespace
 
+namespace {
+
+/// Where the scenario's entities (and its traffic) stand at the start, with 2 m to spare, and
+/// the lanes they stand in: parked vehicles keep clear of them.
+std::vector<sensors::KeepClear> entities_kept_clear(const engine::Simulation& simulation,
+                                                    const xodr::Map& map) {
+  engine::WorldSnapshot start;
+  simulation.fill_snapshot(start);
+  std::vector<sensors::KeepClear> out;
+  for (const engine::EntitySnapshot& e : start.entities) {
+    sensors::KeepClear k;
+    k.x = e.pose.x;
+    k.y = e.pose.y;
+    k.radius = 0.5 * std::hypot(e.box.length, e.box.width) + std::fabs(e.box.center_x) + 2.0;
+    xodr::LocateOptions near;
+    near.max_distance = 0.5;
+    if (const auto at = map.locate(e.pose.x, e.pose.y, near)) {
+      k.road = map.road(at->road).id;
+      k.lane = at->lane;
+    }
+    out.push_back(std::move(k));
+  }
+  return out;
+}
+
+}  // namespace
+
 std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simulation,
                                                 const std::vector<ModelSpec>& models,
                                                 const sensors::SensorRig& rig,
@@ -145,6 +172,9 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
     sensors::WorldOptions world;
     world.seed = simulation.options().seed;
     world.buildings = rig.generate_buildings;
+    world.parked = rig.parked_vehicles;
+    world.parked_density = rig.parked_density;
+    world.keep_clear = entities_kept_clear(simulation, *map);
     sensors::build_world(*map, *scene, world, diagnostics);
     scene->commit();
   }

@@ -344,10 +344,14 @@ std::vector<StaticObjectLabel> static_object_labels(const Scene& scene,
     if (record.signal >= 0) {
       l.state = d.signal_states[record.signal];
     }
-    l.box_world.center = (record.bounds.min + record.bounds.max) * 0.5;
-    l.box_world.length = record.bounds.max.x - record.bounds.min.x;
-    l.box_world.width = record.bounds.max.y - record.bounds.min.y;
-    l.box_world.height = record.bounds.max.z - record.bounds.min.z;
+    if (record.info.box) {
+      l.box_world = *record.info.box;
+    } else {
+      l.box_world.center = (record.bounds.min + record.bounds.max) * 0.5;
+      l.box_world.length = record.bounds.max.x - record.bounds.min.x;
+      l.box_world.width = record.bounds.max.y - record.bounds.min.y;
+      l.box_world.height = record.bounds.max.z - record.bounds.min.z;
+    }
     l.box_2d_visible = {static_cast<double>(s.x_min), static_cast<double>(s.y_min),
                         static_cast<double>(s.x_max), static_cast<double>(s.y_max)};
     l.visible_pixels = s.count;

@@ -268,6 +268,11 @@ SensorRig parse_rig(std::string_view xml, const std::string& file) {
   rig.file = file;
   rig.quality = quality_of(*root.find("quality"));
   rig.generate_buildings = *root.find("buildings") == "generate";
+  const std::string& parked = *root.find("parkedVehicles");
+  rig.parked_vehicles = parked == "none"   ? ParkedVehicles::kNone
+                        : parked == "kerb" ? ParkedVehicles::kKerb
+                                           : ParkedVehicles::kMap;
+  rig.parked_density = number(root, "parkedDensity");
   std::set<std::string> names;
   RigBudget budget(file);
   for (const auto& e : root.children) {

@@ -137,6 +137,10 @@ Json static_labels_json(std::span<const StaticObjectLabel> labels) {
     if (o.kind == "traffic_light") {
       object["state"] = l.state;
     }
+    if (o.kind == "parked_vehicle") {
+      object["type"] = o.type;  // body style: sedan, hatchback, suv, van, pickup
+      object["parked"] = true;
+    }
     object["box_world"] = box3_json(l.box_world);
     object["box_2d_visible"] = box2_json(l.box_2d_visible);
     object["visible_pixels"] = l.visible_pixels;

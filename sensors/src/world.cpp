@@ -166,6 +166,10 @@ WorldReport build_world(const xodr::Map& map, Scene& scene, const WorldOptions& 
     // whose crosswalks it keeps clear of.
     detail::build_furniture(w);
   }
+  if (options.parked != ParkedVehicles::kNone) {
+    // Last: cars keep clear of the props, hydrants, bus stops and crosswalks placed before.
+    detail::build_parked_vehicles(w);
+  }
   return w.report;
 }
 

@@ -93,6 +93,16 @@ void build_signals(WorldBuild& w);
 bool build_signal_marking(WorldBuild& w, size_t road, const xodr::Signal& signal);
 /// OpenDRIVE objects.
 void build_objects(WorldBuild& w);
+/// An object's outline corners in its frame (cornerRoad ones converted through the road).
+std::vector<Vec3> outline_points(const xodr::Map& map, size_t road, const xodr::Outline& o,
+                                 const Rigid& frame);
+/// The object's extent in its frame: its outline's bounds, or its length x width box.
+void object_extent(const xodr::Object& o, const std::vector<Vec3>& outline, double& x0, double& x1,
+                   double& y0, double& y1);
+/// Where an object stands: once, or along its repeats (a copy every `distance` metres, or
+/// pieces of at most 10 m following the road for stretched ones, with their lengths).
+void object_frames(const xodr::Map& map, size_t r, const xodr::Object& o,
+                   std::vector<Rigid>& frames, std::vector<double>& lengths);
 /// Guard rails and right-of-way fences along the outer edges of motorways.
 void build_rails(WorldBuild& w);
 /// Generated buildings along streets, where no building stands.
@@ -100,5 +110,8 @@ void build_buildings(WorldBuild& w);
 /// Street furniture (bus stops, street-name signs, hydrants, bins, benches, bollards) in the
 /// kerb-side zone of sidewalks, clear of the walking path, crosswalks, junction mouths and props.
 void build_furniture(WorldBuild& w);
+/// Parked cars in the map's parking lanes and parking spaces, and (when asked) along the kerbs
+/// of streets without parking markup, clear of props, crosswalks, bus stops and hydrants.
+void build_parked_vehicles(WorldBuild& w);
 
 }  // namespace corsa::sensors::detail

@@ -72,7 +72,8 @@ void paint_rect(MeshBuilder& b, double x0, double x1, double y0, double y1) {
   b.polygon({{x0, y0, 0.012}, {x1, y0, 0.012}, {x1, y1, 0.012}, {x0, y1, 0.012}}, {});
 }
 
-/// The outline's corners in the object frame (cornerRoad ones converted through the road).
+}  // namespace
+
 std::vector<Vec3> outline_points(const xodr::Map& map, size_t road, const xodr::Outline& o,
                                  const Rigid& frame) {
   std::vector<Vec3> out;
@@ -88,9 +89,8 @@ std::vector<Vec3> outline_points(const xodr::Map& map, size_t road, const xodr::
   return out;
 }
 
-/// Extent of the object in its frame: the outline's bounds, or its length x width box.
-void extent(const xodr::Object& o, const std::vector<Vec3>& outline, double& x0, double& x1,
-            double& y0, double& y1) {
+void object_extent(const xodr::Object& o, const std::vector<Vec3>& outline, double& x0, double& x1,
+                   double& y0, double& y1) {
   if (outline.size() >= 3) {
     x0 = y0 = 1e300;
     x1 = y1 = -1e300;
@@ -105,8 +105,6 @@ void extent(const xodr::Object& o, const std::vector<Vec3>& outline, double& x0,
   x0 = -0.5 * l, x1 = 0.5 * l, y0 = -0.5 * wd, y1 = 0.5 * wd;
 }
 
-/// Where an object stands: once, or along its repeats (a copy every `distance` metres, or
-/// pieces of at most 10 m following the road for stretched ones, with their lengths).
 void object_frames(const xodr::Map& map, size_t r, const xodr::Object& o,
                    std::vector<Rigid>& frames, std::vector<double>& lengths) {
   if (o.repeats.empty()) {
@@ -134,6 +132,8 @@ void object_frames(const xodr::Map& map, size_t r, const xodr::Object& o,
     }
   }
 }
+
+namespace {
 
 /// The paint of a RoadRunner stencil (CARLA's maps), laid along the object's heading (the way
 /// its traffic reads it); `subtype` names the symbol. False for a stencil it does not know.
@@ -221,7 +221,7 @@ void build_objects(WorldBuild& w) {
           outline = outline_points(map, r, o.outlines.front(), frame);
         }
         double x0, x1, y0, y1;
-        extent(o, outline, x0, x1, y0, y1);
+        object_extent(o, outline, x0, x1, y0, y1);
         const double height = o.height > 0.0 ? o.height : 0.0;
         const bool paint = type == "crosswalk" || type == "parkingspace" || type == "roadmark" ||
                            type == "stopline" || name == "StopLine";

@@ -237,6 +237,27 @@ TEST_CASE("the rig asks for generated buildings with buildings=\"generate\"",
         "attribute 'buildings' of <SensorRig> is 'many'; expected one of 'none', 'generate'");
 }
 
+TEST_CASE("the rig parks vehicles where the map marks parking unless it says otherwise",
+          "[sensors][rig][parked]") {
+  const SensorRig plain = parse_rig(rig_with("<RgbCamera name=\"c\" entity=\"E\"/>"), "rig.xml");
+  CHECK(plain.parked_vehicles == ParkedVehicles::kMap);
+  CHECK(plain.parked_density == 0.6);
+  const SensorRig kerb = parse_rig(
+      "<SensorRig version=\"1\" parkedVehicles=\"kerb\" parkedDensity=\"0.3\"/>", "rig.xml");
+  CHECK(kerb.parked_vehicles == ParkedVehicles::kKerb);
+  CHECK(kerb.parked_density == 0.3);
+  CHECK(
+      parse_rig("<SensorRig version=\"1\" parkedVehicles=\"none\"/>", "rig.xml").parked_vehicles ==
+      ParkedVehicles::kNone);
+  const auto d = failure("<SensorRig version=\"1\"\n parkedVehicles=\"street\">\n</SensorRig>\n");
+  CHECK(d.line == 1);
+  CHECK(d.message ==
+        "attribute 'parkedVehicles' of <SensorRig> is 'street'; expected one of 'none', 'map', "
+        "'kerb'");
+  const auto density = failure("<SensorRig version=\"1\" parkedDensity=\"1.5\"/>");
+  CHECK(density.line == 1);
+}
+
 TEST_CASE("a rig names the user's models by category or by entity, beside the rig file",
           "[sensors][rig][model3d]") {
   const SensorRig rig = parse_rig(R"(<SensorRig version="1">

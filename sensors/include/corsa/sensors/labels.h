@@ -67,7 +67,7 @@ struct StaticObjectLabel {
   SemanticClass semantic = SemanticClass::kStatic;  ///< class of most of its pixels
   ObjectInfo info;
   std::string state;  ///< traffic lights: the signal's state string this frame ("" unknown)
-  Box3 box_world;     ///< axis-aligned bounds in the map frame
+  Box3 box_world;     ///< the object's own box (parked vehicles), else its axis-aligned bounds
   Box2 box_2d_visible;
   uint64_t visible_pixels = 0;
 };

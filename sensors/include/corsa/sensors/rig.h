@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "corsa/sensors/world.h"
+
 namespace corsa::sensors {
 
 enum class SensorKind {
@@ -137,6 +139,9 @@ struct SensorRig {
   /// buildings="generate": the world gets generated buildings along its streets where none
   /// stands (WorldOptions::buildings).
   bool generate_buildings = false;
+  /// parkedVehicles="none|map|kerb" (WorldOptions::parked) and parkedDensity.
+  ParkedVehicles parked_vehicles = ParkedVehicles::kMap;
+  double parked_density = 0.6;
   std::string file;  ///< as named by the user, for messages
   std::vector<SensorSpec> sensors;
   std::vector<EntityModel> entity_models;  ///< in rig order; an entity's own name first

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "corsa/sensors/box.h"
 #include "corsa/sensors/geometry.h"
 #include "corsa/sensors/material.h"
 #include "corsa/sensors/semantic.h"
@@ -22,6 +23,9 @@ struct ObjectInfo {
   std::string subtype;
   std::optional<double> value;
   std::string text;
+  /// The object's own oriented box (map frame) when it has one (parked vehicles); the labels
+  /// give the axis-aligned bounds of its mesh otherwise.
+  std::optional<Box3> box;
 };
 
 /// A triangle mesh placed in map coordinates (metres), with its labels: one semantic class per

@@ -5,17 +5,35 @@
 // furniture placed deterministically along the roads, OpenDRIVE signals drawn as traffic lights and
 // signs (their bulbs follow the scenario's signal states) or painted on the road (stop lines,
 // crosswalks), OpenDRIVE objects (crosswalks, stop lines, poles, trees, barriers, buildings,
-// parking spaces; outlines and repeats), guard rails and fences along motorways, and, when asked,
-// generated buildings along the streets.
+// parking spaces; outlines and repeats), guard rails and fences along motorways, parked cars in
+// the map's parking lanes and spaces (and, when asked, along kerbs), and, when asked, generated
+// buildings along the streets.
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/sensors/scene.h"
 #include "corsa/xodr/map.h"
 
 namespace corsa::sensors {
+
+/// Where parked vehicles stand: nowhere, where the map marks parking (lanes of type parking,
+/// parkingSpace objects), or there and along the kerbs of streets without parking markup.
+enum class ParkedVehicles { kNone, kMap, kKerb };
+
+/// A place the world keeps clear of parked vehicles (a scenario entity at the start): the point
+/// (map frame, m), a radius (m), and the lane it stands in (road id and lane id; empty road: none),
+/// which kerb parking leaves empty over its whole length.
+struct KeepClear {
+  double x = 0.0;
+  double y = 0.0;
+  double radius = 0.0;
+  std::string road;
+  int lane = 0;
+};
 
 struct WorldOptions {
   uint64_t seed = 0;  ///< run seed: where plants stand, which species, sizes
@@ -38,6 +56,9 @@ struct WorldOptions {
   /// windows, doors and shop fronts, flat or pitched roofs; no two alike, drawn from the seed.
   bool buildings = false;
   double tree_spacing = 14.0;  ///< m between plants along a road side (on average)
+  ParkedVehicles parked = ParkedVehicles::kMap;
+  double parked_density = 0.6;  ///< share of parking slots holding a vehicle, 0..1
+  std::vector<KeepClear> keep_clear;
 };
 
 /// What build_world added.
@@ -59,6 +80,7 @@ struct WorldReport {
   size_t guard_rails = 0;  ///< generated rail pieces (at most 10 m each)
   size_t fences = 0;       ///< generated fence pieces (at most 10 m each)
   size_t buildings = 0;    ///< generated buildings
+  size_t parked_vehicles = 0;
 };
 
 /// Adds the world to a scene holding the map's road mesh (and any models). The scene must be
