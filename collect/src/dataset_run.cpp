@@ -56,9 +56,8 @@ DatasetRunReport run_dataset(const DatasetRunOptions& options, Diagnostics& diag
   report.captures = data.captures();
   report.files = data.files();
   if (!report.interrupted && options.preview) {
-    const std::optional<sensors::StreamedVideo> streamed = data.take_preview_video();
-    report.preview = sensors::write_preview(options.output, data.system().rig(), diagnostics,
-                                            hooks.on_preview, streamed ? &*streamed : nullptr);
+    report.preview =
+        sensors::write_preview(options.output, data.system().rig(), diagnostics, hooks.on_preview);
   }
   return report;
 }
