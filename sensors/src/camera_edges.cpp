@@ -5,10 +5,11 @@
 // are prefiltered, so pixels inside a surface need no more. An extra sample on a surface whose
 // centre sample a neighbour shows near it takes that neighbour's composited radiance: the
 // samples resolve which surface covers how much of the pixel, and within a pixel's reach the
-// prefiltered texture and the light change little (shading each sample again cost about half
-// of this stage). A sample on a surface no neighbour's centre shows (a thin pole) is shaded,
-// lit with one shadow ray to the sun and the open sky. The samples of several pixels of a row
-// share one 16-ray packet. Labels, depth and instance ids stay those of the centre sample.
+// prefiltered texture and the light change little, and shading each sample again was about
+// two fifths of this stage's instructions. A sample on a surface no neighbour's centre shows (a
+// thin pole) is shaded, lit with one shadow ray to the sun and the open sky. The samples of several
+// pixels of a row share one 16-ray packet (a packet of 16 rays costs Embree about 1.4 times one
+// of 4). Labels, depth and instance ids stay those of the centre sample.
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
