@@ -117,9 +117,11 @@ struct FrameBuffers {
   std::vector<PixelVisibility> visibility;
   std::vector<PixelVisibility> visibility_scratch;
   std::vector<float> motion_vectors;
-  std::vector<float> linear;       ///< radiance, 3 floats a pixel
-  std::vector<float> linear_copy;  ///< the motion blur's other buffer (swapped with linear)
-  std::vector<float> distances;    ///< along each pixel's ray, for the precipitation
+  std::vector<float> linear;  ///< radiance, 3 floats a pixel
+  /// The anti-aliasing's copy of the composited image, then the motion blur's other buffer
+  /// (swapped with linear).
+  std::vector<float> linear_copy;
+  std::vector<float> distances;  ///< along each pixel's ray, for the precipitation
   std::vector<uint8_t> edges;
 };
 
@@ -185,8 +187,9 @@ void composite(const Pass& p, std::vector<float>& linear);
 Color composite_pixel(const Pass& p, size_t px, const ShadeTerms& terms, const PixelVisibility& vis,
                       float distance);
 
-/// Stage 4: anti-aliases pixels whose neighbours show another surface or depth. Returns the
-/// number of pixels resampled.
-size_t antialias_edges(const Pass& p, std::vector<float>& linear);
+/// Stage 4: anti-aliases pixels whose neighbours show another surface or depth. `centre` gets
+/// a copy of the image before it (the samples read their neighbours' centre radiance there).
+/// Returns the number of pixels resampled.
+size_t antialias_edges(const Pass& p, std::vector<float>& linear, std::vector<float>& centre);
 
 }  // namespace corsa::sensors::detail

@@ -165,7 +165,7 @@ CameraImages CameraRenderer::render(const Scene& scene, const CameraMotion& moti
   std::vector<float>& linear = b.linear;
   if (p.direct == nullptr) {
     detail::composite(p, linear);
-    detail::antialias_edges(p, linear);
+    detail::antialias_edges(p, linear, b.linear_copy);
   }
   const detail::Exposure exposure = detail::choose_exposure(linear, w, h, settings.rgb);
   if (p.motion) {

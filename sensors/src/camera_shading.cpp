@@ -296,14 +296,20 @@ SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double foo
   }
   s.mirror = s.mirror || roughness < 0.2 || s.clearcoat > 0.0 || s.transmission > 0.0;
   s.mirror = s.mirror && c.quality.reflections;
-  const auto sid = static_cast<uint32_t>(h.inst_id * 0x9E3779B1u ^ (h.geom_id + 1) * 0x85EBCA77u ^
+  s.surface_id = surface_id_of(d, h.inst_id, h.geom_id, id);
+  return s;
+}
+
+uint32_t surface_id_of(const SceneData& d, unsigned inst_id, unsigned geom_id, MaterialId id) {
+  const auto sid = static_cast<uint32_t>(inst_id * 0x9E3779B1u ^ (geom_id + 1) * 0x85EBCA77u ^
                                          (id + 1u) * 0xC2B2AE3Du) &
                    ~kFoldlessSurface;
-  s.surface_id = sid == 0 ? 1u : sid;  // 0 is the sky
-  if (m.pattern == Pattern::kFoliage || m.pattern == Pattern::kPlaster) {
-    s.surface_id |= kFoldlessSurface;
+  uint32_t out = sid == 0 ? 1u : sid;  // 0 is the sky
+  const Pattern pattern = d.materials[id].pattern;
+  if (pattern == Pattern::kFoliage || pattern == Pattern::kPlaster) {
+    out |= kFoldlessSurface;
   }
-  return s;
+  return out;
 }
 
 ShadeTerms shade_terms(const ShadingContext& c, const SurfacePoint& s, const Color* mirrored,

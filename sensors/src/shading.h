@@ -121,6 +121,10 @@ void place_eye(ShadingContext& c, Vec3 eye);
 SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& hit,
                         double footprint_scale = 1.0);
 
+/// SurfacePoint::surface_id of a hit on material `id` of geometry `geom_id` of instance
+/// `inst_id` (Embree's ids), without shading it.
+uint32_t surface_id_of(const SceneData& d, unsigned inst_id, unsigned geom_id, MaterialId id);
+
 /// The visibility-independent terms of a surface point. `mirrored` is the radiance arriving
 /// from the mirror direction and `behind` the radiance seen through glass (`has_*` false: the
 /// sky and the dark cabin stand in).
