@@ -355,6 +355,11 @@ std::vector<StaticObjectLabel> static_object_labels(const Scene& scene,
     l.box_2d_visible = {static_cast<double>(s.x_min), static_cast<double>(s.y_min),
                         static_cast<double>(s.x_max), static_cast<double>(s.y_max)};
     l.visible_pixels = s.count;
+    if (record.info.semantic) {
+      l.semantic = *record.info.semantic;  // known from what it is, not from its pixels
+      out.push_back(std::move(l));
+      continue;
+    }
     uint64_t most = 0;
     for (const auto& [c, n] : classes[id]) {
       if (n > most) {

@@ -64,7 +64,9 @@ struct ObjectLabel {
 /// type (OpenDRIVE signals), street lights, trees and the like.
 struct StaticObjectLabel {
   uint32_t instance_id = 0;
-  SemanticClass semantic = SemanticClass::kStatic;  ///< class of most of its pixels
+  /// What the object is when that is known (parked vehicles: car), else the class of most of
+  /// its pixels (`static` without a semantic image).
+  SemanticClass semantic = SemanticClass::kStatic;
   ObjectInfo info;
   std::string state;  ///< traffic lights: the signal's state string this frame ("" unknown)
   Box3 box_world;     ///< the object's own box (parked vehicles), else its axis-aligned bounds
