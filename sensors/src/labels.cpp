@@ -19,11 +19,20 @@ struct PixelStats {
   int x_min = 1 << 30, y_min = 1 << 30, x_max = -1, y_max = -1;
 };
 
-std::map<uint32_t, PixelStats> pixel_stats(std::span<const uint32_t> instance, int width) {
+/// Pixel counts and boxes of the entities and of the static objects marked in `boxed` (by
+/// instance id - kStaticInstanceBase).
+std::map<uint32_t, PixelStats> pixel_stats(std::span<const uint32_t> instance, int width,
+                                           const std::vector<bool>& boxed) {
   std::map<uint32_t, PixelStats> stats;
   for (size_t i = 0; i < instance.size(); ++i) {
-    if (instance[i] == 0 || instance[i] >= kStaticInstanceBase) {
+    if (instance[i] == 0) {
       continue;
+    }
+    if (instance[i] >= kStaticInstanceBase) {
+      const size_t k = instance[i] - kStaticInstanceBase;
+      if (k >= boxed.size() || !boxed[k]) {
+        continue;
+      }
     }
     PixelStats& s = stats[instance[i]];
     const int x = static_cast<int>(i % width);
@@ -85,20 +94,18 @@ bool project_box_into(const CameraModel& camera, const Box3& box, Box2& out) {
   return out.x_min <= out.x_max;
 }
 
-/// Share of the object's silhouette (its own shape alone) covered by its own pixels.
-double occlusion_of(const detail::EntityInstance& inst, const CameraRenderer& camera,
-                    const Rigid& world_from_cam, const Box2& box,
+/// Share of an object's silhouette (`shape`: its own triangles alone, in the frame
+/// `shape_from_world` takes map points to) not covered by its pixels (`id`) in `instance`.
+double occlusion_of(RTCScene shape, const Rigid& shape_from_world, uint32_t id,
+                    const CameraRenderer& camera, const Rigid& world_from_cam, const Box2& box,
                     std::span<const uint32_t> instance, int width) {
-  // Rays in the entity's own frame, traced against its shape alone.
-  const Rigid to_entity = inst.world_from_entity.inverse();
-  auto local = [&](Vec3 v) { return to_entity.rotation * v; };
-  const Vec3 origin = to_entity.apply(world_from_cam.translation);
+  auto local = [&](Vec3 v) { return shape_from_world.rotation * v; };
+  const Vec3 origin = shape_from_world.apply(world_from_cam.translation);
   const int x0 = static_cast<int>(std::ceil(box.x_min));
   const int x1 = static_cast<int>(std::floor(box.x_max));
   const int y0 = static_cast<int>(std::ceil(box.y_min));
   const int y1 = static_cast<int>(std::floor(box.y_max));
   const int stride = std::max(1, std::max(x1 - x0, y1 - y0) / kSilhouetteGrid + 1);
-  RTCScene shape = inst.shape->scene;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   uint64_t silhouette = 0, seen = 0;
@@ -119,7 +126,7 @@ double occlusion_of(const detail::EntityInstance& inst, const CameraRenderer& ca
         continue;  // the shape alone does not cover this pixel
       }
       ++silhouette;
-      seen += instance[static_cast<size_t>(y) * width + x] == inst.instance_id;
+      seen += instance[static_cast<size_t>(y) * width + x] == id;
     }
   }
   return silhouette == 0 ? 0.0 : 1.0 - static_cast<double>(seen) / silhouette;
@@ -266,6 +273,59 @@ VehicleLightsLabel vehicle_lights_label(const engine::EntitySnapshot& e,
   return out;
 }
 
+/// The static objects labelled like entities (those with their own box: parked vehicles),
+/// marked by instance id - kStaticInstanceBase.
+std::vector<bool> boxed_objects(const detail::SceneData& d) {
+  std::vector<bool> boxed;
+  for (const auto& [id, record] : d.objects) {
+    if (record.alone != nullptr && id >= kStaticInstanceBase) {
+      const size_t k = id - kStaticInstanceBase;
+      boxed.resize(std::max(boxed.size(), k + 1), false);
+      boxed[k] = true;
+    }
+  }
+  return boxed;
+}
+
+/// The label of a static object with its own box (a parked vehicle) before the sensor's own
+/// measures. Its track id is its instance id: the same over the run, never an entity's.
+ObjectLabel boxed_object_label(uint32_t id, const detail::SceneData::ObjectRecord& record,
+                               const Rigid& sensor_from_world) {
+  ObjectLabel l;
+  l.instance_id = id;
+  l.track_id = id;
+  l.semantic = record.info.semantic.value_or(SemanticClass::kStatic);
+  l.parked = record.info.kind == "parked_vehicle";
+  l.type = record.info.type;
+  l.box_world = *record.info.box;
+  l.box_sensor = transform_box(sensor_from_world, l.box_world);
+  l.distance = norm(l.box_sensor.center);
+  return l;
+}
+
+/// A camera's measures of a label whose sensor box is set, from its pixels `s`: the projected
+/// box clipped to the image, its truncation, the visible box and pixels. False when the
+/// projected box is behind the camera or outside the image.
+bool measure_in_image(const CameraModel& camera, const PixelStats& s, ObjectLabel& l) {
+  const int w = camera.width();
+  const int h = camera.height();
+  l.visible_pixels = s.count;
+  l.box_2d_visible = {static_cast<double>(s.x_min), static_cast<double>(s.y_min),
+                      static_cast<double>(s.x_max), static_cast<double>(s.y_max)};
+  Box2 full;
+  if (!project_box_into(camera, l.box_sensor, full)) {
+    return false;
+  }
+  const Box2 clipped{std::max(full.x_min, -0.5), std::max(full.y_min, -0.5),
+                     std::min(full.x_max, w - 0.5), std::min(full.y_max, h - 0.5)};
+  if (clipped.x_min > clipped.x_max || clipped.y_min > clipped.y_max) {
+    return false;
+  }
+  l.box_2d = clipped;
+  l.truncation = full.area() > 0.0 ? std::clamp(1.0 - clipped.area() / full.area(), 0.0, 1.0) : 0.0;
+  return true;
+}
+
 }  // namespace
 
 std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer& renderer,
@@ -276,10 +336,9 @@ std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer&
   const CameraModel& camera = renderer.model();
   const bool dark = lighting != nullptr && lighting->headlights;
   const int w = camera.width();
-  const int h = camera.height();
   const Rigid world_from_cam = world_from_optical(world_from_body);
   const Rigid cam_from_world = world_from_cam.inverse();
-  const auto stats = pixel_stats(instance, w);
+  const auto stats = pixel_stats(instance, w, boxed_objects(d));
   std::vector<ObjectLabel> labels;
   for (const auto& inst : d.instances) {
     const auto it = stats.find(inst.instance_id);
@@ -287,27 +346,31 @@ std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer&
       continue;
     }
     ObjectLabel l = entity_label(d, inst, cam_from_world);
-    l.visible_pixels = it->second.count;
-    l.box_2d_visible = {
-        static_cast<double>(it->second.x_min), static_cast<double>(it->second.y_min),
-        static_cast<double>(it->second.x_max), static_cast<double>(it->second.y_max)};
-    Box2 full;
-    if (!project_box_into(camera, l.box_sensor, full)) {
+    if (!measure_in_image(camera, it->second, l)) {
       continue;
     }
-    Box2 clipped{std::max(full.x_min, -0.5), std::max(full.y_min, -0.5),
-                 std::min(full.x_max, w - 0.5), std::min(full.y_max, h - 0.5)};
-    if (clipped.x_min > clipped.x_max || clipped.y_min > clipped.y_max) {
-      continue;
-    }
-    l.box_2d = clipped;
-    l.truncation =
-        full.area() > 0.0 ? std::clamp(1.0 - clipped.area() / full.area(), 0.0, 1.0) : 0.0;
-    l.occlusion = occlusion_of(inst, renderer, world_from_cam, clipped, instance, w);
+    l.occlusion = occlusion_of(inst.shape->scene, inst.world_from_entity.inverse(),
+                               inst.instance_id, renderer, world_from_cam, l.box_2d, instance, w);
     if (const engine::EntitySnapshot& e = d.entities[inst.snapshot_index];
         has_vehicle_lights(e.category)) {
       l.lights = vehicle_lights_label(e, inst, dark);
     }
+    labels.push_back(std::move(l));
+  }
+  // Parked vehicles after the entities, by instance id; their triangles are in the tracer frame.
+  const Rigid tracer_from_world =
+      rigid_from_pose(-d.options.origin.x, -d.options.origin.y, -d.options.origin.z, 0, 0, 0);
+  for (const auto& [id, s] : stats) {
+    if (id < kStaticInstanceBase) {
+      continue;
+    }
+    const auto& record = d.objects.at(id);
+    ObjectLabel l = boxed_object_label(id, record, cam_from_world);
+    if (!measure_in_image(camera, s, l)) {
+      continue;
+    }
+    l.occlusion = occlusion_of(record.alone, tracer_from_world, id, renderer, world_from_cam,
+                               l.box_2d, instance, w);
     labels.push_back(std::move(l));
   }
   return labels;
@@ -355,6 +418,11 @@ std::vector<StaticObjectLabel> static_object_labels(const Scene& scene,
     l.box_2d_visible = {static_cast<double>(s.x_min), static_cast<double>(s.y_min),
                         static_cast<double>(s.x_max), static_cast<double>(s.y_max)};
     l.visible_pixels = s.count;
+    if (record.info.semantic) {
+      l.semantic = *record.info.semantic;  // known from what it is, not from its pixels
+      out.push_back(std::move(l));
+      continue;
+    }
     uint64_t most = 0;
     for (const auto& [c, n] : classes[id]) {
       if (n > most) {
@@ -387,6 +455,19 @@ std::vector<ObjectLabel> lidar_labels(const Scene& scene, const Rigid& world_fro
       continue;
     }
     const auto it = counts.find(inst.instance_id);
+    l.lidar_points = it == counts.end() ? 0 : it->second;
+    labels.push_back(std::move(l));
+  }
+  // Parked vehicles after the entities, by instance id.
+  for (const auto& [id, record] : d.objects) {
+    if (record.alone == nullptr) {
+      continue;
+    }
+    ObjectLabel l = boxed_object_label(id, record, sensor_from_world);
+    if (l.distance > range_m) {
+      continue;
+    }
+    const auto it = counts.find(id);
     l.lidar_points = it == counts.end() ? 0 : it->second;
     labels.push_back(std::move(l));
   }

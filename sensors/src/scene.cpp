@@ -16,6 +16,11 @@ namespace detail {
 
 SceneData::~SceneData() {
   shapes.clear();  // releases the entity scenes before the device
+  for (auto& [id, record] : objects) {
+    if (record.alone != nullptr) {
+      rtcReleaseScene(record.alone);  // shares the buffers of its static geometry: first
+    }
+  }
   for (RTCGeometry g : instance_pool) {
     rtcReleaseGeometry(g);
   }
@@ -361,6 +366,14 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
     rtcAttachGeometryByID(d.far_static, twin, id);
     rtcReleaseGeometry(twin);
   }
+  RTCScene alone = nullptr;
+  if (mesh.object.box && !mesh.object.kind.empty() && mesh.instance_id != 0) {
+    alone = rtcNewScene(d.device);
+    RTCGeometry twin = share_triangles(d.device, geom, mesh);
+    rtcAttachGeometry(alone, twin);
+    rtcReleaseGeometry(twin);
+    rtcCommitScene(alone);
+  }
   rtcReleaseGeometry(geom);
   if (id != d.static_geometries.size()) {
     throw std::logic_error("static geometry ids out of step");
@@ -422,7 +435,7 @@ uint32_t Scene::add_static_mesh(StaticMesh mesh) {
   }
   info.base_z = base_z - d.options.origin.z;
   if (!mesh.object.kind.empty() && mesh.instance_id != 0) {
-    d.objects[mesh.instance_id] = {mesh.object, bounds, info.signal};
+    d.objects[mesh.instance_id] = {mesh.object, bounds, info.signal, alone};
   }
   if (!mesh.uvs.empty()) {
     info.uvs = std::move(mesh.uvs);

@@ -124,6 +124,9 @@ struct SceneData {
     ObjectInfo info;
     Bounds bounds;
     int signal = -1;
+    /// Objects with their own box (parked vehicles): a scene of their triangles alone (tracer
+    /// frame), the silhouette their occlusion in a camera is measured against.
+    RTCScene alone = nullptr;
   };
   std::map<uint32_t, ObjectRecord> objects;
   Bounds bounds;

@@ -210,6 +210,9 @@ std::string labels_json(std::span<const ObjectLabel> labels, bool camera,
                         std::span<const StaticObjectLabel> static_labels) {
   Json objects = Json::array();
   for (const ObjectLabel& l : labels) {
+    if (camera && l.parked) {
+      continue;  // a camera lists parked vehicles among its static objects
+    }
     Json object = {{"track_id", l.track_id},
                    {"instance_id", l.instance_id},
                    {"name", l.name},
@@ -229,6 +232,10 @@ std::string labels_json(std::span<const ObjectLabel> labels, bool camera,
       }
     } else {
       object["lidar_points"] = l.lidar_points;
+    }
+    if (l.parked) {
+      object["type"] = l.type;  // body style, as in a camera's static objects
+      object["parked"] = true;
     }
     objects.push_back(std::move(object));
   }

@@ -112,6 +112,7 @@ class VehicleParker {
     info.kind = "parked_vehicle";
     info.type = model.name;
     info.subtype = source;
+    info.semantic = SemanticClass::kCar;
     Box3 label;
     label.center = ground.apply({0.0, 0.0, box.center_z});
     label.rotation = ground.rotation;

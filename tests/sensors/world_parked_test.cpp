@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "corsa/sensors/camera_render.h"
+#include "corsa/sensors/kitti.h"
 #include "corsa/sensors/labels.h"
 #include "corsa/sensors/lidar.h"
 #include "corsa/xodr/parser.h"
@@ -292,6 +293,95 @@ TEST_CASE("parked cars are labelled cars, with their own instance, box and parke
       ++points;
       CHECK(p.semantic == SemanticClass::kCar);
     }
+  }
+  CHECK(points > 50);
+}
+
+TEST_CASE(
+    "parked cars are objects of the camera, KITTI and LiDAR labels, class car without a "
+    "semantic camera",
+    "[sensors][world][parked][labels][kitti]") {
+  const auto map = corsa::test::load_map(kParkingStreet);
+  auto built = corsa::test::build_world_scene(map, 5);
+  built->scene.set_entities({});
+  const auto cars = parked_cars(built->scene);
+  REQUIRE(!cars.empty());
+  const CameraRenderer camera(corsa::test::wide_camera());
+  RenderSettings settings;  // no semantic image
+  CameraMotion motion;
+  motion.world_from_body = rigid_from_pose(60.0, -5.25, 1.5, -0.15, 0.0, 0.0);
+  const CameraImages img = camera.render(built->scene, motion, settings);
+  REQUIRE(img.semantic.empty());
+  const auto statics = static_object_labels(built->scene, img.instance, img.width);
+  const auto labels = camera_labels(built->scene, camera, motion.world_from_body, img.instance);
+  int static_parked = 0;
+  for (const auto& l : statics) {
+    if (l.info.kind == "parked_vehicle") {
+      ++static_parked;
+      CHECK(l.semantic == SemanticClass::kCar);  // known, not read from pixels
+    } else {
+      CHECK(l.semantic == SemanticClass::kStatic);  // other objects: as before
+    }
+  }
+  REQUIRE(static_parked >= 2);
+  int parked = 0, occluded = 0;
+  for (const auto& l : labels) {
+    REQUIRE(l.parked);  // the scene has no entity
+    ++parked;
+    const auto& box = *built->scene.data().objects.at(l.instance_id).info.box;
+    CHECK(l.semantic == SemanticClass::kCar);
+    CHECK(l.track_id == l.instance_id);
+    CHECK(l.box_world.length == Approx(box.length));
+    CHECK(l.box_world.yaw() == Approx(box.yaw()));
+    CHECK(l.box_sensor.center.z > 0.0);  // in front of the camera (optical frame: z ahead)
+    CHECK(l.visible_pixels > 0);
+    CHECK(l.box_2d_visible.x_min >= l.box_2d.x_min - 1.0);
+    CHECK(l.box_2d_visible.x_max <= l.box_2d.x_max + 1.0);
+    CHECK(l.occlusion >= 0.0);
+    CHECK(l.occlusion <= 1.0);
+    occluded += l.occlusion > 0.3;
+  }
+  // Every car a static label lists is an object too (none is behind the camera here).
+  CHECK(parked == static_parked);
+  // Cars in a row along the kerb hide each other: the ones further on are occluded.
+  CHECK(occluded >= 1);
+  // KITTI: one line per car, Car for the near ones, DontCare for the far or small ones.
+  KittiOptions options;
+  options.max_distance_m = 80.0;
+  const std::string kitti = kitti_label_lines(labels, camera.model(), img.instance, options);
+  int cars_lines = 0, dont_care = 0, lines = 0;
+  for (size_t at = 0; at < kitti.size();) {
+    const size_t end = kitti.find('\n', at);
+    const std::string line = kitti.substr(at, end - at);
+    cars_lines += line.rfind("Car ", 0) == 0;
+    dont_care += line.rfind("DontCare ", 0) == 0;
+    ++lines;
+    at = end + 1;
+  }
+  CHECK(lines == parked);
+  CHECK(cars_lines + dont_care == parked);
+  CHECK(cars_lines >= 1);
+  // LiDAR: every parked car within range is an object, with its points.
+  LidarOptions o;
+  o.channels = 32;
+  o.lower_fov_deg = -25.0;
+  o.upper_fov_deg = 5.0;
+  o.range_m = 60.0;
+  const LidarSimulator lidar(o);
+  const Rigid at = rigid_from_pose(60.0, -5.25, 1.8, 0, 0, 0);
+  const PointCloud cloud = lidar.scan(built->scene, at, 0.0, 3);
+  const auto sweep = lidar_labels(built->scene, at, cloud, o.range_m);
+  int in_range = 0;
+  for (const ParkedCar& car : cars) {
+    in_range += norm(car.box.center - at.translation) <= o.range_m;
+  }
+  CHECK(static_cast<int>(sweep.size()) == in_range);
+  uint64_t points = 0;
+  for (const auto& l : sweep) {
+    CHECK(l.parked);
+    CHECK(l.semantic == SemanticClass::kCar);
+    CHECK(l.distance <= o.range_m);
+    points += l.lidar_points;
   }
   CHECK(points > 50);
 }

@@ -41,10 +41,14 @@ struct VehicleLightsLabel {
   uint32_t lamps = 0;  ///< LightRole bits of the lamps its shape has and the frame lit
 };
 
+/// The label of an entity, or of a parked vehicle (a static object with its own box: no entity
+/// name, its instance id as track id), as a camera or a LiDAR sees it.
 struct ObjectLabel {
   uint32_t instance_id = 0;
-  uint32_t track_id = 0;  ///< stable over the run: the engine's entity instance id
-  std::string name;       ///< entity name
+  uint32_t track_id = 0;  ///< stable over the run: the entity's instance id in the engine
+  std::string name;       ///< entity name ("" for a parked vehicle)
+  bool parked = false;    ///< a parked vehicle (in the camera's static labels as well)
+  std::string type;       ///< a parked vehicle's body style (sedan, hatchback, suv, van, pickup)
   SemanticClass semantic = SemanticClass::kUnlabeled;
   Box3 box_world;         ///< map frame
   Box3 box_sensor;        ///< camera optical frame (cameras) or sensor body frame (LiDAR)
@@ -64,7 +68,9 @@ struct ObjectLabel {
 /// type (OpenDRIVE signals), street lights, trees and the like.
 struct StaticObjectLabel {
   uint32_t instance_id = 0;
-  SemanticClass semantic = SemanticClass::kStatic;  ///< class of most of its pixels
+  /// What the object is when that is known (parked vehicles: car), else the class of most of
+  /// its pixels (`static` without a semantic image).
+  SemanticClass semantic = SemanticClass::kStatic;
   ObjectInfo info;
   std::string state;  ///< traffic lights: the signal's state string this frame ("" unknown)
   Box3 box_world;     ///< the object's own box (parked vehicles), else its axis-aligned bounds
@@ -85,7 +91,8 @@ int kitti_occlusion_level(double occlusion);
 double kitti_rotation_y(const Box3& box_in_optical_frame);
 
 /// Labels of a camera frame: every visible entity with at least one visible pixel, except the
-/// entity with instance id `carrier` (the sensor's own vehicle; 0 for none).
+/// entity with instance id `carrier` (the sensor's own vehicle; 0 for none), then every parked
+/// vehicle with a visible pixel (by instance id).
 /// `instance` is the camera's instance buffer (CameraImages::instance). Vehicles have their
 /// lights as the frame lit by `lighting` draws them (null: a frame in daylight).
 std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer& camera,
@@ -94,7 +101,7 @@ std::vector<ObjectLabel> camera_labels(const Scene& scene, const CameraRenderer&
                                        const Lighting* lighting = nullptr);
 
 /// Labels of a LiDAR frame: every visible entity whose centre is within `range_m`, except the
-/// carrier.
+/// carrier, then every parked vehicle whose box centre is within `range_m` (by instance id).
 std::vector<ObjectLabel> lidar_labels(const Scene& scene, const Rigid& world_from_sensor,
                                       const PointCloud& cloud, double range_m,
                                       uint32_t carrier = 0);

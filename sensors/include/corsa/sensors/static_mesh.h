@@ -26,6 +26,9 @@ struct ObjectInfo {
   /// The object's own oriented box (map frame) when it has one (parked vehicles); the labels
   /// give the axis-aligned bounds of its mesh otherwise.
   std::optional<Box3> box;
+  /// The object's class when what it is tells it (parked vehicles: car); the labels give the
+  /// class of most of its pixels otherwise (`static` without a semantic camera).
+  std::optional<SemanticClass> semantic;
 };
 
 /// A triangle mesh placed in map coordinates (metres), with its labels: one semantic class per

@@ -70,7 +70,8 @@ Json matrix_json(const Rigid& t);
 /// elevations, azimuth steps) and extrinsics (T_entity_sensor: sensor body frame in the entity
 /// frame; cameras also T_sensor_optical). `camera` may be null for LiDAR.
 std::string calibration_json(const SensorSpec& sensor, const CameraModel* camera);
-/// Labels of one frame as JSON (see docs/sensors.md for the fields).
+/// Labels of one frame as JSON (see docs/sensors.md for the fields). A camera lists parked
+/// vehicles among `static_objects` only; a LiDAR among its `objects`.
 std::string labels_json(std::span<const ObjectLabel> labels, bool camera,
                         std::span<const StaticObjectLabel> static_labels = {});
 
