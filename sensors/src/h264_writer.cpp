@@ -10,6 +10,8 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include <xmmintrin.h>
+
 #include <string>
 
 #include "corsa/core/diagnostic.h"
@@ -26,6 +28,24 @@ namespace {
 constexpr const char* kX264Preset = "veryfast";
 constexpr const char* kX264Crf = "23";
 constexpr int kX264Threads = 1;
+
+/// The SSE control and status register at its power-on value (0x1F80: every exception masked,
+/// round to nearest, neither flush-to-zero nor denormals-are-zero) for the life of the guard, put
+/// back after. libx264 and swscale compute parts of the encoding in floating point, and the
+/// thread that calls the writer may come with another register (oneTBB's workers have been seen
+/// with flush-to-zero and denormals-are-zero set, and a thread starts with its creator's): with
+/// the register fixed, the encoding does not depend on which thread calls it.
+class DefaultFloatControl {
+ public:
+  DefaultFloatControl() : saved_(_mm_getcsr()) { _mm_setcsr(kDefault); }
+  ~DefaultFloatControl() { _mm_setcsr(saved_); }
+  DefaultFloatControl(const DefaultFloatControl&) = delete;
+  DefaultFloatControl& operator=(const DefaultFloatControl&) = delete;
+
+ private:
+  static constexpr unsigned kDefault = 0x1F80;
+  unsigned saved_;
+};
 
 std::string av_error_text(int code) {
   char text[AV_ERROR_MAX_STRING_SIZE] = {};
@@ -67,6 +87,7 @@ struct H264Writer::Codec {
 
 std::unique_ptr<H264Writer> H264Writer::open(const std::filesystem::path& path, cv::Size size,
                                              double fps) {
+  const DefaultFloatControl float_control;
   const AVCodec* x264 = avcodec_find_encoder_by_name("libx264");
   if (x264 == nullptr || size.width <= 0 || size.height <= 0 || size.width % 2 != 0 ||
       size.height % 2 != 0 || !(fps > 0.0)) {
@@ -131,11 +152,16 @@ std::unique_ptr<H264Writer> H264Writer::open(const std::filesystem::path& path, 
   return std::unique_ptr<H264Writer>(new H264Writer(std::move(codec)));
 }
 
+bool H264Writer::same_frame_rate(double a, double b) {
+  return av_cmp_q(av_d2q(a, 1000000), av_d2q(b, 1000000)) == 0;
+}
+
 H264Writer::H264Writer(std::unique_ptr<Codec> codec) : codec_(std::move(codec)) {}
 
 H264Writer::~H264Writer() = default;
 
 void H264Writer::write(const cv::Mat& bgr) {
+  const DefaultFloatControl float_control;
   Codec& k = *codec_;
   CV_Assert(bgr.type() == CV_8UC3 && bgr.cols == k.context->width && bgr.rows == k.context->height);
   int made_writable = av_frame_make_writable(k.frame);
@@ -154,6 +180,7 @@ void H264Writer::write(const cv::Mat& bgr) {
 }
 
 void H264Writer::finish() {
+  const DefaultFloatControl float_control;
   Codec& k = *codec_;
   const int sent = avcodec_send_frame(k.context, nullptr);
   if (sent < 0) {
