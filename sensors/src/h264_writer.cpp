@@ -10,9 +10,13 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include <dlfcn.h>
+#include <link.h>
 #include <xmmintrin.h>
 
+#include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "corsa/core/diagnostic.h"
 
@@ -46,6 +50,43 @@ class DefaultFloatControl {
   static constexpr unsigned kDefault = 0x1F80;
   unsigned saved_;
 };
+
+/// libx264's flag for its AVX-512 code (X264_CPU_AVX512 of its x264.h).
+constexpr uint32_t kX264CpuAvx512 = 1U << 16;
+
+/// x264's `asm` option for the CPU flags libx264 detects here less AVX-512 ("asm=1111039" on this
+/// machine's Xeon); empty when libx264's detection cannot be reached (it then uses every flag).
+/// With AVX-512, libx264 on its one thread gave other bytes from the same frames (the same YUV
+/// planes) now and then while the rendering ran beside it on two threads, never after the run;
+/// without it (its AVX2 code for the same functions) every encode was the same bytes.
+/// Those bytes are not the ones its AVX-512 code gives alone: the video is the same from run to
+/// run, not the same as with every flag. libx264 is reached through the loaded library that holds
+/// it (libavcodec's dependency; the plugin holding this writer is loaded with local symbols).
+std::string x264_asm_without_avx512() {
+  using CpuDetect = uint32_t (*)();
+  void* detect = nullptr;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void* found) {
+        const std::string_view name = info->dlpi_name == nullptr ? "" : info->dlpi_name;
+        if (name.find("libx264.so") == std::string_view::npos) {
+          return 0;
+        }
+        void* library = dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD);
+        if (library != nullptr) {
+          *static_cast<void**>(found) = dlsym(library, "x264_cpu_detect");
+          dlclose(library);  // RTLD_NOLOAD took a reference to the loaded library: given back
+        }
+        return 1;
+      },
+      static_cast<void*>(&detect));
+  if (detect == nullptr) {
+    detect = dlsym(RTLD_DEFAULT, "x264_cpu_detect");  // libx264 linked in statically
+  }
+  if (detect == nullptr) {
+    return {};
+  }
+  return "asm=" + std::to_string(reinterpret_cast<CpuDetect>(detect)() & ~kX264CpuAvx512);
+}
 
 std::string av_error_text(int code) {
   char text[AV_ERROR_MAX_STRING_SIZE] = {};
@@ -124,6 +165,10 @@ std::unique_ptr<H264Writer> H264Writer::open(const std::filesystem::path& path, 
   AVDictionary* options = nullptr;
   av_dict_set(&options, "preset", kX264Preset, 0);
   av_dict_set(&options, "crf", kX264Crf, 0);
+  static const std::string cpu_flags = x264_asm_without_avx512();
+  if (!cpu_flags.empty()) {
+    av_dict_set(&options, "x264-params", cpu_flags.c_str(), 0);
+  }
   const int opened = avcodec_open2(&c, x264, &options);
   av_dict_free(&options);
   if (opened < 0 || avcodec_parameters_from_context(codec->stream->codecpar, &c) < 0) {
