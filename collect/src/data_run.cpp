@@ -65,6 +65,9 @@ void DataRun::prepare(engine::Simulation& simulation) {
   writer_ =
       std::make_unique<sensors::DatasetWriter>(*system_, options_.output, std::move(info),
                                                options_.format, options_.replace, options_.kitti);
+  if (options_.preview) {
+    writer_->stream_preview();
+  }
   timeline_->attach(simulation, *writer_, [this](engine::WorldSnapshot& world) { adjust(world); });
 }
 
@@ -97,6 +100,10 @@ void DataRun::finish(const std::string& status, const std::string& reason) const
             " captures of the camera had no LiDAR scan at the same tick and are not KITTI frames "
             "(give the camera and the LiDAR rates that meet)"));
   }
+}
+
+std::optional<sensors::StreamedVideo> DataRun::take_preview_video() {
+  return writer_ ? writer_->take_preview_video() : std::nullopt;
 }
 
 int64_t DataRun::captures() const { return writer_ ? writer_->captures() : 0; }

@@ -56,8 +56,9 @@ DatasetRunReport run_dataset(const DatasetRunOptions& options, Diagnostics& diag
   report.captures = data.captures();
   report.files = data.files();
   if (!report.interrupted && options.preview) {
-    report.preview =
-        sensors::write_preview(options.output, data.system().rig(), diagnostics, hooks.on_preview);
+    const std::optional<sensors::StreamedVideo> streamed = data.take_preview_video();
+    report.preview = sensors::write_preview(options.output, data.system().rig(), diagnostics,
+                                            hooks.on_preview, streamed ? &*streamed : nullptr);
   }
   return report;
 }

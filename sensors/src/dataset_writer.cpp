@@ -18,6 +18,7 @@
 #include "corsa/sensors/writers.h"
 #include "dataset_folder.h"
 #include "kitti_export.h"
+#include "preview_stream.h"
 
 namespace corsa::sensors {
 namespace {
@@ -123,6 +124,9 @@ void DatasetWriter::capture(const engine::WorldSnapshot& world,
                             std::span<const std::string> sensors) {
   // Rendering this capture overlaps with the previous capture's file tasks (both cores busy).
   std::vector<SensorFrame> frames = system_.capture(world, sensors);
+  if (preview_) {
+    preview_->add(frames);
+  }
   complete_pending();
   auto batch = std::make_unique<Pending>();
   batch->frames = std::move(frames);
@@ -205,6 +209,16 @@ void DatasetWriter::finish(const DatasetEnd& end) {
     kitti_->finish();
   }
   write_run_json(&end);
+}
+
+void DatasetWriter::stream_preview() {
+  if (!preview_) {
+    preview_ = std::make_unique<detail::PreviewStream>(system_.rig(), directory_);
+  }
+}
+
+std::optional<StreamedVideo> DatasetWriter::take_preview_video() {
+  return preview_ ? preview_->finish() : std::nullopt;
 }
 
 int64_t DatasetWriter::kitti_frames() const { return kitti_ ? kitti_->frames() : 0; }

@@ -10,7 +10,13 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include <dlfcn.h>
+#include <link.h>
+#include <xmmintrin.h>
+
+#include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "corsa/core/diagnostic.h"
 
@@ -26,6 +32,61 @@ namespace {
 constexpr const char* kX264Preset = "veryfast";
 constexpr const char* kX264Crf = "23";
 constexpr int kX264Threads = 1;
+
+/// The SSE control and status register at its power-on value (0x1F80: every exception masked,
+/// round to nearest, neither flush-to-zero nor denormals-are-zero) for the life of the guard, put
+/// back after. libx264 and swscale compute parts of the encoding in floating point, and the
+/// thread that calls the writer may come with another register (oneTBB's workers have been seen
+/// with flush-to-zero and denormals-are-zero set, and a thread starts with its creator's): with
+/// the register fixed, the encoding does not depend on which thread calls it.
+class DefaultFloatControl {
+ public:
+  DefaultFloatControl() : saved_(_mm_getcsr()) { _mm_setcsr(kDefault); }
+  ~DefaultFloatControl() { _mm_setcsr(saved_); }
+  DefaultFloatControl(const DefaultFloatControl&) = delete;
+  DefaultFloatControl& operator=(const DefaultFloatControl&) = delete;
+
+ private:
+  static constexpr unsigned kDefault = 0x1F80;
+  unsigned saved_;
+};
+
+/// libx264's flag for its AVX-512 code (X264_CPU_AVX512 of its x264.h).
+constexpr uint32_t kX264CpuAvx512 = 1U << 16;
+
+/// x264's `asm` option for the CPU flags libx264 detects here less AVX-512 ("asm=1111039" on this
+/// machine's Xeon); empty when libx264's detection cannot be reached (it then uses every flag).
+/// With AVX-512, libx264 on its one thread gave other bytes from the same frames (the same YUV
+/// planes) now and then while the rendering ran beside it on two threads, never after the run;
+/// without it (its AVX2 code for the same functions) every encode was the same bytes.
+/// Those bytes are not the ones its AVX-512 code gives alone: the video is the same from run to
+/// run, not the same as with every flag. libx264 is reached through the loaded library that holds
+/// it (libavcodec's dependency; the plugin holding this writer is loaded with local symbols).
+std::string x264_asm_without_avx512() {
+  using CpuDetect = uint32_t (*)();
+  void* detect = nullptr;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void* found) {
+        const std::string_view name = info->dlpi_name == nullptr ? "" : info->dlpi_name;
+        if (name.find("libx264.so") == std::string_view::npos) {
+          return 0;
+        }
+        void* library = dlopen(info->dlpi_name, RTLD_NOW | RTLD_NOLOAD);
+        if (library != nullptr) {
+          *static_cast<void**>(found) = dlsym(library, "x264_cpu_detect");
+          dlclose(library);  // RTLD_NOLOAD took a reference to the loaded library: given back
+        }
+        return 1;
+      },
+      static_cast<void*>(&detect));
+  if (detect == nullptr) {
+    detect = dlsym(RTLD_DEFAULT, "x264_cpu_detect");  // libx264 linked in statically
+  }
+  if (detect == nullptr) {
+    return {};
+  }
+  return "asm=" + std::to_string(reinterpret_cast<CpuDetect>(detect)() & ~kX264CpuAvx512);
+}
 
 std::string av_error_text(int code) {
   char text[AV_ERROR_MAX_STRING_SIZE] = {};
@@ -67,6 +128,7 @@ struct H264Writer::Codec {
 
 std::unique_ptr<H264Writer> H264Writer::open(const std::filesystem::path& path, cv::Size size,
                                              double fps) {
+  const DefaultFloatControl float_control;
   const AVCodec* x264 = avcodec_find_encoder_by_name("libx264");
   if (x264 == nullptr || size.width <= 0 || size.height <= 0 || size.width % 2 != 0 ||
       size.height % 2 != 0 || !(fps > 0.0)) {
@@ -103,6 +165,10 @@ std::unique_ptr<H264Writer> H264Writer::open(const std::filesystem::path& path, 
   AVDictionary* options = nullptr;
   av_dict_set(&options, "preset", kX264Preset, 0);
   av_dict_set(&options, "crf", kX264Crf, 0);
+  static const std::string cpu_flags = x264_asm_without_avx512();
+  if (!cpu_flags.empty()) {
+    av_dict_set(&options, "x264-params", cpu_flags.c_str(), 0);
+  }
   const int opened = avcodec_open2(&c, x264, &options);
   av_dict_free(&options);
   if (opened < 0 || avcodec_parameters_from_context(codec->stream->codecpar, &c) < 0) {
@@ -131,11 +197,16 @@ std::unique_ptr<H264Writer> H264Writer::open(const std::filesystem::path& path, 
   return std::unique_ptr<H264Writer>(new H264Writer(std::move(codec)));
 }
 
+bool H264Writer::same_frame_rate(double a, double b) {
+  return av_cmp_q(av_d2q(a, 1000000), av_d2q(b, 1000000)) == 0;
+}
+
 H264Writer::H264Writer(std::unique_ptr<Codec> codec) : codec_(std::move(codec)) {}
 
 H264Writer::~H264Writer() = default;
 
 void H264Writer::write(const cv::Mat& bgr) {
+  const DefaultFloatControl float_control;
   Codec& k = *codec_;
   CV_Assert(bgr.type() == CV_8UC3 && bgr.cols == k.context->width && bgr.rows == k.context->height);
   int made_writable = av_frame_make_writable(k.frame);
@@ -154,6 +225,7 @@ void H264Writer::write(const cv::Mat& bgr) {
 }
 
 void H264Writer::finish() {
+  const DefaultFloatControl float_control;
   Codec& k = *codec_;
   const int sent = avcodec_send_frame(k.context, nullptr);
   if (sent < 0) {

@@ -19,6 +19,9 @@ class H264Writer {
   /// opened (the caller falls back to OpenCV's writers).
   static std::unique_ptr<H264Writer> open(const std::filesystem::path& path, cv::Size size,
                                           double fps);
+  /// Whether frame rates `a` and `b` (frames a second) open the same stream: the encoder keeps
+  /// the rate as a fraction (open()), so rates that round to one fraction give the same file.
+  static bool same_frame_rate(double a, double b);
   ~H264Writer();
   H264Writer(const H264Writer&) = delete;
   H264Writer& operator=(const H264Writer&) = delete;

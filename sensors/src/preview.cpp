@@ -18,8 +18,52 @@
 #include "corsa/core/strings.h"
 #include "h264_writer.h"
 #include "png_codec.h"
+#include "preview_frame.h"
 
 namespace corsa::sensors {
+namespace detail {
+namespace {
+
+void stamp(cv::Mat& image, const std::string& text, double scale) {
+  const cv::Point at(8, static_cast<int>(24 * scale));
+  cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.7 * scale, cv::Scalar(0, 0, 0),
+              static_cast<int>(4 * scale), cv::LINE_AA);
+  cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.7 * scale, cv::Scalar(255, 255, 255),
+              static_cast<int>(std::max(1.0, 1.5 * scale)), cv::LINE_AA);
+}
+
+}  // namespace
+
+cv::Mat fit_height(const cv::Mat& image, int height) {
+  if (image.rows == height) {
+    return image;  // shares the pixels: no copy
+  }
+  cv::Mat out;
+  const int width = std::max(1, image.cols * height / std::max(1, image.rows));
+  cv::resize(image, out, cv::Size(width, height), 0, 0, cv::INTER_AREA);
+  return out;
+}
+
+cv::Size preview_video_size(int camera_cols, bool with_birds_eye) {
+  const int side = with_birds_eye ? kPreviewHeight : 0;
+  return {(camera_cols + side + 1) / 2 * 2, kPreviewHeight};
+}
+
+cv::Mat compose_preview_frame(const cv::Mat& camera, double time, const cv::Mat& birds_eye,
+                              cv::Size size) {
+  cv::Mat frame(size, CV_8UC3, cv::Scalar(0, 0, 0));
+  cv::Mat cam = fit_height(camera, kPreviewHeight);
+  stamp(cam, "t = " + format_fixed(time, 1) + " s", 1.0);
+  cam.copyTo(frame(cv::Rect(0, 0, cam.cols, cam.rows)));
+  if (!birds_eye.empty()) {
+    const cv::Mat top = fit_height(birds_eye, kPreviewHeight);
+    top.copyTo(frame(cv::Rect(cam.cols, 0, top.cols, top.rows)));
+  }
+  return frame;
+}
+
+}  // namespace detail
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -67,24 +111,6 @@ cv::Mat read_rgb(const fs::path& path) {
   return image;
 }
 
-cv::Mat fit_height(const cv::Mat& image, int height) {
-  if (image.rows == height) {
-    return image;  // shares the pixels: no copy
-  }
-  cv::Mat out;
-  const int width = std::max(1, image.cols * height / std::max(1, image.rows));
-  cv::resize(image, out, cv::Size(width, height), 0, 0, cv::INTER_AREA);
-  return out;
-}
-
-void stamp(cv::Mat& image, const std::string& text, double scale) {
-  const cv::Point at(8, static_cast<int>(24 * scale));
-  cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.7 * scale, cv::Scalar(0, 0, 0),
-              static_cast<int>(4 * scale), cv::LINE_AA);
-  cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.7 * scale, cv::Scalar(255, 255, 255),
-              static_cast<int>(std::max(1.0, 1.5 * scale)), cv::LINE_AA);
-}
-
 fs::path write_contact_sheet(const fs::path& dataset, const std::vector<Shot>& shots) {
   constexpr int kColumns = 4;
   constexpr size_t kMax = 12;
@@ -97,7 +123,7 @@ fs::path write_contact_sheet(const fs::path& dataset, const std::vector<Shot>& s
     cv::Mat tile;
     const int height = image.rows * kTileWidth / std::max(1, image.cols);
     cv::resize(image, tile, cv::Size(kTileWidth, height), 0, 0, cv::INTER_AREA);
-    stamp(tile, "t = " + format_fixed(shots[pick].time, 1) + " s", 0.8);
+    detail::stamp(tile, "t = " + format_fixed(shots[pick].time, 1) + " s", 0.8);
     tiles.push_back(tile);
   }
   const int rows = static_cast<int>((n + kColumns - 1) / kColumns);
@@ -153,7 +179,7 @@ double frame_rate(const std::vector<Shot>& shots) {
 }  // namespace
 
 PreviewReport write_preview(const fs::path& dataset, const SensorRig& rig, Diagnostics& diagnostics,
-                            const PreviewProgress& progress) {
+                            const PreviewProgress& progress, const StreamedVideo* streamed) {
   PreviewReport report;
   const SensorSpec* camera = nullptr;
   const SensorSpec* birds_eye = nullptr;
@@ -181,23 +207,45 @@ PreviewReport write_preview(const fs::path& dataset, const SensorRig& rig, Diagn
       top[s.tick] = s.file;
     }
   }
-  constexpr int kHeight = 720;
-  cv::Mat first = fit_height(read_rgb(dataset / shots.front().file), kHeight);
-  const int side = top.empty() ? 0 : kHeight;
-  // Even sizes keep every codec (H.264 needs them) happy.
-  const cv::Size size((first.cols + side + 1) / 2 * 2, kHeight);
+  const cv::Mat first =
+      detail::fit_height(read_rgb(dataset / shots.front().file), detail::kPreviewHeight);
+  const cv::Size size = detail::preview_video_size(first.cols, !top.empty());
+  const double fps = frame_rate(shots);
+  if (streamed != nullptr) {
+    // Encoded during the run from the frames in memory: the same frames, size and rate give the
+    // same file as encoding the dataset's images now.
+    const fs::path video = dataset / "preview" / "camera_birds_eye.mp4";
+    const bool same = streamed->frames == static_cast<int>(shots.size()) &&
+                      streamed->width == size.width && streamed->height == size.height &&
+                      detail::H264Writer::same_frame_rate(streamed->fps, fps);
+    if (same) {
+      fs::rename(streamed->file, video, error);
+    }
+    if (same && !error) {
+      report.video = video;
+      report.codec = "avc1";
+      report.frames = streamed->frames;
+      if (progress) {
+        progress(report.frames, report.frames);
+      }
+      report.summary = "preview: " + report.contact_sheet.string() + ", " + report.video.string() +
+                       " (" + std::to_string(report.frames) + " frames, avc1, H.264)";
+      return report;
+    }
+    std::error_code ignored;
+    fs::remove(streamed->file, ignored);
+  }
   // H.264 through libx264 directly when FFmpeg has it; otherwise OpenCV's writers.
   const fs::path h264_temporary = dataset / "preview" / ".camera_birds_eye.tmp.mp4";
-  std::unique_ptr<detail::H264Writer> h264 =
-      detail::H264Writer::open(h264_temporary, size, frame_rate(shots));
+  std::unique_ptr<detail::H264Writer> h264 = detail::H264Writer::open(h264_temporary, size, fps);
   cv::VideoWriter writer;
   fs::path temporary;
   if (h264 != nullptr) {
     report.video = dataset / "preview" / "camera_birds_eye.mp4";
     report.codec = "avc1";
     temporary = h264_temporary;
-  } else if (!open_video(writer, dataset / "preview", size, frame_rate(shots), report.video,
-                         temporary, report.codec)) {
+  } else if (!open_video(writer, dataset / "preview", size, fps, report.video, temporary,
+                         report.codec)) {
     diagnostics.add(make_warning("", 0,
                                  "preview: this OpenCV build cannot encode video (no avc1, mp4v "
                                  "or MJPG writer); only the contact sheet was written"));
@@ -207,17 +255,11 @@ PreviewReport write_preview(const fs::path& dataset, const SensorRig& rig, Diagn
     // The camera frame, stamped, beside the latest bird's-eye view at or before its tick (black
     // before the first).
     const auto compose = [&](size_t i) {
-      cv::Mat frame(size, CV_8UC3, cv::Scalar(0, 0, 0));
-      cv::Mat cam = fit_height(read_rgb(dataset / shots[i].file), kHeight);
-      stamp(cam, "t = " + format_fixed(shots[i].time, 1) + " s", 1.0);
-      cam.copyTo(frame(cv::Rect(0, 0, cam.cols, cam.rows)));
       const auto found = top.upper_bound(shots[i].tick);
-      if (side > 0 && found != top.begin()) {
-        const cv::Mat latest_top =
-            fit_height(read_rgb(dataset / std::prev(found)->second), kHeight);
-        latest_top.copyTo(frame(cv::Rect(cam.cols, 0, latest_top.cols, latest_top.rows)));
-      }
-      return frame;
+      const cv::Mat latest_top =
+          found != top.begin() ? read_rgb(dataset / std::prev(found)->second) : cv::Mat();
+      return detail::compose_preview_frame(read_rgb(dataset / shots[i].file), shots[i].time,
+                                           latest_top, size);
     };
     // The next frame is read and composed on a thread of its own while this one is encoded on
     // the caller's thread: the encoder sees the same frames in the same order, so the same bytes.

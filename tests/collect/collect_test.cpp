@@ -1,6 +1,8 @@
 // The collect library on its own: --model texts, the capture windows of run.json, and whole
 // data-collection runs through collect::run_dataset (complete, and stopped by the caller).
 
+#include <tbb/global_control.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -12,6 +14,8 @@
 #include "corsa/collect/data_run.h"
 #include "corsa/collect/dataset_run.h"
 #include "corsa/core/atomic_file.h"
+#include "corsa/sensors/preview.h"
+#include "corsa/sensors/rig.h"
 #include "dataset_check.h"
 #include "temp_dir.h"
 
@@ -177,4 +181,37 @@ TEST_CASE(
   CHECK(warnings[0].file == "--entity-model car=" + missing);
   CHECK(warnings[0].line == 0);
   CHECK_THAT(warnings[0].message, Catch::Contains("nothere.glb") && Catch::Contains("stand in"));
+}
+
+TEST_CASE(
+    "the preview video encoded during a run is the same bytes on one and two threads, and the "
+    "video encoded from the dataset's files",
+    "[collect][run][preview]") {
+  corsa::test::TempDir dir;
+  std::vector<std::string> videos;
+  fs::path dataset;
+  for (const int threads : {1, 2}) {
+    // The camera's and the encoder's threads both come from this limit.
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    auto options = small_run(dir.path() / ("data" + std::to_string(threads)), 1.0);
+    options.preview = true;
+    options.run.simulation.threads = static_cast<unsigned>(threads);
+    corsa::Diagnostics diagnostics;
+    const auto report = corsa::collect::run_dataset(options, diagnostics);
+    REQUIRE(report.preview.has_value());
+    CHECK(report.preview->codec == "avc1");
+    CHECK(report.preview->frames == 11);  // the 10 Hz camera over 1 s: ticks 0, 10, ..., 100
+    REQUIRE(fs::exists(report.preview->video));
+    videos.push_back(corsa::read_file(report.preview->video));
+    dataset = options.output;
+  }
+  REQUIRE(videos.size() == 2);
+  CHECK_FALSE(videos[0].empty());
+  CHECK(videos[0] == videos[1]);
+  // Encoded again from the files, without the streamed video.
+  corsa::Diagnostics diagnostics;
+  const corsa::sensors::PreviewReport from_files = corsa::sensors::write_preview(
+      dataset, corsa::sensors::load_rig("tests/collect/fixtures/small_rig.xml"), diagnostics);
+  CHECK(from_files.frames == 11);
+  CHECK(corsa::read_file(from_files.video) == videos[0]);
 }

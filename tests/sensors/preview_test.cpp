@@ -1,11 +1,17 @@
 #include "corsa/sensors/preview.h"
 
+#include <xmmintrin.h>
+
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <opencv2/videoio.hpp>
+#include <optional>
 #include <string>
+#include <thread>
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/sensors/writers.h"
+#include "preview_stream.h"
 #include "temp_dir.h"
 
 using namespace corsa::sensors;
@@ -20,6 +26,7 @@ SensorRig write_small_dataset(const fs::path& dir, int frames) {
   SensorSpec camera;
   camera.name = "cam";
   camera.kind = SensorKind::kRgbCamera;
+  camera.rate_hz = 10.0;
   SensorSpec top;
   top.name = "top";
   top.kind = SensorKind::kBirdsEyeCamera;
@@ -42,6 +49,27 @@ SensorRig write_small_dataset(const fs::path& dir, int frames) {
   }
   corsa::write_file_atomic(dir / "frames.csv", index);
   return rig;
+}
+
+// Capture i of write_small_dataset() as the sensor system hands it to the dataset writer.
+std::vector<SensorFrame> small_capture(int i) {
+  SensorFrame cam;
+  cam.sensor = "cam";
+  cam.kind = SensorKind::kRgbCamera;
+  cam.frame = i;
+  cam.tick = 10 * i;
+  cam.time = std::stod(std::to_string(0.1 * i));  // as frames.csv above gives it
+  cam.camera.width = 64;
+  cam.camera.height = 36;
+  cam.camera.rgb.assign(64 * 36 * 3, static_cast<uint8_t>(40 + 10 * i));
+  SensorFrame top = cam;
+  top.sensor = "top";
+  top.kind = SensorKind::kBirdsEyeCamera;
+  top.camera = {};
+  top.birds_eye.width = 36;
+  top.birds_eye.height = 36;
+  top.birds_eye.rgb.assign(36 * 36 * 3, static_cast<uint8_t>(200 - 10 * i));
+  return {cam, top};
 }
 
 }  // namespace
@@ -78,4 +106,99 @@ TEST_CASE("the preview video is H.264 with every frame, the same bytes from run 
     ++read;
   }
   CHECK(read == kFrames);
+}
+
+TEST_CASE("a preview video encoded from the captures in memory is the one encoded from the files",
+          "[sensors][preview]") {
+  corsa::test::TempDir dir;
+  constexpr int kFrames = 14;
+  const SensorRig rig = write_small_dataset(dir.path() / "files", kFrames);
+  write_small_dataset(dir.path() / "stream", kFrames);
+  corsa::Diagnostics diagnostics;
+  const PreviewReport from_files = write_preview(dir.path() / "files", rig, diagnostics);
+
+  detail::PreviewStream stream(rig, dir.path() / "stream");
+  for (int i = 0; i < kFrames; ++i) {
+    stream.add(small_capture(i));
+  }
+  const std::optional<StreamedVideo> streamed = stream.finish();
+  REQUIRE(streamed.has_value());
+  CHECK(streamed->frames == kFrames);
+  CHECK(fs::exists(streamed->file));
+  int progress_calls = 0;
+  const PreviewReport from_stream = write_preview(
+      dir.path() / "stream", rig, diagnostics, [&](int, int) { ++progress_calls; }, &*streamed);
+  CHECK(diagnostics.all().empty());
+  CHECK(from_stream.frames == kFrames);
+  CHECK(from_stream.codec == "avc1");
+  CHECK(progress_calls == 1);
+  CHECK_FALSE(fs::exists(streamed->file));
+  REQUIRE(fs::exists(from_stream.video));
+  CHECK(corsa::read_file(from_stream.video) == corsa::read_file(from_files.video));
+}
+
+TEST_CASE("a streamed preview video that misses frames is replaced by one from the files",
+          "[sensors][preview]") {
+  corsa::test::TempDir dir;
+  constexpr int kFrames = 6;
+  const SensorRig rig = write_small_dataset(dir.path() / "files", kFrames);
+  write_small_dataset(dir.path() / "stream", kFrames);
+  corsa::Diagnostics diagnostics;
+  const PreviewReport from_files = write_preview(dir.path() / "files", rig, diagnostics);
+
+  detail::PreviewStream stream(rig, dir.path() / "stream");
+  for (int i = 0; i + 1 < kFrames; ++i) {  // the last capture never reached the stream
+    stream.add(small_capture(i));
+  }
+  const std::optional<StreamedVideo> streamed = stream.finish();
+  REQUIRE(streamed.has_value());
+  CHECK(streamed->frames == kFrames - 1);
+  const PreviewReport report =
+      write_preview(dir.path() / "stream", rig, diagnostics, {}, &*streamed);
+  CHECK(report.frames == kFrames);
+  CHECK_FALSE(fs::exists(streamed->file));
+  CHECK(corsa::read_file(report.video) == corsa::read_file(from_files.video));
+}
+
+TEST_CASE("a preview stream that is not finished leaves no file", "[sensors][preview]") {
+  corsa::test::TempDir dir;
+  const SensorRig rig = write_small_dataset(dir.path(), 3);
+  fs::path file;
+  {
+    detail::PreviewStream stream(rig, dir.path());
+    for (int i = 0; i < 3; ++i) {
+      stream.add(small_capture(i));
+    }
+    file = dir.path() / "preview" / ".camera_birds_eye.stream.mp4";
+    // The encoder opens its file with the first frame, on its own thread.
+    for (int wait = 0; wait < 200 && !fs::exists(file); ++wait) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    REQUIRE(fs::exists(file));
+  }  // an interrupted run: destroyed without finish()
+  CHECK_FALSE(fs::exists(file));
+}
+
+TEST_CASE("the preview video does not depend on the calling thread's floating-point register",
+          "[sensors][preview]") {
+  corsa::test::TempDir dir;
+  constexpr int kFrames = 14;
+  const SensorRig rig = write_small_dataset(dir.path() / "plain", kFrames);
+  write_small_dataset(dir.path() / "flushed", kFrames);
+  corsa::Diagnostics diagnostics;
+  const PreviewReport plain = write_preview(dir.path() / "plain", rig, diagnostics);
+  // Flush-to-zero and denormals-are-zero, as oneTBB's workers have run with.
+  constexpr unsigned kFlushBits = 0x8040;
+  PreviewReport flushed;
+  unsigned after = 0;
+  std::thread caller([&] {
+    _mm_setcsr(_mm_getcsr() | kFlushBits);
+    flushed = write_preview(dir.path() / "flushed", rig, diagnostics);
+    after = _mm_getcsr();
+  });
+  caller.join();
+  CHECK(diagnostics.all().empty());
+  CHECK((after & kFlushBits) == kFlushBits);  // the caller's register is put back
+  REQUIRE(flushed.frames == kFrames);
+  CHECK(corsa::read_file(flushed.video) == corsa::read_file(plain.video));
 }

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "corsa/collect/dataset_run.h"
 #include "corsa/core/json.h"
 #include "corsa/engine/capture_timeline.h"
+#include "corsa/sensors/preview.h"
 #include "corsa/sensors/rig.h"
 
 namespace corsa::sensors {
@@ -50,6 +52,9 @@ class DataRun {
   int64_t files() const;
   /// The sensor system (valid after prepare()); its rig is bound to the run's entities.
   const sensors::SensorSystem& system() const { return *system_; }
+  /// After finish(): the preview video encoded during the run (DatasetRunOptions::preview), for
+  /// sensors::write_preview; nothing without one.
+  std::optional<sensors::StreamedVideo> take_preview_video();
 
  private:
   void adjust(engine::WorldSnapshot& world) const;

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -30,6 +31,7 @@
 #include "corsa/core/json.h"
 #include "corsa/engine/world_snapshot.h"
 #include "corsa/sensors/kitti.h"
+#include "corsa/sensors/preview.h"
 #include "corsa/sensors/sensor_system.h"
 
 namespace corsa {
@@ -40,7 +42,8 @@ namespace corsa::sensors {
 
 namespace detail {
 class KittiExport;
-}
+class PreviewStream;
+}  // namespace detail
 
 enum class DatasetFormat { kCorsa, kKitti };
 
@@ -89,6 +92,12 @@ class DatasetWriter final : public engine::CaptureSink {
   /// Waits for the last capture's files, indexes them and rewrites run.json with how the run
   /// ended. Throws what writing those files threw (InputError for an I/O failure).
   void finish(const DatasetEnd& end);
+  /// Encodes the preview video (write_preview) from the captures as they come, on a thread of its
+  /// own beside the next captures' rendering, instead of from the dataset's files after the run.
+  void stream_preview();
+  /// After finish(): the video stream_preview() encoded, for write_preview; nothing without one
+  /// or when it could not be encoded.
+  std::optional<StreamedVideo> take_preview_video();
 
   /// Captures and files in the index (a capture still being written is not counted).
   int64_t captures() const { return captures_; }
@@ -115,6 +124,7 @@ class DatasetWriter final : public engine::CaptureSink {
   int64_t last_tick_ = -1;
   double last_time_ = 0.0;
   std::unique_ptr<detail::KittiExport> kitti_;
+  std::unique_ptr<detail::PreviewStream> preview_;
   std::unique_ptr<Pending> pending_;
   std::unique_ptr<OutputLock> lock_;
 };

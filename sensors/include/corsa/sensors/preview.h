@@ -32,9 +32,22 @@ struct PreviewReport {
 /// Called with (video frames encoded, frames in all) while the video is written.
 using PreviewProgress = std::function<void(int done, int total)>;
 
+/// A preview video encoded while the dataset was written (DatasetWriter::stream_preview), from
+/// the frames in memory.
+struct StreamedVideo {
+  std::filesystem::path file;  ///< H.264 in MP4, under a temporary name in DIR/preview
+  int width = 0;               ///< pixels
+  int height = 0;
+  int frames = 0;
+  double fps = 0.0;  ///< frames a second it was opened with
+};
+
 /// Reads the dataset's frames.csv and images and writes the preview files. Throws InputError
-/// when the dataset cannot be read.
+/// when the dataset cannot be read. With `streamed`, its file becomes the video when it has the
+/// frames, size and rate that encoding the dataset's images would give (the same bytes); else
+/// it is removed and the images are encoded as without it.
 PreviewReport write_preview(const std::filesystem::path& dataset, const SensorRig& rig,
-                            Diagnostics& diagnostics, const PreviewProgress& progress = {});
+                            Diagnostics& diagnostics, const PreviewProgress& progress = {},
+                            const StreamedVideo* streamed = nullptr);
 
 }  // namespace corsa::sensors
