@@ -453,9 +453,12 @@ class Planner {
   /// Rebuilds the connecting roads of junction `j` so that none leads into another: every lane
   /// becomes a single-lane piece, and every chain of pieces from an approach (or nothing) to an
   /// exit (or nothing) becomes one connecting road (OpenDRIVE 1.8 §10.4: connecting roads join
-  /// incoming and outgoing roads). A piece on several chains is repeated in each.
+  /// incoming and outgoing roads). A piece on several chains is repeated in each. The lanes of
+  /// an ordinary road taken into the junction whole stay one connecting road of several lanes
+  /// where each is a chain of its own (side_by_side_runs).
   void chain_connecting_roads(int j) {
     std::vector<int> pieces;
+    std::vector<std::vector<int>> groups;  // the pieces of each absorbed road of several lanes
     for (const int r : plan_.junctions[static_cast<size_t>(j)].roads) {
       if (plan_.roads[static_cast<size_t>(r)].removed) {
         continue;
@@ -465,11 +468,17 @@ class Planner {
       std::vector<PlanLane> lanes = std::move(plan_.roads[static_cast<size_t>(r)].lanes);
       const bool absorbed = plan_.roads[static_cast<size_t>(r)].absorbed;
       plan_.roads[static_cast<size_t>(r)].removed = true;
+      if (absorbed && lanes.size() > 1) {
+        groups.emplace_back();
+      }
       for (PlanLane& lane : lanes) {
         RoadPlan single;
         single.junction = j;
         single.absorbed = absorbed;
         single.lanes.push_back(std::move(lane));
+        if (absorbed && lanes.size() > 1) {
+          groups.back().push_back(static_cast<int>(plan_.roads.size()));
+        }
         pieces.push_back(static_cast<int>(plan_.roads.size()));
         plan_.roads.push_back(std::move(single));
       }
@@ -534,7 +543,28 @@ class Planner {
     for (const int piece : pieces) {
       plan_.roads[static_cast<size_t>(piece)].removed = true;
     }
+    const std::vector<std::vector<int>> runs = side_by_side_runs(groups, chains, index, j);
+    std::vector<int> run_of(plan_.roads.size(), -1);
+    for (size_t g = 0; g < runs.size(); ++g) {
+      for (const int piece : runs[g]) {
+        run_of[static_cast<size_t>(piece)] = static_cast<int>(g);
+      }
+    }
+    std::set<int> written;  // runs already written
     for (const auto& chain : chains) {
+      if (const int g = chain.size() == 1 ? run_of[static_cast<size_t>(chain.front())] : -1;
+          g >= 0) {
+        if (written.insert(g).second) {
+          RoadPlan road;
+          road.junction = j;
+          for (const int piece : runs[static_cast<size_t>(g)]) {
+            road.lanes.push_back(lane_of(piece));
+          }
+          junction.roads.push_back(static_cast<int>(plan_.roads.size()));
+          plan_.roads.push_back(std::move(road));
+        }
+        continue;
+      }
       RoadPlan road;
       road.junction = j;
       PlanLane lane = lane_of(chain.front());
@@ -552,6 +582,67 @@ class Planner {
       junction.roads.push_back(static_cast<int>(plan_.roads.size()));
       plan_.roads.push_back(std::move(road));
     }
+  }
+
+  /// The lanes of junction `j` that stay one connecting road of several lanes: runs of
+  /// neighbouring lanes of an ordinary road taken into the junction whole (`groups`: its
+  /// pieces, left to right), side by side in the survey, so that a vehicle may change between
+  /// them. A run takes only lanes that are a chain of their own (neither following nor leading
+  /// into another piece of the junction) and that come from the same road and lead into the
+  /// same road: a connecting road has one road before it and one after it (OpenDRIVE 1.8
+  /// §10.3 road linkage), and OpenDRIVE 1.7 §10.3 represents each connecting road by exactly
+  /// one <connection>, which names one incoming road. The other lanes stay one-lane paths.
+  std::vector<std::vector<int>> side_by_side_runs(const std::vector<std::vector<int>>& groups,
+                                                  const std::vector<std::vector<int>>& chains,
+                                                  const LaneIndex& index, int j) const {
+    std::vector<int> on_chains(plan_.roads.size(), 0);       // chains through the piece
+    std::vector<bool> on_longer(plan_.roads.size(), false);  // one of them has other pieces
+    for (const auto& chain : chains) {
+      for (const int piece : chain) {
+        ++on_chains[static_cast<size_t>(piece)];
+        on_longer[static_cast<size_t>(piece)] =
+            on_longer[static_cast<size_t>(piece)] || chain.size() > 1;
+      }
+    }
+    // The roads outside the junction that end where the piece starts (or start where it ends).
+    const auto outside = [&](int piece, bool at_end) {
+      const PlanLane& lane = plan_.roads[static_cast<size_t>(piece)].lanes[0];
+      const auto& refs = at_end ? index.starting[static_cast<size_t>(lane.end_node)]
+                                : index.ending[static_cast<size_t>(lane.start_node)];
+      std::set<int> roads;
+      for (const auto& ref : refs) {
+        if (plan_.roads[static_cast<size_t>(ref.road)].junction != j) {
+          roads.insert(ref.road);
+        }
+      }
+      return roads;
+    };
+    const auto runs_on = [&](int piece, int next) {
+      return outside(piece, false) == outside(next, false) &&
+             outside(piece, true) == outside(next, true) && outside(piece, false).size() <= 1 &&
+             outside(piece, true).size() <= 1;
+    };
+    std::vector<std::vector<int>> runs;
+    for (const auto& group : groups) {
+      std::vector<int> run;
+      for (const int piece : group) {
+        const bool alone =
+            on_chains[static_cast<size_t>(piece)] == 1 && !on_longer[static_cast<size_t>(piece)];
+        if (!run.empty() && (!alone || !runs_on(run.back(), piece))) {
+          if (run.size() > 1) {
+            runs.push_back(std::move(run));
+          }
+          run.clear();
+        }
+        if (alone) {
+          run.push_back(piece);
+        }
+      }
+      if (run.size() > 1) {
+        runs.push_back(std::move(run));
+      }
+    }
+    return runs;
   }
 
   /// Moves every connecting road of junction `from` into junction `into`.

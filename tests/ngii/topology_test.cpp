@@ -2,10 +2,13 @@
 // meet at a node (A.ToNodeID == B.FromNodeID) is joined in the map's lane graph, and every join
 // between two roads' lanes is such a pair.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <map>
 #include <set>
+#include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "corsa/xodr/lane_graph.h"
 #include "ngii_areas.h"
@@ -157,4 +160,76 @@ TEST_CASE("every join between two roads' lanes is a pair of links meeting at a n
     CHECK(joins > 500);
     CHECK(unexplained.empty());
   }
+}
+
+TEST_CASE("side-by-side links taken into a junction whole stay one connecting road of lanes",
+          "[ngii][topology][grouping]") {
+  // K-City: four ordinary 7 m links (LaneNo 1-4, a complete L/R chain) between two
+  // intersections, taken into the junction whole. A219BS010309/322/321 continue one road's
+  // three lanes and become one three-lane connecting road; A219BS010320 continues another road
+  // and stays a path of its own (a connecting road has one road before it).
+  const ConvertedArea& area = converted("kcity");
+  const Topology topology(area);
+  const auto placed = [&](const std::string& link) -> const Placement& {
+    REQUIRE(topology.placements.contains(link));
+    REQUIRE(topology.placements.at(link).size() == 1);
+    return *topology.placements.at(link).front();
+  };
+  const std::vector<std::string> run = {"A219BS010309", "A219BS010322", "A219BS010321"};
+  const Placement& first = placed(run.front());
+  const auto& roads = area.conversion.map.roads;
+  const auto road = std::find_if(roads.begin(), roads.end(),
+                                 [&](const auto& r) { return r.id == first.road_id; });
+  REQUIRE(road != roads.end());
+  CHECK(road->junction != "-1");
+  CHECK(road->predecessor.element_type == corsa::xodr::LinkElement::kRoad);
+  CHECK(road->successor.element_type == corsa::xodr::LinkElement::kRoad);
+  const auto& lanes = road->lane_sections.front().lanes;
+  for (size_t k = 0; k < run.size(); ++k) {
+    INFO(run[k]);
+    const Placement& p = placed(run[k]);
+    CHECK(p.road_id == road->id);
+    CHECK(p.lane_id == -static_cast<int>(k) - 1);
+    // Each lane has its own lane links: the approach's lane before it, the exit's after it.
+    const auto lane =
+        std::find_if(lanes.begin(), lanes.end(), [&](const auto& l) { return l.id == p.lane_id; });
+    REQUIRE(lane != lanes.end());
+    CHECK(lane->predecessors.size() == 1);
+    CHECK(lane->successors.size() == 1);
+    // In the lane graph: joined to the links before and after it, and a lane change away
+    // from its neighbour in the run.
+    const auto node = topology.lane_node(p);
+    REQUIRE(node != corsa::xodr::kNoLane);
+    CHECK(area.map.lane_graph().predecessors(node).size() == 1);
+    CHECK(area.map.lane_graph().successors(node).size() == 1);
+    if (k > 0) {
+      CHECK(area.map.lane_graph().left(node) == topology.lane_node(placed(run[k - 1])));
+    }
+  }
+  // One connection from the approach road, a laneLink per lane.
+  const corsa::xodr::Connection* connection = nullptr;
+  size_t connections = 0;
+  for (const auto& junction : area.conversion.map.junctions) {
+    for (const auto& c : junction.connections) {
+      if (c.connecting_road == road->id) {
+        connection = &c;
+        ++connections;
+        CHECK(junction.id == road->junction);
+      }
+    }
+  }
+  REQUIRE(connection != nullptr);
+  CHECK(connections == 1);
+  CHECK(connection->incoming_road == road->predecessor.element_id);
+  CHECK(connection->lane_links.size() == run.size());
+  // The fourth lane comes from another road: a connecting road of its own, in the same
+  // junction, leading into the same road.
+  const Placement& fourth = placed("A219BS010320");
+  CHECK(fourth.road_id != road->id);
+  const auto other = std::find_if(roads.begin(), roads.end(),
+                                  [&](const auto& r) { return r.id == fourth.road_id; });
+  REQUIRE(other != roads.end());
+  CHECK(other->junction == road->junction);
+  CHECK(other->predecessor.element_id != road->predecessor.element_id);
+  CHECK(other->successor.element_id == road->successor.element_id);
 }

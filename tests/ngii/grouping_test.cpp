@@ -1,0 +1,200 @@
+// Side-by-side lanes inside a junction on small synthetic layers: an ordinary run of lanes that a
+// junction takes in whole stays one connecting road of several lanes where its lanes come from
+// one road and lead into one (network_plan.h); a lane of the run fed by another road stays a
+// connecting road of its own.
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "corsa/ngii/convert.h"
+#include "corsa/xodr/lane_graph.h"
+#include "corsa/xodr/map.h"
+
+namespace {
+
+using corsa::ngii::Layers;
+using corsa::ngii::Link;
+using corsa::ngii::Node;
+using corsa::ngii::Point3;
+
+constexpr double kGroupingX0 = 310000.0, kGroupingY0 = 4110000.0;
+
+Point3 grouping_at(double x, double y) { return {kGroupingX0 + x, kGroupingY0 + y, 40.0}; }
+
+struct GroupingLayers {
+  Layers layers;
+
+  GroupingLayers() {
+    layers.node_file = "A1_NODE.dbf";
+    layers.link_file = "A2_LINK.dbf";
+    layers.mark_file = "B2_SURFACELINEMARK.dbf";
+  }
+  void node(const std::string& id, double x, double y) {
+    layers.nodes.push_back(Node{.id = id,
+                                .node_type = "99",
+                                .position = grouping_at(x, y),
+                                .record = static_cast<int64_t>(layers.nodes.size())});
+  }
+  /// A straight link from node a to node b (both added before), vertices a metre apart.
+  void link(const std::string& id, const std::string& type, int lane_no, const std::string& a,
+            const std::string& b, const std::string& right = "", const std::string& left = "") {
+    Point3 pa{}, pb{};
+    for (const Node& n : layers.nodes) {
+      pa = n.id == a ? n.position : pa;
+      pb = n.id == b ? n.position : pb;
+    }
+    std::vector<Point3> points;
+    const double length = std::hypot(pb.x - pa.x, pb.y - pa.y);
+    const int steps = static_cast<int>(std::ceil(length));
+    for (int i = 0; i <= steps; ++i) {
+      const double f = static_cast<double>(i) / steps;
+      points.push_back({pa.x + f * (pb.x - pa.x), pa.y + f * (pb.y - pa.y), 40.0});
+    }
+    layers.links.push_back(Link{.id = id,
+                                .link_type = type,
+                                .road_rank = "",
+                                .road_type = "1",
+                                .road_no = "",
+                                .lane_no = lane_no,
+                                .max_speed = 0,
+                                .right_id = right,
+                                .left_id = left,
+                                .from_node = a,
+                                .to_node = b,
+                                .length_attr = length,
+                                .points = std::move(points),
+                                .record = static_cast<int64_t>(layers.links.size())});
+  }
+};
+
+/// Eastbound: a three-lane approach (lanes 3.5 m apart, y = 0, -3.5, -7) ending at x = 30, a
+/// one-lane road coming in from the south-west beside its end (y = -10.5), a 7 m four-lane run (x = 30..37, LaneNo 1-4) continuing
+/// them, and a four-lane exit road from x = 37. A junction path also turns left off the
+/// approach's first lane, so the approach's end leads into a junction and straight on: the
+/// short run joins that junction whole.
+GroupingLayers run_in_junction() {
+  GroupingLayers g;
+  const std::vector<double> ys = {0.0, -3.5, -7.0, -10.5};
+  for (size_t k = 0; k < ys.size(); ++k) {
+    const std::string n = std::to_string(k + 1);
+    // The road beside the approach comes in at an angle from the south-west (another road).
+    g.node("S" + n, k < 3 ? 0.0 : 6.0, k < 3 ? ys[k] : -25.0);
+    g.node("M" + n, 30.0, ys[k]);
+    g.node("R" + n, 37.0, ys[k]);
+    g.node("E" + n, 80.0, ys[k]);
+  }
+  g.node("N0", 45.0, 15.0);
+  g.node("N1", 45.0, 60.0);
+  const auto id = [](const std::string& road, size_t k) {
+    return "A2TEST" + road + "0000" + std::to_string(k + 1);
+  };
+  for (size_t k = 0; k < ys.size(); ++k) {
+    const std::string n = std::to_string(k + 1);
+    const int lane_no = static_cast<int>(k) + 1;
+    const std::string right_run = k + 1 < ys.size() ? id("RN", k + 1) : "";
+    const std::string left_run = k > 0 ? id("RN", k - 1) : "";
+    const std::string right_exit = k + 1 < ys.size() ? id("EX", k + 1) : "";
+    const std::string left_exit = k > 0 ? id("EX", k - 1) : "";
+    if (k < 3) {  // the three-lane approach
+      const std::string right = k + 1 < 3 ? id("AP", k + 1) : "";
+      const std::string left = k > 0 ? id("AP", k - 1) : "";
+      g.link(id("AP", k), "6", lane_no, "S" + n, "M" + n, right, left);
+    } else {  // the one-lane road beside it
+      g.link(id("SD", 0), "6", 1, "S" + n, "M" + n);
+    }
+    g.link(id("RN", k), "6", lane_no, "M" + n, "R" + n, right_run, left_run);
+    g.link(id("EX", k), "6", lane_no, "R" + n, "E" + n, right_exit, left_exit);
+  }
+  g.link("A2TESTTURN001", "1", 1, "M1", "N0");
+  g.link("A2TESTNRTH001", "6", 1, "N0", "N1");
+  return g;
+}
+
+const corsa::ngii::LinkPlacement& placement_of(const corsa::ngii::Conversion& conversion,
+                                               const std::string& link) {
+  const auto it =
+      std::find_if(conversion.placements.begin(), conversion.placements.end(),
+                   [&](const corsa::ngii::LinkPlacement& p) { return p.link_id == link; });
+  REQUIRE(it != conversion.placements.end());
+  return *it;
+}
+
+const corsa::xodr::Road& road_of(const corsa::ngii::Conversion& conversion, const std::string& id) {
+  const auto& roads = conversion.map.roads;
+  const auto it = std::find_if(roads.begin(), roads.end(), [&](const auto& r) { return r.id == id; });
+  REQUIRE(it != roads.end());
+  return *it;
+}
+
+}  // namespace
+
+TEST_CASE("a run of lanes a junction takes in whole stays one connecting road of its lanes",
+          "[ngii][grouping][junction]") {
+  const GroupingLayers g = run_in_junction();
+  corsa::Diagnostics diagnostics;
+  const corsa::ngii::Conversion conversion = corsa::ngii::convert(g.layers, {}, diagnostics);
+  const auto& first = placement_of(conversion, "A2TESTRN00001");
+  const corsa::xodr::Road& run = road_of(conversion, first.road_id);
+  CHECK(run.junction != "-1");
+  const auto& approach = placement_of(conversion, "A2TESTAP00001");
+  const auto& exit = placement_of(conversion, "A2TESTEX00001");
+  CHECK(run.predecessor.element_id == approach.road_id);
+  CHECK(run.successor.element_id == exit.road_id);
+  // The three lanes fed by the approach: one road, lanes -1..-3 left to right, each linked to
+  // the approach's lane beside it before and to the exit's after it.
+  const auto& lanes = run.lane_sections.front().lanes;
+  for (int k = 0; k < 3; ++k) {
+    const auto& p = placement_of(conversion, "A2TESTRN0000" + std::to_string(k + 1));
+    CHECK(p.road_id == run.id);
+    CHECK(p.lane_id == -k - 1);
+    const auto lane =
+        std::find_if(lanes.begin(), lanes.end(), [&](const auto& l) { return l.id == -k - 1; });
+    REQUIRE(lane != lanes.end());
+    CHECK(lane->predecessors == std::vector<int>{-k - 1});
+    CHECK(lane->successors == std::vector<int>{-k - 1});
+    CHECK(std::count_if(lane->user_data.begin(), lane->user_data.end(), [&](const auto& d) {
+            return d.code == "ngii:link" && d.value == p.link_id;
+          }) == 1);
+  }
+  // One connection from the approach, a laneLink per lane.
+  std::vector<const corsa::xodr::Connection*> connections;
+  for (const auto& junction : conversion.map.junctions) {
+    for (const auto& c : junction.connections) {
+      if (c.connecting_road == run.id) {
+        connections.push_back(&c);
+        CHECK(junction.id == run.junction);
+      }
+    }
+  }
+  REQUIRE(connections.size() == 1);
+  CHECK(connections.front()->incoming_road == approach.road_id);
+  CHECK(connections.front()->lane_links.size() == 3);
+  // The fourth lane comes from the road beside the approach: a connecting road of its own in
+  // the same junction, into the same exit road.
+  const auto& fourth = placement_of(conversion, "A2TESTRN00004");
+  CHECK(fourth.road_id != run.id);
+  const corsa::xodr::Road& alone = road_of(conversion, fourth.road_id);
+  CHECK(alone.junction == run.junction);
+  CHECK(alone.predecessor.element_id == placement_of(conversion, "A2TESTSD00001").road_id);
+  CHECK(alone.successor.element_id == exit.road_id);
+  // In the lane graph a vehicle can change between the run's lanes, and drives on from each.
+  const corsa::xodr::Map map = corsa::xodr::Map::build(conversion.map, diagnostics);
+  const auto road = map.find_road(run.id);
+  REQUIRE(road);
+  const auto node = [&](int lane) {
+    const auto n =
+        map.lane_graph().find(corsa::xodr::LaneRef{static_cast<uint32_t>(*road), 0, lane});
+    REQUIRE(n);
+    return *n;
+  };
+  CHECK(map.lane_graph().left(node(-2)) == node(-1));
+  CHECK(map.lane_graph().right(node(-2)) == node(-3));
+  for (const int lane : {-1, -2, -3}) {
+    CHECK(map.lane_graph().predecessors(node(lane)).size() == 1);
+    CHECK(map.lane_graph().successors(node(lane)).size() == 1);
+  }
+  CHECK(diagnostics.count(corsa::Severity::kWarning) == 0);
+}
