@@ -1,8 +1,8 @@
 // esmini's simple vehicle model and the two esmini controllers that drive it
 // (controllers/esmini_vehicle.h), on tests/engine/fixtures/controller_esmini_drivers.xosc:
 // Coaster (interactiveDriver, no key pressed) starts at 20 m/s at a heading 0.05 rad off the
-// straight road's and is asked at 2 s to slow to 5 m/s; Follower (offroadFollower) starts 40 m
-// behind the standing Lead, with 20 m as its target distance.
+// straight road's, is asked at 2 s to slow to 5 m/s and is teleported at 20 s; Follower
+// (offroadFollower) starts 40 m behind the standing Lead, with 20 m as its target distance.
 //
 // What to expect, derived from esmini's model: without throttle the speed shrinks by the factor
 // 0.999 every step (0.01 s), so over 2 s by 0.999^200, and the car holds its heading (the wheel
@@ -38,7 +38,7 @@ TEST_CASE("esmini's interactiveDriver without input rolls straight on, its speed
   CHECK(run.at(3.0, "Coaster").speed == Approx(v1 * std::pow(0.999, 200)).epsilon(1e-9));
   CHECK(v1 > 18.0);
   // Straight along its heading, not along the road.
-  for (const double t : {1.0, 4.0, 10.0, 30.0}) {
+  for (const double t : {1.0, 4.0, 10.0, 20.0}) {
     const auto& now = run.at(t, "Coaster");
     CAPTURE(t);
     CHECK(now.pose.h == Approx(0.05).margin(1e-9));
@@ -46,8 +46,12 @@ TEST_CASE("esmini's interactiveDriver without input rolls straight on, its speed
           Approx((now.pose.x - start.pose.x) * std::tan(0.05)).margin(1e-6));
   }
   // Off the road (beyond y 10.5 m from about 5 s) its top speed is 70 km/h.
-  CHECK(run.at(30.0, "Coaster").pose.y > 10.5);
-  CHECK(run.at(30.0, "Coaster").speed <= 70.0 / 3.6 + 1e-9);
+  CHECK(run.at(20.0, "Coaster").pose.y > 10.5);
+  CHECK(run.at(20.0, "Coaster").speed <= 70.0 / 3.6 + 1e-9);
+  // Teleported at 20 s, it rolls on from there (the model starts again from the entity).
+  const auto& end = run.at(30.0, "Coaster");
+  CHECK(end.pose.x > 600.0);
+  CHECK(end.pose.y - 30.0 == Approx((end.pose.x - 600.0) * std::tan(0.05)).margin(1e-6));
 }
 
 TEST_CASE("esmini's offroadFollower closes to its target distance behind the entity it follows",

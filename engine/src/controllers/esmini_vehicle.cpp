@@ -24,9 +24,9 @@ namespace {
 constexpr double kFullTurn = 2.0 * std::numbers::pi;
 // esmini's vehicle.cpp.
 constexpr double kMaxWheelAngle = 60.0 * std::numbers::pi / 180.0;
-constexpr double kPivotFraction = 0.15;   // the model's reference point, of the length
-constexpr double kWheelReturn = 4.0;      // 1/s, the wheel's return toward straight
-constexpr double kEngineBrake = 0.001;    // of the speed, every step without throttle
+constexpr double kPivotFraction = 0.15;     // the model's reference point, of the length
+constexpr double kWheelReturn = 4.0;        // 1/s, the wheel's return toward straight
+constexpr double kEngineBrake = 0.001;      // of the speed, every step without throttle
 constexpr double kBinarySteerScale = 0.02;  // s^2/m^2, the wheel's range shrinking with speed
 constexpr double kAnalogSteerScale = 0.005;
 constexpr double kNoThrottle = 1e-10;  // esmini's SMALL_NUMBER
@@ -76,9 +76,12 @@ double speed_limit_at(const SimState& state, const Entity& entity) {
   return driving > 1 ? kLimitMultiLane : kLimitSingleLane;
 }
 
-// The model started from the entity (on the first step and after a step it did not drive).
+// The model started from the entity: on the first step, after a step it did not drive, and
+// after something else moved the entity (a TeleportAction): esmini's model would otherwise put
+// it back where the model was.
 void start_model(EsminiDriver& driver, const Entity& entity, int64_t tick) {
-  if (driver.started && driver.last_tick + 1 == tick) {
+  if (driver.started && driver.last_tick + 1 == tick && entity.state.pose.x == driver.car.x &&
+      entity.state.pose.y == driver.car.y) {
     driver.last_tick = tick;
     return;
   }

@@ -29,7 +29,8 @@
 // not; 70 km/h off every road.
 //
 // Both controllers start their model from the entity's pose and speed when they first move it,
-// and again after a step in which they did not (esmini resets its model on activation).
+// again after a step in which they did not (esmini resets its model on activation), and after
+// something else moved the entity (a TeleportAction).
 
 #include <cstdint>
 #include <optional>
