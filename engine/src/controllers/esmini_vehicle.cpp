@@ -24,12 +24,12 @@ namespace {
 constexpr double kFullTurn = 2.0 * std::numbers::pi;
 // esmini's vehicle.cpp.
 constexpr double kMaxWheelAngle = 60.0 * std::numbers::pi / 180.0;
-constexpr double kPivotFraction = 0.15;     // the model's reference point, of the length
-constexpr double kWheelReturn = 4.0;        // 1/s, the wheel's return toward straight
-constexpr double kEngineBrake = 0.001;      // of the speed, every step without throttle
-constexpr double kBinarySteerScale = 0.02;  // s^2/m^2, the wheel's range shrinking with speed
-constexpr double kAnalogSteerScale = 0.005;
-constexpr double kNoThrottle = 1e-10;  // esmini's SMALL_NUMBER
+constexpr double kPivotFraction = 0.15;      // the model's reference point, of the length
+constexpr double kWheelReturn = 4.0;         // 1/s, the wheel's return toward straight
+constexpr double kEngineBrake = 0.001;       // of the speed, every step without throttle
+constexpr double kBinarySteerScale = 0.02;   // s^2/m^2, the wheel's range shrinking with speed
+constexpr double kAnalogSteerScale = 0.005;  // s^2/m^2, the same under analog control
+constexpr double kNoThrottle = 1e-10;        // esmini's SMALL_NUMBER
 // esmini's Position::GetSpeedLimit, m/s.
 constexpr double kLimitOffRoad = 70.0 / 3.6;
 constexpr double kLimitMultiLane = 120.0 / 3.6;
