@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "controllers/esmini_vehicle.h"
 #include "controllers/external.h"
 #include "controllers/follow_ghost.h"
 #include "controllers/follow_view.h"
@@ -102,6 +103,9 @@ void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectCo
     control.substitute_for.clear();
     control.esmini_acc = acc;
     return;
+  }
+  if (assign_esmini_driver(state, index, oc)) {
+    return;  // esmini's interactiveDriver or offroadFollower (controllers/esmini_vehicle.h)
   }
   control.kind = ControllerKind::kAcc;
   control.substitute_for = oc.controller.name;
@@ -301,6 +305,9 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
     case ControllerKind::kFollowGhost:
       step_follow_ghost(state, i, motion);
       break;
+    case ControllerKind::kEsminiVehicle:
+      step_esmini_driver(state, i, motion, view);
+      break;
   }
 }
 
@@ -395,8 +402,11 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     if (dynamics_moves(state, i) && !state.world.entities[i].towed_by) {
       dynamic.push_back(i);
     }
-    following = following || (state.world.entities[i].state.placed &&
-                              state.controls[i].effective() == ControllerKind::kAcc);
+    // Car following and esmini's offroadFollower read the others in the picture.
+    const ControllerKind kind = state.controls[i].effective();
+    following =
+        following || (state.world.entities[i].state.placed &&
+                      (kind == ControllerKind::kAcc || kind == ControllerKind::kEsminiVehicle));
   }
   if (!dynamic.empty()) {
     begin_dynamics(state, dynamic, motion);

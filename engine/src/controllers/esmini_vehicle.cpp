@@ -1,0 +1,270 @@
+// esmini's simple vehicle model and its interactiveDriver and offroadFollower controllers
+// (controllers/esmini_vehicle.h).
+
+#include "controllers/esmini_vehicle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <numbers>
+#include <string>
+
+#include "controllers/controllers.h"
+#include "controllers/follow_view.h"
+#include "corsa/xodr/map.h"
+#include "corsa/xosc/scenario.h"
+#include "motion/pose_command.h"
+#include "positions/position_resolver.h"
+#include "state/sim_state.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+constexpr double kFullTurn = 2.0 * std::numbers::pi;
+// esmini's vehicle.cpp.
+constexpr double kMaxWheelAngle = 60.0 * std::numbers::pi / 180.0;
+constexpr double kPivotFraction = 0.15;      // the model's reference point, of the length
+constexpr double kWheelReturn = 4.0;         // 1/s, the wheel's return toward straight
+constexpr double kEngineBrake = 0.001;       // of the speed, every step without throttle
+constexpr double kBinarySteerScale = 0.02;   // s^2/m^2, the wheel's range shrinking with speed
+constexpr double kAnalogSteerScale = 0.005;  // s^2/m^2, the same under analog control
+constexpr double kNoThrottle = 1e-10;        // esmini's SMALL_NUMBER
+// esmini's Position::GetSpeedLimit, m/s.
+constexpr double kLimitOffRoad = 70.0 / 3.6;
+constexpr double kLimitMultiLane = 120.0 / 3.6;
+constexpr double kLimitSingleLane = 60.0 / 3.6;
+// offroadFollower: the follower may drive this much above the speed limit to catch up.
+constexpr double kFollowerLimitFactor = 1.2;
+
+// The kinematic single-track step about the model's reference point (esmini's Update): the
+// position moves along the heading of the step's start plus the slip angle.
+void integrate(EsminiVehicle& car, double dt) {
+  const double slip = std::atan(kPivotFraction * std::tan(car.wheel));
+  const double course = car.h + slip;
+  const double yaw_rate = car.speed * std::sin(slip) / (car.length * kPivotFraction);
+  car.h = std::fmod(car.h + dt * yaw_rate, kFullTurn);
+  if (car.h < 0.0) car.h += kFullTurn;
+  car.x += dt * car.speed * std::cos(course);
+  car.y += dt * car.speed * std::sin(course);
+}
+
+// Where `entity` is, esmini's speed limit (m/s): the road type's speed at its s, else by the
+// number of lanes for driving on its side of the road.
+double speed_limit_at(const SimState& state, const Entity& entity) {
+  if (state.map == nullptr || !entity.state.road) {
+    return kLimitOffRoad;
+  }
+  const RoadCoordinates& at = *entity.state.road;
+  const xodr::Road& road = state.map->road(at.road);
+  std::optional<double> typed;
+  for (const xodr::RoadType& type : road.types) {
+    if (type.s > at.s) break;
+    typed = type.max_speed;
+  }
+  if (typed && *typed > 0.0) {
+    return *typed;
+  }
+  if (at.section >= road.lane_sections.size()) {
+    return kLimitSingleLane;
+  }
+  const int side = at.lane < 0 ? -1 : 1;
+  int driving = 0;
+  for (const xodr::Lane& lane : road.lane_sections[at.section].lanes) {
+    if (lane.id * side > 0 && xodr::is_drivable(lane.type)) ++driving;
+  }
+  return driving > 1 ? kLimitMultiLane : kLimitSingleLane;
+}
+
+// The model started from the entity: on the first step, after a step it did not drive, and
+// after something else moved the entity (a TeleportAction): esmini's model would otherwise put
+// it back where the model was.
+void start_model(EsminiDriver& driver, const Entity& entity, int64_t tick) {
+  if (driver.started && driver.last_tick + 1 == tick && entity.state.pose.x == driver.car.x &&
+      entity.state.pose.y == driver.car.y) {
+    driver.last_tick = tick;
+    return;
+  }
+  EsminiVehicle& car = driver.car;
+  const double steering_rate = car.steering_rate;
+  car = EsminiVehicle{};
+  car.steering_rate = steering_rate;
+  car.x = entity.state.pose.x;
+  car.y = entity.state.pose.y;
+  car.h = entity.state.pose.h - kFullTurn * std::floor(entity.state.pose.h / kFullTurn);
+  car.speed = entity.state.speed;
+  if (entity.info.box.length > 0.0) car.length = entity.info.box.length;
+  if (entity.info.max_acceleration > 0.0) car.max_acceleration = entity.info.max_acceleration;
+  if (entity.info.max_deceleration > 0.0) car.max_deceleration = entity.info.max_deceleration;
+  driver.started = true;
+  driver.last_tick = tick;
+}
+
+// Puts the entity at the model's pose (height and pitch of the road surface there) with
+// `speed`, as a pose command.
+void place_at_model(const EsminiVehicle& car, double speed, Entity& entity,
+                    const MotionContext& motion) {
+  Pose pose = entity.state.pose;
+  pose.x = car.x;
+  pose.y = car.y;
+  pose.h = std::remainder(car.h, kFullTurn);
+  if (motion.map != nullptr) {
+    if (const auto at = locate_point(*motion.map, car.x, car.y, 0.5)) {
+      const xodr::WorldPose surface = motion.map->world_pose(at->road, at->s, at->t);
+      pose.z = surface.z;
+      pose.p = surface.p;
+    }
+  }
+  const double speed_command = entity.speed_command;
+  entity.pose_command = pose;
+  entity.speed_command = speed;
+  move_to_pose_command(entity, motion);
+  entity.speed_command = speed_command;
+}
+
+void step_interactive(SimState& state, uint32_t index, EsminiDriver& driver,
+                      const MotionContext& motion) {
+  Entity& entity = state.world.entities[index];
+  const ControlState& control = state.controls[index];
+  EsminiVehicle& car = driver.car;
+  const double limit = driver.speed_factor * speed_limit_at(state, entity);
+  car.max_speed = entity.info.max_speed > 0.0 ? std::min(limit, entity.info.max_speed) : limit;
+  if (control.longitudinal && control.lateral) {
+    roll_neutral(car, motion.dt);
+    place_at_model(car, car.speed, entity, motion);
+    return;
+  }
+  if (control.longitudinal) {
+    // Along its lane at the model's speed (engine brake, top speed), as the default controller
+    // moves it.
+    car.speed = std::clamp(car.speed * (1.0 - kEngineBrake), -car.max_speed, car.max_speed);
+    const double speed_command = entity.speed_command;
+    entity.speed_command = car.speed;
+    DefaultController{}.step(entity, motion);
+    entity.speed_command = speed_command;
+    car.x = entity.state.pose.x;
+    car.y = entity.state.pose.y;
+    car.h = entity.state.pose.h - kFullTurn * std::floor(entity.state.pose.h / kFullTurn);
+    return;
+  }
+  // The lateral domain alone: the wheel returns to straight, the speed is the actions' (esmini:
+  // its default controller's).
+  car.speed = entity.speed_command;
+  const double scale = 1.0 / (1.0 + kBinarySteerScale * car.speed * car.speed);
+  car.wheel *= 1.0 - kWheelReturn * motion.dt;
+  car.wheel = std::clamp(car.wheel, -scale * kMaxWheelAngle, scale * kMaxWheelAngle);
+  integrate(car, motion.dt);
+  place_at_model(car, car.speed, entity, motion);
+}
+
+void step_offroad_follower(SimState& state, uint32_t index, EsminiDriver& driver,
+                           const MotionContext& motion, const FollowView& view) {
+  Entity& entity = state.world.entities[index];
+  if (!driver.follow || *driver.follow >= view.targets().size() ||
+      !view.targets()[*driver.follow].present) {
+    return;  // nothing to follow: esmini's controller leaves the car where it is
+  }
+  const FollowTarget& lead = view.targets()[*driver.follow];
+  EsminiVehicle& car = driver.car;
+  const double limit = kFollowerLimitFactor * speed_limit_at(state, entity);
+  car.max_speed = entity.info.max_speed > 0.0 ? std::min(limit, entity.info.max_speed) : limit;
+  const double dx = lead.x - entity.state.pose.x;
+  const double dy = lead.y - entity.state.pose.y;
+  const double direction = std::remainder(std::atan2(dy, dx) - entity.state.pose.h, kFullTurn);
+  const double distance = std::hypot(dx, dy);
+  const double steering = std::clamp(direction, -1.0, 1.0);
+  const double throttle = std::clamp(
+      0.5 * (distance - driver.target_distance) - 0.5 * (entity.state.speed - lead.speed), -1.0,
+      1.0);
+  drive_analog(car, motion.dt, throttle, steering);
+  place_at_model(car, car.speed, entity, motion);
+}
+
+// A property of an esmini driver as a number; absent or not a number (warned): `fallback`.
+double number_property(SimState& state, const xosc::Controller& controller, const char* name,
+                       double fallback) {
+  return nonnegative_property(state, controller, name, controller.name.c_str()).value_or(fallback);
+}
+
+}  // namespace
+
+void drive_analog(EsminiVehicle& car, double dt, double throttle, double steering) {
+  const double before = car.speed;
+  if (car.handbrake) {
+    // Released once the throttle is let go or pressed forward.
+    if (std::abs(throttle) < kNoThrottle || throttle > kNoThrottle) car.handbrake = false;
+  } else {
+    car.speed += (throttle < 0.0 ? car.max_deceleration : car.max_acceleration) * throttle * dt;
+    if (before > 0.0 && car.speed < 0.0) {
+      car.speed = 0.0;
+      car.handbrake = true;
+    } else {
+      if (std::abs(throttle) < kNoThrottle) car.speed *= 1.0 - kEngineBrake;
+      car.speed = std::clamp(car.speed, -car.max_speed, car.max_speed);
+    }
+  }
+  const double scale = 1.0 / (1.0 + kAnalogSteerScale * car.speed * car.speed);
+  car.wheel += scale * car.steering_rate * steering * dt;
+  car.wheel *= 1.0 - kWheelReturn * dt;
+  car.wheel = std::clamp(car.wheel, -scale * kMaxWheelAngle, scale * kMaxWheelAngle);
+  integrate(car, dt);
+}
+
+void roll_neutral(EsminiVehicle& car, double dt) {
+  if (!car.handbrake) {
+    car.speed = std::clamp(car.speed * (1.0 - kEngineBrake), -car.max_speed, car.max_speed);
+  }
+  const double scale = 1.0 / (1.0 + kBinarySteerScale * car.speed * car.speed);
+  car.wheel *= 1.0 - kWheelReturn * dt;
+  car.wheel = std::clamp(car.wheel, -scale * kMaxWheelAngle, scale * kMaxWheelAngle);
+  integrate(car, dt);
+}
+
+bool assign_esmini_driver(SimState& state, uint32_t index, const xosc::ObjectController& oc) {
+  const xosc::Controller& c = oc.controller;
+  const std::string type = c.properties.get("esminiController").value_or(c.name);
+  auto driver = std::make_shared<EsminiDriver>();
+  if (type == "InteractiveController" || type == "interactiveDriver") {
+    driver->kind = EsminiDriverKind::kInteractive;
+    driver->speed_factor = number_property(state, c, "speedFactor", driver->speed_factor);
+  } else if (type == "OffroadFollower" || type == "offroadFollower") {
+    driver->kind = EsminiDriverKind::kOffroadFollower;
+    driver->target_distance = number_property(state, c, "targetDistance", 20.0);
+    for (const xosc::Property& property : c.properties.properties) {
+      if (property.name != "followEntity") continue;
+      driver->follow = state.world.find(property.value);
+      if (!driver->follow) {
+        state.diagnostics.add(property.source.warning(
+            "offroadFollower followEntity '" + property.value +
+            "' names no entity: the car stands, as esmini's controller leaves it"));
+      }
+    }
+  } else {
+    return false;
+  }
+  // esmini's default wheel rate is its vehicle's (5 rad/s); both controllers set 4 by default.
+  driver->car.steering_rate = number_property(state, c, "steeringRate", 4.0);
+  ControlState& control = control_of(state, index);
+  control.kind = ControllerKind::kEsminiVehicle;
+  control.substitute_for.clear();
+  control.esmini_driver = std::move(driver);
+  return true;
+}
+
+void step_esmini_driver(SimState& state, uint32_t index, const MotionContext& motion,
+                        const FollowView& view) {
+  ControlState& control = state.controls[index];
+  if (!control.esmini_driver) {
+    DefaultController{}.step(state.world.entities[index], motion);
+    return;
+  }
+  EsminiDriver& driver = *control.esmini_driver;
+  start_model(driver, state.world.entities[index], state.tick);
+  if (driver.kind == EsminiDriverKind::kInteractive) {
+    step_interactive(state, index, driver, motion);
+  } else {
+    step_offroad_follower(state, index, driver, motion, view);
+  }
+}
+
+}  // namespace corsa::engine::detail

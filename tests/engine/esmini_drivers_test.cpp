@@ -1,0 +1,109 @@
+// esmini's simple vehicle model and the two esmini controllers that drive it
+// (controllers/esmini_vehicle.h), on tests/engine/fixtures/controller_esmini_drivers.xosc:
+// Coaster (interactiveDriver, no key pressed) starts at 20 m/s at a heading 0.05 rad off the
+// straight road's, is asked at 2 s to slow to 5 m/s and is teleported at 20 s; Follower
+// (offroadFollower) starts 40 m behind the standing Lead, with 20 m as its target distance.
+//
+// What to expect, derived from esmini's model: without throttle the speed shrinks by the factor
+// 0.999 every step (0.01 s), so over 2 s by 0.999^200, and the car holds its heading (the wheel
+// stays straight): its path is the straight line from its start at 0.05 rad, and the slow-down
+// does not reach it while the controller is active (esmini's override mode). Off the road
+// (y > 10.5 m) its top speed is esmini's 70 km/h. The follower's throttle 0.5 (d - 20) - 0.5 v
+// with maxAcceleration 5 m/s^2 (full throttle at first) gives e'' + 2.5 e' + 2.5 e = 0 for
+// e = d - 20 once within +-1: damped (roots -1.25 +- 0.97 i), so it comes to rest near 20 m; as
+// its speed passes zero the model's brake holds it (it never reverses), a little short of or
+// beyond 20 m (the overshoot of that damping, 1.7% of the last metres).
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "controllers/esmini_vehicle.h"
+#include "engine_fixture.h"
+
+using corsa::engine::detail::drive_analog;
+using corsa::engine::detail::EsminiVehicle;
+using corsa::engine::detail::roll_neutral;
+using corsa::test::engine_fixture;
+using corsa::test::FixtureRun;
+
+TEST_CASE("esmini's interactiveDriver without input rolls straight on, its speed shrinking",
+          "[engine][controllers][esmini]") {
+  FixtureRun run(engine_fixture("controller_esmini_drivers.xosc"));
+  run.run();
+  CHECK(run.sim().controller_substitute(run.entity("Coaster")).empty());
+  const auto& start = run.at(0.0, "Coaster");
+  REQUIRE(start.speed == Approx(20.0));
+  // Engine brake only: 0.999 a step; the SpeedAction at 2 s does not slow it.
+  const double v1 = run.at(1.0, "Coaster").speed;
+  CHECK(run.at(3.0, "Coaster").speed == Approx(v1 * std::pow(0.999, 200)).epsilon(1e-9));
+  CHECK(v1 > 18.0);
+  // Straight along its heading, not along the road.
+  for (const double t : {1.0, 4.0, 10.0, 20.0}) {
+    const auto& now = run.at(t, "Coaster");
+    CAPTURE(t);
+    CHECK(now.pose.h == Approx(0.05).margin(1e-9));
+    CHECK(now.pose.y - start.pose.y ==
+          Approx((now.pose.x - start.pose.x) * std::tan(0.05)).margin(1e-6));
+  }
+  // Off the road (beyond y 10.5 m from about 5 s) its top speed is 70 km/h.
+  CHECK(run.at(20.0, "Coaster").pose.y > 10.5);
+  CHECK(run.at(20.0, "Coaster").speed <= 70.0 / 3.6 + 1e-9);
+  // Teleported at 20 s, it rolls on from there (the model starts again from the entity).
+  const auto& end = run.at(30.0, "Coaster");
+  CHECK(end.pose.x > 600.0);
+  CHECK(end.pose.y - 30.0 == Approx((end.pose.x - 600.0) * std::tan(0.05)).margin(1e-6));
+}
+
+TEST_CASE("esmini's offroadFollower closes to its target distance behind the entity it follows",
+          "[engine][controllers][esmini]") {
+  FixtureRun run(engine_fixture("controller_esmini_drivers.xosc"));
+  run.run();
+  CHECK(run.sim().controller_substitute(run.entity("Follower")).empty());
+  const auto& lead = run.now("Lead");
+  double slowest = 0.0, fastest = 0.0;
+  for (int tick = 0; tick <= 3000; ++tick) {
+    const auto& follower = run.at(tick * 0.01, "Follower");
+    slowest = std::min(slowest, follower.speed);
+    fastest = std::max(fastest, follower.speed);
+    CHECK(follower.pose.y == Approx(lead.pose.y).margin(1e-9));  // straight at it
+  }
+  CHECK(run.at(0.0, "Follower").pose.x == Approx(60.0));
+  CHECK(slowest == 0.0);
+  CHECK(fastest > 3.0);
+  // Settled at the target distance for the last 10 s.
+  CHECK(lead.pose.x - run.at(20.0, "Follower").pose.x == Approx(20.0).margin(0.001));
+  CHECK(lead.pose.x - run.now("Follower").pose.x == Approx(20.0).margin(1e-6));
+  CHECK(run.now("Follower").speed == Approx(0.0).margin(1e-6));
+}
+
+TEST_CASE("esmini's vehicle model: the wheel returns, rolling back through zero holds the car",
+          "[engine][controllers][esmini]") {
+  EsminiVehicle car;
+  car.wheel = 0.2;
+  car.speed = 10.0;
+  roll_neutral(car, 0.01);
+  CHECK(car.wheel == Approx(0.2 * (1.0 - 4.0 * 0.01)));
+  CHECK(car.speed == Approx(10.0 * 0.999));
+  CHECK(car.h > 0.0);  // the wheel turned it left
+  // Braking through zero stops the car and holds it until the brake is let go.
+  EsminiVehicle slow;
+  slow.speed = 0.05;
+  slow.max_deceleration = 10.0;
+  drive_analog(slow, 0.01, -1.0, 0.0);
+  CHECK(slow.speed == 0.0);
+  CHECK(slow.handbrake);
+  drive_analog(slow, 0.01, -1.0, 0.0);
+  CHECK(slow.speed == 0.0);
+  drive_analog(slow, 0.01, 0.0, 0.0);
+  CHECK_FALSE(slow.handbrake);
+  // Full throttle adds maxAcceleration x dt, within the top speed.
+  EsminiVehicle fast;
+  fast.max_acceleration = 4.0;
+  fast.max_speed = 10.0;
+  fast.speed = 9.99;
+  drive_analog(fast, 0.01, 1.0, 0.0);
+  CHECK(fast.speed == Approx(10.0));
+  fast.speed = 5.0;
+  drive_analog(fast, 0.01, 1.0, 0.0);
+  CHECK(fast.speed == Approx(5.04));
+}
