@@ -80,8 +80,14 @@ class FollowTrajectoryInstance final : public ActionInstance {
       entity.speed_command = (s_next - s_) / dt;
     } else {
       // Reversing (a negative speed) also runs along the path: the path gives the direction
-      // of travel, the vehicle then faces against it.
-      s_next = s_ + std::abs(0.5 * (entity.state.speed + entity.speed_command) * dt);
+      // of travel, the vehicle then faces against it. A step travels the mean of its speeds at
+      // both ends times dt (the exact integral of a speed changing linearly within the step);
+      // esmini's reading (Semantics::kEsmini) travels its end speed times dt, as a step on a
+      // lane does in both readings (motion/default_controller.cpp).
+      const double speed = context.state.options.semantics == Semantics::kEsmini
+                               ? entity.speed_command
+                               : 0.5 * (entity.state.speed + entity.speed_command);
+      s_next = s_ + std::abs(speed * dt);
     }
     const double facing = entity.speed_command < 0.0 ? std::numbers::pi : 0.0;
     s_next = std::min(s_next, path_.length());
