@@ -495,4 +495,23 @@ TEST_CASE("An untimed trajectory step travels its mean speed, or its end speed a
   CHECK(end.at(2.0, "Car").pose.x == Approx(10.5).margin(1e-9));
 }
 
+TEST_CASE("With no road network an entity no action moves drives on, or stands as esmini's",
+          "[engine][semantics]") {
+  // 5 m/s along an untimed 10 m path, at its end at 2 s; then on (20 m at 4 s), or, under
+  // esmini's reading, standing at the path's end at 0 m/s from the next step on.
+  engine::SimulationOptions standard;
+  standard.dt = 0.1;
+  FixtureRun on(engine_fixture("no_roads_after_trajectory.xosc"), standard);
+  on.run();
+  CHECK(on.at(4.0, "Car").pose.x == Approx(20.0).margin(1e-9));
+  CHECK(on.at(4.0, "Car").speed == Approx(5.0).margin(1e-9));
+  engine::SimulationOptions options = esmini_reading();
+  options.dt = 0.1;
+  FixtureRun stands(engine_fixture("no_roads_after_trajectory.xosc"), options);
+  stands.run();
+  CHECK(stands.at(2.0, "Car").pose.x == Approx(10.0).margin(1e-9));
+  CHECK(stands.at(4.0, "Car").pose.x == Approx(10.0).margin(1e-9));
+  CHECK(stands.at(2.1, "Car").speed == 0.0);
+}
+
 }  // namespace corsa::test
