@@ -495,23 +495,30 @@ TEST_CASE("An untimed trajectory step travels its mean speed, or its end speed a
   CHECK(end.at(2.0, "Car").pose.x == Approx(10.5).margin(1e-9));
 }
 
-TEST_CASE("With no road network an entity no action moves drives on, or stands as esmini's",
+TEST_CASE("A trajectory's last step and what follows it on no road, as written or as esmini's",
           "[engine][semantics]") {
-  // 5 m/s along an untimed 10 m path, at its end at 2 s; then on (20 m at 4 s), or, under
-  // esmini's reading, standing at the path's end at 0 m/s from the next step on.
+  // No road network; Car (5 m/s, untimed) and Timed (5 m/s by its times) reach the end of their
+  // 9.8 m paths in the step to 2 s. Standard reading: on the end point, x = 9.8, then Car drives
+  // straight on at its speed (19.8 m at 4 s). esmini's: the last step goes on past the end for
+  // the rest of the step (x = 10), then both stand there at 0 m/s.
   engine::SimulationOptions standard;
   standard.dt = 0.1;
   FixtureRun on(engine_fixture("no_roads_after_trajectory.xosc"), standard);
   on.run();
-  CHECK(on.at(4.0, "Car").pose.x == Approx(20.0).margin(1e-9));
+  CHECK(on.at(2.0, "Car").pose.x == Approx(9.8).margin(1e-9));
+  CHECK(on.at(2.0, "Timed").pose.x == Approx(9.8).margin(1e-9));
+  CHECK(on.at(4.0, "Car").pose.x == Approx(19.8).margin(1e-9));
   CHECK(on.at(4.0, "Car").speed == Approx(5.0).margin(1e-9));
   engine::SimulationOptions options = esmini_reading();
   options.dt = 0.1;
   FixtureRun stands(engine_fixture("no_roads_after_trajectory.xosc"), options);
   stands.run();
-  CHECK(stands.at(2.0, "Car").pose.x == Approx(10.0).margin(1e-9));
-  CHECK(stands.at(4.0, "Car").pose.x == Approx(10.0).margin(1e-9));
-  CHECK(stands.at(2.1, "Car").speed == 0.0);
+  for (const char* name : {"Car", "Timed"}) {
+    INFO(name);
+    CHECK(stands.at(2.0, name).pose.x == Approx(10.0).margin(1e-9));
+    CHECK(stands.at(4.0, name).pose.x == Approx(10.0).margin(1e-9));
+    CHECK(stands.at(2.1, name).speed == 0.0);
+  }
 }
 
 }  // namespace corsa::test
