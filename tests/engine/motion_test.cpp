@@ -635,5 +635,19 @@ TEST_CASE("SpeedProfileAction in followingMode follow keeps its jerk limits",
   }
 }
 
+TEST_CASE("A SpeedProfileAction entry of no duration takes no step of its own",
+          "[engine][speed_profile]") {
+  // {0 m/s at once, then 10 m/s in 5 s} from rest at dt 0.1 s: the ramp starts in the first
+  // step (0.2 m/s at 0.1 s, 10 m/s at 5 s) and a step travels its end speed times dt, so the
+  // car has gone 0.1 * (0.2 + 0.4 + ... + 10) = 25.5 m at 5 s (esmini's rising_edge rows).
+  engine::SimulationOptions options;
+  options.dt = 0.1;
+  FixtureRun run(engine_fixture("speed_profile_jump.xosc"), options);
+  run.run();
+  CHECK(run.at(0.1, "Car").speed == Approx(0.2).margin(1e-9));
+  CHECK(run.at(5.0, "Car").speed == Approx(10.0).margin(1e-9));
+  CHECK(run.at(5.0, "Car").pose.x - run.at(0.0, "Car").pose.x == Approx(25.5).margin(1e-9));
+}
+
 }  // namespace
 }  // namespace corsa::test

@@ -114,5 +114,28 @@ TEST_CASE("A run ends with its stories, its stop trigger or the duration cap",
   }
 }
 
+TEST_CASE("A maneuver group run again starts its events' conditions afresh",
+          "[engine][storyboard][execution]") {
+  // "slow" starts 1 s after "fast" is complete and takes 0.5 s; the group then runs again. Its
+  // second "slow" waits for the second "fast" (the condition's value of 1 s before the restart,
+  // from the first execution, does not start it at once).
+  engine::SimulationOptions options;
+  options.dt = 0.1;
+  FixtureRun run(engine_fixture("group_restart_delay.xosc"), options);
+  run.run();
+  std::vector<double> fast;
+  std::vector<double> slow;
+  for (const auto& record : run.sim().transitions()) {
+    if (record.transition != TransitionKind::kStart) continue;
+    if (record.path == "S::A::G::M::fast") fast.push_back(record.time);
+    if (record.path == "S::A::G::M::slow") slow.push_back(record.time);
+  }
+  REQUIRE(fast.size() == 2);
+  REQUIRE(slow.size() == 2);
+  CHECK(slow[0] == Approx(fast[0] + 1.0).margin(1e-9));
+  CHECK(fast[1] == Approx(slow[0] + 0.5 + 1.0).margin(1e-9));  // 1 s after the group restarts
+  CHECK(slow[1] == Approx(fast[1] + 1.0).margin(1e-9));
+}
+
 }  // namespace
 }  // namespace corsa::test

@@ -99,7 +99,8 @@ def run_arguments(call, names):
 
 def parse_row_pattern(pattern):
     """The fields of an asserted row: '\\n4.050, 1, Target, 128.812, 13.692, ...' with regex
-    pieces ('.*' after a truncated number, '-?' before a sign-free zero, '\\+' in names)."""
+    pieces ('.*' after a truncated number, '-?' before a sign-free zero, '\\+' in names,
+    '(0.000|6.283)' for an angle either way)."""
     body = pattern.strip()
     for lead in ('\\n', '^'):
         if body.startswith(lead):
@@ -111,6 +112,11 @@ def parse_row_pattern(pattern):
         return None
 
     def number(field):
+        # '(0.000|6.283)': either value is accepted; the first stands for both (they are one
+        # heading, or one roll angle, modulo 2 pi).
+        m = re.fullmatch(r'\(([^|()]*)\|[^()]*\)', field)
+        if m:
+            field = m.group(1)
         field = field.replace('.*', '').replace('-?', '')
         return float(field)
 

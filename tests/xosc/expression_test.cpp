@@ -124,6 +124,23 @@ TEST_CASE("comparisons and not/and/or bind below arithmetic, in that order", "[x
   }
 }
 
+TEST_CASE("pi is a constant only for a caller that accepts it", "[xosc][expr]") {
+  const corsa::xosc::ParameterLookup none = [](std::string_view) { return std::nullopt; };
+  std::string told;
+  const corsa::xosc::ConstantNote note = [&](std::string_view name, double value) {
+    told += std::string(name) + "=" + std::to_string(value) + ";";
+  };
+  CHECK(evaluate_expression("pi / 2 + pi", none, note).number ==
+        std::numbers::pi / 2 + std::numbers::pi);
+  CHECK(told == "pi=3.141593;pi=3.141593;");
+  CHECK_THROWS_WITH(evaluate_expression("pi", none), Catch::Contains("unknown function or "
+                                                                     "keyword 'pi'"));
+  CHECK_THROWS_WITH(evaluate_expression("pi(1)", none, note),
+                    Catch::Contains("unknown function or keyword 'pi'"));
+  CHECK_THROWS_WITH(evaluate_expression("e", none, note),
+                    Catch::Contains("unknown function or keyword 'e'"));
+}
+
 TEST_CASE("bad expressions fail with a message and the column of the problem", "[xosc][expr]") {
   const ErrorCase cases[] = {
       {"1 / 0", "division by zero", 3},

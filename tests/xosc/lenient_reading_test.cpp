@@ -36,6 +36,22 @@ TEST_CASE("a string parameter holding a number is read as that number in an expr
   CHECK(std::get<WorldPosition>(teleport.position.kind).x == -3.5);
 }
 
+TEST_CASE("the constant pi in an expression is read as pi", "[xosc][lenient]") {
+  ScenarioText text;
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position>"
+      "<WorldPosition x=\"0\" y=\"0\" h=\"${pi / 2}\"/></Position></TeleportAction>"
+      "</PrivateAction>\n</Private>\n";
+  const std::string xml = text.str();
+  check_both_ways(xml, "constant 'pi' in expression '${pi / 2}'", line_of(xml, "WorldPosition"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const auto& teleport =
+      std::get<TeleportAction>(loaded.scenario->storyboard.init.privates[0].actions[0]);
+  CHECK(*std::get<WorldPosition>(teleport.position.kind).h == 1.5707963267948966);
+}
+
 TEST_CASE("ordering rules on string parameters holding numbers compare the numbers",
           "[xosc][lenient]") {
   ScenarioText text;

@@ -77,7 +77,8 @@ double det_atan(double x) {
 
 class Parser {
  public:
-  Parser(std::string_view text, const ParameterLookup& lookup) : text_(text), lookup_(lookup) {
+  Parser(std::string_view text, const ParameterLookup& lookup, const ConstantNote& on_constant)
+      : text_(text), lookup_(lookup), on_constant_(on_constant) {
     advance();
   }
 
@@ -406,6 +407,14 @@ class Parser {
           advance();
           return ExprValue::of_bool(token.text == "true");
         }
+        if (token.text == "pi" && on_constant_) {
+          advance();
+          if (current_.kind != Tok::kLParen) {
+            on_constant_(token.text, std::numbers::pi);
+            return ExprValue::of(std::numbers::pi);
+          }
+          fail("unknown function or keyword 'pi'", token.column);
+        }
         return parse_call();
       case Tok::kEnd:
         fail("expression ends too early", token.column);
@@ -505,6 +514,7 @@ class Parser {
 
   std::string_view text_;
   const ParameterLookup& lookup_;
+  const ConstantNote& on_constant_;
   size_t pos_ = 0;
   int depth_ = 0;
   Token current_;
@@ -512,8 +522,9 @@ class Parser {
 
 }  // namespace
 
-ExprValue evaluate_expression(std::string_view text, const ParameterLookup& lookup) {
-  Parser parser(text, lookup);
+ExprValue evaluate_expression(std::string_view text, const ParameterLookup& lookup,
+                              const ConstantNote& on_constant) {
+  Parser parser(text, lookup, on_constant);
   return parser.parse_all();
 }
 

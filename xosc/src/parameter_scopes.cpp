@@ -80,8 +80,14 @@ std::string ParseContext::resolve_in(const Element* element, const std::string& 
               "the number " + format_double(*number));
       return ExprValue::of(*number);
     };
+    // esmini's expressions know the constant pi (its trajectory_speed test: h="${pi/2}"); the
+    // standard's grammar has none, the meaning is clear.
+    const ConstantNote constant = [&](std::string_view name, double value) {
+      lenient(element, "constant '" + std::string(name) + "' in expression '" + clip(text) + "'",
+              format_double(value));
+    };
     try {
-      const ExprValue result = evaluate_expression(body, find);
+      const ExprValue result = evaluate_expression(body, find, constant);
       if (result.is_bool) return result.boolean ? "true" : "false";
       return format_double(result.number == 0.0 ? 0.0 : result.number);
     } catch (const ExpressionError& error) {

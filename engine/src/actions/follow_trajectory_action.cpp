@@ -66,6 +66,12 @@ class FollowTrajectoryInstance final : public ActionInstance {
   void step(ActionContext& context) override {
     Entity& entity = context.entity();
     const double dt = context.state.time.dt();
+    // esmini's reading (Semantics::kEsmini): the step that passes the path's end goes on past it
+    // along the end's heading for the rest of the step; a timed path ends in the first step
+    // after its last time. The standard reading ends on the path's last point.
+    const bool esmini = context.state.options.semantics == Semantics::kEsmini &&
+                        action_.following_mode != xosc::FollowingMode::kFollow;
+    double beyond = 0.0;  // m past the path's end in this step (esmini's reading)
     double s_next = 0.0;
     if (timing_) {
       double t = context.state.time.time(context.state.tick + 1);
@@ -77,11 +83,29 @@ class FollowTrajectoryInstance final : public ActionInstance {
           path_.first_time() + (t - timing_->offset) / scale + time_shift_;
       s_next = std::max(s_, path_.s_at_time(trajectory_time));
       ended_ = trajectory_time >= path_.last_time() && s_next >= path_.last_timed_s() - 1e-9;
-      entity.speed_command = (s_next - s_) / dt;
+      if (esmini && ended_) {
+        // esmini's step past the last time: on at the last segment's speed, to the step's end.
+        const double late = trajectory_time - path_.last_time();
+        ended_ = late > 1e-9;
+        const double h = std::min(1e-3, path_.last_time() - path_.first_time());
+        const double end_speed =
+            h > 0.0 ? (path_.last_timed_s() - path_.s_at_time(path_.last_time() - h)) / h : 0.0;
+        beyond = std::max(0.0, late * end_speed);
+      }
+      entity.speed_command = (s_next + beyond - s_) / dt;
     } else {
       // Reversing (a negative speed) also runs along the path: the path gives the direction
-      // of travel, the vehicle then faces against it.
-      s_next = s_ + std::abs(0.5 * (entity.state.speed + entity.speed_command) * dt);
+      // of travel, the vehicle then faces against it. A step travels the mean of its speeds at
+      // both ends times dt (the exact integral of a speed changing linearly within the step);
+      // esmini's reading (Semantics::kEsmini) travels its end speed times dt, as a step on a
+      // lane does in both readings (motion/default_controller.cpp).
+      const double speed = context.state.options.semantics == Semantics::kEsmini
+                               ? entity.speed_command
+                               : 0.5 * (entity.state.speed + entity.speed_command);
+      s_next = s_ + std::abs(speed * dt);
+      if (esmini) {
+        beyond = std::max(0.0, s_next - path_.length());
+      }
     }
     const double facing = entity.speed_command < 0.0 ? std::numbers::pi : 0.0;
     s_next = std::min(s_next, path_.length());
@@ -100,7 +124,7 @@ class FollowTrajectoryInstance final : public ActionInstance {
         ended_ = s_next >= path_.length() - 1e-9;
       }
     } else {
-      const PathPoint p = path_.at(s_next);
+      const PathPoint p = continued(s_next + beyond);
       entity.pose_command = Pose{p.x, p.y, p.z, wrap_angle(p.h + facing), 0.0, 0.0};
     }
     s_ = s_next;

@@ -8,10 +8,14 @@
 // (for vehicles)": the shape is then held to the vehicle's Performance, as esmini's reading holds
 // every SpeedAction (Semantics::kEsmini): the target within maxSpeed, the transition stretched in
 // time until its steepest change is within maxAcceleration / maxDeceleration, and no step
-// changing the speed by more than that limit x dt.
+// changing the speed by more than that limit x dt. A linear `rate` toward a relative target
+// lasts, in the standard's reading, as long as the rate takes to the reference's speed at the
+// start; esmini's reading (Semantics::kEsmini) changes the speed at the rate toward the
+// reference's speed of each step until it meets it, however long the reference keeps moving away.
 
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 #include "actions/action_makers.h"
 #include "motion/transition_shape.h"
@@ -40,6 +44,10 @@ class SpeedInstance final : public ActionInstance {
     start_tick_ = context.state.tick;
     const double target = target_speed(context);
     const xosc::TransitionDynamics& dynamics = action_.dynamics;
+    rate_tracking_ = context.state.options.semantics == Semantics::kEsmini &&
+                     std::holds_alternative<xosc::RelativeTargetSpeed>(action_.target) &&
+                     dynamics.dimension == xosc::DynamicsDimension::kRate &&
+                     dynamics.shape == xosc::DynamicsShape::kLinear && dynamics.value > 0.0;
     double duration = 0.0;  // s
     if (dynamics.shape != xosc::DynamicsShape::kStep) {
       switch (dynamics.dimension) {
@@ -77,6 +85,15 @@ class SpeedInstance final : public ActionInstance {
       // its OverTaker at 1.2 x the Ego's 30 m/s from the act's start on).
       const bool jumped_now = duration_ <= 0.0 && context.state.tick == start_tick_;
       command(context, jumped_now ? target : within_performance(context, target));
+      return;
+    }
+    if (rate_tracking_) {
+      const double current = context.entity().state.speed;
+      const double change = action_.dynamics.value * context.state.time.dt();
+      const double speed =
+          within_performance(context, current + std::clamp(target - current, -change, change));
+      command(context, speed);
+      reached_ = std::abs(speed - target) <= 1e-9;
       return;
     }
     const double elapsed = context.state.time.time(context.state.tick + 1 - start_tick_);
@@ -154,6 +171,10 @@ class SpeedInstance final : public ActionInstance {
   bool reached_ = false;
   /// Performance bounds the transition: followingMode `follow`, or Semantics::kEsmini.
   bool performance_limits_ = false;
+  /// esmini's reading of a linear rate toward a relative target (Semantics::kEsmini): each step
+  /// changes the speed by the rate toward the reference's speed of that step, until it meets it.
+  /// The standard's reading fixes the duration at the start, from the reference's speed then.
+  bool rate_tracking_ = false;
 };
 
 }  // namespace

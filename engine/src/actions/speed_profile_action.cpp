@@ -57,6 +57,14 @@ class SpeedProfileInstance final : public ActionInstance {
       done_ = elapsed >= plan_->end_time() - 1e-9;
       return;
     }
+    // An entry of no duration is a jump to its speed, reached at once: the next entry starts
+    // from that speed in this same step (a profile that starts with {speed 0, time 0} moves in
+    // its first step). The last entry, a jump or not, is commanded below.
+    while (index_ + 1 < action_.entries.size() && action_.entries[index_].time &&
+           *action_.entries[index_].time <= 0.0) {
+      begin_entry(context, target_speed(context, action_.entries[index_]));
+      ++index_;
+    }
     const xosc::SpeedProfileEntry& entry = action_.entries[index_];
     const double target = target_speed(context, entry);
     double speed = target;

@@ -182,6 +182,8 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     path = std::hypot(travelled, lateral_change);
     entity.longitudinal_distance += std::abs(travelled);
     update_pose_from_lane(entity, *context.map, *context.scratch);
+  } else if (context.stand_without_roads) {
+    v1 = 0.0;
   } else {
     state.pose.x += std::cos(state.pose.h) * distance;
     state.pose.y += std::sin(state.pose.h) * distance;

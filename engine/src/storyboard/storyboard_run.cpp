@@ -152,9 +152,14 @@ void Storyboard::start_group(SimState& state, GroupNode& group) {
   for (ManeuverNode& maneuver : group.maneuvers) {
     move(state, maneuver.element, TransitionKind::kStart, ElementState::kRunning);
     for (EventNode& event : maneuver.events) {
-      // §8.4.2: events enter standby when their maneuver starts, with a fresh count.
+      // §8.4.2: events enter standby when their maneuver starts, with a fresh count. A group's
+      // re-execution (§8.4.4) starts its events afresh: a condition value of the previous
+      // execution still waiting for its delay does not start them again at once.
       state.elements.enter_standby(event.element);
       state.elements.reset_executions(event.element);
+      if (event.start_trigger) {
+        event.start_trigger->forget_history();
+      }
       for (ActionNode& action : event.actions) {
         state.elements.enter_standby(action.element);
       }

@@ -96,6 +96,12 @@ bool CompiledCondition::evaluate(const SimState& state, std::vector<uint32_t>& t
   return false;
 }
 
+void CompiledCondition::forget_history() {
+  evaluated_ = false;
+  last_ = false;
+  pending_.clear();
+}
+
 Trigger::Trigger(const xosc::Trigger& trigger, const SimState& state, bool ghost) {
   for (const xosc::ConditionGroup& group : trigger.groups) {
     std::vector<CompiledCondition> conditions;
@@ -123,6 +129,14 @@ bool Trigger::evaluate(const SimState& state, std::vector<uint32_t>& triggering)
   std::sort(triggering.begin(), triggering.end());
   triggering.erase(std::unique(triggering.begin(), triggering.end()), triggering.end());
   return fires;
+}
+
+void Trigger::forget_history() {
+  for (auto& group : groups_) {
+    for (auto& condition : group) {
+      condition.forget_history();
+    }
+  }
 }
 
 }  // namespace corsa::engine::detail

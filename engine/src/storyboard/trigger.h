@@ -31,6 +31,10 @@ class CompiledCondition {
   /// `triggering` (by-entity conditions).
   bool evaluate(const SimState& state, std::vector<uint32_t>& triggering);
 
+  /// Forgets the values seen so far (the edge's previous value, values waiting for their delay):
+  /// the condition starts over as if never evaluated.
+  void forget_history();
+
  private:
   bool raw(const SimState& state, std::vector<uint32_t>& holders);
 
@@ -56,6 +60,10 @@ class Trigger {
   /// Whether the trigger fires now; `triggering` receives the triggering entities of the groups
   /// that hold (sorted, unique).
   bool evaluate(const SimState& state, std::vector<uint32_t>& triggering);
+
+  /// Starts over for a new execution of the element it starts: values seen by its conditions in
+  /// an earlier execution (edges, values waiting for their delay) no longer count.
+  void forget_history();
 
  private:
   std::vector<std::vector<CompiledCondition>> groups_;

@@ -52,8 +52,14 @@ class ExpressionError : public std::runtime_error {
 /// string parameter used in arithmetic.
 using ParameterLookup = std::function<std::optional<ExprValue>(std::string_view name)>;
 
+/// Told of each named constant an expression uses outside the standard's grammar, with its value.
+/// Only `pi` is known (esmini's expressions have it, and its examples use it: `${pi/2}`); without
+/// a ConstantNote `pi` is an unknown keyword, as §9.2 has no constants.
+using ConstantNote = std::function<void(std::string_view name, double value)>;
+
 /// Evaluates the text between `${` and `}` (without them). Throws ExpressionError.
-ExprValue evaluate_expression(std::string_view text, const ParameterLookup& lookup);
+ExprValue evaluate_expression(std::string_view text, const ParameterLookup& lookup,
+                              const ConstantNote& on_constant = {});
 
 /// Maximum nesting depth of parentheses and unary operators (deeper input is rejected rather
 /// than overflowing the stack).
