@@ -14,6 +14,7 @@
 #include "feature_layers.h"
 #include "lane_numbers.h"
 #include "lateral.h"
+#include "mouth_fills.h"
 #include "network.h"
 #include "network_plan.h"
 #include "strip_links.h"
@@ -116,6 +117,8 @@ Conversion convert(const Layers& layers, const ConvertOptions& options, Diagnost
   // After the decorations, which index a road's lanes from its centre lane.
   result.summary.centre_strips = close_centre_gaps(result.map.roads, result.placements, layers);
   link_centre_strips(result.map);
+  // After the strips, so that a fill on the left lies beyond a road's strip.
+  result.summary.mouth_fills = fill_lane_mouths(result.map);
   result.map.header = make_header(layers, origin, result.map.roads);
   result.summary.links_read = layers.links.size();
   for (const LinkState& link : network.links) {

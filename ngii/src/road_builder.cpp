@@ -41,6 +41,13 @@ constexpr double kNarrowestInTurn = 1.5;
 /// and out: narrowed at one station only, its borders would slant across the road at the
 /// turn's end (a lane narrowing by 2.5 m within 0.5 m), and the mesh folds over there anyway.
 constexpr double kNarrowingEase = 1.0;
+/// Where a lane not held to its link (splitting off or merging inside its neighbour) takes its
+/// link's heights across the road: this share of the way from the link to the lane's centre.
+/// At the lane's centre (1) the surface under the link of a Sangam lane merging inside its
+/// neighbour was 5.0 cm off its survey (p95); at the link (0) the lane's centre was 6.3 cm off
+/// its link (K-City's A219BS010114 on a 4-7 % crossfall); at 2/3, 3.2 cm, and no vertex of
+/// either area more than 4.9 cm off the surface under it.
+constexpr double kMergeHeightShare = 2.0 / 3.0;
 
 /// The leftmost lane that starts and ends beside the others (else the leftmost lane).
 size_t reference_lane(const RoadPlan& plan) {
@@ -450,11 +457,19 @@ BuiltRoad build_road_along(const RoadPlan& plan, const Network& network, const L
     meet_end_borders(st, end_borders, borders);
   }
   built.folds = folds_at_stations(st, borders);
+  // A lane splitting off or merging into a neighbour is not held to its link where that link
+  // runs inside the neighbour (up to 0.9 m beside the lane's centre): on a road sloping across,
+  // its link's height taken at the link's own offset left the lane's centre 5-6 cm above or
+  // below its link. Its height is taken kMergeHeightShare of the way from the link to the
+  // lane's centre instead, so that neither the lane's centre nor the surface under the link is
+  // off by much of the crossfall between them.
   std::vector<std::vector<LaneHeightSample>> heights(st.s.size());
   for (size_t i = 0; i < st.s.size(); ++i) {
     for (size_t k = 0; k < plan.lanes.size(); ++k) {
       const Crossing& c = st.crossings[k][i];
-      heights[i].push_back({c.t, c.z, own_part(st, lines, k, i, 2.0)});
+      const double centre = 0.5 * (borders.t[i][k] + borders.t[i][k + 1]);
+      const double t = borders.centred[i][k] ? c.t : c.t + kMergeHeightShare * (centre - c.t);
+      heights[i].push_back({t, c.z, own_part(st, lines, k, i, 2.0)});
     }
   }
   const std::vector<double> roll = fit_lateral_profile(road, st.s, heights, options);

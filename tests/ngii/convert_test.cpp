@@ -94,8 +94,9 @@ TEST_CASE("the summary counts what the map holds", "[ngii][convert]") {
       geometries += road.plan_view.size();
       signals += road.signals.size();
     }
-    // Lanes of the survey, and the restricted strips between double centre lines.
-    CHECK(s.lanes + s.centre_strips == lanes);
+    // Lanes of the survey, the restricted strips between double centre lines and the
+    // shoulders paving the ground beside joints of lanes of different widths.
+    CHECK(s.lanes + s.centre_strips + s.mouth_fills == lanes);
     CHECK(s.centre_strips > 100);
     CHECK(s.connecting_roads == connecting);
     CHECK(s.geometries == geometries);

@@ -283,6 +283,58 @@ TEST_CASE("a lane narrower than the lane it continues into meets it edge to edge
 }
 
 TEST_CASE(
+    "a lane much wider than the lane it continues into leaves paved shoulders beside the "
+    "narrower one",
+    "[ngii][mouths]") {
+  // 5.0 m, then 3.0 m: 1 m a side is more than a lane's border moves at a joint (a lane at the
+  // tip of a painted island), so both lanes keep their widths and centres there, and the wider
+  // lane's end stuck out 1 m beyond both sides of the narrower one. The road after the joint
+  // now has a shoulder on each side (no road mark, named as a fill), 1 m wide at the joint and
+  // narrowing to nothing within a few metres, while its lane stays 3 m wide on its link.
+  const Builder b = lane_count_change(2.5, 1.5);
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 2);
+  CHECK(gaps.over == 0);
+  corsa::Diagnostics diagnostics;
+  const auto conversion = corsa::ngii::convert(b.layers, {}, diagnostics);
+  CHECK(conversion.summary.mouth_fills == 2);
+  size_t fills = 0;
+  for (const auto& road : conversion.map.roads) {
+    for (const auto& lane : road.lane_sections.front().lanes) {
+      if (lane.type != corsa::xodr::LaneType::kShoulder) {
+        continue;
+      }
+      ++fills;
+      REQUIRE(lane.user_data.size() == 1);
+      CHECK(lane.user_data.front().code == "ngii:mouth-fill");
+      CHECK(lane.road_marks.empty());
+      // About the step at the joint, nothing from 6 m on.
+      REQUIRE(!lane.widths.empty());
+      CHECK(lane.widths.front().s == 0.0);
+      CHECK(lane.widths.front().a == Approx(1.0).margin(0.1));
+      const auto width_at = [&](double at) {
+        double w = 0.0;
+        for (const auto& piece : lane.widths) {
+          if (piece.s <= at) {
+            w = piece.value(at);
+          }
+        }
+        return w;
+      };
+      CHECK(width_at(1.0) > 0.5);
+      CHECK(width_at(6.0) == Approx(0.0).margin(1e-9));
+    }
+    for (const auto& lane : road.lane_sections.front().lanes) {
+      if (lane.id == -1 && road.lane_sections.front().lanes.size() > 3) {
+        CHECK(lane.widths.front().a == Approx(3.0).margin(0.05));
+      }
+    }
+  }
+  CHECK(fills == 2);
+}
+
+TEST_CASE(
     "a road whose second lane splits off its first starts on the end line of the road "
     "before it",
     "[ngii][mouths]") {

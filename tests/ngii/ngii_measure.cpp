@@ -110,6 +110,9 @@ class Measurer {
           if (ids.empty() && strip && lane.type == xodr::LaneType::kRestricted) {
             continue;  // the converter's fill between double centre lines, named as such
           }
+          if (ids.empty() && mouth_fill(lane)) {
+            continue;  // the converter's paving beside a lane's joint, named as such
+          }
           if (ids.empty()) {
             ++figures_.lanes_without_provenance;
             continue;
@@ -263,6 +266,14 @@ class Measurer {
     }
   }
 
+  /// A shoulder the converter adds beside a lane continuing into a narrower one (no survey
+  /// link is it).
+  static bool mouth_fill(const xodr::Lane& lane) {
+    return lane.type == xodr::LaneType::kShoulder &&
+           std::any_of(lane.user_data.begin(), lane.user_data.end(),
+                       [](const auto& d) { return d.code == "ngii:mouth-fill"; });
+  }
+
   bool centre_strip(const LaneRef& ref) const {
     const xodr::Lane* lane = map_.lane(ref);
     return lane != nullptr && lane->type == xodr::LaneType::kRestricted &&
@@ -410,9 +421,13 @@ class Measurer {
       std::vector<xodr::LaneSpan> spans;
       const double s0 = section_start(lane.ref), s1 = section_end(lane.ref);
       map_.lane_spans_in_section(lane.ref.road, lane.ref.section, s0, spans);
-      // The driving side only: a centre strip (lane +1, below) is no lane of the survey.
+      // The driving side only: a centre strip (lane +1, below) is no lane of the survey, nor
+      // is a shoulder paving the ground beside a joint.
       const bool one_lane =
-          std::count_if(spans.begin(), spans.end(), [](const auto& x) { return x.id < 0; }) == 1;
+          std::count_if(spans.begin(), spans.end(), [&](const auto& x) {
+            const xodr::Lane* other = map_.lane(LaneRef{lane.ref.road, lane.ref.section, x.id});
+            return x.id < 0 && !(other && mouth_fill(*other));
+          }) == 1;
       std::vector<double> own;
       for (double s = s0 + 0.5; s < s1 - 0.5; s += 1.0) {
         const auto span =

@@ -168,20 +168,21 @@ TEST_CASE("the heights across each road follow its lanes within 5 cm (p95 per la
   CHECK(s.vertical_p95_max < 0.05);
 }
 
-TEST_CASE("lane centres keep within 7 cm of their links' heights where a link leaves the centre",
+TEST_CASE("lane centres keep within 5 cm of their links' heights where a link leaves the centre",
           "[ngii][quality][heights]") {
   // Against the centre's height level with each vertex instead of the surface under it: a
   // lane splitting off its neighbour has its link's end vertex up to 0.94 m beside its centre,
-  // where the cross slope alone makes 6.3 cm (A219BS010114; the surface under that vertex is
-  // 1.4 cm off) and 5.1 cm (A219AS318271; 0.5 cm).
+  // where the cross slope alone made 6.3 cm (A219BS010114) and 5.1 cm (A219AS318271) while the
+  // heights across the road were fitted at the link; with the link's heights taken two thirds
+  // of the way to the lane's centre, 3.2 cm and 4.4 cm (the worst Sangam lane another one).
   const NgiiFigures& k = figures("kcity");
   INFO(k.vertical_centre_worst);
-  CHECK(k.lanes_centre_over_5cm <= 1);
-  CHECK(k.vertical_centre_p95_max < 0.07);
+  CHECK(k.lanes_centre_over_5cm == 0);
+  CHECK(k.vertical_centre_p95_max < 0.04);
   const NgiiFigures& s = figures("seoul_sangam_testbed");
   INFO(s.vertical_centre_worst);
-  CHECK(s.lanes_centre_over_5cm <= 1);
-  CHECK(s.vertical_centre_p95_max < 0.06);
+  CHECK(s.lanes_centre_over_5cm == 0);
+  CHECK(s.vertical_centre_p95_max < 0.05);
 }
 
 TEST_CASE("lane widths follow the B2 marks bounding the lanes", "[ngii][quality][widths]") {
@@ -231,6 +232,12 @@ TEST_CASE("every lane names its A2 links and every road has its own name",
         if (lane.id == 0 || lane.type == corsa::xodr::LaneType::kRestricted) {
           continue;  // the centre lane, and the strips between double centre lines (below)
         }
+        if (lane.type == corsa::xodr::LaneType::kShoulder) {
+          // Paving beside a joint, named as such (below).
+          REQUIRE(!lane.user_data.empty());
+          CHECK(lane.user_data.front().code == "ngii:mouth-fill");
+          continue;
+        }
         std::vector<std::string> links;
         for (const auto& d : lane.user_data) {
           links.push_back(d.value);
@@ -255,7 +262,7 @@ TEST_CASE("opposing roads meet between double centre lines without moving a lane
   const auto& s = figures("seoul_sangam_testbed").centre_gaps;
   INFO(s.worst);
   CHECK(s.stations > 14000);
-  CHECK(s.over <= 275);
+  CHECK(s.over <= 269);
   for (const char* area : {"kcity", "seoul_sangam_testbed"}) {
     INFO(area);
     size_t strips = 0;
@@ -318,15 +325,16 @@ TEST_CASE("lanes joined at junction mouths leave no unpaved ground beyond their 
   // both centres (the narrower one with a lane of its road beside it); 25 / 48 before junction
   // paths (and one-lane roads after one-lane roads) whose fitted records fold on their own lines
   // too took the joined road's line; 19 / 48 before two roads whose lanes continue one to one
-  // met with all their borders. What remains: ordinary lanes whose widths differ on one side
-  // only (their centres would leave their links), joins at a corner, paths that could not turn
-  // onto the joined road's line.
+  // met with all their borders; 17 / 45 before a road whose lane continues a wider one got a
+  // shoulder beside it at the joint where the lanes' borders could not meet (mouth_fills.h).
+  // What remains: joins at a corner or a few centimetres apart, paths that could not turn onto
+  // the joined road's line.
   const auto& k = figures("kcity").mouth_gaps;
   INFO(k.worst);
   CHECK(k.ends > 1400);
-  CHECK(k.over <= 17);
+  CHECK(k.over <= 12);
   const auto& s = figures("seoul_sangam_testbed").mouth_gaps;
   INFO(s.worst);
   CHECK(s.ends > 3200);
-  CHECK(s.over <= 45);
+  CHECK(s.over <= 23);
 }

@@ -129,6 +129,9 @@ void print_summary(const ngii::ConversionSummary& s, const std::string& output) 
   if (s.centre_strips > 0) {
     std::cout << ", " << s.centre_strips << " centre strips";
   }
+  if (s.mouth_fills > 0) {
+    std::cout << ", " << s.mouth_fills << " mouth fills";
+  }
   std::cout << "; lane widths from marks " << s.widths_from_marks << ", neighbours "
             << s.widths_from_neighbours << ", lanes before/after " << s.widths_from_topology
             << ", fallback " << s.fallback_widths << "; " << s.corrections << " corrections ("

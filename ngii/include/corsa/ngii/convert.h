@@ -88,6 +88,8 @@ struct ConversionSummary {
   size_t objects = 0;      ///< objects from B3, C3, C4, C6, A4, A5
   /// ordinary roads given a restricted lane over the strip between double centre lines
   size_t centre_strips = 0;
+  /// shoulder lanes paving the ground beside a lane that continues into a narrower one
+  size_t mouth_fills = 0;
   /// Lanes by where their width came from: B2 marks, L/R neighbour spacing, the lanes before
   /// and after them, the fallback width.
   size_t widths_from_marks = 0;
