@@ -13,6 +13,7 @@
 #include "controllers/external.h"
 #include "controllers/follow_ghost.h"
 #include "controllers/follow_view.h"
+#include "controllers/natural_driver.h"
 #include "controllers/npc_caution.h"
 #include "controllers/worker_pool.h"
 #include "corsa/xodr/map.h"
@@ -101,6 +102,13 @@ void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectCo
     control.kind = ControllerKind::kAcc;
     control.substitute_for.clear();
     control.esmini_acc = acc;
+    return;
+  }
+  if (is_natural_driver(oc)) {
+    // esmini's NaturalDriver, emulated (controllers/natural_driver.h).
+    control.kind = ControllerKind::kNaturalDriver;
+    control.substitute_for.clear();
+    control.natural = make_natural_driver(state, oc);
     return;
   }
   control.kind = ControllerKind::kAcc;
@@ -301,6 +309,8 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
     case ControllerKind::kFollowGhost:
       step_follow_ghost(state, i, motion);
       break;
+    case ControllerKind::kNaturalDriver:
+      break;  // after every other entity (step_natural_drivers)
   }
 }
 
@@ -391,12 +401,14 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   // model's step reads only its own entity.
   std::vector<uint32_t> dynamic;
   bool following = false;
+  bool natural = false;
   for (uint32_t i = 0; i < count; ++i) {
     if (dynamics_moves(state, i) && !state.world.entities[i].towed_by) {
       dynamic.push_back(i);
     }
     following = following || (state.world.entities[i].state.placed &&
                               state.controls[i].effective() == ControllerKind::kAcc);
+    natural = natural || state.controls[i].natural != nullptr;
   }
   if (!dynamic.empty()) {
     begin_dynamics(state, dynamic, motion);
@@ -420,6 +432,9 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     context.scratch = &impl.scratch[0];
     context.nearby = &impl.nearby[0];
     move_range(state, context, impl.view, impl.ahead, order, 0, order.size());
+    if (natural) {
+      step_natural_drivers(state, context);
+    }
     return;
   }
   // Each entity's move depends only on itself and the picture taken above, so how the entities
@@ -430,6 +445,13 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     context.nearby = &impl.nearby[worker];
     move_range(state, context, impl.view, impl.ahead, order, begin, end);
   });
+  if (natural) {
+    // esmini's NaturalDriver entities move after all others, one after the other.
+    MotionContext context = motion;
+    context.scratch = &impl.scratch[0];
+    context.nearby = &impl.nearby[0];
+    step_natural_drivers(state, context);
+  }
 }
 
 }  // namespace corsa::engine::detail
