@@ -13,12 +13,12 @@
 #include <optional>
 #include <string>
 
-#include "actions/action.h"
-#include "actions/action_makers.h"
 #include "controllers/controllers.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
+#include "lanes/lane_follow.h"
 #include "motion/controller.h"
+#include "motion/transition_shape.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -39,6 +39,17 @@ struct NaturalDriverParams {
   int route = -1;                     ///< route: the lane id it changes to on safety alone
 };
 
+/// The lane change the driver asked for, as esmini's LaneChangeAction performs it: the entity
+/// follows the target lane at once, its lateral offset going from where it was to the lane's
+/// centre along a sinusoid over the duration.
+struct NaturalLaneChange {
+  int target = 0;
+  double from = 0.0;        ///< m, LaneFollow::lateral at the start
+  double to = 0.0;          ///< m, LaneFollow::lateral at the end (the lane's centre)
+  double seen_shift = 0.0;  ///< LaneFollow::frame_shift `from` and `to` are measured in
+  int64_t start_tick = 0;
+};
+
 /// What the driver keeps between steps (esmini's members of the same meaning).
 struct NaturalDriverState {
   NaturalDriverParams params;
@@ -51,8 +62,7 @@ struct NaturalDriverState {
   /// The lane change asked for, and the tick at which it starts moving the entity.
   std::optional<int> pending_lane;
   int64_t pending_tick = 0;
-  std::unique_ptr<xosc::LaneChangeAction> spec;
-  std::unique_ptr<ActionInstance> lane_change;
+  std::optional<NaturalLaneChange> lane_change;
 };
 
 namespace {
@@ -369,36 +379,58 @@ std::optional<double> natural_setting(SimState& state, const xosc::Controller& c
   return std::nullopt;
 }
 
-// The lane change asked for starts moving the entity at its tick; one running is stepped; one
-// finished or overridden (a storyboard lateral action took the domain) is let go.
-void step_requested_lane_change(SimState& state, uint32_t index, NaturalDriverState& driver) {
+// Starts the lane change to `target` where the entity is: it follows the target lane from now,
+// offset so that it stays in place (as a LaneChangeAction starts, actions/lane_change_action.cpp).
+// Nothing when the lane is not there.
+std::optional<NaturalLaneChange> start_natural_lane_change(const SimState& state, Entity& entity,
+                                                           int target) {
+  LaneFollow& lane = entity.lane;
+  if (state.map == nullptr || !lane.on_road) return std::nullopt;
+  const xodr::Map& map = *state.map;
+  const auto target_center = followed_lane_center_t(map, lane, target);
+  const auto node = map.lane_graph().find(xodr::LaneRef{lane.road, lane.section, target});
+  if (!target_center || !node) return std::nullopt;
+  const double t_now =
+      followed_lane_center_t(map, lane, lane.lane).value_or(0.0) + lane.dir * lane.lateral;
+  lane.lane = target;
+  lane.node = *node;
+  lane.lateral = (t_now - *target_center) * lane.dir;
+  entity.lateral_command = lane.lateral;
+  return NaturalLaneChange{target, lane.lateral, 0.0, lane.frame_shift, state.tick};
+}
+
+// The lane change asked for starts at its tick; one under way sets the lateral offset for the
+// end of the step. It ends at its duration, or when something else took the lateral motion: a
+// lateral action of the storyboard holds the domain, or a teleport put the entity on another
+// lane.
+void step_natural_lane_change(SimState& state, uint32_t index, NaturalDriverState& driver) {
   Entity& entity = state.world.entities[index];
-  ActionContext context{state, index, false};
   if (driver.pending_lane && state.tick >= driver.pending_tick) {
-    auto spec = std::make_unique<xosc::LaneChangeAction>();
-    spec->dynamics.shape = xosc::DynamicsShape::kSinusoidal;
-    spec->dynamics.dimension = xosc::DynamicsDimension::kTime;
-    spec->dynamics.value = driver.params.lane_change_duration;
-    spec->target =
-        xosc::AbsoluteTargetLane{std::to_string(*driver.pending_lane), entity.object->source};
-    spec->source = entity.object->source;
+    const int target = *driver.pending_lane;
     driver.pending_lane.reset();
-    if (driver.lane_change) stop_domain_owners(entity, kDomainLateral);
-    driver.lane_change = make_lane_change_action(*spec);
-    driver.spec = std::move(spec);
-    stop_domain_owners(entity, kDomainLateral, driver.lane_change.get());
-    entity.owners[1] = driver.lane_change.get();
-    driver.lane_change->start(context);
+    driver.lane_change.reset();
+    if (entity.owners[1] == nullptr) {
+      driver.lane_change = start_natural_lane_change(state, entity, target);
+    }
   }
   if (!driver.lane_change) return;
-  if (!driver.lane_change->done()) driver.lane_change->step(context);
-  if (driver.lane_change->done()) {
-    for (auto& owner : entity.owners) {
-      if (owner == driver.lane_change.get()) owner = nullptr;
-    }
+  NaturalLaneChange& change = *driver.lane_change;
+  if (entity.owners[1] != nullptr || entity.lane.lane != change.target) {
     driver.lane_change.reset();
-    driver.spec.reset();
+    return;
   }
+  // A route carried the entity on from a neighbouring lane's end: start and end move with the
+  // followed lane's frame.
+  const double shift = entity.lane.frame_shift - change.seen_shift;
+  change.seen_shift += shift;
+  change.from += shift;
+  change.to += shift;
+  const double elapsed = state.time.time(state.tick + 1 - change.start_tick);
+  const double duration = driver.params.lane_change_duration;
+  const double p = duration > 0.0 && elapsed < duration ? elapsed / duration : 1.0;
+  const double shape = shape_value(xosc::DynamicsShape::kSinusoidal, p);
+  entity.lateral_command = change.from + shape * (change.to - change.from);
+  if (p >= 1.0) driver.lane_change.reset();
 }
 
 // The entity's move over the step at the driver's speed (the actions' speed command kept for
@@ -477,7 +509,7 @@ void step_natural_drivers(SimState& state, const MotionContext& motion) {
       zero_step = state.tick == 0;
     }
     if (zero_step) NaturalStep(state, i, driver).run(0.0, true);
-    step_requested_lane_change(state, i, driver);
+    step_natural_lane_change(state, i, driver);
     NaturalStep(state, i, driver).run(motion.dt, false);
     move_natural(state, i, motion, driver.speed);
   }
