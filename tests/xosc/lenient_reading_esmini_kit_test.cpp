@@ -398,6 +398,14 @@ TEST_CASE("a controller entry the catalog at hand lacks is read as a controller 
                              ": warning: controller entry 'NaturalDriver' is not in the catalog: "
                              "its ParameterAssignments are read as esmini's NaturalDriver "
                              "properties"));
+  // The properties nothing assigns keep esmini's defaults, said once at the reference.
+  CHECK_THAT(natural_run.err,
+             Catch::Contains("n.xosc:" + std::to_string(line) +
+                             ": warning: controller entry 'NaturalDriver' is not in the catalog "
+                             "and nothing gives its desiredDistance, laneChangeDuration, "
+                             "lookAheadDistance, maxDec, maxAcc, laneChangeDelay, thw, "
+                             "maxImposedBraking, laneChangeAccGain, politeness, route: esmini's "
+                             "defaults"));
   CHECK_THAT(corsa::test::slurp(dir.path() / "natural.json"),
              !Catch::Contains("\"substitute_for\": \"NaturalDriver\""));
   // A vehicle entry the catalog lacks stays an error: nothing could stand in for it.

@@ -456,8 +456,15 @@ std::shared_ptr<NaturalDriverState> make_natural_driver(SimState& state,
   NaturalDriverParams& p = driver->params;
   const xosc::Controller& controller = oc.controller;
   bool assigned = false;
+  // Properties a controller read for a missing entry gets no value for: esmini's defaults.
+  std::string defaulted;
+  const bool missing_entry = read_for_missing_entry(controller);
   const auto set = [&](const char* name, double& field) {
-    if (const auto value = natural_setting(state, controller, name, assigned)) field = *value;
+    if (const auto value = natural_setting(state, controller, name, assigned)) {
+      field = *value;
+    } else if (missing_entry) {
+      defaulted += (defaulted.empty() ? "" : ", ") + std::string(name);
+    }
   };
   set("desiredDistance", p.desired_distance);
   set("desiredSpeed", p.desired_speed);
@@ -484,6 +491,16 @@ std::shared_ptr<NaturalDriverState> make_natural_driver(SimState& state,
             "controller entry 'NaturalDriver' is not in the catalog: its ParameterAssignments are "
             "read as esmini's NaturalDriver properties of the same name with a lower-case first "
             "letter (read as esmini's catalog entry maps them)"));
+  }
+  if (!defaulted.empty()) {
+    state.diagnostics.add_once(
+        "natural-driver-defaults:" + controller.catalog->reference.file_name() + ":" +
+            std::to_string(controller.catalog->reference.line),
+        controller.catalog->reference.warning(
+            "controller entry 'NaturalDriver' is not in the catalog and nothing gives its " +
+            defaulted +
+            ": esmini's defaults (read as esmini's NaturalDriver without those "
+            "properties)"));
   }
   return driver;
 }
