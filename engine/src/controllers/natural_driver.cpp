@@ -517,6 +517,13 @@ void step_natural_drivers(SimState& state, const MotionContext& motion) {
       driver.active = false;
       continue;
     }
+    if (!control.longitudinal) {
+      // Activated on the lateral domain alone: esmini's driver takes the longitudinal one only,
+      // so it is not active and the default controller moves the entity.
+      driver.active = false;
+      DefaultController().step(state.world.entities[i], motion);
+      continue;
+    }
     bool zero_step = false;
     if (!driver.active) {
       // esmini's Activate: the integrated speed starts from the entity's. Activated in the
