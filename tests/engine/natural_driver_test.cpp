@@ -12,6 +12,9 @@
 // (MOBIL, politeness 0): it changes left (esmini tries the left lane first), passes Slow at its
 // desired speed, and goes back to lane -2, its route, once Slow behind it would not have to
 // brake harder than maxImposedBraking (8 m/s^2).
+//
+// controller_natural_driver_two.xosc: two NaturalDrivers want the lane between them at once; the
+// one deciding second (entity order) calls its change off while the first changes just ahead.
 
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -70,10 +73,13 @@ TEST_CASE("esmini's NaturalDriver overtakes a slower car and goes back to its ro
       run.run();
       const size_t ego = run.entity("Ego");
       const size_t slow = run.entity("Slow");
-      // The lane change starts in the first steps (esmini starts the change it asks for in its
-      // initialising frame one frame later) and takes laneChangeDuration, 2 s.
-      CHECK(run.at(0.0, "Ego").pose.y == Approx(-5.625));
-      CHECK(run.at(3 * dt, "Ego").pose.y > -5.625 + 1e-6);
+      // Asked for at time 0 (esmini's initialising frame), the lane change moves Ego from the
+      // second step on (esmini starts the action a frame later and steps it from the frame
+      // after) and takes laneChangeDuration, 2 s: on lane -1's centre at 2 s + dt.
+      CHECK(run.at(dt, "Ego").pose.y == Approx(-5.625));
+      CHECK(run.at(2 * dt, "Ego").pose.y > -5.625 + 1e-6);
+      CHECK(run.at(2.0, "Ego").pose.y < -1.875 - 1e-6);
+      CHECK(run.at(2.0 + dt, "Ego").pose.y == Approx(-1.875));
       CHECK(lane_of(run.at(2.5, "Ego")) == -1);
       CHECK(run.at(2.5, "Ego").pose.y == Approx(-1.875));
       // It passes Slow without slowing down: nothing is ahead of it in lane -1.
@@ -105,4 +111,26 @@ TEST_CASE("esmini's NaturalDriver overtakes a slower car and goes back to its ro
       CHECK(run.now("Ego").speed == Approx(25.0));
     }
   }
+}
+
+TEST_CASE("esmini's NaturalDriver calls off a change to the lane another one is changing to ahead",
+          "[engine][controllers][natural]") {
+  const double dt = 0.1;
+  FixtureRun run(engine_fixture("controller_natural_driver_two.xosc"),
+                 natural_reading(Semantics::kStandard, dt));
+  run.run();
+  // A changes from the second step on; B, which decided after A in the same frame, stays.
+  CHECK(run.at(dt, "A").pose.y == Approx(-1.875));
+  CHECK(run.at(2 * dt, "A").pose.y < -1.875 - 1e-6);
+  CHECK(lane_of(run.at(2.5, "A")) == -2);
+  for (double t = 0.0; t <= 2.0 + 1e-9; t += dt) {
+    CAPTURE(t);
+    REQUIRE(run.at(t, "B").pose.y == Approx(-9.375));
+  }
+  // Kept behind its slow car meanwhile, B brakes (the IDM's gap term) ...
+  CHECK(run.at(1.0, "B").speed < 24.0);
+  // ... and once A no longer asks for lane -2, B follows it there, behind it.
+  CHECK(lane_of(run.now("B")) == -2);
+  CHECK(run.now("B").pose.y == Approx(-5.625));
+  CHECK(run.now("A").pose.x - 1.1 - (run.now("B").pose.x + 3.9) > 20.0);
 }
