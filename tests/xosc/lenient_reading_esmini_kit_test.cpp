@@ -356,7 +356,7 @@ TEST_CASE("a controller entry the catalog at hand lacks is read as a controller 
   text.catalogs = "<ControllerCatalog><Directory path=\"catalogs\"/></ControllerCatalog>\n";
   text.entities.replace(text.entities.find("</ScenarioObject>"), 17,
                         "<ObjectController>\n<CatalogReference catalogName=\"ControllerCatalog\" "
-                        "entryName=\"NaturalDriver\"><ParameterAssignments><ParameterAssignment "
+                        "entryName=\"sloppyDriver\"><ParameterAssignments><ParameterAssignment "
                         "parameterRef=\"DesiredSpeed\" value=\"25\"/></ParameterAssignments>"
                         "</CatalogReference></ObjectController>\n</ScenarioObject>");
   text.init.replace(text.init.find("</Private>"), 10,
@@ -368,13 +368,13 @@ TEST_CASE("a controller entry the catalog at hand lacks is read as a controller 
   const std::string what =
       "catalog 'ControllerCatalog' (" +
       (dir.path() / "catalogs" / "controllers.xosc").lexically_normal().string() +
-      ") has no controller entry 'NaturalDriver'";
+      ") has no controller entry 'sloppyDriver'";
   corsa::test::write_text(dir.path() / "map.xodr", straight_xodr());
   corsa::test::write_text(dir.path() / "s.xosc", xml);
   corsa::Diagnostics diagnostics;
   const Scenario loaded = load_scenario(dir.path() / "s.xosc", {}, diagnostics);
   const auto& controller = loaded.entities.objects[0].controllers.at(0).controller;
-  CHECK(controller.name == "NaturalDriver");
+  CHECK(controller.name == "sloppyDriver");
   REQUIRE(controller.catalog);
   CHECK(controller.catalog->assignments.size() == 1);
   CHECK(controller.properties.properties.empty());
@@ -384,7 +384,30 @@ TEST_CASE("a controller entry the catalog at hand lacks is read as a controller 
                               (dir.path() / "summary.json").string()});
   CHECK(run.exit_code == 0);
   CHECK_THAT(corsa::test::slurp(dir.path() / "summary.json"),
-             Catch::Contains("\"substitute_for\": \"NaturalDriver\""));
+             Catch::Contains("\"substitute_for\": \"sloppyDriver\""));
+  // esmini's NaturalDriver, which the engine emulates, runs as itself, the reference's
+  // ParameterAssignments read as its properties (DesiredSpeed as desiredSpeed).
+  std::string natural = xml;
+  natural.replace(natural.find("sloppyDriver"), 12, "NaturalDriver");
+  corsa::test::write_text(dir.path() / "n.xosc", natural);
+  const auto natural_run = run_corsa({"run", (dir.path() / "n.xosc").string(), "--quiet",
+                                      "--summary", (dir.path() / "natural.json").string()});
+  CHECK(natural_run.exit_code == 0);
+  CHECK_THAT(natural_run.err,
+             Catch::Contains("n.xosc:" + std::to_string(line) +
+                             ": warning: controller entry 'NaturalDriver' is not in the catalog: "
+                             "its ParameterAssignments are read as esmini's NaturalDriver "
+                             "properties"));
+  // The properties nothing assigns keep esmini's defaults, said once at the reference.
+  CHECK_THAT(natural_run.err,
+             Catch::Contains("n.xosc:" + std::to_string(line) +
+                             ": warning: controller entry 'NaturalDriver' is not in the catalog "
+                             "and nothing gives its desiredDistance, laneChangeDuration, "
+                             "lookAheadDistance, maxDec, maxAcc, laneChangeDelay, thw, "
+                             "maxImposedBraking, laneChangeAccGain, politeness, route: esmini's "
+                             "defaults"));
+  CHECK_THAT(corsa::test::slurp(dir.path() / "natural.json"),
+             !Catch::Contains("\"substitute_for\": \"NaturalDriver\""));
   // A vehicle entry the catalog lacks stays an error: nothing could stand in for it.
   std::string vehicle = xml;
   vehicle.replace(vehicle.find("<ControllerCatalog>"), 0,

@@ -278,8 +278,9 @@ Controller parse_controller(ParseContext& ctx, const Element* e, const EntryScop
 // follow_reference names `followReference`, highway_driver `NaturalDriver`, neither in the
 // ControllerCatalog its tree holds). A controller is a driver model the engine may lack anyway
 // (it then runs the acc controller in its place, docs/engine.md), and the entry's name names
-// that model: read as a controller of that name without properties, which the engine treats as
-// any controller it lacks. A missing entity entry stays an error: nothing could stand in for it.
+// that model: read as a controller of that name without properties, which the engine runs as
+// its model of that name (esmini's NaturalDriver) or as any controller it lacks. A missing entity
+// entry stays an error: nothing could stand in for it.
 std::optional<Controller> controller_lacking_entry(ParseContext& ctx, const Element* e) {
   if (ctx.catalogs == nullptr) return std::nullopt;
   const std::string catalog_name = ctx.req_str(e, "catalogName");
@@ -295,7 +296,8 @@ std::optional<Controller> controller_lacking_entry(ParseContext& ctx, const Elem
               "catalog '" + clip(catalog_name) + "' (" + *file + ") has no controller entry '" +
                   clip(entry_name) + "'",
               "a controller '" + clip(entry_name) +
-                  "' this engine lacks: the acc controller stands in for it once activated");
+                  "' without properties: the engine's model of that name, or the acc "
+                  "controller in its place once activated");
   return controller;
 }
 

@@ -14,6 +14,7 @@
 #include "controllers/external.h"
 #include "controllers/follow_ghost.h"
 #include "controllers/follow_view.h"
+#include "controllers/natural_driver.h"
 #include "controllers/npc_caution.h"
 #include "controllers/worker_pool.h"
 #include "corsa/xodr/map.h"
@@ -106,6 +107,13 @@ void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectCo
   }
   if (assign_esmini_driver(state, index, oc)) {
     return;  // esmini's interactiveDriver or offroadFollower (controllers/esmini_vehicle.h)
+  }
+  if (is_natural_driver(oc)) {
+    // esmini's NaturalDriver, emulated (controllers/natural_driver.h).
+    control.kind = ControllerKind::kNaturalDriver;
+    control.substitute_for.clear();
+    control.natural = make_natural_driver(state, oc);
+    return;
   }
   control.kind = ControllerKind::kAcc;
   control.substitute_for = oc.controller.name;
@@ -308,6 +316,8 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
     case ControllerKind::kEsminiVehicle:
       step_esmini_driver(state, i, motion, view);
       break;
+    case ControllerKind::kNaturalDriver:
+      break;  // after every other entity (step_natural_drivers)
   }
 }
 
@@ -398,6 +408,7 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   // model's step reads only its own entity.
   std::vector<uint32_t> dynamic;
   bool following = false;
+  bool natural = false;
   for (uint32_t i = 0; i < count; ++i) {
     if (dynamics_moves(state, i) && !state.world.entities[i].towed_by) {
       dynamic.push_back(i);
@@ -407,6 +418,7 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     following =
         following || (state.world.entities[i].state.placed &&
                       (kind == ControllerKind::kAcc || kind == ControllerKind::kEsminiVehicle));
+    natural = natural || state.controls[i].natural != nullptr;
   }
   if (!dynamic.empty()) {
     begin_dynamics(state, dynamic, motion);
@@ -430,6 +442,9 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     context.scratch = &impl.scratch[0];
     context.nearby = &impl.nearby[0];
     move_range(state, context, impl.view, impl.ahead, order, 0, order.size());
+    if (natural) {
+      step_natural_drivers(state, context);
+    }
     return;
   }
   // Each entity's move depends only on itself and the picture taken above, so how the entities
@@ -440,6 +455,13 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     context.nearby = &impl.nearby[worker];
     move_range(state, context, impl.view, impl.ahead, order, begin, end);
   });
+  if (natural) {
+    // esmini's NaturalDriver entities move after all others, one after the other.
+    MotionContext context = motion;
+    context.scratch = &impl.scratch[0];
+    context.nearby = &impl.nearby[0];
+    step_natural_drivers(state, context);
+  }
 }
 
 }  // namespace corsa::engine::detail

@@ -17,14 +17,16 @@ namespace corsa::engine::detail {
 /// The controllers this engine has. kDefault is the ideal lane follower (motion/controller.h);
 /// kExternal moves the entity only by commands from outside (controllers/external.h).
 /// kFollowGhost drives after the entity's ghost (controllers/follow_ghost.h); kEsminiVehicle
-/// is one of esmini's drivers of its simple vehicle model (controllers/esmini_vehicle.h).
+/// is one of esmini's drivers of its simple vehicle model (controllers/esmini_vehicle.h);
+/// kNaturalDriver is esmini's NaturalDriver (controllers/natural_driver.h).
 enum class ControllerKind : uint8_t {
   kDefault,
   kAcc,
   kDynamics,
   kExternal,
   kFollowGhost,
-  kEsminiVehicle
+  kEsminiVehicle,
+  kNaturalDriver
 };
 
 /// Parses a controller name as `corsa:controller` and `corsa run --controller` spell it
@@ -58,6 +60,7 @@ struct ControllerOverrides {
 
 struct DynamicsVehicle;
 struct EsminiDriver;
+struct NaturalDriverState;
 
 /// esmini's ACCController (its Properties), which the acc controller then follows instead of its
 /// own car-following law (controllers/acc_controller.cpp).
@@ -102,6 +105,8 @@ struct ControlState {
   std::shared_ptr<DynamicsVehicle> dynamics;
   /// esmini's driver and its vehicle model, for ControllerKind::kEsminiVehicle.
   std::shared_ptr<EsminiDriver> esmini_driver;
+  /// esmini's NaturalDriver and what it keeps between steps, while it is the controller.
+  std::shared_ptr<NaturalDriverState> natural;
   /// A command from outside (Simulation::command) for the step under way, while `commanded`; it
   /// takes the place of the controller. `held`: what an entity of the external controller
   /// repeats between commands.
