@@ -66,12 +66,13 @@ class FollowTrajectoryInstance final : public ActionInstance {
   void step(ActionContext& context) override {
     Entity& entity = context.entity();
     const double dt = context.state.time.dt();
-    // esmini's reading (Semantics::kEsmini): the step that passes the path's end goes on past it
-    // along the end's heading for the rest of the step; a timed path ends in the first step
-    // after its last time. The standard reading ends on the path's last point.
-    const bool esmini = context.state.options.semantics == Semantics::kEsmini &&
-                        action_.following_mode != xosc::FollowingMode::kFollow;
-    double beyond = 0.0;  // m past the path's end in this step (esmini's reading)
+    // The step that passes the path's end goes on past it along the end's heading for the rest
+    // of the step, and a timed path ends in the first step after its last time, as esmini
+    // reads it (the standard says where the actor is at each vertex's time, not how a step that
+    // ends the path is driven); so the speed after the path is the path's own, not the share of
+    // the step left on it.
+    const bool past_end = action_.following_mode != xosc::FollowingMode::kFollow;
+    double beyond = 0.0;  // m past the path's end in this step
     double s_next = 0.0;
     if (timing_) {
       double t = context.state.time.time(context.state.tick + 1);
@@ -83,8 +84,8 @@ class FollowTrajectoryInstance final : public ActionInstance {
           path_.first_time() + (t - timing_->offset) / scale + time_shift_;
       s_next = std::max(s_, path_.s_at_time(trajectory_time));
       ended_ = trajectory_time >= path_.last_time() && s_next >= path_.last_timed_s() - 1e-9;
-      if (esmini && ended_) {
-        // esmini's step past the last time: on at the last segment's speed, to the step's end.
+      if (past_end && ended_) {
+        // The step past the last time: on at the last segment's speed, to the step's end.
         const double late = trajectory_time - path_.last_time();
         ended_ = late > 1e-9;
         const double h = std::min(1e-3, path_.last_time() - path_.first_time());
@@ -95,15 +96,10 @@ class FollowTrajectoryInstance final : public ActionInstance {
       entity.speed_command = (s_next + beyond - s_) / dt;
     } else {
       // Reversing (a negative speed) also runs along the path: the path gives the direction
-      // of travel, the vehicle then faces against it. A step travels the mean of its speeds at
-      // both ends times dt (the exact integral of a speed changing linearly within the step);
-      // esmini's reading (Semantics::kEsmini) travels its end speed times dt, as a step on a
-      // lane does in both readings (motion/default_controller.cpp).
-      const double speed = context.state.options.semantics == Semantics::kEsmini
-                               ? entity.speed_command
-                               : 0.5 * (entity.state.speed + entity.speed_command);
-      s_next = s_ + std::abs(speed * dt);
-      if (esmini) {
+      // of travel, the vehicle then faces against it. A step travels its end speed times dt, as
+      // a step on a lane does (motion/default_controller.cpp) and as esmini reads it.
+      s_next = s_ + std::abs(entity.speed_command * dt);
+      if (past_end) {
         beyond = std::max(0.0, s_next - path_.length());
       }
     }
