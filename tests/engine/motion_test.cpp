@@ -395,6 +395,43 @@ TEST_CASE("A timed polyline whose last vertex repeats waits there until the last
   CHECK(run.now("Wait").speed == 0.0);
 }
 
+TEST_CASE("A timed path that ends within a step leaves the car at the path's speed",
+          "[engine][trajectory]") {
+  // 15.68 m in 1.96 s (8 m/s), in followingMode position and follow, ending 0.06 s into the step
+  // to 2 s at dt 0.1 s. That step goes on past the end, so the lane carries both on at 8 m/s,
+  // not at the 4.8 m/s of the 0.48 m the step had left on the path.
+  engine::SimulationOptions options;
+  options.dt = 0.1;
+  FixtureRun run(engine_fixture("trajectory_ends_mid_step.xosc"), options);
+  run.run();
+  for (const char* name : {"Position", "Follow"}) {
+    INFO(name);
+    CHECK(run.at(2.0, name).pose.x == Approx(26.0).margin(1e-9));
+    CHECK(run.at(2.0, name).speed == Approx(8.0).margin(1e-9));
+    CHECK(run.at(3.0, name).pose.x == Approx(34.0).margin(1e-9));
+    CHECK(run.at(3.0, name).speed == Approx(8.0).margin(1e-9));
+  }
+}
+
+TEST_CASE("A speed that turns negative along a path drives back toward its start, facing on",
+          "[engine][trajectory]") {
+  // Back: 2 m/s slowing at 2 m/s^2 to -2 m/s on an untimed 20 m path along +x; each step
+  // travels its end speed: 0.9 m out at 1 s, back at the start at 1.9 s, facing +x throughout.
+  // Reverse: -2 m/s from the start, so the path is driven forward in reverse gear, facing -x.
+  engine::SimulationOptions options;
+  options.dt = 0.1;
+  FixtureRun run(engine_fixture("trajectory_speed_turns_negative.xosc"), options);
+  run.run();
+  CHECK(run.at(1.0, "Back").pose.x == Approx(0.9).margin(1e-9));
+  CHECK(run.at(1.5, "Back").pose.x == Approx(0.6).margin(1e-9));
+  CHECK(run.at(1.5, "Back").speed == Approx(-1.0).margin(1e-9));
+  CHECK(run.at(1.5, "Back").pose.h == Approx(0.0).margin(1e-12));
+  CHECK(run.at(1.9, "Back").pose.x == Approx(0.0).margin(1e-9));
+  CHECK(run.at(3.0, "Back").pose.x == Approx(0.0).margin(1e-9));  // on no road it stands
+  CHECK(run.at(0.5, "Reverse").pose.x == Approx(1.0).margin(1e-9));
+  CHECK(run.at(0.5, "Reverse").pose.h == Approx(std::numbers::pi).margin(1e-9));
+}
+
 TEST_CASE("ASAM TrailerConnect: the car reverses along the quarter circle facing forward",
           "[engine][asam][trajectory]") {
   FixtureRun run(asam("TrailerConnect.xosc"), with_duration(120.0));

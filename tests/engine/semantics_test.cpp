@@ -457,67 +457,59 @@ TEST_CASE("A continuous LaneOffsetAction never ends, or ends at its target as es
   }
 }
 
-TEST_CASE("A linear rate toward a moving relative target: fixed at the start, or until met",
+TEST_CASE("A linear rate toward a moving relative target goes on until met, under either reading",
           "[engine][semantics]") {
   // Lead goes 7 -> 15 m/s at 2 m/s^2 from 2 s; Chaser (5 m/s) is asked at 2 s for Lead's speed
-  // at 4 m/s^2, not continuous. Standard reading: (7 - 5) / 4 = 0.5 s, ending at Lead's speed
-  // then (7.8 m/s, seen at the step's start). esmini's: +0.4 m/s a step until it meets Lead's
-  // speed (8.6 m/s at 2.9 s), 9 m/s in continuous time.
-  engine::SimulationOptions standard;
-  standard.dt = 0.1;
-  FixtureRun fixed(engine_fixture("rate_toward_relative.xosc"), standard);
-  fixed.run();
-  CHECK(*fixed.first("chase", engine::TransitionKind::kEnd) == Approx(2.5).margin(1e-9));
-  CHECK(fixed.at(4.0, "Chaser").speed == Approx(7.8).margin(1e-9));
-  engine::SimulationOptions options = esmini_reading();
-  options.dt = 0.1;
-  FixtureRun met(engine_fixture("rate_toward_relative.xosc"), options);
-  met.run();
-  CHECK(*met.first("chase", engine::TransitionKind::kEnd) == Approx(2.9).margin(1e-9));
-  CHECK(met.at(2.5, "Chaser").speed == Approx(7.0).margin(1e-9));
-  CHECK(met.at(4.0, "Chaser").speed == Approx(8.6).margin(1e-9));
+  // at 4 m/s^2, not continuous. +0.4 m/s a step until it meets Lead's speed (8.6 m/s at 2.9 s),
+  // 9 m/s in continuous time; a duration fixed at the start from Lead's speed then would have
+  // ended at 2.5 s at 7.8 m/s.
+  for (const engine::Semantics semantics :
+       {engine::Semantics::kStandard, engine::Semantics::kEsmini}) {
+    engine::SimulationOptions options;
+    options.semantics = semantics;
+    options.dt = 0.1;
+    FixtureRun met(engine_fixture("rate_toward_relative.xosc"), options);
+    met.run();
+    CHECK(*met.first("chase", engine::TransitionKind::kEnd) == Approx(2.9).margin(1e-9));
+    CHECK(met.at(2.5, "Chaser").speed == Approx(7.0).margin(1e-9));
+    CHECK(met.at(4.0, "Chaser").speed == Approx(8.6).margin(1e-9));
+  }
 }
 
-TEST_CASE("An untimed trajectory step travels its mean speed, or its end speed as esmini's",
+TEST_CASE("An untimed trajectory step travels its end speed, under either reading",
           "[engine][semantics]") {
-  // 0 -> 10 m/s linearly in 2 s along a straight untimed Polyline at dt 0.1 s: 10 m at 2 s
-  // (the mean of each step's speeds, the exact integral), 0.1 * (0.5 + 1 + ... + 10) = 10.5 m
-  // under esmini's reading (the end speed, as on a lane under both readings).
-  engine::SimulationOptions standard;
-  standard.dt = 0.1;
-  FixtureRun mean(engine_fixture("trajectory_untimed_accelerating.xosc"), standard);
-  mean.run();
-  CHECK(mean.at(2.0, "Car").pose.x == Approx(10.0).margin(1e-9));
-  engine::SimulationOptions options = esmini_reading();
-  options.dt = 0.1;
-  FixtureRun end(engine_fixture("trajectory_untimed_accelerating.xosc"), options);
-  end.run();
-  CHECK(end.at(2.0, "Car").pose.x == Approx(10.5).margin(1e-9));
+  // 0 -> 10 m/s linearly in 2 s along a straight untimed Polyline at dt 0.1 s: each step travels
+  // its end speed, 0.1 * (0.5 + 1 + ... + 10) = 10.5 m at 2 s, as on a lane (the mean of each
+  // step's speeds, the exact integral, would give 10 m).
+  for (const engine::Semantics semantics :
+       {engine::Semantics::kStandard, engine::Semantics::kEsmini}) {
+    engine::SimulationOptions options;
+    options.semantics = semantics;
+    options.dt = 0.1;
+    FixtureRun end(engine_fixture("trajectory_untimed_accelerating.xosc"), options);
+    end.run();
+    CHECK(end.at(2.0, "Car").pose.x == Approx(10.5).margin(1e-9));
+  }
 }
 
-TEST_CASE("A trajectory's last step and what follows it on no road, as written or as esmini's",
+TEST_CASE("A trajectory's last step goes past its end, then on no road the car stands",
           "[engine][semantics]") {
   // No road network; Car (5 m/s, untimed) and Timed (5 m/s by its times) reach the end of their
-  // 9.8 m paths in the step to 2 s. Standard reading: on the end point, x = 9.8, then Car drives
-  // straight on at its speed (19.8 m at 4 s). esmini's: the last step goes on past the end for
-  // the rest of the step (x = 10), then both stand there at 0 m/s.
-  engine::SimulationOptions standard;
-  standard.dt = 0.1;
-  FixtureRun on(engine_fixture("no_roads_after_trajectory.xosc"), standard);
-  on.run();
-  CHECK(on.at(2.0, "Car").pose.x == Approx(9.8).margin(1e-9));
-  CHECK(on.at(2.0, "Timed").pose.x == Approx(9.8).margin(1e-9));
-  CHECK(on.at(4.0, "Car").pose.x == Approx(19.8).margin(1e-9));
-  CHECK(on.at(4.0, "Car").speed == Approx(5.0).margin(1e-9));
-  engine::SimulationOptions options = esmini_reading();
-  options.dt = 0.1;
-  FixtureRun stands(engine_fixture("no_roads_after_trajectory.xosc"), options);
-  stands.run();
-  for (const char* name : {"Car", "Timed"}) {
-    INFO(name);
-    CHECK(stands.at(2.0, name).pose.x == Approx(10.0).margin(1e-9));
-    CHECK(stands.at(4.0, name).pose.x == Approx(10.0).margin(1e-9));
-    CHECK(stands.at(2.1, name).speed == 0.0);
+  // 9.8 m paths in the step to 2 s. The last step goes on past the end for the rest of the step
+  // (x = 10, not the end point 9.8), then both stand there at 0 m/s (not straight on at 5 m/s).
+  for (const engine::Semantics semantics :
+       {engine::Semantics::kStandard, engine::Semantics::kEsmini}) {
+    engine::SimulationOptions options;
+    options.semantics = semantics;
+    options.dt = 0.1;
+    FixtureRun stands(engine_fixture("no_roads_after_trajectory.xosc"), options);
+    stands.run();
+    for (const char* name : {"Car", "Timed"}) {
+      INFO(name);
+      CHECK(stands.at(2.0, name).pose.x == Approx(10.0).margin(1e-9));
+      CHECK(stands.at(4.0, name).pose.x == Approx(10.0).margin(1e-9));
+      CHECK(stands.at(2.1, name).speed == 0.0);
+    }
   }
 }
 

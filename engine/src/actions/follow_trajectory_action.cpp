@@ -16,10 +16,12 @@
 // out along the end instead of circling the end point. Untimed, the progress along the path is
 // the path point nearest the actor (not the distance driven, which a detour makes longer), and
 // the action ends when that point reaches the path's end.
-// A negative speed drives the path in reverse gear (the vehicle faces against the path). The
-// action ends at the path's end, timed at its last time (§6.7.3: the actor is at each vertex at
-// its time, so a repeated last vertex with a later time is a wait there); the actor's lane
-// following takes over from there, at the speed the last step of the path gave it.
+// A negative speed when the action starts drives the path in reverse gear (the vehicle faces
+// against the path); in position mode a speed whose sign differs from that drives back toward
+// the path's start (esmini's reading). The action ends at the path's end (or, driven back, its
+// start), timed in the first step past its last time (§6.7.3: the actor is at each vertex at its
+// time, so a repeated last vertex with a later time is a wait there); that step goes on past the
+// end for its rest, and the actor's lane following takes over at the path's own end speed.
 
 #include <algorithm>
 #include <cmath>
@@ -66,12 +68,17 @@ class FollowTrajectoryInstance final : public ActionInstance {
   void step(ActionContext& context) override {
     Entity& entity = context.entity();
     const double dt = context.state.time.dt();
-    // esmini's reading (Semantics::kEsmini): the step that passes the path's end goes on past it
-    // along the end's heading for the rest of the step; a timed path ends in the first step
-    // after its last time. The standard reading ends on the path's last point.
-    const bool esmini = context.state.options.semantics == Semantics::kEsmini &&
-                        action_.following_mode != xosc::FollowingMode::kFollow;
-    double beyond = 0.0;  // m past the path's end in this step (esmini's reading)
+    const bool follow = action_.following_mode == xosc::FollowingMode::kFollow;
+    if (first_step_) {
+      first_step_ = false;
+      direction_ = entity.speed_command < 0.0 ? -1.0 : 1.0;
+    }
+    // The step that passes the path's end goes on past it along the end's heading for the rest
+    // of the step, and a timed path ends in the first step after its last time, as esmini reads
+    // it (the standard says where the actor is at each vertex's time, not how the step that ends
+    // a path is driven): the speed after a timed path is the path's own, not the share of the
+    // step left on it.
+    double beyond = 0.0;  // m past the path's end in this step
     double s_next = 0.0;
     if (timing_) {
       double t = context.state.time.time(context.state.tick + 1);
@@ -82,40 +89,36 @@ class FollowTrajectoryInstance final : public ActionInstance {
       const double trajectory_time =
           path_.first_time() + (t - timing_->offset) / scale + time_shift_;
       s_next = std::max(s_, path_.s_at_time(trajectory_time));
+      // A last segment of zero length between two times (a vertex repeated) holds the actor
+      // there until the last time, at speed 0.
       ended_ = trajectory_time >= path_.last_time() && s_next >= path_.last_timed_s() - 1e-9;
-      if (esmini && ended_) {
-        // esmini's step past the last time: on at the last segment's speed, to the step's end.
+      if (ended_) {
         const double late = trajectory_time - path_.last_time();
         ended_ = late > 1e-9;
-        const double h = std::min(1e-3, path_.last_time() - path_.first_time());
-        const double end_speed =
-            h > 0.0 ? (path_.last_timed_s() - path_.s_at_time(path_.last_time() - h)) / h : 0.0;
-        beyond = std::max(0.0, late * end_speed);
+        beyond = std::max(0.0, late * end_speed());
       }
       entity.speed_command = (s_next + beyond - s_) / dt;
+    } else if (follow) {
+      // The follow driver drives the path ahead, in reverse gear while the speed is negative.
+      s_next = s_ + std::abs(entity.speed_command * dt);
+      beyond = std::max(0.0, s_next - path_.length());
     } else {
-      // Reversing (a negative speed) also runs along the path: the path gives the direction
-      // of travel, the vehicle then faces against it. A step travels the mean of its speeds at
-      // both ends times dt (the exact integral of a speed changing linearly within the step);
-      // esmini's reading (Semantics::kEsmini) travels its end speed times dt, as a step on a
-      // lane does in both readings (motion/default_controller.cpp).
-      const double speed = context.state.options.semantics == Semantics::kEsmini
-                               ? entity.speed_command
-                               : 0.5 * (entity.state.speed + entity.speed_command);
-      s_next = s_ + std::abs(speed * dt);
-      if (esmini) {
-        beyond = std::max(0.0, s_next - path_.length());
-      }
+      // The sign of the speed when the action starts sets the direction of travel along the
+      // path (reverse gear, facing against the path, if negative); a speed of the other sign
+      // later drives back along the path toward its start, facing as before, as esmini reads it
+      // (the standard says nothing of a negative speed along a path). A step travels its end
+      // speed times dt, as a step on a lane does.
+      s_next = s_ + direction_ * entity.speed_command * dt;
+      beyond = std::max(0.0, s_next - path_.length());
+      const bool backward = direction_ * entity.speed_command < 0.0;
+      ended_ = backward ? s_next <= 1e-9 : s_next >= path_.length() - 1e-9;
     }
-    const double facing = entity.speed_command < 0.0 ? std::numbers::pi : 0.0;
-    s_next = std::min(s_next, path_.length());
-    // With a Timing the times say when the action ends: a last segment of zero length between
-    // two times (a vertex repeated) holds the actor there until the last time, at speed 0.
-    ended_ = timing_ ? ended_ : s_next >= path_.length() - 1e-9;
-    if (action_.following_mode == xosc::FollowingMode::kFollow) {
+    s_next = std::clamp(s_next, 0.0, path_.length());
+    if (follow) {
+      const double facing = entity.speed_command < 0.0 ? std::numbers::pi : 0.0;
       Pose along = entity.state.pose;
       along.h = wrap_angle(along.h + facing);  // steer the direction of travel
-      const double distance = s_next - s_;
+      const double distance = s_next + beyond - s_;
       Pose pose = pursue(along, distance, s_, dt);
       pose.h = wrap_angle(pose.h + facing);
       entity.pose_command = pose;
@@ -124,6 +127,7 @@ class FollowTrajectoryInstance final : public ActionInstance {
         ended_ = s_next >= path_.length() - 1e-9;
       }
     } else {
+      const double facing = direction_ < 0.0 ? std::numbers::pi : 0.0;
       const PathPoint p = continued(s_next + beyond);
       entity.pose_command = Pose{p.x, p.y, p.z, wrap_angle(p.h + facing), 0.0, 0.0};
     }
@@ -135,6 +139,12 @@ class FollowTrajectoryInstance final : public ActionInstance {
  private:
   static double lookahead(double distance, double dt) {
     return std::max(kMinLookahead, kLookahead * distance / dt);
+  }
+
+  // m/s along the path at its last time: the last millisecond's (or whole path's) mean speed.
+  double end_speed() const {
+    const double h = std::min(1e-3, path_.last_time() - path_.first_time());
+    return h > 0.0 ? (path_.last_timed_s() - path_.s_at_time(path_.last_time() - h)) / h : 0.0;
   }
 
   // The path's point at arc length s, continued straight past the end along the end's heading.
@@ -206,6 +216,11 @@ class FollowTrajectoryInstance final : public ActionInstance {
   double start_time_ = 0.0;  ///< s
   double time_shift_ = 0.0;  ///< s of trajectory time skipped by initialDistanceOffset
   bool ended_ = false;
+  bool first_step_ = true;  ///< direction_ is set in the first step, from the speed then
+  /// Position mode: +1 if the speed was positive or zero when the action started (a positive
+  /// speed drives toward the path's end), -1 if negative (a negative speed drives toward the
+  /// end, in reverse gear, facing against the path).
+  double direction_ = 1.0;
 };
 
 }  // namespace

@@ -9,9 +9,10 @@
 // every SpeedAction (Semantics::kEsmini): the target within maxSpeed, the transition stretched in
 // time until its steepest change is within maxAcceleration / maxDeceleration, and no step
 // changing the speed by more than that limit x dt. A linear `rate` toward a relative target
-// lasts, in the standard's reading, as long as the rate takes to the reference's speed at the
-// start; esmini's reading (Semantics::kEsmini) changes the speed at the rate toward the
-// reference's speed of each step until it meets it, however long the reference keeps moving away.
+// changes the speed at the rate toward the reference's speed of each step until it meets it,
+// however long the reference keeps moving away, as esmini reads it: the standard says only that
+// such an action ends "when the target speed is reached" (1.3 RelativeTargetSpeed `continuous`),
+// not which of the reference's speeds is meant.
 
 #include <algorithm>
 #include <cmath>
@@ -44,8 +45,7 @@ class SpeedInstance final : public ActionInstance {
     start_tick_ = context.state.tick;
     const double target = target_speed(context);
     const xosc::TransitionDynamics& dynamics = action_.dynamics;
-    rate_tracking_ = context.state.options.semantics == Semantics::kEsmini &&
-                     std::holds_alternative<xosc::RelativeTargetSpeed>(action_.target) &&
+    rate_tracking_ = std::holds_alternative<xosc::RelativeTargetSpeed>(action_.target) &&
                      dynamics.dimension == xosc::DynamicsDimension::kRate &&
                      dynamics.shape == xosc::DynamicsShape::kLinear && dynamics.value > 0.0;
     double duration = 0.0;  // s
@@ -171,9 +171,8 @@ class SpeedInstance final : public ActionInstance {
   bool reached_ = false;
   /// Performance bounds the transition: followingMode `follow`, or Semantics::kEsmini.
   bool performance_limits_ = false;
-  /// esmini's reading of a linear rate toward a relative target (Semantics::kEsmini): each step
-  /// changes the speed by the rate toward the reference's speed of that step, until it meets it.
-  /// The standard's reading fixes the duration at the start, from the reference's speed then.
+  /// A linear rate toward a relative target: each step changes the speed by the rate toward the
+  /// reference's speed of that step, until it meets it (not a duration fixed at the start).
   bool rate_tracking_ = false;
 };
 

@@ -20,9 +20,9 @@ struct MotionContext {
   std::vector<xodr::LaneSpan>* scratch = nullptr;
   /// Scratch for the neighbour queries of generated traffic (entity indices), one per thread.
   std::vector<uint32_t>* nearby = nullptr;
-  /// esmini's reading (Semantics::kEsmini) of a scenario without road network: the default
-  /// controller has no road to move an entity along, so the entity stands (0 m/s) unless an
-  /// action moves it itself (a trajectory's pose commands).
+  /// A scenario without road network: the default controller has no road to move an entity
+  /// along, so the entity stands (0 m/s) unless an action moves it itself (a trajectory's pose
+  /// commands), as in esmini.
   bool stand_without_roads = false;
 };
 
@@ -35,7 +35,7 @@ class Controller {
 /// The default controller: along the followed lane at the commanded speed (a step travels the
 /// speed at its end times dt, semi-implicit Euler), lateral offset as commanded, heading following
 /// the road plus the angle of the lateral motion; off the road straight along the heading (without
-/// any road network under esmini's reading, standing: MotionContext::stand_without_roads). An
+/// any road network, standing: MotionContext::stand_without_roads). An
 /// entity that reaches a lane end without successor stops there (EndOfRoadCondition).
 class DefaultController final : public Controller {
  public:

@@ -86,10 +86,9 @@ void Simulation::Impl::advance() {
   init.step_actions(state);
   storyboard->step_actions(state);
   detail::MotionContext motion{state.map, state.time.dt(), &scratch};
-  // esmini moves entities along roads only: with no road network its entities stand unless an
-  // action moves them (its trailer_connect and trajectory_special_cases rows after a trajectory).
-  motion.stand_without_roads =
-      state.map == nullptr && state.options.semantics == Semantics::kEsmini;
+  // With no road network an entity no action moves stands, as esmini, which moves entities along
+  // roads only, reads it (the standard says nothing of a default controller without lanes).
+  motion.stand_without_roads = state.map == nullptr;
   detail::follow_route_lanes(state, motion);
   detail::begin_commands(state);
   mover.move(state, motion);
