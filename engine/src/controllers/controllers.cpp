@@ -90,8 +90,10 @@ std::string esmini_type(const xosc::Controller& controller) {
 void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectController& oc) {
   ControlState& control = control_of(state, index);
   const std::string& entity = state.world.entities[index].info.name;
-  if (esmini_type(oc.controller) == "ACCController") {
+  const std::string type = esmini_type(oc.controller);
+  if (type == "ACCController" || type == "ALKSController") {
     // esmini's ACC: the acc controller with esmini's law (controllers/acc_controller.cpp).
+    // esmini's ALKSController is its ACCController under another name.
     EsminiAcc acc;
     acc.time_gap = nonnegative_property(state, oc.controller, "timeGap", "ACCController")
                        .value_or(acc.time_gap);
