@@ -16,8 +16,16 @@ namespace corsa::engine::detail {
 
 /// The controllers this engine has. kDefault is the ideal lane follower (motion/controller.h);
 /// kExternal moves the entity only by commands from outside (controllers/external.h).
-/// kFollowGhost drives after the entity's ghost (controllers/follow_ghost.h).
-enum class ControllerKind : uint8_t { kDefault, kAcc, kDynamics, kExternal, kFollowGhost };
+/// kFollowGhost drives after the entity's ghost (controllers/follow_ghost.h); kAlksR157 is
+/// esmini's ALKS_R157SM_Controller (controllers/alks_r157.h).
+enum class ControllerKind : uint8_t {
+  kDefault,
+  kAcc,
+  kDynamics,
+  kExternal,
+  kFollowGhost,
+  kAlksR157
+};
 
 /// Parses a controller name as `corsa:controller` and `corsa run --controller` spell it
 /// ("default", "acc", "dynamics", "external"); nothing for an unknown name.
@@ -49,6 +57,7 @@ struct ControllerOverrides {
 };
 
 struct DynamicsVehicle;
+struct AlksR157;
 
 /// esmini's ACCController (its Properties), which the acc controller then follows instead of its
 /// own car-following law (controllers/acc_controller.cpp).
@@ -91,6 +100,8 @@ struct ControlState {
   ControllerOverrides overrides;
   /// The dynamics controller's vehicle model (created on its first step).
   std::shared_ptr<DynamicsVehicle> dynamics;
+  /// esmini's ALKS_R157SM_Controller: its settings and run state, while it is the kind.
+  std::shared_ptr<AlksR157> alks;
   /// A command from outside (Simulation::command) for the step under way, while `commanded`; it
   /// takes the place of the controller. `held`: what an entity of the external controller
   /// repeats between commands.
