@@ -50,7 +50,8 @@ TEST_CASE("ALKS R157 Regulation brakes at 6 m/s^2 once the cut-in's TTC is criti
   // Without cruise it keeps 20 m/s until TTC < dv / (2 x 6) + 0.35 + 0.1 s (the regulation's
   // lane intrusion criterion), then brakes at 6 m/s^2; with fullStop down to standstill (the
   // target brakes gently here: no collision).
-  FixtureRun run(alks_fixture(), {}, Params{{"Cruise", "false"}, {"FullStop", "true"}, {"TargetBrakeRate", "2"}});
+  FixtureRun run(alks_fixture(), {},
+                 Params{{"Cruise", "false"}, {"FullStop", "true"}, {"TargetBrakeRate", "2"}});
   run.run();
   const auto [onset, acceleration] = braking_onset(run);
   REQUIRE(onset > 2.0);
@@ -83,10 +84,11 @@ TEST_CASE("ALKS R157 ReferenceDriver perceives the cut-in at 0.375 m, reacts 0.4
   // Annex 3's driver: the cut-in is perceived when the target has moved 0.375 m (lane
   // wandering) toward the ego; 0.4 s of perception (cutInPerceptionDelayMode Time) and 0.75 s of
   // reaction later, the TTC being under 2 s, the brake builds up at 0.774 g per 0.6 s.
-  FixtureRun run(alks_fixture(), {}, Params{{"Model", "ReferenceDriver"},
-                             {"Cruise", "false"},
-                             {"PerceptionMode", "Time"},
-                             {"FullStop", "true"}});
+  FixtureRun run(alks_fixture(), {},
+                 Params{{"Model", "ReferenceDriver"},
+                        {"Cruise", "false"},
+                        {"PerceptionMode", "Time"},
+                        {"FullStop", "true"}});
   run.run();
   CHECK(run.sim().controller_substitute(run.entity("Ego")).empty());
   const size_t target = run.entity("Target");

@@ -56,7 +56,7 @@ void read_driver_settings(SimState& state, const xosc::Controller& controller,
 
 // The front axle's distance ahead of the reference point (m); half the box length ahead of its
 // centre without one.
-double front_of(const Entity& entity) {
+double alks_front_x(const Entity& entity) {
   if (entity.object != nullptr) {
     if (const auto* vehicle = std::get_if<xosc::Vehicle>(&entity.object->object)) {
       if (vehicle->axles.front_axle) return vehicle->axles.front_axle->position_x;
@@ -66,7 +66,7 @@ double front_of(const Entity& entity) {
 }
 
 // What the ego sees of entity `i` now.
-AlksSeen seen_of(const SimState& state, uint32_t i) {
+AlksSeen alks_seen_of(const SimState& state, uint32_t i) {
   const Entity& entity = state.world.entities[i];
   AlksSeen seen;
   const bool visible = i >= state.controls.size() || state.controls[i].traffic_visible;
@@ -101,7 +101,7 @@ AlksSeen seen_of(const SimState& state, uint32_t i) {
     seen.v_t = entity.state.speed * s;
     seen.acc_s = entity.state.acceleration * c;
   }
-  seen.front_x = seen.vehicle ? front_of(entity) : 0.5 * entity.info.box.length;
+  seen.front_x = seen.vehicle ? alks_front_x(entity) : 0.5 * entity.info.box.length;
   seen.box = entity.info.box;
   seen.pose = entity.state.pose;
   return seen;
@@ -125,12 +125,12 @@ bool AlksView::measure(AlksObject& info, double range) const {
   info.d_lane = d_lane;
   const Entity& from = state->world.entities[ego];
   const Entity& to = state->world.entities[*info.entity];
-  info.dist_long = entity_distance(*state, from, to,
-                                   {xosc::CoordinateSystem::kRoad,
-                                    xosc::RelativeDistanceType::kLongitudinal, true});
-  info.dist_lat = entity_distance(
+  info.dist_long = entity_distance(
       *state, from, to,
-      {xosc::CoordinateSystem::kRoad, xosc::RelativeDistanceType::kLateral, true});
+      {xosc::CoordinateSystem::kRoad, xosc::RelativeDistanceType::kLongitudinal, true});
+  info.dist_lat =
+      entity_distance(*state, from, to,
+                      {xosc::CoordinateSystem::kRoad, xosc::RelativeDistanceType::kLateral, true});
   info.dv_s = (e.v_s - o.v_s) * dir;
   info.dv_t = (e.v_t - o.v_t) * (o.road.t - e.road.t < 0.0 ? -1.0 : 1.0);
   if (info.dv_s > 0.0) {
@@ -158,10 +158,10 @@ bool AlksView::covers_front(uint32_t other, double tolerance) const {
   int inside = 0, beyond_left = 0, beyond_right = 0;
   for (const double along : {1.0, -1.0}) {
     for (const double across : {1.0, -1.0}) {
-      const double px = box.cx + along * box.half_length * box.cos_h -
-                        across * box.half_width * box.sin_h;
-      const double py = box.cy + along * box.half_length * box.sin_h +
-                        across * box.half_width * box.cos_h;
+      const double px =
+          box.cx + along * box.half_length * box.cos_h - across * box.half_width * box.sin_h;
+      const double py =
+          box.cy + along * box.half_length * box.sin_h + across * box.half_width * box.cos_h;
       const double u = width > 0.0 ? ((px - lx) * dx + (py - ly) * dy) / (width * width) : 0.0;
       if (u >= 0.0 && u <= 1.0) {
         ++inside;
@@ -229,13 +229,13 @@ void step_alks_r157_entities(SimState& state, const MotionContext& motion) {
   for (uint32_t i = 0; i < count && i < state.controls.size(); ++i) {
     ControlState& control = state.controls[i];
     Entity& entity = state.world.entities[i];
-    if (control.effective() != ControllerKind::kAlksR157 || !control.alks ||
-        !entity.state.placed || entity.towed_by || state.frozen(i)) {
+    if (control.effective() != ControllerKind::kAlksR157 || !control.alks || !entity.state.placed ||
+        entity.towed_by || state.frozen(i)) {
       continue;
     }
     if (!seen_now) {
       view.seen.resize(count);
-      for (uint32_t k = 0; k < count; ++k) view.seen[k] = seen_of(state, k);
+      for (uint32_t k = 0; k < count; ++k) view.seen[k] = alks_seen_of(state, k);
       seen_now = true;
     }
     view.ego = i;
@@ -250,7 +250,7 @@ void step_alks_r157_entities(SimState& state, const MotionContext& motion) {
     DefaultController().step(entity, motion);
     if (entity.speed_command == speed) entity.speed_command = commanded;
     // The next ALKS entity sees this one where it is now.
-    view.seen[i] = seen_of(state, i);
+    view.seen[i] = alks_seen_of(state, i);
   }
 }
 

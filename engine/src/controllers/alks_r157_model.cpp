@@ -2,35 +2,35 @@
 // (controllers/alks_r157_model.h): which object to focus on, whether the situation is critical
 // and how to brake. The constants are esmini's, from UN R157 (5.2.5 and Annex 3).
 
+#include "controllers/alks_r157_model.h"
+
 #include <algorithm>
 #include <cmath>
-
-#include "controllers/alks_r157_model.h"
 
 namespace corsa::engine::detail {
 namespace {
 
-constexpr double kG = 9.8;                   // m/s^2, as esmini's model computes the braking
-constexpr double kRegulationMaxDec = 6.0;    // m/s^2 (UN R157 5.2.5.3)
-constexpr double kRegulationReaction = 0.35; // s
-constexpr double kRegulationRange = 46.0;    // m
-constexpr double kDriverReaction = 0.75;     // s (Annex 3)
-constexpr double kDriverRange = 100.0;       // m
-constexpr double kDriverBrake = 0.774;       // g, reached in kBrakeBuildUp
-constexpr double kAebBrake = 0.85;           // g
-constexpr double kBrakeBuildUp = 0.6;        // s
-constexpr double kReleaseDeceleration = 0.4; // m/s^2, the foot off the accelerator
-constexpr double kCriticalTtc = 2.0;         // s
-constexpr double kCriticalThw = 2.0;         // s
-constexpr double kWandering = 0.375;         // m, lane wandering (Annex 3 3.4.1)
-constexpr double kPerceptionDistance = 0.72; // m, cutInPerceptionDelayMode Dist
-constexpr double kPerceptionTime = 0.4;      // s
-constexpr double kLeaderDeceleration = -5.0; // m/s^2: a leader braking harder is perceived
+constexpr double kAlksG = 9.8;                // m/s^2, as esmini's model computes the braking
+constexpr double kRegulationMaxDec = 6.0;     // m/s^2 (UN R157 5.2.5.3)
+constexpr double kRegulationReaction = 0.35;  // s
+constexpr double kRegulationRange = 46.0;     // m
+constexpr double kDriverReaction = 0.75;      // s (Annex 3)
+constexpr double kDriverRange = 100.0;        // m
+constexpr double kDriverBrake = 0.774;        // g, reached in kBrakeBuildUp
+constexpr double kAebBrake = 0.85;            // g
+constexpr double kBrakeBuildUp = 0.6;         // s
+constexpr double kReleaseDeceleration = 0.4;  // m/s^2, the foot off the accelerator
+constexpr double kCriticalTtc = 2.0;          // s
+constexpr double kCriticalThw = 2.0;          // s
+constexpr double kWandering = 0.375;          // m, lane wandering (Annex 3 3.4.1)
+constexpr double kPerceptionDistance = 0.72;  // m, cutInPerceptionDelayMode Dist
+constexpr double kPerceptionTime = 0.4;       // s
+constexpr double kLeaderDeceleration = -5.0;  // m/s^2: a leader braking harder is perceived
 
 // esmini's SIGN: 0 counts as positive.
-double sign_of(double x) { return x < 0.0 ? -1.0 : 1.0; }
+double alks_sign(double x) { return x < 0.0 ? -1.0 : 1.0; }
 
-bool near_equal(double a, double b) { return std::abs(a - b) < kAlksSmall; }
+bool alks_near(double a, double b) { return std::abs(a - b) < kAlksSmall; }
 
 class AlksStepper {
  public:
@@ -64,7 +64,8 @@ class AlksStepper {
       return 2.0 + v_ * 2.0;
     }
     // UN R157 5.2.3.3: the time gap grows with the speed.
-    const double gap = v_ * 3.6 < 10.0 ? 1.0 + (std::max(2.0, v_) - 2.0) / 7.8 : 1.0 + v_ * 3.6 / 100.0;
+    const double gap =
+        v_ * 3.6 < 10.0 ? 1.0 + (std::max(2.0, v_) - 2.0) / 7.8 : 1.0 + v_ * 3.6 / 100.0;
     return std::max(v_ * gap, 2.0);
   }
 
@@ -122,9 +123,9 @@ class AlksStepper {
     if (o.lane_width > 0.0 && info.dist_lat > -kAlksSmall) {
       // The front wheel (or the box's front) on the side toward the ego, 0.3 m inside its lane.
       const double x = o.vehicle ? o.front_x : 0.5 * o.box.length;
-      const double y = -sign_of(info.d_lane) * 0.5 * o.box.width;
+      const double y = -alks_sign(info.d_lane) * 0.5 * o.box.width;
       const double across = x * std::sin(o.h_rel) + y * std::cos(o.h_rel);
-      const double intrusion = (o.offset + across) * -sign_of(info.d_lane);
+      const double intrusion = (o.offset + across) * -alks_sign(info.d_lane);
       if (intrusion > 0.5 * o.lane_width + 0.3) {
         info.action = AlksScenario::kCutIn;
         return false;
@@ -146,7 +147,7 @@ class AlksStepper {
     } else if (info.d_lane == 0) {
       if (std::abs(centre_offset) > kWandering && info.dv_t < -kAlksSmall) {
         info.action = AlksScenario::kCutOut;
-      } else if (-sign_of(o.road.lane) * o.acc_s < kLeaderDeceleration + kAlksSmall) {
+      } else if (-alks_sign(o.road.lane) * o.acc_s < kLeaderDeceleration + kAlksSmall) {
         info.action = AlksScenario::kDeceleration;
       }
       return false;
@@ -200,22 +201,24 @@ class AlksStepper {
     m_.scenario = AlksScenario::kNone;
   }
 
-  AlksMode sight() const { return m_.focus.entity ? AlksMode::kTargetInSight : AlksMode::kNoTarget; }
+  AlksMode sight() const {
+    return m_.focus.entity ? AlksMode::kTargetInSight : AlksMode::kNoTarget;
+  }
 
   double cruise() {
     if (m_.settings.cruise) {
       if (!m_.focus.entity) {
         m_.mode = AlksMode::kNoTarget;
-        m_.acc = near_equal(v_, m_.set_speed) ? 0.0 : (v_ > m_.set_speed ? -2.0 : 2.0);
+        m_.acc = alks_near(v_, m_.set_speed) ? 0.0 : (v_ > m_.set_speed ? -2.0 : 2.0);
         return std::clamp(v_ + m_.acc * dt_, 0.0, m_.set_speed);
       }
       if (m_.focus.dist_long > 0.0 && m_.focus.ttc > m_.focus.dv_s / 12.0 + 0.35) {
         // Car following: equal speeds at the model's minimum distance.
         m_.mode = AlksMode::kTargetInSight;
-        m_.acc = near_equal(v_, 0.0) ? 0.0
-                                     : std::clamp(2.0 * -m_.focus.dv_s +
-                                                      (m_.focus.dist_long - min_dist()),
-                                                  -4.0, 3.0);
+        m_.acc =
+            alks_near(v_, 0.0)
+                ? 0.0
+                : std::clamp(2.0 * -m_.focus.dv_s + (m_.focus.dist_long - min_dist()), -4.0, 3.0);
         return std::clamp(v_ + m_.acc * dt_, 0.0, m_.set_speed);
       }
     }
@@ -230,8 +233,7 @@ class AlksStepper {
     }
     if (m_.mode == AlksMode::kCritical && m_.settings.full_stop) return true;
     if (m_.focus.dv_s > 0.0 && m_.focus.dist_long > 0.0 &&
-        m_.focus.ttc <
-            m_.focus.dv_s / (2.0 * kRegulationMaxDec) + kRegulationReaction + 0.1) {
+        m_.focus.ttc < m_.focus.dv_s / (2.0 * kRegulationMaxDec) + kRegulationReaction + 0.1) {
       m_.mode = AlksMode::kCritical;
       return true;
     }
@@ -344,7 +346,7 @@ class AlksStepper {
   void critical_condition() {
     if (m_.scenario == AlksScenario::kNone) return;
     const bool close = m_.scenario == AlksScenario::kCutIn ? m_.focus.ttc < kCriticalTtc
-                                                            : m_.focus.thw < kCriticalThw;
+                                                           : m_.focus.thw < kCriticalThw;
     if (m_.settings.always_trig || close) {
       if (m_.phase == AlksPhase::kReact && m_.timer < kAlksSmall) m_.mode = AlksMode::kCritical;
       return;
@@ -367,10 +369,10 @@ class AlksStepper {
     if (m_.phase == AlksPhase::kReact) {
       m_.acc = std::min(-kReleaseDeceleration, m_.acc);  // keep braking, or lift off the gas
     } else if (m_.phase == AlksPhase::kBrakeRef) {
-      m_.acc -= dt_ * kDriverBrake * kG / kBrakeBuildUp;
+      m_.acc -= dt_ * kDriverBrake * kAlksG / kBrakeBuildUp;
     }
-    if (m_.aeb) m_.acc -= dt_ * kAebBrake * kG / kBrakeBuildUp;
-    m_.acc = std::max(m_.acc, -(m_.aeb ? kAebBrake : kDriverBrake) * kG);
+    if (m_.aeb) m_.acc -= dt_ * kAebBrake * kAlksG / kBrakeBuildUp;
+    m_.acc = std::max(m_.acc, -(m_.aeb ? kAebBrake : kDriverBrake) * kAlksG);
     return std::max(0.0, v_ + m_.acc * dt_);
   }
 

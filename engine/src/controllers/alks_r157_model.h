@@ -27,8 +27,8 @@ enum class AlksPhase : uint8_t { kInactive, kPerceive, kReact, kBrakeRef };
 struct AlksSettings {
   AlksModel model = AlksModel::kReferenceDriver;  ///< [model]
   bool cruise = true;                             ///< [cruise]: car following when not critical
-  bool full_stop = false;    ///< [fullStop]: once critical, brake until standstill
-  bool always_trig = false;  ///< [alwaysTrigOnScenario]: react also when not critical
+  bool full_stop = false;             ///< [fullStop]: once critical, brake until standstill
+  bool always_trig = false;           ///< [alwaysTrigOnScenario]: react also when not critical
   bool perceive_by_time = false;      ///< [cutInPerceptionDelayMode] Time (else Dist, 0.72 m)
   double pedestrian_risk_time = 0.4;  ///< s [pedestrianRiskEvaluationTime]
   double aeb_ttc = 1.5;               ///< s [aebTTC]
@@ -45,15 +45,15 @@ struct AlksSeen {
   bool pedestrian = false;
   bool motorbike = false;
   RoadCoordinates road;
-  double speed = 0.0;      ///< m/s
-  double offset = 0.0;     ///< m, t from the centre of the lane it is in
-  double h = 0.0;          ///< rad, world heading
-  double h_rel = 0.0;      ///< rad, heading relative to the road's direction (+s)
-  double v_s = 0.0;        ///< m/s along the road (+s)
-  double v_t = 0.0;        ///< m/s across the road (+t)
-  double acc_s = 0.0;      ///< m/s^2 along the road
+  double speed = 0.0;   ///< m/s
+  double offset = 0.0;  ///< m, t from the centre of the lane it is in
+  double h = 0.0;       ///< rad, world heading
+  double h_rel = 0.0;   ///< rad, heading relative to the road's direction (+s)
+  double v_s = 0.0;     ///< m/s along the road (+s)
+  double v_t = 0.0;     ///< m/s across the road (+t)
+  double acc_s = 0.0;   ///< m/s^2 along the road
   double lane_width = 0.0;
-  double front_x = 0.0;    ///< m: front axle (vehicles) or half the box length ahead of the reference
+  double front_x = 0.0;  ///< m: front axle (vehicles) or half the box length ahead of the reference
   Box box;
   Pose pose;
 };
@@ -64,8 +64,8 @@ struct AlksObject {
   std::optional<uint32_t> cut_out_vehicle;
   double dist_long = kAlksLarge;  ///< m, free space along the road
   double dist_lat = kAlksLarge;   ///< m, free space across it
-  double dv_s = 0.0;  ///< m/s, the ego's speed toward it along the road
-  double dv_t = 0.0;  ///< m/s, the speed at which the two close in across the road
+  double dv_s = 0.0;              ///< m/s, the ego's speed toward it along the road
+  double dv_t = 0.0;              ///< m/s, the speed at which the two close in across the road
   double ttc = kAlksLarge;
   double thw = kAlksLarge;
   int d_lane = 0;  ///< -1, 0 or 1: its lane from the ego's (ids, as OpenDRIVE numbers them)
