@@ -121,6 +121,35 @@ TEST_CASE("ALKS R157 ReferenceDriver perceives the cut-in at 0.375 m, reacts 0.4
   CHECK(hardest >= 0.774 * 9.8 - 1e-6);
 }
 
+TEST_CASE(
+    "ALKS R157 ReferenceDriver brakes 0.4 + 0.75 s after its leader brakes harder than 5 m/s^2",
+    "[engine][controllers][alks]") {
+  // The target drives 25 m ahead in the ego's lane at the ego's 20 m/s and brakes at 6 m/s^2: a
+  // deceleration scenario, perceived when the leader's deceleration passes 5 m/s^2, critical
+  // with a headway under 2 s (1.25 s here) once the reaction time has run.
+  FixtureRun run(alks_fixture(), {},
+                 Params{{"Model", "ReferenceDriver"},
+                        {"Cruise", "false"},
+                        {"FullStop", "true"},
+                        {"TargetLane", "-1"},
+                        {"TargetSpeed", "20"},
+                        {"TargetBrakeRate", "6"}});
+  run.run();
+  const size_t target = run.entity("Target");
+  std::optional<double> leader_brakes;
+  for (const auto& [tick, states] : run.trace().ticks()) {
+    if (!leader_brakes && states.at(target).acceleration < -5.0) {
+      leader_brakes = tick * run.sim().dt();
+    }
+  }
+  REQUIRE(leader_brakes);
+  const auto [onset, acceleration] = braking_onset(run);
+  CHECK(onset == Approx(*leader_brakes + 0.4 + 0.75).margin(0.015));
+  CHECK(acceleration == Approx(-0.774 * 9.8 / 0.6 * 0.01).margin(1e-6));
+  CHECK(run.sim().collisions().empty());
+  CHECK(run.now("Ego").speed == 0.0);
+}
+
 TEST_CASE("ALKS R157 models not emulated (RSS, FSM) run under the acc substitute, said so",
           "[engine][controllers][alks]") {
   FixtureRun run(alks_fixture(), {}, Params{{"Model", "RSS"}});
