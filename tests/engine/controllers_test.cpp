@@ -47,6 +47,14 @@ TEST_CASE("esmini's ACCController settles 3 m + timeGap x the lead's speed behin
   CHECK(lead.pose.x - follower.pose.x - 4.5 == Approx(3.0 + 1.0 * 12.0).margin(0.05));
   // Far behind, f = 1 and the set speed held: it first speeds up by 2.5 m/s^2 beyond it.
   CHECK(run.at(1.0, "Follower").speed > 25.5);
+
+  // esmini's ALKSController is its ACCController under another name: the same run.
+  FixtureRun alks(engine_fixture("controller_esmini_acc.xosc"), {},
+                  {{"AccName", "ALKSController"}});
+  alks.run();
+  CHECK(alks.sim().controller_substitute(alks.entity("Follower")).empty());
+  CHECK(alks.now("Follower").pose.x == run.now("Follower").pose.x);
+  CHECK(alks.now("Follower").speed == run.now("Follower").speed);
 }
 
 TEST_CASE("The acc controller follows a standing vehicle just across a road link",

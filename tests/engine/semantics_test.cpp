@@ -138,15 +138,16 @@ TEST_CASE("A SpeedAction beyond the Performance is exact, or esmini's stretched 
 
 TEST_CASE("--disable-controllers moves every entity under the default controller",
           "[engine][semantics][controllers]") {
-  // The fixture's Car has ALKSController, which acc stands in for; esmini's
-  // --disable_controllers ignores it, and so does SimulationOptions::disable_controllers.
+  // The fixture's Car has esmini's InteractiveController (a keyboard driver), which acc stands
+  // in for; esmini's --disable_controllers ignores it, and so does
+  // SimulationOptions::disable_controllers.
   engine::SimulationOptions options;
   options.disable_controllers = true;
   FixtureRun run(engine_fixture("compat_appearance_values.xosc"), options);
   run.run();
   CHECK(run.sim().controller_substitute(run.entity("Car")).empty());
   CHECK_THAT(corsa::test::all_text(run.diagnostics()),
-             !Catch::Contains("controller 'ALKSController' is not one of this engine's"));
+             !Catch::Contains("controller 'InteractiveController' is not one of this engine's"));
 }
 
 TEST_CASE("An Act its StopTrigger stops takes the stopTransition, or esmini's endTransition",

@@ -4,6 +4,7 @@
 // controller (a warning otherwise, and the action still applies to it).
 
 #include "actions/action_makers.h"
+#include "controllers/alks_r157.h"
 #include "controllers/controllers.h"
 #include "state/sim_state.h"
 
@@ -26,6 +27,10 @@ class ActivateControllerInstance final : public InstantAction {
                                  "'"));
     }
     if (action_.longitudinal) control.longitudinal = *action_.longitudinal;
+    if (action_.longitudinal.value_or(false) && control.alks &&
+        control.kind == ControllerKind::kAlksR157) {
+      activate_alks_r157(*control.alks);  // its set speed: the speed it then has
+    }
     if (action_.lateral) control.lateral = *action_.lateral;
     if (action_.animation) control.animation = *action_.animation;
     if (action_.lighting) control.lighting = *action_.lighting;

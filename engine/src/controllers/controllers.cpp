@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "controllers/alks_r157.h"
 #include "controllers/esmini_vehicle.h"
 #include "controllers/external.h"
 #include "controllers/follow_ghost.h"
@@ -92,8 +93,19 @@ std::string esmini_type(const xosc::Controller& controller) {
 void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectController& oc) {
   ControlState& control = control_of(state, index);
   const std::string& entity = state.world.entities[index].info.name;
-  if (esmini_type(oc.controller) == "ACCController") {
+  if (is_alks_r157(oc.controller)) {
+    // esmini's ALKS_R157SM_Controller (controllers/alks_r157.h), for the models emulated.
+    if (auto alks = make_alks_r157(state, oc)) {
+      control.kind = ControllerKind::kAlksR157;
+      control.substitute_for.clear();
+      control.alks = std::move(alks);
+      return;
+    }
+  }
+  const std::string type = esmini_type(oc.controller);
+  if (type == "ACCController" || type == "ALKSController") {
     // esmini's ACC: the acc controller with esmini's law (controllers/acc_controller.cpp).
+    // esmini's ALKSController is its ACCController under another name.
     EsminiAcc acc;
     acc.time_gap = nonnegative_property(state, oc.controller, "timeGap", "ACCController")
                        .value_or(acc.time_gap);
@@ -318,6 +330,8 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
       break;
     case ControllerKind::kNaturalDriver:
       break;  // after every other entity (step_natural_drivers)
+    case ControllerKind::kAlksR157:
+      break;  // after the others (EntityMover::move)
   }
 }
 
@@ -409,7 +423,9 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   std::vector<uint32_t> dynamic;
   bool following = false;
   bool natural = false;
+  bool alks = false;
   for (uint32_t i = 0; i < count; ++i) {
+    alks = alks || state.controls[i].effective() == ControllerKind::kAlksR157;
     if (dynamics_moves(state, i) && !state.world.entities[i].towed_by) {
       dynamic.push_back(i);
     }
@@ -437,30 +453,29 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   const std::vector<uint32_t>& order = impl.order;
   impl.scratch.resize(std::max<size_t>(impl.scratch.size(), workers));
   impl.nearby.resize(impl.scratch.size());
+  MotionContext context = motion;
+  context.scratch = &impl.scratch[0];
+  context.nearby = &impl.nearby[0];
   if (workers == 1) {
-    MotionContext context = motion;
-    context.scratch = &impl.scratch[0];
-    context.nearby = &impl.nearby[0];
     move_range(state, context, impl.view, impl.ahead, order, 0, order.size());
-    if (natural) {
-      step_natural_drivers(state, context);
-    }
-    return;
+  } else {
+    // Each entity's move depends only on itself and the picture taken above, so how the
+    // entities are shared out among threads does not change any result.
+    impl.pool->run(order.size(), kChunkEntities, [&](size_t begin, size_t end, unsigned worker) {
+      MotionContext worker_context = motion;
+      worker_context.scratch = &impl.scratch[worker];
+      worker_context.nearby = &impl.nearby[worker];
+      move_range(state, worker_context, impl.view, impl.ahead, order, begin, end);
+    });
   }
-  // Each entity's move depends only on itself and the picture taken above, so how the entities
-  // are shared out among threads does not change any result.
-  impl.pool->run(order.size(), kChunkEntities, [&](size_t begin, size_t end, unsigned worker) {
-    MotionContext context = motion;
-    context.scratch = &impl.scratch[worker];
-    context.nearby = &impl.nearby[worker];
-    move_range(state, context, impl.view, impl.ahead, order, begin, end);
-  });
+  // esmini's NaturalDriver entities move after all others, one after the other.
   if (natural) {
-    // esmini's NaturalDriver entities move after all others, one after the other.
-    MotionContext context = motion;
-    context.scratch = &impl.scratch[0];
-    context.nearby = &impl.nearby[0];
     step_natural_drivers(state, context);
+  }
+  // esmini's ALKS controller sees the others where they are after their moves (its controllers
+  // step after its default controller), in entity order on this thread.
+  if (alks) {
+    step_alks_r157_entities(state, context);
   }
 }
 

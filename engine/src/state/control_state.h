@@ -18,7 +18,8 @@ namespace corsa::engine::detail {
 /// kExternal moves the entity only by commands from outside (controllers/external.h).
 /// kFollowGhost drives after the entity's ghost (controllers/follow_ghost.h); kEsminiVehicle
 /// is one of esmini's drivers of its simple vehicle model (controllers/esmini_vehicle.h);
-/// kNaturalDriver is esmini's NaturalDriver (controllers/natural_driver.h).
+/// kNaturalDriver is esmini's NaturalDriver (controllers/natural_driver.h); kAlksR157 is
+/// esmini's ALKS_R157SM_Controller (controllers/alks_r157.h).
 enum class ControllerKind : uint8_t {
   kDefault,
   kAcc,
@@ -26,7 +27,8 @@ enum class ControllerKind : uint8_t {
   kExternal,
   kFollowGhost,
   kEsminiVehicle,
-  kNaturalDriver
+  kNaturalDriver,
+  kAlksR157
 };
 
 /// Parses a controller name as `corsa:controller` and `corsa run --controller` spell it
@@ -61,6 +63,7 @@ struct ControllerOverrides {
 struct DynamicsVehicle;
 struct EsminiDriver;
 struct NaturalDriverState;
+struct AlksR157;
 
 /// esmini's ACCController (its Properties), which the acc controller then follows instead of its
 /// own car-following law (controllers/acc_controller.cpp).
@@ -107,6 +110,8 @@ struct ControlState {
   std::shared_ptr<EsminiDriver> esmini_driver;
   /// esmini's NaturalDriver and what it keeps between steps, while it is the controller.
   std::shared_ptr<NaturalDriverState> natural;
+  /// esmini's ALKS_R157SM_Controller: its settings and run state, while it is the kind.
+  std::shared_ptr<AlksR157> alks;
   /// A command from outside (Simulation::command) for the step under way, while `commanded`; it
   /// takes the place of the controller. `held`: what an entity of the external controller
   /// repeats between commands.
