@@ -282,3 +282,22 @@ TEST_CASE("a DOCTYPE's internal entity is expanded and the errors after it are a
   const Scenario scenario = load_scenario(dir.path() / "named.xosc", {}, diagnostics);
   CHECK(scenario.entities.find_object("Ego") != nullptr);
 }
+
+TEST_CASE("text in an element that holds only elements is an error at the text's line",
+          "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.catalogs = "<VehicleCatalog>\n  StrayWords\n  <Directory path=\".\"/>\n</VehicleCatalog>\n";
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position>"
+      "<WorldPosition x=\"left\" y=\"0\" h=\"0\"/></Position></TeleportAction></PrivateAction>\n"
+      "</Private>\n";
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  CHECK(has(errors, line_of(xml, "StrayWords"),
+            "text 'StrayWords' in <VehicleCatalog>, which holds only elements"));
+  CHECK(has(errors, line_of(xml, "x=\"left\""), "'left' is not a number"));
+  CHECK(errors.size() == 2);
+}

@@ -133,9 +133,12 @@ constexpr size_t kMaxErrors = 500;
 }  // namespace
 
 void ParseContext::error(const Element* element, std::string message) {
+  error_at_line(element, element == nullptr ? 0 : element->GetLineNum(), std::move(message));
+}
+
+void ParseContext::error_at_line(const Element* element, int line, std::string message) {
   Diagnostic diagnostic =
-      make_error(file_.name ? *file_.name : std::string(),
-                 element == nullptr ? 0 : element->GetLineNum(), std::move(message));
+      make_error(file_.name ? *file_.name : std::string(), line, std::move(message));
   if (element != nullptr) {
     diagnostic.path = element_path(element);
   }
