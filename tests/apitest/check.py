@@ -17,9 +17,11 @@ tester names no message for are listed as Corsa-only: those about a map or catal
 (the tester's reader does not open referenced files; the tester's repository does not hold them
 either) apart from the rest, which are the false positives to read. A bad file must exit 2 and a
 good one (`--good DIR`, default ../shared/conformance beside the repository when present: files
-that must load) 0; anything else, a crash included, is a failure.
+that must load) 0; anything else, a crash included, is a failure. An expected message Corsa
+answers with a lenient reading at its line (a `(read as ...)` warning: the file runs as its
+author meant; `--strict` makes it an error) is counted apart.
 
-usage: check.py [--kit DIR] [--corsa BIN] [--good DIR ...] [--no-good] [-v]
+usage: check.py [--kit DIR] [--corsa BIN] [--good DIR ...] [--no-good] [--strict] [-v]
 Exit 0 when every file ran with the exit code it should; 1 otherwise; 0 with a note when the kit
 is absent. Python 3, standard library only.
 """
@@ -33,7 +35,8 @@ import sys
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DEFAULT_KIT = '/work/notes/apitest'
-ERROR_LINE = re.compile(r'^(?P<file>.+?):(?P<line>\d+): error: (?P<message>.*)$')
+DIAGNOSTIC_LINE = re.compile(r'^(?P<file>.+?):(?P<line>\d+): (?P<severity>error|warning): '
+                             r'(?P<message>.*)$')
 
 # Cause words: a class holds when the tester's (first pattern) or Corsa's (second) text matches.
 CAUSES = [
@@ -64,24 +67,32 @@ def causes(text, side):
             if re.search(tester if side == 0 else corsa, lowered)}
 
 
-def run_validate(corsa, path):
-    """Exit code (negative: killed by that signal) and the error lines (line, message)."""
+def run_validate(corsa, path, strict=False):
+    """Exit code (negative: killed by that signal), the error lines (line, message) and the
+    lines of lenient readings (warnings ending in `(read as ...)`)."""
+    command = [corsa, 'validate'] + (['--strict'] if strict else []) + [os.path.basename(path)]
     try:
-        done = subprocess.run([corsa, 'validate', os.path.basename(path)], cwd=os.path.dirname(path),
+        done = subprocess.run(command, cwd=os.path.dirname(path),
                               capture_output=True, text=True, errors='replace', timeout=120)
     except subprocess.TimeoutExpired:
-        return 'timeout', []
+        return 'timeout', [], set()
     errors = []
+    lenient = set()
     for line in done.stderr.splitlines() + done.stdout.splitlines():
-        match = ERROR_LINE.match(line)
-        if match and os.path.basename(match['file']) == os.path.basename(path):
+        match = DIAGNOSTIC_LINE.match(line)
+        if not match or os.path.basename(match['file']) != os.path.basename(path):
+            continue
+        if match['severity'] == 'error':
             errors.append((int(match['line']), match['message']))
-    return done.returncode, errors
+        elif '(read as ' in match['message']:
+            lenient.add(int(match['line']))
+    return done.returncode, errors, lenient
 
 
-def match_expected(expected, errors):
+def match_expected(expected, errors, lenient):
     """Per expected message: 'cause' (an error at its line naming a cause it names), 'line' (an
-    error at its line) or 'missed'; and the errors no expected message's line names."""
+    error at its line), 'lenient' (no error, but a lenient reading warned about at its line) or
+    'missed'; and the errors no expected message's line names."""
     used = set()
     results = []
     for item in expected:
@@ -94,7 +105,8 @@ def match_expected(expected, errors):
         kind = 'cause' if pick is not None else None
         if pick is None:
             pick = next((i for i in at_line if i not in used), at_line[0] if at_line else None)
-            kind = 'line' if pick is not None else 'missed'
+            kind = 'line' if pick is not None else (
+                'lenient' if item['line'] in lenient else 'missed')
         if pick is not None:
             used.add(pick)
         results.append((item, kind, errors[pick][1] if pick is not None else ''))
@@ -110,6 +122,7 @@ def main():
     parser.add_argument('--good', nargs='*', default=None,
                         help='folders of files that must load (default ../shared/conformance)')
     parser.add_argument('--no-good', action='store_true')
+    parser.add_argument('--strict', action='store_true', help='run `corsa validate --strict`')
     parser.add_argument('-v', '--verbose', action='store_true')
     args = parser.parse_args()
 
@@ -121,10 +134,11 @@ def main():
         files = json.load(f)['files']
 
     failures = []
-    totals = {'expected': 0, 'cause': 0, 'line': 0, 'missed': 0, 'kit': 0, 'other': 0}
+    totals = {'expected': 0, 'cause': 0, 'line': 0, 'lenient': 0, 'missed': 0, 'kit': 0,
+              'other': 0}
     for name in sorted(files):
         path = os.path.join(args.kit, name)
-        code, errors = run_validate(args.corsa, path)
+        code, errors, lenient = run_validate(args.corsa, path, args.strict)
         if code != 2:
             failures.append(f'{name}: exit {code} (a bad file must exit 2)')
         expected = files[name]
@@ -133,12 +147,12 @@ def main():
             for line, message in errors:
                 print(f'  (no expectation) {line}: {message}')
             continue
-        results, others = match_expected(expected, errors)
+        results, others = match_expected(expected, errors, lenient)
         for item, kind, message in results:
             totals['expected'] += 1
             totals[kind] += 1
             if kind != 'cause' or args.verbose:
-                print(f"  {kind:6} {item['line']}: tester '{item['message']}'"
+                print(f"  {kind:7} {item['line']}: tester '{item['message']}'"
                       + (f" / corsa '{message}'" if message else ''))
         for line, message in others:
             kind = 'kit' if KIT_LACKS.search(message) else 'other'
@@ -157,7 +171,7 @@ def main():
             for name in sorted(names):
                 if not name.endswith('.xosc') or 'atalog' in root:
                     continue
-                code, errors = run_validate(args.corsa, os.path.join(root, name))
+                code, errors, _ = run_validate(args.corsa, os.path.join(root, name), args.strict)
                 good += 1
                 if code != 0:
                     failures.append(f'{os.path.join(root, name)}: exit {code}, '
@@ -166,6 +180,7 @@ def main():
     found = totals['cause'] + totals['line']
     print(f"\nexpected errors: {found} of {totals['expected']} found at their line "
           f"({totals['cause']} naming the same cause, {totals['line']} another), "
+          f"{totals['lenient']} read leniently with a located warning (errors under --strict), "
           f"{totals['missed']} missed")
     print(f"Corsa-only errors: {totals['other']} (false positives to read), "
           f"{totals['kit']} about maps or catalogs the kit lacks")
