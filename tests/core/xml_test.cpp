@@ -1,10 +1,12 @@
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <stdexcept>
 #include <string>
 
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/xml_entities.h"
 #include "corsa/core/xml_errors.h"
 #include "corsa/core/xsd_validator.h"
 
@@ -127,4 +129,45 @@ TEST_CASE("documents that break the schema are located errors", "[core][xml][xsd
 
 TEST_CASE("a schema outside the supported subset is a bug, not bad input", "[core][xml][xsd]") {
   CHECK_THROWS_AS(corsa::XsdSchema("<xs:schema"), std::logic_error);
+}
+
+TEST_CASE("a DOCTYPE's internal entities are expanded, keeping every line's number",
+          "[core][xml]") {
+  std::string out;
+  const std::string xml =
+      "<?xml version=\"1.0\"?>\n<!-- <!DOCTYPE no [ ] > -->\n"
+      "<!DOCTYPE a [ <!ENTITY car 'sedan \"blue\"' >\n<!ENTITY car \"second\">\n"
+      "<!ELEMENT a ANY> ]>\n<a b=\"&car;&amp;\">&car;<!-- &car; --><![CDATA[&car;]]>&other;</a>\n";
+  REQUIRE_FALSE(corsa::expand_internal_entities(xml, out));
+  CHECK(out ==
+        "<?xml version=\"1.0\"?>\n<!-- <!DOCTYPE no [ ] > -->\n"
+        "<!DOCTYPE a " +
+            std::string(31, ' ') + "\n" + std::string(22, ' ') + "\n" + std::string(18, ' ') +
+            ">\n<a b=\"sedan &quot;blue&quot;&amp;\">sedan &quot;blue&quot;"
+            "<!-- &car; --><![CDATA[&car;]]>&other;</a>\n");
+  CHECK(std::count(out.begin(), out.end(), '\n') == std::count(xml.begin(), xml.end(), '\n'));
+
+  // No internal subset: nothing to expand.
+  REQUIRE_FALSE(corsa::expand_internal_entities("<!DOCTYPE a SYSTEM \"a.dtd\">\n<a/>", out));
+  CHECK(out.empty());
+
+  const auto refused = [&](const std::string& text, int line, const std::string& start) {
+    const auto problem = corsa::expand_internal_entities(text, out);
+    REQUIRE(problem);
+    CHECK(problem->line == line);
+    CHECK_THAT(problem->message, Catch::StartsWith(start));
+  };
+  refused("<!DOCTYPE a [\n<!ENTITY % p \"x\">]>\n<a/>", 2, "a parameter entity is not read");
+  refused("<!DOCTYPE a [\n\n<!ENTITY e SYSTEM \"e.xml\">]>\n<a/>", 3,
+          "the external entity 'e' is not read");
+  // Entities referring to entities could multiply the text without bound.
+  refused("<!DOCTYPE a [<!ENTITY x \"1\">\n<!ENTITY y \"&x;&x;\">]>\n<a/>", 2,
+          "the value of entity 'y' holds a reference or markup");
+  refused("<!DOCTYPE a [\n<!ATTLIST a b CDATA \"1\">]>\n<a/>", 2,
+          "a DOCTYPE declaration other than <!ENTITY>");
+  refused("<!DOCTYPE a [\n<!ENTITY x \"1\">\n", 1, "the DOCTYPE's internal subset is not closed");
+  const std::string big_value(1 << 20, 'v');
+  std::string many = "<!DOCTYPE a [<!ENTITY x \"" + big_value + "\">]>\n<a>";
+  for (int i = 0; i < 17; ++i) many += "&x;";
+  refused(many + "</a>", 2, "entity expansion grows the file by more than 16 MiB");
 }

@@ -529,3 +529,22 @@ TEST_CASE("an attribute written with other capitals is read as the attribute it 
   }
   check_cli_text(dir, xml, what, line);
 }
+
+TEST_CASE("an empty TimeReference is read as None", "[xosc][lenient]") {
+  ScenarioText text = stopping_scenario();
+  text.stories = trajectory_story(
+      "<Polyline><Vertex><Position><WorldPosition x=\"0\" y=\"0\" h=\"0\"/></Position></Vertex>\n"
+      "<Vertex><Position><WorldPosition x=\"20\" y=\"0\" "
+      "h=\"0\"/></Position></Vertex></Polyline>\n");
+  const std::string none = "<TimeReference><None/></TimeReference>";
+  std::string xml = text.str();
+  REQUIRE(xml.find(none) != std::string::npos);
+  xml.replace(xml.find(none), none.size(), "<TimeReference>\n</TimeReference>");
+  check_both_ways(xml, "<TimeReference> without <None> or <Timing>",
+                  line_of(xml, "<TimeReference>"));
+  corsa::test::TempDir dir;
+  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  REQUIRE(loaded.scenario);
+  const auto& follow = std::get<FollowTrajectoryAction>(first_private_action(loaded));
+  CHECK_FALSE(follow.time_reference.timing.has_value());
+}

@@ -252,3 +252,52 @@ TEST_CASE("LightState values out of their ranges are located errors, all in one 
   CHECK(has(errors, line_of(xml, "red=\"1.5\""), "blue -0.1 is outside [0, 1]"));
   CHECK(has(errors, line_of(xml, "magenta=\"2\""), "magenta 2 is outside [0, 1]"));
 }
+
+TEST_CASE("a DOCTYPE's internal entity is expanded and the errors after it are all reported",
+          "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.variables =
+      "<VariableDeclaration name=\"Flag\" variableType=\"boolean\" value=\"maybe\"/>\n"
+      "<VariableDeclaration name=\"Count\" variableType=\"unsignedInt\" value=\"-3\"/>\n";
+  text.parameters =
+      "<ParameterDeclaration name=\"Label\" parameterType=\"string\" value=\"car &tag;\"/>\n";
+  std::string xml = text.str();
+  const std::string root = "<OpenSCENARIO>";
+  xml.insert(xml.find(root), "<!DOCTYPE OpenSCENARIO [ <!ENTITY tag \"one\" > ]>\n");
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  CHECK(has(errors, line_of(xml, "name=\"Flag\""), "'maybe' is not a valid boolean"));
+  CHECK(has(errors, line_of(xml, "name=\"Count\""), "'-3' is not a valid unsignedInt"));
+  CHECK(errors.size() == 2);
+
+  // The entity's value is read where it is used: here the name of the entity Init refers to.
+  std::string named = ScenarioText{}.str();
+  const size_t ego = named.find("<ScenarioObject name=\"Ego\"");
+  REQUIRE(ego != std::string::npos);
+  named.replace(named.find("\"Ego\"", ego), 5, "\"&who;\"");
+  named.insert(named.find(root), "<!DOCTYPE OpenSCENARIO [<!ENTITY who 'Ego'>]>");
+  corsa::test::write_text(dir.path() / "named.xosc", named);
+  corsa::Diagnostics diagnostics;
+  const Scenario scenario = load_scenario(dir.path() / "named.xosc", {}, diagnostics);
+  CHECK(scenario.entities.find_object("Ego") != nullptr);
+}
+
+TEST_CASE("text in an element that holds only elements is an error at the text's line",
+          "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.catalogs = "<VehicleCatalog>\n  StrayWords\n  <Directory path=\".\"/>\n</VehicleCatalog>\n";
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position>"
+      "<WorldPosition x=\"left\" y=\"0\" h=\"0\"/></Position></TeleportAction></PrivateAction>\n"
+      "</Private>\n";
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  CHECK(has(errors, line_of(xml, "StrayWords"),
+            "text 'StrayWords' in <VehicleCatalog>, which holds only elements"));
+  CHECK(has(errors, line_of(xml, "x=\"left\""), "'left' is not a number"));
+  CHECK(errors.size() == 2);
+}

@@ -31,6 +31,25 @@ std::string_view draft_replacement(std::string_view name) {
   return {};
 }
 
+// Text in an element whose type holds only elements (XSD element-only content, e.g. a word
+// between <TrajectoryCatalog> and its <Directory>): an error at the text's own line, not read.
+void report_stray_text(ParseContext& context, const Element* element) {
+  for (const tinyxml2::XMLNode* node = element->FirstChild(); node != nullptr;
+       node = node->NextSibling()) {
+    const tinyxml2::XMLText* text = node->ToText();
+    if (text == nullptr || text->Value() == nullptr) continue;
+    const std::string_view value = text->Value();
+    const size_t first = value.find_first_not_of(" \t\r\n");
+    if (first == std::string_view::npos) continue;
+    const size_t last = value.find_last_not_of(" \t\r\n");
+    // tinyxml2 counts the line from the text's first non-blank character.
+    const int line = text->GetLineNum();
+    context.error_at_line(element, line,
+                          "text '" + clip(value.substr(first, last - first + 1)) + "' in <" +
+                              element->Name() + ">, which holds only elements (not read)");
+  }
+}
+
 }  // namespace
 
 Children::Children(ParseContext& context, const Element* element, std::string_view type)
@@ -63,6 +82,7 @@ Children::Children(ParseContext& context, const Element* element, std::string_vi
       context.error(child, std::move(message));  // reported; the child is not read
     }
   }
+  if (!rule->children.empty()) report_stray_text(context, element);
   for (const tinyxml2::XMLAttribute* a = element->FirstAttribute(); a != nullptr; a = a->Next()) {
     const std::string_view name = a->Name();
     // An allowed attribute written with other capitals is warned about where it is read.

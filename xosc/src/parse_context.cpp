@@ -7,6 +7,7 @@
 
 #include "corsa/core/atomic_file.h"
 #include "corsa/core/strings.h"
+#include "corsa/core/xml_entities.h"
 #include "corsa/core/xml_errors.h"
 #include "corsa/xosc/expression.h"
 #include "schema_table.h"
@@ -33,6 +34,13 @@ XmlFile parse_xml(std::string_view text, const std::filesystem::path& path) {
   XmlFile file;
   file.name = std::make_shared<const std::string>(path.string());
   file.directory = std::filesystem::absolute(path).parent_path();
+  std::string with_entities;  // the text with its DOCTYPE's internal entities expanded
+  if (const auto problem = expand_internal_entities(text, with_entities)) {
+    throw InputError(make_error(*file.name, problem->line, problem->message));
+  }
+  if (!with_entities.empty()) {
+    text = with_entities;
+  }
   file.document = std::make_unique<tinyxml2::XMLDocument>();
   tinyxml2::XMLError error = file.document->Parse(text.data(), text.size());
   std::string repaired;  // the text with the repairs made so far
@@ -125,9 +133,12 @@ constexpr size_t kMaxErrors = 500;
 }  // namespace
 
 void ParseContext::error(const Element* element, std::string message) {
+  error_at_line(element, element == nullptr ? 0 : element->GetLineNum(), std::move(message));
+}
+
+void ParseContext::error_at_line(const Element* element, int line, std::string message) {
   Diagnostic diagnostic =
-      make_error(file_.name ? *file_.name : std::string(),
-                 element == nullptr ? 0 : element->GetLineNum(), std::move(message));
+      make_error(file_.name ? *file_.name : std::string(), line, std::move(message));
   if (element != nullptr) {
     diagnostic.path = element_path(element);
   }

@@ -82,6 +82,8 @@ class ParseContext {
   /// An error after which reading can go on (a bad value, an unknown child): recorded, so that
   /// one pass reports every error of a document.
   void error(const Element* element, std::string message);
+  /// As error(), at `line` of the element's file (a text node's, say) instead of the element's.
+  void error_at_line(const Element* element, int line, std::string message);
   /// Records the diagnostics of a caught InputError (once each).
   void record(const InputError& error);
   /// Runs `body`; an InputError it throws is recorded and false returned. Placed around each

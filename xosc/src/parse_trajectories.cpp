@@ -213,6 +213,11 @@ TimeReference parse_time_reference(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "TimeReference");
   TimeReference reference;
   reference.source = ctx.source(e);
+  if (e->FirstChildElement() == nullptr) {
+    // An empty <TimeReference/> says no more than <None/>: the trajectory is not timed.
+    ctx.lenient(e, "<TimeReference> without <None> or <Timing>", "<None/>: the path is not timed");
+    return reference;
+  }
   const Element* kind = kids.choice();
   if (std::string_view(kind->Name()) == "None") {
     Children(ctx, kind, "None");
