@@ -3,7 +3,7 @@
 // at most 10% of a long run's time).
 //
 //   corsa_bench_traffic [--runs N] [--part scale|long|all] [--vehicles N] [--threads T]
-//                       [--seconds S] [--out DIR]
+//                       [--seconds S] [--copies K] [--out DIR]
 //
 // scale: `--npc vehicles=N` on ../shared/data/xodr/Town04.xodr (an empty scenario of its own), N
 //   from 100 to 1,000, 10 s simulated (1,000 steps of 0.01 s) on a fresh Simulation per run;
@@ -12,7 +12,11 @@
 //   microseconds per vehicle-step, and the 800 / 100 ratio (100 vehicles is the baseline).
 //   `--vehicles N` runs only N vehicles (on `--threads T`, default 1) and `--seconds S`
 //   simulates S seconds instead of 10: a short run of one size for a profiler (perf, callgrind;
-//   `valgrind --tool=callgrind --separate-threads=yes` counts each thread's part).
+//   `valgrind --tool=callgrind --separate-threads=yes` counts each thread's part). With
+//   `--copies K`, K simulations of N vehicles take a step each in turn: the memory a step of
+//   K x N vehicles touches at the density of N (whether a larger run costs more per vehicle-step
+//   because of its density or because of its memory). Copy k runs with seed k, so the copies
+//   place their vehicles in different places (the map's memory of K x N vehicles too).
 // long: the 1,200 s scenarios of tests/bench/scenarios (long_standstill: seven vehicles that
 //   stop within 40 s and stand; long_motorway: 24 car followers on the Town04 motorway loop),
 //   each without a trajectory (the baseline), with the CSV and with the binary trajectory
@@ -56,6 +60,7 @@ struct Settings {
   uint32_t vehicles = 0;  ///< only this many (on `threads`); 0: every size
   unsigned threads = 1;   ///< with `vehicles`
   double seconds = 10.0;  ///< simulated per traffic run
+  uint32_t copies = 1;    ///< with `vehicles`: this many simulations stepped in turn
   std::filesystem::path out = std::filesystem::temp_directory_path();  ///< long runs' files
 };
 
@@ -84,7 +89,7 @@ struct StepTiming {
 
 StepTiming step_npcs(const corsa::xosc::Scenario& scenario,
                      const std::shared_ptr<const corsa::xodr::Map>& map, uint32_t vehicles,
-                     unsigned threads, double seconds) {
+                     unsigned threads, double seconds, uint32_t copies) {
   corsa::Diagnostics diagnostics;
   corsa::engine::SimulationOptions options;
   options.duration = seconds;
@@ -92,18 +97,30 @@ StepTiming step_npcs(const corsa::xosc::Scenario& scenario,
   options.threads = threads;
   StepTiming timing;
   const auto built = Clock::now();
-  corsa::engine::Simulation sim(scenario, map, options, diagnostics);
-  sim.step();  // tick 0's observers and the first step belong to the run, the placement not
+  std::vector<std::unique_ptr<corsa::engine::Simulation>> sims;
+  for (uint32_t k = 0; k < copies; ++k) {
+    options.seed = k;  // copies place their vehicles apart, over as much of the map as more would
+    sims.push_back(
+        std::make_unique<corsa::engine::Simulation>(scenario, map, options, diagnostics));
+    sims.back()->step();  // tick 0's observers and the first step belong to the run
+  }
   timing.place_ms = std::chrono::duration<double, std::milli>(Clock::now() - built).count();
   const auto start = Clock::now();
   const double cpu = process_cpu_ms();
-  while (sim.step()) {
+  // Copies take a step each in turn: the memory of copies x vehicles, the density of vehicles.
+  bool running = true;
+  while (running) {
+    for (auto& sim : sims) {
+      running = sim->step() && running;
+    }
   }
   timing.wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
   timing.cpu_ms = process_cpu_ms() - cpu;
-  if (sim.entity_count() != vehicles) {
-    std::fprintf(stderr, "only %zu of %u NPCs placed\n", sim.entity_count(), vehicles);
-    std::exit(1);
+  for (const auto& sim : sims) {
+    if (sim->entity_count() != vehicles) {
+      std::fprintf(stderr, "only %zu of %u NPCs placed\n", sim->entity_count(), vehicles);
+      std::exit(1);
+    }
   }
   return timing;
 }
@@ -129,7 +146,8 @@ void scale(const Settings& settings) {
   }
   for (int r = 0; r < runs; ++r) {
     for (Case& c : cases) {
-      const StepTiming t = step_npcs(scenario, map, c.vehicles, c.threads, settings.seconds);
+      const StepTiming t = step_npcs(scenario, map, c.vehicles, c.threads, settings.seconds,
+                                     settings.vehicles > 0 ? settings.copies : 1);
       c.place.push_back(t.place_ms);
       c.wall.push_back(t.wall_ms);
       c.cpu.push_back(t.cpu_ms);
@@ -141,12 +159,16 @@ void scale(const Settings& settings) {
       settings.seconds, runs, load_average());
   std::printf("%9s %8s %11s %13s %12s %17s %14s\n", "vehicles", "threads", "place (ms)",
               "steps wall ms", "steps CPU ms", "real-time factor", "us/vehicle-step");
+  const uint32_t copies = settings.vehicles > 0 ? settings.copies : 1;
+  if (copies > 1) {
+    std::printf("%u simulations of the vehicles below, a step of each in turn\n", copies);
+  }
   double wall_100 = 0.0, wall_800 = 0.0, cpu_100 = 0.0, cpu_800 = 0.0;
   for (const Case& c : cases) {
     const double wall = median(c.wall), cpu = median(c.cpu);
     std::printf("%9u %8u %11.1f %13.1f %12.1f %16.1fx %14.3f\n", c.vehicles, c.threads,
                 median(c.place), wall, cpu, settings.seconds * 1e3 / wall,
-                wall * 1e3 / (settings.seconds * 100.0 * c.vehicles));
+                wall * 1e3 / (settings.seconds * 100.0 * c.vehicles * copies));
     if (c.threads == 1 && c.vehicles == 100) {
       wall_100 = wall, cpu_100 = cpu;
     }
@@ -240,6 +262,8 @@ int main(int argc, char** argv) {
       settings.vehicles = static_cast<uint32_t>(std::max(0, std::atoi(argv[i + 1])));
     } else if (std::strcmp(argv[i], "--threads") == 0) {
       settings.threads = static_cast<unsigned>(std::max(1, std::atoi(argv[i + 1])));
+    } else if (std::strcmp(argv[i], "--copies") == 0) {
+      settings.copies = static_cast<uint32_t>(std::max(1, std::atoi(argv[i + 1])));
     } else if (std::strcmp(argv[i], "--seconds") == 0) {
       settings.seconds = std::max(0.01, std::atof(argv[i + 1]));
     } else if (std::strcmp(argv[i], "--out") == 0) {

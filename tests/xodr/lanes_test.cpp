@@ -1,5 +1,6 @@
 // Lane borders, widths, laneOffset, elevation and superelevation (OpenDRIVE 1.8 §8, §9).
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
@@ -121,6 +122,12 @@ size_t check_lane_spans_alone(const Map& map) {
   for (size_t road = 0; road < map.road_count(); ++road) {
     const auto& sections = map.road(road).lane_sections;
     for (size_t section = 0; section < sections.size(); ++section) {
+      // The section's flag kept at build: no lane whose border comes from borders alone.
+      const auto& lanes = sections[section].lanes;
+      CHECK(map.section_widths_only(road, section) ==
+            std::none_of(lanes.begin(), lanes.end(), [](const Lane& lane) {
+              return lane.widths.empty() && !lane.borders.empty();
+            }));
       const double start = sections[section].s, end = map.section_end(road, section);
       for (const double s :
            {start, start + 0.37 * (end - start), start + 0.5 * (end - start), end}) {
@@ -165,6 +172,8 @@ TEST_CASE("a lane's span alone is its span among the section's, to the bit", "[x
     corsa::Diagnostics diagnostics;
     const Map map = Map::build(std::move(data), diagnostics);
     CHECK(check_lane_spans_alone(map) == 4 * 6);
+    // Lane 3's border is a border record: the lanes may overlap.
+    CHECK_FALSE(map.section_widths_only(0, 0));
     // The rules themselves: one border record gives the border, neither the inner border.
     const auto border = map.lane_span_in_section(0, 0, 10.0, 3);
     REQUIRE(border);
@@ -174,9 +183,19 @@ TEST_CASE("a lane's span alone is its span among the section's, to the bit", "[x
     CHECK(neither->t_outer == neither->t_inner);
   }
   SECTION("the shared maps") {
+    size_t sections = 0, widths_only = 0;
     for (const auto& path : test::all_shared_maps()) {
       INFO(path.string());
-      CHECK(check_lane_spans_alone(test::load_map(path)) > 0);
+      const Map map = test::load_map(path);
+      CHECK(check_lane_spans_alone(map) > 0);
+      for (size_t road = 0; road < map.road_count(); ++road) {
+        for (size_t section = 0; section < map.road(road).lane_sections.size(); ++section) {
+          ++sections;
+          widths_only += map.section_widths_only(road, section) ? 1 : 0;
+        }
+      }
     }
+    // Most sections' lanes are given by widths.
+    CHECK(widths_only > sections / 2);
   }
 }

@@ -229,6 +229,10 @@ std::optional<LaneSpan> Map::lane_span(size_t road_index, double s, int lane_id)
   return lane_span_in_section(road_index, section_index(road_index, s), s, lane_id);
 }
 
+bool Map::section_widths_only(size_t road_index, size_t section) const {
+  return impl_->spans.widths_only(road_index, section);
+}
+
 std::optional<LaneSpan> Map::lane_span_in_section(size_t road_index, size_t section, double s,
                                                   int lane_id) const {
   const Road& r = road(road_index);

@@ -58,7 +58,10 @@ void SpanTable::build(const std::vector<Road>& roads) {
       packed.count = static_cast<uint32_t>(section.lanes.size());
       packed.center = static_cast<uint32_t>(center_index(section));
       packed.has_center = packed.center < packed.count && section.lanes[packed.center].id == 0;
-      for (const Lane& lane : section.lanes) lanes_.push_back(pack_span_lane(lane));
+      for (const Lane& lane : section.lanes) {
+        lanes_.push_back(pack_span_lane(lane));
+        packed.widths_only = packed.widths_only && !(lane.widths.empty() && !lane.borders.empty());
+      }
       sections_.push_back(packed);
     }
   }

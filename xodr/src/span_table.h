@@ -36,6 +36,7 @@ struct SpanSection {
   uint32_t count = 0;
   uint32_t center = 0;  ///< center_index of the section
   bool has_center = false;
+  bool widths_only = true;  ///< every lane's outer border from widths (none from borders alone)
 };
 
 class SpanTable {
@@ -44,6 +45,10 @@ class SpanTable {
   void build(const std::vector<Road>& roads);
   /// What compute_span(road's section, s, offset, lane_id, out) gives, to the bit.
   bool span(size_t road, size_t section, double s, double offset, int lane_id, LaneSpan& out) const;
+  /// Map::section_widths_only, read from the packed section.
+  bool widths_only(size_t road, size_t section) const {
+    return sections_[road_first_[road] + section].widths_only;
+  }
 
  private:
   std::vector<SpanLane> lanes_;

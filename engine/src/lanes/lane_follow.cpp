@@ -207,19 +207,6 @@ std::optional<int> lane_containing(const std::vector<xodr::LaneSpan>& spans, dou
   return lane_at;
 }
 
-// Whether every lane of the section has its outer border from widths (none from <border>
-// records): then the lanes of each side follow one another outward from the lane offset without
-// overlapping (widths below 0 count as 0), so a point strictly inside one lane of positive
-// width is in no other.
-bool widths_only(const xodr::LaneSection& section) {
-  for (const xodr::Lane& lane : section.lanes) {
-    if (lane.widths.empty() && !lane.borders.empty()) {
-      return false;
-    }
-  }
-  return true;
-}
-
 }  // namespace
 
 LanePose lane_pose(const xodr::Map& map, const LaneFollow& follow,
@@ -244,8 +231,11 @@ LanePose lane_pose_of(const xodr::Map& map, const LaneFollow& follow,
   const auto span = map.lane_span_in_section(follow.road, follow.section, follow.s, follow.lane);
   LanePose out;
   out.t = (span ? span->t_center() : 0.0) + follow.dir * follow.lateral;
+  // With every outer border from widths the lanes of each side follow one another outward from
+  // the lane offset without overlapping (widths below 0 count as 0), so a point strictly inside
+  // one lane of positive width is in no other.
   if (span && span->width() > 0.0 && out.t > span->t_min() && out.t < span->t_max() &&
-      widths_only(map.road(follow.road).lane_sections[follow.section])) {
+      map.section_widths_only(follow.road, follow.section)) {
     out.lane_at = follow.lane;
   } else {
     map.lane_spans_in_section(follow.road, follow.section, follow.s, scratch);

@@ -144,6 +144,10 @@ class Map {
                              std::vector<LaneSpan>& out) const;
   std::optional<LaneSpan> lane_span_in_section(size_t road, size_t section, double s,
                                                int lane_id) const;
+  /// Whether every lane of the section has its outer border from width records (none from
+  /// <border> records alone, §9.5.2): then the lanes of each side follow one another outward
+  /// without overlapping. Kept per section at build, so that asking reads no Lane record.
+  bool section_widths_only(size_t road, size_t section) const;
   /// The lane containing lateral position t at s (borders belong to the inner lane), or nothing
   /// when t is outside every lane.
   std::optional<int> lane_at(size_t road, double s, double t) const;
