@@ -7,6 +7,9 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
+
+#include "corsa/engine/simulation.h"
 
 namespace corsa::engine::detail {
 
@@ -44,9 +47,9 @@ struct TrajectoryFieldCoder {
   char* out;
   bool repeats = true;  ///< every field so far predicted to keep its value
 
-  template <int... F>
-  void fields(const std::array<double, kRowFields>& values) {
-    (field<F>(values[F]), ...);
+  template <int... F, class Row>
+  void fields(const Row& row) {
+    (field<F>(row_value<F>(row)), ...);
   }
 
   template <int F>
@@ -82,6 +85,13 @@ struct TrajectoryFieldCoder {
 
 }  // namespace
 
+const EntityState& EntityStateRows::operator[](size_t index) const {
+  return simulation->state(index);
+}
+const std::string& EntityStateRows::road_id(uint32_t road) const {
+  return simulation->road_id(road);
+}
+
 TrajectoryEncoder::TrajectoryEncoder(std::filesystem::path path, int64_t every)
     : file_(std::move(path), true), every_(every < 1 ? 1 : every) {}
 
@@ -105,7 +115,8 @@ void TrajectoryEncoder::start(double dt, int64_t tick) {
   last_frame_ = tick;
 }
 
-void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int64_t& previous) {
+template <class Row>
+void TrajectoryEncoder::encode(uint32_t index, const Row& row, int64_t& previous) {
   Track& track = entities_[index];
   uint32_t mask = 0;
   uint32_t raw = 0;
@@ -114,7 +125,7 @@ void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int
   constexpr size_t kHead = 20;
   char body[20 + kRowFields * 10];
   char* out = body;
-  if (!row.placed) {
+  if (!row_placed(row)) {
     track.steady = false;
     if (!track.present) {
       return;
@@ -130,14 +141,15 @@ void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int
       track.present = true;
       mask |= codec::kPresenceBit;
     }
-    const bool on_road = row.on_road;
-    const uint32_t road = row.road;
+    const bool on_road = row_on_road(row);
+    const uint32_t road = on_road ? row_road(row) : 0;
     if (on_road != track.on_road || road != track.road) {
       mask |= codec::kRoadBit;
       if (on_road && (road >= road_named_.size() || !road_named_[road])) {
         road_named_.resize(std::max<size_t>(road_named_.size(), road + 1), false);
         road_named_[road] = true;
-        put_string(roads_, codec::kTagRoad, road, *road_ids_.at(road));
+        const std::string* id = road < road_ids_.size() ? road_ids_[road] : nullptr;
+        put_string(roads_, codec::kTagRoad, road, id != nullptr ? *id : state_rows_->road_id(road));
       }
       out = codec::put_varint(out, on_road ? uint64_t{road} + 1 : 0);
       track.on_road = on_road;
@@ -145,17 +157,18 @@ void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int
       track.fresh |= (1u << kFieldS) | (1u << kFieldT);
       track.still &= ~((1u << kFieldS) | (1u << kFieldT));
     }
-    if (on_road && row.lane != track.lane) {
+    if (on_road && row_lane(row) != track.lane) {
+      const int32_t lane = row_lane(row);
       mask |= codec::kLaneBit;
-      out = codec::put_varint(out, codec::zigzag(int64_t{row.lane} - track.lane));
-      track.lane = row.lane;
+      out = codec::put_varint(out, codec::zigzag(int64_t{lane} - track.lane));
+      track.lane = lane;
     }
     // s and t only on a road (the CSV leaves them empty off it).
     const int fields = on_road ? kRowFields : kFieldS;
     TrajectoryFieldCoder<Track> coder{track, raw, mask, out};
-    coder.fields<kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed>(row.values);
+    coder.fields<kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed>(row);
     if (on_road) {
-      coder.fields<kFieldS, kFieldT>(row.values);
+      coder.fields<kFieldS, kFieldT>(row);
     }
     const bool repeats = coder.repeats;
     out = coder.out;
@@ -188,7 +201,8 @@ void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int
   previous = index;
 }
 
-void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const TrajectoryRowCopy* rows) {
+template <class Rows>
+void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& rows) {
   if (!started_) {
     start(dt, head.tick);
   }
@@ -199,16 +213,20 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Trajec
   }
   roads_.clear();
   frame_size_ = 0;
+  if constexpr (std::is_same_v<Rows, EntityStateRows>) {
+    state_rows_ = &rows;
+  }
   int64_t previous = -1;
   for (uint32_t i = 0; i < head.entities; ++i) {
     // encode's first test, without the call: most entities of a long run stand.
-    const TrajectoryRowCopy& row = rows[i];
+    const auto& row = rows[i];
     const Track& track = entities_[i];
-    if (track.steady && track.present && row.placed && track.repeats(row)) {
+    if (track.steady && track.present && row_placed(row) && track.repeats(row)) {
       continue;
     }
     encode(i, row, previous);
   }
+  state_rows_ = nullptr;
   const double time = head.time;
   const bool odd_time =
       std::bit_cast<uint64_t>(time) != std::bit_cast<uint64_t>(tick_time(tick, per_second_, dt_));
@@ -229,6 +247,10 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Trajec
     flush();
   }
 }
+
+template void TrajectoryEncoder::record(double, const TickRowsHead&,
+                                        const TrajectoryRowCopy* const&);
+template void TrajectoryEncoder::record(double, const TickRowsHead&, const EntityStateRows&);
 
 void TrajectoryEncoder::flush() {
   crc_ = codec::crc32(crc_, buffer_);
