@@ -85,7 +85,7 @@ struct TrajectoryFieldCoder {
 
 }  // namespace
 
-const EntityState& EntityStateRows::operator[](size_t index) const {
+[[gnu::always_inline]] inline const EntityState& EntityStateRows::operator[](size_t index) const {
   return simulation->state(index);
 }
 const std::string& EntityStateRows::road_id(uint32_t road) const {
@@ -116,14 +116,14 @@ void TrajectoryEncoder::start(double dt, int64_t tick) {
 }
 
 template <class Row>
-void TrajectoryEncoder::encode(uint32_t index, const Row& row, int64_t& previous) {
+[[gnu::always_inline]] inline void TrajectoryEncoder::encode(uint32_t index, const Row& row,
+                                                             int64_t& previous) {
   Track& track = entities_[index];
   uint32_t mask = 0;
   uint32_t raw = 0;
   // The record's body (road and lane, at most 10 + 10 bytes, then nine numbers of 10), made
   // before its head (index step, mask and raw bits, at most 10 + 5 + 5), which needs the mask.
-  constexpr size_t kHead = 20;
-  char body[20 + kRowFields * 10];
+  char body[kMaxBody];
   char* out = body;
   if (!row_placed(row)) {
     track.steady = false;
@@ -185,18 +185,21 @@ void TrajectoryEncoder::encode(uint32_t index, const Row& row, int64_t& previous
     return;  // as predicted: nothing to store
   }
   const auto body_size = static_cast<size_t>(out - body);
-  // Room for the whole of `body`, so that it is copied at its full, fixed size (a few vector
-  // moves in place of a call of memcpy); the bytes after its end are not part of the frame.
-  if (frame_.size() < frame_size_ + kHead + sizeof body) {
-    frame_.resize(std::max(2 * frame_.size(), frame_size_ + kHead + sizeof body));
-  }
+  // The frame has room for the whole of `body` after every record (record() makes it), so
+  // that it is copied at a fixed size (a few vector moves in place of a call of memcpy): its
+  // first 32 bytes, which hold most bodies, or all of it; the bytes after its end are not part
+  // of the frame.
   char* end = frame_.data() + frame_size_;
   end = codec::put_varint(end, static_cast<uint64_t>(index - previous));
   end = codec::put_varint(end, mask);
   if (raw != 0) {
     end = codec::put_varint(end, raw);
   }
-  std::memcpy(end, body, sizeof body);
+  if (body_size <= 32) {
+    std::memcpy(end, body, 32);
+  } else {
+    std::memcpy(end, body, sizeof body);
+  }
   frame_size_ = static_cast<size_t>(end - frame_.data()) + body_size;
   previous = index;
 }
@@ -213,6 +216,11 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& 
   }
   roads_.clear();
   frame_size_ = 0;
+  // Room for every entity's record at its largest, head and whole body.
+  const size_t room = size_t{head.entities} * (kMaxHead + kMaxBody);
+  if (frame_.size() < room) {
+    frame_.resize(room);
+  }
   if constexpr (std::is_same_v<Rows, EntityStateRows>) {
     state_rows_ = &rows;
   }
