@@ -9,8 +9,6 @@
 #include <cstring>
 #include <type_traits>
 
-#include "corsa/engine/simulation.h"
-
 namespace corsa::engine::detail {
 
 namespace codec = trajectory_codec;
@@ -84,13 +82,6 @@ struct TrajectoryFieldCoder {
 };
 
 }  // namespace
-
-[[gnu::always_inline]] inline const EntityState& EntityStateRows::operator[](size_t index) const {
-  return simulation->state(index);
-}
-const std::string& EntityStateRows::road_id(uint32_t road) const {
-  return simulation->road_id(road);
-}
 
 TrajectoryEncoder::TrajectoryEncoder(std::filesystem::path path, int64_t every)
     : file_(std::move(path), true), every_(every < 1 ? 1 : every) {}

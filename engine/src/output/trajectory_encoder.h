@@ -16,12 +16,9 @@
 #include <vector>
 
 #include "corsa/core/atomic_file.h"
+#include "corsa/engine/simulation.h"
 #include "output/trajectory_codec.h"
 #include "output/trajectory_rows.h"
-
-namespace corsa::engine {
-class Simulation;
-}
 
 namespace corsa::engine::detail {
 
@@ -113,9 +110,9 @@ inline bool same_motion(const Row& row, const uint64_t* bits) {
 /// The rows of the simulation's current tick, read from the entities' states where they are.
 struct EntityStateRows {
   const Simulation* simulation = nullptr;
-  const EntityState& operator[](size_t index) const;
+  const EntityState& operator[](size_t index) const { return simulation->state(index); }
   /// The OpenDRIVE id of road `road` (the map holds it).
-  const std::string& road_id(uint32_t road) const;
+  const std::string& road_id(uint32_t road) const { return simulation->road_id(road); }
 };
 
 /// One recorded tick: its rows are the `entities` copies that follow the previous tick's.
