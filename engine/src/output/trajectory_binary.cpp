@@ -1,8 +1,8 @@
-// The binary trajectory's recorder: at each recorded tick it copies every entity's row inputs
-// (output/trajectory_encoder.h) and hands them to the encoder, either at once on the
-// simulation's thread or, in batches of ticks, to a writer thread of its own, which then
-// encodes and writes while the simulation steps on. The encoder reads only the copies, in tick
-// order, so the file is the same bytes on either thread.
+// The binary trajectory's recorder: at each recorded tick the encoder (output/trajectory_encoder.h)
+// either reads the entities' states at once on the simulation's thread, or every entity's row
+// inputs are copied and handed, in batches of ticks, to a writer thread of its own, which then
+// encodes and writes while the simulation steps on. The encoder reads the rows in tick order
+// either way, so the file is the same bytes on either thread.
 
 #include <algorithm>
 #include <condition_variable>
@@ -96,8 +96,19 @@ void BinaryTrajectoryRecorder::State::capture(const Simulation& simulation) {
       writer = std::thread([this] { serve(); });
     }
   }
-  RecordedTicks& batch = *filling;
   const size_t count = simulation.entity_count();
+  const int64_t tick = simulation.tick();
+  last_recorded = tick;
+  if (thread == RecordingThread::kCaller) {
+    // Straight from the states, no copy: the encoder is done with them before the next step.
+    for (; named_entities < count; ++named_entities) {
+      encoder.name_entity(simulation.entity(named_entities).name);
+    }
+    encoder.record(dt, {tick, simulation.time(), static_cast<uint32_t>(count)},
+                   detail::EntityStateRows{&simulation});
+    return;
+  }
+  RecordedTicks& batch = *filling;
   for (; named_entities < count; ++named_entities) {
     batch.names.push_back(simulation.entity(named_entities).name);
   }
@@ -117,13 +128,8 @@ void BinaryTrajectoryRecorder::State::capture(const Simulation& simulation) {
     }
   }
   batch.row_count = first + count;
-  const int64_t tick = simulation.tick();
   batch.ticks.push_back({tick, simulation.time(), static_cast<uint32_t>(count)});
-  last_recorded = tick;
-  if (thread == RecordingThread::kCaller) {
-    encode(batch);
-    batch.clear();
-  } else if (batch.row_count >= kRowsPerBatch) {
+  if (batch.row_count >= kRowsPerBatch) {
     hand_over();
   }
 }

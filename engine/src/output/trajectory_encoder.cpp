@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 namespace corsa::engine::detail {
 
@@ -44,9 +45,9 @@ struct TrajectoryFieldCoder {
   char* out;
   bool repeats = true;  ///< every field so far predicted to keep its value
 
-  template <int... F>
-  void fields(const std::array<double, kRowFields>& values) {
-    (field<F>(values[F]), ...);
+  template <int... F, class Row>
+  void fields(const Row& row) {
+    (field<F>(row_value<F>(row)), ...);
   }
 
   template <int F>
@@ -105,16 +106,17 @@ void TrajectoryEncoder::start(double dt, int64_t tick) {
   last_frame_ = tick;
 }
 
-void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int64_t& previous) {
+template <class Row>
+[[gnu::always_inline]] inline void TrajectoryEncoder::encode(uint32_t index, const Row& row,
+                                                             int64_t& previous) {
   Track& track = entities_[index];
   uint32_t mask = 0;
   uint32_t raw = 0;
   // The record's body (road and lane, at most 10 + 10 bytes, then nine numbers of 10), made
   // before its head (index step, mask and raw bits, at most 10 + 5 + 5), which needs the mask.
-  constexpr size_t kHead = 20;
-  char body[20 + kRowFields * 10];
+  char body[kMaxBody];
   char* out = body;
-  if (!row.placed) {
+  if (!row_placed(row)) {
     track.steady = false;
     if (!track.present) {
       return;
@@ -130,14 +132,15 @@ void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int
       track.present = true;
       mask |= codec::kPresenceBit;
     }
-    const bool on_road = row.on_road;
-    const uint32_t road = row.road;
+    const bool on_road = row_on_road(row);
+    const uint32_t road = on_road ? row_road(row) : 0;
     if (on_road != track.on_road || road != track.road) {
       mask |= codec::kRoadBit;
       if (on_road && (road >= road_named_.size() || !road_named_[road])) {
         road_named_.resize(std::max<size_t>(road_named_.size(), road + 1), false);
         road_named_[road] = true;
-        put_string(roads_, codec::kTagRoad, road, *road_ids_.at(road));
+        const std::string* id = road < road_ids_.size() ? road_ids_[road] : nullptr;
+        put_string(roads_, codec::kTagRoad, road, id != nullptr ? *id : state_rows_->road_id(road));
       }
       out = codec::put_varint(out, on_road ? uint64_t{road} + 1 : 0);
       track.on_road = on_road;
@@ -145,17 +148,18 @@ void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int
       track.fresh |= (1u << kFieldS) | (1u << kFieldT);
       track.still &= ~((1u << kFieldS) | (1u << kFieldT));
     }
-    if (on_road && row.lane != track.lane) {
+    if (on_road && row_lane(row) != track.lane) {
+      const int32_t lane = row_lane(row);
       mask |= codec::kLaneBit;
-      out = codec::put_varint(out, codec::zigzag(int64_t{row.lane} - track.lane));
-      track.lane = row.lane;
+      out = codec::put_varint(out, codec::zigzag(int64_t{lane} - track.lane));
+      track.lane = lane;
     }
     // s and t only on a road (the CSV leaves them empty off it).
     const int fields = on_road ? kRowFields : kFieldS;
     TrajectoryFieldCoder<Track> coder{track, raw, mask, out};
-    coder.fields<kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed>(row.values);
+    coder.fields<kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed>(row);
     if (on_road) {
-      coder.fields<kFieldS, kFieldT>(row.values);
+      coder.fields<kFieldS, kFieldT>(row);
     }
     const bool repeats = coder.repeats;
     out = coder.out;
@@ -172,23 +176,27 @@ void TrajectoryEncoder::encode(uint32_t index, const TrajectoryRowCopy& row, int
     return;  // as predicted: nothing to store
   }
   const auto body_size = static_cast<size_t>(out - body);
-  // Room for the whole of `body`, so that it is copied at its full, fixed size (a few vector
-  // moves in place of a call of memcpy); the bytes after its end are not part of the frame.
-  if (frame_.size() < frame_size_ + kHead + sizeof body) {
-    frame_.resize(std::max(2 * frame_.size(), frame_size_ + kHead + sizeof body));
-  }
+  // The frame has room for the whole of `body` after every record (record() makes it), so
+  // that it is copied at a fixed size (a few vector moves in place of a call of memcpy): its
+  // first 32 bytes, which hold most bodies, or all of it; the bytes after its end are not part
+  // of the frame.
   char* end = frame_.data() + frame_size_;
   end = codec::put_varint(end, static_cast<uint64_t>(index - previous));
   end = codec::put_varint(end, mask);
   if (raw != 0) {
     end = codec::put_varint(end, raw);
   }
-  std::memcpy(end, body, sizeof body);
+  if (body_size <= 32) {
+    std::memcpy(end, body, 32);
+  } else {
+    std::memcpy(end, body, sizeof body);
+  }
   frame_size_ = static_cast<size_t>(end - frame_.data()) + body_size;
   previous = index;
 }
 
-void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const TrajectoryRowCopy* rows) {
+template <class Rows>
+void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& rows) {
   if (!started_) {
     start(dt, head.tick);
   }
@@ -199,16 +207,25 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Trajec
   }
   roads_.clear();
   frame_size_ = 0;
+  // Room for every entity's record at its largest, head and whole body.
+  const size_t room = size_t{head.entities} * (kMaxHead + kMaxBody);
+  if (frame_.size() < room) {
+    frame_.resize(room);
+  }
+  if constexpr (std::is_same_v<Rows, EntityStateRows>) {
+    state_rows_ = &rows;
+  }
   int64_t previous = -1;
   for (uint32_t i = 0; i < head.entities; ++i) {
     // encode's first test, without the call: most entities of a long run stand.
-    const TrajectoryRowCopy& row = rows[i];
+    const auto& row = rows[i];
     const Track& track = entities_[i];
-    if (track.steady && track.present && row.placed && track.repeats(row)) {
+    if (track.steady && track.present && row_placed(row) && track.repeats(row)) {
       continue;
     }
     encode(i, row, previous);
   }
+  state_rows_ = nullptr;
   const double time = head.time;
   const bool odd_time =
       std::bit_cast<uint64_t>(time) != std::bit_cast<uint64_t>(tick_time(tick, per_second_, dt_));
@@ -229,6 +246,10 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Trajec
     flush();
   }
 }
+
+template void TrajectoryEncoder::record(double, const TickRowsHead&,
+                                        const TrajectoryRowCopy* const&);
+template void TrajectoryEncoder::record(double, const TickRowsHead&, const EntityStateRows&);
 
 void TrajectoryEncoder::flush() {
   crc_ = codec::crc32(crc_, buffer_);

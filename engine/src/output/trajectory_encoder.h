@@ -1,18 +1,22 @@
 #pragma once
 
 // The binary trajectory's encoder (docs/trajectory-format.md): it turns the rows of recorded
-// ticks, copied out of the simulation (TickRows), into the file's bytes. It reads nothing of the
-// simulation, so that it can run on a thread of its own while the simulation steps on
-// (output/trajectory_binary.cpp); the bytes are the same on either thread.
+// ticks into the file's bytes, reading them either from copies taken out of the simulation
+// (TrajectoryRowCopy: it then reads nothing of the simulation, so that it can run on a thread of
+// its own while the simulation steps on, output/trajectory_binary.cpp) or, on the simulation's
+// thread, straight from the entities' states (EntityStateRows: no copy). The bytes are the same
+// either way.
 
 #include <array>
 #include <bit>
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "corsa/core/atomic_file.h"
+#include "corsa/engine/simulation.h"
 #include "output/trajectory_codec.h"
 #include "output/trajectory_rows.h"
 
@@ -52,6 +56,65 @@ inline void copy_row(TrajectoryRowCopy& row, const EntityState& state) {
   }
 }
 
+// A row's inputs as the encoder reads them, from a copy or from the entity's state: field F's
+// value (s and t only while on a road), presence, road and lane.
+template <int F>
+inline double row_value(const TrajectoryRowCopy& row) {
+  return row.values[F];
+}
+inline bool row_placed(const TrajectoryRowCopy& row) { return row.placed; }
+inline bool row_on_road(const TrajectoryRowCopy& row) { return row.on_road; }
+inline uint32_t row_road(const TrajectoryRowCopy& row) { return row.road; }
+inline int32_t row_lane(const TrajectoryRowCopy& row) { return row.lane; }
+
+template <int F>
+inline double row_value(const EntityState& state) {
+  static_assert(F >= 0 && F < kRowFields);
+  if constexpr (F == kFieldX) {
+    return state.pose.x;
+  } else if constexpr (F == kFieldY) {
+    return state.pose.y;
+  } else if constexpr (F == kFieldZ) {
+    return state.pose.z;
+  } else if constexpr (F == kFieldH) {
+    return state.pose.h;
+  } else if constexpr (F == kFieldP) {
+    return state.pose.p;
+  } else if constexpr (F == kFieldR) {
+    return state.pose.r;
+  } else if constexpr (F == kFieldSpeed) {
+    return state.speed;
+  } else if constexpr (F == kFieldS) {
+    return state.road->s;
+  } else {
+    return state.road->t;
+  }
+}
+inline bool row_placed(const EntityState& state) { return state.placed; }
+inline bool row_on_road(const EntityState& state) { return state.road.has_value(); }
+inline uint32_t row_road(const EntityState& state) { return state.road->road; }
+inline int32_t row_lane(const EntityState& state) { return state.road->lane; }
+
+/// Whether the row's x to speed (fields 0 to kFieldS - 1) are `bits`' first seven, bit for bit:
+/// their differences gathered without a branch, so that a standing entity costs one test.
+template <class Row, int... F>
+inline uint64_t motion_difference(const Row& row, const uint64_t* bits,
+                                  std::integer_sequence<int, F...> /*fields*/) {
+  return ((std::bit_cast<uint64_t>(row_value<F>(row)) ^ bits[F]) | ...);
+}
+template <class Row>
+inline bool same_motion(const Row& row, const uint64_t* bits) {
+  return motion_difference(row, bits, std::make_integer_sequence<int, kFieldS>()) == 0;
+}
+
+/// The rows of the simulation's current tick, read from the entities' states where they are.
+struct EntityStateRows {
+  const Simulation* simulation = nullptr;
+  const EntityState& operator[](size_t index) const { return simulation->state(index); }
+  /// The OpenDRIVE id of road `road` (the map holds it).
+  const std::string& road_id(uint32_t road) const { return simulation->road_id(road); }
+};
+
 /// One recorded tick: its rows are the `entities` copies that follow the previous tick's.
 struct TickRowsHead {
   int64_t tick = 0;
@@ -66,12 +129,14 @@ class TrajectoryEncoder {
 
   /// Names entity `index` (entities are named in order, before the first tick that counts them).
   void name_entity(std::string name) { names_.push_back(std::move(name)); }
-  /// The OpenDRIVE id of road `road`, before the first tick a row is on it (the string must
-  /// outlive the encoder: the map holds it).
+  /// The OpenDRIVE id of road `road`, before the first tick a row copy is on it (the string
+  /// must outlive the encoder: the map holds it; rows read from the states need none).
   void name_road(uint32_t road, const std::string* id);
 
-  /// Encodes one recorded tick (`rows`: head.entities copies). `dt`: the run's step (s).
-  void record(double dt, const TickRowsHead& head, const TrajectoryRowCopy* rows);
+  /// Encodes one recorded tick (`rows[i]`, i below head.entities: TrajectoryRowCopy* or
+  /// EntityStateRows). `dt`: the run's step (s).
+  template <class Rows>
+  void record(double dt, const TickRowsHead& head, const Rows& rows);
   /// Ends the file at `last_tick` and commits it (InputError when it cannot be written).
   void finish(int64_t last_tick);
 
@@ -101,25 +166,30 @@ class TrajectoryEncoder {
     /// Whether placed `row` has the inputs of the steady last row. While steady, every field
     /// taken last time (s and t on a road) holds the bits of its last row in `bits`; off the
     /// road a row's s, t and lane are 0.
-    bool repeats(const TrajectoryRowCopy& row) const {
-      for (int f = 0; f < kFieldS; ++f) {
-        if (std::bit_cast<uint64_t>(row.values[f]) != bits[f]) {
-          return false;
-        }
-      }
-      if (row.on_road != on_road || row.road != road) {
+    template <class Row>
+    bool repeats(const Row& row) const {
+      if (!same_motion(row, bits.data()) || row_on_road(row) != on_road) {
         return false;
       }
-      return !on_road ||
-             (row.lane == lane && std::bit_cast<uint64_t>(row.values[kFieldS]) == bits[kFieldS] &&
-              std::bit_cast<uint64_t>(row.values[kFieldT]) == bits[kFieldT]);
+      return !on_road || (row_road(row) == road && row_lane(row) == lane && same<kFieldS>(row) &&
+                          same<kFieldT>(row));
+    }
+    template <int F, class Row>
+    bool same(const Row& row) const {
+      return std::bit_cast<uint64_t>(row_value<F>(row)) == bits[F];
     }
   };
+
+  /// A record's head (index step, mask and raw bits) and body (road and lane, nine numbers) at
+  /// their largest, bytes.
+  static constexpr size_t kMaxHead = 10 + 5 + 5;
+  static constexpr size_t kMaxBody = 10 + 10 + kRowFields * 10;
 
   void start(double dt, int64_t tick);
   /// Appends the record of entity `index` to `frame_` when its row differs from the prediction
   /// (`previous`: the index of the frame's last record, -1 before the first).
-  void encode(uint32_t index, const TrajectoryRowCopy& row, int64_t& previous);
+  template <class Row>
+  void encode(uint32_t index, const Row& row, int64_t& previous);
   void flush();
 
   AtomicFile file_;
@@ -133,8 +203,10 @@ class TrajectoryEncoder {
   std::vector<std::string> names_;
   std::vector<Track> entities_;
   std::vector<const std::string*> road_ids_;  ///< by road index, null until named
-  std::vector<bool> road_named_;              ///< written as a road record
-  std::string roads_;                         ///< road records of roads first met at this tick
+  /// The states being encoded (EntityStateRows), whose simulation names the roads not named.
+  const EntityStateRows* state_rows_ = nullptr;
+  std::vector<bool> road_named_;  ///< written as a road record
+  std::string roads_;             ///< road records of roads first met at this tick
   /// The entity records of this tick: the first frame_size_ bytes of `frame_` (which only
   /// grows, so that a record is written in place without clearing its room first).
   std::vector<char> frame_;
