@@ -420,3 +420,39 @@ TEST_CASE("a wider lane ending where a narrower one with a neighbour starts narr
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
 }
+
+TEST_CASE("two five-lane roads meeting at 0.3 degrees end on their shared line", "[ngii][mouths]") {
+  // The lanes of a five-lane road 17.5 m wide end on a line square to neither road: the road
+  // after the joint turns 0.3 degrees left, and the line halves the turn, 0.15 degrees off
+  // square to each. An end left square to its road (a skew under 0.2 degrees was not bent)
+  // put the outer lanes' corners 4-5 cm off the line on either side, a strip of unpaved ground
+  // up to 9 cm deep across the outer lanes; the ends now turn onto the line.
+  Builder b;
+  const double turn = 0.3 * M_PI / 180.0;
+  const double half = 0.5 * turn;
+  const std::vector<std::string> lanes{"A", "B", "C", "D", "E"};
+  for (size_t k = 0; k < lanes.size(); ++k) {
+    const double t = -3.5 * static_cast<double>(k);
+    const double x = 30.0 - t * std::sin(half), y = t * std::cos(half);
+    b.node(lanes[k] + "0", 0.0, t);
+    b.node(lanes[k] + "1", x, y);
+    b.node(lanes[k] + "2", x + 30.0 * std::cos(turn), y + 30.0 * std::sin(turn));
+  }
+  for (size_t k = 0; k < lanes.size(); ++k) {
+    const std::string right = k + 1 < lanes.size() ? lanes[k + 1] : "";
+    const std::string left = k > 0 ? lanes[k - 1] : "";
+    const auto id = [](const std::string& lane, const std::string& piece) {
+      return lane.empty() ? std::string() : "A2TEST0000" + lane + piece;
+    };
+    const int lane_no = static_cast<int>(k) + 1;
+    b.link(id(lanes[k], "1"), "6", lane_no, lanes[k] + "0", lanes[k] + "1", id(right, "1"),
+           id(left, "1"));
+    b.link(id(lanes[k], "2"), "6", lane_no, lanes[k] + "1", lanes[k] + "2", id(right, "2"),
+           id(left, "2"));
+  }
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 10);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
