@@ -327,50 +327,70 @@ TEST_CASE("A NURBS trajectory's time is its fourth dimension, interpolated like 
   }
 }
 
-TEST_CASE("FollowTrajectoryAction in follow mode drives toward the path like a driver",
+TEST_CASE("FollowTrajectoryAction in follow mode keeps its actor on the path, as esmini does",
           "[engine][trajectory]") {
-  FixtureRun run(engine_fixture("action_follow_trajectory.xosc"));
-  run.run();
-  const auto start = run.first("S1::Act1::G::M::E::A", TransitionKind::kStart);
-  const auto end = run.first("S1::Act1::G::M::E::A", TransitionKind::kEnd);
-  REQUIRE(start);
-  REQUIRE(end);
-  // 100 m of path at 10 m/s (untimed: the entity keeps its speed).
-  CHECK(*end - *start == Approx(10.1).margin(0.2));
-  double worst = 0.0;
-  for (double t = *start; t <= *end; t += 0.1) {
-    const auto& pose = run.at(t, "Follow").pose;
-    // The path: y = -8.75 up to x = 60, then rising 3.5 m over 50 m.
-    const double path_y = pose.x <= 60.0 ? -8.75 : -8.75 + 3.5 * (pose.x - 60.0) / 50.0;
-    worst = std::max(worst, std::abs(pose.y - path_y));
+  // followingMode follow leaves the driver model to the simulator; esmini moves its actor along
+  // the path as in position mode, and so does Corsa under both readings.
+  for (const engine::Semantics semantics :
+       {engine::Semantics::kStandard, engine::Semantics::kEsmini}) {
+    INFO(static_cast<int>(semantics));
+    engine::SimulationOptions options;
+    options.semantics = semantics;
+    FixtureRun run(engine_fixture("action_follow_trajectory.xosc"), options);
+    run.run();
+    const auto start = run.first("S1::Act1::G::M::E::A", TransitionKind::kStart);
+    const auto end = run.first("S1::Act1::G::M::E::A", TransitionKind::kEnd);
+    REQUIRE(start);
+    REQUIRE(end);
+    // 50 + hypot(50, 3.5) = 100.12 m of path at 10 m/s (untimed: the entity keeps its speed),
+    // ending in the step that passes the end.
+    CHECK(*end - *start == Approx((50.0 + std::hypot(50.0, 3.5)) / 10.0).margin(0.011));
+    double worst = 0.0;
+    int around_corner = 0;
+    for (double t = *start + 0.1; t < *end; t += 0.1) {
+      const auto& pose = run.at(t, "Follow").pose;
+      // The path: y = -8.75 up to x = 60, then rising 3.5 m over 50 m.
+      const double path_y = pose.x <= 60.0 ? -8.75 : -8.75 + 3.5 * (pose.x - 60.0) / 50.0;
+      worst = std::max(worst, std::abs(pose.y - path_y));
+      around_corner += std::abs(pose.x - 60.0) < 5.0 ? 1 : 0;
+    }
+    CHECK(around_corner >= 9);  // the samples pass the corner at x = 60
+    CHECK(worst < 1e-9);        // on the path, the corner too: no driver cutting it
+    CHECK(run.at(*end, "Follow").pose.x == Approx(110.0).margin(1.0));
   }
-  CHECK(worst < 0.5);   // it follows
-  CHECK(worst > 1e-3);  // but not exactly: it cuts the corner at x = 60
-  CHECK(run.at(*end, "Follow").pose.x == Approx(110.0).margin(0.5));
 }
 
-TEST_CASE(
-    "A follow-mode driver facing away from its path turns back to it and drives it to its end",
-    "[engine][trajectory]") {
-  // A pedestrian at (50, -8.75) facing +x walks, untimed, a path that leads back along -x to
-  // x = 40 and then across to (40, -1.75). The look-ahead point starts behind it: a pure-pursuit
-  // curvature of 2 sin(alpha) / L vanishes there, and the walker used to go straight on along +x
-  // (to x = 68) until it had walked the path's 17 m, ending 28 m from the path's end.
+TEST_CASE("A follow-mode walker whose path starts behind it walks the path from its start",
+          "[engine][trajectory]") {
+  // A pedestrian at (50, -8.75) facing +x walks, untimed at 1.5 m/s, a path that leads back
+  // along -x to x = 40 and then across to (40, -1.75). On the path as esmini has it: it turns
+  // to the path's heading at once and never goes beyond x = 50 (a pure-pursuit driver, which
+  // Corsa's follow mode was before, turned on a circle out to x = 52).
   FixtureRun run(engine_fixture("action_follow_trajectory_turn_back.xosc"));
   run.run();
   const auto start = run.first("S::Act::G::M::E::Walk", TransitionKind::kStart);
   const auto end = run.first("S::Act::G::M::E::Walk", TransitionKind::kEnd);
   REQUIRE(start);
   REQUIRE(end);
-  double farthest = 0.0;
-  for (double t = *start; t <= *end; t += 0.1) {
-    farthest = std::max(farthest, run.at(t, "Walker").pose.x);
+  // 17 m at 1.5 m/s.
+  CHECK(*end - *start == Approx(17.0 / 1.5).margin(0.11));
+  for (double t = *start + 0.1; t < *end; t += 0.1) {
+    const auto& pose = run.at(t, "Walker").pose;
+    INFO(t);
+    if (pose.y < -8.75 + 1e-9) {
+      CHECK(pose.x <= 50.0 + 1e-9);
+      CHECK(pose.x >= 40.0 - 1e-9);
+      CHECK(pose.y == Approx(-8.75).margin(1e-9));
+    } else {
+      CHECK(pose.x == Approx(40.0).margin(1e-9));
+    }
   }
-  CHECK(farthest < 53.0);  // it turns on a tight circle, then walks back
-  // The action ends where the walker's nearest path point reaches the end, beside the end.
+  const auto& early = run.at(*start + 1.0, "Walker").pose;
+  CHECK(early.x == Approx(48.5).margin(0.16));  // 1 s along -x, one step's speed at most off
+  CHECK(std::abs(std::abs(early.h) - std::numbers::pi) < 1e-6);
   const auto& at_end = run.at(*end, "Walker").pose;
-  CHECK(std::hypot(at_end.x - 40.0, at_end.y + 1.75) < 0.6);
-  // Past the end it walks out along the last leg's direction (+y) instead of circling the end.
+  CHECK(std::hypot(at_end.x - 40.0, at_end.y + 1.75) < 0.16);
+  // Past the end it walks out along the last leg's direction (+y).
   const auto& later = run.at(*end + 2.0, "Walker").pose;
   CHECK(later.y - at_end.y > 2.5);
   CHECK(std::abs(later.h - 0.5 * std::numbers::pi) < 0.25);

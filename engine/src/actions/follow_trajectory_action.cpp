@@ -8,20 +8,17 @@
 // that progress takes. With <None/> the times are ignored and the actor keeps the speed its
 // longitudinal actions give it (this action then takes only the lateral domain).
 // initialDistanceOffset starts that many metres along the path (relative timing starts at the
-// time of that point). Following mode `position`: the actor is exactly on the path. `follow`: it
-// steers toward a point kLookahead seconds (at least kMinLookahead m) ahead on the path and
-// drives its own heading, as a driver would: it cuts corners a little and lags the path. A point
-// behind it (an actor facing away from the path) turns it on its tightest circle through that
-// point; past the path's end the point runs on along the end's heading, so that the actor drives
-// out along the end instead of circling the end point. Untimed, the progress along the path is
-// the path point nearest the actor (not the distance driven, which a detour makes longer), and
-// the action ends when that point reaches the path's end.
+// time of that point). The actor is on the path in both following modes: how an actor follows a
+// path in `follow` mode is the simulator's driver model (1.3 TrajectoryFollowingMode), and esmini's
+// FollowTrajectoryAction moves its actor along the path in that mode as in `position` (the mode
+// only retimes a timed polyline there: constant acceleration from the current speed over each
+// segment, which Corsa does not emulate; it keeps the vertices' times).
 // A negative speed when the action starts drives the path in reverse gear (the vehicle faces
-// against the path); in position mode a speed whose sign differs from that drives back toward
-// the path's start (esmini's reading). The action ends at the path's end (or, driven back, its
-// start), timed in the first step past its last time (§6.7.3: the actor is at each vertex at its
-// time, so a repeated last vertex with a later time is a wait there); that step goes on past the
-// end for its rest, and the actor's lane following takes over at the path's own end speed.
+// against the path); a speed whose sign differs from that drives back toward the path's start
+// (esmini's reading). The action ends at the path's end (or, driven back, its start), timed in
+// the first step past its last time (§6.7.3: the actor is at each vertex at its time, so a
+// repeated last vertex with a later time is a wait there); that step goes on past the end for
+// its rest, and the actor's lane following takes over at the path's own end speed.
 
 #include <algorithm>
 #include <cmath>
@@ -34,9 +31,6 @@
 
 namespace corsa::engine::detail {
 namespace {
-
-constexpr double kLookahead = 1.0;     // s
-constexpr double kMinLookahead = 3.0;  // m
 
 class FollowTrajectoryInstance final : public ActionInstance {
  public:
@@ -68,7 +62,6 @@ class FollowTrajectoryInstance final : public ActionInstance {
   void step(ActionContext& context) override {
     Entity& entity = context.entity();
     const double dt = context.state.time.dt();
-    const bool follow = action_.following_mode == xosc::FollowingMode::kFollow;
     if (first_step_) {
       first_step_ = false;
       direction_ = entity.speed_command < 0.0 ? -1.0 : 1.0;
@@ -98,10 +91,6 @@ class FollowTrajectoryInstance final : public ActionInstance {
         beyond = std::max(0.0, late * end_speed());
       }
       entity.speed_command = (s_next + beyond - s_) / dt;
-    } else if (follow) {
-      // The follow driver drives the path ahead, in reverse gear while the speed is negative.
-      s_next = s_ + std::abs(entity.speed_command * dt);
-      beyond = std::max(0.0, s_next - path_.length());
     } else {
       // The sign of the speed when the action starts sets the direction of travel along the
       // path (reverse gear, facing against the path, if negative); a speed of the other sign
@@ -114,33 +103,15 @@ class FollowTrajectoryInstance final : public ActionInstance {
       ended_ = backward ? s_next <= 1e-9 : s_next >= path_.length() - 1e-9;
     }
     s_next = std::clamp(s_next, 0.0, path_.length());
-    if (follow) {
-      const double facing = entity.speed_command < 0.0 ? std::numbers::pi : 0.0;
-      Pose along = entity.state.pose;
-      along.h = wrap_angle(along.h + facing);  // steer the direction of travel
-      const double distance = s_next + beyond - s_;
-      Pose pose = pursue(along, distance, s_, dt);
-      pose.h = wrap_angle(pose.h + facing);
-      entity.pose_command = pose;
-      if (!timing_) {
-        s_next = nearest_ahead(pose, lookahead(distance, dt));
-        ended_ = s_next >= path_.length() - 1e-9;
-      }
-    } else {
-      const double facing = direction_ < 0.0 ? std::numbers::pi : 0.0;
-      const PathPoint p = continued(s_next + beyond);
-      entity.pose_command = Pose{p.x, p.y, p.z, wrap_angle(p.h + facing), 0.0, 0.0};
-    }
+    const double facing = direction_ < 0.0 ? std::numbers::pi : 0.0;
+    const PathPoint p = continued(s_next + beyond);
+    entity.pose_command = Pose{p.x, p.y, p.z, wrap_angle(p.h + facing), 0.0, 0.0};
     s_ = s_next;
   }
 
   bool finished() const override { return ended_; }
 
  private:
-  static double lookahead(double distance, double dt) {
-    return std::max(kMinLookahead, kLookahead * distance / dt);
-  }
-
   // m/s along the path at its last time: the last millisecond's (or whole path's) mean speed.
   double end_speed() const {
     const double h = std::min(1e-3, path_.last_time() - path_.first_time());
@@ -158,57 +129,6 @@ class FollowTrajectoryInstance final : public ActionInstance {
     return p;
   }
 
-  // Arc length of the path point nearest `pose`, searched from the progress so far up to
-  // `reach` metres further: 32 samples, then a ternary search between the best one's neighbours.
-  double nearest_ahead(const Pose& pose, double reach) const {
-    const auto gap = [&](double s) {
-      const PathPoint p = path_.at(s);
-      return std::hypot(p.x - pose.x, p.y - pose.y);
-    };
-    constexpr int kSamples = 32;
-    const double end = std::min(s_ + reach, path_.length());
-    const double step = (end - s_) / kSamples;
-    int best = 0;
-    for (int i = 1; i <= kSamples; ++i) {
-      if (gap(s_ + step * i) < gap(s_ + step * best)) {
-        best = i;
-      }
-    }
-    double lo = s_ + step * std::max(0, best - 1);
-    double hi = s_ + step * std::min(kSamples, best + 1);
-    for (int i = 0; i < 40; ++i) {
-      const double a = lo + (hi - lo) / 3.0;
-      const double b = hi - (hi - lo) / 3.0;
-      if (gap(a) < gap(b)) {
-        hi = b;
-      } else {
-        lo = a;
-      }
-    }
-    return std::max(s_, 0.5 * (lo + hi));
-  }
-
-  // One step of a pure-pursuit driver (Coulter 1992): toward the look-ahead point L metres
-  // ahead on the path at bearing alpha from the heading, along the arc of curvature
-  // 2 sin(alpha) / L for `distance` metres. A point behind (|alpha| > 90 degrees) gets the
-  // tightest circle through it (curvature 2 / chord) on its side: sin(alpha) would fall back to 0
-  // and send the driver straight on, away from the path.
-  Pose pursue(const Pose& from, double distance, double s, double dt) const {
-    const PathPoint target = continued(s + lookahead(distance, dt));
-    const double chord = std::max(1e-6, std::hypot(target.x - from.x, target.y - from.y));
-    const double alpha = wrap_angle(std::atan2(target.y - from.y, target.x - from.x) - from.h);
-    const double sine =
-        std::abs(alpha) > 0.5 * std::numbers::pi ? (alpha < 0.0 ? -1.0 : 1.0) : std::sin(alpha);
-    const double turn = 2.0 * sine / chord * distance;
-    const double mid = from.h + 0.5 * turn;
-    return Pose{from.x + std::cos(mid) * distance,
-                from.y + std::sin(mid) * distance,
-                path_.at(s).z,
-                wrap_angle(from.h + turn),
-                from.p,
-                from.r};
-  }
-
   const xosc::FollowTrajectoryAction& action_;
   std::optional<xosc::Timing> timing_;
   TrajectoryPath path_;
@@ -217,7 +137,7 @@ class FollowTrajectoryInstance final : public ActionInstance {
   double time_shift_ = 0.0;  ///< s of trajectory time skipped by initialDistanceOffset
   bool ended_ = false;
   bool first_step_ = true;  ///< direction_ is set in the first step, from the speed then
-  /// Position mode: +1 if the speed was positive or zero when the action started (a positive
+  /// +1 if the speed was positive or zero when the action started (a positive
   /// speed drives toward the path's end), -1 if negative (a negative speed drives toward the
   /// end, in reverse gear, facing against the path).
   double direction_ = 1.0;
