@@ -301,3 +301,28 @@ TEST_CASE("text in an element that holds only elements is an error at the text's
   CHECK(has(errors, line_of(xml, "x=\"left\""), "'left' is not a number"));
   CHECK(errors.size() == 2);
 }
+
+TEST_CASE("an element of a choice with two children is an error at that element",
+          "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.variables = "<VariableDeclaration name=\"Count\" variableType=\"int\" value=\"3\"/>\n";
+  text.stories = corsa::test::story_with(
+      "<Event name=\"E\" priority=\"override\">\n"
+      "<Action name=\"Both\">\n"
+      "<GlobalAction><VariableAction variableRef=\"Count\"><SetAction value=\"4\"/>"
+      "</VariableAction></GlobalAction>\n"
+      "<PrivateAction><LongitudinalAction><SpeedAction>"
+      "<SpeedActionDynamics dynamicsShape=\"step\" dynamicsDimension=\"time\" value=\"0\"/>"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"fast\"/></SpeedActionTarget>"
+      "</SpeedAction></LongitudinalAction></PrivateAction>\n"
+      "</Action>\n</Event>\n");
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  CHECK(has(errors, line_of(xml, "<Action name=\"Both\""),
+            "<Action> takes one child, found <GlobalAction> (line " +
+                std::to_string(line_of(xml, "<GlobalAction>")) + ") and <PrivateAction> (line " +
+                std::to_string(line_of(xml, "<PrivateAction><Longitudinal")) + ")"));
+  CHECK(errors.size() == 1);
+}

@@ -174,9 +174,13 @@ const Element* Children::choice() {
     // Reported by the constructor; nothing of the element can be read.
     throw RecordedError(context_.source(child).error("unknown element"));
   }
+  // A second child breaks the choice of the element holding both: the error is at that element
+  // and names where each child is (the first is read, so its own errors follow).
   if (const Element* second = child->NextSiblingElement(); second != nullptr) {
-    context_.error(second, "<" + std::string(element_->Name()) + "> takes one child, found <" +
-                               child->Name() + "> and <" + second->Name() + ">");
+    context_.error(element_, "<" + std::string(element_->Name()) + "> takes one child, found <" +
+                                 child->Name() + "> (line " + std::to_string(child->GetLineNum()) +
+                                 ") and <" + second->Name() + "> (line " +
+                                 std::to_string(second->GetLineNum()) + ")");
   }
   return child;
 }
