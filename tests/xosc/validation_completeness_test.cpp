@@ -326,3 +326,53 @@ TEST_CASE("an element of a choice with two children is an error at that element"
                 std::to_string(line_of(xml, "<PrivateAction><Longitudinal")) + ")"));
   CHECK(errors.size() == 1);
 }
+
+TEST_CASE("each use of a parameter whose declaration is in error is an error at the use",
+          "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.parameters =
+      "<ParameterDeclaration name=\"Speed\" parameterType=\"double\" value=\"fast\"/>\n"
+      "<ParameterDeclaration name=\"Flag\" parameterType=\"int\" value=\"false\"/>\n"
+      "<ParameterDeclaration name=\"Good\" parameterType=\"double\" value=\"3\"/>\n";
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position>\n"
+      "<WorldPosition x=\"$Speed\" y=\"$Good\" h=\"0\"/></Position></TeleportAction>"
+      "</PrivateAction>\n"
+      "<PrivateAction><LongitudinalAction><SpeedAction>\n"
+      "<SpeedActionDynamics dynamicsShape=\"step\" dynamicsDimension=\"time\" value=\"0\"/>\n"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"${$Speed + $Good}\"/>"
+      "</SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction>\n"
+      "</Private>\n";
+  text.stories = corsa::test::story_with(
+      "<Event name=\"E\" priority=\"override\">\n"
+      "<Action name=\"A\"><PrivateAction><LongitudinalAction><SpeedAction>\n"
+      "<SpeedActionDynamics dynamicsShape=\"step\" dynamicsDimension=\"time\" value=\"0\"/>\n"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"$Speed\"/></SpeedActionTarget>"
+      "</SpeedAction></LongitudinalAction></PrivateAction></Action>\n"
+      "</Event>\n");
+  // A boolean attribute given the bad int: one error at the use, not a second about its type.
+  const std::string actors = "<Actors selectTriggeringEntities=\"false\">";
+  text.stories.replace(text.stories.find(actors), actors.size(),
+                       "<Actors selectTriggeringEntities=\"$Flag\">");
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  const std::string speed_line = std::to_string(line_of(xml, "name=\"Speed\""));
+  CHECK(has(errors, line_of(xml, "name=\"Speed\""), "'fast' is not a valid double"));
+  CHECK(has(errors, line_of(xml, "name=\"Flag\""), "'false' is not a valid int"));
+  CHECK(has(errors, line_of(xml, "x=\"$Speed\""),
+            "parameter 'Speed' used here has no valid value: its declaration at line " +
+                speed_line + " is in error"));
+  CHECK(has(errors, line_of(xml, "value=\"${$Speed + $Good}\""),
+            "parameter 'Speed' used here has no valid value: its declaration at line " +
+                speed_line + " is in error"));
+  CHECK(has(errors, line_of(xml, "value=\"$Speed\""),
+            "parameter 'Speed' used here has no valid value: its declaration at line " +
+                speed_line + " is in error"));
+  CHECK(has(errors, line_of(xml, "$Flag"),
+            "parameter 'Flag' used here has no valid value: its declaration at line " +
+                std::to_string(line_of(xml, "name=\"Flag\"")) + " is in error"));
+  CHECK(errors.size() == 6);
+}
