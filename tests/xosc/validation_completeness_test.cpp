@@ -302,8 +302,10 @@ TEST_CASE("text in an element that holds only elements is an error at the text's
   CHECK(errors.size() == 2);
 }
 
-TEST_CASE("an element of a choice with two children is an error at that element",
-          "[xosc][errors]") {
+TEST_CASE(
+    "an element of a choice with two children is an error at that element, and the "
+    "second child's errors are reported",
+    "[xosc][errors]") {
   corsa::test::TempDir dir;
   ScenarioText text;
   text.variables = "<VariableDeclaration name=\"Count\" variableType=\"int\" value=\"3\"/>\n";
@@ -324,7 +326,50 @@ TEST_CASE("an element of a choice with two children is an error at that element"
             "<Action> takes one child, found <GlobalAction> (line " +
                 std::to_string(line_of(xml, "<GlobalAction>")) + ") and <PrivateAction> (line " +
                 std::to_string(line_of(xml, "<PrivateAction><Longitudinal")) + ")"));
-  CHECK(errors.size() == 1);
+  CHECK(has(errors, line_of(xml, "value=\"fast\""), "'fast' is not a number"));
+  CHECK(errors.size() == 2);
+}
+
+TEST_CASE("children beyond what their parent allows are read for the errors inside them",
+          "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      // Two Positions where one is allowed: the second is read as a Position.
+      "<PrivateAction><TeleportAction>\n"
+      "<Position><WorldPosition x=\"0\" y=\"0\" h=\"0\"/></Position>\n"
+      "<Position><WorldPosition x=\"east\" y=\"0\" h=\"0\"/></Position>\n"
+      "</TeleportAction></PrivateAction>\n"
+      // A PrivateAction holding two actions: the second's kind is read generically (its
+      // elements against the schema, its attributes resolved).
+      "<PrivateAction>\n"
+      "<LongitudinalAction><SpeedAction>"
+      "<SpeedActionDynamics dynamicsShape=\"step\" dynamicsDimension=\"time\" value=\"0\"/>"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"3\"/></SpeedActionTarget>"
+      "</SpeedAction></LongitudinalAction>\n"
+      "<LateralAction><LaneChangeAction>\n"
+      "<LaneChangeActionDynamics dynamicsShape=\"step\" dynamicsDimension=\"time\" "
+      "value=\"$Missing\"/>\n"
+      "<Bogus/>\n"
+      "<LaneChangeTarget><RelativeTargetLane entityRef=\"Ego\" value=\"1\"/></LaneChangeTarget>"
+      "</LaneChangeAction></LateralAction>\n"
+      "</PrivateAction>\n"
+      "</Private>\n";
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  CHECK(
+      has(errors, line_of(xml, "x=\"east\""), "<TeleportAction> may contain only one <Position>"));
+  CHECK(has(errors, line_of(xml, "x=\"east\""), "'east' is not a number"));
+  CHECK(has(errors, line_of(xml, "<PrivateAction>\n<Longitudinal"),
+            "<PrivateAction> takes one child, found <LongitudinalAction> (line " +
+                std::to_string(line_of(xml, "<LongitudinalAction>")) +
+                ") and <LateralAction> (line " + std::to_string(line_of(xml, "<LateralAction>")) +
+                ")"));
+  CHECK(has(errors, line_of(xml, "$Missing"), "undefined parameter '$Missing'"));
+  CHECK(has(errors, line_of(xml, "<Bogus/>"), "unknown element <Bogus> in <LaneChangeAction>"));
+  CHECK(errors.size() == 5);
 }
 
 TEST_CASE("each use of a parameter whose declaration is in error is an error at the use",

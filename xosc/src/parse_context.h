@@ -309,6 +309,10 @@ class Children {
   bool consumed_all_ = false;
 };
 
+/// Reads a child beyond what its parent allows (its cardinality error is reported by Children)
+/// for the errors inside it; the result is dropped.
+void read_extra_child(ParseContext& ctx, const Element* element);
+
 /// Text content of an element ("" when none).
 std::string element_text(const Element* element);
 /// "int", "double", ... as the schema spells the type.
