@@ -421,3 +421,69 @@ TEST_CASE("each use of a parameter whose declaration is in error is an error at 
                 std::to_string(line_of(xml, "name=\"Flag\"")) + " is in error"));
   CHECK(errors.size() == 6);
 }
+
+TEST_CASE("a use of a parameter given a bad value from outside names where the value came from",
+          "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  // A catalog entry whose parameter the reference assigns a bad value, used in the entry.
+  corsa::test::write_text(dir.path() / "Catalogs/Vehicles/v.xosc", R"(<?xml version="1.0"?>
+<OpenSCENARIO>
+<FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" description="c" author="a"/>
+<Catalog name="Vehicles">
+<Vehicle name="car" vehicleCategory="car">
+<ParameterDeclarations><ParameterDeclaration name="Width" parameterType="double" value="2"/>
+</ParameterDeclarations>
+<BoundingBox><Center x="1.4" y="0" z="0.9"/>
+<Dimensions width="$Width" length="5" height="1.8"/></BoundingBox>
+<Performance maxSpeed="69" maxAcceleration="10" maxDeceleration="10"/>
+<Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.7" positionX="3" positionZ="0.4"/>
+<RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.7" positionX="0" positionZ="0.4"/></Axles>
+</Vehicle>
+</Catalog>
+</OpenSCENARIO>
+)");
+  ScenarioText text;
+  text.parameters = "<ParameterDeclaration name=\"Speed\" parameterType=\"double\" value=\"3\"/>\n";
+  text.catalogs = "<VehicleCatalog><Directory path=\"Catalogs/Vehicles\"/></VehicleCatalog>\n";
+  text.entities +=
+      "<ScenarioObject name=\"Other\">\n"
+      "<CatalogReference catalogName=\"Vehicles\" entryName=\"car\">\n"
+      "<ParameterAssignments><ParameterAssignment parameterRef=\"Width\" value=\"wide\"/>"
+      "</ParameterAssignments>\n</CatalogReference>\n</ScenarioObject>\n";
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position>\n"
+      "<WorldPosition x=\"$Speed\" y=\"0\" h=\"0\"/></Position></TeleportAction></PrivateAction>\n"
+      "</Private>\n";
+  const std::string xml = text.str();
+  corsa::test::write_text(dir.path() / "map.xodr", corsa::test::minimal_xodr());
+  corsa::test::write_text(dir.path() / "s.xosc", xml);
+  LoadOptions options;
+  options.parameters = {{"Speed", "quick"}};
+  std::vector<corsa::Diagnostic> errors;
+  corsa::Diagnostics diagnostics;
+  try {
+    load_scenario(dir.path() / "s.xosc", options, diagnostics);
+  } catch (const corsa::InputError& error) {
+    errors = error.diagnostics();
+  }
+  INFO(describe(errors));
+  CHECK(has(errors, 0, "parameter 'Speed': 'quick' is not a valid double"));
+  CHECK(has(errors, line_of(xml, "x=\"$Speed\""),
+            "parameter 'Speed' used here has no valid value: the value assigned to it by --param "
+            "is in error"));
+  const int assignment = line_of(xml, "parameterRef=\"Width\"");
+  CHECK(has(errors, assignment, "parameter 'Width': 'wide' is not a valid double"));
+  const std::string scenario_file = (dir.path() / "s.xosc").string();
+  bool at_use = false;
+  for (const auto& error : errors) {
+    at_use =
+        at_use || (error.line == 9 && error.file.find("v.xosc") != std::string::npos &&
+                   error.message.find("parameter 'Width' used here has no valid value: the value "
+                                      "assigned to it at line " +
+                                      std::to_string(assignment) + " of ") != std::string::npos &&
+                   error.message.find(scenario_file) != std::string::npos);
+  }
+  CHECK(at_use);
+  CHECK(errors.size() == 4);
+}

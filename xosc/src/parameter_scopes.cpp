@@ -45,9 +45,10 @@ Value neutral_value(ParameterType type) {
 bool is_ordering(Rule rule) { return rule != Rule::kEqualTo && rule != Rule::kNotEqualTo; }
 
 // Where the value of a parameter was written, for the message at a use of it: the line, and the
-// file when it is another one than the use's.
+// file when it is another one than the use's; an option (--param) by its name.
 std::string value_place(const Source& where, const std::string& use_file) {
-  std::string place = "line " + std::to_string(where.line);
+  if (where.line <= 0) return "by " + where.file_name();
+  std::string place = "at line " + std::to_string(where.line);
   if (where.file_name() != use_file) place += " of " + where.file_name();
   return place;
 }
@@ -115,7 +116,7 @@ std::string ParseContext::resolve_in(const Element* element, const std::string& 
 std::string ParseContext::unusable_message(const Entry& entry) const {
   const std::string use_file = file_.name ? *file_.name : std::string();
   const std::string whose =
-      entry.declaration.overridden ? "the value assigned to it at " : "its declaration at ";
+      entry.declaration.overridden ? "the value assigned to it " : "its declaration ";
   return "parameter '" + entry.declaration.name + "' used here has no valid value: " + whose +
          value_place(entry.value_source, use_file) + " is in error";
 }
