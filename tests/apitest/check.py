@@ -12,7 +12,8 @@ For every kit file this runs `corsa validate FILE` and reports, per expected mes
 Corsa gives an error at that line and whether it names roughly the same cause (a small table of
 cause words: a value that is not a number or not of the type, an enumeration value not allowed,
 an unknown element, division by zero, overflow, an expression's syntax, a deprecated attribute,
-an undefined name, a ModifyAction on a non-numeric variable, ...). Corsa's errors at lines the
+an undefined name, a ModifyAction on a non-numeric variable, a value breaking its parameter's
+constraints, a missing or extra child element, ...). Corsa's errors at lines the
 tester names no message for are listed as Corsa-only: those about a map or catalog the kit lacks
 (the tester's reader does not open referenced files; the tester's repository does not hold them
 either) apart from the rest, which are the false positives to read. A bad file must exit 2 and a
@@ -54,6 +55,9 @@ CAUSES = [
     ('deprecated', r'deprecated', r'deprecated|written together|twice'),
     ('undefined', r'not defined|cannot resolve', r'not defined|undefined|unknown|not declared'),
     ('modify', r'modifyaction', r'modifyaction'),
+    ('constraint', r'value constraint', r'violates its value constraints'),
+    ('cardinality', r'too few children|one of these properties is required',
+     r'without <|needs one of|takes one child'),
     ('malformed', r'endtag|end-tag|must be terminated|beendet|entity', r'malformed xml'),
 ]
 # Corsa's errors about files the kit does not hold.

@@ -301,3 +301,189 @@ TEST_CASE("text in an element that holds only elements is an error at the text's
   CHECK(has(errors, line_of(xml, "x=\"left\""), "'left' is not a number"));
   CHECK(errors.size() == 2);
 }
+
+TEST_CASE(
+    "an element of a choice with two children is an error at that element, and the "
+    "second child's errors are reported",
+    "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.variables = "<VariableDeclaration name=\"Count\" variableType=\"int\" value=\"3\"/>\n";
+  text.stories = corsa::test::story_with(
+      "<Event name=\"E\" priority=\"override\">\n"
+      "<Action name=\"Both\">\n"
+      "<GlobalAction><VariableAction variableRef=\"Count\"><SetAction value=\"4\"/>"
+      "</VariableAction></GlobalAction>\n"
+      "<PrivateAction><LongitudinalAction><SpeedAction>"
+      "<SpeedActionDynamics dynamicsShape=\"step\" dynamicsDimension=\"time\" value=\"0\"/>"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"fast\"/></SpeedActionTarget>"
+      "</SpeedAction></LongitudinalAction></PrivateAction>\n"
+      "</Action>\n</Event>\n");
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  CHECK(has(errors, line_of(xml, "<Action name=\"Both\""),
+            "<Action> takes one child, found <GlobalAction> (line " +
+                std::to_string(line_of(xml, "<GlobalAction>")) + ") and <PrivateAction> (line " +
+                std::to_string(line_of(xml, "<PrivateAction><Longitudinal")) + ")"));
+  CHECK(has(errors, line_of(xml, "value=\"fast\""), "'fast' is not a number"));
+  CHECK(errors.size() == 2);
+}
+
+TEST_CASE("children beyond what their parent allows are read for the errors inside them",
+          "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      // Two Positions where one is allowed: the second is read as a Position.
+      "<PrivateAction><TeleportAction>\n"
+      "<Position><WorldPosition x=\"0\" y=\"0\" h=\"0\"/></Position>\n"
+      "<Position><WorldPosition x=\"east\" y=\"0\" h=\"0\"/></Position>\n"
+      "</TeleportAction></PrivateAction>\n"
+      // A PrivateAction holding two actions: the second's kind is read generically (its
+      // elements against the schema, its attributes resolved).
+      "<PrivateAction>\n"
+      "<LongitudinalAction><SpeedAction>"
+      "<SpeedActionDynamics dynamicsShape=\"step\" dynamicsDimension=\"time\" value=\"0\"/>"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"3\"/></SpeedActionTarget>"
+      "</SpeedAction></LongitudinalAction>\n"
+      "<LateralAction><LaneChangeAction>\n"
+      "<LaneChangeActionDynamics dynamicsShape=\"step\" dynamicsDimension=\"time\" "
+      "value=\"$Missing\"/>\n"
+      "<Bogus/>\n"
+      "<LaneChangeTarget><RelativeTargetLane entityRef=\"Ego\" value=\"1\"/></LaneChangeTarget>"
+      "</LaneChangeAction></LateralAction>\n"
+      "</PrivateAction>\n"
+      "</Private>\n";
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  CHECK(
+      has(errors, line_of(xml, "x=\"east\""), "<TeleportAction> may contain only one <Position>"));
+  CHECK(has(errors, line_of(xml, "x=\"east\""), "'east' is not a number"));
+  CHECK(has(errors, line_of(xml, "<PrivateAction>\n<Longitudinal"),
+            "<PrivateAction> takes one child, found <LongitudinalAction> (line " +
+                std::to_string(line_of(xml, "<LongitudinalAction>")) +
+                ") and <LateralAction> (line " + std::to_string(line_of(xml, "<LateralAction>")) +
+                ")"));
+  CHECK(has(errors, line_of(xml, "$Missing"), "undefined parameter '$Missing'"));
+  CHECK(has(errors, line_of(xml, "<Bogus/>"), "unknown element <Bogus> in <LaneChangeAction>"));
+  CHECK(errors.size() == 5);
+}
+
+TEST_CASE("each use of a parameter whose declaration is in error is an error at the use",
+          "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.parameters =
+      "<ParameterDeclaration name=\"Speed\" parameterType=\"double\" value=\"fast\"/>\n"
+      "<ParameterDeclaration name=\"Flag\" parameterType=\"int\" value=\"false\"/>\n"
+      "<ParameterDeclaration name=\"Good\" parameterType=\"double\" value=\"3\"/>\n";
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position>\n"
+      "<WorldPosition x=\"$Speed\" y=\"$Good\" h=\"0\"/></Position></TeleportAction>"
+      "</PrivateAction>\n"
+      "<PrivateAction><LongitudinalAction><SpeedAction>\n"
+      "<SpeedActionDynamics dynamicsShape=\"step\" dynamicsDimension=\"time\" value=\"0\"/>\n"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"${$Speed + $Good}\"/>"
+      "</SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction>\n"
+      "</Private>\n";
+  text.stories = corsa::test::story_with(
+      "<Event name=\"E\" priority=\"override\">\n"
+      "<Action name=\"A\"><PrivateAction><LongitudinalAction><SpeedAction>\n"
+      "<SpeedActionDynamics dynamicsShape=\"step\" dynamicsDimension=\"time\" value=\"0\"/>\n"
+      "<SpeedActionTarget><AbsoluteTargetSpeed value=\"$Speed\"/></SpeedActionTarget>"
+      "</SpeedAction></LongitudinalAction></PrivateAction></Action>\n"
+      "</Event>\n");
+  // A boolean attribute given the bad int: one error at the use, not a second about its type.
+  const std::string actors = "<Actors selectTriggeringEntities=\"false\">";
+  text.stories.replace(text.stories.find(actors), actors.size(),
+                       "<Actors selectTriggeringEntities=\"$Flag\">");
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  const std::string speed_line = std::to_string(line_of(xml, "name=\"Speed\""));
+  CHECK(has(errors, line_of(xml, "name=\"Speed\""), "'fast' is not a valid double"));
+  CHECK(has(errors, line_of(xml, "name=\"Flag\""), "'false' is not a valid int"));
+  CHECK(has(errors, line_of(xml, "x=\"$Speed\""),
+            "parameter 'Speed' used here has no valid value: its declaration at line " +
+                speed_line + " is in error"));
+  CHECK(has(errors, line_of(xml, "value=\"${$Speed + $Good}\""),
+            "parameter 'Speed' used here has no valid value: its declaration at line " +
+                speed_line + " is in error"));
+  CHECK(has(errors, line_of(xml, "value=\"$Speed\""),
+            "parameter 'Speed' used here has no valid value: its declaration at line " +
+                speed_line + " is in error"));
+  CHECK(has(errors, line_of(xml, "$Flag"),
+            "parameter 'Flag' used here has no valid value: its declaration at line " +
+                std::to_string(line_of(xml, "name=\"Flag\"")) + " is in error"));
+  CHECK(errors.size() == 6);
+}
+
+TEST_CASE("a use of a parameter given a bad value from outside names where the value came from",
+          "[xosc][errors]") {
+  corsa::test::TempDir dir;
+  // A catalog entry whose parameter the reference assigns a bad value, used in the entry.
+  corsa::test::write_text(dir.path() / "Catalogs/Vehicles/v.xosc", R"(<?xml version="1.0"?>
+<OpenSCENARIO>
+<FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" description="c" author="a"/>
+<Catalog name="Vehicles">
+<Vehicle name="car" vehicleCategory="car">
+<ParameterDeclarations><ParameterDeclaration name="Width" parameterType="double" value="2"/>
+</ParameterDeclarations>
+<BoundingBox><Center x="1.4" y="0" z="0.9"/>
+<Dimensions width="$Width" length="5" height="1.8"/></BoundingBox>
+<Performance maxSpeed="69" maxAcceleration="10" maxDeceleration="10"/>
+<Axles><FrontAxle maxSteering="0.5" wheelDiameter="0.8" trackWidth="1.7" positionX="3" positionZ="0.4"/>
+<RearAxle maxSteering="0" wheelDiameter="0.8" trackWidth="1.7" positionX="0" positionZ="0.4"/></Axles>
+</Vehicle>
+</Catalog>
+</OpenSCENARIO>
+)");
+  ScenarioText text;
+  text.parameters = "<ParameterDeclaration name=\"Speed\" parameterType=\"double\" value=\"3\"/>\n";
+  text.catalogs = "<VehicleCatalog><Directory path=\"Catalogs/Vehicles\"/></VehicleCatalog>\n";
+  text.entities +=
+      "<ScenarioObject name=\"Other\">\n"
+      "<CatalogReference catalogName=\"Vehicles\" entryName=\"car\">\n"
+      "<ParameterAssignments><ParameterAssignment parameterRef=\"Width\" value=\"wide\"/>"
+      "</ParameterAssignments>\n</CatalogReference>\n</ScenarioObject>\n";
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position>\n"
+      "<WorldPosition x=\"$Speed\" y=\"0\" h=\"0\"/></Position></TeleportAction></PrivateAction>\n"
+      "</Private>\n";
+  const std::string xml = text.str();
+  corsa::test::write_text(dir.path() / "map.xodr", corsa::test::minimal_xodr());
+  corsa::test::write_text(dir.path() / "s.xosc", xml);
+  LoadOptions options;
+  options.parameters = {{"Speed", "quick"}};
+  std::vector<corsa::Diagnostic> errors;
+  corsa::Diagnostics diagnostics;
+  try {
+    load_scenario(dir.path() / "s.xosc", options, diagnostics);
+  } catch (const corsa::InputError& error) {
+    errors = error.diagnostics();
+  }
+  INFO(describe(errors));
+  CHECK(has(errors, 0, "parameter 'Speed': 'quick' is not a valid double"));
+  CHECK(has(errors, line_of(xml, "x=\"$Speed\""),
+            "parameter 'Speed' used here has no valid value: the value assigned to it by --param "
+            "is in error"));
+  const int assignment = line_of(xml, "parameterRef=\"Width\"");
+  CHECK(has(errors, assignment, "parameter 'Width': 'wide' is not a valid double"));
+  const std::string scenario_file = (dir.path() / "s.xosc").string();
+  bool at_use = false;
+  for (const auto& error : errors) {
+    at_use =
+        at_use || (error.line == 9 && error.file.find("v.xosc") != std::string::npos &&
+                   error.message.find("parameter 'Width' used here has no valid value: the value "
+                                      "assigned to it at line " +
+                                      std::to_string(assignment) + " of ") != std::string::npos &&
+                   error.message.find(scenario_file) != std::string::npos);
+  }
+  CHECK(at_use);
+  CHECK(errors.size() == 4);
+}

@@ -127,6 +127,11 @@ const Element* Children::opt(const char* name) {
   if (first != nullptr && first->NextSiblingElement(name) != nullptr) {
     context_.error(first->NextSiblingElement(name),
                    "<" + std::string(element_->Name()) + "> may contain only one <" + name + ">");
+    // The first is read; the others are read for the errors inside them.
+    for (const Element* extra = first->NextSiblingElement(name); extra != nullptr;
+         extra = extra->NextSiblingElement(name)) {
+      context_.recover([&] { read_extra_child(context_, extra); });
+    }
   }
   return first;
 }
@@ -174,9 +179,19 @@ const Element* Children::choice() {
     // Reported by the constructor; nothing of the element can be read.
     throw RecordedError(context_.source(child).error("unknown element"));
   }
+  // A second child breaks the choice of the element holding both: the error is at that element
+  // and names where each child is. The first is read by the caller; the others (of names the
+  // type allows: an unknown one is reported by the constructor) are read here for the errors
+  // inside them, so those are reported before the first child's.
   if (const Element* second = child->NextSiblingElement(); second != nullptr) {
-    context_.error(second, "<" + std::string(element_->Name()) + "> takes one child, found <" +
-                               child->Name() + "> and <" + second->Name() + ">");
+    context_.error(element_, "<" + std::string(element_->Name()) + "> takes one child, found <" +
+                                 child->Name() + "> (line " + std::to_string(child->GetLineNum()) +
+                                 ") and <" + second->Name() + "> (line " +
+                                 std::to_string(second->GetLineNum()) + ")");
+    for (const Element* extra = second; extra != nullptr; extra = extra->NextSiblingElement()) {
+      if (!rule->allows_child(extra->Name())) continue;
+      context_.recover([&] { read_extra_child(context_, extra); });
+    }
   }
   return child;
 }

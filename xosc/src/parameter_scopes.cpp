@@ -1,7 +1,8 @@
 // Parameter scopes of one load (§9.1): declarations, `$name` and `${expression}` resolution,
 // value constraints. Errors are recorded (ParseContext::error) so that every bad declaration of
-// a file is reported in one pass; a declaration that cannot be read keeps a neutral value of its
-// type, so that its uses do not report it again.
+// a file is reported in one pass. A declaration whose value cannot be read is marked in error:
+// each use of it is an error at the use (the use's attribute is not read, so its type is not
+// reported as well).
 
 #include <algorithm>
 #include <cmath>
@@ -43,6 +44,15 @@ Value neutral_value(ParameterType type) {
 
 bool is_ordering(Rule rule) { return rule != Rule::kEqualTo && rule != Rule::kNotEqualTo; }
 
+// Where the value of a parameter was written, for the message at a use of it: the line, and the
+// file when it is another one than the use's; an option (--param) by its name.
+std::string value_place(const Source& where, const std::string& use_file) {
+  if (where.line <= 0) return "by " + where.file_name();
+  std::string place = "at line " + std::to_string(where.line);
+  if (where.file_name() != use_file) place += " of " + where.file_name();
+  return place;
+}
+
 }  // namespace
 
 std::string ParseContext::resolve(const Element* element, const std::string& text) {
@@ -60,8 +70,10 @@ std::string ParseContext::resolve_in(const Element* element, const std::string& 
     }
     const std::string_view body = std::string_view(text).substr(2, text.size() - 3);
     const ParameterLookup find = [&](std::string_view name) -> std::optional<ExprValue> {
-      const Value* value = lookup(name, upto, element);
-      if (value == nullptr) return std::nullopt;
+      const Entry* entry = lookup(name, upto, element);
+      if (entry == nullptr) return std::nullopt;
+      if (entry->in_error) fail(element, unusable_message(*entry));
+      const Value* value = &entry->declaration.value;
       if (const auto* b = std::get_if<bool>(&value->data)) return ExprValue::of_bool(*b);
       if (const auto number = value->number()) return ExprValue::of(*number);
       // A string parameter holding a number (ASAM's own ALKS scenarios declare lane ids as
@@ -99,14 +111,24 @@ std::string ParseContext::resolve_in(const Element* element, const std::string& 
   if (!is_identifier(name)) {
     return text;  // a string that merely starts with '$'
   }
-  const Value* value = lookup(name, upto, element);
-  if (value == nullptr) {
+  const Entry* entry = lookup(name, upto, element);
+  if (entry == nullptr) {
     fail(element, "undefined parameter '" + clip(text) + "'");
   }
-  return value->text();
+  if (entry->in_error) fail(element, unusable_message(*entry));
+  return entry->declaration.value.text();
 }
 
-const Value* ParseContext::lookup(std::string_view name, size_t upto, const Element* from) {
+std::string ParseContext::unusable_message(const Entry& entry) const {
+  const std::string use_file = file_.name ? *file_.name : std::string();
+  const std::string whose =
+      entry.declaration.overridden ? "the value assigned to it " : "its declaration ";
+  return "parameter '" + entry.declaration.name + "' used here has no valid value: " + whose +
+         value_place(entry.value_source, use_file) + " is in error";
+}
+
+const ParseContext::Entry* ParseContext::lookup(std::string_view name, size_t upto,
+                                                const Element* from) {
   if (upto == 0) return nullptr;
   const size_t barrier = scopes_[upto - 1].barrier;
   for (size_t k = upto; k-- > barrier;) {
@@ -120,7 +142,7 @@ const Value* ParseContext::lookup(std::string_view name, size_t upto, const Elem
           break;
         }
         resolve_entry(k, i);
-        return &scopes_[k].entries[i].declaration.value;
+        return &scopes_[k].entries[i];
       }
     }
   }
@@ -132,10 +154,10 @@ const Value* ParseContext::lookup(std::string_view name, size_t upto, const Elem
   for (size_t i = 0; i < globals.size(); ++i) {
     if (globals[i].declaration.name != name) continue;
     resolve_entry(0, i);
-    const Value& value = scopes_[0].entries[i].declaration.value;
+    const Entry& global = scopes_[0].entries[i];
     lenient(from, "parameter '$" + std::string(name) + "' is not declared in its catalog entry",
-            "the scenario's global parameter, '" + clip(value.text()) + "'");
-    return &value;
+            "the scenario's global parameter, '" + clip(global.declaration.value.text()) + "'");
+    return &global;
   }
   return nullptr;
 }
@@ -179,6 +201,7 @@ void ParseContext::resolve_entry(size_t scope, size_t index) {
     }
   }
   if (value) entry->declaration.value = *value;
+  entry->in_error = !value;
   entry->state = Entry::State::kDone;
   resolving_.pop_back();
   if (value) check_constraints(*entry);
@@ -334,8 +357,8 @@ bool ParseContext::parameter_visible(const std::string& name) {
 }
 
 std::optional<ParameterType> ParseContext::parameter_type(const std::string& name) {
-  const Value* value = lookup(name, scopes_.size(), nullptr);
-  if (value != nullptr) return value->type;
+  const Entry* entry = lookup(name, scopes_.size(), nullptr);
+  if (entry != nullptr) return entry->declaration.value.type;
   return std::nullopt;
 }
 

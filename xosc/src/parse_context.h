@@ -217,7 +217,9 @@ class ParseContext {
     ParameterDeclaration declaration;
     const Element* element = nullptr;
     bool literal = false;  ///< value given from outside: parse only, do not resolve `$`
-    Source value_source;   ///< where the effective value was written
+    /// The value could not be read (reported at the declaration): each use is an error.
+    bool in_error = false;
+    Source value_source;  ///< where the effective value was written
     enum class State { kPending, kResolving, kDone } state = State::kPending;
     std::vector<const Element*> constraint_elements;  ///< ValueConstraint elements, in order
   };
@@ -226,7 +228,10 @@ class ParseContext {
     size_t barrier = 0;  ///< first scope index visible from this one
   };
 
-  const Value* lookup(std::string_view name, size_t upto, const Element* from);
+  /// The visible entry called `name`, resolved; null when there is none.
+  const Entry* lookup(std::string_view name, size_t upto, const Element* from);
+  /// The error at a use of `entry`, whose value is in error.
+  std::string unusable_message(const Entry& entry) const;
   /// attr() without the bookkeeping: nullopt when absent; `failed_` set when the value could
   /// not be resolved (the error is recorded).
   std::optional<std::string> resolved(const Element* element, const char* name);
@@ -303,6 +308,10 @@ class Children {
   std::vector<std::string_view> consumed_;
   bool consumed_all_ = false;
 };
+
+/// Reads a child beyond what its parent allows (its cardinality error is reported by Children)
+/// for the errors inside it; the result is dropped.
+void read_extra_child(ParseContext& ctx, const Element* element);
 
 /// Text content of an element ("" when none).
 std::string element_text(const Element* element);
