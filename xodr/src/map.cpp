@@ -16,23 +16,30 @@ namespace corsa::xodr {
 namespace detail {
 
 double section_lane_offset(const Map& map, size_t road, size_t section, double s) {
-  const Road& r = map.road(road);
-  const auto& records = r.lane_offsets;
-  if (records.empty() || s < map.section_end(road, section) || s <= r.lane_sections[section].s) {
-    return map.lane_offset(road, s);
+  return MapAccess::section_lane_offset(map, road, section, s);
+}
+
+double MapAccess::section_lane_offset(const Map& map, size_t road, size_t section, double s) {
+  const PoseTable& poses = map.impl_->poses;
+  const PoseRoad& r = poses.road(road);
+  const PolyRun records = poses.lane_offsets(r);
+  const SpanSection& bounds = map.impl_->spans.section(road, section);
+  if (records.count == 0 || s < bounds.end || s <= bounds.s) {
+    return records.value(poses.clamp_s(r, s));
   }
   // Last record starting strictly before s.
-  const auto it = std::lower_bound(records.begin(), records.end(), s,
-                                   [](const Poly3& p, double value) { return p.s < value; });
-  return it == records.begin() ? 0.0 : std::prev(it)->value(s);
+  const double* it = std::lower_bound(records.starts, records.starts + records.count, s);
+  return it == records.starts ? 0.0 : records.first[it - records.starts - 1].value(s);
 }
 
 RefFrame MapAccess::reference_frame(const Map& map, size_t road_index, double s) {
-  const Road& r = map.road(road_index);
-  s = s < 0.0 ? 0.0 : s > r.length ? r.length : s;
-  const size_t g = record_index(r.plan_view, s, [](const Geometry& x) { return x.s; });
-  const Geometry& geometry = r.plan_view[g];
-  const auto& [cos_h, sin_h] = map.impl_->trig[map.impl_->trig_start[road_index] + g];
+  const PoseTable& poses = map.impl_->poses;
+  const PoseRoad& r = poses.road(road_index);
+  s = poses.clamp_s(r, s);
+  const PoseGeometry& record = poses.geometry_at(r, s);
+  const Geometry& geometry = record.geometry;
+  const double cos_h = record.cos_h;
+  const double sin_h = record.sin_h;
   const LocalFrame local = evaluate_local_frame(geometry, s - geometry.s);
   return RefFrame{to_world(geometry, cos_h, sin_h, local.point),
                   cos_h * local.cos_h - sin_h * local.sin_h,
@@ -51,12 +58,7 @@ Map Map::build(MapData data, corsa::Diagnostics& diagnostics, const BuildOptions
   impl->data = std::move(data);
   detail::sort_map_records(impl->data, diagnostics);
   detail::validate_map(impl->data, impl->ids, diagnostics, options);
-  for (const Road& road : impl->data.roads) {
-    impl->trig_start.push_back(impl->trig.size());
-    for (const Geometry& geometry : road.plan_view) {
-      impl->trig.emplace_back(std::cos(geometry.hdg), std::sin(geometry.hdg));
-    }
-  }
+  impl->poses.build(impl->data.roads);
   impl->spans.build(impl->data.roads);
   Map map(std::move(impl));
   map.impl_->graph = detail::build_lane_graph(map, diagnostics);
@@ -94,17 +96,24 @@ double clamp_s(const Road& road, double s) {
 }  // namespace
 
 RefPoint Map::reference(size_t road_index, double s) const {
-  const Road& r = road(road_index);
-  s = clamp_s(r, s);
-  const size_t g = detail::record_index(r.plan_view, s, [](const Geometry& x) { return x.s; });
-  const Geometry& geometry = r.plan_view[g];
-  const auto& [cos_h, sin_h] = impl_->trig[impl_->trig_start[road_index] + g];
-  return detail::to_world(geometry, cos_h, sin_h, detail::evaluate_local(geometry, s - geometry.s));
+  const detail::PoseTable& poses = impl_->poses;
+  const detail::PoseRoad& r = poses.road(road_index);
+  s = poses.clamp_s(r, s);
+  const detail::PoseGeometry& record = poses.geometry_at(r, s);
+  const Geometry& geometry = record.geometry;
+  return detail::to_world(geometry, record.cos_h, record.sin_h,
+                          detail::evaluate_local(geometry, s - geometry.s));
+}
+
+const Geometry* Map::plan_record_at(size_t road_index, double s) const {
+  const detail::PoseGeometry* record =
+      impl_->poses.geometry_before(impl_->poses.road(road_index), s);
+  return record == nullptr ? nullptr : &record->geometry;
 }
 
 double Map::elevation(size_t road_index, double s) const {
-  const Road& r = road(road_index);
-  return detail::poly_value(r.elevation, clamp_s(r, s));
+  const detail::PoseRoad& r = impl_->poses.road(road_index);
+  return impl_->poses.elevation(r).value(impl_->poses.clamp_s(r, s));
 }
 
 double Map::elevation_slope(size_t road_index, double s) const {
@@ -113,13 +122,13 @@ double Map::elevation_slope(size_t road_index, double s) const {
 }
 
 double Map::superelevation(size_t road_index, double s) const {
-  const Road& r = road(road_index);
-  return detail::poly_value(r.superelevation, clamp_s(r, s));
+  const detail::PoseRoad& r = impl_->poses.road(road_index);
+  return impl_->poses.superelevation(r).value(impl_->poses.clamp_s(r, s));
 }
 
 double Map::lane_offset(size_t road_index, double s) const {
-  const Road& r = road(road_index);
-  return detail::poly_value(r.lane_offsets, clamp_s(r, s));
+  const detail::PoseRoad& r = impl_->poses.road(road_index);
+  return impl_->poses.lane_offsets(r).value(impl_->poses.clamp_s(r, s));
 }
 
 double Map::shape_height(size_t road_index, double s, double t) const {
@@ -168,19 +177,20 @@ double Map::shape_height(size_t road_index, double s, double t) const {
 
 WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const {
   const RefPoint ref = reference(road_index, s);
-  const Road& r = road(road_index);
-  const double cs = clamp_s(r, s);
+  const detail::PoseTable& poses = impl_->poses;
+  const detail::PoseRoad& r = poses.road(road_index);
+  const double cs = poses.clamp_s(r, s);
   // Flat roads are the common case: no superelevation, no slope. The shortcuts give the bits
   // the library would (cos(+0) = 1, sin(+0) = +0, atan(+-0) = +-0) without calling it.
-  const double roll = detail::poly_value(r.superelevation, cs);
+  const double roll = poses.superelevation(r).value(cs);
   const bool level = roll == 0.0 && !std::signbit(roll);
   const double cos_r = level ? 1.0 : std::cos(roll);
   const double sin_r = level ? 0.0 : std::sin(roll);
   double elevation = 0.0;
   double slope = 0.0;
-  if (!r.elevation.empty() && cs >= r.elevation.front().s) {
-    const Poly3& record =
-        r.elevation[detail::record_index(r.elevation, cs, [](const Poly3& p) { return p.s; })];
+  const detail::PolyRun profile = poses.elevation(r);
+  if (profile.count != 0 && cs >= profile.starts[0]) {
+    const Poly3& record = profile.first[profile.index(cs)];
     elevation = record.value(cs);
     slope = record.slope(cs);
   }
@@ -192,7 +202,7 @@ WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const
   pose.x = ref.x - std::sin(ref.hdg) * horizontal;
   pose.y = ref.y + std::cos(ref.hdg) * horizontal;
   pose.z =
-      elevation + t * sin_r + h * cos_r + (r.shapes.empty() ? 0.0 : shape_height(road_index, s, t));
+      elevation + t * sin_r + h * cos_r + (r.has_shapes ? shape_height(road_index, s, t) : 0.0);
   pose.h = ref.hdg;
   pose.p = -(slope == 0.0 ? slope : std::atan(slope));
   pose.r = roll;
@@ -235,12 +245,11 @@ bool Map::section_widths_only(size_t road_index, size_t section) const {
 
 std::optional<LaneSpan> Map::lane_span_in_section(size_t road_index, size_t section, double s,
                                                   int lane_id) const {
-  const Road& r = road(road_index);
-  s = clamp_s(r, s);
+  s = impl_->poses.clamp_s(impl_->poses.road(road_index), s);
   LaneSpan span;
   if (impl_->spans.span(road_index, section, s,
-                        detail::section_lane_offset(*this, road_index, section, s), lane_id,
-                        span)) {
+                        detail::MapAccess::section_lane_offset(*this, road_index, section, s),
+                        lane_id, span)) {
     return span;
   }
   return std::nullopt;

@@ -10,6 +10,7 @@
 
 #include "corsa/xodr/lane_graph.h"
 #include "corsa/xodr/map.h"
+#include "pose_table.h"
 #include "span_table.h"
 #include "spatial_index.h"
 
@@ -36,9 +37,9 @@ LaneGraph build_lane_graph(const Map& map, corsa::Diagnostics& diagnostics);
 struct Map::Impl {
   MapData data;
   detail::IdIndex ids;
-  /// cos/sin of every planView record's heading: trig[trig_start[road] + record].
-  std::vector<std::pair<double, double>> trig;
-  std::vector<size_t> trig_start;
+  /// What a road pose reads (planView records with their headings' cos/sin, laneOffset,
+  /// elevation, superelevation), packed from `data`.
+  detail::PoseTable poses;
   LaneGraph graph;
   /// The lane sections packed for lane spans (lane_span_in_section), made from `data`.
   detail::SpanTable spans;

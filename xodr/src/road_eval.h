@@ -49,6 +49,8 @@ struct RefFrame {
 /// Map internals for corsa_xodr's hot paths.
 struct MapAccess {
   static RefFrame reference_frame(const Map& map, size_t road, double s);
+  /// section_lane_offset, read from the map's packed tables (pose_table.h, span_table.h).
+  static double section_lane_offset(const Map& map, size_t road, size_t section, double s);
 };
 
 /// laneOffset for the lanes of section `section` at s. Inside the section this is laneOffset(s);

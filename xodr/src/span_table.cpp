@@ -51,9 +51,11 @@ void SpanTable::build(const std::vector<Road>& roads) {
   road_first_.clear();
   for (const Road& road : roads) {
     road_first_.push_back(static_cast<uint32_t>(sections_.size()));
-    for (const LaneSection& section : road.lane_sections) {
+    for (size_t i = 0; i < road.lane_sections.size(); ++i) {
+      const LaneSection& section = road.lane_sections[i];
       SpanSection packed;
       packed.s = section.s;
+      packed.end = i + 1 < road.lane_sections.size() ? road.lane_sections[i + 1].s : road.length;
       packed.first = static_cast<uint32_t>(lanes_.size());
       packed.count = static_cast<uint32_t>(section.lanes.size());
       packed.center = static_cast<uint32_t>(center_index(section));

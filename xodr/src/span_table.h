@@ -32,6 +32,7 @@ struct SpanLane {
 
 struct SpanSection {
   double s = 0.0;      ///< m, the section's start (LaneSection::s)
+  double end = 0.0;    ///< m, its end (Map::section_end: the next section's s, else the length)
   uint32_t first = 0;  ///< its first lane in SpanTable::lanes
   uint32_t count = 0;
   uint32_t center = 0;  ///< center_index of the section
@@ -45,6 +46,9 @@ class SpanTable {
   void build(const std::vector<Road>& roads);
   /// What compute_span(road's section, s, offset, lane_id, out) gives, to the bit.
   bool span(size_t road, size_t section, double s, double offset, int lane_id, LaneSpan& out) const;
+  const SpanSection& section(size_t road, size_t section) const {
+    return sections_[road_first_[road] + section];
+  }
   /// Map::section_widths_only, read from the packed section.
   bool widths_only(size_t road, size_t section) const {
     return sections_[road_first_[road] + section].widths_only;

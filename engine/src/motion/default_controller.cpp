@@ -2,7 +2,6 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <iterator>
 #include <numbers>
 #include <variant>
 
@@ -80,13 +79,11 @@ namespace {
 // Curvature (1/m) of the reference line at s: read from lines, arcs and spirals directly (the
 // common records; cheaper than evaluating the reference point), evaluated for the cubics.
 double curvature_at(const xodr::Map& map, uint32_t road, double s) {
-  const auto& plan = map.road(road).plan_view;
-  auto it = std::upper_bound(plan.begin(), plan.end(), s,
-                             [](double value, const xodr::Geometry& g) { return value < g.s; });
-  if (it == plan.begin()) {
-    return plan.empty() ? 0.0 : map.reference(road, s).curvature;
+  const xodr::Geometry* record = map.plan_record_at(road, s);
+  if (record == nullptr) {
+    return map.road(road).plan_view.empty() ? 0.0 : map.reference(road, s).curvature;
   }
-  const xodr::Geometry& g = *std::prev(it);
+  const xodr::Geometry& g = *record;
   if (std::holds_alternative<xodr::LineGeometry>(g.shape)) {
     return 0.0;
   }

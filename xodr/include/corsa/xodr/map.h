@@ -113,6 +113,9 @@ class Map {
 
   /// Reference line point at s (planView, §7).
   RefPoint reference(size_t road, double s) const;
+  /// The last planView record of `road` starting at or before s (s not clamped to the road),
+  /// nullptr when s precedes them all; read from the map's packed copy of the records.
+  const Geometry* plan_record_at(size_t road, double s) const;
   /// Elevation z(s) (m) and its slope dz/ds (§8.4.1).
   double elevation(size_t road, double s) const;
   double elevation_slope(size_t road, double s) const;
