@@ -18,26 +18,26 @@ namespace corsa::engine::detail {
 namespace {
 
 // esmini's ControllerSloppyDriver.
-constexpr double kSpeedPeriod = 3.0;       // s, mean time between speed targets
-constexpr double kLateralPeriod = 1.5;     // s, mean time between lateral targets
-constexpr double kSpeedSpread = 0.35;      // of the reference speed, at sloppiness 1
-constexpr double kLateralScale = 5.0;      // m, the lateral target at sloppiness 1
-constexpr double kOffsetGain = -0.02;      // rad per m of lateral error, per m driven
-constexpr double kHeadingGain = -0.05;     // rad per rad of heading error, per m driven
-constexpr double kSpeedChangeSeen = 1e-3;  // m/s: a speed set from elsewhere
-constexpr double kMovingSpeed = 1e-10;     // m/s, esmini's SMALL_NUMBER
-constexpr double kTwoToThe32 = 4294967296.0;
+constexpr double kSloppySpeedPeriod = 3.0;         // s, mean time between speed targets
+constexpr double kSloppyLateralPeriod = 1.5;       // s, mean time between lateral targets
+constexpr double kSloppySpeedSpread = 0.35;        // of the reference speed, at sloppiness 1
+constexpr double kSloppyLateralScale = 5.0;        // m, the lateral target at sloppiness 1
+constexpr double kSloppyOffsetGain = -0.02;        // rad per m of lateral error, per m driven
+constexpr double kSloppyHeadingGain = -0.05;       // rad per rad of heading error, per m driven
+constexpr double kSloppySpeedChangeSeen = 1e-3;    // m/s: a speed set from elsewhere
+constexpr double kSloppyMovingSpeed = 1e-10;       // m/s, esmini's SMALL_NUMBER
+constexpr double kEsminiWordRange = 4294967296.0;  // 2^32: the values of one mt19937 word
 
 // The longitudinal domain: a new target at each period's end and the speed blended toward it
 // (the entity then moves along its lane at that speed: esmini's additive mode moves the difference
 // on top of its default controller's move, so both modes end the step the same distance on).
 void sloppy_longitudinal(SloppyDriver& driver, EsminiRandom& random) {
   if (driver.speed_timer.expired(driver.clock)) {
-    driver.speed_timer.duration = kSpeedPeriod * random.real_between(0.5, 1.5);
+    driver.speed_timer.duration = kSloppySpeedPeriod * random.real_between(0.5, 1.5);
     driver.speed_timer.start = driver.clock;
     driver.initial_speed = driver.reference_speed * driver.target_factor;
     driver.target_factor =
-        1.0 + driver.sloppiness * random.real_between(-kSpeedSpread, kSpeedSpread);
+        1.0 + driver.sloppiness * random.real_between(-kSloppySpeedSpread, kSloppySpeedSpread);
   }
   const double weight = driver.speed_timer.elapsed(driver.clock) / driver.speed_timer.duration;
   driver.current_speed = std::max(driver.initial_speed * (1.0 - weight) +
@@ -51,9 +51,9 @@ void sloppy_lateral(SloppyDriver& driver, EsminiRandom& random, Entity& entity, 
                     double heading_before, double dt) {
   if (driver.lateral_timer.expired(driver.clock)) {
     driver.fuzz_start = driver.fuzz_target;
-    driver.fuzz_target = kLateralScale * driver.sloppiness * std::min(driver.sloppiness, 1.0) *
-                         random.real_between(0.5, 1.5);
-    driver.lateral_timer.duration = kLateralPeriod * random.real_between(0.5, 1.5);
+    driver.fuzz_target = kSloppyLateralScale * driver.sloppiness *
+                         std::min(driver.sloppiness, 1.0) * random.real_between(0.5, 1.5);
+    driver.lateral_timer.duration = kSloppyLateralPeriod * random.real_between(0.5, 1.5);
     driver.lateral_timer.start = driver.clock;
   }
   // esmini's override mode steers on the entity's own heading, its additive mode on the
@@ -64,9 +64,9 @@ void sloppy_lateral(SloppyDriver& driver, EsminiRandom& random, Entity& entity, 
                                               driver.lateral_timer.elapsed(driver.clock) /
                                               driver.lateral_timer.duration;
   const double error = driver.offset + fuzz;
-  const double turn = (kOffsetGain * error + kHeadingGain * heading_error) * dt * speed;
+  const double turn = (kSloppyOffsetGain * error + kSloppyHeadingGain * heading_error) * dt * speed;
   const double shift = speed * dt * std::sin(driver.heading + turn);
-  if (speed <= kMovingSpeed) {
+  if (speed <= kSloppyMovingSpeed) {
     return;
   }
   LaneFollow& lane = entity.lane;
@@ -89,7 +89,7 @@ void step_sloppy_driver(SimState& state, uint32_t index, SloppyDriver& driver,
   driver.last_command = entity.speed_command;
   const double object_speed =
       (!control.longitudinal || command_changed) ? entity.speed_command : driver.current_speed;
-  if (std::abs(object_speed - driver.current_speed) > kSpeedChangeSeen) {
+  if (std::abs(object_speed - driver.current_speed) > kSloppySpeedChangeSeen) {
     driver.reference_speed = object_speed;
   }
   driver.current_speed = object_speed;
@@ -103,7 +103,7 @@ void step_sloppy_driver(SimState& state, uint32_t index, SloppyDriver& driver,
   // actions' speed (esmini's default controller).
   const double commanded = entity.speed_command;
   if (control.longitudinal) {
-    entity.speed_command = std::abs(object_speed) > kMovingSpeed ? driver.current_speed : 0.0;
+    entity.speed_command = std::abs(object_speed) > kSloppyMovingSpeed ? driver.current_speed : 0.0;
   }
   DefaultController{}.step(entity, motion);
   if (control.longitudinal) {
@@ -121,8 +121,8 @@ void step_sloppy_driver(SimState& state, uint32_t index, SloppyDriver& driver,
 double EsminiRandom::real_between(double low, double high) {
   // libstdc++'s generate_canonical<double, 53>: two words, the first the low one.
   double sum = static_cast<double>(engine_());
-  sum += static_cast<double>(engine_()) * kTwoToThe32;
-  double canonical = sum / (kTwoToThe32 * kTwoToThe32);
+  sum += static_cast<double>(engine_()) * kEsminiWordRange;
+  double canonical = sum / (kEsminiWordRange * kEsminiWordRange);
   if (canonical >= 1.0) canonical = std::nextafter(1.0, 0.0);
   return canonical * (high - low) + low;
 }
@@ -167,13 +167,13 @@ std::shared_ptr<SloppyDriver> make_sloppy_driver(SimState& state,
 }
 
 void activate_sloppy_driver(SloppyDriver& driver, const Entity& entity) {
-  driver.speed_timer = SloppyTimer{0.0, kSpeedPeriod};
+  driver.speed_timer = SloppyTimer{0.0, kSloppySpeedPeriod};
   driver.target_factor = 1.0;
   driver.current_speed = entity.state.speed;
   driver.initial_speed = entity.state.speed;
   driver.reference_speed = entity.state.speed;
   driver.last_command = entity.speed_command;
-  driver.lateral_timer = SloppyTimer{0.0, kLateralPeriod};
+  driver.lateral_timer = SloppyTimer{0.0, kSloppyLateralPeriod};
   driver.fuzz_start = 0.0;
   driver.fuzz_target = 0.0;
   driver.offset = 0.0;
