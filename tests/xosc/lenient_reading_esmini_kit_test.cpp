@@ -356,7 +356,7 @@ TEST_CASE("a controller entry the catalog at hand lacks is read as a controller 
   text.catalogs = "<ControllerCatalog><Directory path=\"catalogs\"/></ControllerCatalog>\n";
   text.entities.replace(text.entities.find("</ScenarioObject>"), 17,
                         "<ObjectController>\n<CatalogReference catalogName=\"ControllerCatalog\" "
-                        "entryName=\"sloppyDriver\"><ParameterAssignments><ParameterAssignment "
+                        "entryName=\"followReference\"><ParameterAssignments><ParameterAssignment "
                         "parameterRef=\"DesiredSpeed\" value=\"25\"/></ParameterAssignments>"
                         "</CatalogReference></ObjectController>\n</ScenarioObject>");
   text.init.replace(text.init.find("</Private>"), 10,
@@ -368,13 +368,13 @@ TEST_CASE("a controller entry the catalog at hand lacks is read as a controller 
   const std::string what =
       "catalog 'ControllerCatalog' (" +
       (dir.path() / "catalogs" / "controllers.xosc").lexically_normal().string() +
-      ") has no controller entry 'sloppyDriver'";
+      ") has no controller entry 'followReference'";
   corsa::test::write_text(dir.path() / "map.xodr", straight_xodr());
   corsa::test::write_text(dir.path() / "s.xosc", xml);
   corsa::Diagnostics diagnostics;
   const Scenario loaded = load_scenario(dir.path() / "s.xosc", {}, diagnostics);
   const auto& controller = loaded.entities.objects[0].controllers.at(0).controller;
-  CHECK(controller.name == "sloppyDriver");
+  CHECK(controller.name == "followReference");
   REQUIRE(controller.catalog);
   CHECK(controller.catalog->assignments.size() == 1);
   CHECK(controller.properties.properties.empty());
@@ -384,11 +384,11 @@ TEST_CASE("a controller entry the catalog at hand lacks is read as a controller 
                               (dir.path() / "summary.json").string()});
   CHECK(run.exit_code == 0);
   CHECK_THAT(corsa::test::slurp(dir.path() / "summary.json"),
-             Catch::Contains("\"substitute_for\": \"sloppyDriver\""));
+             Catch::Contains("\"substitute_for\": \"followReference\""));
   // esmini's NaturalDriver, which the engine emulates, runs as itself, the reference's
   // ParameterAssignments read as its properties (DesiredSpeed as desiredSpeed).
   std::string natural = xml;
-  natural.replace(natural.find("sloppyDriver"), 12, "NaturalDriver");
+  natural.replace(natural.find("followReference"), 15, "NaturalDriver");
   corsa::test::write_text(dir.path() / "n.xosc", natural);
   const auto natural_run = run_corsa({"run", (dir.path() / "n.xosc").string(), "--quiet",
                                       "--summary", (dir.path() / "natural.json").string()});

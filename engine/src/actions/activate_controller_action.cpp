@@ -6,6 +6,7 @@
 #include "actions/action_makers.h"
 #include "controllers/alks_r157.h"
 #include "controllers/controllers.h"
+#include "controllers/sloppy_driver.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -32,6 +33,12 @@ class ActivateControllerInstance final : public InstantAction {
       activate_alks_r157(*control.alks);  // its set speed: the speed it then has
     }
     if (action_.lateral) control.lateral = *action_.lateral;
+    if ((action_.longitudinal.value_or(false) || action_.lateral.value_or(false)) &&
+        control.sloppy && control.kind == ControllerKind::kSloppyDriver) {
+      // esmini's Activate: its timers and offsets start again, its reference speed the speed
+      // the entity then has.
+      activate_sloppy_driver(*control.sloppy, context.entity());
+    }
     if (action_.animation) control.animation = *action_.animation;
     if (action_.lighting) control.lighting = *action_.lighting;
     if (context.state.ghost && *context.actor == context.state.ghost->entity &&

@@ -6,6 +6,7 @@
 #include "actions/action_makers.h"
 #include "controllers/controllers.h"
 #include "controllers/follow_ghost.h"
+#include "controllers/sloppy_driver.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -53,6 +54,10 @@ class AssignControllerInstance final : public InstantAction {
     control.lateral = action_.activate_lateral.value_or(false);
     control.animation = action_.activate_animation.value_or(false);
     control.lighting = action_.activate_lighting.value_or(false);
+    if ((control.longitudinal || control.lateral) && control.sloppy &&
+        control.kind == ControllerKind::kSloppyDriver) {
+      activate_sloppy_driver(*control.sloppy, context.entity());
+    }
   }
 
  private:

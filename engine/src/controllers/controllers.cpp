@@ -17,6 +17,7 @@
 #include "controllers/follow_view.h"
 #include "controllers/natural_driver.h"
 #include "controllers/npc_caution.h"
+#include "controllers/sloppy_driver.h"
 #include "controllers/worker_pool.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
@@ -119,6 +120,13 @@ void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectCo
   }
   if (assign_esmini_driver(state, index, oc)) {
     return;  // esmini's interactiveDriver or offroadFollower (controllers/esmini_vehicle.h)
+  }
+  if (is_sloppy_driver(oc)) {
+    // esmini's sloppyDriver, emulated (controllers/sloppy_driver.h).
+    control.kind = ControllerKind::kSloppyDriver;
+    control.substitute_for.clear();
+    control.sloppy = make_sloppy_driver(state, oc);
+    return;
   }
   if (is_natural_driver(oc)) {
     // esmini's NaturalDriver, emulated (controllers/natural_driver.h).
@@ -332,6 +340,8 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
       break;  // after every other entity (step_natural_drivers)
     case ControllerKind::kAlksR157:
       break;  // after the others (EntityMover::move)
+    case ControllerKind::kSloppyDriver:
+      break;  // after the others, in entity order (step_sloppy_drivers)
   }
 }
 
@@ -424,8 +434,10 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   bool following = false;
   bool natural = false;
   bool alks = false;
+  bool sloppy = false;
   for (uint32_t i = 0; i < count; ++i) {
     alks = alks || state.controls[i].effective() == ControllerKind::kAlksR157;
+    sloppy = sloppy || state.controls[i].effective() == ControllerKind::kSloppyDriver;
     if (dynamics_moves(state, i) && !state.world.entities[i].towed_by) {
       dynamic.push_back(i);
     }
@@ -476,6 +488,10 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   // step after its default controller), in entity order on this thread.
   if (alks) {
     step_alks_r157_entities(state, context);
+  }
+  // esmini's sloppyDriver entities draw from the run's one generator: in entity order, here.
+  if (sloppy) {
+    step_sloppy_drivers(state, context);
   }
 }
 

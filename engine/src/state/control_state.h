@@ -19,7 +19,8 @@ namespace corsa::engine::detail {
 /// kFollowGhost drives after the entity's ghost (controllers/follow_ghost.h); kEsminiVehicle
 /// is one of esmini's drivers of its simple vehicle model (controllers/esmini_vehicle.h);
 /// kNaturalDriver is esmini's NaturalDriver (controllers/natural_driver.h); kAlksR157 is
-/// esmini's ALKS_R157SM_Controller (controllers/alks_r157.h).
+/// esmini's ALKS_R157SM_Controller (controllers/alks_r157.h); kSloppyDriver is esmini's
+/// sloppyDriver (controllers/sloppy_driver.h).
 enum class ControllerKind : uint8_t {
   kDefault,
   kAcc,
@@ -28,7 +29,8 @@ enum class ControllerKind : uint8_t {
   kFollowGhost,
   kEsminiVehicle,
   kNaturalDriver,
-  kAlksR157
+  kAlksR157,
+  kSloppyDriver
 };
 
 /// Parses a controller name as `corsa:controller` and `corsa run --controller` spell it
@@ -64,6 +66,7 @@ struct DynamicsVehicle;
 struct EsminiDriver;
 struct NaturalDriverState;
 struct AlksR157;
+struct SloppyDriver;
 
 /// esmini's ACCController (its Properties), which the acc controller then follows instead of its
 /// own car-following law (controllers/acc_controller.cpp).
@@ -112,6 +115,8 @@ struct ControlState {
   std::shared_ptr<NaturalDriverState> natural;
   /// esmini's ALKS_R157SM_Controller: its settings and run state, while it is the kind.
   std::shared_ptr<AlksR157> alks;
+  /// esmini's sloppyDriver: its properties and run state, while it is the kind.
+  std::shared_ptr<SloppyDriver> sloppy;
   /// A command from outside (Simulation::command) for the step under way, while `commanded`; it
   /// takes the place of the controller. `held`: what an entity of the external controller
   /// repeats between commands.

@@ -36,6 +36,8 @@ class Map;
 
 namespace corsa::engine::detail {
 
+class EsminiRandom;
+
 /// The entities, in document order (their index is their identity for the whole run).
 struct World {
   std::vector<Entity> entities;
@@ -138,6 +140,9 @@ struct SimState {
   std::vector<uint32_t> commanded;
   /// MonitorDeclarations' values (SetMonitorAction), by name.
   std::map<std::string, bool, std::less<>> monitors;
+  /// esmini's run generator (controllers/sloppy_driver.h), made when a controller that draws
+  /// from it is assigned, seeded with options.seed.
+  std::shared_ptr<EsminiRandom> esmini_random;
   /// Values of UserDefinedValueConditions given as text, by name (SimulationOptions::values,
   /// Simulation::set_user_value); they win over `user_values`.
   std::map<std::string, std::string, std::less<>> given_values;
