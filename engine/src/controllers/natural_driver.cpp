@@ -555,6 +555,12 @@ void step_natural_drivers(SimState& state, const MotionContext& motion) {
     if (!driver.active) {
       // esmini's Activate: the integrated speed starts from the entity's. Activated in the
       // Init (the first step), esmini's first Step is made in its initialising frame, with dt 0.
+      // Activated again, it starts afresh: no lane change asked for or under way, the wait
+      // before one as when it was made.
+      const NaturalDriverParams params = driver.params;
+      driver = NaturalDriverState{};
+      driver.params = params;
+      driver.cooldown = params.lane_change_duration + params.lane_change_delay;
       driver.active = true;
       driver.speed = entity.state.speed;
       zero_step = state.tick == 0;
