@@ -135,7 +135,10 @@ bool AlksView::measure(AlksObject& info, double range) const {
   info.dv_t = (e.v_t - o.v_t) * (o.road.t - e.road.t < 0.0 ? -1.0 : 1.0);
   if (info.dv_s > 0.0) {
     info.ttc = info.dist_long / info.dv_s;
-    info.thw = info.dist_long / e.v_s;
+    // esmini divides as is: a standing ego gets a headway of +-inf by the distance's sign (a
+    // negative one counts as close, as there). At distance 0 too its 0/0 is NaN, which no
+    // comparison finds close: the large headway here, which none does either.
+    info.thw = e.v_s == 0.0 && info.dist_long == 0.0 ? kAlksLarge : info.dist_long / e.v_s;
   } else {
     info.ttc = kAlksLarge;
     info.thw = kAlksLarge;
@@ -239,6 +242,9 @@ void step_alks_r157_entities(SimState& state, const MotionContext& motion) {
       seen_now = true;
     }
     view.ego = i;
+    // Active on either domain, the lateral alone too, it sets the speed: esmini's controller
+    // steps whenever it is active and its Step does not look at the domains (unlike its
+    // NaturalDriver's, controllers/natural_driver.cpp).
     AlksR157& alks = *control.alks;
     if (alks.pending_activation) {
       alks.set_speed = entity.state.speed;  // esmini's Activate: the speed then
