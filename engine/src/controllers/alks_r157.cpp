@@ -184,7 +184,7 @@ bool AlksView::covers_front(uint32_t other, double tolerance) const {
 }
 
 bool is_alks_r157(const xosc::Controller& controller) {
-  return controller.properties.get("esminiController").value_or(controller.name) == kAlksLabel;
+  return esmini_type(controller) == kAlksLabel;
 }
 
 std::shared_ptr<AlksR157> make_alks_r157(SimState& state, const xosc::ObjectController& oc) {
@@ -251,10 +251,7 @@ void step_alks_r157_entities(SimState& state, const MotionContext& motion) {
       alks.pending_activation = false;
     }
     const double speed = alks_step(alks, view);
-    const double commanded = entity.speed_command;
-    entity.speed_command = speed;
-    DefaultController().step(entity, motion);
-    if (entity.speed_command == speed) entity.speed_command = commanded;
+    move_at_controller_speed(entity, speed, [&] { DefaultController().step(entity, motion); });
     // The next ALKS entity sees this one where it is now.
     view.seen[i] = alks_seen_of(state, i);
   }

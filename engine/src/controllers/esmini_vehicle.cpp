@@ -62,11 +62,8 @@ void place_entity_at_model(double x, double y, double h, double speed, Entity& e
       pose.p = surface.p;
     }
   }
-  const double speed_command = entity.speed_command;
   entity.pose_command = pose;
-  entity.speed_command = speed;
-  move_to_pose_command(entity, motion);
-  entity.speed_command = speed_command;
+  move_at_controller_speed(entity, speed, [&] { move_to_pose_command(entity, motion); });
 }
 
 namespace {
@@ -147,10 +144,7 @@ void step_interactive(SimState& state, uint32_t index, EsminiDriver& driver,
     // Along its lane at the model's speed (engine brake, top speed), as the default controller
     // moves it.
     car.speed = std::clamp(car.speed * (1.0 - kEngineBrake), -car.max_speed, car.max_speed);
-    const double speed_command = entity.speed_command;
-    entity.speed_command = car.speed;
-    DefaultController{}.step(entity, motion);
-    entity.speed_command = speed_command;
+    move_at_controller_speed(entity, car.speed, [&] { DefaultController{}.step(entity, motion); });
     car.x = entity.state.pose.x;
     car.y = entity.state.pose.y;
     car.h =
@@ -233,7 +227,7 @@ void roll_neutral(EsminiVehicle& car, double dt) {
 
 bool assign_esmini_driver(SimState& state, uint32_t index, const xosc::ObjectController& oc) {
   const xosc::Controller& c = oc.controller;
-  const std::string type = c.properties.get("esminiController").value_or(c.name);
+  const std::string type = esmini_type(c);
   auto driver = std::make_shared<EsminiDriver>();
   if (type == "InteractiveController" || type == "interactiveDriver") {
     driver->kind = EsminiDriverKind::kInteractive;

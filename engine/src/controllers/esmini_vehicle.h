@@ -70,7 +70,7 @@ void single_track_step(double& x, double& y, double& h, double speed, double whe
                        double dt);
 
 /// Puts `entity` at a vehicle model's pose (x, y, h; the height and pitch of the road surface
-/// there) with `speed`, as a pose command; its speed_command is left as it was.
+/// there) with `speed`, as a pose command (move_at_controller_speed, controllers.h).
 void place_entity_at_model(double x, double y, double h, double speed, Entity& entity,
                            const MotionContext& motion);
 

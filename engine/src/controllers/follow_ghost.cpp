@@ -157,8 +157,7 @@ GhostAim time_target(const SimState& state, double follower_time, double dt) {
 }  // namespace
 
 bool is_follow_ghost(const xosc::ObjectController& oc) {
-  return oc.controller.properties.get("esminiController").value_or(oc.controller.name) ==
-         "FollowGhostController";
+  return esmini_type(oc.controller) == "FollowGhostController";
 }
 
 void setup_ghost(SimState& state) {

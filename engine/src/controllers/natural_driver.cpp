@@ -443,17 +443,13 @@ void step_natural_lane_change(SimState& state, uint32_t index, NaturalDriverStat
 // when the driver is switched off).
 void move_natural(SimState& state, uint32_t index, const MotionContext& motion, double speed) {
   Entity& entity = state.world.entities[index];
-  const double asked = entity.speed_command;
-  entity.speed_command = speed;
-  DefaultController().step(entity, motion);
-  if (entity.speed_command == speed) entity.speed_command = asked;
+  move_at_controller_speed(entity, speed, [&] { DefaultController().step(entity, motion); });
 }
 
 }  // namespace
 
 bool is_natural_driver(const xosc::ObjectController& oc) {
-  return oc.controller.properties.get("esminiController").value_or(oc.controller.name) ==
-         "NaturalDriver";
+  return esmini_type(oc.controller) == "NaturalDriver";
 }
 
 std::shared_ptr<NaturalDriverState> make_natural_driver(SimState& state,
