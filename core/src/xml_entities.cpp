@@ -66,6 +66,33 @@ size_t declaration_end(std::string_view xml, size_t at) {
   return std::string_view::npos;
 }
 
+// Where the DOCTYPE starting at `at` opens its internal subset ('[') or ends ('>'), quoted
+// literals (its system and public ids) skipped; npos when neither comes.
+size_t doctype_subset_or_end(std::string_view xml, size_t at) {
+  char quote = 0;
+  for (size_t i = at; i < xml.size(); ++i) {
+    if (quote != 0) {
+      if (xml[i] == quote) quote = 0;
+    } else if (xml[i] == '"' || xml[i] == '\'') {
+      quote = xml[i];
+    } else if (xml[i] == '[' || xml[i] == '>') {
+      return i;
+    }
+  }
+  return std::string_view::npos;
+}
+
+// The value XML 1.0 (section 4.6) lets a declaration of a predefined entity give it: its
+// character's reference (lt and amp doubly escaped); nullopt for any other name.
+std::optional<std::string_view> predefined_entity_value(std::string_view name) {
+  if (name == "lt") return "&#38;#60;";
+  if (name == "gt") return "&#62;";
+  if (name == "amp") return "&#38;#38;";
+  if (name == "apos") return "&#39;";
+  if (name == "quot") return "&#34;";
+  return std::nullopt;
+}
+
 struct EntitySubset {
   std::map<std::string, std::string, std::less<>> values;
   size_t end = 0;  // one past the subset's ']'
@@ -94,13 +121,21 @@ std::optional<XmlTextProblem> read_entity_declaration(std::string_view xml, size
   const size_t value_end = xml.find(xml[i], i + 1);
   if (value_end == std::string_view::npos) return problem("a bad <!ENTITY> declaration");
   const std::string_view value = xml.substr(i + 1, value_end - i - 1);
-  if (value.find_first_of("&%<") != std::string_view::npos) {
+  const auto predefined = predefined_entity_value(name);
+  if (predefined && value != *predefined) {
+    return XmlTextProblem{lines_before(xml, at),
+                          "the predefined entity '" + name + "' may be declared only as \"" +
+                              std::string(*predefined) +
+                              "\" (XML 1.0 section 4.6), not with another value"};
+  }
+  if (!predefined && value.find_first_of("&%<") != std::string_view::npos) {
     return problem("the value of entity '" + clip(name) + "' holds a reference or markup");
   }
   i = value_end + 1;
   while (i < xml.size() && is_xml_space(xml[i])) ++i;
   if (i >= xml.size() || xml[i] != '>') return problem("a bad <!ENTITY> declaration");
-  subset.values.emplace(name, std::string(value));  // the first declaration binds
+  // The first declaration binds; a predefined entity declared as XML allows keeps its meaning.
+  if (!predefined) subset.values.emplace(name, std::string(value));
   next = i + 1;
   return std::nullopt;
 }
@@ -161,7 +196,7 @@ std::optional<XmlTextProblem> expand_internal_entities(std::string_view xml,
   expanded.clear();
   const auto doctype = find_doctype(xml);
   if (!doctype) return std::nullopt;
-  const size_t mark = xml.find_first_of("[>", *doctype);
+  const size_t mark = doctype_subset_or_end(xml, *doctype);
   if (mark == std::string_view::npos || xml[mark] != '[') return std::nullopt;
   EntitySubset subset;
   if (auto problem = read_internal_subset(xml, mark, subset)) return problem;

@@ -28,9 +28,11 @@ constexpr double kFillMaxTurn = 10.0 * M_PI / 180.0;  // rad between the two lan
 constexpr double kFillTaperPerStep = 3.0;
 constexpr double kFillMinTaper = 2.0;   // m
 constexpr double kFillMaxShare = 0.45;  // of the road's length, per end
-constexpr double kFillFoldStep = 0.02;  // m between the samples of the fold check
-constexpr double kFillMarkReach = 0.1;  // m beyond the border the fold check keeps clear
-constexpr double kFillMaxSlant = 2.0;   // sideways metres per metre forward
+// A taper shorter than this (a road of a few centimetres) would divide by next to nothing.
+constexpr double kFillLeastTaper = 0.01;  // m
+constexpr double kFillFoldStep = 0.02;    // m between the samples of the fold check
+constexpr double kFillMarkReach = 0.1;    // m beyond the border the fold check keeps clear
+constexpr double kFillMaxSlant = 2.0;     // sideways metres per metre forward
 
 /// One shoulder asked for: at a road's start or end, on its left or right, and how wide (m of
 /// lateral offset t at the joint).
@@ -214,14 +216,18 @@ MouthFillWidths fill_widths(double start, double end, double length) {
   return out;
 }
 
-/// Adds one road's shoulder on one side; false (and nothing added) where it would fold.
+/// Adds one road's shoulder on one side; false (and nothing added) where it would fold, where a
+/// sidewalk is that side's edge, or where the road is too short for a taper.
 bool add_fill(xodr::Road& road, bool left, const MouthFillAsk* start, const MouthFillAsk* end) {
   auto& lanes = road.lane_sections.front().lanes;
-  if (!left && !lanes.empty() && lanes.back().type == xodr::LaneType::kSidewalk) {
+  if (!lanes.empty() && (left ? lanes.front() : lanes.back()).type == xodr::LaneType::kSidewalk) {
     return false;  // the sidewalk is the road's edge there
   }
   const MouthFillWidths w =
       fill_widths(start ? start->width : 0.0, end ? end->width : 0.0, road.length);
+  if ((start && w.taper_start < kFillLeastTaper) || (end && w.taper_end < kFillLeastTaper)) {
+    return false;
+  }
   xodr::Lane lane;
   lane.type = xodr::LaneType::kShoulder;
   lane.type_name = "shoulder";

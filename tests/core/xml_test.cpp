@@ -150,6 +150,16 @@ TEST_CASE("a DOCTYPE's internal entities are expanded, keeping every line's numb
   // No internal subset: nothing to expand.
   REQUIRE_FALSE(corsa::expand_internal_entities("<!DOCTYPE a SYSTEM \"a.dtd\">\n<a/>", out));
   CHECK(out.empty());
+  // A '[' or '>' inside the system id's quotes neither opens a subset nor ends the DOCTYPE.
+  REQUIRE_FALSE(corsa::expand_internal_entities("<!DOCTYPE a SYSTEM \"a[b.dtd\">\n<a/>", out));
+  CHECK(out.empty());
+  REQUIRE_FALSE(corsa::expand_internal_entities(
+      "<!DOCTYPE a SYSTEM 'a>b.dtd' [<!ENTITY x \"1\">]>\n<a>&x;</a>", out));
+  CHECK_THAT(out, Catch::EndsWith("\n<a>1</a>"));
+  // A predefined entity declared as XML 1.0 section 4.6 allows keeps its meaning.
+  REQUIRE_FALSE(corsa::expand_internal_entities(
+      "<!DOCTYPE a [<!ENTITY lt \"&#38;#60;\"><!ENTITY quot '&#34;'>]>\n<a>&lt;&quot;</a>", out));
+  CHECK_THAT(out, Catch::EndsWith("\n<a>&lt;&quot;</a>"));
 
   const auto refused = [&](const std::string& text, int line, const std::string& start) {
     const auto problem = corsa::expand_internal_entities(text, out);
@@ -163,6 +173,10 @@ TEST_CASE("a DOCTYPE's internal entities are expanded, keeping every line's numb
   // Entities referring to entities could multiply the text without bound.
   refused("<!DOCTYPE a [<!ENTITY x \"1\">\n<!ENTITY y \"&x;&x;\">]>\n<a/>", 2,
           "the value of entity 'y' holds a reference or markup");
+  refused("<!DOCTYPE a [\n<!ENTITY amp \"x\">]>\n<a>&amp;</a>", 2,
+          "the predefined entity 'amp' may be declared only as \"&#38;#38;\"");
+  refused("<!DOCTYPE a [<!ENTITY x \"1\">\n\n<!ENTITY gt 'y'>]>\n<a/>", 3,
+          "the predefined entity 'gt' may be declared only as \"&#62;\"");
   refused("<!DOCTYPE a [\n<!ATTLIST a b CDATA \"1\">]>\n<a/>", 2,
           "a DOCTYPE declaration other than <!ENTITY>");
   refused("<!DOCTYPE a [\n<!ENTITY x \"1\">\n", 1, "the DOCTYPE's internal subset is not closed");

@@ -99,13 +99,13 @@ TEST_CASE("an entity whose controller the engine lacks runs under acc, and the s
           "[engine][compat][controllers]") {
   FixtureRun run(engine_fixture("compat_appearance_values.xosc"));
   run.run();
-  CHECK(run.sim().controller_substitute(run.entity("Car")) == "InteractiveController");
+  CHECK(run.sim().controller_substitute(run.entity("Car")) == "AEBController");
   CHECK(run.sim().controller_substitute(run.entity("Far")).empty());
   const std::string summary = corsa::engine::summary_json(run.sim(), 0.0);
   CHECK_THAT(summary, Catch::Contains("\"controller\": \"acc\", \"substitute_for\": "
-                                      "\"InteractiveController\""));
+                                      "\"AEBController\""));
   CHECK_THAT(corsa::test::all_text(run.diagnostics()),
-             Catch::Contains("controller 'InteractiveController' is not one of this engine's") &&
+             Catch::Contains("controller 'AEBController' is not one of this engine's") &&
                  Catch::Contains("stands in for it on 'Car'"));
 }
 

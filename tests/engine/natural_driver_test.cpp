@@ -134,3 +134,39 @@ TEST_CASE("esmini's NaturalDriver calls off a change to the lane another one is 
   CHECK(run.now("B").pose.y == Approx(-5.625));
   CHECK(run.now("A").pose.x - 1.1 - (run.now("B").pose.x + 3.9) > 20.0);
 }
+
+TEST_CASE("esmini's NaturalDriver refuses property values out of their range, each at its line",
+          "[engine][controllers][natural]") {
+  const double dt = 0.05;
+  FixtureRun run(engine_fixture("controller_natural_driver_bad_values.xosc"),
+                 natural_reading(Semantics::kStandard, dt));
+  run.run();
+  const std::string text = corsa::test::all_text(run.diagnostics());
+  CHECK_THAT(text, Catch::Contains(":24: warning: NaturalDriver property 'desiredSpeed' must be "
+                                   "above 0: esmini's default is used"));
+  CHECK_THAT(text,
+             Catch::Contains(":25: warning: NaturalDriver property 'maxAcc' must be above 0"));
+  CHECK_THAT(text,
+             Catch::Contains(":26: warning: NaturalDriver property 'maxDec' must be below 0"));
+  CHECK_THAT(text,
+             Catch::Contains(":27: warning: NaturalDriver property 'thw' must be at least 0"));
+  CHECK_THAT(text, Catch::Contains(":28: warning: NaturalDriver property 'laneChangeDuration' "
+                                   "must be at least 0 and within a float's range"));
+  CHECK_THAT(text, Catch::Contains(":29: warning: NaturalDriver property 'laneChangeDelay' must "
+                                   "be at least 0"));
+  CHECK_THAT(text, Catch::Contains(":30: warning: NaturalDriver property 'route' must be within "
+                                   "an int's range"));
+  // esmini's defaults: desiredSpeed 15 m/s, and route -1, so Ego changes to lane -1 first
+  // (holding its speed) and then speeds up toward 15 m/s.
+  double last = 10.0;
+  for (int tick = 1; tick <= 200; ++tick) {
+    const auto& ego = run.trace().at(tick, run.entity("Ego"));
+    REQUIRE(std::isfinite(ego.pose.x));
+    REQUIRE(std::isfinite(ego.pose.y));
+    REQUIRE(ego.speed >= last);
+    REQUIRE(ego.speed < 15.0);
+    last = ego.speed;
+  }
+  CHECK(last > 14.9);
+  CHECK(lane_of(run.now("Ego")) == -1);
+}

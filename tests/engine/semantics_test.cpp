@@ -138,8 +138,8 @@ TEST_CASE("A SpeedAction beyond the Performance is exact, or esmini's stretched 
 
 TEST_CASE("--disable-controllers moves every entity under the default controller",
           "[engine][semantics][controllers]") {
-  // The fixture's Car has esmini's InteractiveController (a keyboard driver), which acc stands
-  // in for; esmini's --disable_controllers ignores it, and so does
+  // The fixture's Car has esmini's AEBController, which this engine lacks and acc stands in
+  // for; esmini's --disable_controllers ignores it, and so does
   // SimulationOptions::disable_controllers.
   engine::SimulationOptions options;
   options.disable_controllers = true;
@@ -147,7 +147,7 @@ TEST_CASE("--disable-controllers moves every entity under the default controller
   run.run();
   CHECK(run.sim().controller_substitute(run.entity("Car")).empty());
   CHECK_THAT(corsa::test::all_text(run.diagnostics()),
-             !Catch::Contains("controller 'InteractiveController' is not one of this engine's"));
+             !Catch::Contains("controller 'AEBController' is not one of this engine's"));
 }
 
 TEST_CASE("An Act its StopTrigger stops takes the stopTransition, or esmini's endTransition",

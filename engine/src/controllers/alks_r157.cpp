@@ -135,7 +135,10 @@ bool AlksView::measure(AlksObject& info, double range) const {
   info.dv_t = (e.v_t - o.v_t) * (o.road.t - e.road.t < 0.0 ? -1.0 : 1.0);
   if (info.dv_s > 0.0) {
     info.ttc = info.dist_long / info.dv_s;
-    info.thw = info.dist_long / e.v_s;
+    // esmini divides as is: a standing ego gets a headway of +-inf by the distance's sign (a
+    // negative one counts as close, as there). At distance 0 too its 0/0 is NaN, which no
+    // comparison finds close: the large headway here, which none does either.
+    info.thw = e.v_s == 0.0 && info.dist_long == 0.0 ? kAlksLarge : info.dist_long / e.v_s;
   } else {
     info.ttc = kAlksLarge;
     info.thw = kAlksLarge;
@@ -181,7 +184,7 @@ bool AlksView::covers_front(uint32_t other, double tolerance) const {
 }
 
 bool is_alks_r157(const xosc::Controller& controller) {
-  return controller.properties.get("esminiController").value_or(controller.name) == kAlksLabel;
+  return esmini_type(controller) == kAlksLabel;
 }
 
 std::shared_ptr<AlksR157> make_alks_r157(SimState& state, const xosc::ObjectController& oc) {
@@ -239,16 +242,16 @@ void step_alks_r157_entities(SimState& state, const MotionContext& motion) {
       seen_now = true;
     }
     view.ego = i;
+    // Active on either domain, the lateral alone too, it sets the speed: esmini's controller
+    // steps whenever it is active and its Step does not look at the domains (unlike its
+    // NaturalDriver's, controllers/natural_driver.cpp).
     AlksR157& alks = *control.alks;
     if (alks.pending_activation) {
       alks.set_speed = entity.state.speed;  // esmini's Activate: the speed then
       alks.pending_activation = false;
     }
     const double speed = alks_step(alks, view);
-    const double commanded = entity.speed_command;
-    entity.speed_command = speed;
-    DefaultController().step(entity, motion);
-    if (entity.speed_command == speed) entity.speed_command = commanded;
+    move_at_controller_speed(entity, speed, [&] { DefaultController().step(entity, motion); });
     // The next ALKS entity sees this one where it is now.
     view.seen[i] = alks_seen_of(state, i);
   }

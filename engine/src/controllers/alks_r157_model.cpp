@@ -10,22 +10,22 @@
 namespace corsa::engine::detail {
 namespace {
 
-constexpr double kAlksG = 9.8;                // m/s^2, as esmini's model computes the braking
-constexpr double kRegulationMaxDec = 6.0;     // m/s^2 (UN R157 5.2.5.3)
-constexpr double kRegulationReaction = 0.35;  // s
-constexpr double kRegulationRange = 46.0;     // m
-constexpr double kDriverReaction = 0.75;      // s (Annex 3)
-constexpr double kDriverRange = 100.0;        // m
-constexpr double kDriverBrake = 0.774;        // g, reached in kBrakeBuildUp
-constexpr double kAebBrake = 0.85;            // g
-constexpr double kBrakeBuildUp = 0.6;         // s
-constexpr double kReleaseDeceleration = 0.4;  // m/s^2, the foot off the accelerator
-constexpr double kCriticalTtc = 2.0;          // s
-constexpr double kCriticalThw = 2.0;          // s
-constexpr double kWandering = 0.375;          // m, lane wandering (Annex 3 3.4.1)
-constexpr double kPerceptionDistance = 0.72;  // m, cutInPerceptionDelayMode Dist
-constexpr double kPerceptionTime = 0.4;       // s
-constexpr double kLeaderDeceleration = -5.0;  // m/s^2: a leader braking harder is perceived
+constexpr double kAlksG = 9.8;                    // m/s^2, as esmini's model computes the braking
+constexpr double kAlksRegulationMaxDec = 6.0;     // m/s^2 (UN R157 5.2.5.3)
+constexpr double kAlksRegulationReaction = 0.35;  // s
+constexpr double kAlksRegulationRange = 46.0;     // m
+constexpr double kAlksDriverReaction = 0.75;      // s (Annex 3)
+constexpr double kAlksDriverRange = 100.0;        // m
+constexpr double kAlksDriverBrake = 0.774;        // g, reached in kAlksBrakeBuildUp
+constexpr double kAlksAebBrake = 0.85;            // g
+constexpr double kAlksBrakeBuildUp = 0.6;         // s
+constexpr double kAlksReleaseDeceleration = 0.4;  // m/s^2, the foot off the accelerator
+constexpr double kAlksCriticalTtc = 2.0;          // s
+constexpr double kAlksCriticalThw = 2.0;          // s
+constexpr double kAlksWandering = 0.375;          // m, lane wandering (Annex 3 3.4.1)
+constexpr double kAlksPerceptionDistance = 0.72;  // m, cutInPerceptionDelayMode Dist
+constexpr double kAlksPerceptionTime = 0.4;       // s
+constexpr double kAlksLeaderDeceleration = -5.0;  // m/s^2: a leader braking harder is perceived
 
 // esmini's SIGN: 0 counts as positive.
 double alks_sign(double x) { return x < 0.0 ? -1.0 : 1.0; }
@@ -54,7 +54,7 @@ class AlksStepper {
 
  private:
   double range() const {
-    return m_.settings.model == AlksModel::kRegulation ? kRegulationRange : kDriverRange;
+    return m_.settings.model == AlksModel::kRegulation ? kAlksRegulationRange : kAlksDriverRange;
   }
   const AlksSeen& seen(uint32_t i) const { return view_.seen[i]; }
   const AlksSeen& ego() const { return view_.seen[view_.ego]; }
@@ -145,9 +145,9 @@ class AlksStepper {
         return false;
       }
     } else if (info.d_lane == 0) {
-      if (std::abs(centre_offset) > kWandering && info.dv_t < -kAlksSmall) {
+      if (std::abs(centre_offset) > kAlksWandering && info.dv_t < -kAlksSmall) {
         info.action = AlksScenario::kCutOut;
-      } else if (-alks_sign(o.road.lane) * o.acc_s < kLeaderDeceleration + kAlksSmall) {
+      } else if (-alks_sign(o.road.lane) * o.acc_s < kAlksLeaderDeceleration + kAlksSmall) {
         info.action = AlksScenario::kDeceleration;
       }
       return false;
@@ -181,7 +181,7 @@ class AlksStepper {
     if (!trigger.wandering) return;
     // 0.375 m from the lane centre toward the ego: from where the object is now, on either side
     // of its lane centre (a motorbike moves the full 0.375 m from wherever it is).
-    trigger.threshold = kWandering;
+    trigger.threshold = kAlksWandering;
     const double ego_t = ego().road.t;
     if ((o.road.t > ego_t && o.offset > 0.0) || (o.road.t < ego_t && o.offset < 0.0)) {
       trigger.threshold += std::abs(o.offset);
@@ -233,7 +233,8 @@ class AlksStepper {
     }
     if (m_.mode == AlksMode::kCritical && m_.settings.full_stop) return true;
     if (m_.focus.dv_s > 0.0 && m_.focus.dist_long > 0.0 &&
-        m_.focus.ttc < m_.focus.dv_s / (2.0 * kRegulationMaxDec) + kRegulationReaction + 0.1) {
+        m_.focus.ttc <
+            m_.focus.dv_s / (2.0 * kAlksRegulationMaxDec) + kAlksRegulationReaction + 0.1) {
       m_.mode = AlksMode::kCritical;
       return true;
     }
@@ -242,7 +243,7 @@ class AlksStepper {
   }
 
   double regulation_react() {
-    m_.acc = -kRegulationMaxDec;
+    m_.acc = -kAlksRegulationMaxDec;
     return std::max(0.0, v_ + m_.acc * dt_);
   }
 
@@ -250,7 +251,7 @@ class AlksStepper {
     if (m_.phase == AlksPhase::kInactive || m_.phase == AlksPhase::kPerceive) {
       if (perceived()) {
         m_.phase = AlksPhase::kReact;
-        m_.timer = kDriverReaction;
+        m_.timer = kAlksDriverReaction;
       }
     } else if (m_.phase == AlksPhase::kReact) {
       m_.timer -= dt_;
@@ -283,7 +284,7 @@ class AlksStepper {
         return timed_perception(m_.focus.dv_s > kAlksSmall);
       case AlksScenario::kDeceleration:
         return timed_perception(m_.focus.entity &&
-                                seen(*m_.focus.entity).acc_s < kLeaderDeceleration);
+                                seen(*m_.focus.entity).acc_s < kAlksLeaderDeceleration);
       case AlksScenario::kNone:
         break;
     }
@@ -294,7 +295,7 @@ class AlksStepper {
     if (m_.phase == AlksPhase::kInactive) {
       if (starts) {
         m_.phase = AlksPhase::kPerceive;
-        m_.timer = kPerceptionTime;
+        m_.timer = kAlksPerceptionTime;
       }
     } else if (m_.phase == AlksPhase::kPerceive) {
       m_.timer -= dt_;
@@ -311,7 +312,7 @@ class AlksStepper {
         m_.phase = AlksPhase::kPerceive;
       } else if (trigger_fired() && m_.focus.entity) {
         m_.perception_t = seen(*m_.focus.entity).road.t;
-        if (m_.settings.perceive_by_time) m_.timer = kPerceptionTime;
+        if (m_.settings.perceive_by_time) m_.timer = kAlksPerceptionTime;
         m_.phase = AlksPhase::kPerceive;
       }
       return false;
@@ -326,16 +327,16 @@ class AlksStepper {
       m_.timer -= dt_;
       if (m_.timer < kAlksSmall) m_.phase = AlksPhase::kReact;
     } else if (m_.focus.entity) {
-      // Dist: perceived once the object has moved kPerceptionDistance more toward the ego.
+      // Dist: perceived once the object has moved kAlksPerceptionDistance more toward the ego.
       const double t = seen(*m_.focus.entity).road.t;
       const double ego_t = ego().road.t;
-      if ((t > ego_t && t < m_.perception_t - kPerceptionDistance) ||
-          (t < ego_t && t > m_.perception_t + kPerceptionDistance)) {
+      if ((t > ego_t && t < m_.perception_t - kAlksPerceptionDistance) ||
+          (t < ego_t && t > m_.perception_t + kAlksPerceptionDistance)) {
         m_.phase = AlksPhase::kReact;
       }
     }
     if (m_.phase == AlksPhase::kReact) {
-      m_.timer = kDriverReaction;
+      m_.timer = kAlksDriverReaction;
       return true;
     }
     return false;
@@ -345,8 +346,8 @@ class AlksStepper {
   // is under 2 s; else the scenario ends. A critical situation lasts until the minimum distance.
   void critical_condition() {
     if (m_.scenario == AlksScenario::kNone) return;
-    const bool close = m_.scenario == AlksScenario::kCutIn ? m_.focus.ttc < kCriticalTtc
-                                                           : m_.focus.thw < kCriticalThw;
+    const bool close = m_.scenario == AlksScenario::kCutIn ? m_.focus.ttc < kAlksCriticalTtc
+                                                           : m_.focus.thw < kAlksCriticalThw;
     if (m_.settings.always_trig || close) {
       if (m_.phase == AlksPhase::kReact && m_.timer < kAlksSmall) m_.mode = AlksMode::kCritical;
       return;
@@ -367,12 +368,12 @@ class AlksStepper {
       m_.timer = 0.0;
     }
     if (m_.phase == AlksPhase::kReact) {
-      m_.acc = std::min(-kReleaseDeceleration, m_.acc);  // keep braking, or lift off the gas
+      m_.acc = std::min(-kAlksReleaseDeceleration, m_.acc);  // keep braking, or lift off the gas
     } else if (m_.phase == AlksPhase::kBrakeRef) {
-      m_.acc -= dt_ * kDriverBrake * kAlksG / kBrakeBuildUp;
+      m_.acc -= dt_ * kAlksDriverBrake * kAlksG / kAlksBrakeBuildUp;
     }
-    if (m_.aeb) m_.acc -= dt_ * kAebBrake * kAlksG / kBrakeBuildUp;
-    m_.acc = std::max(m_.acc, -(m_.aeb ? kAebBrake : kDriverBrake) * kAlksG);
+    if (m_.aeb) m_.acc -= dt_ * kAlksAebBrake * kAlksG / kAlksBrakeBuildUp;
+    m_.acc = std::max(m_.acc, -(m_.aeb ? kAlksAebBrake : kAlksDriverBrake) * kAlksG);
     return std::max(0.0, v_ + m_.acc * dt_);
   }
 

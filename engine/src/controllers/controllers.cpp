@@ -82,14 +82,9 @@ bool names_external(const SimulationOptions& options, const xosc::ObjectControll
   return false;
 }
 
-namespace {
-
-// esmini's controller type: its `esminiController` property, else the Controller's name.
 std::string esmini_type(const xosc::Controller& controller) {
   return controller.properties.get("esminiController").value_or(controller.name);
 }
-
-}  // namespace
 
 void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectController& oc) {
   ControlState& control = control_of(state, index);

@@ -15,6 +15,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "corsa/engine/simulation.h"
@@ -45,6 +46,19 @@ bool names_external(const SimulationOptions& options, const xosc::ObjectControll
 /// vehicle ahead). Recorded in ControlState::substitute_for (the run summary lists it) and
 /// warned once per entity and controller, located at the ObjectController.
 void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectController& oc);
+
+/// esmini's type of a scenario Controller: its `esminiController` property, else its name.
+std::string esmini_type(const xosc::Controller& controller);
+
+/// Runs `move` (one step of the entity's motion) with the entity's speed command set to a
+/// controller's `speed`, then gives the actions' command back unless the step changed it.
+template <class Move>
+void move_at_controller_speed(Entity& entity, double speed, Move&& move) {
+  const double asked = entity.speed_command;
+  entity.speed_command = speed;
+  std::forward<Move>(move)();
+  if (entity.speed_command == speed) entity.speed_command = asked;
+}
 
 /// The Property `name` of a scenario Controller as a non-negative number (esmini's controllers
 /// take their parameters so: `timeGap`, `headstartTime`, ...), or nothing when it is absent. A

@@ -21,15 +21,14 @@
 namespace corsa::engine::detail {
 namespace {
 
-constexpr double kFullTurn = 2.0 * std::numbers::pi;
+constexpr double kEsminiFullTurn = 2.0 * std::numbers::pi;
 // esmini's vehicle.cpp.
-constexpr double kMaxWheelAngle = 60.0 * std::numbers::pi / 180.0;
-constexpr double kPivotFraction = 0.15;      // the model's reference point, of the length
-constexpr double kWheelReturn = 4.0;         // 1/s, the wheel's return toward straight
-constexpr double kEngineBrake = 0.001;       // of the speed, every step without throttle
-constexpr double kBinarySteerScale = 0.02;   // s^2/m^2, the wheel's range shrinking with speed
-constexpr double kAnalogSteerScale = 0.005;  // s^2/m^2, the same under analog control
-constexpr double kNoThrottle = 1e-10;        // esmini's SMALL_NUMBER
+constexpr double kEsminiPivotFraction = 0.15;  // the model's reference point, of the length
+constexpr double kWheelReturn = 4.0;           // 1/s, the wheel's return toward straight
+constexpr double kEngineBrake = 0.001;         // of the speed, every step without throttle
+constexpr double kBinarySteerScale = 0.02;     // s^2/m^2, the wheel's range shrinking with speed
+constexpr double kAnalogSteerScale = 0.005;    // s^2/m^2, the same under analog control
+constexpr double kNoThrottle = 1e-10;          // esmini's SMALL_NUMBER
 // esmini's Position::GetSpeedLimit, m/s.
 constexpr double kLimitOffRoad = 70.0 / 3.6;
 constexpr double kLimitMultiLane = 120.0 / 3.6;
@@ -37,16 +36,40 @@ constexpr double kLimitSingleLane = 60.0 / 3.6;
 // offroadFollower: the follower may drive this much above the speed limit to catch up.
 constexpr double kFollowerLimitFactor = 1.2;
 
-// The kinematic single-track step about the model's reference point (esmini's Update): the
-// position moves along the heading of the step's start plus the slip angle.
+}  // namespace
+
+void single_track_step(double& x, double& y, double& h, double speed, double wheel, double length,
+                       double dt) {
+  const double slip = std::atan(kEsminiPivotFraction * std::tan(wheel));
+  const double course = h + slip;
+  const double yaw_rate = speed * std::sin(slip) / (length * kEsminiPivotFraction);
+  h = std::fmod(h + dt * yaw_rate, kEsminiFullTurn);
+  if (h < 0.0) h += kEsminiFullTurn;
+  x += dt * speed * std::cos(course);
+  y += dt * speed * std::sin(course);
+}
+
+void place_entity_at_model(double x, double y, double h, double speed, Entity& entity,
+                           const MotionContext& motion) {
+  Pose pose = entity.state.pose;
+  pose.x = x;
+  pose.y = y;
+  pose.h = std::remainder(h, kEsminiFullTurn);
+  if (motion.map != nullptr) {
+    if (const auto at = locate_point(*motion.map, x, y, 0.5)) {
+      const xodr::WorldPose surface = motion.map->world_pose(at->road, at->s, at->t);
+      pose.z = surface.z;
+      pose.p = surface.p;
+    }
+  }
+  entity.pose_command = pose;
+  move_at_controller_speed(entity, speed, [&] { move_to_pose_command(entity, motion); });
+}
+
+namespace {
+
 void integrate(EsminiVehicle& car, double dt) {
-  const double slip = std::atan(kPivotFraction * std::tan(car.wheel));
-  const double course = car.h + slip;
-  const double yaw_rate = car.speed * std::sin(slip) / (car.length * kPivotFraction);
-  car.h = std::fmod(car.h + dt * yaw_rate, kFullTurn);
-  if (car.h < 0.0) car.h += kFullTurn;
-  car.x += dt * car.speed * std::cos(course);
-  car.y += dt * car.speed * std::sin(course);
+  single_track_step(car.x, car.y, car.h, car.speed, car.wheel, car.length, dt);
 }
 
 // Where `entity` is, esmini's speed limit (m/s): the road type's speed at its s, else by the
@@ -91,7 +114,7 @@ void start_model(EsminiDriver& driver, const Entity& entity, int64_t tick) {
   car.steering_rate = steering_rate;
   car.x = entity.state.pose.x;
   car.y = entity.state.pose.y;
-  car.h = entity.state.pose.h - kFullTurn * std::floor(entity.state.pose.h / kFullTurn);
+  car.h = entity.state.pose.h - kEsminiFullTurn * std::floor(entity.state.pose.h / kEsminiFullTurn);
   car.speed = entity.state.speed;
   if (entity.info.box.length > 0.0) car.length = entity.info.box.length;
   if (entity.info.max_acceleration > 0.0) car.max_acceleration = entity.info.max_acceleration;
@@ -100,26 +123,9 @@ void start_model(EsminiDriver& driver, const Entity& entity, int64_t tick) {
   driver.last_tick = tick;
 }
 
-// Puts the entity at the model's pose (height and pitch of the road surface there) with
-// `speed`, as a pose command.
 void place_at_model(const EsminiVehicle& car, double speed, Entity& entity,
                     const MotionContext& motion) {
-  Pose pose = entity.state.pose;
-  pose.x = car.x;
-  pose.y = car.y;
-  pose.h = std::remainder(car.h, kFullTurn);
-  if (motion.map != nullptr) {
-    if (const auto at = locate_point(*motion.map, car.x, car.y, 0.5)) {
-      const xodr::WorldPose surface = motion.map->world_pose(at->road, at->s, at->t);
-      pose.z = surface.z;
-      pose.p = surface.p;
-    }
-  }
-  const double speed_command = entity.speed_command;
-  entity.pose_command = pose;
-  entity.speed_command = speed;
-  move_to_pose_command(entity, motion);
-  entity.speed_command = speed_command;
+  place_entity_at_model(car.x, car.y, car.h, speed, entity, motion);
 }
 
 void step_interactive(SimState& state, uint32_t index, EsminiDriver& driver,
@@ -138,13 +144,11 @@ void step_interactive(SimState& state, uint32_t index, EsminiDriver& driver,
     // Along its lane at the model's speed (engine brake, top speed), as the default controller
     // moves it.
     car.speed = std::clamp(car.speed * (1.0 - kEngineBrake), -car.max_speed, car.max_speed);
-    const double speed_command = entity.speed_command;
-    entity.speed_command = car.speed;
-    DefaultController{}.step(entity, motion);
-    entity.speed_command = speed_command;
+    move_at_controller_speed(entity, car.speed, [&] { DefaultController{}.step(entity, motion); });
     car.x = entity.state.pose.x;
     car.y = entity.state.pose.y;
-    car.h = entity.state.pose.h - kFullTurn * std::floor(entity.state.pose.h / kFullTurn);
+    car.h =
+        entity.state.pose.h - kEsminiFullTurn * std::floor(entity.state.pose.h / kEsminiFullTurn);
     return;
   }
   // The lateral domain alone: the wheel returns to straight, the speed is the actions' (esmini:
@@ -152,7 +156,7 @@ void step_interactive(SimState& state, uint32_t index, EsminiDriver& driver,
   car.speed = entity.speed_command;
   const double scale = 1.0 / (1.0 + kBinarySteerScale * car.speed * car.speed);
   car.wheel *= 1.0 - kWheelReturn * motion.dt;
-  car.wheel = std::clamp(car.wheel, -scale * kMaxWheelAngle, scale * kMaxWheelAngle);
+  car.wheel = std::clamp(car.wheel, -scale * kEsminiMaxWheelAngle, scale * kEsminiMaxWheelAngle);
   integrate(car, motion.dt);
   place_at_model(car, car.speed, entity, motion);
 }
@@ -170,7 +174,8 @@ void step_offroad_follower(SimState& state, uint32_t index, EsminiDriver& driver
   car.max_speed = entity.info.max_speed > 0.0 ? std::min(limit, entity.info.max_speed) : limit;
   const double dx = lead.x - entity.state.pose.x;
   const double dy = lead.y - entity.state.pose.y;
-  const double direction = std::remainder(std::atan2(dy, dx) - entity.state.pose.h, kFullTurn);
+  const double direction =
+      std::remainder(std::atan2(dy, dx) - entity.state.pose.h, kEsminiFullTurn);
   const double distance = std::hypot(dx, dy);
   const double steering = std::clamp(direction, -1.0, 1.0);
   const double throttle = std::clamp(
@@ -206,7 +211,7 @@ void drive_analog(EsminiVehicle& car, double dt, double throttle, double steerin
   const double scale = 1.0 / (1.0 + kAnalogSteerScale * car.speed * car.speed);
   car.wheel += scale * car.steering_rate * steering * dt;
   car.wheel *= 1.0 - kWheelReturn * dt;
-  car.wheel = std::clamp(car.wheel, -scale * kMaxWheelAngle, scale * kMaxWheelAngle);
+  car.wheel = std::clamp(car.wheel, -scale * kEsminiMaxWheelAngle, scale * kEsminiMaxWheelAngle);
   integrate(car, dt);
 }
 
@@ -216,13 +221,13 @@ void roll_neutral(EsminiVehicle& car, double dt) {
   }
   const double scale = 1.0 / (1.0 + kBinarySteerScale * car.speed * car.speed);
   car.wheel *= 1.0 - kWheelReturn * dt;
-  car.wheel = std::clamp(car.wheel, -scale * kMaxWheelAngle, scale * kMaxWheelAngle);
+  car.wheel = std::clamp(car.wheel, -scale * kEsminiMaxWheelAngle, scale * kEsminiMaxWheelAngle);
   integrate(car, dt);
 }
 
 bool assign_esmini_driver(SimState& state, uint32_t index, const xosc::ObjectController& oc) {
   const xosc::Controller& c = oc.controller;
-  const std::string type = c.properties.get("esminiController").value_or(c.name);
+  const std::string type = esmini_type(c);
   auto driver = std::make_shared<EsminiDriver>();
   if (type == "InteractiveController" || type == "interactiveDriver") {
     driver->kind = EsminiDriverKind::kInteractive;

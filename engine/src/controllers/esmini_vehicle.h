@@ -33,6 +33,7 @@
 // something else moved the entity (a TeleportAction).
 
 #include <cstdint>
+#include <numbers>
 #include <optional>
 
 #include "motion/controller.h"
@@ -58,6 +59,20 @@ struct EsminiVehicle {
   double max_deceleration = 20.0;    ///< m/s^2
   double steering_rate = 5.0;        ///< rad/s at full wheel input
 };
+
+/// esmini's vehicle model: the front wheels' largest angle (rad), less with speed.
+inline constexpr double kEsminiMaxWheelAngle = 60.0 * std::numbers::pi / 180.0;
+
+/// One kinematic single-track step of esmini's vehicle model about a point 15% of `length`
+/// ahead of the rear axle, with the front wheels at `wheel`: (x, y) moves along the heading of
+/// the step's start plus the slip angle, h (rad, kept in [0, 2 pi)) turns.
+void single_track_step(double& x, double& y, double& h, double speed, double wheel, double length,
+                       double dt);
+
+/// Puts `entity` at a vehicle model's pose (x, y, h; the height and pitch of the road surface
+/// there) with `speed`, as a pose command (move_at_controller_speed, controllers.h).
+void place_entity_at_model(double x, double y, double h, double speed, Entity& entity,
+                           const MotionContext& motion);
 
 /// One step of esmini's analog control: throttle and steering in [-1, 1].
 void drive_analog(EsminiVehicle& car, double dt, double throttle, double steering);

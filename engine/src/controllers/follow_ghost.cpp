@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "controllers/controllers.h"
+#include "controllers/esmini_vehicle.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/pose_command.h"
@@ -20,12 +21,10 @@
 namespace corsa::engine::detail {
 namespace {
 
-constexpr double kFullTurn = 2.0 * std::numbers::pi;
+constexpr double kGhostFullTurn = 2.0 * std::numbers::pi;
 // esmini's vehicle model (its vehicle.cpp) as the followGhost controller sets it up.
 constexpr double kFollowerMaxAcceleration = 10.0;  // m/s^2, also the speed loop's gain (1/s)
 constexpr double kFollowerMaxSpeed = 100.0;        // m/s
-constexpr double kMaxWheelAngle = 60.0 * std::numbers::pi / 180.0;
-constexpr double kPivotFraction = 0.15;  // the model's reference point, of the length from the rear
 
 void read_properties(SimState& state, const xosc::ObjectController& oc, GhostLink& link) {
   const xosc::Controller& c = oc.controller;
@@ -158,8 +157,7 @@ GhostAim time_target(const SimState& state, double follower_time, double dt) {
 }  // namespace
 
 bool is_follow_ghost(const xosc::ObjectController& oc) {
-  return oc.controller.properties.get("esminiController").value_or(oc.controller.name) ==
-         "FollowGhostController";
+  return esmini_type(oc.controller) == "FollowGhostController";
 }
 
 void setup_ghost(SimState& state) {
@@ -324,7 +322,7 @@ TrailPoint trail_at(const SimState& state, double time) {
   out.x = a.x + w * (b.x - a.x);
   out.y = a.y + w * (b.y - a.y);
   out.z = a.z + w * (b.z - a.z);
-  out.h = a.h + w * std::remainder(b.h - a.h, kFullTurn);
+  out.h = a.h + w * std::remainder(b.h - a.h, kGhostFullTurn);
   out.speed = a.speed + w * (b.speed - a.speed);
   return out;
 }
@@ -340,7 +338,7 @@ void step_follow_ghost(SimState& state, uint32_t index, const MotionContext& mot
     car.started = true;
     car.x = entity.state.pose.x;
     car.y = entity.state.pose.y;
-    car.h = entity.state.pose.h - kFullTurn * std::floor(entity.state.pose.h / kFullTurn);
+    car.h = entity.state.pose.h - kGhostFullTurn * std::floor(entity.state.pose.h / kGhostFullTurn);
     car.speed = entity.state.speed;
     car.length = entity.info.box.length > 0.0 ? entity.info.box.length : 5.0;
   }
@@ -355,7 +353,7 @@ void step_follow_ghost(SimState& state, uint32_t index, const MotionContext& mot
   if (target.jump_to) {
     car.x = target.jump_to->x;
     car.y = target.jump_to->y;
-    car.h = target.jump_to->h - kFullTurn * std::floor(target.jump_to->h / kFullTurn);
+    car.h = target.jump_to->h - kGhostFullTurn * std::floor(target.jump_to->h / kGhostFullTurn);
     car.speed = target.jump_to->speed;
     target.speed = car.speed;
     target.x = car.x + std::cos(car.h);
@@ -375,33 +373,12 @@ void step_follow_ghost(SimState& state, uint32_t index, const MotionContext& mot
   const double acceleration = std::clamp(kFollowerMaxAcceleration * (target_speed - car.speed),
                                          -kFollowerMaxAcceleration, kFollowerMaxAcceleration);
   car.speed = std::clamp(car.speed + acceleration * dt, -kFollowerMaxSpeed, kFollowerMaxSpeed);
-  const double range = kMaxWheelAngle / (1.0 + link.steering_speed_inertia * car.speed * car.speed);
+  const double range =
+      kEsminiMaxWheelAngle / (1.0 + link.steering_speed_inertia * car.speed * car.speed);
   const double wheel = std::clamp(heading_error, -range, range);
   // Kinematic single-track model about a point 15% of the length ahead of the rear axle.
-  const double slip = std::atan(kPivotFraction * std::tan(wheel));
-  const double course = car.h + slip;
-  const double yaw_rate = car.speed * std::sin(slip) / (car.length * kPivotFraction);
-  car.h = std::fmod(car.h + dt * yaw_rate, kFullTurn);
-  if (car.h < 0.0) car.h += kFullTurn;
-  car.x += dt * car.speed * std::cos(course);
-  car.y += dt * car.speed * std::sin(course);
-
-  Pose pose = entity.state.pose;
-  pose.x = car.x;
-  pose.y = car.y;
-  pose.h = std::remainder(car.h, kFullTurn);
-  if (motion.map != nullptr) {
-    if (const auto at = locate_point(*motion.map, car.x, car.y, 0.5)) {
-      const xodr::WorldPose surface = motion.map->world_pose(at->road, at->s, at->t);
-      pose.z = surface.z;
-      pose.p = surface.p;
-    }
-  }
-  const double speed_command = entity.speed_command;
-  entity.pose_command = pose;
-  entity.speed_command = car.speed;
-  move_to_pose_command(entity, motion);
-  entity.speed_command = speed_command;
+  single_track_step(car.x, car.y, car.h, car.speed, wheel, car.length, dt);
+  place_entity_at_model(car.x, car.y, car.h, car.speed, entity, motion);
 }
 
 }  // namespace corsa::engine::detail

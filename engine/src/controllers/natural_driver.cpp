@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -363,9 +364,13 @@ bool read_for_missing_entry(const xosc::Controller& controller) {
 // place of a missing entry the reference's ParameterAssignment of the name with an upper-case
 // first letter (highway_driver assigns `DesiredSpeed` to the entry's `desiredSpeed`).
 std::optional<double> natural_setting(SimState& state, const xosc::Controller& controller,
-                                      const std::string& name, bool& assigned) {
+                                      const std::string& name, bool& assigned,
+                                      const xosc::Source*& source) {
   for (const xosc::Property& property : controller.properties.properties) {
-    if (property.name == name) return natural_number(state, name, property.value, property.source);
+    if (property.name == name) {
+      source = &property.source;
+      return natural_number(state, name, property.value, property.source);
+    }
   }
   if (!read_for_missing_entry(controller)) return std::nullopt;
   std::string parameter = name;
@@ -373,6 +378,7 @@ std::optional<double> natural_setting(SimState& state, const xosc::Controller& c
   for (const xosc::ParameterAssignment& assignment : controller.catalog->assignments) {
     if (assignment.parameter_ref == parameter) {
       assigned = true;
+      source = &assignment.source;
       return natural_number(state, name, assignment.value, assignment.source);
     }
   }
@@ -437,17 +443,13 @@ void step_natural_lane_change(SimState& state, uint32_t index, NaturalDriverStat
 // when the driver is switched off).
 void move_natural(SimState& state, uint32_t index, const MotionContext& motion, double speed) {
   Entity& entity = state.world.entities[index];
-  const double asked = entity.speed_command;
-  entity.speed_command = speed;
-  DefaultController().step(entity, motion);
-  if (entity.speed_command == speed) entity.speed_command = asked;
+  move_at_controller_speed(entity, speed, [&] { DefaultController().step(entity, motion); });
 }
 
 }  // namespace
 
 bool is_natural_driver(const xosc::ObjectController& oc) {
-  return oc.controller.properties.get("esminiController").value_or(oc.controller.name) ==
-         "NaturalDriver";
+  return esmini_type(oc.controller) == "NaturalDriver";
 }
 
 std::shared_ptr<NaturalDriverState> make_natural_driver(SimState& state,
@@ -459,26 +461,47 @@ std::shared_ptr<NaturalDriverState> make_natural_driver(SimState& state,
   // Properties a controller read for a missing entry gets no value for: esmini's defaults.
   std::string defaulted;
   const bool missing_entry = read_for_missing_entry(controller);
-  const auto set = [&](const char* name, double& field) {
-    if (const auto value = natural_setting(state, controller, name, assigned)) {
-      field = *value;
+  // A value the model cannot work with (a division by zero, the root of a negative, a lane id
+  // beyond int, a duration beyond float) warns at its property and leaves esmini's default.
+  const auto set = [&](const char* name, double& field, bool (*valid)(double) = nullptr,
+                       const char* requirement = "") {
+    const xosc::Source* source = nullptr;
+    if (const auto value = natural_setting(state, controller, name, assigned, source)) {
+      if (valid == nullptr || valid(*value)) {
+        field = *value;
+      } else {
+        state.diagnostics.add(source->warning("NaturalDriver property '" + std::string(name) +
+                                              "' must be " + requirement +
+                                              ": esmini's default is used"));
+      }
     } else if (missing_entry) {
       defaulted += (defaulted.empty() ? "" : ", ") + std::string(name);
     }
   };
+  const auto positive = [](double v) { return v > 0.0; };
+  const auto negative = [](double v) { return v < 0.0; };
+  const auto nonnegative = [](double v) { return v >= 0.0; };
   set("desiredDistance", p.desired_distance);
-  set("desiredSpeed", p.desired_speed);
-  set("laneChangeDuration", p.lane_change_duration);
+  set("desiredSpeed", p.desired_speed, positive, "above 0");
+  set(
+      "laneChangeDuration", p.lane_change_duration,
+      [](double v) { return v >= 0.0 && v <= std::numeric_limits<float>::max(); },
+      "at least 0 and within a float's range");
   set("lookAheadDistance", p.lookahead);
-  set("maxDec", p.max_dec);
-  set("maxAcc", p.max_acc);
-  set("laneChangeDelay", p.lane_change_delay);
-  set("thw", p.thw);
+  set("maxDec", p.max_dec, negative, "below 0");
+  set("maxAcc", p.max_acc, positive, "above 0");
+  set("laneChangeDelay", p.lane_change_delay, nonnegative, "at least 0");
+  set("thw", p.thw, nonnegative, "at least 0");
   set("maxImposedBraking", p.max_imposed_braking);
   set("laneChangeAccGain", p.lane_change_acc_gain);
   set("politeness", p.politeness);
   double route = p.route;
-  set("route", route);
+  set(
+      "route", route,
+      [](double v) {
+        return v >= std::numeric_limits<int>::min() && v <= std::numeric_limits<int>::max();
+      },
+      "within an int's range");
   p.route = static_cast<int>(route);
   // esmini reads laneChangeDuration as a float.
   p.lane_change_duration = static_cast<float>(p.lane_change_duration);
@@ -528,6 +551,12 @@ void step_natural_drivers(SimState& state, const MotionContext& motion) {
     if (!driver.active) {
       // esmini's Activate: the integrated speed starts from the entity's. Activated in the
       // Init (the first step), esmini's first Step is made in its initialising frame, with dt 0.
+      // Activated again, it starts afresh: no lane change asked for or under way, the wait
+      // before one as when it was made.
+      const NaturalDriverParams params = driver.params;
+      driver = NaturalDriverState{};
+      driver.params = params;
+      driver.cooldown = params.lane_change_duration + params.lane_change_delay;
       driver.active = true;
       driver.speed = entity.state.speed;
       zero_step = state.tick == 0;
