@@ -71,10 +71,10 @@ struct GroupingLayers {
 };
 
 /// Eastbound: a three-lane approach (lanes 3.5 m apart, y = 0, -3.5, -7) ending at x = 30, a
-/// one-lane road coming in from the south-west beside its end (y = -10.5), a 7 m four-lane run (x = 30..37, LaneNo 1-4) continuing
-/// them, and a four-lane exit road from x = 37. A junction path also turns left off the
-/// approach's first lane, so the approach's end leads into a junction and straight on: the
-/// short run joins that junction whole.
+/// one-lane road coming in from the south-west beside its end (y = -10.5), a 7 m four-lane run (x
+/// = 30..37, LaneNo 1-4) continuing them, and a four-lane exit road from x = 37. A junction path
+/// also turns left off the approach's first lane, so the approach's end leads into a junction and
+/// straight on: the short run joins that junction whole.
 GroupingLayers run_in_junction() {
   GroupingLayers g;
   const std::vector<double> ys = {0.0, -3.5, -7.0, -10.5};
@@ -124,7 +124,8 @@ const corsa::ngii::LinkPlacement& placement_of(const corsa::ngii::Conversion& co
 
 const corsa::xodr::Road& road_of(const corsa::ngii::Conversion& conversion, const std::string& id) {
   const auto& roads = conversion.map.roads;
-  const auto it = std::find_if(roads.begin(), roads.end(), [&](const auto& r) { return r.id == id; });
+  const auto it =
+      std::find_if(roads.begin(), roads.end(), [&](const auto& r) { return r.id == id; });
   REQUIRE(it != roads.end());
   return *it;
 }
