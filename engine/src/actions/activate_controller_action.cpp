@@ -1,7 +1,10 @@
 // ActivateControllerAction (OpenSCENARIO 1.3 §7.5.1): switches the domains of the actor's
 // controller on or off; unset domains stay as they are. With every motion domain off the
-// default controller moves the entity. An objectControllerRef must name the actor's assigned
-// controller (a warning otherwise, and the action still applies to it).
+// default controller moves the entity. An objectControllerRef names one of the actor's assigned
+// controllers (a warning otherwise, and the action applies to its controller; none: the one
+// assigned last); a domain switched
+// on is taken from the other controller of a pair sharing the motion domains (ControlState::
+// partner).
 
 #include "actions/action_makers.h"
 #include "controllers/alks_r157.h"
@@ -19,6 +22,15 @@ class ActivateControllerInstance final : public InstantAction {
 
   void start(ActionContext& context) override {
     ControlState& control = control_of(context.state, *context.actor);
+    // The controller named, else the one assigned last.
+    const bool to_partner =
+        control.partner && (action_.object_controller_ref
+                                ? *action_.object_controller_ref == control.partner->assigned &&
+                                      *action_.object_controller_ref != control.assigned
+                                : control.partner->assigned_last);
+    if (to_partner) {
+      swap_with_partner(control);  // the controller named is the one the action switches
+    }
     if (action_.object_controller_ref && !control.assigned.empty() &&
         *action_.object_controller_ref != control.assigned) {
       context.state.diagnostics.add_once(
@@ -38,6 +50,13 @@ class ActivateControllerInstance final : public InstantAction {
       // esmini's Activate: its timers and offsets start again, its reference speed the speed
       // the entity then has.
       activate_sloppy_driver(*control.sloppy, context.entity());
+    }
+    if (control.partner) {
+      // A domain switched on is taken from the other controller (esmini deactivates the
+      // controller active there first).
+      if (action_.longitudinal.value_or(false)) control.partner->longitudinal = false;
+      if (action_.lateral.value_or(false)) control.partner->lateral = false;
+      settle_domains_at(context.state, *context.actor, action_.source);
     }
     if (action_.animation) control.animation = *action_.animation;
     if (action_.lighting) control.lighting = *action_.lighting;

@@ -24,6 +24,10 @@ class AssignControllerInstance final : public InstantAction {
     const xosc::ObjectController& oc = action_.controller;
     ControllerKind kind = ControllerKind::kDefault;
     const ControllerKind before = control.kind;
+    // The controller assigned so far keeps the motion domains the new one does not take, when
+    // the two may share them (controllers.h, may_share_domains); otherwise the new one replaces
+    // it.
+    DomainPartner earlier{control.kind, control.assigned, control.longitudinal, control.lateral};
     const bool ghosted = context.state.ghost && *context.actor == context.state.ghost->entity;
     if (ghosted && !is_follow_ghost(oc)) {
       context.state.diagnostics.add(action_.source.warning(
@@ -57,6 +61,14 @@ class AssignControllerInstance final : public InstantAction {
     if ((control.longitudinal || control.lateral) && control.sloppy &&
         control.kind == ControllerKind::kSloppyDriver) {
       activate_sloppy_driver(*control.sloppy, context.entity());
+    }
+    control.partner.reset();
+    earlier.longitudinal = earlier.longitudinal && !control.longitudinal;
+    earlier.lateral = earlier.lateral && !control.lateral;
+    if ((earlier.longitudinal || earlier.lateral) && earlier.assigned != control.assigned &&
+        may_share_domains(control, earlier.kind, control.kind)) {
+      control.partner = earlier;
+      settle_domains_at(context.state, *context.actor, action_.source);
     }
   }
 

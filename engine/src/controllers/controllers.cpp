@@ -8,6 +8,7 @@
 #include <memory>
 #include <numbers>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "controllers/alks_r157.h"
@@ -138,6 +139,67 @@ void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectCo
                         "' is not one of this engine's (default, acc, dynamics via the "
                         "corsa:controller property): the acc controller stands in for it on '" +
                         entity + "' once activated"));
+}
+
+namespace {
+
+bool is_interactive_driver(const ControlState& control, ControllerKind kind) {
+  return kind == ControllerKind::kEsminiVehicle && control.esmini_driver &&
+         control.esmini_driver->kind == EsminiDriverKind::kInteractive;
+}
+
+}  // namespace
+
+bool may_share_domains(const ControlState& control, ControllerKind a, ControllerKind b) {
+  return (a == ControllerKind::kSloppyDriver && is_interactive_driver(control, b)) ||
+         (b == ControllerKind::kSloppyDriver && is_interactive_driver(control, a));
+}
+
+void swap_with_partner(ControlState& control) {
+  DomainPartner& partner = *control.partner;
+  std::swap(control.kind, partner.kind);
+  std::swap(control.assigned, partner.assigned);
+  std::swap(control.longitudinal, partner.longitudinal);
+  std::swap(control.lateral, partner.lateral);
+  partner.assigned_last = !partner.assigned_last;
+}
+
+bool settle_domains(ControlState& control) {
+  if (!control.partner) {
+    return true;
+  }
+  const DomainPartner& partner = *control.partner;
+  const bool own = control.longitudinal || control.lateral;
+  const bool other = partner.longitudinal || partner.lateral;
+  if (own && other) {
+    // Two active, in different domains (an activation takes a domain from the other).
+    const ControllerKind lateral = control.lateral ? control.kind : partner.kind;
+    const ControllerKind longitudinal = control.longitudinal ? control.kind : partner.kind;
+    if (lateral != ControllerKind::kSloppyDriver || !is_interactive_driver(control, longitudinal)) {
+      control.partner.reset();  // `kind`, assigned or activated last, moves the entity
+      return false;
+    }
+    if (!control.longitudinal) {
+      swap_with_partner(control);  // the dispatch steps the longitudinal one
+    }
+  } else if (other) {
+    swap_with_partner(control);
+  }
+  return true;
+}
+
+void settle_domains_at(SimState& state, uint32_t index, const xosc::Source& source) {
+  ControlState& control = control_of(state, index);
+  const std::string own = control.assigned;
+  const std::string partner = control.partner ? control.partner->assigned : std::string();
+  if (!settle_domains(control)) {
+    state.diagnostics.add(
+        source.warning("'" + state.world.entities[index].info.name + "': controllers '" + own +
+                       "' and '" + partner +
+                       "' on different motion domains at once are defined for an interactiveDriver "
+                       "(longitudinal) with a sloppyDriver (lateral) only: '" +
+                       control.assigned + "' alone moves it"));
+  }
 }
 
 void assign_initial_controllers(SimState& state) {
@@ -433,6 +495,12 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   for (uint32_t i = 0; i < count; ++i) {
     alks = alks || state.controls[i].effective() == ControllerKind::kAlksR157;
     sloppy = sloppy || state.controls[i].effective() == ControllerKind::kSloppyDriver;
+    if (std::optional<DomainPartner>& partner = state.controls[i].partner) {
+      // The lateral controller of a split steers with the speed and heading the step began with.
+      partner->step_start_speed = state.world.entities[i].state.speed;
+      partner->step_start_heading = state.world.entities[i].lane.heading_offset;
+      sloppy = sloppy || partner->kind == ControllerKind::kSloppyDriver;
+    }
     if (dynamics_moves(state, i) && !state.world.entities[i].towed_by) {
       dynamic.push_back(i);
     }

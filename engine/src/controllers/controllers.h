@@ -25,6 +25,7 @@
 namespace corsa::xosc {
 struct Controller;
 struct ObjectController;
+struct Source;
 }  // namespace corsa::xosc
 
 namespace corsa::engine::detail {
@@ -46,6 +47,25 @@ bool names_external(const SimulationOptions& options, const xosc::ObjectControll
 /// vehicle ahead). Recorded in ControlState::substitute_for (the run summary lists it) and
 /// warned once per entity and controller, located at the ObjectController.
 void substitute_controller(SimState& state, uint32_t index, const xosc::ObjectController& oc);
+
+/// Whether an entity's controller of kind `a` and its controller of kind `b` may each move it in
+/// one motion domain: the pairs whose steps are defined (docs/engine.md, "Controllers per motion
+/// domain"), esmini's sloppyDriver with its interactiveDriver.
+bool may_share_domains(const ControlState& control, ControllerKind a, ControllerKind b);
+
+/// Exchanges the roles of the entity's controller and its DomainPartner (kind, name, domains).
+void swap_with_partner(ControlState& control);
+
+/// After an assignment or activation: the controller active in the longitudinal domain becomes
+/// `kind` (the one the dispatch steps) when two share the motion domains, the active one when
+/// only one is. Returns false, and forgets the partner, when the two active ones are not a pair
+/// whose step is defined (the caller warns): `kind`, the controller assigned or activated last,
+/// then moves the entity in its domains.
+bool settle_domains(ControlState& control);
+
+/// settle_domains for entity `index`, warning at `source` (an assignment or activation) when the
+/// two active controllers are not such a pair.
+void settle_domains_at(SimState& state, uint32_t index, const xosc::Source& source);
 
 /// esmini's type of a scenario Controller: its `esminiController` property, else its name.
 std::string esmini_type(const xosc::Controller& controller);

@@ -116,6 +116,22 @@ void step_sloppy_driver(SimState& state, uint32_t index, SloppyDriver& driver,
   }
 }
 
+// The lateral domain beside another controller's longitudinal one (ControlState::partner): the
+// other has moved the entity along its lane at its speed; the steering law then shifts it with the
+// speed and heading the step began with (esmini steps the sloppy driver, assigned first, before
+// the other).
+void steer_sloppy_partner(SimState& state, uint32_t index, SloppyDriver& driver,
+                          const DomainPartner& partner, const MotionContext& motion) {
+  Entity& entity = state.world.entities[index];
+  driver.clock += motion.dt;
+  driver.last_command = entity.speed_command;
+  if (entity.lane.on_road && state.map != nullptr) {
+    sloppy_lateral(driver, *state.esmini_random, entity, partner.step_start_speed,
+                   partner.step_start_heading, motion.dt);
+    update_pose_from_lane(entity, *state.map, *motion.scratch);
+  }
+}
+
 }  // namespace
 
 double EsminiRandom::real_between(double low, double high) {
@@ -185,11 +201,15 @@ void step_sloppy_drivers(SimState& state, const MotionContext& motion) {
   for (uint32_t i = 0; i < count && i < state.controls.size(); ++i) {
     ControlState& control = state.controls[i];
     Entity& entity = state.world.entities[i];
-    if (control.effective() != ControllerKind::kSloppyDriver || !control.sloppy ||
-        !entity.state.placed || entity.towed_by || state.frozen(i)) {
+    if (!control.sloppy || !entity.state.placed || entity.towed_by || state.frozen(i)) {
       continue;
     }
-    step_sloppy_driver(state, i, *control.sloppy, motion);
+    if (control.effective() == ControllerKind::kSloppyDriver) {
+      step_sloppy_driver(state, i, *control.sloppy, motion);
+    } else if (!control.commanded && control.partner &&
+               control.partner->kind == ControllerKind::kSloppyDriver && control.partner->lateral) {
+      steer_sloppy_partner(state, i, *control.sloppy, *control.partner, motion);
+    }
   }
 }
 

@@ -76,6 +76,24 @@ struct EsminiAcc {
   std::optional<double> set_speed;
 };
 
+/// An earlier assigned controller that keeps the motion domain the controller assigned after it
+/// left to it (docs/engine.md, "Controllers per motion domain"): esmini keeps every assigned
+/// controller, each active on its own domains. Its run state stays in ControlState's pointer for
+/// its kind (a pair is always of two kinds).
+struct DomainPartner {
+  ControllerKind kind = ControllerKind::kDefault;
+  std::string assigned;  ///< its ObjectController's name
+  bool longitudinal = false;
+  bool lateral = false;
+  /// Whether it was assigned after `kind` (an ActivateControllerAction without objectControllerRef
+  /// is for the controller assigned last).
+  bool assigned_last = false;
+  /// The entity's speed (m/s) and heading relative to its lane (rad) when the step under way
+  /// began: the lateral controller steers with them.
+  double step_start_speed = 0.0;
+  double step_start_heading = 0.0;
+};
+
 /// The flags every step reads of every entity (the controller, whether it is commanded or seen
 /// by traffic) come first, in one cache line; the rest is read only by the entities it concerns.
 struct ControlState {
@@ -122,6 +140,9 @@ struct ControlState {
   /// repeats between commands.
   ExternalCommand command;
   std::optional<ExternalCommand> held;
+  /// The controller of the other motion domain while two controllers share the entity's motion
+  /// (`kind` then is active only in the domain the partner is not); none otherwise.
+  std::optional<DomainPartner> partner;
 
   /// The controller that moves the entity this step: a command's controls go through the
   /// dynamics controller's vehicle model, its pose or speed through the external controller.
