@@ -8,8 +8,11 @@
 #include <utility>
 #include <vector>
 
+#include "corsa/core/diagnostic.h"
 #include "corsa/ngii/convert.h"
 #include "corsa/xodr/map.h"
+#include "corsa/xodr/parser.h"
+#include "mouth_fills.h"
 #include "mouth_gaps.h"
 
 namespace {
@@ -455,4 +458,63 @@ TEST_CASE("two five-lane roads meeting at 0.3 degrees end on their shared line",
   CHECK(gaps.ends >= 10);
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE("a shoulder narrowing along a lane edge that slants steeply at the joint is added",
+          "[ngii][mouths]") {
+  // Road 1's 3.5 m lane ends where road 2's 3.0 m one starts, both reference lines straight and
+  // in line: 0.5 m of road 1's end lies beyond road 2's right edge. Road 2's laneOffset swings
+  // its lane left at 2.5 m per metre from its start (a road fitted along its lane's edge
+  // through a tight corner slants so), so its right edge, and a shoulder's outer border
+  // narrowing beside it from zero slope, slant beyond the 2 m per metre a shoulder may add
+  // itself. The shoulder only follows the lane's edge there and is kept.
+  const std::string text = R"(<?xml version="1.0" encoding="UTF-8"?>
+<OpenDRIVE>
+  <header revMajor="1" revMinor="8" name="slanting joint"/>
+  <road name="a" length="20" id="1" junction="-1">
+    <link><successor elementType="road" elementId="2" contactPoint="start"/></link>
+    <planView><geometry s="0" x="0" y="0" hdg="0" length="20"><line/></geometry></planView>
+    <lanes>
+      <laneSection s="0">
+        <center><lane id="0" type="none" level="false"/></center>
+        <right><lane id="-1" type="driving" level="false">
+          <link><successor id="-1"/></link>
+          <width sOffset="0" a="3.5" b="0" c="0" d="0"/>
+        </lane></right>
+      </laneSection>
+    </lanes>
+  </road>
+  <road name="b" length="20" id="2" junction="-1">
+    <link><predecessor elementType="road" elementId="1" contactPoint="end"/></link>
+    <planView><geometry s="0" x="20" y="0" hdg="0" length="20"><line/></geometry></planView>
+    <lanes>
+      <laneOffset s="0" a="0" b="2.5" c="-2.5" d="0"/>
+      <laneOffset s="0.5" a="0.625" b="0" c="0" d="0"/>
+      <laneSection s="0">
+        <center><lane id="0" type="none" level="false"/></center>
+        <right><lane id="-1" type="driving" level="false">
+          <link><predecessor id="-1"/></link>
+          <width sOffset="0" a="3.0" b="0" c="0" d="0"/>
+        </lane></right>
+      </laneSection>
+    </lanes>
+  </road>
+</OpenDRIVE>
+)";
+  corsa::Diagnostics diagnostics;
+  corsa::xodr::MapData map = corsa::xodr::parse_xodr_text(text, "slanting.xodr", diagnostics);
+  REQUIRE(map.roads.size() == 2);
+  CHECK(corsa::ngii::detail::fill_lane_mouths(map) == 1);
+  const auto& lanes = map.roads[1].lane_sections.front().lanes;
+  REQUIRE(lanes.size() == 3);
+  CHECK(lanes.back().type == corsa::xodr::LaneType::kShoulder);
+  CHECK(lanes.back().id == -2);
+  REQUIRE(!lanes.back().widths.empty());
+  // As wide as the step (0.5 m) and the 2 cm it reaches under road 1's lane.
+  CHECK(lanes.back().widths.front().a == Approx(0.52).margin(0.03));
+  const corsa::xodr::Map built = corsa::xodr::Map::build(map, diagnostics);
+  const auto gaps =
+      corsa::test::mouth_gaps(built, [](const corsa::xodr::LaneRef&, bool) { return false; });
+  INFO(gaps.worst);
+  CHECK(gaps.over == 0);
 }
