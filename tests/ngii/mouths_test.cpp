@@ -518,3 +518,29 @@ TEST_CASE("a shoulder narrowing along a lane edge that slants steeply at the joi
   INFO(gaps.worst);
   CHECK(gaps.over == 0);
 }
+
+TEST_CASE(
+    "a one-lane road after a road whose second lane merges into its first starts on that road's "
+    "end line",
+    "[ngii][mouths]") {
+  // The mirror of the split above: a two-lane road's right lane merges into its left one at
+  // the node (zero width there), and the one-lane road after it turns 5 degrees left. That road
+  // joined only a road of one lane, every lane ending there beside its neighbours, so it started
+  // square to its own course: a wedge beside the joint. The merging lane ends on its neighbour's
+  // end, so the road before has one line there, which the road after now takes.
+  Builder b;
+  const double dy = 40.0 * std::tan(5.0 * M_PI / 180.0);
+  b.node("A0", 0.0, 0.0);
+  b.node("B0", 0.0, -3.5);
+  b.node("A1", 30.0, 0.0);
+  b.node("C1", 70.0, dy);
+  b.link("A2TEST00000A", "6", 1, "A0", "A1", "A2TEST00000B", "");
+  b.link_through("A2TEST00000B", 2, "B0", "A1",
+                 {{0.0, -3.5}, {20.0, -3.5}, {25.0, -2.5}, {30.0, 0.0}}, "", "A2TEST00000A");
+  b.link("A2TEST00000C", "6", 1, "A1", "C1");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 2);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
