@@ -118,9 +118,9 @@ class Assembler {
       const xodr::RefPoint p = xodr::evaluate_geometry(g, at_end ? g.length : 0.0);
       return BuiltEnd{Vec2{p.x, p.y}, p.hdg};
     };
-    // Ordinary roads of one lane (and lanes splitting off it) starting where one other one-lane
-    // road ends, again on its end's cross-section (their ends stay, so the roads they lead into
-    // keep theirs).
+    // Ordinary roads of one lane (and lanes splitting off it) starting where one other road's
+    // one lane (and lanes merging into it) ends, again on its end's cross-section (their ends stay,
+    // so the roads they lead into keep theirs).
     std::vector<RoadEndLines> used_lines = end_lines;
     for (const size_t r : join_ends(plan_, end_of, JoinedEnds::kOrdinaryStarts, end_lines)) {
       used_lines[r] = build_joined(r, end_lines[r], own_lines[r], built[r]);

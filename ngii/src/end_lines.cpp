@@ -131,6 +131,8 @@ std::vector<size_t> join_ends(const NetworkPlan& plan, const BuiltEndOf& end_of,
       }
       // The lanes on the other side of the joint: ending where the road starts, starting where
       // it ends; only ordinary ones that end there beside their neighbours (not at zero width).
+      // Before an ordinary road, a lane merging into its neighbour there ends on that lane's
+      // end, so the road it belongs to has one lane end there, and its end line.
       const int key = at_end ? lane.end_node : lane.start_node;
       if (key < 0) {
         continue;
@@ -144,14 +146,15 @@ std::vector<size_t> join_ends(const NetworkPlan& plan, const BuiltEndOf& end_of,
           continue;
         }
         const RoadPlan& other = plan.roads[static_cast<size_t>(ref.road)];
-        usable = usable && ref.road != static_cast<int>(r) &&
-                 effective_end(other, static_cast<size_t>(ref.lane), at_end) == LaneEnd::kBeside;
+        const bool beside =
+            effective_end(other, static_cast<size_t>(ref.lane), at_end) == LaneEnd::kBeside;
+        usable = usable && ref.road != static_cast<int>(r) && (beside || !paths);
         joined.insert(ref.road);
       }
-      // An ordinary road joins only a one-lane road (a piece cut off a wider road's end keeps
-      // the line it was cut on).
+      // An ordinary road joins only a road with one lane there beside the others (a piece cut
+      // off a wider road's end keeps the line it was cut on).
       if (!usable || joined.size() != 1 ||
-          (!paths && plan.roads[static_cast<size_t>(*joined.begin())].lanes.size() != 1)) {
+          (!paths && lanes_beside(plan.roads[static_cast<size_t>(*joined.begin())], at_end) != 1)) {
         continue;
       }
       // The road's start meets that road's end, and its end that road's start.

@@ -6,8 +6,8 @@
 // the same line and meet without a gap; a road whose own lane ends are not all on that shared
 // line (within 0.25 m) keeps the line through its own (road_reference.h). Junction paths (one
 // lane) take the shared line where their lane's end lies on it, and otherwise end square; once
-// the ordinary roads are built, join_ends puts them (and one-lane roads after a one-lane road)
-// on the cross-section of the road they join.
+// the ordinary roads are built, join_ends puts them (and one-lane roads after a road with one lane
+// ending there) on the cross-section of the road they join.
 
 #include <functional>
 #include <optional>
@@ -44,7 +44,8 @@ enum class JoinedEnds {
   kJunctionPaths,
   /// Ordinary roads with one lane starting beside the others (any other lanes split off it at
   /// zero width), at their start where no line is shared and the road before them has one
-  /// lane: one lane on either side of the joint.
+  /// lane ending beside the others (any others merge into it at zero width): one lane on
+  /// either side of the joint.
   kOrdinaryStarts,
 };
 

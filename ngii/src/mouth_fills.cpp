@@ -154,10 +154,15 @@ std::optional<std::pair<MouthFillKey, double>> fill_for_side(const xodr::Map& ma
 
 /// Whether the outer border of the shoulder `lane_index` of `road` (one lane section) turns
 /// over within [s0, s1]: beyond the reference line's centre of curvature, or slanting across
-/// the normals more than kFillMaxSlant per metre (the check of fitted_road_folds).
+/// the normals more than kFillMaxSlant per metre (the check of fitted_road_folds) beyond what the
+/// lane's border beside it slants: where a road is fitted along its lane's edge through a tight
+/// corner, that edge itself slants more, and a shoulder narrowing gently beside it follows it.
 bool fill_folds(const xodr::Road& road, size_t lane_index, double s0, double s1) {
   const auto& lanes = road.lane_sections.front().lanes;
   const bool left = lanes[lane_index].id > 0;
+  const auto to_lane_edge = [&](double s) {  // outer border + this = the lane's border
+    return (left ? -1.0 : 1.0) * piecewise_value(lanes[lane_index].widths, s);
+  };
   const auto outer = [&](double s) {
     double t = piecewise_value(road.lane_offsets, s);
     for (const xodr::Lane& lane : lanes) {
@@ -175,7 +180,9 @@ bool fill_folds(const xodr::Road& road, size_t lane_index, double s0, double s1)
     const double k = curvature_at(road.plan_view, a);
     const double after = outer(b);
     const double forward = 1.0 - k * (before + std::copysign(kFillMarkReach, k));
-    if (forward <= 0.0 || std::abs(after - before) > kFillMaxSlant * forward * (b - a)) {
+    const double most = kFillMaxSlant * forward * (b - a);
+    const double lane_slant = std::abs(after + to_lane_edge(b) - before - to_lane_edge(a));
+    if (forward <= 0.0 || std::abs(after - before) > most + lane_slant) {
       return true;
     }
     before = after;

@@ -8,8 +8,11 @@
 #include <utility>
 #include <vector>
 
+#include "corsa/core/diagnostic.h"
 #include "corsa/ngii/convert.h"
 #include "corsa/xodr/map.h"
+#include "corsa/xodr/parser.h"
+#include "mouth_fills.h"
 #include "mouth_gaps.h"
 
 namespace {
@@ -453,6 +456,91 @@ TEST_CASE("two five-lane roads meeting at 0.3 degrees end on their shared line",
   const auto gaps = mouth_gaps_of(b.layers);
   INFO(gaps.worst);
   CHECK(gaps.ends >= 10);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE("a shoulder narrowing along a lane edge that slants steeply at the joint is added",
+          "[ngii][mouths]") {
+  // Road 1's 3.5 m lane ends where road 2's 3.0 m one starts, both reference lines straight and
+  // in line: 0.5 m of road 1's end lies beyond road 2's right edge. Road 2's laneOffset swings
+  // its lane left at 2.5 m per metre from its start (a road fitted along its lane's edge
+  // through a tight corner slants so), so its right edge, and a shoulder's outer border
+  // narrowing beside it from zero slope, slant beyond the 2 m per metre a shoulder may add
+  // itself. The shoulder only follows the lane's edge there and is kept.
+  const std::string text = R"(<?xml version="1.0" encoding="UTF-8"?>
+<OpenDRIVE>
+  <header revMajor="1" revMinor="8" name="slanting joint"/>
+  <road name="a" length="20" id="1" junction="-1">
+    <link><successor elementType="road" elementId="2" contactPoint="start"/></link>
+    <planView><geometry s="0" x="0" y="0" hdg="0" length="20"><line/></geometry></planView>
+    <lanes>
+      <laneSection s="0">
+        <center><lane id="0" type="none" level="false"/></center>
+        <right><lane id="-1" type="driving" level="false">
+          <link><successor id="-1"/></link>
+          <width sOffset="0" a="3.5" b="0" c="0" d="0"/>
+        </lane></right>
+      </laneSection>
+    </lanes>
+  </road>
+  <road name="b" length="20" id="2" junction="-1">
+    <link><predecessor elementType="road" elementId="1" contactPoint="end"/></link>
+    <planView><geometry s="0" x="20" y="0" hdg="0" length="20"><line/></geometry></planView>
+    <lanes>
+      <laneOffset s="0" a="0" b="2.5" c="-2.5" d="0"/>
+      <laneOffset s="0.5" a="0.625" b="0" c="0" d="0"/>
+      <laneSection s="0">
+        <center><lane id="0" type="none" level="false"/></center>
+        <right><lane id="-1" type="driving" level="false">
+          <link><predecessor id="-1"/></link>
+          <width sOffset="0" a="3.0" b="0" c="0" d="0"/>
+        </lane></right>
+      </laneSection>
+    </lanes>
+  </road>
+</OpenDRIVE>
+)";
+  corsa::Diagnostics diagnostics;
+  corsa::xodr::MapData map = corsa::xodr::parse_xodr_text(text, "slanting.xodr", diagnostics);
+  REQUIRE(map.roads.size() == 2);
+  CHECK(corsa::ngii::detail::fill_lane_mouths(map) == 1);
+  const auto& lanes = map.roads[1].lane_sections.front().lanes;
+  REQUIRE(lanes.size() == 3);
+  CHECK(lanes.back().type == corsa::xodr::LaneType::kShoulder);
+  CHECK(lanes.back().id == -2);
+  REQUIRE(!lanes.back().widths.empty());
+  // As wide as the step (0.5 m) and the 2 cm it reaches under road 1's lane.
+  CHECK(lanes.back().widths.front().a == Approx(0.52).margin(0.03));
+  const corsa::xodr::Map built = corsa::xodr::Map::build(map, diagnostics);
+  const auto gaps =
+      corsa::test::mouth_gaps(built, [](const corsa::xodr::LaneRef&, bool) { return false; });
+  INFO(gaps.worst);
+  CHECK(gaps.over == 0);
+}
+
+TEST_CASE(
+    "a one-lane road after a road whose second lane merges into its first starts on that road's "
+    "end line",
+    "[ngii][mouths]") {
+  // The mirror of the split above: a two-lane road's right lane merges into its left one at
+  // the node (zero width there), and the one-lane road after it turns 5 degrees left. That road
+  // joined only a road of one lane, every lane ending there beside its neighbours, so it started
+  // square to its own course: a wedge beside the joint. The merging lane ends on its neighbour's
+  // end, so the road before has one line there, which the road after now takes.
+  Builder b;
+  const double dy = 40.0 * std::tan(5.0 * M_PI / 180.0);
+  b.node("A0", 0.0, 0.0);
+  b.node("B0", 0.0, -3.5);
+  b.node("A1", 30.0, 0.0);
+  b.node("C1", 70.0, dy);
+  b.link("A2TEST00000A", "6", 1, "A0", "A1", "A2TEST00000B", "");
+  b.link_through("A2TEST00000B", 2, "B0", "A1",
+                 {{0.0, -3.5}, {20.0, -3.5}, {25.0, -2.5}, {30.0, 0.0}}, "", "A2TEST00000A");
+  b.link("A2TEST00000C", "6", 1, "A1", "C1");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 2);
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
 }
