@@ -12,62 +12,14 @@
 #include "corsa/ngii/convert.h"
 #include "corsa/xodr/lane_graph.h"
 #include "corsa/xodr/map.h"
+#include "synthetic_layers.h"
 
 namespace {
 
-using corsa::ngii::Layers;
-using corsa::ngii::Link;
-using corsa::ngii::Node;
-using corsa::ngii::Point3;
-
 constexpr double kGroupingX0 = 310000.0, kGroupingY0 = 4110000.0;
 
-Point3 grouping_at(double x, double y) { return {kGroupingX0 + x, kGroupingY0 + y, 40.0}; }
-
-struct GroupingLayers {
-  Layers layers;
-
-  GroupingLayers() {
-    layers.node_file = "A1_NODE.dbf";
-    layers.link_file = "A2_LINK.dbf";
-    layers.mark_file = "B2_SURFACELINEMARK.dbf";
-  }
-  void node(const std::string& id, double x, double y) {
-    layers.nodes.push_back(Node{.id = id,
-                                .node_type = "99",
-                                .position = grouping_at(x, y),
-                                .record = static_cast<int64_t>(layers.nodes.size())});
-  }
-  /// A straight link from node a to node b (both added before), vertices a metre apart.
-  void link(const std::string& id, const std::string& type, int lane_no, const std::string& a,
-            const std::string& b, const std::string& right = "", const std::string& left = "") {
-    Point3 pa{}, pb{};
-    for (const Node& n : layers.nodes) {
-      pa = n.id == a ? n.position : pa;
-      pb = n.id == b ? n.position : pb;
-    }
-    std::vector<Point3> points;
-    const double length = std::hypot(pb.x - pa.x, pb.y - pa.y);
-    const int steps = static_cast<int>(std::ceil(length));
-    for (int i = 0; i <= steps; ++i) {
-      const double f = static_cast<double>(i) / steps;
-      points.push_back({pa.x + f * (pb.x - pa.x), pa.y + f * (pb.y - pa.y), 40.0});
-    }
-    layers.links.push_back(Link{.id = id,
-                                .link_type = type,
-                                .road_rank = "",
-                                .road_type = "1",
-                                .road_no = "",
-                                .lane_no = lane_no,
-                                .max_speed = 0,
-                                .right_id = right,
-                                .left_id = left,
-                                .from_node = a,
-                                .to_node = b,
-                                .length_attr = length,
-                                .points = std::move(points),
-                                .record = static_cast<int64_t>(layers.links.size())});
-  }
+struct GroupingLayers : corsa::ngii::testing::SyntheticLayers {
+  GroupingLayers() : SyntheticLayers(kGroupingX0, kGroupingY0, 40.0) {}
 };
 
 /// Eastbound: a three-lane approach (lanes 3.5 m apart, y = 0, -3.5, -7) ending at x = 30, a

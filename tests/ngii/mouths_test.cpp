@@ -14,101 +14,16 @@
 #include "corsa/xodr/parser.h"
 #include "mouth_fills.h"
 #include "mouth_gaps.h"
+#include "synthetic_layers.h"
 
 namespace {
 
 using corsa::ngii::Layers;
-using corsa::ngii::Link;
-using corsa::ngii::Node;
-using corsa::ngii::Point3;
 
 constexpr double kX0 = 300000.0, kY0 = 4100000.0;
 
-Point3 at(double x, double y) { return {kX0 + x, kY0 + y, 50.0}; }
-
-struct Builder {
-  Layers layers;
-
-  Builder() {
-    layers.node_file = "A1_NODE.dbf";
-    layers.link_file = "A2_LINK.dbf";
-    layers.mark_file = "B2_SURFACELINEMARK.dbf";
-  }
-  void node(const std::string& id, double x, double y) {
-    layers.nodes.push_back(Node{.id = id,
-                                .node_type = "99",
-                                .position = at(x, y),
-                                .record = static_cast<int64_t>(layers.nodes.size())});
-  }
-  /// A straight link from node a to node b (both added before).
-  void link(const std::string& id, const std::string& type, int lane_no, const std::string& a,
-            const std::string& b, const std::string& right = "", const std::string& left = "") {
-    Point3 pa{}, pb{};
-    for (const Node& n : layers.nodes) {
-      pa = n.id == a ? n.position : pa;
-      pb = n.id == b ? n.position : pb;
-    }
-    std::vector<Point3> points;
-    const double length = std::hypot(pb.x - pa.x, pb.y - pa.y);
-    const int steps = static_cast<int>(std::ceil(length));
-    for (int i = 0; i <= steps; ++i) {
-      const double f = static_cast<double>(i) / steps;
-      points.push_back({pa.x + f * (pb.x - pa.x), pa.y + f * (pb.y - pa.y), 50.0});
-    }
-    layers.links.push_back(Link{.id = id,
-                                .link_type = type,
-                                .road_rank = "",
-                                .road_type = "1",
-                                .road_no = "",
-                                .lane_no = lane_no,
-                                .max_speed = 0,
-                                .right_id = right,
-                                .left_id = left,
-                                .from_node = a,
-                                .to_node = b,
-                                .length_attr = length,
-                                .points = std::move(points),
-                                .record = static_cast<int64_t>(layers.links.size())});
-  }
-  /// A link through the given points (x, y), from node a to node b.
-  void link_through(const std::string& id, int lane_no, const std::string& a, const std::string& b,
-                    const std::vector<std::pair<double, double>>& xy, const std::string& right = "",
-                    const std::string& left = "") {
-    std::vector<Point3> points;
-    double length = 0.0;
-    for (size_t i = 0; i < xy.size(); ++i) {
-      points.push_back(at(xy[i].first, xy[i].second));
-      if (i > 0) {
-        length += std::hypot(xy[i].first - xy[i - 1].first, xy[i].second - xy[i - 1].second);
-      }
-    }
-    layers.links.push_back(Link{.id = id,
-                                .link_type = "6",
-                                .road_rank = "",
-                                .road_type = "1",
-                                .road_no = "",
-                                .lane_no = lane_no,
-                                .max_speed = 0,
-                                .right_id = right,
-                                .left_id = left,
-                                .from_node = a,
-                                .to_node = b,
-                                .length_attr = length,
-                                .points = std::move(points),
-                                .record = static_cast<int64_t>(layers.links.size())});
-  }
-  /// A white lane line from (x0, y) to (x1, y) with `right` on its right and `left` on its left.
-  void mark(const std::string& id, double x0, double x1, double y, const std::string& right,
-            const std::string& left) {
-    layers.marks.push_back(
-        corsa::ngii::SurfaceMark{.id = id,
-                                 .type = "211",
-                                 .kind = "503",
-                                 .right_link = right,
-                                 .left_link = left,
-                                 .points = {at(x0, y), at(x1, y)},
-                                 .record = static_cast<int64_t>(layers.marks.size())});
-  }
+struct Builder : corsa::ngii::testing::SyntheticLayers {
+  Builder() : SyntheticLayers(kX0, kY0, 50.0) {}
 };
 
 /// Two eastbound lanes (A left, B 3.5 m to its right) ending at x = 30 (A) and `b_end` (B), a
