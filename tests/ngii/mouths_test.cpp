@@ -459,3 +459,29 @@ TEST_CASE(
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
 }
+
+TEST_CASE(
+    "a road of two and a half metres surveyed by its two ends turns onto the skewed line it "
+    "starts on",
+    "[ngii][mouths]") {
+  // A two-lane road ends on a stop line skewed by 20 degrees (its right lane ends 1.27 m beyond
+  // its left one); the left lane goes on as a one-lane road 2.5 m long whose link has only its
+  // two end vertices. Its start did not turn at all (the bend must begin on the link's one
+  // segment) and, where it did, a short S back to the line of travel fitted 16 of the 20
+  // degrees: a wedge beside the joint, 1.3-1.6 m along the lane's end edge on Sangam's roads.
+  Builder b;
+  const double beyond = 3.5 * std::tan(20.0 * M_PI / 180.0);
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("B0", 0.0, -3.5);
+  b.node("B1", 30.0 + beyond, -3.5);
+  b.node("C1", 32.5, 0.0);
+  b.link("A2TEST00000A", "6", 1, "A0", "A1", "A2TEST00000B", "");
+  b.link("A2TEST00000B", "6", 2, "B0", "B1", "", "A2TEST00000A");
+  b.link_through("A2TEST00000C", 1, "A1", "C1", {{30.0, 0.0}, {32.5, 0.0}});
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 2);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
