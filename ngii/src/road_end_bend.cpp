@@ -132,15 +132,16 @@ std::vector<Point2> hermite(Vec2 a, Vec2 ta, Vec2 b, Vec2 tb) {
 
 /// Where on the end line through `target` a turn from `start` (heading `heading`) ends when it
 /// turns evenly, like an arc: the chord halves the turn. An arc spreads the turn over the whole
-/// reach (curvature turn / reach), where a curve back to the line of travel (an S) turns up to
-/// four times as tightly at its end and folds the lanes on its inside. The laneOffset takes up
-/// the arc's sideways drift (§9.3). `target.point` when the chord does not meet the line ahead,
-/// and for bends shorter than kMinEvenTurn (a road of a few metres: its plan view could not
-/// follow the drift within the fit tolerance, and its lanes' ends would move) unless it hardly
-/// turns (under kStraightTurn): a piece of a metre between two parallel skewed lines (a road
-/// cut where one lane ends short of the others' stop line) then runs straight from line to line,
-/// where a curve to the line of travel would swing by twice the skew and fold its lanes. With
-/// `even` a short bend turns evenly too (bend_to_line: where its drift is small).
+/// reach (curvature turn / reach), where a curve back to the line of travel (an S) turns up to four
+/// times as tightly at its end and folds the lanes on its inside. The laneOffset takes up the arc's
+/// sideways drift (§9.3). `target.point` when the chord does not meet the line ahead (beyond 0.5 m;
+/// 5 cm where it hardly turns: a piece 0.4 m long between two parallel lines made an S of five
+/// records there and folded), and for bends shorter than kMinEvenTurn (a road of a few metres: its
+/// plan view could not follow the drift within the fit tolerance, and its lanes' ends would move)
+/// unless it hardly turns (under kStraightTurn): a piece of a metre between two parallel skewed
+/// lines (a road cut where one lane ends short of the others' stop line) then runs straight from
+/// line to line, where a curve to the line of travel would swing by twice the skew and fold its
+/// lanes. With `even` a short bend turns evenly too (bend_to_line: where its drift is small).
 constexpr double kMinEvenTurn = 4.0;    // m
 constexpr double kStraightTurn = 0.05;  // rad
 Vec2 even_turn_end(Vec2 start, Vec2 heading, const EndTarget& target, bool even = false) {
@@ -157,7 +158,8 @@ Vec2 even_turn_end(Vec2 start, Vec2 heading, const EndTarget& target, bool even 
     return target.point;
   }
   const double along = cross(target.point - start, across) / denominator;
-  return along > 0.5 ? start + along * chord : target.point;
+  const double least = std::abs(turn) < kStraightTurn ? 0.05 : 0.5;  // m
+  return along > least ? start + along * chord : target.point;
 }
 
 /// Bends the end of `p` over its last `reach` metres: a cubic Hermite curve turning evenly to

@@ -485,3 +485,45 @@ TEST_CASE(
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
 }
+
+TEST_CASE(
+    "a three-lane road whose third lane ends 0.4 m short of the stop line is cut on that line's "
+    "parallel",
+    "[ngii][mouths]") {
+  // Three lanes end on a stop line skewed by 17 degrees, but the survey ends the third lane's
+  // link 0.4 m short of it and continues it by a link 0.4 m long; a three-lane road starts on
+  // the stop line. Within the 0.25 m an end line allows, the three lane ends lie on a line
+  // tilted by about 4 degrees, so the road ended on that line and the road after it on the stop
+  // line: the middle lane, between the two, left a wedge (0.5-0.6 m along its end edge on
+  // Sangam's road 557). Against the stop line, which the roads after the joint give, the third
+  // lane ends short: the other two are cut on its parallel through that lane's end.
+  Builder b;
+  const double slope = std::tan(17.0 * M_PI / 180.0);
+  const std::vector<std::string> lanes{"A", "B", "C"};
+  for (size_t k = 0; k < lanes.size(); ++k) {
+    const double y = -3.5 * static_cast<double>(k);
+    const double x = 30.0 - y * slope;
+    b.node(lanes[k] + "0", 0.0, y);
+    b.node(lanes[k] + "1", k == 2 ? x - 0.4 : x, y);
+    b.node(lanes[k] + "2", x + 30.0, y);
+  }
+  b.node("C9", 30.0 + 7.0 * slope, -7.0);
+  const auto id = [](const std::string& lane, const std::string& piece) {
+    return lane.empty() ? std::string() : "A2TEST0000" + lane + piece;
+  };
+  for (size_t k = 0; k < lanes.size(); ++k) {
+    const std::string right = k + 1 < lanes.size() ? lanes[k + 1] : "";
+    const std::string left = k > 0 ? lanes[k - 1] : "";
+    const int lane_no = static_cast<int>(k) + 1;
+    const std::string start = k == 2 ? "C9" : lanes[k] + "1";
+    b.link(id(lanes[k], "1"), "6", lane_no, lanes[k] + "0", lanes[k] + "1", id(right, "1"),
+           id(left, "1"));
+    b.link(id(lanes[k], "2"), "6", lane_no, start, lanes[k] + "2", id(right, "2"), id(left, "2"));
+  }
+  b.link("A2TEST0000C9", "6", 1, "C1", "C9");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 6);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
