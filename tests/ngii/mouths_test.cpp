@@ -527,3 +527,28 @@ TEST_CASE(
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
 }
+
+TEST_CASE(
+    "a one-lane road where two one-lane roads merge starts on the end line of the one in line",
+    "[ngii][mouths]") {
+  // Road A comes in 5 degrees off road C's course and road B 32 degrees off, both ending where
+  // C starts. C joined no single road there, so it started square to its own course: a wedge
+  // beside A's end (0.82 m along C's start edge at K-City's road 317; here two ends over 10 cm,
+  // 1.14 m). It now starts on the end line of A, the road in line with it.
+  Builder b;
+  const double a = 5.0 * M_PI / 180.0, c = 32.0 * M_PI / 180.0;
+  b.node("A0", 30.0 - 30.0 * std::cos(a), -30.0 * std::sin(a));
+  b.node("B0", 30.0 - 30.0 * std::cos(c), -30.0 * std::sin(c));
+  b.node("C0", 30.0, 0.0);
+  b.node("C1", 60.0, 0.0);
+  b.link("A2TEST00000A", "6", 1, "A0", "C0");
+  b.link("A2TEST00000B", "6", 1, "B0", "C0");
+  b.link("A2TEST00000C", "6", 1, "C0", "C1");
+  b.mark("B2CL", 30.0, 60.0, 1.75, "A2TEST00000C", "");
+  b.mark("B2CR", 30.0, 60.0, -1.75, "", "A2TEST00000C");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 3);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
