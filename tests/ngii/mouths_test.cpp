@@ -459,3 +459,96 @@ TEST_CASE(
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
 }
+
+TEST_CASE(
+    "a road of two and a half metres surveyed by its two ends turns onto the skewed line it "
+    "starts on",
+    "[ngii][mouths]") {
+  // A two-lane road ends on a stop line skewed by 20 degrees (its right lane ends 1.27 m beyond
+  // its left one); the left lane goes on as a one-lane road 2.5 m long whose link has only its
+  // two end vertices. Its start did not turn at all (the bend must begin on the link's one
+  // segment) and, where it did, a short S back to the line of travel fitted 16 of the 20
+  // degrees: a wedge beside the joint, 1.3-1.6 m along the lane's end edge on Sangam's roads.
+  Builder b;
+  const double beyond = 3.5 * std::tan(20.0 * M_PI / 180.0);
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("B0", 0.0, -3.5);
+  b.node("B1", 30.0 + beyond, -3.5);
+  b.node("C1", 32.5, 0.0);
+  b.link("A2TEST00000A", "6", 1, "A0", "A1", "A2TEST00000B", "");
+  b.link("A2TEST00000B", "6", 2, "B0", "B1", "", "A2TEST00000A");
+  b.link_through("A2TEST00000C", 1, "A1", "C1", {{30.0, 0.0}, {32.5, 0.0}});
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 2);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE(
+    "a three-lane road whose third lane ends 0.4 m short of the stop line is cut on that line's "
+    "parallel",
+    "[ngii][mouths]") {
+  // Three lanes end on a stop line skewed by 17 degrees, but the survey ends the third lane's
+  // link 0.4 m short of it and continues it by a link 0.4 m long; a three-lane road starts on
+  // the stop line. Within the 0.25 m an end line allows, the three lane ends lie on a line
+  // tilted by about 4 degrees, so the road ended on that line and the road after it on the stop
+  // line: the middle lane, between the two, left a wedge (0.5-0.6 m along its end edge on
+  // Sangam's road 557). Against the stop line, which the roads after the joint give, the third
+  // lane ends short: the other two are cut on its parallel through that lane's end.
+  Builder b;
+  const double slope = std::tan(17.0 * M_PI / 180.0);
+  const std::vector<std::string> lanes{"A", "B", "C"};
+  for (size_t k = 0; k < lanes.size(); ++k) {
+    const double y = -3.5 * static_cast<double>(k);
+    const double x = 30.0 - y * slope;
+    b.node(lanes[k] + "0", 0.0, y);
+    b.node(lanes[k] + "1", k == 2 ? x - 0.4 : x, y);
+    b.node(lanes[k] + "2", x + 30.0, y);
+  }
+  b.node("C9", 30.0 + 7.0 * slope, -7.0);
+  const auto id = [](const std::string& lane, const std::string& piece) {
+    return lane.empty() ? std::string() : "A2TEST0000" + lane + piece;
+  };
+  for (size_t k = 0; k < lanes.size(); ++k) {
+    const std::string right = k + 1 < lanes.size() ? lanes[k + 1] : "";
+    const std::string left = k > 0 ? lanes[k - 1] : "";
+    const int lane_no = static_cast<int>(k) + 1;
+    const std::string start = k == 2 ? "C9" : lanes[k] + "1";
+    b.link(id(lanes[k], "1"), "6", lane_no, lanes[k] + "0", lanes[k] + "1", id(right, "1"),
+           id(left, "1"));
+    b.link(id(lanes[k], "2"), "6", lane_no, start, lanes[k] + "2", id(right, "2"), id(left, "2"));
+  }
+  b.link("A2TEST0000C9", "6", 1, "C1", "C9");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 6);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE(
+    "a one-lane road where two one-lane roads merge starts on the end line of the one in line",
+    "[ngii][mouths]") {
+  // Road A comes in 5 degrees off road C's course and road B 32 degrees off, both ending where
+  // C starts. C joined no single road there, so it started square to its own course: a wedge
+  // beside A's end (0.82 m along C's start edge at K-City's road 317; here two ends over 10 cm,
+  // 1.14 m). It now starts on the end line of A, the road in line with it.
+  Builder b;
+  const double a = 5.0 * M_PI / 180.0, c = 32.0 * M_PI / 180.0;
+  b.node("A0", 30.0 - 30.0 * std::cos(a), -30.0 * std::sin(a));
+  b.node("B0", 30.0 - 30.0 * std::cos(c), -30.0 * std::sin(c));
+  b.node("C0", 30.0, 0.0);
+  b.node("C1", 60.0, 0.0);
+  b.link("A2TEST00000A", "6", 1, "A0", "C0");
+  b.link("A2TEST00000B", "6", 1, "B0", "C0");
+  b.link("A2TEST00000C", "6", 1, "C0", "C1");
+  b.mark("B2CL", 30.0, 60.0, 1.75, "A2TEST00000C", "");
+  b.mark("B2CR", 30.0, 60.0, -1.75, "", "A2TEST00000C");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 3);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
