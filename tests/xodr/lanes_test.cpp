@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "corsa/xodr/map.h"
+#include "span_table.h"
 #include "xodr_test_util.h"
 
 using namespace corsa::xodr;
@@ -138,7 +139,17 @@ size_t check_lane_spans_alone(const Map& map) {
           REQUIRE(same_span_bits(*alone, span));
           ++compared;
         }
-        CHECK_FALSE(map.lane_span_in_section(road, section, s, 1000));
+        // Ids the section lacks: far out, the centre, one beyond each side.
+        const int left = static_cast<int>(std::count_if(
+            lanes.begin(), lanes.end(), [](const Lane& lane) { return lane.id > 0; }));
+        const int right = static_cast<int>(std::count_if(
+            lanes.begin(), lanes.end(), [](const Lane& lane) { return lane.id < 0; }));
+        for (const int id : {1000, -1000, 0, left + 1, -right - 1}) {
+          if (std::none_of(lanes.begin(), lanes.end(),
+                           [id](const Lane& lane) { return lane.id == id; })) {
+            CHECK_FALSE(map.lane_span_in_section(road, section, s, id));
+          }
+        }
       }
     }
   }
@@ -181,6 +192,56 @@ TEST_CASE("a lane's span alone is its span among the section's, to the bit", "[x
     const auto neither = map.lane_span_in_section(0, 0, 10.0, -3);
     REQUIRE(neither);
     CHECK(neither->t_outer == neither->t_inner);
+  }
+  SECTION("constant widths, read from the packed widths, and the sections that cannot be") {
+    // Section 0: constant widths of every kind (a negative one, counted as 0; -0; 0; a record
+    // starting past the section's start; b, c and d of -0), ids 1..3 and -1..-3. Section 1: the
+    // same but for a lane of varying width. Section 2: ids skipping 2 on the left. Section 3: no
+    // centre lane.
+    Road road = test::make_road("constant", LineGeometry{}, 120.0, 3, 3.5);
+    road.lane_offsets.push_back(Poly3{0.0, -0.75, 0.002, 0.0, 0.0});
+    for (Lane& lane : road.lane_sections[0].lanes) {
+      if (lane.id == 3) {
+        lane.widths = {Poly3{4.0, 0.5, -0.0, -0.0, -0.0}};
+      } else if (lane.id == 2) {
+        lane.widths = {Poly3{0.0, -0.0, 0.0, 0.0, 0.0}};
+      } else if (lane.id == -2) {
+        lane.widths = {Poly3{0.0, -1.25, 0.0, 0.0, 0.0}};
+      } else if (lane.id == -3) {
+        lane.widths = {Poly3{0.0, 0.0, 0.0, 0.0, 0.0}};
+      }
+    }
+    LaneSection varying = road.lane_sections[0];
+    varying.s = 30.0;
+    varying.lanes[1].widths = {Poly3{0.0, 3.0, 0.01, 0.0, 0.0}};  // lane 2
+    LaneSection skipping = road.lane_sections[0];
+    skipping.s = 60.0;
+    skipping.lanes[1].id = 4;  // ids 4, 3, 1 on the left
+    std::swap(skipping.lanes[0], skipping.lanes[1]);
+    LaneSection no_center = road.lane_sections[0];
+    no_center.s = 90.0;
+    no_center.lanes.erase(no_center.lanes.begin() + 3);
+    road.lane_sections.push_back(varying);
+    road.lane_sections.push_back(skipping);
+    road.lane_sections.push_back(no_center);
+    MapData data;
+    data.roads.push_back(road);
+    detail::SpanTable table;
+    table.build(data.roads);
+    CHECK(table.section(0, 0).constant_widths);
+    CHECK_FALSE(table.section(0, 1).constant_widths);
+    CHECK_FALSE(table.section(0, 2).constant_widths);
+    CHECK(table.section(0, 3).constant_widths);
+    corsa::Diagnostics diagnostics;
+    const Map map = Map::build(std::move(data), diagnostics);
+    CHECK(check_lane_spans_alone(map) == 4 * (6 + 6 + 6 + 6));
+    // Lane -2's negative width counts as 0: lane -3 starts where lane -1 ends.
+    const auto minus1 = map.lane_span_in_section(0, 0, 10.0, -1);
+    const auto minus3 = map.lane_span_in_section(0, 0, 10.0, -3);
+    REQUIRE(minus1);
+    REQUIRE(minus3);
+    CHECK(minus3->t_inner == minus1->t_outer);
+    CHECK(minus3->width() == 0.0);
   }
   SECTION("the shared maps") {
     size_t sections = 0, widths_only = 0;

@@ -22,6 +22,9 @@ double section_lane_offset(const Map& map, size_t road, size_t section, double s
 double MapAccess::section_lane_offset(const Map& map, size_t road, size_t section, double s) {
   const PoseTable& poses = map.impl_->poses;
   const PoseRoad& r = poses.road(road);
+  if (r.zero_offsets && std::abs(s) <= PoseTable::kZeroBound) {
+    return 0.0;  // what the records give (PoseRoad::zero_offsets), without reading them
+  }
   const PolyRun records = poses.lane_offsets(r);
   const SpanSection& bounds = map.impl_->spans.section(road, section);
   if (records.count == 0 || s < bounds.end || s <= bounds.s) {
@@ -182,7 +185,9 @@ WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const
   const double cs = poses.clamp_s(r, s);
   // Flat roads are the common case: no superelevation, no slope. The shortcuts give the bits
   // the library would (cos(+0) = 1, sin(+0) = +0, atan(+-0) = +-0) without calling it.
-  const double roll = poses.superelevation(r).value(cs);
+  const double roll = r.level && std::abs(cs) <= detail::PoseTable::kZeroBound
+                          ? 0.0
+                          : poses.superelevation(r).value(cs);
   const bool level = roll == 0.0 && !std::signbit(roll);
   const double cos_r = level ? 1.0 : std::cos(roll);
   const double sin_r = level ? 0.0 : std::sin(roll);

@@ -1,6 +1,7 @@
 #include "span_table.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "road_eval.h"
 
@@ -43,10 +44,78 @@ double packed_outer_border(const SpanLane& lane, double ds, double inner, double
   return offset_poly_value(whole.borders, ds);
 }
 
+// Bounds on |ds| and on a record's sOffset under which ds - sOffset is finite: then a record of
+// b = c = d = 0 gives a + (+-0), whose max with 0 is max(0, a) to the bit (a + +-0 is a for
+// a != 0, and max(0, +-0) is +0).
+constexpr double kConstantBound = 1e300;
+
+bool constant_width(const Lane& lane) {
+  if (lane.widths.size() != 1) {
+    return false;
+  }
+  const Poly3& width = lane.widths.front();
+  return width.b == 0.0 && width.c == 0.0 && width.d == 0.0 && std::abs(width.s) <= kConstantBound;
+}
+
+// Whether every lane but the centre one has a constant width and the ids run 1, 2, ... leftward
+// and -1, -2, ... rightward from the centre (so a lane's index follows from its id).
+bool constant_widths(const LaneSection& section, size_t center, bool has_center) {
+  const std::vector<Lane>& lanes = section.lanes;
+  for (size_t i = 0; i < center; ++i) {
+    if (lanes[i].id != static_cast<int>(center - i) || !constant_width(lanes[i])) {
+      return false;
+    }
+  }
+  const size_t right = center + (has_center ? 1 : 0);
+  for (size_t i = right; i < lanes.size(); ++i) {
+    if (lanes[i].id != -static_cast<int>(i - right + 1) || !constant_width(lanes[i])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// SpanTable::span on a section with constant_widths: the same additions in the same order, each
+// lane's max(0, width) read from `widths` (indexed as the section's lanes).
+bool constant_span(const double* widths, const SpanSection& packed, double offset, int lane_id,
+                   LaneSpan& out) {
+  const size_t center = packed.center;
+  if (lane_id > 0) {
+    const auto k = static_cast<size_t>(lane_id);
+    if (k > center) {
+      return false;  // not on the left; the right has negative ids only
+    }
+    double t = offset;
+    for (size_t i = center - 1;; --i) {
+      const double outer = t + widths[i];
+      if (i == center - k) {
+        out = LaneSpan{lane_id, t, outer};
+        return true;
+      }
+      t = outer;
+    }
+  }
+  const size_t right = center + (packed.has_center ? 1 : 0);
+  const auto k = static_cast<size_t>(-static_cast<int64_t>(lane_id));
+  if (k == 0 || k > packed.count - right) {
+    return false;
+  }
+  double t = offset;
+  for (size_t i = right;; ++i) {
+    const double outer = t - widths[i];
+    if (i == right + k - 1) {
+      out = LaneSpan{lane_id, t, outer};
+      return true;
+    }
+    t = outer;
+  }
+}
+
 }  // namespace
 
 void SpanTable::build(const std::vector<Road>& roads) {
   lanes_.clear();
+  widths_.clear();
   sections_.clear();
   road_first_.clear();
   for (const Road& road : roads) {
@@ -60,8 +129,11 @@ void SpanTable::build(const std::vector<Road>& roads) {
       packed.count = static_cast<uint32_t>(section.lanes.size());
       packed.center = static_cast<uint32_t>(center_index(section));
       packed.has_center = packed.center < packed.count && section.lanes[packed.center].id == 0;
+      packed.constant_widths = constant_widths(section, packed.center, packed.has_center);
       for (const Lane& lane : section.lanes) {
         lanes_.push_back(pack_span_lane(lane));
+        widths_.push_back(
+            packed.constant_widths && lane.id != 0 ? std::max(0.0, lane.widths.front().a) : 0.0);
         packed.widths_only = packed.widths_only && !(lane.widths.empty() && !lane.borders.empty());
       }
       sections_.push_back(packed);
@@ -74,6 +146,9 @@ bool SpanTable::span(size_t road, size_t section, double s, double offset, int l
   const SpanSection& packed = sections_[road_first_[road] + section];
   const SpanLane* lanes = lanes_.data() + packed.first;
   const double ds = s - packed.s;
+  if (packed.constant_widths && std::abs(ds) <= kConstantBound) {
+    return constant_span(widths_.data() + packed.first, packed, offset, lane_id, out);
+  }
   const size_t n = packed.count;
   const size_t center = packed.center;
   // As compute_span: a positive id on the left first, then every id on the right.
