@@ -293,6 +293,25 @@ TEST_CASE("A RelativeLanePosition's dLane is added to the lane id, under either 
   }
 }
 
+TEST_CASE("A RelativeTargetLane counts to the reference's left, or esmini's adds it to the lane id",
+          "[engine][semantics][lanes]") {
+  // Truck drives lane 1 toward -s and changes to RelativeTargetLane -1 of itself over 1 s: the
+  // lane on its right, lane 2 (1.3: the reference entity's negative y-axis); esmini's lane id
+  // 1 - 1, skipping 0: lane -1, across the reference line.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_target_lane.xosc"));
+    run.run();
+    CHECK(run.at(2.0, "Truck").road->lane == 2);
+    CHECK(run.at(2.0, "Truck").pose.y == Approx(5.25).margin(1e-9));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_target_lane.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(2.0, "Truck").road->lane == -1);
+    CHECK(run.at(2.0, "Truck").pose.y == Approx(-1.75).margin(1e-9));
+  }
+}
+
 TEST_CASE("A ReachPositionCondition ignores the Orientation, or esmini's compares the heading",
           "[engine][semantics][conditions]") {
   // The car's own place with a relative Orientation h = 0.1, from 0.2 s on; the action

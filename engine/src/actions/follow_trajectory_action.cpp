@@ -15,10 +15,14 @@
 // segment, which Corsa does not emulate; it keeps the vertices' times).
 // A negative speed when the action starts drives the path in reverse gear (the vehicle faces
 // against the path); a speed whose sign differs from that drives back toward the path's start
-// (esmini's reading). The action ends at the path's end (or, driven back, its start), timed in
-// the first step past its last time (§6.7.3: the actor is at each vertex at its time, so a
-// repeated last vertex with a later time is a wait there); that step goes on past the end for
-// its rest, and the actor's lane following takes over at the path's own end speed.
+// (esmini's reading). A polyline whose first vertex states a heading (WorldPosition h) says the
+// facing itself: along the path or against it, whatever the speed's sign; a positive speed then
+// drives the way the vehicle faces, a negative one the other way (esmini's reading, its
+// trajectory_heading: a car facing along its path at -10 m/s backs toward the path's start). The
+// action ends at the path's end (or, driven back, its start), timed in the first step past its last
+// time (§6.7.3: the actor is at each vertex at its time, so a repeated last vertex with a later
+// time is a wait there); that step goes on past the end for its rest, and the actor's lane
+// following takes over at the path's own end speed.
 
 #include <algorithm>
 #include <cmath>
@@ -64,7 +68,8 @@ class FollowTrajectoryInstance final : public ActionInstance {
     const double dt = context.state.time.dt();
     if (first_step_) {
       first_step_ = false;
-      direction_ = entity.speed_command < 0.0 ? -1.0 : 1.0;
+      const std::optional<bool> against = path_.stated_facing_against();
+      direction_ = (against ? *against : entity.speed_command < 0.0) ? -1.0 : 1.0;
     }
     // The step that passes the path's end goes on past it along the end's heading for the rest
     // of the step, and a timed path ends in the first step after its last time, as esmini reads
@@ -137,9 +142,9 @@ class FollowTrajectoryInstance final : public ActionInstance {
   double time_shift_ = 0.0;  ///< s of trajectory time skipped by initialDistanceOffset
   bool ended_ = false;
   bool first_step_ = true;  ///< direction_ is set in the first step, from the speed then
-  /// +1 if the speed was positive or zero when the action started (a positive
-  /// speed drives toward the path's end), -1 if negative (a negative speed drives toward the
-  /// end, in reverse gear, facing against the path).
+  /// +1 if the vehicle faces along the path (a positive speed drives toward the path's end),
+  /// -1 if against it (a negative speed drives toward the end, in reverse gear). The path's
+  /// stated heading says which; without one, the sign of the speed when the action started.
   double direction_ = 1.0;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <type_traits>
 
 #include "corsa/core/vec.h"
@@ -115,6 +116,11 @@ void build_polyline(TrajectoryPath& path, const xosc::Polyline& shape, const Sim
     points.push_back(point_of(vertex.position, state, self));
   }
   add_polyline(path, points);
+  const auto* first = std::get_if<xosc::WorldPosition>(&shape.vertices.front().position.kind);
+  if (first != nullptr && first->h && !path.empty()) {
+    path.set_stated_facing_against(std::abs(wrap_angle(*first->h - path.at(0.0).h)) >
+                                   std::numbers::pi / 2.0);
+  }
   double s = 0.0;
   for (size_t i = 0; i < points.size(); ++i) {
     if (i > 0) {

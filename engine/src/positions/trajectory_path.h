@@ -52,10 +52,17 @@ class TrajectoryPath {
   double last_time() const { return timeline_.back().second; }
   double last_timed_s() const { return timeline_.back().first; }
 
+  /// Whether the headings the trajectory itself states face against its direction of travel:
+  /// a polyline whose first vertex is a WorldPosition with `h` (turned more than a quarter turn
+  /// from the first segment: against). Nothing when the trajectory states no heading.
+  std::optional<bool> stated_facing_against() const { return stated_facing_against_; }
+  void set_stated_facing_against(bool against) { stated_facing_against_ = against; }
+
  private:
   std::vector<Segment> segments_;
   std::vector<std::pair<double, double>> timeline_;  ///< (s, time), both increasing
   double length_ = 0.0;
+  std::optional<bool> stated_facing_against_;
 };
 
 /// Builds the path of `trajectory`; vertex and control point positions are resolved now.

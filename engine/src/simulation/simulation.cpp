@@ -10,6 +10,7 @@
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/parser.h"
 #include "corsa/xosc/scenario.h"
+#include "motion/placement.h"
 #include "motion/route_lanes.h"
 #include "motion/trailers.h"
 #include "simulation/simulation_impl.h"
@@ -94,6 +95,9 @@ void Simulation::Impl::advance() {
   mover.move(state, motion);
   detail::end_commands(state);
   detail::move_trailers(state, state.time.dt());
+  if (state.straight_travel_wanted) {
+    detail::sum_straight_travel(state);
+  }
   ++state.tick;
   detail::record_trail(state);
   detail::update_traffic(state);
