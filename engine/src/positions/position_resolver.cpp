@@ -170,11 +170,34 @@ ResolvedPosition relative_road(const xosc::RelativeRoadPosition& p, const SimSta
                  esmini_reading(state) ? esmini_missing_as_relative(p.orientation) : p.orientation);
 }
 
+// esmini's reading of a RelativeLanePosition given by dsLane (`--semantics esmini`; its
+// Position::EvaluateRelation in the direction mode along the lane): dsLane runs the way the
+// reference entity's lane is driven (by the lane id's side and the road's traffic rule),
+// whichever way the entity faces; dLane and offset keep their sign only for an entity facing +s
+// on a right lane of right-hand traffic or facing -s on a left lane of left-hand traffic, and
+// are mirrored otherwise.
+struct EsminiAlongLaneSigns {
+  double ds = 1.0;
+  int lateral = 1;
+};
+
+EsminiAlongLaneSigns esmini_along_lane_signs(const xodr::Map& map, const Entity& ref,
+                                             const RoadCoordinates& rc) {
+  const bool left_hand = map.road(rc.road).rule == xodr::TrafficRule::kLeftHand;
+  const bool lane_toward_minus_s = left_hand ? rc.lane < 0 : rc.lane > 0;
+  const bool faces_plus_s = std::cos(ref.state.pose.h - map.reference(rc.road, rc.s).hdg) > 0.0;
+  const bool keep =
+      (faces_plus_s && rc.lane < 0 && !left_hand) || (!faces_plus_s && rc.lane > 0 && left_hand);
+  return {lane_toward_minus_s ? -1.0 : 1.0, keep ? 1 : -1};
+}
+
 ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimState& state) {
   const xodr::Map& map = need_map(state, p.source, "RelativeLanePosition");
   const Entity& ref = need_entity(state, p.entity_ref, p.source);
   const RoadCoordinates& rc = need_road_coordinates(ref, p.entity_ref, p.source);
   double ds = p.ds.value_or(0.0);
+  int d_lane = p.d_lane;
+  double offset = p.offset.value_or(0.0);
   if (p.ds_lane) {
     // dsLane runs along the lane's centre line; on a curve that is longer or shorter than the
     // reference line by the factor (1 - t kappa).
@@ -182,17 +205,23 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
     const double kappa = map.reference(rc.road, rc.s).curvature;
     const double factor = 1.0 - center * kappa;
     ds = factor > 1e-6 ? *p.ds_lane / factor : *p.ds_lane;
+    if (esmini_reading(state)) {
+      const EsminiAlongLaneSigns signs = esmini_along_lane_signs(map, ref, rc);
+      ds *= signs.ds;
+      d_lane *= signs.lateral;
+      offset *= signs.lateral;
+    }
   }
   const LaneFollow at = walk(map, rc, ds, p.source);
   // 1.3 RelativeLanePosition: "Find the target lane by adding dLane to that of the reference
   // entity", dLane being "The deviation value between the laneId of the lane, where the
   // reference entity is located, and the target laneId": the lane id plus dLane, so that -1 + 1
   // is the centre lane 0, on the reference line (as esmini). Lanes are not counted.
-  const int lane_id = at.lane + at.dir * p.d_lane;
+  const int lane_id = at.lane + at.dir * d_lane;
   // The centre lane has no width nor direction: on the reference line (as a LanePosition on
   // lane 0), oriented as the reference's lane, in the lane the offset reaches.
-  const double t = (lane_id == 0 ? 0.0 : need_lane_center(map, at.road, at.s, lane_id, p.source)) +
-                   p.offset.value_or(0.0);
+  const double t =
+      (lane_id == 0 ? 0.0 : need_lane_center(map, at.road, at.s, lane_id, p.source)) + offset;
   // esmini (`--semantics esmini`) turns a relative or missing heading of a position given by ds
   // from the target road's +s, whatever the lane and whichever way the reference entity drives;
   // given by dsLane, from the target lane's direction of travel, as the standard reading does
