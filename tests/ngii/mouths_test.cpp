@@ -459,3 +459,43 @@ TEST_CASE(
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
 }
+
+TEST_CASE(
+    "a road after a junction path that cannot take its start line starts on the path's end line",
+    "[ngii][mouths]") {
+  // A 7 m path leaves a road heading 9 degrees south of east at 26 degrees to its end line,
+  // turns left along its length and enters a road heading 38 degrees north of east at a corner
+  // of 3 degrees. Bent square to both joined lines within its length, the path's reference
+  // line needed a corner tighter than the fit allows (a kink), so it keeps its own square end,
+  // and the road after it started square to its own course: a sliver of unpaved ground on one
+  // side of the joint. That road now starts on the path's end line.
+  Builder b;
+  const double a = -9.4 * M_PI / 180.0;
+  const double e = 38.0 * M_PI / 180.0;
+  const double ex = 6.69, ey = 4.12;
+  const auto along = [](double x, double y, double h, double d, double t) {
+    return std::pair<double, double>{x + d * std::cos(h) - t * std::sin(h),
+                                     y + d * std::sin(h) + t * std::cos(h)};
+  };
+  b.node("A0", -30.0 * std::cos(a), -30.0 * std::sin(a));
+  b.node("A1", 0.0, 0.0);
+  b.node("E0", ex, ey);
+  b.node("E1", ex + 30.0 * std::cos(e), ey + 30.0 * std::sin(e));
+  b.link("A2TEST00000A", "6", 1, "A0", "A1");
+  b.path_through("A2TEST00000P", "A1", "E0",
+                 {{0.0, 0.0}, {1.47, 0.42}, {3.23, 1.43}, {5.29, 2.93}, {ex, ey}});
+  b.link("A2TEST00000E", "6", 1, "E0", "E1");
+  for (const double t : {1.6, -1.6}) {
+    const std::string side = t > 0.0 ? "L" : "R";
+    const std::string right = t > 0.0 ? "A2TEST00000" : "", left = t > 0.0 ? "" : "A2TEST00000";
+    b.mark_through("B2A" + side, {along(0.0, 0.0, a, -30.0, t), along(0.0, 0.0, a, 0.0, t)},
+                   right.empty() ? "" : right + "A", left.empty() ? "" : left + "A");
+    b.mark_through("B2E" + side, {along(ex, ey, e, 0.0, t), along(ex, ey, e, 30.0, t)},
+                   right.empty() ? "" : right + "E", left.empty() ? "" : left + "E");
+  }
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 4);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
