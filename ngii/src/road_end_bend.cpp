@@ -171,6 +171,20 @@ std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, 
   if (i + 1 >= p.size()) {
     return std::nullopt;
   }
+  // Sparse vertices (a link digitised with a few long segments): where the vertex the walk
+  // stops at lies less than half the reach from the end, the bend starts on the segment before
+  // it, at the reach. Turning over the last metre alone, the end of a lane 2 m wide turned right
+  // at radii under 2 m and its lane was narrowed there (the inside of the turn), leaving unpaved
+  // ground beside the joint.
+  if (i > 0 && walked < 0.5 * reach) {
+    const Vec2 a = to_vec(p[i - 1]);
+    const Vec2 b = to_vec(p[i]);
+    const double rest = reach - walked;
+    if (const double segment = norm(b - a); segment > rest) {
+      const Vec2 q = b + (rest / segment) * (a - b);
+      p.insert(p.begin() + static_cast<std::ptrdiff_t>(i), Point2{q.x, q.y});
+    }
+  }
   const Vec2 start = to_vec(p[i]);
   size_t j = i;
   while (j > 0 && norm(start - to_vec(p[j - 1])) < 1.0) {

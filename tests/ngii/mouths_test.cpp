@@ -10,10 +10,12 @@
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/ngii/convert.h"
+#include "corsa/xodr/geometry.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/parser.h"
 #include "mouth_fills.h"
 #include "mouth_gaps.h"
+#include "reference_line.h"
 #include "synthetic_layers.h"
 
 namespace {
@@ -498,4 +500,58 @@ TEST_CASE(
   CHECK(gaps.ends >= 4);
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE("a road end bent onto a skewed line over sparse vertices turns over its whole reach",
+          "[ngii][mouths]") {
+  // A one-lane road 4 m wide (L) ends beside another (R) on a line 35 degrees off square, where
+  // a two-lane road starts. L's link has a vertex 2 m before its end and none for 28 m before
+  // that: the bend onto the line started at that vertex, turning 35 degrees within 2 m (the
+  // lane narrowed on the inside of the turn: 4.11 m along the end line for the 4.88 m of its
+  // skewed width). It now starts 8 m before the end, on the long segment.
+  Builder b;
+  const double skew = 35.0 * M_PI / 180.0;
+  const double rx = -4.0 * std::tan(skew);
+  b.node("L0", -30.0, 0.0);
+  b.node("L1", 0.0, 0.0);
+  b.node("R0", -12.0, -4.0);
+  b.node("R1", rx, -4.0);
+  b.node("C1", 30.0, 0.0);
+  b.node("D1", 30.0, -4.0);
+  b.link_through("A2TEST00000L", 1, "L0", "L1", {{-30.0, 0.0}, {-2.0, 0.0}, {0.0, 0.0}});
+  b.link("A2TEST00000R", "6", 1, "R0", "R1");
+  b.link("A2TEST00000C", "6", 1, "L1", "C1", "A2TEST00000D", "");
+  b.link("A2TEST00000D", "6", 2, "R1", "D1", "", "A2TEST00000C");
+  b.mark("B2L", -30.0, 0.0, 2.0, "A2TEST00000L", "");
+  b.mark("B2LR", -30.0, 0.0, -2.0, "", "A2TEST00000L");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.over == 0);
+  corsa::Diagnostics diagnostics;
+  const auto conversion = corsa::ngii::convert(b.layers, {}, diagnostics);
+  bool found = false;
+  for (const auto& road : conversion.map.roads) {
+    const auto& lanes = road.lane_sections.front().lanes;
+    const auto lane = std::find_if(lanes.begin(), lanes.end(), [](const auto& l) {
+      return !l.user_data.empty() && l.user_data.front().value == "A2TEST00000L";
+    });
+    if (lane == lanes.end()) {
+      continue;
+    }
+    found = true;
+    // The reference line turns at most 1 / (2 x the lane's width) anywhere (the old bend: 0.18
+    // 1/m), and the lane spans its whole width along the skewed end line.
+    double sharpest = 0.0;
+    for (const auto& g : road.plan_view) {
+      for (double u = 0.0; u + 0.05 <= g.length; u += 0.05) {
+        const auto p0 = corsa::xodr::evaluate_geometry(g, u);
+        const auto p1 = corsa::xodr::evaluate_geometry(g, u + 0.05);
+        sharpest = std::max(sharpest, std::abs(std::remainder(p1.hdg - p0.hdg, 2 * M_PI)) / 0.05);
+      }
+    }
+    CHECK(sharpest < 0.125);
+    CHECK(corsa::ngii::detail::piecewise_value(lane->widths, road.length) ==
+          Approx(4.0 / std::cos(skew)).margin(0.1));
+  }
+  CHECK(found);
 }
