@@ -12,7 +12,10 @@ namespace corsa::ngii::detail {
 namespace {
 
 constexpr double kEndLineTolerance = 0.25;  // m: lane ends farther from one line: no line
-constexpr double kMaxSkew = 50.0 * M_PI / 180.0;
+/// Skews past this are left alone (the end square to the road's course). A junction path
+/// leaving a lane whose end line its course crosses 51 degrees off square (K-City's path 460
+/// after road 322) started square with a wedge of 3 m beside it; 55 degrees bend it.
+constexpr double kMaxSkew = 55.0 * M_PI / 180.0;
 constexpr double kMinSkew = 0.2 * M_PI / 180.0;
 /// m: how far the outermost lane's corner may lie off a line it is left skewed to.
 constexpr double kSquareCorner = 0.01;

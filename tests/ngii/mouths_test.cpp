@@ -68,6 +68,43 @@ TEST_CASE("a junction path leaving a skewed stop line starts on it", "[ngii][mou
   CHECK(gaps.max < 0.1);
 }
 
+TEST_CASE("a junction path leaving a stop line at 52 degrees to its square starts on it",
+          "[ngii][mouths]") {
+  // A two-lane road east whose right lane ends 1.27 m beyond its left one (an end line 20
+  // degrees off square), and a junction path from the left lane's end heading 32 degrees south
+  // of east onto a road going on that way: the path meets the end line 52 degrees off square,
+  // past the 50 degrees a road end was bent to (K-City's path 460 leaves road 322 at 51), so
+  // it started square across its own heading, a wedge beside the lane's end.
+  Builder b;
+  const double h = -32.0 * M_PI / 180.0;
+  const double ex = 30.0 + 20.0 * std::cos(h), ey = 20.0 * std::sin(h);
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("B0", 0.0, -3.5);
+  b.node("B1", 30.0 + 3.5 * std::tan(20.0 * M_PI / 180.0), -3.5);
+  b.node("E0", ex, ey);
+  b.node("E1", ex + 30.0 * std::cos(h), ey + 30.0 * std::sin(h));
+  b.link("A2TEST00000A", "6", 1, "A0", "A1", "A2TEST00000B", "");
+  b.link("A2TEST00000B", "6", 2, "B0", "B1", "", "A2TEST00000A");
+  b.link("A2TEST00000P", "1", 1, "A1", "E0");
+  b.link("A2TEST00000E", "6", 1, "E0", "E1");
+  b.mark_through("B2EL",
+                 {{ex - 1.75 * std::sin(h), ey + 1.75 * std::cos(h)},
+                  {ex + 30.0 * std::cos(h) - 1.75 * std::sin(h),
+                   ey + 30.0 * std::sin(h) + 1.75 * std::cos(h)}},
+                 "A2TEST00000E", "");
+  b.mark_through("B2ER",
+                 {{ex + 1.75 * std::sin(h), ey - 1.75 * std::cos(h)},
+                  {ex + 30.0 * std::cos(h) + 1.75 * std::sin(h),
+                   ey + 30.0 * std::sin(h) - 1.75 * std::cos(h)}},
+                 "", "A2TEST00000E");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 3);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
 TEST_CASE("a junction path narrower than the lane it leaves widens to it at the joint",
           "[ngii][mouths]") {
   // The path's marks are 3.0 m apart, the approach and exit lanes 3.5 m: at its ends it takes
