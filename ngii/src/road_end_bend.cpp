@@ -12,7 +12,10 @@ namespace corsa::ngii::detail {
 namespace {
 
 constexpr double kEndLineTolerance = 0.25;  // m: lane ends farther from one line: no line
-constexpr double kMaxSkew = 50.0 * M_PI / 180.0;
+/// Skews past this are left alone (the end square to the road's course). A junction path
+/// leaving a lane whose end line its course crosses 51 degrees off square (K-City's path 460
+/// after road 322) started square with a wedge of 3 m beside it; 55 degrees bend it.
+constexpr double kMaxSkew = 55.0 * M_PI / 180.0;
 constexpr double kMinSkew = 0.2 * M_PI / 180.0;
 /// m: how far the outermost lane's corner may lie off a line it is left skewed to.
 constexpr double kSquareCorner = 0.01;
@@ -183,6 +186,20 @@ std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, 
     const double f = 1.0 - reach / norm(b - a);
     const Vec2 q = a + f * (b - a);
     p.insert(p.begin() + static_cast<std::ptrdiff_t>(i), Point2{q.x, q.y});
+  }
+  // Sparse vertices (a link digitised with a few long segments): where the vertex the walk
+  // stops at lies less than half the reach from the end, the bend starts on the segment before
+  // it, at the reach. Turning over the last metre alone, the end of a lane 2 m wide turned right
+  // at radii under 2 m and its lane was narrowed there (the inside of the turn), leaving unpaved
+  // ground beside the joint.
+  if (i > 0 && walked < 0.5 * reach) {
+    const Vec2 a = to_vec(p[i - 1]);
+    const Vec2 b = to_vec(p[i]);
+    const double rest = reach - walked;
+    if (const double segment = norm(b - a); segment > rest) {
+      const Vec2 q = b + (rest / segment) * (a - b);
+      p.insert(p.begin() + static_cast<std::ptrdiff_t>(i), Point2{q.x, q.y});
+    }
   }
   const Vec2 start = to_vec(p[i]);
   size_t j = i;

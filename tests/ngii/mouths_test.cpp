@@ -10,10 +10,12 @@
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/ngii/convert.h"
+#include "corsa/xodr/geometry.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/parser.h"
 #include "mouth_fills.h"
 #include "mouth_gaps.h"
+#include "reference_line.h"
 #include "synthetic_layers.h"
 
 namespace {
@@ -551,4 +553,135 @@ TEST_CASE(
   CHECK(gaps.ends >= 3);
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE("a junction path leaving a stop line at 52 degrees to its square starts on it",
+          "[ngii][mouths]") {
+  // A two-lane road east whose right lane ends 1.27 m beyond its left one (an end line 20
+  // degrees off square), and a junction path from the left lane's end heading 32 degrees south
+  // of east onto a road going on that way: the path meets the end line 52 degrees off square,
+  // past the 50 degrees a road end was bent to (K-City's path 460 leaves road 322 at 51), so
+  // it started square across its own heading, a wedge beside the lane's end.
+  Builder b;
+  const double h = -32.0 * M_PI / 180.0;
+  const double ex = 30.0 + 20.0 * std::cos(h), ey = 20.0 * std::sin(h);
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("B0", 0.0, -3.5);
+  b.node("B1", 30.0 + 3.5 * std::tan(20.0 * M_PI / 180.0), -3.5);
+  b.node("E0", ex, ey);
+  b.node("E1", ex + 30.0 * std::cos(h), ey + 30.0 * std::sin(h));
+  b.link("A2TEST00000A", "6", 1, "A0", "A1", "A2TEST00000B", "");
+  b.link("A2TEST00000B", "6", 2, "B0", "B1", "", "A2TEST00000A");
+  b.link("A2TEST00000P", "1", 1, "A1", "E0");
+  b.link("A2TEST00000E", "6", 1, "E0", "E1");
+  b.mark_through("B2EL",
+                 {{ex - 1.75 * std::sin(h), ey + 1.75 * std::cos(h)},
+                  {ex + 30.0 * std::cos(h) - 1.75 * std::sin(h),
+                   ey + 30.0 * std::sin(h) + 1.75 * std::cos(h)}},
+                 "A2TEST00000E", "");
+  b.mark_through("B2ER",
+                 {{ex + 1.75 * std::sin(h), ey - 1.75 * std::cos(h)},
+                  {ex + 30.0 * std::cos(h) + 1.75 * std::sin(h),
+                   ey + 30.0 * std::sin(h) - 1.75 * std::cos(h)}},
+                 "", "A2TEST00000E");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 3);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE(
+    "a road after a junction path that cannot take its start line starts on the path's end line",
+    "[ngii][mouths]") {
+  // A 7 m path leaves a road heading 9 degrees south of east at 26 degrees to its end line,
+  // turns left along its length and enters a road heading 38 degrees north of east at a corner
+  // of 3 degrees. Bent square to both joined lines within its length, the path's reference
+  // line needed a corner tighter than the fit allows (a kink), so it keeps its own square end,
+  // and the road after it started square to its own course: a sliver of unpaved ground on one
+  // side of the joint. That road now starts on the path's end line.
+  Builder b;
+  const double a = -9.4 * M_PI / 180.0;
+  const double e = 38.0 * M_PI / 180.0;
+  const double ex = 6.69, ey = 4.12;
+  const auto along = [](double x, double y, double h, double d, double t) {
+    return std::pair<double, double>{x + d * std::cos(h) - t * std::sin(h),
+                                     y + d * std::sin(h) + t * std::cos(h)};
+  };
+  b.node("A0", -30.0 * std::cos(a), -30.0 * std::sin(a));
+  b.node("A1", 0.0, 0.0);
+  b.node("E0", ex, ey);
+  b.node("E1", ex + 30.0 * std::cos(e), ey + 30.0 * std::sin(e));
+  b.link("A2TEST00000A", "6", 1, "A0", "A1");
+  b.path_through("A2TEST00000P", "A1", "E0",
+                 {{0.0, 0.0}, {1.47, 0.42}, {3.23, 1.43}, {5.29, 2.93}, {ex, ey}});
+  b.link("A2TEST00000E", "6", 1, "E0", "E1");
+  for (const double t : {1.6, -1.6}) {
+    const std::string side = t > 0.0 ? "L" : "R";
+    const std::string right = t > 0.0 ? "A2TEST00000" : "", left = t > 0.0 ? "" : "A2TEST00000";
+    b.mark_through("B2A" + side, {along(0.0, 0.0, a, -30.0, t), along(0.0, 0.0, a, 0.0, t)},
+                   right.empty() ? "" : right + "A", left.empty() ? "" : left + "A");
+    b.mark_through("B2E" + side, {along(ex, ey, e, 0.0, t), along(ex, ey, e, 30.0, t)},
+                   right.empty() ? "" : right + "E", left.empty() ? "" : left + "E");
+  }
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 4);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE("a road end bent onto a skewed line over sparse vertices turns over its whole reach",
+          "[ngii][mouths]") {
+  // A one-lane road 4 m wide (L) ends beside another (R) on a line 35 degrees off square, where
+  // a two-lane road starts. L's link has a vertex 2 m before its end and none for 28 m before
+  // that: the bend onto the line started at that vertex, turning 35 degrees within 2 m (the
+  // lane narrowed on the inside of the turn: 4.11 m along the end line for the 4.88 m of its
+  // skewed width). It now starts 8 m before the end, on the long segment.
+  Builder b;
+  const double skew = 35.0 * M_PI / 180.0;
+  const double rx = -4.0 * std::tan(skew);
+  b.node("L0", -30.0, 0.0);
+  b.node("L1", 0.0, 0.0);
+  b.node("R0", -12.0, -4.0);
+  b.node("R1", rx, -4.0);
+  b.node("C1", 30.0, 0.0);
+  b.node("D1", 30.0, -4.0);
+  b.link_through("A2TEST00000L", 1, "L0", "L1", {{-30.0, 0.0}, {-2.0, 0.0}, {0.0, 0.0}});
+  b.link("A2TEST00000R", "6", 1, "R0", "R1");
+  b.link("A2TEST00000C", "6", 1, "L1", "C1", "A2TEST00000D", "");
+  b.link("A2TEST00000D", "6", 2, "R1", "D1", "", "A2TEST00000C");
+  b.mark("B2L", -30.0, 0.0, 2.0, "A2TEST00000L", "");
+  b.mark("B2LR", -30.0, 0.0, -2.0, "", "A2TEST00000L");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.over == 0);
+  corsa::Diagnostics diagnostics;
+  const auto conversion = corsa::ngii::convert(b.layers, {}, diagnostics);
+  bool found = false;
+  for (const auto& road : conversion.map.roads) {
+    const auto& lanes = road.lane_sections.front().lanes;
+    const auto lane = std::find_if(lanes.begin(), lanes.end(), [](const auto& l) {
+      return !l.user_data.empty() && l.user_data.front().value == "A2TEST00000L";
+    });
+    if (lane == lanes.end()) {
+      continue;
+    }
+    found = true;
+    // The reference line turns at most 1 / (2 x the lane's width) anywhere (the old bend: 0.18
+    // 1/m), and the lane spans its whole width along the skewed end line.
+    double sharpest = 0.0;
+    for (const auto& g : road.plan_view) {
+      for (double u = 0.0; u + 0.05 <= g.length; u += 0.05) {
+        const auto p0 = corsa::xodr::evaluate_geometry(g, u);
+        const auto p1 = corsa::xodr::evaluate_geometry(g, u + 0.05);
+        sharpest = std::max(sharpest, std::abs(std::remainder(p1.hdg - p0.hdg, 2 * M_PI)) / 0.05);
+      }
+    }
+    CHECK(sharpest < 0.125);
+    CHECK(corsa::ngii::detail::piecewise_value(lane->widths, road.length) ==
+          Approx(4.0 / std::cos(skew)).margin(0.1));
+  }
+  CHECK(found);
 }
