@@ -295,7 +295,6 @@ TEST_CASE(
     // RelativeRoadPosition without Orientation on lane 2 faces the road's +s (0), not its
     // lane's traffic: 1.3 turns their "relative reference context with Heading=Pitch=Roll=0"
     // from "the tangent to the road s-axis".
-    CHECK(run.at(0.0, "LeftAlongLane").road->s == Approx(230.0).margin(1e-9));
     CHECK(turn(heading_of(run, "RelRoadTurned"), 0.5) == Approx(0.0).margin(1e-9));
     CHECK(turn(heading_of(run, "LaneLeft"), kPi) == Approx(0.0).margin(1e-9));
     CHECK(run.at(0.0, "SameLane").road->lane == -1);
@@ -314,7 +313,9 @@ TEST_CASE(
     // travel (lane 1: pi + 0.5).
     CHECK(run.at(0.0, "LeftTurned").road->lane == 1);
     CHECK(turn(heading_of(run, "LeftTurned"), 0.5 - kPi) == Approx(0.0).margin(1e-9));
-    // dsLane from lane -1 with dLane 2: lane 1, facing its traffic turned by 0.5 (pi + 0.5).
+    // dsLane 30 from lane -1 with dLane 2: the way Back faces (s = 200 - 30), lane 1, facing
+    // its traffic turned by 0.5 (pi + 0.5).
+    CHECK(run.at(0.0, "LeftAlongLane").road->s == Approx(170.0).margin(1e-9));
     CHECK(run.at(0.0, "LeftAlongLane").road->lane == 1);
     CHECK(turn(heading_of(run, "LeftAlongLane"), 0.5 - kPi) == Approx(0.0).margin(1e-9));
   }
@@ -327,23 +328,37 @@ TEST_CASE(
     CHECK(run.at(0.0, "LeftTurned").road->lane == 1);
     CHECK(turn(heading_of(run, "LeftTurned"), 0.5) == Approx(0.0).margin(1e-9));
     // dsLane: Back faces -s on a right lane, so esmini mirrors dLane 2 to -2: lane -3, facing
-    // its traffic (+s) turned by 0.5; 30 m along lane -1's traffic (+s) as under the standard.
+    // its traffic (+s) turned by 0.5; 30 m along lane -1's traffic (+s), against the way Back
+    // faces.
+    CHECK(run.at(0.0, "LeftAlongLane").road->s == Approx(230.0).margin(1e-9));
     CHECK(run.at(0.0, "LeftAlongLane").road->lane == -3);
     CHECK(turn(heading_of(run, "LeftAlongLane"), 0.5) == Approx(0.0).margin(1e-9));
   }
 }
 
-TEST_CASE("A RelativeLanePosition given by dsLane, or esmini's along the lane's traffic",
-          "[engine][semantics][positions]") {
+TEST_CASE(
+    "A RelativeLanePosition given by dsLane runs the way the entity faces, or esmini's lane's",
+    "[engine][semantics][positions]") {
   // Ref stands on lane 1 (traffic toward -s) at s = 100 facing -s; Other: dLane -1, dsLane 10,
-  // offset 0.5, without Orientation (fixture comment). Lane centres: lane 1 at t = 1.75, lane 2
-  // at t = 5.25.
+  // offset 0.5, without Orientation (fixture comment). Fwd stands on lane 2 at s = 200 facing
+  // +s; Ahead is placed as Other, relative to Fwd. Lane centres: lane 1 at t = 1.75, lane 2 at
+  // t = 5.25, lane 3 at t = 8.75.
   SECTION("standard") {
     FixtureRun run(engine_fixture("semantics_relative_lane_along_lane.xosc"));
     run.run();
-    // lane 1 + (-1): the centre lane, t = 0 + 0.5, which lies in lane 1.
+    // 1.3: dsLane "in the direction the reference entity is facing": Ref faces -s, s = 90; lane
+    // 1 + (-1): the centre lane, t = 0 + 0.5 along +t, which lies in lane 1; facing lane 1's
+    // traffic (pi) as the reference's lane.
+    CHECK(run.at(0.0, "Other").road->s == Approx(90.0).margin(1e-9));
     CHECK(run.at(0.0, "Other").road->t == Approx(0.5).margin(1e-9));
     CHECK(run.at(0.0, "Other").road->lane == 1);
+    CHECK(std::abs(run.at(0.0, "Other").pose.h) == Approx(std::numbers::pi).margin(1e-9));
+    // Fwd faces +s: s = 210; lane 2 + (-1) = 1, t = 1.75 + 0.5 (dLane and offset do not turn
+    // with the entity); facing lane 1's traffic (pi).
+    CHECK(run.at(0.0, "Ahead").road->s == Approx(210.0).margin(1e-9));
+    CHECK(run.at(0.0, "Ahead").road->lane == 1);
+    CHECK(run.at(0.0, "Ahead").road->t == Approx(2.25).margin(1e-9));
+    CHECK(std::abs(run.at(0.0, "Ahead").pose.h) == Approx(std::numbers::pi).margin(1e-9));
   }
   SECTION("esmini") {
     FixtureRun run(engine_fixture("semantics_relative_lane_along_lane.xosc"), esmini_reading());
@@ -354,6 +369,12 @@ TEST_CASE("A RelativeLanePosition given by dsLane, or esmini's along the lane's 
     CHECK(run.at(0.0, "Other").road->lane == 2);
     CHECK(run.at(0.0, "Other").road->t == Approx(4.75).margin(1e-9));
     CHECK(std::abs(run.at(0.0, "Other").pose.h) == Approx(std::numbers::pi).margin(1e-9));
+    // 10 m along lane 2's traffic: s = 190, against the way Fwd faces; Fwd faces +s on a left
+    // lane, so dLane and offset mirrored: lane 3, t = 8.75 - 0.5; facing lane 3's traffic (pi).
+    CHECK(run.at(0.0, "Ahead").road->s == Approx(190.0).margin(1e-9));
+    CHECK(run.at(0.0, "Ahead").road->lane == 3);
+    CHECK(run.at(0.0, "Ahead").road->t == Approx(8.25).margin(1e-9));
+    CHECK(std::abs(run.at(0.0, "Ahead").pose.h) == Approx(std::numbers::pi).margin(1e-9));
   }
 }
 

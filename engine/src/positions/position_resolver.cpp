@@ -170,6 +170,12 @@ ResolvedPosition relative_road(const xosc::RelativeRoadPosition& p, const SimSta
   return on_road(map, at.road, at.s, t, std::nullopt, missing_as_relative(p.orientation));
 }
 
+// Whether the reference entity faces the road's +s where it stands (its heading within a
+// quarter turn of the reference line's).
+bool reference_faces_plus_s(const xodr::Map& map, const Entity& ref, const RoadCoordinates& rc) {
+  return std::cos(ref.state.pose.h - map.reference(rc.road, rc.s).hdg) > 0.0;
+}
+
 // esmini's reading of a RelativeLanePosition given by dsLane (`--semantics esmini`; its
 // Position::EvaluateRelation in the direction mode along the lane): dsLane runs the way the
 // reference entity's lane is driven (by the lane id's side and the road's traffic rule),
@@ -185,7 +191,7 @@ EsminiAlongLaneSigns esmini_along_lane_signs(const xodr::Map& map, const Entity&
                                              const RoadCoordinates& rc) {
   const bool left_hand = map.road(rc.road).rule == xodr::TrafficRule::kLeftHand;
   const bool lane_toward_minus_s = left_hand ? rc.lane < 0 : rc.lane > 0;
-  const bool faces_plus_s = std::cos(ref.state.pose.h - map.reference(rc.road, rc.s).hdg) > 0.0;
+  const bool faces_plus_s = reference_faces_plus_s(map, ref, rc);
   const bool keep =
       (faces_plus_s && rc.lane < 0 && !left_hand) || (!faces_plus_s && rc.lane > 0 && left_hand);
   return {lane_toward_minus_s ? -1.0 : 1.0, keep ? 1 : -1};
@@ -210,6 +216,12 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
       ds *= signs.ds;
       d_lane *= signs.lateral;
       offset *= signs.lateral;
+    } else if (!reference_faces_plus_s(map, ref, rc)) {
+      // 1.3: "Travel the lane center line difference dsLane from the position of the reference
+      // entity in the direction the reference entity is facing". dLane ("adding dLane to that
+      // of the reference entity's") and offset ("in the direction of the t-axis") do not turn
+      // with the entity.
+      ds = -ds;
     }
   }
   const LaneFollow at = walk(map, rc, ds, p.source);
