@@ -89,12 +89,14 @@ constexpr OrientationFrame kLanePositionFrame = OrientationFrame::kLane;
 
 bool esmini_reading(const SimState& state) { return state.options.semantics == Semantics::kEsmini; }
 
-// esmini's reading of a road-based position's Orientation (`--semantics esmini`): a missing one
-// is a relative one of 0, so that with the road frame it faces the road's +s whatever the lane
-// (esmini's OSCPositionRoad turns a missing heading from the road's reference line, and its
-// relative positions mark a missing heading relative, as an explicit relative one). Under the
-// standard reading a missing Orientation faces the lane's traffic (orient_on_road).
-std::optional<xosc::Orientation> esmini_missing_as_relative(
+// A missing Orientation as "the relative reference context with Heading=Pitch=Roll=0" (1.3),
+// so that in the road frame it faces the road's +s whatever the lane. RoadPosition and
+// RelativeRoadPosition read so under both readings: 1.3 turns their relative heading from "the
+// tangent to the road s-axis", the reference line's. esmini reads so every road-based position
+// (its OSCPositionRoad turns a missing heading from the reference line, and its relative
+// positions mark a missing heading relative); without it, orient_on_road faces the lane's
+// traffic.
+std::optional<xosc::Orientation> missing_as_relative(
     const std::optional<xosc::Orientation>& orientation) {
   if (orientation) {
     return orientation;
@@ -108,8 +110,7 @@ ResolvedPosition road(const xosc::RoadPosition& p, const SimState& state) {
   const xodr::Map& map = need_map(state, p.source, "RoadPosition");
   const uint32_t road_index = need_road(map, p.road_id, p.source);
   const double s = checked_s(state, map, road_index, p.s, p.source);
-  return on_road(map, road_index, s, p.t, std::nullopt,
-                 esmini_reading(state) ? esmini_missing_as_relative(p.orientation) : p.orientation);
+  return on_road(map, road_index, s, p.t, std::nullopt, missing_as_relative(p.orientation));
 }
 
 ResolvedPosition lane(const xosc::LanePosition& p, const SimState& state) {
@@ -166,8 +167,13 @@ ResolvedPosition relative_road(const xosc::RelativeRoadPosition& p, const SimSta
   // crossed onto a road of opposite s direction), then add dt.
   const double t =
       followed_lane_center_t(map, at, at.lane).value_or(0.0) + at.dir * at.lateral + p.dt;
-  return on_road(map, at.road, at.s, t, std::nullopt,
-                 esmini_reading(state) ? esmini_missing_as_relative(p.orientation) : p.orientation);
+  return on_road(map, at.road, at.s, t, std::nullopt, missing_as_relative(p.orientation));
+}
+
+// Whether the reference entity faces the road's +s where it stands (its heading within a
+// quarter turn of the reference line's).
+bool reference_faces_plus_s(const xodr::Map& map, const Entity& ref, const RoadCoordinates& rc) {
+  return std::cos(ref.state.pose.h - map.reference(rc.road, rc.s).hdg) > 0.0;
 }
 
 // esmini's reading of a RelativeLanePosition given by dsLane (`--semantics esmini`; its
@@ -185,7 +191,7 @@ EsminiAlongLaneSigns esmini_along_lane_signs(const xodr::Map& map, const Entity&
                                              const RoadCoordinates& rc) {
   const bool left_hand = map.road(rc.road).rule == xodr::TrafficRule::kLeftHand;
   const bool lane_toward_minus_s = left_hand ? rc.lane < 0 : rc.lane > 0;
-  const bool faces_plus_s = std::cos(ref.state.pose.h - map.reference(rc.road, rc.s).hdg) > 0.0;
+  const bool faces_plus_s = reference_faces_plus_s(map, ref, rc);
   const bool keep =
       (faces_plus_s && rc.lane < 0 && !left_hand) || (!faces_plus_s && rc.lane > 0 && left_hand);
   return {lane_toward_minus_s ? -1.0 : 1.0, keep ? 1 : -1};
@@ -210,6 +216,12 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
       ds *= signs.ds;
       d_lane *= signs.lateral;
       offset *= signs.lateral;
+    } else if (!reference_faces_plus_s(map, ref, rc)) {
+      // 1.3: "Travel the lane center line difference dsLane from the position of the reference
+      // entity in the direction the reference entity is facing". dLane ("adding dLane to that
+      // of the reference entity's") and offset ("in the direction of the t-axis") do not turn
+      // with the entity.
+      ds = -ds;
     }
   }
   const LaneFollow at = walk(map, rc, ds, p.source);
@@ -229,7 +241,7 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
   const bool esmini_road_frame = esmini_reading(state) && !p.ds_lane;
   ResolvedPosition out =
       on_road(map, at.road, at.s, t, lane_id == 0 ? at.lane : lane_id,
-              esmini_reading(state) ? esmini_missing_as_relative(p.orientation) : p.orientation,
+              esmini_reading(state) ? missing_as_relative(p.orientation) : p.orientation,
               esmini_road_frame ? OrientationFrame::kRoad : kLanePositionFrame);
   if (lane_id == 0) {
     out.road->lane = map.lane_at(at.road, at.s, t);
