@@ -79,8 +79,8 @@ struct BinaryTrajectoryRecorder::State {
   bool abandoned = false;    ///< destroyed without finish: the queued ticks are dropped
   std::exception_ptr error;  ///< the encoder's, rethrown by finish
 
-  /// Copies the rows of the simulation's current tick.
-  void capture(const Simulation& simulation);
+  /// Encodes, or copies, the rows of the simulation's current tick, `tick`.
+  void capture(const Simulation& simulation, int64_t tick);
   void encode(RecordedTicks& batch);
   void hand_over();
   void serve();
@@ -88,7 +88,7 @@ struct BinaryTrajectoryRecorder::State {
   void finish(int64_t last_tick);
 };
 
-void BinaryTrajectoryRecorder::State::capture(const Simulation& simulation) {
+void BinaryTrajectoryRecorder::State::capture(const Simulation& simulation, int64_t tick) {
   if (!started) {
     started = true;
     dt = simulation.dt();
@@ -96,18 +96,18 @@ void BinaryTrajectoryRecorder::State::capture(const Simulation& simulation) {
       writer = std::thread([this] { serve(); });
     }
   }
-  const size_t count = simulation.entity_count();
-  const int64_t tick = simulation.tick();
   last_recorded = tick;
   if (thread == RecordingThread::kCaller) {
     // Straight from the states, no copy: the encoder is done with them before the next step.
-    for (; named_entities < count; ++named_entities) {
+    const EntityStates states = simulation.states();
+    for (; named_entities < states.size(); ++named_entities) {
       encoder.name_entity(simulation.entity(named_entities).name);
     }
-    encoder.record(dt, {tick, simulation.time(), static_cast<uint32_t>(count)},
-                   detail::EntityStateRows{&simulation});
+    encoder.record(dt, {tick, simulation.time(), static_cast<uint32_t>(states.size())},
+                   detail::EntityStateRows{states, &simulation});
     return;
   }
+  const size_t count = simulation.entity_count();
   RecordedTicks& batch = *filling;
   for (; named_entities < count; ++named_entities) {
     batch.names.push_back(simulation.entity(named_entities).name);
@@ -232,21 +232,24 @@ BinaryTrajectoryRecorder::BinaryTrajectoryRecorder(std::filesystem::path file, i
 BinaryTrajectoryRecorder::~BinaryTrajectoryRecorder() = default;
 
 void BinaryTrajectoryRecorder::on_step(const Simulation& simulation) {
-  if (simulation.tick() % state_->every != 0) {
+  State& state = *state_;
+  const int64_t tick = simulation.tick();
+  // Every tick recorded (the default) needs no division.
+  if (state.every != 1 && tick % state.every != 0) {
     return;
   }
-  if (state_->started && simulation.tick() <= state_->last_recorded) {
+  if (state.started && tick <= state.last_recorded) {
     // A tick run again (esmini's ghost restart, whose rows the CSV holds twice): the binary
     // file keeps each tick once, as first recorded (docs/trajectory-format.md).
     return;
   }
-  state_->capture(simulation);
+  state.capture(simulation, tick);
 }
 
 void BinaryTrajectoryRecorder::finish(const Simulation& simulation) {
   State& state = *state_;
   if (!state.started || state.last_recorded < simulation.tick()) {
-    state.capture(simulation);
+    state.capture(simulation, simulation.tick());
   }
   // A run that ends while a ghost restart runs ticks again ends at its last tick recorded.
   state.finish(std::max(simulation.tick(), state.last_recorded));

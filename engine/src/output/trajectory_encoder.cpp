@@ -216,11 +216,17 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& 
     state_rows_ = &rows;
   }
   int64_t previous = -1;
-  for (uint32_t i = 0; i < head.entities; ++i) {
-    // encode's first test, without the call: most entities of a long run stand.
-    const auto& row = rows[i];
-    const Track& track = entities_[i];
-    if (track.steady && track.present && row_placed(row) && track.repeats(row)) {
+  // Local copies of where the rows and tracks are, which the compiler keeps in registers
+  // across the records written in between (the members it reloads after every store).
+  const Rows local_rows = rows;
+  const Track* tracks = entities_.data();
+  const uint32_t count = head.entities;
+  for (uint32_t i = 0; i < count; ++i) {
+    // encode's first test, without the call: most entities of a long run stand. (A steady
+    // track is present: encode clears both when the entity leaves.)
+    const auto& row = local_rows[i];
+    const Track& track = tracks[i];
+    if (track.steady && row_placed(row) && track.repeats(row)) {
       continue;
     }
     encode(i, row, previous);
