@@ -81,6 +81,10 @@ struct BinaryTrajectoryRecorder::State {
 
   /// Encodes, or copies, the rows of the simulation's current tick, `tick`.
   void capture(const Simulation& simulation, int64_t tick);
+  /// At the first recorded tick: the step, and the writer thread when there is one. (Apart
+  /// from capture, as is copy_rows, so that the tick's path on the caller's thread stays short.)
+  void begin(const Simulation& simulation);
+  void copy_rows(const Simulation& simulation, int64_t tick);
   void encode(RecordedTicks& batch);
   void hand_over();
   void serve();
@@ -89,24 +93,32 @@ struct BinaryTrajectoryRecorder::State {
 };
 
 void BinaryTrajectoryRecorder::State::capture(const Simulation& simulation, int64_t tick) {
-  if (!started) {
-    started = true;
-    dt = simulation.dt();
-    if (thread == RecordingThread::kWriter) {
-      writer = std::thread([this] { serve(); });
-    }
+  if (!started) [[unlikely]] {
+    begin(simulation);
   }
   last_recorded = tick;
-  if (thread == RecordingThread::kCaller) {
-    // Straight from the states, no copy: the encoder is done with them before the next step.
-    const EntityStates states = simulation.states();
-    for (; named_entities < states.size(); ++named_entities) {
-      encoder.name_entity(simulation.entity(named_entities).name);
-    }
-    encoder.record(dt, {tick, simulation.time(), static_cast<uint32_t>(states.size())},
-                   detail::EntityStateRows{states, &simulation});
+  if (thread == RecordingThread::kWriter) {
+    copy_rows(simulation, tick);
     return;
   }
+  // Straight from the states, no copy: the encoder is done with them before the next step.
+  const EntityStates states = simulation.states();
+  for (; named_entities < states.size(); ++named_entities) {
+    encoder.name_entity(simulation.entity(named_entities).name);
+  }
+  encoder.record(dt, {tick, simulation.time(), static_cast<uint32_t>(states.size())},
+                 detail::EntityStateRows{states, &simulation});
+}
+
+void BinaryTrajectoryRecorder::State::begin(const Simulation& simulation) {
+  started = true;
+  dt = simulation.dt();
+  if (thread == RecordingThread::kWriter) {
+    writer = std::thread([this] { serve(); });
+  }
+}
+
+void BinaryTrajectoryRecorder::State::copy_rows(const Simulation& simulation, int64_t tick) {
   const size_t count = simulation.entity_count();
   RecordedTicks& batch = *filling;
   for (; named_entities < count; ++named_entities) {

@@ -106,6 +106,18 @@ void TrajectoryEncoder::start(double dt, int64_t tick) {
   last_frame_ = tick;
 }
 
+void TrajectoryEncoder::add_entities(uint32_t count) {
+  while (entities_.size() < count) {
+    put_string(buffer_, codec::kTagEntity, entities_.size(), names_.at(entities_.size()));
+    entities_.emplace_back();
+  }
+  // Room for every entity's record at its largest, head and whole body.
+  const size_t room = size_t{count} * (kMaxHead + kMaxBody);
+  if (frame_.size() < room) {
+    frame_.resize(room);
+  }
+}
+
 template <class Row>
 [[gnu::always_inline]] inline void TrajectoryEncoder::encode(uint32_t index, const Row& row,
                                                              int64_t& previous) {
@@ -201,17 +213,10 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& 
     start(dt, head.tick);
   }
   const int64_t tick = head.tick;
-  while (entities_.size() < head.entities) {
-    put_string(buffer_, codec::kTagEntity, entities_.size(), names_.at(entities_.size()));
-    entities_.emplace_back();
+  if (entities_.size() < head.entities) [[unlikely]] {
+    add_entities(head.entities);
   }
-  roads_.clear();
   frame_size_ = 0;
-  // Room for every entity's record at its largest, head and whole body.
-  const size_t room = size_t{head.entities} * (kMaxHead + kMaxBody);
-  if (frame_.size() < room) {
-    frame_.resize(room);
-  }
   if constexpr (std::is_same_v<Rows, EntityStateRows>) {
     state_rows_ = &rows;
   }
@@ -238,7 +243,9 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& 
   if (frame_size_ == 0 && !odd_time) {
     return;  // every present entity as predicted: the tick costs nothing
   }
+  // (A road is first met by a record, so a tick without records has none.)
   buffer_ += roads_;
+  roads_.clear();
   if (odd_time) {
     buffer_.push_back(static_cast<char>(codec::kTagTime));
     codec::put_fixed64(buffer_, std::bit_cast<uint64_t>(time));

@@ -189,6 +189,8 @@ class TrajectoryEncoder {
   static constexpr size_t kMaxBody = 10 + 10 + kRowFields * 10;
 
   void start(double dt, int64_t tick);
+  /// Tracks entities up to `count` (their names written) and makes the frame's room for them.
+  void add_entities(uint32_t count);
   /// Appends the record of entity `index` to `frame_` when its row differs from the prediction
   /// (`previous`: the index of the frame's last record, -1 before the first).
   template <class Row>
