@@ -119,9 +119,8 @@ void TrajectoryEncoder::add_entities(uint32_t count) {
 }
 
 template <class Row>
-[[gnu::always_inline]] inline void TrajectoryEncoder::encode(uint32_t index, const Row& row,
-                                                             int64_t& previous) {
-  Track& track = entities_[index];
+[[gnu::always_inline]] inline void TrajectoryEncoder::encode(uint32_t index, Track& track,
+                                                             const Row& row, int64_t& previous) {
   uint32_t mask = 0;
   uint32_t raw = 0;
   // The record's body (road and lane, at most 10 + 10 bytes, then nine numbers of 10), made
@@ -224,17 +223,17 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& 
   // Local copies of where the rows and tracks are, which the compiler keeps in registers
   // across the records written in between (the members it reloads after every store).
   const Rows local_rows = rows;
-  const Track* tracks = entities_.data();
+  Track* tracks = entities_.data();
   const uint32_t count = head.entities;
   for (uint32_t i = 0; i < count; ++i) {
     // encode's first test, without the call: most entities of a long run stand. (A steady
     // track is present: encode clears both when the entity leaves.)
     const auto& row = local_rows[i];
-    const Track& track = tracks[i];
+    Track& track = tracks[i];
     if (track.steady && row_placed(row) && track.repeats(row)) {
       continue;
     }
-    encode(i, row, previous);
+    encode(i, track, row, previous);
   }
   state_rows_ = nullptr;
   const double time = head.time;

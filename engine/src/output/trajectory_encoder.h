@@ -191,10 +191,10 @@ class TrajectoryEncoder {
   void start(double dt, int64_t tick);
   /// Tracks entities up to `count` (their names written) and makes the frame's room for them.
   void add_entities(uint32_t count);
-  /// Appends the record of entity `index` to `frame_` when its row differs from the prediction
-  /// (`previous`: the index of the frame's last record, -1 before the first).
+  /// Appends the record of entity `index` (its track `track`) to `frame_` when its row differs
+  /// from the prediction (`previous`: the index of the frame's last record, -1 before the first).
   template <class Row>
-  void encode(uint32_t index, const Row& row, int64_t& previous);
+  void encode(uint32_t index, Track& track, const Row& row, int64_t& previous);
   void flush();
 
   AtomicFile file_;
