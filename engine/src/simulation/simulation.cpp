@@ -185,6 +185,12 @@ const EntityInfo& Simulation::entity(size_t index) const {
 const EntityState& Simulation::state(size_t index) const {
   return impl_->state.world.entities[index].state;
 }
+EntityStates Simulation::states() const {
+  const auto& entities = impl_->state.world.entities;
+  return entities.empty()
+             ? EntityStates{}
+             : EntityStates{&entities.front().state, entities.size(), sizeof(entities[0])};
+}
 std::optional<size_t> Simulation::find_entity(std::string_view name) const {
   const auto index = impl_->state.world.find(name);
   return index ? std::optional<size_t>(*index) : std::nullopt;
