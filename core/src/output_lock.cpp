@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/locked_temporary.h"
 #include "corsa/core/strings.h"
 
 namespace corsa {
@@ -66,16 +67,15 @@ Existing check_existing(const std::filesystem::path& lock, std::string& owner) {
 
 OutputLock::OutputLock(const std::filesystem::path& folder) : file_(folder / kFileName) {
   // The lock is written and locked under a temporary name first and then linked to its name, so
-  // that the name never leads to a lock file that is not yet held. The temporary's name is an
-  // AtomicFile one, so a killed process's is cleaned like theirs.
-  const std::string pid = std::to_string(::getpid());
-  const std::filesystem::path staging = folder / (std::string(kFileName) + ".tmp." + pid + ".0");
-  ::unlink(staging.c_str());  // a stale one of a process with the same pid
-  descriptor_ = ::open(staging.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-  if (descriptor_ < 0) {
+  // that the name never leads to a lock file that is not yet held. The temporary is an AtomicFile
+  // one (locked before any cleanup can see it), so a killed process's is cleaned like theirs.
+  const detail::LockedTemporary made = detail::create_locked_temporary(file_, 0644);
+  if (made.descriptor < 0) {
     lock_error(folder, std::string("cannot lock the output folder (") + std::strerror(errno) + ")");
   }
-  ::flock(descriptor_, LOCK_EX | LOCK_NB);
+  descriptor_ = made.descriptor;
+  const std::filesystem::path& staging = made.path;
+  const std::string pid = std::to_string(::getpid());
   const std::string owner = "pid " + pid + " on host " + host_name() + "\n";
   const bool written =
       ::write(descriptor_, owner.data(), owner.size()) == static_cast<ssize_t>(owner.size());
