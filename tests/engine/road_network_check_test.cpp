@@ -15,8 +15,8 @@ namespace {
 
 /// A scenario over fixtures/straight.xodr (road 1, 1000 m, lanes 3..-4) whose positions are
 /// `init` (the Init's TeleportAction) and `story` (an event that waits for 1e6 s).
-std::string scenario_text(const std::string& road_network, const std::string& init,
-                          const std::string& story) {
+std::string road_check_scenario(const std::string& road_network, const std::string& init,
+                                const std::string& story) {
   return R"(<?xml version="1.0" encoding="UTF-8"?>
 <OpenSCENARIO>
   <FileHeader revMajor="1" revMinor="3" date="2024-01-01T00:00:00" description="roads" author="Corsa tests"/>
@@ -57,12 +57,13 @@ std::string scenario_text(const std::string& road_network, const std::string& in
 )";
 }
 
-const std::string kMap = R"(<RoadNetwork><LogicFile filepath="straight.xodr"/></RoadNetwork>)";
-constexpr int kInitLine = 20;   ///< line of the Init's position in scenario_text
-constexpr int kStoryLine = 25;  ///< line of the story's position
+const std::string kRoadCheckMap =
+    R"(<RoadNetwork><LogicFile filepath="straight.xodr"/></RoadNetwork>)";
+constexpr int kRoadCheckInitLine = 20;   ///< line of the Init's position in road_check_scenario
+constexpr int kRoadCheckStoryLine = 25;  ///< line of the story's position
 
 /// The errors of loading `text` with the map check (none: an empty list).
-std::vector<corsa::Diagnostic> errors_of(const std::string& text) {
+std::vector<corsa::Diagnostic> road_check_errors(const std::string& text) {
   corsa::xosc::LoadOptions options;
   options.road_network_check = std::make_shared<corsa::engine::MapReferenceCheck>();
   corsa::Diagnostics diagnostics;
@@ -79,14 +80,15 @@ std::vector<corsa::Diagnostic> errors_of(const std::string& text) {
 
 TEST_CASE("Positions on roads and lanes the map lacks are errors at their lines, all in one pass",
           "[engine][road_network_check]") {
-  const std::string text = scenario_text(kMap, R"(<LanePosition roadId="7" laneId="-1" s="10"/>)",
-                                         R"(<LanePosition roadId="1" laneId="-9" s="2000"/>)");
-  const auto errors = errors_of(text);
+  const std::string text =
+      road_check_scenario(kRoadCheckMap, R"(<LanePosition roadId="7" laneId="-1" s="10"/>)",
+                          R"(<LanePosition roadId="1" laneId="-9" s="2000"/>)");
+  const auto errors = road_check_errors(text);
   REQUIRE(errors.size() == 2);
-  CHECK(errors[0].line == kInitLine);
+  CHECK(errors[0].line == kRoadCheckInitLine);
   CHECK(errors[0].message == "road '7' does not exist in the road network");
   // s beyond the road is read as its end, as a run reads it; the lane is missing there too.
-  CHECK(errors[1].line == kStoryLine);
+  CHECK(errors[1].line == kRoadCheckStoryLine);
   CHECK(errors[1].message == "road '1' has no lane -9 at s = 1000");
 
   // Without the check the document itself is fine: a run finds the Init's error only.
@@ -97,43 +99,45 @@ TEST_CASE("Positions on roads and lanes the map lacks are errors at their lines,
 
 TEST_CASE("A lane id that is not an integer and a road position on a missing road are errors",
           "[engine][road_network_check]") {
-  const auto errors =
-      errors_of(scenario_text(kMap, R"(<LanePosition roadId="1" laneId="-1.5" s="10"/>)",
-                              R"(<RoadPosition roadId="nine" s="5" t="0"/>)"));
+  const auto errors = road_check_errors(
+      road_check_scenario(kRoadCheckMap, R"(<LanePosition roadId="1" laneId="-1.5" s="10"/>)",
+                          R"(<RoadPosition roadId="nine" s="5" t="0"/>)"));
   REQUIRE(errors.size() == 2);
-  CHECK(errors[0].line == kInitLine);
+  CHECK(errors[0].line == kRoadCheckInitLine);
   CHECK(errors[0].message == "laneId '-1.5' is not a lane id (a non-zero integer)");
-  CHECK(errors[1].line == kStoryLine);
+  CHECK(errors[1].line == kRoadCheckStoryLine);
   CHECK(errors[1].message == "road 'nine' does not exist in the road network");
 }
 
 TEST_CASE("Positions on the map's roads and lanes, and the centre lane, pass the check",
           "[engine][road_network_check]") {
-  CHECK(errors_of(scenario_text(kMap, R"(<LanePosition roadId="1" laneId="-3" s="10"/>)",
-                                R"(<LanePosition roadId="1" laneId="0" s="999"/>)"))
+  CHECK(road_check_errors(road_check_scenario(kRoadCheckMap,
+                                              R"(<LanePosition roadId="1" laneId="-3" s="10"/>)",
+                                              R"(<LanePosition roadId="1" laneId="0" s="999"/>)"))
             .empty());
-  CHECK(errors_of(scenario_text(kMap, R"(<RoadPosition roadId="1" s="0" t="-3"/>)",
-                                R"(<WorldPosition x="5" y="-3"/>)"))
+  CHECK(road_check_errors(road_check_scenario(kRoadCheckMap,
+                                              R"(<RoadPosition roadId="1" s="0" t="-3"/>)",
+                                              R"(<WorldPosition x="5" y="-3"/>)"))
             .empty());
 }
 
 TEST_CASE("Road positions in a scenario without a LogicFile are errors at each",
           "[engine][road_network_check]") {
-  const auto errors =
-      errors_of(scenario_text("<RoadNetwork/>", R"(<LanePosition roadId="1" laneId="-1" s="10"/>)",
-                              R"(<WorldPosition x="5" y="-3"/>)"));
+  const auto errors = road_check_errors(
+      road_check_scenario("<RoadNetwork/>", R"(<LanePosition roadId="1" laneId="-1" s="10"/>)",
+                          R"(<WorldPosition x="5" y="-3"/>)"));
   REQUIRE(errors.size() == 1);
-  CHECK(errors[0].line == kInitLine);
+  CHECK(errors[0].line == kRoadCheckInitLine);
   CHECK(errors[0].message ==
         "LanePosition needs a road network, but the scenario has no LogicFile");
 }
 
 TEST_CASE("A missing LogicFile is reported once, not again at each position",
           "[engine][road_network_check]") {
-  const auto errors = errors_of(
-      scenario_text(R"(<RoadNetwork><LogicFile filepath="no_such_map.xodr"/></RoadNetwork>)",
-                    R"(<LanePosition roadId="1" laneId="-1" s="10"/>)",
-                    R"(<LanePosition roadId="7" laneId="-1" s="10"/>)"));
+  const auto errors = road_check_errors(
+      road_check_scenario(R"(<RoadNetwork><LogicFile filepath="no_such_map.xodr"/></RoadNetwork>)",
+                          R"(<LanePosition roadId="1" laneId="-1" s="10"/>)",
+                          R"(<LanePosition roadId="7" laneId="-1" s="10"/>)"));
   REQUIRE(errors.size() == 1);
   CHECK(errors[0].line == 5);
   CHECK(errors[0].message.starts_with("map file 'no_such_map.xodr' not found"));
