@@ -10,6 +10,7 @@
 #include "corsa/core/diagnostic.h"
 #include "corsa/core/json.h"
 #include "corsa/core/strings.h"
+#include "corsa/engine/road_network_check.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/parser.h"
 #include "corsa/xosc/scenario.h"
@@ -68,7 +69,11 @@ FileReport check_file(const std::string& file, const xosc::LoadOptions& options)
       report.summary = "OpenDRIVE map";
     } else {
       report.kind = "openscenario";
-      describe(xosc::load_document(path, options, diagnostics), report);
+      // Roads and lanes named by positions are checked against the map too, with the
+      // document's other errors: a run would check each only when it placed something there.
+      xosc::LoadOptions with_map = options;
+      with_map.road_network_check = std::make_shared<engine::MapReferenceCheck>();
+      describe(xosc::load_document(path, with_map, diagnostics), report);
     }
     report.valid = true;
   } catch (const InputError& error) {

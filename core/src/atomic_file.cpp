@@ -7,26 +7,14 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cerrno>
 #include <cstring>
-#include <sstream>
 #include <system_error>
 
 #include "corsa/core/diagnostic.h"
+#include "corsa/core/locked_temporary.h"
 
 namespace corsa {
-namespace {
-
-std::filesystem::path temporary_name_for(const std::filesystem::path& target) {
-  // A process-wide counter only makes temporary names unique; it never affects file contents.
-  static std::atomic<unsigned long> counter{0};
-  std::ostringstream name;
-  name << '.' << target.filename().string() << ".tmp." << ::getpid() << '.' << counter++;
-  return target.parent_path() / name.str();
-}
-
-}  // namespace
 
 bool is_temporary_name(std::string_view name) {
   if (name.size() < 9 || name.front() != '.') {
@@ -50,6 +38,12 @@ namespace {
 
 /// Removes `path` when it is a regular file no live process holds locked (see AtomicFile).
 bool remove_if_stale(const std::filesystem::path& path) {
+  // A writer creates and locks its temporary under its share of the folder: while the cleanup
+  // holds the folder alone, an unlocked temporary is one whose writer is gone.
+  const detail::FolderTurn turn(path.parent_path(), detail::FolderTurn::Kind::kCleanup);
+  if (!turn.held()) {
+    return false;  // left for a later cleanup
+  }
   const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
   if (fd < 0) {
     return false;
@@ -191,17 +185,22 @@ class DescriptorStreamBuf final : public std::streambuf {
 AtomicFile::AtomicFile(std::filesystem::path target, bool /*binary*/)
     : target_(std::move(target)), out_(nullptr) {
   check_output_file(target_);
-  created_folders_ = create_output_folders(target_.parent_path(), target_);
-  // A name taken already (a temporary of a killed process whose pid came round again) is skipped.
-  for (int attempt = 0; attempt < 100 && descriptor_ < 0; ++attempt) {
-    temporary_ = temporary_name_for(target_);
-    descriptor_ =
-        ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-    if (descriptor_ < 0 && errno != EEXIST) {
+  // A folder made here can vanish before the temporary is in it (a writer beside this one that
+  // failed removes the empty folders it made): it is made again.
+  detail::LockedTemporary made;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    for (auto& folder : create_output_folders(target_.parent_path(), target_)) {
+      if (std::find(created_folders_.begin(), created_folders_.end(), folder) ==
+          created_folders_.end()) {
+        created_folders_.push_back(std::move(folder));
+      }
+    }
+    made = detail::create_locked_temporary(target_, 0666);
+    if (made.descriptor >= 0 || errno != ENOENT) {
       break;
     }
   }
-  if (descriptor_ < 0) {
+  if (made.descriptor < 0) {
     const std::string reason = std::strerror(errno);
     std::error_code ignored;
     for (const auto& folder : created_folders_) {
@@ -209,8 +208,8 @@ AtomicFile::AtomicFile(std::filesystem::path target, bool /*binary*/)
     }
     throw InputError(make_error(target_.string(), 0, "cannot create output file (" + reason + ")"));
   }
-  // Held until the temporary is renamed or removed: a free lock marks a stale temporary.
-  ::flock(descriptor_, LOCK_EX | LOCK_NB);
+  temporary_ = std::move(made.path);
+  descriptor_ = made.descriptor;
   buffer_ = std::make_unique<detail::DescriptorStreamBuf>(descriptor_);
   out_.rdbuf(buffer_.get());
 }

@@ -184,7 +184,7 @@ TEST_CASE("Contacts among hundreds of vehicles are the same on 1 and 2 threads",
   std::vector<corsa::test::FleetVehicle> cars;
   for (int i = 0; i < 240; ++i) {
     corsa::test::FleetVehicle v;
-    v.name = "C" + std::to_string(i);
+    v.name = std::string("C").append(std::to_string(i));
     v.lane = -1 - i % 3;
     v.s = 20.0 + 4.0 * i;
     v.speed = 10.0 + (i * 7) % 24;

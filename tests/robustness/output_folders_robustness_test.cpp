@@ -371,6 +371,43 @@ TEST_CASE("Temporaries a SIGKILLed run left are removed by the next run of the s
   CHECK(entry_names(out) == std::set<std::string>{"trajectories.csv"});
 }
 
+TEST_CASE("Two runs writing into one folder at once both succeed with whole files",
+          "[robustness][output][race]") {
+  TempDir dir;
+  const fs::path out = dir.path() / "out";
+  const std::vector<std::string> common{"run", kSuiteScenario, "--quiet", "--duration", "1"};
+  const auto args = [&](const std::string& record) {
+    std::vector<std::string> all = common;
+    for (const std::string& arg : {std::string("--record"), (out / record).string(),
+                                   std::string("--summary"), (out / "summary.json").string()}) {
+      all.push_back(arg);
+    }
+    return all;
+  };
+  std::vector<std::string> alone = common;
+  alone.insert(alone.end(), {"--record", (dir.path() / "alone.csv").string()});
+  REQUIRE(run_bounded(alone).exit_code == 0);
+  const std::string expected = slurp(dir.path() / "alone.csv");
+  // Each run cleans the folder of killed runs' temporaries as it starts, while the other may be
+  // creating its own there: that temporary must never be taken for a stale one.
+  for (int round = 0; round < 40; ++round) {
+    const pid_t a = spawn_corsa(args("a.csv"), dir.path() / "a.err");
+    const pid_t b = spawn_corsa(args("b.csv"), dir.path() / "b.err");
+    const int a_exit = wait_corsa(a);
+    const int b_exit = wait_corsa(b);
+    INFO("round " << round << ": " << slurp(dir.path() / "a.err") << slurp(dir.path() / "b.err"));
+    REQUIRE(a_exit == 0);
+    REQUIRE(b_exit == 0);
+    CHECK(slurp(out / "a.csv") == expected);
+    CHECK(slurp(out / "b.csv") == expected);
+    // One name both write: whole, from whichever run renamed it last.
+    const std::string summary = slurp(out / "summary.json");
+    CHECK(summary.starts_with("{"));
+    CHECK(summary.ends_with("}\n"));
+    CHECK(entry_names(out) == std::set<std::string>{"a.csv", "b.csv", "summary.json"});
+  }
+}
+
 TEST_CASE("sweep --resume removes the temporaries a killed run left in its variants",
           "[robustness][sweep][interrupt]") {
   TempDir dir;

@@ -22,7 +22,7 @@ std::string edited(std::string text, const std::string& from, const std::string&
 enum class Expect {
   kMayRun,         ///< still a valid scenario, or rejected: either is fine
   kRejected,       ///< validate and run both reject it
-  kRejectedByRun,  ///< validate (which does not load the map) may pass it; run rejects it
+  kRejectedByRun,  ///< validate (which places no entity) may pass it; run rejects it
 };
 
 struct Outcome {
@@ -148,8 +148,10 @@ TEST_CASE("Unknown references, cyclic parameters and wrong types are rejected at
       {"missing map", "motorway_2km.xodr", "no_such_map.xodr", 19},
       {"unknown storyboard element", "storyboardElementRef=\"CutInAction\"",
        "storyboardElementRef=\"NoSuchAction\"", 126},
-      {"unknown road", "roadId=\"1\"", "roadId=\"99\"", 36, Expect::kRejectedByRun},
-      {"unknown lane", "laneId=\"-2\"", "laneId=\"-9\"", 36, Expect::kRejectedByRun},
+      // validate checks the roads and lanes positions name against the map.
+      {"unknown road", "roadId=\"1\"", "roadId=\"99\"", 36},
+      {"unknown lane", "laneId=\"-2\"", "laneId=\"-9\"", 36},
+      {"lane id not an integer", "laneId=\"-2\"", "laneId=\"-2.5\"", 36},
       {"position beyond the road network", "ds=\"-40\"", "ds=\"-2e7\"", 55, Expect::kRejectedByRun},
       // Magnitudes beyond physical sense (docs/engine.md): at the element that uses the value.
       {"speed of 1e308 m/s", "value=\"27.78\"", "value=\"1e308\"", 45},
@@ -165,6 +167,11 @@ TEST_CASE("Unknown references, cyclic parameters and wrong types are rejected at
     INFO(c.name << ": " << outcome.run.err);
     CHECK(outcome.run.err.find("scenario.xosc:" + std::to_string(c.line) + ": error: ") !=
           std::string::npos);
+    if (c.expect == Expect::kRejected) {
+      INFO("validate: " << outcome.validate.err);
+      CHECK(outcome.validate.err.find("scenario.xosc:" + std::to_string(c.line) + ": error: ") !=
+            std::string::npos);
+    }
   }
 }
 

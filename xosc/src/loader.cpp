@@ -197,7 +197,8 @@ Scenario parse_scenario_root(ParseContext& ctx, const Element* root, Children& k
   ctx.recover([&] {
     scenario.catalog_locations = parse_catalog_locations(ctx, kids.one("CatalogLocations"));
   });
-  ctx.recover([&] { scenario.road_network = parse_road_network(ctx, kids.one("RoadNetwork")); });
+  const bool network_read = ctx.recover(
+      [&] { scenario.road_network = parse_road_network(ctx, kids.one("RoadNetwork")); });
   for (const auto& controller : scenario.road_network.traffic_signal_controllers) {
     auto& phases = ctx.signal_controllers[controller.name];
     for (const auto& phase : controller.phases) phases.push_back(phase.name);
@@ -210,6 +211,13 @@ Scenario parse_scenario_root(ParseContext& ctx, const Element* root, Children& k
   scenario.catalog_files = catalogs.files_read();
   check_entity_references(ctx, scenario.entities);
   resolve_storyboard_references(ctx, scenario.storyboard);
+  if (const auto& check = ctx.options().road_network_check; check && network_read) {
+    std::vector<Diagnostic> errors =
+        check->check(scenario.road_network, ctx.road_uses(), ctx.diagnostics());
+    if (!errors.empty()) {
+      ctx.record(InputError(std::move(errors)));
+    }
+  }
   return scenario;
 }
 

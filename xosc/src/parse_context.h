@@ -188,6 +188,9 @@ class ParseContext {
   // --- references -----------------------------------------------------------------------------
   void use_entity(const Element* element, const std::string& name, std::string what);
   std::vector<EntityUse>& entity_uses() { return entity_uses_; }
+  /// A position naming a road, for LoadOptions::road_network_check.
+  void use_road(RoadReference reference) { road_uses_.push_back(std::move(reference)); }
+  const std::vector<RoadReference>& road_uses() const { return road_uses_; }
   /// Entity, parameter, variable and monitor references are checked only while this is set
   /// (in a scenario, not in a catalog or distribution read on its own).
   bool record_entities = true;
@@ -246,6 +249,7 @@ class ParseContext {
   std::vector<Scope> scopes_;
   std::vector<std::string> resolving_;  ///< chain of parameters being resolved (cycle message)
   std::vector<EntityUse> entity_uses_;
+  std::vector<RoadReference> road_uses_;
   std::vector<Diagnostic> errors_;
   /// Indices in errors_ of value-constraint violations by values from outside (LoadOptions,
   /// catalog assignments): when they are all the errors, the document itself is fine.

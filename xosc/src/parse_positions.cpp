@@ -48,8 +48,10 @@ T parse_relative_xyz(ParseContext& ctx, const Element* e, const char* type) {
 
 RoadPosition parse_road(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "RoadPosition");
-  return RoadPosition{ctx.req_str(e, "roadId"), ctx.req_double(e, "s"), ctx.req_double(e, "t"),
-                      optional_orientation(ctx, kids), ctx.source(e)};
+  RoadPosition position{ctx.req_str(e, "roadId"), ctx.req_double(e, "s"), ctx.req_double(e, "t"),
+                        optional_orientation(ctx, kids), ctx.source(e)};
+  ctx.use_road({"RoadPosition", position.road_id, std::nullopt, position.s, position.source});
+  return position;
 }
 
 RelativeRoadPosition parse_relative_road(ParseContext& ctx, const Element* e) {
@@ -66,9 +68,11 @@ RelativeRoadPosition parse_relative_road(ParseContext& ctx, const Element* e) {
 
 LanePosition parse_lane(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "LanePosition");
-  return LanePosition{ctx.req_str(e, "roadId"),        ctx.req_str(e, "laneId"),
-                      ctx.req_double(e, "s"),          ctx.opt_double(e, "offset"),
-                      optional_orientation(ctx, kids), ctx.source(e)};
+  LanePosition position{ctx.req_str(e, "roadId"),        ctx.req_str(e, "laneId"),
+                        ctx.req_double(e, "s"),          ctx.opt_double(e, "offset"),
+                        optional_orientation(ctx, kids), ctx.source(e)};
+  ctx.use_road({"LanePosition", position.road_id, position.lane_id, position.s, position.source});
+  return position;
 }
 
 RelativeLanePosition parse_relative_lane(ParseContext& ctx, const Element* e) {

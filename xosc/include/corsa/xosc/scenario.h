@@ -55,6 +55,29 @@ struct RoadNetwork {
   Source source;
 };
 
+/// A position that names a road of the map (RoadPosition, LanePosition), as read: what a
+/// RoadNetworkCheck looks up in the map.
+struct RoadReference {
+  const char* kind = "";  ///< element name, e.g. "LanePosition"
+  std::string road_id;
+  std::optional<std::string> lane_id;  ///< LanePosition's laneId, as written
+  double s = 0.0;                      ///< m along the road
+  Source source;
+};
+
+/// Checks the positions that name roads against the scenario's map while the scenario is read,
+/// so that `corsa validate` reports them with the document's other errors in one pass. corsa_xosc
+/// reads no maps: the engine implements this (corsa/engine/road_network_check.h).
+class RoadNetworkCheck {
+ public:
+  virtual ~RoadNetworkCheck() = default;
+  /// The errors of `references` against the map `network` names (each at its reference; the
+  /// map's own errors when it does not load). Warnings go to `diagnostics`.
+  virtual std::vector<Diagnostic> check(const RoadNetwork& network,
+                                        const std::vector<RoadReference>& references,
+                                        Diagnostics& diagnostics) const = 0;
+};
+
 struct Scenario {
   FileHeader header;
   std::filesystem::path path;                    ///< the .xosc as given to load_scenario
@@ -84,6 +107,9 @@ struct LoadOptions {
   bool strict = false;
   /// Catalog files parsed once and shared between loads (sweeps); null: each load reads them.
   std::shared_ptr<CatalogCache> catalog_cache;
+  /// Checks road and lane references against the map while loading (`corsa validate`); null:
+  /// the engine checks each position when it places something there.
+  std::shared_ptr<const RoadNetworkCheck> road_network_check;
 };
 
 /// Thrown by load_scenario when the only errors are values given from outside (LoadOptions::
