@@ -329,8 +329,10 @@ TEST_CASE("lanes joined at junction mouths leave no unpaved ground beyond their 
   // shoulder beside it at the joint where the lanes' borders could not meet (mouth_fills.h);
   // 7 / 16 before short roads bent at one end turned evenly onto a skewed line, road ends were
   // cut against their joint's line and a road where one-lane roads merge took the end line of
-  // the one in line with it. What remains: a join at a corner, a shoulder that would fold,
-  // paths that could not turn onto the joined road's line.
+  // the one in line with it; 6 / 6 before a short road that turns short of its skewed end line
+  // ran on past it and a shoulder beside the next road's start looked past the lane's own road
+  // (Sangam's 365). What remains: a shoulder that would fold, paths that could not turn onto the
+  // joined road's line, paths narrower than the road they join.
   const auto& k = figures("kcity").mouth_gaps;
   INFO(k.worst);
   CHECK(k.ends > 1400);
@@ -338,5 +340,5 @@ TEST_CASE("lanes joined at junction mouths leave no unpaved ground beyond their 
   const auto& s = figures("seoul_sangam_testbed").mouth_gaps;
   INFO(s.worst);
   CHECK(s.ends > 3200);
-  CHECK(s.over <= 6);
+  CHECK(s.over <= 5);
 }
