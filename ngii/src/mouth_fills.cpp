@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -58,12 +59,14 @@ double lateral_offset_at(const xodr::Map& map, size_t road, double s, double x, 
 
 /// Whether (x, y) lies on some lane of the map other than those of road `except` (the road the
 /// shoulder would be added to lies beside it by construction; where that road widens right after
-/// its end line, its lanes reach the point only there).
-bool paved(const xodr::Map& map, double x, double y, size_t except) {
+/// its end line, its lanes reach the point only there) and of road `own` (the road whose lane
+/// end is looked beyond: where its end edge slants across the joined road's normal, the probe
+/// from the joined road's edge runs through it, though the ground just beyond its end is open).
+bool paved(const xodr::Map& map, double x, double y, size_t except, size_t own = SIZE_MAX) {
   xodr::LocateOptions options;
   options.max_distance = 1.0;
   const auto at = map.locate(x, y, options);
-  return at && at->distance <= 1e-6 && at->road != except;
+  return at && at->distance <= 1e-6 && at->road != except && at->road != own;
 }
 
 /// The outermost lateral offsets (right, left) of a road's lanes at s, in the section that
@@ -141,7 +144,7 @@ std::optional<std::pair<MouthFillKey, double>> fill_for_side(const xodr::Map& ma
   const double ex = px - nx * horizontal, ey = py - ny * horizontal;
   double run = 0.0;
   for (double u = kFillProbeStart; u <= horizontal + 1e-9; u += kFillProbeStep) {
-    if (paved(map, ex + nx * u, ey + ny * u, best->key.road)) {
+    if (paved(map, ex + nx * u, ey + ny * u, best->key.road, info.lane.road)) {
       break;
     }
     run = u;

@@ -89,12 +89,22 @@ ReferencePolyline reference_polyline(const RoadPlan& plan, const LaneLines& line
     }
   }
   double road_width = 0.0;
+  // How far the road's edges may lie from the reference lane's centre (the anchor) at each end,
+  // for an end that turns short of its line to run on past it (align_ends). Not on junction
+  // paths: their lines are chosen by how far their lanes' ends move off their links (0.1 m at
+  // most, build_joined), which such an overrun would use up.
+  EndSpans spans{-0.5 * widths[ref].front(), -0.5 * widths[ref].back()};
   std::vector<double> width_at(line.size(), 0.0);
   for (size_t k = 0; k < plan.lanes.size(); ++k) {
     road_width += widths[k].at(0.0);
+    spans.start += widths[k].front();
+    spans.end += widths[k].back();
     for (size_t i = 0; i < line.size(); ++i) {
       width_at[i] += widths[k].at(line.u()[i] * scale);
     }
+  }
+  if (plan.junction >= 0) {
+    spans = EndSpans{};
   }
   ReferencePolyline shifted = shifted_left(line, half);
   relax_right_turns(shifted.points, width_at, lanes_left);
@@ -103,10 +113,10 @@ ReferencePolyline reference_polyline(const RoadPlan& plan, const LaneLines& line
   const auto anchor = [](Vec2 own, const std::optional<EndLine>& on, bool shared) {
     return shared && on ? on->point + dot(own - on->point, on->across) * on->across : own;
   };
-  ReferencePolyline aligned =
-      align_ends(std::move(shifted), ends.start, ends.end,
-                 anchor(xy(lines.raw[ref].points().front()), ends.start, ends.start_shared),
-                 anchor(xy(lines.raw[ref].points().back()), ends.end, ends.end_shared), road_width);
+  ReferencePolyline aligned = align_ends(
+      std::move(shifted), ends.start, ends.end,
+      anchor(xy(lines.raw[ref].points().front()), ends.start, ends.start_shared),
+      anchor(xy(lines.raw[ref].points().back()), ends.end, ends.end_shared), road_width, spans);
   aligned.widest = *std::max_element(width_at.begin(), width_at.end());
   aligned.lanes_left = lanes_left;
   return aligned;

@@ -90,15 +90,24 @@ void ease_near(std::vector<Point2>& points, const std::vector<double>& at);
 std::vector<double> tight_right_turns(const CurveFit& fit, double curvature,
                                       bool lanes_left = false);
 
+/// How far (m) the road's edges lie from the start and end anchors at most (0: not known). An
+/// end that turns short of its line by `residual` (the turn that fits without folding) runs on
+/// along its end heading by span x tan(residual), up to 9 cm, where that is under 15 cm: the
+/// corner of its end edge left short of the line then reaches it, or nearly.
+struct EndSpans {
+  double start = 0.0;
+  double end = 0.0;
+};
+
 /// `reference` bent near its start and end (road_end_bend.cpp) to meet `start` / `end` (when given)
 /// square: it ends heading across the line, on the line's parallel through the anchor (the
 /// reference lane's own end point). `road_width` (m) sets how gently it turns (the outermost lane
 /// must not fold); a turn that does not fit into the road is made only partly. Lines more than 50
 /// degrees off square are left alone; an end nearly square to its line (its outermost lane
 /// within 1 cm of it) is not bent but, where it lies up to 0.25 m short of the line, extended
-/// along its course onto it.
+/// along its course onto it. An end that turns short of its line runs on past it (`spans`).
 ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<EndLine>& start,
                              const std::optional<EndLine>& end, Vec2 start_anchor, Vec2 end_anchor,
-                             double road_width);
+                             double road_width, EndSpans spans = {});
 
 }  // namespace corsa::ngii::detail

@@ -685,3 +685,58 @@ TEST_CASE("a road end bent onto a skewed line over sparse vertices turns over it
   }
   CHECK(found);
 }
+
+TEST_CASE(
+    "a one-lane road of two metres whose turn onto a skewed line is cut short runs on past it",
+    "[ngii][mouths]") {
+  // A lane 1.8 m wide, surveyed by its two ends 2.25 m apart, comes in 37 degrees off the
+  // course of the two-lane road D and ends on D's start line, where D's right lane F starts
+  // 0.7 m wide and widens: Sangam's road 365 before road 366. It can turn only 28 degrees onto
+  // the line before its lane would fold, which leaves a triangle up to 0.14 m deep short of the
+  // line at one corner; it now runs on 9 cm along its end heading past the line. Without that,
+  // the road built here ended 1.37 m of its end edge away from pavement (it kept its own
+  // course: the curve to a target on the line itself was not kept); with it, no gap.
+  Builder b;
+  const double a = 37.0 * M_PI / 180.0;
+  const double length = 2.25, half = 0.9, f_width = 0.7;
+  const double fy = -1.75 - 0.5 * f_width;
+  const double ex = 30.0 - length * std::cos(a), ey = fy + length * std::sin(a);
+  b.node("D0", 30.0, 0.0);
+  b.node("D1", 60.0, 0.0);
+  b.node("F0", 30.0, fy);
+  b.node("F1", 60.0, -3.5);
+  b.node("E0", ex, ey);
+  b.link("A2TEST00000D", "6", 1, "D0", "D1", "A2TEST00000F", "");
+  b.link_through("A2TEST00000F", 2, "F0", "F1", {{30.0, fy}, {50.0, -3.5}, {60.0, -3.5}}, "",
+                 "A2TEST00000D");
+  b.link_through("A2TEST00000E", 1, "E0", "F0", {{ex, ey}, {30.0, fy}});
+  b.mark("B2DL", 30.0, 60.0, 1.75, "A2TEST00000D", "");
+  b.mark("B2DF", 30.0, 60.0, -1.75, "A2TEST00000F", "A2TEST00000D");
+  b.layers.marks.push_back(corsa::ngii::SurfaceMark{
+      .id = "B2FR",
+      .type = "211",
+      .kind = "503",
+      .right_link = "",
+      .left_link = "A2TEST00000F",
+      .points = {b.at(30.0, -1.75 - f_width), b.at(50.0, -5.25), b.at(60.0, -5.25)},
+      .record = static_cast<int64_t>(b.layers.marks.size())});
+  // The marks either side of the short lane give its width.
+  const double nx = std::sin(a) * half, ny = std::cos(a) * half;  // to its left
+  const double ux = std::cos(a), uy = -std::sin(a);               // along it
+  for (const double side : {1.0, -1.0}) {
+    b.layers.marks.push_back(corsa::ngii::SurfaceMark{
+        .id = side > 0.0 ? "B2EL" : "B2ER",
+        .type = "211",
+        .kind = "503",
+        .right_link = side > 0.0 ? "A2TEST00000E" : "",
+        .left_link = side > 0.0 ? "" : "A2TEST00000E",
+        .points = {b.at(ex - 0.5 * ux + side * nx, ey - 0.5 * uy + side * ny),
+                   b.at(30.0 + 0.5 * ux + side * nx, fy + 0.5 * uy + side * ny)},
+        .record = static_cast<int64_t>(b.layers.marks.size())});
+  }
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 2);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}

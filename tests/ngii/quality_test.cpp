@@ -330,9 +330,10 @@ TEST_CASE("lanes joined at junction mouths leave no unpaved ground beyond their 
   // 7 / 16 before short roads bent at one end turned evenly onto a skewed line, road ends were
   // cut against their joint's line, a road where one-lane roads merge took the end line of the
   // one in line with it, a road next to a path that keeps its own line took the path's, bends
-  // over sparse vertices started at their reach and ends bent up to 55 degrees off square.
-  // What remains: joins at a corner or a few centimetres apart, paths that could not turn onto
-  // the joined road's line.
+  // over sparse vertices started at their reach and ends bent up to 55 degrees off square; 1 / 5
+  // before a short road that turns short of its skewed end line ran on past it and a shoulder
+  // beside the next road's start looked past the lane's own road (Sangam's 365). What remains:
+  // paths that could not turn onto the joined road's line, paths narrower than the road they join.
   const auto& k = figures("kcity").mouth_gaps;
   INFO(k.worst);
   CHECK(k.ends > 1400);
@@ -340,5 +341,5 @@ TEST_CASE("lanes joined at junction mouths leave no unpaved ground beyond their 
   const auto& s = figures("seoul_sangam_testbed").mouth_gaps;
   INFO(s.worst);
   CHECK(s.ends > 3200);
-  CHECK(s.over <= 5);
+  CHECK(s.over <= 4);
 }
