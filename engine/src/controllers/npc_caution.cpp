@@ -190,12 +190,16 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
     if (j == index || !other.present) {
       continue;
     }
+    // The box first (most of the grid's entities are in the neighbouring lanes, which it
+    // rejects): its fields lie together after `present`, the reference point's apart.
+    double least = 0.0;
+    if (!may_reach(frame, other, rear, front + reach, half, least)) {
+      continue;
+    }
     const double dx = other.x - me.state.pose.x;
     const double dy = other.y - me.state.pose.y;
     const double far = front + reach + other.length + 10.0;
-    double least = 0.0;
-    if (dx * dx + dy * dy > far * far ||
-        !may_reach(frame, other, rear, front + reach, half, least)) {
+    if (dx * dx + dy * dy > far * far) {
       continue;
     }
     // The exact test only for a box that can be nearer than the nearest so far (of an equal gap
