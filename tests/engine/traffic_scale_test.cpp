@@ -11,8 +11,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -524,16 +526,76 @@ TEST_CASE(
   detail::FollowView view;
   view.build(state, true);
   std::vector<uint32_t> near;
+  const double any = std::numeric_limits<double>::infinity();
   const detail::Hazard hazard =
-      detail::corridor_hazard(state.world.entities[0], 0, view, 20.0, near);
+      detail::corridor_hazard(state.world.entities[0], 0, view, 20.0, any, near);
   CHECK(hazard.gap == Approx(14.35));
   // Asked farther, the box at 14.35 m is still the nearest.
-  CHECK(detail::corridor_hazard(state.world.entities[0], 0, view, 60.0, near).gap == Approx(14.35));
+  CHECK(detail::corridor_hazard(state.world.entities[0], 0, view, 60.0, any, near).gap ==
+        Approx(14.35));
+  // Gaps below 14.4 m wanted: the same; below 14.3 m: none of the two is.
+  CHECK(detail::corridor_hazard(state.world.entities[0], 0, view, 60.0, 14.4, near).gap ==
+        Approx(14.35));
+  CHECK_FALSE(detail::corridor_hazard(state.world.entities[0], 0, view, 60.0, 14.3, near).gap <
+              14.3);
   // Without that box the bus is the nearest, and beyond a corridor of 20 m there is nothing.
   state.world.entities[2].state.placed = false;
   view.build(state, true);
-  CHECK(detail::corridor_hazard(state.world.entities[0], 0, view, 60.0, near).gap == Approx(25.1));
-  CHECK(std::isinf(detail::corridor_hazard(state.world.entities[0], 0, view, 20.0, near).gap));
+  CHECK(detail::corridor_hazard(state.world.entities[0], 0, view, 60.0, any, near).gap ==
+        Approx(25.1));
+  CHECK(std::isinf(detail::corridor_hazard(state.world.entities[0], 0, view, 20.0, any, near).gap));
+}
+
+TEST_CASE(
+    "A corridor asked only for gaps below a bound finds the same nearest box below it, to the bit",
+    "[engine][traffic]") {
+  namespace detail = corsa::engine::detail;
+  const corsa::xosc::Scenario scenario;
+  Diagnostics diagnostics;
+  detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
+  std::mt19937 random(21);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  // Cars, walkers and trucks around a few hundred metres from the origin, many of them in lanes
+  // ahead of one another along the generated cars' headings, some across: the exact tests then
+  // see boxes that pass the bounding test at every distance.
+  for (int i = 0; i < 400; ++i) {
+    detail::Entity entity;
+    entity.state.placed = true;
+    const bool in_line = i % 3 != 0;
+    const double along = 60.0 * unit(random);
+    entity.state.pose.x = 300.0 + (in_line ? along : 60.0 * unit(random));
+    entity.state.pose.y =
+        -200.0 + (in_line ? 0.8 * (unit(random) - 0.5) + 3.5 * (i % 2) : 60.0 * unit(random));
+    entity.state.pose.h = in_line ? 0.05 * (unit(random) - 0.5) : 6.3 * unit(random);
+    const double length = i % 7 == 0 ? 12.0 : (i % 5 == 0 ? 0.5 : 4.5);
+    const double width = i % 5 == 0 && i % 7 != 0 ? 0.6 : 1.9;
+    entity.info.box = {1.4 * unit(random), 0.0, 0.75, length, width, 1.5};
+    state.world.entities.push_back(std::move(entity));
+    if (i % 4 == 0) {
+      state.traffic.lifetimes[static_cast<uint32_t>(i)];
+    }
+  }
+  detail::FollowView view;
+  view.build(state, true);
+  std::vector<uint32_t> near;
+  const double any = std::numeric_limits<double>::infinity();
+  int found = 0;
+  for (uint32_t i = 0; i < state.world.entities.size(); i += 4) {
+    const detail::Entity& me = state.world.entities[i];
+    const detail::Hazard all = detail::corridor_hazard(me, i, view, 40.0, any, near);
+    found += std::isfinite(all.gap) ? 1 : 0;
+    for (const double wanted : {-1.0, 0.0, all.gap, std::nextafter(all.gap, any), all.gap + 0.005,
+                                all.gap + 1.0, 5.0, 20.0}) {
+      const detail::Hazard some = detail::corridor_hazard(me, i, view, 40.0, wanted, near);
+      if (all.gap < wanted) {
+        CHECK(std::bit_cast<uint64_t>(some.gap) == std::bit_cast<uint64_t>(all.gap));
+        CHECK(std::bit_cast<uint64_t>(some.speed) == std::bit_cast<uint64_t>(all.speed));
+      } else {
+        CHECK_FALSE(some.gap < wanted);
+      }
+    }
+  }
+  CHECK(found > 40);
 }
 
 TEST_CASE("The contacts of many boxes of every size and heading are the pairs a test of all finds",

@@ -364,7 +364,7 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
     // corridor then covers a few cars' lengths instead of up to a hundred metres.
     const double reach = std::max(15.0, 3.0 * v + 10.0);
     const double within = leader.gap < reach ? std::max(0.0, leader.gap + 1.0) : reach;
-    const Hazard hazard = corridor_hazard(entity, index, view, within, near);
+    const Hazard hazard = corridor_hazard(entity, index, view, within, leader.gap, near);
     if (hazard.gap < leader.gap) {
       leader = {hazard.gap, hazard.speed};
     }

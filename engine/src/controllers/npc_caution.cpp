@@ -74,7 +74,12 @@ bool extent_in_band(const LocalFrame& frame, const OrientedBox& box, double half
     const double bx = px[(k + 1) % 4], by = py[(k + 1) % 4];
     double t0 = 0.0, t1 = 1.0;
     const double dy = by - ay;
-    if (std::abs(dy) < 1e-12) {
+    if (std::abs(ay) <= half && std::abs(by) <= half) {
+      // Both ends in the band (the usual case: a box ahead in the lane): the clipping below
+      // would keep the whole edge, t0 = +0 and t1 = 1 to the bit (with -half <= ay, by <= half
+      // the rounded quotients are ta <= 0 and tb >= 1, since rounding is monotonic and
+      // (by - ay) / dy rounds to 1), without its two divisions.
+    } else if (std::abs(dy) < 1e-12) {
       if (std::abs(ay) > half) {
         continue;
       }
@@ -140,8 +145,11 @@ void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0, 
 // Whether the box of `other` may reach into [x0, x1] x [-half, half] of `frame`: its bounding
 // rectangle in the frame's axes overlaps that rectangle. Rejects most of a grid query's entities
 // (those of the neighbouring lanes too) before the exact test.
+// `least` is then a bound below the least x of the box in the frame, as extent_in_band computes
+// it: its bounding rectangle's, less kSlack and a margin for the rounding of coordinates far from
+// the origin (the corners' coordinates are rounded near their magnitude).
 bool may_reach(const LocalFrame& frame, const FollowTarget& other, double x0, double x1,
-               double half) {
+               double half, double& least) {
   const OrientedBox& box = other.shape;
   double x = 0.0, y = 0.0;
   frame.to_local(box.cx, box.cy, x, y);
@@ -150,7 +158,15 @@ bool may_reach(const LocalFrame& frame, const FollowTarget& other, double x0, do
   const double s = std::abs(box.sin_h * frame.c - box.cos_h * frame.s);
   const double along = box.half_length * c + box.half_width * s + kSlack;
   const double across = box.half_length * s + box.half_width * c + kSlack;
+  least = x - along -
+          1e-9 * (std::abs(frame.x) + std::abs(frame.y) + std::abs(box.cx) + std::abs(box.cy));
   return x + along >= x0 && x - along <= x1 && std::abs(y) - across <= half;
+}
+
+bool may_reach(const LocalFrame& frame, const FollowTarget& other, double x0, double x1,
+               double half) {
+  double least = 0.0;
+  return may_reach(frame, other, x0, x1, half, least);
 }
 
 }  // namespace
@@ -160,7 +176,7 @@ bool is_generated(const SimState& state, uint32_t index) {
 }
 
 Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view, double reach,
-                       std::vector<uint32_t>& near) {
+                       double wanted, std::vector<uint32_t>& near) {
   const LocalFrame frame = frame_at(me, index, view);
   const double front = me.info.box.center_x + 0.5 * me.info.box.length;
   const double rear = me.info.box.center_x - 0.5 * me.info.box.length;
@@ -174,10 +190,22 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
     if (j == index || !other.present) {
       continue;
     }
+    // The box first (most of the grid's entities are in the neighbouring lanes, which it
+    // rejects): its fields lie together after `present`, the reference point's apart.
+    double least = 0.0;
+    if (!may_reach(frame, other, rear, front + reach, half, least)) {
+      continue;
+    }
     const double dx = other.x - me.state.pose.x;
     const double dy = other.y - me.state.pose.y;
     const double far = front + reach + other.length + 10.0;
-    if (dx * dx + dy * dy > far * far || !may_reach(frame, other, rear, front + reach, half)) {
+    if (dx * dx + dy * dy > far * far) {
+      continue;
+    }
+    // The exact test only for a box that can be nearer than the nearest so far (of an equal gap
+    // its index may decide) and nearer than `wanted`: its gap is at least least - front.
+    const double bound = least - front;
+    if (bound >= wanted || bound > hazard.gap) {
       continue;
     }
     double x_min = 0.0, x_max = 0.0;

@@ -36,10 +36,11 @@ struct Hazard {
 };
 
 /// The nearest entity of `view` whose box reaches into the corridor ahead of vehicle `me`
-/// (entity `index`) within `reach` metres of its front; of equal gaps the lowest index. `near` is
-/// scratch.
+/// (entity `index`) within `reach` metres of its front; of equal gaps the lowest index. Only a
+/// gap below `wanted` is looked for: when the nearest's gap is not below it, the result is none
+/// (an infinite gap) or another gap not below it. `near` is scratch.
 Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view, double reach,
-                       std::vector<uint32_t>& near);
+                       double wanted, std::vector<uint32_t>& near);
 
 /// The speed (m/s) vehicle `me` (entity `index`) must at least drive to stay ahead of a faster
 /// scenario vehicle of `view` closing in from behind in its corridor; 0 when there is none.
