@@ -13,12 +13,17 @@
 // FollowTrajectoryAction moves its actor along the path in that mode as in `position` (the mode
 // only retimes a timed polyline there: constant acceleration from the current speed over each
 // segment, which Corsa does not emulate; it keeps the vertices' times).
-// A negative speed when the action starts drives the path in reverse gear (the vehicle faces
-// against the path); a speed whose sign differs from that drives back toward the path's start
-// (esmini's reading). The action ends at the path's end (or, driven back, its start), timed in
-// the first step past its last time (§6.7.3: the actor is at each vertex at its time, so a
-// repeated last vertex with a later time is a wait there); that step goes on past the end for
-// its rest, and the actor's lane following takes over at the path's own end speed.
+// The direction the actor faces along the path, set when it starts moving: the heading the
+// vertex it starts from states, if it states one (1.3 §6.9: a trajectory of six dimensions gives
+// the entity's orientation too; facing within 90 degrees of the path's direction faces along it,
+// else against it); without one, along the path on a timed path, and on an untimed one along it
+// at a speed of zero or more, against it (reverse gear) at a negative speed (esmini's reading).
+// A positive speed drives the way the actor faces, a negative one backwards: facing against the
+// path, a positive speed drives toward the path's start. The action ends at the end the actor
+// drives to, timed in the first step past its last time (§6.7.3: the actor is at each vertex at
+// its time, so a repeated last vertex with a later time is a wait there); that step goes on past
+// the end for its rest, and the actor's lane following takes over at the path's own end speed.
+// A timed path driven facing against it is driven in reverse gear: the speed is negative.
 
 #include <algorithm>
 #include <cmath>
@@ -37,8 +42,11 @@ class FollowTrajectoryInstance final : public ActionInstance {
   explicit FollowTrajectoryInstance(const xosc::FollowTrajectoryAction& action)
       : action_(action), timing_(action.time_reference.timing) {}
 
+  // A Timing over a path without times leaves the speed to the longitudinal actions, so such an
+  // action takes only the lateral domain (the warning comes when it starts).
   uint8_t domains() const override {
-    return timing_ ? kDomainLongitudinal | kDomainLateral : kDomainLateral;
+    return timing_ && states_times(action_.trajectory) ? kDomainLongitudinal | kDomainLateral
+                                                       : kDomainLateral;
   }
 
   void start(ActionContext& context) override {
@@ -64,7 +72,12 @@ class FollowTrajectoryInstance final : public ActionInstance {
     const double dt = context.state.time.dt();
     if (first_step_) {
       first_step_ = false;
-      direction_ = entity.speed_command < 0.0 ? -1.0 : 1.0;
+      const std::optional<double> stated = path_.stated_heading_at(s_);
+      if (stated) {
+        facing_ = std::cos(*stated - path_.at(s_).h) < 0.0 ? -1.0 : 1.0;
+      } else {
+        facing_ = !timing_ && entity.speed_command < 0.0 ? -1.0 : 1.0;
+      }
     }
     // The step that passes the path's end goes on past it along the end's heading for the rest
     // of the step, and a timed path ends in the first step after its last time, as esmini reads
@@ -90,22 +103,21 @@ class FollowTrajectoryInstance final : public ActionInstance {
         ended_ = late > 1e-9;
         beyond = std::max(0.0, late * end_speed());
       }
-      entity.speed_command = (s_next + beyond - s_) / dt;
+      entity.speed_command = facing_ * (s_next + beyond - s_) / dt;
     } else {
-      // The sign of the speed when the action starts sets the direction of travel along the
-      // path (reverse gear, facing against the path, if negative); a speed of the other sign
-      // later drives back along the path toward its start, facing as before, as esmini reads it
-      // (the standard says nothing of a negative speed along a path). A step travels its end
-      // speed times dt, as a step on a lane does.
-      s_next = s_ + direction_ * entity.speed_command * dt;
+      // A positive speed drives the way the actor faces (toward the path's start when it faces
+      // against the path), a negative one backwards (the standard says nothing of the direction
+      // of travel along a path nor of a negative speed on it; esmini's reading). A step travels
+      // its end speed times dt, as a step on a lane does.
+      s_next = s_ + facing_ * entity.speed_command * dt;
       beyond = std::max(0.0, s_next - path_.length());
-      const bool backward = direction_ * entity.speed_command < 0.0;
-      ended_ = backward ? s_next <= 1e-9 : s_next >= path_.length() - 1e-9;
+      const bool toward_start = facing_ * entity.speed_command < 0.0;
+      ended_ = toward_start ? s_next <= 1e-9 : s_next >= path_.length() - 1e-9;
     }
     s_next = std::clamp(s_next, 0.0, path_.length());
-    const double facing = direction_ < 0.0 ? std::numbers::pi : 0.0;
+    const double turn = facing_ < 0.0 ? std::numbers::pi : 0.0;
     const PathPoint p = continued(s_next + beyond);
-    entity.pose_command = Pose{p.x, p.y, p.z, wrap_angle(p.h + facing), 0.0, 0.0};
+    entity.pose_command = Pose{p.x, p.y, p.z, wrap_angle(p.h + turn), 0.0, 0.0};
     s_ = s_next;
   }
 
@@ -136,11 +148,10 @@ class FollowTrajectoryInstance final : public ActionInstance {
   double start_time_ = 0.0;  ///< s
   double time_shift_ = 0.0;  ///< s of trajectory time skipped by initialDistanceOffset
   bool ended_ = false;
-  bool first_step_ = true;  ///< direction_ is set in the first step, from the speed then
-  /// +1 if the speed was positive or zero when the action started (a positive
-  /// speed drives toward the path's end), -1 if negative (a negative speed drives toward the
-  /// end, in reverse gear, facing against the path).
-  double direction_ = 1.0;
+  bool first_step_ = true;  ///< facing_ is set in the first step
+  /// +1 if the actor faces along the path (a positive speed drives toward its end), -1 if it
+  /// faces against it (a positive speed drives toward its start).
+  double facing_ = 1.0;
 };
 
 }  // namespace
