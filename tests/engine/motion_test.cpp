@@ -471,6 +471,9 @@ TEST_CASE("Trajectory vertices stating a heading set the way the actor faces and
   CHECK(run.at(1.0, "TimedAgainst").pose.h == Approx(std::numbers::pi).margin(1e-9));
   CHECK(run.at(1.0, "TimedAgainst").speed == Approx(-2.0).margin(1e-9));
   // A Timing over vertices without times leaves the speed to the speed actions, which go on.
+  CHECK(all_text(run.diagnostics())
+            .find("'timing_no_times' has fewer than two times; it is "
+                  "followed at the speed the longitudinal actions give") != std::string::npos);
   CHECK(run.at(1.0, "TimingNoTimes").speed == Approx(3.0).margin(1e-9));
   CHECK(run.at(1.0, "TimingNoTimes").pose.x == Approx(2.55).margin(1e-9));
 }

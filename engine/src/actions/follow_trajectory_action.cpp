@@ -56,8 +56,8 @@ class FollowTrajectoryInstance final : public ActionInstance {
           "follow-trajectory-untimed",
           action_.source.warning("FollowTrajectoryAction has a Timing but trajectory '" +
                                  action_.trajectory.name +
-                                 "' has fewer than two times; it is followed at the current "
-                                 "speed"));
+                                 "' has fewer than two times; it is followed at the speed the "
+                                 "longitudinal actions give"));
       timing_.reset();
     }
     s_ = std::clamp(action_.initial_distance_offset.value_or(0.0), 0.0, path_.length());
