@@ -470,6 +470,13 @@ TEST_CASE("Trajectory vertices stating a heading set the way the actor faces and
   CHECK(run.at(1.0, "TimedAgainst").pose.x == Approx(2.0).margin(1e-9));
   CHECK(run.at(1.0, "TimedAgainst").pose.h == Approx(std::numbers::pi).margin(1e-9));
   CHECK(run.at(1.0, "TimedAgainst").speed == Approx(-2.0).margin(1e-9));
+  // A timed path that doubles back, every vertex stating h = pi: out in reverse, back forwards.
+  CHECK(run.at(2.5, "TimedBack").pose.x == Approx(5.0).margin(1e-9));
+  CHECK(run.at(2.5, "TimedBack").speed == Approx(-2.0).margin(1e-9));
+  CHECK(run.at(2.5, "TimedBack").pose.h == Approx(std::numbers::pi).margin(1e-9));
+  CHECK(run.at(7.5, "TimedBack").pose.x == Approx(5.0).margin(1e-9));
+  CHECK(run.at(7.5, "TimedBack").speed == Approx(2.0).margin(1e-9));
+  CHECK(run.at(7.5, "TimedBack").pose.h == Approx(std::numbers::pi).margin(1e-9));
   // A Timing over vertices without times leaves the speed to the speed actions, which go on.
   CHECK(all_text(run.diagnostics())
             .find("'timing_no_times' has fewer than two times; it is "

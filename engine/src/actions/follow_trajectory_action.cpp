@@ -23,7 +23,10 @@
 // drives to, timed in the first step past its last time (§6.7.3: the actor is at each vertex at
 // its time, so a repeated last vertex with a later time is a wait there); that step goes on past
 // the end for its rest, and the actor's lane following takes over at the path's own end speed.
-// A timed path driven facing against it is driven in reverse gear: the speed is negative.
+// A timed path driven facing against it is driven in reverse gear: the speed is negative. Further
+// on, each vertex stating a heading turns the actor to it: on a timed path from that vertex on (a
+// path that doubles back is driven forward after reversing), on an untimed one the direction of
+// travel stays as it started and the stated headings turn the actor only.
 
 #include <algorithm>
 #include <cmath>
@@ -73,11 +76,7 @@ class FollowTrajectoryInstance final : public ActionInstance {
     if (first_step_) {
       first_step_ = false;
       const std::optional<double> stated = path_.stated_heading_at(s_);
-      if (stated) {
-        facing_ = std::cos(*stated - path_.at(s_).h) < 0.0 ? -1.0 : 1.0;
-      } else {
-        facing_ = !timing_ && entity.speed_command < 0.0 ? -1.0 : 1.0;
-      }
+      facing_ = stated ? stated_facing(s_) : (!timing_ && entity.speed_command < 0.0 ? -1.0 : 1.0);
     }
     // The step that passes the path's end goes on past it along the end's heading for the rest
     // of the step, and a timed path ends in the first step after its last time, as esmini reads
@@ -86,6 +85,7 @@ class FollowTrajectoryInstance final : public ActionInstance {
     // step left on it.
     double beyond = 0.0;  // m past the path's end in this step
     double s_next = 0.0;
+    double face = facing_;  // the way the actor faces at the step's end
     if (timing_) {
       double t = context.state.time.time(context.state.tick + 1);
       if (timing_->domain_absolute_relative == xosc::ReferenceContext::kRelative) {
@@ -103,7 +103,10 @@ class FollowTrajectoryInstance final : public ActionInstance {
         ended_ = late > 1e-9;
         beyond = std::max(0.0, late * end_speed());
       }
-      entity.speed_command = facing_ * (s_next + beyond - s_) / dt;
+      // On a timed path each vertex stating a heading turns the actor to it from there on (a
+      // path that doubles back is driven forward again after reversing, as esmini does).
+      face = path_.stated_heading_at(s_next) ? stated_facing(s_next) : facing_;
+      entity.speed_command = face * (s_next + beyond - s_) / dt;
     } else {
       // A positive speed drives the way the actor faces (toward the path's start when it faces
       // against the path), a negative one backwards (the standard says nothing of the direction
@@ -113,9 +116,12 @@ class FollowTrajectoryInstance final : public ActionInstance {
       beyond = std::max(0.0, s_next - path_.length());
       const bool toward_start = facing_ * entity.speed_command < 0.0;
       ended_ = toward_start ? s_next <= 1e-9 : s_next >= path_.length() - 1e-9;
+      // The direction of travel stays as it started; the stated headings turn the actor only.
+      const double clamped = std::clamp(s_next, 0.0, path_.length());
+      face = path_.stated_heading_at(clamped) ? stated_facing(clamped) : facing_;
     }
     s_next = std::clamp(s_next, 0.0, path_.length());
-    const double turn = facing_ < 0.0 ? std::numbers::pi : 0.0;
+    const double turn = face < 0.0 ? std::numbers::pi : 0.0;
     const PathPoint p = continued(s_next + beyond);
     entity.pose_command = Pose{p.x, p.y, p.z, wrap_angle(p.h + turn), 0.0, 0.0};
     s_ = s_next;
@@ -124,6 +130,12 @@ class FollowTrajectoryInstance final : public ActionInstance {
   bool finished() const override { return ended_; }
 
  private:
+  // +1 if the heading stated at s (there must be one) is within 90 degrees of the path's
+  // direction there, -1 if it faces against the path.
+  double stated_facing(double s) const {
+    return std::cos(*path_.stated_heading_at(s) - path_.at(s).h) < 0.0 ? -1.0 : 1.0;
+  }
+
   // m/s along the path at its last time: the last millisecond's (or whole path's) mean speed.
   double end_speed() const {
     const double h = std::min(1e-3, path_.last_time() - path_.first_time());
