@@ -146,14 +146,16 @@ class Assembler {
     };
     match_path_ends(plan_, index_, joined_end, widths_.lanes);
     join_ends(plan_, end_of, JoinedEnds::kJunctionPaths, end_lines);
+    std::vector<RoadEndLines> path_lines(total);
     for (size_t r = 0; r < total; ++r) {
       if (!plan_.roads[r].removed && path(r)) {
-        build_joined(r, end_lines[r], own_lines[r], built[r]);
+        path_lines[r] = build_joined(r, end_lines[r], own_lines[r], built[r]);
         if (options_.progress) {
           options_.progress(0.1 + 0.85 * static_cast<double>(++done) / static_cast<double>(total));
         }
       }
     }
+    ordinary_ends_on_paths(end_lines, path_lines, end_of, used_lines, built);
     for (size_t r = 0; r < total; ++r) {
       if (plan_.roads[r].removed) {
         continue;
@@ -231,11 +233,91 @@ class Assembler {
     return own;
   }
 
+  /// Where a junction path keeps its own line at an end though it was given the joined road's
+  /// (`offered`, `used`: build_joined could not turn it onto that line within its length), the
+  /// ordinary road on the other side of the joint takes the path's line instead, bent to it at
+  /// its own end: the path and the road then meet edge to edge, where the path's square end
+  /// left a wedge on one side of the joint (K-City's start grid: a path 14 degrees off the
+  /// road it enters, 2.3 m of the road's start open). Only where the road has one lane there
+  /// beside the others and nothing but the path meets it there, and kept where the road neither
+  /// folds, gains a kink nor moves its lane's end off its link.
+  void ordinary_ends_on_paths(const std::vector<RoadEndLines>& offered,
+                              const std::vector<RoadEndLines>& used, const BuiltEndOf& end_of,
+                              std::vector<RoadEndLines>& lines,
+                              std::vector<std::optional<BuiltRoad>>& built) const {
+    constexpr double kRoadEndError = 0.1;  // m: farthest a lane end may move off its link's
+    const auto same = [](const std::optional<EndLine>& a, const std::optional<EndLine>& b) {
+      return a.has_value() == b.has_value() &&
+             (!a || (norm(a->point - b->point) < 1e-9 && norm(a->across - b->across) < 1e-9));
+    };
+    for (size_t r = 0; r < plan_.roads.size(); ++r) {
+      const RoadPlan& path = plan_.roads[r];
+      if (path.removed || path.junction < 0 || path.absorbed || path.lanes.size() != 1) {
+        continue;
+      }
+      for (const bool at_end : {false, true}) {
+        const std::optional<EndLine>& given = at_end ? offered[r].end : offered[r].start;
+        if (same(given, at_end ? used[r].end : used[r].start)) {
+          continue;  // on the joined line, or never given one
+        }
+        const int key = at_end ? path.lanes[0].end_node : path.lanes[0].start_node;
+        if (key < 0) {
+          continue;
+        }
+        const auto& across = at_end ? index_.starting[static_cast<size_t>(key)]
+                                    : index_.ending[static_cast<size_t>(key)];
+        const auto& beside = at_end ? index_.ending[static_cast<size_t>(key)]
+                                    : index_.starting[static_cast<size_t>(key)];
+        if (across.size() != 1 || beside.size() != 1 ||
+            beside.front().road != static_cast<int>(r)) {
+          continue;
+        }
+        const size_t o = static_cast<size_t>(across.front().road);
+        const RoadPlan& road = plan_.roads[o];
+        // The road's end at the joint: its start after the path's end, its end before its start.
+        const bool road_start = at_end;
+        if (road.removed || (road.junction >= 0 && !road.absorbed) || !built[o] ||
+            effective_end(road, static_cast<size_t>(across.front().lane), road_start) !=
+                LaneEnd::kBeside ||
+            !one_lane_beside(road, road_start)) {
+          continue;
+        }
+        const auto end = end_of(r, at_end);
+        if (!end) {
+          continue;
+        }
+        RoadEndLines moved = lines[o];
+        (road_start ? moved.start : moved.end) =
+            EndLine{end->point, Vec2{-std::sin(end->heading), std::cos(end->heading)}};
+        (road_start ? moved.start_shared : moved.end_shared) = true;
+        BuiltRoad again = build_road(road, network_, origin_, widths_.lanes[o], moved, options_,
+                                     joint_borders_[o]);
+        const BuiltRoad& before = *built[o];
+        if (!again.folds && again.kinks <= before.kinks &&
+            again.end_error <= std::max(kRoadEndError, before.end_error) &&
+            (!fitted_road_folds(again.road) || fitted_road_folds(before.road))) {
+          built[o] = std::move(again);
+          lines[o] = moved;
+        }
+      }
+    }
+  }
+
+  /// Whether exactly one lane of `road` starts (`at_start`) or ends beside the others there.
+  static bool one_lane_beside(const RoadPlan& road, bool at_start) {
+    size_t count = 0;
+    for (size_t k = 0; k < road.lanes.size(); ++k) {
+      count += effective_end(road, k, at_start) == LaneEnd::kBeside;
+    }
+    return count == 1;
+  }
+
   /// Ordinary lanes joined end to start meet edge to edge (lane_joints.h): each ordinary road
   /// whose borders move at an end is built again on the lines it was built on (`lines`), and
   /// kept where it neither folds nor has more kinks than before.
   void meet_joined_lanes(const std::vector<RoadEndLines>& lines,
-                         std::vector<std::optional<BuiltRoad>>& built) const {
+                         std::vector<std::optional<BuiltRoad>>& built) {
+    joint_borders_.assign(plan_.roads.size(), EndBorders{});
     const std::vector<EndBorders> targets =
         joint_borders(plan_, index_, [&](size_t r) -> const xodr::Road* {
           const RoadPlan& road = plan_.roads[r];
@@ -250,6 +332,7 @@ class Assembler {
                                    options_, targets[r]);
       if (!again.folds && again.kinks <= built[r]->kinks && !fitted_road_folds(again.road)) {
         built[r] = std::move(again);
+        joint_borders_[r] = targets[r];
       }
     }
   }
@@ -502,6 +585,9 @@ class Assembler {
   Diagnostics& diagnostics_;
   LaneIndex index_;
   PlanWidths widths_;
+  /// Per road: where its borders were moved at its ends (meet_joined_lanes), kept for a
+  /// road built again later.
+  std::vector<EndBorders> joint_borders_;
   Assembly out_;
   std::vector<int> road_slot_;
   std::vector<std::string> junction_id_;

@@ -45,7 +45,8 @@ enum class JoinedEnds {
   /// Ordinary roads with one lane starting beside the others (any other lanes split off it at
   /// zero width), at their start where no line is shared and the road before them has one
   /// lane ending beside the others (any others merge into it at zero width): one lane on
-  /// either side of the joint.
+  /// either side of the joint. Where several such roads merge into it, the one whose end
+  /// heading is within 10 degrees of its start and closest to it.
   kOrdinaryStarts,
 };
 

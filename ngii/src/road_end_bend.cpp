@@ -12,7 +12,10 @@ namespace corsa::ngii::detail {
 namespace {
 
 constexpr double kEndLineTolerance = 0.25;  // m: lane ends farther from one line: no line
-constexpr double kMaxSkew = 50.0 * M_PI / 180.0;
+/// Skews past this are left alone (the end square to the road's course). A junction path
+/// leaving a lane whose end line its course crosses 51 degrees off square (K-City's path 460
+/// after road 322) started square with a wedge of 3 m beside it; 55 degrees bend it.
+constexpr double kMaxSkew = 55.0 * M_PI / 180.0;
 constexpr double kMinSkew = 0.2 * M_PI / 180.0;
 /// m: how far the outermost lane's corner may lie off a line it is left skewed to.
 constexpr double kSquareCorner = 0.01;
@@ -132,19 +135,21 @@ std::vector<Point2> hermite(Vec2 a, Vec2 ta, Vec2 b, Vec2 tb) {
 
 /// Where on the end line through `target` a turn from `start` (heading `heading`) ends when it
 /// turns evenly, like an arc: the chord halves the turn. An arc spreads the turn over the whole
-/// reach (curvature turn / reach), where a curve back to the line of travel (an S) turns up to
-/// four times as tightly at its end and folds the lanes on its inside. The laneOffset takes up
-/// the arc's sideways drift (§9.3). `target.point` when the chord does not meet the line ahead,
-/// and for bends shorter than kMinEvenTurn (a road of a few metres: its plan view could not
-/// follow the drift within the fit tolerance, and its lanes' ends would move) unless it hardly
-/// turns (under kStraightTurn): a piece of a metre between two parallel skewed lines (a road
-/// cut where one lane ends short of the others' stop line) then runs straight from line to line,
-/// where a curve to the line of travel would swing by twice the skew and fold its lanes.
+/// reach (curvature turn / reach), where a curve back to the line of travel (an S) turns up to four
+/// times as tightly at its end and folds the lanes on its inside. The laneOffset takes up the arc's
+/// sideways drift (§9.3). `target.point` when the chord does not meet the line ahead (beyond 0.5 m;
+/// 5 cm where it hardly turns: a piece 0.4 m long between two parallel lines made an S of five
+/// records there and folded), and for bends shorter than kMinEvenTurn (a road of a few metres: its
+/// plan view could not follow the drift within the fit tolerance, and its lanes' ends would move)
+/// unless it hardly turns (under kStraightTurn): a piece of a metre between two parallel skewed
+/// lines (a road cut where one lane ends short of the others' stop line) then runs straight from
+/// line to line, where a curve to the line of travel would swing by twice the skew and fold its
+/// lanes. With `even` a short bend turns evenly too (bend_to_line: where its drift is small).
 constexpr double kMinEvenTurn = 4.0;    // m
 constexpr double kStraightTurn = 0.05;  // rad
-Vec2 even_turn_end(Vec2 start, Vec2 heading, const EndTarget& target) {
+Vec2 even_turn_end(Vec2 start, Vec2 heading, const EndTarget& target, bool even = false) {
   const double turn = std::atan2(cross(heading, target.square), dot(heading, target.square));
-  if (norm(target.point - start) < kMinEvenTurn && std::abs(turn) >= kStraightTurn) {
+  if (!even && norm(target.point - start) < kMinEvenTurn && std::abs(turn) >= kStraightTurn) {
     return target.point;
   }
   const double half = 0.5 * turn;
@@ -156,12 +161,14 @@ Vec2 even_turn_end(Vec2 start, Vec2 heading, const EndTarget& target) {
     return target.point;
   }
   const double along = cross(target.point - start, across) / denominator;
-  return along > 0.5 ? start + along * chord : target.point;
+  const double least = std::abs(turn) < kStraightTurn ? 0.05 : 0.5;  // m
+  return along > least ? start + along * chord : target.point;
 }
 
 /// Bends the end of `p` over its last `reach` metres: a cubic Hermite curve turning evenly to
 /// the end line, arriving square to it. Returns the new end heading.
-std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, double reach) {
+std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, double reach,
+                               bool even) {
   double walked = 0.0;
   size_t i = p.size() - 1;
   while (i > 0 && walked + norm(to_vec(p[i]) - to_vec(p[i - 1])) < reach) {
@@ -169,7 +176,30 @@ std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, 
     --i;
   }
   if (i + 1 >= p.size()) {
-    return std::nullopt;
+    // The last segment is longer than the reach (a short link surveyed by its two ends): the
+    // bend starts on it, `reach` before the end.
+    if (i == 0) {
+      return std::nullopt;
+    }
+    const Vec2 a = to_vec(p[i - 1]);
+    const Vec2 b = to_vec(p[i]);
+    const double f = 1.0 - reach / norm(b - a);
+    const Vec2 q = a + f * (b - a);
+    p.insert(p.begin() + static_cast<std::ptrdiff_t>(i), Point2{q.x, q.y});
+  }
+  // Sparse vertices (a link digitised with a few long segments): where the vertex the walk
+  // stops at lies less than half the reach from the end, the bend starts on the segment before
+  // it, at the reach. Turning over the last metre alone, the end of a lane 2 m wide turned right
+  // at radii under 2 m and its lane was narrowed there (the inside of the turn), leaving unpaved
+  // ground beside the joint.
+  if (i > 0 && walked < 0.5 * reach) {
+    const Vec2 a = to_vec(p[i - 1]);
+    const Vec2 b = to_vec(p[i]);
+    const double rest = reach - walked;
+    if (const double segment = norm(b - a); segment > rest) {
+      const Vec2 q = b + (rest / segment) * (a - b);
+      p.insert(p.begin() + static_cast<std::ptrdiff_t>(i), Point2{q.x, q.y});
+    }
   }
   const Vec2 start = to_vec(p[i]);
   size_t j = i;
@@ -180,7 +210,7 @@ std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, 
   heading = norm(heading) > 1e-9 ? (1.0 / norm(heading)) * heading : target.square;
   p.resize(i + 1);
   const std::vector<Point2> tail =
-      hermite(start, heading, even_turn_end(start, heading, target), target.square);
+      hermite(start, heading, even_turn_end(start, heading, target, even), target.square);
   p.insert(p.end(), tail.begin(), tail.end());
   return std::atan2(target.square.y, target.square.x);
 }
@@ -189,12 +219,45 @@ std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, 
 /// do not fold (their normals must not cross: turn rate * width well below 1); and the turn
 /// that fits into `room` metres.
 constexpr double kFoldMargin = 2.0;
+/// The margin of a short bend turning evenly at one end only (bend_to_line): width x turn rate
+/// stays under 1 / 1.5 along an even turn, where an S turns up to four times as tightly.
+constexpr double kShortFoldMargin = 1.5;
+constexpr double kShortDrift = 0.4;  // m
 double reach_for(double skew, double road_width) {
   return std::max(8.0, kFoldMargin * road_width * std::tan(std::abs(skew)));
 }
-double skew_within(double skew, double road_width, double room) {
-  const double most = std::atan(room / (kFoldMargin * std::max(road_width, 1e-3)));
+double skew_within(double skew, double road_width, double room, double margin) {
+  const double most = std::atan(room / (margin * std::max(road_width, 1e-3)));
   return std::copysign(std::min(std::abs(skew), most), skew);
+}
+
+/// Bends the end of `p` onto the end line turned by `skew` from its course (through `anchor`),
+/// within `room` metres; returns the new end heading. Where the other end is not bent
+/// (`alone`) and the bend is short (a road of two or three metres after a skewed stop line, a
+/// link surveyed by its two ends), it turns evenly over the room, like an arc, as far as
+/// kShortFoldMargin allows. The S back to the line of travel that a short bend makes otherwise
+/// turns up to four times as tightly at its end: Sangam's one-lane roads of 2.2-2.5 m after a
+/// stop line skewed by 18-21 degrees folded, their lanes narrowed to 1.5 m on the inside; as an
+/// arc within kFoldMargin they turned 2-3 degrees short, leaving gaps of up to 0.45 m along
+/// their lanes' start edges. Only while the arc's sideways drift (reach x tan(turn / 2), taken
+/// up by the laneOffset) stays within kShortDrift: beyond it the lane's end normal no longer
+/// meets its own link's end (Sangam's 2.25 m road 365 turning 35 degrees moved its lane end
+/// 0.39 m off its link).
+std::optional<double> bend_to_line(std::vector<Point2>& p, double skew, Vec2 anchor,
+                                   double road_width, double room, bool alone) {
+  bool short_even = false;
+  if (alone) {
+    const double turn = skew_within(skew, road_width, room, kShortFoldMargin);
+    const double reach = std::min(room, reach_for(turn, road_width));
+    short_even = reach * std::tan(0.5 * std::abs(turn)) <= kShortDrift;
+  }
+  const double turn =
+      skew_within(skew, road_width, room, short_even ? kShortFoldMargin : kFoldMargin);
+  const auto target = end_target(p, turn, anchor);
+  if (!target) {
+    return std::nullopt;
+  }
+  return bend_end(p, *target, std::min(room, reach_for(turn, road_width)), short_even);
 }
 
 /// The principal line of `points` (their mean and main direction, oriented first to last).
@@ -295,14 +358,11 @@ ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<En
   }
   // Both ends share the road; one alone may use most of it. A turn that does not fit is made
   // only as far as it can be without folding (the outer lanes then keep part of their gap).
-  const double room = (end_skew != 0.0 && start_skew != 0.0 ? 0.45 : 0.85) * length;
+  const bool alone = end_skew == 0.0 || start_skew == 0.0;
+  const double room = (alone ? 0.85 : 0.45) * length;
   if (end_skew != 0.0) {
-    const double skew = skew_within(end_skew, road_width, room);
-    const auto target = end_target(p, skew, end_anchor);
-    if (target) {
-      if (const auto heading = bend_end(p, *target, std::min(room, reach_for(skew, road_width)))) {
-        reference.end_heading = *heading;
-      }
+    if (const auto heading = bend_to_line(p, end_skew, end_anchor, road_width, room, alone)) {
+      reference.end_heading = *heading;
     }
   }
   if (end && end_skew == 0.0) {
@@ -314,13 +374,9 @@ ReferencePolyline align_ends(ReferencePolyline reference, const std::optional<En
     std::reverse(p.begin(), p.end());
   }
   if (start_skew != 0.0) {
-    const double skew = skew_within(start_skew, road_width, room);
     std::reverse(p.begin(), p.end());
-    const auto target = end_target(p, skew, start_anchor);
-    if (target) {
-      if (const auto heading = bend_end(p, *target, std::min(room, reach_for(skew, road_width)))) {
-        reference.start_heading = std::remainder(*heading + M_PI, 2.0 * M_PI);
-      }
+    if (const auto heading = bend_to_line(p, start_skew, start_anchor, road_width, room, alone)) {
+      reference.start_heading = std::remainder(*heading + M_PI, 2.0 * M_PI);
     }
     std::reverse(p.begin(), p.end());
   }

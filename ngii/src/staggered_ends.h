@@ -20,6 +20,8 @@ void trim_staggered_ends(NetworkPlan& plan);
 /// it, the other lanes are cut where they cross the line (its parallel through the short lane's
 /// end), and the cut-off parts become a road of their own. Every lane then starts and ends where
 /// its link does; the road ends meet in a direct junction where more than one road continues.
+/// The line is the one through the most lane ends of the joint, the roads on its other side
+/// included, where that one runs through two or more of the road's own.
 void trim_off_line_ends(NetworkPlan& plan);
 
 }  // namespace corsa::ngii::detail

@@ -46,6 +46,23 @@ TEST_CASE("Speed, relative speed, acceleration, traveled distance and stand-stil
   CHECK(started(run, "Stopped") == Approx(15.01));  // still for one second
 }
 
+TEST_CASE("TraveledDistanceCondition sums straight distances between steps, jumps left out",
+          "[engine][condition][motion]") {
+  // Corner drives lane -1 of a left arc, its centre on radius 11.75 m, at 10 m/s: 1 m along the
+  // lane per 0.1 s step, 0.999925 m in a straight line. 5 m along the lane at 0.5 s, 4.99962 m
+  // of straight steps: the 5 m condition holds from 0.6 s (esmini's odometer). Jumper stands
+  // and is teleported 10 m along its lane at 1 s: its 1 m condition never holds.
+  engine::SimulationOptions options;
+  options.dt = 0.1;
+  FixtureRun run(engine_fixture("condition_traveled_straight.xosc"), options);
+  run.run();
+  CHECK(run.at(0.5, "Corner").odometer == Approx(5.0).margin(1e-9));  // along the lane
+  CHECK(run.at(0.5, "Corner").road->s == Approx(5.0 * 10.0 / 11.75).margin(1e-6));
+  CHECK(started(run, "CornerFive") == Approx(0.6));
+  CHECK_FALSE(started(run, "JumperOne"));
+  CHECK(run.at(1.1, "Jumper").road->s == Approx(50.0).margin(1e-9));
+}
+
 TEST_CASE("Distance conditions between reference points, free space and boxes",
           "[engine][condition][distance]") {
   FixtureRun run(engine_fixture("condition_distances.xosc"));

@@ -485,6 +485,26 @@ TEST_CASE("Trajectory vertices stating a heading set the way the actor faces and
   CHECK(run.at(1.0, "TimingNoTimes").pose.x == Approx(2.55).margin(1e-9));
 }
 
+TEST_CASE("A path whose vertices state a heading says which way the car faces on it",
+          "[engine][trajectory]") {
+  // Both cars start at the end of a 20 m path along +x (initialDistanceOffset 20). Backs: the
+  // vertices face +x and the speed is -2 m/s, so it backs toward the start facing +x. Turned:
+  // the vertices face -x and the speed is +2 m/s, so it drives forward toward the start facing
+  // -x. Both reach the start at 10 s, where the action ends and, with no road, they stand.
+  engine::SimulationOptions options;
+  options.dt = 0.1;
+  FixtureRun run(engine_fixture("trajectory_first_vertex_heading.xosc"), options);
+  run.run();
+  CHECK(run.at(0.5, "Backs").pose.x == Approx(19.0).margin(1e-9));
+  CHECK(run.at(0.5, "Backs").pose.h == Approx(0.0).margin(1e-12));
+  CHECK(run.at(0.5, "Backs").speed == Approx(-2.0).margin(1e-12));
+  CHECK(run.at(0.5, "Turned").pose.x == Approx(19.0).margin(1e-9));
+  CHECK(run.at(0.5, "Turned").pose.h == Approx(std::numbers::pi).margin(1e-9));
+  CHECK(run.at(0.5, "Turned").speed == Approx(2.0).margin(1e-12));
+  CHECK(run.at(11.0, "Backs").pose.x == Approx(0.0).margin(1e-9));
+  CHECK(run.at(11.0, "Turned").pose.x == Approx(0.0).margin(1e-9));
+}
+
 TEST_CASE("ASAM TrailerConnect: the car reverses along the quarter circle facing forward",
           "[engine][asam][trajectory]") {
   FixtureRun run(asam("TrailerConnect.xosc"), with_duration(120.0));

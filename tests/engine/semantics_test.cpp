@@ -253,10 +253,12 @@ TEST_CASE("A time headway towards an entity behind holds for no rule, under eith
   }
 }
 
-TEST_CASE("A RelativeLanePosition without Orientation faces its lane's traffic, or esmini's ref",
+TEST_CASE("A RelativeLanePosition without Orientation faces its lane's traffic, or esmini's +s",
           "[engine][semantics][positions]") {
   // Ref stands on lane 1 facing +s (against that lane's traffic); Other is placed one lane
-  // further left (lane 2) and 10 m on, without Orientation.
+  // further left (lane 2) and 10 m on, without Orientation: lane 2's traffic (-s), or under
+  // esmini's reading the road's +s (here also the way Ref faces, as in esmini's
+  // left-hand-traffic_by_heading).
   SECTION("standard") {
     FixtureRun run(engine_fixture("semantics_relative_lane_heading.xosc"));
     run.run();
@@ -268,6 +270,111 @@ TEST_CASE("A RelativeLanePosition without Orientation faces its lane's traffic, 
     run.run();
     CHECK(run.at(0.0, "Other").road->lane == 2);
     CHECK(run.at(0.0, "Other").pose.h == Approx(0.0).margin(1e-9));
+  }
+}
+
+TEST_CASE(
+    "Road-based positions turn a missing or relative heading from the lane or +s, or esmini's +s",
+    "[engine][semantics][positions]") {
+  // A straight road along +x (road heading 0); lanes 1 to 3 carry traffic toward -s (heading
+  // pi). Back stands on lane -1 facing -s, against its lane's traffic. Expected headings by hand:
+  // the lane's traffic is 0 on lane -1 and pi on lanes 1 and 2; pi + 0.5 wraps to 0.5 - pi.
+  constexpr double kPi = std::numbers::pi;
+  const auto heading_of = [](FixtureRun& run, const char* name) {
+    return run.at(0.0, name).pose.h;
+  };
+  // The difference of two headings in (-pi, pi], so that pi and -pi compare equal.
+  const auto turn = [](double from, double to) { return std::remainder(to - from, 2.0 * kPi); };
+  const auto check_common = [&](FixtureRun& run) {
+    // Same under both readings: a relative heading of a RelativeLanePosition given by dsLane
+    // turns from the target lane's direction of travel (below); a relative heading of a
+    // RelativeRoadPosition from +s (0.5); a LanePosition without Orientation faces its
+    // lane's traffic (lane 2: pi); a RelativeLanePosition without Orientation on the lane of a
+    // reference entity that drives against it faces that lane's traffic, +s, not the
+    // reference's -s (esmini: the road's +s, the same here). A RoadPosition or a
+    // RelativeRoadPosition without Orientation on lane 2 faces the road's +s (0), not its
+    // lane's traffic: 1.3 turns their "relative reference context with Heading=Pitch=Roll=0"
+    // from "the tangent to the road s-axis".
+    CHECK(turn(heading_of(run, "RelRoadTurned"), 0.5) == Approx(0.0).margin(1e-9));
+    CHECK(turn(heading_of(run, "LaneLeft"), kPi) == Approx(0.0).margin(1e-9));
+    CHECK(run.at(0.0, "SameLane").road->lane == -1);
+    CHECK(run.at(0.0, "SameLane").road->s == Approx(210.0).margin(1e-9));
+    CHECK(turn(heading_of(run, "SameLane"), 0.0) == Approx(0.0).margin(1e-9));
+    CHECK(run.at(0.0, "RoadLeft").road->lane == 2);
+    CHECK(turn(heading_of(run, "RoadLeft"), 0.0) == Approx(0.0).margin(1e-9));
+    CHECK(run.at(0.0, "RelRoadLeft").road->lane == 2);
+    CHECK(turn(heading_of(run, "RelRoadLeft"), 0.0) == Approx(0.0).margin(1e-9));
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_road_frame_headings.xosc"));
+    run.run();
+    check_common(run);
+    // A relative heading of a RelativeLanePosition turns from the target lane's direction of
+    // travel (lane 1: pi + 0.5).
+    CHECK(run.at(0.0, "LeftTurned").road->lane == 1);
+    CHECK(turn(heading_of(run, "LeftTurned"), 0.5 - kPi) == Approx(0.0).margin(1e-9));
+    // dsLane 30 from lane -1 with dLane 2: the way Back faces (s = 200 - 30), lane 1, facing
+    // its traffic turned by 0.5 (pi + 0.5).
+    CHECK(run.at(0.0, "LeftAlongLane").road->s == Approx(170.0).margin(1e-9));
+    CHECK(run.at(0.0, "LeftAlongLane").road->lane == 1);
+    CHECK(turn(heading_of(run, "LeftAlongLane"), 0.5 - kPi) == Approx(0.0).margin(1e-9));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_road_frame_headings.xosc"), esmini_reading());
+    run.run();
+    check_common(run);
+    // esmini turns the relative heading of a RelativeLanePosition given by ds from the road's
+    // +s (0.5).
+    CHECK(run.at(0.0, "LeftTurned").road->lane == 1);
+    CHECK(turn(heading_of(run, "LeftTurned"), 0.5) == Approx(0.0).margin(1e-9));
+    // dsLane: Back faces -s on a right lane, so esmini mirrors dLane 2 to -2: lane -3, facing
+    // its traffic (+s) turned by 0.5; 30 m along lane -1's traffic (+s), against the way Back
+    // faces.
+    CHECK(run.at(0.0, "LeftAlongLane").road->s == Approx(230.0).margin(1e-9));
+    CHECK(run.at(0.0, "LeftAlongLane").road->lane == -3);
+    CHECK(turn(heading_of(run, "LeftAlongLane"), 0.5) == Approx(0.0).margin(1e-9));
+  }
+}
+
+TEST_CASE(
+    "A RelativeLanePosition given by dsLane runs the way the entity faces, or esmini's lane's",
+    "[engine][semantics][positions]") {
+  // Ref stands on lane 1 (traffic toward -s) at s = 100 facing -s; Other: dLane -1, dsLane 10,
+  // offset 0.5, without Orientation (fixture comment). Fwd stands on lane 2 at s = 200 facing
+  // +s; Ahead is placed as Other, relative to Fwd. Lane centres: lane 1 at t = 1.75, lane 2 at
+  // t = 5.25, lane 3 at t = 8.75.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_along_lane.xosc"));
+    run.run();
+    // 1.3: dsLane "in the direction the reference entity is facing": Ref faces -s, s = 90; lane
+    // 1 + (-1): the centre lane, t = 0 + 0.5 along +t, which lies in lane 1; facing lane 1's
+    // traffic (pi) as the reference's lane.
+    CHECK(run.at(0.0, "Other").road->s == Approx(90.0).margin(1e-9));
+    CHECK(run.at(0.0, "Other").road->t == Approx(0.5).margin(1e-9));
+    CHECK(run.at(0.0, "Other").road->lane == 1);
+    CHECK(std::abs(run.at(0.0, "Other").pose.h) == Approx(std::numbers::pi).margin(1e-9));
+    // Fwd faces +s: s = 210; lane 2 + (-1) = 1, t = 1.75 + 0.5 (dLane and offset do not turn
+    // with the entity); facing lane 1's traffic (pi).
+    CHECK(run.at(0.0, "Ahead").road->s == Approx(210.0).margin(1e-9));
+    CHECK(run.at(0.0, "Ahead").road->lane == 1);
+    CHECK(run.at(0.0, "Ahead").road->t == Approx(2.25).margin(1e-9));
+    CHECK(std::abs(run.at(0.0, "Ahead").pose.h) == Approx(std::numbers::pi).margin(1e-9));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_along_lane.xosc"), esmini_reading());
+    run.run();
+    // 10 m along lane 1's traffic: s = 90; dLane and offset mirrored: lane 2, t = 5.25 - 0.5;
+    // facing lane 2's traffic (pi).
+    CHECK(run.at(0.0, "Other").road->s == Approx(90.0).margin(1e-9));
+    CHECK(run.at(0.0, "Other").road->lane == 2);
+    CHECK(run.at(0.0, "Other").road->t == Approx(4.75).margin(1e-9));
+    CHECK(std::abs(run.at(0.0, "Other").pose.h) == Approx(std::numbers::pi).margin(1e-9));
+    // 10 m along lane 2's traffic: s = 190, against the way Fwd faces; Fwd faces +s on a left
+    // lane, so dLane and offset mirrored: lane 3, t = 8.75 - 0.5; facing lane 3's traffic (pi).
+    CHECK(run.at(0.0, "Ahead").road->s == Approx(190.0).margin(1e-9));
+    CHECK(run.at(0.0, "Ahead").road->lane == 3);
+    CHECK(run.at(0.0, "Ahead").road->t == Approx(8.25).margin(1e-9));
+    CHECK(std::abs(run.at(0.0, "Ahead").pose.h) == Approx(std::numbers::pi).margin(1e-9));
   }
 }
 
@@ -290,6 +397,25 @@ TEST_CASE("A RelativeLanePosition's dLane is added to the lane id, under either 
   SECTION("esmini") {
     FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"), esmini_reading());
     check(run);
+  }
+}
+
+TEST_CASE("A RelativeTargetLane counts to the reference's left, or esmini's adds it to the lane id",
+          "[engine][semantics][lanes]") {
+  // Truck drives lane 1 toward -s and changes to RelativeTargetLane -1 of itself over 1 s: the
+  // lane on its right, lane 2 (1.3: the reference entity's negative y-axis); esmini's lane id
+  // 1 - 1, skipping 0: lane -1, across the reference line.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_target_lane.xosc"));
+    run.run();
+    CHECK(run.at(2.0, "Truck").road->lane == 2);
+    CHECK(run.at(2.0, "Truck").pose.y == Approx(5.25).margin(1e-9));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_target_lane.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(2.0, "Truck").road->lane == -1);
+    CHECK(run.at(2.0, "Truck").pose.y == Approx(-1.75).margin(1e-9));
   }
 }
 

@@ -255,6 +255,39 @@ class FreshRows final : public engine::SimulationObserver {
 
 }  // namespace
 
+namespace {
+
+// Compares, after every step, each entity's state read through Simulation::states with the one
+// Simulation::state gives.
+class StatesAsStored final : public engine::SimulationObserver {
+ public:
+  void on_step(const engine::Simulation& sim) override {
+    const engine::EntityStates states = sim.states();
+    counts_match = counts_match && states.size() == sim.entity_count();
+    for (size_t i = 0; i < states.size(); ++i) {
+      same_objects = same_objects && &states[i] == &sim.state(i);
+    }
+    most = std::max(most, states.size());
+  }
+  bool counts_match = true;
+  bool same_objects = true;
+  size_t most = 0;
+};
+
+}  // namespace
+
+TEST_CASE("The states as the run keeps them are the entities' states, as entities are added",
+          "[engine][output][trajectory]") {
+  // traffic_swarm spawns vehicles during the run, so the records move as they grow.
+  FixtureRun run(engine_fixture("traffic_swarm.xosc"));
+  StatesAsStored check;
+  run.sim().add_observer(check);
+  run.run();
+  CHECK(check.counts_match);
+  CHECK(check.same_objects);
+  CHECK(check.most > 3);
+}
+
 TEST_CASE("Rows of entities that stand still are the bytes of rows made afresh, in both files",
           "[engine][output][trajectory]") {
   // TrafficJam's vehicles stand from the start; the fixtures' entities stop, appear, leave,

@@ -10,10 +10,12 @@
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/ngii/convert.h"
+#include "corsa/xodr/geometry.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/parser.h"
 #include "mouth_fills.h"
 #include "mouth_gaps.h"
+#include "reference_line.h"
 #include "synthetic_layers.h"
 
 namespace {
@@ -458,4 +460,228 @@ TEST_CASE(
   CHECK(gaps.ends >= 2);
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE(
+    "a road of two and a half metres surveyed by its two ends turns onto the skewed line it "
+    "starts on",
+    "[ngii][mouths]") {
+  // A two-lane road ends on a stop line skewed by 20 degrees (its right lane ends 1.27 m beyond
+  // its left one); the left lane goes on as a one-lane road 2.5 m long whose link has only its
+  // two end vertices. Its start did not turn at all (the bend must begin on the link's one
+  // segment) and, where it did, a short S back to the line of travel fitted 16 of the 20
+  // degrees: a wedge beside the joint, 1.3-1.6 m along the lane's end edge on Sangam's roads.
+  Builder b;
+  const double beyond = 3.5 * std::tan(20.0 * M_PI / 180.0);
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("B0", 0.0, -3.5);
+  b.node("B1", 30.0 + beyond, -3.5);
+  b.node("C1", 32.5, 0.0);
+  b.link("A2TEST00000A", "6", 1, "A0", "A1", "A2TEST00000B", "");
+  b.link("A2TEST00000B", "6", 2, "B0", "B1", "", "A2TEST00000A");
+  b.link_through("A2TEST00000C", 1, "A1", "C1", {{30.0, 0.0}, {32.5, 0.0}});
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 2);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE(
+    "a three-lane road whose third lane ends 0.4 m short of the stop line is cut on that line's "
+    "parallel",
+    "[ngii][mouths]") {
+  // Three lanes end on a stop line skewed by 17 degrees, but the survey ends the third lane's
+  // link 0.4 m short of it and continues it by a link 0.4 m long; a three-lane road starts on
+  // the stop line. Within the 0.25 m an end line allows, the three lane ends lie on a line
+  // tilted by about 4 degrees, so the road ended on that line and the road after it on the stop
+  // line: the middle lane, between the two, left a wedge (0.5-0.6 m along its end edge on
+  // Sangam's road 557). Against the stop line, which the roads after the joint give, the third
+  // lane ends short: the other two are cut on its parallel through that lane's end.
+  Builder b;
+  const double slope = std::tan(17.0 * M_PI / 180.0);
+  const std::vector<std::string> lanes{"A", "B", "C"};
+  for (size_t k = 0; k < lanes.size(); ++k) {
+    const double y = -3.5 * static_cast<double>(k);
+    const double x = 30.0 - y * slope;
+    b.node(lanes[k] + "0", 0.0, y);
+    b.node(lanes[k] + "1", k == 2 ? x - 0.4 : x, y);
+    b.node(lanes[k] + "2", x + 30.0, y);
+  }
+  b.node("C9", 30.0 + 7.0 * slope, -7.0);
+  const auto id = [](const std::string& lane, const std::string& piece) {
+    return lane.empty() ? std::string() : "A2TEST0000" + lane + piece;
+  };
+  for (size_t k = 0; k < lanes.size(); ++k) {
+    const std::string right = k + 1 < lanes.size() ? lanes[k + 1] : "";
+    const std::string left = k > 0 ? lanes[k - 1] : "";
+    const int lane_no = static_cast<int>(k) + 1;
+    const std::string start = k == 2 ? "C9" : lanes[k] + "1";
+    b.link(id(lanes[k], "1"), "6", lane_no, lanes[k] + "0", lanes[k] + "1", id(right, "1"),
+           id(left, "1"));
+    b.link(id(lanes[k], "2"), "6", lane_no, start, lanes[k] + "2", id(right, "2"), id(left, "2"));
+  }
+  b.link("A2TEST0000C9", "6", 1, "C1", "C9");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 6);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE(
+    "a one-lane road where two one-lane roads merge starts on the end line of the one in line",
+    "[ngii][mouths]") {
+  // Road A comes in 5 degrees off road C's course and road B 32 degrees off, both ending where
+  // C starts. C joined no single road there, so it started square to its own course: a wedge
+  // beside A's end (0.82 m along C's start edge at K-City's road 317; here two ends over 10 cm,
+  // 1.14 m). It now starts on the end line of A, the road in line with it.
+  Builder b;
+  const double a = 5.0 * M_PI / 180.0, c = 32.0 * M_PI / 180.0;
+  b.node("A0", 30.0 - 30.0 * std::cos(a), -30.0 * std::sin(a));
+  b.node("B0", 30.0 - 30.0 * std::cos(c), -30.0 * std::sin(c));
+  b.node("C0", 30.0, 0.0);
+  b.node("C1", 60.0, 0.0);
+  b.link("A2TEST00000A", "6", 1, "A0", "C0");
+  b.link("A2TEST00000B", "6", 1, "B0", "C0");
+  b.link("A2TEST00000C", "6", 1, "C0", "C1");
+  b.mark("B2CL", 30.0, 60.0, 1.75, "A2TEST00000C", "");
+  b.mark("B2CR", 30.0, 60.0, -1.75, "", "A2TEST00000C");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 3);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE("a junction path leaving a stop line at 52 degrees to its square starts on it",
+          "[ngii][mouths]") {
+  // A two-lane road east whose right lane ends 1.27 m beyond its left one (an end line 20
+  // degrees off square), and a junction path from the left lane's end heading 32 degrees south
+  // of east onto a road going on that way: the path meets the end line 52 degrees off square,
+  // past the 50 degrees a road end was bent to (K-City's path 460 leaves road 322 at 51), so
+  // it started square across its own heading, a wedge beside the lane's end.
+  Builder b;
+  const double h = -32.0 * M_PI / 180.0;
+  const double ex = 30.0 + 20.0 * std::cos(h), ey = 20.0 * std::sin(h);
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("B0", 0.0, -3.5);
+  b.node("B1", 30.0 + 3.5 * std::tan(20.0 * M_PI / 180.0), -3.5);
+  b.node("E0", ex, ey);
+  b.node("E1", ex + 30.0 * std::cos(h), ey + 30.0 * std::sin(h));
+  b.link("A2TEST00000A", "6", 1, "A0", "A1", "A2TEST00000B", "");
+  b.link("A2TEST00000B", "6", 2, "B0", "B1", "", "A2TEST00000A");
+  b.link("A2TEST00000P", "1", 1, "A1", "E0");
+  b.link("A2TEST00000E", "6", 1, "E0", "E1");
+  b.mark_through("B2EL",
+                 {{ex - 1.75 * std::sin(h), ey + 1.75 * std::cos(h)},
+                  {ex + 30.0 * std::cos(h) - 1.75 * std::sin(h),
+                   ey + 30.0 * std::sin(h) + 1.75 * std::cos(h)}},
+                 "A2TEST00000E", "");
+  b.mark_through("B2ER",
+                 {{ex + 1.75 * std::sin(h), ey - 1.75 * std::cos(h)},
+                  {ex + 30.0 * std::cos(h) + 1.75 * std::sin(h),
+                   ey + 30.0 * std::sin(h) - 1.75 * std::cos(h)}},
+                 "", "A2TEST00000E");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 3);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE(
+    "a road after a junction path that cannot take its start line starts on the path's end line",
+    "[ngii][mouths]") {
+  // A 7 m path leaves a road heading 9 degrees south of east at 26 degrees to its end line,
+  // turns left along its length and enters a road heading 38 degrees north of east at a corner
+  // of 3 degrees. Bent square to both joined lines within its length, the path's reference
+  // line needed a corner tighter than the fit allows (a kink), so it keeps its own square end,
+  // and the road after it started square to its own course: a sliver of unpaved ground on one
+  // side of the joint. That road now starts on the path's end line.
+  Builder b;
+  const double a = -9.4 * M_PI / 180.0;
+  const double e = 38.0 * M_PI / 180.0;
+  const double ex = 6.69, ey = 4.12;
+  const auto along = [](double x, double y, double h, double d, double t) {
+    return std::pair<double, double>{x + d * std::cos(h) - t * std::sin(h),
+                                     y + d * std::sin(h) + t * std::cos(h)};
+  };
+  b.node("A0", -30.0 * std::cos(a), -30.0 * std::sin(a));
+  b.node("A1", 0.0, 0.0);
+  b.node("E0", ex, ey);
+  b.node("E1", ex + 30.0 * std::cos(e), ey + 30.0 * std::sin(e));
+  b.link("A2TEST00000A", "6", 1, "A0", "A1");
+  b.path_through("A2TEST00000P", "A1", "E0",
+                 {{0.0, 0.0}, {1.47, 0.42}, {3.23, 1.43}, {5.29, 2.93}, {ex, ey}});
+  b.link("A2TEST00000E", "6", 1, "E0", "E1");
+  for (const double t : {1.6, -1.6}) {
+    const std::string side = t > 0.0 ? "L" : "R";
+    const std::string right = t > 0.0 ? "A2TEST00000" : "", left = t > 0.0 ? "" : "A2TEST00000";
+    b.mark_through("B2A" + side, {along(0.0, 0.0, a, -30.0, t), along(0.0, 0.0, a, 0.0, t)},
+                   right.empty() ? "" : right + "A", left.empty() ? "" : left + "A");
+    b.mark_through("B2E" + side, {along(ex, ey, e, 0.0, t), along(ex, ey, e, 30.0, t)},
+                   right.empty() ? "" : right + "E", left.empty() ? "" : left + "E");
+  }
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 4);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE("a road end bent onto a skewed line over sparse vertices turns over its whole reach",
+          "[ngii][mouths]") {
+  // A one-lane road 4 m wide (L) ends beside another (R) on a line 35 degrees off square, where
+  // a two-lane road starts. L's link has a vertex 2 m before its end and none for 28 m before
+  // that: the bend onto the line started at that vertex, turning 35 degrees within 2 m (the
+  // lane narrowed on the inside of the turn: 4.11 m along the end line for the 4.88 m of its
+  // skewed width). It now starts 8 m before the end, on the long segment.
+  Builder b;
+  const double skew = 35.0 * M_PI / 180.0;
+  const double rx = -4.0 * std::tan(skew);
+  b.node("L0", -30.0, 0.0);
+  b.node("L1", 0.0, 0.0);
+  b.node("R0", -12.0, -4.0);
+  b.node("R1", rx, -4.0);
+  b.node("C1", 30.0, 0.0);
+  b.node("D1", 30.0, -4.0);
+  b.link_through("A2TEST00000L", 1, "L0", "L1", {{-30.0, 0.0}, {-2.0, 0.0}, {0.0, 0.0}});
+  b.link("A2TEST00000R", "6", 1, "R0", "R1");
+  b.link("A2TEST00000C", "6", 1, "L1", "C1", "A2TEST00000D", "");
+  b.link("A2TEST00000D", "6", 2, "R1", "D1", "", "A2TEST00000C");
+  b.mark("B2L", -30.0, 0.0, 2.0, "A2TEST00000L", "");
+  b.mark("B2LR", -30.0, 0.0, -2.0, "", "A2TEST00000L");
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.over == 0);
+  corsa::Diagnostics diagnostics;
+  const auto conversion = corsa::ngii::convert(b.layers, {}, diagnostics);
+  bool found = false;
+  for (const auto& road : conversion.map.roads) {
+    const auto& lanes = road.lane_sections.front().lanes;
+    const auto lane = std::find_if(lanes.begin(), lanes.end(), [](const auto& l) {
+      return !l.user_data.empty() && l.user_data.front().value == "A2TEST00000L";
+    });
+    if (lane == lanes.end()) {
+      continue;
+    }
+    found = true;
+    // The reference line turns at most 1 / (2 x the lane's width) anywhere (the old bend: 0.18
+    // 1/m), and the lane spans its whole width along the skewed end line.
+    double sharpest = 0.0;
+    for (const auto& g : road.plan_view) {
+      for (double u = 0.0; u + 0.05 <= g.length; u += 0.05) {
+        const auto p0 = corsa::xodr::evaluate_geometry(g, u);
+        const auto p1 = corsa::xodr::evaluate_geometry(g, u + 0.05);
+        sharpest = std::max(sharpest, std::abs(std::remainder(p1.hdg - p0.hdg, 2 * M_PI)) / 0.05);
+      }
+    }
+    CHECK(sharpest < 0.125);
+    CHECK(corsa::ngii::detail::piecewise_value(lane->widths, road.length) ==
+          Approx(4.0 / std::cos(skew)).margin(0.1));
+  }
+  CHECK(found);
 }

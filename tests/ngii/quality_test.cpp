@@ -262,7 +262,7 @@ TEST_CASE("opposing roads meet between double centre lines without moving a lane
   const auto& s = figures("seoul_sangam_testbed").centre_gaps;
   INFO(s.worst);
   CHECK(s.stations > 14000);
-  CHECK(s.over <= 269);
+  CHECK(s.over <= 264);
   for (const char* area : {"kcity", "seoul_sangam_testbed"}) {
     INFO(area);
     size_t strips = 0;
@@ -326,15 +326,19 @@ TEST_CASE("lanes joined at junction mouths leave no unpaved ground beyond their 
   // paths (and one-lane roads after one-lane roads) whose fitted records fold on their own lines
   // too took the joined road's line; 19 / 48 before two roads whose lanes continue one to one
   // met with all their borders; 17 / 45 before a road whose lane continues a wider one got a
-  // shoulder beside it at the joint where the lanes' borders could not meet (mouth_fills.h).
+  // shoulder beside it at the joint where the lanes' borders could not meet (mouth_fills.h);
+  // 7 / 16 before short roads bent at one end turned evenly onto a skewed line, road ends were
+  // cut against their joint's line, a road where one-lane roads merge took the end line of the
+  // one in line with it, a road next to a path that keeps its own line took the path's, bends
+  // over sparse vertices started at their reach and ends bent up to 55 degrees off square.
   // What remains: joins at a corner or a few centimetres apart, paths that could not turn onto
   // the joined road's line.
   const auto& k = figures("kcity").mouth_gaps;
   INFO(k.worst);
   CHECK(k.ends > 1400);
-  CHECK(k.over <= 12);
+  CHECK(k.over <= 1);
   const auto& s = figures("seoul_sangam_testbed").mouth_gaps;
   INFO(s.worst);
   CHECK(s.ends > 3200);
-  CHECK(s.over <= 23);
+  CHECK(s.over <= 5);
 }

@@ -61,6 +61,28 @@ struct SyntheticLayers {
     }
     add_link(id, "6", lane_no, a, b, right, left, length, std::move(points));
   }
+  /// A junction path (LinkType 1) through the given points (x, y), from node a to node b.
+  void path_through(const std::string& id, const std::string& a, const std::string& b,
+                    const std::vector<std::pair<double, double>>& xy) {
+    link_through(id, 1, a, b, xy);
+    layers.links.back().link_type = "1";
+  }
+  /// A white lane line through the given points (x, y) with `right` on its right and `left` on
+  /// its left.
+  void mark_through(const std::string& id, const std::vector<std::pair<double, double>>& xy,
+                    const std::string& right, const std::string& left) {
+    std::vector<Point3> points;
+    for (const auto& [x, y] : xy) {
+      points.push_back(at(x, y));
+    }
+    layers.marks.push_back(SurfaceMark{.id = id,
+                                       .type = "211",
+                                       .kind = "503",
+                                       .right_link = right,
+                                       .left_link = left,
+                                       .points = std::move(points),
+                                       .record = static_cast<int64_t>(layers.marks.size())});
+  }
   /// A white lane line from (x0, y) to (x1, y) with `right` on its right and `left` on its left.
   void mark(const std::string& id, double from_x, double to_x, double y, const std::string& right,
             const std::string& left) {

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "corsa/xodr/map.h"
+#include "span_table.h"
 #include "xodr_test_util.h"
 
 using namespace corsa::xodr;
@@ -113,6 +114,19 @@ bool same_span_bits(const LaneSpan& a, const LaneSpan& b) {
          std::memcmp(&a.t_outer, &b.t_outer, sizeof(double)) == 0;
 }
 
+// The distinct starts (sOffset) of the section's width records.
+std::vector<double> width_starts(const LaneSection& section) {
+  std::vector<double> starts;
+  for (const Lane& lane : section.lanes) {
+    for (const Poly3& width : lane.widths) {
+      starts.push_back(width.s);
+    }
+  }
+  std::sort(starts.begin(), starts.end());
+  starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
+  return starts;
+}
+
 // Every lane's span alone (Map::lane_span_in_section, from the packed sections) against the
 // section's spans together (Map::lane_spans_in_section, from the Lane records), at the section's
 // start, inside it and at its end; returns the spans compared.
@@ -129,8 +143,15 @@ size_t check_lane_spans_alone(const Map& map) {
               return lane.widths.empty() && !lane.borders.empty();
             }));
       const double start = sections[section].s, end = map.section_end(road, section);
-      for (const double s :
-           {start, start + 0.37 * (end - start), start + 0.5 * (end - start), end}) {
+      // The section's start, inside it and its end; and every width record's start (where a
+      // packed row of constant widths may begin) and the point just before it.
+      std::vector<double> at = {start, start + 0.37 * (end - start), start + 0.5 * (end - start),
+                                end};
+      for (const double offset : width_starts(sections[section])) {
+        at.push_back(start + offset);
+        at.push_back(std::nextafter(start + offset, -1e300));
+      }
+      for (const double s : at) {
         map.lane_spans_in_section(road, section, s, spans);
         for (const LaneSpan& span : spans) {
           const auto alone = map.lane_span_in_section(road, section, s, span.id);
@@ -138,7 +159,17 @@ size_t check_lane_spans_alone(const Map& map) {
           REQUIRE(same_span_bits(*alone, span));
           ++compared;
         }
-        CHECK_FALSE(map.lane_span_in_section(road, section, s, 1000));
+        // Ids the section lacks: far out, the centre, one beyond each side.
+        const int left = static_cast<int>(std::count_if(
+            lanes.begin(), lanes.end(), [](const Lane& lane) { return lane.id > 0; }));
+        const int right = static_cast<int>(std::count_if(
+            lanes.begin(), lanes.end(), [](const Lane& lane) { return lane.id < 0; }));
+        for (const int id : {1000, -1000, 0, left + 1, -right - 1}) {
+          if (std::none_of(lanes.begin(), lanes.end(),
+                           [id](const Lane& lane) { return lane.id == id; })) {
+            CHECK_FALSE(map.lane_span_in_section(road, section, s, id));
+          }
+        }
       }
     }
   }
@@ -171,7 +202,7 @@ TEST_CASE("a lane's span alone is its span among the section's, to the bit", "[x
     data.roads.push_back(road);
     corsa::Diagnostics diagnostics;
     const Map map = Map::build(std::move(data), diagnostics);
-    CHECK(check_lane_spans_alone(map) == 4 * 6);
+    CHECK(check_lane_spans_alone(map) == (4 + 2 * 2) * 6);  // width starts 0 and 30
     // Lane 3's border is a border record: the lanes may overlap.
     CHECK_FALSE(map.section_widths_only(0, 0));
     // The rules themselves: one border record gives the border, neither the inner border.
@@ -181,6 +212,85 @@ TEST_CASE("a lane's span alone is its span among the section's, to the bit", "[x
     const auto neither = map.lane_span_in_section(0, 0, 10.0, -3);
     REQUIRE(neither);
     CHECK(neither->t_outer == neither->t_inner);
+  }
+  SECTION("constant widths, read from the packed widths, and the sections that cannot be") {
+    // Section 0: constant widths of every kind (a negative one, counted as 0; -0; 0; a record
+    // starting past the section's start; b, c and d of -0), ids 1..3 and -1..-3. Section 1: the
+    // same but for a lane of varying width. Section 2: ids skipping 2 on the left. Section 3: no
+    // centre lane. Section 4: lanes of several constant records (two starting at the same s, one
+    // narrowing to 0 and widening again). Section 5: the same with one lane's records out of s
+    // order.
+    Road road = test::make_road("constant", LineGeometry{}, 120.0, 3, 3.5);
+    road.lane_offsets.push_back(Poly3{0.0, -0.75, 0.002, 0.0, 0.0});
+    for (Lane& lane : road.lane_sections[0].lanes) {
+      if (lane.id == 3) {
+        lane.widths = {Poly3{4.0, 0.5, -0.0, -0.0, -0.0}};
+      } else if (lane.id == 2) {
+        lane.widths = {Poly3{0.0, -0.0, 0.0, 0.0, 0.0}};
+      } else if (lane.id == -2) {
+        lane.widths = {Poly3{0.0, -1.25, 0.0, 0.0, 0.0}};
+      } else if (lane.id == -3) {
+        lane.widths = {Poly3{0.0, 0.0, 0.0, 0.0, 0.0}};
+      }
+    }
+    LaneSection varying = road.lane_sections[0];
+    varying.s = 30.0;
+    varying.lanes[1].widths = {Poly3{0.0, 3.0, 0.01, 0.0, 0.0}};  // lane 2
+    LaneSection skipping = road.lane_sections[0];
+    skipping.s = 60.0;
+    skipping.lanes[1].id = 4;  // ids 4, 3, 1 on the left
+    std::swap(skipping.lanes[0], skipping.lanes[1]);
+    LaneSection no_center = road.lane_sections[0];
+    no_center.s = 90.0;
+    no_center.lanes.erase(no_center.lanes.begin() + 3);
+    LaneSection several = road.lane_sections[0];
+    several.s = 100.0;
+    several.lanes[2].widths = {Poly3{0.0, 3.0, 0.0, 0.0, 0.0}, Poly3{5.0, 3.25, 0.0, 0.0, 0.0},
+                               Poly3{5.0, 3.5, 0.0, 0.0, 0.0}};  // lane 1
+    several.lanes[4].widths = {Poly3{2.0, 2.75, 0.0, 0.0, 0.0}, Poly3{9.0, 0.0, 0.0, 0.0, 0.0},
+                               Poly3{14.0, 3.0, 0.0, 0.0, 0.0}};  // lane -1
+    LaneSection unordered = several;
+    unordered.s = 110.0;
+    std::swap(unordered.lanes[4].widths[0], unordered.lanes[4].widths[2]);
+    road.length = 130.0;
+    road.plan_view.front().length = 130.0;
+    road.lane_sections.push_back(varying);
+    road.lane_sections.push_back(skipping);
+    road.lane_sections.push_back(no_center);
+    road.lane_sections.push_back(several);
+    road.lane_sections.push_back(unordered);
+    MapData data;
+    data.roads.push_back(road);
+    detail::SpanTable table;
+    table.build(data.roads);
+    CHECK(table.section(0, 0).constant_widths);
+    CHECK_FALSE(table.section(0, 1).constant_widths);
+    CHECK_FALSE(table.section(0, 2).constant_widths);
+    CHECK(table.section(0, 3).constant_widths);
+    CHECK(table.section(0, 4).constant_widths);
+    // Rows from 5 (lane 1's 3.5 m), 9 and 14 (lane -1's 0 m, then 3 m); before 5 lane -1 has
+    // its first record's 2.75 m, also where ds precedes its start at 2.
+    CHECK(table.section(0, 4).break_count == 3);
+    CHECK_FALSE(table.section(0, 5).constant_widths);
+    // The width starts: 0 and 4 in sections 0 to 3, 0, 2, 4, 5, 9 and 14 in 4 and 5.
+    corsa::Diagnostics diagnostics;
+    const Map map = Map::build(std::move(data), diagnostics);
+    CHECK(check_lane_spans_alone(map) == 6 * (4 * (4 + 2 * 2) + 2 * (4 + 2 * 6)));
+    // Lane 1 of section 4 is 3.5 m from ds = 5 (the second of two records at 5), lane -1 0 m
+    // from ds = 9 to 14.
+    const auto one = map.lane_span_in_section(0, 4, 106.0, 1);
+    const auto minus_one = map.lane_span_in_section(0, 4, 110.0 - 0.5, -1);
+    REQUIRE(one);
+    REQUIRE(minus_one);
+    CHECK(one->width() == 3.5);
+    CHECK(minus_one->width() == 0.0);
+    // Lane -2's negative width counts as 0: lane -3 starts where lane -1 ends.
+    const auto minus1 = map.lane_span_in_section(0, 0, 10.0, -1);
+    const auto minus3 = map.lane_span_in_section(0, 0, 10.0, -3);
+    REQUIRE(minus1);
+    REQUIRE(minus3);
+    CHECK(minus3->t_inner == minus1->t_outer);
+    CHECK(minus3->width() == 0.0);
   }
   SECTION("the shared maps") {
     size_t sections = 0, widths_only = 0;

@@ -187,6 +187,35 @@ TEST_CASE("the packed road poses are the Road records' to the bit", "[xodr][pose
     CHECK(detail::section_lane_offset(map, 0, 1, 60.0) == -0.25);
     CHECK(map.elevation(0, 90.0) == Approx(2.6 + 0.1 - 0.01 + 0.001));
   }
+  SECTION("laneOffset and superelevation records of +0, read without the records") {
+    // Road 0: every record +0 (the flags set), the superelevation's starting past s = 0. Road 1:
+    // the same but for one -0 coefficient in each, which keeps the flags off (only records of
+    // four +0 are read as +0 without evaluating them).
+    Road zero = test::make_road("zero", LineGeometry{}, 80.0);
+    zero.lane_offsets = {Poly3{0.0, 0.0, 0.0, 0.0, 0.0}, Poly3{30.0, 0.0, 0.0, 0.0, 0.0}};
+    zero.superelevation = {Poly3{10.0, 0.0, 0.0, 0.0, 0.0}};
+    zero.elevation = {Poly3{0.0, 2.0, 0.05, 0.0, 0.0}};
+    LaneSection second = zero.lane_sections.front();
+    second.s = 30.0;
+    zero.lane_sections.push_back(second);
+    Road negative = zero;
+    negative.id = "negative";
+    negative.lane_offsets[1].a = -0.0;
+    negative.superelevation[0].b = -0.0;
+    MapData data;
+    data.roads = {zero, negative};
+    detail::PoseTable table;
+    table.build(data.roads);
+    CHECK(table.road(0).zero_offsets);
+    CHECK(table.road(0).level);
+    CHECK_FALSE(table.road(1).zero_offsets);
+    CHECK_FALSE(table.road(1).level);
+    corsa::Diagnostics diagnostics;
+    const Map map = Map::build(std::move(data), diagnostics);
+    CHECK(check_poses(map) > 20);
+    CHECK(std::signbit(map.world_pose(0, 50.0, 1.0).r) == false);
+    CHECK(std::signbit(detail::section_lane_offset(map, 0, 1, 50.0)) == false);
+  }
   SECTION("the shared maps") {
     for (const auto& path : test::all_shared_maps()) {
       INFO(path.string());

@@ -3,6 +3,7 @@
 #include "corsa/xodr/map.h"
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <iterator>
@@ -22,6 +23,9 @@ double section_lane_offset(const Map& map, size_t road, size_t section, double s
 double MapAccess::section_lane_offset(const Map& map, size_t road, size_t section, double s) {
   const PoseTable& poses = map.impl_->poses;
   const PoseRoad& r = poses.road(road);
+  if (r.zero_offsets && std::abs(s) <= PoseTable::kZeroBound) {
+    return 0.0;  // what the records give (PoseRoad::zero_offsets), without reading them
+  }
   const PolyRun records = poses.lane_offsets(r);
   const SpanSection& bounds = map.impl_->spans.section(road, section);
   if (records.count == 0 || s < bounds.end || s <= bounds.s) {
@@ -176,13 +180,24 @@ double Map::shape_height(size_t road_index, double s, double t) const {
 }
 
 WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const {
-  const RefPoint ref = reference(road_index, s);
   const detail::PoseTable& poses = impl_->poses;
   const detail::PoseRoad& r = poses.road(road_index);
   const double cs = poses.clamp_s(r, s);
+  // Map::reference, with its record kept: where the heading is the record's own (a line, an arc
+  // at its start) its cosine and sine are the record's, computed by the same functions at build.
+  const detail::PoseGeometry& record = poses.geometry_at(r, cs);
+  const Geometry& geometry = record.geometry;
+  const RefPoint ref = detail::to_world(geometry, record.cos_h, record.sin_h,
+                                        detail::evaluate_local(geometry, cs - geometry.s));
+  const bool record_heading =
+      std::bit_cast<uint64_t>(ref.hdg) == std::bit_cast<uint64_t>(geometry.hdg);
+  const double sin_h = record_heading ? record.sin_h : std::sin(ref.hdg);
+  const double cos_h = record_heading ? record.cos_h : std::cos(ref.hdg);
   // Flat roads are the common case: no superelevation, no slope. The shortcuts give the bits
   // the library would (cos(+0) = 1, sin(+0) = +0, atan(+-0) = +-0) without calling it.
-  const double roll = poses.superelevation(r).value(cs);
+  const double roll = r.level && std::abs(cs) <= detail::PoseTable::kZeroBound
+                          ? 0.0
+                          : poses.superelevation(r).value(cs);
   const bool level = roll == 0.0 && !std::signbit(roll);
   const double cos_r = level ? 1.0 : std::cos(roll);
   const double sin_r = level ? 0.0 : std::sin(roll);
@@ -199,8 +214,8 @@ WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const
   // rotated surface normal.
   const double horizontal = t * cos_r - h * sin_r;
   WorldPose pose;
-  pose.x = ref.x - std::sin(ref.hdg) * horizontal;
-  pose.y = ref.y + std::cos(ref.hdg) * horizontal;
+  pose.x = ref.x - sin_h * horizontal;
+  pose.y = ref.y + cos_h * horizontal;
   pose.z =
       elevation + t * sin_r + h * cos_r + (r.has_shapes ? shape_height(road_index, s, t) : 0.0);
   pose.h = ref.hdg;

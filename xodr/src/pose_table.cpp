@@ -4,6 +4,20 @@
 #include <cmath>
 
 namespace corsa::xodr::detail {
+namespace {
+
+bool positive_zero(double value) { return value == 0.0 && !std::signbit(value); }
+
+// Whether every record evaluates to +0 wherever |s| <= PoseTable::kZeroBound (none: poly_value
+// gives 0.0).
+bool all_positive_zero(const std::vector<Poly3>& records) {
+  return std::all_of(records.begin(), records.end(), [](const Poly3& p) {
+    return positive_zero(p.a) && positive_zero(p.b) && positive_zero(p.c) && positive_zero(p.d) &&
+           std::abs(p.s) <= PoseTable::kZeroBound;
+  });
+}
+
+}  // namespace
 
 size_t PolyRun::index(double s) const {
   const double* it = std::upper_bound(starts, starts + count, s);
@@ -20,6 +34,8 @@ void PoseTable::build(const std::vector<Road>& roads) {
     packed.key_first = static_cast<uint32_t>(keys_.size());
     packed.length = road.length;
     packed.has_shapes = !road.shapes.empty();
+    packed.zero_offsets = all_positive_zero(road.lane_offsets);
+    packed.level = all_positive_zero(road.superelevation);
     packed.geometry_first = static_cast<uint32_t>(geometries_.size());
     packed.geometry_count = static_cast<uint32_t>(road.plan_view.size());
     for (const Geometry& geometry : road.plan_view) {

@@ -41,6 +41,11 @@ struct PoseRoad {
   uint32_t roll_first = 0;  ///< then the superelevation records
   uint32_t roll_count = 0;
   bool has_shapes = false;  ///< lateralProfile shapes (read from the Road record)
+  /// Every laneOffset record (or none) a = b = c = d = +0 with |s| <= PoseTable::kZeroBound: the
+  /// offset is +0 at every s with |s| <= kZeroBound (no search, no record read).
+  bool zero_offsets = false;
+  /// The same for the superelevation records: the roll is +0 there.
+  bool level = false;
 };
 
 /// A run of Poly3 records in road-s order (absolute s starts), with their starts apart.
@@ -62,6 +67,10 @@ struct PolyRun {
 
 class PoseTable {
  public:
+  /// Below this |s| and |record s|, s - record s is finite, and a record of four +0 coefficients
+  /// evaluates to +0 (a + x (b + x (c + x d)) with every product +-0 and every sum +0).
+  static constexpr double kZeroBound = 1e300;
+
   /// Packs `roads` with the cosines and sines of their planView headings.
   void build(const std::vector<Road>& roads);
 

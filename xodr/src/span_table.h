@@ -5,7 +5,11 @@
 // record, that record. A span walks the lanes from the centre out to the one asked for; read
 // from the sections' Lane records it touched each lane's record (about 250 bytes, with its
 // names, links and marks) and the heap block of its widths, and with hundreds of vehicles on a
-// large map those reads were cache misses on every move.
+// large map those reads were cache misses on every move. Sections whose lanes' widths are all
+// constant (b = c = d = 0, one record or several along the section: CARLA's maps, most generated
+// ones) also keep those widths, max(0, a), in rows of doubles, a row per stretch of the section
+// over which no lane's width record changes: a span there finds its row among the stretches'
+// starts and reads a line of doubles instead of a 56-byte record per lane from the centre out.
 
 #include <cstdint>
 #include <vector>
@@ -38,6 +42,16 @@ struct SpanSection {
   uint32_t center = 0;  ///< center_index of the section
   bool has_center = false;
   bool widths_only = true;  ///< every lane's outer border from widths (none from borders alone)
+  /// Every lane's width records (one or more, in s order) with b = c = d = 0, and the lanes' ids
+  /// 1, 2, ... and -1, -2, ... outward from the centre: the widths are kept in rows (below).
+  bool constant_widths = false;
+  /// With constant_widths: the starts (ds from the section's s) of the stretches after the
+  /// first, from `break_first` in SpanTable::breaks_; row k (k = the number of starts <= ds) of
+  /// `count` doubles from `width_first` in SpanTable::widths_ holds each lane's max(0, a), at its
+  /// lane's index in the section.
+  uint32_t break_first = 0;
+  uint32_t break_count = 0;
+  uint32_t width_first = 0;
 };
 
 class SpanTable {
@@ -55,7 +69,13 @@ class SpanTable {
   }
 
  private:
+  /// The rows of widths of a section with constant_widths (SpanSection::break_first ...).
+  void pack_width_rows(const LaneSection& section, SpanSection& packed);
+
   std::vector<SpanLane> lanes_;
+  /// The rows of widths of the sections with constant_widths (SpanSection::width_first).
+  std::vector<double> widths_;
+  std::vector<double> breaks_;  ///< their stretches' starts (SpanSection::break_first)
   std::vector<SpanSection> sections_;
   std::vector<uint32_t> road_first_;  ///< by road: its first section in sections_
 };

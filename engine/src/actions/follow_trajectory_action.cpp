@@ -13,20 +13,22 @@
 // FollowTrajectoryAction moves its actor along the path in that mode as in `position` (the mode
 // only retimes a timed polyline there: constant acceleration from the current speed over each
 // segment, which Corsa does not emulate; it keeps the vertices' times).
-// The direction the actor faces along the path, set when it starts moving: the heading the
-// vertex it starts from states, if it states one (1.3 §6.9: a trajectory of six dimensions gives
-// the entity's orientation too; facing within 90 degrees of the path's direction faces along it,
-// else against it); without one, along the path on a timed path, and on an untimed one along it
-// at a speed of zero or more, against it (reverse gear) at a negative speed (esmini's reading).
-// A positive speed drives the way the actor faces, a negative one backwards: facing against the
-// path, a positive speed drives toward the path's start. The action ends at the end the actor
-// drives to, timed in the first step past its last time (§6.7.3: the actor is at each vertex at
-// its time, so a repeated last vertex with a later time is a wait there); that step goes on past
-// the end for its rest, and the actor's lane following takes over at the path's own end speed.
-// A timed path driven facing against it is driven in reverse gear: the speed is negative. Further
-// on, each vertex stating a heading turns the actor to it: on a timed path from that vertex on (a
-// path that doubles back is driven forward after reversing), on an untimed one the direction of
-// travel stays as it started and the stated headings turn the actor only.
+// The direction the actor faces along the path, set when it starts moving: the heading the vertex
+// it starts from states, if it states one (1.3 §6.9: a trajectory of six dimensions gives the
+// entity's orientation too; facing within 90 degrees of the path's direction faces along it, else
+// against it); without one, along the path on a timed path, and on an untimed one along it at a
+// speed of zero or more, against it (reverse gear) at a negative speed (esmini's reading). The
+// stated heading sets the facing whatever the speed's sign. A positive speed drives the way the
+// actor faces, a negative one backwards: facing against the path, a positive speed drives toward
+// the path's start (esmini's trajectory_heading: a car facing along its path at -10 m/s backs
+// toward the path's start). The action ends at the end the actor drives to, timed in the first step
+// past its last time (§6.7.3: the actor is at each vertex at its time, so a repeated last vertex
+// with a later time is a wait there); that step goes on past the end for its rest, and the actor's
+// lane following takes over at the path's own end speed. A timed path driven facing against it is
+// driven in reverse gear: the speed is negative. Further on, each vertex stating a heading turns
+// the actor to it: on a timed path from that vertex on (a path that doubles back is driven forward
+// after reversing), on an untimed one the direction of travel stays as it started and the stated
+// headings turn the actor only.
 
 #include <algorithm>
 #include <cmath>

@@ -153,8 +153,13 @@ class LaneChangeInstance final : public ActionInstance {
     }
     const int reference_lane =
         reference.state.road ? reference.state.road->lane : reference.lane.lane;
-    // Positive values are to the left of the reference entity's direction of travel.
-    return step_lane_id(reference_lane, relative.value * reference.lane.dir);
+    // Positive values are to the left of the reference entity's direction of travel (1.3: the
+    // positive y-axis of the reference entity). esmini adds the value to the lane id (1.0-1.2:
+    // "Signed number of lanes that is offset the reference entity's current lane"), skipping 0:
+    // the same on right lanes, the other way on left ones.
+    const int toward =
+        context.state.options.semantics == Semantics::kEsmini ? 1 : reference.lane.dir;
+    return step_lane_id(reference_lane, relative.value * toward);
   }
 
   const xosc::LaneChangeAction& action_;

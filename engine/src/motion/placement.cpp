@@ -1,5 +1,7 @@
 #include "motion/placement.h"
 
+#include <cmath>
+
 #include "corsa/core/strings.h"
 #include "lanes/lane_follow.h"
 #include "motion/controller.h"
@@ -7,8 +9,10 @@
 
 namespace corsa::engine::detail {
 
-void place_entity(SimState& state, Entity& entity, const ResolvedPosition& position,
-                  const xosc::Source& source, bool require_on_map) {
+namespace {
+
+void put_entity_at_position(SimState& state, Entity& entity, const ResolvedPosition& position,
+                            const xosc::Source& source, bool require_on_map) {
   entity.state.pose = {position.pose.x, position.pose.y, position.pose.z,
                        position.pose.h, position.pose.p, position.pose.r};
   entity.state.placed = true;
@@ -38,6 +42,31 @@ void place_entity(SimState& state, Entity& entity, const ResolvedPosition& posit
                                   format_double(kOffMapDistance) + " m from every lane"));
   }
   update_road_from_pose(entity, state.map);
+}
+
+}  // namespace
+
+void place_entity(SimState& state, Entity& entity, const ResolvedPosition& position,
+                  const xosc::Source& source, bool require_on_map) {
+  put_entity_at_position(state, entity, position, source, require_on_map);
+  mark_jump(entity);
+}
+
+void mark_jump(Entity& entity) {
+  entity.straight_from_x = entity.state.pose.x;
+  entity.straight_from_y = entity.state.pose.y;
+}
+
+void sum_straight_travel(SimState& state) {
+  for (Entity& entity : state.world.entities) {
+    if (!entity.state.placed) {
+      continue;
+    }
+    const double x = entity.state.pose.x, y = entity.state.pose.y;
+    entity.straight_travel += std::hypot(x - entity.straight_from_x, y - entity.straight_from_y);
+    entity.straight_from_x = x;
+    entity.straight_from_y = y;
+  }
 }
 
 }  // namespace corsa::engine::detail

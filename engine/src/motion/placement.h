@@ -19,4 +19,12 @@ inline constexpr double kOffMapDistance = 20.0;
 void place_entity(SimState& state, Entity& entity, const ResolvedPosition& position,
                   const xosc::Source& source, bool require_on_map);
 
+/// The entity has jumped to where it now is (placed, connected as a trailer): that is no travel
+/// for Entity::straight_travel.
+void mark_jump(Entity& entity);
+
+/// Adds each placed entity's straight distance from its last place (the end of the previous
+/// step, or where it jumped to) to Entity::straight_travel: once per step, after every move.
+void sum_straight_travel(SimState& state);
+
 }  // namespace corsa::engine::detail

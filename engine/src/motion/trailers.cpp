@@ -8,6 +8,7 @@
 #include "corsa/xosc/entities.h"
 #include "geometry/angle.h"
 #include "motion/controller.h"
+#include "motion/placement.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -94,6 +95,7 @@ void connect_trailer(SimState& state, uint32_t tower, uint32_t trailer, bool ali
   towed.state.speed = state.world.entities[tower].state.speed;
   towed.state.placed = true;
   relocate(state, towed);
+  mark_jump(towed);
 }
 
 void disconnect_trailer(SimState& state, uint32_t tower) {

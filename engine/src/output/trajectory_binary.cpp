@@ -79,8 +79,12 @@ struct BinaryTrajectoryRecorder::State {
   bool abandoned = false;    ///< destroyed without finish: the queued ticks are dropped
   std::exception_ptr error;  ///< the encoder's, rethrown by finish
 
-  /// Copies the rows of the simulation's current tick.
-  void capture(const Simulation& simulation);
+  /// Encodes, or copies, the rows of the simulation's current tick, `tick`.
+  void capture(const Simulation& simulation, int64_t tick);
+  /// At the first recorded tick: the step, and the writer thread when there is one. (Apart
+  /// from capture, as is copy_rows, so that the tick's path on the caller's thread stays short.)
+  void begin(const Simulation& simulation);
+  void copy_rows(const Simulation& simulation, int64_t tick);
   void encode(RecordedTicks& batch);
   void hand_over();
   void serve();
@@ -88,26 +92,34 @@ struct BinaryTrajectoryRecorder::State {
   void finish(int64_t last_tick);
 };
 
-void BinaryTrajectoryRecorder::State::capture(const Simulation& simulation) {
-  if (!started) {
-    started = true;
-    dt = simulation.dt();
-    if (thread == RecordingThread::kWriter) {
-      writer = std::thread([this] { serve(); });
-    }
+void BinaryTrajectoryRecorder::State::capture(const Simulation& simulation, int64_t tick) {
+  if (!started) [[unlikely]] {
+    begin(simulation);
   }
-  const size_t count = simulation.entity_count();
-  const int64_t tick = simulation.tick();
   last_recorded = tick;
-  if (thread == RecordingThread::kCaller) {
-    // Straight from the states, no copy: the encoder is done with them before the next step.
-    for (; named_entities < count; ++named_entities) {
-      encoder.name_entity(simulation.entity(named_entities).name);
-    }
-    encoder.record(dt, {tick, simulation.time(), static_cast<uint32_t>(count)},
-                   detail::EntityStateRows{&simulation});
+  if (thread == RecordingThread::kWriter) {
+    copy_rows(simulation, tick);
     return;
   }
+  // Straight from the states, no copy: the encoder is done with them before the next step.
+  const EntityStates states = simulation.states();
+  for (; named_entities < states.size(); ++named_entities) {
+    encoder.name_entity(simulation.entity(named_entities).name);
+  }
+  encoder.record(dt, {tick, simulation.time(), static_cast<uint32_t>(states.size())},
+                 detail::EntityStateRows{states, &simulation});
+}
+
+void BinaryTrajectoryRecorder::State::begin(const Simulation& simulation) {
+  started = true;
+  dt = simulation.dt();
+  if (thread == RecordingThread::kWriter) {
+    writer = std::thread([this] { serve(); });
+  }
+}
+
+void BinaryTrajectoryRecorder::State::copy_rows(const Simulation& simulation, int64_t tick) {
+  const size_t count = simulation.entity_count();
   RecordedTicks& batch = *filling;
   for (; named_entities < count; ++named_entities) {
     batch.names.push_back(simulation.entity(named_entities).name);
@@ -232,21 +244,24 @@ BinaryTrajectoryRecorder::BinaryTrajectoryRecorder(std::filesystem::path file, i
 BinaryTrajectoryRecorder::~BinaryTrajectoryRecorder() = default;
 
 void BinaryTrajectoryRecorder::on_step(const Simulation& simulation) {
-  if (simulation.tick() % state_->every != 0) {
+  State& state = *state_;
+  const int64_t tick = simulation.tick();
+  // Every tick recorded (the default) needs no division.
+  if (state.every != 1 && tick % state.every != 0) {
     return;
   }
-  if (state_->started && simulation.tick() <= state_->last_recorded) {
+  if (state.started && tick <= state.last_recorded) {
     // A tick run again (esmini's ghost restart, whose rows the CSV holds twice): the binary
     // file keeps each tick once, as first recorded (docs/trajectory-format.md).
     return;
   }
-  state_->capture(simulation);
+  state.capture(simulation, tick);
 }
 
 void BinaryTrajectoryRecorder::finish(const Simulation& simulation) {
   State& state = *state_;
   if (!state.started || state.last_recorded < simulation.tick()) {
-    state.capture(simulation);
+    state.capture(simulation, simulation.tick());
   }
   // A run that ends while a ghost restart runs ticks again ends at its last tick recorded.
   state.finish(std::max(simulation.tick(), state.last_recorded));

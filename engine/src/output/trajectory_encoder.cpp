@@ -106,10 +106,21 @@ void TrajectoryEncoder::start(double dt, int64_t tick) {
   last_frame_ = tick;
 }
 
+void TrajectoryEncoder::add_entities(uint32_t count) {
+  while (entities_.size() < count) {
+    put_string(buffer_, codec::kTagEntity, entities_.size(), names_.at(entities_.size()));
+    entities_.emplace_back();
+  }
+  // Room for every entity's record at its largest, head and whole body.
+  const size_t room = size_t{count} * (kMaxHead + kMaxBody);
+  if (frame_.size() < room) {
+    frame_.resize(room);
+  }
+}
+
 template <class Row>
-[[gnu::always_inline]] inline void TrajectoryEncoder::encode(uint32_t index, const Row& row,
-                                                             int64_t& previous) {
-  Track& track = entities_[index];
+[[gnu::always_inline]] inline void TrajectoryEncoder::encode(uint32_t index, Track& track,
+                                                             const Row& row, int64_t& previous) {
   uint32_t mask = 0;
   uint32_t raw = 0;
   // The record's body (road and lane, at most 10 + 10 bytes, then nine numbers of 10), made
@@ -201,29 +212,28 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& 
     start(dt, head.tick);
   }
   const int64_t tick = head.tick;
-  while (entities_.size() < head.entities) {
-    put_string(buffer_, codec::kTagEntity, entities_.size(), names_.at(entities_.size()));
-    entities_.emplace_back();
+  if (entities_.size() < head.entities) [[unlikely]] {
+    add_entities(head.entities);
   }
-  roads_.clear();
   frame_size_ = 0;
-  // Room for every entity's record at its largest, head and whole body.
-  const size_t room = size_t{head.entities} * (kMaxHead + kMaxBody);
-  if (frame_.size() < room) {
-    frame_.resize(room);
-  }
   if constexpr (std::is_same_v<Rows, EntityStateRows>) {
     state_rows_ = &rows;
   }
   int64_t previous = -1;
-  for (uint32_t i = 0; i < head.entities; ++i) {
-    // encode's first test, without the call: most entities of a long run stand.
-    const auto& row = rows[i];
-    const Track& track = entities_[i];
-    if (track.steady && track.present && row_placed(row) && track.repeats(row)) {
+  // Local copies of where the rows and tracks are, which the compiler keeps in registers
+  // across the records written in between (the members it reloads after every store).
+  const Rows local_rows = rows;
+  Track* tracks = entities_.data();
+  const uint32_t count = head.entities;
+  for (uint32_t i = 0; i < count; ++i) {
+    // encode's first test, without the call: most entities of a long run stand. (A steady
+    // track is present: encode clears both when the entity leaves.)
+    const auto& row = local_rows[i];
+    Track& track = tracks[i];
+    if (track.steady && row_placed(row) && track.repeats(row)) {
       continue;
     }
-    encode(i, row, previous);
+    encode(i, track, row, previous);
   }
   state_rows_ = nullptr;
   const double time = head.time;
@@ -232,7 +242,9 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& 
   if (frame_size_ == 0 && !odd_time) {
     return;  // every present entity as predicted: the tick costs nothing
   }
+  // (A road is first met by a record, so a tick without records has none.)
   buffer_ += roads_;
+  roads_.clear();
   if (odd_time) {
     buffer_.push_back(static_cast<char>(codec::kTagTime));
     codec::put_fixed64(buffer_, std::bit_cast<uint64_t>(time));

@@ -109,8 +109,9 @@ inline bool same_motion(const Row& row, const uint64_t* bits) {
 
 /// The rows of the simulation's current tick, read from the entities' states where they are.
 struct EntityStateRows {
+  EntityStates states;
   const Simulation* simulation = nullptr;
-  const EntityState& operator[](size_t index) const { return simulation->state(index); }
+  const EntityState& operator[](size_t index) const { return states[index]; }
   /// The OpenDRIVE id of road `road` (the map holds it).
   const std::string& road_id(uint32_t road) const { return simulation->road_id(road); }
 };
@@ -171,12 +172,14 @@ class TrajectoryEncoder {
       if (!same_motion(row, bits.data()) || row_on_road(row) != on_road) {
         return false;
       }
-      return !on_road || (row_road(row) == road && row_lane(row) == lane && same<kFieldS>(row) &&
-                          same<kFieldT>(row));
+      // Road, lane, s and t gathered without a branch, as the motion.
+      return !on_road ||
+             ((uint64_t{row_road(row) ^ road} | static_cast<uint32_t>(row_lane(row) ^ lane) |
+               differs<kFieldS>(row) | differs<kFieldT>(row)) == 0);
     }
     template <int F, class Row>
-    bool same(const Row& row) const {
-      return std::bit_cast<uint64_t>(row_value<F>(row)) == bits[F];
+    uint64_t differs(const Row& row) const {
+      return std::bit_cast<uint64_t>(row_value<F>(row)) ^ bits[F];
     }
   };
 
@@ -186,10 +189,12 @@ class TrajectoryEncoder {
   static constexpr size_t kMaxBody = 10 + 10 + kRowFields * 10;
 
   void start(double dt, int64_t tick);
-  /// Appends the record of entity `index` to `frame_` when its row differs from the prediction
-  /// (`previous`: the index of the frame's last record, -1 before the first).
+  /// Tracks entities up to `count` (their names written) and makes the frame's room for them.
+  void add_entities(uint32_t count);
+  /// Appends the record of entity `index` (its track `track`) to `frame_` when its row differs
+  /// from the prediction (`previous`: the index of the frame's last record, -1 before the first).
   template <class Row>
-  void encode(uint32_t index, const Row& row, int64_t& previous);
+  void encode(uint32_t index, Track& track, const Row& row, int64_t& previous);
   void flush();
 
   AtomicFile file_;

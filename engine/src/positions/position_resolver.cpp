@@ -76,7 +76,9 @@ ResolvedPosition relative_object(const xosc::RelativeObjectPosition& p, const Si
 }
 
 // What a relative Orientation of a lane position turns from: the lane's direction of travel, so
-// that h = pi relative on a left lane of right-hand traffic faces +s, as esmini turns it. 1.3
+// that h = pi relative on a left lane of right-hand traffic faces +s, as esmini turns it for a
+// LanePosition and a RelativeLanePosition given by dsLane (its reading of one given by ds turns
+// from the road's +s: relative_lane below). 1.3
 // LanePosition turns it from "the (s,t)-coordinate system of the target lane" ("counting from
 // the tangent to the lane s-axis"), RelativeLanePosition from that "of the lane where the target
 // position is located"; which way a lane's s-axis runs the standard leaves open (§6.3: "The
@@ -85,11 +87,30 @@ ResolvedPosition relative_object(const xosc::RelativeObjectPosition& p, const Si
 // lane's traffic only if it runs the way the lane is driven.
 constexpr OrientationFrame kLanePositionFrame = OrientationFrame::kLane;
 
+bool esmini_reading(const SimState& state) { return state.options.semantics == Semantics::kEsmini; }
+
+// A missing Orientation as "the relative reference context with Heading=Pitch=Roll=0" (1.3),
+// so that in the road frame it faces the road's +s whatever the lane. RoadPosition and
+// RelativeRoadPosition read so under both readings: 1.3 turns their relative heading from "the
+// tangent to the road s-axis", the reference line's. esmini reads so every road-based position
+// (its OSCPositionRoad turns a missing heading from the reference line, and its relative
+// positions mark a missing heading relative); without it, orient_on_road faces the lane's
+// traffic.
+std::optional<xosc::Orientation> missing_as_relative(
+    const std::optional<xosc::Orientation>& orientation) {
+  if (orientation) {
+    return orientation;
+  }
+  xosc::Orientation zero;
+  zero.type = xosc::ReferenceContext::kRelative;
+  return zero;
+}
+
 ResolvedPosition road(const xosc::RoadPosition& p, const SimState& state) {
   const xodr::Map& map = need_map(state, p.source, "RoadPosition");
   const uint32_t road_index = need_road(map, p.road_id, p.source);
   const double s = checked_s(state, map, road_index, p.s, p.source);
-  return on_road(map, road_index, s, p.t, std::nullopt, p.orientation);
+  return on_road(map, road_index, s, p.t, std::nullopt, missing_as_relative(p.orientation));
 }
 
 ResolvedPosition lane(const xosc::LanePosition& p, const SimState& state) {
@@ -146,7 +167,34 @@ ResolvedPosition relative_road(const xosc::RelativeRoadPosition& p, const SimSta
   // crossed onto a road of opposite s direction), then add dt.
   const double t =
       followed_lane_center_t(map, at, at.lane).value_or(0.0) + at.dir * at.lateral + p.dt;
-  return on_road(map, at.road, at.s, t, std::nullopt, p.orientation);
+  return on_road(map, at.road, at.s, t, std::nullopt, missing_as_relative(p.orientation));
+}
+
+// Whether the reference entity faces the road's +s where it stands (its heading within a
+// quarter turn of the reference line's).
+bool reference_faces_plus_s(const xodr::Map& map, const Entity& ref, const RoadCoordinates& rc) {
+  return std::cos(ref.state.pose.h - map.reference(rc.road, rc.s).hdg) > 0.0;
+}
+
+// esmini's reading of a RelativeLanePosition given by dsLane (`--semantics esmini`; its
+// Position::EvaluateRelation in the direction mode along the lane): dsLane runs the way the
+// reference entity's lane is driven (by the lane id's side and the road's traffic rule),
+// whichever way the entity faces; dLane and offset keep their sign only for an entity facing +s
+// on a right lane of right-hand traffic or facing -s on a left lane of left-hand traffic, and
+// are mirrored otherwise.
+struct EsminiAlongLaneSigns {
+  double ds = 1.0;
+  int lateral = 1;
+};
+
+EsminiAlongLaneSigns esmini_along_lane_signs(const xodr::Map& map, const Entity& ref,
+                                             const RoadCoordinates& rc) {
+  const bool left_hand = map.road(rc.road).rule == xodr::TrafficRule::kLeftHand;
+  const bool lane_toward_minus_s = left_hand ? rc.lane < 0 : rc.lane > 0;
+  const bool faces_plus_s = reference_faces_plus_s(map, ref, rc);
+  const bool keep =
+      (faces_plus_s && rc.lane < 0 && !left_hand) || (!faces_plus_s && rc.lane > 0 && left_hand);
+  return {lane_toward_minus_s ? -1.0 : 1.0, keep ? 1 : -1};
 }
 
 ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimState& state) {
@@ -154,6 +202,8 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
   const Entity& ref = need_entity(state, p.entity_ref, p.source);
   const RoadCoordinates& rc = need_road_coordinates(ref, p.entity_ref, p.source);
   double ds = p.ds.value_or(0.0);
+  int d_lane = p.d_lane;
+  double offset = p.offset.value_or(0.0);
   if (p.ds_lane) {
     // dsLane runs along the lane's centre line; on a curve that is longer or shorter than the
     // reference line by the factor (1 - t kappa).
@@ -161,29 +211,40 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
     const double kappa = map.reference(rc.road, rc.s).curvature;
     const double factor = 1.0 - center * kappa;
     ds = factor > 1e-6 ? *p.ds_lane / factor : *p.ds_lane;
+    if (esmini_reading(state)) {
+      const EsminiAlongLaneSigns signs = esmini_along_lane_signs(map, ref, rc);
+      ds *= signs.ds;
+      d_lane *= signs.lateral;
+      offset *= signs.lateral;
+    } else if (!reference_faces_plus_s(map, ref, rc)) {
+      // 1.3: "Travel the lane center line difference dsLane from the position of the reference
+      // entity in the direction the reference entity is facing". dLane ("adding dLane to that
+      // of the reference entity's") and offset ("in the direction of the t-axis") do not turn
+      // with the entity.
+      ds = -ds;
+    }
   }
   const LaneFollow at = walk(map, rc, ds, p.source);
   // 1.3 RelativeLanePosition: "Find the target lane by adding dLane to that of the reference
   // entity", dLane being "The deviation value between the laneId of the lane, where the
   // reference entity is located, and the target laneId": the lane id plus dLane, so that -1 + 1
   // is the centre lane 0, on the reference line (as esmini). Lanes are not counted.
-  const bool esmini = state.options.semantics == Semantics::kEsmini;
-  const int lane_id = at.lane + at.dir * p.d_lane;
+  const int lane_id = at.lane + at.dir * d_lane;
   // The centre lane has no width nor direction: on the reference line (as a LanePosition on
   // lane 0), oriented as the reference's lane, in the lane the offset reaches.
-  const double t = (lane_id == 0 ? 0.0 : need_lane_center(map, at.road, at.s, lane_id, p.source)) +
-                   p.offset.value_or(0.0);
-  ResolvedPosition out = on_road(map, at.road, at.s, t, lane_id == 0 ? at.lane : lane_id,
-                                 p.orientation, kLanePositionFrame);
+  const double t =
+      (lane_id == 0 ? 0.0 : need_lane_center(map, at.road, at.s, lane_id, p.source)) + offset;
+  // esmini (`--semantics esmini`) turns a relative or missing heading of a position given by ds
+  // from the target road's +s, whatever the lane and whichever way the reference entity drives;
+  // given by dsLane, from the target lane's direction of travel, as the standard reading does
+  // (esmini's Position::EvaluateRelation, direction modes along s and along the lane).
+  const bool esmini_road_frame = esmini_reading(state) && !p.ds_lane;
+  ResolvedPosition out =
+      on_road(map, at.road, at.s, t, lane_id == 0 ? at.lane : lane_id,
+              esmini_reading(state) ? missing_as_relative(p.orientation) : p.orientation,
+              esmini_road_frame ? OrientationFrame::kRoad : kLanePositionFrame);
   if (lane_id == 0) {
     out.road->lane = map.lane_at(at.road, at.s, t);
-  }
-  if (esmini && !p.orientation) {
-    // esmini faces a position without Orientation the way the reference entity faces along its
-    // road, not the target lane's direction of travel.
-    const double ref_offset = wrap_angle(ref.state.pose.h - map.reference(rc.road, rc.s).hdg);
-    const bool ref_backward = std::abs(ref_offset) > 0.5 * std::numbers::pi;
-    out.pose.h = travel_heading(map, at.road, at.s, ref_backward ? -at.dir : at.dir);
   }
   return out;
 }

@@ -10,6 +10,7 @@
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/parser.h"
 #include "corsa/xosc/scenario.h"
+#include "motion/placement.h"
 #include "motion/route_lanes.h"
 #include "motion/trailers.h"
 #include "simulation/simulation_impl.h"
@@ -94,6 +95,9 @@ void Simulation::Impl::advance() {
   mover.move(state, motion);
   detail::end_commands(state);
   detail::move_trailers(state, state.time.dt());
+  if (state.straight_travel_wanted) {
+    detail::sum_straight_travel(state);
+  }
   ++state.tick;
   detail::record_trail(state);
   detail::update_traffic(state);
@@ -180,6 +184,12 @@ const EntityInfo& Simulation::entity(size_t index) const {
 }
 const EntityState& Simulation::state(size_t index) const {
   return impl_->state.world.entities[index].state;
+}
+EntityStates Simulation::states() const {
+  const auto& entities = impl_->state.world.entities;
+  return entities.empty()
+             ? EntityStates{}
+             : EntityStates{&entities.front().state, entities.size(), sizeof(entities[0])};
 }
 std::optional<size_t> Simulation::find_entity(std::string_view name) const {
   const auto index = impl_->state.world.find(name);

@@ -157,6 +157,12 @@ struct Entity {
   bool removed = false;
   std::optional<RoadCoordinates> removed_road;
   double removed_speed = 0.0;  ///< m/s when it was removed (esmini re-adds it at that speed)
+  /// Metres summed as straight lines between the entity's places at the ends of successive
+  /// steps, jumps to a new place (a TeleportAction, being added) left out: the distance a
+  /// TraveledDistanceCondition reads, as esmini's odometer measures it. Kept only while a
+  /// scenario has such a condition (SimState::straight_travel_wanted).
+  double straight_travel = 0.0;
+  double straight_from_x = 0.0, straight_from_y = 0.0;  ///< the place it is summed from
 
   const xosc::ScenarioObject* object = nullptr;
   /// Owns the route chooser (AssignRouteAction, AcquirePositionAction) `chooser` points at.

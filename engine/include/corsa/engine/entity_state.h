@@ -4,6 +4,7 @@
 // Entities) and its state at the current step (EntityState). Map coordinates in metres and
 // radians, OpenDRIVE/OpenSCENARIO conventions (heading counter-clockwise from +x).
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -50,6 +51,25 @@ struct EntityState {
   bool visible = true;
   /// Nothing when the entity is off every lane (or the scenario has no road network).
   std::optional<RoadCoordinates> road;
+};
+
+/// The states of a run's entities where the run keeps them (Simulation::states): each
+/// `stride` bytes after the one before, inside the engine's per-entity records.
+class EntityStates {
+ public:
+  EntityStates() = default;
+  EntityStates(const EntityState* first, size_t count, size_t stride)
+      : first_(reinterpret_cast<const std::byte*>(first)), count_(count), stride_(stride) {}
+
+  size_t size() const { return count_; }
+  const EntityState& operator[](size_t index) const {
+    return *reinterpret_cast<const EntityState*>(first_ + index * stride_);
+  }
+
+ private:
+  const std::byte* first_ = nullptr;
+  size_t count_ = 0;
+  size_t stride_ = 0;
 };
 
 }  // namespace corsa::engine

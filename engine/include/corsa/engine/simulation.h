@@ -187,6 +187,10 @@ class Simulation {
   size_t entity_count() const;
   const EntityInfo& entity(size_t index) const;
   const EntityState& state(size_t index) const;
+  /// Every entity's state where the run keeps it, for readers that visit all of them every tick
+  /// (the recorders) without a call per entity: states()[i] is state(i). Valid until the next
+  /// step.
+  EntityStates states() const;
   std::optional<size_t> find_entity(std::string_view name) const;
   /// The OpenDRIVE id of a road index (for output), "" without a map.
   const std::string& road_id(uint32_t road) const;
