@@ -41,6 +41,7 @@ PySimulation::PySimulation(const SimulationSetup& setup) : setup_(setup) {
     py::gil_scoped_release nogil;
     xosc::LoadOptions load;
     load.parameters = setup_.parameters;
+    load.esmini_booleans = setup_.options.semantics == engine::Semantics::kEsmini;
     scenario_ =
         std::make_unique<xosc::Scenario>(xosc::load_scenario(setup_.scenario, load, diagnostics_));
     simulation_ = std::make_unique<engine::Simulation>(

@@ -16,10 +16,11 @@ SharedInputs::SharedInputs(std::filesystem::path scenario, Diagnostics& diagnost
 SharedInputs::~SharedInputs() = default;
 
 xosc::Scenario SharedInputs::load(const ParameterValues& parameters, Diagnostics& diagnostics,
-                                  bool strict) const {
+                                  bool strict, bool esmini_booleans) const {
   xosc::LoadOptions options;
   options.parameters = parameters;
   options.strict = strict;
+  options.esmini_booleans = esmini_booleans;
   options.catalog_cache = catalogs_;
   return xosc::parse_scenario(scenario_text_, scenario_path_, options, diagnostics);
 }

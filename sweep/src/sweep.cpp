@@ -213,8 +213,9 @@ SweepReport run_sweep(const VariantPlan& plan, const SweepOptions& options,
   const auto start = std::chrono::steady_clock::now();
   SharedInputs inputs(plan.scenario(), diagnostics);
   const std::vector<std::string> unused =
-      plan.check(inputs.load({}, diagnostics, options.simulation.strict), options.simulation.strict,
-                 diagnostics);
+      plan.check(inputs.load({}, diagnostics, options.simulation.strict,
+                             options.simulation.semantics == engine::Semantics::kEsmini),
+                 options.simulation.strict, diagnostics);
   check_variant_count(plan, options.shard.share(plan.size()));
   const Json description = description_of(plan, options);
   const Json shard = shard_json(options.shard, plan.size());

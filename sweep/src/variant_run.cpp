@@ -36,7 +36,9 @@ class TrajectoryText final : public engine::SimulationObserver {
 void simulate(SharedInputs& inputs, const VariantSpec& spec, const VariantOutputs& outputs,
               Diagnostics& diagnostics, VariantResult& result,
               std::chrono::steady_clock::time_point start) {
-  const xosc::Scenario scenario = inputs.load(spec.parameters, diagnostics, spec.simulation.strict);
+  const xosc::Scenario scenario =
+      inputs.load(spec.parameters, diagnostics, spec.simulation.strict,
+                  spec.simulation.semantics == engine::Semantics::kEsmini);
   engine::Simulation simulation(scenario, inputs.road_network(scenario), spec.simulation,
                                 diagnostics);
   const std::optional<size_t> ego = choose_ego(simulation, spec.ego);

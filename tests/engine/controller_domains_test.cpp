@@ -81,6 +81,22 @@ TEST_CASE("a sloppyDriver on the lateral domain and an interactiveDriver on the 
   CHECK(run.at(15.0, "Ego").speed == Approx(13.585).margin(0.0005));
 }
 
+TEST_CASE("the default controller keeps the speed the entity has when its controller goes off",
+          "[engine][controllers][domains]") {
+  // The interactive driver (longitudinal) is switched off at 15.1 s: the default controller
+  // keeps the 13.57 m/s it leaves, not the 15 m/s the Init's SpeedAction asked for.
+  FixtureRun run(engine_fixture("controller_domains.xosc"), domains_options());
+  run.run();
+  const double left = run.at(15.1, "Ego").speed;
+  CHECK(left == Approx(13.572).margin(0.0005));
+  for (const double t : {15.5, 16.0, 17.0}) {
+    CAPTURE(t);
+    CHECK(run.at(t, "Ego").speed == left);
+  }
+  // esmini's row at 16.0 s.
+  CHECK(run.at(16.0, "Ego").pose.x - run.at(0.0, "Ego").pose.x == Approx(231.384).margin(0.0015));
+}
+
 TEST_CASE("two controllers on the motion domains whose shared step is not defined",
           "[engine][controllers][domains]") {
   // The sloppy driver longitudinal, the interactive driver then lateral: warned, and the one

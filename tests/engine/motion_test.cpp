@@ -452,6 +452,39 @@ TEST_CASE("A speed that turns negative along a path drives back toward its start
   CHECK(run.at(0.5, "Reverse").pose.h == Approx(std::numbers::pi).margin(1e-9));
 }
 
+TEST_CASE("Trajectory vertices stating a heading set the way the actor faces and drives",
+          "[engine][trajectory]") {
+  // Straight 20 m paths along +x; see the fixture for each case.
+  engine::SimulationOptions options;
+  options.dt = 0.1;
+  FixtureRun run(engine_fixture("trajectory_stated_heading.xosc"), options);
+  run.run();
+  // Stated along the path, started at its end at -2 m/s: backwards toward the start, facing +x.
+  CHECK(run.at(0.5, "AlongBack").pose.x == Approx(19.0).margin(1e-9));
+  CHECK(run.at(0.5, "AlongBack").pose.h == Approx(0.0).margin(1e-12));
+  CHECK(run.at(0.5, "AlongBack").speed == Approx(-2.0).margin(1e-9));
+  // Stated against the path, started at its end at +2 m/s: forwards toward the start, facing -x.
+  CHECK(run.at(0.5, "AgainstEnd").pose.x == Approx(19.0).margin(1e-9));
+  CHECK(run.at(0.5, "AgainstEnd").pose.h == Approx(std::numbers::pi).margin(1e-9));
+  // Timed, stated against the path: at the times' places, in reverse gear.
+  CHECK(run.at(1.0, "TimedAgainst").pose.x == Approx(2.0).margin(1e-9));
+  CHECK(run.at(1.0, "TimedAgainst").pose.h == Approx(std::numbers::pi).margin(1e-9));
+  CHECK(run.at(1.0, "TimedAgainst").speed == Approx(-2.0).margin(1e-9));
+  // A timed path that doubles back, every vertex stating h = pi: out in reverse, back forwards.
+  CHECK(run.at(2.5, "TimedBack").pose.x == Approx(5.0).margin(1e-9));
+  CHECK(run.at(2.5, "TimedBack").speed == Approx(-2.0).margin(1e-9));
+  CHECK(run.at(2.5, "TimedBack").pose.h == Approx(std::numbers::pi).margin(1e-9));
+  CHECK(run.at(7.5, "TimedBack").pose.x == Approx(5.0).margin(1e-9));
+  CHECK(run.at(7.5, "TimedBack").speed == Approx(2.0).margin(1e-9));
+  CHECK(run.at(7.5, "TimedBack").pose.h == Approx(std::numbers::pi).margin(1e-9));
+  // A Timing over vertices without times leaves the speed to the speed actions, which go on.
+  CHECK(all_text(run.diagnostics())
+            .find("'timing_no_times' has fewer than two times; it is "
+                  "followed at the speed the longitudinal actions give") != std::string::npos);
+  CHECK(run.at(1.0, "TimingNoTimes").speed == Approx(3.0).margin(1e-9));
+  CHECK(run.at(1.0, "TimingNoTimes").pose.x == Approx(2.55).margin(1e-9));
+}
+
 TEST_CASE("A path whose vertices state a heading says which way the car faces on it",
           "[engine][trajectory]") {
   // Both cars start at the end of a 20 m path along +x (initialDistanceOffset 20). Backs: the
@@ -460,7 +493,7 @@ TEST_CASE("A path whose vertices state a heading says which way the car faces on
   // -x. Both reach the start at 10 s, where the action ends and, with no road, they stand.
   engine::SimulationOptions options;
   options.dt = 0.1;
-  FixtureRun run(engine_fixture("trajectory_stated_heading.xosc"), options);
+  FixtureRun run(engine_fixture("trajectory_first_vertex_heading.xosc"), options);
   run.run();
   CHECK(run.at(0.5, "Backs").pose.x == Approx(19.0).margin(1e-9));
   CHECK(run.at(0.5, "Backs").pose.h == Approx(0.0).margin(1e-12));

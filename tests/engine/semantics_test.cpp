@@ -535,6 +535,32 @@ TEST_CASE("A lane change goes on to its target lane from where a teleport put th
   }
 }
 
+TEST_CASE("A teleport to a RelativeLanePosition of the car itself without offset",
+          "[engine][semantics]") {
+  // A quarter into a linear 2 s lane change from lane -1 (t = -1.75) to lane -2 (t = -5.25),
+  // the car is at t = -2.625 when, at 1.51 s, it is teleported to a RelativeLanePosition of
+  // itself (dLane 0, ds 0) without offset, aligned with the lane.
+  SECTION("standard") {
+    // 1.3: a missing offset is 0, the lane's centre; the lane change goes on from there.
+    FixtureRun run(engine_fixture("semantics_teleport_in_place.xosc"));
+    run.run();
+    CHECK(run.at(1.52, "Car").road->t == Approx(-1.75).margin(1e-9));
+    CHECK(run.at(3.5, "Car").road->t == Approx(-5.25).margin(1e-9));
+  }
+  SECTION("esmini") {
+    // esmini leaves the car where it is across the lane, its heading along it; the teleport
+    // stops the lane change, so it drives on there.
+    FixtureRun run(engine_fixture("semantics_teleport_in_place.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(1.51, "Car").road->t == Approx(-2.625).margin(1e-9));
+    for (const double t : {1.52, 2.01, 3.5}) {
+      CAPTURE(t);
+      CHECK(run.at(t, "Car").road->t == Approx(-2.625).margin(1e-9));
+      CHECK(run.at(t, "Car").pose.h == Approx(0.0).margin(1e-12));
+    }
+  }
+}
+
 TEST_CASE(
     "Under esmini's reading a lane change started in the step of a teleport goes from where the "
     "teleport put the car",

@@ -20,13 +20,15 @@ struct Loaded {
   std::vector<corsa::Diagnostic> errors;
 };
 
-inline Loaded lenient_load(const TempDir& dir, const std::string& xml, bool strict = false) {
+inline Loaded lenient_load(const TempDir& dir, const std::string& xml, bool strict = false,
+                           bool esmini_booleans = false) {
   write_text(dir.path() / "map.xodr", minimal_xodr());
   write_text(dir.path() / "s.xosc", xml);
   corsa::Diagnostics diagnostics;
   Loaded loaded;
   xosc::LoadOptions options;
   options.strict = strict;
+  options.esmini_booleans = esmini_booleans;
   try {
     loaded.scenario = xosc::load_scenario(dir.path() / "s.xosc", options, diagnostics);
   } catch (const corsa::InputError& error) {

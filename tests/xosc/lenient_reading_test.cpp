@@ -330,6 +330,14 @@ TEST_CASE("a capitalised boolean is read as its lower-case value", "[xosc][lenie
             .acts[0]
             .maneuver_groups[0]
             .actors.select_triggering_entities);
+  // esmini's reader (`--semantics esmini`): true only for the text `true` or `1`.
+  const Loaded esmini = corsa::test::lenient_load(dir, xml, false, true);
+  CHECK_FALSE(esmini.scenario->storyboard.stories[0]
+                  .acts[0]
+                  .maneuver_groups[0]
+                  .actors.select_triggering_entities);
+  CHECK_THAT(warning_with(esmini, "'True' is not lower case").message,
+             Catch::Contains("(read as false, as esmini reads it)"));
   std::string wrong = xml;
   wrong.replace(wrong.find("\"True\""), 6, "\"no\"");
   const Loaded refused = corsa::test::lenient_load(dir, wrong);

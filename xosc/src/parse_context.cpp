@@ -389,9 +389,11 @@ std::optional<bool> ParseContext::opt_bool(const Element* element, const char* n
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (lower == "true" || lower == "false") {
+      // esmini's reader compares the text with `true` and `1`: anything else is false.
+      const bool value = lower == "true" && !options_.esmini_booleans;
       lenient(element, "attribute " + std::string(name) + ": '" + *text + "' is not lower case",
-              lower);
-      return lower == "true";
+              value ? "true" : (options_.esmini_booleans ? "false, as esmini reads it" : "false"));
+      return value;
     }
     error(element, "attribute " + std::string(name) + ": '" + clip(*text) +
                        "' is not a boolean (true or false)");

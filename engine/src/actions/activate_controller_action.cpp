@@ -4,7 +4,12 @@
 // controllers (a warning otherwise, and the action applies to its controller; none: the one
 // assigned last); a domain switched
 // on is taken from the other controller of a pair sharing the motion domains (ControlState::
-// partner).
+// partner). When the action switches off the longitudinal domain of the controller that set
+// the speed, and neither another controller of the scenario nor a running action sets it, the
+// default controller keeps the speed the entity has then (esmini's reading; the standard says
+// the default controller enforces what the actions describe, not which speed it keeps once a
+// controller leaves the speed to it), not the speed an action asked for before the controller
+// took over.
 
 #include "actions/action_makers.h"
 #include "controllers/alks_r157.h"
@@ -14,6 +19,13 @@
 
 namespace corsa::engine::detail {
 namespace {
+
+// Whether a controller of the scenario (not the default controller) sets the entity's speed.
+bool speed_from_scenario_controller(const ControlState& control) {
+  return (control.kind != ControllerKind::kDefault && control.longitudinal) ||
+         (control.partner && control.partner->kind != ControllerKind::kDefault &&
+          control.partner->longitudinal);
+}
 
 class ActivateControllerInstance final : public InstantAction {
  public:
@@ -31,6 +43,7 @@ class ActivateControllerInstance final : public InstantAction {
     if (to_partner) {
       swap_with_partner(control);  // the controller named is the one the action switches
     }
+    const bool sets_speed = control.kind != ControllerKind::kDefault && control.longitudinal;
     if (action_.object_controller_ref && !control.assigned.empty() &&
         *action_.object_controller_ref != control.assigned) {
       context.state.diagnostics.add_once(
@@ -57,6 +70,11 @@ class ActivateControllerInstance final : public InstantAction {
       if (action_.longitudinal.value_or(false)) control.partner->longitudinal = false;
       if (action_.lateral.value_or(false)) control.partner->lateral = false;
       settle_domains_at(context.state, *context.actor, action_.source);
+    }
+    Entity& entity = context.entity();
+    if (sets_speed && !action_.longitudinal.value_or(true) &&
+        !speed_from_scenario_controller(control) && entity.owners[0] == nullptr) {
+      entity.speed_command = entity.state.speed;  // slot 0: the longitudinal domain
     }
     if (action_.animation) control.animation = *action_.animation;
     if (action_.lighting) control.lighting = *action_.lighting;

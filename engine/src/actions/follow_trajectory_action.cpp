@@ -13,16 +13,22 @@
 // FollowTrajectoryAction moves its actor along the path in that mode as in `position` (the mode
 // only retimes a timed polyline there: constant acceleration from the current speed over each
 // segment, which Corsa does not emulate; it keeps the vertices' times).
-// A negative speed when the action starts drives the path in reverse gear (the vehicle faces
-// against the path); a speed whose sign differs from that drives back toward the path's start
-// (esmini's reading). A polyline whose first vertex states a heading (WorldPosition h) says the
-// facing itself: along the path or against it, whatever the speed's sign; a positive speed then
-// drives the way the vehicle faces, a negative one the other way (esmini's reading, its
-// trajectory_heading: a car facing along its path at -10 m/s backs toward the path's start). The
-// action ends at the path's end (or, driven back, its start), timed in the first step past its last
-// time (§6.7.3: the actor is at each vertex at its time, so a repeated last vertex with a later
-// time is a wait there); that step goes on past the end for its rest, and the actor's lane
-// following takes over at the path's own end speed.
+// The direction the actor faces along the path, set when it starts moving: the heading the vertex
+// it starts from states, if it states one (1.3 §6.9: a trajectory of six dimensions gives the
+// entity's orientation too; facing within 90 degrees of the path's direction faces along it, else
+// against it); without one, along the path on a timed path, and on an untimed one along it at a
+// speed of zero or more, against it (reverse gear) at a negative speed (esmini's reading). The
+// stated heading sets the facing whatever the speed's sign. A positive speed drives the way the
+// actor faces, a negative one backwards: facing against the path, a positive speed drives toward
+// the path's start (esmini's trajectory_heading: a car facing along its path at -10 m/s backs
+// toward the path's start). The action ends at the end the actor drives to, timed in the first step
+// past its last time (§6.7.3: the actor is at each vertex at its time, so a repeated last vertex
+// with a later time is a wait there); that step goes on past the end for its rest, and the actor's
+// lane following takes over at the path's own end speed. A timed path driven facing against it is
+// driven in reverse gear: the speed is negative. Further on, each vertex stating a heading turns
+// the actor to it: on a timed path from that vertex on (a path that doubles back is driven forward
+// after reversing), on an untimed one the direction of travel stays as it started and the stated
+// headings turn the actor only.
 
 #include <algorithm>
 #include <cmath>
@@ -41,8 +47,11 @@ class FollowTrajectoryInstance final : public ActionInstance {
   explicit FollowTrajectoryInstance(const xosc::FollowTrajectoryAction& action)
       : action_(action), timing_(action.time_reference.timing) {}
 
+  // A Timing over a path without times leaves the speed to the longitudinal actions, so such an
+  // action takes only the lateral domain (the warning comes when it starts).
   uint8_t domains() const override {
-    return timing_ ? kDomainLongitudinal | kDomainLateral : kDomainLateral;
+    return timing_ && states_times(action_.trajectory) ? kDomainLongitudinal | kDomainLateral
+                                                       : kDomainLateral;
   }
 
   void start(ActionContext& context) override {
@@ -52,8 +61,8 @@ class FollowTrajectoryInstance final : public ActionInstance {
           "follow-trajectory-untimed",
           action_.source.warning("FollowTrajectoryAction has a Timing but trajectory '" +
                                  action_.trajectory.name +
-                                 "' has fewer than two times; it is followed at the current "
-                                 "speed"));
+                                 "' has fewer than two times; it is followed at the speed the "
+                                 "longitudinal actions give"));
       timing_.reset();
     }
     s_ = std::clamp(action_.initial_distance_offset.value_or(0.0), 0.0, path_.length());
@@ -68,8 +77,8 @@ class FollowTrajectoryInstance final : public ActionInstance {
     const double dt = context.state.time.dt();
     if (first_step_) {
       first_step_ = false;
-      const std::optional<bool> against = path_.stated_facing_against();
-      direction_ = (against ? *against : entity.speed_command < 0.0) ? -1.0 : 1.0;
+      const std::optional<double> stated = path_.stated_heading_at(s_);
+      facing_ = stated ? stated_facing(s_) : (!timing_ && entity.speed_command < 0.0 ? -1.0 : 1.0);
     }
     // The step that passes the path's end goes on past it along the end's heading for the rest
     // of the step, and a timed path ends in the first step after its last time, as esmini reads
@@ -78,6 +87,7 @@ class FollowTrajectoryInstance final : public ActionInstance {
     // step left on it.
     double beyond = 0.0;  // m past the path's end in this step
     double s_next = 0.0;
+    double face = facing_;  // the way the actor faces at the step's end
     if (timing_) {
       double t = context.state.time.time(context.state.tick + 1);
       if (timing_->domain_absolute_relative == xosc::ReferenceContext::kRelative) {
@@ -95,28 +105,39 @@ class FollowTrajectoryInstance final : public ActionInstance {
         ended_ = late > 1e-9;
         beyond = std::max(0.0, late * end_speed());
       }
-      entity.speed_command = (s_next + beyond - s_) / dt;
+      // On a timed path each vertex stating a heading turns the actor to it from there on (a
+      // path that doubles back is driven forward again after reversing, as esmini does).
+      face = path_.stated_heading_at(s_next) ? stated_facing(s_next) : facing_;
+      entity.speed_command = face * (s_next + beyond - s_) / dt;
     } else {
-      // The sign of the speed when the action starts sets the direction of travel along the
-      // path (reverse gear, facing against the path, if negative); a speed of the other sign
-      // later drives back along the path toward its start, facing as before, as esmini reads it
-      // (the standard says nothing of a negative speed along a path). A step travels its end
-      // speed times dt, as a step on a lane does.
-      s_next = s_ + direction_ * entity.speed_command * dt;
+      // A positive speed drives the way the actor faces (toward the path's start when it faces
+      // against the path), a negative one backwards (the standard says nothing of the direction
+      // of travel along a path nor of a negative speed on it; esmini's reading). A step travels
+      // its end speed times dt, as a step on a lane does.
+      s_next = s_ + facing_ * entity.speed_command * dt;
       beyond = std::max(0.0, s_next - path_.length());
-      const bool backward = direction_ * entity.speed_command < 0.0;
-      ended_ = backward ? s_next <= 1e-9 : s_next >= path_.length() - 1e-9;
+      const bool toward_start = facing_ * entity.speed_command < 0.0;
+      ended_ = toward_start ? s_next <= 1e-9 : s_next >= path_.length() - 1e-9;
+      // The direction of travel stays as it started; the stated headings turn the actor only.
+      const double clamped = std::clamp(s_next, 0.0, path_.length());
+      face = path_.stated_heading_at(clamped) ? stated_facing(clamped) : facing_;
     }
     s_next = std::clamp(s_next, 0.0, path_.length());
-    const double facing = direction_ < 0.0 ? std::numbers::pi : 0.0;
+    const double turn = face < 0.0 ? std::numbers::pi : 0.0;
     const PathPoint p = continued(s_next + beyond);
-    entity.pose_command = Pose{p.x, p.y, p.z, wrap_angle(p.h + facing), 0.0, 0.0};
+    entity.pose_command = Pose{p.x, p.y, p.z, wrap_angle(p.h + turn), 0.0, 0.0};
     s_ = s_next;
   }
 
   bool finished() const override { return ended_; }
 
  private:
+  // +1 if the heading stated at s (there must be one) is within 90 degrees of the path's
+  // direction there, -1 if it faces against the path.
+  double stated_facing(double s) const {
+    return std::cos(*path_.stated_heading_at(s) - path_.at(s).h) < 0.0 ? -1.0 : 1.0;
+  }
+
   // m/s along the path at its last time: the last millisecond's (or whole path's) mean speed.
   double end_speed() const {
     const double h = std::min(1e-3, path_.last_time() - path_.first_time());
@@ -141,11 +162,10 @@ class FollowTrajectoryInstance final : public ActionInstance {
   double start_time_ = 0.0;  ///< s
   double time_shift_ = 0.0;  ///< s of trajectory time skipped by initialDistanceOffset
   bool ended_ = false;
-  bool first_step_ = true;  ///< direction_ is set in the first step, from the speed then
-  /// +1 if the vehicle faces along the path (a positive speed drives toward the path's end),
-  /// -1 if against it (a negative speed drives toward the end, in reverse gear). The path's
-  /// stated heading says which; without one, the sign of the speed when the action started.
-  double direction_ = 1.0;
+  bool first_step_ = true;  ///< facing_ is set in the first step
+  /// +1 if the actor faces along the path (a positive speed drives toward its end), -1 if it
+  /// faces against it (a positive speed drives toward its start).
+  double facing_ = 1.0;
 };
 
 }  // namespace

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <type_traits>
 
 #include "corsa/core/vec.h"
@@ -49,6 +48,22 @@ void TrajectoryPath::add_time(double s, double time) {
     return;
   }
   timeline_.emplace_back(s, time);
+}
+
+void TrajectoryPath::add_vertex(double s, std::optional<double> heading) {
+  vertices_.emplace_back(s, heading);
+}
+
+std::optional<double> TrajectoryPath::stated_heading_at(double s) const {
+  const auto after =
+      std::upper_bound(vertices_.begin(), vertices_.end(), s + 1e-9,
+                       [](double value, const std::pair<double, std::optional<double>>& v) {
+                         return value < v.first;
+                       });
+  if (after == vertices_.begin()) {
+    return std::nullopt;
+  }
+  return (after - 1)->second;
 }
 
 namespace {
@@ -109,23 +124,39 @@ Vec3 point_of(const xosc::Position& position, const SimState& state, std::option
   return {at.pose.x, at.pose.y, at.pose.z};
 }
 
+// True if the position gives a heading of its own (a WorldPosition's h, an Orientation's h).
+bool position_states_heading(const xosc::Position& position) {
+  return std::visit(
+      [](const auto& kind) {
+        using T = std::decay_t<decltype(kind)>;
+        if constexpr (std::is_same_v<T, xosc::WorldPosition>) {
+          return kind.h.has_value();
+        } else if constexpr (requires { kind.orientation; }) {
+          return kind.orientation.has_value() && kind.orientation->h.has_value();
+        } else {
+          return false;
+        }
+      },
+      position.kind);
+}
+
 void build_polyline(TrajectoryPath& path, const xosc::Polyline& shape, const SimState& state,
                     std::optional<uint32_t> self) {
   std::vector<Vec3> points;
+  std::vector<std::optional<double>> headings;
   for (const xosc::Vertex& vertex : shape.vertices) {
-    points.push_back(point_of(vertex.position, state, self));
+    const ResolvedPosition at = resolve_position(vertex.position, state, self);
+    points.push_back({at.pose.x, at.pose.y, at.pose.z});
+    headings.push_back(position_states_heading(vertex.position) ? std::optional(at.pose.h)
+                                                                : std::nullopt);
   }
   add_polyline(path, points);
-  const auto* first = std::get_if<xosc::WorldPosition>(&shape.vertices.front().position.kind);
-  if (first != nullptr && first->h && !path.empty()) {
-    path.set_stated_facing_against(std::abs(wrap_angle(*first->h - path.at(0.0).h)) >
-                                   std::numbers::pi / 2.0);
-  }
   double s = 0.0;
   for (size_t i = 0; i < points.size(); ++i) {
     if (i > 0) {
       s += std::hypot(points[i].x - points[i - 1].x, points[i].y - points[i - 1].y);
     }
+    path.add_vertex(s, headings[i]);
     if (shape.vertices[i].time) {
       path.add_time(s, *shape.vertices[i].time);
     }
@@ -369,6 +400,28 @@ void build_nurbs(TrajectoryPath& path, const xosc::Nurbs& shape, const SimState&
 }
 
 }  // namespace
+
+bool states_times(const xosc::Trajectory& trajectory) {
+  const size_t times = std::visit(
+      [](const auto& shape) -> size_t {
+        using T = std::decay_t<decltype(shape)>;
+        if constexpr (std::is_same_v<T, xosc::Polyline>) {
+          return std::ranges::count_if(shape.vertices,
+                                       [](const auto& v) { return v.time.has_value(); });
+        } else if constexpr (std::is_same_v<T, xosc::Clothoid>) {
+          return shape.start_time && shape.stop_time ? 2 : 0;
+        } else if constexpr (std::is_same_v<T, xosc::ClothoidSpline>) {
+          return std::ranges::count_if(shape.segments,
+                                       [](const auto& seg) { return seg.time_start.has_value(); }) +
+                 (shape.time_end ? 1 : 0);
+        } else {
+          return std::ranges::count_if(shape.control_points,
+                                       [](const auto& cp) { return cp.time.has_value(); });
+        }
+      },
+      trajectory.shape);
+  return times >= 2;
+}
 
 TrajectoryPath build_trajectory_path(const xosc::Trajectory& trajectory, const SimState& state,
                                      std::optional<uint32_t> self) {

@@ -52,18 +52,24 @@ class TrajectoryPath {
   double last_time() const { return timeline_.back().second; }
   double last_timed_s() const { return timeline_.back().first; }
 
-  /// Whether the headings the trajectory itself states face against its direction of travel:
-  /// a polyline whose first vertex is a WorldPosition with `h` (turned more than a quarter turn
-  /// from the first segment: against). Nothing when the trajectory states no heading.
-  std::optional<bool> stated_facing_against() const { return stated_facing_against_; }
-  void set_stated_facing_against(bool against) { stated_facing_against_ = against; }
+  /// A polyline vertex at arc length s (in order along the path) and the heading its position
+  /// states, if it states one (OpenSCENARIO 1.3 §6.9: a trajectory of six dimensions gives the
+  /// entity's orientation along it too).
+  void add_vertex(double s, std::optional<double> heading);
+  /// The heading stated by the last vertex at or before s: nothing if that vertex states none
+  /// or the shape has no vertices (clothoids, splines, NURBS).
+  std::optional<double> stated_heading_at(double s) const;
 
  private:
   std::vector<Segment> segments_;
-  std::vector<std::pair<double, double>> timeline_;  ///< (s, time), both increasing
+  std::vector<std::pair<double, double>> timeline_;                 ///< (s, time), both increasing
+  std::vector<std::pair<double, std::optional<double>>> vertices_;  ///< (s, stated heading)
   double length_ = 0.0;
-  std::optional<bool> stated_facing_against_;
 };
+
+/// True if `trajectory` gives times to at least two of its points (vertices, clothoid start and
+/// stop, spline segments and end, control points): what a Timing needs to set the speed.
+bool states_times(const xosc::Trajectory& trajectory);
 
 /// Builds the path of `trajectory`; vertex and control point positions are resolved now.
 /// Throws InputError (located) for degenerate shapes (fewer than two points, a NURBS with a

@@ -73,6 +73,7 @@ RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
   xosc::LoadOptions load;
   load.parameters = options.parameters;
   load.strict = options.simulation.strict;
+  load.esmini_booleans = options.simulation.semantics == Semantics::kEsmini;
   const xosc::Scenario scenario = xosc::load_scenario(options.scenario, load, diagnostics);
   Simulation simulation(scenario, load_road_network(scenario, diagnostics), options.simulation,
                         diagnostics);

@@ -38,10 +38,11 @@ class SharedInputs {
   const std::string& scenario_text() const { return scenario_text_; }
 
   /// The scenario with `parameters` overriding its global parameter values (xosc::LoadOptions),
-  /// parsed from the shared text with the shared catalogs; `strict` refuses lenient readings.
-  /// Throws InputError.
+  /// parsed from the shared text with the shared catalogs; `strict` refuses lenient readings,
+  /// `esmini_booleans` reads capitalised booleans as esmini (xosc::LoadOptions). Throws
+  /// InputError.
   xosc::Scenario load(const ParameterValues& parameters, Diagnostics& diagnostics,
-                      bool strict = false) const;
+                      bool strict = false, bool esmini_booleans = false) const;
 
   /// The scenario's road network (null when it has none), loaded once per LogicFile path and
   /// then shared; a map that failed to load fails every variant that uses it, with the same

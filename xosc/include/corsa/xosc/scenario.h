@@ -105,6 +105,10 @@ struct LoadOptions {
   /// Lenient readings (a rule of the standard broken in a way whose meaning is clear, read as
   /// its author meant with a `(read as ...)` warning) become errors (`--strict`).
   bool strict = false;
+  /// A boolean written in another case than the schema's (`True`, `FALSE`) is true only as
+  /// esmini's reader has it: its text must be `true` or `1`, so `True` reads false (the run's
+  /// `--semantics esmini`). Off: the author's evident meaning, `True` true (a lenient reading).
+  bool esmini_booleans = false;
   /// Catalog files parsed once and shared between loads (sweeps); null: each load reads them.
   std::shared_ptr<CatalogCache> catalog_cache;
   /// Checks road and lane references against the map while loading (`corsa validate`); null:
