@@ -7,11 +7,14 @@
 #include <bit>
 #include <catch2/catch.hpp>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../xodr/xodr_test_util.h"
 #include "lanes/lane_follow.h"
+#include "motion/controller.h"
 
 namespace {
 
@@ -117,4 +120,51 @@ TEST_CASE("Lanes that overlap through border records give the lane pose of every
   INFO(result.first_mismatch);
   CHECK(result.mismatches == 0);
   CHECK(result.poses > 0);
+}
+
+namespace {
+
+bool same_located(const std::optional<corsa::xodr::LanePosition>& a,
+                  const std::optional<corsa::xodr::LanePosition>& b) {
+  if (a.has_value() != b.has_value()) return false;
+  if (!a) return true;
+  return a->road == b->road && a->section == b->section && a->lane == b->lane &&
+         same_bits(a->s, b->s) && same_bits(a->t, b->t) && same_bits(a->distance, b->distance) &&
+         same_bits(a->heading, b->heading);
+}
+
+}  // namespace
+
+TEST_CASE("An entity's remembered lane at a point is the map's answer, asked again elsewhere",
+          "[engine][lanes]") {
+  const Map map = corsa::xodr::test::load_map(corsa::xodr::test::all_shared_maps().front());
+  corsa::xodr::LocateOptions options;
+  options.max_distance = 0.5;
+  corsa::engine::detail::Entity entity;
+  std::vector<LaneSpan> spans;
+  size_t asked = 0, found = 0, mismatches = 0;
+  // Points on lanes, beside them and far off every road, each asked twice in a row (the memo
+  // answers the second) and then after another point (the memo must ask the map again).
+  std::vector<std::pair<double, double>> points;
+  for (uint32_t road = 0; road < map.road_count(); ++road) {
+    for (const double s : {0.0, 0.5 * map.road(road).length}) {
+      for (const double t : {0.0, 1.7, -2.9, 6.3}) {
+        const corsa::xodr::WorldPose at = map.world_pose(road, s, t);
+        points.emplace_back(at.x, at.y);
+      }
+    }
+  }
+  points.emplace_back(1.0e6, -1.0e6);
+  for (size_t i = 0; i < points.size(); ++i) {
+    for (const auto& [x, y] : {points[i], points[i], points[(i + 7) % points.size()], points[i]}) {
+      const auto expected = map.locate(x, y, options);
+      const auto& got = corsa::engine::detail::locate_near(entity, map, x, y);
+      ++asked;
+      found += expected.has_value();
+      mismatches += !same_located(expected, got);
+    }
+  }
+  CHECK(mismatches == 0);
+  CHECK(found > 0);
+  CHECK(found < asked);  // points off the roads too
 }

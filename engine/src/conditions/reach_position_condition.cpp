@@ -9,7 +9,9 @@
 // traj-heading-trig waits so for a lane change's heading).
 
 #include <cmath>
+#include <optional>
 #include <type_traits>
+#include <variant>
 
 #include "conditions/condition_makers.h"
 #include "geometry/angle.h"
@@ -35,15 +37,27 @@ bool has_orientation(const xosc::Position& position) {
       position.kind);
 }
 
+// Whether the position is a place on the map alone (no entity, route or trajectory to read):
+// the scenario and the map do not change during a run, so it resolves to the same pose always.
+bool fixed_on_map(const xosc::Position& position) {
+  return std::holds_alternative<xosc::WorldPosition>(position.kind) ||
+         std::holds_alternative<xosc::LanePosition>(position.kind) ||
+         std::holds_alternative<xosc::RoadPosition>(position.kind);
+}
+
 class ReachPositionCheck final : public EntityCondition {
  public:
   ReachPositionCheck(const xosc::ReachPositionCondition& c, const SimState& state)
       : c_(c),
         check_orientation_(state.options.semantics == Semantics::kEsmini &&
-                           has_orientation(c.position)) {}
+                           has_orientation(c.position)),
+        fixed_(fixed_on_map(c.position)) {}
 
   bool holds(const SimState& state, uint32_t entity) override {
-    const ResolvedPosition target = resolve_position(c_.position, state, entity);
+    // A place on the map is resolved once; it was resolved every step, for every entity.
+    if (fixed_ && !target_) target_ = resolve_position(c_.position, state, entity);
+    const ResolvedPosition target =
+        fixed_ ? *target_ : resolve_position(c_.position, state, entity);
     const Pose& p = state.world.entities[entity].state.pose;
     if (std::hypot(target.pose.x - p.x, target.pose.y - p.y) > c_.tolerance) {
       return false;
@@ -59,6 +73,8 @@ class ReachPositionCheck final : public EntityCondition {
  private:
   const xosc::ReachPositionCondition& c_;
   bool check_orientation_ = false;
+  bool fixed_ = false;
+  std::optional<ResolvedPosition> target_;  ///< the resolved place, when fixed_
 };
 
 }  // namespace

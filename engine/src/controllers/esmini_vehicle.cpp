@@ -56,7 +56,7 @@ void place_entity_at_model(double x, double y, double h, double speed, Entity& e
   pose.y = y;
   pose.h = std::remainder(h, kEsminiFullTurn);
   if (motion.map != nullptr) {
-    if (const auto at = locate_point(*motion.map, x, y, 0.5)) {
+    if (const auto at = road_point_within(locate_near(entity, *motion.map, x, y), 0.5)) {
       const xodr::WorldPose surface = motion.map->world_pose(at->road, at->s, at->t);
       pose.z = surface.z;
       pose.p = surface.p;

@@ -65,13 +65,26 @@ void update_road_from_pose(Entity& entity, const xodr::Map* map) {
   if (map == nullptr) {
     return;
   }
-  xodr::LocateOptions options;
-  options.max_distance = 0.5;
-  const auto located = map->locate(entity.state.pose.x, entity.state.pose.y, options);
+  const auto& located = locate_near(entity, *map, entity.state.pose.x, entity.state.pose.y);
   if (located && located->distance == 0.0) {
     entity.state.road =
         RoadCoordinates{located->road, located->section, located->lane, located->s, located->t};
   }
+}
+
+const std::optional<xodr::LanePosition>& locate_near(Entity& entity, const xodr::Map& map, double x,
+                                                     double y) {
+  PointLocateMemo& memo = entity.point_memo;
+  if (!memo.valid || std::bit_cast<uint64_t>(memo.x) != std::bit_cast<uint64_t>(x) ||
+      std::bit_cast<uint64_t>(memo.y) != std::bit_cast<uint64_t>(y)) {
+    xodr::LocateOptions options;
+    options.max_distance = 0.5;
+    memo.located = map.locate(x, y, options);
+    memo.x = x;
+    memo.y = y;
+    memo.valid = true;
+  }
+  return memo.located;
 }
 
 namespace {

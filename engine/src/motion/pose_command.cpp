@@ -37,7 +37,7 @@ void move_to_pose_command(Entity& entity, const MotionContext& context) {
   }
   // Keep the followed lane in step with the pose (half a metre of slack off the lane edges),
   // so that the lane, s and t are recorded and lane following can take over at the end.
-  const auto at = locate_point(*context.map, target.x, target.y, 0.5);
+  const auto at = road_point_within(locate_near(entity, *context.map, target.x, target.y), 0.5);
   if (at && at->lane &&
       attach_to_lane(*context.map, entity.lane, at->road, at->s, at->t, *at->lane, target.h)) {
     entity.lateral_command = entity.lane.lateral;

@@ -291,7 +291,11 @@ std::optional<RoadPoint> locate_point(const xodr::Map& map, double x, double y,
                                       double max_distance) {
   xodr::LocateOptions options;
   options.max_distance = max_distance;
-  const auto located = map.locate(x, y, options);
+  return road_point_within(map.locate(x, y, options), max_distance);
+}
+
+std::optional<RoadPoint> road_point_within(const std::optional<xodr::LanePosition>& located,
+                                           double max_distance) {
   if (!located || located->distance > max_distance) {
     return std::nullopt;
   }

@@ -38,6 +38,10 @@ ResolvedPosition resolve_position(const xosc::Position& position, const SimState
 /// Road coordinates of a world point (nearest lane within `max_distance`), or nothing.
 std::optional<RoadPoint> locate_point(const xodr::Map& map, double x, double y,
                                       double max_distance);
+/// The same from a map's answer already at hand (xodr::Map::locate): nothing when there is
+/// none or it lies farther than max_distance (m).
+std::optional<RoadPoint> road_point_within(const std::optional<xodr::LanePosition>& located,
+                                           double max_distance);
 
 /// The reference entity of a relative position, or nothing for absolute kinds.
 const std::string* referenced_entity(const xosc::Position& position);

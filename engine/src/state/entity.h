@@ -13,6 +13,7 @@
 #include "corsa/engine/entity_state.h"
 #include "corsa/engine/world_snapshot.h"
 #include "corsa/xodr/lane_graph.h"
+#include "corsa/xodr/map.h"
 #include "corsa/xosc/enums.h"
 
 namespace corsa::xosc {
@@ -53,6 +54,17 @@ struct LanePoseMemo {
   LaneFollow from;
   Pose pose;
   std::optional<RoadCoordinates> road;
+};
+
+/// The map's last answer, for one entity, to which lane holds the point (x, y) within half a
+/// metre (motion/controller.h, locate_near): a controller that puts its entity at a vehicle
+/// model's pose asks it three times a step for the same point, and a model at rest asks it
+/// every step. The map does not change during a run, so the same point has the same answer.
+struct PointLocateMemo {
+  bool valid = false;
+  double x = 0.0;  ///< m, the point asked for, compared bit for bit
+  double y = 0.0;
+  std::optional<xodr::LanePosition> located;
 };
 
 /// Where an entity is along its route and the lane change its route needs, under way
@@ -163,6 +175,8 @@ struct Entity {
   /// scenario has such a condition (SimState::straight_travel_wanted).
   double straight_travel = 0.0;
   double straight_from_x = 0.0, straight_from_y = 0.0;  ///< the place it is summed from
+  /// The last lane found at a point (entities placed at a pose, or off their lanes).
+  PointLocateMemo point_memo;
 
   const xosc::ScenarioObject* object = nullptr;
   /// Owns the route chooser (AssignRouteAction, AcquirePositionAction) `chooser` points at.
