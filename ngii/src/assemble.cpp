@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <map>
 #include <optional>
 #include <set>
@@ -30,24 +29,6 @@ std::vector<std::pair<int, int>> lane_pairs(const RoadPlan& from, const RoadPlan
     }
   }
   return pairs;
-}
-
-/// Where `built`'s reference line starts or (`at_end`) ends, and its heading there.
-std::optional<BuiltEnd> built_end(const BuiltRoad& built, bool at_end) {
-  const auto& records = built.road.plan_view;
-  if (records.empty()) {
-    return std::nullopt;
-  }
-  const xodr::Geometry& g = at_end ? records.back() : records.front();
-  const xodr::RefPoint p = xodr::evaluate_geometry(g, at_end ? g.length : 0.0);
-  return BuiltEnd{Vec2{p.x, p.y}, p.hdg};
-}
-
-/// Whether `a` and `b` start (or, `at_end`, end) at the same point with the same heading (1e-9).
-bool same_end(const BuiltRoad& a, const BuiltRoad& b, bool at_end) {
-  const auto p = built_end(a, at_end), q = built_end(b, at_end);
-  return p && q && norm(p->point - q->point) < 1e-9 &&
-         std::abs(std::remainder(p->heading - q->heading, 2.0 * M_PI)) < 1e-9;
 }
 
 class Assembler {
@@ -129,7 +110,13 @@ class Assembler {
     }
     const std::vector<RoadEndLines> own_lines = end_lines;
     const auto end_of = [&](size_t r, bool at_end) -> std::optional<BuiltEnd> {
-      return built[r] ? built_end(*built[r], at_end) : std::nullopt;
+      if (!built[r] || built[r]->road.plan_view.empty()) {
+        return std::nullopt;
+      }
+      const auto& records = built[r]->road.plan_view;
+      const xodr::Geometry& g = at_end ? records.back() : records.front();
+      const xodr::RefPoint p = xodr::evaluate_geometry(g, at_end ? g.length : 0.0);
+      return BuiltEnd{Vec2{p.x, p.y}, p.hdg};
     };
     // Ordinary roads of one lane (and lanes splitting off it) starting where one other road's
     // one lane (and lanes merging into it) ends, again on its end's cross-section (their ends stay,
@@ -253,9 +240,10 @@ class Assembler {
   /// left a wedge on one side of the joint (K-City's start grid: a path 14 degrees off the
   /// road it enters, 2.3 m of the road's start open). Only where the road has one lane there
   /// beside the others and nothing but the path meets it there, and kept where the road neither
-  /// folds, gains a kink nor moves its lane's end off its link, and where other roads meet its
-  /// other end, that end stays (within 1e-9): they were built on it. The refit moves it by a
-  /// millimetre or so (the fit runs from the road's start, its end heading fitted).
+  /// folds, gains a kink nor moves its lane's end off its link. The refit moves the road's other
+  /// end by a millimetre or so (the fit runs from the road's start, its end heading fitted),
+  /// where roads meeting it there were built on where it was: kept all the same, as the rebuild
+  /// closes a wedge of up to 0.75 m along the lane's edge at the path (K-City's road 187).
   void ordinary_ends_on_paths(const std::vector<RoadEndLines>& offered,
                               const std::vector<RoadEndLines>& used, const BuiltEndOf& end_of,
                               std::vector<RoadEndLines>& lines,
@@ -309,7 +297,6 @@ class Assembler {
                                      joint_borders_[o]);
         const BuiltRoad& before = *built[o];
         if (!again.folds && again.kinks <= before.kinks &&
-            (!met_at(o, road_start) || same_end(before, again, road_start)) &&  // its other end
             again.end_error <= std::max(kRoadEndError, before.end_error) &&
             (!fitted_road_folds(again.road) || fitted_road_folds(before.road))) {
           built[o] = std::move(again);
@@ -317,25 +304,6 @@ class Assembler {
         }
       }
     }
-  }
-
-  /// Whether another road's lane starts where a lane of road `r` ends (`at_end`), or ends where
-  /// one of its lanes starts.
-  bool met_at(size_t r, bool at_end) const {
-    for (const PlanLane& lane : plan_.roads[r].lanes) {
-      const int key = at_end ? lane.end_node : lane.start_node;
-      if (key < 0) {
-        continue;
-      }
-      const auto& refs = at_end ? index_.starting[static_cast<size_t>(key)]
-                                : index_.ending[static_cast<size_t>(key)];
-      for (const LaneIndex::Ref& ref : refs) {
-        if (ref.road != static_cast<int>(r)) {
-          return true;
-        }
-      }
-    }
-    return false;
   }
 
   /// Ordinary lanes joined end to start meet edge to edge (lane_joints.h): each ordinary road
