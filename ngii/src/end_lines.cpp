@@ -17,14 +17,7 @@ Vec2 end_point(const PlanLane& lane, bool at_end, const Origin& origin) {
   return Vec2{p.x - origin.x, p.y - origin.y};
 }
 
-/// How many lanes of `road` start (`at_start`) or end beside the others (not at zero width).
-size_t lanes_beside(const RoadPlan& road, bool at_start) {
-  size_t count = 0;
-  for (size_t k = 0; k < road.lanes.size(); ++k) {
-    count += effective_end(road, k, at_start) == LaneEnd::kBeside;
-  }
-  return count;
-}
+constexpr double kMergeInLine = 10.0 * M_PI / 180.0;  // rad: merge_in_line's largest turn
 
 /// Of the one-lane ordinary roads `joined` ending where `lane` starts (a merge of one-lane
 /// roads), the end of the one whose end heading lies closest to the lane's start heading, where
@@ -32,7 +25,6 @@ size_t lanes_beside(const RoadPlan& road, bool at_start) {
 /// and road 316 32 degrees off: started square to its own course, it left a wedge beside both
 /// (0.82 m along its start edge); on the end line of the road in line with it, that road's end
 /// covers its start edge, and the other road's end meets the two at its corner.
-constexpr double kMergeInLine = 10.0 * M_PI / 180.0;
 std::optional<BuiltEnd> merge_in_line(const NetworkPlan& plan, const std::set<int>& joined,
                                       const PlanLane& lane, const BuiltEndOf& end_of) {
   const Polyline line(lane.points);
@@ -64,6 +56,15 @@ std::optional<BuiltEnd> merge_in_line(const NetworkPlan& plan, const std::set<in
 size_t slot(size_t road, bool at_end) { return 2 * road + (at_end ? 1 : 0); }
 
 }  // namespace
+
+/// How many lanes of `road` start (`at_start`) or end beside the others (not at zero width).
+size_t lanes_beside(const RoadPlan& road, bool at_start) {
+  size_t count = 0;
+  for (size_t k = 0; k < road.lanes.size(); ++k) {
+    count += effective_end(road, k, at_start) == LaneEnd::kBeside;
+  }
+  return count;
+}
 
 std::vector<RoadEndLines> road_end_lines(const NetworkPlan& plan, const Origin& origin) {
   const size_t roads = plan.roads.size();

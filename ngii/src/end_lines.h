@@ -27,6 +27,9 @@ struct RoadEndLines {
   bool end_shared = false;
 };
 
+/// How many lanes of `road` start (`at_start`) or end beside the others (not at zero width).
+size_t lanes_beside(const RoadPlan& road, bool at_start);
+
 /// Per road of `plan` (removed ones get no lines).
 std::vector<RoadEndLines> road_end_lines(const NetworkPlan& plan, const Origin& origin);
 

@@ -186,6 +186,7 @@ std::optional<double> bend_end(std::vector<Point2>& p, const EndTarget& target, 
     const double f = 1.0 - reach / norm(b - a);
     const Vec2 q = a + f * (b - a);
     p.insert(p.begin() + static_cast<std::ptrdiff_t>(i), Point2{q.x, q.y});
+    walked = reach;  // the bend starts at q, the reach before the end: no second start below
   }
   // Sparse vertices (a link digitised with a few long segments): where the vertex the walk
   // stops at lies less than half the reach from the end, the bend starts on the segment before

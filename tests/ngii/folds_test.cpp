@@ -222,3 +222,63 @@ TEST_CASE("a lane turning right tightly within a metre or two of its end does no
   CHECK(corsa::test::folded_roads(map) == 0);
   CHECK(conversion.summary.max_lane_error <= 0.06);
 }
+
+namespace {
+
+/// A straight two-vertex reference along +x, `length` metres, its end lines (left to right)
+/// turned by `skew` from square where asked.
+corsa::ngii::detail::ReferencePolyline straight_reference(double length) {
+  corsa::ngii::detail::ReferencePolyline reference;
+  reference.points = {{0.0, 0.0}, {length, 0.0}};
+  return reference;
+}
+corsa::ngii::detail::EndLine skewed_line(corsa::Vec2 point, double skew) {
+  return corsa::ngii::detail::EndLine{point, {std::sin(skew), -std::cos(skew)}};
+}
+
+}  // namespace
+
+TEST_CASE("a two-vertex road longer than twice the reach bends over the reach alone",
+          "[ngii][folds]") {
+  // The last segment of 100 m is longer than the reach (8 m for 20 degrees at 3.5 m): the bend
+  // starts on it 8 m before the end, and the road runs straight up to there.
+  const double skew = 20.0 * M_PI / 180.0;
+  const auto reference = corsa::ngii::detail::align_ends(straight_reference(100.0), std::nullopt,
+                                                         skewed_line({100.0, 0.0}, skew),
+                                                         {0.0, 0.0}, {100.0, 0.0}, 3.5);
+  const auto& p = reference.points;
+  REQUIRE(p.size() > 3);
+  double bend_start = 0.0;  // the last vertex still on the line of travel
+  for (const auto& q : p) {
+    if (std::abs(q.y) < 1e-12) {
+      bend_start = std::max(bend_start, q.x);
+    }
+  }
+  CHECK(bend_start == Approx(92.0).margin(1e-9));
+  CHECK(std::abs(p[2].y) > 1e-6);  // the bend itself leaves the line of travel
+  CHECK(std::abs(reference.end_heading) == Approx(skew).margin(1e-9));
+}
+
+TEST_CASE("both bends of a short two-vertex road stay within their rooms", "[ngii][folds]") {
+  // Skewed at both ends by 20 degrees, 3.5 m wide: each end bends over its reach of 8 m within
+  // its room (0.45 of the length), and the middle stays on the line of travel.
+  const double skew = 20.0 * M_PI / 180.0;
+  for (const double length : {20.0, 25.0, 30.0}) {
+    INFO("length " << length);
+    const auto reference = corsa::ngii::detail::align_ends(
+        straight_reference(length), skewed_line({0.0, 0.0}, skew),
+        skewed_line({length, 0.0}, -skew), {0.0, 0.0}, {length, 0.0}, 3.5);
+    const double room = 0.45 * length;
+    int bent = 0;
+    for (const auto& q : reference.points) {
+      if (std::abs(q.y) > 1e-12) {
+        ++bent;
+        INFO("bent vertex at x = " << q.x);
+        CHECK((q.x <= room || q.x >= length - room));
+      }
+    }
+    CHECK(bent > 4);  // both ends did bend
+    CHECK(std::abs(reference.start_heading) == Approx(skew).margin(1e-9));
+    CHECK(std::abs(reference.end_heading) == Approx(skew).margin(1e-9));
+  }
+}

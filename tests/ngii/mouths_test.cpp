@@ -592,15 +592,13 @@ TEST_CASE("a junction path leaving a stop line at 52 degrees to its square start
   CHECK(gaps.max < 0.1);
 }
 
-TEST_CASE(
-    "a road after a junction path that cannot take its start line starts on the path's end line",
-    "[ngii][mouths]") {
-  // A 7 m path leaves a road heading 9 degrees south of east at 26 degrees to its end line,
-  // turns left along its length and enters a road heading 38 degrees north of east at a corner
-  // of 3 degrees. Bent square to both joined lines within its length, the path's reference
-  // line needed a corner tighter than the fit allows (a kink), so it keeps its own square end,
-  // and the road after it started square to its own course: a sliver of unpaved ground on one
-  // side of the joint. That road now starts on the path's end line.
+namespace {
+
+/// A 7 m path leaves a road heading 9 degrees south of east at 26 degrees to its end line,
+/// turns left along its length and enters a road E (two vertices, 30 m) heading 38 degrees
+/// north of east at a corner of 3 degrees; without `path` the two roads end apart. With `next`
+/// a road F continues E straight on for 20 m.
+Builder corner_path(bool path, bool next = false) {
   Builder b;
   const double a = -9.4 * M_PI / 180.0;
   const double e = 38.0 * M_PI / 180.0;
@@ -614,9 +612,15 @@ TEST_CASE(
   b.node("E0", ex, ey);
   b.node("E1", ex + 30.0 * std::cos(e), ey + 30.0 * std::sin(e));
   b.link("A2TEST00000A", "6", 1, "A0", "A1");
-  b.path_through("A2TEST00000P", "A1", "E0",
-                 {{0.0, 0.0}, {1.47, 0.42}, {3.23, 1.43}, {5.29, 2.93}, {ex, ey}});
+  if (path) {
+    b.path_through("A2TEST00000P", "A1", "E0",
+                   {{0.0, 0.0}, {1.47, 0.42}, {3.23, 1.43}, {5.29, 2.93}, {ex, ey}});
+  }
   b.link("A2TEST00000E", "6", 1, "E0", "E1");
+  if (next) {
+    b.node("E2", ex + 50.0 * std::cos(e), ey + 50.0 * std::sin(e));
+    b.link("A2TEST00000F", "6", 1, "E1", "E2");
+  }
   for (const double t : {1.6, -1.6}) {
     const std::string side = t > 0.0 ? "L" : "R";
     const std::string right = t > 0.0 ? "A2TEST00000" : "", left = t > 0.0 ? "" : "A2TEST00000";
@@ -624,12 +628,60 @@ TEST_CASE(
                    right.empty() ? "" : right + "A", left.empty() ? "" : left + "A");
     b.mark_through("B2E" + side, {along(ex, ey, e, 0.0, t), along(ex, ey, e, 30.0, t)},
                    right.empty() ? "" : right + "E", left.empty() ? "" : left + "E");
+    if (next) {
+      b.mark_through("B2F" + side, {along(ex, ey, e, 30.0, t), along(ex, ey, e, 50.0, t)},
+                     right.empty() ? "" : right + "F", left.empty() ? "" : left + "F");
+    }
   }
-  const auto gaps = mouth_gaps_of(b.layers);
+  return b;
+}
+
+/// Where the road holding link `link` ends (map frame), and its heading there.
+corsa::xodr::RefPoint road_end_of(const Layers& layers, const std::string& link) {
+  corsa::Diagnostics diagnostics;
+  const auto conversion = corsa::ngii::convert(layers, {}, diagnostics);
+  for (const auto& p : conversion.placements) {
+    if (p.link_id != link) {
+      continue;
+    }
+    for (const auto& road : conversion.map.roads) {
+      if (road.id == p.road_id && !road.plan_view.empty()) {
+        const auto& g = road.plan_view.back();
+        return corsa::xodr::evaluate_geometry(g, g.length);
+      }
+    }
+  }
+  FAIL("no road holds " << link);
+  return {};
+}
+
+}  // namespace
+
+TEST_CASE(
+    "a road after a junction path that cannot take its start line starts on the path's end line",
+    "[ngii][mouths]") {
+  // Bent square to both joined lines within its length, the path's reference line needed a
+  // corner tighter than the fit allows (a kink), so it keeps its own square end, and the road
+  // after it started square to its own course: a sliver of unpaved ground on one side of the
+  // joint. That road now starts on the path's end line.
+  const auto gaps = mouth_gaps_of(corner_path(true).layers);
   INFO(gaps.worst);
   CHECK(gaps.ends >= 4);
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE("a road rebuilt onto a junction path's end line keeps its other end",
+          "[ngii][mouths][!shouldfail]") {
+  // Road E is built again once the path is built, bent to the path's end line at its start.
+  // Its end should stay where road F was built on it, as it is without the path; the refit
+  // moves it by 1.1 mm and 1.8 mrad (the fit runs from E's start). Kept for now (shouldfail):
+  // not rebuilding such roads reopened a wedge of 0.75 m at K-City's road 187.
+  const auto joined = road_end_of(corner_path(true, true).layers, "A2TEST00000E");
+  const auto alone = road_end_of(corner_path(false, true).layers, "A2TEST00000E");
+  CHECK(joined.x == Approx(alone.x).margin(1e-9));
+  CHECK(joined.y == Approx(alone.y).margin(1e-9));
+  CHECK(joined.hdg == Approx(alone.hdg).margin(1e-9));
 }
 
 TEST_CASE("a road end bent onto a skewed line over sparse vertices turns over its whole reach",
