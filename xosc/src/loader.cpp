@@ -253,7 +253,7 @@ template <class Body>
 auto with_document(const XmlFile& xml, const LoadOptions& options, Diagnostics& diagnostics,
                    Body body) {
   ParseContext ctx(diagnostics, options);
-  ctx.swap_file({xml.name, xml.directory});
+  ctx.swap_file({xml.name, xml.directory, xml.text, xml.document.get()});
   warn_xml_repairs(ctx, xml);
   const Element* root = checked_root(ctx, xml);
   std::optional<decltype(body(ctx, root, std::declval<Children&>()))> result;
