@@ -118,6 +118,13 @@ class ParseContext {
   /// or, with LoadOptions::strict, records it as an error.
   void lenient(const Element* element, std::string_view message, std::string_view read_as);
   void lenient(const Source& where, std::string_view message, std::string_view read_as);
+  /// A lenient reading a run makes only when it meets this element (the engine's words at the
+  /// run's place): warned about (an error when strict) by a load that checks the document
+  /// against its map too (LoadOptions::road_network_check, `corsa validate`), which is the load
+  /// that stands for a run; run and sweep leave it to the run.
+  void run_reading(const Source& where, std::string_view message, std::string_view read_as) {
+    if (options_.road_network_check) lenient(where, message, read_as);
+  }
   /// A deprecated 1.0/1.1 spelling: one warning per spelling.
   void deprecated(const Element* element, std::string_view what, std::string_view instead);
 
