@@ -71,8 +71,9 @@ FileReport check_file(const std::string& file, const xosc::LoadOptions& options)
       report.kind = "openscenario";
       // Roads and lanes named by positions are checked against the map too, with the
       // document's other errors: a run would check each only when it placed something there.
+      // With it, the lenient readings a run makes as it meets an element are warned about too.
       xosc::LoadOptions with_map = options;
-      with_map.road_network_check = std::make_shared<engine::MapReferenceCheck>();
+      with_map.road_network_check = std::make_shared<engine::MapReferenceCheck>(options.strict);
       describe(xosc::load_document(path, with_map, diagnostics), report);
     }
     report.valid = true;

@@ -4,8 +4,11 @@
 
 #include "corsa/engine/road_network_check.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/xosc/scenario.h"
@@ -62,11 +65,14 @@ const std::string kRoadCheckMap =
 constexpr int kRoadCheckInitLine = 20;   ///< line of the Init's position in road_check_scenario
 constexpr int kRoadCheckStoryLine = 25;  ///< line of the story's position
 
-/// The errors of loading `text` with the map check (none: an empty list).
-std::vector<corsa::Diagnostic> road_check_errors(const std::string& text) {
+/// The errors of loading `text` with the map check (none: an empty list); its warnings go to
+/// `diagnostics`.
+std::vector<corsa::Diagnostic> road_check_errors(const std::string& text,
+                                                 corsa::Diagnostics& diagnostics,
+                                                 bool strict = false) {
   corsa::xosc::LoadOptions options;
-  options.road_network_check = std::make_shared<corsa::engine::MapReferenceCheck>();
-  corsa::Diagnostics diagnostics;
+  options.strict = strict;
+  options.road_network_check = std::make_shared<corsa::engine::MapReferenceCheck>(strict);
   try {
     corsa::xosc::parse_scenario(text, corsa::test::engine_fixture("roads.xosc"), options,
                                 diagnostics);
@@ -74,6 +80,24 @@ std::vector<corsa::Diagnostic> road_check_errors(const std::string& text) {
     return error.diagnostics();
   }
   return {};
+}
+
+std::vector<corsa::Diagnostic> road_check_errors(const std::string& text) {
+  corsa::Diagnostics diagnostics;
+  return road_check_errors(text, diagnostics);
+}
+
+/// The diagnostics of `all` that are warnings, as `file:line: warning: message`.
+std::vector<std::string> road_check_warnings(const corsa::Diagnostics& all) {
+  std::vector<std::string> warnings;
+  for (const corsa::Diagnostic& d : all.all()) {
+    if (d.severity == corsa::Severity::kWarning) {
+      std::ostringstream text;
+      text << d;
+      warnings.push_back(text.str());
+    }
+  }
+  return warnings;
 }
 
 }  // namespace
@@ -87,7 +111,8 @@ TEST_CASE("Positions on roads and lanes the map lacks are errors at their lines,
   REQUIRE(errors.size() == 2);
   CHECK(errors[0].line == kRoadCheckInitLine);
   CHECK(errors[0].message == "road '7' does not exist in the road network");
-  // s beyond the road is read as its end, as a run reads it; the lane is missing there too.
+  // s beyond the road is read as its end (with a warning), as a run reads it; the lane is missing
+  // there too.
   CHECK(errors[1].line == kRoadCheckStoryLine);
   CHECK(errors[1].message == "road '1' has no lane -9 at s = 1000");
 
@@ -141,4 +166,106 @@ TEST_CASE("A missing LogicFile is reported once, not again at each position",
   REQUIRE(errors.size() == 1);
   CHECK(errors[0].line == 5);
   CHECK(errors[0].message.starts_with("map file 'no_such_map.xodr' not found"));
+}
+
+TEST_CASE("An s past the road's end warns as a run does, at the same line; --strict refuses it",
+          "[engine][road_network_check][lenient]") {
+  const std::string text =
+      road_check_scenario(kRoadCheckMap, R"(<LanePosition roadId="1" laneId="-1" s="1400"/>)",
+                          R"(<RoadPosition roadId="1" s="-5" t="0"/>)");
+  corsa::Diagnostics diagnostics;
+  CHECK(road_check_errors(text, diagnostics).empty());
+  const std::string file = corsa::test::engine_fixture("roads.xosc").string();
+  CHECK(road_check_warnings(diagnostics) ==
+        std::vector<std::string>{
+            file + ":20: warning: s = 1400 is outside road '1' (length 1000 m) (read as s = "
+                   "1000, the road's end)",
+            file + ":25: warning: s = -5 is outside road '1' (length 1000 m) (read as s = 0, "
+                   "the road's end)"});
+
+  corsa::Diagnostics strict_diagnostics;
+  const auto errors = road_check_errors(text, strict_diagnostics, true);
+  REQUIRE(errors.size() == 2);
+  CHECK(errors[0].line == kRoadCheckInitLine);
+  CHECK(errors[0].message ==
+        "s = 1400 is outside road '1' (length 1000 m) (an error under --strict; otherwise read "
+        "as s = 1000, the road's end)");
+  CHECK(errors[1].line == kRoadCheckStoryLine);
+  CHECK(road_check_warnings(strict_diagnostics).empty());
+}
+
+TEST_CASE("The check's warning for an s past the road's end is the run's, word for word",
+          "[engine][road_network_check][lenient]") {
+  const auto file = corsa::test::engine_fixture("compat_esmini_readings.xosc");
+  corsa::xosc::LoadOptions options;
+  options.road_network_check = std::make_shared<corsa::engine::MapReferenceCheck>(false);
+  corsa::Diagnostics checked;
+  corsa::xosc::load_scenario(file, options, checked);
+  const auto check_warnings = road_check_warnings(checked);
+
+  corsa::test::FixtureRun run(file);
+  run.run();
+  std::vector<std::string> run_outside;
+  for (const std::string& warning : road_check_warnings(run.diagnostics())) {
+    if (warning.find("is outside road") != std::string::npos) run_outside.push_back(warning);
+  }
+  REQUIRE(run_outside.size() == 1);
+  CHECK(std::count(check_warnings.begin(), check_warnings.end(), run_outside[0]) == 1);
+}
+
+TEST_CASE(
+    "Every lenient reading a run makes that the document tells is warned about at load "
+    "with the run's words at the run's lines, and refused under --strict by both",
+    "[engine][road_network_check][lenient]") {
+  const auto file = corsa::test::engine_fixture("lenient_run_readings.xosc");
+  corsa::xosc::LoadOptions validate;
+  validate.road_network_check = std::make_shared<corsa::engine::MapReferenceCheck>(false);
+  corsa::Diagnostics checked;
+  corsa::xosc::load_scenario(file, validate, checked);
+  const auto check_warnings = road_check_warnings(checked);
+
+  corsa::test::FixtureRun run(file);
+  run.run();
+  std::vector<std::string> run_readings;
+  for (const std::string& warning : road_check_warnings(run.diagnostics())) {
+    if (warning.find("(read as") != std::string::npos) run_readings.push_back(warning);
+  }
+  const std::string name = file.string();
+  CHECK(run_readings ==
+        std::vector<std::string>{
+            name + ":44: warning: s = 1200 is outside road '1' (length 1000 m) (read as s = "
+                   "1000, the road's end)",
+            name + ":48: warning: entity 'Unplaced' has no initial position (no TeleportAction "
+                   "in Init) (read as the start of the trajectory it follows)",
+            name + ":54: warning: the first ClothoidSplineSegment has no PositionStart (read as "
+                   "a start at the entity following it)"});
+  std::vector<std::string> sorted_check = check_warnings;
+  std::sort(sorted_check.begin(), sorted_check.end());
+  std::vector<std::string> sorted_run = run_readings;
+  std::sort(sorted_run.begin(), sorted_run.end());
+  CHECK(sorted_check == sorted_run);
+  // Without the map check (run, sweep) the load says nothing of them: the run does.
+  corsa::Diagnostics plain;
+  corsa::xosc::load_scenario(file, {}, plain);
+  CHECK(road_check_warnings(plain).empty());
+
+  // --strict: the load refuses all three at their lines, in one pass.
+  validate.strict = true;
+  validate.road_network_check = std::make_shared<corsa::engine::MapReferenceCheck>(true);
+  std::vector<int> lines;
+  try {
+    corsa::Diagnostics strict_diagnostics;
+    corsa::xosc::load_scenario(file, validate, strict_diagnostics);
+  } catch (const corsa::InputError& error) {
+    for (const corsa::Diagnostic& d : error.diagnostics()) {
+      CHECK_THAT(d.message, Catch::Contains("(an error under --strict; otherwise read as"));
+      lines.push_back(d.line);
+    }
+  }
+  std::sort(lines.begin(), lines.end());
+  CHECK(lines == std::vector<int>{44, 48, 54});
+  corsa::engine::SimulationOptions strict;
+  strict.strict = true;
+  CHECK_THROWS_WITH(corsa::test::FixtureRun(file, strict).run(),
+                    Catch::Contains("an error under --strict"));
 }

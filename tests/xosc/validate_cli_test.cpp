@@ -102,3 +102,32 @@ TEST_CASE("corsa validate --json stays valid UTF-8 whatever bytes the file holds
   CHECK(result.out.find('\xff') == std::string::npos);
   CHECK(result.out.find('\xfe') == std::string::npos);
 }
+
+TEST_CASE(
+    "corsa validate warns about a run's lenient readings and refuses them with --strict, "
+    "as corsa run --strict does",
+    "[xosc][cli][e2e][lenient]") {
+  const std::string file =
+      (fs::path(CORSA_SOURCE_DIR) / "tests/engine/fixtures/lenient_run_readings.xosc").string();
+  const auto lenient = run_corsa({"validate", file});
+  INFO(lenient.err);
+  CHECK(lenient.exit_code == 0);
+  CHECK_THAT(
+      lenient.err,
+      Catch::Contains(file + ":44: warning: s = 1200 is outside road '1'") &&
+          Catch::Contains(file + ":48: warning: entity 'Unplaced' has no initial position") &&
+          Catch::Contains(file + ":54: warning: the first ClothoidSplineSegment has no "
+                                 "PositionStart"));
+
+  const auto strict = run_corsa({"validate", "--strict", file});
+  INFO(strict.err);
+  CHECK(strict.exit_code == 2);
+  CHECK_THAT(strict.err, Catch::Contains(file + ":44: error: s = 1200 is outside road '1'") &&
+                             Catch::Contains(file + ":48: error: entity 'Unplaced'") &&
+                             Catch::Contains(file + ":54: error: the first ClothoidSplineSegment"));
+  CHECK(strict.err.find("warning") == std::string::npos);
+
+  const auto run = run_corsa({"run", "--strict", file});
+  CHECK(run.exit_code == 2);
+  CHECK_THAT(run.err, Catch::Contains(file + ":44: error: s = 1200 is outside road '1'"));
+}

@@ -487,3 +487,49 @@ TEST_CASE("a use of a parameter given a bad value from outside names where the v
   CHECK(at_use);
   CHECK(errors.size() == 4);
 }
+
+TEST_CASE("an error in an attribute of a tag written over several lines is at its own line",
+          "[xosc][errors][lines]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  // The bad tag opens on a line with a comment holding a tag of the same name and after two
+  // other tags; a quoted '>' and an entity come before the bad attribute on its 3rd line. A
+  // one-line tag of the same name before it has its own error.
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position><WorldPosition x=\"1\" y=\"oops\"/></Position>"
+      "</TeleportAction></PrivateAction>\n"
+      "<!-- <WorldPosition x=\"0\" h=\"not this\"/> --><PrivateAction><TeleportAction>"
+      "<Position><WorldPosition x=\"0\"\n"
+      "    y=\"0\" z='a>&amp;b'\n"
+      "    h=\"wide\"/></Position></TeleportAction></PrivateAction>\n"
+      "</Private>\n";
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  const int tag_line = line_of(xml, "<!-- <WorldPosition");
+  REQUIRE(tag_line > 0);
+  CHECK(has(errors, line_of(xml, "y=\"oops\""), "attribute y: 'oops' is not a number"));
+  CHECK(has(errors, tag_line + 1, "attribute z: 'a>&b' is not a number"));
+  CHECK(has(errors, tag_line + 2, "attribute h: 'wide' is not a number"));
+  CHECK(errors.size() == 3);
+}
+
+TEST_CASE("an unknown parameter in a later line of a tag is reported at that line",
+          "[xosc][errors][lines]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.init =
+      "<Private entityRef=\"Ego\">\n"
+      "<PrivateAction><TeleportAction><Position><WorldPosition\n"
+      "    x=\"0\"\n"
+      "    y=\"$Nowhere\"\n"
+      "    h=\"0\"/></Position></TeleportAction></PrivateAction>\n"
+      "</Private>\n";
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  REQUIRE(errors.size() == 1);
+  CHECK(errors[0].line == line_of(xml, "y=\"$Nowhere\""));
+  CHECK(errors[0].message.find("Nowhere") != std::string::npos);
+}

@@ -115,7 +115,9 @@ T expand_catalog_reference(ParseContext& ctx, const Element* reference,
     }
   };
   ctx.catalogs->expanding.push_back(key);
-  const Restore restore{ctx, ctx.swap_file({hit.file->name, hit.file->directory}),
+  const Restore restore{ctx,
+                        ctx.swap_file({hit.file->name, hit.file->directory, hit.file->text,
+                                       hit.file->document.get()}),
                         ctx.record_entities};
   return parse(hit.entry, origin);
 }

@@ -2,6 +2,8 @@
 // road network, entities, storyboard), the checks that need the whole document, and the
 // dispatch on the document kind.
 
+#include <algorithm>
+
 #include "corsa/core/atomic_file.h"
 #include "file_paths.h"
 #include "parsers.h"
@@ -181,6 +183,39 @@ std::vector<ParameterAssignment> option_overrides(const LoadOptions& options) {
   return overrides;
 }
 
+// An entity the Init places by no TeleportAction but has follow a trajectory: a run places it
+// at the trajectory's start with this warning (engine/src/storyboard/init_actions.cpp), which a
+// load for `corsa validate` gives too (ParseContext::run_reading). Entities named through an
+// EntitySelection are left to the run.
+void warn_trajectory_placements(ParseContext& ctx, const Scenario& scenario) {
+  const auto& privates = scenario.storyboard.init.privates;
+  const auto teleported = [&](const std::string& entity) {
+    return std::any_of(privates.begin(), privates.end(), [&](const InitPrivate& other) {
+      return other.entity_ref == entity &&
+             std::any_of(other.actions.begin(), other.actions.end(), [](const auto& action) {
+               return std::holds_alternative<TeleportAction>(action);
+             });
+    });
+  };
+  std::vector<std::string> placed;  // by their first trajectory, which alone is warned about
+  for (const InitPrivate& init : privates) {
+    if (scenario.entities.find_object(init.entity_ref) == nullptr || teleported(init.entity_ref)) {
+      continue;
+    }
+    for (const PrivateAction& action : init.actions) {
+      const auto* follow = std::get_if<FollowTrajectoryAction>(&action);
+      if (follow != nullptr &&
+          std::find(placed.begin(), placed.end(), init.entity_ref) == placed.end()) {
+        placed.push_back(init.entity_ref);
+        ctx.run_reading(
+            follow->source,
+            "entity '" + init.entity_ref + "' has no initial position (no TeleportAction in Init)",
+            "the start of the trajectory it follows");
+      }
+    }
+  }
+}
+
 Scenario parse_scenario_root(ParseContext& ctx, const Element* root, Children& kids,
                              const std::filesystem::path& path) {
   Scenario scenario;
@@ -211,6 +246,7 @@ Scenario parse_scenario_root(ParseContext& ctx, const Element* root, Children& k
   scenario.catalog_files = catalogs.files_read();
   check_entity_references(ctx, scenario.entities);
   resolve_storyboard_references(ctx, scenario.storyboard);
+  warn_trajectory_placements(ctx, scenario);
   if (const auto& check = ctx.options().road_network_check; check && network_read) {
     std::vector<Diagnostic> errors =
         check->check(scenario.road_network, ctx.road_uses(), ctx.diagnostics());
@@ -253,7 +289,7 @@ template <class Body>
 auto with_document(const XmlFile& xml, const LoadOptions& options, Diagnostics& diagnostics,
                    Body body) {
   ParseContext ctx(diagnostics, options);
-  ctx.swap_file({xml.name, xml.directory});
+  ctx.swap_file({xml.name, xml.directory, xml.text, xml.document.get()});
   warn_xml_repairs(ctx, xml);
   const Element* root = checked_root(ctx, xml);
   std::optional<decltype(body(ctx, root, std::declval<Children&>()))> result;

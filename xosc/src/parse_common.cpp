@@ -17,10 +17,11 @@ bool deprecated_attribute(ParseContext& ctx, const Element* element, const char*
     if (present) {
       // The file says the same thing twice, possibly two different things: which one is meant
       // is not clear (the ASAM OpenSCENARIO API checker rejects it too).
-      ctx.error(element, "attribute '" + std::string(name) +
-                             "' is deprecated and must not be used together with " +
-                             (is_element ? "element <" + std::string(replacement) + ">"
-                                         : "attribute '" + std::string(replacement) + "'"));
+      ctx.attribute_error(element, name,
+                          "attribute '" + std::string(name) +
+                              "' is deprecated and must not be used together with " +
+                              (is_element ? "element <" + std::string(replacement) + ">"
+                                          : "attribute '" + std::string(replacement) + "'"));
       clash = true;
     }
   }

@@ -85,6 +85,8 @@ XmlFile parse_xml(std::string_view text, const std::filesystem::path& path) {
   if (const auto problem = find_undeclared_entity(text)) {
     throw InputError(make_error(*file.name, problem->line, problem->message));
   }
+  file.text = std::make_shared<const std::string>(repaired.empty() ? std::string(text)
+                                                                   : std::move(repaired));
   return file;
 }
 
@@ -134,6 +136,31 @@ constexpr size_t kMaxErrors = 500;
 
 void ParseContext::error(const Element* element, std::string message) {
   error_at_line(element, element == nullptr ? 0 : element->GetLineNum(), std::move(message));
+}
+
+void ParseContext::attribute_error(const Element* element, std::string_view name,
+                                   std::string message) {
+  error_at_line(element, attribute_line(element, name), std::move(message));
+}
+
+int ParseContext::attribute_line(const Element* element, std::string_view name) const {
+  const int line = element->GetLineNum();
+  if (!file_.text || element->GetDocument() != file_.document) return line;
+  // Start tags open in document order, so those before this one on its line are the elements
+  // met walking back in document order until a node opens on an earlier line.
+  int ordinal = 0;
+  const tinyxml2::XMLNode* node = element;
+  for (;;) {
+    if (const tinyxml2::XMLNode* previous = node->PreviousSibling()) {
+      node = previous;
+      while (node->LastChild() != nullptr) node = node->LastChild();
+    } else {
+      node = node->Parent();
+    }
+    if (node == nullptr || node->ToDocument() != nullptr || node->GetLineNum() < line) break;
+    if (node->ToElement() != nullptr) ++ordinal;
+  }
+  return xosc::attribute_line(*file_.text, line, ordinal, name).value_or(line);
 }
 
 void ParseContext::error_at_line(const Element* element, int line, std::string message) {
@@ -227,7 +254,7 @@ std::optional<std::string> ParseContext::resolved(const Element* element, const 
       return std::nullopt;
     }
     lenient(
-        element,
+        Source{file_.name, attribute_line(element, other->Name())},
         "attribute '" + clip(other->Name()) + "' of <" + element->Name() + "> misspells " + name,
         name);
     raw = other->Value();
@@ -237,10 +264,20 @@ std::optional<std::string> ParseContext::resolved(const Element* element, const 
   } catch (const InputError& caught) {
     if (std::string_view(name) == "name" && raw[0] == '$' && raw[1] == '{') {
       // A name such as "${Ego} overtakes" is meant as text: names are not computed (§9.2).
-      lenient(element, "name '" + clip(raw) + "' is not an expression", "the literal name");
+      lenient(Source{file_.name, attribute_line(element, name)},
+              "name '" + clip(raw) + "' is not an expression", "the literal name");
       return std::string(raw);
     }
-    record(caught);
+    // Errors in the value (an unknown parameter, a bad expression) at the attribute's line.
+    std::vector<Diagnostic> at_attribute = caught.diagnostics();
+    const int line = attribute_line(element, name);
+    for (Diagnostic& diagnostic : at_attribute) {
+      if (diagnostic.line == element->GetLineNum() && file_.name &&
+          diagnostic.file == *file_.name) {
+        diagnostic.line = line;
+      }
+    }
+    record(InputError(std::move(at_attribute)));
     failed_ = true;
     return std::string();
   }
@@ -339,14 +376,16 @@ std::optional<double> ParseContext::opt_double(const Element* element, const cha
   if (failed_) return 0.0;
   const auto value = parse_double(*text);
   if (!value) {
-    error(element, "attribute " + std::string(name) + ": '" + clip(*text) + "' is not a number");
+    attribute_error(element, name,
+                    "attribute " + std::string(name) + ": '" + clip(*text) + "' is not a number");
     return 0.0;
   }
   if (const Magnitude* magnitude = magnitude_limit(element->Name(), name);
       magnitude != nullptr && std::fabs(*value) > magnitude->limit) {
-    error(element, "attribute " + std::string(name) + ": " + clip(*text) +
-                       " is beyond physical sense (|value| <= " + format_double(magnitude->limit) +
-                       " " + magnitude->unit + ")");
+    attribute_error(element, name,
+                    "attribute " + std::string(name) + ": " + clip(*text) +
+                        " is beyond physical sense (|value| <= " + format_double(magnitude->limit) +
+                        " " + magnitude->unit + ")");
     return 0.0;
   }
   return value;
@@ -365,8 +404,9 @@ std::optional<int64_t> ParseContext::opt_int(const Element* element, const char*
   if (failed_) return 0;
   const auto value = typed_value(element, type, *text, std::string("attribute ") + name);
   if (!value) {
-    error(element, "attribute " + std::string(name) + ": '" + clip(*text) + "' is not a valid " +
-                       type_name(type));
+    attribute_error(element, name,
+                    "attribute " + std::string(name) + ": '" + clip(*text) + "' is not a valid " +
+                        type_name(type));
     return 0;
   }
   return std::get<int64_t>(value->data);
@@ -391,12 +431,14 @@ std::optional<bool> ParseContext::opt_bool(const Element* element, const char* n
     if (lower == "true" || lower == "false") {
       // esmini's reader compares the text with `true` and `1`: anything else is false.
       const bool value = lower == "true" && !options_.esmini_booleans;
-      lenient(element, "attribute " + std::string(name) + ": '" + *text + "' is not lower case",
+      lenient(Source{file_.name, attribute_line(element, name)},
+              "attribute " + std::string(name) + ": '" + *text + "' is not lower case",
               value ? "true" : (options_.esmini_booleans ? "false, as esmini reads it" : "false"));
       return value;
     }
-    error(element, "attribute " + std::string(name) + ": '" + clip(*text) +
-                       "' is not a boolean (true or false)");
+    attribute_error(element, name,
+                    "attribute " + std::string(name) + ": '" + clip(*text) +
+                        "' is not a boolean (true or false)");
     return false;
   }
   return std::get<bool>(value->data);

@@ -42,6 +42,9 @@ struct XmlFile {
   std::unique_ptr<tinyxml2::XMLDocument> document;
   std::shared_ptr<const std::string> name;
   std::filesystem::path directory;  ///< folder relative paths in the file are resolved against
+  /// The text the document was parsed from (its DOCTYPE's entities expanded, repairs made), for
+  /// the lines of attributes in errors (ParseContext::attribute_line).
+  std::shared_ptr<const std::string> text;
   /// Attributes written twice in a tag, read as their first value (XML 1.0 §3.1 forbids the
   /// repeat); whoever reads the document warns about them (warn_xml_repairs).
   std::vector<RepeatedAttribute> repeated_attributes;
@@ -82,6 +85,11 @@ class ParseContext {
   /// An error after which reading can go on (a bad value, an unknown child): recorded, so that
   /// one pass reports every error of a document.
   void error(const Element* element, std::string message);
+  /// An error about attribute `name` of `element`, at the attribute's own line.
+  void attribute_error(const Element* element, std::string_view name, std::string message);
+  /// The line attribute `name` of `element` is written on: the element's line unless its tag
+  /// runs over several lines (then found in the file's text; error paths only).
+  int attribute_line(const Element* element, std::string_view name) const;
   /// As error(), at `line` of the element's file (a text node's, say) instead of the element's.
   void error_at_line(const Element* element, int line, std::string message);
   /// Records the diagnostics of a caught InputError (once each).
@@ -110,6 +118,13 @@ class ParseContext {
   /// or, with LoadOptions::strict, records it as an error.
   void lenient(const Element* element, std::string_view message, std::string_view read_as);
   void lenient(const Source& where, std::string_view message, std::string_view read_as);
+  /// A lenient reading a run makes only when it meets this element (the engine's words at the
+  /// run's place): warned about (an error when strict) by a load that checks the document
+  /// against its map too (LoadOptions::road_network_check, `corsa validate`), which is the load
+  /// that stands for a run; run and sweep leave it to the run.
+  void run_reading(const Source& where, std::string_view message, std::string_view read_as) {
+    if (options_.road_network_check) lenient(where, message, read_as);
+  }
   /// A deprecated 1.0/1.1 spelling: one warning per spelling.
   void deprecated(const Element* element, std::string_view what, std::string_view instead);
 
@@ -117,6 +132,8 @@ class ParseContext {
   struct FileState {
     std::shared_ptr<const std::string> name;
     std::filesystem::path directory;
+    std::shared_ptr<const std::string> text;          ///< XmlFile::text
+    const tinyxml2::XMLDocument* document = nullptr;  ///< the document parsed from `text`
   };
   const FileState& file() const { return file_; }
   FileState swap_file(FileState file);
@@ -148,8 +165,9 @@ class ParseContext {
     if (failed_) return E{};
     const EnumEntry<E>* entry = find_enum<E>(*text);
     if (entry == nullptr) {
-      error(element, "attribute " + std::string(name) + ": '" + clip(*text) + "' is not a valid " +
-                         std::string(enum_type_name<E>()));
+      attribute_error(element, name,
+                      "attribute " + std::string(name) + ": '" + clip(*text) + "' is not a valid " +
+                          std::string(enum_type_name<E>()));
       return E{};
     }
     if (entry->deprecated) {

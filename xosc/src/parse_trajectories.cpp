@@ -108,6 +108,11 @@ ClothoidSpline parse_clothoid_spline(ParseContext& ctx, const Element* e) {
     segment.source = ctx.source(s);
     spline.segments.push_back(std::move(segment));
   }
+  if (!spline.segments.front().position_start) {
+    ctx.run_reading(spline.segments.front().source,
+                    "the first ClothoidSplineSegment has no PositionStart",
+                    "a start at the entity following it");
+  }
   spline.source = ctx.source(e);
   return spline;
 }

@@ -23,30 +23,24 @@ struct AttributeSpan {
   size_t end;    ///< one past the closing quote
 };
 
-// Reads through the cursor's view of the text and blanks repeats through `writable_`, the same
-// characters (blanking keeps the length, so the view stays valid).
-class AttributeScanner : private XmlCursor {
+// Start tags' names and attributes read from the cursor's position.
+class AttributeCursor : protected XmlCursor {
  public:
-  explicit AttributeScanner(std::string& text) : XmlCursor(text), writable_(text) {}
+  explicit AttributeCursor(std::string_view text) : XmlCursor(text) {}
 
-  std::vector<RepeatedAttribute> run() {
-    while (next_markup()) {
-      bool scanned = true;
-      if (const auto closed = skip_comment_cdata_or_pi()) {
-        scanned = *closed;
-      } else if (starts("<!") || starts("</")) {
-        scanned = skip_past(">");
-      } else {
-        scanned = start_tag();
-      }
-      if (!scanned) break;
-    }
-    return std::move(found_);
-  }
-
- private:
+ protected:
   void skip_blanks() {
     while (pos_ < text_.size() && is_blank(text_[pos_])) advance_to(pos_ + 1);
+  }
+
+  // At a start tag's '<': moves past its name and returns it.
+  std::string_view tag_name() {
+    advance_to(pos_ + 1);
+    size_t end = pos_;
+    while (end < text_.size() && !ends_attribute_name(text_[end])) ++end;
+    const std::string_view name = text_.substr(pos_, end - pos_);
+    advance_to(end);
+    return name;
   }
 
   // name = "value" or name = 'value', from pos_; nothing when the text is not one.
@@ -70,7 +64,30 @@ class AttributeScanner : private XmlCursor {
     span.end = pos_;
     return span;
   }
+};
 
+// Reads through the cursor's view of the text and blanks repeats through `writable_`, the same
+// characters (blanking keeps the length, so the view stays valid).
+class AttributeScanner : private AttributeCursor {
+ public:
+  explicit AttributeScanner(std::string& text) : AttributeCursor(text), writable_(text) {}
+
+  std::vector<RepeatedAttribute> run() {
+    while (next_markup()) {
+      bool scanned = true;
+      if (const auto closed = skip_comment_cdata_or_pi()) {
+        scanned = *closed;
+      } else if (starts("<!") || starts("</")) {
+        scanned = skip_past(">");
+      } else {
+        scanned = start_tag();
+      }
+      if (!scanned) break;
+    }
+    return std::move(found_);
+  }
+
+ private:
   // Blanks out the text's [begin, end) except its line breaks.
   void blank(size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
@@ -79,11 +96,7 @@ class AttributeScanner : private XmlCursor {
   }
 
   bool start_tag() {
-    advance_to(pos_ + 1);
-    size_t end = pos_;
-    while (end < text_.size() && !ends_attribute_name(text_[end])) ++end;
-    const std::string element(text_.substr(pos_, end - pos_));
-    advance_to(end);
+    const std::string element(tag_name());
     std::vector<AttributeSpan> seen;
     for (;;) {
       skip_blanks();
@@ -111,7 +124,46 @@ class AttributeScanner : private XmlCursor {
   std::vector<RepeatedAttribute> found_;
 };
 
+// Walks the start tags in document order to the one sought and reads its attributes' lines.
+class AttributeLocator : private AttributeCursor {
+ public:
+  explicit AttributeLocator(std::string_view text) : AttributeCursor(text) {}
+
+  std::optional<int> find(int tag_line, int ordinal, std::string_view name) {
+    while (next_markup() && line_ <= tag_line) {
+      if (const auto closed = skip_comment_cdata_or_pi()) {
+        if (!*closed) return std::nullopt;
+        continue;
+      }
+      if (starts("<!") || starts("</")) {
+        if (!skip_past(">")) return std::nullopt;
+        continue;
+      }
+      const bool sought = line_ == tag_line && ordinal-- == 0;
+      (void)tag_name();
+      for (;;) {
+        skip_blanks();
+        if (pos_ >= text_.size()) return std::nullopt;
+        if (text_[pos_] == '>' || starts("/>")) {
+          if (sought) return std::nullopt;
+          break;
+        }
+        const int line = line_;
+        const auto span = attribute();
+        if (!span) return std::nullopt;
+        if (sought && span->name == name) return line;
+      }
+    }
+    return std::nullopt;
+  }
+};
+
 }  // namespace
+
+std::optional<int> attribute_line(std::string_view text, int tag_line, int ordinal,
+                                  std::string_view name) {
+  return AttributeLocator(text).find(tag_line, ordinal, name);
+}
 
 std::vector<RepeatedAttribute> blank_repeated_attributes(std::string& text) {
   return AttributeScanner(text).run();

@@ -4,7 +4,9 @@
 // file not well-formed, and tinyxml2 refuses it; esmini's reader (pugixml) keeps both and reads
 // the first, so esmini's examples carry such tags (acc-toggle). The loader reads the first too.
 
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace corsa::xosc {
@@ -23,6 +25,14 @@ struct RepeatedAttribute {
 /// sections, processing instructions and declarations; returns the repeats in document order.
 /// A tag too broken to scan ends the scan: the parser's own error then says where.
 std::vector<RepeatedAttribute> blank_repeated_attributes(std::string& text);
+
+/// The line of attribute `name` in the start tag that is the `ordinal`-th (from 0) to open on
+/// line `tag_line` of `text`, for errors about an attribute of a tag written over several lines
+/// (tinyxml2 gives the tag's first line only). Comments, CDATA sections, processing instructions,
+/// declarations and quoted values are stepped over. Nothing when the tag or attribute is not
+/// there or the text is too broken to scan. It reads the text from its start: for error paths.
+std::optional<int> attribute_line(std::string_view text, int tag_line, int ordinal,
+                                  std::string_view name);
 
 /// Blanks (with spaces, keeping line breaks) an XML declaration `<?xml ...?>` that follows
 /// only white space and comments but does not open `text`; returns its line, 0 when there is

@@ -53,6 +53,11 @@ uint32_t need_road(const xodr::Map& map, const std::string& id, const xosc::Sour
 
 double checked_s(const SimState& state, const xodr::Map& map, uint32_t road, double s,
                  const xosc::Source& source) {
+  return checked_s(state.options.strict, state.diagnostics, map, road, s, source);
+}
+
+double checked_s(bool strict, Diagnostics& diagnostics, const xodr::Map& map, uint32_t road,
+                 double s, const xosc::Source& source) {
   const double length = map.road(road).length;
   if (s >= -1e-9 && s <= length + 1e-9) return std::clamp(s, 0.0, length);
   // An s past the road's end, however far: esmini's ltap-od-relative-speed puts a sync point at
@@ -61,7 +66,7 @@ double checked_s(const SimState& state, const xodr::Map& map, uint32_t road, dou
   const std::string where = "s = " + format_double(s) + " is outside road '" + map.road(road).id +
                             "' (length " + format_double(length) + " m)";
   const double end = s < 0.0 ? 0.0 : length;
-  lenient(state, source, where, "s = " + format_double(end) + ", the road's end");
+  lenient(strict, diagnostics, source, where, "s = " + format_double(end) + ", the road's end");
   return end;
 }
 

@@ -22,11 +22,13 @@ const xodr::Map& need_map(const SimState& state, const xosc::Source& source, con
 const Entity& need_entity(const SimState& state, const std::string& name,
                           const xosc::Source& source);
 uint32_t need_road(const xodr::Map& map, const std::string& id, const xosc::Source& source);
-/// `s` on road `road`: an s a little past either end (at most a lane's length, 50 m) is clamped
-/// to the end with a lenient-reading warning (the author meant the road's end); farther out it
-/// is an error.
+/// `s` on road `road`: an s past either end, however far, is read as that end with a
+/// lenient-reading warning (the author meant the road's end); an error under --strict.
 double checked_s(const SimState& state, const xodr::Map& map, uint32_t road, double s,
                  const xosc::Source& source);
+/// checked_s with the strictness and the diagnostics given apart (`corsa validate`'s check).
+double checked_s(bool strict, Diagnostics& diagnostics, const xodr::Map& map, uint32_t road,
+                 double s, const xosc::Source& source);
 /// A lane id: a non-zero integer, or 0 (the centre lane, the reference line) when `allow_center`.
 int parse_lane_id(const std::string& text, const xosc::Source& source, bool allow_center = false);
 double need_lane_center(const xodr::Map& map, uint32_t road, double s, int lane,

@@ -3,21 +3,23 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "corsa/xodr/parser.h"
 #include "positions/position_common.h"
 
 namespace corsa::engine {
 namespace {
 
-/// One reference against the map, by the functions that place entities in a run; throws the
-/// InputError a run would stop with.
-void check_reference(const xodr::Map& map, const xosc::RoadReference& reference) {
+/// One reference against the map, by the functions that place entities in a run (in their
+/// order); throws the InputError a run would stop with, warns as a run would.
+void check_road_reference(bool strict, Diagnostics& diagnostics, const xodr::Map& map,
+                          const xosc::RoadReference& reference) {
   const uint32_t road = detail::need_road(map, reference.road_id, reference.source);
+  const double s = detail::checked_s(strict, diagnostics, map, road, reference.s, reference.source);
   if (!reference.lane_id) {
     return;
   }
   const int lane = detail::parse_lane_id(*reference.lane_id, reference.source, true);
   if (lane != 0) {
-    const double s = std::clamp(reference.s, 0.0, map.road(road).length);
     detail::need_lane_center(map, road, s, lane, reference.source);
   }
 }
@@ -45,9 +47,16 @@ std::vector<Diagnostic> MapReferenceCheck::check(const xosc::RoadNetwork& networ
   }
   try {
     const xodr::Map map = xodr::Map::load(network.logic_file_path, diagnostics);
+    if (strict_) {
+      try {
+        xodr::refuse_lenient_readings(map.data());
+      } catch (const InputError& error) {
+        errors = error.diagnostics();
+      }
+    }
     for (const auto& reference : references) {
       try {
-        check_reference(map, reference);
+        check_road_reference(strict_, diagnostics, map, reference);
       } catch (const InputError& error) {
         errors.insert(errors.end(), error.diagnostics().begin(), error.diagnostics().end());
       }

@@ -7,11 +7,17 @@
 
 #include <string_view>
 
+#include "corsa/core/diagnostic.h"
 #include "corsa/xosc/common.h"
 
 namespace corsa::engine::detail {
 
 struct SimState;
+
+/// Warns `message (read as read_as)` once at `where` into `diagnostics`; throws InputError when
+/// `strict`. The checks `corsa validate` makes before a run (road_network_check.h) warn with it.
+void lenient(bool strict, Diagnostics& diagnostics, const xosc::Source& where,
+             std::string_view message, std::string_view read_as);
 
 /// Warns `message (read as read_as)` once at `where`; throws InputError under --strict.
 void lenient(const SimState& state, const xosc::Source& where, std::string_view message,
