@@ -190,3 +190,26 @@ TEST_CASE("an event on a condition the ghost cannot meet ahead restarts the ghos
   }
   CHECK(worst < 0.2);
 }
+
+TEST_CASE("a ghost restart counts neither the jump back nor the ticks run again as travelled",
+          "[engine][controllers][ghost][condition]") {
+  // esmini's ghost_restart.xosc with TraveledDistanceConditions on Ego, which read the ghost
+  // (0.5 s ahead, 10 m/s): at 1 s the lane change restarts the ghost from Ego, which has
+  // travelled 10 m, and the time goes back to 0.5 s; the ghost carries those 10 m over. So its
+  // distance stays 10 m/s * (t + 0.5 s) at the ghost's time t (plus under 0.1 m of the lane
+  // change's sideways steps): 16 m at 1.1 s, 20 m at 1.5 s and 30 m at 2.5 s. Counting the jump
+  // back and the replayed ticks, the 16 m and 20 m events started at 0.52 s.
+  FixtureRun run(engine_fixture("controller_follow_ghost_restart_traveled.xosc"));
+  StepTimes times(run.entity("Ego"), run.entity("Ego_ghost"));
+  run.sim().add_observer(times);
+  run.run();
+  size_t back = 0;
+  for (size_t i = 1; i < times.steps.size(); ++i) {
+    back += times.steps[i].time < times.steps[i - 1].time ? 1 : 0;
+  }
+  REQUIRE(back == 1);
+  using corsa::engine::TransitionKind;
+  CHECK(run.first("::Travel16", TransitionKind::kStart) == Approx(1.1).margin(1e-9));
+  CHECK(run.first("::Travel20", TransitionKind::kStart) == Approx(1.5).margin(1e-9));
+  CHECK(run.first("::Travel30", TransitionKind::kStart) == Approx(2.5).margin(1e-9));
+}
