@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -189,4 +190,35 @@ TEST_CASE("an event on a condition the ghost cannot meet ahead restarts the ghos
     worst = std::max(worst, std::abs(times.steps[i].ego_s - times.steps[i - 1].ego_s));
   }
   CHECK(worst < 0.2);
+}
+
+TEST_CASE("a ghost restart counts neither the jump back nor the ticks run again as travelled",
+          "[engine][controllers][ghost][condition]") {
+  // esmini's ghost_restart.xosc with TraveledDistanceConditions on Ego, which read the ghost
+  // (0.5 s ahead, 10 m/s): at 1 s the lane change restarts the ghost from Ego, which has
+  // travelled 10 m, and the time goes back to 0.5 s; the ghost carries those 10 m over. So its
+  // distance stays 10 m/s * (t + 0.5 s) at the ghost's time t (plus under 0.1 m of the lane
+  // change's sideways steps): 16 m at 1.1 s, 20 m at 1.5 s and 30 m at 2.5 s. Counting the jump
+  // back and the replayed ticks, the 16 m and 20 m events started at 0.52 s.
+  FixtureRun run(engine_fixture("controller_follow_ghost_restart_traveled.xosc"));
+  StepTimes times(run.entity("Ego"), run.entity("Ego_ghost"));
+  run.sim().add_observer(times);
+  run.run();
+  size_t back = 0;
+  for (size_t i = 1; i < times.steps.size(); ++i) {
+    back += times.steps[i].time < times.steps[i - 1].time ? 1 : 0;
+  }
+  REQUIRE(back == 1);
+  const auto started = [&](const std::string& event) -> std::optional<double> {
+    for (const auto& record : run.sim().transitions()) {
+      if (record.transition == corsa::engine::TransitionKind::kStart &&
+          record.path == "S::A::G::M::" + event) {
+        return record.time;
+      }
+    }
+    return std::nullopt;
+  };
+  CHECK(started("Travel16") == Approx(1.1).margin(1e-9));
+  CHECK(started("Travel20") == Approx(1.5).margin(1e-9));
+  CHECK(started("Travel30") == Approx(2.5).margin(1e-9));
 }

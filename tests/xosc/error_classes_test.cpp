@@ -112,6 +112,41 @@ TEST_CASE("a value of the wrong type is an error at its element", "[xosc][errors
   }
 }
 
+TEST_CASE("lane numbers beyond any road are an error at their element", "[xosc][errors]") {
+  // A lane section holds at most 128 lanes; dLane = INT_MIN would overflow the engine's lane
+  // arithmetic (negated, or added to a lane id).
+  corsa::test::TempDir dir;
+  SECTION("a RelativeLanePosition's dLane") {
+    ScenarioText text;
+    text.init +=
+        "<Private entityRef=\"Ego\"><PrivateAction><TeleportAction><Position>\n"
+        "<RelativeLanePosition entityRef=\"Ego\" dLane=\"-2147483648\" ds=\"0\"/>\n"
+        "</Position></TeleportAction></PrivateAction></Private>\n";
+    const std::string xml = text.str();
+    const auto error = load_error(dir, xml);
+    CHECK(error.message ==
+          "attribute dLane: -2147483648 is beyond physical sense (|value| <= 1000 lanes)");
+    CHECK(error.line == line_of(xml, "<RelativeLanePosition"));
+  }
+  SECTION("a RelativeTargetLane's value, given by a parameter") {
+    ScenarioText text;
+    text.parameters =
+        "<ParameterDeclaration name=\"Lanes\" parameterType=\"int\" value=\"1001\"/>\n";
+    text.stories = corsa::test::story_with(
+        "<Event name=\"E\" priority=\"override\">\n<Action name=\"A\"><PrivateAction>"
+        "<LateralAction><LaneChangeAction><LaneChangeActionDynamics dynamicsShape=\"step\" "
+        "value=\"0\" dynamicsDimension=\"time\"/><LaneChangeTarget>\n"
+        "<RelativeTargetLane entityRef=\"Ego\" value=\"$Lanes\"/>\n"
+        "</LaneChangeTarget></LaneChangeAction></LateralAction></PrivateAction></Action>\n"
+        "</Event>\n");
+    const std::string xml = text.str();
+    const auto error = load_error(dir, xml);
+    CHECK(error.message ==
+          "attribute value: 1001 is beyond physical sense (|value| <= 1000 lanes)");
+    CHECK(error.line == line_of(xml, "<RelativeTargetLane"));
+  }
+}
+
 TEST_CASE("an undefined parameter is an error at the attribute's element", "[xosc][errors]") {
   corsa::test::TempDir dir;
   ScenarioText text;

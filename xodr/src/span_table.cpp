@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pose_table.h"
 #include "road_eval.h"
 
 namespace corsa::xodr::detail {
@@ -44,10 +45,10 @@ double packed_outer_border(const SpanLane& lane, double ds, double inner, double
   return offset_poly_value(whole.borders, ds);
 }
 
-// Bounds on |ds| and on a record's sOffset under which ds - sOffset is finite: then a record of
-// b = c = d = 0 gives a + (+-0), whose max with 0 is max(0, a) to the bit (a + +-0 is a for
-// a != 0, and max(0, +-0) is +0).
-constexpr double kConstantBound = 1e300;
+// Bound on |ds| and on a record's sOffset under which ds - sOffset is finite (the pose table's
+// bound for zero offsets): then a record of b = c = d = 0 gives a + (+-0), whose max with 0 is
+// max(0, a) to the bit (a + +-0 is a for a != 0, and max(0, +-0) is +0).
+constexpr double kConstantBound = PoseTable::kZeroBound;
 
 // Width records all of b = c = d = 0, in s order (record_index then picks the last one starting
 // at or before ds, the first before them all).

@@ -343,6 +343,8 @@ const Magnitude* magnitude_limit(std::string_view element, std::string_view attr
   static constexpr Magnitude kSpeed{1e4, "m/s"};
   static constexpr Magnitude kLength{1e8, "m"};
   static constexpr Magnitude kTime{1e9, "s"};
+  // Lane numbers (ids and steps across lanes): a lane section holds at most 128 lanes.
+  static constexpr Magnitude kLanes{1e3, "lanes"};
   if (attribute == "maxSpeed" || attribute == "speed" || attribute == "velocity" ||
       (attribute == "value" &&
        (element == "AbsoluteTargetSpeed" || element == "RelativeTargetSpeed" ||
@@ -364,6 +366,11 @@ const Magnitude* magnitude_limit(std::string_view element, std::string_view attr
        (element == "SimulationTimeCondition" || element == "StandStillCondition" ||
         element == "TimeHeadwayCondition" || element == "TimeToCollisionCondition"))) {
     return &kTime;
+  }
+  if (attribute == "dLane" || (attribute == "value" && element == "RelativeTargetLane") ||
+      (attribute == "id" && element == "Lane") ||
+      ((attribute == "from" || attribute == "to") && element == "RelativeLaneRange")) {
+    return &kLanes;
   }
   return nullptr;
 }
@@ -409,7 +416,15 @@ std::optional<int64_t> ParseContext::opt_int(const Element* element, const char*
                         type_name(type));
     return 0;
   }
-  return std::get<int64_t>(value->data);
+  const int64_t number = std::get<int64_t>(value->data);
+  if (const Magnitude* magnitude = magnitude_limit(element->Name(), name);
+      magnitude != nullptr && !(std::fabs(static_cast<double>(number)) <= magnitude->limit)) {
+    error(element, "attribute " + std::string(name) + ": " + clip(*text) +
+                       " is beyond physical sense (|value| <= " + format_double(magnitude->limit) +
+                       " " + magnitude->unit + ")");
+    return 0;
+  }
+  return number;
 }
 
 int64_t ParseContext::req_int(const Element* element, const char* name, ParameterType type) {

@@ -27,8 +27,7 @@ class TraveledDistanceCheck final : public EntityCondition {
 }  // namespace
 
 std::unique_ptr<EntityCondition> make_traveled_distance(const xosc::TraveledDistanceCondition& c,
-                                                        const SimState& state) {
-  state.straight_travel_wanted = true;
+                                                        const SimState&) {
   return std::make_unique<TraveledDistanceCheck>(c.value);
 }
 

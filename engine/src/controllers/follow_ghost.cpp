@@ -14,6 +14,7 @@
 #include "controllers/esmini_vehicle.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
+#include "motion/placement.h"
 #include "motion/pose_command.h"
 #include "positions/position_resolver.h"
 #include "state/sim_state.h"
@@ -248,10 +249,13 @@ bool restart_ghost(SimState& state) {
   Entity& entity = state.world.entities[link.entity];
   Entity& ghost = state.world.entities[link.ghost];
   // The ghost takes the entity's place, lane and speed (a teleport; the storyboard has stopped
-  // what ran on it).
+  // what ran on it), and the distance it has travelled: a TraveledDistanceCondition on the entity
+  // reads the ghost, which must not count the jump back nor the ticks it runs again.
   const bool visible = ghost.state.visible;
   ghost.state = entity.state;
   ghost.state.visible = visible;
+  ghost.straight_travel = entity.straight_travel;
+  mark_jump(ghost);
   ghost.lane = entity.lane;
   ghost.speed_command = entity.state.speed;
   ghost.lateral_command = entity.lateral_command;

@@ -153,10 +153,10 @@ struct SimState {
   /// The Simulation that owns this state, for custom command handlers (refreshed every step,
   /// since a Simulation may be moved).
   const Simulation* simulation = nullptr;
+  /// Whether a trigger of the storyboard has a TraveledDistanceCondition, found when the
+  /// storyboard is built: the step then keeps Entity::straight_travel.
+  bool straight_travel_wanted = false;
   /// The map's geographic -> map transform, made from options.geo_projection on the first
-  /// Set when a TraveledDistanceCondition is compiled (conditions take the state as const; the
-  /// flag only asks the step to keep Entity::straight_travel, hence mutable).
-  mutable bool straight_travel_wanted = false;
   /// GeoPosition (positions/geo_reference.h); a cache, hence mutable.
   mutable std::optional<GeographicToMap> geo_to_map;
   /// esmini's ghost of an entity under the followGhost controller (state/ghost_state.h); the run

@@ -1,6 +1,8 @@
 // Building the run-time storyboard tree from the document.
 
 #include <algorithm>
+#include <optional>
+#include <variant>
 
 #include "controllers/follow_ghost.h"
 #include "corsa/xosc/scenario.h"
@@ -124,11 +126,47 @@ void compile_triggers(ActNode& act, const SimState& state) {
   }
 }
 
+bool reads_traveled_distance(const std::optional<xosc::Trigger>& trigger) {
+  if (!trigger) return false;
+  for (const xosc::ConditionGroup& group : trigger->groups) {
+    for (const xosc::Condition& condition : group.conditions) {
+      const auto* by_entity = std::get_if<xosc::ByEntityCondition>(&condition.kind);
+      if (by_entity != nullptr &&
+          std::holds_alternative<xosc::TraveledDistanceCondition>(by_entity->condition)) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// Whether any trigger of the storyboard has a TraveledDistanceCondition (the step then keeps
+// Entity::straight_travel).
+bool storyboard_reads_traveled_distance(const xosc::Storyboard& board) {
+  if (reads_traveled_distance(board.stop_trigger)) return true;
+  for (const xosc::Story& story : board.stories) {
+    for (const xosc::Act& act : story.acts) {
+      if (reads_traveled_distance(act.start_trigger) || reads_traveled_distance(act.stop_trigger)) {
+        return true;
+      }
+      for (const xosc::ManeuverGroup& group : act.maneuver_groups) {
+        for (const xosc::Maneuver& maneuver : group.maneuvers) {
+          for (const xosc::Event& event : maneuver.events) {
+            if (reads_traveled_distance(event.start_trigger)) return true;
+          }
+        }
+      }
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 Storyboard::Storyboard(SimState& state) {
   const xosc::Storyboard& board = state.scenario.storyboard;
   root_ = state.elements.add(ElementType::kStoryboard, "");
+  state.straight_travel_wanted = storyboard_reads_traveled_distance(board);
   for (const xosc::Story& story : board.stories) {
     stories_.push_back(build_story(story, state));
   }
