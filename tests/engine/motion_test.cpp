@@ -437,11 +437,16 @@ TEST_CASE("A speed that turns negative along a path drives back toward its start
           "[engine][trajectory]") {
   // Back: 2 m/s slowing at 2 m/s^2 to -2 m/s on an untimed 20 m path along +x; each step
   // travels its end speed: 0.9 m out at 1 s, back at the start at 1.9 s, facing +x throughout.
-  // Reverse: -2 m/s from the start, so the path is driven forward in reverse gear, facing -x.
+  // Reverse: -2 m/s from the start, so the path is driven forward in reverse gear, facing -x;
+  // its vertices' h = 0 would back it off the path's start at once and are set aside.
   engine::SimulationOptions options;
   options.dt = 0.1;
   FixtureRun run(engine_fixture("trajectory_speed_turns_negative.xosc"), options);
   run.run();
+  CHECK(all_text(run.diagnostics())
+            .find("trajectory_speed_turns_negative.xosc:64: warning: trajectory 'reverse_line': "
+                  "the vertex's heading faces along the path, which at a negative speed drives "
+                  "off the path where the actor starts") != std::string::npos);
   CHECK(run.at(1.0, "Back").pose.x == Approx(0.9).margin(1e-9));
   CHECK(run.at(1.5, "Back").pose.x == Approx(0.6).margin(1e-9));
   CHECK(run.at(1.5, "Back").speed == Approx(-1.0).margin(1e-9));
@@ -450,6 +455,32 @@ TEST_CASE("A speed that turns negative along a path drives back toward its start
   CHECK(run.at(3.0, "Back").pose.x == Approx(0.0).margin(1e-9));  // on no road it stands
   CHECK(run.at(0.5, "Reverse").pose.x == Approx(1.0).margin(1e-9));
   CHECK(run.at(0.5, "Reverse").pose.h == Approx(std::numbers::pi).margin(1e-9));
+}
+
+TEST_CASE("A vertex heading that would drive the actor off its path at once is set aside",
+          "[engine][trajectory]") {
+  // Turned faces -x at +2 m/s on a path from x = 20 to x = 0 whose vertices state h = 0.
+  engine::SimulationOptions options;
+  options.dt = 0.1;
+  FixtureRun run(engine_fixture("trajectory_filler_heading.xosc"), options);
+  run.run();
+  CHECK(run.at(1.0, "Turned").pose.x == Approx(18.0).margin(1e-9));
+  CHECK(run.at(1.0, "Turned").pose.h == Approx(std::numbers::pi).margin(1e-9));
+  CHECK(run.at(1.0, "Turned").speed == Approx(2.0).margin(1e-12));
+  CHECK(run.at(5.0, "Turned").pose.x == Approx(10.0).margin(1e-9));
+  CHECK(run.at(5.0, "Turned").pose.h == Approx(std::numbers::pi).margin(1e-9));
+  CHECK(all_text(run.diagnostics())
+            .find("trajectory_filler_heading.xosc:37: warning: trajectory 'westward': the "
+                  "vertex's heading faces against the path, which at a positive speed drives off "
+                  "the path where the actor starts; the trajectory's stated headings are ignored "
+                  "and the actor faces along the path") != std::string::npos);
+  // esmini turns the car to the stated h = 0 and the action ends at once: it stands at x = 20.
+  options.semantics = engine::Semantics::kEsmini;
+  FixtureRun esmini(engine_fixture("trajectory_filler_heading.xosc"), options);
+  esmini.run();
+  CHECK(esmini.at(1.0, "Turned").pose.x == Approx(20.0).margin(1e-9));
+  CHECK(esmini.at(1.0, "Turned").pose.h == Approx(0.0).margin(1e-9));
+  CHECK(esmini.at(5.0, "Turned").pose.x == Approx(20.0).margin(1e-9));
 }
 
 TEST_CASE("Trajectory vertices stating a heading set the way the actor faces and drives",

@@ -28,11 +28,19 @@
 // driven in reverse gear: the speed is negative. Further on, each vertex stating a heading turns
 // the actor to it: on a timed path from that vertex on (a path that doubles back is driven forward
 // after reversing), on an untimed one the direction of travel stays as it started and the stated
-// headings turn the actor only.
+// headings turn the actor only. The standard reading sets an untimed path's stated headings
+// aside, with a warning at the starting vertex's line, when the facing its vertex states would
+// drive the actor off the path where it starts at its starting speed (a filler h = 0 on a path
+// along -x, driven forward from its start): read so, the action would end before the actor moves.
+// esmini honours them (`--semantics esmini`): its FollowTrajectoryAction sets the object to an
+// explicitly stated heading and, untimed, moves it by the speed's sign times the side of the path
+// that heading faces, so such an action ends at once.
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <variant>
 
 #include "actions/action_makers.h"
 #include "geometry/angle.h"
@@ -77,8 +85,17 @@ class FollowTrajectoryInstance final : public ActionInstance {
     const double dt = context.state.time.dt();
     if (first_step_) {
       first_step_ = false;
-      const std::optional<double> stated = path_.stated_heading_at(s_);
-      facing_ = stated ? stated_facing(s_) : (!timing_ && entity.speed_command < 0.0 ? -1.0 : 1.0);
+      facing_ = !timing_ && entity.speed_command < 0.0 ? -1.0 : 1.0;
+      if (path_.stated_heading_at(s_)) {
+        const double stated = stated_facing(s_);
+        if (context.state.options.semantics != Semantics::kEsmini && !timing_ &&
+            leaves_no_path(stated, entity.speed_command)) {
+          ignore_stated_ = true;
+          warn_ignored_headings(context, entity.speed_command);
+        } else {
+          facing_ = stated;
+        }
+      }
     }
     // The step that passes the path's end goes on past it along the end's heading for the rest
     // of the step, and a timed path ends in the first step after its last time, as esmini reads
@@ -120,7 +137,7 @@ class FollowTrajectoryInstance final : public ActionInstance {
       ended_ = toward_start ? s_next <= 1e-9 : s_next >= path_.length() - 1e-9;
       // The direction of travel stays as it started; the stated headings turn the actor only.
       const double clamped = std::clamp(s_next, 0.0, path_.length());
-      face = path_.stated_heading_at(clamped) ? stated_facing(clamped) : facing_;
+      face = !ignore_stated_ && path_.stated_heading_at(clamped) ? stated_facing(clamped) : facing_;
     }
     s_next = std::clamp(s_next, 0.0, path_.length());
     const double turn = face < 0.0 ? std::numbers::pi : 0.0;
@@ -136,6 +153,36 @@ class FollowTrajectoryInstance final : public ActionInstance {
   // direction there, -1 if it faces against the path.
   double stated_facing(double s) const {
     return std::cos(*path_.stated_heading_at(s) - path_.at(s).h) < 0.0 ? -1.0 : 1.0;
+  }
+
+  // True if an untimed actor facing `facing` (+1 along the path, -1 against it) at `speed` m/s
+  // would drive off the path where it starts: toward the start from the start, or toward the
+  // end from the end. At a speed of 0 there is no direction of travel yet.
+  bool leaves_no_path(double facing, double speed) const {
+    const double direction = facing * speed;
+    if (direction == 0.0) {
+      return false;
+    }
+    return direction < 0.0 ? s_ <= 1e-9 : s_ >= path_.length() - 1e-9;
+  }
+
+  // The warning for stated headings set aside, at the starting vertex's line.
+  void warn_ignored_headings(ActionContext& context, double speed) const {
+    const auto* polyline = std::get_if<xosc::Polyline>(&action_.trajectory.shape);
+    const size_t index = path_.vertex_index_at(s_);
+    const xosc::Source& source = polyline && index < polyline->vertices.size()
+                                     ? polyline->vertices[index].source
+                                     : action_.source;
+    const bool against = stated_facing(s_) < 0.0;
+    context.state.diagnostics.add_once(
+        "follow-trajectory-heading-ignored:" + source.file_name() + ":" +
+            std::to_string(source.line),
+        source.warning("trajectory '" + action_.trajectory.name + "': the vertex's heading faces " +
+                       (against ? "against" : "along") + " the path, which at a " +
+                       (speed < 0.0 ? "negative" : "positive") +
+                       " speed drives off the path where the actor starts; the trajectory's "
+                       "stated headings are ignored and the actor faces " +
+                       (facing_ < 0.0 ? "against" : "along") + " the path"));
   }
 
   // m/s along the path at its last time: the last millisecond's (or whole path's) mean speed.
@@ -163,6 +210,9 @@ class FollowTrajectoryInstance final : public ActionInstance {
   double time_shift_ = 0.0;  ///< s of trajectory time skipped by initialDistanceOffset
   bool ended_ = false;
   bool first_step_ = true;  ///< facing_ is set in the first step
+  /// The starting vertex's stated heading would drive an untimed actor off the path at once: the
+  /// stated headings are set aside (standard reading).
+  bool ignore_stated_ = false;
   /// +1 if the actor faces along the path (a positive speed drives toward its end), -1 if it
   /// faces against it (a positive speed drives toward its start).
   double facing_ = 1.0;

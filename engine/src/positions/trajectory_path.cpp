@@ -54,16 +54,20 @@ void TrajectoryPath::add_vertex(double s, std::optional<double> heading) {
   vertices_.emplace_back(s, heading);
 }
 
-std::optional<double> TrajectoryPath::stated_heading_at(double s) const {
+size_t TrajectoryPath::vertex_index_at(double s) const {
   const auto after =
       std::upper_bound(vertices_.begin(), vertices_.end(), s + 1e-9,
                        [](double value, const std::pair<double, std::optional<double>>& v) {
                          return value < v.first;
                        });
-  if (after == vertices_.begin()) {
+  return after == vertices_.begin() ? 0 : static_cast<size_t>(after - vertices_.begin()) - 1;
+}
+
+std::optional<double> TrajectoryPath::stated_heading_at(double s) const {
+  if (vertices_.empty() || s + 1e-9 < vertices_.front().first) {
     return std::nullopt;
   }
-  return (after - 1)->second;
+  return vertices_[vertex_index_at(s)].second;
 }
 
 namespace {

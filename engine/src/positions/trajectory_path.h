@@ -59,6 +59,8 @@ class TrajectoryPath {
   /// The heading stated by the last vertex at or before s: nothing if that vertex states none
   /// or the shape has no vertices (clothoids, splines, NURBS).
   std::optional<double> stated_heading_at(double s) const;
+  /// The index (in the order added) of the last vertex at or before s; 0 without vertices.
+  size_t vertex_index_at(double s) const;
 
  private:
   std::vector<Segment> segments_;
