@@ -38,24 +38,36 @@ size_t removed_beside_writer(const fs::path& folder, int rounds, Write write) {
   return removed;
 }
 
+/// Failures of the writer counted, the first one's message kept.
+struct RaceWriterFailures {
+  int count = 0;
+  std::string first;
+
+  template <typename Write>
+  void run(Write&& write) {
+    try {
+      write();
+    } catch (const corsa::InputError& error) {
+      if (count++ == 0) {
+        first = error.what();
+      }
+    }
+  }
+};
+
 }  // namespace
 
 TEST_CASE("the cleanup of stale temporaries never removes a live writer's temporary",
           "[core][atomic_file][race]") {
   corsa::test::TempDir dir;
-  int failures = 0;
-  std::string first_failure;
+  RaceWriterFailures failures;
   const size_t removed = removed_beside_writer(dir.path(), 2000, [&](int round) {
-    try {
+    failures.run([&] {
       corsa::write_file_atomic(dir.path() / "out.csv", "round " + std::to_string(round) + "\n");
-    } catch (const corsa::InputError& error) {
-      if (failures++ == 0) {
-        first_failure = error.what();
-      }
-    }
+    });
   });
-  INFO(first_failure);
-  CHECK(failures == 0);
+  INFO(failures.first);
+  CHECK(failures.count == 0);
   CHECK(removed == 0);
   CHECK(corsa::read_file(dir.path() / "out.csv") == "round 1999\n");
   CHECK(dir.entries() == 1);
@@ -64,19 +76,12 @@ TEST_CASE("the cleanup of stale temporaries never removes a live writer's tempor
 TEST_CASE("the cleanup of stale temporaries never removes a live lock's staging file",
           "[core][output_lock][race]") {
   corsa::test::TempDir dir;
-  int failures = 0;
-  std::string first_failure;
+  RaceWriterFailures failures;
   const size_t removed = removed_beside_writer(dir.path(), 1000, [&](int) {
-    try {
-      const corsa::OutputLock lock(dir.path());
-    } catch (const corsa::InputError& error) {
-      if (failures++ == 0) {
-        first_failure = error.what();
-      }
-    }
+    failures.run([&] { const corsa::OutputLock lock(dir.path()); });
   });
-  INFO(first_failure);
-  CHECK(failures == 0);
+  INFO(failures.first);
+  CHECK(failures.count == 0);
   CHECK(removed == 0);
   CHECK(dir.entries() == 0);
 }
