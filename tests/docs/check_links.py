@@ -5,7 +5,8 @@ an #anchor names a heading of the target Markdown file, as GitHub derives anchor
 `<a id="...">` of that file.
 
     check_links.py ROOT          check the repository at ROOT; exit 1 listing each broken link
-    check_links.py --self-test   plant a broken file link and a broken anchor; fail unless found
+    check_links.py --self-test   plant a broken file link and broken anchors (one in a link whose
+                                 text wraps); fail unless each is found
 """
 
 import pathlib
@@ -16,7 +17,7 @@ import tempfile
 FENCE = re.compile(r"^\s*(```|~~~)")
 HEADING = re.compile(r"^(#{1,6})\s+(.*?)\s*#*\s*$")
 # [text](target) and [text](target "title"); images too. Code spans are removed first.
-LINK = re.compile(r"\[[^\]]*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
+LINK = re.compile(r"\[[^\]\[]*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
 HTML_ID = re.compile(r"<a\s+(?:id|name)=\"([^\"]+)\"")
 CODE_SPAN = re.compile(r"(`+)(?:(?!\1).)+?\1")
 
@@ -63,19 +64,23 @@ def broken_links(root):
     problems = []
     cache = {}
     for source in files:
-        for number, line in prose_lines(source.read_text(encoding="utf-8")):
-            for target in LINK.findall(CODE_SPAN.sub("", line)):
-                if re.match(r"^[a-z][a-z0-9+.-]*:", target, re.I):  # http:, mailto:, ...
-                    continue
-                file_part, _, anchor = target.partition("#")
-                where = f"{source.relative_to(root)}:{number}"
-                destination = (source.parent / file_part).resolve() if file_part else source
-                if not destination.exists():
-                    problems.append(f"{where}: no file {file_part}")
-                    continue
-                if anchor and destination.suffix == ".md":
-                    if anchor not in anchors(destination, cache):
-                        problems.append(f"{where}: no heading #{anchor} in {file_part or source.name}")
+        # The prose with code blocks blanked (line numbers kept): a link's text may wrap.
+        text = source.read_text(encoding="utf-8")
+        lines = [""] * len(text.splitlines())
+        for number, line in prose_lines(text):
+            lines[number - 1] = CODE_SPAN.sub(lambda m: " " * len(m.group(0)), line)
+        prose = "\n".join(lines)
+        for match in LINK.finditer(prose):
+            target = match.group(1)
+            if re.match(r"^[a-z][a-z0-9+.-]*:", target, re.I):  # http:, mailto:, ...
+                continue
+            file_part, _, anchor = target.partition("#")
+            where = f"{source.relative_to(root)}:{prose.count(chr(10), 0, match.start()) + 1}"
+            destination = (source.parent / file_part).resolve() if file_part else source
+            if not destination.exists():
+                problems.append(f"{where}: no file {file_part}")
+            elif anchor and destination.suffix == ".md" and anchor not in anchors(destination, cache):
+                problems.append(f"{where}: no heading #{anchor} in {file_part or source.name}")
     return problems
 
 
@@ -87,16 +92,18 @@ def self_test():
             "# A\n\n## Figures: 1,000 cars (tried, dropped)\n\n## Figures\n\n## Figures\n"
             "```\n## not a heading\n```\n<a id=\"snow\"></a>Snow. [back](../README.md#corsa)\n", encoding="utf-8")
         good = ("# Corsa\n\n[a](docs/a.md#figures-1000-cars-tried-dropped) [b](docs/a.md#figures-1) "
-                "[c](docs/) [s](docs/a.md#snow) [d](https://example.org/x#y) `[e](docs/missing.md)`\n")
+                "[c](docs/) [s](docs/a.md#snow) [d](https://example.org/x#y) `[e](docs/missing.md)`\n"
+                "[a wrapped\nlink](docs/a.md#figures)\n")
         (root / "README.md").write_text(good, encoding="utf-8")
         if broken_links(root):
             print("self-test: a good tree reported broken:", broken_links(root))
             return 1
-        (root / "README.md").write_text(good + "[f](docs/missing.md) [g](docs/a.md#not-a-heading)\n",
+        (root / "README.md").write_text(good + "[f](docs/missing.md) [g](docs/a.md#not-a-heading) [h\ni](docs/a.md#x)\n",
                                         encoding="utf-8")
         found = broken_links(root)
-        expected = ["README.md:4: no file docs/missing.md",
-                    "README.md:4: no heading #not-a-heading in docs/a.md"]
+        expected = ["README.md:6: no file docs/missing.md",
+                    "README.md:6: no heading #not-a-heading in docs/a.md",
+                    "README.md:6: no heading #x in docs/a.md"]
         if found != expected:
             print("self-test: expected", expected, "got", found)
             return 1
