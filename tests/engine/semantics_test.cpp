@@ -378,6 +378,43 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("A dsLane position's dLane past the last lane counts toward the entity's left",
+          "[engine][semantics][positions][lenient]") {
+  // Fixture comment: Far on lane 3 (the road's last left lane) and Near on lane 1, both facing
+  // -s at s = 100 and 300; Beyond and Across are dLane 1, dsLane 10 from them.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_past_lanes.xosc"));
+    run.run();
+    // Lane 3 + 1 = 4 does not exist: toward Far's left (-t), lane 2, 10 m the way Far faces.
+    CHECK(run.at(0.0, "Beyond").road->lane == 2);
+    CHECK(run.at(0.0, "Beyond").road->s == Approx(90.0).margin(1e-9));
+    CHECK(run.at(0.0, "Beyond").road->t == Approx(5.25).margin(1e-9));
+    CHECK_THAT(all_text(run.diagnostics()),
+               Catch::Contains("road '1' has no lane 4 (lane 3 plus dLane 1) at s = 90 (read as "
+                               "lane 2, dLane counted toward the reference entity's left)"));
+    // Lane 1 + 1 = 2 exists: the lane id plus dLane, no warning for it.
+    CHECK(run.at(0.0, "Across").road->lane == 2);
+    CHECK(run.at(0.0, "Across").road->s == Approx(290.0).margin(1e-9));
+    CHECK_THAT(all_text(run.diagnostics()), !Catch::Contains("no lane 2"));
+    engine::SimulationOptions strict;
+    strict.strict = true;
+    CHECK_THROWS_WITH(
+        FixtureRun(engine_fixture("semantics_relative_lane_past_lanes.xosc"), strict),
+        Catch::Contains("road '1' has no lane 4") && Catch::Contains("an error under --strict"));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_past_lanes.xosc"), esmini_reading());
+    run.run();
+    // Mirrored: lane 3 - 1 = 2; from lane 1, -1 steps across the centre lane to lane -1.
+    CHECK(run.at(0.0, "Beyond").road->lane == 2);
+    CHECK(run.at(0.0, "Beyond").road->s == Approx(90.0).margin(1e-9));
+    CHECK(run.at(0.0, "Across").road->lane == -1);
+    CHECK(run.at(0.0, "Across").road->t == Approx(-1.75).margin(1e-9));
+    CHECK(run.at(0.0, "Across").road->s == Approx(290.0).margin(1e-9));
+    CHECK_THAT(all_text(run.diagnostics()), !Catch::Contains("dLane counted"));
+  }
+}
+
 TEST_CASE("A RelativeLanePosition's dLane is added to the lane id, under either reading",
           "[engine][semantics][positions]") {
   // Ref drives lane -1 facing +s; Other is dLane 1, ds 10, offset 1 from it: lane id -1 + 1 = 0,
