@@ -415,6 +415,30 @@ TEST_CASE("A dsLane position's dLane past the last lane counts toward the entity
   }
 }
 
+TEST_CASE("A RoutePosition in road coordinates turns from the road's +s, or esmini's way",
+          "[engine][semantics][positions][route]") {
+  // Fixture comment: path s 600 lies on road 2 (heading pi), which the route drives toward -s
+  // (heading 0).
+  constexpr double kPi = std::numbers::pi;
+  // The difference of two headings in (-pi, pi], so that pi and -pi compare equal.
+  const auto turn = [](double from, double to) { return std::remainder(to - from, 2.0 * kPi); };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_route_road_orientation.xosc"));
+    run.run();
+    CHECK(run.at(0.0, "Bare").pose.x == Approx(610.0).margin(1e-9));
+    CHECK(turn(run.at(0.0, "Bare").pose.h, kPi) == Approx(0.0).margin(1e-9));
+    CHECK(turn(run.at(0.0, "Turned").pose.h, kPi + 0.5) == Approx(0.0).margin(1e-9));
+    CHECK(turn(run.at(0.0, "Fixed").pose.h, 0.5) == Approx(0.0).margin(1e-9));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_route_road_orientation.xosc"), esmini_reading());
+    run.run();
+    CHECK(turn(run.at(0.0, "Bare").pose.h, 0.0) == Approx(0.0).margin(1e-9));
+    CHECK(turn(run.at(0.0, "Turned").pose.h, kPi + 0.5) == Approx(0.0).margin(1e-9));
+    CHECK(turn(run.at(0.0, "Fixed").pose.h, kPi + 0.5) == Approx(0.0).margin(1e-9));
+  }
+}
+
 TEST_CASE("A RelativeLanePosition's dLane is added to the lane id, under either reading",
           "[engine][semantics][positions]") {
   // Ref drives lane -1 facing +s; Other is dLane 1, ds 10, offset 1 from it: lane id -1 + 1 = 0,
