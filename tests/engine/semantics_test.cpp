@@ -439,6 +439,28 @@ TEST_CASE("A RoutePosition in road coordinates turns from the road's +s, or esmi
   }
 }
 
+TEST_CASE("A RoutePosition from the current entity turns its Orientation from the entity's",
+          "[engine][semantics][positions][route]") {
+  // Fixture comment: Car on road 1 at x = 100 facing 0; Same, Turned and Fixed at its place on
+  // the route without Orientation, relative h = 0.5 and absolute h = 1.
+  const auto check = [](FixtureRun& run) {
+    run.run();
+    CHECK(run.at(0.0, "Same").pose.x == Approx(100.0).margin(1e-9));
+    CHECK(run.at(0.0, "Same").pose.h == Approx(0.0).margin(1e-9));
+    CHECK(run.at(0.0, "Turned").pose.x == Approx(100.0).margin(1e-9));
+    CHECK(run.at(0.0, "Turned").pose.h == Approx(0.5).margin(1e-9));
+    CHECK(run.at(0.0, "Fixed").pose.h == Approx(1.0).margin(1e-9));
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_route_entity_orientation.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_route_entity_orientation.xosc"), esmini_reading());
+    check(run);
+  }
+}
+
 TEST_CASE("A RelativeLanePosition's dLane is added to the lane id, under either reading",
           "[engine][semantics][positions]") {
   // Ref drives lane -1 facing +s; Other is dLane 1, ds 10, offset 1 from it: lane id -1 + 1 = 0,

@@ -189,6 +189,19 @@ ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, con
           ResolvedPosition out;
           const Pose& p = entity.state.pose;
           out.pose = {p.x, p.y, p.z, p.h, p.p, p.r};
+          // 1.3 RoutePosition: the relative reference context refers "to the orientation of the
+          // reference entity"; a missing Orientation is a relative one of 0, the entity's own.
+          if (const auto& o = position.orientation) {
+            if (o->type == xosc::ReferenceContext::kRelative) {
+              out.pose.h = wrap_angle(p.h + o->h.value_or(0.0));
+              out.pose.p = p.p + o->p.value_or(0.0);
+              out.pose.r = p.r + o->r.value_or(0.0);
+            } else {
+              out.pose.h = o->h.value_or(0.0);
+              out.pose.p = o->p.value_or(0.0);
+              out.pose.r = o->r.value_or(0.0);
+            }
+          }
           if (entity.state.road) {
             out.road = RoadPoint{entity.state.road->road, entity.state.road->s,
                                  entity.state.road->t, entity.state.road->lane};
