@@ -378,6 +378,89 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("A dsLane position's dLane past the last lane counts toward the entity's left",
+          "[engine][semantics][positions][lenient]") {
+  // Fixture comment: Far on lane 3 (the road's last left lane) and Near on lane 1, both facing
+  // -s at s = 100 and 300; Beyond and Across are dLane 1, dsLane 10 from them.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_past_lanes.xosc"));
+    run.run();
+    // Lane 3 + 1 = 4 does not exist: toward Far's left (-t), lane 2, 10 m the way Far faces.
+    CHECK(run.at(0.0, "Beyond").road->lane == 2);
+    CHECK(run.at(0.0, "Beyond").road->s == Approx(90.0).margin(1e-9));
+    CHECK(run.at(0.0, "Beyond").road->t == Approx(5.25).margin(1e-9));
+    CHECK_THAT(all_text(run.diagnostics()),
+               Catch::Contains("road '1' has no lane 4 (lane 3 plus dLane 1) at s = 90 (read as "
+                               "lane 2, dLane counted toward the reference entity's left)"));
+    // Lane 1 + 1 = 2 exists: the lane id plus dLane, no warning for it.
+    CHECK(run.at(0.0, "Across").road->lane == 2);
+    CHECK(run.at(0.0, "Across").road->s == Approx(290.0).margin(1e-9));
+    CHECK_THAT(all_text(run.diagnostics()), !Catch::Contains("no lane 2"));
+    engine::SimulationOptions strict;
+    strict.strict = true;
+    CHECK_THROWS_WITH(
+        FixtureRun(engine_fixture("semantics_relative_lane_past_lanes.xosc"), strict),
+        Catch::Contains("road '1' has no lane 4") && Catch::Contains("an error under --strict"));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_past_lanes.xosc"), esmini_reading());
+    run.run();
+    // Mirrored: lane 3 - 1 = 2; from lane 1, -1 steps across the centre lane to lane -1.
+    CHECK(run.at(0.0, "Beyond").road->lane == 2);
+    CHECK(run.at(0.0, "Beyond").road->s == Approx(90.0).margin(1e-9));
+    CHECK(run.at(0.0, "Across").road->lane == -1);
+    CHECK(run.at(0.0, "Across").road->t == Approx(-1.75).margin(1e-9));
+    CHECK(run.at(0.0, "Across").road->s == Approx(290.0).margin(1e-9));
+    CHECK_THAT(all_text(run.diagnostics()), !Catch::Contains("dLane counted"));
+  }
+}
+
+TEST_CASE("A RoutePosition in road coordinates turns from the road's +s, or esmini's way",
+          "[engine][semantics][positions][route]") {
+  // Fixture comment: path s 600 lies on road 2 (heading pi), which the route drives toward -s
+  // (heading 0).
+  constexpr double kPi = std::numbers::pi;
+  // The difference of two headings in (-pi, pi], so that pi and -pi compare equal.
+  const auto turn = [](double from, double to) { return std::remainder(to - from, 2.0 * kPi); };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_route_road_orientation.xosc"));
+    run.run();
+    CHECK(run.at(0.0, "Bare").pose.x == Approx(610.0).margin(1e-9));
+    CHECK(turn(run.at(0.0, "Bare").pose.h, kPi) == Approx(0.0).margin(1e-9));
+    CHECK(turn(run.at(0.0, "Turned").pose.h, kPi + 0.5) == Approx(0.0).margin(1e-9));
+    CHECK(turn(run.at(0.0, "Fixed").pose.h, 0.5) == Approx(0.0).margin(1e-9));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_route_road_orientation.xosc"), esmini_reading());
+    run.run();
+    CHECK(turn(run.at(0.0, "Bare").pose.h, 0.0) == Approx(0.0).margin(1e-9));
+    CHECK(turn(run.at(0.0, "Turned").pose.h, kPi + 0.5) == Approx(0.0).margin(1e-9));
+    CHECK(turn(run.at(0.0, "Fixed").pose.h, kPi + 0.5) == Approx(0.0).margin(1e-9));
+  }
+}
+
+TEST_CASE("A RoutePosition from the current entity turns its Orientation from the entity's",
+          "[engine][semantics][positions][route]") {
+  // Fixture comment: Car on road 1 at x = 100 facing 0; Same, Turned and Fixed at its place on
+  // the route without Orientation, relative h = 0.5 and absolute h = 1.
+  const auto check = [](FixtureRun& run) {
+    run.run();
+    CHECK(run.at(0.0, "Same").pose.x == Approx(100.0).margin(1e-9));
+    CHECK(run.at(0.0, "Same").pose.h == Approx(0.0).margin(1e-9));
+    CHECK(run.at(0.0, "Turned").pose.x == Approx(100.0).margin(1e-9));
+    CHECK(run.at(0.0, "Turned").pose.h == Approx(0.5).margin(1e-9));
+    CHECK(run.at(0.0, "Fixed").pose.h == Approx(1.0).margin(1e-9));
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_route_entity_orientation.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_route_entity_orientation.xosc"), esmini_reading());
+    check(run);
+  }
+}
+
 TEST_CASE("A RelativeLanePosition's dLane is added to the lane id, under either reading",
           "[engine][semantics][positions]") {
   // Ref drives lane -1 facing +s; Other is dLane 1, ds 10, offset 1 from it: lane id -1 + 1 = 0,

@@ -12,6 +12,7 @@
 #include "positions/position_common.h"
 #include "positions/route_path.h"
 #include "positions/trajectory_path.h"
+#include "state/lenient.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -197,6 +198,37 @@ EsminiAlongLaneSigns esmini_along_lane_signs(const xodr::Map& map, const Entity&
   return {lane_toward_minus_s ? -1.0 : 1.0, keep ? 1 : -1};
 }
 
+// The lane `d` lanes over from `lane`, the centre lane not counted: from lane 1, d = -1 is lane
+// -1 (esmini's lane steps; 1.3's dLane is a difference of lane ids, where it would be lane 0).
+int lane_across_centre(int lane, int d) {
+  int target = lane + d;
+  if (lane != 0 && d != 0 && (target == 0 || (target > 0) != (lane > 0))) {
+    target += d > 0 ? 1 : -1;
+  }
+  return target;
+}
+
+// A RelativeLanePosition given by dsLane whose lane id plus dLane names no lane there (from lane
+// 1 of a road with one lane a side, dLane 1: lane 2): the author's intent is the lane dLane lanes
+// toward the reference entity's left, the centre lane not counted, as esmini reads every dLane
+// of a dsLane position (esmini's star_position_types: from lane 1, facing -s, dLane 1 is lane
+// -1). Read so with a warning when that lane exists; otherwise the lane stays as the standard
+// gives it, and need_lane_center reports it.
+int lane_toward_reference_left(const xodr::Map& map, const Entity& ref, const RoadCoordinates& rc,
+                               const LaneFollow& at, int lane_id,
+                               const xosc::RelativeLanePosition& p, const SimState& state) {
+  if (lane_id == 0 || lane_center_t(map, at.road, at.s, lane_id)) return lane_id;
+  const int toward_left = reference_faces_plus_s(map, ref, rc) ? 1 : -1;
+  const int left = lane_across_centre(at.lane, at.dir * toward_left * p.d_lane);
+  if (left == 0 || !lane_center_t(map, at.road, at.s, left)) return lane_id;
+  lenient(state, p.source,
+          "road '" + map.road(at.road).id + "' has no lane " + std::to_string(lane_id) + " (lane " +
+              std::to_string(at.lane) + " plus dLane " + std::to_string(p.d_lane) +
+              ") at s = " + format_double(at.s),
+          "lane " + std::to_string(left) + ", dLane counted toward the reference entity's left");
+  return left;
+}
+
 ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimState& state) {
   const xodr::Map& map = need_map(state, p.source, "RelativeLanePosition");
   const Entity& ref = need_entity(state, p.entity_ref, p.source);
@@ -229,7 +261,13 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
   // entity", dLane being "The deviation value between the laneId of the lane, where the
   // reference entity is located, and the target laneId": the lane id plus dLane, so that -1 + 1
   // is the centre lane 0, on the reference line (as esmini). Lanes are not counted.
-  const int lane_id = at.lane + at.dir * d_lane;
+  int lane_id = at.lane + at.dir * d_lane;
+  if (p.ds_lane) {
+    // esmini steps lanes along a dsLane position across the centre lane without counting it.
+    lane_id = esmini_reading(state)
+                  ? lane_across_centre(at.lane, at.dir * d_lane)
+                  : lane_toward_reference_left(map, ref, rc, at, lane_id, p, state);
+  }
   // The centre lane has no width nor direction: on the reference line (as a LanePosition on
   // lane 0), oriented as the reference's lane, in the lane the offset reaches.
   const double t =

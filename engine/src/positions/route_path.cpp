@@ -189,6 +189,19 @@ ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, con
           ResolvedPosition out;
           const Pose& p = entity.state.pose;
           out.pose = {p.x, p.y, p.z, p.h, p.p, p.r};
+          // 1.3 RoutePosition: the relative reference context refers "to the orientation of the
+          // reference entity"; a missing Orientation is a relative one of 0, the entity's own.
+          if (const auto& o = position.orientation) {
+            if (o->type == xosc::ReferenceContext::kRelative) {
+              out.pose.h = wrap_angle(p.h + o->h.value_or(0.0));
+              out.pose.p = p.p + o->p.value_or(0.0);
+              out.pose.r = p.r + o->r.value_or(0.0);
+            } else {
+              out.pose.h = o->h.value_or(0.0);
+              out.pose.p = o->p.value_or(0.0);
+              out.pose.r = o->r.value_or(0.0);
+            }
+          }
           if (entity.state.road) {
             out.road = RoadPoint{entity.state.road->road, entity.state.road->s,
                                  entity.state.road->t, entity.state.road->lane};
@@ -202,23 +215,37 @@ ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, con
           const RouteLocation at = locate_on_route(path, in_route.path_s);
           double t = 0.0;
           std::optional<int> lane;
-          // A relative Orientation turns from the road's s and t, one given in lane coordinates
-          // from the lane's direction of travel (1.3 RoutePosition: "the referenced road's s and
-          // t coordinates, to the current lane's s and t coordinates"; a lane's s-axis as for
-          // a LanePosition), as esmini turns them.
+          // 1.3 RoutePosition: "The relative reference context refers to the referenced road's s
+          // and t coordinates, to the current lane's s and t coordinates [...]. Missing
+          // Orientation property is interpreted as the relative reference context with
+          // Heading=Pitch=Roll=0." In road coordinates a relative heading turns from the road's
+          // +s, and a missing one faces it, whichever way the route runs there; in lane
+          // coordinates from the lane's direction of travel (a lane's s-axis as for a
+          // LanePosition).
           OrientationFrame frame = OrientationFrame::kRoad;
+          std::optional<xosc::Orientation> orientation = position.orientation;
+          const bool esmini = state.options.semantics == Semantics::kEsmini;
           if constexpr (std::is_same_v<T, xosc::PositionInRoadCoordinates>) {
             t = in_route.t;
+            if (!orientation && !esmini) {
+              orientation = xosc::Orientation{};
+              orientation->type = xosc::ReferenceContext::kRelative;
+            } else if (orientation && esmini) {
+              // esmini (OSCPositionRoute::SetRouteRefRoadCoord) turns any Orientation given in
+              // road coordinates from the road's +s, an absolute one too.
+              orientation->type = xosc::ReferenceContext::kRelative;
+            }
           } else {
             lane = parse_lane_id(in_route.lane_id, in_route.source);
             t = need_lane_center(map, at.lane.road, at.s, *lane, in_route.source) +
                 in_route.lane_offset.value_or(0.0);
             frame = OrientationFrame::kLane;
           }
-          ResolvedPosition out =
-              on_road(map, at.lane.road, at.s, t, lane, position.orientation, frame);
-          if (!position.orientation) {
-            // Without an orientation the entity faces along the route.
+          ResolvedPosition out = on_road(map, at.lane.road, at.s, t, lane, orientation, frame);
+          if (!orientation) {
+            // Lane coordinates without an Orientation, and road coordinates without one under
+            // --semantics esmini: the entity faces along the route (in lane coordinates the
+            // lane's direction of travel, unless the route drives the lane against it).
             out.pose.h = wrap_angle(map.reference(at.lane.road, at.s).hdg +
                                     (at.dir < 0 ? std::numbers::pi : 0.0));
           }
