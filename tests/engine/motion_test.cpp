@@ -483,6 +483,28 @@ TEST_CASE("A vertex heading that would drive the actor off its path at once is s
   CHECK(esmini.at(5.0, "Turned").pose.x == Approx(20.0).margin(1e-9));
 }
 
+TEST_CASE("A timed path whose vertices state a heading against it is driven in reverse gear",
+          "[engine][trajectory]") {
+  // Turned faces -x at +2 m/s; its path runs from x = 20 at 0 s to x = 0 at 10 s and its
+  // vertices state h = 0. The times set the motion and the stated heading the orientation, under
+  // both readings: backwards along -x at -2 m/s, facing +x, nothing set aside.
+  for (const engine::Semantics semantics :
+       {engine::Semantics::kStandard, engine::Semantics::kEsmini}) {
+    engine::SimulationOptions options;
+    options.dt = 0.1;
+    options.semantics = semantics;
+    FixtureRun run(engine_fixture("trajectory_timed_filler_heading.xosc"), options);
+    run.run();
+    CHECK(run.at(1.0, "Turned").pose.x == Approx(18.0).margin(1e-9));
+    CHECK(run.at(1.0, "Turned").pose.h == Approx(0.0).margin(1e-9));
+    CHECK(run.at(1.0, "Turned").speed == Approx(-2.0).margin(1e-9));
+    CHECK(run.at(5.0, "Turned").pose.x == Approx(10.0).margin(1e-9));
+    CHECK(run.at(5.0, "Turned").pose.h == Approx(0.0).margin(1e-9));
+    CHECK(run.at(10.0, "Turned").pose.x == Approx(0.0).margin(1e-9));
+    CHECK(all_text(run.diagnostics()).find("stated headings are ignored") == std::string::npos);
+  }
+}
+
 TEST_CASE("Trajectory vertices stating a heading set the way the actor faces and drives",
           "[engine][trajectory]") {
   // Straight 20 m paths along +x; see the fixture for each case.
