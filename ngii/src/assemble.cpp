@@ -155,6 +155,7 @@ class Assembler {
         }
       }
     }
+    paths_meet_lane_ends(end_lines, path_lines, built);
     ordinary_ends_on_paths(end_lines, path_lines, end_of, used_lines, built);
     for (size_t r = 0; r < total; ++r) {
       if (plan_.roads[r].removed) {
@@ -231,6 +232,89 @@ class Assembler {
       return *records_fold_lines;
     }
     return own;
+  }
+
+  /// A junction path on the joined road's line at an end (`offered`, `used`), the only lane
+  /// that ordinary lane leads into (or comes from), meets that lane edge to edge: where either
+  /// of its borders lies more than kShortOfLane inside the lane's end, it is built again with
+  /// its borders there moved onto the lane's (EndBorders, eased back over a metre or two).
+  /// The width a path takes from the lane (match_path_ends) is the lane's end width times the
+  /// cosine of the angle its link's first segment makes with the road's end heading, which the
+  /// road builder divides by the cosine of the angle the smoothed lane makes with the bent
+  /// reference line at the end station (width_target); where a path turns sharply right after
+  /// its first vertex the two angles differ: K-City's path 460 leaves road 322's 6.58 m lane
+  /// end at 50 degrees by its first segment and 40 by its smoothed line, and started 5.41 m
+  /// wide, 0.6 m of the lane's end open beside it. Kept where the path neither folds, gains a
+  /// kink nor moves its lane's end more than 0.1 m off its link.
+  void paths_meet_lane_ends(const std::vector<RoadEndLines>& offered,
+                            const std::vector<RoadEndLines>& used,
+                            std::vector<std::optional<BuiltRoad>>& built) const {
+    constexpr double kShortOfLane = 0.1;   // m: a border inside the lane's end by more is moved
+    constexpr double kPathEndError = 0.1;  // m: farthest a lane end may move off its link's
+    for (size_t r = 0; r < plan_.roads.size(); ++r) {
+      const RoadPlan& path = plan_.roads[r];
+      if (path.removed || path.junction < 0 || path.absorbed || path.lanes.size() != 1 ||
+          !built[r]) {
+        continue;
+      }
+      EndBorders targets;
+      for (const bool at_end : {false, true}) {
+        const std::optional<EndLine>& given = at_end ? offered[r].end : offered[r].start;
+        const std::optional<EndLine>& on = at_end ? used[r].end : used[r].start;
+        if (!given || !on || norm(given->point - on->point) > 1e-9 ||
+            norm(given->across - on->across) > 1e-9) {
+          continue;  // on its own line, or never given one
+        }
+        const int key = at_end ? path.lanes[0].end_node : path.lanes[0].start_node;
+        if (key < 0) {
+          continue;
+        }
+        const auto& across = at_end ? index_.starting[static_cast<size_t>(key)]
+                                    : index_.ending[static_cast<size_t>(key)];
+        const auto& beside = at_end ? index_.ending[static_cast<size_t>(key)]
+                                    : index_.starting[static_cast<size_t>(key)];
+        if (across.size() != 1 || beside.size() != 1 ||
+            beside.front().road != static_cast<int>(r)) {
+          continue;
+        }
+        const size_t o = static_cast<size_t>(across.front().road);
+        const size_t k = static_cast<size_t>(across.front().lane);
+        const RoadPlan& road = plan_.roads[o];
+        if (road.removed || (road.junction >= 0 && !road.absorbed) || !built[o] ||
+            effective_end(road, k, at_end) != LaneEnd::kBeside) {
+          continue;
+        }
+        const std::vector<Vec2> lane = built_border_points(built[o]->road, !at_end);
+        const std::vector<Vec2> own = built_border_points(built[r]->road, at_end);
+        if (lane.size() < k + 2 || own.size() != 2) {
+          continue;
+        }
+        // Across the path's end, + left: how far each of its borders lies inside the lane's.
+        const Vec2 across_end = own[0] - own[1];
+        const double span = norm(across_end);
+        if (span <= 0.0) {
+          continue;
+        }
+        const Vec2 left = across_end * (1.0 / span);
+        const double inside_left = dot(lane[k] - own[0], left);
+        const double inside_right = dot(own[1] - lane[k + 1], left);
+        if (std::max(inside_left, inside_right) <= kShortOfLane) {
+          continue;
+        }
+        (at_end ? targets.end : targets.start) = {lane[k], lane[k + 1]};
+      }
+      if (targets.empty()) {
+        continue;
+      }
+      BuiltRoad again =
+          build_road(path, network_, origin_, widths_.lanes[r], used[r], options_, targets);
+      const BuiltRoad& before = *built[r];
+      if (!again.folds && again.kinks <= before.kinks &&
+          again.end_error <= std::max(kPathEndError, before.end_error) &&
+          (!fitted_road_folds(again.road) || fitted_road_folds(before.road))) {
+        built[r] = std::move(again);
+      }
+    }
   }
 
   /// Where a junction path keeps its own line at an end though it was given the joined road's

@@ -13,6 +13,7 @@
 #include "corsa/xodr/geometry.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/parser.h"
+#include "lane_joints.h"
 #include "mouth_fills.h"
 #include "mouth_gaps.h"
 #include "reference_line.h"
@@ -791,4 +792,150 @@ TEST_CASE(
   CHECK(gaps.ends >= 2);
   CHECK(gaps.over == 0);
   CHECK(gaps.max < 0.1);
+}
+
+TEST_CASE(
+    "a junction path leaving a wide lane's skewed end 50 degrees off its link meets that lane "
+    "edge to edge",
+    "[ngii][mouths]") {
+  // K-City's roads 321/322 and path 460 (links A219BS010453/454/455 and 579, the path 577
+  // merging at 579's end and the road before it, the marks beside them), in map metres: the
+  // right lane R of a two-lane road heading west ends about 6.6 m wide along a line skewed by
+  // 29 degrees, and the path P from its end turns right, its first segment 50 degrees off the
+  // road's end heading and its next ones 10-20 degrees further. P took R's width across its
+  // first segment (x cos 50 degrees), and the road builder widened it back across its smoothed
+  // lane's slant at its start (/ cos 40 degrees), so it started 0.67 / 0.59 m inside R's end
+  // (K-City: 5.41 m wide on a 6.58 m end, 0.62 / 0.55 m). It now meets R's borders there.
+  // (Here P's start ends up 2 degrees off R's end line, K-City's 0.5, and mouth_gaps finds a
+  // sliver behind it; the borders along the joint are what this case holds.)
+  Builder b;
+  b.node("C0", 33.08, 890.05);
+  b.node("C1", 5.12, 889.34);
+  b.node("R1", -10.08, 891.24);
+  b.node("L1", -8.81, 886.28);
+  b.node("P1", -17.02, 899.97);
+  b.node("E1", -19.44, 920.95);
+  b.node("S0", -4.63, 866.56);
+  b.node("S1", -9.58, 876.94);
+  b.link("A2TEST00000C", "6", 1, "C0", "C1");
+  b.link_through("A2TEST00000L", 1, "C1", "L1",
+                 {{5.12, 889.34},
+                  {3.5, 888.99},
+                  {1.79, 888.61},
+                  {-0.88, 888.02},
+                  {-3.96, 887.34},
+                  {-5.9, 886.92},
+                  {-8.81, 886.28}},
+                 "A2TEST00000R", "");
+  b.link_through("A2TEST00000R", 2, "C1", "R1",
+                 {{5.12, 889.34},
+                  {1.78, 889.45},
+                  {-1.78, 889.54},
+                  {-4.83, 889.97},
+                  {-7.28, 890.49},
+                  {-10.08, 891.24}},
+                 "", "A2TEST00000L");
+  b.path_through("A2TEST00000P", "R1", "P1",
+                 {{-10.08, 891.24},
+                  {-12.15, 892.74},
+                  {-13.97, 895.11},
+                  {-15.16, 896.65},
+                  {-16.63, 899.26},
+                  {-17.02, 899.97}});
+  b.link_through("A2TEST00000S", 1, "S0", "S1",
+                 {{-4.63, 866.56},
+                  {-5.59, 868.52},
+                  {-6.39, 870.15},
+                  {-7.27, 871.97},
+                  {-8.28, 874.02},
+                  {-9.58, 876.94}});
+  b.path_through("A2TEST00000Q", "S1", "P1",
+                 {{-9.58, 876.94},
+                  {-10.59, 879.76},
+                  {-11.61, 882.57},
+                  {-12.63, 885.39},
+                  {-13.65, 888.21},
+                  {-14.58, 890.77},
+                  {-15.35, 893.66},
+                  {-16.12, 896.55},
+                  {-16.88, 899.45},
+                  {-17.02, 899.97}});
+  b.link_through("A2TEST00000E", 1, "P1", "E1",
+                 {{-17.02, 899.97},
+                  {-17.58, 902.87},
+                  {-18.09, 906.03},
+                  {-18.55, 909.37},
+                  {-18.98, 913.1},
+                  {-19.26, 917.02},
+                  {-19.44, 920.95}});
+  b.mark_through("B2CS",
+                 {{33.45, 888.18},
+                  {13.81, 887.98},
+                  {5.95, 887.33},
+                  {-1.8, 886.17},
+                  {-5.86, 885.31},
+                  {-8.77, 884.6}},
+                 "A2TEST00000C", "");
+  b.mark_through("B2CN",
+                 {{33.43, 894.36},
+                  {29.63, 892.38},
+                  {25.9, 891.63},
+                  {12.86, 891.47},
+                  {2.22, 891.5},
+                  {-1.65, 891.75},
+                  {-5.57, 892.36},
+                  {-6.49, 892.57}},
+                 "", "A2TEST00000C");
+  b.mark_through("B2RN", {{-6.49, 892.57}, {-7.32, 892.75}, {-9.02, 893.4}, {-10.83, 894.77}}, "",
+                 "A2TEST00000R");
+  b.mark_through("B2RS", {{-7.82, 888.08}, {-9.92, 888.8}, {-12.52, 890.13}}, "A2TEST00000R", "");
+  b.mark_through("B2RL", {{-7.82, 888.08}, {-9.17, 887.75}}, "A2TEST00000R", "A2TEST00000L");
+  b.mark_through("B2SQ", {{-8.43, 884.69}, {-8.81, 886.28}, {-9.17, 887.75}}, "", "A2TEST00000Q");
+  b.mark_through("B2Q", {{-11.52, 887.18}, {-12.02, 888.65}, {-12.52, 890.13}}, "", "A2TEST00000Q");
+  for (const double side : {1.0, -1.0}) {
+    b.mark_through(side > 0.0 ? "B2EL" : "B2ER",
+                   {{-17.02 - side * 1.75, 899.97},
+                    {-17.58 - side * 1.75, 902.87},
+                    {-18.55 - side * 1.75, 909.37},
+                    {-19.44 - side * 1.75, 920.95}},
+                   side > 0.0 ? "A2TEST00000E" : "", side > 0.0 ? "" : "A2TEST00000E");
+    b.mark_through(
+        side > 0.0 ? "B2SL" : "B2SR",
+        {{-4.63 - side * 1.6, 866.56 - side * 0.7}, {-9.58 - side * 1.6, 876.94 - side * 0.7}},
+        side > 0.0 ? "A2TEST00000S" : "", side > 0.0 ? "" : "A2TEST00000S");
+  }
+  corsa::Diagnostics diagnostics;
+  const auto conversion = corsa::ngii::convert(b.layers, {}, diagnostics);
+  CHECK(diagnostics.count(corsa::Severity::kWarning) == 0);
+  // The lane's borders where it ends and the path's where it starts, as map points (left,
+  // right), and where each lies along the lane's end edge.
+  const auto borders_of = [&](const std::string& link, bool at_end) {
+    for (const auto& road : conversion.map.roads) {
+      const auto& lanes = road.lane_sections.front().lanes;
+      int index = 0;
+      for (const auto& lane : lanes) {
+        if (lane.id >= 0) {
+          continue;
+        }
+        if (!lane.user_data.empty() && lane.user_data.front().value == link) {
+          const auto points = corsa::ngii::detail::built_border_points(road, at_end);
+          return std::pair{points[static_cast<size_t>(index)],
+                           points[static_cast<size_t>(index) + 1]};
+        }
+        ++index;
+      }
+    }
+    FAIL("no lane holds " << link);
+    return std::pair<corsa::Vec2, corsa::Vec2>{};
+  };
+  const auto [lane_left, lane_right] = borders_of("A2TEST00000R", true);
+  const auto [path_left, path_right] = borders_of("A2TEST00000P", false);
+  const corsa::Vec2 edge = lane_right - lane_left;
+  const double width = corsa::norm(edge);
+  const corsa::Vec2 along = edge * (1.0 / width);
+  INFO("lane end " << width << " m wide; path from " << dot(path_left - lane_left, along) << " to "
+                   << dot(path_right - lane_left, along));
+  CHECK(width > 6.0);
+  CHECK(std::abs(dot(path_left - lane_left, along)) < 0.05);
+  CHECK(std::abs(dot(path_right - lane_right, along)) < 0.05);
 }
