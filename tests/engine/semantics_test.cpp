@@ -749,4 +749,25 @@ TEST_CASE("A trajectory's last step goes past its end, then on no road the car s
   }
 }
 
+TEST_CASE("An entity slower than 1e-3 m/s stands still, under either reading",
+          "[engine][semantics][conditions]") {
+  // StandStillCondition names no speed: esmini's threshold, |v| < 1e-3 m/s. Creep drives
+  // 0.0005 m/s and stands still from 0 s: its 1 s condition holds at 1 s. Crawl drives 0.002 m/s
+  // and never stands still.
+  const auto check = [](FixtureRun& run) {
+    run.run();
+    CHECK(run.first("marks::maneuver::CreepStill", engine::TransitionKind::kStart) == Approx(1.0));
+    CHECK_FALSE(run.first("marks::maneuver::CrawlStill", engine::TransitionKind::kStart));
+    CHECK(run.now("Creep").speed == Approx(0.0005));
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_stand_still_creep.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_stand_still_creep.xosc"), esmini_reading());
+    check(run);
+  }
+}
+
 }  // namespace corsa::test
