@@ -418,7 +418,8 @@ TEST_CASE("A dsLane position's dLane past the last lane counts toward the entity
 TEST_CASE("A RoutePosition in road coordinates turns from the road's +s, or esmini's way",
           "[engine][semantics][positions][route]") {
   // Fixture comment: path s 600 lies on road 2 (heading pi), which the route drives toward -s
-  // (heading 0).
+  // (heading 0). Without an Orientation both readings face the road's +s, not along the route;
+  // an absolute Orientation is esmini's relative one.
   constexpr double kPi = std::numbers::pi;
   // The difference of two headings in (-pi, pi], so that pi and -pi compare equal.
   const auto turn = [](double from, double to) { return std::remainder(to - from, 2.0 * kPi); };
@@ -433,7 +434,8 @@ TEST_CASE("A RoutePosition in road coordinates turns from the road's +s, or esmi
   SECTION("esmini") {
     FixtureRun run(engine_fixture("semantics_route_road_orientation.xosc"), esmini_reading());
     run.run();
-    CHECK(turn(run.at(0.0, "Bare").pose.h, 0.0) == Approx(0.0).margin(1e-9));
+    CHECK(run.at(0.0, "Bare").pose.x == Approx(610.0).margin(1e-9));
+    CHECK(turn(run.at(0.0, "Bare").pose.h, kPi) == Approx(0.0).margin(1e-9));
     CHECK(turn(run.at(0.0, "Turned").pose.h, kPi + 0.5) == Approx(0.0).margin(1e-9));
     CHECK(turn(run.at(0.0, "Fixed").pose.h, kPi + 0.5) == Approx(0.0).margin(1e-9));
   }
