@@ -418,7 +418,8 @@ TEST_CASE("A dsLane position's dLane past the last lane counts toward the entity
 TEST_CASE("A RoutePosition in road coordinates turns from the road's +s, or esmini's way",
           "[engine][semantics][positions][route]") {
   // Fixture comment: path s 600 lies on road 2 (heading pi), which the route drives toward -s
-  // (heading 0).
+  // (heading 0). Without an Orientation both readings face the road's +s, not along the route;
+  // an absolute Orientation is esmini's relative one.
   constexpr double kPi = std::numbers::pi;
   // The difference of two headings in (-pi, pi], so that pi and -pi compare equal.
   const auto turn = [](double from, double to) { return std::remainder(to - from, 2.0 * kPi); };
@@ -433,7 +434,8 @@ TEST_CASE("A RoutePosition in road coordinates turns from the road's +s, or esmi
   SECTION("esmini") {
     FixtureRun run(engine_fixture("semantics_route_road_orientation.xosc"), esmini_reading());
     run.run();
-    CHECK(turn(run.at(0.0, "Bare").pose.h, 0.0) == Approx(0.0).margin(1e-9));
+    CHECK(run.at(0.0, "Bare").pose.x == Approx(610.0).margin(1e-9));
+    CHECK(turn(run.at(0.0, "Bare").pose.h, kPi) == Approx(0.0).margin(1e-9));
     CHECK(turn(run.at(0.0, "Turned").pose.h, kPi + 0.5) == Approx(0.0).margin(1e-9));
     CHECK(turn(run.at(0.0, "Fixed").pose.h, kPi + 0.5) == Approx(0.0).margin(1e-9));
   }
@@ -746,6 +748,27 @@ TEST_CASE("A trajectory's last step goes past its end, then on no road the car s
       CHECK(stands.at(4.0, name).pose.x == Approx(10.0).margin(1e-9));
       CHECK(stands.at(2.1, name).speed == 0.0);
     }
+  }
+}
+
+TEST_CASE("An entity slower than 1e-3 m/s stands still, under either reading",
+          "[engine][semantics][conditions]") {
+  // StandStillCondition names no speed: esmini's threshold, |v| < 1e-3 m/s. Creep drives
+  // 0.0005 m/s and stands still from 0 s: its 1 s condition holds at 1 s. Crawl drives 0.002 m/s
+  // and never stands still.
+  const auto check = [](FixtureRun& run) {
+    run.run();
+    CHECK(run.first("marks::maneuver::CreepStill", engine::TransitionKind::kStart) == Approx(1.0));
+    CHECK_FALSE(run.first("marks::maneuver::CrawlStill", engine::TransitionKind::kStart));
+    CHECK(run.now("Creep").speed == Approx(0.0005));
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_stand_still_creep.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_stand_still_creep.xosc"), esmini_reading());
+    check(run);
   }
 }
 

@@ -7,7 +7,8 @@ it, truncations, empty and binary files). A variant passes when `corsa validate`
 reports an error at exactly the lines broken (every one in one pass, no other), or, for
 truncated and unreadable files, exits 2 with a located error; the unbroken file and a harmless
 edit must exit 0 with no error. Where Corsa places an error is part of the expectation: an
-attribute on a later line of a multi-line tag is reported at the tag's line, a parameter whose
+attribute on a later line of a multi-line tag is reported at the attribute's own line (a
+reference to an unknown storyboard element too, at its storyboardElementRef), a parameter whose
 declared value is bad also at each use, a catalog entry that does not exist at the
 CatalogReference.
 
@@ -42,7 +43,7 @@ SINGLE = {
     'unknown_catalog_entry': ((17, 'value="car_red"', 'value="car_purple"'), [38]),
     'undefined_parameter': ((57, '$EgoSpeed', '$EgoSpeeed'), [57]),
     'unknown_act': ((107, 'storyboardElementRef="CutInAndBrakeAct"',
-                     'storyboardElementRef="NoSuchAct"'), [106]),
+                     'storyboardElementRef="NoSuchAct"'), [107]),
     'unknown_road': ((48, 'roadId="0"', 'roadId="77"'), [48]),
     'unknown_lane': ((67, 'laneId="-2"', 'laneId="-9"'), [67]),
     'missing_map': ((30, 'e6mini.xodr', 'no_such_map.xodr'), [30]),
@@ -65,7 +66,7 @@ TWENTY = [
     ((84, 'priority="overwrite"', 'priority="sometimes"'), 84),
     ((89, 'dynamicsDimension="time"', 'dynamicsDimension="distancee"'), 89),
     ((104, 'conditionEdge="none"', 'conditionEdge="sometimes"'), 104),
-    ((107, 'storyboardElementRef="CutInAndBrakeAct"', 'storyboardElementRef="NoSuchAct"'), 106),
+    ((107, 'storyboardElementRef="CutInAndBrakeAct"', 'storyboardElementRef="NoSuchAct"'), 107),
     ((119, 'value="3"', 'value="three"'), 119),
     ((121, 'entityRef="Ego"', 'entityRef="Nobody"'), 121),
     ((152, 'value="-4"', 'value="${-4 / 0}"'), 152),

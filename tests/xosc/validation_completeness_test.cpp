@@ -515,6 +515,38 @@ TEST_CASE("an error in an attribute of a tag written over several lines is at it
   CHECK(errors.size() == 3);
 }
 
+TEST_CASE("a reference to an unknown storyboard element is at the line it is written on",
+          "[xosc][errors][lines]") {
+  corsa::test::TempDir dir;
+  ScenarioText text;
+  text.stories = corsa::test::story_with(corsa::test::speed_event("Go"));
+  // The condition's tag runs over three lines; the unknown event is named on the second, and a
+  // second condition on one line names another unknown element after a known one.
+  text.stop =
+      "<ConditionGroup>\n"
+      "<Condition name=\"a\" delay=\"0\" conditionEdge=\"none\"><ByValueCondition>"
+      "<StoryboardElementStateCondition storyboardElementType=\"event\"\n"
+      "    storyboardElementRef=\"Stop\"\n"
+      "    state=\"completeState\"/></ByValueCondition></Condition>\n"
+      "<Condition name=\"b\" delay=\"0\" conditionEdge=\"none\"><ByValueCondition>"
+      "<StoryboardElementStateCondition storyboardElementType=\"event\" "
+      "storyboardElementRef=\"Go\" state=\"completeState\"/></ByValueCondition></Condition>"
+      "<Condition name=\"c\" delay=\"0\" conditionEdge=\"none\"><ByValueCondition>"
+      "<StoryboardElementStateCondition storyboardElementType=\"act\" "
+      "storyboardElementRef=\"Gone\" state=\"completeState\"/></ByValueCondition></Condition>\n"
+      "</ConditionGroup>\n";
+  const std::string xml = text.str();
+  const auto errors = errors_of(dir, xml);
+  INFO(describe(errors));
+  const int tag_line = line_of(xml, "storyboardElementType=\"event\"\n");
+  REQUIRE(tag_line > 0);
+  CHECK(line_of(xml, "storyboardElementRef=\"Stop\"") == tag_line + 1);
+  CHECK(has(errors, tag_line + 1, "unknown event 'Stop' in StoryboardElementStateCondition"));
+  CHECK(has(errors, line_of(xml, "storyboardElementRef=\"Gone\""),
+            "unknown act 'Gone' in StoryboardElementStateCondition"));
+  CHECK(errors.size() == 2);
+}
+
 TEST_CASE("an unknown parameter in a later line of a tag is reported at that line",
           "[xosc][errors][lines]") {
   corsa::test::TempDir dir;

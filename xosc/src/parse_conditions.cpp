@@ -225,6 +225,9 @@ ByValueCondition parse_by_value(ParseContext& ctx, const Element* e) {
     condition.storyboard_element_ref = ctx.req_str(c, "storyboardElementRef");
     condition.state = ctx.req_enum<StoryboardElementState>(c, "state");
     condition.source = ctx.source(c);
+    ctx.storyboard_refs.emplace(std::tuple(condition.source.file.get(), condition.source.line,
+                                           condition.storyboard_element_ref),
+                                ctx.defer_attribute_line(c, "storyboardElementRef"));
     return condition;
   }
   if (name == "UserDefinedValueCondition") {

@@ -144,8 +144,18 @@ void ParseContext::attribute_error(const Element* element, std::string_view name
 }
 
 int ParseContext::attribute_line(const Element* element, std::string_view name) const {
+  return defer_attribute_line(element, name).line();
+}
+
+int DeferredAttributeLine::line() const {
+  return text ? xosc::attribute_line(*text, tag_line, ordinal, name).value_or(tag_line) : tag_line;
+}
+
+DeferredAttributeLine ParseContext::defer_attribute_line(const Element* element,
+                                                         std::string_view name) const {
   const int line = element->GetLineNum();
-  if (!file_.text || element->GetDocument() != file_.document) return line;
+  DeferredAttributeLine deferred{nullptr, line, 0, std::string(name)};
+  if (!file_.text || element->GetDocument() != file_.document) return deferred;
   // Start tags open in document order, so those before this one on its line are the elements
   // met walking back in document order until a node opens on an earlier line.
   int ordinal = 0;
@@ -160,7 +170,9 @@ int ParseContext::attribute_line(const Element* element, std::string_view name) 
     if (node == nullptr || node->ToDocument() != nullptr || node->GetLineNum() < line) break;
     if (node->ToElement() != nullptr) ++ordinal;
   }
-  return xosc::attribute_line(*file_.text, line, ordinal, name).value_or(line);
+  deferred.text = file_.text;
+  deferred.ordinal = ordinal;
+  return deferred;
 }
 
 void ParseContext::error_at_line(const Element* element, int line, std::string message) {

@@ -13,6 +13,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 #include "corsa/core/diagnostic.h"
@@ -59,6 +60,16 @@ XmlFile parse_xml(std::string_view text, const std::filesystem::path& path);
 XmlFile load_xml(const std::filesystem::path& path);
 
 class ParseContext;
+
+/// Where an attribute is written, found only when asked: the file's text is scanned then
+/// (error paths), not when the element is read.
+struct DeferredAttributeLine {
+  std::shared_ptr<const std::string> text;  ///< null: the tag's line is the answer
+  int tag_line = 0;
+  int ordinal = 0;  ///< start tags before the element's on its line
+  std::string name;
+  int line() const;
+};
 /// The lenient-reading warnings (errors under --strict) for what parse_xml repaired in `file`:
 /// each repeated attribute, a late XML declaration.
 void warn_xml_repairs(ParseContext& ctx, const XmlFile& file);
@@ -90,6 +101,8 @@ class ParseContext {
   /// The line attribute `name` of `element` is written on: the element's line unless its tag
   /// runs over several lines (then found in the file's text; error paths only).
   int attribute_line(const Element* element, std::string_view name) const;
+  /// attribute_line() put off until DeferredAttributeLine::line() is called.
+  DeferredAttributeLine defer_attribute_line(const Element* element, std::string_view name) const;
   /// As error(), at `line` of the element's file (a text node's, say) instead of the element's.
   void error_at_line(const Element* element, int line, std::string message);
   /// Records the diagnostics of a caught InputError (once each).
@@ -232,6 +245,10 @@ class ParseContext {
   /// Entities whose definition had errors (reported): references to them are not errors too.
   std::set<std::string> unreadable_entities;
   CatalogResolver* catalogs = nullptr;
+  /// Where each StoryboardElementStateCondition's storyboardElementRef is written, by the
+  /// condition's file and tag line and the reference: an unknown or ambiguous reference, found
+  /// once the storyboard is read, is reported at the attribute's own line.
+  std::map<std::tuple<const std::string*, int, std::string>, DeferredAttributeLine> storyboard_refs;
 
  private:
   struct Entry {

@@ -72,6 +72,15 @@ std::string located(const Named& named) {
          ")";
 }
 
+// Where the condition's storyboardElementRef is written: its own line, also on a later line of
+// a tag written over several lines (the tag's line for a condition the loader did not read).
+Source reference_source(const ParseContext& ctx, const StoryboardElementStateCondition& condition) {
+  const auto it = ctx.storyboard_refs.find(std::tuple(
+      condition.source.file.get(), condition.source.line, condition.storyboard_element_ref));
+  if (it == ctx.storyboard_refs.end()) return condition.source;
+  return Source{condition.source.file, it->second.line()};
+}
+
 // `owner` is the path of the element whose trigger holds the condition ("" for the storyboard).
 void resolve(ParseContext& ctx, const std::vector<Named>& all, const std::string& owner,
              StoryboardElementStateCondition& condition) {
@@ -83,10 +92,11 @@ void resolve(ParseContext& ctx, const std::vector<Named>& all, const std::string
     }
   }
   const std::string kind(to_string(condition.type));
+  const Source at = reference_source(ctx, condition);
   if (matches.empty()) {
-    ctx.record(InputError(condition.source.error("unknown " + kind + " '" +
-                                                 clip(condition.storyboard_element_ref) +
-                                                 "' in StoryboardElementStateCondition")));
+    ctx.record(
+        InputError(at.error("unknown " + kind + " '" + clip(condition.storyboard_element_ref) +
+                            "' in StoryboardElementStateCondition")));
     return;
   }
   if (matches.size() > 1) {
@@ -101,13 +111,13 @@ void resolve(ParseContext& ctx, const std::vector<Named>& all, const std::string
       if (common_prefix(named->parts, owner_parts) == best) nearest.push_back(named);
     }
     if (nearest.size() != 1) {
-      ctx.record(InputError(condition.source.error(
-          "ambiguous " + kind + " reference '" + clip(condition.storyboard_element_ref) +
-          "' (matches " + located(*nearest[0]) + " and " + located(*nearest[1]) +
-          "); qualify it with '::'")));
+      ctx.record(InputError(at.error("ambiguous " + kind + " reference '" +
+                                     clip(condition.storyboard_element_ref) + "' (matches " +
+                                     located(*nearest[0]) + " and " + located(*nearest[1]) +
+                                     "); qualify it with '::'")));
       return;
     }
-    ctx.lenient(condition.source,
+    ctx.lenient(at,
                 "the " + kind + " name '" + clip(condition.storyboard_element_ref) +
                     "' is not unique (" + std::to_string(matches.size()) + " elements)",
                 "the nearest one, " + *nearest[0]->path);

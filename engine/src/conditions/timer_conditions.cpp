@@ -1,8 +1,8 @@
-// The duration conditions (OpenSCENARIO 1.3 §8.3.1): StandStillCondition (speed zero for at
-// least `duration` s), OffroadCondition (off every lane, or on a lane of type none, for at least
-// `duration` s; state/world_update.cpp) and
-// EndOfRoadCondition (stuck at a lane end without successor for at least `duration` s). The
-// timers are kept per entity and advanced every step.
+// The duration conditions (OpenSCENARIO 1.3 §8.3.1): StandStillCondition (slower than 1e-3 m/s,
+// esmini's threshold, for at least `duration` s), OffroadCondition (off every lane, or on a lane
+// of type none, for at least `duration` s) and EndOfRoadCondition (stuck at a lane end without
+// successor for at least `duration` s). The timers are kept per entity and advanced every step
+// (state/world_update.cpp).
 
 #include "conditions/condition_makers.h"
 #include "state/sim_state.h"

@@ -227,10 +227,12 @@ ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, con
           const bool esmini = state.options.semantics == Semantics::kEsmini;
           if constexpr (std::is_same_v<T, xosc::PositionInRoadCoordinates>) {
             t = in_route.t;
-            if (!orientation && !esmini) {
+            if (!orientation) {
+              // Under either reading: esmini puts a route position's heading relative to the road
+              // (SetRouteRefRoadCoord: a missing h as 0 from +s), never along the route.
               orientation = xosc::Orientation{};
               orientation->type = xosc::ReferenceContext::kRelative;
-            } else if (orientation && esmini) {
+            } else if (esmini) {
               // esmini (OSCPositionRoute::SetRouteRefRoadCoord) turns any Orientation given in
               // road coordinates from the road's +s, an absolute one too.
               orientation->type = xosc::ReferenceContext::kRelative;
@@ -243,9 +245,8 @@ ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, con
           }
           ResolvedPosition out = on_road(map, at.lane.road, at.s, t, lane, orientation, frame);
           if (!orientation) {
-            // Lane coordinates without an Orientation, and road coordinates without one under
-            // --semantics esmini: the entity faces along the route (in lane coordinates the
-            // lane's direction of travel, unless the route drives the lane against it).
+            // Lane coordinates without an Orientation: the entity faces along the route, the
+            // lane's direction of travel unless the route drives the lane against it.
             out.pose.h = wrap_angle(map.reference(at.lane.road, at.s).hdg +
                                     (at.dir < 0 ? std::numbers::pi : 0.0));
           }

@@ -137,7 +137,7 @@ struct Entity {
   double lateral_acceleration = 0.0;
 
   /// Timers (s) for the duration-based conditions (StandStill, Offroad, EndOfRoad).
-  bool standing_still = false;
+  bool standing_still = false;  ///< slower than 1e-3 m/s (state/world_update.cpp)
   bool was_offroad = false;
   bool end_of_road = false;  ///< stuck at a lane end without successor
   bool was_at_end = false;

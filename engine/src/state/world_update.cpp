@@ -273,15 +273,21 @@ bool off_road(const SimState& state, const Entity& entity) {
   return lane != nullptr && lane->type == xodr::LaneType::kNone;
 }
 
+// Below this speed (m/s) an entity stands still. StandStillCondition (1.3): true "if the
+// triggering entity/entities stands still for a given amount of time"; the text names no speed,
+// and an entity slowed by a controller or a relative target only nears 0. esmini's threshold
+// (ScenarioEngine.cpp STAND_STILL_THRESHOLD, -1e-3 < v < 1e-3), taken under both readings, as
+// every reading the standard leaves open.
+constexpr double kStandStillSpeed = 1e-3;
+
 }  // namespace
 
 void update_timers(SimState& state, bool advance) {
   const double dt = advance ? state.time.dt() : 0.0;
   for (Entity& entity : state.world.entities) {
     // Each timer counts the time since its condition began: 0 at the first tick it holds.
-    // Standing still: no speed at all (actions that stop an entity command exactly 0).
     const bool was_still = entity.standing_still;
-    entity.standing_still = std::abs(entity.state.speed) < 1e-9;
+    entity.standing_still = std::abs(entity.state.speed) < kStandStillSpeed;
     entity.standstill_time =
         entity.standing_still ? (was_still ? entity.standstill_time + dt : 0.0) : 0.0;
     const bool offroad = off_road(state, entity);
