@@ -219,15 +219,25 @@ TEST_CASE("A binary trajectory encoded on the writer thread is the same bytes as
                                             engine::RecordingThread::kCaller);
     engine::BinaryTrajectoryRecorder writer(dir.path() / "writer.corsatraj", every,
                                             engine::RecordingThread::kWriter);
+    engine::BinaryTrajectoryRecorder automatic(dir.path() / "auto.corsatraj", every,
+                                               engine::RecordingThread::kAuto);
     run.sim().add_observer(caller);
     run.sim().add_observer(writer);
+    run.sim().add_observer(automatic);
     run.run();
+    CHECK_FALSE(caller.on_writer_thread());
+    CHECK(writer.on_writer_thread());
+    // At most 24 entities a tick: too little work for the writer thread to pay.
+    CHECK_FALSE(automatic.on_writer_thread());
     caller.finish(run.sim());
     writer.finish(run.sim());
+    automatic.finish(run.sim());
     const std::string bytes = read_all(dir.path() / "caller.corsatraj");
     CHECK(bytes.size() > 100);
     const bool same = read_all(dir.path() / "writer.corsatraj") == bytes;  // not printed: MBs
     CHECK(same);
+    const bool same_auto = read_all(dir.path() / "auto.corsatraj") == bytes;
+    CHECK(same_auto);
   }
   // A recorder destroyed without finish stops its thread and leaves no file.
   TempDir dir;
@@ -239,6 +249,42 @@ TEST_CASE("A binary trajectory encoded on the writer thread is the same bytes as
     run.run();
   }
   CHECK_FALSE(std::filesystem::exists(dir.path() / "dropped.corsatraj"));
+}
+
+TEST_CASE(
+    "A binary trajectory moved to the writer thread mid-run is the same bytes as on the "
+    "caller's",
+    "[engine][output][trajectory]") {
+  // 300 vehicles on Town04 code about 300 rows a tick: the automatic recorder moves to its
+  // writer thread after its first window of ticks, with names and roads already written.
+  TempDir dir;
+  write_all(dir.path() / "town04_npc.xosc",
+            "<?xml version=\"1.0\"?><OpenSCENARIO><FileHeader revMajor=\"1\" revMinor=\"3\" "
+            "date=\"2026-01-01T00:00:00\" description=\"npc\" author=\"Corsa\"/>"
+            "<ParameterDeclarations/><CatalogLocations/><RoadNetwork><LogicFile filepath=\"" +
+                (std::filesystem::path(CORSA_SHARED_DIR) / "data/xodr/Town04.xodr").string() +
+                "\"/></RoadNetwork><Entities/><Storyboard><Init><Actions/></Init><StopTrigger/>"
+                "</Storyboard></OpenSCENARIO>");
+  engine::SimulationOptions options;
+  options.duration = 8.0;
+  options.seed = 3;
+  options.npc.vehicles = 300;
+  options.npc.pedestrians = 20;
+  FixtureRun run(dir.path() / "town04_npc.xosc", options);
+  engine::BinaryTrajectoryRecorder caller(dir.path() / "caller.corsatraj", 1,
+                                          engine::RecordingThread::kCaller);
+  engine::BinaryTrajectoryRecorder automatic(dir.path() / "auto.corsatraj", 1,
+                                             engine::RecordingThread::kAuto);
+  run.sim().add_observer(caller);
+  run.sim().add_observer(automatic);
+  run.run();
+  CHECK(automatic.on_writer_thread());
+  caller.finish(run.sim());
+  automatic.finish(run.sim());
+  const std::string bytes = read_all(dir.path() / "caller.corsatraj");
+  CHECK(bytes.size() > 100000);
+  const bool same = read_all(dir.path() / "auto.corsatraj") == bytes;  // not printed: MBs
+  CHECK(same);
 }
 
 namespace {
