@@ -54,10 +54,20 @@ struct TrajectoryFieldCoder {
   void field(double value) {
     constexpr uint32_t kBit = 1u << F;
     const uint64_t bits = std::bit_cast<uint64_t>(value);
-    if ((track.still & kBit) != 0 && bits == track.bits[F]) {
-      return;  // the same units again, as predicted: residual and change 0
-    }
     const double scaled = value * decimal_text::kScale[kFieldDecimals[F]];
+    if ((track.still & kBit) != 0) {
+      if (bits == track.bits[F]) {
+        return;  // the same units again, as predicted: residual and change 0
+      }
+      // Other bits of the same units (a value that moves only below its last decimal, as a
+      // standing entity's recomputed pose does): as predicted too, without rounding. Exact:
+      // `last` is an integer below 9e15 and `scaled` within half a unit of it, so the
+      // subtraction is exact (Sterbenz) and round_half_away(scaled) is `last`.
+      if (std::fabs(scaled - static_cast<double>(track.last[F])) < 0.5) {
+        track.bits[F] = bits;
+        return;
+      }
+    }
     if (!(std::fabs(scaled) < decimal_text::kExactLimit)) {
       raw |= kBit;  // stored as it is; its history starts afresh after it
       out = codec::put_fixed64(out, bits);
