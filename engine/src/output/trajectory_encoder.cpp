@@ -53,9 +53,9 @@ struct TrajectoryFieldCoder {
   template <int F>
   void field(double value) {
     constexpr uint32_t kBit = 1u << F;
+    constexpr double kFieldScale = decimal_text::kScale[kFieldDecimals[F]];
     const uint64_t bits = std::bit_cast<uint64_t>(value);
-    const double scaled = value * decimal_text::kScale[kFieldDecimals[F]];
-    if ((track.still & kBit) != 0) {
+    if ((track.still & kBit) != 0) [[unlikely]] {
       if (bits == track.bits[F]) {
         return;  // the same units again, as predicted: residual and change 0
       }
@@ -63,11 +63,12 @@ struct TrajectoryFieldCoder {
       // standing entity's recomputed pose does): as predicted too, without rounding. Exact:
       // `last` is an integer below 9e15 and `scaled` within half a unit of it, so the
       // subtraction is exact (Sterbenz) and round_half_away(scaled) is `last`.
-      if (std::fabs(scaled - static_cast<double>(track.last[F])) < 0.5) {
+      if (std::fabs(value * kFieldScale - static_cast<double>(track.last[F])) < 0.5) {
         track.bits[F] = bits;
         return;
       }
     }
+    const double scaled = value * kFieldScale;
     if (!(std::fabs(scaled) < decimal_text::kExactLimit)) {
       raw |= kBit;  // stored as it is; its history starts afresh after it
       out = codec::put_fixed64(out, bits);
