@@ -13,8 +13,9 @@ const std::string kCutIn = "scenarios/cut_in.xosc";
 TEST_CASE("corsa run --help lists its options", "[e2e][run]") {
   const ProcessResult result = run_corsa({"run", "--help"});
   CHECK(result.exit_code == 0);
-  for (const char* option : {"--param", "--dt", "--duration", "--seed", "--record",
-                             "--record-every", "--summary", "--log", "--quiet"}) {
+  for (const char* option :
+       {"--param", "--dt", "--duration", "--seed", "--record", "--record-every", "--record-thread",
+        "--summary", "--log", "--quiet"}) {
     CHECK(result.out.find(option) != std::string::npos);
   }
 }
