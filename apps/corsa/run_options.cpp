@@ -52,6 +52,26 @@ engine::Semantics read_semantics(const ParsedArgs& parsed) {
                    did_you_mean(*semantics, names));
 }
 
+namespace {
+
+engine::RecordingThread read_record_thread(const ParsedArgs& parsed) {
+  const auto thread = parsed.value("--record-thread");
+  if (!thread || *thread == "auto") {
+    return engine::RecordingThread::kAuto;
+  }
+  if (*thread == "caller") {
+    return engine::RecordingThread::kCaller;
+  }
+  if (*thread == "writer") {
+    return engine::RecordingThread::kWriter;
+  }
+  const std::vector<std::string> names{"auto", "caller", "writer"};
+  throw UsageError("--record-thread expects auto, caller or writer, got '" + *thread + "'" +
+                   did_you_mean(*thread, names));
+}
+
+}  // namespace
+
 void declare_run_options(ArgParser& parser) {
   parser.positional("SCENARIO.xosc", "the scenario to run");
   parser.repeated("--param", "NAME=VALUE", "override a global scenario parameter");
@@ -67,6 +87,10 @@ void declare_run_options(ArgParser& parser) {
                 "write the trajectories: CSV (time,entity,x,y,z,h,p,r,...), or binary for "
                 ".corsatraj (corsa record export turns it into the same CSV)");
   parser.option("--record-every", "N", "record every N-th step (default 1)");
+  parser.option("--record-thread", "auto|caller|writer",
+                "where a binary trajectory is encoded: on the run's thread, on a writer thread of "
+                "its own (less wall time when a core is free, more CPU time), or auto (default: "
+                "the run's thread, a writer from --threads 2 once the ticks code many rows)");
   parser.option("--summary", "FILE.json", "write the run summary");
   parser.option("--log", "FILE.csv", "write every storyboard transition with its time");
   parser.option("--npc", "vehicles=N,pedestrians=M",
@@ -74,8 +98,8 @@ void declare_run_options(ArgParser& parser) {
                 "walking on sidewalks");
   parser.option("--threads", "N",
                 "threads the entities of a step are moved on (default: every core); from 2, a "
-                "binary trajectory is also encoded on a thread of its own; results are the "
-                "same for any number");
+                "binary trajectory may also be encoded on a thread of its own (--record-thread); "
+                "results are the same for any number");
   parser.option("--semantics", "standard|esmini",
                 "where the standard's text and esmini differ, read as the standard (default) or "
                 "as esmini; what the standard leaves open is read as esmini either way "
@@ -141,6 +165,7 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
     }
     options.record_every = *every;
   }
+  options.record_thread = read_record_thread(parsed);
   options.record = output_file(parsed, "--record");
   options.summary = output_file(parsed, "--summary");
   options.log = output_file(parsed, "--log");

@@ -13,8 +13,9 @@ const std::string kCutIn = "scenarios/cut_in.xosc";
 TEST_CASE("corsa run --help lists its options", "[e2e][run]") {
   const ProcessResult result = run_corsa({"run", "--help"});
   CHECK(result.exit_code == 0);
-  for (const char* option : {"--param", "--dt", "--duration", "--seed", "--record",
-                             "--record-every", "--summary", "--log", "--quiet"}) {
+  for (const char* option :
+       {"--param", "--dt", "--duration", "--seed", "--record", "--record-every", "--record-thread",
+        "--summary", "--log", "--quiet"}) {
     CHECK(result.out.find(option) != std::string::npos);
   }
 }
@@ -49,6 +50,9 @@ TEST_CASE("corsa run rejects bad usage with exit 2", "[e2e][run]") {
   CHECK(run_corsa({"run"}).exit_code == 2);
   CHECK(run_corsa({"run", kCutIn, "--dt", "0"}).exit_code == 2);
   CHECK(run_corsa({"run", kCutIn, "--record-every", "0"}).exit_code == 2);
+  const ProcessResult thread = run_corsa({"run", kCutIn, "--record-thread", "writers"});
+  CHECK(thread.exit_code == 2);
+  CHECK(thread.err.find("--record-thread expects auto, caller or writer") != std::string::npos);
   CHECK(run_corsa({"run", kCutIn, "--param", "novalue"}).exit_code == 2);
   const ProcessResult unknown = run_corsa({"run", kCutIn, "--param", "NoSuchParameter=1"});
   CHECK(unknown.exit_code == 2);
@@ -107,6 +111,22 @@ TEST_CASE("corsa run writes byte-identical outputs for the same inputs", "[e2e][
   const auto rows = parse_trajectory(slurp(dir.path() / "a.csv"));
   CHECK(rows.front().time == 0.0);
   CHECK(rows.front().entity == "Ego");
+}
+
+TEST_CASE("corsa run writes the same binary trajectory on every recording thread", "[e2e][run]") {
+  TempDir dir;
+  const auto run = [&](const std::string& thread, const std::string& threads) {
+    const auto path = dir.path() / (thread + threads + ".corsatraj");
+    const ProcessResult result = run_corsa({"run", kCutIn, "--quiet", "--threads", threads,
+                                            "--record-thread", thread, "--record", path.string()});
+    REQUIRE(result.exit_code == 0);
+    return slurp(path);
+  };
+  const std::string bytes = run("caller", "1");
+  CHECK(bytes.size() > 100);
+  CHECK(run("writer", "1") == bytes);
+  CHECK(run("auto", "2") == bytes);
+  CHECK(run("writer", "2") == bytes);
 }
 
 }  // namespace

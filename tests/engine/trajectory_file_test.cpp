@@ -18,7 +18,9 @@
 #include "corsa/core/strings.h"
 #include "corsa/engine/outputs.h"
 #include "engine_fixture.h"
+#include "output/decimal_text.h"
 #include "output/trajectory_codec.h"
+#include "output/trajectory_encoder.h"
 #include "run_corsa.h"
 #include "temp_dir.h"
 
@@ -219,15 +221,25 @@ TEST_CASE("A binary trajectory encoded on the writer thread is the same bytes as
                                             engine::RecordingThread::kCaller);
     engine::BinaryTrajectoryRecorder writer(dir.path() / "writer.corsatraj", every,
                                             engine::RecordingThread::kWriter);
+    engine::BinaryTrajectoryRecorder automatic(dir.path() / "auto.corsatraj", every,
+                                               engine::RecordingThread::kAuto);
     run.sim().add_observer(caller);
     run.sim().add_observer(writer);
+    run.sim().add_observer(automatic);
     run.run();
+    CHECK_FALSE(caller.on_writer_thread());
+    CHECK(writer.on_writer_thread());
+    // At most 24 entities a tick: too little work for the writer thread to pay.
+    CHECK_FALSE(automatic.on_writer_thread());
     caller.finish(run.sim());
     writer.finish(run.sim());
+    automatic.finish(run.sim());
     const std::string bytes = read_all(dir.path() / "caller.corsatraj");
     CHECK(bytes.size() > 100);
     const bool same = read_all(dir.path() / "writer.corsatraj") == bytes;  // not printed: MBs
     CHECK(same);
+    const bool same_auto = read_all(dir.path() / "auto.corsatraj") == bytes;
+    CHECK(same_auto);
   }
   // A recorder destroyed without finish stops its thread and leaves no file.
   TempDir dir;
@@ -239,6 +251,42 @@ TEST_CASE("A binary trajectory encoded on the writer thread is the same bytes as
     run.run();
   }
   CHECK_FALSE(std::filesystem::exists(dir.path() / "dropped.corsatraj"));
+}
+
+TEST_CASE(
+    "A binary trajectory moved to the writer thread mid-run is the same bytes as on the "
+    "caller's",
+    "[engine][output][trajectory]") {
+  // 300 vehicles on Town04 code about 300 rows a tick: the automatic recorder moves to its
+  // writer thread after its first window of ticks, with names and roads already written.
+  TempDir dir;
+  write_all(dir.path() / "town04_npc.xosc",
+            "<?xml version=\"1.0\"?><OpenSCENARIO><FileHeader revMajor=\"1\" revMinor=\"3\" "
+            "date=\"2026-01-01T00:00:00\" description=\"npc\" author=\"Corsa\"/>"
+            "<ParameterDeclarations/><CatalogLocations/><RoadNetwork><LogicFile filepath=\"" +
+                (std::filesystem::path(CORSA_SHARED_DIR) / "data/xodr/Town04.xodr").string() +
+                "\"/></RoadNetwork><Entities/><Storyboard><Init><Actions/></Init><StopTrigger/>"
+                "</Storyboard></OpenSCENARIO>");
+  engine::SimulationOptions options;
+  options.duration = 8.0;
+  options.seed = 3;
+  options.npc.vehicles = 300;
+  options.npc.pedestrians = 20;
+  FixtureRun run(dir.path() / "town04_npc.xosc", options);
+  engine::BinaryTrajectoryRecorder caller(dir.path() / "caller.corsatraj", 1,
+                                          engine::RecordingThread::kCaller);
+  engine::BinaryTrajectoryRecorder automatic(dir.path() / "auto.corsatraj", 1,
+                                             engine::RecordingThread::kAuto);
+  run.sim().add_observer(caller);
+  run.sim().add_observer(automatic);
+  run.run();
+  CHECK(automatic.on_writer_thread());
+  caller.finish(run.sim());
+  automatic.finish(run.sim());
+  const std::string bytes = read_all(dir.path() / "caller.corsatraj");
+  CHECK(bytes.size() > 100000);
+  const bool same = read_all(dir.path() / "auto.corsatraj") == bytes;  // not printed: MBs
+  CHECK(same);
 }
 
 namespace {
@@ -356,6 +404,89 @@ TEST_CASE("Entities standing still or driving straight at a steady speed cost no
   CHECK(jam.exported == jam.csv);
   // Eight entities over 1,001 ticks: a few bytes per entity for the run.
   CHECK(jam.binary.size() < 1000);
+}
+
+namespace {
+
+// A standing entity's row whose numbers move below their last decimal from tick to tick, by
+// `wobble` (0: exactly the first tick's numbers).
+engine::detail::TrajectoryRowCopy wobbling_row(int64_t tick, double wobble) {
+  const double sign = tick % 2 == 0 ? 1.0 : -1.0;
+  engine::detail::TrajectoryRowCopy row;
+  row.placed = true;
+  row.on_road = true;
+  row.road = 0;
+  row.lane = -2;
+  row.values = {1234.5678 + sign * wobble * 1e-7,  // x, m: 1e-13 m at most
+                -87.25 + static_cast<double>(tick % 3) * wobble * 1e-7,
+                0.0,
+                0.75 + sign * wobble * 1e-10,  // h, rad: below a nrad
+                0.0,
+                0.0,
+                12.5 - wobble * 1e-8,  // speed, m/s
+                310.125 + sign * wobble * 1e-7,
+                -1.75 + wobble * 1e-7};
+  return row;
+}
+
+std::string encode_rows(const std::filesystem::path& path,
+                        const std::vector<engine::detail::TrajectoryRowCopy>& rows) {
+  const std::string road = "7";
+  engine::detail::TrajectoryEncoder encoder(path, 1);
+  encoder.name_entity("car");
+  encoder.name_road(0, &road);
+  for (size_t tick = 0; tick < rows.size(); ++tick) {
+    const engine::detail::TrajectoryRowCopy* row = &rows[tick];
+    encoder.record(0.01, {static_cast<int64_t>(tick), static_cast<double>(tick) / 100.0, 1}, row);
+  }
+  encoder.finish(static_cast<int64_t>(rows.size()) - 1);
+  return read_all(path);
+}
+
+}  // namespace
+
+TEST_CASE("Numbers that move only below their last decimal are stored as the numbers they print",
+          "[engine][output][trajectory]") {
+  TempDir dir;
+  std::vector<engine::detail::TrajectoryRowCopy> still;
+  std::vector<engine::detail::TrajectoryRowCopy> wobbling;
+  for (int64_t tick = 0; tick < 300; ++tick) {
+    still.push_back(wobbling_row(tick, 0.0));
+    wobbling.push_back(wobbling_row(tick, 1e-6 * static_cast<double>(1 + tick % 5)));
+  }
+  // The same printed numbers at every tick: the same bytes as a row that never changes (one
+  // record, at the first tick).
+  const std::string bytes = encode_rows(dir.path() / "still.corsatraj", still);
+  CHECK(encode_rows(dir.path() / "wobbling.corsatraj", wobbling) == bytes);
+
+  // Numbers that wobble across the half of their last decimal print as the one or the other:
+  // each row reads back as its own numbers rounded to their decimals.
+  std::vector<engine::detail::TrajectoryRowCopy> straddling;
+  for (int64_t tick = 0; tick < 300; ++tick) {
+    engine::detail::TrajectoryRowCopy row = wobbling_row(tick, 0.0);
+    const double sign = (tick / 3) % 2 == 0 ? 1.0 : -1.0;
+    row.values[engine::detail::kFieldX] = 2.0000005 + sign * 1e-12;
+    row.values[engine::detail::kFieldH] = -0.0000000005 + sign * 1e-15;
+    straddling.push_back(row);
+  }
+  encode_rows(dir.path() / "straddling.corsatraj", straddling);
+  engine::TrajectoryReader reader(dir.path() / "straddling.corsatraj");
+  engine::TrajectoryFrame frame;
+  size_t ticks = 0;
+  std::vector<double> xs;
+  while (reader.next(frame)) {
+    REQUIRE(frame.rows.size() == 1);
+    const engine::detail::TrajectoryRowCopy& row = straddling.at(ticks++);
+    const auto x = engine::detail::scale_decimal<6>(row.values[engine::detail::kFieldX]);
+    const auto h = engine::detail::scale_decimal<9>(row.values[engine::detail::kFieldH]);
+    CHECK(frame.rows[0].x == static_cast<double>(x.units) / 1e6);
+    CHECK(frame.rows[0].h == static_cast<double>(h.units) / 1e9);
+    xs.push_back(frame.rows[0].x);
+  }
+  CHECK(ticks == straddling.size());
+  // Both sides of the half occur.
+  CHECK(std::count(xs.begin(), xs.end(), 2.000001) > 100);
+  CHECK(std::count(xs.begin(), xs.end(), 2.0) > 100);
 }
 
 TEST_CASE("A binary trajectory written from the documented format reads as documented",

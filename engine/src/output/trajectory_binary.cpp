@@ -2,7 +2,8 @@
 // either reads the entities' states at once on the simulation's thread, or every entity's row
 // inputs are copied and handed, in batches of ticks, to a writer thread of its own, which then
 // encodes and writes while the simulation steps on. The encoder reads the rows in tick order
-// either way, so the file is the same bytes on either thread.
+// either way, so the file is the same bytes on either thread, and a run may move from the first
+// to the second (RecordingThread::kAuto) at any tick.
 
 #include <algorithm>
 #include <bit>
@@ -54,6 +55,19 @@ struct RecordedTicks {
 constexpr size_t kRowsPerBatch = 8192;
 constexpr size_t kBatchesQueued = 4;
 
+// RecordingThread::kAuto: the rows coded on the caller's thread are summed over windows of this
+// many recorded ticks; a window that coded this many rows a tick on average moves the encoding
+// to the writer thread for the rest of the run. Below it the writer costs more CPU time than it
+// saves (the copies of every row, standing ones included, and the rows read on the other core:
+// long_motorway's 24 moving vehicles, 14% of the run's CPU time on the caller's thread, 17-19% on
+// the writer); from about 200 moving vehicles it costs no more (the encoder's state of every
+// entity no longer stays in the simulation's caches from tick to tick, but does in the
+// writer's). 128 is also the entity count from which the step itself is shared out over threads.
+// (docs/performance-traffic.md, "Recording on the caller's thread unless the ticks' work pays
+// for a writer".)
+constexpr uint32_t kAutoWindowTicks = 256;
+constexpr uint64_t kWriterRowsPerTick = 128;
+
 // The copy of `state` into the batch's row `row` (detail::copy_row's). On x86-64 its words are
 // stored past the cache (non-temporal stores): a batch's rows were last read by the writer
 // thread on the other core, so that a store into the cache would first fetch each line back
@@ -101,13 +115,16 @@ struct BinaryTrajectoryRecorder::State {
 
   detail::TrajectoryEncoder encoder;
   int64_t every;
-  RecordingThread thread;
+  RecordingThread thread;  ///< kAuto until it moves to kWriter (or for the whole run)
   bool started = false;
   double dt = 0.0;
   int64_t last_recorded = 0;
   size_t named_entities = 0;
   std::vector<bool> road_seen;
   std::unique_ptr<RecordedTicks> filling;  ///< the ticks not yet handed to the encoder
+  // kAuto: the recorded ticks and the rows they coded in the current window.
+  uint32_t window_ticks = 0;
+  uint64_t window_rows = 0;
 
   // The writer thread and its queue (RecordingThread::kWriter).
   std::thread writer;
@@ -125,6 +142,9 @@ struct BinaryTrajectoryRecorder::State {
   /// At the first recorded tick: the step, and the writer thread when there is one. (Apart
   /// from capture, as is copy_rows, so that the tick's path on the caller's thread stays short.)
   void begin(const Simulation& simulation);
+  /// kAuto: adds a tick that coded `coded` rows to the window; at the window's end, moves to the
+  /// writer thread when the window's work pays for it.
+  void weigh(uint32_t coded);
   void copy_rows(const Simulation& simulation, int64_t tick);
   void encode(RecordedTicks& batch);
   void hand_over();
@@ -147,8 +167,12 @@ void BinaryTrajectoryRecorder::State::capture(const Simulation& simulation, int6
   for (; named_entities < states.size(); ++named_entities) {
     encoder.name_entity(simulation.entity(named_entities).name);
   }
-  encoder.record(dt, {tick, simulation.time(), static_cast<uint32_t>(states.size())},
-                 detail::EntityStateRows{states, &simulation});
+  const uint32_t coded =
+      encoder.record(dt, {tick, simulation.time(), static_cast<uint32_t>(states.size())},
+                     detail::EntityStateRows{states, &simulation});
+  if (thread == RecordingThread::kAuto) {
+    weigh(coded);
+  }
 }
 
 void BinaryTrajectoryRecorder::State::begin(const Simulation& simulation) {
@@ -157,6 +181,22 @@ void BinaryTrajectoryRecorder::State::begin(const Simulation& simulation) {
   if (thread == RecordingThread::kWriter) {
     writer = std::thread([this] { serve(); });
   }
+}
+
+void BinaryTrajectoryRecorder::State::weigh(uint32_t coded) {
+  window_rows += coded;
+  if (++window_ticks < kAutoWindowTicks) {
+    return;
+  }
+  if (window_rows >= kAutoWindowTicks * kWriterRowsPerTick) {
+    // From the next tick on the rows are copied for the writer, which alone uses the encoder
+    // from then on (the recorder's road_seen starts empty: the roads the encoder already wrote
+    // are named to it again, and not written twice).
+    thread = RecordingThread::kWriter;
+    writer = std::thread([this] { serve(); });
+  }
+  window_ticks = 0;
+  window_rows = 0;
 }
 
 void BinaryTrajectoryRecorder::State::copy_rows(const Simulation& simulation, int64_t tick) {
@@ -307,6 +347,10 @@ void BinaryTrajectoryRecorder::on_step(const Simulation& simulation) {
     return;
   }
   state.capture(simulation, tick);
+}
+
+bool BinaryTrajectoryRecorder::on_writer_thread() const {
+  return state_->thread == RecordingThread::kWriter;
 }
 
 void BinaryTrajectoryRecorder::finish(const Simulation& simulation) {

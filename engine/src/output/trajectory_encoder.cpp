@@ -53,11 +53,22 @@ struct TrajectoryFieldCoder {
   template <int F>
   void field(double value) {
     constexpr uint32_t kBit = 1u << F;
+    constexpr double kFieldScale = decimal_text::kScale[kFieldDecimals[F]];
     const uint64_t bits = std::bit_cast<uint64_t>(value);
-    if ((track.still & kBit) != 0 && bits == track.bits[F]) {
-      return;  // the same units again, as predicted: residual and change 0
+    if ((track.still & kBit) != 0) [[unlikely]] {
+      if (bits == track.bits[F]) {
+        return;  // the same units again, as predicted: residual and change 0
+      }
+      // Other bits of the same units (a value that moves only below its last decimal, as a
+      // standing entity's recomputed pose does): as predicted too, without rounding. Exact:
+      // `last` is an integer below 9e15 and `scaled` within half a unit of it, so the
+      // subtraction is exact (Sterbenz) and round_half_away(scaled) is `last`.
+      if (std::fabs(value * kFieldScale - static_cast<double>(track.last[F])) < 0.5) {
+        track.bits[F] = bits;
+        return;
+      }
     }
-    const double scaled = value * decimal_text::kScale[kFieldDecimals[F]];
+    const double scaled = value * kFieldScale;
     if (!(std::fabs(scaled) < decimal_text::kExactLimit)) {
       raw |= kBit;  // stored as it is; its history starts afresh after it
       out = codec::put_fixed64(out, bits);
@@ -207,7 +218,7 @@ template <class Row>
 }
 
 template <class Rows>
-void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& rows) {
+uint32_t TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& rows) {
   if (!started_) {
     start(dt, head.tick);
   }
@@ -225,6 +236,7 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& 
   const Rows local_rows = rows;
   Track* tracks = entities_.data();
   const uint32_t count = head.entities;
+  uint32_t coded = 0;
   for (uint32_t i = 0; i < count; ++i) {
     // encode's first test, without the call: most entities of a long run stand. (A steady
     // track is present: encode clears both when the entity leaves.)
@@ -233,6 +245,7 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& 
     if (track.steady && row_placed(row) && track.repeats(row)) {
       continue;
     }
+    ++coded;
     encode(i, track, row, previous);
   }
   state_rows_ = nullptr;
@@ -240,7 +253,7 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& 
   const bool odd_time =
       std::bit_cast<uint64_t>(time) != std::bit_cast<uint64_t>(tick_time(tick, per_second_, dt_));
   if (frame_size_ == 0 && !odd_time) {
-    return;  // every present entity as predicted: the tick costs nothing
+    return coded;  // every present entity as predicted: the tick costs nothing
   }
   // (A road is first met by a record, so a tick without records has none.)
   buffer_ += roads_;
@@ -257,11 +270,12 @@ void TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& 
   if (buffer_.size() > (1u << 20)) {
     flush();
   }
+  return coded;
 }
 
-template void TrajectoryEncoder::record(double, const TickRowsHead&,
-                                        const TrajectoryRowCopy* const&);
-template void TrajectoryEncoder::record(double, const TickRowsHead&, const EntityStateRows&);
+template uint32_t TrajectoryEncoder::record(double, const TickRowsHead&,
+                                            const TrajectoryRowCopy* const&);
+template uint32_t TrajectoryEncoder::record(double, const TickRowsHead&, const EntityStateRows&);
 
 void TrajectoryEncoder::flush() {
   crc_ = codec::crc32(crc_, buffer_);

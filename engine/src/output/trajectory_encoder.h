@@ -135,9 +135,10 @@ class TrajectoryEncoder {
   void name_road(uint32_t road, const std::string* id);
 
   /// Encodes one recorded tick (`rows[i]`, i below head.entities: TrajectoryRowCopy* or
-  /// EntityStateRows). `dt`: the run's step (s).
+  /// EntityStateRows). `dt`: the run's step (s). Returns the rows that had to be coded: those
+  /// not skipped as the steady repeat of their last row (the tick's work).
   template <class Rows>
-  void record(double dt, const TickRowsHead& head, const Rows& rows);
+  uint32_t record(double dt, const TickRowsHead& head, const Rows& rows);
   /// Ends the file at `last_tick` and commits it (InputError when it cannot be written).
   void finish(int64_t last_tick);
 

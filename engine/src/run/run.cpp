@@ -81,10 +81,13 @@ RunReport run_scenario(const RunOptions& options, Diagnostics& diagnostics,
   std::optional<TrajectoryRecorder> recorder;
   std::optional<BinaryTrajectoryRecorder> binary;
   if (options.record && is_binary_trajectory(*options.record)) {
-    // With a second thread to spare, the recorder encodes and writes on it.
-    binary.emplace(
-        *options.record, options.record_every,
-        options.simulation.threads >= 2 ? RecordingThread::kWriter : RecordingThread::kCaller);
+    // With a second thread to spare, the recorder may encode and write on it (kAuto: when the
+    // ticks' work pays for it).
+    const RecordingThread thread =
+        options.simulation.threads < 2 && options.record_thread == RecordingThread::kAuto
+            ? RecordingThread::kCaller
+            : options.record_thread;
+    binary.emplace(*options.record, options.record_every, thread);
     simulation.add_observer(*binary);
   } else if (options.record) {
     recorder.emplace(*options.record, options.record_every);

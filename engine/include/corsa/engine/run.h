@@ -15,6 +15,7 @@
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/engine/simulation.h"
+#include "corsa/engine/trajectory_file.h"
 
 namespace corsa::xosc {
 struct Scenario;
@@ -31,6 +32,9 @@ struct RunOptions {
   /// CSV otherwise.
   std::optional<std::filesystem::path> record;
   int64_t record_every = 1;
+  /// Where a binary trajectory is encoded: kAuto (with SimulationOptions::threads >= 2; the
+  /// caller's thread with one) or as given.
+  RecordingThread record_thread = RecordingThread::kAuto;
   std::optional<std::filesystem::path> summary;  ///< run summary JSON
   std::optional<std::filesystem::path> log;      ///< storyboard event log CSV
   /// Called once with the simulation before its first step, e.g. to add observers and custom

@@ -28,8 +28,13 @@ enum class RecordingThread : uint8_t {
   kCaller,  ///< in on_step, on the simulation's thread
   /// On a thread of the recorder's own, fed with copies of the recorded ticks' rows in batches,
   /// so that encoding and writing overlap with the next steps on a second core. The file is the
-  /// same bytes.
+  /// same bytes. It costs more CPU time in all than kCaller (the copies, and the rows read on
+  /// another core): it saves wall time when a second core is free.
   kWriter,
+  /// On the caller's thread while the ticks' work is small, moving to a writer thread (once,
+  /// for the rest of the run) when the recorded ticks code many rows: many entities that move.
+  /// The file is the same bytes.
+  kAuto,
 };
 
 /// Records the binary trajectory while the simulation runs: register it with
@@ -45,6 +50,9 @@ class BinaryTrajectoryRecorder final : public SimulationObserver {
   /// Records the final tick if it was skipped and commits the file (throws InputError when it
   /// cannot be written).
   void finish(const Simulation& simulation);
+  /// Whether the ticks are now encoded on a writer thread (kWriter from the first recorded
+  /// tick; kAuto once its ticks' work moved it there).
+  bool on_writer_thread() const;
 
  private:
   struct State;
