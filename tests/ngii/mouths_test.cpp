@@ -806,7 +806,9 @@ TEST_CASE(
   // road's end heading and its next ones 10-20 degrees further. P took R's width across its
   // first segment (x cos 50 degrees), and the road builder widened it back across its smoothed
   // lane's slant at its start (/ cos 40 degrees), so it started 0.67 / 0.59 m inside R's end
-  // (K-City: 5.41 m wide on a 6.58 m end, 0.62 / 0.55 m). It now meets R's borders there.
+  // (K-City: 5.41 m wide on a 6.58 m end, 0.62 / 0.55 m). With the lane's direction taken from
+  // P's own stretch of its smoothed line it still starts 0.45 / 0.37 m inside (K-City 0.20 /
+  // 0.12 m). It now meets R's borders there.
   // (Here P's start ends up 2 degrees off R's end line, K-City's 0.5, and mouth_gaps finds a
   // sliver behind it; the borders along the joint are what this case holds.)
   Builder b;
