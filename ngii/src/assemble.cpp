@@ -240,12 +240,14 @@ class Assembler {
   /// its borders there moved onto the lane's (EndBorders, eased back over a metre or two).
   /// The width a path takes from the lane (match_path_ends) is the lane's end width times the
   /// cosine of the angle its link's first segment makes with the road's end heading, which the
-  /// road builder divides by the cosine of the angle the smoothed lane makes with the bent
-  /// reference line at the end station (width_target); where a path turns sharply right after
-  /// its first vertex the two angles differ: K-City's path 460 leaves road 322's 6.58 m lane
-  /// end at 50 degrees by its first segment and 40 by its smoothed line, and started 5.41 m
-  /// wide, 0.6 m of the lane's end open beside it. Kept where the path neither folds, gains a
-  /// kink nor moves its lane's end more than 0.1 m off its link.
+  /// road builder divides by the cosine of the angle the lane's direction makes with the bent
+  /// reference line at the end station (width_target), that direction a chord of the path's
+  /// own stretch of its smoothed line (LaneLines::direction_from). Where a path turns sharply
+  /// right after its first vertex the two still leave it narrower than the lane: K-City's path
+  /// 460 leaves road 322's 6.58 m lane end 50 degrees off by its first segment and started
+  /// 0.20 / 0.12 m inside the lane's borders (0.62 / 0.55 m while the chord reached into road
+  /// 322), a shoulder beside it on each side. Kept where the path neither folds, gains a kink
+  /// nor moves its lane's end more than 0.1 m off its link.
   void paths_meet_lane_ends(const std::vector<RoadEndLines>& offered,
                             const std::vector<RoadEndLines>& used,
                             std::vector<std::optional<BuiltRoad>>& built) const {

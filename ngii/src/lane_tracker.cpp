@@ -11,8 +11,22 @@ Crossing LaneTracker::measure(double s, Vec2 r, Vec2 tangent) {
   Crossing c = measure_absolute(r, tangent);
   // The lane's direction over a few metres (a coarse polyline's segment direction jumps at
   // every vertex).
+  constexpr double kHalfChord = 1.5;  // m
   const double u = std::clamp(c.u, 0.0, line_.length());
-  const Vec2 chord = xy(line_.at(u + 1.5)) - xy(line_.at(u - 1.5));
+  const double from = direction_from_;
+  const double to = std::max(direction_to_, from);
+  double u0 = std::clamp(u - kHalfChord, from, to);
+  double u1 = std::clamp(u + kHalfChord, from, to);
+  if (u >= to) {
+    u0 = std::max(from, to - kHalfChord);
+  } else if (u <= from) {
+    u1 = std::min(to, from + kHalfChord);
+  }
+  if (u1 - u0 < kMinChord) {  // a stretch too short to give a direction: the whole line
+    u0 = u - kHalfChord;
+    u1 = u + kHalfChord;
+  }
+  const Vec2 chord = xy(line_.at(u1)) - xy(line_.at(u0));
   if (norm(chord) > 1e-6) {
     c.direction = (1.0 / norm(chord)) * chord;
   }

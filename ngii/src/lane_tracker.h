@@ -14,7 +14,9 @@ struct Crossing {
   double t = 0.0;  ///< lateral offset (m, + left)
   double u = 0.0;  ///< arc length along the lane line (may run past its ends when extrapolated)
   double z = 0.0;
-  Vec2 direction{1.0, 0.0};  ///< the lane's unit direction there (chord over +-1.5 m)
+  /// The lane's unit direction there: the chord over +-1.5 m, cut to the stretch of the line
+  /// the tracker takes directions from (the 1.5 m next to its end beyond it).
+  Vec2 direction{1.0, 0.0};
 };
 
 /// Walks a lane polyline along increasing stations. Each station's crossing is searched only
@@ -23,9 +25,13 @@ struct Crossing {
 class LaneTracker {
  public:
   /// `start_u`: arc length where the lane proper starts (after its lead-in); crossings are
-  /// reported relative to it.
-  LaneTracker(const Polyline& line, double start_u)
-      : line_(line), start_u_(start_u), last_u_(start_u) {}
+  /// reported relative to it. Directions are taken within [direction_from, direction_to].
+  LaneTracker(const Polyline& line, double start_u, double direction_from, double direction_to)
+      : line_(line),
+        start_u_(start_u),
+        direction_from_(direction_from),
+        direction_to_(direction_to),
+        last_u_(start_u) {}
 
   /// The crossing of the normal at station s (stations in increasing order) through r with
   /// unit tangent `tangent`.
@@ -43,9 +49,12 @@ class LaneTracker {
   static constexpr double kBehind = 5.0;      // m of lane searched behind the last crossing
   static constexpr double kAhead = 25.0;      // m searched ahead of it
   static constexpr double kMaxOffset = 30.0;  // m: farther crossings are not this lane's
+  static constexpr double kMinChord = 0.5;    // m: shorter stretches give no direction
 
   const Polyline& line_;
   double start_u_ = 0.0;
+  double direction_from_ = 0.0;
+  double direction_to_ = 0.0;
   double last_s_ = 0.0;
   double expected_u_ = 0.0;
   double last_u_ = 0.0;

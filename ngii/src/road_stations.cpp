@@ -37,7 +37,8 @@ void measure_crossings(Stations& st, const xodr::Road& road, const LaneLines& li
   }
   st.crossings.assign(lines.measured.size(), std::vector<Crossing>(st.s.size()));
   for (size_t k = 0; k < lines.measured.size(); ++k) {
-    LaneTracker tracker(lines.measured[k], lines.measured_start[k]);
+    LaneTracker tracker(lines.measured[k], lines.measured_start[k], lines.direction_from[k],
+                        lines.direction_to[k]);
     for (size_t i = 0; i < st.s.size(); ++i) {
       const Vec2 tangent{std::cos(st.ref[i].hdg), std::sin(st.ref[i].hdg)};
       st.crossings[k][i] = tracker.measure(st.s[i], Vec2{st.ref[i].x, st.ref[i].y}, tangent);
@@ -78,6 +79,16 @@ LaneLines lane_lines(const RoadPlan& plan, const Origin& origin) {
       start = out.measured.back().project_within(xy(points.front()), 0.0, lead + 1.0).u;
     }
     out.measured_start.push_back(start);
+    const Polyline& measured = out.measured.back();
+    double end = measured.length();
+    const bool path = plan.junction >= 0 && !plan.absorbed;
+    if (path && !lead_out.empty()) {
+      // Near the start of the lead-out (a looping lane may pass its own end earlier).
+      const double lead = Polyline(in_map_frame(lane.lead_out, origin)).length();
+      end = measured.project_within(xy(points.back()), end - lead - 1.0, end).u;
+    }
+    out.direction_from.push_back(path ? start : 0.0);
+    out.direction_to.push_back(std::max(path ? start : 0.0, end));
   }
   return out;
 }

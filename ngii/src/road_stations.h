@@ -20,6 +20,15 @@ struct LaneLines {
   std::vector<Polyline> smooth;        ///< survey noise removed (what the lanes are fitted to)
   std::vector<Polyline> measured;      ///< smoothed, with a few metres before and after the lane
   std::vector<double> measured_start;  ///< arc length on `measured` where the lane starts
+  /// The stretch of `measured` (arc lengths) a lane's direction is taken from (Crossing):
+  /// a junction path's own stretch, the whole line for other roads. A path's lead-in and
+  /// lead-out turn into the roads it joins, often at a corner of 10-30 degrees at the node;
+  /// its end width is the joined lane's width times the cosine of the angle between the
+  /// path's own end and that road (match_path_ends), so the road builder must divide by the
+  /// cosine of the path's own angle there too, or the path's end is narrower (wider) than
+  /// the lane it joins.
+  std::vector<double> direction_from;
+  std::vector<double> direction_to;
 };
 
 /// The lanes of `plan` (map coordinates: source minus `origin`).

@@ -13,6 +13,7 @@
 #include "corsa/xodr/geometry.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/parser.h"
+#include "corsa/xodr/writer.h"
 #include "lane_joints.h"
 #include "mouth_fills.h"
 #include "mouth_gaps.h"
@@ -805,7 +806,9 @@ TEST_CASE(
   // road's end heading and its next ones 10-20 degrees further. P took R's width across its
   // first segment (x cos 50 degrees), and the road builder widened it back across its smoothed
   // lane's slant at its start (/ cos 40 degrees), so it started 0.67 / 0.59 m inside R's end
-  // (K-City: 5.41 m wide on a 6.58 m end, 0.62 / 0.55 m). It now meets R's borders there.
+  // (K-City: 5.41 m wide on a 6.58 m end, 0.62 / 0.55 m). With the lane's direction taken from
+  // P's own stretch of its smoothed line it still starts 0.45 / 0.37 m inside (K-City 0.20 /
+  // 0.12 m). It now meets R's borders there.
   // (Here P's start ends up 2 degrees off R's end line, K-City's 0.5, and mouth_gaps finds a
   // sliver behind it; the borders along the joint are what this case holds.)
   Builder b;
@@ -938,4 +941,125 @@ TEST_CASE(
   CHECK(width > 6.0);
   CHECK(std::abs(dot(path_left - lane_left, along)) < 0.05);
   CHECK(std::abs(dot(path_right - lane_right, along)) < 0.05);
+}
+
+namespace {
+
+/// A one-lane road A east to x = 30, a junction path from its end curving right to heading
+/// `arrive` (degrees, negative south of east) at node E0, and a one-lane road E leaving E0 at
+/// heading `leave`: the links meet at a corner of leave - arrive at E0. A's and E's marks lie
+/// `half` either side of them; the path has none (it takes its lanes' widths).
+Builder path_into_corner(double arrive, double leave, double half) {
+  Builder b;
+  const double h1 = arrive * M_PI / 180.0;
+  const double h2 = leave * M_PI / 180.0;
+  // The path: 6 m east, then an arc to `arrive` over 6 m, then 4 m straight (vertices a
+  // metre apart on the straights).
+  std::vector<std::pair<double, double>> xy;
+  for (int i = 0; i <= 6; ++i) {
+    xy.push_back({30.0 + i, 0.0});
+  }
+  const double radius = 6.0 / std::abs(h1);
+  for (int i = 1; i <= 6; ++i) {
+    const double a = h1 * i / 6.0;
+    xy.push_back({36.0 + radius * std::sin(-a), -radius * (1.0 - std::cos(a))});
+  }
+  const auto [cx, cy] = xy.back();
+  for (int i = 1; i <= 4; ++i) {
+    xy.push_back({cx + i * std::cos(h1), cy + i * std::sin(h1)});
+  }
+  const auto [ex, ey] = xy.back();
+  b.node("A0", 0.0, 0.0);
+  b.node("A1", 30.0, 0.0);
+  b.node("E0", ex, ey);
+  b.node("E1", ex + 30.0 * std::cos(h2), ey + 30.0 * std::sin(h2));
+  b.link("A2TEST00000A", "6", 1, "A0", "A1");
+  b.path_through("A2TEST00000P", "A1", "E0", xy);
+  b.link("A2TEST00000E", "6", 1, "E0", "E1");
+  b.mark("B2AL", 0.0, 30.0, half, "A2TEST00000A", "");
+  b.mark("B2AR", 0.0, 30.0, -half, "", "A2TEST00000A");
+  const auto side = [&](double t, double d) {
+    return std::pair<double, double>{ex + d * std::cos(h2) - t * std::sin(h2),
+                                     ey + d * std::sin(h2) + t * std::cos(h2)};
+  };
+  b.mark_through("B2EL", {side(half, 0.0), side(half, 30.0)}, "A2TEST00000E", "");
+  b.mark_through("B2ER", {side(-half, 0.0), side(-half, 30.0)}, "", "A2TEST00000E");
+  return b;
+}
+
+/// The width of the lane holding link `link` where its road ends (`at_end`) or starts, and the
+/// road's heading (rad) there.
+struct LaneEndWidth {
+  double width = 0.0;
+  double heading = 0.0;
+};
+LaneEndWidth lane_end_width(const corsa::xodr::MapData& map, const std::string& link, bool at_end) {
+  for (const auto& road : map.roads) {
+    for (const auto& lane : road.lane_sections.front().lanes) {
+      if (lane.user_data.empty() || lane.user_data.front().value != link ||
+          road.plan_view.empty()) {
+        continue;
+      }
+      const auto& g = at_end ? road.plan_view.back() : road.plan_view.front();
+      return {corsa::ngii::detail::piecewise_value(lane.widths, at_end ? road.length : 0.0),
+              corsa::xodr::evaluate_geometry(g, at_end ? g.length : 0.0).hdg};
+    }
+  }
+  FAIL("no lane holds " << link);
+  return {};
+}
+
+size_t shoulders_of(const corsa::xodr::MapData& map) {
+  size_t n = 0;
+  for (const auto& road : map.roads) {
+    for (const auto& lane : road.lane_sections.front().lanes) {
+      n += lane.type == corsa::xodr::LaneType::kShoulder;
+    }
+  }
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("a junction path entering a road at a corner of 30 degrees ends as wide as its lane",
+          "[ngii][mouths]") {
+  // The path's link arrives 30 degrees off the road it enters (Sangam's four paths into road
+  // 196: 29 degrees) and ends on that road's start line, bent to it. Its end width is the
+  // lane's times the cosine of the corner (the width across its own link), which the road
+  // builder divides by the cosine of the angle between the link and the bent reference line;
+  // that link direction was a chord reaching 1.5 m into the road after it (half the corner),
+  // so the path ended 0.56 m narrower than the lane, and a shoulder on each side paved the
+  // step (Sangam's four stacked paths got none: a 0.20 m gap on each side of road 196's start).
+  const Builder b = path_into_corner(-15.0, -45.0, 2.65);
+  const auto gaps = mouth_gaps_of(b.layers);
+  INFO(gaps.worst);
+  CHECK(gaps.ends >= 4);
+  CHECK(gaps.over == 0);
+  CHECK(gaps.max < 0.1);
+  corsa::Diagnostics diagnostics;
+  const auto conversion = corsa::ngii::convert(b.layers, {}, diagnostics);
+  const LaneEndWidth path = lane_end_width(conversion.map, "A2TEST00000P", true);
+  const LaneEndWidth lane = lane_end_width(conversion.map, "A2TEST00000E", false);
+  CHECK(std::abs(std::remainder(path.heading - lane.heading, 2.0 * M_PI)) < 0.01);
+  CHECK(path.width == Approx(lane.width).margin(0.15));
+  CHECK(shoulders_of(conversion.map) == 0);
+}
+
+TEST_CASE(
+    "a junction path keeping its own end line at 50 degrees to the road it enters spans that "
+    "road's lane",
+    "[ngii][mouths]") {
+  // The path cannot turn 50 degrees onto the road's start line (Sangam's paths 1017, 1019 and
+  // 1024 into road 504: 46-52 degrees), so it ends square to its own course, as wide as the
+  // road's lane spans across it (the lane's width times the cosine of the corner). The road
+  // builder divided that by the cosine of half the corner (the chord into the road after it),
+  // so the path stuck out 0.2 m beyond the lane on each side (a 0.15 m sliver beside road 504).
+  const Builder b = path_into_corner(-5.0, -55.0, 2.9);
+  corsa::Diagnostics diagnostics;
+  const auto conversion = corsa::ngii::convert(b.layers, {}, diagnostics);
+  const LaneEndWidth path = lane_end_width(conversion.map, "A2TEST00000P", true);
+  const LaneEndWidth lane = lane_end_width(conversion.map, "A2TEST00000E", false);
+  const double corner = std::remainder(path.heading - lane.heading, 2.0 * M_PI);
+  CHECK(std::abs(corner) > 0.8);
+  CHECK(path.width == Approx(lane.width * std::cos(corner)).margin(0.05));
 }

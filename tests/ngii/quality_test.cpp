@@ -305,7 +305,7 @@ TEST_CASE("centre strips touching end to start continue into each other in the l
   }
 }
 
-TEST_CASE("lanes joined at junction mouths leave no unpaved ground beyond their ends but for a few",
+TEST_CASE("lanes joined at junction mouths leave no unpaved ground beyond their ends",
           "[ngii][quality][mouths]") {
   // Just beyond each joined lane end the map is paved (mouth_gaps.h). Before junction paths
   // started on the approach road's skewed end line and took the approach and exit lanes' widths
@@ -332,14 +332,19 @@ TEST_CASE("lanes joined at junction mouths leave no unpaved ground beyond their 
   // one in line with it, a road next to a path that keeps its own line took the path's, bends
   // over sparse vertices started at their reach and ends bent up to 55 degrees off square; 1 / 5
   // before a short road that turns short of its skewed end line ran on past it and a shoulder
-  // beside the next road's start looked past the lane's own road (Sangam's 365). What remains:
-  // paths that could not turn onto the joined road's line, paths narrower than the road they join.
+  // beside the next road's start looked past the lane's own road (Sangam's 365); 1 / 4 before a
+  // junction path's lane direction near its ends was taken from its own link rather than a
+  // chord into the roads it joins (K-City's road 322 before path 460, 0.60 m; Sangam's paths
+  // 0.5 m narrower than road 196 and three 50 degrees off road 504, 0.20 / 0.15 m). The largest
+  // run left is 2.5 cm (one probe step).
   const auto& k = figures("kcity").mouth_gaps;
   INFO(k.worst);
   CHECK(k.ends > 1400);
-  CHECK(k.over <= 1);
+  CHECK(k.over == 0);
+  CHECK(k.max < 0.05);
   const auto& s = figures("seoul_sangam_testbed").mouth_gaps;
   INFO(s.worst);
   CHECK(s.ends > 3200);
-  CHECK(s.over <= 4);
+  CHECK(s.over == 0);
+  CHECK(s.max < 0.05);
 }
