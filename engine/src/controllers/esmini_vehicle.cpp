@@ -256,6 +256,10 @@ bool assign_esmini_driver(SimState& state, uint32_t index, const xosc::ObjectCon
   return true;
 }
 
+bool esmini_driver_reads_view(const EsminiDriver* driver) {
+  return driver != nullptr && driver->kind == EsminiDriverKind::kOffroadFollower;
+}
+
 void step_esmini_driver(SimState& state, uint32_t index, const MotionContext& motion,
                         const FollowView& view) {
   ControlState& control = state.controls[index];
