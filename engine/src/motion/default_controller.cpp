@@ -75,14 +75,23 @@ void update_road_from_pose(Entity& entity, const xodr::Map* map) {
 const std::optional<xodr::LanePosition>& locate_near(Entity& entity, const xodr::Map& map, double x,
                                                      double y) {
   PointLocateMemo& memo = entity.point_memo;
+  if (memo.valid && !memo.located && std::abs(x - memo.x) <= memo.clear &&
+      std::abs(y - memo.y) <= memo.clear) {
+    return memo.located;  // still clear of every lane (a NaN point fails the comparisons)
+  }
   if (!memo.valid || std::bit_cast<uint64_t>(memo.x) != std::bit_cast<uint64_t>(x) ||
       std::bit_cast<uint64_t>(memo.y) != std::bit_cast<uint64_t>(y)) {
+    constexpr double kMaxDistance = 0.5;
+    // How far an entity off the road may move before it is searched for again: a few steps
+    // of a car (the bound costs about one search of a square this much wider).
+    constexpr double kClearReach = 2.0;
     xodr::LocateOptions options;
-    options.max_distance = 0.5;
+    options.max_distance = kMaxDistance;
     memo.located = map.locate(x, y, options);
     memo.x = x;
     memo.y = y;
     memo.valid = true;
+    memo.clear = memo.located ? 0.0 : map.clear_of_lanes(x, y, kMaxDistance, kClearReach);
   }
   return memo.located;
 }

@@ -65,6 +65,10 @@ struct PointLocateMemo {
   double x = 0.0;  ///< m, the point asked for, compared bit for bit
   double y = 0.0;
   std::optional<xodr::LanePosition> located;
+  /// m, when nothing was located: every point within this of (x, y) along each axis has no
+  /// answer either (xodr::Map::clear_of_lanes), so an entity off the road that moves a little
+  /// needs no search.
+  double clear = 0.0;
 };
 
 /// Where an entity is along its route and the lane change its route needs, under way
