@@ -150,6 +150,21 @@ double along_lane(const Entity& entity, double distance) {
   return std::copysign(std::sqrt(distance * distance - lateral * lateral), distance);
 }
 
+// Whether `lane` advanced by along / scale, for any scale path_scale gives ([0.2, 5]), stops at
+// once at a lane end with nothing beyond: the advance then leaves the lane where it is and
+// travels 0 whatever the scale (advance_along_lanes' first lane end, with no room before it).
+// `along` is far enough from 0 that no such quotient rounds to 0.
+bool at_dead_end(const xodr::Map& map, const LaneFollow& lane, double along) {
+  if (!(std::abs(along) > 1e-300)) {
+    return false;
+  }
+  const int dir = along > 0.0 ? lane.dir : -lane.dir;
+  const xodr::LaneGraph& graph = map.lane_graph();
+  const auto& info = graph.info(lane.node);
+  const double boundary = dir > 0 ? info.s_end : info.s_start;
+  return std::abs(boundary - lane.s) == 0.0 && graph.ends(lane.node, dir < 0).empty();
+}
+
 }  // namespace
 
 void DefaultController::step(Entity& entity, const MotionContext& context) const {
@@ -175,11 +190,16 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     // reference line of curvature k the path is (1 - k t) times as long as s (OpenDRIVE 1.8
     // §9.3, lanes run parallel to the reference line), so a car in the outer lane of a turn does
     // not drive faster than its speed.
-    // Standing still needs no scale (and on a cubic reference line it costs an evaluation).
-    const double scale = distance == 0.0 ? 1.0 : path_scale(*context.map, entity);
+    // Standing still needs no scale (and on a cubic reference line it costs an evaluation), nor
+    // does a step that cannot leave a lane end it stands at (the speed asked for stays asked
+    // for there: such an entity tries every step).
+    const double along = along_lane(entity, distance);
+    const double scale = distance == 0.0 || at_dead_end(*context.map, lane, along)
+                             ? 1.0
+                             : path_scale(*context.map, entity);
     const double shift_before = lane.frame_shift;
-    const AdvanceResult moved = advance_along_lanes(
-        *context.map, lane, along_lane(entity, distance) / scale, entity.chooser);
+    const AdvanceResult moved =
+        advance_along_lanes(*context.map, lane, along / scale, entity.chooser);
     // Carried on from a neighbouring lane's end: the offset asked for moves with the lane frame.
     entity.lateral_command += lane.frame_shift - shift_before;
     const double travelled = moved.travelled * scale;
