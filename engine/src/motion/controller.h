@@ -40,6 +40,10 @@ class Controller {
 class DefaultController final : public Controller {
  public:
   void step(Entity& entity, const MotionContext& context) const override;
+
+ private:
+  /// The step itself; `stood`: it stopped at a lane end without moving along or across it.
+  void step_entity(Entity& entity, const MotionContext& context, bool& stood) const;
 };
 
 /// Recomputes an entity's pose and road coordinates from its LaneFollow (after a teleport or a

@@ -2,6 +2,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <numbers>
 #include <variant>
 
@@ -165,6 +166,29 @@ bool at_dead_end(const xodr::Map& map, const LaneFollow& lane, double along) {
   return std::abs(boundary - lane.s) == 0.0 && graph.ends(lane.node, dir < 0).empty();
 }
 
+// StillStepMemo: the entity's part the default controller's step reads and writes, copied and
+// compared as bytes.
+void take_still_step(StillStepMemo& memo, const Entity& entity) {
+  std::memcpy(&memo.state, &entity.state, sizeof(EntityState));
+  std::memcpy(&memo.lane, &entity.lane, sizeof(LaneFollow));
+  memo.speed_command = entity.speed_command;
+  memo.lateral_command = entity.lateral_command;
+  memo.longitudinal_distance = entity.longitudinal_distance;
+  memo.lateral_acceleration = entity.lateral_acceleration;
+  memo.chooser = entity.chooser;
+  memo.end_of_road = entity.end_of_road;
+}
+
+bool holds_still_step(const StillStepMemo& memo, const Entity& entity) {
+  return same_bits(memo.speed_command, entity.speed_command) &&
+         same_bits(memo.lateral_command, entity.lateral_command) &&
+         same_bits(memo.longitudinal_distance, entity.longitudinal_distance) &&
+         same_bits(memo.lateral_acceleration, entity.lateral_acceleration) &&
+         memo.chooser == entity.chooser && memo.end_of_road == entity.end_of_road &&
+         std::memcmp(&memo.state, &entity.state, sizeof(EntityState)) == 0 &&
+         std::memcmp(&memo.lane, &entity.lane, sizeof(LaneFollow)) == 0;
+}
+
 }  // namespace
 
 void DefaultController::step(Entity& entity, const MotionContext& context) const {
@@ -172,6 +196,26 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     move_to_pose_command(entity, context);
     return;
   }
+  // A step that would change nothing: the last one changed nothing, and nothing has changed
+  // the entity since.
+  StillStepMemo& still = entity.still_step;
+  if (still.valid && holds_still_step(still, entity)) {
+    return;
+  }
+  // Only an entity already standing at a lane end can take a step that changes nothing.
+  const bool may_stand = entity.end_of_road && entity.state.speed == 0.0 && entity.lane.on_road &&
+                         context.map != nullptr;
+  still.valid = false;
+  if (may_stand) {
+    take_still_step(still, entity);
+  }
+  bool stood = false;
+  step_entity(entity, context, stood);
+  still.valid = may_stand && stood && holds_still_step(still, entity);
+}
+
+void DefaultController::step_entity(Entity& entity, const MotionContext& context,
+                                    bool& stood) const {
   EntityState& state = entity.state;
   const double dt = context.dt;
   const double v0 = state.speed;
@@ -218,6 +262,8 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     if (moved.hit_end) {
       v1 = 0.0;
     }
+    // Stopped at a lane end without moving along or across it.
+    stood = moved.hit_end && moved.travelled == 0.0 && lateral_change == 0.0;
     path = std::hypot(travelled, lateral_change);
     entity.longitudinal_distance += std::abs(travelled);
     update_pose_from_lane(entity, *context.map, *context.scratch);
