@@ -42,7 +42,7 @@ class DefaultController final : public Controller {
   void step(Entity& entity, const MotionContext& context) const override;
 
  private:
-  /// The step itself; `stood`: it stopped at a lane end without moving along or across it.
+  /// The step itself; `stood`: it moved neither along its lane nor across it.
   void step_entity(Entity& entity, const MotionContext& context, bool& stood) const;
 };
 

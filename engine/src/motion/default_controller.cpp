@@ -202,9 +202,8 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
   if (still.valid && holds_still_step(still, entity)) {
     return;
   }
-  // Only an entity already standing at a lane end can take a step that changes nothing.
-  const bool may_stand = entity.end_of_road && entity.state.speed == 0.0 && entity.lane.on_road &&
-                         context.map != nullptr;
+  // Only an entity already standing on its lane can take a step that changes nothing.
+  const bool may_stand = entity.state.speed == 0.0 && entity.lane.on_road && context.map != nullptr;
   still.valid = false;
   if (may_stand) {
     take_still_step(still, entity);
@@ -262,8 +261,8 @@ void DefaultController::step_entity(Entity& entity, const MotionContext& context
     if (moved.hit_end) {
       v1 = 0.0;
     }
-    // Stopped at a lane end without moving along or across it.
-    stood = moved.hit_end && moved.travelled == 0.0 && lateral_change == 0.0;
+    // Moved neither along the lane (asked for no speed, or stopped at a lane end) nor across.
+    stood = moved.travelled == 0.0 && lateral_change == 0.0;
     path = std::hypot(travelled, lateral_change);
     entity.longitudinal_distance += std::abs(travelled);
     update_pose_from_lane(entity, *context.map, *context.scratch);
