@@ -42,8 +42,8 @@ void single_track_step(double& x, double& y, double& h, double speed, double whe
                        double dt) {
   // A straight wheel (exactly 0, as a wheel returning to straight ends up) slips by nothing:
   // kEsminiPivotFraction * wheel is the same signed 0 that atan(k tan(wheel)) gives.
-  const double slip =
-      wheel == 0.0 ? kEsminiPivotFraction * wheel : std::atan(kEsminiPivotFraction * std::tan(wheel));
+  const double slip = wheel == 0.0 ? kEsminiPivotFraction * wheel
+                                   : std::atan(kEsminiPivotFraction * std::tan(wheel));
   const double course = h + slip;
   const double yaw_rate = speed * std::sin(slip) / (length * kEsminiPivotFraction);
   h = std::fmod(h + dt * yaw_rate, kEsminiFullTurn);

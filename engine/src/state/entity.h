@@ -58,10 +58,10 @@ struct LanePoseMemo {
 
 /// What an entity held around a default-controller step that changed nothing of it (one
 /// standing on its lane: asked for no speed, or for a speed it cannot take at a lane end with
-/// nothing beyond; motion/default_controller.cpp). That step is a function of what is recorded here (and of the
-/// map and the step, fixed for the run): while the entity holds exactly this again, byte for
-/// byte, the next step would change nothing either, and is skipped. Bytes compared, padding
-/// included: a difference there only costs a skip.
+/// nothing beyond; motion/default_controller.cpp). That step is a function of what is recorded here
+/// (and of the map and the step, fixed for the run): while the entity holds exactly this again,
+/// byte for byte, the next step would change nothing either, and is skipped. Bytes compared,
+/// padding included: a difference there only costs a skip.
 struct StillStepMemo {
   bool valid = false;
   EntityState state;

@@ -205,8 +205,12 @@ bool update_moved_contacts(SimState& state, ContactSweep& sweep) {
     }
   }
   const auto item = [&](uint32_t i) {
-    return Item{sweep.x_extent[i].low, sweep.x_extent[i].high, sweep.y_extent[i].low,
-                sweep.y_extent[i].high, i, i};
+    return Item{sweep.x_extent[i].low,
+                sweep.x_extent[i].high,
+                sweep.y_extent[i].low,
+                sweep.y_extent[i].high,
+                i,
+                i};
   };
   for (const uint32_t m : moved) {
     if (!boxed(entities[m])) {
