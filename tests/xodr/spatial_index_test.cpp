@@ -80,3 +80,43 @@ TEST_CASE("the lazily built index answers as one built all at once", "[xodr][loc
     CHECK(lazy.built_sections() <= eager.built_sections());
   }
 }
+
+TEST_CASE("no locate answers within an off-road point's clearance of every lane",
+          "[xodr][locate]") {
+  for (const char* name : {"Town04.xodr", "SampleDatabase.xodr", "fabriksgatan.xodr", "e6mini.xodr",
+                           "soderleden.xodr"}) {
+    INFO(name);
+    const Map map = test::load_map(test::shared_map(name));
+    corsa::RandomStream random(23);
+    int cleared = 0;
+    for (int i = 0; i < 600; ++i) {
+      const auto road = static_cast<uint32_t>(random.uniform_int(0, map.road_count() - 1));
+      const RefPoint ref = map.reference(road, random.uniform(0.0, map.road(road).length));
+      const double x = ref.x + random.uniform(-30.0, 30.0);
+      const double y = ref.y + random.uniform(-30.0, 30.0);
+      const double clear = map.clear_of_lanes(x, y, 0.5, 2.0);
+      INFO("point " << x << ", " << y << " clear " << clear);
+      REQUIRE(clear >= 0.0);
+      REQUIRE(clear <= 2.0);
+      LocateOptions options;
+      options.max_distance = 0.5;
+      if (map.locate(x, y, options)) {
+        CHECK(clear == 0.0);
+      }
+      if (clear == 0.0) {
+        continue;
+      }
+      ++cleared;
+      // The square's corners and edges' middles, and random points inside it, at the full and
+      // at a smaller search distance.
+      for (int k = 0; k < 16; ++k) {
+        const double dx = k < 8 ? clear * ((k % 3) - 1.0) : random.uniform(-clear, clear);
+        const double dy = k < 8 ? clear * (((k / 3) % 3) - 1.0) : random.uniform(-clear, clear);
+        options.max_distance = k % 2 == 0 ? 0.5 : 0.1;
+        CHECK_FALSE(map.locate(x + dx, y + dy, options).has_value());
+      }
+    }
+    // Most points 30 m about a reference line are off the road: the bound is not trivially 0.
+    CHECK(cleared > 100);
+  }
+}

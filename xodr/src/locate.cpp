@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "road_eval.h"
 #include "spatial_index.h"
@@ -261,6 +263,41 @@ std::optional<LanePosition> SpatialIndex::locate(const Map& map, double x, doubl
     evaluate_chunk(map, *candidate.chunk, x, y, options, false, best, have);
   }
   return have ? std::optional<LanePosition>(best.position) : std::nullopt;
+}
+
+double SpatialIndex::clear_of_lanes(const Map& map, double x, double y, double max_distance,
+                                    double reach) const {
+  if (!std::isfinite(x) || !std::isfinite(y) || !(max_distance >= 0.0) || !(reach > 0.0)) {
+    return 0.0;
+  }
+  if (sections_.empty()) {
+    return reach;  // locate answers nothing anywhere
+  }
+  // A query at (x', y') examines only chunks whose rectangle it is near (Chunk::near with r at
+  // most max_distance; the first pass with r = 0), of sections that sections_near lists for
+  // the square of half side max_distance about it and whose bound meets that square. Within
+  // `reach` of (x, y) along each axis those are among the chunks listed here for the square of
+  // half side r (the grid's cells and the bounds are monotone in the square). A chunk's excess
+  // changes by at most the point's move, at most sqrt(2) times its largest change along an
+  // axis. The margin covers the rounding of those tests, far above it at map coordinates.
+  constexpr double kSqrt2 = 1.4142135623730951;
+  const double margin = 1e-6 + 1e-9 * (std::abs(x) + std::abs(y));
+  const double r = max_distance + kSqrt2 * reach + margin;
+  std::vector<uint32_t> near;
+  sections_near(x, y, r, near);
+  double least = std::numeric_limits<double>::infinity();
+  for (const uint32_t index : near) {
+    if (sections_[index]->bounded && !sections_[index]->bounds.meets(x, y, r)) {
+      continue;
+    }
+    for (const Chunk& chunk : built(map, index).chunks) {
+      least = std::min(least, chunk.excess(x, y));
+    }
+  }
+  // A chunk with a NaN among its numbers is never near (its comparisons fail), and std::min
+  // leaves its NaN excess out alike.
+  const double clear = (least - max_distance - margin) / kSqrt2 - margin;
+  return clear > 0.0 ? std::min(clear, reach) : 0.0;
 }
 
 }  // namespace corsa::xodr::detail

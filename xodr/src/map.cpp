@@ -308,4 +308,9 @@ std::optional<LanePosition> Map::locate(double x, double y, const LocateOptions&
   return impl_->index.locate(*this, x, y, options);
 }
 
+double Map::clear_of_lanes(double x, double y, double max_distance, double reach) const {
+  std::call_once(impl_->index_built, [this] { impl_->index.prepare(*this); });
+  return impl_->index.clear_of_lanes(*this, x, y, max_distance, reach);
+}
+
 }  // namespace corsa::xodr

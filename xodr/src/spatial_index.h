@@ -6,6 +6,7 @@
 // onto the reference line of the few chunks that contain it (Newton on s). Private to
 // corsa_xodr.
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -56,6 +57,17 @@ struct Chunk {
     return std::sqrt(da * da + db * db);
   }
 
+  /// The least r for which near(x, y, r) holds (up to rounding): how far, along the
+  /// rectangle's own axes, (x, y) lies outside it (negative inside). It changes by no more than
+  /// the point moves.
+  double excess(double x, double y) const {
+    const double dx = x - ox;
+    const double dy = y - oy;
+    const double a = dx * ux + dy * uy;
+    const double b = dy * ux - dx * uy;
+    return std::max(std::max(a0 - a, a - a1), std::max(b0 - b, b - b1));
+  }
+
   /// Whether (x, y) is within `r` metres of the rectangle (a square-ish test, enough to prune).
   bool near(double x, double y, double r) const {
     const double dx = x - ox;
@@ -83,6 +95,10 @@ class SpatialIndex {
   void prepare(const Map& map);
   std::optional<LanePosition> locate(const Map& map, double x, double y,
                                      const LocateOptions& options) const;
+  /// Map::clear_of_lanes: how far (x, y) can move with every locate query of at most
+  /// `max_distance` still finding no chunk to examine.
+  double clear_of_lanes(const Map& map, double x, double y, double max_distance,
+                        double reach) const;
   /// Builds the chunks of every section now (what a query that reached all would do).
   void build_all(const Map& map) const;
   size_t section_count() const;

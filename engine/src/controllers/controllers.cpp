@@ -520,11 +520,13 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     if (dynamics_moves(state, i) && !state.world.entities[i].towed_by) {
       dynamic.push_back(i);
     }
-    // Car following and esmini's offroadFollower read the others in the picture.
+    // Car following and esmini's offroadFollower read the others in the picture (esmini's
+    // interactiveDriver does not: without it the picture is not taken).
     const ControllerKind kind = state.controls[i].effective();
-    following =
-        following || (state.world.entities[i].state.placed &&
-                      (kind == ControllerKind::kAcc || kind == ControllerKind::kEsminiVehicle));
+    following = following || (state.world.entities[i].state.placed &&
+                              (kind == ControllerKind::kAcc ||
+                               (kind == ControllerKind::kEsminiVehicle &&
+                                esmini_driver_reads_view(state.controls[i].esmini_driver.get()))));
     natural = natural || state.controls[i].natural != nullptr;
   }
   if (!dynamic.empty()) {

@@ -40,7 +40,10 @@ constexpr double kFollowerLimitFactor = 1.2;
 
 void single_track_step(double& x, double& y, double& h, double speed, double wheel, double length,
                        double dt) {
-  const double slip = std::atan(kEsminiPivotFraction * std::tan(wheel));
+  // A straight wheel (exactly 0, as a wheel returning to straight ends up) slips by nothing:
+  // kEsminiPivotFraction * wheel is the same signed 0 that atan(k tan(wheel)) gives.
+  const double slip = wheel == 0.0 ? kEsminiPivotFraction * wheel
+                                   : std::atan(kEsminiPivotFraction * std::tan(wheel));
   const double course = h + slip;
   const double yaw_rate = speed * std::sin(slip) / (length * kEsminiPivotFraction);
   h = std::fmod(h + dt * yaw_rate, kEsminiFullTurn);
@@ -254,6 +257,10 @@ bool assign_esmini_driver(SimState& state, uint32_t index, const xosc::ObjectCon
   control.substitute_for.clear();
   control.esmini_driver = std::move(driver);
   return true;
+}
+
+bool esmini_driver_reads_view(const EsminiDriver* driver) {
+  return driver != nullptr && driver->kind == EsminiDriverKind::kOffroadFollower;
 }
 
 void step_esmini_driver(SimState& state, uint32_t index, const MotionContext& motion,

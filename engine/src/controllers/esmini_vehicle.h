@@ -102,6 +102,11 @@ struct EsminiDriver {
 /// names no entity, warns located at the property.
 bool assign_esmini_driver(SimState& state, uint32_t index, const xosc::ObjectController& oc);
 
+/// Whether `driver` reads the picture of the others (FollowView) in its step: offroadFollower
+/// does (the entity it follows); interactiveDriver, and an entity without a driver (the default
+/// controller), do not.
+bool esmini_driver_reads_view(const EsminiDriver* driver);
+
 /// One step of entity `index`'s esmini driver.
 void step_esmini_driver(SimState& state, uint32_t index, const MotionContext& motion,
                         const FollowView& view);

@@ -40,6 +40,10 @@ class Controller {
 class DefaultController final : public Controller {
  public:
   void step(Entity& entity, const MotionContext& context) const override;
+
+ private:
+  /// The step itself; `stood`: it moved neither along its lane nor across it.
+  void step_entity(Entity& entity, const MotionContext& context, bool& stood) const;
 };
 
 /// Recomputes an entity's pose and road coordinates from its LaneFollow (after a teleport or a
@@ -49,8 +53,9 @@ void update_pose_from_lane(Entity& entity, const xodr::Map& map,
 void update_road_from_pose(Entity& entity, const xodr::Map* map);
 
 /// The lane holding the point (x, y), or the nearest within 0.5 m (xodr::Map::locate with
-/// max_distance 0.5): asked again for the same point, the entity's memo answers
-/// (PointLocateMemo) without searching the map.
+/// max_distance 0.5): asked again for the same point, or for a point near one that had no
+/// answer and still clear of every lane, the entity's memo answers (PointLocateMemo) without
+/// searching the map.
 const std::optional<xodr::LanePosition>& locate_near(Entity& entity, const xodr::Map& map, double x,
                                                      double y);
 

@@ -2,6 +2,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <numbers>
 #include <variant>
 
@@ -75,14 +76,23 @@ void update_road_from_pose(Entity& entity, const xodr::Map* map) {
 const std::optional<xodr::LanePosition>& locate_near(Entity& entity, const xodr::Map& map, double x,
                                                      double y) {
   PointLocateMemo& memo = entity.point_memo;
+  if (memo.valid && !memo.located && std::abs(x - memo.x) <= memo.clear &&
+      std::abs(y - memo.y) <= memo.clear) {
+    return memo.located;  // still clear of every lane (a NaN point fails the comparisons)
+  }
   if (!memo.valid || std::bit_cast<uint64_t>(memo.x) != std::bit_cast<uint64_t>(x) ||
       std::bit_cast<uint64_t>(memo.y) != std::bit_cast<uint64_t>(y)) {
+    constexpr double kMaxDistance = 0.5;
+    // How far an entity off the road may move before it is searched for again: a few steps
+    // of a car (the bound costs about one search of a square this much wider).
+    constexpr double kClearReach = 2.0;
     xodr::LocateOptions options;
-    options.max_distance = 0.5;
+    options.max_distance = kMaxDistance;
     memo.located = map.locate(x, y, options);
     memo.x = x;
     memo.y = y;
     memo.valid = true;
+    memo.clear = memo.located ? 0.0 : map.clear_of_lanes(x, y, kMaxDistance, kClearReach);
   }
   return memo.located;
 }
@@ -141,6 +151,44 @@ double along_lane(const Entity& entity, double distance) {
   return std::copysign(std::sqrt(distance * distance - lateral * lateral), distance);
 }
 
+// Whether `lane` advanced by along / scale, for any scale path_scale gives ([0.2, 5]), stops at
+// once at a lane end with nothing beyond: the advance then leaves the lane where it is and
+// travels 0 whatever the scale (advance_along_lanes' first lane end, with no room before it).
+// `along` is far enough from 0 that no such quotient rounds to 0.
+bool at_dead_end(const xodr::Map& map, const LaneFollow& lane, double along) {
+  if (!(std::abs(along) > 1e-300)) {
+    return false;
+  }
+  const int dir = along > 0.0 ? lane.dir : -lane.dir;
+  const xodr::LaneGraph& graph = map.lane_graph();
+  const auto& info = graph.info(lane.node);
+  const double boundary = dir > 0 ? info.s_end : info.s_start;
+  return std::abs(boundary - lane.s) == 0.0 && graph.ends(lane.node, dir < 0).empty();
+}
+
+// StillStepMemo: the entity's part the default controller's step reads and writes, copied and
+// compared as bytes.
+void take_still_step(StillStepMemo& memo, const Entity& entity) {
+  std::memcpy(&memo.state, &entity.state, sizeof(EntityState));
+  std::memcpy(&memo.lane, &entity.lane, sizeof(LaneFollow));
+  memo.speed_command = entity.speed_command;
+  memo.lateral_command = entity.lateral_command;
+  memo.longitudinal_distance = entity.longitudinal_distance;
+  memo.lateral_acceleration = entity.lateral_acceleration;
+  memo.chooser = entity.chooser;
+  memo.end_of_road = entity.end_of_road;
+}
+
+bool holds_still_step(const StillStepMemo& memo, const Entity& entity) {
+  return same_bits(memo.speed_command, entity.speed_command) &&
+         same_bits(memo.lateral_command, entity.lateral_command) &&
+         same_bits(memo.longitudinal_distance, entity.longitudinal_distance) &&
+         same_bits(memo.lateral_acceleration, entity.lateral_acceleration) &&
+         memo.chooser == entity.chooser && memo.end_of_road == entity.end_of_road &&
+         std::memcmp(&memo.state, &entity.state, sizeof(EntityState)) == 0 &&
+         std::memcmp(&memo.lane, &entity.lane, sizeof(LaneFollow)) == 0;
+}
+
 }  // namespace
 
 void DefaultController::step(Entity& entity, const MotionContext& context) const {
@@ -148,6 +196,25 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     move_to_pose_command(entity, context);
     return;
   }
+  // A step that would change nothing: the last one changed nothing, and nothing has changed
+  // the entity since.
+  StillStepMemo& still = entity.still_step;
+  if (still.valid && holds_still_step(still, entity)) {
+    return;
+  }
+  // Only an entity already standing on its lane can take a step that changes nothing.
+  const bool may_stand = entity.state.speed == 0.0 && entity.lane.on_road && context.map != nullptr;
+  still.valid = false;
+  if (may_stand) {
+    take_still_step(still, entity);
+  }
+  bool stood = false;
+  step_entity(entity, context, stood);
+  still.valid = may_stand && stood && holds_still_step(still, entity);
+}
+
+void DefaultController::step_entity(Entity& entity, const MotionContext& context,
+                                    bool& stood) const {
   EntityState& state = entity.state;
   const double dt = context.dt;
   const double v0 = state.speed;
@@ -166,11 +233,16 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     // reference line of curvature k the path is (1 - k t) times as long as s (OpenDRIVE 1.8
     // §9.3, lanes run parallel to the reference line), so a car in the outer lane of a turn does
     // not drive faster than its speed.
-    // Standing still needs no scale (and on a cubic reference line it costs an evaluation).
-    const double scale = distance == 0.0 ? 1.0 : path_scale(*context.map, entity);
+    // Standing still needs no scale (and on a cubic reference line it costs an evaluation), nor
+    // does a step that cannot leave a lane end it stands at (the speed asked for stays asked
+    // for there: such an entity tries every step).
+    const double along = along_lane(entity, distance);
+    const double scale = distance == 0.0 || at_dead_end(*context.map, lane, along)
+                             ? 1.0
+                             : path_scale(*context.map, entity);
     const double shift_before = lane.frame_shift;
-    const AdvanceResult moved = advance_along_lanes(
-        *context.map, lane, along_lane(entity, distance) / scale, entity.chooser);
+    const AdvanceResult moved =
+        advance_along_lanes(*context.map, lane, along / scale, entity.chooser);
     // Carried on from a neighbouring lane's end: the offset asked for moves with the lane frame.
     entity.lateral_command += lane.frame_shift - shift_before;
     const double travelled = moved.travelled * scale;
@@ -189,6 +261,8 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     if (moved.hit_end) {
       v1 = 0.0;
     }
+    // Moved neither along the lane (asked for no speed, or stopped at a lane end) nor across.
+    stood = moved.travelled == 0.0 && lateral_change == 0.0;
     path = std::hypot(travelled, lateral_change);
     entity.longitudinal_distance += std::abs(travelled);
     update_pose_from_lane(entity, *context.map, *context.scratch);

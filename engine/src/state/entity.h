@@ -56,6 +56,24 @@ struct LanePoseMemo {
   std::optional<RoadCoordinates> road;
 };
 
+/// What an entity held around a default-controller step that changed nothing of it (one
+/// standing on its lane: asked for no speed, or for a speed it cannot take at a lane end with
+/// nothing beyond; motion/default_controller.cpp). That step is a function of what is recorded here
+/// (and of the map and the step, fixed for the run): while the entity holds exactly this again,
+/// byte for byte, the next step would change nothing either, and is skipped. Bytes compared,
+/// padding included: a difference there only costs a skip.
+struct StillStepMemo {
+  bool valid = false;
+  EntityState state;
+  LaneFollow lane;
+  double speed_command = 0.0;
+  double lateral_command = 0.0;
+  double longitudinal_distance = 0.0;
+  double lateral_acceleration = 0.0;
+  const LaneChooser* chooser = nullptr;
+  bool end_of_road = false;
+};
+
 /// The map's last answer, for one entity, to which lane holds the point (x, y) within half a
 /// metre (motion/controller.h, locate_near): a controller that puts its entity at a vehicle
 /// model's pose asks it three times a step for the same point, and a model at rest asks it
@@ -65,6 +83,10 @@ struct PointLocateMemo {
   double x = 0.0;  ///< m, the point asked for, compared bit for bit
   double y = 0.0;
   std::optional<xodr::LanePosition> located;
+  /// m, when nothing was located: every point within this of (x, y) along each axis has no
+  /// answer either (xodr::Map::clear_of_lanes), so an entity off the road that moves a little
+  /// needs no search.
+  double clear = 0.0;
 };
 
 /// Where an entity is along its route and the lane change its route needs, under way
@@ -161,6 +183,7 @@ struct Entity {
   std::optional<Pose> pose_command;
   EntityInfo info;
   LanePoseMemo lane_pose_memo;
+  StillStepMemo still_step;
 
   // Below: what only some entities, or some events, read.
   /// Set by a DeleteEntityAction (or a sink) until the entity is placed again; state.pose and

@@ -12,23 +12,27 @@ namespace corsa::engine::detail {
 
 namespace {
 
-// Whether every entity's box is where it was at the last update (nothing moved, appeared,
-// left or changed size); records the boxes of now otherwise.
-bool contact_inputs_unchanged(SimState& state) {
+// The entities whose boxes are not where they were at the last update (moved, appeared, left
+// or changed size), into `moved`; records the boxes of now. Returns false when the entities
+// are not those of the last update (added or removed): then every box counts as changed.
+bool find_moved_boxes(SimState& state, std::vector<uint32_t>& moved) {
   auto& inputs = state.contacts.inputs;
   const auto& entities = state.world.entities;
-  bool same = inputs.size() == entities.size();
-  for (size_t i = 0; same && i < entities.size(); ++i) {
-    same = inputs[i].same_as(entities[i]);
-  }
-  if (same) {
-    return true;
-  }
+  moved.clear();
+  const bool same_entities = inputs.size() == entities.size();
   inputs.resize(entities.size());
-  for (size_t i = 0; i < entities.size(); ++i) {
-    inputs[i] = {entities[i].state.placed, entities[i].state.pose, entities[i].info.box};
+  for (uint32_t i = 0; i < entities.size(); ++i) {
+    if (!same_entities || !inputs[i].same_as(entities[i])) {
+      moved.push_back(i);
+      inputs[i] = {entities[i].state.placed, entities[i].state.pose, entities[i].info.box};
+    }
   }
-  return false;
+  return same_entities;
+}
+
+// Whether the entity's box takes part in the contacts.
+bool boxed(const Entity& entity) {
+  return entity.state.placed && entity.info.box.length > 0.0 && !entity.ghost;
 }
 
 // A box in the sweep; the boxes themselves stay apart (`boxes`, by `box`), so that sorting
@@ -122,11 +126,133 @@ void sort_from_last(std::vector<Item>& items, std::vector<uint32_t>& order, bool
   for (size_t k = 0; k < items.size(); ++k) order[k] = items[k].index;
 }
 
+// Records the pairs of `now` (sorted) that `previous` (sorted) does not hold as collisions
+// begun at this tick, in entity order.
+void record_new_contacts(SimState& state, const std::vector<std::pair<uint32_t, uint32_t>>& now,
+                         const std::vector<std::pair<uint32_t, uint32_t>>& previous) {
+  for (const auto& pair : now) {
+    if (!std::binary_search(previous.begin(), previous.end(), pair)) {
+      state.collisions.push_back({state.tick, state.now(), pair.first, pair.second});
+    }
+  }
+}
+
+// The contacts when only the boxes in `sweep.moved` changed since a complete update: the pairs
+// of two unmoved boxes are the last update's (neither box changed), and each moved box is
+// tested against every other box under the sweep's own filters, so that a pair is tested
+// exactly when the sweep would test it, in the sweep's order of the two (the axis chosen as the
+// sweep chooses it): the same pairs as a sweep over all boxes. Returns false, having changed
+// no pair, when it does not apply: not a complete last update, more moved boxes than pay
+// (a sweep is then cheaper), a moved box with extents that are not finite, or a coupled pair
+// (a trailer and its tower, whose contacts the sweep sets apart).
+bool update_moved_contacts(SimState& state, ContactSweep& sweep) {
+  const auto& entities = state.world.entities;
+  const size_t count = entities.size();
+  const std::vector<uint32_t>& moved = sweep.moved;
+  std::vector<OrientedBox>& boxes = state.contacts.boxes;
+  // A moved box costs a test of every other box; a sweep costs about a box's making per box.
+  constexpr size_t kMovedAlways = 16;
+  constexpr size_t kBoxesPerMovedBox = 32;
+  if (!sweep.complete || boxes.size() != count || sweep.x_extent.size() != count ||
+      (moved.size() > kMovedAlways && moved.size() * kBoxesPerMovedBox > count)) {
+    return false;
+  }
+  for (const Entity& entity : entities) {
+    if (entity.towed_by || entity.towing || entity.unhitched_from) {
+      return false;
+    }
+  }
+  for (const uint32_t i : moved) {
+    if (!boxed(entities[i])) {
+      continue;
+    }
+    boxes[i] = box_of(entities[i].info.box, entities[i].state.pose);
+    const Interval x = project(boxes[i], 1.0, 0.0);
+    const Interval y = project(boxes[i], 0.0, 1.0);
+    if (!std::isfinite(x.low) || !std::isfinite(x.high) || !std::isfinite(y.low) ||
+        !std::isfinite(y.high)) {
+      return false;  // the sweep's own path for extents without a total order
+    }
+    sweep.x_extent[i] = x;
+    sweep.y_extent[i] = y;
+  }
+  // The sweep's axis: the spread of all boxes.
+  bool any = false;
+  double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
+  for (uint32_t i = 0; i < count; ++i) {
+    if (!boxed(entities[i])) {
+      continue;
+    }
+    const Interval x = sweep.x_extent[i];
+    const Interval y = sweep.y_extent[i];
+    x0 = any ? std::min(x0, x.low) : x.low;
+    x1 = any ? std::max(x1, x.high) : x.high;
+    y0 = any ? std::min(y0, y.low) : y.low;
+    y1 = any ? std::max(y1, y.high) : y.high;
+    any = true;
+  }
+  const bool along_y = y1 - y0 > x1 - x0;
+  sweep.moved_mark.assign(count, 0);
+  for (const uint32_t i : moved) {
+    sweep.moved_mark[i] = 1;
+  }
+  std::vector<std::pair<uint32_t, uint32_t>> previous;
+  previous.swap(state.contacts.pairs);
+  auto& now = state.contacts.pairs;
+  for (const auto& pair : previous) {
+    if (sweep.moved_mark[pair.first] == 0 && sweep.moved_mark[pair.second] == 0) {
+      now.push_back(pair);
+    }
+  }
+  const auto item = [&](uint32_t i) {
+    return Item{sweep.x_extent[i].low,
+                sweep.x_extent[i].high,
+                sweep.y_extent[i].low,
+                sweep.y_extent[i].high,
+                i,
+                i};
+  };
+  for (const uint32_t m : moved) {
+    if (!boxed(entities[m])) {
+      continue;
+    }
+    const Item p = item(m);
+    for (uint32_t j = 0; j < count; ++j) {
+      // A pair of two moved boxes once, from the lower index.
+      if (j == m || !boxed(entities[j]) || (sweep.moved_mark[j] != 0 && j < m)) {
+        continue;
+      }
+      const Item q = item(j);
+      const bool p_first = sweep_order(p, q);
+      const Item& first = p_first ? p : q;
+      const Item& second = p_first ? q : p;
+      if (!(second.low <= first.high) || !y_near_finite(p, q)) {
+        continue;
+      }
+      // The sweep tests the pair from the earlier of the two along its axis.
+      const bool p_leads =
+          along_y ? (p.ylow < q.ylow || (p.ylow == q.ylow && p.index < q.index)) : p_first;
+      const bool touching =
+          p_leads ? overlap(boxes[p.box], boxes[q.box]) : overlap(boxes[q.box], boxes[p.box]);
+      if (touching) {
+        now.emplace_back(std::min(m, j), std::max(m, j));
+      }
+    }
+  }
+  std::sort(now.begin(), now.end());
+  record_new_contacts(state, now, previous);
+  return true;
+}
+
 }  // namespace
 
 void update_contacts(SimState& state, ContactSweep& sweep) {
   // Nothing moved, appeared or left: the contacts are those of the last update, and none is new.
-  if (contact_inputs_unchanged(state)) {
+  const bool same_entities = find_moved_boxes(state, sweep.moved);
+  if (sweep.moved.empty()) {
+    return;
+  }
+  if (same_entities && update_moved_contacts(state, sweep)) {
     return;
   }
   const auto& entities = state.world.entities;
@@ -144,7 +270,7 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
   sweep.y_extent.resize(entities.size());
   const auto make_boxes = [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      if (!entities[i].state.placed || entities[i].info.box.length <= 0.0 || entities[i].ghost) {
+      if (!boxed(entities[i])) {
         continue;
       }
       boxes[i] = box_of(entities[i].info.box, entities[i].state.pose);
@@ -160,7 +286,7 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
   bool finite = true;
   double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
   for (uint32_t i = 0; i < entities.size(); ++i) {
-    if (!entities[i].state.placed || entities[i].info.box.length <= 0.0 || entities[i].ghost) {
+    if (!boxed(entities[i])) {
       continue;
     }
     const Interval x = sweep.x_extent[i];
@@ -244,11 +370,8 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
   }
   // Entity order, independent of the sweep order; new contacts are recorded in that order.
   std::sort(now.begin(), now.end());
-  for (const auto& pair : now) {
-    if (!std::binary_search(previous.begin(), previous.end(), pair)) {
-      state.collisions.push_back({state.tick, state.now(), pair.first, pair.second});
-    }
-  }
+  record_new_contacts(state, now, previous);
+  sweep.complete = finite;
 }
 
 namespace {

@@ -27,6 +27,14 @@ struct ContactSweep {
   /// The boxes' extents along x and y at the last update, by entity (the boxes themselves are
   /// kept in ContactSet::boxes).
   std::vector<Interval> x_extent, y_extent;
+  /// Whether the pairs, boxes and extents of the last update are those of every entity then
+  /// (a sweep over finite extents, or an update of the moved boxes after one): the next update
+  /// may then test only the boxes that have moved since.
+  bool complete = false;
+  /// The entities whose boxes changed since the last update, and a mark per entity for them
+  /// (kept between updates for their storage).
+  std::vector<uint32_t> moved;
+  std::vector<uint8_t> moved_mark;
 };
 
 /// Recomputes which placed entities overlap now, and records the pairs that just started to.

@@ -177,6 +177,11 @@ void InitActions::step_actions(SimState& state) {
 }
 
 void InitActions::settle(SimState& state) {
+  // Mostly none has ended (a continuous action runs for the whole run): nothing to rebuild.
+  if (std::none_of(running_.begin(), running_.end(),
+                   [](const RunningInstance& instance) { return instance.action->done(); })) {
+    return;
+  }
   std::vector<RunningInstance> still;
   for (RunningInstance& instance : running_) {
     if (instance.action->done()) {

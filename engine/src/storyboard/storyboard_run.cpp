@@ -270,6 +270,16 @@ void Storyboard::step_actions(SimState& state) {
 }
 
 void Storyboard::settle(SimState& state) {
+  // Mostly no running action has every instance done (settle_action then changes nothing):
+  // no copy to make.
+  const auto settles = [](const ActionNode* action) {
+    return action->running &&
+           std::all_of(action->instances.begin(), action->instances.end(),
+                       [](const RunningInstance& instance) { return instance.action->done(); });
+  };
+  if (std::none_of(running_.begin(), running_.end(), settles)) {
+    return;
+  }
   // Copy: settling removes actions from running_ and may stop others.
   const std::vector<ActionNode*> running = running_;
   for (ActionNode* action : running) {

@@ -166,6 +166,13 @@ class Map {
   /// options.max_distance.
   std::optional<LanePosition> locate(double x, double y, const LocateOptions& options = {}) const;
 
+  /// A distance d (m, 0 <= d <= reach) such that locate has no answer at any point (x', y')
+  /// with |x' - x| <= d and |y' - y| <= d, for any options whose max_distance is at most
+  /// `max_distance`: no part of the index that such a query examines comes that near. 0 when
+  /// the point is that near a lane (or is not finite). What a query examines bounds the answer:
+  /// an off-road point that moves by less than d needs no search.
+  double clear_of_lanes(double x, double y, double max_distance, double reach) const;
+
   /// Lane connectivity (successors, predecessors, neighbours) across sections, roads, junctions.
   const LaneGraph& lane_graph() const;
 
