@@ -558,6 +558,66 @@ TEST_CASE("A path whose vertices state a heading says which way the car faces on
   CHECK(run.at(11.0, "Turned").pose.x == Approx(0.0).margin(1e-9));
 }
 
+TEST_CASE("With esmini's refpoint_x_offset the body trails the reference point along its path",
+          "[engine][trajectory][esmini]") {
+  engine::SimulationOptions options = with_duration(20.0);
+  options.dt = 0.1;
+  FixtureRun run(engine_fixture("refpoint_trail.xosc"), options);
+  run.run();
+  const auto angle_gap = [](double a, double b) {
+    return std::abs(std::remainder(a - b, 2.0 * std::numbers::pi));
+  };
+  SECTION("the rows of esmini's smoke test for follow_trajectory_by_front_axle") {
+    // test_refpoint_x_offset: time, x, y, h (esmini rounds to 3 decimals).
+    const double rows[][4] = {
+        {0.0, 10.000, -3.000, 6.056}, {0.1, 10.238, -2.857, 6.117}, {2.4, 15.717, 0.430, 0.446},
+        {2.5, 15.955, 0.573, 0.454},  {4.2, 20.004, 2.998, 0.520},  {4.3, 20.242, 2.855, 0.442},
+        {8.4, 29.993, -2.994, 5.771}, {8.5, 29.776, -2.821, 5.787}, {10.7, 25.004, 0.997, 0.619},
+        {10.8, 25.272, 1.027, 0.578}, {12.6, 30.247, 1.525, 0.197}, {12.7, 30.525, 1.525, 0.181},
+        {16.0, 39.691, 1.525, 0.010}};
+    for (const auto& row : rows) {
+      INFO("t = " << row[0]);
+      const engine::Pose& pose = run.at(row[0], "Front").pose;
+      CHECK(pose.x == Approx(row[1]).margin(0.001));
+      CHECK(pose.y == Approx(row[2]).margin(0.001));
+      CHECK(angle_gap(pose.h, row[3]) < 0.001);
+    }
+  }
+  SECTION("each step the axle 2.98 m behind moves straight toward the reference point") {
+    for (const char* name : {"Front", "Placed"}) {
+      INFO(name);
+      for (double t = 0.1; t < 17.95; t += 0.1) {
+        INFO("t = " << t);
+        const engine::Pose& before = run.at(t - 0.1, name).pose;
+        const engine::Pose& after = run.at(t, name).pose;
+        const double axle_x = before.x - 2.98 * std::cos(before.h);
+        const double axle_y = before.y - 2.98 * std::sin(before.h);
+        CHECK(angle_gap(after.h, std::atan2(after.y - axle_y, after.x - axle_x)) < 1e-9);
+      }
+    }
+  }
+  SECTION("the reference point keeps the path; a teleport gives the body its heading") {
+    CHECK(run.at(0.0, "Placed").pose.h == Approx(0.3).margin(1e-12));
+    for (const double t : {0.0, 4.3, 9.0, 16.0}) {
+      INFO("t = " << t);
+      CHECK(run.at(t, "Plain").pose.x == Approx(run.at(t, "Front").pose.x + 100.0).margin(1e-9));
+      CHECK(run.at(t, "Placed").pose.y == Approx(run.at(t, "Front").pose.y).margin(1e-9));
+    }
+    // Without the property the car faces the segment it drives (-0.540 rad on the second).
+    CHECK(run.at(4.3, "Plain").pose.h == Approx(-0.5404195).margin(1e-6));
+  }
+  SECTION("a value that is no number is ignored with a warning at the property") {
+    CHECK_THAT(all_text(run.diagnostics()),
+               Catch::Contains("refpoint_trail.xosc:66: warning: vehicle 'Bad': property "
+                               "refpoint_x_offset '2.98m' is no number >= 0"));
+    for (const double t : {0.0, 4.3, 9.0, 16.0}) {
+      INFO("t = " << t);
+      CHECK(run.at(t, "Bad").pose.h == run.at(t, "Plain").pose.h);
+      CHECK(run.at(t, "Bad").pose.x == Approx(run.at(t, "Plain").pose.x + 200.0).margin(1e-9));
+    }
+  }
+}
+
 TEST_CASE("ASAM TrailerConnect: the car reverses along the quarter circle facing forward",
           "[engine][asam][trajectory]") {
   FixtureRun run(asam("TrailerConnect.xosc"), with_duration(120.0));

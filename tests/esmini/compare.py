@@ -19,6 +19,12 @@ records the same). The smoke test asserts that a line with the row's values is i
 either of its times; so a row is compared with the closer of Corsa's rows of that time and entity
 when there are two. Rows are compared and counted alike, rewound or not.
 
+Newer esmini records a ghost's run before a restart as an object of its own, named `<ghost>_-1`
+(`_-2` for the run before the second restart, and so on; ids -1, -2, ...), and no longer rewinds
+time. Corsa records the ghost as one entity, the run before a restart as more rows of the ghost at
+those times. So a row of an entity `X_-N` that Corsa's trajectory does not name is compared with
+Corsa's rows of X at its time (the closer one when there are two), and marked "earlier run".
+
 usage: compare.py [--kit DIR] [--corsa BIN] [--extra "ARGS"] [--only NAME] [--rows]
                   [--check-kit] [-v]
 Python 3, standard library only.
@@ -206,6 +212,25 @@ def read_trajectory(path):
     return rows
 
 
+GHOST_RUN = re.compile(r'^(.+)_-([1-9][0-9]*)$')
+
+
+def rows_for(trajectory, time, name):
+    """Corsa's rows for an asserted row at `time` (s) of entity `name`, and whether they were found
+    under the ghost's name: esmini's `X_-N` (a ghost's run before its N-th last restart, an object
+    of its own in newer esmini) is X in Corsa's trajectory, which keeps one entity per ghost."""
+    key = round(time * 1e6)
+    candidates = trajectory.get((key, name))
+    if candidates is not None:
+        return candidates, False
+    match = GHOST_RUN.match(name)
+    if match:
+        candidates = trajectory.get((key, match.group(1)))
+        if candidates is not None:
+            return candidates, True
+    return None, False
+
+
 def heading_difference(a, b):
     d = math.fmod(a - b, 2 * math.pi)
     if d > math.pi:
@@ -258,7 +283,11 @@ def check_kit(kit):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    parser = argparse.ArgumentParser(
+        description=__doc__.split('\n')[0],
+        epilog="A row of esmini's `X_-N` (newer esmini's object for a ghost X's run before a "
+        "restart) is compared with Corsa's rows of X at its time when Corsa's trajectory names no "
+        "X_-N, and marked 'earlier run'.")
     parser.add_argument('--kit', default='/work/notes/esmini',
                         help="esmini's files at esmini's paths (default /work/notes/esmini)")
     parser.add_argument('--corsa', default=os.path.join(REPO, 'build', 'corsa'),
@@ -318,7 +347,7 @@ def main():
                 continue
             trajectory = read_trajectory(record)
             for r in run_rows:
-                candidates = trajectory.get((round(r.time * 1e6), r.name))
+                candidates, earlier_run = rows_for(trajectory, r.time, r.name)
                 got = None if candidates is None else min(
                     candidates, key=lambda c: math.hypot(c[0] - r.x, c[1] - r.y))
                 if got is None:
@@ -331,6 +360,8 @@ def main():
                 mark = 'ok' if d <= WITHIN_M else 'FAR'
                 if r.rewound:
                     mark += ' (rewound)'
+                if earlier_run:
+                    mark += ' (earlier run)'
                 print(f'   {r.time:8.3f} {r.name:12} d={d:8.3f} m  dh={dh:+.3f} rad  '
                       f'dv={dv:+8.3f} m/s  esmini ({r.x:.3f}, {r.y:.3f}) '
                       f'corsa ({got[0]:.3f}, {got[1]:.3f})  {mark}')

@@ -5,6 +5,7 @@
 #include "corsa/core/strings.h"
 #include "lanes/lane_follow.h"
 #include "motion/controller.h"
+#include "motion/refpoint_trail.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -50,6 +51,7 @@ void place_entity(SimState& state, Entity& entity, const ResolvedPosition& posit
                   const xosc::Source& source, bool require_on_map) {
   put_entity_at_position(state, entity, position, source, require_on_map);
   mark_jump(entity);
+  mark_refpoint_jump(state, entity);
 }
 
 void mark_jump(Entity& entity) {

@@ -11,6 +11,7 @@
 #include "corsa/xodr/parser.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/placement.h"
+#include "motion/refpoint_trail.h"
 #include "motion/route_lanes.h"
 #include "motion/trailers.h"
 #include "simulation/simulation_impl.h"
@@ -51,6 +52,7 @@ Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xod
   for (const auto& [name, value] : options.values) state.given_values[name] = value;
   detail::build_entities(state);
   detail::setup_ghost(state);
+  detail::read_refpoint_offsets(state);
   detail::assign_initial_controllers(state);
   detail::init_traffic(state);
   for (const xosc::ParameterDeclaration& p : scenario.parameters) {
@@ -62,6 +64,7 @@ Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xod
   for (const xosc::MonitorDeclaration& m : scenario.monitors) state.monitors[m.name] = m.value;
   storyboard = std::make_unique<detail::Storyboard>(state);
   init.run(state);
+  detail::trail_refpoints(state, 0.0);
   for (detail::Entity& entity : state.world.entities) {
     if (!entity.state.placed) {
       diagnostics.add(entity.object->source.warning(
@@ -94,6 +97,7 @@ void Simulation::Impl::advance() {
   detail::begin_commands(state);
   mover.move(state, motion);
   detail::end_commands(state);
+  detail::trail_refpoints(state, state.time.dt());
   detail::move_trailers(state, state.time.dt());
   if (state.straight_travel_wanted) {
     detail::sum_straight_travel(state);

@@ -102,6 +102,17 @@ struct ContactSet {
   }
 };
 
+/// Where a vehicle with esmini's `refpoint_x_offset` property keeps the axle its body turns
+/// about between steps (motion/refpoint_trail.h).
+struct RefpointTrail {
+  uint32_t entity = 0;  ///< index into world.entities
+  double length = 0.0;  ///< m from the turning axle forward to the reference point (> 0)
+  double axle_x = 0.0, axle_y = 0.0;  ///< the turning axle at the end of the last move (m)
+  double heading = 0.0;               ///< rad, the heading the last move left
+  /// Placed by a jump (TeleportAction, AddEntityAction): the heading given is the body's.
+  bool jumped = false;
+};
+
 struct SimState {
   SimState(const xosc::Scenario& scenario_in, std::shared_ptr<const xodr::Map> map_in,
            const SimulationOptions& options_in, Diagnostics& diagnostics_in)
@@ -156,6 +167,9 @@ struct SimState {
   /// Whether a trigger of the storyboard has a TraveledDistanceCondition, found when the
   /// storyboard is built: the step then keeps Entity::straight_travel.
   bool straight_travel_wanted = false;
+  /// The vehicles whose body trails their reference point (motion/refpoint_trail.h), in
+  /// entity order; empty for most scenarios.
+  std::vector<RefpointTrail> refpoint_trailing;
   /// The map's geographic -> map transform, made from options.geo_projection on the first
   /// GeoPosition (positions/geo_reference.h); a cache, hence mutable.
   mutable std::optional<GeographicToMap> geo_to_map;

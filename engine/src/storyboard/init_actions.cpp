@@ -6,6 +6,7 @@
 #include "controllers/follow_ghost.h"
 #include "corsa/xosc/scenario.h"
 #include "motion/placement.h"
+#include "motion/refpoint_trail.h"
 #include "motion/trailers.h"
 #include "positions/position_resolver.h"
 #include "positions/trajectory_path.h"
@@ -47,6 +48,9 @@ void place_on_trajectories(SimState& state) {
           position.road = locate_point(*state.map, start.x, start.y, 0.0);
         }
         place_entity(state, state.world.entities[entity], position, follow->source, true);
+        // esmini moves it there from the origin: a body trailing its reference point turns
+        // from where it waited (motion/refpoint_trail.h).
+        mark_refpoint_moved(state, state.world.entities[entity]);
       }
     }
   }
