@@ -912,10 +912,11 @@ TEST_CASE(
   const auto conversion = corsa::ngii::convert(b.layers, {}, diagnostics);
   CHECK(diagnostics.count(corsa::Severity::kWarning) == 0);
   // The lane's borders where it ends and the path's where it starts, as map points (left,
-  // right), and where each lies along the lane's end edge.
+  // right), and where each lies along the lane's end edge and across it.
   const auto borders_of = [&](const std::string& link, bool at_end) {
     for (const auto& road : conversion.map.roads) {
-      const auto& lanes = road.lane_sections.front().lanes;
+      // The lane section built_border_points reads at that end.
+      const auto& lanes = (at_end ? road.lane_sections.back() : road.lane_sections.front()).lanes;
       int index = 0;
       for (const auto& lane : lanes) {
         if (lane.id >= 0) {
@@ -938,10 +939,19 @@ TEST_CASE(
   const double width = corsa::norm(edge);
   const corsa::Vec2 along = edge * (1.0 / width);
   INFO("lane end " << width << " m wide; path from " << dot(path_left - lane_left, along) << " to "
-                   << dot(path_right - lane_left, along));
+                   << dot(path_right - lane_left, along) << " along it, "
+                   << cross(along, path_left - lane_left) << " / "
+                   << cross(along, path_right - lane_right) << " m across it");
   CHECK(width > 6.0);
   CHECK(std::abs(dot(path_left - lane_left, along)) < 0.05);
   CHECK(std::abs(dot(path_right - lane_right, along)) < 0.05);
+  // Across the edge the path's end centre lies on it; its borders lie about 0.12 m either side,
+  // as its end line is turned 2 degrees off the lane's (3.3 m x sin 2 degrees: the fit of the
+  // joined line, see above), not by the borders' move.
+  CHECK(std::abs(cross(along, (path_left + path_right) * 0.5 - (lane_left + lane_right) * 0.5)) <
+        0.05);
+  CHECK(std::abs(cross(along, path_left - lane_left)) < 0.15);
+  CHECK(std::abs(cross(along, path_right - lane_right)) < 0.15);
 }
 
 TEST_CASE(
