@@ -8,6 +8,7 @@
 
 #include "corsa/xodr/geometry.h"
 #include "lane_joints.h"
+#include "path_lane_ends.h"
 #include "reference_line.h"
 #include "sidewalks.h"
 #include "union_find.h"
@@ -155,8 +156,20 @@ class Assembler {
         }
       }
     }
-    paths_meet_lane_ends(end_lines, path_lines, built);
-    ordinary_ends_on_paths(end_lines, path_lines, end_of, used_lines, built);
+    paths_meet_lane_ends(
+        plan_, index_, end_lines, path_lines,
+        [&](size_t r, const EndBorders& targets) {
+          return build_road(plan_.roads[r], network_, origin_, widths_.lanes[r], path_lines[r],
+                            options_, targets);
+        },
+        built);
+    ordinary_ends_on_paths(
+        plan_, index_, end_lines, path_lines, end_of,
+        [&](size_t o, const RoadEndLines& lines) {
+          return build_road(plan_.roads[o], network_, origin_, widths_.lanes[o], lines, options_,
+                            joint_borders_[o]);
+        },
+        used_lines, built);
     for (size_t r = 0; r < total; ++r) {
       if (plan_.roads[r].removed) {
         continue;
@@ -203,7 +216,6 @@ class Assembler {
   /// that check fails: its own lines leave the wedge at the joint for no gain.
   RoadEndLines build_joined(size_t r, const RoadEndLines& joined, const RoadEndLines& own,
                             std::optional<BuiltRoad>& out) const {
-    constexpr double kPathEndError = 0.1;  // m: farthest a lane end may move off its link's
     RoadEndLines start_only = joined;
     start_only.end = own.end;
     start_only.end_shared = own.end_shared;
@@ -215,7 +227,7 @@ class Assembler {
     for (const RoadEndLines* lines :
          std::array<const RoadEndLines*, 3>{&joined, &start_only, &end_only}) {
       out = build_road(plan_.roads[r], network_, origin_, widths_.lanes[r], *lines, options_);
-      if (out->folds || out->kinks != 0 || out->end_error > kPathEndError) {
+      if (out->folds || out->kinks != 0 || out->end_error > kLaneEndMoveLimit) {
         continue;
       }
       if (!fitted_road_folds(out->road)) {
@@ -232,164 +244,6 @@ class Assembler {
       return *records_fold_lines;
     }
     return own;
-  }
-
-  /// A junction path on the joined road's line at an end (`offered`, `used`), the only lane
-  /// that ordinary lane leads into (or comes from), meets that lane edge to edge: where either
-  /// of its borders lies more than kShortOfLane inside the lane's end, it is built again with
-  /// its borders there moved onto the lane's (EndBorders, eased back over a metre or two).
-  /// The width a path takes from the lane (match_path_ends) is the lane's end width times the
-  /// cosine of the angle its link's first segment makes with the road's end heading, which the
-  /// road builder divides by the cosine of the angle the lane's direction makes with the bent
-  /// reference line at the end station (width_target), that direction a chord of the path's
-  /// own stretch of its smoothed line (LaneLines::direction_from). Where a path turns sharply
-  /// right after its first vertex the two still leave it narrower than the lane: K-City's path
-  /// 460 leaves road 322's 6.58 m lane end 50 degrees off by its first segment and started
-  /// 0.20 / 0.12 m inside the lane's borders (0.62 / 0.55 m while the chord reached into road
-  /// 322), a shoulder beside it on each side. Kept where the path neither folds, gains a kink
-  /// nor moves its lane's end more than 0.1 m off its link.
-  void paths_meet_lane_ends(const std::vector<RoadEndLines>& offered,
-                            const std::vector<RoadEndLines>& used,
-                            std::vector<std::optional<BuiltRoad>>& built) const {
-    constexpr double kShortOfLane = 0.1;   // m: a border inside the lane's end by more is moved
-    constexpr double kPathEndError = 0.1;  // m: farthest a lane end may move off its link's
-    for (size_t r = 0; r < plan_.roads.size(); ++r) {
-      const RoadPlan& path = plan_.roads[r];
-      if (path.removed || path.junction < 0 || path.absorbed || path.lanes.size() != 1 ||
-          !built[r]) {
-        continue;
-      }
-      EndBorders targets;
-      for (const bool at_end : {false, true}) {
-        const std::optional<EndLine>& given = at_end ? offered[r].end : offered[r].start;
-        const std::optional<EndLine>& on = at_end ? used[r].end : used[r].start;
-        if (!given || !on || norm(given->point - on->point) > 1e-9 ||
-            norm(given->across - on->across) > 1e-9) {
-          continue;  // on its own line, or never given one
-        }
-        const int key = at_end ? path.lanes[0].end_node : path.lanes[0].start_node;
-        if (key < 0) {
-          continue;
-        }
-        const auto& across = at_end ? index_.starting[static_cast<size_t>(key)]
-                                    : index_.ending[static_cast<size_t>(key)];
-        const auto& beside = at_end ? index_.ending[static_cast<size_t>(key)]
-                                    : index_.starting[static_cast<size_t>(key)];
-        if (across.size() != 1 || beside.size() != 1 ||
-            beside.front().road != static_cast<int>(r)) {
-          continue;
-        }
-        const size_t o = static_cast<size_t>(across.front().road);
-        const size_t k = static_cast<size_t>(across.front().lane);
-        const RoadPlan& road = plan_.roads[o];
-        if (road.removed || (road.junction >= 0 && !road.absorbed) || !built[o] ||
-            effective_end(road, k, at_end) != LaneEnd::kBeside) {
-          continue;
-        }
-        const std::vector<Vec2> lane = built_border_points(built[o]->road, !at_end);
-        const std::vector<Vec2> own = built_border_points(built[r]->road, at_end);
-        if (lane.size() < k + 2 || own.size() != 2) {
-          continue;
-        }
-        // Across the path's end, + left: how far each of its borders lies inside the lane's.
-        const Vec2 across_end = own[0] - own[1];
-        const double span = norm(across_end);
-        if (span <= 0.0) {
-          continue;
-        }
-        const Vec2 left = across_end * (1.0 / span);
-        const double inside_left = dot(lane[k] - own[0], left);
-        const double inside_right = dot(own[1] - lane[k + 1], left);
-        if (std::max(inside_left, inside_right) <= kShortOfLane) {
-          continue;
-        }
-        (at_end ? targets.end : targets.start) = {lane[k], lane[k + 1]};
-      }
-      if (targets.empty()) {
-        continue;
-      }
-      BuiltRoad again =
-          build_road(path, network_, origin_, widths_.lanes[r], used[r], options_, targets);
-      const BuiltRoad& before = *built[r];
-      if (!again.folds && again.kinks <= before.kinks &&
-          again.end_error <= std::max(kPathEndError, before.end_error) &&
-          (!fitted_road_folds(again.road) || fitted_road_folds(before.road))) {
-        built[r] = std::move(again);
-      }
-    }
-  }
-
-  /// Where a junction path keeps its own line at an end though it was given the joined road's
-  /// (`offered`, `used`: build_joined could not turn it onto that line within its length), the
-  /// ordinary road on the other side of the joint takes the path's line instead, bent to it at
-  /// its own end: the path and the road then meet edge to edge, where the path's square end
-  /// left a wedge on one side of the joint (K-City's start grid: a path 14 degrees off the
-  /// road it enters, 2.3 m of the road's start open). Only where the road has one lane there
-  /// beside the others and nothing but the path meets it there, and kept where the road neither
-  /// folds, gains a kink nor moves its lane's end off its link. The refit moves the road's other
-  /// end by a millimetre or so (the fit runs from the road's start, its end heading fitted),
-  /// where roads meeting it there were built on where it was: kept all the same, as the rebuild
-  /// closes a wedge of up to 0.75 m along the lane's edge at the path (K-City's road 187).
-  void ordinary_ends_on_paths(const std::vector<RoadEndLines>& offered,
-                              const std::vector<RoadEndLines>& used, const BuiltEndOf& end_of,
-                              std::vector<RoadEndLines>& lines,
-                              std::vector<std::optional<BuiltRoad>>& built) const {
-    constexpr double kRoadEndError = 0.1;  // m: farthest a lane end may move off its link's
-    const auto same = [](const std::optional<EndLine>& a, const std::optional<EndLine>& b) {
-      return a.has_value() == b.has_value() &&
-             (!a || (norm(a->point - b->point) < 1e-9 && norm(a->across - b->across) < 1e-9));
-    };
-    for (size_t r = 0; r < plan_.roads.size(); ++r) {
-      const RoadPlan& path = plan_.roads[r];
-      if (path.removed || path.junction < 0 || path.absorbed || path.lanes.size() != 1) {
-        continue;
-      }
-      for (const bool at_end : {false, true}) {
-        const std::optional<EndLine>& given = at_end ? offered[r].end : offered[r].start;
-        if (same(given, at_end ? used[r].end : used[r].start)) {
-          continue;  // on the joined line, or never given one
-        }
-        const int key = at_end ? path.lanes[0].end_node : path.lanes[0].start_node;
-        if (key < 0) {
-          continue;
-        }
-        const auto& across = at_end ? index_.starting[static_cast<size_t>(key)]
-                                    : index_.ending[static_cast<size_t>(key)];
-        const auto& beside = at_end ? index_.ending[static_cast<size_t>(key)]
-                                    : index_.starting[static_cast<size_t>(key)];
-        if (across.size() != 1 || beside.size() != 1 ||
-            beside.front().road != static_cast<int>(r)) {
-          continue;
-        }
-        const size_t o = static_cast<size_t>(across.front().road);
-        const RoadPlan& road = plan_.roads[o];
-        // The road's end at the joint: its start after the path's end, its end before its start.
-        const bool road_start = at_end;
-        if (road.removed || (road.junction >= 0 && !road.absorbed) || !built[o] ||
-            effective_end(road, static_cast<size_t>(across.front().lane), road_start) !=
-                LaneEnd::kBeside ||
-            lanes_beside(road, road_start) != 1) {
-          continue;
-        }
-        const auto end = end_of(r, at_end);
-        if (!end) {
-          continue;
-        }
-        RoadEndLines moved = lines[o];
-        (road_start ? moved.start : moved.end) =
-            EndLine{end->point, Vec2{-std::sin(end->heading), std::cos(end->heading)}};
-        (road_start ? moved.start_shared : moved.end_shared) = true;
-        BuiltRoad again = build_road(road, network_, origin_, widths_.lanes[o], moved, options_,
-                                     joint_borders_[o]);
-        const BuiltRoad& before = *built[o];
-        if (!again.folds && again.kinks <= before.kinks &&
-            again.end_error <= std::max(kRoadEndError, before.end_error) &&
-            (!fitted_road_folds(again.road) || fitted_road_folds(before.road))) {
-          built[o] = std::move(again);
-          lines[o] = moved;
-        }
-      }
-    }
   }
 
   /// Ordinary lanes joined end to start meet edge to edge (lane_joints.h): each ordinary road

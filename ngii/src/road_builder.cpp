@@ -236,10 +236,7 @@ double end_border_ease(double x) {
 /// eases the move out over the stations within reach of that end: the laneOffset and widths
 /// fitted to them then meet the joined lanes' borders at the end with zero slope there.
 void meet_end_borders(const Stations& st, const EndBorders& targets, Borders& borders) {
-  constexpr double kMinMove = 0.01;     // m: smaller moves are left alone
-  constexpr double kMinRamp = 1.5;      // m
-  constexpr double kRampPerMove = 3.0;  // m of ramp per metre moved (slant at most 0.5)
-  constexpr double kRampShare = 0.45;   // of the road's length, at most, per end
+  constexpr double kMinMove = 0.01;  // m: smaller moves are left alone
   const size_t n = st.s.size();
   if (n < 2) {
     return;
@@ -265,7 +262,7 @@ void meet_end_borders(const Stations& st, const EndBorders& targets, Borders& bo
     if (largest < kMinMove) {
       continue;
     }
-    const double ramp = std::min(std::max(kMinRamp, kRampPerMove * largest), kRampShare * length);
+    const double ramp = end_border_ramp(largest, length);
     for (size_t i = 0; i < n; ++i) {
       const double f = end_border_ease((at_end ? length - st.s[i] : st.s[i]) / ramp);
       if (f == 0.0) {
@@ -563,6 +560,13 @@ BuiltRoad build_road(const RoadPlan& plan, const Network& network, const Origin&
     }
   }
   return built;
+}
+
+double end_border_ramp(double largest_move, double road_length) {
+  constexpr double kMinRamp = 1.5;      // m
+  constexpr double kRampPerMove = 3.0;  // m of ramp per metre moved (slant at most 0.5)
+  constexpr double kRampShare = 0.45;   // of the road's length, at most, per end
+  return std::min(std::max(kMinRamp, kRampPerMove * largest_move), kRampShare * road_length);
 }
 
 }  // namespace corsa::ngii::detail

@@ -57,6 +57,11 @@ struct EndBorders {
   bool empty() const { return start.empty() && end.empty(); }
 };
 
+/// m over which a move of an end's borders by `largest_move` (m, the largest of its borders')
+/// is eased back along a road `road_length` long (EndBorders: a smoothstep, whose steepest
+/// slant is 1.5 times the move over this).
+double end_border_ramp(double largest_move, double road_length);
+
 /// `widths`: the plan lanes' measured widths (lane_widths.h), one per lane; `ends`: the lines
 /// the road starts and ends on (end_lines.h); `borders`: where its lane borders are to lie at
 /// its ends.

@@ -17,6 +17,7 @@
 #include "lane_joints.h"
 #include "mouth_fills.h"
 #include "mouth_gaps.h"
+#include "path_lane_ends.h"
 #include "reference_line.h"
 #include "synthetic_layers.h"
 
@@ -911,10 +912,11 @@ TEST_CASE(
   const auto conversion = corsa::ngii::convert(b.layers, {}, diagnostics);
   CHECK(diagnostics.count(corsa::Severity::kWarning) == 0);
   // The lane's borders where it ends and the path's where it starts, as map points (left,
-  // right), and where each lies along the lane's end edge.
+  // right), and where each lies along the lane's end edge and across it.
   const auto borders_of = [&](const std::string& link, bool at_end) {
     for (const auto& road : conversion.map.roads) {
-      const auto& lanes = road.lane_sections.front().lanes;
+      // The lane section built_border_points reads at that end.
+      const auto& lanes = (at_end ? road.lane_sections.back() : road.lane_sections.front()).lanes;
       int index = 0;
       for (const auto& lane : lanes) {
         if (lane.id >= 0) {
@@ -937,10 +939,59 @@ TEST_CASE(
   const double width = corsa::norm(edge);
   const corsa::Vec2 along = edge * (1.0 / width);
   INFO("lane end " << width << " m wide; path from " << dot(path_left - lane_left, along) << " to "
-                   << dot(path_right - lane_left, along));
+                   << dot(path_right - lane_left, along) << " along it, "
+                   << cross(along, path_left - lane_left) << " / "
+                   << cross(along, path_right - lane_right) << " m across it");
   CHECK(width > 6.0);
   CHECK(std::abs(dot(path_left - lane_left, along)) < 0.05);
   CHECK(std::abs(dot(path_right - lane_right, along)) < 0.05);
+  // Across the edge the path's end centre lies on it; its borders lie about 0.12 m either side,
+  // as its end line is turned 2 degrees off the lane's (3.3 m x sin 2 degrees: the fit of the
+  // joined line, see above), not by the borders' move.
+  CHECK(std::abs(cross(along, (path_left + path_right) * 0.5 - (lane_left + lane_right) * 0.5)) <
+        0.05);
+  CHECK(std::abs(cross(along, path_left - lane_left)) < 0.15);
+  CHECK(std::abs(cross(along, path_right - lane_right)) < 0.15);
+}
+
+TEST_CASE(
+    "a junction path far narrower than a flared lane end moves each border at most a metre "
+    "towards the lane's",
+    "[ngii][mouths]") {
+  using corsa::Vec2;
+  using corsa::ngii::detail::path_end_shortfall;
+  using corsa::ngii::detail::path_end_targets;
+  // A lane ending 9 m wide across x = 0 (flared where lanes split off), a path 3 m wide
+  // starting 5 cm beyond it: each border lies 3 m inside the lane's.
+  const Vec2 lane_left{0.0, 4.5}, lane_right{0.0, -4.5};
+  const Vec2 path_left{0.05, 1.5}, path_right{0.05, -1.5};
+  const auto before = path_end_shortfall(lane_left, lane_right, path_left, path_right);
+  REQUIRE(before);
+  CHECK(before->left == Approx(3.0));
+  CHECK(before->right == Approx(3.0));
+  SECTION("a long path keeps about its own width: a metre more a side") {
+    const auto to = path_end_targets(lane_left, lane_right, path_left, path_right, 20.0);
+    CHECK(norm(to.left - path_left) == Approx(1.0));
+    CHECK(norm(to.right - path_right) == Approx(1.0));
+    const auto after = path_end_shortfall(lane_left, lane_right, to.left, to.right);
+    REQUIRE(after);
+    CHECK(after->left == Approx(2.0).margin(0.01));
+    CHECK(after->right == Approx(2.0).margin(0.01));
+  }
+  SECTION("a path a metre long moves no further than its ease slants at 2 m per metre") {
+    const double length = 1.0;
+    const auto to = path_end_targets(lane_left, lane_right, path_left, path_right, length);
+    const double moved = norm(to.left - path_left);
+    CHECK(moved < 1.0);
+    // A smoothstep's steepest slant: 1.5 times the move over the ease.
+    CHECK(1.5 * moved / corsa::ngii::detail::end_border_ramp(moved, length) <= 2.0 + 1e-9);
+  }
+  SECTION("a border a few decimetres short moves onto the lane's") {
+    const Vec2 near_left{0.05, 4.3}, near_right{0.05, -4.2};
+    const auto to = path_end_targets(lane_left, lane_right, near_left, near_right, 20.0);
+    CHECK(norm(to.left - lane_left) < 1e-12);
+    CHECK(norm(to.right - lane_right) < 1e-12);
+  }
 }
 
 namespace {
