@@ -109,16 +109,20 @@ void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMe
   constexpr double kMaxGroundCells = 1 << 25;  // 4 m cells: about 23 km x 23 km, 570 MB
   constexpr double kGroundCell = 4.0, kGroundMargin = 200.0;  // as world_ground.cpp
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  std::vector<Diagnostic> refused;  // every road too high or too low, in one pass
+  std::vector<char> road_refused(map.road_count(), 0);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (const uint32_t v : mesh.triangles[t]) {
       const xodr::Vec3& p = mesh.vertices[v];
-      if (std::abs(p.z - origin.z) > kMaxHeight) {
-        const xodr::Road& road = map.road(mesh.info[t].road_index);
-        throw InputError(make_error(map.data().source_file, road.line,
-                                    "road '" + clip(road.id) +
-                                        "': its surface reaches z = " + sensor_world_number(p.z) +
-                                        " m; sensors trace at most 1e6 m above or below the "
-                                        "map (elevation or lane heights too large)"));
+      const uint32_t index = mesh.info[t].road_index;
+      if (std::abs(p.z - origin.z) > kMaxHeight && road_refused[index] == 0) {
+        road_refused[index] = 1;
+        const xodr::Road& road = map.road(index);
+        refused.push_back(make_error(map.data().source_file, road.line,
+                                     "road '" + clip(road.id) +
+                                         "': its surface reaches z = " + sensor_world_number(p.z) +
+                                         " m; sensors trace at most 1e6 m above or below the "
+                                         "map (elevation or lane heights too large)"));
       }
       x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x),
       y1 = std::max(y1, p.y);
@@ -127,6 +131,9 @@ void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMe
   const double cells = ((x1 - x0 + 2 * kGroundMargin) / kGroundCell + 1) *
                        ((y1 - y0 + 2 * kGroundMargin) / kGroundCell + 1);
   if (mesh.triangles.empty() || cells <= kMaxGroundCells) {
+    if (!refused.empty()) {
+      throw InputError(std::move(refused));
+    }
     return;
   }
   // Named at the road farthest from the middle of the extent: the one that stretches it.
@@ -144,12 +151,13 @@ void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMe
     }
   }
   const xodr::Road& road = map.road(road_index);
-  throw InputError(make_error(
+  refused.push_back(make_error(
       map.data().source_file, road.line,
       "road '" + clip(road.id) + "': the road surfaces span " + sensor_world_number(x1 - x0) +
           " m x " + sensor_world_number(y1 - y0) +
           " m, more than a sensor world's ground holds (4 m cells, at most 33,554,432 of them: "
           "about 23 km x 23 km)"));
+  throw InputError(std::move(refused));
 }
 
 /// The centre of the map in its geoReference's CRS: OpenDRIVE's header <offset> moves the file's

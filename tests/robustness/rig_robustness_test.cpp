@@ -77,13 +77,14 @@ TEST_CASE("A rig of more maximal sensors than one run can hold is rejected at th
   CHECK(entry_names(dir.path()) == std::set<std::string>{"rig.xml"});
 }
 
-TEST_CASE("A map whose surface a sensor world cannot hold is refused at its road under --rig",
+TEST_CASE("A map whose surface or objects a sensor world cannot hold is refused at their lines",
           "[robustness][rig]") {
   // Found by tests/robustness/campaign.py. Each map loads, validates and meshes (its numbers are
   // finite), but Embree traces in single precision and the ground is a grid of 4 m cells over the
   // roads: the elevation of slope 1e300 aborted in Embree's ray assertion (SIGABRT, a stale
   // .corsa.lock left), the lane 1e206 m wide ended in "cannot create std::vector larger than
-  // max_size()" (exit 3), the roads 1e12 m apart the same.
+  // max_size()" (exit 3), the roads 1e12 m apart the same; objects 1e17 and 1e300 m long ran out
+  // of memory (exit 3).
   const auto corpus = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/robustness/corpus";
   struct Case {
     const char* map;
@@ -94,6 +95,13 @@ TEST_CASE("A map whose surface a sensor world cannot hold is refused at its road
        ":7: error: road '1': its surface reaches z = 1e+302 m; sensors trace at most 1e6 m"},
       {"ok_lane_width_1e206.xodr", ":7: error: road '1': the road surfaces span 100 m x 1e+206 m"},
       {"ok_roads_1e12_apart.xodr", ":6: error: road '1': the road surfaces span 1e+12 m x 3.5 m"},
+      // Every object no road can hold, in one pass (the fourth object is a normal crosswalk).
+      {"ok_objects_longer_than_any_road.xodr",
+       ":28: error: object '9': its box is 1e+17 m long; no road holds an object longer than "
+       "1,000 km"},
+      {"ok_objects_longer_than_any_road.xodr",
+       ":29: error: object '10': a repeat is 1e+300 m long"},
+      {"ok_objects_longer_than_any_road.xodr", ":33: error: object '11': its outline is 1e+300 m"},
   };
   for (const Case& c : cases) {
     TempDir dir;
