@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -91,6 +92,74 @@ sensors::Vec3 map_centre(const xodr::Map* map) {
 
 namespace {
 
+/// `value` with four significant digits, for a message about magnitudes.
+std::string sensor_world_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
+/// Refuses a road surface the sensor world cannot hold, at the road's line: Embree traces in
+/// single precision around the scene's origin (a surface 2e303 m up, from an elevation of slope
+/// 1e300, failed its ray assertion and aborted), and the ground is a height field of 4 m cells
+/// over the roads' extent (a lane 1e206 m wide asked for a vector beyond max_size(), exit 3).
+void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMesh& mesh,
+                                        const sensors::Vec3& origin) {
+  constexpr double kMaxHeight = 1e6;           // m from the origin, up or down
+  constexpr double kMaxGroundCells = 1 << 25;  // 4 m cells: about 23 km x 23 km, 570 MB
+  constexpr double kGroundCell = 4.0, kGroundMargin = 200.0;  // as world_ground.cpp
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  std::vector<Diagnostic> refused;  // every road too high or too low, in one pass
+  std::vector<char> road_refused(map.road_count(), 0);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (const uint32_t v : mesh.triangles[t]) {
+      const xodr::Vec3& p = mesh.vertices[v];
+      const uint32_t index = mesh.info[t].road_index;
+      if (std::abs(p.z - origin.z) > kMaxHeight && road_refused[index] == 0) {
+        road_refused[index] = 1;
+        const xodr::Road& road = map.road(index);
+        refused.push_back(make_error(map.data().source_file, road.line,
+                                     "road '" + clip(road.id) +
+                                         "': its surface reaches z = " + sensor_world_number(p.z) +
+                                         " m; sensors trace at most 1e6 m above or below the "
+                                         "map (elevation or lane heights too large)"));
+      }
+      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x),
+      y1 = std::max(y1, p.y);
+    }
+  }
+  const double cells = ((x1 - x0 + 2 * kGroundMargin) / kGroundCell + 1) *
+                       ((y1 - y0 + 2 * kGroundMargin) / kGroundCell + 1);
+  if (mesh.triangles.empty() || cells <= kMaxGroundCells) {
+    if (!refused.empty()) {
+      throw InputError(std::move(refused));
+    }
+    return;
+  }
+  // Named at the road farthest from the middle of the extent: the one that stretches it.
+  const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
+  double farthest = -1.0;
+  uint32_t road_index = 0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (const uint32_t v : mesh.triangles[t]) {
+      const double d =
+          std::max(std::abs(mesh.vertices[v].x - cx), std::abs(mesh.vertices[v].y - cy));
+      if (d > farthest) {
+        farthest = d;
+        road_index = mesh.info[t].road_index;
+      }
+    }
+  }
+  const xodr::Road& road = map.road(road_index);
+  refused.push_back(make_error(
+      map.data().source_file, road.line,
+      "road '" + clip(road.id) + "': the road surfaces span " + sensor_world_number(x1 - x0) +
+          " m x " + sensor_world_number(y1 - y0) +
+          " m, more than a sensor world's ground holds (4 m cells, at most 33,554,432 of them: "
+          "about 23 km x 23 km)"));
+  throw InputError(std::move(refused));
+}
+
 /// The centre of the map in its geoReference's CRS: OpenDRIVE's header <offset> moves the file's
 /// coordinates there (x_geo = offset + R(hdg) x_file, §2.6); a converted NGII map keeps its
 /// coordinates small and the UTM origin in the offset, so without it the map lands far away.
@@ -146,7 +215,9 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
   scene->set_entity_shape_source(std::make_shared<sensors::ModelShapeSource>(
       simulation.scenario().path.parent_path(), diagnostics, rig.entity_models, rig.file));
   if (map != nullptr) {
-    scene->add_road_mesh(xodr::build_road_mesh(*map, xodr::MeshOptions{}, diagnostics));
+    xodr::RoadMesh road_mesh = xodr::build_road_mesh(*map, xodr::MeshOptions{}, diagnostics);
+    refuse_surface_beyond_sensor_world(*map, road_mesh, map_centre(map));
+    scene->add_road_mesh(road_mesh);
   }
   const xosc::RoadNetwork& network = simulation.scenario().road_network;
   if (network.scene_graph_file && !network.scene_graph_file_path.empty()) {

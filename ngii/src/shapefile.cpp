@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -107,6 +108,13 @@ const char* family_name(ShapeFamily family) {
   return family == ShapeFamily::kPoint     ? "Point/PointZ (1/11)"
          : family == ShapeFamily::kPolygon ? "Polygon/PolygonZ (5/15)"
                                            : "PolyLine/PolyLineZ (3/13)";
+}
+
+// A coordinate as a message quotes it (ten significant digits, any magnitude).
+std::string shape_coordinate_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", value);
+  return text;
 }
 
 uint32_t big_endian(const unsigned char* p) {
@@ -237,6 +245,23 @@ bool ShapeReader::read(int index, std::vector<Point3>& points, int& parts) const
       fail(file_, index,
            "corrupt shape record: vertex " + std::to_string(i) +
                " has a coordinate that is not a finite number");
+    }
+    // ESRI Shapefile Technical Description: a multi-vertex record starts with the box of its
+    // points (and its Z range). A vertex outside it is a damaged coordinate (one flipped byte
+    // turned 4124484 into 6e290, and the road fit then ran for ever), never real data.
+    const auto outside = [](double value, double low, double high) {
+      const double slack = 1e-3 + 1e-9 * std::max(std::abs(low), std::abs(high));
+      return value < low - slack || value > high + slack;
+    };
+    if (object->nSHPType != SHPT_POINT && object->nSHPType != SHPT_POINTZ &&
+        (outside(object->padfX[i], object->dfXMin, object->dfXMax) ||
+         outside(object->padfY[i], object->dfYMin, object->dfYMax) ||
+         (has_z_ && object->padfZ != nullptr && outside(z, object->dfZMin, object->dfZMax)))) {
+      fail(file_, index,
+           "corrupt shape record: vertex " + std::to_string(i) + " (" +
+               shape_coordinate_text(object->padfX[i]) + ", " +
+               shape_coordinate_text(object->padfY[i]) + ", " + shape_coordinate_text(z) +
+               ") lies outside the record's bounding box");
     }
     points[static_cast<size_t>(i)] = Point3{object->padfX[i], object->padfY[i], z};
   }

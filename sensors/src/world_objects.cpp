@@ -12,8 +12,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+#include <optional>
 
+#include "corsa/core/diagnostic.h"
 #include "corsa/core/strings.h"
 #include "road_symbols.h"
 #include "scalar_math.h"
@@ -198,16 +201,52 @@ void dash_line(MeshBuilder& b, const std::vector<Vec3>& line, double dash, doubl
   }
 }
 
+/// The error for an object `size` metres long (a repeat's length, an outline's or box's extent)
+/// that no road holds, or none: crosswalk stripes every metre and stretched repeats every 10 m
+/// were laid out along it (a crosswalk or repeat 1e17 m long ran out of memory, exit 3). Longer
+/// than the longest road OpenDRIVE input may have (1,000 km) is an error at the object.
+std::optional<Diagnostic> object_beyond_sensor_world(const std::string& file, const xodr::Object& o,
+                                                     const char* what, double size) {
+  constexpr double kMaxObjectSize = 1e6;
+  if (size <= kMaxObjectSize) {
+    return std::nullopt;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", size);
+  return make_error(file, o.line,
+                    "object '" + clip(o.id) + "': " + what + " is " + text +
+                        " m long; no road holds an object longer than 1,000 km");
+}
+
 }  // namespace
 
 void build_objects(WorldBuild& w) {
   const xodr::Map& map = w.map;
   const std::string& file = map.data().source_file;
+  std::vector<Diagnostic> refused;
   for (size_t r = 0; r < map.road_count(); ++r) {
     const xodr::Road& road = map.road(r);
     for (const xodr::Object& o : road.objects) {
       const std::string type = to_lower(o.type);
       const std::string name = o.name;
+      std::optional<Diagnostic> oversized;
+      for (const xodr::ObjectRepeat& rep : o.repeats) {
+        oversized =
+            oversized ? oversized : object_beyond_sensor_world(file, o, "a repeat", rep.length);
+      }
+      if (!oversized && !o.outlines.empty()) {
+        const std::vector<Vec3> outline = outline_points(
+            map, r, o.outlines.front(), object_frame(map, r, o.s, o.t, o.z_offset, o.hdg));
+        double x0, x1, y0, y1;
+        object_extent(o, outline, x0, x1, y0, y1);
+        oversized = object_beyond_sensor_world(file, o, "its outline", std::max(x1 - x0, y1 - y0));
+      } else if (!oversized) {
+        oversized = object_beyond_sensor_world(file, o, "its box", std::max(o.length, o.width));
+      }
+      if (oversized) {
+        refused.push_back(*oversized);  // every such object named in one pass
+        continue;
+      }
       std::vector<Rigid> frames;
       std::vector<double> lengths;  // stretched repeats: the length along the road
       object_frames(map, r, o, frames, lengths);
@@ -406,6 +445,9 @@ void build_objects(WorldBuild& w) {
         }
       }
     }
+  }
+  if (!refused.empty()) {
+    throw InputError(std::move(refused));
   }
 }
 

@@ -108,5 +108,27 @@ TEST_CASE("A .prj that PROJ cannot understand is named with PROJ's reason in wor
   }
 }
 
+TEST_CASE("A vertex outside its record's bounding box is a damaged record, refused at once",
+          "[robustness][ngii]") {
+  // Found by tests/robustness/campaign.py: one byte of K-City's A2_LINK.shp changed (record 175,
+  // vertex 108, y 4124484 -> 6.1e290). The coordinate is finite, so the record was read, and the
+  // road fit then evaluated clothoids along a 1e290 m line until the time limit.
+  const std::string shp = slurp(kKCity / "A2_LINK.shp");
+  constexpr size_t kByte = 423771;  // the highest byte of that y but one
+  REQUIRE(shp.size() > kByte);
+  REQUIRE(static_cast<unsigned char>(shp[kByte]) == 0x41);
+  std::string broken = shp;
+  broken[kByte] = static_cast<char>(0x7c);
+  TempDir dir;
+  const fs::path layers = broken_copy(dir, "A2_LINK.shp", broken);
+  const BoundedResult result =
+      check_conversion_rejected("A2_LINK.shp vertex 6e290", dir, layers, "A2_LINK.shp");
+  INFO(result.err);
+  CHECK(result.seconds < 10);
+  CHECK(result.err.find("A2_LINK.shp: record 174: error: corrupt shape record: vertex 108 "
+                        "(302269.305, 6.133177876e+290, 28.31200027) lies outside the record's "
+                        "bounding box") != std::string::npos);
+}
+
 }  // namespace
 }  // namespace corsa::test

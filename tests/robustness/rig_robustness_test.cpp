@@ -77,5 +77,67 @@ TEST_CASE("A rig of more maximal sensors than one run can hold is rejected at th
   CHECK(entry_names(dir.path()) == std::set<std::string>{"rig.xml"});
 }
 
+TEST_CASE("A map whose surface or objects a sensor world cannot hold is refused at their lines",
+          "[robustness][rig]") {
+  // Found by tests/robustness/campaign.py. Each map loads, validates and meshes (its numbers are
+  // finite), but Embree traces in single precision and the ground is a grid of 4 m cells over the
+  // roads: the elevation of slope 1e300 aborted in Embree's ray assertion (SIGABRT, a stale
+  // .corsa.lock left), the lane 1e206 m wide ended in "cannot create std::vector larger than
+  // max_size()" (exit 3), the roads 1e12 m apart the same; objects 1e17 and 1e300 m long ran out
+  // of memory (exit 3).
+  const auto corpus = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/robustness/corpus";
+  struct Case {
+    const char* map;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"ok_elevation_slope_1e300.xodr",
+       ":7: error: road '1': its surface reaches z = 1e+302 m; sensors trace at most 1e6 m"},
+      {"ok_lane_width_1e206.xodr", ":7: error: road '1': the road surfaces span 100 m x 1e+206 m"},
+      {"ok_roads_1e12_apart.xodr", ":6: error: road '1': the road surfaces span 1e+12 m x 3.5 m"},
+      // Every object no road can hold, in one pass (the fourth object is a normal crosswalk).
+      {"ok_objects_longer_than_any_road.xodr",
+       ":28: error: object '9': its box is 1e+17 m long; no road holds an object longer than "
+       "1,000 km"},
+      {"ok_objects_longer_than_any_road.xodr",
+       ":29: error: object '10': a repeat is 1e+300 m long"},
+      {"ok_objects_longer_than_any_road.xodr", ":33: error: object '11': its outline is 1e+300 m"},
+  };
+  for (const Case& c : cases) {
+    TempDir dir;
+    std::ofstream(dir.path() / "drive.xosc")
+        << "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n"
+           "  <FileHeader revMajor=\"1\" revMinor=\"3\" date=\"2026-01-01T00:00:00\" "
+           "description=\"\" author=\"\"/>\n"
+           "  <ParameterDeclarations/><CatalogLocations/>\n"
+           "  <RoadNetwork><LogicFile filepath=\""
+        << (corpus / c.map).string()
+        << "\"/></RoadNetwork>\n"
+           "  <Entities><ScenarioObject name=\"Ego\"><Vehicle name=\"car\" "
+           "vehicleCategory=\"car\"><Performance maxSpeed=\"50\" maxAcceleration=\"5\" "
+           "maxDeceleration=\"9\"/><BoundingBox><Center x=\"1.4\" y=\"0\" z=\"0.8\"/><Dimensions "
+           "width=\"1.8\" length=\"4.5\" height=\"1.5\"/></BoundingBox><Axles><FrontAxle "
+           "maxSteering=\"0.5\" wheelDiameter=\"0.6\" trackWidth=\"1.6\" positionX=\"2.8\" "
+           "positionZ=\"0.3\"/><RearAxle maxSteering=\"0\" wheelDiameter=\"0.6\" "
+           "trackWidth=\"1.6\" positionX=\"0\" positionZ=\"0.3\"/></Axles><Properties/>"
+           "</Vehicle></ScenarioObject></Entities>\n"
+           "  <Storyboard><Init><Actions><Private entityRef=\"Ego\"><PrivateAction>"
+           "<TeleportAction><Position><LanePosition roadId=\"1\" laneId=\"-1\" s=\"10\"/>"
+           "</Position></TeleportAction></PrivateAction></Private></Actions></Init>"
+           "<StopTrigger/></Storyboard>\n</OpenSCENARIO>\n";
+    const BoundedResult result =
+        run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
+                     "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
+                     (dir.path() / "dataset").string()});
+    INFO(describe(c.map, result));
+    CHECK_FALSE(result.timed_out);
+    CHECK(result.exit_code == 2);
+    std::string expected = c.map;
+    expected += c.message;
+    CHECK(result.err.find(expected) != std::string::npos);
+    CHECK(entry_names(dir.path()) == std::set<std::string>{"drive.xosc"});
+  }
+}
+
 }  // namespace
 }  // namespace corsa::test

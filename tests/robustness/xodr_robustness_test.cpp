@@ -187,6 +187,31 @@ TEST_CASE("The valid maps of the corpus mesh in time, every OBJ vertex with thre
   }
 }
 
+TEST_CASE("map holes and map render end in time on every valid map of the corpus",
+          "[robustness][xodr]") {
+  // Found by tests/robustness/campaign.py: `map holes` on ok_lane_width_1e20.xodr and
+  // ok_lane_width_1e206.xodr never ended (each lane triangle was sorted into every 16 m bin it
+  // covers: 1e36 of them).
+  const auto corpus = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/robustness/corpus";
+  for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".xodr" || !name.starts_with("ok_")) {
+      continue;
+    }
+    TempDir out;
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"map", "holes", entry.path().string(), "--list"},
+          std::vector<std::string>{"map", "render", entry.path().string(), "-o",
+                                   (out.path() / "map.png").string(), "--size", "128"}}) {
+      const BoundedResult result = run_bounded(args);
+      INFO(describe(args[1] + " " + name, result));
+      CHECK_FALSE(result.timed_out);
+      CHECK(result.exit_code == 0);
+      CHECK(result.seconds < 10);
+    }
+  }
+}
+
 TEST_CASE("A road surface beyond the range of doubles is refused at its road, with no mesh",
           "[robustness][xodr]") {
   // Two lanes 1.7e308 m wide: their outer border is infinite.

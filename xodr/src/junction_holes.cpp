@@ -52,7 +52,12 @@ class TriangleBins {
       if (mesh.info[i].kind != SurfaceKind::kLane) {
         continue;
       }
+      lanes_.push_back(i);
       const auto [lo, hi] = bounds(i);
+      if (!binnable(lo, hi)) {
+        unbinned_.push_back(i);
+        continue;
+      }
       for (int64_t bx = bin(lo.x); bx <= bin(hi.x); ++bx) {
         for (int64_t by = bin(lo.y); by <= bin(hi.y); ++by) {
           bins_[{bx, by}].push_back(i);
@@ -63,7 +68,10 @@ class TriangleBins {
 
   /// Lane triangles whose bins overlap the box, each once, in index order.
   std::vector<uint32_t> near(Vec2d lo, Vec2d hi) const {
-    std::vector<uint32_t> found;
+    if (!binnable(lo, hi)) {
+      return lanes_;
+    }
+    std::vector<uint32_t> found = unbinned_;
     for (int64_t bx = bin(lo.x); bx <= bin(hi.x); ++bx) {
       for (int64_t by = bin(lo.y); by <= bin(hi.y); ++by) {
         if (const auto it = bins_.find({bx, by}); it != bins_.end()) {
@@ -87,9 +95,19 @@ class TriangleBins {
 
  private:
   static int64_t bin(double v) { return static_cast<int64_t>(std::floor(v / kBinSize)); }
+  /// A box of at most 4096 bins a side within 1e15 m of the origin: binned. A triangle beyond
+  /// (a lane 1e20 m wide, valid numbers) went into 1e36 bins, and `map holes` never ended; such
+  /// triangles are kept aside and offered to every query instead.
+  static bool binnable(Vec2d lo, Vec2d hi) {
+    constexpr double kFar = 1e15, kMaxSpan = 4096 * kBinSize;
+    return std::abs(lo.x) < kFar && std::abs(lo.y) < kFar && std::abs(hi.x) < kFar &&
+           std::abs(hi.y) < kFar && hi.x - lo.x < kMaxSpan && hi.y - lo.y < kMaxSpan;
+  }
 
   const RoadMesh& mesh_;
   std::map<std::pair<int64_t, int64_t>, std::vector<uint32_t>> bins_;
+  std::vector<uint32_t> unbinned_;  ///< lane triangles too large or too far to bin
+  std::vector<uint32_t> lanes_;     ///< every lane triangle, in index order
 };
 
 /// The junction's area sampled on cells: who covers each cell, the top of its own roads there,
