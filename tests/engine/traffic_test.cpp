@@ -64,6 +64,45 @@ TEST_CASE("Traffic signal controllers cycle through their phases; signal conditi
   CHECK(run.now("Ego").speed == Approx(0.0));
 }
 
+TEST_CASE("A TrafficSignalGroupState sets every signal of the OpenDRIVE signal group",
+          "[engine][signals]") {
+  FixtureRun run(engine_fixture("traffic_signal_groups.xosc"));
+  corsa::engine::WorldSnapshot world;
+  const auto signal = [&](const std::string& id) -> std::string {
+    for (const auto& s : world.signals) {
+      if (s.id == id) return s.state;
+    }
+    return "";
+  };
+  // "stop" at 0 s: the map's <controller id="Crossing"> groups 7 and 8; 9 is not in it.
+  run.sim().fill_snapshot(world);
+  CHECK(signal("7") == "on;off;off");
+  CHECK(signal("8") == "on;off;off");
+  CHECK(signal("9").empty());
+  // A state action naming the group (at 2.01 s) sets both; one naming signal 9 sets 9 only.
+  while (run.sim().time() < 3.0) run.sim().step();
+  run.sim().fill_snapshot(world);
+  CHECK(signal("7") == "off;on;off");
+  CHECK(signal("8") == "off;on;off");
+  CHECK(signal("9") == "flashing");
+  // "go" from 4 s: the group state, and signal 8's own TrafficSignalState over it.
+  run.run();
+  run.sim().fill_snapshot(world);
+  CHECK(signal("7") == "off;off;on");
+  CHECK(signal("8") == "off;on;off");
+  CHECK(signal("9") == "flashing");
+  const std::string text = all_text(run.diagnostics());
+  CHECK_THAT(text, Catch::Contains("TrafficSignalStateAction names the signal group 'Crossing', "
+                                   "not a signal (read as the state of each of its 2 signals)"));
+  CHECK_THAT(text, Catch::Contains("TrafficSignalGroupState of TrafficSignalController 'Lone' "
+                                   "sets no signal"));
+  corsa::engine::SimulationOptions strict;
+  strict.strict = true;
+  FixtureRun strict_run(engine_fixture("traffic_signal_groups.xosc"), strict);
+  CHECK_THROWS_WITH(strict_run.run(), Catch::Contains("names the signal group 'Crossing'") &&
+                                          Catch::Contains("an error under --strict"));
+}
+
 TEST_CASE("A traffic swarm keeps its vehicles in the ring around the central entity, by the seed",
           "[engine][traffic]") {
   corsa::engine::SimulationOptions options;
