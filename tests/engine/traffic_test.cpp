@@ -208,6 +208,45 @@ TEST_CASE("TrafficAreaAction on a road range keeps its number inside, replacing 
   CHECK(removed >= 6);  // 300 m at 13.9 m/s: each lives about 20 s or less in 40 s
 }
 
+TEST_CASE("Area-spawned entities start at their entry's speed, their controller's, or the limit",
+          "[engine][traffic][area]") {
+  FixtureRun run(engine_fixture("traffic_area_speeds.xosc"));
+  run.run();
+  const auto& sim = run.sim();
+  size_t cars_fast = 0, cars_town = 0, vans = 0, buses = 0;
+  for (const size_t i : generated(sim)) {
+    const auto& lives = sim.lifetimes(i);
+    REQUIRE_FALSE(lives.empty());
+    const int64_t tick = std::llround(lives.front().spawned / sim.dt());
+    const auto& states = run.trace().ticks().at(tick);
+    REQUIRE(i < states.size());
+    const auto& state = states[i];
+    REQUIRE(state.placed);
+    REQUIRE(state.road);
+    const auto category = sim.entity(i).category;
+    INFO(sim.entity(i).name << " on lane " << state.road->lane << " at " << state.speed << " m/s");
+    // Spawned at the tick; the controller has had at most one step (< 0.1 m/s) since.
+    if (category == corsa::engine::EntityCategory::kVan) {
+      CHECK(state.speed >= 5.0 - 0.1);
+      CHECK(state.speed <= 6.0 + 0.1);
+      ++vans;
+    } else if (category == corsa::engine::EntityCategory::kBus) {
+      CHECK(state.speed == Approx(12.0).margin(0.1));
+      ++buses;
+    } else if (state.road->lane == -1) {
+      CHECK(state.speed == Approx(80.0 / 3.6).margin(0.1));  // the lane's own limit
+      ++cars_fast;
+    } else {
+      CHECK(state.speed == Approx(30.0 / 3.6).margin(0.1));  // the road type's limit
+      ++cars_town;
+    }
+  }
+  CHECK(cars_fast > 0);
+  CHECK(cars_town > 0);
+  CHECK(vans > 0);
+  CHECK(buses > 0);
+}
+
 TEST_CASE("TrafficDistribution weights pick the spawned objects and their boxes, by the seed",
           "[engine][traffic][distribution]") {
   FixtureRun run(engine_fixture("traffic_area_road_range.xosc"));
