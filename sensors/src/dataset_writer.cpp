@@ -58,7 +58,7 @@ Json environment_json(const engine::EnvironmentState& e) {
 }
 
 Json entity_json(const engine::EntitySnapshot& e) {
-  return {
+  Json out = {
       {"instance_id", e.instance_id},
       {"name", e.name},
       {"category", static_cast<int>(e.category)},
@@ -69,6 +69,15 @@ Json entity_json(const engine::EntitySnapshot& e) {
       {"velocity", {e.vx, e.vy, e.vz}},
       {"yaw_rate", e.yaw_rate},
       {"visible", e.visible}};
+  // VisibilityAction's SensorReferenceSet: the sensors for which the opposite of visible holds.
+  if (!e.sensor_exceptions.empty()) {
+    Json names = Json::array();
+    for (const std::string& name : e.sensor_exceptions) {
+      names.push_back(name);
+    }
+    out["sensor_exceptions"] = std::move(names);
+  }
+  return out;
 }
 
 }  // namespace

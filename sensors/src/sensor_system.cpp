@@ -206,6 +206,49 @@ LidarScanInput lidar_input(const SensorFrame& f, const engine::EntitySnapshot& c
   return input;
 }
 
+/// The due sensors that see the same entities, with those entities: one pass of the scene each.
+struct VisibilityPass {
+  std::vector<engine::EntitySnapshot> own;  ///< the entities as this pass sees them (empty: the
+                                            ///< world's own, when no entity names a sensor)
+  std::vector<const SensorSpec*> sensors;
+};
+
+/// The due sensors grouped by what they see (VisibilityAction's SensorReferenceSet: an entity
+/// with sensor_exceptions is seen by some sensors and not by others), in rig order of each
+/// group's first sensor. Without exceptions, one pass over the world's entities as they are.
+std::vector<VisibilityPass> visibility_passes(const engine::WorldSnapshot& world,
+                                              const std::vector<const SensorSpec*>& due) {
+  const bool any = std::any_of(world.entities.begin(), world.entities.end(),
+                               [](const auto& e) { return !e.sensor_exceptions.empty(); });
+  if (!any) {
+    return {VisibilityPass{{}, due}};
+  }
+  std::vector<VisibilityPass> passes;
+  std::vector<std::vector<bool>> seen_by_pass;
+  for (const SensorSpec* s : due) {
+    std::vector<bool> seen;
+    for (const auto& e : world.entities) {
+      seen.push_back(engine::visible_to(e, s->name));
+    }
+    size_t k = 0;
+    while (k < passes.size() && seen_by_pass[k] != seen) {
+      ++k;
+    }
+    if (k == passes.size()) {
+      VisibilityPass pass;
+      pass.own = world.entities;
+      for (size_t i = 0; i < pass.own.size(); ++i) {
+        pass.own[i].visible = seen[i];
+        pass.own[i].sensor_exceptions.clear();
+      }
+      passes.push_back(std::move(pass));
+      seen_by_pass.push_back(std::move(seen));
+    }
+    passes[k].sensors.push_back(s);
+  }
+  return passes;
+}
+
 }  // namespace
 
 struct SensorSystem::Cache {
@@ -245,27 +288,15 @@ const CameraModel* SensorSystem::camera_model(const std::string& sensor) const {
   return it == cache_->cameras.end() ? nullptr : &it->second->model();
 }
 
-std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& world,
-                                               std::span<const std::string> sensors) {
-  const Lighting lighting = compute_lighting(world.environment, options_.location);
-  const std::vector<const SensorSpec*> due = due_sensors(rig_, sensors);
-  const double sweep = longest_sweep(due);  // s: the entities move over a LiDAR revolution
-  scene_.set_entities(world.entities, sweep);
-  scene_.set_signals(world.signals);
-  // Pose, carrier and frame number of each due sensor.
-  std::map<std::string, SensorFrame> frames;
-  std::map<std::string, const engine::EntitySnapshot*> carriers;
-  for (const SensorSpec* s : due) {
-    const engine::EntitySnapshot& carrier = carrier_of(rig_, *s, world);
-    carriers[s->name] = &carrier;
-    frames[s->name] = start_frame(*s, carrier, world, frames_[s->name]++);
-  }
+void SensorSystem::render_pass(
+    const std::vector<const SensorSpec*>& due, const Lighting& lighting, double sweep,
+    std::map<std::string, SensorFrame>& frames,
+    const std::map<std::string, const engine::EntitySnapshot*>& carriers) {
   auto frame_seed = [&](const SensorSpec& s) {
     return derive_seed(options_.seed, s.name + "#" + std::to_string(frames.at(s.name).frame));
   };
-
   // Every camera group, LiDAR and bird's-eye view is one task: each writes only its own frames
-  // and reads the scene, which does not change until the next capture. Each is deterministic on
+  // and reads the scene, which does not change until the pass ends. Each is deterministic on
   // its own (fixed blocks, seeds by sensor and frame), so running them side by side keeps the
   // bytes; it fills the cores where one sensor's work runs out of parallelism (labels, the
   // bird's-eye view's rows, the end of a parallel loop).
@@ -303,6 +334,28 @@ std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& worl
     }
   }
   tasks.wait();
+}
+
+std::vector<SensorFrame> SensorSystem::capture(const engine::WorldSnapshot& world,
+                                               std::span<const std::string> sensors) {
+  const Lighting lighting = compute_lighting(world.environment, options_.location);
+  const std::vector<const SensorSpec*> due = due_sensors(rig_, sensors);
+  const double sweep = longest_sweep(due);  // s: the entities move over a LiDAR revolution
+  scene_.set_signals(world.signals);
+  // Pose, carrier and frame number of each due sensor.
+  std::map<std::string, SensorFrame> frames;
+  std::map<std::string, const engine::EntitySnapshot*> carriers;
+  for (const SensorSpec* s : due) {
+    const engine::EntitySnapshot& carrier = carrier_of(rig_, *s, world);
+    carriers[s->name] = &carrier;
+    frames[s->name] = start_frame(*s, carrier, world, frames_[s->name]++);
+  }
+  // Sensors that see different entities (a SensorReferenceSet) render in passes, the scene's
+  // entities placed for each; without one, a single pass over the world's entities.
+  for (const VisibilityPass& pass : visibility_passes(world, due)) {
+    scene_.set_entities(pass.own.empty() ? world.entities : pass.own, sweep);
+    render_pass(pass.sensors, lighting, sweep, frames, carriers);
+  }
   std::vector<SensorFrame> out;
   for (const SensorSpec* s : due) {
     out.push_back(std::move(frames[s->name]));

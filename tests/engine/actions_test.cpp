@@ -376,5 +376,40 @@ TEST_CASE("VisibilityAction hides the entity from the sensors in the world snaps
   CHECK_FALSE(world.entities[run.entity("Gone")].visible);  // deleted
 }
 
+TEST_CASE("VisibilityAction's SensorReferenceSet makes the entity seen only by the sensors named",
+          "[engine][entities]") {
+  FixtureRun run(engine_fixture("visibility_sensor_refs.xosc"));
+  corsa::engine::WorldSnapshot world;
+  const size_t car = run.entity("Car");
+  const auto seen = [&](std::string_view sensor) {
+    return corsa::engine::visible_to(world.entities[car], sensor);
+  };
+  const auto at = [&](double t) {
+    while (run.sim().time() < t) run.sim().step();
+    run.sim().fill_snapshot(world);
+  };
+  at(0.5);
+  CHECK(seen("front camera"));
+  CHECK(seen("rear camera"));
+  CHECK(world.entities[car].sensor_exceptions.empty());
+  // sensors="true" for "front camera" and "lidar": the others, implicitly, do not see it.
+  at(1.5);
+  CHECK(seen("front camera"));
+  CHECK(seen("lidar"));
+  CHECK_FALSE(seen("rear camera"));
+  CHECK_FALSE(world.entities[car].visible);
+  // sensors="false" for "front camera": every other sensor sees it.
+  at(2.5);
+  CHECK_FALSE(seen("front camera"));
+  CHECK(seen("lidar"));
+  CHECK(seen("rear camera"));
+  // Without a set, the flag holds for every sensor again.
+  at(3.5);
+  CHECK(seen("front camera"));
+  CHECK(seen("rear camera"));
+  CHECK(world.entities[car].sensor_exceptions.empty());
+  CHECK_THAT(all_text(run.diagnostics()), !Catch::Contains("SensorReferenceSet"));
+}
+
 }  // namespace
 }  // namespace corsa::test

@@ -64,6 +64,45 @@ TEST_CASE("Traffic signal controllers cycle through their phases; signal conditi
   CHECK(run.now("Ego").speed == Approx(0.0));
 }
 
+TEST_CASE("A TrafficSignalGroupState sets every signal of the OpenDRIVE signal group",
+          "[engine][signals]") {
+  FixtureRun run(engine_fixture("traffic_signal_groups.xosc"));
+  corsa::engine::WorldSnapshot world;
+  const auto signal = [&](const std::string& id) -> std::string {
+    for (const auto& s : world.signals) {
+      if (s.id == id) return s.state;
+    }
+    return "";
+  };
+  // "stop" at 0 s: the map's <controller id="Crossing"> groups 7 and 8; 9 is not in it.
+  run.sim().fill_snapshot(world);
+  CHECK(signal("7") == "on;off;off");
+  CHECK(signal("8") == "on;off;off");
+  CHECK(signal("9").empty());
+  // A state action naming the group (at 2.01 s) sets both; one naming signal 9 sets 9 only.
+  while (run.sim().time() < 3.0) run.sim().step();
+  run.sim().fill_snapshot(world);
+  CHECK(signal("7") == "off;on;off");
+  CHECK(signal("8") == "off;on;off");
+  CHECK(signal("9") == "flashing");
+  // "go" from 4 s: the group state, and signal 8's own TrafficSignalState over it.
+  run.run();
+  run.sim().fill_snapshot(world);
+  CHECK(signal("7") == "off;off;on");
+  CHECK(signal("8") == "off;on;off");
+  CHECK(signal("9") == "flashing");
+  const std::string text = all_text(run.diagnostics());
+  CHECK_THAT(text, Catch::Contains("TrafficSignalStateAction names the signal group 'Crossing', "
+                                   "not a signal (read as the state of each of its 2 signals)"));
+  CHECK_THAT(text, Catch::Contains("TrafficSignalGroupState of TrafficSignalController 'Lone' "
+                                   "sets no signal"));
+  corsa::engine::SimulationOptions strict;
+  strict.strict = true;
+  FixtureRun strict_run(engine_fixture("traffic_signal_groups.xosc"), strict);
+  CHECK_THROWS_WITH(strict_run.run(), Catch::Contains("names the signal group 'Crossing'") &&
+                                          Catch::Contains("an error under --strict"));
+}
+
 TEST_CASE("A traffic swarm keeps its vehicles in the ring around the central entity, by the seed",
           "[engine][traffic]") {
   corsa::engine::SimulationOptions options;
@@ -167,6 +206,45 @@ TEST_CASE("TrafficAreaAction on a road range keeps its number inside, replacing 
     }
   }
   CHECK(removed >= 6);  // 300 m at 13.9 m/s: each lives about 20 s or less in 40 s
+}
+
+TEST_CASE("Area-spawned entities start at their entry's speed, their controller's, or the limit",
+          "[engine][traffic][area]") {
+  FixtureRun run(engine_fixture("traffic_area_speeds.xosc"));
+  run.run();
+  const auto& sim = run.sim();
+  size_t cars_fast = 0, cars_town = 0, vans = 0, buses = 0;
+  for (const size_t i : generated(sim)) {
+    const auto& lives = sim.lifetimes(i);
+    REQUIRE_FALSE(lives.empty());
+    const int64_t tick = std::llround(lives.front().spawned / sim.dt());
+    const auto& states = run.trace().ticks().at(tick);
+    REQUIRE(i < states.size());
+    const auto& state = states[i];
+    REQUIRE(state.placed);
+    REQUIRE(state.road);
+    const auto category = sim.entity(i).category;
+    INFO(sim.entity(i).name << " on lane " << state.road->lane << " at " << state.speed << " m/s");
+    // Spawned at the tick; the controller has had at most one step (< 0.1 m/s) since.
+    if (category == corsa::engine::EntityCategory::kVan) {
+      CHECK(state.speed >= 5.0 - 0.1);
+      CHECK(state.speed <= 6.0 + 0.1);
+      ++vans;
+    } else if (category == corsa::engine::EntityCategory::kBus) {
+      CHECK(state.speed == Approx(12.0).margin(0.1));
+      ++buses;
+    } else if (state.road->lane == -1) {
+      CHECK(state.speed == Approx(80.0 / 3.6).margin(0.1));  // the lane's own limit
+      ++cars_fast;
+    } else {
+      CHECK(state.speed == Approx(30.0 / 3.6).margin(0.1));  // the road type's limit
+      ++cars_town;
+    }
+  }
+  CHECK(cars_fast > 0);
+  CHECK(cars_town > 0);
+  CHECK(vans > 0);
+  CHECK(buses > 0);
 }
 
 TEST_CASE("TrafficDistribution weights pick the spawned objects and their boxes, by the seed",

@@ -1,5 +1,6 @@
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <fstream>
 
@@ -126,4 +127,66 @@ TEST_CASE("capturing a sensor whose entity is missing names the rig line",
   CHECK_THROWS_WITH(system.capture(empty, {}),
                     Catch::StartsWith("small.xml:2: error: sensor 'rgb' is attached to entity "
                                       "'Ego', which is not in the world at tick 0"));
+}
+
+TEST_CASE(
+    "an entity seen only by the sensors a SensorReferenceSet names is missing from the others",
+    "[sensors][system][visibility]") {
+  // Two instance cameras with the same optics and two LiDARs: "seen" and "lidar_seen" are named,
+  // the others are not.
+  const char* const rig_text = R"(<SensorRig version="1" name="pair">
+  <InstanceCamera name="seen" entity="Ego" width="160" height="96" fov="90"><Mount x="1.5" z="1.4"/></InstanceCamera>
+  <InstanceCamera name="blind" entity="Ego" width="160" height="96" fov="90"><Mount x="1.5" z="1.4"/></InstanceCamera>
+  <Lidar name="lidar_seen" entity="Ego" channels="16" pointsPerSecond="57600"><Mount z="1.9"/></Lidar>
+  <Lidar name="lidar_blind" entity="Ego" channels="16" pointsPerSecond="57600"><Mount z="1.9"/></Lidar>
+</SensorRig>)";
+  Scene scene = district();
+  SensorRig rig = parse_rig(rig_text, "pair.xml");
+  bind_rig(rig, std::vector<std::string>{"Ego", "Lead", "Walker"});
+  SensorSystem system(rig, scene, {});
+  const auto has_lead = [](const SensorFrame& f) {
+    const bool labelled = std::any_of(f.labels.begin(), f.labels.end(),
+                                      [](const ObjectLabel& l) { return l.name == "Lead"; });
+    if (f.kind == SensorKind::kLidar) {
+      return labelled;
+    }
+    const bool drawn = std::find(f.camera.instance.begin(), f.camera.instance.end(), 2u) !=
+                       f.camera.instance.end();
+    CHECK(drawn == labelled);
+    return drawn;
+  };
+  const auto frame = [](const std::vector<SensorFrame>& frames, const std::string& name) {
+    for (const SensorFrame& f : frames) {
+      if (f.sensor == name) return f;
+    }
+    FAIL("no frame of " << name);
+    return SensorFrame{};
+  };
+  corsa::engine::WorldSnapshot w = world(0.0);
+  // Everyone sees the lead car at first.
+  auto frames = system.capture(w, {});
+  CHECK(has_lead(frame(frames, "seen")));
+  CHECK(has_lead(frame(frames, "blind")));
+  CHECK(has_lead(frame(frames, "lidar_seen")));
+  CHECK(has_lead(frame(frames, "lidar_blind")));
+  // sensors="true" with the set {seen, lidar_seen}: the others implicitly do not see it.
+  w.entities[1].visible = false;
+  w.entities[1].sensor_exceptions = {"seen", "lidar_seen"};
+  frames = system.capture(w, {});
+  CHECK(has_lead(frame(frames, "seen")));
+  CHECK_FALSE(has_lead(frame(frames, "blind")));
+  CHECK(has_lead(frame(frames, "lidar_seen")));
+  CHECK_FALSE(has_lead(frame(frames, "lidar_blind")));
+  // The walker, without exceptions, is in every camera's view as before.
+  const SensorFrame blind = frame(frames, "blind");
+  CHECK(std::find(blind.camera.instance.begin(), blind.camera.instance.end(), 3u) !=
+        blind.camera.instance.end());
+  // sensors="false" with the set {seen}: only "seen" misses it.
+  w.entities[1].visible = true;
+  w.entities[1].sensor_exceptions = {"seen"};
+  frames = system.capture(w, {});
+  CHECK_FALSE(has_lead(frame(frames, "seen")));
+  CHECK(has_lead(frame(frames, "blind")));
+  CHECK(has_lead(frame(frames, "lidar_seen")));
+  CHECK(has_lead(frame(frames, "lidar_blind")));
 }

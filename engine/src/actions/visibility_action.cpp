@@ -1,7 +1,9 @@
 // VisibilityAction (OpenSCENARIO 1.3 §7.4.5): whether the image generator (graphics), the
 // sensors and the other traffic participants see the actor. The sensors flag goes to the world
 // snapshot (EntitySnapshot::visible); traffic invisibility hides the actor from car following.
-// SensorReferenceSet (sensor by sensor) is not distinguished: the flag is for all sensors.
+// A SensorReferenceSet names the sensors the flag is for; "for the other not named sensors
+// implicitly the opposite applies" (1.3 model text of VisibilityAction.sensorReferenceSet): the
+// snapshot's flag is then the opposite one, and the named sensors its exceptions.
 
 #include "actions/action_makers.h"
 #include "controllers/controllers.h"
@@ -15,15 +17,14 @@ class VisibilityInstance final : public InstantAction {
   explicit VisibilityInstance(const xosc::VisibilityAction& action) : action_(action) {}
   void start(ActionContext& context) override {
     // A flag the file left out keeps the visibility it had (a lenient reading).
-    if (action_.sensors) context.entity().state.visible = *action_.sensors;
     ControlState& control = control_of(context.state, *context.actor);
+    if (action_.sensors) {
+      const bool named = !action_.sensor_refs.empty();
+      context.entity().state.visible = named ? !*action_.sensors : *action_.sensors;
+      control.sensor_exceptions = action_.sensor_refs;
+    }
     if (action_.traffic) control.traffic_visible = *action_.traffic;
     if (action_.graphics) control.graphics_visible = *action_.graphics;
-    if (!action_.sensor_refs.empty()) {
-      context.state.diagnostics.add_once(
-          "visibility-sensor-refs",
-          action_.source.warning("SensorReferenceSet: the sensors flag applies to every sensor"));
-    }
   }
 
  private:

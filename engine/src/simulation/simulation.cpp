@@ -407,6 +407,10 @@ void Simulation::fill_snapshot(WorldSnapshot& out) const {
       entity_lights(entity, out.time, snap);
     }
     snap.visible = entity.state.visible && entity.state.placed;
+    snap.sensor_exceptions.clear();
+    if (entity.state.placed && i < state.controls.size()) {
+      snap.sensor_exceptions = state.controls[i].sensor_exceptions;
+    }
     const double now = state.now();
     snap.animations.clear();
     for (const auto& [type, animation] : entity.animations) {

@@ -120,6 +120,9 @@ struct ControlState {
   /// Set when the acc controller emulates esmini's ACCController. In the first cache line too:
   /// every car-following step tests it.
   std::optional<EsminiAcc> esmini_acc;
+  /// VisibilityAction's SensorReferenceSet: the sensors for which the opposite of
+  /// EntityState::visible holds (EntitySnapshot::sensor_exceptions).
+  std::vector<std::string> sensor_exceptions;
   /// Name of the assigned ObjectController (for ActivateControllerAction's reference).
   std::string assigned;
   /// The scenario's controller that `kind` stands in for ("" when the scenario's own runs).

@@ -61,6 +61,7 @@ TrafficMix::TrafficMix(const std::optional<xosc::TrafficDefinition>& definition,
         object.controllers = item.object.controllers;
         object.source = item.object.source;
         prototypes_.push_back(std::move(object));
+        entry_properties_.push_back(&entry.properties);
         // All weights zero: equally likely (the parser rejects negative ones).
         const double a = entries > 0.0 ? entry.weight / entries : 1.0;
         const double b = within > 0.0 ? item.weight / within : 1.0;

@@ -34,10 +34,16 @@ class TrafficMix {
   size_t draw(RandomStream& random) const;
   const xosc::ScenarioObject& prototype(size_t index) const { return prototypes_[index]; }
   bool walks(size_t index) const;  ///< a pedestrian: spawned on sidewalks
+  /// The Properties of the TrafficDistributionEntry prototype `index` belongs to (nullptr
+  /// without a TrafficDistribution).
+  const xosc::Properties* entry_properties(size_t index) const {
+    return index < entry_properties_.size() ? entry_properties_[index] : nullptr;
+  }
 
  private:
   std::vector<xosc::ScenarioObject> prototypes_;
   std::vector<double> weights_;
+  std::vector<const xosc::Properties*> entry_properties_;  ///< by prototype; the scenario's
 };
 
 /// A car, truck or bus, or two-wheeler of `category`: box, mass and Performance by category.

@@ -19,14 +19,13 @@
 #include "lanes/lane_follow.h"
 #include "positions/position_resolver.h"
 #include "state/sim_state.h"
+#include "traffic/spawn_speed.h"
 #include "traffic/spawner.h"
 #include "traffic/traffic_generators.h"
 
 namespace corsa::engine::detail {
 namespace {
 
-constexpr double kAreaDefaultSpeed = 13.9;      // m/s (50 km/h): the action gives no speed
-constexpr double kWalkingSpeed = 1.3;           // m/s
 constexpr double kAreaVehicleClearance = 12.0;  // m from any other entity's reference point
 constexpr double kAreaWalkerClearance = 2.0;    // m
 constexpr int kAreaTriesPerStep = 8;
@@ -173,7 +172,9 @@ class Area final : public GeneratorBase {
                                 walks ? kAreaWalkerClearance : kAreaVehicleClearance, others)) {
       return;
     }
-    const uint32_t index = spawn(state, mix_, kind, *at, walks ? kWalkingSpeed : kAreaDefaultSpeed);
+    // The action gives no speed (traffic/spawn_speed.h says where it comes from).
+    const double speed = spawn_speed(state, random_, mix_, kind, *at, std::nullopt);
+    const uint32_t index = spawn(state, mix_, kind, *at, speed);
     if (others != nullptr) {
       const Pose& pose = state.world.entities[index].state.pose;
       others->add(pose.x, pose.y, index);

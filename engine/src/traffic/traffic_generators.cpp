@@ -11,13 +11,13 @@
 #include "motion/placement.h"
 #include "positions/position_resolver.h"
 #include "state/sim_state.h"
+#include "traffic/spawn_speed.h"
 #include "traffic/spawner.h"
 #include "traffic/traffic_update.h"
 
 namespace corsa::engine::detail {
 namespace {
 
-constexpr double kDefaultSpeed = 13.9;    // m/s (50 km/h) when the action gives none
 constexpr double kSpawnClearance = 12.0;  // m from any other entity's reference point
 constexpr int kTriesPerStep = 8;
 
@@ -79,7 +79,8 @@ class Swarm final : public GeneratorBase {
       if (std::hypot(dx, dy) < action_.inner_radius || !direction_wanted(at->pose.h, centre)) {
         continue;
       }
-      spawn(state, mix_, kind, *at, draw_speed(centre));
+      const std::optional<double> given = draw_speed(centre);
+      spawn(state, mix_, kind, *at, spawn_speed(state, random_, mix_, kind, *at, given));
     }
   }
 
@@ -100,7 +101,9 @@ class Swarm final : public GeneratorBase {
     return random_.uniform01() < p;
   }
 
-  double draw_speed(const EntityState& centre) {
+  // The swarm's own speed: InitialSpeedRange, else the deprecated velocity, else the central
+  // entity's (when it moves); nothing: spawn_speed's other sources.
+  std::optional<double> draw_speed(const EntityState& centre) {
     if (action_.initial_speed_range) {
       return random_.uniform(action_.initial_speed_range->lower_limit,
                              action_.initial_speed_range->upper_limit);
@@ -108,7 +111,7 @@ class Swarm final : public GeneratorBase {
     if (action_.velocity) {
       return *action_.velocity;
     }
-    return centre.speed > 0.0 ? centre.speed : kDefaultSpeed;
+    return centre.speed > 0.0 ? std::optional<double>(centre.speed) : std::nullopt;
   }
 
   const xosc::TrafficSwarmAction& action_;
@@ -142,7 +145,8 @@ class Source final : public GeneratorBase {
       if (!spot || !clear_of_others(state, spot->pose.x, spot->pose.y, kSpawnClearance)) {
         continue;
       }
-      spawn(state, mix_, kind, *spot, action_.speed.value_or(kDefaultSpeed));
+      spawn(state, mix_, kind, *spot,
+            spawn_speed(state, random_, mix_, kind, *spot, action_.speed));
       due_ -= 1.0;
     }
     due_ = std::min(due_, 2.0);  // no burst after a long blocked spell

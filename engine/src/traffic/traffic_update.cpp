@@ -8,19 +8,20 @@
 #include "controllers/controllers.h"
 #include "corsa/xosc/scenario.h"
 #include "state/sim_state.h"
+#include "traffic/signal_groups.h"
 
 namespace corsa::engine::detail {
 namespace {
 
-void apply_phase(TrafficState& traffic, const SignalControllerRun& run) {
+// `map`: the road network (null: none), whose <controller>s are the signal groups.
+void apply_phase(TrafficState& traffic, const xodr::Map* map, const SignalControllerRun& run) {
   const xosc::Phase& phase = run.definition->phases[run.phase];
   if (phase.group_state) {
-    // TrafficSignalGroupState (1.2): the state of the controller's whole group of signals, that
-    // is every signal its phases name; a TrafficSignalState of the phase refines one of them.
-    for (const xosc::Phase& any : run.definition->phases) {
-      for (const xosc::TrafficSignalState& signal : any.states) {
-        traffic.signals[signal.traffic_signal_id] = *phase.group_state;
-      }
+    // TrafficSignalGroupState: the observable state of every signal of the controller's group
+    // (looked up at each phase change, which is rare); a TrafficSignalState of the phase then
+    // sets its own signal's.
+    for (const std::string& id : signal_group(map, *run.definition)) {
+      traffic.signals[id] = *phase.group_state;
     }
   }
   for (const xosc::TrafficSignalState& signal : phase.states) {
@@ -43,6 +44,25 @@ double start_time(const TrafficState& traffic, size_t index) {
   return start;
 }
 
+// A TrafficSignalGroupState that reaches no signal: the map has no <controller> of the
+// controller's name and its phases name no signal.
+void warn_groupless(SimState& state, const xosc::TrafficSignalController& controller) {
+  if (!signal_group(state.map, controller).empty()) {
+    return;
+  }
+  for (const xosc::Phase& phase : controller.phases) {
+    if (phase.group_state) {
+      state.diagnostics.add_once(
+          "signal-group:" + controller.name,
+          phase.source.warning("TrafficSignalGroupState of TrafficSignalController '" +
+                               controller.name + "' sets no signal: the road network has no " +
+                               "<controller id=\"" + controller.name +
+                               "\"> and its phases name no signal"));
+      return;
+    }
+  }
+}
+
 }  // namespace
 
 void init_traffic(SimState& state) {
@@ -51,6 +71,7 @@ void init_traffic(SimState& state) {
        state.scenario.road_network.traffic_signal_controllers) {
     SignalControllerRun run;
     run.definition = &controller;
+    warn_groupless(state, controller);
     traffic.controllers.push_back(run);
   }
   for (size_t i = 0; i < traffic.controllers.size(); ++i) {
@@ -60,7 +81,7 @@ void init_traffic(SimState& state) {
   for (SignalControllerRun& run : traffic.controllers) {
     if (!run.definition->phases.empty() && run.phase_start <= 0.0) {
       run.started = true;
-      apply_phase(traffic, run);
+      apply_phase(traffic, state.map, run);
     }
   }
 }
@@ -73,7 +94,7 @@ bool set_signal_phase(SimState& state, size_t controller, std::string_view phase
       run.phase = i;
       run.phase_start = state.now();
       run.started = true;
-      apply_phase(state.traffic, run);
+      apply_phase(state.traffic, state.map, run);
       return true;
     }
   }
@@ -94,7 +115,7 @@ void update_traffic(SimState& state) {
         continue;
       }
       run.started = true;
-      apply_phase(traffic, run);
+      apply_phase(traffic, state.map, run);
     }
     // Phases of zero duration are passed through; a whole cycle of them stops the cycling.
     for (size_t guard = 0; guard < phases.size(); ++guard) {
@@ -107,7 +128,7 @@ void update_traffic(SimState& state) {
       }
       run.phase_start += duration;
       run.phase = (run.phase + 1) % phases.size();
-      apply_phase(traffic, run);
+      apply_phase(traffic, state.map, run);
     }
   }
   // Generators may add entities: index, not iterators, and only those present now.

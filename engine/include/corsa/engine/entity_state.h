@@ -48,6 +48,8 @@ struct EntityState {
   double yaw_rate = 0.0;       ///< rad/s over the last step
   double odometer = 0.0;       ///< m driven since the start (always increasing)
   bool placed = false;         ///< false until a position has been given (TeleportAction)
+  /// VisibilityAction's sensors flag; with a SensorReferenceSet the flag of the sensors it does
+  /// not name (WorldSnapshot's EntitySnapshot::sensor_exceptions has the named ones).
   bool visible = true;
   /// Nothing when the entity is off every lane (or the scenario has no road network).
   std::optional<RoadCoordinates> road;

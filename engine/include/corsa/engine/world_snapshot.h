@@ -153,9 +153,24 @@ struct EntitySnapshot {
   /// The lights of lights_set with a luminous intensity, a colour or a fade, by VehicleLight
   /// order; a lit bit of lights_on then means the look emits something.
   std::vector<LightLook> light_looks;
-  bool visible = true;                        ///< VisibilityAction (sensors flag)
+  /// VisibilityAction's sensors flag: whether the sensors see the entity (false while it is
+  /// absent), except those named in sensor_exceptions.
+  bool visible = true;
+  /// VisibilityAction's SensorReferenceSet (OpenSCENARIO 1.3 §7.4.5): the sensors (rig names)
+  /// for which the opposite of `visible` holds. Empty: `visible` holds for every sensor.
+  std::vector<std::string> sensor_exceptions;
   std::vector<AnimationSnapshot> animations;  ///< by type name
 };
+
+/// Whether the sensor named `sensor` sees `entity` (EntitySnapshot::visible and its exceptions).
+inline bool visible_to(const EntitySnapshot& entity, std::string_view sensor) {
+  for (const std::string& name : entity.sensor_exceptions) {
+    if (name == sensor) {
+      return !entity.visible;
+    }
+  }
+  return entity.visible;
+}
 
 enum class PrecipitationType : uint8_t { kDry, kRain, kSnow };
 

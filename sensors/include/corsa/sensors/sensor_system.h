@@ -55,7 +55,9 @@ class SensorSystem {
   SensorSystem& operator=(const SensorSystem&) = delete;
 
   /// Places the snapshot's entities in the scene and renders `sensors` (all when empty), in rig
-  /// order. Throws InputError when a sensor's entity is missing from the snapshot.
+  /// order. Each sensor sees the entities visible to it (engine::visible_to: an entity whose
+  /// sensor_exceptions name some sensors is placed in a separate pass of the scene for them).
+  /// Throws InputError when a sensor's entity is missing from the snapshot.
   std::vector<SensorFrame> capture(const engine::WorldSnapshot& world,
                                    std::span<const std::string> sensors);
 
@@ -65,6 +67,10 @@ class SensorSystem {
 
  private:
   struct Cache;
+  /// Renders `due` (which see the scene's entities as they are placed now) into `frames`.
+  void render_pass(const std::vector<const SensorSpec*>& due, const Lighting& lighting,
+                   double sweep, std::map<std::string, SensorFrame>& frames,
+                   const std::map<std::string, const engine::EntitySnapshot*>& carriers);
   SensorRig rig_;
   Scene& scene_;
   SensorSystemOptions options_;
