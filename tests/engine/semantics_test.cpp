@@ -443,14 +443,27 @@ TEST_CASE("A RoutePosition in road coordinates turns from the road's +s, or esmi
 
 TEST_CASE("A RoutePosition from the current entity turns its Orientation from the entity's",
           "[engine][semantics][positions][route]") {
-  // Fixture comment: Car on road 1 at x = 100 facing 0; Same, Turned and Fixed at its place on
-  // the route without Orientation, relative h = 0.5 and absolute h = 1.
+  // Fixture comment: Car on road 1 at x = 100 with h 0.3, p 0.02, r -0.01 (not the road's);
+  // Same, Turned and Fixed at its place on the route without Orientation, relative (h 0.5,
+  // p 0.04, r 0.03) and absolute (h 1, p 0.05, r -0.02). Swapping the relative and absolute
+  // readings would give Turned h 0.5 and Fixed h 1.3.
   const auto check = [](FixtureRun& run) {
     run.run();
-    CHECK(run.at(0.0, "Same").pose.x == Approx(100.0).margin(1e-9));
-    CHECK(run.at(0.0, "Same").pose.h == Approx(0.0).margin(1e-9));
-    CHECK(run.at(0.0, "Turned").pose.x == Approx(100.0).margin(1e-9));
-    CHECK(run.at(0.0, "Turned").pose.h == Approx(0.5).margin(1e-9));
+    // Placed on a road, an entity takes the road surface's pitch and roll (0 on this flat road)
+    // whatever its Orientation gives: Car and the three placed from it record 0, and the heading
+    // tells the readings apart.
+    const auto& car = run.at(0.0, "Car").pose;
+    REQUIRE(car.h == Approx(0.3).margin(1e-9));
+    for (const char* name : {"Car", "Same", "Turned", "Fixed"}) {
+      CHECK(run.at(0.0, name).pose.p == 0.0);
+      CHECK(run.at(0.0, name).pose.r == 0.0);
+    }
+    const auto& same = run.at(0.0, "Same").pose;
+    CHECK(same.x == Approx(100.0).margin(1e-9));
+    CHECK(same.h == Approx(car.h).margin(1e-9));
+    const auto& turned = run.at(0.0, "Turned").pose;
+    CHECK(turned.x == Approx(100.0).margin(1e-9));
+    CHECK(turned.h == Approx(car.h + 0.5).margin(1e-9));
     CHECK(run.at(0.0, "Fixed").pose.h == Approx(1.0).margin(1e-9));
   };
   SECTION("standard") {
