@@ -88,8 +88,6 @@ ResolvedPosition relative_object(const xosc::RelativeObjectPosition& p, const Si
 // lane's traffic only if it runs the way the lane is driven.
 constexpr OrientationFrame kLanePositionFrame = OrientationFrame::kLane;
 
-bool esmini_reading(const SimState& state) { return state.options.semantics == Semantics::kEsmini; }
-
 // A missing Orientation as "the relative reference context with Heading=Pitch=Roll=0" (1.3),
 // so that in the road frame it faces the road's +s whatever the lane. RoadPosition and
 // RelativeRoadPosition read so under both readings: 1.3 turns their relative heading from "the
@@ -196,16 +194,6 @@ EsminiAlongLaneSigns esmini_along_lane_signs(const xodr::Map& map, const Entity&
   const bool keep =
       (faces_plus_s && rc.lane < 0 && !left_hand) || (!faces_plus_s && rc.lane > 0 && left_hand);
   return {lane_toward_minus_s ? -1.0 : 1.0, keep ? 1 : -1};
-}
-
-// The lane `d` lanes over from `lane`, the centre lane not counted: from lane 1, d = -1 is lane
-// -1 (esmini's lane steps; 1.3's dLane is a difference of lane ids, where it would be lane 0).
-int lane_across_centre(int lane, int d) {
-  int target = lane + d;
-  if (lane != 0 && d != 0 && (target == 0 || (target > 0) != (lane > 0))) {
-    target += d > 0 ? 1 : -1;
-  }
-  return target;
 }
 
 // A RelativeLanePosition given by dsLane whose lane id plus dLane names no lane there (from lane
