@@ -200,8 +200,12 @@ EsminiAlongLaneSigns esmini_along_lane_signs(const xodr::Map& map, const Entity&
 // 1 of a road with one lane a side, dLane 1: lane 2): the author's intent is the lane dLane lanes
 // toward the reference entity's left, the centre lane not counted, as esmini reads every dLane
 // of a dsLane position (esmini's star_position_types: from lane 1, facing -s, dLane 1 is lane
-// -1). Read so with a warning when that lane exists; otherwise the lane stays as the standard
-// gives it, and need_lane_center reports it.
+// -1). Read so, with a warning that names esmini's count, when that lane exists; otherwise the
+// lane stays as the standard gives it, and need_lane_center reports it. Lane ids grow toward the
+// left of an entity facing +s: for a reference facing +s esmini's count is the standard's but for
+// the centre lane, which it skips outward, so a lane past the last one stays past (an error). For
+// a reference facing -s the two counts run opposite ways and can meet: from lane 3 of three lanes
+// a side, dLane -1 is lane 2 by the standard's count and dLane 1 is lane 2 by esmini's.
 int lane_toward_reference_left(const xodr::Map& map, const Entity& ref, const RoadCoordinates& rc,
                                const LaneFollow& at, int lane_id,
                                const xosc::RelativeLanePosition& p, const SimState& state) {
@@ -213,7 +217,9 @@ int lane_toward_reference_left(const xodr::Map& map, const Entity& ref, const Ro
           "road '" + map.road(at.road).id + "' has no lane " + std::to_string(lane_id) + " (lane " +
               std::to_string(at.lane) + " plus dLane " + std::to_string(p.d_lane) +
               ") at s = " + format_double(at.s),
-          "lane " + std::to_string(left) + ", dLane counted toward the reference entity's left");
+          "lane " + std::to_string(left) +
+              ", esmini's count: dLane lanes toward the reference entity's left, the centre "
+              "lane not counted");
   return left;
 }
 
