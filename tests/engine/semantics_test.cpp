@@ -215,14 +215,18 @@ TEST_CASE("A relative Orientation on a left lane turns from the lane's direction
   }
 }
 
-TEST_CASE("A RoutePosition's relative Orientation in lane coordinates turns from the lane",
+TEST_CASE("A RoutePosition in lane coordinates turns from, or faces, the lane's traffic",
           "[engine][semantics][positions][route]") {
   // Lane 1 at path s 50 of a route along road 1 from s = 50 (road s 100), h = pi relative,
-  // 10 m/s for 2 s: pi from the lane's direction of travel (-s) faces +s; s(2) = 120.
+  // 10 m/s for 2 s: pi from the lane's direction of travel (-s) faces +s; s(2) = 120. Bare, at
+  // the same place without an Orientation (1.3: "the relative reference context with
+  // Heading=Pitch=Roll=0"), faces the lane's direction of travel, -s, against the route's way.
   const auto check = [](FixtureRun& run) {
     run.run();
     CHECK(run.at(0.0, "Car").pose.h == Approx(0.0).margin(1e-9));
     CHECK(run.at(2.0, "Car").road->s == Approx(120.0).margin(1e-9));
+    CHECK(run.at(0.0, "Bare").road->lane == 1);
+    CHECK(std::abs(run.at(0.0, "Bare").pose.h) == Approx(std::numbers::pi).margin(1e-9));
   };
   SECTION("standard") {
     FixtureRun run(engine_fixture("semantics_route_orientation.xosc"));

@@ -242,15 +242,11 @@ ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, con
             const int lane = parse_lane_id(in_route.lane_id, in_route.source);
             const double t = need_lane_center(map, at.lane.road, at.s, lane, in_route.source) +
                              in_route.lane_offset.value_or(0.0);
-            ResolvedPosition out = on_road(map, at.lane.road, at.s, t, lane, position.orientation,
-                                           OrientationFrame::kLane);
-            if (!position.orientation) {
-              // Lane coordinates without an Orientation: the entity faces along the route, the
-              // lane's direction of travel unless the route drives the lane against it.
-              out.pose.h = wrap_angle(map.reference(at.lane.road, at.s).hdg +
-                                      (at.dir < 0 ? std::numbers::pi : 0.0));
-            }
-            return out;
+            // Without an Orientation: the lane's direction of travel, which is along the route
+            // except where the route drives the lane against its traffic (esmini's reader too
+            // faces FromLaneCoordinates by the lane, relative pi on a lane of id > 0).
+            return on_road(map, at.lane.road, at.s, t, lane, position.orientation,
+                           OrientationFrame::kLane);
           }
         }
       },
