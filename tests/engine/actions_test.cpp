@@ -247,7 +247,7 @@ TEST_CASE("TeleportAction to RoutePositions measures path s along the route",
   CHECK(on_lane.road->lane == 1);
   CHECK(on_lane.pose.x == Approx(610.0));
   CHECK(on_lane.pose.y == Approx(-1.75));
-  CHECK(on_lane.pose.h == Approx(0.0).margin(1e-12));  // faces along the route
+  CHECK(on_lane.pose.h == Approx(0.0).margin(1e-12));  // lane 1's traffic, the route's way
   // 490 + 300 + 20 m of junction: path s 850 is 40 m into road 3.
   const auto& on_road = run.now("OnRoad");
   CHECK(run.sim().road_id(on_road.road->road) == "3");

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "engine_fixture.h"
+#include "positions/position_common.h"
 
 namespace corsa::test {
 namespace {
@@ -214,14 +215,18 @@ TEST_CASE("A relative Orientation on a left lane turns from the lane's direction
   }
 }
 
-TEST_CASE("A RoutePosition's relative Orientation in lane coordinates turns from the lane",
+TEST_CASE("A RoutePosition in lane coordinates turns from, or faces, the lane's traffic",
           "[engine][semantics][positions][route]") {
   // Lane 1 at path s 50 of a route along road 1 from s = 50 (road s 100), h = pi relative,
-  // 10 m/s for 2 s: pi from the lane's direction of travel (-s) faces +s; s(2) = 120.
+  // 10 m/s for 2 s: pi from the lane's direction of travel (-s) faces +s; s(2) = 120. Bare, at
+  // the same place without an Orientation (1.3: "the relative reference context with
+  // Heading=Pitch=Roll=0"), faces the lane's direction of travel, -s, against the route's way.
   const auto check = [](FixtureRun& run) {
     run.run();
     CHECK(run.at(0.0, "Car").pose.h == Approx(0.0).margin(1e-9));
     CHECK(run.at(2.0, "Car").road->s == Approx(120.0).margin(1e-9));
+    CHECK(run.at(0.0, "Bare").road->lane == 1);
+    CHECK(std::abs(run.at(0.0, "Bare").pose.h) == Approx(std::numbers::pi).margin(1e-9));
   };
   SECTION("standard") {
     FixtureRun run(engine_fixture("semantics_route_orientation.xosc"));
@@ -390,17 +395,20 @@ TEST_CASE("A dsLane position's dLane past the last lane counts toward the entity
     CHECK(run.at(0.0, "Beyond").road->s == Approx(90.0).margin(1e-9));
     CHECK(run.at(0.0, "Beyond").road->t == Approx(5.25).margin(1e-9));
     CHECK_THAT(all_text(run.diagnostics()),
-               Catch::Contains("road '1' has no lane 4 (lane 3 plus dLane 1) at s = 90 (read as "
-                               "lane 2, dLane counted toward the reference entity's left)"));
+               Catch::Contains("semantics_relative_lane_past_lanes.xosc:78:") &&
+                   Catch::Contains("road '1' has no lane 4 (lane 3 plus dLane 1) at s = 90 (read "
+                                   "as lane 2, esmini's count: dLane lanes toward the reference "
+                                   "entity's left, the centre lane not counted)"));
     // Lane 1 + 1 = 2 exists: the lane id plus dLane, no warning for it.
     CHECK(run.at(0.0, "Across").road->lane == 2);
     CHECK(run.at(0.0, "Across").road->s == Approx(290.0).margin(1e-9));
     CHECK_THAT(all_text(run.diagnostics()), !Catch::Contains("no lane 2"));
     engine::SimulationOptions strict;
     strict.strict = true;
-    CHECK_THROWS_WITH(
-        FixtureRun(engine_fixture("semantics_relative_lane_past_lanes.xosc"), strict),
-        Catch::Contains("road '1' has no lane 4") && Catch::Contains("an error under --strict"));
+    CHECK_THROWS_WITH(FixtureRun(engine_fixture("semantics_relative_lane_past_lanes.xosc"), strict),
+                      Catch::Contains("semantics_relative_lane_past_lanes.xosc:78:") &&
+                          Catch::Contains("road '1' has no lane 4") &&
+                          Catch::Contains("an error under --strict"));
   }
   SECTION("esmini") {
     FixtureRun run(engine_fixture("semantics_relative_lane_past_lanes.xosc"), esmini_reading());
@@ -411,8 +419,67 @@ TEST_CASE("A dsLane position's dLane past the last lane counts toward the entity
     CHECK(run.at(0.0, "Across").road->lane == -1);
     CHECK(run.at(0.0, "Across").road->t == Approx(-1.75).margin(1e-9));
     CHECK(run.at(0.0, "Across").road->s == Approx(290.0).margin(1e-9));
-    CHECK_THAT(all_text(run.diagnostics()), !Catch::Contains("dLane counted"));
+    CHECK_THAT(all_text(run.diagnostics()), !Catch::Contains("esmini's count"));
   }
+}
+
+TEST_CASE("dLane past the last lane: esmini's count where its lane exists, else a located error",
+          "[engine][semantics][positions][lenient]") {
+  // Fixture comment: Ref on lane 3 of the straight road (lanes 3 to -3, lanes 1 to 3 driven
+  // toward -s) at s = 100, turned by RefTurn from its lane's traffic; Up and Down are dLane
+  // UpDLane and DownDLane (1 and -1), dsLane 10 from it.
+  const auto fixture = engine_fixture("semantics_relative_lane_dlane_fallback.xosc");
+  SECTION("opposite dLane values reach one lane from a reference facing -s") {
+    FixtureRun run(fixture);
+    run.run();
+    // Up: lane 3 + 1 = 4 does not exist; esmini's count, toward Ref's left (-t): lane 2. Down:
+    // lane 3 - 1 = 2 by the standard's count, without a warning.
+    for (const char* name : {"Up", "Down"}) {
+      CHECK(run.at(0.0, name).road->lane == 2);
+      CHECK(run.at(0.0, name).road->s == Approx(90.0).margin(1e-9));
+      CHECK(run.at(0.0, name).road->t == Approx(5.25).margin(1e-9));
+    }
+    const std::string text = all_text(run.diagnostics());
+    CHECK_THAT(text, Catch::Contains("semantics_relative_lane_dlane_fallback.xosc:73:") &&
+                         Catch::Contains("no lane 4 (lane 3 plus dLane 1) at s = 90 (read as "
+                                         "lane 2, esmini's count"));
+    CHECK_THAT(text, !Catch::Contains("plus dLane -1"));
+  }
+  SECTION("esmini's reading mirrors both for a reference facing -s on a left lane") {
+    // Up's dLane -1: lane 2; Down's dLane 1: lane 4, which does not exist.
+    CHECK_THROWS_WITH(FixtureRun(fixture, esmini_reading()),
+                      Catch::Contains("semantics_relative_lane_dlane_fallback.xosc:76:") &&
+                          Catch::Contains("road '1' has no lane 4 at s = 90"));
+  }
+  SECTION("from a reference facing +s esmini's count finds no lane either: a located error") {
+    // Ref faces +s, its left is +t: lane 3 + 1 = 4, and esmini's count gives lane 4 too, 10 m
+    // ahead at s = 110.
+    const auto run = [&] { FixtureRun(fixture, {}, {{"RefTurn", "3.141592653589793"}}); };
+    CHECK_THROWS_WITH(run(), Catch::Contains("semantics_relative_lane_dlane_fallback.xosc:73:") &&
+                                 Catch::Contains("road '1' has no lane 4 at s = 110") &&
+                                 !Catch::Contains("esmini's count"));
+  }
+  SECTION("a fallback lane that does not exist either leaves the located error") {
+    // Ref faces -s: lane 3 - 8 = -5 does not exist (the last right lane is the sidewalk -4),
+    // nor does esmini's count's lane 11.
+    const auto run = [&] { FixtureRun(fixture, {}, {{"DownDLane", "-8"}}); };
+    CHECK_THROWS_WITH(run(), Catch::Contains("semantics_relative_lane_dlane_fallback.xosc:76:") &&
+                                 Catch::Contains("road '1' has no lane -5 at s = 90") &&
+                                 !Catch::Contains("lane 11"));
+  }
+}
+
+TEST_CASE("lane_across_centre steps lanes without counting the centre lane",
+          "[engine][semantics][positions]") {
+  // The lane d lanes over, lane 0 skipped when the step crosses or lands on it.
+  CHECK(engine::detail::lane_across_centre(-1, 1) == 1);
+  CHECK(engine::detail::lane_across_centre(1, -2) == -2);
+  CHECK(engine::detail::lane_across_centre(2, -2) == -1);
+  CHECK(engine::detail::lane_across_centre(1, -1) == -1);
+  CHECK(engine::detail::lane_across_centre(-3, 2) == -1);  // on one side: the lane ids' sum
+  CHECK(engine::detail::lane_across_centre(3, 1) == 4);    // past the last lane: not checked
+  CHECK(engine::detail::lane_across_centre(2, 0) == 2);
+  CHECK(engine::detail::lane_across_centre(0, -1) == -1);  // from the centre lane: the sum
 }
 
 TEST_CASE("A RoutePosition in road coordinates turns from the road's +s, or esmini's way",
@@ -443,14 +510,27 @@ TEST_CASE("A RoutePosition in road coordinates turns from the road's +s, or esmi
 
 TEST_CASE("A RoutePosition from the current entity turns its Orientation from the entity's",
           "[engine][semantics][positions][route]") {
-  // Fixture comment: Car on road 1 at x = 100 facing 0; Same, Turned and Fixed at its place on
-  // the route without Orientation, relative h = 0.5 and absolute h = 1.
+  // Fixture comment: Car on road 1 at x = 100 with h 0.3, p 0.02, r -0.01 (not the road's);
+  // Same, Turned and Fixed at its place on the route without Orientation, relative (h 0.5,
+  // p 0.04, r 0.03) and absolute (h 1, p 0.05, r -0.02). Swapping the relative and absolute
+  // readings would give Turned h 0.5 and Fixed h 1.3.
   const auto check = [](FixtureRun& run) {
     run.run();
-    CHECK(run.at(0.0, "Same").pose.x == Approx(100.0).margin(1e-9));
-    CHECK(run.at(0.0, "Same").pose.h == Approx(0.0).margin(1e-9));
-    CHECK(run.at(0.0, "Turned").pose.x == Approx(100.0).margin(1e-9));
-    CHECK(run.at(0.0, "Turned").pose.h == Approx(0.5).margin(1e-9));
+    // Placed on a road, an entity takes the road surface's pitch and roll (0 on this flat road)
+    // whatever its Orientation gives: Car and the three placed from it record 0, and the heading
+    // tells the readings apart.
+    const auto& car = run.at(0.0, "Car").pose;
+    REQUIRE(car.h == Approx(0.3).margin(1e-9));
+    for (const char* name : {"Car", "Same", "Turned", "Fixed"}) {
+      CHECK(run.at(0.0, name).pose.p == 0.0);
+      CHECK(run.at(0.0, name).pose.r == 0.0);
+    }
+    const auto& same = run.at(0.0, "Same").pose;
+    CHECK(same.x == Approx(100.0).margin(1e-9));
+    CHECK(same.h == Approx(car.h).margin(1e-9));
+    const auto& turned = run.at(0.0, "Turned").pose;
+    CHECK(turned.x == Approx(100.0).margin(1e-9));
+    CHECK(turned.h == Approx(car.h + 0.5).margin(1e-9));
     CHECK(run.at(0.0, "Fixed").pose.h == Approx(1.0).margin(1e-9));
   };
   SECTION("standard") {

@@ -17,6 +17,8 @@ namespace corsa::engine::detail {
   throw InputError(source.error(message));
 }
 
+bool esmini_reading(const SimState& state) { return state.options.semantics == Semantics::kEsmini; }
+
 const xodr::Map& need_map(const SimState& state, const xosc::Source& source, const char* kind) {
   if (state.map == nullptr) {
     fail(source, std::string(kind) + " needs a road network, but the scenario has no LogicFile");
@@ -86,6 +88,14 @@ double need_lane_center(const xodr::Map& map, uint32_t road, double s, int lane,
                      " at s = " + format_double(s));
   }
   return *center;
+}
+
+int lane_across_centre(int lane, int d) {
+  int target = lane + d;
+  if (lane != 0 && d != 0 && (target == 0 || (target > 0) != (lane > 0))) {
+    target += d > 0 ? 1 : -1;
+  }
+  return target;
 }
 
 bool lane_runs_backward(const xodr::Map& map, uint32_t road, double s, int lane) {

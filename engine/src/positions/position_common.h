@@ -17,6 +17,8 @@ namespace corsa::engine::detail {
 struct SimState;
 
 [[noreturn]] void fail(const xosc::Source& source, const std::string& message);
+/// Whether the run reads positions as esmini does (`--semantics esmini`).
+bool esmini_reading(const SimState& state);
 const xodr::Map& need_map(const SimState& state, const xosc::Source& source, const char* kind);
 /// The named entity; it must exist and have a position already.
 const Entity& need_entity(const SimState& state, const std::string& name,
@@ -33,6 +35,10 @@ double checked_s(bool strict, Diagnostics& diagnostics, const xodr::Map& map, ui
 int parse_lane_id(const std::string& text, const xosc::Source& source, bool allow_center = false);
 double need_lane_center(const xodr::Map& map, uint32_t road, double s, int lane,
                         const xosc::Source& source);
+/// The lane `d` lanes over from `lane`, the centre lane not counted: from lane 1, d = -1 is lane
+/// -1 (esmini's lane steps; 1.3's dLane is a difference of lane ids, where it would be lane 0).
+/// Lane 0 or d = 0 give lane + d.
+int lane_across_centre(int lane, int d);
 bool lane_runs_backward(const xodr::Map& map, uint32_t road, double s, int lane);
 /// What a relative Orientation turns from: the road's +s direction, or the lane's direction of
 /// travel (esmini's reading of LanePosition and RelativeLanePosition, `--semantics esmini`).

@@ -88,8 +88,6 @@ ResolvedPosition relative_object(const xosc::RelativeObjectPosition& p, const Si
 // lane's traffic only if it runs the way the lane is driven.
 constexpr OrientationFrame kLanePositionFrame = OrientationFrame::kLane;
 
-bool esmini_reading(const SimState& state) { return state.options.semantics == Semantics::kEsmini; }
-
 // A missing Orientation as "the relative reference context with Heading=Pitch=Roll=0" (1.3),
 // so that in the road frame it faces the road's +s whatever the lane. RoadPosition and
 // RelativeRoadPosition read so under both readings: 1.3 turns their relative heading from "the
@@ -198,22 +196,16 @@ EsminiAlongLaneSigns esmini_along_lane_signs(const xodr::Map& map, const Entity&
   return {lane_toward_minus_s ? -1.0 : 1.0, keep ? 1 : -1};
 }
 
-// The lane `d` lanes over from `lane`, the centre lane not counted: from lane 1, d = -1 is lane
-// -1 (esmini's lane steps; 1.3's dLane is a difference of lane ids, where it would be lane 0).
-int lane_across_centre(int lane, int d) {
-  int target = lane + d;
-  if (lane != 0 && d != 0 && (target == 0 || (target > 0) != (lane > 0))) {
-    target += d > 0 ? 1 : -1;
-  }
-  return target;
-}
-
 // A RelativeLanePosition given by dsLane whose lane id plus dLane names no lane there (from lane
 // 1 of a road with one lane a side, dLane 1: lane 2): the author's intent is the lane dLane lanes
 // toward the reference entity's left, the centre lane not counted, as esmini reads every dLane
 // of a dsLane position (esmini's star_position_types: from lane 1, facing -s, dLane 1 is lane
-// -1). Read so with a warning when that lane exists; otherwise the lane stays as the standard
-// gives it, and need_lane_center reports it.
+// -1). Read so, with a warning that names esmini's count, when that lane exists; otherwise the
+// lane stays as the standard gives it, and need_lane_center reports it. Lane ids grow toward the
+// left of an entity facing +s: for a reference facing +s esmini's count is the standard's but for
+// the centre lane, which it skips outward, so a lane past the last one stays past (an error). For
+// a reference facing -s the two counts run opposite ways and can meet: from lane 3 of three lanes
+// a side, dLane -1 is lane 2 by the standard's count and dLane 1 is lane 2 by esmini's.
 int lane_toward_reference_left(const xodr::Map& map, const Entity& ref, const RoadCoordinates& rc,
                                const LaneFollow& at, int lane_id,
                                const xosc::RelativeLanePosition& p, const SimState& state) {
@@ -225,7 +217,9 @@ int lane_toward_reference_left(const xodr::Map& map, const Entity& ref, const Ro
           "road '" + map.road(at.road).id + "' has no lane " + std::to_string(lane_id) + " (lane " +
               std::to_string(at.lane) + " plus dLane " + std::to_string(p.d_lane) +
               ") at s = " + format_double(at.s),
-          "lane " + std::to_string(left) + ", dLane counted toward the reference entity's left");
+          "lane " + std::to_string(left) +
+              ", esmini's count: dLane lanes toward the reference entity's left, the centre "
+              "lane not counted");
   return left;
 }
 

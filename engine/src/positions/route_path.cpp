@@ -175,6 +175,42 @@ RouteLocation locate_on_route(const RoutePath& path, double path_s) {
   return out;
 }
 
+namespace {
+
+// A RoutePosition FromCurrentEntity: where the entity is. 1.3 RoutePosition: the relative
+// reference context refers "to the orientation of the reference entity"; a missing Orientation is
+// a relative one of 0, the entity's own.
+ResolvedPosition route_position_of_entity(const xosc::RoutePosition& position,
+                                          const xosc::PositionOfCurrentEntity& in_route,
+                                          const SimState& state) {
+  const Entity& entity = need_entity(state, in_route.entity_ref, in_route.source);
+  ResolvedPosition out;
+  const Pose& p = entity.state.pose;
+  out.pose = {p.x, p.y, p.z, p.h, p.p, p.r};
+  orient_on_road(out.pose, position.orientation, false);
+  if (entity.state.road) {
+    out.road = RoadPoint{entity.state.road->road, entity.state.road->s, entity.state.road->t,
+                         entity.state.road->lane};
+  }
+  return out;
+}
+
+// The Orientation of a RoutePosition in road coordinates, for on_road in the road frame: a
+// missing one is a relative one of 0, facing the road's +s whichever way the route runs there,
+// under either reading (esmini's SetRouteRefRoadCoord: a missing h as 0 from +s, never along
+// the route). esmini turns any Orientation given in road coordinates from the road's +s, an
+// absolute one too.
+xosc::Orientation route_road_orientation(const std::optional<xosc::Orientation>& given,
+                                         bool esmini) {
+  xosc::Orientation orientation = given.value_or(xosc::Orientation{});
+  if (!given || esmini) {
+    orientation.type = xosc::ReferenceContext::kRelative;
+  }
+  return orientation;
+}
+
+}  // namespace
+
 ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, const SimState& state,
                                         std::optional<uint32_t> self) {
   const xodr::Map& map = need_map(state, position.source, "RoutePosition");
@@ -185,36 +221,13 @@ ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, con
       [&](const auto& in_route) -> ResolvedPosition {
         using T = std::decay_t<decltype(in_route)>;
         if constexpr (std::is_same_v<T, xosc::PositionOfCurrentEntity>) {
-          const Entity& entity = need_entity(state, in_route.entity_ref, in_route.source);
-          ResolvedPosition out;
-          const Pose& p = entity.state.pose;
-          out.pose = {p.x, p.y, p.z, p.h, p.p, p.r};
-          // 1.3 RoutePosition: the relative reference context refers "to the orientation of the
-          // reference entity"; a missing Orientation is a relative one of 0, the entity's own.
-          if (const auto& o = position.orientation) {
-            if (o->type == xosc::ReferenceContext::kRelative) {
-              out.pose.h = wrap_angle(p.h + o->h.value_or(0.0));
-              out.pose.p = p.p + o->p.value_or(0.0);
-              out.pose.r = p.r + o->r.value_or(0.0);
-            } else {
-              out.pose.h = o->h.value_or(0.0);
-              out.pose.p = o->p.value_or(0.0);
-              out.pose.r = o->r.value_or(0.0);
-            }
-          }
-          if (entity.state.road) {
-            out.road = RoadPoint{entity.state.road->road, entity.state.road->s,
-                                 entity.state.road->t, entity.state.road->lane};
-          }
-          return out;
+          return route_position_of_entity(position, in_route, state);
         } else {
           const RoutePath path = build_route_path(*position.route, state, self);
           if (path.steps.empty()) {
             fail(position.source, "the route has no length");
           }
           const RouteLocation at = locate_on_route(path, in_route.path_s);
-          double t = 0.0;
-          std::optional<int> lane;
           // 1.3 RoutePosition: "The relative reference context refers to the referenced road's s
           // and t coordinates, to the current lane's s and t coordinates [...]. Missing
           // Orientation property is interpreted as the relative reference context with
@@ -222,35 +235,19 @@ ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, con
           // +s, and a missing one faces it, whichever way the route runs there; in lane
           // coordinates from the lane's direction of travel (a lane's s-axis as for a
           // LanePosition).
-          OrientationFrame frame = OrientationFrame::kRoad;
-          std::optional<xosc::Orientation> orientation = position.orientation;
-          const bool esmini = state.options.semantics == Semantics::kEsmini;
           if constexpr (std::is_same_v<T, xosc::PositionInRoadCoordinates>) {
-            t = in_route.t;
-            if (!orientation) {
-              // Under either reading: esmini puts a route position's heading relative to the road
-              // (SetRouteRefRoadCoord: a missing h as 0 from +s), never along the route.
-              orientation = xosc::Orientation{};
-              orientation->type = xosc::ReferenceContext::kRelative;
-            } else if (esmini) {
-              // esmini (OSCPositionRoute::SetRouteRefRoadCoord) turns any Orientation given in
-              // road coordinates from the road's +s, an absolute one too.
-              orientation->type = xosc::ReferenceContext::kRelative;
-            }
+            return on_road(map, at.lane.road, at.s, in_route.t, std::nullopt,
+                           route_road_orientation(position.orientation, esmini_reading(state)));
           } else {
-            lane = parse_lane_id(in_route.lane_id, in_route.source);
-            t = need_lane_center(map, at.lane.road, at.s, *lane, in_route.source) +
-                in_route.lane_offset.value_or(0.0);
-            frame = OrientationFrame::kLane;
+            const int lane = parse_lane_id(in_route.lane_id, in_route.source);
+            const double t = need_lane_center(map, at.lane.road, at.s, lane, in_route.source) +
+                             in_route.lane_offset.value_or(0.0);
+            // Without an Orientation: the lane's direction of travel, which is along the route
+            // except where the route drives the lane against its traffic (esmini's reader too
+            // faces FromLaneCoordinates by the lane, relative pi on a lane of id > 0).
+            return on_road(map, at.lane.road, at.s, t, lane, position.orientation,
+                           OrientationFrame::kLane);
           }
-          ResolvedPosition out = on_road(map, at.lane.road, at.s, t, lane, orientation, frame);
-          if (!orientation) {
-            // Lane coordinates without an Orientation: the entity faces along the route, the
-            // lane's direction of travel unless the route drives the lane against it.
-            out.pose.h = wrap_angle(map.reference(at.lane.road, at.s).hdg +
-                                    (at.dir < 0 ? std::numbers::pi : 0.0));
-          }
-          return out;
         }
       },
       position.in_route);
