@@ -82,7 +82,7 @@ class LongitudinalDistanceInstance final : public ActionInstance {
     const double wanted =
         action_.distance ? *action_.distance : *action_.time_gap * (side_ > 0 ? v : v_ref);
     // The gap on the wanted side (negative when the actor is on the other side).
-    const double gap = -side_ * signed_offset(context);
+    const double gap = -side_ * step_offset(context);
     const double error = gap - wanted;
     const double brake = kBrakeShare * std::min(limits_.acceleration, limits_.deceleration);
     const double correction = std::copysign(
@@ -146,8 +146,21 @@ class LongitudinalDistanceInstance final : public ActionInstance {
     return entity_distance(context.state, reference, context.entity(), spec);
   }
 
+  // signed_offset for a step: measured again only when what it reads has changed since the
+  // last step's (a continuous action behind a standing reference asks the same every step).
+  double step_offset(const ActionContext& context) {
+    const Entity& reference = context.state.world.entities[reference_];
+    if (!offset_inputs_.same_as(reference, context.entity())) {
+      offset_ = signed_offset(context);
+      offset_inputs_.take(reference, context.entity());
+    }
+    return offset_;
+  }
+
   const xosc::LongitudinalDistanceAction& action_;
   uint32_t reference_ = 0;
+  EntityDistanceInputs offset_inputs_;  ///< what step_offset's offset_ was measured from
+  double offset_ = 0.0;
   SpeedLimits limits_;
   int side_ = 1;  ///< +1 trailing the reference, -1 leading it
   bool settled_ = false;

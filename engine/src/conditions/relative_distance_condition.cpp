@@ -2,8 +2,14 @@
 // to a reference entity (longitudinal, lateral or euclidean; in the entity frame, or road /
 // lane coordinates; between reference points or, with freespace, bounding boxes), compared as a
 // magnitude with a value.
+//
+// While what the distance reads (EntityDistanceInputs) holds the same bits as at the last
+// evaluation for the same triggering entity, the condition holds as it did then and is not
+// measured again (entities standing still ask the same every step).
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "conditions/condition_makers.h"
 #include "positions/relative_distance.h"
@@ -11,6 +17,12 @@
 
 namespace corsa::engine::detail {
 namespace {
+
+// The last evaluation for one triggering entity: its inputs and its result.
+struct RelativeDistanceMemo {
+  EntityDistanceInputs inputs;
+  bool held = false;
+};
 
 class RelativeDistanceCheck final : public EntityCondition {
  public:
@@ -24,15 +36,37 @@ class RelativeDistanceCheck final : public EntityCondition {
     if (entity == reference_) {
       return false;
     }
-    const double d = entity_distance(state, state.world.entities[entity],
-                                     state.world.entities[reference_], spec_);
-    return compare(std::abs(d), c_.rule, c_.value);
+    const Entity& from = state.world.entities[entity];
+    const Entity& to = state.world.entities[reference_];
+    if (entity >= slot_of_.size()) {
+      slot_of_.resize(entity + 1, kNoSlot);
+    }
+    uint32_t& slot = slot_of_[entity];
+    if (slot != kNoSlot) {
+      const RelativeDistanceMemo& memo = memos_[slot];
+      if (memo.inputs.same_as(from, to)) {
+        return memo.held;
+      }
+    } else {
+      slot = static_cast<uint32_t>(memos_.size());
+      memos_.emplace_back();
+    }
+    const double d = entity_distance(state, from, to, spec_);
+    RelativeDistanceMemo& memo = memos_[slot];
+    memo.inputs.take(from, to);
+    memo.held = compare(std::abs(d), c_.rule, c_.value);
+    return memo.held;
   }
 
  private:
+  static constexpr uint32_t kNoSlot = UINT32_MAX;
+
   const xosc::RelativeDistanceCondition& c_;
   uint32_t reference_;
   DistanceSpec spec_;
+  /// Per triggering entity (by index): its memo's place in memos_, or kNoSlot.
+  std::vector<uint32_t> slot_of_;
+  std::vector<RelativeDistanceMemo> memos_;
 };
 
 }  // namespace

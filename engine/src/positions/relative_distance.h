@@ -30,6 +30,26 @@ struct DistanceSpec {
 double entity_distance(const SimState& state, const Entity& from, const Entity& to,
                        const DistanceSpec& spec);
 
+/// What entity_distance reads of its two entities besides the map (fixed for a run): their
+/// poses, boxes and road coordinates and `from`'s lane direction. Equal to the bit, the same
+/// distance (-0 and +0 differ, a NaN equals itself).
+class EntityDistanceInputs {
+ public:
+  void take(const Entity& from, const Entity& to);
+  bool same_as(const Entity& from, const Entity& to) const;
+
+ private:
+  struct Party {
+    Pose pose;
+    Box box;
+    std::optional<RoadCoordinates> road;
+  };
+  Party from_, to_;
+  bool from_on_road_ = false;
+  int from_dir_ = 0;
+  bool taken_ = false;
+};
+
 /// The same from an entity to a position (a point: freespace uses only `from`'s box).
 double position_distance(const SimState& state, const Entity& from, const ResolvedPosition& to,
                          const DistanceSpec& spec);
