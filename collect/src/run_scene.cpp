@@ -14,6 +14,7 @@
 #include "corsa/engine/simulation.h"
 #include "corsa/sensors/georeference.h"
 #include "corsa/sensors/scene.h"
+#include "corsa/sensors/vehicle_size.h"
 #include "corsa/sensors/world.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/road_mesh.h"
@@ -174,6 +175,37 @@ sensors::Vec3 map_centre_in_crs(const xodr::Map* map) {
           h.offset_z + c.z};
 }
 
+/// The sensor scene's origin: the middle of the header's bounds (map_centre) when it lies within
+/// 1 km of the roads' extent, else, with a warning, the middle of the roads' extent. Header
+/// bounds are the author's word and may be anything (north 1e30 moved the origin there: single-
+/// precision tracing then saw nothing); the roads are what the sensors look at.
+sensors::Vec3 scene_origin(const xodr::Map& map, const xodr::RoadMesh& mesh,
+                           Diagnostics& diagnostics) {
+  const sensors::Vec3 header_centre = map_centre(&map);
+  const xodr::Header& h = map.data().header;
+  if (mesh.vertices.empty() || !(h.east > h.west && h.north > h.south)) {
+    return header_centre;
+  }
+  double x0 = mesh.vertices.front().x, x1 = x0, y0 = mesh.vertices.front().y, y1 = y0;
+  for (const xodr::Vec3& p : mesh.vertices) {
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  }
+  constexpr double kMargin = 1000.0;  // m
+  if (header_centre.x >= x0 - kMargin && header_centre.x <= x1 + kMargin &&
+      header_centre.y >= y0 - kMargin && header_centre.y <= y1 + kMargin) {
+    return header_centre;
+  }
+  diagnostics.add(make_warning(
+      map.data().source_file, 0,
+      "<header> bounds (west " + sensor_world_number(h.west) + ", east " +
+          sensor_world_number(h.east) + ", south " + sensor_world_number(h.south) + ", north " +
+          sensor_world_number(h.north) + ") are centred more than 1 km from the roads (x " +
+          sensor_world_number(x0) + " to " + sensor_world_number(x1) + ", y " +
+          sensor_world_number(y0) + " to " + sensor_world_number(y1) +
+          "): the sensor scene is centred on the roads instead"));
+  return {0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.0};
+}
+
 }  // namespace
 
 namespace {
@@ -201,6 +233,31 @@ std::vector<sensors::KeepClear> entities_kept_clear(const engine::Simulation& si
   return out;
 }
 
+/// Warns, at its BoundingBox, about each scenario vehicle too large for the generated models'
+/// details (sensors/vehicle_size.h): sensors see it as a plain box.
+void warn_vehicles_too_large_for_details(const engine::Simulation& simulation,
+                                         Diagnostics& diagnostics) {
+  engine::WorldSnapshot start;
+  simulation.fill_snapshot(start);
+  for (const engine::EntitySnapshot& e : start.entities) {
+    if (!sensors::vehicle_too_large_for_details(e.category, e.box)) {
+      continue;
+    }
+    for (const xosc::ScenarioObject& object : simulation.scenario().entities.objects) {
+      if (object.name != e.name) {
+        continue;
+      }
+      const auto* vehicle = std::get_if<xosc::Vehicle>(&object.object);
+      const xosc::Source& where = vehicle != nullptr ? vehicle->bounding_box.source : object.source;
+      diagnostics.add(where.warning(
+          "vehicle '" + clip(e.name) + "': its bounding box (" + sensor_world_number(e.box.length) +
+          " x " + sensor_world_number(e.box.width) + " x " + sensor_world_number(e.box.height) +
+          " m) is larger than any vehicle the generated models detail (60 m long, or 1 km for "
+          "trains and trams, 6 m wide, 8 m high): sensors see a plain box of its size"));
+    }
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simulation,
@@ -208,15 +265,22 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
                                                 const sensors::SensorRig& rig,
                                                 Diagnostics& diagnostics) {
   const xodr::Map* map = simulation.map();
-  auto scene = std::make_unique<sensors::Scene>(
-      sensors::SceneOptions{map_centre(map), simulation.options().seed});
   // Entities with a model3d file get that model (relative paths from the scenario's folder), the
   // others the rig's model for their name or category.
-  scene->set_entity_shape_source(std::make_shared<sensors::ModelShapeSource>(
-      simulation.scenario().path.parent_path(), diagnostics, rig.entity_models, rig.file));
+  auto shapes = std::make_shared<sensors::ModelShapeSource>(
+      simulation.scenario().path.parent_path(), diagnostics, rig.entity_models, rig.file);
+  warn_vehicles_too_large_for_details(simulation, diagnostics);
+  xodr::RoadMesh road_mesh;
+  sensors::Vec3 origin;
   if (map != nullptr) {
-    xodr::RoadMesh road_mesh = xodr::build_road_mesh(*map, xodr::MeshOptions{}, diagnostics);
-    refuse_surface_beyond_sensor_world(*map, road_mesh, map_centre(map));
+    road_mesh = xodr::build_road_mesh(*map, xodr::MeshOptions{}, diagnostics);
+    origin = scene_origin(*map, road_mesh, diagnostics);
+  }
+  auto scene =
+      std::make_unique<sensors::Scene>(sensors::SceneOptions{origin, simulation.options().seed});
+  scene->set_entity_shape_source(std::move(shapes));
+  if (map != nullptr) {
+    refuse_surface_beyond_sensor_world(*map, road_mesh, origin);
     scene->add_road_mesh(road_mesh);
   }
   const xosc::RoadNetwork& network = simulation.scenario().road_network;

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "corsa/core/random.h"
+#include "corsa/sensors/vehicle_size.h"
 #include "scalar_math.h"
 #include "scene_data.h"
 #include "vehicle_generators.h"
@@ -135,11 +136,11 @@ void animal(const engine::EntitySnapshot& e, RandomStream& rng, EntityShape& sha
   };
 }
 
-void obstacle(const engine::EntitySnapshot& e, EntityShape& shape) {
-  const engine::Box& box = e.box;
+/// A plain box of `box` in `semantic`, coloured `material`: no bones.
+void plain_box_shape(const engine::Box& box, SemanticClass semantic, const Material& material,
+                     EntityShape& shape) {
   MeshBuilder b;
-  b.semantic(SemanticClass::kDynamic)
-      .material(materials::plain("obstacle", linear_rgb(200, 120, 40), 0.7));
+  b.semantic(semantic).material(material);
   b.box({box.center_x - 0.5 * box.length, box.center_y - 0.5 * box.width,
          box.center_z - 0.5 * box.height},
         {box.center_x + 0.5 * box.length, box.center_y + 0.5 * box.width,
@@ -148,11 +149,39 @@ void obstacle(const engine::EntitySnapshot& e, EntityShape& shape) {
   shape.pose = nullptr;
 }
 
+void obstacle(const engine::EntitySnapshot& e, EntityShape& shape) {
+  plain_box_shape(e.box, SemanticClass::kDynamic,
+                  materials::plain("obstacle", linear_rgb(200, 120, 40), 0.7), shape);
+}
+
+/// The semantic class of a vehicle category's generated model.
+SemanticClass vehicle_semantic_class(engine::EntityCategory category) {
+  using engine::EntityCategory;
+  switch (category) {
+    case EntityCategory::kTruck:
+    case EntityCategory::kTrailer:
+    case EntityCategory::kSemitrailer:
+      return SemanticClass::kTruck;
+    case EntityCategory::kBus:
+      return SemanticClass::kBus;
+    case EntityCategory::kTrain:
+    case EntityCategory::kTram:
+      return SemanticClass::kTrain;
+    default:
+      return SemanticClass::kCar;
+  }
+}
+
 }  // namespace
 
 void build_entity_shape(const engine::EntitySnapshot& e, uint64_t seed, EntityShape& shape) {
   using engine::EntityCategory;
   RandomStream rng(derive_seed(seed, "look of " + e.name));
+  if (vehicle_too_large_for_details(e.category, e.box)) {
+    // Bounded cost whatever the size (vehicle_size.h): a box in the vehicle's class and paint.
+    plain_box_shape(e.box, vehicle_semantic_class(e.category), draw_car_paint(rng), shape);
+    return;
+  }
   GeneratedVehicle v;
   switch (e.category) {
     case EntityCategory::kCar:

@@ -5,6 +5,7 @@
 // left behind.
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -37,13 +38,22 @@ inline std::string joined(const std::vector<std::string>& args) {
 struct BoundedResult {
   int exit_code = -1;  ///< -1 when killed by a signal (a crash)
   bool timed_out = false;
-  double seconds = 0.0;
+  double seconds = 0.0;      ///< wall clock: for messages only (the machine is shared)
+  double cpu_seconds = 0.0;  ///< user + system time of the process and its children
   std::string err;
 };
 
 /// Seconds a single case may take before it counts as a hang. Generous: the machine running the
 /// tests is shared, and every case here finishes in well under a second when it works.
 inline constexpr int kCaseTimeLimit = 20;
+
+/// User + system seconds of the children waited for so far (RUSAGE_CHILDREN).
+inline double children_cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_CHILDREN, &usage);
+  const auto seconds = [](const timeval& t) { return t.tv_sec + 1e-6 * t.tv_usec; };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
 
 /// Runs `corsa args...` from the source tree with stdin from /dev/null, stdout discarded, under
 /// `timeout` (exit 124 = the limit was hit; the process is killed 2 s later if it ignores TERM).
@@ -58,9 +68,12 @@ inline BoundedResult run_bounded(const std::vector<std::string>& args,
   command += " </dev/null >/dev/null 2>" + shell_quote((dir.path() / "stderr").string());
   command = "cd " + shell_quote(CORSA_SOURCE_DIR) + " && " + command;
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = children_cpu_seconds();
   const int status = std::system(command.c_str());
   BoundedResult result;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // The shell, timeout(1) and corsa have all been waited for: their times are in the children's.
+  result.cpu_seconds = children_cpu_seconds() - cpu_start;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   // timeout(1) exits 124 on TERM, 137 when it had to KILL.
   result.timed_out = result.exit_code == 124 || result.exit_code == 137;
@@ -140,7 +153,8 @@ inline std::string cut_in_text() {
 inline std::string describe(const std::string& name, const BoundedResult& result) {
   return name + ": exit " + std::to_string(result.exit_code) +
          (result.timed_out ? " (timed out)" : "") + " after " + std::to_string(result.seconds) +
-         " s, stderr: " + result.err.substr(0, 600);
+         " s (" + std::to_string(result.cpu_seconds) +
+         " s CPU), stderr: " + result.err.substr(0, 600);
 }
 
 /// Checks that a case either succeeded (when `may_succeed`) or was rejected the way bad input must

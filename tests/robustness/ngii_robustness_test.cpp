@@ -124,7 +124,7 @@ TEST_CASE("A vertex outside its record's bounding box is a damaged record, refus
   const BoundedResult result =
       check_conversion_rejected("A2_LINK.shp vertex 6e290", dir, layers, "A2_LINK.shp");
   INFO(result.err);
-  CHECK(result.seconds < 10);
+  CHECK(result.cpu_seconds < 10);  // CPU time: wall time depends on the load
   CHECK(result.err.find("A2_LINK.shp: record 174: error: corrupt shape record: vertex 108 "
                         "(302269.305, 6.133177876e+290, 28.31200027) lies outside the record's "
                         "bounding box") != std::string::npos);

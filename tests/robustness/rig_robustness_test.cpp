@@ -4,12 +4,42 @@
 // hang.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bounded_run.h"
 
 namespace corsa::test {
 namespace {
+
+/// A scenario of one car `dimensions` (Dimensions attributes) on road 1 of `map`, its
+/// BoundingBox on line 7.
+void write_one_car_drive(
+    const std::filesystem::path& file, const std::filesystem::path& map,
+    const std::string& dimensions = "width=\"1.8\" length=\"4.5\" height=\"1.5\"") {
+  std::ofstream(file) << "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n"
+                         "  <FileHeader revMajor=\"1\" revMinor=\"3\" date=\"2026-01-01T00:00:00\" "
+                         "description=\"\" author=\"\"/>\n"
+                         "  <ParameterDeclarations/><CatalogLocations/>\n"
+                         "  <RoadNetwork><LogicFile filepath=\""
+                      << map.string()
+                      << "\"/></RoadNetwork>\n"
+                         "  <Entities><ScenarioObject name=\"Ego\"><Vehicle name=\"car\" "
+                         "vehicleCategory=\"car\"><Performance maxSpeed=\"50\" "
+                         "maxAcceleration=\"5\" maxDeceleration=\"9\"/>\n"
+                         "    <BoundingBox><Center x=\"1.4\" y=\"0\" z=\"0.8\"/><Dimensions "
+                      << dimensions
+                      << "/></BoundingBox>\n"
+                         "    <Axles><FrontAxle maxSteering=\"0.5\" wheelDiameter=\"0.6\" "
+                         "trackWidth=\"1.6\" positionX=\"2.8\" positionZ=\"0.3\"/><RearAxle "
+                         "maxSteering=\"0\" wheelDiameter=\"0.6\" trackWidth=\"1.6\" "
+                         "positionX=\"0\" positionZ=\"0.3\"/></Axles><Properties/>"
+                         "</Vehicle></ScenarioObject></Entities>\n"
+                         "  <Storyboard><Init><Actions><Private entityRef=\"Ego\"><PrivateAction>"
+                         "<TeleportAction><Position><LanePosition roadId=\"1\" laneId=\"-1\" "
+                         "s=\"10\"/></Position></TeleportAction></PrivateAction></Private>"
+                         "</Actions></Init><StopTrigger/></Storyboard>\n</OpenSCENARIO>\n";
+}
 
 TEST_CASE("Rigs with unknown sensors and absurd sizes are rejected at their line",
           "[robustness][rig]") {
@@ -105,26 +135,7 @@ TEST_CASE("A map whose surface or objects a sensor world cannot hold is refused 
   };
   for (const Case& c : cases) {
     TempDir dir;
-    std::ofstream(dir.path() / "drive.xosc")
-        << "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n"
-           "  <FileHeader revMajor=\"1\" revMinor=\"3\" date=\"2026-01-01T00:00:00\" "
-           "description=\"\" author=\"\"/>\n"
-           "  <ParameterDeclarations/><CatalogLocations/>\n"
-           "  <RoadNetwork><LogicFile filepath=\""
-        << (corpus / c.map).string()
-        << "\"/></RoadNetwork>\n"
-           "  <Entities><ScenarioObject name=\"Ego\"><Vehicle name=\"car\" "
-           "vehicleCategory=\"car\"><Performance maxSpeed=\"50\" maxAcceleration=\"5\" "
-           "maxDeceleration=\"9\"/><BoundingBox><Center x=\"1.4\" y=\"0\" z=\"0.8\"/><Dimensions "
-           "width=\"1.8\" length=\"4.5\" height=\"1.5\"/></BoundingBox><Axles><FrontAxle "
-           "maxSteering=\"0.5\" wheelDiameter=\"0.6\" trackWidth=\"1.6\" positionX=\"2.8\" "
-           "positionZ=\"0.3\"/><RearAxle maxSteering=\"0\" wheelDiameter=\"0.6\" "
-           "trackWidth=\"1.6\" positionX=\"0\" positionZ=\"0.3\"/></Axles><Properties/>"
-           "</Vehicle></ScenarioObject></Entities>\n"
-           "  <Storyboard><Init><Actions><Private entityRef=\"Ego\"><PrivateAction>"
-           "<TeleportAction><Position><LanePosition roadId=\"1\" laneId=\"-1\" s=\"10\"/>"
-           "</Position></TeleportAction></PrivateAction></Private></Actions></Init>"
-           "<StopTrigger/></Storyboard>\n</OpenSCENARIO>\n";
+    write_one_car_drive(dir.path() / "drive.xosc", corpus / c.map);
     const BoundedResult result =
         run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
                      "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
@@ -137,6 +148,65 @@ TEST_CASE("A map whose surface or objects a sensor world cannot hold is refused 
     CHECK(result.err.find(expected) != std::string::npos);
     CHECK(entry_names(dir.path()) == std::set<std::string>{"drive.xosc"});
   }
+}
+
+TEST_CASE("A vehicle larger than any is a plain box to the sensors, with a warning at its box",
+          "[robustness][rig]") {
+  // Found by tests/robustness/campaign.py: the car generator builds its lamps in 15 cm pieces on
+  // a surface found in 5 mm steps, so a car 60 m in every dimension took minutes, 1 km more than
+  // 14 minutes and 1e7 m all the memory.
+  const auto map =
+      std::filesystem::path(CORSA_SOURCE_DIR) / "tests/robustness/corpus" / "ok_minimal_road.xodr";
+  const std::pair<const char*, const char*> sizes[] = {{"1000", "1000"}, {"1e7", "1e+07"}};
+  for (const auto& [size, shown] : sizes) {
+    TempDir dir;
+    const std::string s = size;
+    write_one_car_drive(dir.path() / "drive.xosc", map,
+                        "width=\"" + s + "\" length=\"" + s + "\" height=\"" + s + "\"");
+    const BoundedResult result =
+        run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
+                     "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
+                     (dir.path() / "dataset").string()});
+    INFO(describe(std::string("a car of ") + size + " m", result));
+    CHECK_FALSE(result.timed_out);
+    CHECK(result.exit_code == 0);
+    CHECK(result.cpu_seconds < 10.0);  // CPU time: wall time depends on the load
+    const std::string n = shown;
+    CHECK(result.err.find("drive.xosc:7: warning: vehicle 'Ego': its bounding box (" + n + " x " +
+                          n + " x " + n + " m) is larger than any vehicle") != std::string::npos);
+  }
+  // The largest plausible sizes keep their details, without a word.
+  TempDir dir;
+  write_one_car_drive(dir.path() / "drive.xosc", map, "width=\"3\" length=\"25\" height=\"4.5\"");
+  const BoundedResult result =
+      run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
+                   "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
+                   (dir.path() / "dataset").string()});
+  INFO(describe("a car of 25 x 3 x 4.5 m", result));
+  CHECK(result.exit_code == 0);
+  CHECK(result.err.find("larger than any vehicle") == std::string::npos);
+}
+
+TEST_CASE("Header bounds far from the roads do not move the sensor scene there",
+          "[robustness][rig]") {
+  // Found by tests/robustness/campaign.py: bounds 1e29..1e30 m north put the scene's origin
+  // there; Embree traces in single precision around it, and the run wrote empty images, exit 0.
+  const auto corpus = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/robustness/corpus";
+  TempDir dir;
+  write_one_car_drive(dir.path() / "drive.xosc", corpus / "ok_header_bounds_far_from_roads.xodr");
+  const BoundedResult result =
+      run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
+                   "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
+                   (dir.path() / "dataset").string()});
+  INFO(describe("header bounds 1e30 m away", result));
+  CHECK(result.exit_code == 0);
+  CHECK(result.err.find("ok_header_bounds_far_from_roads.xodr: warning: <header> bounds (west "
+                        "-1e+30, east 1e+30, south 1e+29, north 1e+30) are centred more than "
+                        "1 km from the roads") != std::string::npos);
+  // The LiDAR sees the road and the ground (it saw nothing: no point at all).
+  const auto scan = dir.path() / "dataset" / "roof_lidar" / "000000.bin";
+  REQUIRE(std::filesystem::exists(scan));
+  CHECK(std::filesystem::file_size(scan) > 1000 * 16);  // float32 x y z intensity per point
 }
 
 }  // namespace

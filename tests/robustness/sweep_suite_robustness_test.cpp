@@ -85,10 +85,30 @@ TEST_CASE("Command-line grids too large are refused before their values are made
                    (dir.path() / "out").string(), "--quiet"});
   INFO(describe("four axes of 6 million values", result));
   CHECK(result.exit_code == 2);
-  CHECK(result.seconds < 10.0);
+  CHECK(result.cpu_seconds < 10.0);  // CPU time: wall time depends on the load
   CHECK(result.err.find("--param b=0:6e6:1: error: the grid's axes hold more than 10 million "
                         "values in all") != std::string::npos);
   CHECK(dir.entries() == 0);
+}
+
+TEST_CASE("A randomSeed beyond a 64-bit seed is warned about at its line, naming the seed used",
+          "[robustness][sweep]") {
+  // Found by tests/robustness/campaign.py: randomSeed 1e19 silently drew with the default seed.
+  const std::string suites = std::string(CORSA_SOURCE_DIR) + "/scenarios/suites/";
+  std::string text = replaced_all(slurp(suites + "sweeps/cut_in_stochastic.xosc"), "../regression/",
+                                  suites + "regression/");
+  text = replaced_all(text, "numberOfTestRuns=\"200\" randomSeed=\"42\"",
+                      "numberOfTestRuns=\"2\" randomSeed=\"1e19\"");
+  TempDir dir;
+  std::ofstream(dir.path() / "stochastic.xosc") << text;
+  const BoundedResult result = run_bounded({"sweep", (dir.path() / "stochastic.xosc").string(),
+                                            "-o", (dir.path() / "out").string(), "--quiet",
+                                            "--duration", "0.1", "--no-trajectories", "-j", "1"});
+  INFO(describe("randomSeed 1e19", result));
+  CHECK(result.exit_code == 0);
+  CHECK(result.err.find("stochastic.xosc:11: warning: randomSeed 1e+19 is beyond a 64-bit seed "
+                        "(|randomSeed| < 9.2e18): the distribution is drawn with the run's seed "
+                        "instead (sweep --seed, default 0)") != std::string::npos);
 }
 
 TEST_CASE("Broken suite manifests are rejected with a located error and no JUnit report",

@@ -39,7 +39,7 @@ TEST_CASE("OpenDRIVE nested 2 million deep stops at the depth limit, at its line
         run_on(dir, "deep.xodr", nested("OpenDRIVE", depth), {"map", "info", "@"});
     INFO(describe("depth " + std::to_string(depth), result));
     CHECK_FALSE(result.timed_out);
-    CHECK(result.seconds < 5.0);
+    CHECK(result.cpu_seconds < 5.0);  // CPU time: wall time depends on the load
     CHECK(result.exit_code == 2);
     // <OpenDRIVE> on line 2 and all the <e> on line 3.
     CHECK(result.err.find("deep.xodr:3: error: malformed XML: <e> is nested deeper than 256 "
@@ -101,7 +101,7 @@ TEST_CASE("OpenSCENARIO, suites and rigs nested too deeply are located errors th
       const BoundedResult result = run_on(dir, c.file, nested(c.root, depth), args);
       INFO(describe(std::string(c.what) + " depth " + std::to_string(depth), result));
       CHECK_FALSE(result.timed_out);
-      CHECK(result.seconds < 5.0);
+      CHECK(result.cpu_seconds < 5.0);  // CPU time: wall time depends on the load
       CHECK(result.exit_code == 2);
       CHECK(has_located_error(result.err));
       CHECK(result.err.find(c.file) != std::string::npos);

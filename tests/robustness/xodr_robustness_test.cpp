@@ -207,7 +207,7 @@ TEST_CASE("map holes and map render end in time on every valid map of the corpus
       INFO(describe(args[1] + " " + name, result));
       CHECK_FALSE(result.timed_out);
       CHECK(result.exit_code == 0);
-      CHECK(result.seconds < 10);
+      CHECK(result.cpu_seconds < 10);  // CPU time: wall time depends on the load
     }
   }
 }

@@ -1,6 +1,11 @@
 // ParameterValueDistribution documents (§10.2-10.4).
 
+#include <cmath>
+#include <string>
+
+#include "corsa/core/strings.h"
 #include "parsers.h"
+#include "random_seed.h"
 
 namespace corsa::xosc {
 namespace {
@@ -172,6 +177,14 @@ ParameterValueDistribution parse_parameter_value_distribution(ParseContext& ctx,
     value.number_of_test_runs = static_cast<uint32_t>(
         ctx.req_int(stochastic, "numberOfTestRuns", ParameterType::kUnsignedInt));
     value.random_seed = ctx.opt_double(stochastic, "randomSeed");
+    // The schema types randomSeed as a double; a seed is a 64-bit integer (variants.cpp
+    // seed_of), so a value beyond one is not a seed: said here, where it stands.
+    if (value.random_seed && !(std::fabs(*value.random_seed) < kLargestRandomSeed)) {
+      ctx.warn_once(stochastic, "random-seed-range:" + std::to_string(stochastic->GetLineNum()),
+                    "randomSeed " + format_double(*value.random_seed) +
+                        " is beyond a 64-bit seed (|randomSeed| < 9.2e18): the distribution is "
+                        "drawn with the run's seed instead (sweep --seed, default 0)");
+    }
     for (const Element* d : sto_kids.at_least("StochasticDistribution", 1)) {
       Children d_kids(ctx, d, "StochasticDistribution");
       value.distributions.push_back({ctx.parameter_name(d, "parameterName"),

@@ -9,6 +9,7 @@
 #include "corsa/core/random.h"
 #include "corsa/core/strings.h"
 #include "corsa/xosc/distributions.h"
+#include "random_seed.h"
 
 namespace corsa::xosc {
 namespace {
@@ -60,8 +61,7 @@ void append_entry(const DeterministicEntry& entry, size_t k, Variant& variant) {
 }
 
 uint64_t seed_of(const Stochastic& stochastic, const VariantOptions& options) {
-  if (!stochastic.random_seed || !std::isfinite(*stochastic.random_seed) ||
-      std::fabs(*stochastic.random_seed) >= 9.2e18) {
+  if (!stochastic.random_seed || !(std::fabs(*stochastic.random_seed) < kLargestRandomSeed)) {
     return options.default_seed;
   }
   return static_cast<uint64_t>(static_cast<int64_t>(std::trunc(*stochastic.random_seed)));
