@@ -10,32 +10,80 @@ import compare  # noqa: E402
 
 
 def trajectory(*rows):
-    """compare.read_trajectory's form from (time s, entity, x, y) rows."""
-    table = {}
-    for time, name, x, y in rows:
-        table.setdefault((round(time * 1e6), name), []).append((x, y, 0.0, 0.0))
-    return table
+    """compare.trajectory_table of (time s, entity, x, y) rows in recording order."""
+    return compare.trajectory_table((time, name, x, y, 0.0, 0.0) for time, name, x, y in rows)
+
+
+def positions(rows):
+    return [r[:2] for r in rows]
 
 
 class GhostRunNames(unittest.TestCase):
-    def test_a_row_of_an_earlier_ghost_run_is_paired_with_the_ghost_at_its_time(self):
-        corsa = trajectory((1.01, 'Ego_ghost', 65.100, -11.500),
+    def test_a_row_of_an_earlier_ghost_run_is_paired_with_the_ghost_s_run_before_the_restart(self):
+        corsa = trajectory((1.00, 'Ego_ghost', 65.000, -11.500),
+                           (1.01, 'Ego_ghost', 65.100, -11.500),
+                           (0.52, 'Ego_ghost', 60.000, -10.000),
                            (1.01, 'Ego_ghost', 65.023, -10.625))
         rows, earlier = compare.rows_for(corsa, 1.01, 'Ego_ghost_-1')
         self.assertTrue(earlier)
-        self.assertEqual([(65.100, -11.500), (65.023, -10.625)], [r[:2] for r in rows])
+        self.assertEqual([(65.100, -11.500)], positions(rows))
+        # The ghost's own name keeps both rows of that time (the smoke test accepts either).
+        rows, earlier = compare.rows_for(corsa, 1.01, 'Ego_ghost')
+        self.assertFalse(earlier)
+        self.assertEqual([(65.100, -11.500), (65.023, -10.625)], positions(rows))
 
-    def test_the_second_restart_s_run_maps_to_the_same_ghost(self):
-        corsa = trajectory((5.01, 'Car_ghost', 78.5, 0.0))
+    def test_the_earlier_run_is_taken_even_when_the_later_run_is_nearer(self):
+        # esmini's Car_ghost_-1 at 3.01 s is at (67.2, -1.535): the later run's row is the nearer
+        # one, yet the row belongs to the run before the first restart.
+        corsa = trajectory((3.01, 'Car_ghost', 70.100, -1.535),
+                           (1.02, 'Car_ghost', 50.200, -1.535),
+                           (3.01, 'Car_ghost', 67.229, -1.535))
+        rows, earlier = compare.rows_for(corsa, 3.01, 'Car_ghost_-1')
+        self.assertTrue(earlier)
+        self.assertEqual([(70.100, -1.535)], positions(rows))
+
+    def test_the_second_restart_s_run_is_the_run_between_the_two_restarts(self):
+        corsa = trajectory((3.01, 'Car_ghost', 70.100, -1.535),
+                           (5.01, 'Car_ghost', 90.000, -1.535),
+                           (1.02, 'Car_ghost', 50.200, -1.535),
+                           (5.01, 'Car_ghost', 78.643, -1.535),
+                           (3.02, 'Car_ghost', 67.300, -1.535),
+                           (5.01, 'Car_ghost', 71.541, -1.535))
         rows, earlier = compare.rows_for(corsa, 5.01, 'Car_ghost_-2')
         self.assertTrue(earlier)
-        self.assertEqual(78.5, rows[0][0])
+        self.assertEqual([(78.643, -1.535)], positions(rows))
+        rows, earlier = compare.rows_for(corsa, 5.01, 'Car_ghost_-1')
+        self.assertEqual([(90.000, -1.535)], positions(rows))
+        # No third restart: the run after the second one is Car_ghost's own.
+        self.assertEqual((None, False), compare.rows_for(corsa, 5.01, 'Car_ghost_-3'))
+
+    def test_a_ghost_corsa_did_not_restart_has_no_earlier_run(self):
+        corsa = trajectory((3.00, 'Car_ghost', 69.100, -1.535),
+                           (3.01, 'Car_ghost', 70.100, -1.535))
+        self.assertEqual((None, False), compare.rows_for(corsa, 3.01, 'Car_ghost_-1'))
+
+    def test_a_run_without_a_row_at_that_time_finds_nothing(self):
+        # Run 0 ended at 3.01 s; only run 1 reached 4.00 s.
+        corsa = trajectory((3.01, 'Car_ghost', 70.100, -1.535),
+                           (1.02, 'Car_ghost', 50.200, -1.535),
+                           (4.00, 'Car_ghost', 75.000, -1.535))
+        self.assertEqual((None, False), compare.rows_for(corsa, 4.00, 'Car_ghost_-1'))
+
+    def test_a_non_ghost_s_earlier_run_name_is_not_mapped(self):
+        corsa = trajectory((3.01, 'Foo', 70.100, -1.535),
+                           (1.02, 'Foo', 50.200, -1.535),
+                           (3.01, 'Foo', 67.229, -1.535))
+        self.assertEqual((None, False), compare.rows_for(corsa, 3.01, 'Foo_-1'))
 
     def test_a_name_corsa_records_is_taken_as_it_is(self):
-        corsa = trajectory((2.0, 'Car_-1', 1.0, 2.0), (2.0, 'Car', 9.0, 9.0))
+        corsa = trajectory((2.0, 'Car_-1', 1.0, 2.0), (2.0, 'Car', 9.0, 9.0),
+                           (2.0, 'Car_ghost_-1', 3.0, 4.0), (2.0, 'Car_ghost', 8.0, 8.0))
         rows, earlier = compare.rows_for(corsa, 2.0, 'Car_-1')
         self.assertFalse(earlier)
-        self.assertEqual(1.0, rows[0][0])
+        self.assertEqual([(1.0, 2.0)], positions(rows))
+        rows, earlier = compare.rows_for(corsa, 2.0, 'Car_ghost_-1')
+        self.assertFalse(earlier)
+        self.assertEqual([(3.0, 4.0)], positions(rows))
 
     def test_other_names_and_times_find_nothing(self):
         corsa = trajectory((1.0, 'Ego_ghost', 0.0, 0.0))
@@ -43,6 +91,24 @@ class GhostRunNames(unittest.TestCase):
         self.assertEqual((None, False), compare.rows_for(corsa, 1.0, 'Ego_ghost_-0'))
         self.assertEqual((None, False), compare.rows_for(corsa, 1.0, 'Ego_ghost_1'))
         self.assertEqual((None, False), compare.rows_for(corsa, 1.0, 'Other_-1'))
+
+
+class TrajectoryRuns(unittest.TestCase):
+    def test_an_entity_s_run_counts_its_rewinds_in_recording_order(self):
+        corsa = trajectory((0.0, 'A', 0.0, 0.0), (1.0, 'A', 1.0, 0.0), (0.5, 'A', 2.0, 0.0),
+                           (1.0, 'A', 3.0, 0.0), (0.0, 'B', 9.0, 0.0))
+        self.assertEqual([0, 1], [r[4] for r in corsa[(1000000, 'A')]])
+        self.assertEqual([1], [r[4] for r in corsa[(500000, 'A')]])
+        self.assertEqual([0], [r[4] for r in corsa[(0, 'B')]])
+        self.assertEqual({'A': 1}, corsa.rewinds)
+
+    def test_the_rows_after_a_rewind_stay_in_its_run_until_the_next_rewind(self):
+        corsa = trajectory((2.0, 'A', 0.0, 0.0), (3.0, 'A', 0.0, 0.0), (1.0, 'A', 1.0, 0.0),
+                           (2.0, 'A', 1.0, 0.0), (3.0, 'A', 1.0, 0.0), (4.0, 'A', 1.0, 0.0),
+                           (2.5, 'A', 2.0, 0.0), (3.0, 'A', 2.0, 0.0))
+        self.assertEqual([0, 1, 2], [r[4] for r in corsa[(3000000, 'A')]])
+        self.assertEqual([1], [r[4] for r in corsa[(4000000, 'A')]])
+        self.assertEqual({'A': 2}, corsa.rewinds)
 
 
 if __name__ == '__main__':
