@@ -94,7 +94,8 @@ Conversion convert(const Layers& layers, const ConvertOptions& options, Diagnost
   const LateralStructure lateral = lateral_structure(network);
   correct_lane_numbers(network, lateral, log);
   progress(0.05);
-  const NetworkPlan plan = plan_network(network, lateral, diagnostics);
+  const NetworkPlan plan =
+      plan_network(network, lateral, options.several_incoming_roads, diagnostics);
   progress(0.1);
   const Origin origin = choose_origin(layers);
   Assembly assembly = assemble(plan, network, origin, options, diagnostics);

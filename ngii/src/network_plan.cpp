@@ -177,8 +177,8 @@ bool polylines_cross(const std::vector<Point3>& a, const std::vector<Point3>& b)
 
 class Planner {
  public:
-  Planner(const Network& network, Diagnostics& diagnostics)
-      : network_(network), diagnostics_(diagnostics) {}
+  Planner(const Network& network, bool several_incoming, Diagnostics& diagnostics)
+      : network_(network), several_incoming_(several_incoming), diagnostics_(diagnostics) {}
 
   NetworkPlan run(const LateralStructure& lateral) {
     plan_.node_keys = static_cast<int>(network_.layers().nodes.size());
@@ -588,10 +588,13 @@ class Planner {
   /// neighbouring lanes of an ordinary road taken into the junction whole (`groups`: its
   /// pieces, left to right), side by side in the survey, so that a vehicle may change between
   /// them. A run takes only lanes that are a chain of their own (neither following nor leading
-  /// into another piece of the junction) and that come from the same road and lead into the
-  /// same road: a connecting road has one road before it and one after it (OpenDRIVE 1.8
-  /// §10.3 road linkage), and OpenDRIVE 1.7 §10.3 represents each connecting road by exactly
-  /// one <connection>, which names one incoming road. The other lanes stay one-lane paths.
+  /// into another piece of the junction), that each come from at most one road and lead into
+  /// at most one, and that all lead into the same road (a connecting road has one road after
+  /// it, OpenDRIVE 1.8 §10.3 road linkage). With `several_incoming_` they may come from
+  /// different roads, each feeding the connecting road through a <connection> of its own
+  /// (OpenDRIVE 1.8 §12.4: one per incoming road); without it they come from the same road,
+  /// since OpenDRIVE 1.7 §10.3 represents each connecting road by exactly one <connection>.
+  /// The other lanes stay one-lane paths.
   std::vector<std::vector<int>> side_by_side_runs(const std::vector<std::vector<int>>& groups,
                                                   const std::vector<std::vector<int>>& chains,
                                                   const LaneIndex& index, int j) const {
@@ -618,9 +621,9 @@ class Planner {
       return roads;
     };
     const auto runs_on = [&](int piece, int next) {
-      return outside(piece, false) == outside(next, false) &&
+      return (several_incoming_ || outside(piece, false) == outside(next, false)) &&
              outside(piece, true) == outside(next, true) && outside(piece, false).size() <= 1 &&
-             outside(piece, true).size() <= 1;
+             outside(next, false).size() <= 1 && outside(piece, true).size() <= 1;
     };
     std::vector<std::vector<int>> runs;
     for (const auto& group : groups) {
@@ -679,6 +682,7 @@ class Planner {
   }
 
   const Network& network_;
+  bool several_incoming_;  // a connecting road may take lanes from several incoming roads
   Diagnostics& diagnostics_;
   NetworkPlan plan_;
 };
@@ -702,8 +706,8 @@ LaneIndex::LaneIndex(const NetworkPlan& plan)
 }
 
 NetworkPlan plan_network(const Network& network, const LateralStructure& lateral,
-                         Diagnostics& diagnostics) {
-  return Planner(network, diagnostics).run(lateral);
+                         bool several_incoming, Diagnostics& diagnostics) {
+  return Planner(network, several_incoming, diagnostics).run(lateral);
 }
 
 }  // namespace corsa::ngii::detail

@@ -26,8 +26,10 @@ struct NetworkPlan {
   int node_keys = 0;  ///< topology keys in use (A1 nodes plus cut points)
 };
 
+/// `several_incoming`: a connecting road may take lanes from several incoming roads
+/// (ConvertOptions::several_incoming_roads).
 NetworkPlan plan_network(const Network& network, const LateralStructure& lateral,
-                         Diagnostics& diagnostics);
+                         bool several_incoming, Diagnostics& diagnostics);
 
 /// Lanes of all plans indexed by the topology key of their start and of their end.
 struct LaneIndex {

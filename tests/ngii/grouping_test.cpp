@@ -1,7 +1,8 @@
 // Side-by-side lanes inside a junction on small synthetic layers: an ordinary run of lanes that a
-// junction takes in whole stays one connecting road of several lanes where its lanes come from
-// one road and lead into one (network_plan.h); a lane of the run fed by another road stays a
-// connecting road of its own.
+// junction takes in whole stays one connecting road of several lanes where its lanes lead into
+// one road (network_plan.h). A lane of the run fed by another road joins it through a second
+// <connection> (OpenDRIVE 1.8, the default); for output that keeps one <connection> per
+// connecting road (OpenDRIVE 1.7, `--compat 1.4`) it stays a connecting road of its own.
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -84,11 +85,13 @@ const corsa::xodr::Road& road_of(const corsa::ngii::Conversion& conversion, cons
 
 }  // namespace
 
-TEST_CASE("a run of lanes a junction takes in whole stays one connecting road of its lanes",
+TEST_CASE("with one connection per connecting road a run's lane fed by another road stays apart",
           "[ngii][grouping][junction]") {
   const GroupingLayers g = run_in_junction();
   corsa::Diagnostics diagnostics;
-  const corsa::ngii::Conversion conversion = corsa::ngii::convert(g.layers, {}, diagnostics);
+  corsa::ngii::ConvertOptions options;
+  options.several_incoming_roads = false;
+  const corsa::ngii::Conversion conversion = corsa::ngii::convert(g.layers, options, diagnostics);
   const auto& first = placement_of(conversion, "A2TESTRN00001");
   const corsa::xodr::Road& run = road_of(conversion, first.road_id);
   CHECK(run.junction != "-1");
@@ -148,6 +151,76 @@ TEST_CASE("a run of lanes a junction takes in whole stays one connecting road of
   for (const int lane : {-1, -2, -3}) {
     CHECK(map.lane_graph().predecessors(node(lane)).size() == 1);
     CHECK(map.lane_graph().successors(node(lane)).size() == 1);
+  }
+  CHECK(diagnostics.count(corsa::Severity::kWarning) == 0);
+}
+
+TEST_CASE("a run of lanes a junction takes in whole is one connecting road fed by each road",
+          "[ngii][grouping][junction]") {
+  const GroupingLayers g = run_in_junction();
+  corsa::Diagnostics diagnostics;
+  const corsa::ngii::Conversion conversion = corsa::ngii::convert(g.layers, {}, diagnostics);
+  const auto& first = placement_of(conversion, "A2TESTRN00001");
+  const corsa::xodr::Road& run = road_of(conversion, first.road_id);
+  CHECK(run.junction != "-1");
+  const auto& approach = placement_of(conversion, "A2TESTAP00001");
+  const auto& beside = placement_of(conversion, "A2TESTSD00001");
+  const auto& exit = placement_of(conversion, "A2TESTEX00001");
+  CHECK(beside.road_id != approach.road_id);
+  // The road has one road before it (the approach) and one after it (the exit).
+  CHECK(run.predecessor.element_id == approach.road_id);
+  CHECK(run.successor.element_id == exit.road_id);
+  // All four lanes in it, left to right; the fourth, fed by the road beside the approach, has
+  // no lane predecessor (its road's predecessor is the approach) but leads into the exit's.
+  const auto& lanes = run.lane_sections.front().lanes;
+  for (int k = 0; k < 4; ++k) {
+    const auto& p = placement_of(conversion, "A2TESTRN0000" + std::to_string(k + 1));
+    CHECK(p.road_id == run.id);
+    CHECK(p.lane_id == -k - 1);
+    const auto lane =
+        std::find_if(lanes.begin(), lanes.end(), [&](const auto& l) { return l.id == -k - 1; });
+    REQUIRE(lane != lanes.end());
+    CHECK(lane->predecessors == (k < 3 ? std::vector<int>{-k - 1} : std::vector<int>{}));
+    CHECK(lane->successors == std::vector<int>{-k - 1});
+  }
+  // Two connections into it, one per incoming road (OpenDRIVE 1.8 §12.4): the approach's three
+  // lanes, and the road beside it into lane -4.
+  std::vector<const corsa::xodr::Connection*> connections;
+  for (const auto& junction : conversion.map.junctions) {
+    for (const auto& c : junction.connections) {
+      if (c.connecting_road == run.id) {
+        connections.push_back(&c);
+        CHECK(junction.id == run.junction);
+      }
+    }
+  }
+  REQUIRE(connections.size() == 2);
+  CHECK(connections[0]->incoming_road == approach.road_id);
+  CHECK(connections[0]->lane_links.size() == 3);
+  CHECK(connections[1]->incoming_road == beside.road_id);
+  REQUIRE(connections[1]->lane_links.size() == 1);
+  CHECK(connections[1]->lane_links.front().from == beside.lane_id);
+  CHECK(connections[1]->lane_links.front().to == -4);
+  // In the lane graph the road beside leads into lane -4, a vehicle may change between all four
+  // lanes, and each drives on into the exit.
+  const corsa::xodr::Map map = corsa::xodr::Map::build(conversion.map, diagnostics);
+  const auto node = [&](const std::string& road_id, int lane) {
+    const auto road = map.find_road(road_id);
+    REQUIRE(road);
+    const auto n =
+        map.lane_graph().find(corsa::xodr::LaneRef{static_cast<uint32_t>(*road), 0, lane});
+    REQUIRE(n);
+    return *n;
+  };
+  const auto fourth = node(run.id, -4);
+  const auto before_fourth = map.lane_graph().predecessors(fourth);
+  REQUIRE(before_fourth.size() == 1);
+  CHECK(before_fourth.front().node == node(beside.road_id, beside.lane_id));
+  CHECK(map.lane_graph().left(fourth) == node(run.id, -3));
+  CHECK(map.lane_graph().right(node(run.id, -3)) == fourth);
+  for (const int lane : {-1, -2, -3, -4}) {
+    CHECK(map.lane_graph().predecessors(node(run.id, lane)).size() == 1);
+    CHECK(map.lane_graph().successors(node(run.id, lane)).size() == 1);
   }
   CHECK(diagnostics.count(corsa::Severity::kWarning) == 0);
 }

@@ -166,8 +166,8 @@ TEST_CASE("side-by-side links taken into a junction whole stay one connecting ro
           "[ngii][topology][grouping]") {
   // K-City: four ordinary 7 m links (LaneNo 1-4, a complete L/R chain) between two
   // intersections, taken into the junction whole. A219BS010309/322/321 continue one road's
-  // three lanes and become one three-lane connecting road; A219BS010320 continues another road
-  // and stays a path of its own (a connecting road has one road before it).
+  // three lanes, A219BS010320 continues another road (A219BS010440's): one four-lane
+  // connecting road, fed by each road through a <connection> of its own (OpenDRIVE 1.8 §12.4).
   const ConvertedArea& area = converted("kcity");
   const Topology topology(area);
   const auto placed = [&](const std::string& link) -> const Placement& {
@@ -175,7 +175,8 @@ TEST_CASE("side-by-side links taken into a junction whole stay one connecting ro
     REQUIRE(topology.placements.at(link).size() == 1);
     return *topology.placements.at(link).front();
   };
-  const std::vector<std::string> run = {"A219BS010309", "A219BS010322", "A219BS010321"};
+  const std::vector<std::string> run = {"A219BS010309", "A219BS010322", "A219BS010321",
+                                        "A219BS010320"};
   const Placement& first = placed(run.front());
   const auto& roads = area.conversion.map.roads;
   const auto road = std::find_if(roads.begin(), roads.end(),
@@ -194,7 +195,9 @@ TEST_CASE("side-by-side links taken into a junction whole stay one connecting ro
     const auto lane =
         std::find_if(lanes.begin(), lanes.end(), [&](const auto& l) { return l.id == p.lane_id; });
     REQUIRE(lane != lanes.end());
-    CHECK(lane->predecessors.size() == 1);
+    // The fourth lane's road before it is not the road's predecessor: only its connection
+    // names it.
+    CHECK(lane->predecessors.size() == (k < 3 ? 1 : 0));
     CHECK(lane->successors.size() == 1);
     // In the lane graph: joined to the links before and after it, and a lane change away
     // from its neighbour in the run.
@@ -206,30 +209,27 @@ TEST_CASE("side-by-side links taken into a junction whole stay one connecting ro
       CHECK(area.map.lane_graph().left(node) == topology.lane_node(placed(run[k - 1])));
     }
   }
-  // One connection from the approach road, a laneLink per lane.
-  const corsa::xodr::Connection* connection = nullptr;
-  size_t connections = 0;
+  // Two connections: from the approach road a laneLink per lane of its three, and from
+  // A219BS010440's road into lane -4.
+  std::vector<const corsa::xodr::Connection*> connections;
   for (const auto& junction : area.conversion.map.junctions) {
     for (const auto& c : junction.connections) {
       if (c.connecting_road == road->id) {
-        connection = &c;
-        ++connections;
+        connections.push_back(&c);
         CHECK(junction.id == road->junction);
       }
     }
   }
-  REQUIRE(connection != nullptr);
-  CHECK(connections == 1);
-  CHECK(connection->incoming_road == road->predecessor.element_id);
-  CHECK(connection->lane_links.size() == run.size());
-  // The fourth lane comes from another road: a connecting road of its own, in the same
-  // junction, leading into the same road.
-  const Placement& fourth = placed("A219BS010320");
-  CHECK(fourth.road_id != road->id);
-  const auto other = std::find_if(roads.begin(), roads.end(),
-                                  [&](const auto& r) { return r.id == fourth.road_id; });
-  REQUIRE(other != roads.end());
-  CHECK(other->junction == road->junction);
-  CHECK(other->predecessor.element_id != road->predecessor.element_id);
-  CHECK(other->successor.element_id == road->successor.element_id);
+  REQUIRE(connections.size() == 2);
+  CHECK(connections[0]->incoming_road == road->predecessor.element_id);
+  CHECK(connections[0]->lane_links.size() == 3);
+  const Placement& feeder = placed("A219BS010440");
+  CHECK(feeder.road_id != road->predecessor.element_id);
+  CHECK(connections[1]->incoming_road == feeder.road_id);
+  REQUIRE(connections[1]->lane_links.size() == 1);
+  CHECK(connections[1]->lane_links.front().from == feeder.lane_id);
+  CHECK(connections[1]->lane_links.front().to == -4);
+  const auto before_fourth = area.map.lane_graph().predecessors(topology.lane_node(placed(run[3])));
+  REQUIRE(before_fourth.size() == 1);
+  CHECK(before_fourth.front().node == topology.lane_node(feeder));
 }

@@ -172,6 +172,7 @@ int convert_body(std::span<const std::string> args) {
   if (const auto compat = parsed.value("--compat")) {
     if (*compat == "1.4") {
       write_options = xodr::compat_options(4);
+      options.several_incoming_roads = false;  // one <connection> per connecting road (1.7)
     } else if (*compat != "1.8") {
       throw UsageError("--compat takes 1.4 (or 1.8, the default), not '" + *compat + "'");
     }

@@ -34,6 +34,11 @@ struct ConvertOptions {
   /// Width (m) of a sidewalk lane added on the outer (right) edge of every road that has no
   /// lane beside it there (NGII has no sidewalks; pedestrians need somewhere to walk); 0: none.
   double sidewalk_width = 0.0;
+  /// A connecting road may be fed by several incoming roads, one <connection> each (OpenDRIVE
+  /// 1.8 §12.4): lanes side by side in a junction stay one road though they come from different
+  /// roads. False keeps every connecting road to one <connection> (OpenDRIVE 1.7 §10.3), as
+  /// output for older readers needs (`corsa convert ngii --compat 1.4`).
+  bool several_incoming_roads = true;
   /// Called as the conversion advances: fraction done in [0, 1]. Optional.
   std::function<void(double)> progress;
 };
