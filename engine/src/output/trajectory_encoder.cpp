@@ -267,7 +267,7 @@ uint32_t TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Ro
   buffer_.append(frame_.data(), frame_size_);
   codec::put_varint(buffer_, 0);
   last_frame_ = tick;
-  if (buffer_.size() > (1u << 20)) {
+  if (buffer_.size() > kFlushBytes) {
     flush();
   }
   return coded;

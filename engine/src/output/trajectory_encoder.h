@@ -188,6 +188,11 @@ class TrajectoryEncoder {
   /// their largest, bytes.
   static constexpr size_t kMaxHead = 10 + 5 + 5;
   static constexpr size_t kMaxBody = 10 + 10 + kRowFields * 10;
+  /// The bytes the buffer gathers before they go to the file: few enough that the buffer stays
+  /// below malloc's mmap threshold (128 KiB) and is reused from one flush to the next. (At 1
+  /// MiB, a recording of a few hundred KB grew it by doublings into fresh mappings, about 200
+  /// page faults.)
+  static constexpr size_t kFlushBytes = size_t{1} << 16;
 
   void start(double dt, int64_t tick);
   /// Tracks entities up to `count` (their names written) and makes the frame's room for them.
