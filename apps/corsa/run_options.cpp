@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "corsa/core/strings.h"
+#include "corsa/engine/trajectory_file.h"
 #include "output_paths.h"
 
 namespace corsa::cli {
@@ -88,7 +89,8 @@ void declare_run_options(ArgParser& parser) {
                 ".corsatraj (corsa record export turns it into the same CSV)");
   parser.option("--record-every", "N", "record every N-th step (default 1)");
   parser.option("--record-thread", "auto|caller|writer",
-                "where a binary trajectory is encoded: on the run's thread, on a writer thread of "
+                "where a binary trajectory (FILE.corsatraj only) is encoded: on the run's thread, "
+                "on a writer thread of "
                 "its own (less wall time when a core is free, more CPU time), or auto (default: "
                 "the run's thread, a writer from --threads 2 once the ticks code many rows)");
   parser.option("--summary", "FILE.json", "write the run summary");
@@ -167,6 +169,14 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
   }
   options.record_thread = read_record_thread(parsed);
   options.record = output_file(parsed, "--record");
+  // Only a binary trajectory is encoded on a thread of its choosing: refused rather than ignored.
+  if (parsed.value("--record-thread") &&
+      (!options.record || !engine::is_binary_trajectory(*options.record))) {
+    throw UsageError(
+        "--record-thread applies to binary trajectories only (--record FILE.corsatraj), got " +
+        (options.record ? "--record '" + options.record->generic_string() + "'"
+                        : std::string("no --record")));
+  }
   options.summary = output_file(parsed, "--summary");
   options.log = output_file(parsed, "--log");
   return options;

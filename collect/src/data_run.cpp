@@ -2,7 +2,9 @@
 
 #include "corsa/collect/data_run.h"
 
+#include <algorithm>
 #include <utility>
+#include <variant>
 
 #include "corsa/core/strings.h"
 #include "corsa/engine/simulation.h"
@@ -12,6 +14,72 @@
 #include "corsa/xosc/scenario.h"
 
 namespace corsa::collect {
+namespace {
+
+/// The VisibilityActions of the scenario, the Init's and the events'.
+std::vector<const xosc::VisibilityAction*> visibility_actions_of(const xosc::Scenario& scenario) {
+  std::vector<const xosc::VisibilityAction*> out;
+  const auto take = [&out](const xosc::PrivateAction& action) {
+    if (const auto* visibility = std::get_if<xosc::VisibilityAction>(&action)) {
+      out.push_back(visibility);
+    }
+  };
+  for (const xosc::InitPrivate& init : scenario.storyboard.init.privates) {
+    for (const xosc::PrivateAction& action : init.actions) {
+      take(action);
+    }
+  }
+  for (const xosc::Story& story : scenario.storyboard.stories) {
+    for (const xosc::Act& act : story.acts) {
+      for (const xosc::ManeuverGroup& group : act.maneuver_groups) {
+        for (const xosc::Maneuver& maneuver : group.maneuvers) {
+          for (const xosc::Event& event : maneuver.events) {
+            for (const xosc::Action& action : event.actions) {
+              if (const auto* p = std::get_if<xosc::PrivateAction>(&action.action)) {
+                take(*p);
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  return out;
+}
+
+/// Warns at each SensorReference of a VisibilityAction that names no sensor of the rig (a rig made
+/// for another scenario, a misspelt name): the visibility it names holds for no sensor, so the
+/// entity may be hidden from every sensor; an error under --strict.
+void check_sensor_references(const xosc::Scenario& scenario, const sensors::SensorRig& rig,
+                             bool strict, Diagnostics& diagnostics) {
+  std::vector<std::string> known;
+  for (const sensors::SensorSpec& s : rig.sensors) {
+    known.push_back(s.name);
+  }
+  for (const xosc::VisibilityAction* action : visibility_actions_of(scenario)) {
+    for (const xosc::SensorReference& ref : action->sensor_refs) {
+      if (std::find(known.begin(), known.end(), ref.name) != known.end()) {
+        continue;
+      }
+      std::string names;
+      for (const std::string& k : known) {
+        names += (names.empty() ? "" : ", ") + k;
+      }
+      const std::string message = "SensorReference '" + clip(ref.name) +
+                                  "': the rig has no such sensor" + did_you_mean(ref.name, known) +
+                                  " (sensors: " + names + ")";
+      if (strict) {
+        throw InputError(ref.source.error(message + " (an error under --strict)"));
+      }
+      diagnostics.add_once(
+          "sensor-reference:" + ref.source.file_name() + ":" + std::to_string(ref.source.line) +
+              ":" + ref.name,
+          ref.source.warning(message + "; the visibility set for it holds for no sensor"));
+    }
+  }
+}
+
+}  // namespace
 
 DataRun::DataRun(const DatasetRunOptions& options, Diagnostics& diagnostics, sensors::SensorRig rig)
     : options_(options), diagnostics_(diagnostics), rig_(std::move(rig)) {}
@@ -24,6 +92,7 @@ void DataRun::prepare(engine::Simulation& simulation) {
     names.push_back(simulation.entity(i).name);
   }
   sensors::bind_rig(rig_, names);
+  check_sensor_references(simulation.scenario(), rig_, simulation.options().strict, diagnostics_);
   // The command line's models first, so that they win over the rig's for the same entity or
   // category.
   std::vector<sensors::EntityModel> models;

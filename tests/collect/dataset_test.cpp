@@ -149,6 +149,31 @@ TEST_CASE("A rig made for another scenario runs with a warning for each sensor i
   CHECK(corsa::test::check_dataset(dir.path() / "y", 192, 108).empty());
 }
 
+TEST_CASE("A SensorReference naming no sensor of the rig warns at it, an error under --strict",
+          "[dataset][visibility]") {
+  corsa::test::TempDir dir;
+  // The fixture's set names "front camera" and "lidar"; scenarios/rigs/small.xml has neither.
+  const std::vector<std::string> args{
+      "run",        "tests/engine/fixtures/visibility_sensor_refs.xosc",
+      "--rig",      "scenarios/rigs/small.xml",
+      "--duration", "0.2"};
+  std::vector<std::string> lenient = args;
+  lenient.insert(lenient.end(), {"-o", (dir.path() / "v").string()});
+  const auto run = run_corsa(lenient);
+  INFO(run.err);
+  CHECK(run.exit_code == 0);
+  CHECK_THAT(run.err, Catch::Contains("visibility_sensor_refs.xosc:39: warning: SensorReference "
+                                      "'front camera': the rig has no such sensor") &&
+                          Catch::Contains("SensorReference 'lidar': the rig has no such sensor"));
+  std::vector<std::string> strict = args;
+  strict.insert(strict.end(), {"-o", (dir.path() / "s").string(), "--strict"});
+  const auto refused = run_corsa(strict);
+  CHECK(refused.exit_code == 2);
+  CHECK_THAT(refused.err, Catch::Contains("visibility_sensor_refs.xosc:39: error: SensorReference "
+                                          "'front camera': the rig has no such sensor"));
+  CHECK_FALSE(fs::exists(dir.path() / "s"));
+}
+
 TEST_CASE("Captures showing interpenetrating entities are flagged in the index and poses",
           "[dataset][collisions]") {
   corsa::test::TempDir dir;

@@ -53,6 +53,16 @@ TEST_CASE("corsa run rejects bad usage with exit 2", "[e2e][run]") {
   const ProcessResult thread = run_corsa({"run", kCutIn, "--record-thread", "writers"});
   CHECK(thread.exit_code == 2);
   CHECK(thread.err.find("--record-thread expects auto, caller or writer") != std::string::npos);
+  // A CSV trajectory is written on the run's thread: the option is refused, not ignored.
+  const ProcessResult csv_thread =
+      run_corsa({"run", kCutIn, "--record-thread", "writer", "--record", "x.csv"});
+  CHECK(csv_thread.exit_code == 2);
+  CHECK(csv_thread.err.find("--record-thread applies to binary trajectories only") !=
+        std::string::npos);
+  CHECK(csv_thread.err.find("x.csv") != std::string::npos);
+  const ProcessResult no_record = run_corsa({"run", kCutIn, "--record-thread", "caller"});
+  CHECK(no_record.exit_code == 2);
+  CHECK(no_record.err.find("no --record") != std::string::npos);
   CHECK(run_corsa({"run", kCutIn, "--param", "novalue"}).exit_code == 2);
   const ProcessResult unknown = run_corsa({"run", kCutIn, "--param", "NoSuchParameter=1"});
   CHECK(unknown.exit_code == 2);

@@ -208,6 +208,30 @@ TEST_CASE("TrafficAreaAction on a road range keeps its number inside, replacing 
   CHECK(removed >= 6);  // 300 m at 13.9 m/s: each lives about 20 s or less in 40 s
 }
 
+TEST_CASE("A controller setSpeed that is no number warns once and spawns at the speed limit",
+          "[engine][traffic][area]") {
+  FixtureRun run(engine_fixture("traffic_area_bad_set_speed.xosc"));
+  run.run();
+  const auto& sim = run.sim();
+  size_t buses = 0;
+  for (const size_t i : generated(sim)) {
+    if (sim.entity(i).category != corsa::engine::EntityCategory::kBus) continue;
+    const int64_t tick = std::llround(sim.lifetimes(i).front().spawned / sim.dt());
+    const auto& state = run.trace().ticks().at(tick).at(i);
+    REQUIRE(state.road);
+    INFO(sim.entity(i).name << " on lane " << state.road->lane << " at " << state.speed << " m/s");
+    CHECK(state.speed == Approx(state.road->lane == -1 ? 80.0 / 3.6 : 30.0 / 3.6).margin(0.1));
+    ++buses;
+  }
+  CHECK(buses > 1);
+  const std::string text = all_text(run.diagnostics());
+  const std::string warning =
+      "traffic_area_bad_set_speed.xosc:23: warning: controller property 'setSpeed' is not a "
+      "non-negative number ('12 m/s'): its default is used";
+  CHECK_THAT(text, Catch::Contains(warning));
+  CHECK(text.find(warning) == text.rfind(warning));  // once, though every bus reads it
+}
+
 TEST_CASE("Area-spawned entities start at their entry's speed, their controller's, or the limit",
           "[engine][traffic][area]") {
   FixtureRun run(engine_fixture("traffic_area_speeds.xosc"));

@@ -226,7 +226,7 @@ VisibilityAction parse_visibility(ParseContext& ctx, const Element* e) {
     Children set_kids(ctx, set, "SensorReferenceSet");
     for (const Element* ref : set_kids.at_least("SensorReference", 1)) {
       Children(ctx, ref, "SensorReference");
-      action.sensor_refs.push_back(ctx.req_str(ref, "name"));
+      action.sensor_refs.push_back({ctx.req_str(ref, "name"), ctx.source(ref)});
     }
   }
   action.source = ctx.source(e);

@@ -21,7 +21,10 @@ class VisibilityInstance final : public InstantAction {
     if (action_.sensors) {
       const bool named = !action_.sensor_refs.empty();
       context.entity().state.visible = named ? !*action_.sensors : *action_.sensors;
-      control.sensor_exceptions = action_.sensor_refs;
+      control.sensor_exceptions.clear();
+      for (const xosc::SensorReference& ref : action_.sensor_refs) {
+        control.sensor_exceptions.push_back(ref.name);
+      }
     }
     if (action_.traffic) control.traffic_visible = *action_.traffic;
     if (action_.graphics) control.graphics_visible = *action_.graphics;

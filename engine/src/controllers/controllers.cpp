@@ -26,8 +26,9 @@
 
 namespace corsa::engine::detail {
 
-std::optional<double> nonnegative_property(SimState& state, const xosc::Controller& controller,
-                                           const char* name, const char* controller_label) {
+std::optional<double> nonnegative_property(const SimState& state,
+                                           const xosc::Controller& controller, const char* name,
+                                           const char* controller_label) {
   for (const xosc::Property& property : controller.properties.properties) {
     if (property.name != name) continue;
     char* end = nullptr;
@@ -35,9 +36,13 @@ std::optional<double> nonnegative_property(SimState& state, const xosc::Controll
     if (end != property.value.c_str() && *end == '\0' && std::isfinite(value) && value >= 0.0) {
       return value;
     }
-    state.diagnostics.add(property.source.warning(
-        std::string(controller_label) + " property '" + property.name +
-        "' is not a non-negative number ('" + property.value + "'): its default is used"));
+    // Once per property: a catalog controller or a traffic template serves many entities.
+    state.diagnostics.add_once(
+        "controller-property:" + property.source.file_name() + ":" +
+            std::to_string(property.source.line) + ":" + property.name,
+        property.source.warning(std::string(controller_label) + " property '" + property.name +
+                                "' is not a non-negative number ('" + property.value +
+                                "'): its default is used"));
     return std::nullopt;
   }
   return std::nullopt;

@@ -82,10 +82,11 @@ void move_at_controller_speed(Entity& entity, double speed, Move&& move) {
 
 /// The Property `name` of a scenario Controller as a non-negative number (esmini's controllers
 /// take their parameters so: `timeGap`, `headstartTime`, ...), or nothing when it is absent. A
-/// value that is no finite non-negative number warns, located at the property, naming
-/// `controller_label`, and counts as absent (the caller's default is used).
-std::optional<double> nonnegative_property(SimState& state, const xosc::Controller& controller,
-                                           const char* name, const char* controller_label);
+/// value that is no finite non-negative number warns (once per property), located at the
+/// property, naming `controller_label`, and counts as absent (the caller's default is used).
+std::optional<double> nonnegative_property(const SimState& state,
+                                           const xosc::Controller& controller, const char* name,
+                                           const char* controller_label);
 
 /// Gives every entity its controller from the scenario and the options (state.controls sized
 /// to the entities). Throws InputError for an unknown --controller name.

@@ -22,11 +22,15 @@ std::optional<double> refpoint_length(SimState& state, const Entity& entity) {
     if (property.name != kRefpointProperty) continue;
     const std::optional<double> value = parse_double(property.value);
     if (!value || !std::isfinite(*value) || *value < 0.0) {
-      state.diagnostics.add(property.source.warning(
-          "vehicle '" + entity.info.name + "': property " + kRefpointProperty + " '" +
-          property.value +
-          "' is no number >= 0 (metres from the axle the body turns about forward to the "
-          "reference point): ignored, the body faces the way it moves"));
+      // Once per property: a catalog vehicle serves many entities (the message names the first).
+      state.diagnostics.add_once(
+          std::string("refpoint:") + property.source.file_name() + ":" +
+              std::to_string(property.source.line),
+          property.source.warning(
+              "vehicle '" + entity.info.name + "': property " + kRefpointProperty + " '" +
+              property.value +
+              "' is no number >= 0 (metres from the axle the body turns about forward to the "
+              "reference point): ignored, the body faces the way it moves"));
       return std::nullopt;
     }
     return *value;

@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 
+#include "controllers/controllers.h"
 #include "corsa/core/random.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
@@ -98,10 +99,10 @@ double spawn_speed(const SimState& state, RandomStream& random, const TrafficMix
     return *given;
   }
   for (const xosc::ObjectController& oc : mix.prototype(kind).controllers) {
-    if (const xosc::Property* property = spawn_property(oc.controller.properties, "setSpeed")) {
-      if (const auto value = spawn_speed_number(property->value)) {
-        return *value;
-      }
+    // Any controller's setSpeed, not only esmini's ACCController's in mode "override" (whose
+    // set speed it is, control_state.h): a cruise speed the scenario gives its traffic.
+    if (const auto value = nonnegative_property(state, oc.controller, "setSpeed", "controller")) {
+      return *value;
     }
   }
   if (mix.walks(kind)) {

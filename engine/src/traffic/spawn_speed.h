@@ -8,8 +8,11 @@
 //   1. the entry's property `corsa:speed`: metres per second, "V" or a range "LO..HI" drawn
 //      uniformly for each object;
 //   2. the speed the action gives (`given`);
-//   3. the object's controller's cruise speed: a `setSpeed` property of its ObjectController
-//      (esmini's ACCController's);
+//   3. the object's controller's cruise speed: a `setSpeed` property of its ObjectController,
+//      whatever the controller's type and mode (esmini reads it only for its ACCController in
+//      mode "override"; here any controller of a traffic template may give its objects'
+//      starting speed); a value that is no non-negative number warns at the property and is
+//      passed over;
 //   4. walkers: 1.3 m/s;
 //   5. the speed limit where it spawns: the OpenDRIVE lane's <speed> record, else the road's
 //      <type> speed;

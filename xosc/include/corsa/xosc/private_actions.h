@@ -123,12 +123,18 @@ struct LateralDistanceAction {
   Source source;
 };
 
+/// A SensorReferenceSet's SensorReference: a sensor's name (the rig's, for Corsa's sensors).
+struct SensorReference {
+  std::string name;
+  Source source;
+};
+
 struct VisibilityAction {
   /// Each flag is required by the standard; absent (a lenient reading) means "unchanged".
   std::optional<bool> graphics = true;
   std::optional<bool> sensors = true;
   std::optional<bool> traffic = true;
-  std::vector<std::string> sensor_refs;  ///< SensorReferenceSet names
+  std::vector<SensorReference> sensor_refs;  ///< SensorReferenceSet
   Source source;
 };
 
