@@ -102,13 +102,15 @@ std::string sensor_world_number(double value) {
 
 /// Refuses a road surface the sensor world cannot hold, at the road's line: Embree traces in
 /// single precision around the scene's origin (a surface 2e303 m up, from an elevation of slope
-/// 1e300, failed its ray assertion and aborted), and the ground is a height field of 4 m cells
-/// over the roads' extent (a lane 1e206 m wide asked for a vector beyond max_size(), exit 3).
+/// 1e300, failed its ray assertion and aborted). The ground's height field grows its cells with
+/// the roads' extent (world_ground.cpp: at most 2^25 cells), so any real map fits; an extent
+/// beyond 1000 km (no road network is that large; single-precision tracing 500 km from the origin
+/// is already centimetres coarse, and the ground's cells would be 170 m) or not finite is refused
+/// as a limit of the sensor world (a lane 1e206 m wide asked for a vector beyond max_size()).
 void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMesh& mesh,
                                         const sensors::Vec3& origin) {
-  constexpr double kMaxHeight = 1e6;           // m from the origin, up or down
-  constexpr double kMaxGroundCells = 1 << 25;  // 4 m cells: about 23 km x 23 km, 570 MB
-  constexpr double kGroundCell = 4.0, kGroundMargin = 200.0;  // as world_ground.cpp
+  constexpr double kMaxHeight = 1e6;  // m from the origin, up or down
+  constexpr double kMaxExtent = 1e6;  // m across the roads, east-west or north-south
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
   std::vector<Diagnostic> refused;  // every road too high or too low, in one pass
   std::vector<char> road_refused(map.road_count(), 0);
@@ -129,9 +131,8 @@ void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMe
       y1 = std::max(y1, p.y);
     }
   }
-  const double cells = ((x1 - x0 + 2 * kGroundMargin) / kGroundCell + 1) *
-                       ((y1 - y0 + 2 * kGroundMargin) / kGroundCell + 1);
-  if (mesh.triangles.empty() || cells <= kMaxGroundCells) {
+  const bool extent_held = x1 - x0 <= kMaxExtent && y1 - y0 <= kMaxExtent;  // false if NaN
+  if (mesh.triangles.empty() || extent_held) {
     if (!refused.empty()) {
       throw InputError(std::move(refused));
     }
@@ -156,8 +157,8 @@ void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMe
       map.data().source_file, road.line,
       "road '" + clip(road.id) + "': the road surfaces span " + sensor_world_number(x1 - x0) +
           " m x " + sensor_world_number(y1 - y0) +
-          " m, more than a sensor world's ground holds (4 m cells, at most 33,554,432 of them: "
-          "about 23 km x 23 km)"));
+          " m; Corsa's sensor world holds at most 1000 km x 1000 km (a limit of Corsa's sensors, "
+          "not a fault in the map)"));
   throw InputError(std::move(refused));
 }
 

@@ -150,6 +150,28 @@ TEST_CASE("A map whose surface or objects a sensor world cannot hold is refused 
   }
 }
 
+TEST_CASE("Roads tens of kilometres apart get a sensor world of larger ground cells",
+          "[robustness][rig]") {
+  // Roads 40 km apart east and north need 1e8 ground cells of 4 m: the map was refused (exit 2)
+  // as if the file were at fault; the ground now takes larger cells, at most 2^22 of them.
+  const auto corpus = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/robustness/corpus";
+  TempDir dir;
+  write_one_car_drive(dir.path() / "drive.xosc", corpus / "ok_roads_40km_apart.xodr");
+  const BoundedResult result =
+      run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
+                   "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
+                   (dir.path() / "dataset").string()},
+                  300);  // about 20 s of CPU time, mostly the ground's 2^22 cells
+  INFO(describe("roads 40 km apart", result));
+  CHECK_FALSE(result.timed_out);
+  CHECK(result.exit_code == 0);
+  CHECK(result.err.find("error") == std::string::npos);
+  // The LiDAR sees the road and the ground around the car.
+  const auto scan = dir.path() / "dataset" / "roof_lidar" / "000000.bin";
+  REQUIRE(std::filesystem::exists(scan));
+  CHECK(std::filesystem::file_size(scan) > 1000 * 16);  // float32 x y z intensity per point
+}
+
 TEST_CASE("A vehicle larger than any is a plain box to the sensors, with a warning at its box",
           "[robustness][rig]") {
   // Found by tests/robustness/campaign.py: the car generator builds its lamps in 15 cm pieces on
