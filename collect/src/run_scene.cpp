@@ -162,15 +162,12 @@ void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMe
   throw InputError(std::move(refused));
 }
 
-/// The centre of the map in its geoReference's CRS: OpenDRIVE's header <offset> moves the file's
-/// coordinates there (x_geo = offset + R(hdg) x_file, §2.6); a converted NGII map keeps its
-/// coordinates small and the UTM origin in the offset, so without it the map lands far away.
-sensors::Vec3 map_centre_in_crs(const xodr::Map* map) {
-  const sensors::Vec3 c = map_centre(map);
-  if (map == nullptr) {
-    return c;
-  }
-  const xodr::Header& h = map->data().header;
+/// `centre` (file coordinates) in the map's geoReference CRS: OpenDRIVE's header <offset> moves
+/// the file's coordinates there (x_geo = offset + R(hdg) x_file, §2.6); a converted NGII map
+/// keeps its coordinates small and the UTM origin in the offset, so without it the map lands far
+/// away.
+sensors::Vec3 in_map_crs(const xodr::Map& map, const sensors::Vec3& c) {
+  const xodr::Header& h = map.data().header;
   const double cos_h = std::cos(h.offset_hdg), sin_h = std::sin(h.offset_hdg);
   return {h.offset_x + cos_h * c.x - sin_h * c.y, h.offset_y + sin_h * c.x + cos_h * c.y,
           h.offset_z + c.z};
@@ -341,7 +338,8 @@ std::string place_text(const sensors::GeoLocation& where) {
 
 }  // namespace
 
-sensors::GeoLocation run_location(const engine::Simulation& simulation, Diagnostics& diagnostics) {
+sensors::GeoLocation run_location(const engine::Simulation& simulation,
+                                  const sensors::Vec3& scene_origin, Diagnostics& diagnostics) {
   const xodr::Map* map = simulation.map();
   const sensors::GeoLocation seoul;
   const std::string fallback = "; the sun is computed at " + place_text(seoul) +
@@ -357,8 +355,8 @@ sensors::GeoLocation run_location(const engine::Simulation& simulation, Diagnost
   const std::string& geo_reference = map->data().header.geo_reference;
   const std::optional<std::string> origin_only = origin_only_projection(geo_reference);
   try {
-    const sensors::GeoLocation where =
-        sensors::geolocation_of(origin_only.value_or(geo_reference), map_centre_in_crs(map));
+    const sensors::GeoLocation where = sensors::geolocation_of(origin_only.value_or(geo_reference),
+                                                               in_map_crs(*map, scene_origin));
     if (origin_only) {
       diagnostics.add_once("run-location",
                            make_warning(map->data().source_file, 0,

@@ -3,6 +3,8 @@
 // revolution) are located errors before the dataset folder is made, never an out-of-memory or a
 // hang.
 
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -229,6 +231,42 @@ TEST_CASE("Header bounds far from the roads do not move the sensor scene there",
   const auto scan = dir.path() / "dataset" / "roof_lidar" / "000000.bin";
   REQUIRE(std::filesystem::exists(scan));
   CHECK(std::filesystem::file_size(scan) > 1000 * 16);  // float32 x y z intensity per point
+}
+
+TEST_CASE("The sun is placed at the sensor scene's origin, the roads when the bounds lie far",
+          "[robustness][rig]") {
+  // The scene was centred on the roads but the sun placed from the header bounds' centre, 8500 km
+  // north: the images differed from those of the same map with bounds around its road.
+  const auto far_map = std::filesystem::path(CORSA_SOURCE_DIR) /
+                       "tests/robustness/corpus/ok_header_bounds_far_with_georeference.xodr";
+  std::ifstream in(far_map);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string far_bounds =
+      "north=\"9000000\" south=\"8000000\" east=\"100\"\n          west=\"-100\"";
+  const size_t at = text.find(far_bounds);
+  REQUIRE(at != std::string::npos);
+  // The road spans x 0 to 100, y -3.5 to 0: bounds around it give the same origin.
+  text.replace(at, far_bounds.size(), "north=\"0\" south=\"-3.5\" east=\"100\" west=\"0\"");
+  TempDir dir;
+  std::ofstream(dir.path() / "near.xodr") << text;
+  const auto images_of = [&dir](const std::filesystem::path& map, const std::string& name) {
+    write_one_car_drive(dir.path() / (name + ".xosc"), map);
+    const BoundedResult result = run_bounded(
+        {"run", (dir.path() / (name + ".xosc")).string(), "--duration", "0.1", "--quiet", "--rig",
+         std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
+         (dir.path() / name).string()});
+    INFO(describe(name, result));
+    CHECK(result.exit_code == 0);
+    std::string bytes;
+    for (const char* frame : {"000000.png", "000001.png"}) {
+      std::ifstream image(dir.path() / name / "front_rgb" / frame, std::ios::binary);
+      bytes.append(std::istreambuf_iterator<char>(image), std::istreambuf_iterator<char>());
+    }
+    return bytes;
+  };
+  const std::string far_images = images_of(far_map, "far");
+  CHECK(far_images.size() > 1000);
+  CHECK(far_images == images_of(dir.path() / "near.xodr", "near"));
 }
 
 }  // namespace
