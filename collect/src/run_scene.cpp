@@ -232,13 +232,15 @@ std::vector<sensors::KeepClear> entities_kept_clear(const engine::Simulation& si
 }
 
 /// Warns, at its BoundingBox, about each scenario vehicle too large for the generated models'
-/// details (sensors/vehicle_size.h): sensors see it as a plain box.
+/// details (sensors/vehicle_size.h): sensors see it as a plain box. Vehicles that name a model
+/// (model3d, or the rig's) are seen as that model: nothing to say.
 void warn_vehicles_too_large_for_details(const engine::Simulation& simulation,
+                                         const sensors::ModelShapeSource& shapes,
                                          Diagnostics& diagnostics) {
   engine::WorldSnapshot start;
   simulation.fill_snapshot(start);
   for (const engine::EntitySnapshot& e : start.entities) {
-    if (!sensors::vehicle_too_large_for_details(e.category, e.box)) {
+    if (!sensors::vehicle_too_large_for_details(e.category, e.box) || shapes.names_model(e)) {
       continue;
     }
     for (const xosc::ScenarioObject& object : simulation.scenario().entities.objects) {
@@ -267,7 +269,7 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
   // others the rig's model for their name or category.
   auto shapes = std::make_shared<sensors::ModelShapeSource>(
       simulation.scenario().path.parent_path(), diagnostics, rig.entity_models, rig.file);
-  warn_vehicles_too_large_for_details(simulation, diagnostics);
+  warn_vehicles_too_large_for_details(simulation, *shapes, diagnostics);
   xodr::RoadMesh road_mesh;
   sensors::Vec3 origin;
   if (map != nullptr) {

@@ -199,6 +199,28 @@ TEST_CASE("A vehicle larger than any is a plain box to the sensors, with a warni
     CHECK(result.err.find("drive.xosc:7: warning: vehicle 'Ego': its bounding box (" + n + " x " +
                           n + " x " + n + " m) is larger than any vehicle") != std::string::npos);
   }
+  // A car of 1000 m with its own model3d is seen as that model: nothing to warn about.
+  {
+    TempDir dir;
+    write_one_car_drive(dir.path() / "drive.xosc", map,
+                        "width=\"1000\" length=\"1000\" height=\"1000\"");
+    std::ifstream in(dir.path() / "drive.xosc");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string category = "vehicleCategory=\"car\"";
+    REQUIRE(text.find(category) != std::string::npos);
+    text.insert(
+        text.find(category) + category.size(),
+        " model3d=\"" + std::string(CORSA_SOURCE_DIR) + "/scenarios/models/street_district.obj\"");
+    std::ofstream(dir.path() / "drive.xosc") << text;
+    const BoundedResult result =
+        run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
+                     "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
+                     (dir.path() / "dataset").string()});
+    INFO(describe("a car of 1000 m with a model3d", result));
+    CHECK(result.exit_code == 0);
+    CHECK(result.err.find("cannot use the model") == std::string::npos);
+    CHECK(result.err.find("larger than any vehicle") == std::string::npos);
+  }
   // The largest plausible sizes keep their details, without a word.
   TempDir dir;
   write_one_car_drive(dir.path() / "drive.xosc", map, "width=\"3\" length=\"25\" height=\"4.5\"");
