@@ -110,7 +110,7 @@ void DataRun::prepare(engine::Simulation& simulation) {
   scene_ = build_run_scene(simulation, options_.models, rig_, diagnostics_);
   sensors::SensorSystemOptions system_options;
   system_options.seed = simulation.options().seed;
-  system_options.location = run_location(simulation, diagnostics_);
+  system_options.location = run_location(simulation, scene_->options().origin, diagnostics_);
   system_options.rgb_instances = options_.format == sensors::DatasetFormat::kKitti;
   system_ = std::make_unique<sensors::SensorSystem>(rig_, *scene_, system_options);
   sensors::DatasetRunInfo info;

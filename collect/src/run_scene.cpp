@@ -102,13 +102,15 @@ std::string sensor_world_number(double value) {
 
 /// Refuses a road surface the sensor world cannot hold, at the road's line: Embree traces in
 /// single precision around the scene's origin (a surface 2e303 m up, from an elevation of slope
-/// 1e300, failed its ray assertion and aborted), and the ground is a height field of 4 m cells
-/// over the roads' extent (a lane 1e206 m wide asked for a vector beyond max_size(), exit 3).
+/// 1e300, failed its ray assertion and aborted). The ground's height field grows its cells with
+/// the roads' extent (world_ground.cpp: at most 2^25 cells), so any real map fits; an extent
+/// beyond 1000 km (no road network is that large; single-precision tracing 500 km from the origin
+/// is already centimetres coarse, and the ground's cells would be 170 m) or not finite is refused
+/// as a limit of the sensor world (a lane 1e206 m wide asked for a vector beyond max_size()).
 void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMesh& mesh,
                                         const sensors::Vec3& origin) {
-  constexpr double kMaxHeight = 1e6;           // m from the origin, up or down
-  constexpr double kMaxGroundCells = 1 << 25;  // 4 m cells: about 23 km x 23 km, 570 MB
-  constexpr double kGroundCell = 4.0, kGroundMargin = 200.0;  // as world_ground.cpp
+  constexpr double kMaxHeight = 1e6;  // m from the origin, up or down
+  constexpr double kMaxExtent = 1e6;  // m across the roads, east-west or north-south
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
   std::vector<Diagnostic> refused;  // every road too high or too low, in one pass
   std::vector<char> road_refused(map.road_count(), 0);
@@ -129,9 +131,8 @@ void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMe
       y1 = std::max(y1, p.y);
     }
   }
-  const double cells = ((x1 - x0 + 2 * kGroundMargin) / kGroundCell + 1) *
-                       ((y1 - y0 + 2 * kGroundMargin) / kGroundCell + 1);
-  if (mesh.triangles.empty() || cells <= kMaxGroundCells) {
+  const bool extent_held = x1 - x0 <= kMaxExtent && y1 - y0 <= kMaxExtent;  // false if NaN
+  if (mesh.triangles.empty() || extent_held) {
     if (!refused.empty()) {
       throw InputError(std::move(refused));
     }
@@ -156,20 +157,17 @@ void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMe
       map.data().source_file, road.line,
       "road '" + clip(road.id) + "': the road surfaces span " + sensor_world_number(x1 - x0) +
           " m x " + sensor_world_number(y1 - y0) +
-          " m, more than a sensor world's ground holds (4 m cells, at most 33,554,432 of them: "
-          "about 23 km x 23 km)"));
+          " m; Corsa's sensor world holds at most 1000 km x 1000 km (a limit of Corsa's sensors, "
+          "not a fault in the map)"));
   throw InputError(std::move(refused));
 }
 
-/// The centre of the map in its geoReference's CRS: OpenDRIVE's header <offset> moves the file's
-/// coordinates there (x_geo = offset + R(hdg) x_file, §2.6); a converted NGII map keeps its
-/// coordinates small and the UTM origin in the offset, so without it the map lands far away.
-sensors::Vec3 map_centre_in_crs(const xodr::Map* map) {
-  const sensors::Vec3 c = map_centre(map);
-  if (map == nullptr) {
-    return c;
-  }
-  const xodr::Header& h = map->data().header;
+/// `centre` (file coordinates) in the map's geoReference CRS: OpenDRIVE's header <offset> moves
+/// the file's coordinates there (x_geo = offset + R(hdg) x_file, §2.6); a converted NGII map
+/// keeps its coordinates small and the UTM origin in the offset, so without it the map lands far
+/// away.
+sensors::Vec3 in_map_crs(const xodr::Map& map, const sensors::Vec3& c) {
+  const xodr::Header& h = map.data().header;
   const double cos_h = std::cos(h.offset_hdg), sin_h = std::sin(h.offset_hdg);
   return {h.offset_x + cos_h * c.x - sin_h * c.y, h.offset_y + sin_h * c.x + cos_h * c.y,
           h.offset_z + c.z};
@@ -234,13 +232,15 @@ std::vector<sensors::KeepClear> entities_kept_clear(const engine::Simulation& si
 }
 
 /// Warns, at its BoundingBox, about each scenario vehicle too large for the generated models'
-/// details (sensors/vehicle_size.h): sensors see it as a plain box.
+/// details (sensors/vehicle_size.h): sensors see it as a plain box. Vehicles that name a model
+/// (model3d, or the rig's) are seen as that model: nothing to say.
 void warn_vehicles_too_large_for_details(const engine::Simulation& simulation,
+                                         const sensors::ModelShapeSource& shapes,
                                          Diagnostics& diagnostics) {
   engine::WorldSnapshot start;
   simulation.fill_snapshot(start);
   for (const engine::EntitySnapshot& e : start.entities) {
-    if (!sensors::vehicle_too_large_for_details(e.category, e.box)) {
+    if (!sensors::vehicle_too_large_for_details(e.category, e.box) || shapes.names_model(e)) {
       continue;
     }
     for (const xosc::ScenarioObject& object : simulation.scenario().entities.objects) {
@@ -269,7 +269,7 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
   // others the rig's model for their name or category.
   auto shapes = std::make_shared<sensors::ModelShapeSource>(
       simulation.scenario().path.parent_path(), diagnostics, rig.entity_models, rig.file);
-  warn_vehicles_too_large_for_details(simulation, diagnostics);
+  warn_vehicles_too_large_for_details(simulation, *shapes, diagnostics);
   xodr::RoadMesh road_mesh;
   sensors::Vec3 origin;
   if (map != nullptr) {
@@ -340,7 +340,8 @@ std::string place_text(const sensors::GeoLocation& where) {
 
 }  // namespace
 
-sensors::GeoLocation run_location(const engine::Simulation& simulation, Diagnostics& diagnostics) {
+sensors::GeoLocation run_location(const engine::Simulation& simulation,
+                                  const sensors::Vec3& scene_origin, Diagnostics& diagnostics) {
   const xodr::Map* map = simulation.map();
   const sensors::GeoLocation seoul;
   const std::string fallback = "; the sun is computed at " + place_text(seoul) +
@@ -356,8 +357,8 @@ sensors::GeoLocation run_location(const engine::Simulation& simulation, Diagnost
   const std::string& geo_reference = map->data().header.geo_reference;
   const std::optional<std::string> origin_only = origin_only_projection(geo_reference);
   try {
-    const sensors::GeoLocation where =
-        sensors::geolocation_of(origin_only.value_or(geo_reference), map_centre_in_crs(map));
+    const sensors::GeoLocation where = sensors::geolocation_of(origin_only.value_or(geo_reference),
+                                                               in_map_crs(*map, scene_origin));
     if (origin_only) {
       diagnostics.add_once("run-location",
                            make_warning(map->data().source_file, 0,

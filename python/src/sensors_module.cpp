@@ -110,7 +110,7 @@ class SensorSession {
       scene_ = collect::build_run_scene(sim, specs, rig, diagnostics_);
       sensors::SensorSystemOptions options;
       options.seed = sim.options().seed;
-      options.location = collect::run_location(sim, diagnostics_);
+      options.location = collect::run_location(sim, scene_->options().origin, diagnostics_);
       system_ = std::make_unique<sensors::SensorSystem>(std::move(rig), *scene_, options);
       engine::WorldSnapshot initial;
       sim.fill_snapshot(initial);

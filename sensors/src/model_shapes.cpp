@@ -121,6 +121,10 @@ const EntityModel* ModelShapeSource::model_for(const engine::EntitySnapshot& e) 
   return by_category;
 }
 
+bool ModelShapeSource::names_model(const engine::EntitySnapshot& e) const {
+  return !e.model3d.empty() || model_for(e) != nullptr;
+}
+
 bool ModelShapeSource::shape_of(const engine::EntitySnapshot& e, StaticMesh& mesh) {
   std::filesystem::path file = e.model3d;
   const EntityModel* chosen = nullptr;

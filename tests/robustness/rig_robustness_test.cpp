@@ -3,6 +3,8 @@
 // revolution) are located errors before the dataset folder is made, never an out-of-memory or a
 // hang.
 
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -150,6 +152,28 @@ TEST_CASE("A map whose surface or objects a sensor world cannot hold is refused 
   }
 }
 
+TEST_CASE("Roads tens of kilometres apart get a sensor world of larger ground cells",
+          "[robustness][rig]") {
+  // Roads 40 km apart east and north need 1e8 ground cells of 4 m: the map was refused (exit 2)
+  // as if the file were at fault; the ground now takes larger cells, at most 2^22 of them.
+  const auto corpus = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/robustness/corpus";
+  TempDir dir;
+  write_one_car_drive(dir.path() / "drive.xosc", corpus / "ok_roads_40km_apart.xodr");
+  const BoundedResult result =
+      run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
+                   "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
+                   (dir.path() / "dataset").string()},
+                  300);  // about 20 s of CPU time, mostly the ground's 2^22 cells
+  INFO(describe("roads 40 km apart", result));
+  CHECK_FALSE(result.timed_out);
+  CHECK(result.exit_code == 0);
+  CHECK(result.err.find("error") == std::string::npos);
+  // The LiDAR sees the road and the ground around the car.
+  const auto scan = dir.path() / "dataset" / "roof_lidar" / "000000.bin";
+  REQUIRE(std::filesystem::exists(scan));
+  CHECK(std::filesystem::file_size(scan) > 1000 * 16);  // float32 x y z intensity per point
+}
+
 TEST_CASE("A vehicle larger than any is a plain box to the sensors, with a warning at its box",
           "[robustness][rig]") {
   // Found by tests/robustness/campaign.py: the car generator builds its lamps in 15 cm pieces on
@@ -174,6 +198,28 @@ TEST_CASE("A vehicle larger than any is a plain box to the sensors, with a warni
     const std::string n = shown;
     CHECK(result.err.find("drive.xosc:7: warning: vehicle 'Ego': its bounding box (" + n + " x " +
                           n + " x " + n + " m) is larger than any vehicle") != std::string::npos);
+  }
+  // A car of 1000 m with its own model3d is seen as that model: nothing to warn about.
+  {
+    TempDir dir;
+    write_one_car_drive(dir.path() / "drive.xosc", map,
+                        "width=\"1000\" length=\"1000\" height=\"1000\"");
+    std::ifstream in(dir.path() / "drive.xosc");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string category = "vehicleCategory=\"car\"";
+    REQUIRE(text.find(category) != std::string::npos);
+    text.insert(
+        text.find(category) + category.size(),
+        " model3d=\"" + std::string(CORSA_SOURCE_DIR) + "/scenarios/models/street_district.obj\"");
+    std::ofstream(dir.path() / "drive.xosc") << text;
+    const BoundedResult result =
+        run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
+                     "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
+                     (dir.path() / "dataset").string()});
+    INFO(describe("a car of 1000 m with a model3d", result));
+    CHECK(result.exit_code == 0);
+    CHECK(result.err.find("cannot use the model") == std::string::npos);
+    CHECK(result.err.find("larger than any vehicle") == std::string::npos);
   }
   // The largest plausible sizes keep their details, without a word.
   TempDir dir;
@@ -207,6 +253,42 @@ TEST_CASE("Header bounds far from the roads do not move the sensor scene there",
   const auto scan = dir.path() / "dataset" / "roof_lidar" / "000000.bin";
   REQUIRE(std::filesystem::exists(scan));
   CHECK(std::filesystem::file_size(scan) > 1000 * 16);  // float32 x y z intensity per point
+}
+
+TEST_CASE("The sun is placed at the sensor scene's origin, the roads when the bounds lie far",
+          "[robustness][rig]") {
+  // The scene was centred on the roads but the sun placed from the header bounds' centre, 8500 km
+  // north: the images differed from those of the same map with bounds around its road.
+  const auto far_map = std::filesystem::path(CORSA_SOURCE_DIR) /
+                       "tests/robustness/corpus/ok_header_bounds_far_with_georeference.xodr";
+  std::ifstream in(far_map);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string far_bounds =
+      "north=\"9000000\" south=\"8000000\" east=\"100\"\n          west=\"-100\"";
+  const size_t at = text.find(far_bounds);
+  REQUIRE(at != std::string::npos);
+  // The road spans x 0 to 100, y -3.5 to 0: bounds around it give the same origin.
+  text.replace(at, far_bounds.size(), "north=\"0\" south=\"-3.5\" east=\"100\" west=\"0\"");
+  TempDir dir;
+  std::ofstream(dir.path() / "near.xodr") << text;
+  const auto images_of = [&dir](const std::filesystem::path& map, const std::string& name) {
+    write_one_car_drive(dir.path() / (name + ".xosc"), map);
+    const BoundedResult result = run_bounded(
+        {"run", (dir.path() / (name + ".xosc")).string(), "--duration", "0.1", "--quiet", "--rig",
+         std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
+         (dir.path() / name).string()});
+    INFO(describe(name, result));
+    CHECK(result.exit_code == 0);
+    std::string bytes;
+    for (const char* frame : {"000000.png", "000001.png"}) {
+      std::ifstream image(dir.path() / name / "front_rgb" / frame, std::ios::binary);
+      bytes.append(std::istreambuf_iterator<char>(image), std::istreambuf_iterator<char>());
+    }
+    return bytes;
+  };
+  const std::string far_images = images_of(far_map, "far");
+  CHECK(far_images.size() > 1000);
+  CHECK(far_images == images_of(dir.path() / "near.xodr", "near"));
 }
 
 }  // namespace

@@ -91,24 +91,48 @@ TEST_CASE("Command-line grids too large are refused before their values are made
   CHECK(dir.entries() == 0);
 }
 
-TEST_CASE("A randomSeed beyond a 64-bit seed is warned about at its line, naming the seed used",
+TEST_CASE("A randomSeed beyond a 64-bit seed or fractional is a lenient reading at its line",
           "[robustness][sweep]") {
-  // Found by tests/robustness/campaign.py: randomSeed 1e19 silently drew with the default seed.
+  // Found by tests/robustness/campaign.py: randomSeed 1e19 silently drew with the default seed;
+  // then only warned about, even under --strict, and 12.7 was truncated without a word.
   const std::string suites = std::string(CORSA_SOURCE_DIR) + "/scenarios/suites/";
-  std::string text = replaced_all(slurp(suites + "sweeps/cut_in_stochastic.xosc"), "../regression/",
-                                  suites + "regression/");
-  text = replaced_all(text, "numberOfTestRuns=\"200\" randomSeed=\"42\"",
-                      "numberOfTestRuns=\"2\" randomSeed=\"1e19\"");
-  TempDir dir;
-  std::ofstream(dir.path() / "stochastic.xosc") << text;
-  const BoundedResult result = run_bounded({"sweep", (dir.path() / "stochastic.xosc").string(),
-                                            "-o", (dir.path() / "out").string(), "--quiet",
-                                            "--duration", "0.1", "--no-trajectories", "-j", "1"});
-  INFO(describe("randomSeed 1e19", result));
-  CHECK(result.exit_code == 0);
-  CHECK(result.err.find("stochastic.xosc:11: warning: randomSeed 1e+19 is beyond a 64-bit seed "
-                        "(|randomSeed| < 9.2e18): the distribution is drawn with the run's seed "
-                        "instead (sweep --seed, default 0)") != std::string::npos);
+  const std::string base = replaced_all(slurp(suites + "sweeps/cut_in_stochastic.xosc"),
+                                        "../regression/", suites + "regression/");
+  struct Case {
+    const char* seed;
+    const char* message;
+    const char* read_as;
+  };
+  const Case cases[] = {
+      {"1e19", "randomSeed 1e+19 is beyond a 64-bit seed (|randomSeed| < 9.2e18)",
+       "the run's seed: sweep --seed, default 0)"},
+      {"12.7", "randomSeed 12.7 is not a whole number", "12)"},
+  };
+  for (const Case& c : cases) {
+    const std::string text =
+        replaced_all(base, "numberOfTestRuns=\"200\" randomSeed=\"42\"",
+                     std::string("numberOfTestRuns=\"2\" randomSeed=\"") + c.seed + "\"");
+    TempDir dir;
+    std::ofstream(dir.path() / "stochastic.xosc") << text;
+    const std::vector<std::string> args = {"sweep",   (dir.path() / "stochastic.xosc").string(),
+                                           "-o",      (dir.path() / "out").string(),
+                                           "--quiet", "--duration",
+                                           "0.1",     "--no-trajectories",
+                                           "-j",      "1"};
+    const BoundedResult result = run_bounded(args);
+    INFO(describe(std::string("randomSeed ") + c.seed, result));
+    CHECK(result.exit_code == 0);
+    CHECK(result.err.find(std::string("stochastic.xosc:11: warning: ") + c.message + " (read as " +
+                          c.read_as) != std::string::npos);
+    std::vector<std::string> strict = args;
+    strict.push_back("--strict");
+    const BoundedResult refused = run_bounded(strict);
+    INFO(describe(std::string("randomSeed ") + c.seed + " --strict", refused));
+    CHECK(refused.exit_code == 2);
+    CHECK(refused.err.find(std::string("stochastic.xosc:11: error: ") + c.message +
+                           " (an error under --strict; otherwise read as " + c.read_as) !=
+          std::string::npos);
+  }
 }
 
 TEST_CASE("Broken suite manifests are rejected with a located error and no JUnit report",

@@ -178,12 +178,17 @@ ParameterValueDistribution parse_parameter_value_distribution(ParseContext& ctx,
         ctx.req_int(stochastic, "numberOfTestRuns", ParameterType::kUnsignedInt));
     value.random_seed = ctx.opt_double(stochastic, "randomSeed");
     // The schema types randomSeed as a double; a seed is a 64-bit integer (variants.cpp
-    // seed_of), so a value beyond one is not a seed: said here, where it stands.
+    // seed_of): a value beyond one is read as the run's seed, a fraction as its whole part, both
+    // lenient readings said here, where they stand (errors under --strict).
     if (value.random_seed && !(std::fabs(*value.random_seed) < kLargestRandomSeed)) {
-      ctx.warn_once(stochastic, "random-seed-range:" + std::to_string(stochastic->GetLineNum()),
-                    "randomSeed " + format_double(*value.random_seed) +
-                        " is beyond a 64-bit seed (|randomSeed| < 9.2e18): the distribution is "
-                        "drawn with the run's seed instead (sweep --seed, default 0)");
+      ctx.lenient(stochastic,
+                  "randomSeed " + format_double(*value.random_seed) +
+                      " is beyond a 64-bit seed (|randomSeed| < 9.2e18)",
+                  "the run's seed: sweep --seed, default 0");
+    } else if (value.random_seed && std::trunc(*value.random_seed) != *value.random_seed) {
+      ctx.lenient(stochastic,
+                  "randomSeed " + format_double(*value.random_seed) + " is not a whole number",
+                  format_double(std::trunc(*value.random_seed)));
     }
     for (const Element* d : sto_kids.at_least("StochasticDistribution", 1)) {
       Children d_kids(ctx, d, "StochasticDistribution");

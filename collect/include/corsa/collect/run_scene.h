@@ -70,8 +70,11 @@ std::unique_ptr<sensors::Scene> build_run_scene(const engine::Simulation& simula
                                                 const sensors::SensorRig& rig,
                                                 Diagnostics& diagnostics);
 
-/// Where the map's centre lies on Earth, from its geoReference; Seoul with a warning when the map
-/// has none or it cannot be used.
-sensors::GeoLocation run_location(const engine::Simulation& simulation, Diagnostics& diagnostics);
+/// Where the sensor scene's origin (`scene_origin`, map coordinates: the scene's
+/// options().origin, the header's centre or the roads' when the bounds lie far from them) lies on
+/// Earth, from the map's geoReference; Seoul with a warning when the map has none or it cannot be
+/// used.
+sensors::GeoLocation run_location(const engine::Simulation& simulation,
+                                  const sensors::Vec3& scene_origin, Diagnostics& diagnostics);
 
 }  // namespace corsa::collect

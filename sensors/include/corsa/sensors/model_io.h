@@ -58,6 +58,9 @@ class ModelShapeSource : public EntityShapeSource {
   ModelShapeSource(std::filesystem::path base, Diagnostics& diagnostics,
                    std::vector<EntityModel> models = {}, std::string rig_file = {});
   bool shape_of(const engine::EntitySnapshot& entity, StaticMesh& mesh) override;
+  /// True when the entity names a model (its model3d, or a rig model for its name or category):
+  /// shape_of tries that model before any generated shape.
+  bool names_model(const engine::EntitySnapshot& entity) const;
 
  private:
   const EntityModel* model_for(const engine::EntitySnapshot& entity) const;
