@@ -17,7 +17,7 @@ namespace {
 const Command kCommands[] = {
     {"run", "run one scenario: trajectories, summary, optional sensor dataset", command_run},
     {"validate", "check .xosc / .xodr files and print located errors", command_validate},
-    {"map", "inspect OpenDRIVE maps: info, query, render, mesh", command_map},
+    {"map", "inspect OpenDRIVE maps: info, query, render, mesh, holes", command_map},
     {"convert", "convert map data to OpenDRIVE (NGII HD road layers)", command_convert},
     {"sweep", "run parameter variants in parallel or sharded over a cluster", command_sweep},
     {"test", "run a regression suite with goldens and a JUnit report", command_test},
