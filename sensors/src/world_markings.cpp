@@ -15,7 +15,7 @@
 // Lane markings lie across the lanes the signal covers: its <validity> lanes (§14.2), or else
 // the drivable lanes its orientation serves ("+": the lanes carrying traffic towards +s; a
 // crosswalk spans every drivable lane). The signal's `length` (1.8), when given, is the paint's
-// extent along the road. The other markings (lines, words, other symbols) are left out with one
+// extent along the road. The other markings (lines, other words and symbols) are left out with one
 // warning per type: a road's lanes draw their lines already.
 
 #include <algorithm>
