@@ -11,17 +11,18 @@
 // direction arrows 537-541 (straight, left, right, straight and left, straight and right; one
 // per lane, pointing the lane's way) and, when the signal gives its length and width, the
 // hatched areas 524 (no-stopping zone: yellow, cross-hatched) and 531 (safety zone: white,
-// diagonal stripes).
+// diagonal stripes), and the words 519 slow (천천히) and 521 stop (정지) in Hangul, one per lane.
 // Lane markings lie across the lanes the signal covers: its <validity> lanes (§14.2), or else
 // the drivable lanes its orientation serves ("+": the lanes carrying traffic towards +s; a
 // crosswalk spans every drivable lane). The signal's `length` (1.8), when given, is the paint's
-// extent along the road. The other markings (lines, words, other symbols) are left out with one
+// extent along the road. The other markings (lines, other words and symbols) are left out with one
 // warning per type: a road's lanes draw their lines already.
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -33,7 +34,7 @@
 namespace corsa::sensors::detail {
 namespace {
 
-enum class MarkKind { kCrosswalk, kStopLine, kGiveWayLine, kCrosswalkAhead, kArrow, kHatch };
+enum class MarkKind { kCrosswalk, kStopLine, kGiveWayLine, kCrosswalkAhead, kArrow, kHatch, kWord };
 
 struct MarkSpec {
   MarkKind kind;
@@ -41,6 +42,7 @@ struct MarkSpec {
   const char* label;
   ArrowShape arrow = ArrowShape::kStraight;  ///< kArrow
   bool yellow = false;                       ///< kHatch: yellow paint, cross-hatched
+  const char32_t* word = nullptr;            ///< kWord: its Hangul syllables
 };
 
 std::optional<MarkSpec> german_marking(const std::string& type) {
@@ -84,6 +86,14 @@ std::optional<MarkSpec> korean_marking(const std::string& type) {
       return MarkSpec{MarkKind::kArrow, 5.0, "arrow", shape};
     }
   }
+  // Words, 4 m along the road: 519 slow reads 천천히 ("slowly"), 521 stop reads 정지 ("stop").
+  if (type == "519") {
+    return MarkSpec{MarkKind::kWord,       4.0,   "text",
+                    ArrowShape::kStraight, false, U"\uCC9C\uCC9C\uD788"};
+  }
+  if (type == "521") {
+    return MarkSpec{MarkKind::kWord, 4.0, "text", ArrowShape::kStraight, false, U"\uC815\uC9C0"};
+  }
   if (type == "524" || type == "531") {
     return MarkSpec{MarkKind::kHatch, 0.0, type == "524" ? "no_stopping_zone" : "safety_zone",
                     ArrowShape::kStraight, type == "524"};
@@ -92,14 +102,11 @@ std::optional<MarkSpec> korean_marking(const std::string& type) {
 }
 
 /// What a Korean marking number Corsa does not paint stands for, where the annex's name is
-/// confirmed (519 and 520 slow, 521 stop, 542 unprotected left turn, 543 lane change: their
-/// drawings carry Hangul words or symbols Corsa does not draw); empty for the others.
+/// confirmed (520 slow, 542 unprotected left turn, 543 lane change: their drawings were not
+/// confirmed, so they are not guessed); empty for the others.
 std::string korean_marking_name(const std::string& type) {
-  if (type == "519" || type == "520") {
-    return "slow";
-  }
   constexpr std::pair<const char*, const char*> kNames[] = {
-      {"521", "stop"}, {"542", "unprotected left turn"}, {"543", "lane change"}};
+      {"520", "slow"}, {"542", "unprotected left turn"}, {"543", "lane change"}};
   for (const auto& [code, name] : kNames) {
     if (type == code) {
       return name;
@@ -230,6 +237,17 @@ void paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1,
     if (across > 0.3) {
       paint_symbol(paint, arrow_symbol(spec.arrow, s1 - s0, across), 0.5 * (s0 + s1),
                    0.5 * (t0 + t1), lane.dir);
+    }
+    return;
+  }
+  if (spec.kind == MarkKind::kWord) {
+    // Syllables at most 1 m wide with 0.2 m between them, kept 0.3 m off the lines.
+    const std::u32string_view word(spec.word);
+    const double n = static_cast<double>(word.size());
+    const double across = std::min(n + 0.2 * (n - 1.0), t1 - t0 - 0.6);
+    std::vector<PaintPolygon> symbol;
+    if (across > 0.3 * n && hangul_symbol(word, s1 - s0, across, symbol)) {
+      paint_symbol(paint, symbol, 0.5 * (s0 + s1), 0.5 * (t0 + t1), lane.dir);
     }
     return;
   }

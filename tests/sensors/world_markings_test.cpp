@@ -137,17 +137,18 @@ TEST_CASE("a Korean crosswalk-ahead signal is a hollow diamond in each lane it s
 
 TEST_CASE("Korean marking numbers Corsa does not paint warn once and are never signs",
           "[sensors][world][signals][markings][korea]") {
-  // 521 (the word for stop) twice and 542 (unprotected left turn) once.
+  // 520 (the second slow marking, whose drawing was not confirmed) twice and 542 (unprotected
+  // left turn) once.
   const auto map = street_with(
-      R"(<signal id="t1" s="20" t="-1.75" orientation="+" dynamic="no" country="KR" type="521" subtype="-1"/>
-         <signal id="t2" s="25" t="-5.25" orientation="+" dynamic="no" country="KR" type="521" subtype="-1"/>
+      R"(<signal id="t1" s="20" t="-1.75" orientation="+" dynamic="no" country="KR" type="520" subtype="-1"/>
+         <signal id="t2" s="25" t="-5.25" orientation="+" dynamic="no" country="KR" type="520" subtype="-1"/>
          <signal id="u1" s="45" t="-1.75" orientation="+" dynamic="no" country="KR" type="542" subtype="-1"/>)");
   auto world = marked_world(map);
   CHECK(world->report.signs == 0);
   CHECK(world->report.markings == 0);
   REQUIRE(world->warnings.size() == 2);
   CHECK(world->warnings[0].line > 0);
-  CHECK_THAT(world->warnings[0].message, Catch::Contains("'521' (country 'KR', stop)"));
+  CHECK_THAT(world->warnings[0].message, Catch::Contains("'520' (country 'KR', slow)"));
   CHECK_THAT(world->warnings[1].message,
              Catch::Contains("'542' (country 'KR', unprotected left turn)"));
   CHECK(down_at(world->scene, 20.0, -1.75).semantic == SemanticClass::kRoad);

@@ -2,7 +2,9 @@
 // the RoadRunner stencils of CARLA's maps (turn arrows, the word STOP) and its short-dash lines
 // given as untyped objects.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <set>
 #include <string>
 
@@ -118,6 +120,117 @@ TEST_CASE("a Korean left-turn arrow for the other direction turns to that driver
   CHECK_FALSE(paint_at(world->scene, 47.95, 2.9));   // nothing towards +t
   CHECK_FALSE(paint_at(world->scene, 52.2, 1.15));   // the back end has no head
   CHECK_FALSE(paint_at(world->scene, 50.0, -1.75));  // the other lanes are not its own
+}
+
+/// The distance from (x, y) to the nearest polygon edge of the symbol.
+double edge_distance(const std::vector<detail::PaintPolygon>& symbol, double x, double y) {
+  double best = 1e9;
+  const Vec2 q{x, y};
+  for (const detail::PaintPolygon& p : symbol) {
+    for (size_t i = 0; i < p.size(); ++i) {
+      const Vec2 a = p[i], b = p[(i + 1) % p.size()];
+      const Vec2 d = b - a;
+      const double f = std::clamp(dot(q - a, d) / std::max(dot(d, d), 1e-12), 0.0, 1.0);
+      const Vec2 e = a + d * f - q;
+      best = std::min(best, std::sqrt(dot(e, e)));
+    }
+  }
+  return best;
+}
+
+TEST_CASE("Hangul words are convex strokes inside their box, one syllable after another",
+          "[sensors][world][markings][korea]") {
+  // 천천히 4 m along and 2.9 m across: three syllables 0.853 m wide with 0.171 m between them.
+  std::vector<detail::PaintPolygon> slow;
+  REQUIRE(detail::hangul_symbol(U"\uCC9C\uCC9C\uD788", 4.0, 2.9, slow));
+  CHECK(slow.size() > 20);
+  double x_min = 1e9, x_max = -1e9, y_min = 1e9, y_max = -1e9;
+  for (const auto& polygon : slow) {
+    REQUIRE(polygon.size() >= 3);
+    for (size_t i = 0; i < polygon.size(); ++i) {
+      const Vec2 a = polygon[i], b = polygon[(i + 1) % polygon.size()];
+      const Vec2 c = polygon[(i + 2) % polygon.size()];
+      CHECK(cross(b - a, c - b) >= -1e-12);  // convex, counter-clockwise
+      x_min = std::min(x_min, a.x);
+      x_max = std::max(x_max, a.x);
+      y_min = std::min(y_min, a.y);
+      y_max = std::max(y_max, a.y);
+    }
+  }
+  // The strokes fill the box: the syllables reach both ends along x and the left side (a
+  // slanted stroke's square end may poke out by a few centimetres); on the right the last
+  // syllable ends in ㅣ, 0.1 of a cell short of the side.
+  CHECK(x_min == Approx(-2.0).margin(0.06));
+  CHECK(x_max == Approx(2.0).margin(0.06));
+  CHECK(y_max == Approx(1.45).margin(0.06));
+  CHECK(y_min == Approx(-1.45 + 0.105 * 2.9 / 3.4).margin(0.01));
+  // Read from +y to -y: the last syllable 히 ends in the long stroke of ㅣ, from end to end of
+  // the box; the first, 천, has its final ㄴ's bar across the near end (-x) and nothing of it
+  // reaches past the gap.
+  const double unit = 2.9 / 3.4;
+  const double i_bar = 1.45 - 2.0 * 1.2 * unit - 0.82 * unit;  // 히's ㅣ at u 0.82 of its cell
+  CHECK(in_symbol(slow, -1.95, i_bar));
+  CHECK(in_symbol(slow, 1.95, i_bar));
+  CHECK(in_symbol(slow, -1.8, 1.45 - 0.5 * unit));       // 천's ㄴ bar, near end
+  CHECK_FALSE(in_symbol(slow, 0.0, 1.45 - 1.1 * unit));  // the gap between 천 and 천
+  // The unknown: a syllable with a vowel the tables lack is refused and adds nothing.
+  std::vector<detail::PaintPolygon> other;
+  CHECK_FALSE(detail::hangul_symbol(U"\uC815\uC560", 4.0, 2.0, other));  // 정애
+  CHECK(other.empty());
+  CHECK(detail::hangul_symbol(U"\uC815\uC9C0", 4.0, 2.2, other));  // 정지
+}
+
+TEST_CASE("Korean slow and stop word signals are Hangul paint in their lane, read its way",
+          "[sensors][world][signals][markings][korea]") {
+  // 519 (천천히) for traffic towards +s in lane -1 (t -3.5..0) and 521 (정지) for traffic
+  // towards -s in lane 1 (t 0..3.5): 4 m along the road, centred on s and on the lane, kept
+  // 0.3 m off the lines (천천히 2.9 m across, 정지 2.2 m).
+  const auto map = street_with(
+      R"(<signal id="slow" s="40" t="-1.75" orientation="+" dynamic="no" country="KR" type="519" subtype="-1"/>
+         <signal id="stop" s="70" t="1.75" orientation="-" dynamic="no" country="KR" type="521" subtype="-1"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.markings == 2);
+  CHECK(world->report.signs == 0);
+  CHECK(world->warnings.empty());
+  // Each mark is the word's symbol placed on its lane, turned to its driver: every sample
+  // clear of a stroke's edge by 2 cm is paint exactly where the symbol is.
+  struct Placed {
+    std::u32string word;
+    double s_mid, t_mid, across;
+    int dir;
+    const char* type;
+  };
+  const Placed marks[] = {{U"\uCC9C\uCC9C\uD788", 40.0, -1.75, 2.9, 1, "519"},
+                          {U"\uC815\uC9C0", 70.0, 1.75, 2.2, -1, "521"}};
+  for (const Placed& m : marks) {
+    std::vector<detail::PaintPolygon> symbol;
+    REQUIRE(detail::hangul_symbol(m.word, 4.0, m.across, symbol));
+    int painted = 0, compared = 0;
+    for (double ds = -2.3; ds <= 2.3; ds += 0.05) {
+      for (double dt = -1.75; dt <= 1.75; dt += 0.05) {
+        const double s = m.s_mid + ds, t = m.t_mid + dt;
+        const double x = m.dir * ds, y = m.dir * dt;  // the symbol frame: x the driver's way
+        if (edge_distance(symbol, x, y) < 0.02) {
+          continue;
+        }
+        const bool want = in_symbol(symbol, x, y);
+        CHECK(paint_at(world->scene, s, t) == want);
+        painted += want ? 1 : 0;
+        ++compared;
+      }
+    }
+    CHECK(painted > compared / 10);
+    // Nothing outside the lane's 4 m, and the paint is labelled as the signal's text.
+    CHECK_FALSE(paint_at(world->scene, m.s_mid + 2.1, m.t_mid));
+    CHECK_FALSE(paint_at(world->scene, m.s_mid - 2.1, m.t_mid));
+  }
+  const double unit = 2.9 / 3.4;  // 히's ㅣ, at u 0.82 of the third syllable's cell
+  const ObjectInfo slow = object_at(world->scene, 38.05, -1.75 + 1.45 - (2.4 + 0.82) * unit);
+  CHECK(slow.kind == "text");
+  CHECK(slow.type == "519");
+  CHECK(slow.signal_id == "slow");
+  CHECK_FALSE(paint_at(world->scene, 40.0, 1.75));   // not the oncoming lane
+  CHECK_FALSE(paint_at(world->scene, 70.0, -1.75));  // nor the other way
 }
 
 TEST_CASE("a Korean no-stopping zone with a size is a yellow cross-hatched box",
