@@ -669,6 +669,100 @@ TEST_CASE("The contacts of many boxes of every size and heading are the pairs a 
   }
 }
 
+TEST_CASE("Boxes that moved into and out of contact with standing ones get a full sweep's contacts",
+          "[engine][traffic]") {
+  namespace detail = corsa::engine::detail;
+  using Pairs = std::vector<std::pair<uint32_t, uint32_t>>;
+  const corsa::xosc::Scenario scenario;
+  Diagnostics diagnostics;
+  // 120 cars standing in two rows, 10 m apart along a road running east, or north (the sweep
+  // along y), turned by up to 0.12 rad, cars 0 and 1 touching; then a few cars move (onto standing
+  // ones, onto each other, away again) while the rest stand, so that the update tests the moved
+  // boxes alone.
+  constexpr uint32_t kCars = 120;
+  for (const bool north : {false, true}) {
+    CAPTURE(north);
+    const auto pose_of = [&](double along, double across, double turn) {
+      corsa::engine::Pose pose;
+      pose.x = north ? across : along;
+      pose.y = north ? along : across;
+      pose.h = (north ? std::numbers::pi / 2.0 : 0.0) + turn;
+      return pose;
+    };
+    std::vector<corsa::engine::Pose> poses;
+    for (uint32_t i = 0; i < kCars; ++i) {
+      poses.push_back(pose_of(10.0 * (i % 60) + (i == 1 ? -7.0 : 0.0), 3.5 * (i / 60), 0.001 * i));
+    }
+    // A state holding the cars at `poses`.
+    const auto fill = [&](detail::SimState& state) {
+      state.world.entities.clear();
+      for (uint32_t i = 0; i < kCars; ++i) {
+        detail::Entity entity;
+        entity.state.placed = true;
+        entity.info.box = corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5};
+        entity.state.pose = poses[i];
+        state.world.entities.push_back(std::move(entity));
+      }
+    };
+    // The contacts a sweep over every box finds, on a state of its own.
+    const auto full_sweep = [&] {
+      detail::SimState fresh(scenario, nullptr, SimulationOptions{}, diagnostics);
+      fill(fresh);
+      detail::ContactSweep sweep;
+      detail::update_contacts(fresh, sweep);
+      return fresh.contacts.pairs;
+    };
+    detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
+    fill(state);
+    detail::ContactSweep sweep;
+    detail::update_contacts(state, sweep);
+    REQUIRE(state.contacts.pairs == Pairs{{0, 1}});
+    REQUIRE(sweep.complete);
+    REQUIRE(sweep.moved_mark.empty());  // only the update of the moved boxes marks them
+    // Moves cars `which` to `to` in both `poses` and `state`, then updates the contacts.
+    const auto move = [&](const std::vector<uint32_t>& which,
+                          const std::vector<corsa::engine::Pose>& to) {
+      for (size_t k = 0; k < which.size(); ++k) {
+        poses[which[k]] = to[k];
+        state.world.entities[which[k]].state.pose = to[k];
+      }
+      ++state.tick;
+      detail::update_contacts(state, sweep);
+      CHECK(sweep.moved == which);
+      // The moved boxes' update ran (a full sweep marks nothing), and kept its result complete.
+      REQUIRE(sweep.moved_mark.size() == kCars);
+      for (const uint32_t i : which) CHECK(sweep.moved_mark[i] == 1);
+      CHECK(sweep.complete);
+      CHECK(state.contacts.pairs == full_sweep());
+    };
+
+    // Car 37 drives into car 80's rear, slightly askew: a new contact and a collision.
+    move({37}, {pose_of(10.0 * 20 - 3.0, 3.5, 0.05)});
+    CHECK(state.contacts.pairs == Pairs{{0, 1}, {37, 80}});
+    REQUIRE(state.collisions.size() == 2);
+    CHECK(state.collisions.back().first == 37);
+    CHECK(state.collisions.back().second == 80);
+    CHECK(state.collisions.back().tick == state.tick);
+    // It backs off 2 m, about 0.4 m clear of car 80 and of car 79 behind it: the contact ends,
+    // nothing new is recorded.
+    move({37}, {pose_of(10.0 * 20 - 5.0, 3.5, 0.0)});
+    CHECK(state.contacts.pairs == Pairs{{0, 1}});
+    CHECK(state.collisions.size() == 2);
+    // Cars 37 and 38 both move into the gap of row 0 at 52-55 m (onto each other and onto car
+    // 5), while car 1 leaves car 0: each pair once, the two new ones recorded.
+    move({1, 37, 38},
+         {pose_of(15.0, -20.0, 0.0), pose_of(52.0, 0.3, 0.1), pose_of(53.5, -0.2, -0.1)});
+    CHECK(state.contacts.pairs == Pairs{{5, 37}, {5, 38}, {37, 38}});
+    REQUIRE(state.collisions.size() == 5);
+    // Car 1 back onto car 0: that contact is new again.
+    move({1}, {pose_of(3.0, 0.0, 0.01)});
+    CHECK(state.contacts.pairs == Pairs{{0, 1}, {5, 37}, {5, 38}, {37, 38}});
+    REQUIRE(state.collisions.size() == 6);
+    CHECK(state.collisions.back().first == 0);
+    CHECK(state.collisions.back().second == 1);
+  }
+}
+
 TEST_CASE("The worker pool hands out every item once, in chunks, and rethrows a chunk's error",
           "[engine][traffic]") {
   using corsa::engine::detail::WorkerPool;

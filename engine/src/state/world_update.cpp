@@ -137,32 +137,59 @@ void record_new_contacts(SimState& state, const std::vector<std::pair<uint32_t, 
   }
 }
 
-// The contacts when only the boxes in `sweep.moved` changed since a complete update: the pairs
-// of two unmoved boxes are the last update's (neither box changed), and each moved box is
-// tested against every other box under the sweep's own filters, so that a pair is tested
-// exactly when the sweep would test it, in the sweep's order of the two (the axis chosen as the
-// sweep chooses it): the same pairs as a sweep over all boxes. Returns false, having changed
-// no pair, when it does not apply: not a complete last update, more moved boxes than pay
-// (a sweep is then cheaper), a moved box with extents that are not finite, or a coupled pair
-// (a trailer and its tower, whose contacts the sweep sets apart).
-bool update_moved_contacts(SimState& state, ContactSweep& sweep) {
+// The bounds of the boxed entities' extents, and whether every extent is finite.
+struct ContactSpread {
+  bool any = false;
+  bool finite = true;
+  double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
+
+  void add(const Interval& x, const Interval& y) {
+    finite = finite && std::isfinite(x.low) && std::isfinite(x.high) && std::isfinite(y.low) &&
+             std::isfinite(y.high);
+    x0 = any ? std::min(x0, x.low) : x.low;
+    x1 = any ? std::max(x1, x.high) : x.high;
+    y0 = any ? std::min(y0, y.low) : y.low;
+    y1 = any ? std::max(y1, y.high) : y.high;
+    any = true;
+  }
+  /// Spread more along y (a road running north): the sweep then runs along y.
+  bool along_y() const { return y1 - y0 > x1 - x0; }
+};
+
+// Entity `i`'s box in the sweep, from the extents kept in `sweep`.
+Item sweep_item(const ContactSweep& sweep, uint32_t i) {
+  return Item{sweep.x_extent[i].low,
+              sweep.x_extent[i].high,
+              sweep.y_extent[i].low,
+              sweep.y_extent[i].high,
+              i,
+              i};
+}
+
+// Whether the update of the moved boxes alone applies: the last update was complete and
+// covered these entities, few enough boxes moved that testing each against every other box is
+// cheaper than a sweep, and no trailer is coupled (or was, and may still touch its tower).
+bool moved_update_applies(const SimState& state, const ContactSweep& sweep) {
   const auto& entities = state.world.entities;
   const size_t count = entities.size();
-  const std::vector<uint32_t>& moved = sweep.moved;
-  std::vector<OrientedBox>& boxes = state.contacts.boxes;
   // A moved box costs a test of every other box; a sweep costs about a box's making per box.
   constexpr size_t kMovedAlways = 16;
   constexpr size_t kBoxesPerMovedBox = 32;
-  if (!sweep.complete || boxes.size() != count || sweep.x_extent.size() != count ||
-      (moved.size() > kMovedAlways && moved.size() * kBoxesPerMovedBox > count)) {
+  if (!sweep.complete || state.contacts.boxes.size() != count || sweep.x_extent.size() != count ||
+      (sweep.moved.size() > kMovedAlways && sweep.moved.size() * kBoxesPerMovedBox > count)) {
     return false;
   }
-  for (const Entity& entity : entities) {
-    if (entity.towed_by || entity.towing || entity.unhitched_from) {
-      return false;
-    }
-  }
-  for (const uint32_t i : moved) {
+  return std::none_of(entities.begin(), entities.end(), [](const Entity& entity) {
+    return entity.towed_by || entity.towing || entity.unhitched_from;
+  });
+}
+
+// Makes the boxes and extents of the moved entities again. False when an extent is not finite
+// (the sweep's own path then makes every box again).
+bool refresh_moved_boxes(SimState& state, ContactSweep& sweep) {
+  const auto& entities = state.world.entities;
+  std::vector<OrientedBox>& boxes = state.contacts.boxes;
+  for (const uint32_t i : sweep.moved) {
     if (!boxed(entities[i])) {
       continue;
     }
@@ -171,29 +198,71 @@ bool update_moved_contacts(SimState& state, ContactSweep& sweep) {
     const Interval y = project(boxes[i], 0.0, 1.0);
     if (!std::isfinite(x.low) || !std::isfinite(x.high) || !std::isfinite(y.low) ||
         !std::isfinite(y.high)) {
-      return false;  // the sweep's own path for extents without a total order
+      return false;
     }
     sweep.x_extent[i] = x;
     sweep.y_extent[i] = y;
   }
-  // The sweep's axis: the spread of all boxes.
-  bool any = false;
-  double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
-  for (uint32_t i = 0; i < count; ++i) {
-    if (!boxed(entities[i])) {
+  return true;
+}
+
+// The spread of every boxed entity's extents as `sweep` keeps them.
+ContactSpread kept_spread(const std::vector<Entity>& entities, const ContactSweep& sweep) {
+  ContactSpread spread;
+  for (uint32_t i = 0; i < entities.size(); ++i) {
+    if (boxed(entities[i])) {
+      spread.add(sweep.x_extent[i], sweep.y_extent[i]);
+    }
+  }
+  return spread;
+}
+
+// Appends to `now` the pairs of moved box `m` with every other boxed entity that the sweep
+// would record: the same filters (the x extents in the sweep's order, `y_near_finite`) and the
+// exact test of the pair in the order the sweep along its axis meets them. A pair of two moved
+// boxes is tested once, from the lower index.
+void add_moved_box_pairs(const SimState& state, const ContactSweep& sweep, uint32_t m, bool along_y,
+                         std::vector<std::pair<uint32_t, uint32_t>>& now) {
+  const auto& entities = state.world.entities;
+  const std::vector<OrientedBox>& boxes = state.contacts.boxes;
+  const Item p = sweep_item(sweep, m);
+  for (uint32_t j = 0; j < entities.size(); ++j) {
+    if (j == m || !boxed(entities[j]) || (sweep.moved_mark[j] != 0 && j < m)) {
       continue;
     }
-    const Interval x = sweep.x_extent[i];
-    const Interval y = sweep.y_extent[i];
-    x0 = any ? std::min(x0, x.low) : x.low;
-    x1 = any ? std::max(x1, x.high) : x.high;
-    y0 = any ? std::min(y0, y.low) : y.low;
-    y1 = any ? std::max(y1, y.high) : y.high;
-    any = true;
+    const Item q = sweep_item(sweep, j);
+    const bool p_first = sweep_order(p, q);
+    const Item& first = p_first ? p : q;
+    const Item& second = p_first ? q : p;
+    if (!(second.low <= first.high) || !y_near_finite(p, q)) {
+      continue;
+    }
+    // The sweep tests the pair from the earlier of the two along its axis.
+    const bool p_leads =
+        along_y ? (p.ylow < q.ylow || (p.ylow == q.ylow && p.index < q.index)) : p_first;
+    const bool touching =
+        p_leads ? overlap(boxes[p.box], boxes[q.box]) : overlap(boxes[q.box], boxes[p.box]);
+    if (touching) {
+      now.emplace_back(std::min(m, j), std::max(m, j));
+    }
   }
-  const bool along_y = y1 - y0 > x1 - x0;
-  sweep.moved_mark.assign(count, 0);
-  for (const uint32_t i : moved) {
+}
+
+// The contacts when only the boxes in `sweep.moved` changed since a complete update: the pairs
+// of two unmoved boxes are the last update's (neither box changed), and each moved box is
+// tested against every other box under the sweep's own filters, so that a pair is tested
+// exactly when the sweep would test it, in the sweep's order of the two (the axis chosen as the
+// sweep chooses it): the same pairs as a sweep over all boxes. Returns false, having changed
+// no pair, when it does not apply (moved_update_applies) or a moved box's extents are not
+// finite (no total order for the sweep's filters).
+bool update_moved_contacts(SimState& state, ContactSweep& sweep) {
+  if (!moved_update_applies(state, sweep) || !refresh_moved_boxes(state, sweep)) {
+    return false;
+  }
+  const auto& entities = state.world.entities;
+  const bool along_y = kept_spread(entities, sweep).along_y();
+  sweep.moved_mark.assign(entities.size(), 0);
+  for (const uint32_t i : sweep.moved) {
     sweep.moved_mark[i] = 1;
   }
   std::vector<std::pair<uint32_t, uint32_t>> previous;
@@ -204,39 +273,9 @@ bool update_moved_contacts(SimState& state, ContactSweep& sweep) {
       now.push_back(pair);
     }
   }
-  const auto item = [&](uint32_t i) {
-    return Item{sweep.x_extent[i].low,
-                sweep.x_extent[i].high,
-                sweep.y_extent[i].low,
-                sweep.y_extent[i].high,
-                i,
-                i};
-  };
-  for (const uint32_t m : moved) {
-    if (!boxed(entities[m])) {
-      continue;
-    }
-    const Item p = item(m);
-    for (uint32_t j = 0; j < count; ++j) {
-      // A pair of two moved boxes once, from the lower index.
-      if (j == m || !boxed(entities[j]) || (sweep.moved_mark[j] != 0 && j < m)) {
-        continue;
-      }
-      const Item q = item(j);
-      const bool p_first = sweep_order(p, q);
-      const Item& first = p_first ? p : q;
-      const Item& second = p_first ? q : p;
-      if (!(second.low <= first.high) || !y_near_finite(p, q)) {
-        continue;
-      }
-      // The sweep tests the pair from the earlier of the two along its axis.
-      const bool p_leads =
-          along_y ? (p.ylow < q.ylow || (p.ylow == q.ylow && p.index < q.index)) : p_first;
-      const bool touching =
-          p_leads ? overlap(boxes[p.box], boxes[q.box]) : overlap(boxes[q.box], boxes[p.box]);
-      if (touching) {
-        now.emplace_back(std::min(m, j), std::max(m, j));
-      }
+  for (const uint32_t m : sweep.moved) {
+    if (boxed(entities[m])) {
+      add_moved_box_pairs(state, sweep, m, along_y, now);
     }
   }
   std::sort(now.begin(), now.end());
@@ -244,26 +283,11 @@ bool update_moved_contacts(SimState& state, ContactSweep& sweep) {
   return true;
 }
 
-}  // namespace
-
-void update_contacts(SimState& state, ContactSweep& sweep) {
-  // Nothing moved, appeared or left: the contacts are those of the last update, and none is new.
-  const bool same_entities = find_moved_boxes(state, sweep.moved);
-  if (sweep.moved.empty()) {
-    return;
-  }
-  if (same_entities && update_moved_contacts(state, sweep)) {
-    return;
-  }
+// Makes every boxed entity's box and its extents along x and y. Each box depends only on its
+// entity: made on several threads when the sweep may share them out, so the result is the same
+// on any number.
+void make_all_boxes(SimState& state, ContactSweep& sweep) {
   const auto& entities = state.world.entities;
-  std::vector<std::pair<uint32_t, uint32_t>> previous;
-  previous.swap(state.contacts.pairs);
-  // Boxes whose extents along x overlap (sweep and prune) are tested exactly. Pairs apart along
-  // y (with a rounding margin) cannot overlap and are skipped.
-  std::vector<Item> items;
-  items.reserve(entities.size());
-  // Each box depends only on its entity: made on several threads when the sweep may share
-  // them out; gathered below in index order, so the result is the same on any number.
   std::vector<OrientedBox>& boxes = state.contacts.boxes;
   boxes.resize(entities.size());
   sweep.x_extent.resize(entities.size());
@@ -283,95 +307,148 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
   } else {
     make_boxes(0, entities.size());
   }
-  bool finite = true;
-  double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
+}
+
+// The sweep's items of the boxed entities, in index order, into `items`; their spread.
+ContactSpread gather_items(const std::vector<Entity>& entities, const ContactSweep& sweep,
+                           std::vector<Item>& items) {
+  ContactSpread spread;
+  items.reserve(entities.size());
   for (uint32_t i = 0; i < entities.size(); ++i) {
     if (!boxed(entities[i])) {
       continue;
     }
     const Interval x = sweep.x_extent[i];
     const Interval y = sweep.y_extent[i];
-    finite = finite && std::isfinite(x.low) && std::isfinite(x.high) && std::isfinite(y.low) &&
-             std::isfinite(y.high);
-    x0 = items.empty() ? x.low : std::min(x0, x.low);
-    x1 = items.empty() ? x.high : std::max(x1, x.high);
-    y0 = items.empty() ? y.low : std::min(y0, y.low);
-    y1 = items.empty() ? y.high : std::max(y1, y.high);
+    spread.add(x, y);
     items.push_back({x.low, x.high, y.low, y.high, i, i});
   }
-  auto& now = state.contacts.pairs;
-  std::vector<std::pair<uint32_t, uint32_t>> touching;  // coupled pairs whose boxes overlap
-  // A trailer and the vehicle towing it meet at the hitch (also for a while after they were
-  // disconnected, until they part): that is no collision.
-  const auto record = [&](const Item& p, const Item& q) {
-    const Entity& first = entities[p.index];
+  return spread;
+}
+
+// Where the sweep's overlapping pairs go: a trailer and the vehicle towing it meet at the hitch
+// (also for a while after they were disconnected, until they part), which is no collision, so
+// such coupled pairs are kept apart (`touching`) from the contacts (`now`).
+class ContactRecorder {
+ public:
+  ContactRecorder(const std::vector<Entity>& entities,
+                  std::vector<std::pair<uint32_t, uint32_t>>& now)
+      : entities_(entities), now_(now) {}
+
+  void operator()(const Item& p, const Item& q) {
+    const Entity& first = entities_[p.index];
     const bool coupled = first.towed_by == q.index || first.towing == q.index ||
                          first.unhitched_from == q.index ||
-                         entities[q.index].unhitched_from == p.index;
-    (coupled ? touching : now).emplace_back(std::min(p.index, q.index), std::max(p.index, q.index));
-  };
-  auto& order = sweep.order;
-  if (finite && y1 - y0 > x1 - x0) {
-    // Spread more along y (a road running north): sweep along y instead, and test a pair when
-    // the x sweep would have (the later of the two in x order starts before the earlier ends).
-    sort_from_last(items, order, sweep.along_y, entities.size(), [](const Item& a, const Item& b) {
-      return a.ylow < b.ylow || (a.ylow == b.ylow && a.index < b.index);
-    });
-    sweep.along_y = true;
-    for (size_t a = 0; a < items.size(); ++a) {
-      const Item& p = items[a];
-      const double reach = p.yhigh + margin(p.yhigh);
-      sweep_from(
-          items, a, [&](const Item& q) { return !(q.ylow <= reach); },
-          [&](const Item& q) {
-            // sweep_order(p, q), and the x extents' test for the pair in that order.
-            const bool p_first = (p.low < q.low) | ((p.low == q.low) & (p.index < q.index));
-            const double first_high = p_first ? p.high : q.high;
-            const double second_low = p_first ? q.low : p.low;
-            return (second_low <= first_high) & y_near_finite(p, q);
-          },
-          [&](const Item& q) {
-            if (overlap(boxes[p.box], boxes[q.box])) record(p, q);
-          });
-    }
+                         entities_[q.index].unhitched_from == p.index;
+    (coupled ? touching_ : now_)
+        .emplace_back(std::min(p.index, q.index), std::max(p.index, q.index));
+  }
+  /// Coupled pairs whose boxes overlap.
+  const std::vector<std::pair<uint32_t, uint32_t>>& touching() const { return touching_; }
+
+ private:
+  const std::vector<Entity>& entities_;
+  std::vector<std::pair<uint32_t, uint32_t>>& now_;
+  std::vector<std::pair<uint32_t, uint32_t>> touching_;
+};
+
+// Sweeps along y (the boxes spread more that way), testing a pair when the x sweep would have
+// (the later of the two in x order starts before the earlier ends), with finite extents.
+void sweep_along_y(std::vector<Item>& items, ContactSweep& sweep, size_t entity_count,
+                   const std::vector<OrientedBox>& boxes, ContactRecorder& record) {
+  sort_from_last(items, sweep.order, sweep.along_y, entity_count, [](const Item& a, const Item& b) {
+    return a.ylow < b.ylow || (a.ylow == b.ylow && a.index < b.index);
+  });
+  sweep.along_y = true;
+  for (size_t a = 0; a < items.size(); ++a) {
+    const Item& p = items[a];
+    const double reach = p.yhigh + margin(p.yhigh);
+    sweep_from(
+        items, a, [&](const Item& q) { return !(q.ylow <= reach); },
+        [&](const Item& q) {
+          // sweep_order(p, q), and the x extents' test for the pair in that order.
+          const bool p_first = (p.low < q.low) | ((p.low == q.low) & (p.index < q.index));
+          const double first_high = p_first ? p.high : q.high;
+          const double second_low = p_first ? q.low : p.low;
+          return (second_low <= first_high) & y_near_finite(p, q);
+        },
+        [&](const Item& q) {
+          if (overlap(boxes[p.box], boxes[q.box])) record(p, q);
+        });
+  }
+}
+
+// Sweeps along x; pairs apart along y (with a rounding margin) cannot overlap and are skipped.
+// Extents that are not all `finite` (NaN or infinite) have no total order to start from.
+void sweep_along_x(std::vector<Item>& items, ContactSweep& sweep, size_t entity_count, bool finite,
+                   const std::vector<OrientedBox>& boxes, ContactRecorder& record) {
+  if (finite) {
+    sort_from_last(items, sweep.order, !sweep.along_y, entity_count, sweep_order);
+    sweep.along_y = false;
   } else {
+    std::sort(items.begin(), items.end(), sweep_order);
+    sweep.order.clear();
+  }
+  for (size_t a = 0; a < items.size(); ++a) {
+    const Item& p = items[a];
+    const auto ends = [&](const Item& q) { return !(q.low <= p.high); };
+    const auto test = [&](const Item& q) {
+      if (overlap(boxes[p.box], boxes[q.box])) record(p, q);
+    };
     if (finite) {
-      sort_from_last(items, order, !sweep.along_y, entities.size(), sweep_order);
-      sweep.along_y = false;
+      sweep_from(
+          items, a, ends, [&](const Item& q) { return y_near_finite(p, q); }, test);
     } else {
-      // NaN or infinite extents: no total order to start from.
-      std::sort(items.begin(), items.end(), sweep_order);
-      order.clear();
-    }
-    for (size_t a = 0; a < items.size(); ++a) {
-      const Item& p = items[a];
-      const auto ends = [&](const Item& q) { return !(q.low <= p.high); };
-      const auto test = [&](const Item& q) {
-        if (overlap(boxes[p.box], boxes[q.box])) record(p, q);
-      };
-      if (finite) {
-        sweep_from(
-            items, a, ends, [&](const Item& q) { return y_near_finite(p, q); }, test);
-      } else {
-        sweep_from(
-            items, a, ends, [&](const Item& q) { return !y_apart(p, q); }, test);
-      }
+      sweep_from(
+          items, a, ends, [&](const Item& q) { return !y_apart(p, q); }, test);
     }
   }
-  // A disconnected trailer that no longer touches its former tower can collide with it again.
+}
+
+// A disconnected trailer that no longer touches its former tower can collide with it again.
+void release_parted_trailers(std::vector<Entity>& entities,
+                             const std::vector<std::pair<uint32_t, uint32_t>>& touching) {
   for (uint32_t i = 0; i < entities.size(); ++i) {
-    const auto other = state.world.entities[i].unhitched_from;
+    const auto other = entities[i].unhitched_from;
     if (!other) continue;
     const bool still = std::any_of(touching.begin(), touching.end(), [&](const auto& pair) {
       return (pair.first == i && pair.second == *other) ||
              (pair.first == *other && pair.second == i);
     });
-    if (!still) state.world.entities[i].unhitched_from.reset();
+    if (!still) entities[i].unhitched_from.reset();
   }
+}
+
+}  // namespace
+
+void update_contacts(SimState& state, ContactSweep& sweep) {
+  // Nothing moved, appeared or left: the contacts are those of the last update, and none is new.
+  const bool same_entities = find_moved_boxes(state, sweep.moved);
+  if (sweep.moved.empty()) {
+    return;
+  }
+  if (same_entities && update_moved_contacts(state, sweep)) {
+    return;
+  }
+  auto& entities = state.world.entities;
+  std::vector<std::pair<uint32_t, uint32_t>> previous;
+  previous.swap(state.contacts.pairs);
+  // Boxes whose extents overlap along the sweep's axis (sweep and prune) are tested exactly.
+  make_all_boxes(state, sweep);
+  std::vector<Item> items;
+  const ContactSpread spread = gather_items(entities, sweep, items);
+  auto& now = state.contacts.pairs;
+  ContactRecorder record(entities, now);
+  if (spread.finite && spread.along_y()) {
+    sweep_along_y(items, sweep, entities.size(), state.contacts.boxes, record);
+  } else {
+    sweep_along_x(items, sweep, entities.size(), spread.finite, state.contacts.boxes, record);
+  }
+  release_parted_trailers(entities, record.touching());
   // Entity order, independent of the sweep order; new contacts are recorded in that order.
   std::sort(now.begin(), now.end());
   record_new_contacts(state, now, previous);
-  sweep.complete = finite;
+  sweep.complete = spread.finite;
 }
 
 namespace {
