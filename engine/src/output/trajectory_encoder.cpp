@@ -266,8 +266,13 @@ uint32_t TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Ro
   }
   state_rows_ = nullptr;
   const double time = head.time;
-  const bool odd_time =
-      std::bit_cast<uint64_t>(time) != std::bit_cast<uint64_t>(tick_time(tick, per_second_, dt_));
+  // The time the header gives this tick, divided out one recorded tick ahead (the next line
+  // but one), so that the tick does not wait for its division here: on a run of standing
+  // entities that wait was a tenth of the tick's recording.
+  const double due = tick == due_tick_ ? due_time_ : tick_time(tick, per_second_, dt_);
+  const bool odd_time = std::bit_cast<uint64_t>(time) != std::bit_cast<uint64_t>(due);
+  due_tick_ = tick + every_;
+  due_time_ = tick_time(due_tick_, per_second_, dt_);
   if (frame_size_ == 0 && !odd_time) {
     return coded;  // every present entity as predicted: the tick costs nothing
   }
