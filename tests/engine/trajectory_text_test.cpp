@@ -2,6 +2,7 @@
 // trailing zeros for lengths, speeds and angles, the shortest exact text for times, and the
 // shortest round-trip text beyond exact scaling.
 
+#include <bit>
 #include <catch2/catch.hpp>
 #include <charconv>
 #include <cmath>
@@ -168,6 +169,62 @@ TEST_CASE("rounding to units takes halves away from zero, as llround does", "[en
                              4503599627370495.5, -4503599627370495.5}) {
     REQUIRE(round_half_away(value) == std::llround(value));
   }
+}
+
+TEST_CASE("the binary coder's rounding is round_half_away, and far values are told apart",
+          "[engine][output]") {
+  using namespace corsa::engine::detail::decimal_text;
+  // round_or_far against the range test and round_half_away it replaces, for one value.
+  int64_t checked = 0;
+  const auto check = [&checked](double scaled) {
+    ++checked;
+    const bool exact = std::fabs(scaled) < kExactLimit;
+    const int64_t units = round_or_far(scaled);
+    REQUIRE(near_units(units) == exact);
+    if (exact) {
+      REQUIRE(units == round_half_away(scaled));
+    }
+  };
+  // Every half and its neighbours a few ulps away, below 4e6 and at each power of two.
+  for (int64_t whole = -4000; whole <= 4000; ++whole) {
+    for (const double base : {0.5, 0.0, 0.25}) {
+      double value = static_cast<double>(whole) + base;
+      for (int ulp = 0; ulp < 3; ++ulp) {
+        check(value);
+        check(std::nextafter(value, -1e300));
+        value = std::nextafter(value, 1e300);
+      }
+    }
+  }
+  for (int exponent = -2; exponent < 64; ++exponent) {
+    const double power = std::ldexp(1.0, exponent);
+    for (const double offset : {-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5}) {
+      for (const double value : {power + offset, -(power + offset)}) {
+        check(value);
+        check(std::nextafter(value, 0.0));
+        check(std::nextafter(value, 1e300));
+        check(std::nextafter(value, -1e300));
+      }
+    }
+  }
+  // The range's edge, what cannot be scaled, and the halves' neighbours near 0.
+  for (const double value :
+       {9e15, 9e15 - 1, 9e15 - 0.5, -9e15, -9e15 + 1, 9e15 + 2, 9.2233720368547758e18,
+        -9.2233720368547758e18, 1e300, -1e300, std::numeric_limits<double>::infinity(),
+        -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN(),
+        0.49999999999999994, -0.49999999999999994, 0.0, -0.0, 5e-324, -5e-324}) {
+    check(value);
+  }
+  // Any bits at all, and magnitudes spread over the decimals' range.
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> magnitude(-12.0, 17.0);
+  for (int i = 0; i < 200000; ++i) {
+    check(std::bit_cast<double>(random()));
+    const double value = std::pow(10.0, magnitude(random));
+    check(value);
+    check(-value);
+  }
+  REQUIRE(checked > 700000);
 }
 
 namespace {

@@ -211,6 +211,10 @@ class TrajectoryEncoder {
   int64_t per_second_ = 0;  ///< N when the time of tick k is k / N
   double dt_ = 0.0;
   int64_t last_frame_ = 0;
+  /// The tick expected to be recorded next (the last one plus `every`) and its time by the
+  /// header (tick_time), worked out ahead of it.
+  int64_t due_tick_ = INT64_MIN;
+  double due_time_ = 0.0;
   std::vector<std::string> names_;
   std::vector<Track> entities_;
   std::vector<const std::string*> road_ids_;  ///< by road index, null until named
