@@ -425,10 +425,14 @@ Color lawn(const Material& m, const TexturePoint& p, const Plane& q, Color dry_c
   green = mix(green, m.base_color * Color{0.7, 0.85, 0.9}, 0.6 * clover);
   const double dry = smoothstep(0.56, 0.74, 0.55 * field + 0.45 * patch);
   const Color c = mix(green, dry_color, 0.75 * dry);
-  // Mottle: thicker and thinner growth over 0.1-1 m that stays when the blades have faded, from
-  // a 2.9 m tile and a 4.7 m one turned against it (weak: no period shows).
-  const double mottle =
-      pattern_noise(p, 3, q.a, q.b, 2.9, fp) + pattern_noise(p, 1, rb, -ra, 4.7, fp) - 1.0;
+  // Mottle: thicker and thinner growth over 0.1-1 m where the blades fade, from a 2.9 m tile and
+  // a 4.7 m one turned against it (weak: no period shows). Read only where it shows: up close
+  // the blades' clumps are that scale's variation.
+  double mottle = 0.0;
+  if (clump_w < 1.0) {
+    mottle = (1.0 - clump_w) *
+             (pattern_noise(p, 3, q.a, q.b, 2.9, fp) + pattern_noise(p, 1, rb, -ra, 4.7, fp) - 1.0);
+  }
   return c * (1.0 + 1.1 * blades + 0.3 * mottle - 0.12 * (patch - 0.5));
 }
 
