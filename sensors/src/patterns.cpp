@@ -376,6 +376,10 @@ SurfaceSample foliage(const Material& m, const TexturePoint& p) {
   return s;
 }
 
+/// The lawn's blade tiles fade out from a footprint of a quarter of this (m) to three quarters
+/// (detail_weight): gone before a pixel covers half of their coarsest cells (17.5 cm).
+constexpr double kLawnClumpSize = 0.12;
+
 /// Lawn with a blade-scale grain, patches of lusher and thinner growth and dry (straw) patches:
 /// the grass's colour before any bare soil. `dry_color` is straw. The metre-scale noise is read
 /// from two tiles of incommensurate sizes turned against each other, so that a wide lawn shows
@@ -390,9 +394,17 @@ Color lawn(const Material& m, const TexturePoint& p, const Plane& q, Color dry_c
   const double patch =
       0.5 * (pattern_noise(p, 1, q.a, q.b, 7.3, fp) + pattern_noise(p, 2, ra, rb, 11.9, fp));
   const double field = pattern_noise(p, 3, rb, -ra, 97.0, fp);  // tens of metres
-  // Blades: 3 mm texels of a 0.7 m tile, and one value per 1.5 cm cell (a tuft of blades) while
-  // the pixel resolves it; beyond, their average (0).
-  double blades = pattern_noise(p, 0, ra, rb, 0.7, fp) - 0.5;
+  // Blades and clumps: 3 mm texels of a 0.7 m tile and a 1.13 m one turned against it, faded
+  // out between footprints of 3 and 9 cm (a single tile's coarse 17.5 cm cells repeat every
+  // 0.7 m: read at the bird's-eye view's 11 cm pixels they were a diagonal hatch over every
+  // lawn); and one value per 1.5 cm cell (a tuft of blades) while the pixel resolves it; beyond,
+  // their average (0).
+  double blades = 0.0;
+  const double clump_w = detail_weight(fp, kLawnClumpSize);
+  if (clump_w > 0.0) {
+    blades = clump_w * 0.7 *
+             (pattern_noise(p, 0, ra, rb, 0.7, fp) + pattern_noise(p, 2, rb, -ra, 1.13, fp) - 1.0);
+  }
   const double tuft_w = detail_weight(fp, 0.015);
   if (tuft_w > 0.0) {
     const double r = cell_random(static_cast<int64_t>(std::floor(q.a * 66.0)),
@@ -413,7 +425,15 @@ Color lawn(const Material& m, const TexturePoint& p, const Plane& q, Color dry_c
   green = mix(green, m.base_color * Color{0.7, 0.85, 0.9}, 0.6 * clover);
   const double dry = smoothstep(0.56, 0.74, 0.55 * field + 0.45 * patch);
   const Color c = mix(green, dry_color, 0.75 * dry);
-  return c * (1.0 + 1.1 * blades - 0.12 * (patch - 0.5));
+  // Mottle: thicker and thinner growth over 0.1-1 m where the blades fade, from a 2.9 m tile and
+  // a 4.7 m one turned against it (weak: no period shows). Read only where it shows: up close
+  // the blades' clumps are that scale's variation.
+  double mottle = 0.0;
+  if (clump_w < 1.0) {
+    mottle = (1.0 - clump_w) *
+             (pattern_noise(p, 3, q.a, q.b, 2.9, fp) + pattern_noise(p, 1, rb, -ra, 4.7, fp) - 1.0);
+  }
+  return c * (1.0 + 1.1 * blades + 0.3 * mottle - 0.12 * (patch - 0.5));
 }
 
 SurfaceSample grass(const Material& m, const TexturePoint& p) {
@@ -426,7 +446,12 @@ SurfaceSample dirt(const Material& m, const TexturePoint& p) {
   SurfaceSample s = base(m);
   const Plane q = plane_of(p, m.seed);
   const double fp = p.footprint;
-  const double fine = pattern_noise(p, 0, q.a, q.b, 1.2, fp);
+  // Clods and grit: a 1.2 m tile and a 1.93 m one turned against it, so that no period shows
+  // (one tile repeated every 1.2 m: diagonal streaks across bare soil in the bird's-eye view).
+  const double fine =
+      0.5 +
+      0.7 * (pattern_noise(p, 0, q.a, q.b, 1.2, fp) +
+             pattern_noise(p, 2, 0.8 * q.b - 0.6 * q.a, 0.6 * q.b + 0.8 * q.a, 1.93, fp) - 1.0);
   const double mid = pattern_noise(p, 1, q.a, q.b, 8.0, fp);
   double tone = (0.75 + 0.5 * fine) * (0.85 + 0.3 * mid);
   const double w = detail_weight(fp, 0.03);

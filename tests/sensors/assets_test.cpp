@@ -93,6 +93,44 @@ TEST_CASE("procedural textures fade to their average where pixels are larger tha
   CHECK(spread(0.002) > 3.0 * spread(20.0));
 }
 
+TEST_CASE("grass and bare soil seen from above show no period of their noise tiles",
+          "[sensors][textures]") {
+  // A bird's-eye pixel: 80 m over 720 px. Each noise tile repeats; read at this footprint the
+  // lawn's 0.7 m blade tile and the soil's 1.2 m tile made a lattice over every lawn. Points a
+  // tile's period apart along its axes must differ about as much as points as far apart in
+  // another direction (with main's patterns: 0.16 and 0.76 times as much).
+  const double footprint = 80.0 / 720.0;
+  auto mean_difference = [&](const Material& m, Vec3 offset) {
+    double sum = 0.0;
+    const int n = 2000;
+    for (int i = 0; i < n; ++i) {
+      detail::TexturePoint a;
+      a.position = {0.731 * i, 0.293 * i - 0.017 * (i % 53) * i, 0.0};
+      a.normal = {0.0, 0.0, 1.0};
+      a.footprint = footprint;
+      detail::TexturePoint b = a;
+      b.position = a.position + offset;
+      sum +=
+          std::fabs(detail::sample_surface(m, a).albedo.g - detail::sample_surface(m, b).albedo.g);
+    }
+    return sum / n;
+  };
+  Material grass;
+  grass.pattern = Pattern::kGrass;
+  grass.base_color = {0.1, 0.16, 0.05};
+  grass.secondary = {0.16, 0.14, 0.05};
+  // The blade tile's axes are turned by 36.87 degrees (a 3-4-5 rotation) against the plane's.
+  const double blade_period = mean_difference(grass, {0.56, -0.42, 0.0});
+  // As far along the tile's diagonal: no period of it.
+  const double diagonal = mean_difference(grass, {0.693, 0.099, 0.0});
+  CHECK(blade_period > 0.9 * diagonal);
+  Material dirt;
+  dirt.pattern = Pattern::kDirt;
+  dirt.base_color = {0.12, 0.08, 0.05};
+  dirt.secondary = {0.08, 0.06, 0.04};
+  CHECK(mean_difference(dirt, {1.2, 0.0, 0.0}) > 0.9 * mean_difference(dirt, {0.72, 0.96, 0.0}));
+}
+
 TEST_CASE("asphalt darkens the wheel paths of its lanes, filtered at a distance",
           "[sensors][textures]") {
   Material asphalt;
