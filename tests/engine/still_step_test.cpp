@@ -24,30 +24,37 @@ using corsa::engine::detail::Entity;
 using corsa::engine::detail::EntityMotion;
 using corsa::engine::detail::LaneFollow;
 using corsa::engine::detail::MotionContext;
-using corsa::engine::detail::same_bits;
 using corsa::xodr::Map;
 
-constexpr double kDt = 0.01;
+constexpr double kStillStepDt = 0.01;
 
-bool same_lane(const LaneFollow& a, const LaneFollow& b) {
+// The engine's comparison of bits (state/sim_state.h), by a name of this file's own (a unity
+// batch may hold another test's `same_bits`).
+template <class T>
+bool bits_equal(const T& a, const T& b) {
+  return corsa::engine::detail::same_bits(a, b);
+}
+
+bool still_step_same_lane(const LaneFollow& a, const LaneFollow& b) {
   return a.on_road == b.on_road && a.road == b.road && a.section == b.section && a.lane == b.lane &&
-         a.node == b.node && same_bits(a.s, b.s) && a.dir == b.dir &&
-         same_bits(a.lateral, b.lateral) && same_bits(a.heading_offset, b.heading_offset) &&
-         same_bits(a.frame_shift, b.frame_shift);
+         a.node == b.node && bits_equal(a.s, b.s) && a.dir == b.dir &&
+         bits_equal(a.lateral, b.lateral) && bits_equal(a.heading_offset, b.heading_offset) &&
+         bits_equal(a.frame_shift, b.frame_shift);
 }
 
 // Every field of the motion, bit for bit (padding left out).
-bool same_motion(const EntityMotion& a, const EntityMotion& b) {
+bool still_step_same_motion(const EntityMotion& a, const EntityMotion& b) {
   const auto& x = a.state;
   const auto& y = b.state;
-  return same_bits(x.pose, y.pose) && same_bits(x.speed, y.speed) &&
-         same_bits(x.acceleration, y.acceleration) && same_bits(x.lateral_speed, y.lateral_speed) &&
-         same_bits(x.yaw_rate, y.yaw_rate) && same_bits(x.odometer, y.odometer) &&
-         x.placed == y.placed && x.visible == y.visible && same_bits(x.road, y.road) &&
-         same_lane(a.lane, b.lane) && same_bits(a.speed_command, b.speed_command) &&
-         same_bits(a.lateral_command, b.lateral_command) &&
-         same_bits(a.longitudinal_distance, b.longitudinal_distance) &&
-         same_bits(a.lateral_acceleration, b.lateral_acceleration) &&
+  return bits_equal(x.pose, y.pose) && bits_equal(x.speed, y.speed) &&
+         bits_equal(x.acceleration, y.acceleration) &&
+         bits_equal(x.lateral_speed, y.lateral_speed) && bits_equal(x.yaw_rate, y.yaw_rate) &&
+         bits_equal(x.odometer, y.odometer) && x.placed == y.placed && x.visible == y.visible &&
+         bits_equal(x.road, y.road) && still_step_same_lane(a.lane, b.lane) &&
+         bits_equal(a.speed_command, b.speed_command) &&
+         bits_equal(a.lateral_command, b.lateral_command) &&
+         bits_equal(a.longitudinal_distance, b.longitudinal_distance) &&
+         bits_equal(a.lateral_acceleration, b.lateral_acceleration) &&
          a.end_of_road == b.end_of_road && a.chooser == b.chooser;
 }
 
@@ -64,7 +71,7 @@ struct StillStepPair {
 
   explicit StillStepPair(double s) {
     context.map = &map;
-    context.dt = kDt;
+    context.dt = kStillStepDt;
     context.scratch = &scratch;
     teleport(s);
   }
@@ -96,7 +103,7 @@ struct StillStepPair {
     full.still_step.valid = false;
     controller.step(skipping, context);
     controller.step(full, context);
-    REQUIRE(same_motion(skipping, full));
+    REQUIRE(still_step_same_motion(skipping, full));
   }
 };
 
@@ -116,18 +123,18 @@ TEST_CASE("A standing entity's step is skipped, and any change of its motion end
   SECTION("a speed asked for later moves it on the next step") {
     pair.step([](Entity& e) { e.speed_command = 5.0; });
     CHECK(pair.skipping.state.speed == 5.0);
-    CHECK(pair.skipping.lane.s == Approx(s_before + 5.0 * kDt).margin(1e-12));
+    CHECK(pair.skipping.lane.s == Approx(s_before + 5.0 * kStillStepDt).margin(1e-12));
     CHECK_FALSE(pair.skipping.still_step.valid);  // a moving entity is not remembered
     for (int i = 0; i < 20; ++i) {
       pair.step();
     }
-    CHECK(pair.skipping.lane.s == Approx(s_before + 21 * 5.0 * kDt).margin(1e-9));
+    CHECK(pair.skipping.lane.s == Approx(s_before + 21 * 5.0 * kStillStepDt).margin(1e-9));
     // Asked to stop: it stands on the next step; the step after that still changes its
     // acceleration (to 0), the third changes nothing and is remembered, the fourth is skipped.
     const int skipped = pair.skipped_steps;
     pair.step([](Entity& e) { e.speed_command = 0.0; });
     CHECK(pair.skipping.state.speed == 0.0);
-    CHECK(pair.skipping.state.acceleration == Approx(-5.0 / kDt));
+    CHECK(pair.skipping.state.acceleration == Approx(-5.0 / kStillStepDt));
     pair.step();
     pair.step();
     CHECK(pair.skipped_steps == skipped);
@@ -137,14 +144,14 @@ TEST_CASE("A standing entity's step is skipped, and any change of its motion end
   SECTION("a lateral offset asked for later moves it across its lane") {
     pair.step([](Entity& e) { e.lateral_command = 0.4; });
     CHECK(pair.skipping.lane.lateral == 0.4);
-    CHECK(pair.skipping.state.lateral_speed == Approx(0.4 / kDt));
+    CHECK(pair.skipping.state.lateral_speed == Approx(0.4 / kStillStepDt));
     pair.step();
     CHECK(pair.skipping.state.lateral_speed == 0.0);  // the offset reached: standing again
   }
   SECTION("a speed written into its state by an action is taken back to the command") {
     pair.step([](Entity& e) { e.state.speed = 3.0; });
     CHECK(pair.skipping.state.speed == 0.0);
-    CHECK(pair.skipping.state.acceleration == Approx(-3.0 / kDt));
+    CHECK(pair.skipping.state.acceleration == Approx(-3.0 / kStillStepDt));
   }
   SECTION("a teleport takes it to the new place and it stands there") {
     pair.teleport(250.0);
@@ -185,6 +192,6 @@ TEST_CASE("A car held at a road's end keeps asking for its speed until it is put
   pair.step();
   CHECK_FALSE(pair.skipping.end_of_road);
   CHECK(pair.skipping.state.speed == 10.0);
-  CHECK(pair.skipping.lane.s == Approx(300.0 + 10.0 * kDt).margin(1e-9));
-  CHECK(pair.skipping.state.odometer == Approx(odometer + 10.0 * kDt).margin(1e-9));
+  CHECK(pair.skipping.lane.s == Approx(300.0 + 10.0 * kStillStepDt).margin(1e-9));
+  CHECK(pair.skipping.state.odometer == Approx(odometer + 10.0 * kStillStepDt).margin(1e-9));
 }
