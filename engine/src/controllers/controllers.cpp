@@ -292,6 +292,10 @@ constexpr size_t kParallelLightEntities = 8192;
 // small enough that the threads end together, large enough that taking one costs nothing.
 constexpr size_t kChunkEntities = 32;
 constexpr uint32_t kArrangeSteps = 50;
+// Entities from which the moves go in lane order and ask for the next mover's records ahead:
+// fewer (tens of kilobytes of entities) stay in the core's cache from one step to the next,
+// where the sorting and the prefetches only cost their instructions.
+constexpr uint32_t kArrangedEntities = 32;
 
 std::optional<xodr::LaneType> lane_type_at(const xodr::Map& map, const RoadCoordinates& road) {
   const auto node = map.lane_graph().find(xodr::LaneRef{road.road, road.section, road.lane});
@@ -346,14 +350,6 @@ void step_pedestrian(SimState& state, uint32_t index, const DefaultController& i
     control.crossing = false;
     entity.speed_command = 0.0;
   }
-}
-
-// Whether the dynamics controller moves entity `index` this step (a FollowTrajectoryAction in
-// position mode places the entity on its path instead: ideal motion).
-bool dynamics_moves(const SimState& state, uint32_t index) {
-  const Entity& entity = state.world.entities[index];
-  return entity.state.placed && !entity.pose_command &&
-         state.controls[index].effective() == ControllerKind::kDynamics;
 }
 
 // One entity's move with its controller. It reads and writes only that entity (and its
@@ -424,6 +420,12 @@ void prefetch_mover_records(const SimState& state, uint32_t i) {
 void move_range(SimState& state, const MotionContext& motion, const FollowView& view,
                 std::vector<LanesAhead>& ahead, const std::vector<uint32_t>& order, size_t begin,
                 size_t end) {
+  if (order.size() < kArrangedEntities) {
+    for (size_t k = begin; k < end; ++k) {
+      move_one(state, order[k], motion, view, ahead[k]);
+    }
+    return;
+  }
   for (size_t k = begin; k < end; ++k) {
     if (k + 1 < end) {
       prefetch_mover_records(state, order[k + 1]);
@@ -450,13 +452,15 @@ struct EntityMover::Impl {
   std::vector<std::vector<uint32_t>> nearby;
   /// The order entities are moved in: by lane, so that one after the other they read the same
   /// parts of the map (the result does not depend on it; with many vehicles spread over a city
-  /// map, memory traffic is most of a move's time). Sorted again every kArrangeSteps steps.
+  /// map, memory traffic is most of a move's time). Sorted again every kArrangeSteps steps;
+  /// below kArrangedEntities the entities' own order.
   std::vector<uint32_t> order;
   uint32_t steps_since_arranged = 0;
 
   void arrange(const SimState& state) {
     const auto count = static_cast<uint32_t>(state.world.entities.size());
-    if (order.size() == count && ++steps_since_arranged < kArrangeSteps) {
+    if (order.size() == count &&
+        (count < kArrangedEntities || ++steps_since_arranged < kArrangeSteps)) {
       return;
     }
     steps_since_arranged = 0;
@@ -472,7 +476,9 @@ struct EntityMover::Impl {
       const LaneFollow& lane = state.world.entities[i].lane;
       keys[i] = {lane.on_road ? uint64_t{lane.node} : UINT64_MAX, i};
     }
-    std::sort(keys.begin(), keys.end());
+    if (count >= kArrangedEntities) {
+      std::sort(keys.begin(), keys.end());
+    }
     ahead.resize(count);
     for (uint32_t k = 0; k < count; ++k) {
       order[k] = keys[k].second;
@@ -514,25 +520,30 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   bool alks = false;
   bool sloppy = false;
   for (uint32_t i = 0; i < count; ++i) {
-    alks = alks || state.controls[i].effective() == ControllerKind::kAlksR157;
-    sloppy = sloppy || state.controls[i].effective() == ControllerKind::kSloppyDriver;
-    if (std::optional<DomainPartner>& partner = state.controls[i].partner) {
+    ControlState& control = state.controls[i];
+    const Entity& entity = state.world.entities[i];
+    const ControllerKind kind = control.effective();
+    alks = alks || kind == ControllerKind::kAlksR157;
+    sloppy = sloppy || kind == ControllerKind::kSloppyDriver;
+    if (std::optional<DomainPartner>& partner = control.partner) {
       // The lateral controller of a split steers with the speed and heading the step began with.
-      partner->step_start_speed = state.world.entities[i].state.speed;
-      partner->step_start_heading = state.world.entities[i].lane.heading_offset;
+      partner->step_start_speed = entity.state.speed;
+      partner->step_start_heading = entity.lane.heading_offset;
       sloppy = sloppy || partner->kind == ControllerKind::kSloppyDriver;
     }
-    if (dynamics_moves(state, i) && !state.world.entities[i].towed_by) {
+    // Moved by the dynamics controller this step (a FollowTrajectoryAction in position mode
+    // places the entity on its path instead: ideal motion).
+    if (kind == ControllerKind::kDynamics && entity.state.placed && !entity.pose_command &&
+        !entity.towed_by) {
       dynamic.push_back(i);
     }
     // Car following and esmini's offroadFollower read the others in the picture (esmini's
     // interactiveDriver does not: without it the picture is not taken).
-    const ControllerKind kind = state.controls[i].effective();
-    following = following || (state.world.entities[i].state.placed &&
-                              (kind == ControllerKind::kAcc ||
-                               (kind == ControllerKind::kEsminiVehicle &&
-                                esmini_driver_reads_view(state.controls[i].esmini_driver.get()))));
-    natural = natural || state.controls[i].natural != nullptr;
+    following = following ||
+                (entity.state.placed && (kind == ControllerKind::kAcc ||
+                                         (kind == ControllerKind::kEsminiVehicle &&
+                                          esmini_driver_reads_view(control.esmini_driver.get()))));
+    natural = natural || control.natural != nullptr;
   }
   if (!dynamic.empty()) {
     begin_dynamics(state, dynamic, motion);

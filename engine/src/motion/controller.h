@@ -32,6 +32,13 @@ class Controller {
   virtual void step(Entity& entity, const MotionContext& context) const = 0;
 };
 
+/// The entity's memos of the map's answers that a step may consult (they give what the map
+/// would: motion/controller.h, update_pose_from_lane and locate_near).
+struct MapMemos {
+  LanePoseMemo& lane_pose;
+  PointLocateMemo& point;
+};
+
 /// The default controller: along the followed lane at the commanded speed (a step travels the
 /// speed at its end times dt, semi-implicit Euler), lateral offset as commanded, heading following
 /// the road plus the angle of the lateral motion; off the road straight along the heading (without
@@ -42,15 +49,20 @@ class DefaultController final : public Controller {
   void step(Entity& entity, const MotionContext& context) const override;
 
  private:
-  /// The step itself; `stood`: it moved neither along its lane nor across it.
-  void step_entity(Entity& entity, const MotionContext& context, bool& stood) const;
+  /// The step itself, given only the entity's motion and its memos of the map's answers;
+  /// `stood`: it moved neither along its lane nor across it.
+  void step_entity(EntityMotion& entity, MapMemos memos, const MotionContext& context,
+                   bool& stood) const;
 };
 
 /// Recomputes an entity's pose and road coordinates from its LaneFollow (after a teleport or a
 /// move), or its road coordinates from its pose when it is off the lanes.
 void update_pose_from_lane(Entity& entity, const xodr::Map& map,
                            std::vector<xodr::LaneSpan>& scratch);
+void update_pose_from_lane(EntityMotion& entity, LanePoseMemo& memo, const xodr::Map& map,
+                           std::vector<xodr::LaneSpan>& scratch);
 void update_road_from_pose(Entity& entity, const xodr::Map* map);
+void update_road_from_pose(EntityMotion& entity, PointLocateMemo& memo, const xodr::Map* map);
 
 /// The lane holding the point (x, y), or the nearest within 0.5 m (xodr::Map::locate with
 /// max_distance 0.5): asked again for the same point, or for a point near one that had no
@@ -58,5 +70,7 @@ void update_road_from_pose(Entity& entity, const xodr::Map* map);
 /// searching the map.
 const std::optional<xodr::LanePosition>& locate_near(Entity& entity, const xodr::Map& map, double x,
                                                      double y);
+const std::optional<xodr::LanePosition>& locate_near(PointLocateMemo& memo, const xodr::Map& map,
+                                                     double x, double y);
 
 }  // namespace corsa::engine::detail

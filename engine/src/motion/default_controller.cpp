@@ -9,25 +9,11 @@
 #include "lanes/lane_follow.h"
 #include "motion/controller.h"
 #include "motion/pose_command.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 
 namespace {
-
-bool same_bits(double a, double b) {
-  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
-}
-
-bool same_pose(const Pose& a, const Pose& b) {
-  return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z) && same_bits(a.h, b.h) &&
-         same_bits(a.p, b.p) && same_bits(a.r, b.r);
-}
-
-bool same_road(const std::optional<RoadCoordinates>& a, const std::optional<RoadCoordinates>& b) {
-  return a.has_value() == b.has_value() &&
-         (!a || (a->road == b->road && a->section == b->section && a->lane == b->lane &&
-                 same_bits(a->s, b->s) && same_bits(a->t, b->t)));
-}
 
 // The inputs of lane_pose (the lane graph node follows from road, section and lane).
 bool same_lane_position(const LaneFollow& a, const LaneFollow& b) {
@@ -40,11 +26,15 @@ bool same_lane_position(const LaneFollow& a, const LaneFollow& b) {
 
 void update_pose_from_lane(Entity& entity, const xodr::Map& map,
                            std::vector<xodr::LaneSpan>& scratch) {
-  LanePoseMemo& memo = entity.lane_pose_memo;
+  update_pose_from_lane(entity, entity.lane_pose_memo, map, scratch);
+}
+
+void update_pose_from_lane(EntityMotion& entity, LanePoseMemo& memo, const xodr::Map& map,
+                           std::vector<xodr::LaneSpan>& scratch) {
   // The same lane position gives the same pose (lane_pose is a function of it and the map);
   // the memo counts only while nothing else has moved the entity since.
   if (memo.valid && same_lane_position(memo.from, entity.lane) &&
-      same_pose(memo.pose, entity.state.pose) && same_road(memo.road, entity.state.road)) {
+      same_bits(memo.pose, entity.state.pose) && same_bits(memo.road, entity.state.road)) {
     return;
   }
   const LanePose lp = lane_pose_of(map, entity.lane, scratch);
@@ -62,11 +52,15 @@ void update_pose_from_lane(Entity& entity, const xodr::Map& map,
 }
 
 void update_road_from_pose(Entity& entity, const xodr::Map* map) {
+  update_road_from_pose(entity, entity.point_memo, map);
+}
+
+void update_road_from_pose(EntityMotion& entity, PointLocateMemo& memo, const xodr::Map* map) {
   entity.state.road.reset();
   if (map == nullptr) {
     return;
   }
-  const auto& located = locate_near(entity, *map, entity.state.pose.x, entity.state.pose.y);
+  const auto& located = locate_near(memo, *map, entity.state.pose.x, entity.state.pose.y);
   if (located && located->distance == 0.0) {
     entity.state.road =
         RoadCoordinates{located->road, located->section, located->lane, located->s, located->t};
@@ -75,13 +69,16 @@ void update_road_from_pose(Entity& entity, const xodr::Map* map) {
 
 const std::optional<xodr::LanePosition>& locate_near(Entity& entity, const xodr::Map& map, double x,
                                                      double y) {
-  PointLocateMemo& memo = entity.point_memo;
+  return locate_near(entity.point_memo, map, x, y);
+}
+
+const std::optional<xodr::LanePosition>& locate_near(PointLocateMemo& memo, const xodr::Map& map,
+                                                     double x, double y) {
   if (memo.valid && !memo.located && std::abs(x - memo.x) <= memo.clear &&
       std::abs(y - memo.y) <= memo.clear) {
     return memo.located;  // still clear of every lane (a NaN point fails the comparisons)
   }
-  if (!memo.valid || std::bit_cast<uint64_t>(memo.x) != std::bit_cast<uint64_t>(x) ||
-      std::bit_cast<uint64_t>(memo.y) != std::bit_cast<uint64_t>(y)) {
+  if (!memo.valid || !same_bits(memo.x, x) || !same_bits(memo.y, y)) {
     constexpr double kMaxDistance = 0.5;
     // How far an entity off the road may move before it is searched for again: a few steps
     // of a car (the bound costs about one search of a square this much wider).
@@ -124,7 +121,7 @@ double curvature_at(const xodr::Map& map, uint32_t road, double s) {
 // that a point near or beyond the centre of curvature of a tight curve cannot stall or fling it.
 // Outside every lane of the road (a lateral offset beyond its outer lane, e.g. a lane change that
 // a route carries onto a connecting road with fewer lanes) t comes from the followed lane.
-double path_scale(const xodr::Map& map, const Entity& entity) {
+double path_scale(const xodr::Map& map, const EntityMotion& entity) {
   const bool located = entity.state.road && entity.state.road->road == entity.lane.road;
   if (!located && entity.state.road) {
     return 1.0;
@@ -143,7 +140,7 @@ double path_scale(const xodr::Map& map, const Entity& entity) {
 // actions give the offset over time or distance and leave the travel along the lane open
 // (esmini's reading). A lateral change of at least `distance`, a jump rather than a motion at
 // the speed, leaves it whole.
-double along_lane(const Entity& entity, double distance) {
+double along_lane(const EntityMotion& entity, double distance) {
   const double lateral = entity.lateral_command - entity.lane.lateral;
   if (lateral == 0.0 || std::abs(lateral) >= std::abs(distance)) {
     return distance;
@@ -166,27 +163,14 @@ bool at_dead_end(const xodr::Map& map, const LaneFollow& lane, double along) {
   return std::abs(boundary - lane.s) == 0.0 && graph.ends(lane.node, dir < 0).empty();
 }
 
-// StillStepMemo: the entity's part the default controller's step reads and writes, copied and
-// compared as bytes.
-void take_still_step(StillStepMemo& memo, const Entity& entity) {
-  std::memcpy(&memo.state, &entity.state, sizeof(EntityState));
-  std::memcpy(&memo.lane, &entity.lane, sizeof(LaneFollow));
-  memo.speed_command = entity.speed_command;
-  memo.lateral_command = entity.lateral_command;
-  memo.longitudinal_distance = entity.longitudinal_distance;
-  memo.lateral_acceleration = entity.lateral_acceleration;
-  memo.chooser = entity.chooser;
-  memo.end_of_road = entity.end_of_road;
+// StillStepMemo: the entity's motion, copied and compared as bytes (kMotionEndsWithoutPadding:
+// they are the motion's own).
+void take_still_step(StillStepMemo& memo, const EntityMotion& motion) {
+  std::memcpy(&memo.held, &motion, sizeof(EntityMotion));
 }
 
-bool holds_still_step(const StillStepMemo& memo, const Entity& entity) {
-  return same_bits(memo.speed_command, entity.speed_command) &&
-         same_bits(memo.lateral_command, entity.lateral_command) &&
-         same_bits(memo.longitudinal_distance, entity.longitudinal_distance) &&
-         same_bits(memo.lateral_acceleration, entity.lateral_acceleration) &&
-         memo.chooser == entity.chooser && memo.end_of_road == entity.end_of_road &&
-         std::memcmp(&memo.state, &entity.state, sizeof(EntityState)) == 0 &&
-         std::memcmp(&memo.lane, &entity.lane, sizeof(LaneFollow)) == 0;
+bool holds_still_step(const StillStepMemo& memo, const EntityMotion& motion) {
+  return std::memcmp(&memo.held, &motion, sizeof(EntityMotion)) == 0;
 }
 
 }  // namespace
@@ -209,12 +193,12 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     take_still_step(still, entity);
   }
   bool stood = false;
-  step_entity(entity, context, stood);
+  step_entity(entity, MapMemos{entity.lane_pose_memo, entity.point_memo}, context, stood);
   still.valid = may_stand && stood && holds_still_step(still, entity);
 }
 
-void DefaultController::step_entity(Entity& entity, const MotionContext& context,
-                                    bool& stood) const {
+void DefaultController::step_entity(EntityMotion& entity, MapMemos memos,
+                                    const MotionContext& context, bool& stood) const {
   EntityState& state = entity.state;
   const double dt = context.dt;
   const double v0 = state.speed;
@@ -265,7 +249,7 @@ void DefaultController::step_entity(Entity& entity, const MotionContext& context
     stood = moved.travelled == 0.0 && lateral_change == 0.0;
     path = std::hypot(travelled, lateral_change);
     entity.longitudinal_distance += std::abs(travelled);
-    update_pose_from_lane(entity, *context.map, *context.scratch);
+    update_pose_from_lane(entity, memos.lane_pose, *context.map, *context.scratch);
   } else if (context.stand_without_roads) {
     v1 = 0.0;
   } else {
@@ -273,7 +257,7 @@ void DefaultController::step_entity(Entity& entity, const MotionContext& context
     state.pose.y += std::sin(state.pose.h) * distance;
     entity.longitudinal_distance += std::abs(distance);
     if (distance != 0.0) {
-      update_road_from_pose(entity, context.map);
+      update_road_from_pose(entity, memos.point, context.map);
     }
   }
   state.acceleration = (v1 - v0) / dt;

@@ -98,20 +98,6 @@ double distance_to(const SimState& state, const Entity& from, const Target& to,
   return std::hypot(dx, dy);
 }
 
-bool same_road_coordinates(const std::optional<RoadCoordinates>& a,
-                           const std::optional<RoadCoordinates>& b) {
-  if (!a || !b) {
-    return a.has_value() == b.has_value();
-  }
-  return a->road == b->road && a->section == b->section && a->lane == b->lane &&
-         same_bits(a->s, b->s) && same_bits(a->t, b->t);
-}
-
-bool same_pose_bits(const Pose& a, const Pose& b) {
-  return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z) && same_bits(a.h, b.h) &&
-         same_bits(a.p, b.p) && same_bits(a.r, b.r);
-}
-
 }  // namespace
 
 void EntityDistanceInputs::take(const Entity& from, const Entity& to) {
@@ -124,10 +110,9 @@ void EntityDistanceInputs::take(const Entity& from, const Entity& to) {
 
 bool EntityDistanceInputs::same_as(const Entity& from, const Entity& to) const {
   return taken_ && from_on_road_ == from.lane.on_road && from_dir_ == from.lane.dir &&
-         same_pose_bits(from_.pose, from.state.pose) && same_pose_bits(to_.pose, to.state.pose) &&
+         same_bits(from_.pose, from.state.pose) && same_bits(to_.pose, to.state.pose) &&
          same_bits(from_.box, from.info.box) && same_bits(to_.box, to.info.box) &&
-         same_road_coordinates(from_.road, from.state.road) &&
-         same_road_coordinates(to_.road, to.state.road);
+         same_bits(from_.road, from.state.road) && same_bits(to_.road, to.state.road);
 }
 
 double entity_distance(const SimState& state, const Entity& from, const Entity& to,

@@ -56,22 +56,53 @@ struct LanePoseMemo {
   std::optional<RoadCoordinates> road;
 };
 
-/// What an entity held around a default-controller step that changed nothing of it (one
+/// What the default controller's step reads and writes of an entity (motion/controller.h,
+/// DefaultController): besides the map, the step and the entity's memos of the map's answers
+/// (LanePoseMemo, PointLocateMemo, which give what the map would), the step is a function of
+/// these fields alone, and it is handed nothing else of the entity. Entity holds them as its
+/// first part. A field the step reads or writes belongs here: StillStepMemo copies and compares
+/// this whole part, so such a field cannot be left out of its comparison.
+struct EntityMotion {
+  EntityState state;
+  LaneFollow lane;
+
+  /// What the running actions ask for at the end of the current step: speed (m/s) and lateral
+  /// offset (m, see LaneFollow::lateral). Controllers turn them into motion.
+  double speed_command = 0.0;
+  double lateral_command = 0.0;
+
+  /// Metres driven along the lanes (the odometer without the lateral motion): the distance a
+  /// lane change over a distance is measured in.
+  double longitudinal_distance = 0.0;
+  /// m/s^2 across the heading over the last step (AccelerationCondition, lateral).
+  double lateral_acceleration = 0.0;
+
+  bool end_of_road = false;  ///< stuck at a lane end without successor (EndOfRoadCondition)
+  /// Chooses among lane successors at lane ends (a route); null: the straightest. Last, so that
+  /// the part ends without padding (see kMotionEndsWithoutPadding).
+  const LaneChooser* chooser = nullptr;
+};
+
+/// Whether EntityMotion ends without padding, so that a class holding it as its base cannot
+/// place a field of its own inside the base's bytes (the Itanium ABI reuses a base's tail
+/// padding): StillStepMemo copies and compares those bytes as the entity's motion alone.
+struct MotionTailProbe : EntityMotion {
+  char after = 0;
+};
+inline constexpr bool kMotionEndsWithoutPadding = sizeof(MotionTailProbe) > sizeof(EntityMotion);
+static_assert(kMotionEndsWithoutPadding,
+              "EntityMotion must end without padding: order its fields so that the last one "
+              "ends on its alignment");
+
+/// An entity's motion around a default-controller step that changed nothing of it (one
 /// standing on its lane: asked for no speed, or for a speed it cannot take at a lane end with
-/// nothing beyond; motion/default_controller.cpp). That step is a function of what is recorded here
-/// (and of the map and the step, fixed for the run): while the entity holds exactly this again,
+/// nothing beyond; motion/default_controller.cpp). That step is a function of EntityMotion (and
+/// of the map and the step, fixed for the run): while the entity holds exactly `held` again,
 /// byte for byte, the next step would change nothing either, and is skipped. Bytes compared,
 /// padding included: a difference there only costs a skip.
 struct StillStepMemo {
   bool valid = false;
-  EntityState state;
-  LaneFollow lane;
-  double speed_command = 0.0;
-  double lateral_command = 0.0;
-  double longitudinal_distance = 0.0;
-  double lateral_acceleration = 0.0;
-  const LaneChooser* chooser = nullptr;
-  bool end_of_road = false;
+  EntityMotion held;
 };
 
 /// The map's last answer, for one entity, to which lane holds the point (x, y) within half a
@@ -139,30 +170,15 @@ inline constexpr size_t kVehicleLightCount = kVehicleLightTypes;
 using LightSettings = std::array<std::optional<LightSetting>, kVehicleLightCount>;
 
 /// The fields are in the order a step reads them: first what every step's passes over all
-/// entities touch (state, lane, commands, timers, trailer links, the pose command, the box in
-/// `info`, the lane pose memo), then what only some entities or events need (a removed
+/// entities touch (the motion: state, lane, commands; then timers, trailer links, the pose command,
+/// the box in `info`, the lane pose memo), then what only some entities or events need (a removed
 /// entity's last place among them). With hundreds of vehicles the entities no longer fit in a
 /// core's cache, and a move then costs the cache lines it reads of its entity.
-struct Entity {
-  EntityState state;
-  LaneFollow lane;
-
-  /// What the running actions ask for at the end of the current step: speed (m/s) and lateral
-  /// offset (m, see LaneFollow::lateral). Controllers turn them into motion.
-  double speed_command = 0.0;
-  double lateral_command = 0.0;
-
-  /// Metres driven along the lanes (the odometer without the lateral motion): the distance a
-  /// lane change over a distance is measured in.
-  double longitudinal_distance = 0.0;
-  /// m/s^2 across the heading over the last step (AccelerationCondition, lateral).
-  double lateral_acceleration = 0.0;
-
+struct Entity : EntityMotion {
   /// Timers (s) for the duration-based conditions (StandStill, Offroad, EndOfRoad).
   bool standing_still = false;  ///< slower than 1e-3 m/s (state/world_update.cpp)
   bool was_offroad = false;
-  bool end_of_road = false;  ///< stuck at a lane end without successor
-  bool was_at_end = false;
+  bool was_at_end = false;  ///< EntityMotion::end_of_road at the last timers' update
   double standstill_time = 0.0;
   double offroad_time = 0.0;
   double end_of_road_time = 0.0;
@@ -174,8 +190,6 @@ struct Entity {
   /// that is no collision.
   std::optional<uint32_t> unhitched_from;
 
-  /// Chooses among lane successors at lane ends (a route); null: the straightest.
-  const LaneChooser* chooser = nullptr;
   /// The running action that owns each domain (index 0 longitudinal, 1 lateral), or null.
   std::array<ActionInstance*, kDomainSlots> owners{};
   /// A pose an action sets for the end of the step (FollowTrajectoryAction): the controller

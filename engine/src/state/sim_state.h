@@ -54,6 +54,18 @@ struct World {
 inline bool same_bits(double a, double b) {
   return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
 }
+inline bool same_bits(const Pose& a, const Pose& b) {
+  return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z) && same_bits(a.h, b.h) &&
+         same_bits(a.p, b.p) && same_bits(a.r, b.r);
+}
+inline bool same_bits(const std::optional<RoadCoordinates>& a,
+                      const std::optional<RoadCoordinates>& b) {
+  if (!a || !b) {
+    return a.has_value() == b.has_value();
+  }
+  return a->road == b->road && a->section == b->section && a->lane == b->lane &&
+         same_bits(a->s, b->s) && same_bits(a->t, b->t);
+}
 inline bool same_bits(const Box& a, const Box& b) {
   return same_bits(a.center_x, b.center_x) && same_bits(a.center_y, b.center_y) &&
          same_bits(a.center_z, b.center_z) && same_bits(a.length, b.length) &&

@@ -1,0 +1,197 @@
+// The default controller skips the step of an entity standing on its lane while nothing of its
+// motion has changed since a step that changed nothing (state/entity.h, StillStepMemo). Each
+// test steps two copies of one entity through the same changes, one that may skip and one whose
+// memo is cleared before every step (so that it takes every step in full): their motions must
+// hold the same bits after every step.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "../xodr/xodr_test_util.h"
+#include "lanes/lane_follow.h"
+#include "motion/controller.h"
+#include "state/sim_state.h"
+
+namespace {
+
+using corsa::engine::detail::DefaultController;
+using corsa::engine::detail::Entity;
+using corsa::engine::detail::EntityMotion;
+using corsa::engine::detail::LaneFollow;
+using corsa::engine::detail::MotionContext;
+using corsa::xodr::Map;
+
+constexpr double kStillStepDt = 0.01;
+
+// The engine's comparison of bits (state/sim_state.h), by a name of this file's own (a unity
+// batch may hold another test's `same_bits`).
+template <class T>
+bool bits_equal(const T& a, const T& b) {
+  return corsa::engine::detail::same_bits(a, b);
+}
+
+bool still_step_same_lane(const LaneFollow& a, const LaneFollow& b) {
+  return a.on_road == b.on_road && a.road == b.road && a.section == b.section && a.lane == b.lane &&
+         a.node == b.node && bits_equal(a.s, b.s) && a.dir == b.dir &&
+         bits_equal(a.lateral, b.lateral) && bits_equal(a.heading_offset, b.heading_offset) &&
+         bits_equal(a.frame_shift, b.frame_shift);
+}
+
+// Every field of the motion, bit for bit (padding left out).
+bool still_step_same_motion(const EntityMotion& a, const EntityMotion& b) {
+  const auto& x = a.state;
+  const auto& y = b.state;
+  return bits_equal(x.pose, y.pose) && bits_equal(x.speed, y.speed) &&
+         bits_equal(x.acceleration, y.acceleration) &&
+         bits_equal(x.lateral_speed, y.lateral_speed) && bits_equal(x.yaw_rate, y.yaw_rate) &&
+         bits_equal(x.odometer, y.odometer) && x.placed == y.placed && x.visible == y.visible &&
+         bits_equal(x.road, y.road) && still_step_same_lane(a.lane, b.lane) &&
+         bits_equal(a.speed_command, b.speed_command) &&
+         bits_equal(a.lateral_command, b.lateral_command) &&
+         bits_equal(a.longitudinal_distance, b.longitudinal_distance) &&
+         bits_equal(a.lateral_acceleration, b.lateral_acceleration) &&
+         a.end_of_road == b.end_of_road && a.chooser == b.chooser;
+}
+
+// Two copies of an entity on the right lane (-1) of straight_500m's only road at `s`, facing +s:
+// `skipping` steps as the engine steps it, `full` takes every step in full.
+struct StillStepPair {
+  Map map = corsa::xodr::test::load_map(corsa::xodr::test::shared_map("straight_500m.xodr"));
+  std::vector<corsa::xodr::LaneSpan> scratch;
+  MotionContext context;
+  DefaultController controller;
+  Entity skipping;
+  Entity full;
+  int skipped_steps = 0;  ///< steps begun with a memo the entity still held
+
+  explicit StillStepPair(double s) {
+    context.map = &map;
+    context.dt = kStillStepDt;
+    context.scratch = &scratch;
+    teleport(s);
+  }
+
+  // What a TeleportAction does to both: a new place on the lane, the pose from it.
+  void teleport(double s) {
+    for (Entity* entity : {&skipping, &full}) {
+      const auto t = corsa::engine::detail::lane_center_t(map, 0, s, -1);
+      REQUIRE(t);
+      REQUIRE(corsa::engine::detail::attach_to_lane(map, entity->lane, 0, s, *t, -1, 0.0));
+      entity->state.placed = true;
+      // Asked to stay where it was put across its lane (the attachment's offset, a rounding off
+      // the centre), so that it stands from the first step.
+      entity->lateral_command = entity->lane.lateral;
+      corsa::engine::detail::update_pose_from_lane(*entity, map, scratch);
+    }
+  }
+
+  // The same change to both copies, then one step of each; their motions must agree.
+  void step(const std::function<void(Entity&)>& change = {}) {
+    if (change) {
+      change(skipping);
+      change(full);
+    }
+    skipped_steps +=
+        skipping.still_step.valid &&
+        std::memcmp(&skipping.still_step.held, static_cast<const EntityMotion*>(&skipping),
+                    sizeof(EntityMotion)) == 0;
+    full.still_step.valid = false;
+    controller.step(skipping, context);
+    controller.step(full, context);
+    REQUIRE(still_step_same_motion(skipping, full));
+  }
+};
+
+}  // namespace
+
+TEST_CASE("A standing entity's step is skipped, and any change of its motion ends the skip",
+          "[engine][motion][still]") {
+  StillStepPair pair(100.0);
+  for (int i = 0; i < 10; ++i) {
+    pair.step();
+  }
+  // The first step stood and was remembered; the nine after it were skipped.
+  CHECK(pair.skipped_steps == 9);
+  CHECK(pair.skipping.still_step.valid);
+  const double s_before = pair.skipping.lane.s;
+
+  SECTION("a speed asked for later moves it on the next step") {
+    pair.step([](Entity& e) { e.speed_command = 5.0; });
+    CHECK(pair.skipping.state.speed == 5.0);
+    CHECK(pair.skipping.lane.s == Approx(s_before + 5.0 * kStillStepDt).margin(1e-12));
+    CHECK_FALSE(pair.skipping.still_step.valid);  // a moving entity is not remembered
+    for (int i = 0; i < 20; ++i) {
+      pair.step();
+    }
+    CHECK(pair.skipping.lane.s == Approx(s_before + 21 * 5.0 * kStillStepDt).margin(1e-9));
+    // Asked to stop: it stands on the next step; the step after that still changes its
+    // acceleration (to 0), the third changes nothing and is remembered, the fourth is skipped.
+    const int skipped = pair.skipped_steps;
+    pair.step([](Entity& e) { e.speed_command = 0.0; });
+    CHECK(pair.skipping.state.speed == 0.0);
+    CHECK(pair.skipping.state.acceleration == Approx(-5.0 / kStillStepDt));
+    pair.step();
+    pair.step();
+    CHECK(pair.skipped_steps == skipped);
+    pair.step();
+    CHECK(pair.skipped_steps == skipped + 1);
+  }
+  SECTION("a lateral offset asked for later moves it across its lane") {
+    pair.step([](Entity& e) { e.lateral_command = 0.4; });
+    CHECK(pair.skipping.lane.lateral == 0.4);
+    CHECK(pair.skipping.state.lateral_speed == Approx(0.4 / kStillStepDt));
+    pair.step();
+    CHECK(pair.skipping.state.lateral_speed == 0.0);  // the offset reached: standing again
+  }
+  SECTION("a speed written into its state by an action is taken back to the command") {
+    pair.step([](Entity& e) { e.state.speed = 3.0; });
+    CHECK(pair.skipping.state.speed == 0.0);
+    CHECK(pair.skipping.state.acceleration == Approx(-3.0 / kStillStepDt));
+  }
+  SECTION("a teleport takes it to the new place and it stands there") {
+    pair.teleport(250.0);
+    pair.step();
+    CHECK(pair.skipping.lane.s == 250.0);
+    pair.step();
+    CHECK(pair.skipping.still_step.valid);
+  }
+  SECTION("an odometer or distance set from outside is kept") {
+    pair.step([](Entity& e) { e.longitudinal_distance = 12.5; });
+    pair.step([](Entity& e) { e.state.odometer = 7.0; });
+    CHECK(pair.skipping.longitudinal_distance == 12.5);
+    CHECK(pair.skipping.state.odometer == 7.0);
+  }
+  for (int i = 0; i < 5; ++i) {
+    pair.step();
+  }
+}
+
+TEST_CASE("A car held at a road's end keeps asking for its speed until it is put elsewhere",
+          "[engine][motion][still]") {
+  StillStepPair pair(499.0);
+  // 10 m/s: 0.1 m a step, at the road's end (500 m, no successor) after ten steps.
+  for (int i = 0; i < 30; ++i) {
+    pair.step([i](Entity& e) {
+      if (i == 0) {
+        e.speed_command = 10.0;
+      }
+    });
+  }
+  CHECK(pair.skipping.end_of_road);
+  CHECK(pair.skipping.state.speed == 0.0);
+  CHECK(pair.skipping.speed_command == 10.0);
+  CHECK(pair.skipped_steps > 10);
+  const double odometer = pair.skipping.state.odometer;
+  // Put back on the road: it drives on at the speed it still asks for.
+  pair.teleport(300.0);
+  pair.step();
+  CHECK_FALSE(pair.skipping.end_of_road);
+  CHECK(pair.skipping.state.speed == 10.0);
+  CHECK(pair.skipping.lane.s == Approx(300.0 + 10.0 * kStillStepDt).margin(1e-9));
+  CHECK(pair.skipping.state.odometer == Approx(odometer + 10.0 * kStillStepDt).margin(1e-9));
+}
