@@ -4,9 +4,7 @@
 // maps, at lateral offsets inside, on and beyond the lane's borders, and on a road whose lanes
 // overlap through <border> records.
 
-#include <bit>
 #include <catch2/catch.hpp>
-#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -15,6 +13,7 @@
 #include "../xodr/xodr_test_util.h"
 #include "lanes/lane_follow.h"
 #include "motion/controller.h"
+#include "state/sim_state.h"
 
 namespace {
 
@@ -23,9 +22,7 @@ using corsa::engine::detail::LanePose;
 using corsa::xodr::LaneSpan;
 using corsa::xodr::Map;
 
-bool same_bits(double a, double b) {
-  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
-}
+using corsa::engine::detail::same_bits;
 
 bool same_pose(const LanePose& a, const LanePose& b) {
   return same_bits(a.t, b.t) && a.lane_at == b.lane_at && same_bits(a.pose.x, b.pose.x) &&

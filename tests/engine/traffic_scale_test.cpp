@@ -43,9 +43,7 @@ using corsa::Diagnostics;
 using corsa::engine::Simulation;
 using corsa::engine::SimulationOptions;
 
-bool same_bits(double a, double b) {
-  return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
-}
+using corsa::engine::detail::same_bits;
 
 // Twelve cars in one lane and its neighbour, close enough to follow each other, at different
 // speeds, some slowing down; every third changes lanes.
