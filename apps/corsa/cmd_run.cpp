@@ -46,6 +46,7 @@ int command_run(std::span<const std::string> args) {
   options.simulation.geo_projection = proj_plugin_geo_projection();
   const bool quiet = parsed.flag("--quiet");
   Diagnostics diagnostics([](const Diagnostic& d) { std::cerr << d.format() << '\n'; });
+  read_distribution_as_scenario(options, diagnostics);
   ProgressBar progress("run", options.simulation.duration, !quiet);
   // The bar's end is the scenario's own (its SimulationTime stop trigger), once it is loaded.
   options.prepare = [&progress](engine::Simulation& simulation) {

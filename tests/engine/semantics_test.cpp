@@ -238,6 +238,59 @@ TEST_CASE("A RoutePosition in lane coordinates turns from, or faces, the lane's 
   }
 }
 
+TEST_CASE("A RoutePosition in lane coordinates with an absolute Orientation, or esmini's relative",
+          "[engine][semantics][positions][route]") {
+  // Road 1 runs along +x (heading 0); lane 1 carries traffic toward -s, lane -1 toward +s. Abs
+  // (lane 1) and AbsRight (lane -1) state an absolute h = 0.5, Rel (lane 1) a relative one.
+  // Expected by hand: the standard's absolute heading is the world's, 0.5 on either lane; esmini
+  // reads any Orientation of FromLaneCoordinates as turned from the lane's direction of travel:
+  // pi + 0.5 on lane 1, which wraps to 0.5 - pi, and 0.5 on lane -1. A relative one turns from
+  // the lane's direction of travel under both readings.
+  constexpr double kPi = std::numbers::pi;
+  const auto turn = [](double from, double to) { return std::remainder(to - from, 2.0 * kPi); };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_route_lane_absolute.xosc"));
+    run.run();
+    CHECK(run.at(0.0, "Abs").road->lane == 1);
+    CHECK(run.at(0.0, "Abs").pose.h == Approx(0.5).margin(1e-9));
+    CHECK(run.at(0.0, "AbsRight").pose.h == Approx(0.5).margin(1e-9));
+    CHECK(turn(kPi + 0.5, run.at(0.0, "Rel").pose.h) == Approx(0.0).margin(1e-9));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_route_lane_absolute.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(0.0, "Abs").road->lane == 1);
+    CHECK(turn(kPi + 0.5, run.at(0.0, "Abs").pose.h) == Approx(0.0).margin(1e-9));
+    CHECK(run.at(0.0, "AbsRight").pose.h == Approx(0.5).margin(1e-9));
+    CHECK(turn(kPi + 0.5, run.at(0.0, "Rel").pose.h) == Approx(0.0).margin(1e-9));
+  }
+}
+
+TEST_CASE(
+    "A RoutePosition in lane coordinates without Orientation faces its lane's traffic, or "
+    "esmini's pi on lanes of positive id",
+    "[engine][semantics][positions][route]") {
+  // A left-hand-traffic road along +x: lane 1 carries traffic toward +s (heading 0), lane -1
+  // toward -s (pi). The standard's missing Orientation is a relative 0 from the lane's direction
+  // of travel; esmini's reader turns a lane of positive id by pi from +s and any other by 0,
+  // whatever the traffic rule.
+  constexpr double kPi = std::numbers::pi;
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_route_lane_lht.xosc"));
+    run.run();
+    CHECK(run.at(0.0, "Left").road->lane == 1);
+    CHECK(run.at(0.0, "Left").pose.h == Approx(0.0).margin(1e-9));
+    CHECK(std::abs(run.at(0.0, "Right").pose.h) == Approx(kPi).margin(1e-9));
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_route_lane_lht.xosc"), esmini_reading());
+    run.run();
+    CHECK(run.at(0.0, "Left").road->lane == 1);
+    CHECK(std::abs(run.at(0.0, "Left").pose.h) == Approx(kPi).margin(1e-9));
+    CHECK(run.at(0.0, "Right").pose.h == Approx(0.0).margin(1e-9));
+  }
+}
+
 TEST_CASE("A time headway towards an entity behind holds for no rule, under either reading",
           "[engine][semantics][conditions]") {
   // Car (s = 50) waits for its headway to Behind (s = 10) to exceed 1 s before going 20 m/s. No

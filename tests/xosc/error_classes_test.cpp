@@ -210,6 +210,26 @@ TEST_CASE("a missing catalog entry names both the catalog and the entry", "[xosc
   }
 }
 
+TEST_CASE("an unknown element directly in a catalog a scenario uses is an error at its line",
+          "[xosc][errors]") {
+  // 1.3 Catalog is a sequence of Vehicle, Controller, Pedestrian, MiscObject, Environment,
+  // Maneuver, Trajectory and Route: a misspelt entry is outside the schema, reported in the
+  // catalog file as any unknown element is, although the scenario uses another entry.
+  corsa::test::TempDir dir;
+  std::string catalog = kVehicleCatalog;
+  const std::string misspelt = "<Vehicel name=\"big\" vehicleCategory=\"truck\"/>\n";
+  catalog.insert(catalog.find("</Catalog>"), misspelt);
+  corsa::test::write_text(dir.path() / "Catalogs/Vehicles/VehicleCatalog.xosc", catalog);
+  ScenarioText text;
+  text.catalogs = "<VehicleCatalog><Directory path=\"Catalogs/Vehicles\"/></VehicleCatalog>\n";
+  text.entities = catalog_entity("small");
+  const auto error = load_error(dir, text.str());
+  CHECK_THAT(error.message, Catch::StartsWith("unknown element <Vehicel> in <Catalog> (expected "
+                                              "Vehicle, Controller, "));
+  CHECK(error.file == (dir.path() / "Catalogs/Vehicles/VehicleCatalog.xosc").string());
+  CHECK(error.line == line_of(catalog, "<Vehicel"));
+}
+
 TEST_CASE("an unresolved entity reference is an error at the reference", "[xosc][errors]") {
   corsa::test::TempDir dir;
   ScenarioText text;

@@ -4,11 +4,14 @@
 // FollowTrajectoryAction without its following mode, a Story without Act, an Act without
 // ManeuverGroup, revMinor="1+", map and catalog paths from esmini's working folder, a
 // controller entry the catalog at hand lacks, an XML declaration after comments, an Action
-// without name and an attribute written with other capitals. Each file also runs through `corsa
+// without name, an attribute written with other capitals, and a variation file given to
+// `corsa run`. Each file also runs through `corsa
 // run` (exit 0, the warning at its line) and is refused by `corsa run --strict` (exit 2).
 
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <variant>
 
@@ -547,4 +550,55 @@ TEST_CASE("an empty TimeReference is read as None", "[xosc][lenient]") {
   REQUIRE(loaded.scenario);
   const auto& follow = std::get<FollowTrajectoryAction>(first_private_action(loaded));
   CHECK_FALSE(follow.time_reference.timing.has_value());
+}
+
+namespace {
+
+std::string summary_text(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST_CASE("corsa run given a parameter value distribution runs its scenario's first variant",
+          "[xosc][lenient][cli]") {
+  // esmini's cut-in_parameter_set.xosc is a variation file, not a scenario: `corsa run` runs the
+  // scenario it names with its first variant (Speed = 7 of 7, 9), warned at the
+  // <ParameterValueDistribution> line; --param still wins; --strict refuses it.
+  corsa::test::TempDir dir;
+  ScenarioText text = stopping_scenario();
+  text.parameters = "<ParameterDeclaration name=\"Speed\" parameterType=\"double\" value=\"5\"/>\n";
+  corsa::test::write_text(dir.path() / "map.xodr", straight_xodr());
+  corsa::test::write_text(dir.path() / "s.xosc", text.str());
+  const std::string distribution =
+      "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n<FileHeader revMajor=\"1\" revMinor=\"2\" "
+      "date=\"2024-01-01T00:00:00\" description=\"d\" author=\"a\"/>\n"
+      "<ParameterValueDistribution>\n<ScenarioFile filepath=\"s.xosc\"/>\n<Deterministic>"
+      "<DeterministicSingleParameterDistribution parameterName=\"Speed\"><DistributionSet>"
+      "<Element value=\"7\"/><Element value=\"9\"/></DistributionSet>"
+      "</DeterministicSingleParameterDistribution></Deterministic>\n"
+      "</ParameterValueDistribution>\n</OpenSCENARIO>\n";
+  const fs::path path = dir.path() / "set.xosc";
+  corsa::test::write_text(path, distribution);
+  const std::string at =
+      "set.xosc:" + std::to_string(line_of(distribution, "<ParameterValueDistribution>")) + ": ";
+  const std::string text_of_warning =
+      "a parameter value distribution, not a scenario: `corsa sweep` runs its 2 variants";
+  const std::string summary = (dir.path() / "summary.json").string();
+  const auto run = run_corsa({"run", path.string(), "--quiet", "--summary", summary});
+  INFO(run.err);
+  CHECK(run.exit_code == 0);
+  CHECK_THAT(run.err, Catch::Contains(at + "warning: " + text_of_warning +
+                                      " (read as a run of its scenario 's.xosc' with the first "
+                                      "variant: Speed=7)"));
+  CHECK_THAT(summary_text(summary), Catch::Contains("\"Speed\": \"7\""));
+  const auto given =
+      run_corsa({"run", path.string(), "--quiet", "--param", "Speed=9", "--summary", summary});
+  CHECK(given.exit_code == 0);
+  CHECK_THAT(summary_text(summary), Catch::Contains("\"Speed\": \"9\""));
+  const auto strict = run_corsa({"run", "--strict", path.string(), "--quiet"});
+  INFO(strict.err);
+  CHECK(strict.exit_code == 2);
+  CHECK_THAT(strict.err, Catch::Contains(at + "error: " + text_of_warning));
 }

@@ -49,6 +49,34 @@ TEST_CASE("corsa validate prints file:line: error: message and exits 2 for a bad
   CHECK(result.out.empty());
 }
 
+TEST_CASE("corsa validate reports an unknown element in a catalog the scenario uses, at its line",
+          "[xosc][cli][e2e]") {
+  // The scenario's catalog holds its entry and, beside it, an element the schema does not know
+  // directly in <Catalog>: exit 2, located in the catalog file.
+  corsa::test::TempDir dir;
+  const std::string catalog =
+      "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n"
+      "<FileHeader revMajor=\"1\" revMinor=\"3\" date=\"2024-01-01T00:00:00\" "
+      "description=\"c\" author=\"a\"/>\n<Catalog name=\"Controllers\">\n"
+      "<Controller name=\"calm\"><Properties/></Controller>\n<Driver name=\"old\"/>\n"
+      "</Catalog>\n</OpenSCENARIO>\n";
+  corsa::test::write_text(dir.path() / "Controllers/Controllers.xosc", catalog);
+  corsa::test::ScenarioText text;
+  text.catalogs = "<ControllerCatalog><Directory path=\"Controllers\"/></ControllerCatalog>\n";
+  text.init =
+      "<Private entityRef=\"Ego\"><PrivateAction><ControllerAction><AssignControllerAction>"
+      "<CatalogReference catalogName=\"Controllers\" entryName=\"calm\"/>"
+      "</AssignControllerAction></ControllerAction></PrivateAction></Private>\n";
+  corsa::test::write_text(dir.path() / "map.xodr", corsa::test::minimal_xodr());
+  corsa::test::write_text(dir.path() / "s.xosc", text.str());
+  const auto result = run_corsa({"validate", (dir.path() / "s.xosc").string()});
+  CHECK(result.exit_code == 2);
+  CHECK_THAT(result.err,
+             Catch::Contains((dir.path() / "Controllers/Controllers.xosc").string() + ":" +
+                             std::to_string(corsa::test::line_of(catalog, "<Driver")) +
+                             ": error: unknown element <Driver> in <Catalog>"));
+}
+
 TEST_CASE("corsa validate --json reports every file for tools", "[xosc][cli][e2e]") {
   corsa::test::TempDir dir;
   corsa::test::write_text(dir.path() / "broken.xosc", "<OpenSCENARIO>\n<FileHeader>\n");

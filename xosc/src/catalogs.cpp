@@ -32,6 +32,22 @@ Diagnostic unreadable_catalog_error(const XmlFile& file) {
   return make_error(*file.name, 0, "could not be read while the catalogs were scanned");
 }
 
+// The children of a <Catalog> a scenario takes entries from, checked against the 1.3 schema
+// (Catalog: a sequence of Vehicle, Controller, Pedestrian, MiscObject, Environment, Maneuver,
+// Trajectory and Route) as any other element's are: an unknown element is an error at its line in
+// the catalog file, whichever entry the scenario needs. Only the entries used are parsed.
+void report_catalog_children(ParseContext& ctx, const XmlFile& file, const Element* catalog) {
+  const ParseContext::FileState previous =
+      ctx.swap_file({file.name, file.directory, file.text, file.document.get()});
+  struct RestoreCatalogFile {
+    ParseContext& ctx;
+    const ParseContext::FileState& previous;
+    ~RestoreCatalogFile() { ctx.swap_file(previous); }
+  } restore{ctx, previous};
+  Children kids(ctx, catalog, "Catalog");
+  kids.consume_all();
+}
+
 }  // namespace
 
 void CatalogResolver::scan(ParseContext& ctx) {
@@ -110,6 +126,7 @@ CatalogResolver::Hit CatalogResolver::found(ParseContext& ctx, const Element* ca
   if (std::find(files_read_.begin(), files_read_.end(), path) == files_read_.end()) {
     files_read_.push_back(path);
     warn_xml_repairs(ctx, *file);
+    report_catalog_children(ctx, *file, catalog);
   }
   return Hit{entry, file};
 }

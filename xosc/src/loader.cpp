@@ -347,6 +347,17 @@ ParameterValueDistribution load_distribution(const std::filesystem::path& path,
                        });
 }
 
+DocumentKind document_kind(const std::filesystem::path& path) {
+  try {
+    const XmlFile xml = load_xml(path);
+    const Element* root = xml.document->RootElement();
+    if (std::string_view(root->Name()) != "OpenSCENARIO") return DocumentKind::kScenario;
+    return kind_of(root);
+  } catch (const InputError&) {
+    return DocumentKind::kScenario;
+  }
+}
+
 Document load_document(const std::filesystem::path& path, const LoadOptions& options,
                        Diagnostics& diagnostics) {
   return parse_document(read_file(path), path, options, diagnostics);

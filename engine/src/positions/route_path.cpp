@@ -209,6 +209,24 @@ xosc::Orientation route_road_orientation(const std::optional<xosc::Orientation>&
   return orientation;
 }
 
+// esmini's reading of a RoutePosition in lane coordinates (its OSCPositionRoute and reader, with
+// esmini's default `--align_routepositions` off): a given Orientation, of either type, turns from
+// the lane's direction of travel (an absolute one too); a missing one is a relative pi from the
+// road's +s on a lane of positive id, else 0, whatever the map's traffic rule says.
+ResolvedPosition esmini_route_lane_position(const xodr::Map& map, uint32_t road, double s, double t,
+                                            int lane,
+                                            const std::optional<xosc::Orientation>& given) {
+  if (given) {
+    xosc::Orientation relative = *given;
+    relative.type = xosc::ReferenceContext::kRelative;
+    return on_road(map, road, s, t, lane, relative, OrientationFrame::kLane);
+  }
+  xosc::Orientation from_s;
+  from_s.type = xosc::ReferenceContext::kRelative;
+  from_s.h = lane > 0 ? std::numbers::pi : 0.0;
+  return on_road(map, road, s, t, lane, from_s, OrientationFrame::kRoad);
+}
+
 }  // namespace
 
 ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, const SimState& state,
@@ -242,9 +260,13 @@ ResolvedPosition resolve_route_position(const xosc::RoutePosition& position, con
             const int lane = parse_lane_id(in_route.lane_id, in_route.source);
             const double t = need_lane_center(map, at.lane.road, at.s, lane, in_route.source) +
                              in_route.lane_offset.value_or(0.0);
+            if (esmini_reading(state)) {
+              return esmini_route_lane_position(map, at.lane.road, at.s, t, lane,
+                                                position.orientation);
+            }
             // Without an Orientation: the lane's direction of travel, which is along the route
-            // except where the route drives the lane against its traffic (esmini's reader too
-            // faces FromLaneCoordinates by the lane, relative pi on a lane of id > 0).
+            // except where the route drives the lane against its traffic; an absolute one is
+            // the world's heading.
             return on_road(map, at.lane.road, at.s, t, lane, position.orientation,
                            OrientationFrame::kLane);
           }

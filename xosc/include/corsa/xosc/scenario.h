@@ -140,6 +140,11 @@ Scenario parse_scenario(std::string_view xml, const std::filesystem::path& path,
 enum class DocumentKind { kScenario, kCatalog, kDistribution };
 using Document = std::variant<Scenario, Catalog, ParameterValueDistribution>;
 
+/// The kind of the OpenSCENARIO document in a file, by the element after its FileHeader;
+/// kScenario for a file that cannot be read or parsed, or is no OpenSCENARIO document (loading it
+/// as a scenario then reports why).
+DocumentKind document_kind(const std::filesystem::path& path);
+
 /// Loads any OpenSCENARIO document, deciding its kind from the element after FileHeader.
 Document load_document(const std::filesystem::path& path, const LoadOptions& options,
                        Diagnostics& diagnostics);
