@@ -32,13 +32,13 @@ const TrajectoryRow& row_at(const std::vector<TrajectoryRow>& rows, const std::s
   return *it;
 }
 
-TEST_CASE("corsa run reads a 0.9 draft's EXT_Synchronize, Meeting and EXT_Quit",
+TEST_CASE("corsa run reads a 0.9 draft's route position, EXT_Synchronize, Meeting and EXT_Quit",
           "[e2e][run][osc09]") {
   TempDir dir;
   const auto record = dir.path() / "out.csv";
   const auto log = dir.path() / "log.csv";
-  const ProcessResult result = run_corsa({"run", kSynchronizeQuit, "--quiet", "--record",
-                                          record.string(), "--log", log.string()});
+  const ProcessResult result = run_corsa(
+      {"run", kSynchronizeQuit, "--quiet", "--record", record.string(), "--log", log.string()});
   INFO(result.err);
   REQUIRE(result.exit_code == 0);
   CHECK(count_of(result.err, "OpenSCENARIO 0.9") == 1);
@@ -46,7 +46,11 @@ TEST_CASE("corsa run reads a 0.9 draft's EXT_Synchronize, Meeting and EXT_Quit",
   CHECK(result.err.find("EXT_Synchronize, TargetSpeed") != std::string::npos);
   // Ego (20 m/s from s = 50) reaches s = 250 at t = 10: both followers arrive with it, the
   // synchronization ends, and EXT_Quit's event (2 s after that end) stops the run.
+  CHECK(result.err.find("Routing, FollowRoute, Route, Position, LaneCoord") != std::string::npos);
   const auto rows = parse_trajectory(slurp(record));
+  // Ego starts at pathS = 50 of its route, which runs along lane -1 from s = 0.
+  CHECK(row_at(rows, "Ego", 0.0).x == Approx(50.0).margin(0.01));
+  CHECK(row_at(rows, "Ego", 0.0).lane == -1);
   const TrajectoryRow& ego = row_at(rows, "Ego", 10.0);
   CHECK(ego.x == Approx(250.0).margin(0.01));
   CHECK(row_at(rows, "Synced", 10.0).x == Approx(250.0).margin(0.5));
@@ -65,8 +69,8 @@ TEST_CASE("corsa run reads a 0.9 cut-in: $owner, relative targets and the Storyb
   TempDir dir;
   const auto record = dir.path() / "out.csv";
   const auto log = dir.path() / "log.csv";
-  const ProcessResult result = run_corsa(
-      {"run", kCutIn, "--quiet", "--record", record.string(), "--log", log.string()});
+  const ProcessResult result =
+      run_corsa({"run", kCutIn, "--quiet", "--record", record.string(), "--log", log.string()});
   INFO(result.err);
   REQUIRE(result.exit_code == 0);
   CHECK(count_of(result.err, "warning:") == 1);

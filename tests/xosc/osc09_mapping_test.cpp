@@ -62,8 +62,9 @@ TEST_CASE("an OpenSCENARIO 0.9 draft is read as 1.0 with one warning at its head
   INFO((loaded.errors.empty() ? std::string() : loaded.errors[0].format()));
   REQUIRE(loaded.errors.empty());
   REQUIRE(loaded.scenario);
-  const auto warning = warning_with(loaded, "OpenSCENARIO 0.9 draft (read as 1.0 by the "
-                                            "0.9-to-1.0 mapping: ParameterDeclaration, ");
+  const auto warning = warning_with(loaded,
+                                    "OpenSCENARIO 0.9 draft (read as 1.0 by the "
+                                    "0.9-to-1.0 mapping: ParameterDeclaration, ");
   CHECK(warning.line == line_of(xml, "<FileHeader"));
   for (const auto& other : loaded.warnings) {
     CHECK(other.message.find("older than 1.0") == std::string::npos);
@@ -95,8 +96,8 @@ TEST_CASE("an OpenSCENARIO 0.9 draft is an error under --strict", "[xosc][osc09]
   const Loaded strict = lenient_load(dir, xml, true);
   REQUIRE(!strict.errors.empty());
   CHECK(strict.errors[0].line == line_of(xml, "<FileHeader"));
-  CHECK_THAT(strict.errors[0].message, Catch::Contains("OpenSCENARIO 0.9 draft") &&
-                                           Catch::Contains("--strict"));
+  CHECK_THAT(strict.errors[0].message,
+             Catch::Contains("OpenSCENARIO 0.9 draft") && Catch::Contains("--strict"));
 }
 
 TEST_CASE("an error in a translated 0.9 element points at its own line", "[xosc][osc09]") {
