@@ -4,10 +4,10 @@
 // an element the mapping adds (a wrapper such as <TeleportAction>) takes the line of the 0.9
 // element it stands for, so that a later error still points at the original text.
 
+#include "osc09_mapping.h"
+
 #include <algorithm>
 #include <map>
-
-#include "osc09_mapping.h"
 
 namespace corsa::xosc {
 namespace {
@@ -92,10 +92,9 @@ class Osc09Rewriter {
     }
   }
   static void rule(Element* e) {
-    rename_value(e, "rule",
-                 {{"greater_than", "greaterThan"},
-                  {"less_than", "lessThan"},
-                  {"equal_to", "equalTo"}});
+    rename_value(
+        e, "rule",
+        {{"greater_than", "greaterThan"}, {"less_than", "lessThan"}, {"equal_to", "equalTo"}});
   }
 
   // --- top level -------------------------------------------------------------------------------
