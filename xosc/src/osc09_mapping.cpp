@@ -18,7 +18,7 @@ struct Osc09LineAccess : tinyxml2::XMLNode {
   static int tinyxml2::XMLNode::*line_member() { return &Osc09LineAccess::_parseLineNum; }
 };
 
-std::vector<Element*> child_elements(Element* parent, const char* name = nullptr) {
+std::vector<Element*> osc09_children(Element* parent, const char* name = nullptr) {
   std::vector<Element*> out;
   for (Element* c = parent->FirstChildElement(name); c != nullptr;
        c = c->NextSiblingElement(name)) {
@@ -34,7 +34,7 @@ class Osc09Rewriter {
   const std::vector<std::string>& forms() const { return forms_; }
 
   void document(Element* root) {
-    for (Element* e : child_elements(root)) {
+    for (Element* e : osc09_children(root)) {
       const std::string_view name = e->Name();
       if (name == "ParameterDeclaration") {
         parameter_declarations(e);
@@ -102,7 +102,7 @@ class Osc09Rewriter {
   // `parameterType`, and references stay `$X`.
   void parameter_declarations(Element* e) {
     rename(e, "ParameterDeclarations");
-    for (Element* p : child_elements(e, "Parameter")) {
+    for (Element* p : osc09_children(e, "Parameter")) {
       rename(p, "ParameterDeclaration");
       move_attribute(p, "type", "parameterType");
       if (const char* name = p->Attribute("name"); name != nullptr && name[0] == '$') {
@@ -116,7 +116,7 @@ class Osc09Rewriter {
   // ControllerCatalog.
   void catalogs(Element* e) {
     rename(e, "CatalogLocations");
-    for (Element* c : child_elements(e)) {
+    for (Element* c : osc09_children(e)) {
       if (c->FirstChildElement("Directory") == nullptr) {
         e->DeleteChild(c);
       } else if (std::string_view(c->Name()) == "DriverCatalog") {
@@ -126,16 +126,16 @@ class Osc09Rewriter {
   }
 
   void road_network(Element* e) {
-    for (Element* c : child_elements(e, "Logics")) rename(c, "LogicFile");
-    for (Element* c : child_elements(e, "SceneGraph")) rename(c, "SceneGraphFile");
+    for (Element* c : osc09_children(e, "Logics")) rename(c, "LogicFile");
+    for (Element* c : osc09_children(e, "SceneGraph")) rename(c, "SceneGraphFile");
   }
 
   // esmini's 0.9 files mark a default-controlled entity with the property control="internal",
   // which is what 1.0 means by an entity without an ObjectController.
   void entities(Element* e) {
-    for (Element* object : child_elements(e, "Object")) {
+    for (Element* object : osc09_children(e, "Object")) {
       rename(object, "ScenarioObject");
-      for (Element* properties : child_elements(object, "Properties")) {
+      for (Element* properties : osc09_children(object, "Properties")) {
         const Element* property = properties->FirstChildElement("Property");
         if (property != nullptr && property->NextSiblingElement() == nullptr &&
             property->Attribute("name", "control") && property->Attribute("value", "internal")) {
@@ -150,9 +150,9 @@ class Osc09Rewriter {
     storyboard_ = e;
     if (Element* init = e->FirstChildElement("Init")) {
       if (Element* actions = init->FirstChildElement("Actions")) {
-        for (Element* p : child_elements(actions, "Private")) {
+        for (Element* p : osc09_children(actions, "Private")) {
           move_attribute(p, "object", "entityRef");
-          for (Element* action : child_elements(p, "Action")) {
+          for (Element* action : osc09_children(p, "Action")) {
             rename(action, "PrivateAction");
             action->DeleteAttribute("name");
             if (Element* kind = action->FirstChildElement()) private_action(kind);
@@ -160,8 +160,8 @@ class Osc09Rewriter {
         }
       }
     }
-    for (Element* story : child_elements(e, "Story")) this->story(story);
-    for (Element* end : child_elements(e, "End")) trigger(end, "StopTrigger");
+    for (Element* story : osc09_children(e, "Story")) this->story(story);
+    for (Element* end : osc09_children(e, "End")) trigger(end, "StopTrigger");
   }
 
   // 0.9's Story owner is the entity `$owner` names inside the story.
@@ -171,13 +171,13 @@ class Osc09Rewriter {
       replace_owner(e, name);
       e->DeleteAttribute("owner");
     }
-    for (Element* act : child_elements(e, "Act")) {
-      for (Element* sequence : child_elements(act, "Sequence")) maneuver_group(sequence);
+    for (Element* act : osc09_children(e, "Act")) {
+      for (Element* sequence : osc09_children(act, "Sequence")) maneuver_group(sequence);
       // Conditions holds Start, End and Cancel; 1.0 has StartTrigger and one StopTrigger.
-      for (Element* conditions : child_elements(act, "Conditions")) {
+      for (Element* conditions : osc09_children(act, "Conditions")) {
         note("Conditions");
         Element* stop = nullptr;
-        for (Element* c : child_elements(conditions)) {
+        for (Element* c : osc09_children(conditions)) {
           const std::string_view name = c->Name();
           if (name == "Start") {
             trigger(c, "StartTrigger");
@@ -188,7 +188,7 @@ class Osc09Rewriter {
             stop = c;
           } else {
             trigger(c, "StopTrigger");
-            for (Element* group : child_elements(c)) stop->InsertEndChild(group);
+            for (Element* group : osc09_children(c)) stop->InsertEndChild(group);
             conditions->DeleteChild(c);
           }
         }
@@ -205,7 +205,7 @@ class Osc09Rewriter {
       if (std::string_view(a->Value()) == "$owner") names.emplace_back(a->Name());
     }
     for (const std::string& name : names) e->SetAttribute(name.c_str(), owner.c_str());
-    for (Element* c : child_elements(e)) replace_owner(c, owner);
+    for (Element* c : osc09_children(e)) replace_owner(c, owner);
   }
 
   void maneuver_group(Element* e) {
@@ -213,13 +213,13 @@ class Osc09Rewriter {
     move_attribute(e, "numberOfExecutions", "maximumExecutionCount");
     if (Element* actors = e->FirstChildElement("Actors")) {
       default_attribute(actors, "selectTriggeringEntities", "false");
-      for (Element* entity : child_elements(actors, "Entity")) {
+      for (Element* entity : osc09_children(actors, "Entity")) {
         rename(entity, "EntityRef");
         move_attribute(entity, "name", "entityRef");
       }
     }
-    for (Element* maneuver : child_elements(e, "Maneuver")) {
-      for (Element* event : child_elements(maneuver, "Event")) this->event(maneuver, event);
+    for (Element* maneuver : osc09_children(e, "Maneuver")) {
+      for (Element* event : osc09_children(maneuver, "Event")) this->event(maneuver, event);
     }
   }
 
@@ -227,7 +227,7 @@ class Osc09Rewriter {
     // 0.9's priority "overwrite" is what 1.2 renamed "override".
     rename_value(e, "priority", {{"overwrite", "override"}});
     bool quits = false;
-    for (Element* action : child_elements(e, "Action")) {
+    for (Element* action : osc09_children(e, "Action")) {
       if (Element* p = action->FirstChildElement("Private")) {
         rename(p, "PrivateAction");
         if (Element* kind = p->FirstChildElement()) private_action(kind);
@@ -240,7 +240,7 @@ class Osc09Rewriter {
         }
       }
     }
-    for (Element* start : child_elements(e, "StartConditions")) trigger(start, "StartTrigger");
+    for (Element* start : osc09_children(e, "StartConditions")) trigger(start, "StartTrigger");
     if (quits) quit_event(maneuver, e);
   }
 
@@ -259,7 +259,7 @@ class Osc09Rewriter {
       }
     }
     if (Element* start = event->FirstChildElement("StartTrigger")) {
-      for (Element* group : child_elements(start, "ConditionGroup")) stop->InsertEndChild(group);
+      for (Element* group : osc09_children(start, "ConditionGroup")) stop->InsertEndChild(group);
     }
     if (event->FirstChildElement("Action") == nullptr) maneuver->DeleteChild(event);
   }
@@ -273,13 +273,13 @@ class Osc09Rewriter {
       note("Position");
     } else if (name == "Longitudinal") {
       rename(e, "LongitudinalAction");
-      for (Element* speed : child_elements(e, "Speed")) speed_action(speed);
+      for (Element* speed : osc09_children(e, "Speed")) speed_action(speed);
     } else if (name == "Lateral") {
       rename(e, "LateralAction");
-      for (Element* change : child_elements(e, "LaneChange")) lane_change_action(change);
+      for (Element* change : osc09_children(e, "LaneChange")) lane_change_action(change);
     } else if (name == "Routing") {
       rename(e, "RoutingAction");
-      for (Element* follow : child_elements(e, "FollowRoute")) rename(follow, "AssignRouteAction");
+      for (Element* follow : osc09_children(e, "FollowRoute")) rename(follow, "AssignRouteAction");
     } else if (name == "Meeting") {
       meeting(e);
     } else if (name == "EXT_Synchronize") {
@@ -305,11 +305,11 @@ class Osc09Rewriter {
 
   void speed_action(Element* e) {
     rename(e, "SpeedAction");
-    for (Element* d : child_elements(e, "Dynamics")) dynamics(d, "SpeedActionDynamics");
-    for (Element* target : child_elements(e, "Target")) {
+    for (Element* d : osc09_children(e, "Dynamics")) dynamics(d, "SpeedActionDynamics");
+    for (Element* target : osc09_children(e, "Target")) {
       rename(target, "SpeedActionTarget");
-      for (Element* a : child_elements(target, "Absolute")) rename(a, "AbsoluteTargetSpeed");
-      for (Element* r : child_elements(target, "Relative")) {
+      for (Element* a : osc09_children(target, "Absolute")) rename(a, "AbsoluteTargetSpeed");
+      for (Element* r : osc09_children(target, "Relative")) {
         rename(r, "RelativeTargetSpeed");
         move_attribute(r, "object", "entityRef");
         move_attribute(r, "valueType", "speedTargetValueType");
@@ -321,11 +321,11 @@ class Osc09Rewriter {
 
   void lane_change_action(Element* e) {
     rename(e, "LaneChangeAction");
-    for (Element* d : child_elements(e, "Dynamics")) dynamics(d, "LaneChangeActionDynamics");
-    for (Element* target : child_elements(e, "Target")) {
+    for (Element* d : osc09_children(e, "Dynamics")) dynamics(d, "LaneChangeActionDynamics");
+    for (Element* target : osc09_children(e, "Target")) {
       rename(target, "LaneChangeTarget");
-      for (Element* a : child_elements(target, "Absolute")) rename(a, "AbsoluteTargetLane");
-      for (Element* r : child_elements(target, "Relative")) {
+      for (Element* a : osc09_children(target, "Absolute")) rename(a, "AbsoluteTargetLane");
+      for (Element* r : osc09_children(target, "Relative")) {
         rename(r, "RelativeTargetLane");
         move_attribute(r, "object", "entityRef");
       }
@@ -359,12 +359,12 @@ class Osc09Rewriter {
   void synchronize(Element* e) {
     rename(e, "SynchronizeAction");
     move_attribute(e, "masterObject", "masterEntityRef");
-    for (Element* p : child_elements(e, "TargetPositionMaster")) position(p);
-    for (Element* p : child_elements(e, "TargetPosition")) position(p);
-    for (Element* speed : child_elements(e, "TargetSpeed")) {
+    for (Element* p : osc09_children(e, "TargetPositionMaster")) position(p);
+    for (Element* p : osc09_children(e, "TargetPosition")) position(p);
+    for (Element* speed : osc09_children(e, "TargetSpeed")) {
       rename(speed, "FinalSpeed");
-      for (Element* a : child_elements(speed, "Absolute")) rename(a, "AbsoluteSpeed");
-      for (Element* r : child_elements(speed, "RelativeMaster")) {
+      for (Element* a : osc09_children(speed, "Absolute")) rename(a, "AbsoluteSpeed");
+      for (Element* r : osc09_children(speed, "RelativeMaster")) {
         rename(r, "RelativeSpeedToMaster");
         move_attribute(r, "valueType", "speedTargetValueType");
       }
@@ -390,11 +390,11 @@ class Osc09Rewriter {
       move_attribute(kind, "object", "entityRef");
     } else if (name == "Route") {
       rename(kind, "RoutePosition");
-      for (Element* in_route : child_elements(kind, "Position")) {
+      for (Element* in_route : osc09_children(kind, "Position")) {
         rename(in_route, "InRoutePosition");
-        for (Element* c : child_elements(in_route, "LaneCoord")) rename(c, "FromLaneCoordinates");
-        for (Element* c : child_elements(in_route, "RoadCoord")) rename(c, "FromRoadCoordinates");
-        for (Element* c : child_elements(in_route, "Current")) {
+        for (Element* c : osc09_children(in_route, "LaneCoord")) rename(c, "FromLaneCoordinates");
+        for (Element* c : osc09_children(in_route, "RoadCoord")) rename(c, "FromRoadCoordinates");
+        for (Element* c : osc09_children(in_route, "Current")) {
           rename(c, "FromCurrentEntity");
           move_attribute(c, "object", "entityRef");
         }
@@ -405,8 +405,8 @@ class Osc09Rewriter {
   // --- conditions ------------------------------------------------------------------------------
   void trigger(Element* e, const char* name) {
     rename(e, name);
-    for (Element* group : child_elements(e, "ConditionGroup")) {
-      for (Element* condition : child_elements(group, "Condition")) this->condition(condition);
+    for (Element* group : osc09_children(e, "ConditionGroup")) {
+      for (Element* condition : osc09_children(group, "Condition")) this->condition(condition);
     }
   }
 
@@ -416,13 +416,13 @@ class Osc09Rewriter {
     rename_value(e, "conditionEdge", {{"any", "risingOrFalling"}});
     if (Element* by_value = e->FirstChildElement("ByValue")) {
       rename(by_value, "ByValueCondition");
-      for (Element* c : child_elements(by_value, "SimulationTime")) {
+      for (Element* c : osc09_children(by_value, "SimulationTime")) {
         rename(c, "SimulationTimeCondition");
         rule(c);
       }
     } else if (Element* by_state = e->FirstChildElement("ByState")) {
       rename(by_state, "ByValueCondition");
-      for (Element* c : child_elements(by_state)) state_condition(c);
+      for (Element* c : osc09_children(by_state)) state_condition(c);
     } else if (Element* by_entity = e->FirstChildElement("ByEntity")) {
       entity_condition(by_entity);
     }
@@ -458,14 +458,14 @@ class Osc09Rewriter {
     rename(e, "ByEntityCondition");
     if (Element* triggering = e->FirstChildElement("TriggeringEntities")) {
       move_attribute(triggering, "rule", "triggeringEntitiesRule");
-      for (Element* entity : child_elements(triggering, "Entity")) {
+      for (Element* entity : osc09_children(triggering, "Entity")) {
         rename(entity, "EntityRef");
         move_attribute(entity, "name", "entityRef");
       }
     }
     Element* conditions = e->FirstChildElement("EntityCondition");
     if (conditions == nullptr) return;
-    for (Element* c : child_elements(conditions)) {
+    for (Element* c : osc09_children(conditions)) {
       const std::string_view name = c->Name();
       if (name == "RelativeDistance") {
         rename(c, "RelativeDistanceCondition");
@@ -489,7 +489,7 @@ class Osc09Rewriter {
   std::vector<std::string> forms_;
 };
 
-bool is_osc09(const Element* root) {
+bool says_osc09(const Element* root) {
   const Element* header = root->FirstChildElement("FileHeader");
   return header != nullptr && header->IntAttribute("revMajor", -1) == 0 &&
          header->IntAttribute("revMinor", -1) == 9;
@@ -499,7 +499,7 @@ bool is_osc09(const Element* root) {
 
 void map_osc09_to_osc10(ParseContext& ctx, tinyxml2::XMLDocument& document) {
   Element* root = document.RootElement();
-  if (root == nullptr || !is_osc09(root)) return;
+  if (root == nullptr || !says_osc09(root)) return;
   Osc09Rewriter rewriter(document);
   rewriter.document(root);
   if (rewriter.forms().empty()) return;  // a 0.9 header over 1.0 forms: read as before
