@@ -6,6 +6,7 @@
 
 #include "corsa/core/atomic_file.h"
 #include "file_paths.h"
+#include "osc09_mapping.h"
 #include "parsers.h"
 #include "references.h"
 
@@ -292,6 +293,7 @@ auto with_document(const XmlFile& xml, const LoadOptions& options, Diagnostics& 
   ctx.swap_file({xml.name, xml.directory, xml.text, xml.document.get()});
   warn_xml_repairs(ctx, xml);
   const Element* root = checked_root(ctx, xml);
+  map_osc09_to_osc10(ctx, *xml.document);
   std::optional<decltype(body(ctx, root, std::declval<Children&>()))> result;
   ctx.recover([&] {
     Children kids(ctx, root, "OpenScenario");

@@ -1,0 +1,117 @@
+// OpenSCENARIO 0.9 drafts read as 1.0 through the 0.9-to-1.0 mapping: one warning at the
+// FileHeader (an error under --strict), the 1.0 model, and later errors at the 0.9 lines.
+
+#include <catch2/catch.hpp>
+
+#include "lenient_load.h"
+
+namespace corsa::test {
+namespace {
+
+// ScenarioText's entity (a ScenarioObject with an inline Vehicle) as a 0.9 <Object>.
+std::string osc09_object() {
+  std::string object = ScenarioText().entities;
+  object.replace(object.find("<ScenarioObject"), 15, "<Object");
+  object.replace(object.find("</ScenarioObject>"), 17, "</Object>");
+  return object;
+}
+
+// A 0.9 draft in the forms of esmini's basic_ego.
+std::string osc09_draft() {
+  return "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n"
+         "<FileHeader revMajor=\"0\" revMinor=\"9\" date=\"2019-10-23T10:00:00\" "
+         "description=\"d\" author=\"corsa\"/>\n"
+         "<ParameterDeclaration>\n"
+         "<Parameter name=\"$Speed\" type=\"double\" value=\"10\"/>\n"
+         "</ParameterDeclaration>\n"
+         "<Catalogs>\n<RouteCatalog>\n</RouteCatalog>\n</Catalogs>\n"
+         "<RoadNetwork>\n<Logics filepath=\"map.xodr\"/>\n</RoadNetwork>\n"
+         "<Entities>\n" +
+         osc09_object() +
+         "</Entities>\n"
+         "<Storyboard>\n<Init>\n<Actions>\n<Private object=\"Ego\">\n"
+         "<Action>\n<Position>\n<World x=\"0\" y=\"0\" h=\"0\"/>\n</Position>\n</Action>\n"
+         "<Action>\n<Longitudinal>\n<Speed>\n<Dynamics shape=\"step\"/>\n"
+         "<Target>\n<Absolute value=\"$Speed\"/>\n</Target>\n</Speed>\n</Longitudinal>\n"
+         "</Action>\n</Private>\n</Actions>\n</Init>\n"
+         "<Story name=\"S\" owner=\"Ego\">\n<Act name=\"A\">\n"
+         "<Sequence name=\"Q\" numberOfExecutions=\"1\">\n"
+         "<Actors>\n<Entity name=\"$owner\"/>\n</Actors>\n"
+         "<Maneuver name=\"M\">\n<Event name=\"E\" priority=\"overwrite\">\n"
+         "<Action name=\"Faster\">\n<Private>\n<Longitudinal>\n<Speed>\n"
+         "<Dynamics shape=\"linear\" rate=\"2\"/>\n"
+         "<Target>\n<Absolute value=\"20\"/>\n</Target>\n</Speed>\n</Longitudinal>\n"
+         "</Private>\n</Action>\n"
+         "<StartConditions>\n<ConditionGroup>\n"
+         "<Condition name=\"C\" delay=\"0\" edge=\"rising\">\n<ByState>\n"
+         "<AtStart type=\"act\" name=\"A\"/>\n</ByState>\n</Condition>\n"
+         "</ConditionGroup>\n</StartConditions>\n"
+         "</Event>\n</Maneuver>\n</Sequence>\n"
+         "<Conditions>\n<Start>\n<ConditionGroup>\n"
+         "<Condition name=\"Go\" delay=\"0\">\n<ByValue>\n"
+         "<SimulationTime value=\"0\" rule=\"greater_than\"/>\n</ByValue>\n</Condition>\n"
+         "</ConditionGroup>\n</Start>\n</Conditions>\n"
+         "</Act>\n</Story>\n<End>\n</End>\n</Storyboard>\n</OpenSCENARIO>\n";
+}
+
+TEST_CASE("an OpenSCENARIO 0.9 draft is read as 1.0 with one warning at its header",
+          "[xosc][osc09]") {
+  const std::string xml = osc09_draft();
+  TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  INFO((loaded.errors.empty() ? std::string() : loaded.errors[0].format()));
+  REQUIRE(loaded.errors.empty());
+  REQUIRE(loaded.scenario);
+  const auto warning = warning_with(loaded,
+                                    "OpenSCENARIO 0.9 draft (read as 1.0 by the "
+                                    "0.9-to-1.0 mapping: ParameterDeclaration, ");
+  CHECK(warning.line == line_of(xml, "<FileHeader"));
+  for (const auto& other : loaded.warnings) {
+    CHECK(other.message.find("older than 1.0") == std::string::npos);
+    CHECK(other.message.find("deprecated") == std::string::npos);
+  }
+  const auto& scenario = *loaded.scenario;
+  REQUIRE(scenario.parameters.size() == 1);
+  CHECK(scenario.parameters[0].name == "Speed");
+  REQUIRE(scenario.storyboard.init.privates.size() == 1);
+  const auto& init = scenario.storyboard.init.privates[0];
+  CHECK(init.entity_ref == "Ego");
+  REQUIRE(init.actions.size() == 2);
+  // The TeleportAction the mapping adds stands at the line of the 0.9 <Position>.
+  const auto* teleport = std::get_if<xosc::TeleportAction>(&init.actions[0]);
+  REQUIRE(teleport != nullptr);
+  CHECK(teleport->source.line == line_of(xml, "<Position>"));
+  REQUIRE(scenario.storyboard.stories.size() == 1);
+  const auto& act = scenario.storyboard.stories[0].acts.at(0);
+  CHECK(act.start_trigger.has_value());
+  REQUIRE(act.maneuver_groups.size() == 1);
+  // $owner is the Story's owner.
+  CHECK(act.maneuver_groups[0].actors.entity_refs == std::vector<std::string>{"Ego"});
+  CHECK(act.maneuver_groups[0].source.line == line_of(xml, "<Sequence"));
+}
+
+TEST_CASE("an OpenSCENARIO 0.9 draft is an error under --strict", "[xosc][osc09]") {
+  const std::string xml = osc09_draft();
+  TempDir dir;
+  const Loaded strict = lenient_load(dir, xml, true);
+  REQUIRE(!strict.errors.empty());
+  CHECK(strict.errors[0].line == line_of(xml, "<FileHeader"));
+  CHECK_THAT(strict.errors[0].message,
+             Catch::Contains("OpenSCENARIO 0.9 draft") && Catch::Contains("--strict"));
+}
+
+TEST_CASE("an error in a translated 0.9 element points at its own line", "[xosc][osc09]") {
+  std::string xml = osc09_draft();
+  xml.replace(xml.find("<Absolute value=\"20\"/>"), 23, "<Absolute value=\"fast\"/>");
+  xml.replace(xml.find("<AtStart type=\"act\" name=\"A\"/>"), 30,
+              "<AtStart type=\"act\" name=\"Nowhere\"/>");
+  TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  REQUIRE(loaded.errors.size() == 2);
+  CHECK(loaded.errors[0].line == line_of(xml, "value=\"fast\""));
+  CHECK(loaded.errors[1].line == line_of(xml, "name=\"Nowhere\""));
+  CHECK_THAT(loaded.errors[1].message, Catch::Contains("Nowhere"));
+}
+
+}  // namespace
+}  // namespace corsa::test
