@@ -49,6 +49,22 @@ bool in_symbol(const std::vector<detail::PaintPolygon>& symbol, double x, double
   return false;
 }
 
+/// The distance from (x, y) to the nearest polygon edge of the symbol.
+double word_edge_distance(const std::vector<detail::PaintPolygon>& symbol, double x, double y) {
+  double best = 1e9;
+  const Vec2 q{x, y};
+  for (const detail::PaintPolygon& p : symbol) {
+    for (size_t i = 0; i < p.size(); ++i) {
+      const Vec2 a = p[i], b = p[(i + 1) % p.size()];
+      const Vec2 d = b - a;
+      const double f = std::clamp(dot(q - a, d) / std::max(dot(d, d), 1e-12), 0.0, 1.0);
+      const Vec2 e = a + d * f - q;
+      best = std::min(best, std::sqrt(dot(e, e)));
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 TEST_CASE("the arrow shapes keep to their box and point where their names say",
@@ -122,22 +138,6 @@ TEST_CASE("a Korean left-turn arrow for the other direction turns to that driver
   CHECK_FALSE(paint_at(world->scene, 50.0, -1.75));  // the other lanes are not its own
 }
 
-/// The distance from (x, y) to the nearest polygon edge of the symbol.
-double edge_distance(const std::vector<detail::PaintPolygon>& symbol, double x, double y) {
-  double best = 1e9;
-  const Vec2 q{x, y};
-  for (const detail::PaintPolygon& p : symbol) {
-    for (size_t i = 0; i < p.size(); ++i) {
-      const Vec2 a = p[i], b = p[(i + 1) % p.size()];
-      const Vec2 d = b - a;
-      const double f = std::clamp(dot(q - a, d) / std::max(dot(d, d), 1e-12), 0.0, 1.0);
-      const Vec2 e = a + d * f - q;
-      best = std::min(best, std::sqrt(dot(e, e)));
-    }
-  }
-  return best;
-}
-
 TEST_CASE("Hangul words are convex strokes inside their box, one syllable after another",
           "[sensors][world][markings][korea]") {
   // 천천히 4 m along and 2.9 m across: three syllables 0.853 m wide with 0.171 m between them.
@@ -199,9 +199,10 @@ TEST_CASE("Korean slow and stop word signals are Hangul paint in their lane, rea
     double s_mid, t_mid, across;
     int dir;
     const char* type;
+    const char* signal_id;
   };
-  const Placed marks[] = {{U"\uCC9C\uCC9C\uD788", 40.0, -1.75, 2.9, 1, "519"},
-                          {U"\uC815\uC9C0", 70.0, 1.75, 2.2, -1, "521"}};
+  const Placed marks[] = {{U"\uCC9C\uCC9C\uD788", 40.0, -1.75, 2.9, 1, "519", "slow"},
+                          {U"\uC815\uC9C0", 70.0, 1.75, 2.2, -1, "521", "stop"}};
   for (const Placed& m : marks) {
     std::vector<detail::PaintPolygon> symbol;
     REQUIRE(detail::hangul_symbol(m.word, 4.0, m.across, symbol));
@@ -210,7 +211,7 @@ TEST_CASE("Korean slow and stop word signals are Hangul paint in their lane, rea
       for (double dt = -1.75; dt <= 1.75; dt += 0.05) {
         const double s = m.s_mid + ds, t = m.t_mid + dt;
         const double x = m.dir * ds, y = m.dir * dt;  // the symbol frame: x the driver's way
-        if (edge_distance(symbol, x, y) < 0.02) {
+        if (word_edge_distance(symbol, x, y) < 0.02) {
           continue;
         }
         const bool want = in_symbol(symbol, x, y);
@@ -220,15 +221,23 @@ TEST_CASE("Korean slow and stop word signals are Hangul paint in their lane, rea
       }
     }
     CHECK(painted > compared / 10);
-    // Nothing outside the lane's 4 m, and the paint is labelled as the signal's text.
+    // Nothing outside the lane's 4 m.
     CHECK_FALSE(paint_at(world->scene, m.s_mid + 2.1, m.t_mid));
     CHECK_FALSE(paint_at(world->scene, m.s_mid - 2.1, m.t_mid));
+    // The paint is labelled as the signal's text: a point deep inside the first stroke (the
+    // mean of its corners, clear of its edges) hits the signal's object.
+    Vec2 inside{0.0, 0.0};
+    for (const Vec2& p : symbol.front()) {
+      inside = inside + p * (1.0 / static_cast<double>(symbol.front().size()));
+    }
+    REQUIRE(in_symbol(symbol, inside.x, inside.y));
+    REQUIRE(word_edge_distance(symbol, inside.x, inside.y) > 0.02);
+    const ObjectInfo info =
+        object_at(world->scene, m.s_mid + m.dir * inside.x, m.t_mid + m.dir * inside.y);
+    CHECK(info.kind == "text");
+    CHECK(info.type == m.type);
+    CHECK(info.signal_id == m.signal_id);
   }
-  const double unit = 2.9 / 3.4;  // 히's ㅣ, at u 0.82 of the third syllable's cell
-  const ObjectInfo slow = object_at(world->scene, 38.05, -1.75 + 1.45 - (2.4 + 0.82) * unit);
-  CHECK(slow.kind == "text");
-  CHECK(slow.type == "519");
-  CHECK(slow.signal_id == "slow");
   CHECK_FALSE(paint_at(world->scene, 40.0, 1.75));   // not the oncoming lane
   CHECK_FALSE(paint_at(world->scene, 70.0, -1.75));  // nor the other way
 }
