@@ -43,6 +43,7 @@ struct MarkSpec {
   ArrowShape arrow = ArrowShape::kStraight;  ///< kArrow
   bool yellow = false;                       ///< kHatch: yellow paint, cross-hatched
   const char32_t* word = nullptr;            ///< kWord: its Hangul syllables
+  const char* text = "";                     ///< kWord: the same word in UTF-8, for its labels
 };
 
 std::optional<MarkSpec> german_marking(const std::string& type) {
@@ -88,11 +89,18 @@ std::optional<MarkSpec> korean_marking(const std::string& type) {
   }
   // Words, 4 m along the road: 519 slow reads 천천히 ("slowly"), 521 stop reads 정지 ("stop").
   if (type == "519") {
-    return MarkSpec{MarkKind::kWord,       4.0,   "text",
-                    ArrowShape::kStraight, false, U"\uCC9C\uCC9C\uD788"};
+    return MarkSpec{.kind = MarkKind::kWord,
+                    .along = 4.0,
+                    .label = "text",
+                    .word = U"\uCC9C\uCC9C\uD788",
+                    .text = "천천히"};
   }
   if (type == "521") {
-    return MarkSpec{MarkKind::kWord, 4.0, "text", ArrowShape::kStraight, false, U"\uC815\uC9C0"};
+    return MarkSpec{.kind = MarkKind::kWord,
+                    .along = 4.0,
+                    .label = "text",
+                    .word = U"\uC815\uC9C0",
+                    .text = "정지"};
   }
   if (type == "524" || type == "531") {
     return MarkSpec{MarkKind::kHatch, 0.0, type == "524" ? "no_stopping_zone" : "safety_zone",
@@ -296,6 +304,7 @@ void add_marking(WorldBuild& w, RoadPainter& paint, const Rigid& frame, const Ma
   }
   ObjectInfo info = signal_info(s);
   info.kind = spec.label;
+  info.text = spec.text;
   StaticMesh mesh = to_static_mesh(paint.builder().take(), frame, "road marking " + s.id);
   mesh.object = info;
   mesh.instance_id = kStaticInstanceBase + static_cast<uint32_t>(w.scene.static_mesh_count());

@@ -200,9 +200,10 @@ TEST_CASE("Korean slow and stop word signals are Hangul paint in their lane, rea
     int dir;
     const char* type;
     const char* signal_id;
+    const char* text;  ///< the word in UTF-8
   };
-  const Placed marks[] = {{U"\uCC9C\uCC9C\uD788", 40.0, -1.75, 2.9, 1, "519", "slow"},
-                          {U"\uC815\uC9C0", 70.0, 1.75, 2.2, -1, "521", "stop"}};
+  const Placed marks[] = {{U"\uCC9C\uCC9C\uD788", 40.0, -1.75, 2.9, 1, "519", "slow", "천천히"},
+                          {U"\uC815\uC9C0", 70.0, 1.75, 2.2, -1, "521", "stop", "정지"}};
   for (const Placed& m : marks) {
     std::vector<detail::PaintPolygon> symbol;
     REQUIRE(detail::hangul_symbol(m.word, 4.0, m.across, symbol));
@@ -224,8 +225,8 @@ TEST_CASE("Korean slow and stop word signals are Hangul paint in their lane, rea
     // Nothing outside the lane's 4 m.
     CHECK_FALSE(paint_at(world->scene, m.s_mid + 2.1, m.t_mid));
     CHECK_FALSE(paint_at(world->scene, m.s_mid - 2.1, m.t_mid));
-    // The paint is labelled as the signal's text: a point deep inside the first stroke (the
-    // mean of its corners, clear of its edges) hits the signal's object.
+    // The paint is labelled as the signal's text, with the word: a point deep inside the first
+    // stroke (the mean of its corners, clear of its edges) hits the signal's object.
     Vec2 inside{0.0, 0.0};
     for (const Vec2& p : symbol.front()) {
       inside = inside + p * (1.0 / static_cast<double>(symbol.front().size()));
@@ -237,6 +238,7 @@ TEST_CASE("Korean slow and stop word signals are Hangul paint in their lane, rea
     CHECK(info.kind == "text");
     CHECK(info.type == m.type);
     CHECK(info.signal_id == m.signal_id);
+    CHECK(info.text == m.text);
   }
   CHECK_FALSE(paint_at(world->scene, 40.0, 1.75));   // not the oncoming lane
   CHECK_FALSE(paint_at(world->scene, 70.0, -1.75));  // nor the other way
