@@ -40,6 +40,9 @@ std::vector<PaintPolygon> arrow_symbol(ArrowShape shape, double length, double w
 bool text_symbol(std::string_view text, double length, double width,
                  std::vector<PaintPolygon>& out);
 
+/// The gap between two syllables of a Hangul word, as a fraction of a syllable's width.
+inline constexpr double kHangulSyllableGap = 0.2;
+
 /// Hangul words set as text_symbol sets letters: one line of syllables across the box (read
 /// from +y to -y), each stretched along x over the box's length. The syllables are built from
 /// the strokes of their letters; known are those of the initials and finals ㄱ ㄴ ㄷ ㅁ ㅂ ㅅ ㅇ

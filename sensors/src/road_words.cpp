@@ -281,14 +281,13 @@ bool hangul_symbol(std::u32string_view text, double length, double width,
   if (text.empty()) {
     return true;
   }
-  // Syllables side by side across the box with a gap of a fifth of a syllable between them,
-  // each stretched along x over the box's whole length.
-  constexpr double kGap = 0.2;
+  // Syllables side by side across the box with kHangulSyllableGap of one between them, each
+  // stretched along x over the box's whole length.
   const double n = static_cast<double>(text.size());
-  const double unit = width / (n + (n - 1.0) * kGap);
+  const double unit = width / (n + (n - 1.0) * kHangulSyllableGap);
   std::vector<PaintPolygon> glyphs;
   for (size_t i = 0; i < text.size(); ++i) {
-    const double y_left = 0.5 * width - static_cast<double>(i) * (1.0 + kGap) * unit;
+    const double y_left = 0.5 * width - static_cast<double>(i) * (1.0 + kHangulSyllableGap) * unit;
     HangulPen pen(glyphs, -0.5 * length, length, y_left, unit);
     if (!syllable(pen, text[i])) {
       return false;

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -231,12 +232,14 @@ void paint_symbol(RoadPainter& paint, const std::vector<PaintPolygon>& symbol, d
   }
 }
 
-void paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1,
+/// Paints the marking on one covered lane from s0 to s1; false when a word does not fit the
+/// lane (every other marking is painted, or left out by its own rule, and returns true).
+bool paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1,
                 const CoveredLane& lane, double t_first) {
   const double t0 = lane.t0, t1 = lane.t1;
   if (spec.kind == MarkKind::kCrosswalkAhead) {
     paint_diamond(paint, s0, s1, t0, t1);
-    return;
+    return true;
   }
   if (spec.kind == MarkKind::kArrow) {
     // A straight arrow 0.9 m across (its head), a turning one 1.8 m, kept 0.3 m off the lines.
@@ -246,22 +249,28 @@ void paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1,
       paint_symbol(paint, arrow_symbol(spec.arrow, s1 - s0, across), 0.5 * (s0 + s1),
                    0.5 * (t0 + t1), lane.dir);
     }
-    return;
+    return true;
   }
   if (spec.kind == MarkKind::kWord) {
-    // Syllables at most 1 m wide with 0.2 m between them, kept 0.3 m off the lines.
+    // Syllables at most 1 m wide with kHangulSyllableGap of one between them, kept 0.3 m off
+    // the lines; at least 0.3 m wide, or the word is not painted in this lane.
     const std::u32string_view word(spec.word);
     const double n = static_cast<double>(word.size());
-    const double across = std::min(n + 0.2 * (n - 1.0), t1 - t0 - 0.6);
-    std::vector<PaintPolygon> symbol;
-    if (across > 0.3 * n && hangul_symbol(word, s1 - s0, across, symbol)) {
-      paint_symbol(paint, symbol, 0.5 * (s0 + s1), 0.5 * (t0 + t1), lane.dir);
+    const double across = std::min(n + kHangulSyllableGap * (n - 1.0), t1 - t0 - 0.6);
+    if (across <= 0.3 * n) {
+      return false;
     }
-    return;
+    std::vector<PaintPolygon> symbol;
+    if (!hangul_symbol(word, s1 - s0, across, symbol)) {
+      // The painted words are our constants: a syllable hangul_symbol lacks is our bug.
+      throw std::logic_error("a painted road word uses a syllable hangul_symbol does not know");
+    }
+    paint_symbol(paint, symbol, 0.5 * (s0 + s1), 0.5 * (t0 + t1), lane.dir);
+    return true;
   }
   if (spec.kind == MarkKind::kStopLine) {
     paint.quad(s0, s1, t0, t1);
-    return;
+    return true;
   }
   // Bars (crosswalk: 0.5 m every 1.0 m) or dashes (give-way line: 0.5 m every 0.75 m) laid out
   // from the first covered lane's edge, so that they run on across lane borders.
@@ -271,6 +280,7 @@ void paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1,
   for (double a = t_first + k0 * period; a < t1; a += period) {
     paint.quad(s0, s1, std::max(a, t0), std::min(a + bar, t1));
   }
+  return true;
 }
 
 /// The lanes a marking covers at s_mid (see covers()).
@@ -381,8 +391,16 @@ bool build_signal_marking(WorldBuild& w, size_t r, const xodr::Signal& s) {
   const xodr::WorldPose p = w.map.world_pose(r, s_mid, 0.0);
   const Rigid frame = rigid_from_pose(p.x, p.y, p.z, p.h, 0.0, 0.0);
   RoadPainter paint(w.map, r, frame);
+  bool fits = false;
   for (const CoveredLane& lane : covered) {
-    paint_span(paint, *spec, s0, s1, lane, covered.front().t0);
+    fits = paint_span(paint, *spec, s0, s1, lane, covered.front().t0) || fits;
+  }
+  if (!fits) {
+    w.diagnostics.add_once("signal-marking-fit:" + s.id,
+                           make_warning(file, s.line,
+                                        "road marking signal " + s.id + " (type '" + s.type +
+                                            "'): no lane it covers at s " + format_fixed(s_mid, 2) +
+                                            " is wide enough for its word; left out"));
   }
   add_marking(w, paint, frame, *spec, s);
   return true;

@@ -244,6 +244,26 @@ TEST_CASE("Korean slow and stop word signals are Hangul paint in their lane, rea
   CHECK_FALSE(paint_at(world->scene, 70.0, -1.75));  // nor the other way
 }
 
+TEST_CASE("a Korean word signal whose lanes are too narrow for it is left out with a warning",
+          "[sensors][world][signals][markings][korea]") {
+  // 519 (천천히) on lane -1 alone, here 1.2 m wide: kept 0.3 m off the lines its three
+  // syllables would be 0.2 m wide, under the 0.3 m a syllable needs.
+  std::string text = corsa::test::street_text(
+      R"(<signal id="narrow" s="40" t="-0.6" orientation="+" dynamic="no" country="KR" type="519" subtype="-1">
+           <validity fromLane="-1" toLane="-1"/></signal>)");
+  const std::string wide = R"(<lane id="-1" type="driving"><width sOffset="0" a="3.5")";
+  REQUIRE(text.find(wide) != std::string::npos);
+  text.replace(text.find(wide), wide.size(),
+               R"(<lane id="-1" type="driving"><width sOffset="0" a="1.2")");
+  auto world = marked_world(corsa::test::map_of(text));
+  CHECK(world->report.markings == 0);
+  CHECK_FALSE(paint_at(world->scene, 40.0, -0.6));
+  REQUIRE(world->warnings.size() == 1);
+  CHECK(world->warnings[0].line > 0);
+  CHECK_THAT(world->warnings[0].message, Catch::Contains("narrow"));
+  CHECK_THAT(world->warnings[0].message, Catch::Contains("wide enough for its word"));
+}
+
 TEST_CASE("a Korean no-stopping zone with a size is a yellow cross-hatched box",
           "[sensors][world][signals][markings][korea]") {
   // 524, 6 m along and 3 m across centred on (70, -3.5): a 0.2 m border, stripes 0.2 m wide
