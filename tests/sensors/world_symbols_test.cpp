@@ -244,6 +244,52 @@ TEST_CASE("Korean slow and stop word signals are Hangul paint in their lane, rea
   CHECK_FALSE(paint_at(world->scene, 70.0, -1.75));  // nor the other way
 }
 
+TEST_CASE(
+    "Korean words on a curve follow the lane: each stroke lies where the lane's s and t put "
+    "it",
+    "[sensors][world][signals][markings][korea]") {
+  // The same two words on a road bending left with a radius of 20 m. A stroke is mapped from
+  // the symbol's (x, y) to the road's (s, t); one mapped only at its corners would cut the
+  // curve's chord, up to 0.1 m off the lane's offset over a 4 m stroke. Every sample clear of a
+  // stroke's edge by 1 cm is paint exactly where the symbol is, at the pose of its (s, t).
+  std::string text = corsa::test::street_text(
+      R"(<signal id="slow" s="40" t="-1.75" orientation="+" dynamic="no" country="KR" type="519" subtype="-1"/>
+         <signal id="stop" s="70" t="1.75" orientation="-" dynamic="no" country="KR" type="521" subtype="-1"/>)");
+  REQUIRE(text.find("<line/>") != std::string::npos);
+  text.replace(text.find("<line/>"), 7, R"(<arc curvature="0.05"/>)");
+  const auto map = corsa::test::map_of(text);
+  auto world = marked_world(map);
+  CHECK(world->report.markings == 2);
+  CHECK(world->warnings.empty());
+  struct CurvedWord {
+    std::u32string word;
+    double s_mid, t_mid, across;
+    int dir;
+  };
+  const CurvedWord marks[] = {{U"\uCC9C\uCC9C\uD788", 40.0, -1.75, 2.9, 1},
+                              {U"\uC815\uC9C0", 70.0, 1.75, 2.2, -1}};
+  for (const CurvedWord& m : marks) {
+    std::vector<detail::PaintPolygon> symbol;
+    REQUIRE(detail::hangul_symbol(m.word, 4.0, m.across, symbol));
+    int painted = 0, compared = 0, wrong = 0;
+    for (double ds = -2.3; ds <= 2.3; ds += 0.025) {
+      for (double dt = -1.7; dt <= 1.7; dt += 0.025) {
+        const double x = m.dir * ds, y = m.dir * dt;
+        if (word_edge_distance(symbol, x, y) < 0.01) {
+          continue;
+        }
+        const corsa::xodr::WorldPose p = map.world_pose(0, m.s_mid + ds, m.t_mid + dt);
+        const bool want = in_symbol(symbol, x, y);
+        wrong += paint_at(world->scene, p.x, p.y) == want ? 0 : 1;
+        painted += want ? 1 : 0;
+        ++compared;
+      }
+    }
+    CHECK(wrong == 0);
+    CHECK(painted > compared / 10);
+  }
+}
+
 TEST_CASE("a Korean word signal whose lanes are too narrow for it is left out with a warning",
           "[sensors][world][signals][markings][korea]") {
   // 519 (천천히) on lane -1 alone, here 1.2 m wide: kept 0.3 m off the lines its three
