@@ -177,6 +177,14 @@ TEST_CASE("Hangul words are convex strokes inside their box, one syllable after 
   std::vector<detail::PaintPolygon> other;
   CHECK_FALSE(detail::hangul_symbol(U"\uC815\uC560", 4.0, 2.0, other));  // 정애
   CHECK(other.empty());
+  // Finals ㅈ ㅊ ㅎ would be squeezed unreadable into the final's low box: refused (낮 낯 낳),
+  // while ㄱ as a final is known (낙).
+  for (const char32_t* refused : {U"\uB0AE", U"\uB0AF", U"\uB0B3"}) {
+    CHECK_FALSE(detail::hangul_symbol(refused, 4.0, 1.0, other));
+    CHECK(other.empty());
+  }
+  CHECK(detail::hangul_symbol(U"\uB099", 4.0, 1.0, other));  // 낙
+  other.clear();
   CHECK(detail::hangul_symbol(U"\uC815\uC9C0", 4.0, 2.2, other));  // 정지
 }
 
