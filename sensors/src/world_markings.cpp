@@ -330,7 +330,7 @@ bool paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1,
   return true;
 }
 
-/// The lanes a marking covers at s_mid (see covers()).
+/// The lanes a marking covers at s_mid (see covers()); a word covers no biking lane.
 std::vector<CoveredLane> covered_lanes(const WorldBuild& w, size_t r, const xodr::Signal& s,
                                        const MarkSpec& spec, double s_mid) {
   const xodr::Road& road = w.map.road(r);
@@ -342,7 +342,10 @@ std::vector<CoveredLane> covered_lanes(const WorldBuild& w, size_t r, const xodr
   for (const xodr::LaneSpan& span : spans) {
     const auto lane = std::find_if(lanes.begin(), lanes.end(),
                                    [&](const xodr::Lane& l) { return l.id == span.id; });
-    if (lane != lanes.end() && span.width() > 0.05 &&
+    // Words speak to drivers: a biking lane gets none.
+    const bool skipped = spec.kind == MarkKind::kWord && lane != lanes.end() &&
+                         lane->type == xodr::LaneType::kBiking;
+    if (lane != lanes.end() && !skipped && span.width() > 0.05 &&
         covers(s, *lane, left_hand, spec.kind == MarkKind::kCrosswalk)) {
       const bool towards_plus_s = (lane->id < 0) != left_hand;
       covered.push_back({span.t_min(), span.t_max(), towards_plus_s ? 1 : -1});

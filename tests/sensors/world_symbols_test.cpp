@@ -318,6 +318,33 @@ TEST_CASE("a Korean word signal whose lanes are too narrow for it is left out wi
   CHECK_THAT(world->warnings[0].message, Catch::Contains("wide enough for its word"));
 }
 
+TEST_CASE("a Korean word signal is not painted in a biking lane it would otherwise cover",
+          "[sensors][world][signals][markings][korea]") {
+  // 521 (정지) for traffic towards +s covers lanes -1 and -2; here lane -2 is a biking lane:
+  // the word is painted in lane -1 only.
+  std::string text = corsa::test::street_text(
+      R"(<signal id="stop" s="40" t="-1.75" orientation="+" dynamic="no" country="KR" type="521" subtype="-1"/>)");
+  const std::string driving = R"(<lane id="-2" type="driving">)";
+  REQUIRE(text.find(driving) != std::string::npos);
+  text.replace(text.find(driving), driving.size(), R"(<lane id="-2" type="biking">)");
+  auto world = marked_world(corsa::test::map_of(text));
+  CHECK(world->report.markings == 1);
+  CHECK(world->warnings.empty());
+  std::vector<detail::PaintPolygon> symbol;
+  REQUIRE(detail::hangul_symbol(U"\uC815\uC9C0", 4.0, 2.2, symbol));
+  int in_lane = 0, in_biking_lane = 0;
+  for (double ds = -1.9; ds <= 1.9; ds += 0.1) {
+    for (double dt = -1.1; dt <= 1.1; dt += 0.1) {
+      if (in_symbol(symbol, ds, dt) && word_edge_distance(symbol, ds, dt) > 0.02) {
+        in_lane += paint_at(world->scene, 40.0 + ds, -1.75 + dt) ? 1 : 0;
+        in_biking_lane += paint_at(world->scene, 40.0 + ds, -5.25 + dt) ? 1 : 0;
+      }
+    }
+  }
+  CHECK(in_lane > 50);
+  CHECK(in_biking_lane == 0);
+}
+
 TEST_CASE("a Korean no-stopping zone with a size is a yellow cross-hatched box",
           "[sensors][world][signals][markings][korea]") {
   // 524, 6 m along and 3 m across centred on (70, -3.5): a 0.2 m border, stripes 0.2 m wide
