@@ -53,6 +53,7 @@ bool hangul_symbol(std::u32string_view text, double length, double width,
 
 /// A hatched area: its outline (a border `stroke` wide) and diagonal stripes `stroke` wide
 /// every `spacing` metres, at 45 degrees, clipped to the box; both diagonals when `cross`.
+/// The stripe count grows with (length + width) / spacing: callers cap the size.
 std::vector<PaintPolygon> hatch_symbol(double length, double width, double stroke, double spacing,
                                        bool cross);
 

@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -153,6 +154,27 @@ bool covers(const xodr::Signal& s, const xodr::Lane& lane, bool left_hand, bool 
   // the left ones.
   const bool towards_plus_s = (lane.id < 0) != left_hand;
   return (s.orientation == "+") == towards_plus_s;
+}
+
+/// The largest extent (m) a marking painted from a signal takes across the road, and a hatched
+/// area or painted symbol along it: far beyond any real marking, it keeps a wild size from
+/// painting (and counting) without end.
+constexpr double kMaxMarkingExtent = 50.0;
+
+/// `value` (m, a signal's `what`) capped at kMaxMarkingExtent, with a located warning when it
+/// was more.
+double capped_marking_extent(WorldBuild& w, const xodr::Signal& s, double value, const char* what) {
+  if (value <= kMaxMarkingExtent) {
+    return value;
+  }
+  w.diagnostics.add_once(
+      std::string("signal-marking-extent:") + what + ":" + s.id,
+      make_warning(w.map.data().source_file, s.line,
+                   "road marking signal " + s.id + " (type '" + s.type + "'): its " + what + " " +
+                       format_double(value) + " m is more than " +
+                       format_fixed(kMaxMarkingExtent, 0) + " m; painted " +
+                       format_fixed(kMaxMarkingExtent, 0) + " m"));
+  return kMaxMarkingExtent;
 }
 
 /// Paints flat quads given in road coordinates (s along, t across) into a mesh in `frame`.
@@ -323,8 +345,13 @@ bool paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1,
   // from the first covered lane's edge, so that they run on across lane borders.
   const double bar = 0.5;
   const double period = spec.kind == MarkKind::kCrosswalk ? 1.0 : 0.75;
+  // At most one bar per period of the lane's width (and two for the ends; no lane is wider
+  // than kMaxMarkingExtent): counted, since a += period stops advancing where t is large.
   const double k0 = std::floor((t0 - t_first) / period);
-  for (double a = t_first + k0 * period; a < t1; a += period) {
+  const double span = t1 - t0 <= kMaxMarkingExtent ? t1 - t0 : kMaxMarkingExtent;
+  const auto bars = static_cast<int64_t>(std::ceil(span / period)) + 2;
+  double a = t_first + k0 * period;
+  for (int64_t k = 0; k < bars && a < t1; ++k, a += period) {
     paint.quad(s0, s1, std::max(a, t0), std::min(a + bar, t1));
   }
   return true;
@@ -383,7 +410,8 @@ void build_hatched_area(WorldBuild& w, size_t r, const xodr::Signal& s, const Ma
                                             "') gives no length and width; left out"));
     return;
   }
-  const double along = std::min(s.length, road.length);
+  const double along = capped_marking_extent(w, s, std::min(s.length, road.length), "length");
+  const double across = capped_marking_extent(w, s, s.width, "width");
   const double s_mid = std::clamp(s.s, 0.5 * along, road.length - 0.5 * along);
   const xodr::WorldPose p = w.map.world_pose(r, s_mid, 0.0);
   const Rigid frame = rigid_from_pose(p.x, p.y, p.z, p.h, 0.0, 0.0);
@@ -394,7 +422,7 @@ void build_hatched_area(WorldBuild& w, size_t r, const xodr::Signal& s, const Ma
   // Stripes 0.3 m wide every 1.5 m (cross-hatched every 2 m), a 0.2 m border.
   paint_symbol(
       paint,
-      hatch_symbol(along, s.width, spec.yellow ? 0.2 : 0.3, spec.yellow ? 2.0 : 1.5, spec.yellow),
+      hatch_symbol(along, across, spec.yellow ? 0.2 : 0.3, spec.yellow ? 2.0 : 1.5, spec.yellow),
       s_mid, s.t, 1);
   add_marking(w, paint, frame, spec, s);
 }
@@ -423,14 +451,17 @@ bool build_signal_marking(WorldBuild& w, size_t r, const xodr::Signal& s) {
     return true;
   }
   const xodr::Road& road = w.map.road(r);
-  const double along = std::min(s.length > 0.01 ? s.length : spec->along, road.length);
+  double along = std::min(s.length > 0.01 ? s.length : spec->along, road.length);
+  if (spec->kind == MarkKind::kWord || spec->kind == MarkKind::kArrow) {
+    along = capped_marking_extent(w, s, along, "length");  // a symbol is cut every 0.5 m
+  }
   // Centred on s, shifted to stay on the road (a stop line at a road's end, as maps put them).
   const double s0 = std::clamp(s.s - 0.5 * along, 0.0, road.length - along);
   const double s1 = s0 + along;
   const double s_mid = 0.5 * (s0 + s1);
   std::vector<CoveredLane> covered = covered_lanes(w, r, s, *spec, s_mid);
   if (covered.empty()) {
-    const double width = s.width > 0.1 ? s.width : 3.0;
+    const double width = s.width > 0.1 ? capped_marking_extent(w, s, s.width, "width") : 3.0;
     w.diagnostics.add_once("signal-marking-lanes:" + s.id,
                            make_warning(file, s.line,
                                         "road marking signal " + s.id + " covers no lane at s " +
