@@ -40,15 +40,20 @@ std::vector<PaintPolygon> arrow_symbol(ArrowShape shape, double length, double w
 bool text_symbol(std::string_view text, double length, double width,
                  std::vector<PaintPolygon>& out);
 
+/// The gap between two syllables of a Hangul word, as a fraction of a syllable's width.
+inline constexpr double kHangulSyllableGap = 0.2;
+
 /// Hangul words set as text_symbol sets letters: one line of syllables across the box (read
 /// from +y to -y), each stretched along x over the box's length. The syllables are built from
-/// the strokes of their letters; known are those of the initials and finals ㄱ ㄴ ㄷ ㅁ ㅂ ㅅ ㅇ
-/// ㅈ ㅊ ㅎ and the vowels ㅏ ㅓ ㅗ ㅜ ㅡ ㅣ. False (and nothing added) for another character.
+/// the strokes of their letters; known are the initials ㄱ ㄴ ㄷ ㅁ ㅂ ㅅ ㅇ ㅈ ㅊ ㅎ, the finals
+/// ㄱ ㄴ ㄷ ㅁ ㅂ ㅅ ㅇ and the vowels ㅏ ㅓ ㅗ ㅜ ㅡ ㅣ. False (and nothing added) for another
+/// character.
 bool hangul_symbol(std::u32string_view text, double length, double width,
                    std::vector<PaintPolygon>& out);
 
 /// A hatched area: its outline (a border `stroke` wide) and diagonal stripes `stroke` wide
 /// every `spacing` metres, at 45 degrees, clipped to the box; both diagonals when `cross`.
+/// The stripe count grows with (length + width) / spacing: callers cap the size.
 std::vector<PaintPolygon> hatch_symbol(double length, double width, double stroke, double spacing,
                                        bool cross);
 

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "road_symbols.h"
 
@@ -43,6 +44,9 @@ class HangulPen {
   void slant(Vec2 a, Vec2 b) {
     const Vec2 d = b - a;
     const double len = std::hypot(d.x, d.y);
+    if (len < 1e-9) {
+      return;  // no direction to draw along
+    }
     const Vec2 n{-d.y / len * 0.5 * kHangulStroke, d.x / len * 0.5 * kHangulStroke};
     add({a - n, b - n, b + n, a + n});
   }
@@ -87,7 +91,7 @@ class HangulPen {
 
 /// ㅅ: a long stroke from the top middle down to the bottom left, and a shorter one from its
 /// upper third down to the bottom right.
-void siot(HangulPen& pen, const JamoBox& b) {
+void hangul_siot(HangulPen& pen, const JamoBox& b) {
   const double h = 0.5 * kHangulStroke;
   const Vec2 top{b.mid_u(), b.v1 - h};
   const Vec2 left{b.u0 + h, b.v0 + h};
@@ -98,7 +102,7 @@ void siot(HangulPen& pen, const JamoBox& b) {
 
 /// The consonants the painted words use, by their initial index (U+1100 order): ㄱ 0, ㄴ 2,
 /// ㄷ 3, ㅁ 6, ㅂ 7, ㅅ 9, ㅇ 11, ㅈ 12, ㅊ 14, ㅎ 18. False for the others.
-bool consonant(HangulPen& pen, int index, const JamoBox& b) {
+bool hangul_consonant(HangulPen& pen, int index, const JamoBox& b) {
   const double s = kHangulStroke;
   switch (index) {
     case 0:  // ㄱ
@@ -129,20 +133,20 @@ bool consonant(HangulPen& pen, int index, const JamoBox& b) {
       return true;
     }
     case 9:  // ㅅ
-      siot(pen, b);
+      hangul_siot(pen, b);
       return true;
     case 11:  // ㅇ
       pen.ring(b);
       return true;
     case 12:  // ㅈ: a bar over ㅅ
       pen.bar(b.u0, b.u1, b.v1 - s, b.v1);
-      siot(pen, {b.u0, b.u1, b.v0, b.v1 - s});
+      hangul_siot(pen, {b.u0, b.u1, b.v0, b.v1 - s});
       return true;
     case 14: {  // ㅊ: a tick over ㅈ
       const double tick = 0.22 * b.height();
       pen.bar(b.mid_u() - 0.5 * s, b.mid_u() + 0.5 * s, b.v1 - tick, b.v1);
       pen.bar(b.u0, b.u1, b.v1 - tick - s, b.v1 - tick);
-      siot(pen, {b.u0, b.u1, b.v0, b.v1 - tick - s});
+      hangul_siot(pen, {b.u0, b.u1, b.v0, b.v1 - tick - s});
       return true;
     }
     case 18: {  // ㅎ: a tick and a bar over ㅇ
@@ -159,8 +163,9 @@ bool consonant(HangulPen& pen, int index, const JamoBox& b) {
 }
 
 /// The final consonant's index (U+11A8 order, 1-based) as an initial index; -1 for one this
-/// table lacks.
-int final_as_initial(int final_index) {
+/// table lacks. ㅈ ㅊ ㅎ are not finals here: squeezed into the final's low box (0.3 of the
+/// square) their bar, tick and ring would be boxes a few centimetres high, unreadable.
+int hangul_final_as_initial(int final_index) {
   switch (final_index) {
     case 1:
       return 0;  // ㄱ
@@ -176,36 +181,31 @@ int final_as_initial(int final_index) {
       return 9;  // ㅅ
     case 21:
       return 11;  // ㅇ
-    case 22:
-      return 12;  // ㅈ
-    case 23:
-      return 14;  // ㅊ
-    case 27:
-      return 18;  // ㅎ
     default:
       return -1;
   }
 }
 
-enum class VowelKind { kVertical, kHorizontal, kUnknown };
+enum class HangulVowelKind { kVertical, kHorizontal, kUnknown };
 
 /// The vowels by their index (U+1161 order): ㅏ 0, ㅓ 4, ㅗ 8, ㅜ 13, ㅡ 18, ㅣ 20.
-VowelKind vowel_kind(int index) {
+HangulVowelKind hangul_vowel_kind(int index) {
   switch (index) {
     case 0:
     case 4:
     case 20:
-      return VowelKind::kVertical;
+      return HangulVowelKind::kVertical;
     case 8:
     case 13:
     case 18:
-      return VowelKind::kHorizontal;
+      return HangulVowelKind::kHorizontal;
     default:
-      return VowelKind::kUnknown;
+      return HangulVowelKind::kUnknown;
   }
 }
 
-void vowel(HangulPen& pen, int index, const JamoBox& b) {
+/// Draws the vowel of index `index` (one hangul_vowel_kind knows) into the box.
+void hangul_vowel(HangulPen& pen, int index, const JamoBox& b) {
   const double s = kHangulStroke;
   const double v_mid = b.v0 + 0.5 * b.height();
   switch (index) {
@@ -238,40 +238,43 @@ void vowel(HangulPen& pen, int index, const JamoBox& b) {
       pen.bar(b.mid_u() - 0.5 * s, b.mid_u() + 0.5 * s, b.v0, v - 0.5 * s);
       break;
     }
-    default: {  // ㅡ
+    case 18: {  // ㅡ
       pen.bar(b.u0, b.u1, v_mid - 0.5 * s, v_mid + 0.5 * s);
       break;
     }
+    default:
+      // hangul_syllable draws only the vowels hangul_vowel_kind knows.
+      throw std::logic_error("hangul_vowel called for a vowel it does not draw");
   }
 }
 
 /// Draws one precomposed syllable (U+AC00..U+D7A3) into the pen's unit square; false when it
 /// is not one or uses a letter the tables lack.
-bool syllable(HangulPen& pen, char32_t c) {
+bool hangul_syllable(HangulPen& pen, char32_t c) {
   if (c < 0xAC00 || c > 0xD7A3) {
     return false;
   }
   const int code = static_cast<int>(c - 0xAC00);
   const int initial = code / (21 * 28), medial = (code / 28) % 21, final_index = code % 28;
-  const VowelKind kind = vowel_kind(medial);
-  const int final_initial = final_index == 0 ? -1 : final_as_initial(final_index);
-  if (kind == VowelKind::kUnknown || (final_index != 0 && final_initial < 0)) {
+  const HangulVowelKind kind = hangul_vowel_kind(medial);
+  const int final_initial = final_index == 0 ? -1 : hangul_final_as_initial(final_index);
+  if (kind == HangulVowelKind::kUnknown || (final_index != 0 && final_initial < 0)) {
     return false;
   }
   const bool has_final = final_index != 0;
   JamoBox first, second, last{0.08, 0.92, 0.0, 0.3};
-  if (kind == VowelKind::kVertical) {
+  if (kind == HangulVowelKind::kVertical) {
     first = has_final ? JamoBox{0.0, 0.56, 0.5, 1.0} : JamoBox{0.0, 0.56, 0.1, 0.9};
     second = has_final ? JamoBox{0.6, 1.0, 0.42, 1.0} : JamoBox{0.6, 1.0, 0.0, 1.0};
   } else {
     first = has_final ? JamoBox{0.15, 0.85, 0.62, 1.0} : JamoBox{0.12, 0.88, 0.42, 1.0};
     second = has_final ? JamoBox{0.0, 1.0, 0.34, 0.6} : JamoBox{0.0, 1.0, 0.0, 0.42};
   }
-  if (!consonant(pen, initial, first)) {
+  if (!hangul_consonant(pen, initial, first)) {
     return false;
   }
-  vowel(pen, medial, second);
-  return !has_final || consonant(pen, final_initial, last);
+  hangul_vowel(pen, medial, second);
+  return !has_final || hangul_consonant(pen, final_initial, last);
 }
 
 }  // namespace
@@ -281,16 +284,15 @@ bool hangul_symbol(std::u32string_view text, double length, double width,
   if (text.empty()) {
     return true;
   }
-  // Syllables side by side across the box with a gap of a fifth of a syllable between them,
-  // each stretched along x over the box's whole length.
-  constexpr double kGap = 0.2;
+  // Syllables side by side across the box with kHangulSyllableGap of one between them, each
+  // stretched along x over the box's whole length.
   const double n = static_cast<double>(text.size());
-  const double unit = width / (n + (n - 1.0) * kGap);
+  const double unit = width / (n + (n - 1.0) * kHangulSyllableGap);
   std::vector<PaintPolygon> glyphs;
   for (size_t i = 0; i < text.size(); ++i) {
-    const double y_left = 0.5 * width - static_cast<double>(i) * (1.0 + kGap) * unit;
+    const double y_left = 0.5 * width - static_cast<double>(i) * (1.0 + kHangulSyllableGap) * unit;
     HangulPen pen(glyphs, -0.5 * length, length, y_left, unit);
-    if (!syllable(pen, text[i])) {
+    if (!hangul_syllable(pen, text[i])) {
       return false;
     }
   }

@@ -20,7 +20,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -43,6 +45,7 @@ struct MarkSpec {
   ArrowShape arrow = ArrowShape::kStraight;  ///< kArrow
   bool yellow = false;                       ///< kHatch: yellow paint, cross-hatched
   const char32_t* word = nullptr;            ///< kWord: its Hangul syllables
+  const char* text = "";                     ///< kWord: the same word in UTF-8, for its labels
 };
 
 std::optional<MarkSpec> german_marking(const std::string& type) {
@@ -88,11 +91,18 @@ std::optional<MarkSpec> korean_marking(const std::string& type) {
   }
   // Words, 4 m along the road: 519 slow reads 천천히 ("slowly"), 521 stop reads 정지 ("stop").
   if (type == "519") {
-    return MarkSpec{MarkKind::kWord,       4.0,   "text",
-                    ArrowShape::kStraight, false, U"\uCC9C\uCC9C\uD788"};
+    return MarkSpec{.kind = MarkKind::kWord,
+                    .along = 4.0,
+                    .label = "text",
+                    .word = U"\uCC9C\uCC9C\uD788",
+                    .text = "천천히"};
   }
   if (type == "521") {
-    return MarkSpec{MarkKind::kWord, 4.0, "text", ArrowShape::kStraight, false, U"\uC815\uC9C0"};
+    return MarkSpec{.kind = MarkKind::kWord,
+                    .along = 4.0,
+                    .label = "text",
+                    .word = U"\uC815\uC9C0",
+                    .text = "정지"};
   }
   if (type == "524" || type == "531") {
     return MarkSpec{MarkKind::kHatch, 0.0, type == "524" ? "no_stopping_zone" : "safety_zone",
@@ -144,6 +154,27 @@ bool covers(const xodr::Signal& s, const xodr::Lane& lane, bool left_hand, bool 
   // the left ones.
   const bool towards_plus_s = (lane.id < 0) != left_hand;
   return (s.orientation == "+") == towards_plus_s;
+}
+
+/// The largest extent (m) a marking painted from a signal takes across the road, and a hatched
+/// area or painted symbol along it: far beyond any real marking, it keeps a wild size from
+/// painting (and counting) without end.
+constexpr double kMaxMarkingExtent = 50.0;
+
+/// `value` (m, a signal's `what`) capped at kMaxMarkingExtent, with a located warning when it
+/// was more.
+double capped_marking_extent(WorldBuild& w, const xodr::Signal& s, double value, const char* what) {
+  if (value <= kMaxMarkingExtent) {
+    return value;
+  }
+  w.diagnostics.add_once(
+      std::string("signal-marking-extent:") + what + ":" + s.id,
+      make_warning(w.map.data().source_file, s.line,
+                   "road marking signal " + s.id + " (type '" + s.type + "'): its " + what + " " +
+                       format_double(value) + " m is more than " +
+                       format_fixed(kMaxMarkingExtent, 0) + " m; painted " +
+                       format_fixed(kMaxMarkingExtent, 0) + " m"));
+  return kMaxMarkingExtent;
 }
 
 /// Paints flat quads given in road coordinates (s along, t across) into a mesh in `frame`.
@@ -210,25 +241,74 @@ struct CoveredLane {
   bool operator<(const CoveredLane& o) const { return t0 < o.t0; }
 };
 
-/// Symbol polygons (x the lane's way, y to its left) painted centred on (s_mid, t_mid).
+/// The part of a convex polygon on the side x >= cut (side +1) or x <= cut (side -1): convex,
+/// counter-clockwise like it; fewer than 3 corners when nothing is left.
+PaintPolygon clip_symbol_at_x(const PaintPolygon& polygon, double cut, int side) {
+  PaintPolygon out;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Vec2 a = polygon[i], b = polygon[(i + 1) % polygon.size()];
+    const double da = side * (a.x - cut), db = side * (b.x - cut);
+    if (da >= 0.0) {
+      out.push_back(a);
+    }
+    if ((da > 0.0 && db < 0.0) || (da < 0.0 && db > 0.0)) {
+      const double f = da / (da - db);
+      out.push_back({cut, a.y + f * (b.y - a.y)});
+    }
+  }
+  return out;
+}
+
+/// Symbol polygons (x the lane's way, y to its left) painted centred on (s_mid, t_mid). The
+/// road's frame bends with the road, so a polygon longer than kSymbolSlab along x is cut into
+/// slabs of at most that length (each still convex), whose corners then follow a curve's lane
+/// offsets to within millimetres (a 0.5 m chord at a 20 m radius is 1.6 mm off its arc).
 void paint_symbol(RoadPainter& paint, const std::vector<PaintPolygon>& symbol, double s_mid,
                   double t_mid, int dir) {
+  constexpr double kSymbolSlab = 0.5;
   std::vector<std::pair<double, double>> corners;
-  for (const PaintPolygon& polygon : symbol) {
+  auto paint_piece = [&](const PaintPolygon& piece) {
     corners.clear();
-    for (const Vec2& p : polygon) {
+    for (const Vec2& p : piece) {
       corners.emplace_back(s_mid + dir * p.x, t_mid + dir * p.y);  // a half turn keeps winding
     }
     paint.polygon(corners);
+  };
+  for (const PaintPolygon& polygon : symbol) {
+    double x_min = polygon.front().x, x_max = polygon.front().x;
+    for (const Vec2& p : polygon) {
+      x_min = std::min(x_min, p.x);
+      x_max = std::max(x_max, p.x);
+    }
+    const int slabs = static_cast<int>(std::ceil((x_max - x_min) / kSymbolSlab - 1e-9));
+    if (slabs <= 1) {
+      paint_piece(polygon);
+      continue;
+    }
+    const double step = (x_max - x_min) / slabs;
+    for (int k = 0; k < slabs; ++k) {
+      PaintPolygon piece = polygon;
+      if (k > 0) {
+        piece = clip_symbol_at_x(piece, x_min + k * step, 1);
+      }
+      if (k + 1 < slabs) {
+        piece = clip_symbol_at_x(piece, x_min + (k + 1) * step, -1);
+      }
+      if (piece.size() >= 3) {
+        paint_piece(piece);
+      }
+    }
   }
 }
 
-void paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1,
+/// Paints the marking on one covered lane from s0 to s1; false when a word does not fit the
+/// lane (every other marking is painted, or left out by its own rule, and returns true).
+bool paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1,
                 const CoveredLane& lane, double t_first) {
   const double t0 = lane.t0, t1 = lane.t1;
   if (spec.kind == MarkKind::kCrosswalkAhead) {
     paint_diamond(paint, s0, s1, t0, t1);
-    return;
+    return true;
   }
   if (spec.kind == MarkKind::kArrow) {
     // A straight arrow 0.9 m across (its head), a turning one 1.8 m, kept 0.3 m off the lines.
@@ -238,34 +318,46 @@ void paint_span(RoadPainter& paint, const MarkSpec& spec, double s0, double s1,
       paint_symbol(paint, arrow_symbol(spec.arrow, s1 - s0, across), 0.5 * (s0 + s1),
                    0.5 * (t0 + t1), lane.dir);
     }
-    return;
+    return true;
   }
   if (spec.kind == MarkKind::kWord) {
-    // Syllables at most 1 m wide with 0.2 m between them, kept 0.3 m off the lines.
+    // Syllables at most 1 m wide with kHangulSyllableGap of one between them, kept 0.3 m off
+    // the lines; at least 0.3 m wide, or the word is not painted in this lane.
     const std::u32string_view word(spec.word);
     const double n = static_cast<double>(word.size());
-    const double across = std::min(n + 0.2 * (n - 1.0), t1 - t0 - 0.6);
-    std::vector<PaintPolygon> symbol;
-    if (across > 0.3 * n && hangul_symbol(word, s1 - s0, across, symbol)) {
-      paint_symbol(paint, symbol, 0.5 * (s0 + s1), 0.5 * (t0 + t1), lane.dir);
+    const double across = std::min(n + kHangulSyllableGap * (n - 1.0), t1 - t0 - 0.6);
+    if (across <= 0.3 * n) {
+      return false;
     }
-    return;
+    std::vector<PaintPolygon> symbol;
+    if (!hangul_symbol(word, s1 - s0, across, symbol)) {
+      // The painted words are our constants: a syllable hangul_symbol lacks is our bug.
+      throw std::logic_error("a painted road word uses a syllable hangul_symbol does not know");
+    }
+    paint_symbol(paint, symbol, 0.5 * (s0 + s1), 0.5 * (t0 + t1), lane.dir);
+    return true;
   }
   if (spec.kind == MarkKind::kStopLine) {
     paint.quad(s0, s1, t0, t1);
-    return;
+    return true;
   }
   // Bars (crosswalk: 0.5 m every 1.0 m) or dashes (give-way line: 0.5 m every 0.75 m) laid out
   // from the first covered lane's edge, so that they run on across lane borders.
   const double bar = 0.5;
   const double period = spec.kind == MarkKind::kCrosswalk ? 1.0 : 0.75;
+  // At most one bar per period of the lane's width (and two for the ends; no lane is wider
+  // than kMaxMarkingExtent): counted, since a += period stops advancing where t is large.
   const double k0 = std::floor((t0 - t_first) / period);
-  for (double a = t_first + k0 * period; a < t1; a += period) {
+  const double span = t1 - t0 <= kMaxMarkingExtent ? t1 - t0 : kMaxMarkingExtent;
+  const auto bars = static_cast<int64_t>(std::ceil(span / period)) + 2;
+  double a = t_first + k0 * period;
+  for (int64_t k = 0; k < bars && a < t1; ++k, a += period) {
     paint.quad(s0, s1, std::max(a, t0), std::min(a + bar, t1));
   }
+  return true;
 }
 
-/// The lanes a marking covers at s_mid (see covers()).
+/// The lanes a marking covers at s_mid (see covers()); a word covers no biking lane.
 std::vector<CoveredLane> covered_lanes(const WorldBuild& w, size_t r, const xodr::Signal& s,
                                        const MarkSpec& spec, double s_mid) {
   const xodr::Road& road = w.map.road(r);
@@ -277,7 +369,10 @@ std::vector<CoveredLane> covered_lanes(const WorldBuild& w, size_t r, const xodr
   for (const xodr::LaneSpan& span : spans) {
     const auto lane = std::find_if(lanes.begin(), lanes.end(),
                                    [&](const xodr::Lane& l) { return l.id == span.id; });
-    if (lane != lanes.end() && span.width() > 0.05 &&
+    // Words speak to drivers: a biking lane gets none.
+    const bool skipped = spec.kind == MarkKind::kWord && lane != lanes.end() &&
+                         lane->type == xodr::LaneType::kBiking;
+    if (lane != lanes.end() && !skipped && span.width() > 0.05 &&
         covers(s, *lane, left_hand, spec.kind == MarkKind::kCrosswalk)) {
       const bool towards_plus_s = (lane->id < 0) != left_hand;
       covered.push_back({span.t_min(), span.t_max(), towards_plus_s ? 1 : -1});
@@ -296,6 +391,7 @@ void add_marking(WorldBuild& w, RoadPainter& paint, const Rigid& frame, const Ma
   }
   ObjectInfo info = signal_info(s);
   info.kind = spec.label;
+  info.text = spec.text;
   StaticMesh mesh = to_static_mesh(paint.builder().take(), frame, "road marking " + s.id);
   mesh.object = info;
   mesh.instance_id = kStaticInstanceBase + static_cast<uint32_t>(w.scene.static_mesh_count());
@@ -314,7 +410,8 @@ void build_hatched_area(WorldBuild& w, size_t r, const xodr::Signal& s, const Ma
                                             "') gives no length and width; left out"));
     return;
   }
-  const double along = std::min(s.length, road.length);
+  const double along = capped_marking_extent(w, s, std::min(s.length, road.length), "length");
+  const double across = capped_marking_extent(w, s, s.width, "width");
   const double s_mid = std::clamp(s.s, 0.5 * along, road.length - 0.5 * along);
   const xodr::WorldPose p = w.map.world_pose(r, s_mid, 0.0);
   const Rigid frame = rigid_from_pose(p.x, p.y, p.z, p.h, 0.0, 0.0);
@@ -325,7 +422,7 @@ void build_hatched_area(WorldBuild& w, size_t r, const xodr::Signal& s, const Ma
   // Stripes 0.3 m wide every 1.5 m (cross-hatched every 2 m), a 0.2 m border.
   paint_symbol(
       paint,
-      hatch_symbol(along, s.width, spec.yellow ? 0.2 : 0.3, spec.yellow ? 2.0 : 1.5, spec.yellow),
+      hatch_symbol(along, across, spec.yellow ? 0.2 : 0.3, spec.yellow ? 2.0 : 1.5, spec.yellow),
       s_mid, s.t, 1);
   add_marking(w, paint, frame, spec, s);
 }
@@ -354,14 +451,17 @@ bool build_signal_marking(WorldBuild& w, size_t r, const xodr::Signal& s) {
     return true;
   }
   const xodr::Road& road = w.map.road(r);
-  const double along = std::min(s.length > 0.01 ? s.length : spec->along, road.length);
+  double along = std::min(s.length > 0.01 ? s.length : spec->along, road.length);
+  if (spec->kind == MarkKind::kWord || spec->kind == MarkKind::kArrow) {
+    along = capped_marking_extent(w, s, along, "length");  // a symbol is cut every 0.5 m
+  }
   // Centred on s, shifted to stay on the road (a stop line at a road's end, as maps put them).
   const double s0 = std::clamp(s.s - 0.5 * along, 0.0, road.length - along);
   const double s1 = s0 + along;
   const double s_mid = 0.5 * (s0 + s1);
   std::vector<CoveredLane> covered = covered_lanes(w, r, s, *spec, s_mid);
   if (covered.empty()) {
-    const double width = s.width > 0.1 ? s.width : 3.0;
+    const double width = s.width > 0.1 ? capped_marking_extent(w, s, s.width, "width") : 3.0;
     w.diagnostics.add_once("signal-marking-lanes:" + s.id,
                            make_warning(file, s.line,
                                         "road marking signal " + s.id + " covers no lane at s " +
@@ -372,8 +472,16 @@ bool build_signal_marking(WorldBuild& w, size_t r, const xodr::Signal& s) {
   const xodr::WorldPose p = w.map.world_pose(r, s_mid, 0.0);
   const Rigid frame = rigid_from_pose(p.x, p.y, p.z, p.h, 0.0, 0.0);
   RoadPainter paint(w.map, r, frame);
+  bool fits = false;
   for (const CoveredLane& lane : covered) {
-    paint_span(paint, *spec, s0, s1, lane, covered.front().t0);
+    fits = paint_span(paint, *spec, s0, s1, lane, covered.front().t0) || fits;
+  }
+  if (!fits) {
+    w.diagnostics.add_once("signal-marking-fit:" + s.id,
+                           make_warning(file, s.line,
+                                        "road marking signal " + s.id + " (type '" + s.type +
+                                            "'): no lane it covers at s " + format_fixed(s_mid, 2) +
+                                            " is wide enough for its word; left out"));
   }
   add_marking(w, paint, frame, *spec, s);
   return true;

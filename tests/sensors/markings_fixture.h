@@ -12,10 +12,10 @@
 
 namespace corsa::test {
 
-/// A straight 100 m road along +x (so t is y): a sidewalk and one lane on the left, two lanes
-/// and a sidewalk on the right, every lane 3.5 m and sidewalks 2 m wide; its signals are
-/// `signals` and its objects `objects`.
-inline corsa::xodr::Map street_with(const std::string& signals, const std::string& objects = "") {
+/// The OpenDRIVE text of a straight 100 m road along +x (so t is y): a sidewalk and one lane on
+/// the left, two lanes and a sidewalk on the right, every lane 3.5 m and sidewalks 2 m wide; its
+/// signals are `signals` and its objects `objects`. Tests that need another shape edit it.
+inline std::string street_text(const std::string& signals, const std::string& objects = "") {
   const std::string lane =
       R"(<lane id="ID" type="TYPE"><width sOffset="0" a="W" b="0" c="0" d="0"/></lane>)";
   auto make = [&](const char* id, const char* type, const char* w) {
@@ -25,19 +25,27 @@ inline corsa::xodr::Map street_with(const std::string& signals, const std::strin
     l.replace(l.find("W\""), 1, w);
     return l;
   };
-  const std::string text =
-      R"(<?xml version="1.0"?><OpenDRIVE><header revMajor="1" revMinor="8"/>
+  return R"(<?xml version="1.0"?><OpenDRIVE><header revMajor="1" revMinor="8"/>
 <road id="1" length="100" junction="-1"><planView>
 <geometry s="0" x="0" y="0" hdg="0" length="100"><line/></geometry></planView>
 <lanes><laneSection s="0"><left>)" +
-      make("2", "sidewalk", "2") + make("1", "driving", "3.5") + R"(</left>
+         make("2", "sidewalk", "2") + make("1", "driving", "3.5") + R"(</left>
 <center><lane id="0" type="none"/></center><right>)" +
-      make("-1", "driving", "3.5") + make("-2", "driving", "3.5") + make("-3", "sidewalk", "2") +
-      R"(</right></laneSection></lanes><objects>)" + objects + R"(</objects><signals>)" + signals +
-      R"(</signals></road></OpenDRIVE>)";
+         make("-1", "driving", "3.5") + make("-2", "driving", "3.5") + make("-3", "sidewalk", "2") +
+         R"(</right></laneSection></lanes><objects>)" + objects + R"(</objects><signals>)" +
+         signals + R"(</signals></road></OpenDRIVE>)";
+}
+
+/// The map of an OpenDRIVE text (such as street_text's).
+inline corsa::xodr::Map map_of(const std::string& text) {
   corsa::Diagnostics diagnostics;
   return corsa::xodr::Map::build(corsa::xodr::parse_xodr_text(text, "markings.xodr", diagnostics),
                                  diagnostics);
+}
+
+/// The map of street_text(signals, objects).
+inline corsa::xodr::Map street_with(const std::string& signals, const std::string& objects = "") {
+  return map_of(street_text(signals, objects));
 }
 
 /// The world of `map` without plants, street lights and street furniture (nothing over the road

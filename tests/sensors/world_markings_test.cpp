@@ -210,3 +210,30 @@ TEST_CASE("traffic lights from the NGII import get Korean horizontal heads",
   CHECK_FALSE(head_at(70.0, -7.4));
   CHECK(head_at(70.0, -8.0));
 }
+
+TEST_CASE("marking signals with wild sizes are capped at 50 m with a located warning and end",
+          "[sensors][world][signals][markings][robustness]") {
+  // A crosswalk and a give-way line covering no lane fall back to their width around t: 1e300
+  // m (where a += 1 m no longer moves) and 1e9 m (1e9 bars) are capped; so are the hatched
+  // areas' sizes (1e300 m would overflow their stripe count) and a word's length.
+  const auto map = street_with(
+      R"(<signal id="zebra" s="20" t="0" orientation="none" dynamic="no" country="DE" type="293" subtype="-1" width="1e300">
+           <validity fromLane="7" toLane="7"/></signal>
+         <signal id="yield" s="35" t="0" orientation="none" dynamic="no" country="DE" type="341" subtype="-1" width="1e9">
+           <validity fromLane="7" toLane="7"/></signal>
+         <signal id="island" s="60" t="0" orientation="none" dynamic="no" country="KR" type="531" subtype="-1" length="1e300" width="1e300"/>
+         <signal id="box" s="80" t="-3.5" orientation="none" dynamic="no" country="KR" type="524" subtype="-1" length="8" width="1e300"/>
+         <signal id="slow" s="50" t="-1.75" orientation="+" dynamic="no" country="KR" type="519" subtype="-1" length="1e300"/>)");
+  auto world = marked_world(map);
+  CHECK(world->report.markings == 5);
+  int capped = 0;
+  for (const auto& warning : world->warnings) {
+    CHECK(warning.line > 0);
+    if (warning.message.find("is more than 50 m; painted 50 m") != std::string::npos) {
+      ++capped;
+    }
+  }
+  CHECK(capped == 6);  // the two widths, 531's length and width, 524's width, 519's length
+  CHECK(paint_at(world->scene, 20.0, 0.25));  // the zebra's bars from t -25, every 1 m
+  CHECK_FALSE(paint_at(world->scene, 20.0, 0.75));
+}

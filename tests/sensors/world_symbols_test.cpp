@@ -49,6 +49,22 @@ bool in_symbol(const std::vector<detail::PaintPolygon>& symbol, double x, double
   return false;
 }
 
+/// The distance from (x, y) to the nearest polygon edge of the symbol.
+double word_edge_distance(const std::vector<detail::PaintPolygon>& symbol, double x, double y) {
+  double best = 1e9;
+  const Vec2 q{x, y};
+  for (const detail::PaintPolygon& p : symbol) {
+    for (size_t i = 0; i < p.size(); ++i) {
+      const Vec2 a = p[i], b = p[(i + 1) % p.size()];
+      const Vec2 d = b - a;
+      const double f = std::clamp(dot(q - a, d) / std::max(dot(d, d), 1e-12), 0.0, 1.0);
+      const Vec2 e = a + d * f - q;
+      best = std::min(best, std::sqrt(dot(e, e)));
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 TEST_CASE("the arrow shapes keep to their box and point where their names say",
@@ -122,22 +138,6 @@ TEST_CASE("a Korean left-turn arrow for the other direction turns to that driver
   CHECK_FALSE(paint_at(world->scene, 50.0, -1.75));  // the other lanes are not its own
 }
 
-/// The distance from (x, y) to the nearest polygon edge of the symbol.
-double edge_distance(const std::vector<detail::PaintPolygon>& symbol, double x, double y) {
-  double best = 1e9;
-  const Vec2 q{x, y};
-  for (const detail::PaintPolygon& p : symbol) {
-    for (size_t i = 0; i < p.size(); ++i) {
-      const Vec2 a = p[i], b = p[(i + 1) % p.size()];
-      const Vec2 d = b - a;
-      const double f = std::clamp(dot(q - a, d) / std::max(dot(d, d), 1e-12), 0.0, 1.0);
-      const Vec2 e = a + d * f - q;
-      best = std::min(best, std::sqrt(dot(e, e)));
-    }
-  }
-  return best;
-}
-
 TEST_CASE("Hangul words are convex strokes inside their box, one syllable after another",
           "[sensors][world][markings][korea]") {
   // 천천히 4 m along and 2.9 m across: three syllables 0.853 m wide with 0.171 m between them.
@@ -177,6 +177,14 @@ TEST_CASE("Hangul words are convex strokes inside their box, one syllable after 
   std::vector<detail::PaintPolygon> other;
   CHECK_FALSE(detail::hangul_symbol(U"\uC815\uC560", 4.0, 2.0, other));  // 정애
   CHECK(other.empty());
+  // Finals ㅈ ㅊ ㅎ would be squeezed unreadable into the final's low box: refused (낮 낯 낳),
+  // while ㄱ as a final is known (낙).
+  for (const char32_t* refused : {U"\uB0AE", U"\uB0AF", U"\uB0B3"}) {
+    CHECK_FALSE(detail::hangul_symbol(refused, 4.0, 1.0, other));
+    CHECK(other.empty());
+  }
+  CHECK(detail::hangul_symbol(U"\uB099", 4.0, 1.0, other));  // 낙
+  other.clear();
   CHECK(detail::hangul_symbol(U"\uC815\uC9C0", 4.0, 2.2, other));  // 정지
 }
 
@@ -199,9 +207,11 @@ TEST_CASE("Korean slow and stop word signals are Hangul paint in their lane, rea
     double s_mid, t_mid, across;
     int dir;
     const char* type;
+    const char* signal_id;
+    const char* text;  ///< the word in UTF-8
   };
-  const Placed marks[] = {{U"\uCC9C\uCC9C\uD788", 40.0, -1.75, 2.9, 1, "519"},
-                          {U"\uC815\uC9C0", 70.0, 1.75, 2.2, -1, "521"}};
+  const Placed marks[] = {{U"\uCC9C\uCC9C\uD788", 40.0, -1.75, 2.9, 1, "519", "slow", "천천히"},
+                          {U"\uC815\uC9C0", 70.0, 1.75, 2.2, -1, "521", "stop", "정지"}};
   for (const Placed& m : marks) {
     std::vector<detail::PaintPolygon> symbol;
     REQUIRE(detail::hangul_symbol(m.word, 4.0, m.across, symbol));
@@ -210,7 +220,7 @@ TEST_CASE("Korean slow and stop word signals are Hangul paint in their lane, rea
       for (double dt = -1.75; dt <= 1.75; dt += 0.05) {
         const double s = m.s_mid + ds, t = m.t_mid + dt;
         const double x = m.dir * ds, y = m.dir * dt;  // the symbol frame: x the driver's way
-        if (edge_distance(symbol, x, y) < 0.02) {
+        if (word_edge_distance(symbol, x, y) < 0.02) {
           continue;
         }
         const bool want = in_symbol(symbol, x, y);
@@ -220,17 +230,119 @@ TEST_CASE("Korean slow and stop word signals are Hangul paint in their lane, rea
       }
     }
     CHECK(painted > compared / 10);
-    // Nothing outside the lane's 4 m, and the paint is labelled as the signal's text.
+    // Nothing outside the lane's 4 m.
     CHECK_FALSE(paint_at(world->scene, m.s_mid + 2.1, m.t_mid));
     CHECK_FALSE(paint_at(world->scene, m.s_mid - 2.1, m.t_mid));
+    // The paint is labelled as the signal's text, with the word: a point deep inside the first
+    // stroke (the mean of its corners, clear of its edges) hits the signal's object.
+    Vec2 inside{0.0, 0.0};
+    for (const Vec2& p : symbol.front()) {
+      inside = inside + p * (1.0 / static_cast<double>(symbol.front().size()));
+    }
+    REQUIRE(in_symbol(symbol, inside.x, inside.y));
+    REQUIRE(word_edge_distance(symbol, inside.x, inside.y) > 0.02);
+    const ObjectInfo info =
+        object_at(world->scene, m.s_mid + m.dir * inside.x, m.t_mid + m.dir * inside.y);
+    CHECK(info.kind == "text");
+    CHECK(info.type == m.type);
+    CHECK(info.signal_id == m.signal_id);
+    CHECK(info.text == m.text);
   }
-  const double unit = 2.9 / 3.4;  // 히's ㅣ, at u 0.82 of the third syllable's cell
-  const ObjectInfo slow = object_at(world->scene, 38.05, -1.75 + 1.45 - (2.4 + 0.82) * unit);
-  CHECK(slow.kind == "text");
-  CHECK(slow.type == "519");
-  CHECK(slow.signal_id == "slow");
   CHECK_FALSE(paint_at(world->scene, 40.0, 1.75));   // not the oncoming lane
   CHECK_FALSE(paint_at(world->scene, 70.0, -1.75));  // nor the other way
+}
+
+TEST_CASE(
+    "Korean words on a curve follow the lane: each stroke lies where the lane's s and t put "
+    "it",
+    "[sensors][world][signals][markings][korea]") {
+  // The same two words on a road bending left with a radius of 20 m. A stroke is mapped from
+  // the symbol's (x, y) to the road's (s, t); one mapped only at its corners would cut the
+  // curve's chord, up to 0.1 m off the lane's offset over a 4 m stroke. Every sample clear of a
+  // stroke's edge by 1 cm is paint exactly where the symbol is, at the pose of its (s, t).
+  std::string text = corsa::test::street_text(
+      R"(<signal id="slow" s="40" t="-1.75" orientation="+" dynamic="no" country="KR" type="519" subtype="-1"/>
+         <signal id="stop" s="70" t="1.75" orientation="-" dynamic="no" country="KR" type="521" subtype="-1"/>)");
+  REQUIRE(text.find("<line/>") != std::string::npos);
+  text.replace(text.find("<line/>"), 7, R"(<arc curvature="0.05"/>)");
+  const auto map = corsa::test::map_of(text);
+  auto world = marked_world(map);
+  CHECK(world->report.markings == 2);
+  CHECK(world->warnings.empty());
+  struct CurvedWord {
+    std::u32string word;
+    double s_mid, t_mid, across;
+    int dir;
+  };
+  const CurvedWord marks[] = {{U"\uCC9C\uCC9C\uD788", 40.0, -1.75, 2.9, 1},
+                              {U"\uC815\uC9C0", 70.0, 1.75, 2.2, -1}};
+  for (const CurvedWord& m : marks) {
+    std::vector<detail::PaintPolygon> symbol;
+    REQUIRE(detail::hangul_symbol(m.word, 4.0, m.across, symbol));
+    int painted = 0, compared = 0, wrong = 0;
+    for (double ds = -2.3; ds <= 2.3; ds += 0.025) {
+      for (double dt = -1.7; dt <= 1.7; dt += 0.025) {
+        const double x = m.dir * ds, y = m.dir * dt;
+        if (word_edge_distance(symbol, x, y) < 0.01) {
+          continue;
+        }
+        const corsa::xodr::WorldPose p = map.world_pose(0, m.s_mid + ds, m.t_mid + dt);
+        const bool want = in_symbol(symbol, x, y);
+        wrong += paint_at(world->scene, p.x, p.y) == want ? 0 : 1;
+        painted += want ? 1 : 0;
+        ++compared;
+      }
+    }
+    CHECK(wrong == 0);
+    CHECK(painted > compared / 10);
+  }
+}
+
+TEST_CASE("a Korean word signal whose lanes are too narrow for it is left out with a warning",
+          "[sensors][world][signals][markings][korea]") {
+  // 519 (천천히) on lane -1 alone, here 1.2 m wide: kept 0.3 m off the lines its three
+  // syllables would be 0.2 m wide, under the 0.3 m a syllable needs.
+  std::string text = corsa::test::street_text(
+      R"(<signal id="narrow" s="40" t="-0.6" orientation="+" dynamic="no" country="KR" type="519" subtype="-1">
+           <validity fromLane="-1" toLane="-1"/></signal>)");
+  const std::string wide = R"(<lane id="-1" type="driving"><width sOffset="0" a="3.5")";
+  REQUIRE(text.find(wide) != std::string::npos);
+  text.replace(text.find(wide), wide.size(),
+               R"(<lane id="-1" type="driving"><width sOffset="0" a="1.2")");
+  auto world = marked_world(corsa::test::map_of(text));
+  CHECK(world->report.markings == 0);
+  CHECK_FALSE(paint_at(world->scene, 40.0, -0.6));
+  REQUIRE(world->warnings.size() == 1);
+  CHECK(world->warnings[0].line > 0);
+  CHECK_THAT(world->warnings[0].message, Catch::Contains("narrow"));
+  CHECK_THAT(world->warnings[0].message, Catch::Contains("wide enough for its word"));
+}
+
+TEST_CASE("a Korean word signal is not painted in a biking lane it would otherwise cover",
+          "[sensors][world][signals][markings][korea]") {
+  // 521 (정지) for traffic towards +s covers lanes -1 and -2; here lane -2 is a biking lane:
+  // the word is painted in lane -1 only.
+  std::string text = corsa::test::street_text(
+      R"(<signal id="stop" s="40" t="-1.75" orientation="+" dynamic="no" country="KR" type="521" subtype="-1"/>)");
+  const std::string driving = R"(<lane id="-2" type="driving">)";
+  REQUIRE(text.find(driving) != std::string::npos);
+  text.replace(text.find(driving), driving.size(), R"(<lane id="-2" type="biking">)");
+  auto world = marked_world(corsa::test::map_of(text));
+  CHECK(world->report.markings == 1);
+  CHECK(world->warnings.empty());
+  std::vector<detail::PaintPolygon> symbol;
+  REQUIRE(detail::hangul_symbol(U"\uC815\uC9C0", 4.0, 2.2, symbol));
+  int in_lane = 0, in_biking_lane = 0;
+  for (double ds = -1.9; ds <= 1.9; ds += 0.1) {
+    for (double dt = -1.1; dt <= 1.1; dt += 0.1) {
+      if (in_symbol(symbol, ds, dt) && word_edge_distance(symbol, ds, dt) > 0.02) {
+        in_lane += paint_at(world->scene, 40.0 + ds, -1.75 + dt) ? 1 : 0;
+        in_biking_lane += paint_at(world->scene, 40.0 + ds, -5.25 + dt) ? 1 : 0;
+      }
+    }
+  }
+  CHECK(in_lane > 50);
+  CHECK(in_biking_lane == 0);
 }
 
 TEST_CASE("a Korean no-stopping zone with a size is a yellow cross-hatched box",
