@@ -186,7 +186,7 @@ sensors::Vec3 scene_origin(const xodr::Map& map, const xodr::RoadMesh& mesh,
     return header_centre;
   }
   diagnostics.add(make_warning(
-      map.data().source_file, 0,
+      map.data().source_file, h.line,
       "<header> bounds (west " + format_significant(h.west, 4) + ", east " +
           format_significant(h.east, 4) + ", south " + format_significant(h.south, 4) + ", north " +
           format_significant(h.north, 4) + ") are centred more than 1 km from the roads (x " +
