@@ -1,5 +1,6 @@
 #include "args.h"
 
+#include <algorithm>
 #include <iomanip>
 
 #include "corsa/core/strings.h"
@@ -74,6 +75,20 @@ std::optional<long long> ParsedArgs::integer(const std::string& name) const {
     throw UsageError(name + " expects an integer, got '" + *text + "'");
   }
   return *parsed;
+}
+
+std::optional<std::string> ParsedArgs::choice(const std::string& name,
+                                              const std::vector<std::string>& names) const {
+  auto text = value(name);
+  if (!text || std::find(names.begin(), names.end(), *text) != names.end()) {
+    return text;
+  }
+  std::string listed;
+  for (size_t i = 0; i < names.size(); ++i) {
+    listed += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+  }
+  throw UsageError(name + " expects " + listed + ", got '" + *text + "'" +
+                   did_you_mean(*text, names));
 }
 
 ArgParser::ArgParser(std::string usage, std::string summary)

@@ -34,6 +34,10 @@ class ParsedArgs {
   /// A numeric option; throws UsageError naming the option when the text is not a number.
   std::optional<double> number(const std::string& name) const;
   std::optional<long long> integer(const std::string& name) const;
+  /// An option whose value must be one of `names`; throws UsageError "NAME expects a, b or c,
+  /// got 'x'" (with the nearest name, when one is near) for any other text.
+  std::optional<std::string> choice(const std::string& name,
+                                    const std::vector<std::string>& names) const;
   const std::vector<std::string>& positionals() const { return positionals_; }
 
  private:

@@ -43,34 +43,18 @@ void read_npc(const std::string& text, engine::SimulationOptions& options) {
 }  // namespace
 
 engine::Semantics read_semantics(const ParsedArgs& parsed) {
-  const auto semantics = parsed.value("--semantics");
-  if (!semantics || *semantics == "standard") {
-    return engine::Semantics::kStandard;
-  }
-  if (*semantics == "esmini") {
-    return engine::Semantics::kEsmini;
-  }
-  const std::vector<std::string> names{"standard", "esmini"};
-  throw UsageError("--semantics expects standard or esmini, got '" + *semantics + "'" +
-                   did_you_mean(*semantics, names));
+  return parsed.choice("--semantics", {"standard", "esmini"}) == "esmini"
+             ? engine::Semantics::kEsmini
+             : engine::Semantics::kStandard;
 }
 
 namespace {
 
 engine::RecordingThread read_record_thread(const ParsedArgs& parsed) {
-  const auto thread = parsed.value("--record-thread");
-  if (!thread || *thread == "auto") {
-    return engine::RecordingThread::kAuto;
-  }
-  if (*thread == "caller") {
-    return engine::RecordingThread::kCaller;
-  }
-  if (*thread == "writer") {
-    return engine::RecordingThread::kWriter;
-  }
-  const std::vector<std::string> names{"auto", "caller", "writer"};
-  throw UsageError("--record-thread expects auto, caller or writer, got '" + *thread + "'" +
-                   did_you_mean(*thread, names));
+  const auto thread = parsed.choice("--record-thread", {"auto", "caller", "writer"});
+  return thread == "caller"   ? engine::RecordingThread::kCaller
+         : thread == "writer" ? engine::RecordingThread::kWriter
+                              : engine::RecordingThread::kAuto;
 }
 
 }  // namespace
@@ -141,12 +125,7 @@ engine::RunOptions read_run_options(const ParsedArgs& parsed) {
     }
     options.simulation.seed = static_cast<uint64_t>(*seed);
   }
-  if (auto controller = parsed.value("--controller")) {
-    if (*controller != "default" && *controller != "acc" && *controller != "dynamics") {
-      const std::vector<std::string> names{"default", "acc", "dynamics"};
-      throw UsageError("--controller expects default, acc or dynamics, got '" + *controller + "'" +
-                       did_you_mean(*controller, names));
-    }
+  if (auto controller = parsed.choice("--controller", {"default", "acc", "dynamics"})) {
     options.simulation.controller = *controller;
   }
   if (const auto threads = parsed.integer("--threads")) {

@@ -29,19 +29,9 @@ std::vector<const xosc::VisibilityAction*> visibility_actions_of(const xosc::Sce
       take(action);
     }
   }
-  for (const xosc::Story& story : scenario.storyboard.stories) {
-    for (const xosc::Act& act : story.acts) {
-      for (const xosc::ManeuverGroup& group : act.maneuver_groups) {
-        for (const xosc::Maneuver& maneuver : group.maneuvers) {
-          for (const xosc::Event& event : maneuver.events) {
-            for (const xosc::Action& action : event.actions) {
-              if (const auto* p = std::get_if<xosc::PrivateAction>(&action.action)) {
-                take(*p);
-              }
-            }
-          }
-        }
-      }
+  for (const xosc::Action* action : xosc::event_actions(scenario.storyboard)) {
+    if (const auto* p = std::get_if<xosc::PrivateAction>(&action->action)) {
+      take(*p);
     }
   }
   return out;

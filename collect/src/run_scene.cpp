@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -93,13 +92,6 @@ sensors::Vec3 map_centre(const xodr::Map* map) {
 
 namespace {
 
-/// `value` with four significant digits, for a message about magnitudes.
-std::string sensor_world_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", value);
-  return text;
-}
-
 /// Refuses a road surface the sensor world cannot hold, at the road's line: Embree traces in
 /// single precision around the scene's origin (a surface 2e303 m up, from an elevation of slope
 /// 1e300, failed its ray assertion and aborted). The ground's height field grows its cells with
@@ -121,11 +113,11 @@ void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMe
       if (std::abs(p.z - origin.z) > kMaxHeight && road_refused[index] == 0) {
         road_refused[index] = 1;
         const xodr::Road& road = map.road(index);
-        refused.push_back(make_error(map.data().source_file, road.line,
-                                     "road '" + clip(road.id) +
-                                         "': its surface reaches z = " + sensor_world_number(p.z) +
-                                         " m; sensors trace at most 1e6 m above or below the "
-                                         "map (elevation or lane heights too large)"));
+        refused.push_back(make_error(
+            map.data().source_file, road.line,
+            "road '" + clip(road.id) + "': its surface reaches z = " + format_significant(p.z, 4) +
+                " m; sensors trace at most 1e6 m above or below the "
+                "map (elevation or lane heights too large)"));
       }
       x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x),
       y1 = std::max(y1, p.y);
@@ -155,8 +147,8 @@ void refuse_surface_beyond_sensor_world(const xodr::Map& map, const xodr::RoadMe
   const xodr::Road& road = map.road(road_index);
   refused.push_back(make_error(
       map.data().source_file, road.line,
-      "road '" + clip(road.id) + "': the road surfaces span " + sensor_world_number(x1 - x0) +
-          " m x " + sensor_world_number(y1 - y0) +
+      "road '" + clip(road.id) + "': the road surfaces span " + format_significant(x1 - x0, 4) +
+          " m x " + format_significant(y1 - y0, 4) +
           " m; Corsa's sensor world holds at most 1000 km x 1000 km (a limit of Corsa's sensors, "
           "not a fault in the map)"));
   throw InputError(std::move(refused));
@@ -194,12 +186,12 @@ sensors::Vec3 scene_origin(const xodr::Map& map, const xodr::RoadMesh& mesh,
     return header_centre;
   }
   diagnostics.add(make_warning(
-      map.data().source_file, 0,
-      "<header> bounds (west " + sensor_world_number(h.west) + ", east " +
-          sensor_world_number(h.east) + ", south " + sensor_world_number(h.south) + ", north " +
-          sensor_world_number(h.north) + ") are centred more than 1 km from the roads (x " +
-          sensor_world_number(x0) + " to " + sensor_world_number(x1) + ", y " +
-          sensor_world_number(y0) + " to " + sensor_world_number(y1) +
+      map.data().source_file, h.line,
+      "<header> bounds (west " + format_significant(h.west, 4) + ", east " +
+          format_significant(h.east, 4) + ", south " + format_significant(h.south, 4) + ", north " +
+          format_significant(h.north, 4) + ") are centred more than 1 km from the roads (x " +
+          format_significant(x0, 4) + " to " + format_significant(x1, 4) + ", y " +
+          format_significant(y0, 4) + " to " + format_significant(y1, 4) +
           "): the sensor scene is centred on the roads instead"));
   return {0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.0};
 }
@@ -250,8 +242,9 @@ void warn_vehicles_too_large_for_details(const engine::Simulation& simulation,
       const auto* vehicle = std::get_if<xosc::Vehicle>(&object.object);
       const xosc::Source& where = vehicle != nullptr ? vehicle->bounding_box.source : object.source;
       diagnostics.add(where.warning(
-          "vehicle '" + clip(e.name) + "': its bounding box (" + sensor_world_number(e.box.length) +
-          " x " + sensor_world_number(e.box.width) + " x " + sensor_world_number(e.box.height) +
+          "vehicle '" + clip(e.name) + "': its bounding box (" +
+          format_significant(e.box.length, 4) + " x " + format_significant(e.box.width, 4) + " x " +
+          format_significant(e.box.height, 4) +
           " m) is larger than any vehicle the generated models detail (60 m long, or 1 km for "
           "trains and trams, 6 m wide, 8 m high): sensors see a plain box of its size"));
     }

@@ -66,6 +66,14 @@ std::string format_fixed(double value, int decimals) {
   return format_double(value);  // too large for fixed notation in 64 chars
 }
 
+std::string format_significant(double value, int digits) {
+  // The longest: a sign, 17 digits, the point and an exponent "e-308".
+  char buffer[32];
+  const auto [end, error] =
+      std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, digits);
+  return error == std::errc{} ? std::string(buffer, end) : format_double(value);
+}
+
 std::vector<std::string_view> split(std::string_view text, char separator) {
   std::vector<std::string_view> parts;
   size_t start = 0;

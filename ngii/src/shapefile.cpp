@@ -110,13 +110,6 @@ const char* family_name(ShapeFamily family) {
                                            : "PolyLine/PolyLineZ (3/13)";
 }
 
-// A coordinate as a message quotes it (ten significant digits, any magnitude).
-std::string shape_coordinate_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.10g", value);
-  return text;
-}
-
 uint32_t big_endian(const unsigned char* p) {
   return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};
 }
@@ -259,8 +252,8 @@ bool ShapeReader::read(int index, std::vector<Point3>& points, int& parts) const
          (has_z_ && object->padfZ != nullptr && outside(z, object->dfZMin, object->dfZMax)))) {
       fail(file_, index,
            "corrupt shape record: vertex " + std::to_string(i) + " (" +
-               shape_coordinate_text(object->padfX[i]) + ", " +
-               shape_coordinate_text(object->padfY[i]) + ", " + shape_coordinate_text(z) +
+               format_significant(object->padfX[i], 10) + ", " +
+               format_significant(object->padfY[i], 10) + ", " + format_significant(z, 10) +
                ") lies outside the record's bounding box");
     }
     points[static_cast<size_t>(i)] = Point3{object->padfX[i], object->padfY[i], z};

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "corsa/core/random.h"
+#include "corsa/sensors/semantic.h"
 #include "corsa/sensors/vehicle_size.h"
 #include "scalar_math.h"
 #include "scene_data.h"
@@ -154,24 +155,6 @@ void obstacle(const engine::EntitySnapshot& e, EntityShape& shape) {
                   materials::plain("obstacle", linear_rgb(200, 120, 40), 0.7), shape);
 }
 
-/// The semantic class of a vehicle category's generated model.
-SemanticClass vehicle_semantic_class(engine::EntityCategory category) {
-  using engine::EntityCategory;
-  switch (category) {
-    case EntityCategory::kTruck:
-    case EntityCategory::kTrailer:
-    case EntityCategory::kSemitrailer:
-      return SemanticClass::kTruck;
-    case EntityCategory::kBus:
-      return SemanticClass::kBus;
-    case EntityCategory::kTrain:
-    case EntityCategory::kTram:
-      return SemanticClass::kTrain;
-    default:
-      return SemanticClass::kCar;
-  }
-}
-
 }  // namespace
 
 void build_entity_shape(const engine::EntitySnapshot& e, uint64_t seed, EntityShape& shape) {
@@ -179,7 +162,7 @@ void build_entity_shape(const engine::EntitySnapshot& e, uint64_t seed, EntitySh
   RandomStream rng(derive_seed(seed, "look of " + e.name));
   if (vehicle_too_large_for_details(e.category, e.box)) {
     // Bounded cost whatever the size (vehicle_size.h): a box in the vehicle's class and paint.
-    plain_box_shape(e.box, vehicle_semantic_class(e.category), draw_car_paint(rng), shape);
+    plain_box_shape(e.box, semantic_class_of_entity(e.category), draw_car_paint(rng), shape);
     return;
   }
   GeneratedVehicle v;

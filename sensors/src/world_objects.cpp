@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <optional>
 
@@ -211,10 +210,8 @@ std::optional<Diagnostic> object_beyond_sensor_world(const std::string& file, co
   if (size <= kMaxObjectSize) {
     return std::nullopt;
   }
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", size);
   return make_error(file, o.line,
-                    "object '" + clip(o.id) + "': " + what + " is " + text +
+                    "object '" + clip(o.id) + "': " + what + " is " + format_significant(size, 4) +
                         " m long; no road holds an object longer than 1,000 km");
 }
 

@@ -49,6 +49,22 @@ TEST_CASE("NAME=VALUE options split at their first equals sign", "[cli][args]") 
   }
 }
 
+TEST_CASE("a choice option takes one of its names and refuses any other", "[cli][args]") {
+  ArgParser parser("run", "Runs.");
+  parser.option("--mode", "a|b|c", "a mode");
+  const auto mode = [&parser](std::vector<std::string> args, std::vector<std::string> names) {
+    return parser.parse(args).choice("--mode", names);
+  };
+  const std::vector<std::string> names{"auto", "caller", "writer"};
+  CHECK_FALSE(mode({}, names));
+  CHECK(mode({"--mode", "caller"}, names) == "caller");
+  CHECK_THROWS_WITH(
+      mode({"--mode", "writers"}, names),
+      "--mode expects auto, caller or writer, got 'writers' (did you mean 'writer'?)");
+  CHECK_THROWS_WITH(mode({"--mode", ""}, {"x", "y"}), "--mode expects x or y, got ''");
+  CHECK_THROWS_WITH(mode({"--mode", "zzz"}, {"one"}), "--mode expects one, got 'zzz'");
+}
+
 TEST_CASE("bad usage is reported with the option named", "[cli][args]") {
   const auto parser = run_parser();
   SECTION("unknown option") {

@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,25 @@ TEST_CASE("doubles format to the shortest text that reads back exactly", "[core]
   }
   CHECK(corsa::format_double(0.1) == "0.1");
   CHECK(corsa::format_fixed(3.14159, 2) == "3.14");
+}
+
+TEST_CASE("doubles format to N significant digits as printf's %.Ng does", "[core][strings]") {
+  CHECK(corsa::format_significant(1e30, 4) == "1e+30");
+  CHECK(corsa::format_significant(-1234.5678, 4) == "-1235");
+  CHECK(corsa::format_significant(0.000123456, 4) == "0.0001235");
+  CHECK(corsa::format_significant(12.0, 4) == "12");
+  CHECK(corsa::format_significant(0.1 + 0.2, 10) == "0.3");
+  CHECK(corsa::format_significant(1234567.891, 10) == "1234567.891");
+  // The same text as snprintf (C locale), which the messages used before, at any magnitude.
+  for (const int digits : {1, 4, 10, 17}) {
+    for (const double x : {0.0, -0.0, 1.0 / 3.0, -2e-308, 5e-324, 9.99995e5, 99999.5, 1e16,
+                           -1.7976931348623157e308, HUGE_VAL, -HUGE_VAL, std::nan("")}) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%.*g", digits, x);
+      INFO(text);
+      CHECK(corsa::format_significant(x, digits) == text);
+    }
+  }
 }
 
 TEST_CASE("text helpers split, trim and compare", "[core][strings]") {

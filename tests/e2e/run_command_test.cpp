@@ -1,6 +1,10 @@
 // `corsa run` from the command line: options, outputs, exit codes and messages.
 
 #include <algorithm>
+#include <iterator>
+#include <map>
+#include <utility>
+#include <vector>
 
 #include "csv_compare.h"
 #include "run_corsa.h"
@@ -53,16 +57,6 @@ TEST_CASE("corsa run rejects bad usage with exit 2", "[e2e][run]") {
   const ProcessResult thread = run_corsa({"run", kCutIn, "--record-thread", "writers"});
   CHECK(thread.exit_code == 2);
   CHECK(thread.err.find("--record-thread expects auto, caller or writer") != std::string::npos);
-  // A CSV trajectory is written on the run's thread: the option is refused, not ignored.
-  const ProcessResult csv_thread =
-      run_corsa({"run", kCutIn, "--record-thread", "writer", "--record", "x.csv"});
-  CHECK(csv_thread.exit_code == 2);
-  CHECK(csv_thread.err.find("--record-thread applies to binary trajectories only") !=
-        std::string::npos);
-  CHECK(csv_thread.err.find("x.csv") != std::string::npos);
-  const ProcessResult no_record = run_corsa({"run", kCutIn, "--record-thread", "caller"});
-  CHECK(no_record.exit_code == 2);
-  CHECK(no_record.err.find("no --record") != std::string::npos);
   CHECK(run_corsa({"run", kCutIn, "--param", "novalue"}).exit_code == 2);
   const ProcessResult unknown = run_corsa({"run", kCutIn, "--param", "NoSuchParameter=1"});
   CHECK(unknown.exit_code == 2);
@@ -124,19 +118,88 @@ TEST_CASE("corsa run writes byte-identical outputs for the same inputs", "[e2e][
 }
 
 TEST_CASE("corsa run writes the same binary trajectory on every recording thread", "[e2e][run]") {
+  // 300 NPC vehicles on Town04 code about 300 rows a tick: from --threads 2, auto (the default)
+  // moves the recording to its writer thread after its first 256 ticks (the engine's test "A
+  // binary trajectory moved to the writer thread mid-run ..." asserts the move), and writer
+  // encodes every tick there. Each file must be the bytes the run's own thread writes.
   TempDir dir;
-  const auto run = [&](const std::string& thread, const std::string& threads) {
-    const auto path = dir.path() / (thread + threads + ".corsatraj");
-    const ProcessResult result = run_corsa({"run", kCutIn, "--quiet", "--threads", threads,
-                                            "--record-thread", thread, "--record", path.string()});
+  const auto record = [&](const std::string& threads, const std::string& thread,
+                          const std::string& extension) {
+    const auto path = dir.path() / (threads + thread + extension);
+    std::vector<std::string> args{"run",
+                                  "scenarios/town04_junction.xosc",
+                                  "--quiet",
+                                  "--duration",
+                                  "4",
+                                  "--seed",
+                                  "3",
+                                  "--npc",
+                                  "vehicles=300",
+                                  "--threads",
+                                  threads,
+                                  "--record",
+                                  path.string()};
+    if (!thread.empty()) {
+      args.insert(args.end(), {"--record-thread", thread});
+    }
+    const ProcessResult result = run_corsa(args);
+    INFO(result.err);
     REQUIRE(result.exit_code == 0);
-    return slurp(path);
+    return path;
   };
-  const std::string bytes = run("caller", "1");
-  CHECK(bytes.size() > 100);
-  CHECK(run("writer", "1") == bytes);
-  CHECK(run("auto", "2") == bytes);
-  CHECK(run("writer", "2") == bytes);
+  // The run's thread: one thread, no --record-thread.
+  const auto own = record("1", "", ".corsatraj");
+  const std::string bytes = slurp(own);
+  CHECK(bytes.size() > 100000);
+  for (const auto& [threads, thread] :
+       std::vector<std::pair<std::string, std::string>>{{"1", "caller"},
+                                                        {"1", "writer"},
+                                                        {"2", ""},
+                                                        {"2", "auto"},
+                                                        {"2", "caller"},
+                                                        {"2", "writer"}}) {
+    INFO("--threads " << threads << " --record-thread '" << thread << "'");
+    const bool same = slurp(record(threads, thread, ".corsatraj")) == bytes;  // not printed: MBs
+    CHECK(same);
+  }
+  // The file holds the run's rows (the CSV it writes directly), and enough of them moving that
+  // auto's rule applies: 128 coded rows a tick or more over its first window of 256 ticks.
+  const auto csv = record("1", "", ".csv");
+  const auto exported = dir.path() / "exported.csv";
+  REQUIRE(run_corsa({"record", "export", own.string(), "-o", exported.string()}).exit_code == 0);
+  const std::string text = slurp(csv);
+  CHECK(slurp(exported) == text);
+  std::map<double, int> moving;
+  for (const TrajectoryRow& row : parse_trajectory(text)) {
+    moving[row.time] += row.speed != 0.0 ? 1 : 0;
+  }
+  REQUIRE(moving.size() == 401);  // ticks 0 to 400 of 10 ms
+  int window = 0;
+  for (auto it = moving.begin(); it != std::next(moving.begin(), 256); ++it) {
+    window += it->second;
+  }
+  CHECK(window >= 256 * 128);
+}
+
+TEST_CASE("corsa run refuses --record-thread without a binary trajectory", "[e2e][run]") {
+  // A CSV trajectory is written on the run's thread: the option is refused, not ignored, and
+  // nothing is written.
+  TempDir dir;
+  const auto csv = dir.path() / "x.csv";
+  const ProcessResult csv_thread =
+      run_corsa({"run", kCutIn, "--record-thread", "writer", "--record", csv.string()});
+  CHECK(csv_thread.exit_code == 2);
+  CHECK(csv_thread.err.find("--record-thread applies to binary trajectories only (--record "
+                            "FILE.corsatraj), got --record '" +
+                            csv.generic_string() + "'") != std::string::npos);
+  for (const char* thread : {"auto", "caller", "writer"}) {
+    const ProcessResult no_record = run_corsa(
+        {"run", kCutIn, "--record-thread", thread, "--summary", (dir.path() / "s.json").string()});
+    CHECK(no_record.exit_code == 2);
+    CHECK(no_record.err.find("--record-thread applies to binary trajectories only (--record "
+                             "FILE.corsatraj), got no --record") != std::string::npos);
+  }
+  CHECK(dir.entries() == 0);
 }
 
 }  // namespace

@@ -14,6 +14,18 @@
 namespace corsa::test {
 namespace {
 
+const std::filesystem::path kSmallRig =
+    std::filesystem::path(CORSA_SOURCE_DIR) / "scenarios/rigs/small.xml";
+
+/// `corsa run SCENARIO --duration 0.1 --quiet --rig RIG -o DATASET` (two frames of each sensor).
+BoundedResult run_with_rig(const std::filesystem::path& scenario, const std::filesystem::path& rig,
+                           const std::filesystem::path& dataset,
+                           int limit_seconds = kCaseTimeLimit) {
+  return run_bounded({"run", scenario.string(), "--duration", "0.1", "--quiet", "--rig",
+                      rig.string(), "-o", dataset.string()},
+                     limit_seconds);
+}
+
 /// A scenario of one car `dimensions` (Dimensions attributes) on road 1 of `map`, its
 /// BoundingBox on line 7.
 void write_one_car_drive(
@@ -71,8 +83,7 @@ TEST_CASE("Rigs with unknown sensors and absurd sizes are rejected at their line
                                              "name=\"broken\">\n  "
                                           << c.sensor << "\n</SensorRig>\n";
     const BoundedResult result =
-        run_bounded({"run", scenario, "--duration", "0.1", "--quiet", "--rig",
-                     (dir.path() / "rig.xml").string(), "-o", (dir.path() / "dataset").string()});
+        run_with_rig(scenario, dir.path() / "rig.xml", dir.path() / "dataset");
     INFO(describe(c.what, result));
     CHECK_FALSE(result.timed_out);
     CHECK(result.exit_code == 2);
@@ -101,8 +112,7 @@ TEST_CASE("A rig of more maximal sensors than one run can hold is rejected at th
   rig << "</SensorRig>\n";
   rig.close();
   const BoundedResult result =
-      run_bounded({"run", scenario, "--duration", "0.1", "--quiet", "--rig",
-                   (dir.path() / "rig.xml").string(), "-o", (dir.path() / "dataset").string()});
+      run_with_rig(scenario, dir.path() / "rig.xml", dir.path() / "dataset");
   INFO(describe("three 8192 x 8192 cameras", result));
   CHECK(result.exit_code == 2);
   CHECK(result.err.find("rig.xml:5: error: with this sensor the rig has") != std::string::npos);
@@ -139,9 +149,7 @@ TEST_CASE("A map whose surface or objects a sensor world cannot hold is refused 
     TempDir dir;
     write_one_car_drive(dir.path() / "drive.xosc", corpus / c.map);
     const BoundedResult result =
-        run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
-                     "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
-                     (dir.path() / "dataset").string()});
+        run_with_rig(dir.path() / "drive.xosc", kSmallRig, dir.path() / "dataset");
     INFO(describe(c.map, result));
     CHECK_FALSE(result.timed_out);
     CHECK(result.exit_code == 2);
@@ -160,10 +168,8 @@ TEST_CASE("Roads tens of kilometres apart get a sensor world of larger ground ce
   TempDir dir;
   write_one_car_drive(dir.path() / "drive.xosc", corpus / "ok_roads_40km_apart.xodr");
   const BoundedResult result =
-      run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
-                   "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
-                   (dir.path() / "dataset").string()},
-                  300);  // about 20 s of CPU time, mostly the ground's 2^22 cells
+      run_with_rig(dir.path() / "drive.xosc", kSmallRig, dir.path() / "dataset",
+                   300);  // about 20 s of CPU time, mostly the ground's 2^22 cells
   INFO(describe("roads 40 km apart", result));
   CHECK_FALSE(result.timed_out);
   CHECK(result.exit_code == 0);
@@ -188,9 +194,7 @@ TEST_CASE("A vehicle larger than any is a plain box to the sensors, with a warni
     write_one_car_drive(dir.path() / "drive.xosc", map,
                         "width=\"" + s + "\" length=\"" + s + "\" height=\"" + s + "\"");
     const BoundedResult result =
-        run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
-                     "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
-                     (dir.path() / "dataset").string()});
+        run_with_rig(dir.path() / "drive.xosc", kSmallRig, dir.path() / "dataset");
     INFO(describe(std::string("a car of ") + size + " m", result));
     CHECK_FALSE(result.timed_out);
     CHECK(result.exit_code == 0);
@@ -213,9 +217,7 @@ TEST_CASE("A vehicle larger than any is a plain box to the sensors, with a warni
         " model3d=\"" + std::string(CORSA_SOURCE_DIR) + "/scenarios/models/street_district.obj\"");
     std::ofstream(dir.path() / "drive.xosc") << text;
     const BoundedResult result =
-        run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
-                     "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
-                     (dir.path() / "dataset").string()});
+        run_with_rig(dir.path() / "drive.xosc", kSmallRig, dir.path() / "dataset");
     INFO(describe("a car of 1000 m with a model3d", result));
     CHECK(result.exit_code == 0);
     CHECK(result.err.find("cannot use the model") == std::string::npos);
@@ -225,9 +227,7 @@ TEST_CASE("A vehicle larger than any is a plain box to the sensors, with a warni
   TempDir dir;
   write_one_car_drive(dir.path() / "drive.xosc", map, "width=\"3\" length=\"25\" height=\"4.5\"");
   const BoundedResult result =
-      run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
-                   "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
-                   (dir.path() / "dataset").string()});
+      run_with_rig(dir.path() / "drive.xosc", kSmallRig, dir.path() / "dataset");
   INFO(describe("a car of 25 x 3 x 4.5 m", result));
   CHECK(result.exit_code == 0);
   CHECK(result.err.find("larger than any vehicle") == std::string::npos);
@@ -241,12 +241,11 @@ TEST_CASE("Header bounds far from the roads do not move the sensor scene there",
   TempDir dir;
   write_one_car_drive(dir.path() / "drive.xosc", corpus / "ok_header_bounds_far_from_roads.xodr");
   const BoundedResult result =
-      run_bounded({"run", (dir.path() / "drive.xosc").string(), "--duration", "0.1", "--quiet",
-                   "--rig", std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
-                   (dir.path() / "dataset").string()});
+      run_with_rig(dir.path() / "drive.xosc", kSmallRig, dir.path() / "dataset");
   INFO(describe("header bounds 1e30 m away", result));
   CHECK(result.exit_code == 0);
-  CHECK(result.err.find("ok_header_bounds_far_from_roads.xodr: warning: <header> bounds (west "
+  // At the header's line (line 5 of the file).
+  CHECK(result.err.find("ok_header_bounds_far_from_roads.xodr:5: warning: <header> bounds (west "
                         "-1e+30, east 1e+30, south 1e+29, north 1e+30) are centred more than "
                         "1 km from the roads") != std::string::npos);
   // The LiDAR sees the road and the ground (it saw nothing: no point at all).
@@ -273,10 +272,8 @@ TEST_CASE("The sun is placed at the sensor scene's origin, the roads when the bo
   std::ofstream(dir.path() / "near.xodr") << text;
   const auto images_of = [&dir](const std::filesystem::path& map, const std::string& name) {
     write_one_car_drive(dir.path() / (name + ".xosc"), map);
-    const BoundedResult result = run_bounded(
-        {"run", (dir.path() / (name + ".xosc")).string(), "--duration", "0.1", "--quiet", "--rig",
-         std::string(CORSA_SOURCE_DIR) + "/scenarios/rigs/small.xml", "-o",
-         (dir.path() / name).string()});
+    const BoundedResult result =
+        run_with_rig(dir.path() / (name + ".xosc"), kSmallRig, dir.path() / name);
     INFO(describe(name, result));
     CHECK(result.exit_code == 0);
     std::string bytes;

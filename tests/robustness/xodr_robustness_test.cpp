@@ -2,6 +2,8 @@
 // case ends with exit 0 (still valid) or exit 2 and a located error, within the time limit, and a
 // rejected mesh leaves no file behind.
 
+#include <algorithm>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -14,6 +16,20 @@ namespace {
 
 std::string shared_map(const std::string& name) {
   return slurp(std::filesystem::path(CORSA_SHARED_DIR) / "data" / "xodr" / name);
+}
+
+/// The maps of tests/robustness/corpus that must load (ok_*.xodr), in name order.
+std::vector<std::filesystem::path> valid_corpus_maps() {
+  const auto corpus = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/robustness/corpus";
+  std::vector<std::filesystem::path> maps;
+  for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
+    if (entry.path().extension() == ".xodr" &&
+        entry.path().filename().string().starts_with("ok_")) {
+      maps.push_back(entry.path());
+    }
+  }
+  std::sort(maps.begin(), maps.end());
+  return maps;
 }
 
 /// Writes `text` as map.xodr in `dir`, runs `corsa map mesh` on it into dir/out.obj and checks
@@ -168,16 +184,11 @@ std::vector<std::string> bad_vertex_lines(const std::string& obj) {
 TEST_CASE("The valid maps of the corpus mesh in time, every OBJ vertex with three coordinates",
           "[robustness][xodr]") {
   // ok_spiral_overlapping_line.xodr ran for minutes; ok_lane_width_1e206.xodr lost coordinates.
-  const auto corpus = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/robustness/corpus";
-  for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
-    const std::string name = entry.path().filename().string();
-    if (entry.path().extension() != ".xodr" || !name.starts_with("ok_")) {
-      continue;
-    }
+  for (const std::filesystem::path& map : valid_corpus_maps()) {
+    const std::string name = map.filename().string();
     TempDir out;
     const auto obj = out.path() / "map.obj";
-    const BoundedResult result =
-        run_bounded({"map", "mesh", entry.path().string(), "-o", obj.string()});
+    const BoundedResult result = run_bounded({"map", "mesh", map.string(), "-o", obj.string()});
     INFO(describe("map mesh " + name, result));
     CHECK_FALSE(result.timed_out);
     CHECK(result.exit_code == 0);
@@ -192,16 +203,12 @@ TEST_CASE("map holes and map render end in time on every valid map of the corpus
   // Found by tests/robustness/campaign.py: `map holes` on ok_lane_width_1e20.xodr and
   // ok_lane_width_1e206.xodr never ended (each lane triangle was sorted into every 16 m bin it
   // covers: 1e36 of them).
-  const auto corpus = std::filesystem::path(CORSA_SOURCE_DIR) / "tests/robustness/corpus";
-  for (const auto& entry : std::filesystem::directory_iterator(corpus)) {
-    const std::string name = entry.path().filename().string();
-    if (entry.path().extension() != ".xodr" || !name.starts_with("ok_")) {
-      continue;
-    }
+  for (const std::filesystem::path& map : valid_corpus_maps()) {
+    const std::string name = map.filename().string();
     TempDir out;
     for (const std::vector<std::string>& args :
-         {std::vector<std::string>{"map", "holes", entry.path().string(), "--list"},
-          std::vector<std::string>{"map", "render", entry.path().string(), "-o",
+         {std::vector<std::string>{"map", "holes", map.string(), "--list"},
+          std::vector<std::string>{"map", "render", map.string(), "-o",
                                    (out.path() / "map.png").string(), "--size", "128"}}) {
       const BoundedResult result = run_bounded(args);
       INFO(describe(args[1] + " " + name, result));

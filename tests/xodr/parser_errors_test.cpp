@@ -155,6 +155,14 @@ TEST_CASE("entities, CDATA and comments are read", "[xodr][errors]") {
   CHECK(data.roads.at(1).line == 19);  // one line more: the comment
 }
 
+TEST_CASE("the header keeps its source line for messages about it", "[xodr][errors]") {
+  corsa::Diagnostics diagnostics;
+  CHECK(parse_xodr_text(kRoad, "x.xodr", diagnostics).header.line == 3);
+  const std::string lower = replace(kRoad, "<OpenDRIVE>", "<OpenDRIVE>\n\n  <!-- two lines -->");
+  CHECK(parse_xodr_text(lower, "x.xodr", diagnostics).header.line == 5);
+  CHECK(MapData{}.header.line == 0);  // built in memory
+}
+
 TEST_CASE("character references are digits naming a character XML allows", "[xodr][errors]") {
   // XML 1.0 §4.1 [66] and §2.2 [2]: tab, line feed, carriage return and U+0020 up, except the
   // surrogates, U+FFFE and U+FFFF; leading zeros are fine.

@@ -1,6 +1,9 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <initializer_list>
+#include <string>
 #include <variant>
+#include <vector>
 
 #include "corsa/xosc/scenario.h"
 #include "shared_data.h"
@@ -91,6 +94,37 @@ TEST_CASE("storyboard element references resolve to full paths", "[xosc][model]"
   CHECK(condition.storyboard_element_ref == "Act1");
   CHECK(condition.resolved_path == "MyStory::Act1");
   CHECK(condition.type == StoryboardElementType::kAct);
+}
+
+TEST_CASE("event_actions lists every event's actions in document order", "[xosc][model]") {
+  const auto actions = [](std::initializer_list<const char*> names) {
+    std::vector<Action> out;
+    for (const char* name : names) {
+      out.emplace_back().name = name;
+    }
+    return out;
+  };
+  Storyboard board;
+  board.stories.resize(2);
+  board.stories[0].acts.resize(2);  // the second act has no groups
+  auto& groups = board.stories[0].acts[0].maneuver_groups;
+  groups.resize(2);
+  groups[0].maneuvers.resize(1);
+  groups[0].maneuvers[0].events.resize(3);  // the second event has no actions
+  groups[0].maneuvers[0].events[0].actions = actions({"a", "b"});
+  groups[0].maneuvers[0].events[2].actions = actions({"c"});
+  groups[1].maneuvers.resize(2);
+  groups[1].maneuvers[1].events.resize(1);
+  groups[1].maneuvers[1].events[0].actions = actions({"d"});
+  auto& last = board.stories[1].acts.emplace_back().maneuver_groups.emplace_back();
+  last.maneuvers.emplace_back().events.emplace_back().actions = actions({"e", "f"});
+  std::vector<std::string> names;
+  for (const Action* action : event_actions(board)) {
+    names.push_back(action->name);
+  }
+  CHECK(names == std::vector<std::string>{"a", "b", "c", "d", "e", "f"});
+  CHECK(event_actions(board).front() == &groups[0].maneuvers[0].events[0].actions[0]);
+  CHECK(event_actions(Storyboard{}).empty());
 }
 
 TEST_CASE("the road network LogicFile resolves against the scenario's folder", "[xosc][model]") {

@@ -60,6 +60,7 @@ bool is_ignored_element(std::string_view name) {
 
 Header parse_header(const XmlReader& reader, const XMLElement* e) {
   Header header;
+  header.line = e->line();
   header.rev_major = reader.integer(e, "revMajor");
   header.rev_minor = reader.integer(e, "revMinor");
   if (header.rev_major != 1 || header.rev_minor < 4 || header.rev_minor > 8) {

@@ -4,6 +4,7 @@
 
 #include "corsa/xosc/entities.h"
 #include "corsa/xosc/scenario.h"
+#include "corsa/xosc/storyboard.h"
 
 namespace corsa::xosc {
 
@@ -63,6 +64,24 @@ const VariableDeclaration* Scenario::find_variable(const std::string& name) cons
     }
   }
   return nullptr;
+}
+
+std::vector<const Action*> event_actions(const Storyboard& board) {
+  std::vector<const Action*> actions;
+  for (const Story& story : board.stories) {
+    for (const Act& act : story.acts) {
+      for (const ManeuverGroup& group : act.maneuver_groups) {
+        for (const Maneuver& maneuver : group.maneuvers) {
+          for (const Event& event : maneuver.events) {
+            for (const Action& action : event.actions) {
+              actions.push_back(&action);
+            }
+          }
+        }
+      }
+    }
+  }
+  return actions;
 }
 
 }  // namespace corsa::xosc

@@ -28,14 +28,8 @@ RigRunOptions read_rig_run_options(const ParsedArgs& parsed) {
   }
   dataset.rig = *rig;
   dataset.output = required_output_folder(parsed, "-o", "DIR (the dataset folder to write)");
-  if (const auto format = parsed.value("--format")) {
-    if (*format == "kitti") {
-      dataset.format = sensors::DatasetFormat::kKitti;
-    } else if (*format != "corsa") {
-      const std::vector<std::string> formats{"corsa", "kitti"};
-      throw UsageError("--format expects corsa or kitti, got '" + *format + "'" +
-                       did_you_mean(*format, formats));
-    }
+  if (parsed.choice("--format", {"corsa", "kitti"}) == "kitti") {
+    dataset.format = sensors::DatasetFormat::kKitti;
   }
   if (const auto height = parsed.number("--kitti-min-height")) {
     if (!(*height >= 0.0) || *height > 1e5) {

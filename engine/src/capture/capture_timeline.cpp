@@ -35,20 +35,10 @@ bool fits(Wide value) {
 
 void collect_event_actions(const xosc::Scenario& scenario,
                            std::vector<const xosc::UserDefinedAction*>& out) {
-  for (const xosc::Story& story : scenario.storyboard.stories) {
-    for (const xosc::Act& act : story.acts) {
-      for (const xosc::ManeuverGroup& group : act.maneuver_groups) {
-        for (const xosc::Maneuver& maneuver : group.maneuvers) {
-          for (const xosc::Event& event : maneuver.events) {
-            for (const xosc::Action& action : event.actions) {
-              const auto* user = std::get_if<xosc::UserDefinedAction>(&action.action);
-              if (user != nullptr && user->type == kCaptureCommandType) {
-                out.push_back(user);
-              }
-            }
-          }
-        }
-      }
+  for (const xosc::Action* action : xosc::event_actions(scenario.storyboard)) {
+    const auto* user = std::get_if<xosc::UserDefinedAction>(&action->action);
+    if (user != nullptr && user->type == kCaptureCommandType) {
+      out.push_back(user);
     }
   }
 }

@@ -18,6 +18,10 @@ std::optional<int64_t> parse_int(std::string_view text);
 std::string format_double(double value);
 /// Fixed notation with `decimals` digits after the point, without locale effects.
 std::string format_fixed(double value, int decimals);
+/// `digits` significant digits (1 to 17), fixed or exponent notation as printf's "%.<digits>g"
+/// writes them in the C locale (1e+30, 0.0001235, 123.5), without locale effects: for messages
+/// that quote magnitudes rather than exact values.
+std::string format_significant(double value, int digits);
 
 std::string_view trim(std::string_view text);
 std::vector<std::string_view> split(std::string_view text, char separator);

@@ -423,6 +423,7 @@ struct Header {
   std::string geo_reference;  ///< PROJ string or WKT as written in <geoReference>
   /// <offset>: the file's coordinates are shifted by this to reach the geoReference frame.
   double offset_x = 0.0, offset_y = 0.0, offset_z = 0.0, offset_hdg = 0.0;
+  int line = 0;  ///< source line of <header>, 0 when built in memory
 };
 
 /// A whole OpenDRIVE document. Roads and junctions in document order.

@@ -98,4 +98,8 @@ struct Storyboard {
   Source source;
 };
 
+/// The Actions of every Event of `board` (not the Init's), in document order: Story, Act,
+/// ManeuverGroup, Maneuver, Event. The pointers live as long as `board`.
+std::vector<const Action*> event_actions(const Storyboard& board);
+
 }  // namespace corsa::xosc
