@@ -11,6 +11,7 @@
 #include "corsa/core/progress.h"
 #include "corsa/core/strings.h"
 #include "corsa/engine/run.h"
+#include "corsa/sweep/distribution_run.h"
 #include "plugin_api.h"
 #include "run_options.h"
 
@@ -46,7 +47,7 @@ int command_run(std::span<const std::string> args) {
   options.simulation.geo_projection = proj_plugin_geo_projection();
   const bool quiet = parsed.flag("--quiet");
   Diagnostics diagnostics([](const Diagnostic& d) { std::cerr << d.format() << '\n'; });
-  read_distribution_as_scenario(options, diagnostics);
+  sweep::read_distribution_as_scenario(options, diagnostics);
   ProgressBar progress("run", options.simulation.duration, !quiet);
   // The bar's end is the scenario's own (its SimulationTime stop trigger), once it is loaded.
   options.prepare = [&progress](engine::Simulation& simulation) {

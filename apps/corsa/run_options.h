@@ -18,13 +18,6 @@ void declare_run_options(ArgParser& parser);
 /// Reads what declare_run_options declared; throws UsageError for bad values.
 engine::RunOptions read_run_options(const ParsedArgs& parsed);
 
-/// When `options.scenario` is a ParameterValueDistribution (a variation file, e.g. esmini's
-/// cut-in_parameter_set.xosc) rather than a scenario: the run is of the scenario it names with its
-/// first variant's parameter values (`--param` given on the command line still wins), warned at
-/// the distribution's line as a lenient reading; under `--strict` (options.simulation.strict) an
-/// InputError. Any other document is left alone.
-void read_distribution_as_scenario(engine::RunOptions& options, Diagnostics& diagnostics);
-
 /// The `--semantics standard|esmini` option (run and sweep); throws UsageError for other values.
 engine::Semantics read_semantics(const ParsedArgs& parsed);
 

@@ -120,6 +120,17 @@ void check_stochastic(const xosc::Scenario& scenario, const xosc::StochasticDist
 
 }  // namespace
 
+void refuse_distribution_without_variants(const xosc::ParameterValueDistribution& distribution) {
+  if (xosc::variant_count(distribution) != 0) {
+    return;
+  }
+  if (const auto* stochastic = std::get_if<xosc::Stochastic>(&distribution.definition)) {
+    throw InputError(
+        stochastic->source.error("numberOfTestRuns is 0: the distribution has no variants"));
+  }
+  throw InputError(distribution.source.error("the distribution has no variants"));
+}
+
 VariantPlan VariantPlan::from_distribution(std::filesystem::path distribution_file,
                                            xosc::ParameterValueDistribution distribution,
                                            std::vector<GridAxis> grid, uint64_t default_seed) {
@@ -127,12 +138,9 @@ VariantPlan VariantPlan::from_distribution(std::filesystem::path distribution_fi
   plan.source_ = std::move(distribution_file);
   plan.scenario_ = distribution.scenario_path;
   plan.default_seed_ = default_seed;
+  refuse_distribution_without_variants(distribution);
   plan.distribution_size_ = xosc::variant_count(distribution);
   if (const auto* stochastic = std::get_if<xosc::Stochastic>(&distribution.definition)) {
-    if (stochastic->number_of_test_runs == 0) {
-      throw InputError(
-          stochastic->source.error("numberOfTestRuns is 0: the sweep has no variants"));
-    }
     for (const auto& d : stochastic->distributions)
       plan.add_name(d.parameter_name, d.source.error(""));
   } else {

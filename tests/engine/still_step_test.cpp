@@ -7,12 +7,13 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "../xodr/xodr_test_util.h"
+#include "actions/route_assignment.h"
 #include "lanes/lane_follow.h"
 #include "motion/controller.h"
 #include "state/sim_state.h"
@@ -97,15 +98,22 @@ struct StillStepPair {
       change(full);
     }
     skipped_steps +=
-        skipping.still_step.valid &&
-        std::memcmp(&skipping.still_step.held, static_cast<const EntityMotion*>(&skipping),
-                    sizeof(EntityMotion)) == 0;
+        skipping.still_step.valid && still_step_same_motion(skipping.still_step.held, skipping);
     full.still_step.valid = false;
     controller.step(skipping, context);
     controller.step(full, context);
     REQUIRE(still_step_same_motion(skipping, full));
   }
 };
+
+// What an AssignRouteAction does: both copies follow one new route (a route of no steps; the
+// default controller's step only hands it to the lane ends it meets).
+void still_step_assign_route(StillStepPair& pair) {
+  corsa::engine::detail::assign_route(pair.skipping, corsa::engine::detail::RoutePlan{});
+  pair.full.route = pair.skipping.route;
+  pair.full.chooser = pair.skipping.chooser;
+  pair.full.route_progress = pair.skipping.route_progress;
+}
 
 }  // namespace
 
@@ -160,6 +168,34 @@ TEST_CASE("A standing entity's step is skipped, and any change of its motion end
     pair.step();
     CHECK(pair.skipping.still_step.valid);
   }
+  SECTION("a speed command of -0 differs from one of +0, to the bit") {
+    const int skipped = pair.skipped_steps;
+    pair.step([](Entity& e) { e.speed_command = -0.0; });
+    CHECK(pair.skipped_steps == skipped);  // taken in full: the command's bits changed
+    // The speed turns -0, then its change (the acceleration) turns +0: standing again, the
+    // motion is remembered with -0 and skipped from the fourth step on.
+    for (int i = 0; i < 3; ++i) {
+      pair.step();
+    }
+    const int skipped_at_minus = pair.skipped_steps;
+    CHECK(skipped_at_minus > skipped);
+    CHECK(std::signbit(pair.skipping.state.speed));
+    pair.step([](Entity& e) { e.speed_command = 0.0; });
+    CHECK(pair.skipped_steps == skipped_at_minus);
+    CHECK(pair.skipping.lane.s == s_before);
+  }
+  SECTION("a NaN speed command equals itself, to the bit") {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const int skipped = pair.skipped_steps;
+    pair.step([nan](Entity& e) { e.speed_command = nan; });
+    CHECK(pair.skipped_steps == skipped);  // taken in full: the command's bits changed
+    for (int i = 0; i < 5; ++i) {
+      pair.step();
+    }
+    // Both copies hold the same bits after every step (checked by step); whether the NaN step
+    // is remembered follows from the motion it leaves, the same for both.
+    CHECK(std::isnan(pair.skipping.speed_command));
+  }
   SECTION("an odometer or distance set from outside is kept") {
     pair.step([](Entity& e) { e.longitudinal_distance = 12.5; });
     pair.step([](Entity& e) { e.state.odometer = 7.0; });
@@ -186,6 +222,26 @@ TEST_CASE("A car held at a road's end keeps asking for its speed until it is put
   CHECK(pair.skipping.state.speed == 0.0);
   CHECK(pair.skipping.speed_command == 10.0);
   CHECK(pair.skipped_steps > 10);
+  CHECK(pair.skipping.still_step.valid);
+
+  // A route given while it stands at the dead end: the memo is dropped and the next step is
+  // taken in full, though the route leads nowhere here either.
+  int skipped = pair.skipped_steps;
+  still_step_assign_route(pair);
+  CHECK_FALSE(pair.skipping.still_step.valid);
+  pair.step();
+  CHECK(pair.skipped_steps == skipped);
+  CHECK(pair.skipping.end_of_road);
+  pair.step();
+  pair.step();
+  CHECK(pair.skipped_steps > skipped);  // remembered again with the route, then skipped
+  // Two routes in a row: the first is freed when the second replaces it, and the second may
+  // take the address of the route the memo held. The skip ends all the same.
+  skipped = pair.skipped_steps;
+  still_step_assign_route(pair);
+  still_step_assign_route(pair);
+  pair.step();
+  CHECK(pair.skipped_steps == skipped);
   const double odometer = pair.skipping.state.odometer;
   // Put back on the road: it drives on at the speed it still asks for.
   pair.teleport(300.0);

@@ -725,9 +725,11 @@ TEST_CASE("Boxes that moved into and out of contact with standing ones get a ful
         state.world.entities[which[k]].state.pose = to[k];
       }
       ++state.tick;
+      // Emptied first: only the moved boxes' update fills it again (a full sweep marks nothing).
+      sweep.moved_mark.clear();
       detail::update_contacts(state, sweep);
       CHECK(sweep.moved == which);
-      // The moved boxes' update ran (a full sweep marks nothing), and kept its result complete.
+      // The moved boxes' update ran, and kept its result complete.
       REQUIRE(sweep.moved_mark.size() == kCars);
       for (const uint32_t i : which) CHECK(sweep.moved_mark[i] == 1);
       CHECK(sweep.complete);

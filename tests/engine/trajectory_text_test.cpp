@@ -185,7 +185,8 @@ TEST_CASE("the binary coder's rounding is round_half_away, and far values are to
       REQUIRE(units == round_half_away(scaled));
     }
   };
-  // Every half and its neighbours a few ulps away, below 4e6 and at each power of two.
+  // Every half and its neighbours a few ulps away, with |whole| up to 4000, and around each
+  // power of two.
   for (int64_t whole = -4000; whole <= 4000; ++whole) {
     for (const double base : {0.5, 0.0, 0.25}) {
       double value = static_cast<double>(whole) + base;

@@ -199,6 +199,24 @@ TEST_CASE("bad sweep input is located and exits 2", "[sweep][cli][errors]") {
   CHECK(dir.entries() == 0);
 }
 
+TEST_CASE("a distribution without variants is refused by corsa run as by corsa sweep",
+          "[sweep][cli][errors]") {
+  TempDir dir;
+  const std::string dist = fixture("no_runs.xosc").string();
+  const std::string located =
+      "no_runs.xosc:7: error: numberOfTestRuns is 0: the distribution has no variants";
+  const auto sweep = run_corsa({"sweep", dist, "-o", (dir.path() / "sweep").string()});
+  CHECK(sweep.exit_code == 2);
+  CHECK(sweep.err.find(located) != std::string::npos);
+  // `corsa run` reads a distribution as its first variant, and there is none.
+  const auto run =
+      run_corsa({"run", dist, "--record", (dir.path() / "run.csv").string(), "--quiet"});
+  CHECK(run.exit_code == 2);
+  CHECK(run.err.find(located) != std::string::npos);
+  CHECK(run.err.find("first variant") == std::string::npos);
+  CHECK(dir.entries() == 0);
+}
+
 TEST_CASE("a distribution parameter the scenario lacks is not varied, with a warning",
           "[sweep][cli]") {
   TempDir dir;

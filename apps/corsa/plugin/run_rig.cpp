@@ -14,6 +14,7 @@
 #include "corsa/core/progress.h"
 #include "corsa/core/strings.h"
 #include "corsa/engine/run.h"
+#include "corsa/sweep/distribution_run.h"
 #include "plugin_commands.h"
 #include "run_options.h"
 #include "stop_signals.h"
@@ -40,7 +41,7 @@ int run_rig_body(std::span<const std::string> args) {
   const RigRunOptions options = read_rig_run_options(parsed);
   collect::DatasetRunOptions dataset = options.dataset;
   Diagnostics diagnostics([](const Diagnostic& d) { std::cerr << d.format() << '\n'; });
-  read_distribution_as_scenario(dataset.run, diagnostics);
+  sweep::read_distribution_as_scenario(dataset.run, diagnostics);
   ProgressBar progress("run", dataset.run.simulation.duration, !options.quiet);
   // The bar's end is the scenario's own (its SimulationTime stop trigger), once it is loaded.
   dataset.run.prepare = [&progress](engine::Simulation& simulation) {

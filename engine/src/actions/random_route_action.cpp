@@ -40,6 +40,9 @@ class RandomRouteInstance final : public InstantAction {
     auto chooser = std::make_shared<const RandomChooser>(
         RandomStream::derive(context.state.options.seed, "random-route:" + entity.info.name));
     entity.chooser = chooser.get();
+    // The memo compares the route by address: the old route may be freed and its address
+    // reused by a later one, so a standing entity takes its next step anew.
+    entity.still_step.valid = false;
     entity.route = std::move(chooser);
     entity.route_progress = RouteProgress{};
     (void)action_;

@@ -16,6 +16,9 @@ namespace corsa::engine::detail {
 inline void assign_route(Entity& entity, RoutePlan plan) {
   auto chooser = std::make_shared<const RouteChooser>(std::move(plan));
   entity.chooser = chooser.get();
+  // The memo compares the route by address: the old route may be freed and its address
+  // reused by a later one, so a standing entity takes its next step anew.
+  entity.still_step.valid = false;
   entity.route = std::move(chooser);
   entity.route_progress = RouteProgress{};
 }

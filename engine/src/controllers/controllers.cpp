@@ -505,6 +505,53 @@ void EntityMover::share(size_t count, const std::function<void(size_t, size_t)>&
                  [&](size_t begin, size_t end, unsigned) { work(begin, end); });
 }
 
+namespace {
+
+// What EntityMover::move needs to know of the entities before it moves them.
+struct MoverScan {
+  std::vector<uint32_t> dynamic;  ///< moved by the dynamics controller this step
+  bool following = false;         ///< some controller reads the others in the picture
+  bool natural = false;           ///< some entity has esmini's NaturalDriver
+  bool alks = false;              ///< some entity has esmini's ALKS R157 controller
+  bool sloppy = false;            ///< some entity (or split partner) has esmini's sloppyDriver
+};
+
+// Looks at every entity's controllers once, and hands the lateral partner of a split the speed
+// and heading its step begins with.
+MoverScan scan_for_move(SimState& state, uint32_t count) {
+  MoverScan scan;
+  for (uint32_t i = 0; i < count; ++i) {
+    ControlState& control = state.controls[i];
+    const Entity& entity = state.world.entities[i];
+    const ControllerKind kind = control.effective();
+    scan.alks = scan.alks || kind == ControllerKind::kAlksR157;
+    scan.sloppy = scan.sloppy || kind == ControllerKind::kSloppyDriver;
+    if (std::optional<DomainPartner>& partner = control.partner) {
+      // The lateral controller of a split steers with the speed and heading the step began with.
+      partner->step_start_speed = entity.state.speed;
+      partner->step_start_heading = entity.lane.heading_offset;
+      scan.sloppy = scan.sloppy || partner->kind == ControllerKind::kSloppyDriver;
+    }
+    // Moved by the dynamics controller this step (a FollowTrajectoryAction in position mode
+    // places the entity on its path instead: ideal motion).
+    if (kind == ControllerKind::kDynamics && entity.state.placed && !entity.pose_command &&
+        !entity.towed_by) {
+      scan.dynamic.push_back(i);
+    }
+    // Car following and esmini's offroadFollower read the others in the picture (esmini's
+    // interactiveDriver does not: without it the picture is not taken).
+    scan.following =
+        scan.following ||
+        (entity.state.placed &&
+         (kind == ControllerKind::kAcc || (kind == ControllerKind::kEsminiVehicle &&
+                                           esmini_driver_reads_view(control.esmini_driver.get()))));
+    scan.natural = scan.natural || control.natural != nullptr;
+  }
+  return scan;
+}
+
+}  // namespace
+
 void EntityMover::move(SimState& state, const MotionContext& motion) {
   Impl& impl = *impl_;
   const auto count = static_cast<uint32_t>(state.world.entities.size());
@@ -512,41 +559,11 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     return;
   }
   control_of(state, count - 1);  // a control state for every entity, also those added by traffic
+  const MoverScan scan = scan_for_move(state, count);
   // The vehicle models of the dynamics controller step first, all integrated as one system: a
   // model's step reads only its own entity.
-  std::vector<uint32_t> dynamic;
-  bool following = false;
-  bool natural = false;
-  bool alks = false;
-  bool sloppy = false;
-  for (uint32_t i = 0; i < count; ++i) {
-    ControlState& control = state.controls[i];
-    const Entity& entity = state.world.entities[i];
-    const ControllerKind kind = control.effective();
-    alks = alks || kind == ControllerKind::kAlksR157;
-    sloppy = sloppy || kind == ControllerKind::kSloppyDriver;
-    if (std::optional<DomainPartner>& partner = control.partner) {
-      // The lateral controller of a split steers with the speed and heading the step began with.
-      partner->step_start_speed = entity.state.speed;
-      partner->step_start_heading = entity.lane.heading_offset;
-      sloppy = sloppy || partner->kind == ControllerKind::kSloppyDriver;
-    }
-    // Moved by the dynamics controller this step (a FollowTrajectoryAction in position mode
-    // places the entity on its path instead: ideal motion).
-    if (kind == ControllerKind::kDynamics && entity.state.placed && !entity.pose_command &&
-        !entity.towed_by) {
-      dynamic.push_back(i);
-    }
-    // Car following and esmini's offroadFollower read the others in the picture (esmini's
-    // interactiveDriver does not: without it the picture is not taken).
-    following = following ||
-                (entity.state.placed && (kind == ControllerKind::kAcc ||
-                                         (kind == ControllerKind::kEsminiVehicle &&
-                                          esmini_driver_reads_view(control.esmini_driver.get()))));
-    natural = natural || control.natural != nullptr;
-  }
-  if (!dynamic.empty()) {
-    begin_dynamics(state, dynamic, motion);
+  if (!scan.dynamic.empty()) {
+    begin_dynamics(state, scan.dynamic, motion);
   }
   // Generated traffic looks around itself (controllers/npc_caution.h): the view then also
   // holds the grid of the others.
@@ -555,7 +572,7 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   if (workers > 1 && !impl.pool) {
     impl.pool = std::make_unique<WorkerPool>(impl.threads);
   }
-  if (following || generated) {
+  if (scan.following || generated) {
     impl.view.build(state, generated, workers > 1 ? impl.pool.get() : nullptr);
   }
   impl.arrange(state);
@@ -578,16 +595,16 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     });
   }
   // esmini's NaturalDriver entities move after all others, one after the other.
-  if (natural) {
+  if (scan.natural) {
     step_natural_drivers(state, context);
   }
   // esmini's ALKS controller sees the others where they are after their moves (its controllers
   // step after its default controller), in entity order on this thread.
-  if (alks) {
+  if (scan.alks) {
     step_alks_r157_entities(state, context);
   }
   // esmini's sloppyDriver entities draw from the run's one generator: in entity order, here.
-  if (sloppy) {
+  if (scan.sloppy) {
     step_sloppy_drivers(state, context);
   }
 }

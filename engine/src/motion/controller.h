@@ -33,7 +33,7 @@ class Controller {
 };
 
 /// The entity's memos of the map's answers that a step may consult (they give what the map
-/// would: motion/controller.h, update_pose_from_lane and locate_near).
+/// would: update_pose_from_lane and locate_near below).
 struct MapMemos {
   LanePoseMemo& lane_pose;
   PointLocateMemo& point;

@@ -2,7 +2,6 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <numbers>
 #include <variant>
 
@@ -163,14 +162,12 @@ bool at_dead_end(const xodr::Map& map, const LaneFollow& lane, double along) {
   return std::abs(boundary - lane.s) == 0.0 && graph.ends(lane.node, dir < 0).empty();
 }
 
-// StillStepMemo: the entity's motion, copied and compared as bytes (kMotionEndsWithoutPadding:
-// they are the motion's own).
-void take_still_step(StillStepMemo& memo, const EntityMotion& motion) {
-  std::memcpy(&memo.held, &motion, sizeof(EntityMotion));
-}
+// StillStepMemo: the entity's motion, copied by its fields (assignment through the base, so
+// nothing of Entity placed in EntityMotion's tail is copied) and compared field by field.
+void take_still_step(StillStepMemo& memo, const EntityMotion& motion) { memo.held = motion; }
 
 bool holds_still_step(const StillStepMemo& memo, const EntityMotion& motion) {
-  return std::memcmp(&memo.held, &motion, sizeof(EntityMotion)) == 0;
+  return same_bits(memo.held, motion);
 }
 
 }  // namespace

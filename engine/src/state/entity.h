@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <type_traits>
 
 #include "corsa/engine/entity_state.h"
 #include "corsa/engine/world_snapshot.h"
@@ -60,8 +61,9 @@ struct LanePoseMemo {
 /// DefaultController): besides the map, the step and the entity's memos of the map's answers
 /// (LanePoseMemo, PointLocateMemo, which give what the map would), the step is a function of
 /// these fields alone, and it is handed nothing else of the entity. Entity holds them as its
-/// first part. A field the step reads or writes belongs here: StillStepMemo copies and compares
-/// this whole part, so such a field cannot be left out of its comparison.
+/// first part. A field the step reads or writes belongs here: StillStepMemo copies this whole
+/// part and compares it field by field (same_bits in state/sim_state.h, whose size checks
+/// refuse a field it does not compare).
 struct EntityMotion {
   EntityState state;
   LaneFollow lane;
@@ -78,28 +80,20 @@ struct EntityMotion {
   double lateral_acceleration = 0.0;
 
   bool end_of_road = false;  ///< stuck at a lane end without successor (EndOfRoadCondition)
-  /// Chooses among lane successors at lane ends (a route); null: the straightest. Last, so that
-  /// the part ends without padding (see kMotionEndsWithoutPadding).
+  /// Chooses among lane successors at lane ends (a route); null: the straightest. Compared by
+  /// address: whoever assigns it also drops the entity's StillStepMemo, since a replaced route
+  /// may be freed and its address reused by the next.
   const LaneChooser* chooser = nullptr;
 };
-
-/// Whether EntityMotion ends without padding, so that a class holding it as its base cannot
-/// place a field of its own inside the base's bytes (the Itanium ABI reuses a base's tail
-/// padding): StillStepMemo copies and compares those bytes as the entity's motion alone.
-struct MotionTailProbe : EntityMotion {
-  char after = 0;
-};
-inline constexpr bool kMotionEndsWithoutPadding = sizeof(MotionTailProbe) > sizeof(EntityMotion);
-static_assert(kMotionEndsWithoutPadding,
-              "EntityMotion must end without padding: order its fields so that the last one "
-              "ends on its alignment");
+// StillStepMemo copies EntityMotion by assignment; a trivial copy keeps that cheap.
+static_assert(std::is_trivially_copyable_v<EntityMotion>);
 
 /// An entity's motion around a default-controller step that changed nothing of it (one
 /// standing on its lane: asked for no speed, or for a speed it cannot take at a lane end with
 /// nothing beyond; motion/default_controller.cpp). That step is a function of EntityMotion (and
 /// of the map and the step, fixed for the run): while the entity holds exactly `held` again,
-/// byte for byte, the next step would change nothing either, and is skipped. Bytes compared,
-/// padding included: a difference there only costs a skip.
+/// field for field and bit for bit (same_bits: -0 and +0 differ, a NaN equals itself), the
+/// next step would change nothing either, and is skipped.
 struct StillStepMemo {
   bool valid = false;
   EntityMotion held;

@@ -72,6 +72,32 @@ inline bool same_bits(const Box& a, const Box& b) {
          same_bits(a.width, b.width) && same_bits(a.height, b.height);
 }
 
+inline bool same_bits(const EntityState& a, const EntityState& b) {
+  static_assert(sizeof(EntityState) == 136, "add the new field to same_bits");
+  return same_bits(a.pose, b.pose) && same_bits(a.speed, b.speed) &&
+         same_bits(a.acceleration, b.acceleration) && same_bits(a.lateral_speed, b.lateral_speed) &&
+         same_bits(a.yaw_rate, b.yaw_rate) && same_bits(a.odometer, b.odometer) &&
+         a.placed == b.placed && a.visible == b.visible && same_bits(a.road, b.road);
+}
+inline bool same_bits(const LaneFollow& a, const LaneFollow& b) {
+  static_assert(sizeof(LaneFollow) == 64, "add the new field to same_bits");
+  return a.on_road == b.on_road && a.road == b.road && a.section == b.section && a.lane == b.lane &&
+         a.node == b.node && same_bits(a.s, b.s) && a.dir == b.dir &&
+         same_bits(a.lateral, b.lateral) && same_bits(a.heading_offset, b.heading_offset) &&
+         same_bits(a.frame_shift, b.frame_shift);
+}
+/// Field by field, so that padding bytes (never written, never the same) take no part. The
+/// route is compared by address (see EntityMotion::chooser).
+inline bool same_bits(const EntityMotion& a, const EntityMotion& b) {
+  static_assert(sizeof(EntityMotion) == 248, "add the new field to same_bits");
+  return same_bits(a.state, b.state) && same_bits(a.lane, b.lane) &&
+         same_bits(a.speed_command, b.speed_command) &&
+         same_bits(a.lateral_command, b.lateral_command) &&
+         same_bits(a.longitudinal_distance, b.longitudinal_distance) &&
+         same_bits(a.lateral_acceleration, b.lateral_acceleration) &&
+         a.end_of_road == b.end_of_road && a.chooser == b.chooser;
+}
+
 /// What the contacts of an entity were last computed from (state/world_update.h).
 struct ContactInput {
   bool placed = false;

@@ -24,6 +24,11 @@ namespace corsa::sweep {
 /// Parameter name -> value text, in column order.
 using ParameterValues = std::vector<std::pair<std::string, std::string>>;
 
+/// Throws InputError, located at the distribution (its Stochastic element for
+/// numberOfTestRuns="0"), when `distribution` has no variants: neither a sweep nor a run has
+/// one to take.
+void refuse_distribution_without_variants(const xosc::ParameterValueDistribution& distribution);
+
 class VariantPlan {
  public:
   /// The variants of a ParameterValueDistribution document (§10), each combined with every
