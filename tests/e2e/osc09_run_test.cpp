@@ -10,12 +10,12 @@
 namespace corsa::test {
 namespace {
 
-const std::string kSynchronizeQuit = "tests/xosc/fixtures/osc09/synchronize_quit.xosc";
-const std::string kCutIn = "tests/xosc/fixtures/osc09/cut_in.xosc";
+const std::string kDraftSynchronizeQuit = "tests/xosc/fixtures/osc09/synchronize_quit.xosc";
+const std::string kDraftCutIn = "tests/xosc/fixtures/osc09/cut_in.xosc";
 const std::string kDraftWarning =
     "warning: OpenSCENARIO 0.9 draft (read as 1.0 by the 0.9-to-1.0 mapping: ";
 
-size_t count_of(const std::string& text, const std::string& needle) {
+size_t draft_count_of(const std::string& text, const std::string& needle) {
   size_t count = 0;
   for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) {
     ++count;
@@ -23,8 +23,8 @@ size_t count_of(const std::string& text, const std::string& needle) {
   return count;
 }
 
-const TrajectoryRow& row_at(const std::vector<TrajectoryRow>& rows, const std::string& entity,
-                            double time) {
+const TrajectoryRow& draft_row_at(const std::vector<TrajectoryRow>& rows, const std::string& entity,
+                                  double time) {
   const auto it = std::find_if(rows.begin(), rows.end(), [&](const TrajectoryRow& row) {
     return row.entity == entity && std::abs(row.time - time) < 1e-9;
   });
@@ -37,26 +37,26 @@ TEST_CASE("corsa run reads a 0.9 draft's route position, EXT_Synchronize, Meetin
   TempDir dir;
   const auto record = dir.path() / "out.csv";
   const auto log = dir.path() / "log.csv";
-  const ProcessResult result = run_corsa(
-      {"run", kSynchronizeQuit, "--quiet", "--record", record.string(), "--log", log.string()});
+  const ProcessResult result = run_corsa({"run", kDraftSynchronizeQuit, "--quiet", "--record",
+                                          record.string(), "--log", log.string()});
   INFO(result.err);
   REQUIRE(result.exit_code == 0);
-  CHECK(count_of(result.err, "OpenSCENARIO 0.9") == 1);
-  CHECK(result.err.find(kSynchronizeQuit + ":7: " + kDraftWarning) != std::string::npos);
+  CHECK(draft_count_of(result.err, "OpenSCENARIO 0.9") == 1);
+  CHECK(result.err.find(kDraftSynchronizeQuit + ":7: " + kDraftWarning) != std::string::npos);
   CHECK(result.err.find("EXT_Synchronize, TargetSpeed") != std::string::npos);
   // Ego (20 m/s from s = 50) reaches s = 250 at t = 10: both followers arrive with it, the
   // synchronization ends, and EXT_Quit's event (2 s after that end) stops the run.
   CHECK(result.err.find("Routing, FollowRoute, Route, Position, LaneCoord") != std::string::npos);
   const auto rows = parse_trajectory(slurp(record));
   // Ego starts at pathS = 50 of its route, which runs along lane -1 from s = 0.
-  CHECK(row_at(rows, "Ego", 0.0).x == Approx(50.0).margin(0.01));
-  CHECK(row_at(rows, "Ego", 0.0).lane == -1);
-  const TrajectoryRow& ego = row_at(rows, "Ego", 10.0);
+  CHECK(draft_row_at(rows, "Ego", 0.0).x == Approx(50.0).margin(0.01));
+  CHECK(draft_row_at(rows, "Ego", 0.0).lane == -1);
+  const TrajectoryRow& ego = draft_row_at(rows, "Ego", 10.0);
   CHECK(ego.x == Approx(250.0).margin(0.01));
-  CHECK(row_at(rows, "Synced", 10.0).x == Approx(250.0).margin(0.5));
-  CHECK(row_at(rows, "Synced", 10.0).lane == -2);
-  CHECK(row_at(rows, "Met", 10.0).x == Approx(250.0).margin(0.5));
-  CHECK(row_at(rows, "Met", 10.0).lane == -3);
+  CHECK(draft_row_at(rows, "Synced", 10.0).x == Approx(250.0).margin(0.5));
+  CHECK(draft_row_at(rows, "Synced", 10.0).lane == -2);
+  CHECK(draft_row_at(rows, "Met", 10.0).x == Approx(250.0).margin(0.5));
+  CHECK(draft_row_at(rows, "Met", 10.0).lane == -3);
   const std::string transitions = slurp(log);
   CHECK(transitions.find("10.02,event,SyncStory::SyncAct::SyncSequence::SyncManeuver::SyncEvent,"
                          "endTransition") != std::string::npos);
@@ -69,12 +69,12 @@ TEST_CASE("corsa run reads a 0.9 cut-in: $owner, relative targets and the Storyb
   TempDir dir;
   const auto record = dir.path() / "out.csv";
   const auto log = dir.path() / "log.csv";
-  const ProcessResult result =
-      run_corsa({"run", kCutIn, "--quiet", "--record", record.string(), "--log", log.string()});
+  const ProcessResult result = run_corsa(
+      {"run", kDraftCutIn, "--quiet", "--record", record.string(), "--log", log.string()});
   INFO(result.err);
   REQUIRE(result.exit_code == 0);
-  CHECK(count_of(result.err, "warning:") == 1);
-  CHECK(result.err.find(kCutIn + ":6: " + kDraftWarning) != std::string::npos);
+  CHECK(draft_count_of(result.err, "warning:") == 1);
+  CHECK(result.err.find(kDraftCutIn + ":6: " + kDraftWarning) != std::string::npos);
   // The owner drives at 1.2 x 20 m/s from 50 m behind: 20 m ahead at t = 17.5, then changes
   // into Ego's lane in 2 s; the End stops the run 1 s later.
   const std::string transitions = slurp(log);
@@ -82,16 +82,17 @@ TEST_CASE("corsa run reads a 0.9 cut-in: $owner, relative targets and the Storyb
                          "CutInEvent,startTransition") != std::string::npos);
   CHECK(transitions.find("20.51,storyboard,,stopTransition") != std::string::npos);
   const auto rows = parse_trajectory(slurp(record));
-  CHECK(row_at(rows, "Overtaker", 17.0).lane == -2);
-  CHECK(row_at(rows, "Overtaker", 20.0).lane == -1);
-  CHECK(row_at(rows, "Overtaker", 20.0).speed == Approx(24.0));
+  CHECK(draft_row_at(rows, "Overtaker", 17.0).lane == -2);
+  CHECK(draft_row_at(rows, "Overtaker", 20.0).lane == -1);
+  CHECK(draft_row_at(rows, "Overtaker", 20.0).speed == Approx(24.0));
 }
 
 TEST_CASE("corsa validate --strict refuses a 0.9 draft at its FileHeader", "[e2e][osc09]") {
-  const ProcessResult result = run_corsa({"validate", kCutIn, "--strict"});
+  const ProcessResult result = run_corsa({"validate", kDraftCutIn, "--strict"});
   CHECK(result.exit_code == 2);
-  CHECK(result.err.find(kCutIn + ":6: error: OpenSCENARIO 0.9 draft (an error under --strict") !=
-        std::string::npos);
+  CHECK(
+      result.err.find(kDraftCutIn + ":6: error: OpenSCENARIO 0.9 draft (an error under --strict") !=
+      std::string::npos);
 }
 
 }  // namespace
