@@ -113,5 +113,55 @@ TEST_CASE("an error in a translated 0.9 element points at its own line", "[xosc]
   CHECK_THAT(loaded.errors[1].message, Catch::Contains("Nowhere"));
 }
 
+TEST_CASE("a 0.9 event holding EXT_Quit beside other actions keeps its start conditions",
+          "[xosc][osc09]") {
+  std::string xml = osc09_draft();
+  const std::string faster_end = "</Private>\n</Action>\n<StartConditions>";
+  xml.replace(xml.find(faster_end), faster_end.size(),
+              "</Private>\n</Action>\n<Action name=\"Quit\">\n<Global>\n<EXT_Quit/>\n</Global>\n"
+              "</Action>\n<StartConditions>");
+  TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  INFO((loaded.errors.empty() ? std::string() : loaded.errors[0].format()));
+  REQUIRE(loaded.errors.empty());
+  REQUIRE(loaded.scenario);
+  const auto& board = loaded.scenario->storyboard;
+  const auto& group = board.stories.at(0).acts.at(0).maneuver_groups.at(0);
+  const auto& event = group.maneuvers.at(0).events.at(0);
+  // The event keeps its own action and its AtStart condition.
+  CHECK(event.actions.size() == 1);
+  REQUIRE(event.start_trigger.has_value());
+  REQUIRE(event.start_trigger->groups.size() == 1);
+  // The run stops when the event starts, not when its conditions first hold.
+  REQUIRE(board.stop_trigger.has_value());
+  REQUIRE(board.stop_trigger->groups.size() == 1);
+  const auto& condition = board.stop_trigger->groups[0].conditions.at(0);
+  const auto* by_value = std::get_if<xosc::ByValueCondition>(&condition.kind);
+  REQUIRE(by_value != nullptr);
+  const auto* state = std::get_if<xosc::StoryboardElementStateCondition>(by_value);
+  REQUIRE(state != nullptr);
+  CHECK(state->storyboard_element_ref == "E");
+  CHECK(state->state == xosc::StoryboardElementState::kStartTransition);
+  CHECK(condition.source.line == line_of(xml, "<Event name=\"E\""));
+}
+
+TEST_CASE("a 0.9 Meeting whose offsetTime is a parameter is left for the reader to refuse",
+          "[xosc][osc09]") {
+  std::string xml = osc09_draft();
+  const std::string faster = "<Action name=\"Faster\">\n<Private>\n<Longitudinal>";
+  xml.replace(xml.find(faster), faster.size(),
+              "<Action name=\"Meet\">\n<Private>\n<Meeting mode=\"straight\">\n"
+              "<Position>\n<World x=\"100\" y=\"0\"/>\n</Position>\n"
+              "<Relative object=\"Ego\" offsetTime=\"$Speed\" continuous=\"true\">\n"
+              "<Position>\n<World x=\"200\" y=\"0\"/>\n</Position>\n</Relative>\n"
+              "</Meeting>\n</Private>\n</Action>\n" +
+                  faster);
+  TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  REQUIRE(!loaded.errors.empty());
+  CHECK(loaded.errors[0].line == line_of(xml, "<Meeting"));
+  CHECK_THAT(loaded.errors[0].message, Catch::Contains("Meeting"));
+}
+
 }  // namespace
 }  // namespace corsa::test

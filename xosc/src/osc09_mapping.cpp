@@ -244,8 +244,9 @@ class Osc09Rewriter {
     if (quits) quit_event(maneuver, e);
   }
 
-  // esmini's EXT_Quit ends the simulation when its event starts: the event's start conditions
-  // join the Storyboard's StopTrigger, and the event keeps its other actions.
+  // esmini's EXT_Quit ends the simulation when its event starts. An event of EXT_Quit alone
+  // gives its start conditions to the Storyboard's StopTrigger; one with other actions keeps
+  // them, and the StopTrigger waits for the event's start.
   void quit_event(Element* maneuver, Element* event) {
     note("EXT_Quit");
     Element* stop = storyboard_->FirstChildElement("StopTrigger");
@@ -258,10 +259,34 @@ class Osc09Rewriter {
         storyboard_->InsertEndChild(stop);
       }
     }
+    if (event->FirstChildElement("Action") != nullptr) {
+      stop->InsertEndChild(started_condition_group(event));
+      return;
+    }
     if (Element* start = event->FirstChildElement("StartTrigger")) {
       for (Element* group : osc09_children(start, "ConditionGroup")) stop->InsertEndChild(group);
     }
-    if (event->FirstChildElement("Action") == nullptr) maneuver->DeleteChild(event);
+    maneuver->DeleteChild(event);
+  }
+
+  // A ConditionGroup true when `event` starts (a StoryboardElementStateCondition on its name),
+  // at the event's line.
+  Element* started_condition_group(const Element* event) {
+    Element* group = new_element("ConditionGroup", event);
+    Element* condition = new_element("Condition", event);
+    condition->SetAttribute("name", "EXT_Quit");
+    condition->SetAttribute("delay", "0");
+    condition->SetAttribute("conditionEdge", "none");
+    Element* by_value = new_element("ByValueCondition", event);
+    Element* state = new_element("StoryboardElementStateCondition", event);
+    state->SetAttribute("storyboardElementType", "event");
+    const char* name = event->Attribute("name");
+    state->SetAttribute("storyboardElementRef", name != nullptr ? name : "");
+    state->SetAttribute("state", "startTransition");
+    by_value->InsertEndChild(state);
+    condition->InsertEndChild(by_value);
+    group->InsertEndChild(condition);
+    return group;
   }
 
   // --- actions ---------------------------------------------------------------------------------
@@ -337,9 +362,14 @@ class Osc09Rewriter {
   void meeting(Element* e) {
     Element* relative = e->FirstChildElement("Relative");
     Element* own = e->FirstChildElement("Position");
-    if (relative == nullptr || own == nullptr || relative->DoubleAttribute("offsetTime", 0) != 0) {
-      return;
-    }
+    // A parameter in offsetTime ($T) is not known here: such a Meeting is left alone too.
+    double offset = 0.0;
+    const bool offset_zero =
+        relative != nullptr &&
+        (relative->Attribute("offsetTime") == nullptr ||
+         (relative->QueryDoubleAttribute("offsetTime", &offset) == tinyxml2::XML_SUCCESS &&
+          offset == 0.0));
+    if (relative == nullptr || own == nullptr || !offset_zero) return;
     rename(e, "SynchronizeAction");
     e->DeleteAttribute("mode");
     move_attribute(relative, "object", "masterEntityRef");
