@@ -209,13 +209,13 @@ void hangul_vowel(HangulPen& pen, int index, const JamoBox& b) {
   const double s = kHangulStroke;
   const double v_mid = b.v0 + 0.5 * b.height();
   switch (index) {
-    case 0: {  // ㅏ: a long stroke with a stub to the right
+    case 0: {  // ㅏ: a long stroke with a short tick to the right
       const double u = b.u0 + 0.35 * b.width();
       pen.bar(u - 0.5 * s, u + 0.5 * s, b.v0, b.v1);
       pen.bar(u + 0.5 * s, b.u1, v_mid - 0.5 * s, v_mid + 0.5 * s);
       break;
     }
-    case 4: {  // ㅓ: a long stroke with a stub to the left
+    case 4: {  // ㅓ: a long stroke with a short tick to the left
       const double u = b.u1 - 0.3 * b.width();
       pen.bar(u - 0.5 * s, u + 0.5 * s, b.v0, b.v1);
       pen.bar(b.u0, u - 0.5 * s, v_mid - 0.5 * s, v_mid + 0.5 * s);
@@ -226,13 +226,13 @@ void hangul_vowel(HangulPen& pen, int index, const JamoBox& b) {
       pen.bar(u - 0.5 * s, u + 0.5 * s, b.v0, b.v1);
       break;
     }
-    case 8: {  // ㅗ: a bar low in the box with a stub up
+    case 8: {  // ㅗ: a bar low in the box with a short tick up
       const double v = b.v0 + 0.3 * b.height();
       pen.bar(b.u0, b.u1, v - 0.5 * s, v + 0.5 * s);
       pen.bar(b.mid_u() - 0.5 * s, b.mid_u() + 0.5 * s, v + 0.5 * s, b.v1);
       break;
     }
-    case 13: {  // ㅜ: a bar high in the box with a stub down
+    case 13: {  // ㅜ: a bar high in the box with a short tick down
       const double v = b.v1 - 0.3 * b.height();
       pen.bar(b.u0, b.u1, v - 0.5 * s, v + 0.5 * s);
       pen.bar(b.mid_u() - 0.5 * s, b.mid_u() + 0.5 * s, b.v0, v - 0.5 * s);
