@@ -14,8 +14,10 @@
 // its speed passes zero the model's brake holds it (it never reverses), a little short of or
 // beyond 20 m (the overshoot of that damping, 1.7% of the last metres).
 
+#include <bit>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 
 #include "controllers/esmini_vehicle.h"
 #include "engine_fixture.h"
@@ -106,4 +108,50 @@ TEST_CASE("esmini's vehicle model: the wheel returns, rolling back through zero 
   fast.speed = 5.0;
   drive_analog(fast, 0.01, 1.0, 0.0);
   CHECK(fast.speed == Approx(5.04));
+}
+
+// The single-track step keeps its course's cosine and sine for the next step along the same
+// course (CourseTrig). Two cars step through the same inputs, one with the kept values and one
+// computing them every step; their places and headings must have the same bits after every step:
+// straight runs (the kept values used), a wheel turned and returned to exactly 0 (a new course
+// each step, then a new straight one), a heading set from outside (a teleport), a course of -0
+// after +0 (the sine's sign differs) and a speed that shrinks toward 0.
+TEST_CASE("esmini's single-track step with its course's cosine and sine kept moves as without",
+          "[engine][controllers][esmini]") {
+  using corsa::engine::detail::CourseTrig;
+  using corsa::engine::detail::single_track_step;
+  struct Car {
+    double x = 3.0, y = -2.0, h = 0.3;
+  };
+  Car kept, fresh;
+  CourseTrig trig;
+  int reused = 0;
+  int steps = 0;
+  const auto step = [&](double speed, double wheel) {
+    const bool may_reuse = trig.valid;
+    const uint64_t before = trig.course_bits;
+    single_track_step(kept.x, kept.y, kept.h, speed, wheel, 4.5, 0.01, &trig);
+    single_track_step(fresh.x, fresh.y, fresh.h, speed, wheel, 4.5, 0.01);
+    reused += may_reuse && trig.course_bits == before ? 1 : 0;
+    ++steps;
+    CAPTURE(steps, speed, wheel);
+    REQUIRE(std::bit_cast<uint64_t>(kept.x) == std::bit_cast<uint64_t>(fresh.x));
+    REQUIRE(std::bit_cast<uint64_t>(kept.y) == std::bit_cast<uint64_t>(fresh.y));
+    REQUIRE(std::bit_cast<uint64_t>(kept.h) == std::bit_cast<uint64_t>(fresh.h));
+  };
+  for (int k = 0; k < 20; ++k) step(12.0, 0.0);  // straight: the same course every step
+  for (int k = 0; k < 20; ++k) step(12.0, 0.1 * (20 - k) / 20.0);  // turning
+  for (int k = 0; k < 20; ++k) step(8.0, 0.0);  // straight again, on the new heading
+  kept.h = fresh.h = 2.0;                       // a teleport's heading
+  for (int k = 0; k < 5; ++k) step(8.0, 0.0);
+  kept.h = fresh.h = 0.0;
+  step(8.0, 0.0);
+  kept.h = fresh.h = -0.0;  // the same course but for its sign: the sine's sign differs
+  step(8.0, -0.0);
+  double speed = 1.0;
+  for (int k = 0; k < 50; ++k) {
+    speed *= 0.999;
+    step(speed, 0.0);
+  }
+  CHECK(reused > 80);  // the kept values were used on the straight runs
 }

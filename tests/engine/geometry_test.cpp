@@ -6,14 +6,17 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <optional>
 #include <random>
 
 #include "corsa/engine/oriented_box.h"
+#include "geometry/angle.h"
 
 using corsa::engine::OrientedBox;
 using Approx = Catch::Detail::Approx;
@@ -210,3 +213,52 @@ TEST_CASE("the distance's lower bound never exceeds the exact distance or contac
                                                              moving(100, 0, 0, 0, 0).box);
   CHECK(far == Approx(100.0 - 2.0 * std::hypot(2.3, 0.9)).margin(1e-5));
 }
+
+// remainder_full_turn answers without the library for the angles near the range it wraps to:
+// every answer must have the bits std::remainder(angle, 2 pi) has, at the edges of its shortcuts
+// (+-pi, +-2 pi, +-3 pi, +-4 pi and their neighbours), for signed zeros and the non-finite, and
+// over random angles of both signs.
+TEST_CASE("remainder_full_turn gives std::remainder's bits") {
+  using corsa::engine::detail::remainder_full_turn;
+  constexpr double kTurn = 2.0 * std::numbers::pi;
+  int checked = 0;
+  int differing = 0;
+  double first_differing = 0.0;
+  const auto same = [&](double angle) {
+    const double expected = std::remainder(angle, kTurn);
+    const double got = remainder_full_turn(angle);
+    ++checked;
+    if (std::bit_cast<uint64_t>(got) != std::bit_cast<uint64_t>(expected) && differing++ == 0) {
+      first_differing = angle;
+    }
+  };
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  for (const double special : {0.0, -0.0, kInf, -kInf, std::numeric_limits<double>::quiet_NaN(),
+                               std::numeric_limits<double>::denorm_min(), 1e300, -1e300}) {
+    same(special);
+  }
+  for (const double edge : {0.5 * kTurn, kTurn, 1.5 * kTurn, 2.0 * kTurn, 2.5 * kTurn}) {
+    for (const double sign : {1.0, -1.0}) {
+      double below = sign * edge;
+      double above = sign * edge;
+      same(below);
+      for (int k = 0; k < 64; ++k) {
+        below = std::nextafter(below, -kInf);
+        above = std::nextafter(above, kInf);
+        same(below);
+        same(above);
+      }
+    }
+  }
+  std::mt19937_64 random(20261128);
+  std::uniform_real_distribution<double> wide(-6.0 * kTurn, 6.0 * kTurn);
+  std::uniform_real_distribution<double> small(-1e-3, 1e-3);
+  for (int k = 0; k < 200000; ++k) {
+    same(wide(random));
+    same(small(random));
+  }
+  INFO("the first angle that differs: " << first_differing);
+  CHECK(differing == 0);
+  CHECK(checked > 400000);
+}
+

@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <type_traits>
 #include <utility>
 
@@ -377,7 +376,7 @@ void finish_dynamics(SimState& state, uint32_t index, const MotionContext& motio
   // The reference point (rear axle) moves sideways at vy - lr r.
   es.lateral_speed = after.vy - vehicle.model.params().cg_to_rear * after.yaw_rate;
   entity.lateral_acceleration = vehicle.model.lateral_acceleration();
-  es.yaw_rate = std::remainder(es.pose.h - h0, 2.0 * std::numbers::pi) / dt;
+  es.yaw_rate = remainder_full_turn(es.pose.h - h0) / dt;
   es.odometer += path;
   vehicle.pose = es.pose;
 }

@@ -4,7 +4,9 @@
 #include "controllers/esmini_vehicle.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <memory>
 #include <numbers>
@@ -14,6 +16,7 @@
 #include "controllers/follow_view.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
+#include "geometry/angle.h"
 #include "motion/pose_command.h"
 #include "positions/position_resolver.h"
 #include "state/sim_state.h"
@@ -39,17 +42,35 @@ constexpr double kFollowerLimitFactor = 1.2;
 }  // namespace
 
 void single_track_step(double& x, double& y, double& h, double speed, double wheel, double length,
-                       double dt) {
+                       double dt, CourseTrig* trig) {
   // A straight wheel (exactly 0, as a wheel returning to straight ends up) slips by nothing:
-  // kEsminiPivotFraction * wheel is the same signed 0 that atan(k tan(wheel)) gives.
-  const double slip = wheel == 0.0 ? kEsminiPivotFraction * wheel
-                                   : std::atan(kEsminiPivotFraction * std::tan(wheel));
+  // kEsminiPivotFraction * wheel is the same signed 0 that atan(k tan(wheel)) gives, and its
+  // sine is that 0 again.
+  const bool straight = wheel == 0.0;
+  const double slip =
+      straight ? kEsminiPivotFraction * wheel : std::atan(kEsminiPivotFraction * std::tan(wheel));
   const double course = h + slip;
-  const double yaw_rate = speed * std::sin(slip) / (length * kEsminiPivotFraction);
-  h = std::fmod(h + dt * yaw_rate, kEsminiFullTurn);
+  const double yaw_rate =
+      speed * (straight ? slip : std::sin(slip)) / (length * kEsminiPivotFraction);
+  // fmod(a, 2 pi) is a itself for a in [0, 2 pi) (a -0 stays -0 either way).
+  const double turned = h + dt * yaw_rate;
+  h = turned >= 0.0 && turned < kEsminiFullTurn ? turned : std::fmod(turned, kEsminiFullTurn);
   if (h < 0.0) h += kEsminiFullTurn;
-  x += dt * speed * std::cos(course);
-  y += dt * speed * std::sin(course);
+  const uint64_t course_bits = std::bit_cast<uint64_t>(course);
+  double cos_course = 0.0;
+  double sin_course = 0.0;
+  if (trig != nullptr && trig->valid && trig->course_bits == course_bits) {
+    cos_course = trig->cos;
+    sin_course = trig->sin;
+  } else {
+    cos_course = std::cos(course);
+    sin_course = std::sin(course);
+    if (trig != nullptr) {
+      *trig = CourseTrig{true, course_bits, cos_course, sin_course};
+    }
+  }
+  x += dt * speed * cos_course;
+  y += dt * speed * sin_course;
 }
 
 void place_entity_at_model(double x, double y, double h, double speed, Entity& entity,
@@ -57,7 +78,7 @@ void place_entity_at_model(double x, double y, double h, double speed, Entity& e
   Pose pose = entity.state.pose;
   pose.x = x;
   pose.y = y;
-  pose.h = std::remainder(h, kEsminiFullTurn);
+  pose.h = remainder_full_turn(h);
   if (motion.map != nullptr) {
     if (const auto at = road_point_within(locate_near(entity, *motion.map, x, y), 0.5)) {
       const xodr::WorldPose surface = motion.map->world_pose(at->road, at->s, at->t);
@@ -72,7 +93,7 @@ void place_entity_at_model(double x, double y, double h, double speed, Entity& e
 namespace {
 
 void integrate(EsminiVehicle& car, double dt) {
-  single_track_step(car.x, car.y, car.h, car.speed, car.wheel, car.length, dt);
+  single_track_step(car.x, car.y, car.h, car.speed, car.wheel, car.length, dt, &car.course_trig);
 }
 
 // Where `entity` is, esmini's speed limit (m/s): the road type's speed at its s, else by the
@@ -177,8 +198,7 @@ void step_offroad_follower(SimState& state, uint32_t index, EsminiDriver& driver
   car.max_speed = entity.info.max_speed > 0.0 ? std::min(limit, entity.info.max_speed) : limit;
   const double dx = lead.x - entity.state.pose.x;
   const double dy = lead.y - entity.state.pose.y;
-  const double direction =
-      std::remainder(std::atan2(dy, dx) - entity.state.pose.h, kEsminiFullTurn);
+  const double direction = remainder_full_turn(std::atan2(dy, dx) - entity.state.pose.h);
   const double distance = std::hypot(dx, dy);
   const double steering = std::clamp(direction, -1.0, 1.0);
   const double throttle = std::clamp(

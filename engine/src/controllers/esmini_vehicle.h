@@ -48,6 +48,16 @@ struct SimState;
 class FollowView;
 
 /// esmini's vehicle model: state and parameters (SI units, heading in [0, 2 pi)).
+/// The cosine and sine of the course a single-track step last moved along: a model whose wheel
+/// stands straight keeps its heading, and moves along the same course step after step (esmini's
+/// interactiveDriver with no key pressed). The same bits give the same values.
+struct CourseTrig {
+  bool valid = false;
+  uint64_t course_bits = 0;
+  double cos = 0.0;
+  double sin = 0.0;
+};
+
 struct EsminiVehicle {
   double x = 0.0, y = 0.0, h = 0.0;  ///< m, m, rad
   double speed = 0.0;                ///< m/s
@@ -58,6 +68,7 @@ struct EsminiVehicle {
   double max_acceleration = 20.0;    ///< m/s^2
   double max_deceleration = 20.0;    ///< m/s^2
   double steering_rate = 5.0;        ///< rad/s at full wheel input
+  CourseTrig course_trig;            ///< of the last step (single_track_step)
 };
 
 /// esmini's vehicle model: the front wheels' largest angle (rad), less with speed.
@@ -65,9 +76,10 @@ inline constexpr double kEsminiMaxWheelAngle = 60.0 * std::numbers::pi / 180.0;
 
 /// One kinematic single-track step of esmini's vehicle model about a point 15% of `length`
 /// ahead of the rear axle, with the front wheels at `wheel`: (x, y) moves along the heading of
-/// the step's start plus the slip angle, h (rad, kept in [0, 2 pi)) turns.
+/// the step's start plus the slip angle, h (rad, kept in [0, 2 pi)) turns. `trig`, when given,
+/// keeps the course's cosine and sine for the next step along the same course.
 void single_track_step(double& x, double& y, double& h, double speed, double wheel, double length,
-                       double dt);
+                       double dt, CourseTrig* trig = nullptr);
 
 /// Puts `entity` at a vehicle model's pose (x, y, h; the height and pitch of the road surface
 /// there) with `speed`, as a pose command (move_at_controller_speed, controllers.h).

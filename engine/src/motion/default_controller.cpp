@@ -2,9 +2,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <variant>
 
+#include "geometry/angle.h"
 #include "lanes/lane_follow.h"
 #include "motion/controller.h"
 #include "motion/pose_command.h"
@@ -262,9 +262,7 @@ void DefaultController::step_entity(EntityMotion& entity, MapMemos memos,
   const double lateral_speed = lateral_change / dt;
   entity.lateral_acceleration = (lateral_speed - state.lateral_speed) / dt;
   state.lateral_speed = lateral_speed;
-  // An unchanged heading turned by exactly 0 (remainder(0, 2 pi) is 0; a libm call otherwise).
-  const double turn = state.pose.h - h0;
-  state.yaw_rate = (turn == 0.0 ? turn : std::remainder(turn, 2.0 * std::numbers::pi)) / dt;
+  state.yaw_rate = remainder_full_turn(state.pose.h - h0) / dt;
   state.odometer += path;
 }
 

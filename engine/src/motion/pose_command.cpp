@@ -1,8 +1,8 @@
 #include "motion/pose_command.h"
 
 #include <cmath>
-#include <numbers>
 
+#include "geometry/angle.h"
 #include "lanes/lane_follow.h"
 #include "positions/position_resolver.h"
 
@@ -13,7 +13,10 @@ void move_to_pose_command(Entity& entity, const MotionContext& context) {
   const Pose target = *entity.pose_command;
   entity.pose_command.reset();
   const double dt = context.dt;
-  const double moved = std::hypot(target.x - state.pose.x, target.y - state.pose.y);
+  const double dx = target.x - state.pose.x;
+  const double dy = target.y - state.pose.y;
+  // hypot(+-0, +-0) is +0: a model at rest (esmini's, whose speed only nears 0) moves by none.
+  const double moved = dx == 0.0 && dy == 0.0 ? 0.0 : std::hypot(dx, dy);
   const double h0 = state.pose.h;
   const double v0 = state.speed;
   const double v1 = entity.speed_command;
@@ -22,7 +25,7 @@ void move_to_pose_command(Entity& entity, const MotionContext& context) {
   state.speed = v1;
   entity.lateral_acceleration = -state.lateral_speed / dt;
   state.lateral_speed = 0.0;
-  state.yaw_rate = std::remainder(target.h - h0, 2.0 * std::numbers::pi) / dt;
+  state.yaw_rate = remainder_full_turn(target.h - h0) / dt;
   state.odometer += moved;
   entity.longitudinal_distance += moved;
   entity.end_of_road = false;
