@@ -262,3 +262,26 @@ TEST_CASE("remainder_full_turn gives std::remainder's bits") {
   CHECK(checked > 400000);
 }
 
+// ReachPositionCondition (conditions/reach_position_condition.cpp) answers "farther than the
+// tolerance" without hypot when one axis alone is farther: that rests on hypot(dx, dy) never
+// falling below max(|dx|, |dy|), which a rounding within an ulp of the exact length cannot do.
+// Checked on the library at hand where it is tightest: one axis far shorter than the other (the
+// exact length a hair above the longer), equal axes, and random pairs.
+TEST_CASE("hypot is never below the longer axis") {
+  std::mt19937_64 random(1128);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_real_distribution<double> exponent(-30.0, 30.0);
+  int below = 0;
+  const auto check = [&](double dx, double dy) {
+    below += std::hypot(dx, dy) < std::max(std::abs(dx), std::abs(dy)) ? 1 : 0;
+  };
+  for (int k = 0; k < 200000; ++k) {
+    const double a = unit(random) * std::exp2(exponent(random));
+    const double b = unit(random) * std::exp2(exponent(random));
+    check(a, b);
+    check(a, a * 1e-9);
+    check(a, a);
+    check(std::nextafter(a, 0.0), a);
+  }
+  CHECK(below == 0);
+}

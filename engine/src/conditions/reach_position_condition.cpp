@@ -59,7 +59,13 @@ class ReachPositionCheck final : public EntityCondition {
     const ResolvedPosition target =
         fixed_ ? *target_ : resolve_position(c_.position, state, entity);
     const Pose& p = state.world.entities[entity].state.pose;
-    if (std::hypot(target.pose.x - p.x, target.pose.y - p.y) > c_.tolerance) {
+    const double dx = target.pose.x - p.x;
+    const double dy = target.pose.y - p.y;
+    // hypot is at least the larger of |dx| and |dy| (a double, below the exact length, which a
+    // rounding within an ulp cannot pass): farther than the tolerance along one axis is farther
+    // in hypot too, without the call. NaNs fail this test and take hypot's.
+    if (std::abs(dx) > c_.tolerance || std::abs(dy) > c_.tolerance ||
+        std::hypot(dx, dy) > c_.tolerance) {
       return false;
     }
     if (!check_orientation_) {
