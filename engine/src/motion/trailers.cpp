@@ -111,8 +111,12 @@ void disconnect_trailer(SimState& state, uint32_t tower) {
 
 void move_trailers(SimState& state, double dt) {
   std::vector<uint32_t> towed;
-  for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
-    if (state.world.entities[i].towed_by) towed.push_back(i);
+  // The count read once: a push_back could allocate, after which the compiler reloads the
+  // entities' vector every round.
+  const auto count = static_cast<uint32_t>(state.world.entities.size());
+  const Entity* entities = state.world.entities.data();
+  for (uint32_t i = 0; i < count; ++i) {
+    if (entities[i].towed_by) towed.push_back(i);
   }
   // Towers before their trailers.
   std::stable_sort(towed.begin(), towed.end(),
