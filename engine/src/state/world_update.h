@@ -20,6 +20,8 @@ struct SimState;
 struct ContactSweep {
   std::vector<uint32_t> order;
   bool along_y = false;
+  /// The strips across its axis the last sweep over all boxes was cut into (1: one sweep).
+  uint32_t strips = 1;
   /// Calls work(begin, end) for ranges covering [0, count), each once, possibly on several
   /// threads at a time (the mover's, controllers/controllers.h); null: work(0, count) here.
   /// The boxes of the entities are made through it.
