@@ -66,25 +66,32 @@ bool y_near_finite(const Item& a, const Item& b) {
          0.0;
 }
 
-// Calls test(b) for each item b after `a` in items[0, size) (sorted for a sweep) until ends(b)
-// (true from some item on), whose pair with a is near(b): the items are gathered by a pass
-// without a branch per pair (each index written, the count moved by near), then tested, in the
-// order of the sweep.
-template <typename Ends, typename Near, typename Test>
-void sweep_from(const Item* items, size_t size, size_t a, Ends ends, Near near, Test test) {
+// Calls test(b) for each item b = at(j) after `a` = at(i), j = i + 1 ... size - 1 (sorted for a
+// sweep), until ends(b) (true from some item on), whose pair with a is near(b): the items are
+// gathered by a pass without a branch per pair (each position written, the count moved by
+// near), then tested, in the order of the sweep.
+template <typename At, typename Ends, typename Near, typename Test>
+void sweep_from(At at, size_t size, size_t i, Ends ends, Near near, Test test) {
   constexpr size_t kBuffer = 64;
   uint32_t kept[kBuffer];
   size_t count = 0;
-  for (size_t b = a + 1; b < size && !ends(items[b]); ++b) {
-    kept[count] = static_cast<uint32_t>(b);
-    count += static_cast<size_t>(near(items[b]));
+  for (size_t j = i + 1; j < size && !ends(at(j)); ++j) {
+    kept[count] = static_cast<uint32_t>(j);
+    count += static_cast<size_t>(near(at(j)));
     if (count == kBuffer) {
-      for (size_t k = 0; k < count; ++k) test(items[kept[k]]);
+      for (size_t k = 0; k < count; ++k) test(at(kept[k]));
       count = 0;
     }
   }
-  for (size_t k = 0; k < count; ++k) test(items[kept[k]]);
+  for (size_t k = 0; k < count; ++k) test(at(kept[k]));
 }
+
+// Item j of the items at `data` (for sweep_from over all items; a pointer, which the tests'
+// records cannot move, where a vector's would be read again after each).
+struct ItemAt {
+  const Item* data;
+  const Item& operator()(size_t j) const { return data[j]; }
+};
 
 // Sorts `items` by `less` (a strict total order), starting from the order of the last sweep
 // (`order`, entity indices) when it ran along the same axis: boxes move little in a step, so
@@ -404,33 +411,43 @@ ContactStrips choose_strips(double low, double high, double along, size_t boxes)
 // extents across overlap, within high's margin) is tested only in the later first strip of the
 // two. The pairs tested, and the order of the two in each test, are those of one sweep over
 // all items.
+// The strips' members are positions in `items` (4 bytes each instead of a 40-byte copy, in
+// storage kept from one sweep to the next: the copies' fresh memory cost more cache misses
+// than the pairs they spared).
 template <typename Low, typename High, typename Ends, typename Near, typename Test>
-void sweep_strips(std::vector<Item>& items, const ContactStrips& strips, Low low, High high,
-                  Ends ends, Near near, Test test) {
-  std::vector<uint32_t> start(strips.count + 1, 0);
-  std::vector<uint32_t> last(items.size());
+void sweep_strips(std::vector<Item>& items, ContactSweep& sweep, const ContactStrips& strips,
+                  Low low, High high, Ends ends, Near near, Test test) {
+  std::vector<uint32_t>& start = sweep.strip_start;
+  std::vector<uint32_t>& last = sweep.strip_last;
+  std::vector<uint32_t>& members = sweep.strip_members;
+  start.assign(strips.count + 1, 0);
+  last.resize(items.size());
   for (size_t k = 0; k < items.size(); ++k) {
     Item& item = items[k];
     item.strip = strips.of(low(item));
     last[k] = strips.of(high(item));
-    ++start[item.strip + 1];
-    for (uint32_t s = item.strip + 1; s <= last[k]; ++s) ++start[s + 1];
+    for (uint32_t s = item.strip; s <= last[k]; ++s) ++start[s + 1];
   }
   for (uint32_t k = 0; k < strips.count; ++k) start[k + 1] += start[k];
-  std::vector<Item> striped(start.back());
-  std::vector<uint32_t> next(start.begin(), start.end() - 1);
+  members.resize(start.back());
   for (size_t k = 0; k < items.size(); ++k) {
-    const Item& item = items[k];
-    striped[next[item.strip]++] = item;
-    for (uint32_t s = item.strip + 1; s <= last[k]; ++s) striped[next[s]++] = item;
+    for (uint32_t s = items[k].strip; s <= last[k]; ++s) {
+      members[start[s]++] = static_cast<uint32_t>(k);
+    }
   }
+  // Each start was moved to the next strip's: strip k's members are [k ? start[k - 1] : 0,
+  // start[k]).
+  uint32_t begin = 0;
   for (uint32_t k = 0; k < strips.count; ++k) {
-    const Item* strip = striped.data() + start[k];
-    const size_t size = start[k + 1] - start[k];
+    const uint32_t* strip = members.data() + begin;
+    const size_t size = start[k] - begin;
+    begin = start[k];
+    const Item* data = items.data();
+    const auto at = [data, strip](size_t j) -> const Item& { return data[strip[j]]; };
     for (size_t a = 0; a < size; ++a) {
-      const Item& p = strip[a];
+      const Item& p = at(a);
       sweep_from(
-          strip, size, a, [&](const Item& q) { return ends(p, q); },
+          at, size, a, [&](const Item& q) { return ends(p, q); },
           [&](const Item& q) { return near(p, q) & (std::max(p.strip, q.strip) == k); },
           [&](const Item& q) { test(p, q); });
     }
@@ -466,14 +483,14 @@ void sweep_along_y(std::vector<Item>& items, ContactSweep& sweep, size_t entity_
   if (strips.count > 1) {
     // The x test above holds only for extents that overlap (a low and a high are in order).
     sweep_strips(
-        items, strips, [](const Item& item) { return item.low; },
+        items, sweep, strips, [](const Item& item) { return item.low; },
         [](const Item& item) { return item.high; }, ends, near, test);
     return;
   }
   for (size_t a = 0; a < items.size(); ++a) {
     const Item& p = items[a];
     sweep_from(
-        items.data(), items.size(), a, [&](const Item& q) { return ends(p, q); },
+        ItemAt{items.data()}, items.size(), a, [&](const Item& q) { return ends(p, q); },
         [&](const Item& q) { return near(p, q); }, [&](const Item& q) { test(p, q); });
   }
 }
@@ -503,7 +520,7 @@ void sweep_along_x(std::vector<Item>& items, ContactSweep& sweep, size_t entity_
   if (strips.count > 1) {
     // y_near_finite(p, q) holds only if each low is at most the other's high plus its margin.
     sweep_strips(
-        items, strips, [](const Item& item) { return item.ylow; },
+        items, sweep, strips, [](const Item& item) { return item.ylow; },
         [](const Item& item) { return item.yhigh + margin(item.yhigh); }, ends,
         [](const Item& p, const Item& q) { return y_near_finite(p, q); }, test);
     return;
@@ -514,12 +531,12 @@ void sweep_along_x(std::vector<Item>& items, ContactSweep& sweep, size_t entity_
     const auto test_p = [&](const Item& q) { test(p, q); };
     if (finite) {
       sweep_from(
-          items.data(), items.size(), a, ends_p, [&](const Item& q) { return y_near_finite(p, q); },
-          test_p);
+          ItemAt{items.data()}, items.size(), a, ends_p,
+          [&](const Item& q) { return y_near_finite(p, q); }, test_p);
     } else {
       sweep_from(
-          items.data(), items.size(), a, ends_p, [&](const Item& q) { return !y_apart(p, q); },
-          test_p);
+          ItemAt{items.data()}, items.size(), a, ends_p,
+          [&](const Item& q) { return !y_apart(p, q); }, test_p);
     }
   }
 }
