@@ -667,6 +667,64 @@ TEST_CASE("The contacts of many boxes of every size and heading are the pairs a 
   }
 }
 
+TEST_CASE("Many boxes over a small area are swept in strips and give the pairs a test of all finds",
+          "[engine][traffic]") {
+  namespace detail = corsa::engine::detail;
+  const corsa::xosc::Scenario scenario;
+  Diagnostics diagnostics;
+  // 700 walkers, cars and 18 m trucks at random headings over 400 m x 160 m (longer along x in
+  // one layout, along y in the other): the one sweep would meet several boxes per box, so the
+  // sweep runs in strips of 16 m across its axis; trucks and a third of the cars reach across a
+  // strip's border. Then every box moves a little and the sweep runs again.
+  for (const bool along_y : {false, true}) {
+    CAPTURE(along_y);
+    detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
+    corsa::RandomStream random(along_y ? 11 : 13);
+    for (int i = 0; i < 700; ++i) {
+      detail::Entity entity;
+      entity.state.placed = true;
+      const int kind = random.uniform_int(0, 9);
+      entity.info.box = kind == 0  ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
+                        : kind < 3 ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
+                                   : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5};
+      const double wide = random.uniform(-200.0, 200.0);
+      const double narrow = random.uniform(-80.0, 80.0);
+      entity.state.pose.x = along_y ? narrow : wide;
+      entity.state.pose.y = along_y ? wide : narrow;
+      entity.state.pose.h = random.uniform(-std::numbers::pi, std::numbers::pi);
+      state.world.entities.push_back(std::move(entity));
+    }
+    const auto all_pairs = [&] {
+      std::vector<std::pair<uint32_t, uint32_t>> pairs;
+      const auto& entities = state.world.entities;
+      for (uint32_t a = 0; a < entities.size(); ++a) {
+        for (uint32_t b = a + 1; b < entities.size(); ++b) {
+          if (corsa::engine::overlap(
+                  corsa::engine::box_of(entities[a].info.box, entities[a].state.pose),
+                  corsa::engine::box_of(entities[b].info.box, entities[b].state.pose))) {
+            pairs.emplace_back(a, b);
+          }
+        }
+      }
+      return pairs;
+    };
+    detail::ContactSweep sweep;
+    detail::update_contacts(state, sweep);
+    CHECK(sweep.along_y == along_y);
+    CHECK(sweep.strips >= 8);
+    const auto first = all_pairs();
+    CHECK(first.size() > 100);
+    CHECK(state.contacts.pairs == first);
+    for (detail::Entity& entity : state.world.entities) {
+      entity.state.pose.x += random.uniform(-1.0, 1.0);
+      entity.state.pose.y += random.uniform(-1.0, 1.0);
+    }
+    detail::update_contacts(state, sweep);
+    CHECK(sweep.strips >= 8);
+    CHECK(state.contacts.pairs == all_pairs());
+  }
+}
+
 TEST_CASE("Boxes that moved into and out of contact with standing ones get a full sweep's contacts",
           "[engine][traffic]") {
   namespace detail = corsa::engine::detail;
