@@ -672,6 +672,30 @@ TEST_CASE("A ReachPositionCondition ignores the Orientation, or esmini's compare
   }
 }
 
+TEST_CASE("A ReachPositionCondition on a WorldPosition compares the place alone, either reading",
+          "[engine][semantics][conditions]") {
+  // The WorldPosition's h faces against the car; esmini checks the heading only of a position
+  // with an Orientation element, which a WorldPosition has not. The car (10 m/s from x = 50)
+  // comes within 1 m of x = 60.55 after 0.955 s, first seen at 0.96 s.
+  const auto check = [](FixtureRun& run) {
+    run.run();
+    const auto start = run.first("S::A::G::M::Reached::Stop", engine::TransitionKind::kStart);
+    REQUIRE(start);
+    CHECK(*start == Approx(0.96));
+    CHECK(std::abs(run.at(*start, "Car").pose.x - 60.55) < 1.0);
+    CHECK(std::abs(run.at(*start - 0.01, "Car").pose.x - 60.55) > 1.0);
+    CHECK(std::abs(run.at(*start, "Car").pose.h) < 1e-12);
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_reach_world_heading.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_reach_world_heading.xosc"), esmini_reading());
+    check(run);
+  }
+}
+
 TEST_CASE(
     "A RelativeSpeedCondition's direction is the triggering entity's, or esmini's reference's",
     "[engine][semantics][conditions]") {
