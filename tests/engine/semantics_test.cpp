@@ -382,8 +382,8 @@ TEST_CASE(
     run.run();
     check_common(run);
     // esmini turns the relative heading of a RelativeLanePosition given by ds from the road's
-    // +s (0.5).
-    CHECK(run.at(0.0, "LeftTurned").road->lane == 1);
+    // +s (0.5), and steps dLane 2 from lane -1 across the centre lane without counting it: lane 2.
+    CHECK(run.at(0.0, "LeftTurned").road->lane == 2);
     CHECK(turn(heading_of(run, "LeftTurned"), 0.5) == Approx(0.0).margin(1e-9));
     // dsLane: Back faces -s on a right lane, so esmini mirrors dLane 2 to -2: lane -3, facing
     // its traffic (+s) turned by 0.5; 30 m along lane -1's traffic (+s), against the way Back
@@ -596,25 +596,27 @@ TEST_CASE("A RoutePosition from the current entity turns its Orientation from th
   }
 }
 
-TEST_CASE("A RelativeLanePosition's dLane is added to the lane id, under either reading",
+TEST_CASE("A RelativeLanePosition's dLane is added to the lane id, or esmini's skips lane 0",
           "[engine][semantics][positions]") {
-  // Ref drives lane -1 facing +s; Other is dLane 1, ds 10, offset 1 from it: lane id -1 + 1 = 0,
-  // the centre lane (1.3: "adding dLane to that of the reference entity"), on the reference line
-  // plus the offset, as esmini places it.
-  const auto check = [](FixtureRun& run) {
+  // Ref drives lane -1 facing +s; Other is dLane 1, ds 10, offset 1 from it. Standard: lane id
+  // -1 + 1 = 0, the centre lane (1.3: "adding dLane to that of the reference entity"), on the
+  // reference line plus the offset. esmini steps across the centre lane without counting it:
+  // lane 1, its centre (1.75 m) plus the offset.
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"));
     run.run();
     CHECK(run.at(0.0, "Other").pose.y == Approx(1.0).margin(1e-9));
     CHECK(run.at(0.0, "Other").pose.x == Approx(110.0).margin(1e-9));
     CHECK(run.at(0.0, "Other").pose.h == Approx(0.0).margin(1e-9));  // as Ref's lane runs
     CHECK(run.at(0.0, "Other").road->lane == 1);                     // the lane the offset reaches
-  };
-  SECTION("standard") {
-    FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"));
-    check(run);
   }
   SECTION("esmini") {
     FixtureRun run(engine_fixture("semantics_relative_lane_centre.xosc"), esmini_reading());
-    check(run);
+    run.run();
+    CHECK(run.at(0.0, "Other").pose.y == Approx(2.75).margin(1e-9));
+    CHECK(run.at(0.0, "Other").pose.x == Approx(110.0).margin(1e-9));
+    CHECK(run.at(0.0, "Other").pose.h == Approx(0.0).margin(1e-9));  // the road's +s
+    CHECK(run.at(0.0, "Other").road->lane == 1);
   }
 }
 
@@ -667,6 +669,30 @@ TEST_CASE("A ReachPositionCondition ignores the Orientation, or esmini's compare
     CHECK(run.at(*start + 0.01, "Car").pose.x == Approx(run.at(*start, "Car").pose.x));
     CHECK(run.at(*start + 0.02, "Car").pose.x ==
           Approx(run.at(*start, "Car").pose.x + 0.1).margin(1e-9));
+  }
+}
+
+TEST_CASE("A ReachPositionCondition on a WorldPosition compares the place alone, either reading",
+          "[engine][semantics][conditions]") {
+  // The WorldPosition's h faces against the car; esmini checks the heading only of a position
+  // with an Orientation element, which a WorldPosition has not. The car (10 m/s from x = 50)
+  // comes within 1 m of x = 60.55 after 0.955 s, first seen at 0.96 s.
+  const auto check = [](FixtureRun& run) {
+    run.run();
+    const auto start = run.first("S::A::G::M::Reached::Stop", engine::TransitionKind::kStart);
+    REQUIRE(start);
+    CHECK(*start == Approx(0.96));
+    CHECK(std::abs(run.at(*start, "Car").pose.x - 60.55) < 1.0);
+    CHECK(std::abs(run.at(*start - 0.01, "Car").pose.x - 60.55) > 1.0);
+    CHECK(std::abs(run.at(*start, "Car").pose.h) < 1e-12);
+  };
+  SECTION("standard") {
+    FixtureRun run(engine_fixture("semantics_reach_world_heading.xosc"));
+    check(run);
+  }
+  SECTION("esmini") {
+    FixtureRun run(engine_fixture("semantics_reach_world_heading.xosc"), esmini_reading());
+    check(run);
   }
 }
 

@@ -4,9 +4,11 @@
 // The standard's tolerance is a radius (m) and the condition checks that the entity "has reached
 // a given position": an Orientation of that position is not compared (it has no angular
 // tolerance). esmini's reading (Semantics::kEsmini; its TrigByReachPosition): a position with an
-// Orientation (or a WorldPosition with h, p or r) is reached only while the entity's heading,
-// pitch and roll are also within kEsminiAngularTolerance of the position's (esmini's
-// traj-heading-trig waits so for a lane change's heading).
+// Orientation element is reached only while the entity's heading, pitch and roll are also within
+// kEsminiAngularTolerance of the position's (esmini's traj-heading-trig waits so for a lane
+// change's heading). A WorldPosition's h, p and r are attributes, not an Orientation: esmini's
+// reader turns the check on only for an <Orientation> child of the position, so a WorldPosition
+// is compared by its place alone there too (its pedestrian_traj_synch stops so).
 
 #include <cmath>
 #include <optional>
@@ -23,13 +25,14 @@ namespace {
 
 constexpr double kEsminiAngularTolerance = 0.05;  // rad
 
-// Whether the position states an orientation of its own.
-bool has_orientation(const xosc::Position& position) {
+// Whether the position has an Orientation element (a WorldPosition has none: its h, p and r are
+// attributes).
+bool has_orientation_element(const xosc::Position& position) {
   return std::visit(
       [](const auto& kind) {
         using Kind = std::decay_t<decltype(kind)>;
         if constexpr (std::is_same_v<Kind, xosc::WorldPosition>) {
-          return kind.h.has_value() || kind.p.has_value() || kind.r.has_value();
+          return false;
         } else {
           return kind.orientation.has_value();
         }
@@ -50,7 +53,7 @@ class ReachPositionCheck final : public EntityCondition {
   ReachPositionCheck(const xosc::ReachPositionCondition& c, const SimState& state)
       : c_(c),
         check_orientation_(state.options.semantics == Semantics::kEsmini &&
-                           has_orientation(c.position)),
+                           has_orientation_element(c.position)),
         fixed_(fixed_on_map(c.position)) {}
 
   bool holds(const SimState& state, uint32_t entity) override {

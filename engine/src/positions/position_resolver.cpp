@@ -254,13 +254,13 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
   // 1.3 RelativeLanePosition: "Find the target lane by adding dLane to that of the reference
   // entity", dLane being "The deviation value between the laneId of the lane, where the
   // reference entity is located, and the target laneId": the lane id plus dLane, so that -1 + 1
-  // is the centre lane 0, on the reference line (as esmini). Lanes are not counted.
+  // is the centre lane 0, on the reference line. Lanes are not counted. esmini steps lanes across
+  // the centre lane without counting it, along ds and dsLane alike (-1 + 1 is lane 1).
   int lane_id = at.lane + at.dir * d_lane;
-  if (p.ds_lane) {
-    // esmini steps lanes along a dsLane position across the centre lane without counting it.
-    lane_id = esmini_reading(state)
-                  ? lane_across_centre(at.lane, at.dir * d_lane)
-                  : lane_toward_reference_left(map, ref, rc, at, lane_id, p, state);
+  if (esmini_reading(state)) {
+    lane_id = lane_across_centre(at.lane, at.dir * d_lane);
+  } else if (p.ds_lane) {
+    lane_id = lane_toward_reference_left(map, ref, rc, at, lane_id, p, state);
   }
   // The centre lane has no width nor direction: on the reference line (as a LanePosition on
   // lane 0), oriented as the reference's lane, in the lane the offset reaches.
