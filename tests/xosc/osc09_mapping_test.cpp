@@ -100,7 +100,7 @@ TEST_CASE("a 0.9 event holding EXT_Quit beside other actions keeps its start con
   CHECK(condition.source.line == line_of(xml, "<Event name=\"E\""));
 }
 
-TEST_CASE("a 0.9 Meeting whose offsetTime is a parameter is left for the reader to refuse",
+TEST_CASE("a 0.9 Meeting whose offsetTime parameter holds a time is left for the reader to refuse",
           "[xosc][osc09]") {
   std::string xml = osc09_draft();
   const std::string faster = "<Action name=\"Faster\">\n<Private>\n<Longitudinal>";
@@ -116,6 +116,21 @@ TEST_CASE("a 0.9 Meeting whose offsetTime is a parameter is left for the reader 
   REQUIRE(!loaded.errors.empty());
   CHECK(loaded.errors[0].line == line_of(xml, "<Meeting"));
   CHECK_THAT(loaded.errors[0].message, Catch::Contains("Meeting"));
+
+  // A parameter holding 0: no offset, a SynchronizeAction.
+  xml.replace(xml.find("</ParameterDeclaration>"), 23,
+              "<Parameter name=\"$Offset\" type=\"double\" value=\"0\"/>\n</ParameterDeclaration>");
+  xml.replace(xml.find("offsetTime=\"$Speed\""), 19, "offsetTime=\"$Offset\"");
+  const Loaded zero = lenient_load(dir, xml);
+  INFO((zero.errors.empty() ? std::string() : zero.errors[0].format()));
+  REQUIRE(zero.errors.empty());
+  const auto& event = zero.scenario->storyboard.stories.at(0)
+                          .acts.at(0)
+                          .maneuver_groups.at(0)
+                          .maneuvers.at(0)
+                          .events.at(0);
+  const auto& action = std::get<xosc::PrivateAction>(event.actions.at(0).action);
+  CHECK(std::holds_alternative<xosc::SynchronizeAction>(action));
 }
 
 }  // namespace
