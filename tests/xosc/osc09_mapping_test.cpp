@@ -4,55 +4,10 @@
 #include <catch2/catch.hpp>
 
 #include "lenient_load.h"
+#include "osc09_draft.h"
 
 namespace corsa::test {
 namespace {
-
-// ScenarioText's entity (a ScenarioObject with an inline Vehicle) as a 0.9 <Object>.
-std::string osc09_object() {
-  std::string object = ScenarioText().entities;
-  object.replace(object.find("<ScenarioObject"), 15, "<Object");
-  object.replace(object.find("</ScenarioObject>"), 17, "</Object>");
-  return object;
-}
-
-// A 0.9 draft in the forms of esmini's basic_ego.
-std::string osc09_draft() {
-  return "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n"
-         "<FileHeader revMajor=\"0\" revMinor=\"9\" date=\"2019-10-23T10:00:00\" "
-         "description=\"d\" author=\"corsa\"/>\n"
-         "<ParameterDeclaration>\n"
-         "<Parameter name=\"$Speed\" type=\"double\" value=\"10\"/>\n"
-         "</ParameterDeclaration>\n"
-         "<Catalogs>\n<RouteCatalog>\n</RouteCatalog>\n</Catalogs>\n"
-         "<RoadNetwork>\n<Logics filepath=\"map.xodr\"/>\n</RoadNetwork>\n"
-         "<Entities>\n" +
-         osc09_object() +
-         "</Entities>\n"
-         "<Storyboard>\n<Init>\n<Actions>\n<Private object=\"Ego\">\n"
-         "<Action>\n<Position>\n<World x=\"0\" y=\"0\" h=\"0\"/>\n</Position>\n</Action>\n"
-         "<Action>\n<Longitudinal>\n<Speed>\n<Dynamics shape=\"step\"/>\n"
-         "<Target>\n<Absolute value=\"$Speed\"/>\n</Target>\n</Speed>\n</Longitudinal>\n"
-         "</Action>\n</Private>\n</Actions>\n</Init>\n"
-         "<Story name=\"S\" owner=\"Ego\">\n<Act name=\"A\">\n"
-         "<Sequence name=\"Q\" numberOfExecutions=\"1\">\n"
-         "<Actors>\n<Entity name=\"$owner\"/>\n</Actors>\n"
-         "<Maneuver name=\"M\">\n<Event name=\"E\" priority=\"overwrite\">\n"
-         "<Action name=\"Faster\">\n<Private>\n<Longitudinal>\n<Speed>\n"
-         "<Dynamics shape=\"linear\" rate=\"2\"/>\n"
-         "<Target>\n<Absolute value=\"20\"/>\n</Target>\n</Speed>\n</Longitudinal>\n"
-         "</Private>\n</Action>\n"
-         "<StartConditions>\n<ConditionGroup>\n"
-         "<Condition name=\"C\" delay=\"0\" edge=\"rising\">\n<ByState>\n"
-         "<AtStart type=\"act\" name=\"A\"/>\n</ByState>\n</Condition>\n"
-         "</ConditionGroup>\n</StartConditions>\n"
-         "</Event>\n</Maneuver>\n</Sequence>\n"
-         "<Conditions>\n<Start>\n<ConditionGroup>\n"
-         "<Condition name=\"Go\" delay=\"0\">\n<ByValue>\n"
-         "<SimulationTime value=\"0\" rule=\"greater_than\"/>\n</ByValue>\n</Condition>\n"
-         "</ConditionGroup>\n</Start>\n</Conditions>\n"
-         "</Act>\n</Story>\n<End>\n</End>\n</Storyboard>\n</OpenSCENARIO>\n";
-}
 
 TEST_CASE("an OpenSCENARIO 0.9 draft is read as 1.0 with one warning at its header",
           "[xosc][osc09]") {
@@ -145,7 +100,7 @@ TEST_CASE("a 0.9 event holding EXT_Quit beside other actions keeps its start con
   CHECK(condition.source.line == line_of(xml, "<Event name=\"E\""));
 }
 
-TEST_CASE("a 0.9 Meeting whose offsetTime is a parameter is left for the reader to refuse",
+TEST_CASE("a 0.9 Meeting whose offsetTime parameter holds a time is left for the reader to refuse",
           "[xosc][osc09]") {
   std::string xml = osc09_draft();
   const std::string faster = "<Action name=\"Faster\">\n<Private>\n<Longitudinal>";
@@ -161,6 +116,21 @@ TEST_CASE("a 0.9 Meeting whose offsetTime is a parameter is left for the reader 
   REQUIRE(!loaded.errors.empty());
   CHECK(loaded.errors[0].line == line_of(xml, "<Meeting"));
   CHECK_THAT(loaded.errors[0].message, Catch::Contains("Meeting"));
+
+  // A parameter holding 0: no offset, a SynchronizeAction.
+  xml.replace(xml.find("</ParameterDeclaration>"), 23,
+              "<Parameter name=\"$Offset\" type=\"double\" value=\"0\"/>\n</ParameterDeclaration>");
+  xml.replace(xml.find("offsetTime=\"$Speed\""), 19, "offsetTime=\"$Offset\"");
+  const Loaded zero = lenient_load(dir, xml);
+  INFO((zero.errors.empty() ? std::string() : zero.errors[0].format()));
+  REQUIRE(zero.errors.empty());
+  const auto& event = zero.scenario->storyboard.stories.at(0)
+                          .acts.at(0)
+                          .maneuver_groups.at(0)
+                          .maneuvers.at(0)
+                          .events.at(0);
+  const auto& action = std::get<xosc::PrivateAction>(event.actions.at(0).action);
+  CHECK(std::holds_alternative<xosc::SynchronizeAction>(action));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "catalog_cache_impl.h"
+#include "osc09_mapping.h"
 
 namespace corsa::xosc {
 namespace {
@@ -38,7 +39,9 @@ CatalogFiles read_catalog_directory(const std::filesystem::path& directory) {
   CatalogFiles files;
   for (const auto& path : paths) {
     try {
-      files.push_back(std::make_shared<const XmlFile>(load_xml(path)));
+      XmlFile file = load_xml(path);
+      map_osc09_catalog_file(file);
+      files.push_back(std::make_shared<const XmlFile>(std::move(file)));
     } catch (const InputError&) {
       // Kept without a document: a scenario that needs none of its entries still runs
       // (CatalogResolver warns, and fails with this file's error only when an entry is missing).

@@ -15,4 +15,8 @@ namespace corsa::xosc {
 /// 1.0. A 0.9 header over a document already in 1.0 forms is left alone.
 void map_osc09_to_osc10(ParseContext& ctx, tinyxml2::XMLDocument& document);
 
+/// map_osc09_to_osc10 for a catalog file read once for many loads: what it warns about or finds
+/// in error is kept in `file.mapping_notes`, for each load that reads the file to report.
+void map_osc09_catalog_file(XmlFile& file);
+
 }  // namespace corsa::xosc

@@ -105,6 +105,13 @@ void warn_xml_repairs(ParseContext& ctx, const XmlFile& file) {
                     clip(repeat.dropped) + "'",
                 "its first value '" + clip(repeat.kept) + "', as esmini's XML reader takes it");
   }
+  for (const XmlFile::MappingNote& note : file.mapping_notes) {
+    if (note.read_as) {
+      ctx.lenient(note.where, note.message, *note.read_as);
+    } else {
+      ctx.record(InputError(note.where.error(note.message)));
+    }
+  }
 }
 
 std::string element_text(const Element* element) {

@@ -52,6 +52,15 @@ struct XmlFile {
   /// Line of an XML declaration that follows comments instead of opening the file (XML 1.0
   /// §2.8 allows it only at the very start), read as if it opened the file; 0 when none.
   int late_declaration_line = 0;
+  /// What the 0.9-to-1.0 mapping read leniently (`read_as` set) or found in error in a 0.9
+  /// catalog file, mapped once when the file was read (catalog files are shared between loads);
+  /// whoever reads the document reports them (warn_xml_repairs).
+  struct MappingNote {
+    Source where;
+    std::string message;
+    std::optional<std::string> read_as;  ///< nullopt: an error
+  };
+  std::vector<MappingNote> mapping_notes;
 };
 
 /// Parses XML text; throws InputError "malformed XML: ..." at the offending line.

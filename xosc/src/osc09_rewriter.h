@@ -1,0 +1,106 @@
+#pragma once
+
+// Internal: the pass that rewrites an OpenSCENARIO 0.9 draft's XML tree into its 1.0 forms
+// (osc09_mapping.h says when it runs). One class, its parts by subject: osc09_mapping.cpp (the
+// document, parameters, entities, catalogs), osc09_storyboard.cpp (storyboard and conditions),
+// osc09_actions.cpp (actions, dynamics, positions).
+
+#include <tinyxml2.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "parse_context.h"
+
+namespace corsa::xosc {
+
+std::vector<Element*> osc09_children(Element* parent, const char* name = nullptr);
+
+class Osc09Rewriter {
+ public:
+  Osc09Rewriter(ParseContext& ctx, tinyxml2::XMLDocument& document);
+
+  /// The 0.9 element names translated, in the order first met.
+  const std::vector<std::string>& forms() const { return forms_; }
+
+  /// A scenario document (FileHeader, ParameterDeclaration, ..., Storyboard).
+  void scenario(Element* root);
+  /// A catalog document (FileHeader, Catalog of entries).
+  void catalog(Element* catalog);
+
+ private:
+  using ValueTable = std::map<std::string, std::string, std::less<>>;
+
+  // --- tree edits (osc09_mapping.cpp) ----------------------------------------------------------
+  void note(const std::string& form);
+  void rename(Element* e, const char* name);
+  static void move_attribute(Element* e, const char* from, const char* to);
+  static void default_attribute(Element* e, const char* name, const char* value);
+  Element* new_element(const char* name, const Element* line_of);
+  Element* wrap(Element* e, const char* name);
+  Source attribute_source(const Element* e, const char* attribute) const;
+
+  // --- parameter values (osc09_mapping.cpp) ----------------------------------------------------
+  // The mapping judges some attribute values (a rule, an edge, alongRoute). A value written as
+  // a `$reference` is judged by the value it stands for: the document's declaration, or the
+  // value given from outside (LoadOptions::parameters).
+  void parameter_declarations(Element* e);
+  void declare(const Element* parameter, std::string name);
+  /// The value of `attribute` with a `$name` reference resolved; nullopt when the attribute is
+  /// absent or its reference names no declared parameter (`unresolved` set then).
+  std::optional<std::string> value_of(const Element* e, const char* attribute,
+                                      bool* unresolved = nullptr) const;
+  /// Rewrites a 0.9 word of `table` in `attribute` to its 1.0 word; a reference to a parameter
+  /// holding such a word is replaced by the 1.0 word, with a warning at the attribute.
+  void map_value(Element* e, const char* attribute, const ValueTable& table);
+  /// A boolean attribute of the 0.9 form judged here (alongRoute); nullopt when absent or in
+  /// error (recorded at the attribute).
+  std::optional<bool> bool_value(Element* e, const char* attribute);
+  /// A double judged here (Meeting offsetTime); nullopt when absent, not a number or an
+  /// unresolved reference.
+  std::optional<double> double_value(const Element* e, const char* attribute) const;
+  void rule(Element* e);
+
+  // --- document parts (osc09_mapping.cpp) ------------------------------------------------------
+  void catalog_locations(Element* e);
+  void road_network(Element* e);
+  void entities(Element* e);
+  void catalog_references(Element* e);
+  void vehicle(Element* e);
+  void bounding_box(Element* e);
+
+  // --- storyboard and conditions (osc09_storyboard.cpp) ----------------------------------------
+  void storyboard(Element* e);
+  void story(Element* e);
+  void act_conditions(Element* act);
+  static void replace_owner(Element* e, const std::string& owner);
+  void maneuver_group(Element* e);
+  void event(Element* maneuver, Element* e);
+  void quit_event(Element* maneuver, Element* event);
+  Element* started_condition_group(const Element* event);
+  void trigger(Element* e, const char* name);
+  void condition(Element* e);
+  void state_condition(Element* e);
+  void entity_condition(Element* e);
+
+  // --- actions and positions (osc09_actions.cpp) -----------------------------------------------
+  void private_action(Element* e);
+  void dynamics(Element* e, const char* name, const std::vector<const char*>& precedence);
+  void speed_action(Element* e);
+  void lane_change_action(Element* e);
+  void meeting(Element* e);
+  void synchronize(Element* e);
+  void position(Element* e);
+
+  ParseContext& ctx_;
+  tinyxml2::XMLDocument& document_;
+  Element* storyboard_ = nullptr;
+  std::vector<std::string> forms_;
+  /// Parameter name (without `$`) -> its value as the mapping sees it.
+  std::map<std::string, std::string, std::less<>> parameters_;
+};
+
+}  // namespace corsa::xosc

@@ -1,0 +1,267 @@
+// The 0.9-to-1.0 mapping (osc09_rewriter.h) of the Storyboard: stories, acts and their
+// conditions, sequences, events, esmini's EXT_Quit, and the trigger conditions.
+
+#include "osc09_rewriter.h"
+
+namespace corsa::xosc {
+
+void Osc09Rewriter::storyboard(Element* e) {
+  storyboard_ = e;
+  if (Element* init = e->FirstChildElement("Init")) {
+    if (Element* actions = init->FirstChildElement("Actions")) {
+      for (Element* p : osc09_children(actions, "Private")) {
+        move_attribute(p, "object", "entityRef");
+        for (Element* action : osc09_children(p, "Action")) {
+          rename(action, "PrivateAction");
+          action->DeleteAttribute("name");
+          if (Element* kind = action->FirstChildElement()) private_action(kind);
+        }
+      }
+    }
+  }
+  for (Element* story : osc09_children(e, "Story")) this->story(story);
+  for (Element* end : osc09_children(e, "End")) trigger(end, "StopTrigger");
+}
+
+// 0.9's Story owner is the entity `$owner` names inside the story.
+void Osc09Rewriter::story(Element* e) {
+  if (const char* owner = e->Attribute("owner")) {
+    const std::string name = owner;
+    replace_owner(e, name);
+    e->DeleteAttribute("owner");
+  }
+  for (Element* act : osc09_children(e, "Act")) {
+    for (Element* sequence : osc09_children(act, "Sequence")) maneuver_group(sequence);
+    act_conditions(act);
+  }
+}
+
+// Conditions holds Start, End and Cancel; 1.0 has a StartTrigger and one StopTrigger. The 0.9
+// draft ends an act by its End conditions and cancels it by its Cancel conditions; 1.0 has the
+// StopTrigger for both (so AfterTermination rule="end" of an act is read as its complete state,
+// state_condition below).
+void Osc09Rewriter::act_conditions(Element* act) {
+  for (Element* conditions : osc09_children(act, "Conditions")) {
+    note("Conditions");
+    Element* stop = nullptr;
+    for (Element* c : osc09_children(conditions)) {
+      const std::string_view name = c->Name();
+      if (name == "Start") {
+        trigger(c, "StartTrigger");
+        act->InsertAfterChild(conditions, c);
+      } else if (stop == nullptr) {
+        trigger(c, "StopTrigger");
+        act->InsertEndChild(c);
+        stop = c;
+      } else {
+        trigger(c, "StopTrigger");
+        for (Element* group : osc09_children(c)) stop->InsertEndChild(group);
+        conditions->DeleteChild(c);
+      }
+    }
+    act->DeleteChild(conditions);
+  }
+  // The StopTrigger follows the StartTrigger in 1.0.
+  if (Element* stop = act->FirstChildElement("StopTrigger")) act->InsertEndChild(stop);
+}
+
+void Osc09Rewriter::replace_owner(Element* e, const std::string& owner) {
+  std::vector<std::string> names;
+  for (const tinyxml2::XMLAttribute* a = e->FirstAttribute(); a != nullptr; a = a->Next()) {
+    if (std::string_view(a->Value()) == "$owner") names.emplace_back(a->Name());
+  }
+  for (const std::string& name : names) e->SetAttribute(name.c_str(), owner.c_str());
+  for (Element* c : osc09_children(e)) replace_owner(c, owner);
+}
+
+void Osc09Rewriter::maneuver_group(Element* e) {
+  rename(e, "ManeuverGroup");
+  move_attribute(e, "numberOfExecutions", "maximumExecutionCount");
+  if (Element* actors = e->FirstChildElement("Actors")) {
+    default_attribute(actors, "selectTriggeringEntities", "false");
+    for (Element* entity : osc09_children(actors, "Entity")) {
+      rename(entity, "EntityRef");
+      move_attribute(entity, "name", "entityRef");
+    }
+  }
+  for (Element* maneuver : osc09_children(e, "Maneuver")) {
+    for (Element* p : osc09_children(maneuver, "ParameterDeclaration")) parameter_declarations(p);
+    for (Element* event : osc09_children(maneuver, "Event")) this->event(maneuver, event);
+  }
+}
+
+void Osc09Rewriter::event(Element* maneuver, Element* e) {
+  // 0.9's priority "overwrite" is what 1.2 renamed "override".
+  map_value(e, "priority", {{"overwrite", "override"}});
+  bool quits = false;
+  for (Element* action : osc09_children(e, "Action")) {
+    if (Element* p = action->FirstChildElement("Private")) {
+      rename(p, "PrivateAction");
+      if (Element* kind = p->FirstChildElement()) private_action(kind);
+    } else if (Element* g = action->FirstChildElement("Global")) {
+      // EXT_Quit ends the simulation, which only a scenario's Storyboard can stand for; in a
+      // catalog maneuver it is left for the reader to refuse.
+      if (g->FirstChildElement("EXT_Quit") != nullptr && storyboard_ != nullptr) {
+        quits = true;
+        e->DeleteChild(action);
+      } else {
+        rename(g, "GlobalAction");
+      }
+    }
+  }
+  for (Element* start : osc09_children(e, "StartConditions")) trigger(start, "StartTrigger");
+  if (quits) quit_event(maneuver, e);
+}
+
+// esmini's EXT_Quit ends the simulation when its event starts. An event of EXT_Quit alone
+// gives its start conditions to the Storyboard's StopTrigger; one with other actions keeps
+// them, and the StopTrigger waits for the event's start.
+void Osc09Rewriter::quit_event(Element* maneuver, Element* event) {
+  note("EXT_Quit");
+  Element* stop = storyboard_->FirstChildElement("StopTrigger");
+  if (stop == nullptr) {
+    if (Element* end = storyboard_->FirstChildElement("End")) {
+      trigger(end, "StopTrigger");
+      stop = end;
+    } else {
+      stop = new_element("StopTrigger", event);
+      storyboard_->InsertEndChild(stop);
+    }
+  }
+  if (event->FirstChildElement("Action") != nullptr) {
+    stop->InsertEndChild(started_condition_group(event));
+    return;
+  }
+  if (Element* start = event->FirstChildElement("StartTrigger")) {
+    for (Element* group : osc09_children(start, "ConditionGroup")) stop->InsertEndChild(group);
+  }
+  maneuver->DeleteChild(event);
+}
+
+// A ConditionGroup true when `event` starts (a StoryboardElementStateCondition on its name),
+// at the event's line.
+Element* Osc09Rewriter::started_condition_group(const Element* event) {
+  Element* group = new_element("ConditionGroup", event);
+  Element* condition = new_element("Condition", event);
+  condition->SetAttribute("name", "EXT_Quit");
+  condition->SetAttribute("delay", "0");
+  condition->SetAttribute("conditionEdge", "none");
+  Element* by_value = new_element("ByValueCondition", event);
+  Element* state = new_element("StoryboardElementStateCondition", event);
+  state->SetAttribute("storyboardElementType", "event");
+  const char* name = event->Attribute("name");
+  state->SetAttribute("storyboardElementRef", name != nullptr ? name : "");
+  state->SetAttribute("state", "startTransition");
+  by_value->InsertEndChild(state);
+  condition->InsertEndChild(by_value);
+  group->InsertEndChild(condition);
+  return group;
+}
+
+// --- conditions ----------------------------------------------------------------------------------
+void Osc09Rewriter::trigger(Element* e, const char* name) {
+  rename(e, name);
+  for (Element* group : osc09_children(e, "ConditionGroup")) {
+    for (Element* condition : osc09_children(group, "Condition")) this->condition(condition);
+  }
+}
+
+// 0.9's edge "any" is a change either way: esmini's 0.9 reader (OSCCondition::CheckEdge, 2019)
+// fires it when the value differs from the last one, 1.0's risingOrFalling. No edge written is
+// 1.0's none.
+void Osc09Rewriter::condition(Element* e) {
+  move_attribute(e, "edge", "conditionEdge");
+  default_attribute(e, "conditionEdge", "none");
+  map_value(e, "conditionEdge", {{"any", "risingOrFalling"}});
+  if (Element* by_value = e->FirstChildElement("ByValue")) {
+    rename(by_value, "ByValueCondition");
+    for (Element* c : osc09_children(by_value, "SimulationTime")) {
+      rename(c, "SimulationTimeCondition");
+      rule(c);
+    }
+  } else if (Element* by_state = e->FirstChildElement("ByState")) {
+    rename(by_state, "ByValueCondition");
+    for (Element* c : osc09_children(by_state)) state_condition(c);
+  } else if (Element* by_entity = e->FirstChildElement("ByEntity")) {
+    entity_condition(by_entity);
+  }
+}
+
+// AtStart and AfterTermination: 1.0's StoryboardElementStateCondition.
+void Osc09Rewriter::state_condition(Element* e) {
+  const std::string_view name = e->Name();
+  std::string state;
+  if (name == "AtStart") {
+    // "has started": an event of the act it names is only looked at once that act runs, after
+    // its start transition, so the running state is what holds then, already true when first
+    // looked at (which no rising edge follows).
+    state = "runningState";
+    if (Element* condition = e->Parent()->Parent()->ToElement()) {
+      condition->SetAttribute("conditionEdge", "none");
+    }
+  } else if (name == "AfterTermination") {
+    bool unresolved = false;
+    const std::string how = value_of(e, "rule", &unresolved).value_or("any");
+    const std::string type = value_of(e, "type").value_or("");
+    if (unresolved) {
+      ctx_.attribute_error(
+          e, "rule", "attribute rule: undefined parameter '" + clip(e->Attribute("rule")) + "'");
+    } else if (how != "end" && how != "cancel" && how != "any") {
+      ctx_.attribute_error(e, "rule",
+                           "attribute rule: '" + clip(how) +
+                               "' is not a valid 0.9 AfterTermination rule (end, cancel, any)");
+    }
+    // An act's End conditions end it, which 1.0's StopTrigger does with a stop transition: its
+    // "end" is the complete state, reached by either transition (esmini's 0.9 reader, which
+    // ignores the rule, fires on the act's end however it came). Other elements end by
+    // themselves (endTransition) or are cancelled (stopTransition).
+    if (how == "end") {
+      state = type == "act" ? "completeState" : "endTransition";
+    } else if (how == "cancel") {
+      state = "stopTransition";
+    } else {
+      state = "completeState";
+    }
+  } else {
+    return;
+  }
+  map_value(e, "type", {{"sequence", "maneuverGroup"}});
+  rename(e, "StoryboardElementStateCondition");
+  e->DeleteAttribute("rule");
+  move_attribute(e, "type", "storyboardElementType");
+  move_attribute(e, "name", "storyboardElementRef");
+  e->SetAttribute("state", state.c_str());
+}
+
+void Osc09Rewriter::entity_condition(Element* e) {
+  rename(e, "ByEntityCondition");
+  if (Element* triggering = e->FirstChildElement("TriggeringEntities")) {
+    move_attribute(triggering, "rule", "triggeringEntitiesRule");
+    for (Element* entity : osc09_children(triggering, "Entity")) {
+      rename(entity, "EntityRef");
+      move_attribute(entity, "name", "entityRef");
+    }
+  }
+  Element* conditions = e->FirstChildElement("EntityCondition");
+  if (conditions == nullptr) return;
+  for (Element* c : osc09_children(conditions)) {
+    const std::string_view name = c->Name();
+    if (name == "RelativeDistance") {
+      rename(c, "RelativeDistanceCondition");
+      move_attribute(c, "entity", "entityRef");
+      map_value(c, "type", {{"inertial", "cartesianDistance"}});
+      move_attribute(c, "type", "relativeDistanceType");
+      // alongRoute="true" measured in road coordinates, 1.1's coordinateSystem="road"; a
+      // parameter is judged by its value.
+      if (bool_value(c, "alongRoute").value_or(false)) c->SetAttribute("coordinateSystem", "road");
+      c->DeleteAttribute("alongRoute");
+      rule(c);
+    } else if (name == "TimeHeadway") {
+      rename(c, "TimeHeadwayCondition");
+      move_attribute(c, "entity", "entityRef");
+      rule(c);
+    }
+  }
+}
+
+}  // namespace corsa::xosc
