@@ -15,7 +15,7 @@ namespace {
 constexpr uint32_t bit(LightRole r) { return 1u << static_cast<unsigned>(r); }
 
 /// Photometry of a lamp by role: peak intensity (cd), pattern, range (m), emitter radius (m).
-/// Orders of magnitude of real lamps: an LED street light of ~10 klm peaks at a few kcd, a low
+/// Orders of magnitude of real lamps: an LED street light of ~13 klm peaks at a few kcd, a low
 /// beam at 10-20 kcd below its cut-off (UN ECE R112), a brake lamp at 60-185 cd (R7), a tail
 /// lamp at 4-17 cd, a 200 mm signal bulb at a few hundred cd (EN 12368).
 struct Photometry {
@@ -28,7 +28,7 @@ struct Photometry {
 Photometry photometry(LightRole role) {
   switch (role) {
     case LightRole::kStreetLamp:
-      return {3000.0, LightPattern::kStreetLamp, 60.0, 0.2};
+      return {4500.0, LightPattern::kStreetLamp, 60.0, 0.2};
     case LightRole::kHeadlight:
       return {12000.0, LightPattern::kLowBeam, 80.0, 0.06};
     case LightRole::kTail:
@@ -64,14 +64,24 @@ double pattern_gain(const Light& l, Vec3 d) {
   const double c = dot(d, l.axis);
   switch (l.pattern) {
     case LightPattern::kStreetLamp: {
-      // A batwing, as street lanterns are built to throw their light along the road and even
-      // out the pools: half the peak straight down, rising with the sine squared of the angle
-      // from the vertical to the peak at 70-75 degrees, fading to nothing at 88.
-      if (c <= 0.03) {
+      // A full cut-off lantern of a street with lamps some four mounting heights apart: 0.8 of
+      // the peak straight down, the peak from 45 to 60 degrees from the vertical, nothing from
+      // 78 degrees up (half the peak at 70). The light falls on the road beneath and around the
+      // lamp, a pool several times the light half-way to the next, instead of being thrown
+      // tens of metres along the road, where it was seen mostly as the asphalt's sheen.
+      if (c <= 0.2) {
         return 0.0;
       }
       const double s2 = 1.0 - c * c;
-      return (0.5 + 0.5 * s2 / 0.9) / 1.04 * smoothstep(0.03, 0.25, c);
+      double gain = (0.8 + 0.2 * std::min(1.0, s2 / 0.5)) * smoothstep(0.2, 0.5, c);
+      if (norm(l.side) > 0.0) {
+        // Towards the street across it (to two mounting heights out); behind the pole the
+        // sidewalk (0.4 mounting heights back) and beyond it a spill of 30% on the houses.
+        const double across = dot(d, l.side) / c;
+        gain *= across >= 0.0 ? 1.0 - smoothstep(1.0, 2.0, across)
+                              : 1.0 - 0.7 * smoothstep(0.4, 1.2, -across);
+      }
+      return gain;
     }
     case LightPattern::kLowBeam: {
       if (c <= 0.0) {
@@ -153,7 +163,7 @@ std::vector<LampPatch> find_lamps(std::span<const Vec3> vertices,
       }
     }
     if (into == nullptr) {
-      out.push_back({roles[i], {}, {}, 0.0, emissions[i], -1, bone});
+      out.push_back({roles[i], {}, {}, 0.0, emissions[i], -1, bone, {}});
       sums.push_back(centre * area);
       into = &out.back();
     }
@@ -239,6 +249,7 @@ LightList::LightList(const SceneData& d, std::span<const uint32_t> entity_lamps,
     Light l;
     // Emitters face the way their lens does: the street lamp's diffuser down, bulbs outwards.
     l.axis = p.role == LightRole::kStreetLamp ? Vec3{0.0, 0.0, -1.0} : p.normal;
+    l.side = p.role == LightRole::kStreetLamp ? p.reach : Vec3{};
     l.position = p.centre + l.axis * 0.02;
     l.intensity = hue(p.emission) * (ph.candela / 100000.0);
     l.range = ph.range;

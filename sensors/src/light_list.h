@@ -23,15 +23,17 @@ struct SceneData;
 
 /// How a light's intensity varies with direction.
 enum class LightPattern : uint8_t {
-  kStreetLamp,  ///< wide down-light: I0 (0.35 + 0.65 cos) within 80 degrees of its axis
+  kStreetLamp,  ///< full cut-off down-light, out to 78 degrees, cut short behind its pole
   kLowBeam,     ///< headlight: a horizontal fan below a sharp cut-off just under the horizon
   kLambert,     ///< small lamp lens: I0 cos about its axis (tail, brake, signal bulbs)
 };
 
 struct Light {
-  Vec3 position;        ///< tracer-local
-  Vec3 axis;            ///< unit, the main direction of the light
-  Vec3 side;            ///< unit, horizontal, perpendicular to the axis (low beams only)
+  Vec3 position;  ///< tracer-local
+  Vec3 axis;      ///< unit, the main direction of the light
+  /// Unit, horizontal, perpendicular to the axis: a low beam's left, a street lamp's street
+  /// side (from its pole out along its arm; zero for a lamp on top of its pole: all round).
+  Vec3 side;
   Color intensity;      ///< peak luminous intensity / 100,000 (cd per relative unit)
   double radius = 0.1;  ///< emitter size (m): soft shadow rays aim within it
   double range = 30.0;  ///< m: no light beyond
@@ -58,6 +60,7 @@ struct LampPatch {
   Color emission;
   int signal = -1;  ///< static traffic-light bulbs: the signal index
   uint32_t bone = 0;
+  Vec3 reach;  ///< street lamps: unit, horizontal, from the pole out to the lamp (or zero)
 };
 
 /// Clusters the emissive triangles of a mesh (vertices, triangles, one role and emission per

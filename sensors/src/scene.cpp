@@ -1,8 +1,10 @@
 #include "corsa/sensors/scene.h"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -207,7 +209,24 @@ void add_static_lamps(detail::SceneData& d, const StaticMesh& mesh,
   for (size_t i = 0; i < local.size(); ++i) {
     local[i] = d.to_local(mesh.vertices[i]);
   }
+  // A street light's pole stands on its lowest vertices; its lamps throw their light away from
+  // it (along the arm, over the street).
+  double z_low = std::numeric_limits<double>::infinity();
+  for (const Vec3& v : local) {
+    z_low = std::min(z_low, v.z);
+  }
+  Vec3 foot;
+  int feet = 0;
+  for (const Vec3& v : local) {
+    if (v.z < z_low + 0.05) {
+      foot = foot + v;
+      ++feet;
+    }
+  }
+  foot = foot * (1.0 / std::max(feet, 1));
   for (detail::LampPatch p : detail::find_lamps(local, mesh.triangles, roles, emissions, {})) {
+    const Vec3 out{p.centre.x - foot.x, p.centre.y - foot.y, 0.0};
+    p.reach = p.role == LightRole::kStreetLamp && norm(out) > 0.3 ? normalized(out) : Vec3{};
     p.signal = p.role == LightRole::kSignalRed || p.role == LightRole::kSignalYellow ||
                        p.role == LightRole::kSignalGreen
                    ? info.signal

@@ -31,9 +31,8 @@ PreethamSky make_preetham(double turbidity, double sun_theta) {
                0.12064 * T - 2.57705, -0.06696 * T + 0.37027};
   s.perez_x = {-0.01925 * T - 0.25922, -0.06651 * T + 0.00081, -0.00041 * T + 0.21247,
                -0.06409 * T - 0.89887, -0.00325 * T + 0.04517};
-  s.perez_y = {-0.01669 * T - 0.26078, -0.09495 * T + 0.00921, -0.00792 * T + 0.21023,
-               -0.04405 * T - 1.65369, -0.01092 * T + 0.05291};
-  // Zenith luminance (kcd/m^2) and chromaticity, cubic in the sun's zenith angle.
+  // Zenith luminance (kcd/m^2) and chromaticity x, cubic in the sun's zenith angle. The
+  // paper's fit of y is left out: xyY() puts the colour on the daylight locus.
   const double chi = (4.0 / 9.0 - T / 120.0) * (kPi - 2.0 * sun_theta);
   s.zenith_Y = std::max(0.0, (4.0453 * T - 4.9710) * std::tan(chi) - 0.2155 * T + 2.4192);
   const double t1 = sun_theta, t2 = t1 * t1, t3 = t2 * t1;
@@ -41,9 +40,6 @@ PreethamSky make_preetham(double turbidity, double sun_theta) {
   s.zenith_x = (0.00166 * t3 - 0.00375 * t2 + 0.00209 * t1) * T2 +
                (-0.02903 * t3 + 0.06377 * t2 - 0.03202 * t1 + 0.00394) * T +
                (0.11693 * t3 - 0.21196 * t2 + 0.06052 * t1 + 0.25886);
-  s.zenith_y = (0.00275 * t3 - 0.00610 * t2 + 0.00317 * t1) * T2 +
-               (-0.04214 * t3 + 0.08970 * t2 - 0.04153 * t1 + 0.00516) * T +
-               (0.15346 * t3 - 0.26756 * t2 + 0.06670 * t1 + 0.26688);
   return s;
 }
 
@@ -56,9 +52,16 @@ void PreethamSky::xyY(double theta, double gamma, double& x, double& y, double& 
     return perez(c, cos_theta, gamma, cos_gamma) / perez(c, 1.0, sun_theta, cos_sun);
   };
   x = zenith_x * ratio(perez_x);
-  y = zenith_y * ratio(perez_y);
+  // Measured skylight lies along the CIE daylight locus (Judd, MacAdam and Wyszecki 1964, from
+  // spectra of sun and sky alike, 4,000-25,000 K). Preetham's fit of y strays from it: 0.01-0.02
+  // below it near the horizon under a high sun (a pink-mauve band where the sky is a pale
+  // blue-white, x about 0.31) and 0.04 above it towards a low sun (yellow-green instead of
+  // orange). So the colour keeps the fit's x, its correlated colour temperature, on the locus.
+  y = daylight_locus_y(x);
   Y = zenith_Y * ratio(perez_Y);
 }
+
+double daylight_locus_y(double x) { return -3.0 * x * x + 2.87 * x - 0.275; }
 
 Color rgb_from_xyY(double x, double y, double Y) {
   if (y <= 1e-9 || Y <= 0.0) {

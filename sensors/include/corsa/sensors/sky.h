@@ -24,18 +24,23 @@ inline constexpr double kNitsPerUnit = 100000.0 / 3.14159265358979323846;
 struct PreethamSky {
   double turbidity = 3.0;
   double sun_theta = 0.0;  ///< zenith angle of the sun used by the fit (radians, <= pi/2)
-  std::array<double, 5> perez_Y{}, perez_x{}, perez_y{};
+  std::array<double, 5> perez_Y{}, perez_x{};
   double zenith_Y = 0.0;  ///< kcd/m^2 (the paper's unit)
-  double zenith_x = 0.0, zenith_y = 0.0;
+  double zenith_x = 0.0;
 
   /// Luminance (kcd/m^2) and chromaticity at view zenith angle theta and angle gamma from the
-  /// sun (radians); theta is clamped just above the horizon.
+  /// sun (radians); theta is clamped just above the horizon. x is the paper's, y the daylight
+  /// locus's at that x (see daylight_locus_y).
   void xyY(double theta, double gamma, double& x, double& y, double& Y) const;
 };
 
 /// Preetham's model: zenith luminance and chromaticity and the Perez coefficients (paper,
 /// appendix A.2) for turbidity T (about 2 very clear .. 10 hazy) and the sun's zenith angle.
 PreethamSky make_preetham(double turbidity, double sun_theta);
+
+/// CIE daylight locus: the chromaticity y of daylight of chromaticity x (CIE 15, from Judd,
+/// MacAdam and Wyszecki 1964).
+double daylight_locus_y(double x);
 
 /// Linear sRGB of CIE xyY (D65 white).
 Color rgb_from_xyY(double x, double y, double Y);
