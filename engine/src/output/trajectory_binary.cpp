@@ -137,15 +137,18 @@ struct BinaryTrajectoryRecorder::State {
   bool abandoned = false;    ///< destroyed without finish: the queued ticks are dropped
   std::exception_ptr error;  ///< the encoder's, rethrown by finish
 
-  /// Encodes, or copies, the rows of the simulation's current tick, `tick`.
-  void capture(const Simulation& simulation, int64_t tick);
+  /// Encodes, or copies, the rows of the simulation's current tick, `tick`. (Inlined into
+  /// on_step, with what a tick seldom does out of line: a call less on every tick.)
+  [[gnu::always_inline]] inline void capture(const Simulation& simulation, int64_t tick);
+  /// Names the entities first counted by the current tick to the encoder.
+  [[gnu::noinline]] void name_entities(const Simulation& simulation, size_t count);
   /// At the first recorded tick: the step, and the writer thread when there is one. (Apart
   /// from capture, as is copy_rows, so that the tick's path on the caller's thread stays short.)
-  void begin(const Simulation& simulation);
-  /// kAuto: adds a tick that coded `coded` rows to the window; at the window's end, moves to the
-  /// writer thread when the window's work pays for it.
-  void weigh(uint32_t coded);
-  void copy_rows(const Simulation& simulation, int64_t tick);
+  [[gnu::noinline]] void begin(const Simulation& simulation);
+  /// kAuto, at the end of a window of ticks (capture sums their coded rows): moves to the writer
+  /// thread when the window's work pays for it.
+  [[gnu::noinline]] void weigh();
+  [[gnu::noinline]] void copy_rows(const Simulation& simulation, int64_t tick);
   void encode(RecordedTicks& batch);
   void hand_over();
   void serve();
@@ -153,7 +156,7 @@ struct BinaryTrajectoryRecorder::State {
   void finish(int64_t last_tick);
 };
 
-void BinaryTrajectoryRecorder::State::capture(const Simulation& simulation, int64_t tick) {
+inline void BinaryTrajectoryRecorder::State::capture(const Simulation& simulation, int64_t tick) {
   if (!started) [[unlikely]] {
     begin(simulation);
   }
@@ -164,14 +167,23 @@ void BinaryTrajectoryRecorder::State::capture(const Simulation& simulation, int6
   }
   // Straight from the states, no copy: the encoder is done with them before the next step.
   const EntityStates states = simulation.states();
-  for (; named_entities < states.size(); ++named_entities) {
-    encoder.name_entity(simulation.entity(named_entities).name);
+  if (named_entities < states.size()) [[unlikely]] {
+    name_entities(simulation, states.size());
   }
   const uint32_t coded =
       encoder.record(dt, {tick, simulation.time(), static_cast<uint32_t>(states.size())},
                      detail::EntityStateRows{states, &simulation});
   if (thread == RecordingThread::kAuto) {
-    weigh(coded);
+    window_rows += coded;
+    if (++window_ticks == kAutoWindowTicks) [[unlikely]] {
+      weigh();
+    }
+  }
+}
+
+void BinaryTrajectoryRecorder::State::name_entities(const Simulation& simulation, size_t count) {
+  for (; named_entities < count; ++named_entities) {
+    encoder.name_entity(simulation.entity(named_entities).name);
   }
 }
 
@@ -183,11 +195,7 @@ void BinaryTrajectoryRecorder::State::begin(const Simulation& simulation) {
   }
 }
 
-void BinaryTrajectoryRecorder::State::weigh(uint32_t coded) {
-  window_rows += coded;
-  if (++window_ticks < kAutoWindowTicks) {
-    return;
-  }
+void BinaryTrajectoryRecorder::State::weigh() {
   if (window_rows >= kAutoWindowTicks * kWriterRowsPerTick) {
     // From the next tick on the rows are copied for the writer, which alone uses the encoder
     // from then on (the recorder's road_seen starts empty: the roads the encoder already wrote

@@ -36,8 +36,10 @@ void put_string(std::string& out, uint8_t tag, uint64_t index, const std::string
 // Codes an entity's numeric fields into its record's body, one field at a time with the field's
 // number known when compiled (its decimals and mask bit constants, no loop over a table): as
 // the loop it replaces, about a tenth fewer instructions per row. `Track` is
-// TrajectoryEncoder::Track.
-template <class Track>
+// TrajectoryEncoder::Track. `kAnyFresh`: whether some field coded may have a fresh history;
+// without (a moving entity's usual row) its prediction and change are taken as they are, a few
+// instructions less a field.
+template <class Track, bool kAnyFresh>
 struct TrajectoryFieldCoder {
   Track& track;
   uint32_t& raw;
@@ -49,13 +51,15 @@ struct TrajectoryFieldCoder {
   uint32_t fresh;       ///< track.fresh, read once (it does not change while the fields are coded)
   bool repeats = true;  ///< every field so far predicted to keep its value
 
+  // Inlined whatever the inliner's budget (encode is inlined at two places in record, and the
+  // compiler then called s and t out of line: 70 instructions a row more).
   template <int... F, class Row>
-  void fields(const Row& row) {
+  [[gnu::always_inline]] void fields(const Row& row) {
     (field<F>(row_value<F>(row)), ...);
   }
 
   template <int F>
-  void field(double value) {
+  [[gnu::always_inline]] void field(double value) {
     constexpr uint32_t kBit = 1u << F;
     constexpr double kFieldScale = decimal_text::kScale[kFieldDecimals[F]];
     const uint64_t bits = std::bit_cast<uint64_t>(value);
@@ -82,9 +86,13 @@ struct TrajectoryFieldCoder {
     }
     // A fresh history predicts 0 and records no change: its prediction and last value masked
     // off, without a branch.
-    const int64_t kept = static_cast<int64_t>((fresh >> F) & 1u) - 1;  // 0 when fresh, else ~0
-    const int64_t residual = units - (track.next[F] & kept);
-    const int64_t change = (units - track.last[F]) & kept;
+    int64_t residual = units - track.next[F];
+    int64_t change = units - track.last[F];
+    if constexpr (kAnyFresh) {
+      const int64_t kept = static_cast<int64_t>((fresh >> F) & 1u) - 1;  // 0 when fresh, else ~0
+      residual = units - (track.next[F] & kept);
+      change &= kept;
+    }
     track.last[F] = units;
     track.next[F] = units + change;
     repeats = repeats & (change == 0);
@@ -106,6 +114,21 @@ struct TrajectoryFieldCoder {
     }
   }
 };
+
+// Codes the numeric fields of `row` (s and t only `on_road`) into the body at `out` (moved to
+// its end); returns whether every field is predicted to keep its value.
+template <bool kAnyFresh, class Track, class Row>
+[[gnu::always_inline]] inline bool code_row_fields(Track& track, const Row& row, bool on_road,
+                                                   uint32_t& raw, uint32_t& mask, char*& out) {
+  TrajectoryFieldCoder<Track, kAnyFresh> coder{track, raw, mask, out, track.still, track.fresh};
+  coder.template fields<kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed>(row);
+  if (on_road) {
+    coder.template fields<kFieldS, kFieldT>(row);
+  }
+  track.still = coder.still;
+  out = coder.out;
+  return coder.repeats;
+}
 
 }  // namespace
 
@@ -137,6 +160,7 @@ void TrajectoryEncoder::add_entities(uint32_t count) {
     put_string(buffer_, codec::kTagEntity, entities_.size(), names_.at(entities_.size()));
     entities_.emplace_back();
   }
+  pending_.resize(entities_.size());
   // Room for every entity's record at its largest, head and whole body.
   const size_t room = size_t{count} * (kMaxHead + kMaxBody);
   if (frame_.size() < room) {
@@ -193,14 +217,9 @@ template <class Row>
     }
     // s and t only on a road (the CSV leaves them empty off it).
     const int fields = on_road ? kRowFields : kFieldS;
-    TrajectoryFieldCoder<Track> coder{track, raw, mask, out, track.still, track.fresh};
-    coder.fields<kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed>(row);
-    if (on_road) {
-      coder.fields<kFieldS, kFieldT>(row);
-    }
-    const bool repeats = coder.repeats;
-    track.still = coder.still;
-    out = coder.out;
+    const bool repeats = (track.fresh & ((1u << fields) - 1)) == 0
+                             ? code_row_fields<false>(track, row, on_road, raw, mask, out)
+                             : code_row_fields<true>(track, row, on_road, raw, mask, out);
     // The fields taken are predicted from now on, the raw ones start afresh.
     track.fresh = (track.fresh & ~((1u << fields) - 1)) | raw;
     if (raw != 0) {
@@ -239,7 +258,8 @@ uint32_t TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Ro
     start(dt, head.tick);
   }
   const int64_t tick = head.tick;
-  if (entities_.size() < head.entities) [[unlikely]] {
+  // (pending_ has an entry per entity tracked: its size needs no division, entities_'s does.)
+  if (pending_.size() < head.entities) [[unlikely]] {
     add_entities(head.entities);
   }
   frame_size_ = 0;
@@ -253,17 +273,44 @@ uint32_t TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Ro
   Track* tracks = entities_.data();
   const uint32_t count = head.entities;
   uint32_t coded = 0;
-  for (uint32_t i = 0; i < count; ++i) {
-    // encode's first test, without the call: most entities of a long run stand. (A steady
-    // track is present: encode clears both when the entity leaves.)
-    const auto& row = local_rows[i];
-    Track& track = tracks[i];
-    if (track.steady && row_placed(row) && track.repeats(row)) {
-      continue;
+  if (2 * last_coded_ >= count) {
+    // Most rows of the last tick were coded (entities that move): one pass, encode's first
+    // test beside it.
+    for (uint32_t i = 0; i < count; ++i) {
+      const auto& row = local_rows[i];
+      Track& track = tracks[i];
+      if (track.skips(row)) {
+        continue;
+      }
+      ++coded;
+      if (track.steady && row_placed(row) && track.takes_below_decimals(row)) {
+        continue;
+      }
+      encode(i, track, row, previous);
     }
-    ++coded;
-    encode(i, track, row, previous);
+  } else {
+    // Most entities stand: first the skip pass, encode's first test alone in a loop of its own
+    // so that its few values stay in registers (in the loop above, with encode inlined, the
+    // loop's counters live on the stack), each entity's index stored and kept (the count moved
+    // on) when its row must be coded; then the rows kept, in order.
+    uint32_t* pending = pending_.data();
+    for (uint32_t i = 0; i < count; ++i) {
+      const auto& row = local_rows[i];
+      const Track& track = tracks[i];
+      pending[coded] = i;
+      coded += track.skips(row) ? 0 : 1;
+    }
+    for (uint32_t k = 0; k < coded; ++k) {
+      const uint32_t i = pending[k];
+      const auto& row = local_rows[i];
+      Track& track = tracks[i];
+      if (track.steady && row_placed(row) && track.takes_below_decimals(row)) {
+        continue;
+      }
+      encode(i, track, row, previous);
+    }
   }
+  last_coded_ = coded;
   state_rows_ = nullptr;
   const double time = head.time;
   // The time the header gives this tick, divided out one recorded tick ahead (the next line
