@@ -447,5 +447,30 @@ TEST_CASE("a 0.9 catalog entry does not see another entry's parameters", "[xosc]
         1 + std::count(catalog.begin(), catalog.begin() + static_cast<long>(other_use), '\n'));
 }
 
+TEST_CASE("a 0.9 catalog file with too many mapping errors keeps them located", "[xosc][osc09]") {
+  const std::string condition =
+      "<Condition name=\"C\" delay=\"0\" edge=\"rising\">\n<ByEntity>\n"
+      "<TriggeringEntities rule=\"any\">\n<Entity name=\"Ego\"/>\n</TriggeringEntities>\n"
+      "<EntityCondition>\n<RelativeDistance entity=\"Ego\" type=\"inertial\" value=\"5\" "
+      "freespace=\"false\" alongRoute=\"maybe\" rule=\"less_than\"/>\n</EntityCondition>\n"
+      "</ByEntity>\n</Condition>\n";
+  std::string conditions;
+  for (int i = 0; i < 600; ++i) conditions += condition;
+  std::string catalog = osc09_maneuver_catalog("greater_than");
+  replace_once(catalog, "<Condition name=\"C\"", conditions + "<Condition name=\"C\"");
+  TempDir dir;
+  std::filesystem::create_directories(dir.path() / "catalogs");
+  write_text(dir.path() / "catalogs" / "ManeuverCatalog.xosc", catalog);
+  const Loaded loaded = lenient_load(dir, draft_with_catalog_maneuver("Speedup", ""));
+  REQUIRE(!loaded.errors.empty());
+  // The first alongRoute's error, at its line in the catalog, rather than the file said unread.
+  CHECK(loaded.errors[0].file.find("ManeuverCatalog.xosc") != std::string::npos);
+  CHECK(loaded.errors[0].line == line_of(catalog, "alongRoute=\"maybe\""));
+  CHECK_THAT(loaded.errors[0].message, Catch::Contains("alongRoute"));
+  for (const auto& error : loaded.errors) {
+    CHECK_THAT(error.message, !Catch::Contains("could not be read"));
+  }
+}
+
 }  // namespace
 }  // namespace corsa::test

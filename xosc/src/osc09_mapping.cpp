@@ -425,7 +425,12 @@ void map_osc09_catalog_file(XmlFile& file) {
   const LoadOptions options;
   ParseContext ctx(diagnostics, options);
   ctx.swap_file({file.name, file.directory, file.text, file.document.get()});
-  map_osc09_to_osc10(ctx, *file.document);
+  try {
+    map_osc09_to_osc10(ctx, *file.document);
+  } catch (const TooManyErrors&) {
+    // The mapping stopped (ctx.errors() holds what it found, the last saying so); the file is
+    // kept with those located errors, which each load reading it reports.
+  }
   // ParseContext::lenient words a warning "message (read as X)": split back into its parts, so
   // that a strict load makes it its error.
   const std::string read_as = " (read as ";
