@@ -2,7 +2,9 @@
 // parameter's value, 0.9 enum words inside parameter values, the AfterTermination rule of an
 // act, Dynamics giving two dimensions, degenerate references, and 0.9 catalog files.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <filesystem>
 
 #include "lenient_load.h"
 #include "osc09_draft.h"
@@ -39,6 +41,21 @@ const xosc::Condition& end_condition(const xosc::Scenario& scenario) {
 const xosc::RelativeDistanceCondition& end_distance(const xosc::Scenario& scenario) {
   const auto& by_entity = std::get<xosc::ByEntityCondition>(end_condition(scenario).kind);
   return std::get<xosc::RelativeDistanceCondition>(by_entity.condition);
+}
+
+const xosc::Act& the_act(const xosc::Scenario& scenario) {
+  return scenario.storyboard.stories.at(0).acts.at(0);
+}
+
+xosc::Rule time_rule(const xosc::Trigger& trigger) {
+  const auto& by_value =
+      std::get<xosc::ByValueCondition>(trigger.groups.at(0).conditions.at(0).kind);
+  return std::get<xosc::SimulationTimeCondition>(by_value).rule;
+}
+
+xosc::Rule event_rule(const xosc::Scenario& scenario) {
+  return time_rule(
+      the_act(scenario).maneuver_groups.at(0).maneuvers.at(0).events.at(0).start_trigger.value());
 }
 
 TEST_CASE("a 0.9 alongRoute given by a parameter is judged by the parameter's value",
@@ -287,6 +304,172 @@ TEST_CASE("a 0.9 catalog file referenced by a 0.9 scenario is read through the s
   REQUIRE(!loaded.errors.empty());
   CHECK(loaded.errors[0].file.find("VehicleCatalog.xosc") != std::string::npos);
   CHECK(loaded.errors[0].line == line_of(bad, "length=\"long\""));
+}
+
+// The draft with a global $Rule greater_than, its maneuver declaring $Rule as `inner` and
+// starting its event also at SimulationTime 2 by it, and the act starting at 1 by $Rule.
+std::string draft_with_two_rules(const std::string& inner) {
+  std::string xml = osc09_draft();
+  replace_once(xml, "</ParameterDeclaration>",
+               "<Parameter name=\"$Rule\" type=\"string\" value=\"greater_than\"/>\n"
+               "</ParameterDeclaration>");
+  replace_once(xml, "<Maneuver name=\"M\">\n",
+               "<Maneuver name=\"M\">\n<ParameterDeclaration>\n"
+               "<Parameter name=\"$Rule\" type=\"string\" value=\"" +
+                   inner +
+                   "\"/>\n"
+                   "</ParameterDeclaration>\n");
+  replace_once(xml, "<AtStart type=\"act\" name=\"A\"/>\n</ByState>",
+               "<AtStart type=\"act\" name=\"A\"/>\n</ByState>\n</Condition>\n"
+               "<Condition name=\"T\" delay=\"0\" edge=\"none\">\n<ByValue>\n"
+               "<SimulationTime value=\"2\" rule=\"$Rule\"/>\n</ByValue>");
+  replace_once(xml, "<SimulationTime value=\"0\" rule=\"greater_than\"/>",
+               "<SimulationTime value=\"1\" rule=\"$Rule\"/>");
+  return xml;
+}
+
+TEST_CASE("a 0.9 Maneuver's parameter hides the global one inside the maneuver only",
+          "[xosc][osc09]") {
+  const std::string xml = draft_with_two_rules("less_than");
+  TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  INFO((loaded.errors.empty() ? std::string() : loaded.errors[0].format()));
+  REQUIRE(loaded.errors.empty());
+  // The act's start, mapped after its sequences, sees the global parameter.
+  CHECK(time_rule(the_act(*loaded.scenario).start_trigger.value()) == xosc::Rule::kGreaterThan);
+  const auto& event = the_act(*loaded.scenario).maneuver_groups.at(0).maneuvers.at(0).events.at(0);
+  const auto& inner = std::get<xosc::ByValueCondition>(
+      event.start_trigger.value().groups.at(0).conditions.at(1).kind);
+  CHECK(std::get<xosc::SimulationTimeCondition>(inner).rule == xosc::Rule::kLessThan);
+  CHECK(warning_with(loaded, "0.9 value 'greater_than' of parameter '$Rule'").line ==
+        line_of(xml, "<SimulationTime value=\"1\""));
+  CHECK(warning_with(loaded, "0.9 value 'less_than' of parameter '$Rule'").line ==
+        line_of(xml, "<SimulationTime value=\"2\""));
+}
+
+TEST_CASE("a 0.9 Maneuver's 1.0 word leaves no global 0.9 word for the reader to refuse",
+          "[xosc][osc09]") {
+  TempDir dir;
+  const std::string ten = draft_with_two_rules("lessThan");
+  const Loaded loaded_ten = lenient_load(dir, ten);
+  INFO((loaded_ten.errors.empty() ? std::string() : loaded_ten.errors[0].format()));
+  REQUIRE(loaded_ten.errors.empty());
+  CHECK(time_rule(the_act(*loaded_ten.scenario).start_trigger.value()) == xosc::Rule::kGreaterThan);
+}
+
+// A 0.9 ManeuverCatalog: "Speedup" declares $Rule (default `rule`) and starts its event by it;
+// "Other" uses $Rule without declaring it.
+std::string osc09_maneuver_catalog(const std::string& rule) {
+  const std::string event =
+      "<Event name=\"E\" priority=\"overwrite\">\n<Action name=\"Faster\">\n<Private>\n"
+      "<Longitudinal>\n<Speed>\n<Dynamics shape=\"step\"/>\n<Target>\n<Absolute "
+      "value=\"20\"/>\n</Target>\n</Speed>\n</Longitudinal>\n</Private>\n</Action>\n"
+      "<StartConditions>\n<ConditionGroup>\n<Condition name=\"C\" delay=\"0\" "
+      "edge=\"none\">\n<ByValue>\n<SimulationTime value=\"2\" rule=\"$Rule\"/>\n</ByValue>\n"
+      "</Condition>\n</ConditionGroup>\n</StartConditions>\n</Event>\n";
+  return "<?xml version=\"1.0\"?>\n<OpenSCENARIO>\n"
+         "<FileHeader revMajor=\"0\" revMinor=\"9\" date=\"2019-10-23T10:00:00\" "
+         "author=\"a\"/>\n<Catalog name=\"ManeuverCatalog\">\n"
+         "<Maneuver name=\"Speedup\">\n<ParameterDeclaration>\n"
+         "<Parameter name=\"$Rule\" type=\"string\" value=\"" +
+         rule + "\"/>\n</ParameterDeclaration>\n" + event +
+         "</Maneuver>\n<Maneuver name=\"Other\">\n" + event +
+         "</Maneuver>\n</Catalog>\n</OpenSCENARIO>\n";
+}
+
+// The draft whose maneuver is the catalog's `entry`, with `assignment` (0.9 Parameter elements).
+std::string draft_with_catalog_maneuver(const std::string& entry, const std::string& assignment) {
+  std::string xml = osc09_draft();
+  replace_once(xml, "<Catalogs>\n<RouteCatalog>\n</RouteCatalog>\n</Catalogs>",
+               "<Catalogs>\n<ManeuverCatalog>\n<Directory path=\"catalogs\"/>\n"
+               "</ManeuverCatalog>\n</Catalogs>");
+  const size_t from = xml.find("<Maneuver name=\"M\">");
+  const size_t to = xml.find("</Maneuver>") + 11;
+  xml.replace(from, to - from,
+              "<CatalogReference catalogName=\"ManeuverCatalog\" entryName=\"" + entry + "\">\n" +
+                  (assignment.empty()
+                       ? std::string()
+                       : "<ParameterAssignment>\n" + assignment + "</ParameterAssignment>\n") +
+                  "</CatalogReference>");
+  return xml;
+}
+
+TEST_CASE(
+    "a 0.9 catalog entry's parameters are its own, and a reference's assignment replaces a "
+    "0.9 default",
+    "[xosc][osc09]") {
+  TempDir dir;
+  std::filesystem::create_directories(dir.path() / "catalogs");
+  const std::string catalog = osc09_maneuver_catalog("greater_than");
+  write_text(dir.path() / "catalogs" / "ManeuverCatalog.xosc", catalog);
+
+  // The default, a 0.9 word, read as its 1.0 word, warned at the use in the catalog.
+  const Loaded plain = lenient_load(dir, draft_with_catalog_maneuver("Speedup", ""));
+  INFO((plain.errors.empty() ? std::string() : plain.errors[0].format()));
+  REQUIRE(plain.errors.empty());
+  CHECK(event_rule(*plain.scenario) == xosc::Rule::kGreaterThan);
+  const auto use = warning_with(plain, "0.9 value 'greater_than' of parameter '$Rule'");
+  CHECK(use.file.find("ManeuverCatalog.xosc") != std::string::npos);
+  CHECK(use.line == line_of(catalog, "rule=\"$Rule\""));
+
+  // A 1.0 word assigned replaces the default.
+  const Loaded assigned = lenient_load(
+      dir,
+      draft_with_catalog_maneuver("Speedup", "<Parameter name=\"$Rule\" value=\"lessThan\"/>\n"));
+  INFO((assigned.errors.empty() ? std::string() : assigned.errors[0].format()));
+  REQUIRE(assigned.errors.empty());
+  CHECK(event_rule(*assigned.scenario) == xosc::Rule::kLessThan);
+
+  // A 0.9 word assigned: its 1.0 word, warned at the assignment.
+  const std::string old_word =
+      draft_with_catalog_maneuver("Speedup", "<Parameter name=\"$Rule\" value=\"less_than\"/>\n");
+  const Loaded assigned_old = lenient_load(dir, old_word);
+  INFO((assigned_old.errors.empty() ? std::string() : assigned_old.errors[0].format()));
+  REQUIRE(assigned_old.errors.empty());
+  CHECK(event_rule(*assigned_old.scenario) == xosc::Rule::kLessThan);
+  const auto assignment = warning_with(assigned_old, "0.9 value 'less_than' assigned to parameter");
+  CHECK(assignment.line == line_of(old_word, "value=\"less_than\""));
+  CHECK_THAT(assignment.message, Catch::Contains("'$Rule'") && Catch::Contains("'lessThan'"));
+}
+
+TEST_CASE("a 0.9 catalog entry does not see another entry's parameters", "[xosc][osc09]") {
+  TempDir dir;
+  std::filesystem::create_directories(dir.path() / "catalogs");
+  const std::string catalog = osc09_maneuver_catalog("greater_than");
+  write_text(dir.path() / "catalogs" / "ManeuverCatalog.xosc", catalog);
+  // The reader's undefined parameter, at the use in the catalog.
+  const Loaded other = lenient_load(dir, draft_with_catalog_maneuver("Other", ""));
+  REQUIRE(!other.errors.empty());
+  CHECK_THAT(other.errors[0].message, Catch::Contains("undefined parameter '$Rule'"));
+  CHECK(other.errors[0].file.find("ManeuverCatalog.xosc") != std::string::npos);
+  const size_t other_use = catalog.find("rule=\"$Rule\"", catalog.find("name=\"Other\""));
+  CHECK(other.errors[0].line ==
+        1 + std::count(catalog.begin(), catalog.begin() + static_cast<long>(other_use), '\n'));
+}
+
+TEST_CASE("a 0.9 catalog file with too many mapping errors keeps them located", "[xosc][osc09]") {
+  const std::string condition =
+      "<Condition name=\"C\" delay=\"0\" edge=\"rising\">\n<ByEntity>\n"
+      "<TriggeringEntities rule=\"any\">\n<Entity name=\"Ego\"/>\n</TriggeringEntities>\n"
+      "<EntityCondition>\n<RelativeDistance entity=\"Ego\" type=\"inertial\" value=\"5\" "
+      "freespace=\"false\" alongRoute=\"maybe\" rule=\"less_than\"/>\n</EntityCondition>\n"
+      "</ByEntity>\n</Condition>\n";
+  std::string conditions;
+  for (int i = 0; i < 600; ++i) conditions += condition;
+  std::string catalog = osc09_maneuver_catalog("greater_than");
+  replace_once(catalog, "<Condition name=\"C\"", conditions + "<Condition name=\"C\"");
+  TempDir dir;
+  std::filesystem::create_directories(dir.path() / "catalogs");
+  write_text(dir.path() / "catalogs" / "ManeuverCatalog.xosc", catalog);
+  const Loaded loaded = lenient_load(dir, draft_with_catalog_maneuver("Speedup", ""));
+  REQUIRE(!loaded.errors.empty());
+  // The first alongRoute's error, at its line in the catalog, rather than the file said unread.
+  CHECK(loaded.errors[0].file.find("ManeuverCatalog.xosc") != std::string::npos);
+  CHECK(loaded.errors[0].line == line_of(catalog, "alongRoute=\"maybe\""));
+  CHECK_THAT(loaded.errors[0].message, Catch::Contains("alongRoute"));
+  for (const auto& error : loaded.errors) {
+    CHECK_THAT(error.message, !Catch::Contains("could not be read"));
+  }
 }
 
 }  // namespace

@@ -85,6 +85,15 @@ Source Osc09Rewriter::attribute_source(const Element* e, const char* attribute) 
 // --- parameter values ----------------------------------------------------------------------------
 // 0.9 declared `name="$X"` and typed it with `type`; 1.0 declares `name="X"` with
 // `parameterType`, and references stay `$X`.
+Osc09Rewriter::Osc09ScopeGuard::Osc09ScopeGuard(Osc09Rewriter& rewriter, Element* owner,
+                                                bool isolated)
+    : rewriter_(rewriter) {
+  rewriter.scopes_.push_back(Osc09Scope{{}, isolated});
+  for (Element* e : osc09_children(owner, "ParameterDeclaration")) {
+    rewriter.parameter_declarations(e);
+  }
+}
+
 void Osc09Rewriter::parameter_declarations(Element* e) {
   rename(e, "ParameterDeclarations");
   for (Element* p : osc09_children(e, "Parameter")) {
@@ -103,31 +112,69 @@ void Osc09Rewriter::parameter_declarations(Element* e) {
       bare.erase(0, 1);
       p->SetAttribute("name", bare.c_str());
     }
-    declare(p, bare);
+    // A name declared twice in one scope: the later declaration, as in the reader.
+    const char* value = p->Attribute("value");
+    scopes_.back().parameters[std::move(bare)] = Osc09Parameter{value != nullptr ? value : "", p};
   }
 }
 
-void Osc09Rewriter::declare(const Element* parameter, std::string name) {
-  const char* value = parameter->Attribute("value");
-  parameters_[std::move(name)] = value != nullptr ? value : "";
+Osc09Rewriter::Osc09Parameter* Osc09Rewriter::find_parameter(std::string_view name, size_t upto,
+                                                             size_t* found_in) {
+  for (size_t k = upto; k-- > 0;) {
+    auto& parameters = scopes_[k].parameters;
+    if (const auto it = parameters.find(name); it != parameters.end()) {
+      *found_in = k;
+      return &it->second;
+    }
+    if (!scopes_[k].isolated) continue;
+    // A catalog entry sees its own declarations, and the reader lends it the scenario's global
+    // of that name (warned there).
+    if (k == 0) return nullptr;
+    auto& globals = scopes_[0].parameters;
+    const auto global = globals.find(name);
+    if (global == globals.end()) return nullptr;
+    *found_in = 0;
+    return &global->second;
+  }
+  return nullptr;
+}
+
+Osc09Rewriter::Osc09Parameter* Osc09Rewriter::referenced_parameter(std::string_view raw) {
+  size_t declared = 0;
+  for (const Osc09Scope& scope : scopes_) declared += scope.parameters.size();
+  Osc09Parameter* holder = nullptr;
+  std::string_view holder_name;
+  size_t holder_scope = scopes_.size();
+  std::string_view value = raw;
+  // A cycle ends after as many steps as there are parameters, unresolved.
+  for (size_t step = 0; !value.empty() && value[0] == '$'; ++step) {
+    const std::string_view name = value.substr(1);
+    if (step > declared) return nullptr;
+    // A declaration's value sees its own scope and the outer ones; one that uses its own name
+    // means the outer parameter of that name.
+    const size_t upto =
+        holder == nullptr ? scopes_.size() : holder_scope + (name == holder_name ? 0 : 1);
+    size_t found_in = 0;
+    holder = find_parameter(name, upto, &found_in);
+    if (holder == nullptr) return nullptr;
+    holder_name = name;
+    holder_scope = found_in;
+    value = holder->value;
+  }
+  return holder;
 }
 
 std::optional<std::string> Osc09Rewriter::value_of(const Element* e, const char* attribute,
-                                                   bool* unresolved) const {
+                                                   bool* unresolved) {
   const char* raw = e->Attribute(attribute);
   if (raw == nullptr) return std::nullopt;
-  std::string value = raw;
-  // A declared value may itself be a reference; a cycle ends after as many steps as there
-  // are parameters, unresolved.
-  for (size_t step = 0; !value.empty() && value[0] == '$'; ++step) {
-    const auto it = parameters_.find(std::string_view(value).substr(1));
-    if (it == parameters_.end() || step > parameters_.size()) {
-      if (unresolved != nullptr) *unresolved = true;
-      return std::nullopt;
-    }
-    value = it->second;
+  if (raw[0] != '$') return std::string(raw);
+  const Osc09Parameter* holder = referenced_parameter(raw);
+  if (holder == nullptr) {
+    if (unresolved != nullptr) *unresolved = true;
+    return std::nullopt;
   }
-  return value;
+  return holder->value;
 }
 
 void Osc09Rewriter::map_value(Element* e, const char* attribute, const ValueTable& table) {
@@ -139,15 +186,20 @@ void Osc09Rewriter::map_value(Element* e, const char* attribute, const ValueTabl
   }
   if (raw[0] != '$') return;
   // A reference the mapping cannot resolve is left for the reader, which reports it.
-  const auto value = value_of(e, attribute);
-  if (!value) return;
-  const auto it = table.find(*value);
+  Osc09Parameter* holder = referenced_parameter(raw);
+  if (holder == nullptr) return;
+  const auto it = table.find(holder->value);
   if (it == table.end()) return;  // a 1.0 word: the reference stays
   ctx_.lenient(attribute_source(e, attribute),
-               std::string("0.9 value '") + clip(*value) + "' of parameter '" + clip(raw) +
+               std::string("0.9 value '") + clip(holder->value) + "' of parameter '" + clip(raw) +
                    "' in attribute " + attribute,
                "'" + it->second + "'");
-  e->SetAttribute(attribute, it->second.c_str());
+  holder->value = it->second;
+  if (holder->declaration != nullptr) {
+    holder->declaration->SetAttribute("value", it->second.c_str());
+  } else {
+    e->SetAttribute(attribute, it->second.c_str());
+  }
 }
 
 std::optional<bool> Osc09Rewriter::bool_value(Element* e, const char* attribute) {
@@ -168,7 +220,7 @@ std::optional<bool> Osc09Rewriter::bool_value(Element* e, const char* attribute)
   return std::nullopt;
 }
 
-std::optional<double> Osc09Rewriter::double_value(const Element* e, const char* attribute) const {
+std::optional<double> Osc09Rewriter::double_value(const Element* e, const char* attribute) {
   const auto value = value_of(e, attribute);
   if (!value || value->empty()) return std::nullopt;
   char* end = nullptr;
@@ -177,19 +229,25 @@ std::optional<double> Osc09Rewriter::double_value(const Element* e, const char* 
   return number;
 }
 
-void Osc09Rewriter::rule(Element* e) {
-  map_value(e, "rule",
-            {{"greater_than", "greaterThan"}, {"less_than", "lessThan"}, {"equal_to", "equalTo"}});
+const Osc09Rewriter::ValueTable& Osc09Rewriter::rule_words() {
+  static const ValueTable words{
+      {"greater_than", "greaterThan"}, {"less_than", "lessThan"}, {"equal_to", "equalTo"}};
+  return words;
 }
+
+void Osc09Rewriter::rule(Element* e) { map_value(e, "rule", rule_words()); }
 
 // --- the document --------------------------------------------------------------------------------
 void Osc09Rewriter::scenario(Element* root) {
-  for (Element* e : osc09_children(root, "ParameterDeclaration")) parameter_declarations(e);
+  const Osc09ScopeGuard globals(*this, root, false);
   // Values given from outside replace the declared ones, as in the reader.
   for (const auto& [name, value] : ctx_.options().parameters) {
     const std::string_view bare =
         !name.empty() && name[0] == '$' ? std::string_view(name).substr(1) : std::string_view(name);
-    if (const auto it = parameters_.find(bare); it != parameters_.end()) it->second = value;
+    auto& parameters = scopes_.back().parameters;
+    if (const auto it = parameters.find(bare); it != parameters.end()) {
+      it->second = Osc09Parameter{value, nullptr};
+    }
   }
   for (Element* e : osc09_children(root)) {
     const std::string_view name = e->Name();
@@ -258,6 +316,21 @@ void Osc09Rewriter::catalog_references(Element* e) {
           const std::string bare = ref + 1;
           p->SetAttribute("parameterRef", bare.c_str());
         }
+        // The entry's parameter holds a 1.0 word once its catalog is mapped; a 0.9 rule word
+        // assigned to it is read as its 1.0 word. The other 0.9 words (any, overwrite, ...) are
+        // also text a string parameter may mean, and stay.
+        const char* value = p->Attribute("value");
+        if (value == nullptr) continue;
+        const auto word = rule_words().find(std::string_view(value));
+        if (word == rule_words().end()) continue;
+        ctx_.lenient(
+            attribute_source(p, "value"),
+            std::string("0.9 value '") + value + "' assigned to parameter '$" +
+                clip(p->Attribute("parameterRef", nullptr) != nullptr ? p->Attribute("parameterRef")
+                                                                      : "") +
+                "'",
+            "'" + word->second + "'");
+        p->SetAttribute("value", word->second.c_str());
       }
     }
   }
@@ -266,11 +339,12 @@ void Osc09Rewriter::catalog_references(Element* e) {
 // --- catalogs ------------------------------------------------------------------------------------
 // A 0.9 catalog file: its entries' own ParameterDeclaration, a Vehicle's category, Dimension,
 // Front/Rear axles and Performance mass, a Driver (1.0's Controller), a Pedestrian's and a
-// MiscObject's category, and maneuvers and routes in their 0.9 forms. A declared value stands
-// in for a reference to it (the reference's assignment is not known here).
+// MiscObject's category, and maneuvers and routes in their 0.9 forms. An attribute is judged
+// by its parameter's declared value (a reference's assignment is not known here); a 0.9 word
+// is rewritten in the declaration, which an assignment still replaces.
 void Osc09Rewriter::catalog(Element* catalog) {
   for (Element* entry : osc09_children(catalog)) {
-    for (Element* p : osc09_children(entry, "ParameterDeclaration")) parameter_declarations(p);
+    const Osc09ScopeGuard scope(*this, entry, true);
     const std::string_view name = entry->Name();
     if (name == "Vehicle") {
       vehicle(entry);
@@ -351,7 +425,12 @@ void map_osc09_catalog_file(XmlFile& file) {
   const LoadOptions options;
   ParseContext ctx(diagnostics, options);
   ctx.swap_file({file.name, file.directory, file.text, file.document.get()});
-  map_osc09_to_osc10(ctx, *file.document);
+  try {
+    map_osc09_to_osc10(ctx, *file.document);
+  } catch (const TooManyErrors&) {
+    // The mapping stopped (ctx.errors() holds what it found, the last saying so); the file is
+    // kept with those located errors, which each load reading it reports.
+  }
   // ParseContext::lenient words a warning "message (read as X)": split back into its parts, so
   // that a strict load makes it its error.
   const std::string read_as = " (read as ";

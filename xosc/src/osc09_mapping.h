@@ -16,7 +16,8 @@ namespace corsa::xosc {
 void map_osc09_to_osc10(ParseContext& ctx, tinyxml2::XMLDocument& document);
 
 /// map_osc09_to_osc10 for a catalog file read once for many loads: what it warns about or finds
-/// in error is kept in `file.mapping_notes`, for each load that reads the file to report.
+/// in error is kept in `file.mapping_notes`, for each load that reads the file to report (with too
+/// many errors, those found until the mapping stopped).
 void map_osc09_catalog_file(XmlFile& file);
 
 }  // namespace corsa::xosc

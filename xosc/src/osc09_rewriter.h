@@ -45,23 +45,55 @@ class Osc09Rewriter {
 
   // --- parameter values (osc09_mapping.cpp) ----------------------------------------------------
   // The mapping judges some attribute values (a rule, an edge, alongRoute). A value written as
-  // a `$reference` is judged by the value it stands for: the document's declaration, or the
-  // value given from outside (LoadOptions::parameters).
+  // a `$reference` is judged by the value it stands for: the visible declaration, or the value
+  // given from outside (LoadOptions::parameters). Parameters are scoped as the reader scopes
+  // them: the document's, a Maneuver's inside them, and a catalog entry's alone (the scenario's
+  // globals behind it); a declaration that uses its own name means the outer parameter.
+  struct Osc09Parameter {
+    std::string value;
+    /// Its ParameterDeclaration; null when the value was given from outside.
+    Element* declaration = nullptr;
+  };
+  struct Osc09Scope {
+    std::map<std::string, Osc09Parameter, std::less<>> parameters;
+    bool isolated = false;  ///< a catalog entry's: the outer scopes but the globals are hidden
+  };
+  /// The scope of one element's ParameterDeclaration children, open for the guard's lifetime.
+  class Osc09ScopeGuard {
+   public:
+    Osc09ScopeGuard(Osc09Rewriter& rewriter, Element* owner, bool isolated);
+    Osc09ScopeGuard(const Osc09ScopeGuard&) = delete;
+    Osc09ScopeGuard& operator=(const Osc09ScopeGuard&) = delete;
+    ~Osc09ScopeGuard() { rewriter_.scopes_.pop_back(); }
+
+   private:
+    Osc09Rewriter& rewriter_;
+  };
   void parameter_declarations(Element* e);
-  void declare(const Element* parameter, std::string name);
+  /// The parameter `name` visible from scope `upto - 1` outwards (its scope's index in
+  /// `found_in`); null when none is.
+  Osc09Parameter* find_parameter(std::string_view name, size_t upto, size_t* found_in);
+  /// The parameter holding the plain value that the reference `raw` (`$name`) stands for,
+  /// following references held in values; null when a reference in the chain names no visible
+  /// parameter or the chain is a cycle.
+  Osc09Parameter* referenced_parameter(std::string_view raw);
   /// The value of `attribute` with a `$name` reference resolved; nullopt when the attribute is
   /// absent or its reference names no declared parameter (`unresolved` set then).
   std::optional<std::string> value_of(const Element* e, const char* attribute,
-                                      bool* unresolved = nullptr) const;
-  /// Rewrites a 0.9 word of `table` in `attribute` to its 1.0 word; a reference to a parameter
-  /// holding such a word is replaced by the 1.0 word, with a warning at the attribute.
+                                      bool* unresolved = nullptr);
+  /// Rewrites a 0.9 word of `table` in `attribute` to its 1.0 word. A reference to a parameter
+  /// holding such a word stays, and the parameter's declaration gets the 1.0 word (so that a
+  /// catalog reference's assignment still replaces it), with a warning at the attribute; a
+  /// value given from outside, which no declaration holds, replaces the reference instead.
   void map_value(Element* e, const char* attribute, const ValueTable& table);
   /// A boolean attribute of the 0.9 form judged here (alongRoute); nullopt when absent or in
   /// error (recorded at the attribute).
   std::optional<bool> bool_value(Element* e, const char* attribute);
   /// A double judged here (Meeting offsetTime); nullopt when absent, not a number or an
   /// unresolved reference.
-  std::optional<double> double_value(const Element* e, const char* attribute) const;
+  std::optional<double> double_value(const Element* e, const char* attribute);
+  /// The 0.9 words of a rule attribute and their 1.0 words.
+  static const ValueTable& rule_words();
   void rule(Element* e);
 
   // --- document parts (osc09_mapping.cpp) ------------------------------------------------------
@@ -99,8 +131,8 @@ class Osc09Rewriter {
   tinyxml2::XMLDocument& document_;
   Element* storyboard_ = nullptr;
   std::vector<std::string> forms_;
-  /// Parameter name (without `$`) -> its value as the mapping sees it.
-  std::map<std::string, std::string, std::less<>> parameters_;
+  /// The open parameter scopes, outermost first.
+  std::vector<Osc09Scope> scopes_;
 };
 
 }  // namespace corsa::xosc

@@ -85,7 +85,7 @@ void Osc09Rewriter::maneuver_group(Element* e) {
     }
   }
   for (Element* maneuver : osc09_children(e, "Maneuver")) {
-    for (Element* p : osc09_children(maneuver, "ParameterDeclaration")) parameter_declarations(p);
+    const Osc09ScopeGuard scope(*this, maneuver, false);
     for (Element* event : osc09_children(maneuver, "Event")) this->event(maneuver, event);
   }
 }
