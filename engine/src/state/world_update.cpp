@@ -394,7 +394,7 @@ ContactStrips choose_strips(double low, double high, double along, size_t boxes)
   ContactStrips strips;
   strips.origin = low;
   const double span = high - low;
-  const double wanted = std::floor(static_cast<double>(boxes / kBoxesPerStrip));
+  const double wanted = static_cast<double>(boxes / kBoxesPerStrip);  // whole strips
   if (!(static_cast<double>(boxes) * kCarLength >= kMeetings * along) || wanted < 2.0 ||
       !(span > 2.0 * kStripWidth)) {
     return strips;
