@@ -296,10 +296,15 @@ void sweep_along_y(std::vector<Item>& items, ContactSweep& sweep, size_t entity_
         [](const Item& item) { return item.high; }, ends, near, test);
     return;
   }
-  for (size_t a = 0; a < items.size(); ++a) {
-    const Item& p = items[a];
+  // The items' place and count read once: `record` writes to memory the compiler cannot tell
+  // apart from `items`' own, so items.data() and items.size() would be read again after each
+  // pair recorded, and per item.
+  const ItemAt at{items.data()};
+  const size_t size = items.size();
+  for (size_t a = 0; a < size; ++a) {
+    const Item& p = at(a);
     sweep_from(
-        ItemAt{items.data()}, items.size(), a, [&](const Item& q) { return ends(p, q); },
+        at, size, a, [&](const Item& q) { return ends(p, q); },
         [&](const Item& q) { return near(p, q); }, [&](const Item& q) { test(p, q); });
   }
 }
@@ -312,7 +317,9 @@ void sweep_along_x(std::vector<Item>& items, ContactSweep& sweep, size_t entity_
                    ContactRecorder& record) {
   const bool finite = spread.finite;
   if (finite) {
-    sort_from_last(items, sweep.order, !sweep.along_y, entity_count, sweep_order);
+    // A lambda, not the function's pointer, so that the insertion sort's comparisons are inlined.
+    sort_from_last(items, sweep.order, !sweep.along_y, entity_count,
+                   [](const Item& a, const Item& b) { return sweep_order(a, b); });
     sweep.along_y = false;
   } else {
     std::sort(items.begin(), items.end(), sweep_order);
@@ -334,18 +341,19 @@ void sweep_along_x(std::vector<Item>& items, ContactSweep& sweep, size_t entity_
         [](const Item& p, const Item& q) { return y_near_finite(p, q); }, test);
     return;
   }
-  for (size_t a = 0; a < items.size(); ++a) {
-    const Item& p = items[a];
+  // Read once, as in sweep_along_y.
+  const ItemAt at{items.data()};
+  const size_t size = items.size();
+  for (size_t a = 0; a < size; ++a) {
+    const Item& p = at(a);
     const auto ends_p = [&](const Item& q) { return ends(p, q); };
     const auto test_p = [&](const Item& q) { test(p, q); };
     if (finite) {
       sweep_from(
-          ItemAt{items.data()}, items.size(), a, ends_p,
-          [&](const Item& q) { return y_near_finite(p, q); }, test_p);
+          at, size, a, ends_p, [&](const Item& q) { return y_near_finite(p, q); }, test_p);
     } else {
       sweep_from(
-          ItemAt{items.data()}, items.size(), a, ends_p,
-          [&](const Item& q) { return !y_apart(p, q); }, test_p);
+          at, size, a, ends_p, [&](const Item& q) { return !y_apart(p, q); }, test_p);
     }
   }
 }
