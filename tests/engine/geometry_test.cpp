@@ -218,7 +218,7 @@ TEST_CASE("the distance's lower bound never exceeds the exact distance or contac
 // every answer must have the bits std::remainder(angle, 2 pi) has, at the edges of its shortcuts
 // (+-pi, +-2 pi, +-3 pi, +-4 pi and their neighbours), for signed zeros and the non-finite, and
 // over random angles of both signs.
-TEST_CASE("remainder_full_turn gives std::remainder's bits") {
+TEST_CASE("remainder_full_turn gives std::remainder's bits", "[engine][geometry]") {
   using corsa::engine::detail::remainder_full_turn;
   constexpr double kTurn = 2.0 * std::numbers::pi;
   int checked = 0;
@@ -267,7 +267,7 @@ TEST_CASE("remainder_full_turn gives std::remainder's bits") {
 // falling below max(|dx|, |dy|), which a rounding within an ulp of the exact length cannot do.
 // Checked on the library at hand where it is tightest: one axis far shorter than the other (the
 // exact length a hair above the longer), equal axes, and random pairs.
-TEST_CASE("hypot is never below the longer axis") {
+TEST_CASE("hypot is never below the longer axis", "[engine][geometry]") {
   std::mt19937_64 random(1128);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::uniform_real_distribution<double> exponent(-30.0, 30.0);

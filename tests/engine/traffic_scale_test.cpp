@@ -35,7 +35,7 @@
 #include "state/packed_point_grid.h"
 #include "state/point_grid.h"
 #include "state/sim_state.h"
-#include "state/world_update.h"
+#include "state/world_contacts.h"
 
 namespace {
 
@@ -116,6 +116,27 @@ std::string trajectory_rows(const corsa::xosc::Scenario& scenario,
     corsa::engine::TrajectoryRecorder::append_rows(sim, rows);
   } while (sim.step());
   return rows;
+}
+
+// The overlapping pairs of placed entities with a box, by testing every pair (what the contacts'
+// sweep must find), in entity order.
+std::vector<std::pair<uint32_t, uint32_t>> pairs_by_testing_all(
+    const std::vector<corsa::engine::detail::Entity>& entities) {
+  const auto usable = [](const corsa::engine::detail::Entity& e) {
+    return e.state.placed && e.info.box.length > 0.0;
+  };
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  for (uint32_t a = 0; a < entities.size(); ++a) {
+    for (uint32_t b = a + 1; b < entities.size(); ++b) {
+      if (usable(entities[a]) && usable(entities[b]) &&
+          corsa::engine::overlap(
+              corsa::engine::box_of(entities[a].info.box, entities[a].state.pose),
+              corsa::engine::box_of(entities[b].info.box, entities[b].state.pose))) {
+        pairs.emplace_back(a, b);
+      }
+    }
+  }
+  return pairs;
 }
 
 }  // namespace
@@ -626,24 +647,7 @@ TEST_CASE("The contacts of many boxes of every size and heading are the pairs a 
       place(entity, i % 4 != 0);
       state.world.entities.push_back(std::move(entity));
     }
-    const auto all_pairs = [&] {
-      std::vector<std::pair<uint32_t, uint32_t>> pairs;
-      const auto& entities = state.world.entities;
-      for (uint32_t a = 0; a < entities.size(); ++a) {
-        for (uint32_t b = a + 1; b < entities.size(); ++b) {
-          const auto usable = [](const detail::Entity& e) {
-            return e.state.placed && e.info.box.length > 0.0;
-          };
-          if (usable(entities[a]) && usable(entities[b]) &&
-              corsa::engine::overlap(
-                  corsa::engine::box_of(entities[a].info.box, entities[a].state.pose),
-                  corsa::engine::box_of(entities[b].info.box, entities[b].state.pose))) {
-            pairs.emplace_back(a, b);
-          }
-        }
-      }
-      return pairs;
-    };
+    const auto all_pairs = [&] { return pairs_by_testing_all(state.world.entities); };
     detail::ContactSweep sweep;
     detail::update_contacts(state, sweep);
     const auto first = all_pairs();
@@ -694,20 +698,7 @@ TEST_CASE("Many boxes over a small area are swept in strips and give the pairs a
       entity.state.pose.h = random.uniform(-std::numbers::pi, std::numbers::pi);
       state.world.entities.push_back(std::move(entity));
     }
-    const auto all_pairs = [&] {
-      std::vector<std::pair<uint32_t, uint32_t>> pairs;
-      const auto& entities = state.world.entities;
-      for (uint32_t a = 0; a < entities.size(); ++a) {
-        for (uint32_t b = a + 1; b < entities.size(); ++b) {
-          if (corsa::engine::overlap(
-                  corsa::engine::box_of(entities[a].info.box, entities[a].state.pose),
-                  corsa::engine::box_of(entities[b].info.box, entities[b].state.pose))) {
-            pairs.emplace_back(a, b);
-          }
-        }
-      }
-      return pairs;
-    };
+    const auto all_pairs = [&] { return pairs_by_testing_all(state.world.entities); };
     detail::ContactSweep sweep;
     detail::update_contacts(state, sweep);
     CHECK(sweep.along_y == along_y);
@@ -722,6 +713,63 @@ TEST_CASE("Many boxes over a small area are swept in strips and give the pairs a
     detail::update_contacts(state, sweep);
     CHECK(sweep.strips >= 8);
     CHECK(state.contacts.pairs == all_pairs());
+  }
+}
+
+TEST_CASE(
+    "Boxes exactly on the strips' borders and boxes across several strips give the pairs a "
+    "test of all finds",
+    "[engine][traffic]") {
+  namespace detail = corsa::engine::detail;
+  const corsa::xosc::Scenario scenario;
+  Diagnostics diagnostics;
+  // Five rows of 40 boxes 4 m x 2 m, 3 m apart along the road (each touching its neighbours),
+  // unturned so that the extents are exact: the lowest row's low edge across is at -1, where
+  // the strips begin, and the strips are 16 m wide (203 boxes over 66 m: 12 wanted, none
+  // narrower than 16 m), so their borders are at 15, 31, 47 and 63. Row 1 starts on border 15,
+  // row 2 ends on border 31 where row 3 starts (the two rows touch on it), row 4 starts on
+  // border 63; three boxes 40 m across span strips 0 to 3. Along y the same, x and y swapped.
+  constexpr double kBorders[] = {15.0, 31.0, 47.0, 63.0};
+  for (const bool along_y : {false, true}) {
+    CAPTURE(along_y);
+    detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
+    const auto add = [&](double along, double across, double length, double width) {
+      detail::Entity entity;
+      entity.state.placed = true;
+      entity.info.box = along_y ? corsa::engine::Box{0.0, 0.0, 0.75, width, length, 1.5}
+                                : corsa::engine::Box{0.0, 0.0, 0.75, length, width, 1.5};
+      entity.state.pose.x = along_y ? across : along;
+      entity.state.pose.y = along_y ? along : across;
+      state.world.entities.push_back(std::move(entity));
+    };
+    for (const double row : {0.0, 16.0, 30.0, 32.0, 64.0}) {
+      for (int i = 0; i < 40; ++i) add(3.0 * i + (row == 32.0 ? 1.5 : 0.0), row, 4.0, 2.0);
+    }
+    for (const double along : {10.0, 50.0, 90.0}) add(along, 32.0, 4.0, 40.0);
+    detail::ContactSweep sweep;
+    detail::update_contacts(state, sweep);
+    CHECK(sweep.along_y == along_y);
+    CHECK(sweep.strips == 5);
+    // The extents across lie exactly on the borders.
+    const auto& across = along_y ? sweep.x_extent : sweep.y_extent;
+    size_t on_border = 0;
+    for (const auto& extent : across) {
+      for (const double border : kBorders) {
+        on_border += static_cast<size_t>(extent.low == border) + (extent.high == border);
+      }
+    }
+    CHECK(on_border == 4 * 40);
+    const auto all = pairs_by_testing_all(state.world.entities);
+    CHECK(all.size() > 200);
+    CHECK(state.contacts.pairs == all);
+    // The rows on border 31 touch each other, and the boxes across several strips touch rows 1
+    // to 3.
+    const auto touching = [&](uint32_t a, uint32_t b) {
+      return std::binary_search(all.begin(), all.end(), std::pair{a, b});
+    };
+    CHECK(touching(2 * 40 + 5, 3 * 40 + 5));
+    CHECK(touching(1 * 40 + 3, 200));
+    CHECK(touching(3 * 40 + 3, 200));
   }
 }
 

@@ -47,7 +47,6 @@ namespace corsa::engine::detail {
 struct SimState;
 class FollowView;
 
-/// esmini's vehicle model: state and parameters (SI units, heading in [0, 2 pi)).
 /// The cosine and sine of the course a single-track step last moved along: a model whose wheel
 /// stands straight keeps its heading, and moves along the same course step after step (esmini's
 /// interactiveDriver with no key pressed). The same bits give the same values.
@@ -58,6 +57,7 @@ struct CourseTrig {
   double sin = 0.0;
 };
 
+/// esmini's vehicle model: state and parameters (SI units, heading in [0, 2 pi)).
 struct EsminiVehicle {
   double x = 0.0, y = 0.0, h = 0.0;  ///< m, m, rad
   double speed = 0.0;                ///< m/s

@@ -17,6 +17,7 @@
 #include "simulation/simulation_impl.h"
 #include "state/entity_builder.h"
 #include "state/environment_clock.h"
+#include "state/world_contacts.h"
 #include "state/world_update.h"
 #include "traffic/traffic_generators.h"
 #include "traffic/traffic_update.h"

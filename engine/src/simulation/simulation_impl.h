@@ -7,7 +7,7 @@
 #include "controllers/controllers.h"
 #include "motion/controller.h"
 #include "state/sim_state.h"
-#include "state/world_update.h"
+#include "state/world_contacts.h"
 #include "storyboard/init_actions.h"
 #include "storyboard/storyboard.h"
 

@@ -98,7 +98,7 @@ inline bool same_bits(const EntityMotion& a, const EntityMotion& b) {
          a.end_of_road == b.end_of_road && a.chooser == b.chooser;
 }
 
-/// What the contacts of an entity were last computed from (state/world_update.h).
+/// What the contacts of an entity were last computed from (state/world_contacts.h).
 struct ContactInput {
   bool placed = false;
   Pose pose;

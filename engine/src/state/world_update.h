@@ -1,49 +1,12 @@
 #pragma once
 
-// What is updated once the entities have moved: contacts between bounding boxes (collisions,
-// OpenSCENARIO CollisionCondition) and the per-entity timers of the duration conditions.
-
-#include <cstddef>
-#include <cstdint>
-#include <functional>
-#include <vector>
-
-#include "corsa/engine/oriented_box.h"
+// What is updated once the entities have moved, besides the contacts (state/world_contacts.h):
+// the per-entity timers of the duration conditions.
 
 namespace corsa::engine::detail {
 
 struct SimState;
 
-/// What the contact sweep keeps from one update to the next: the entities in the order of the
-/// last sweep and its axis. The next sweep starts from that order, which a step's small moves
-/// hardly change, instead of sorting afresh.
-struct ContactSweep {
-  std::vector<uint32_t> order;
-  bool along_y = false;
-  /// The strips across its axis the last sweep over all boxes was cut into (1: one sweep).
-  uint32_t strips = 1;
-  /// The strips' storage, kept between sweeps: where each strip's members end, each box's last
-  /// strip, and the members (positions in the sweep's order), strip after strip.
-  std::vector<uint32_t> strip_start, strip_last, strip_members;
-  /// Calls work(begin, end) for ranges covering [0, count), each once, possibly on several
-  /// threads at a time (the mover's, controllers/controllers.h); null: work(0, count) here.
-  /// The boxes of the entities are made through it.
-  std::function<void(size_t count, const std::function<void(size_t, size_t)>& work)> share;
-  /// The boxes' extents along x and y at the last update, by entity (the boxes themselves are
-  /// kept in ContactSet::boxes).
-  std::vector<Interval> x_extent, y_extent;
-  /// Whether the pairs, boxes and extents of the last update are those of every entity then
-  /// (a sweep over finite extents, or an update of the moved boxes after one): the next update
-  /// may then test only the boxes that have moved since.
-  bool complete = false;
-  /// The entities whose boxes changed since the last update, and a mark per entity for them
-  /// (kept between updates for their storage).
-  std::vector<uint32_t> moved;
-  std::vector<uint8_t> moved_mark;
-};
-
-/// Recomputes which placed entities overlap now, and records the pairs that just started to.
-void update_contacts(SimState& state, ContactSweep& sweep);
 /// Advances the StandStill / Offroad / EndOfRoad timers by one step (`advance`: false at tick 0,
 /// where they only start).
 void update_timers(SimState& state, bool advance);

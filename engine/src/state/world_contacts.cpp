@@ -1,0 +1,412 @@
+#include "state/world_contacts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "corsa/engine/oriented_box.h"
+#include "state/contact_sweep.h"
+#include "state/sim_state.h"
+
+// The helpers are in sweep_and_prune (state/contact_sweep.h) beside the sweep itself, in an
+// unnamed namespace of their own.
+namespace corsa::engine::detail::sweep_and_prune {
+
+namespace {
+
+// The entities whose boxes are not where they were at the last update (moved, appeared, left
+// or changed size), into `moved`; records the boxes of now. Returns false when the entities
+// are not those of the last update (added or removed): then every box counts as changed.
+bool find_moved_boxes(SimState& state, std::vector<uint32_t>& moved) {
+  auto& inputs = state.contacts.inputs;
+  const auto& entities = state.world.entities;
+  moved.clear();
+  const bool same_entities = inputs.size() == entities.size();
+  inputs.resize(entities.size());
+  for (uint32_t i = 0; i < entities.size(); ++i) {
+    if (!same_entities || !inputs[i].same_as(entities[i])) {
+      moved.push_back(i);
+      inputs[i] = {entities[i].state.placed, entities[i].state.pose, entities[i].info.box};
+    }
+  }
+  return same_entities;
+}
+
+// Whether the entity's box takes part in the contacts.
+bool boxed(const Entity& entity) {
+  return entity.state.placed && entity.info.box.length > 0.0 && !entity.ghost;
+}
+
+// Records the pairs of `now` (sorted) that `previous` (sorted) does not hold as collisions
+// begun at this tick, in entity order.
+void record_new_contacts(SimState& state, const std::vector<std::pair<uint32_t, uint32_t>>& now,
+                         const std::vector<std::pair<uint32_t, uint32_t>>& previous) {
+  for (const auto& pair : now) {
+    if (!std::binary_search(previous.begin(), previous.end(), pair)) {
+      state.collisions.push_back({state.tick, state.now(), pair.first, pair.second});
+    }
+  }
+}
+
+// The bounds of the boxed entities' extents, and whether every extent is finite.
+struct ContactSpread {
+  bool any = false;
+  bool finite = true;
+  double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
+
+  void add(const Interval& x, const Interval& y) {
+    finite = finite && std::isfinite(x.low) && std::isfinite(x.high) && std::isfinite(y.low) &&
+             std::isfinite(y.high);
+    x0 = any ? std::min(x0, x.low) : x.low;
+    x1 = any ? std::max(x1, x.high) : x.high;
+    y0 = any ? std::min(y0, y.low) : y.low;
+    y1 = any ? std::max(y1, y.high) : y.high;
+    any = true;
+  }
+  /// Spread more along y (a road running north): the sweep then runs along y.
+  bool along_y() const { return y1 - y0 > x1 - x0; }
+};
+
+// Entity `i`'s box in the sweep, from the extents kept in `sweep`.
+Item sweep_item(const ContactSweep& sweep, uint32_t i) {
+  return Item{sweep.x_extent[i].low,
+              sweep.x_extent[i].high,
+              sweep.y_extent[i].low,
+              sweep.y_extent[i].high,
+              i,
+              0};
+}
+
+// Whether the update of the moved boxes alone applies: the last update was complete and
+// covered these entities, few enough boxes moved that testing each against every other box is
+// cheaper than a sweep, and no trailer is coupled (or was, and may still touch its tower).
+bool moved_update_applies(const SimState& state, const ContactSweep& sweep) {
+  const auto& entities = state.world.entities;
+  const size_t count = entities.size();
+  // A moved box costs a test of every other box; a sweep costs about a box's making per box.
+  constexpr size_t kMovedAlways = 16;
+  constexpr size_t kBoxesPerMovedBox = 32;
+  if (!sweep.complete || state.contacts.boxes.size() != count || sweep.x_extent.size() != count ||
+      (sweep.moved.size() > kMovedAlways && sweep.moved.size() * kBoxesPerMovedBox > count)) {
+    return false;
+  }
+  return std::none_of(entities.begin(), entities.end(), [](const Entity& entity) {
+    return entity.towed_by || entity.towing || entity.unhitched_from;
+  });
+}
+
+// Makes the boxes and extents of the moved entities again. False when an extent is not finite
+// (the sweep's own path then makes every box again).
+bool refresh_moved_boxes(SimState& state, ContactSweep& sweep) {
+  const auto& entities = state.world.entities;
+  std::vector<OrientedBox>& boxes = state.contacts.boxes;
+  for (const uint32_t i : sweep.moved) {
+    if (!boxed(entities[i])) {
+      continue;
+    }
+    boxes[i] = box_of(entities[i].info.box, entities[i].state.pose);
+    const Interval x = project(boxes[i], 1.0, 0.0);
+    const Interval y = project(boxes[i], 0.0, 1.0);
+    if (!std::isfinite(x.low) || !std::isfinite(x.high) || !std::isfinite(y.low) ||
+        !std::isfinite(y.high)) {
+      return false;
+    }
+    sweep.x_extent[i] = x;
+    sweep.y_extent[i] = y;
+  }
+  return true;
+}
+
+// The spread of every boxed entity's extents as `sweep` keeps them.
+ContactSpread kept_spread(const std::vector<Entity>& entities, const ContactSweep& sweep) {
+  ContactSpread spread;
+  for (uint32_t i = 0; i < entities.size(); ++i) {
+    if (boxed(entities[i])) {
+      spread.add(sweep.x_extent[i], sweep.y_extent[i]);
+    }
+  }
+  return spread;
+}
+
+// Appends to `now` the pairs of moved box `m` with every other boxed entity that the sweep
+// would record: the same filters (the x extents in the sweep's order, `y_near_finite`) and the
+// exact test of the pair in the order the sweep along its axis meets them. A pair of two moved
+// boxes is tested once, from the lower index.
+void add_moved_box_pairs(const SimState& state, const ContactSweep& sweep, uint32_t m, bool along_y,
+                         std::vector<std::pair<uint32_t, uint32_t>>& now) {
+  const auto& entities = state.world.entities;
+  const std::vector<OrientedBox>& boxes = state.contacts.boxes;
+  const Item p = sweep_item(sweep, m);
+  for (uint32_t j = 0; j < entities.size(); ++j) {
+    if (j == m || !boxed(entities[j]) || (sweep.moved_mark[j] != 0 && j < m)) {
+      continue;
+    }
+    const Item q = sweep_item(sweep, j);
+    const bool p_first = sweep_order(p, q);
+    const Item& first = p_first ? p : q;
+    const Item& second = p_first ? q : p;
+    if (!(second.low <= first.high) || !y_near_finite(p, q)) {
+      continue;
+    }
+    // The sweep tests the pair from the earlier of the two along its axis.
+    const bool p_leads =
+        along_y ? (p.ylow < q.ylow || (p.ylow == q.ylow && p.index < q.index)) : p_first;
+    const bool touching =
+        p_leads ? overlap(boxes[p.index], boxes[q.index]) : overlap(boxes[q.index], boxes[p.index]);
+    if (touching) {
+      now.emplace_back(std::min(m, j), std::max(m, j));
+    }
+  }
+}
+
+// The contacts when only the boxes in `sweep.moved` changed since a complete update: the pairs
+// of two unmoved boxes are the last update's (neither box changed), and each moved box is
+// tested against every other box under the sweep's own filters, so that a pair is tested
+// exactly when the sweep would test it, in the sweep's order of the two (the axis chosen as the
+// sweep chooses it): the same pairs as a sweep over all boxes. Returns false, having changed
+// no pair, when it does not apply (moved_update_applies) or a moved box's extents are not
+// finite (no total order for the sweep's filters).
+bool update_moved_contacts(SimState& state, ContactSweep& sweep) {
+  if (!moved_update_applies(state, sweep) || !refresh_moved_boxes(state, sweep)) {
+    return false;
+  }
+  const auto& entities = state.world.entities;
+  const bool along_y = kept_spread(entities, sweep).along_y();
+  sweep.moved_mark.assign(entities.size(), 0);
+  for (const uint32_t i : sweep.moved) {
+    sweep.moved_mark[i] = 1;
+  }
+  std::vector<std::pair<uint32_t, uint32_t>> previous;
+  previous.swap(state.contacts.pairs);
+  auto& now = state.contacts.pairs;
+  for (const auto& pair : previous) {
+    if (sweep.moved_mark[pair.first] == 0 && sweep.moved_mark[pair.second] == 0) {
+      now.push_back(pair);
+    }
+  }
+  for (const uint32_t m : sweep.moved) {
+    if (boxed(entities[m])) {
+      add_moved_box_pairs(state, sweep, m, along_y, now);
+    }
+  }
+  std::sort(now.begin(), now.end());
+  record_new_contacts(state, now, previous);
+  return true;
+}
+
+// Makes every boxed entity's box and its extents along x and y. Each box depends only on its
+// entity: made on several threads when the sweep may share them out, so the result is the same
+// on any number.
+void make_all_boxes(SimState& state, ContactSweep& sweep) {
+  const auto& entities = state.world.entities;
+  std::vector<OrientedBox>& boxes = state.contacts.boxes;
+  boxes.resize(entities.size());
+  sweep.x_extent.resize(entities.size());
+  sweep.y_extent.resize(entities.size());
+  const auto make_boxes = [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      if (!boxed(entities[i])) {
+        continue;
+      }
+      boxes[i] = box_of(entities[i].info.box, entities[i].state.pose);
+      sweep.x_extent[i] = project(boxes[i], 1.0, 0.0);
+      sweep.y_extent[i] = project(boxes[i], 0.0, 1.0);
+    }
+  };
+  if (sweep.share) {
+    sweep.share(entities.size(), make_boxes);
+  } else {
+    make_boxes(0, entities.size());
+  }
+}
+
+// The sweep's items of the boxed entities, in index order, into `items`; their spread.
+ContactSpread gather_items(const std::vector<Entity>& entities, const ContactSweep& sweep,
+                           std::vector<Item>& items) {
+  ContactSpread spread;
+  items.reserve(entities.size());
+  for (uint32_t i = 0; i < entities.size(); ++i) {
+    if (!boxed(entities[i])) {
+      continue;
+    }
+    const Interval x = sweep.x_extent[i];
+    const Interval y = sweep.y_extent[i];
+    spread.add(x, y);
+    items.push_back({x.low, x.high, y.low, y.high, i, 0});
+  }
+  return spread;
+}
+
+// Where the sweep's overlapping pairs go: a trailer and the vehicle towing it meet at the hitch
+// (also for a while after they were disconnected, until they part), which is no collision, so
+// such coupled pairs are kept apart (`touching`) from the contacts (`now`).
+class ContactRecorder {
+ public:
+  ContactRecorder(const std::vector<Entity>& entities,
+                  std::vector<std::pair<uint32_t, uint32_t>>& now)
+      : entities_(entities), now_(now) {}
+
+  void operator()(const Item& p, const Item& q) {
+    const Entity& first = entities_[p.index];
+    const bool coupled = first.towed_by == q.index || first.towing == q.index ||
+                         first.unhitched_from == q.index ||
+                         entities_[q.index].unhitched_from == p.index;
+    (coupled ? touching_ : now_)
+        .emplace_back(std::min(p.index, q.index), std::max(p.index, q.index));
+  }
+  /// Coupled pairs whose boxes overlap.
+  const std::vector<std::pair<uint32_t, uint32_t>>& touching() const { return touching_; }
+
+ private:
+  const std::vector<Entity>& entities_;
+  std::vector<std::pair<uint32_t, uint32_t>>& now_;
+  std::vector<std::pair<uint32_t, uint32_t>> touching_;
+};
+
+// Sweeps along y (the boxes spread more that way), testing a pair when the x sweep would have
+// (the later of the two in x order starts before the earlier ends), with finite extents; in
+// strips along x when there are many boxes.
+void sweep_along_y(std::vector<Item>& items, ContactSweep& sweep, size_t entity_count,
+                   const ContactSpread& spread, const std::vector<OrientedBox>& boxes,
+                   ContactRecorder& record) {
+  sort_from_last(items, sweep.order, sweep.along_y, entity_count, [](const Item& a, const Item& b) {
+    return a.ylow < b.ylow || (a.ylow == b.ylow && a.index < b.index);
+  });
+  sweep.along_y = true;
+  const auto ends = [](const Item& p, const Item& q) {
+    return !(q.ylow <= p.yhigh + margin(p.yhigh));
+  };
+  const auto near = [](const Item& p, const Item& q) {
+    // sweep_order(p, q), and the x extents' test for the pair in that order.
+    const bool p_first = (p.low < q.low) | ((p.low == q.low) & (p.index < q.index));
+    const double first_high = p_first ? p.high : q.high;
+    const double second_low = p_first ? q.low : p.low;
+    return (second_low <= first_high) & y_near_finite(p, q);
+  };
+  const auto test = [&](const Item& p, const Item& q) {
+    if (overlap(boxes[p.index], boxes[q.index])) record(p, q);
+  };
+  const ContactStrips strips =
+      choose_strips(spread.x0, spread.x1, spread.y1 - spread.y0, items.size());
+  sweep.strips = strips.count;
+  if (strips.count > 1) {
+    // The x test above holds only for extents that overlap (a low and a high are in order).
+    sweep_strips(
+        items, sweep, strips, [](const Item& item) { return item.low; },
+        [](const Item& item) { return item.high; }, ends, near, test);
+    return;
+  }
+  // The items' place and count read once: `record` writes to memory the compiler cannot tell
+  // apart from `items`' own, so items.data() and items.size() would be read again after each
+  // pair recorded, and per item.
+  const ItemAt at{items.data()};
+  const size_t size = items.size();
+  for (size_t a = 0; a < size; ++a) {
+    const Item& p = at(a);
+    sweep_from(
+        at, size, a, [&](const Item& q) { return ends(p, q); },
+        [&](const Item& q) { return near(p, q); }, [&](const Item& q) { test(p, q); });
+  }
+}
+
+// Sweeps along x; pairs apart along y (with a rounding margin) cannot overlap and are skipped.
+// Extents that are not all `finite` (NaN or infinite) have no total order to start from; finite
+// ones many boxes sweep in strips along y.
+void sweep_along_x(std::vector<Item>& items, ContactSweep& sweep, size_t entity_count,
+                   const ContactSpread& spread, const std::vector<OrientedBox>& boxes,
+                   ContactRecorder& record) {
+  const bool finite = spread.finite;
+  if (finite) {
+    // A lambda, not the function's pointer, so that the insertion sort's comparisons are inlined.
+    sort_from_last(items, sweep.order, !sweep.along_y, entity_count,
+                   [](const Item& a, const Item& b) { return sweep_order(a, b); });
+    sweep.along_y = false;
+  } else {
+    std::sort(items.begin(), items.end(), sweep_order);
+    sweep.order.clear();
+  }
+  const auto ends = [](const Item& p, const Item& q) { return !(q.low <= p.high); };
+  const auto test = [&](const Item& p, const Item& q) {
+    if (overlap(boxes[p.index], boxes[q.index])) record(p, q);
+  };
+  const ContactStrips strips =
+      finite ? choose_strips(spread.y0, spread.y1, spread.x1 - spread.x0, items.size())
+             : ContactStrips{};
+  sweep.strips = strips.count;
+  if (strips.count > 1) {
+    // y_near_finite(p, q) holds only if each low is at most the other's high plus its margin.
+    sweep_strips(
+        items, sweep, strips, [](const Item& item) { return item.ylow; },
+        [](const Item& item) { return item.yhigh + margin(item.yhigh); }, ends,
+        [](const Item& p, const Item& q) { return y_near_finite(p, q); }, test);
+    return;
+  }
+  // Read once, as in sweep_along_y.
+  const ItemAt at{items.data()};
+  const size_t size = items.size();
+  for (size_t a = 0; a < size; ++a) {
+    const Item& p = at(a);
+    const auto ends_p = [&](const Item& q) { return ends(p, q); };
+    const auto test_p = [&](const Item& q) { test(p, q); };
+    if (finite) {
+      sweep_from(
+          at, size, a, ends_p, [&](const Item& q) { return y_near_finite(p, q); }, test_p);
+    } else {
+      sweep_from(
+          at, size, a, ends_p, [&](const Item& q) { return !y_apart(p, q); }, test_p);
+    }
+  }
+}
+
+// A disconnected trailer that no longer touches its former tower can collide with it again.
+void release_parted_trailers(std::vector<Entity>& entities,
+                             const std::vector<std::pair<uint32_t, uint32_t>>& touching) {
+  for (uint32_t i = 0; i < entities.size(); ++i) {
+    const auto other = entities[i].unhitched_from;
+    if (!other) continue;
+    const bool still = std::any_of(touching.begin(), touching.end(), [&](const auto& pair) {
+      return (pair.first == i && pair.second == *other) ||
+             (pair.first == *other && pair.second == i);
+    });
+    if (!still) entities[i].unhitched_from.reset();
+  }
+}
+
+}  // namespace
+
+}  // namespace corsa::engine::detail::sweep_and_prune
+
+namespace corsa::engine::detail {
+
+void update_contacts(SimState& state, ContactSweep& sweep) {
+  using namespace sweep_and_prune;
+  // Nothing moved, appeared or left: the contacts are those of the last update, and none is new.
+  const bool same_entities = find_moved_boxes(state, sweep.moved);
+  if (sweep.moved.empty()) {
+    return;
+  }
+  if (same_entities && update_moved_contacts(state, sweep)) {
+    return;
+  }
+  auto& entities = state.world.entities;
+  std::vector<std::pair<uint32_t, uint32_t>> previous;
+  previous.swap(state.contacts.pairs);
+  // Boxes whose extents overlap along the sweep's axis (sweep and prune) are tested exactly.
+  make_all_boxes(state, sweep);
+  std::vector<Item> items;
+  const ContactSpread spread = gather_items(entities, sweep, items);
+  auto& now = state.contacts.pairs;
+  ContactRecorder record(entities, now);
+  if (spread.finite && spread.along_y()) {
+    sweep_along_y(items, sweep, entities.size(), spread, state.contacts.boxes, record);
+  } else {
+    sweep_along_x(items, sweep, entities.size(), spread, state.contacts.boxes, record);
+  }
+  release_parted_trailers(entities, record.touching());
+  // Entity order, independent of the sweep order; new contacts are recorded in that order.
+  std::sort(now.begin(), now.end());
+  record_new_contacts(state, now, previous);
+  sweep.complete = spread.finite;
+}
+
+}  // namespace corsa::engine::detail
