@@ -61,6 +61,23 @@ void hit_uv(const ShadingContext& c, const SurfaceHit& h, TexturePoint& tp) {
   tp.v = w0 * (*uv[0])[1] + h.u * (*uv[1])[1] + h.v * (*uv[2])[1];
 }
 
+/// The shading normal of a static hit: the mesh's vertex normals interpolated at the hit and
+/// turned to the viewer's side of the surface, or the flat normal when the mesh has none.
+Vec3 smooth_normal(const StaticGeometry& g, const SurfaceHit& h) {
+  if (g.normals.empty()) {
+    return h.normal;
+  }
+  const auto& t = g.normal_triangles[h.prim_id];
+  const double w0 = 1.0 - h.u - h.v;
+  const auto& a = g.normals[t[0]];
+  const auto& b = g.normals[t[1]];
+  const auto& c = g.normals[t[2]];
+  const Vec3 n =
+      normalized(Vec3{w0 * a[0] + h.u * b[0] + h.v * c[0], w0 * a[1] + h.u * b[1] + h.v * c[1],
+                      w0 * a[2] + h.u * b[2] + h.v * c[2]});
+  return dot(n, h.normal) < 0.0 ? n * -1.0 : n;
+}
+
 bool needs_uv(const Material& m) {
   return m.image != nullptr || m.pattern == Pattern::kSignFace || m.pattern == Pattern::kPlate ||
          m.pattern == Pattern::kGlazing ||  // panes: their column, floor and share across
@@ -179,34 +196,6 @@ QualitySettings quality_settings(RenderQuality q) {
   return s;
 }
 
-Vec3 static_shading_normal(const StaticGeometry& g, const SurfaceHit& h) {
-  if (g.normals.empty()) {
-    return h.normal;
-  }
-  const auto& t = g.normal_triangles[h.prim_id];
-  const auto& a = g.normals[t[0]];
-  const auto& b = g.normals[t[1]];
-  const auto& c = g.normals[t[2]];
-  auto flat = [](const std::array<float, 3>& n) {
-    return n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f;
-  };
-  if (flat(a) || flat(b) || flat(c)) {
-    return h.normal;
-  }
-  const double w0 = 1.0 - h.u - h.v;
-  Vec3 n = normalized(Vec3{w0 * a[0] + h.u * b[0] + h.v * c[0], w0 * a[1] + h.u * b[1] + h.v * c[1],
-                           w0 * a[2] + h.u * b[2] + h.v * c[2]});
-  if (dot(n, h.normal) < 0.0) {
-    n = n * -1.0;
-  }
-  const double facing = -dot(n, h.view_dir);
-  const double floor = std::min(0.1, -dot(h.normal, h.view_dir));
-  if (facing < floor) {
-    n = normalized(n - h.view_dir * (floor - facing));
-  }
-  return n;
-}
-
 ShadingContext make_shading_context(const SceneData& scene, const Lighting& lighting,
                                     double pixel_angle, RenderQuality quality) {
   ShadingContext c;
@@ -250,7 +239,7 @@ SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& h, double foo
   double base_z = 0.0;
   if (h.entity < 0) {
     base_z = d.static_geometries[h.geom_id].base_z;
-    normal = static_shading_normal(d.static_geometries[h.geom_id], h);
+    normal = smooth_normal(d.static_geometries[h.geom_id], h);
   } else {
     const Rigid& w = d.instances[h.entity].world_from_entity;
     const Mat3 back = w.rotation.transposed();

@@ -24,36 +24,7 @@ uint32_t MeshBuilder::vertex(Vec3 p, float u, float v) {
   mesh_.vertices.push_back(xf_.apply(p));
   mesh_.bone.push_back(bone_);
   mesh_.uvs.push_back({u, v});
-  mesh_.normals.push_back({});
   return static_cast<uint32_t>(mesh_.vertices.size() - 1);
-}
-
-uint32_t MeshBuilder::smooth_vertex(Vec3 p, Vec3 n) {
-  const uint32_t i = vertex(p);
-  mesh_.normals[i] = normalized(xf_.rotation * n);
-  return i;
-}
-
-void MeshBuilder::smooth_normals_from(size_t first) {
-  const size_t n = mesh_.vertices.size();
-  std::vector<Vec3> sum(n > first ? n - first : 0);
-  for (const auto& t : mesh_.triangles) {
-    if (t[0] < first || t[1] < first || t[2] < first) {
-      continue;
-    }
-    // The cross product's length is twice the area: the mean is weighted by area.
-    const Vec3 face = cross(mesh_.vertices[t[1]] - mesh_.vertices[t[0]],
-                            mesh_.vertices[t[2]] - mesh_.vertices[t[0]]);
-    for (const uint32_t i : t) {
-      sum[i - first] = sum[i - first] + face;
-    }
-  }
-  for (size_t i = first; i < n; ++i) {
-    const Vec3& s = sum[i - first];
-    if (norm(mesh_.normals[i]) > 0.0 && norm(s) > 0.0) {
-      mesh_.normals[i] = normalized(s);
-    }
-  }
 }
 
 void MeshBuilder::set_material(size_t triangle, const Material& m) {
@@ -99,66 +70,22 @@ void perpendicular_basis(Vec3 axis, Vec3& e1, Vec3& e2) {
 }
 
 void MeshBuilder::tube(Vec3 a, Vec3 b, double r0, double r1, int segments, bool caps) {
-  if (segments < 3) {
-    return;
-  }
-  const double length = norm(b - a);
   const Vec3 axis = normalized(b - a);
   Vec3 e1, e2;
   perpendicular_basis(axis, e1, e2);
-  const auto n = static_cast<size_t>(segments);
-  std::vector<Vec3> ring0, ring1;
-  std::vector<uint32_t> side0, side1;
-  for (size_t i = 0; i < n; ++i) {
-    const double t = 2.0 * std::numbers::pi * static_cast<double>(i) / segments;
+  std::vector<std::vector<Vec3>> rings(2);
+  for (int i = 0; i < segments; ++i) {
+    const double t = 2.0 * std::numbers::pi * i / segments;
     const Vec3 dir = e1 * std::cos(t) + e2 * std::sin(t);
-    ring0.push_back(a + dir * r0);
-    ring1.push_back(b + dir * r1);
-    // The side's normal leans along the axis as the tube narrows (a cone's slope).
-    const Vec3 normal = normalized(dir * length + axis * (r0 - r1));
-    side0.push_back(smooth_vertex(ring0.back(), normal));
-    side1.push_back(smooth_vertex(ring1.back(), normal));
+    rings[0].push_back(a + dir * r0);
+    rings[1].push_back(b + dir * r1);
   }
-  for (size_t i = 0; i < n; ++i) {
-    const size_t j = (i + 1) % n;
-    quad(side0[i], side0[j], side1[j], side1[i]);
-  }
-  if (caps) {
-    // The caps' own vertices: flat faces with a hard edge to the side.
-    cap(ring0, true);
-    cap(ring1, false);
-  }
-}
-
-void MeshBuilder::cap(const std::vector<Vec3>& ring, bool start) {
-  const size_t n = ring.size();
-  Vec3 c;
-  std::vector<uint32_t> ids;
-  for (const Vec3& p : ring) {
-    c = c + p;
-    ids.push_back(vertex(p));
-  }
-  const uint32_t centre = vertex(c * (1.0 / static_cast<double>(n)));
-  for (size_t i = 0; i < n; ++i) {
-    const uint32_t a = ids[i];
-    const uint32_t b = ids[(i + 1) % n];
-    if (start) {
-      triangle(centre, b, a);
-    } else {
-      triangle(centre, a, b);
-    }
-  }
+  loft(rings, caps);
 }
 
 void MeshBuilder::ellipsoid(Vec3 centre, Vec3 radii, const Mat3& axes, int slices, int stacks) {
-  // An ellipsoid's normal at a point p (its own frame) is along (px/a^2, py/b^2, pz/c^2).
-  auto surface = [&](Vec3 local) {
-    const Vec3 n{local.x / (radii.x * radii.x), local.y / (radii.y * radii.y),
-                 local.z / (radii.z * radii.z)};
-    return smooth_vertex(centre + axes * local, axes * n);
-  };
-  const uint32_t bottom = surface(Vec3{0.0, 0.0, -radii.z});
-  const uint32_t top = surface(Vec3{0.0, 0.0, radii.z});
+  const uint32_t bottom = vertex(centre + axes * Vec3{0.0, 0.0, -radii.z});
+  const uint32_t top = vertex(centre + axes * Vec3{0.0, 0.0, radii.z});
   std::vector<uint32_t> grid;
   for (int j = 1; j < stacks; ++j) {
     const double phi = std::numbers::pi * j / stacks - 0.5 * std::numbers::pi;
@@ -166,7 +93,7 @@ void MeshBuilder::ellipsoid(Vec3 centre, Vec3 radii, const Mat3& axes, int slice
       const double theta = 2.0 * std::numbers::pi * i / slices;
       const Vec3 local{radii.x * std::cos(phi) * std::cos(theta),
                        radii.y * std::cos(phi) * std::sin(theta), radii.z * std::sin(phi)};
-      grid.push_back(surface(local));
+      grid.push_back(vertex(centre + axes * local));
     }
   }
   auto at = [&](int j, int i) { return grid[static_cast<size_t>(j) * slices + (i % slices)]; };
@@ -343,16 +270,6 @@ StaticMesh to_static_mesh(const ArticulatedMesh& mesh, const Rigid& placement, s
   }
   if (any_uv) {
     out.uvs = mesh.uvs;
-  }
-  bool any_normal = false;
-  for (const Vec3& n : mesh.normals) {
-    any_normal = any_normal || norm(n) > 0.0;
-  }
-  if (any_normal && mesh.normals.size() == mesh.vertices.size()) {
-    out.normals.reserve(mesh.normals.size());
-    for (const Vec3& n : mesh.normals) {
-      out.normals.push_back(placement.rotation * n);
-    }
   }
   return out;
 }

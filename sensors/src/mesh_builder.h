@@ -26,11 +26,6 @@ struct ArticulatedMesh {
   std::vector<SemanticClass> classes;     ///< per triangle
   std::vector<Material> materials;        ///< palette
   std::vector<std::array<float, 2>> uvs;  ///< per vertex
-  /// Shading normals per vertex (unit, in the mesh's frame) for round surfaces (tubes,
-  /// ellipsoids, foliage) that should shade without facets; a zero vector marks a vertex of a
-  /// flat face (boxes, caps, polygons, lofts), and a triangle with such a vertex shades with its
-  /// own flat normal, so hard edges stay hard. Empty when the mesh was not built by MeshBuilder.
-  std::vector<Vec3> normals;
 };
 
 class MeshBuilder {
@@ -52,21 +47,16 @@ class MeshBuilder {
   }
   const Rigid& transform() const { return xf_; }
 
-  /// A vertex of a flat face (no shading normal of its own).
   uint32_t vertex(Vec3 p, float u = 0.0f, float v = 0.0f);
-  /// A vertex of a round surface with its shading normal `n` (unit, before the transform).
-  uint32_t smooth_vertex(Vec3 p, Vec3 n);
   void triangle(uint32_t a, uint32_t b, uint32_t c);
   /// Two triangles a b c, a c d.
   void quad(uint32_t a, uint32_t b, uint32_t c, uint32_t d);
 
   /// Axis-aligned box (in the current transform) between two corners.
   void box(Vec3 lo, Vec3 hi);
-  /// A tube from a to b, radius r0 at a and r1 at b, `segments` around, optionally closed; its
-  /// side shades round, its caps flat.
+  /// A tube from a to b, radius r0 at a and r1 at b, `segments` around, optionally closed.
   void tube(Vec3 a, Vec3 b, double r0, double r1, int segments, bool caps = true);
-  /// An ellipsoid with semi-axes `radii` along the columns of `axes` (a rotation), shading
-  /// round.
+  /// An ellipsoid with semi-axes `radii` along the columns of `axes` (a rotation).
   void ellipsoid(Vec3 centre, Vec3 radii, const Mat3& axes, int slices, int stacks);
   /// Closed rings of equal size joined into a tube-like surface; end rings capped by fans.
   void loft(const std::vector<std::vector<Vec3>>& rings, bool cap_ends);
@@ -76,11 +66,6 @@ class MeshBuilder {
   /// plane and wound counter-clockwise seen from +z (paint outlines such as arrows). Returns
   /// false and adds nothing when the ring is not a simple polygon of at least 3 points.
   bool filled_ring(const std::vector<Vec3>& ring);
-
-  /// Shading normals of the vertices from `first` on recomputed from their triangles (the
-  /// area-weighted mean of the faces around each vertex), after their positions were moved
-  /// (e.g. a displaced blob); only vertices that had a shading normal get one.
-  void smooth_normals_from(size_t first);
 
   /// Gives an already added triangle another material (e.g. glass cut out of a body loft).
   void set_material(size_t triangle, const Material& m);
@@ -92,9 +77,6 @@ class MeshBuilder {
   ArticulatedMesh take() { return std::move(mesh_); }
 
  private:
-  /// A flat fan closing `ring` (its own vertices), facing back along the tube at its start.
-  void cap(const std::vector<Vec3>& ring, bool start);
-
   ArticulatedMesh mesh_;
   uint16_t material_ = 0;
   SemanticClass class_ = SemanticClass::kStatic;
@@ -104,7 +86,7 @@ class MeshBuilder {
 };
 
 /// The mesh as a static mesh placed by `placement` (bones ignored), one class per triangle,
-/// its palette, uvs and shading normals (turned by the placement) carried over.
+/// its palette and uvs carried over.
 StaticMesh to_static_mesh(const ArticulatedMesh& mesh, const Rigid& placement, std::string name);
 
 /// Ear clipping of a counter-clockwise simple polygon: index triples into `ring`; empty when

@@ -371,13 +371,8 @@ SurfaceSample foliage(const Material& m, const TexturePoint& p) {
   const double leaves = pattern_noise(p, 0, x.x + x.z * 0.7, x.y - x.z * 0.4, 0.8, fp);
   const double clumps = pattern_noise(p, 1, x.x - x.z * 0.5, x.y + x.z * 0.8, 5.0, fp);
   const double t = smoothstep(0.3, 0.7, 0.55 * leaves + 0.45 * clumps);
-  // Leaf by leaf (a 0.3 m tile: features of a few centimetres): the shadows between leaves as
-  // dark flecks and a leaf's lit face brighter, while a pixel is small enough to see them (the
-  // prefiltered noise tends to its mean beyond, and the flecks to a plain 1.03).
-  const double fine = pattern_noise(p, 3, x.x * 0.8 - x.z * 0.6, x.y + x.z * 0.6, 0.3, fp);
-  const double flecks = 0.55 + 0.7 * smoothstep(0.3, 0.62, fine);
   s.albedo = mix(m.secondary, m.base_color, t) *
-             (0.75 + 0.5 * pattern_noise(p, 2, x.x, x.y + x.z, 2.0, fp)) * flecks;
+             (0.75 + 0.5 * pattern_noise(p, 2, x.x, x.y + x.z, 2.0, fp));
   return s;
 }
 

@@ -116,15 +116,6 @@ ShadingContext make_shading_context(const SceneData& scene, const Lighting& ligh
 /// Tells the context where the camera is (tracer-local), for the air in front of it.
 void place_eye(ShadingContext& c, Vec3 eye);
 
-/// The shading normal of a static hit: the mesh's vertex normals interpolated at the hit with
-/// its barycentric coordinates and turned to the viewer's side of the surface, or the flat
-/// normal when the mesh has none or a vertex of the triangle has none (a flat face's hard
-/// edge). An interpolated normal can face away from the viewer near a coarse round surface's
-/// outline (the flat triangle faces the eye, the normal of its far vertex does not): it is
-/// tilted back until it faces the eye a little, as far as the flat normal does at most, so the
-/// outline does not turn black.
-Vec3 static_shading_normal(const StaticGeometry& g, const SurfaceHit& h);
-
 /// The material at a hit, prefiltered to the pixel footprint (`footprint_scale` widens it for
 /// secondary rays), with wet road, puddles and snow cover applied.
 SurfacePoint surface_at(const ShadingContext& c, const SurfaceHit& hit,

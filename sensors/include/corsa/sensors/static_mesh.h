@@ -54,9 +54,8 @@ struct StaticMesh {
   /// Texture coordinates per vertex (empty when the mesh has none).
   std::vector<std::array<float, 2>> uvs;
   /// Shading normals per vertex (unit, map frame), interpolated over each triangle so that a
-  /// smooth surface made of flat triangles (the ground, round props) shades without facets; a
-  /// zero vector marks a vertex of a flat face, and a triangle with such a vertex shades with
-  /// its own flat normal (hard edges of boxes and caps); empty: every triangle shades flat.
+  /// smooth surface made of flat triangles (the ground) shades without facets; empty: each
+  /// triangle shades with its own flat normal.
   std::vector<Vec3> normals;
   /// Traffic-light heads: the OpenDRIVE signal id whose state (WorldSnapshot::signals) switches
   /// the bulbs (materials with LightRole kSignalRed/Yellow/Green).
