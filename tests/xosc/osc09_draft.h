@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "corsa/xosc/scenario.h"
 #include "scenario_text.h"
 
 namespace corsa::test {
@@ -53,6 +54,16 @@ inline std::string osc09_draft() {
          "<SimulationTime value=\"0\" rule=\"greater_than\"/>\n</ByValue>\n</Condition>\n"
          "</ConditionGroup>\n</Start>\n</Conditions>\n"
          "</Act>\n</Story>\n<End>\n</End>\n</Storyboard>\n</OpenSCENARIO>\n";
+}
+
+// The first event of the first maneuver of the first story's first act: where the drafts put
+// the action or condition a test looks at.
+inline const xosc::Event& first_event(const xosc::Scenario& scenario) {
+  return scenario.storyboard.stories.at(0)
+      .acts.at(0)
+      .maneuver_groups.at(0)
+      .maneuvers.at(0)
+      .events.at(0);
 }
 
 }  // namespace corsa::test

@@ -124,11 +124,7 @@ TEST_CASE("a 0.9 Meeting whose offsetTime parameter holds a time is left for the
   const Loaded zero = lenient_load(dir, xml);
   INFO((zero.errors.empty() ? std::string() : zero.errors[0].format()));
   REQUIRE(zero.errors.empty());
-  const auto& event = zero.scenario->storyboard.stories.at(0)
-                          .acts.at(0)
-                          .maneuver_groups.at(0)
-                          .maneuvers.at(0)
-                          .events.at(0);
+  const auto& event = first_event(*zero.scenario);
   const auto& action = std::get<xosc::PrivateAction>(event.actions.at(0).action);
   CHECK(std::holds_alternative<xosc::SynchronizeAction>(action));
 }

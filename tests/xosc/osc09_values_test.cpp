@@ -139,11 +139,7 @@ TEST_CASE("0.9 AfterTermination rule=\"end\" of an act holds once the act's End 
   Loaded loaded = lenient_load(dir, xml);
   REQUIRE(loaded.errors.empty());
   const auto state_of = [](const xosc::Scenario& scenario) {
-    const auto& event = scenario.storyboard.stories.at(0)
-                            .acts.at(0)
-                            .maneuver_groups.at(0)
-                            .maneuvers.at(0)
-                            .events.at(0);
+    const auto& event = first_event(scenario);
     const auto& condition = event.start_trigger->groups.at(0).conditions.at(0);
     const auto& by_value = std::get<xosc::ByValueCondition>(condition.kind);
     return std::get<xosc::StoryboardElementStateCondition>(by_value).state;
@@ -176,11 +172,7 @@ TEST_CASE("a 0.9 Dynamics with both time and rate keeps the time, warned at its 
   const Loaded loaded = lenient_load(dir, xml);
   INFO((loaded.errors.empty() ? std::string() : loaded.errors[0].format()));
   REQUIRE(loaded.errors.empty());
-  const auto& event = loaded.scenario->storyboard.stories.at(0)
-                          .acts.at(0)
-                          .maneuver_groups.at(0)
-                          .maneuvers.at(0)
-                          .events.at(0);
+  const auto& event = first_event(*loaded.scenario);
   const auto& action = std::get<xosc::PrivateAction>(event.actions.at(0).action);
   const auto& speed = std::get<xosc::SpeedAction>(action);
   CHECK(speed.dynamics.dimension == xosc::DynamicsDimension::kTime);
