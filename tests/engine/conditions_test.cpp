@@ -4,6 +4,9 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "engine_fixture.h"
 #include "positions/relative_distance.h"
@@ -18,6 +21,19 @@ using engine::TransitionKind;
 
 std::optional<double> started(const FixtureRun& run, const std::string& event) {
   return run.first("Marks::M::" + event, TransitionKind::kStart);
+}
+
+// Writes fixture `name` into `dir` with each (from, to) of `replacements` made once.
+void copy_fixture(const corsa::test::TempDir& dir, const std::string& name,
+                  const std::vector<std::pair<std::string, std::string>>& replacements = {}) {
+  std::ostringstream read;
+  read << std::ifstream(engine_fixture(name), std::ios::binary).rdbuf();
+  std::string text = read.str();
+  for (const auto& [from, to] : replacements) {
+    REQUIRE(text.find(from) != std::string::npos);
+    text.replace(text.find(from), from.size(), to);
+  }
+  std::ofstream(dir.path() / name, std::ios::binary) << text;
 }
 
 TEST_CASE("SimulationTimeCondition compares the time on the tick grid with each rule",
@@ -47,6 +63,46 @@ TEST_CASE("Speed, relative speed, acceleration, traveled distance and stand-stil
   CHECK(started(run, "Hundred") == Approx(10.0));  // 100 m driven: t^2 = 100
   CHECK(run.at(14.01, "Acc").speed == 0.0);
   CHECK(started(run, "Stopped") == Approx(15.01));  // still for one second
+}
+
+TEST_CASE("A StandStillCondition in a stop trigger alone keeps the stand-still timer",
+          "[engine][condition][motion]") {
+  // The timers are kept only when a trigger of the storyboard reads them. Here the one
+  // StandStillCondition is in the Storyboard's or the Act's StopTrigger (the event's is made a
+  // SpeedCondition that never holds): Acc stands from 14.01 s, so either stops at 15.01 s.
+  const std::string still = "<StandStillCondition duration=\"1\"/>";
+  const std::string by_still =
+      "<ByEntityCondition><TriggeringEntities triggeringEntitiesRule=\"any\"><EntityRef "
+      "entityRef=\"Acc\"/></TriggeringEntities><EntityCondition>" +
+      still + "</EntityCondition></ByEntityCondition>";
+  const std::string never = "<SpeedCondition value=\"100\" rule=\"greaterThan\"/>";
+  const std::string end_at_16 =
+      "<ByValueCondition><SimulationTimeCondition value=\"16\" rule=\"greaterThan\"/>"
+      "</ByValueCondition>";
+  corsa::test::TempDir dir;
+  copy_fixture(dir, "straight.xodr");
+  engine::SimulationOptions options;
+  options.duration = 20.0;
+  SECTION("the Storyboard's StopTrigger") {
+    copy_fixture(dir, "condition_motion.xosc", {{still, never}, {end_at_16, by_still}});
+    FixtureRun run(dir.path() / "condition_motion.xosc", options);
+    run.run();
+    CHECK_FALSE(started(run, "Stopped"));
+    CHECK(run.sim().end_reason() == engine::EndReason::kStopTrigger);
+    CHECK(static_cast<double>(run.sim().tick()) * run.sim().dt() == Approx(15.01));
+  }
+  SECTION("an Act's StopTrigger") {
+    const std::string act_end = "</ManeuverGroup></Act>";
+    const std::string act_stop =
+        "</ManeuverGroup><StopTrigger><ConditionGroup><Condition "
+        "name=\"halt\" delay=\"0\" conditionEdge=\"none\">" +
+        by_still + "</Condition></ConditionGroup></StopTrigger></Act>";
+    copy_fixture(dir, "condition_motion.xosc", {{still, never}, {act_end, act_stop}});
+    FixtureRun run(dir.path() / "condition_motion.xosc", options);
+    run.run();
+    CHECK_FALSE(started(run, "Stopped"));
+    CHECK(run.first("S::A", TransitionKind::kStop) == Approx(15.01));
+  }
 }
 
 TEST_CASE("TraveledDistanceCondition sums straight distances between steps, jumps left out",
@@ -140,17 +196,11 @@ TEST_CASE("a lane of type none is off the road", "[engine][condition][road]") {
   // OpenDRIVE 1.8 §9.5.3: a lane of type none is the space where a driver has left the road.
   // The fixture's Drifter steps 3.5 m right of lane -3, into lane -4, made of type none here.
   corsa::test::TempDir dir;
-  const auto copy = [&](const std::string& name, const std::string& from, const std::string& to) {
-    std::ostringstream read;
-    read << std::ifstream(engine_fixture(name), std::ios::binary).rdbuf();
-    std::string text = read.str();
-    REQUIRE(text.find(from) != std::string::npos);
-    text.replace(text.find(from), from.size(), to);
-    std::ofstream(dir.path() / name, std::ios::binary) << text;
-  };
-  copy("straight.xodr", "<lane id=\"-4\" type=\"sidewalk\"", "<lane id=\"-4\" type=\"none\"");
-  copy("condition_road.xosc", "<AbsoluteTargetLaneOffset value=\"-6\"/>",
-       "<AbsoluteTargetLaneOffset value=\"-3.5\"/>");
+  copy_fixture(dir, "straight.xodr",
+               {{"<lane id=\"-4\" type=\"sidewalk\"", "<lane id=\"-4\" type=\"none\""}});
+  copy_fixture(
+      dir, "condition_road.xosc",
+      {{"<AbsoluteTargetLaneOffset value=\"-6\"/>", "<AbsoluteTargetLaneOffset value=\"-3.5\"/>"}});
   FixtureRun run(dir.path() / "condition_road.xosc");
   run.run();
   REQUIRE(run.at(1.02, "Drifter").road.has_value());

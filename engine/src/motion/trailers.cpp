@@ -63,6 +63,7 @@ void connect_trailer(SimState& state, uint32_t tower, uint32_t trailer, bool ali
   if (towed.towed_by) disconnect_trailer(state, *towed.towed_by);
   state.world.entities[tower].towing = trailer;
   towed.towed_by = tower;
+  state.trailers_connected = true;
   const Pose& pose = state.world.entities[tower].state.pose;
   const auto [hx, hy] = ahead(pose, hitch_dx(state, tower));
   const double back = coupler_dx(state, trailer);
@@ -110,6 +111,9 @@ void disconnect_trailer(SimState& state, uint32_t tower) {
 }
 
 void move_trailers(SimState& state, double dt) {
+  if (!state.trailers_connected) {
+    return;  // no entity has been towed yet
+  }
   std::vector<uint32_t> towed;
   // The count read once: a push_back could allocate, after which the compiler reloads the
   // entities' vector every round.

@@ -205,6 +205,13 @@ struct SimState {
   /// Whether a trigger of the storyboard has a TraveledDistanceCondition, found when the
   /// storyboard is built: the step then keeps Entity::straight_travel.
   bool straight_travel_wanted = false;
+  /// Whether a trigger of the storyboard has a StandStill, Offroad or EndOfRoad condition,
+  /// found when the storyboard is built: only these read the entities' timers
+  /// (state/world_update.h), which are kept only then.
+  bool timers_wanted = false;
+  /// Whether a trailer has been connected in this run (motion/trailers.h): until then no entity
+  /// is towed, and the step has no trailer to move.
+  bool trailers_connected = false;
   /// The vehicles whose body trails their reference point (motion/refpoint_trail.h), in
   /// entity order; empty for most scenarios.
   std::vector<RefpointTrail> refpoint_trailing;

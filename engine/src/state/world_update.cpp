@@ -39,6 +39,11 @@ constexpr double kStandStillSpeed = 1e-3;
 }  // namespace
 
 void update_timers(SimState& state, bool advance) {
+  // Only the timer conditions read the timers: without one in the storyboard they are not kept
+  // (a run's conditions are all compiled from it when it is built).
+  if (!state.timers_wanted) {
+    return;
+  }
   const double dt = advance ? state.time.dt() : 0.0;
   for (Entity& entity : state.world.entities) {
     // Each timer counts the time since its condition began: 0 at the first tick it holds.

@@ -126,13 +126,14 @@ void compile_triggers(ActNode& act, const SimState& state) {
   }
 }
 
-bool reads_traveled_distance(const std::optional<xosc::Trigger>& trigger) {
+// Whether `trigger` has a ByEntityCondition of one of the kinds `Kinds`.
+template <class... Kinds>
+bool has_entity_condition(const std::optional<xosc::Trigger>& trigger) {
   if (!trigger) return false;
   for (const xosc::ConditionGroup& group : trigger->groups) {
     for (const xosc::Condition& condition : group.conditions) {
       const auto* by_entity = std::get_if<xosc::ByEntityCondition>(&condition.kind);
-      if (by_entity != nullptr &&
-          std::holds_alternative<xosc::TraveledDistanceCondition>(by_entity->condition)) {
+      if (by_entity != nullptr && (std::holds_alternative<Kinds>(by_entity->condition) || ...)) {
         return true;
       }
     }
@@ -140,19 +141,22 @@ bool reads_traveled_distance(const std::optional<xosc::Trigger>& trigger) {
   return false;
 }
 
-// Whether any trigger of the storyboard has a TraveledDistanceCondition (the step then keeps
-// Entity::straight_travel).
-bool storyboard_reads_traveled_distance(const xosc::Storyboard& board) {
-  if (reads_traveled_distance(board.stop_trigger)) return true;
+// Whether any trigger of the storyboard (the stop trigger, the acts' start and stop triggers,
+// the events' start triggers: every condition a run evaluates) has a ByEntityCondition of one
+// of the kinds `Kinds`.
+template <class... Kinds>
+bool storyboard_has_entity_condition(const xosc::Storyboard& board) {
+  if (has_entity_condition<Kinds...>(board.stop_trigger)) return true;
   for (const xosc::Story& story : board.stories) {
     for (const xosc::Act& act : story.acts) {
-      if (reads_traveled_distance(act.start_trigger) || reads_traveled_distance(act.stop_trigger)) {
+      if (has_entity_condition<Kinds...>(act.start_trigger) ||
+          has_entity_condition<Kinds...>(act.stop_trigger)) {
         return true;
       }
       for (const xosc::ManeuverGroup& group : act.maneuver_groups) {
         for (const xosc::Maneuver& maneuver : group.maneuvers) {
           for (const xosc::Event& event : maneuver.events) {
-            if (reads_traveled_distance(event.start_trigger)) return true;
+            if (has_entity_condition<Kinds...>(event.start_trigger)) return true;
           }
         }
       }
@@ -166,7 +170,11 @@ bool storyboard_reads_traveled_distance(const xosc::Storyboard& board) {
 Storyboard::Storyboard(SimState& state) {
   const xosc::Storyboard& board = state.scenario.storyboard;
   root_ = state.elements.add(ElementType::kStoryboard, "");
-  state.straight_travel_wanted = storyboard_reads_traveled_distance(board);
+  state.straight_travel_wanted =
+      storyboard_has_entity_condition<xosc::TraveledDistanceCondition>(board);
+  state.timers_wanted =
+      storyboard_has_entity_condition<xosc::StandStillCondition, xosc::OffroadCondition,
+                                      xosc::EndOfRoadCondition>(board);
   for (const xosc::Story& story : board.stories) {
     stories_.push_back(build_story(story, state));
   }
