@@ -517,20 +517,25 @@ struct MoverScan {
 };
 
 // Looks at every entity's controllers once, and hands the lateral partner of a split the speed
-// and heading its step begins with.
+// and heading its step begins with. The flags are gathered in locals (the compiler kept the
+// struct's in memory, each entity storing and loading them again).
 MoverScan scan_for_move(SimState& state, uint32_t count) {
   MoverScan scan;
+  bool alks = false;
+  bool sloppy = false;
+  bool following = false;
+  bool natural = false;
   for (uint32_t i = 0; i < count; ++i) {
     ControlState& control = state.controls[i];
     const Entity& entity = state.world.entities[i];
     const ControllerKind kind = control.effective();
-    scan.alks = scan.alks || kind == ControllerKind::kAlksR157;
-    scan.sloppy = scan.sloppy || kind == ControllerKind::kSloppyDriver;
+    alks |= kind == ControllerKind::kAlksR157;
+    sloppy |= kind == ControllerKind::kSloppyDriver;
     if (std::optional<DomainPartner>& partner = control.partner) {
       // The lateral controller of a split steers with the speed and heading the step began with.
       partner->step_start_speed = entity.state.speed;
       partner->step_start_heading = entity.lane.heading_offset;
-      scan.sloppy = scan.sloppy || partner->kind == ControllerKind::kSloppyDriver;
+      sloppy |= partner->kind == ControllerKind::kSloppyDriver;
     }
     // Moved by the dynamics controller this step (a FollowTrajectoryAction in position mode
     // places the entity on its path instead: ideal motion).
@@ -540,13 +545,15 @@ MoverScan scan_for_move(SimState& state, uint32_t count) {
     }
     // Car following and esmini's offroadFollower read the others in the picture (esmini's
     // interactiveDriver does not: without it the picture is not taken).
-    scan.following =
-        scan.following ||
-        (entity.state.placed &&
-         (kind == ControllerKind::kAcc || (kind == ControllerKind::kEsminiVehicle &&
-                                           esmini_driver_reads_view(control.esmini_driver.get()))));
-    scan.natural = scan.natural || control.natural != nullptr;
+    following |= entity.state.placed && (kind == ControllerKind::kAcc ||
+                                         (kind == ControllerKind::kEsminiVehicle &&
+                                          esmini_driver_reads_view(control.esmini_driver.get())));
+    natural |= control.natural != nullptr;
   }
+  scan.alks = alks;
+  scan.sloppy = sloppy;
+  scan.following = following;
+  scan.natural = natural;
   return scan;
 }
 

@@ -13,22 +13,28 @@ void begin_commands(SimState& state) {
     return;
   }
   control_of(state, count - 1);
+  // An active external controller without a command from outside for this step repeats what
+  // it held. A pass over the control records alone: most entities have no such controller.
   for (uint32_t i = 0; i < count; ++i) {
     ControlState& control = state.controls[i];
-    Entity& entity = state.world.entities[i];
-    if (!control.commanded && control.kind == ControllerKind::kExternal &&
-        (control.longitudinal || control.lateral)) {
-      if (control.held) {
-        control.command = *control.held;
-      } else {
-        control.command = ExternalCommand{};
-        control.command.speed = entity.state.speed;
-      }
-      control.commanded = true;
-      state.commanded.push_back(i);
+    if (control.kind != ControllerKind::kExternal || control.commanded ||
+        !(control.longitudinal || control.lateral)) {
+      continue;
     }
-    if (control.commanded) {
-      entity.pose_command.reset();
+    if (control.held) {
+      control.command = *control.held;
+    } else {
+      control.command = ExternalCommand{};
+      control.command.speed = state.world.entities[i].state.speed;
+    }
+    control.commanded = true;
+    state.commanded.push_back(i);
+  }
+  // A commanded entity goes where its command puts it, not where an action asked for: every
+  // commanded entity is listed in state.commanded (Simulation::command and the pass above).
+  for (const uint32_t i : state.commanded) {
+    if (i < count && state.controls[i].commanded) {
+      state.world.entities[i].pose_command.reset();
     }
   }
 }
