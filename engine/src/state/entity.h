@@ -164,15 +164,25 @@ inline constexpr size_t kVehicleLightCount = kVehicleLightTypes;
 using LightSettings = std::array<std::optional<LightSetting>, kVehicleLightCount>;
 
 /// The fields are in the order a step reads them: first what every step's passes over all
-/// entities touch (the motion: state, lane, commands; then timers, trailer links, the pose command,
-/// the box in `info`, the lane pose memo), then what only some entities or events need (a removed
-/// entity's last place among them). With hundreds of vehicles the entities no longer fit in a
-/// core's cache, and a move then costs the cache lines it reads of its entity.
+/// entities touch (the motion: state, lane, commands; then the flags and timers, trailer links,
+/// the route, the pose command, the box in `info`, the lane pose memo and whether the still step
+/// memo holds), then what only some entities or events need (the still step's copy of the
+/// motion, a removed entity's last place among them). With hundreds of vehicles the entities no
+/// longer fit in a core's cache, and a step then costs the cache lines it reads of each entity:
+/// the part before `still_step.held` (720 of the entity's 1,256 bytes) is what the moves ask for
+/// ahead (controllers/controllers.cpp) and what the other passes read.
 struct Entity : EntityMotion {
   /// Timers (s) for the duration-based conditions (StandStill, Offroad, EndOfRoad).
   bool standing_still = false;  ///< slower than 1e-3 m/s (state/world_update.cpp)
   bool was_offroad = false;
   bool was_at_end = false;  ///< EntityMotion::end_of_road at the last timers' update
+  /// Set by a DeleteEntityAction (or a sink) until the entity is placed again; state.pose and
+  /// removed_road keep where it was, which a position relative to it is read from (esmini's
+  /// reading of a reference to a deleted entity, with a lenient-reading warning).
+  bool removed = false;
+  /// esmini's ghost of another entity (state/ghost_state.h): recorded, but no other entity,
+  /// sensor or collision sees it.
+  bool ghost = false;
   double standstill_time = 0.0;
   double offroad_time = 0.0;
   double end_of_road_time = 0.0;
@@ -186,19 +196,19 @@ struct Entity : EntityMotion {
 
   /// The running action that owns each domain (index 0 longitudinal, 1 lateral), or null.
   std::array<ActionInstance*, kDomainSlots> owners{};
+  /// Owns the route chooser (AssignRouteAction, AcquirePositionAction) `chooser` points at; every
+  /// step tests it (motion/route_lanes.cpp).
+  std::shared_ptr<const LaneChooser> route;
   /// A pose an action sets for the end of the step (FollowTrajectoryAction): the controller
   /// puts the entity there instead of moving it along its lane (motion/pose_command.h).
   std::optional<Pose> pose_command;
   EntityInfo info;
   LanePoseMemo lane_pose_memo;
+  /// Its flag is read every step; the motion it holds only for an entity standing on its lane.
   StillStepMemo still_step;
 
   // Below: what only some entities, or some events, read.
-  /// Set by a DeleteEntityAction (or a sink) until the entity is placed again; state.pose and
-  /// removed_road keep where it was, which a position relative to it is read from (esmini's
-  /// reading of a reference to a deleted entity, with a lenient-reading warning).
-  bool removed = false;
-  std::optional<RoadCoordinates> removed_road;
+  std::optional<RoadCoordinates> removed_road;  ///< see `removed`
   double removed_speed = 0.0;  ///< m/s when it was removed (esmini re-adds it at that speed)
   /// Metres summed as straight lines between the entity's places at the ends of successive
   /// steps, jumps to a new place (a TeleportAction, being added) left out: the distance a
@@ -210,8 +220,6 @@ struct Entity : EntityMotion {
   PointLocateMemo point_memo;
 
   const xosc::ScenarioObject* object = nullptr;
-  /// Owns the route chooser (AssignRouteAction, AcquirePositionAction) `chooser` points at.
-  std::shared_ptr<const LaneChooser> route;
   RouteProgress route_progress;
   /// Lights set by LightStateAction; null until the first is set (unset ones follow the
   /// motion). Out of line: most entities never use them.
@@ -224,9 +232,6 @@ struct Entity : EntityMotion {
   std::map<std::string, Animation> animations;
   /// The entity of a trailer defined inline in this vehicle, connected at Init.
   std::optional<uint32_t> initial_trailer;
-  /// esmini's ghost of another entity (state/ghost_state.h): recorded, but no other entity,
-  /// sensor or collision sees it.
-  bool ghost = false;
 };
 
 /// An animation's state (0..1) at run time `now` (s).
