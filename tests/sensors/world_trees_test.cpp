@@ -1,16 +1,18 @@
 // Generated plants (sensors/src/vegetation.cpp): crowns with sky through them, smooth outward
 // normals, the same plant from the same stream, lamp heads left clear.
 
-#include "vegetation.h"
-
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <set>
 #include <vector>
 
 #include "corsa/sensors/scene.h"
+#include "corsa/sensors/world.h"
+#include "vegetation.h"
+#include "world_fixture.h"
 
 using namespace corsa::sensors;
 using corsa::RandomStream;
@@ -20,8 +22,8 @@ using detail::TreeForm;
 
 namespace {
 
-const TreeForm kForms[] = {TreeForm::kRound,  TreeForm::kSpreading, TreeForm::kColumnar,
-                           TreeForm::kYoung,  TreeForm::kSpruce,    TreeForm::kPine};
+const TreeForm kForms[] = {TreeForm::kRound, TreeForm::kSpreading, TreeForm::kColumnar,
+                           TreeForm::kYoung, TreeForm::kSpruce,    TreeForm::kPine};
 
 ArticulatedMesh tree(TreeForm form, uint64_t seed, std::span<const detail::Clearance> clear = {}) {
   RandomStream rng(seed);
@@ -104,7 +106,8 @@ TEST_CASE("plants shade smooth: unit vertex normals on the outer side of every f
     // for a few faces in the folds of the lumpy clumps ...
     size_t against = 0;
     for (const auto& t : m.triangles) {
-      const Vec3 face = cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]]);
+      const Vec3 face =
+          cross(m.vertices[t[1]] - m.vertices[t[0]], m.vertices[t[2]] - m.vertices[t[0]]);
       against += dot(m.normals[t[0]] + m.normals[t[1]] + m.normals[t[2]], face) <= 0.0 ? 1 : 0;
     }
     INFO(against << " of " << m.triangles.size() << " faces against their normals");
@@ -204,4 +207,23 @@ TEST_CASE("a crown leaves a lamp head in it clear", "[sensors][world][trees]") {
                  << " unpruned");
     CHECK(within == 0);
   }
+}
+
+TEST_CASE("the demo street's plants stay within a triangle budget", "[sensors][world][trees]") {
+  const auto map = corsa::test::load_map(std::filesystem::path(CORSA_SOURCE_DIR) /
+                                         "scenarios/demo/city_street.xodr");
+  WorldOptions with;
+  with.seed = 3;
+  WorldOptions without = with;
+  without.vegetation = false;
+  const auto a = corsa::test::build_world_scene(map, with);
+  const auto b = corsa::test::build_world_scene(map, without);
+  const size_t plants = a->report.trees + a->report.bushes;
+  const size_t triangles = a->scene.static_triangle_count() - b->scene.static_triangle_count();
+  INFO(a->report.trees << " trees, " << a->report.bushes << " bushes: " << triangles
+                       << " triangles");
+  REQUIRE(plants > 20);
+  // Some 12,000 triangles a plant (a bush a few hundred): the BVH of a street of them fits
+  // in tens of megabytes.
+  CHECK(triangles / plants < 16000);
 }
