@@ -92,9 +92,9 @@ void clump(MeshBuilder& b, Vec3 c, Vec3 r, const Mat3& axes, uint64_t seed, cons
   for (size_t i = first_vertex; i < mesh.vertices.size(); ++i) {
     // The gradient of the mass's ellipsoid: its outward direction there.
     const Vec3 d = mesh.vertices[i] - mass.centre;
-    const Vec3 out = normalized(Vec3{d.x / (mass.radii.x * mass.radii.x),
-                                     d.y / (mass.radii.y * mass.radii.y),
-                                     d.z / (mass.radii.z * mass.radii.z)});
+    const Vec3 out =
+        normalized(Vec3{d.x / (mass.radii.x * mass.radii.x), d.y / (mass.radii.y * mass.radii.y),
+                        d.z / (mass.radii.z * mass.radii.z)});
     mesh.normals[i] = normalized(mesh.normals[i] + out * kBend);
   }
 }
@@ -107,17 +107,16 @@ Vec3 on_sphere(RandomStream& rng) {
 }
 
 bool in_clearance(Vec3 p, double margin, std::span<const Clearance> clear) {
-  return std::any_of(clear.begin(), clear.end(), [&](const Clearance& c) {
-    return norm(p - c.centre) < c.radius + margin;
-  });
+  return std::any_of(clear.begin(), clear.end(),
+                     [&](const Clearance& c) { return norm(p - c.centre) < c.radius + margin; });
 }
 
 int fill_lobe(MeshBuilder& b, RandomStream& rng, const Lobe& lobe, const Mass& mass,
               const LobeStyle& style, const Leaves& leaves, std::span<const Clearance> clear) {
   const double rm = std::cbrt(lobe.radii.x * lobe.radii.y * lobe.radii.z);
-  const int count = std::clamp(
-      static_cast<int>(style.density * 4.0 * rm * rm / (style.clump * style.clump)), 3,
-      style.max_clumps);
+  const int count =
+      std::clamp(static_cast<int>(style.density * 4.0 * rm * rm / (style.clump * style.clump)), 3,
+                 style.max_clumps);
   const Vec3 out = normalized(lobe.centre - mass.centre);
   int placed = 0;
   for (int k = 0; k < count; ++k) {

@@ -53,10 +53,11 @@ struct LobeStyle {
   int max_clumps = 40;
 };
 
-/// Fills a lobe with clumps, most in its outer part: fewer on its side towards the middle of the mass
-/// and beneath (leaves grow towards the light), those inside and beneath in the shade material,
-/// small tufts beside half of the outermost (a ragged outline). A clump within a clearance is
-/// left out after its draws, so the rest of the plant stays as it was. Returns clumps placed.
+/// Fills a lobe with clumps, most in its outer part: fewer on its side towards the middle of the
+/// mass and beneath (leaves grow towards the light), those inside and beneath in the shade
+/// material, small tufts beside half of the outermost (a ragged outline). A clump within a
+/// clearance is left out after its draws, so the rest of the plant stays as it was. Returns clumps
+/// placed.
 int fill_lobe(MeshBuilder& b, RandomStream& rng, const Lobe& lobe, const Mass& mass,
               const LobeStyle& style, const Leaves& leaves, std::span<const Clearance> clear);
 

@@ -31,16 +31,16 @@ struct CrownForm {
 
 // Shares from street trees as they stand (a lime of 10 m: a clear trunk of 3-4 m, a crown some
 // 7 m across; a plane's crown wider than tall; a fastigiate hornbeam's 2-3 m across).
-constexpr CrownForm kRound{0.30, 0.42, 0.34, 0.42, 4.0, 4, 5, 0.45, 0.75, 2, 3, 0.5,  0.8,
-                           0.035, 0.55, 0.75, 0.018, true, false};
-constexpr CrownForm kSpreading{0.26, 0.36, 0.5, 0.62, 5.0,  3,     4,    0.75,  1.0,
-                               2,    3,    0.5, 0.7, 0.04, 0.5,  0.7, 0.02, false, false};
-constexpr CrownForm kColumnar{0.12, 0.22, 0.16, 0.2,  2.0,  5,     6,    0.1,  0.22,
-                              2,    3,    0.7,  1.3,  0.03, 0.4,  0.85, 0.016, true, false};
-constexpr CrownForm kYoung{0.4,  0.5,  0.28, 0.36, 2.2, 3,    4,     0.35, 0.6,
-                           1,    2,    0.55, 0.9,  0.03, 0.4, 0.8, 0.011, true, false};
-constexpr CrownForm kPine{0.55, 0.7,  0.3, 0.42, 3.5,  3,    5,    0.55, 0.95,
-                          1,    2,    0.5, 0.45, 0.04, 0.6, 0.45, 0.02, true, true};
+constexpr CrownForm kRound{0.30, 0.42, 0.34, 0.42,  4.0,  4,    5,     0.45, 0.75, 2,
+                           3,    0.5,  0.8,  0.035, 0.55, 0.75, 0.018, true, false};
+constexpr CrownForm kSpreading{0.26, 0.36, 0.5, 0.62, 5.0, 3,   4,    0.75,  1.0,  2,
+                               3,    0.5,  0.7, 0.04, 0.5, 0.7, 0.02, false, false};
+constexpr CrownForm kColumnar{0.12, 0.22, 0.16, 0.2,  2.0, 5,    6,     0.1,  0.22, 2,
+                              3,    0.7,  1.3,  0.03, 0.4, 0.85, 0.016, true, false};
+constexpr CrownForm kYoung{0.4, 0.5,  0.28, 0.36, 2.2, 3,   4,     0.35, 0.6,  1,
+                           2,   0.55, 0.9,  0.03, 0.4, 0.8, 0.011, true, false};
+constexpr CrownForm kPine{0.55, 0.7, 0.3,  0.42, 3.5, 3,    5,    0.55, 0.95, 1,
+                          2,    0.5, 0.45, 0.04, 0.6, 0.45, 0.02, true, true};
 
 /// Distance from p along the unit direction d to the surface of the mass's ellipsoid (p
 /// inside it).
@@ -78,8 +78,7 @@ void limbs_and_lobes(MeshBuilder& b, RandomStream& rng, const CrownForm& f, cons
     const Vec3 dir{std::sin(lean) * std::cos(a), std::sin(lean) * std::sin(a), std::cos(lean)};
     const double length = to_surface(crown, start, dir) * rng.uniform(0.6, 0.78);
     const std::array<Vec3, 3> limb = {
-        start, start + dir * (0.5 * length) + Vec3{0.0, 0.0, 0.06 * length},
-        start + dir * length};
+        start, start + dir * (0.5 * length) + Vec3{0.0, 0.0, 0.06 * length}, start + dir * length};
     b.material(bark());
     branch(b, limb, 0.5 * trunk_r, 0.1 * trunk_r, 7);
     const int lobes = static_cast<int>(rng.uniform_int(f.lobes_lo, f.lobes_hi));
@@ -88,9 +87,9 @@ void limbs_and_lobes(MeshBuilder& b, RandomStream& rng, const CrownForm& f, cons
       const double z = rng.uniform(-0.5, 0.85);
       const double rho = std::sqrt(1.0 - z * z);
       const double depth = rng.uniform(0.45, 0.7);
-      const Vec3 centre = crown.centre + Vec3{rho * std::cos(az) * r * depth,
-                                              rho * std::sin(az) * r * depth,
-                                              z * crown.radii.z * depth};
+      const Vec3 centre =
+          crown.centre + Vec3{rho * std::cos(az) * r * depth, rho * std::sin(az) * r * depth,
+                              z * crown.radii.z * depth};
       const double lr = f.lobe * r * rng.uniform(0.8, 1.2);
       const Lobe lobe{centre, {lr, lr, std::min(lr * f.lobe_flat, 0.7 * crown.radii.z)}};
       // The twig from the limb's point nearest the lobe, three quarters of the way into it.
@@ -179,7 +178,8 @@ ArticulatedMesh spruce(RandomStream& rng, double height, std::span<const Clearan
       const double droop = len * rng.uniform(0.2, 0.4);
       const Vec3 out{std::cos(a), std::sin(a), 0.0};
       const Vec3 start{0.0, 0.0, z};
-      const std::array<Vec3, 3> limb = {start, start + out * (0.55 * len) + Vec3{0, 0, -0.55 * droop},
+      const std::array<Vec3, 3> limb = {start,
+                                        start + out * (0.55 * len) + Vec3{0, 0, -0.55 * droop},
                                         start + out * len + Vec3{0, 0, -0.8 * droop}};
       if (len > 0.5 && !in_clearance(limb[2], 0.1, clear)) {
         b.material(bark());
