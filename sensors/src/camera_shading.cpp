@@ -61,8 +61,9 @@ void hit_uv(const ShadingContext& c, const SurfaceHit& h, TexturePoint& tp) {
   tp.v = w0 * (*uv[0])[1] + h.u * (*uv[1])[1] + h.v * (*uv[2])[1];
 }
 
-/// The shading normal of a static hit: the mesh's vertex normals interpolated at the hit and
-/// turned to the viewer's side of the surface, or the flat normal when the mesh has none.
+/// The shading normal of a static hit: the mesh's vertex normals interpolated at the hit (at
+/// Embree's barycentrics u, v) and turned to the viewer's side of the surface, or the flat
+/// normal when the mesh has none or the triangle's are zero (a flat part of a smooth mesh).
 Vec3 smooth_normal(const StaticGeometry& g, const SurfaceHit& h) {
   if (g.normals.empty()) {
     return h.normal;
@@ -72,9 +73,12 @@ Vec3 smooth_normal(const StaticGeometry& g, const SurfaceHit& h) {
   const auto& a = g.normals[t[0]];
   const auto& b = g.normals[t[1]];
   const auto& c = g.normals[t[2]];
-  const Vec3 n =
-      normalized(Vec3{w0 * a[0] + h.u * b[0] + h.v * c[0], w0 * a[1] + h.u * b[1] + h.v * c[1],
-                      w0 * a[2] + h.u * b[2] + h.v * c[2]});
+  const Vec3 sum{w0 * a[0] + h.u * b[0] + h.v * c[0], w0 * a[1] + h.u * b[1] + h.v * c[1],
+                 w0 * a[2] + h.u * b[2] + h.v * c[2]};
+  if (dot(sum, sum) < 1e-12) {
+    return h.normal;
+  }
+  const Vec3 n = normalized(sum);
   return dot(n, h.normal) < 0.0 ? n * -1.0 : n;
 }
 

@@ -24,7 +24,31 @@ uint32_t MeshBuilder::vertex(Vec3 p, float u, float v) {
   mesh_.vertices.push_back(xf_.apply(p));
   mesh_.bone.push_back(bone_);
   mesh_.uvs.push_back({u, v});
+  if (!mesh_.normals.empty()) {
+    mesh_.normals.push_back({});  // flat until smooth_normals says otherwise
+  }
   return static_cast<uint32_t>(mesh_.vertices.size() - 1);
+}
+
+void MeshBuilder::smooth_normals(size_t first_vertex, size_t first_triangle) {
+  mesh_.normals.resize(mesh_.vertices.size());
+  for (size_t i = first_vertex; i < mesh_.vertices.size(); ++i) {
+    mesh_.normals[i] = {};
+  }
+  for (size_t k = first_triangle; k < mesh_.triangles.size(); ++k) {
+    const auto& t = mesh_.triangles[k];
+    // The cross product's length is twice the area: the weight comes with it.
+    const Vec3 n = cross(mesh_.vertices[t[1]] - mesh_.vertices[t[0]],
+                         mesh_.vertices[t[2]] - mesh_.vertices[t[0]]);
+    for (const uint32_t v : t) {
+      if (v >= first_vertex) {
+        mesh_.normals[v] = mesh_.normals[v] + n;
+      }
+    }
+  }
+  for (size_t i = first_vertex; i < mesh_.vertices.size(); ++i) {
+    mesh_.normals[i] = normalized(mesh_.normals[i]);
+  }
 }
 
 void MeshBuilder::set_material(size_t triangle, const Material& m) {
@@ -270,6 +294,12 @@ StaticMesh to_static_mesh(const ArticulatedMesh& mesh, const Rigid& placement, s
   }
   if (any_uv) {
     out.uvs = mesh.uvs;
+  }
+  if (mesh.normals.size() == mesh.vertices.size()) {
+    out.normals.reserve(mesh.normals.size());
+    for (const Vec3& n : mesh.normals) {
+      out.normals.push_back(placement.rotation * n);
+    }
   }
   return out;
 }

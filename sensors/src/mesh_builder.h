@@ -26,6 +26,9 @@ struct ArticulatedMesh {
   std::vector<SemanticClass> classes;     ///< per triangle
   std::vector<Material> materials;        ///< palette
   std::vector<std::array<float, 2>> uvs;  ///< per vertex
+  /// Shading normals per vertex (unit, the mesh's frame), or empty: every triangle flat. A zero
+  /// normal marks a vertex of a flat part (a triangle of three such shades with its own normal).
+  std::vector<Vec3> normals;
 };
 
 class MeshBuilder {
@@ -66,6 +69,11 @@ class MeshBuilder {
   /// plane and wound counter-clockwise seen from +z (paint outlines such as arrows). Returns
   /// false and adds nothing when the ring is not a simple polygon of at least 3 points.
   bool filled_ring(const std::vector<Vec3>& ring);
+
+  /// Makes the part added since `first_vertex` / `first_triangle` shade smooth: each of its
+  /// vertices gets the area-weighted mean of the normals of the part's triangles that use it
+  /// (outwards for closed parts wound counter-clockwise seen from outside, as all of these are).
+  void smooth_normals(size_t first_vertex, size_t first_triangle);
 
   /// Gives an already added triangle another material (e.g. glass cut out of a body loft).
   void set_material(size_t triangle, const Material& m);

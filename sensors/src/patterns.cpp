@@ -371,8 +371,13 @@ SurfaceSample foliage(const Material& m, const TexturePoint& p) {
   const double leaves = pattern_noise(p, 0, x.x + x.z * 0.7, x.y - x.z * 0.4, 0.8, fp);
   const double clumps = pattern_noise(p, 1, x.x - x.z * 0.5, x.y + x.z * 0.8, 5.0, fp);
   const double t = smoothstep(0.3, 0.7, 0.55 * leaves + 0.45 * clumps);
+  // Single leaves (a few centimetres) and the dark gaps between them, from a 0.4 m tile read
+  // slanted through the crown: a clump seen up close is speckled, not a smooth green ball
+  // (the tile's fine octaves fade to their mean as the footprint grows, so a far crown is not).
+  const double leaf = pattern_noise(p, 3, x.x + 0.55 * x.z + 0.3 * x.y, x.y - 0.45 * x.z, 0.4, fp);
   s.albedo = mix(m.secondary, m.base_color, t) *
-             (0.75 + 0.5 * pattern_noise(p, 2, x.x, x.y + x.z, 2.0, fp));
+             (0.75 + 0.5 * pattern_noise(p, 2, x.x, x.y + x.z, 2.0, fp)) *
+             (0.5 + 0.8 * smoothstep(0.35, 0.65, leaf));
   return s;
 }
 

@@ -119,6 +119,19 @@ void WorldBuild::remember(double x, double y, double radius) {
   placed[cell_key(x, y)].push_back({x, y, radius});
 }
 
+std::vector<Clearance> WorldBuild::lamp_clearances(const Rigid& pose, double reach) const {
+  // 1.5 m about the head: its light and the view of it stay free.
+  constexpr double kRoom = 1.5;
+  std::vector<Clearance> out;
+  const Rigid back = pose.inverse();
+  for (const Vec3& head : lamp_heads) {
+    if (std::hypot(head.x - pose.translation.x, head.y - pose.translation.y) < reach + kRoom) {
+      out.push_back({back.apply(head), kRoom});
+    }
+  }
+  return out;
+}
+
 bool WorldBuild::near_drivable(double x, double y, double margin) const {
   xodr::LocateOptions o;
   o.max_distance = margin;
@@ -136,7 +149,7 @@ bool WorldBuild::under_building(double x, double y, double z) const {
 
 WorldReport build_world(const xodr::Map& map, Scene& scene, const WorldOptions& options,
                         Diagnostics& diagnostics) {
-  detail::WorldBuild w{map, scene, options, diagnostics, {}, {}, {}};
+  detail::WorldBuild w{map, scene, options, diagnostics, {}, {}, {}, {}};
   if (options.ground) {
     const xodr::RoadMesh road = xodr::build_road_mesh(map, xodr::MeshOptions{.road_marks = false});
     detail::build_ground(w, road);

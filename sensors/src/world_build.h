@@ -11,6 +11,7 @@
 #include "corsa/sensors/world.h"
 #include "corsa/xodr/road_mesh.h"
 #include "mesh_builder.h"
+#include "vegetation.h"
 
 namespace corsa::sensors::detail {
 
@@ -53,6 +54,9 @@ struct WorldBuild {
   /// Props placed so far, by 4 m grid cell: their positions and clearance radii.
   std::unordered_map<int64_t, std::vector<std::array<double, 3>>> placed;
   GroundField ground;
+  /// Lamp heads of the street lights placed so far (map frame): tree crowns are pruned clear of
+  /// them, as street crews keep them.
+  std::vector<Vec3> lamp_heads;
 
   /// Adds a prop mesh placed in the map frame; returns its instance id.
   uint32_t place(const ArticulatedMesh& mesh, const Rigid& pose, const std::string& name,
@@ -64,6 +68,9 @@ struct WorldBuild {
   /// True when no prop stands within `radius` (plus theirs) of (x, y).
   bool clear_of_props(double x, double y, double radius) const;
   void remember(double x, double y, double radius);
+  /// The lamp heads within `reach` metres (horizontally) of where `pose` stands, as the room a
+  /// crown leaves them in the frame `pose` places it in.
+  std::vector<Clearance> lamp_clearances(const Rigid& pose, double reach) const;
   /// True when a drivable lane is within `margin` metres.
   bool near_drivable(double x, double y, double margin) const;
   /// True when a building or wall stands over (x, y) (a ray down from high above hits one).

@@ -349,8 +349,9 @@ void build_pole(MeshBuilder& b, const ObjectCopy& c) {
 
 /// A street light of the object's height (7.5 m when it gives none or a low one).
 void place_street_lamp(WorldBuild& w, const ObjectCopy& c) {
-  const ArticulatedMesh m = make_street_light(c.height > 2.0 ? c.height : 7.5, 1.5);
-  w.place(m, c.frame, c.name(), kind_info("street_light"));
+  const double height = c.height > 2.0 ? c.height : 7.5;
+  w.place(make_street_light(height, 1.5), c.frame, c.name(), kind_info("street_light"));
+  w.lamp_heads.push_back(c.frame.apply(street_lamp_head(height, 1.5)));
   ++w.report.objects;
 }
 
@@ -359,7 +360,8 @@ void place_street_lamp(WorldBuild& w, const ObjectCopy& c) {
 void place_plant(WorldBuild& w, const ObjectCopy& c) {
   RandomStream rng(
       derive_seed(w.options.seed, "object " + c.object.id + "#" + std::to_string(c.index)));
-  const ArticulatedMesh m = c.type == "tree" ? make_tree(rng, c.height > 1.0 ? c.height : 8.0)
+  const ArticulatedMesh m = c.type == "tree" ? make_tree(rng, c.height > 1.0 ? c.height : 8.0, true,
+                                                         w.lamp_clearances(c.frame, 5.0))
                                              : make_bush(rng, std::max(0.8, c.x1 - c.x0));
   w.place(m, c.frame, c.name(), kind_info(c.type));
   ++w.report.objects;

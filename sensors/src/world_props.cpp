@@ -4,126 +4,15 @@
 #include <cmath>
 #include <numbers>
 
-#include "noise_tile.h"
 #include "scalar_math.h"
 
 namespace corsa::sensors::detail {
 namespace {
 
-Material bark() {
-  Material m = materials::plain("bark", linear_rgb(82, 64, 48), 0.95);
-  m.pattern = Pattern::kBark;
-  return m;
-}
-
-Material foliage(RandomStream& rng) {
-  // A few greens: named by index so that the scene shares them between trees.
-  static constexpr Rgb8 kLight[4] = {{76, 104, 44}, {90, 112, 50}, {66, 96, 48}, {100, 110, 56}};
-  static constexpr Rgb8 kDark[4] = {{34, 54, 24}, {42, 60, 26}, {30, 48, 28}, {48, 56, 30}};
-  const auto i = static_cast<size_t>(rng.uniform_int(0, 3));
-  Material m = materials::plain("foliage " + std::to_string(i),
-                                linear_rgb(kLight[i].r, kLight[i].g, kLight[i].b), 0.8);
-  m.pattern = Pattern::kFoliage;
-  m.secondary = linear_rgb(kDark[i].r, kDark[i].g, kDark[i].b);
-  return m;
-}
-
 Material steel() { return materials::metal("galvanised steel", linear_rgb(150, 152, 150), 0.45); }
 Material dark_paint() { return materials::plain("signal housing", linear_rgb(28, 30, 30), 0.6); }
 
-/// A lumpy blob: an ellipsoid whose radius varies with direction, `slices` x `stacks` vertices.
-void blob(MeshBuilder& b, Vec3 c, Vec3 r, uint32_t seed, int slices = 18, int stacks = 11) {
-  const size_t first = b.mesh().vertices.size();
-  b.ellipsoid(c, r, Mat3{}, slices, stacks);
-  // Push each vertex in or out by a smooth random amount, read from the 4-unit noise tile at
-  // the blob's own scale (a blob 2.5 m across spans about two tiles whatever its size) and at a
-  // place of the tile chosen by the seed, so that small blobs are as lumpy as large ones and
-  // no two alike.
-  ArticulatedMesh& mesh = b.edit();
-  const double scale = 2.5 / std::max({r.x, r.y, r.z});
-  const double ox = 4.0 * static_cast<double>((seed >> 2) & 255u) / 256.0;
-  const double oy = 4.0 * static_cast<double>((seed >> 10) & 255u) / 256.0;
-  for (size_t i = first; i < mesh.vertices.size(); ++i) {
-    const Vec3 d = mesh.vertices[i] - c;
-    const double bump = noise(static_cast<int>(seed % 4), (d.x * 3.0 + d.z * 2.0) * scale + ox,
-                              (d.y * 3.0 - d.z) * scale + oy, 4.0, 0.0, false);
-    mesh.vertices[i] = c + d * (0.8 + 0.45 * bump);
-  }
-}
-
-/// Foliage inside the ellipsoid of radii `r` about `c`: a dense core (the crown's shaded inside,
-/// seen through the gaps) and leaf clusters of radius `cluster` metres on its shell. A crown
-/// seen from the street is clumps of leaves with sky between them at its edge, not one smooth
-/// lumpy solid: the shell's clusters, each a small blob at a random depth in the outer third,
-/// give the outline its bumps and gaps and the faces their many small shaded facets.
-void leafy_crown(MeshBuilder& b, RandomStream& rng, Vec3 c, Vec3 r, double cluster) {
-  blob(b, c, r * 0.66, static_cast<uint32_t>(rng.next_u64()), 14, 9);
-  // Enough clusters to cover about 1.3 times the shell's area (overlapping: gaps stay where
-  // the draws leave them).
-  const double rm = std::cbrt(r.x * r.y * r.z);
-  const double area = 4.0 * kPi * rm * rm;
-  const int count = std::clamp(static_cast<int>(1.3 * area / (kPi * cluster * cluster)), 8, 120);
-  for (int k = 0; k < count; ++k) {
-    // Uniform on the sphere, fewer on the underside (light comes from above, and so do leaves).
-    double z = rng.uniform(-1.0, 1.0);
-    if (z < -0.3 && rng.uniform01() < 0.5) {
-      z = -z;
-    }
-    const double a = rng.uniform(0.0, 2.0 * kPi);
-    const double rho = std::sqrt(std::max(0.0, 1.0 - z * z));
-    const double depth = rng.uniform(0.7, 0.98);
-    const Vec3 at{c.x + r.x * depth * rho * std::cos(a), c.y + r.y * depth * rho * std::sin(a),
-                  c.z + r.z * depth * z};
-    const double size = cluster * rng.uniform(0.7, 1.3);
-    const Vec3 radii{size * rng.uniform(0.8, 1.2), size * rng.uniform(0.8, 1.2), 0.8 * size};
-    blob(b, at, radii, static_cast<uint32_t>(rng.next_u64()), 7, 5);
-  }
-}
-
 }  // namespace
-
-ArticulatedMesh make_tree(RandomStream& rng, double height, bool allow_conifer) {
-  MeshBuilder b;
-  b.semantic(SemanticClass::kVegetation);
-  const bool conifer = allow_conifer && rng.uniform01() < 0.25;
-  const double trunk_r = std::clamp(0.018 * height, 0.08, 0.25);
-  b.material(bark());
-  if (conifer) {
-    b.tube({0, 0, 0}, {0, 0, 0.35 * height}, trunk_r, 0.7 * trunk_r, 8, false);
-    b.material(foliage(rng));
-    const int tiers = 4;
-    for (int i = 0; i < tiers; ++i) {
-      const double z0 = height * (0.2 + 0.18 * i);
-      const double r = 0.22 * height * (1.0 - 0.2 * i);
-      b.tube({0, 0, z0}, {0, 0, z0 + 0.35 * height}, r, 0.02, 12, true);
-    }
-    return b.take();
-  }
-  const double crown_base = height * rng.uniform(0.3, 0.45);
-  b.tube({0, 0, 0}, {0, 0, crown_base + 0.15 * height}, trunk_r, 0.6 * trunk_r, 8, false);
-  // Two or three branches into the crown.
-  for (int k = 0; k < 3; ++k) {
-    const double a = 2.0 * kPi * (k + rng.uniform01() * 0.5) / 3.0;
-    b.tube({0, 0, crown_base - 0.05 * height},
-           {0.18 * height * std::cos(a), 0.18 * height * std::sin(a), crown_base + 0.2 * height},
-           0.5 * trunk_r, 0.25 * trunk_r, 6, false);
-  }
-  b.material(foliage(rng));
-  const double crown_h = height - crown_base;
-  const double crown_r = std::min(3.2, crown_h * rng.uniform(0.3, 0.42));
-  // Leaf clusters about 0.55 m across for an 8 m tree (0.07 of the height, 0.35-0.8 m).
-  leafy_crown(b, rng, {0, 0, crown_base + 0.55 * crown_h}, {crown_r, crown_r, 0.5 * crown_h},
-              std::clamp(0.07 * height, 0.35, 0.8));
-  return b.take();
-}
-
-ArticulatedMesh make_bush(RandomStream& rng, double size) {
-  MeshBuilder b;
-  b.semantic(SemanticClass::kVegetation).material(foliage(rng));
-  const double r = 0.5 * size * rng.uniform(0.8, 1.0);
-  leafy_crown(b, rng, {0, 0, 0.6 * r}, {r, r, 0.7 * r}, std::clamp(0.1 * size, 0.12, 0.3));
-  return b.take();
-}
 
 ArticulatedMesh make_street_light(double height, double reach) {
   MeshBuilder b;
@@ -140,6 +29,8 @@ ArticulatedMesh make_street_light(double height, double reach) {
   b.box({reach - 0.25, -0.12, height - 0.02}, {reach + 0.3, 0.12, height});
   return b.take();
 }
+
+Vec3 street_lamp_head(double height, double reach) { return {reach + 0.025, 0.0, height + 0.07}; }
 
 ArticulatedMesh make_traffic_light(SignalLayout layout, double bottom, double head_height) {
   MeshBuilder b;

@@ -1,24 +1,23 @@
 #pragma once
 
-// Roadside props generated from a seed (private): trees, bushes, street lights, traffic lights,
-// sign posts, guard rails, fences. Each is built in its own frame (x forward = the way it faces,
-// z up, the foot at the origin) and placed by the world builder.
+// Roadside props generated from a seed (private; plants in vegetation.h): street lights, traffic
+// lights, sign posts, guard rails, fences. Each is built in its own frame (x forward = the way it
+// faces, z up, the foot at the origin) and placed by the world builder.
 
 #include <string>
 
 #include "corsa/core/random.h"
 #include "corsa/sensors/material.h"
 #include "mesh_builder.h"
+#include "vegetation.h"
 
 namespace corsa::sensors::detail {
 
-/// A deciduous tree (lumpy crown) or, when allowed, sometimes a conifer, `height` metres tall.
-ArticulatedMesh make_tree(RandomStream& rng, double height, bool allow_conifer = true);
-/// A bush about `size` metres across.
-ArticulatedMesh make_bush(RandomStream& rng, double size);
 /// A street light: a pole `height` metres high with an arm reaching `reach` metres along +x over
 /// the road and a lamp head (emissive when it is dark).
 ArticulatedMesh make_street_light(double height, double reach);
+/// The middle of that street light's lamp head in its frame.
+Vec3 street_lamp_head(double height, double reach);
 
 /// How the bulbs of a traffic light are laid out.
 enum class SignalLayout { kVertical3, kHorizontal3, kHorizontal4 };

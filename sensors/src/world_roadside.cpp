@@ -12,7 +12,39 @@
 #include "world_props.h"
 
 namespace corsa::sensors::detail {
-namespace {}  // namespace
+namespace {
+
+/// Street lights every 30 m on a side of a road where it has a sidewalk (staggered between the
+/// two sides), at the kerb, their arms over the road. Placed before the plants of the road, so
+/// that the trees keep their distance from the poles and their crowns clear of the lamp heads.
+void place_lights(WorldBuild& w, size_t r, int side, std::vector<xodr::LaneSpan>& spans) {
+  const xodr::Map& map = w.map;
+  const xodr::Road& road = map.road(r);
+  constexpr double kHeight = 7.5;
+  constexpr double kReach = 1.6;
+  for (double sl = side > 0 ? 6.0 : 21.0; sl < road.length; sl += 30.0) {
+    const Edge el = edge_at(map, r, sl, side, spans);
+    if (!el.valid || !el.sidewalk || next_to_junction(map, r, sl, 10.0)) {
+      continue;
+    }
+    const double t = el.kerb + side * 0.45;
+    const xodr::WorldPose p = map.world_pose(r, sl, t);
+    if (w.under_building(p.x, p.y, p.z) || !w.clear_of_props(p.x, p.y, 1.0)) {
+      continue;
+    }
+    // The arm reaches over the road: towards -side across the reference line.
+    const double facing = p.h + (side > 0 ? -0.5 * kPi : 0.5 * kPi);
+    const Rigid pose = rigid_from_pose(p.x, p.y, p.z, facing, 0, 0);
+    ObjectInfo info;
+    info.kind = "street_light";
+    w.place(make_street_light(kHeight, kReach), pose, "street light " + road.id, info);
+    w.lamp_heads.push_back(pose.apply(street_lamp_head(kHeight, kReach)));
+    w.remember(p.x, p.y, 1.0);
+    ++w.report.street_lights;
+  }
+}
+
+}  // namespace
 
 void build_roadside(WorldBuild& w) {
   const xodr::Map& map = w.map;
@@ -24,8 +56,9 @@ void build_roadside(WorldBuild& w) {
     }
     RandomStream rng(derive_seed(w.options.seed, "roadside " + road.id));
     for (int side : {1, -1}) {
-      // Street lights every 30 m on sidewalk sides, staggered between the two sides.
-      double next_light = side > 0 ? 6.0 : 21.0;
+      if (w.options.street_lights) {
+        place_lights(w, r, side, spans);
+      }
       double s = rng.uniform(0.0, w.options.tree_spacing);
       while (s < road.length) {
         const double step = w.options.tree_spacing * rng.uniform(0.7, 1.3);
@@ -44,29 +77,6 @@ void build_roadside(WorldBuild& w) {
           continue;
         }
         const bool on_sidewalk = e.sidewalk && std::fabs(e.t_outer - e.kerb) > 2.0;
-        if (w.options.street_lights && e.sidewalk) {
-          while (next_light <= s) {
-            const double sl = next_light;
-            next_light += 30.0;
-            const Edge el = edge_at(map, r, sl, side, spans);
-            if (!el.valid || !el.sidewalk || next_to_junction(map, r, sl, 10.0)) {
-              continue;
-            }
-            const double t = el.kerb + side * 0.45;
-            const xodr::WorldPose p = map.world_pose(r, sl, t);
-            if (w.under_building(p.x, p.y, p.z) || !w.clear_of_props(p.x, p.y, 1.0)) {
-              continue;
-            }
-            // The arm reaches over the road: towards -side across the reference line.
-            const double facing = p.h + (side > 0 ? -0.5 * kPi : 0.5 * kPi);
-            ObjectInfo info;
-            info.kind = "street_light";
-            w.place(make_street_light(7.5, 1.6), rigid_from_pose(p.x, p.y, p.z, facing, 0, 0),
-                    "street light " + road.id, info);
-            w.remember(p.x, p.y, 1.0);
-            ++w.report.street_lights;
-          }
-        }
         if (w.options.vegetation) {
           const bool tree = on_sidewalk || pick < 0.6;
           const double t = on_sidewalk ? e.kerb + side * 0.8 : e.t_outer + side * offset;
@@ -80,8 +90,11 @@ void build_roadside(WorldBuild& w) {
             ObjectInfo info;
             info.kind = tree ? "tree" : "bush";
             if (tree) {
-              // Street trees are broadleaved; conifers grow only away from sidewalks.
-              w.place(make_tree(look, tree_height, !on_sidewalk), pose, "tree " + road.id, info);
+              // Street trees are broadleaved; conifers grow only away from sidewalks. A crown
+              // reaches at most 5 m from its trunk.
+              const auto clear = w.lamp_clearances(pose, 5.0);
+              w.place(make_tree(look, tree_height, !on_sidewalk, clear), pose, "tree " + road.id,
+                      info);
               ++w.report.trees;
             } else {
               w.place(make_bush(look, bush_size), pose, "bush " + road.id, info);

@@ -54,8 +54,9 @@ struct StaticMesh {
   /// Texture coordinates per vertex (empty when the mesh has none).
   std::vector<std::array<float, 2>> uvs;
   /// Shading normals per vertex (unit, map frame), interpolated over each triangle so that a
-  /// smooth surface made of flat triangles (the ground) shades without facets; empty: each
-  /// triangle shades with its own flat normal.
+  /// smooth surface made of flat triangles (the ground, tree crowns and trunks) shades without
+  /// facets; empty: each triangle shades with its own flat normal. A triangle whose three
+  /// normals are zero shades flat too (the flat parts of a mesh that has smooth ones).
   std::vector<Vec3> normals;
   /// Traffic-light heads: the OpenDRIVE signal id whose state (WorldSnapshot::signals) switches
   /// the bulbs (materials with LightRole kSignalRed/Yellow/Green).
