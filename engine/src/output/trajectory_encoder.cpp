@@ -21,11 +21,6 @@ int64_t steps_per_second(double dt) {
   return n >= 1.0 && n < 1e9 && std::abs(1.0 / n - dt) <= 1e-15 * dt ? static_cast<int64_t>(n) : 0;
 }
 
-double tick_time(int64_t tick, int64_t per_second, double dt) {
-  return per_second > 0 ? static_cast<double>(tick) / static_cast<double>(per_second)
-                        : static_cast<double>(tick) * dt;
-}
-
 void put_string(std::string& out, uint8_t tag, uint64_t index, const std::string& text) {
   out.push_back(static_cast<char>(tag));
   codec::put_varint(out, index);
@@ -160,9 +155,11 @@ void TrajectoryEncoder::add_entities(uint32_t count) {
     put_string(buffer_, codec::kTagEntity, entities_.size(), names_.at(entities_.size()));
     entities_.emplace_back();
   }
+  tracked_ = static_cast<uint32_t>(entities_.size());
   pending_.resize(entities_.size());
-  // Room for every entity's record at its largest, head and whole body.
-  const size_t room = size_t{count} * (kMaxHead + kMaxBody);
+  // Room for the frame's head, every entity's record at its largest (head and whole body) and
+  // the frame's end.
+  const size_t room = kFrameHead + size_t{count} * (kMaxHead + kMaxBody) + 1;
   if (frame_.size() < room) {
     frame_.resize(room);
   }
@@ -178,7 +175,7 @@ template <class Row>
   char body[kMaxBody];
   char* out = body;
   if (!row_placed(row)) {
-    track.steady = false;
+    track.set_steady(false, false);
     if (!track.present) {
       return;
     }
@@ -227,7 +224,7 @@ template <class Row>
     }
     // While the inputs stay these, the row stays this one and every prediction holds: the
     // next ticks need neither the row nor a record.
-    track.steady = repeats;
+    track.set_steady(repeats, on_road);
   }
   if (mask == 0) {
     return;  // as predicted: nothing to store
@@ -253,87 +250,99 @@ template <class Row>
 }
 
 template <class Rows>
-uint32_t TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Rows& rows) {
-  if (!started_) {
-    start(dt, head.tick);
-  }
-  const int64_t tick = head.tick;
-  // (pending_ has an entry per entity tracked: its size needs no division, entities_'s does.)
-  if (pending_.size() < head.entities) [[unlikely]] {
-    add_entities(head.entities);
-  }
-  frame_size_ = 0;
-  if constexpr (std::is_same_v<Rows, EntityStateRows>) {
-    state_rows_ = &rows;
-  }
-  int64_t previous = -1;
+uint32_t TrajectoryEncoder::code_every_row(const Rows& rows, uint32_t count) {
   // Local copies of where the rows and tracks are, which the compiler keeps in registers
   // across the records written in between (the members it reloads after every store).
   const Rows local_rows = rows;
   Track* tracks = entities_.data();
-  const uint32_t count = head.entities;
+  int64_t previous = -1;
   uint32_t coded = 0;
-  if (2 * last_coded_ >= count) {
-    // Most rows of the last tick were coded (entities that move): one pass, encode's first
-    // test beside it.
-    for (uint32_t i = 0; i < count; ++i) {
-      const auto& row = local_rows[i];
-      Track& track = tracks[i];
-      if (track.skips(row)) {
-        continue;
-      }
-      ++coded;
-      if (track.steady && row_placed(row) && track.takes_below_decimals(row)) {
-        continue;
-      }
-      encode(i, track, row, previous);
+  for (uint32_t i = 0; i < count; ++i) {
+    const auto& row = local_rows[i];
+    Track& track = tracks[i];
+    if (track.skips(row)) {
+      continue;
     }
+    ++coded;
+    if (track.steady && row_placed(row) && track.takes_below_decimals(row)) {
+      continue;
+    }
+    encode(i, track, row, previous);
+  }
+  return coded;
+}
+
+template <class Rows>
+void TrajectoryEncoder::code_pending(const Rows& rows, uint32_t left) {
+  const Rows local_rows = rows;
+  Track* tracks = entities_.data();
+  const uint32_t* pending = pending_.data();
+  int64_t previous = -1;
+  for (uint32_t k = 0; k < left; ++k) {
+    const uint32_t i = pending[k];
+    encode(i, tracks[i], local_rows[i], previous);
+  }
+}
+
+template <class Rows>
+uint32_t TrajectoryEncoder::record_tick(double dt, const TickRowsHead& head, const Rows& rows,
+                                        uint32_t kept, uint32_t left) {
+  if (!started_) {
+    start(dt, head.tick);
+  }
+  const int64_t tick = head.tick;
+  if (tracked_ < head.entities) [[unlikely]] {
+    add_entities(head.entities);
+  }
+  frame_size_ = kFrameHead;
+  if constexpr (std::is_same_v<Rows, EntityStateRows>) {
+    state_rows_ = &rows;
+  }
+  const uint32_t count = head.entities;
+  uint32_t coded = kept;
+  if (kept == kNoSkipPass && 2 * last_coded_ >= count) {
+    coded = code_every_row(rows, count);
   } else {
-    // Most entities stand: first the skip pass, encode's first test alone in a loop of its own
-    // so that its few values stay in registers (in the loop above, with encode inlined, the
-    // loop's counters live on the stack), each entity's index stored and kept (the count moved
-    // on) when its row must be coded; then the rows kept, in order.
-    uint32_t* pending = pending_.data();
-    for (uint32_t i = 0; i < count; ++i) {
-      const auto& row = local_rows[i];
-      const Track& track = tracks[i];
-      pending[coded] = i;
-      coded += track.skips(row) ? 0 : 1;
+    if (kept == kNoSkipPass) {
+      coded = skip_pass(rows, count);
+      left = take_below_decimals(rows, coded);
     }
-    for (uint32_t k = 0; k < coded; ++k) {
-      const uint32_t i = pending[k];
-      const auto& row = local_rows[i];
-      Track& track = tracks[i];
-      if (track.steady && row_placed(row) && track.takes_below_decimals(row)) {
-        continue;
-      }
-      encode(i, track, row, previous);
-    }
+    code_pending(rows, left);
   }
   last_coded_ = coded;
   state_rows_ = nullptr;
   const double time = head.time;
-  // The time the header gives this tick, divided out one recorded tick ahead (the next line
-  // but one), so that the tick does not wait for its division here: on a run of standing
-  // entities that wait was a tenth of the tick's recording.
-  const double due = tick == due_tick_ ? due_time_ : tick_time(tick, per_second_, dt_);
+  // The time the header gives this tick, divided out one recorded tick ahead (advance_due), so
+  // that the tick does not wait for its division here: on a run of standing entities that wait
+  // was a tenth of the tick's recording.
+  const double due = tick == due_tick_ ? due_time_ : tick_time(tick);
   const bool odd_time = std::bit_cast<uint64_t>(time) != std::bit_cast<uint64_t>(due);
-  due_tick_ = tick + every_;
-  due_time_ = tick_time(due_tick_, per_second_, dt_);
-  if (frame_size_ == 0 && !odd_time) {
+  advance_due(tick);
+  if (frame_size_ == kFrameHead && !odd_time) {
     return coded;  // every present entity as predicted: the tick costs nothing
   }
   // (A road is first met by a record, so a tick without records has none.)
-  buffer_ += roads_;
-  roads_.clear();
-  if (odd_time) {
-    buffer_.push_back(static_cast<char>(codec::kTagTime));
-    codec::put_fixed64(buffer_, std::bit_cast<uint64_t>(time));
+  if (!roads_.empty()) [[unlikely]] {
+    buffer_ += roads_;
+    roads_.clear();
   }
-  buffer_.push_back(static_cast<char>(codec::kTagFrame));
-  codec::put_varint(buffer_, codec::zigzag(tick - last_frame_));
-  buffer_.append(frame_.data(), frame_size_);
-  codec::put_varint(buffer_, 0);
+  // The frame's head (the time record, the tag and the tick's step) in the room before its
+  // records and its end after them, so that the frame goes to the buffer in one append.
+  const uint64_t step = codec::zigzag(tick - last_frame_);
+  size_t head_size = (odd_time ? 1 + 8 : 0) + 1 + 1;
+  for (uint64_t rest = step; rest >= 0x80; rest >>= 7) {
+    ++head_size;
+  }
+  char* const frame = frame_.data() + kFrameHead - head_size;
+  char* at = frame;
+  if (odd_time) {
+    *at++ = static_cast<char>(codec::kTagTime);
+    at = codec::put_fixed64(at, std::bit_cast<uint64_t>(time));
+  }
+  *at++ = static_cast<char>(codec::kTagFrame);
+  codec::put_varint(at, step);
+  frame_[frame_size_] = 0;  // the frame's end: varint 0
+  buffer_.append(frame, frame_size_ + 1 - (kFrameHead - head_size));
   last_frame_ = tick;
   if (buffer_.size() > kFlushBytes) {
     flush();
@@ -341,9 +350,11 @@ uint32_t TrajectoryEncoder::record(double dt, const TickRowsHead& head, const Ro
   return coded;
 }
 
-template uint32_t TrajectoryEncoder::record(double, const TickRowsHead&,
-                                            const TrajectoryRowCopy* const&);
-template uint32_t TrajectoryEncoder::record(double, const TickRowsHead&, const EntityStateRows&);
+template uint32_t TrajectoryEncoder::record_tick(double, const TickRowsHead&,
+                                                 const TrajectoryRowCopy* const&, uint32_t,
+                                                 uint32_t);
+template uint32_t TrajectoryEncoder::record_tick(double, const TickRowsHead&,
+                                                 const EntityStateRows&, uint32_t, uint32_t);
 
 void TrajectoryEncoder::flush() {
   crc_ = codec::crc32(crc_, buffer_);

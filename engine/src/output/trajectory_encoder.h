@@ -113,10 +113,10 @@ inline bool same_motion(const Row& row, const uint64_t* bits) {
   return motion_difference(row, bits, std::make_integer_sequence<int, kFieldS>()) == 0;
 }
 #if defined(__SSE2__)
-/// The same for an entity's state, on the skip pass of every entity and tick: the pose's six
-/// numbers lie side by side and are compared two at a time (16 instructions against 22).
-/// `bits` is 16-byte aligned (TrajectoryEncoder::Track's).
-inline bool same_motion(const EntityState& state, const uint64_t* bits) {
+/// The differences of an entity's x to speed from `bits`' first seven, gathered in a vector
+/// (0 when they are the same bits): the pose's six numbers lie side by side and are compared two
+/// at a time. `bits` is 16-byte aligned (TrajectoryEncoder::Track's).
+inline __m128i motion_difference(const EntityState& state, const uint64_t* bits) {
   static_assert(offsetof(Pose, y) == 8 && offsetof(Pose, z) == 16 && offsetof(Pose, h) == 24 &&
                 offsetof(Pose, p) == 32 && offsetof(Pose, r) == 40 && sizeof(Pose) == 48);
   static_assert(kFieldX == 0 && kFieldR == 5 && kFieldSpeed == 6);
@@ -127,10 +127,15 @@ inline bool same_motion(const EntityState& state, const uint64_t* bits) {
       _mm_or_si128(difference, _mm_xor_si128(_mm_loadu_si128(pose + 1), _mm_load_si128(last + 1)));
   difference =
       _mm_or_si128(difference, _mm_xor_si128(_mm_loadu_si128(pose + 2), _mm_load_si128(last + 2)));
-  difference = _mm_or_si128(
-      difference, _mm_xor_si128(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&state.speed)),
-                                _mm_loadl_epi64(last + 3)));
-  return _mm_movemask_epi8(_mm_cmpeq_epi8(difference, _mm_setzero_si128())) == 0xffff;
+  return _mm_or_si128(difference,
+                      _mm_xor_si128(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&state.speed)),
+                                    _mm_loadl_epi64(last + 3)));
+}
+/// Whether the state's x to speed are `bits`' first seven, bit for bit (16 instructions
+/// against 22 apart).
+inline bool same_motion(const EntityState& state, const uint64_t* bits) {
+  return _mm_movemask_epi8(_mm_cmpeq_epi8(motion_difference(state, bits), _mm_setzero_si128())) ==
+         0xffff;
 }
 #endif
 
@@ -164,8 +169,29 @@ class TrajectoryEncoder {
   /// Encodes one recorded tick (`rows[i]`, i below head.entities: TrajectoryRowCopy* or
   /// EntityStateRows). `dt`: the run's step (s). Returns the rows that had to be coded: those
   /// not skipped as the steady repeat of their last row (the tick's work).
+  ///
+  /// Inline, for the tick at which most entities stand: the skip pass alone, and when it leaves
+  /// nothing to code (every row kept only moved below its decimals) at a tick of the header's
+  /// time, the tick is done without the call of the coder (record_tick, whose size makes its
+  /// entry and exit cost a third of such a tick).
   template <class Rows>
-  uint32_t record(double dt, const TickRowsHead& head, const Rows& rows);
+  [[gnu::always_inline]] uint32_t record(double dt, const TickRowsHead& head, const Rows& rows) {
+    const uint32_t count = head.entities;
+    // count - 1 < tracked_: some entities, each tracked (so started); 2 * last_coded_ < count:
+    // most rows of the last tick were skipped.
+    if (count - 1 < tracked_ && 2 * last_coded_ < count) [[likely]] {
+      const uint32_t kept = skip_pass(rows, count);
+      const uint32_t left = kept == 0 ? 0 : take_below_decimals(rows, kept);
+      if (left == 0 && head.tick == due_tick_ &&
+          std::bit_cast<uint64_t>(head.time) == std::bit_cast<uint64_t>(due_time_)) [[likely]] {
+        last_coded_ = kept;
+        advance_due(head.tick);
+        return kept;  // every present entity as predicted: the tick costs nothing
+      }
+      return record_tick(dt, head, rows, kept, left);
+    }
+    return record_tick(dt, head, rows, kNoSkipPass, 0);
+  }
   /// Ends the file at `last_tick` and commits it (InputError when it cannot be written).
   void finish(int64_t last_tick);
 
@@ -181,6 +207,9 @@ class TrajectoryEncoder {
     /// The last row repeats its prediction: a row of the same inputs (bits, road and lane) is
     /// the same row again, and needs neither to be made nor a record.
     bool steady = false;
+    /// on_road while steady, else kUnsteady or more (which no row's on-road flag is): the skip pass
+    /// tests steadiness and the road flag in one comparison. Kept by set_steady.
+    uint8_t steady_road = kUnsteady;
     int lane = 0;
     uint32_t road = 0;
     uint32_t fresh = trajectory_codec::kFieldBits;  ///< fields predicted 0 (history afresh)
@@ -212,6 +241,39 @@ class TrajectoryEncoder {
     bool skips(const Row& row) const {
       return steady && row_placed(row) && repeats(row);
     }
+    static constexpr uint8_t kUnsteady = 2;
+    /// Sets steady, `on_road_now` being on_road (kUnsteady and kUnsteady + 1 are both no row's
+    /// flag: no branch on `now`).
+    void set_steady(bool now, bool on_road_now) {
+      steady = now;
+      steady_road = static_cast<uint8_t>(unsigned{on_road_now} + (now ? 0u : kUnsteady));
+    }
+    /// The skip pass's test: skips(row), for an entity's state with its numbers (s and t on a
+    /// road) gathered in one vector of differences, two at a time.
+    template <class Row>
+    bool passes(const Row& row) const {
+      return skips(row);
+    }
+#if defined(__SSE2__)
+    bool passes(const EntityState& state) const {
+      static_assert(offsetof(RoadCoordinates, t) == offsetof(RoadCoordinates, s) + 8);
+      if (static_cast<uint8_t>(state.road.has_value()) != steady_road || !state.placed) {
+        return false;
+      }
+      __m128i difference = motion_difference(state, bits.data());
+      uint64_t place = 0;
+      if (on_road) {
+        difference = _mm_or_si128(
+            difference,
+            _mm_xor_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(&state.road->s)),
+                          _mm_loadu_si128(reinterpret_cast<const __m128i*>(&bits[kFieldS]))));
+        place = uint64_t{state.road->road ^ road} | static_cast<uint32_t>(state.road->lane ^ lane);
+      }
+      const auto same =
+          static_cast<uint32_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(difference, _mm_setzero_si128())));
+      return ((same ^ 0xffffu) | place) == 0;
+    }
+#endif
     template <int F, class Row>
     uint64_t differs(const Row& row) const {
       return std::bit_cast<uint64_t>(row_value<F>(row)) ^ bits[F];
@@ -261,12 +323,75 @@ class TrajectoryEncoder {
   /// their largest, bytes.
   static constexpr size_t kMaxHead = 10 + 5 + 5;
   static constexpr size_t kMaxBody = 10 + 10 + kRowFields * 10;
+  /// A frame's head at its largest: a time record (tag and f64), the frame's tag and its tick
+  /// step (a varint).
+  static constexpr size_t kFrameHead = 1 + 8 + 1 + 10;
   /// The bytes the buffer gathers before they go to the file: few enough that the buffer stays
   /// below malloc's mmap threshold (128 KiB) and is reused from one flush to the next. (At 1
   /// MiB, a recording of a few hundred KB grew it by doublings into fresh mappings, about 200
   /// page faults.)
   static constexpr size_t kFlushBytes = size_t{1} << 16;
 
+  /// record_tick's `kept` when the tick's skip pass has not run.
+  static constexpr uint32_t kNoSkipPass = UINT32_MAX;
+
+  /// The tick's coding apart from record's inline part: `kept` is the count of rows the skip
+  /// pass kept, or kNoSkipPass (then it runs here, or the one pass for moving entities), and
+  /// `left` the first of pending_ that take_below_decimals left to code.
+  template <class Rows>
+  [[gnu::noinline]] uint32_t record_tick(double dt, const TickRowsHead& head, const Rows& rows,
+                                         uint32_t kept, uint32_t left);
+  /// Most rows of the last tick were coded (entities that move): one pass over the first
+  /// `count` rows, encode's first test beside it. Returns the rows not skipped.
+  template <class Rows>
+  [[gnu::noinline]] uint32_t code_every_row(const Rows& rows, uint32_t count);
+  /// Most entities stand: the first `left` rows of pending_, in order. (Apart from the skip
+  /// pass, in a loop of its own, so that the pass's few values stay in registers: in a loop
+  /// with encode inlined, the loop's counters live on the stack.)
+  template <class Rows>
+  [[gnu::noinline]] void code_pending(const Rows& rows, uint32_t left);
+  /// Of the first `kept` rows of pending_, those of a steady track that moved only below their
+  /// decimals are taken as they are (Track::takes_below_decimals), and the others kept in
+  /// order; returns their count.
+  template <class Rows>
+  [[gnu::always_inline]] uint32_t take_below_decimals(const Rows& rows, uint32_t kept) {
+    uint32_t* pending = pending_.data();
+    Track* tracks = entities_.data();
+    uint32_t left = 0;
+    for (uint32_t k = 0; k < kept; ++k) {
+      const uint32_t i = pending[k];
+      Track& track = tracks[i];
+      if (!track.steady || !row_placed(rows[i]) || !track.takes_below_decimals(rows[i])) {
+        pending[left++] = i;
+      }
+    }
+    return left;
+  }
+  /// The skip pass: the index of each of the first `count` rows that is not the steady repeat
+  /// of its last row, in order, into pending_; returns their count.
+  template <class Rows>
+  [[gnu::always_inline]] uint32_t skip_pass(const Rows& rows, uint32_t count) {
+    uint32_t* pending = pending_.data();
+    const Track* tracks = entities_.data();
+    uint32_t coded = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+      if (!tracks[i].passes(rows[i])) {
+        pending[coded++] = i;
+      }
+    }
+    return coded;
+  }
+  /// The tick expected after `tick` and its time by the header, worked out one recorded tick
+  /// ahead (so that the next tick does not wait for the division).
+  void advance_due(int64_t tick) {
+    due_tick_ = tick + every_;
+    due_time_ = tick_time(due_tick_);
+  }
+  /// The time of `tick` by the header: tick / per_second, or tick x dt.
+  double tick_time(int64_t tick) const {
+    return per_second_ > 0 ? static_cast<double>(tick) / static_cast<double>(per_second_)
+                           : static_cast<double>(tick) * dt_;
+  }
   void start(double dt, int64_t tick);
   /// Tracks entities up to `count` (their names written) and makes the frame's room for them.
   void add_entities(uint32_t count);
@@ -290,6 +415,7 @@ class TrajectoryEncoder {
   double due_time_ = 0.0;
   std::vector<std::string> names_;
   std::vector<Track> entities_;
+  uint32_t tracked_ = 0;  ///< entities_.size()
   /// The entities a tick's skip pass left to code, in order (room for every entity).
   std::vector<uint32_t> pending_;
   /// The rows the last tick coded: most of its entities' (they move) or not (they stand).
@@ -299,8 +425,9 @@ class TrajectoryEncoder {
   const EntityStateRows* state_rows_ = nullptr;
   std::vector<bool> road_named_;  ///< written as a road record
   std::string roads_;             ///< road records of roads first met at this tick
-  /// The entity records of this tick: the first frame_size_ bytes of `frame_` (which only
-  /// grows, so that a record is written in place without clearing its room first).
+  /// The entity records of this tick: the bytes of `frame_` from kFrameHead (the room of the
+  /// frame's head) to frame_size_ (`frame_` only grows, so that a record is written in place
+  /// without clearing its room first).
   std::vector<char> frame_;
   size_t frame_size_ = 0;
 };
