@@ -320,8 +320,8 @@ double esmini_acc_speed(const Entity& entity, const EsminiAcc& acc, double set_s
 
 // A generated vehicle near a junction: the point it was told to stop before, as a standing
 // leader when nearer than `leader`; and its claims for the next step's pass.
-void give_way(GiveWay& claims, uint32_t index, const Entity& me, const LanePath& path,
-              int64_t tick, Leader& leader) {
+void give_way(GiveWay& claims, uint32_t index, const Entity& me, const LanePath& path, int64_t tick,
+              Leader& leader) {
   const YieldPoint& point = claims.yield_of(index);
   if (point.node != xodr::kNoLane) {
     const double front = me.info.box.center_x + 0.5 * me.info.box.length;

@@ -13,9 +13,9 @@ namespace {
 
 constexpr double kHorizonBase = 12.0;  // m ahead of the front a zone is always claimed from
 constexpr double kComfort = 2.0;       // m/s^2: the horizon holds the stop at this braking too
-constexpr double kFirm = 5.0;  // m/s^2: a vehicle that cannot stop at this is committed
-constexpr double kStandstill = 3.0;  // m the acc controller keeps to a standing leader
-constexpr double kCleared = 1.0;     // m past a zone's far end that its rear has left it
+constexpr double kFirm = 5.0;          // m/s^2: a vehicle that cannot stop at this is committed
+constexpr double kStandstill = 3.0;    // m the acc controller keeps to a standing leader
+constexpr double kCleared = 1.0;       // m past a zone's far end that its rear has left it
 // m: a vehicle standing at its stop point may have crept up to this much nearer than the
 // controller's standstill gap, and still counts as able to stop there.
 constexpr double kCreep = 1.5;
@@ -26,24 +26,22 @@ bool can_stop(double to_enter, double stopping) {
   return to_enter - kStopMargin - kStandstill + kCreep >= stopping;
 }
 
-// The order key: committed (in a zone or unable to stop before the next) first, then by right
-// of way, then by arrival, then by entity index.
+// The order key: committed (unable to stop before the next zone ahead) first, then by right of
+// way, then by arrival, then by entity index. A vehicle waiting inside a zone for a later one
+// is not committed: it holds the zone it is in anyway (ClaimSettler::settle), and those that
+// were let go before it keep their turn.
 uint64_t order_key(const Approach& a) {
   bool committed = false;
   for (uint32_t k = 0; k < a.count; ++k) {
-    const double to_enter = a.claims[k].to_enter;
-    if (to_enter <= 0.0) {
-      committed = true;
+    if (a.claims[k].to_enter > 0.0) {
+      committed = !can_stop(a.claims[k].to_enter, a.stopping);
       break;
     }
-    // The first zone ahead: can it stop before it (with the controller's standstill gap)?
-    committed = !can_stop(to_enter, a.stopping);
-    break;
   }
-  const uint64_t arrived = static_cast<uint64_t>(std::max<int64_t>(a.arrived, 0)) &
-                           ((uint64_t{1} << 60) - 1);
-  return (uint64_t{committed ? 0u : 1u} << 63) |
-         (uint64_t{static_cast<uint8_t>(a.right)} << 61) | arrived;
+  const uint64_t arrived =
+      static_cast<uint64_t>(std::max<int64_t>(a.arrived, 0)) & ((uint64_t{1} << 60) - 1);
+  return (uint64_t{committed ? 0u : 1u} << 63) | (uint64_t{static_cast<uint8_t>(a.right)} << 61) |
+         arrived;
 }
 
 }  // namespace
@@ -58,9 +56,20 @@ void ClaimSettler::settle(std::span<const Approach> approaches, std::span<const 
     std::fill(held_stamp_.begin(), held_stamp_.end(), 0);
     stamp_ = 1;
   }
+  // The zones a vehicle is in are its own, whatever the order.
+  const auto take = [&](const Claim& c) {
+    if (held_stamp_[c.conflict] != stamp_) {
+      held_stamp_[c.conflict] = stamp_;
+      held_side_[c.conflict] = c.side;
+    }
+  };
   order_.clear();
   for (const uint32_t i : who) {
-    order_.emplace_back(order_key(approaches[i]), i);
+    const Approach& a = approaches[i];
+    for (uint32_t k = 0; k < a.count && a.claims[k].to_enter <= 0.0; ++k) {
+      take(a.claims[k]);
+    }
+    order_.emplace_back(order_key(a), i);
   }
   std::sort(order_.begin(), order_.end());
   for (const auto& entry : order_) {
@@ -81,11 +90,7 @@ void ClaimSettler::settle(std::span<const Approach> approaches, std::span<const 
     }
     // It takes the zones it enters before it stops (or all of them).
     for (uint32_t k = 0; k < a.count && a.claims[k].to_enter < limit; ++k) {
-      const Claim& c = a.claims[k];
-      if (held_stamp_[c.conflict] != stamp_) {
-        held_stamp_[c.conflict] = stamp_;
-        held_side_[c.conflict] = c.side;
-      }
+      take(a.claims[k]);
     }
     yields[i] = stop;
   }

@@ -46,10 +46,10 @@ inline constexpr size_t kMaxClaims = 24;
 
 /// What a vehicle near a junction tells the claims pass about itself.
 struct Approach {
-  uint32_t count = 0;  ///< claims set, in path order
+  uint32_t count = 0;                      ///< claims set, in path order
   RightOfWay right = RightOfWay::kNormal;  ///< of the lane of its first claim
   int64_t arrived = 0;                     ///< tick since which it has been approaching
-  double stopping = 0.0;  ///< m it needs to stop from its speed, braking firmly
+  double stopping = 0.0;                   ///< m it needs to stop from its speed, braking firmly
   std::array<Claim, kMaxClaims> claims;
 };
 

@@ -17,8 +17,8 @@
 namespace corsa::engine::detail {
 namespace {
 
-constexpr double kSample = 0.5;   // m between the centre line points compared
-constexpr double kLevels = 2.5;   // m: points farther apart in height are on different levels
+constexpr double kSample = 0.5;  // m between the centre line points compared
+constexpr double kLevels = 2.5;  // m: points farther apart in height are on different levels
 constexpr double kCell = kConflictDistance;  // m, the grid the points are looked up in
 
 struct Sample {

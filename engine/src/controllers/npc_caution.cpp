@@ -367,17 +367,18 @@ double segment_distance(double ax0, double ay0, double ax1, double ay1, double b
         length2 > 0.0 ? std::clamp(((px - x0) * dx + (py - y0) * dy) / length2, 0.0, 1.0) : 0.0;
     return std::hypot(px - (x0 + t * dx), py - (y0 + t * dy));
   };
-  return std::min({to_segment(ax0, ay0, bx0, by0, bx1, by1), to_segment(ax1, ay1, bx0, by0, bx1, by1),
-                   to_segment(bx0, by0, ax0, ay0, ax1, ay1), to_segment(bx1, by1, ax0, ay0, ax1, ay1)});
+  return std::min(
+      {to_segment(ax0, ay0, bx0, by0, bx1, by1), to_segment(ax1, ay1, bx0, by0, bx1, by1),
+       to_segment(bx0, by0, ax0, ay0, ax1, ay1), to_segment(bx1, by1, ax0, ay0, ax1, ay1)});
 }
 
 }  // namespace
 
 bool walker_waits(const Entity& me, uint32_t index, const FollowView& view, double length,
                   std::vector<uint32_t>& near) {
-  constexpr double kClear = 1.5;    // m between a vehicle's side and the path
-  constexpr double kWithin = 4.0;   // s ahead a vehicle's way is looked along
-  constexpr double kFastest = 20.0; // m/s: vehicles farther than kWithin at this are not looked at
+  constexpr double kClear = 1.5;     // m between a vehicle's side and the path
+  constexpr double kWithin = 4.0;    // s ahead a vehicle's way is looked along
+  constexpr double kFastest = 20.0;  // m/s: vehicles farther than kWithin at this are not looked at
   const LocalFrame frame = frame_at(me, index, view);
   near_rectangle(view, frame, 0.0, length, kClear, kFastest * kWithin + view.max_reach(), near);
   const double x0 = me.state.pose.x, y0 = me.state.pose.y;
@@ -390,7 +391,8 @@ bool walker_waits(const Entity& me, uint32_t index, const FollowView& view, doub
     // The stretch its box covers now and over the next kWithin seconds, along its heading.
     const OrientedBox& box = other.shape;
     const double ahead = box.half_length + std::max(other.speed, 0.0) * kWithin;
-    const double bx0 = box.cx - box.half_length * box.cos_h, by0 = box.cy - box.half_length * box.sin_h;
+    const double bx0 = box.cx - box.half_length * box.cos_h,
+                 by0 = box.cy - box.half_length * box.sin_h;
     const double bx1 = box.cx + ahead * box.cos_h, by1 = box.cy + ahead * box.sin_h;
     if (segment_distance(x0, y0, x1, y1, bx0, by0, bx1, by1) < box.half_width + kClear) {
       return true;
