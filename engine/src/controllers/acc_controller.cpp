@@ -18,6 +18,8 @@
 
 #include "controllers/controllers.h"
 #include "controllers/follow_view.h"
+#include "controllers/give_way.h"
+#include "controllers/lane_path.h"
 #include "controllers/npc_caution.h"
 #include "lanes/lane_follow.h"
 #include "state/lane_index.h"
@@ -33,28 +35,10 @@ constexpr double kReach = 1.5 * kRange;  // m, straight-line bound of what may b
 constexpr double kGapGain = 0.25;        // 1/s^2
 constexpr double kSpeedGain = 0.8;       // 1/s
 constexpr double kDefaultLimit = 6.0;    // m/s^2 when the Performance gives none
-constexpr size_t kMaxPieces = 16;        // lane pieces looked along (zero-length lanes included)
 
 struct Leader {
   double gap = std::numeric_limits<double>::infinity();  ///< m, bumper to bumper
   double speed = 0.0;
-};
-
-// One lane (of one lane section) on the path ahead: road coordinates of where the path enters
-// it, the direction it is driven in, and the path distance (m, along s) at the entry.
-struct PathPiece {
-  uint32_t road = 0;
-  uint32_t section = 0;
-  int lane = 0;
-  xodr::LaneNode node = xodr::kNoLane;
-  double s_entry = 0.0;
-  int dir = 1;
-  double distance = 0.0;
-};
-
-struct LanePath {
-  std::array<PathPiece, kMaxPieces> pieces;  // the first `count` are set
-  size_t count = 0;
 };
 
 // The lanes the entity will follow from where it is, up to kRange metres ahead; the lanes after
@@ -283,15 +267,11 @@ class LeaderSearch {
   uint32_t chosen_ = UINT32_MAX;
 };
 
-// The leader as the view shows it; for generated traffic also a traffic light that says stop
-// (the light when it is as near).
-Leader find_leader(const SimState& state, uint32_t self, const FollowView& view, LanesAhead& ahead,
-                   bool obey_signals) {
+// The leader as the view shows it along `path`; for generated traffic also a traffic light that
+// says stop (the light when it is as near).
+Leader find_leader(const SimState& state, uint32_t self, const FollowView& view,
+                   const LanePath& path, bool obey_signals) {
   const Entity& me = state.world.entities[self];
-  if (!me.state.road || !me.lane.on_road || state.map == nullptr) {
-    return Leader{};
-  }
-  const LanePath path = path_ahead(*state.map, me, ahead);
   const Leader leader = LeaderSearch(me, self, path, view).find(*state.map);
   if (obey_signals) {
     const Leader stop = signal_ahead(state, me, path);
@@ -300,6 +280,11 @@ Leader find_leader(const SimState& state, uint32_t self, const FollowView& view,
     }
   }
   return leader;
+}
+
+// Whether the entity has a lane path to look along.
+bool has_path(const SimState& state, const Entity& me) {
+  return me.state.road && me.lane.on_road && state.map != nullptr;
 }
 
 // esmini's ACCController (its ControllerACC::Step): the speed after this step. Without a leader
@@ -333,14 +318,31 @@ double esmini_acc_speed(const Entity& entity, const EsminiAcc& acc, double set_s
   return std::abs(next - set_speed) > std::abs(v - set_speed) ? set_speed : next;
 }
 
+// A generated vehicle near a junction: the point it was told to stop before, as a standing
+// leader when nearer than `leader`; and its claims for the next step's pass.
+void give_way(GiveWay& claims, uint32_t index, const Entity& me, const LanePath& path, int64_t tick,
+              Leader& leader) {
+  const YieldPoint& point = claims.yield_of(index);
+  if (point.node != xodr::kNoLane) {
+    const double front = me.info.box.center_x + 0.5 * me.info.box.length;
+    const double gap = gap_to_yield_point(path, point, front);
+    if (gap < leader.gap) {
+      leader = Leader{gap, 0.0};
+    }
+  }
+  claims.record(index, me, path, tick);
+}
+
 }  // namespace
 
 void step_acc(SimState& state, uint32_t index, const MotionContext& motion, const FollowView& view,
               LanesAhead& ahead) {
   Entity& entity = state.world.entities[index];
   const double set_speed = entity.speed_command;
+  const bool on_path = has_path(state, entity);
+  const LanePath path = on_path ? path_ahead(*state.map, entity, ahead) : LanePath{};
   if (const auto& esmini = state.controls[index].esmini_acc) {
-    const Leader leader = find_leader(state, index, view, ahead, false);
+    const Leader leader = on_path ? find_leader(state, index, view, path, false) : Leader{};
     const double command =
         esmini_acc_speed(entity, *esmini, esmini->set_speed.value_or(set_speed), leader, motion.dt);
     entity.speed_command = command;
@@ -350,12 +352,16 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
     }
     return;
   }
-  // Generated traffic also minds traffic lights, whatever reaches into its way, and the
-  // scenario's vehicles coming up from behind (controllers/npc_caution.h).
+  // Generated traffic also minds traffic lights, whatever reaches into its way, the scenario's
+  // vehicles coming up from behind (controllers/npc_caution.h), and gives way in junctions
+  // (controllers/give_way.h).
   const bool generated = view.targets()[index].generated;
-  Leader leader = find_leader(state, index, view, ahead, generated);
+  Leader leader = on_path ? find_leader(state, index, view, path, generated) : Leader{};
   double target = set_speed;
   if (generated) {
+    if (on_path && view.give_way() != nullptr && view.give_way()->ready()) {
+      give_way(*view.give_way(), index, entity, path, state.tick, leader);
+    }
     std::vector<uint32_t>& near = *motion.nearby;
     const double v = std::max(entity.state.speed, 0.0);
     // Only what is nearer than the leader already found can take its place (a hazard wins with

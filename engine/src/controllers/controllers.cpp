@@ -17,6 +17,7 @@
 #include "controllers/external.h"
 #include "controllers/follow_ghost.h"
 #include "controllers/follow_view.h"
+#include "controllers/give_way.h"
 #include "controllers/natural_driver.h"
 #include "controllers/npc_caution.h"
 #include "controllers/sloppy_driver.h"
@@ -303,6 +304,30 @@ std::optional<xodr::LaneType> lane_type_at(const xodr::Map& map, const RoadCoord
   return node ? std::optional<xodr::LaneType>(map.lane_graph().info(*node).type) : std::nullopt;
 }
 
+// A generated walker about to step onto a road along its heading (the point a metre ahead is on
+// a lane vehicles drive on, its own lane is not) waits while a vehicle is close to its way
+// across (controllers/npc_caution.h).
+bool waits_at_kerb(const SimState& state, uint32_t index, const FollowView& view,
+                   std::vector<uint32_t>& near) {
+  constexpr double kKerb = 1.0;    // m ahead
+  constexpr double kAcross = 8.0;  // m of its way looked along: about two lanes
+  const Entity& me = state.world.entities[index];
+  if (state.map == nullptr || !view.has_shapes()) {
+    return false;
+  }
+  const auto here = me.state.road ? lane_type_at(*state.map, *me.state.road) : std::nullopt;
+  if (here && xodr::is_drivable(*here)) {
+    return false;  // on the road already: across it rather than stand in it
+  }
+  xodr::LocateOptions options;
+  options.max_distance = 0.0;
+  options.drivable_only = true;
+  options.z = me.state.pose.z;
+  const double x = me.state.pose.x + kKerb * std::cos(me.state.pose.h);
+  const double y = me.state.pose.y + kKerb * std::sin(me.state.pose.h);
+  return state.map->locate(x, y, options) && walker_waits(me, index, view, kAcross, near);
+}
+
 // Pedestrians: on a sidewalk (or any lane) facing along it they walk along it like
 // any entity of the default controller. One facing across its lane (more than 45 degrees off
 // the lane's direction, e.g. placed with a relative orientation of pi/2) crosses the road: it
@@ -327,6 +352,9 @@ void step_pedestrian(SimState& state, uint32_t index, const DefaultController& i
     }
     const WalkerMove move = walker_move(entity, index, view, control.pace, *motion.nearby);
     pace_command = std::min(move.speed, entity.speed_command);
+    if (pace_command > 0.0 && waits_at_kerb(state, index, view, *motion.nearby)) {
+      pace_command = 0.0;
+    }
     // Sideways at most half as fast as forwards in this step (30 degrees off the sidewalk): far
     // from the 45 degrees that mean crossing the road, and no sidestep on the spot. (Bounded by
     // the speed of the step before, a walker that has to slow down sharply stepped aside nearly
@@ -454,6 +482,8 @@ struct EntityMover::Impl {
   unsigned threads;
   std::unique_ptr<WorkerPool> pool;  ///< made on the first parallel step
   FollowView view;
+  /// Generated vehicles' claims on junction conflict zones (made with the first of them).
+  std::unique_ptr<GiveWay> give_way;
   /// Car following's lanes ahead, in move order: ahead[k] belongs to entity order[k] (so that
   /// the movers read them one after the other).
   std::vector<LanesAhead> ahead;
@@ -593,6 +623,13 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     impl.view.build(state, generated, workers > 1 ? impl.pool.get() : nullptr);
   }
   impl.arrange(state);
+  if (generated && state.map != nullptr) {
+    if (!impl.give_way) {
+      impl.give_way = std::make_unique<GiveWay>();
+    }
+    impl.give_way->begin_step(state);
+  }
+  impl.view.set_give_way(impl.give_way.get());
   const std::vector<uint32_t>& order = impl.order;
   impl.scratch.resize(std::max<size_t>(impl.scratch.size(), workers));
   impl.nearby.resize(impl.scratch.size());

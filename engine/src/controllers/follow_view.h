@@ -23,6 +23,7 @@ namespace corsa::engine::detail {
 
 struct SimState;
 class WorkerPool;
+class GiveWay;
 
 /// One entity as car following sees it.
 struct FollowTarget {
@@ -92,6 +93,12 @@ class FollowView {
   /// `neighbours`).
   bool has_shapes() const { return has_shapes_; }
 
+  /// Generated vehicles' claims in junctions (controllers/give_way.h), settled for this step
+  /// before the moves; null without generated traffic or road network. A mover reads where its
+  /// own entity must stop and writes only that entity's record.
+  GiveWay* give_way() const { return give_way_; }
+  void set_give_way(GiveWay* give_way) { give_way_ = give_way; }
+
  private:
   /// Entity `i`'s target, its lane node (nodes_) and box reach (reach_).
   void fill_target(const SimState& state, uint32_t i, bool neighbours);
@@ -115,6 +122,7 @@ class FollowView {
   double max_offset_ = 0.0;
   double max_length_ = 0.0;
   bool has_shapes_ = false;
+  GiveWay* give_way_ = nullptr;
 
   // m: about two car lengths (the grid makes its cells larger when the points are sparse); a
   // corridor query reads the cells of its bounding box a column at a time, each column's cells

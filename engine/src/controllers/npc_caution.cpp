@@ -346,4 +346,59 @@ WalkerMove walker_move(const Entity& me, uint32_t index, const FollowView& view,
   return move;
 }
 
+namespace {
+
+// Distance (m) between the segments [a0, a1] and [b0, b1] (2D): zero when they cross, else the
+// least distance of an end point to the other segment.
+double segment_distance(double ax0, double ay0, double ax1, double ay1, double bx0, double by0,
+                        double bx1, double by1) {
+  const auto cross = [](double ux, double uy, double vx, double vy) { return ux * vy - uy * vx; };
+  const double d1 = cross(ax1 - ax0, ay1 - ay0, bx0 - ax0, by0 - ay0);
+  const double d2 = cross(ax1 - ax0, ay1 - ay0, bx1 - ax0, by1 - ay0);
+  const double d3 = cross(bx1 - bx0, by1 - by0, ax0 - bx0, ay0 - by0);
+  const double d4 = cross(bx1 - bx0, by1 - by0, ax1 - bx0, ay1 - by0);
+  if (((d1 > 0.0) != (d2 > 0.0)) && ((d3 > 0.0) != (d4 > 0.0))) {
+    return 0.0;
+  }
+  const auto to_segment = [](double px, double py, double x0, double y0, double x1, double y1) {
+    const double dx = x1 - x0, dy = y1 - y0;
+    const double length2 = dx * dx + dy * dy;
+    const double t =
+        length2 > 0.0 ? std::clamp(((px - x0) * dx + (py - y0) * dy) / length2, 0.0, 1.0) : 0.0;
+    return std::hypot(px - (x0 + t * dx), py - (y0 + t * dy));
+  };
+  return std::min(
+      {to_segment(ax0, ay0, bx0, by0, bx1, by1), to_segment(ax1, ay1, bx0, by0, bx1, by1),
+       to_segment(bx0, by0, ax0, ay0, ax1, ay1), to_segment(bx1, by1, ax0, ay0, ax1, ay1)});
+}
+
+}  // namespace
+
+bool walker_waits(const Entity& me, uint32_t index, const FollowView& view, double length,
+                  std::vector<uint32_t>& near) {
+  constexpr double kClear = 1.5;     // m between a vehicle's side and the path
+  constexpr double kWithin = 4.0;    // s ahead a vehicle's way is looked along
+  constexpr double kFastest = 20.0;  // m/s: vehicles farther than kWithin at this are not looked at
+  const LocalFrame frame = frame_at(me, index, view);
+  near_rectangle(view, frame, 0.0, length, kClear, kFastest * kWithin + view.max_reach(), near);
+  const double x0 = me.state.pose.x, y0 = me.state.pose.y;
+  const double x1 = x0 + length * frame.c, y1 = y0 + length * frame.s;
+  for (const uint32_t j : near) {
+    const FollowTarget& other = view.targets()[j];
+    if (j == index || !other.present || !other.vehicle) {
+      continue;
+    }
+    // The stretch its box covers now and over the next kWithin seconds, along its heading.
+    const OrientedBox& box = other.shape;
+    const double ahead = box.half_length + std::max(other.speed, 0.0) * kWithin;
+    const double bx0 = box.cx - box.half_length * box.cos_h,
+                 by0 = box.cy - box.half_length * box.sin_h;
+    const double bx1 = box.cx + ahead * box.cos_h, by1 = box.cy + ahead * box.sin_h;
+    if (segment_distance(x0, y0, x1, y1, bx0, by0, bx1, by1) < box.half_width + kClear) {
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace corsa::engine::detail

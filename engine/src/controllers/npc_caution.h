@@ -9,7 +9,9 @@
 //   - a faster scenario vehicle closing in from behind in that corridor: the generated vehicle
 //     speeds up to keep ahead of it (the scenario's entities may not brake for it);
 //   - traffic lights on the path (acc_controller.cpp): red stops it, yellow when it can stop;
-//   - for walkers: the others on the sidewalk, passed on the right or followed.
+//   - for walkers: the others on the sidewalk, passed on the right or followed; before stepping
+//     onto a road, the vehicles close to their path across it, waited for;
+//   - in junctions, each other (controllers/give_way.h).
 // Scenario entities are not changed: only generated ones take these precautions.
 // The others are seen as they were when the step began (controllers/follow_view.h), and only
 // those near the entity are looked at (the view's grid): a step costs the same per vehicle with
@@ -62,5 +64,11 @@ struct WalkerMove {
 };
 WalkerMove walker_move(const Entity& me, uint32_t index, const FollowView& view, double pace,
                        std::vector<uint32_t>& near);
+
+/// Whether walker `me` (entity `index`), about to step onto a road along its heading, waits: a
+/// vehicle of `view` is close to the `length` metres of its path across (its box within a metre
+/// and a half of it), or will be within the next few seconds at its speed. `near` is scratch.
+bool walker_waits(const Entity& me, uint32_t index, const FollowView& view, double length,
+                  std::vector<uint32_t>& near);
 
 }  // namespace corsa::engine::detail

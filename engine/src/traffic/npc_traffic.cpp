@@ -108,6 +108,9 @@ std::vector<Candidate> lanes_of(const xodr::Map& map, bool walks) {
   std::vector<Candidate> out;
   for (size_t r = 0; r < map.road_count(); ++r) {
     const xodr::Road& road = map.road(r);
+    if (!walks && road.in_junction()) {
+      continue;  // a vehicle placed in a junction might stand in another's way through it
+    }
     for (size_t k = 0; k < road.lane_sections.size(); ++k) {
       const double begin = road.lane_sections[k].s;
       const double end = map.section_end(r, k);

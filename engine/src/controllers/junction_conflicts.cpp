@@ -1,0 +1,228 @@
+// Conflict zones and right of way of junction lanes (controllers/junction_conflicts.h).
+
+#include "controllers/junction_conflicts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "corsa/xodr/map.h"
+#include "lanes/lane_follow.h"
+
+namespace corsa::engine::detail {
+namespace {
+
+constexpr double kSample = 0.5;  // m between the centre line points compared
+constexpr double kLevels = 2.5;  // m: points farther apart in height are on different levels
+constexpr double kCell = kConflictDistance;  // m, the grid the points are looked up in
+
+struct Sample {
+  double x = 0.0, y = 0.0, z = 0.0, s = 0.0;
+  uint32_t lane = 0;  ///< index into the junction's lanes
+};
+
+/// The s range of one lane near another (empty while min > max).
+struct Range {
+  double min = 1e300;
+  double max = -1e300;
+  void add(double s) {
+    min = std::min(min, s);
+    max = std::max(max, s);
+  }
+  bool empty() const { return min > max; }
+};
+
+uint64_t cell_key(int64_t cx, int64_t cy) {
+  return (static_cast<uint64_t>(cx) << 32) ^ static_cast<uint64_t>(cy & 0xffffffff);
+}
+
+int64_t cell_of(double v) { return static_cast<int64_t>(std::floor(v / kCell)); }
+
+// Points along the centre line of lane `node`, kSample apart, both ends included.
+void sample_lane(const xodr::Map& map, xodr::LaneNode node, uint32_t lane,
+                 std::vector<Sample>& out) {
+  const auto& info = map.lane_graph().info(node);
+  const double length = info.s_end - info.s_start;
+  const int count = std::max(1, static_cast<int>(std::ceil(length / kSample)));
+  for (int k = 0; k <= count; ++k) {
+    // Just inside the section at its end: the s lookup there would answer for the next one.
+    const double s = std::min(info.s_start + length * k / count, info.s_end - 1e-6);
+    const auto t = lane_center_t(map, info.lane.road, std::max(s, info.s_start), info.lane.lane);
+    if (!t) {
+      continue;
+    }
+    const xodr::WorldPose pose = map.world_pose(info.lane.road, s, *t);
+    out.push_back({pose.x, pose.y, pose.z, s, lane});
+  }
+}
+
+// The lane ends a lane is entered from (in its travel direction).
+std::span<const xodr::LaneEnd> entries(const xodr::LaneGraph& graph, xodr::LaneNode node) {
+  return graph.ends(node, graph.info(node).direction != xodr::TravelDirection::kBackward);
+}
+
+bool share_entry(const xodr::LaneGraph& graph, xodr::LaneNode a, xodr::LaneNode b) {
+  for (const xodr::LaneEnd& x : entries(graph, a)) {
+    for (const xodr::LaneEnd& y : entries(graph, b)) {
+      if (x.node == y.node) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+/// Per lane node, its zones, before they are packed.
+using ZoneLists = std::vector<std::vector<ConflictZone>>;
+
+// The conflicts among the lanes of one junction, added to `zones`; returns how many.
+size_t junction_conflicts(const xodr::Map& map, const std::vector<xodr::LaneNode>& lanes,
+                          size_t first_conflict, ZoneLists& zones) {
+  std::vector<Sample> samples;
+  for (uint32_t k = 0; k < lanes.size(); ++k) {
+    sample_lane(map, lanes[k], k, samples);
+  }
+  std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
+  for (uint32_t i = 0; i < samples.size(); ++i) {
+    grid[cell_key(cell_of(samples[i].x), cell_of(samples[i].y))].push_back(i);
+  }
+  // near[a * n + b]: the s range of lane a within kConflictDistance of lane b.
+  const size_t n = lanes.size();
+  std::vector<Range> near(n * n);
+  constexpr double kReach2 = kConflictDistance * kConflictDistance;
+  for (const Sample& p : samples) {
+    const int64_t cx = cell_of(p.x), cy = cell_of(p.y);
+    for (int64_t dx = -1; dx <= 1; ++dx) {
+      for (int64_t dy = -1; dy <= 1; ++dy) {
+        const auto found = grid.find(cell_key(cx + dx, cy + dy));
+        if (found == grid.end()) {
+          continue;
+        }
+        for (const uint32_t j : found->second) {
+          const Sample& q = samples[j];
+          if (q.lane == p.lane || std::abs(q.z - p.z) > kLevels) {
+            continue;
+          }
+          const double ex = q.x - p.x, ey = q.y - p.y;
+          if (ex * ex + ey * ey < kReach2) {
+            near[p.lane * n + q.lane].add(p.s);
+          }
+        }
+      }
+    }
+  }
+  const auto& graph = map.lane_graph();
+  size_t conflicts = 0;
+  for (size_t a = 0; a < n; ++a) {
+    for (size_t b = a + 1; b < n; ++b) {
+      const Range& on_a = near[a * n + b];
+      const Range& on_b = near[b * n + a];
+      if (on_a.empty() || on_b.empty() || share_entry(graph, lanes[a], lanes[b])) {
+        continue;
+      }
+      const auto id = static_cast<uint32_t>(first_conflict + conflicts++);
+      // Half a sample beyond the outermost points that are near.
+      zones[lanes[a]].push_back({id, 0, on_a.min - 0.5 * kSample, on_a.max + 0.5 * kSample});
+      zones[lanes[b]].push_back({id, 1, on_b.min - 0.5 * kSample, on_b.max + 0.5 * kSample});
+    }
+  }
+  return conflicts;
+}
+
+// The right of way a sign on road `road` gives the traffic it faces: give way (205) and stop
+// (206) lower it, priority road (306) and priority (301) raise it; nothing for other signs.
+std::optional<RightOfWay> sign_right(const xodr::Road& road, bool toward_plus_s) {
+  std::optional<RightOfWay> right;
+  for (const xodr::Signal& signal : road.signals) {
+    const bool facing = signal.orientation == "none" || signal.orientation.empty() ||
+                        (signal.orientation == "+") == toward_plus_s;
+    if (!facing) {
+      continue;
+    }
+    if (signal.type == "205" || signal.type == "206") {
+      right = RightOfWay::kGiveWay;
+    } else if ((signal.type == "306" || signal.type == "301") && !right) {
+      right = RightOfWay::kPriority;
+    }
+  }
+  return right;
+}
+
+// Right of way of every lane node: from the signs on the incoming roads.
+std::vector<RightOfWay> rights_of(const xodr::Map& map,
+                                  const std::vector<std::vector<xodr::LaneNode>>& by_road) {
+  std::vector<RightOfWay> rights(map.lane_graph().size(), RightOfWay::kNormal);
+  for (size_t j = 0; j < map.junction_count(); ++j) {
+    const xodr::Junction& junction = map.junction(j);
+    for (const xodr::Connection& connection : junction.connections) {
+      const auto incoming = map.find_road(connection.incoming_road);
+      const auto connecting = map.find_road(connection.connecting_road);
+      if (!incoming || !connecting) {
+        continue;
+      }
+      // Traffic toward the junction drives +s on a road whose end joins it.
+      const xodr::Road& road = map.road(*incoming);
+      const bool plus = road.successor.element_type == xodr::LinkElement::kJunction &&
+                        road.successor.element_id == junction.id;
+      if (const auto right = sign_right(road, plus)) {
+        for (const xodr::LaneNode node : by_road[*connecting]) {
+          rights[node] = *right;
+        }
+      }
+    }
+  }
+  return rights;
+}
+
+}  // namespace
+
+JunctionConflicts JunctionConflicts::build(const xodr::Map& map) {
+  const auto& graph = map.lane_graph();
+  // The drivable lanes of each junction's roads, and every road's lanes.
+  std::vector<std::vector<xodr::LaneNode>> by_junction(map.junction_count());
+  std::vector<std::vector<xodr::LaneNode>> by_road(map.road_count());
+  for (xodr::LaneNode node = 0; node < graph.size(); ++node) {
+    const auto& info = graph.info(node);
+    by_road[info.lane.road].push_back(node);
+    const xodr::Road& road = map.road(info.lane.road);
+    if (!road.in_junction() || !xodr::is_drivable(info.type)) {
+      continue;
+    }
+    if (const auto junction = map.find_junction(road.junction)) {
+      by_junction[*junction].push_back(node);
+    }
+  }
+  ZoneLists zones(graph.size());
+  JunctionConflicts out;
+  for (const auto& lanes : by_junction) {
+    if (lanes.size() > 1) {
+      out.conflicts_ += junction_conflicts(map, lanes, out.conflicts_, zones);
+    }
+  }
+  out.first_.assign(graph.size() + 1, 0);
+  for (size_t node = 0; node < graph.size(); ++node) {
+    std::sort(zones[node].begin(), zones[node].end(),
+              [](const ConflictZone& a, const ConflictZone& b) {
+                return a.s_min < b.s_min || (a.s_min == b.s_min && a.conflict < b.conflict);
+              });
+    out.zones_.insert(out.zones_.end(), zones[node].begin(), zones[node].end());
+    out.first_[node + 1] = static_cast<uint32_t>(out.zones_.size());
+  }
+  out.rights_ = rights_of(map, by_road);
+  return out;
+}
+
+size_t JunctionConflicts::most_zones() const {
+  size_t most = 0;
+  for (size_t node = 0; node + 1 < first_.size(); ++node) {
+    most = std::max<size_t>(most, first_[node + 1] - first_[node]);
+  }
+  return most;
+}
+
+}  // namespace corsa::engine::detail

@@ -1,0 +1,34 @@
+#pragma once
+
+// The lanes a car follower will drive next, as the acc controller looks along them
+// (controllers/acc_controller.cpp): its own lane from where it is, then each lane its chooser
+// takes at a lane end, up to the sensor range.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "corsa/xodr/lane_graph.h"
+
+namespace corsa::engine::detail {
+
+inline constexpr size_t kMaxPieces = 16;  ///< lane pieces looked along (zero-length lanes too)
+
+/// One lane (of one lane section) on the path ahead: road coordinates of where the path enters
+/// it, the direction it is driven in, and the path distance (m, along s) at the entry.
+struct PathPiece {
+  uint32_t road = 0;
+  uint32_t section = 0;
+  int lane = 0;
+  xodr::LaneNode node = xodr::kNoLane;
+  double s_entry = 0.0;
+  int dir = 1;
+  double distance = 0.0;
+};
+
+struct LanePath {
+  std::array<PathPiece, kMaxPieces> pieces;  ///< the first `count` are set
+  size_t count = 0;
+};
+
+}  // namespace corsa::engine::detail

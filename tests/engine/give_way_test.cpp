@@ -1,0 +1,248 @@
+// Generated traffic gives way in junctions (controllers/give_way.h) and walkers wait at the
+// kerb for vehicles (controllers/npc_caution.h): generated cars put on the four-way
+// intersection of scenarios/maps and moved by the engine's entity mover, step by step.
+
+#include "controllers/give_way.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <numbers>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "controllers/controllers.h"
+#include "controllers/follow_view.h"
+#include "controllers/junction_conflicts.h"
+#include "controllers/npc_caution.h"
+#include "corsa/engine/oriented_box.h"
+#include "corsa/xodr/parser.h"
+#include "engine_fixture.h"
+#include "state/sim_state.h"
+#include "traffic/spawner.h"
+
+namespace corsa::test {
+namespace {
+
+namespace detail = engine::detail;
+
+std::string intersection_text() {
+  std::ifstream in(std::filesystem::path(CORSA_SOURCE_DIR) /
+                   "scenarios/maps/intersection_4way.xodr");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Give-way signs (205) on the road with id `road`, facing the traffic toward the junction at its
+// start (driving -s).
+std::string with_give_way_sign(std::string text, const std::string& road) {
+  const size_t at = text.find("<road name=\"Arm " + road + "\"");
+  const size_t end = text.find("</road>", at);
+  text.insert(end, "<signals><signal s=\"2\" t=\"5\" id=\"yield" + road +
+                       "\" dynamic=\"no\" orientation=\"-\" country=\"DE\" type=\"205\" "
+                       "subtype=\"-1\" zOffset=\"2\" height=\"0.8\" width=\"0.8\"/></signals>");
+  return text;
+}
+
+std::shared_ptr<const xodr::Map> map_of(const std::string& text) {
+  Diagnostics diagnostics;
+  return std::make_shared<const xodr::Map>(xodr::Map::build(
+      xodr::parse_xodr_text(text, "intersection_4way.xodr", diagnostics), diagnostics));
+}
+
+// Puts generated cars where a test wants them.
+class Placer final : public detail::GeneratorBase {
+ public:
+  Placer() : GeneratorBase(std::string("test"), "car", 1), cars_(prototype()) {}
+  void step(detail::SimState&) override {}
+  uint32_t car(detail::SimState& state, double x, double y, double speed) {
+    const auto at = detail::lane_spot(*state.map, x, y, false);
+    REQUIRE(at);
+    return spawn(state, cars_, 0, *at, speed);
+  }
+
+ private:
+  static xosc::ScenarioObject prototype() {
+    xosc::ScenarioObject object;
+    object.object = detail::vehicle_model(xosc::VehicleCategory::kCar);
+    return object;
+  }
+  detail::TrafficMix cars_;
+};
+
+// A run of generated cars on the intersection, moved by the entity mover.
+struct Crossing {
+  xosc::Scenario scenario;
+  Diagnostics diagnostics;
+  detail::SimState state;
+  Placer placer;
+  detail::EntityMover mover{1};
+  std::vector<double> least_speed;  ///< by car, over the run
+  std::string overlaps;
+
+  explicit Crossing(const std::string& map_text)
+      : state(scenario, map_of(map_text), engine::SimulationOptions{}, diagnostics) {}
+
+  // The arms: 1 east, 2 north, 3 west, 4 south of the junction; cars on the lane toward it.
+  uint32_t car_on_arm(int arm, double distance, double speed) {
+    const double a = (arm - 1) * 0.5 * std::numbers::pi;
+    const double along = 12.0 + distance, left = 1.75;
+    const uint32_t i = placer.car(state, along * std::cos(a) - left * std::sin(a),
+                                  along * std::sin(a) + left * std::cos(a), speed);
+    least_speed.resize(state.world.entities.size(), speed);
+    return i;
+  }
+
+  void run(double seconds) {
+    detail::MotionContext motion;
+    motion.map = state.map;
+    motion.dt = 0.01;
+    const auto steps = static_cast<int>(std::lround(seconds / motion.dt));
+    for (int k = 0; k < steps; ++k) {
+      mover.move(state, motion);
+      ++state.tick;
+      const auto& entities = state.world.entities;
+      for (size_t a = 0; a < entities.size(); ++a) {
+        least_speed[a] = std::min(least_speed[a], entities[a].state.speed);
+        for (size_t b = a + 1; b < entities.size(); ++b) {
+          const double gap =
+              engine::box_distance(engine::box_of(entities[a].info.box, entities[a].state.pose),
+                                   engine::box_of(entities[b].info.box, entities[b].state.pose));
+          if (gap <= 0.0 && overlaps.size() < 400) {
+            overlaps += std::to_string(state.now()) + " s: cars " + std::to_string(a) + " and " +
+                        std::to_string(b) + "\n";
+          }
+        }
+      }
+    }
+  }
+
+  // Whether car `i` has left the junction on another arm than the one it came from.
+  bool through(uint32_t i, int from_arm) const {
+    const auto& road = state.world.entities[i].state.road;
+    if (!road) {
+      return false;
+    }
+    const xodr::Road& now = state.map->road(road->road);
+    return !now.in_junction() && now.id != std::to_string(from_arm) && road->s > 5.0;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("The four-way intersection's paths conflict where they cross, not where they part",
+          "[engine][npc][give_way]") {
+  const auto map = map_of(intersection_text());
+  const auto conflicts = detail::JunctionConflicts::build(*map);
+  // 12 connecting lanes, 3 from each arm (left, straight, right), which part at their start.
+  CHECK(conflicts.conflict_count() > 12);
+  CHECK(conflicts.conflict_count() < 12 * 11 / 2 - 4 * 3);
+  for (uint32_t node = 0; node < map->lane_graph().size(); ++node) {
+    const auto& info = map->lane_graph().info(node);
+    if (!map->road(info.lane.road).in_junction()) {
+      CHECK(conflicts.zones(node).empty());
+    }
+    CHECK(conflicts.right_of_way(node) == detail::RightOfWay::kNormal);
+  }
+  // A give-way sign on arm 1 lowers the right of way of the lanes coming from it only.
+  const auto signed_map = map_of(with_give_way_sign(intersection_text(), "1"));
+  const auto signed_conflicts = detail::JunctionConflicts::build(*signed_map);
+  std::set<std::string> giving_way;
+  for (uint32_t node = 0; node < signed_map->lane_graph().size(); ++node) {
+    if (signed_conflicts.right_of_way(node) == detail::RightOfWay::kGiveWay) {
+      giving_way.insert(signed_map->road(signed_map->lane_graph().info(node).lane.road).id);
+    }
+  }
+  // The connecting roads of the connections whose incoming road is road 1.
+  CHECK(giving_way == std::set<std::string>{"101", "102", "103"});
+}
+
+TEST_CASE("Four generated cars arriving at a four-way junction at once all get through",
+          "[engine][npc][give_way]") {
+  Crossing crossing(intersection_text());
+  std::vector<uint32_t> cars;
+  for (int arm = 1; arm <= 4; ++arm) {
+    cars.push_back(crossing.car_on_arm(arm, 30.0, 10.0));
+  }
+  crossing.run(25.0);
+  INFO(crossing.overlaps);
+  CHECK(crossing.overlaps.empty());
+  for (int arm = 1; arm <= 4; ++arm) {
+    INFO("car from arm " << arm);
+    CHECK(crossing.through(cars[arm - 1], arm));
+  }
+  // Not all at once: some waited.
+  const double slowest =
+      *std::min_element(crossing.least_speed.begin(), crossing.least_speed.end());
+  CHECK(slowest < 1.0);
+}
+
+TEST_CASE("A generated car on the priority road is not stopped by one that came first",
+          "[engine][npc][give_way]") {
+  // Arms 1 and 3 give way; the car from arm 1 is nearer the junction than the one from arm 2.
+  Crossing crossing(with_give_way_sign(with_give_way_sign(intersection_text(), "1"), "3"));
+  const uint32_t minor = crossing.car_on_arm(1, 15.0, 8.0);
+  const uint32_t major = crossing.car_on_arm(2, 35.0, 10.0);
+  crossing.run(15.0);
+  INFO(crossing.overlaps);
+  CHECK(crossing.overlaps.empty());
+  CHECK(crossing.least_speed[major] > 9.0);  // never braked
+  CHECK(crossing.least_speed[minor] < 1.0);  // waited for it
+  CHECK(crossing.through(major, 2));
+  CHECK(crossing.through(minor, 1));
+}
+
+TEST_CASE("A walker about to cross waits for a vehicle coming close to its way",
+          "[engine][npc][give_way]") {
+  const xosc::Scenario scenario;
+  Diagnostics diagnostics;
+  detail::SimState state(scenario, nullptr, engine::SimulationOptions{}, diagnostics);
+  const auto add = [&](double x, double y, double h, double speed, const engine::Box& box,
+                       engine::ObjectKind kind) {
+    detail::Entity entity;
+    entity.state.placed = true;
+    entity.state.pose.x = x;
+    entity.state.pose.y = y;
+    entity.state.pose.h = h;
+    entity.state.speed = speed;
+    entity.info.box = box;
+    entity.info.kind = kind;
+    state.world.entities.push_back(std::move(entity));
+  };
+  // The walker at the kerb at the origin, facing across the road (+y).
+  add(0.0, 0.0, 0.5 * std::numbers::pi, 0.0, {0.0, 0.0, 0.9, 0.5, 0.6, 1.8},
+      engine::ObjectKind::kPedestrian);
+  state.traffic.lifetimes[0];
+  // A car 30 m to the left in the near lane, coming at 10 m/s.
+  add(-30.0, 1.75, 0.0, 10.0, {1.4, 0.0, 0.75, 4.5, 1.8, 1.5}, engine::ObjectKind::kVehicle);
+  detail::FollowView view;
+  std::vector<uint32_t> near;
+  const auto waits = [&] {
+    view.build(state, true);
+    return detail::walker_waits(state.world.entities[0], 0, view, 8.0, near);
+  };
+  CHECK(waits());
+  // Going away from the walker's way, standing far off, or passed: no reason to wait.
+  state.world.entities[1].state.pose.h = std::numbers::pi;
+  CHECK_FALSE(waits());
+  state.world.entities[1].state.pose.h = 0.0;
+  state.world.entities[1].state.speed = 0.0;
+  CHECK_FALSE(waits());
+  state.world.entities[1].state.speed = 10.0;
+  state.world.entities[1].state.pose.x = 8.0;
+  CHECK_FALSE(waits());
+  // Far away at that speed: it is not close within the next seconds.
+  state.world.entities[1].state.pose.x = -80.0;
+  CHECK_FALSE(waits());
+  // Standing in the walker's way: waits.
+  state.world.entities[1].state.pose.x = -1.0;
+  state.world.entities[1].state.speed = 0.0;
+  CHECK(waits());
+}
+
+}  // namespace corsa::test
