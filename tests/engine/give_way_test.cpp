@@ -28,8 +28,6 @@
 namespace corsa::test {
 namespace {
 
-namespace detail = engine::detail;
-
 std::string intersection_text() {
   std::ifstream in(std::filesystem::path(CORSA_SOURCE_DIR) /
                    "scenarios/maps/intersection_4way.xodr");
@@ -56,12 +54,12 @@ std::shared_ptr<const xodr::Map> map_of(const std::string& text) {
 }
 
 // Puts generated cars where a test wants them.
-class Placer final : public detail::GeneratorBase {
+class Placer final : public engine::detail::GeneratorBase {
  public:
   Placer() : GeneratorBase(std::string("test"), "car", 1), cars_(prototype()) {}
-  void step(detail::SimState&) override {}
-  uint32_t car(detail::SimState& state, double x, double y, double speed) {
-    const auto at = detail::lane_spot(*state.map, x, y, false);
+  void step(engine::detail::SimState&) override {}
+  uint32_t car(engine::detail::SimState& state, double x, double y, double speed) {
+    const auto at = engine::detail::lane_spot(*state.map, x, y, false);
     REQUIRE(at);
     return spawn(state, cars_, 0, *at, speed);
   }
@@ -69,19 +67,19 @@ class Placer final : public detail::GeneratorBase {
  private:
   static xosc::ScenarioObject prototype() {
     xosc::ScenarioObject object;
-    object.object = detail::vehicle_model(xosc::VehicleCategory::kCar);
+    object.object = engine::detail::vehicle_model(xosc::VehicleCategory::kCar);
     return object;
   }
-  detail::TrafficMix cars_;
+  engine::detail::TrafficMix cars_;
 };
 
 // A run of generated cars on the intersection, moved by the entity mover.
 struct Crossing {
   xosc::Scenario scenario;
   Diagnostics diagnostics;
-  detail::SimState state;
+  engine::detail::SimState state;
   Placer placer;
-  detail::EntityMover mover{1};
+  engine::detail::EntityMover mover{1};
   std::vector<double> least_speed;  ///< by car, over the run
   std::string overlaps;
 
@@ -99,7 +97,7 @@ struct Crossing {
   }
 
   void run(double seconds) {
-    detail::MotionContext motion;
+    engine::detail::MotionContext motion;
     motion.map = state.map;
     motion.dt = 0.01;
     const auto steps = static_cast<int>(std::lround(seconds / motion.dt));
@@ -138,7 +136,7 @@ struct Crossing {
 TEST_CASE("The four-way intersection's paths conflict where they cross, not where they part",
           "[engine][npc][give_way]") {
   const auto map = map_of(intersection_text());
-  const auto conflicts = detail::JunctionConflicts::build(*map);
+  const auto conflicts = engine::detail::JunctionConflicts::build(*map);
   // 12 connecting lanes, 3 from each arm (left, straight, right), which part at their start.
   CHECK(conflicts.conflict_count() > 12);
   CHECK(conflicts.conflict_count() < 12 * 11 / 2 - 4 * 3);
@@ -147,14 +145,14 @@ TEST_CASE("The four-way intersection's paths conflict where they cross, not wher
     if (!map->road(info.lane.road).in_junction()) {
       CHECK(conflicts.zones(node).empty());
     }
-    CHECK(conflicts.right_of_way(node) == detail::RightOfWay::kNormal);
+    CHECK(conflicts.right_of_way(node) == engine::detail::RightOfWay::kNormal);
   }
   // A give-way sign on arm 1 lowers the right of way of the lanes coming from it only.
   const auto signed_map = map_of(with_give_way_sign(intersection_text(), "1"));
-  const auto signed_conflicts = detail::JunctionConflicts::build(*signed_map);
+  const auto signed_conflicts = engine::detail::JunctionConflicts::build(*signed_map);
   std::set<std::string> giving_way;
   for (uint32_t node = 0; node < signed_map->lane_graph().size(); ++node) {
-    if (signed_conflicts.right_of_way(node) == detail::RightOfWay::kGiveWay) {
+    if (signed_conflicts.right_of_way(node) == engine::detail::RightOfWay::kGiveWay) {
       giving_way.insert(signed_map->road(signed_map->lane_graph().info(node).lane.road).id);
     }
   }
@@ -201,10 +199,10 @@ TEST_CASE("A walker about to cross waits for a vehicle coming close to its way",
           "[engine][npc][give_way]") {
   const xosc::Scenario scenario;
   Diagnostics diagnostics;
-  detail::SimState state(scenario, nullptr, engine::SimulationOptions{}, diagnostics);
+  engine::detail::SimState state(scenario, nullptr, engine::SimulationOptions{}, diagnostics);
   const auto add = [&](double x, double y, double h, double speed, const engine::Box& box,
                        engine::ObjectKind kind) {
-    detail::Entity entity;
+    engine::detail::Entity entity;
     entity.state.placed = true;
     entity.state.pose.x = x;
     entity.state.pose.y = y;
@@ -220,11 +218,11 @@ TEST_CASE("A walker about to cross waits for a vehicle coming close to its way",
   state.traffic.lifetimes[0];
   // A car 30 m to the left in the near lane, coming at 10 m/s.
   add(-30.0, 1.75, 0.0, 10.0, {1.4, 0.0, 0.75, 4.5, 1.8, 1.5}, engine::ObjectKind::kVehicle);
-  detail::FollowView view;
+  engine::detail::FollowView view;
   std::vector<uint32_t> near;
   const auto waits = [&] {
     view.build(state, true);
-    return detail::walker_waits(state.world.entities[0], 0, view, 8.0, near);
+    return engine::detail::walker_waits(state.world.entities[0], 0, view, 8.0, near);
   };
   CHECK(waits());
   // Going away from the walker's way, standing far off, or passed: no reason to wait.
