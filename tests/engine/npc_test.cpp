@@ -121,6 +121,38 @@ TEST_CASE("NPCs start clear of everyone and out of the path ahead of scenario ve
   }
 }
 
+TEST_CASE("A thousand NPC vehicles fit on Town04, off its junctions, no two boxes overlapping",
+          "[engine][npc]") {
+  // Town04's driving lanes off junctions hold about 850 vehicles 10 m apart; the rest go
+  // between them, 6 m apart.
+  const auto town04 = engine_fixture("npc_town04_empty.xosc");
+  for (uint64_t seed = 1; seed <= 2; ++seed) {
+    INFO("seed " << seed);
+    engine::SimulationOptions options;
+    options.seed = seed;
+    options.npc.vehicles = 1000;
+    FixtureRun run(town04, options);
+    engine::Simulation& sim = run.sim();
+    CHECK(run.diagnostics().all().empty());  // no "placed N of 1000" warning
+    REQUIRE(sim.entity_count() == 1000);
+    const xodr::Map& map = *sim.map();
+    size_t on_junctions = 0, overlapping = 0, close = 0;
+    for (size_t a = 0; a < sim.entity_count(); ++a) {
+      const engine::EntityState& state = sim.state(a);
+      REQUIRE(state.road);
+      on_junctions += map.road(state.road->road).in_junction() ? 1 : 0;
+      for (size_t b = a + 1; b < sim.entity_count(); ++b) {
+        overlapping += sim.colliding(a, b) ? 1 : 0;
+        const engine::Pose& other = sim.state(b).pose;
+        close += std::hypot(state.pose.x - other.x, state.pose.y - other.y) < 6.0 ? 1 : 0;
+      }
+    }
+    CHECK(on_junctions == 0);
+    CHECK(overlapping == 0);
+    CHECK(close == 0);
+  }
+}
+
 TEST_CASE("NPC vehicles stop at a red light and go on at green", "[engine][npc][signals]") {
   engine::SimulationOptions options;
   options.seed = 4;

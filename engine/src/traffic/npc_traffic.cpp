@@ -3,11 +3,12 @@
 // lane, facing its direction of travel (OpenDRIVE 1.8 §8.3 traffic rule), and drive at a speed
 // drawn per lane (8-14 m/s) under the car-following controller (or `--controller`);
 // pedestrians walk along a random sidewalk, either way, at 1.0-1.6 m/s. Places are drawn by
-// lane length over the whole map, at least 10 m (vehicles) or 2 m (pedestrians) from every
-// entity, their boxes at least 1 m (0.5 m) clear of every other box, and vehicles not in the
-// 60 m ahead of a scenario vehicle driving their way (its path). They are entities like any
-// other: trajectory rows, collisions, conditions, sensors. Generated traffic drives and walks
-// with the precautions of controllers/npc_caution.h.
+// lane length over the whole map (vehicles off junction roads), at least 10 m (vehicles; 6 m
+// once the lanes are full at 10 m) or 2 m (pedestrians) from every entity, their boxes at least
+// 1 m (0.5 m) clear of every other box, and vehicles not in the 60 m ahead of a scenario vehicle
+// driving their way (its path). They are entities like any other: trajectory rows, collisions,
+// conditions, sensors. Generated traffic drives and walks with the precautions of
+// controllers/npc_caution.h.
 
 #include <algorithm>
 #include <cmath>
@@ -25,8 +26,9 @@
 namespace corsa::engine::detail {
 namespace {
 
-constexpr double kVehicleClearance = 10.0;  // m
-constexpr double kWalkerClearance = 2.0;    // m
+constexpr double kVehicleClearance = 10.0;      // m
+constexpr double kVehicleTightClearance = 6.0;  // m, once the lanes are full at kVehicleClearance
+constexpr double kWalkerClearance = 2.0;        // m
 constexpr int kTriesPerNpc = 50;
 constexpr double kGridCell = 16.0;         // m, cells of the grid the clearances are looked up in
 constexpr double kVehicleBoxMargin = 1.0;  // m between boxes at the start
@@ -148,22 +150,39 @@ class Npcs final : public GeneratorBase {
   // NPCs are placed once; afterwards they drive and walk on their own.
   void step(SimState&) override {}
 
-  // Places up to `count` NPCs of one kind; returns how many fitted.
+  // Places up to `count` NPCs of one kind; returns how many fitted. When the lanes are full
+  // with vehicles kVehicleClearance apart, the rest go between them, kVehicleTightClearance
+  // apart (still off junctions, their boxes kVehicleBoxMargin clear).
   uint32_t place(SimState& state, bool walks, uint32_t count) {
+    const std::vector<Candidate> lanes = lanes_of(*state.map, walks);
+    Placed others(state);
+    if (walks) {
+      return place_on(state, others, lanes, true, kWalkerClearance, count, 0);
+    }
+    const uint32_t placed = place_on(state, others, lanes, false, kVehicleClearance, count, 0);
+    if (placed == count) {
+      return placed;
+    }
+    return place_on(state, others, lanes, false, kVehicleTightClearance, count, placed);
+  }
+
+ private:
+  // Draws places on `lanes` (by length), `clearance` from every entity, until `count` NPCs are
+  // placed (`placed` of them already) or kTriesPerNpc tries per NPC still to place have
+  // failed; returns how many are placed.
+  uint32_t place_on(SimState& state, Placed& others, const std::vector<Candidate>& lanes,
+                    bool walks, double clearance, uint32_t count, uint32_t placed) {
     const xodr::Map& map = *state.map;
-    const std::vector<Candidate> lanes = lanes_of(map, walks);
     if (lanes.empty()) {
-      return 0;
+      return placed;
     }
     std::vector<double> weights;
     for (const Candidate& c : lanes) {
       weights.push_back(c.s_end - c.s_begin);
     }
     const WeightedTable by_length(weights);
-    const double clearance = walks ? kWalkerClearance : kVehicleClearance;
-    Placed others(state);
-    uint32_t placed = 0;
-    for (uint32_t attempt = 0; placed < count && attempt < kTriesPerNpc * count; ++attempt) {
+    const uint32_t tries = kTriesPerNpc * (count - placed);
+    for (uint32_t attempt = 0; placed < count && attempt < tries; ++attempt) {
       const Candidate& c = lanes[by_length.draw(random_)];
       const double s = random_.uniform(c.s_begin + 2.0, c.s_end - 2.0);
       const bool right_hand = map.road(c.road).rule == xodr::TrafficRule::kRightHand;
@@ -199,7 +218,6 @@ class Npcs final : public GeneratorBase {
     return placed;
   }
 
- private:
   TrafficMix vehicles_;
   TrafficMix walkers_;
   Box vehicle_box_;
