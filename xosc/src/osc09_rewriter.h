@@ -101,6 +101,7 @@ class Osc09Rewriter {
   void road_network(Element* e);
   void entities(Element* e);
   void catalog_references(Element* e);
+  void entity_body(Element* entry);
   void vehicle(Element* e);
   void bounding_box(Element* e);
 
@@ -126,6 +127,10 @@ class Osc09Rewriter {
   void meeting(Element* e);
   void synchronize(Element* e);
   void position(Element* e);
+
+  // --- global actions (osc09_global.cpp) -------------------------------------------------------
+  void global_action(Element* e);
+  void environment(Element* e);
 
   ParseContext& ctx_;
   tinyxml2::XMLDocument& document_;
