@@ -12,9 +12,10 @@ namespace corsa::test {
 namespace {
 
 std::string criterion(const std::string& name, const std::string& ref) {
-  return "<Condition name=\"" + name + "\" delay=\"0\" conditionEdge=\"rising\">\n"
-         "<ByValueCondition><ParameterCondition parameterRef=\"" + ref +
-         "\" value=\"100\" rule=\"lessThan\"/></ByValueCondition>\n</Condition>\n";
+  return "<Condition name=\"" + name +
+         "\" delay=\"0\" conditionEdge=\"rising\">\n"
+         "<ByValueCondition><ParameterCondition parameterRef=\"" +
+         ref + "\" value=\"100\" rule=\"lessThan\"/></ByValueCondition>\n</Condition>\n";
 }
 
 const std::string kLate =
@@ -68,8 +69,7 @@ TEST_CASE("CARLA's criteria conditions never hold: their groups are left out",
   CHECK(stop->groups[0].conditions[0].name == "Late");
 }
 
-TEST_CASE("an undeclared parameter outside a criteria condition stays an error",
-          "[xosc][carla]") {
+TEST_CASE("an undeclared parameter outside a criteria condition stays an error", "[xosc][carla]") {
   ScenarioText text;
   text.stop = "<ConditionGroup>\n" + criterion("Collision", "") + "</ConditionGroup>\n";
   TempDir dir;
@@ -143,10 +143,9 @@ TEST_CASE("CARLA's 0.9 forms are read as 1.0", "[xosc][osc09][carla]") {
   REQUIRE(loaded.scenario);
   const auto& scenario = *loaded.scenario;
   const auto header = warning_with(loaded, "OpenSCENARIO 0.9 draft");
-  CHECK_THAT(header.message, Catch::Contains("SetEnvironment") &&
-                                 Catch::Contains("TimeOfDay Time/Date") &&
-                                 Catch::Contains("StandStill") &&
-                                 Catch::Contains("TraveledDistance"));
+  CHECK_THAT(header.message,
+             Catch::Contains("SetEnvironment") && Catch::Contains("TimeOfDay Time/Date") &&
+                 Catch::Contains("StandStill") && Catch::Contains("TraveledDistance"));
   // One ControllerCatalog: the DriverCatalog's, the other warned at its line.
   REQUIRE(scenario.catalog_locations.controller.has_value());
   CHECK(scenario.catalog_locations.controller->path == "Drivers");
