@@ -23,6 +23,15 @@ const std::string kLate =
     "<SimulationTimeCondition value=\"5\" rule=\"greaterThan\"/></ByValueCondition>\n"
     "</Condition>\n";
 
+// The first error of loading `xml` stands at the line of `at` and says `text`.
+void check_first_error(const std::string& xml, const std::string& at, const std::string& text) {
+  TempDir dir;
+  const Loaded loaded = lenient_load(dir, xml);
+  REQUIRE(!loaded.errors.empty());
+  CHECK(loaded.errors[0].line == line_of(xml, at));
+  CHECK_THAT(loaded.errors[0].message, Catch::Contains(text));
+}
+
 TEST_CASE("a LogicFile naming a CARLA town without extension is read as the town's .xodr",
           "[xosc][lenient][carla]") {
   ScenarioText text;
@@ -39,12 +48,7 @@ TEST_CASE("a LogicFile naming a CARLA town without extension is read as the town
 TEST_CASE("a town name with no .xodr beside it stays a located error", "[xosc][carla]") {
   ScenarioText text;
   text.road = "<LogicFile filepath=\"Town99\"/>";
-  const std::string xml = text.str();
-  TempDir dir;
-  const Loaded loaded = lenient_load(dir, xml);
-  REQUIRE(!loaded.errors.empty());
-  CHECK(loaded.errors[0].line == line_of(xml, "<LogicFile"));
-  CHECK_THAT(loaded.errors[0].message, Catch::Contains("map file 'Town99' not found"));
+  check_first_error(text.str(), "<LogicFile", "map file 'Town99' not found");
 }
 
 TEST_CASE("CARLA's criteria conditions never hold: their groups are left out",
@@ -72,12 +76,7 @@ TEST_CASE("CARLA's criteria conditions never hold: their groups are left out",
 TEST_CASE("an undeclared parameter outside a criteria condition stays an error", "[xosc][carla]") {
   ScenarioText text;
   text.stop = "<ConditionGroup>\n" + criterion("Collision", "") + "</ConditionGroup>\n";
-  TempDir dir;
-  const std::string xml = text.str();
-  const Loaded loaded = lenient_load(dir, xml);
-  REQUIRE(!loaded.errors.empty());
-  CHECK(loaded.errors[0].line == line_of(xml, "<ParameterCondition"));
-  CHECK_THAT(loaded.errors[0].message, Catch::Contains("undefined parameter ''"));
+  check_first_error(text.str(), "<ParameterCondition", "undefined parameter ''");
 }
 
 TEST_CASE("a criteria condition on a declared parameter is an ordinary condition",

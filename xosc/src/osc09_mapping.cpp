@@ -53,6 +53,16 @@ void Osc09Rewriter::rename(Element* e, const char* name) {
   e->SetName(name);
 }
 
+// 0.9 named a parameter `name="$X"` where 1.0 writes `parameterRef="X"`.
+void Osc09Rewriter::parameter_ref(Element* e) {
+  move_attribute(e, "name", "parameterRef");
+  const char* ref = e->Attribute("parameterRef");
+  if (ref != nullptr && ref[0] == '$' && ref[1] != '\0') {
+    const std::string bare = ref + 1;
+    e->SetAttribute("parameterRef", bare.c_str());
+  }
+}
+
 void Osc09Rewriter::move_attribute(Element* e, const char* from, const char* to) {
   const char* value = e->Attribute(from);
   if (value == nullptr) return;
@@ -330,12 +340,7 @@ void Osc09Rewriter::catalog_references(Element* e) {
       rename(assignments, "ParameterAssignments");
       for (Element* p : osc09_children(assignments, "Parameter")) {
         rename(p, "ParameterAssignment");
-        move_attribute(p, "name", "parameterRef");
-        const char* ref = p->Attribute("parameterRef");
-        if (ref != nullptr && ref[0] == '$' && ref[1] != '\0') {
-          const std::string bare = ref + 1;
-          p->SetAttribute("parameterRef", bare.c_str());
-        }
+        parameter_ref(p);
         // The entry's parameter holds a 1.0 word once its catalog is mapped; a 0.9 rule word
         // assigned to it is read as its 1.0 word. The other 0.9 words (any, overwrite, ...) are
         // also text a string parameter may mean, and stay.

@@ -38,6 +38,7 @@ class Osc09Rewriter {
   void note(const std::string& form);
   void rename(Element* e, const char* name);
   static void move_attribute(Element* e, const char* from, const char* to);
+  static void parameter_ref(Element* e);
   static void default_attribute(Element* e, const char* name, const char* value);
   Element* new_element(const char* name, const Element* line_of);
   Element* wrap(Element* e, const char* name);

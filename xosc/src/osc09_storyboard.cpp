@@ -189,12 +189,7 @@ void Osc09Rewriter::condition(Element* e) {
     }
     for (Element* c : osc09_children(by_value, "Parameter")) {
       rename(c, "ParameterCondition");
-      move_attribute(c, "name", "parameterRef");
-      const char* ref = c->Attribute("parameterRef");
-      if (ref != nullptr && ref[0] == '$' && ref[1] != '\0') {
-        const std::string bare = ref + 1;
-        c->SetAttribute("parameterRef", bare.c_str());
-      }
+      parameter_ref(c);
       rule(c);
     }
   } else if (Element* by_state = e->FirstChildElement("ByState")) {
