@@ -85,14 +85,37 @@ TrafficSignalController parse_signal_controller(ParseContext& ctx, const Element
   return controller;
 }
 
+// The map a LogicFile names. CARLA's scenarios name a CARLA town ("Town04"), which CARLA loads
+// by name: a path without extension that names no file is read as the same path with ".xodr"
+// when that file exists (found as any map file is, from the scenario's folder and above).
+std::filesystem::path resolve_map_path(ParseContext& ctx, const Element* logic,
+                                       const std::string& filepath) {
+  std::filesystem::path path =
+      resolve_named_path(ctx, logic, filepath, PathKind::kFile, "map file");
+  std::error_code error;
+  if (!ctx.options().check_files || filepath.empty() ||
+      !std::filesystem::path(filepath).extension().empty() ||
+      std::filesystem::is_regular_file(path, error)) {
+    return path;
+  }
+  const std::string named = filepath + ".xodr";
+  std::filesystem::path candidate =
+      resolve_named_path(ctx, logic, named, PathKind::kFile, "map file");
+  if (!std::filesystem::is_regular_file(candidate, error)) return path;
+  ctx.lenient(logic,
+              "map file '" + clip(filepath) + "' has no extension and names no file (a CARLA " +
+                  "town name: CARLA loads its maps by name)",
+              "'" + clip(named) + "', " + clip(candidate.string()));
+  return candidate;
+}
+
 RoadNetwork parse_road_network(ParseContext& ctx, const Element* e) {
   Children kids(ctx, e, "RoadNetwork");
   RoadNetwork network;
   network.source = ctx.source(e);
   if (const Element* logic = kids.opt("LogicFile")) {
     network.logic_file = parse_file(ctx, logic);
-    network.logic_file_path =
-        resolve_named_path(ctx, logic, network.logic_file->filepath, PathKind::kFile, "map file");
+    network.logic_file_path = resolve_map_path(ctx, logic, network.logic_file->filepath);
     std::error_code error;
     if (ctx.options().check_files &&
         !std::filesystem::is_regular_file(network.logic_file_path, error)) {

@@ -53,6 +53,16 @@ void Osc09Rewriter::rename(Element* e, const char* name) {
   e->SetName(name);
 }
 
+// 0.9 named a parameter `name="$X"` where 1.0 writes `parameterRef="X"`.
+void Osc09Rewriter::parameter_ref(Element* e) {
+  move_attribute(e, "name", "parameterRef");
+  const char* ref = e->Attribute("parameterRef");
+  if (ref != nullptr && ref[0] == '$' && ref[1] != '\0') {
+    const std::string bare = ref + 1;
+    e->SetAttribute("parameterRef", bare.c_str());
+  }
+}
+
 void Osc09Rewriter::move_attribute(Element* e, const char* from, const char* to) {
   const char* value = e->Attribute(from);
   if (value == nullptr) return;
@@ -264,17 +274,31 @@ void Osc09Rewriter::scenario(Element* root) {
   catalog_references(root);
 }
 
-// 0.9 allowed an empty catalog element for "no catalog"; its DriverCatalog became 1.0's
-// ControllerCatalog.
+// 0.9 allowed an empty catalog element for "no catalog"; its DriverCatalog and
+// PedestrianControllerCatalog became 1.0's one ControllerCatalog: the first of them given is
+// kept, a second is left out with a warning.
 void Osc09Rewriter::catalog_locations(Element* e) {
   rename(e, "CatalogLocations");
+  const Element* controllers = nullptr;
   for (Element* c : osc09_children(e)) {
+    const std::string_view name = c->Name();
     if (c->FirstChildElement("Directory") == nullptr) {
       e->DeleteChild(c);
-    } else if (std::string_view(c->Name()) == "DriverCatalog") {
-      rename(c, "ControllerCatalog");
+    } else if (name == "DriverCatalog" || name == "PedestrianControllerCatalog") {
+      if (controllers != nullptr) {
+        ctx_.lenient(c,
+                     "<" + std::string(name) + "> beside <" + controllers->Value() +
+                         "> (1.0 has one ControllerCatalog for both)",
+                     "the ControllerCatalog of <" + std::string(controllers->Value()) + ">, line " +
+                         std::to_string(controllers->GetLineNum()) + "; this one left out");
+        e->DeleteChild(c);
+        continue;
+      }
+      note(c->Name());
+      controllers = c;
     }
   }
+  if (controllers != nullptr) const_cast<Element*>(controllers)->SetName("ControllerCatalog");
 }
 
 void Osc09Rewriter::road_network(Element* e) {
@@ -294,7 +318,13 @@ void Osc09Rewriter::entities(Element* e) {
         object->DeleteChild(properties);
       }
     }
-    for (Element* vehicle : osc09_children(object, "Vehicle")) this->vehicle(vehicle);
+    for (Element* entry : osc09_children(object)) {
+      const std::string_view name = entry->Name();
+      if (name == "Vehicle" || name == "Pedestrian" || name == "MiscObject") {
+        const Osc09ScopeGuard scope(*this, entry, false);
+        entity_body(entry);
+      }
+    }
   }
 }
 
@@ -310,12 +340,7 @@ void Osc09Rewriter::catalog_references(Element* e) {
       rename(assignments, "ParameterAssignments");
       for (Element* p : osc09_children(assignments, "Parameter")) {
         rename(p, "ParameterAssignment");
-        move_attribute(p, "name", "parameterRef");
-        const char* ref = p->Attribute("parameterRef");
-        if (ref != nullptr && ref[0] == '$' && ref[1] != '\0') {
-          const std::string bare = ref + 1;
-          p->SetAttribute("parameterRef", bare.c_str());
-        }
+        parameter_ref(p);
         // The entry's parameter holds a 1.0 word once its catalog is mapped; a 0.9 rule word
         // assigned to it is read as its 1.0 word. The other 0.9 words (any, overwrite, ...) are
         // also text a string parameter may mean, and stay.
@@ -346,18 +371,12 @@ void Osc09Rewriter::catalog(Element* catalog) {
   for (Element* entry : osc09_children(catalog)) {
     const Osc09ScopeGuard scope(*this, entry, true);
     const std::string_view name = entry->Name();
-    if (name == "Vehicle") {
-      vehicle(entry);
+    if (name == "Vehicle" || name == "Pedestrian" || name == "MiscObject") {
+      entity_body(entry);
     } else if (name == "Driver") {
       // 1.0's Controller describes no driver: the Description goes.
       rename(entry, "Controller");
       for (Element* d : osc09_children(entry, "Description")) entry->DeleteChild(d);
-    } else if (name == "Pedestrian") {
-      move_attribute(entry, "category", "pedestrianCategory");
-      for (Element* box : osc09_children(entry, "BoundingBox")) bounding_box(box);
-    } else if (name == "MiscObject") {
-      move_attribute(entry, "category", "miscObjectCategory");
-      for (Element* box : osc09_children(entry, "BoundingBox")) bounding_box(box);
     } else if (name == "Maneuver") {
       for (Element* event : osc09_children(entry, "Event")) this->event(entry, event);
     } else if (name == "Route") {
@@ -368,6 +387,19 @@ void Osc09Rewriter::catalog(Element* catalog) {
     }
   }
   catalog_references(catalog);
+}
+
+// A Vehicle, Pedestrian or MiscObject, in a catalog or in the scenario's Entities (its
+// ParameterDeclaration mapped by the caller's scope).
+void Osc09Rewriter::entity_body(Element* entry) {
+  const std::string_view name = entry->Name();
+  if (name == "Vehicle") {
+    vehicle(entry);
+    return;
+  }
+  move_attribute(entry, "category",
+                 name == "Pedestrian" ? "pedestrianCategory" : "miscObjectCategory");
+  for (Element* box : osc09_children(entry, "BoundingBox")) bounding_box(box);
 }
 
 // 0.9's Performance carried the mass, 1.1 puts it on the Vehicle (Performance's maxAcceleration,

@@ -38,6 +38,7 @@ class Osc09Rewriter {
   void note(const std::string& form);
   void rename(Element* e, const char* name);
   static void move_attribute(Element* e, const char* from, const char* to);
+  static void parameter_ref(Element* e);
   static void default_attribute(Element* e, const char* name, const char* value);
   Element* new_element(const char* name, const Element* line_of);
   Element* wrap(Element* e, const char* name);
@@ -101,6 +102,7 @@ class Osc09Rewriter {
   void road_network(Element* e);
   void entities(Element* e);
   void catalog_references(Element* e);
+  void entity_body(Element* entry);
   void vehicle(Element* e);
   void bounding_box(Element* e);
 
@@ -126,6 +128,10 @@ class Osc09Rewriter {
   void meeting(Element* e);
   void synchronize(Element* e);
   void position(Element* e);
+
+  // --- global actions (osc09_global.cpp) -------------------------------------------------------
+  void global_action(Element* e);
+  void environment(Element* e);
 
   ParseContext& ctx_;
   tinyxml2::XMLDocument& document_;

@@ -9,6 +9,7 @@ void Osc09Rewriter::storyboard(Element* e) {
   storyboard_ = e;
   if (Element* init = e->FirstChildElement("Init")) {
     if (Element* actions = init->FirstChildElement("Actions")) {
+      for (Element* g : osc09_children(actions, "Global")) global_action(g);
       for (Element* p : osc09_children(actions, "Private")) {
         move_attribute(p, "object", "entityRef");
         for (Element* action : osc09_children(p, "Action")) {
@@ -21,6 +22,13 @@ void Osc09Rewriter::storyboard(Element* e) {
   }
   for (Element* story : osc09_children(e, "Story")) this->story(story);
   for (Element* end : osc09_children(e, "End")) trigger(end, "StopTrigger");
+  // CARLA's 0.9 scenarios name the Storyboard's End "EndConditions" (scenario_runner's reader
+  // takes its evaluation criteria from there); its conditions are read as End's.
+  for (Element* end : osc09_children(e, "EndConditions")) {
+    ctx_.lenient(end, "<EndConditions> in a 0.9 <Storyboard> (0.9 calls it <End>)",
+                 "End: the Storyboard's StopTrigger");
+    trigger(end, "StopTrigger");
+  }
 }
 
 // 0.9's Story owner is the entity `$owner` names inside the story.
@@ -105,7 +113,7 @@ void Osc09Rewriter::event(Element* maneuver, Element* e) {
         quits = true;
         e->DeleteChild(action);
       } else {
-        rename(g, "GlobalAction");
+        global_action(g);
       }
     }
   }
@@ -177,6 +185,11 @@ void Osc09Rewriter::condition(Element* e) {
     rename(by_value, "ByValueCondition");
     for (Element* c : osc09_children(by_value, "SimulationTime")) {
       rename(c, "SimulationTimeCondition");
+      rule(c);
+    }
+    for (Element* c : osc09_children(by_value, "Parameter")) {
+      rename(c, "ParameterCondition");
+      parameter_ref(c);
       rule(c);
     }
   } else if (Element* by_state = e->FirstChildElement("ByState")) {
@@ -260,6 +273,17 @@ void Osc09Rewriter::entity_condition(Element* e) {
       rename(c, "TimeHeadwayCondition");
       move_attribute(c, "entity", "entityRef");
       rule(c);
+    } else if (name == "RelativeSpeed") {
+      rename(c, "RelativeSpeedCondition");
+      move_attribute(c, "entity", "entityRef");
+      rule(c);
+    } else if (name == "Speed" || name == "Acceleration") {
+      rename(c, name == "Speed" ? "SpeedCondition" : "AccelerationCondition");
+      rule(c);
+    } else if (name == "StandStill" || name == "TraveledDistance" || name == "EndOfRoad" ||
+               name == "Offroad") {
+      // The same attributes in 1.0 (duration; TraveledDistance's value).
+      rename(c, (std::string(name) + "Condition").c_str());
     }
   }
 }

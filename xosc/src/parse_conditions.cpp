@@ -285,6 +285,23 @@ Condition parse_condition(ParseContext& ctx, const Element* e) {
   return condition;
 }
 
+// CARLA's scenario_runner writes its evaluation criteria (collision, driven distance, ...) as
+// conditions named "criteria_..." of a ParameterCondition on a parameter nobody declares
+// (`parameterRef=""`, `"distance_success"`); it takes them out of the trigger and evaluates them
+// as pass/fail tests. Such a condition never holds here, and neither does its group.
+bool carla_criterion(ParseContext& ctx, const Element* condition) {
+  const char* name = condition->Attribute("name");
+  if (name == nullptr || !std::string_view(name).starts_with("criteria_")) return false;
+  const Element* by_value = condition->FirstChildElement("ByValueCondition");
+  const Element* c = by_value == nullptr ? nullptr : by_value->FirstChildElement();
+  if (c == nullptr || std::string_view(c->Name()) != "ParameterCondition" ||
+      c->Attribute("parameterRef") == nullptr || !ctx.record_entities) {
+    return false;
+  }
+  const std::string ref = ctx.parameter_name(c, "parameterRef");
+  return !ctx.global_parameters.contains(ref) && !ctx.parameter_visible(ref);
+}
+
 }  // namespace
 
 Trigger parse_trigger(ParseContext& ctx, const Element* e) {
@@ -295,10 +312,20 @@ Trigger parse_trigger(ParseContext& ctx, const Element* e) {
     Children group_kids(ctx, group, "ConditionGroup");
     ConditionGroup value;
     value.source = ctx.source(group);
+    bool criterion = false;
     for (const Element* condition : group_kids.at_least("Condition", 1)) {
+      if (carla_criterion(ctx, condition)) {
+        criterion = true;
+        ctx.lenient(condition,
+                    "condition '" + clip(condition->Attribute("name")) +
+                        "' is a CARLA evaluation criterion (a ParameterCondition on an " +
+                        "undeclared parameter)",
+                    "a condition that never holds: its ConditionGroup is left out");
+        continue;
+      }
       ctx.recover([&] { value.conditions.push_back(parse_condition(ctx, condition)); });
     }
-    trigger.groups.push_back(std::move(value));
+    if (!criterion) trigger.groups.push_back(std::move(value));
   }
   return trigger;
 }

@@ -241,10 +241,38 @@ ActivateControllerAction parse_activate_controller(ParseContext& ctx, const Elem
   return action;
 }
 
-PrivateAction parse_controller_action(ParseContext& ctx, const Element* e) {
+const Element* controller_override_pair(const Element* private_action) {
+  const Element* c = private_action->FirstChildElement("ControllerAction");
+  if (c == nullptr || c->FirstChildElement("AssignControllerAction") == nullptr) return nullptr;
+  const Element* override_values = c->FirstChildElement("OverrideControllerValueAction");
+  int children = 0;
+  for (const Element* k = c->FirstChildElement(); k != nullptr; k = k->NextSiblingElement()) {
+    ++children;
+  }
+  return children == 2 ? override_values : nullptr;
+}
+
+PrivateAction parse_controller_override(ParseContext& ctx, const Element* e) {
+  return parse_override(ctx, e);
+}
+
+PrivateAction parse_controller_action(ParseContext& ctx, const Element* e, bool in_init) {
   Children kids(ctx, e, "ControllerAction");
-  // 1.0 allowed AssignControllerAction and OverrideControllerValueAction together; 1.1+ makes it
-  // a choice. A single child is the common case.
+  // 1.0's ControllerAction holds an AssignControllerAction and an OverrideControllerValueAction
+  // together (both required); 1.1 made it a choice. In Init the pair is two actions (the caller
+  // adds the override, controller_override_pair); an Action of an event holds one action, so
+  // there the override is checked and left out, a lenient reading.
+  if (const Element* override_values = controller_override_pair(e->Parent()->ToElement())) {
+    PrivateAction assign = parse_assign_controller(ctx, kids.one("AssignControllerAction"));
+    parse_override(ctx, kids.opt("OverrideControllerValueAction"));
+    if (!in_init) {
+      ctx.lenient(override_values,
+                  "OpenSCENARIO 1.0 <OverrideControllerValueAction> beside an "
+                  "<AssignControllerAction> in an event's Action",
+                  "the AssignControllerAction alone: the override is not applied");
+    }
+    return assign;
+  }
   const Element* a = kids.choice();
   const std::string_view name = a->Name();
   if (name == "AssignControllerAction") return parse_assign_controller(ctx, a);

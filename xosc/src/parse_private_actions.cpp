@@ -5,7 +5,7 @@
 
 namespace corsa::xosc {
 
-PrivateAction parse_controller_action(ParseContext& ctx, const Element* e);
+PrivateAction parse_controller_action(ParseContext& ctx, const Element* e, bool in_init);
 ActivateControllerAction parse_activate_controller(ParseContext& ctx, const Element* e);
 PrivateAction parse_appearance_action(ParseContext& ctx, const Element* e);
 PrivateAction parse_trailer_action(ParseContext& ctx, const Element* e);
@@ -392,7 +392,7 @@ PrivateAction parse_routing(ParseContext& ctx, const Element* e) {
 
 }  // namespace
 
-PrivateAction parse_private_action(ParseContext& ctx, const Element* e) {
+PrivateAction parse_private_action(ParseContext& ctx, const Element* e, bool in_init) {
   Children kids(ctx, e, "PrivateAction");
   const Element* a = kids.choice();
   const std::string_view name = a->Name();
@@ -405,7 +405,7 @@ PrivateAction parse_private_action(ParseContext& ctx, const Element* e) {
                    "<ControllerAction><ActivateControllerAction>");
     return parse_activate_controller(ctx, a);
   }
-  if (name == "ControllerAction") return parse_controller_action(ctx, a);
+  if (name == "ControllerAction") return parse_controller_action(ctx, a, in_init);
   if (name == "TeleportAction") {
     Children teleport_kids(ctx, a, "TeleportAction");
     return TeleportAction{parse_position(ctx, teleport_kids.one("Position")), ctx.source(a)};

@@ -257,7 +257,12 @@ Init parse_init(ParseContext& ctx, const Element* e) {
       entry.entity_ref = ctx.req_str(p, "entityRef");
       ctx.use_entity(p, entry.entity_ref, "entityRef");
       for (const Element* action : private_kids.at_least("PrivateAction", 1)) {
-        ctx.recover([&] { entry.actions.push_back(parse_private_action(ctx, action)); });
+        ctx.recover([&] { entry.actions.push_back(parse_private_action(ctx, action, true)); });
+        // A 1.0 ControllerAction's override, after its AssignControllerAction.
+        if (const Element* override_values = controller_override_pair(action)) {
+          ctx.recover(
+              [&] { entry.actions.push_back(parse_controller_override(ctx, override_values)); });
+        }
       }
       entry.source = ctx.source(p);
       init.privates.push_back(std::move(entry));

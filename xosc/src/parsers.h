@@ -75,7 +75,13 @@ Environment parse_environment(ParseContext& ctx, const Element* element,
                               const EntryScope& scope = {});
 
 // actions
-PrivateAction parse_private_action(ParseContext& ctx, const Element* element);
+/// `in_init`: an Init Private's action, where a 1.0 ControllerAction pair is two actions (the
+/// caller adds the override: controller_override_pair, parse_controller_override).
+PrivateAction parse_private_action(ParseContext& ctx, const Element* element, bool in_init = false);
+/// The OverrideControllerValueAction of a 1.0 ControllerAction holding it beside an
+/// AssignControllerAction, in this PrivateAction; null otherwise.
+const Element* controller_override_pair(const Element* private_action);
+PrivateAction parse_controller_override(ParseContext& ctx, const Element* e);
 GlobalAction parse_global_action(ParseContext& ctx, const Element* element);
 UserDefinedAction parse_user_defined_action(ParseContext& ctx, const Element* element);
 TrafficDistribution parse_traffic_distribution(ParseContext& ctx, const Element* element);
