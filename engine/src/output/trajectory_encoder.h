@@ -208,7 +208,8 @@ class TrajectoryEncoder {
     /// the same row again, and needs neither to be made nor a record.
     bool steady = false;
     /// on_road while steady, else kUnsteady or more (which no row's on-road flag is): the skip pass
-    /// tests steadiness and the road flag in one comparison. Kept by set_steady.
+    /// tests steadiness and the road flag in one comparison. Kept by set_steady, and set to
+    /// kBelowDecimals by takes_below_decimals.
     uint8_t steady_road = kUnsteady;
     int lane = 0;
     uint32_t road = 0;
@@ -242,6 +243,11 @@ class TrajectoryEncoder {
       return steady && row_placed(row) && repeats(row);
     }
     static constexpr uint8_t kUnsteady = 2;
+    /// steady_road of a steady track whose last row moved below its decimals (a standing
+    /// entity whose pose is recomputed at each step: its next row most likely moves so again).
+    /// The skip pass, whose comparison of the bits would fail, then leaves the row to
+    /// take_below_decimals at once; a row that repeats the bits there returns it to on_road.
+    static constexpr uint8_t kBelowDecimals = 4;
     /// Sets steady, `on_road_now` being on_road (kUnsteady and kUnsteady + 1 are both no row's
     /// flag: no branch on `now`).
     void set_steady(bool now, bool on_road_now) {
@@ -285,15 +291,23 @@ class TrajectoryEncoder {
     /// needs no record and the track stays steady: what encode would do, without its work (a
     /// standing entity whose pose is recomputed at every step moves only below its decimals).
     /// While steady, every field taken (s and t on a road) is still, with `last` its units.
-    template <class Row>
+    /// `kMark`: steady_road says whether the row moved below its decimals (for the skip pass;
+    /// kBelowDecimals is only a hint, that a track without it keeps).
+    template <bool kMark, class Row>
     bool takes_below_decimals(const Row& row) {
       if (row_on_road(row) != on_road ||
           (on_road && (row_road(row) != road || row_lane(row) != lane))) {
         return false;
       }
+      if constexpr (kMark) {
+        // kBelowDecimals once a number's bits differ (prints_as_last), as the row is taken.
+        // (When it is not, encode sets steady_road.)
+        steady_road = static_cast<uint8_t>(on_road);
+      }
       const bool close =
-          prints_as_last<kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed>(row) &&
-          (!on_road || prints_as_last<kFieldS, kFieldT>(row));
+          prints_as_last<kMark, kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed>(
+              row) &&
+          (!on_road || prints_as_last<kMark, kFieldS, kFieldT>(row));
       if (!close) {
         return false;
       }
@@ -303,14 +317,24 @@ class TrajectoryEncoder {
       }
       return true;
     }
-    template <int... F, class Row>
-    bool prints_as_last(const Row& row) const {
+    template <bool kMark, int... F, class Row>
+    bool prints_as_last(const Row& row) {
+      return (field_prints_as_last<kMark, F>(row) && ...);
+    }
+    /// Whether field F of `row` prints as its last value: the same bits, or else (steady_road
+    /// then kBelowDecimals, with kMark) within half a unit of its last decimal.
+    template <bool kMark, int F, class Row>
+    bool field_prints_as_last(const Row& row) {
+      if (differs<F>(row) == 0) {
+        return true;
+      }
+      if constexpr (kMark) {
+        steady_road = kBelowDecimals;
+      }
       // Exact as in encode: `last` is an integer below 9e15 and a value within half a unit of it
       // has it as its rounding (a NaN or a value far off fails the test).
-      return ((differs<F>(row) == 0 ||
-               std::fabs(row_value<F>(row) * decimal_text::kScale[kFieldDecimals[F]] -
-                         static_cast<double>(last[F])) < 0.5) &&
-              ...);
+      return std::fabs(row_value<F>(row) * decimal_text::kScale[kFieldDecimals[F]] -
+                       static_cast<double>(last[F])) < 0.5;
     }
     template <int... F, class Row>
     void take_bits(const Row& row) {
@@ -361,7 +385,8 @@ class TrajectoryEncoder {
     for (uint32_t k = 0; k < kept; ++k) {
       const uint32_t i = pending[k];
       Track& track = tracks[i];
-      if (!track.steady || !row_placed(rows[i]) || !track.takes_below_decimals(rows[i])) {
+      if (!track.steady || !row_placed(rows[i]) ||
+          !track.template takes_below_decimals<true>(rows[i])) {
         pending[left++] = i;
       }
     }
