@@ -166,13 +166,14 @@ inline void BinaryTrajectoryRecorder::State::capture(const Simulation& simulatio
     return;
   }
   // Straight from the states, no copy: the encoder is done with them before the next step.
-  const EntityStates states = simulation.states();
-  if (named_entities < states.size()) [[unlikely]] {
-    name_entities(simulation, states.size());
+  // (The rows made where they are passed: a copy of the states less.)
+  const detail::EntityStateRows rows{simulation.states(), &simulation};
+  const size_t count = rows.states.size();
+  if (named_entities < count) [[unlikely]] {
+    name_entities(simulation, count);
   }
   const uint32_t coded =
-      encoder.record(dt, {tick, simulation.time(), static_cast<uint32_t>(states.size())},
-                     detail::EntityStateRows{states, &simulation});
+      encoder.record(dt, {tick, simulation.time(), static_cast<uint32_t>(count)}, rows);
   if (thread == RecordingThread::kAuto) {
     window_rows += coded;
     if (++window_ticks == kAutoWindowTicks) [[unlikely]] {

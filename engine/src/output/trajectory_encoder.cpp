@@ -264,7 +264,7 @@ uint32_t TrajectoryEncoder::code_every_row(const Rows& rows, uint32_t count) {
       continue;
     }
     ++coded;
-    if (track.steady && row_placed(row) && track.takes_below_decimals(row)) {
+    if (track.steady && row_placed(row) && track.template takes_below_decimals<false>(row)) {
       continue;
     }
     encode(i, track, row, previous);

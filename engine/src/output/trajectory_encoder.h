@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -65,7 +66,7 @@ inline void copy_row(TrajectoryRowCopy& row, const EntityState& state) {
 // A row's inputs as the encoder reads them, from a copy or from the entity's state: field F's
 // value (s and t only while on a road), presence, road and lane.
 template <int F>
-inline double row_value(const TrajectoryRowCopy& row) {
+inline const double& row_value(const TrajectoryRowCopy& row) {
   return row.values[F];
 }
 inline bool row_placed(const TrajectoryRowCopy& row) { return row.placed; }
@@ -74,7 +75,7 @@ inline uint32_t row_road(const TrajectoryRowCopy& row) { return row.road; }
 inline int32_t row_lane(const TrajectoryRowCopy& row) { return row.lane; }
 
 template <int F>
-inline double row_value(const EntityState& state) {
+inline const double& row_value(const EntityState& state) {
   static_assert(F >= 0 && F < kRowFields);
   if constexpr (F == kFieldX) {
     return state.pose.x;
@@ -100,6 +101,15 @@ inline bool row_placed(const EntityState& state) { return state.placed; }
 inline bool row_on_road(const EntityState& state) { return state.road.has_value(); }
 inline uint32_t row_road(const EntityState& state) { return state.road->road; }
 inline int32_t row_lane(const EntityState& state) { return state.road->lane; }
+/// Field F's bits, read as an integer: where they are only compared, without the detour through
+/// a vector register that a read of the double takes (Track::takes_below_decimals's test of a
+/// number that keeps its bits: three instructions against four).
+template <int F, class Row>
+inline uint64_t row_bits(const Row& row) {
+  uint64_t bits = 0;
+  std::memcpy(&bits, &row_value<F>(row), sizeof bits);
+  return bits;
+}
 
 /// Whether the row's x to speed (fields 0 to kFieldS - 1) are `bits`' first seven, bit for bit:
 /// their differences gathered without a branch, so that a standing entity costs one test.
@@ -202,17 +212,20 @@ class TrajectoryEncoder {
   /// the entity besides its row: between two recorded ticks the simulation's own data push
   /// most of it out of the first-level cache, so every byte more is a miss more.
   struct Track {
+    /// The road and lane (first, at offsets 0 and 8 as in RoadCoordinates: the skip pass
+    /// compares them with a row's in one vector).
+    uint32_t road = 0;
+    uint32_t fresh = trajectory_codec::kFieldBits;  ///< fields predicted 0 (history afresh)
+    int lane = 0;
     bool present = false;
     bool on_road = false;
     /// The last row repeats its prediction: a row of the same inputs (bits, road and lane) is
     /// the same row again, and needs neither to be made nor a record.
     bool steady = false;
     /// on_road while steady, else kUnsteady or more (which no row's on-road flag is): the skip pass
-    /// tests steadiness and the road flag in one comparison. Kept by set_steady.
+    /// tests steadiness and the road flag in one comparison. Kept by set_steady, and set to
+    /// kBelowDecimals by takes_below_decimals.
     uint8_t steady_road = kUnsteady;
-    int lane = 0;
-    uint32_t road = 0;
-    uint32_t fresh = trajectory_codec::kFieldBits;  ///< fields predicted 0 (history afresh)
     /// The bits of the fields' last values (16-byte aligned: same_motion reads them in pairs).
     alignas(16) std::array<uint64_t, kRowFields> bits{};
     std::array<int64_t, kRowFields> last{};  ///< the value last taken
@@ -242,6 +255,11 @@ class TrajectoryEncoder {
       return steady && row_placed(row) && repeats(row);
     }
     static constexpr uint8_t kUnsteady = 2;
+    /// steady_road of a steady track whose last row moved below its decimals (a standing
+    /// entity whose pose is recomputed at each step: its next row most likely moves so again).
+    /// The skip pass, whose comparison of the bits would fail, then leaves the row to
+    /// take_below_decimals at once; a row that repeats the bits there returns it to on_road.
+    static constexpr uint8_t kBelowDecimals = 4;
     /// Sets steady, `on_road_now` being on_road (kUnsteady and kUnsteady + 1 are both no row's
     /// flag: no branch on `now`).
     void set_steady(bool now, bool on_road_now) {
@@ -257,21 +275,24 @@ class TrajectoryEncoder {
 #if defined(__SSE2__)
     bool passes(const EntityState& state) const {
       static_assert(offsetof(RoadCoordinates, t) == offsetof(RoadCoordinates, s) + 8);
+      static_assert(offsetof(RoadCoordinates, road) == 0 && offsetof(RoadCoordinates, lane) == 8);
       if (static_cast<uint8_t>(state.road.has_value()) != steady_road || !state.placed) {
         return false;
       }
       __m128i difference = motion_difference(state, bits.data());
-      uint64_t place = 0;
       if (on_road) {
+        const auto* place = reinterpret_cast<const __m128i*>(&*state.road);
         difference = _mm_or_si128(
             difference,
-            _mm_xor_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(&state.road->s)),
+            _mm_xor_si128(_mm_loadu_si128(place + 1),
                           _mm_loadu_si128(reinterpret_cast<const __m128i*>(&bits[kFieldS]))));
-        place = uint64_t{state.road->road ^ road} | static_cast<uint32_t>(state.road->lane ^ lane);
+        // The road and the lane, this track's first and third words (the second and fourth, the
+        // section and padding there, fresh and the flags here, masked off).
+        const __m128i words = _mm_xor_si128(_mm_loadu_si128(place),
+                                            _mm_load_si128(reinterpret_cast<const __m128i*>(this)));
+        difference = _mm_or_si128(difference, _mm_and_si128(words, _mm_set_epi32(0, -1, 0, -1)));
       }
-      const auto same =
-          static_cast<uint32_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(difference, _mm_setzero_si128())));
-      return ((same ^ 0xffffu) | place) == 0;
+      return _mm_movemask_epi8(_mm_cmpeq_epi8(difference, _mm_setzero_si128())) == 0xffff;
     }
 #endif
     template <int F, class Row>
@@ -281,43 +302,56 @@ class TrajectoryEncoder {
 
     /// For a steady track and placed `row` on its road and lane: whether every number of `row`
     /// prints as the last row's (each either the same bits or within half a unit of its last
-    /// decimal, encode's test for a still field), and if so takes the row's bits. The row then
-    /// needs no record and the track stays steady: what encode would do, without its work (a
-    /// standing entity whose pose is recomputed at every step moves only below its decimals).
-    /// While steady, every field taken (s and t on a road) is still, with `last` its units.
-    template <class Row>
+    /// decimal, encode's test for a still field), taking the bits of each number that differ.
+    /// The row then needs no record and the track stays steady: what encode would do, without
+    /// its work (a standing entity whose pose is recomputed at every step moves only below its
+    /// decimals). While steady, every field taken (s and t on a road) is still, with `last` its
+    /// units. (When a number does not print so, the row goes to encode, whose test of the numbers
+    /// before it would have taken the same bits: taken here already, they are as predicted there.)
+    /// `kMark`: steady_road says whether the row moved below its decimals (for the skip pass;
+    /// kBelowDecimals is only a hint, that a track without it keeps).
+    template <bool kMark, class Row>
     bool takes_below_decimals(const Row& row) {
       if (row_on_road(row) != on_road ||
           (on_road && (row_road(row) != road || row_lane(row) != lane))) {
         return false;
       }
-      const bool close =
-          prints_as_last<kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed>(row) &&
-          (!on_road || prints_as_last<kFieldS, kFieldT>(row));
-      if (!close) {
-        return false;
+      if constexpr (kMark) {
+        // kBelowDecimals once a number's bits differ (prints_as_last), as the row is taken.
+        // (When it is not, encode sets steady_road.)
+        steady_road = static_cast<uint8_t>(on_road);
       }
-      take_bits<kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR, kFieldSpeed>(row);
-      if (on_road) {
-        take_bits<kFieldS, kFieldT>(row);
-      }
-      return true;
+      return prints_as_last<kMark, kFieldX, kFieldY, kFieldZ, kFieldH, kFieldP, kFieldR,
+                            kFieldSpeed>(row) &&
+             (!on_road || prints_as_last<kMark, kFieldS, kFieldT>(row));
     }
-    template <int... F, class Row>
-    bool prints_as_last(const Row& row) const {
+    template <bool kMark, int... F, class Row>
+    bool prints_as_last(const Row& row) {
+      return (field_prints_as_last<kMark, F>(row) && ...);
+    }
+    /// Whether field F of `row` prints as its last value: the same bits, or else (steady_road
+    /// then kBelowDecimals, with kMark) within half a unit of its last decimal, its bits then
+    /// taken.
+    template <bool kMark, int F, class Row>
+    bool field_prints_as_last(const Row& row) {
+      const uint64_t now = row_bits<F>(row);
+      if (now == bits[F]) {
+        return true;
+      }
+      if constexpr (kMark) {
+        steady_road = kBelowDecimals;
+      }
       // Exact as in encode: `last` is an integer below 9e15 and a value within half a unit of it
       // has it as its rounding (a NaN or a value far off fails the test).
-      return ((differs<F>(row) == 0 ||
-               std::fabs(row_value<F>(row) * decimal_text::kScale[kFieldDecimals[F]] -
-                         static_cast<double>(last[F])) < 0.5) &&
-              ...);
-    }
-    template <int... F, class Row>
-    void take_bits(const Row& row) {
-      ((bits[F] = std::bit_cast<uint64_t>(row_value<F>(row))), ...);
+      if (!(std::fabs(std::bit_cast<double>(now) * decimal_text::kScale[kFieldDecimals[F]] -
+                      static_cast<double>(last[F])) < 0.5)) {
+        return false;
+      }
+      bits[F] = now;
+      return true;
     }
   };
-  static_assert(sizeof(Track) == 240);
+  static_assert(sizeof(Track) == 240 && offsetof(Track, road) == 0 && offsetof(Track, lane) == 8);
 
   /// A record's head (index step, mask and raw bits) and body (road and lane, nine numbers) at
   /// their largest, bytes.
@@ -361,7 +395,8 @@ class TrajectoryEncoder {
     for (uint32_t k = 0; k < kept; ++k) {
       const uint32_t i = pending[k];
       Track& track = tracks[i];
-      if (!track.steady || !row_placed(rows[i]) || !track.takes_below_decimals(rows[i])) {
+      if (!track.steady || !row_placed(rows[i]) ||
+          !track.template takes_below_decimals<true>(rows[i])) {
         pending[left++] = i;
       }
     }
@@ -374,6 +409,9 @@ class TrajectoryEncoder {
     uint32_t* pending = pending_.data();
     const Track* tracks = entities_.data();
     uint32_t coded = 0;
+    // Two entities a round: a test of the loop's end less for each (the pass is most of a tick
+    // of standing entities).
+#pragma GCC unroll 2
     for (uint32_t i = 0; i < count; ++i) {
       if (!tracks[i].passes(rows[i])) {
         pending[coded++] = i;
