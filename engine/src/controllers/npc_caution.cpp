@@ -13,6 +13,7 @@
 
 #include "controllers/follow_view.h"
 #include "corsa/engine/oriented_box.h"
+#include "geometry/segment.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -361,11 +362,8 @@ double segment_distance(double ax0, double ay0, double ax1, double ay1, double b
     return 0.0;
   }
   const auto to_segment = [](double px, double py, double x0, double y0, double x1, double y1) {
-    const double dx = x1 - x0, dy = y1 - y0;
-    const double length2 = dx * dx + dy * dy;
-    const double t =
-        length2 > 0.0 ? std::clamp(((px - x0) * dx + (py - y0) * dy) / length2, 0.0, 1.0) : 0.0;
-    return std::hypot(px - (x0 + t * dx), py - (y0 + t * dy));
+    const SegmentOffset offset = point_segment({px, py}, {x0, y0}, {x1, y1});
+    return std::hypot(offset.dx, offset.dy);
   };
   return std::min(
       {to_segment(ax0, ay0, bx0, by0, bx1, by1), to_segment(ax1, ay1, bx0, by0, bx1, by1),
