@@ -28,6 +28,20 @@
 namespace corsa::test {
 namespace {
 
+// A placed entity at (x, y) with heading h (rad) and speed (m/s), appended to `state`.
+void add_entity(engine::detail::SimState& state, double x, double y, double h, double speed,
+                const engine::Box& box, engine::ObjectKind kind) {
+  engine::detail::Entity entity;
+  entity.state.placed = true;
+  entity.state.pose.x = x;
+  entity.state.pose.y = y;
+  entity.state.pose.h = h;
+  entity.state.speed = speed;
+  entity.info.box = box;
+  entity.info.kind = kind;
+  state.world.entities.push_back(std::move(entity));
+}
+
 std::string intersection_text() {
   std::ifstream in(std::filesystem::path(CORSA_SOURCE_DIR) /
                    "scenarios/maps/intersection_4way.xodr");
@@ -201,17 +215,7 @@ TEST_CASE("A walker about to cross waits for a vehicle coming close to its way",
   Diagnostics diagnostics;
   engine::detail::SimState state(scenario, nullptr, engine::SimulationOptions{}, diagnostics);
   const auto add = [&](double x, double y, double h, double speed, const engine::Box& box,
-                       engine::ObjectKind kind) {
-    engine::detail::Entity entity;
-    entity.state.placed = true;
-    entity.state.pose.x = x;
-    entity.state.pose.y = y;
-    entity.state.pose.h = h;
-    entity.state.speed = speed;
-    entity.info.box = box;
-    entity.info.kind = kind;
-    state.world.entities.push_back(std::move(entity));
-  };
+                       engine::ObjectKind kind) { add_entity(state, x, y, h, speed, box, kind); };
   // The walker at the kerb at the origin, facing across the road (+y).
   add(0.0, 0.0, 0.5 * std::numbers::pi, 0.0, {0.0, 0.0, 0.9, 0.5, 0.6, 1.8},
       engine::ObjectKind::kPedestrian);
@@ -241,6 +245,39 @@ TEST_CASE("A walker about to cross waits for a vehicle coming close to its way",
   state.world.entities[1].state.pose.x = -1.0;
   state.world.entities[1].state.speed = 0.0;
   CHECK(waits());
+}
+
+TEST_CASE("A walker keeps clear of one that stopped turned on its right", "[engine][npc][walker]") {
+  const xosc::Scenario scenario;
+  Diagnostics diagnostics;
+  engine::detail::SimState state(scenario, nullptr, engine::SimulationOptions{}, diagnostics);
+  const engine::Box walker_box{0.0, 0.0, 0.9, 0.5, 0.6, 1.8};
+  const auto add = [&](double x, double y, double h, double speed) {
+    add_entity(state, x, y, h, speed, walker_box, engine::ObjectKind::kPedestrian);
+  };
+  // Walking along +x at 1.5 m/s; the other stands 0.6 m ahead, 0.66 m to the right, facing
+  // back at 0.4 rad off our way (it stopped while stepping aside): its turned box reaches 0.72 m
+  // across, farther than two walkers side by side (0.65 m).
+  add(0.0, 0.0, 0.0, 1.5);
+  add(0.6, -0.66, std::numbers::pi + 0.4, 0.0);
+  engine::detail::FollowView view;
+  std::vector<uint32_t> near;
+  const auto move = [&] {
+    view.build(state, true);
+    return engine::detail::walker_move(state.world.entities[0], 0, view, 1.5, near);
+  };
+  engine::detail::WalkerMove seen = move();
+  CHECK(seen.speed == 0.0);   // does not walk into it
+  CHECK(seen.lateral > 0.0);  // steps left, away from it
+  // Facing straight back it is no wider than a walker: passed at walking speed, stepping left.
+  state.world.entities[1].state.pose.h = std::numbers::pi;
+  seen = move();
+  CHECK(seen.speed == 1.5);
+  CHECK(seen.lateral > 0.0);
+  // Coming on our left, both keep right.
+  state.world.entities[1].state.pose.y = 0.66;
+  seen = move();
+  CHECK(seen.lateral < 0.0);
 }
 
 }  // namespace corsa::test

@@ -304,10 +304,43 @@ std::optional<xodr::LaneType> lane_type_at(const xodr::Map& map, const RoadCoord
   return node ? std::optional<xodr::LaneType>(map.lane_graph().info(*node).type) : std::nullopt;
 }
 
+// Whether the point (x, y) lies on a lane vehicles drive on, as Map::locate with max_distance 0
+// and drivable_only answers it, remembered in `look` for the walker's next steps. A walker on
+// its sidewalk asks every step for a point that moves a centimetre, mostly metres from any
+// road: the look-up goes as far as kAround, and its distance d to the nearest such lane (or
+// kAround when none is that near) clears every point within d / 2 of (x, y) without another
+// look-up. A point within d of (x, y) on a drivable lane would be within d of it by the
+// look-up's own measure as well (the chunk that holds the point is among those it examines,
+// the rectangle's distance and the lateral offset change by no more than the point moves);
+// half of d leaves room for lanes whose width changes along the road. A walker standing still
+// asks again for the same point, which gets the same answer. The height is left out: it only
+// ranks lanes at the same distance.
+bool on_drivable_lane(const xodr::Map& map, double x, double y, KerbLook& look) {
+  constexpr double kAround = 4.0;  // m looked around the point
+  const double dx = x - look.x, dy = y - look.y;
+  if (dx == 0.0 && dy == 0.0) {
+    return look.on_road;
+  }
+  if (dx * dx + dy * dy < look.clear * look.clear) {
+    return false;
+  }
+  xodr::LocateOptions options;
+  options.max_distance = kAround;
+  options.drivable_only = true;
+  const auto found = map.locate(x, y, options);
+  // Of the answers within kAround, one at distance 0 is there when (and only when) a look-up
+  // with max_distance 0 finds the point on a lane: both rank the same candidates by distance.
+  look.x = x;
+  look.y = y;
+  look.on_road = found && found->distance == 0.0;
+  look.clear = look.on_road ? 0.0 : 0.5 * (found ? found->distance : kAround);
+  return look.on_road;
+}
+
 // A generated walker about to step onto a road along its heading (the point a metre ahead is on
 // a lane vehicles drive on, its own lane is not) waits while a vehicle is close to its way
 // across (controllers/npc_caution.h).
-bool waits_at_kerb(const SimState& state, uint32_t index, const FollowView& view,
+bool waits_at_kerb(const SimState& state, uint32_t index, const FollowView& view, KerbLook& look,
                    std::vector<uint32_t>& near) {
   constexpr double kKerb = 1.0;    // m ahead
   constexpr double kAcross = 8.0;  // m of its way looked along: about two lanes
@@ -315,17 +348,16 @@ bool waits_at_kerb(const SimState& state, uint32_t index, const FollowView& view
   if (state.map == nullptr || !view.has_shapes()) {
     return false;
   }
+  const double x = me.state.pose.x + kKerb * std::cos(me.state.pose.h);
+  const double y = me.state.pose.y + kKerb * std::sin(me.state.pose.h);
+  if (!on_drivable_lane(*state.map, x, y, look)) {
+    return false;
+  }
   const auto here = me.state.road ? lane_type_at(*state.map, *me.state.road) : std::nullopt;
   if (here && xodr::is_drivable(*here)) {
     return false;  // on the road already: across it rather than stand in it
   }
-  xodr::LocateOptions options;
-  options.max_distance = 0.0;
-  options.drivable_only = true;
-  options.z = me.state.pose.z;
-  const double x = me.state.pose.x + kKerb * std::cos(me.state.pose.h);
-  const double y = me.state.pose.y + kKerb * std::sin(me.state.pose.h);
-  return state.map->locate(x, y, options) && walker_waits(me, index, view, kAcross, near);
+  return walker_waits(me, index, view, kAcross, near);
 }
 
 // Pedestrians: on a sidewalk (or any lane) facing along it they walk along it like
@@ -352,7 +384,7 @@ void step_pedestrian(SimState& state, uint32_t index, const DefaultController& i
     }
     const WalkerMove move = walker_move(entity, index, view, control.pace, *motion.nearby);
     pace_command = std::min(move.speed, entity.speed_command);
-    if (pace_command > 0.0 && waits_at_kerb(state, index, view, *motion.nearby)) {
+    if (pace_command > 0.0 && waits_at_kerb(state, index, view, control.kerb, *motion.nearby)) {
       pace_command = 0.0;
     }
     // Sideways at most half as fast as forwards in this step (30 degrees off the sidewalk): far

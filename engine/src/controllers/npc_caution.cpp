@@ -13,6 +13,7 @@
 
 #include "controllers/follow_view.h"
 #include "corsa/engine/oriented_box.h"
+#include "geometry/segment.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -295,7 +296,8 @@ WalkerMove walker_move(const Entity& me, uint32_t index, const FollowView& view,
                        std::vector<uint32_t>& near) {
   const LocalFrame frame = frame_at(me, index, view);
   WalkerMove move{0.0, pace};
-  bool oncoming = false;
+  bool oncoming = false;  // coming towards us ahead or on our left
+  bool oncoming_right = false;
   bool slower_ahead = false;
   bool beside_left = false;  // one going our way beside us: do not step into it
   bool beside_right = false;
@@ -315,8 +317,22 @@ WalkerMove walker_move(const Entity& me, uint32_t index, const FollowView& view,
     }
     const double along = std::cos(other.h - me.state.pose.h);
     const double their_speed = other.speed * along;
+    // Across our way the other's box reaches its half width, more when it stands turned (a
+    // walker that stopped while stepping aside): walkers nearer than kWalkerAbreast plus that
+    // excess would touch.
+    double abreast = kWalkerAbreast;
+    if (view.has_shapes()) {
+      const OrientedBox& box = other.shape;
+      abreast += box.half_length * std::abs(box.sin_h * frame.c - box.cos_h * frame.s) +
+                 box.half_width * (std::abs(box.cos_h * frame.c + box.sin_h * frame.s) - 1.0);
+    }
     if (along < -0.5) {
-      oncoming = oncoming || x > -reach;  // both keep right until they have passed
+      // Both keep right until they have passed; of one coming on our right (it sees us on its
+      // right too) both keep left, away from each other, where keeping right would walk them
+      // into each other's way.
+      if (x > -reach) {
+        (y < 0.0 ? oncoming_right : oncoming) = true;
+      }
     } else if (x > reach && their_speed < pace - 0.05) {
       slower_ahead = true;  // pass it on the left
     } else if (std::abs(x) <= reach + 0.3) {
@@ -326,14 +342,14 @@ WalkerMove walker_move(const Entity& me, uint32_t index, const FollowView& view,
     // (at the contact distance their speed, touching nothing), so that a gap opens again; held
     // at their speed a walker close behind one would keep the gap it had, and a sidestep turns
     // its box into the other's.
-    if (x > 0.0 && x < kWalkerContact + reach && std::abs(y) < kWalkerAbreast) {
+    if (x > 0.0 && x < kWalkerContact + reach && std::abs(y) < abreast) {
       const double room = std::clamp((x - reach) / kWalkerContact, 0.0, 1.0);
       move.speed = std::min(move.speed, std::max(0.0, their_speed) * room);
     }
   }
   if (oncoming) {
     move.lateral = -kWalkerStep;
-  } else if (slower_ahead) {
+  } else if (slower_ahead || oncoming_right) {
     move.lateral = kWalkerStep;
   }
   // Never sideways into one walking beside us (the oncoming rule would send both right).
@@ -361,11 +377,8 @@ double segment_distance(double ax0, double ay0, double ax1, double ay1, double b
     return 0.0;
   }
   const auto to_segment = [](double px, double py, double x0, double y0, double x1, double y1) {
-    const double dx = x1 - x0, dy = y1 - y0;
-    const double length2 = dx * dx + dy * dy;
-    const double t =
-        length2 > 0.0 ? std::clamp(((px - x0) * dx + (py - y0) * dy) / length2, 0.0, 1.0) : 0.0;
-    return std::hypot(px - (x0 + t * dx), py - (y0 + t * dy));
+    const SegmentOffset offset = point_segment({px, py}, {x0, y0}, {x1, y1});
+    return std::hypot(offset.dx, offset.dy);
   };
   return std::min(
       {to_segment(ax0, ay0, bx0, by0, bx1, by1), to_segment(ax1, ay1, bx0, by0, bx1, by1),

@@ -6,6 +6,8 @@
 #include <limits>
 #include <utility>
 
+#include "geometry/segment.h"
+
 namespace corsa::engine {
 
 OrientedBox box_of(const Box& box, const Pose& pose) {
@@ -45,19 +47,8 @@ std::array<Vec2, 4> corners(const OrientedBox& box) {
            {box.cx + lx - wx, box.cy + ly - wy}}};
 }
 
-// Offset from the point p to the nearest point of segment a-b.
-struct Offset {
-  double dx = 0.0, dy = 0.0;
-  double squared() const { return dx * dx + dy * dy; }
-};
-
-Offset point_segment(Vec2 p, Vec2 a, Vec2 b) {
-  const double dx = b.x - a.x, dy = b.y - a.y;
-  const double len2 = dx * dx + dy * dy;
-  double t = len2 > 0.0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return {p.x - (a.x + t * dx), p.y - (a.y + t * dy)};
-}
+using detail::point_segment;
+using detail::SegmentOffset;
 
 // Relative margin on squared distances that covers the rounding of dx^2 + dy^2 (a few ulps)
 // against hypot's correctly rounded result: every candidate whose hypot could be the smallest
@@ -126,7 +117,7 @@ double box_distance(const OrientedBox& a, const OrientedBox& b) {
   }
   const double nearest = std::sqrt(*std::min_element(corner_squared.begin(), corner_squared.end()));
   const double reach = nearest + rounding_margin(a, b);
-  std::array<Offset, 32> offsets;
+  std::array<SegmentOffset, 32> offsets;
   size_t n = 0;
   for (int i = 0; i < 8; ++i) {
     if (!(corner_squared[i] <= reach * reach)) {

@@ -6,6 +6,7 @@
 // pointer so that entities stay movable.
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -60,6 +61,17 @@ struct ControllerOverrides {
     return throttle.active || brake.active || parking_brake.active || steering_wheel.active ||
            clutch.active || gear_active;
   }
+};
+
+/// A generated walker's last look for a road a metre ahead of it (controllers.cpp,
+/// waits_at_kerb): whether the point (x, y) lies on a lane vehicles drive on and, when it does
+/// not, a radius (m) about it within which no point does. Points are compared to the bit; NaN
+/// until the first look.
+struct KerbLook {
+  double x = std::numeric_limits<double>::quiet_NaN();
+  double y = std::numeric_limits<double>::quiet_NaN();
+  double clear = 0.0;
+  bool on_road = false;
 };
 
 struct DynamicsVehicle;
@@ -150,6 +162,8 @@ struct ControlState {
   /// repeats between commands.
   ExternalCommand command;
   std::optional<ExternalCommand> held;
+  /// A generated walker's last kerb look (read only by its own moves).
+  KerbLook kerb;
 
   /// The controller that moves the entity this step: a command's controls go through the
   /// dynamics controller's vehicle model, its pose or speed through the external controller.
