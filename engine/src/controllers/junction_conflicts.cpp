@@ -121,6 +121,19 @@ bool share_entry(const xodr::LaneGraph& graph, xodr::LaneNode a, xodr::LaneNode 
   return false;
 }
 
+// Whether lane `a` continues into lane `b` or `b` into `a` (two lane sections of one connecting
+// lane): one vehicle drives both, so they are not in conflict with each other.
+bool joined(const xodr::LaneGraph& graph, xodr::LaneNode a, xodr::LaneNode b) {
+  for (const bool at_start : {false, true}) {
+    for (const xodr::LaneEnd& end : graph.ends(a, at_start)) {
+      if (end.node == b) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 /// Per lane node, its zones, before they are packed.
 using ZoneLists = std::vector<std::vector<ConflictZone>>;
 
@@ -161,7 +174,8 @@ size_t junction_conflicts(const xodr::Map& map, const std::vector<xodr::LaneNode
     for (size_t b = a + 1; b < n; ++b) {
       const Range& on_a = near[a * n + b];
       const Range& on_b = near[b * n + a];
-      if (on_a.empty() || on_b.empty() || share_entry(graph, lanes[a], lanes[b])) {
+      if (on_a.empty() || on_b.empty() || share_entry(graph, lanes[a], lanes[b]) ||
+          joined(graph, lanes[a], lanes[b])) {
         continue;
       }
       const auto id = static_cast<uint32_t>(first_conflict + conflicts++);
