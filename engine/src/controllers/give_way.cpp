@@ -129,9 +129,16 @@ uint32_t collect_claims(const JunctionConflicts& conflicts, const LanePath& path
       }
       out.claims[count++] = Claim{zone.conflict, zone.side, enter - front, piece.node, enter_s};
     }
-    // In path order, by where the path enters them (the settling pass relies on it).
-    std::stable_sort(out.claims.begin() + first, out.claims.begin() + count,
-                     [](const Claim& a, const Claim& b) { return a.to_enter < b.to_enter; });
+    // In path order, by where the path enters them (the settling pass relies on it): an
+    // insertion sort, stable, of the few claims of this lane (no buffer to allocate).
+    for (uint32_t k = first + 1; k < count; ++k) {
+      const Claim claim = out.claims[k];
+      uint32_t at = k;
+      for (; at > first && claim.to_enter < out.claims[at - 1].to_enter; --at) {
+        out.claims[at] = out.claims[at - 1];
+      }
+      out.claims[at] = claim;
+    }
   }
   if (count > 0) {
     out.right = conflicts.right_of_way(out.claims[0].node);
