@@ -174,6 +174,35 @@ TEST_CASE("The four-way intersection's paths conflict where they cross, not wher
   CHECK(giving_way == std::set<std::string>{"101", "102", "103"});
 }
 
+TEST_CASE("A connecting lane's lane sections are not in conflict with each other",
+          "[engine][npc][give_way]") {
+  // Town04's ramps: connecting roads whose lane changes id between two lane sections (road
+  // 1194: lane 6, then lane 2) merge into the main road's outer lane in the junction.
+  Diagnostics diagnostics;
+  const auto map = xodr::Map::load(
+      std::filesystem::path(CORSA_SHARED_DIR) / "data/xodr/Town04.xodr", diagnostics);
+  const auto conflicts = engine::detail::JunctionConflicts::build(map);
+  const auto& graph = map.lane_graph();
+  std::vector<std::vector<xodr::LaneNode>> sides(conflicts.conflict_count());
+  for (xodr::LaneNode node = 0; node < graph.size(); ++node) {
+    for (const auto& zone : conflicts.zones(node)) {
+      sides[zone.conflict].push_back(node);
+    }
+  }
+  size_t merges = 0;
+  for (const auto& pair : sides) {
+    REQUIRE(pair.size() == 2);
+    for (const bool at_start : {false, true}) {
+      for (const auto& end : graph.ends(pair[0], at_start)) {
+        CHECK(end.node != pair[1]);
+      }
+    }
+    merges += map.road(graph.info(pair[0]).lane.road).id == "1194" ||
+              map.road(graph.info(pair[1]).lane.road).id == "1194";
+  }
+  CHECK(merges > 0);  // the ramp still gives way where it merges
+}
+
 TEST_CASE("Four generated cars arriving at a four-way junction at once all get through",
           "[engine][npc][give_way]") {
   Crossing crossing(intersection_text());

@@ -107,6 +107,7 @@ uint32_t collect_claims(const JunctionConflicts& conflicts, const LanePath& path
       break;
     }
     const auto zones = conflicts.zones(piece.node);
+    const uint32_t first = count;
     for (size_t z = 0; z < zones.size() && count < kMaxClaims; ++z) {
       // In the direction of travel: by s_min going +s, by s_max (about) going -s.
       const ConflictZone& zone = zones[piece.dir > 0 ? z : zones.size() - 1 - z];
@@ -118,13 +119,29 @@ uint32_t collect_claims(const JunctionConflicts& conflicts, const LanePath& path
         continue;  // its rear has left it
       }
       if (enter - front > horizon) {
-        break;
-      }
-      if (count == 0) {
-        out.right = conflicts.right_of_way(piece.node);
+        // Going +s the zones come by s_min, where they are entered: none after is nearer. Going
+        // -s they are entered at s_max, and a zone may lie within a longer one (a merge's runs
+        // to the lane's end): one later in the list may still be nearer.
+        if (piece.dir > 0) {
+          break;
+        }
+        continue;
       }
       out.claims[count++] = Claim{zone.conflict, zone.side, enter - front, piece.node, enter_s};
     }
+    // In path order, by where the path enters them (the settling pass relies on it): an
+    // insertion sort, stable, of the few claims of this lane (no buffer to allocate).
+    for (uint32_t k = first + 1; k < count; ++k) {
+      const Claim claim = out.claims[k];
+      uint32_t at = k;
+      for (; at > first && claim.to_enter < out.claims[at - 1].to_enter; --at) {
+        out.claims[at] = out.claims[at - 1];
+      }
+      out.claims[at] = claim;
+    }
+  }
+  if (count > 0) {
+    out.right = conflicts.right_of_way(out.claims[0].node);
   }
   return count;
 }

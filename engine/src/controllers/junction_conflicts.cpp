@@ -8,7 +8,6 @@
 #include <optional>
 #include <span>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "corsa/xodr/map.h"
@@ -37,11 +36,56 @@ struct Range {
   bool empty() const { return min > max; }
 };
 
-uint64_t cell_key(int64_t cx, int64_t cy) {
-  return (static_cast<uint64_t>(cx) << 32) ^ static_cast<uint64_t>(cy & 0xffffffff);
-}
+/// The samples of one junction by grid cell (kCell square), a dense grid over their extent:
+/// cell c holds index_[first_[c]] .. index_[first_[c + 1]] in sample order.
+class SampleGrid {
+ public:
+  explicit SampleGrid(const std::vector<Sample>& samples) {
+    double min_x = 1e300, min_y = 1e300, max_x = -1e300, max_y = -1e300;
+    for (const Sample& p : samples) {
+      min_x = std::min(min_x, p.x);
+      min_y = std::min(min_y, p.y);
+      max_x = std::max(max_x, p.x);
+      max_y = std::max(max_y, p.y);
+    }
+    x0_ = std::floor(min_x / kCell);
+    y0_ = std::floor(min_y / kCell);
+    nx_ = static_cast<int64_t>(std::floor(max_x / kCell) - x0_) + 1;
+    ny_ = static_cast<int64_t>(std::floor(max_y / kCell) - y0_) + 1;
+    first_.assign(static_cast<size_t>(nx_ * ny_) + 1, 0);
+    cells_.resize(samples.size());
+    for (size_t i = 0; i < samples.size(); ++i) {
+      cells_[i] = cell(column(samples[i].x), row(samples[i].y));
+      ++first_[cells_[i] + 1];
+    }
+    for (size_t c = 1; c < first_.size(); ++c) {
+      first_[c] += first_[c - 1];
+    }
+    index_.resize(samples.size());
+    std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
+    for (uint32_t i = 0; i < samples.size(); ++i) {
+      index_[fill[cells_[i]]++] = i;
+    }
+  }
+  int64_t column(double x) const { return static_cast<int64_t>(std::floor(x / kCell) - x0_); }
+  int64_t row(double y) const { return static_cast<int64_t>(std::floor(y / kCell) - y0_); }
+  /// The samples of cell (cx, cy), none outside the grid.
+  std::span<const uint32_t> at(int64_t cx, int64_t cy) const {
+    if (cx < 0 || cy < 0 || cx >= nx_ || cy >= ny_) {
+      return {};
+    }
+    const size_t c = cell(cx, cy);
+    return {index_.data() + first_[c], index_.data() + first_[c + 1]};
+  }
 
-int64_t cell_of(double v) { return static_cast<int64_t>(std::floor(v / kCell)); }
+ private:
+  size_t cell(int64_t cx, int64_t cy) const { return static_cast<size_t>(cy * nx_ + cx); }
+  double x0_ = 0.0, y0_ = 0.0;
+  int64_t nx_ = 0, ny_ = 0;
+  std::vector<uint32_t> first_;
+  std::vector<size_t> cells_;
+  std::vector<uint32_t> index_;
+};
 
 // Points along the centre line of lane `node`, kSample apart, both ends included.
 void sample_lane(const xodr::Map& map, xodr::LaneNode node, uint32_t lane,
@@ -77,6 +121,19 @@ bool share_entry(const xodr::LaneGraph& graph, xodr::LaneNode a, xodr::LaneNode 
   return false;
 }
 
+// Whether lane `a` continues into lane `b` or `b` into `a` (two lane sections of one connecting
+// lane): one vehicle drives both, so they are not in conflict with each other.
+bool joined(const xodr::LaneGraph& graph, xodr::LaneNode a, xodr::LaneNode b) {
+  for (const bool at_start : {false, true}) {
+    for (const xodr::LaneEnd& end : graph.ends(a, at_start)) {
+      if (end.node == b) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 /// Per lane node, its zones, before they are packed.
 using ZoneLists = std::vector<std::vector<ConflictZone>>;
 
@@ -87,30 +144,25 @@ size_t junction_conflicts(const xodr::Map& map, const std::vector<xodr::LaneNode
   for (uint32_t k = 0; k < lanes.size(); ++k) {
     sample_lane(map, lanes[k], k, samples);
   }
-  std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
-  for (uint32_t i = 0; i < samples.size(); ++i) {
-    grid[cell_key(cell_of(samples[i].x), cell_of(samples[i].y))].push_back(i);
-  }
-  // near[a * n + b]: the s range of lane a within kConflictDistance of lane b.
+  const SampleGrid grid(samples);
+  // near[a * n + b]: the s range of lane a within kConflictDistance of lane b. Each pair of
+  // points is looked at once, from the one of the lower lane.
   const size_t n = lanes.size();
   std::vector<Range> near(n * n);
   constexpr double kReach2 = kConflictDistance * kConflictDistance;
   for (const Sample& p : samples) {
-    const int64_t cx = cell_of(p.x), cy = cell_of(p.y);
+    const int64_t cx = grid.column(p.x), cy = grid.row(p.y);
     for (int64_t dx = -1; dx <= 1; ++dx) {
       for (int64_t dy = -1; dy <= 1; ++dy) {
-        const auto found = grid.find(cell_key(cx + dx, cy + dy));
-        if (found == grid.end()) {
-          continue;
-        }
-        for (const uint32_t j : found->second) {
+        for (const uint32_t j : grid.at(cx + dx, cy + dy)) {
           const Sample& q = samples[j];
-          if (q.lane == p.lane || std::abs(q.z - p.z) > kLevels) {
+          if (q.lane <= p.lane || std::abs(q.z - p.z) > kLevels) {
             continue;
           }
           const double ex = q.x - p.x, ey = q.y - p.y;
           if (ex * ex + ey * ey < kReach2) {
             near[p.lane * n + q.lane].add(p.s);
+            near[q.lane * n + p.lane].add(q.s);
           }
         }
       }
@@ -122,7 +174,8 @@ size_t junction_conflicts(const xodr::Map& map, const std::vector<xodr::LaneNode
     for (size_t b = a + 1; b < n; ++b) {
       const Range& on_a = near[a * n + b];
       const Range& on_b = near[b * n + a];
-      if (on_a.empty() || on_b.empty() || share_entry(graph, lanes[a], lanes[b])) {
+      if (on_a.empty() || on_b.empty() || share_entry(graph, lanes[a], lanes[b]) ||
+          joined(graph, lanes[a], lanes[b])) {
         continue;
       }
       const auto id = static_cast<uint32_t>(first_conflict + conflicts++);
