@@ -251,3 +251,43 @@ TEST_CASE("A car held at a road's end keeps asking for its speed until it is put
   CHECK(pair.skipping.lane.s == Approx(300.0 + 10.0 * kStillStepDt).margin(1e-9));
   CHECK(pair.skipping.state.odometer == Approx(odometer + 10.0 * kStillStepDt).margin(1e-9));
 }
+
+TEST_CASE("The memos' comparisons tell every compared double's bits apart, and a NaN equals itself",
+          "[engine][motion][still]") {
+  using corsa::engine::detail::ContactInput;
+  using corsa::engine::detail::same_bits;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // Each double of the motion's runs compared as words: -0 against +0 differs, and the
+  // same NaN is the same.
+  const std::vector<std::function<double&(EntityMotion&)>> fields = {
+      [](EntityMotion& m) -> double& { return m.state.pose.x; },
+      [](EntityMotion& m) -> double& { return m.state.pose.r; },
+      [](EntityMotion& m) -> double& { return m.state.speed; },
+      [](EntityMotion& m) -> double& { return m.state.odometer; },
+      [](EntityMotion& m) -> double& { return m.speed_command; },
+      [](EntityMotion& m) -> double& { return m.lateral_acceleration; },
+  };
+  for (const auto& field : fields) {
+    EntityMotion a, b;
+    field(b) = -0.0;
+    CHECK_FALSE(same_bits(a, b));
+    field(a) = nan;
+    field(b) = nan;
+    CHECK(same_bits(a, b));
+  }
+  // The contacts' input: x, y, z, h and the box; pitch and roll take no part.
+  const auto placed_entity = [](const std::function<void(Entity&)>& change) {
+    Entity entity;
+    entity.state.placed = true;
+    entity.info.box = {1.0, 0.0, 0.5, 4.0, 2.0, 1.5};
+    change(entity);
+    return entity;
+  };
+  const Entity entity = placed_entity([](Entity&) {});
+  const ContactInput input{true, entity.state.pose, entity.info.box};
+  CHECK(input.same_as(entity));
+  CHECK(input.same_as(placed_entity([](Entity& e) { e.state.pose.p = 0.1; })));
+  CHECK_FALSE(input.same_as(placed_entity([](Entity& e) { e.state.pose.h = -0.0; })));
+  CHECK_FALSE(input.same_as(placed_entity([](Entity& e) { e.info.box.height = 1.6; })));
+  CHECK_FALSE(input.same_as(placed_entity([](Entity& e) { e.state.placed = false; })));
+}

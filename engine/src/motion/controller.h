@@ -63,6 +63,10 @@ void update_pose_from_lane(EntityMotion& entity, LanePoseMemo& memo, const xodr:
                            std::vector<xodr::LaneSpan>& scratch);
 void update_road_from_pose(Entity& entity, const xodr::Map* map);
 void update_road_from_pose(EntityMotion& entity, PointLocateMemo& memo, const xodr::Map* map);
+/// The same with the map's answer for the entity's point (state.pose.x, y) already at hand:
+/// `located`, from locate_near.
+void update_road_from_located(EntityMotion& entity,
+                              const std::optional<xodr::LanePosition>& located);
 
 /// The lane holding the point (x, y), or the nearest within 0.5 m (xodr::Map::locate with
 /// max_distance 0.5): asked again for the same point, or for a point near one that had no

@@ -55,14 +55,21 @@ void update_road_from_pose(Entity& entity, const xodr::Map* map) {
 }
 
 void update_road_from_pose(EntityMotion& entity, PointLocateMemo& memo, const xodr::Map* map) {
-  entity.state.road.reset();
   if (map == nullptr) {
+    entity.state.road.reset();
     return;
   }
-  const auto& located = locate_near(memo, *map, entity.state.pose.x, entity.state.pose.y);
+  update_road_from_located(entity,
+                           locate_near(memo, *map, entity.state.pose.x, entity.state.pose.y));
+}
+
+void update_road_from_located(EntityMotion& entity,
+                              const std::optional<xodr::LanePosition>& located) {
   if (located && located->distance == 0.0) {
     entity.state.road =
         RoadCoordinates{located->road, located->section, located->lane, located->s, located->t};
+  } else {
+    entity.state.road.reset();
   }
 }
 

@@ -40,7 +40,8 @@ void move_to_pose_command(Entity& entity, const MotionContext& context) {
   }
   // Keep the followed lane in step with the pose (half a metre of slack off the lane edges),
   // so that the lane, s and t are recorded and lane following can take over at the end.
-  const auto at = road_point_within(locate_near(entity, *context.map, target.x, target.y), 0.5);
+  const auto& located = locate_near(entity, *context.map, target.x, target.y);
+  const auto at = road_point_within(located, 0.5);
   if (at && at->lane &&
       attach_to_lane(*context.map, entity.lane, at->road, at->s, at->t, *at->lane, target.h)) {
     entity.lateral_command = entity.lane.lateral;
@@ -50,7 +51,8 @@ void move_to_pose_command(Entity& entity, const MotionContext& context) {
   } else {
     entity.lane.on_road = false;
     entity.lateral_command = 0.0;
-    update_road_from_pose(entity, context.map);
+    // The pose is the target: the map's answer for its point is at hand.
+    update_road_from_located(entity, located);
   }
 }
 

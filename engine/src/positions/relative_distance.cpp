@@ -109,9 +109,12 @@ void EntityDistanceInputs::take(const Entity& from, const Entity& to) {
 }
 
 bool EntityDistanceInputs::same_as(const Entity& from, const Entity& to) const {
-  return taken_ && from_on_road_ == from.lane.on_road && from_dir_ == from.lane.dir &&
-         same_bits(from_.pose, from.state.pose) && same_bits(to_.pose, to.state.pose) &&
-         same_bits(from_.box, from.info.box) && same_bits(to_.box, to.info.box) &&
+  // The poses and boxes (24 doubles) in one test.
+  const uint64_t diff = double_bits_diff<0, 6>(from_.pose, from.state.pose) |
+                        double_bits_diff<0, 6>(to_.pose, to.state.pose) |
+                        double_bits_diff<0, 6>(from_.box, from.info.box) |
+                        double_bits_diff<0, 6>(to_.box, to.info.box);
+  return taken_ && from_on_road_ == from.lane.on_road && from_dir_ == from.lane.dir && diff == 0 &&
          same_bits(from_.road, from.state.road) && same_bits(to_.road, to.state.road);
 }
 

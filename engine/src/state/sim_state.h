@@ -6,12 +6,15 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <unordered_map>
 #include <vector>
 
@@ -54,10 +57,32 @@ struct World {
 inline bool same_bits(double a, double b) {
   return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
 }
-inline bool same_bits(const Pose& a, const Pose& b) {
-  return same_bits(a.x, b.x) && same_bits(a.y, b.y) && same_bits(a.z, b.z) && same_bits(a.h, b.h) &&
-         same_bits(a.p, b.p) && same_bits(a.r, b.r);
+/// The bits in which `count` doubles from byte `offset` of `a` differ from those of `b` (0: the
+/// same bits), ORed together: a test of many doubles without a branch per value, which the
+/// compiler makes two at a time in vector registers. T's bytes there must be doubles alone.
+template <size_t kOffset, size_t kCount, class T>
+inline uint64_t double_bits_diff(const T& a, const T& b) {
+  static_assert(std::is_trivially_copyable_v<T> && kOffset % 8 == 0 &&
+                kOffset + 8 * kCount <= sizeof(T));
+  const auto* pa = reinterpret_cast<const unsigned char*>(&a) + kOffset;
+  const auto* pb = reinterpret_cast<const unsigned char*>(&b) + kOffset;
+  uint64_t diff = 0;
+  for (size_t i = 0; i < kCount; ++i) {
+    uint64_t wa = 0, wb = 0;
+    std::memcpy(&wa, pa + 8 * i, 8);
+    std::memcpy(&wb, pb + 8 * i, 8);
+    diff |= wa ^ wb;
+  }
+  return diff;
 }
+static_assert(sizeof(Pose) == 6 * sizeof(double) && sizeof(Box) == 6 * sizeof(double),
+              "Pose and Box are compared as six doubles");
+/// x, y, z and h of a pose (its first four doubles), as they differ.
+inline uint64_t pose_xyzh_diff(const Pose& a, const Pose& b) {
+  static_assert(offsetof(Pose, h) == 3 * sizeof(double));
+  return double_bits_diff<0, 4>(a, b);
+}
+inline bool same_bits(const Pose& a, const Pose& b) { return double_bits_diff<0, 6>(a, b) == 0; }
 inline bool same_bits(const std::optional<RoadCoordinates>& a,
                       const std::optional<RoadCoordinates>& b) {
   if (!a || !b) {
@@ -66,18 +91,15 @@ inline bool same_bits(const std::optional<RoadCoordinates>& a,
   return a->road == b->road && a->section == b->section && a->lane == b->lane &&
          same_bits(a->s, b->s) && same_bits(a->t, b->t);
 }
-inline bool same_bits(const Box& a, const Box& b) {
-  return same_bits(a.center_x, b.center_x) && same_bits(a.center_y, b.center_y) &&
-         same_bits(a.center_z, b.center_z) && same_bits(a.length, b.length) &&
-         same_bits(a.width, b.width) && same_bits(a.height, b.height);
-}
+inline bool same_bits(const Box& a, const Box& b) { return double_bits_diff<0, 6>(a, b) == 0; }
 
 inline bool same_bits(const EntityState& a, const EntityState& b) {
   static_assert(sizeof(EntityState) == 136, "add the new field to same_bits");
-  return same_bits(a.pose, b.pose) && same_bits(a.speed, b.speed) &&
-         same_bits(a.acceleration, b.acceleration) && same_bits(a.lateral_speed, b.lateral_speed) &&
-         same_bits(a.yaw_rate, b.yaw_rate) && same_bits(a.odometer, b.odometer) &&
-         a.placed == b.placed && a.visible == b.visible && same_bits(a.road, b.road);
+  // The pose and the five doubles after it, in one test.
+  static_assert(offsetof(EntityState, pose) == 0 &&
+                offsetof(EntityState, odometer) == sizeof(Pose) + 4 * sizeof(double));
+  return double_bits_diff<0, 11>(a, b) == 0 && a.placed == b.placed && a.visible == b.visible &&
+         same_bits(a.road, b.road);
 }
 inline bool same_bits(const LaneFollow& a, const LaneFollow& b) {
   static_assert(sizeof(LaneFollow) == 64, "add the new field to same_bits");
@@ -90,12 +112,12 @@ inline bool same_bits(const LaneFollow& a, const LaneFollow& b) {
 /// route is compared by address (see EntityMotion::chooser).
 inline bool same_bits(const EntityMotion& a, const EntityMotion& b) {
   static_assert(sizeof(EntityMotion) == 248, "add the new field to same_bits");
+  // The four doubles from speed_command to lateral_acceleration, in one test.
+  constexpr size_t kCommands = offsetof(EntityMotion, speed_command);
+  static_assert(offsetof(EntityMotion, lateral_acceleration) == kCommands + 3 * sizeof(double));
   return same_bits(a.state, b.state) && same_bits(a.lane, b.lane) &&
-         same_bits(a.speed_command, b.speed_command) &&
-         same_bits(a.lateral_command, b.lateral_command) &&
-         same_bits(a.longitudinal_distance, b.longitudinal_distance) &&
-         same_bits(a.lateral_acceleration, b.lateral_acceleration) &&
-         a.end_of_road == b.end_of_road && a.chooser == b.chooser;
+         double_bits_diff<kCommands, 4>(a, b) == 0 && a.end_of_road == b.end_of_road &&
+         a.chooser == b.chooser;
 }
 
 /// What the contacts of an entity were last computed from (state/world_contacts.h).
@@ -107,9 +129,8 @@ struct ContactInput {
   /// Whether `entity` is placed, posed and sized as this records, to the bit (box_of gives the
   /// same box then; -0 and +0 differ, NaN equals itself).
   bool same_as(const Entity& entity) const {
-    const Pose& p = entity.state.pose;
-    return placed == entity.state.placed && same_bits(pose.x, p.x) && same_bits(pose.y, p.y) &&
-           same_bits(pose.z, p.z) && same_bits(pose.h, p.h) && same_bits(box, entity.info.box);
+    return placed == entity.state.placed && (pose_xyzh_diff(pose, entity.state.pose) |
+                                             double_bits_diff<0, 6>(box, entity.info.box)) == 0;
   }
 };
 
