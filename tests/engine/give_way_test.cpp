@@ -67,6 +67,30 @@ std::shared_ptr<const xodr::Map> map_of(const std::string& text) {
       xodr::parse_xodr_text(text, "intersection_4way.xodr", diagnostics), diagnostics));
 }
 
+// The junction's <priority> elements: each `high` connecting road over each `low` one, pairwise.
+std::string with_priorities(std::string text, const std::vector<std::string>& high,
+                            const std::vector<std::string>& low) {
+  std::string elements;
+  for (size_t k = 0; k < high.size(); ++k) {
+    elements += "<priority high=\"" + high[k] + "\" low=\"" + low[k] + "\"/>";
+  }
+  text.insert(text.find("</junction>"), elements);
+  return text;
+}
+
+// The ids of the connecting roads whose lanes have right of way `right`.
+std::set<std::string> roads_with(const xodr::Map& map,
+                                 const engine::detail::JunctionConflicts& conflicts,
+                                 engine::detail::RightOfWay right) {
+  std::set<std::string> roads;
+  for (uint32_t node = 0; node < map.lane_graph().size(); ++node) {
+    if (conflicts.right_of_way(node) == right) {
+      roads.insert(map.road(map.lane_graph().info(node).lane.road).id);
+    }
+  }
+  return roads;
+}
+
 // Puts generated cars where a test wants them.
 class Placer final : public engine::detail::GeneratorBase {
  public:
@@ -234,6 +258,37 @@ TEST_CASE("A generated car on the priority road is not stopped by one that came 
   CHECK(crossing.overlaps.empty());
   CHECK(crossing.least_speed[major] > 9.0);  // never braked
   CHECK(crossing.least_speed[minor] < 1.0);  // waited for it
+  CHECK(crossing.through(major, 2));
+  CHECK(crossing.through(minor, 1));
+}
+
+TEST_CASE("A junction's priorities give right of way where no sign does",
+          "[engine][npc][give_way]") {
+  using engine::detail::RightOfWay;
+  // Arm 2's connecting roads over arm 1's, pairwise.
+  const std::string text =
+      with_priorities(intersection_text(), {"104", "105", "106"}, {"101", "102", "103"});
+  const auto map = map_of(text);
+  const auto conflicts = engine::detail::JunctionConflicts::build(*map);
+  CHECK(roads_with(*map, conflicts, RightOfWay::kPriority) ==
+        std::set<std::string>{"104", "105", "106"});
+  CHECK(roads_with(*map, conflicts, RightOfWay::kGiveWay) ==
+        std::set<std::string>{"101", "102", "103"});
+  // A road named both high and low is left normal; a sign on the incoming road wins.
+  const auto mixed_map = map_of(with_priorities(with_give_way_sign(text, "2"), {"107"}, {"104"}));
+  const auto mixed = engine::detail::JunctionConflicts::build(*mixed_map);
+  CHECK(roads_with(*mixed_map, mixed, RightOfWay::kPriority) == std::set<std::string>{"107"});
+  CHECK(roads_with(*mixed_map, mixed, RightOfWay::kGiveWay) ==
+        std::set<std::string>{"101", "102", "103", "104", "105", "106"});
+  // Driven: the car from arm 1 is nearer the junction, yet waits for the one from arm 2.
+  Crossing crossing(text);
+  const uint32_t minor = crossing.car_on_arm(1, 15.0, 8.0);
+  const uint32_t major = crossing.car_on_arm(2, 35.0, 10.0);
+  crossing.run(15.0);
+  INFO(crossing.overlaps);
+  CHECK(crossing.overlaps.empty());
+  CHECK(crossing.least_speed[major] > 9.0);
+  CHECK(crossing.least_speed[minor] < 1.0);
   CHECK(crossing.through(major, 2));
   CHECK(crossing.through(minor, 1));
 }

@@ -308,3 +308,31 @@ TEST_CASE("the compat writer gives each lane one predecessor and one successor",
   CHECK(text.find("<successor id=\"-2\"/>") == std::string::npos);
   CHECK(write_xodr_text(data).find("<successor id=\"-2\"/>") != std::string::npos);
 }
+
+TEST_CASE("a junction's priorities are read, written and read back; one naming no road is refused",
+          "[xodr][writer][junction]") {
+  MapData data;
+  Junction junction;
+  junction.id = "7";
+  junction.connections.push_back(Connection{"0", "1", "10", "", ContactPoint::kStart, {}, 0});
+  junction.priorities.push_back(JunctionPriority{"10", "11", 0});
+  junction.priorities.push_back(JunctionPriority{"", "12", 0});
+  data.junctions.push_back(junction);
+  const std::string text = write_xodr_text(data);
+  CHECK(text.find("<priority high=\"10\" low=\"11\"/>") != std::string::npos);
+  corsa::Diagnostics diagnostics;
+  const MapData copy = parse_xodr_text(text, "copy.xodr", diagnostics);
+  CHECK(diagnostics.size() == 0);
+  REQUIRE(copy.junctions.size() == 1);
+  REQUIRE(copy.junctions[0].priorities.size() == 2);
+  CHECK(copy.junctions[0].priorities[0].high == "10");
+  CHECK(copy.junctions[0].priorities[0].low == "11");
+  CHECK(copy.junctions[0].priorities[0].line > 0);
+  CHECK(copy.junctions[0].priorities[1].high.empty());
+  CHECK(copy.junctions[0].priorities[1].low == "12");
+  std::string bad = text;
+  bad.replace(bad.find("<priority high=\"10\" low=\"11\"/>"), 30, "<priority/>");
+  CHECK_THROWS_WITH(
+      parse_xodr_text(bad, "bad.xodr", diagnostics),
+      Catch::Contains("bad.xodr:") && Catch::Contains("needs attribute 'high' or 'low'"));
+}

@@ -83,6 +83,15 @@ JunctionBoundarySegment parse_boundary_segment(const XmlReader& reader, const XM
   return segment;
 }
 
+// <priority high low>: at least one of the two connecting roads is named (t_junction_priority).
+JunctionPriority parse_priority(const XmlReader& reader, const XMLElement* e) {
+  JunctionPriority priority{reader.text_or(e, "high", ""), reader.text_or(e, "low", ""), e->line()};
+  if (priority.high.empty() && priority.low.empty()) {
+    reader.fail(e, "<priority> needs attribute 'high' or 'low'");
+  }
+  return priority;
+}
+
 }  // namespace
 
 Junction parse_junction(const XmlReader& reader, const XMLElement* e) {
@@ -114,6 +123,8 @@ Junction parse_junction(const XmlReader& reader, const XMLElement* e) {
                     "junction)");
       }
       junction.connections.push_back(std::move(connection));
+    } else if (named(child, "priority")) {
+      junction.priorities.push_back(parse_priority(reader, child));
     } else if (named(child, "controller")) {
       junction.controllers.push_back(JunctionController{reader.text(child, "id"),
                                                         reader.text_or(child, "type", ""),

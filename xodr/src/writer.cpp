@@ -459,6 +459,16 @@ void write_junction(XmlWriter& w, const Junction& junction, const WriteOptions& 
     }
     w.close();
   }
+  for (const JunctionPriority& priority : junction.priorities) {
+    w.open("priority");
+    if (!priority.high.empty()) {
+      w.attr("high", priority.high);
+    }
+    if (!priority.low.empty()) {
+      w.attr("low", priority.low);
+    }
+    w.end_empty();
+  }
   for (const JunctionController& controller : junction.controllers) {
     w.open("controller").attr("id", controller.id);
     if (!controller.type.empty()) {

@@ -206,7 +206,23 @@ std::optional<RightOfWay> sign_right(const xodr::Road& road, bool toward_plus_s)
   return right;
 }
 
-// Right of way of every lane node: from the signs on the incoming roads.
+// The right of way a junction's <priority> elements give its connecting road `road` (an id):
+// named only as `high` raises it, only as `low` lowers it; named as both (or neither), nothing.
+std::optional<RightOfWay> priority_right(const xodr::Junction& junction, const std::string& road) {
+  bool high = false;
+  bool low = false;
+  for (const xodr::JunctionPriority& priority : junction.priorities) {
+    high = high || priority.high == road;
+    low = low || priority.low == road;
+  }
+  if (high == low) {
+    return std::nullopt;
+  }
+  return high ? RightOfWay::kPriority : RightOfWay::kGiveWay;
+}
+
+// Right of way of every lane node: from the signs on the incoming roads, else from the
+// junction's <priority> elements.
 std::vector<RightOfWay> rights_of(const xodr::Map& map,
                                   const std::vector<std::vector<xodr::LaneNode>>& by_road) {
   std::vector<RightOfWay> rights(map.lane_graph().size(), RightOfWay::kNormal);
@@ -222,7 +238,11 @@ std::vector<RightOfWay> rights_of(const xodr::Map& map,
       const xodr::Road& road = map.road(*incoming);
       const bool plus = road.successor.element_type == xodr::LinkElement::kJunction &&
                         road.successor.element_id == junction.id;
-      if (const auto right = sign_right(road, plus)) {
+      auto right = sign_right(road, plus);
+      if (!right && !junction.priorities.empty()) {
+        right = priority_right(junction, connection.connecting_road);
+      }
+      if (right) {
         for (const xodr::LaneNode node : by_road[*connecting]) {
           rights[node] = *right;
         }

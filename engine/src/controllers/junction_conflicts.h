@@ -8,8 +8,10 @@
 // conflict (they diverge; car following keeps them apart).
 //
 // Each connecting lane also has a right of way: from the signs on its incoming road facing the
-// junction (§14: give way 205 or stop 206 lower it, priority road 306 or priority 301 raise it).
-// The junction's <priority> elements (§10.4) are not read yet: the map model does not keep them.
+// junction (§14: give way 205 or stop 206 lower it, priority road 306 or priority 301 raise it);
+// where they say nothing, from the junction's <priority high low> elements (§10, only needed
+// where signs do not say): a connecting road named only as high is raised, one named only as
+// low lowered.
 
 #include <cstdint>
 #include <span>

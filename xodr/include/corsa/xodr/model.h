@@ -357,6 +357,15 @@ struct Connection {
   int line = 0;
 };
 
+/// A junction's <priority> (OpenDRIVE 1.8 §10, t_junction_priority): connecting road `high` has
+/// priority over connecting road `low` where their paths meet. Only needed where the signs and
+/// signals before or in the junction do not say; at least one of the two is given.
+struct JunctionPriority {
+  std::string high;  ///< id of the prioritised connecting road (empty: not given)
+  std::string low;   ///< id of the connecting road with the lower priority (empty: not given)
+  int line = 0;
+};
+
 /// A junction's <controller> reference: which signal controller runs in it, and in which order
 /// (`sequence`) the junction's controllers take their turn (§10.6 / §14.6).
 struct JunctionController {
@@ -387,6 +396,7 @@ struct Junction {
   std::string name;
   JunctionType type = JunctionType::kDefault;
   std::vector<Connection> connections;
+  std::vector<JunctionPriority> priorities;  ///< in document order
   std::vector<JunctionController> controllers;
   std::vector<JunctionBoundarySegment> boundary;  ///< the junction's outline, in order
   int line = 0;
