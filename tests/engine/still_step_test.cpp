@@ -1,5 +1,5 @@
 // The default controller skips the step of an entity standing on its lane while nothing of its
-// motion has changed since a step that changed nothing (state/entity.h, StillStepMemo). Each
+// motion has changed since a step that changed nothing (state/entity.h, Entity::still_step). Each
 // test steps two copies of one entity through the same changes, one that may skip and one whose
 // memo is cleared before every step (so that it takes every step in full): their motions must
 // hold the same bits after every step.
@@ -98,8 +98,8 @@ struct StillStepPair {
       change(full);
     }
     skipped_steps +=
-        skipping.still_step.valid && still_step_same_motion(skipping.still_step.held, skipping);
-    full.still_step.valid = false;
+        skipping.still_step_valid && still_step_same_motion(skipping.still_step, skipping);
+    full.still_step_valid = false;
     controller.step(skipping, context);
     controller.step(full, context);
     REQUIRE(still_step_same_motion(skipping, full));
@@ -125,14 +125,14 @@ TEST_CASE("A standing entity's step is skipped, and any change of its motion end
   }
   // The first step stood and was remembered; the nine after it were skipped.
   CHECK(pair.skipped_steps == 9);
-  CHECK(pair.skipping.still_step.valid);
+  CHECK(pair.skipping.still_step_valid);
   const double s_before = pair.skipping.lane.s;
 
   SECTION("a speed asked for later moves it on the next step") {
     pair.step([](Entity& e) { e.speed_command = 5.0; });
     CHECK(pair.skipping.state.speed == 5.0);
     CHECK(pair.skipping.lane.s == Approx(s_before + 5.0 * kStillStepDt).margin(1e-12));
-    CHECK_FALSE(pair.skipping.still_step.valid);  // a moving entity is not remembered
+    CHECK_FALSE(pair.skipping.still_step_valid);  // a moving entity is not remembered
     for (int i = 0; i < 20; ++i) {
       pair.step();
     }
@@ -166,7 +166,7 @@ TEST_CASE("A standing entity's step is skipped, and any change of its motion end
     pair.step();
     CHECK(pair.skipping.lane.s == 250.0);
     pair.step();
-    CHECK(pair.skipping.still_step.valid);
+    CHECK(pair.skipping.still_step_valid);
   }
   SECTION("a speed command of -0 differs from one of +0, to the bit") {
     const int skipped = pair.skipped_steps;
@@ -222,13 +222,13 @@ TEST_CASE("A car held at a road's end keeps asking for its speed until it is put
   CHECK(pair.skipping.state.speed == 0.0);
   CHECK(pair.skipping.speed_command == 10.0);
   CHECK(pair.skipped_steps > 10);
-  CHECK(pair.skipping.still_step.valid);
+  CHECK(pair.skipping.still_step_valid);
 
   // A route given while it stands at the dead end: the memo is dropped and the next step is
   // taken in full, though the route leads nowhere here either.
   int skipped = pair.skipped_steps;
   still_step_assign_route(pair);
-  CHECK_FALSE(pair.skipping.still_step.valid);
+  CHECK_FALSE(pair.skipping.still_step_valid);
   pair.step();
   CHECK(pair.skipped_steps == skipped);
   CHECK(pair.skipping.end_of_road);

@@ -42,7 +42,7 @@ class RandomRouteInstance final : public InstantAction {
     entity.chooser = chooser.get();
     // The memo compares the route by address: the old route may be freed and its address
     // reused by a later one, so a standing entity takes its next step anew.
-    entity.still_step.valid = false;
+    entity.still_step_valid = false;
     entity.route = std::move(chooser);
     entity.route_progress = RouteProgress{};
     (void)action_;

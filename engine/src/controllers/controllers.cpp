@@ -476,13 +476,14 @@ void prefetch_lines(const void* from, const void* to) {
 // Asks the memory for entity `i`'s records one move ahead of its own: the movers go in lane
 // order, which is not the order of the entities' storage, so each move began by waiting on the
 // first loads of its entity and its control record (in `step_acc` and `move_one`). Only what
-// every move reads: the entity up to the still step memo's flag (Entity's fields are in the
-// order a step reads them; the memo's copy of the motion and what follows are read by few
-// entities, and asking for them took room in the cache from what the step reads) and the
-// control record's first line. A hint only: nothing is read or written.
+// every move reads: the entity up to its info's performance (Entity's fields are in the order a
+// step reads them; the info's name and model, the still step memo's copy of the motion and what
+// follows are read by few entities or none, and asking for them took room in the cache from
+// what the step reads) and the control record's first line. A hint only: nothing is read or
+// written.
 void prefetch_mover_records(const SimState& state, uint32_t i) {
   const Entity& entity = state.world.entities[i];
-  prefetch_lines(&entity, &entity.still_step.valid);
+  prefetch_lines(&entity, &entity.info.max_deceleration_rate);
   __builtin_prefetch(&state.controls[i]);
 }
 
@@ -616,10 +617,12 @@ MoverScan scan_for_move(SimState& state, uint32_t count) {
       scan.dynamic.push_back(i);
     }
     // Car following and esmini's offroadFollower read the others in the picture (esmini's
-    // interactiveDriver does not: without it the picture is not taken).
-    following |= entity.state.placed && (kind == ControllerKind::kAcc ||
-                                         (kind == ControllerKind::kEsminiVehicle &&
-                                          esmini_driver_reads_view(control.esmini_driver.get())));
+    // interactiveDriver does not: without it the picture is not taken). Once one does, the
+    // entities after it are not read for it (with many vehicles each read is a cache miss).
+    following = following || ((kind == ControllerKind::kAcc ||
+                               (kind == ControllerKind::kEsminiVehicle &&
+                                esmini_driver_reads_view(control.esmini_driver.get()))) &&
+                              entity.state.placed);
     natural |= control.natural != nullptr;
   }
   scan.alks = alks;

@@ -169,12 +169,13 @@ bool at_dead_end(const xodr::Map& map, const LaneFollow& lane, double along) {
   return std::abs(boundary - lane.s) == 0.0 && graph.ends(lane.node, dir < 0).empty();
 }
 
-// StillStepMemo: the entity's motion, copied by its fields (assignment through the base, so
-// nothing of Entity placed in EntityMotion's tail is copied) and compared field by field.
-void take_still_step(StillStepMemo& memo, const EntityMotion& motion) { memo.held = motion; }
+// The still step memo (Entity::still_step): the entity's motion, copied by its fields
+// (assignment through the base, so nothing of Entity placed in EntityMotion's tail is copied)
+// and compared field by field.
+void take_still_step(EntityMotion& memo, const EntityMotion& motion) { memo = motion; }
 
-bool holds_still_step(const StillStepMemo& memo, const EntityMotion& motion) {
-  return same_bits(memo.held, motion);
+bool holds_still_step(const EntityMotion& memo, const EntityMotion& motion) {
+  return same_bits(memo, motion);
 }
 
 }  // namespace
@@ -186,19 +187,19 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
   }
   // A step that would change nothing: the last one changed nothing, and nothing has changed
   // the entity since.
-  StillStepMemo& still = entity.still_step;
-  if (still.valid && holds_still_step(still, entity)) {
+  EntityMotion& still = entity.still_step;
+  if (entity.still_step_valid && holds_still_step(still, entity)) {
     return;
   }
   // Only an entity already standing on its lane can take a step that changes nothing.
   const bool may_stand = entity.state.speed == 0.0 && entity.lane.on_road && context.map != nullptr;
-  still.valid = false;
+  entity.still_step_valid = false;
   if (may_stand) {
     take_still_step(still, entity);
   }
   bool stood = false;
   step_entity(entity, MapMemos{entity.lane_pose_memo, entity.point_memo}, context, stood);
-  still.valid = may_stand && stood && holds_still_step(still, entity);
+  entity.still_step_valid = may_stand && stood && holds_still_step(still, entity);
 }
 
 void DefaultController::step_entity(EntityMotion& entity, MapMemos memos,

@@ -61,9 +61,9 @@ struct LanePoseMemo {
 /// DefaultController): besides the map, the step and the entity's memos of the map's answers
 /// (LanePoseMemo, PointLocateMemo, which give what the map would), the step is a function of
 /// these fields alone, and it is handed nothing else of the entity. Entity holds them as its
-/// first part. A field the step reads or writes belongs here: StillStepMemo copies this whole
-/// part and compares it field by field (same_bits in state/sim_state.h, whose size checks
-/// refuse a field it does not compare).
+/// first part. A field the step reads or writes belongs here: the still step memo
+/// (Entity::still_step) copies this whole part and compares it field by field (same_bits in
+/// state/sim_state.h, whose size checks refuse a field it does not compare).
 struct EntityMotion {
   EntityState state;
   LaneFollow lane;
@@ -81,23 +81,12 @@ struct EntityMotion {
 
   bool end_of_road = false;  ///< stuck at a lane end without successor (EndOfRoadCondition)
   /// Chooses among lane successors at lane ends (a route); null: the straightest. Compared by
-  /// address: whoever assigns it also drops the entity's StillStepMemo, since a replaced route
+  /// address: whoever assigns it also drops the entity's still step memo, since a replaced route
   /// may be freed and its address reused by the next.
   const LaneChooser* chooser = nullptr;
 };
-// StillStepMemo copies EntityMotion by assignment; a trivial copy keeps that cheap.
+// The still step memo copies EntityMotion by assignment; a trivial copy keeps that cheap.
 static_assert(std::is_trivially_copyable_v<EntityMotion>);
-
-/// An entity's motion around a default-controller step that changed nothing of it (one
-/// standing on its lane: asked for no speed, or for a speed it cannot take at a lane end with
-/// nothing beyond; motion/default_controller.cpp). That step is a function of EntityMotion (and
-/// of the map and the step, fixed for the run): while the entity holds exactly `held` again,
-/// field for field and bit for bit (same_bits: -0 and +0 differ, a NaN equals itself), the
-/// next step would change nothing either, and is skipped.
-struct StillStepMemo {
-  bool valid = false;
-  EntityMotion held;
-};
 
 /// The map's last answer, for one entity, to which lane holds the point (x, y) within half a
 /// metre (motion/controller.h, locate_near): a controller that puts its entity at a vehicle
@@ -165,12 +154,13 @@ using LightSettings = std::array<std::optional<LightSetting>, kVehicleLightCount
 
 /// The fields are in the order a step reads them: first what every step's passes over all
 /// entities touch (the motion: state, lane, commands; then the flags and timers, trailer links,
-/// the route, the pose command, the box in `info`, the lane pose memo and whether the still step
-/// memo holds), then what only some entities or events need (the still step's copy of the
-/// motion, a removed entity's last place among them). With hundreds of vehicles the entities no
-/// longer fit in a core's cache, and a step then costs the cache lines it reads of each entity:
-/// the part before `still_step.held` (720 of the entity's 1,256 bytes) is what the moves ask for
-/// ahead (controllers/controllers.cpp) and what the other passes read.
+/// the route, the pose command, the lane pose memo, the box and performance in `info`), then
+/// what only some entities or events need (the info's name and model, the still step's copy of
+/// the motion, the actions owning the domains, a removed entity's last place among them). With
+/// hundreds of vehicles the entities no longer fit in a core's cache, and a step then costs the
+/// cache lines it reads of each entity: the part up to `info.max_deceleration_rate` (632 of the
+/// entity's 1,256 bytes) is what the moves ask for ahead (controllers/controllers.cpp) and what
+/// the other passes read.
 struct Entity : EntityMotion {
   /// Timers (s) for the duration-based conditions (StandStill, Offroad, EndOfRoad).
   bool standing_still = false;  ///< slower than 1e-3 m/s (state/world_update.cpp)
@@ -183,6 +173,9 @@ struct Entity : EntityMotion {
   /// esmini's ghost of another entity (state/ghost_state.h): recorded, but no other entity,
   /// sensor or collision sees it.
   bool ghost = false;
+  /// `still_step` holds the motion of a default-controller step that changed nothing (read every
+  /// step; the motion itself only for an entity standing on its lane).
+  bool still_step_valid = false;
   double standstill_time = 0.0;
   double offroad_time = 0.0;
   double end_of_road_time = 0.0;
@@ -194,20 +187,26 @@ struct Entity : EntityMotion {
   /// that is no collision.
   std::optional<uint32_t> unhitched_from;
 
-  /// The running action that owns each domain (index 0 longitudinal, 1 lateral), or null.
-  std::array<ActionInstance*, kDomainSlots> owners{};
   /// Owns the route chooser (AssignRouteAction, AcquirePositionAction) `chooser` points at; every
   /// step tests it (motion/route_lanes.cpp).
   std::shared_ptr<const LaneChooser> route;
   /// A pose an action sets for the end of the step (FollowTrajectoryAction): the controller
   /// puts the entity there instead of moving it along its lane (motion/pose_command.h).
   std::optional<Pose> pose_command;
-  EntityInfo info;
   LanePoseMemo lane_pose_memo;
-  /// Its flag is read every step; the motion it holds only for an entity standing on its lane.
-  StillStepMemo still_step;
+  /// Its kind, box and performance are read every step, its name and model (last) by none.
+  EntityInfo info;
 
-  // Below: what only some entities, or some events, read.
+  // Below (with the info's name and model): what only some entities, or some events, read.
+  /// The entity's motion around a default-controller step that changed nothing of it (one
+  /// standing on its lane: asked for no speed, or for a speed it cannot take at a lane end with
+  /// nothing beyond; motion/default_controller.cpp), while `still_step_valid`. That step is a
+  /// function of EntityMotion (and of the map and the step, fixed for the run): while the entity
+  /// holds exactly this again, field for field and bit for bit (same_bits: -0 and +0 differ, a
+  /// NaN equals itself), the next step would change nothing either, and is skipped.
+  EntityMotion still_step;
+  /// The running action that owns each domain (index 0 longitudinal, 1 lateral), or null.
+  std::array<ActionInstance*, kDomainSlots> owners{};
   std::optional<RoadCoordinates> removed_road;  ///< see `removed`
   double removed_speed = 0.0;  ///< m/s when it was removed (esmini re-adds it at that speed)
   /// Metres summed as straight lines between the entity's places at the ends of successive

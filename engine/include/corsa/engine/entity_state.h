@@ -16,11 +16,11 @@ namespace corsa::engine {
 /// The kind of OpenSCENARIO object an entity is (ObjectType, §6.2).
 enum class ObjectKind : uint8_t { kVehicle, kPedestrian, kMiscObject, kExternal };
 
+/// The fields a step reads first (the engine keeps an entity's run state in the order its steps
+/// read it, and the name and model last, as no step reads them).
 struct EntityInfo {
-  std::string name;
   ObjectKind kind = ObjectKind::kVehicle;
   EntityCategory category = EntityCategory::kCar;
-  std::string model3d;
   Box box;  ///< bounding box relative to the reference point (vehicles: rear axle centre)
   /// Performance of vehicles (m/s, m/s^2); zero when not a vehicle.
   double max_speed = 0.0;
@@ -29,6 +29,8 @@ struct EntityInfo {
   /// Performance maxAccelerationRate / maxDecelerationRate (m/s^3, 1.2+); zero when not given.
   double max_acceleration_rate = 0.0;
   double max_deceleration_rate = 0.0;
+  std::string name;
+  std::string model3d;
 };
 
 /// Road coordinates of an entity's reference point (OpenDRIVE 1.8 §2.3 reference line frame).
