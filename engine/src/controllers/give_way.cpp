@@ -21,9 +21,13 @@ constexpr double kCleared = 1.0;       // m past a zone's far end that its rear 
 constexpr double kCreep = 1.5;
 
 // Whether a vehicle that needs `stopping` metres to stop can stop before a zone `to_enter`
-// metres ahead of its front.
+// metres ahead of its front. Told to stop, the controller may run past its standstill gap by
+// up to kCreep short of it; by less the slower the vehicle arrives (one crawling up to its stop
+// point stops about where it is), so the margin grows with the stopping distance. With the whole
+// margin at any speed, a vehicle crawling up to its stop point crossed the limit and counted as
+// unable to stop: it was let go into a zone another held.
 bool can_stop(double to_enter, double stopping) {
-  return to_enter - kStopMargin - kStandstill + kCreep >= stopping;
+  return to_enter - kStopMargin - std::min(kStandstill - kCreep, stopping) >= stopping;
 }
 
 // The order key: committed (unable to stop before the next zone ahead) first, then by right of
@@ -56,7 +60,10 @@ void ClaimSettler::settle(std::span<const Approach> approaches, std::span<const 
     std::fill(held_stamp_.begin(), held_stamp_.end(), 0);
     stamp_ = 1;
   }
-  // The zones a vehicle is in are its own, whatever the order.
+  // The zones a vehicle is in, or can no longer stop before, are its own, whatever the order:
+  // another that can still stop waits for it, even if it comes earlier in the order (two
+  // committed to different zones: the earlier was given the later one's zone, which could not
+  // stop before it).
   const auto take = [&](const Claim& c) {
     if (held_stamp_[c.conflict] != stamp_) {
       held_stamp_[c.conflict] = stamp_;
@@ -66,7 +73,7 @@ void ClaimSettler::settle(std::span<const Approach> approaches, std::span<const 
   order_.clear();
   for (const uint32_t i : who) {
     const Approach& a = approaches[i];
-    for (uint32_t k = 0; k < a.count && a.claims[k].to_enter <= 0.0; ++k) {
+    for (uint32_t k = 0; k < a.count && !can_stop(a.claims[k].to_enter, a.stopping); ++k) {
       take(a.claims[k]);
     }
     order_.emplace_back(order_key(a), i);
