@@ -169,6 +169,19 @@ struct Crossing {
   }
 };
 
+// A vehicle's approach for the claims pass: at `speed`, its claims {conflict, side, m to enter,
+// zone's lane} in path order, approaching since tick `arrived`.
+engine::detail::Approach approach(double speed, int64_t arrived,
+                                  const std::vector<engine::detail::Claim>& claims) {
+  engine::detail::Approach a;
+  a.stopping = speed * speed / (2.0 * 5.0);  // braking firmly, as GiveWay::record
+  a.arrived = arrived;
+  for (const auto& claim : claims) {
+    a.claims[a.count++] = claim;
+  }
+  return a;
+}
+
 }  // namespace
 
 TEST_CASE("The four-way intersection's paths conflict where they cross, not where they part",
@@ -291,6 +304,49 @@ TEST_CASE("A junction's priorities give right of way where no sign does",
   CHECK(crossing.least_speed[minor] < 1.0);
   CHECK(crossing.through(major, 2));
   CHECK(crossing.through(minor, 1));
+}
+
+TEST_CASE("A car crawling up to the point it waits at is not let into the zone it waits for",
+          "[engine][npc][give_way]") {
+  using engine::detail::Claim;
+  // Town04 seed 1 at 7.11 s: car 0 waits for zone 0 (3.5 m ahead), crawling at 5 cm/s; zone 1,
+  // which only it claims, begins 2 m ahead of its front. Car 1 has come later and can no longer
+  // stop before its side of zone 0. Counting the whole stop margin at any speed, car 0 counted
+  // as unable to stop before zone 1, went first as committed and took zone 0 too: both drove
+  // into it (car 0 jumped to its set speed, having no leader left).
+  const std::vector<engine::detail::Approach> approaches = {
+      approach(0.05, 0, {Claim{1, 1, 1.999, 11, 4.2}, Claim{0, 1, 3.49, 11, 5.7}}),
+      approach(8.9, 425, {Claim{0, 0, 1.42, 12, 11.1}})};
+  const std::vector<uint32_t> who = {0, 1};
+  std::vector<engine::detail::YieldPoint> yields(2);
+  engine::detail::ClaimSettler settler;
+  settler.settle(approaches, who, 2, yields);
+  CHECK(yields[0].node == 11);  // stops before zone 0
+  CHECK(yields[0].s == 5.7);
+  CHECK(yields[1].node == xodr::kNoLane);
+  // Crawling up to 1.6 m of zone 0 (where it had to stop from 1.5 m/s), it still waits.
+  const std::vector<engine::detail::Approach> nearer = {
+      approach(1.5, 0, {Claim{0, 1, 1.6, 11, 5.7}}), approaches[1]};
+  settler.settle(nearer, who, 2, yields);
+  CHECK(yields[0].node == 11);
+}
+
+TEST_CASE("A car committed to one zone waits before the next for a car that cannot stop",
+          "[engine][npc][give_way]") {
+  using engine::detail::Claim;
+  // Car 0, first to arrive, cannot stop before zone 1 but can before zone 0, 20 m on; car 1
+  // cannot stop before its side of zone 0. Both committed, car 0 came first in the order and
+  // took zone 0 as well: car 1 could not stop, and both drove into it.
+  const std::vector<engine::detail::Approach> approaches = {
+      approach(10.0, 100, {Claim{1, 0, 1.0, 21, 2.0}, Claim{0, 0, 20.0, 21, 21.0}}),
+      approach(10.0, 200, {Claim{0, 1, 1.5, 22, 8.0}})};
+  const std::vector<uint32_t> who = {0, 1};
+  std::vector<engine::detail::YieldPoint> yields(2);
+  engine::detail::ClaimSettler settler;
+  settler.settle(approaches, who, 2, yields);
+  CHECK(yields[0].node == 21);  // waits before zone 0
+  CHECK(yields[0].s == 21.0);
+  CHECK(yields[1].node == xodr::kNoLane);
 }
 
 TEST_CASE("A walker about to cross waits for a vehicle coming close to its way",
