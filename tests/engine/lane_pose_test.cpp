@@ -5,6 +5,7 @@
 // overlap through <border> records.
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -164,4 +165,33 @@ TEST_CASE("An entity's remembered lane at a point is the map's answer, asked aga
   CHECK(mismatches == 0);
   CHECK(found > 0);
   CHECK(found < asked);  // points off the roads too
+}
+
+TEST_CASE("The curvature memo reads a road and s once, and again for other bits of either",
+          "[engine][motion][memo]") {
+  corsa::engine::detail::CurvatureMemo memo;
+  int reads = 0;
+  const auto read = [&](double value) {
+    return [&reads, value] {
+      ++reads;
+      return value;
+    };
+  };
+  CHECK(memo.at(3, 12.5, read(0.25)) == 0.25);
+  CHECK(memo.at(3, 12.5, read(9.0)) == 0.25);  // the same pair: not read again
+  CHECK(reads == 1);
+  CHECK(memo.at(4, 12.5, read(0.5)) == 0.5);                          // another road
+  CHECK(memo.at(3, std::nextafter(12.5, 13.0), read(0.75)) == 0.75);  // another s by one ulp
+  CHECK(memo.at(3, 0.0, read(1.0)) == 1.0);
+  CHECK(memo.at(3, -0.0, read(2.0)) == 2.0);  // -0 and +0 differ in their bits
+  CHECK(reads == 5);
+  // Many pairs share the slots: whatever was evicted, each answer is its own pair's.
+  for (int i = 0; i < 200; ++i) {
+    const double s = 0.1 * i;
+    CHECK(memo.at(static_cast<uint32_t>(i % 7), s, read(s * 2.0 + i % 7)) == s * 2.0 + i % 7);
+  }
+  for (int i = 0; i < 200; ++i) {
+    const double s = 0.1 * i;
+    CHECK(memo.at(static_cast<uint32_t>(i % 7), s, read(s * 2.0 + i % 7)) == s * 2.0 + i % 7);
+  }
 }

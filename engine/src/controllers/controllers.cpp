@@ -522,6 +522,7 @@ struct EntityMover::Impl {
   std::vector<LanesAhead> ahead;
   /// Per worker: lane span scratch, and neighbour query scratch.
   std::vector<std::vector<xodr::LaneSpan>> scratch;
+  std::vector<CurvatureMemo> curvatures;  ///< per worker (motion/controller.h)
   std::vector<std::vector<uint32_t>> nearby;
   /// The order entities are moved in: by lane, so that one after the other they read the same
   /// parts of the map (the result does not depend on it; with many vehicles spread over a city
@@ -668,9 +669,11 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   const std::vector<uint32_t>& order = impl.order;
   impl.scratch.resize(std::max<size_t>(impl.scratch.size(), workers));
   impl.nearby.resize(impl.scratch.size());
+  impl.curvatures.resize(impl.scratch.size());
   MotionContext context = motion;
   context.scratch = &impl.scratch[0];
   context.nearby = &impl.nearby[0];
+  context.curvatures = &impl.curvatures[0];
   if (workers == 1) {
     move_range(state, context, impl.view, impl.ahead, order, 0, order.size());
   } else {
@@ -680,6 +683,7 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
       MotionContext worker_context = motion;
       worker_context.scratch = &impl.scratch[worker];
       worker_context.nearby = &impl.nearby[worker];
+      worker_context.curvatures = &impl.curvatures[worker];
       move_range(state, worker_context, impl.view, impl.ahead, order, begin, end);
     });
   }

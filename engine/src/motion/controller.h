@@ -6,6 +6,8 @@
 // commands exactly along the lanes. Car following and vehicle dynamics (controllers/) are built
 // on it; controllers/controllers.h picks each entity's controller every step.
 
+#include <array>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -14,12 +16,43 @@
 
 namespace corsa::engine::detail {
 
+/// Curvatures (1/m) of reference lines that the default controller's steps read (its path
+/// scale, motion/default_controller.cpp), by road and s: a car that creeps (a speed whose step no
+/// longer changes the bits of its s) reads the curvature at the same s every step, and on a
+/// cubic reference line each reading is an evaluation. The map does not change during a run, so
+/// the same road and s have the same curvature; a slot holds the last pair that hashed to it.
+class CurvatureMemo {
+ public:
+  /// The curvature at (road, s) from the slot's pair when it is that one, else from `read`.
+  template <typename Read>
+  double at(uint32_t road, double s, const Read& read) {
+    const uint64_t bits = std::bit_cast<uint64_t>(s);
+    Slot& slot = slots_[((bits ^ road) * 0x9E3779B97F4A7C15ull) >> (64 - kSlotBits)];
+    if (!slot.valid || slot.road != road || slot.s_bits != bits) {
+      slot = {true, road, bits, read()};
+    }
+    return slot.curvature;
+  }
+
+ private:
+  static constexpr int kSlotBits = 5;
+  struct Slot {
+    bool valid = false;
+    uint32_t road = 0;
+    uint64_t s_bits = 0;  ///< s (m), compared bit for bit
+    double curvature = 0.0;
+  };
+  std::array<Slot, size_t{1} << kSlotBits> slots_{};
+};
+
 struct MotionContext {
   const xodr::Map* map = nullptr;  ///< null: no road network, entities move freely
   double dt = 0.01;                ///< s
   std::vector<xodr::LaneSpan>* scratch = nullptr;
   /// Scratch for the neighbour queries of generated traffic (entity indices), one per thread.
   std::vector<uint32_t>* nearby = nullptr;
+  /// One per thread; null: the curvature is read from the map every time.
+  CurvatureMemo* curvatures = nullptr;
   /// A scenario without road network: the default controller has no road to move an entity
   /// along, so the entity stands (0 m/s) unless an action moves it itself (a trajectory's pose
   /// commands), as in esmini.

@@ -127,12 +127,15 @@ double curvature_at(const xodr::Map& map, uint32_t road, double s) {
 // that a point near or beyond the centre of curvature of a tight curve cannot stall or fling it.
 // Outside every lane of the road (a lateral offset beyond its outer lane, e.g. a lane change that
 // a route carries onto a connecting road with fewer lanes) t comes from the followed lane.
-double path_scale(const xodr::Map& map, const EntityMotion& entity) {
+double path_scale(const xodr::Map& map, const EntityMotion& entity, CurvatureMemo* memo) {
   const bool located = entity.state.road && entity.state.road->road == entity.lane.road;
   if (!located && entity.state.road) {
     return 1.0;
   }
-  const double k = curvature_at(map, entity.lane.road, entity.lane.s);
+  const uint32_t road = entity.lane.road;
+  const double s = entity.lane.s;
+  const double k = memo != nullptr ? memo->at(road, s, [&] { return curvature_at(map, road, s); })
+                                   : curvature_at(map, road, s);
   if (k == 0.0) {
     return 1.0;
   }
@@ -228,7 +231,7 @@ void DefaultController::step_entity(EntityMotion& entity, MapMemos memos,
     const double along = along_lane(entity, distance);
     const double scale = distance == 0.0 || at_dead_end(*context.map, lane, along)
                              ? 1.0
-                             : path_scale(*context.map, entity);
+                             : path_scale(*context.map, entity, context.curvatures);
     const double shift_before = lane.frame_shift;
     const AdvanceResult moved =
         advance_along_lanes(*context.map, lane, along / scale, entity.chooser);

@@ -115,19 +115,26 @@ Trigger::Trigger(const xosc::Trigger& trigger, const SimState& state, bool ghost
 
 bool Trigger::evaluate(const SimState& state, std::vector<uint32_t>& triggering) {
   bool fires = false;
-  for (auto& group : groups_) {
-    std::vector<uint32_t> group_entities;
-    bool all = !group.empty();
-    for (auto& condition : group) {
-      all = condition.evaluate(state, group_entities) && all;
-    }
-    if (all) {
-      fires = true;
-      triggering.insert(triggering.end(), group_entities.begin(), group_entities.end());
+  if (groups_.size() == 1 && groups_.front().size() == 1) {
+    // One condition: it appends its entities only when it holds, which is when the group does.
+    fires = groups_.front().front().evaluate(state, triggering);
+  } else {
+    for (auto& group : groups_) {
+      std::vector<uint32_t> group_entities;
+      bool all = !group.empty();
+      for (auto& condition : group) {
+        all = condition.evaluate(state, group_entities) && all;
+      }
+      if (all) {
+        fires = true;
+        triggering.insert(triggering.end(), group_entities.begin(), group_entities.end());
+      }
     }
   }
-  std::sort(triggering.begin(), triggering.end());
-  triggering.erase(std::unique(triggering.begin(), triggering.end()), triggering.end());
+  if (triggering.size() > 1) {
+    std::sort(triggering.begin(), triggering.end());
+    triggering.erase(std::unique(triggering.begin(), triggering.end()), triggering.end());
+  }
   return fires;
 }
 

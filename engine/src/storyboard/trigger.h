@@ -28,7 +28,7 @@ class CompiledCondition {
   CompiledCondition(const xosc::Condition& condition, const SimState& state, bool ghost = false);
 
   /// The condition's value now. When it holds, the entities that made it hold are appended to
-  /// `triggering` (by-entity conditions).
+  /// `triggering` (by-entity conditions); when it does not, nothing is.
   bool evaluate(const SimState& state, std::vector<uint32_t>& triggering);
 
   /// Forgets the values seen so far (the edge's previous value, values waiting for their delay):
