@@ -14,6 +14,7 @@
 #include "../xodr/xodr_test_util.h"
 #include "lanes/lane_follow.h"
 #include "motion/controller.h"
+#include "motion/pose_command.h"
 #include "state/sim_state.h"
 
 namespace {
@@ -194,4 +195,64 @@ TEST_CASE("The curvature memo reads a road and s once, and again for other bits 
     const double s = 0.1 * i;
     CHECK(memo.at(static_cast<uint32_t>(i % 7), s, read(s * 2.0 + i % 7)) == s * 2.0 + i % 7);
   }
+}
+
+TEST_CASE("A pose command to where an entity off the road stands is kept without the map",
+          "[engine][lanes]") {
+  using corsa::engine::detail::Entity;
+  const Map map = corsa::xodr::test::load_map(corsa::xodr::test::all_shared_maps().front());
+  std::vector<LaneSpan> spans;
+  const corsa::engine::detail::MotionContext context{&map, 0.05, &spans};
+  // Far off every road: the memo answers nothing there, with a clearance around the point.
+  const double x = 1.0e6, y = -1.0e6, h = 0.3;
+  // An entity standing there, its memo asked for the point (Entity holds move-only parts).
+  const auto standing = [&] {
+    Entity entity;
+    entity.state.placed = true;
+    entity.state.pose = {x, y, 1.5, h, 0.02, 0.0};
+    entity.state.speed = 2.0;
+    entity.state.lateral_speed = 0.2;
+    entity.state.odometer = 10.0;
+    entity.state.road = corsa::engine::RoadCoordinates{1, 0, -1, 3.0, -1.0};
+    entity.speed_command = 1.5;
+    entity.lateral_command = 0.7;
+    entity.end_of_road = true;
+    REQUIRE_FALSE(corsa::engine::detail::locate_near(entity, map, x, y).has_value());
+    return entity;
+  };
+  const Entity entity = standing();
+  // Held: the writes of a pose command to the same pose.
+  Entity held = standing();
+  REQUIRE(corsa::engine::detail::keeps_pose_off_lanes(held, x, y, h, context));
+  corsa::engine::detail::hold_pose_off_lanes(held, context);
+  Entity moved = standing();
+  moved.pose_command = moved.state.pose;
+  corsa::engine::detail::move_to_pose_command(moved, context);
+  CHECK(same_bits(static_cast<const corsa::engine::detail::EntityMotion&>(held),
+                  static_cast<const corsa::engine::detail::EntityMotion&>(moved)));
+  CHECK_FALSE(held.pose_command.has_value());
+  CHECK_FALSE(held.state.road.has_value());
+  CHECK(held.state.speed == 1.5);
+  CHECK(held.state.yaw_rate == 0.0);
+  // Not held: another point, another heading, -0 for +0, a NaN, an entity whose memo holds a
+  // lane, and no map.
+  CHECK_FALSE(
+      corsa::engine::detail::keeps_pose_off_lanes(entity, std::nextafter(x, 0.0), y, h, context));
+  CHECK_FALSE(corsa::engine::detail::keeps_pose_off_lanes(entity, x, y, h + 1e-12, context));
+  Entity at_zero = standing();
+  at_zero.state.pose.h = 0.0;
+  CHECK_FALSE(corsa::engine::detail::keeps_pose_off_lanes(at_zero, x, y, -0.0, context));
+  Entity not_a_number = standing();
+  not_a_number.state.pose.x = std::nan("");
+  CHECK_FALSE(
+      corsa::engine::detail::keeps_pose_off_lanes(not_a_number, std::nan(""), y, h, context));
+  const corsa::xodr::WorldPose on_lane = map.world_pose(0, 0.5 * map.road(0).length, 0.0);
+  Entity on_road = standing();
+  on_road.state.pose.x = on_lane.x;
+  on_road.state.pose.y = on_lane.y;
+  REQUIRE(corsa::engine::detail::locate_near(on_road, map, on_lane.x, on_lane.y).has_value());
+  CHECK_FALSE(
+      corsa::engine::detail::keeps_pose_off_lanes(on_road, on_lane.x, on_lane.y, h, context));
+  const corsa::engine::detail::MotionContext no_map{nullptr, 0.05, &spans};
+  CHECK_FALSE(corsa::engine::detail::keeps_pose_off_lanes(entity, x, y, h, no_map));
 }

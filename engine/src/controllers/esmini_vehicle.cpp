@@ -75,10 +75,17 @@ void single_track_step(double& x, double& y, double& h, double speed, double whe
 
 void place_entity_at_model(double x, double y, double h, double speed, Entity& entity,
                            const MotionContext& motion) {
+  // A model that did not move its entity off the road (esmini's at rest, whose speed only nears
+  // 0) keeps the pose, lane and road it has: only the speed and what follows from it change.
+  const double heading = remainder_full_turn(h);
+  if (keeps_pose_off_lanes(entity, x, y, heading, motion)) {
+    move_at_controller_speed(entity, speed, [&] { hold_pose_off_lanes(entity, motion); });
+    return;
+  }
   Pose pose = entity.state.pose;
   pose.x = x;
   pose.y = y;
-  pose.h = remainder_full_turn(h);
+  pose.h = heading;
   if (motion.map != nullptr) {
     if (const auto at = road_point_within(locate_near(entity, *motion.map, x, y), 0.5)) {
       const xodr::WorldPose surface = motion.map->world_pose(at->road, at->s, at->t);

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -109,5 +110,11 @@ const std::optional<xodr::LanePosition>& locate_near(Entity& entity, const xodr:
                                                      double y);
 const std::optional<xodr::LanePosition>& locate_near(PointLocateMemo& memo, const xodr::Map& map,
                                                      double x, double y);
+/// Whether locate_near would answer nothing for (x, y) from the memo alone (a point clear of
+/// every lane), leaving the memo as it is.
+inline bool clear_of_lanes_at(const PointLocateMemo& memo, double x, double y) {
+  return memo.valid && !memo.located && std::abs(x - memo.x) <= memo.clear &&
+         std::abs(y - memo.y) <= memo.clear;
+}
 
 }  // namespace corsa::engine::detail

@@ -80,8 +80,7 @@ const std::optional<xodr::LanePosition>& locate_near(Entity& entity, const xodr:
 
 const std::optional<xodr::LanePosition>& locate_near(PointLocateMemo& memo, const xodr::Map& map,
                                                      double x, double y) {
-  if (memo.valid && !memo.located && std::abs(x - memo.x) <= memo.clear &&
-      std::abs(y - memo.y) <= memo.clear) {
+  if (clear_of_lanes_at(memo, x, y)) {
     return memo.located;  // still clear of every lane (a NaN point fails the comparisons)
   }
   if (!memo.valid || !same_bits(memo.x, x) || !same_bits(memo.y, y)) {

@@ -5,14 +5,16 @@
 #include "geometry/angle.h"
 #include "lanes/lane_follow.h"
 #include "positions/position_resolver.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 
-void move_to_pose_command(Entity& entity, const MotionContext& context) {
+namespace {
+
+// The pose's own part of a move to `target`: speed, accelerations, yaw rate and odometers.
+// Returns the distance moved (m).
+double take_pose(Entity& entity, const Pose& target, double dt) {
   EntityState& state = entity.state;
-  const Pose target = *entity.pose_command;
-  entity.pose_command.reset();
-  const double dt = context.dt;
   const double dx = target.x - state.pose.x;
   const double dy = target.y - state.pose.y;
   // hypot(+-0, +-0) is +0: a model at rest (esmini's, whose speed only nears 0) moves by none.
@@ -29,6 +31,24 @@ void move_to_pose_command(Entity& entity, const MotionContext& context) {
   state.odometer += moved;
   entity.longitudinal_distance += moved;
   entity.end_of_road = false;
+  return moved;
+}
+
+// Off its lanes: no lane to follow, and the road coordinates of the map's answer at its point.
+void leave_lanes(Entity& entity, const std::optional<xodr::LanePosition>& located) {
+  entity.lane.on_road = false;
+  entity.lateral_command = 0.0;
+  update_road_from_located(entity, located);
+}
+
+}  // namespace
+
+void move_to_pose_command(Entity& entity, const MotionContext& context) {
+  EntityState& state = entity.state;
+  const Pose target = *entity.pose_command;
+  entity.pose_command.reset();
+  const double h0 = state.pose.h;
+  const double moved = take_pose(entity, target, context.dt);
   if (context.map == nullptr) {
     return;
   }
@@ -49,10 +69,27 @@ void move_to_pose_command(Entity& entity, const MotionContext& context) {
                                  static_cast<uint32_t>(context.map->section_index(at->road, at->s)),
                                  *at->lane, at->s, at->t};
   } else {
-    entity.lane.on_road = false;
-    entity.lateral_command = 0.0;
     // The pose is the target: the map's answer for its point is at hand.
-    update_road_from_located(entity, located);
+    leave_lanes(entity, located);
+  }
+}
+
+bool keeps_pose_off_lanes(const Entity& entity, double x, double y, double h,
+                          const MotionContext& context) {
+  const EntityState& state = entity.state;
+  // Compared by value too: a NaN coordinate takes the move (its distance is no 0, its turn no 0).
+  return context.map != nullptr && x == state.pose.x && y == state.pose.y && h == state.pose.h &&
+         same_bits(x, state.pose.x) && same_bits(y, state.pose.y) && same_bits(h, state.pose.h) &&
+         clear_of_lanes_at(entity.point_memo, x, y);
+}
+
+void hold_pose_off_lanes(Entity& entity, const MotionContext& context) {
+  // move_to_pose_command to the pose the entity has: it moves by +0 and turns by +0, and the
+  // map's answer at its point is none.
+  entity.pose_command.reset();
+  take_pose(entity, entity.state.pose, context.dt);
+  if (!entity.lane.on_road) {
+    leave_lanes(entity, std::nullopt);
   }
 }
 

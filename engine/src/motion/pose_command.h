@@ -14,4 +14,14 @@ namespace corsa::engine::detail {
 /// one). The speed is the commanded speed_command (m/s), signed as the action gives it.
 void move_to_pose_command(Entity& entity, const MotionContext& context);
 
+/// Whether a pose command of (x, y, h) would leave `entity` where it is without asking the map:
+/// (x, y, h) are its pose's own, bit for bit, and its point memo says no lane is near that point
+/// (so the command's z and p, taken from a road there, stay too).
+bool keeps_pose_off_lanes(const Entity& entity, double x, double y, double h,
+                          const MotionContext& context);
+
+/// move_to_pose_command for such a command (keeps_pose_off_lanes): the speed, accelerations,
+/// yaw rate and odometers of a move by nothing, and no lane.
+void hold_pose_off_lanes(Entity& entity, const MotionContext& context);
+
 }  // namespace corsa::engine::detail

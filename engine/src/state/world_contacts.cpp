@@ -51,6 +51,15 @@ void record_new_contacts(SimState& state, const std::vector<std::pair<uint32_t, 
   }
 }
 
+// Moves the last update's pairs to `sweep.previous` and empties the pairs for the new ones,
+// keeping the storage of both.
+const std::vector<std::pair<uint32_t, uint32_t>>& take_previous_pairs(SimState& state,
+                                                                      ContactSweep& sweep) {
+  sweep.previous.swap(state.contacts.pairs);
+  state.contacts.pairs.clear();
+  return sweep.previous;
+}
+
 // The bounds of the boxed entities' extents, and whether every extent is finite.
 struct ContactSpread {
   bool any = false;
@@ -179,8 +188,7 @@ bool update_moved_contacts(SimState& state, ContactSweep& sweep) {
   for (const uint32_t i : sweep.moved) {
     sweep.moved_mark[i] = 1;
   }
-  std::vector<std::pair<uint32_t, uint32_t>> previous;
-  previous.swap(state.contacts.pairs);
+  const auto& previous = take_previous_pairs(state, sweep);
   auto& now = state.contacts.pairs;
   for (const auto& pair : previous) {
     if (sweep.moved_mark[pair.first] == 0 && sweep.moved_mark[pair.second] == 0) {
@@ -392,8 +400,7 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
     return;
   }
   auto& entities = state.world.entities;
-  std::vector<std::pair<uint32_t, uint32_t>> previous;
-  previous.swap(state.contacts.pairs);
+  const auto& previous = take_previous_pairs(state, sweep);
   // Boxes whose extents overlap along the sweep's axis (sweep and prune) are tested exactly.
   make_all_boxes(state, sweep);
   std::vector<Item> items;

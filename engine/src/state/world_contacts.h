@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "corsa/engine/oriented_box.h"
@@ -40,6 +41,9 @@ struct ContactSweep {
   /// (kept between updates for their storage).
   std::vector<uint32_t> moved;
   std::vector<uint8_t> moved_mark;
+  /// The pairs of the update before, while an update makes the new ones (kept between updates
+  /// for its storage, as ContactSet::pairs: an update then allocates nothing).
+  std::vector<std::pair<uint32_t, uint32_t>> previous;
 };
 
 /// Recomputes which placed entities overlap now, and records the pairs that just started to.
