@@ -869,8 +869,10 @@ TEST_CASE("Boxes that moved into and out of contact with standing ones get a ful
   }
 }
 
-TEST_CASE("The worker pool hands out every item once, in chunks, and rethrows a chunk's error",
-          "[engine][traffic]") {
+TEST_CASE(
+    "The worker pool hands out every item once, in chunks, announced or not, and rethrows a "
+    "chunk's error",
+    "[engine][traffic]") {
   using corsa::engine::detail::WorkerPool;
   for (const unsigned threads : {1u, 2u, 3u}) {
     WorkerPool pool(threads);
@@ -880,6 +882,10 @@ TEST_CASE("The worker pool hands out every item once, in chunks, and rethrows a 
       for (const size_t chunk : {size_t{1}, size_t{3}, size_t{32}}) {
         std::vector<std::atomic<int>> taken(count);
         std::atomic<bool> bad_range{false};
+        // Runs announced ahead (the workers spin for them) and runs that are not, mixed.
+        if (chunk != 3) {
+          pool.prepare();
+        }
         pool.run(count, chunk, [&](size_t begin, size_t end, unsigned worker) {
           if (begin >= end || end > count || end - begin > chunk || begin % chunk != 0 ||
               worker >= threads) {
@@ -901,5 +907,12 @@ TEST_CASE("The worker pool hands out every item once, in chunks, and rethrows a 
     std::atomic<size_t> sum{0};
     pool.run(100, 8, [&](size_t begin, size_t end, unsigned) { sum += end - begin; });
     CHECK(sum == 100);  // still hands out every item after an error
+    // Announcements without a run (twice over, and one left when the pool ends) change nothing.
+    pool.prepare();
+    pool.prepare();
+    sum = 0;
+    pool.run(100, 8, [&](size_t begin, size_t end, unsigned) { sum += end - begin; });
+    CHECK(sum == 100);
+    pool.prepare();
   }
 }

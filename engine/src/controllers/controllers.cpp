@@ -652,8 +652,13 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   // holds the grid of the others.
   const bool generated = !state.traffic.lifetimes.empty();
   const unsigned workers = count >= kParallelEntities ? impl.threads : 1;
-  if (workers > 1 && !impl.pool) {
-    impl.pool = std::make_unique<WorkerPool>(impl.threads);
+  if (workers > 1) {
+    if (!impl.pool) {
+      impl.pool = std::make_unique<WorkerPool>(impl.threads);
+    }
+    // The worker wakes up while this thread takes the picture (below) and joins the moves
+    // when they start.
+    impl.pool->prepare();
   }
   if (scan.following || generated) {
     impl.view.build(state, generated, workers > 1 ? impl.pool.get() : nullptr);

@@ -106,6 +106,12 @@ struct Candidate {
   double s_end = 0.0;
 };
 
+// The lanes places are drawn on, and the table that draws them by length.
+struct Lanes {
+  const std::vector<Candidate>& candidates;  ///< not empty
+  WeightedTable by_length;
+};
+
 std::vector<Candidate> lanes_of(const xodr::Map& map, bool walks) {
   std::vector<Candidate> out;
   for (size_t r = 0; r < map.road_count(); ++r) {
@@ -152,38 +158,39 @@ class Npcs final : public GeneratorBase {
 
   // Places up to `count` NPCs of one kind; returns how many fitted. When the lanes are full
   // with vehicles kVehicleClearance apart, the rest go between them, kVehicleTightClearance
-  // apart (still off junctions, their boxes kVehicleBoxMargin clear).
+  // apart (still off junctions, their boxes kVehicleBoxMargin clear). Both passes draw from one
+  // table of the lanes' lengths, made here.
   uint32_t place(SimState& state, bool walks, uint32_t count) {
     const std::vector<Candidate> lanes = lanes_of(*state.map, walks);
+    if (lanes.empty()) {
+      return 0;
+    }
+    std::vector<double> weights;
+    for (const Candidate& c : lanes) {
+      weights.push_back(c.s_end - c.s_begin);
+    }
+    const Lanes drawn{lanes, WeightedTable(weights)};
     Placed others(state);
     if (walks) {
-      return place_on(state, others, lanes, true, kWalkerClearance, count, 0);
+      return place_on(state, others, drawn, true, kWalkerClearance, count, 0);
     }
-    const uint32_t placed = place_on(state, others, lanes, false, kVehicleClearance, count, 0);
+    const uint32_t placed = place_on(state, others, drawn, false, kVehicleClearance, count, 0);
     if (placed == count) {
       return placed;
     }
-    return place_on(state, others, lanes, false, kVehicleTightClearance, count, placed);
+    return place_on(state, others, drawn, false, kVehicleTightClearance, count, placed);
   }
 
  private:
   // Draws places on `lanes` (by length), `clearance` from every entity, until `count` NPCs are
   // placed (`placed` of them already) or kTriesPerNpc tries per NPC still to place have
   // failed; returns how many are placed.
-  uint32_t place_on(SimState& state, Placed& others, const std::vector<Candidate>& lanes,
-                    bool walks, double clearance, uint32_t count, uint32_t placed) {
+  uint32_t place_on(SimState& state, Placed& others, const Lanes& lanes, bool walks,
+                    double clearance, uint32_t count, uint32_t placed) {
     const xodr::Map& map = *state.map;
-    if (lanes.empty()) {
-      return placed;
-    }
-    std::vector<double> weights;
-    for (const Candidate& c : lanes) {
-      weights.push_back(c.s_end - c.s_begin);
-    }
-    const WeightedTable by_length(weights);
     const uint32_t tries = kTriesPerNpc * (count - placed);
     for (uint32_t attempt = 0; placed < count && attempt < tries; ++attempt) {
-      const Candidate& c = lanes[by_length.draw(random_)];
+      const Candidate& c = lanes.candidates[lanes.by_length.draw(random_)];
       const double s = random_.uniform(c.s_begin + 2.0, c.s_end - 2.0);
       const bool right_hand = map.road(c.road).rule == xodr::TrafficRule::kRightHand;
       int dir = (c.lane < 0) == right_hand ? 1 : -1;
