@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "corsa/xosc/scenario.h"
@@ -49,20 +50,41 @@ inline corsa::Diagnostic warning_with(const Loaded& loaded, const std::string& t
   return {};
 }
 
-/// Loads leniently (a warning with `(read as`, at `line`) and strictly (an error at `line`).
-inline void check_both_ways(const std::string& xml, const std::string& text, int line) {
+/// Loads `xml` leniently in a folder of its own and requires that it loaded without an error
+/// (the first shown otherwise).
+inline Loaded load_without_errors(const std::string& xml, bool esmini_booleans = false) {
   TempDir dir;
-  const Loaded lenient = lenient_load(dir, xml);
-  INFO((lenient.errors.empty() ? std::string() : lenient.errors[0].format()));
-  REQUIRE(lenient.errors.empty());
+  Loaded loaded = lenient_load(dir, xml, false, esmini_booleans);
+  INFO((loaded.errors.empty() ? std::string() : loaded.errors[0].format()));
+  REQUIRE(loaded.errors.empty());
+  REQUIRE(loaded.scenario);
+  return loaded;
+}
+
+/// load_without_errors, requiring a warning containing `text` (at `line` when given): the
+/// scenario read.
+inline xosc::Scenario load_with_warning(const std::string& xml, const std::string& text,
+                                        int line = 0) {
+  Loaded loaded = load_without_errors(xml);
+  const auto warning = warning_with(loaded, text);
+  if (line > 0) CHECK(warning.line == line);
+  return std::move(*loaded.scenario);
+}
+
+/// Loads leniently (a warning with `(read as`, at `line`) and strictly (an error at `line`);
+/// the lenient load.
+inline Loaded check_both_ways(const std::string& xml, const std::string& text, int line) {
+  Loaded lenient = load_without_errors(xml);
   const auto warning = warning_with(lenient, text);
   CHECK(warning.line == line);
   CHECK_THAT(warning.message, Catch::Contains("(read as "));
+  TempDir dir;
   const Loaded strict = lenient_load(dir, xml, true);
   REQUIRE(!strict.errors.empty());
   CHECK(strict.errors[0].line == line);
   CHECK_THAT(strict.errors[0].message, Catch::Contains(text));
   CHECK_THAT(strict.errors[0].message, Catch::Contains("--strict"));
+  return lenient;
 }
 
 }  // namespace corsa::test

@@ -59,16 +59,15 @@ TEST_CASE("a maximumExecutionCount of -1 is read as no limit", "[xosc][lenient]"
   ScenarioText text;
   text.stories = esmini_story("-1", kSpeedAction);
   const std::string xml = text.str();
-  check_both_ways(xml, "maximumExecutionCount -1 is not an unsignedInt",
-                  line_of(xml, "<ManeuverGroup"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = lenient_load(dir, xml);
+  const Loaded loaded = check_both_ways(xml, "maximumExecutionCount -1 is not an unsignedInt",
+                                        line_of(xml, "<ManeuverGroup"));
   const auto& group = loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0];
   CHECK(group.maximum_execution_count == std::numeric_limits<uint32_t>::max());
   CHECK(only_event(loaded).maximum_execution_count == std::numeric_limits<uint32_t>::max());
   // Other negative counts stay errors: only -1 has the documented meaning.
   ScenarioText minus_two;
   minus_two.stories = esmini_story("-2", kSpeedAction);
+  corsa::test::TempDir dir;
   CHECK(!lenient_load(dir, minus_two.str()).errors.empty());
 }
 
@@ -86,9 +85,8 @@ TEST_CASE("relative road and lane positions without their offsets are the entity
       "</Position></TeleportAction></PrivateAction>\n</Private>\n";
   const std::string xml = text.str();
   // The first reading is an error under --strict; each is a warning at its element.
-  check_both_ways(xml, "<RelativeRoadPosition> without ds", line_of(xml, "<RelativeRoadPosition"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = lenient_load(dir, xml);
+  const Loaded loaded = check_both_ways(xml, "<RelativeRoadPosition> without ds",
+                                        line_of(xml, "<RelativeRoadPosition"));
   CHECK(warning_with(loaded, "<RelativeRoadPosition> without dt").line ==
         line_of(xml, "<RelativeRoadPosition"));
   CHECK(warning_with(loaded, "<RelativeLanePosition> without dLane").line ==
@@ -113,9 +111,8 @@ TEST_CASE("a catalog location without a Directory is no catalog of that kind", "
   ScenarioText text;
   text.catalogs = "<RouteCatalog/>\n";
   const std::string xml = text.str();
-  check_both_ways(xml, "<RouteCatalog> without a <Directory>", line_of(xml, "<RouteCatalog/>"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = lenient_load(dir, xml);
+  const Loaded loaded =
+      check_both_ways(xml, "<RouteCatalog> without a <Directory>", line_of(xml, "<RouteCatalog/>"));
   CHECK(!loaded.scenario->catalog_locations.route);
 }
 
@@ -123,9 +120,8 @@ TEST_CASE("an empty Action is an action that does nothing", "[xosc][lenient]") {
   ScenarioText text;
   text.stories = esmini_story("1", "");
   const std::string xml = text.str();
-  check_both_ways(xml, "<Action> 'A' without an action", line_of(xml, "<Action name=\"A\"/>"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = lenient_load(dir, xml);
+  const Loaded loaded =
+      check_both_ways(xml, "<Action> 'A' without an action", line_of(xml, "<Action name=\"A\"/>"));
   const auto& action = only_event(loaded).actions[0];
   CHECK(action.name == "A");
   const auto& user = std::get<UserDefinedAction>(action.action);
@@ -136,9 +132,8 @@ TEST_CASE("a Maneuver without a name is an unnamed maneuver", "[xosc][lenient]")
   ScenarioText text;
   text.stories = esmini_story("1", kSpeedAction, "");
   const std::string xml = text.str();
-  check_both_ways(xml, "<Maneuver> without name", line_of(xml, "<Maneuver >"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = lenient_load(dir, xml);
+  const Loaded loaded =
+      check_both_ways(xml, "<Maneuver> without name", line_of(xml, "<Maneuver >"));
   const auto& maneuver =
       loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0];
   CHECK(maneuver.name.empty());
@@ -150,10 +145,7 @@ TEST_CASE("a Story without a name is an unnamed story", "[xosc][lenient]") {
   text.stories = esmini_story("1", kSpeedAction);
   text.stories.replace(text.stories.find("<Story name=\"S\">"), 16, "<Story >");
   const std::string xml = text.str();
-  check_both_ways(xml, "<Story> without name", line_of(xml, "<Story >"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = lenient_load(dir, xml);
-  REQUIRE(loaded.scenario);
+  const Loaded loaded = check_both_ways(xml, "<Story> without name", line_of(xml, "<Story >"));
   const auto& story = loaded.scenario->storyboard.stories[0];
   CHECK(story.name.empty());
   CHECK(story.acts[0].path == "Act");
@@ -170,10 +162,9 @@ TEST_CASE("a relative target speed of 0 without its value type is the other enti
       "<RelativeTargetSpeed entityRef=\"Ego\" value=\"0.0\" continuous=\"true\"/>\n"
       "</SpeedActionTarget></SpeedAction></LongitudinalAction></PrivateAction>\n</Private>\n";
   const std::string xml = text.str();
-  check_both_ways(xml, "<RelativeTargetSpeed> of value 0 without speedTargetValueType",
-                  line_of(xml, "<RelativeTargetSpeed"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = lenient_load(dir, xml);
+  const Loaded loaded =
+      check_both_ways(xml, "<RelativeTargetSpeed> of value 0 without speedTargetValueType",
+                      line_of(xml, "<RelativeTargetSpeed"));
   const auto& speed =
       std::get<SpeedAction>(loaded.scenario->storyboard.init.privates[1].actions[0]);
   const auto& target = std::get<RelativeTargetSpeed>(speed.target);
@@ -182,5 +173,6 @@ TEST_CASE("a relative target speed of 0 without its value type is the other enti
   // Any other value says nothing about delta or factor: still an error.
   std::string other = xml;
   other.replace(other.find("value=\"0.0\""), 11, "value=\"1.5\"");
+  corsa::test::TempDir dir;
   CHECK(!lenient_load(dir, other).errors.empty());
 }

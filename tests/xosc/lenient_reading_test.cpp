@@ -27,10 +27,8 @@ TEST_CASE("a string parameter holding a number is read as that number in an expr
       "<WorldPosition x=\"${$Lane * 3.5}\" y=\"0\" h=\"0\"/></Position></TeleportAction>"
       "</PrivateAction>\n</Private>\n";
   const std::string xml = text.str();
-  check_both_ways(xml, "string parameter '$Lane' = '-1' used in an expression",
-                  line_of(xml, "WorldPosition"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded = check_both_ways(
+      xml, "string parameter '$Lane' = '-1' used in an expression", line_of(xml, "WorldPosition"));
   const auto& teleport =
       std::get<TeleportAction>(loaded.scenario->storyboard.init.privates[0].actions[0]);
   CHECK(std::get<WorldPosition>(teleport.position.kind).x == -3.5);
@@ -44,9 +42,8 @@ TEST_CASE("the constant pi in an expression is read as pi", "[xosc][lenient]") {
       "<WorldPosition x=\"0\" y=\"0\" h=\"${pi / 2}\"/></Position></TeleportAction>"
       "</PrivateAction>\n</Private>\n";
   const std::string xml = text.str();
-  check_both_ways(xml, "constant 'pi' in expression '${pi / 2}'", line_of(xml, "WorldPosition"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded = check_both_ways(xml, "constant 'pi' in expression '${pi / 2}'",
+                                        line_of(xml, "WorldPosition"));
   const auto& teleport =
       std::get<TeleportAction>(loaded.scenario->storyboard.init.privates[0].actions[0]);
   CHECK(*std::get<WorldPosition>(teleport.position.kind).h == 1.5707963267948966);
@@ -98,12 +95,12 @@ TEST_CASE("an int written with a zero fraction is read as that int", "[xosc][len
   ScenarioText text;
   text.parameters = "<ParameterDeclaration name=\"N\" parameterType=\"int\" value=\"-5.0\"/>\n";
   const std::string xml = text.str();
-  check_both_ways(xml, "parameter 'N': '-5.0' is not an int", line_of(xml, "name=\"N\""));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded =
+      check_both_ways(xml, "parameter 'N': '-5.0' is not an int", line_of(xml, "name=\"N\""));
   CHECK(std::get<int64_t>(loaded.scenario->parameters[0].value.data) == -5);
   // 2.5 is no int at all.
   text.parameters = "<ParameterDeclaration name=\"N\" parameterType=\"int\" value=\"2.5\"/>\n";
+  corsa::test::TempDir dir;
   CHECK(corsa::test::lenient_load(dir, text.str()).errors.size() == 1);
 }
 
@@ -126,9 +123,8 @@ TEST_CASE("a repeated parameter declaration is read as the later one", "[xosc][l
       "<ParameterDeclaration name=\"V\" parameterType=\"double\" value=\"1\"/>\n"
       "<ParameterDeclaration name=\"V\" parameterType=\"double\" value=\"2\"/>\n";
   const std::string xml = text.str();
-  check_both_ways(xml, "parameter 'V' is declared twice", line_of(xml, "value=\"2\""));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded =
+      check_both_ways(xml, "parameter 'V' is declared twice", line_of(xml, "value=\"2\""));
   REQUIRE(loaded.scenario->parameters.size() == 1);
   CHECK(std::get<double>(loaded.scenario->parameters[0].value.data) == 2.0);
 }
@@ -142,9 +138,8 @@ TEST_CASE("a negative transition dynamics value is read as its magnitude", "[xos
       "<SpeedActionTarget><AbsoluteTargetSpeed value=\"0\"/></SpeedActionTarget>"
       "</SpeedAction></LongitudinalAction></PrivateAction>\n</Private>\n";
   const std::string xml = text.str();
-  check_both_ways(xml, "transition dynamics value -4 is negative", line_of(xml, "value=\"-4\""));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded = check_both_ways(xml, "transition dynamics value -4 is negative",
+                                        line_of(xml, "value=\"-4\""));
   const auto& speed =
       std::get<SpeedAction>(loaded.scenario->storyboard.init.privates[0].actions[0]);
   CHECK(speed.dynamics.value == 4.0);
@@ -161,9 +156,8 @@ TEST_CASE("an empty StartTrigger is read as none, an empty StopTrigger never fir
       "</LongitudinalAction></PrivateAction></Action>\n"
       "<StartTrigger/>\n</Event>\n");
   const std::string xml = text.str();
-  check_both_ways(xml, "empty <StartTrigger/>", line_of(xml, "<StartTrigger/>"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded =
+      check_both_ways(xml, "empty <StartTrigger/>", line_of(xml, "<StartTrigger/>"));
   const auto& event =
       loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
   CHECK(!event.start_trigger);
@@ -176,9 +170,8 @@ TEST_CASE("an empty trailer entityRef is no trailer", "[xosc][lenient]") {
   text.entities.replace(text.entities.find(vehicle_end), vehicle_end.size(),
                         vehicle_end + "<Trailer><TrailerRef entityRef=\"$T\"/></Trailer>\n");
   const std::string xml = text.str();
-  check_both_ways(xml, "the trailer's entityRef is empty", line_of(xml, "entityRef=\"$T\""));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded =
+      check_both_ways(xml, "the trailer's entityRef is empty", line_of(xml, "entityRef=\"$T\""));
   CHECK(!std::get<Vehicle>(loaded.scenario->entities.objects[0].object).trailer);
 }
 
@@ -214,10 +207,8 @@ TEST_CASE("an ambiguous storyboard reference resolves to the element nearest to 
   text.stories =
       corsa::test::story_with(events("S1"), "S1") + corsa::test::story_with(events("S2"), "S2");
   const std::string xml = text.str();
-  check_both_ways(xml, "the event name 'First' is not unique",
-                  line_of(xml, "storyboardElementRef=\"First\""));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded = check_both_ways(xml, "the event name 'First' is not unique",
+                                        line_of(xml, "storyboardElementRef=\"First\""));
   const auto resolved = [&](size_t story) {
     const auto& event = loaded.scenario->storyboard.stories[story]
                             .acts[0]
@@ -242,10 +233,9 @@ TEST_CASE("a step transition without dimension or value is read as a step at onc
       "<SpeedActionTarget><AbsoluteTargetSpeed value=\"20\"/></SpeedActionTarget>"
       "</SpeedAction></LongitudinalAction></PrivateAction>\n</Private>\n";
   const std::string xml = text.str();
-  check_both_ways(xml, "step transition dynamics without dynamicsDimension and value",
-                  line_of(xml, "dynamicsShape=\"step\""));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded =
+      check_both_ways(xml, "step transition dynamics without dynamicsDimension and value",
+                      line_of(xml, "dynamicsShape=\"step\""));
   const auto& speed =
       std::get<SpeedAction>(loaded.scenario->storyboard.init.privates[0].actions[0]);
   CHECK(speed.dynamics.shape == DynamicsShape::kStep);
@@ -284,9 +274,8 @@ TEST_CASE("a condition without conditionEdge is read as edge none", "[xosc][leni
       "<SimulationTimeCondition value=\"1\" rule=\"greaterThan\"/></ByValueCondition>"
       "</Condition></ConditionGroup>\n"));
   const std::string xml = text.str();
-  check_both_ways(xml, "<Condition> without conditionEdge", line_of(xml, "<Condition name"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded =
+      check_both_ways(xml, "<Condition> without conditionEdge", line_of(xml, "<Condition name"));
   const auto& event =
       loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
   CHECK(event.start_trigger->groups[0].conditions[0].edge == ConditionEdge::kNone);
@@ -300,9 +289,8 @@ TEST_CASE("the draft attribute edge of a condition is read as conditionEdge", "[
   ScenarioText text;
   text.stories = corsa::test::story_with(corsa::test::speed_event("Go", "10", condition));
   const std::string xml = text.str();
-  check_both_ways(xml, "attribute 'edge' of <Condition>", line_of(xml, "<Condition name"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded =
+      check_both_ways(xml, "attribute 'edge' of <Condition>", line_of(xml, "<Condition name"));
   CHECK(loaded.warnings.size() == 1);  // no "unknown attribute" besides the reading
   const auto& event =
       loaded.scenario->storyboard.stories[0].acts[0].maneuver_groups[0].maneuvers[0].events[0];
@@ -311,6 +299,7 @@ TEST_CASE("the draft attribute edge of a condition is read as conditionEdge", "[
   // Both spellings at once say the edge twice: an error.
   std::string both = xml;
   both.replace(both.find("edge=\"rising\""), 13, "edge=\"rising\" conditionEdge=\"none\"");
+  corsa::test::TempDir dir;
   const Loaded twice = corsa::test::lenient_load(dir, both);
   REQUIRE(twice.errors.size() == 1);
   CHECK_THAT(twice.errors[0].message, Catch::Contains("'edge' and 'conditionEdge' together"));
@@ -435,10 +424,8 @@ TEST_CASE("a relative object position without dx or dy is read as no offset", "[
       "<RelativeObjectPosition entityRef=\"Ego\" dy=\"2\"/>\n"
       "</Position></TeleportAction></PrivateAction>\n</Private>\n";
   const std::string xml = text.str();
-  check_both_ways(xml, "<RelativeObjectPosition> without dx",
-                  line_of(xml, "<RelativeObjectPosition"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded = check_both_ways(xml, "<RelativeObjectPosition> without dx",
+                                        line_of(xml, "<RelativeObjectPosition"));
   const auto& teleport =
       std::get<TeleportAction>(loaded.scenario->storyboard.init.privates[1].actions[0]);
   const auto& relative = std::get<RelativeObjectPosition>(teleport.position.kind);
@@ -452,9 +439,8 @@ TEST_CASE("a VisibilityAction flag left out leaves that visibility unchanged", "
       "<Private entityRef=\"Ego\">\n"
       "<PrivateAction><VisibilityAction sensors=\"false\"/></PrivateAction>\n</Private>\n";
   const std::string xml = text.str();
-  check_both_ways(xml, "<VisibilityAction> without graphics", line_of(xml, "<VisibilityAction"));
-  corsa::test::TempDir dir;
-  const Loaded loaded = corsa::test::lenient_load(dir, xml);
+  const Loaded loaded = check_both_ways(xml, "<VisibilityAction> without graphics",
+                                        line_of(xml, "<VisibilityAction"));
   const auto& visibility =
       std::get<VisibilityAction>(loaded.scenario->storyboard.init.privates[1].actions[0]);
   CHECK(visibility.sensors == std::optional<bool>(false));

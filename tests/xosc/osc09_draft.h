@@ -3,12 +3,20 @@
 // A small OpenSCENARIO 0.9 draft (the forms of esmini's basic_ego) for the 0.9-to-1.0 mapping
 // tests, which vary it by replacing parts of its text.
 
+#include <catch2/catch.hpp>
 #include <string>
 
 #include "corsa/xosc/scenario.h"
 #include "scenario_text.h"
 
 namespace corsa::test {
+
+// Replaces the first `from` in `text` with `to`; `from` must be there.
+inline void replace_once(std::string& text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, from.size(), to);
+}
 
 // ScenarioText's entity (a ScenarioObject with an inline Vehicle) as a 0.9 <Object>.
 inline std::string osc09_object() {

@@ -12,12 +12,6 @@
 namespace corsa::test {
 namespace {
 
-void replace_once(std::string& text, const std::string& from, const std::string& to) {
-  const size_t at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  text.replace(at, from.size(), to);
-}
-
 // The draft with more 0.9 parameters and a Storyboard End of one RelativeDistance condition.
 std::string draft_with_end(const std::string& parameters, const std::string& distance_attributes,
                            const std::string& condition_attributes = "") {
@@ -63,10 +57,7 @@ TEST_CASE("a 0.9 alongRoute given by a parameter is judged by the parameter's va
   const std::string xml =
       draft_with_end("<Parameter name=\"$Along\" type=\"boolean\" value=\"true\"/>\n",
                      " rule=\"less_than\" alongRoute=\"$Along\"");
-  TempDir dir;
-  const Loaded loaded = lenient_load(dir, xml);
-  INFO((loaded.errors.empty() ? std::string() : loaded.errors[0].format()));
-  REQUIRE(loaded.errors.empty());
+  const Loaded loaded = load_without_errors(xml);
   const auto& distance = end_distance(*loaded.scenario);
   CHECK(distance.coordinate_system == xosc::CoordinateSystem::kRoad);
   CHECK(distance.rule == xosc::Rule::kLessThan);
@@ -74,6 +65,7 @@ TEST_CASE("a 0.9 alongRoute given by a parameter is judged by the parameter's va
   // The same parameter false: measured as 1.0's default.
   std::string off = xml;
   replace_once(off, "value=\"true\"/>", "value=\"false\"/>");
+  TempDir dir;
   const Loaded loaded_off = lenient_load(dir, off);
   REQUIRE(loaded_off.errors.empty());
   CHECK(!end_distance(*loaded_off.scenario).coordinate_system.has_value());
@@ -89,10 +81,7 @@ TEST_CASE("0.9 enum words held by parameters are read as their 1.0 words, warned
   std::string text = xml;
   replace_once(text, "type=\"longitudinal\"", "type=\"$Kind\"");
   replace_once(text, " type2=\"\"", "");
-  TempDir dir;
-  const Loaded loaded = lenient_load(dir, text);
-  INFO((loaded.errors.empty() ? std::string() : loaded.errors[0].format()));
-  REQUIRE(loaded.errors.empty());
+  const Loaded loaded = load_without_errors(text);
   const auto& distance = end_distance(*loaded.scenario);
   CHECK(distance.rule == xosc::Rule::kGreaterThan);
   CHECK(distance.relative_distance_type == xosc::RelativeDistanceType::kEuclidianDistance);
@@ -104,6 +93,7 @@ TEST_CASE("0.9 enum words held by parameters are read as their 1.0 words, warned
   CHECK(edge.line == line_of(text, "edge=\"$Edge\""));
 
   // --strict: an error at the use.
+  TempDir dir;
   const Loaded strict = lenient_load(dir, text, true);
   bool found = false;
   for (const auto& error : strict.errors) {
@@ -135,9 +125,7 @@ TEST_CASE("0.9 AfterTermination rule=\"end\" of an act holds once the act's End 
   std::string xml = osc09_draft();
   replace_once(xml, "<AtStart type=\"act\" name=\"A\"/>",
                "<AfterTermination type=\"act\" name=\"A\" rule=\"end\"/>");
-  TempDir dir;
-  Loaded loaded = lenient_load(dir, xml);
-  REQUIRE(loaded.errors.empty());
+  const Loaded loaded = load_without_errors(xml);
   const auto state_of = [](const xosc::Scenario& scenario) {
     const auto& event = first_event(scenario);
     const auto& condition = event.start_trigger->groups.at(0).conditions.at(0);
@@ -151,16 +139,16 @@ TEST_CASE("0.9 AfterTermination rule=\"end\" of an act holds once the act's End 
   // An event ends by itself: its end transition.
   replace_once(xml, "type=\"act\" name=\"A\" rule=\"end\"",
                "type=\"event\" name=\"E\" rule=\"end\"");
-  loaded = lenient_load(dir, xml);
-  REQUIRE(loaded.errors.empty());
-  CHECK(state_of(*loaded.scenario) == xosc::StoryboardElementState::kEndTransition);
+  CHECK(state_of(*load_without_errors(xml).scenario) ==
+        xosc::StoryboardElementState::kEndTransition);
 
   // A rule that is none of the three: located.
   replace_once(xml, "rule=\"end\"", "rule=\"finish\"");
-  loaded = lenient_load(dir, xml);
-  REQUIRE(!loaded.errors.empty());
-  CHECK(loaded.errors[0].line == line_of(xml, "rule=\"finish\""));
-  CHECK_THAT(loaded.errors[0].message, Catch::Contains("finish"));
+  TempDir dir;
+  const Loaded finish = lenient_load(dir, xml);
+  REQUIRE(!finish.errors.empty());
+  CHECK(finish.errors[0].line == line_of(xml, "rule=\"finish\""));
+  CHECK_THAT(finish.errors[0].message, Catch::Contains("finish"));
 }
 
 TEST_CASE("a 0.9 Dynamics with both time and rate keeps the time, warned at its line",
@@ -168,10 +156,7 @@ TEST_CASE("a 0.9 Dynamics with both time and rate keeps the time, warned at its 
   std::string xml = osc09_draft();
   replace_once(xml, "<Dynamics shape=\"linear\" rate=\"2\"/>",
                "<Dynamics shape=\"linear\" rate=\"2\" time=\"4\"/>");
-  TempDir dir;
-  const Loaded loaded = lenient_load(dir, xml);
-  INFO((loaded.errors.empty() ? std::string() : loaded.errors[0].format()));
-  REQUIRE(loaded.errors.empty());
+  const Loaded loaded = load_without_errors(xml);
   const auto& event = first_event(*loaded.scenario);
   const auto& action = std::get<xosc::PrivateAction>(event.actions.at(0).action);
   const auto& speed = std::get<xosc::SpeedAction>(action);
@@ -180,6 +165,7 @@ TEST_CASE("a 0.9 Dynamics with both time and rate keeps the time, warned at its 
   const auto warning = warning_with(loaded, "0.9 Dynamics gives time=\"4\", rate=\"2\"");
   CHECK(warning.line == line_of(xml, "rate=\"2\" time=\"4\""));
   CHECK_THAT(warning.message, Catch::Contains("(read as time 4"));
+  TempDir dir;
   const Loaded strict = lenient_load(dir, xml, true);
   bool found = false;
   for (const auto& error : strict.errors) {
@@ -323,10 +309,7 @@ std::string draft_with_two_rules(const std::string& inner) {
 TEST_CASE("a 0.9 Maneuver's parameter hides the global one inside the maneuver only",
           "[xosc][osc09]") {
   const std::string xml = draft_with_two_rules("less_than");
-  TempDir dir;
-  const Loaded loaded = lenient_load(dir, xml);
-  INFO((loaded.errors.empty() ? std::string() : loaded.errors[0].format()));
-  REQUIRE(loaded.errors.empty());
+  const Loaded loaded = load_without_errors(xml);
   // The act's start, mapped after its sequences, sees the global parameter.
   CHECK(time_rule(the_act(*loaded.scenario).start_trigger.value()) == xosc::Rule::kGreaterThan);
   const auto& event = the_act(*loaded.scenario).maneuver_groups.at(0).maneuvers.at(0).events.at(0);

@@ -266,6 +266,7 @@ Scenario parse_scenario_root(ParseContext& ctx, const Element* root, Children& k
   ctx.catalogs = &catalogs;
   ctx.recover([&] { scenario.entities = parse_entities(ctx, kids.one("Entities")); });
   ctx.recover([&] { scenario.storyboard = parse_storyboard(ctx, kids.one("Storyboard")); });
+  report_carla_criteria(ctx);
   ctx.catalogs = nullptr;
   scenario.catalog_files = catalogs.files_read();
   check_entity_references(ctx, scenario.entities);

@@ -11,18 +11,111 @@ void Osc09Rewriter::private_action(Element* e) {
     position(e);
     note("Position");
   } else if (name == "Longitudinal") {
-    rename(e, "LongitudinalAction");
-    for (Element* speed : osc09_children(e, "Speed")) speed_action(speed);
+    longitudinal_action(e);
   } else if (name == "Lateral") {
-    rename(e, "LateralAction");
-    for (Element* change : osc09_children(e, "LaneChange")) lane_change_action(change);
+    lateral_action(e);
+  } else if (name == "Visibility") {
+    rename(e, "VisibilityAction");  // graphics, traffic, sensors as in 1.0
+  } else if (name == "Autonomous") {
+    autonomous(e);
+  } else if (name == "Controller") {
+    controller_action(e);
   } else if (name == "Routing") {
-    rename(e, "RoutingAction");
-    for (Element* follow : osc09_children(e, "FollowRoute")) rename(follow, "AssignRouteAction");
+    routing(e);
   } else if (name == "Meeting") {
     meeting(e);
   } else if (name == "EXT_Synchronize") {
     synchronize(e);
+  }
+}
+
+void Osc09Rewriter::longitudinal_action(Element* e) {
+  rename(e, "LongitudinalAction");
+  for (Element* speed : osc09_children(e, "Speed")) speed_action(speed);
+  for (Element* d : osc09_children(e, "Distance")) distance_action(d, "LongitudinalDistanceAction");
+}
+
+void Osc09Rewriter::lateral_action(Element* e) {
+  rename(e, "LateralAction");
+  for (Element* change : osc09_children(e, "LaneChange")) lane_change_action(change);
+  for (Element* offset : osc09_children(e, "LaneOffset")) lane_offset_action(offset);
+  for (Element* d : osc09_children(e, "Distance")) distance_action(d, "LateralDistanceAction");
+}
+
+// 0.9 Longitudinal/Distance and Lateral/Distance (object, distance, timeGap, freespace; Dynamics
+// of None or Limited limits): 1.0's distance actions, continuous as ASAM's 0.9.1-to-1.0
+// migration writes them (0.9 had no attribute for it: the distance is kept), Limited as their
+// DynamicConstraints.
+void Osc09Rewriter::distance_action(Element* e, const char* name) {
+  rename(e, name);
+  move_attribute(e, "object", "entityRef");
+  default_attribute(e, "continuous", "true");
+  for (Element* dynamics : osc09_children(e, "Dynamics")) {
+    if (Element* limited = dynamics->FirstChildElement("Limited")) {
+      Element* constraints = new_element("DynamicConstraints", limited);
+      for (const char* limit : {"maxAcceleration", "maxDeceleration", "maxSpeed"}) {
+        if (const char* value = limited->Attribute(limit)) constraints->SetAttribute(limit, value);
+      }
+      e->InsertAfterChild(dynamics, constraints);
+    }
+    e->DeleteChild(dynamics);
+  }
+}
+
+// 0.9 LaneOffset: Dynamics maxLateralAcc, duration, shape; Target Relative object value or
+// Absolute value. 1.0's LaneOffsetAction has no duration: a duration is dropped with a warning
+// (ASAM's migration drops it too); continuous as that migration writes it.
+void Osc09Rewriter::lane_offset_action(Element* e) {
+  rename(e, "LaneOffsetAction");
+  default_attribute(e, "continuous", "true");
+  for (Element* d : osc09_children(e, "Dynamics")) {
+    rename(d, "LaneOffsetActionDynamics");
+    move_attribute(d, "shape", "dynamicsShape");
+    if (const char* duration = d->Attribute("duration")) {
+      ctx_.lenient(attribute_source(d, "duration"),
+                   "0.9 LaneOffset Dynamics duration=\"" + clip(duration) +
+                       "\" (1.0's LaneOffsetActionDynamics has none)",
+                   "the offset's shape and maxLateralAcc alone, the duration dropped");
+      d->DeleteAttribute("duration");
+    }
+  }
+  targets(e, "LaneOffsetTarget", "AbsoluteTargetLaneOffset", "RelativeTargetLaneOffset");
+}
+
+// 0.9 Autonomous activate domain (longitudinal, lateral, both): 1.0's ActivateControllerAction
+// with that domain's attribute (both: the two) set to activate.
+void Osc09Rewriter::autonomous(Element* e) {
+  rename(e, "ActivateControllerAction");
+  const std::string domain = value_of(e, "domain").value_or("");
+  const std::string activate = e->Attribute("activate") != nullptr ? e->Attribute("activate") : "";
+  if (!activate.empty() && (domain == "longitudinal" || domain == "both")) {
+    e->SetAttribute("longitudinal", activate.c_str());
+  }
+  if (!activate.empty() && (domain == "lateral" || domain == "both")) {
+    e->SetAttribute("lateral", activate.c_str());
+  }
+  e->DeleteAttribute("activate");
+  e->DeleteAttribute("domain");
+}
+
+// 0.9 Controller of Assign (a Driver, PedestrianController or CatalogReference) and Override
+// (Throttle, Brake, ... with 1.0's names and attributes): 1.0's ControllerAction.
+void Osc09Rewriter::controller_action(Element* e) {
+  rename(e, "ControllerAction");
+  for (Element* assign : osc09_children(e, "Assign")) {
+    rename(assign, "AssignControllerAction");
+    controllers(assign);
+  }
+  for (Element* o : osc09_children(e, "Override")) rename(o, "OverrideControllerValueAction");
+}
+
+// 1.0's Controller describes no driver or pedestrian: the Description goes.
+void Osc09Rewriter::controllers(Element* e) {
+  for (Element* c : osc09_children(e)) {
+    const std::string_view name = c->Name();
+    if (name != "Driver" && name != "PedestrianController") continue;
+    rename(c, "Controller");
+    for (Element* d : osc09_children(c, "Description")) c->DeleteChild(d);
   }
 }
 
@@ -66,12 +159,9 @@ void Osc09Rewriter::speed_action(Element* e) {
   for (Element* d : osc09_children(e, "Dynamics")) {
     dynamics(d, "SpeedActionDynamics", {"distance", "time", "rate"});
   }
-  for (Element* target : osc09_children(e, "Target")) {
-    rename(target, "SpeedActionTarget");
-    for (Element* a : osc09_children(target, "Absolute")) rename(a, "AbsoluteTargetSpeed");
-    for (Element* r : osc09_children(target, "Relative")) {
-      rename(r, "RelativeTargetSpeed");
-      move_attribute(r, "object", "entityRef");
+  for (Element* target :
+       targets(e, "SpeedActionTarget", "AbsoluteTargetSpeed", "RelativeTargetSpeed")) {
+    for (Element* r : osc09_children(target, "RelativeTargetSpeed")) {
       move_attribute(r, "valueType", "speedTargetValueType");
       default_attribute(r, "speedTargetValueType", "delta");
       default_attribute(r, "continuous", "false");
@@ -85,14 +175,21 @@ void Osc09Rewriter::lane_change_action(Element* e) {
   for (Element* d : osc09_children(e, "Dynamics")) {
     dynamics(d, "LaneChangeActionDynamics", {"time", "distance", "rate"});
   }
-  for (Element* target : osc09_children(e, "Target")) {
-    rename(target, "LaneChangeTarget");
-    for (Element* a : osc09_children(target, "Absolute")) rename(a, "AbsoluteTargetLane");
+  targets(e, "LaneChangeTarget", "AbsoluteTargetLane", "RelativeTargetLane");
+}
+
+std::vector<Element*> Osc09Rewriter::targets(Element* e, const char* name, const char* absolute,
+                                             const char* relative) {
+  std::vector<Element*> out = osc09_children(e, "Target");
+  for (Element* target : out) {
+    rename(target, name);
+    for (Element* a : osc09_children(target, "Absolute")) rename(a, absolute);
     for (Element* r : osc09_children(target, "Relative")) {
-      rename(r, "RelativeTargetLane");
+      rename(r, relative);
       move_attribute(r, "object", "entityRef");
     }
   }
+  return out;
 }
 
 // 0.9 Meeting (own Position, Relative master with its Position) is 1.0's SynchronizeAction.
@@ -155,6 +252,7 @@ void Osc09Rewriter::position(Element* e) {
     move_attribute(kind, "object", "entityRef");
   } else if (name == "Route") {
     rename(kind, "RoutePosition");
+    for (Element* ref : osc09_children(kind, "RouteRef")) inline_definitions(ref);
     for (Element* in_route : osc09_children(kind, "Position")) {
       rename(in_route, "InRoutePosition");
       for (Element* c : osc09_children(in_route, "LaneCoord")) rename(c, "FromLaneCoordinates");

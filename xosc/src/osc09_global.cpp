@@ -1,5 +1,6 @@
 // The 0.9-to-1.0 mapping (osc09_rewriter.h) of global actions: 0.9's SetEnvironment and its
-// Environment (TimeOfDay of Time and Date, Precipitation type, RoadCondition frictionScale).
+// Environment (TimeOfDay of Time and Date, Precipitation type, RoadCondition frictionScale), Entity
+// and Parameter.
 
 #include <charconv>
 #include <cstdio>
@@ -26,31 +27,64 @@ void Osc09Rewriter::global_action(Element* e) {
     rename(set, "EnvironmentAction");
     for (Element* environment : osc09_children(set, "Environment")) this->environment(environment);
   }
+  for (Element* entity : osc09_children(e, "Entity")) entity_action(entity);
+  for (Element* parameter : osc09_children(e, "Parameter")) parameter_action(parameter);
+}
+
+// 0.9 Entity name with Add (a Position) or Delete: 1.0's EntityAction entityRef.
+void Osc09Rewriter::entity_action(Element* e) {
+  rename(e, "EntityAction");
+  move_attribute(e, "name", "entityRef");
+  for (Element* add : osc09_children(e, "Add")) {
+    rename(add, "AddEntityAction");
+    for (Element* p : osc09_children(add, "Position")) position(p);
+  }
+  for (Element* remove : osc09_children(e, "Delete")) rename(remove, "DeleteEntityAction");
+}
+
+// 0.9 Parameter name="$X" with Set value or Modify/Rule of Add or Multiply value: 1.0's
+// ParameterAction parameterRef="X" with SetAction, ModifyAction/Rule of AddValue,
+// MultiplyByValue.
+void Osc09Rewriter::parameter_action(Element* e) {
+  rename(e, "ParameterAction");
+  parameter_ref(e);
+  for (Element* set : osc09_children(e, "Set")) rename(set, "SetAction");
+  for (Element* modify : osc09_children(e, "Modify")) {
+    rename(modify, "ModifyAction");
+    for (Element* rule : osc09_children(modify, "Rule")) {
+      for (Element* add : osc09_children(rule, "Add")) rename(add, "AddValue");
+      for (Element* multiply : osc09_children(rule, "Multiply"))
+        rename(multiply, "MultiplyByValue");
+    }
+  }
+}
+
+bool Osc09Rewriter::date_time(Element* e) {
+  Element* time = e->FirstChildElement("Time");
+  Element* date = e->FirstChildElement("Date");
+  int hour = 0, minute = 0, day = 0, month = 0, year = 0;
+  double second = 0.0;
+  if (!number_of(time, "hour", &hour) || !number_of(time, "min", &minute) ||
+      !number_of(time, "sec", &second) || !number_of(date, "day", &day) ||
+      !number_of(date, "month", &month) || !number_of(date, "year", &year) || second < 0.0 ||
+      second >= 60.0) {
+    return false;
+  }
+  char text[64];
+  std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d", year, month, day, hour, minute,
+                static_cast<int>(second));
+  note(std::string(e->Name()) + " Time/Date");
+  e->SetAttribute("dateTime", text);
+  e->DeleteChild(time);
+  e->DeleteChild(date);
+  return true;
 }
 
 // 0.9's TimeOfDay held a Time (hour, min, sec) and a Date (day, month, year), 1.0's one dateTime.
 // Values that are not plain numbers (a parameter) are left for the reader to refuse at the
 // element.
 void Osc09Rewriter::environment(Element* e) {
-  for (Element* time_of_day : osc09_children(e, "TimeOfDay")) {
-    Element* time = time_of_day->FirstChildElement("Time");
-    Element* date = time_of_day->FirstChildElement("Date");
-    int hour = 0, minute = 0, day = 0, month = 0, year = 0;
-    double second = 0.0;
-    if (!number_of(time, "hour", &hour) || !number_of(time, "min", &minute) ||
-        !number_of(time, "sec", &second) || !number_of(date, "day", &day) ||
-        !number_of(date, "month", &month) || !number_of(date, "year", &year) || second < 0.0 ||
-        second >= 60.0) {
-      continue;
-    }
-    char text[64];
-    std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d", year, month, day, hour,
-                  minute, static_cast<int>(second));
-    note("TimeOfDay Time/Date");
-    time_of_day->SetAttribute("dateTime", text);
-    time_of_day->DeleteChild(time);
-    time_of_day->DeleteChild(date);
-  }
+  for (Element* time_of_day : osc09_children(e, "TimeOfDay")) date_time(time_of_day);
   for (Element* weather : osc09_children(e, "Weather")) {
     for (Element* p : osc09_children(weather, "Precipitation")) {
       if (p->Attribute("type") != nullptr) note("Precipitation type");

@@ -318,6 +318,10 @@ void Osc09Rewriter::entities(Element* e) {
         object->DeleteChild(properties);
       }
     }
+    for (Element* controller : osc09_children(object, "Controller")) {
+      rename(controller, "ObjectController");
+      controllers(controller);
+    }
     for (Element* entry : osc09_children(object)) {
       const std::string_view name = entry->Name();
       if (name == "Vehicle" || name == "Pedestrian" || name == "MiscObject") {
@@ -364,26 +368,25 @@ void Osc09Rewriter::catalog_references(Element* e) {
 // --- catalogs ------------------------------------------------------------------------------------
 // A 0.9 catalog file: its entries' own ParameterDeclaration, a Vehicle's category, Dimension,
 // Front/Rear axles and Performance mass, a Driver (1.0's Controller), a Pedestrian's and a
-// MiscObject's category, and maneuvers and routes in their 0.9 forms. An attribute is judged
+// MiscObject's category, a Driver's or PedestrianController's Controller, an Environment, and
+// maneuvers, routes and trajectories in their 0.9 forms. An attribute is judged
 // by its parameter's declared value (a reference's assignment is not known here); a 0.9 word
 // is rewritten in the declaration, which an assignment still replaces.
 void Osc09Rewriter::catalog(Element* catalog) {
+  controllers(catalog);
   for (Element* entry : osc09_children(catalog)) {
     const Osc09ScopeGuard scope(*this, entry, true);
     const std::string_view name = entry->Name();
     if (name == "Vehicle" || name == "Pedestrian" || name == "MiscObject") {
       entity_body(entry);
-    } else if (name == "Driver") {
-      // 1.0's Controller describes no driver: the Description goes.
-      rename(entry, "Controller");
-      for (Element* d : osc09_children(entry, "Description")) entry->DeleteChild(d);
     } else if (name == "Maneuver") {
       for (Element* event : osc09_children(entry, "Event")) this->event(entry, event);
     } else if (name == "Route") {
-      for (Element* waypoint : osc09_children(entry, "Waypoint")) {
-        move_attribute(waypoint, "strategy", "routeStrategy");
-        for (Element* p : osc09_children(waypoint, "Position")) position(p);
-      }
+      route(entry);
+    } else if (name == "Trajectory") {
+      trajectory(entry);
+    } else if (name == "Environment") {
+      environment(entry);
     }
   }
   catalog_references(catalog);
@@ -397,6 +400,9 @@ void Osc09Rewriter::entity_body(Element* entry) {
     vehicle(entry);
     return;
   }
+  // The 0.9 MiscObject categories guardRail and other are 1.0's railing and none.
+  if (name == "MiscObject")
+    map_value(entry, "category", {{"guardRail", "railing"}, {"other", "none"}});
   move_attribute(entry, "category",
                  name == "Pedestrian" ? "pedestrianCategory" : "miscObjectCategory");
   for (Element* box : osc09_children(entry, "BoundingBox")) bounding_box(box);
@@ -422,6 +428,7 @@ void Osc09Rewriter::vehicle(Element* e) {
     for (Element* front : osc09_children(axles, "Front")) rename(front, "FrontAxle");
     for (Element* rear : osc09_children(axles, "Rear")) rename(rear, "RearAxle");
     for (Element* other : osc09_children(axles, "Additional")) rename(other, "AdditionalAxle");
+    for (Element* one : osc09_children(axles)) axle(one);
   }
 }
 

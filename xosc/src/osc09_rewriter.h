@@ -119,19 +119,52 @@ class Osc09Rewriter {
   void condition(Element* e);
   void state_condition(Element* e);
   void entity_condition(Element* e);
+  void entity_condition_kind(Element* c);
+  void collision_condition(Element* c);
+  void time_to_collision_condition(Element* c);
+  void value_condition(Element* c);
 
   // --- actions and positions (osc09_actions.cpp) -----------------------------------------------
   void private_action(Element* e);
+  void longitudinal_action(Element* e);
+  void lateral_action(Element* e);
+  void distance_action(Element* e, const char* name);
+  void lane_offset_action(Element* e);
+  void autonomous(Element* e);
+  void controller_action(Element* e);
+  /// The Driver or PedestrianController children of `e`: 1.0 Controllers.
+  void controllers(Element* e);
   void dynamics(Element* e, const char* name, const std::vector<const char*>& precedence);
   void speed_action(Element* e);
   void lane_change_action(Element* e);
+  /// The 0.9 Target children of `e` (Absolute value, Relative object value) as 1.0's `name` of
+  /// `absolute` or `relative entityRef`; the targets.
+  std::vector<Element*> targets(Element* e, const char* name, const char* absolute,
+                                const char* relative);
   void meeting(Element* e);
   void synchronize(Element* e);
   void position(Element* e);
 
+  // --- routes and trajectories (osc09_routing.cpp) --------------------------------------------
+  void routing(Element* e);
+  /// A Route (inline or a catalog entry; its ParameterDeclaration in the caller's scope).
+  void route(Element* e);
+  /// A Trajectory (inline or a catalog entry; its ParameterDeclaration in the caller's scope).
+  void trajectory(Element* e);
+  void follow_trajectory(Element* e);
+  /// The Route or Trajectory child of `e`, in a parameter scope of its own.
+  void inline_definitions(Element* e);
+  /// 0.9 maxSteering of an axle: degrees where radians cannot be meant.
+  void axle(Element* e);
+
   // --- global actions (osc09_global.cpp) -------------------------------------------------------
   void global_action(Element* e);
   void environment(Element* e);
+  void entity_action(Element* e);
+  void parameter_action(Element* e);
+  /// A 0.9 Time (hour min sec) and Date (day month year) under `e` as 1.0's dateTime attribute;
+  /// false (left as written, for the reader to refuse) when they are not plain numbers.
+  bool date_time(Element* e);
 
   ParseContext& ctx_;
   tinyxml2::XMLDocument& document_;

@@ -22,13 +22,8 @@ void Osc09Rewriter::storyboard(Element* e) {
   }
   for (Element* story : osc09_children(e, "Story")) this->story(story);
   for (Element* end : osc09_children(e, "End")) trigger(end, "StopTrigger");
-  // CARLA's 0.9 scenarios name the Storyboard's End "EndConditions" (scenario_runner's reader
-  // takes its evaluation criteria from there); its conditions are read as End's.
-  for (Element* end : osc09_children(e, "EndConditions")) {
-    ctx_.lenient(end, "<EndConditions> in a 0.9 <Storyboard> (0.9 calls it <End>)",
-                 "End: the Storyboard's StopTrigger");
-    trigger(end, "StopTrigger");
-  }
+  // The 0.9.1 schema's name for it (CARLA's scenarios write it; esmini's 0.9 files write End).
+  for (Element* end : osc09_children(e, "EndConditions")) trigger(end, "StopTrigger");
 }
 
 // 0.9's Story owner is the entity `$owner` names inside the story.
@@ -192,9 +187,15 @@ void Osc09Rewriter::condition(Element* e) {
       parameter_ref(c);
       rule(c);
     }
+    for (Element* c : osc09_children(by_value, "TimeOfDay")) {
+      date_time(c);
+      rename(c, "TimeOfDayCondition");
+      rule(c);
+    }
   } else if (Element* by_state = e->FirstChildElement("ByState")) {
     rename(by_state, "ByValueCondition");
     for (Element* c : osc09_children(by_state)) state_condition(c);
+    for (Element* c : osc09_children(by_state)) value_condition(c);
   } else if (Element* by_entity = e->FirstChildElement("ByEntity")) {
     entity_condition(by_entity);
   }
@@ -238,7 +239,8 @@ void Osc09Rewriter::state_condition(Element* e) {
   } else {
     return;
   }
-  map_value(e, "type", {{"sequence", "maneuverGroup"}});
+  // The 0.9.1 schema calls a Sequence "scene" here; "sequence" is the element's own name.
+  map_value(e, "type", {{"sequence", "maneuverGroup"}, {"scene", "maneuverGroup"}});
   rename(e, "StoryboardElementStateCondition");
   e->DeleteAttribute("rule");
   move_attribute(e, "type", "storyboardElementType");
@@ -257,34 +259,84 @@ void Osc09Rewriter::entity_condition(Element* e) {
   }
   Element* conditions = e->FirstChildElement("EntityCondition");
   if (conditions == nullptr) return;
-  for (Element* c : osc09_children(conditions)) {
-    const std::string_view name = c->Name();
-    if (name == "RelativeDistance") {
-      rename(c, "RelativeDistanceCondition");
-      move_attribute(c, "entity", "entityRef");
-      map_value(c, "type", {{"inertial", "cartesianDistance"}});
-      move_attribute(c, "type", "relativeDistanceType");
-      // alongRoute="true" measured in road coordinates, 1.1's coordinateSystem="road"; a
-      // parameter is judged by its value.
-      if (bool_value(c, "alongRoute").value_or(false)) c->SetAttribute("coordinateSystem", "road");
-      c->DeleteAttribute("alongRoute");
-      rule(c);
-    } else if (name == "TimeHeadway") {
-      rename(c, "TimeHeadwayCondition");
-      move_attribute(c, "entity", "entityRef");
-      rule(c);
-    } else if (name == "RelativeSpeed") {
-      rename(c, "RelativeSpeedCondition");
-      move_attribute(c, "entity", "entityRef");
-      rule(c);
-    } else if (name == "Speed" || name == "Acceleration") {
-      rename(c, name == "Speed" ? "SpeedCondition" : "AccelerationCondition");
-      rule(c);
-    } else if (name == "StandStill" || name == "TraveledDistance" || name == "EndOfRoad" ||
-               name == "Offroad") {
-      // The same attributes in 1.0 (duration; TraveledDistance's value).
-      rename(c, (std::string(name) + "Condition").c_str());
+  for (Element* c : osc09_children(conditions)) entity_condition_kind(c);
+}
+
+// One 0.9 EntityCondition, by the 0.9.1 schema's names (checked against VIRES'
+// OpenSCENARIO_TypeDefs.xsd, draft 0.9.1, and ASAM's migration0_9_1to1_0.xslt).
+void Osc09Rewriter::entity_condition_kind(Element* c) {
+  const std::string_view name = c->Name();
+  if (name == "RelativeDistance") {
+    rename(c, "RelativeDistanceCondition");
+    move_attribute(c, "entity", "entityRef");
+    map_value(c, "type", {{"inertial", "cartesianDistance"}});
+    move_attribute(c, "type", "relativeDistanceType");
+    // alongRoute (esmini's files; not in the 0.9.1 schema) ="true": measured in road
+    // coordinates, 1.1's coordinateSystem="road"; a parameter is judged by its value.
+    if (bool_value(c, "alongRoute").value_or(false)) c->SetAttribute("coordinateSystem", "road");
+    c->DeleteAttribute("alongRoute");
+    rule(c);
+  } else if (name == "TimeHeadway" || name == "RelativeSpeed") {
+    rename(c, (std::string(name) + "Condition").c_str());
+    move_attribute(c, "entity", "entityRef");
+    rule(c);
+  } else if (name == "Speed" || name == "Acceleration") {
+    rename(c, (std::string(name) + "Condition").c_str());
+    rule(c);
+  } else if (name == "StandStill" || name == "TraveledDistance" || name == "EndOfRoad" ||
+             name == "Offroad") {
+    // The same attributes in 1.0 (duration; TraveledDistance's value).
+    rename(c, (std::string(name) + "Condition").c_str());
+  } else if (name == "ReachPosition" || name == "Distance") {
+    // ReachPosition tolerance, Distance value freespace alongRoute rule: as in 1.0.
+    rename(c, (std::string(name) + "Condition").c_str());
+    for (Element* p : osc09_children(c, "Position")) position(p);
+    rule(c);
+  } else if (name == "Collision") {
+    collision_condition(c);
+  } else if (name == "TimeToCollision") {
+    time_to_collision_condition(c);
+  }
+}
+
+// Collision of ByEntity name or ByType type: 1.0's EntityRef entityRef or ByType type.
+void Osc09Rewriter::collision_condition(Element* c) {
+  rename(c, "CollisionCondition");
+  for (Element* by : osc09_children(c, "ByEntity")) {
+    rename(by, "EntityRef");
+    move_attribute(by, "name", "entityRef");
+  }
+}
+
+// TimeToCollision value freespace alongRoute rule with a Target of a Position or an Entity name.
+void Osc09Rewriter::time_to_collision_condition(Element* c) {
+  rename(c, "TimeToCollisionCondition");
+  rule(c);
+  for (Element* target : osc09_children(c, "Target")) {
+    rename(target, "TimeToCollisionConditionTarget");
+    for (Element* p : osc09_children(target, "Position")) position(p);
+    for (Element* entity : osc09_children(target, "Entity")) {
+      rename(entity, "EntityRef");
+      move_attribute(entity, "name", "entityRef");
     }
+  }
+}
+
+// ByState's Command, Signal and Controller, as ASAM's migration reads them: a
+// UserDefinedValueCondition that the command was given, a TrafficSignalCondition, a
+// TrafficSignalControllerCondition on the controller's phase.
+void Osc09Rewriter::value_condition(Element* c) {
+  const std::string_view name = c->Name();
+  if (name == "Command") {
+    rename(c, "UserDefinedValueCondition");
+    c->SetAttribute("rule", "equalTo");
+    c->SetAttribute("value", "true");
+  } else if (name == "Signal") {
+    rename(c, "TrafficSignalCondition");
+  } else if (name == "Controller") {
+    rename(c, "TrafficSignalControllerCondition");
+    move_attribute(c, "name", "trafficSignalControllerRef");
+    move_attribute(c, "state", "phase");
   }
 }
 

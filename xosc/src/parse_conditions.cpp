@@ -1,5 +1,7 @@
 // Conditions and triggers (§8.3-8.5): 16 ByEntity and 8 ByValue conditions.
 
+#include <algorithm>
+
 #include "parsers.h"
 
 namespace corsa::xosc {
@@ -316,11 +318,7 @@ Trigger parse_trigger(ParseContext& ctx, const Element* e) {
     for (const Element* condition : group_kids.at_least("Condition", 1)) {
       if (carla_criterion(ctx, condition)) {
         criterion = true;
-        ctx.lenient(condition,
-                    "condition '" + clip(condition->Attribute("name")) +
-                        "' is a CARLA evaluation criterion (a ParameterCondition on an " +
-                        "undeclared parameter)",
-                    "a condition that never holds: its ConditionGroup is left out");
+        ctx.carla_criteria.emplace_back(ctx.source(condition), condition->Attribute("name"));
         continue;
       }
       ctx.recover([&] { value.conditions.push_back(parse_condition(ctx, condition)); });
@@ -328,6 +326,41 @@ Trigger parse_trigger(ParseContext& ctx, const Element* e) {
     if (!criterion) trigger.groups.push_back(std::move(value));
   }
   return trigger;
+}
+
+// A CARLA scenario gives its criteria together (7 in scenario_runner's LaneChangeSimple): one
+// warning per file says how many and where the first is, and a note at each says which it is.
+void report_carla_criteria(ParseContext& ctx) {
+  const auto criteria = std::move(ctx.carla_criteria);
+  ctx.carla_criteria.clear();
+  std::vector<std::string> files;  // in the order first met
+  for (const auto& [where, name] : criteria) {
+    if (std::find(files.begin(), files.end(), where.file_name()) == files.end()) {
+      files.push_back(where.file_name());
+    }
+  }
+  for (const std::string& file : files) {
+    std::vector<const std::pair<Source, std::string>*> in_file;
+    for (const auto& criterion : criteria) {
+      if (criterion.first.file_name() == file) in_file.push_back(&criterion);
+    }
+    const size_t count = in_file.size();
+    ctx.lenient(in_file.front()->first,
+                std::to_string(count) +
+                    (count == 1 ? " condition is a CARLA evaluation criterion"
+                                : " conditions are CARLA evaluation criteria") +
+                    " (ParameterConditions on undeclared parameters; the first '" +
+                    clip(in_file.front()->second) + "', each in a note)",
+                count == 1 ? "a condition that never holds: its ConditionGroup is left out"
+                           : "conditions that never hold: their ConditionGroups are left out");
+    for (const auto* criterion : in_file) {
+      Diagnostic note =
+          criterion->first.warning("CARLA evaluation criterion '" + clip(criterion->second) +
+                                   "': its ConditionGroup is left out");
+      note.severity = Severity::kNote;
+      ctx.diagnostics().add(std::move(note));
+    }
+  }
 }
 
 std::optional<Trigger> parse_start_trigger(ParseContext& ctx, const Element* e) {

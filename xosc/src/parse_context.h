@@ -248,6 +248,9 @@ class ParseContext {
   /// or phase (a warning: a simulator may know controllers from elsewhere).
   void check_signal_controller(const Element* element, const std::string& controller,
                                const std::string& phase);
+  /// CARLA evaluation criteria met in triggers (left out), with their condition names:
+  /// report_carla_criteria warns once per file for them.
+  std::vector<std::pair<Source, std::string>> carla_criteria;
   std::set<std::string> global_parameters;         ///< names of the scenario's global parameters
   std::map<std::string, ParameterType> variables;  ///< declared VariableDeclarations, by name
   std::set<std::string> monitors;                  ///< declared MonitorDeclarations names

@@ -89,6 +89,9 @@ TrafficDefinition parse_traffic_definition(ParseContext& ctx, const Element* ele
 
 // conditions
 Trigger parse_trigger(ParseContext& ctx, const Element* element);
+/// One warning per file for the CARLA evaluation criteria parse_trigger left out (their count and
+/// the first's place; an error under --strict), and a note at each.
+void report_carla_criteria(ParseContext& ctx);
 /// A StartTrigger; an empty one (1.0 style) is read as none, with a lenient-reading warning.
 std::optional<Trigger> parse_start_trigger(ParseContext& ctx, const Element* element);
 
