@@ -9,7 +9,7 @@
 namespace corsa::engine::detail {
 
 void move_to_pose_command(Entity& entity, const MotionContext& context) {
-  EntityState& state = entity.state;
+  EntityState& state = entity.write_state();
   const Pose target = *entity.pose_command;
   entity.pose_command.reset();
   const double dt = context.dt;
