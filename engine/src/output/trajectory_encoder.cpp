@@ -257,30 +257,13 @@ uint32_t TrajectoryEncoder::code_every_row(const Rows& rows, uint32_t count) {
   Track* tracks = entities_.data();
   int64_t previous = -1;
   uint32_t coded = 0;
-  // The states' counts of their writes (EntityMotion::state_changes), kept as the skip pass keeps
-  // them (Track::seen), so that a tick of this pass leaves no count it has not seen.
-  bool counted = false;
-  if constexpr (std::is_same_v<Rows, EntityStateRows>) {
-    counted = local_rows.counted;
-  }
   for (uint32_t i = 0; i < count; ++i) {
     const auto& row = local_rows[i];
     Track& track = tracks[i];
-    if constexpr (std::is_same_v<Rows, EntityStateRows>) {
-      if (counted) {
-        const uint32_t changes = local_rows.changes(i);
-        if (changes == track.seen) {
-          continue;
-        }
-        const bool skips = track.skips(row);
-        track.seen = skips ? changes : changes - 1;
-        if (skips) {
-          continue;
-        }
-      } else if (track.skips(row)) {
-        continue;
-      }
-    } else if (track.skips(row)) {
+    // (The counts of writes are not read here: the rows of this pass mostly move. A track whose
+    // seen is its entity's count passes skips as in the skip pass; one coded here has a seen its
+    // entity's count has moved past.)
+    if (track.skips(row)) {
       continue;
     }
     ++coded;
