@@ -260,10 +260,10 @@ TEST_CASE("The memos' comparisons tell every compared double's bits apart, and a
   // Each double of the motion's runs compared as words: -0 against +0 differs, and the
   // same NaN is the same.
   const std::vector<std::function<double&(EntityMotion&)>> fields = {
-      [](EntityMotion& m) -> double& { return m.state().pose.x; },
-      [](EntityMotion& m) -> double& { return m.state().pose.r; },
-      [](EntityMotion& m) -> double& { return m.state().speed; },
-      [](EntityMotion& m) -> double& { return m.state().odometer; },
+      [](EntityMotion& m) -> double& { return m.write_state().pose.x; },
+      [](EntityMotion& m) -> double& { return m.write_state().pose.r; },
+      [](EntityMotion& m) -> double& { return m.write_state().speed; },
+      [](EntityMotion& m) -> double& { return m.write_state().odometer; },
       [](EntityMotion& m) -> double& { return m.speed_command; },
       [](EntityMotion& m) -> double& { return m.lateral_acceleration; },
   };
