@@ -150,13 +150,13 @@ TEST_CASE("A distance's inputs change with every bit the distance reads and with
   // Entities are not copied (they own their light settings): each case sets a pair up afresh.
   const auto set_up = [](Entity& from, Entity& to) {
     for (Entity* e : {&from, &to}) {
-      e->state.pose = {1.0, 2.0, 0.0, 0.5, 0.0, 0.0};
-      e->state.road = engine::RoadCoordinates{3, 0, -1, 10.0, -1.75};
+      e->write_state().pose = {1.0, 2.0, 0.0, 0.5, 0.0, 0.0};
+      e->write_state().road = engine::RoadCoordinates{3, 0, -1, 10.0, -1.75};
       e->info.box = {1.4, 0.0, 0.75, 4.5, 1.8, 1.5};
       e->lane.on_road = true;
       e->lane.dir = 1;
     }
-    to.state.pose.x = 30.0;
+    to.write_state().pose.x = 30.0;
   };
   Entity from, to;
   set_up(from, to);
@@ -165,9 +165,9 @@ TEST_CASE("A distance's inputs change with every bit the distance reads and with
   inputs.take(from, to);
   CHECK(inputs.same_as(from, to));
   // What the distance does not read: speeds, odometers.
-  from.state.speed = 12.0;
-  from.state.odometer = 3.0;
-  to.state.speed = 4.0;
+  from.write_state().speed = 12.0;
+  from.write_state().odometer = 3.0;
+  to.write_state().speed = 4.0;
   CHECK(inputs.same_as(from, to));
   const auto changed = [&](auto change) {
     Entity a, b;
@@ -176,16 +176,16 @@ TEST_CASE("A distance's inputs change with every bit the distance reads and with
     return !inputs.same_as(a, b);
   };
   CHECK(!changed([](Entity&, Entity&) {}));
-  CHECK(changed([](Entity&, Entity& b) { b.state.pose.x = std::nextafter(30.0, 31.0); }));
-  CHECK(changed([](Entity& a, Entity&) { a.state.pose.h = std::nextafter(0.5, 1.0); }));
-  CHECK(changed([](Entity& a, Entity&) { a.state.pose.z = -0.0; }));  // -0 is not +0
-  CHECK(changed([](Entity&, Entity& b) { b.state.pose.r = 1e-300; }));
+  CHECK(changed([](Entity&, Entity& b) { b.write_state().pose.x = std::nextafter(30.0, 31.0); }));
+  CHECK(changed([](Entity& a, Entity&) { a.write_state().pose.h = std::nextafter(0.5, 1.0); }));
+  CHECK(changed([](Entity& a, Entity&) { a.write_state().pose.z = -0.0; }));  // -0 is not +0
+  CHECK(changed([](Entity&, Entity& b) { b.write_state().pose.r = 1e-300; }));
   CHECK(changed([](Entity& a, Entity&) { a.info.box.length = 4.6; }));
   CHECK(changed([](Entity&, Entity& b) { b.info.box.center_x = 1.5; }));
-  CHECK(changed([](Entity& a, Entity&) { a.state.road->s = 10.5; }));
-  CHECK(changed([](Entity&, Entity& b) { b.state.road->t = -1.5; }));
-  CHECK(changed([](Entity&, Entity& b) { b.state.road->road = 4; }));
-  CHECK(changed([](Entity&, Entity& b) { b.state.road.reset(); }));
+  CHECK(changed([](Entity& a, Entity&) { a.write_state().road->s = 10.5; }));
+  CHECK(changed([](Entity&, Entity& b) { b.write_state().road->t = -1.5; }));
+  CHECK(changed([](Entity&, Entity& b) { b.write_state().road->road = 4; }));
+  CHECK(changed([](Entity&, Entity& b) { b.write_state().road.reset(); }));
   CHECK(changed([](Entity& a, Entity&) { a.lane.dir = -1; }));
   CHECK(changed([](Entity& a, Entity&) { a.lane.on_road = false; }));
   // The same arguments in the other order are other inputs.

@@ -32,11 +32,11 @@ namespace {
 void add_entity(engine::detail::SimState& state, double x, double y, double h, double speed,
                 const engine::Box& box, engine::ObjectKind kind) {
   engine::detail::Entity entity;
-  entity.state.placed = true;
-  entity.state.pose.x = x;
-  entity.state.pose.y = y;
-  entity.state.pose.h = h;
-  entity.state.speed = speed;
+  entity.write_state().placed = true;
+  entity.write_state().pose.x = x;
+  entity.write_state().pose.y = y;
+  entity.write_state().pose.h = h;
+  entity.write_state().speed = speed;
   entity.info.box = box;
   entity.info.kind = kind;
   state.world.entities.push_back(std::move(entity));
@@ -144,11 +144,11 @@ struct Crossing {
       ++state.tick;
       const auto& entities = state.world.entities;
       for (size_t a = 0; a < entities.size(); ++a) {
-        least_speed[a] = std::min(least_speed[a], entities[a].state.speed);
+        least_speed[a] = std::min(least_speed[a], entities[a].state().speed);
         for (size_t b = a + 1; b < entities.size(); ++b) {
           const double gap =
-              engine::box_distance(engine::box_of(entities[a].info.box, entities[a].state.pose),
-                                   engine::box_of(entities[b].info.box, entities[b].state.pose));
+              engine::box_distance(engine::box_of(entities[a].info.box, entities[a].state().pose),
+                                   engine::box_of(entities[b].info.box, entities[b].state().pose));
           if (gap <= 0.0 && overlaps.size() < 400) {
             overlaps += std::to_string(state.now()) + " s: cars " + std::to_string(a) + " and " +
                         std::to_string(b) + "\n";
@@ -160,7 +160,7 @@ struct Crossing {
 
   // Whether car `i` has left the junction on another arm than the one it came from.
   bool through(uint32_t i, int from_arm) const {
-    const auto& road = state.world.entities[i].state.road;
+    const auto& road = state.world.entities[i].state().road;
     if (!road) {
       return false;
     }
@@ -370,20 +370,20 @@ TEST_CASE("A walker about to cross waits for a vehicle coming close to its way",
   };
   CHECK(waits());
   // Going away from the walker's way, standing far off, or passed: no reason to wait.
-  state.world.entities[1].state.pose.h = std::numbers::pi;
+  state.world.entities[1].write_state().pose.h = std::numbers::pi;
   CHECK_FALSE(waits());
-  state.world.entities[1].state.pose.h = 0.0;
-  state.world.entities[1].state.speed = 0.0;
+  state.world.entities[1].write_state().pose.h = 0.0;
+  state.world.entities[1].write_state().speed = 0.0;
   CHECK_FALSE(waits());
-  state.world.entities[1].state.speed = 10.0;
-  state.world.entities[1].state.pose.x = 8.0;
+  state.world.entities[1].write_state().speed = 10.0;
+  state.world.entities[1].write_state().pose.x = 8.0;
   CHECK_FALSE(waits());
   // Far away at that speed: it is not close within the next seconds.
-  state.world.entities[1].state.pose.x = -80.0;
+  state.world.entities[1].write_state().pose.x = -80.0;
   CHECK_FALSE(waits());
   // Standing in the walker's way: waits.
-  state.world.entities[1].state.pose.x = -1.0;
-  state.world.entities[1].state.speed = 0.0;
+  state.world.entities[1].write_state().pose.x = -1.0;
+  state.world.entities[1].write_state().speed = 0.0;
   CHECK(waits());
 }
 
@@ -410,12 +410,12 @@ TEST_CASE("A walker keeps clear of one that stopped turned on its right", "[engi
   CHECK(seen.speed == 0.0);   // does not walk into it
   CHECK(seen.lateral > 0.0);  // steps left, away from it
   // Facing straight back it is no wider than a walker: passed at walking speed, stepping left.
-  state.world.entities[1].state.pose.h = std::numbers::pi;
+  state.world.entities[1].write_state().pose.h = std::numbers::pi;
   seen = move();
   CHECK(seen.speed == 1.5);
   CHECK(seen.lateral > 0.0);
   // Coming on our left, both keep right.
-  state.world.entities[1].state.pose.y = 0.66;
+  state.world.entities[1].write_state().pose.y = 0.66;
   seen = move();
   CHECK(seen.lateral < 0.0);
 }

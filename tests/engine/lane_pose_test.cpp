@@ -208,12 +208,12 @@ TEST_CASE("A pose command to where an entity off the road stands is kept without
   // An entity standing there, its memo asked for the point (Entity holds move-only parts).
   const auto standing = [&] {
     Entity entity;
-    entity.state.placed = true;
-    entity.state.pose = {x, y, 1.5, h, 0.02, 0.0};
-    entity.state.speed = 2.0;
-    entity.state.lateral_speed = 0.2;
-    entity.state.odometer = 10.0;
-    entity.state.road = corsa::engine::RoadCoordinates{1, 0, -1, 3.0, -1.0};
+    entity.write_state().placed = true;
+    entity.write_state().pose = {x, y, 1.5, h, 0.02, 0.0};
+    entity.write_state().speed = 2.0;
+    entity.write_state().lateral_speed = 0.2;
+    entity.write_state().odometer = 10.0;
+    entity.write_state().road = corsa::engine::RoadCoordinates{1, 0, -1, 3.0, -1.0};
     entity.speed_command = 1.5;
     entity.lateral_command = 0.7;
     entity.end_of_road = true;
@@ -226,30 +226,30 @@ TEST_CASE("A pose command to where an entity off the road stands is kept without
   REQUIRE(corsa::engine::detail::keeps_pose_off_lanes(held, x, y, h, context));
   corsa::engine::detail::hold_pose_off_lanes(held, context);
   Entity moved = standing();
-  moved.pose_command = moved.state.pose;
+  moved.pose_command = moved.state().pose;
   corsa::engine::detail::move_to_pose_command(moved, context);
   CHECK(same_bits(static_cast<const corsa::engine::detail::EntityMotion&>(held),
                   static_cast<const corsa::engine::detail::EntityMotion&>(moved)));
   CHECK_FALSE(held.pose_command.has_value());
-  CHECK_FALSE(held.state.road.has_value());
-  CHECK(held.state.speed == 1.5);
-  CHECK(held.state.yaw_rate == 0.0);
+  CHECK_FALSE(held.state().road.has_value());
+  CHECK(held.state().speed == 1.5);
+  CHECK(held.state().yaw_rate == 0.0);
   // Not held: another point, another heading, -0 for +0, a NaN, an entity whose memo holds a
   // lane, and no map.
   CHECK_FALSE(
       corsa::engine::detail::keeps_pose_off_lanes(entity, std::nextafter(x, 0.0), y, h, context));
   CHECK_FALSE(corsa::engine::detail::keeps_pose_off_lanes(entity, x, y, h + 1e-12, context));
   Entity at_zero = standing();
-  at_zero.state.pose.h = 0.0;
+  at_zero.write_state().pose.h = 0.0;
   CHECK_FALSE(corsa::engine::detail::keeps_pose_off_lanes(at_zero, x, y, -0.0, context));
   Entity not_a_number = standing();
-  not_a_number.state.pose.x = std::nan("");
+  not_a_number.write_state().pose.x = std::nan("");
   CHECK_FALSE(
       corsa::engine::detail::keeps_pose_off_lanes(not_a_number, std::nan(""), y, h, context));
   const corsa::xodr::WorldPose on_lane = map.world_pose(0, 0.5 * map.road(0).length, 0.0);
   Entity on_road = standing();
-  on_road.state.pose.x = on_lane.x;
-  on_road.state.pose.y = on_lane.y;
+  on_road.write_state().pose.x = on_lane.x;
+  on_road.write_state().pose.y = on_lane.y;
   REQUIRE(corsa::engine::detail::locate_near(on_road, map, on_lane.x, on_lane.y).has_value());
   CHECK_FALSE(
       corsa::engine::detail::keeps_pose_off_lanes(on_road, on_lane.x, on_lane.y, h, context));

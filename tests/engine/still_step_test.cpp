@@ -45,8 +45,8 @@ bool still_step_same_lane(const LaneFollow& a, const LaneFollow& b) {
 
 // Every field of the motion, bit for bit (padding left out).
 bool still_step_same_motion(const EntityMotion& a, const EntityMotion& b) {
-  const auto& x = a.state;
-  const auto& y = b.state;
+  const auto& x = a.state();
+  const auto& y = b.state();
   return bits_equal(x.pose, y.pose) && bits_equal(x.speed, y.speed) &&
          bits_equal(x.acceleration, y.acceleration) &&
          bits_equal(x.lateral_speed, y.lateral_speed) && bits_equal(x.yaw_rate, y.yaw_rate) &&
@@ -83,7 +83,7 @@ struct StillStepPair {
       const auto t = corsa::engine::detail::lane_center_t(map, 0, s, -1);
       REQUIRE(t);
       REQUIRE(corsa::engine::detail::attach_to_lane(map, entity->lane, 0, s, *t, -1, 0.0));
-      entity->state.placed = true;
+      entity->write_state().placed = true;
       // Asked to stay where it was put across its lane (the attachment's offset, a rounding off
       // the centre), so that it stands from the first step.
       entity->lateral_command = entity->lane.lateral;
@@ -130,7 +130,7 @@ TEST_CASE("A standing entity's step is skipped, and any change of its motion end
 
   SECTION("a speed asked for later moves it on the next step") {
     pair.step([](Entity& e) { e.speed_command = 5.0; });
-    CHECK(pair.skipping.state.speed == 5.0);
+    CHECK(pair.skipping.state().speed == 5.0);
     CHECK(pair.skipping.lane.s == Approx(s_before + 5.0 * kStillStepDt).margin(1e-12));
     CHECK_FALSE(pair.skipping.still_step_valid);  // a moving entity is not remembered
     for (int i = 0; i < 20; ++i) {
@@ -141,8 +141,8 @@ TEST_CASE("A standing entity's step is skipped, and any change of its motion end
     // acceleration (to 0), the third changes nothing and is remembered, the fourth is skipped.
     const int skipped = pair.skipped_steps;
     pair.step([](Entity& e) { e.speed_command = 0.0; });
-    CHECK(pair.skipping.state.speed == 0.0);
-    CHECK(pair.skipping.state.acceleration == Approx(-5.0 / kStillStepDt));
+    CHECK(pair.skipping.state().speed == 0.0);
+    CHECK(pair.skipping.state().acceleration == Approx(-5.0 / kStillStepDt));
     pair.step();
     pair.step();
     CHECK(pair.skipped_steps == skipped);
@@ -152,14 +152,14 @@ TEST_CASE("A standing entity's step is skipped, and any change of its motion end
   SECTION("a lateral offset asked for later moves it across its lane") {
     pair.step([](Entity& e) { e.lateral_command = 0.4; });
     CHECK(pair.skipping.lane.lateral == 0.4);
-    CHECK(pair.skipping.state.lateral_speed == Approx(0.4 / kStillStepDt));
+    CHECK(pair.skipping.state().lateral_speed == Approx(0.4 / kStillStepDt));
     pair.step();
-    CHECK(pair.skipping.state.lateral_speed == 0.0);  // the offset reached: standing again
+    CHECK(pair.skipping.state().lateral_speed == 0.0);  // the offset reached: standing again
   }
   SECTION("a speed written into its state by an action is taken back to the command") {
-    pair.step([](Entity& e) { e.state.speed = 3.0; });
-    CHECK(pair.skipping.state.speed == 0.0);
-    CHECK(pair.skipping.state.acceleration == Approx(-3.0 / kStillStepDt));
+    pair.step([](Entity& e) { e.write_state().speed = 3.0; });
+    CHECK(pair.skipping.state().speed == 0.0);
+    CHECK(pair.skipping.state().acceleration == Approx(-3.0 / kStillStepDt));
   }
   SECTION("a teleport takes it to the new place and it stands there") {
     pair.teleport(250.0);
@@ -179,7 +179,7 @@ TEST_CASE("A standing entity's step is skipped, and any change of its motion end
     }
     const int skipped_at_minus = pair.skipped_steps;
     CHECK(skipped_at_minus > skipped);
-    CHECK(std::signbit(pair.skipping.state.speed));
+    CHECK(std::signbit(pair.skipping.state().speed));
     pair.step([](Entity& e) { e.speed_command = 0.0; });
     CHECK(pair.skipped_steps == skipped_at_minus);
     CHECK(pair.skipping.lane.s == s_before);
@@ -198,9 +198,9 @@ TEST_CASE("A standing entity's step is skipped, and any change of its motion end
   }
   SECTION("an odometer or distance set from outside is kept") {
     pair.step([](Entity& e) { e.longitudinal_distance = 12.5; });
-    pair.step([](Entity& e) { e.state.odometer = 7.0; });
+    pair.step([](Entity& e) { e.write_state().odometer = 7.0; });
     CHECK(pair.skipping.longitudinal_distance == 12.5);
-    CHECK(pair.skipping.state.odometer == 7.0);
+    CHECK(pair.skipping.state().odometer == 7.0);
   }
   for (int i = 0; i < 5; ++i) {
     pair.step();
@@ -219,7 +219,7 @@ TEST_CASE("A car held at a road's end keeps asking for its speed until it is put
     });
   }
   CHECK(pair.skipping.end_of_road);
-  CHECK(pair.skipping.state.speed == 0.0);
+  CHECK(pair.skipping.state().speed == 0.0);
   CHECK(pair.skipping.speed_command == 10.0);
   CHECK(pair.skipped_steps > 10);
   CHECK(pair.skipping.still_step_valid);
@@ -242,14 +242,14 @@ TEST_CASE("A car held at a road's end keeps asking for its speed until it is put
   still_step_assign_route(pair);
   pair.step();
   CHECK(pair.skipped_steps == skipped);
-  const double odometer = pair.skipping.state.odometer;
+  const double odometer = pair.skipping.state().odometer;
   // Put back on the road: it drives on at the speed it still asks for.
   pair.teleport(300.0);
   pair.step();
   CHECK_FALSE(pair.skipping.end_of_road);
-  CHECK(pair.skipping.state.speed == 10.0);
+  CHECK(pair.skipping.state().speed == 10.0);
   CHECK(pair.skipping.lane.s == Approx(300.0 + 10.0 * kStillStepDt).margin(1e-9));
-  CHECK(pair.skipping.state.odometer == Approx(odometer + 10.0 * kStillStepDt).margin(1e-9));
+  CHECK(pair.skipping.state().odometer == Approx(odometer + 10.0 * kStillStepDt).margin(1e-9));
 }
 
 TEST_CASE("The memos' comparisons tell every compared double's bits apart, and a NaN equals itself",
@@ -260,10 +260,10 @@ TEST_CASE("The memos' comparisons tell every compared double's bits apart, and a
   // Each double of the motion's runs compared as words: -0 against +0 differs, and the
   // same NaN is the same.
   const std::vector<std::function<double&(EntityMotion&)>> fields = {
-      [](EntityMotion& m) -> double& { return m.state.pose.x; },
-      [](EntityMotion& m) -> double& { return m.state.pose.r; },
-      [](EntityMotion& m) -> double& { return m.state.speed; },
-      [](EntityMotion& m) -> double& { return m.state.odometer; },
+      [](EntityMotion& m) -> double& { return m.write_state().pose.x; },
+      [](EntityMotion& m) -> double& { return m.write_state().pose.r; },
+      [](EntityMotion& m) -> double& { return m.write_state().speed; },
+      [](EntityMotion& m) -> double& { return m.write_state().odometer; },
       [](EntityMotion& m) -> double& { return m.speed_command; },
       [](EntityMotion& m) -> double& { return m.lateral_acceleration; },
   };
@@ -278,16 +278,16 @@ TEST_CASE("The memos' comparisons tell every compared double's bits apart, and a
   // The contacts' input: x, y, z, h and the box; pitch and roll take no part.
   const auto placed_entity = [](const std::function<void(Entity&)>& change) {
     Entity entity;
-    entity.state.placed = true;
+    entity.write_state().placed = true;
     entity.info.box = {1.0, 0.0, 0.5, 4.0, 2.0, 1.5};
     change(entity);
     return entity;
   };
   const Entity entity = placed_entity([](Entity&) {});
-  const ContactInput input{true, entity.state.pose, entity.info.box};
+  const ContactInput input{true, entity.state().pose, entity.info.box};
   CHECK(input.same_as(entity));
-  CHECK(input.same_as(placed_entity([](Entity& e) { e.state.pose.p = 0.1; })));
-  CHECK_FALSE(input.same_as(placed_entity([](Entity& e) { e.state.pose.h = -0.0; })));
+  CHECK(input.same_as(placed_entity([](Entity& e) { e.write_state().pose.p = 0.1; })));
+  CHECK_FALSE(input.same_as(placed_entity([](Entity& e) { e.write_state().pose.h = -0.0; })));
   CHECK_FALSE(input.same_as(placed_entity([](Entity& e) { e.info.box.height = 1.6; })));
-  CHECK_FALSE(input.same_as(placed_entity([](Entity& e) { e.state.placed = false; })));
+  CHECK_FALSE(input.same_as(placed_entity([](Entity& e) { e.write_state().placed = false; })));
 }

@@ -123,15 +123,15 @@ std::string trajectory_rows(const corsa::xosc::Scenario& scenario,
 std::vector<std::pair<uint32_t, uint32_t>> pairs_by_testing_all(
     const std::vector<corsa::engine::detail::Entity>& entities) {
   const auto usable = [](const corsa::engine::detail::Entity& e) {
-    return e.state.placed && e.info.box.length > 0.0;
+    return e.state().placed && e.info.box.length > 0.0;
   };
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
   for (uint32_t a = 0; a < entities.size(); ++a) {
     for (uint32_t b = a + 1; b < entities.size(); ++b) {
       if (usable(entities[a]) && usable(entities[b]) &&
           corsa::engine::overlap(
-              corsa::engine::box_of(entities[a].info.box, entities[a].state.pose),
-              corsa::engine::box_of(entities[b].info.box, entities[b].state.pose))) {
+              corsa::engine::box_of(entities[a].info.box, entities[a].state().pose),
+              corsa::engine::box_of(entities[b].info.box, entities[b].state().pose))) {
         pairs.emplace_back(a, b);
       }
     }
@@ -523,10 +523,10 @@ TEST_CASE(
   detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
   const auto add = [&](double x, double y, double h, const corsa::engine::Box& box) {
     detail::Entity entity;
-    entity.state.placed = true;
-    entity.state.pose.x = x;
-    entity.state.pose.y = y;
-    entity.state.pose.h = h;
+    entity.write_state().placed = true;
+    entity.write_state().pose.x = x;
+    entity.write_state().pose.y = y;
+    entity.write_state().pose.h = h;
     entity.info.box = box;
     state.world.entities.push_back(std::move(entity));
   };
@@ -558,7 +558,7 @@ TEST_CASE(
   CHECK_FALSE(detail::corridor_hazard(state.world.entities[0], 0, view, 60.0, 14.3, near).gap <
               14.3);
   // Without that box the bus is the nearest, and beyond a corridor of 20 m there is nothing.
-  state.world.entities[2].state.placed = false;
+  state.world.entities[2].write_state().placed = false;
   view.build(state, true);
   CHECK(detail::corridor_hazard(state.world.entities[0], 0, view, 60.0, any, near).gap ==
         Approx(25.1));
@@ -579,13 +579,13 @@ TEST_CASE(
   // see boxes that pass the bounding test at every distance.
   for (int i = 0; i < 400; ++i) {
     detail::Entity entity;
-    entity.state.placed = true;
+    entity.write_state().placed = true;
     const bool in_line = i % 3 != 0;
     const double along = 60.0 * unit(random);
-    entity.state.pose.x = 300.0 + (in_line ? along : 60.0 * unit(random));
-    entity.state.pose.y =
+    entity.write_state().pose.x = 300.0 + (in_line ? along : 60.0 * unit(random));
+    entity.write_state().pose.y =
         -200.0 + (in_line ? 0.8 * (unit(random) - 0.5) + 3.5 * (i % 2) : 60.0 * unit(random));
-    entity.state.pose.h = in_line ? 0.05 * (unit(random) - 0.5) : 6.3 * unit(random);
+    entity.write_state().pose.h = in_line ? 0.05 * (unit(random) - 0.5) : 6.3 * unit(random);
     const double length = i % 7 == 0 ? 12.0 : (i % 5 == 0 ? 0.5 : 4.5);
     const double width = i % 5 == 0 && i % 7 != 0 ? 0.6 : 1.9;
     entity.info.box = {1.4 * unit(random), 0.0, 0.75, length, width, 1.5};
@@ -632,13 +632,13 @@ TEST_CASE("The contacts of many boxes of every size and heading are the pairs a 
       const double spread = dense ? 60.0 : 2000.0;
       const double wide = random.uniform(-spread, spread);
       const double narrow = random.uniform(-spread / 4.0, spread / 4.0);
-      entity.state.pose.x = along_y ? narrow : wide;
-      entity.state.pose.y = along_y ? wide : narrow;
-      entity.state.pose.h = random.uniform(-std::numbers::pi, std::numbers::pi);
+      entity.write_state().pose.x = along_y ? narrow : wide;
+      entity.write_state().pose.y = along_y ? wide : narrow;
+      entity.write_state().pose.h = random.uniform(-std::numbers::pi, std::numbers::pi);
     };
     for (int i = 0; i < 900; ++i) {
       detail::Entity entity;
-      entity.state.placed = i % 97 != 3;
+      entity.write_state().placed = i % 97 != 3;
       const int kind = random.uniform_int(0, 19);
       entity.info.box = kind == 0     ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
                         : kind < 5    ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
@@ -655,8 +655,8 @@ TEST_CASE("The contacts of many boxes of every size and heading are the pairs a 
     CHECK(first.size() > 100);
     CHECK(state.collisions.size() == first.size());
     for (detail::Entity& entity : state.world.entities) {
-      entity.state.pose.x += random.uniform(-1.0, 1.0);
-      entity.state.pose.y += random.uniform(-1.0, 1.0);
+      entity.write_state().pose.x += random.uniform(-1.0, 1.0);
+      entity.write_state().pose.y += random.uniform(-1.0, 1.0);
     }
     detail::update_contacts(state, sweep);
     const auto second = all_pairs();
@@ -686,16 +686,16 @@ TEST_CASE("Many boxes over a small area are swept in strips and give the pairs a
     corsa::RandomStream random(along_y ? 11 : 13);
     for (int i = 0; i < 700; ++i) {
       detail::Entity entity;
-      entity.state.placed = true;
+      entity.write_state().placed = true;
       const int kind = random.uniform_int(0, 9);
       entity.info.box = kind == 0  ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
                         : kind < 3 ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
                                    : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5};
       const double wide = random.uniform(-200.0, 200.0);
       const double narrow = random.uniform(-80.0, 80.0);
-      entity.state.pose.x = along_y ? narrow : wide;
-      entity.state.pose.y = along_y ? wide : narrow;
-      entity.state.pose.h = random.uniform(-std::numbers::pi, std::numbers::pi);
+      entity.write_state().pose.x = along_y ? narrow : wide;
+      entity.write_state().pose.y = along_y ? wide : narrow;
+      entity.write_state().pose.h = random.uniform(-std::numbers::pi, std::numbers::pi);
       state.world.entities.push_back(std::move(entity));
     }
     const auto all_pairs = [&] { return pairs_by_testing_all(state.world.entities); };
@@ -707,8 +707,8 @@ TEST_CASE("Many boxes over a small area are swept in strips and give the pairs a
     CHECK(first.size() > 100);
     CHECK(state.contacts.pairs == first);
     for (detail::Entity& entity : state.world.entities) {
-      entity.state.pose.x += random.uniform(-1.0, 1.0);
-      entity.state.pose.y += random.uniform(-1.0, 1.0);
+      entity.write_state().pose.x += random.uniform(-1.0, 1.0);
+      entity.write_state().pose.y += random.uniform(-1.0, 1.0);
     }
     detail::update_contacts(state, sweep);
     CHECK(sweep.strips >= 8);
@@ -735,11 +735,11 @@ TEST_CASE(
     detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
     const auto add = [&](double along, double across, double length, double width) {
       detail::Entity entity;
-      entity.state.placed = true;
+      entity.write_state().placed = true;
       entity.info.box = along_y ? corsa::engine::Box{0.0, 0.0, 0.75, width, length, 1.5}
                                 : corsa::engine::Box{0.0, 0.0, 0.75, length, width, 1.5};
-      entity.state.pose.x = along_y ? across : along;
-      entity.state.pose.y = along_y ? along : across;
+      entity.write_state().pose.x = along_y ? across : along;
+      entity.write_state().pose.y = along_y ? along : across;
       state.world.entities.push_back(std::move(entity));
     };
     for (const double row : {0.0, 16.0, 30.0, 32.0, 64.0}) {
@@ -802,9 +802,9 @@ TEST_CASE("Boxes that moved into and out of contact with standing ones get a ful
       state.world.entities.clear();
       for (uint32_t i = 0; i < kCars; ++i) {
         detail::Entity entity;
-        entity.state.placed = true;
+        entity.write_state().placed = true;
         entity.info.box = corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5};
-        entity.state.pose = poses[i];
+        entity.write_state().pose = poses[i];
         state.world.entities.push_back(std::move(entity));
       }
     };
@@ -828,7 +828,7 @@ TEST_CASE("Boxes that moved into and out of contact with standing ones get a ful
                           const std::vector<corsa::engine::Pose>& to) {
       for (size_t k = 0; k < which.size(); ++k) {
         poses[which[k]] = to[k];
-        state.world.entities[which[k]].state.pose = to[k];
+        state.world.entities[which[k]].write_state().pose = to[k];
       }
       ++state.tick;
       // Emptied first: only the moved boxes' update fills it again (a full sweep marks nothing).

@@ -19,7 +19,7 @@ class AcquirePositionInstance final : public InstantAction {
     const SimState& state = context.state;
     const xodr::Map& map = need_map(state, action_.source, "AcquirePositionAction");
     Entity& entity = context.entity();
-    if (!entity.state.road) {
+    if (!entity.state().road) {
       fail(action_.source, "AcquirePositionAction: entity '" + entity.info.name +
                                "' is not on a lane, so no route can start from it");
     }
@@ -27,8 +27,8 @@ class AcquirePositionInstance final : public InstantAction {
     if (!target.road || !target.road->lane) {
       fail(action_.position.source, "AcquirePositionAction: the target is not on a lane");
     }
-    const xodr::LanePoint from{entity.state.road->road, entity.state.road->lane,
-                               entity.state.road->s};
+    const xodr::LanePoint from{entity.state().road->road, entity.state().road->lane,
+                               entity.state().road->s};
     const xodr::LanePoint to{target.road->road, *target.road->lane, target.road->s};
     auto route = xodr::find_route(map, from, to);
     if (!route) {

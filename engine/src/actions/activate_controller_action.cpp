@@ -74,7 +74,7 @@ class ActivateControllerInstance final : public InstantAction {
     Entity& entity = context.entity();
     if (sets_speed && !action_.longitudinal.value_or(true) &&
         !speed_from_scenario_controller(control) && entity.owners[0] == nullptr) {
-      entity.speed_command = entity.state.speed;  // slot 0: the longitudinal domain
+      entity.speed_command = entity.state().speed;  // slot 0: the longitudinal domain
     }
     if (action_.animation) control.animation = *action_.animation;
     if (action_.lighting) control.lighting = *action_.lighting;

@@ -31,7 +31,7 @@ class AddEntityInstance final : public InstantAction {
     SimState& state = context.state;
     const uint32_t index = entity_index(state, action_.entity_ref, action_.source);
     Entity& entity = state.world.entities[index];
-    if (entity.state.placed) {
+    if (entity.state().placed) {
       // §7.5.4: an AddEntityAction adds an entity that is not in the simulation; esmini's
       // add_delete_entity adds one that is ("ExpectedToFail") and esmini leaves it as it is.
       lenient(state, action_.source,
@@ -44,7 +44,7 @@ class AddEntityInstance final : public InstantAction {
     // only, the speed is left open. An entity added again drives on at the speed it was deleted
     // at, as esmini's object of a deleted entity does; one never present before stands.
     const double speed = entity.removed ? entity.removed_speed : 0.0;
-    entity.state.speed = speed;
+    entity.write_state().speed = speed;
     entity.speed_command = speed;
     entity.lateral_command = 0.0;
     place_entity(state, entity, at, action_.position.source, false);

@@ -133,10 +133,10 @@ class LaneChangeInstance final : public ActionInstance {
   /// distance with the coming step's travel predicted.
   double progress(const ActionContext& context, int ahead) const {
     const Entity& entity = context.entity();
-    const double elapsed = by_distance_
-                               ? entity.longitudinal_distance - start_distance_ +
-                                     ahead * std::abs(entity.state.speed) * context.state.time.dt()
-                               : context.state.time.time(context.state.tick + ahead - start_tick_);
+    const double elapsed =
+        by_distance_ ? entity.longitudinal_distance - start_distance_ +
+                           ahead * std::abs(entity.state().speed) * context.state.time.dt()
+                     : context.state.time.time(context.state.tick + ahead - start_tick_);
     return elapsed >= total_ ? 1.0 : elapsed / total_;
   }
 
@@ -152,7 +152,7 @@ class LaneChangeInstance final : public ActionInstance {
                                 "' is not on the same road as '" + actor.info.name + "'");
     }
     const int reference_lane =
-        reference.state.road ? reference.state.road->lane : reference.lane.lane;
+        reference.state().road ? reference.state().road->lane : reference.lane.lane;
     // Positive values are to the left of the reference entity's direction of travel (1.3: the
     // positive y-axis of the reference entity). esmini adds the value to the lane id (1.0-1.2:
     // "Signed number of lanes that is offset the reference entity's current lane"), skipping 0:

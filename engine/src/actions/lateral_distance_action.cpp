@@ -85,7 +85,7 @@ class LateralDistanceInstance final : public ActionInstance {
   // way), -1 otherwise.
   double lane_frame_sign(const ActionContext& context) const {
     const Entity& reference = context.state.world.entities[reference_];
-    return std::cos(context.entity().state.pose.h - reference.state.pose.h) >= 0.0 ? 1.0 : -1.0;
+    return std::cos(context.entity().state().pose.h - reference.state().pose.h) >= 0.0 ? 1.0 : -1.0;
   }
 
   // The actor's lateral position relative to the reference, left of it positive.

@@ -75,8 +75,8 @@ class LongitudinalDistanceInstance final : public ActionInstance {
     }
     Entity& entity = context.entity();
     const Entity& reference = context.state.world.entities[reference_];
-    const double v = entity.state.speed;
-    const double v_ref = reference.state.speed;
+    const double v = entity.state().speed;
+    const double v_ref = reference.state().speed;
     // A time gap is the follower's: the actor's speed when it trails, the reference's when it
     // leads.
     const double wanted =
@@ -103,7 +103,7 @@ class LongitudinalDistanceInstance final : public ActionInstance {
   void place_at_gap(ActionContext& context) const {
     Entity& entity = context.entity();
     const Entity& reference = context.state.world.entities[reference_];
-    const double v_ref = reference.state.speed;
+    const double v_ref = reference.state().speed;
     // Both drive at v_ref afterwards, so the follower's speed of a time gap is v_ref.
     const double wanted = action_.distance ? *action_.distance : *action_.time_gap * v_ref;
     for (int pass = 0; pass < kPlacementPasses; ++pass) {
@@ -111,12 +111,12 @@ class LongitudinalDistanceInstance final : public ActionInstance {
       if (std::abs(error) < kPlacementTolerance) break;
       // Closing the gap moves the actor toward the reference's front when it trails (side +1).
       const double same_way =
-          std::cos(entity.state.pose.h - reference.state.pose.h) >= 0.0 ? 1.0 : -1.0;
+          std::cos(entity.state().pose.h - reference.state().pose.h) >= 0.0 ? 1.0 : -1.0;
       move_along(context, side_ * same_way * error);
     }
     entity.speed_command = v_ref;
     if (context.init) {
-      entity.state.speed = v_ref;
+      entity.write_state().speed = v_ref;
     }
   }
 
@@ -130,8 +130,8 @@ class LongitudinalDistanceInstance final : public ActionInstance {
       update_pose_from_lane(entity, *map, scratch);
       return;
     }
-    entity.state.pose.x += distance * std::cos(entity.state.pose.h);
-    entity.state.pose.y += distance * std::sin(entity.state.pose.h);
+    entity.write_state().pose.x += distance * std::cos(entity.state().pose.h);
+    entity.write_state().pose.y += distance * std::sin(entity.state().pose.h);
     update_road_from_pose(entity, map);
   }
 

@@ -41,7 +41,7 @@ class SpeedInstance final : public ActionInstance {
       reference_index_ = *context.state.world.find(relative->entity_ref);
       continuous_ = relative->continuous;
     }
-    start_speed_ = entity.state.speed;
+    start_speed_ = entity.state().speed;
     start_tick_ = context.state.tick;
     const double target = target_speed(context);
     const xosc::TransitionDynamics& dynamics = action_.dynamics;
@@ -88,7 +88,7 @@ class SpeedInstance final : public ActionInstance {
       return;
     }
     if (rate_tracking_) {
-      const double current = context.entity().state.speed;
+      const double current = context.entity().state().speed;
       const double change = action_.dynamics.value * context.state.time.dt();
       const double speed =
           within_performance(context, current + std::clamp(target - current, -change, change));
@@ -113,7 +113,7 @@ class SpeedInstance final : public ActionInstance {
       target = absolute->value;
     } else {
       const auto& relative = std::get<xosc::RelativeTargetSpeed>(action_.target);
-      const double reference = context.state.world.entities[reference_index_].state.speed;
+      const double reference = context.state.world.entities[reference_index_].state().speed;
       target = relative.value_type == xosc::SpeedTargetValueType::kDelta
                    ? reference + relative.value
                    : reference * relative.value;
@@ -144,7 +144,7 @@ class SpeedInstance final : public ActionInstance {
     }
     const Entity& entity = context.entity();
     const double dt = context.state.time.dt();
-    const double current = entity.state.speed;
+    const double current = entity.state().speed;
     if (entity.info.max_acceleration > 0.0) {
       speed = std::min(speed, current + entity.info.max_acceleration * dt);
     }
@@ -158,7 +158,8 @@ class SpeedInstance final : public ActionInstance {
     Entity& entity = context.entity();
     entity.speed_command = speed;
     if (context.init) {
-      entity.state.speed = speed;  // Init happens before time starts: no transition to drive
+      entity.write_state().speed =
+          speed;  // Init happens before time starts: no transition to drive
     }
   }
 

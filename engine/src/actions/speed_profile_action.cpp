@@ -42,7 +42,7 @@ class SpeedProfileInstance final : public ActionInstance {
     }
     limits_ = speed_limits(entity, action_.constraints);
     done_ = action_.entries.empty();
-    begin_entry(context, entity.state.speed);
+    begin_entry(context, entity.state().speed);
     if (!done_ && action_.following_mode == xosc::FollowingMode::kFollow) {
       plan_jerk_limited(context);
     }
@@ -53,7 +53,8 @@ class SpeedProfileInstance final : public ActionInstance {
     const double dt = context.state.time.dt();
     if (plan_) {
       const double elapsed = context.state.time.time(context.state.tick + 1 - entry_tick_);
-      entity.speed_command = limits_.step_toward(entity.state.speed, plan_->speed_at(elapsed), dt);
+      entity.speed_command =
+          limits_.step_toward(entity.state().speed, plan_->speed_at(elapsed), dt);
       done_ = elapsed >= plan_->end_time() - 1e-9;
       return;
     }
@@ -76,7 +77,7 @@ class SpeedProfileInstance final : public ActionInstance {
                                             : xosc::DynamicsShape::kLinear;
       speed = entry_speed_ + shape_value(shape, p) * (target - entry_speed_);
     }
-    speed = limits_.step_toward(entity.state.speed, speed, dt);
+    speed = limits_.step_toward(entity.state().speed, speed, dt);
     entity.speed_command = speed;
     const bool timed_out = entry.time && elapsed >= *entry.time - 1e-9;
     const bool reached = std::abs(speed - target) < 1e-9;
@@ -116,8 +117,9 @@ class SpeedProfileInstance final : public ActionInstance {
     if (std::isinf(jerk.acceleration_rate) && std::isinf(jerk.deceleration_rate)) {
       return;
     }
-    const double offset = reference_ ? context.state.world.entities[*reference_].state.speed : 0.0;
-    std::vector<SpeedVertex> points{{0.0, entity.state.speed}};
+    const double offset =
+        reference_ ? context.state.world.entities[*reference_].state().speed : 0.0;
+    std::vector<SpeedVertex> points{{0.0, entity.state().speed}};
     for (size_t i = 0; i < action_.entries.size(); ++i) {
       const xosc::SpeedProfileEntry& entry = action_.entries[i];
       const double v = std::min(entry.speed + offset, limits_.speed);
@@ -138,13 +140,13 @@ class SpeedProfileInstance final : public ActionInstance {
       points.push_back({points.back().t + duration, v});
     }
     const double a0 =
-        std::clamp(entity.state.acceleration, -limits_.deceleration, limits_.acceleration);
+        std::clamp(entity.state().acceleration, -limits_.deceleration, limits_.acceleration);
     plan_.emplace(points, a0, jerk);
   }
 
   double target_speed(const ActionContext& context, const xosc::SpeedProfileEntry& entry) const {
     if (reference_) {
-      return context.state.world.entities[*reference_].state.speed + entry.speed;
+      return context.state.world.entities[*reference_].state().speed + entry.speed;
     }
     return entry.speed;
   }

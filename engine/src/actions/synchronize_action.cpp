@@ -50,9 +50,10 @@ class DistanceToGo {
       return initial_ - (entity.longitudinal_distance - driven_at_start_);
     }
     // Straight: negative once the target is behind the entity's heading.
-    const double dx = target_x_ - entity.state.pose.x;
-    const double dy = target_y_ - entity.state.pose.y;
-    const double ahead = dx * std::cos(entity.state.pose.h) + dy * std::sin(entity.state.pose.h);
+    const double dx = target_x_ - entity.state().pose.x;
+    const double dy = target_y_ - entity.state().pose.y;
+    const double ahead =
+        dx * std::cos(entity.state().pose.h) + dy * std::sin(entity.state().pose.h);
     return std::copysign(std::hypot(dx, dy), ahead);
   }
 
@@ -86,7 +87,7 @@ class SynchronizeInstance final : public ActionInstance {
     const double dt = context.state.time.dt();
     const double d_master = master_to_go_(master);
     const double d_own = own_to_go_(entity);
-    const auto v_final = final_speed(master.state.speed);
+    const auto v_final = final_speed(master.state().speed);
     if (arrived_ || d_master <= action_.target_tolerance_master.value_or(0.0) ||
         d_own <= action_.target_tolerance.value_or(0.0)) {
       // The final speed, taken at once: the action ends.
@@ -96,11 +97,11 @@ class SynchronizeInstance final : public ActionInstance {
       arrived_ = true;
       return;
     }
-    if (master.state.speed <= 1e-6) {
+    if (master.state().speed <= 1e-6) {
       return;  // the master stands: no arrival time to aim at, keep the speed
     }
-    const double t_master = d_master / master.state.speed;
-    entity.speed_command = planned_speed(entity.state.speed, d_own, t_master, v_final, dt);
+    const double t_master = d_master / master.state().speed;
+    entity.speed_command = planned_speed(entity.state().speed, d_own, t_master, v_final, dt);
   }
 
   bool finished() const override { return arrived_; }

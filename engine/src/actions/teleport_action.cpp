@@ -37,7 +37,7 @@ class TeleportInstance final : public InstantAction {
     const bool ideal =
         context.state.controls[*context.actor].effective() == ControllerKind::kDefault;
     if (!context.init && ideal) {
-      context.entity().pose_command = context.entity().state.pose;  // held there this step
+      context.entity().pose_command = context.entity().state().pose;  // held there this step
     }
   }
 
@@ -51,7 +51,7 @@ class TeleportInstance final : public InstantAction {
         relative->entity_ref != context.entity().info.name || context.state.map == nullptr) {
       return std::nullopt;
     }
-    const auto& road = context.entity().state.road;
+    const auto& road = context.entity().state().road;
     if (!road || road->lane == 0) {
       return std::nullopt;
     }

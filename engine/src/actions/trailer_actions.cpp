@@ -21,7 +21,7 @@ class ConnectTrailerInstance final : public InstantAction {
     if (*trailer == *context.actor) {
       fail(action_.source, "'" + action_.trailer_ref + "' cannot tow itself");
     }
-    if (!context.state.world.entities[*trailer].state.placed) {
+    if (!context.state.world.entities[*trailer].state().placed) {
       fail(action_.source, "the trailer '" + action_.trailer_ref + "' has no position");
     }
     connect_trailer(context.state, *context.actor, *trailer, false);

@@ -20,7 +20,7 @@ class VisibilityInstance final : public InstantAction {
     ControlState& control = control_of(context.state, *context.actor);
     if (action_.sensors) {
       const bool named = !action_.sensor_refs.empty();
-      context.entity().state.visible = named ? !*action_.sensors : *action_.sensors;
+      context.entity().write_state().visible = named ? !*action_.sensors : *action_.sensors;
       control.sensor_exceptions.clear();
       for (const xosc::SensorReference& ref : action_.sensor_refs) {
         control.sensor_exceptions.push_back(ref.name);

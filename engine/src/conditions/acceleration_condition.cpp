@@ -15,11 +15,11 @@ class AccelerationCheck final : public EntityCondition {
   explicit AccelerationCheck(const xosc::AccelerationCondition& c) : c_(c) {}
   bool holds(const SimState& state, uint32_t entity) override {
     const Entity& e = state.world.entities[entity];
-    double value = std::hypot(e.state.acceleration, e.lateral_acceleration);
+    double value = std::hypot(e.state().acceleration, e.lateral_acceleration);
     if (c_.direction) {
       switch (*c_.direction) {
         case xosc::DirectionalDimension::kLongitudinal:
-          value = e.state.acceleration;
+          value = e.state().acceleration;
           break;
         case xosc::DirectionalDimension::kLateral:
           value = e.lateral_acceleration;

@@ -29,12 +29,12 @@ class AngleCheck final : public EntityCondition {
   explicit AngleCheck(const xosc::AngleCondition& c) : c_(c) {}
   bool holds(const SimState& state, uint32_t entity) override {
     const Entity& e = state.world.entities[entity];
-    double angle = angle_of(e.state.pose, c_.angle_type);
+    double angle = angle_of(e.state().pose, c_.angle_type);
     const bool road_frame = c_.coordinate_system == xosc::CoordinateSystem::kRoad ||
                             c_.coordinate_system == xosc::CoordinateSystem::kLane;
-    if (road_frame && c_.angle_type == xosc::AngleType::kHeading && e.state.road &&
+    if (road_frame && c_.angle_type == xosc::AngleType::kHeading && e.state().road &&
         state.map != nullptr) {
-      angle -= state.map->reference(e.state.road->road, e.state.road->s).hdg;
+      angle -= state.map->reference(e.state().road->road, e.state().road->s).hdg;
     }
     return std::abs(wrap_angle(angle - c_.angle)) <= c_.angle_tolerance;
   }
@@ -48,8 +48,9 @@ class RelativeAngleCheck final : public EntityCondition {
   RelativeAngleCheck(const xosc::RelativeAngleCondition& c, uint32_t reference)
       : c_(c), reference_(reference) {}
   bool holds(const SimState& state, uint32_t entity) override {
-    const double difference = angle_of(state.world.entities[entity].state.pose, c_.angle_type) -
-                              angle_of(state.world.entities[reference_].state.pose, c_.angle_type);
+    const double difference =
+        angle_of(state.world.entities[entity].state().pose, c_.angle_type) -
+        angle_of(state.world.entities[reference_].state().pose, c_.angle_type);
     return std::abs(wrap_angle(difference - c_.angle)) <= c_.angle_tolerance;
   }
 

@@ -61,7 +61,7 @@ class ReachPositionCheck final : public EntityCondition {
     if (fixed_ && !target_) target_ = resolve_position(c_.position, state, entity);
     const ResolvedPosition target =
         fixed_ ? *target_ : resolve_position(c_.position, state, entity);
-    const Pose& p = state.world.entities[entity].state.pose;
+    const Pose& p = state.world.entities[entity].state().pose;
     const double dx = target.pose.x - p.x;
     const double dy = target.pose.y - p.y;
     // hypot is at least the larger of |dx| and |dy| (a double, below the exact length, which a

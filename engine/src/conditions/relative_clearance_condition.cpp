@@ -36,7 +36,7 @@ class RelativeClearanceCheck final : public EntityCondition {
 
   bool holds(const SimState& state, uint32_t entity) override {
     const Entity& from = state.world.entities[entity];
-    if (!from.state.road || !from.lane.on_road) {
+    if (!from.state().road || !from.lane.on_road) {
       return false;
     }
     if (others_.empty()) {
@@ -57,11 +57,12 @@ class RelativeClearanceCheck final : public EntityCondition {
 
  private:
   bool occupies(const SimState& state, const Entity& from, const Entity& other) const {
-    if (!other.state.placed || !other.state.road ||
-        other.state.road->road != from.state.road->road) {
+    if (!other.state().placed || !other.state().road ||
+        other.state().road->road != from.state().road->road) {
       return false;
     }
-    const int relative = lane_delta(from.state.road->lane, other.state.road->lane) * from.lane.dir;
+    const int relative =
+        lane_delta(from.state().road->lane, other.state().road->lane) * from.lane.dir;
     const bool opposite = other.lane.on_road && other.lane.dir != from.lane.dir;
     if (opposite && !c_.opposite_lanes) {
       return false;

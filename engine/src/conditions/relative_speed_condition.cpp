@@ -31,8 +31,8 @@ class RelativeSpeedCheck final : public EntityCondition {
   RelativeSpeedCheck(const xosc::RelativeSpeedCondition& c, uint32_t reference)
       : c_(c), reference_(reference) {}
   bool holds(const SimState& state, uint32_t entity) override {
-    const EntityState& a = state.world.entities[entity].state;
-    const EntityState& b = state.world.entities[reference_].state;
+    const EntityState& a = state.world.entities[entity].state();
+    const EntityState& b = state.world.entities[reference_].state();
     double difference = 0.0;
     if (!c_.direction) {
       difference = a.speed - b.speed;

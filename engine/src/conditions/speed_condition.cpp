@@ -30,7 +30,7 @@ class SpeedCheck final : public EntityCondition {
  public:
   explicit SpeedCheck(const xosc::SpeedCondition& c) : c_(c) {}
   bool holds(const SimState& state, uint32_t entity) override {
-    return compare(directional_speed(state.world.entities[entity].state, c_.direction), c_.rule,
+    return compare(directional_speed(state.world.entities[entity].state(), c_.direction), c_.rule,
                    c_.value);
   }
 

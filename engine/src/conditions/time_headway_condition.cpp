@@ -25,7 +25,7 @@ class TimeHeadwayCheck final : public EntityCondition {
   bool holds(const SimState& state, uint32_t entity) override {
     const Entity& from = state.world.entities[entity];
     const double d = entity_distance(state, from, state.world.entities[reference_], spec_);
-    const double speed = from.state.speed;
+    const double speed = from.state().speed;
     if (d < 0.0 || speed <= 0.0) {
       return false;  // no headway is defined, and the condition does not hold
     }

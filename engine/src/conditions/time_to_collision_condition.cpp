@@ -34,21 +34,21 @@ class TimeToCollisionCheck final : public EntityCondition {
     if (target_) {
       const Entity& to = state.world.entities[*target_];
       distance = entity_distance(state, from, to, spec_);
-      tx = to.state.pose.x;
-      ty = to.state.pose.y;
-      vt = velocity_of(to.state);
+      tx = to.state().pose.x;
+      ty = to.state().pose.y;
+      vt = velocity_of(to.state());
     } else {
       const ResolvedPosition at = resolve_position(*c_.target_position, state, entity);
       distance = position_distance(state, from, at, spec_);
       tx = at.pose.x;
       ty = at.pose.y;
     }
-    const Vec2 vf = velocity_of(from.state);
+    const Vec2 vf = velocity_of(from.state());
     // The direction along which the distance shrinks.
-    double ux = tx - from.state.pose.x, uy = ty - from.state.pose.y;
+    double ux = tx - from.state().pose.x, uy = ty - from.state().pose.y;
     if (spec_.type != xosc::RelativeDistanceType::kEuclidianDistance) {
       const double h =
-          from.state.pose.h +
+          from.state().pose.h +
           (spec_.type == xosc::RelativeDistanceType::kLateral ? 0.5 * std::numbers::pi : 0.0);
       const double sign = distance >= 0.0 ? 1.0 : -1.0;
       ux = sign * std::cos(h);

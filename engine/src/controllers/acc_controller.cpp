@@ -131,7 +131,7 @@ Leader signal_ahead(const SimState& state, const Entity& me, const LanePath& pat
         continue;
       }
       const SignalAspect aspect = signal_aspect(found->second);
-      const double v = std::max(me.state.speed, 0.0);
+      const double v = std::max(me.state().speed, 0.0);
       if (aspect == SignalAspect::kStop ||
           (aspect == SignalAspect::kCaution && gap > v * v / (2.0 * kComfort))) {
         stop.gap = std::max(gap, 0.0);
@@ -152,7 +152,7 @@ class LeaderSearch {
         self_(self),
         path_(path),
         view_(view),
-        containing_(me.state.road->lane),
+        containing_(me.state().road->lane),
         my_front_(me.info.box.center_x + 0.5 * me.info.box.length) {}
 
   // Every entity that can be the leader is considered: those in lanes the index does not hold,
@@ -239,7 +239,7 @@ class LeaderSearch {
     }
     // What is farther in a straight line than kReach cannot be within kRange along the path
     // (s runs along the reference line; outer lanes of bends are longer).
-    const double dx = other.x - me_.state.pose.x, dy = other.y - me_.state.pose.y;
+    const double dx = other.x - me_.state().pose.x, dy = other.y - me_.state().pose.y;
     if (dx * dx + dy * dy > kReach * kReach) {
       return;
     }
@@ -251,7 +251,7 @@ class LeaderSearch {
     if (gap < leader_.gap || (gap == leader_.gap && i < chosen_)) {
       chosen_ = i;
       leader_.gap = gap;
-      leader_.speed = other.speed * std::cos(other.h - me_.state.pose.h);
+      leader_.speed = other.speed * std::cos(other.h - me_.state().pose.h);
     }
   }
 
@@ -284,7 +284,7 @@ Leader find_leader(const SimState& state, uint32_t self, const FollowView& view,
 
 // Whether the entity has a lane path to look along.
 bool has_path(const SimState& state, const Entity& me) {
-  return me.state.road && me.lane.on_road && state.map != nullptr;
+  return me.state().road && me.lane.on_road && state.map != nullptr;
 }
 
 // esmini's ACCController (its ControllerACC::Step): the speed after this step. Without a leader
@@ -301,7 +301,7 @@ double esmini_acc_speed(const Entity& entity, const EsminiAcc& acc, double set_s
       entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultLimit;
   const double max_dec =
       entity.info.max_deceleration > 0.0 ? entity.info.max_deceleration : kDefaultLimit;
-  const double v = entity.state.speed;
+  const double v = entity.state().speed;
   const double lookahead = std::max(50.0, 2.0 * kMinDist + v * v / max_dec);
   if (std::isfinite(leader.gap) && leader.gap <= lookahead) {
     if (leader.gap < 1.0) return 0.0;
@@ -363,7 +363,7 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
       give_way(*view.give_way(), index, entity, path, state.tick, leader);
     }
     std::vector<uint32_t>& near = *motion.nearby;
-    const double v = std::max(entity.state.speed, 0.0);
+    const double v = std::max(entity.state().speed, 0.0);
     // Only what is nearer than the leader already found can take its place (a hazard wins with
     // a smaller gap, and a hazard's gap is where its box enters the corridor): the corridor ends
     // there, a metre on against rounding. In dense traffic the leader is close, and the
@@ -384,10 +384,10 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
     // Speeding up to keep ahead: within the vehicle's acceleration.
     const double max_acc =
         entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultLimit;
-    command = std::min(target, std::max(entity.state.speed, set_speed) + max_acc * motion.dt);
+    command = std::min(target, std::max(entity.state().speed, set_speed) + max_acc * motion.dt);
   }
   if (std::isfinite(leader.gap)) {
-    const double v = entity.state.speed;
+    const double v = entity.state().speed;
     const double desired = kStandstill + kTimeGap * std::max(v, 0.0);
     const double max_acc =
         entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultLimit;

@@ -70,11 +70,11 @@ AlksSeen alks_seen_of(const SimState& state, uint32_t i) {
   const Entity& entity = state.world.entities[i];
   AlksSeen seen;
   const bool visible = i >= state.controls.size() || state.controls[i].traffic_visible;
-  if (!entity.state.placed || entity.removed || entity.ghost || !visible || !entity.state.road ||
-      state.map == nullptr) {
+  if (!entity.state().placed || entity.removed || entity.ghost || !visible ||
+      !entity.state().road || state.map == nullptr) {
     return seen;
   }
-  const RoadCoordinates& road = *entity.state.road;
+  const RoadCoordinates& road = *entity.state().road;
   const auto span = state.map->lane_span(road.road, road.s, road.lane);
   if (!span) return seen;
   seen.usable = true;
@@ -82,28 +82,28 @@ AlksSeen alks_seen_of(const SimState& state, uint32_t i) {
   seen.pedestrian = entity.info.kind == ObjectKind::kPedestrian;
   seen.motorbike = entity.info.category == EntityCategory::kMotorbike;
   seen.road = road;
-  seen.speed = entity.state.speed;
+  seen.speed = entity.state().speed;
   seen.offset = road.t - span->t_center();
   seen.lane_width = span->width();
-  seen.h = entity.state.pose.h;
+  seen.h = entity.state().pose.h;
   const double road_heading = state.map->reference(road.road, road.s).hdg;
-  seen.h_rel = wrap_angle(entity.state.pose.h - road_heading);
+  seen.h_rel = wrap_angle(entity.state().pose.h - road_heading);
   // Velocity in the road's frame (esmini's, from the last movement): on a lane, the speed along
   // it and the lateral motion (both in the lane's direction of travel); off the lanes, the
   // speed along the heading.
   const double c = std::cos(seen.h_rel), s = std::sin(seen.h_rel);
   if (entity.lane.on_road) {
-    seen.v_s = entity.state.speed * entity.lane.dir;
-    seen.v_t = entity.state.lateral_speed * entity.lane.dir;
-    seen.acc_s = entity.state.acceleration * entity.lane.dir;
+    seen.v_s = entity.state().speed * entity.lane.dir;
+    seen.v_t = entity.state().lateral_speed * entity.lane.dir;
+    seen.acc_s = entity.state().acceleration * entity.lane.dir;
   } else {
-    seen.v_s = entity.state.speed * c;
-    seen.v_t = entity.state.speed * s;
-    seen.acc_s = entity.state.acceleration * c;
+    seen.v_s = entity.state().speed * c;
+    seen.v_t = entity.state().speed * s;
+    seen.acc_s = entity.state().acceleration * c;
   }
   seen.front_x = seen.vehicle ? alks_front_x(entity) : 0.5 * entity.info.box.length;
   seen.box = entity.info.box;
-  seen.pose = entity.state.pose;
+  seen.pose = entity.state().pose;
   return seen;
 }
 
@@ -232,8 +232,8 @@ void step_alks_r157_entities(SimState& state, const MotionContext& motion) {
   for (uint32_t i = 0; i < count && i < state.controls.size(); ++i) {
     ControlState& control = state.controls[i];
     Entity& entity = state.world.entities[i];
-    if (control.effective() != ControllerKind::kAlksR157 || !control.alks || !entity.state.placed ||
-        entity.towed_by || state.frozen(i)) {
+    if (control.effective() != ControllerKind::kAlksR157 || !control.alks ||
+        !entity.state().placed || entity.towed_by || state.frozen(i)) {
       continue;
     }
     if (!seen_now) {
@@ -247,7 +247,7 @@ void step_alks_r157_entities(SimState& state, const MotionContext& motion) {
     // NaturalDriver's, controllers/natural_driver.cpp).
     AlksR157& alks = *control.alks;
     if (alks.pending_activation) {
-      alks.set_speed = entity.state.speed;  // esmini's Activate: the speed then
+      alks.set_speed = entity.state().speed;  // esmini's Activate: the speed then
       alks.pending_activation = false;
     }
     const double speed = alks_step(alks, view);

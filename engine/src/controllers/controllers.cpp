@@ -348,12 +348,12 @@ bool waits_at_kerb(const SimState& state, uint32_t index, const FollowView& view
   if (state.map == nullptr || !view.has_shapes()) {
     return false;
   }
-  const double x = me.state.pose.x + kKerb * std::cos(me.state.pose.h);
-  const double y = me.state.pose.y + kKerb * std::sin(me.state.pose.h);
+  const double x = me.state().pose.x + kKerb * std::cos(me.state().pose.h);
+  const double y = me.state().pose.y + kKerb * std::sin(me.state().pose.h);
   if (!on_drivable_lane(*state.map, x, y, look)) {
     return false;
   }
-  const auto here = me.state.road ? lane_type_at(*state.map, *me.state.road) : std::nullopt;
+  const auto here = me.state().road ? lane_type_at(*state.map, *me.state().road) : std::nullopt;
   if (here && xodr::is_drivable(*here)) {
     return false;  // on the road already: across it rather than stand in it
   }
@@ -402,7 +402,8 @@ void step_pedestrian(SimState& state, uint32_t index, const DefaultController& i
   if (!control.crossing || state.map == nullptr) {
     return;
   }
-  const auto type = entity.state.road ? lane_type_at(*state.map, *entity.state.road) : std::nullopt;
+  const auto type =
+      entity.state().road ? lane_type_at(*state.map, *entity.state().road) : std::nullopt;
   if (type && xodr::is_drivable(*type)) {
     control.crossed_roadway = true;
   } else if (control.crossed_roadway &&
@@ -421,7 +422,7 @@ void move_one(SimState& state, uint32_t i, const MotionContext& motion, const Fo
   const DefaultController ideal;
   Entity& entity = state.world.entities[i];
   const ControllerKind kind = state.controls[i].effective();
-  if (!entity.state.placed || entity.towed_by || state.frozen(i)) {
+  if (!entity.state().placed || entity.towed_by || state.frozen(i)) {
     // A connected trailer follows its tower (motion/trailers.h); during a ghost's head start
     // only the ghost moves.
     return;
@@ -607,13 +608,13 @@ MoverScan scan_for_move(SimState& state, uint32_t count) {
     sloppy |= kind == ControllerKind::kSloppyDriver;
     if (std::optional<DomainPartner>& partner = control.partner) {
       // The lateral controller of a split steers with the speed and heading the step began with.
-      partner->step_start_speed = entity.state.speed;
+      partner->step_start_speed = entity.state().speed;
       partner->step_start_heading = entity.lane.heading_offset;
       sloppy |= partner->kind == ControllerKind::kSloppyDriver;
     }
     // Moved by the dynamics controller this step (a FollowTrajectoryAction in position mode
     // places the entity on its path instead: ideal motion).
-    if (kind == ControllerKind::kDynamics && entity.state.placed && !entity.pose_command &&
+    if (kind == ControllerKind::kDynamics && entity.state().placed && !entity.pose_command &&
         !entity.towed_by) {
       scan.dynamic.push_back(i);
     }
@@ -623,7 +624,7 @@ MoverScan scan_for_move(SimState& state, uint32_t count) {
     following = following || ((kind == ControllerKind::kAcc ||
                                (kind == ControllerKind::kEsminiVehicle &&
                                 esmini_driver_reads_view(control.esmini_driver.get()))) &&
-                              entity.state.placed);
+                              entity.state().placed);
     natural |= control.natural != nullptr;
   }
   scan.alks = alks;

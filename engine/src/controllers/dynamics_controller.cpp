@@ -104,7 +104,7 @@ VehicleInputs commanded_inputs(const Entity& entity, DynamicsVehicle& vehicle,
   VehicleInputs inputs;
   inputs.accel =
       controls.throttle * max_acceleration(entity) - controls.brake * max_deceleration(entity);
-  if (entity.info.max_speed > 0.0 && entity.state.speed >= entity.info.max_speed) {
+  if (entity.info.max_speed > 0.0 && entity.state().speed >= entity.info.max_speed) {
     inputs.accel = std::min(inputs.accel, 0.0);
   }
   inputs.steer = controls.steering;
@@ -147,7 +147,7 @@ double longitudinal_demand(Entity& entity, DynamicsVehicle& vehicle, const Contr
   if (entity.info.max_speed > 0.0) {
     command = std::min(command, entity.info.max_speed);
   }
-  const double error = command - entity.state.speed;
+  const double error = command - entity.state().speed;
   const double feed_forward = std::clamp((command - vehicle.last_command) / dt, -max_dec, max_acc);
   vehicle.last_command = command;
   const double raw = feed_forward + kProportionalGain * error + kIntegralGain * vehicle.integral;
@@ -156,7 +156,7 @@ double longitudinal_demand(Entity& entity, DynamicsVehicle& vehicle, const Contr
     vehicle.integral += error * dt;  // no wind-up while saturated
   }
   // At the top speed nothing pushes beyond it.
-  if (entity.info.max_speed > 0.0 && entity.state.speed >= entity.info.max_speed) {
+  if (entity.info.max_speed > 0.0 && entity.state().speed >= entity.info.max_speed) {
     return std::min(demand, 0.0);
   }
   return demand;
@@ -240,7 +240,7 @@ void sync_lane(const SimState& state, Entity& entity, DynamicsVehicle& vehicle,
     // accumulate, since every step measures from the vehicle's true position.
     const double c = std::cos(foot.pose.h), s = std::sin(foot.pose.h);
     const double along =
-        (entity.state.pose.x - foot.pose.x) * c + (entity.state.pose.y - foot.pose.y) * s;
+        (entity.state().pose.x - foot.pose.x) * c + (entity.state().pose.y - foot.pose.y) * s;
     if (along != 0.0) {
       const AdvanceResult result = advance_along_lanes(map, centre, along, entity.chooser);
       moved = result.travelled;
@@ -256,23 +256,23 @@ void sync_lane(const SimState& state, Entity& entity, DynamicsVehicle& vehicle,
   vehicle.foot = foot;
   vehicle.foot_valid = true;
   const double c = std::cos(foot.pose.h), s = std::sin(foot.pose.h);
-  const double dx = entity.state.pose.x - foot.pose.x, dy = entity.state.pose.y - foot.pose.y;
+  const double dx = entity.state().pose.x - foot.pose.x, dy = entity.state().pose.y - foot.pose.y;
   centre.lateral = c * dy - s * dx;
-  centre.heading_offset = wrap_angle(entity.state.pose.h - foot.pose.h);
+  centre.heading_offset = wrap_angle(entity.state().pose.h - foot.pose.h);
   // Carried on from a neighbouring lane's end: the offset asked for moves with the lane frame.
   entity.lateral_command += centre.frame_shift - entity.lane.frame_shift;
   entity.lane = centre;
   entity.longitudinal_distance += std::abs(moved);
   entity.end_of_road = hit_end || (entity.end_of_road && moved == 0.0);
   const LanePose at = beside_foot(map, entity.lane, foot, spans);
-  entity.state.pose.z = at.pose.z;
-  entity.state.pose.p = at.pose.p;
-  entity.state.pose.r = at.pose.r;
+  entity.write_state().pose.z = at.pose.z;
+  entity.write_state().pose.p = at.pose.p;
+  entity.write_state().pose.r = at.pose.r;
   if (at.lane_at) {
-    entity.state.road =
+    entity.write_state().road =
         RoadCoordinates{entity.lane.road, entity.lane.section, *at.lane_at, entity.lane.s, at.t};
   } else {
-    entity.state.road.reset();
+    entity.write_state().road.reset();
   }
 }
 
@@ -289,7 +289,7 @@ void begin_vehicle(SimState& state, uint32_t index, const MotionContext& motion,
     control.dynamics->pose = Pose{std::nan(""), 0.0, 0.0, 0.0, 0.0, 0.0};
   }
   DynamicsVehicle& vehicle = *control.dynamics;
-  EntityState& es = entity.state;
+  EntityState& es = entity.write_state();
   if (!same_pose(vehicle.pose, es.pose) || vehicle.model.state().vx != es.speed) {
     // New, teleported, or its speed set from outside (a step SpeedAction in Init): start the
     // model there, moving straight.
@@ -347,7 +347,7 @@ void finish_dynamics(SimState& state, uint32_t index, const MotionContext& motio
   Entity& entity = state.world.entities[index];
   DynamicsVehicle& vehicle = *state.controls[index].dynamics;
   const double dt = motion.dt;
-  EntityState& es = entity.state;
+  EntityState& es = entity.write_state();
   const VehicleState& before = vehicle.before;
   const VehicleState after = vehicle.model.state();
   const double h0 = es.pose.h;

@@ -82,7 +82,7 @@ void place_entity_at_model(double x, double y, double h, double speed, Entity& e
     move_at_controller_speed(entity, speed, [&] { hold_pose_off_lanes(entity, motion); });
     return;
   }
-  Pose pose = entity.state.pose;
+  Pose pose = entity.state().pose;
   pose.x = x;
   pose.y = y;
   pose.h = heading;
@@ -106,10 +106,10 @@ void integrate(EsminiVehicle& car, double dt) {
 // Where `entity` is, esmini's speed limit (m/s): the road type's speed at its s, else by the
 // number of lanes for driving on its side of the road.
 double speed_limit_at(const SimState& state, const Entity& entity) {
-  if (state.map == nullptr || !entity.state.road) {
+  if (state.map == nullptr || !entity.state().road) {
     return kLimitOffRoad;
   }
-  const RoadCoordinates& at = *entity.state.road;
+  const RoadCoordinates& at = *entity.state().road;
   const xodr::Road& road = state.map->road(at.road);
   std::optional<double> typed;
   for (const xodr::RoadType& type : road.types) {
@@ -134,8 +134,8 @@ double speed_limit_at(const SimState& state, const Entity& entity) {
 // after something else moved the entity (a TeleportAction): esmini's model would otherwise put
 // it back where the model was.
 void start_model(EsminiDriver& driver, const Entity& entity, int64_t tick) {
-  if (driver.started && driver.last_tick + 1 == tick && entity.state.pose.x == driver.car.x &&
-      entity.state.pose.y == driver.car.y) {
+  if (driver.started && driver.last_tick + 1 == tick && entity.state().pose.x == driver.car.x &&
+      entity.state().pose.y == driver.car.y) {
     driver.last_tick = tick;
     return;
   }
@@ -143,10 +143,11 @@ void start_model(EsminiDriver& driver, const Entity& entity, int64_t tick) {
   const double steering_rate = car.steering_rate;
   car = EsminiVehicle{};
   car.steering_rate = steering_rate;
-  car.x = entity.state.pose.x;
-  car.y = entity.state.pose.y;
-  car.h = entity.state.pose.h - kEsminiFullTurn * std::floor(entity.state.pose.h / kEsminiFullTurn);
-  car.speed = entity.state.speed;
+  car.x = entity.state().pose.x;
+  car.y = entity.state().pose.y;
+  car.h =
+      entity.state().pose.h - kEsminiFullTurn * std::floor(entity.state().pose.h / kEsminiFullTurn);
+  car.speed = entity.state().speed;
   if (entity.info.box.length > 0.0) car.length = entity.info.box.length;
   if (entity.info.max_acceleration > 0.0) car.max_acceleration = entity.info.max_acceleration;
   if (entity.info.max_deceleration > 0.0) car.max_deceleration = entity.info.max_deceleration;
@@ -176,10 +177,10 @@ void step_interactive(SimState& state, uint32_t index, EsminiDriver& driver,
     // moves it.
     car.speed = std::clamp(car.speed * (1.0 - kEngineBrake), -car.max_speed, car.max_speed);
     move_at_controller_speed(entity, car.speed, [&] { DefaultController{}.step(entity, motion); });
-    car.x = entity.state.pose.x;
-    car.y = entity.state.pose.y;
-    car.h =
-        entity.state.pose.h - kEsminiFullTurn * std::floor(entity.state.pose.h / kEsminiFullTurn);
+    car.x = entity.state().pose.x;
+    car.y = entity.state().pose.y;
+    car.h = entity.state().pose.h -
+            kEsminiFullTurn * std::floor(entity.state().pose.h / kEsminiFullTurn);
     return;
   }
   // The lateral domain alone: the wheel returns to straight, the speed is the actions' (esmini:
@@ -203,13 +204,13 @@ void step_offroad_follower(SimState& state, uint32_t index, EsminiDriver& driver
   EsminiVehicle& car = driver.car;
   const double limit = kFollowerLimitFactor * speed_limit_at(state, entity);
   car.max_speed = entity.info.max_speed > 0.0 ? std::min(limit, entity.info.max_speed) : limit;
-  const double dx = lead.x - entity.state.pose.x;
-  const double dy = lead.y - entity.state.pose.y;
-  const double direction = remainder_full_turn(std::atan2(dy, dx) - entity.state.pose.h);
+  const double dx = lead.x - entity.state().pose.x;
+  const double dy = lead.y - entity.state().pose.y;
+  const double direction = remainder_full_turn(std::atan2(dy, dx) - entity.state().pose.h);
   const double distance = std::hypot(dx, dy);
   const double steering = std::clamp(direction, -1.0, 1.0);
   const double throttle = std::clamp(
-      0.5 * (distance - driver.target_distance) - 0.5 * (entity.state.speed - lead.speed), -1.0,
+      0.5 * (distance - driver.target_distance) - 0.5 * (entity.state().speed - lead.speed), -1.0,
       1.0);
   drive_analog(car, motion.dt, throttle, steering);
   place_at_model(car, car.speed, entity, motion);

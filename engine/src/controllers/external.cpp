@@ -25,7 +25,7 @@ void begin_commands(SimState& state) {
       control.command = *control.held;
     } else {
       control.command = ExternalCommand{};
-      control.command.speed = state.world.entities[i].state.speed;
+      control.command.speed = state.world.entities[i].state().speed;
     }
     control.commanded = true;
     state.commanded.push_back(i);
@@ -47,7 +47,7 @@ void step_commanded(SimState& state, uint32_t index, const DefaultController& id
   const bool external = control.kind == ControllerKind::kExternal;
   // A one-step command leaves the actions' speed command alone: the controller resumes from it.
   const double speed_command = entity.speed_command;
-  entity.speed_command = command.speed.value_or(entity.state.speed);
+  entity.speed_command = command.speed.value_or(entity.state().speed);
   if (command.pose) {
     entity.pose_command = *command.pose;  // consumed by the move (motion/pose_command.h)
   } else if (external) {
@@ -71,7 +71,7 @@ void end_commands(SimState& state) {
         held.controls = control.command.controls;  // the pedals and the wheel stay where they are
       } else {
         // After a speed or a pose: roll on at the speed it has.
-        held.speed = state.world.entities[i].state.speed;
+        held.speed = state.world.entities[i].state().speed;
       }
       control.held = held;
     }

@@ -186,7 +186,7 @@ void setup_ghost(SimState& state) {
       ghost.info.name = entity.info.name + "_ghost";
       ghost.object = nullptr;  // no controllers, no trailer of its own
       ghost.ghost = true;
-      ghost.state.visible = false;
+      ghost.write_state().visible = false;
       link.ghost = static_cast<uint32_t>(state.world.entities.size());
       if (!state.world.by_name.emplace(ghost.info.name, link.ghost).second) {
         throw InputError(oc.source.error("the ghost of '" + entity.info.name +
@@ -251,13 +251,14 @@ bool restart_ghost(SimState& state) {
   // The ghost takes the entity's place, lane and speed (a teleport; the storyboard has stopped
   // what ran on it), and the distance it has travelled: a TraveledDistanceCondition on the entity
   // reads the ghost, which must not count the jump back nor the ticks it runs again.
-  const bool visible = ghost.state.visible;
-  ghost.state = entity.state;
-  ghost.state.visible = visible;
+  const bool visible = ghost.state().visible;
+  EntityState& ghost_state = ghost.write_state();
+  ghost_state = entity.state();
+  ghost_state.visible = visible;
   ghost.straight_travel = entity.straight_travel;
   mark_jump(ghost);
   ghost.lane = entity.lane;
-  ghost.speed_command = entity.state.speed;
+  ghost.speed_command = entity.state().speed;
   ghost.lateral_command = entity.lateral_command;
   ghost.pose_command.reset();
   if (state.now() <= 1e-9) {
@@ -284,12 +285,13 @@ void record_trail(SimState& state) {
   const Entity& ghost = state.world.entities[link.ghost];
   const double now = state.now();
   auto& trail = link.trail;
-  if (!ghost.state.placed) return;
+  if (!ghost.state().placed) return;
   const double since = trail.empty() ? 0.0 : now - trail.back().time;
   if (!trail.empty() && since <= kTrailSampleTime + 1e-9) return;
   // A ghost standing still adds nothing (the last sample holds); after a pause the last
   // sample is repeated just before the new one, so that the pause keeps its place in time.
-  if (!trail.empty() && std::abs(trail.back().speed) < 1e-9 && std::abs(ghost.state.speed) < 1e-9) {
+  if (!trail.empty() && std::abs(trail.back().speed) < 1e-9 &&
+      std::abs(ghost.state().speed) < 1e-9) {
     return;
   }
   if (!trail.empty() && since > 2.0 * kTrailSampleTime + 1e-9) {
@@ -297,14 +299,14 @@ void record_trail(SimState& state) {
     held.time = now - kTrailSampleTime;
     trail.push_back(held);
   }
-  const Pose& p = ghost.state.pose;
-  TrailPoint point{now, p.x, p.y, p.z, p.h, ghost.state.speed, 0.0, false};
+  const Pose& p = ghost.state().pose;
+  TrailPoint point{now, p.x, p.y, p.z, p.h, ghost.state().speed, 0.0, false};
   if (!trail.empty()) {
     const TrailPoint& last = trail.back();
     const double moved = std::hypot(p.x - last.x, p.y - last.y);
     // Farther than twice the faster speed could take it, and a metre: the ghost jumped.
     const double reach =
-        2.0 * std::max(std::abs(last.speed), std::abs(ghost.state.speed)) * (now - last.time);
+        2.0 * std::max(std::abs(last.speed), std::abs(ghost.state().speed)) * (now - last.time);
     point.jump = moved > reach + 1.0;
     point.s = last.s + (point.jump ? 0.0 : moved);
   }
@@ -340,10 +342,11 @@ void step_follow_ghost(SimState& state, uint32_t index, const MotionContext& mot
     // First step, or the first after the controller was off or the entity away: the model
     // starts from the entity's pose and speed (esmini resets its vehicle on activation).
     car.started = true;
-    car.x = entity.state.pose.x;
-    car.y = entity.state.pose.y;
-    car.h = entity.state.pose.h - kGhostFullTurn * std::floor(entity.state.pose.h / kGhostFullTurn);
-    car.speed = entity.state.speed;
+    car.x = entity.state().pose.x;
+    car.y = entity.state().pose.y;
+    car.h =
+        entity.state().pose.h - kGhostFullTurn * std::floor(entity.state().pose.h / kGhostFullTurn);
+    car.speed = entity.state().speed;
     car.length = entity.info.box.length > 0.0 ? entity.info.box.length : 5.0;
   }
   car.last_tick = state.tick;

@@ -26,23 +26,23 @@ void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours)
   const Entity& entity = state.world.entities[i];
   FollowTarget& target = targets_[i];
   const bool visible = i >= state.controls.size() || state.controls[i].traffic_visible;
-  target.present = entity.state.placed && visible;
-  target.usable = target.present && entity.state.road.has_value();
+  target.present = entity.state().placed && visible;
+  target.usable = target.present && entity.state().road.has_value();
   target.generated = generated_[i] != 0;
   if (!target.present) {
     return;
   }
-  target.x = entity.state.pose.x;
-  target.y = entity.state.pose.y;
-  target.h = entity.state.pose.h;
-  target.speed = entity.state.speed;
+  target.x = entity.state().pose.x;
+  target.y = entity.state().pose.y;
+  target.h = entity.state().pose.h;
+  target.speed = entity.state().speed;
   target.rear = entity.info.box.center_x - 0.5 * entity.info.box.length;
   target.vehicle = entity.info.kind == ObjectKind::kVehicle;
   target.length = entity.info.box.length;
   if (neighbours) {
     // Mostly the entity stands where the contacts boxed it after the last moves.
     const OrientedBox* boxed = state.contacts.unmoved_box(i, entity);
-    target.shape = boxed != nullptr ? *boxed : box_of(entity.info.box, entity.state.pose);
+    target.shape = boxed != nullptr ? *boxed : box_of(entity.info.box, entity.state().pose);
     // The reach and offset (hypots) are made again only when the box has changed since they
     // were made: a box of zeros (reach_boxes_' default) has both 0 (their default).
     const Box& box = entity.info.box;
@@ -55,7 +55,7 @@ void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours)
   if (!target.usable) {
     return;
   }
-  target.road = *entity.state.road;
+  target.road = *entity.state().road;
   // Mostly the entity is in the lane it follows, whose node it knows.
   const LaneFollow& follow = entity.lane;
   const bool followed = follow.on_road && follow.node != xodr::kNoLane &&

@@ -182,7 +182,7 @@ void GiveWay::begin_step(const SimState& state) {
   stopped_.clear();
   who_.clear();
   for (uint32_t i = 0; i < count; ++i) {
-    if (approaching_[i] != 0 && state.world.entities[i].state.placed) {
+    if (approaching_[i] != 0 && state.world.entities[i].state().placed) {
       who_.push_back(i);
     }
   }
@@ -202,11 +202,11 @@ void GiveWay::record(uint32_t index, const Entity& me, const LanePath& path, int
   const bool was = approaching_[index] != 0;
   const double front = me.info.box.center_x + 0.5 * me.info.box.length;
   const double rear = me.info.box.center_x - 0.5 * me.info.box.length;
-  const uint32_t count = collect_claims(*conflicts_, path, front, rear, me.state.speed, a);
+  const uint32_t count = collect_claims(*conflicts_, path, front, rear, me.state().speed, a);
   if (count == 0 && !was) {
     return;  // far from every zone, as before: nothing written
   }
-  const double v = std::max(me.state.speed, 0.0);
+  const double v = std::max(me.state().speed, 0.0);
   a.count = count;
   a.stopping = v * v / (2.0 * kFirm);
   if (!was) {

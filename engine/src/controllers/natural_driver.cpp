@@ -92,8 +92,8 @@ NaturalView natural_view_of(const Entity& entity, uint32_t index) {
   view.lane = entity.lane.lane;
   view.s = entity.lane.s;
   view.dir = entity.lane.dir;
-  view.speed = entity.state.speed;
-  view.heading = entity.state.pose.h;
+  view.speed = entity.state().speed;
+  view.heading = entity.state().pose.h;
   view.front = 0.5 * entity.info.box.length + entity.info.box.center_x;
   view.rear = 0.5 * entity.info.box.length - entity.info.box.center_x;
   return view;
@@ -193,8 +193,8 @@ class NaturalStep {
     for (uint32_t i = 0; i < state_.world.entities.size(); ++i) {
       const Entity& other = state_.world.entities[i];
       if (i == self_ || !seen(i)) continue;
-      const double dx = other.state.pose.x - self.state.pose.x;
-      const double dy = other.state.pose.y - self.state.pose.y;
+      const double dx = other.state().pose.x - self.state().pose.x;
+      const double dy = other.state().pose.y - self.state().pose.y;
       if (std::hypot(dx, dy) > p_.lookahead) continue;
       others_.push_back(natural_view_of(other, i));
     }
@@ -216,7 +216,7 @@ class NaturalStep {
 
   bool seen(uint32_t i) const {
     const Entity& other = state_.world.entities[i];
-    return other.state.placed && !other.removed && !other.ghost && other.lane.on_road &&
+    return other.state().placed && !other.removed && !other.ghost && other.lane.on_road &&
            (i >= state_.controls.size() || state_.controls[i].traffic_visible);
   }
 
@@ -535,7 +535,7 @@ void step_natural_drivers(SimState& state, const MotionContext& motion) {
     if (!control.natural) continue;
     NaturalDriverState& driver = *control.natural;
     const Entity& entity = state.world.entities[i];
-    if (control.effective() != ControllerKind::kNaturalDriver || !entity.state.placed ||
+    if (control.effective() != ControllerKind::kNaturalDriver || !entity.state().placed ||
         entity.removed || entity.towed_by || state.frozen(i)) {
       driver.active = false;
       continue;
@@ -558,7 +558,7 @@ void step_natural_drivers(SimState& state, const MotionContext& motion) {
       driver.params = params;
       driver.cooldown = params.lane_change_duration + params.lane_change_delay;
       driver.active = true;
-      driver.speed = entity.state.speed;
+      driver.speed = entity.state().speed;
       zero_step = state.tick == 0;
     }
     if (zero_step) NaturalStep(state, i, driver).run(0.0, true);

@@ -46,7 +46,7 @@ struct LocalFrame {
 /// its box in the view when the view took the same heading, to the bit (box_of computes them as
 /// LocalFrame(pose) does): the picture was mostly taken at the pose the entity still has.
 LocalFrame frame_at(const Entity& me, uint32_t index, const FollowView& view) {
-  const Pose& pose = me.state.pose;
+  const Pose& pose = me.state().pose;
   if (view.has_shapes() && index < view.targets().size()) {
     const FollowTarget& seen = view.targets()[index];
     if (seen.present && same_bits(seen.h, pose.h)) {
@@ -197,8 +197,8 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
     if (!may_reach(frame, other, rear, front + reach, half, least)) {
       continue;
     }
-    const double dx = other.x - me.state.pose.x;
-    const double dy = other.y - me.state.pose.y;
+    const double dx = other.x - me.state().pose.x;
+    const double dy = other.y - me.state().pose.y;
     const double far = front + reach + other.length + 10.0;
     if (dx * dx + dy * dy > far * far) {
       continue;
@@ -224,7 +224,7 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
   // The speed (a cosine) of the one chosen only, not of every nearer one met before it.
   if (chosen != std::numeric_limits<uint32_t>::max()) {
     const FollowTarget& other = view.targets()[chosen];
-    hazard.speed = other.speed * std::cos(other.h - me.state.pose.h);
+    hazard.speed = other.speed * std::cos(other.h - me.state().pose.h);
   }
   return hazard;
 }
@@ -246,9 +246,9 @@ double keep_ahead_speed(const Entity& me, uint32_t index, const FollowView& view
         !may_reach(frame, other, rear - kBehindReach, rear, half)) {
       continue;
     }
-    const double along = std::cos(other.h - me.state.pose.h);
+    const double along = std::cos(other.h - me.state().pose.h);
     const double speed = other.speed * along;
-    if (along < 0.7 || speed <= me.state.speed) {
+    if (along < 0.7 || speed <= me.state().speed) {
       continue;  // not coming up behind us
     }
     double x_min = 0.0, x_max = 0.0;
@@ -315,7 +315,7 @@ WalkerMove walker_move(const Entity& me, uint32_t index, const FollowView& view,
     if (x < -reach - 0.3 || x > kWalkerLook + reach || std::abs(y) > kWalkerBand + 0.5) {
       continue;
     }
-    const double along = std::cos(other.h - me.state.pose.h);
+    const double along = std::cos(other.h - me.state().pose.h);
     const double their_speed = other.speed * along;
     // Across our way the other's box reaches its half width, more when it stands turned (a
     // walker that stopped while stepping aside): walkers nearer than kWalkerAbreast plus that
@@ -394,7 +394,7 @@ bool walker_waits(const Entity& me, uint32_t index, const FollowView& view, doub
   constexpr double kFastest = 20.0;  // m/s: vehicles farther than kWithin at this are not looked at
   const LocalFrame frame = frame_at(me, index, view);
   near_rectangle(view, frame, 0.0, length, kClear, kFastest * kWithin + view.max_reach(), near);
-  const double x0 = me.state.pose.x, y0 = me.state.pose.y;
+  const double x0 = me.state().pose.x, y0 = me.state().pose.y;
   const double x1 = x0 + length * frame.c, y1 = y0 + length * frame.s;
   for (const uint32_t j : near) {
     const FollowTarget& other = view.targets()[j];

@@ -73,7 +73,7 @@ void sloppy_lateral(SloppyDriver& driver, EsminiRandom& random, Entity& entity, 
   lane.lateral += shift;
   entity.lateral_command += shift;
   lane.heading_offset = driver.override_mode ? driver.heading + turn : heading_before + turn;
-  entity.state.lateral_speed = shift / dt;
+  entity.write_state().lateral_speed = shift / dt;
   driver.offset += shift;
   driver.heading += turn;
 }
@@ -108,7 +108,7 @@ void step_sloppy_driver(SimState& state, uint32_t index, SloppyDriver& driver,
   DefaultController{}.step(entity, motion);
   if (control.longitudinal) {
     entity.speed_command = commanded;
-    entity.state.speed = driver.current_speed;
+    entity.write_state().speed = driver.current_speed;
   }
   if (control.lateral && entity.lane.on_road && state.map != nullptr) {
     sloppy_lateral(driver, *state.esmini_random, entity, lateral_speed, heading_before, motion.dt);
@@ -185,9 +185,9 @@ std::shared_ptr<SloppyDriver> make_sloppy_driver(SimState& state,
 void activate_sloppy_driver(SloppyDriver& driver, const Entity& entity) {
   driver.speed_timer = SloppyTimer{0.0, kSloppySpeedPeriod};
   driver.target_factor = 1.0;
-  driver.current_speed = entity.state.speed;
-  driver.initial_speed = entity.state.speed;
-  driver.reference_speed = entity.state.speed;
+  driver.current_speed = entity.state().speed;
+  driver.initial_speed = entity.state().speed;
+  driver.reference_speed = entity.state().speed;
   driver.last_command = entity.speed_command;
   driver.lateral_timer = SloppyTimer{0.0, kSloppyLateralPeriod};
   driver.fuzz_start = 0.0;
@@ -201,7 +201,7 @@ void step_sloppy_drivers(SimState& state, const MotionContext& motion) {
   for (uint32_t i = 0; i < count && i < state.controls.size(); ++i) {
     ControlState& control = state.controls[i];
     Entity& entity = state.world.entities[i];
-    if (!control.sloppy || !entity.state.placed || entity.towed_by || state.frozen(i)) {
+    if (!control.sloppy || !entity.state().placed || entity.towed_by || state.frozen(i)) {
       continue;
     }
     if (control.effective() == ControllerKind::kSloppyDriver) {

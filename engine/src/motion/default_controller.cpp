@@ -33,21 +33,21 @@ void update_pose_from_lane(EntityMotion& entity, LanePoseMemo& memo, const xodr:
   // The same lane position gives the same pose (lane_pose is a function of it and the map);
   // the memo counts only while nothing else has moved the entity since.
   if (memo.valid && same_lane_position(memo.from, entity.lane) &&
-      same_bits(memo.pose, entity.state.pose) && same_bits(memo.road, entity.state.road)) {
+      same_bits(memo.pose, entity.state().pose) && same_bits(memo.road, entity.state().road)) {
     return;
   }
   const LanePose lp = lane_pose_of(map, entity.lane, scratch);
-  entity.state.pose = {lp.pose.x, lp.pose.y, lp.pose.z, lp.pose.h, lp.pose.p, lp.pose.r};
+  entity.write_state().pose = {lp.pose.x, lp.pose.y, lp.pose.z, lp.pose.h, lp.pose.p, lp.pose.r};
   if (lp.lane_at) {
-    entity.state.road =
+    entity.write_state().road =
         RoadCoordinates{entity.lane.road, entity.lane.section, *lp.lane_at, entity.lane.s, lp.t};
   } else {
-    entity.state.road.reset();
+    entity.write_state().road.reset();
   }
   memo.valid = true;
   memo.from = entity.lane;
-  memo.pose = entity.state.pose;
-  memo.road = entity.state.road;
+  memo.pose = entity.state().pose;
+  memo.road = entity.state().road;
 }
 
 void update_road_from_pose(Entity& entity, const xodr::Map* map) {
@@ -56,20 +56,20 @@ void update_road_from_pose(Entity& entity, const xodr::Map* map) {
 
 void update_road_from_pose(EntityMotion& entity, PointLocateMemo& memo, const xodr::Map* map) {
   if (map == nullptr) {
-    entity.state.road.reset();
+    entity.write_state().road.reset();
     return;
   }
   update_road_from_located(entity,
-                           locate_near(memo, *map, entity.state.pose.x, entity.state.pose.y));
+                           locate_near(memo, *map, entity.state().pose.x, entity.state().pose.y));
 }
 
 void update_road_from_located(EntityMotion& entity,
                               const std::optional<xodr::LanePosition>& located) {
   if (located && located->distance == 0.0) {
-    entity.state.road =
+    entity.write_state().road =
         RoadCoordinates{located->road, located->section, located->lane, located->s, located->t};
   } else {
-    entity.state.road.reset();
+    entity.write_state().road.reset();
   }
 }
 
@@ -127,8 +127,8 @@ double curvature_at(const xodr::Map& map, uint32_t road, double s) {
 // Outside every lane of the road (a lateral offset beyond its outer lane, e.g. a lane change that
 // a route carries onto a connecting road with fewer lanes) t comes from the followed lane.
 double path_scale(const xodr::Map& map, const EntityMotion& entity, CurvatureMemo* memo) {
-  const bool located = entity.state.road && entity.state.road->road == entity.lane.road;
-  if (!located && entity.state.road) {
+  const bool located = entity.state().road && entity.state().road->road == entity.lane.road;
+  if (!located && entity.state().road) {
     return 1.0;
   }
   const uint32_t road = entity.lane.road;
@@ -138,7 +138,7 @@ double path_scale(const xodr::Map& map, const EntityMotion& entity, CurvatureMem
   if (k == 0.0) {
     return 1.0;
   }
-  const double t = located ? entity.state.road->t : followed_t(map, entity.lane);
+  const double t = located ? entity.state().road->t : followed_t(map, entity.lane);
   return std::clamp(1.0 - k * t, 0.2, 5.0);
 }
 
@@ -194,7 +194,8 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
     return;
   }
   // Only an entity already standing on its lane can take a step that changes nothing.
-  const bool may_stand = entity.state.speed == 0.0 && entity.lane.on_road && context.map != nullptr;
+  const bool may_stand =
+      entity.state().speed == 0.0 && entity.lane.on_road && context.map != nullptr;
   entity.still_step_valid = false;
   if (may_stand) {
     take_still_step(still, entity);
@@ -206,7 +207,7 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
 
 void DefaultController::step_entity(EntityMotion& entity, MapMemos memos,
                                     const MotionContext& context, bool& stood) const {
-  EntityState& state = entity.state;
+  EntityState& state = entity.write_state();
   const double dt = context.dt;
   const double v0 = state.speed;
   double v1 = entity.speed_command;

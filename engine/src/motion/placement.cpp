@@ -14,9 +14,9 @@ namespace {
 
 void put_entity_at_position(SimState& state, Entity& entity, const ResolvedPosition& position,
                             const xosc::Source& source, bool require_on_map) {
-  entity.state.pose = {position.pose.x, position.pose.y, position.pose.z,
-                       position.pose.h, position.pose.p, position.pose.r};
-  entity.state.placed = true;
+  entity.write_state().pose = {position.pose.x, position.pose.y, position.pose.z,
+                               position.pose.h, position.pose.p, position.pose.r};
+  entity.write_state().placed = true;
   entity.removed = false;
   entity.removed_road.reset();
   entity.lane = LaneFollow{};
@@ -32,7 +32,7 @@ void put_entity_at_position(SimState& state, Entity& entity, const ResolvedPosit
   }
   entity.lateral_command = 0.0;
   if (state.map == nullptr) {
-    entity.state.road.reset();
+    entity.write_state().road.reset();
     return;
   }
   if (require_on_map &&
@@ -55,16 +55,16 @@ void place_entity(SimState& state, Entity& entity, const ResolvedPosition& posit
 }
 
 void mark_jump(Entity& entity) {
-  entity.straight_from_x = entity.state.pose.x;
-  entity.straight_from_y = entity.state.pose.y;
+  entity.straight_from_x = entity.state().pose.x;
+  entity.straight_from_y = entity.state().pose.y;
 }
 
 void sum_straight_travel(SimState& state) {
   for (Entity& entity : state.world.entities) {
-    if (!entity.state.placed) {
+    if (!entity.state().placed) {
       continue;
     }
-    const double x = entity.state.pose.x, y = entity.state.pose.y;
+    const double x = entity.state().pose.x, y = entity.state().pose.y;
     entity.straight_travel += std::hypot(x - entity.straight_from_x, y - entity.straight_from_y);
     entity.straight_from_x = x;
     entity.straight_from_y = y;

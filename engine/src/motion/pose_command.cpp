@@ -14,7 +14,7 @@ namespace {
 // The pose's own part of a move to `target`: speed, accelerations, yaw rate and odometers.
 // Returns the distance moved (m).
 double take_pose(Entity& entity, const Pose& target, double dt) {
-  EntityState& state = entity.state;
+  EntityState& state = entity.write_state();
   const double dx = target.x - state.pose.x;
   const double dy = target.y - state.pose.y;
   // hypot(+-0, +-0) is +0: a model at rest (esmini's, whose speed only nears 0) moves by none.
@@ -44,7 +44,7 @@ void leave_lanes(Entity& entity, const std::optional<xodr::LanePosition>& locate
 }  // namespace
 
 void move_to_pose_command(Entity& entity, const MotionContext& context) {
-  EntityState& state = entity.state;
+  EntityState& state = entity.write_state();
   const Pose target = *entity.pose_command;
   entity.pose_command.reset();
   const double h0 = state.pose.h;
@@ -76,7 +76,7 @@ void move_to_pose_command(Entity& entity, const MotionContext& context) {
 
 bool keeps_pose_off_lanes(const Entity& entity, double x, double y, double h,
                           const MotionContext& context) {
-  const EntityState& state = entity.state;
+  const EntityState& state = entity.state();
   // Compared by value too: a NaN coordinate takes the move (its distance is no 0, its turn no 0).
   return context.map != nullptr && x == state.pose.x && y == state.pose.y && h == state.pose.h &&
          same_bits(x, state.pose.x) && same_bits(y, state.pose.y) && same_bits(h, state.pose.h) &&
@@ -87,7 +87,7 @@ void hold_pose_off_lanes(Entity& entity, const MotionContext& context) {
   // move_to_pose_command to the pose the entity has: it moves by +0 and turns by +0, and the
   // map's answer at its point is none.
   entity.pose_command.reset();
-  take_pose(entity, entity.state.pose, context.dt);
+  take_pose(entity, entity.state().pose, context.dt);
   if (!entity.lane.on_road) {
     leave_lanes(entity, std::nullopt);
   }

@@ -55,9 +55,9 @@ void read_refpoint_offsets(SimState& state) {
     RefpointTrail trail;
     trail.entity = i;
     trail.length = *length;
-    trail.axle_x = entity.state.pose.x - *length * std::cos(entity.state.pose.h);
-    trail.axle_y = entity.state.pose.y - *length * std::sin(entity.state.pose.h);
-    trail.heading = entity.state.pose.h;
+    trail.axle_x = entity.state().pose.x - *length * std::cos(entity.state().pose.h);
+    trail.axle_y = entity.state().pose.y - *length * std::sin(entity.state().pose.h);
+    trail.heading = entity.state().pose.h;
     state.refpoint_trailing.push_back(trail);
   }
 }
@@ -73,13 +73,14 @@ void mark_refpoint_moved(SimState& state, const Entity& entity) {
 void trail_refpoints(SimState& state, double dt) {
   for (RefpointTrail& trail : state.refpoint_trailing) {
     Entity& entity = state.world.entities[trail.entity];
-    Pose& pose = entity.state.pose;
-    if (!entity.state.placed || entity.removed) continue;
+    const Pose& pose = entity.state().pose;
+    if (!entity.state().placed || entity.removed) continue;
     if (!trail.jumped) {
       // The axle moves straight toward the reference point's new place.
       const double dx = pose.x - trail.axle_x, dy = pose.y - trail.axle_y;
-      pose.h = std::hypot(dx, dy) > 1e-9 ? std::atan2(dy, dx) : trail.heading;
-      entity.state.yaw_rate = dt > 0.0 ? wrap_angle(pose.h - trail.heading) / dt : 0.0;
+      EntityState& written = entity.write_state();
+      written.pose.h = std::hypot(dx, dy) > 1e-9 ? std::atan2(dy, dx) : trail.heading;
+      written.yaw_rate = dt > 0.0 ? wrap_angle(pose.h - trail.heading) / dt : 0.0;
     }
     trail.jumped = false;
     trail.axle_x = pose.x - trail.length * std::cos(pose.h);

@@ -164,7 +164,7 @@ bool start_change(const xodr::Map& map, Entity& entity, const Need& need) {
   progress.to = entity.lateral_command;  // the offset the actions asked for, kept
   progress.start_distance = entity.longitudinal_distance;
   const double speed = std::max(
-      {std::abs(entity.state.speed), std::abs(entity.speed_command), kRouteLaneChangeMinSpeed});
+      {std::abs(entity.state().speed), std::abs(entity.speed_command), kRouteLaneChangeMinSpeed});
   const double room = need.ahead / std::max(1, changes);
   progress.length =
       std::clamp(room, speed * kRouteLaneChangeShortestTime, speed * kRouteLaneChangeTime);
@@ -211,7 +211,7 @@ void follow_route_lanes(SimState& state, const MotionContext& motion) {
     return;
   }
   for (Entity& entity : state.world.entities) {
-    if (!entity.route || !entity.state.placed) {
+    if (!entity.route || !entity.state().placed) {
       continue;
     }
     if (const auto* chooser = dynamic_cast<const RouteChooser*>(entity.route.get())) {

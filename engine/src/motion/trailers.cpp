@@ -64,16 +64,16 @@ void connect_trailer(SimState& state, uint32_t tower, uint32_t trailer, bool ali
   state.world.entities[tower].towing = trailer;
   towed.towed_by = tower;
   state.trailers_connected = true;
-  const Pose& pose = state.world.entities[tower].state.pose;
+  const Pose& pose = state.world.entities[tower].state().pose;
   const auto [hx, hy] = ahead(pose, hitch_dx(state, tower));
   const double back = coupler_dx(state, trailer);
   // Its coupler is put on the hitch now (hooking up), so the next step moves it smoothly: turned
   // toward the hitch from where it stands when its coupler is near the hitch (within 1 m, a
   // real hook-up), else in line behind the tower (a connection made from afar, or at Init).
   double heading = pose.h;
-  if (!align && towed.state.placed) {
-    const auto [cx, cy] = ahead(towed.state.pose, back);
-    const double dx = hx - towed.state.pose.x, dy = hy - towed.state.pose.y;
+  if (!align && towed.state().placed) {
+    const auto [cx, cy] = ahead(towed.state().pose, back);
+    const double dx = hx - towed.state().pose.x, dy = hy - towed.state().pose.y;
     const double gap = std::hypot(hx - cx, hy - cy);
     if (gap <= 1.0 && std::hypot(dx, dy) > 1e-9) {
       heading = std::atan2(dy, dx);
@@ -89,12 +89,12 @@ void connect_trailer(SimState& state, uint32_t tower, uint32_t trailer, bool ali
                                      : Diagnostic{Severity::kWarning, "", 0, -1, "", message});
     }
   }
-  towed.state.pose.x = hx - back * std::cos(heading);
-  towed.state.pose.y = hy - back * std::sin(heading);
-  towed.state.pose.z = pose.z;
-  towed.state.pose.h = heading;
-  towed.state.speed = state.world.entities[tower].state.speed;
-  towed.state.placed = true;
+  towed.write_state().pose.x = hx - back * std::cos(heading);
+  towed.write_state().pose.y = hy - back * std::sin(heading);
+  towed.write_state().pose.z = pose.z;
+  towed.write_state().pose.h = heading;
+  towed.write_state().speed = state.world.entities[tower].state().speed;
+  towed.write_state().placed = true;
   relocate(state, towed);
   mark_jump(towed);
 }
@@ -105,7 +105,7 @@ void disconnect_trailer(SimState& state, uint32_t tower) {
   Entity& trailer = state.world.entities[*entity.towing];
   trailer.towed_by.reset();
   trailer.unhitched_from = tower;
-  trailer.state.speed = 0.0;  // a trailer has no drive: it stays where it was left
+  trailer.write_state().speed = 0.0;  // a trailer has no drive: it stays where it was left
   trailer.speed_command = 0.0;
   entity.towing.reset();
 }
@@ -128,10 +128,10 @@ void move_trailers(SimState& state, double dt) {
   for (const uint32_t index : towed) {
     Entity& trailer = state.world.entities[index];
     const Entity& tower = state.world.entities[*trailer.towed_by];
-    if (!tower.state.placed) continue;
-    const auto [hx, hy] = ahead(tower.state.pose, hitch_dx(state, *trailer.towed_by));
+    if (!tower.state().placed) continue;
+    const auto [hx, hy] = ahead(tower.state().pose, hitch_dx(state, *trailer.towed_by));
     const double length = coupler_dx(state, index);
-    const Pose before = trailer.state.pose;
+    const Pose before = trailer.state().pose;
     const double dx = hx - before.x, dy = hy - before.y;
     const double distance = std::hypot(dx, dy);
     // The towed axle moves straight toward the hitch: the coupler stays on it.
@@ -139,19 +139,19 @@ void move_trailers(SimState& state, double dt) {
     Pose after = before;
     after.x = hx - length * std::cos(heading);
     after.y = hy - length * std::sin(heading);
-    after.z = tower.state.pose.z;
+    after.z = tower.state().pose.z;
     after.h = heading;
     const double moved_x = after.x - before.x, moved_y = after.y - before.y;
     const double moved = std::hypot(moved_x, moved_y);
     const double along = moved_x * std::cos(heading) + moved_y * std::sin(heading);
     const double speed = dt > 0.0 ? (along >= 0.0 ? moved : -moved) / dt : 0.0;
-    trailer.state.acceleration = dt > 0.0 ? (speed - trailer.state.speed) / dt : 0.0;
-    trailer.state.yaw_rate = dt > 0.0 ? wrap_angle(heading - before.h) / dt : 0.0;
-    trailer.state.speed = speed;
-    trailer.state.lateral_speed = 0.0;
-    trailer.state.odometer += moved;
-    trailer.state.pose = after;
-    trailer.state.placed = true;
+    trailer.write_state().acceleration = dt > 0.0 ? (speed - trailer.state().speed) / dt : 0.0;
+    trailer.write_state().yaw_rate = dt > 0.0 ? wrap_angle(heading - before.h) / dt : 0.0;
+    trailer.write_state().speed = speed;
+    trailer.write_state().lateral_speed = 0.0;
+    trailer.write_state().odometer += moved;
+    trailer.write_state().pose = after;
+    trailer.write_state().placed = true;
     trailer.speed_command = speed;
     relocate(state, trailer);
   }

@@ -260,6 +260,9 @@ uint32_t TrajectoryEncoder::code_every_row(const Rows& rows, uint32_t count) {
   for (uint32_t i = 0; i < count; ++i) {
     const auto& row = local_rows[i];
     Track& track = tracks[i];
+    // (The counts of writes are not read here: the rows of this pass mostly move. A track whose
+    // seen is its entity's count passes skips as in the skip pass; one coded here has a seen its
+    // entity's count has moved past.)
     if (track.skips(row)) {
       continue;
     }

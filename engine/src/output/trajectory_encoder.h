@@ -15,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "corsa/engine/simulation.h"
 #include "output/trajectory_codec.h"
 #include "output/trajectory_rows.h"
+#include "state/entity.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -153,7 +155,11 @@ inline bool same_motion(const EntityState& state, const uint64_t* bits) {
 struct EntityStateRows {
   EntityStates states;
   const Simulation* simulation = nullptr;
+  /// The states are the entities' (Simulation::states), each with its count of writes after it
+  /// (EntityMotion::state_changes_of), which the encoder then reads.
+  bool counted = false;
   const EntityState& operator[](size_t index) const { return states[index]; }
+  uint32_t changes(size_t index) const { return EntityMotion::state_changes_of(states[index]); }
   /// The OpenDRIVE id of road `road` (the map holds it).
   const std::string& road_id(uint32_t road) const { return simulation->road_id(road); }
 };
@@ -234,6 +240,11 @@ class TrajectoryEncoder {
     /// the bits stay, the field is as predicted and keeps its history (z, pitch and roll on a
     /// flat road, a steady speed), without scaling it again.
     uint32_t still = 0;
+    /// The entity's count of its state's writes (EntityMotion::state_changes) when the skip pass
+    /// last saw its row pass (the state then the steady repeat of the last row, and the track as it
+    /// is: only a row that does not pass changes it), or a count it has moved past. While the
+    /// entity's count is this, its row passes without a test.
+    uint32_t seen = UINT32_MAX;
 
     /// Whether placed `row` has the inputs of the steady last row. While steady, every field
     /// taken last time (s and t on a road) holds the bits of its last row in `bits`; off the
@@ -407,14 +418,37 @@ class TrajectoryEncoder {
   template <class Rows>
   [[gnu::always_inline]] uint32_t skip_pass(const Rows& rows, uint32_t count) {
     uint32_t* pending = pending_.data();
-    const Track* tracks = entities_.data();
+    Track* tracks = entities_.data();
     uint32_t coded = 0;
-    // Two entities a round: a test of the loop's end less for each (the pass is most of a tick
-    // of standing entities).
+    if constexpr (std::is_same_v<Rows, EntityStateRows>) {
+      if (!rows.counted) [[unlikely]] {
+        return skip_pass(rows.states, count);  // states without their counts (tests)
+      }
+      // An entity whose state has not been written since its row last passed passes again: one
+      // comparison. Otherwise the test of its state, whose count is then kept when it passes,
+      // and else one below it (never the count while the entity's track is coded; the count
+      // would have to wrap between two recorded ticks to come back to it).
+      const EntityStates states = rows.states;
+      for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t changes = EntityMotion::state_changes_of(states[i]);
+        Track& track = tracks[i];
+        if (changes == track.seen) [[likely]] {
+          continue;
+        }
+        const bool passes = track.passes(states[i]);
+        track.seen = passes ? changes : changes - 1;
+        if (!passes) {
+          pending[coded++] = i;
+        }
+      }
+    } else {
+      // Two entities a round: a test of the loop's end less for each (the pass is most of a
+      // tick of standing entities).
 #pragma GCC unroll 2
-    for (uint32_t i = 0; i < count; ++i) {
-      if (!tracks[i].passes(rows[i])) {
-        pending[coded++] = i;
+      for (uint32_t i = 0; i < count; ++i) {
+        if (!tracks[i].passes(rows[i])) {
+          pending[coded++] = i;
+        }
       }
     }
     return coded;

@@ -33,7 +33,7 @@ const Entity& need_entity(const SimState& state, const std::string& name,
     fail(source, "unknown entity '" + name + "'");
   }
   const Entity& entity = state.world.entities[*index];
-  if (!entity.state.placed) {
+  if (!entity.state().placed) {
     if (!entity.removed) {
       fail(source, "entity '" + name + "' is referenced before it has a position");
     }

@@ -57,22 +57,22 @@ ResolvedPosition finish_free(ResolvedPosition out, const SimState& state) {
 ResolvedPosition relative_world(const xosc::RelativeWorldPosition& p, const SimState& state) {
   const Entity& ref = need_entity(state, p.entity_ref, p.source);
   ResolvedPosition out;
-  out.pose.x = ref.state.pose.x + p.dx;
-  out.pose.y = ref.state.pose.y + p.dy;
-  out.pose.z = ref.state.pose.z + p.dz.value_or(0.0);
-  orient_on_entity(out.pose, ref.state.pose, p.orientation);
+  out.pose.x = ref.state().pose.x + p.dx;
+  out.pose.y = ref.state().pose.y + p.dy;
+  out.pose.z = ref.state().pose.z + p.dz.value_or(0.0);
+  orient_on_entity(out.pose, ref.state().pose, p.orientation);
   return finish_free(out, state);
 }
 
 ResolvedPosition relative_object(const xosc::RelativeObjectPosition& p, const SimState& state) {
   const Entity& ref = need_entity(state, p.entity_ref, p.source);
-  const double c = std::cos(ref.state.pose.h);
-  const double s = std::sin(ref.state.pose.h);
+  const double c = std::cos(ref.state().pose.h);
+  const double s = std::sin(ref.state().pose.h);
   ResolvedPosition out;
-  out.pose.x = ref.state.pose.x + c * p.dx - s * p.dy;
-  out.pose.y = ref.state.pose.y + s * p.dx + c * p.dy;
-  out.pose.z = ref.state.pose.z + p.dz.value_or(0.0);
-  orient_on_entity(out.pose, ref.state.pose, p.orientation);
+  out.pose.x = ref.state().pose.x + c * p.dx - s * p.dy;
+  out.pose.y = ref.state().pose.y + s * p.dx + c * p.dy;
+  out.pose.z = ref.state().pose.z + p.dz.value_or(0.0);
+  orient_on_entity(out.pose, ref.state().pose, p.orientation);
   return finish_free(out, state);
 }
 
@@ -129,15 +129,15 @@ ResolvedPosition lane(const xosc::LanePosition& p, const SimState& state) {
 // Where the reference entity is on the road (it must be on one).
 const RoadCoordinates& need_road_coordinates(const Entity& ref, const std::string& name,
                                              const xosc::Source& source) {
-  if (!ref.state.placed && ref.removed && ref.removed_road) {
+  if (!ref.state().placed && ref.removed && ref.removed_road) {
     return *ref.removed_road;  // deleted: where it was (need_entity warned)
   }
-  if (!ref.state.road) {
+  if (!ref.state().road) {
     fail(source, "entity '" + name +
                      "' is not on a road, so a road-relative position cannot "
                      "refer to it");
   }
-  return *ref.state.road;
+  return *ref.state().road;
 }
 
 // Walks `ds` metres in road +s direction from (road, lane, s) along the lane graph, so that a
@@ -172,7 +172,7 @@ ResolvedPosition relative_road(const xosc::RelativeRoadPosition& p, const SimSta
 // Whether the reference entity faces the road's +s where it stands (its heading within a
 // quarter turn of the reference line's).
 bool reference_faces_plus_s(const xodr::Map& map, const Entity& ref, const RoadCoordinates& rc) {
-  return std::cos(ref.state.pose.h - map.reference(rc.road, rc.s).hdg) > 0.0;
+  return std::cos(ref.state().pose.h - map.reference(rc.road, rc.s).hdg) > 0.0;
 }
 
 // esmini's reading of a RelativeLanePosition given by dsLane (`--semantics esmini`; its

@@ -47,13 +47,13 @@ double axis_distance(const Entity& from, const Target& to, const DistanceSpec& s
   if (!spec.freespace) {
     return combine(spec, along, across);
   }
-  const OrientedBox a = box_of(from.info.box, from.state.pose);
+  const OrientedBox a = box_of(from.info.box, from.state().pose);
   if (spec.type == xosc::RelativeDistanceType::kEuclidianDistance) {
     return to.box ? box_distance(a, *to.box) : box_point_distance(a, to.x, to.y);
   }
   const double nx = -uy, ny = ux;
-  const double a_along = from.state.pose.x * ux + from.state.pose.y * uy;
-  const double a_across = from.state.pose.x * nx + from.state.pose.y * ny;
+  const double a_along = from.state().pose.x * ux + from.state().pose.y * uy;
+  const double a_across = from.state().pose.x * nx + from.state().pose.y * ny;
   const double b_along = to.x * ux + to.y * uy;
   const double b_across = to.x * nx + to.y * ny;
   Interval b_u, b_n;
@@ -70,7 +70,7 @@ double axis_distance(const Entity& from, const Target& to, const DistanceSpec& s
 
 double distance_to(const SimState& state, const Entity& from, const Target& to,
                    const DistanceSpec& spec) {
-  const Pose& p = from.state.pose;
+  const Pose& p = from.state().pose;
   const double dx = to.x - p.x;
   const double dy = to.y - p.y;
   switch (spec.system) {
@@ -78,14 +78,14 @@ double distance_to(const SimState& state, const Entity& from, const Target& to,
       return axis_distance(from, to, spec, dx, dy, 1.0, 0.0);
     case xosc::CoordinateSystem::kRoad:
     case xosc::CoordinateSystem::kLane:
-      if (state.map != nullptr && from.state.road && to.road &&
-          from.state.road->road == to.road->road) {
+      if (state.map != nullptr && from.state().road && to.road &&
+          from.state().road->road == to.road->road) {
         // Along and across the road, signed by the direction `from` travels in.
         const int dir = from.lane.on_road ? from.lane.dir : 1;
         const double heading =
-            travel_heading(*state.map, from.state.road->road, from.state.road->s, dir);
-        const double along = (to.road->s - from.state.road->s) * dir;
-        const double across = (to.road->t - from.state.road->t) * dir;
+            travel_heading(*state.map, from.state().road->road, from.state().road->s, dir);
+        const double along = (to.road->s - from.state().road->s) * dir;
+        const double across = (to.road->t - from.state().road->t) * dir;
         return axis_distance(from, to, spec, along, across, std::cos(heading), std::sin(heading));
       }
       [[fallthrough]];
@@ -101,8 +101,8 @@ double distance_to(const SimState& state, const Entity& from, const Target& to,
 }  // namespace
 
 void EntityDistanceInputs::take(const Entity& from, const Entity& to) {
-  from_ = Party{from.state.pose, from.info.box, from.state.road};
-  to_ = Party{to.state.pose, to.info.box, to.state.road};
+  from_ = Party{from.state().pose, from.info.box, from.state().road};
+  to_ = Party{to.state().pose, to.info.box, to.state().road};
   from_on_road_ = from.lane.on_road;
   from_dir_ = from.lane.dir;
   taken_ = true;
@@ -110,21 +110,21 @@ void EntityDistanceInputs::take(const Entity& from, const Entity& to) {
 
 bool EntityDistanceInputs::same_as(const Entity& from, const Entity& to) const {
   // The poses and boxes (24 doubles) in one test.
-  const uint64_t diff = double_bits_diff<0, 6>(from_.pose, from.state.pose) |
-                        double_bits_diff<0, 6>(to_.pose, to.state.pose) |
+  const uint64_t diff = double_bits_diff<0, 6>(from_.pose, from.state().pose) |
+                        double_bits_diff<0, 6>(to_.pose, to.state().pose) |
                         double_bits_diff<0, 6>(from_.box, from.info.box) |
                         double_bits_diff<0, 6>(to_.box, to.info.box);
   return taken_ && from_on_road_ == from.lane.on_road && from_dir_ == from.lane.dir && diff == 0 &&
-         same_bits(from_.road, from.state.road) && same_bits(to_.road, to.state.road);
+         same_bits(from_.road, from.state().road) && same_bits(to_.road, to.state().road);
 }
 
 double entity_distance(const SimState& state, const Entity& from, const Entity& to,
                        const DistanceSpec& spec) {
   Target target;
-  target.x = to.state.pose.x;
-  target.y = to.state.pose.y;
-  target.road = to.state.road;
-  target.box = box_of(to.info.box, to.state.pose);
+  target.x = to.state().pose.x;
+  target.y = to.state().pose.y;
+  target.road = to.state().road;
+  target.box = box_of(to.info.box, to.state().pose);
   return distance_to(state, from, target, spec);
 }
 

@@ -185,12 +185,12 @@ ResolvedPosition route_position_of_entity(const xosc::RoutePosition& position,
                                           const SimState& state) {
   const Entity& entity = need_entity(state, in_route.entity_ref, in_route.source);
   ResolvedPosition out;
-  const Pose& p = entity.state.pose;
+  const Pose& p = entity.state().pose;
   out.pose = {p.x, p.y, p.z, p.h, p.p, p.r};
   orient_on_road(out.pose, position.orientation, false);
-  if (entity.state.road) {
-    out.road = RoadPoint{entity.state.road->road, entity.state.road->s, entity.state.road->t,
-                         entity.state.road->lane};
+  if (entity.state().road) {
+    out.road = RoadPoint{entity.state().road->road, entity.state().road->s, entity.state().road->t,
+                         entity.state().road->lane};
   }
   return out;
 }

@@ -198,12 +198,12 @@ void build_clothoid_spline(TrajectoryPath& path, const xosc::ClothoidSpline& sha
     } else if (!have_cursor) {
       // The first segment needs a PositionStart (1.3 ClothoidSplineSegment); without one the
       // spline clearly continues from where the entity following it stands.
-      if (!self || !state.world.entities[*self].state.placed) {
+      if (!self || !state.world.entities[*self].state().placed) {
         fail(segment.source, "the first ClothoidSplineSegment needs a PositionStart");
       }
       lenient(state, segment.source, "the first ClothoidSplineSegment has no PositionStart",
               "a start at the entity following it");
-      const auto& pose = state.world.entities[*self].state.pose;
+      const auto& pose = state.world.entities[*self].state().pose;
       cursor = {pose.x, pose.y, pose.z, pose.h};
       have_cursor = true;
     }

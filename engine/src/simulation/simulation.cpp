@@ -67,7 +67,7 @@ Simulation::Impl::Impl(const xosc::Scenario& scenario, std::shared_ptr<const xod
   init.run(state);
   detail::trail_refpoints(state, 0.0);
   for (detail::Entity& entity : state.world.entities) {
-    if (!entity.state.placed) {
+    if (!entity.state().placed) {
       diagnostics.add(entity.object->source.warning(
           "entity '" + entity.info.name +
           "' has no position in Init (no TeleportAction); it waits at the origin"));
@@ -188,13 +188,13 @@ const EntityInfo& Simulation::entity(size_t index) const {
   return impl_->state.world.entities[index].info;
 }
 const EntityState& Simulation::state(size_t index) const {
-  return impl_->state.world.entities[index].state;
+  return impl_->state.world.entities[index].state();
 }
 EntityStates Simulation::states() const {
   const auto& entities = impl_->state.world.entities;
   return entities.empty()
              ? EntityStates{}
-             : EntityStates{&entities.front().state, entities.size(), sizeof(entities[0])};
+             : EntityStates{&entities.front().state(), entities.size(), sizeof(entities[0])};
 }
 std::optional<size_t> Simulation::find_entity(std::string_view name) const {
   const auto index = impl_->state.world.find(name);
@@ -336,7 +336,7 @@ void entity_lights(const detail::Entity& entity, double time, EntitySnapshot& ou
   out.lights_flashing = 0;
   out.light_looks.clear();
   out.light_settings.clear();
-  const EntityState& state = entity.state;
+  const EntityState& state = entity.state();
   const bool braking =
       state.acceleration < -0.5 || (std::abs(state.speed) < 0.05 && state.odometer > 0.0);
   if (braking) {
@@ -394,22 +394,22 @@ void Simulation::fill_snapshot(WorldSnapshot& out) const {
     snap.name = entity.info.name;
     snap.category = entity.info.category;
     snap.model3d = entity.info.model3d;
-    snap.pose = entity.state.pose;
+    snap.pose = entity.state().pose;
     snap.box = entity.info.box;
-    snap.speed = entity.state.speed;
-    const double c = std::cos(entity.state.pose.h), s = std::sin(entity.state.pose.h);
-    snap.vx = entity.state.speed * c - entity.state.lateral_speed * s;
-    snap.vy = entity.state.speed * s + entity.state.lateral_speed * c;
+    snap.speed = entity.state().speed;
+    const double c = std::cos(entity.state().pose.h), s = std::sin(entity.state().pose.h);
+    snap.vx = entity.state().speed * c - entity.state().lateral_speed * s;
+    snap.vy = entity.state().speed * s + entity.state().lateral_speed * c;
     snap.vz = 0.0;
-    snap.yaw_rate = entity.state.yaw_rate;
-    snap.acceleration = entity.state.acceleration;
-    snap.odometer = entity.state.odometer;
+    snap.yaw_rate = entity.state().yaw_rate;
+    snap.acceleration = entity.state().acceleration;
+    snap.odometer = entity.state().odometer;
     if (entity.info.kind == ObjectKind::kVehicle) {
       entity_lights(entity, out.time, snap);
     }
-    snap.visible = entity.state.visible && entity.state.placed;
+    snap.visible = entity.state().visible && entity.state().placed;
     snap.sensor_exceptions.clear();
-    if (entity.state.placed && i < state.controls.size()) {
+    if (entity.state().placed && i < state.controls.size()) {
       snap.sensor_exceptions = state.controls[i].sensor_exceptions;
     }
     const double now = state.now();

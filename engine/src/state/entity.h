@@ -6,6 +6,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <optional>
@@ -65,7 +66,33 @@ struct LanePoseMemo {
 /// (Entity::still_step) copies this whole part and compares it field by field (same_bits in
 /// state/sim_state.h, whose size checks refuse a field it does not compare).
 struct EntityMotion {
-  EntityState state;
+ public:
+  /// The entity's state (what the run shows of it, and the trajectories record).
+  const EntityState& state() const { return state_; }
+  /// The state to write: every write of it goes through here, which counts it (state_changes),
+  /// so that while the count stays the state is the same, bit for bit. Take it where the state is
+  /// written, not ahead: a reference kept past the write is a later write not counted.
+  EntityState& write_state() {
+    ++changes_;
+    return state_;
+  }
+  /// How many times the state was taken for writing (write_state; 32 bits, wrapping): a reader
+  /// that saw the state at some count sees the same state while the count is that. (The binary
+  /// recorder skips an entity that has not changed since its last row with one comparison.)
+  uint32_t state_changes() const { return changes_; }
+  /// The count of the entity whose state is `state` (which must be an EntityMotion's: the
+  /// states Simulation::states gives are), read where it lies: at a fixed distance after it.
+  static uint32_t state_changes_of(const EntityState& state) {
+    uint32_t count = 0;
+    std::memcpy(&count, reinterpret_cast<const std::byte*>(&state) + kChangesAfterState,
+                sizeof count);
+    return count;
+  }
+
+ private:
+  EntityState state_;
+
+ public:
   LaneFollow lane;
 
   /// What the running actions ask for at the end of the current step: speed (m/s) and lateral
@@ -80,6 +107,15 @@ struct EntityMotion {
   double lateral_acceleration = 0.0;
 
   bool end_of_road = false;  ///< stuck at a lane end without successor (EndOfRoadCondition)
+
+ private:
+  /// See state_changes (in the padding after end_of_road: the motion stays 248 bytes).
+  uint32_t changes_ = 0;
+
+ public:
+  /// Bytes from the state to its count.
+  static const size_t kChangesAfterState;
+
   /// Chooses among lane successors at lane ends (a route); null: the straightest. Compared by
   /// address: whoever assigns it also drops the entity's still step memo, since a replaced route
   /// may be freed and its address reused by the next.
@@ -87,6 +123,13 @@ struct EntityMotion {
 };
 // The still step memo copies EntityMotion by assignment; a trivial copy keeps that cheap.
 static_assert(std::is_trivially_copyable_v<EntityMotion>);
+// (offsetof of a type with private members, which GCC gives as for any other.)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Winvalid-offsetof"
+inline const size_t EntityMotion::kChangesAfterState =
+    offsetof(EntityMotion, changes_) - offsetof(EntityMotion, state_);
+static_assert(EntityMotion::kChangesAfterState == 236 && sizeof(EntityMotion) == 248);
+#pragma GCC diagnostic pop
 
 /// The map's last answer, for one entity, to which lane holds the point (x, y) within half a
 /// metre (motion/controller.h, locate_near): a controller that puts its entity at a vehicle

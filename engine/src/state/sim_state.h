@@ -109,13 +109,18 @@ inline bool same_bits(const LaneFollow& a, const LaneFollow& b) {
          same_bits(a.frame_shift, b.frame_shift);
 }
 /// Field by field, so that padding bytes (never written, never the same) take no part. The
-/// route is compared by address (see EntityMotion::chooser).
+/// route is compared by address (see EntityMotion::chooser). The count of the state's writes
+/// (state_changes) is no part of the motion: a write that changes nothing leaves the same motion.
 inline bool same_bits(const EntityMotion& a, const EntityMotion& b) {
   static_assert(sizeof(EntityMotion) == 248, "add the new field to same_bits");
-  // The four doubles from speed_command to lateral_acceleration, in one test.
+  // The four doubles from speed_command to lateral_acceleration, in one test. (offsetof of a
+  // type with private members, which GCC gives as for any other.)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Winvalid-offsetof"
   constexpr size_t kCommands = offsetof(EntityMotion, speed_command);
   static_assert(offsetof(EntityMotion, lateral_acceleration) == kCommands + 3 * sizeof(double));
-  return same_bits(a.state, b.state) && same_bits(a.lane, b.lane) &&
+#pragma GCC diagnostic pop
+  return same_bits(a.state(), b.state()) && same_bits(a.lane, b.lane) &&
          double_bits_diff<kCommands, 4>(a, b) == 0 && a.end_of_road == b.end_of_road &&
          a.chooser == b.chooser;
 }
@@ -129,8 +134,8 @@ struct ContactInput {
   /// Whether `entity` is placed, posed and sized as this records, to the bit (box_of gives the
   /// same box then; -0 and +0 differ, NaN equals itself).
   bool same_as(const Entity& entity) const {
-    return placed == entity.state.placed && (pose_xyzh_diff(pose, entity.state.pose) |
-                                             double_bits_diff<0, 6>(box, entity.info.box)) == 0;
+    return placed == entity.state().placed && (pose_xyzh_diff(pose, entity.state().pose) |
+                                               double_bits_diff<0, 6>(box, entity.info.box)) == 0;
   }
 };
 
@@ -148,7 +153,7 @@ struct ContactSet {
   /// otherwise. The followers' picture, taken before the next moves, reads it instead of making
   /// the box again.
   const OrientedBox* unmoved_box(uint32_t i, const Entity& entity) const {
-    if (i >= inputs.size() || i >= boxes.size() || !entity.state.placed ||
+    if (i >= inputs.size() || i >= boxes.size() || !entity.state().placed ||
         entity.info.box.length <= 0.0 || !inputs[i].same_as(entity)) {
       return nullptr;
     }

@@ -26,10 +26,10 @@ bool find_moved_boxes(SimState& state, std::vector<uint32_t>& moved) {
   for (uint32_t i = 0; i < entities.size(); ++i) {
     // x alone first: a moving entity's differs, and its test ends there (same_as compares
     // every value without a branch).
-    if (!same_entities || !same_bits(inputs[i].pose.x, entities[i].state.pose.x) ||
+    if (!same_entities || !same_bits(inputs[i].pose.x, entities[i].state().pose.x) ||
         !inputs[i].same_as(entities[i])) {
       moved.push_back(i);
-      inputs[i] = {entities[i].state.placed, entities[i].state.pose, entities[i].info.box};
+      inputs[i] = {entities[i].state().placed, entities[i].state().pose, entities[i].info.box};
     }
   }
   return same_entities;
@@ -37,7 +37,7 @@ bool find_moved_boxes(SimState& state, std::vector<uint32_t>& moved) {
 
 // Whether the entity's box takes part in the contacts.
 bool boxed(const Entity& entity) {
-  return entity.state.placed && entity.info.box.length > 0.0 && !entity.ghost;
+  return entity.state().placed && entity.info.box.length > 0.0 && !entity.ghost;
 }
 
 // Records the pairs of `now` (sorted) that `previous` (sorted) does not hold as collisions
@@ -116,7 +116,7 @@ bool refresh_moved_boxes(SimState& state, ContactSweep& sweep) {
     if (!boxed(entities[i])) {
       continue;
     }
-    boxes[i] = box_of(entities[i].info.box, entities[i].state.pose);
+    boxes[i] = box_of(entities[i].info.box, entities[i].state().pose);
     const Interval x = project(boxes[i], 1.0, 0.0);
     const Interval y = project(boxes[i], 0.0, 1.0);
     if (!std::isfinite(x.low) || !std::isfinite(x.high) || !std::isfinite(y.low) ||
@@ -219,7 +219,7 @@ void make_all_boxes(SimState& state, ContactSweep& sweep) {
       if (!boxed(entities[i])) {
         continue;
       }
-      boxes[i] = box_of(entities[i].info.box, entities[i].state.pose);
+      boxes[i] = box_of(entities[i].info.box, entities[i].state().pose);
       sweep.x_extent[i] = project(boxes[i], 1.0, 0.0);
       sweep.y_extent[i] = project(boxes[i], 0.0, 1.0);
     }

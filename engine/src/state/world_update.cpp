@@ -15,9 +15,9 @@ namespace {
 // (human) driver leaves the road". esmini's OffroadCondition counts it off the road too (the road
 // width without such lanes).
 bool off_road(const SimState& state, const Entity& entity) {
-  if (!entity.state.road) return true;
-  if (state.map == nullptr || entity.state.road->lane == 0) return false;
-  const RoadCoordinates& at = *entity.state.road;
+  if (!entity.state().road) return true;
+  if (state.map == nullptr || entity.state().road->lane == 0) return false;
+  const RoadCoordinates& at = *entity.state().road;
   const LaneFollow& follow = entity.lane;
   if (follow.node != xodr::kNoLane && follow.road == at.road && follow.section == at.section &&
       follow.lane == at.lane) {
@@ -48,7 +48,7 @@ void update_timers(SimState& state, bool advance) {
   for (Entity& entity : state.world.entities) {
     // Each timer counts the time since its condition began: 0 at the first tick it holds.
     const bool was_still = entity.standing_still;
-    entity.standing_still = std::abs(entity.state.speed) < kStandStillSpeed;
+    entity.standing_still = std::abs(entity.state().speed) < kStandStillSpeed;
     entity.standstill_time =
         entity.standing_still ? (was_still ? entity.standstill_time + dt : 0.0) : 0.0;
     const bool offroad = off_road(state, entity);

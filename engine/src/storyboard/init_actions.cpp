@@ -31,7 +31,7 @@ void place_on_trajectories(SimState& state) {
     for (const uint32_t entity : expand_entity_refs({init.entity_ref}, state, init.source)) {
       for (const xosc::PrivateAction& action : init.actions) {
         const auto* follow = std::get_if<xosc::FollowTrajectoryAction>(&action);
-        if (follow == nullptr || state.world.entities[entity].state.placed) continue;
+        if (follow == nullptr || state.world.entities[entity].state().placed) continue;
         const TrajectoryPath path = build_trajectory_path(follow->trajectory, state, entity);
         const PathPoint start =
             path.at(std::clamp(follow->initial_distance_offset.value_or(0.0), 0.0, path.length()));
@@ -62,7 +62,7 @@ void connect_initial_trailers(SimState& state) {
     const Entity& tower = state.world.entities[i];
     const auto* vehicle =
         tower.object ? std::get_if<xosc::Vehicle>(&tower.object->object) : nullptr;
-    if (vehicle == nullptr || !vehicle->trailer || !tower.state.placed) continue;
+    if (vehicle == nullptr || !vehicle->trailer || !tower.state().placed) continue;
     std::optional<uint32_t> trailer = tower.initial_trailer;
     if (vehicle->trailer->trailer_ref) {
       trailer = state.world.find(*vehicle->trailer->trailer_ref);
@@ -106,7 +106,7 @@ void InitActions::place_entities(SimState& state) {
     for (const Placement& placement : pending) {
       const std::string* reference = referenced_entity(placement.teleport->position);
       const auto index = reference ? state.world.find(*reference) : std::nullopt;
-      if (index && *index != placement.entity && !state.world.entities[*index].state.placed) {
+      if (index && *index != placement.entity && !state.world.entities[*index].state().placed) {
         waiting.push_back(placement);
         continue;
       }

@@ -42,7 +42,7 @@ bool CompiledCondition::raw(const SimState& state, std::vector<uint32_t>& holder
   }
   for (const uint32_t entity : candidates_) {
     // An absent entity (not added yet, deleted) fulfils no condition.
-    if (state.world.entities[entity].state.placed && entity_->holds(state, entity)) {
+    if (state.world.entities[entity].state().placed && entity_->holds(state, entity)) {
       holders.push_back(entity);
     } else if (all_) {
       holders.clear();

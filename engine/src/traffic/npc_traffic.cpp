@@ -46,7 +46,7 @@ struct Placed {
   explicit Placed(const SimState& state) : grid(placed_entities_grid(state, kGridCell)) {
     for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
       const Entity& entity = state.world.entities[i];
-      if (!entity.state.placed) {
+      if (!entity.state().placed) {
         continue;
       }
       reach = std::max(reach, box_reach(entity.info.box));
@@ -57,7 +57,7 @@ struct Placed {
   }
 
   void add(const Entity& entity, uint32_t index) {
-    grid.add(entity.state.pose.x, entity.state.pose.y, index);
+    grid.add(entity.state().pose.x, entity.state().pose.y, index);
     reach = std::max(reach, box_reach(entity.info.box));
   }
 };
@@ -73,8 +73,8 @@ bool starts_clear(const SimState& state, Placed& placed, const Box& box, const P
   placed.grid.query(pose.x, pose.y, margin + box_reach(box) + placed.reach, placed.near);
   for (const uint32_t i : placed.near) {
     const Entity& other = state.world.entities[i];
-    if (other.state.placed &&
-        box_distance(mine, box_of(other.info.box, other.state.pose)) < margin) {
+    if (other.state().placed &&
+        box_distance(mine, box_of(other.info.box, other.state().pose)) < margin) {
       return false;
     }
   }
@@ -83,12 +83,12 @@ bool starts_clear(const SimState& state, Placed& placed, const Box& box, const P
   }
   for (const uint32_t i : placed.scenario_vehicles) {
     const Entity& other = state.world.entities[i];
-    if (!other.state.placed || std::cos(other.state.pose.h - pose.h) < 0.7) {
+    if (!other.state().placed || std::cos(other.state().pose.h - pose.h) < 0.7) {
       continue;
     }
     // Ahead of it within its width: in its path.
-    const double c = std::cos(other.state.pose.h), s = std::sin(other.state.pose.h);
-    const double dx = pose.x - other.state.pose.x, dy = pose.y - other.state.pose.y;
+    const double c = std::cos(other.state().pose.h), s = std::sin(other.state().pose.h);
+    const double dx = pose.x - other.state().pose.x, dy = pose.y - other.state().pose.y;
     const double along = dx * c + dy * s;
     const double across = -dx * s + dy * c;
     if (along > 0.0 && along < kPathAhead &&

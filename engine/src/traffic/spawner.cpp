@@ -183,8 +183,8 @@ std::optional<ResolvedPosition> lane_spot(const xodr::Map& map, double x, double
 namespace {
 
 bool too_close(const Entity& other, double x, double y, double clearance) {
-  return other.state.placed &&
-         std::hypot(other.state.pose.x - x, other.state.pose.y - y) < clearance;
+  return other.state().placed &&
+         std::hypot(other.state().pose.x - x, other.state().pose.y - y) < clearance;
 }
 
 }  // namespace
@@ -213,8 +213,8 @@ PointGrid placed_entities_grid(const SimState& state, double cell) {
   PointGrid grid(cell);
   for (uint32_t i = 0; i < state.world.entities.size(); ++i) {
     const Entity& entity = state.world.entities[i];
-    if (entity.state.placed) {
-      grid.add(entity.state.pose.x, entity.state.pose.y, i);
+    if (entity.state().placed) {
+      grid.add(entity.state().pose.x, entity.state().pose.y, i);
     }
   }
   return grid;
@@ -248,7 +248,7 @@ uint32_t GeneratorBase::spawn(SimState& state, const TrafficMix& mix, size_t kin
   }
   Entity& entity = state.world.entities[index];
   place_entity(state, entity, at, xosc::Source{}, false);
-  entity.state.speed = speed;
+  entity.write_state().speed = speed;
   entity.speed_command = speed;
   control_of(state, index).dynamics.reset();
   mine_.push_back(index);
@@ -259,7 +259,7 @@ uint32_t GeneratorBase::spawn(SimState& state, const TrafficMix& mix, size_t kin
 
 void GeneratorBase::prune(const SimState& state) {
   for (const uint32_t index : std::vector<uint32_t>(mine_)) {
-    if (!state.world.entities[index].state.placed) {
+    if (!state.world.entities[index].state().placed) {
       mine_.erase(std::remove(mine_.begin(), mine_.end(), index), mine_.end());
       const auto slot = std::find_if(kinds_.begin(), kinds_.end(),
                                      [&](const FreeSlot& s) { return s.index == index; });

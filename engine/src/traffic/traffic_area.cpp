@@ -137,7 +137,7 @@ class Area final : public GeneratorBase {
       return;
     }
     for (const uint32_t index : std::vector<uint32_t>(mine_)) {
-      if (!inside(*state.map, state.world.entities[index].state)) {
+      if (!inside(*state.map, state.world.entities[index].state())) {
         despawn(state, index);
       }
     }
@@ -176,7 +176,7 @@ class Area final : public GeneratorBase {
     const double speed = spawn_speed(state, random_, mix_, kind, *at, std::nullopt);
     const uint32_t index = spawn(state, mix_, kind, *at, speed);
     if (others != nullptr) {
-      const Pose& pose = state.world.entities[index].state.pose;
+      const Pose& pose = state.world.entities[index].state().pose;
       others->add(pose.x, pose.y, index);
     }
   }

@@ -42,7 +42,7 @@ class Swarm final : public GeneratorBase {
   void step(SimState& state) override {
     prune(state);
     // A copy: spawning appends entities, which may move the world's storage.
-    const EntityState centre = state.world.entities[central_].state;
+    const EntityState centre = state.world.entities[central_].state();
     if (!centre.placed || state.map == nullptr) {
       return;
     }
@@ -53,7 +53,7 @@ class Swarm final : public GeneratorBase {
     const double b = std::max(action_.semi_minor_axis, 1.0);
     // Leave: outside the ellipse.
     for (const uint32_t index : std::vector<uint32_t>(mine_)) {
-      const EntityState& e = state.world.entities[index].state;
+      const EntityState& e = state.world.entities[index].state();
       const double dx = e.pose.x - cx, dy = e.pose.y - cy;
       const double u = dx * c + dy * s, v = -dx * s + dy * c;
       if ((u * u) / (a * a) + (v * v) / (b * b) > 1.0) {
@@ -172,7 +172,7 @@ class Sink final : public GeneratorBase {
                   : 1e18;
     const size_t own = state.scenario.entities.objects.size();
     for (size_t i = own; i < state.world.entities.size() && budget_ >= 1.0; ++i) {
-      const EntityState& e = state.world.entities[i].state;
+      const EntityState& e = state.world.entities[i].state();
       if (e.placed && std::hypot(e.pose.x - at_.pose.x, e.pose.y - at_.pose.y) <= action_.radius) {
         remove_entity(state, static_cast<uint32_t>(i));
         budget_ -= 1.0;

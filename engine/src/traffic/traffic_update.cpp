@@ -142,7 +142,7 @@ void update_traffic(SimState& state) {
   }
   traffic.removals_seen = traffic.removals;
   for (auto& [index, lives] : traffic.lifetimes) {
-    if (!lives.empty() && !lives.back().removed && !state.world.entities[index].state.placed) {
+    if (!lives.empty() && !lives.back().removed && !state.world.entities[index].state().placed) {
       lives.back().removed = state.now();
     }
   }
@@ -151,17 +151,17 @@ void update_traffic(SimState& state) {
 void remove_entity(SimState& state, uint32_t index) {
   ++state.traffic.removals;
   Entity& entity = state.world.entities[index];
-  entity.removed = entity.state.placed || entity.removed;
-  if (entity.state.placed) {
-    entity.removed_road = entity.state.road;
-    entity.removed_speed = entity.state.speed;
+  entity.removed = entity.state().placed || entity.removed;
+  if (entity.state().placed) {
+    entity.removed_road = entity.state().road;
+    entity.removed_speed = entity.state().speed;
   }
-  entity.state.placed = false;
-  entity.state.speed = 0.0;
-  entity.state.acceleration = 0.0;
-  entity.state.lateral_speed = 0.0;
-  entity.state.yaw_rate = 0.0;
-  entity.state.road.reset();
+  entity.write_state().placed = false;
+  entity.write_state().speed = 0.0;
+  entity.write_state().acceleration = 0.0;
+  entity.write_state().lateral_speed = 0.0;
+  entity.write_state().yaw_rate = 0.0;
+  entity.write_state().road.reset();
   entity.speed_command = 0.0;
   entity.lateral_command = 0.0;
   control_of(state, index).dynamics.reset();
