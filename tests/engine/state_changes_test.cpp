@@ -115,8 +115,8 @@ TEST_CASE("No entity's state changes in a step while its count of writes stays",
       } catch (const std::exception&) {
         // A run that stops on an error (the error fixtures) was checked up to there.
       }
-      CHECK(check.first_miss_.empty());
       INFO(check.first_miss_);
+      CHECK(check.first_miss_.empty());
       ++runs;
       unchanged += check.unchanged_;
       changed += check.changed_;

@@ -289,7 +289,7 @@ void begin_vehicle(SimState& state, uint32_t index, const MotionContext& motion,
     control.dynamics->pose = Pose{std::nan(""), 0.0, 0.0, 0.0, 0.0, 0.0};
   }
   DynamicsVehicle& vehicle = *control.dynamics;
-  EntityState& es = entity.write_state();
+  const EntityState& es = entity.state();
   if (!same_pose(vehicle.pose, es.pose) || vehicle.model.state().vx != es.speed) {
     // New, teleported, or its speed set from outside (a step SpeedAction in Init): start the
     // model there, moving straight.

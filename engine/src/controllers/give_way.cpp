@@ -23,9 +23,9 @@ constexpr double kCreep = 1.5;
 // Whether a vehicle that needs `stopping` metres to stop can stop before a zone `to_enter`
 // metres ahead of its front. Told to stop, the controller may run past its standstill gap by
 // up to kCreep short of it; by less the slower the vehicle arrives (one crawling up to its stop
-// point stops about where it is), so the margin grows with the stopping distance. With the whole
-// margin at any speed, a vehicle crawling up to its stop point crossed the limit and counted as
-// unable to stop: it was let go into a zone another held.
+// point stops about where it is), so the margin grows with the stopping distance: a vehicle
+// crawling up to its stop point still counts as able to stop, and is not let into a zone another
+// holds.
 bool can_stop(double to_enter, double stopping) {
   return to_enter - kStopMargin - std::min(kStandstill - kCreep, stopping) >= stopping;
 }
@@ -61,9 +61,8 @@ void ClaimSettler::settle(std::span<const Approach> approaches, std::span<const 
     stamp_ = 1;
   }
   // The zones a vehicle is in, or can no longer stop before, are its own, whatever the order:
-  // another that can still stop waits for it, even if it comes earlier in the order (two
-  // committed to different zones: the earlier was given the later one's zone, which could not
-  // stop before it).
+  // another that can still stop waits for it, even if it comes earlier in the order (of two
+  // committed to different zones, neither is given the other's).
   const auto take = [&](const Claim& c) {
     if (held_stamp_[c.conflict] != stamp_) {
       held_stamp_[c.conflict] = stamp_;

@@ -19,9 +19,9 @@
 // sleeps: a chunk takes some tens of microseconds, and on a virtual machine a core that went to
 // sleep wakes up only about as late again.
 //
-// A worker woken through the kernel when a run starts joins it late: 100-200 us at 1,000
-// vehicles on Town04 in this paravirtualised guest (under load), while the caller's share takes
-// 200-300 us, and the hand-over costs the caller some 40 us of CPU time and the worker 70 us. So
+// A worker woken through the kernel when a run starts joins it late (on a virtual machine about
+// as late as the caller's share of a step's moves takes), and the hand-over costs both threads
+// CPU time in the kernel (docs/performance-traffic.md gives the figures). So
 // the caller announces a run (prepare()) before the serial work that precedes it (the picture
 // of the others, the give-way claims), and the worker, woken then, spins for the run itself:
 // it joins the run when it opens, and the run's notify is no system call. A worker does not

@@ -89,12 +89,14 @@ void connect_trailer(SimState& state, uint32_t tower, uint32_t trailer, bool ali
                                      : Diagnostic{Severity::kWarning, "", 0, -1, "", message});
     }
   }
-  towed.write_state().pose.x = hx - back * std::cos(heading);
-  towed.write_state().pose.y = hy - back * std::sin(heading);
-  towed.write_state().pose.z = pose.z;
-  towed.write_state().pose.h = heading;
-  towed.write_state().speed = state.world.entities[tower].state().speed;
-  towed.write_state().placed = true;
+  const double tower_speed = state.world.entities[tower].state().speed;
+  EntityState& towed_state = towed.write_state();
+  towed_state.pose.x = hx - back * std::cos(heading);
+  towed_state.pose.y = hy - back * std::sin(heading);
+  towed_state.pose.z = pose.z;
+  towed_state.pose.h = heading;
+  towed_state.speed = tower_speed;
+  towed_state.placed = true;
   relocate(state, towed);
   mark_jump(towed);
 }
@@ -145,13 +147,14 @@ void move_trailers(SimState& state, double dt) {
     const double moved = std::hypot(moved_x, moved_y);
     const double along = moved_x * std::cos(heading) + moved_y * std::sin(heading);
     const double speed = dt > 0.0 ? (along >= 0.0 ? moved : -moved) / dt : 0.0;
-    trailer.write_state().acceleration = dt > 0.0 ? (speed - trailer.state().speed) / dt : 0.0;
-    trailer.write_state().yaw_rate = dt > 0.0 ? wrap_angle(heading - before.h) / dt : 0.0;
-    trailer.write_state().speed = speed;
-    trailer.write_state().lateral_speed = 0.0;
-    trailer.write_state().odometer += moved;
-    trailer.write_state().pose = after;
-    trailer.write_state().placed = true;
+    EntityState& trailer_state = trailer.write_state();
+    trailer_state.acceleration = dt > 0.0 ? (speed - trailer_state.speed) / dt : 0.0;
+    trailer_state.yaw_rate = dt > 0.0 ? wrap_angle(heading - before.h) / dt : 0.0;
+    trailer_state.speed = speed;
+    trailer_state.lateral_speed = 0.0;
+    trailer_state.odometer += moved;
+    trailer_state.pose = after;
+    trailer_state.placed = true;
     trailer.speed_command = speed;
     relocate(state, trailer);
   }

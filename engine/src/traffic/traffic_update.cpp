@@ -156,12 +156,13 @@ void remove_entity(SimState& state, uint32_t index) {
     entity.removed_road = entity.state().road;
     entity.removed_speed = entity.state().speed;
   }
-  entity.write_state().placed = false;
-  entity.write_state().speed = 0.0;
-  entity.write_state().acceleration = 0.0;
-  entity.write_state().lateral_speed = 0.0;
-  entity.write_state().yaw_rate = 0.0;
-  entity.write_state().road.reset();
+  EntityState& written = entity.write_state();
+  written.placed = false;
+  written.speed = 0.0;
+  written.acceleration = 0.0;
+  written.lateral_speed = 0.0;
+  written.yaw_rate = 0.0;
+  written.road.reset();
   entity.speed_command = 0.0;
   entity.lateral_command = 0.0;
   control_of(state, index).dynamics.reset();
