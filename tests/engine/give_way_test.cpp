@@ -306,6 +306,16 @@ TEST_CASE("A junction's priorities give right of way where no sign does",
   CHECK(crossing.through(minor, 1));
 }
 
+// The yield points of vehicles 0 and 1 after one settling of their approaches.
+std::vector<engine::detail::YieldPoint> settle_pair(
+    const std::vector<engine::detail::Approach>& approaches) {
+  const std::vector<uint32_t> who = {0, 1};
+  std::vector<engine::detail::YieldPoint> yields(2);
+  engine::detail::ClaimSettler settler;
+  settler.settle(approaches, who, 2, yields);
+  return yields;
+}
+
 TEST_CASE("A car crawling up to the point it waits at is not let into the zone it waits for",
           "[engine][npc][give_way]") {
   using engine::detail::Claim;
@@ -317,17 +327,14 @@ TEST_CASE("A car crawling up to the point it waits at is not let into the zone i
   const std::vector<engine::detail::Approach> approaches = {
       approach(0.05, 0, {Claim{1, 1, 1.999, 11, 4.2}, Claim{0, 1, 3.49, 11, 5.7}}),
       approach(8.9, 425, {Claim{0, 0, 1.42, 12, 11.1}})};
-  const std::vector<uint32_t> who = {0, 1};
-  std::vector<engine::detail::YieldPoint> yields(2);
-  engine::detail::ClaimSettler settler;
-  settler.settle(approaches, who, 2, yields);
+  std::vector<engine::detail::YieldPoint> yields = settle_pair(approaches);
   CHECK(yields[0].node == 11);  // stops before zone 0
   CHECK(yields[0].s == 5.7);
   CHECK(yields[1].node == xodr::kNoLane);
   // Crawling up to 1.6 m of zone 0 (where it had to stop from 1.5 m/s), it still waits.
   const std::vector<engine::detail::Approach> nearer = {
       approach(1.5, 0, {Claim{0, 1, 1.6, 11, 5.7}}), approaches[1]};
-  settler.settle(nearer, who, 2, yields);
+  yields = settle_pair(nearer);
   CHECK(yields[0].node == 11);
 }
 
@@ -340,10 +347,7 @@ TEST_CASE("A car committed to one zone waits before the next for a car that cann
   const std::vector<engine::detail::Approach> approaches = {
       approach(10.0, 100, {Claim{1, 0, 1.0, 21, 2.0}, Claim{0, 0, 20.0, 21, 21.0}}),
       approach(10.0, 200, {Claim{0, 1, 1.5, 22, 8.0}})};
-  const std::vector<uint32_t> who = {0, 1};
-  std::vector<engine::detail::YieldPoint> yields(2);
-  engine::detail::ClaimSettler settler;
-  settler.settle(approaches, who, 2, yields);
+  std::vector<engine::detail::YieldPoint> yields = settle_pair(approaches);
   CHECK(yields[0].node == 21);  // waits before zone 0
   CHECK(yields[0].s == 21.0);
   CHECK(yields[1].node == xodr::kNoLane);
