@@ -137,5 +137,34 @@ TEST_CASE("A maneuver group run again starts its events' conditions afresh",
   CHECK(slow[1] == Approx(fast[1] + 1.0).margin(1e-9));
 }
 
+TEST_CASE("An act's walk reaches every event a transition of the same walk makes ready",
+          "[engine][storyboard][walk]") {
+  // Most steps change no element state and the walk visits only the events in standby it found
+  // before; a transition made during the walk sends the rest of it over every group again.
+  FixtureRun run(engine_fixture("storyboard_walk.xosc"));
+  run.run();
+  const auto start = [&](const std::string& event) {
+    return run.first(event, TransitionKind::kStart);
+  };
+  // First's start is seen by Second, later in its maneuver, and Second's by Third, in the next
+  // group, in the same walk; Late, before them in the document, sees Third's at the next step.
+  CHECK(start("One::OneM::First") == Approx(1.01));
+  CHECK(start("One::OneM::Second") == Approx(1.01));
+  CHECK(start("Two::TwoM::Third") == Approx(1.01));
+  CHECK(start("One::OneM::Late") == Approx(1.02));
+  // A group that ends with executions left starts again at the next step (the walk's stop at a
+  // group in standby), and its first end starts an event of a later group in the same walk.
+  CHECK(run.count("S::A::Rounds", TransitionKind::kStart) == 3);
+  CHECK(run.count("Rounds::RoundsM::Round", TransitionKind::kStart) == 3);
+  CHECK(run.first("S::A::Rounds", TransitionKind::kEnd) == Approx(2.01));
+  CHECK(start("Four::FourM::AfterRounds") == Approx(2.01));
+  CHECK(run.state_of("S::A::Rounds") == ElementState::kComplete);
+  // After three seconds of steps that changed no element state, Waiter's trigger still fires
+  // on the first step its time condition holds.
+  CHECK(start("Two::TwoM::Waiter") == Approx(5.01));
+  CHECK(run.first("S::A", TransitionKind::kEnd) == Approx(5.01));
+  CHECK(run.now("Car").speed == 5.0);
+}
+
 }  // namespace
 }  // namespace corsa::test

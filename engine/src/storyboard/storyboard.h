@@ -57,11 +57,18 @@ class Storyboard {
   struct ManeuverNode;
   struct EventNode;
   struct ActionNode;
+  struct WalkStop;
 
  private:
   void start(SimState& state);
   void update_act(SimState& state, ActNode& act);
+  /// update_group for each of the act's groups, as if walked through, at the stops alone while no
+  /// element state changes (storyboard_walk.cpp).
+  void update_groups(SimState& state, ActNode& act);
   void update_group(SimState& state, GroupNode& group);
+  /// The walk over the act's groups on from the event after `stop` (as update_groups would
+  /// have gone on from there).
+  void walk_on(SimState& state, ActNode& act, const WalkStop& stop);
   void update_event(SimState& state, ManeuverNode& maneuver, EventNode& event);
   void start_act(SimState& state, ActNode& act);
   void start_group(SimState& state, GroupNode& group);
@@ -80,11 +87,16 @@ class Storyboard {
   void check_act(SimState& state, ActNode& act);
   void check_story(SimState& state, StoryNode& story);
   void move(SimState& state, uint32_t element, TransitionKind transition, ElementState to);
+  /// ElementTable::enter_standby, counted in state_writes_.
+  void enter_standby(SimState& state, uint32_t element);
 
   uint32_t root_ = 0;
   std::vector<std::unique_ptr<StoryNode>> stories_;
   std::optional<Trigger> stop_trigger_;
   std::vector<ActionNode*> running_;  ///< running action elements, in start order
+  /// Element states set so far (move, enter_standby; the storyboard alone sets them): while the
+  /// count stays, every element is in the state it was in (update_groups reads it so).
+  uint64_t state_writes_ = 0;
   bool started_ = false;
   bool stopped_ = false;
 };

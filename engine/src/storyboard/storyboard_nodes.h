@@ -3,6 +3,7 @@
 // The nodes of the run-time storyboard tree (storyboard.h). Built once; the vectors never grow
 // afterwards, so parent pointers stay valid.
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -44,6 +45,15 @@ struct Storyboard::GroupNode {
   std::vector<ManeuverNode> maneuvers;
 };
 
+/// One stop of an Act's walk over its groups (Storyboard::update_groups): the start of a group in
+/// standby (`maneuver` kGroupStart), or the trigger of an event in standby whose maneuver runs.
+struct Storyboard::WalkStop {
+  static constexpr uint32_t kGroupStart = UINT32_MAX;
+  uint32_t group = 0;
+  uint32_t maneuver = 0;
+  uint32_t event = 0;
+};
+
 struct Storyboard::ActNode {
   uint32_t element = 0;
   const xosc::Act* def = nullptr;
@@ -52,6 +62,10 @@ struct Storyboard::ActNode {
   std::optional<Trigger> stop_trigger;
   std::vector<uint32_t> triggering;  ///< entities that fired the start trigger
   std::vector<GroupNode> groups;
+  /// Where the walk over the groups does anything, in document order, as the element states
+  /// were when the storyboard's count of state writes was walk_writes (storyboard_walk.cpp).
+  std::vector<WalkStop> walk;
+  uint64_t walk_writes = UINT64_MAX;
 };
 
 struct Storyboard::StoryNode {

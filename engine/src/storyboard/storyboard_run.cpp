@@ -13,6 +13,12 @@ namespace corsa::engine::detail {
 void Storyboard::move(SimState& state, uint32_t element, TransitionKind transition,
                       ElementState to) {
   state.elements.transition(element, transition, to, state.tick, state.time);
+  ++state_writes_;
+}
+
+void Storyboard::enter_standby(SimState& state, uint32_t element) {
+  state.elements.enter_standby(element);
+  ++state_writes_;
 }
 
 bool Storyboard::finished(const SimState& state) const {
@@ -74,9 +80,7 @@ void Storyboard::update_act(SimState& state, ActNode& act) {
   if (state.elements[act.element].state != ElementState::kRunning) {
     return;
   }
-  for (GroupNode& group : act.groups) {
-    update_group(state, group);
-  }
+  update_groups(state, act);
 }
 
 void Storyboard::update_group(SimState& state, GroupNode& group) {
@@ -155,13 +159,13 @@ void Storyboard::start_group(SimState& state, GroupNode& group) {
       // §8.4.2: events enter standby when their maneuver starts, with a fresh count. A group's
       // re-execution (§8.4.4) starts its events afresh: a condition value of the previous
       // execution still waiting for its delay does not start them again at once.
-      state.elements.enter_standby(event.element);
+      enter_standby(state, event.element);
       state.elements.reset_executions(event.element);
       if (event.start_trigger) {
         event.start_trigger->forget_history();
       }
       for (ActionNode& action : event.actions) {
-        state.elements.enter_standby(action.element);
+        enter_standby(state, action.element);
       }
     }
   }
@@ -249,10 +253,10 @@ void Storyboard::reset_ghost_events(SimState& state) {
                                      std::holds_alternative<xosc::TeleportAction>(*p);
                             });
             if (!teleports) continue;
-            state.elements.enter_standby(event.element);
+            enter_standby(state, event.element);
             state.elements.reset_executions(event.element);
             for (ActionNode& action : event.actions) {
-              state.elements.enter_standby(action.element);
+              enter_standby(state, action.element);
             }
           }
         }
@@ -324,7 +328,7 @@ void Storyboard::check_event(SimState& state, EventNode& event) {
        done ? ElementState::kComplete : ElementState::kStandby);
   if (!done) {
     for (ActionNode& action : event.actions) {
-      state.elements.enter_standby(action.element);
+      enter_standby(state, action.element);
     }
   }
   check_maneuver(state, *event.maneuver);
