@@ -238,5 +238,30 @@ TEST_CASE("Triggering entities: any, all, and the entities that fired as actors"
   CHECK(run.now("C").speed == 30.0);
 }
 
+TEST_CASE("A ReachPositionCondition on a standing entity holds on the step its pose does",
+          "[engine][condition][reach]") {
+  // A pose that changes after standing (a teleport of a standing entity, a drive off) is read on
+  // the step it changes, and a position relative to another entity as that entity moves, while
+  // the triggering entity stands. (A skip of conditions whose inputs stand must keep these.)
+  FixtureRun run(engine_fixture("condition_reach_standing.xosc"));
+  run.run();
+  const auto start = [&](const std::string& event) {
+    return run.first(event, TransitionKind::kStart);
+  };
+  // Stander stands at s = 10 for 1 s; the teleport to s = 50 meets the condition on s = 50 and
+  // ends the one on s = 10 (a falling edge) in the same step.
+  CHECK(start("JumperM::Jump") == Approx(1.01));
+  CHECK(start("JumperM::Reached50") == Approx(1.01));
+  CHECK(start("JumperM::LeftStart") == Approx(1.01));
+  CHECK(run.count("JumperM::Never", TransitionKind::kStart) == 0);
+  // Walker stands at s = 10 for 2 s, then drives at 10 m/s: within 0.5 m of s = 40 at 4.96 s.
+  CHECK(start("DriverM::Go") == Approx(2.01));
+  CHECK(start("DriverM::Reached40") == Approx(4.96));
+  // Post stands at s = 30 all along; the position it waits for, Walker's, is within 1 m of it
+  // from 3.91 s.
+  CHECK(start("WatcherM::Caught") == Approx(3.91));
+  CHECK(run.now("Post").pose.x == Approx(30.0).margin(1e-9));
+}
+
 }  // namespace
 }  // namespace corsa::test
