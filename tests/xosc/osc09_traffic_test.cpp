@@ -3,7 +3,7 @@
 // drafts"): RoadNetwork/Signals, Entities/Selection, Actors/ByCondition, Global/Infrastructure,
 // Global/Traffic (Source, Sink, Swarm, their TrafficDefinition) and UserDefined/Command; and the
 // forms with no 1.0 meaning refused at their line: Traffic/Jam, UserDefined/Script, a Swarm
-// without numberOfVehicles and the schema's Meeting.
+// without numberOfVehicles, the schema's Meeting and an Event priority "following".
 
 #include <catch2/catch.hpp>
 
@@ -24,7 +24,8 @@ const std::string kDefinition =
     "<DriverDistribution>\n<Driver name=\"Calm\" percentage=\"100\"/>\n</DriverDistribution>\n"
     "</TrafficDefinition>\n";
 
-const std::string kLanePosition = "<Position>\n<Lane roadId=\"1\" laneId=\"-1\" s=\"20\"/>\n</Position>\n";
+const std::string kLanePosition =
+    "<Position>\n<Lane roadId=\"1\" laneId=\"-1\" s=\"20\"/>\n</Position>\n";
 
 TEST_CASE("0.9.1 Signals and Selection are read as 1.0's TrafficSignals and EntitySelection",
           "[xosc][osc09]") {
@@ -64,18 +65,21 @@ TEST_CASE("0.9.1 Signals and Selection are read as 1.0's TrafficSignals and Enti
 TEST_CASE("0.9.1 Infrastructure, Traffic and UserDefined actions are read as 1.0's",
           "[xosc][osc09]") {
   const std::string xml = osc09_draft_doing(
-      global("Phase", "<Infrastructure>\n<Signal>\n<SetController name=\"Main\" state=\"stop\"/>\n"
-                      "</Signal>\n</Infrastructure>\n") +
-      global("Lamp", "<Infrastructure>\n<Signal>\n<SetState name=\"7\" state=\"off\"/>\n"
-                     "</Signal>\n</Infrastructure>\n") +
-      global("In", "<Traffic>\n<Source rate=\"0.5\" radius=\"2\">\n" + kLanePosition +
-                       kDefinition + "</Source>\n</Traffic>\n") +
+      global("Phase",
+             "<Infrastructure>\n<Signal>\n<SetController name=\"Main\" state=\"stop\"/>\n"
+             "</Signal>\n</Infrastructure>\n") +
+      global("Lamp",
+             "<Infrastructure>\n<Signal>\n<SetState name=\"7\" state=\"off\"/>\n"
+             "</Signal>\n</Infrastructure>\n") +
+      global("In", "<Traffic>\n<Source rate=\"0.5\" radius=\"2\">\n" + kLanePosition + kDefinition +
+                       "</Source>\n</Traffic>\n") +
       global("Out", "<Traffic>\n<Sink rate=\"3\" radius=\"10\">\n" + kLanePosition + kDefinition +
                         "</Sink>\n</Traffic>\n") +
-      global("Around", "<Traffic>\n<Swarm semiMajorAxis=\"100\" semiMinorAxis=\"20\" "
-                       "innerRadius=\"10\" offset=\"5\" numberOfVehicles=\"12\">\n"
-                       "<CentralObject name=\"Ego\"/>\n" +
-                           kDefinition + "</Swarm>\n</Traffic>\n") +
+      global("Around",
+             "<Traffic>\n<Swarm semiMajorAxis=\"100\" semiMinorAxis=\"20\" "
+             "innerRadius=\"10\" offset=\"5\" numberOfVehicles=\"12\">\n"
+             "<CentralObject name=\"Ego\"/>\n" +
+                 kDefinition + "</Swarm>\n</Traffic>\n") +
       "<Action name=\"Say\">\n<UserDefined>\n<Command type=\"corsa:note\">hello</Command>\n"
       "</UserDefined>\n</Action>\n");
   // The 0.9 SetController names a controller this draft has no Signals for: declared here.
@@ -104,8 +108,7 @@ TEST_CASE("0.9.1 Infrastructure, Traffic and UserDefined actions are read as 1.0
   CHECK(std::get<xosc::LanePosition>(source.position.kind).s == 20.0);
   REQUIRE(source.traffic_definition);
   REQUIRE(source.traffic_definition->vehicle_categories.size() == 2);
-  CHECK(source.traffic_definition->vehicle_categories[0].category ==
-        xosc::VehicleCategory::kTruck);
+  CHECK(source.traffic_definition->vehicle_categories[0].category == xosc::VehicleCategory::kTruck);
   CHECK(source.traffic_definition->vehicle_categories[0].weight == 30.0);
   REQUIRE(source.traffic_definition->controllers.size() == 1);
   CHECK(source.traffic_definition->controllers[0].weight == 100.0);
@@ -130,7 +133,8 @@ TEST_CASE("a 0.9 Command without a type is read with its text as the type",
       "</UserDefined>\n</Action>\n");
   const Loaded loaded = check_both_ways(xml, "0.9 UserDefined Command \"corsa:note\" has no type",
                                         line_of(xml, "<Command>"));
-  const auto& say = std::get<xosc::UserDefinedAction>(first_event(*loaded.scenario).actions.at(0).action);
+  const auto& say =
+      std::get<xosc::UserDefinedAction>(first_event(*loaded.scenario).actions.at(0).action);
   CHECK(say.type == "corsa:note");
 }
 
@@ -138,12 +142,12 @@ TEST_CASE("a 0.9 VehicleDistribution category that 1.0 lacks is read as car",
           "[xosc][osc09][lenient]") {
   std::string definition = kDefinition;
   replace_once(definition, "category=\"truck\"", "category=\"lorry\"");
-  const std::string xml = osc09_draft_doing(global(
-      "In", "<Traffic>\n<Source rate=\"1\" radius=\"2\">\n" + kLanePosition + definition +
-                "</Source>\n</Traffic>\n"));
-  const Loaded loaded = check_both_ways(
-      xml, "0.9 VehicleDistribution category=\"lorry\" is no 1.0 vehicle category",
-      line_of(xml, "category=\"lorry\""));
+  const std::string xml =
+      osc09_draft_doing(global("In", "<Traffic>\n<Source rate=\"1\" radius=\"2\">\n" +
+                                         kLanePosition + definition + "</Source>\n</Traffic>\n"));
+  const Loaded loaded =
+      check_both_ways(xml, "0.9 VehicleDistribution category=\"lorry\" is no 1.0 vehicle category",
+                      line_of(xml, "category=\"lorry\""));
   const auto& source = std::get<xosc::TrafficSourceAction>(
       std::get<xosc::GlobalAction>(first_event(*loaded.scenario).actions.at(0).action));
   CHECK(source.traffic_definition->vehicle_categories[0].category == xosc::VehicleCategory::kCar);
@@ -155,8 +159,7 @@ TEST_CASE("0.9 ByCondition actors: triggeringEntity selects them, anyEntity is w
   replace_once(xml, "<Actors>\n<Entity name=\"$owner\"/>\n</Actors>",
                "<Actors>\n<ByCondition actor=\"triggeringEntity\"/>\n</Actors>");
   const xosc::Scenario scenario = load_with_warning(xml, "ByCondition");
-  const auto& actors =
-      scenario.storyboard.stories.at(0).acts.at(0).maneuver_groups.at(0).actors;
+  const auto& actors = scenario.storyboard.stories.at(0).acts.at(0).maneuver_groups.at(0).actors;
   CHECK(actors.select_triggering_entities);
   CHECK(actors.entity_refs.empty());
 
@@ -186,23 +189,28 @@ void check_refused(const std::string& xml, const std::string& needle, const std:
 }
 
 TEST_CASE("0.9 forms with no 1.0 meaning are refused at their line", "[xosc][osc09]") {
-  check_refused(osc09_draft_doing(global(
-                    "J", "<Traffic>\n<Jam direction=\"east\" speed=\"2\" length=\"100\">\n" +
-                             kLanePosition + kDefinition + "</Jam>\n</Traffic>\n")),
+  check_refused(osc09_draft_doing(
+                    global("J", "<Traffic>\n<Jam direction=\"east\" speed=\"2\" length=\"100\">\n" +
+                                    kLanePosition + kDefinition + "</Jam>\n</Traffic>\n")),
                 "<Jam", "0.9 Traffic Jam has no 1.0 form");
   check_refused(osc09_draft_doing("<Action name=\"Run\">\n<UserDefined>\n"
-                                    "<Script name=\"s\" file=\"go.py\" execution=\"single\"/>\n"
-                                    "</UserDefined>\n</Action>\n"),
+                                  "<Script name=\"s\" file=\"go.py\" execution=\"single\"/>\n"
+                                  "</UserDefined>\n</Action>\n"),
                 "<Script", "0.9 UserDefined Script file=\"go.py\" has no 1.0 form");
-  check_refused(osc09_draft_doing(global(
-                    "S", "<Traffic>\n<Swarm semiMajorAxis=\"100\" semiMinorAxis=\"20\" "
-                         "innerRadius=\"10\" offset=\"5\">\n<CentralObject name=\"Ego\"/>\n" +
-                             kDefinition + "</Swarm>\n</Traffic>\n")),
-                "<Swarm", "0.9 Swarm gives no numberOfVehicles");
+  check_refused(
+      osc09_draft_doing(global("S",
+                               "<Traffic>\n<Swarm semiMajorAxis=\"100\" semiMinorAxis=\"20\" "
+                               "innerRadius=\"10\" offset=\"5\">\n<CentralObject name=\"Ego\"/>\n" +
+                                   kDefinition + "</Swarm>\n</Traffic>\n")),
+      "<Swarm", "0.9 Swarm gives no numberOfVehicles");
   check_refused(osc09_draft_doing("<Action name=\"Meet\">\n<Private>\n"
-                                    "<Meeting mode=\"straight\" timingOffset=\"0\">\n" +
-                                    kLanePosition + "</Meeting>\n</Private>\n</Action>\n"),
+                                  "<Meeting mode=\"straight\" timingOffset=\"0\">\n" +
+                                  kLanePosition + "</Meeting>\n</Private>\n</Action>\n"),
                 "<Meeting", "0.9 Meeting without a Relative entity to meet");
+  std::string following = osc09_draft();
+  replace_once(following, "priority=\"overwrite\"", "priority=\"following\"");
+  check_refused(following, "priority=\"following\"",
+                "0.9 Event priority 'following' has no 1.0 form");
 }
 
 }  // namespace

@@ -121,7 +121,13 @@ void Osc09Rewriter::actors(Element* e) {
 }
 
 void Osc09Rewriter::event(Element* maneuver, Element* e) {
-  // 0.9's priority "overwrite" is what 1.2 renamed "override".
+  // 0.9's priority "overwrite" is what 1.2 renamed "override". "following" (start once the
+  // running event ends) has no 1.0 form: ASAM's 0.9.1-to-1.0 migration empties it.
+  if (value_of(e, "priority") == std::optional<std::string>("following")) {
+    ctx_.attribute_error(e, "priority",
+                         "0.9 Event priority 'following' has no 1.0 form (ASAM's 0.9.1-to-1.0 "
+                         "migration removes it; 1.0 has override, skip and parallel)");
+  }
   map_value(e, "priority", {{"overwrite", "override"}});
   bool quits = false;
   for (Element* action : osc09_children(e, "Action")) {

@@ -14,8 +14,8 @@ namespace {
 // 1.0's vehicle categories; 0.9's VehicleDistribution typed its category as any text.
 bool is_vehicle_category(std::string_view word) {
   static constexpr std::array<std::string_view, 10> kCategories = {
-      "car", "van", "truck", "trailer", "semitrailer", "bus", "motorbike", "bicycle", "train",
-      "tram"};
+      "car", "van",       "truck",   "trailer", "semitrailer",
+      "bus", "motorbike", "bicycle", "train",   "tram"};
   for (const std::string_view category : kCategories) {
     if (category == word) return true;
   }
