@@ -24,15 +24,6 @@ size_t draft_count_of(const std::string& text, const std::string& needle) {
   return count;
 }
 
-const TrajectoryRow& draft_row_at(const std::vector<TrajectoryRow>& rows, const std::string& entity,
-                                  double time) {
-  const auto it = std::find_if(rows.begin(), rows.end(), [&](const TrajectoryRow& row) {
-    return row.entity == entity && std::abs(row.time - time) < 1e-9;
-  });
-  REQUIRE(it != rows.end());
-  return *it;
-}
-
 TEST_CASE("corsa run reads a 0.9 draft's route position, EXT_Synchronize, Meeting and EXT_Quit",
           "[e2e][run][osc09]") {
   TempDir dir;
@@ -50,14 +41,14 @@ TEST_CASE("corsa run reads a 0.9 draft's route position, EXT_Synchronize, Meetin
   CHECK(result.err.find("Routing, FollowRoute, Route, Position, LaneCoord") != std::string::npos);
   const auto rows = parse_trajectory(slurp(record));
   // Ego starts at pathS = 50 of its route, which runs along lane -1 from s = 0.
-  CHECK(draft_row_at(rows, "Ego", 0.0).x == Approx(50.0).margin(0.01));
-  CHECK(draft_row_at(rows, "Ego", 0.0).lane == -1);
-  const TrajectoryRow& ego = draft_row_at(rows, "Ego", 10.0);
+  CHECK(row_at(rows, "Ego", 0.0).x == Approx(50.0).margin(0.01));
+  CHECK(row_at(rows, "Ego", 0.0).lane == -1);
+  const TrajectoryRow& ego = row_at(rows, "Ego", 10.0);
   CHECK(ego.x == Approx(250.0).margin(0.01));
-  CHECK(draft_row_at(rows, "Synced", 10.0).x == Approx(250.0).margin(0.5));
-  CHECK(draft_row_at(rows, "Synced", 10.0).lane == -2);
-  CHECK(draft_row_at(rows, "Met", 10.0).x == Approx(250.0).margin(0.5));
-  CHECK(draft_row_at(rows, "Met", 10.0).lane == -3);
+  CHECK(row_at(rows, "Synced", 10.0).x == Approx(250.0).margin(0.5));
+  CHECK(row_at(rows, "Synced", 10.0).lane == -2);
+  CHECK(row_at(rows, "Met", 10.0).x == Approx(250.0).margin(0.5));
+  CHECK(row_at(rows, "Met", 10.0).lane == -3);
   const std::string transitions = slurp(log);
   CHECK(transitions.find("10.02,event,SyncStory::SyncAct::SyncSequence::SyncManeuver::SyncEvent,"
                          "endTransition") != std::string::npos);
@@ -83,9 +74,9 @@ TEST_CASE("corsa run reads a 0.9 cut-in: $owner, relative targets and the Storyb
                          "CutInEvent,startTransition") != std::string::npos);
   CHECK(transitions.find("20.51,storyboard,,stopTransition") != std::string::npos);
   const auto rows = parse_trajectory(slurp(record));
-  CHECK(draft_row_at(rows, "Overtaker", 17.0).lane == -2);
-  CHECK(draft_row_at(rows, "Overtaker", 20.0).lane == -1);
-  CHECK(draft_row_at(rows, "Overtaker", 20.0).speed == Approx(24.0));
+  CHECK(row_at(rows, "Overtaker", 17.0).lane == -2);
+  CHECK(row_at(rows, "Overtaker", 20.0).lane == -1);
+  CHECK(row_at(rows, "Overtaker", 20.0).speed == Approx(24.0));
 }
 
 TEST_CASE(
@@ -127,9 +118,9 @@ TEST_CASE(
         std::string::npos);
   CHECK(transitions.find("12.01,storyboard,,stopTransition") != std::string::npos);
   const auto rows = parse_trajectory(slurp(record));
-  CHECK(draft_row_at(rows, "Ego", 2.0).speed == Approx(20.0));
-  CHECK(draft_row_at(rows, "Ego", 12.0).speed == Approx(0.0));
-  CHECK(draft_row_at(rows, "Lead", 12.0).speed == Approx(10.0));
+  CHECK(row_at(rows, "Ego", 2.0).speed == Approx(20.0));
+  CHECK(row_at(rows, "Ego", 12.0).speed == Approx(0.0));
+  CHECK(row_at(rows, "Lead", 12.0).speed == Approx(10.0));
   // The source's vehicles (lane -3 from s = 20) reach the sink at s = 60 and go there.
   size_t generated = 0, off_lane = 0;
   double furthest = 0.0;
