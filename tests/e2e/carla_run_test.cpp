@@ -11,9 +11,10 @@ namespace {
 
 const std::string kCarlaForms = "tests/xosc/fixtures/carla/init_parameters_delete_offset.xosc";
 
-TEST_CASE("corsa run performs CARLA's Init ParameterActions, Init DeleteEntityAction, a relative "
-          "LaneOffsetAction and an empty Action",
-          "[e2e][run][carla]") {
+TEST_CASE(
+    "corsa run performs CARLA's Init ParameterActions, Init DeleteEntityAction, a relative "
+    "LaneOffsetAction and an empty Action",
+    "[e2e][run][carla]") {
   TempDir dir;
   const auto record = dir.path() / "out.csv";
   const auto log = dir.path() / "log.csv";
@@ -22,15 +23,14 @@ TEST_CASE("corsa run performs CARLA's Init ParameterActions, Init DeleteEntityAc
   INFO(result.err);
   REQUIRE(result.exit_code == 0);
   CHECK(result.err.find(kCarlaForms + ":181: warning: <Action> 'DummyAction' without an action "
-                                      "(read as an action that does nothing") !=
-        std::string::npos);
+                                      "(read as an action that does nothing") != std::string::npos);
   const std::string transitions = slurp(log);
   const std::string group = "MyStory::Behavior::ManeuverSequence::";
   // The Init ParameterActions made finalSpeed 36 x 0.277778 + 8: the condition sees it at once.
   CHECK(transitions.find("0.01,event," + group + "ParameterManeuver::SpeedKnown,startTransition") !=
         std::string::npos);
-  CHECK(transitions.find("4.01,event," + group + "WeatherChange::WeatherChangeEvent,endTransition") !=
-        std::string::npos);
+  CHECK(transitions.find("4.01,event," + group +
+                         "WeatherChange::WeatherChangeEvent,endTransition") != std::string::npos);
   // Empty StopTriggers: the storyboard ends with its story.
   CHECK(transitions.find("4.01,storyboard,,endTransition") != std::string::npos);
   const auto rows = parse_trajectory(slurp(record));
