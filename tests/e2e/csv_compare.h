@@ -3,6 +3,7 @@
 // Reading trajectory CSVs (time,entity,x,y,z,h,p,r,speed,road,lane,s,t) as numbers, and
 // comparing a run with its golden within tolerances.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
@@ -94,6 +95,16 @@ inline std::vector<TrajectoryRow> of(const std::vector<TrajectoryRow>& rows,
     }
   }
   return out;
+}
+
+/// The row of `entity` at `time` (within 1e-9 s); a failed requirement when there is none.
+inline const TrajectoryRow& row_at(const std::vector<TrajectoryRow>& rows,
+                                   const std::string& entity, double time) {
+  const auto it = std::find_if(rows.begin(), rows.end(), [&](const TrajectoryRow& row) {
+    return row.entity == entity && std::abs(row.time - time) < 1e-9;
+  });
+  REQUIRE(it != rows.end());
+  return *it;
 }
 
 }  // namespace corsa::test

@@ -12,6 +12,7 @@ namespace {
 
 const std::string kDraftSynchronizeQuit = "tests/xosc/fixtures/osc09/synchronize_quit.xosc";
 const std::string kDraftCutIn = "tests/xosc/fixtures/osc09/cut_in.xosc";
+const std::string kDraftSignalsTraffic = "tests/xosc/fixtures/osc09/signals_traffic.xosc";
 const std::string kDraftWarning =
     "warning: OpenSCENARIO 0.9 draft (read as 1.0 by the 0.9-to-1.0 mapping: ";
 
@@ -21,15 +22,6 @@ size_t draft_count_of(const std::string& text, const std::string& needle) {
     ++count;
   }
   return count;
-}
-
-const TrajectoryRow& draft_row_at(const std::vector<TrajectoryRow>& rows, const std::string& entity,
-                                  double time) {
-  const auto it = std::find_if(rows.begin(), rows.end(), [&](const TrajectoryRow& row) {
-    return row.entity == entity && std::abs(row.time - time) < 1e-9;
-  });
-  REQUIRE(it != rows.end());
-  return *it;
 }
 
 TEST_CASE("corsa run reads a 0.9 draft's route position, EXT_Synchronize, Meeting and EXT_Quit",
@@ -49,14 +41,14 @@ TEST_CASE("corsa run reads a 0.9 draft's route position, EXT_Synchronize, Meetin
   CHECK(result.err.find("Routing, FollowRoute, Route, Position, LaneCoord") != std::string::npos);
   const auto rows = parse_trajectory(slurp(record));
   // Ego starts at pathS = 50 of its route, which runs along lane -1 from s = 0.
-  CHECK(draft_row_at(rows, "Ego", 0.0).x == Approx(50.0).margin(0.01));
-  CHECK(draft_row_at(rows, "Ego", 0.0).lane == -1);
-  const TrajectoryRow& ego = draft_row_at(rows, "Ego", 10.0);
+  CHECK(row_at(rows, "Ego", 0.0).x == Approx(50.0).margin(0.01));
+  CHECK(row_at(rows, "Ego", 0.0).lane == -1);
+  const TrajectoryRow& ego = row_at(rows, "Ego", 10.0);
   CHECK(ego.x == Approx(250.0).margin(0.01));
-  CHECK(draft_row_at(rows, "Synced", 10.0).x == Approx(250.0).margin(0.5));
-  CHECK(draft_row_at(rows, "Synced", 10.0).lane == -2);
-  CHECK(draft_row_at(rows, "Met", 10.0).x == Approx(250.0).margin(0.5));
-  CHECK(draft_row_at(rows, "Met", 10.0).lane == -3);
+  CHECK(row_at(rows, "Synced", 10.0).x == Approx(250.0).margin(0.5));
+  CHECK(row_at(rows, "Synced", 10.0).lane == -2);
+  CHECK(row_at(rows, "Met", 10.0).x == Approx(250.0).margin(0.5));
+  CHECK(row_at(rows, "Met", 10.0).lane == -3);
   const std::string transitions = slurp(log);
   CHECK(transitions.find("10.02,event,SyncStory::SyncAct::SyncSequence::SyncManeuver::SyncEvent,"
                          "endTransition") != std::string::npos);
@@ -82,9 +74,66 @@ TEST_CASE("corsa run reads a 0.9 cut-in: $owner, relative targets and the Storyb
                          "CutInEvent,startTransition") != std::string::npos);
   CHECK(transitions.find("20.51,storyboard,,stopTransition") != std::string::npos);
   const auto rows = parse_trajectory(slurp(record));
-  CHECK(draft_row_at(rows, "Overtaker", 17.0).lane == -2);
-  CHECK(draft_row_at(rows, "Overtaker", 20.0).lane == -1);
-  CHECK(draft_row_at(rows, "Overtaker", 20.0).speed == Approx(24.0));
+  CHECK(row_at(rows, "Overtaker", 17.0).lane == -2);
+  CHECK(row_at(rows, "Overtaker", 20.0).lane == -1);
+  CHECK(row_at(rows, "Overtaker", 20.0).speed == Approx(24.0));
+}
+
+TEST_CASE(
+    "corsa run performs a 0.9.1 file's Signals, Selection, ByCondition actors, "
+    "Infrastructure, Traffic and UserDefined actions",
+    "[e2e][run][osc09]") {
+  TempDir dir;
+  const auto record = dir.path() / "out.csv";
+  const auto log = dir.path() / "log.csv";
+  const ProcessResult result = run_corsa(
+      {"run", kDraftSignalsTraffic, "--quiet", "--record", record.string(), "--log", log.string()});
+  INFO(result.err);
+  REQUIRE(result.exit_code == 0);
+  const std::string& err = result.err;
+  const std::string at = kDraftSignalsTraffic + ":";
+  CHECK(err.find(at + "12: " + kDraftWarning) != std::string::npos);
+  for (const char* form : {"Signals", "Selection", "Traffic, Source", "ByCondition",
+                           "Infrastructure, SetController", "SetState, UserDefined, Command"}) {
+    CHECK(err.find(form) != std::string::npos);
+  }
+  CHECK(err.find(at + "61: warning: 0.9 VehicleDistribution category=\"lorry\" is no 1.0 "
+                      "vehicle category (read as car") != std::string::npos);
+  CHECK(err.find(at + "63: warning: 0.9 DriverDistribution names drivers (DefaultDriver)") !=
+        std::string::npos);
+  CHECK(err.find(at + "183: warning: 0.9 UserDefined Command \"corsa:note\" has no type") !=
+        std::string::npos);
+  // The command was given: the engine found no handler for its type.
+  CHECK(err.find("CustomCommandAction type 'corsa:note' has no handler in this run") !=
+        std::string::npos);
+  const std::string transitions = slurp(log);
+  // SetController puts Main in its stop phase at 2 s (its own phases would at 5 s); only Ego of
+  // the selection Cars is faster than 15 m/s, so only Ego brakes: 20 m/s at 5 m/s^2, 4 s.
+  const std::string maneuver = "SignalStory::SignalAct::Infrastructure::SignalManeuver::";
+  CHECK(transitions.find("2.01,event," + maneuver + "ForceStop,startTransition") !=
+        std::string::npos);
+  CHECK(transitions.find("2.02,event,SignalStory::SignalAct::Brakers::BrakeManeuver::StopAtRed,"
+                         "startTransition") != std::string::npos);
+  CHECK(transitions.find("3.01,event," + maneuver + "SeenFlash,startTransition") !=
+        std::string::npos);
+  CHECK(transitions.find("12.01,storyboard,,stopTransition") != std::string::npos);
+  const auto rows = parse_trajectory(slurp(record));
+  CHECK(row_at(rows, "Ego", 2.0).speed == Approx(20.0));
+  CHECK(row_at(rows, "Ego", 12.0).speed == Approx(0.0));
+  CHECK(row_at(rows, "Lead", 12.0).speed == Approx(10.0));
+  // The source's vehicles (lane -3 from s = 20) reach the sink at s = 60 and go there.
+  size_t generated = 0, off_lane = 0;
+  double furthest = 0.0;
+  for (const TrajectoryRow& row : rows) {
+    if (row.entity == "Ego" || row.entity == "Lead") continue;
+    ++generated;
+    off_lane += row.lane == -3 ? 0 : 1;
+    furthest = std::max(furthest, row.s);
+  }
+  CHECK(generated > 300);
+  CHECK(off_lane == 0);
+  CHECK(furthest > 50.0);
+  CHECK(furthest < 70.0);
 }
 
 TEST_CASE("corsa validate --strict refuses a 0.9 draft at its FileHeader", "[e2e][osc09]") {

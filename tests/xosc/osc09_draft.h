@@ -64,6 +64,17 @@ inline std::string osc09_draft() {
          "</Act>\n</Story>\n<End>\n</End>\n</Storyboard>\n</OpenSCENARIO>\n";
 }
 
+// osc09_draft() whose event does `actions` (0.9 Action elements) in place of its one action.
+inline std::string osc09_draft_doing(const std::string& actions) {
+  std::string xml = osc09_draft();
+  replace_once(xml,
+               "<Action name=\"Faster\">\n<Private>\n<Longitudinal>\n<Speed>\n"
+               "<Dynamics shape=\"linear\" rate=\"2\"/>\n<Target>\n<Absolute value=\"20\"/>\n"
+               "</Target>\n</Speed>\n</Longitudinal>\n</Private>\n</Action>\n",
+               actions);
+  return xml;
+}
+
 // The first event of the first maneuver of the first story's first act: where the drafts put
 // the action or condition a test looks at.
 inline const xosc::Event& first_event(const xosc::Scenario& scenario) {

@@ -12,18 +12,6 @@
 namespace corsa::test {
 namespace {
 
-const std::string kFaster =
-    "<Action name=\"Faster\">\n<Private>\n<Longitudinal>\n<Speed>\n"
-    "<Dynamics shape=\"linear\" rate=\"2\"/>\n<Target>\n<Absolute value=\"20\"/>\n</Target>\n"
-    "</Speed>\n</Longitudinal>\n</Private>\n</Action>\n";
-
-// osc09_draft() whose event does `actions` (0.9 Action elements).
-std::string draft_doing(const std::string& actions) {
-  std::string xml = osc09_draft();
-  replace_once(xml, kFaster, actions);
-  return xml;
-}
-
 // A 0.9 Condition of Ego's `entity_condition`.
 std::string by_ego(const std::string& name, const std::string& entity_condition) {
   return "<Condition name=\"" + name +
@@ -87,7 +75,7 @@ TEST_CASE("the 0.9.1 schema's entity and value conditions are read as 1.0", "[xo
 }
 
 TEST_CASE("the 0.9.1 schema's private and global actions are read as 1.0", "[xosc][osc09]") {
-  const std::string xml = draft_doing(
+  const std::string xml = osc09_draft_doing(
       "<Action name=\"Hide\">\n<Private>\n<Visibility graphics=\"false\" traffic=\"true\" "
       "sensors=\"true\"/>\n</Private>\n</Action>\n"
       "<Action name=\"Auto\">\n<Private>\n<Autonomous activate=\"false\" domain=\"both\"/>\n"
@@ -148,7 +136,7 @@ const std::string kTrajectory =
     "</Private>\n</Action>\n";
 
 TEST_CASE("an inline 0.9 Trajectory is read as a 1.0 Polyline, warned", "[xosc][osc09]") {
-  const std::string xml = draft_doing(kTrajectory);
+  const std::string xml = osc09_draft_doing(kTrajectory);
   check_both_ways(xml, "0.9 Trajectory of 2 Vertex elements, each with a Shape of its own",
                   line_of(xml, "<Trajectory"));
   const xosc::Scenario scenario = load_with_warning(xml, "(Clothoid among them)");
@@ -175,7 +163,7 @@ TEST_CASE("an inline 0.9 Trajectory is read as a 1.0 Polyline, warned", "[xosc][
 }
 
 TEST_CASE("an inline 0.9 Route is read as 1.0, named in the draft's warning", "[xosc][osc09]") {
-  const std::string xml = draft_doing(
+  const std::string xml = osc09_draft_doing(
       "<Action name=\"Way\">\n<Private>\n<Routing>\n<FollowRoute>\n"
       "<Route name=\"R\" closed=\"false\">\n<Waypoint strategy=\"shortest\">\n<Position>\n"
       "<World x=\"0\" y=\"0\"/>\n</Position>\n</Waypoint>\n<Waypoint strategy=\"fastest\">\n"

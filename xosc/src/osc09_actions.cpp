@@ -194,11 +194,21 @@ std::vector<Element*> Osc09Rewriter::targets(Element* e, const char* name, const
 
 // 0.9 Meeting (own Position, Relative master with its Position) is 1.0's SynchronizeAction.
 // A time offset has no 1.0 form: such a Meeting is left for the reader to refuse. An offset
-// given by a parameter is judged by the parameter's value.
+// given by a parameter is judged by the parameter's value. The 0.9.1 schema's Meeting (mode,
+// timingOffset and a Position, no entity to meet) has no 1.0 form either (ASAM's migration
+// removes it): refused at its line.
 void Osc09Rewriter::meeting(Element* e) {
   Element* relative = e->FirstChildElement("Relative");
   Element* own = e->FirstChildElement("Position");
-  if (relative == nullptr || own == nullptr) return;
+  if (relative == nullptr) {
+    ctx_.error(e,
+               "0.9 Meeting without a Relative entity to meet (the 0.9.1 schema's Meeting of "
+               "mode, timingOffset and a Position) has no 1.0 form (ASAM's 0.9.1-to-1.0 "
+               "migration removes it); a Meeting with a Relative object and offsetTime=\"0\" is "
+               "read as a SynchronizeAction");
+    return;
+  }
+  if (own == nullptr) return;
   if (relative->Attribute("offsetTime") != nullptr &&
       double_value(relative, "offsetTime") != std::optional<double>(0.0)) {
     return;

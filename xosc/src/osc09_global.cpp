@@ -1,10 +1,12 @@
-// The 0.9-to-1.0 mapping (osc09_rewriter.h) of global actions: 0.9's SetEnvironment and its
-// Environment (TimeOfDay of Time and Date, Precipitation type, RoadCondition frictionScale), Entity
-// and Parameter.
+// The 0.9-to-1.0 mapping (osc09_rewriter.h) of global and user-defined actions: 0.9's
+// SetEnvironment and its Environment (TimeOfDay of Time and Date, Precipitation type,
+// RoadCondition frictionScale), Entity, Parameter, and UserDefined's Command. Infrastructure and
+// Traffic are in osc09_traffic.cpp.
 
 #include <charconv>
 #include <cstdio>
 
+#include "corsa/core/strings.h"
 #include "osc09_rewriter.h"
 
 namespace corsa::xosc {
@@ -29,6 +31,34 @@ void Osc09Rewriter::global_action(Element* e) {
   }
   for (Element* entity : osc09_children(e, "Entity")) entity_action(entity);
   for (Element* parameter : osc09_children(e, "Parameter")) parameter_action(parameter);
+  for (Element* i : osc09_children(e, "Infrastructure")) infrastructure_action(i);
+  for (Element* traffic : osc09_children(e, "Traffic")) traffic_action(traffic);
+}
+
+// 0.9 UserDefined of a Command (its text the command) or a Script (name, file, execution). A
+// Command is 1.0's UserDefinedAction/CustomCommandAction, whose required type 0.9 did not have:
+// the command's text is read as its type as well as its content, with a warning (a `type`
+// written on the Command, as ASAM's migration copies, is kept). A Script has no 1.0 form (the
+// migration removes it): refused at its line.
+void Osc09Rewriter::user_defined_action(Element* e) {
+  rename(e, "UserDefinedAction");
+  for (Element* script : osc09_children(e, "Script")) {
+    const char* file = script->Attribute("file");
+    ctx_.error(script, "0.9 UserDefined Script" +
+                           (file != nullptr ? " file=\"" + clip(file) + "\"" : std::string()) +
+                           " has no 1.0 form (ASAM's 0.9.1-to-1.0 migration removes it): no "
+                           "script to read it as");
+  }
+  for (Element* command : osc09_children(e, "Command")) {
+    rename(command, "CustomCommandAction");
+    const std::string text(trim(element_text(command)));
+    if (command->Attribute("type") != nullptr || text.empty()) continue;
+    ctx_.lenient(command,
+                 "0.9 UserDefined Command \"" + clip(text) +
+                     "\" has no type, which 1.0's CustomCommandAction requires",
+                 "type \"" + clip(text) + "\": the command's text its type and content");
+    command->SetAttribute("type", text.c_str());
+  }
 }
 
 // 0.9 Entity name with Add (a Position) or Delete: 1.0's EntityAction entityRef.

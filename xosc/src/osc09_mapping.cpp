@@ -304,6 +304,7 @@ void Osc09Rewriter::catalog_locations(Element* e) {
 void Osc09Rewriter::road_network(Element* e) {
   for (Element* c : osc09_children(e, "Logics")) rename(c, "LogicFile");
   for (Element* c : osc09_children(e, "SceneGraph")) rename(c, "SceneGraphFile");
+  for (Element* c : osc09_children(e, "Signals")) signals(c);
 }
 
 // esmini's 0.9 files mark a default-controlled entity with the property control="internal",
@@ -330,6 +331,7 @@ void Osc09Rewriter::entities(Element* e) {
       }
     }
   }
+  for (Element* s : osc09_children(e, "Selection")) selection(s);
 }
 
 // 0.9's CatalogReference assigned values in ParameterAssignment/Parameter name="$X"; 1.0 in

@@ -3,7 +3,9 @@
 // Internal: the pass that rewrites an OpenSCENARIO 0.9 draft's XML tree into its 1.0 forms
 // (osc09_mapping.h says when it runs). One class, its parts by subject: osc09_mapping.cpp (the
 // document, parameters, entities, catalogs), osc09_storyboard.cpp (storyboard and conditions),
-// osc09_actions.cpp (actions, dynamics, positions).
+// osc09_actions.cpp (actions, dynamics, positions), osc09_routing.cpp (routes, trajectories),
+// osc09_global.cpp (global and user-defined actions), osc09_traffic.cpp (selections, traffic and
+// signals).
 
 #include <tinyxml2.h>
 
@@ -112,6 +114,7 @@ class Osc09Rewriter {
   void act_conditions(Element* act);
   static void replace_owner(Element* e, const std::string& owner);
   void maneuver_group(Element* e);
+  void actors(Element* e);
   void event(Element* maneuver, Element* e);
   void quit_event(Element* maneuver, Element* event);
   Element* started_condition_group(const Element* event);
@@ -157,11 +160,20 @@ class Osc09Rewriter {
   /// 0.9 maxSteering of an axle: degrees where radians cannot be meant.
   void axle(Element* e);
 
+  // --- selections, traffic and signals (osc09_traffic.cpp) ------------------------------------
+  void selection(Element* e);
+  void signals(Element* e);
+  void infrastructure_action(Element* e);
+  void traffic_action(Element* e);
+  void traffic_definition(Element* e);
+
   // --- global actions (osc09_global.cpp) -------------------------------------------------------
   void global_action(Element* e);
   void environment(Element* e);
   void entity_action(Element* e);
   void parameter_action(Element* e);
+  /// 0.9 UserDefined: a Command is 1.0's CustomCommandAction; a Script has no 1.0 form.
+  void user_defined_action(Element* e);
   /// A 0.9 Time (hour min sec) and Date (day month year) under `e` as 1.0's dateTime attribute;
   /// false (left as written, for the reader to refuse) when they are not plain numbers.
   bool date_time(Element* e);

@@ -10,6 +10,7 @@ void Osc09Rewriter::storyboard(Element* e) {
   if (Element* init = e->FirstChildElement("Init")) {
     if (Element* actions = init->FirstChildElement("Actions")) {
       for (Element* g : osc09_children(actions, "Global")) global_action(g);
+      for (Element* u : osc09_children(actions, "UserDefined")) user_defined_action(u);
       for (Element* p : osc09_children(actions, "Private")) {
         move_attribute(p, "object", "entityRef");
         for (Element* action : osc09_children(p, "Action")) {
@@ -80,21 +81,53 @@ void Osc09Rewriter::replace_owner(Element* e, const std::string& owner) {
 void Osc09Rewriter::maneuver_group(Element* e) {
   rename(e, "ManeuverGroup");
   move_attribute(e, "numberOfExecutions", "maximumExecutionCount");
-  if (Element* actors = e->FirstChildElement("Actors")) {
-    default_attribute(actors, "selectTriggeringEntities", "false");
-    for (Element* entity : osc09_children(actors, "Entity")) {
-      rename(entity, "EntityRef");
-      move_attribute(entity, "name", "entityRef");
-    }
-  }
+  if (Element* actors = e->FirstChildElement("Actors")) this->actors(actors);
   for (Element* maneuver : osc09_children(e, "Maneuver")) {
     const Osc09ScopeGuard scope(*this, maneuver, false);
     for (Element* event : osc09_children(maneuver, "Event")) this->event(maneuver, event);
   }
 }
 
+// 0.9 Actors of Entity name elements and a ByCondition actor: 1.0's Actors of EntityRef
+// elements, selectTriggeringEntities as ASAM's 0.9.1-to-1.0 migration sets it: true for
+// actor="triggeringEntity"; false for "anyEntity", which 1.0 has no word for (the migration calls
+// it de-supported), with a warning; false without a ByCondition.
+void Osc09Rewriter::actors(Element* e) {
+  for (Element* entity : osc09_children(e, "Entity")) {
+    rename(entity, "EntityRef");
+    move_attribute(entity, "name", "entityRef");
+  }
+  for (Element* by : osc09_children(e, "ByCondition")) {
+    note("ByCondition");
+    const std::string actor = value_of(by, "actor").value_or("");
+    if (actor == "triggeringEntity") {
+      e->SetAttribute("selectTriggeringEntities", "true");
+    } else if (actor == "anyEntity") {
+      const bool listed = e->FirstChildElement("EntityRef") != nullptr;
+      ctx_.lenient(by, "0.9 Actors ByCondition actor=\"anyEntity\" has no 1.0 form",
+                   std::string("selectTriggeringEntities=\"false\", as ASAM's 0.9.1-to-1.0 "
+                               "migration: ") +
+                       (listed ? "the Entity elements listed are the actors"
+                               : "no Entity is listed, so the sequence has no actors"));
+      e->SetAttribute("selectTriggeringEntities", "false");
+    } else {
+      ctx_.attribute_error(
+          by, "actor",
+          "0.9 ByCondition actor '" + clip(actor) + "' is neither triggeringEntity nor anyEntity");
+    }
+    e->DeleteChild(by);
+  }
+  default_attribute(e, "selectTriggeringEntities", "false");
+}
+
 void Osc09Rewriter::event(Element* maneuver, Element* e) {
-  // 0.9's priority "overwrite" is what 1.2 renamed "override".
+  // 0.9's priority "overwrite" is what 1.2 renamed "override". "following" (start once the
+  // running event ends) has no 1.0 form: ASAM's 0.9.1-to-1.0 migration empties it.
+  if (value_of(e, "priority") == std::optional<std::string>("following")) {
+    ctx_.attribute_error(e, "priority",
+                         "0.9 Event priority 'following' has no 1.0 form (ASAM's 0.9.1-to-1.0 "
+                         "migration removes it; 1.0 has override, skip and parallel)");
+  }
   map_value(e, "priority", {{"overwrite", "override"}});
   bool quits = false;
   for (Element* action : osc09_children(e, "Action")) {
@@ -110,6 +143,8 @@ void Osc09Rewriter::event(Element* maneuver, Element* e) {
       } else {
         global_action(g);
       }
+    } else if (Element* u = action->FirstChildElement("UserDefined")) {
+      user_defined_action(u);
     }
   }
   for (Element* start : osc09_children(e, "StartConditions")) trigger(start, "StartTrigger");
