@@ -155,6 +155,23 @@ TEST_CASE("LaneOffsetAction respects maxLateralAcc and a continuous relative off
   CHECK(run.count("ShadowEvent::Mirror", TransitionKind::kEnd) == 0);
 }
 
+TEST_CASE("A continuous LaneOffsetAction relative to the actor itself moves once, with a warning",
+          "[engine][action][lane]") {
+  FixtureRun run(engine_fixture("action_lane_offset_self.xosc"));
+  run.run();
+  // Lane -2's centre is at t = -5.25; +1 along t from there, sinusoidal at 1 m/s^2 (2.22 s from
+  // 1 s), then held: tracking its own offset it would drift a metre a step.
+  CHECK(run.at(2.0, "Drifter").road->t > -5.25);
+  CHECK(run.at(2.0, "Drifter").road->t < -4.25);
+  CHECK(run.at(3.5, "Drifter").road->t == Approx(-4.25).margin(1e-9));
+  CHECK(run.now("Drifter").road->t == Approx(-4.25).margin(1e-9));
+  CHECK(run.now("Drifter").road->lane == -2);
+  const auto warnings = all_text(run.diagnostics());
+  CHECK(run.diagnostics().count(Severity::kWarning) == 1);
+  CHECK_THAT(warnings, Catch::Contains("action_lane_offset_self.xosc:34: warning: LaneOffsetAction "
+                                       "of 'Drifter' is relative to itself"));
+}
+
 TEST_CASE("Lane offsets are along the lane's t-axis, also for cars driving toward -s",
           "[engine][action][lane]") {
   FixtureRun run(engine_fixture("action_lane_offset_t_axis.xosc"));

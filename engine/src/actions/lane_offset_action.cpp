@@ -7,10 +7,13 @@
 // lane coordinates are road-based (§6.3; a LanePosition's offset "in the direction of the t-axis"),
 // t pointing left of the road's +s, so a positive offset is to the right of an entity driving
 // toward -s (esmini reads it so too). LaneFollow::lateral, left of the direction of travel, is dir
-// times it.
+// times it. An offset relative to the actor itself is taken from the actor's offset when the
+// action starts (warned): tracked every step it would move the target with the actor, and the
+// actor would drift sideways without end.
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "actions/action_makers.h"
 #include "motion/transition_shape.h"
@@ -57,6 +60,13 @@ class LaneOffsetInstance final : public ActionInstance {
     if (const auto* relative = std::get_if<xosc::RelativeTargetLaneOffset>(&action_.target)) {
       need_entity(context.state, relative->entity_ref, relative->source);
       reference_ = *context.state.world.find(relative->entity_ref);
+      if (context.actor && reference_ == *context.actor) {
+        const LaneFollow& own = entity.lane;
+        own_start_t_ = own.dir * own.lateral;
+        context.state.diagnostics.add(relative->source.warning(
+            "LaneOffsetAction of '" + entity.info.name +
+            "' is relative to itself: read as relative to its offset when the action starts"));
+      }
     }
     ends_when_reached_ =
         !action_.continuous || context.state.options.semantics == Semantics::kEsmini;
@@ -98,12 +108,14 @@ class LaneOffsetInstance final : public ActionInstance {
     }
     const auto& relative = std::get<xosc::RelativeTargetLaneOffset>(action_.target);
     const LaneFollow& reference = context.state.world.entities[reference_].lane;
-    return dir * (reference.dir * reference.lateral + relative.value);  // along t, then back
+    const double reference_t = own_start_t_ ? *own_start_t_ : reference.dir * reference.lateral;
+    return dir * (reference_t + relative.value);  // along t, then back
   }
 
   const xosc::LaneOffsetAction& action_;
   uint32_t reference_ = 0;
-  bool ends_when_reached_ = true;  ///< not continuous, or continuous under Semantics::kEsmini
+  std::optional<double> own_start_t_;  ///< along t: the actor's own offset at the start
+  bool ends_when_reached_ = true;      ///< not continuous, or continuous under Semantics::kEsmini
   double start_ = 0.0;
   int64_t start_tick_ = 0;
   double duration_ = 0.0;
