@@ -91,7 +91,7 @@ std::set<std::string> roads_with(const xodr::Map& map,
   return roads;
 }
 
-// Puts generated cars where a test wants them.
+// Puts generated cars where a test wants them, named as `--npc` names its vehicles.
 class Placer final : public engine::detail::GeneratorBase {
  public:
   Placer() : GeneratorBase(std::string("test"), "car", 1), cars_(prototype()) {}
@@ -99,7 +99,7 @@ class Placer final : public engine::detail::GeneratorBase {
   uint32_t car(engine::detail::SimState& state, double x, double y, double speed) {
     const auto at = engine::detail::lane_spot(*state.map, x, y, false);
     REQUIRE(at);
-    return spawn(state, cars_, 0, *at, speed);
+    return spawn(state, cars_, 0, *at, speed, "npc_vehicle_" + std::to_string(placed_++));
   }
 
  private:
@@ -109,6 +109,7 @@ class Placer final : public engine::detail::GeneratorBase {
     return object;
   }
   engine::detail::TrafficMix cars_;
+  uint32_t placed_ = 0;
 };
 
 // A run of generated cars on the intersection, moved by the entity mover.
@@ -119,6 +120,8 @@ struct Crossing {
   Placer placer;
   engine::detail::EntityMover mover{1};
   std::vector<double> least_speed;  ///< by car, over the run
+  std::vector<double> most_gain;    ///< m/s^2 by car: the fastest it sped up in a step
+  std::vector<double> hardest;      ///< m/s^2 by car: the hardest it braked in a step
   std::string overlaps;
 
   explicit Crossing(const std::string& map_text)
@@ -131,6 +134,8 @@ struct Crossing {
     const uint32_t i = placer.car(state, along * std::cos(a) - left * std::sin(a),
                                   along * std::sin(a) + left * std::cos(a), speed);
     least_speed.resize(state.world.entities.size(), speed);
+    most_gain.resize(state.world.entities.size(), 0.0);
+    hardest.resize(state.world.entities.size(), 0.0);
     return i;
   }
 
@@ -140,10 +145,17 @@ struct Crossing {
     motion.dt = 0.01;
     const auto steps = static_cast<int>(std::lround(seconds / motion.dt));
     for (int k = 0; k < steps; ++k) {
+      std::vector<double> before;
+      for (const auto& entity : state.world.entities) {
+        before.push_back(entity.state().speed);
+      }
       mover.move(state, motion);
       ++state.tick;
       const auto& entities = state.world.entities;
       for (size_t a = 0; a < entities.size(); ++a) {
+        const double change = (entities[a].state().speed - before[a]) / motion.dt;
+        most_gain[a] = std::max(most_gain[a], change);
+        hardest[a] = std::max(hardest[a], -change);
         least_speed[a] = std::min(least_speed[a], entities[a].state().speed);
         for (size_t b = a + 1; b < entities.size(); ++b) {
           const double gap =
@@ -170,11 +182,14 @@ struct Crossing {
 };
 
 // A vehicle's approach for the claims pass: at `speed`, its claims {conflict, side, m to enter,
-// zone's lane} in path order, approaching since tick `arrived`.
+// zone's lane} in path order, approaching since tick `arrived`; its maximum deceleration
+// `hardest` (m/s^2, a generated car's by default).
 engine::detail::Approach approach(double speed, int64_t arrived,
-                                  const std::vector<engine::detail::Claim>& claims) {
+                                  const std::vector<engine::detail::Claim>& claims,
+                                  double hardest = 8.0) {
   engine::detail::Approach a;
-  a.stopping = speed * speed / (2.0 * 5.0);  // braking firmly, as GiveWay::record
+  a.stopping = speed * speed / (2.0 * engine::detail::kFirm);  // as GiveWay::record
+  a.emergency = speed * speed / (2.0 * hardest);
   a.arrived = arrived;
   for (const auto& claim : claims) {
     a.claims[a.count++] = claim;
@@ -258,6 +273,35 @@ TEST_CASE("Four generated cars arriving at a four-way junction at once all get t
   const double slowest =
       *std::min_element(crossing.least_speed.begin(), crossing.least_speed.end());
   CHECK(slowest < 1.0);
+  // Let go, each sped up within a generated car's acceleration (3 m/s^2), not at once to its
+  // set speed.
+  for (const double gain : crossing.most_gain) {
+    CHECK(gain <= 3.0 + 1e-6);
+  }
+}
+
+TEST_CASE("Two generated cars placed too near the crossing they share to stop firmly do not meet",
+          "[engine][npc][give_way]") {
+  // Car 0 from arm 1 at 13.2 m/s, car 1 from arm 2 at 10.8 m/s (Town04 seed 5's pair at
+  // 1.15 s, both placed about 10 m before their crossing): neither can stop before it at 5
+  // m/s^2, so both were committed to it and drove into each other. Car 1 (the later in the
+  // order) can still stop at its 8 m/s^2 (its side of the crossing begins about 4 m past the
+  // junction's edge), and is told to.
+  size_t emergencies = 0;
+  for (const double first : {3.0, 5.0, 7.0}) {
+    for (const double second : {6.0, 7.0, 8.0, 9.0}) {
+      INFO("car 0 " << first << " m, car 1 " << second << " m before the junction");
+      Crossing crossing(intersection_text());
+      crossing.car_on_arm(1, first, 13.2);
+      crossing.car_on_arm(2, second, 10.8);
+      crossing.run(6.0);
+      INFO(crossing.overlaps);
+      CHECK(crossing.overlaps.empty());
+      emergencies += crossing.hardest[1] > engine::detail::kFirm + 1.0;
+      CHECK(crossing.hardest[1] <= 8.0 + 1e-6);  // never harder than it can
+    }
+  }
+  CHECK(emergencies > 0);
 }
 
 TEST_CASE("A generated car on the priority road is not stopped by one that came first",
@@ -350,6 +394,33 @@ TEST_CASE("A car committed to one zone waits before the next for a car that cann
   std::vector<engine::detail::YieldPoint> yields = settle_pair(approaches);
   CHECK(yields[0].node == 21);  // waits before zone 0
   CHECK(yields[0].s == 21.0);
+  CHECK(yields[1].node == xodr::kNoLane);
+}
+
+TEST_CASE("A car that can stop before a zone only at its maximum deceleration is told to brake so",
+          "[engine][npc][give_way]") {
+  using engine::detail::Claim;
+  // Town04 seed 5 at 1.15 s: car 0 placed at 13.2 m/s with its front 10.0 m before the
+  // crossing (17.4 m to stop firmly, 10.9 m at 8 m/s^2), car 1 at 10.8 m/s 10.2 m before it
+  // (11.7 m firmly, 7.3 m at 8 m/s^2). Neither counted as able to stop, and both went.
+  const std::vector<engine::detail::Approach> approaches = {
+      approach(13.2, 0, {Claim{0, 0, 10.0, 31, 4.0}}),
+      approach(10.8, 0, {Claim{0, 1, 10.2, 32, 6.0}})};
+  std::vector<engine::detail::YieldPoint> yields = settle_pair(approaches);
+  CHECK(yields[0].node == xodr::kNoLane);
+  CHECK(yields[1].node == 32);
+  CHECK(yields[1].s == 6.0);
+  CHECK(yields[1].emergency);
+  // One that can stop firmly is told to stop without an emergency; one that cannot stop even at
+  // its maximum deceleration goes on.
+  const std::vector<engine::detail::Approach> gentler = {
+      approaches[0], approach(8.0, 0, {Claim{0, 1, 10.2, 32, 6.0}})};
+  yields = settle_pair(gentler);
+  CHECK(yields[1].node == 32);
+  CHECK_FALSE(yields[1].emergency);
+  const std::vector<engine::detail::Approach> weaker = {
+      approaches[0], approach(10.8, 0, {Claim{0, 1, 10.2, 32, 6.0}}, 5.0)};
+  yields = settle_pair(weaker);
   CHECK(yields[1].node == xodr::kNoLane);
 }
 

@@ -41,19 +41,13 @@ struct Leader {
   double speed = 0.0;
 };
 
-// The lanes the entity will follow from where it is, up to kRange metres ahead; the lanes after
-// its own come from `ahead` (extended, or started afresh when the entity's lane, direction or
-// chooser changed).
-LanePath path_ahead(const xodr::Map& map, const Entity& me, LanesAhead& ahead) {
-  if (ahead.node != me.lane.node || ahead.dir != me.lane.dir || ahead.chooser != me.chooser) {
-    ahead.node = me.lane.node;
-    ahead.dir = me.lane.dir;
-    ahead.chooser = me.chooser;
-    ahead.route = me.route;
-    ahead.clear();
-  }
+// The lanes a vehicle held at `lane` will follow, choosing with `chooser`, up to kRange metres
+// ahead; the lanes after its own come from `ahead`, which must have been started afresh for
+// this lane, direction and chooser (path_ahead).
+LanePath path_from(const xodr::Map& map, const LaneFollow& lane, const LaneChooser* chooser,
+                   LanesAhead& ahead) {
   LanePath path;
-  LaneEntry at = LaneEntry::of(me.lane);
+  LaneEntry at = LaneEntry::of(lane);
   const auto& graph = map.lane_graph();
   double distance = 0.0;
   for (size_t k = 0; path.count < kMaxPieces; ++k) {
@@ -75,13 +69,27 @@ LanePath path_ahead(const xodr::Map& map, const Entity& me, LanesAhead& ahead) {
       break;
     }
     // The next lane from the whole of the last one: the entity's own lane, or the last known.
-    LaneFollow follow = k == 0 ? me.lane : ahead.last;
+    LaneFollow follow = k == 0 ? lane : ahead.last;
     follow.s = boundary;
-    enter_next_lane(map, follow, ends, me.chooser);
+    enter_next_lane(map, follow, ends, chooser);
     ahead.push(follow);
     at = ahead.next(static_cast<uint32_t>(k));
   }
   return path;
+}
+
+// The lanes the entity will follow from where it is, up to kRange metres ahead; the lanes after
+// its own come from `ahead` (extended, or started afresh when the entity's lane, direction or
+// chooser changed).
+LanePath path_ahead(const xodr::Map& map, const Entity& me, LanesAhead& ahead) {
+  if (ahead.node != me.lane.node || ahead.dir != me.lane.dir || ahead.chooser != me.chooser) {
+    ahead.node = me.lane.node;
+    ahead.dir = me.lane.dir;
+    ahead.chooser = me.chooser;
+    ahead.route = me.route;
+    ahead.clear();
+  }
+  return path_from(map, me.lane, me.chooser, ahead);
 }
 
 // Path distance (m) of road coordinates `theirs` ahead of the follower, or nothing when they
@@ -319,21 +327,30 @@ double esmini_acc_speed(const Entity& entity, const EsminiAcc& acc, double set_s
 }
 
 // A generated vehicle near a junction: the point it was told to stop before, as a standing
-// leader when nearer than `leader`; and its claims for the next step's pass.
-void give_way(GiveWay& claims, uint32_t index, const Entity& me, const LanePath& path, int64_t tick,
+// leader when nearer than `leader`; and its claims for the next step's pass. Returns whether it
+// must stop there at its maximum deceleration (an emergency stop).
+bool give_way(GiveWay& claims, uint32_t index, const Entity& me, const LanePath& path, int64_t tick,
               Leader& leader) {
   const YieldPoint& point = claims.yield_of(index);
+  bool emergency = false;
   if (point.node != xodr::kNoLane) {
     const double front = me.info.box.center_x + 0.5 * me.info.box.length;
     const double gap = gap_to_yield_point(path, point, front);
     if (gap < leader.gap) {
       leader = Leader{gap, 0.0};
     }
+    emergency = point.emergency && std::isfinite(gap);
   }
   claims.record(index, me, path, tick);
+  return emergency;
 }
 
 }  // namespace
+
+LanePath lane_path_of(const xodr::Map& map, const LaneFollow& lane) {
+  LanesAhead ahead;
+  return path_from(map, lane, nullptr, ahead);
+}
 
 void step_acc(SimState& state, uint32_t index, const MotionContext& motion, const FollowView& view,
               LanesAhead& ahead) {
@@ -358,9 +375,10 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
   const bool generated = view.targets()[index].generated;
   Leader leader = on_path ? find_leader(state, index, view, path, generated) : Leader{};
   double target = set_speed;
+  bool emergency = false;
   if (generated) {
     if (on_path && view.give_way() != nullptr && view.give_way()->ready()) {
-      give_way(*view.give_way(), index, entity, path, state.tick, leader);
+      emergency = give_way(*view.give_way(), index, entity, path, state.tick, leader);
     }
     std::vector<uint32_t>& near = *motion.nearby;
     const double v = std::max(entity.state().speed, 0.0);
@@ -379,23 +397,31 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
       target = entity.info.max_speed > 0.0 ? std::min(ahead_of, entity.info.max_speed) : ahead_of;
     }
   }
+  const double v = entity.state().speed;
+  const double max_acc =
+      entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultLimit;
+  const double max_dec =
+      entity.info.max_deceleration > 0.0 ? entity.info.max_deceleration : kDefaultLimit;
   double command = target;
   if (target > set_speed) {
     // Speeding up to keep ahead: within the vehicle's acceleration.
-    const double max_acc =
-        entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultLimit;
-    command = std::min(target, std::max(entity.state().speed, set_speed) + max_acc * motion.dt);
+    command = std::min(target, std::max(v, set_speed) + max_acc * motion.dt);
+  }
+  if (generated && command > v + max_acc * motion.dt && npc_vehicle(entity)) {
+    // NPCs gain speed within their acceleration, also up to their set speed: let go at a
+    // junction or rid of their leader, they do not take the set speed at once (the scenario's
+    // vehicles, and its traffic actions' objects, keep the speed their actions give).
+    command = std::min(command, std::max(v, 0.0) + max_acc * motion.dt);
   }
   if (std::isfinite(leader.gap)) {
-    const double v = entity.state().speed;
     const double desired = kStandstill + kTimeGap * std::max(v, 0.0);
-    const double max_acc =
-        entity.info.max_acceleration > 0.0 ? entity.info.max_acceleration : kDefaultLimit;
-    const double max_dec =
-        entity.info.max_deceleration > 0.0 ? entity.info.max_deceleration : kDefaultLimit;
     const double a = std::clamp(kGapGain * (leader.gap - desired) + kSpeedGain * (leader.speed - v),
                                 -max_dec, max_acc);
     command = std::min(command, std::max(0.0, v + a * motion.dt));
+  }
+  if (emergency) {
+    // Told to stop where it can stop only at its maximum deceleration: full braking.
+    command = std::min(command, std::max(0.0, v - max_dec * motion.dt));
   }
   entity.speed_command = command;
   DefaultController().step(entity, motion);

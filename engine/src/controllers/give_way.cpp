@@ -12,23 +12,11 @@ namespace corsa::engine::detail {
 namespace {
 
 constexpr double kHorizonBase = 12.0;  // m ahead of the front a zone is always claimed from
-constexpr double kComfort = 2.0;       // m/s^2: the horizon holds the stop at this braking too
-constexpr double kFirm = 5.0;          // m/s^2: a vehicle that cannot stop at this is committed
 constexpr double kStandstill = 3.0;    // m the acc controller keeps to a standing leader
 constexpr double kCleared = 1.0;       // m past a zone's far end that its rear has left it
 // m: a vehicle standing at its stop point may have crept up to this much nearer than the
 // controller's standstill gap, and still counts as able to stop there.
 constexpr double kCreep = 1.5;
-
-// Whether a vehicle that needs `stopping` metres to stop can stop before a zone `to_enter`
-// metres ahead of its front. Told to stop, the controller may run past its standstill gap by
-// up to kCreep short of it; by less the slower the vehicle arrives (one crawling up to its stop
-// point stops about where it is), so the margin grows with the stopping distance: a vehicle
-// crawling up to its stop point still counts as able to stop, and is not let into a zone another
-// holds.
-bool can_stop(double to_enter, double stopping) {
-  return to_enter - kStopMargin - std::min(kStandstill - kCreep, stopping) >= stopping;
-}
 
 // The order key: committed (unable to stop before the next zone ahead) first, then by right of
 // way, then by arrival, then by entity index. A vehicle waiting inside a zone for a later one
@@ -50,6 +38,16 @@ uint64_t order_key(const Approach& a) {
 
 }  // namespace
 
+bool npc_vehicle(const Entity& me) { return me.info.name.rfind("npc_vehicle_", 0) == 0; }
+
+// Told to stop, the controller may run past its standstill gap by up to kCreep short of it; by
+// less the slower the vehicle arrives (one crawling up to its stop point stops about where it
+// is), so the margin grows with the stopping distance: a vehicle crawling up to its stop point
+// still counts as able to stop, and is not let into a zone another holds.
+bool can_stop(double to_enter, double stopping) {
+  return to_enter - kStopMargin - std::min(kStandstill - kCreep, stopping) >= stopping;
+}
+
 void ClaimSettler::settle(std::span<const Approach> approaches, std::span<const uint32_t> who,
                           size_t conflict_count, std::span<YieldPoint> yields) {
   if (held_stamp_.size() < conflict_count) {
@@ -60,9 +58,9 @@ void ClaimSettler::settle(std::span<const Approach> approaches, std::span<const 
     std::fill(held_stamp_.begin(), held_stamp_.end(), 0);
     stamp_ = 1;
   }
-  // The zones a vehicle is in, or can no longer stop before, are its own, whatever the order:
-  // another that can still stop waits for it, even if it comes earlier in the order (of two
-  // committed to different zones, neither is given the other's).
+  // The zones a vehicle is in, or can no longer stop before even at its maximum deceleration,
+  // are its own, whatever the order: another that can still stop waits for it, even if it comes
+  // earlier in the order (of two committed to different zones, neither is given the other's).
   const auto take = [&](const Claim& c) {
     if (held_stamp_[c.conflict] != stamp_) {
       held_stamp_[c.conflict] = stamp_;
@@ -72,7 +70,7 @@ void ClaimSettler::settle(std::span<const Approach> approaches, std::span<const 
   order_.clear();
   for (const uint32_t i : who) {
     const Approach& a = approaches[i];
-    for (uint32_t k = 0; k < a.count && !can_stop(a.claims[k].to_enter, a.stopping); ++k) {
+    for (uint32_t k = 0; k < a.count && !can_stop(a.claims[k].to_enter, a.emergency); ++k) {
       take(a.claims[k]);
     }
     order_.emplace_back(order_key(a), i);
@@ -81,16 +79,17 @@ void ClaimSettler::settle(std::span<const Approach> approaches, std::span<const 
   for (const auto& entry : order_) {
     const uint32_t i = entry.second;
     const Approach& a = approaches[i];
-    // The first zone whose other side an earlier vehicle holds, if it can still stop before it
-    // (one that cannot goes on: stopping in the zone would help nobody).
+    // The first zone whose other side an earlier vehicle holds, if it can still stop before it,
+    // firmly or else at its maximum deceleration (one that cannot goes on: stopping in the zone
+    // would help nobody).
     double limit = std::numeric_limits<double>::infinity();
     YieldPoint stop;
     for (uint32_t k = 0; k < a.count; ++k) {
       const Claim& c = a.claims[k];
       if (held_stamp_[c.conflict] == stamp_ && held_side_[c.conflict] != c.side &&
-          can_stop(c.to_enter, a.stopping)) {
+          can_stop(c.to_enter, a.emergency)) {
         limit = c.to_enter;
-        stop = YieldPoint{c.node, c.s_enter};
+        stop = YieldPoint{c.node, c.s_enter, !can_stop(c.to_enter, a.stopping)};
         break;
       }
     }
@@ -208,6 +207,8 @@ void GiveWay::record(uint32_t index, const Entity& me, const LanePath& path, int
   const double v = std::max(me.state().speed, 0.0);
   a.count = count;
   a.stopping = v * v / (2.0 * kFirm);
+  a.emergency =
+      npc_vehicle(me) ? v * v / (2.0 * std::max(kFirm, me.info.max_deceleration)) : a.stopping;
   if (!was) {
     a.arrived = tick;
   }

@@ -9,11 +9,13 @@
 //      vehicle takes the zones ahead of it unless a vehicle earlier in the order holds the other
 //      side of one; then it stops before that zone and takes only the zones before it. Every
 //      wait is for a vehicle earlier in the order, so there is no circular wait: the first one
-//      always goes;
+//      always goes. One that can stop there only at its own maximum deceleration is told to
+//      brake so (an emergency stop); only one that cannot even so goes on;
 //   2. during its move each such vehicle (acc controller) stops before the zone it was told to
-//      (a standing leader there, braking within the controller's limits), and records the zones
-//      its path enters within its horizon for the next pass. Only its own record is written,
-//      so the moves stay independent of each other and of the threads.
+//      (a standing leader there, braking within the controller's limits, or at its maximum
+//      deceleration in an emergency), and records the zones its path enters within its horizon
+//      for the next pass. Only its own record is written, so the moves stay independent of each
+//      other and of the threads.
 // Vehicles farther than their horizon from every zone do nothing but look up the lanes of
 // their path; nothing is allocated per step once the records have their size.
 
@@ -41,6 +43,13 @@ struct Claim {
   double s_enter = 0.0;                 ///< road s where the path enters the zone
 };
 
+/// m/s^2: braking a vehicle is asked for without an emergency; one that cannot stop before a
+/// zone at this is committed to it, and goes first.
+inline constexpr double kFirm = 5.0;
+/// m/s^2: the braking the horizon holds the stop at, and that a placed vehicle must be able to
+/// stop at before a crossing another placed vehicle claims too (traffic/npc_traffic.cpp).
+inline constexpr double kComfort = 2.0;
+
 /// Zones one vehicle records at most (the nearest; Town04's busiest lane has fewer).
 inline constexpr size_t kMaxClaims = 24;
 
@@ -50,6 +59,10 @@ struct Approach {
   RightOfWay right = RightOfWay::kNormal;  ///< of the lane of its first claim
   int64_t arrived = 0;                     ///< tick since which it has been approaching
   double stopping = 0.0;                   ///< m it needs to stop from its speed, braking firmly
+  /// m it needs to stop at its own maximum deceleration (kFirm when that is less; `stopping`
+  /// for the objects of traffic actions, npc_vehicle): nearer a zone than this it can no longer
+  /// stop before it, and holds it whatever the order.
+  double emergency = 0.0;
   std::array<Claim, kMaxClaims> claims;
 };
 
@@ -57,6 +70,7 @@ struct Approach {
 struct YieldPoint {
   xodr::LaneNode node = xodr::kNoLane;
   double s = 0.0;
+  bool emergency = false;  ///< it can stop there only braking at its maximum deceleration
 };
 
 /// m: the least distance between a vehicle's front and a zone it stops before (the acc
@@ -110,6 +124,16 @@ class GiveWay {
 /// of way of the first to out.right); returns how many. Nothing is written without any.
 uint32_t collect_claims(const JunctionConflicts& conflicts, const LanePath& path, double front,
                         double rear, double speed, Approach& out);
+
+/// Whether `me` is one of the vehicles `--npc` placed (traffic/npc_traffic.cpp names them
+/// npc_vehicle_<k>; the caller knows it is generated). They, not the objects of the scenario's
+/// traffic actions, brake at their maximum deceleration in an emergency and speed up within
+/// their acceleration (the acc controller): the scenario's traffic keeps its bytes.
+bool npc_vehicle(const Entity& me);
+
+/// Whether a vehicle that needs `stopping` metres to stop (at some deceleration) can stop
+/// before a zone `to_enter` metres ahead of its front, as the claims pass counts it.
+bool can_stop(double to_enter, double stopping);
 
 /// A standing leader's gap (m) for a vehicle with front `front` along `path` that must stop
 /// before `point`; +inf when the point is not ahead on the path.

@@ -10,6 +10,10 @@
 
 #include "corsa/xodr/lane_graph.h"
 
+namespace corsa::xodr {
+class Map;
+}
+
 namespace corsa::engine::detail {
 
 inline constexpr size_t kMaxPieces = 16;  ///< lane pieces looked along (zero-length lanes too)
@@ -30,5 +34,12 @@ struct LanePath {
   std::array<PathPiece, kMaxPieces> pieces;  ///< the first `count` are set
   size_t count = 0;
 };
+
+struct LaneFollow;
+
+/// The path the acc controller looks along from `lane` for a vehicle without a route (the
+/// straightest lane at each lane end), up to its sensor range: where a vehicle put there will
+/// drive (controllers/acc_controller.cpp).
+LanePath lane_path_of(const xodr::Map& map, const LaneFollow& lane);
 
 }  // namespace corsa::engine::detail

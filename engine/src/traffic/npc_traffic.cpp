@@ -6,15 +6,19 @@
 // lane length over the whole map (vehicles off junction roads), at least 10 m (vehicles; 6 m
 // once the lanes are full at 10 m) or 2 m (pedestrians) from every entity, their boxes at least
 // 1 m (0.5 m) clear of every other box, and vehicles not in the 60 m ahead of a scenario vehicle
-// driving their way (its path). They are entities like any other: trajectory rows, collisions,
-// conditions, sensors. Generated traffic drives and walks with the precautions of
-// controllers/npc_caution.h.
+// driving their way (its path). A vehicle is not placed where it could not stop, braking at
+// kComfort, before a crossing in a junction ahead that a vehicle placed before it claims the
+// other side of (controllers/give_way.h): giving way can then settle every crossing from the
+// first step. They are entities like any other: trajectory rows, collisions, conditions,
+// sensors. Generated traffic drives and walks with the precautions of controllers/npc_caution.h
+// and gives way in junctions.
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "controllers/give_way.h"
 #include "corsa/engine/oriented_box.h"
 #include "corsa/xodr/map.h"
 #include "lanes/lane_follow.h"
@@ -99,6 +103,45 @@ bool starts_clear(const SimState& state, Placed& placed, const Box& box, const P
   return true;
 }
 
+// The crossings in junctions (controllers/junction_conflicts.h) the placed vehicles claim, as
+// the claims pass of giving way will see them at the first step: which sides of each conflict.
+class Crossings {
+ public:
+  explicit Crossings(const xodr::Map& map)
+      : conflicts_(JunctionConflicts::build(map)), sides_(conflicts_.conflict_count(), 0) {}
+
+  // Whether a vehicle with box `box`, held at `lane` at `speed`, could stop braking at kComfort
+  // before every crossing ahead whose other side a placed vehicle claims. Two placed where
+  // neither can stop before the crossing they share would both be committed to it.
+  bool clear(const xodr::Map& map, const LaneFollow& lane, const Box& box, double speed) {
+    path_ = lane_path_of(map, lane);
+    const double front = box.center_x + 0.5 * box.length;
+    const double rear = box.center_x - 0.5 * box.length;
+    approach_.count = collect_claims(conflicts_, path_, front, rear, speed, approach_);
+    const double comfortable = speed * speed / (2.0 * kComfort);
+    for (uint32_t k = 0; k < approach_.count; ++k) {
+      const Claim& c = approach_.claims[k];
+      if ((sides_[c.conflict] & (1u << (1 - c.side))) != 0 && !can_stop(c.to_enter, comfortable)) {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // The last vehicle `clear` was asked about is placed: its claims are taken.
+  void take() {
+    for (uint32_t k = 0; k < approach_.count; ++k) {
+      sides_[approach_.claims[k].conflict] |= static_cast<uint8_t>(1u << approach_.claims[k].side);
+    }
+  }
+
+ private:
+  JunctionConflicts conflicts_;
+  std::vector<uint8_t> sides_;  ///< by conflict: bit `side` set when a placed vehicle claims it
+  LanePath path_;
+  Approach approach_;
+};
+
 struct Candidate {
   uint32_t road = 0;
   int lane = 0;
@@ -172,22 +215,25 @@ class Npcs final : public GeneratorBase {
     const Lanes drawn{lanes, WeightedTable(weights)};
     Placed others(state);
     if (walks) {
-      return place_on(state, others, drawn, true, kWalkerClearance, count, 0);
+      return place_on(state, others, nullptr, drawn, kWalkerClearance, count, 0);
     }
-    const uint32_t placed = place_on(state, others, drawn, false, kVehicleClearance, count, 0);
+    Crossings crossings(*state.map);
+    const uint32_t placed = place_on(state, others, &crossings, drawn, kVehicleClearance, count, 0);
     if (placed == count) {
       return placed;
     }
-    return place_on(state, others, drawn, false, kVehicleTightClearance, count, placed);
+    return place_on(state, others, &crossings, drawn, kVehicleTightClearance, count, placed);
   }
 
  private:
   // Draws places on `lanes` (by length), `clearance` from every entity, until `count` NPCs are
   // placed (`placed` of them already) or kTriesPerNpc tries per NPC still to place have
-  // failed; returns how many are placed.
-  uint32_t place_on(SimState& state, Placed& others, const Lanes& lanes, bool walks,
+  // failed; returns how many are placed. Vehicles are placed with their `crossings`, walkers
+  // without.
+  uint32_t place_on(SimState& state, Placed& others, Crossings* crossings, const Lanes& lanes,
                     double clearance, uint32_t count, uint32_t placed) {
     const xodr::Map& map = *state.map;
+    const bool walks = crossings == nullptr;
     const uint32_t tries = kTriesPerNpc * (count - placed);
     for (uint32_t attempt = 0; placed < count && attempt < tries; ++attempt) {
       const Candidate& c = lanes.candidates[lanes.by_length.draw(random_)];
@@ -215,6 +261,14 @@ class Npcs final : public GeneratorBase {
                         Pose{at.pose.x, at.pose.y, at.pose.z, at.pose.h, at.pose.p, at.pose.r},
                         walks, walks ? kWalkerBoxMargin : kVehicleBoxMargin)) {
         continue;
+      }
+      if (!walks) {
+        LaneFollow lane;
+        if (!attach_to_lane(map, lane, c.road, s, *t, c.lane, at.pose.h) ||
+            !crossings->clear(map, lane, vehicle_box_, speed)) {
+          continue;
+        }
+        crossings->take();
       }
       const std::string name =
           std::string(walks ? "npc_pedestrian_" : "npc_vehicle_") + std::to_string(placed);
