@@ -2,6 +2,7 @@
 // starts a marker event; the tests check when it started.
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -190,6 +191,44 @@ TEST_CASE("A distance's inputs change with every bit the distance reads and with
   CHECK(changed([](Entity& a, Entity&) { a.lane.on_road = false; }));
   // The same arguments in the other order are other inputs.
   CHECK(!inputs.same_as(to, from));
+}
+
+TEST_CASE("A distance's inputs pass over states whose counts of writes stand, and no other input",
+          "[engine][condition][distance]") {
+  // EntityDistanceInputs is asked about one pair: while neither entity's count of its state's
+  // writes has moved, the poses and road coordinates are the ones taken; the boxes and the lane
+  // direction are compared all the same.
+  using engine::detail::Entity;
+  Entity from, to;
+  for (Entity* e : {&from, &to}) {
+    e->write_state().pose = {1.0, 2.0, 0.0, 0.5, 0.0, 0.0};
+    e->info.box = {1.4, 0.0, 0.75, 4.5, 1.8, 1.5};
+    e->lane.on_road = true;
+    e->lane.dir = 1;
+  }
+  engine::detail::EntityDistanceInputs inputs;
+  inputs.take(from, to);
+  CHECK(inputs.same_as(from, to));
+  // Counts standing, other inputs changed: measured again.
+  to.info.box.width = 2.0;
+  CHECK_FALSE(inputs.same_as(from, to));
+  to.info.box.width = 1.8;
+  from.lane.dir = -1;
+  CHECK_FALSE(inputs.same_as(from, to));
+  from.lane.dir = 1;
+  from.lane.on_road = false;
+  CHECK_FALSE(inputs.same_as(from, to));
+  from.lane.on_road = true;
+  CHECK(inputs.same_as(from, to));
+  // A write that changes nothing moves the count: the state is compared, and is the same.
+  const uint32_t count = to.state_changes();
+  to.write_state().pose.x = 1.0;
+  CHECK(to.state_changes() != count);
+  CHECK(inputs.same_as(from, to));
+  to.write_state().pose.y = std::nextafter(2.0, 3.0);
+  CHECK_FALSE(inputs.same_as(from, to));
+  inputs.take(from, to);
+  CHECK(inputs.same_as(from, to));
 }
 
 TEST_CASE("a lane of type none is off the road", "[engine][condition][road]") {

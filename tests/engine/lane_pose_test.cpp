@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -234,6 +235,26 @@ TEST_CASE("A pose command to where an entity off the road stands is kept without
   CHECK_FALSE(held.state().road.has_value());
   CHECK(held.state().speed == 1.5);
   CHECK(held.state().yaw_rate == 0.0);
+  // Held again at the speed it has (its acceleration turns 0), then once more: that hold changes
+  // nothing of the state and leaves it unwritten, its count of writes standing; a new speed is
+  // written. Each hold leaves what the pose command would.
+  const auto hold_both = [&] {
+    corsa::engine::detail::hold_pose_off_lanes(held, context);
+    moved.pose_command = moved.state().pose;
+    corsa::engine::detail::move_to_pose_command(moved, context);
+    CHECK(same_bits(static_cast<const corsa::engine::detail::EntityMotion&>(held),
+                    static_cast<const corsa::engine::detail::EntityMotion&>(moved)));
+  };
+  hold_both();
+  CHECK(held.state().acceleration == 0.0);
+  const uint32_t count = held.state_changes();
+  hold_both();
+  CHECK(held.state_changes() == count);
+  held.speed_command = 1.25;
+  moved.speed_command = 1.25;
+  hold_both();
+  CHECK(held.state_changes() != count);
+  CHECK(held.state().speed == 1.25);
   // Not held: another point, another heading, -0 for +0, a NaN, an entity whose memo holds a
   // lane, and no map.
   CHECK_FALSE(

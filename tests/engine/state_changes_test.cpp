@@ -1,11 +1,12 @@
 // Every write of an entity's state goes through EntityMotion::write_state, which counts it
-// (state/entity.h): while an entity's count stays, its state is the same, bit for bit. The binary
-// recorder skips an entity whose count has not moved since its row last passed, so a write that
-// does not count would leave a wrong row in the file. These tests run every focused scenario and
-// ASAM example, in both semantics, and check after every step that no state changed while its
-// count stayed; and that the recordings of scenarios that teleport, change lanes, tow trailers,
-// hide, add and delete entities are the same bytes read with the counts (the caller's thread) and
-// without them (the writer thread's copies).
+// (state/entity.h; Simulation::state_changes gives the counts): while an entity's count stays,
+// its state is the same, bit for bit. The binary recorder skips an entity whose count has not
+// moved since its row last passed, and the memos of what was computed from a state pass over
+// it, so a write that does not count would leave a wrong row in the file or a stale result.
+// These tests run every focused scenario and ASAM example, in both semantics, and check after
+// every step that no state changed while its count stayed; and that the recordings of scenarios
+// that teleport, change lanes, tow trailers, hide, add and delete entities are the same bytes
+// read with the counts (the caller's thread) and without them (the writer thread's copies).
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -20,7 +21,6 @@
 
 #include "corsa/engine/trajectory_file.h"
 #include "engine_fixture.h"
-#include "state/entity.h"
 #include "state/sim_state.h"
 #include "temp_dir.h"
 
@@ -31,18 +31,16 @@ using corsa::test::engine_fixture;
 using corsa::test::FixtureRun;
 namespace engine = corsa::engine;
 
-uint32_t changes_of(const engine::EntityState& state) {
-  return engine::detail::EntityMotion::state_changes_of(state);
-}
-
 // After every step: each entity whose count of writes is the one of the step before holds the
 // state of the step before, bit for bit.
 class CountedWrites final : public engine::SimulationObserver {
  public:
   void on_step(const engine::Simulation& sim) override {
     const engine::EntityStates states = sim.states();
+    const engine::EntityStateChanges changes = sim.state_changes();
+    REQUIRE(changes.size() == states.size());
     for (size_t i = 0; i < states.size(); ++i) {
-      if (i < last_.size() && changes_of(states[i]) == counts_[i]) {
+      if (i < last_.size() && changes[i] == counts_[i]) {
         ++unchanged_;
         if (!engine::detail::same_bits(states[i], last_[i]) && first_miss_.empty()) {
           std::ostringstream out;
@@ -58,7 +56,7 @@ class CountedWrites final : public engine::SimulationObserver {
     counts_.assign(states.size(), 0);
     for (size_t i = 0; i < states.size(); ++i) {
       last_[i] = states[i];
-      counts_[i] = changes_of(states[i]);
+      counts_[i] = changes[i];
     }
   }
 

@@ -284,10 +284,51 @@ TEST_CASE("The memos' comparisons tell every compared double's bits apart, and a
     return entity;
   };
   const Entity entity = placed_entity([](Entity&) {});
-  const ContactInput input{true, entity.state().pose, entity.info.box};
+  const ContactInput input(entity);
   CHECK(input.same_as(entity));
   CHECK(input.same_as(placed_entity([](Entity& e) { e.write_state().pose.p = 0.1; })));
   CHECK_FALSE(input.same_as(placed_entity([](Entity& e) { e.write_state().pose.h = -0.0; })));
   CHECK_FALSE(input.same_as(placed_entity([](Entity& e) { e.info.box.height = 1.6; })));
   CHECK_FALSE(input.same_as(placed_entity([](Entity& e) { e.write_state().placed = false; })));
+}
+
+TEST_CASE("The memos pass over a state whose count of writes stands, and compare the rest",
+          "[engine][motion][still]") {
+  using corsa::engine::detail::ContactInput;
+  // The contacts' input of an entity: with its count standing, a box of another size is seen;
+  // a write that changes nothing moves the count, and the state is compared.
+  Entity entity;
+  entity.write_state().placed = true;
+  entity.info.box = {1.0, 0.0, 0.5, 4.0, 2.0, 1.5};
+  const ContactInput input(entity);
+  entity.info.box.length = 4.5;
+  CHECK_FALSE(input.same_as(entity));
+  entity.info.box.length = 4.0;
+  entity.write_state().pose.x = 0.0;
+  CHECK(input.same_as(entity));
+  entity.write_state().pose.x = 1e-9;
+  CHECK_FALSE(input.same_as(entity));
+
+  // The still step: a motion changed beside the state (its count standing) ends the skip, and
+  // the step is taken in full (which writes the state: its count moves); a write of the state
+  // that changes nothing does not end it (the skipped step leaves the count where it was).
+  StillStepPair pair(100.0);
+  for (int i = 0; i < 3; ++i) {
+    pair.step();
+  }
+  REQUIRE(pair.skipping.still_step_valid);
+  uint32_t count = pair.skipping.state_changes();
+  pair.step();
+  CHECK(pair.skipping.state_changes() == count);  // skipped
+  const double x = pair.skipping.state().pose.x;
+  pair.step([](Entity& e) { e.lane.s += 1.0; });
+  CHECK(pair.skipping.state_changes() != count);  // taken in full
+  CHECK(pair.skipping.state().pose.x != x);
+  pair.step();  // remembered again
+  pair.step();
+  count = pair.skipping.state_changes();
+  pair.step([](Entity& e) { e.write_state().speed = e.state().speed; });
+  CHECK(pair.skipping.state_changes() == count + 1);  // the write alone: skipped
+  pair.step([](Entity& e) { e.speed_command = 1.0; });
+  CHECK(pair.skipping.state_changes() > count + 1);
 }

@@ -612,7 +612,7 @@ TEST_CASE("Rows that stand, wobble below their decimals, move and leave read bac
       } else {
         const engine::detail::EntityStateRows from_states{
             engine::EntityStates(states.data(), states.size(), sizeof(engine::EntityState)),
-            nullptr};
+            nullptr, engine::EntityStateChanges{}};
         encoder.record(0.01, head, from_states);
       }
     }

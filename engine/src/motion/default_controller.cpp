@@ -176,8 +176,14 @@ bool at_dead_end(const xodr::Map& map, const LaneFollow& lane, double along) {
 // and compared field by field.
 void take_still_step(EntityMotion& memo, const EntityMotion& motion) { memo = motion; }
 
-bool holds_still_step(const EntityMotion& memo, const EntityMotion& motion) {
-  return same_bits(memo, motion);
+// Whether the entity holds the memo again: its state is the memo's while the state's count of
+// writes is the one the memo was confirmed at (Entity::still_step_changes), and is compared
+// otherwise (a write that changed nothing); the rest of the motion is compared.
+bool holds_still_step(const Entity& entity) {
+  const EntityMotion& memo = entity.still_step;
+  return (entity.state_changes() == entity.still_step_changes ||
+          same_bits(memo.state(), entity.state())) &&
+         same_bits_beside_state(memo, entity);
 }
 
 }  // namespace
@@ -189,8 +195,7 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
   }
   // A step that would change nothing: the last one changed nothing, and nothing has changed
   // the entity since.
-  EntityMotion& still = entity.still_step;
-  if (entity.still_step_valid && holds_still_step(still, entity)) {
+  if (entity.still_step_valid && holds_still_step(entity)) {
     return;
   }
   // Only an entity already standing on its lane can take a step that changes nothing.
@@ -198,11 +203,12 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
       entity.state().speed == 0.0 && entity.lane.on_road && context.map != nullptr;
   entity.still_step_valid = false;
   if (may_stand) {
-    take_still_step(still, entity);
+    take_still_step(entity.still_step, entity);
   }
   bool stood = false;
   step_entity(entity, MapMemos{entity.lane_pose_memo, entity.point_memo}, context, stood);
-  entity.still_step_valid = may_stand && stood && holds_still_step(still, entity);
+  entity.still_step_valid = may_stand && stood && same_bits(entity.still_step, entity);
+  entity.still_step_changes = entity.state_changes();
 }
 
 void DefaultController::step_entity(EntityMotion& entity, MapMemos memos,

@@ -11,10 +11,9 @@ namespace corsa::engine::detail {
 
 namespace {
 
-// The pose's own part of a move to `target`: speed, accelerations, yaw rate and odometers.
-// Returns the distance moved (m).
-double take_pose(Entity& entity, const Pose& target, double dt) {
-  EntityState& state = entity.write_state();
+// The pose's own part of a move to `target`, written into `state` (the entity's, or a copy of
+// it): speed, accelerations, yaw rate and odometers. Returns the distance moved (m).
+double take_pose(EntityMotion& entity, EntityState& state, const Pose& target, double dt) {
   const double dx = target.x - state.pose.x;
   const double dy = target.y - state.pose.y;
   // hypot(+-0, +-0) is +0: a model at rest (esmini's, whose speed only nears 0) moves by none.
@@ -48,7 +47,7 @@ void move_to_pose_command(Entity& entity, const MotionContext& context) {
   const Pose target = *entity.pose_command;
   entity.pose_command.reset();
   const double h0 = state.pose.h;
-  const double moved = take_pose(entity, target, context.dt);
+  const double moved = take_pose(entity, state, target, context.dt);
   if (context.map == nullptr) {
     return;
   }
@@ -87,9 +86,19 @@ void hold_pose_off_lanes(Entity& entity, const MotionContext& context) {
   // move_to_pose_command to the pose the entity has: it moves by +0 and turns by +0, and the
   // map's answer at its point is none.
   entity.pose_command.reset();
-  take_pose(entity, entity.state().pose, context.dt);
+  // Made on a copy and written only if it differs: a model at rest whose speed no longer changes
+  // (esmini's, once the engine brake rounds the speed to itself) then leaves the state as it is,
+  // and its count of writes stands (the memos and the recorder pass over the entity).
+  EntityState held = entity.state();
+  const Pose pose = held.pose;
+  take_pose(entity, held, pose, context.dt);
   if (!entity.lane.on_road) {
-    leave_lanes(entity, std::nullopt);
+    // leave_lanes with no answer of the map.
+    entity.lateral_command = 0.0;
+    held.road.reset();
+  }
+  if (!same_bits(held, entity.state())) {
+    entity.write_state() = held;
   }
 }
 

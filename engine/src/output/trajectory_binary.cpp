@@ -167,7 +167,7 @@ inline void BinaryTrajectoryRecorder::State::capture(const Simulation& simulatio
   }
   // Straight from the states, no copy: the encoder is done with them before the next step.
   // (The rows made where they are passed: a copy of the states less.)
-  const detail::EntityStateRows rows{simulation.states(), &simulation, true};
+  const detail::EntityStateRows rows{simulation.states(), &simulation, simulation.state_changes()};
   const size_t count = rows.states.size();
   if (named_entities < count) [[unlikely]] {
     name_entities(simulation, count);

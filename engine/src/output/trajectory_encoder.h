@@ -23,7 +23,6 @@
 #include "corsa/engine/simulation.h"
 #include "output/trajectory_codec.h"
 #include "output/trajectory_rows.h"
-#include "state/entity.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -155,11 +154,10 @@ inline bool same_motion(const EntityState& state, const uint64_t* bits) {
 struct EntityStateRows {
   EntityStates states;
   const Simulation* simulation = nullptr;
-  /// The states are the entities' (Simulation::states), each with its count of writes after it
-  /// (EntityMotion::state_changes_of), which the encoder then reads.
-  bool counted = false;
+  /// The entities' counts of their states' writes (Simulation::state_changes), which the skip
+  /// pass reads; none (states that are not a simulation's): every state is tested.
+  EntityStateChanges changes;
   const EntityState& operator[](size_t index) const { return states[index]; }
-  uint32_t changes(size_t index) const { return EntityMotion::state_changes_of(states[index]); }
   /// The OpenDRIVE id of road `road` (the map holds it).
   const std::string& road_id(uint32_t road) const { return simulation->road_id(road); }
 };
@@ -240,7 +238,7 @@ class TrajectoryEncoder {
     /// the bits stay, the field is as predicted and keeps its history (z, pitch and roll on a
     /// flat road, a steady speed), without scaling it again.
     uint32_t still = 0;
-    /// The entity's count of its state's writes (EntityMotion::state_changes) when the skip pass
+    /// The entity's count of its state's writes (Simulation::state_changes) when the skip pass
     /// last saw its row pass (the state then the steady repeat of the last row, and the track as it
     /// is: only a row that does not pass changes it), or a count it has moved past. While the
     /// entity's count is this, its row passes without a test.
@@ -421,7 +419,7 @@ class TrajectoryEncoder {
     Track* tracks = entities_.data();
     uint32_t coded = 0;
     if constexpr (std::is_same_v<Rows, EntityStateRows>) {
-      if (!rows.counted) [[unlikely]] {
+      if (rows.changes.size() < count) [[unlikely]] {
         return skip_pass(rows.states, count);  // states without their counts (tests)
       }
       // An entity whose state has not been written since its row last passed passes again: one
@@ -429,8 +427,9 @@ class TrajectoryEncoder {
       // and else one below it (never the count while the entity's track is coded; the count
       // would have to wrap between two recorded ticks to come back to it).
       const EntityStates states = rows.states;
+      const EntityStateChanges counts = rows.changes;
       for (uint32_t i = 0; i < count; ++i) {
-        const uint32_t changes = EntityMotion::state_changes_of(states[i]);
+        const uint32_t changes = counts[i];
         Track& track = tracks[i];
         if (changes == track.seen) [[likely]] {
           continue;

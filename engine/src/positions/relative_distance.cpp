@@ -101,20 +101,26 @@ double distance_to(const SimState& state, const Entity& from, const Target& to,
 }  // namespace
 
 void EntityDistanceInputs::take(const Entity& from, const Entity& to) {
-  from_ = Party{from.state().pose, from.info.box, from.state().road};
-  to_ = Party{to.state().pose, to.info.box, to.state().road};
+  from_ = Party{from.state().pose, from.info.box, from.state().road, from.state_changes()};
+  to_ = Party{to.state().pose, to.info.box, to.state().road, to.state_changes()};
   from_on_road_ = from.lane.on_road;
   from_dir_ = from.lane.dir;
   taken_ = true;
 }
 
 bool EntityDistanceInputs::same_as(const Entity& from, const Entity& to) const {
-  // The poses and boxes (24 doubles) in one test.
-  const uint64_t diff = double_bits_diff<0, 6>(from_.pose, from.state().pose) |
-                        double_bits_diff<0, 6>(to_.pose, to.state().pose) |
-                        double_bits_diff<0, 6>(from_.box, from.info.box) |
-                        double_bits_diff<0, 6>(to_.box, to.info.box);
-  return taken_ && from_on_road_ == from.lane.on_road && from_dir_ == from.lane.dir && diff == 0 &&
+  // The boxes (12 doubles) in one test.
+  if (!taken_ || from_on_road_ != from.lane.on_road || from_dir_ != from.lane.dir ||
+      (double_bits_diff<0, 6>(from_.box, from.info.box) |
+       double_bits_diff<0, 6>(to_.box, to.info.box)) != 0) {
+    return false;
+  }
+  // Neither state written since: the poses and road coordinates taken.
+  if (from_.changes == from.state_changes() && to_.changes == to.state_changes()) {
+    return true;
+  }
+  return (double_bits_diff<0, 6>(from_.pose, from.state().pose) |
+          double_bits_diff<0, 6>(to_.pose, to.state().pose)) == 0 &&
          same_bits(from_.road, from.state().road) && same_bits(to_.road, to.state().road);
 }
 

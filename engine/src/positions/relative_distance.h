@@ -7,6 +7,7 @@
 // type (longitudinal, lateral, euclidean), between reference points or, with freespace, between
 // bounding boxes.
 
+#include <cstdint>
 #include <optional>
 
 #include "corsa/xosc/enums.h"
@@ -32,7 +33,9 @@ double entity_distance(const SimState& state, const Entity& from, const Entity& 
 
 /// What entity_distance reads of its two entities besides the map (fixed for a run): their
 /// poses, boxes and road coordinates and `from`'s lane direction. Equal to the bit, the same
-/// distance (-0 and +0 differ, a NaN equals itself).
+/// distance (-0 and +0 differ, a NaN equals itself). One pair of entities is asked about, the
+/// same `from` and `to` each time: an entity whose state's count of writes stands since the
+/// inputs were taken (EntityMotion::state_changes) holds the pose and road coordinates taken.
 class EntityDistanceInputs {
  public:
   void take(const Entity& from, const Entity& to);
@@ -43,6 +46,7 @@ class EntityDistanceInputs {
     Pose pose;
     Box box;
     std::optional<RoadCoordinates> road;
+    uint32_t changes = 0;  ///< the entity's count of its state's writes
   };
   Party from_, to_;
   bool from_on_road_ = false;

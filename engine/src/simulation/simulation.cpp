@@ -196,6 +196,12 @@ EntityStates Simulation::states() const {
              ? EntityStates{}
              : EntityStates{&entities.front().state(), entities.size(), sizeof(entities[0])};
 }
+EntityStateChanges Simulation::state_changes() const {
+  const auto& entities = impl_->state.world.entities;
+  return entities.empty() ? EntityStateChanges{}
+                          : EntityStateChanges{&entities.front().state_changes(), entities.size(),
+                                               sizeof(entities[0])};
+}
 std::optional<size_t> Simulation::find_entity(std::string_view name) const {
   const auto index = impl_->state.world.find(name);
   return index ? std::optional<size_t>(*index) : std::nullopt;

@@ -6,7 +6,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <map>
 #include <memory>
 #include <optional>
@@ -78,16 +77,10 @@ struct EntityMotion {
   }
   /// How many times the state was taken for writing (write_state; 32 bits, wrapping): a reader
   /// that saw the state at some count sees the same state while the count is that. (The binary
-  /// recorder skips an entity that has not changed since its last row with one comparison.)
-  uint32_t state_changes() const { return changes_; }
-  /// The count of the entity whose state is `state` (which must be an EntityMotion's: the
-  /// states Simulation::states gives are), read where it lies: at a fixed distance after it.
-  static uint32_t state_changes_of(const EntityState& state) {
-    uint32_t count = 0;
-    std::memcpy(&count, reinterpret_cast<const std::byte*>(&state) + kChangesAfterState,
-                sizeof count);
-    return count;
-  }
+  /// recorder skips an entity that has not changed since its last row with one comparison, and
+  /// the memos of what was computed from a state compare its count first.) A reference, where
+  /// the count lies: Simulation::state_changes reads every entity's from the first one's.
+  const uint32_t& state_changes() const { return changes_; }
 
  private:
   EntityState state_;
@@ -113,9 +106,6 @@ struct EntityMotion {
   uint32_t changes_ = 0;
 
  public:
-  /// Bytes from the state to its count.
-  static const size_t kChangesAfterState;
-
   /// Chooses among lane successors at lane ends (a route); null: the straightest. Compared by
   /// address: whoever assigns it also drops the entity's still step memo, since a replaced route
   /// may be freed and its address reused by the next.
@@ -123,13 +113,7 @@ struct EntityMotion {
 };
 // The still step memo copies EntityMotion by assignment; a trivial copy keeps that cheap.
 static_assert(std::is_trivially_copyable_v<EntityMotion>);
-// (offsetof of a type with private members, which GCC gives as for any other.)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Winvalid-offsetof"
-inline const size_t EntityMotion::kChangesAfterState =
-    offsetof(EntityMotion, changes_) - offsetof(EntityMotion, state_);
-static_assert(EntityMotion::kChangesAfterState == 236 && sizeof(EntityMotion) == 248);
-#pragma GCC diagnostic pop
+static_assert(sizeof(EntityMotion) == 248);
 
 /// The map's last answer, for one entity, to which lane holds the point (x, y) within half a
 /// metre (motion/controller.h, locate_near): a controller that puts its entity at a vehicle
@@ -248,6 +232,9 @@ struct Entity : EntityMotion {
   /// holds exactly this again, field for field and bit for bit (same_bits: -0 and +0 differ, a
   /// NaN equals itself), the next step would change nothing either, and is skipped.
   EntityMotion still_step;
+  /// The state's count of writes (state_changes) when `still_step` was last found held: while
+  /// the count is this, the state is the memo's.
+  uint32_t still_step_changes = 0;
   /// The running action that owns each domain (index 0 longitudinal, 1 lateral), or null.
   std::array<ActionInstance*, kDomainSlots> owners{};
   std::optional<RoadCoordinates> removed_road;  ///< see `removed`

@@ -108,11 +108,10 @@ inline bool same_bits(const LaneFollow& a, const LaneFollow& b) {
          same_bits(a.lateral, b.lateral) && same_bits(a.heading_offset, b.heading_offset) &&
          same_bits(a.frame_shift, b.frame_shift);
 }
-/// Field by field, so that padding bytes (never written, never the same) take no part. The
-/// route is compared by address (see EntityMotion::chooser). The count of the state's writes
-/// (state_changes) is no part of the motion: a write that changes nothing leaves the same motion.
-inline bool same_bits(const EntityMotion& a, const EntityMotion& b) {
-  static_assert(sizeof(EntityMotion) == 248, "add the new field to same_bits");
+/// The motion besides its state, field by field, so that padding bytes (never written, never the
+/// same) take no part. The route is compared by address (see EntityMotion::chooser).
+inline bool same_bits_beside_state(const EntityMotion& a, const EntityMotion& b) {
+  static_assert(sizeof(EntityMotion) == 248, "add the new field to same_bits_beside_state");
   // The four doubles from speed_command to lateral_acceleration, in one test. (offsetof of a
   // type with private members, which GCC gives as for any other.)
 #pragma GCC diagnostic push
@@ -120,9 +119,13 @@ inline bool same_bits(const EntityMotion& a, const EntityMotion& b) {
   constexpr size_t kCommands = offsetof(EntityMotion, speed_command);
   static_assert(offsetof(EntityMotion, lateral_acceleration) == kCommands + 3 * sizeof(double));
 #pragma GCC diagnostic pop
-  return same_bits(a.state(), b.state()) && same_bits(a.lane, b.lane) &&
-         double_bits_diff<kCommands, 4>(a, b) == 0 && a.end_of_road == b.end_of_road &&
-         a.chooser == b.chooser;
+  return same_bits(a.lane, b.lane) && double_bits_diff<kCommands, 4>(a, b) == 0 &&
+         a.end_of_road == b.end_of_road && a.chooser == b.chooser;
+}
+/// The whole motion. The count of the state's writes (state_changes) is no part of it: a write
+/// that changes nothing leaves the same motion.
+inline bool same_bits(const EntityMotion& a, const EntityMotion& b) {
+  return same_bits(a.state(), b.state()) && same_bits_beside_state(a, b);
 }
 
 /// What the contacts of an entity were last computed from (state/world_contacts.h).
@@ -130,12 +133,29 @@ struct ContactInput {
   bool placed = false;
   Pose pose;
   Box box;
+  /// The entity's count of its state's writes (EntityMotion::state_changes) when it was taken.
+  uint32_t changes = 0;
 
-  /// Whether `entity` is placed, posed and sized as this records, to the bit (box_of gives the
-  /// same box then; -0 and +0 differ, NaN equals itself).
+  ContactInput() = default;
+  explicit ContactInput(const Entity& entity)
+      : placed(entity.state().placed),
+        pose(entity.state().pose),
+        box(entity.info.box),
+        changes(entity.state_changes()) {}
+
+  /// Whether `entity`, the one this was taken from, is placed, posed and sized as this records,
+  /// to the bit (box_of gives the same box then; -0 and +0 differ, NaN equals itself). While its
+  /// state's count of writes stands, its state is the one taken, and only the box is compared.
   bool same_as(const Entity& entity) const {
-    return placed == entity.state().placed && (pose_xyzh_diff(pose, entity.state().pose) |
-                                               double_bits_diff<0, 6>(box, entity.info.box)) == 0;
+    const EntityState& state = entity.state();
+    // x alone first: a moving entity's differs, and its test ends there (the rest compares
+    // every value without a branch).
+    if (changes != entity.state_changes() &&
+        (!same_bits(pose.x, state.pose.x) || placed != state.placed ||
+         pose_xyzh_diff(pose, state.pose) != 0)) {
+      return false;
+    }
+    return double_bits_diff<0, 6>(box, entity.info.box) == 0;
   }
 };
 

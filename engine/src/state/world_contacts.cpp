@@ -24,12 +24,9 @@ bool find_moved_boxes(SimState& state, std::vector<uint32_t>& moved) {
   const bool same_entities = inputs.size() == entities.size();
   inputs.resize(entities.size());
   for (uint32_t i = 0; i < entities.size(); ++i) {
-    // x alone first: a moving entity's differs, and its test ends there (same_as compares
-    // every value without a branch).
-    if (!same_entities || !same_bits(inputs[i].pose.x, entities[i].state().pose.x) ||
-        !inputs[i].same_as(entities[i])) {
+    if (!same_entities || !inputs[i].same_as(entities[i])) {
       moved.push_back(i);
-      inputs[i] = {entities[i].state().placed, entities[i].state().pose, entities[i].info.box};
+      inputs[i] = ContactInput(entities[i]);
     }
   }
   return same_entities;

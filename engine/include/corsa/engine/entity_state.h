@@ -57,17 +57,18 @@ struct EntityState {
   std::optional<RoadCoordinates> road;
 };
 
-/// The states of a run's entities where the run keeps them (Simulation::states): each
-/// `stride` bytes after the one before, inside the engine's per-entity records.
-class EntityStates {
+/// One field of every entity of a run where the run keeps it, inside the engine's per-entity
+/// records: each `stride` bytes after the one before.
+template <class Field>
+class EntityFields {
  public:
-  EntityStates() = default;
-  EntityStates(const EntityState* first, size_t count, size_t stride)
+  EntityFields() = default;
+  EntityFields(const Field* first, size_t count, size_t stride)
       : first_(reinterpret_cast<const std::byte*>(first)), count_(count), stride_(stride) {}
 
   size_t size() const { return count_; }
-  const EntityState& operator[](size_t index) const {
-    return *reinterpret_cast<const EntityState*>(first_ + index * stride_);
+  const Field& operator[](size_t index) const {
+    return *reinterpret_cast<const Field*>(first_ + index * stride_);
   }
 
  private:
@@ -75,5 +76,11 @@ class EntityStates {
   size_t count_ = 0;
   size_t stride_ = 0;
 };
+
+/// The states of a run's entities (Simulation::states).
+using EntityStates = EntityFields<EntityState>;
+/// Each entity's count of its state's writes (Simulation::state_changes): while an entity's
+/// count is one a reader saw, its state is the one it saw then, bit for bit.
+using EntityStateChanges = EntityFields<uint32_t>;
 
 }  // namespace corsa::engine

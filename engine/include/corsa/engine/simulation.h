@@ -191,6 +191,11 @@ class Simulation {
   /// (the recorders) without a call per entity: states()[i] is state(i). Valid until the next
   /// step.
   EntityStates states() const;
+  /// Every entity's count of its state's writes, as states() (valid until the next step): while
+  /// entity i's count is one a reader saw, states()[i] holds the state it saw then, bit for bit
+  /// (a write that changed nothing may still move the count). The recorders pass an entity
+  /// whose count did not move with one comparison.
+  EntityStateChanges state_changes() const;
   std::optional<size_t> find_entity(std::string_view name) const;
   /// The OpenDRIVE id of a road index (for output), "" without a map.
   const std::string& road_id(uint32_t road) const;
