@@ -25,6 +25,7 @@
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
 #include "state/sim_state.h"
+#include "state/world_contacts.h"
 
 namespace corsa::engine::detail {
 
@@ -684,13 +685,20 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
     move_range(state, context, impl.view, impl.ahead, order, 0, order.size());
   } else {
     // Each entity's move depends only on itself and the picture taken above, so how the
-    // entities are shared out among threads does not change any result.
+    // entities are shared out among threads does not change any result. The movers also make
+    // the moved entities' contact boxes (each its own entity's slot), which the contacts'
+    // update, serial on this thread, then takes where the entity has not moved again since.
+    state.contacts.premade.resize(count);
+    state.contacts.premade_fresh = true;
     impl.pool->run(order.size(), kChunkEntities, [&](size_t begin, size_t end, unsigned worker) {
       MotionContext worker_context = motion;
       worker_context.scratch = &impl.scratch[worker];
       worker_context.nearby = &impl.nearby[worker];
       worker_context.curvatures = &impl.curvatures[worker];
       move_range(state, worker_context, impl.view, impl.ahead, order, begin, end);
+      for (size_t k = begin; k < end; ++k) {
+        premake_contact_box(state, order[k]);
+      }
     });
   }
   // esmini's NaturalDriver entities move after all others, one after the other.

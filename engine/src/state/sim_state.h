@@ -159,6 +159,16 @@ struct ContactInput {
   }
 };
 
+/// An entity's contact box made by its mover right after its move, on the mover's thread
+/// (premake_contact_box, state/world_contacts.h): the contacts' update takes it when the
+/// entity still stands as it did then, instead of making the box again on its own thread.
+struct PremadeContactBox {
+  ContactInput input;  ///< what the box was made from
+  bool boxed = false;  ///< whether the entity's box took part in the contacts then
+  OrientedBox box;
+  Interval x, y;  ///< the box's extents along x and y
+};
+
 /// Pairs of entities whose boxes overlap now: (first, second) with first < second, sorted.
 struct ContactSet {
   std::vector<std::pair<uint32_t, uint32_t>> pairs;
@@ -167,6 +177,10 @@ struct ContactSet {
   /// box_of(inputs[i].box, inputs[i].pose) for every entity that was placed with a length (not
   /// at or below 0) at the last update; the others' are left as they were.
   std::vector<OrientedBox> boxes;
+  /// By entity: the boxes the moves since the last update made (fresh: made by them; the
+  /// update then takes those still valid and ends their freshness).
+  std::vector<PremadeContactBox> premade;
+  bool premade_fresh = false;
 
   /// Entity `i`'s box as the last update made it, when `entity` (that entity now) is still
   /// placed, posed and sized as then, to the bit: the same value box_of would give. Null

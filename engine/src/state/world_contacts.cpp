@@ -211,10 +211,25 @@ void make_all_boxes(SimState& state, ContactSweep& sweep) {
   boxes.resize(entities.size());
   sweep.x_extent.resize(entities.size());
   sweep.y_extent.resize(entities.size());
+  // Boxes the moves made, where the entity still stands as then (the same value box_of and
+  // project give).
+  const std::vector<PremadeContactBox>* premade =
+      state.contacts.premade_fresh && state.contacts.premade.size() == entities.size()
+          ? &state.contacts.premade
+          : nullptr;
   const auto make_boxes = [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
       if (!boxed(entities[i])) {
         continue;
+      }
+      if (premade != nullptr) {
+        const PremadeContactBox& made = (*premade)[i];
+        if (made.boxed && made.input.same_as(entities[i])) {
+          boxes[i] = made.box;
+          sweep.x_extent[i] = made.x;
+          sweep.y_extent[i] = made.y;
+          continue;
+        }
       }
       boxes[i] = box_of(entities[i].info.box, entities[i].state().pose);
       sweep.x_extent[i] = project(boxes[i], 1.0, 0.0);
@@ -386,14 +401,26 @@ void release_parted_trailers(std::vector<Entity>& entities,
 
 namespace corsa::engine::detail {
 
+void premake_contact_box(SimState& state, uint32_t i) {
+  using namespace sweep_and_prune;
+  const Entity& entity = state.world.entities[i];
+  PremadeContactBox& made = state.contacts.premade[i];
+  made.boxed = boxed(entity);
+  if (!made.boxed) {
+    return;
+  }
+  made.input = {entity.state().placed, entity.state().pose, entity.info.box};
+  made.box = box_of(entity.info.box, entity.state().pose);
+  made.x = project(made.box, 1.0, 0.0);
+  made.y = project(made.box, 0.0, 1.0);
+}
+
 void update_contacts(SimState& state, ContactSweep& sweep) {
   using namespace sweep_and_prune;
   // Nothing moved, appeared or left: the contacts are those of the last update, and none is new.
   const bool same_entities = find_moved_boxes(state, sweep.moved);
-  if (sweep.moved.empty()) {
-    return;
-  }
-  if (same_entities && update_moved_contacts(state, sweep)) {
+  if (sweep.moved.empty() || (same_entities && update_moved_contacts(state, sweep))) {
+    state.contacts.premade_fresh = false;
     return;
   }
   auto& entities = state.world.entities;
@@ -414,6 +441,7 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
   std::sort(now.begin(), now.end());
   record_new_contacts(state, now, previous);
   sweep.complete = spread.finite;
+  state.contacts.premade_fresh = false;
 }
 
 }  // namespace corsa::engine::detail

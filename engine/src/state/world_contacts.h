@@ -49,4 +49,9 @@ struct ContactSweep {
 /// Recomputes which placed entities overlap now, and records the pairs that just started to.
 void update_contacts(SimState& state, ContactSweep& sweep);
 
+/// Makes entity `i`'s contact box as it stands now into state.contacts.premade[i] (sized by the
+/// caller): for the movers, each right after its own entity's move, so that the boxes are made
+/// on the moves' threads. It writes that slot alone.
+void premake_contact_box(SimState& state, uint32_t i);
+
 }  // namespace corsa::engine::detail
