@@ -221,9 +221,9 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
       hazard.gap = gap;
     }
   }
-  // The speed (a cosine) of the one chosen only, not of every nearer one met before it; in
-  // dense traffic mostly the caller's leader, whose box's gap in the corridor is a little below
-  // its gap along the lanes, and whose speed the caller has.
+  // The speed (a cosine) of the one chosen only, not of every nearer one met before it. In
+  // dense traffic that is often the caller's leader, whose speed the caller has (and whose box's
+  // gap in the corridor is mostly a little below its gap along the lanes, so this one is read).
   hazard.entity = chosen;
   if (chosen == followed.entity && chosen != kNoHazardEntity) {
     hazard.speed = followed.speed;
