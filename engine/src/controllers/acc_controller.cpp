@@ -39,6 +39,7 @@ constexpr double kDefaultLimit = 6.0;    // m/s^2 when the Performance gives non
 struct Leader {
   double gap = std::numeric_limits<double>::infinity();  ///< m, bumper to bumper
   double speed = 0.0;
+  uint32_t entity = kNoHazardEntity;  ///< the view's entity; none for a stop line
 };
 
 // The lanes a vehicle held at `lane` will follow, choosing with `chooser`, up to kRange metres
@@ -49,13 +50,21 @@ LanePath path_from(const xodr::Map& map, const LaneFollow& lane, const LaneChoos
   LanePath path;
   LaneEntry at = LaneEntry::of(lane);
   const auto& graph = map.lane_graph();
+  // Where the lane of `entry` ends in its direction (road s), and how far that is from its s.
+  const auto boundary = [&graph](const LaneEntry& entry) {
+    const auto& info = graph.info(entry.node);
+    return entry.dir > 0 ? info.s_end : info.s_start;
+  };
+  const auto span = [&boundary](const LaneEntry& entry) {
+    return std::abs(boundary(entry) - entry.s);
+  };
   double distance = 0.0;
   for (size_t k = 0; path.count < kMaxPieces; ++k) {
     path.pieces[path.count++] =
         PathPiece{at.road, at.section, at.lane, at.node, at.s, at.dir, distance};
-    const auto& info = graph.info(at.node);
-    const double boundary = at.dir > 0 ? info.s_end : info.s_start;
-    distance += std::abs(boundary - at.s);
+    // The lanes ahead carry their spans: the lane graph is read for the follower's own lane
+    // (which the followers moved before it mostly read too) and where the path grows.
+    distance += k == 0 ? span(at) : at.span;
     if (distance >= kRange) {
       break;
     }
@@ -70,9 +79,9 @@ LanePath path_from(const xodr::Map& map, const LaneFollow& lane, const LaneChoos
     }
     // The next lane from the whole of the last one: the entity's own lane, or the last known.
     LaneFollow follow = k == 0 ? lane : ahead.last;
-    follow.s = boundary;
+    follow.s = boundary(at);
     enter_next_lane(map, follow, ends, chooser);
-    ahead.push(follow);
+    ahead.push(follow, span(LaneEntry::of(follow)));
     at = ahead.next(static_cast<uint32_t>(k));
   }
   return path;
@@ -256,8 +265,8 @@ class LeaderSearch {
       return;
     }
     const double gap = *ahead - my_front_ + other.rear;
-    if (gap < leader_.gap || (gap == leader_.gap && i < chosen_)) {
-      chosen_ = i;
+    if (gap < leader_.gap || (gap == leader_.gap && i < leader_.entity)) {
+      leader_.entity = i;
       leader_.gap = gap;
       leader_.speed = other.speed * std::cos(other.h - me_.state().pose.h);
     }
@@ -272,7 +281,6 @@ class LeaderSearch {
   int containing_;
   double my_front_;
   Leader leader_;
-  uint32_t chosen_ = UINT32_MAX;
 };
 
 // The leader as the view shows it along `path`; for generated traffic also a traffic light that
@@ -388,9 +396,10 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
     // corridor then covers a few cars' lengths instead of up to a hundred metres.
     const double reach = std::max(15.0, 3.0 * v + 10.0);
     const double within = leader.gap < reach ? std::max(0.0, leader.gap + 1.0) : reach;
-    const Hazard hazard = corridor_hazard(entity, index, view, within, leader.gap, near);
+    const Hazard hazard = corridor_hazard(entity, index, view, within, leader.gap, near,
+                                          Hazard{leader.gap, leader.speed, leader.entity});
     if (hazard.gap < leader.gap) {
-      leader = {hazard.gap, hazard.speed};
+      leader = {hazard.gap, hazard.speed, hazard.entity};
     }
     const double ahead_of = keep_ahead_speed(entity, index, view, near);
     if (ahead_of > target) {

@@ -131,7 +131,7 @@ class FollowView {
 };
 
 /// Where a follower's path enters one of its following lanes: what a piece of the path needs of
-/// the LaneFollow that enter_next_lane made (32 bytes of its 64).
+/// the LaneFollow that enter_next_lane made (32 bytes of its 64), and the piece's length.
 struct LaneEntry {
   uint32_t road = 0;
   uint32_t section = 0;
@@ -139,6 +139,10 @@ struct LaneEntry {
   xodr::LaneNode node = xodr::kNoLane;
   double s = 0.0;  ///< m, where the path enters the lane
   int dir = 1;     ///< LaneFollow::dir
+  /// m along s from `s` to the lane's end in `dir` (|s_end - s| toward +s, |s_start - s| toward
+  /// -s, of the lane graph's record): kept with the entry, so that a follower's path does not
+  /// read the lane graph's record of every lane ahead at every step.
+  double span = 0.0;
 
   static LaneEntry of(const LaneFollow& follow) {
     return LaneEntry{follow.road, follow.section, follow.lane, follow.node, follow.s, follow.dir};
@@ -154,8 +158,8 @@ struct LaneEntry {
 /// order they move the entities (controllers/controllers.cpp): a follower's look-up then reads
 /// memory next to the last follower's instead of a heap block of its own (with hundreds of
 /// vehicles, the cache misses of those reads were a large part of car following). The lanes
-/// are held as LaneEntry, two to a cache line; only the last one is kept whole (`last`), which
-/// is where a longer path continues from (enter_next_lane reads and moves its lateral offset).
+/// are held as LaneEntry (40 bytes); only the last one is kept whole (`last`), which is where
+/// a longer path continues from (enter_next_lane reads and moves its lateral offset).
 struct LanesAhead {
   xodr::LaneNode node = xodr::kNoLane;
   int dir = 0;
@@ -172,11 +176,14 @@ struct LanesAhead {
   LaneFollow last;
 
   const LaneEntry& next(uint32_t k) const { return k < kInline ? first[k] : more[k - kInline]; }
-  void push(const LaneFollow& follow) {
+  /// Adds the lane `follow` entered, `span` metres long along the path (LaneEntry::span).
+  void push(const LaneFollow& follow, double span) {
+    LaneEntry entry = LaneEntry::of(follow);
+    entry.span = span;
     if (count < kInline) {
-      first[count] = LaneEntry::of(follow);
+      first[count] = entry;
     } else {
-      more.push_back(LaneEntry::of(follow));
+      more.push_back(entry);
     }
     last = follow;
     ++count;

@@ -177,7 +177,7 @@ bool is_generated(const SimState& state, uint32_t index) {
 }
 
 Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view, double reach,
-                       double wanted, std::vector<uint32_t>& near) {
+                       double wanted, std::vector<uint32_t>& near, const Hazard& followed) {
   const LocalFrame frame = frame_at(me, index, view);
   const double front = me.info.box.center_x + 0.5 * me.info.box.length;
   const double rear = me.info.box.center_x - 0.5 * me.info.box.length;
@@ -185,7 +185,7 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
   // A box reaching into the corridor has its centre within max_reach of it.
   near_rectangle(view, frame, rear, front + reach, half, view.max_reach() + kSlack, near);
   Hazard hazard;
-  uint32_t chosen = std::numeric_limits<uint32_t>::max();
+  uint32_t chosen = kNoHazardEntity;
   for (const uint32_t j : near) {
     const FollowTarget& other = view.targets()[j];
     if (j == index || !other.present) {
@@ -221,8 +221,13 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
       hazard.gap = gap;
     }
   }
-  // The speed (a cosine) of the one chosen only, not of every nearer one met before it.
-  if (chosen != std::numeric_limits<uint32_t>::max()) {
+  // The speed (a cosine) of the one chosen only, not of every nearer one met before it. In
+  // dense traffic that is often the caller's leader, whose speed the caller has (and whose box's
+  // gap in the corridor is mostly a little below its gap along the lanes, so this one is read).
+  hazard.entity = chosen;
+  if (chosen == followed.entity && chosen != kNoHazardEntity) {
+    hazard.speed = followed.speed;
+  } else if (chosen != kNoHazardEntity) {
     const FollowTarget& other = view.targets()[chosen];
     hazard.speed = other.speed * std::cos(other.h - me.state().pose.h);
   }
