@@ -409,7 +409,7 @@ void premake_contact_box(SimState& state, uint32_t i) {
   if (!made.boxed) {
     return;
   }
-  made.input = {entity.state().placed, entity.state().pose, entity.info.box};
+  made.input = ContactInput(entity);
   made.box = box_of(entity.info.box, entity.state().pose);
   made.x = project(made.box, 1.0, 0.0);
   made.y = project(made.box, 0.0, 1.0);
