@@ -4,6 +4,7 @@
 // the store lacks: Town01).
 
 #include "csv_compare.h"
+#include "recorded_run.h"
 #include "run_corsa.h"
 
 namespace corsa::test {
@@ -15,16 +16,13 @@ TEST_CASE(
     "corsa run performs CARLA's Init ParameterActions, Init DeleteEntityAction, a relative "
     "LaneOffsetAction and an empty Action",
     "[e2e][run][carla]") {
-  TempDir dir;
-  const auto record = dir.path() / "out.csv";
-  const auto log = dir.path() / "log.csv";
-  const ProcessResult result = run_corsa(
-      {"run", kCarlaForms, "--quiet", "--record", record.string(), "--log", log.string()});
+  const RecordedRun run = run_recorded(kCarlaForms);
+  const ProcessResult& result = run.result;
   INFO(result.err);
   REQUIRE(result.exit_code == 0);
   CHECK(result.err.find(kCarlaForms + ":181: warning: <Action> 'DummyAction' without an action "
                                       "(read as an action that does nothing") != std::string::npos);
-  const std::string transitions = slurp(log);
+  const std::string& transitions = run.log;
   const std::string group = "MyStory::Behavior::ManeuverSequence::";
   // The Init ParameterActions made finalSpeed 36 x 0.277778 + 8: the condition sees it at once.
   CHECK(transitions.find("0.01,event," + group + "ParameterManeuver::SpeedKnown,startTransition") !=
@@ -33,7 +31,7 @@ TEST_CASE(
                          "WeatherChange::WeatherChangeEvent,endTransition") != std::string::npos);
   // Empty StopTriggers: the storyboard ends with its story.
   CHECK(transitions.find("4.01,storyboard,,endTransition") != std::string::npos);
-  const auto rows = parse_trajectory(slurp(record));
+  const auto& rows = run.rows;
   CHECK(of(rows, "adversary2").empty());  // deleted in Init
   CHECK(row_at(rows, "adversary", 0.5).speed == Approx(8.0));
   // $finalSpeed in the event is the declared 5: references are resolved at load.

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "csv_compare.h"
+#include "recorded_run.h"
 #include "run_corsa.h"
 
 namespace corsa::test {
@@ -26,11 +27,8 @@ size_t draft_count_of(const std::string& text, const std::string& needle) {
 
 TEST_CASE("corsa run reads a 0.9 draft's route position, EXT_Synchronize, Meeting and EXT_Quit",
           "[e2e][run][osc09]") {
-  TempDir dir;
-  const auto record = dir.path() / "out.csv";
-  const auto log = dir.path() / "log.csv";
-  const ProcessResult result = run_corsa({"run", kDraftSynchronizeQuit, "--quiet", "--record",
-                                          record.string(), "--log", log.string()});
+  const RecordedRun run = run_recorded(kDraftSynchronizeQuit);
+  const ProcessResult& result = run.result;
   INFO(result.err);
   REQUIRE(result.exit_code == 0);
   CHECK(draft_count_of(result.err, "OpenSCENARIO 0.9") == 1);
@@ -39,7 +37,7 @@ TEST_CASE("corsa run reads a 0.9 draft's route position, EXT_Synchronize, Meetin
   // Ego (20 m/s from s = 50) reaches s = 250 at t = 10: both followers arrive with it, the
   // synchronization ends, and EXT_Quit's event (2 s after that end) stops the run.
   CHECK(result.err.find("Routing, FollowRoute, Route, Position, LaneCoord") != std::string::npos);
-  const auto rows = parse_trajectory(slurp(record));
+  const auto& rows = run.rows;
   // Ego starts at pathS = 50 of its route, which runs along lane -1 from s = 0.
   CHECK(row_at(rows, "Ego", 0.0).x == Approx(50.0).margin(0.01));
   CHECK(row_at(rows, "Ego", 0.0).lane == -1);
@@ -49,7 +47,7 @@ TEST_CASE("corsa run reads a 0.9 draft's route position, EXT_Synchronize, Meetin
   CHECK(row_at(rows, "Synced", 10.0).lane == -2);
   CHECK(row_at(rows, "Met", 10.0).x == Approx(250.0).margin(0.5));
   CHECK(row_at(rows, "Met", 10.0).lane == -3);
-  const std::string transitions = slurp(log);
+  const std::string& transitions = run.log;
   CHECK(transitions.find("10.02,event,SyncStory::SyncAct::SyncSequence::SyncManeuver::SyncEvent,"
                          "endTransition") != std::string::npos);
   CHECK(transitions.find("12.02,storyboard,,stopTransition") != std::string::npos);
@@ -58,22 +56,19 @@ TEST_CASE("corsa run reads a 0.9 draft's route position, EXT_Synchronize, Meetin
 
 TEST_CASE("corsa run reads a 0.9 cut-in: $owner, relative targets and the Storyboard's End",
           "[e2e][run][osc09]") {
-  TempDir dir;
-  const auto record = dir.path() / "out.csv";
-  const auto log = dir.path() / "log.csv";
-  const ProcessResult result = run_corsa(
-      {"run", kDraftCutIn, "--quiet", "--record", record.string(), "--log", log.string()});
+  const RecordedRun run = run_recorded(kDraftCutIn);
+  const ProcessResult& result = run.result;
   INFO(result.err);
   REQUIRE(result.exit_code == 0);
   CHECK(draft_count_of(result.err, "warning:") == 1);
   CHECK(result.err.find(kDraftCutIn + ":6: " + kDraftWarning) != std::string::npos);
   // The owner drives at 1.2 x 20 m/s from 50 m behind: 20 m ahead at t = 17.5, then changes
   // into Ego's lane in 2 s; the End stops the run 1 s later.
-  const std::string transitions = slurp(log);
+  const std::string& transitions = run.log;
   CHECK(transitions.find("17.51,event,CutInStory::CutInAct::CutInSequence::CutInManeuver::"
                          "CutInEvent,startTransition") != std::string::npos);
   CHECK(transitions.find("20.51,storyboard,,stopTransition") != std::string::npos);
-  const auto rows = parse_trajectory(slurp(record));
+  const auto& rows = run.rows;
   CHECK(row_at(rows, "Overtaker", 17.0).lane == -2);
   CHECK(row_at(rows, "Overtaker", 20.0).lane == -1);
   CHECK(row_at(rows, "Overtaker", 20.0).speed == Approx(24.0));
@@ -83,11 +78,8 @@ TEST_CASE(
     "corsa run performs a 0.9.1 file's Signals, Selection, ByCondition actors, "
     "Infrastructure, Traffic and UserDefined actions",
     "[e2e][run][osc09]") {
-  TempDir dir;
-  const auto record = dir.path() / "out.csv";
-  const auto log = dir.path() / "log.csv";
-  const ProcessResult result = run_corsa(
-      {"run", kDraftSignalsTraffic, "--quiet", "--record", record.string(), "--log", log.string()});
+  const RecordedRun run = run_recorded(kDraftSignalsTraffic);
+  const ProcessResult& result = run.result;
   INFO(result.err);
   REQUIRE(result.exit_code == 0);
   const std::string& err = result.err;
@@ -106,7 +98,7 @@ TEST_CASE(
   // The command was given: the engine found no handler for its type.
   CHECK(err.find("CustomCommandAction type 'corsa:note' has no handler in this run") !=
         std::string::npos);
-  const std::string transitions = slurp(log);
+  const std::string& transitions = run.log;
   // SetController puts Main in its stop phase at 2 s (its own phases would at 5 s); only Ego of
   // the selection Cars is faster than 15 m/s, so only Ego brakes: 20 m/s at 5 m/s^2, 4 s.
   const std::string maneuver = "SignalStory::SignalAct::Infrastructure::SignalManeuver::";
@@ -117,7 +109,7 @@ TEST_CASE(
   CHECK(transitions.find("3.01,event," + maneuver + "SeenFlash,startTransition") !=
         std::string::npos);
   CHECK(transitions.find("12.01,storyboard,,stopTransition") != std::string::npos);
-  const auto rows = parse_trajectory(slurp(record));
+  const auto& rows = run.rows;
   CHECK(row_at(rows, "Ego", 2.0).speed == Approx(20.0));
   CHECK(row_at(rows, "Ego", 12.0).speed == Approx(0.0));
   CHECK(row_at(rows, "Lead", 12.0).speed == Approx(10.0));
