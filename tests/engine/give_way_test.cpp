@@ -91,15 +91,21 @@ std::set<std::string> roads_with(const xodr::Map& map,
   return roads;
 }
 
-// Puts generated cars where a test wants them, named as `--npc` names its vehicles.
-class Placer final : public engine::detail::GeneratorBase {
+// Puts generated cars where a test wants them, named as `--npc` names its vehicles: NPC
+// vehicles as `--npc` places them (`npc`: flagged as its generator flags them), or else as the
+// objects of a traffic action would be. Kept in the traffic state, as `--npc`'s generator is.
+class Placer final : public engine::detail::GeneratorBase, public engine::detail::NpcPlacement {
  public:
   Placer() : GeneratorBase(std::string("test"), "car", 1), cars_(prototype()) {}
   void step(engine::detail::SimState&) override {}
-  uint32_t car(engine::detail::SimState& state, double x, double y, double speed) {
+  uint32_t car(engine::detail::SimState& state, double x, double y, double speed, bool npc) {
     const auto at = engine::detail::lane_spot(*state.map, x, y, false);
     REQUIRE(at);
-    return spawn(state, cars_, 0, *at, speed, "npc_vehicle_" + std::to_string(placed_++));
+    const uint32_t i =
+        spawn(state, cars_, 0, *at, speed, "npc_vehicle_" + std::to_string(placed_++));
+    vehicle_flags_.resize(std::max<size_t>(vehicle_flags_.size(), i + 1), 0);
+    vehicle_flags_[i] = npc ? 1 : 0;
+    return i;
   }
 
  private:
@@ -117,7 +123,7 @@ struct Crossing {
   xosc::Scenario scenario;
   Diagnostics diagnostics;
   engine::detail::SimState state;
-  Placer placer;
+  Placer& placer;
   engine::detail::EntityMover mover{1};
   std::vector<double> least_speed;  ///< by car, over the run
   std::vector<double> most_gain;    ///< m/s^2 by car: the fastest it sped up in a step
@@ -125,14 +131,23 @@ struct Crossing {
   std::string overlaps;
 
   explicit Crossing(const std::string& map_text)
-      : state(scenario, map_of(map_text), engine::SimulationOptions{}, diagnostics) {}
+      : state(scenario, map_of(map_text), engine::SimulationOptions{}, diagnostics),
+        placer(placed_by(state)) {}
 
-  // The arms: 1 east, 2 north, 3 west, 4 south of the junction; cars on the lane toward it.
-  uint32_t car_on_arm(int arm, double distance, double speed) {
+  static Placer& placed_by(engine::detail::SimState& state) {
+    auto placer = std::make_unique<Placer>();
+    Placer& out = *placer;
+    state.traffic.generators.push_back(std::move(placer));
+    return out;
+  }
+
+  // The arms: 1 east, 2 north, 3 west, 4 south of the junction; cars on the lane toward it
+  // (NPC vehicles unless `npc` is false).
+  uint32_t car_on_arm(int arm, double distance, double speed, bool npc = true) {
     const double a = (arm - 1) * 0.5 * std::numbers::pi;
     const double along = 12.0 + distance, left = 1.75;
     const uint32_t i = placer.car(state, along * std::cos(a) - left * std::sin(a),
-                                  along * std::sin(a) + left * std::cos(a), speed);
+                                  along * std::sin(a) + left * std::cos(a), speed, npc);
     least_speed.resize(state.world.entities.size(), speed);
     most_gain.resize(state.world.entities.size(), 0.0);
     hardest.resize(state.world.entities.size(), 0.0);
@@ -277,6 +292,32 @@ TEST_CASE("Four generated cars arriving at a four-way junction at once all get t
   // set speed.
   for (const double gain : crossing.most_gain) {
     CHECK(gain <= 3.0 + 1e-6);
+  }
+}
+
+TEST_CASE("A generated car named as --npc names its vehicles is no NPC unless --npc placed it",
+          "[engine][npc][give_way]") {
+  // The four cars of the test above, named npc_vehicle_0 to npc_vehicle_3 either way (a traffic
+  // action whose trafficName is npc_vehicle names its objects so too). Told by the name, the
+  // traffic action's cars were NPCs: let go, they sped up within their acceleration. Not
+  // placed by --npc, they take their set speed at once, as the scenario's traffic does.
+  for (const bool npc : {true, false}) {
+    INFO((npc ? "placed by --npc" : "a traffic action's"));
+    Crossing crossing(intersection_text());
+    for (int arm = 1; arm <= 4; ++arm) {
+      const uint32_t car = crossing.car_on_arm(arm, 30.0, 10.0, npc);
+      CHECK(crossing.state.world.entities[car].info.name ==
+            "npc_vehicle_" + std::to_string(arm - 1));
+    }
+    crossing.run(25.0);
+    CHECK(*std::min_element(crossing.least_speed.begin(), crossing.least_speed.end()) < 1.0);
+    const double most_gain =
+        *std::max_element(crossing.most_gain.begin(), crossing.most_gain.end());
+    if (npc) {
+      CHECK(most_gain <= 3.0 + 1e-6);
+    } else {
+      CHECK(most_gain > 100.0);  // from a stop to about its set speed in one 0.01 s step
+    }
   }
 }
 

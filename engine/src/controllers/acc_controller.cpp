@@ -416,7 +416,8 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
     // Speeding up to keep ahead: within the vehicle's acceleration.
     command = std::min(target, std::max(v, set_speed) + max_acc * motion.dt);
   }
-  if (generated && command > v + max_acc * motion.dt && npc_vehicle(entity)) {
+  if (generated && command > v + max_acc * motion.dt && view.give_way() != nullptr &&
+      view.give_way()->npc_vehicle(index)) {
     // NPCs gain speed within their acceleration, also up to their set speed: let go at a
     // junction or rid of their leader, they do not take the set speed at once (the scenario's
     // vehicles, and its traffic actions' objects, keep the speed their actions give).

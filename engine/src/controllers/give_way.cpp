@@ -38,8 +38,6 @@ uint64_t order_key(const Approach& a) {
 
 }  // namespace
 
-bool npc_vehicle(const Entity& me) { return me.info.name.rfind("npc_vehicle_", 0) == 0; }
-
 // Told to stop, the controller may run past its standstill gap by up to kCreep short of it; by
 // less the slower the vehicle arrives (one crawling up to its stop point stops about where it
 // is), so the margin grows with the stopping distance: a vehicle crawling up to its stop point
@@ -164,9 +162,22 @@ double gap_to_yield_point(const LanePath& path, const YieldPoint& point, double 
   return std::numeric_limits<double>::infinity();
 }
 
+void GiveWay::start(const SimState& state) {
+  // `--npc` places its vehicles before the first step (traffic/npc_traffic.cpp, place_npcs).
+  for (const auto& generator : state.traffic.generators) {
+    if (const auto* npcs = dynamic_cast<const NpcPlacement*>(generator.get())) {
+      npc_vehicles_ = npcs->vehicle_flags();
+      conflicts_ = npcs->conflicts();
+    }
+  }
+  if (!conflicts_) {
+    conflicts_ = std::make_shared<const JunctionConflicts>(JunctionConflicts::build(*state.map));
+  }
+}
+
 void GiveWay::begin_step(const SimState& state) {
   if (!conflicts_) {
-    conflicts_ = std::make_unique<const JunctionConflicts>(JunctionConflicts::build(*state.map));
+    start(state);
   }
   const size_t count = state.world.entities.size();
   if (approaches_.size() < count) {
@@ -208,7 +219,7 @@ void GiveWay::record(uint32_t index, const Entity& me, const LanePath& path, int
   a.count = count;
   a.stopping = v * v / (2.0 * kFirm);
   a.emergency =
-      npc_vehicle(me) ? v * v / (2.0 * std::max(kFirm, me.info.max_deceleration)) : a.stopping;
+      npc_vehicle(index) ? v * v / (2.0 * std::max(kFirm, me.info.max_deceleration)) : a.stopping;
   if (!was) {
     a.arrived = tick;
   }

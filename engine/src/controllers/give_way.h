@@ -60,8 +60,8 @@ struct Approach {
   int64_t arrived = 0;                     ///< tick since which it has been approaching
   double stopping = 0.0;                   ///< m it needs to stop from its speed, braking firmly
   /// m it needs to stop at its own maximum deceleration (kFirm when that is less; `stopping`
-  /// for the objects of traffic actions, npc_vehicle): nearer a zone than this it can no longer
-  /// stop before it, and holds it whatever the order.
+  /// for the scenario's own traffic, see GiveWay::npc_vehicle): nearer a zone than this it can
+  /// no longer stop before it, and holds it whatever the order.
   double emergency = 0.0;
   std::array<Claim, kMaxClaims> claims;
 };
@@ -92,14 +92,42 @@ class ClaimSettler {
   uint32_t stamp_ = 0;
 };
 
+/// What `--npc` leaves for giving way: its generator (traffic/npc_traffic.cpp), kept in the
+/// traffic state with the others, is one. Which entities are the vehicles it placed, flagged as
+/// it placed them and never told by a name (the scenario's own entities and its traffic
+/// actions' objects may be called npc_vehicle_<k> too), and the conflict map it placed them
+/// by, which giving way then shares instead of building it again (32 M instructions on Town04).
+class NpcPlacement {
+ public:
+  virtual ~NpcPlacement() = default;
+  /// By entity index: 1 for a vehicle `--npc` placed (none past the last).
+  const std::vector<uint8_t>& vehicle_flags() const { return vehicle_flags_; }
+  /// The conflicts of the map the vehicles were placed by (null before any were placed).
+  const std::shared_ptr<const JunctionConflicts>& conflicts() const { return conflicts_; }
+
+ protected:
+  std::vector<uint8_t> vehicle_flags_;
+  std::shared_ptr<const JunctionConflicts> conflicts_;
+};
+
 /// The run's state of giving way, kept by the entity mover.
 class GiveWay {
  public:
-  /// Before the moves of a step: the map's conflicts (built on first use), the records sized to
-  /// the entities, and the claims recorded in the last step settled.
+  /// Before the moves of a step: at the first, the map's conflicts (those `--npc` placed its
+  /// vehicles by, else built) and which entities `--npc` placed (NpcPlacement, found among the
+  /// traffic state's generators); the records sized to the entities, and the claims recorded in
+  /// the last step settled.
   void begin_step(const SimState& state);
   bool ready() const { return conflicts_ != nullptr; }
   const JunctionConflicts& conflicts() const { return *conflicts_; }
+
+  /// Whether entity `index` is one of the vehicles `--npc` placed (NpcPlacement). They, not the
+  /// objects of the scenario's traffic actions, brake at their maximum deceleration in an
+  /// emergency and speed up within their acceleration (the acc controller): the scenario's
+  /// traffic keeps its bytes.
+  bool npc_vehicle(uint32_t index) const {
+    return index < npc_vehicles_.size() && npc_vehicles_[index] != 0;
+  }
 
   /// Where entity `index` must stop this step (node kNoLane: nowhere).
   const YieldPoint& yield_of(uint32_t index) const { return yields_[index]; }
@@ -109,12 +137,15 @@ class GiveWay {
   void record(uint32_t index, const Entity& me, const LanePath& path, int64_t tick);
 
  private:
-  std::unique_ptr<const JunctionConflicts> conflicts_;
-  std::vector<Approach> approaches_;  ///< by entity
-  std::vector<uint8_t> approaching_;  ///< by entity: its record holds claims
-  std::vector<YieldPoint> yields_;    ///< by entity
-  std::vector<uint32_t> who_;         ///< scratch: the entities approaching
-  std::vector<uint32_t> stopped_;     ///< the entities told to stop by the last pass
+  void start(const SimState& state);
+
+  std::shared_ptr<const JunctionConflicts> conflicts_;
+  std::vector<uint8_t> npc_vehicles_;  ///< NpcPlacement::vehicle_flags
+  std::vector<Approach> approaches_;   ///< by entity
+  std::vector<uint8_t> approaching_;   ///< by entity: its record holds claims
+  std::vector<YieldPoint> yields_;     ///< by entity
+  std::vector<uint32_t> who_;          ///< scratch: the entities approaching
+  std::vector<uint32_t> stopped_;      ///< the entities told to stop by the last pass
   ClaimSettler settler_;
 };
 
@@ -124,12 +155,6 @@ class GiveWay {
 /// of way of the first to out.right); returns how many. Nothing is written without any.
 uint32_t collect_claims(const JunctionConflicts& conflicts, const LanePath& path, double front,
                         double rear, double speed, Approach& out);
-
-/// Whether `me` is one of the vehicles `--npc` placed (traffic/npc_traffic.cpp names them
-/// npc_vehicle_<k>; the caller knows it is generated). They, not the objects of the scenario's
-/// traffic actions, brake at their maximum deceleration in an emergency and speed up within
-/// their acceleration (the acc controller): the scenario's traffic keeps its bytes.
-bool npc_vehicle(const Entity& me);
 
 /// Whether a vehicle that needs `stopping` metres to stop (at some deceleration) can stop
 /// before a zone `to_enter` metres ahead of its front, as the claims pass counts it.

@@ -107,8 +107,8 @@ bool starts_clear(const SimState& state, Placed& placed, const Box& box, const P
 // the claims pass of giving way will see them at the first step: which sides of each conflict.
 class Crossings {
  public:
-  explicit Crossings(const xodr::Map& map)
-      : conflicts_(JunctionConflicts::build(map)), sides_(conflicts_.conflict_count(), 0) {}
+  explicit Crossings(const JunctionConflicts& conflicts)
+      : conflicts_(conflicts), sides_(conflicts.conflict_count(), 0) {}
 
   // Whether a vehicle with box `box`, held at `lane` at `speed`, could stop braking at kComfort
   // before every crossing ahead whose other side a placed vehicle claims. Two placed where
@@ -136,7 +136,7 @@ class Crossings {
   }
 
  private:
-  JunctionConflicts conflicts_;
+  const JunctionConflicts& conflicts_;  ///< NpcPlacement::conflicts
   std::vector<uint8_t> sides_;  ///< by conflict: bit `side` set when a placed vehicle claims it
   LanePath path_;
   Approach approach_;
@@ -187,7 +187,7 @@ xosc::ScenarioObject prototype(bool walks) {
   return object;
 }
 
-class Npcs final : public GeneratorBase {
+class Npcs final : public GeneratorBase, public NpcPlacement {
  public:
   Npcs(uint64_t seed, Diagnostics& diagnostics)
       : GeneratorBase(std::string("corsa:npc"), "npc", seed),
@@ -217,7 +217,10 @@ class Npcs final : public GeneratorBase {
     if (walks) {
       return place_on(state, others, nullptr, drawn, kWalkerClearance, count, 0);
     }
-    Crossings crossings(*state.map);
+    if (!conflicts_) {
+      conflicts_ = std::make_shared<const JunctionConflicts>(JunctionConflicts::build(*state.map));
+    }
+    Crossings crossings(*conflicts_);
     const uint32_t placed = place_on(state, others, &crossings, drawn, kVehicleClearance, count, 0);
     if (placed == count) {
       return placed;
@@ -273,6 +276,10 @@ class Npcs final : public GeneratorBase {
       const std::string name =
           std::string(walks ? "npc_pedestrian_" : "npc_vehicle_") + std::to_string(placed);
       const uint32_t index = spawn(state, walks ? walkers_ : vehicles_, 0, at, speed, name);
+      if (!walks) {
+        vehicle_flags_.resize(std::max<size_t>(vehicle_flags_.size(), index + 1), 0);
+        vehicle_flags_[index] = 1;
+      }
       others.add(state.world.entities[index], index);
       ++placed;
     }
