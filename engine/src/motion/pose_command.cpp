@@ -1,6 +1,8 @@
 #include "motion/pose_command.h"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "geometry/angle.h"
 #include "lanes/lane_follow.h"
@@ -11,26 +13,48 @@ namespace corsa::engine::detail {
 
 namespace {
 
-// The pose's own part of a move to `target`, written into `state` (the entity's, or a copy of
-// it): speed, accelerations, yaw rate and odometers. Returns the distance moved (m).
-double take_pose(EntityMotion& entity, EntityState& state, const Pose& target, double dt) {
+// What a move from `state` to `target` at the speed command `speed` (m/s) makes of the state
+// besides the pose, over a step of `dt` s.
+struct PoseStep {
+  double moved = 0.0;         ///< m
+  double acceleration = 0.0;  ///< m/s^2
+  double speed = 0.0;         ///< m/s
+  double yaw_rate = 0.0;      ///< rad/s
+  double odometer = 0.0;      ///< m
+};
+
+PoseStep pose_step(const EntityState& state, const Pose& target, double speed, double dt) {
   const double dx = target.x - state.pose.x;
   const double dy = target.y - state.pose.y;
   // hypot(+-0, +-0) is +0: a model at rest (esmini's, whose speed only nears 0) moves by none.
   const double moved = dx == 0.0 && dy == 0.0 ? 0.0 : std::hypot(dx, dy);
-  const double h0 = state.pose.h;
-  const double v0 = state.speed;
-  const double v1 = entity.speed_command;
-  state.pose = target;
-  state.acceleration = (v1 - v0) / dt;
-  state.speed = v1;
-  entity.lateral_acceleration = -state.lateral_speed / dt;
-  state.lateral_speed = 0.0;
-  state.yaw_rate = remainder_full_turn(target.h - h0) / dt;
-  state.odometer += moved;
+  return {moved, (speed - state.speed) / dt, speed,
+          remainder_full_turn(target.h - state.pose.h) / dt, state.odometer + moved};
+}
+
+// The move's writes besides the state (which it reads as it was before the move).
+void take_motion(EntityMotion& entity, const EntityState& before, double moved, double dt) {
+  entity.lateral_acceleration = -before.lateral_speed / dt;
   entity.longitudinal_distance += moved;
   entity.end_of_road = false;
-  return moved;
+}
+
+void write_step(EntityState& state, const Pose& target, const PoseStep& step) {
+  state.pose = target;
+  state.acceleration = step.acceleration;
+  state.speed = step.speed;
+  state.lateral_speed = 0.0;
+  state.yaw_rate = step.yaw_rate;
+  state.odometer = step.odometer;
+}
+
+// The pose's own part of a move to `target`, written into the entity's `state`: speed,
+// accelerations, yaw rate and odometers. Returns the distance moved (m).
+double take_pose(EntityMotion& entity, EntityState& state, const Pose& target, double dt) {
+  const PoseStep step = pose_step(state, target, entity.speed_command, dt);
+  take_motion(entity, state, step.moved, dt);
+  write_step(state, target, step);
+  return step.moved;
 }
 
 // Off its lanes: no lane to follow, and the road coordinates of the map's answer at its point.
@@ -86,19 +110,30 @@ void hold_pose_off_lanes(Entity& entity, const MotionContext& context) {
   // move_to_pose_command to the pose the entity has: it moves by +0 and turns by +0, and the
   // map's answer at its point is none.
   entity.pose_command.reset();
-  // Made on a copy and written only if it differs: a model at rest whose speed no longer changes
-  // (esmini's, once the engine brake rounds the speed to itself) then leaves the state as it is,
-  // and its count of writes stands (the memos and the recorder pass over the entity).
-  EntityState held = entity.state();
-  const Pose pose = held.pose;
-  take_pose(entity, held, pose, context.dt);
-  if (!entity.lane.on_road) {
+  const EntityState& now = entity.state();
+  const PoseStep step = pose_step(now, now.pose, entity.speed_command, context.dt);
+  const bool off = !entity.lane.on_road;
+  // The state is written only where the move changes it (the pose it keeps, bit for bit): a
+  // model at rest whose speed no longer changes (esmini's, once the engine brake rounds the
+  // speed to itself) then leaves the state as it is, and its count of writes stands (the memos
+  // and the recorder pass over the entity). The values are compared, not a copy of the state.
+  const auto bits = [](double v) { return std::bit_cast<uint64_t>(v); };
+  const uint64_t diff = (bits(step.acceleration) ^ bits(now.acceleration)) |
+                        (bits(step.speed) ^ bits(now.speed)) | bits(now.lateral_speed) |
+                        (bits(step.yaw_rate) ^ bits(now.yaw_rate)) |
+                        (bits(step.odometer) ^ bits(now.odometer));
+  const bool changes = diff != 0 || (off && now.road.has_value());
+  take_motion(entity, now, step.moved, context.dt);
+  if (off) {
     // leave_lanes with no answer of the map.
     entity.lateral_command = 0.0;
-    held.road.reset();
   }
-  if (!same_bits(held, entity.state())) {
-    entity.write_state() = held;
+  if (changes) {
+    EntityState& state = entity.write_state();
+    write_step(state, state.pose, step);
+    if (off) {
+      state.road.reset();
+    }
   }
 }
 
