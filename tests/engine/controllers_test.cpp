@@ -35,8 +35,8 @@ TEST_CASE("The acc controller keeps a time gap behind a slower vehicle", "[engin
 TEST_CASE("esmini's ACCController settles 3 m + timeGap x the lead's speed behind it",
           "[engine][controllers][esmini-acc]") {
   // Its law accelerates by 2.5 f - f (v - set) - (1 - f) (v - min(set, lead)), f = (gap -
-  // follow) / follow: it is at rest (0) only at v = lead speed and f = 0, i.e. at the gap
-  // follow = 3 + timeGap x 12 m/s = 15 m bumper to bumper.
+  // follow) / follow, never past the set speed: it is at rest (0) only at v = lead speed and
+  // f = 0, i.e. at the gap follow = 3 + timeGap x 12 m/s = 15 m bumper to bumper.
   FixtureRun run(engine_fixture("controller_esmini_acc.xosc"));
   run.run();
   CHECK(run.sim().collisions().empty());
@@ -45,8 +45,10 @@ TEST_CASE("esmini's ACCController settles 3 m + timeGap x the lead's speed behin
   const auto& follower = run.now("Follower");
   CHECK(follower.speed == Approx(12.0).margin(0.01));
   CHECK(lead.pose.x - follower.pose.x - 4.5 == Approx(3.0 + 1.0 * 12.0).margin(0.05));
-  // Far behind, f = 1 and the set speed held: it first speeds up by 2.5 m/s^2 beyond it.
-  CHECK(run.at(1.0, "Follower").speed > 25.5);
+  // Far behind (the lead in sight from 0.55 s, f = 1 at 1 s) the law asks for 2.5 m/s^2 more,
+  // but the speed stays at the set speed (newer esmini caps it there; ASAM's ALKS scenarios as
+  // esmini's alks_suite.py records them need the cap).
+  CHECK(run.at(1.0, "Follower").speed == Approx(25.0).margin(1e-9));
 
   // esmini's ALKSController is its ACCController under another name: the same run.
   FixtureRun alks(engine_fixture("controller_esmini_acc.xosc"), {},
@@ -55,6 +57,34 @@ TEST_CASE("esmini's ACCController settles 3 m + timeGap x the lead's speed behin
   CHECK(alks.sim().controller_substitute(alks.entity("Follower")).empty());
   CHECK(alks.now("Follower").pose.x == run.now("Follower").pose.x);
   CHECK(alks.now("Follower").speed == run.now("Follower").speed);
+}
+
+TEST_CASE("esmini's ACCController follows a car very close in front in the next lane",
+          "[engine][controllers][esmini-acc]") {
+  // The lead drives in lane -2, 1.5 m toward the follower's lane -1: 2 m between the reference
+  // lines, 0.2 m between the 1.8 m wide boxes. Never in the follower's lane, it is a leader once
+  // its box is within 1 m + its length + half the closing speed in front and between 0.5 m to
+  // the right and 0.2 m to the left across (esmini's check of really close entities in front).
+  FixtureRun near(engine_fixture("controller_esmini_acc.xosc"), {},
+                  {{"LeadLane", "-2"}, {"LeadOffset", "1.5"}});
+  near.run();
+  CHECK(near.sim().collisions().empty());
+  // It keeps behind at about the lead's speed, at the edge of that reach (1 m + 4.5 m: the law's
+  // follow gap of 15 m is beyond it), never passing.
+  CHECK(near.now("Follower").speed == Approx(12.0).margin(0.5));
+  const double behind = near.now("Lead").pose.x - near.now("Follower").pose.x - 4.5;
+  CHECK(behind > 0.0);
+  CHECK(behind < 1.0 + 4.5 + 0.5);
+  // Out of its lane path it is not seen from afar: at 3 s (25 m away) the follower holds 25 m/s.
+  CHECK(near.at(3.0, "Follower").speed == Approx(25.0).margin(1e-9));
+
+  // 0.6 m between the boxes: not close enough across; the follower drives past at its speed.
+  FixtureRun apart(engine_fixture("controller_esmini_acc.xosc"), {},
+                   {{"LeadLane", "-2"}, {"LeadOffset", "1.1"}});
+  apart.run();
+  CHECK(apart.sim().collisions().empty());
+  CHECK(apart.now("Follower").speed == Approx(25.0).margin(1e-9));
+  CHECK(apart.now("Follower").pose.x > apart.now("Lead").pose.x);
 }
 
 TEST_CASE("The acc controller follows a standing vehicle just across a road link",

@@ -28,7 +28,7 @@ trajectory does not name, where X is a ghost (its name ends `_ghost`: Corsa's ou
 ghosts otherwise), is compared with Corsa's row of X at its time in run N-1, never with the row of
 another run, and marked "earlier run"; a row `Foo_-N` of a Foo that is not a ghost is not mapped.
 
-usage: compare.py [--kit DIR] [--corsa BIN] [--extra "ARGS"] [--only NAME] [--rows]
+usage: compare.py [--kit DIR] [--alks DIR] [--corsa BIN] [--extra "ARGS"] [--only NAME] [--rows]
                   [--check-kit] [-v]
 Python 3, standard library only.
 """
@@ -126,7 +126,10 @@ def parse_row_pattern(pattern):
         m = re.fullmatch(r'\(([^|()]*)\|[^()]*\)', field)
         if m:
             field = m.group(1)
-        field = field.replace('.*', '').replace('-?', '')
+        # The last field read may run into the pattern's tail ('16.6[67].*,.*'): a comma ends it.
+        field = field.split(',')[0].replace('.*', '').replace('-?', '')
+        # '16.6[67]': a digit either way; the first stands for both.
+        field = re.sub(r'\[(\d)\d*\]', r'\1', field)
         return float(field)
 
     try:
@@ -137,9 +140,20 @@ def parse_row_pattern(pattern):
         return None
 
 
+def scenario_path(prefix, name, names):
+    """The scenario a test runs, `os.path.join(PREFIX, 'name')` or `os.path.join(PREFIX + 'name')`:
+    a path inside the kit when PREFIX is ESMINI_PATH (esmini's root), else the prefix's value
+    joined to the name, normalised (alks_suite.py's ALKS_PREFIX './OSC-ALKS-scenarios/Scenarios/':
+    `OSC-ALKS-scenarios/Scenarios/name`, a clone of ASAM's repository beside the test)."""
+    if prefix == 'ESMINI_PATH' or prefix not in names:
+        return name
+    return os.path.normpath(names[prefix] + name)
+
+
 def read_smoke_rows(path):
-    """Every csv row assertion of smoke_test.py, in file order, without repeats of the same row of
-    the same scenario (the collision test asserts its rows in two runs of one scenario).
+    """Every csv row assertion of smoke_test.py (or of a test written the same way, such as
+    alks_suite.py), in file order, without repeats of the same row of the same scenario (the
+    collision test asserts its rows in two runs of one scenario).
     Rows under `if platform == "win32":` are left out (esmini's random traffic differs between
     platforms; its Linux rows are the ones kept)."""
     text = open(path, encoding='utf-8').read()
@@ -161,11 +175,11 @@ def read_smoke_rows(path):
             test, scenario, args = m.group(1), None, ''
             latest = -math.inf
             continue
-        m = re.search(r"run_scenario\(\s*os\.path\.join\(\s*ESMINI_PATH\s*,\s*" + STRING +
+        m = re.search(r"run_scenario\(\s*os\.path\.join\(\s*([A-Z_][A-Z0-9_]*)\s*[,+]\s*" + STRING +
                       r"\s*\)(.*)", stripped)
         if m:
-            scenario = literal(m.group(1))
-            args = run_arguments(m.group(2), names)
+            scenario = scenario_path(m.group(1), literal(m.group(2)), names)
+            args = run_arguments(m.group(3), names)
             continue
         if skip_indent is not None or scenario is None:
             continue
@@ -186,6 +200,18 @@ def read_smoke_rows(path):
         latest = max(latest, row.time)
         rows.append(row)
     return rows
+
+
+ALKS_REPOSITORY = 'OSC-ALKS-scenarios'
+
+
+def scenario_file(scenario, kit, alks):
+    """Where a scenario of the rows is: under `alks` (a copy of ASAM's OSC-ALKS-scenarios) for a
+    path inside that repository, in the kit for any other path."""
+    head, _, rest = scenario.partition(os.sep)
+    if head == ALKS_REPOSITORY and rest:
+        return os.path.join(alks, rest)
+    return os.path.join(kit, scenario)
 
 
 def corsa_options(esmini_args):
@@ -321,6 +347,9 @@ def main():
         "'earlier run'.")
     parser.add_argument('--kit', default='/work/notes/esmini',
                         help="esmini's files at esmini's paths (default /work/notes/esmini)")
+    parser.add_argument('--alks', default=os.path.join(REPO, '..', 'shared', 'conformance', 'alks'),
+                        help="a copy of ASAM's OSC-ALKS-scenarios, whose scenarios the kit's "
+                        "test/alks_suite.py runs (default ../shared/conformance/alks)")
     parser.add_argument('--corsa', default=os.path.join(REPO, 'build', 'corsa'),
                         help='the corsa binary (default build/corsa of this checkout)')
     parser.add_argument('--extra', default='',
@@ -341,6 +370,9 @@ def main():
     if not os.path.isfile(smoke):
         sys.exit(f'{smoke}: not found (the kit: tests/esmini/FETCHED.md)')
     rows = read_smoke_rows(smoke)
+    alks_suite = os.path.join(args.kit, 'test', 'alks_suite.py')
+    if os.path.isfile(alks_suite):
+        rows += read_smoke_rows(alks_suite)
     if args.only:
         rows = [r for r in rows if args.only in r.scenario or args.only in r.test]
     if args.rows:
@@ -359,7 +391,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix='corsa-esmini-') as out_dir:
         for index, ((scenario, esmini_args), run_rows) in enumerate(runs.items()):
             name = os.path.splitext(os.path.basename(scenario))[0]
-            path = os.path.join(args.kit, scenario)
+            path = scenario_file(scenario, args.kit, args.alks)
             results = per_scenario.setdefault(scenario, [])
             if not os.path.isfile(path):
                 status[scenario] = 'not in the kit'

@@ -3,6 +3,7 @@
 
 import os
 import sys
+import tempfile
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -91,6 +92,59 @@ class GhostRunNames(unittest.TestCase):
         self.assertEqual((None, False), compare.rows_for(corsa, 1.0, 'Ego_ghost_-0'))
         self.assertEqual((None, False), compare.rows_for(corsa, 1.0, 'Ego_ghost_1'))
         self.assertEqual((None, False), compare.rows_for(corsa, 1.0, 'Other_-1'))
+
+
+ALKS_SUITE = r"""
+ESMINI_PATH = '../'
+COMMON_ARGS = '--headless --fixed_timestep 0.05 --record sim.dat '
+ALKS_PREFIX = './OSC-ALKS-scenarios/Scenarios/'
+
+
+class TestSuite(unittest.TestCase):
+
+    def test_ALKS_Scenario_4_4_2_CutInUnavoidableCollision(self):
+        log = run_scenario(os.path.join(ALKS_PREFIX + 'ALKS_Scenario_4.4_2_CutIn.xosc'), COMMON_ARGS)
+        self.assertTrue(re.search('9.10.* CutInStartCondition == true, rel_dist: 10.00 < 10.00', log))
+        csv = generate_csv()
+        self.assertTrue(re.search('\n8.00.*, 0, Ego, 138.33.*, -8.00.*, 0.00.*, 0.00.*, 0.00.*, 0.00.*, 16.6[67].*,.*', csv))
+        self.assertTrue(re.search('\n9.600, 1, CutInVehicle, 177.185, -10.896, 0.000, 0.189, 0.000, 0.000, 11.111, 0.099, 3.169', csv))
+
+    def test_unit(self):
+        log = run_scenario(os.path.join(ESMINI_PATH, 'EnvironmentSimulator/Unittest/xosc/a.xosc'), COMMON_ARGS)
+        csv = generate_csv()
+        self.assertTrue(re.search('\n1.000, 0, Car, 5.000, -1.535, 0.000, 0.000, 0.000, 0.000, 10.000', csv))
+"""
+
+
+class SuiteSources(unittest.TestCase):
+    """Rows of a test written as esmini's alks_suite.py: scenarios named by a prefix variable."""
+
+    def rows(self):
+        with tempfile.TemporaryDirectory() as folder:
+            path = os.path.join(folder, 'alks_suite.py')
+            with open(path, 'w', encoding='utf-8') as f:
+                f.write(ALKS_SUITE)
+            return compare.read_smoke_rows(path)
+
+    def test_a_scenario_joined_to_a_prefix_variable_is_that_path_inside_the_alks_repository(self):
+        rows = self.rows()
+        self.assertEqual(['OSC-ALKS-scenarios/Scenarios/ALKS_Scenario_4.4_2_CutIn.xosc'] * 2 +
+                         ['EnvironmentSimulator/Unittest/xosc/a.xosc'], [r.scenario for r in rows])
+        self.assertEqual((0.05, []), compare.corsa_options(rows[0].esmini_args))
+
+    def test_a_digit_class_and_the_pattern_s_tail_are_read_as_the_first_digit(self):
+        row = self.rows()[0]
+        self.assertEqual((8.0, 'Ego', 138.33, -8.0, 0.0, 16.66),
+                         (row.time, row.name, row.x, row.y, row.h, row.speed))
+        row = self.rows()[1]
+        self.assertEqual((9.6, 'CutInVehicle', 177.185, -10.896, 0.189, 11.111),
+                         (row.time, row.name, row.x, row.y, row.h, row.speed))
+
+    def test_a_path_in_the_alks_repository_is_found_in_its_copy_any_other_in_the_kit(self):
+        self.assertEqual(os.path.join('/alks', 'Scenarios', 'A.xosc'),
+                         compare.scenario_file('OSC-ALKS-scenarios/Scenarios/A.xosc', '/kit', '/alks'))
+        self.assertEqual(os.path.join('/kit', 'resources', 'xosc', 'A.xosc'),
+                         compare.scenario_file('resources/xosc/A.xosc', '/kit', '/alks'))
 
 
 class TrajectoryRuns(unittest.TestCase):

@@ -298,6 +298,52 @@ Leader find_leader(const SimState& state, uint32_t self, const FollowView& view,
   return leader;
 }
 
+// The gap (m) between two boxes along the axis (ax, ay), measured from `from`: positive when
+// `to` lies beyond it along the axis, negative when behind, 0 when their shadows overlap.
+double gap_along(const OrientedBox& from, const OrientedBox& to, double ax, double ay) {
+  const auto shadow = [ax, ay](const OrientedBox& b) {
+    const double c = b.cx * ax + b.cy * ay;
+    const double r = b.half_length * std::abs(b.cos_h * ax + b.sin_h * ay) +
+                     b.half_width * std::abs(b.cos_h * ay - b.sin_h * ax);
+    return std::array<double, 2>{c - r, c + r};
+  };
+  const auto [min0, max0] = shadow(from);
+  const auto [min1, max1] = shadow(to);
+  if (max0 < min1) return min1 - max0;
+  if (min0 > max1) return max1 - min0;
+  return 0.0;
+}
+
+// esmini's ACCController also takes as its leader an entity very close in front wherever it
+// is (ControllerACC::Step, "really close entities in front"): the gap between the boxes along
+// the follower's heading above 0 and below 1 m + the entity's length + half the closing speed,
+// and across it between 0.5 m to the right and 0.2 m to the left (0 where the boxes overlap
+// across). Such an entity replaces the leader along the lanes, as esmini's does (the last one
+// in entity order); it is what makes esmini's ALKS ego brake for a car cutting in before the
+// car's reference point is in its lane.
+Leader close_in_front(const SimState& state, uint32_t self, const FollowView& view, Leader leader) {
+  const Entity& me = state.world.entities[self];
+  const OrientedBox mine = box_of(me.info.box, me.state().pose);
+  const double v = me.state().speed;
+  const auto& targets = view.targets();
+  for (uint32_t i = 0; i < targets.size(); ++i) {
+    const FollowTarget& other = targets[i];
+    if (i == self || !other.present || i == leader.entity) continue;
+    // Where the view shows it (the step's start; only position and heading count here).
+    const Pose pose{.x = other.x, .y = other.y, .h = other.h};
+    const OrientedBox box = box_of(state.world.entities[i].info.box, pose);
+    const double along = gap_along(mine, box, mine.cos_h, mine.sin_h);
+    if (along <= 0.0 || along >= 1.0 + other.length + 0.5 * std::max(0.0, v - other.speed)) {
+      continue;
+    }
+    const double across = gap_along(mine, box, -mine.sin_h, mine.cos_h);
+    if (across < 0.2 && across > -0.5) {
+      leader = Leader{along, other.speed, i};
+    }
+  }
+  return leader;
+}
+
 // Whether the entity has a lane path to look along.
 bool has_path(const SimState& state, const Entity& me) {
   return me.state().road && me.lane.on_road && state.map != nullptr;
@@ -307,8 +353,9 @@ bool has_path(const SimState& state, const Entity& me) {
 // it approaches the set speed at 0.7 x maxAcceleration per m/s of difference (at most 0.7 x
 // maxAcceleration, at least -maxDeceleration) and stops at it. With one, it keeps 3 m plus
 // timeGap x the faster one's speed: the acceleration 2.5 f - f (v - set) - (1 - f) (v -
-// min(set, lead)), f = min(1, (gap - follow) / follow), within the Performance; a gap under 1 m
-// stops it. It sees leaders no further than max(50 m, 6 m + v^2 / maxDeceleration).
+// min(set, lead)), f = min(1, (gap - follow) / follow), within the Performance, and never past
+// the set speed (newer esmini's cap: a leader far ahead no longer lifts it 2.5 m/s over); a gap
+// under 1 m stops it. It sees leaders no further than max(50 m, 6 m + v^2 / maxDeceleration).
 double esmini_acc_speed(const Entity& entity, const EsminiAcc& acc, double set_speed,
                         const Leader& leader, double dt) {
   constexpr double kMinDist = 3.0;  // m
@@ -326,7 +373,7 @@ double esmini_acc_speed(const Entity& entity, const EsminiAcc& acc, double set_s
     const double dv_min = v - std::min(set_speed, leader.speed);
     const double dv_set = v - set_speed;
     const double a = std::clamp(2.5 * f - f * dv_set - (1.0 - f) * dv_min, -max_dec, max_acc);
-    return std::max(0.0, v + a * dt);
+    return std::min(set_speed, std::max(0.0, v + a * dt));
   }
   const double a =
       std::clamp((set_speed - v) * kSetSpeedGain * max_acc, -max_dec, kSetSpeedGain * max_acc);
@@ -367,7 +414,8 @@ void step_acc(SimState& state, uint32_t index, const MotionContext& motion, cons
   const bool on_path = has_path(state, entity);
   const LanePath path = on_path ? path_ahead(*state.map, entity, ahead) : LanePath{};
   if (const auto& esmini = state.controls[index].esmini_acc) {
-    const Leader leader = on_path ? find_leader(state, index, view, path, false) : Leader{};
+    const Leader leader = close_in_front(
+        state, index, view, on_path ? find_leader(state, index, view, path, false) : Leader{});
     const double command =
         esmini_acc_speed(entity, *esmini, esmini->set_speed.value_or(set_speed), leader, motion.dt);
     entity.speed_command = command;
