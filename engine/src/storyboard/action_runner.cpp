@@ -24,19 +24,9 @@ void start_instance(SimState& state, RunningInstance& running, bool init) {
   running.action->start(context);
 }
 
-void step_instance(SimState& state, RunningInstance& running) {
-  if (running.action->done() || (running.actor && state.frozen(*running.actor))) {
-    // An entity that stands while a ghost has its head start waits with its actions too.
-    return;
-  }
-  if (!running.started) {
-    start_instance(state, running, false);
-    if (running.action->done()) {
-      return;
-    }
-  }
-  ActionContext context{state, running.actor, false};
-  running.action->step(context);
+bool start_waiting(SimState& state, RunningInstance& running) {
+  start_instance(state, running, false);
+  return !running.action->done();
 }
 
 void release_instance(SimState& state, RunningInstance& running) {

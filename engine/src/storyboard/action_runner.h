@@ -9,10 +9,9 @@
 #include <optional>
 
 #include "actions/action.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
-
-struct SimState;
 
 /// One running instance and the entity it acts on.
 struct RunningInstance {
@@ -26,8 +25,21 @@ struct RunningInstance {
 /// Claims the actor's domains (stopping their previous owners) and starts the action; for an
 /// actor that stands during a ghost's head start, that waits until its first step at time >= 0.
 void start_instance(SimState& state, RunningInstance& running, bool init);
-/// Steps the instance unless it is done (starting it first if its start waited).
-void step_instance(SimState& state, RunningInstance& running);
+/// Starts an instance whose start waited (start_instance); false when it is done at once.
+bool start_waiting(SimState& state, RunningInstance& running);
+/// Steps the instance unless it is done (starting it first if its start waited). Inline: every
+/// running action takes it at every step.
+inline void step_instance(SimState& state, RunningInstance& running) {
+  if (running.action->done() || (running.actor && state.frozen(*running.actor))) {
+    // An entity that stands while a ghost has its head start waits with its actions too.
+    return;
+  }
+  if (!running.started && !start_waiting(state, running)) {
+    return;
+  }
+  ActionContext context{state, running.actor, false};
+  running.action->step(context);
+}
 /// Gives the instance's domains back (call when it is done, before destroying it).
 void release_instance(SimState& state, RunningInstance& running);
 /// Stops a running instance (overridden or its element stopped) and releases it.

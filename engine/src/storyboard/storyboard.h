@@ -70,6 +70,9 @@ class Storyboard {
   /// have gone on from there).
   void walk_on(SimState& state, ActNode& act, const WalkStop& stop);
   void update_event(SimState& state, ManeuverNode& maneuver, EventNode& event);
+  /// The start of an event in standby whose trigger fired (or that has none), by its priority.
+  void fire_event(SimState& state, ManeuverNode& maneuver, EventNode& event,
+                  const std::vector<uint32_t>& triggering);
   void start_act(SimState& state, ActNode& act);
   void start_group(SimState& state, GroupNode& group);
   void start_event(SimState& state, EventNode& event, const std::vector<uint32_t>& triggering);
@@ -94,6 +97,9 @@ class Storyboard {
   std::vector<std::unique_ptr<StoryNode>> stories_;
   std::optional<Trigger> stop_trigger_;
   std::vector<ActionNode*> running_;  ///< running action elements, in start order
+  /// The entities that fired an event's trigger (kept: reusing it allocates nothing; no trigger
+  /// is evaluated while an event starts).
+  std::vector<uint32_t> triggering_;
   /// Element states set so far (move, enter_standby; the storyboard alone sets them): while the
   /// count stays, every element is in the state it was in (update_groups reads it so).
   uint64_t state_writes_ = 0;

@@ -104,11 +104,16 @@ void Storyboard::update_event(SimState& state, ManeuverNode& maneuver, EventNode
   if (state.elements[event.element].state != ElementState::kStandby) {
     return;
   }
-  std::vector<uint32_t> triggering;
+  triggering_.clear();
   // §8.4.2: an Event without a start trigger inherits its Act's, which has fired already.
-  if (event.start_trigger && !event.start_trigger->evaluate(state, triggering)) {
+  if (event.start_trigger && !event.start_trigger->evaluate(state, triggering_)) {
     return;
   }
+  fire_event(state, maneuver, event, triggering_);
+}
+
+void Storyboard::fire_event(SimState& state, ManeuverNode& maneuver, EventNode& event,
+                            const std::vector<uint32_t>& triggering) {
   const auto is_running = [&](const EventNode& other) {
     return &other != &event && state.elements[other.element].state == ElementState::kRunning;
   };

@@ -62,7 +62,12 @@ void Storyboard::update_groups(SimState& state, ActNode& act) {
       return;
     }
     ManeuverNode& maneuver = group.maneuvers[stop.maneuver];
-    update_event(state, maneuver, maneuver.events[stop.event]);
+    EventNode& event = maneuver.events[stop.event];
+    // update_event without its check: the stop's event is in standby.
+    triggering_.clear();
+    if (!event.start_trigger || event.start_trigger->evaluate(state, triggering_)) {
+      fire_event(state, maneuver, event, triggering_);
+    }
     if (act.walk_writes != state_writes_) {
       walk_on(state, act, stop);
       return;

@@ -11,7 +11,7 @@ namespace corsa::engine::detail {
 
 CompiledCondition::CompiledCondition(const xosc::Condition& condition, const SimState& state,
                                      bool ghost)
-    : condition_(condition), delay_ticks_(state.time.ticks(condition.delay)) {
+    : edge_(condition.edge), delay_ticks_(state.time.ticks(condition.delay)) {
   if (condition.delay < 0.0) {
     throw InputError(
         condition.source.error("condition '" + condition.name + "' has a negative delay"));
@@ -36,50 +36,24 @@ CompiledCondition::CompiledCondition(const xosc::Condition& condition, const Sim
   }
 }
 
-bool CompiledCondition::raw(const SimState& state, std::vector<uint32_t>& holders) {
-  if (value_) {
-    return value_->holds(state);
-  }
+bool CompiledCondition::entities_hold(const SimState& state) {
+  holders_.clear();
   for (const uint32_t entity : candidates_) {
     // An absent entity (not added yet, deleted) fulfils no condition.
     if (state.world.entities[entity].state().placed && entity_->holds(state, entity)) {
-      holders.push_back(entity);
+      holders_.push_back(entity);
     } else if (all_) {
-      holders.clear();
+      holders_.clear();
       return false;
     }
   }
-  return all_ ? !candidates_.empty() : !holders.empty();
+  return all_ ? !candidates_.empty() : !holders_.empty();
 }
 
-bool CompiledCondition::evaluate(const SimState& state, std::vector<uint32_t>& triggering) {
-  std::vector<uint32_t> holders;
-  const bool now = raw(state, holders);
-  bool edged = false;
-  switch (condition_.edge) {
-    case xosc::ConditionEdge::kNone:
-      edged = now;
-      break;
-    case xosc::ConditionEdge::kRising:
-      edged = evaluated_ && now && !last_;
-      break;
-    case xosc::ConditionEdge::kFalling:
-      edged = evaluated_ && !now && last_;
-      break;
-    case xosc::ConditionEdge::kRisingOrFalling:
-      edged = evaluated_ && now != last_;
-      break;
-  }
-  evaluated_ = true;
-  last_ = now;
-  if (delay_ticks_ == 0) {
-    if (edged) {
-      triggering.insert(triggering.end(), holders.begin(), holders.end());
-    }
-    return edged;
-  }
+bool CompiledCondition::delayed(const SimState& state, bool edged,
+                                std::vector<uint32_t>& triggering) {
   if (edged) {
-    pending_.push_back({state.tick, std::move(holders)});
+    pending_.push_back({state.tick, holders_});
   }
   // The value of tick - delay: values older than that are dropped (they were due while the
   // trigger was not being checked).
@@ -111,24 +85,20 @@ Trigger::Trigger(const xosc::Trigger& trigger, const SimState& state, bool ghost
     }
     groups_.push_back(std::move(conditions));
   }
+  single_ = groups_.size() == 1 && groups_.front().size() == 1;
 }
 
-bool Trigger::evaluate(const SimState& state, std::vector<uint32_t>& triggering) {
+bool Trigger::evaluate_groups(const SimState& state, std::vector<uint32_t>& triggering) {
   bool fires = false;
-  if (groups_.size() == 1 && groups_.front().size() == 1) {
-    // One condition: it appends its entities only when it holds, which is when the group does.
-    fires = groups_.front().front().evaluate(state, triggering);
-  } else {
-    for (auto& group : groups_) {
-      std::vector<uint32_t> group_entities;
-      bool all = !group.empty();
-      for (auto& condition : group) {
-        all = condition.evaluate(state, group_entities) && all;
-      }
-      if (all) {
-        fires = true;
-        triggering.insert(triggering.end(), group_entities.begin(), group_entities.end());
-      }
+  for (auto& group : groups_) {
+    group_entities_.clear();
+    bool all = !group.empty();
+    for (auto& condition : group) {
+      all = condition.evaluate(state, group_entities_) && all;
+    }
+    if (all) {
+      fires = true;
+      triggering.insert(triggering.end(), group_entities_.begin(), group_entities_.end());
     }
   }
   if (triggering.size() > 1) {

@@ -16,10 +16,9 @@
 
 #include "conditions/condition.h"
 #include "corsa/xosc/conditions.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
-
-struct SimState;
 
 class CompiledCondition {
  public:
@@ -29,16 +28,50 @@ class CompiledCondition {
 
   /// The condition's value now. When it holds, the entities that made it hold are appended to
   /// `triggering` (by-entity conditions); when it does not, nothing is.
-  bool evaluate(const SimState& state, std::vector<uint32_t>& triggering);
+  bool evaluate(const SimState& state, std::vector<uint32_t>& triggering) {
+    const bool now = value_                    ? value_->holds(state)
+                     : candidates_.size() == 1 ? one_holds(state)
+                                               : entities_hold(state);
+    bool edged = now;
+    if (edge_ != xosc::ConditionEdge::kNone) {
+      // The first value has no earlier one to make an edge with.
+      edged = evaluated_ && (edge_ == xosc::ConditionEdge::kRising    ? now && !last_
+                             : edge_ == xosc::ConditionEdge::kFalling ? !now && last_
+                                                                      : now != last_);
+    }
+    evaluated_ = true;
+    last_ = now;
+    if (delay_ticks_ != 0) {
+      return delayed(state, edged, triggering);
+    }
+    if (edged) {
+      triggering.insert(triggering.end(), holders_.begin(), holders_.end());
+    }
+    return edged;
+  }
 
   /// Forgets the values seen so far (the edge's previous value, values waiting for their delay):
   /// the condition starts over as if never evaluated.
   void forget_history();
 
  private:
-  bool raw(const SimState& state, std::vector<uint32_t>& holders);
+  /// The entity condition's value now; holders_ receives the entities that make it hold.
+  bool entities_hold(const SimState& state);
+  /// The same for one triggering entity, whichever the rule (any and all agree on one).
+  bool one_holds(const SimState& state) {
+    holders_.clear();
+    const uint32_t entity = candidates_.front();
+    // An absent entity (not added yet, deleted) fulfils no condition.
+    if (!state.world.entities[entity].state().placed || !entity_->holds(state, entity)) {
+      return false;
+    }
+    holders_.push_back(entity);
+    return true;
+  }
+  /// The edge-qualified value `edged` of now, seen `delay_ticks_` later: the value of tick - delay.
+  bool delayed(const SimState& state, bool edged, std::vector<uint32_t>& triggering);
 
-  const xosc::Condition& condition_;
+  xosc::ConditionEdge edge_ = xosc::ConditionEdge::kNone;
   std::unique_ptr<EntityCondition> entity_;
   std::unique_ptr<ValueCondition> value_;
   std::vector<uint32_t> candidates_;  ///< triggering entities (selections expanded)
@@ -46,6 +79,9 @@ class CompiledCondition {
   int64_t delay_ticks_ = 0;
   bool evaluated_ = false;
   bool last_ = false;
+  /// The entities that made the entity condition hold at its last evaluation (kept: reusing the
+  /// vector allocates nothing at each step; empty for value conditions).
+  std::vector<uint32_t> holders_;
   struct Pending {
     int64_t tick = 0;
     std::vector<uint32_t> entities;
@@ -59,14 +95,25 @@ class Trigger {
 
   /// Whether the trigger fires now; `triggering` receives the triggering entities of the groups
   /// that hold (sorted, unique).
-  bool evaluate(const SimState& state, std::vector<uint32_t>& triggering);
+  bool evaluate(const SimState& state, std::vector<uint32_t>& triggering) {
+    if (single_ && triggering.empty()) {
+      // One condition: it appends its entities (sorted, unique: a subset of its candidates)
+      // only when it holds, which is when the trigger fires.
+      return groups_.front().front().evaluate(state, triggering);
+    }
+    return evaluate_groups(state, triggering);
+  }
 
   /// Starts over for a new execution of the element it starts: values seen by its conditions in
   /// an earlier execution (edges, values waiting for their delay) no longer count.
   void forget_history();
 
  private:
+  bool evaluate_groups(const SimState& state, std::vector<uint32_t>& triggering);
+
   std::vector<std::vector<CompiledCondition>> groups_;
+  bool single_ = false;                   ///< one group of one condition
+  std::vector<uint32_t> group_entities_;  ///< evaluate_groups' scratch (kept: no allocation)
 };
 
 }  // namespace corsa::engine::detail
