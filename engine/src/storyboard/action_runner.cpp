@@ -24,7 +24,7 @@ void start_instance(SimState& state, RunningInstance& running, bool init) {
   running.action->start(context);
 }
 
-void step_instance(SimState& state, RunningInstance& running) {
+[[gnu::hot]] void step_instance(SimState& state, RunningInstance& running) {
   if (running.action->done() || (running.actor && state.frozen(*running.actor))) {
     // An entity that stands while a ghost has its head start waits with its actions too.
     return;

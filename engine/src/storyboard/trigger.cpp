@@ -36,7 +36,7 @@ CompiledCondition::CompiledCondition(const xosc::Condition& condition, const Sim
   }
 }
 
-bool CompiledCondition::raw(const SimState& state, std::vector<uint32_t>& holders) {
+[[gnu::hot]] bool CompiledCondition::raw(const SimState& state, std::vector<uint32_t>& holders) {
   if (value_) {
     return value_->holds(state);
   }
@@ -52,7 +52,8 @@ bool CompiledCondition::raw(const SimState& state, std::vector<uint32_t>& holder
   return all_ ? !candidates_.empty() : !holders.empty();
 }
 
-bool CompiledCondition::evaluate(const SimState& state, std::vector<uint32_t>& triggering) {
+[[gnu::hot]] bool CompiledCondition::evaluate(const SimState& state,
+                                              std::vector<uint32_t>& triggering) {
   std::vector<uint32_t> holders;
   const bool now = raw(state, holders);
   bool edged = false;
@@ -113,7 +114,7 @@ Trigger::Trigger(const xosc::Trigger& trigger, const SimState& state, bool ghost
   }
 }
 
-bool Trigger::evaluate(const SimState& state, std::vector<uint32_t>& triggering) {
+[[gnu::hot]] bool Trigger::evaluate(const SimState& state, std::vector<uint32_t>& triggering) {
   bool fires = false;
   if (groups_.size() == 1 && groups_.front().size() == 1) {
     // One condition: it appends its entities only when it holds, which is when the group does.
