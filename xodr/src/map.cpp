@@ -20,7 +20,8 @@ double section_lane_offset(const Map& map, size_t road, size_t section, double s
   return MapAccess::section_lane_offset(map, road, section, s);
 }
 
-double MapAccess::section_lane_offset(const Map& map, size_t road, size_t section, double s) {
+[[gnu::hot]] double MapAccess::section_lane_offset(const Map& map, size_t road, size_t section,
+                                                   double s) {
   const PoseTable& poses = map.impl_->poses;
   const PoseRoad& r = poses.road(road);
   if (r.zero_offsets && std::abs(s) <= PoseTable::kZeroBound) {
@@ -99,7 +100,7 @@ double clamp_s(const Road& road, double s) {
 
 }  // namespace
 
-RefPoint Map::reference(size_t road_index, double s) const {
+[[gnu::hot]] RefPoint Map::reference(size_t road_index, double s) const {
   const detail::PoseTable& poses = impl_->poses;
   const detail::PoseRoad& r = poses.road(road_index);
   s = poses.clamp_s(r, s);
@@ -179,7 +180,7 @@ double Map::shape_height(size_t road_index, double s, double t) const {
   return h0 + w * (h1 - h0);
 }
 
-WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const {
+[[gnu::hot]] WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const {
   const detail::PoseTable& poses = impl_->poses;
   const detail::PoseRoad& r = poses.road(road_index);
   const double cs = poses.clamp_s(r, s);

@@ -57,14 +57,14 @@ void PoseTable::build(const std::vector<Road>& roads) {
   }
 }
 
-const PoseGeometry* PoseTable::geometry_before(const PoseRoad& road, double s) const {
+[[gnu::hot]] const PoseGeometry* PoseTable::geometry_before(const PoseRoad& road, double s) const {
   const double* starts = keys_.data() + road.key_first;
   const double* it = std::upper_bound(starts, starts + road.geometry_count, s);
   return it == starts ? nullptr
                       : &geometries_[road.geometry_first + static_cast<size_t>(it - starts) - 1];
 }
 
-const PoseGeometry& PoseTable::geometry_at(const PoseRoad& road, double s) const {
+[[gnu::hot]] const PoseGeometry& PoseTable::geometry_at(const PoseRoad& road, double s) const {
   const double* starts = keys_.data() + road.key_first;
   const double* it = std::upper_bound(starts, starts + road.geometry_count, s);
   return geometries_[road.geometry_first +

@@ -189,8 +189,8 @@ void SpanTable::pack_width_rows(const LaneSection& section, SpanSection& packed)
   packed.break_count = static_cast<uint32_t>(breaks_.size()) - packed.break_first;
 }
 
-bool SpanTable::span(size_t road, size_t section, double s, double offset, int lane_id,
-                     LaneSpan& out) const {
+[[gnu::hot]] bool SpanTable::span(size_t road, size_t section, double s, double offset, int lane_id,
+                                  LaneSpan& out) const {
   const SpanSection& packed = sections_[road_first_[road] + section];
   const SpanLane* lanes = lanes_.data() + packed.first;
   const double ds = s - packed.s;

@@ -3,7 +3,7 @@
 
 namespace corsa::engine::detail {
 
-Entity& ActionContext::entity() const { return state.world.entities[*actor]; }
+[[gnu::hot]] Entity& ActionContext::entity() const { return state.world.entities[*actor]; }
 
 void stop_domain_owners(Entity& entity, uint8_t domains, const ActionInstance* keep) {
   for (int slot = 0; slot < kDomainSlots; ++slot) {

@@ -67,7 +67,7 @@ class LongitudinalDistanceInstance final : public ActionInstance {
     }
   }
 
-  void step(ActionContext& context) override {
+  [[gnu::hot]] void step(ActionContext& context) override {
     if (!action_.constraints) {
       place_at_gap(context);
       settled_ = !action_.continuous;

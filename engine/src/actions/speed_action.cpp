@@ -77,7 +77,7 @@ class SpeedInstance final : public ActionInstance {
     }
   }
 
-  void step(ActionContext& context) override {
+  [[gnu::hot]] void step(ActionContext& context) override {
     const double target = target_speed(context);
     if (reached_) {
       // Continuous: keep tracking. A step's jump stands in the step it is made in, also under

@@ -56,7 +56,7 @@ class ReachPositionCheck final : public EntityCondition {
                            has_orientation_element(c.position)),
         fixed_(fixed_on_map(c.position)) {}
 
-  bool holds(const SimState& state, uint32_t entity) override {
+  [[gnu::hot]] bool holds(const SimState& state, uint32_t entity) override {
     // A place on the map is resolved once; it was resolved every step, for every entity.
     if (fixed_ && !target_) target_ = resolve_position(c_.position, state, entity);
     const ResolvedPosition target =

@@ -15,7 +15,7 @@ class ElementStateCheck final : public ValueCondition {
                     std::optional<TransitionKind> transition)
       : element_(element), state_(state), transition_(transition) {}
 
-  bool holds(const SimState& state) override {
+  [[gnu::hot]] bool holds(const SimState& state) override {
     const ElementStatus& status = state.elements[element_];
     if (state_) {
       return status.state == *state_;

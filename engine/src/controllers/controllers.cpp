@@ -275,7 +275,7 @@ void assign_initial_controllers(SimState& state) {
   }
 }
 
-ControlState& control_of(SimState& state, uint32_t index) {
+[[gnu::hot]] ControlState& control_of(SimState& state, uint32_t index) {
   if (state.controls.size() < state.world.entities.size()) {
     state.controls.resize(state.world.entities.size());
   }
@@ -490,9 +490,9 @@ void prefetch_mover_records(const SimState& state, uint32_t i) {
 }
 
 // Moves the entities order[begin, end) in that order; ahead[k] is entity order[k]'s.
-void move_range(SimState& state, const MotionContext& motion, const FollowView& view,
-                std::vector<LanesAhead>& ahead, const std::vector<uint32_t>& order, size_t begin,
-                size_t end) {
+[[gnu::hot]] void move_range(SimState& state, const MotionContext& motion, const FollowView& view,
+                             std::vector<LanesAhead>& ahead, const std::vector<uint32_t>& order,
+                             size_t begin, size_t end) {
   if (order.size() < kArrangedEntities) {
     for (size_t k = begin; k < end; ++k) {
       move_one(state, order[k], motion, view, ahead[k]);
@@ -533,12 +533,46 @@ struct EntityMover::Impl {
   std::vector<uint32_t> order;
   uint32_t steps_since_arranged = 0;
 
-  void arrange(const SimState& state) {
+  // The worker pool's set-up and the moves shared out among the workers are out of line: with
+  // one worker the step runs neither, and its code stays small.
+  [[gnu::noinline]] void prepare_pool() {
+    if (!pool) {
+      pool = std::make_unique<WorkerPool>(threads);
+    }
+    pool->prepare();
+  }
+
+  // Each entity's move depends only on itself and the picture taken before, so how the
+  // entities are shared out among threads does not change any result. The movers also make
+  // the moved entities' contact boxes (each its own entity's slot), which the contacts'
+  // update, serial on this thread, then takes where the entity has not moved again since.
+  [[gnu::noinline]] void move_shared(SimState& state, const MotionContext& motion) {
+    state.contacts.premade.resize(state.world.entities.size());
+    state.contacts.premade_fresh = true;
+    pool->run(order.size(), kChunkEntities, [&](size_t begin, size_t end, unsigned worker) {
+      MotionContext worker_context = motion;
+      worker_context.scratch = &scratch[worker];
+      worker_context.nearby = &nearby[worker];
+      worker_context.curvatures = &curvatures[worker];
+      move_range(state, worker_context, view, ahead, order, begin, end);
+      for (size_t k = begin; k < end; ++k) {
+        premake_contact_box(state, order[k]);
+      }
+    });
+  }
+
+  [[gnu::hot]] void arrange(const SimState& state) {
     const auto count = static_cast<uint32_t>(state.world.entities.size());
     if (order.size() == count &&
         (count < kArrangedEntities || ++steps_since_arranged < kArrangeSteps)) {
       return;
     }
+    rearrange(state, count);
+  }
+
+  // The sorting itself, out of line: most steps keep the order, and the per-step code stays
+  // small (it shares the instruction cache with the rest of the step).
+  [[gnu::noinline]] void rearrange(const SimState& state, uint32_t count) {
     steps_since_arranged = 0;
     // Each entity's lanes ahead go with it to its new place in the order (entities added
     // since the last arrangement start without any).
@@ -637,7 +671,7 @@ MoverScan scan_for_move(SimState& state, uint32_t count) {
 
 }  // namespace
 
-void EntityMover::move(SimState& state, const MotionContext& motion) {
+[[gnu::hot]] void EntityMover::move(SimState& state, const MotionContext& motion) {
   Impl& impl = *impl_;
   const auto count = static_cast<uint32_t>(state.world.entities.size());
   if (count == 0) {
@@ -655,12 +689,9 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   const bool generated = !state.traffic.lifetimes.empty();
   const unsigned workers = count >= kParallelEntities ? impl.threads : 1;
   if (workers > 1) {
-    if (!impl.pool) {
-      impl.pool = std::make_unique<WorkerPool>(impl.threads);
-    }
     // The worker wakes up while this thread takes the picture (below) and joins the moves
     // when they start.
-    impl.pool->prepare();
+    impl.prepare_pool();
   }
   if (scan.following || generated) {
     impl.view.build(state, generated, workers > 1 ? impl.pool.get() : nullptr);
@@ -684,22 +715,7 @@ void EntityMover::move(SimState& state, const MotionContext& motion) {
   if (workers == 1) {
     move_range(state, context, impl.view, impl.ahead, order, 0, order.size());
   } else {
-    // Each entity's move depends only on itself and the picture taken above, so how the
-    // entities are shared out among threads does not change any result. The movers also make
-    // the moved entities' contact boxes (each its own entity's slot), which the contacts'
-    // update, serial on this thread, then takes where the entity has not moved again since.
-    state.contacts.premade.resize(count);
-    state.contacts.premade_fresh = true;
-    impl.pool->run(order.size(), kChunkEntities, [&](size_t begin, size_t end, unsigned worker) {
-      MotionContext worker_context = motion;
-      worker_context.scratch = &impl.scratch[worker];
-      worker_context.nearby = &impl.nearby[worker];
-      worker_context.curvatures = &impl.curvatures[worker];
-      move_range(state, worker_context, impl.view, impl.ahead, order, begin, end);
-      for (size_t k = begin; k < end; ++k) {
-        premake_contact_box(state, order[k]);
-      }
-    });
+    impl.move_shared(state, motion);
   }
   // esmini's NaturalDriver entities move after all others, one after the other.
   if (scan.natural) {

@@ -41,8 +41,8 @@ constexpr double kFollowerLimitFactor = 1.2;
 
 }  // namespace
 
-void single_track_step(double& x, double& y, double& h, double speed, double wheel, double length,
-                       double dt, CourseTrig* trig) {
+[[gnu::hot]] void single_track_step(double& x, double& y, double& h, double speed, double wheel,
+                                    double length, double dt, CourseTrig* trig) {
   // A straight wheel (exactly 0, as a wheel returning to straight ends up) slips by nothing:
   // kEsminiPivotFraction * wheel is the same signed 0 that atan(k tan(wheel)) gives, and its
   // sine is that 0 again.
@@ -73,8 +73,8 @@ void single_track_step(double& x, double& y, double& h, double speed, double whe
   y += dt * speed * sin_course;
 }
 
-void place_entity_at_model(double x, double y, double h, double speed, Entity& entity,
-                           const MotionContext& motion) {
+[[gnu::hot]] void place_entity_at_model(double x, double y, double h, double speed, Entity& entity,
+                                        const MotionContext& motion) {
   // A model that did not move its entity off the road (esmini's at rest, whose speed only nears
   // 0) keeps the pose, lane and road it has: only the speed and what follows from it change.
   const double heading = remainder_full_turn(h);
@@ -105,7 +105,7 @@ void integrate(EsminiVehicle& car, double dt) {
 
 // Where `entity` is, esmini's speed limit (m/s): the road type's speed at its s, else by the
 // number of lanes for driving on its side of the road.
-double speed_limit_at(const SimState& state, const Entity& entity) {
+[[gnu::hot]] double speed_limit_at(const SimState& state, const Entity& entity) {
   if (state.map == nullptr || !entity.state().road) {
     return kLimitOffRoad;
   }
@@ -246,7 +246,7 @@ void drive_analog(EsminiVehicle& car, double dt, double throttle, double steerin
   integrate(car, dt);
 }
 
-void roll_neutral(EsminiVehicle& car, double dt) {
+[[gnu::hot]] void roll_neutral(EsminiVehicle& car, double dt) {
   if (!car.handbrake) {
     car.speed = std::clamp(car.speed * (1.0 - kEngineBrake), -car.max_speed, car.max_speed);
   }
@@ -291,8 +291,8 @@ bool esmini_driver_reads_view(const EsminiDriver* driver) {
   return driver != nullptr && driver->kind == EsminiDriverKind::kOffroadFollower;
 }
 
-void step_esmini_driver(SimState& state, uint32_t index, const MotionContext& motion,
-                        const FollowView& view) {
+[[gnu::hot]] void step_esmini_driver(SimState& state, uint32_t index, const MotionContext& motion,
+                                     const FollowView& view) {
   ControlState& control = state.controls[index];
   if (!control.esmini_driver) {
     DefaultController{}.step(state.world.entities[index], motion);

@@ -7,7 +7,7 @@
 
 namespace corsa::engine::detail {
 
-void begin_commands(SimState& state) {
+[[gnu::hot]] void begin_commands(SimState& state) {
   const auto count = static_cast<uint32_t>(state.world.entities.size());
   if (count == 0) {
     return;
@@ -59,7 +59,7 @@ void step_commanded(SimState& state, uint32_t index, const DefaultController& id
   }
 }
 
-void end_commands(SimState& state) {
+[[gnu::hot]] void end_commands(SimState& state) {
   for (const uint32_t i : state.commanded) {
     if (i >= state.controls.size()) {
       continue;

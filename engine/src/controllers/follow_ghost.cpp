@@ -279,7 +279,7 @@ bool ghost_copies_init(const xosc::PrivateAction& action) {
          !std::holds_alternative<xosc::OverrideControllerValueAction>(action);
 }
 
-void record_trail(SimState& state) {
+[[gnu::hot]] void record_trail(SimState& state) {
   if (!state.ghost) return;
   GhostLink& link = *state.ghost;
   const Entity& ghost = state.world.entities[link.ghost];

@@ -5,7 +5,7 @@
 
 namespace corsa::engine::detail {
 
-double wrap_angle(double angle) {
+[[gnu::hot]] double wrap_angle(double angle) {
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
   angle = std::fmod(angle, kTwoPi);
   if (angle <= -std::numbers::pi) {

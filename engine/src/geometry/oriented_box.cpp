@@ -10,7 +10,7 @@
 
 namespace corsa::engine {
 
-OrientedBox box_of(const Box& box, const Pose& pose) {
+[[gnu::hot]] OrientedBox box_of(const Box& box, const Pose& pose) {
   OrientedBox out;
   out.cos_h = std::cos(pose.h);
   out.sin_h = std::sin(pose.h);
@@ -23,7 +23,7 @@ OrientedBox box_of(const Box& box, const Pose& pose) {
   return out;
 }
 
-Interval project(const OrientedBox& box, double ux, double uy) {
+[[gnu::hot]] Interval project(const OrientedBox& box, double ux, double uy) {
   const double center = box.cx * ux + box.cy * uy;
   const double reach = std::abs(box.half_length * (box.cos_h * ux + box.sin_h * uy)) +
                        std::abs(box.half_width * (-box.sin_h * ux + box.cos_h * uy));

@@ -103,8 +103,8 @@ size_t choose_straightest(const xodr::Map& map, const LaneFollow& lane,
   return best;
 }
 
-AdvanceResult advance_along_lanes(const xodr::Map& map, LaneFollow& follow, double distance,
-                                  const LaneChooser* chooser) {
+[[gnu::hot]] AdvanceResult advance_along_lanes(const xodr::Map& map, LaneFollow& follow,
+                                               double distance, const LaneChooser* chooser) {
   AdvanceResult result;
   if (distance < 0.0) {
     // Backwards: drive the other way round, then turn back.
@@ -226,8 +226,8 @@ LanePose lane_pose(const xodr::Map& map, const LaneFollow& follow,
   return out;
 }
 
-LanePose lane_pose_of(const xodr::Map& map, const LaneFollow& follow,
-                      std::vector<xodr::LaneSpan>& scratch) {
+[[gnu::hot]] LanePose lane_pose_of(const xodr::Map& map, const LaneFollow& follow,
+                                   std::vector<xodr::LaneSpan>& scratch) {
   const auto span = map.lane_span_in_section(follow.road, follow.section, follow.s, follow.lane);
   LanePose out;
   out.t = (span ? span->t_center() : 0.0) + follow.dir * follow.lateral;

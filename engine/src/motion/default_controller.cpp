@@ -28,8 +28,9 @@ void update_pose_from_lane(Entity& entity, const xodr::Map& map,
   update_pose_from_lane(entity, entity.lane_pose_memo, map, scratch);
 }
 
-void update_pose_from_lane(EntityMotion& entity, LanePoseMemo& memo, const xodr::Map& map,
-                           std::vector<xodr::LaneSpan>& scratch) {
+[[gnu::hot]] void update_pose_from_lane(EntityMotion& entity, LanePoseMemo& memo,
+                                        const xodr::Map& map,
+                                        std::vector<xodr::LaneSpan>& scratch) {
   // The same lane position gives the same pose (lane_pose is a function of it and the map);
   // the memo counts only while nothing else has moved the entity since.
   if (memo.valid && same_lane_position(memo.from, entity.lane) &&
@@ -63,8 +64,8 @@ void update_road_from_pose(EntityMotion& entity, PointLocateMemo& memo, const xo
                            locate_near(memo, *map, entity.state().pose.x, entity.state().pose.y));
 }
 
-void update_road_from_located(EntityMotion& entity,
-                              const std::optional<xodr::LanePosition>& located) {
+[[gnu::hot]] void update_road_from_located(EntityMotion& entity,
+                                           const std::optional<xodr::LanePosition>& located) {
   if (located && located->distance == 0.0) {
     entity.write_state().road =
         RoadCoordinates{located->road, located->section, located->lane, located->s, located->t};
@@ -78,8 +79,9 @@ const std::optional<xodr::LanePosition>& locate_near(Entity& entity, const xodr:
   return locate_near(entity.point_memo, map, x, y);
 }
 
-const std::optional<xodr::LanePosition>& locate_near(PointLocateMemo& memo, const xodr::Map& map,
-                                                     double x, double y) {
+[[gnu::hot]] const std::optional<xodr::LanePosition>& locate_near(PointLocateMemo& memo,
+                                                                  const xodr::Map& map, double x,
+                                                                  double y) {
   if (clear_of_lanes_at(memo, x, y)) {
     return memo.located;  // still clear of every lane (a NaN point fails the comparisons)
   }
@@ -188,7 +190,7 @@ bool holds_still_step(const Entity& entity) {
 
 }  // namespace
 
-void DefaultController::step(Entity& entity, const MotionContext& context) const {
+[[gnu::hot]] void DefaultController::step(Entity& entity, const MotionContext& context) const {
   if (entity.pose_command) {
     move_to_pose_command(entity, context);
     return;
@@ -211,8 +213,8 @@ void DefaultController::step(Entity& entity, const MotionContext& context) const
   entity.still_step_changes = entity.state_changes();
 }
 
-void DefaultController::step_entity(EntityMotion& entity, MapMemos memos,
-                                    const MotionContext& context, bool& stood) const {
+[[gnu::hot]] void DefaultController::step_entity(EntityMotion& entity, MapMemos memos,
+                                                 const MotionContext& context, bool& stood) const {
   EntityState& state = entity.write_state();
   const double dt = context.dt;
   const double v0 = state.speed;

@@ -66,7 +66,7 @@ void leave_lanes(Entity& entity, const std::optional<xodr::LanePosition>& locate
 
 }  // namespace
 
-void move_to_pose_command(Entity& entity, const MotionContext& context) {
+[[gnu::hot]] void move_to_pose_command(Entity& entity, const MotionContext& context) {
   EntityState& state = entity.write_state();
   const Pose target = *entity.pose_command;
   entity.pose_command.reset();
@@ -97,8 +97,8 @@ void move_to_pose_command(Entity& entity, const MotionContext& context) {
   }
 }
 
-bool keeps_pose_off_lanes(const Entity& entity, double x, double y, double h,
-                          const MotionContext& context) {
+[[gnu::hot]] bool keeps_pose_off_lanes(const Entity& entity, double x, double y, double h,
+                                       const MotionContext& context) {
   const EntityState& state = entity.state();
   // Compared by value too: a NaN coordinate takes the move (its distance is no 0, its turn no 0).
   return context.map != nullptr && x == state.pose.x && y == state.pose.y && h == state.pose.h &&
@@ -106,7 +106,7 @@ bool keeps_pose_off_lanes(const Entity& entity, double x, double y, double h,
          clear_of_lanes_at(entity.point_memo, x, y);
 }
 
-void hold_pose_off_lanes(Entity& entity, const MotionContext& context) {
+[[gnu::hot]] void hold_pose_off_lanes(Entity& entity, const MotionContext& context) {
   // move_to_pose_command to the pose the entity has: it moves by +0 and turns by +0, and the
   // map's answer at its point is none.
   entity.pose_command.reset();

@@ -70,7 +70,7 @@ void mark_refpoint_moved(SimState& state, const Entity& entity) {
   if (RefpointTrail* trail = refpoint_trail_of(state, entity)) trail->jumped = false;
 }
 
-void trail_refpoints(SimState& state, double dt) {
+[[gnu::hot]] void trail_refpoints(SimState& state, double dt) {
   for (RefpointTrail& trail : state.refpoint_trailing) {
     Entity& entity = state.world.entities[trail.entity];
     const Pose& pose = entity.state().pose;

@@ -206,7 +206,7 @@ void follow_route(SimState& state, Entity& entity, const RoutePlan& plan, double
 
 }  // namespace
 
-void follow_route_lanes(SimState& state, const MotionContext& motion) {
+[[gnu::hot]] void follow_route_lanes(SimState& state, const MotionContext& motion) {
   if (state.map == nullptr) {
     return;
   }

@@ -112,7 +112,7 @@ void disconnect_trailer(SimState& state, uint32_t tower) {
   entity.towing.reset();
 }
 
-void move_trailers(SimState& state, double dt) {
+[[gnu::hot]] void move_trailers(SimState& state, double dt) {
   if (!state.trailers_connected) {
     return;  // no entity has been towed yet
   }

@@ -108,7 +108,7 @@ void EntityDistanceInputs::take(const Entity& from, const Entity& to) {
   taken_ = true;
 }
 
-bool EntityDistanceInputs::same_as(const Entity& from, const Entity& to) const {
+[[gnu::hot]] bool EntityDistanceInputs::same_as(const Entity& from, const Entity& to) const {
   // The boxes (12 doubles) in one test.
   if (!taken_ || from_on_road_ != from.lane.on_road || from_dir_ != from.lane.dir ||
       (double_bits_diff<0, 6>(from_.box, from.info.box) |
@@ -124,8 +124,8 @@ bool EntityDistanceInputs::same_as(const Entity& from, const Entity& to) const {
          same_bits(from_.road, from.state().road) && same_bits(to_.road, to.state().road);
 }
 
-double entity_distance(const SimState& state, const Entity& from, const Entity& to,
-                       const DistanceSpec& spec) {
+[[gnu::hot]] double entity_distance(const SimState& state, const Entity& from, const Entity& to,
+                                    const DistanceSpec& spec) {
   Target target;
   target.x = to.state().pose.x;
   target.y = to.state().pose.y;

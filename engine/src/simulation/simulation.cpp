@@ -87,7 +87,7 @@ void Simulation::Impl::announce(const Simulation& owner) {
   }
 }
 
-void Simulation::Impl::advance() {
+[[gnu::hot]] void Simulation::Impl::advance() {
   init.step_actions(state);
   storyboard->step_actions(state);
   detail::MotionContext motion{state.map, state.time.dt(), &scratch};
@@ -122,7 +122,7 @@ Simulation::Simulation(Simulation&&) noexcept = default;
 Simulation& Simulation::operator=(Simulation&&) noexcept = default;
 Simulation::~Simulation() = default;
 
-bool Simulation::step() {
+[[gnu::hot]] bool Simulation::step() {
   Impl& impl = *impl_;
   detail::SimState& state = impl.state;
   state.simulation = this;

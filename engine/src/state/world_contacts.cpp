@@ -395,6 +395,31 @@ void release_parted_trailers(std::vector<Entity>& entities,
   }
 }
 
+// Every boxed entity's box made again and swept: when entities appeared or left, or the update
+// of the moved boxes does not apply. Out of line, so that the contacts' per-step code (mostly
+// the moved boxes' update) stays small.
+[[gnu::noinline]] void sweep_all_contacts(SimState& state, ContactSweep& sweep) {
+  auto& entities = state.world.entities;
+  const auto& previous = take_previous_pairs(state, sweep);
+  // Boxes whose extents overlap along the sweep's axis (sweep and prune) are tested exactly.
+  make_all_boxes(state, sweep);
+  std::vector<Item> items;
+  const ContactSpread spread = gather_items(entities, sweep, items);
+  auto& now = state.contacts.pairs;
+  ContactRecorder record(entities, now);
+  if (spread.finite && spread.along_y()) {
+    sweep_along_y(items, sweep, entities.size(), spread, state.contacts.boxes, record);
+  } else {
+    sweep_along_x(items, sweep, entities.size(), spread, state.contacts.boxes, record);
+  }
+  release_parted_trailers(entities, record.touching());
+  // Entity order, independent of the sweep order; new contacts are recorded in that order.
+  std::sort(now.begin(), now.end());
+  record_new_contacts(state, now, previous);
+  sweep.complete = spread.finite;
+  state.contacts.premade_fresh = false;
+}
+
 }  // namespace
 
 }  // namespace corsa::engine::detail::sweep_and_prune
@@ -415,7 +440,7 @@ void premake_contact_box(SimState& state, uint32_t i) {
   made.y = project(made.box, 0.0, 1.0);
 }
 
-void update_contacts(SimState& state, ContactSweep& sweep) {
+[[gnu::hot]] void update_contacts(SimState& state, ContactSweep& sweep) {
   using namespace sweep_and_prune;
   // Nothing moved, appeared or left: the contacts are those of the last update, and none is new.
   const bool same_entities = find_moved_boxes(state, sweep.moved);
@@ -423,25 +448,7 @@ void update_contacts(SimState& state, ContactSweep& sweep) {
     state.contacts.premade_fresh = false;
     return;
   }
-  auto& entities = state.world.entities;
-  const auto& previous = take_previous_pairs(state, sweep);
-  // Boxes whose extents overlap along the sweep's axis (sweep and prune) are tested exactly.
-  make_all_boxes(state, sweep);
-  std::vector<Item> items;
-  const ContactSpread spread = gather_items(entities, sweep, items);
-  auto& now = state.contacts.pairs;
-  ContactRecorder record(entities, now);
-  if (spread.finite && spread.along_y()) {
-    sweep_along_y(items, sweep, entities.size(), spread, state.contacts.boxes, record);
-  } else {
-    sweep_along_x(items, sweep, entities.size(), spread, state.contacts.boxes, record);
-  }
-  release_parted_trailers(entities, record.touching());
-  // Entity order, independent of the sweep order; new contacts are recorded in that order.
-  std::sort(now.begin(), now.end());
-  record_new_contacts(state, now, previous);
-  sweep.complete = spread.finite;
-  state.contacts.premade_fresh = false;
+  sweep_all_contacts(state, sweep);
 }
 
 }  // namespace corsa::engine::detail

@@ -38,7 +38,7 @@ constexpr double kStandStillSpeed = 1e-3;
 
 }  // namespace
 
-void update_timers(SimState& state, bool advance) {
+[[gnu::hot]] void update_timers(SimState& state, bool advance) {
   // Only the timer conditions read the timers: without one in the storyboard they are not kept
   // (a run's conditions are all compiled from it when it is built).
   if (!state.timers_wanted) {

@@ -21,7 +21,7 @@ void Storyboard::enter_standby(SimState& state, uint32_t element) {
   ++state_writes_;
 }
 
-bool Storyboard::finished(const SimState& state) const {
+[[gnu::hot]] bool Storyboard::finished(const SimState& state) const {
   return state.elements[root_].state == ElementState::kComplete;
 }
 
@@ -38,7 +38,7 @@ void Storyboard::start(SimState& state) {
   }
 }
 
-void Storyboard::update(SimState& state) {
+[[gnu::hot]] void Storyboard::update(SimState& state) {
   if (stopped_ || (started_ && finished(state))) {
     return;
   }
@@ -62,7 +62,7 @@ void Storyboard::update(SimState& state) {
   }
 }
 
-void Storyboard::update_act(SimState& state, ActNode& act) {
+[[gnu::hot]] void Storyboard::update_act(SimState& state, ActNode& act) {
   const ElementState current = state.elements[act.element].state;
   if (current == ElementState::kStandby) {
     act.triggering.clear();
@@ -100,7 +100,8 @@ void Storyboard::update_group(SimState& state, GroupNode& group) {
   }
 }
 
-void Storyboard::update_event(SimState& state, ManeuverNode& maneuver, EventNode& event) {
+[[gnu::hot]] void Storyboard::update_event(SimState& state, ManeuverNode& maneuver,
+                                           EventNode& event) {
   if (state.elements[event.element].state != ElementState::kStandby) {
     return;
   }
@@ -270,7 +271,7 @@ void Storyboard::reset_ghost_events(SimState& state) {
   }
 }
 
-void Storyboard::step_actions(SimState& state) {
+[[gnu::hot]] void Storyboard::step_actions(SimState& state) {
   for (ActionNode* action : running_) {
     for (RunningInstance& instance : action->instances) {
       step_instance(state, instance);
@@ -278,7 +279,7 @@ void Storyboard::step_actions(SimState& state) {
   }
 }
 
-void Storyboard::settle(SimState& state) {
+[[gnu::hot]] void Storyboard::settle(SimState& state) {
   // Mostly no running action has every instance done (settle_action then changes nothing):
   // no copy to make.
   const auto settles = [](const ActionNode* action) {
@@ -298,7 +299,8 @@ void Storyboard::settle(SimState& state) {
   }
 }
 
-void Storyboard::settle_action(SimState& state, ActionNode& action) {
+// Out of line: settle() runs every step, an action ends rarely.
+[[gnu::noinline]] void Storyboard::settle_action(SimState& state, ActionNode& action) {
   bool stopped = false;
   for (const RunningInstance& instance : action.instances) {
     if (!instance.action->done()) {

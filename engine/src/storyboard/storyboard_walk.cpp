@@ -47,7 +47,7 @@ void find_stops(const SimState& state, const Storyboard::ActNode& act,
 
 }  // namespace
 
-void Storyboard::update_groups(SimState& state, ActNode& act) {
+[[gnu::hot]] void Storyboard::update_groups(SimState& state, ActNode& act) {
   if (act.walk_writes != state_writes_) {
     find_stops(state, act, act.walk);
     act.walk_writes = state_writes_;
@@ -75,7 +75,7 @@ void Storyboard::update_groups(SimState& state, ActNode& act) {
   }
 }
 
-void Storyboard::walk_on(SimState& state, ActNode& act, const WalkStop& stop) {
+[[gnu::hot]] void Storyboard::walk_on(SimState& state, ActNode& act, const WalkStop& stop) {
   // As update_group's loops go on: the rest of this maneuver's events (its state read before
   // them), the group's later maneuvers, the later groups.
   GroupNode& group = act.groups[stop.group];

@@ -101,7 +101,7 @@ bool set_signal_phase(SimState& state, size_t controller, std::string_view phase
   return false;
 }
 
-void update_traffic(SimState& state) {
+[[gnu::hot]] void update_traffic(SimState& state) {
   TrafficState& traffic = state.traffic;
   // Half a step of slack: phase ends fall on the tick grid despite rounding.
   const double now = state.now() + 0.5 * state.time.dt();
