@@ -831,13 +831,14 @@ TEST_CASE("Boxes that moved into and out of contact with standing ones get a ful
         state.world.entities[which[k]].write_state().pose = to[k];
       }
       ++state.tick;
-      // Emptied first: only the moved boxes' update fills it again (a full sweep marks nothing).
+      // Emptied first: only the moved boxes' update sizes it again (a full sweep marks nothing).
       sweep.moved_mark.clear();
       detail::update_contacts(state, sweep);
       CHECK(sweep.moved == which);
-      // The moved boxes' update ran, and kept its result complete.
+      // The moved boxes' update ran, cleared its marks after and kept its result complete.
       REQUIRE(sweep.moved_mark.size() == kCars);
-      for (const uint32_t i : which) CHECK(sweep.moved_mark[i] == 1);
+      CHECK(std::all_of(sweep.moved_mark.begin(), sweep.moved_mark.end(),
+                        [](uint8_t mark) { return mark == 0; }));
       CHECK(sweep.complete);
       CHECK(state.contacts.pairs == full_sweep());
     };
@@ -866,6 +867,17 @@ TEST_CASE("Boxes that moved into and out of contact with standing ones get a ful
     REQUIRE(state.collisions.size() == 6);
     CHECK(state.collisions.back().first == 0);
     CHECK(state.collisions.back().second == 1);
+    // The last cars of both rows move back beside car 30, clear of it (the moved boxes' pairs
+    // are merged with the kept ones: none changes), then car 59 into the crowd at 52 m: only
+    // its new contacts are recorded.
+    move({59, 119}, {pose_of(305.0, -3.5, 0.0), pose_of(305.0, 7.0, 0.0)});
+    CHECK(state.contacts.pairs == Pairs{{0, 1}, {5, 37}, {5, 38}, {37, 38}});
+    CHECK(state.collisions.size() == 6);
+    move({59}, {pose_of(52.5, 1.6, 0.0)});
+    REQUIRE(state.collisions.size() > 6);
+    for (size_t k = 6; k < state.collisions.size(); ++k) {
+      CHECK((state.collisions[k].first == 59 || state.collisions[k].second == 59));
+    }
   }
 }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "corsa/xodr/map.h"
+#include "corsa/xodr/map_parts.h"
 #include "geometry_local.h"
 #include "road_eval.h"
 #include "xodr_test_util.h"
@@ -116,6 +117,8 @@ size_t check_poses(const Map& map) {
       CHECK(same_bits(ref.x, expected.x));
       CHECK(same_bits(ref.y, expected.y));
       CHECK(same_bits(ref.hdg, expected.hdg));
+      CHECK(same_bits(ref.curvature, expected.curvature));
+      CHECK(same_bits(reference_curvature(map, road_index, s), ref.curvature));
       // The record a curvature is read from: s not clamped.
       const auto after =
           std::upper_bound(road.plan_view.begin(), road.plan_view.end(), s,
@@ -143,6 +146,14 @@ size_t check_poses(const Map& map) {
         CHECK(same_bits(pose.h, want.h));
         CHECK(same_bits(pose.p, want.p));
         CHECK(same_bits(pose.r, want.r));
+        // The surface alone, also off the surface (h), as the whole pose has it.
+        for (const double h : {0.0, 0.75}) {
+          const WorldPose whole = map.world_pose(road_index, s, t, h);
+          const SurfacePose surface = surface_pose(map, road_index, s, t, h);
+          CHECK(same_bits(surface.z, whole.z));
+          CHECK(same_bits(surface.p, whole.p));
+          CHECK(same_bits(surface.r, whole.r));
+        }
       }
       // The section's lane offset for s in the section and at its end (where a record of the
       // next section may start).
@@ -215,6 +226,28 @@ TEST_CASE("the packed road poses are the Road records' to the bit", "[xodr][pose
     CHECK(check_poses(map) > 20);
     CHECK(std::signbit(map.world_pose(0, 50.0, 1.0).r) == false);
     CHECK(std::signbit(detail::section_lane_offset(map, 0, 1, 50.0)) == false);
+  }
+  SECTION("a paramPoly3 road with a tilted, sloped surface, longer than its record") {
+    // Beyond its record the road goes on straight (curvature 0); within it the curvature is
+    // read without the heading.
+    ParamPoly3Geometry curve;
+    curve.range = ParamRange::kArcLength;
+    curve.bu = 1.0;
+    curve.cu = 1e-4;
+    curve.du = -2e-6;
+    curve.cv = 4e-3;
+    curve.dv = -1e-5;
+    Road road = test::make_road("p", curve, 90.0);
+    road.length = 100.0;
+    road.elevation = {Poly3{0.0, 1.0, 0.03, 0.0, 1e-6}};
+    road.superelevation = {Poly3{0.0, 0.02, 1e-4, 0.0, 0.0}};
+    MapData data;
+    data.roads.push_back(road);
+    corsa::Diagnostics diagnostics;
+    const Map map = Map::build(std::move(data), diagnostics);
+    CHECK(check_poses(map) > 8);
+    CHECK(reference_curvature(map, 0, 45.0) > 0.0);
+    CHECK(reference_curvature(map, 0, 95.0) == 0.0);
   }
   SECTION("the shared maps") {
     for (const auto& path : test::all_shared_maps()) {

@@ -79,6 +79,17 @@ RefPoint evaluate_local(const Geometry& geometry, double ds) {
   return evaluate_local_frame(geometry, ds).point;
 }
 
+// evaluate_local's curvature by the same branches, the paramPoly3 without its heading.
+double local_curvature(const Geometry& geometry, double ds) {
+  if (!(ds >= 0.0 && ds <= geometry.length)) {
+    return evaluate_local_frame(geometry, ds).point.curvature;
+  }
+  if (const auto* poly = std::get_if<ParamPoly3Geometry>(&geometry.shape)) {
+    return param_poly3_curvature(*poly, geometry.length, ds);
+  }
+  return evaluate_shape(geometry, ds).curvature;
+}
+
 LocalFrame evaluate_local_frame(const Geometry& geometry, double ds) {
   if (ds < 0.0) {
     return straight_on(evaluate_shape_frame(geometry, 0.0), ds);

@@ -22,6 +22,13 @@ inline constexpr std::array<double, 5> kGaussWeights = {0.2955242247147529, 0.26
 /// The record's shape at ds, start at the origin heading along +x.
 RefPoint evaluate_local(const Geometry& geometry, double ds);
 
+/// evaluate_local(geometry, ds).curvature, to the bit, without what only the point and heading
+/// need (paramPoly3's atan2).
+double local_curvature(const Geometry& geometry, double ds);
+
+/// The curvature of a paramPoly3 at ds, as evaluate_param_poly3 computes it.
+double param_poly3_curvature(const ParamPoly3Geometry& poly, double length, double ds);
+
 /// A local point with the cosine and sine of its local heading (exact from the arc formulas,
 /// 1 and 0 on lines), so that callers needing the tangent need no further trigonometry.
 struct LocalFrame {

@@ -55,18 +55,47 @@ RefPoint evaluate_poly3(const Poly3Geometry& poly, double ds) {
   return RefPoint{u, v, std::atan(slope), second / (norm * std::sqrt(norm))};
 }
 
-RefPoint evaluate_param_poly3(const ParamPoly3Geometry& poly, double length, double ds) {
+namespace {
+
+/// A paramPoly3's parameter at ds and its first derivatives (du/dp, dv/dp) there.
+struct ParamTangent {
+  double p = 0.0;
+  double du = 0.0;
+  double dv = 0.0;
+};
+
+ParamTangent param_tangent(const ParamPoly3Geometry& poly, double length, double ds) {
   const double p = poly.range == ParamRange::kNormalized ? (length > 0.0 ? ds / length : 0.0) : ds;
-  const double u = poly.au + p * (poly.bu + p * (poly.cu + p * poly.du));
-  const double v = poly.av + p * (poly.bv + p * (poly.cv + p * poly.dv));
-  const double du = poly.bu + p * (2.0 * poly.cu + 3.0 * poly.du * p);
-  const double dv = poly.bv + p * (2.0 * poly.cv + 3.0 * poly.dv * p);
+  return ParamTangent{p, poly.bu + p * (2.0 * poly.cu + 3.0 * poly.du * p),
+                      poly.bv + p * (2.0 * poly.cv + 3.0 * poly.dv * p)};
+}
+
+double param_curvature(const ParamPoly3Geometry& poly, const ParamTangent& tangent) {
+  const double p = tangent.p;
+  const double du = tangent.du;
+  const double dv = tangent.dv;
   const double ddu = 2.0 * poly.cu + 6.0 * poly.du * p;
   const double ddv = 2.0 * poly.cv + 6.0 * poly.dv * p;
   const double speed2 = du * du + dv * dv;
-  const double curvature =
-      speed2 > 0.0 ? (du * ddv - dv * ddu) / (speed2 * std::sqrt(speed2)) : 0.0;
-  return RefPoint{u, v, std::atan2(dv, du), curvature};
+  return speed2 > 0.0 ? (du * ddv - dv * ddu) / (speed2 * std::sqrt(speed2)) : 0.0;
 }
+
+}  // namespace
+
+RefPoint evaluate_param_poly3(const ParamPoly3Geometry& poly, double length, double ds) {
+  const ParamTangent tangent = param_tangent(poly, length, ds);
+  const double p = tangent.p;
+  const double u = poly.au + p * (poly.bu + p * (poly.cu + p * poly.du));
+  const double v = poly.av + p * (poly.bv + p * (poly.cv + p * poly.dv));
+  return RefPoint{u, v, std::atan2(tangent.dv, tangent.du), param_curvature(poly, tangent)};
+}
+
+namespace detail {
+
+double param_poly3_curvature(const ParamPoly3Geometry& poly, double length, double ds) {
+  return param_curvature(poly, param_tangent(poly, length, ds));
+}
+
+}  // namespace detail
 
 }  // namespace corsa::xodr

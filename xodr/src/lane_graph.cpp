@@ -11,6 +11,7 @@
 
 #include "corsa/core/diagnostic.h"
 #include "corsa/xodr/map.h"
+#include "corsa/xodr/map_parts.h"
 #include "map_impl.h"
 #include "road_eval.h"
 
@@ -163,7 +164,7 @@ void LaneGraphBuilder::add_lengths(uint32_t road, uint32_t section, double s0, d
   size_t n = 0;
   for (int i = 0; i <= steps; ++i) {
     const double s = s0 + h * i;
-    curvature[i] = map_.reference(road, s).curvature;
+    curvature[i] = reference_curvature(map_, road, s);
     n = detail::compute_spans(lanes, s, detail::section_lane_offset(map_, road, section, s), spans);
     for (size_t j = 0; j < n; ++j) {
       t[i * count + j] = spans[j].t_center();

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iterator>
 
+#include "corsa/xodr/map_parts.h"
 #include "corsa/xodr/parser.h"
 #include "geometry_local.h"
 #include "map_impl.h"
@@ -36,6 +37,8 @@ double section_lane_offset(const Map& map, size_t road, size_t section, double s
   const double* it = std::lower_bound(records.starts, records.starts + records.count, s);
   return it == records.starts ? 0.0 : records.first[it - records.starts - 1].value(s);
 }
+
+const PoseTable& MapAccess::poses(const Map& map) { return map.impl_->poses; }
 
 RefFrame MapAccess::reference_frame(const Map& map, size_t road_index, double s) {
   const PoseTable& poses = map.impl_->poses;
@@ -180,20 +183,18 @@ double Map::shape_height(size_t road_index, double s, double t) const {
   return h0 + w * (h1 - h0);
 }
 
-[[gnu::hot]] WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const {
-  const detail::PoseTable& poses = impl_->poses;
-  const detail::PoseRoad& r = poses.road(road_index);
+namespace {
+
+/// The surface at a road point and its roll's cosine and sine (world_pose tilts t by them).
+struct Surface {
+  SurfacePose pose;
+  double cos_r = 1.0;
+  double sin_r = 0.0;
+};
+
+Surface surface_at(const Map& map, const detail::PoseTable& poses, const detail::PoseRoad& r,
+                   size_t road_index, double s, double t, double h) {
   const double cs = poses.clamp_s(r, s);
-  // Map::reference, with its record kept: where the heading is the record's own (a line, an arc
-  // at its start) its cosine and sine are the record's, computed by the same functions at build.
-  const detail::PoseGeometry& record = poses.geometry_at(r, cs);
-  const Geometry& geometry = record.geometry;
-  const RefPoint ref = detail::to_world(geometry, record.cos_h, record.sin_h,
-                                        detail::evaluate_local(geometry, cs - geometry.s));
-  const bool record_heading =
-      std::bit_cast<uint64_t>(ref.hdg) == std::bit_cast<uint64_t>(geometry.hdg);
-  const double sin_h = record_heading ? record.sin_h : std::sin(ref.hdg);
-  const double cos_h = record_heading ? record.cos_h : std::cos(ref.hdg);
   // Flat roads are the common case: no superelevation, no slope. The shortcuts give the bits
   // the library would (cos(+0) = 1, sin(+0) = +0, atan(+-0) = +-0) without calling it.
   const double roll = r.level && std::abs(cs) <= detail::PoseTable::kZeroBound
@@ -213,16 +214,55 @@ double Map::shape_height(size_t road_index, double s, double t) const {
   // §2.3 / §8.4.2: the t axis is the reference line's left normal rotated about s by the
   // superelevation roll, so t moves cos(roll) horizontally and sin(roll) up; h runs along the
   // rotated surface normal.
-  const double horizontal = t * cos_r - h * sin_r;
+  Surface surface;
+  surface.pose.z =
+      elevation + t * sin_r + h * cos_r + (r.has_shapes ? map.shape_height(road_index, s, t) : 0.0);
+  surface.pose.p = -(slope == 0.0 ? slope : std::atan(slope));
+  surface.pose.r = roll;
+  surface.cos_r = cos_r;
+  surface.sin_r = sin_r;
+  return surface;
+}
+
+}  // namespace
+
+[[gnu::hot]] WorldPose Map::world_pose(size_t road_index, double s, double t, double h) const {
+  const detail::PoseTable& poses = impl_->poses;
+  const detail::PoseRoad& r = poses.road(road_index);
+  const double cs = poses.clamp_s(r, s);
+  // Map::reference, with its record kept: where the heading is the record's own (a line, an arc
+  // at its start) its cosine and sine are the record's, computed by the same functions at build.
+  const detail::PoseGeometry& record = poses.geometry_at(r, cs);
+  const Geometry& geometry = record.geometry;
+  const RefPoint ref = detail::to_world(geometry, record.cos_h, record.sin_h,
+                                        detail::evaluate_local(geometry, cs - geometry.s));
+  const bool record_heading =
+      std::bit_cast<uint64_t>(ref.hdg) == std::bit_cast<uint64_t>(geometry.hdg);
+  const double sin_h = record_heading ? record.sin_h : std::sin(ref.hdg);
+  const double cos_h = record_heading ? record.cos_h : std::cos(ref.hdg);
+  const Surface surface = surface_at(*this, poses, r, road_index, s, t, h);
+  const double horizontal = t * surface.cos_r - h * surface.sin_r;
   WorldPose pose;
   pose.x = ref.x - sin_h * horizontal;
   pose.y = ref.y + cos_h * horizontal;
-  pose.z =
-      elevation + t * sin_r + h * cos_r + (r.has_shapes ? shape_height(road_index, s, t) : 0.0);
+  pose.z = surface.pose.z;
   pose.h = ref.hdg;
-  pose.p = -(slope == 0.0 ? slope : std::atan(slope));
-  pose.r = roll;
+  pose.p = surface.pose.p;
+  pose.r = surface.pose.r;
   return pose;
+}
+
+double reference_curvature(const Map& map, size_t road_index, double s) {
+  const detail::PoseTable& poses = detail::MapAccess::poses(map);
+  const detail::PoseRoad& r = poses.road(road_index);
+  s = poses.clamp_s(r, s);
+  const Geometry& geometry = poses.geometry_at(r, s).geometry;
+  return detail::local_curvature(geometry, s - geometry.s);
+}
+
+SurfacePose surface_pose(const Map& map, size_t road_index, double s, double t, double h) {
+  const detail::PoseTable& poses = detail::MapAccess::poses(map);
+  return surface_at(map, poses, poses.road(road_index), road_index, s, t, h).pose;
 }
 
 size_t Map::section_index(size_t road_index, double s) const {

@@ -46,9 +46,13 @@ struct RefFrame {
   double ty = 0.0;
 };
 
+class PoseTable;
+
 /// Map internals for corsa_xodr's hot paths.
 struct MapAccess {
   static RefFrame reference_frame(const Map& map, size_t road, double s);
+  /// The map's packed road records (pose_table.h).
+  static const PoseTable& poses(const Map& map);
   /// section_lane_offset, read from the map's packed tables (pose_table.h, span_table.h).
   static double section_lane_offset(const Map& map, size_t road, size_t section, double s);
 };

@@ -5,6 +5,7 @@
 #include <limits>
 #include <mutex>
 
+#include "corsa/xodr/map_parts.h"
 #include "region_bounds.h"
 #include "road_eval.h"
 
@@ -50,7 +51,7 @@ Extent section_extent(const Map& map, uint32_t road, uint32_t section_index,
 /// Length of the chunk starting at s: at most 5 m and 0.1 rad of heading, no sliver before the
 /// section's end, and cut at a planView record boundary so that most chunks lie in one record.
 double chunk_length(const Map& map, uint32_t road, double s, double s_stop) {
-  const double k0 = std::abs(map.reference(road, s).curvature);
+  const double k0 = std::abs(reference_curvature(map, road, s));
   double length = std::min(kMaxChunkLength, s_stop - s);
   if (k0 * length > kMaxChunkTurn) {
     length = std::max(kMinChunkLength, kMaxChunkTurn / k0);

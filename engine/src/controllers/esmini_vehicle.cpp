@@ -15,6 +15,7 @@
 #include "controllers/controllers.h"
 #include "controllers/follow_view.h"
 #include "corsa/xodr/map.h"
+#include "corsa/xodr/map_parts.h"
 #include "corsa/xosc/scenario.h"
 #include "geometry/angle.h"
 #include "motion/pose_command.h"
@@ -88,7 +89,7 @@ constexpr double kFollowerLimitFactor = 1.2;
   pose.h = heading;
   if (motion.map != nullptr) {
     if (const auto at = road_point_within(locate_near(entity, *motion.map, x, y), 0.5)) {
-      const xodr::WorldPose surface = motion.map->world_pose(at->road, at->s, at->t);
+      const xodr::SurfacePose surface = xodr::surface_pose(*motion.map, at->road, at->s, at->t);
       pose.z = surface.z;
       pose.p = surface.p;
     }

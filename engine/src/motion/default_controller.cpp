@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <variant>
 
+#include "corsa/xodr/map_parts.h"
 #include "geometry/angle.h"
 #include "lanes/lane_follow.h"
 #include "motion/controller.h"
@@ -108,7 +109,7 @@ namespace {
 double curvature_at(const xodr::Map& map, uint32_t road, double s) {
   const xodr::Geometry* record = map.plan_record_at(road, s);
   if (record == nullptr) {
-    return map.road(road).plan_view.empty() ? 0.0 : map.reference(road, s).curvature;
+    return map.road(road).plan_view.empty() ? 0.0 : xodr::reference_curvature(map, road, s);
   }
   const xodr::Geometry& g = *record;
   if (std::holds_alternative<xodr::LineGeometry>(g.shape)) {
@@ -121,7 +122,7 @@ double curvature_at(const xodr::Map& map, uint32_t road, double s) {
     const double f = g.length > 0.0 ? std::clamp((s - g.s) / g.length, 0.0, 1.0) : 0.0;
     return spiral->curv_start + f * (spiral->curv_end - spiral->curv_start);
   }
-  return map.reference(road, s).curvature;
+  return xodr::reference_curvature(map, road, s);
 }
 
 // Path length per metre of reference s (1 - k t) where the entity is, kept within [0.2, 5] so

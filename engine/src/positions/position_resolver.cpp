@@ -6,6 +6,7 @@
 
 #include "corsa/core/strings.h"
 #include "corsa/xodr/lane_graph.h"
+#include "corsa/xodr/map_parts.h"
 #include "geometry/angle.h"
 #include "lanes/lane_follow.h"
 #include "positions/geo_reference.h"
@@ -41,7 +42,7 @@ ResolvedPosition world(const xosc::WorldPosition& p, const SimState& state) {
   if (state.map != nullptr) {
     out.road = locate_point(*state.map, p.x, p.y, 0.0);
     if (out.road && !p.z) {
-      out.pose.z = state.map->world_pose(out.road->road, out.road->s, out.road->t).z;
+      out.pose.z = xodr::surface_pose(*state.map, out.road->road, out.road->s, out.road->t).z;
     }
   }
   return out;
@@ -234,7 +235,7 @@ ResolvedPosition relative_lane(const xosc::RelativeLanePosition& p, const SimSta
     // dsLane runs along the lane's centre line; on a curve that is longer or shorter than the
     // reference line by the factor (1 - t kappa).
     const auto center = lane_center_t(map, rc.road, rc.s, rc.lane).value_or(rc.t);
-    const double kappa = map.reference(rc.road, rc.s).curvature;
+    const double kappa = xodr::reference_curvature(map, rc.road, rc.s);
     const double factor = 1.0 - center * kappa;
     ds = factor > 1e-6 ? *p.ds_lane / factor : *p.ds_lane;
     if (esmini_reading(state)) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #include "corsa/engine/oriented_box.h"
@@ -99,9 +100,11 @@ bool moved_update_applies(const SimState& state, const ContactSweep& sweep) {
       (sweep.moved.size() > kMovedAlways && sweep.moved.size() * kBoxesPerMovedBox > count)) {
     return false;
   }
-  return std::none_of(entities.begin(), entities.end(), [](const Entity& entity) {
-    return entity.towed_by || entity.towing || entity.unhitched_from;
-  });
+  // Only a connection sets any of the links (motion/trailers.h).
+  return !state.trailers_connected ||
+         std::none_of(entities.begin(), entities.end(), [](const Entity& entity) {
+           return entity.towed_by || entity.towing || entity.unhitched_from;
+         });
 }
 
 // Makes the boxes and extents of the moved entities again. False when an extent is not finite
@@ -168,37 +171,60 @@ void add_moved_box_pairs(const SimState& state, const ContactSweep& sweep, uint3
   }
 }
 
+// Into the emptied `now`: the pairs of `previous` (sorted) between two unmoved boxes, merged
+// in order with `fresh` (sorted, each with a moved box: no pair is in both).
+void merge_kept_pairs(const ContactSweep& sweep,
+                      const std::vector<std::pair<uint32_t, uint32_t>>& previous,
+                      const std::vector<std::pair<uint32_t, uint32_t>>& fresh,
+                      std::vector<std::pair<uint32_t, uint32_t>>& now) {
+  size_t k = 0;
+  for (const auto& pair : previous) {
+    if (sweep.moved_mark[pair.first] != 0 || sweep.moved_mark[pair.second] != 0) {
+      continue;
+    }
+    while (k < fresh.size() && fresh[k] < pair) {
+      now.push_back(fresh[k++]);
+    }
+    now.push_back(pair);
+  }
+  now.insert(now.end(), fresh.begin() + static_cast<std::ptrdiff_t>(k), fresh.end());
+}
+
 // The contacts when only the boxes in `sweep.moved` changed since a complete update: the pairs
 // of two unmoved boxes are the last update's (neither box changed), and each moved box is
 // tested against every other box under the sweep's own filters, so that a pair is tested
 // exactly when the sweep would test it, in the sweep's order of the two (the axis chosen as the
-// sweep chooses it): the same pairs as a sweep over all boxes. Returns false, having changed
-// no pair, when it does not apply (moved_update_applies) or a moved box's extents are not
-// finite (no total order for the sweep's filters).
+// sweep chooses it): the same pairs as a sweep over all boxes. Only a pair with a moved box
+// can be new: those alone are sorted, merged with the kept ones and looked up in the last
+// pairs; the marks are cleared after (not every entity's set again). Returns false, having
+// changed no pair, when it does not apply (moved_update_applies) or a moved box's extents are
+// not finite (no total order for the sweep's filters).
 bool update_moved_contacts(SimState& state, ContactSweep& sweep) {
+  const auto& entities = state.world.entities;
   if (!moved_update_applies(state, sweep) || !refresh_moved_boxes(state, sweep)) {
     return false;
   }
-  const auto& entities = state.world.entities;
   const bool along_y = kept_spread(entities, sweep).along_y();
-  sweep.moved_mark.assign(entities.size(), 0);
+  if (sweep.moved_mark.size() != entities.size()) {
+    sweep.moved_mark.assign(entities.size(), 0);
+  }
   for (const uint32_t i : sweep.moved) {
     sweep.moved_mark[i] = 1;
   }
-  const auto& previous = take_previous_pairs(state, sweep);
-  auto& now = state.contacts.pairs;
-  for (const auto& pair : previous) {
-    if (sweep.moved_mark[pair.first] == 0 && sweep.moved_mark[pair.second] == 0) {
-      now.push_back(pair);
-    }
-  }
+  auto& fresh = sweep.moved_pairs;
+  fresh.clear();
   for (const uint32_t m : sweep.moved) {
     if (boxed(entities[m])) {
-      add_moved_box_pairs(state, sweep, m, along_y, now);
+      add_moved_box_pairs(state, sweep, m, along_y, fresh);
     }
   }
-  std::sort(now.begin(), now.end());
-  record_new_contacts(state, now, previous);
+  std::sort(fresh.begin(), fresh.end());
+  const auto& previous = take_previous_pairs(state, sweep);
+  merge_kept_pairs(sweep, previous, fresh, state.contacts.pairs);
+  for (const uint32_t i : sweep.moved) {
+    sweep.moved_mark[i] = 0;
+  }
+  record_new_contacts(state, fresh, previous);
   return true;
 }
 

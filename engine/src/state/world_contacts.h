@@ -38,9 +38,11 @@ struct ContactSweep {
   /// may then test only the boxes that have moved since.
   bool complete = false;
   /// The entities whose boxes changed since the last update, and a mark per entity for them
-  /// (kept between updates for their storage).
+  /// (kept between updates for their storage, every mark 0 between them).
   std::vector<uint32_t> moved;
   std::vector<uint8_t> moved_mark;
+  /// The pairs of the moved boxes in an update of those alone (kept for its storage).
+  std::vector<std::pair<uint32_t, uint32_t>> moved_pairs;
   /// The pairs of the update before, while an update makes the new ones (kept between updates
   /// for its storage, as ContactSet::pairs: an update then allocates nothing).
   std::vector<std::pair<uint32_t, uint32_t>> previous;
