@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 
 namespace corsa::engine::detail {
 
@@ -14,6 +15,24 @@ constexpr std::chrono::microseconds kPoolSpinWait{100};
 // the announcement and the run (about 60-100 us at 1,000 vehicles on Town04).
 constexpr std::chrono::microseconds kWorkerSpinWait{300};
 
+// How long a worker spins after a run for the next one (0: it sleeps at once, the default),
+// from CORSA_WORKER_SPIN_US (microseconds, at most a second). A measuring switch: on this
+// virtual machine a worker that sleeps lets its virtual CPU halt, and waking it costs the caller
+// a system call and the worker tens of microseconds; whether spinning pays depends on whether
+// other programs want the core (docs/performance-traffic.md).
+std::chrono::microseconds spin_after_run_from_environment() {
+  const char* text = std::getenv("CORSA_WORKER_SPIN_US");
+  if (text == nullptr) {
+    return std::chrono::microseconds{0};
+  }
+  char* end = nullptr;
+  const long value = std::strtol(text, &end, 10);
+  if (end == text || *end != '\0' || value <= 0) {
+    return std::chrono::microseconds{0};
+  }
+  return std::chrono::microseconds{std::min(value, 1'000'000L)};
+}
+
 void pool_spin_pause() {
 #if defined(__x86_64__) || defined(__i386__)
   __builtin_ia32_pause();
@@ -22,7 +41,8 @@ void pool_spin_pause() {
 
 }  // namespace
 
-WorkerPool::WorkerPool(unsigned threads) : shares_(std::max(threads, 1u)) {
+WorkerPool::WorkerPool(unsigned threads)
+    : spin_after_run_(spin_after_run_from_environment()), shares_(std::max(threads, 1u)) {
   for (unsigned w = 1; w < threads; ++w) {
     workers_.emplace_back([this, w] { serve(w); });
   }
@@ -111,8 +131,8 @@ void WorkerPool::prepare() {
   start_.notify_all();
 }
 
-void WorkerPool::await_run(uint64_t seen) const {
-  const auto until = std::chrono::steady_clock::now() + kWorkerSpinWait;
+void WorkerPool::await_run(uint64_t seen, std::chrono::microseconds wait) const {
+  const auto until = std::chrono::steady_clock::now() + wait;
   while (generation_.load(std::memory_order_acquire) == seen) {
     for (int k = 0; k < 32; ++k) {
       pool_spin_pause();
@@ -138,7 +158,7 @@ void WorkerPool::serve(unsigned worker) {
       // Woken ahead of a run: wait for it awake, then join it as if woken by it.
       prepared = prepared_;
       lock.unlock();
-      await_run(seen);
+      await_run(seen, kWorkerSpinWait);
       continue;
     }
     prepared = prepared_;
@@ -152,6 +172,11 @@ void WorkerPool::serve(unsigned worker) {
     lock.lock();
     if (--active_ == 0) {
       done_.notify_one();
+    }
+    if (spin_after_run_.count() > 0) {
+      // Awake for the next run (or the next announcement) for a while before sleeping.
+      lock.unlock();
+      await_run(seen, spin_after_run_);
     }
   }
 }

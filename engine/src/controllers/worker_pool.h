@@ -26,7 +26,10 @@
 // of the others, the give-way claims), and the worker, woken then, spins for the run itself:
 // it joins the run when it opens, and the run's notify is no system call. A worker does not
 // spin after a run for the next: on a loaded machine the spinning worker used up its share of
-// the core and lost it in the middle of a chunk, the caller then waiting milliseconds for it.
+// the core and lost it in the middle of a chunk, the caller then waiting milliseconds for it;
+// the environment variable CORSA_WORKER_SPIN_US (microseconds) makes it spin after a run for
+// that long, to measure on an idle machine, where a sleeping worker's virtual CPU halts and
+// waking it is what two threads lose.
 
 #include <atomic>
 #include <chrono>
@@ -64,9 +67,11 @@ class WorkerPool {
   void serve(unsigned worker);
   /// Takes chunks until none is left; records the first exception.
   void drain(unsigned worker);
-  /// Spins until a run after the `seen`-th starts, or kWorkerSpinWait has passed.
-  void await_run(uint64_t seen) const;
+  /// Spins until a run after the `seen`-th starts, or `wait` has passed.
+  void await_run(uint64_t seen, std::chrono::microseconds wait) const;
 
+  /// How long a worker spins after a run for the next (CORSA_WORKER_SPIN_US; 0 by default).
+  const std::chrono::microseconds spin_after_run_;
   std::vector<std::thread> workers_;
   std::mutex mutex_;
   std::condition_variable start_;
