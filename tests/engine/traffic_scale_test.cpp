@@ -618,6 +618,28 @@ TEST_CASE(
   CHECK(found > 40);
 }
 
+TEST_CASE(
+    "A speed along another heading is the speed times the cosine of the difference, to the bit",
+    "[engine][traffic]") {
+  namespace detail = corsa::engine::detail;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const double headings[] = {0.0, -0.0, 1e-300, 0.3, -2.9, 3.141592653589793, 1e6, inf, nan};
+  for (const double speed : {0.0, -0.0, 13.7, -2.5, 1e-310, inf, nan}) {
+    for (const double h : headings) {
+      for (const double own : headings) {
+        const double expected = speed * std::cos(h - own);
+        const double got = detail::speed_along(speed, h, own);
+        CHECK((std::bit_cast<uint64_t>(got) == std::bit_cast<uint64_t>(expected) ||
+               (std::isnan(got) && std::isnan(expected))));
+      }
+    }
+  }
+  // Equal headings skip the cosine and keep the speed itself.
+  CHECK(std::bit_cast<uint64_t>(detail::speed_along(-0.0, 0.7, 0.7)) ==
+        std::bit_cast<uint64_t>(-0.0));
+}
+
 TEST_CASE("The contacts of many boxes of every size and heading are the pairs a test of all finds",
           "[engine][traffic]") {
   namespace detail = corsa::engine::detail;

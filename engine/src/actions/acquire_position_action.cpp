@@ -38,7 +38,7 @@ class AcquirePositionInstance final : public InstantAction {
     }
     const size_t last = route->steps.empty() ? 0 : route->steps.size() - 1;
     RoutePlan plan{std::move(route->steps), {last}, "AcquirePositionAction", action_.source};
-    assign_route(entity, std::move(plan));
+    assign_route(context.state, entity, std::move(plan));
   }
 
  private:

@@ -20,7 +20,7 @@ class AssignRouteInstance final : public InstantAction {
     RoutePath path = build_route_path(action_.route, context.state, context.actor);
     RoutePlan plan{std::move(path.steps), std::move(path.waypoint_steps), action_.route.name,
                    action_.route.source};
-    assign_route(context.entity(), std::move(plan));
+    assign_route(context.state, context.entity(), std::move(plan));
   }
 
  private:

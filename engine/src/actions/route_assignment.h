@@ -8,6 +8,7 @@
 #include "corsa/xodr/route.h"
 #include "motion/route_chooser.h"
 #include "state/entity.h"
+#include "state/sim_state.h"
 
 namespace corsa::engine::detail {
 
@@ -21,6 +22,12 @@ inline void assign_route(Entity& entity, RoutePlan plan) {
   entity.still_step_valid = false;
   entity.route = std::move(chooser);
   entity.route_progress = RouteProgress{};
+}
+
+/// The same for an entity of `state`, which from then on makes the step's pass over the routes.
+inline void assign_route(SimState& state, Entity& entity, RoutePlan plan) {
+  state.routes_assigned = true;
+  assign_route(entity, std::move(plan));
 }
 
 }  // namespace corsa::engine::detail

@@ -268,7 +268,7 @@ class LeaderSearch {
     if (gap < leader_.gap || (gap == leader_.gap && i < leader_.entity)) {
       leader_.entity = i;
       leader_.gap = gap;
-      leader_.speed = other.speed * std::cos(other.h - me_.state().pose.h);
+      leader_.speed = speed_along(other.speed, other.h, me_.state().pose.h);
     }
   }
 

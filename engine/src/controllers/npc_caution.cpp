@@ -69,6 +69,19 @@ bool extent_in_band(const LocalFrame& frame, const OrientedBox& box, double half
   }
   x_min = 1e300;
   x_max = -1e300;
+  if (std::abs(py[0]) <= half && std::abs(py[1]) <= half && std::abs(py[2]) <= half &&
+      std::abs(py[3]) <= half) {
+    // The whole box in the band (mostly a box ahead in the lane): every edge is kept whole, from
+    // t = 0 to t = 1 as below, to the bit (1 x d is d; 0 x d is not folded, for d infinite or
+    // NaN), without the tests of each edge's ends.
+    for (int k = 0; k < 4; ++k) {
+      const double ax = px[k], d = px[(k + 1) % 4] - ax;
+      const double start = ax + 0.0 * d, end = ax + d;
+      x_min = std::min(std::min(x_min, start), end);
+      x_max = std::max(std::max(x_max, start), end);
+    }
+    return x_min <= x_max;
+  }
   for (int k = 0; k < 4; ++k) {
     // Clip edge k -> k+1 to the band.
     const double ax = px[k], ay = py[k];
@@ -229,7 +242,7 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
     hazard.speed = followed.speed;
   } else if (chosen != kNoHazardEntity) {
     const FollowTarget& other = view.targets()[chosen];
-    hazard.speed = other.speed * std::cos(other.h - me.state().pose.h);
+    hazard.speed = speed_along(other.speed, other.h, me.state().pose.h);
   }
   return hazard;
 }

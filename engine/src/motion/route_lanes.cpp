@@ -207,7 +207,10 @@ void follow_route(SimState& state, Entity& entity, const RoutePlan& plan, double
 }  // namespace
 
 [[gnu::hot]] void follow_route_lanes(SimState& state, const MotionContext& motion) {
-  if (state.map == nullptr) {
+  // Only a route of AssignRouteAction or AcquirePositionAction (a RouteChooser) is followed here:
+  // until one is given, no entity's record is read (with hundreds of vehicles, each is a line
+  // the step's other passes have pushed out of the cache).
+  if (state.map == nullptr || !state.routes_assigned) {
     return;
   }
   for (Entity& entity : state.world.entities) {

@@ -269,6 +269,9 @@ struct SimState {
   /// found when the storyboard is built: only these read the entities' timers
   /// (state/world_update.h), which are kept only then.
   bool timers_wanted = false;
+  /// Whether an entity has been given a route (actions/route_assignment.h) in this run: until
+  /// then no entity follows one, and the step's pass over the entities' routes is not made.
+  bool routes_assigned = false;
   /// Whether a trailer has been connected in this run (motion/trailers.h): until then no entity
   /// is towed, and the step has no trailer to move.
   bool trailers_connected = false;
