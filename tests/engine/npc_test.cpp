@@ -159,6 +159,25 @@ TEST_CASE("A thousand NPC vehicles fit on Town04, off its junctions, no two boxe
   }
 }
 
+TEST_CASE("A generated vehicle never takes the name of an entity of the scenario",
+          "[engine][npc]") {
+  // The scenario's own vehicle is called npc_vehicle_1, as --npc calls its second vehicle.
+  engine::SimulationOptions options;
+  options.seed = 1;
+  options.npc.vehicles = 3;
+  FixtureRun run(engine_fixture("npc_name_taken.xosc"), options);
+  REQUIRE(run.sim().entity_count() == 4);
+  std::set<std::string> names;
+  for (size_t i = 0; i < run.sim().entity_count(); ++i) {
+    names.insert(run.sim().entity(i).name);
+  }
+  CHECK(names == std::set<std::string>{"npc_vehicle_0", "npc_vehicle_1", "npc_vehicle_1_2",
+                                       "npc_vehicle_2"});
+  CHECK(run.entity("npc_vehicle_1") == 0);  // the scenario's, found by its name
+  CHECK_FALSE(is_npc(run.sim(), 0));
+  CHECK(all_text(run.diagnostics()).find("called 'npc_vehicle_1_2'") != std::string::npos);
+}
+
 TEST_CASE("Three hundred NPC vehicles on Town04 drive a minute without running into each other",
           "[engine][npc][collisions]") {
   // Before placement kept vehicles that could not stop apart at the crossings they share, the

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "controllers/controllers.h"
+#include "corsa/core/diagnostic.h"
 #include "corsa/xodr/map.h"
 #include "lanes/lane_follow.h"
 #include "motion/placement.h"
@@ -220,6 +223,30 @@ PointGrid placed_entities_grid(const SimState& state, double cell) {
   return grid;
 }
 
+namespace {
+
+// A generated entity's name, unless an entity already has it (the scenario's own, named as a
+// generator names its objects): then the first free `<name>_<k>`, k from 2, with a warning. Two
+// entities under one name would share their rows in the trajectory and every lookup by name.
+std::string free_name(SimState& state, std::string name) {
+  if (!state.world.by_name.contains(name)) {
+    return name;
+  }
+  std::string taken = std::move(name);
+  for (size_t k = 2;; ++k) {
+    name = taken + "_" + std::to_string(k);
+    if (!state.world.by_name.contains(name)) {
+      break;
+    }
+  }
+  state.diagnostics.add(make_warning(
+      "", 0,
+      "generated entity '" + taken + "': an entity of that name exists; called '" + name + "'"));
+  return name;
+}
+
+}  // namespace
+
 uint32_t GeneratorBase::spawn(SimState& state, const TrafficMix& mix, size_t kind,
                               const ResolvedPosition& at, double speed, const std::string& name) {
   uint32_t index = 0;
@@ -232,9 +259,9 @@ uint32_t GeneratorBase::spawn(SimState& state, const TrafficMix& mix, size_t kin
   } else {
     xosc::ScenarioObject object = mix.prototype(kind);
     ++state.traffic.spawned_count;
-    object.name = !name.empty() ? name
-                                : (name_ ? *name_ : stem_) + "_" +
-                                      std::to_string(state.traffic.spawned_count);
+    object.name = free_name(state, !name.empty() ? name
+                                                 : (name_ ? *name_ : stem_) + "_" +
+                                                       std::to_string(state.traffic.spawned_count));
     state.traffic.spawned_objects.push_back(std::move(object));
     const xosc::ScenarioObject& stored = state.traffic.spawned_objects.back();
     Entity entity;
