@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Every relative link of README.md and docs/*.md leads somewhere: the file (or folder) exists and
+"""Every relative link of README.md and docs/**/*.md leads somewhere: the file (or folder) exists and
 an #anchor names a heading of the target Markdown file, as GitHub derives anchors from headings
 (lower case, punctuation dropped, spaces to hyphens, "-1", "-2", ... after repeats) or an
 `<a id="...">` of that file.
@@ -60,7 +60,7 @@ def anchors(path, cache):
 
 def broken_links(root):
     root = pathlib.Path(root).resolve()
-    files = [root / "README.md"] + sorted((root / "docs").glob("*.md"))
+    files = [root / "README.md"] + sorted((root / "docs").rglob("*.md"))
     problems = []
     cache = {}
     for source in files:
@@ -94,16 +94,22 @@ def self_test():
         good = ("# Corsa\n\n[a](docs/a.md#figures-1000-cars-tried-dropped) [b](docs/a.md#figures-1) "
                 "[c](docs/) [s](docs/a.md#snow) [d](https://example.org/x#y) `[e](docs/missing.md)`\n"
                 "[a wrapped\nlink](docs/a.md#figures)\n")
+        (root / "docs/sub").mkdir()  # a file in a subfolder is checked, its links relative to it
+        (root / "docs/sub/b.md").write_text("# B\n\n[a](../a.md#figures-1) [r](../../README.md#corsa) [self](#b)\n",
+                                            encoding="utf-8")
         (root / "README.md").write_text(good, encoding="utf-8")
         if broken_links(root):
             print("self-test: a good tree reported broken:", broken_links(root))
             return 1
         (root / "README.md").write_text(good + "[f](docs/missing.md) [g](docs/a.md#not-a-heading) [h\ni](docs/a.md#x)\n",
                                         encoding="utf-8")
+        (root / "docs/sub/b.md").write_text("# B\n\n[a](a.md) [b](../a.md#figures-3)\n", encoding="utf-8")
         found = broken_links(root)
         expected = ["README.md:6: no file docs/missing.md",
                     "README.md:6: no heading #not-a-heading in docs/a.md",
-                    "README.md:6: no heading #x in docs/a.md"]
+                    "README.md:6: no heading #x in docs/a.md",
+                    "docs/sub/b.md:3: no file a.md",
+                    "docs/sub/b.md:3: no heading #figures-3 in ../a.md"]
         if found != expected:
             print("self-test: expected", expected, "got", found)
             return 1
