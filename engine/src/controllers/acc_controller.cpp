@@ -104,7 +104,7 @@ LanePath path_ahead(const xodr::Map& map, const Entity& me, LanesAhead& ahead) {
 // Path distance (m) of road coordinates `theirs` ahead of the follower, or nothing when they
 // are not on the path. `containing` also matches the lane the follower is in now (during a
 // lane change the followed lane is already the target lane; the old one still counts).
-std::optional<double> distance_on_path(const LanePath& path, const RoadCoordinates& theirs,
+std::optional<double> distance_on_path(const LanePath& path, const FollowTarget& theirs,
                                        int containing) {
   for (size_t i = 0; i < path.count; ++i) {
     const PathPiece& piece = path.pieces[i];
@@ -260,7 +260,7 @@ class LeaderSearch {
     if (dx * dx + dy * dy > kReach * kReach) {
       return;
     }
-    const auto ahead = distance_on_path(path_, other.road, containing_);
+    const auto ahead = distance_on_path(path_, other, containing_);
     if (!ahead || *ahead >= kRange) {
       return;
     }

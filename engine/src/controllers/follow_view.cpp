@@ -42,7 +42,8 @@ void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours)
   if (neighbours) {
     // Mostly the entity stands where the contacts boxed it after the last moves.
     const OrientedBox* boxed = state.contacts.unmoved_box(i, entity);
-    target.shape = boxed != nullptr ? *boxed : box_of(entity.info.box, entity.state().pose);
+    target.shape =
+        FlatBox::of(boxed != nullptr ? *boxed : box_of(entity.info.box, entity.state().pose));
     // The reach and offset (hypots) are made again only when the box has changed since they
     // were made: a box of zeros (reach_boxes_' default) has both 0 (their default).
     const Box& box = entity.info.box;
@@ -55,18 +56,21 @@ void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours)
   if (!target.usable) {
     return;
   }
-  target.road = *entity.state().road;
+  const RoadCoordinates& road = *entity.state().road;
+  target.road = road.road;
+  target.section = road.section;
+  target.lane = road.lane;
+  target.s = road.s;
   // Mostly the entity is in the lane it follows, whose node it knows.
   const LaneFollow& follow = entity.lane;
   const bool followed = follow.on_road && follow.node != xodr::kNoLane &&
-                        follow.road == target.road.road && follow.section == target.road.section &&
-                        follow.lane == target.road.lane;
+                        follow.road == target.road && follow.section == target.section &&
+                        follow.lane == target.lane;
   const xodr::LaneGraph* graph = state.map != nullptr ? &state.map->lane_graph() : nullptr;
-  const auto node =
-      followed ? std::optional<xodr::LaneNode>(follow.node)
-      : graph != nullptr
-          ? graph->find(xodr::LaneRef{target.road.road, target.road.section, target.road.lane})
-          : std::nullopt;
+  const auto node = followed ? std::optional<xodr::LaneNode>(follow.node)
+                    : graph != nullptr
+                        ? graph->find(xodr::LaneRef{target.road, target.section, target.lane})
+                        : std::nullopt;
   nodes_[i] = node.value_or(xodr::kNoLane);
 }
 
@@ -146,13 +150,13 @@ void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool)
   in_index_.assign(count, 0);
   for (const uint32_t i : lane_order_) {
     if (i < count && in_lane(i)) {
-      lanes_.add(nodes_[i], targets_[i].road.s, i);
+      lanes_.add(nodes_[i], targets_[i].s, i);
       in_index_[i] = 1;
     }
   }
   for (uint32_t i = 0; i < count; ++i) {
     if (!in_index_[i] && in_lane(i)) {
-      lanes_.add(nodes_[i], targets_[i].road.s, i);
+      lanes_.add(nodes_[i], targets_[i].s, i);
     }
   }
   lanes_.finish();

@@ -58,7 +58,7 @@ LocalFrame frame_at(const Entity& me, uint32_t index, const FollowView& view) {
 
 /// The extent along x of the part of `box` (another entity's) that lies within |y| <= half in
 /// `frame`; false when no part does.
-bool extent_in_band(const LocalFrame& frame, const OrientedBox& box, double half, double& x_min,
+bool extent_in_band(const LocalFrame& frame, const FlatBox& box, double half, double& x_min,
                     double& x_max) {
   double px[4], py[4];
   for (int k = 0; k < 4; ++k) {
@@ -164,7 +164,7 @@ void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0, 
 // the origin (the corners' coordinates are rounded near their magnitude).
 bool may_reach(const LocalFrame& frame, const FollowTarget& other, double x0, double x1,
                double half, double& least) {
-  const OrientedBox& box = other.shape;
+  const FlatBox& box = other.shape;
   double x = 0.0, y = 0.0;
   frame.to_local(box.cx, box.cy, x, y);
   // The box's axes in the frame: cos and sin of the heading difference.
@@ -205,7 +205,7 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
       continue;
     }
     // The box first (most of the grid's entities are in the neighbouring lanes, which it
-    // rejects): its fields lie together after `present`, the reference point's apart.
+    // rejects): it lies in the target's second cache line, the reference point in its first.
     double least = 0.0;
     if (!may_reach(frame, other, rear, front + reach, half, least)) {
       continue;
@@ -340,7 +340,7 @@ WalkerMove walker_move(const Entity& me, uint32_t index, const FollowView& view,
     // excess would touch.
     double abreast = kWalkerAbreast;
     if (view.has_shapes()) {
-      const OrientedBox& box = other.shape;
+      const FlatBox& box = other.shape;
       abreast += box.half_length * std::abs(box.sin_h * frame.c - box.cos_h * frame.s) +
                  box.half_width * (std::abs(box.cos_h * frame.c + box.sin_h * frame.s) - 1.0);
     }
@@ -420,7 +420,7 @@ bool walker_waits(const Entity& me, uint32_t index, const FollowView& view, doub
       continue;
     }
     // The stretch its box covers now and over the next kWithin seconds, along its heading.
-    const OrientedBox& box = other.shape;
+    const FlatBox& box = other.shape;
     const double ahead = box.half_length + std::max(other.speed, 0.0) * kWithin;
     const double bx0 = box.cx - box.half_length * box.cos_h,
                  by0 = box.cy - box.half_length * box.sin_h;
