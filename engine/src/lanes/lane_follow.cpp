@@ -19,9 +19,17 @@ int step_lane_id(int lane, int delta) {
   return lane;
 }
 
+namespace {
+
+// Heading of travel (rad) in direction dir on a road of heading `road_heading` (rad).
+double heading_of_travel(double road_heading, int dir) {
+  return dir >= 0 ? road_heading : road_heading + std::numbers::pi;
+}
+
+}  // namespace
+
 double travel_heading(const xodr::Map& map, uint32_t road, double s, int dir) {
-  const double h = map.reference(road, s).hdg;
-  return dir >= 0 ? h : h + std::numbers::pi;
+  return heading_of_travel(map.reference(road, s).hdg, dir);
 }
 
 std::optional<double> lane_center_t(const xodr::Map& map, uint32_t road, double s, int lane) {
@@ -55,7 +63,7 @@ bool attach_to_lane(const xodr::Map& map, LaneFollow& follow, uint32_t road, dou
   const double road_heading = map.reference(road, s).hdg;
   follow.dir = std::cos(heading - road_heading) >= 0.0 ? 1 : -1;
   follow.lateral = (t - *center) * follow.dir;
-  follow.heading_offset = wrap_angle(heading - travel_heading(map, road, s, follow.dir));
+  follow.heading_offset = wrap_angle(heading - heading_of_travel(road_heading, follow.dir));
   return true;
 }
 

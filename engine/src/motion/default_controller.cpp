@@ -174,6 +174,33 @@ bool at_dead_end(const xodr::Map& map, const LaneFollow& lane, double along) {
   return std::abs(boundary - lane.s) == 0.0 && graph.ends(lane.node, dir < 0).empty();
 }
 
+// Whether a step of `along` metres (no lateral change asked for) leaves the lane position as it
+// is: a travel far below an ulp of s, as of a speed decaying toward 0 that some action keeps
+// setting (a continuous relative SpeedAction behind a slowing entity), which advance_along_lanes
+// would add to s without changing it. `reach`, 8 |along|, bounds that travel (|along| / scale
+// for any scale path_scale gives, [0.2, 5]) and what it is scaled back to; where s, the
+// distance driven and the odometer absorb the reach, they absorb the travel (rounding is
+// monotonic), and the heading keeps its offset (below 1e-9 m). |along| above 1e-300 keeps the
+// travel from rounding to 0, so the step is no stand (it is not at a lane end either, the room
+// before it being at least the reach). Such a step changes nothing but what follows from the
+// speed, so the lane and the scale need no asking.
+bool creeps_in_place(const xodr::Map& map, const EntityMotion& entity, double along) {
+  const LaneFollow& lane = entity.lane;
+  const double reach = 8.0 * std::abs(along);
+  if (!(std::abs(along) > 1e-300 && reach <= 1e-9) ||
+      entity.lateral_command - lane.lateral != 0.0) {
+    return false;
+  }
+  const double toward = along > 0.0 ? lane.dir : -lane.dir;
+  if (lane.s + toward * reach != lane.s ||
+      entity.longitudinal_distance + reach != entity.longitudinal_distance ||
+      entity.state().odometer + reach != entity.state().odometer) {
+    return false;
+  }
+  const auto& info = map.lane_graph().info(lane.node);
+  return reach <= std::abs((toward > 0.0 ? info.s_end : info.s_start) - lane.s);
+}
+
 // The still step memo (Entity::still_step): the entity's motion, copied by its fields
 // (assignment through the base, so nothing of Entity placed in EntityMotion's tail is copied)
 // and compared field by field.
@@ -238,12 +265,15 @@ bool holds_still_step(const Entity& entity) {
     // does a step that cannot leave a lane end it stands at (the speed asked for stays asked
     // for there: such an entity tries every step).
     const double along = along_lane(entity, distance);
-    const double scale = distance == 0.0 || at_dead_end(*context.map, lane, along)
+    // Creeping in place, the step travels `along` as far as anything it writes can tell.
+    const bool creeps = creeps_in_place(*context.map, entity, along);
+    const double scale = creeps || distance == 0.0 || at_dead_end(*context.map, lane, along)
                              ? 1.0
                              : path_scale(*context.map, entity, context.curvatures);
     const double shift_before = lane.frame_shift;
     const AdvanceResult moved =
-        advance_along_lanes(*context.map, lane, along / scale, entity.chooser);
+        creeps ? AdvanceResult{along}
+               : advance_along_lanes(*context.map, lane, along / scale, entity.chooser);
     // Carried on from a neighbouring lane's end: the offset asked for moves with the lane frame.
     entity.lateral_command += lane.frame_shift - shift_before;
     const double travelled = moved.travelled * scale;
@@ -264,7 +294,8 @@ bool holds_still_step(const Entity& entity) {
     }
     // Moved neither along the lane (asked for no speed, or stopped at a lane end) nor across.
     stood = moved.travelled == 0.0 && lateral_change == 0.0;
-    path = std::hypot(travelled, lateral_change);
+    // hypot(x, +-0) is |x| (C17 F.10.4.3); creeping, the lateral change is 0.
+    path = creeps ? std::abs(travelled) : std::hypot(travelled, lateral_change);
     entity.longitudinal_distance += std::abs(travelled);
     update_pose_from_lane(entity, memos.lane_pose, *context.map, *context.scratch);
   } else if (context.stand_without_roads) {
