@@ -106,7 +106,7 @@ namespace {
 
 // Curvature (1/m) of the reference line at s: read from lines, arcs and spirals directly (the
 // common records; cheaper than evaluating the reference point), evaluated for the cubics.
-double curvature_at(const xodr::Map& map, uint32_t road, double s) {
+[[gnu::hot]] double curvature_at(const xodr::Map& map, uint32_t road, double s) {
   const xodr::Geometry* record = map.plan_record_at(road, s);
   if (record == nullptr) {
     return map.road(road).plan_view.empty() ? 0.0 : xodr::reference_curvature(map, road, s);
