@@ -72,7 +72,7 @@ LocalFrame straight_on(const LocalFrame& edge, double beyond) {
 // tangent. Following the formula instead would turn a short tight spiral overlapping a long line
 // into thousands of radians of loops, and cost time (spiral quadrature, index chunks of 0.1 rad)
 // in proportion to them, beyond the turn limit checked on the declared length.
-RefPoint evaluate_local(const Geometry& geometry, double ds) {
+[[gnu::hot]] RefPoint evaluate_local(const Geometry& geometry, double ds) {
   if (ds >= 0.0 && ds <= geometry.length) {
     return evaluate_shape(geometry, ds);
   }
@@ -124,7 +124,7 @@ const char* geometry_kind_name(const GeometryShape& shape) {
 
 RefPoint evaluate_line(double ds) { return RefPoint{ds, 0.0, 0.0, 0.0}; }
 
-RefPoint evaluate_arc(const ArcGeometry& arc, double ds) {
+[[gnu::hot]] RefPoint evaluate_arc(const ArcGeometry& arc, double ds) {
   const double k = arc.curvature;
   if (k == 0.0) {
     return evaluate_line(ds);

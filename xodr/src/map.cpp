@@ -113,7 +113,7 @@ double clamp_s(const Road& road, double s) {
                           detail::evaluate_local(geometry, s - geometry.s));
 }
 
-const Geometry* Map::plan_record_at(size_t road_index, double s) const {
+[[gnu::hot]] const Geometry* Map::plan_record_at(size_t road_index, double s) const {
   const detail::PoseGeometry* record =
       impl_->poses.geometry_before(impl_->poses.road(road_index), s);
   return record == nullptr ? nullptr : &record->geometry;
@@ -295,12 +295,12 @@ std::optional<LaneSpan> Map::lane_span(size_t road_index, double s, int lane_id)
   return lane_span_in_section(road_index, section_index(road_index, s), s, lane_id);
 }
 
-bool Map::section_widths_only(size_t road_index, size_t section) const {
+[[gnu::hot]] bool Map::section_widths_only(size_t road_index, size_t section) const {
   return impl_->spans.widths_only(road_index, section);
 }
 
-std::optional<LaneSpan> Map::lane_span_in_section(size_t road_index, size_t section, double s,
-                                                  int lane_id) const {
+[[gnu::hot]] std::optional<LaneSpan> Map::lane_span_in_section(size_t road_index, size_t section,
+                                                               double s, int lane_id) const {
   s = impl_->poses.clamp_s(impl_->poses.road(road_index), s);
   LaneSpan span;
   if (impl_->spans.span(road_index, section, s,

@@ -19,7 +19,7 @@ bool all_positive_zero(const std::vector<Poly3>& records) {
 
 }  // namespace
 
-size_t PolyRun::index(double s) const {
+[[gnu::hot]] size_t PolyRun::index(double s) const {
   const double* it = std::upper_bound(starts, starts + count, s);
   return it == starts ? 0 : static_cast<size_t>(it - starts) - 1;
 }

@@ -45,8 +45,8 @@ struct Leader {
 // The lanes a vehicle held at `lane` will follow, choosing with `chooser`, up to kRange metres
 // ahead; the lanes after its own come from `ahead`, which must have been started afresh for
 // this lane, direction and chooser (path_ahead).
-LanePath path_from(const xodr::Map& map, const LaneFollow& lane, const LaneChooser* chooser,
-                   LanesAhead& ahead) {
+[[gnu::hot]] LanePath path_from(const xodr::Map& map, const LaneFollow& lane,
+                                const LaneChooser* chooser, LanesAhead& ahead) {
   LanePath path;
   LaneEntry at = LaneEntry::of(lane);
   const auto& graph = map.lane_graph();
@@ -285,8 +285,8 @@ class LeaderSearch {
 
 // The leader as the view shows it along `path`; for generated traffic also a traffic light that
 // says stop (the light when it is as near).
-Leader find_leader(const SimState& state, uint32_t self, const FollowView& view,
-                   const LanePath& path, bool obey_signals) {
+[[gnu::hot]] Leader find_leader(const SimState& state, uint32_t self, const FollowView& view,
+                                const LanePath& path, bool obey_signals) {
   const Entity& me = state.world.entities[self];
   const Leader leader = LeaderSearch(me, self, path, view).find(*state.map);
   if (obey_signals) {
@@ -407,8 +407,8 @@ LanePath lane_path_of(const xodr::Map& map, const LaneFollow& lane) {
   return path_from(map, lane, nullptr, ahead);
 }
 
-void step_acc(SimState& state, uint32_t index, const MotionContext& motion, const FollowView& view,
-              LanesAhead& ahead) {
+[[gnu::hot]] void step_acc(SimState& state, uint32_t index, const MotionContext& motion,
+                           const FollowView& view, LanesAhead& ahead) {
   Entity& entity = state.world.entities[index];
   const double set_speed = entity.speed_command;
   const bool on_path = has_path(state, entity);

@@ -22,7 +22,7 @@ constexpr size_t kTargetChunk = 64;
 
 }  // namespace
 
-void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours) {
+[[gnu::hot]] void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours) {
   const Entity& entity = state.world.entities[i];
   FollowTarget& target = targets_[i];
   const bool visible = i >= state.controls.size() || state.controls[i].traffic_visible;
@@ -74,7 +74,7 @@ void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours)
   nodes_[i] = node.value_or(xodr::kNoLane);
 }
 
-void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool) {
+[[gnu::hot]] void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool) {
   const auto& entities = state.world.entities;
   const auto count = static_cast<uint32_t>(entities.size());
   targets_.resize(count);

@@ -99,8 +99,8 @@ void ClaimSettler::settle(std::span<const Approach> approaches, std::span<const 
   }
 }
 
-uint32_t collect_claims(const JunctionConflicts& conflicts, const LanePath& path, double front,
-                        double rear, double speed, Approach& out) {
+[[gnu::hot]] uint32_t collect_claims(const JunctionConflicts& conflicts, const LanePath& path,
+                                     double front, double rear, double speed, Approach& out) {
   const double v = std::max(speed, 0.0);
   const double horizon = kHorizonBase + v * v / (2.0 * kComfort);
   uint32_t count = 0;
@@ -175,7 +175,7 @@ void GiveWay::start(const SimState& state) {
   }
 }
 
-void GiveWay::begin_step(const SimState& state) {
+[[gnu::hot]] void GiveWay::begin_step(const SimState& state) {
   if (!conflicts_) {
     start(state);
   }
@@ -206,7 +206,8 @@ void GiveWay::begin_step(const SimState& state) {
   }
 }
 
-void GiveWay::record(uint32_t index, const Entity& me, const LanePath& path, int64_t tick) {
+[[gnu::hot]] void GiveWay::record(uint32_t index, const Entity& me, const LanePath& path,
+                                  int64_t tick) {
   Approach& a = approaches_[index];
   const bool was = approaching_[index] != 0;
   const double front = me.info.box.center_x + 0.5 * me.info.box.length;

@@ -20,18 +20,20 @@ inline constexpr size_t kMaxPieces = 16;  ///< lane pieces looked along (zero-le
 
 /// One lane (of one lane section) on the path ahead: road coordinates of where the path enters
 /// it, the direction it is driven in, and the path distance (m, along s) at the entry.
+/// No member initialisers: a LanePath is made for every vehicle every step and sets only the
+/// pieces it uses (aggregate initialisation sets every field).
 struct PathPiece {
-  uint32_t road = 0;
-  uint32_t section = 0;
-  int lane = 0;
-  xodr::LaneNode node = xodr::kNoLane;
-  double s_entry = 0.0;
-  int dir = 1;
-  double distance = 0.0;
+  uint32_t road;
+  uint32_t section;
+  int lane;
+  xodr::LaneNode node;
+  double s_entry;
+  int dir;
+  double distance;
 };
 
 struct LanePath {
-  std::array<PathPiece, kMaxPieces> pieces;  ///< the first `count` are set
+  std::array<PathPiece, kMaxPieces> pieces;  ///< the first `count` are set, the rest unset
   size_t count = 0;
 };
 

@@ -58,8 +58,8 @@ LocalFrame frame_at(const Entity& me, uint32_t index, const FollowView& view) {
 
 /// The extent along x of the part of `box` (another entity's) that lies within |y| <= half in
 /// `frame`; false when no part does.
-bool extent_in_band(const LocalFrame& frame, const FlatBox& box, double half, double& x_min,
-                    double& x_max) {
+[[gnu::hot]] bool extent_in_band(const LocalFrame& frame, const FlatBox& box, double half,
+                                 double& x_min, double& x_max) {
   double px[4], py[4];
   for (int k = 0; k < 4; ++k) {
     const double along = (k == 0 || k == 3) ? box.half_length : -box.half_length;
@@ -123,9 +123,9 @@ bool extent_in_band(const LocalFrame& frame, const FlatBox& box, double half, do
 // rectangle widened by `margin` on every side (a superset). A box reaching into the rectangle
 // has its centre within FollowView::max_reach() of it, a reference point in the rectangle within
 // FollowView::max_offset().
-void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0, double x1,
-                    double half, double margin, std::vector<uint32_t>& near,
-                    bool scenario_vehicles = false) {
+[[gnu::hot]] void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0,
+                                 double x1, double half, double margin, std::vector<uint32_t>& near,
+                                 bool scenario_vehicles = false) {
   near.clear();
   double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
   double y_min = x_min, y_max = -x_min;
@@ -189,8 +189,9 @@ bool is_generated(const SimState& state, uint32_t index) {
   return state.traffic.lifetimes.count(index) != 0;
 }
 
-Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view, double reach,
-                       double wanted, std::vector<uint32_t>& near, const Hazard& followed) {
+[[gnu::hot]] Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
+                                    double reach, double wanted, std::vector<uint32_t>& near,
+                                    const Hazard& followed) {
   const LocalFrame frame = frame_at(me, index, view);
   const double front = me.info.box.center_x + 0.5 * me.info.box.length;
   const double rear = me.info.box.center_x - 0.5 * me.info.box.length;
@@ -247,8 +248,8 @@ Hazard corridor_hazard(const Entity& me, uint32_t index, const FollowView& view,
   return hazard;
 }
 
-double keep_ahead_speed(const Entity& me, uint32_t index, const FollowView& view,
-                        std::vector<uint32_t>& near) {
+[[gnu::hot]] double keep_ahead_speed(const Entity& me, uint32_t index, const FollowView& view,
+                                     std::vector<uint32_t>& near) {
   if (!view.has_scenario_vehicles()) {
     return 0.0;
   }

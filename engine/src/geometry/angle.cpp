@@ -7,7 +7,11 @@ namespace corsa::engine::detail {
 
 [[gnu::hot]] double wrap_angle(double angle) {
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
-  angle = std::fmod(angle, kTwoPi);
+  // fmod is exact: within one turn it returns the angle itself (the common case, a heading of
+  // a step), and the call is left out.
+  if (!(std::abs(angle) < kTwoPi)) {
+    angle = std::fmod(angle, kTwoPi);
+  }
   if (angle <= -std::numbers::pi) {
     angle += kTwoPi;
   } else if (angle > std::numbers::pi) {

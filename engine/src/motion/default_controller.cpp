@@ -106,7 +106,7 @@ namespace {
 
 // Curvature (1/m) of the reference line at s: read from lines, arcs and spirals directly (the
 // common records; cheaper than evaluating the reference point), evaluated for the cubics.
-double curvature_at(const xodr::Map& map, uint32_t road, double s) {
+[[gnu::hot]] double curvature_at(const xodr::Map& map, uint32_t road, double s) {
   const xodr::Geometry* record = map.plan_record_at(road, s);
   if (record == nullptr) {
     return map.road(road).plan_view.empty() ? 0.0 : xodr::reference_curvature(map, road, s);
@@ -280,8 +280,10 @@ bool holds_still_step(const Entity& entity) {
     lateral_change = entity.lateral_command - lane.lateral;
     if (std::abs(travelled) > 1e-9) {
       // The heading turns away from the lane by the angle of the path the lateral motion draws;
-      // standing entities keep theirs (a car parked at an angle stays so).
-      lane.heading_offset = std::atan(lateral_change / travelled);
+      // standing entities keep theirs (a car parked at an angle stays so). Without a lateral
+      // motion the angle is the quotient's +-0 (atan(+-0) = +-0), which skips the library call.
+      const double slope = lateral_change / travelled;
+      lane.heading_offset = slope == 0.0 ? slope : std::atan(slope);
     }
     lane.lateral = entity.lateral_command;
     // At a lane end without successor the entity stops; it stays "at the end of the road"
@@ -294,8 +296,8 @@ bool holds_still_step(const Entity& entity) {
     }
     // Moved neither along the lane (asked for no speed, or stopped at a lane end) nor across.
     stood = moved.travelled == 0.0 && lateral_change == 0.0;
-    // hypot(x, +-0) is |x| (C17 F.10.4.3); creeping, the lateral change is 0.
-    path = creeps ? std::abs(travelled) : std::hypot(travelled, lateral_change);
+    // hypot(x, +-0) is |x| exactly: the library call only for a lateral motion.
+    path = lateral_change == 0.0 ? std::abs(travelled) : std::hypot(travelled, lateral_change);
     entity.longitudinal_distance += std::abs(travelled);
     update_pose_from_lane(entity, memos.lane_pose, *context.map, *context.scratch);
   } else if (context.stand_without_roads) {

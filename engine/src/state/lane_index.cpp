@@ -16,7 +16,7 @@ void LaneIndex::reset(size_t nodes) {
   size_ = 0;
 }
 
-void LaneIndex::add(xodr::LaneNode node, double s, uint32_t entity) {
+[[gnu::hot]] void LaneIndex::add(xodr::LaneNode node, double s, uint32_t entity) {
   if (node >= lanes_.size() || std::isnan(s)) {
     return;  // NaN: no range holds it
   }
@@ -28,7 +28,7 @@ void LaneIndex::add(xodr::LaneNode node, double s, uint32_t entity) {
   ++size_;
 }
 
-void LaneIndex::finish() {
+[[gnu::hot]] void LaneIndex::finish() {
   // A strict total order (no NaN s is added, an entity once): every sort gives the same order.
   const auto before = [](const Entry& a, const Entry& b) {
     return a.s < b.s || (a.s == b.s && a.entity < b.entity);
@@ -50,7 +50,7 @@ void LaneIndex::finish() {
   }
 }
 
-void LaneIndex::order(std::vector<uint32_t>& out) const {
+[[gnu::hot]] void LaneIndex::order(std::vector<uint32_t>& out) const {
   for (const xodr::LaneNode node : used_) {
     for (const Entry& entry : lanes_[node]) out.push_back(entry.entity);
   }
@@ -69,7 +69,7 @@ void LaneIndex::query(xodr::LaneNode node, double s_low, double s_high,
   }
 }
 
-std::span<const LaneIndex::Entry> LaneIndex::lane(xodr::LaneNode node) const {
+[[gnu::hot]] std::span<const LaneIndex::Entry> LaneIndex::lane(xodr::LaneNode node) const {
   return node < lanes_.size() ? std::span<const Entry>(lanes_[node]) : std::span<const Entry>();
 }
 

@@ -26,7 +26,7 @@ void PackedPointGrid::clear() {
   nx_ = ny_ = 0;
 }
 
-void PackedPointGrid::add(double x, double y, uint32_t id) {
+[[gnu::hot]] void PackedPointGrid::add(double x, double y, uint32_t id) {
   if (!(std::abs(x / cell_) < kMaxGridCell) || !(std::abs(y / cell_) < kMaxGridCell)) {
     overflow_.push_back(id);
     return;
@@ -34,13 +34,13 @@ void PackedPointGrid::add(double x, double y, uint32_t id) {
   staged_.push_back({x, y, id});
 }
 
-int64_t PackedPointGrid::cell_of(double v, double origin, int64_t count) const {
+[[gnu::hot]] int64_t PackedPointGrid::cell_of(double v, double origin, int64_t count) const {
   // v >= origin: truncation is floor (the same as span_of takes).
   const double f = (v - origin) / size_;
   return f < static_cast<double>(count - 1) ? static_cast<int64_t>(f) : count - 1;
 }
 
-void PackedPointGrid::finish() {
+[[gnu::hot]] void PackedPointGrid::finish() {
   points_.clear();
   nx_ = ny_ = 0;
   starts_.assign(1, 0);
@@ -77,8 +77,8 @@ void PackedPointGrid::finish() {
   starts_.back() = static_cast<uint32_t>(points_.size());
 }
 
-bool PackedPointGrid::span_of(double low, double high, double origin, int64_t count, int64_t& first,
-                              int64_t& last) const {
+[[gnu::hot]] bool PackedPointGrid::span_of(double low, double high, double origin, int64_t count,
+                                           int64_t& first, int64_t& last) const {
   // Truncation is floor for the non-negative values it is applied to, and cheaper.
   const double a = (low - origin) / size_, b = (high - origin) / size_;
   if (!(a <= b) || b < 0.0 || a >= static_cast<double>(count)) {
@@ -117,9 +117,10 @@ void PackedPointGrid::query_box(double x_min, double y_min, double x_max, double
   });
 }
 
-void PackedPointGrid::query_band(double x_min, double y_min, double x_max, double y_max, double x,
-                                 double y, double c, double s, double along_min, double along_max,
-                                 double half, std::vector<uint32_t>& out) const {
+[[gnu::hot]] void PackedPointGrid::query_band(double x_min, double y_min, double x_max,
+                                              double y_max, double x, double y, double c, double s,
+                                              double along_min, double along_max, double half,
+                                              std::vector<uint32_t>& out) const {
   out.insert(out.end(), overflow_.begin(), overflow_.end());
   // Whether a point is in the band follows no pattern a branch predictor learns (800 vehicles
   // on Town04: a corridor's query looks at 5.8 points and keeps 2.5), so every point's id is

@@ -361,9 +361,9 @@ void sweep_along_y(std::vector<Item>& items, ContactSweep& sweep, size_t entity_
 // Sweeps along x; pairs apart along y (with a rounding margin) cannot overlap and are skipped.
 // Extents that are not all `finite` (NaN or infinite) have no total order to start from; finite
 // ones many boxes sweep in strips along y.
-void sweep_along_x(std::vector<Item>& items, ContactSweep& sweep, size_t entity_count,
-                   const ContactSpread& spread, const std::vector<OrientedBox>& boxes,
-                   ContactRecorder& record) {
+[[gnu::hot]] void sweep_along_x(std::vector<Item>& items, ContactSweep& sweep, size_t entity_count,
+                                const ContactSpread& spread, const std::vector<OrientedBox>& boxes,
+                                ContactRecorder& record) {
   const bool finite = spread.finite;
   if (finite) {
     // A lambda, not the function's pointer, so that the insertion sort's comparisons are inlined.
