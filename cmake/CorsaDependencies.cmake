@@ -97,14 +97,25 @@ find_path(SUNDIALS_INCLUDE_DIR cvode/cvode.h)
 find_library(SUNDIALS_CVODE_LIBRARY NAMES sundials_cvode)
 find_library(SUNDIALS_ARKODE_LIBRARY NAMES sundials_arkode)
 find_library(SUNDIALS_NVEC_LIBRARY NAMES sundials_nvecserial)
+# An executable links the static archives (libsundials-dev ships them, position-independent):
+# two fewer shared objects to map and relocate at every start of `corsa`, whose ~1,100 symbol
+# relocations cost more than a short run's integration. Shared objects (the plugin, the Python
+# module) link the shared libraries.
+find_library(SUNDIALS_CVODE_ARCHIVE NAMES libsundials_cvode.a)
+find_library(SUNDIALS_ARKODE_ARCHIVE NAMES libsundials_arkode.a)
+find_library(SUNDIALS_NVEC_ARCHIVE NAMES libsundials_nvecserial.a)
 if(SUNDIALS_INCLUDE_DIR AND SUNDIALS_CVODE_LIBRARY AND SUNDIALS_ARKODE_LIBRARY
-   AND SUNDIALS_NVEC_LIBRARY)
+   AND SUNDIALS_NVEC_LIBRARY AND SUNDIALS_CVODE_ARCHIVE AND SUNDIALS_ARKODE_ARCHIVE
+   AND SUNDIALS_NVEC_ARCHIVE)
   set(SUNDIALS_FOUND TRUE)
+  set(sundials_shared "${SUNDIALS_CVODE_LIBRARY};${SUNDIALS_ARKODE_LIBRARY};${SUNDIALS_NVEC_LIBRARY}")
+  set(sundials_static "${SUNDIALS_CVODE_ARCHIVE};${SUNDIALS_ARKODE_ARCHIVE};${SUNDIALS_NVEC_ARCHIVE}")
   add_library(corsa::sundials INTERFACE IMPORTED)
+  # $<TARGET_PROPERTY:TYPE> is the type of the target being linked, not of the module library.
   set_target_properties(corsa::sundials PROPERTIES
     INTERFACE_INCLUDE_DIRECTORIES "${SUNDIALS_INCLUDE_DIR}"
     INTERFACE_LINK_LIBRARIES
-      "${SUNDIALS_CVODE_LIBRARY};${SUNDIALS_ARKODE_LIBRARY};${SUNDIALS_NVEC_LIBRARY}")
+      "$<IF:$<STREQUAL:$<TARGET_PROPERTY:TYPE>,EXECUTABLE>,${sundials_static},${sundials_shared}>")
 endif()
 corsa_require(SUNDIALS_FOUND "SUNDIALS (CVODE, ARKODE)" libsundials-dev)
 

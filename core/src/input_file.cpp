@@ -84,25 +84,28 @@ std::string read_file(const std::filesystem::path& path, uint64_t max_bytes) {
   std::string content(static_cast<size_t>(status.st_size), '\0');
   size_t size = 0;
   while (true) {
-    if (size == content.size()) {
-      // The file may have grown since fstat: read on, up to the cap.
-      if (size >= max_bytes) {
-        char probe = 0;
-        const ssize_t more = ::read(fd.get(), &probe, 1);
-        if (more > 0) {
-          input_error(path, "grew past the " + mebibytes(max_bytes) +
-                                " Corsa reads from one input file while being read");
-        }
-        break;
+    // Past the size fstat gave, the file may have grown since: a small read says whether it did
+    // before the string grows (growing it first would zero-fill memory for every file read).
+    const bool past_end = size == content.size();
+    if (past_end && size >= max_bytes) {
+      char probe = 0;
+      const ssize_t more = ::read(fd.get(), &probe, 1);
+      if (more > 0) {
+        input_error(path, "grew past the " + mebibytes(max_bytes) +
+                              " Corsa reads from one input file while being read");
       }
-      content.resize(std::min<uint64_t>(max_bytes, content.size() + 65536));
+      break;
     }
-    const ssize_t got = ::read(fd.get(), content.data() + size, content.size() - size);
+    char grown[4096];
+    const size_t room =
+        past_end ? std::min<uint64_t>(sizeof grown, max_bytes - size) : content.size() - size;
+    const ssize_t got = ::read(fd.get(), past_end ? grown : content.data() + size, room);
     if (got < 0) {
       if (errno == EINTR) continue;
       input_error(path, std::string("read failed (") + std::strerror(errno) + ")");
     }
     if (got == 0) break;
+    if (past_end) content.append(grown, static_cast<size_t>(got));
     size += static_cast<size_t>(got);
   }
   content.resize(size);

@@ -85,12 +85,17 @@ std::string bad_character_reference_message(std::string_view body) {
 std::optional<XmlTextProblem> find_undeclared_entity(std::string_view xml) {
   int line = 1;
   for (size_t i = 0; i < xml.size(); ++i) {
+    // Only '<', '&' and line ends start anything looked at below: the rest is passed over at a
+    // few instructions a character (a scenario's catalogs are read through here at every run).
+    while (xml[i] != '<' && xml[i] != '&' && xml[i] != '\n') {
+      if (++i == xml.size()) return std::nullopt;
+    }
     // Comments, CDATA sections and processing instructions may hold any '&'.
     bool skipped = false;
     for (const auto& [open, close] : {std::pair<std::string_view, std::string_view>{"<!--", "-->"},
                                       {"<![CDATA[", "]]>"},
                                       {"<?", "?>"}}) {
-      if (xml.substr(i, open.size()) == open) {
+      if (xml[i] == '<' && xml.substr(i, open.size()) == open) {
         const size_t found = xml.find(close, i + open.size());
         const size_t end = found == std::string_view::npos ? xml.size() : found + close.size();
         line += static_cast<int>(std::count(xml.begin() + static_cast<std::ptrdiff_t>(i),

@@ -375,7 +375,13 @@ ParameterValueDistribution load_distribution(const std::filesystem::path& path,
 
 DocumentKind document_kind(const std::filesystem::path& path) {
   try {
-    const XmlFile xml = load_xml(path);
+    const std::string text = read_file(path);
+    // Without the element's name anywhere in the text no parse can find a distribution: a plain
+    // scenario (what `corsa run` is given) is then not parsed a second time just to say so.
+    if (text.find("ParameterValueDistribution") == std::string::npos) {
+      return DocumentKind::kScenario;
+    }
+    const XmlFile xml = parse_xml(text, path);
     const Element* root = xml.document->RootElement();
     if (std::string_view(root->Name()) != "OpenSCENARIO") return DocumentKind::kScenario;
     return kind_of(root);

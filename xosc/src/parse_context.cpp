@@ -30,7 +30,12 @@ std::string element_path(const Element* element) {
   return path;
 }
 
-XmlFile parse_xml(std::string_view text, const std::filesystem::path& path) {
+namespace {
+
+// parse_xml on text it owns: the text kept in the XmlFile is then the caller's string moved, not
+// a copy (a catalog file's text lives as long as the catalog cache).
+XmlFile parse_owned_xml(std::string owned, const std::filesystem::path& path) {
+  std::string_view text = owned;
   XmlFile file;
   file.name = std::make_shared<const std::string>(path.string());
   file.directory = std::filesystem::absolute(path).parent_path();
@@ -85,12 +90,20 @@ XmlFile parse_xml(std::string_view text, const std::filesystem::path& path) {
   if (const auto problem = find_undeclared_entity(text)) {
     throw InputError(make_error(*file.name, problem->line, problem->message));
   }
-  file.text = std::make_shared<const std::string>(repaired.empty() ? std::string(text)
-                                                                   : std::move(repaired));
+  std::string& kept = !repaired.empty() ? repaired : !with_entities.empty() ? with_entities : owned;
+  file.text = std::make_shared<const std::string>(std::move(kept));
   return file;
 }
 
-XmlFile load_xml(const std::filesystem::path& path) { return parse_xml(read_file(path), path); }
+}  // namespace
+
+XmlFile parse_xml(std::string_view text, const std::filesystem::path& path) {
+  return parse_owned_xml(std::string(text), path);
+}
+
+XmlFile load_xml(const std::filesystem::path& path) {
+  return parse_owned_xml(read_file(path), path);
+}
 
 void warn_xml_repairs(ParseContext& ctx, const XmlFile& file) {
   if (file.late_declaration_line > 0) {

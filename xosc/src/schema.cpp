@@ -6,8 +6,7 @@
 // attributes not listed are warnings. known_elements() is derived from this table.
 
 #include <algorithm>
-#include <map>
-#include <set>
+#include <vector>
 
 #include "schema_table.h"
 
@@ -297,6 +296,7 @@ WorldPosition||h p r x y z
 
 std::vector<std::string_view> words(std::string_view text) {
   std::vector<std::string_view> result;
+  result.reserve(static_cast<size_t>(std::count(text.begin(), text.end(), ' ')) + 1);
   size_t start = 0;
   while (start < text.size()) {
     const size_t end = std::min(text.find(' ', start), text.size());
@@ -308,14 +308,18 @@ std::vector<std::string_view> words(std::string_view text) {
   return result;
 }
 
+// Sorted vectors rather than a map and a set: the table is built at every run's first parse,
+// and a few hundred tree nodes cost more than the sorting.
 struct Table {
-  std::map<std::string_view, TypeRule> rules;
+  std::vector<TypeRule> rules;  ///< by type; of a type listed twice, its first line
   std::vector<ElementInfo> elements;
 };
 
+bool by_type(const TypeRule& a, const TypeRule& b) { return a.type < b.type; }
+
 Table build_table() {
   Table table;
-  std::set<std::string_view> names{"OpenSCENARIO"};
+  std::vector<std::string_view> names{"OpenSCENARIO"};
   size_t start = 0;
   while (start < kRules.size()) {
     const size_t end = std::min(kRules.find('\n', start), kRules.size());
@@ -330,9 +334,16 @@ Table build_table() {
     rule.type = line.substr(0, bar1);
     rule.children = words(line.substr(bar1 + 1, bar2 - bar1 - 1));
     rule.attributes = words(line.substr(bar2 + 1));
-    names.insert(rule.children.begin(), rule.children.end());
-    table.rules.emplace(rule.type, std::move(rule));
+    names.insert(names.end(), rule.children.begin(), rule.children.end());
+    table.rules.push_back(std::move(rule));
   }
+  std::stable_sort(table.rules.begin(), table.rules.end(), by_type);
+  const auto same_type = [](const TypeRule& a, const TypeRule& b) { return a.type == b.type; };
+  table.rules.erase(std::unique(table.rules.begin(), table.rules.end(), same_type),
+                    table.rules.end());
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  table.elements.reserve(names.size());
   for (const auto name : names) {
     table.elements.push_back({name, Support::kParsed});
   }
@@ -357,8 +368,10 @@ bool TypeRule::allows_attribute(std::string_view name) const {
 
 const TypeRule* find_type_rule(std::string_view type) {
   const auto& rules = table().rules;
-  const auto found = rules.find(type);
-  return found == rules.end() ? nullptr : &found->second;
+  const auto found = std::lower_bound(
+      rules.begin(), rules.end(), type,
+      [](const TypeRule& rule, std::string_view name) { return rule.type < name; });
+  return found == rules.end() || found->type != type ? nullptr : &*found;
 }
 
 std::span<const ElementInfo> known_elements() { return table().elements; }

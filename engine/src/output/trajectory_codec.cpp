@@ -3,6 +3,15 @@
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #define CORSA_CRC_PCLMUL 1
+#if __has_include(<sys/platform/x86.h>)
+// glibc's copy of the CPU's features, read by the dynamic loader at start-up. GCC's
+// __builtin_cpu_supports would link libgcc's __cpu_indicator_init, a constructor that runs a
+// dozen CPUID instructions in every process, each costing ~25 us under a hypervisor.
+#include <sys/platform/x86.h>
+#define CORSA_HAS_PCLMUL() (CPU_FEATURE_ACTIVE(PCLMULQDQ) && CPU_FEATURE_ACTIVE(SSE4_1))
+#else
+#define CORSA_HAS_PCLMUL() (__builtin_cpu_supports("pclmul") && __builtin_cpu_supports("sse4.1"))
+#endif
 #endif
 
 namespace corsa::engine::detail::trajectory_codec {
@@ -106,7 +115,7 @@ uint32_t crc32(uint32_t crc, std::string_view data) {
   const char* p = data.data();
   size_t n = data.size();
 #ifdef CORSA_CRC_PCLMUL
-  if (n >= 64 && __builtin_cpu_supports("pclmul") && __builtin_cpu_supports("sse4.1")) {
+  if (n >= 64 && CORSA_HAS_PCLMUL()) {
     const size_t whole = n & ~size_t{15};
     crc = crc32_folded(p, whole, crc);
     p += whole;
