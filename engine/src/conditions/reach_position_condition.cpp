@@ -120,15 +120,17 @@ class ReachPositionCheck final : public EntityCondition {
         fixed_(fixed_on_map(c.position)) {}
 
   [[gnu::hot]] bool holds(const SimState& state, uint32_t entity) override {
-    // A place on the map, once resolved: the value is a function of the entity's state alone,
-    // and while its count of writes stands it is the one the memo holds (kept by every
-    // condition of this definition, share_values).
-    if (target_) {
+    // A place on the map, once resolved, that other conditions of this definition share
+    // (share_values): the value is a function of the entity's state alone, and while its count
+    // of writes stands it is the one the shared memo holds. A condition of its own keeps none:
+    // its test is about as cheap as the memo's.
+    if (shared_ && target_) {
       const Memo& memo = *memo_;
       if (memo.valid && memo.entity == entity &&
           memo.changes == state.world.entities[entity].state_changes()) {
         return memo.value;
       }
+      return remember(state, entity);
     }
     return evaluate(state, entity);
   }
@@ -141,20 +143,28 @@ class ReachPositionCheck final : public EntityCondition {
     return key + fixed_position_key(c_.position);
   }
   void share_values(EntityCondition& other) override {
-    memo_ = static_cast<ReachPositionCheck&>(other).memo_;
+    auto& first = static_cast<ReachPositionCheck&>(other);
+    memo_ = first.memo_;
+    shared_ = true;
+    first.shared_ = true;
   }
 
  private:
-  // The value when the memo does not hold it (out of line: the memo's test is the common path).
-  [[gnu::noinline]] bool evaluate(const SimState& state, uint32_t entity) {
-    if (!fixed_) {
-      return reached(resolve_position(c_.position, state, entity), state, entity);
-    }
-    // A place on the map is resolved once; it was resolved every step, for every entity.
-    if (!target_) target_ = resolve_position(c_.position, state, entity);
+  // The value when the shared memo does not hold it, kept in the memo (out of line: the memo's
+  // test is the common path).
+  [[gnu::noinline]] bool remember(const SimState& state, uint32_t entity) {
     const bool value = reached(*target_, state, entity);
     *memo_ = Memo{true, entity, state.world.entities[entity].state_changes(), value};
     return value;
+  }
+
+  // The value without the memo. Out of line, as remember: the memo's test above then needs no
+  // registers saved.
+  [[gnu::noinline]] bool evaluate(const SimState& state, uint32_t entity) {
+    // A place on the map is resolved once; it was resolved every step, for every entity.
+    if (fixed_ && !target_) target_ = resolve_position(c_.position, state, entity);
+    return fixed_ ? reached(*target_, state, entity)
+                  : reached(resolve_position(c_.position, state, entity), state, entity);
   }
 
   // Whether `entity` is within the tolerance of `target` now.
@@ -177,7 +187,7 @@ class ReachPositionCheck final : public EntityCondition {
            std::abs(wrap_angle(p.r - target.pose.r)) < kEsminiAngularTolerance;
   }
 
-  /// The value for one entity at one count of its state's writes (fixed_ alone).
+  /// The value for one entity at one count of its state's writes (fixed_ and shared_ alone).
   struct Memo {
     bool valid = false;
     uint32_t entity = 0;
@@ -188,6 +198,7 @@ class ReachPositionCheck final : public EntityCondition {
   const xosc::ReachPositionCondition& c_;
   bool check_orientation_ = false;
   bool fixed_ = false;
+  bool shared_ = false;  ///< memo_ is shared with other conditions of this definition
   std::optional<ResolvedPosition> target_;  ///< the resolved place, when fixed_
   std::shared_ptr<Memo> memo_ = std::make_shared<Memo>();
 };
