@@ -302,5 +302,35 @@ TEST_CASE("A ReachPositionCondition on a standing entity holds on the step its p
   CHECK(run.now("Post").pose.x == Approx(30.0).margin(1e-9));
 }
 
+TEST_CASE("ReachPositionConditions of one definition share their values, not their edges",
+          "[engine][condition][reach]") {
+  // Walker drives at 10 m/s from s = 10; the conditions on s = 40 with a tolerance of 0.5 m share
+  // one memo of their value (one definition), each with its own edge, delay and entity: the
+  // shared value must change as Walker comes and goes, and must not pass from one entity to
+  // another.
+  FixtureRun run(engine_fixture("condition_reach_shared.xosc"));
+  run.run();
+  const auto start = [&](const std::string& event) {
+    return run.first(event, TransitionKind::kStart);
+  };
+  const auto reached = start("WalkerM::Reached");
+  REQUIRE(reached);
+  CHECK(*reached == Approx(2.95));
+  CHECK(start("StanderM::WalkerThere") == reached);
+  // The delay and the falling edge are the condition's own.
+  CHECK(start("WalkerM::ReachedLater") == Approx(*reached + 1.0));
+  CHECK(start("WalkerM::Left") == Approx(3.05));
+  // Stander, 30 m away, never reaches s = 40, though its conditions read the memo right after
+  // Walker's made it true.
+  CHECK(run.count("WalkerM::StanderReached", TransitionKind::kStart) == 0);
+  CHECK(run.count("StanderM::StanderThere", TransitionKind::kStart) == 0);
+  CHECK(run.now("Stander").speed == 0.0);
+  // Another tolerance is another definition: 2 m from s = 40 earlier.
+  CHECK(start("StanderM::WalkerNear") == Approx(2.8));
+  // s = 50, twice.
+  CHECK(start("WatcherM::Passed") == Approx(3.95));
+  CHECK(start("WatcherM::PassedToo") == start("WatcherM::Passed"));
+}
+
 }  // namespace
 }  // namespace corsa::test

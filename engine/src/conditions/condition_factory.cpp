@@ -1,4 +1,5 @@
 #include <cmath>
+#include <map>
 #include <type_traits>
 
 #include "conditions/condition_makers.h"
@@ -23,6 +24,17 @@ bool compare(double value, xosc::Rule rule, double reference) {
       return value < reference || equal;
   }
   return false;
+}
+
+void share_equal_conditions(const std::vector<EntityCondition*>& conditions) {
+  // The first condition of each key keeps the memo the later ones share.
+  std::map<std::string, EntityCondition*> first;
+  for (EntityCondition* condition : conditions) {
+    std::string key = condition->value_key();
+    if (key.empty()) continue;
+    const auto [it, added] = first.emplace(std::move(key), condition);
+    if (!added) condition->share_values(*it->second);
+  }
 }
 
 uint32_t need_entity_index(const SimState& state, const std::string& name,

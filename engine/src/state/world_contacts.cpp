@@ -22,12 +22,19 @@ bool find_moved_boxes(SimState& state, std::vector<uint32_t>& moved) {
   auto& inputs = state.contacts.inputs;
   const auto& entities = state.world.entities;
   moved.clear();
-  const bool same_entities = inputs.size() == entities.size();
-  inputs.resize(entities.size());
-  for (uint32_t i = 0; i < entities.size(); ++i) {
-    if (!same_entities || !inputs[i].same_as(entities[i])) {
+  // The count and places read once: `moved` grows in memory the compiler cannot tell apart from
+  // the entities' and inputs', which it would otherwise read again after each moved box.
+  const size_t count = entities.size();
+  const bool same_entities = inputs.size() == count;
+  if (!same_entities) {
+    inputs.resize(count);
+  }
+  ContactInput* const input = inputs.data();
+  const Entity* const entity = entities.data();
+  for (uint32_t i = 0; i < count; ++i) {
+    if (!same_entities || !input[i].same_as(entity[i])) {
       moved.push_back(i);
-      inputs[i] = ContactInput(entities[i]);
+      input[i] = ContactInput(entity[i]);
     }
   }
   return same_entities;
@@ -149,7 +156,9 @@ void add_moved_box_pairs(const SimState& state, const ContactSweep& sweep, uint3
   const auto& entities = state.world.entities;
   const std::vector<OrientedBox>& boxes = state.contacts.boxes;
   const Item p = sweep_item(sweep, m);
-  for (uint32_t j = 0; j < entities.size(); ++j) {
+  // Read once, as in find_moved_boxes (`now` grows).
+  const auto count = static_cast<uint32_t>(entities.size());
+  for (uint32_t j = 0; j < count; ++j) {
     if (j == m || !boxed(entities[j]) || (sweep.moved_mark[j] != 0 && j < m)) {
       continue;
     }

@@ -1,8 +1,10 @@
 // Building the run-time storyboard tree from the document.
 
 #include <algorithm>
+#include <memory>
 #include <optional>
 #include <variant>
+#include <vector>
 
 #include "controllers/follow_ghost.h"
 #include "corsa/xosc/scenario.h"
@@ -165,6 +167,29 @@ bool storyboard_has_entity_condition(const xosc::Storyboard& board) {
   return false;
 }
 
+// Every trigger's entity conditions of one definition share one memo of its values
+// (share_equal_conditions, conditions/condition.h).
+void share_condition_values(std::vector<std::unique_ptr<StoryNode>>& stories,
+                            std::optional<Trigger>& stop_trigger) {
+  std::vector<EntityCondition*> conditions;
+  const auto collect = [&](std::optional<Trigger>& trigger) {
+    if (trigger) trigger->collect_entity_conditions(conditions);
+  };
+  for (auto& story : stories) {
+    for (ActNode& act : story->acts) {
+      collect(act.start_trigger);
+      collect(act.stop_trigger);
+      for (GroupNode& group : act.groups) {
+        for (ManeuverNode& maneuver : group.maneuvers) {
+          for (EventNode& event : maneuver.events) collect(event.start_trigger);
+        }
+      }
+    }
+  }
+  collect(stop_trigger);
+  share_equal_conditions(conditions);
+}
+
 }  // namespace
 
 Storyboard::Storyboard(SimState& state) {
@@ -187,6 +212,7 @@ Storyboard::Storyboard(SimState& state) {
   if (board.stop_trigger) {
     stop_trigger_.emplace(*board.stop_trigger, state);
   }
+  share_condition_values(stories_, stop_trigger_);
 }
 
 Storyboard::~Storyboard() = default;

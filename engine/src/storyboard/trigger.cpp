@@ -116,4 +116,12 @@ void Trigger::forget_history() {
   }
 }
 
+void Trigger::collect_entity_conditions(std::vector<EntityCondition*>& out) {
+  for (auto& group : groups_) {
+    for (auto& condition : group) {
+      if (EntityCondition* entity = condition.entity_condition()) out.push_back(entity);
+    }
+  }
+}
+
 }  // namespace corsa::engine::detail

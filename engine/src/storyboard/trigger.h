@@ -54,6 +54,9 @@ class CompiledCondition {
   /// the condition starts over as if never evaluated.
   void forget_history();
 
+  /// The entity condition evaluated, or null (a value condition).
+  EntityCondition* entity_condition() { return entity_.get(); }
+
  private:
   /// The entity condition's value now; holders_ receives the entities that make it hold.
   bool entities_hold(const SimState& state);
@@ -107,6 +110,9 @@ class Trigger {
   /// Starts over for a new execution of the element it starts: values seen by its conditions in
   /// an earlier execution (edges, values waiting for their delay) no longer count.
   void forget_history();
+
+  /// Appends the entity conditions of every group (share_equal_conditions).
+  void collect_entity_conditions(std::vector<EntityCondition*>& out);
 
  private:
   bool evaluate_groups(const SimState& state, std::vector<uint32_t>& triggering);
