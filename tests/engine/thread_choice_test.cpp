@@ -1,0 +1,50 @@
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cstdint>
+
+#include "controllers/thread_choice.h"
+
+using corsa::engine::detail::ThreadChoice;
+using std::chrono::microseconds;
+
+namespace {
+
+// Charges the steps of one probe: `shared` for each shared step, `alone` for the others, with
+// `spike` instead every fifth step (a step that lost its core for a while). Returns the way
+// chosen for the rest of the probe period.
+bool probe(ThreadChoice& choice, microseconds shared, microseconds alone, microseconds spike) {
+  constexpr uint32_t kTrial = ThreadChoice::kWarmSteps + ThreadChoice::kTrialSteps;
+  for (uint32_t step = 0; step < 2 * kTrial; ++step) {
+    REQUIRE(choice.shared() == (step < kTrial));
+    choice.charge(step % 5 == 4 ? spike : (choice.shared() ? shared : alone));
+  }
+  return choice.shared();
+}
+
+// The steps after a probe until the next one begins (the probe's steps are counted).
+void settle(ThreadChoice& choice, bool chosen) {
+  constexpr uint32_t kTrial = ThreadChoice::kWarmSteps + ThreadChoice::kTrialSteps;
+  for (uint32_t step = 2 * kTrial; step < ThreadChoice::kProbePeriod; ++step) {
+    REQUIRE(choice.shared() == chosen);
+    choice.charge(microseconds{1});
+  }
+}
+
+}  // namespace
+
+TEST_CASE(
+    "The thread choice times a step each way, keeps the faster until the next probe and is not "
+    "swayed by steps that lost their core",
+    "[engine][traffic]") {
+  ThreadChoice choice;
+  // Shared steps faster: shared kept, although a fifth of the shared steps took 10 ms.
+  CHECK(probe(choice, microseconds{300}, microseconds{500}, microseconds{10'000}));
+  settle(choice, true);
+  // The next probe starts shared again; now the steps alone are faster.
+  CHECK_FALSE(probe(choice, microseconds{600}, microseconds{520}, microseconds{5}));
+  settle(choice, false);
+  // And back: a period's choice is only that period's.
+  CHECK(probe(choice, microseconds{200}, microseconds{520}, microseconds{520}));
+  settle(choice, true);
+  CHECK(choice.shared());
+}
