@@ -2,28 +2,24 @@
 
 namespace corsa::engine::detail {
 
-ThreadChoice::Duration ThreadChoice::trial_median() {
-  std::nth_element(trial_.begin(), trial_.begin() + kTrialSteps / 2, trial_.end());
-  return trial_[kTrialSteps / 2];
+ThreadChoice::Duration ThreadChoice::median(std::array<Duration, kTrialSteps>& steps) {
+  std::nth_element(steps.begin(), steps.begin() + kTrialSteps / 2, steps.end());
+  return steps[kTrialSteps / 2];
 }
 
 void ThreadChoice::charge(Duration step) {
-  // A probe: kWarmSteps + kTrialSteps shared, as many on this thread alone, then the faster way
-  // until kProbePeriod steps have passed since the probe began.
-  constexpr uint32_t kTrial = kWarmSteps + kTrialSteps;
   const uint32_t at = step_++;
-  if (at < 2 * kTrial) {
-    const uint32_t in_trial = at % kTrial;
-    if (in_trial >= kWarmSteps) {
-      trial_[in_trial - kWarmSteps] = step;
+  if (at < kProbeSteps) {
+    // Block b (shared when even) of the probe, step k of the block.
+    const uint32_t block = at / kBlockSteps;
+    const uint32_t k = at % kBlockSteps;
+    if (k >= kWarmSteps) {
+      trial_[block % 2][block / 2 * (kBlockSteps - kWarmSteps) + k - kWarmSteps] = step;
     }
-    if (in_trial + 1 == kTrial) {
-      if (at < kTrial) {
-        shared_median_ = trial_median();
-        shared_ = false;
-      } else {
-        shared_ = shared_median_ < trial_median();
-      }
+    if (at + 1 < kProbeSteps) {
+      shared_ = (at + 1) / kBlockSteps % 2 == 0;
+    } else {
+      shared_ = median(trial_[0]) < median(trial_[1]);
     }
     return;
   }

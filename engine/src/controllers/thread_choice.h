@@ -9,8 +9,9 @@
 // (docs/performance-traffic.md). Handing half a step to the other virtual CPU costs its wake-up
 // and the moved entities' cache lines crossing between the cores; whether the half spared pays
 // for that depends on what the hypervisor and the machine's other programs do, not on anything
-// a table of sizes could hold. So every kProbePeriod steps the run times kTrialSteps steps each
-// way and keeps the faster way until the next probe.
+// a table of sizes could hold. So every kProbePeriod steps the run times kBlocks blocks of
+// steps each way, alternated (the machine's own speed drifts over tens of milliseconds: the
+// two ways then see the same drift), and keeps the faster way until the next probe.
 
 #include <algorithm>
 #include <array>
@@ -30,22 +31,27 @@ class ThreadChoice {
   /// what the other core wrote) to the way it went, shared() or not, and picks the next way.
   void charge(Duration step);
 
-  /// Steps of one way in a probe (after kWarmSteps that are not counted: the first steps after
-  /// a switch pay for the caches and the worker's wake-up of the switch itself).
-  static constexpr uint32_t kTrialSteps = 16;
+  /// A probe: kBlocks blocks of kBlockSteps steps each way, shared first, alternated; the
+  /// first kWarmSteps of a block are not counted (they pay for the switch itself: the caches
+  /// and the worker's wake-up).
+  static constexpr uint32_t kBlockSteps = 6;
   static constexpr uint32_t kWarmSteps = 2;
+  static constexpr uint32_t kBlocks = 3;
+  static constexpr uint32_t kProbeSteps = 2 * kBlocks * kBlockSteps;
+  /// Steps counted of each way in a probe.
+  static constexpr uint32_t kTrialSteps = kBlocks * (kBlockSteps - kWarmSteps);
   /// Steps from one probe's start to the next.
   static constexpr uint32_t kProbePeriod = 400;
 
  private:
-  /// The median of the trial's steps: a step that lost its core to another program for a
-  /// while does not decide.
-  Duration trial_median();
+  /// The median of one way's counted steps: a step that lost its core to another program for
+  /// a while does not decide.
+  static Duration median(std::array<Duration, kTrialSteps>& steps);
 
-  bool shared_ = true;  ///< a run starts with the shared trial
+  bool shared_ = true;  ///< a run starts with a probe's shared block
   uint32_t step_ = 0;   ///< steps since the probe began
-  Duration shared_median_{};
-  std::array<Duration, kTrialSteps> trial_{};
+  /// The probe's counted steps: [0] shared, [1] on one thread.
+  std::array<std::array<Duration, kTrialSteps>, 2> trial_{};
 };
 
 }  // namespace corsa::engine::detail
