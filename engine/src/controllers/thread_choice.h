@@ -6,7 +6,7 @@
 //
 // On the shared virtual machine two threads were faster than one only at times: 1,000 vehicles
 // on Town04 ran 19.0x / 18.3x / 19.0x real time on one thread and 17.0x / 24.8x / 16.9x on two
-// (docs/performance-traffic.md). Handing half a step to the other virtual CPU costs its wake-up
+// (docs/performance/two-threads.md). Handing half a step to the other virtual CPU costs its wake-up
 // and the moved entities' cache lines crossing between the cores; whether the half spared pays
 // for that depends on what the hypervisor and the machine's other programs do, not on anything
 // a table of sizes could hold. So every kProbePeriod steps the run times kBlocks blocks of
