@@ -83,10 +83,12 @@ void declare_run_options(ArgParser& parser) {
   parser.option("--npc", "vehicles=N,pedestrians=M",
                 "add seeded random NPCs: vehicles on driving lanes (car following), pedestrians "
                 "walking on sidewalks");
-  parser.option("--threads", "N",
-                "threads the entities of a step are moved on (default: every core); from 2, a "
-                "binary trajectory may also be encoded on a thread of its own (--record-thread); "
-                "results are the same for any number");
+  parser.option(
+      "--threads", "N",
+      "threads the entities of a step may be moved on (default: every core; a run times "
+      "its steps on all of them and on one, now and then, and keeps the faster); from 2, a "
+      "binary trajectory may also be encoded on a thread of its own (--record-thread); "
+      "results are the same for any number");
   parser.option("--semantics", "standard|esmini",
                 "where the standard's text and esmini differ, read as the standard (default) or "
                 "as esmini; what the standard leaves open is read as esmini either way "

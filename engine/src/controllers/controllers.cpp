@@ -21,6 +21,7 @@
 #include "controllers/natural_driver.h"
 #include "controllers/npc_caution.h"
 #include "controllers/sloppy_driver.h"
+#include "controllers/thread_choice.h"
 #include "controllers/worker_pool.h"
 #include "corsa/xodr/map.h"
 #include "corsa/xosc/scenario.h"
@@ -516,6 +517,9 @@ struct EntityMover::Impl {
 
   unsigned threads;
   std::unique_ptr<WorkerPool> pool;  ///< made on the first parallel step
+  /// Whether a step is shared out among the threads, from the steps' times.
+  ThreadChoice choice;
+  bool could_share = false;  ///< the last step had enough entities to be shared out
   FollowView view;
   /// Generated vehicles' claims on junction conflict zones (made with the first of them).
   std::unique_ptr<GiveWay> give_way;
@@ -602,6 +606,14 @@ EntityMover::~EntityMover() = default;
 EntityMover::EntityMover(EntityMover&&) noexcept = default;
 EntityMover& EntityMover::operator=(EntityMover&&) noexcept = default;
 
+bool EntityMover::times_steps() const { return impl_->threads > 1; }
+
+void EntityMover::charge_step(std::chrono::steady_clock::duration step) {
+  if (impl_->could_share) {
+    impl_->choice.charge(step);
+  }
+}
+
 void EntityMover::share(size_t count, const std::function<void(size_t, size_t)>& work) {
   Impl& impl = *impl_;
   if (impl.threads == 1 || count < kParallelLightEntities) {
@@ -687,7 +699,8 @@ MoverScan scan_for_move(SimState& state, uint32_t count) {
   // Generated traffic looks around itself (controllers/npc_caution.h): the view then also
   // holds the grid of the others.
   const bool generated = !state.traffic.lifetimes.empty();
-  const unsigned workers = count >= kParallelEntities ? impl.threads : 1;
+  impl.could_share = impl.threads > 1 && count >= kParallelEntities;
+  const unsigned workers = impl.could_share && impl.choice.shared() ? impl.threads : 1;
   if (workers > 1) {
     // The worker wakes up while this thread takes the picture (below) and joins the moves
     // when they start.

@@ -8,6 +8,7 @@
 // `corsa:controller` = default | acc | dynamics; otherwise from `corsa run --controller NAME`
 // (SimulationOptions::controller) for vehicles; otherwise the default controller.
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -108,6 +109,12 @@ class EntityMover {
   EntityMover& operator=(EntityMover&&) noexcept;
 
   void move(SimState& state, const MotionContext& motion);
+
+  /// Whether the mover wants each step's wall time (charge_step): with more than one thread it
+  /// measures whether sharing a step out pays (controllers/thread_choice.h).
+  bool times_steps() const;
+  /// The wall time of the step whose moves the last move() made, all of the step's phases.
+  void charge_step(std::chrono::steady_clock::duration step);
 
   /// Calls work(begin, end) for ranges covering [0, count), each once: on the mover's threads
   /// when it has several and `count` is large enough to be worth sharing (thousands: light

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 
 namespace corsa::engine::detail {
 
@@ -15,24 +14,6 @@ constexpr std::chrono::microseconds kPoolSpinWait{100};
 // the announcement and the run (about 60-100 us at 1,000 vehicles on Town04).
 constexpr std::chrono::microseconds kWorkerSpinWait{300};
 
-// How long a worker spins after a run for the next one (0: it sleeps at once, the default),
-// from CORSA_WORKER_SPIN_US (microseconds, at most a second). A measuring switch: on this
-// virtual machine a worker that sleeps lets its virtual CPU halt, and waking it costs the caller
-// a system call and the worker tens of microseconds; whether spinning pays depends on whether
-// other programs want the core (docs/performance-traffic.md).
-std::chrono::microseconds spin_after_run_from_environment() {
-  const char* text = std::getenv("CORSA_WORKER_SPIN_US");
-  if (text == nullptr) {
-    return std::chrono::microseconds{0};
-  }
-  char* end = nullptr;
-  const long value = std::strtol(text, &end, 10);
-  if (end == text || *end != '\0' || value <= 0) {
-    return std::chrono::microseconds{0};
-  }
-  return std::chrono::microseconds{std::min(value, 1'000'000L)};
-}
-
 void pool_spin_pause() {
 #if defined(__x86_64__) || defined(__i386__)
   __builtin_ia32_pause();
@@ -41,8 +22,7 @@ void pool_spin_pause() {
 
 }  // namespace
 
-WorkerPool::WorkerPool(unsigned threads)
-    : spin_after_run_(spin_after_run_from_environment()), shares_(std::max(threads, 1u)) {
+WorkerPool::WorkerPool(unsigned threads) : shares_(std::max(threads, 1u)) {
   for (unsigned w = 1; w < threads; ++w) {
     workers_.emplace_back([this, w] { serve(w); });
   }
@@ -172,11 +152,6 @@ void WorkerPool::serve(unsigned worker) {
     lock.lock();
     if (--active_ == 0) {
       done_.notify_one();
-    }
-    if (spin_after_run_.count() > 0) {
-      // Awake for the next run (or the next announcement) for a while before sleeping.
-      lock.unlock();
-      await_run(seen, spin_after_run_);
     }
   }
 }

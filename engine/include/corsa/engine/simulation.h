@@ -66,8 +66,9 @@ struct SimulationOptions {
     uint32_t vehicles = 0;
     uint32_t pedestrians = 0;
   } npc;
-  /// Threads the entities of a step are moved on (`corsa run --threads`), at least 1. Outputs
-  /// are byte-identical for any number; only runs with many entities use more than one.
+  /// Threads the entities of a step may be moved on (`corsa run --threads`), at least 1.
+  /// Outputs are byte-identical for any number; only runs with many entities use more than
+  /// one, and only while the steps' times show that it pays (now and then both ways timed).
   unsigned threads = 1;
   /// Controllers driven from outside (external_control.h): an entity whose ObjectController, by
   /// its own name or its Controller's (e.g. "ExternalController"), is one of these moves only by
