@@ -15,7 +15,7 @@ namespace {
 // a thread takes at a time. An entity's part is light (about 15 ns), and handing a run to
 // another core costs tens of microseconds, with the pictures then read back from that core's
 // cache: with 1,000 vehicles on two cores the shared picture took longer than this thread
-// alone (docs/performance-traffic.md). 8,192 is where the half of the work spared would
+// alone (docs/performance/two-threads.md). 8,192 is where the half of the work spared would
 // outweigh that, estimated from those costs (not measured).
 constexpr size_t kParallelTargets = 8192;
 constexpr size_t kTargetChunk = 64;

@@ -21,7 +21,7 @@
 //
 // A worker woken through the kernel when a run starts joins it late (on a virtual machine about
 // as late as the caller's share of a step's moves takes), and the hand-over costs both threads
-// CPU time in the kernel (docs/performance-traffic.md gives the figures). So
+// CPU time in the kernel (docs/performance/two-threads.md gives the figures). So
 // the caller announces a run (prepare()) before the serial work that precedes it (the picture
 // of the others, the give-way claims), and the worker, woken then, spins for the run itself:
 // it joins the run when it opens, and the run's notify is no system call. A worker does not

@@ -63,8 +63,8 @@ constexpr size_t kBatchesQueued = 4;
 // the writer); from about 200 moving vehicles it costs no more (the encoder's state of every
 // entity no longer stays in the simulation's caches from tick to tick, but does in the
 // writer's). 128 is also the entity count from which the step itself is shared out over threads.
-// (docs/performance-traffic.md, "Recording on the caller's thread unless the ticks' work pays
-// for a writer".)
+// (docs/performance/recording-writers-and-csv.md, "Recording on the caller's thread unless the
+// ticks' work pays for a writer".)
 constexpr uint32_t kAutoWindowTicks = 256;
 constexpr uint64_t kWriterRowsPerTick = 128;
 
