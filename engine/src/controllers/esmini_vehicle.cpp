@@ -88,10 +88,9 @@ constexpr double kFollowerLimitFactor = 1.2;
   pose.y = y;
   pose.h = heading;
   if (motion.map != nullptr) {
-    if (const auto at = road_point_within(locate_near(entity, *motion.map, x, y), 0.5)) {
-      const xodr::SurfacePose surface = xodr::surface_pose(*motion.map, at->road, at->s, at->t);
-      pose.z = surface.z;
-      pose.p = surface.p;
+    if (const xodr::SurfacePose* surface = surface_near(entity, *motion.map, x, y, 0.5)) {
+      pose.z = surface->z;
+      pose.p = surface->p;
     }
   }
   entity.pose_command = pose;
