@@ -205,7 +205,8 @@ TEST_CASE("The road surface kept with the remembered lane is the map's, read aga
       }
     }
     points.emplace_back(1.0e6, -1.0e6);
-    std::optional<corsa::xodr::SurfacePose> last;
+    corsa::xodr::SurfacePose last;
+    bool have_last = false;
     for (size_t i = 0; i < points.size(); ++i) {
       const auto& other = points[(i + 7) % points.size()];
       for (const auto& [x, y, within] : {std::tuple{points[i].first, points[i].second, 0.5},
@@ -221,13 +222,10 @@ TEST_CASE("The road surface kept with the remembered lane is the map's, read aga
         on_road += expected.has_value();
         mismatches += !same_surface(got, expected);
         // Where the last answer differs, a memo not read again would show it.
-        refreshed += !same_surface(last ? &*last : nullptr, expected);
-        climbed += last && expected && !same_bits(last->z, expected->z);
-        if (got != nullptr) {
-          last = *got;
-        } else {
-          last.reset();
-        }
+        refreshed += !same_surface(have_last ? &last : nullptr, expected);
+        climbed += have_last && expected && !same_bits(last.z, expected->z);
+        have_last = got != nullptr;
+        if (got != nullptr) last = *got;
       }
     }
   }
