@@ -18,7 +18,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
+#include <optional>
+#include <vector>
 
+#include "../xodr/xodr_test_util.h"
 #include "controllers/esmini_vehicle.h"
 #include "engine_fixture.h"
 
@@ -154,4 +157,91 @@ TEST_CASE("esmini's single-track step with its course's cosine and sine kept mov
     step(speed, 0.0);
   }
   CHECK(reused > 80);  // the kept values were used on the straight runs
+}
+
+// esmini's speed limit, kept by its driver over the stretch of road where it is the same
+// (SpeedLimitMemo): a road whose types give no speed, 50 km/h from 100 m and no speed again from
+// 200 m, with two driving lanes a side up to 150 m and one beyond; and a road of one lane a side
+// without types. Walked along both roads, off the road and back, the kept limit must be the one
+// read afresh (speed_limit_of) everywhere, and it must be read again exactly where the stretch
+// ends: at a type's start, a lane section's, on another road and on the other side.
+TEST_CASE("esmini's speed limit is kept over a stretch of road and read again beyond it",
+          "[engine][controllers][esmini][memo]") {
+  using corsa::engine::RoadCoordinates;
+  using corsa::engine::detail::speed_limit_at;
+  using corsa::engine::detail::speed_limit_of;
+  using corsa::engine::detail::SpeedLimitMemo;
+  corsa::xodr::MapData data;
+  data.roads.push_back(corsa::xodr::test::make_road("1", corsa::xodr::LineGeometry{}, 300.0, 2));
+  data.roads.push_back(corsa::xodr::test::make_road("2", corsa::xodr::LineGeometry{}, 100.0, 1));
+  corsa::xodr::Road& road = data.roads[0];
+  corsa::xodr::LaneSection narrow = road.lane_sections[0];
+  std::erase_if(narrow.lanes, [](const corsa::xodr::Lane& lane) { return std::abs(lane.id) > 1; });
+  narrow.s = 150.0;
+  road.lane_sections.push_back(narrow);
+  road.types = {{0.0, "town", "", std::nullopt},
+                {100.0, "town", "", 50.0 / 3.6},
+                {200.0, "rural", "", std::nullopt}};
+  corsa::Diagnostics diagnostics;
+  const corsa::xodr::Map map = corsa::xodr::Map::build(std::move(data), diagnostics);
+  REQUIRE(map.road_count() == 2);
+  REQUIRE(map.road(0).lane_sections.size() == 2);
+
+  SpeedLimitMemo memo;
+  int reads = 0;
+  const auto limit_at = [&](const std::optional<RoadCoordinates>& at) {
+    const SpeedLimitMemo before = memo;
+    const double limit = speed_limit_at(&map, at, memo);
+    const bool read =
+        std::bit_cast<uint64_t>(before.s_from) != std::bit_cast<uint64_t>(memo.s_from) ||
+        std::bit_cast<uint64_t>(before.s_to) != std::bit_cast<uint64_t>(memo.s_to) ||
+        before.valid != memo.valid || before.road != memo.road || before.section != memo.section ||
+        before.side != memo.side;
+    reads += read ? 1 : 0;
+    if (at) {
+      CAPTURE(at->road, at->section, at->lane, at->s);
+      CHECK(std::bit_cast<uint64_t>(limit) ==
+            std::bit_cast<uint64_t>(speed_limit_of(map, *at).limit));
+    }
+    return limit;
+  };
+  const auto on = [](uint32_t road_index, int lane, double s) {
+    const uint32_t section = road_index == 0 && s >= 150.0 ? 1 : 0;
+    return std::optional<RoadCoordinates>(RoadCoordinates{road_index, section, lane, s, 0.0});
+  };
+  // Along the first road on the right: 120 km/h (two lanes), 50 from 100 m, and from 200 m the
+  // one lane's 60. Four stretches: [0, 100), [100, 150), [150, 200) in the next section, [200,
+  // 300).
+  for (double s = 0.0; s < 300.0; s += 0.5) {
+    const double expected = s < 100.0 ? 120.0 : s < 200.0 ? 50.0 : 60.0;
+    CHECK(limit_at(on(0, -1, s)) == Approx(expected / 3.6));
+  }
+  CHECK(reads == 4);
+  CHECK(memo.road == 0);
+  CHECK(memo.section == 1);
+  CHECK(memo.s_from == 200.0);
+  // Onto the other road: read again there.
+  CHECK(limit_at(on(1, -1, 20.0)) == Approx(60.0 / 3.6));
+  CHECK(reads == 5);
+  CHECK(memo.road == 1);
+  CHECK(limit_at(on(1, -1, 80.0)) == Approx(60.0 / 3.6));
+  CHECK(reads == 5);
+  // Off the road: esmini's 70 km/h, the memo kept; back on the first road, on its left side.
+  CHECK(limit_at(std::nullopt) == Approx(70.0 / 3.6));
+  CHECK(speed_limit_at(nullptr, on(1, -1, 20.0), memo) == Approx(70.0 / 3.6));
+  CHECK(reads == 5);
+  CHECK(limit_at(on(0, 1, 50.0)) == Approx(120.0 / 3.6));
+  CHECK(memo.side == 1);
+  CHECK(limit_at(on(0, -1, 50.0)) == Approx(120.0 / 3.6));
+  CHECK(memo.side == -1);
+  CHECK(reads == 7);
+  // Backwards over the first road's type starts: read again at each, from the stretch's end.
+  CHECK(limit_at(on(0, -1, 99.5)) == Approx(120.0 / 3.6));
+  CHECK(limit_at(on(0, -1, 100.0)) == Approx(50.0 / 3.6));
+  CHECK(limit_at(on(0, -1, 99.75)) == Approx(120.0 / 3.6));
+  CHECK(reads == 9);
+  // A NaN s lies in no stretch: read afresh (every type counts, none with a speed; two lanes).
+  CHECK(limit_at(on(0, -1, std::nan(""))) == Approx(120.0 / 3.6));
+  CHECK(reads == 10);
+  CHECK(memo.s_from == 200.0);
 }

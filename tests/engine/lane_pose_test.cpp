@@ -9,13 +9,16 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include "../xodr/xodr_test_util.h"
+#include "corsa/xodr/map_parts.h"
 #include "lanes/lane_follow.h"
 #include "motion/controller.h"
 #include "motion/pose_command.h"
+#include "positions/position_resolver.h"
 #include "state/sim_state.h"
 
 namespace {
@@ -167,6 +170,70 @@ TEST_CASE("An entity's remembered lane at a point is the map's answer, asked aga
   CHECK(mismatches == 0);
   CHECK(found > 0);
   CHECK(found < asked);  // points off the roads too
+}
+
+namespace {
+
+bool same_surface(const corsa::xodr::SurfacePose* a,
+                  const std::optional<corsa::xodr::SurfacePose>& b) {
+  if (a == nullptr || !b) return a == nullptr && !b;
+  return same_bits(a->z, b->z) && same_bits(a->p, b->p) && same_bits(a->r, b->r);
+}
+
+}  // namespace
+
+// The road surface kept with the remembered lane at a point (surface_near) must be the one read
+// from the map's answer afresh, on every shared map: at points on lanes, beside them and off
+// every road, each asked twice in a row (the memo answers the second), then after another point
+// (on another road or none: the memo must read the surface again), then within a smaller
+// distance of the lane (the same answer, which may now lie too far).
+TEST_CASE("The road surface kept with the remembered lane is the map's, read again elsewhere",
+          "[engine][lanes][memo]") {
+  corsa::xodr::LocateOptions options;
+  options.max_distance = 0.5;
+  size_t asked = 0, on_road = 0, mismatches = 0, refreshed = 0, climbed = 0;
+  for (const auto& path : corsa::xodr::test::all_shared_maps()) {
+    const Map map = corsa::xodr::test::load_map(path);
+    corsa::engine::detail::Entity entity;  // the memo holds for one map
+    std::vector<std::pair<double, double>> points;
+    for (uint32_t road = 0; road < map.road_count(); ++road) {
+      for (const double s : {0.0, 0.5 * map.road(road).length}) {
+        for (const double t : {0.0, 1.7, -2.9, 6.3}) {
+          const corsa::xodr::WorldPose at = map.world_pose(road, s, t);
+          points.emplace_back(at.x, at.y);
+        }
+      }
+    }
+    points.emplace_back(1.0e6, -1.0e6);
+    corsa::xodr::SurfacePose last;
+    bool have_last = false;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const auto& other = points[(i + 7) % points.size()];
+      for (const auto& [x, y, within] : {std::tuple{points[i].first, points[i].second, 0.5},
+                                         std::tuple{points[i].first, points[i].second, 0.5},
+                                         std::tuple{other.first, other.second, 0.5},
+                                         std::tuple{points[i].first, points[i].second, 0.2}}) {
+        const auto at = corsa::engine::detail::road_point_within(map.locate(x, y, options), within);
+        std::optional<corsa::xodr::SurfacePose> expected;
+        if (at) expected = corsa::xodr::surface_pose(map, at->road, at->s, at->t);
+        const corsa::xodr::SurfacePose* got =
+            corsa::engine::detail::surface_near(entity, map, x, y, within);
+        ++asked;
+        on_road += expected.has_value();
+        mismatches += !same_surface(got, expected);
+        // Where the last answer differs, a memo not read again would show it.
+        refreshed += !same_surface(have_last ? &last : nullptr, expected);
+        climbed += have_last && expected && !same_bits(last.z, expected->z);
+        have_last = got != nullptr;
+        if (got != nullptr) last = *got;
+      }
+    }
+  }
+  CHECK(mismatches == 0);
+  CHECK(on_road > 0);
+  CHECK(on_road < asked);  // points off the roads too
+  CHECK(refreshed > asked / 4);
+  CHECK(climbed > 0);  // heights differ between points: some maps are not flat
 }
 
 TEST_CASE("The curvature memo reads a road and s once, and again for other bits of either",

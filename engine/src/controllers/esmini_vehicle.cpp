@@ -88,10 +88,9 @@ constexpr double kFollowerLimitFactor = 1.2;
   pose.y = y;
   pose.h = heading;
   if (motion.map != nullptr) {
-    if (const auto at = road_point_within(locate_near(entity, *motion.map, x, y), 0.5)) {
-      const xodr::SurfacePose surface = xodr::surface_pose(*motion.map, at->road, at->s, at->t);
-      pose.z = surface.z;
-      pose.p = surface.p;
+    if (const xodr::SurfacePose* surface = surface_near(entity, *motion.map, x, y, 0.5)) {
+      pose.z = surface->z;
+      pose.p = surface->p;
     }
   }
   entity.pose_command = pose;
@@ -104,32 +103,51 @@ void integrate(EsminiVehicle& car, double dt) {
   single_track_step(car.x, car.y, car.h, car.speed, car.wheel, car.length, dt, &car.course_trig);
 }
 
-// Where `entity` is, esmini's speed limit (m/s): the road type's speed at its s, else by the
-// number of lanes for driving on its side of the road.
-[[gnu::hot]] double speed_limit_at(const SimState& state, const Entity& entity) {
-  if (state.map == nullptr || !entity.state().road) {
-    return kLimitOffRoad;
-  }
-  const RoadCoordinates& at = *entity.state().road;
-  const xodr::Road& road = state.map->road(at.road);
+}  // namespace
+
+[[gnu::hot]] SpeedLimitMemo speed_limit_of(const xodr::Map& map, const RoadCoordinates& at) {
+  const xodr::Road& road = map.road(at.road);
+  const int side = at.lane < 0 ? -1 : 1;
+  SpeedLimitMemo memo{true, at.road, at.section, side};
+  // The types from the first up to the first beyond s: any s from the furthest of them to that
+  // one takes the same.
   std::optional<double> typed;
   for (const xodr::RoadType& type : road.types) {
-    if (type.s > at.s) break;
+    if (type.s > at.s) {
+      memo.s_to = type.s;
+      break;
+    }
     typed = type.max_speed;
+    memo.s_from = std::max(memo.s_from, type.s);
   }
   if (typed && *typed > 0.0) {
-    return *typed;
+    memo.limit = *typed;
+  } else if (at.section >= road.lane_sections.size()) {
+    memo.limit = kLimitSingleLane;
+  } else {
+    int driving = 0;
+    for (const xodr::Lane& lane : road.lane_sections[at.section].lanes) {
+      if (lane.id * side > 0 && xodr::is_drivable(lane.type)) ++driving;
+    }
+    memo.limit = driving > 1 ? kLimitMultiLane : kLimitSingleLane;
   }
-  if (at.section >= road.lane_sections.size()) {
-    return kLimitSingleLane;
-  }
-  const int side = at.lane < 0 ? -1 : 1;
-  int driving = 0;
-  for (const xodr::Lane& lane : road.lane_sections[at.section].lanes) {
-    if (lane.id * side > 0 && xodr::is_drivable(lane.type)) ++driving;
-  }
-  return driving > 1 ? kLimitMultiLane : kLimitSingleLane;
+  return memo;
 }
+
+[[gnu::hot]] double speed_limit_at(const xodr::Map* map, const std::optional<RoadCoordinates>& at,
+                                   SpeedLimitMemo& memo) {
+  if (map == nullptr || !at) {
+    return kLimitOffRoad;
+  }
+  // A NaN s fails the comparisons: read again.
+  if (!(memo.valid && memo.road == at->road && memo.section == at->section &&
+        memo.side == (at->lane < 0 ? -1 : 1) && at->s >= memo.s_from && at->s < memo.s_to)) {
+    memo = speed_limit_of(*map, *at);
+  }
+  return memo.limit;
+}
+
+namespace {
 
 // The model started from the entity: on the first step, after a step it did not drive, and
 // after something else moved the entity (a TeleportAction): esmini's model would otherwise put
@@ -166,7 +184,8 @@ void step_interactive(SimState& state, uint32_t index, EsminiDriver& driver,
   Entity& entity = state.world.entities[index];
   const ControlState& control = state.controls[index];
   EsminiVehicle& car = driver.car;
-  const double limit = driver.speed_factor * speed_limit_at(state, entity);
+  const double limit =
+      driver.speed_factor * speed_limit_at(state.map, entity.state().road, driver.speed_limit);
   car.max_speed = entity.info.max_speed > 0.0 ? std::min(limit, entity.info.max_speed) : limit;
   if (control.longitudinal && control.lateral) {
     roll_neutral(car, motion.dt);
@@ -203,7 +222,8 @@ void step_offroad_follower(SimState& state, uint32_t index, EsminiDriver& driver
   }
   const FollowTarget& lead = view.targets()[*driver.follow];
   EsminiVehicle& car = driver.car;
-  const double limit = kFollowerLimitFactor * speed_limit_at(state, entity);
+  const double limit =
+      kFollowerLimitFactor * speed_limit_at(state.map, entity.state().road, driver.speed_limit);
   car.max_speed = entity.info.max_speed > 0.0 ? std::min(limit, entity.info.max_speed) : limit;
   const double dx = lead.x - entity.state().pose.x;
   const double dy = lead.y - entity.state().pose.y;

@@ -33,6 +33,7 @@
 // something else moved the entity (a TeleportAction).
 
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <optional>
 
@@ -96,6 +97,28 @@ void roll_neutral(EsminiVehicle& car, double dt);
 /// Which of esmini's controllers an EsminiDriver is.
 enum class EsminiDriverKind : uint8_t { kInteractive, kOffroadFollower };
 
+/// The speed limit esmini's driver read last (m/s), and where it holds: on `road`, lane section
+/// `section`, the side of the lanes of sign `side`, for s in [s_from, s_to).
+struct SpeedLimitMemo {
+  bool valid = false;
+  uint32_t road = 0;
+  uint32_t section = 0;
+  int side = 0;
+  double s_from = -std::numeric_limits<double>::infinity();
+  double s_to = std::numeric_limits<double>::infinity();
+  double limit = 0.0;
+};
+
+/// esmini's speed limit (m/s) at road coordinates `at` (its Position::GetSpeedLimit): the road
+/// type's speed at s, else by the number of drivable lanes on the side of `at.lane`; with the
+/// stretch of the road over which it is the same.
+SpeedLimitMemo speed_limit_of(const xodr::Map& map, const RoadCoordinates& at);
+
+/// esmini's speed limit (m/s) at `at`, off the road (no `at`, or no map) 70 km/h: `memo`'s
+/// while `at` lies in the stretch it holds for, else read again (speed_limit_of) into `memo`.
+double speed_limit_at(const xodr::Map* map, const std::optional<RoadCoordinates>& at,
+                      SpeedLimitMemo& memo);
+
 /// An entity's esmini driver: its properties and its vehicle model between steps.
 struct EsminiDriver {
   EsminiDriverKind kind = EsminiDriverKind::kInteractive;
@@ -106,6 +129,7 @@ struct EsminiDriver {
   EsminiVehicle car;
   bool started = false;
   int64_t last_tick = 0;  ///< the tick of the model's last step
+  SpeedLimitMemo speed_limit;
 };
 
 /// Gives entity `index` esmini's driver when `oc` is interactiveDriver or offroadFollower

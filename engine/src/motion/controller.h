@@ -110,6 +110,11 @@ const std::optional<xodr::LanePosition>& locate_near(Entity& entity, const xodr:
                                                      double y);
 const std::optional<xodr::LanePosition>& locate_near(PointLocateMemo& memo, const xodr::Map& map,
                                                      double x, double y);
+/// The road surface (xodr::surface_pose: z, pitch, roll) at the lane point locate_near gives for
+/// (x, y) when it lies within `max_distance` m (road_point_within), else null. The surface
+/// follows from the map's answer alone, so the memo keeps it with the answer.
+const xodr::SurfacePose* surface_near(Entity& entity, const xodr::Map& map, double x, double y,
+                                      double max_distance);
 /// Whether locate_near would answer nothing for (x, y) from the memo alone (a point clear of
 /// every lane), leaving the memo as it is.
 inline bool clear_of_lanes_at(const PointLocateMemo& memo, double x, double y) {

@@ -9,6 +9,7 @@
 #include "lanes/lane_follow.h"
 #include "motion/controller.h"
 #include "motion/pose_command.h"
+#include "positions/position_resolver.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
@@ -97,9 +98,24 @@ const std::optional<xodr::LanePosition>& locate_near(Entity& entity, const xodr:
     memo.x = x;
     memo.y = y;
     memo.valid = true;
+    memo.surface_valid = false;
     memo.clear = memo.located ? 0.0 : map.clear_of_lanes(x, y, kMaxDistance, kClearReach);
   }
   return memo.located;
+}
+
+const xodr::SurfacePose* surface_near(Entity& entity, const xodr::Map& map, double x, double y,
+                                      double max_distance) {
+  PointLocateMemo& memo = entity.point_memo;
+  const auto at = road_point_within(locate_near(memo, map, x, y), max_distance);
+  if (!at) {
+    return nullptr;
+  }
+  if (!memo.surface_valid) {
+    memo.surface = xodr::surface_pose(map, at->road, at->s, at->t);
+    memo.surface_valid = true;
+  }
+  return &memo.surface;
 }
 
 namespace {

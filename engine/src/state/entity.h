@@ -15,6 +15,7 @@
 #include "corsa/engine/world_snapshot.h"
 #include "corsa/xodr/lane_graph.h"
 #include "corsa/xodr/map.h"
+#include "corsa/xodr/map_parts.h"
 #include "corsa/xosc/enums.h"
 
 namespace corsa::xosc {
@@ -128,6 +129,10 @@ struct PointLocateMemo {
   /// answer either (xodr::Map::clear_of_lanes), so an entity off the road that moves a little
   /// needs no search.
   double clear = 0.0;
+  /// The road surface at `located` (motion/controller.h, surface_near), once asked for: like the
+  /// answer, it holds while the point does.
+  bool surface_valid = false;
+  xodr::SurfacePose surface;
 };
 
 /// Where an entity is along its route and the lane change its route needs, under way
