@@ -149,11 +149,11 @@ TEST_CASE("A distance's inputs change with every bit the distance reads and with
   // EntityDistanceInputs::same_as fails: it must fail for any change entity_distance can see.
   using engine::detail::Entity;
   // Entities are not copied (they own their light settings): each case sets a pair up afresh.
+  // Their boxes are fixed once they exist (Entity::info): no change of one is to be seen.
   const auto set_up = [](Entity& from, Entity& to) {
     for (Entity* e : {&from, &to}) {
       e->write_state().pose = {1.0, 2.0, 0.0, 0.5, 0.0, 0.0};
       e->write_state().road = engine::RoadCoordinates{3, 0, -1, 10.0, -1.75};
-      e->info.box = {1.4, 0.0, 0.75, 4.5, 1.8, 1.5};
       e->lane.on_road = true;
       e->lane.dir = 1;
     }
@@ -181,8 +181,6 @@ TEST_CASE("A distance's inputs change with every bit the distance reads and with
   CHECK(changed([](Entity& a, Entity&) { a.write_state().pose.h = std::nextafter(0.5, 1.0); }));
   CHECK(changed([](Entity& a, Entity&) { a.write_state().pose.z = -0.0; }));  // -0 is not +0
   CHECK(changed([](Entity&, Entity& b) { b.write_state().pose.r = 1e-300; }));
-  CHECK(changed([](Entity& a, Entity&) { a.info.box.length = 4.6; }));
-  CHECK(changed([](Entity&, Entity& b) { b.info.box.center_x = 1.5; }));
   CHECK(changed([](Entity& a, Entity&) { a.write_state().road->s = 10.5; }));
   CHECK(changed([](Entity&, Entity& b) { b.write_state().road->t = -1.5; }));
   CHECK(changed([](Entity&, Entity& b) { b.write_state().road->road = 4; }));
@@ -196,13 +194,12 @@ TEST_CASE("A distance's inputs change with every bit the distance reads and with
 TEST_CASE("A distance's inputs pass over states whose counts of writes stand, and no other input",
           "[engine][condition][distance]") {
   // EntityDistanceInputs is asked about one pair: while neither entity's count of its state's
-  // writes has moved, the poses and road coordinates are the ones taken; the boxes and the lane
-  // direction are compared all the same.
+  // writes has moved, the poses and road coordinates are the ones taken; the lane direction is
+  // compared all the same.
   using engine::detail::Entity;
   Entity from, to;
   for (Entity* e : {&from, &to}) {
     e->write_state().pose = {1.0, 2.0, 0.0, 0.5, 0.0, 0.0};
-    e->info.box = {1.4, 0.0, 0.75, 4.5, 1.8, 1.5};
     e->lane.on_road = true;
     e->lane.dir = 1;
   }
@@ -210,9 +207,6 @@ TEST_CASE("A distance's inputs pass over states whose counts of writes stand, an
   inputs.take(from, to);
   CHECK(inputs.same_as(from, to));
   // Counts standing, other inputs changed: measured again.
-  to.info.box.width = 2.0;
-  CHECK_FALSE(inputs.same_as(from, to));
-  to.info.box.width = 1.8;
   from.lane.dir = -1;
   CHECK_FALSE(inputs.same_as(from, to));
   from.lane.dir = 1;

@@ -31,14 +31,12 @@ namespace {
 // A placed entity at (x, y) with heading h (rad) and speed (m/s), appended to `state`.
 void add_entity(engine::detail::SimState& state, double x, double y, double h, double speed,
                 const engine::Box& box, engine::ObjectKind kind) {
-  engine::detail::Entity entity;
+  engine::detail::Entity entity(engine::EntityInfo{.kind = kind, .box = box});
   entity.write_state().placed = true;
   entity.write_state().pose.x = x;
   entity.write_state().pose.y = y;
   entity.write_state().pose.h = h;
   entity.write_state().speed = speed;
-  entity.info.box = box;
-  entity.info.kind = kind;
   state.world.entities.push_back(std::move(entity));
 }
 

@@ -523,12 +523,11 @@ TEST_CASE(
   Diagnostics diagnostics;
   detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
   const auto add = [&](double x, double y, double h, const corsa::engine::Box& box) {
-    detail::Entity entity;
+    detail::Entity entity(corsa::engine::EntityInfo{.box = box});
     entity.write_state().placed = true;
     entity.write_state().pose.x = x;
     entity.write_state().pose.y = y;
     entity.write_state().pose.h = h;
-    entity.info.box = box;
     state.world.entities.push_back(std::move(entity));
   };
   // The generated car at the origin, heading along x: its front 3.65 m ahead, its corridor
@@ -579,17 +578,18 @@ TEST_CASE(
   // ahead of one another along the generated cars' headings, some across: the exact tests then
   // see boxes that pass the bounding test at every distance.
   for (int i = 0; i < 400; ++i) {
-    detail::Entity entity;
-    entity.write_state().placed = true;
     const bool in_line = i % 3 != 0;
     const double along = 60.0 * unit(random);
-    entity.write_state().pose.x = 300.0 + (in_line ? along : 60.0 * unit(random));
-    entity.write_state().pose.y =
-        -200.0 + (in_line ? 0.8 * (unit(random) - 0.5) + 3.5 * (i % 2) : 60.0 * unit(random));
-    entity.write_state().pose.h = in_line ? 0.05 * (unit(random) - 0.5) : 6.3 * unit(random);
+    corsa::engine::Pose pose;
+    pose.x = 300.0 + (in_line ? along : 60.0 * unit(random));
+    pose.y = -200.0 + (in_line ? 0.8 * (unit(random) - 0.5) + 3.5 * (i % 2) : 60.0 * unit(random));
+    pose.h = in_line ? 0.05 * (unit(random) - 0.5) : 6.3 * unit(random);
     const double length = i % 7 == 0 ? 12.0 : (i % 5 == 0 ? 0.5 : 4.5);
     const double width = i % 5 == 0 && i % 7 != 0 ? 0.6 : 1.9;
-    entity.info.box = {1.4 * unit(random), 0.0, 0.75, length, width, 1.5};
+    detail::Entity entity(
+        corsa::engine::EntityInfo{.box = {1.4 * unit(random), 0.0, 0.75, length, width, 1.5}});
+    entity.write_state().placed = true;
+    entity.write_state().pose = pose;
     state.world.entities.push_back(std::move(entity));
     if (i % 4 == 0) {
       state.traffic.lifetimes[static_cast<uint32_t>(i)];
@@ -660,13 +660,13 @@ TEST_CASE("The contacts of many boxes of every size and heading are the pairs a 
       entity.write_state().pose.h = random.uniform(-std::numbers::pi, std::numbers::pi);
     };
     for (int i = 0; i < 900; ++i) {
-      detail::Entity entity;
-      entity.write_state().placed = i % 97 != 3;
       const int kind = random.uniform_int(0, 19);
-      entity.info.box = kind == 0     ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
-                        : kind < 5    ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
-                        : i % 89 == 5 ? corsa::engine::Box{}
-                                      : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5};
+      detail::Entity entity(corsa::engine::EntityInfo{
+          .box = kind == 0     ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
+                 : kind < 5    ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
+                 : i % 89 == 5 ? corsa::engine::Box{}
+                               : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5}});
+      entity.write_state().placed = i % 97 != 3;
       place(entity, i % 4 != 0);
       state.world.entities.push_back(std::move(entity));
     }
@@ -708,12 +708,12 @@ TEST_CASE("Many boxes over a small area are swept in strips and give the pairs a
     detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
     corsa::RandomStream random(along_y ? 11 : 13);
     for (int i = 0; i < 700; ++i) {
-      detail::Entity entity;
-      entity.write_state().placed = true;
       const int kind = random.uniform_int(0, 9);
-      entity.info.box = kind == 0  ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
-                        : kind < 3 ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
-                                   : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5};
+      detail::Entity entity(corsa::engine::EntityInfo{
+          .box = kind == 0  ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
+                 : kind < 3 ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
+                            : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5}});
+      entity.write_state().placed = true;
       const double wide = random.uniform(-200.0, 200.0);
       const double narrow = random.uniform(-80.0, 80.0);
       entity.write_state().pose.x = along_y ? narrow : wide;
@@ -757,10 +757,10 @@ TEST_CASE(
     CAPTURE(along_y);
     detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
     const auto add = [&](double along, double across, double length, double width) {
-      detail::Entity entity;
+      detail::Entity entity(corsa::engine::EntityInfo{
+          .box = along_y ? corsa::engine::Box{0.0, 0.0, 0.75, width, length, 1.5}
+                         : corsa::engine::Box{0.0, 0.0, 0.75, length, width, 1.5}});
       entity.write_state().placed = true;
-      entity.info.box = along_y ? corsa::engine::Box{0.0, 0.0, 0.75, width, length, 1.5}
-                                : corsa::engine::Box{0.0, 0.0, 0.75, length, width, 1.5};
       entity.write_state().pose.x = along_y ? across : along;
       entity.write_state().pose.y = along_y ? along : across;
       state.world.entities.push_back(std::move(entity));
@@ -824,9 +824,9 @@ TEST_CASE("Boxes that moved into and out of contact with standing ones get a ful
     const auto fill = [&](detail::SimState& state) {
       state.world.entities.clear();
       for (uint32_t i = 0; i < kCars; ++i) {
-        detail::Entity entity;
+        detail::Entity entity(
+            corsa::engine::EntityInfo{.box = corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5}});
         entity.write_state().placed = true;
-        entity.info.box = corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5};
         entity.write_state().pose = poses[i];
         state.world.entities.push_back(std::move(entity));
       }

@@ -181,9 +181,9 @@ void setup_ghost(SimState& state) {
       link.entity = i;
       read_properties(state, oc, link);
       link.headstart_ticks = state.time.ticks(link.headstart);
-      Entity ghost;
-      ghost.info = entity.info;
-      ghost.info.name = entity.info.name + "_ghost";
+      EntityInfo info = entity.info;
+      info.name += "_ghost";
+      Entity ghost(std::move(info));
       ghost.object = nullptr;  // no controllers, no trailer of its own
       ghost.ghost = true;
       ghost.write_state().visible = false;

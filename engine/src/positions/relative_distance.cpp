@@ -101,18 +101,15 @@ double distance_to(const SimState& state, const Entity& from, const Target& to,
 }  // namespace
 
 void EntityDistanceInputs::take(const Entity& from, const Entity& to) {
-  from_ = Party{from.state().pose, from.info.box, from.state().road, from.state_changes()};
-  to_ = Party{to.state().pose, to.info.box, to.state().road, to.state_changes()};
+  from_ = Party{from.state().pose, from.state().road, from.state_changes()};
+  to_ = Party{to.state().pose, to.state().road, to.state_changes()};
   from_on_road_ = from.lane.on_road;
   from_dir_ = from.lane.dir;
   taken_ = true;
 }
 
 [[gnu::hot]] bool EntityDistanceInputs::same_as(const Entity& from, const Entity& to) const {
-  // The boxes (12 doubles) in one test.
-  if (!taken_ || from_on_road_ != from.lane.on_road || from_dir_ != from.lane.dir ||
-      (double_bits_diff<0, 6>(from_.box, from.info.box) |
-       double_bits_diff<0, 6>(to_.box, to.info.box)) != 0) {
+  if (!taken_ || from_on_road_ != from.lane.on_road || from_dir_ != from.lane.dir) {
     return false;
   }
   // Neither state written since: the poses and road coordinates taken.

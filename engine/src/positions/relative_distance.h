@@ -31,11 +31,12 @@ struct DistanceSpec {
 double entity_distance(const SimState& state, const Entity& from, const Entity& to,
                        const DistanceSpec& spec);
 
-/// What entity_distance reads of its two entities besides the map (fixed for a run): their
-/// poses, boxes and road coordinates and `from`'s lane direction. Equal to the bit, the same
-/// distance (-0 and +0 differ, a NaN equals itself). One pair of entities is asked about, the
-/// same `from` and `to` each time: an entity whose state's count of writes stands since the
-/// inputs were taken (EntityMotion::state_changes) holds the pose and road coordinates taken.
+/// What entity_distance reads of its two entities besides the map and their boxes (fixed for a
+/// run, Entity::info): their poses and road coordinates and `from`'s lane direction. Equal to
+/// the bit, the same distance (-0 and +0 differ, a NaN equals itself). One pair of entities is
+/// asked about, the same `from` and `to` each time: an entity whose state's count of writes
+/// stands since the inputs were taken (EntityMotion::state_changes) holds the pose and road
+/// coordinates taken.
 class EntityDistanceInputs {
  public:
   void take(const Entity& from, const Entity& to);
@@ -44,7 +45,6 @@ class EntityDistanceInputs {
  private:
   struct Party {
     Pose pose;
-    Box box;
     std::optional<RoadCoordinates> road;
     uint32_t changes = 0;  ///< the entity's count of its state's writes
   };

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <type_traits>
+#include <utility>
 
 #include "corsa/engine/entity_state.h"
 #include "corsa/engine/world_snapshot.h"
@@ -194,6 +195,10 @@ using LightSettings = std::array<std::optional<LightSetting>, kVehicleLightCount
 /// entity's 1,256 bytes) is what the moves ask for ahead (controllers/controllers.cpp) and what
 /// the other passes read.
 struct Entity : EntityMotion {
+  Entity() = default;
+  /// An entity of the description `described` (state/entity_builder.h, describe_object).
+  explicit Entity(EntityInfo described) : info(std::move(described)) {}
+
   /// Timers (s) for the duration-based conditions (StandStill, Offroad, EndOfRoad).
   bool standing_still = false;  ///< slower than 1e-3 m/s (state/world_update.cpp)
   bool was_offroad = false;
@@ -227,7 +232,11 @@ struct Entity : EntityMotion {
   std::optional<Pose> pose_command;
   LanePoseMemo lane_pose_memo;
   /// Its kind, box and performance are read every step, its name and model (last) by none.
-  EntityInfo info;
+  /// Fixed once the entity exists (given to its constructor; const, so that no later write
+  /// compiles, and an entity is never assigned over another): what was computed from an
+  /// entity's box holds for as long as the entity (the contacts' inputs, ContactInput, and the
+  /// distance memos, EntityDistanceInputs, compare no box).
+  const EntityInfo info{};
 
   // Below (with the info's name and model): what only some entities, or some events, read.
   /// The entity's motion around a default-controller step that changed nothing of it (one

@@ -108,8 +108,7 @@ void build_entities(SimState& state) {
   const auto& objects = state.scenario.entities.objects;
   state.world.entities.reserve(objects.size());
   for (const xosc::ScenarioObject& object : objects) {
-    Entity entity;
-    entity.info = describe_object(object, state.diagnostics);
+    Entity entity(describe_object(object, state.diagnostics));
     entity.object = &object;
     const auto index = static_cast<uint32_t>(state.world.entities.size());
     if (!state.world.by_name.emplace(object.name, index).second) {
@@ -127,20 +126,19 @@ void build_entities(SimState& state) {
     const auto* vehicle = tower ? std::get_if<xosc::Vehicle>(&tower->object) : nullptr;
     if (vehicle == nullptr || !vehicle->trailer || !vehicle->trailer->trailer) continue;
     const xosc::ScenarioObject& object = *vehicle->trailer->trailer;
-    Entity trailer;
-    trailer.info = describe_object(object, state.diagnostics);
-    trailer.object = &object;
+    EntityInfo info = describe_object(object, state.diagnostics);
     if (!vehicle->trailer->named_by_file) {
-      trailer.info.name = state.world.entities[i].info.name + "+";
+      info.name = state.world.entities[i].info.name + "+";
     }
-    if (state.world.by_name.contains(trailer.info.name)) {
-      trailer.info.name = state.world.entities[i].info.name + "_trailer";
+    if (state.world.by_name.contains(info.name)) {
+      info.name = state.world.entities[i].info.name + "_trailer";
     }
     const auto index = static_cast<uint32_t>(state.world.entities.size());
-    if (!state.world.by_name.emplace(trailer.info.name, index).second) {
-      throw InputError(
-          object.source.error("a second entity is called '" + trailer.info.name + "'"));
+    if (!state.world.by_name.emplace(info.name, index).second) {
+      throw InputError(object.source.error("a second entity is called '" + info.name + "'"));
     }
+    Entity trailer(std::move(info));
+    trailer.object = &object;
     state.world.entities[i].initial_trailer = index;
     state.world.entities.push_back(std::move(trailer));
   }

@@ -128,34 +128,31 @@ inline bool same_bits(const EntityMotion& a, const EntityMotion& b) {
   return same_bits(a.state(), b.state()) && same_bits_beside_state(a, b);
 }
 
-/// What the contacts of an entity were last computed from (state/world_contacts.h).
+/// What the contacts of an entity were last computed from (state/world_contacts.h): its place
+/// and pose. Its box is no part of it: an entity's box is fixed once the entity exists
+/// (Entity::info), and entities keep their index for the run.
 struct ContactInput {
   bool placed = false;
   Pose pose;
-  Box box;
   /// The entity's count of its state's writes (EntityMotion::state_changes) when it was taken.
   uint32_t changes = 0;
 
   ContactInput() = default;
   explicit ContactInput(const Entity& entity)
-      : placed(entity.state().placed),
-        pose(entity.state().pose),
-        box(entity.info.box),
-        changes(entity.state_changes()) {}
+      : placed(entity.state().placed), pose(entity.state().pose), changes(entity.state_changes()) {}
 
-  /// Whether `entity`, the one this was taken from, is placed, posed and sized as this records,
-  /// to the bit (box_of gives the same box then; -0 and +0 differ, NaN equals itself). While its
-  /// state's count of writes stands, its state is the one taken, and only the box is compared.
+  /// Whether `entity`, the one this was taken from, is placed and posed as this records, to the
+  /// bit (box_of gives the same box then; -0 and +0 differ, NaN equals itself). While its
+  /// state's count of writes stands, its state is the one taken, and nothing is compared.
   bool same_as(const Entity& entity) const {
+    if (changes == entity.state_changes()) {
+      return true;
+    }
     const EntityState& state = entity.state();
     // x alone first: a moving entity's differs, and its test ends there (the rest compares
     // every value without a branch).
-    if (changes != entity.state_changes() &&
-        (!same_bits(pose.x, state.pose.x) || placed != state.placed ||
-         pose_xyzh_diff(pose, state.pose) != 0)) {
-      return false;
-    }
-    return double_bits_diff<0, 6>(box, entity.info.box) == 0;
+    return same_bits(pose.x, state.pose.x) && placed == state.placed &&
+           pose_xyzh_diff(pose, state.pose) == 0;
   }
 };
 
@@ -183,7 +180,7 @@ struct ContactSet {
   bool premade_fresh = false;
 
   /// Entity `i`'s box as the last update made it, when `entity` (that entity now) is still
-  /// placed, posed and sized as then, to the bit: the same value box_of would give. Null
+  /// placed and posed as then, to the bit: the same value box_of would give. Null
   /// otherwise. The followers' picture, taken before the next moves, reads it instead of making
   /// the box again.
   const OrientedBox* unmoved_box(uint32_t i, const Entity& entity) const {

@@ -264,9 +264,8 @@ uint32_t GeneratorBase::spawn(SimState& state, const TrafficMix& mix, size_t kin
                                                        std::to_string(state.traffic.spawned_count));
     state.traffic.spawned_objects.push_back(std::move(object));
     const xosc::ScenarioObject& stored = state.traffic.spawned_objects.back();
-    Entity entity;
+    Entity entity(describe_object(stored, state.diagnostics));
     entity.object = &stored;
-    entity.info = describe_object(stored, state.diagnostics);
     index = static_cast<uint32_t>(state.world.entities.size());
     state.world.by_name.emplace(stored.name, index);
     state.world.entities.push_back(std::move(entity));
