@@ -905,8 +905,8 @@ TEST_CASE("Boxes that moved into and out of contact with standing ones get a ful
 }
 
 TEST_CASE(
-    "The worker pool hands out every item once, in chunks, announced or not, and rethrows a "
-    "chunk's error",
+    "The worker pool hands out every item once, in chunks, announced or awaited or not, and "
+    "rethrows a chunk's error",
     "[engine][traffic]") {
   using corsa::engine::detail::WorkerPool;
   for (const unsigned threads : {1u, 2u, 3u}) {
@@ -921,13 +921,19 @@ TEST_CASE(
         if (chunk != 3) {
           pool.prepare();
         }
-        pool.run(count, chunk, [&](size_t begin, size_t end, unsigned worker) {
-          if (begin >= end || end > count || end - begin > chunk || begin % chunk != 0 ||
-              worker >= threads) {
-            bad_range = true;
-          }
-          for (size_t i = begin; i < end; ++i) ++taken[i];
-        });
+        // After some runs the workers wait awake for the next (as between a step's picture
+        // and its moves).
+        const auto after = chunk == 32 ? WorkerPool::After::kAwait : WorkerPool::After::kSleep;
+        pool.run(
+            count, chunk,
+            [&](size_t begin, size_t end, unsigned worker) {
+              if (begin >= end || end > count || end - begin > chunk || begin % chunk != 0 ||
+                  worker >= threads) {
+                bad_range = true;
+              }
+              for (size_t i = begin; i < end; ++i) ++taken[i];
+            },
+            after);
         CHECK_FALSE(bad_range);
         size_t once = 0;
         for (const std::atomic<int>& t : taken) once += t.load() == 1 ? 1 : 0;
@@ -949,5 +955,11 @@ TEST_CASE(
     pool.run(100, 8, [&](size_t begin, size_t end, unsigned) { sum += end - begin; });
     CHECK(sum == 100);
     pool.prepare();
+    // A pool may end while its workers wait awake for a run that does not come.
+    sum = 0;
+    pool.run(
+        100, 8, [&](size_t begin, size_t end, unsigned) { sum += end - begin; },
+        WorkerPool::After::kAwait);
+    CHECK(sum == 100);
   }
 }

@@ -289,8 +289,8 @@ namespace {
 // than the moves.
 constexpr uint32_t kParallelEntities = 128;
 // Entities from which light per-entity work (EntityMover::share: the contacts' boxes, a few
-// nanoseconds each) is shared out: handing it to another core costs more below that (as the
-// picture's targets, controllers/follow_view.cpp).
+// nanoseconds each) is shared out in a run of its own: handing it to another core costs more
+// below that.
 constexpr size_t kParallelLightEntities = 8192;
 // Entities a thread takes at a time (consecutive in the moving order, so mostly of one lane):
 // small enough that the threads end together, large enough that taking one costs nothing.
@@ -565,6 +565,26 @@ struct EntityMover::Impl {
     });
   }
 
+  // The picture of the others, its per-entity part shared out as the moves will be: each
+  // thread fills first the entities of its own share of the moves (the same count and chunks:
+  // WorkerPool::run), those it moved in the last steps, so what the picture reads of an
+  // entity is mostly in that thread's cache, and only the filled targets cross to this thread
+  // for the gathering. The worker waits awake for the moves, which follow once the picture is
+  // gathered and the give-way claims are settled. The picture is the same on any number of
+  // threads (FollowView::begin).
+  [[gnu::noinline]] void picture_shared(const SimState& state, bool neighbours) {
+    view.begin(state, neighbours);
+    pool->run(
+        order.size(), kChunkEntities,
+        [&](size_t begin, size_t end, unsigned) {
+          for (size_t k = begin; k < end; ++k) {
+            view.fill(state, order[k]);
+          }
+        },
+        WorkerPool::After::kAwait);
+    view.finish();
+  }
+
   [[gnu::hot]] void arrange(const SimState& state) {
     const auto count = static_cast<uint32_t>(state.world.entities.size());
     if (order.size() == count &&
@@ -702,14 +722,19 @@ MoverScan scan_for_move(SimState& state, uint32_t count) {
   impl.could_share = impl.threads > 1 && count >= kParallelEntities;
   const unsigned workers = impl.could_share && impl.choice.shared() ? impl.threads : 1;
   if (workers > 1) {
-    // The worker wakes up while this thread takes the picture (below) and joins the moves
-    // when they start.
+    // The worker wakes up while this thread arranges the order (below) and joins the picture's
+    // run, or the moves' when there is no picture, when it starts.
     impl.prepare_pool();
   }
-  if (scan.following || generated) {
-    impl.view.build(state, generated, workers > 1 ? impl.pool.get() : nullptr);
-  }
+  // The order depends only on the entities' lanes, not on the picture.
   impl.arrange(state);
+  if (scan.following || generated) {
+    if (workers > 1) {
+      impl.picture_shared(state, generated);
+    } else {
+      impl.view.build(state, generated);
+    }
+  }
   if (generated && state.map != nullptr) {
     if (!impl.give_way) {
       impl.give_way = std::make_unique<GiveWay>();

@@ -4,25 +4,12 @@
 #include <cmath>
 #include <limits>
 
-#include "controllers/worker_pool.h"
 #include "corsa/xodr/map.h"
 #include "state/sim_state.h"
 
 namespace corsa::engine::detail {
-namespace {
 
-// Entities from which the picture's per-entity part is shared out among threads, and how many
-// a thread takes at a time. An entity's part is light (about 15 ns), and handing a run to
-// another core costs tens of microseconds, with the pictures then read back from that core's
-// cache: with 1,000 vehicles on two cores the shared picture took longer than this thread
-// alone (docs/performance/two-threads.md). 8,192 is where the half of the work spared would
-// outweigh that, estimated from those costs (not measured).
-constexpr size_t kParallelTargets = 8192;
-constexpr size_t kTargetChunk = 64;
-
-}  // namespace
-
-[[gnu::hot]] void FollowView::fill_target(const SimState& state, uint32_t i, bool neighbours) {
+[[gnu::hot]] void FollowView::fill(const SimState& state, uint32_t i) {
   const Entity& entity = state.world.entities[i];
   FollowTarget& target = targets_[i];
   const bool visible = i >= state.controls.size() || state.controls[i].traffic_visible;
@@ -39,7 +26,7 @@ constexpr size_t kTargetChunk = 64;
   target.rear = entity.info.box.center_x - 0.5 * entity.info.box.length;
   target.vehicle = entity.info.kind == ObjectKind::kVehicle;
   target.length = entity.info.box.length;
-  if (neighbours) {
+  if (has_shapes_) {
     // Mostly the entity stands where the contacts boxed it after the last moves.
     const OrientedBox* boxed = state.contacts.unmoved_box(i, entity);
     target.shape =
@@ -74,7 +61,14 @@ constexpr size_t kTargetChunk = 64;
   nodes_[i] = node.value_or(xodr::kNoLane);
 }
 
-[[gnu::hot]] void FollowView::build(const SimState& state, bool neighbours, WorkerPool* pool) {
+[[gnu::hot]] void FollowView::build(const SimState& state, bool neighbours) {
+  begin(state, neighbours);
+  const auto count = static_cast<uint32_t>(targets_.size());
+  for (uint32_t i = 0; i < count; ++i) fill(state, i);
+  finish();
+}
+
+void FollowView::begin(const SimState& state, bool neighbours) {
   const auto& entities = state.world.entities;
   const auto count = static_cast<uint32_t>(entities.size());
   targets_.resize(count);
@@ -109,16 +103,11 @@ constexpr size_t kTargetChunk = 64;
     }
     generated_seen_ = lifetimes.size();
   }
-  // Each entity's picture depends only on that entity (the box's sine and cosine, the lane
-  // look-up): on threads when there are many. What gathers them (the lane index, the grid, the
-  // bounds) follows in index order on this thread, so the result is the same on any number.
-  if (pool != nullptr && pool->threads() > 1 && count >= kParallelTargets) {
-    pool->run(count, kTargetChunk, [&](size_t begin, size_t end, unsigned) {
-      for (size_t i = begin; i < end; ++i) fill_target(state, static_cast<uint32_t>(i), neighbours);
-    });
-  } else {
-    for (uint32_t i = 0; i < count; ++i) fill_target(state, i, neighbours);
-  }
+}
+
+[[gnu::hot]] void FollowView::finish() {
+  const auto count = static_cast<uint32_t>(targets_.size());
+  const bool neighbours = has_shapes_;
   for (uint32_t i = 0; i < count; ++i) {
     const FollowTarget& target = targets_[i];
     if (!target.present) {

@@ -23,7 +23,6 @@
 namespace corsa::engine::detail {
 
 struct SimState;
-class WorkerPool;
 class GiveWay;
 
 /// The speed (m/s) of an entity heading `h` (rad) along heading `own`: speed x cos(h - own),
@@ -76,9 +75,18 @@ static_assert(sizeof(FollowTarget) == 128, "a FollowTarget is two cache lines");
 class FollowView {
  public:
   /// Takes the picture of `state`'s entities now; with `neighbours` also the grid of the present
-  /// entities' reference points (near()). With a `pool` of more than one thread the entities'
-  /// pictures are made on its threads (the same picture).
-  void build(const SimState& state, bool neighbours, WorkerPool* pool = nullptr);
+  /// entities' reference points (near()). The same as begin(), fill() of every entity, finish().
+  void build(const SimState& state, bool neighbours);
+
+  /// The picture in three parts, for a caller that shares the entities' own parts out among
+  /// threads: begin() sizes the per-entity records; fill(state, i) makes entity i's (its
+  /// target, lane node and box reach), reading only that entity and writing only its records,
+  /// so fills of different entities may run at once on different threads, in any order; once
+  /// every entity is filled, finish() gathers them in index order on one thread (the lane
+  /// index, the grids, the bounds), so the picture is the same whoever filled what.
+  void begin(const SimState& state, bool neighbours);
+  void fill(const SimState& state, uint32_t i);
+  void finish();
 
   const std::vector<FollowTarget>& targets() const { return targets_; }
   const LaneIndex& lanes() const { return lanes_; }
@@ -130,9 +138,6 @@ class FollowView {
   void set_give_way(GiveWay* give_way) { give_way_ = give_way; }
 
  private:
-  /// Entity `i`'s target, its lane node (nodes_) and box reach (reach_).
-  void fill_target(const SimState& state, uint32_t i, bool neighbours);
-
   std::vector<FollowTarget> targets_;
   std::vector<xodr::LaneNode> nodes_;  ///< by entity: its lane's node, kNoLane when not indexed
   std::vector<double> reach_;          ///< by entity: its box's half diagonal (m), with neighbours

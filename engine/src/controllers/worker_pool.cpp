@@ -64,10 +64,11 @@ void WorkerPool::drain(unsigned worker) {
 }
 
 void WorkerPool::run(size_t count, size_t chunk,
-                     const std::function<void(size_t, size_t, unsigned)>& work) {
+                     const std::function<void(size_t, size_t, unsigned)>& work, After after) {
   {
     std::lock_guard lock(mutex_);
     work_ = &work;
+    after_ = after;
     count_ = count;
     chunk_ = std::max<size_t>(chunk, 1);
     const size_t chunks = (count + chunk_ - 1) / chunk_;
@@ -143,15 +144,20 @@ void WorkerPool::serve(unsigned worker) {
     }
     prepared = prepared_;
     seen = generation_.load(std::memory_order_relaxed);
-    if (!open_) {
-      continue;
+    const After after = after_;
+    if (open_) {
+      ++active_;
+      lock.unlock();
+      drain(worker);
+      lock.lock();
+      if (--active_ == 0) {
+        done_.notify_one();
+      }
     }
-    ++active_;
-    lock.unlock();
-    drain(worker);
-    lock.lock();
-    if (--active_ == 0) {
-      done_.notify_one();
+    if (after == After::kAwait) {
+      // Another run follows soon (missed or not, this one): wait for it awake.
+      lock.unlock();
+      await_run(seen, kWorkerSpinWait);
     }
   }
 }

@@ -24,7 +24,9 @@
 // CPU time in the kernel (docs/performance/two-threads.md gives the figures). So
 // the caller announces a run (prepare()) before the serial work that precedes it (the picture
 // of the others, the give-way claims), and the worker, woken then, spins for the run itself:
-// it joins the run when it opens, and the run's notify is no system call. A worker does not
+// it joins the run when it opens, and the run's notify is no system call. Between two runs of
+// one step (the picture's per-entity part, then the moves) the caller asks the worker to stay
+// awake (After::kAwait): one wake-up through the kernel a step. A worker does not otherwise
 // spin after a run for the next: on a loaded machine the spinning worker used up its share of
 // the core and lost it in the middle of a chunk, the caller then waiting milliseconds for it;
 // on the idle machine spinning 500 us after every run gave no gain either (16.3x / 15.8x /
@@ -57,10 +59,16 @@ class WorkerPool {
   /// most) instead of being woken when it starts. Optional; only a hint.
   void prepare();
 
+  /// What the workers do after a run: sleep until the next, or wait for it awake because the
+  /// caller starts another soon (kWorkerSpinWait at most, as after prepare()).
+  enum class After { kSleep, kAwait };
+
   /// Calls work(begin, end, worker) for chunks of at most `chunk` items covering [0, count),
   /// each exactly once, worker 0 on the calling thread (1.. on the pool's threads that join in
-  /// time), and returns when all are done. An exception of any chunk is rethrown here.
-  void run(size_t count, size_t chunk, const std::function<void(size_t, size_t, unsigned)>& work);
+  /// time), and returns when all are done. An exception of any chunk is rethrown here. Two
+  /// runs of the same `count` and `chunk` give each thread the same share of chunks first.
+  void run(size_t count, size_t chunk, const std::function<void(size_t, size_t, unsigned)>& work,
+           After after = After::kSleep);
 
  private:
   void serve(unsigned worker);
@@ -88,6 +96,7 @@ class WorkerPool {
   std::atomic<uint64_t> generation_{0};
   uint64_t prepared_ = 0;            ///< prepare() calls
   bool open_ = false;                ///< workers may still join the current run
+  After after_ = After::kSleep;      ///< the current run's
   std::atomic<unsigned> active_{0};  ///< workers inside the current run (changed under mutex_)
   bool stop_ = false;
   std::exception_ptr error_;
