@@ -14,6 +14,7 @@
 #include "corsa/xosc/scenario.h"
 #include "state/sim_state.h"
 #include "state/world_contacts.h"
+#include "test_entity.h"
 
 namespace {
 
@@ -30,9 +31,7 @@ struct Cars {
 
   explicit Cars(uint32_t count) {
     for (uint32_t i = 0; i < count; ++i) {
-      corsa::engine::EntityInfo info;
-      info.box = corsa::engine::Box{0.0, 0.0, 0.75, 4.0, 2.0, 1.5};
-      detail::Entity entity(std::move(info));
+      detail::Entity entity = corsa::test::entity_of({0.0, 0.0, 0.75, 4.0, 2.0, 1.5});
       entity.write_state().placed = true;
       entity.write_state().pose.x = 10.0 * i;
       state.world.entities.push_back(std::move(entity));
