@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "contact_pairs.h"
 #include "controllers/follow_view.h"
 #include "controllers/npc_caution.h"
 #include "controllers/worker_pool.h"
@@ -46,6 +47,7 @@ using corsa::engine::Simulation;
 using corsa::engine::SimulationOptions;
 
 using corsa::engine::detail::same_bits;
+using corsa::test::pairs_by_testing_all;
 
 // Twelve cars in one lane and its neighbour, close enough to follow each other, at different
 // speeds, some slowing down; every third changes lanes.
@@ -118,27 +120,6 @@ std::string trajectory_rows(const corsa::xosc::Scenario& scenario,
     corsa::engine::TrajectoryRecorder::append_rows(sim, rows);
   } while (sim.step());
   return rows;
-}
-
-// The overlapping pairs of placed entities with a box, by testing every pair (what the contacts'
-// sweep must find), in entity order.
-std::vector<std::pair<uint32_t, uint32_t>> pairs_by_testing_all(
-    const std::vector<corsa::engine::detail::Entity>& entities) {
-  const auto usable = [](const corsa::engine::detail::Entity& e) {
-    return e.state().placed && e.info.box.length > 0.0;
-  };
-  std::vector<std::pair<uint32_t, uint32_t>> pairs;
-  for (uint32_t a = 0; a < entities.size(); ++a) {
-    for (uint32_t b = a + 1; b < entities.size(); ++b) {
-      if (usable(entities[a]) && usable(entities[b]) &&
-          corsa::engine::overlap(
-              corsa::engine::box_of(entities[a].info.box, entities[a].state().pose),
-              corsa::engine::box_of(entities[b].info.box, entities[b].state().pose))) {
-        pairs.emplace_back(a, b);
-      }
-    }
-  }
-  return pairs;
 }
 
 }  // namespace
