@@ -257,29 +257,14 @@ uint32_t TrajectoryEncoder::code_every_row(const Rows& rows, uint32_t count) {
   Track* tracks = entities_.data();
   int64_t previous = -1;
   uint32_t coded = 0;
-  // The entities' counts of writes, read for steady tracks only (the rows of this pass mostly
-  // move): a steady track whose seen is its entity's count passes without a test, as in the
-  // skip pass, and one that passes the test keeps the count. (A track coded here has a seen its
-  // entity's count has moved past.)
-  EntityStateChanges changes;
-  if constexpr (std::is_same_v<Rows, EntityStateRows>) {
-    if (rows.changes.size() >= count) {
-      changes = rows.changes;
-    }
-  }
-  const bool counted = changes.size() != 0;
   for (uint32_t i = 0; i < count; ++i) {
     const auto& row = local_rows[i];
     Track& track = tracks[i];
-    if (track.steady) [[unlikely]] {
-      const uint32_t now = counted ? changes[i] : track.seen + 1;
-      if (now == track.seen) {
-        continue;
-      }
-      if (row_placed(row) && track.repeats(row)) {
-        track.seen = counted ? now : track.seen;
-        continue;
-      }
+    // (The counts of writes are not read here: the rows of this pass mostly move. A track whose
+    // seen is its entity's count passes skips as in the skip pass; one coded here has a seen its
+    // entity's count has moved past.)
+    if (track.skips(row)) {
+      continue;
     }
     ++coded;
     if (track.steady && row_placed(row) && track.template takes_below_decimals<false>(row)) {
