@@ -31,7 +31,10 @@ namespace {
 // A placed entity at (x, y) with heading h (rad) and speed (m/s), appended to `state`.
 void add_entity(engine::detail::SimState& state, double x, double y, double h, double speed,
                 const engine::Box& box, engine::ObjectKind kind) {
-  engine::detail::Entity entity(engine::EntityInfo{.kind = kind, .box = box});
+  engine::EntityInfo info;
+  info.kind = kind;
+  info.box = box;
+  engine::detail::Entity entity(std::move(info));
   entity.write_state().placed = true;
   entity.write_state().pose.x = x;
   entity.write_state().pose.y = y;

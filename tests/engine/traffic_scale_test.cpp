@@ -40,6 +40,13 @@
 
 namespace {
 
+// An entity's info with only its box given (the info is fixed once the entity is made).
+corsa::engine::EntityInfo info_with_box(const corsa::engine::Box& box) {
+  corsa::engine::EntityInfo info;
+  info.box = box;
+  return info;
+}
+
 using corsa::Diagnostics;
 using corsa::engine::Simulation;
 using corsa::engine::SimulationOptions;
@@ -523,7 +530,7 @@ TEST_CASE(
   Diagnostics diagnostics;
   detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
   const auto add = [&](double x, double y, double h, const corsa::engine::Box& box) {
-    detail::Entity entity(corsa::engine::EntityInfo{.box = box});
+    detail::Entity entity(info_with_box(box));
     entity.write_state().placed = true;
     entity.write_state().pose.x = x;
     entity.write_state().pose.y = y;
@@ -587,7 +594,7 @@ TEST_CASE(
     const double length = i % 7 == 0 ? 12.0 : (i % 5 == 0 ? 0.5 : 4.5);
     const double width = i % 5 == 0 && i % 7 != 0 ? 0.6 : 1.9;
     detail::Entity entity(
-        corsa::engine::EntityInfo{.box = {1.4 * unit(random), 0.0, 0.75, length, width, 1.5}});
+        info_with_box(corsa::engine::Box{1.4 * unit(random), 0.0, 0.75, length, width, 1.5}));
     entity.write_state().placed = true;
     entity.write_state().pose = pose;
     state.world.entities.push_back(std::move(entity));
@@ -661,11 +668,11 @@ TEST_CASE("The contacts of many boxes of every size and heading are the pairs a 
     };
     for (int i = 0; i < 900; ++i) {
       const int kind = random.uniform_int(0, 19);
-      detail::Entity entity(corsa::engine::EntityInfo{
-          .box = kind == 0     ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
-                 : kind < 5    ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
-                 : i % 89 == 5 ? corsa::engine::Box{}
-                               : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5}});
+      detail::Entity entity(
+          info_with_box(kind == 0     ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
+                        : kind < 5    ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
+                        : i % 89 == 5 ? corsa::engine::Box{}
+                                      : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5}));
       entity.write_state().placed = i % 97 != 3;
       place(entity, i % 4 != 0);
       state.world.entities.push_back(std::move(entity));
@@ -709,10 +716,10 @@ TEST_CASE("Many boxes over a small area are swept in strips and give the pairs a
     corsa::RandomStream random(along_y ? 11 : 13);
     for (int i = 0; i < 700; ++i) {
       const int kind = random.uniform_int(0, 9);
-      detail::Entity entity(corsa::engine::EntityInfo{
-          .box = kind == 0  ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
-                 : kind < 3 ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
-                            : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5}});
+      detail::Entity entity(
+          info_with_box(kind == 0  ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
+                        : kind < 3 ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
+                                   : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5}));
       entity.write_state().placed = true;
       const double wide = random.uniform(-200.0, 200.0);
       const double narrow = random.uniform(-80.0, 80.0);
@@ -757,9 +764,9 @@ TEST_CASE(
     CAPTURE(along_y);
     detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
     const auto add = [&](double along, double across, double length, double width) {
-      detail::Entity entity(corsa::engine::EntityInfo{
-          .box = along_y ? corsa::engine::Box{0.0, 0.0, 0.75, width, length, 1.5}
-                         : corsa::engine::Box{0.0, 0.0, 0.75, length, width, 1.5}});
+      detail::Entity entity(
+          info_with_box(along_y ? corsa::engine::Box{0.0, 0.0, 0.75, width, length, 1.5}
+                                : corsa::engine::Box{0.0, 0.0, 0.75, length, width, 1.5}));
       entity.write_state().placed = true;
       entity.write_state().pose.x = along_y ? across : along;
       entity.write_state().pose.y = along_y ? along : across;
@@ -824,8 +831,7 @@ TEST_CASE("Boxes that moved into and out of contact with standing ones get a ful
     const auto fill = [&](detail::SimState& state) {
       state.world.entities.clear();
       for (uint32_t i = 0; i < kCars; ++i) {
-        detail::Entity entity(
-            corsa::engine::EntityInfo{.box = corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5}});
+        detail::Entity entity(info_with_box(corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5}));
         entity.write_state().placed = true;
         entity.write_state().pose = poses[i];
         state.world.entities.push_back(std::move(entity));
