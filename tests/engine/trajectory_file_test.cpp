@@ -786,14 +786,13 @@ TEST_CASE("corsa record export writes the CSV corsa run --record writes", "[engi
   CHECK_THAT(info.out, Catch::Contains("entities:      3"));
 }
 
-}  // namespace corsa::test
-
 TEST_CASE("A standing entity among moving ones records its move after many unchanged ticks",
           "[engine][output][trajectory]") {
   // Entities 0 and 1 move at every tick, so that the encoder codes every row in one pass (the
   // pass for moving rows, which skips a steady row by its test); entity 2 stands, its count of
-  // writes unchanged, for 520 ticks, and then moves once (its count moved). Read with the counts and without them, the files are the
-  // same bytes, and entity 2's row at the tick of its move is the moved one.
+  // writes unchanged, for 520 ticks, and then moves once (its count moved). Read with the counts
+  // and without them, the files are the same bytes, and entity 2's row at the tick of its move is
+  // the moved one.
   constexpr int64_t kTicks = 800;
   constexpr int64_t kMove = 520;
   TempDir dir;
@@ -851,3 +850,5 @@ TEST_CASE("A standing entity among moving ones records its move after many uncha
   }
   CHECK(moved_rows == static_cast<size_t>(kTicks - kMove));
 }
+
+}  // namespace corsa::test
