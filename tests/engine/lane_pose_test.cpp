@@ -91,6 +91,22 @@ void compare_everywhere(const Map& map, const std::string& name, Comparison& out
   }
 }
 
+// Points on every road's lanes, beside them and far off every road: the reference line and
+// three offsets at each road's start and middle, and one point a thousand kilometres away.
+std::vector<std::pair<double, double>> probe_points(const Map& map) {
+  std::vector<std::pair<double, double>> points;
+  for (uint32_t road = 0; road < map.road_count(); ++road) {
+    for (const double s : {0.0, 0.5 * map.road(road).length}) {
+      for (const double t : {0.0, 1.7, -2.9, 6.3}) {
+        const corsa::xodr::WorldPose at = map.world_pose(road, s, t);
+        points.emplace_back(at.x, at.y);
+      }
+    }
+  }
+  points.emplace_back(1.0e6, -1.0e6);
+  return points;
+}
+
 }  // namespace
 
 TEST_CASE("The lane pose from the followed lane alone equals the one from every lane's span",
@@ -151,16 +167,7 @@ TEST_CASE("An entity's remembered lane at a point is the map's answer, asked aga
   size_t asked = 0, found = 0, mismatches = 0;
   // Points on lanes, beside them and far off every road, each asked twice in a row (the memo
   // answers the second) and then after another point (the memo must ask the map again).
-  std::vector<std::pair<double, double>> points;
-  for (uint32_t road = 0; road < map.road_count(); ++road) {
-    for (const double s : {0.0, 0.5 * map.road(road).length}) {
-      for (const double t : {0.0, 1.7, -2.9, 6.3}) {
-        const corsa::xodr::WorldPose at = map.world_pose(road, s, t);
-        points.emplace_back(at.x, at.y);
-      }
-    }
-  }
-  points.emplace_back(1.0e6, -1.0e6);
+  const std::vector<std::pair<double, double>> points = probe_points(map);
   for (size_t i = 0; i < points.size(); ++i) {
     for (const auto& [x, y] : {points[i], points[i], points[(i + 7) % points.size()], points[i]}) {
       const auto expected = map.locate(x, y, options);
@@ -198,16 +205,7 @@ TEST_CASE("The road surface kept with the remembered lane is the map's, read aga
   for (const auto& path : corsa::xodr::test::all_shared_maps()) {
     const Map map = corsa::xodr::test::load_map(path);
     corsa::engine::detail::Entity entity;  // the memo holds for one map
-    std::vector<std::pair<double, double>> points;
-    for (uint32_t road = 0; road < map.road_count(); ++road) {
-      for (const double s : {0.0, 0.5 * map.road(road).length}) {
-        for (const double t : {0.0, 1.7, -2.9, 6.3}) {
-          const corsa::xodr::WorldPose at = map.world_pose(road, s, t);
-          points.emplace_back(at.x, at.y);
-        }
-      }
-    }
-    points.emplace_back(1.0e6, -1.0e6);
+    const std::vector<std::pair<double, double>> points = probe_points(map);
     corsa::xodr::SurfacePose last;
     bool have_last = false;
     for (size_t i = 0; i < points.size(); ++i) {
