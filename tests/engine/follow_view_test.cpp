@@ -16,11 +16,13 @@
 #include "corsa/engine/simulation.h"
 #include "corsa/xosc/scenario.h"
 #include "state/sim_state.h"
+#include "test_entity.h"
 
 namespace {
 
 namespace detail = corsa::engine::detail;
 using corsa::Diagnostics;
+using corsa::engine::Box;
 using corsa::engine::SimulationOptions;
 
 // The fields of a target that the picture set for its entity, as bits.
@@ -47,14 +49,18 @@ TEST_CASE("A picture filled on two threads in another order is the one built on 
   std::mt19937 random(5);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (uint32_t i = 0; i < 600; ++i) {
-    detail::Entity entity;
+    const double x = 500.0 * unit(random);
+    const double y = 300.0 * unit(random);
+    const double h = 6.3 * unit(random);
+    const double speed = 20.0 * unit(random);
+    const Box box{1.4 * unit(random), 0.0, 0.75, i % 7 == 0 ? 12.0 : 4.5, 1.9, 1.5};
+    detail::Entity entity = corsa::test::entity_of(box);
     // Some not placed, and some made by traffic.
     entity.write_state().placed = i % 11 != 0;
-    entity.write_state().pose.x = 500.0 * unit(random);
-    entity.write_state().pose.y = 300.0 * unit(random);
-    entity.write_state().pose.h = 6.3 * unit(random);
-    entity.write_state().speed = 20.0 * unit(random);
-    entity.info.box = {1.4 * unit(random), 0.0, 0.75, i % 7 == 0 ? 12.0 : 4.5, 1.9, 1.5};
+    entity.write_state().pose.x = x;
+    entity.write_state().pose.y = y;
+    entity.write_state().pose.h = h;
+    entity.write_state().speed = speed;
     state.world.entities.push_back(std::move(entity));
     if (i % 3 == 0) {
       state.traffic.lifetimes[i];

@@ -23,6 +23,7 @@
 #include "corsa/xodr/parser.h"
 #include "engine_fixture.h"
 #include "state/sim_state.h"
+#include "test_entity.h"
 #include "traffic/spawner.h"
 
 namespace corsa::test {
@@ -31,7 +32,7 @@ namespace {
 // A placed entity at (x, y) with heading h (rad) and speed (m/s), appended to `state`.
 void add_entity(engine::detail::SimState& state, double x, double y, double h, double speed,
                 const engine::Box& box, engine::ObjectKind kind) {
-  engine::detail::Entity entity(engine::EntityInfo{.kind = kind, .box = box});
+  engine::detail::Entity entity = corsa::test::entity_of(box, kind);
   entity.write_state().placed = true;
   entity.write_state().pose.x = x;
   entity.write_state().pose.y = y;

@@ -14,7 +14,10 @@
 #include <vector>
 
 #include "../xodr/xodr_test_util.h"
+#include "controllers/controllers.h"
+#include "controllers/esmini_vehicle.h"
 #include "corsa/xodr/map_parts.h"
+#include "geometry/angle.h"
 #include "lanes/lane_follow.h"
 #include "motion/controller.h"
 #include "motion/pose_command.h"
@@ -343,4 +346,90 @@ TEST_CASE("A pose command to where an entity off the road stands is kept without
       corsa::engine::detail::keeps_pose_off_lanes(on_road, on_lane.x, on_lane.y, h, context));
   const corsa::engine::detail::MotionContext no_map{nullptr, 0.05, &spans};
   CHECK_FALSE(corsa::engine::detail::keeps_pose_off_lanes(entity, x, y, h, no_map));
+}
+
+// A vehicle model at rest on its lane (esmini's, whose speed only nears 0) is held where it
+// stands without the map (keeps_pose_on_lane, hold_pose_on_lane). Every step must leave what the
+// pose command to the model's pose leaves: while it stands for many steps, after a teleport puts
+// it elsewhere (its point memo then holds another point), and once its model moves it again.
+TEST_CASE("A model standing on its lane is placed as by its pose command, and after it moves",
+          "[engine][lanes]") {
+  using corsa::engine::detail::Entity;
+  using corsa::engine::detail::EntityMotion;
+  const Map map = corsa::xodr::test::load_map(corsa::xodr::test::all_shared_maps().front());
+  std::vector<LaneSpan> spans;
+  const corsa::engine::detail::MotionContext context{&map, 0.05, &spans};
+  // The centre of road 0's first right-hand lane halfway along, and a point 2 m along it.
+  const double s = 0.5 * map.road(0).length;
+  corsa::xodr::WorldPose here = map.world_pose(0, s, -1.5);
+  corsa::xodr::WorldPose ahead = map.world_pose(0, s + 2.0, -1.5);
+  here.h = corsa::engine::detail::remainder_full_turn(here.h);  // the model's headings
+  ahead.h = corsa::engine::detail::remainder_full_turn(ahead.h);
+  const auto placed = [&] {
+    Entity entity;
+    entity.write_state().placed = true;
+    entity.write_state().pose = {here.x + 1.0, here.y, 0.0, here.h, 0.0, 0.0};
+    entity.speed_command = 3.0;
+    return entity;
+  };
+  // Placed by the pose command, as the model's placement does away from a standstill.
+  const auto by_command = [&](Entity& entity, double x, double y, double h, double speed) {
+    auto pose = entity.state().pose;
+    pose.x = x;
+    pose.y = y;
+    pose.h = h;
+    if (const auto* surface = corsa::engine::detail::surface_near(entity, map, x, y, 0.5)) {
+      pose.z = surface->z;
+      pose.p = surface->p;
+    }
+    entity.pose_command = pose;
+    corsa::engine::detail::move_at_controller_speed(
+        entity, speed, [&] { corsa::engine::detail::move_to_pose_command(entity, context); });
+  };
+  Entity model = placed();
+  Entity command = placed();
+  size_t held = 0;
+  const auto step = [&](double x, double y, double h, double speed) {
+    held += corsa::engine::detail::keeps_pose_on_lane(model, x, y, h, 0.5, context);
+    corsa::engine::detail::place_entity_at_model(x, y, h, speed, model, context);
+    by_command(command, x, y, h, speed);
+    CHECK(same_bits(static_cast<const EntityMotion&>(model),
+                    static_cast<const EntityMotion&>(command)));
+    CHECK(model.speed_command == command.speed_command);
+    CHECK_FALSE(model.pose_command.has_value());
+  };
+  step(here.x, here.y, here.h, 2.0);  // onto the lane
+  REQUIRE(model.lane.on_road);
+  double speed = 2.0;
+  for (int i = 0; i < 500; ++i) {
+    speed *= 0.999;  // the engine brake: the speed changes, the pose does not
+    step(here.x, here.y, here.h, speed);
+  }
+  CHECK(held == 500);
+  CHECK(model.state().speed == speed);
+  CHECK(model.state().odometer == command.state().odometer);
+  // A teleport to the point ahead: the memo holds the point it stood at, and the map is asked.
+  for (Entity* entity : {&model, &command}) {
+    entity->write_state().pose = {ahead.x, ahead.y, 0.0, ahead.h, 0.0, 0.0};
+  }
+  CHECK_FALSE(
+      corsa::engine::detail::keeps_pose_on_lane(model, ahead.x, ahead.y, ahead.h, 0.5, context));
+  step(ahead.x, ahead.y, ahead.h, speed);
+  CHECK(model.state().pose.z == command.state().pose.z);
+  for (int i = 0; i < 20; ++i) step(ahead.x, ahead.y, ahead.h, speed);
+  CHECK(held == 520);
+  // Its model moves it back along the lane, and a turn by one ulp is a move too.
+  step(here.x, here.y, here.h, 1.0);
+  CHECK(model.state().odometer > 2.0);
+  CHECK_FALSE(corsa::engine::detail::keeps_pose_on_lane(
+      model, here.x, here.y, std::nextafter(here.h, 10.0), 0.5, context));
+  step(here.x, here.y, std::nextafter(here.h, 10.0), 1.0);
+  CHECK(held == 520);
+  // Not held: no map, and an entity off its lane.
+  const corsa::engine::detail::MotionContext no_map{nullptr, 0.05, &spans};
+  CHECK_FALSE(corsa::engine::detail::keeps_pose_on_lane(
+      model, model.state().pose.x, model.state().pose.y, model.state().pose.h, 0.5, no_map));
+  model.lane.on_road = false;
+  CHECK_FALSE(corsa::engine::detail::keeps_pose_on_lane(
+      model, model.state().pose.x, model.state().pose.y, model.state().pose.h, 0.5, context));
 }

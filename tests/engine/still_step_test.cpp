@@ -338,3 +338,56 @@ TEST_CASE("The memos pass over a state whose count of writes stands, and compare
   pair.step([](Entity& e) { e.speed_command = 1.0; });
   CHECK(pair.skipping.state_changes() > count + 1);
 }
+
+TEST_CASE("The still step's test of the motion sees each field beside the state, and no padding",
+          "[engine][motion][still]") {
+  // A step taken in full writes the state (its count of writes grows); a skipped one does not.
+  const auto taken = [](StillStepPair& pair, const std::function<void(Entity&)>& change) {
+    const uint32_t before = pair.skipping.state_changes();
+    pair.step(change);
+    return pair.skipping.state_changes() != before;
+  };
+  StillStepPair pair(100.0);
+  for (int i = 0; i < 3; ++i) {
+    pair.step();
+  }
+  REQUIRE(pair.skipping.still_step_valid);
+  REQUIRE_FALSE(taken(pair, {}));
+
+  SECTION("a change of one bit of any field is a step taken") {
+    const std::vector<std::pair<std::string, std::function<void(Entity&)>>> changes = {
+        {"s", [](Entity& e) { e.lane.s = std::nextafter(e.lane.s, 1e9); }},
+        {"lateral", [](Entity& e) { e.lane.lateral = std::nextafter(e.lane.lateral, 1.0); }},
+        {"heading_offset", [](Entity& e) { e.lane.heading_offset = -0.0; }},
+        {"frame_shift", [](Entity& e) { e.lane.frame_shift = -0.0; }},
+        {"dir", [](Entity& e) { e.lane.dir = -e.lane.dir; }},
+        {"on_road", [](Entity& e) { e.lane.on_road = false; }},
+        {"speed_command", [](Entity& e) { e.speed_command = -0.0; }},
+        {"lateral_command", [](Entity& e) { e.lateral_command = e.lane.lateral + 1e-3; }},
+        {"longitudinal_distance", [](Entity& e) { e.longitudinal_distance = 1e-300; }},
+        {"lateral_acceleration", [](Entity& e) { e.lateral_acceleration = 0.5; }},
+        {"end_of_road", [](Entity& e) { e.end_of_road = !e.end_of_road; }},
+    };
+    for (const auto& [field, change] : changes) {
+      StillStepPair fresh(100.0);
+      for (int i = 0; i < 3; ++i) {
+        fresh.step();
+      }
+      REQUIRE(fresh.skipping.still_step_valid);
+      INFO(field);
+      CHECK(taken(fresh, change));
+    }
+  }
+  SECTION("bytes of padding that differ from the memo's leave the step skipped") {
+    // LaneFollow's padding: after on_road (bytes 1-3), after node (20-23), after dir (36-39).
+    static_assert(sizeof(LaneFollow) == 64);
+    const auto scribble = [](Entity& e) {
+      auto* bytes = reinterpret_cast<unsigned char*>(&e.lane);
+      for (const size_t at : {1, 2, 3, 20, 21, 22, 23, 36, 37, 38, 39}) {
+        bytes[at] = static_cast<unsigned char>(bytes[at] ^ 0x5a);
+      }
+    };
+    CHECK_FALSE(taken(pair, scribble));
+    CHECK_FALSE(taken(pair, {}));
+  }
+}

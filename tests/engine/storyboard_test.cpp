@@ -1,6 +1,11 @@
 // The storyboard state machine (OpenSCENARIO 1.3 §8.4): priorities, execution counts, act
 // triggers, edges and delays, how runs end.
 
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+
 #include "engine_fixture.h"
 
 namespace corsa::test {
@@ -164,6 +169,60 @@ TEST_CASE("An act's walk reaches every event a transition of the same walk makes
   CHECK(start("Two::TwoM::Waiter") == Approx(5.01));
   CHECK(run.first("S::A", TransitionKind::kEnd) == Approx(5.01));
   CHECK(run.now("Car").speed == 5.0);
+}
+
+TEST_CASE("Conditions whose inputs stood for long fire on the step they change",
+          "[engine][storyboard][trigger]") {
+  // For 20 s no element state is written and Car stands (its state's count of writes stays):
+  // the triggers read none of their inputs again, and take the values those gave. Go then
+  // accelerates Car at 5 m/s^2 from 20.01 s; each condition must fire on the step its value
+  // changes, with its own edge and delay.
+  FixtureRun run(engine_fixture("storyboard_standing_inputs.xosc"));
+  engine::Simulation& sim = run.sim();
+  const size_t car = run.entity("Car");
+  while (sim.tick() < 100) REQUIRE(sim.step());
+  const uint32_t standing = sim.state_changes()[car];
+  const size_t transitions = sim.transitions().size();
+  while (sim.tick() < 2000) REQUIRE(sim.step());
+  REQUIRE(sim.state_changes()[car] == standing);
+  REQUIRE(sim.transitions().size() == transitions);
+  run.run();
+  const double dt = sim.dt();
+  const auto start = [&](const std::string& event) {
+    return run.first("M::" + event, TransitionKind::kStart);
+  };
+  // The first step at which `holds` holds for Car's recorded state (its conditions read it).
+  const auto first_step = [&](const auto& holds) -> std::optional<double> {
+    for (const auto& [tick, states] : run.trace().ticks()) {
+      if (holds(states.at(car))) return static_cast<double>(tick) * dt;
+    }
+    return std::nullopt;
+  };
+  CHECK(start("Go") == Approx(20.01));
+  const auto fast = first_step([](const engine::EntityState& s) { return s.speed > 10.0; });
+  REQUIRE(fast);
+  CHECK(*fast > 22.0);
+  CHECK(start("Faster") == Approx(*fast));
+  CHECK(start("FasterLater") == Approx(*fast + 0.5));
+  const auto moves = first_step([](const engine::EntityState& s) { return s.speed >= 0.001; });
+  REQUIRE(moves);
+  CHECK(start("Moves") == Approx(*moves));
+  // Within 1 m of s = 50 (x = 50 on the straight road, in Car's lane).
+  const auto near = first_step([](const engine::EntityState& s) { return s.pose.x >= 49.0; });
+  REQUIRE(near);
+  CHECK(start("Reached") == Approx(*near));
+  // Element states: Go's start is seen once (the evaluation after it has the time condition of
+  // the group, and no second sight of the start); its running state rises at its start, seen 1 s
+  // later; its end (20 m/s after 4 s) is seen on its step. The stop trigger, checked before the
+  // acts, sees SeesGoEnd complete one step later, and fires 3 s after that.
+  CHECK(run.count("M::GoSeenOnce", TransitionKind::kStart) == 0);
+  CHECK(start("GoRunningLater") == Approx(21.01));
+  const auto end = run.first("M::Go", TransitionKind::kEnd);
+  REQUIRE(end);
+  CHECK(*end == Approx(24.01));
+  CHECK(start("SeesGoEnd") == Approx(*end));
+  CHECK(sim.end_reason() == engine::EndReason::kStopTrigger);
+  CHECK(sim.time() == Approx(*end + 3.01));
 }
 
 }  // namespace

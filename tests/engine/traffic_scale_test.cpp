@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "contact_pairs.h"
 #include "controllers/follow_view.h"
 #include "controllers/npc_caution.h"
 #include "controllers/worker_pool.h"
@@ -37,6 +38,7 @@
 #include "state/point_grid.h"
 #include "state/sim_state.h"
 #include "state/world_contacts.h"
+#include "test_entity.h"
 
 namespace {
 
@@ -45,6 +47,7 @@ using corsa::engine::Simulation;
 using corsa::engine::SimulationOptions;
 
 using corsa::engine::detail::same_bits;
+using corsa::test::pairs_by_testing_all;
 
 // Twelve cars in one lane and its neighbour, close enough to follow each other, at different
 // speeds, some slowing down; every third changes lanes.
@@ -117,27 +120,6 @@ std::string trajectory_rows(const corsa::xosc::Scenario& scenario,
     corsa::engine::TrajectoryRecorder::append_rows(sim, rows);
   } while (sim.step());
   return rows;
-}
-
-// The overlapping pairs of placed entities with a box, by testing every pair (what the contacts'
-// sweep must find), in entity order.
-std::vector<std::pair<uint32_t, uint32_t>> pairs_by_testing_all(
-    const std::vector<corsa::engine::detail::Entity>& entities) {
-  const auto usable = [](const corsa::engine::detail::Entity& e) {
-    return e.state().placed && e.info.box.length > 0.0;
-  };
-  std::vector<std::pair<uint32_t, uint32_t>> pairs;
-  for (uint32_t a = 0; a < entities.size(); ++a) {
-    for (uint32_t b = a + 1; b < entities.size(); ++b) {
-      if (usable(entities[a]) && usable(entities[b]) &&
-          corsa::engine::overlap(
-              corsa::engine::box_of(entities[a].info.box, entities[a].state().pose),
-              corsa::engine::box_of(entities[b].info.box, entities[b].state().pose))) {
-        pairs.emplace_back(a, b);
-      }
-    }
-  }
-  return pairs;
 }
 
 }  // namespace
@@ -523,7 +505,7 @@ TEST_CASE(
   Diagnostics diagnostics;
   detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
   const auto add = [&](double x, double y, double h, const corsa::engine::Box& box) {
-    detail::Entity entity(corsa::engine::EntityInfo{.box = box});
+    detail::Entity entity = corsa::test::entity_of(box);
     entity.write_state().placed = true;
     entity.write_state().pose.x = x;
     entity.write_state().pose.y = y;
@@ -586,8 +568,8 @@ TEST_CASE(
     pose.h = in_line ? 0.05 * (unit(random) - 0.5) : 6.3 * unit(random);
     const double length = i % 7 == 0 ? 12.0 : (i % 5 == 0 ? 0.5 : 4.5);
     const double width = i % 5 == 0 && i % 7 != 0 ? 0.6 : 1.9;
-    detail::Entity entity(
-        corsa::engine::EntityInfo{.box = {1.4 * unit(random), 0.0, 0.75, length, width, 1.5}});
+    detail::Entity entity =
+        corsa::test::entity_of({1.4 * unit(random), 0.0, 0.75, length, width, 1.5});
     entity.write_state().placed = true;
     entity.write_state().pose = pose;
     state.world.entities.push_back(std::move(entity));
@@ -661,11 +643,11 @@ TEST_CASE("The contacts of many boxes of every size and heading are the pairs a 
     };
     for (int i = 0; i < 900; ++i) {
       const int kind = random.uniform_int(0, 19);
-      detail::Entity entity(corsa::engine::EntityInfo{
-          .box = kind == 0     ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
-                 : kind < 5    ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
-                 : i % 89 == 5 ? corsa::engine::Box{}
-                               : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5}});
+      detail::Entity entity =
+          corsa::test::entity_of(kind == 0     ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
+                                 : kind < 5    ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
+                                 : i % 89 == 5 ? corsa::engine::Box{}
+                                               : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5});
       entity.write_state().placed = i % 97 != 3;
       place(entity, i % 4 != 0);
       state.world.entities.push_back(std::move(entity));
@@ -709,10 +691,10 @@ TEST_CASE("Many boxes over a small area are swept in strips and give the pairs a
     corsa::RandomStream random(along_y ? 11 : 13);
     for (int i = 0; i < 700; ++i) {
       const int kind = random.uniform_int(0, 9);
-      detail::Entity entity(corsa::engine::EntityInfo{
-          .box = kind == 0  ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
-                 : kind < 3 ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
-                            : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5}});
+      detail::Entity entity =
+          corsa::test::entity_of(kind == 0  ? corsa::engine::Box{0.0, 0.0, 2.0, 18.0, 2.6, 4.0}
+                                 : kind < 3 ? corsa::engine::Box{0.0, 0.0, 0.9, 0.6, 0.6, 1.8}
+                                            : corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5});
       entity.write_state().placed = true;
       const double wide = random.uniform(-200.0, 200.0);
       const double narrow = random.uniform(-80.0, 80.0);
@@ -757,9 +739,9 @@ TEST_CASE(
     CAPTURE(along_y);
     detail::SimState state(scenario, nullptr, SimulationOptions{}, diagnostics);
     const auto add = [&](double along, double across, double length, double width) {
-      detail::Entity entity(corsa::engine::EntityInfo{
-          .box = along_y ? corsa::engine::Box{0.0, 0.0, 0.75, width, length, 1.5}
-                         : corsa::engine::Box{0.0, 0.0, 0.75, length, width, 1.5}});
+      detail::Entity entity =
+          corsa::test::entity_of(along_y ? corsa::engine::Box{0.0, 0.0, 0.75, width, length, 1.5}
+                                         : corsa::engine::Box{0.0, 0.0, 0.75, length, width, 1.5});
       entity.write_state().placed = true;
       entity.write_state().pose.x = along_y ? across : along;
       entity.write_state().pose.y = along_y ? along : across;
@@ -824,8 +806,8 @@ TEST_CASE("Boxes that moved into and out of contact with standing ones get a ful
     const auto fill = [&](detail::SimState& state) {
       state.world.entities.clear();
       for (uint32_t i = 0; i < kCars; ++i) {
-        detail::Entity entity(
-            corsa::engine::EntityInfo{.box = corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5}});
+        detail::Entity entity =
+            corsa::test::entity_of(corsa::engine::Box{1.4, 0.0, 0.75, 4.5, 1.8, 1.5});
         entity.write_state().placed = true;
         entity.write_state().pose = poses[i];
         state.world.entities.push_back(std::move(entity));

@@ -786,4 +786,69 @@ TEST_CASE("corsa record export writes the CSV corsa run --record writes", "[engi
   CHECK_THAT(info.out, Catch::Contains("entities:      3"));
 }
 
+TEST_CASE("A standing entity among moving ones records its move after many unchanged ticks",
+          "[engine][output][trajectory]") {
+  // Entities 0 and 1 move at every tick, so that the encoder codes every row in one pass (the
+  // pass for moving rows, which skips a steady row by its test); entity 2 stands, its count of
+  // writes unchanged, for 520 ticks, and then moves once (its count moved). Read with the counts
+  // and without them, the files are the same bytes, and entity 2's row at the tick of its move is
+  // the moved one.
+  constexpr int64_t kTicks = 800;
+  constexpr int64_t kMove = 520;
+  TempDir dir;
+  auto encode = [&](const std::filesystem::path& path, bool counted) {
+    engine::detail::TrajectoryEncoder encoder(path, 1);
+    for (const char* name : {"a", "b", "still"}) {
+      encoder.name_entity(name);
+    }
+    std::vector<engine::EntityState> states(3);
+    std::vector<uint32_t> counts(3, 0);
+    for (auto& state : states) {
+      state.placed = true;
+      state.pose.y = 2.0;
+    }
+    for (int64_t tick = 0; tick < kTicks; ++tick) {
+      for (size_t e = 0; e < 2; ++e) {
+        states[e].pose.x = 0.37 * static_cast<double>(tick * tick) + static_cast<double>(e);
+        states[e].speed = 0.74 * static_cast<double>(tick);
+        ++counts[e];
+      }
+      if (tick == kMove) {
+        states[2].pose.x = 12.345678;
+        states[2].pose.h = 0.5;
+        ++counts[2];
+      }
+      const engine::detail::EntityStateRows rows{
+          engine::EntityStates(states.data(), states.size(), sizeof(engine::EntityState)), nullptr,
+          counted ? engine::EntityStateChanges(counts.data(), counts.size(), sizeof(uint32_t))
+                  : engine::EntityStateChanges{}};
+      encoder.record(0.01, {tick, static_cast<double>(tick) / 100.0, 3}, rows);
+    }
+    encoder.finish(kTicks - 1);
+    return read_all(path);
+  };
+  const std::string bytes = encode(dir.path() / "counted.corsatraj", true);
+  const bool same = encode(dir.path() / "tested.corsatraj", false) == bytes;
+  CHECK(same);
+
+  engine::TrajectoryReader reader(dir.path() / "counted.corsatraj");
+  engine::TrajectoryFrame frame;
+  size_t moved_rows = 0;
+  while (reader.next(frame)) {
+    REQUIRE(frame.rows.size() == 3);
+    const engine::TrajectoryRow& still = frame.rows[2];
+    CHECK(still.entity == 2);
+    if (frame.tick < kMove) {
+      CHECK(still.x == 0.0);
+      CHECK(still.h == 0.0);
+    } else {
+      CHECK(still.x == 12.345678);
+      CHECK(still.h == 0.5);
+      ++moved_rows;
+    }
+    CHECK(still.y == 2.0);
+  }
+  CHECK(moved_rows == static_cast<size_t>(kTicks - kMove));
+}
+
 }  // namespace corsa::test

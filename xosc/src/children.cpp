@@ -63,13 +63,13 @@ Children::Children(ParseContext& context, const Element* element, std::string_vi
     if (!rule->allows_child(child->Name())) {
       std::string message =
           "unknown element <" + std::string(child->Name()) + "> in <" + element->Name() + ">";
-      if (!rule->children.empty()) {
+      if (!rule->children().empty()) {
         message += " (expected ";
-        for (size_t i = 0; i < rule->children.size(); ++i) {
-          message += (i == 0                           ? ""
-                      : i + 1 == rule->children.size() ? " or "
-                                                       : ", ") +
-                     std::string(rule->children[i]);
+        for (size_t i = 0; i < rule->children().size(); ++i) {
+          message += (i == 0                             ? ""
+                      : i + 1 == rule->children().size() ? " or "
+                                                         : ", ") +
+                     std::string(rule->children()[i]);
         }
         message += ")";
       }
@@ -82,12 +82,12 @@ Children::Children(ParseContext& context, const Element* element, std::string_vi
       context.error(child, std::move(message));  // reported; the child is not read
     }
   }
-  if (!rule->children.empty()) report_stray_text(context, element);
+  if (!rule->children().empty()) report_stray_text(context, element);
   for (const tinyxml2::XMLAttribute* a = element->FirstAttribute(); a != nullptr; a = a->Next()) {
     const std::string_view name = a->Name();
     // An allowed attribute written with other capitals is warned about where it is read.
     const bool misspelled = std::any_of(
-        rule->attributes.begin(), rule->attributes.end(), [&](std::string_view allowed) {
+        rule->attributes().begin(), rule->attributes().end(), [&](std::string_view allowed) {
           return iequals(allowed, name) &&
                  element->Attribute(std::string(allowed).c_str()) == nullptr;
         });
@@ -169,8 +169,8 @@ const Element* Children::choice() {
   if (child == nullptr) {
     const TypeRule* rule = find_type_rule(type_);
     std::string options;
-    for (size_t i = 0; i < rule->children.size(); ++i) {
-      options += (i == 0 ? "" : ", ") + std::string(rule->children[i]);
+    for (size_t i = 0; i < rule->children().size(); ++i) {
+      options += (i == 0 ? "" : ", ") + std::string(rule->children()[i]);
     }
     context_.fail(element_, "<" + std::string(element_->Name()) + "> needs one of: " + options);
   }

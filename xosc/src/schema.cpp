@@ -6,6 +6,7 @@
 // attributes not listed are warnings. known_elements() is derived from this table.
 
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include "schema_table.h"
@@ -294,32 +295,32 @@ Wind||direction speed
 WorldPosition||h p r x y z
 )";
 
-std::vector<std::string_view> words(std::string_view text) {
-  std::vector<std::string_view> result;
-  result.reserve(static_cast<size_t>(std::count(text.begin(), text.end(), ' ')) + 1);
+// The table is laid out at compile time, as places in kRules (schema_table.h, SchemaWord): no
+// run builds it, and it is read-only data without relocations.
+static_assert(kRules.size() <= UINT16_MAX, "SchemaWord holds places in kRules in 16 bits");
+
+constexpr SchemaWord word_at(std::string_view word) {
+  return {static_cast<uint16_t>(word.data() - kRules.data()), static_cast<uint16_t>(word.size())};
+}
+
+constexpr std::string_view text_of(SchemaWord word) { return kRules.substr(word.start, word.size); }
+
+// Calls f(word) for each space-separated word of `text`.
+template <class F>
+constexpr void for_each_word(std::string_view text, F&& f) {
   size_t start = 0;
   while (start < text.size()) {
     const size_t end = std::min(text.find(' ', start), text.size());
     if (end > start) {
-      result.push_back(text.substr(start, end - start));
+      f(text.substr(start, end - start));
     }
     start = end + 1;
   }
-  return result;
 }
 
-// Sorted vectors rather than a map and a set: the table is built at every run's first parse,
-// and a few hundred tree nodes cost more than the sorting.
-struct Table {
-  std::vector<TypeRule> rules;  ///< by type; of a type listed twice, its first line
-  std::vector<ElementInfo> elements;
-};
-
-bool by_type(const TypeRule& a, const TypeRule& b) { return a.type < b.type; }
-
-Table build_table() {
-  Table table;
-  std::vector<std::string_view> names{"OpenSCENARIO"};
+// Calls f(type, children, attributes) for each line "type|children|attributes" of kRules.
+template <class F>
+constexpr void for_each_rule(F&& f) {
   size_t start = 0;
   while (start < kRules.size()) {
     const size_t end = std::min(kRules.find('\n', start), kRules.size());
@@ -330,50 +331,114 @@ Table build_table() {
       continue;
     }
     const size_t bar2 = line.find('|', bar1 + 1);
-    TypeRule rule;
-    rule.type = line.substr(0, bar1);
-    rule.children = words(line.substr(bar1 + 1, bar2 - bar1 - 1));
-    rule.attributes = words(line.substr(bar2 + 1));
-    names.insert(names.end(), rule.children.begin(), rule.children.end());
-    table.rules.push_back(std::move(rule));
+    f(line.substr(0, bar1), line.substr(bar1 + 1, bar2 - bar1 - 1), line.substr(bar2 + 1));
   }
-  std::stable_sort(table.rules.begin(), table.rules.end(), by_type);
-  const auto same_type = [](const TypeRule& a, const TypeRule& b) { return a.type == b.type; };
-  table.rules.erase(std::unique(table.rules.begin(), table.rules.end(), same_type),
-                    table.rules.end());
-  std::sort(names.begin(), names.end());
-  names.erase(std::unique(names.begin(), names.end()), names.end());
-  table.elements.reserve(names.size());
-  for (const auto name : names) {
-    table.elements.push_back({name, Support::kParsed});
-  }
-  return table;
 }
 
-// Built once, immutable afterwards (thread-safe static initialisation).
-const Table& table() {
-  static const Table kTable = build_table();
-  return kTable;
+struct Counts {
+  size_t rules = 0;
+  size_t children = 0;
+  size_t words = 0;  ///< children and attributes
+};
+
+constexpr Counts count_table() {
+  Counts counts;
+  for_each_rule([&](std::string_view, std::string_view children, std::string_view attributes) {
+    ++counts.rules;
+    for_each_word(children, [&](std::string_view) { ++counts.children; });
+    for_each_word(attributes, [&](std::string_view) { ++counts.words; });
+  });
+  counts.words += counts.children;
+  return counts;
+}
+constexpr Counts kCounts = count_table();
+static_assert(kCounts.words <= UINT16_MAX);
+
+struct Table {
+  std::array<SchemaWord, kCounts.words> words;  ///< each rule's children, then its attributes
+  std::array<TypeRule, kCounts.rules> rules;    ///< by type
+};
+
+constexpr Table make_table() {
+  Table table;
+  size_t word = 0;
+  size_t rule = 0;
+  for_each_rule([&](std::string_view type, std::string_view children, std::string_view attributes) {
+    TypeRule& r = table.rules[rule++];
+    r.type_word = word_at(type);
+    r.child_first = static_cast<uint16_t>(word);
+    for_each_word(children, [&](std::string_view name) { table.words[word++] = word_at(name); });
+    r.child_count = static_cast<uint16_t>(word - r.child_first);
+    r.attribute_first = static_cast<uint16_t>(word);
+    for_each_word(attributes, [&](std::string_view name) { table.words[word++] = word_at(name); });
+    r.attribute_count = static_cast<uint16_t>(word - r.attribute_first);
+  });
+  std::sort(table.rules.begin(), table.rules.end(), [](const TypeRule& a, const TypeRule& b) {
+    return text_of(a.type_word) < text_of(b.type_word);
+  });
+  return table;
+}
+constexpr Table kTable = make_table();
+
+constexpr bool types_unique() {
+  for (size_t i = 1; i < kTable.rules.size(); ++i) {
+    if (text_of(kTable.rules[i - 1].type_word) == text_of(kTable.rules[i].type_word)) {
+      return false;
+    }
+  }
+  return true;
+}
+static_assert(types_unique(), "a type listed twice in kRules");
+
+// Every element name the table knows (the root and every rule's children), sorted, once each.
+std::vector<ElementInfo> build_elements() {
+  std::vector<std::string_view> names{"OpenSCENARIO"};
+  for (const TypeRule& rule : kTable.rules) {
+    const SchemaNames children = rule.children();
+    names.insert(names.end(), children.begin(), children.end());
+  }
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  std::vector<ElementInfo> elements;
+  elements.reserve(names.size());
+  for (const auto name : names) {
+    elements.push_back({name, Support::kParsed});
+  }
+  return elements;
 }
 
 }  // namespace
 
+std::string_view schema_word(SchemaWord word) { return text_of(word); }
+
+SchemaNames TypeRule::children() const { return {kTable.words.data() + child_first, child_count}; }
+
+SchemaNames TypeRule::attributes() const {
+  return {kTable.words.data() + attribute_first, attribute_count};
+}
+
 bool TypeRule::allows_child(std::string_view name) const {
-  return std::find(children.begin(), children.end(), name) != children.end();
+  const SchemaNames names = children();
+  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 bool TypeRule::allows_attribute(std::string_view name) const {
-  return std::find(attributes.begin(), attributes.end(), name) != attributes.end();
+  const SchemaNames names = attributes();
+  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 const TypeRule* find_type_rule(std::string_view type) {
-  const auto& rules = table().rules;
+  const auto& rules = kTable.rules;
   const auto found = std::lower_bound(
       rules.begin(), rules.end(), type,
-      [](const TypeRule& rule, std::string_view name) { return rule.type < name; });
-  return found == rules.end() || found->type != type ? nullptr : &*found;
+      [](const TypeRule& rule, std::string_view name) { return rule.type() < name; });
+  return found == rules.end() || found->type() != type ? nullptr : &*found;
 }
 
-std::span<const ElementInfo> known_elements() { return table().elements; }
+// Built once, at the first call (a run needs none: the documentation's checks do).
+std::span<const ElementInfo> known_elements() {
+  static const std::vector<ElementInfo> kElements = build_elements();
+  return kElements;
+}
 
 }  // namespace corsa::xosc

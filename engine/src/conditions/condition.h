@@ -15,11 +15,23 @@ namespace corsa::engine::detail {
 
 struct SimState;
 
+/// What a condition's value reads besides its definition, the map and the options (fixed for the
+/// run): a trigger skips the evaluations whose inputs stand (CompiledCondition,
+/// storyboard/trigger.h).
+enum class ConditionInputs : uint8_t {
+  kAnything,       ///< more than the below (the time, other entities, ...): evaluated at each check
+  kOwnState,       ///< the triggering entity's EntityState alone, counted by its state_changes
+  kElementStates,  ///< the storyboard's element states and transitions, counted by their writes
+};
+
 class EntityCondition {
  public:
   virtual ~EntityCondition() = default;
   /// Whether the condition holds for triggering entity `entity` now.
   virtual bool holds(const SimState& state, uint32_t entity) = 0;
+  /// kOwnState when the value for one entity is a function of that entity's state alone (so it
+  /// is the same while the state's count of writes stands); kAnything (the default) otherwise.
+  virtual ConditionInputs inputs() const { return ConditionInputs::kAnything; }
 
   /// Names the condition's definition when its value is a function of that definition and of
   /// the triggering entity's state alone (the map and the options fixed for the run): conditions
@@ -41,6 +53,13 @@ class ValueCondition {
  public:
   virtual ~ValueCondition() = default;
   virtual bool holds(const SimState& state) = 0;
+  /// kElementStates when the value reads the element table alone; kAnything (the default)
+  /// otherwise.
+  virtual ConditionInputs inputs() const { return ConditionInputs::kAnything; }
+  /// With inputs() kElementStates, the value at an evaluation when no element state was written
+  /// since the previous one: the previous value (true, a state) or false (a transition, which
+  /// is seen once).
+  virtual bool value_stands() const { return true; }
 };
 
 /// Builds the evaluator of an entity condition; references (entities, positions) are checked

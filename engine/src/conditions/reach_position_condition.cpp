@@ -135,6 +135,11 @@ class ReachPositionCheck final : public EntityCondition {
     return evaluate(state, entity);
   }
 
+  // A place on the map is compared with the entity's pose alone.
+  ConditionInputs inputs() const override {
+    return fixed_ ? ConditionInputs::kOwnState : ConditionInputs::kAnything;
+  }
+
   std::string value_key() const override {
     if (!fixed_) return {};
     std::string key = "reach;";

@@ -33,6 +33,7 @@ class SpeedCheck final : public EntityCondition {
     return compare(directional_speed(state.world.entities[entity].state(), c_.direction), c_.rule,
                    c_.value);
   }
+  ConditionInputs inputs() const override { return ConditionInputs::kOwnState; }
 
  private:
   const xosc::SpeedCondition& c_;

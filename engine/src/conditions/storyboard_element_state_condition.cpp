@@ -29,6 +29,10 @@ class ElementStateCheck final : public ValueCondition {
     seen_ = log_size;
     return result;
   }
+  ConditionInputs inputs() const override { return ConditionInputs::kElementStates; }
+  // A transition seen at one evaluation is not seen again: with no write since, the next
+  // evaluation finds none (seen_ is the log's size then).
+  bool value_stands() const override { return state_.has_value(); }
 
  private:
   uint32_t element_;

@@ -658,26 +658,32 @@ struct MoverScan {
   bool sloppy = false;            ///< some entity (or split partner) has esmini's sloppyDriver
 };
 
+constexpr uint32_t kind_bit(ControllerKind kind) { return 1u << static_cast<unsigned>(kind); }
+
 // Looks at every entity's controllers once, and hands the lateral partner of a split the speed
-// and heading its step begins with. The flags are gathered in locals (the compiler kept the
-// struct's in memory, each entity storing and loading them again).
+// and heading its step begins with. The kinds met are gathered as one bit each and the flags in
+// locals, the records read through the vectors' data (the compiler kept flags in memory and read
+// the vectors' bounds again for every entity, the list of dynamic entities might have aliased
+// them).
 MoverScan scan_for_move(SimState& state, uint32_t count) {
   MoverScan scan;
-  bool alks = false;
-  bool sloppy = false;
+  const Entity* const entities = state.world.entities.data();
+  ControlState* const controls = state.controls.data();
+  uint32_t kinds = 0;
   bool following = false;
   bool natural = false;
   for (uint32_t i = 0; i < count; ++i) {
-    ControlState& control = state.controls[i];
-    const Entity& entity = state.world.entities[i];
+    ControlState& control = controls[i];
+    const Entity& entity = entities[i];
     const ControllerKind kind = control.effective();
-    alks |= kind == ControllerKind::kAlksR157;
-    sloppy |= kind == ControllerKind::kSloppyDriver;
+    kinds |= kind_bit(kind);
     if (OutOfLine<DomainPartner>& partner = control.partner) {
       // The lateral controller of a split steers with the speed and heading the step began with.
       partner->step_start_speed = entity.state().speed;
       partner->step_start_heading = entity.lane.heading_offset;
-      sloppy |= partner->kind == ControllerKind::kSloppyDriver;
+      if (partner->kind == ControllerKind::kSloppyDriver) {
+        kinds |= kind_bit(ControllerKind::kSloppyDriver);
+      }
     }
     // Moved by the dynamics controller this step (a FollowTrajectoryAction in position mode
     // places the entity on its path instead: ideal motion).
@@ -694,8 +700,8 @@ MoverScan scan_for_move(SimState& state, uint32_t count) {
                               entity.state().placed);
     natural |= control.natural != nullptr;
   }
-  scan.alks = alks;
-  scan.sloppy = sloppy;
+  scan.alks = (kinds & kind_bit(ControllerKind::kAlksR157)) != 0;
+  scan.sloppy = (kinds & kind_bit(ControllerKind::kSloppyDriver)) != 0;
   scan.following = following;
   scan.natural = natural;
   return scan;
@@ -709,7 +715,10 @@ MoverScan scan_for_move(SimState& state, uint32_t count) {
   if (count == 0) {
     return;
   }
-  control_of(state, count - 1);  // a control state for every entity, also those added by traffic
+  // A control state for every entity, also those added by traffic (control_of).
+  if (state.controls.size() < count) {
+    state.controls.resize(count);
+  }
   const MoverScan scan = scan_for_move(state, count);
   // The vehicle models of the dynamics controller step first, all integrated as one system: a
   // model's step reads only its own entity.
@@ -743,9 +752,11 @@ MoverScan scan_for_move(SimState& state, uint32_t count) {
   }
   impl.view.set_give_way(impl.give_way.get());
   const std::vector<uint32_t>& order = impl.order;
-  impl.scratch.resize(std::max<size_t>(impl.scratch.size(), workers));
-  impl.nearby.resize(impl.scratch.size());
-  impl.curvatures.resize(impl.scratch.size());
+  if (impl.scratch.size() < workers) {  // one per worker, kept from step to step
+    impl.scratch.resize(workers);
+    impl.nearby.resize(workers);
+    impl.curvatures.resize(workers);
+  }
   MotionContext context = motion;
   context.scratch = &impl.scratch[0];
   context.nearby = &impl.nearby[0];

@@ -76,9 +76,16 @@ constexpr double kFollowerLimitFactor = 1.2;
 
 [[gnu::hot]] void place_entity_at_model(double x, double y, double h, double speed, Entity& entity,
                                         const MotionContext& motion) {
-  // A model that did not move its entity off the road (esmini's at rest, whose speed only nears
-  // 0) keeps the pose, lane and road it has: only the speed and what follows from it change.
+  // A model that did not move its entity (esmini's at rest, whose speed only nears 0) keeps the
+  // pose, lane and road it has, off the road or on its lane: only the speed and what follows
+  // from it change.
+  constexpr double kSurfaceWithin = 0.5;  // m from a lane, the road's height and pitch are taken
   const double heading = remainder_full_turn(h);
+  // (One with a lane at its point is not clear of the lanes: at most one of the two holds.)
+  if (entity.lane.on_road && keeps_pose_on_lane(entity, x, y, heading, kSurfaceWithin, motion)) {
+    move_at_controller_speed(entity, speed, [&] { hold_pose_on_lane(entity, motion); });
+    return;
+  }
   if (keeps_pose_off_lanes(entity, x, y, heading, motion)) {
     move_at_controller_speed(entity, speed, [&] { hold_pose_off_lanes(entity, motion); });
     return;
@@ -88,7 +95,8 @@ constexpr double kFollowerLimitFactor = 1.2;
   pose.y = y;
   pose.h = heading;
   if (motion.map != nullptr) {
-    if (const xodr::SurfacePose* surface = surface_near(entity, *motion.map, x, y, 0.5)) {
+    if (const xodr::SurfacePose* surface =
+            surface_near(entity, *motion.map, x, y, kSurfaceWithin)) {
       pose.z = surface->z;
       pose.p = surface->p;
     }

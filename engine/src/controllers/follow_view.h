@@ -115,6 +115,15 @@ class FollowView {
     (scenario_vehicles ? scenario_vehicles_ : grid_)
         .query_band(x_min, y_min, x_max, y_max, x, y, c, s, along_min, along_max, half, out);
   }
+  /// The entities near_band appends, in the same order, handed to `visit(ids, count)` in runs
+  /// (PackedPointGrid::visit_band).
+  template <typename Visit>
+  void visit_band(double x_min, double y_min, double x_max, double y_max, double x, double y,
+                  double c, double s, double along_min, double along_max, double half,
+                  bool scenario_vehicles, Visit visit) const {
+    (scenario_vehicles ? scenario_vehicles_ : grid_)
+        .visit_band(x_min, y_min, x_max, y_max, x, y, c, s, along_min, along_max, half, visit);
+  }
   bool has_scenario_vehicles() const { return has_scenario_vehicles_; }
   /// The farthest (m) a present entity's bounding box reaches from its centre (half its
   /// diagonal): how far around a region near() must look for boxes reaching in (the same bound

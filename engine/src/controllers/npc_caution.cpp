@@ -117,16 +117,15 @@ LocalFrame frame_at(const Entity& me, uint32_t index, const FollowView& view) {
   return x_min <= x_max;
 }
 
-// Appends to `near` (emptied first) every present entity of `view` (only the scenario's vehicles
-// with `scenario_vehicles`) whose box centre may lie within `margin` metres of the rectangle
-// [x0, x1] x [-half, half] of `frame`: those whose centre's frame coordinates lie in that
-// rectangle widened by `margin` on every side (a superset). A box reaching into the rectangle
-// has its centre within FollowView::max_reach() of it, a reference point in the rectangle within
-// FollowView::max_offset().
-[[gnu::hot]] void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0,
-                                 double x1, double half, double margin, std::vector<uint32_t>& near,
-                                 bool scenario_vehicles = false) {
-  near.clear();
+// The bounding box (m) of the rectangle [x0, x1] x [-half, half] of `frame` widened by `margin`
+// on every side of the box, and whether every input is finite (else the box may be NaN).
+struct RectangleBounds {
+  double x_min = 0.0, y_min = 0.0, x_max = 0.0, y_max = 0.0;
+  bool finite = false;
+};
+
+[[gnu::always_inline]] inline RectangleBounds bounds_of(const LocalFrame& frame, double x0,
+                                                        double x1, double half, double margin) {
   double x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
   double y_min = x_min, y_max = -x_min;
   for (const double lx : {x0, x1}) {
@@ -139,20 +138,34 @@ LocalFrame frame_at(const Entity& me, uint32_t index, const FollowView& view) {
       y_max = std::max(y_max, wy);
     }
   }
-  x_min -= margin, y_min -= margin, x_max += margin, y_max += margin;
   const bool finite = std::isfinite(frame.x) && std::isfinite(frame.y) && std::isfinite(frame.c) &&
                       std::isfinite(frame.s) && std::isfinite(x0) && std::isfinite(x1) &&
                       std::isfinite(half) && std::isfinite(margin);
-  if (finite) {
+  return {x_min - margin, y_min - margin, x_max + margin, y_max + margin, finite};
+}
+
+// Appends to `near` (emptied first) every present entity of `view` (only the scenario's vehicles
+// with `scenario_vehicles`) whose box centre may lie within `margin` metres of the rectangle
+// [x0, x1] x [-half, half] of `frame`: those whose centre's frame coordinates lie in that
+// rectangle widened by `margin` on every side (a superset). A box reaching into the rectangle
+// has its centre within FollowView::max_reach() of it, a reference point in the rectangle within
+// FollowView::max_offset(). For a finite rectangle, the entities FollowView::visit_band hands out
+// for the bounds_of the rectangle (corridor_hazard visits them so, without the list).
+[[gnu::hot]] void near_rectangle(const FollowView& view, const LocalFrame& frame, double x0,
+                                 double x1, double half, double margin, std::vector<uint32_t>& near,
+                                 bool scenario_vehicles = false) {
+  near.clear();
+  const RectangleBounds box = bounds_of(frame, x0, x1, half, margin);
+  if (box.finite) {
     // Only the band of the rectangle, not its whole bounding box (a corridor at 45 degrees
     // covers a seventh of it): with dense traffic most of the box's entities are in other
     // lanes and roads.
-    view.near_band(x_min, y_min, x_max, y_max, frame.x, frame.y, frame.c, frame.s, x0 - margin,
-                   x1 + margin, half + margin, scenario_vehicles, near);
+    view.near_band(box.x_min, box.y_min, box.x_max, box.y_max, frame.x, frame.y, frame.c, frame.s,
+                   x0 - margin, x1 + margin, half + margin, scenario_vehicles, near);
   } else if (scenario_vehicles) {
-    view.near_scenario_vehicles(x_min, y_min, x_max, y_max, near);
+    view.near_scenario_vehicles(box.x_min, box.y_min, box.x_max, box.y_max, near);
   } else {
-    view.near(x_min, y_min, x_max, y_max, near);
+    view.near(box.x_min, box.y_min, box.x_max, box.y_max, near);
   }
 }
 
@@ -196,37 +209,37 @@ bool is_generated(const SimState& state, uint32_t index) {
   const double front = me.info.box.center_x + 0.5 * me.info.box.length;
   const double rear = me.info.box.center_x - 0.5 * me.info.box.length;
   const double half = 0.5 * me.info.box.width + kSideMargin;
-  // A box reaching into the corridor has its centre within max_reach of it.
-  near_rectangle(view, frame, rear, front + reach, half, view.max_reach() + kSlack, near);
   Hazard hazard;
   uint32_t chosen = kNoHazardEntity;
-  for (const uint32_t j : near) {
+  // The result is the least gap (of equal gaps the lowest index) whatever the order the
+  // entities are considered in: an entity skipped below could not have been chosen.
+  const auto consider = [&](uint32_t j) {
     const FollowTarget& other = view.targets()[j];
     if (j == index || !other.present) {
-      continue;
+      return;
     }
     // The box first (most of the grid's entities are in the neighbouring lanes, which it
     // rejects): it lies in the target's second cache line, the reference point in its first.
     double least = 0.0;
     if (!may_reach(frame, other, rear, front + reach, half, least)) {
-      continue;
+      return;
     }
     const double dx = other.x - me.state().pose.x;
     const double dy = other.y - me.state().pose.y;
     const double far = front + reach + other.length + 10.0;
     if (dx * dx + dy * dy > far * far) {
-      continue;
+      return;
     }
     // The exact test only for a box that can be nearer than the nearest so far (of an equal gap
     // its index may decide) and nearer than `wanted`: its gap is at least least - front.
     const double bound = least - front;
     if (bound >= wanted || bound > hazard.gap) {
-      continue;
+      return;
     }
     double x_min = 0.0, x_max = 0.0;
     if (!extent_in_band(frame, other.shape, half, x_min, x_max) || x_max < rear ||
         x_min > front + reach) {
-      continue;
+      return;
     }
     // Of equal gaps the lowest index, as a scan of the entities in order keeps.
     const double gap = std::max(0.0, x_min - front);
@@ -234,6 +247,20 @@ bool is_generated(const SimState& state, uint32_t index) {
       chosen = j;
       hazard.gap = gap;
     }
+  };
+  // A box reaching into the corridor has its centre within max_reach of it. The grid's runs of
+  // entities are considered as the query hands them out (near_rectangle's, without the list).
+  const double margin = view.max_reach() + kSlack;
+  const RectangleBounds box = bounds_of(frame, rear, front + reach, half, margin);
+  if (box.finite) {
+    view.visit_band(box.x_min, box.y_min, box.x_max, box.y_max, frame.x, frame.y, frame.c, frame.s,
+                    rear - margin, front + reach + margin, half + margin, false,
+                    [&consider](const uint32_t* ids, size_t count) {
+                      for (size_t k = 0; k < count; ++k) consider(ids[k]);
+                    });
+  } else {
+    near_rectangle(view, frame, rear, front + reach, half, margin, near);
+    for (const uint32_t j : near) consider(j);
   }
   // The speed (a cosine) of the one chosen only, not of every nearer one met before it. In
   // dense traffic that is often the caller's leader, whose speed the caller has (and whose box's

@@ -6,14 +6,16 @@
 #include <limits>
 #include <utility>
 
+#include "geometry/box_placement.h"
 #include "geometry/segment.h"
 
 namespace corsa::engine {
 
-[[gnu::hot]] OrientedBox box_of(const Box& box, const Pose& pose) {
+[[gnu::hot]] OrientedBox detail::box_at_heading(const Box& box, const Pose& pose, double cos_h,
+                                                double sin_h) {
   OrientedBox out;
-  out.cos_h = std::cos(pose.h);
-  out.sin_h = std::sin(pose.h);
+  out.cos_h = cos_h;
+  out.sin_h = sin_h;
   out.cx = pose.x + out.cos_h * box.center_x - out.sin_h * box.center_y;
   out.cy = pose.y + out.sin_h * box.center_x + out.cos_h * box.center_y;
   out.half_length = 0.5 * box.length;
@@ -21,6 +23,10 @@ namespace corsa::engine {
   out.z_min = pose.z + box.center_z - 0.5 * box.height;
   out.z_max = pose.z + box.center_z + 0.5 * box.height;
   return out;
+}
+
+[[gnu::hot]] OrientedBox box_of(const Box& box, const Pose& pose) {
+  return detail::box_at_heading(box, pose, std::cos(pose.h), std::sin(pose.h));
 }
 
 [[gnu::hot]] Interval project(const OrientedBox& box, double ux, double uy) {

@@ -97,6 +97,37 @@ void leave_lanes(Entity& entity, const std::optional<xodr::LanePosition>& locate
   }
 }
 
+[[gnu::hot]] bool keeps_pose_on_lane(const Entity& entity, double x, double y, double h,
+                                     double surface_within, const MotionContext& context) {
+  const Pose& pose = entity.state().pose;
+  const PointLocateMemo& memo = entity.point_memo;
+  // The differences by value as well: an infinite coordinate moves by a NaN (and asks the map).
+  if (context.map == nullptr || !entity.lane.on_road || !same_bits(x, pose.x) ||
+      !same_bits(y, pose.y) || !same_bits(h, pose.h) || x - pose.x != 0.0 || y - pose.y != 0.0 ||
+      h != pose.h || !memo.valid || !same_bits(memo.x, x) || !same_bits(memo.y, y)) {
+    return false;
+  }
+  // A lane at the point (so that keeps_pose_off_lanes, which needs none, does not hold too), and
+  // surface_near's answer from the memo (road_point_within): none that near keeps z and p.
+  if (!memo.located) {
+    return false;
+  }
+  if (!(memo.located->distance <= surface_within)) {
+    return true;
+  }
+  return memo.surface_valid && same_bits(memo.surface.z, pose.z) &&
+         same_bits(memo.surface.p, pose.p);
+}
+
+[[gnu::hot]] void hold_pose_on_lane(Entity& entity, const MotionContext& context) {
+  // move_to_pose_command to the pose the entity has, up to its return for a move by nothing on
+  // the followed lane.
+  entity.pose_command.reset();
+  EntityState& state = entity.write_state();
+  const Pose here = state.pose;
+  take_pose(entity, state, here, context.dt);
+}
+
 [[gnu::hot]] bool keeps_pose_off_lanes(const Entity& entity, double x, double y, double h,
                                        const MotionContext& context) {
   const EntityState& state = entity.state();

@@ -24,4 +24,16 @@ bool keeps_pose_off_lanes(const Entity& entity, double x, double y, double h,
 /// yaw rate and odometers of a move by nothing, and no lane.
 void hold_pose_off_lanes(Entity& entity, const MotionContext& context);
 
+/// Whether a pose command of (x, y, h), its height and pitch read from the road surface within
+/// `surface_within` m (surface_near), would put `entity`, which follows its lane, where it stands
+/// without asking the map: (x, y, h) are its pose's own, bit for bit, its point memo holds the
+/// map's answer for that point, a lane (so keeps_pose_off_lanes does not hold), and that
+/// answer's surface (or none that near) leaves the pose's z and p as they are.
+bool keeps_pose_on_lane(const Entity& entity, double x, double y, double h, double surface_within,
+                        const MotionContext& context);
+
+/// move_to_pose_command for such a command (keeps_pose_on_lane): the speed, accelerations, yaw
+/// rate and odometers of a move by nothing; the followed lane stays as it is.
+void hold_pose_on_lane(Entity& entity, const MotionContext& context);
+
 }  // namespace corsa::engine::detail

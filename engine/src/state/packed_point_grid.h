@@ -7,6 +7,8 @@
 // by arithmetic instead of a hash look-up and reads a column's cells as one run of memory:
 // small cells then cost little, and a query looks at few points besides the ones it returns.
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -40,6 +42,13 @@ class PackedPointGrid {
   void query_band(double x_min, double y_min, double x_max, double y_max, double x, double y,
                   double c, double s, double along_min, double along_max, double half,
                   std::vector<uint32_t>& out) const;
+  /// The ids query_band appends, in the same order, handed to `visit(ids, count)` in runs
+  /// instead (a caller that tests each of them at once needs no list of them: the corridor
+  /// queries of generated traffic, one per vehicle and step).
+  template <typename Visit>
+  void visit_band(double x_min, double y_min, double x_max, double y_max, double x, double y,
+                  double c, double s, double along_min, double along_max, double half,
+                  Visit visit) const;
 
   /// Points in the cells (the overflow list apart).
   size_t size() const { return points_.size(); }
@@ -69,5 +78,83 @@ class PackedPointGrid {
   std::vector<uint32_t> overflow_;
   std::vector<uint32_t> cells_;  ///< scratch of finish(): each staged point's cell
 };
+
+[[gnu::always_inline]] inline bool PackedPointGrid::span_of(double low, double high, double origin,
+                                                            int64_t count, int64_t& first,
+                                                            int64_t& last) const {
+  // Truncation is floor for the non-negative values it is applied to, and cheaper.
+  const double a = (low - origin) / size_, b = (high - origin) / size_;
+  if (!(a <= b) || b < 0.0 || a >= static_cast<double>(count)) {
+    return false;
+  }
+  first = a > 0.0 ? static_cast<int64_t>(a) : 0;
+  last = b < static_cast<double>(count - 1) ? static_cast<int64_t>(b) : count - 1;
+  return true;
+}
+
+template <typename Visit>
+[[gnu::always_inline]] inline void PackedPointGrid::visit_box(double x_min, double y_min,
+                                                              double x_max, double y_max,
+                                                              Visit visit) const {
+  if (points_.empty()) {
+    return;
+  }
+  if (std::isnan(x_min) || std::isnan(y_min) || std::isnan(x_max) || std::isnan(y_max)) {
+    visit(points_.data(), points_.data() + points_.size());  // no region: every point
+    return;
+  }
+  int64_t i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+  if (!span_of(x_min, x_max, x0_, nx_, i0, i1) || !span_of(y_min, y_max, y0_, ny_, j0, j1)) {
+    return;
+  }
+  // A column's rows j0..j1 are one run of memory.
+  const Point* const points = points_.data();
+  const uint32_t* const starts = starts_.data();
+  for (int64_t i = i0; i <= i1; ++i) {
+    visit(points + starts[i * ny_ + j0], points + starts[i * ny_ + j1 + 1]);
+  }
+}
+
+template <typename Visit>
+[[gnu::always_inline]] inline void PackedPointGrid::visit_band(double x_min, double y_min,
+                                                               double x_max, double y_max, double x,
+                                                               double y, double c, double s,
+                                                               double along_min, double along_max,
+                                                               double half, Visit visit) const {
+  if (!overflow_.empty()) {
+    visit(overflow_.data(), overflow_.size());
+  }
+  // Whether a point is in the band follows no pattern a branch predictor learns (800 vehicles
+  // on Town04: a corridor's query looks at 5.8 points and keeps 2.5), so every point's id is
+  // written to a buffer on the stack and the buffer's end moved by the test; the buffer goes to
+  // `visit` when full and at the end. The same ids in the same order as a test per point, at
+  // more instructions (the three comparisons of every point) and fewer mispredicted branches.
+  constexpr size_t kBuffer = 128;
+  uint32_t kept[kBuffer];
+  size_t count = 0;
+  visit_box(x_min, y_min, x_max, y_max, [&](const Point* first, const Point* last) {
+    while (first != last) {
+      if (count == kBuffer) {
+        visit(static_cast<const uint32_t*>(kept), count);
+        count = 0;
+      }
+      // At most as many points as the buffer has room for, so that every write fits.
+      const Point* const end =
+          first + std::min<size_t>(kBuffer - count, static_cast<size_t>(last - first));
+      for (const Point* p = first; p != end; ++p) {
+        const double dx = p->x - x, dy = p->y - y;
+        const double along = dx * c + dy * s;
+        const double across = -dx * s + dy * c;
+        kept[count] = p->id;
+        count += static_cast<size_t>((along >= along_min) & (along <= along_max) &
+                                     (std::abs(across) <= half));
+      }
+      first = end;
+    }
+  });
+  if (count != 0) {
+    visit(static_cast<const uint32_t*>(kept), count);
+  }
+}
 
 }  // namespace corsa::engine::detail

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "corsa/engine/oriented_box.h"
+#include "geometry/box_placement.h"
 #include "state/contact_sweep.h"
 #include "state/sim_state.h"
 
@@ -15,12 +16,31 @@ namespace corsa::engine::detail::sweep_and_prune {
 
 namespace {
 
+// Whether the entity's box takes part in the contacts.
+bool boxed(const Entity& entity) {
+  return entity.state().placed && entity.info.box.length > 0.0 && !entity.ghost;
+}
+
+// The marks of the moved entities (ContactSweep::moved_mark; 0: not moved): moved, or moved
+// keeping its heading to the bit, its box of the last update made then (the entity boxed at
+// that update), so that the box of its heading's cosine and sine is made from that box's.
+constexpr uint8_t kMoved = 1;
+constexpr uint8_t kMovedSameHeading = 2;
+
 // The entities whose boxes are not where they were at the last update (moved, appeared, left
-// or changed size), into `moved`; records the boxes of now. Returns false when the entities
-// are not those of the last update (added or removed): then every box counts as changed.
-bool find_moved_boxes(SimState& state, std::vector<uint32_t>& moved) {
+// or changed size), into `sweep.moved`, each marked (`moved_mark`, sized to the entities) when
+// the entities are those of the last update; records the boxes of now. Returns false when the
+// entities are not those of the last update (added or removed): then every box counts as
+// changed, and none is marked.
+// An entity found placed and posed as recorded, its state written since (its speed, say), has
+// its count of writes taken: while the count stands, the next update compares nothing. (Kept
+// at the count of its last move instead, a standing entity whose state had been written once
+// was compared every update: in highway_merge_advanced, five of its six entities every step,
+// more than the rest of the contacts' update.)
+bool find_moved_boxes(SimState& state, ContactSweep& sweep) {
   auto& inputs = state.contacts.inputs;
   const auto& entities = state.world.entities;
+  std::vector<uint32_t>& moved = sweep.moved;
   moved.clear();
   // The count and places read once: `moved` grows in memory the compiler cannot tell apart from
   // the entities' and inputs', which it would otherwise read again after each moved box.
@@ -28,21 +48,35 @@ bool find_moved_boxes(SimState& state, std::vector<uint32_t>& moved) {
   const bool same_entities = inputs.size() == count;
   if (!same_entities) {
     inputs.resize(count);
+  } else if (sweep.moved_mark.size() != count) {
+    sweep.moved_mark.assign(count, 0);
   }
+  // The last update's boxes are those of every entity boxed then.
+  const bool boxes_kept = same_entities && state.contacts.boxes.size() == count;
   ContactInput* const input = inputs.data();
   const Entity* const entity = entities.data();
   for (uint32_t i = 0; i < count; ++i) {
-    if (!same_entities || !input[i].same_as(entity[i])) {
-      moved.push_back(i);
-      input[i] = ContactInput(entity[i]);
+    if (same_entities && input[i].same_as(entity[i])) {
+      input[i].changes = entity[i].state_changes();
+      continue;
     }
+    if (same_entities) {
+      const bool same_heading = boxes_kept && input[i].placed && boxed(entity[i]) &&
+                                same_bits(input[i].pose.h, entity[i].state().pose.h);
+      sweep.moved_mark[i] = same_heading ? kMovedSameHeading : kMoved;
+    }
+    moved.push_back(i);
+    input[i] = ContactInput(entity[i]);
   }
   return same_entities;
 }
 
-// Whether the entity's box takes part in the contacts.
-bool boxed(const Entity& entity) {
-  return entity.state().placed && entity.info.box.length > 0.0 && !entity.ghost;
+// Entity `i`'s contact box now, from the cosine and sine of its box of the last update when
+// `mark` says it kept its heading (the same box as box_of's).
+OrientedBox contact_box(const Entity& entity, uint8_t mark, const OrientedBox& last) {
+  return mark == kMovedSameHeading
+             ? box_at_heading(entity.info.box, entity.state().pose, last.cos_h, last.sin_h)
+             : box_of(entity.info.box, entity.state().pose);
 }
 
 // Records the pairs of `now` (sorted) that `previous` (sorted) does not hold as collisions
@@ -123,7 +157,7 @@ bool refresh_moved_boxes(SimState& state, ContactSweep& sweep) {
     if (!boxed(entities[i])) {
       continue;
     }
-    boxes[i] = box_of(entities[i].info.box, entities[i].state().pose);
+    boxes[i] = contact_box(entities[i], sweep.moved_mark[i], boxes[i]);
     const Interval x = project(boxes[i], 1.0, 0.0);
     const Interval y = project(boxes[i], 0.0, 1.0);
     if (!std::isfinite(x.low) || !std::isfinite(x.high) || !std::isfinite(y.low) ||
@@ -136,45 +170,32 @@ bool refresh_moved_boxes(SimState& state, ContactSweep& sweep) {
   return true;
 }
 
-// The spread of every boxed entity's extents as `sweep` keeps them.
-ContactSpread kept_spread(const std::vector<Entity>& entities, const ContactSweep& sweep) {
-  ContactSpread spread;
-  for (uint32_t i = 0; i < entities.size(); ++i) {
-    if (boxed(entities[i])) {
-      spread.add(sweep.x_extent[i], sweep.y_extent[i]);
-    }
-  }
-  return spread;
-}
-
 // Appends to `now` the pairs of moved box `m` with every other boxed entity that the sweep
-// would record: the same filters (the x extents in the sweep's order, `y_near_finite`) and the
-// exact test of the pair in the order the sweep along its axis meets them. A pair of two moved
-// boxes is tested once, from the lower index.
-void add_moved_box_pairs(const SimState& state, const ContactSweep& sweep, uint32_t m, bool along_y,
+// would record: the same filters (the x extents, `y_near_finite`) and the exact test. A pair of
+// two moved boxes is tested once, from the lower index. The sweep tests a pair from the earlier
+// of the two along its axis; overlap() is symmetric (the same four axes and the same
+// comparisons of the two projections, whichever box comes first), so the order is not taken.
+// The x extents are compared first, from the kept extents alone: most boxes are apart along
+// x, and the entity (its box, whether it is boxed) is then not read.
+void add_moved_box_pairs(const SimState& state, const ContactSweep& sweep, uint32_t m,
                          std::vector<std::pair<uint32_t, uint32_t>>& now) {
   const auto& entities = state.world.entities;
   const std::vector<OrientedBox>& boxes = state.contacts.boxes;
   const Item p = sweep_item(sweep, m);
   // Read once, as in find_moved_boxes (`now` grows).
   const auto count = static_cast<uint32_t>(entities.size());
+  const Interval* const x_extent = sweep.x_extent.data();
   for (uint32_t j = 0; j < count; ++j) {
+    // The sweep's x filter: the later of the two in x order starts before the earlier ends. For
+    // finite extents (low <= high, as the moved update keeps them) this is the overlap of the
+    // two closed intervals, whichever comes first.
+    if (!(x_extent[j].low <= p.high && p.low <= x_extent[j].high)) {
+      continue;
+    }
     if (j == m || !boxed(entities[j]) || (sweep.moved_mark[j] != 0 && j < m)) {
       continue;
     }
-    const Item q = sweep_item(sweep, j);
-    const bool p_first = sweep_order(p, q);
-    const Item& first = p_first ? p : q;
-    const Item& second = p_first ? q : p;
-    if (!(second.low <= first.high) || !y_near_finite(p, q)) {
-      continue;
-    }
-    // The sweep tests the pair from the earlier of the two along its axis.
-    const bool p_leads =
-        along_y ? (p.ylow < q.ylow || (p.ylow == q.ylow && p.index < q.index)) : p_first;
-    const bool touching =
-        p_leads ? overlap(boxes[p.index], boxes[q.index]) : overlap(boxes[q.index], boxes[p.index]);
-    if (touching) {
+    if (y_near_finite(p, sweep_item(sweep, j)) && overlap(boxes[m], boxes[j])) {
       now.emplace_back(std::min(m, j), std::max(m, j));
     }
   }
@@ -202,10 +223,10 @@ void merge_kept_pairs(const ContactSweep& sweep,
 // The contacts when only the boxes in `sweep.moved` changed since a complete update: the pairs
 // of two unmoved boxes are the last update's (neither box changed), and each moved box is
 // tested against every other box under the sweep's own filters, so that a pair is tested
-// exactly when the sweep would test it, in the sweep's order of the two (the axis chosen as the
-// sweep chooses it): the same pairs as a sweep over all boxes. Only a pair with a moved box
-// can be new: those alone are sorted, merged with the kept ones and looked up in the last
-// pairs; the marks are cleared after (not every entity's set again). Returns false, having
+// exactly when the sweep would test it (the exact test gives the same in either order): the
+// same pairs as a sweep over all boxes. Only a pair with a moved box can be new: those alone
+// are sorted, merged with the kept ones and looked up in the last pairs (the moved boxes are
+// marked, find_moved_boxes). Returns false, having
 // changed no pair, when it does not apply (moved_update_applies) or a moved box's extents are
 // not finite (no total order for the sweep's filters).
 bool update_moved_contacts(SimState& state, ContactSweep& sweep) {
@@ -213,34 +234,25 @@ bool update_moved_contacts(SimState& state, ContactSweep& sweep) {
   if (!moved_update_applies(state, sweep) || !refresh_moved_boxes(state, sweep)) {
     return false;
   }
-  const bool along_y = kept_spread(entities, sweep).along_y();
-  if (sweep.moved_mark.size() != entities.size()) {
-    sweep.moved_mark.assign(entities.size(), 0);
-  }
-  for (const uint32_t i : sweep.moved) {
-    sweep.moved_mark[i] = 1;
-  }
   auto& fresh = sweep.moved_pairs;
   fresh.clear();
   for (const uint32_t m : sweep.moved) {
     if (boxed(entities[m])) {
-      add_moved_box_pairs(state, sweep, m, along_y, fresh);
+      add_moved_box_pairs(state, sweep, m, fresh);
     }
   }
   std::sort(fresh.begin(), fresh.end());
   const auto& previous = take_previous_pairs(state, sweep);
   merge_kept_pairs(sweep, previous, fresh, state.contacts.pairs);
-  for (const uint32_t i : sweep.moved) {
-    sweep.moved_mark[i] = 0;
-  }
   record_new_contacts(state, fresh, previous);
   return true;
 }
 
-// Makes every boxed entity's box and its extents along x and y. Each box depends only on its
-// entity: made on several threads when the sweep may share them out, so the result is the same
-// on any number.
-void make_all_boxes(SimState& state, ContactSweep& sweep) {
+// Makes every boxed entity's box and its extents along x and y; with `marked` (the entities
+// are those of the last update, the moved ones marked), only the moved entities': the others'
+// are as the last update made them. Each box depends only on its entity: made on several
+// threads when the sweep may share them out, so the result is the same on any number.
+void make_all_boxes(SimState& state, ContactSweep& sweep, bool marked) {
   const auto& entities = state.world.entities;
   std::vector<OrientedBox>& boxes = state.contacts.boxes;
   boxes.resize(entities.size());
@@ -252,9 +264,10 @@ void make_all_boxes(SimState& state, ContactSweep& sweep) {
       state.contacts.premade_fresh && state.contacts.premade.size() == entities.size()
           ? &state.contacts.premade
           : nullptr;
+  const uint8_t* const mark = marked ? sweep.moved_mark.data() : nullptr;
   const auto make_boxes = [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      if (!boxed(entities[i])) {
+      if ((mark != nullptr && mark[i] == 0) || !boxed(entities[i])) {
         continue;
       }
       if (premade != nullptr) {
@@ -266,7 +279,7 @@ void make_all_boxes(SimState& state, ContactSweep& sweep) {
           continue;
         }
       }
-      boxes[i] = box_of(entities[i].info.box, entities[i].state().pose);
+      boxes[i] = contact_box(entities[i], mark != nullptr ? mark[i] : kMoved, boxes[i]);
       sweep.x_extent[i] = project(boxes[i], 1.0, 0.0);
       sweep.y_extent[i] = project(boxes[i], 0.0, 1.0);
     }
@@ -430,14 +443,14 @@ void release_parted_trailers(std::vector<Entity>& entities,
   }
 }
 
-// Every boxed entity's box made again and swept: when entities appeared or left, or the update
-// of the moved boxes does not apply. Out of line, so that the contacts' per-step code (mostly
-// the moved boxes' update) stays small.
-[[gnu::noinline]] void sweep_all_contacts(SimState& state, ContactSweep& sweep) {
+// Every boxed entity's box swept, the moved ones' made again (every one's when `marked` is
+// false: entities appeared or left): when the update of the moved boxes does not apply. Out of
+// line, so that the contacts' per-step code (mostly the moved boxes' update) stays small.
+[[gnu::noinline]] void sweep_all_contacts(SimState& state, ContactSweep& sweep, bool marked) {
   auto& entities = state.world.entities;
   const auto& previous = take_previous_pairs(state, sweep);
   // Boxes whose extents overlap along the sweep's axis (sweep and prune) are tested exactly.
-  make_all_boxes(state, sweep);
+  make_all_boxes(state, sweep, marked);
   std::vector<Item> items;
   const ContactSpread spread = gather_items(entities, sweep, items);
   auto& now = state.contacts.pairs;
@@ -478,12 +491,22 @@ void premake_contact_box(SimState& state, uint32_t i) {
 [[gnu::hot]] void update_contacts(SimState& state, ContactSweep& sweep) {
   using namespace sweep_and_prune;
   // Nothing moved, appeared or left: the contacts are those of the last update, and none is new.
-  const bool same_entities = find_moved_boxes(state, sweep.moved);
-  if (sweep.moved.empty() || (same_entities && update_moved_contacts(state, sweep))) {
+  const bool same_entities = find_moved_boxes(state, sweep);
+  if (sweep.moved.empty()) {
     state.contacts.premade_fresh = false;
     return;
   }
-  sweep_all_contacts(state, sweep);
+  if (same_entities && update_moved_contacts(state, sweep)) {
+    state.contacts.premade_fresh = false;
+  } else {
+    sweep_all_contacts(state, sweep, same_entities);
+  }
+  // The marks (find_moved_boxes) cleared, not every entity's set again.
+  if (same_entities) {
+    for (const uint32_t i : sweep.moved) {
+      sweep.moved_mark[i] = 0;
+    }
+  }
 }
 
 }  // namespace corsa::engine::detail

@@ -27,18 +27,27 @@ struct RunningInstance {
 void start_instance(SimState& state, RunningInstance& running, bool init);
 /// Starts an instance whose start waited (start_instance); false when it is done at once.
 bool start_waiting(SimState& state, RunningInstance& running);
-/// Steps the instance unless it is done (starting it first if its start waited). Inline: every
-/// running action takes it at every step.
-inline void step_instance(SimState& state, RunningInstance& running) {
-  if (running.action->done() || (running.actor && state.frozen(*running.actor))) {
+/// Steps the instance unless it is done (starting it first if its start waited), and tells
+/// whether it is done then. Inline: every running action takes it at every step.
+///
+/// An instance becomes done only in its start, its step, a teleport of its actor or a stop
+/// (actions starting, the storyboard's transitions): between this step and the next storyboard
+/// update nothing makes one done, so the instances this found done are all there are to settle.
+inline bool step_instance(SimState& state, RunningInstance& running) {
+  ActionInstance& action = *running.action;
+  if (action.done()) {
+    return true;
+  }
+  if (running.actor && state.frozen(*running.actor)) {
     // An entity that stands while a ghost has its head start waits with its actions too.
-    return;
+    return false;
   }
   if (!running.started && !start_waiting(state, running)) {
-    return;
+    return true;
   }
   ActionContext context{state, running.actor, false};
-  running.action->step(context);
+  action.step(context);
+  return action.done();
 }
 /// Gives the instance's domains back (call when it is done, before destroying it).
 void release_instance(SimState& state, RunningInstance& running);

@@ -176,16 +176,16 @@ void InitActions::run_user_defined(SimState& state) {
 
 [[gnu::hot]] void InitActions::step_actions(SimState& state) {
   for (RunningInstance& instance : running_) {
-    step_instance(state, instance);
+    ended_ = step_instance(state, instance) || ended_;
   }
 }
 
 [[gnu::hot]] void InitActions::settle(SimState& state) {
   // Mostly none has ended (a continuous action runs for the whole run): nothing to rebuild.
-  if (std::none_of(running_.begin(), running_.end(),
-                   [](const RunningInstance& instance) { return instance.action->done(); })) {
+  if (!ended_) {
     return;
   }
+  ended_ = false;
   std::vector<RunningInstance> still;
   for (RunningInstance& instance : running_) {
     if (instance.action->done()) {

@@ -23,13 +23,14 @@ class InitActions {
   /// (the first step), so that command handlers registered after construction see them.
   void run_user_defined(SimState& state);
   void step_actions(SimState& state);
-  /// Drops the actions that are done.
+  /// Drops the actions that are done (step_actions found them).
   void settle(SimState& state);
 
  private:
   void place_entities(SimState& state);
   void launch(SimState& state, RunningInstance instance);
   std::vector<RunningInstance> running_;
+  bool ended_ = false;  ///< step_actions found an instance done (step_instance)
 };
 
 }  // namespace corsa::engine::detail

@@ -41,8 +41,8 @@ class Storyboard {
   void update(SimState& state);
   /// Steps every running action (before the controllers move the entities).
   void step_actions(SimState& state);
-  /// Completes the actions that reached their goal during the last step, and what ends with
-  /// them (called after the tick advanced).
+  /// Completes the actions that reached their goal during the last step (step_actions found
+  /// them done), and what ends with them (called after the tick advanced).
   void settle(SimState& state);
 
   /// The stop trigger fired.
@@ -101,10 +101,12 @@ class Storyboard {
   /// is evaluated while an event starts).
   std::vector<uint32_t> triggering_;
   /// Element states set so far (move, enter_standby; the storyboard alone sets them): while the
-  /// count stays, every element is in the state it was in (update_groups reads it so).
+  /// count stays, every element is in the state it was in and the transition log has not grown
+  /// (update_groups and the triggers' StoryboardElementStateConditions read it so).
   uint64_t state_writes_ = 0;
   bool started_ = false;
   bool stopped_ = false;
+  bool ended_ = false;  ///< step_actions found an instance done (step_instance)
 };
 
 }  // namespace corsa::engine::detail

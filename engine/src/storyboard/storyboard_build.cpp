@@ -108,19 +108,20 @@ bool ghost_event(const EventNode& event, const GroupNode& group, const SimState&
 
 // The start and stop triggers of an act and its events. esmini's ghost takes over every Act's
 // start trigger and those of the events it performs (controllers/follow_ghost.h).
-void compile_triggers(ActNode& act, const SimState& state) {
+// `writes`: the storyboard's count of element state writes.
+void compile_triggers(ActNode& act, const SimState& state, const uint64_t& writes) {
   if (act.def->start_trigger) {
-    act.start_trigger.emplace(*act.def->start_trigger, state, state.ghost.has_value());
+    act.start_trigger.emplace(*act.def->start_trigger, state, writes, state.ghost.has_value());
   }
   if (act.def->stop_trigger) {
-    act.stop_trigger.emplace(*act.def->stop_trigger, state);
+    act.stop_trigger.emplace(*act.def->stop_trigger, state, writes);
   }
   for (GroupNode& group : act.groups) {
     for (ManeuverNode& maneuver : group.maneuvers) {
       for (EventNode& event : maneuver.events) {
         event.ghost = ghost_event(event, group, state);
         if (event.def->start_trigger) {
-          event.start_trigger.emplace(*event.def->start_trigger, state, event.ghost);
+          event.start_trigger.emplace(*event.def->start_trigger, state, writes, event.ghost);
           event.ghost_restart = event.ghost && ghost_restarts_on(*event.def->start_trigger, state);
         }
       }
@@ -206,11 +207,11 @@ Storyboard::Storyboard(SimState& state) {
   // Triggers last: StoryboardElementStateConditions refer to elements anywhere in the tree.
   for (auto& story : stories_) {
     for (ActNode& act : story->acts) {
-      compile_triggers(act, state);
+      compile_triggers(act, state, state_writes_);
     }
   }
   if (board.stop_trigger) {
-    stop_trigger_.emplace(*board.stop_trigger, state);
+    stop_trigger_.emplace(*board.stop_trigger, state, state_writes_);
   }
   share_condition_values(stories_, stop_trigger_);
 }

@@ -46,12 +46,12 @@ struct Storyboard::GroupNode {
 };
 
 /// One stop of an Act's walk over its groups (Storyboard::update_groups): the start of a group in
-/// standby (`maneuver` kGroupStart), or the trigger of an event in standby whose maneuver runs.
+/// standby (`maneuver` and `event` null), or the trigger of an event in standby whose maneuver
+/// runs (the nodes' vectors never grow: the pointers stay valid).
 struct Storyboard::WalkStop {
-  static constexpr uint32_t kGroupStart = UINT32_MAX;
   uint32_t group = 0;
-  uint32_t maneuver = 0;
-  uint32_t event = 0;
+  ManeuverNode* maneuver = nullptr;
+  EventNode* event = nullptr;
 };
 
 struct Storyboard::ActNode {

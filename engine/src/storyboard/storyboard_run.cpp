@@ -274,14 +274,18 @@ void Storyboard::reset_ghost_events(SimState& state) {
 [[gnu::hot]] void Storyboard::step_actions(SimState& state) {
   for (ActionNode* action : running_) {
     for (RunningInstance& instance : action->instances) {
-      step_instance(state, instance);
+      ended_ = step_instance(state, instance) || ended_;
     }
   }
 }
 
 [[gnu::hot]] void Storyboard::settle(SimState& state) {
-  // Mostly no running action has every instance done (settle_action then changes nothing):
-  // no copy to make.
+  // Mostly no instance is done (step_instance tells), and no action has every instance done
+  // (settle_action then changes nothing): no copy to make.
+  if (!ended_) {
+    return;
+  }
+  ended_ = false;
   const auto settles = [](const ActionNode* action) {
     return action->running &&
            std::all_of(action->instances.begin(), action->instances.end(),

@@ -19,26 +19,25 @@ bool running(const SimState& state, uint32_t element) {
 
 // The stops of the walk over act's groups with the element states as they are: up to the first
 // group in standby (its start changes states, and the walk goes on in full from there).
-void find_stops(const SimState& state, const Storyboard::ActNode& act,
+void find_stops(const SimState& state, Storyboard::ActNode& act,
                 std::vector<Storyboard::WalkStop>& stops) {
   stops.clear();
   for (uint32_t g = 0; g < act.groups.size(); ++g) {
-    const Storyboard::GroupNode& group = act.groups[g];
+    Storyboard::GroupNode& group = act.groups[g];
     if (state.elements[group.element].state == ElementState::kStandby) {
-      stops.push_back({g, Storyboard::WalkStop::kGroupStart, 0});
+      stops.push_back({g, nullptr, nullptr});
       return;
     }
     if (!running(state, group.element)) {
       continue;
     }
-    for (uint32_t m = 0; m < group.maneuvers.size(); ++m) {
-      const Storyboard::ManeuverNode& maneuver = group.maneuvers[m];
+    for (Storyboard::ManeuverNode& maneuver : group.maneuvers) {
       if (!running(state, maneuver.element)) {
         continue;
       }
-      for (uint32_t e = 0; e < maneuver.events.size(); ++e) {
-        if (state.elements[maneuver.events[e].element].state == ElementState::kStandby) {
-          stops.push_back({g, m, e});
+      for (Storyboard::EventNode& event : maneuver.events) {
+        if (state.elements[event.element].state == ElementState::kStandby) {
+          stops.push_back({g, &maneuver, &event});
         }
       }
     }
@@ -53,20 +52,17 @@ void find_stops(const SimState& state, const Storyboard::ActNode& act,
     act.walk_writes = state_writes_;
   }
   for (const WalkStop& stop : act.walk) {
-    GroupNode& group = act.groups[stop.group];
-    if (stop.maneuver == WalkStop::kGroupStart) {
-      update_group(state, group);
-      for (size_t g = stop.group + 1; g < act.groups.size(); ++g) {
+    if (stop.maneuver == nullptr) {
+      for (size_t g = stop.group; g < act.groups.size(); ++g) {
         update_group(state, act.groups[g]);
       }
       return;
     }
-    ManeuverNode& maneuver = group.maneuvers[stop.maneuver];
-    EventNode& event = maneuver.events[stop.event];
+    EventNode& event = *stop.event;
     // update_event without its check: the stop's event is in standby.
     triggering_.clear();
     if (!event.start_trigger || event.start_trigger->evaluate(state, triggering_)) {
-      fire_event(state, maneuver, event, triggering_);
+      fire_event(state, *stop.maneuver, event, triggering_);
     }
     if (act.walk_writes != state_writes_) {
       walk_on(state, act, stop);
@@ -79,11 +75,13 @@ void find_stops(const SimState& state, const Storyboard::ActNode& act,
   // As update_group's loops go on: the rest of this maneuver's events (its state read before
   // them), the group's later maneuvers, the later groups.
   GroupNode& group = act.groups[stop.group];
-  ManeuverNode& here = group.maneuvers[stop.maneuver];
-  for (size_t e = stop.event + 1; e < here.events.size(); ++e) {
+  ManeuverNode& here = *stop.maneuver;
+  for (auto e = static_cast<size_t>(stop.event - here.events.data()) + 1; e < here.events.size();
+       ++e) {
     update_event(state, here, here.events[e]);
   }
-  for (size_t m = stop.maneuver + 1; m < group.maneuvers.size(); ++m) {
+  for (auto m = static_cast<size_t>(stop.maneuver - group.maneuvers.data()) + 1;
+       m < group.maneuvers.size(); ++m) {
     ManeuverNode& maneuver = group.maneuvers[m];
     if (!running(state, maneuver.element)) {
       continue;

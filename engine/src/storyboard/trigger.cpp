@@ -10,8 +10,10 @@
 namespace corsa::engine::detail {
 
 CompiledCondition::CompiledCondition(const xosc::Condition& condition, const SimState& state,
-                                     bool ghost)
-    : edge_(condition.edge), delay_ticks_(state.time.ticks(condition.delay)) {
+                                     const uint64_t& element_writes, bool ghost)
+    : edge_(condition.edge),
+      delay_ticks_(state.time.ticks(condition.delay)),
+      element_writes_(&element_writes) {
   if (condition.delay < 0.0) {
     throw InputError(
         condition.source.error("condition '" + condition.name + "' has a negative delay"));
@@ -25,6 +27,9 @@ CompiledCondition::CompiledCondition(const xosc::Condition& condition, const Sim
       std::replace(candidates_.begin(), candidates_.end(), state.ghost->entity, state.ghost->ghost);
       std::sort(candidates_.begin(), candidates_.end());
     }
+    if (candidates_.size() == 1 && entity_->inputs() == ConditionInputs::kOwnState) {
+      inputs_ = ConditionInputs::kOwnState;
+    }
   } else {
     const auto& by_value = std::get<xosc::ByValueCondition>(condition.kind);
     const auto* time = std::get_if<xosc::SimulationTimeCondition>(&by_value);
@@ -32,6 +37,10 @@ CompiledCondition::CompiledCondition(const xosc::Condition& condition, const Sim
       value_ = make_shifted_simulation_time(*time, -state.ghost->headstart);
     } else {
       value_ = make_value_condition(by_value, state);
+    }
+    if (value_->inputs() == ConditionInputs::kElementStates) {
+      inputs_ = ConditionInputs::kElementStates;
+      stands_ = value_->value_stands();
     }
   }
 }
@@ -76,12 +85,13 @@ void CompiledCondition::forget_history() {
   pending_.clear();
 }
 
-Trigger::Trigger(const xosc::Trigger& trigger, const SimState& state, bool ghost) {
+Trigger::Trigger(const xosc::Trigger& trigger, const SimState& state,
+                 const uint64_t& element_writes, bool ghost) {
   for (const xosc::ConditionGroup& group : trigger.groups) {
     std::vector<CompiledCondition> conditions;
     conditions.reserve(group.conditions.size());
     for (const xosc::Condition& condition : group.conditions) {
-      conditions.emplace_back(condition, state, ghost);
+      conditions.emplace_back(condition, state, element_writes, ghost);
     }
     groups_.push_back(std::move(conditions));
   }

@@ -7,7 +7,9 @@
 //
 // Conditions with an edge return false the first time they are checked, since there is no
 // earlier value to compare with (OpenSCENARIO user guide, "Condition edges"). Every condition of
-// every group is evaluated on each check, so that edge memory never skips a step.
+// every group is evaluated on each check, so that edge memory never skips a step; a condition
+// whose inputs stand since its previous check (ConditionInputs) takes the value they give
+// without reading them again.
 
 #include <cstdint>
 #include <deque>
@@ -22,16 +24,26 @@ namespace corsa::engine::detail {
 
 class CompiledCondition {
  public:
-  /// `ghost`: the condition belongs to a trigger esmini's ghost takes over (an Act's start
-  /// trigger, or an event whose motion actions the ghost performs; controllers/follow_ghost.h).
-  CompiledCondition(const xosc::Condition& condition, const SimState& state, bool ghost = false);
+  /// `element_writes`: the storyboard's count of element state writes (Storyboard, which
+  /// outlives its triggers). `ghost`: the condition belongs to a trigger esmini's ghost takes
+  /// over (an Act's start trigger, or an event whose motion actions the ghost performs;
+  /// controllers/follow_ghost.h).
+  CompiledCondition(const xosc::Condition& condition, const SimState& state,
+                    const uint64_t& element_writes, bool ghost = false);
 
   /// The condition's value now. When it holds, the entities that made it hold are appended to
   /// `triggering` (by-entity conditions); when it does not, nothing is.
   bool evaluate(const SimState& state, std::vector<uint32_t>& triggering) {
-    const bool now = value_                    ? value_->holds(state)
-                     : candidates_.size() == 1 ? one_holds(state)
-                                               : entities_hold(state);
+    bool now = false;
+    if (inputs_ == ConditionInputs::kAnything) {
+      now = holds(state);
+    } else if (const uint64_t stamp = inputs_stamp(state); evaluated_ && stamp == stamp_) {
+      // The inputs stand: the value is the one they gave (holders_ too, kept from then).
+      now = stands_ && last_;
+    } else {
+      stamp_ = stamp;
+      now = holds(state);
+    }
     bool edged = now;
     if (edge_ != xosc::ConditionEdge::kNone) {
       // The first value has no earlier one to make an edge with.
@@ -42,7 +54,8 @@ class CompiledCondition {
     evaluated_ = true;
     last_ = now;
     if (delay_ticks_ != 0) {
-      return delayed(state, edged, triggering);
+      // Nothing new and nothing waiting: nothing due.
+      return (edged || !pending_.empty()) && delayed(state, edged, triggering);
     }
     if (edged) {
       triggering.insert(triggering.end(), holders_.begin(), holders_.end());
@@ -58,6 +71,18 @@ class CompiledCondition {
   EntityCondition* entity_condition() { return entity_.get(); }
 
  private:
+  /// The condition's value now, read from its inputs.
+  bool holds(const SimState& state) {
+    return value_                    ? value_->holds(state)
+           : candidates_.size() == 1 ? one_holds(state)
+                                     : entities_hold(state);
+  }
+  /// The count of writes of the inputs (inputs_ kOwnState or kElementStates).
+  uint64_t inputs_stamp(const SimState& state) const {
+    return inputs_ == ConditionInputs::kOwnState
+               ? state.world.entities[candidates_.front()].state_changes()
+               : *element_writes_;
+  }
   /// The entity condition's value now; holders_ receives the entities that make it hold.
   bool entities_hold(const SimState& state);
   /// The same for one triggering entity, whichever the rule (any and all agree on one).
@@ -80,6 +105,11 @@ class CompiledCondition {
   std::vector<uint32_t> candidates_;  ///< triggering entities (selections expanded)
   bool all_ = false;                  ///< triggeringEntitiesRule "all"
   int64_t delay_ticks_ = 0;
+  /// What the value reads (kOwnState only with one triggering entity, whose count is the stamp).
+  ConditionInputs inputs_ = ConditionInputs::kAnything;
+  bool stands_ = true;  ///< ValueCondition::value_stands
+  uint64_t stamp_ = 0;  ///< inputs_stamp at the last evaluation that read the inputs
+  const uint64_t* element_writes_ = nullptr;
   bool evaluated_ = false;
   bool last_ = false;
   /// The entities that made the entity condition hold at its last evaluation (kept: reusing the
@@ -94,7 +124,9 @@ class CompiledCondition {
 
 class Trigger {
  public:
-  Trigger(const xosc::Trigger& trigger, const SimState& state, bool ghost = false);
+  /// `element_writes` and `ghost`: see CompiledCondition.
+  Trigger(const xosc::Trigger& trigger, const SimState& state, const uint64_t& element_writes,
+          bool ghost = false);
 
   /// Whether the trigger fires now; `triggering` receives the triggering entities of the groups
   /// that hold (sorted, unique).
