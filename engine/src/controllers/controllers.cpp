@@ -677,7 +677,7 @@ MoverScan scan_for_move(SimState& state, uint32_t count) {
     const Entity& entity = entities[i];
     const ControllerKind kind = control.effective();
     kinds |= kind_bit(kind);
-    if (std::optional<DomainPartner>& partner = control.partner) {
+    if (OutOfLine<DomainPartner>& partner = control.partner) {
       // The lateral controller of a split steers with the speed and heading the step began with.
       partner->step_start_speed = entity.state().speed;
       partner->step_start_heading = entity.lane.heading_offset;

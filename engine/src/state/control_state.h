@@ -5,6 +5,7 @@
 // OverrideControllerValueAction). Kept on the Entity; the dynamics integrator lives behind a
 // pointer so that entities stay movable.
 
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -12,6 +13,7 @@
 #include <string>
 
 #include "corsa/engine/external_control.h"
+#include "state/out_of_line.h"
 
 namespace corsa::engine::detail {
 
@@ -107,8 +109,8 @@ struct DomainPartner {
 };
 
 /// The flags every step reads of every entity (the controller, whether it is commanded or seen
-/// by traffic) come first, in one cache line, with the two fields the move's scan tests next to
-/// them; the rest is read only by the entities it concerns.
+/// by traffic) come first, in one cache line (64 bytes) with the three fields the moves test
+/// next to them; the rest is read only by the entities it concerns.
 struct ControlState {
   ControllerKind kind = ControllerKind::kDefault;
   /// A command from outside (Simulation::command, `command` below) for the step under way.
@@ -127,20 +129,19 @@ struct ControlState {
   /// vehicles drive on.
   bool crossing = false;
   bool crossed_roadway = false;
+  /// The controller of the other motion domain while two controllers share the entity's motion
+  /// (`kind` then is active only in the domain the partner is not); none otherwise. This and
+  /// `natural` follow the flags because every step tests both of every entity (EntityMover's
+  /// scan before the moves), out of line so that the scan reads the record's first line alone.
+  OutOfLine<DomainPartner> partner;
+  /// esmini's NaturalDriver and what it keeps between steps, while it is the controller.
+  std::shared_ptr<NaturalDriverState> natural;
+  /// Set when the acc controller emulates esmini's ACCController. In the first cache line too:
+  /// every car-following step tests it.
+  OutOfLine<EsminiAcc> esmini_acc;
   /// A generated walker's own pace (m/s), taken at its first step; it slows for others and
   /// comes back to it (controllers/npc_caution.h). Negative until known.
   double pace = -1.0;
-  /// Set when the acc controller emulates esmini's ACCController. In the first cache line too:
-  /// every car-following step tests it.
-  std::optional<EsminiAcc> esmini_acc;
-  /// esmini's NaturalDriver and what it keeps between steps, while it is the controller. This and
-  /// `partner` follow the flags because every step tests both of every entity (EntityMover's scan
-  /// before the moves): so the scan reads the record's first 144 bytes instead of three lines
-  /// apart.
-  std::shared_ptr<NaturalDriverState> natural;
-  /// The controller of the other motion domain while two controllers share the entity's motion
-  /// (`kind` then is active only in the domain the partner is not); none otherwise.
-  std::optional<DomainPartner> partner;
   /// VisibilityAction's SensorReferenceSet: the sensors for which the opposite of
   /// EntityState::visible holds (EntitySnapshot::sensor_exceptions).
   std::vector<std::string> sensor_exceptions;
@@ -174,5 +175,10 @@ struct ControlState {
     return (longitudinal || lateral) ? kind : ControllerKind::kDefault;
   }
 };
+// (offsetof of a type with members of library types, which GCC gives as for any other.)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Winvalid-offsetof"
+static_assert(offsetof(ControlState, pace) == 64, "the first line holds what every step tests");
+#pragma GCC diagnostic pop
 
 }  // namespace corsa::engine::detail

@@ -18,6 +18,7 @@
 #include "corsa/xodr/map.h"
 #include "corsa/xodr/map_parts.h"
 #include "corsa/xosc/enums.h"
+#include "state/out_of_line.h"
 
 namespace corsa::xosc {
 struct ScenarioObject;
@@ -186,20 +187,22 @@ inline constexpr size_t kVehicleLightCount = kVehicleLightTypes;
 using LightSettings = std::array<std::optional<LightSetting>, kVehicleLightCount>;
 
 /// The fields are in the order a step reads them: first what every step's passes over all
-/// entities touch (the motion: state, lane, commands; then the flags and timers, trailer links,
-/// the route, the pose command, the lane pose memo, the box and performance in `info`), then
-/// what only some entities or events need (the info's name and model, the still step's copy of
-/// the motion, the actions owning the domains, a removed entity's last place among them). With
-/// hundreds of vehicles the entities no longer fit in a core's cache, and a step then costs the
-/// cache lines it reads of each entity: the part up to `info.max_deceleration_rate` (632 of the
-/// entity's 1,256 bytes) is what the moves ask for ahead (controllers/controllers.cpp) and what
-/// the other passes read.
+/// entities touch (the motion: state, lane, commands; then the flags, the still step memo's
+/// count, trailer links, the route, the pose command, the lane pose memo, the box and
+/// performance in `info`), then what only some entities or events need (the info's name and
+/// model, the still step's copy of the motion, the condition timers, the actions owning the
+/// domains, a removed entity's last place among them). With hundreds of vehicles the entities
+/// no longer fit in a core's cache, and a step then costs the cache lines it reads of each
+/// entity: the part up to `info.max_deceleration_rate` (576 of the entity's 1,248 bytes, nine
+/// lines) is what the moves ask for ahead (controllers/controllers.cpp) and what the other
+/// passes read; a field read or written every step does not belong below it.
 struct Entity : EntityMotion {
   Entity() = default;
   /// An entity of the description `described` (state/entity_builder.h, describe_object).
   explicit Entity(EntityInfo described) : info(std::move(described)) {}
 
-  /// Timers (s) for the duration-based conditions (StandStill, Offroad, EndOfRoad).
+  /// Flags of the duration-based conditions (StandStill, Offroad, EndOfRoad; their timers are
+  /// below, with what few steps read).
   bool standing_still = false;  ///< slower than 1e-3 m/s (state/world_update.cpp)
   bool was_offroad = false;
   bool was_at_end = false;  ///< EntityMotion::end_of_road at the last timers' update
@@ -213,9 +216,9 @@ struct Entity : EntityMotion {
   /// `still_step` holds the motion of a default-controller step that changed nothing (read every
   /// step; the motion itself only for an entity standing on its lane).
   bool still_step_valid = false;
-  double standstill_time = 0.0;
-  double offroad_time = 0.0;
-  double end_of_road_time = 0.0;
+  /// The state's count of writes (state_changes) when `still_step` was last found held: while
+  /// the count is this, the state is the memo's. (Written every default-controller step.)
+  uint32_t still_step_changes = 0;
 
   /// Trailers (§7.4.8): the entity towing this one, and the one this one tows.
   std::optional<uint32_t> towed_by;
@@ -229,7 +232,8 @@ struct Entity : EntityMotion {
   std::shared_ptr<const LaneChooser> route;
   /// A pose an action sets for the end of the step (FollowTrajectoryAction): the controller
   /// puts the entity there instead of moving it along its lane (motion/pose_command.h).
-  std::optional<Pose> pose_command;
+  /// Out of line: few entities have one, and every step tests it.
+  OutOfLine<Pose> pose_command;
   LanePoseMemo lane_pose_memo;
   /// Its kind, box and performance are read every step, its name and model (last) by none.
   /// Fixed once the entity exists (given to its constructor; const, so that no later write
@@ -246,9 +250,11 @@ struct Entity : EntityMotion {
   /// holds exactly this again, field for field and bit for bit (same_bits: -0 and +0 differ, a
   /// NaN equals itself), the next step would change nothing either, and is skipped.
   EntityMotion still_step;
-  /// The state's count of writes (state_changes) when `still_step` was last found held: while
-  /// the count is this, the state is the memo's.
-  uint32_t still_step_changes = 0;
+  /// Timers (s) for the duration-based conditions (StandStill, Offroad, EndOfRoad; the flags
+  /// above): kept only while the storyboard has such a condition (SimState::timers_wanted).
+  double standstill_time = 0.0;
+  double offroad_time = 0.0;
+  double end_of_road_time = 0.0;
   /// The running action that owns each domain (index 0 longitudinal, 1 lateral), or null.
   std::array<ActionInstance*, kDomainSlots> owners{};
   std::optional<RoadCoordinates> removed_road;  ///< see `removed`
