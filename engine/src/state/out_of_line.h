@@ -49,10 +49,10 @@ class OutOfLine {
     return *this;
   }
   template <class U>
-    requires(!std::is_same_v<std::remove_cvref_t<U>, OutOfLine> &&
-             !std::is_same_v<std::remove_cvref_t<U>, std::nullopt_t> &&
-             std::is_assignable_v<T&, U &&>)
-  OutOfLine& operator=(U&& value) {
+  requires(!std::is_same_v<std::remove_cvref_t<U>, OutOfLine> &&
+           !std::is_same_v<std::remove_cvref_t<U>, std::nullopt_t> &&
+           std::is_assignable_v<T&, U&&>) OutOfLine&
+  operator=(U&& value) {
     if (storage_) {
       *storage_ = std::forward<U>(value);
     } else {
